@@ -1,0 +1,241 @@
+"""A linkage: its loops, inputs and unknowns, named points, and what can be asked of it.
+
+The data flows one way: the loops' closure equations, then a solve plan (one
+loop at a time, each with two unknowns left, in closed form), then the
+velocity and acceleration of each loop by differentiation, then the outputs a
+request names.  Every stage is derived on first use and kept, so a request
+for positions never differentiates anything.
+
+Outputs are named by strings:
+
+* a coordinate (``"phi"``), its rate (``"phidot"``) or acceleration (``"phiddot"``);
+* a role given to a coordinate (``"rocker"``), with ``"rocker_speed"`` and
+  ``"rocker_accel"`` for its derivatives;
+* a point's coordinates (``"C_x"``, ``"C_y"``) and any extra named expression
+  (the four-bar's ``"transmission"``).
+
+>>> from symlink.catalog import fourbar
+>>> linkage = fourbar()
+>>> [step.case.name for step in linkage.plan]
+['3']
+>>> linkage.expression("rocker_speed")
+a*thetadot*sin(beta - theta)/(c*sin(beta - phi))
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+from typing import Iterable, Mapping, Sequence
+
+import sympy as sp
+
+from .loops import Loop
+from .motion import loop_rates
+from .position import LoopSolution, solve_loop
+from .vectors import Vector, VectorSum, acceleration, rate
+
+__all__ = ["Linkage", "Program"]
+
+SPEED_SUFFIX = "_speed"
+ACCEL_SUFFIX = "_accel"
+
+
+@dataclass(frozen=True)
+class Program:
+    """Straight-line code for a set of outputs: what a code printer needs.
+
+    ``arguments`` are the free symbols in calling order; ``assignments`` are
+    ``(symbol, expression)`` in dependency order; ``outputs`` maps output
+    names to the symbols or expressions that hold them.
+    """
+
+    arguments: tuple[sp.Symbol, ...]
+    assignments: tuple[tuple[sp.Symbol, sp.Expr], ...]
+    outputs: dict[str, sp.Expr]
+
+
+class Linkage:
+    """A planar linkage described by vector loops.
+
+    ``inputs`` are the driven coordinates (a crank angle), ``unknowns`` the
+    coordinates the loops determine, in the order that fixes each loop's
+    branch rule (see :mod:`symlink.position`).  ``parameters`` (link lengths
+    and fixed angles) default to every other symbol, sorted by name.
+    ``points`` are named vector sums from the origin, ``roles`` give
+    coordinates plain names (``{"rocker": phi}``) and ``extras`` are further
+    named expressions of the coordinates.
+    """
+
+    def __init__(self, name: str, loops: Sequence[Loop], inputs: Sequence[sp.Symbol],
+                 unknowns: Sequence[sp.Symbol], *, parameters: Sequence[sp.Symbol] | None = None,
+                 points: Mapping[str, Vector | VectorSum | None] | None = None,
+                 roles: Mapping[str, sp.Symbol] | None = None,
+                 extras: Mapping[str, sp.Expr] | None = None) -> None:
+        self.name = name
+        self.loops = tuple(loops)
+        self.inputs = tuple(inputs)
+        self.unknowns = tuple(unknowns)
+        self.points = dict(points or {})
+        self.roles = dict(roles or {})
+        self.extras = {k: sp.sympify(v) for k, v in (extras or {}).items()}
+        coordinates = set(self.inputs) | set(self.unknowns)
+        if len(coordinates) != len(self.inputs) + len(self.unknowns):
+            raise ValueError("a coordinate is listed twice among inputs and unknowns")
+        found = set().union(*(loop.symbols() for loop in self.loops))
+        missing = [u for u in self.unknowns if u not in found]
+        if missing:
+            raise ValueError(f"unknowns {', '.join(map(str, missing))} appear in no loop")
+        if parameters is None:
+            parameters = sorted(found - coordinates, key=lambda s: s.name)
+        self.parameters = tuple(parameters)
+        self.branches: tuple[sp.Symbol, ...] = tuple(
+            step.branch for step in self.plan if step.branch is not None)
+
+    @property
+    def coordinates(self) -> tuple[sp.Symbol, ...]:
+        return self.inputs + self.unknowns
+
+    def _branch_symbol(self, loop: Loop) -> sp.Symbol:
+        return sp.Symbol("branch" if len(self.loops) == 1 else f"branch_{loop.name}", integer=True)
+
+    @cached_property
+    def plan(self) -> tuple[LoopSolution, ...]:
+        """The solve plan: loops in an order where each has exactly two unknowns left."""
+        solved: list[sp.Symbol] = []
+        steps: list[LoopSolution] = []
+        waiting = list(self.loops)
+        while waiting:
+            for loop in waiting:
+                left = [u for u in loop.unknowns_among(self.unknowns) if u not in solved]
+                if len(left) == 2:
+                    label = str(len(steps) + 1)
+                    steps.append(solve_loop(loop, left, self._branch_symbol(loop), label))
+                    solved += left
+                    waiting.remove(loop)
+                    break
+            else:
+                counts = ", ".join(
+                    f"{loop.name}: {len([u for u in loop.unknowns_among(self.unknowns) if u not in solved])}"
+                    for loop in waiting)
+                raise ValueError(
+                    f"no loop of {self.name!r} has exactly two unknowns left ({counts}); "
+                    "no closed-form solve plan exists")
+        unsolved = [u for u in self.unknowns if u not in solved]
+        if unsolved:
+            raise ValueError(f"the loops of {self.name!r} do not determine {', '.join(map(str, unsolved))}")
+        return tuple(steps)
+
+    @cached_property
+    def positions(self) -> dict[sp.Symbol, sp.Expr]:
+        """Every unknown and intermediate in closed form, in plan order."""
+        result: dict[sp.Symbol, sp.Expr] = {}
+        for step in self.plan:
+            result.update(step.intermediates)
+            result.update(step.positions)
+        return result
+
+    def _rates(self, order: int) -> dict[sp.Symbol, sp.Expr]:
+        result: dict[sp.Symbol, sp.Expr] = {}
+        for step in self.plan:
+            result.update(loop_rates(step.loop, list(step.positions), self.coordinates, order))
+        return result
+
+    @cached_property
+    def velocities(self) -> dict[sp.Symbol, sp.Expr]:
+        """The unknowns' rates, in terms of positions and the inputs' rates."""
+        return self._rates(1)
+
+    @cached_property
+    def accelerations(self) -> dict[sp.Symbol, sp.Expr]:
+        """The unknowns' accelerations, in terms of positions, rates and the inputs' accelerations."""
+        return self._rates(2)
+
+    def point(self, name: str) -> tuple[sp.Expr, sp.Expr]:
+        """A named point's x and y."""
+        vectors = self.points[name]
+        if vectors is None:
+            return sp.S.Zero, sp.S.Zero
+        return vectors.x, vectors.y
+
+    # --- outputs --------------------------------------------------------
+    def output_names(self) -> list[str]:
+        """Every output name this linkage answers to."""
+        names = [q.name for q in self.unknowns]
+        names += [rate(q).name for q in self.unknowns] + [acceleration(q).name for q in self.unknowns]
+        for role in self.roles:
+            names += [role, role + SPEED_SUFFIX, role + ACCEL_SUFFIX]
+        for point in self.points:
+            names += [f"{point}_x", f"{point}_y"]
+        return names + list(self.extras)
+
+    def output(self, name: str) -> sp.Expr:
+        """What an output name stands for: a coordinate or rate symbol, or an expression of them."""
+        by_name = {}
+        for q in self.coordinates:
+            by_name.update({q.name: q, rate(q).name: rate(q), acceleration(q).name: acceleration(q)})
+        for role, q in self.roles.items():
+            by_name.update({role: q, role + SPEED_SUFFIX: rate(q), role + ACCEL_SUFFIX: acceleration(q)})
+        if name in by_name:
+            return by_name[name]
+        if name in self.extras:
+            return self.extras[name]
+        point, _, axis = name.rpartition("_")
+        if point in self.points and axis in ("x", "y"):
+            return self.point(point)[axis == "y"]
+        raise ValueError(f"{self.name} has no output {name!r}; it has {', '.join(self.output_names())}")
+
+    def expression(self, name: str) -> sp.Expr:
+        """The closed form behind an output name, one level deep (in terms of coordinates and rates)."""
+        symbol = self.output(name)
+        return self._definitions_of([symbol]).get(symbol, symbol)
+
+    def _definitions_of(self, symbols: Iterable[sp.Symbol]) -> dict[sp.Symbol, sp.Expr]:
+        """The definitions that the symbols need: positions, and rates only if asked for."""
+        symbols = set(symbols)
+        unknown_rates = {rate(q) for q in self.unknowns}
+        unknown_accels = {acceleration(q) for q in self.unknowns}
+        definitions = dict(self.positions)
+        if symbols & (unknown_rates | unknown_accels):
+            definitions.update(self.velocities)
+        if symbols & unknown_accels:
+            definitions.update(self.accelerations)
+        return definitions
+
+    def program(self, outputs: Sequence[str]) -> Program:
+        """Straight-line code for ``outputs``: only what they depend on is derived and kept."""
+        wanted = {name: self.output(name) for name in outputs}
+        needed = set().union(*(e.free_symbols for e in wanted.values())) if wanted else set()
+        definitions = self._definitions_of(needed)
+        # Walk the dependencies; definitions are in dependency order already.
+        keep: set[sp.Symbol] = set()
+        stack = [s for s in needed if s in definitions]
+        while stack:
+            symbol = stack.pop()
+            if symbol not in keep:
+                keep.add(symbol)
+                stack += [s for s in definitions[symbol].free_symbols if s in definitions]
+        assignments = tuple((s, e) for s, e in definitions.items() if s in keep)
+        free = set(needed) - keep
+        for _, expr in assignments:
+            free |= expr.free_symbols - keep - set(definitions)
+        free -= keep
+        order = self.call_signature()
+        unexpected = free - set(order)
+        if unexpected:
+            raise ValueError(f"outputs depend on unknown symbols {sorted(map(str, unexpected))}")
+        always = set(self.inputs) | set(self.parameters) | set(self.branches)
+        arguments = tuple(s for s in order if s in free or s in always)
+        return Program(arguments, assignments, wanted)
+
+    def call_signature(self) -> tuple[sp.Symbol, ...]:
+        """The order of a generated function's arguments: inputs, parameters, branches, input rates."""
+        return (self.inputs + self.parameters + self.branches
+                + tuple(rate(q) for q in self.inputs) + tuple(acceleration(q) for q in self.inputs))
+
+    def _repr_latex_(self) -> str:
+        from .latex import equations_latex
+        return "$\\displaystyle " + equations_latex(self) + "$"
+
+    def __repr__(self) -> str:
+        return (f"Linkage({self.name!r}, loops={[loop.name for loop in self.loops]}, "
+                f"inputs={list(self.inputs)}, unknowns={list(self.unknowns)})")

@@ -1,0 +1,145 @@
+"""A vector loop: its closure equations and the case its two unknowns make.
+
+A loop is a signed sum of vectors that must vanish.  With two unknowns the
+loop falls into one of the four cases of the position-study paper
+(``seeds/000``):
+
+==== ==================================================================
+case unknowns
+==== ==================================================================
+1    two lengths
+2a   the length and the angle of one vector
+2b   the length of one vector and the angle of another
+3    two angles
+==== ==================================================================
+
+An unknown owns one vector of the loop: it is that vector's length, or its
+angle up to a known offset (a guide at a fixed angle to a rocker is
+``Vector(r, phi + pi/2)``).  Anything else (an unknown in two vectors, or
+inside a sine) has no closed form here and raises ``ValueError``.
+
+>>> from symlink.vectors import Vector, coordinates, lengths
+>>> theta, beta, phi = coordinates("theta beta phi")
+>>> a, b, c, d = lengths("a b c d")
+>>> closure = Loop(Vector(d, 0) + Vector(c, phi) - Vector(b, beta) - Vector(a, theta))
+>>> closure.case([beta, phi]).name
+'3'
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Sequence
+
+import sympy as sp
+
+from .vectors import Vector, VectorSum
+
+__all__ = ["Loop", "Unknown", "LoopCase", "CASE_NAMES"]
+
+CASE_NAMES = {
+    "1": "two lengths",
+    "2a": "length and angle of one vector",
+    "2b": "length and angle of different vectors",
+    "3": "two angles",
+}
+
+
+@dataclass(frozen=True)
+class Unknown:
+    """Where an unknown sits in a loop: which term, and whether it is the length or the angle."""
+
+    symbol: sp.Symbol
+    sign: int
+    vector: Vector
+    part: str  # "length" or "angle"
+    offset: sp.Expr  # the vector's length or angle minus the unknown
+
+
+@dataclass(frozen=True)
+class LoopCase:
+    """A loop with two unknowns: its case name, the two unknowns in order, and the known rest."""
+
+    name: str
+    first: Unknown
+    second: Unknown
+    known: tuple[tuple[int, Vector], ...]
+
+    @property
+    def branches(self) -> int:
+        """How many assemblies the case has (1 or 2)."""
+        return 2 if self.name in ("2b", "3") else 1
+
+
+class Loop:
+    """A closed vector loop ``sum of signed vectors = 0``."""
+
+    def __init__(self, vectors: VectorSum | Vector, name: str = "loop") -> None:
+        self.vectors = vectors.as_sum()
+        self.name = name
+        if len(self.vectors.terms) < 2:
+            raise ValueError(f"loop {name!r} needs at least two vectors")
+
+    @property
+    def terms(self) -> tuple[tuple[int, Vector], ...]:
+        return self.vectors.terms
+
+    def equations(self) -> tuple[sp.Expr, sp.Expr]:
+        """The closure's x and y components, each of which must be zero."""
+        return self.vectors.x, self.vectors.y
+
+    def symbols(self) -> set[sp.Symbol]:
+        found: set[sp.Symbol] = set()
+        for _, vector in self.terms:
+            found |= vector.length.free_symbols | vector.angle.free_symbols
+        return found
+
+    def unknowns_among(self, candidates: Sequence[sp.Symbol]) -> list[sp.Symbol]:
+        """The candidates that appear in this loop, in the candidates' order."""
+        present = self.symbols()
+        return [u for u in candidates if u in present]
+
+    def locate(self, unknown: sp.Symbol) -> Unknown:
+        """The one term that owns ``unknown``; ``ValueError`` if it is not a plain length or angle there."""
+        owners = [(sign, v) for sign, v in self.terms
+                  if unknown in v.length.free_symbols | v.angle.free_symbols]
+        if len(owners) != 1:
+            raise ValueError(
+                f"{unknown} appears in {len(owners)} vectors of loop {self.name!r}; "
+                "a closed form needs it in exactly one")
+        sign, vector = owners[0]
+        for part in ("length", "angle"):
+            expr = getattr(vector, part)
+            if unknown in expr.free_symbols:
+                offset = sp.expand(expr - unknown)
+                other = vector.angle if part == "length" else vector.length
+                if unknown in offset.free_symbols or unknown in other.free_symbols:
+                    raise ValueError(
+                        f"{unknown} must be the {part} of vector {vector} (up to a known offset) "
+                        f"in loop {self.name!r}")
+                return Unknown(unknown, sign, vector, part, offset)
+        raise AssertionError("unreachable")
+
+    def case(self, unknowns: Sequence[sp.Symbol]) -> LoopCase:
+        """Recognise which of the four cases the two ``unknowns`` make."""
+        if len(unknowns) != 2:
+            raise ValueError(
+                f"loop {self.name!r} has {len(unknowns)} unknowns ({', '.join(map(str, unknowns)) or 'none'}); "
+                "a loop gives two equations and needs exactly two")
+        first, second = (self.locate(u) for u in unknowns)
+        parts = {first.part, second.part}
+        if first.vector is second.vector and first.sign == second.sign:
+            if parts != {"length", "angle"}:
+                raise ValueError(f"{first.symbol} and {second.symbol} sit in the same part of one vector")
+            name = "2a"
+        elif parts == {"length"}:
+            name = "1"
+        elif parts == {"angle"}:
+            name = "3"
+        else:
+            name = "2b"
+        owners = {id(first.vector), id(second.vector)}
+        known = tuple((s, v) for s, v in self.terms if id(v) not in owners)
+        return LoopCase(name, first, second, known)
+
+    def __repr__(self) -> str:
+        return f"Loop({self.vectors}, name={self.name!r})"

@@ -1,0 +1,83 @@
+"""Numeric solvers compiled from a linkage's outputs, with checked inputs.
+
+A :class:`Solver` generates the NumPy code for the outputs it is asked for,
+loads it, and calls it with validated values: lengths must be positive and
+finite, branches +1 or -1.  Where the linkage cannot be assembled the result
+says so in its ``assembled`` mask.
+
+>>> from symlink.catalog import fourbar
+>>> solver = Solver(fourbar(), ["rocker"])
+>>> result = solver(theta=0.0, a=20, b=66, c=56, d=80, branch=1)
+>>> round(float(numpy.degrees(result["rocker"])), 2)
+110.74
+"""
+from __future__ import annotations
+
+import math
+from typing import Sequence
+
+import numpy
+
+from .codegen import load_numpy_module, numpy_module
+from .linkage import Linkage
+
+__all__ = ["Solver", "check_lengths", "crank_speeds"]
+
+
+def check_lengths(**lengths: float) -> None:
+    """``ValueError`` naming the first length that is not a positive finite number."""
+    for name, value in lengths.items():
+        values = numpy.asarray(value, dtype=float)
+        if not numpy.all(numpy.isfinite(values)) or not numpy.all(values > 0):
+            raise ValueError(f"{name} must be a positive finite length, got {value}")
+
+
+class Solver:
+    """A vectorised NumPy solver for some outputs of a linkage."""
+
+    def __init__(self, linkage: Linkage, outputs: Sequence[str]) -> None:
+        self.linkage = linkage
+        self.outputs = list(outputs)
+        self.program = linkage.program(self.outputs)
+        self.source = numpy_module([("solve", self.program, f"{linkage.name}: {', '.join(self.outputs)}.")])
+        self.function = load_numpy_module(self.source)["solve"]
+
+    @property
+    def arguments(self) -> list[str]:
+        return [s.name for s in self.program.arguments]
+
+    def __call__(self, **values) -> dict[str, numpy.ndarray]:
+        unknown = set(values) - set(self.arguments)
+        if unknown:
+            raise ValueError(f"{self.linkage.name} takes {', '.join(self.arguments)}; not {', '.join(sorted(unknown))}")
+        lengths = {s.name: values[s.name] for s in self.linkage.parameters
+                   if s.is_positive and s.name in values}
+        check_lengths(**lengths)
+        for branch in self.linkage.branches:
+            if branch.name in values and not numpy.all(numpy.isin(values[branch.name], (1, -1))):
+                raise ValueError(f"{branch.name} must be +1 or -1, got {values[branch.name]}")
+        for name, value in values.items():
+            if not numpy.all(numpy.isfinite(numpy.asarray(value, dtype=float))):
+                raise ValueError(f"{name} must be finite, got {value}")
+        with numpy.errstate(invalid="ignore", divide="ignore"):
+            return self.function(**values)
+
+
+def crank_speeds(angles: numpy.ndarray, speed: float, accel: float) -> numpy.ndarray:
+    """Crank speed at each angle when it speeds up uniformly from the first angle.
+
+    ``omega^2 = speed^2 + 2 accel (theta - theta_first)``, as the program of
+    ``seeds/003`` steps it.  ``ValueError`` where the crank would have stopped.
+
+    >>> crank_speeds(numpy.array([0.0, 1.0]), 2.0, 1.5).tolist()
+    [2.0, 2.23606797749979]
+    """
+    angles = numpy.asarray(angles, dtype=float)
+    if angles.size == 0:
+        return angles
+    squared = speed**2 + 2 * accel * (angles - angles.flat[0])
+    if numpy.any(squared < 0):
+        first = angles[squared < 0].flat[0]
+        raise ValueError(f"the crank stops before reaching {math.degrees(first):.6g} deg "
+                         f"(speed {speed} rad/s, acceleration {accel} rad/s^2)")
+    return numpy.sign(speed if speed != 0 else accel) * numpy.sqrt(squared)

@@ -121,8 +121,9 @@ def json_number(value):
     return float(value) if math.isfinite(value) else None
 
 
-def print_rows(rows: list[dict], columns: list[str], fmt: str, out=sys.stdout) -> None:
+def print_rows(rows: list[dict], columns: list[str], fmt: str, out=None) -> None:
     """Rows as an aligned table, csv with the exact header, or json records."""
+    out = out or sys.stdout
     if fmt == "csv":
         print(",".join(columns), file=out)
         for row in rows:

@@ -1,0 +1,61 @@
+"""Linkage: solve plan, lazy derivation, and programs that keep only what outputs need."""
+import pytest
+import sympy as sp
+
+from symlink.catalog import fourbar
+from symlink.linkage import Linkage
+from symlink.loops import Loop
+from symlink.vectors import Vector, coordinates, lengths
+
+
+def test_positions_only_never_differentiate():
+    linkage = fourbar()
+    linkage.program(["rocker", "C_x", "C_y"])
+    assert "velocities" not in linkage.__dict__ and "accelerations" not in linkage.__dict__
+    linkage.program(["rocker_speed"])
+    assert "velocities" in linkage.__dict__ and "accelerations" not in linkage.__dict__
+
+
+def test_rocker_only_does_not_solve_for_the_coupler():
+    program = fourbar().program(["rocker"])
+    assert [s.name for s, _ in program.assignments] == ["Wx_1", "Wy_1", "w_1", "Delta_1", "phi"]
+    assert "thetadot" not in [s.name for s in program.arguments]
+
+
+def test_arguments_follow_the_call_signature():
+    program = fourbar().program(["rocker_accel"])
+    assert [s.name for s in program.arguments] == ["theta", "a", "b", "c", "d", "branch", "thetadot", "thetaddot"]
+
+
+def test_output_names_and_errors():
+    linkage = fourbar()
+    assert {"crank", "rocker_speed", "coupler_accel", "C_x", "transmission", "phiddot"} <= set(linkage.output_names())
+    with pytest.raises(ValueError, match="no output 'piston'"):
+        linkage.output("piston")
+
+
+def test_no_closed_form_plan_is_reported():
+    theta, p, q, r = coordinates("theta p q r")
+    a, b, c = lengths("a b c")
+    loop = Loop(Vector(a, theta) + Vector(b, p) + Vector(c, q) + Vector(1, r))
+    with pytest.raises(ValueError, match="no loop of 'three' has exactly two unknowns"):
+        Linkage("three", [loop], inputs=[theta], unknowns=[p, q, r]).plan
+
+
+def test_two_loop_plan_uses_earlier_results():
+    theta, beta, phi, gamma, psi = coordinates("theta beta phi gamma psi")
+    a, b, c, d, e, f, g = lengths("a b c d e f g")
+    first = Loop(Vector(a, theta) + Vector(b, beta) - Vector(c, phi) - Vector(d, 0), name="first")
+    second = Loop(Vector(c, phi) + Vector(e, gamma) - Vector(f, psi) - Vector(g, 0), name="second")
+    linkage = Linkage("watt", [second, first], inputs=[theta], unknowns=[beta, phi, gamma, psi])
+    assert [step.loop.name for step in linkage.plan] == ["first", "second"]
+    assert [b.name for b in linkage.branches] == ["branch_first", "branch_second"]
+    assert phi in linkage.positions[sp.Symbol("Wx_2", real=True)].free_symbols
+
+
+def test_unknown_in_no_loop_is_refused():
+    theta, beta, phi, extra = coordinates("theta beta phi extra")
+    a, b, c, d = lengths("a b c d")
+    loop = Loop(Vector(a, theta) + Vector(b, beta) - Vector(c, phi) - Vector(d, 0))
+    with pytest.raises(ValueError, match="extra appear in no loop"):
+        Linkage("x", [loop], inputs=[theta], unknowns=[beta, phi, extra])

@@ -69,8 +69,8 @@ def crank_speeds(angles: numpy.ndarray, speed: float, accel: float) -> numpy.nda
     ``omega^2 = speed^2 + 2 accel (theta - theta_first)``, as the program of
     ``seeds/003`` steps it.  ``ValueError`` where the crank would have stopped.
 
-    >>> crank_speeds(numpy.array([0.0, 1.0]), 2.0, 1.5).tolist()
-    [2.0, 2.23606797749979]
+    >>> crank_speeds(numpy.array([0.0, 1.0]), 2.0, 1.5).tolist()  # sqrt(4 + 2 * 1.5 * 1) = sqrt(7)
+    [2.0, 2.6457513110645907]
     """
     angles = numpy.asarray(angles, dtype=float)
     if angles.size == 0:

@@ -10,7 +10,7 @@ import argparse
 import json
 import math
 import sys
-from typing import Sequence
+from typing import Collection, Sequence
 
 import numpy
 
@@ -162,7 +162,8 @@ def run_fourbar(args: argparse.Namespace) -> int:
     return 0
 
 
-def assemble_rows(angles, results: dict, columns: list[str], units: str, spans: str) -> list[dict]:
+def assemble_rows(angles, results: dict, columns: list[str], units: str, spans: str,
+                  angle_columns: Collection[str] = ANGLE_COLUMNS) -> list[dict]:
     """Table rows (angle, then branch) of the assembled results; the rest named on stderr.
 
     Angles in ``columns`` are converted to ``units`` and wrapped; speeds and
@@ -178,7 +179,7 @@ def assemble_rows(angles, results: dict, columns: list[str], units: str, spans: 
             row = {columns[0]: float(wrap(angle, half_turn(units))), "branch": sign}
             for column in columns[2:]:
                 value = float(result[column][i])
-                if column in ANGLE_COLUMNS:
+                if column in angle_columns:
                     value = float(wrap(from_radians(value, units), half_turn(units)))
                 elif column == "transmission":
                     value = float(from_radians(value, units))
@@ -208,6 +209,8 @@ def build_parser() -> argparse.ArgumentParser:
         table.add_argument(f"--{option}", type=finite, required=True, help=f"length {what}")
     add_sweep_options(table)
     table.set_defaults(run=run_fourbar)
+    from . import scene  # symlink run SCENE.toml
+    scene.add_command(commands)
     return parser
 
 

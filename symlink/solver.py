@@ -14,12 +14,13 @@ says so in its ``assembled`` mask.
 from __future__ import annotations
 
 import math
+from functools import cached_property
 from typing import Sequence
 
 import numpy
 
-from .codegen import load_numpy_module, numpy_module
-from .linkage import Linkage
+from .cache import generated_code
+from .linkage import Linkage, Program
 
 __all__ = ["Solver", "check_lengths", "crank_speeds"]
 
@@ -38,13 +39,13 @@ class Solver:
     def __init__(self, linkage: Linkage, outputs: Sequence[str]) -> None:
         self.linkage = linkage
         self.outputs = list(outputs)
-        self.program = linkage.program(self.outputs)
-        self.source = numpy_module([("solve", self.program, f"{linkage.name}: {', '.join(self.outputs)}.")])
-        self.function = load_numpy_module(self.source)["solve"]
+        code = generated_code(linkage, self.outputs)  # derived once, then from the scene cache
+        self.source, self.function, self.arguments = code.source, code.function, code.arguments
 
-    @property
-    def arguments(self) -> list[str]:
-        return [s.name for s in self.program.arguments]
+    @cached_property
+    def program(self) -> Program:
+        """The straight-line program behind the code (derived on first access only)."""
+        return self.linkage.program(self.outputs)
 
     def __call__(self, **values) -> dict[str, numpy.ndarray]:
         unknown = set(values) - set(self.arguments)

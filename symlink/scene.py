@@ -1,0 +1,329 @@
+"""Scenes: a request for some outputs of a linkage, and only what those outputs need.
+
+A :class:`Scene` names a linkage (a :class:`~symlink.linkage.Linkage` or a
+catalog name), the outputs it needs, the values to evaluate them at (input
+angles, link lengths, input rates) and the branch.  symlink derives,
+generates and loads code for exactly those outputs and what they depend on:
+a positions-only scene never differentiates, a rocker-only scene never
+computes the coupler angle, and common subexpressions are shared among the
+requested outputs only.  The code is cached in memory and on disk
+(:mod:`symlink.cache`), so the second run of a scene does no symbolic work.
+:class:`~symlink.solver.Solver`, which every command of the command line
+uses, goes through the same cache.
+
+>>> from symlink.catalog import fourbar
+>>> scene = Scene(fourbar(), ["rocker"], dict(theta=0.0, a=20, b=66, c=56, d=80), branch="both")
+>>> {sign: round(float(numpy.degrees(result["rocker"])), 2) for sign, result in scene.evaluate().items()}
+{1: 110.74, -1: -110.74}
+>>> "beta =" in scene.source, "velocities" in scene.linkage.__dict__
+(False, False)
+
+Scene files (``symlink run scene.toml``) hold numbers and names only, never
+code::
+
+    linkage = "fourbar"                 # a catalog name
+    outputs = ["rocker", "rocker_speed"]  # any of the linkage's output names
+    branch = "both"                     # 1, -1 or "both" (default 1)
+    units = "deg"                       # "deg" (default) or "rad": input and printed angles
+    format = "table"                    # "table" (default), "csv" or "json"
+
+    [parameters]                        # every link length of the linkage, by name
+    a = 20
+    b = 66
+    c = 56
+    d = 80
+
+    [input]                             # the crank: start/stop/step (default 0, 360, 10 deg) or angles
+    start = 0
+    stop = 360
+    step = 40
+    # angles = [0, 40, 80]
+    speed = 10.5                        # rad/s at the first angle (default 0)
+    accel = 0                           # rad/s^2, uniform from the first angle (default 0)
+
+They are read with ``tomllib`` (Python 3.11 and later) or, on Python 3.10,
+with the strict subset reader :mod:`symlink.minitoml`.  Every key and value
+is checked; anything unknown or out of range is one line of error.
+"""
+from __future__ import annotations
+
+import argparse
+import inspect
+import sys
+from functools import cached_property, lru_cache
+from pathlib import Path
+from typing import Mapping, Sequence
+
+import numpy
+import sympy as sp
+
+from .cache import GeneratedCode, generated_code
+from .catalog import CATALOG
+from .linkage import Linkage, Program
+from .solver import Solver, crank_speeds
+from .vectors import acceleration, rate
+
+__all__ = ["Scene", "SceneFile", "catalog_linkage", "angle_outputs", "read_scene", "scene_from_mapping",
+           "add_command", "run"]
+
+BRANCH_CHOICES = (1, -1, "both")
+UNITS = ("deg", "rad")
+FORMATS = ("table", "csv", "json")
+TOP_KEYS = {"linkage", "outputs", "branch", "units", "format", "parameters", "input"}
+INPUT_KEYS = {"start", "stop", "step", "angles", "speed", "accel"}
+
+
+@lru_cache(maxsize=None)
+def catalog_linkage(name: str) -> Linkage:
+    """The catalog's linkage ``name``, built once a process.
+
+    >>> catalog_linkage("fourbar").unknowns
+    (beta, phi)
+    """
+    if name not in CATALOG:
+        raise ValueError(f"no linkage {name!r} in the catalog; it has {', '.join(sorted(CATALOG))}")
+    return CATALOG[name]()
+
+
+def _is_angle(linkage: Linkage, coordinate: sp.Symbol) -> bool:
+    return any(coordinate in vector.angle.free_symbols for loop in linkage.loops for _, vector in loop.terms)
+
+
+def angle_outputs(linkage: Linkage, outputs: Sequence[str]) -> set[str]:
+    """The outputs that are angles: coordinates that turn a vector, and extras made by an inverse trig function.
+
+    Rates and accelerations are not angles (they are per second); points are lengths.
+
+    >>> sorted(angle_outputs(catalog_linkage("fourbar"), ["rocker", "rocker_speed", "C_x", "transmission"]))
+    ['rocker', 'transmission']
+    """
+    found = set()
+    for name in outputs:
+        expr = linkage.output(name)
+        if isinstance(expr, sp.Symbol) and expr in linkage.coordinates:
+            if _is_angle(linkage, expr):
+                found.add(name)
+        elif name in linkage.extras:
+            while isinstance(expr, sp.Abs):
+                expr = expr.args[0]
+            if isinstance(expr, (sp.atan2, sp.atan, sp.asin, sp.acos)):
+                found.add(name)
+    return found
+
+
+class Scene:
+    """A linkage, the outputs it needs, the values to evaluate them at, and the branch.
+
+    ``values`` are the generated function's arguments by name (inputs in
+    radians, link lengths, input rates); they broadcast against each other.
+    ``branch`` is +1, -1 or ``"both"``; it is given to every branch sign of
+    the linkage.
+    """
+
+    def __init__(self, linkage: Linkage | str, outputs: Sequence[str],
+                 values: Mapping[str, object] | None = None, branch: int | str = 1) -> None:
+        self.linkage = catalog_linkage(linkage) if isinstance(linkage, str) else linkage
+        self.outputs = tuple(outputs)
+        if not self.outputs:
+            raise ValueError(f"a scene needs at least one output of {self.linkage.name}; "
+                             f"it has {', '.join(self.linkage.output_names())}")
+        for name in self.outputs:
+            self.linkage.output(name)  # ValueError naming the outputs there are
+        if branch not in BRANCH_CHOICES or isinstance(branch, bool):
+            raise ValueError(f"branch must be 1, -1 or 'both', got {branch!r}")
+        self.branch = branch
+        self.values = dict(values or {})
+
+    @property
+    def signs(self) -> tuple[int, ...]:
+        """The branch signs the scene is evaluated on."""
+        return (1, -1) if self.branch == "both" else (self.branch,)
+
+    @cached_property
+    def code(self) -> GeneratedCode:
+        """The generated and loaded code of exactly these outputs (cached)."""
+        return generated_code(self.linkage, self.outputs)
+
+    @property
+    def source(self) -> str:
+        """The generated NumPy module."""
+        return self.code.source
+
+    @cached_property
+    def solver(self) -> Solver:
+        """A checked solver of these outputs (same cached code)."""
+        return Solver(self.linkage, self.outputs)
+
+    def program(self) -> Program:
+        """The straight-line program behind the code: symbolic work, for inspection only."""
+        return self.linkage.program(self.outputs)
+
+    def evaluate(self, **values) -> dict[int, dict[str, numpy.ndarray]]:
+        """The outputs on each branch sign, at the scene's values updated by ``values``."""
+        merged = {**self.values, **values}
+        signature = inspect.signature(self.code.function).parameters
+        missing = [name for name, argument in signature.items()
+                   if name not in merged and argument.default is inspect.Parameter.empty]
+        if missing:
+            raise ValueError(f"{self.linkage.name} needs values for {', '.join(missing)}")
+        return {sign: self.solver(**merged, **{b.name: sign for b in self.linkage.branches})
+                for sign in self.signs}
+
+    def __repr__(self) -> str:
+        return f"Scene({self.linkage.name!r}, {list(self.outputs)}, branch={self.branch!r})"
+
+
+# --- scene files -----------------------------------------------------------
+
+class SceneFile:
+    """A scene read from a file, with how to drive and print it."""
+
+    def __init__(self, scene: Scene, input_column: str, angles: numpy.ndarray, units: str, fmt: str) -> None:
+        self.scene, self.input_column, self.angles, self.units, self.format = scene, input_column, angles, units, fmt
+
+
+def _number(value, where: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise ValueError(f"{where} must be a number, got {value!r}")
+    if not numpy.isfinite(value):
+        raise ValueError(f"{where} must be finite, got {value!r}")
+    return float(value)
+
+
+def _choice(value, where: str, choices: Sequence) -> object:
+    if isinstance(value, bool) or value not in choices:
+        raise ValueError(f"{where} must be one of {', '.join(map(repr, choices))}, got {value!r}")
+    return value
+
+
+def _table(data, where: str, allowed: set[str] | None) -> dict:
+    if not isinstance(data, dict):
+        raise ValueError(f"{where} must be a table ([{where}]), got {data!r}")
+    if allowed is not None:
+        unknown = sorted(set(data) - allowed)
+        if unknown:
+            raise ValueError(f"unknown key {where + '.' if where else ''}{unknown[0]} "
+                             f"(allowed: {', '.join(sorted(allowed))})")
+    return data
+
+
+def scene_from_mapping(data: Mapping) -> SceneFile:
+    """A :class:`SceneFile` from a parsed scene file; ``ValueError`` naming the first bad key or value.
+
+    >>> found = scene_from_mapping({"linkage": "fourbar", "outputs": ["rocker"],
+    ...                             "parameters": dict(a=20, b=66, c=56, d=80), "input": {"angles": [0]}})
+    >>> round(float(numpy.degrees(found.scene.evaluate()[1]["rocker"][0])), 2)
+    110.74
+    """
+    from .cli import UsageError, sweep_angles, to_radians
+
+    data = _table(dict(data), "", TOP_KEYS)
+    if "linkage" not in data:
+        raise ValueError(f"missing key linkage (one of {', '.join(sorted(CATALOG))})")
+    if not isinstance(data["linkage"], str):
+        raise ValueError(f"linkage must be a catalog name, got {data['linkage']!r}")
+    linkage = catalog_linkage(data["linkage"])
+    outputs = data.get("outputs")
+    if not isinstance(outputs, list) or not outputs or not all(isinstance(o, str) for o in outputs):
+        raise ValueError(f"outputs must be a non-empty list of output names of {linkage.name} "
+                         f"({', '.join(linkage.output_names())}), got {outputs!r}")
+    for name in outputs:
+        try:
+            linkage.output(name)
+        except ValueError:
+            raise ValueError(f"outputs: {linkage.name} has no output {name!r}; "
+                             f"it has {', '.join(linkage.output_names())}") from None
+    branch = _choice(data.get("branch", 1), "branch", BRANCH_CHOICES)
+    units = _choice(data.get("units", "deg"), "units", UNITS)
+    fmt = _choice(data.get("format", "table"), "format", FORMATS)
+
+    names = {s.name: s for s in linkage.parameters}
+    given = _table(data.get("parameters", {}), "parameters", set(names))
+    missing = [n for n in names if n not in given]
+    if missing:
+        raise ValueError(f"missing parameters.{missing[0]} ({linkage.name} needs {', '.join(names)})")
+    parameters = {}
+    for name, value in given.items():
+        parameters[name] = _number(value, f"parameters.{name}")
+        if names[name].is_positive and parameters[name] <= 0:
+            raise ValueError(f"parameters.{name} must be a positive length, got {value!r}")
+
+    if len(linkage.inputs) != 1 or not _is_angle(linkage, linkage.inputs[0]):
+        raise ValueError(f"scene files drive linkages with one input angle; {linkage.name} has "
+                         f"{', '.join(map(str, linkage.inputs))}")
+    driven = linkage.inputs[0]
+    sweep = _table(data.get("input", {}), "input", INPUT_KEYS)
+    options = {key: (None if key not in sweep else _number(sweep[key], f"input.{key}"))
+               for key in ("start", "stop", "step")}
+    angles = sweep.get("angles")
+    if angles is not None:
+        if not isinstance(angles, list):
+            raise ValueError(f"input.angles must be a list of numbers, got {angles!r}")
+        angles = [_number(v, f"input.angles[{i}]") for i, v in enumerate(angles)]
+    try:
+        values = sweep_angles(argparse.Namespace(angles=angles, units=units, **options))
+    except UsageError as error:
+        raise ValueError(f"input: {str(error).replace('--', '')}") from None
+    theta = to_radians(values, units)
+    speed = _number(sweep.get("speed", 0.0), "input.speed")
+    accel = _number(sweep.get("accel", 0.0), "input.accel")
+    scene = Scene(linkage, outputs, {driven.name: theta, **parameters}, branch)
+    takes = scene.code.arguments  # rates only where the outputs need them
+    if rate(driven).name in takes:
+        scene.values[rate(driven).name] = crank_speeds(theta, speed, accel)
+    if acceleration(driven).name in takes:
+        scene.values[acceleration(driven).name] = accel
+    roles = [role for role, q in linkage.roles.items() if q == driven]
+    return SceneFile(scene, roles[0] if roles else driven.name, values, units, fmt)
+
+
+def read_scene(path: str | Path) -> SceneFile:
+    """Read and check a TOML scene file; ``ValueError`` starting with the file name on any problem."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as error:
+        raise ValueError(f"cannot read scene file {path}: {getattr(error, 'strerror', None) or error}") from None
+    try:
+        if sys.version_info >= (3, 11):
+            import tomllib
+            try:
+                data = tomllib.loads(text)
+            except tomllib.TOMLDecodeError as error:
+                raise ValueError(f"not valid TOML: {error}") from None
+        else:  # pragma: no cover - exercised on Python 3.10 only
+            from .minitoml import loads
+            data = loads(text)
+        return scene_from_mapping(data)
+    except ValueError as error:
+        raise ValueError(f"{path}: {error}") from None
+
+
+# --- the command line ------------------------------------------------------
+
+def add_command(commands) -> None:
+    """Register ``symlink run SCENE.toml``."""
+    command = commands.add_parser("run", help="evaluate a scene file (TOML: numbers and names only)")
+    command.add_argument("scene", help="a TOML scene file")
+    command.add_argument("--format", choices=list(FORMATS), help="override the file's format")
+    command.set_defaults(run=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """``symlink run``: print the scene's outputs at each input angle and branch."""
+    from .analysis import crank_range
+    from .cli import assemble_rows, describe_spans, print_rows
+
+    found = read_scene(args.scene)
+    scene = found.scene
+    results = scene.evaluate()
+    columns = [found.input_column, "branch", *scene.outputs]
+    if scene.linkage.name == "fourbar":
+        lengths = (scene.values[n] for n in "abcd")
+        spans = describe_spans(crank_range(*lengths), found.units)
+    else:
+        spans = f"not computed for {scene.linkage.name}"
+    angle_columns = {found.input_column} | angle_outputs(scene.linkage, scene.outputs)
+    rows = assemble_rows(found.angles, results, columns, found.units, spans, angle_columns=angle_columns)
+    print_rows(rows, columns, args.format or found.format)
+    return 0

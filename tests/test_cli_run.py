@@ -1,0 +1,165 @@
+"""``symlink run scene.toml``: scene files of numbers and names, checked key by key."""
+import csv
+import io
+import json
+import math
+import re
+
+import pytest
+
+from references import SEED003_LINKAGE, mp_fourbar
+from symlink.cache import clear_memory
+from symlink.cli import main
+
+SCENE = """\
+linkage = "fourbar"
+outputs = {outputs}
+branch = {branch}
+{extra}
+[parameters]
+a = 20
+b = 66
+c = 56
+d = 80
+
+[input]
+{sweep}
+"""
+
+
+@pytest.fixture(autouse=True)
+def own_cache(tmp_path, monkeypatch):
+    monkeypatch.setenv("SYMLINK_CACHE", str(tmp_path / "cache"))
+    clear_memory()
+    yield
+    clear_memory()
+
+
+def scene_file(tmp_path, outputs='["coupler", "rocker", "rocker_speed", "transmission"]', branch='"both"',
+               extra="", sweep="step = 40\nspeed = 10.5"):
+    path = tmp_path / "scene.toml"
+    path.write_text(SCENE.format(outputs=outputs, branch=branch, extra=extra, sweep=sweep))
+    return path
+
+
+def run(capsys, *argv):
+    status = main([str(a) for a in argv])
+    out, err = capsys.readouterr()
+    return status, out, err
+
+
+def wrapped_degrees(radians):
+    degrees = math.degrees(float(radians))
+    return degrees - 360 * math.floor((degrees + 180) / 360) if degrees != 180 else degrees
+
+
+def test_csv_rows_match_the_reference(tmp_path, capsys):
+    status, out, err = run(capsys, "run", scene_file(tmp_path), "--format", "csv")
+    assert status == 0 and err == ""
+    rows = list(csv.DictReader(io.StringIO(out)))
+    assert list(rows[0]) == ["crank", "branch", "coupler", "rocker", "rocker_speed", "transmission"]
+    assert len(rows) == 18  # 9 angles, both branches, a full turn (Grashof crank-rocker)
+    for row in rows:
+        theta, branch = math.radians(float(row["crank"])), int(row["branch"])
+        expected = mp_fourbar(**SEED003_LINKAGE, theta=theta, branch=branch, crank_speed=10.5)
+        assert float(row["rocker"]) == pytest.approx(wrapped_degrees(expected["phi"]), abs=1e-10)
+        assert float(row["coupler"]) == pytest.approx(wrapped_degrees(expected["beta"]), abs=1e-10)
+        assert float(row["rocker_speed"]) == pytest.approx(float(expected["phi_speed"]), rel=1e-10)
+        interior = abs(wrapped_degrees(expected["phi"] - expected["beta"]))  # the angle at C
+        assert float(row["transmission"]) == pytest.approx(interior, abs=1e-10)
+
+
+def test_format_and_units_from_the_file(tmp_path, capsys):
+    path = scene_file(tmp_path, outputs='["rocker"]', branch="-1", extra='units = "rad"\nformat = "json"',
+                      sweep="angles = [0, 0.5]")
+    status, out, _ = run(capsys, "run", path)
+    assert status == 0
+    records = json.loads(out)
+    assert [r["crank"] for r in records] == [0.0, 0.5] and {r["branch"] for r in records} == {-1}
+    for record in records:
+        expected = mp_fourbar(**SEED003_LINKAGE, theta=record["crank"], branch=-1)
+        assert record["rocker"] == pytest.approx(float(expected["phi"]), abs=1e-13)
+
+
+def test_table_format_and_uniform_crank_acceleration(tmp_path, capsys):
+    path = scene_file(tmp_path, outputs='["rocker_accel"]', branch="1",
+                      sweep="angles = [0, 90]\nspeed = 2\naccel = 3")
+    status, out, _ = run(capsys, "run", path)
+    assert status == 0 and out.split()[:3] == ["crank", "branch", "rocker_accel"]
+    speed = math.sqrt(2**2 + 2 * 3 * math.pi / 2)  # omega^2 = W^2 + 2 AL (theta - theta_0)
+    expected = mp_fourbar(**SEED003_LINKAGE, theta=math.pi / 2, branch=1, crank_speed=speed, crank_accel=3)
+    assert float(out.splitlines()[2].split()[2]) == pytest.approx(float(expected["phi_accel"]), abs=5e-5)
+
+
+def test_positions_only_scene_ignores_the_crank_speed(tmp_path, capsys):
+    status, out, _ = run(capsys, "run", scene_file(tmp_path, outputs='["C_x", "C_y"]', branch="1"), "--format", "csv")
+    assert status == 0 and out.splitlines()[0] == "crank,branch,C_x,C_y"
+
+
+def test_unassemblable_angles_are_named(tmp_path, capsys):
+    path = tmp_path / "s.toml"
+    path.write_text('linkage = "fourbar"\noutputs = ["rocker"]\n[parameters]\na = 50\nb = 20\nc = 20\nd = 60\n'
+                    "[input]\nangles = [0, 180]\n")
+    status, out, err = run(capsys, "run", path, "--format", "csv")
+    assert status == 0 and len(out.splitlines()) == 2
+    assert "cannot be assembled at crank angles 180 deg" in err
+
+
+BAD = [
+    ('linkage = "fourbar"\nlinkage = "x"\n', "not valid TOML"),
+    ('linkage = "fourbar"\ncolour = "red"\n', "unknown key colour"),
+    ('outputs = ["rocker"]\n', "missing key linkage"),
+    ('linkage = "__import__(\'os\').system(\'true\')"\noutputs = ["rocker"]\n', "no linkage .* in the catalog"),
+    ('linkage = 3\noutputs = ["rocker"]\n', "linkage must be a catalog name"),
+    ('linkage = "fourbar"\noutputs = "rocker"\n', "outputs must be a non-empty list"),
+    ('linkage = "fourbar"\noutputs = []\n', "outputs must be a non-empty list"),
+    ('linkage = "fourbar"\noutputs = ["rocker", "piston"]\n', "no output 'piston'"),
+    ('linkage = "fourbar"\noutputs = ["rocker"]\nbranch = 2\n', "branch must be one of 1, -1, 'both'"),
+    ('linkage = "fourbar"\noutputs = ["rocker"]\nbranch = true\n', "branch must be one of"),
+    ('linkage = "fourbar"\noutputs = ["rocker"]\nunits = "grad"\n', "units must be one of 'deg', 'rad'"),
+    ('linkage = "fourbar"\noutputs = ["rocker"]\nformat = "xml"\n', "format must be one of"),
+    ('linkage = "fourbar"\noutputs = ["rocker"]\n[parameters]\na = 1\nb = 1\nc = 1\n', "missing parameters.d"),
+    ('linkage = "fourbar"\noutputs = ["rocker"]\nparameters = 3\n', "parameters must be a table"),
+    ('linkage = "fourbar"\noutputs = ["rocker"]\n[parameters]\na = 1\nb = 1\nc = 1\nd = 1\ne = 1\n',
+     "unknown key parameters.e"),
+    ('linkage = "fourbar"\noutputs = ["rocker"]\n[parameters]\na = -1\nb = 1\nc = 1\nd = 1\n',
+     "parameters.a must be a positive length"),
+    ('linkage = "fourbar"\noutputs = ["rocker"]\n[parameters]\na = "1"\nb = 1\nc = 1\nd = 1\n',
+     "parameters.a must be a number"),
+    ('linkage = "fourbar"\noutputs = ["rocker"]\n[parameters]\na = true\nb = 1\nc = 1\nd = 1\n',
+     "parameters.a must be a number"),
+    ('linkage = "fourbar"\noutputs = ["rocker"]\n[parameters]\na = nan\nb = 1\nc = 1\nd = 1\n',
+     "parameters.a must be finite"),
+    ('linkage = "fourbar"\noutputs = ["rocker"]\n[parameters]\na = 1\nb = 1\nc = 1\nd = 1\n[input]\nstep = -5\n',
+     "step must be positive"),
+    ('linkage = "fourbar"\noutputs = ["rocker"]\n[parameters]\na = 1\nb = 1\nc = 1\nd = 1\n[input]\n'
+     "step = 5\nangles = [1]\n", "either angles or start/stop/step"),
+    ('linkage = "fourbar"\noutputs = ["rocker"]\n[parameters]\na = 1\nb = 1\nc = 1\nd = 1\n[input]\nangles = []\n',
+     "angles needs at least one angle"),
+    ('linkage = "fourbar"\noutputs = ["rocker"]\n[parameters]\na = 1\nb = 1\nc = 1\nd = 1\n[input]\n'
+     'angles = [1, "x"]\n', r"input.angles\[1\] must be a number"),
+    ('linkage = "fourbar"\noutputs = ["rocker"]\n[parameters]\na = 1\nb = 1\nc = 1\nd = 1\n[input]\nspin = 1\n',
+     "unknown key input.spin"),
+    ('linkage = "fourbar"\noutputs = ["rocker_speed"]\n[parameters]\na = 1\nb = 1\nc = 1\nd = 1\n[input]\n'
+     "speed = 1\naccel = -100\n", "the crank stops"),
+    ('linkage = "fourbar"\noutputs = ["rocker"]\n[parameters]\na = 1\nb = 1\nc = 1\nd = 10\n',
+     "cannot be assembled at any requested crank angle"),
+]
+
+
+@pytest.mark.parametrize("text, message", BAD)
+def test_bad_scene_files_one_line_exit_2(tmp_path, capsys, text, message):
+    path = tmp_path / "bad.toml"
+    path.write_text(text)
+    status, out, err = run(capsys, "run", path)
+    assert status == 2 and out == ""
+    assert err.startswith(f"symlink: error: {path}: ") or "cannot be assembled" in err
+    assert err.count("\n") == 1 and "Traceback" not in err
+    assert re.search(message, err), err
+
+
+def test_missing_file_and_bad_option(tmp_path, capsys):
+    status, _, err = run(capsys, "run", tmp_path / "none.toml")
+    assert status == 2 and "cannot read scene file" in err and err.count("\n") == 1
+    status, _, err = run(capsys, "run", scene_file(tmp_path), "--format", "xml")
+    assert status == 2 and err.count("\n") == 1

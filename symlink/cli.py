@@ -159,6 +159,9 @@ def run_fourbar(args: argparse.Namespace) -> int:
     spans = describe_spans(crank_range(args.crank, args.coupler, args.rocker, args.ground), args.units)
     rows = assemble_rows(angles, results, FOURBAR_COLUMNS, args.units, spans)
     print_rows(rows, FOURBAR_COLUMNS, args.format)
+    if args.plot or args.plot_transmission:
+        from .plot import write_fourbar_plots
+        write_fourbar_plots(args)
     return 0
 
 
@@ -209,6 +212,10 @@ def build_parser() -> argparse.ArgumentParser:
         table.add_argument(f"--{option}", type=finite, required=True, help=f"length {what}")
     add_sweep_options(table)
     table.set_defaults(run=run_fourbar)
+    from . import animation, plot, view  # light: Matplotlib is imported when something is drawn
+    plot.add_fourbar_options(table)
+    for module in (plot, animation, view):
+        module.add_command(commands)
     from . import scene  # symlink run SCENE.toml
     scene.add_command(commands)
     return parser

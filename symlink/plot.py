@@ -1,0 +1,536 @@
+"""Drawings of a four-bar with Matplotlib: angle plots, the transmission angle, coupler curves, a solved loop.
+
+Every ``*_figure`` function returns a :class:`matplotlib.figure.Figure` that
+pyplot does not know about (nothing global is kept, and it is freed like any
+object); :func:`save_figure` writes one atomically as PNG or SVG, chosen by
+the file's suffix.  Matplotlib is imported only when a drawing is made, so the
+``symlink`` command starts fast.
+
+The curves are evaluated by generated solvers that derive positions only,
+over a full crank turn sampled every half degree plus the exact toggle angles
+where the crank cannot turn fully, so a curve ends exactly where the linkage
+stops closing.  Crank angles the linkage cannot reach are shaded.
+
+A coupler point P is given by its distance ``p`` from the joint B and its
+angle ``gamma`` measured counter-clockwise from the coupler's direction B->C:
+``P = B + p e^{i (beta + gamma)}``; ``gamma = 0, p = b`` is the joint C itself.
+
+>>> figure = angle_figure(0.1, 0.4, 0.25, 0.30)
+>>> [axes.get_ylabel() for axes in figure.axes]
+['coupler angle β (deg)', 'rocker angle φ (deg)']
+"""
+from __future__ import annotations
+
+import argparse
+import functools
+import io
+import math
+from pathlib import Path
+from typing import TYPE_CHECKING, Sequence
+
+import numpy
+import sympy as sp
+
+from .analysis import crank_range
+from .catalog import fourbar
+from .cli import branches as chosen_branches, finite, number_list, to_radians, wrap
+from .files import write_atomic
+from .linkage import Linkage
+from .solver import Solver, check_lengths
+from .vectors import Vector, coordinates, lengths
+
+if TYPE_CHECKING:  # Matplotlib is imported when a drawing is made
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+__all__ = ["coupler_point_linkage", "turn_angles", "fourbar_positions", "angle_figure",
+           "transmission_figure", "coupler_curve_figure", "draw_loop", "save_figure",
+           "MechanismDrawing", "FIGURE_SUFFIXES"]
+
+#: Samples of a full crank turn in the plots: every half degree, both ends included.
+TURN_SAMPLES = 721
+#: File suffixes :func:`save_figure` writes, and the Matplotlib format of each.
+FIGURE_SUFFIXES = {".png": "png", ".svg": "svg"}
+#: The loop colours of ``seeds/000`` (z1..z4).
+LOOP_COLORS = ("red", "yellow", "blue", "green")
+#: The usual design limits of the transmission angle (``seeds/002``), degrees.
+TRANSMISSION_LIMITS = (45.0, 135.0)
+BRANCH_STYLES = {1: "-", -1: "--"}
+LINK_COLORS = {"crank": "tab:red", "coupler": "tab:blue", "rocker": "tab:green"}
+
+
+# --- evaluation --------------------------------------------------------------
+def coupler_point_linkage() -> Linkage:
+    """The four-bar of :func:`symlink.catalog.fourbar` with a coupler point ``P``.
+
+    ``P = B + p e^{i (beta + gamma)}``: the distance ``p`` from B, at the
+    angle ``gamma`` from the coupler's direction B->C (counter-clockwise).
+
+    >>> linkage = coupler_point_linkage()
+    >>> linkage.expression("P_x")
+    a*cos(theta) + p*cos(beta + gamma)
+    """
+    base = fourbar()
+    (p,), (gamma,) = lengths("p"), coordinates("gamma")
+    beta = base.roles["coupler"]
+    points = dict(base.points)
+    points["P"] = base.points["B"] + Vector(p, beta + gamma, "BP")
+    return Linkage("fourbar_coupler_point", base.loops, base.inputs, base.unknowns,
+                   parameters=base.parameters + (p, gamma), points=points,
+                   roles=base.roles, extras=base.extras)
+
+
+@functools.lru_cache(maxsize=None)
+def _linkage(coupler_point: bool) -> Linkage:
+    return coupler_point_linkage() if coupler_point else fourbar()
+
+
+@functools.lru_cache(maxsize=None)
+def _solver(outputs: tuple[str, ...], coupler_point: bool) -> Solver:
+    return Solver(_linkage(coupler_point), outputs)
+
+
+def check_coupler_point(coupler_point: tuple[float, float] | None) -> None:
+    """``ValueError`` unless the coupler point is (positive finite distance, finite angle)."""
+    if coupler_point is None:
+        return
+    distance, angle = coupler_point
+    check_lengths(**{"the coupler point's distance from B": distance})
+    if not math.isfinite(angle):
+        raise ValueError(f"the coupler point's angle must be finite, got {angle}")
+
+
+def fourbar_positions(a: float, b: float, c: float, d: float, theta, branch: int,
+                      outputs: Sequence[str], coupler_point: tuple[float, float] | None = None,
+                      linkage: Linkage | None = None) -> dict[str, numpy.ndarray]:
+    """Position outputs of a four-bar (radians, lengths' unit) at crank angles ``theta``.
+
+    ``coupler_point`` is ``(distance from B, angle from B->C in radians)`` and
+    adds the outputs ``P_x``, ``P_y`` where asked for.  With ``linkage`` the
+    solver is derived from that linkage (a fresh one derives positions only);
+    otherwise from a cached one.  NaN and ``assembled`` False where it cannot close.
+
+    >>> result = fourbar_positions(20, 66, 56, 80, 0.0, 1, ["rocker"])
+    >>> round(math.degrees(float(result["rocker"])), 2)
+    110.74
+    """
+    check_coupler_point(coupler_point)
+    values = dict(theta=theta, a=a, b=b, c=c, d=d, branch=branch)
+    if coupler_point is not None:
+        values.update(p=coupler_point[0], gamma=coupler_point[1])
+    if linkage is None:
+        solver = _solver(tuple(outputs), coupler_point is not None)
+    else:
+        if coupler_point is not None and "P" not in linkage.points:
+            raise ValueError(f"{linkage.name} has no coupler point P; use coupler_point_linkage()")
+        solver = Solver(linkage, outputs)
+    return solver(**values)
+
+
+def reachable_turn(a: float, b: float, c: float, d: float) -> list[tuple[float, float]]:
+    """The crank angles in [0, 2 pi] where the four-bar closes, as intervals (radians).
+
+    >>> reachable_turn(20, 66, 56, 80) == [(0.0, 2 * math.pi)]
+    True
+    """
+    full = 2 * math.pi
+    pieces = []
+    for low, high in crank_range(a, b, c, d):
+        if high - low >= full:
+            return [(0.0, full)]
+        low, high = low % full, high % full
+        pieces += [(low, high)] if low <= high else [(0.0, high), (low, full)]
+    return sorted(pieces)
+
+
+def turn_angles(a: float, b: float, c: float, d: float, samples: int = TURN_SAMPLES) -> numpy.ndarray:
+    """A full crank turn [0, 2 pi] in ``samples`` even steps plus the exact toggle angles.
+
+    >>> len(turn_angles(0.1, 0.4, 0.25, 0.30, 5)), len(turn_angles(0.3, 0.1, 0.25, 0.30, 5))
+    (5, 9)
+    """
+    even = numpy.linspace(0.0, 2 * math.pi, samples)
+    toggles = [bound for piece in reachable_turn(a, b, c, d) for bound in piece]
+    return numpy.unique(numpy.concatenate([even, toggles]))
+
+
+def check_assembles(a: float, b: float, c: float, d: float) -> None:
+    """``ValueError`` for positive finite lengths that close at no crank angle at all."""
+    check_lengths(crank=a, coupler=b, rocker=c, ground=d)
+    if not crank_range(a, b, c, d):
+        raise ValueError(f"a four-bar with crank {a:g}, coupler {b:g}, rocker {c:g} and ground {d:g} "
+                         "cannot be assembled at any crank angle")
+
+
+def _unit(units: str) -> tuple[str, float]:
+    if units not in ("deg", "rad"):
+        raise ValueError(f"units must be 'deg' or 'rad', got {units!r}")
+    return units, (180.0 if units == "deg" else math.pi)
+
+
+def _wrapped_with_breaks(x: numpy.ndarray, angles: numpy.ndarray, half: float) -> tuple[numpy.ndarray, numpy.ndarray]:
+    """Angles wrapped to (-half, half], with a NaN gap where they wrap (no vertical line across the plot)."""
+    y = wrap(angles, half)
+    jumps = numpy.flatnonzero(numpy.abs(numpy.diff(y)) > half) + 1
+    return numpy.insert(x, jumps, numpy.nan), numpy.insert(y, jumps, numpy.nan)
+
+
+def _shade_unreachable(axes: "Axes", a: float, b: float, c: float, d: float, scale: float) -> None:
+    edges = [0.0] + [bound for piece in reachable_turn(a, b, c, d) for bound in piece] + [2 * math.pi]
+    label = "cannot be assembled"
+    for low, high in zip(edges[0::2], edges[1::2]):
+        if high > low:
+            axes.axvspan(low * scale, high * scale, color="0.88", zorder=0, label=label)
+            label = None
+
+
+def _new_figure(width: float, height: float, rows: int = 1) -> tuple["Figure", list["Axes"]]:
+    from matplotlib.figure import Figure
+    figure = Figure(figsize=(width, height), layout="constrained")
+    axes = figure.subplots(rows, 1, sharex=True, squeeze=False)[:, 0]
+    return figure, list(axes)
+
+
+def _lengths_title(a: float, b: float, c: float, d: float) -> str:
+    return f"four-bar: crank a = {a:g}, coupler b = {b:g}, rocker c = {c:g}, ground d = {d:g}"
+
+
+def _crank_axis(axes: "Axes", units: str) -> None:
+    if units == "deg":
+        axes.set_xlim(0, 360)
+        axes.set_xticks(numpy.arange(0, 361, 45))
+    else:
+        axes.set_xlim(0, 2 * math.pi)
+    axes.set_xlabel(f"crank angle θ ({units})")
+
+
+def angle_figure(a: float, b: float, c: float, d: float, branches: Sequence[int] = (1, -1),
+                 units: str = "deg", title: str | None = None, samples: int = TURN_SAMPLES) -> "Figure":
+    """Coupler and rocker angle against the crank angle over a full turn (``seeds/001``'s two plots).
+
+    One line per branch (solid +1, dashed -1), angles wrapped to (-180, 180]
+    deg or (-pi, pi] rad; unreachable crank angles are shaded.
+    """
+    check_assembles(a, b, c, d)
+    units, half = _unit(units)
+    scale = half / math.pi
+    theta = turn_angles(a, b, c, d, samples)
+    figure, (top, bottom) = _new_figure(7.0, 6.0, rows=2)
+    for sign in _checked_branches(branches):
+        result = fourbar_positions(a, b, c, d, theta, sign, ["coupler", "rocker"])
+        for axes, name in ((top, "coupler"), (bottom, "rocker")):
+            x, y = _wrapped_with_breaks(theta * scale, result[name] * scale, half)
+            axes.plot(x, y, BRANCH_STYLES[sign], color=LINK_COLORS[name], label=f"branch {sign:+d}")
+    for axes, name, symbol in ((top, "coupler", "β"), (bottom, "rocker", "φ")):
+        _shade_unreachable(axes, a, b, c, d, scale)
+        axes.set_ylabel(f"{name} angle {symbol} ({units})")
+        axes.grid(True, alpha=0.4)
+        axes.legend(loc="best", fontsize="small")
+        _crank_axis(axes, units)
+    top.set_xlabel("")
+    figure.suptitle(title if title is not None else _lengths_title(a, b, c, d))
+    return figure
+
+
+def _checked_branches(branches: Sequence[int]) -> list[int]:
+    branches = list(branches)
+    if not branches or any(sign not in (1, -1) for sign in branches):
+        raise ValueError(f"branches must be +1 and/or -1, got {branches}")
+    return branches
+
+
+def transmission_figure(a: float, b: float, c: float, d: float, units: str = "deg",
+                        title: str | None = None, samples: int = TURN_SAMPLES) -> "Figure":
+    """The transmission angle against the crank angle over a turn (``seeds/002``, Fig. 5, 7, 9).
+
+    The angle is the interior angle at C between coupler and rocker, the same
+    on both branches.  Its smallest and largest values over the turn are
+    marked, and the usual design limits 45 and 135 deg drawn.
+    """
+    check_assembles(a, b, c, d)
+    units, half = _unit(units)
+    scale = half / math.pi
+    theta = turn_angles(a, b, c, d, samples)
+    mu = fourbar_positions(a, b, c, d, theta, 1, ["transmission"])["transmission"]
+    figure, (axes,) = _new_figure(7.0, 4.2)
+    axes.plot(theta * scale, mu * scale, color="tab:purple", label="transmission angle μ")
+    low, high = (math.radians(limit) * scale for limit in TRANSMISSION_LIMITS)
+    axes.axhspan(low, high, color="tab:green", alpha=0.08, label="usual range 45°–135°")
+    if numpy.any(numpy.isfinite(mu)):
+        for pick, word, place in ((numpy.nanargmin, "min", "top"), (numpy.nanargmax, "max", "bottom")):
+            i = int(pick(mu))
+            axes.plot(theta[i] * scale, mu[i] * scale, "o", color="k", markersize=5)
+            axes.annotate(f"{word} {math.degrees(mu[i]):.3f}° at θ = {math.degrees(theta[i]):.1f}°",
+                          (theta[i] * scale, mu[i] * scale), textcoords="offset points",
+                          xytext=(6, -12 if place == "top" else 6), fontsize="small")
+    _shade_unreachable(axes, a, b, c, d, scale)
+    axes.set_ylim(0, half)
+    axes.set_ylabel(f"transmission angle μ ({units})")
+    axes.grid(True, alpha=0.4)
+    axes.legend(loc="best", fontsize="small")
+    _crank_axis(axes, units)
+    axes.set_title(title if title is not None else _lengths_title(a, b, c, d))
+    return figure
+
+
+# --- the mechanism -------------------------------------------------------------
+def _ground_marker():
+    """A pivot symbol: a triangle with its apex at the pivot, on a hatched base."""
+    from matplotlib.path import Path as MarkerPath
+    vertices = [(0, 0), (-0.55, -1), (0.55, -1), (0, 0), (-0.95, -1), (0.95, -1)]
+    codes = [MarkerPath.MOVETO, MarkerPath.LINETO, MarkerPath.LINETO, MarkerPath.CLOSEPOLY,
+             MarkerPath.MOVETO, MarkerPath.LINETO]
+    for x in numpy.linspace(-0.7, 0.95, 5):
+        vertices += [(x, -1), (x - 0.3, -1.35)]
+        codes += [MarkerPath.MOVETO, MarkerPath.LINETO]
+    return MarkerPath(vertices, codes)
+
+
+class MechanismDrawing:
+    """A four-bar on an axes: links as bars, pin joints as disks, ground pivots marked; moved in place.
+
+    Crank, coupler and rocker are drawn red, blue and green; with a coupler
+    point the coupler is drawn as the plate B, C, P.  Call :meth:`update` with
+    the joints of one position, ``C=None`` where the linkage cannot close.
+    """
+
+    def __init__(self, axes: "Axes", coupler_point: bool = False) -> None:
+        from matplotlib.patches import Polygon
+        bar = dict(linewidth=7, solid_capstyle="round", zorder=3)
+        self.links = {name: axes.plot([], [], color=color, label=name, **bar)[0]
+                      for name, color in LINK_COLORS.items()}
+        self.frame, = axes.plot([], [], color="0.5", linestyle="--", linewidth=1, zorder=1)
+        self.ground, = axes.plot([], [], linestyle="none", marker=_ground_marker(), markersize=24,
+                                 markeredgecolor="0.25", markerfacecolor="none", markeredgewidth=1.2, zorder=2)
+        self.pins, = axes.plot([], [], linestyle="none", marker="o", markersize=9, markerfacecolor="yellow",
+                               markeredgecolor="black", zorder=5)
+        self.body = None
+        if coupler_point:
+            self.body = Polygon(numpy.zeros((3, 2)), closed=True, facecolor=LINK_COLORS["coupler"],
+                                alpha=0.3, edgecolor="none", zorder=2.5)
+            axes.add_patch(self.body)
+        self.point, = axes.plot([], [], linestyle="none", marker="o", markersize=6, color="black", zorder=6)
+
+    @property
+    def artists(self) -> list:
+        """Everything this drawing moves."""
+        return [*self.links.values(), self.frame, self.ground, self.pins, self.point] + (
+            [self.body] if self.body is not None else [])
+
+    def update(self, d: float, B: tuple[float, float], C: tuple[float, float] | None = None,
+               P: tuple[float, float] | None = None) -> None:
+        """Move to joints B and C (and coupler point P); ``C=None`` draws the crank and ground only."""
+        A, D = (0.0, 0.0), (d, 0.0)
+        self.frame.set_data([A[0], D[0]], [A[1], D[1]])
+        self.ground.set_data([A[0], D[0]], [A[1], D[1]])
+        self.links["crank"].set_data([A[0], B[0]], [A[1], B[1]])
+        joints = [A, B, D] if C is None else [A, B, C, D]
+        self.pins.set_data([p[0] for p in joints], [p[1] for p in joints])
+        for name, (start, end) in (("coupler", (B, C)), ("rocker", (D, C))):
+            self.links[name].set_data(*(([], []) if C is None else ([start[0], end[0]], [start[1], end[1]])))
+        shown = C is not None and P is not None
+        self.point.set_data(*(([P[0]], [P[1]]) if shown else ([], [])))
+        if self.body is not None:
+            self.body.set_visible(shown)
+            if shown:
+                self.body.set_xy([B, C, P])
+
+
+def extent(xs: Sequence, ys: Sequence, margin: float = 0.08) -> tuple[tuple[float, float], tuple[float, float]]:
+    """Axis limits around the finite points, with a margin of the larger side."""
+    xs, ys = numpy.asarray(xs, dtype=float).ravel(), numpy.asarray(ys, dtype=float).ravel()
+    keep = numpy.isfinite(xs) & numpy.isfinite(ys)
+    xs, ys = xs[keep], ys[keep]
+    pad = margin * max(numpy.ptp(xs), numpy.ptp(ys), 1e-300)
+    return (xs.min() - pad, xs.max() + pad), (ys.min() - pad, ys.max() + pad)
+
+
+def coupler_curve_figure(a: float, b: float, c: float, d: float, distance: float, angle: float,
+                         branches: Sequence[int] = (1,), crank_angle: float | None = None,
+                         title: str | None = None, unit: str = "", samples: int = TURN_SAMPLES) -> "Figure":
+    """The curve of a coupler point over a crank turn, with the mechanism drawn at ``crank_angle``.
+
+    The point is ``distance`` from B at ``angle`` (radians) from the coupler's
+    direction B->C.  The mechanism is drawn at ``crank_angle`` (radians) on
+    the first branch, by default at the first reachable crank angle from 0.
+    """
+    check_assembles(a, b, c, d)
+    point = (distance, angle)
+    check_coupler_point(point)
+    branches = _checked_branches(branches)
+    theta = turn_angles(a, b, c, d, samples)
+    figure, (axes,) = _new_figure(6.4, 5.2)
+    xs, ys = [0.0, d], [0.0, 0.0]
+    for sign in branches:
+        result = fourbar_positions(a, b, c, d, theta, sign, ["P_x", "P_y", "B_x", "B_y", "C_x", "C_y"], point)
+        axes.plot(result["P_x"], result["P_y"], BRANCH_STYLES[sign], color="tab:purple",
+                  label=f"coupler curve, branch {sign:+d}", zorder=2)
+        for name in ("P", "B", "C"):
+            xs.append(result[f"{name}_x"])
+            ys.append(result[f"{name}_y"])
+    shown = theta[0] if crank_angle is None else crank_angle
+    at = fourbar_positions(a, b, c, d, shown, branches[0], ["P_x", "P_y", "B_x", "B_y", "C_x", "C_y"], point)
+    if crank_angle is None and not at["assembled"]:
+        shown = reachable_turn(a, b, c, d)[0][0]
+        at = fourbar_positions(a, b, c, d, shown, branches[0], ["P_x", "P_y", "B_x", "B_y", "C_x", "C_y"], point)
+    drawing = MechanismDrawing(axes, coupler_point=True)
+    joint = {name: (float(at[f"{name}_x"]), float(at[f"{name}_y"])) for name in ("B", "C", "P")}
+    drawing.update(d, joint["B"], joint["C"] if at["assembled"] else None, joint["P"])
+    (x0, x1), (y0, y1) = extent(numpy.concatenate([numpy.ravel(v) for v in xs]),
+                                numpy.concatenate([numpy.ravel(v) for v in ys]))
+    axes.set_xlim(x0, x1)
+    axes.set_ylim(y0, y1)
+    axes.set_aspect("equal")
+    suffix = f" ({unit})" if unit else ""
+    axes.set_xlabel(f"x{suffix}")
+    axes.set_ylabel(f"y{suffix}")
+    axes.grid(True, alpha=0.3)
+    axes.legend(loc="best", fontsize="small")
+    axes.set_title(title if title is not None else
+                   f"coupler point {distance:g} from B at {math.degrees(angle):g}° from BC; "
+                   f"drawn at θ = {math.degrees(shown):.4g}°", fontsize="medium")
+    return figure
+
+
+# --- the loop of seeds/000 ------------------------------------------------------------
+def draw_loop(lengths: Sequence[float], angles_rad: Sequence[float], path, title: str = "") -> "Figure":
+    """Draw a closed loop ``z1 + z2 + z3 + z4 = 0`` head to tail, as ``seeds/000`` does, and save it.
+
+    ``z_k = R_k e^{i t_k}``, starting at the origin; links red, yellow, blue,
+    green with a legend of each length and angle (degrees).  ``ValueError``
+    if the loop does not close (to 1e-6 of its total length).
+
+    >>> import tempfile, pathlib
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "loop.png"
+    >>> angles = [math.radians(t) for t in (270, 308.663, 180, 63.435)]
+    >>> figure = draw_loop([300, 640.3124, 800.0158, 894.4019], angles, path)
+    >>> path.stat().st_size > 0
+    True
+    """
+    from matplotlib import patheffects
+    lengths = [float(v) for v in lengths]
+    angles = [float(v) for v in angles_rad]
+    if len(lengths) != 4 or len(angles) != 4:
+        raise ValueError(f"a loop z1..z4 needs four lengths and four angles, got {len(lengths)} and {len(angles)}")
+    if not all(math.isfinite(v) for v in lengths + angles):
+        raise ValueError(f"the loop's lengths and angles must be finite, got {lengths} and {angles}")
+    vectors = numpy.array(lengths) * numpy.exp(1j * numpy.array(angles))
+    heads = numpy.cumsum(vectors)
+    total = sum(abs(v) for v in lengths)
+    if total == 0 or abs(heads[-1]) > 1e-6 * total:
+        raise ValueError(f"the loop does not close: z1 + z2 + z3 + z4 is {abs(heads[-1]):.6g} away from 0")
+    tails = numpy.concatenate([[0], heads[:-1]])
+    figure, (axes,) = _new_figure(6.4, 5.2)
+    outline = [patheffects.Stroke(linewidth=6, foreground="black"), patheffects.Normal()]
+    for k, (tail, head, color) in enumerate(zip(tails, heads, LOOP_COLORS), start=1):
+        degrees = float(wrap(math.degrees(angles[k - 1]), 180.0))
+        label = f"z{k}: R{k} = {lengths[k - 1]:.7g}, θ{k} = {degrees:.7g}°"
+        axes.plot([tail.real, head.real], [tail.imag, head.imag], color=color, linewidth=4,
+                  path_effects=outline, label=label, zorder=2, solid_capstyle="round")
+        start = head - 1e-3 * (head - tail)  # an arrowhead only: the link is the line
+        axes.annotate("", xy=(head.real, head.imag), xytext=(start.real, start.imag),
+                      arrowprops=dict(arrowstyle="-|>", facecolor=color, edgecolor="black", linewidth=1,
+                                      mutation_scale=22, shrinkA=0, shrinkB=0), zorder=3)
+        middle = (tail + head) / 2
+        axes.annotate(f"z{k}", (middle.real, middle.imag), textcoords="offset points", xytext=(6, 6),
+                      fontweight="bold")
+    axes.plot(tails.real, tails.imag, "o", color="black", markersize=5, zorder=4)
+    axes.set_aspect("equal")
+    axes.margins(0.12)
+    axes.grid(True, alpha=0.3)
+    axes.set_xlabel("real axis")
+    axes.set_ylabel("imaginary axis")
+    figure.legend(loc="outside lower center", ncols=2, fontsize="small")
+    axes.set_title(title or "loop z1 + z2 + z3 + z4 = 0")
+    save_figure(figure, path)
+    return figure
+
+
+# --- files ---------------------------------------------------------------------
+def figure_suffix(path) -> str:
+    """The Matplotlib format for a figure file, or ``ValueError`` naming the ones there are."""
+    suffix = Path(path).suffix.lower()
+    if suffix not in FIGURE_SUFFIXES:
+        raise ValueError(f"cannot draw into {str(path)!r}: the file must end in "
+                         f"{' or '.join(FIGURE_SUFFIXES)}")
+    return FIGURE_SUFFIXES[suffix]
+
+
+def save_figure(figure: "Figure", path, dpi: float = 100) -> None:
+    """Write a figure atomically as PNG or SVG (by suffix), without timestamps, so reruns give the same bytes."""
+    import matplotlib
+    fmt = figure_suffix(path)
+    buffer = io.BytesIO()
+    metadata = {"Software": None} if fmt == "png" else {"Date": None}
+    with matplotlib.rc_context({"svg.hashsalt": "symlink"}):
+        figure.savefig(buffer, format=fmt, dpi=dpi, metadata=metadata)
+    write_atomic(path, buffer.getvalue())
+
+
+# --- command line ----------------------------------------------------------------
+def figure_path(text: str) -> str:
+    """An argparse type: a .png or .svg file name."""
+    try:
+        figure_suffix(text)
+    except ValueError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
+    return text
+
+
+def coupler_point_option(text: str) -> tuple[float, float]:
+    """An argparse type: ``DIST,ANGLE``, the coupler point's distance from B and angle from B->C."""
+    values = number_list(text)
+    if len(values) != 2:
+        raise argparse.ArgumentTypeError(f"--coupler-point takes DIST,ANGLE (two numbers), got {text!r}")
+    return values[0], values[1]
+
+
+def add_length_options(parser: argparse.ArgumentParser, defaults: dict[str, float] | None = None) -> None:
+    """``--crank --coupler --rocker --ground``, required unless given defaults."""
+    for option, what in (("crank", "AB"), ("coupler", "BC"), ("rocker", "DC"), ("ground", "AD")):
+        if defaults:
+            parser.add_argument(f"--{option}", type=finite, default=defaults[option],
+                                help=f"length {what} (default {defaults[option]:g})")
+        else:
+            parser.add_argument(f"--{option}", type=finite, required=True, help=f"length {what}")
+
+
+def add_fourbar_options(parser: argparse.ArgumentParser) -> None:
+    """The drawing options of ``symlink fourbar``."""
+    parser.add_argument("--plot", type=figure_path, metavar="FILE",
+                        help="also draw coupler and rocker angle over a full crank turn (.png or .svg)")
+    parser.add_argument("--plot-transmission", type=figure_path, metavar="FILE",
+                        help="also draw the transmission angle over a full crank turn (.png or .svg)")
+
+
+def write_fourbar_plots(args: argparse.Namespace) -> None:
+    """The drawings ``symlink fourbar --plot/--plot-transmission`` asked for, of the table's linkage."""
+    lengths = (args.crank, args.coupler, args.rocker, args.ground)
+    if args.plot:
+        save_figure(angle_figure(*lengths, branches=chosen_branches(args), units=args.units), args.plot)
+    if args.plot_transmission:
+        save_figure(transmission_figure(*lengths, units=args.units), args.plot_transmission)
+
+
+def add_command(commands) -> None:
+    """Register ``symlink curve``."""
+    curve = commands.add_parser("curve", help="the curve of a coupler point over a crank turn, as PNG or SVG")
+    add_length_options(curve)
+    curve.add_argument("--coupler-point", type=coupler_point_option, required=True, metavar="DIST,ANGLE",
+                       help="distance from B, and angle from the coupler's direction B->C")
+    curve.add_argument("--branch", choices=["+1", "1", "-1", "both"], default="+1")
+    curve.add_argument("--crank-angle", type=finite, metavar="ANGLE",
+                       help="where the mechanism is drawn (default: 0, or the first reachable angle)")
+    curve.add_argument("--units", choices=["deg", "rad"], default="deg", help="of the angles given")
+    curve.add_argument("--out", type=figure_path, required=True, metavar="FILE", help=".png or .svg")
+    curve.set_defaults(run=run_curve)
+
+
+def run_curve(args: argparse.Namespace) -> int:
+    distance, angle = args.coupler_point
+    crank_angle = None if args.crank_angle is None else float(to_radians(args.crank_angle, args.units))
+    figure = coupler_curve_figure(args.crank, args.coupler, args.rocker, args.ground, distance,
+                                  float(to_radians(angle, args.units)), branches=chosen_branches(args),
+                                  crank_angle=crank_angle)
+    save_figure(figure, args.out)
+    return 0

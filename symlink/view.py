@@ -1,0 +1,192 @@
+"""``symlink view``: the four-bar as an interactive Matplotlib figure, the GUI of ``seeds/000`` and ``seeds/002``.
+
+Sliders set the four link lengths, the crank angle and the crank speed; a
+radio button picks the branch.  The mechanism is redrawn and the angles,
+rates and transmission angle shown as the sliders move.  Where the linkage
+cannot close, the figure says so (and shows the reachable crank range)
+instead of drawing anything made up; at a toggle the rates are undefined and
+shown as such.
+
+The view works on any Matplotlib figure, so it can be driven without a
+display, as the tests do:
+
+>>> from matplotlib.figure import Figure
+>>> view = FourbarView(figure=Figure())
+>>> view.sliders["angle"].set_val(90)
+>>> print(view.text.get_text().splitlines()[0])
+crank angle       θ =   90.000°
+"""
+from __future__ import annotations
+
+import argparse
+import math
+from typing import TYPE_CHECKING
+
+import numpy
+
+from .analysis import crank_range
+from .catalog import fourbar
+from .cli import describe_spans, finite, to_radians, wrap
+from .plot import MechanismDrawing, TRANSMISSION_LIMITS, add_length_options, extent, figure_path, save_figure
+from .solver import Solver, check_lengths
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+__all__ = ["FourbarView", "SEED001", "OUTPUTS"]
+
+#: The worksheet's data (``seeds/001``), metres: the view's default linkage.
+SEED001 = {"crank": 0.1, "coupler": 0.4, "rocker": 0.25, "ground": 0.30}
+OUTPUTS = ["B_x", "B_y", "C_x", "C_y", "coupler", "rocker", "coupler_speed", "rocker_speed", "transmission"]
+LENGTH_SLIDERS = (("crank", "crank a"), ("coupler", "coupler b"), ("rocker", "rocker c"), ("ground", "ground d"))
+NON_INTERACTIVE = {"agg", "cairo", "pdf", "pgf", "ps", "svg", "template"}
+
+
+class FourbarView:
+    """An interactive four-bar on a Matplotlib figure (sliders, branch buttons, drawing and readout).
+
+    Lengths in any one unit; ``crank_angle`` in radians, ``crank_speed`` in
+    rad/s, ``branch`` +1 or -1.  ``figure`` defaults to a new pyplot figure.
+    ``sliders`` (``crank``, ``coupler``, ``rocker``, ``ground``, ``angle`` in
+    degrees, ``speed``), ``branch_buttons`` and ``text`` are the widgets and
+    the readout; :meth:`state` is what is shown, as numbers.
+    """
+
+    def __init__(self, crank: float = SEED001["crank"], coupler: float = SEED001["coupler"],
+                 rocker: float = SEED001["rocker"], ground: float = SEED001["ground"], *,
+                 crank_angle: float = 0.0, branch: int = 1, crank_speed: float = 1.0,
+                 figure: "Figure | None" = None) -> None:
+        from matplotlib.widgets import RadioButtons, Slider
+        initial = {"crank": crank, "coupler": coupler, "rocker": rocker, "ground": ground}
+        check_lengths(crank=crank, coupler=coupler, rocker=rocker, ground=ground)
+        self.solver = Solver(fourbar(), OUTPUTS)
+        self.solver(theta=crank_angle, a=crank, b=coupler, c=rocker, d=ground, branch=branch,
+                    thetadot=crank_speed)  # validates everything with the solver's own messages
+        if figure is None:
+            import matplotlib.pyplot as pyplot
+            figure = pyplot.figure(figsize=(10, 6.5))
+        self.figure = figure
+        self.axes = figure.add_axes((0.06, 0.40, 0.56, 0.56))
+        self.axes.set_aspect("equal", adjustable="box")
+        self.axes.grid(True, alpha=0.3)
+        self.drawing = MechanismDrawing(self.axes)
+        panel = figure.add_axes((0.65, 0.50, 0.34, 0.46))
+        panel.set_axis_off()
+        self.text = panel.text(0.0, 1.0, "", va="top", ha="left", family="monospace", fontsize=9,
+                               transform=panel.transAxes)
+        top = max(initial.values())
+        self.sliders: dict[str, Slider] = {}
+        rows = [(name, label, top / 50, top * 2.5, initial[name], "%.4g") for name, label in LENGTH_SLIDERS]
+        rows.append(("angle", "crank θ (deg)", 0.0, 360.0, float(numpy.mod(math.degrees(crank_angle), 360)),
+                     "%.1f"))
+        speed_range = max(10.0, 2 * abs(crank_speed))
+        rows.append(("speed", "crank ω (rad/s)", -speed_range, speed_range, crank_speed, "%.3g"))
+        for row, (name, label, low, high, value, fmt) in enumerate(rows):
+            slider_axes = figure.add_axes((0.18, 0.30 - row * 0.05, 0.45, 0.03))
+            self.sliders[name] = Slider(slider_axes, label, low, high, valinit=value, valfmt=fmt)
+            self.sliders[name].on_changed(self.update)
+        button_axes = figure.add_axes((0.72, 0.12, 0.14, 0.16))
+        button_axes.set_title("branch", fontsize="small")
+        self.branch_buttons = RadioButtons(button_axes, ("+1", "-1"), active=0 if branch == 1 else 1)
+        self.branch_buttons.on_clicked(self.update)
+        self.update()
+
+    def values(self) -> dict[str, float]:
+        """The inputs as set: lengths, ``theta`` (rad), ``thetadot`` (rad/s) and ``branch``."""
+        values = {name: float(self.sliders[name].val) for name, _ in LENGTH_SLIDERS}
+        values["theta"] = math.radians(float(self.sliders["angle"].val))
+        values["thetadot"] = float(self.sliders["speed"].val)
+        values["branch"] = int(self.branch_buttons.value_selected)
+        return values
+
+    def state(self) -> dict[str, float | bool]:
+        """What the view shows: ``assembled`` and the solver's outputs (radians, rad/s, lengths)."""
+        v = self.values()
+        result = self.solver(theta=v["theta"], a=v["crank"], b=v["coupler"], c=v["rocker"], d=v["ground"],
+                             branch=v["branch"], thetadot=v["thetadot"])
+        state = {name: float(result[name]) for name in OUTPUTS}
+        state["assembled"] = bool(result["assembled"])
+        return state
+
+    def update(self, _changed=None) -> None:
+        """Redraw the mechanism and the readout from the widgets (every widget calls this)."""
+        v, state = self.values(), self.state()
+        B = (state["B_x"], state["B_y"])
+        C = (state["C_x"], state["C_y"]) if state["assembled"] else None
+        self.drawing.update(v["ground"], B, C)
+        a, c, d = v["crank"], v["rocker"], v["ground"]
+        (x0, x1), (y0, y1) = extent([-a, a, d - c, d + c], [-a, a, -c, c])  # B and C stay on these circles
+        self.axes.set_xlim(x0, x1)
+        self.axes.set_ylim(y0, y1)
+        self.axes.set_title(f"four-bar, branch {v['branch']:+d}" if state["assembled"] else
+                            "cannot be assembled at this crank angle", color="black" if state["assembled"] else "red")
+        self.text.set_text(self.describe(v, state))
+        self.figure.canvas.draw_idle()
+
+    @staticmethod
+    def describe(values: dict[str, float], state: dict[str, float | bool]) -> str:
+        """The readout: angles in degrees wrapped to (-180, 180], rates in rad/s, the transmission angle."""
+        def degrees(angle: float) -> str:
+            return f"{float(wrap(math.degrees(angle), 180.0)):8.3f}°"
+
+        def speed(value: float) -> str:
+            return f"{value:8.4f} rad/s" if math.isfinite(value) else "undefined (toggle)"
+
+        def row(label: str, symbol: str, value: str) -> str:
+            return f"{label:<14}{symbol:>5} = {value}"
+
+        spans = crank_range(values["crank"], values["coupler"], values["rocker"], values["ground"])
+        lines = [row("crank angle", "θ", degrees(values["theta"]))]
+        if not state["assembled"]:
+            lines += ["", "cannot be assembled here:", "the coupler and rocker", "cannot reach each other"]
+        else:
+            mu = math.degrees(state["transmission"])
+            low, high = TRANSMISSION_LIMITS
+            lines += [row("coupler angle", "β", degrees(state["coupler"])),
+                      row("rocker angle", "φ", degrees(state["rocker"])),
+                      "",
+                      row("crank speed", "dθ/dt", f"{values['thetadot']:8.4f} rad/s"),
+                      row("coupler speed", "dβ/dt", speed(state["coupler_speed"])),
+                      row("rocker speed", "dφ/dt", speed(state["rocker_speed"])),
+                      "",
+                      row("transmission", "μ", f"{mu:8.3f}°")]
+            if not low <= mu <= high:
+                lines.append(f"  (outside the usual {low:g}°–{high:g}°)")
+        lines += ["", "reachable crank range:"]
+        lines += ["  " + describe_spans(pieces, "deg") for pieces in ([[span] for span in spans] or [[]])]
+        return "\n".join(lines)
+
+
+# --- command line ----------------------------------------------------------------
+def add_command(commands) -> None:
+    """Register ``symlink view``."""
+    parser = commands.add_parser("view", help="an interactive four-bar (Matplotlib window with sliders)")
+    add_length_options(parser, defaults=SEED001)
+    parser.add_argument("--crank-angle", type=finite, default=0.0, metavar="ANGLE", help="initial (default 0)")
+    parser.add_argument("--crank-speed", type=finite, default=1.0, metavar="W", help="rad/s (default 1)")
+    parser.add_argument("--branch", choices=["+1", "1", "-1"], default="+1")
+    parser.add_argument("--units", choices=["deg", "rad"], default="deg", help="of --crank-angle")
+    parser.add_argument("--save", type=figure_path, metavar="FILE",
+                        help="write the figure to a .png or .svg instead of opening a window")
+    parser.set_defaults(run=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    settings = dict(crank_angle=float(to_radians(args.crank_angle, args.units)), branch=int(args.branch),
+                    crank_speed=args.crank_speed)
+    lengths = (args.crank, args.coupler, args.rocker, args.ground)
+    if args.save:
+        from matplotlib.figure import Figure
+        figure = Figure(figsize=(10, 6.5))
+        FourbarView(*lengths, figure=figure, **settings)
+        save_figure(figure, args.save)
+        return 0
+    import matplotlib.pyplot as pyplot
+    backend = pyplot.get_backend().lower()
+    if backend in NON_INTERACTIVE:
+        raise ValueError(f"Matplotlib has no interactive backend here (it uses {backend!r}: no display?); "
+                         "set MPLBACKEND to one (e.g. TkAgg, QtAgg), or write a picture with --save FILE.png")
+    view = FourbarView(*lengths, **settings)
+    pyplot.show()
+    del view
+    return 0

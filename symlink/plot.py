@@ -31,7 +31,7 @@ from typing import TYPE_CHECKING, Sequence
 import numpy
 import sympy as sp
 
-from .analysis import crank_range
+from .analysis import crank_range, transmission_curve, transmission_range
 from .catalog import fourbar
 from .cli import branches as chosen_branches, finite, number_list, to_radians, wrap
 from .files import write_atomic
@@ -244,25 +244,26 @@ def transmission_figure(a: float, b: float, c: float, d: float, units: str = "de
     """The transmission angle against the crank angle over a turn (``seeds/002``, Fig. 5, 7, 9).
 
     The angle is the interior angle at C between coupler and rocker, the same
-    on both branches.  Its smallest and largest values over the turn are
-    marked, and the usual design limits 45 and 135 deg drawn.
+    on both branches (:func:`~symlink.analysis.transmission_curve`).  Its
+    smallest and largest values over the turn are marked where they occur
+    (:func:`~symlink.analysis.transmission_range`), and the usual design
+    range 45 to 135 deg shaded.
     """
     check_assembles(a, b, c, d)
     units, half = _unit(units)
     scale = half / math.pi
     theta = turn_angles(a, b, c, d, samples)
-    mu = fourbar_positions(a, b, c, d, theta, 1, ["transmission"])["transmission"]
+    mu = transmission_curve(a, b, c, d, theta)
     figure, (axes,) = _new_figure(7.0, 4.2)
     axes.plot(theta * scale, mu * scale, color="tab:purple", label="transmission angle μ")
     low, high = (math.radians(limit) * scale for limit in TRANSMISSION_LIMITS)
     axes.axhspan(low, high, color="tab:green", alpha=0.08, label="usual range 45°–135°")
-    if numpy.any(numpy.isfinite(mu)):
-        for pick, word, place in ((numpy.nanargmin, "min", "top"), (numpy.nanargmax, "max", "bottom")):
-            i = int(pick(mu))
-            axes.plot(theta[i] * scale, mu[i] * scale, "o", color="k", markersize=5)
-            axes.annotate(f"{word} {math.degrees(mu[i]):.3f}° at θ = {math.degrees(theta[i]):.1f}°",
-                          (theta[i] * scale, mu[i] * scale), textcoords="offset points",
-                          xytext=(6, -12 if place == "top" else 6), fontsize="small")
+    extremes = transmission_range(a, b, c, d)
+    for word, value, where, marker in (("min", extremes.minimum, extremes.minimum_at, "v"),
+                                       ("max", extremes.maximum, extremes.maximum_at, "^")):
+        at = where % (2 * math.pi)
+        axes.plot(at * scale, value * scale, marker, color="black", markersize=7, clip_on=False,
+                  label=f"{word} {math.degrees(value):.3f}° at θ = {float(wrap(math.degrees(where), 180.0)):.4g}°")
     _shade_unreachable(axes, a, b, c, d, scale)
     axes.set_ylim(0, half)
     axes.set_ylabel(f"transmission angle μ ({units})")

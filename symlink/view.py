@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING
 
 import numpy
 
-from .analysis import crank_range
+from .analysis import crank_range, grashof
 from .catalog import fourbar
 from .cli import describe_spans, finite, to_radians, wrap
 from .plot import MechanismDrawing, TRANSMISSION_LIMITS, add_length_options, extent, figure_path, save_figure
@@ -152,7 +152,8 @@ class FourbarView:
                       row("transmission", "μ", f"{mu:8.3f}°")]
             if not low <= mu <= high:
                 lines.append(f"  (outside the usual {low:g}°–{high:g}°)")
-        lines += ["", "reachable crank range:"]
+        lines += ["", f"Grashof class: {grashof(values['crank'], values['coupler'], values['rocker'], values['ground']).name}",
+                  "reachable crank range:"]
         lines += ["  " + describe_spans(pieces, "deg") for pieces in ([[span] for span in spans] or [[]])]
         return "\n".join(lines)
 

@@ -1,6 +1,8 @@
 """Drawings: angle plots, transmission angle, coupler curves and the seed 000 loop, checked by their data and files."""
 import math
+import re
 import xml.etree.ElementTree as ElementTree
+from pathlib import Path
 
 import matplotlib
 
@@ -106,9 +108,8 @@ def test_transmission_curve_against_the_law_of_cosines_and_seed_002():
     expected = numpy.degrees(numpy.arccos((b * b + c * c - diagonal**2) / (2 * b * c)))
     assert numpy.allclose(y, expected, atol=1e-9, rtol=0)
     # Seed 002 prints 50.277 and 90.380 deg from these (rounded) lengths.
-    notes = [text.get_text() for text in figure.axes[0].texts]
-    assert any(note.startswith("min 50.27") and "θ = 0.0°" in note for note in notes)
-    assert any(note.startswith("max 90.38") and "θ = 180.0°" in note for note in notes)
+    labels = set(lines_by_label(figure.axes[0]))
+    assert {"min 50.277° at θ = 0°", "max 90.381° at θ = 180°"} <= labels
     full_x, full_y = lines_by_label(figure.axes[0])["transmission angle μ"].get_data()
     assert abs(numpy.nanmin(full_y) - 50.277) < 1e-3 and abs(numpy.nanmax(full_y) - 90.380) < 1e-3
 
@@ -238,3 +239,18 @@ def test_curve_command(tmp_path, capsys):
     assert "DIST,ANGLE" in capsys.readouterr().err
     assert main([*FOURBAR, "--plot", str(tmp_path / "x.pdf")]) == 2
     assert not (tmp_path / "x.pdf").exists()
+
+
+def test_readme_pictures_exist_and_the_gif_is_small():
+    root = Path(__file__).resolve().parent.parent
+    text = (root / "README.md").read_text(encoding="utf-8")
+    section = text.split("## Pictures and animation", 1)[1].split("\n## ", 1)[0]
+    pictures = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", section)
+    assert len(pictures) == 4 and "python docs/pictures.py" in section
+    for name in pictures:
+        with Image.open(root / name) as image:
+            assert image.size[0] >= 300
+    gif = root / "docs/images/fourbar.gif"
+    assert gif.stat().st_size < 400_000
+    with Image.open(gif) as image:
+        assert image.n_frames == 30

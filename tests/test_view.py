@@ -67,6 +67,7 @@ def test_sliders_and_branch_buttons_drive_drawing_and_readout(view, angle, branc
     mu = math.degrees(math.acos((66**2 + 56**2 - diagonal**2) / (2 * 66 * 56)))
     assert float(text["transmission μ"].rstrip("°")) == pytest.approx(mu, abs=1e-3)
     assert "full turn" in view.text.get_text()
+    assert "Grashof class: crank-rocker" in view.text.get_text()  # 20 + 80 < 66 + 56, crank shortest
 
 
 def test_seed_003_first_row_is_shown(view):

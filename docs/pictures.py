@@ -1,0 +1,56 @@
+"""Render the README's pictures into docs/images/: ``python docs/pictures.py``.
+
+* ``angles_seed001.png``: coupler and rocker angle over a crank turn, both branches, for the
+  worksheet data of ``seeds/001`` (a1 = 0.1, a2 = 0.4, a3 = 0.25, a4 = 0.30 m);
+* ``transmission_seed002.png``: the transmission angle over a turn of the linkage that
+  ``seeds/002`` synthesises for time ratio 1.25 (L1 = 70, L2 = 16.084, L3 = 69.743, L4 = 50 mm),
+  as its Fig. 9;
+* ``coupler_curve.png``: the curves of a coupler point of the seed 001 linkage, both branches;
+* ``fourbar.gif``: the seed 001 linkage over a turn in 30 frames, with the coupler point.
+
+The same pictures come from the command line::
+
+    symlink fourbar --crank 0.1 --coupler 0.4 --rocker 0.25 --ground 0.3 --plot angles.png
+    symlink fourbar --crank 16.084 --coupler 69.743 --rocker 50 --ground 70 --plot-transmission mu.png
+    symlink curve --crank 0.1 --coupler 0.4 --rocker 0.25 --ground 0.3 --coupler-point 0.3,30 --branch both --out curve.png
+    symlink animate --crank 0.1 --coupler 0.4 --rocker 0.25 --ground 0.3 --coupler-point 0.3,30 --out fourbar.gif
+"""
+from __future__ import annotations
+
+import math
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+IMAGES = ROOT / "docs" / "images"
+sys.path.insert(0, str(ROOT))
+
+import matplotlib  # noqa: E402
+
+matplotlib.use("Agg")
+
+from symlink.animation import animate  # noqa: E402
+from symlink.plot import angle_figure, coupler_curve_figure, save_figure, transmission_figure  # noqa: E402
+
+SEED001 = (0.1, 0.4, 0.25, 0.30)
+SEED002 = (16.084, 69.743, 50.0, 70.0)  # crank L2, coupler L3, rocker L4, ground L1
+COUPLER_POINT = (0.3, math.radians(30))
+#: File names, in the order they are written.
+PICTURES = ("angles_seed001.png", "transmission_seed002.png", "coupler_curve.png", "fourbar.gif")
+
+
+def render(folder: Path = IMAGES) -> list[Path]:
+    """Write every picture into ``folder``; returns their paths."""
+    paths = [Path(folder) / name for name in PICTURES]
+    save_figure(angle_figure(*SEED001, title="seeds/001: a1 = 0.1, a2 = 0.4, a3 = 0.25, a4 = 0.30 m"), paths[0])
+    save_figure(transmission_figure(*SEED002, title="seeds/002, time ratio 1.25: L1 = 70, L2 = 16.084, "
+                                                    "L3 = 69.743, L4 = 50 mm"), paths[1])
+    save_figure(coupler_curve_figure(*SEED001, *COUPLER_POINT, branches=(1, -1), crank_angle=math.radians(60),
+                                     unit="m"), paths[2])
+    animate(*SEED001, paths[3], coupler_point=COUPLER_POINT, size_px=(400, 300), fps=10)
+    return paths
+
+
+if __name__ == "__main__":
+    for path in render():
+        print(f"wrote {path.relative_to(ROOT)} ({path.stat().st_size // 1024} kB)")

@@ -36,6 +36,8 @@ __all__ = ["FRAMES", "ANIMATION_SUFFIXES", "frame_positions", "animate", "Render
 
 #: Frames in a turn, as in ``seeds/001`` (t from 0 to 29/30).
 FRAMES = 30
+#: More frames than this is a mistake, not an animation.
+MAX_FRAMES = 3600
 #: The files an animation can be written to, and the Matplotlib writer of each.
 ANIMATION_SUFFIXES = {".gif": "pillow", ".mp4": "ffmpeg"}
 JOINTS = ["B_x", "B_y", "C_x", "C_y"]
@@ -61,8 +63,8 @@ def frame_positions(a: float, b: float, c: float, d: float, *, branch: int = 1, 
     """
     check_assembles(a, b, c, d)
     check_coupler_point(coupler_point)
-    if isinstance(frames, bool) or not isinstance(frames, (int, numpy.integer)) or frames < 1:
-        raise ValueError(f"frames must be a positive whole number, got {frames!r}")
+    if isinstance(frames, bool) or not isinstance(frames, (int, numpy.integer)) or not 1 <= frames <= MAX_FRAMES:
+        raise ValueError(f"frames must be a whole number from 1 to {MAX_FRAMES}, got {frames!r}")
     if linkage is None:
         linkage = fourbar() if coupler_point is None else coupler_point_linkage()
     theta = 2 * math.pi * numpy.arange(frames) / frames

@@ -43,9 +43,9 @@ if TYPE_CHECKING:  # Matplotlib is imported when a drawing is made
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-__all__ = ["coupler_point_linkage", "turn_angles", "fourbar_positions", "angle_figure",
-           "transmission_figure", "coupler_curve_figure", "draw_loop", "save_figure",
-           "MechanismDrawing", "FIGURE_SUFFIXES"]
+__all__ = ["coupler_point_linkage", "fourbar_positions", "reachable_turn", "turn_angles", "check_assembles",
+           "check_coupler_point", "angle_figure", "transmission_figure", "coupler_curve_figure", "draw_loop",
+           "MechanismDrawing", "extent", "save_figure", "figure_suffix", "FIGURE_SUFFIXES"]
 
 #: Samples of a full crank turn in the plots: every half degree, both ends included.
 TURN_SAMPLES = 721

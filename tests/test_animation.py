@@ -111,8 +111,10 @@ def test_mp4_without_ffmpeg_is_a_clear_error(tmp_path, monkeypatch):
 def test_bad_requests(tmp_path):
     with pytest.raises(ValueError, match=r"\.gif or \.mp4"):
         animate(*SEED001, tmp_path / "fourbar.avi")
-    with pytest.raises(ValueError, match="frames must be a positive whole number"):
+    with pytest.raises(ValueError, match="frames must be a whole number from 1 to 3600"):
         animate(*SEED001, tmp_path / "fourbar.gif", frames=0)
+    with pytest.raises(ValueError, match="frames must be a whole number"):
+        frame_positions(*SEED001, frames=100_000)
     with pytest.raises(ValueError, match="cannot be assembled at any crank angle"):
         animate(1, 10, 1, 1, tmp_path / "fourbar.gif")
     with pytest.raises(ValueError, match="even"):

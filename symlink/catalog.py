@@ -1,8 +1,14 @@
 """Ready-made linkages, each defined once with the public API and reused everywhere.
 
+Every entry is built the way a user builds a linkage: vectors, loops, a
+:class:`~symlink.linkage.Linkage`.  Nothing here is special-cased elsewhere;
+:data:`CATALOG` maps the names used by ``symlink plan NAME`` to the builders.
+
 >>> linkage = fourbar()
 >>> linkage.unknowns
 (beta, phi)
+>>> sorted(CATALOG)
+['fivebar', 'fourbar', 'inverted-slider-crank', 'slider-crank', 'stephenson3', 'watt2']
 """
 from __future__ import annotations
 
@@ -12,7 +18,7 @@ from .linkage import Linkage
 from .loops import Loop
 from .vectors import Vector, coordinates, lengths
 
-__all__ = ["fourbar", "CATALOG"]
+__all__ = ["fourbar", "slider_crank", "inverted_slider_crank", "watt2", "stephenson3", "fivebar", "CATALOG"]
 
 
 def transmission_angle(coupler_angle: sp.Expr, rocker_angle: sp.Expr) -> sp.Expr:
@@ -42,5 +48,202 @@ def fourbar() -> Linkage:
     )
 
 
+def slider_crank() -> Linkage:
+    """The slider-crank with offset: ``a e^{i theta} + b e^{i beta} = s + i offset``.
+
+    ::
+
+            B
+           / \\  b (conrod, beta)
+        a /   \\
+         /     C ===[slider]===  y = offset, C = (s, offset)
+        A (theta)
+        ======================= x
+
+    Crank a = AB at theta from A at the origin, connecting rod b = BC at beta,
+    slider pin C at x = s on the line y = offset (any sign).  Branch +1 is the
+    assembly with the larger s (the slider to the right of the crank pin).
+
+    >>> linkage = slider_crank()
+    >>> [step.case.name for step in linkage.plan], linkage.parameters
+    (['2b'], (a, b, offset))
+    """
+    theta, beta, s = coordinates("theta beta s")
+    a, b = lengths("a b")
+    offset = sp.Symbol("offset", real=True)
+    AB, BC = Vector(a, theta, "AB"), Vector(b, beta, "BC")
+    travel, guide = Vector(s, 0, "AS"), Vector(offset, sp.pi / 2, "SC")
+    closure = Loop(AB + BC - guide - travel, name="ABC")
+    return Linkage(
+        "slider-crank", [closure], inputs=[theta], unknowns=[beta, s],
+        points={"A": None, "B": AB.as_sum(), "C": travel + guide},
+        roles={"crank": theta, "conrod": beta, "slider": s},
+    )
+
+
+def inverted_slider_crank() -> Linkage:
+    """The inverted slider-crank (crank-shaper, Whitworth quick return): a slider on a rotating rocker.
+
+    ::
+
+                B  <- block pinned to the crank at B, sliding on the rocker
+               /|
+            a / | r (slider, along the rocker)
+             /  |
+            A   D (phi: rocker angle, about D)
+        ====^===^====   A at the origin, D at (d, 0)
+
+    Crank a = AB at theta from A; the rocker turns about D = (d, 0) and its
+    guide passes through D, so the block at B sits at distance r along the
+    rocker at angle phi: ``a e^{i theta} = d + r e^{i phi}``.  With d < a the
+    rocker turns fully (Whitworth), with d > a it swings (crank-shaper).  One
+    assembly (r >= 0); undefined where B passes over D.
+
+    >>> linkage = inverted_slider_crank()
+    >>> [step.case.name for step in linkage.plan], linkage.branches
+    (['2a'], ())
+    """
+    theta, phi, r = coordinates("theta phi r")
+    a, d = lengths("a d")
+    AB, DB, AD = Vector(a, theta, "AB"), Vector(r, phi, "DB"), Vector(d, 0, "AD")
+    closure = Loop(AB - DB - AD, name="ABD")
+    return Linkage(
+        "inverted-slider-crank", [closure], inputs=[theta], unknowns=[phi, r],
+        points={"A": None, "B": AB.as_sum(), "D": AD.as_sum()},
+        roles={"crank": theta, "rocker": phi, "slider": r},
+    )
+
+
+def watt2() -> Linkage:
+    """Watt II six-bar: two four-bars in series sharing the ternary rocker DCE.
+
+    ::
+
+                C                  F
+               / \\               / \\
+            b /   \\ c         f /   \\ g
+             /     \\   E ------'     \\
+            B       \\ / e             \\
+           a \\       D                 G = (gx, gy)
+              A
+        ======^=======^=================^====   ground: A, D, G
+
+    Loop ABCD is the four-bar of :func:`fourbar` (crank a at theta, coupler
+    b at beta, rocker c = DC at phi, D at (d, 0)).  The rocker is a ternary
+    link: DE = e at phi + alpha (alpha fixed).  Loop DEFG: coupler f = EF at
+    mu, output rocker g = GF at psi about G = (gx, gy):
+    ``d + e e^{i(phi + alpha)} + f e^{i mu} = gx + i gy + g e^{i psi}``.
+    The ternary ground (A, D, G) and ternary rocker (D, C, E) are adjacent, so
+    each loop in turn has two unknowns: (beta, phi), then (mu, psi).  Branch
+    signs as in the four-bar: C left of B->D, F left of E->G.
+
+    >>> [(step.loop.name, step.case.name) for step in watt2().plan]
+    [('ABCD', '3'), ('DEFG', '3')]
+    """
+    theta, beta, phi, mu, psi = coordinates("theta beta phi mu psi")
+    a, b, c, d, e, f, g = lengths("a b c d e f g")
+    alpha, gx, gy = sp.symbols("alpha gx gy", real=True)
+    AB, BC, DC, AD = Vector(a, theta, "AB"), Vector(b, beta, "BC"), Vector(c, phi, "DC"), Vector(d, 0, "AD")
+    DE, EF, GF = Vector(e, phi + alpha, "DE"), Vector(f, mu, "EF"), Vector(g, psi, "GF")
+    AG = Vector(gx, 0, "AGx") + Vector(gy, sp.pi / 2, "AGy")
+    first = Loop(AD + DC - BC - AB, name="ABCD")
+    second = Loop(AG + GF - EF - DE - AD, name="DEFG")
+    return Linkage(
+        "watt2", [first, second], inputs=[theta], unknowns=[beta, phi, mu, psi],
+        parameters=[a, b, c, d, e, f, g, alpha, gx, gy],
+        points={"A": None, "B": AB.as_sum(), "C": AB + BC, "D": AD.as_sum(), "E": AD + DE,
+                "F": AD + DE + EF, "G": AG},
+        roles={"crank": theta, "coupler": beta, "rocker": phi, "coupler2": mu, "output": psi},
+    )
+
+
+def stephenson3() -> Linkage:
+    """Stephenson III six-bar: the ground is a binary link between the crank and a ternary link.
+
+    ::
+
+              E -------- g -------- H
+             /  \\                 / \\
+          e /    \\              h/   \\
+           / alpha\\   c         /delta\\
+          B ------ C ---------- F       \\   BCE and DFH are ternary links,
+          |    b                  \\ f    |   joined by the binary links CF and EH
+        a |                        \\     |
+          A (theta)                  D (phi)
+        ==^==========================^=====   ground: A at the origin, D at (d, 0)
+
+    Crank a = AB at theta; ternary coupler BCE (BC = b at beta, BE = e at
+    beta + alpha); ternary rocker DFH about D (DF = f at phi, DH = h at
+    phi + delta); binary links CF = c at mu and EH = g at eta.  Loops
+    ``ABCFD: a e^{i theta} + b e^{i beta} + c e^{i mu} = d + f e^{i phi}`` and
+    ``ABEHD: a e^{i theta} + e e^{i(beta + alpha)} + g e^{i eta} = d + h e^{i(phi + delta)}``.
+    The two ternary links are not adjacent (a Stephenson chain) and the
+    ground holds the crank and the ternary rocker, so every loop has three
+    unknowns whatever the order: there is no loop-by-loop closed form, and
+    the linkage is solved numerically (:mod:`symlink.numeric`); it has up to
+    six assemblies, chosen by the initial guess.
+
+    >>> stephenson3().has_closed_form
+    False
+    """
+    theta, beta, mu, phi, eta = coordinates("theta beta mu phi eta")
+    a, b, c, d, e, f, g, h = lengths("a b c d e f g h")
+    alpha, delta = sp.symbols("alpha delta", real=True)
+    AB, BC, BE = Vector(a, theta, "AB"), Vector(b, beta, "BC"), Vector(e, beta + alpha, "BE")
+    CF, EH, AD = Vector(c, mu, "CF"), Vector(g, eta, "EH"), Vector(d, 0, "AD")
+    DF, DH = Vector(f, phi, "DF"), Vector(h, phi + delta, "DH")
+    outer = Loop(AB + BC + CF - DF - AD, name="ABCFD")
+    inner = Loop(AB + BE + EH - DH - AD, name="ABEHD")
+    return Linkage(
+        "stephenson3", [outer, inner], inputs=[theta], unknowns=[beta, mu, phi, eta],
+        parameters=[a, b, c, d, e, f, g, h, alpha, delta],
+        points={"A": None, "B": AB.as_sum(), "C": AB + BC, "E": AB + BE, "D": AD.as_sum(),
+                "F": AD + DF, "H": AD + DH},
+        roles={"crank": theta, "coupler": beta, "rocker": phi},
+    )
+
+
+def fivebar() -> Linkage:
+    """The five-bar with two inputs (two degrees of freedom), e.g. a planar parallel robot.
+
+    ::
+
+                   C
+                  / \\
+               b /   \\ c
+                /     \\
+               B       D
+            a /         \\ e
+             A (theta)   E (psi)
+        =====^===========^=====   A at the origin, E at (d, 0)
+
+    Cranks a = AB at theta and e = ED at psi are both driven; the links
+    b = BC at beta and c = DC at phi meet at C:
+    ``a e^{i theta} + b e^{i beta} = d + e e^{i psi} + c e^{i phi}``.  One
+    loop with two unknowns (case 3); branch +1 puts C left of the line B->D.
+
+    >>> linkage = fivebar()
+    >>> linkage.inputs, [step.case.name for step in linkage.plan]
+    ((theta, psi), ['3'])
+    """
+    theta, psi, beta, phi = coordinates("theta psi beta phi")
+    a, b, c, d, e = lengths("a b c d e")
+    AB, BC, DC = Vector(a, theta, "AB"), Vector(b, beta, "BC"), Vector(c, phi, "DC")
+    ED, AE = Vector(e, psi, "ED"), Vector(d, 0, "AE")
+    closure = Loop(AE + ED + DC - BC - AB, name="ABCDE")
+    return Linkage(
+        "fivebar", [closure], inputs=[theta, psi], unknowns=[beta, phi],
+        points={"A": None, "B": AB.as_sum(), "C": AB + BC, "D": AE + ED, "E": AE.as_sum()},
+        roles={"crank": theta, "crank2": psi, "coupler": beta, "coupler2": phi},
+    )
+
+
 #: Catalog entries by name: functions that build a fresh :class:`Linkage`.
-CATALOG = {"fourbar": fourbar}
+CATALOG = {
+    "fourbar": fourbar,
+    "slider-crank": slider_crank,
+    "inverted-slider-crank": inverted_slider_crank,
+    "watt2": watt2,
+    "stephenson3": stephenson3,
+    "fivebar": fivebar,
+}

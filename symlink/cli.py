@@ -212,6 +212,9 @@ def build_parser() -> argparse.ArgumentParser:
         table.add_argument(f"--{option}", type=finite, required=True, help=f"length {what}")
     add_sweep_options(table)
     table.set_defaults(run=run_fourbar)
+    from . import cli_slider, plan  # symlink slider-crank, symlink plan NAME
+    cli_slider.add_command(commands)
+    plan.add_command(commands)
     from . import animation, plot, view  # light: Matplotlib is imported when something is drawn
     plot.add_fourbar_options(table)
     for module in (plot, animation, view):

@@ -89,7 +89,7 @@ class Linkage:
             parameters = sorted(found - coordinates, key=lambda s: s.name)
         self.parameters = tuple(parameters)
         self.branches: tuple[sp.Symbol, ...] = tuple(
-            step.branch for step in self.plan if step.branch is not None)
+            step.branch for step in self.plan if step.branch is not None) if self.has_closed_form else ()
 
     @property
     def coordinates(self) -> tuple[sp.Symbol, ...]:
@@ -124,6 +124,27 @@ class Linkage:
         if unsolved:
             raise ValueError(f"the loops of {self.name!r} do not determine {', '.join(map(str, unsolved))}")
         return tuple(steps)
+
+    @cached_property
+    def has_closed_form(self) -> bool:
+        """Whether a loop-by-loop closed-form :attr:`plan` exists; if not, use :meth:`numeric`.
+
+        A linkage whose loops give as many equations as it has unknowns but no
+        closed-form order (the Stephenson III six-bar) is still a linkage; any
+        other reason for having no plan is an error in its definition.
+        """
+        try:
+            self.plan
+        except ValueError:
+            if 2 * len(self.loops) != len(self.unknowns):
+                raise
+            return False
+        return True
+
+    def numeric(self) -> "NumericSolver":
+        """A generated Newton solver on the closure (:mod:`symlink.numeric`), with or without a closed form."""
+        from .numeric import NumericSolver
+        return NumericSolver(self)
 
     @cached_property
     def positions(self) -> dict[sp.Symbol, sp.Expr]:

@@ -1,0 +1,68 @@
+"""The five-bar with two inputs (two degrees of freedom), in the worksheet style of derivations/fourbar.py.
+
+Run ``python derivations/fivebar.py`` to rewrite ``generated/fivebar.py`` (a
+NumPy-only solver) and ``generated/fivebar.tex`` (the equations).  The output
+is byte for byte reproducible; ``tests/test_generated.py`` checks it.
+"""
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import sympy as sp
+
+from symlink import Linkage, Loop, Vector, coordinates, lengths
+from symlink.catalog import fivebar
+from symlink.codegen import numpy_module
+from symlink.files import write_atomic
+from symlink.latex import latex_document
+
+GENERATED = Path(__file__).resolve().parent.parent / "generated"
+REGENERATE = "python derivations/fivebar.py"
+
+
+def derive() -> dict[str, str]:
+    """Every generated file of the five-bar: name -> text."""
+    # Two driven cranks, AB about A = (0, 0) and ED about E = (d, 0); the
+    # links BC and DC meet at C.
+    theta, psi, beta, phi = coordinates("theta psi beta phi")
+    a, b, c, d, e = lengths("a b c d e")
+    AB, BC, DC = Vector(a, theta, "AB"), Vector(b, beta, "BC"), Vector(c, phi, "DC")
+    ED, AE = Vector(e, psi, "ED"), Vector(d, 0, "AE")
+
+    # a e^{i theta} + b e^{i beta} = d + e e^{i psi} + c e^{i phi}
+    closure = Loop(AE + ED + DC - BC - AB, name="ABCDE")
+    # With both crank angles given, the loop has two unknown angles: case 3.
+    linkage = Linkage("fivebar", [closure], inputs=[theta, psi], unknowns=[beta, phi])
+    assert [step.case.name for step in linkage.plan] == ["3"]
+    # Each rate is a sum of the two inputs' contributions.
+    assert {sp.Symbol("thetadot", real=True), sp.Symbol("psidot", real=True)} <= linkage.velocities[
+        sp.Symbol("phidot", real=True)].free_symbols
+
+    catalog = fivebar()
+    assert catalog.positions == linkage.positions
+    positions = ["coupler", "coupler2"]
+    rates = ["coupler_speed", "coupler2_speed"]
+    accels = ["coupler_accel", "coupler2_accel"]
+    solver = numpy_module([
+        ("positions", catalog.program(positions), "Angles (rad) of BC and DC."),
+        ("velocities", catalog.program(positions + rates), "Angles and angular speeds (rad/s)."),
+        ("accelerations", catalog.program(positions + rates + accels),
+         "Angles, angular speeds and angular accelerations (rad/s^2)."),
+        ("joints", catalog.program(["B_x", "B_y", "C_x", "C_y", "D_x", "D_y"]),
+         "Joints B, C and D (the pivots are A = (0, 0) and E = (d, 0))."),
+    ], title="Five-bar solver: a e^{i theta} + b e^{i beta} = d + e e^{i psi} + c e^{i phi}; "
+             "branch +1 puts C left of B->D.", regenerate=REGENERATE)
+    tex = latex_document(catalog, "Five-bar linkage with two inputs")
+    return {"fivebar.py": solver, "fivebar.tex": tex}
+
+
+def main() -> int:
+    for name, text in derive().items():
+        write_atomic(GENERATED / name, text)
+        print(f"wrote generated/{name}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,70 @@
+"""The inverted slider-crank (crank-shaper, Whitworth quick return), in the worksheet style of derivations/fourbar.py.
+
+Run ``python derivations/inverted_slider_crank.py`` to rewrite
+``generated/inverted_slider_crank.py`` (a NumPy-only solver) and
+``generated/inverted_slider_crank.tex`` (the equations).  The output is byte
+for byte reproducible; ``tests/test_generated.py`` checks it.
+"""
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import sympy as sp
+
+from symlink import Linkage, Loop, Vector, coordinates, lengths
+from symlink.catalog import inverted_slider_crank
+from symlink.codegen import numpy_module
+from symlink.files import write_atomic
+from symlink.latex import latex_document
+
+GENERATED = Path(__file__).resolve().parent.parent / "generated"
+REGENERATE = "python derivations/inverted_slider_crank.py"
+
+
+def derive() -> dict[str, str]:
+    """Every generated file of the inverted slider-crank: name -> text."""
+    # The crank AB turns by theta about A; a block pinned at B slides on the
+    # rocker, which turns by phi about D = (d, 0).  The block's distance from
+    # D along the rocker, r, is a length that changes with time.
+    theta, phi, r = coordinates("theta phi r")
+    a, d = lengths("a d")
+    AB = Vector(a, theta, "AB")   # crank
+    DB = Vector(r, phi, "DB")     # rocker, up to the sliding block
+    AD = Vector(d, 0, "AD")       # frame
+
+    # a e^{i theta} = d + r e^{i phi}
+    closure = Loop(AB - DB - AD, name="ABD")
+    x, y = closure.equations()
+    assert sp.expand(x - (a * sp.cos(theta) - r * sp.cos(phi) - d)) == 0
+
+    # Both unknowns belong to the vector DB: case 2a, one assembly (r >= 0).
+    linkage = Linkage("inverted-slider-crank", [closure], inputs=[theta], unknowns=[phi, r])
+    assert [step.case.name for step in linkage.plan] == ["2a"]
+
+    catalog = inverted_slider_crank()
+    assert catalog.positions == linkage.positions
+    positions = ["rocker", "slider"]
+    rates = ["rocker_speed", "slider_speed"]
+    accels = ["rocker_accel", "slider_accel"]
+    solver = numpy_module([
+        ("positions", catalog.program(positions), "Rocker angle (rad) and the block's distance from D along it."),
+        ("velocities", catalog.program(positions + rates),
+         "Positions, the rocker's angular speed (rad/s) and the block's sliding speed (length/s)."),
+        ("accelerations", catalog.program(positions + rates + accels),
+         "Positions, speeds and accelerations (rad/s^2, length/s^2)."),
+    ], title="Inverted slider-crank solver: a e^{i theta} = d + r e^{i phi}; one assembly, r >= 0.",
+        regenerate=REGENERATE)
+    tex = latex_document(catalog, "Inverted slider-crank (crank-shaper, Whitworth)")
+    return {"inverted_slider_crank.py": solver, "inverted_slider_crank.tex": tex}
+
+
+def main() -> int:
+    for name, text in derive().items():
+        write_atomic(GENERATED / name, text)
+        print(f"wrote generated/{name}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

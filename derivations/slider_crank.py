@@ -1,0 +1,75 @@
+"""The slider-crank with offset, derived step by step in the worksheet style of derivations/fourbar.py.
+
+Run ``python derivations/slider_crank.py`` to rewrite ``generated/slider_crank.py``
+(a NumPy-only solver) and ``generated/slider_crank.tex`` (the equations).  The
+output is byte for byte reproducible; ``tests/test_generated.py`` checks it.
+"""
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import sympy as sp
+
+from symlink import Linkage, Loop, Vector, coordinates, lengths
+from symlink.catalog import slider_crank
+from symlink.codegen import numpy_module
+from symlink.files import write_atomic
+from symlink.latex import latex_document
+
+GENERATED = Path(__file__).resolve().parent.parent / "generated"
+REGENERATE = "python derivations/slider_crank.py"
+
+
+def derive() -> dict[str, str]:
+    """Every generated file of the slider-crank: name -> text."""
+    # The crank turns by theta and the connecting rod by beta; the slider pin
+    # travels along the line y = offset, at x = s.  The offset may be zero or
+    # negative, so it is a real symbol, not a length.
+    theta, beta, s = coordinates("theta beta s")
+    a, b = lengths("a b")
+    offset = sp.Symbol("offset", real=True)
+    AB = Vector(a, theta, "AB")             # crank
+    BC = Vector(b, beta, "BC")              # connecting rod
+    AS = Vector(s, 0, "AS")                 # slider travel: its length is the unknown
+    SC = Vector(offset, sp.pi / 2, "SC")    # the guide's offset, at a fixed angle
+
+    # a e^{i theta} + b e^{i beta} = s + i offset
+    closure = Loop(AB + BC - SC - AS, name="ABC")
+    x, y = closure.equations()
+    assert sp.expand(x - (a * sp.cos(theta) + b * sp.cos(beta) - s)) == 0
+    assert sp.expand(y - (a * sp.sin(theta) + b * sp.sin(beta) - offset)) == 0
+
+    # A length and another vector's angle are unknown: case 2b, two
+    # assemblies; branch +1 is the one with the larger s.
+    linkage = Linkage("slider-crank", [closure], inputs=[theta], unknowns=[beta, s])
+    assert [step.case.name for step in linkage.plan] == ["2b"]
+
+    catalog = slider_crank()
+    assert catalog.positions == linkage.positions
+    positions = ["conrod", "slider"]
+    rates = ["conrod_speed", "slider_speed"]
+    accels = ["conrod_accel", "slider_accel"]
+    solver = numpy_module([
+        ("positions", catalog.program(positions), "Connecting-rod angle (rad) and slider position."),
+        ("velocities", catalog.program(positions + rates),
+         "Positions, the rod's angular speed (rad/s) and the slider's speed (length/s)."),
+        ("accelerations", catalog.program(positions + rates + accels),
+         "Positions, speeds and accelerations (rad/s^2, length/s^2)."),
+        ("joints", catalog.program(["B_x", "B_y", "C_x", "C_y"]),
+         "Crank pin B and slider pin C (the crank pivot A is the origin)."),
+    ], title="Slider-crank solver: a e^{i theta} + b e^{i beta} = s + i offset; branch +1 has the larger s.",
+        regenerate=REGENERATE)
+    tex = latex_document(catalog, "Slider-crank with offset")
+    return {"slider_crank.py": solver, "slider_crank.tex": tex}
+
+
+def main() -> int:
+    for name, text in derive().items():
+        write_atomic(GENERATED / name, text)
+        print(f"wrote generated/{name}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,69 @@
+"""The Stephenson III six-bar, which has no loop-by-loop closed form, in the worksheet style of derivations/fourbar.py.
+
+Run ``python derivations/stephenson3.py`` to rewrite ``generated/stephenson3.py``
+(a NumPy-only Newton solver with the symbolic Jacobian) and
+``generated/stephenson3.tex`` (the closure, Jacobian and rate systems).  The
+output is byte for byte reproducible; ``tests/test_generated.py`` checks it.
+"""
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import sympy as sp
+
+from symlink import Linkage, Loop, Vector, coordinates, lengths
+from symlink.catalog import stephenson3
+from symlink.files import write_atomic
+from symlink.numeric import closure_system, numeric_latex, numeric_module
+from symlink.plan import solve_plan
+
+GENERATED = Path(__file__).resolve().parent.parent / "generated"
+REGENERATE = "python derivations/stephenson3.py"
+
+
+def derive() -> dict[str, str]:
+    """Every generated file of the Stephenson III six-bar: name -> text."""
+    theta, beta, mu, phi, eta = coordinates("theta beta mu phi eta")
+    a, b, c, d, e, f, g, h = lengths("a b c d e f g h")
+    alpha, delta = sp.symbols("alpha delta", real=True)
+    AB = Vector(a, theta, "AB")                                          # crank, about A
+    BC, BE = Vector(b, beta, "BC"), Vector(e, beta + alpha, "BE")        # ternary coupler BCE
+    DF, DH = Vector(f, phi, "DF"), Vector(h, phi + delta, "DH")          # ternary rocker DFH, about D
+    CF, EH = Vector(c, mu, "CF"), Vector(g, eta, "EH")                   # binary links
+    AD = Vector(d, 0, "AD")                                              # frame
+
+    outer = Loop(AB + BC + CF - DF - AD, name="ABCFD")
+    inner = Loop(AB + BE + EH - DH - AD, name="ABEHD")
+
+    # Three unknowns in each loop, whichever is taken first: no closed form.
+    linkage = Linkage("stephenson3", [outer, inner], inputs=[theta], unknowns=[beta, mu, phi, eta],
+                      parameters=[a, b, c, d, e, f, g, h, alpha, delta])
+    assert not linkage.has_closed_form
+    assert [len(loop.unknowns_among(linkage.unknowns)) for loop in linkage.loops] == [3, 3]
+    assert not solve_plan(linkage).closed_form
+
+    # Newton's method on all four closure equations, with the symbolic
+    # Jacobian; the rates solve linear systems with the same matrix.
+    system = closure_system(linkage)
+    assert system.jacobian.shape == (4, 4)
+    assert system.jacobian[0, 1] == -c * sp.sin(mu)   # d(x of ABCFD)/d(mu)
+
+    catalog = stephenson3()
+    assert closure_system(catalog).residuals == system.residuals
+    solver = numeric_module(
+        catalog, title="Stephenson III six-bar: Newton's method on loops ABCFD and ABEHD over a crank sweep.",
+        regenerate=REGENERATE)
+    tex = numeric_latex(catalog, "Stephenson III six-bar")
+    return {"stephenson3.py": solver, "stephenson3.tex": tex}
+
+
+def main() -> int:
+    for name, text in derive().items():
+        write_atomic(GENERATED / name, text)
+        print(f"wrote generated/{name}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -221,6 +221,9 @@ def build_parser() -> argparse.ArgumentParser:
         module.add_command(commands)
     from . import scene  # symlink run SCENE.toml
     scene.add_command(commands)
+    from . import loopcase, synthesis  # symlink loop, symlink quick-return (seeds 000 and 002)
+    loopcase.add_command(commands)
+    synthesis.add_command(commands)
     return parser
 
 

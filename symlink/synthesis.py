@@ -194,7 +194,9 @@ def _best_pivot(ends: numpy.ndarray, delta: float, rocker: float, max_link_ratio
     """The crank pivot on the delta-arcs with the largest worst transmission angle (None: no crank-rocker).
 
     A grid over each family of pivots, then golden-section search around the best point
-    (the worst angle is unimodal there, or rises to the link-ratio limit).
+    (the worst angle is unimodal there, or rises to the link-ratio limit).  The maximum
+    is flat, so its value comes out to rounding while the pivot's place on the arc is
+    known to about 1e-8 relative; time ratio and stroke are exact anywhere on the arc.
     """
     grid = (numpy.arange(_SAMPLES) + 0.5) / _SAMPLES
     best = (-math.inf, 0, 0.0)
@@ -265,7 +267,7 @@ def _analyse(pivot: numpy.ndarray, ends: numpy.ndarray, rocker: float, time_rati
     """The four-bar that the construction gives for ``pivot``, analysed afresh."""
     x, y = (float(v) for v in pivot)
     far = numpy.linalg.norm(ends - pivot, axis=-1)
-    if far.min() == 0 or math.hypot(x, y) == 0:
+    if min(far.min(), math.hypot(x, y)) <= 1e-12 * rocker:
         raise ValueError(f"the crank pivot ({x:g}, {y:g}) coincides with the rocker pivot or a rocker end")
     crank, coupler = float(far.max() - far.min()) / 2, float(far.max() + far.min()) / 2
     if crank <= 1e-12 * coupler:
@@ -289,9 +291,10 @@ def _analyse(pivot: numpy.ndarray, ends: numpy.ndarray, rocker: float, time_rati
         warnings.append(f"the requested time ratio {time_ratio:g} is not met: this crank pivot gives "
                         f"{limits.time_ratio:.4f} ({change:+.4f}, {100 * change / time_ratio:+.1f}%); "
                         "without a fixed crank pivot the time ratio is met exactly")
-    if not math.isclose(limits.stroke, stroke, rel_tol=1e-9):  # B1 and B2 on different branches
-        warnings.append(f"the stroke is {math.degrees(limits.stroke):.4f} deg, not the requested "
-                        f"{math.degrees(stroke):g} deg")
+    if not math.isclose(limits.stroke, stroke, rel_tol=1e-9):
+        warnings.append(f"the rocker swings {math.degrees(limits.stroke):.4f} deg, not the requested "
+                        f"{math.degrees(stroke):g} deg: its two end positions lie on opposite sides of the "
+                        "ground line, on different assembly branches, and no one linkage reaches both")
     if transmission.worst < GOOD_TRANSMISSION:
         best = ", the best reachable for this time ratio and stroke," if method.startswith("best") else ""
         warnings.append(f"the worst transmission angle is {math.degrees(transmission.worst):.2f} deg{best} "

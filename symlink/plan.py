@@ -29,7 +29,11 @@ NUMERIC = "numeric"
 
 @dataclass(frozen=True)
 class PlanStep:
-    """One step: ``loops`` solved for ``unknowns`` using earlier results ``uses`` (name -> step, 0 = input)."""
+    """One step: ``loops`` solved for ``unknowns`` using earlier results ``uses`` (name -> step, 0 = input).
+
+    ``case`` is a loop case of :mod:`symlink.loops` (``"3"``) or ``"numeric"``;
+    ``branch`` names the step's branch sign (None: one assembly, or numeric).
+    """
 
     number: int
     loops: tuple[str, ...]
@@ -42,6 +46,8 @@ class PlanStep:
     def __str__(self) -> str:
         used = ", ".join(f"{name} (step {step})" if step else name for name, step in self.uses.items())
         branch = f"; branch sign {self.branch}" if self.branch else ""
+        if self.case == NUMERIC:
+            branch = "; the assembly is the one nearest the initial guess, continued along the inputs"
         loops = "loop " + self.loops[0] if len(self.loops) == 1 else "loops " + " and ".join(self.loops)
         return (f"{self.number}. {loops}, case {self.case} ({self.description}): "
                 f"{', '.join(self.unknowns)} from {used or 'the parameters'}{branch}")
@@ -78,7 +84,7 @@ def solve_plan(linkage: Linkage) -> SolvePlan:
         used = {x.name: 0 for x in linkage.inputs}
         step = PlanStep(1, tuple(loop.name for loop in linkage.loops), NUMERIC,
                         f"Newton's method on all {2 * len(linkage.loops)} closure equations",
-                        tuple(u.name for u in linkage.unknowns), used, "the initial guess")
+                        tuple(u.name for u in linkage.unknowns), used, None)
         note = f"no closed form, every loop has more than two unknowns ({counts}); solved numerically"
         return SolvePlan(linkage.name, inputs, False, (step,), note)
     solved_in: dict = {x: 0 for x in linkage.inputs}

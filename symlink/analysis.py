@@ -42,7 +42,7 @@ from .solver import Solver, check_lengths
 __all__ = [
     "crank_range", "Mobility", "degrees_of_freedom", "Grashof", "GRASHOF_CLASSES", "grashof",
     "LimitPositions", "limit_positions", "TransmissionRange", "transmission_range",
-    "transmission_curve", "triangle_angle",
+    "transmission_curve", "triangle_angle", "wrap_angle",
 ]
 
 
@@ -99,6 +99,29 @@ def _body(angle: sp.Expr, coordinates: set[sp.Symbol]) -> object:
     return "ground" if moving == 0 else moving
 
 
+def _attach_to_blocks(loop, ends: list[list[object]], coordinates: set[sp.Symbol]) -> None:
+    """Move fixed vectors that carry on from a slider block, in the guide's direction, onto the block.
+
+    A block translates: it keeps its guide's orientation, and it meets its guide only in
+    the prismatic joint.  So fixed-length vectors with the guide's orientation that follow
+    on from the block's end of a slider travel (the slider-crank's offset ``SC`` after
+    ``AS = s e^{i 0}``) are parts of the block, not of the guide.
+    """
+    count = len(ends)
+    for index, (sign, vector) in enumerate(loop.terms):
+        if not vector.length.free_symbols & coordinates:
+            continue
+        block, guide = ("block", vector), _body(vector.angle, coordinates)
+        step = 1 if sign > 0 else -1  # the walk leaves the block forwards if it walks the travel tail to head
+        other = (index + step) % count
+        while other != index:
+            _, carried = loop.terms[other]
+            if carried.length.free_symbols & coordinates or _body(carried.angle, coordinates) != guide:
+                break
+            ends[other] = [block, block]
+            other = (other + step) % count
+
+
 def degrees_of_freedom(linkage: Linkage) -> Mobility:
     """Gruebler/Kutzbach mobility of ``linkage``, counting links and joints from its loops.
 
@@ -109,8 +132,11 @@ def degrees_of_freedom(linkage: Linkage) -> Mobility:
       ``phi + pi/2``) lie on one rigid body.
     * A vector whose length is a coordinate (a slider travel) is a prismatic joint: its
       tail is on the body that carries the guide (the body of its direction) and its head
-      on a slider block, one more link.  So the slider-crank's ``x e^{i 0}`` counts as a
-      block and a prismatic joint, and the block's pin to the connecting rod as a revolute.
+      on a slider block, one more link.  Fixed vectors in the guide's direction that carry
+      on from the head belong to the block (a translating block keeps its guide's
+      orientation).  So the slider-crank ``AB + BC - SC - AS`` with travel
+      ``AS = s e^{i 0}`` and offset ``SC`` counts ground, crank, rod and block, the
+      revolutes A, B and C and one prismatic joint.
     * Where two consecutive vectors of a loop end on different bodies there is a revolute
       joint between those bodies; vectors of one body meeting make no joint.  A pair of
       bodies is joined once however many loops pass through the joint, so a pin shared by
@@ -126,15 +152,17 @@ def degrees_of_freedom(linkage: Linkage) -> Mobility:
     revolute: set[frozenset] = set()
     prismatic: set[object] = set()
     for loop in linkage.loops:
-        ends = []
+        ends = []  # (body where the walk enters the term, body where it leaves it)
         for sign, vector in loop.terms:
             tail = _body(vector.angle, coordinates)
             head = tail
             if vector.length.free_symbols & coordinates:
                 head = ("block", vector)
                 prismatic.add(vector)
-            links.update((tail, head))
-            ends.append((tail, head) if sign > 0 else (head, tail))
+            ends.append([tail, head] if sign > 0 else [head, tail])
+        _attach_to_blocks(loop, ends, coordinates)
+        for start, end in ends:
+            links.update((start, end))
         for (_, arriving), (leaving, _) in zip(ends, ends[1:] + ends[:1]):
             if arriving != leaving:
                 revolute.add(frozenset((arriving, leaving)))
@@ -212,8 +240,12 @@ def _fourbar_solver(outputs: tuple[str, ...]) -> Solver:
     return Solver(fourbar(), list(outputs))
 
 
-def _wrap(angle: float) -> float:
-    """An angle wrapped to (-pi, pi]."""
+def wrap_angle(angle: float) -> float:
+    """An angle (radians) wrapped to (-pi, pi].
+
+    >>> wrap_angle(-math.pi), wrap_angle(3 * math.pi / 2)
+    (3.141592653589793, -1.5707963267948966)
+    """
     return math.pi - (math.pi - angle) % (2 * math.pi)
 
 
@@ -252,7 +284,7 @@ class LimitPositions:
     @property
     def stroke(self) -> float:
         """The rocker's swing between its extremes."""
-        return abs(_wrap(self.folded_rocker - self.extended_rocker))
+        return abs(wrap_angle(self.folded_rocker - self.extended_rocker))
 
     @property
     def crank_turns(self) -> tuple[float, float]:
@@ -290,7 +322,7 @@ def limit_positions(a: float, b: float, c: float, d: float, branch: int = 1) -> 
                              f"rocker {c:g} and ground {d:g}")
         # C above the ground line is branch +1, except when folded with a > b, where C is on the crank.
         side = -branch if folded and a > b else branch
-        crank.append(_wrap(side * angle + (math.pi if folded and b > a else 0.0)))
+        crank.append(wrap_angle(side * angle + (math.pi if folded and b > a else 0.0)))
     solved = _fourbar_solver(("rocker",))(theta=numpy.array(crank), a=a, b=b, c=c, d=d, branch=branch)
     rocker = [float(value) for value in solved["rocker"]]
     return LimitPositions(branch, crank[0], rocker[0], crank[1], rocker[1])
@@ -336,7 +368,7 @@ def transmission_range(a: float, b: float, c: float, d: float) -> TransmissionRa
         far = math.acos(max((a * a + d * d - (b + c) ** 2) / (2 * a * d), -1.0))
         for lo, hi in spans:  # toggles: coupler and rocker in line
             for end in (lo, hi):
-                candidates.setdefault(_wrap(end), math.pi if math.isclose(abs(_wrap(end)), far) else 0.0)
+                candidates.setdefault(wrap_angle(end), math.pi if math.isclose(abs(wrap_angle(end)), far) else 0.0)
     low = min(candidates, key=candidates.__getitem__)
     high = max(candidates, key=candidates.__getitem__)
     return TransmissionRange(candidates[low], low, candidates[high], high)

@@ -32,6 +32,7 @@ from typing import Mapping
 
 import numpy
 
+from .analysis import wrap_angle
 from .linkage import Linkage
 from .loops import CASE_NAMES, Loop
 from .solver import Solver, check_lengths
@@ -168,7 +169,7 @@ def solve_case(values: Mapping[str, float | None]) -> LoopCaseResult:
         for name in missing:
             value = float(result[name])
             if name.startswith("t"):
-                value = math.pi - (math.pi - value) % (2 * math.pi)
+                value = wrap_angle(value)
             elif -ROUNDING * scale <= value < 0:
                 value = 0.0
             solution[name] = value

@@ -42,7 +42,7 @@ from dataclasses import dataclass, replace
 import numpy
 
 from .analysis import (LimitPositions, TransmissionRange, grashof, limit_positions, transmission_range,
-                       triangle_angle)
+                       triangle_angle, wrap_angle)
 from .solver import check_lengths
 
 __all__ = ["QuickReturn", "quick_return", "delta_for_time_ratio", "GOOD_TRANSMISSION", "MAX_LINK_RATIO",
@@ -97,12 +97,8 @@ class QuickReturn:
     @property
     def rocker_extremes(self) -> tuple[float, float]:
         """The rocker's angles at its two extremes, in the O4 frame (extended first)."""
-        return (_wrap(self.limits.extended_rocker + self.ground_angle),
-                _wrap(self.limits.folded_rocker + self.ground_angle))
-
-
-def _wrap(angle: float) -> float:
-    return math.pi - (math.pi - angle) % (2 * math.pi)
+        return (wrap_angle(self.limits.extended_rocker + self.ground_angle),
+                wrap_angle(self.limits.folded_rocker + self.ground_angle))
 
 
 def delta_for_time_ratio(time_ratio: float) -> float:
@@ -350,6 +346,9 @@ def add_command(commands) -> None:
                          help="rocker angle at its minimum position (default 90)")
     command.add_argument("--crank-pivot", type=_pivot, metavar="X,Y",
                          help="fix the crank pivot (the paper's procedure); default: the best one")
+    command.add_argument("--max-link-ratio", type=finite, default=MAX_LINK_RATIO, metavar="K",
+                         help="without a crank pivot: longest link at most K times the crank "
+                              f"(default {MAX_LINK_RATIO:g})")
     command.add_argument("--format", choices=["table", "json"], default="table")
     command.set_defaults(run=run)
     # Let "--crank-pivot -70,0" through: argparse takes words that start with "-" for options
@@ -359,7 +358,7 @@ def add_command(commands) -> None:
 
 def run(args: argparse.Namespace) -> int:
     design = quick_return(args.time_ratio, math.radians(args.stroke), args.rocker,
-                          math.radians(args.rocker_min_angle), args.crank_pivot)
+                          math.radians(args.rocker_min_angle), args.crank_pivot, args.max_link_ratio)
     record = as_record(design)
     for warning in design.warnings:
         print(f"symlink: warning: {warning}", file=sys.stderr)

@@ -11,7 +11,7 @@ from references import mp_fourbar, transmission_angle
 from symlink import Linkage, Loop, Vector, coordinates, lengths
 from symlink.analysis import (GRASHOF_CLASSES, crank_range, degrees_of_freedom, grashof, limit_positions,
                               transmission_curve, transmission_range, triangle_angle)
-from symlink.catalog import fourbar
+from symlink.catalog import CATALOG, fourbar
 
 SEED003 = (20.0, 66.0, 56.0, 80.0)
 SEED002 = (16.084, 69.743, 50.0, 70.0)  # the paper's printed linkage of case 4.3
@@ -31,6 +31,15 @@ def inverted_slider_crank():
     a, d = lengths("a d")
     loop = Loop(Vector(a, theta, "AB") - Vector(s, phi, "DB") - Vector(d, 0, "AD"), "ABD")
     return Linkage("inverted slider-crank", [loop], inputs=[theta], unknowns=[phi, s])
+
+
+def offset_slider_crank():
+    """Slider pin C = S + offset: the travel AS ends on the block, which carries the offset SC."""
+    theta, beta, s = coordinates("theta beta s")
+    a, b, e = lengths("a b e")
+    loop = Loop(Vector(a, theta, "AB") + Vector(b, beta, "BC") - Vector(e, math.pi / 2, "SC")
+                - Vector(s, 0, "AS"), "ABC")
+    return Linkage("offset slider-crank", [loop], inputs=[theta], unknowns=[beta, s])
 
 
 def five_bar():
@@ -55,6 +64,7 @@ def watt_six_bar():
     (fourbar, 4, 4, 0, 1),
     (slider_crank, 4, 3, 1, 1),
     (inverted_slider_crank, 4, 3, 1, 1),
+    (offset_slider_crank, 4, 3, 1, 1),
     (five_bar, 5, 5, 0, 2),
     (watt_six_bar, 6, 7, 0, 1),
 ])
@@ -64,6 +74,12 @@ def test_gruebler_counts(build, links, revolute, prismatic, dof):
     assert (mobility.links, mobility.revolute, mobility.prismatic, mobility.dof) == (links, revolute, prismatic, dof)
     # Independent check: each loop closes with two equations on the coordinates.
     assert mobility.dof == len(linkage.coordinates) - 2 * len(linkage.loops) == len(linkage.inputs)
+
+
+@pytest.mark.parametrize("name", sorted(CATALOG))
+def test_catalog_mobility_matches_its_inputs(name):
+    linkage = CATALOG[name]()
+    assert degrees_of_freedom(linkage).dof == len(linkage.inputs)
 
 
 def test_seed002_formula():
@@ -148,8 +164,9 @@ def test_limit_positions_against_root_finding(links, branch):
         assert abs(math.remainder(phi - rocker, 2 * math.pi)) < 1e-12
     # extended: |AC| = a + b
     with mp.workdps(30):
-        cx = a * mp.cos(limits.extended_crank) + b * mp.cos(mp_fourbar(a, b, c, d, limits.extended_crank, branch)["beta"])
-        cy = a * mp.sin(limits.extended_crank) + b * mp.sin(mp_fourbar(a, b, c, d, limits.extended_crank, branch)["beta"])
+        beta = mp_fourbar(a, b, c, d, limits.extended_crank, branch)["beta"]
+        cx = a * mp.cos(limits.extended_crank) + b * mp.cos(beta)
+        cy = a * mp.sin(limits.extended_crank) + b * mp.sin(beta)
         assert abs(mp.sqrt(cx**2 + cy**2) - (a + b)) < 1e-12
     # stroke and time ratio from the roots
     phis = [float(mp_fourbar(a, b, c, d, r, branch)["phi"]) for r in roots]

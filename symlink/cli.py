@@ -219,8 +219,9 @@ def build_parser() -> argparse.ArgumentParser:
     plot.add_fourbar_options(table)
     for module in (plot, animation, view):
         module.add_command(commands)
-    from . import scene  # symlink run SCENE.toml
+    from . import bench, scene  # symlink run SCENE.toml, symlink bench
     scene.add_command(commands)
+    bench.add_command(commands)
     from . import loopcase, synthesis  # symlink loop, symlink quick-return (seeds 000 and 002)
     loopcase.add_command(commands)
     synthesis.add_command(commands)

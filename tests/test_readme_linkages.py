@@ -1,0 +1,78 @@
+"""The README's 'New linkages and your own' section: its code runs and its printed output is current."""
+import contextlib
+import io
+import pathlib
+import re
+import shlex
+
+import pytest
+
+from symlink.cli import main
+
+README = pathlib.Path(__file__).resolve().parent.parent / "README.md"
+
+
+def section() -> str:
+    text = README.read_text(encoding="utf-8")
+    start = text.index("## New linkages and your own")
+    return text[start:text.index("\n## ", start + 1)]
+
+
+def blocks(kind: str) -> list[str]:
+    """The fenced blocks of the section whose language is ``kind`` ("" for plain ones)."""
+    found, current, language = [], None, ""
+    for line in section().splitlines(keepends=True):
+        if line.startswith("```"):
+            if current is None:
+                current, language = [], line[3:].strip()
+            else:
+                if language == kind:
+                    found.append("".join(current))
+                current = None
+        elif current is not None:
+            current.append(line)
+    return found
+
+
+def run_python(code: str) -> str:
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        exec(compile(code, "README linkages", "exec"), {"__name__": "__readme__"})  # our own README
+    return out.getvalue()
+
+
+def test_the_users_own_linkage_runs_and_prints_what_the_readme_says(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("MPLBACKEND", "Agg")
+    user, numeric = blocks("python")
+    assert len(user.strip().splitlines()) <= 30   # "about twenty lines" of derivation, solver and plot
+    printed = run_python(user)
+    plan = next(b for b in blocks("") if b.startswith("press: closed form"))
+    assert printed.startswith(plan)
+    assert "True 4.747 7.2297" in printed
+    assert r"- \frac{c \dot{\phi} \sin{\left(\phi - \psi \right)}}{\cos{\left(\psi \right)}}" in printed
+    tex = (tmp_path / "press.tex").read_text()
+    assert r"s &= \Delta_{2} \sigma_{\mathrm{DCF}} - W_{x,2}" in tex
+    assert (tmp_path / "press.png").stat().st_size > 1000
+    assert "sympy" not in (tmp_path / "press_solver.py").read_text().split('"""', 2)[2]
+    printed = run_python(numeric)
+    assert printed == "[ 80.934  86.891 111.938 111.949]\n[-0.5714  0.5903  0.3636 -0.402 ]\n"
+
+
+def shell_examples():
+    for block in blocks(""):
+        for command, output in re.findall(r"^\$ (symlink .*)\n((?:(?!\$ ).*\n)*)", block, flags=re.M):
+            yield command, output
+
+
+@pytest.mark.parametrize("command, output", list(shell_examples()), ids=lambda value: value[:40])
+def test_shell_examples_show_real_output(capsys, command, output):
+    assert main(shlex.split(command)[1:]) == 0
+    out, _ = capsys.readouterr()
+    assert out == output
+
+
+def test_there_are_shell_examples_for_plan_and_slider_crank():
+    commands = [command for command, _ in shell_examples()]
+    assert any(c.startswith("symlink plan") for c in commands)
+    assert any(c.startswith("symlink slider-crank") for c in commands)

@@ -141,6 +141,18 @@ def test_exact_design_meets_ratio_and_stroke():
     assert design.grashof == "crank-rocker"
 
 
+@pytest.mark.parametrize("ratio, stroke, rocker, lowest", [
+    (1.1, 30.0, 10.0, 0.0), (1.5, 60.0, 2.5, -120.0), (1.05, 75.0, 100.0, 200.0), (1.3, 20.0, 7.0, 45.0),
+])
+def test_other_exact_designs_meet_ratio_and_stroke(ratio, stroke, rocker, lowest):
+    design = quick_return(ratio, deg(stroke), rocker, deg(lowest))
+    found_stroke, found_ratio, rockers = stroke_and_time_ratio(*Rebuilt(design, deg(lowest)).limit_positions())
+    assert abs(found_ratio - ratio) < 1e-9 and abs(found_stroke - deg(stroke)) < 1e-9
+    ends = sorted(math.remainder(r - deg(lowest), 2 * math.pi) for r in rockers)
+    assert ends == pytest.approx([0.0, deg(stroke)], abs=1e-9)
+    assert design.grashof == "crank-rocker"
+
+
 def test_best_worst_transmission_is_42_8_deg_and_below_45():
     design = quick_return(**PAPER)
     assert round(math.degrees(design.transmission.worst), 1) == 42.8

@@ -55,9 +55,10 @@ def derive() -> dict[str, str]:
     joints = [f"{p}_{axis}" for p in "BC" for axis in "xy"]
     solver = numpy_module([
         ("positions", catalog.program(angles), "Coupler and rocker angles (rad) of the four-bar."),
-        ("velocities", catalog.program(angles + rates), "Angles and angular speeds (rad/s)."),
-        ("accelerations", catalog.program(angles + rates + accels + ["transmission"]),
-         "Angles, angular speeds and accelerations (rad/s^2), and the transmission angle."),
+        ("velocities", catalog.program(angles + rates + ["singular"]),
+         "Angles and angular speeds (rad/s); singular: at a toggle, where the speeds are not finite."),
+        ("accelerations", catalog.program(angles + rates + accels + ["transmission", "singular"]),
+         "Angles, angular speeds and accelerations (rad/s^2), the transmission angle, and singular."),
         ("joints", catalog.program(joints), "Joint positions B and C (the pivots are A = (0, 0), D = (d, 0))."),
     ], title="Four-bar solver: a e^{i theta} + b e^{i beta} = d + c e^{i phi}; branch +1 puts C left of B->D.",
         regenerate=REGENERATE)

@@ -35,7 +35,7 @@ def positions(theta, a, b, c, d, branch=1):
     cse_3 = w_1**2.0
     cse_4 = cse_0*cse_2 + cse_3
     cse_8 = -cse_0*cse_2 + cse_3
-    Delta_1 = _clamped_sqrt(cse_1*(cse_0 - w_1)*(cse_2 + w_1)*(-b + c + w_1), cse_1**4.0)
+    Delta_1 = _clamped_sqrt(cse_1*(cse_0 - w_1)*(cse_2 + w_1)*(-b + c + w_1), 8.0*b*c*w_1*(a + cse_1 + d))
     cse_5 = Delta_1*branch
     cse_6 = Wx_1*cse_5
     cse_7 = Wy_1*cse_5
@@ -49,9 +49,9 @@ def positions(theta, a, b, c, d, branch=1):
 
 
 def velocities(theta, a, b, c, d, branch=1, thetadot=0.0):
-    """Angles and angular speeds (rad/s).
+    """Angles and angular speeds (rad/s); singular: at a toggle, where the speeds are not finite.
     
-    Returns a dict of arrays: coupler, rocker, coupler_speed, rocker_speed;
+    Returns a dict of arrays: coupler, rocker, coupler_speed, rocker_speed, singular;
     and assembled: False where the linkage cannot close (the outputs are NaN there).
     The arguments broadcast against each other.
     """
@@ -67,28 +67,29 @@ def velocities(theta, a, b, c, d, branch=1, thetadot=0.0):
     cse_3 = w_1**2.0
     cse_4 = cse_0*cse_2 + cse_3
     cse_8 = -cse_0*cse_2 + cse_3
-    Delta_1 = _clamped_sqrt(cse_1*(cse_0 - w_1)*(cse_2 + w_1)*(-b + c + w_1), cse_1**4.0)
+    Delta_1 = _clamped_sqrt(cse_1*(cse_0 - w_1)*(cse_2 + w_1)*(-b + c + w_1), 8.0*b*c*w_1*(a + cse_1 + d))
     cse_5 = Delta_1*branch
     cse_6 = Wx_1*cse_5
     cse_7 = Wy_1*cse_5
+    cse_10 = 2.0*a*thetadot/(Delta_1*branch)
     beta = numpy.arctan2(-Wy_1*cse_4 - cse_6, -Wx_1*cse_4 + cse_7)
     phi = numpy.arctan2(Wy_1*cse_8 - cse_6, Wx_1*cse_8 + cse_7)
-    cse_10 = a*thetadot/numpy.sin(beta - phi)
-    betadot = cse_10*numpy.sin(cse_9 + phi)/b
-    phidot = cse_10*numpy.sin(beta + cse_9)/c
+    betadot = -c*cse_10*numpy.sin(cse_9 + phi)
+    phidot = -b*cse_10*numpy.sin(beta + cse_9)
     return {
         'coupler': numpy.broadcast_to(beta, shape),
         'rocker': numpy.broadcast_to(phi, shape),
         'coupler_speed': numpy.broadcast_to(betadot, shape),
         'rocker_speed': numpy.broadcast_to(phidot, shape),
+        'singular': numpy.broadcast_to(numpy.equal(Delta_1, 0.0), shape),
         'assembled': numpy.broadcast_to(numpy.isfinite(Delta_1), shape),
     }
 
 
 def accelerations(theta, a, b, c, d, branch=1, thetadot=0.0, thetaddot=0.0):
-    """Angles, angular speeds and accelerations (rad/s^2), and the transmission angle.
+    """Angles, angular speeds and accelerations (rad/s^2), the transmission angle, and singular.
     
-    Returns a dict of arrays: coupler, rocker, coupler_speed, rocker_speed, coupler_accel, rocker_accel, transmission;
+    Returns a dict of arrays: coupler, rocker, coupler_speed, rocker_speed, coupler_accel, rocker_accel, transmission, singular;
     and assembled: False where the linkage cannot close (the outputs are NaN there).
     The arguments broadcast against each other.
     """
@@ -97,9 +98,9 @@ def accelerations(theta, a, b, c, d, branch=1, thetadot=0.0, thetaddot=0.0):
     cse_0 = b + c
     cse_2 = b - c
     cse_9 = -theta
-    cse_16 = a*thetadot
-    cse_21 = a*thetaddot
-    cse_22 = thetadot**2.0
+    cse_14 = a*thetadot
+    cse_19 = a*thetaddot
+    cse_20 = thetadot**2.0
     Wx_1 = a*numpy.cos(theta) - d
     Wy_1 = a*numpy.sin(theta)
     w_1 = numpy.sqrt(Wx_1**2.0 + Wy_1**2.0)
@@ -107,28 +108,27 @@ def accelerations(theta, a, b, c, d, branch=1, thetadot=0.0, thetaddot=0.0):
     cse_3 = w_1**2.0
     cse_4 = cse_0*cse_2 + cse_3
     cse_8 = -cse_0*cse_2 + cse_3
-    Delta_1 = _clamped_sqrt(cse_1*(cse_0 - w_1)*(cse_2 + w_1)*(-b + c + w_1), cse_1**4.0)
+    Delta_1 = _clamped_sqrt(cse_1*(cse_0 - w_1)*(cse_2 + w_1)*(-b + c + w_1), 8.0*b*c*w_1*(a + cse_1 + d))
     cse_5 = Delta_1*branch
     cse_6 = Wx_1*cse_5
     cse_7 = Wy_1*cse_5
+    cse_12 = 2.0/(Delta_1*branch)
+    cse_13 = c*cse_12
+    cse_17 = b*cse_12
     beta = numpy.arctan2(-Wy_1*cse_4 - cse_6, -Wx_1*cse_4 + cse_7)
-    cse_17 = beta + cse_9
-    cse_18 = numpy.sin(cse_17)
+    cse_15 = beta + cse_9
+    cse_16 = numpy.sin(cse_15)
     phi = numpy.arctan2(Wy_1*cse_8 - cse_6, Wx_1*cse_8 + cse_7)
     cse_10 = cse_9 + phi
     cse_11 = numpy.sin(cse_10)
-    cse_12 = beta - phi
-    cse_13 = numpy.sin(cse_12)
-    cse_14 = 1/(cse_13)
-    cse_15 = cse_14/b
-    cse_19 = cse_14/c
-    cse_24 = numpy.cos(cse_12)
-    betadot = cse_11*cse_15*cse_16
-    cse_23 = betadot**2.0
-    phidot = cse_16*cse_18*cse_19
-    cse_20 = c*phidot**2.0
-    betaddot = -cse_15*(a*cse_22*numpy.cos(cse_10) + b*cse_23*cse_24 - cse_11*cse_21 - cse_20)
-    phiddot = -cse_19*(a*cse_22*numpy.cos(cse_17) + b*cse_23 - cse_18*cse_21 - cse_20*cse_24)
+    cse_22 = beta - phi
+    cse_23 = numpy.cos(cse_22)
+    betadot = -cse_11*cse_13*cse_14
+    cse_21 = betadot**2.0
+    phidot = -cse_14*cse_16*cse_17
+    cse_18 = c*phidot**2.0
+    betaddot = cse_13*(a*cse_20*numpy.cos(cse_10) + b*cse_21*cse_23 - cse_11*cse_19 - cse_18)
+    phiddot = cse_17*(a*cse_20*numpy.cos(cse_15) + b*cse_21 - cse_16*cse_19 - cse_18*cse_23)
     return {
         'coupler': numpy.broadcast_to(beta, shape),
         'rocker': numpy.broadcast_to(phi, shape),
@@ -136,7 +136,8 @@ def accelerations(theta, a, b, c, d, branch=1, thetadot=0.0, thetaddot=0.0):
         'rocker_speed': numpy.broadcast_to(phidot, shape),
         'coupler_accel': numpy.broadcast_to(betaddot, shape),
         'rocker_accel': numpy.broadcast_to(phiddot, shape),
-        'transmission': numpy.broadcast_to(abs(numpy.arctan2(cse_13, cse_24)), shape),
+        'transmission': numpy.broadcast_to(abs(numpy.arctan2(numpy.sin(cse_22), cse_23)), shape),
+        'singular': numpy.broadcast_to(numpy.equal(Delta_1, 0.0), shape),
         'assembled': numpy.broadcast_to(numpy.isfinite(Delta_1), shape),
     }
 
@@ -159,7 +160,7 @@ def joints(theta, a, b, c, d, branch=1):
     w_1 = numpy.sqrt(Wx_1**2.0 + Wy_1**2.0)
     cse_3 = cse_2 + w_1
     cse_5 = cse_2*cse_4 + w_1**2.0
-    Delta_1 = _clamped_sqrt(cse_3*(cse_2 - w_1)*(cse_4 + w_1)*(-b + c + w_1), cse_3**4.0)
+    Delta_1 = _clamped_sqrt(cse_3*(cse_2 - w_1)*(cse_4 + w_1)*(-b + c + w_1), 8.0*b*c*w_1*(a + cse_3 + d))
     cse_6 = Delta_1*branch
     beta = numpy.arctan2(-Wx_1*cse_6 - Wy_1*cse_5, -Wx_1*cse_5 + Wy_1*cse_6)
     return {

@@ -31,7 +31,7 @@ import sympy as sp
 
 from .loops import Loop
 from .motion import loop_rates
-from .position import LoopSolution, solve_loop
+from .position import ClampedSqrt, LoopSolution, solve_loop
 from .vectors import Vector, VectorSum, acceleration, rate
 
 __all__ = ["Linkage", "Program"]
@@ -171,6 +171,12 @@ class Linkage:
         """The unknowns' accelerations, in terms of positions, rates and the inputs' accelerations."""
         return self._rates(2)
 
+    @cached_property
+    def singular(self) -> sp.Expr:
+        """Output ``"singular"``: True where a loop's root is zero (a toggle), where the rates are not finite."""
+        roots = [s for step in self.plan for s, e in step.intermediates.items() if isinstance(e, ClampedSqrt)]
+        return sp.Or(*(sp.Eq(root, 0) for root in roots))
+
     def point(self, name: str) -> tuple[sp.Expr, sp.Expr]:
         """A named point's x and y."""
         vectors = self.points[name]
@@ -187,7 +193,7 @@ class Linkage:
             names += [role, role + SPEED_SUFFIX, role + ACCEL_SUFFIX]
         for point in self.points:
             names += [f"{point}_x", f"{point}_y"]
-        return names + list(self.extras)
+        return names + list(self.extras) + ["singular"]
 
     def output(self, name: str) -> sp.Expr:
         """What an output name stands for: a coordinate or rate symbol, or an expression of them."""
@@ -198,6 +204,8 @@ class Linkage:
             by_name.update({role: q, role + SPEED_SUFFIX: rate(q), role + ACCEL_SUFFIX: acceleration(q)})
         if name in by_name:
             return by_name[name]
+        if name == "singular":
+            return self.singular
         if name in self.extras:
             return self.extras[name]
         point, _, axis = name.rpartition("_")
@@ -226,7 +234,9 @@ class Linkage:
         """Straight-line code for ``outputs``: only what they depend on is derived and kept."""
         wanted = {name: self.output(name) for name in outputs}
         needed = set().union(*(e.free_symbols for e in wanted.values())) if wanted else set()
-        definitions = self._definitions_of(needed)
+        # Code divides by the loops' roots, so the rates are not finite exactly at a toggle.
+        factors = {k: v for step in self.plan for k, v in step.singular_factors.items()}
+        definitions = {s: e.xreplace(factors) for s, e in self._definitions_of(needed).items()}
         # Walk the dependencies; definitions are in dependency order already.
         keep: set[sp.Symbol] = set()
         stack = [s for s in needed if s in definitions]

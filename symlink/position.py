@@ -31,7 +31,7 @@ Branches (the sign ``sigma`` of the square root):
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Sequence
 
 import sympy as sp
@@ -85,6 +85,12 @@ class LoopSolution:
     the expressions use the named ``intermediates`` (the closing vector
     ``Wx_k, Wy_k``, its length ``w_k`` and the root ``Delta_k`` of loop k), the
     way a textbook names them, so that they read well and print as LaTeX.
+
+    ``singular_factors`` rewrites the sine or cosine that vanishes at this
+    loop's singular configurations (the toggles, where the two branches
+    meet) in terms of the root ``Delta_k``: ``sin(beta - phi)`` of the
+    four-bar is ``-branch Delta_1 / (2 b c)``.  With it the rates divide by
+    exactly zero where the root is zero, and are not finite there.
     """
 
     loop: Loop
@@ -92,6 +98,7 @@ class LoopSolution:
     branch: sp.Symbol | None
     intermediates: dict[sp.Symbol, sp.Expr]
     positions: dict[sp.Symbol, sp.Expr]
+    singular_factors: dict[sp.Expr, sp.Expr] = field(default_factory=dict)
 
 
 def _cross(ux, uy, vx, vy):
@@ -109,11 +116,31 @@ class _Intermediates(dict):
     def __init__(self, label: str):
         super().__init__()
         self.label = label
+        self.singular_factors: dict[sp.Expr, sp.Expr] = {}
+
+    def identity(self, function, argument: sp.Expr, value: sp.Expr, odd: bool) -> None:
+        """Record ``function(argument) = value`` (and of ``-argument``) for the rates' denominators."""
+        for arg, val in ((argument, value), (-argument, -value if odd else value)):
+            if isinstance(function(arg), function):
+                self.singular_factors[function(arg)] = val
 
     def __call__(self, name: str, expr: sp.Expr) -> sp.Symbol:
         symbol = sp.Symbol(f"{name}_{self.label}", real=True)
         self[symbol] = expr
         return symbol
+
+
+def _rounding_size(case: LoopCase) -> sp.Expr:
+    """Sum of the known vectors' lengths: ``W`` carries a rounding error of a few ulps of it.
+
+    A root's argument is a product with one factor that vanishes at the
+    toggle; that factor's rounding error is a few ulps of the loop's size
+    (this sum plus the unknown vectors' lengths), and the :class:`ClampedSqrt`
+    scale is that size times the other factors' product there: inputs
+    within ``TOLERANCE`` times the loop's size of a toggle are taken as at
+    the toggle, anything farther out cannot be assembled.
+    """
+    return sp.Add(*(sp.Abs(v.length) for _, v in case.known))
 
 
 def _two_lengths(case: LoopCase, wx, wy, branch, named):
@@ -141,9 +168,14 @@ def _length_and_other_angle(case: LoopCase, wx, wy, branch, named):
     ux, uy = sp.cos(tp), sp.sin(tp)
     across = _cross(ux, uy, wx, wy)          # s_q r_q sin(t_q - t_p)
     along = ux * wx + uy * wy                # s_p r_p + s_q r_q cos(t_q - t_p)
-    root = named("Delta", ClampedSqrt((rq - across) * (rq + across), rq**2))
+    # At a toggle one factor vanishes, off by a few ulps of the loop's size,
+    # and the other is 2 r_q.
+    root = named("Delta", ClampedSqrt((rq - across) * (rq + across),
+                                      2 * sp.Abs(rq) * (sp.Abs(rq) + _rounding_size(case))))
     rp = p.sign * along + branch * root
     tq = tp + sp.atan2(q.sign * across, -p.sign * q.sign * branch * root)
+    if rq.is_positive:
+        named.identity(sp.cos, q.vector.angle - tp, -p.sign * q.sign * branch * root / rq, odd=False)
     return {p.symbol: _absolute(p, rp), q.symbol: _absolute(q, tq)}
 
 
@@ -159,10 +191,17 @@ def _two_angles(case: LoopCase, wx, wy, branch, named):
     # the toggles, where the triangle is flat.
     xp = (rp - rq) * (rp + rq) + w**2
     xq = (rq - rp) * (rq + rp) + w**2
+    # At a toggle (w = rp + rq or |rp - rq|) one factor vanishes, off by a few
+    # ulps of the loop's size, and the other three multiply to 8 rp rq w.
+    size = sp.Abs(rp) + sp.Abs(rq) + w + _rounding_size(case)
     y = branch * named("Delta", ClampedSqrt((rp + rq + w) * (rp + rq - w) * (w + rq - rp) * (w + rp - rq),
-                                            (rp + rq + w)**4))
+                                            8 * sp.Abs(rp * rq) * w * size))
     tp = sp.atan2(xp * wy + y * wx, xp * wx - y * wy)
     tq = sp.atan2(sign_q * (xq * wy - y * wx), sign_q * (xq * wx + y * wy))
+    # P = (xp + i y) W / (2 w^2) and Q = (xq - i y) W / (2 w^2), so the cross
+    # product P x Q = rp rq sign_q sin(tq - tp) is -y (xp + xq) / (4 w^2) = -y/2.
+    if rp.is_positive and rq.is_positive:
+        named.identity(sp.sin, q.vector.angle - p.vector.angle, -sign_q * y / (2 * rp * rq), odd=True)
     return {p.symbol: _absolute(p, tp), q.symbol: _absolute(q, tq)}
 
 
@@ -187,4 +226,5 @@ def solve_loop(loop: Loop, unknowns: Sequence[sp.Symbol], branch: sp.Symbol | No
     wy = named("Wy", -sp.Add(*(s * v.y for s, v in case.known)))
     positions = _SOLVERS[case.name](case, wx, wy, branch, named)
     positions = {u: positions[u] for u in unknowns}
-    return LoopSolution(loop, case, branch if case.branches == 2 else None, dict(named), positions)
+    return LoopSolution(loop, case, branch if case.branches == 2 else None, dict(named), positions,
+                        named.singular_factors)

@@ -13,8 +13,7 @@ import sympy as sp
 
 from symlink import Linkage, Loop, Vector, coordinates, lengths
 from symlink.catalog import fivebar
-from symlink.codegen import numpy_module
-from symlink.files import write_atomic
+from symlink.derivation import kinematics_module, write_generated
 from symlink.latex import latex_document
 
 GENERATED = Path(__file__).resolve().parent.parent / "generated"
@@ -41,27 +40,17 @@ def derive() -> dict[str, str]:
 
     catalog = fivebar()
     assert catalog.positions == linkage.positions
-    positions = ["coupler", "coupler2"]
-    rates = ["coupler_speed", "coupler2_speed"]
-    accels = ["coupler_accel", "coupler2_accel"]
-    solver = numpy_module([
-        ("positions", catalog.program(positions), "Angles (rad) of BC and DC."),
-        ("velocities", catalog.program(positions + rates), "Angles and angular speeds (rad/s)."),
-        ("accelerations", catalog.program(positions + rates + accels),
-         "Angles, angular speeds and angular accelerations (rad/s^2)."),
-        ("joints", catalog.program(["B_x", "B_y", "C_x", "C_y", "D_x", "D_y"]),
-         "Joints B, C and D (the pivots are A = (0, 0) and E = (d, 0))."),
-    ], title="Five-bar solver: a e^{i theta} + b e^{i beta} = d + e e^{i psi} + c e^{i phi}; "
-             "branch +1 puts C left of B->D.", regenerate=REGENERATE)
+    solver = kinematics_module(
+        catalog, ["coupler", "coupler2"], ["B_x", "B_y", "C_x", "C_y", "D_x", "D_y"],
+        title="Five-bar solver: a e^{i theta} + b e^{i beta} = d + e e^{i psi} + c e^{i phi}; "
+              "branch +1 puts C left of B->D.",
+        regenerate=REGENERATE, joints_doc="Joints B, C and D (the pivots are A = (0, 0) and E = (d, 0)).")
     tex = latex_document(catalog, "Five-bar linkage with two inputs")
     return {"fivebar.py": solver, "fivebar.tex": tex}
 
 
 def main() -> int:
-    for name, text in derive().items():
-        write_atomic(GENERATED / name, text)
-        print(f"wrote generated/{name}")
-    return 0
+    return write_generated(derive(), GENERATED)
 
 
 if __name__ == "__main__":

@@ -14,8 +14,7 @@ import sympy as sp
 
 from symlink import Linkage, Loop, Vector, coordinates, lengths
 from symlink.catalog import inverted_slider_crank
-from symlink.codegen import numpy_module
-from symlink.files import write_atomic
+from symlink.derivation import kinematics_module, write_generated
 from symlink.latex import latex_document
 
 GENERATED = Path(__file__).resolve().parent.parent / "generated"
@@ -44,26 +43,16 @@ def derive() -> dict[str, str]:
 
     catalog = inverted_slider_crank()
     assert catalog.positions == linkage.positions
-    positions = ["rocker", "slider"]
-    rates = ["rocker_speed", "slider_speed"]
-    accels = ["rocker_accel", "slider_accel"]
-    solver = numpy_module([
-        ("positions", catalog.program(positions), "Rocker angle (rad) and the block's distance from D along it."),
-        ("velocities", catalog.program(positions + rates),
-         "Positions, the rocker's angular speed (rad/s) and the block's sliding speed (length/s)."),
-        ("accelerations", catalog.program(positions + rates + accels),
-         "Positions, speeds and accelerations (rad/s^2, length/s^2)."),
-    ], title="Inverted slider-crank solver: a e^{i theta} = d + r e^{i phi}; one assembly, r >= 0.",
+    solver = kinematics_module(
+        catalog, ["rocker", "slider"], [],
+        title="Inverted slider-crank solver: a e^{i theta} = d + r e^{i phi}; one assembly, r >= 0.",
         regenerate=REGENERATE)
     tex = latex_document(catalog, "Inverted slider-crank (crank-shaper, Whitworth)")
     return {"inverted_slider_crank.py": solver, "inverted_slider_crank.tex": tex}
 
 
 def main() -> int:
-    for name, text in derive().items():
-        write_atomic(GENERATED / name, text)
-        print(f"wrote generated/{name}")
-    return 0
+    return write_generated(derive(), GENERATED)
 
 
 if __name__ == "__main__":

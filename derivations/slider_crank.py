@@ -13,8 +13,7 @@ import sympy as sp
 
 from symlink import Linkage, Loop, Vector, coordinates, lengths
 from symlink.catalog import slider_crank
-from symlink.codegen import numpy_module
-from symlink.files import write_atomic
+from symlink.derivation import kinematics_module, write_generated
 from symlink.latex import latex_document
 
 GENERATED = Path(__file__).resolve().parent.parent / "generated"
@@ -47,28 +46,16 @@ def derive() -> dict[str, str]:
 
     catalog = slider_crank()
     assert catalog.positions == linkage.positions
-    positions = ["conrod", "slider"]
-    rates = ["conrod_speed", "slider_speed"]
-    accels = ["conrod_accel", "slider_accel"]
-    solver = numpy_module([
-        ("positions", catalog.program(positions), "Connecting-rod angle (rad) and slider position."),
-        ("velocities", catalog.program(positions + rates),
-         "Positions, the rod's angular speed (rad/s) and the slider's speed (length/s)."),
-        ("accelerations", catalog.program(positions + rates + accels),
-         "Positions, speeds and accelerations (rad/s^2, length/s^2)."),
-        ("joints", catalog.program(["B_x", "B_y", "C_x", "C_y"]),
-         "Crank pin B and slider pin C (the crank pivot A is the origin)."),
-    ], title="Slider-crank solver: a e^{i theta} + b e^{i beta} = s + i offset; branch +1 has the larger s.",
-        regenerate=REGENERATE)
+    solver = kinematics_module(
+        catalog, ["conrod", "slider"], ["B_x", "B_y", "C_x", "C_y"],
+        title="Slider-crank solver: a e^{i theta} + b e^{i beta} = s + i offset; branch +1 has the larger s.",
+        regenerate=REGENERATE, joints_doc="Crank pin B and slider pin C (the crank pivot A is the origin).")
     tex = latex_document(catalog, "Slider-crank with offset")
     return {"slider_crank.py": solver, "slider_crank.tex": tex}
 
 
 def main() -> int:
-    for name, text in derive().items():
-        write_atomic(GENERATED / name, text)
-        print(f"wrote generated/{name}")
-    return 0
+    return write_generated(derive(), GENERATED)
 
 
 if __name__ == "__main__":

@@ -13,8 +13,7 @@ import sympy as sp
 
 from symlink import Linkage, Loop, Vector, coordinates, lengths
 from symlink.catalog import watt2
-from symlink.codegen import numpy_module
-from symlink.files import write_atomic
+from symlink.derivation import kinematics_module, write_generated
 from symlink.latex import latex_document
 
 GENERATED = Path(__file__).resolve().parent.parent / "generated"
@@ -46,27 +45,17 @@ def derive() -> dict[str, str]:
 
     catalog = watt2()
     assert catalog.positions == linkage.positions
-    positions = ["coupler", "rocker", "coupler2", "output"]
-    rates = [name + "_speed" for name in positions]
-    accels = [name + "_accel" for name in positions]
-    joints = [f"{p}_{axis}" for p in "BCEF" for axis in "xy"]
-    solver = numpy_module([
-        ("positions", catalog.program(positions), "Angles (rad) of BC, DC, EF and the output GF."),
-        ("velocities", catalog.program(positions + rates), "Angles and angular speeds (rad/s)."),
-        ("accelerations", catalog.program(positions + rates + accels),
-         "Angles, angular speeds and angular accelerations (rad/s^2)."),
-        ("joints", catalog.program(joints), "Joints B, C, E and F (the pivots are A = (0, 0), D = (d, 0), G = (gx, gy))."),
-    ], title="Watt II six-bar solver: four-bar ABCD, then DEFG driven by the ternary rocker DCE.",
-        regenerate=REGENERATE)
+    solver = kinematics_module(
+        catalog, ["coupler", "rocker", "coupler2", "output"], [f"{p}_{axis}" for p in "BCEF" for axis in "xy"],
+        title="Watt II six-bar solver: four-bar ABCD, then DEFG driven by the ternary rocker DCE.",
+        regenerate=REGENERATE,
+        joints_doc="Joints B, C, E and F (the pivots are A = (0, 0), D = (d, 0), G = (gx, gy)).")
     tex = latex_document(catalog, "Watt II six-bar")
     return {"watt2.py": solver, "watt2.tex": tex}
 
 
 def main() -> int:
-    for name, text in derive().items():
-        write_atomic(GENERATED / name, text)
-        print(f"wrote generated/{name}")
-    return 0
+    return write_generated(derive(), GENERATED)
 
 
 if __name__ == "__main__":

@@ -18,7 +18,7 @@ def _clamped_sqrt(x, scale):
 
 
 def positions(theta, psi, a, b, c, d, e, branch=1):
-    """Angles (rad) of BC and DC.
+    """Positions: coupler (rad), coupler2 (rad).
     
     Returns a dict of arrays: coupler, coupler2;
     and assembled: False where the linkage cannot close (the outputs are NaN there).
@@ -49,7 +49,7 @@ def positions(theta, psi, a, b, c, d, e, branch=1):
 
 
 def velocities(theta, psi, a, b, c, d, e, branch=1, thetadot=0.0, psidot=0.0):
-    """Angles and angular speeds (rad/s).
+    """Positions and speeds: coupler_speed (rad/s), coupler2_speed (rad/s).
     
     Returns a dict of arrays: coupler, coupler2, coupler_speed, coupler2_speed;
     and assembled: False where the linkage cannot close (the outputs are NaN there).
@@ -88,7 +88,7 @@ def velocities(theta, psi, a, b, c, d, e, branch=1, thetadot=0.0, psidot=0.0):
 
 
 def accelerations(theta, psi, a, b, c, d, e, branch=1, thetadot=0.0, psidot=0.0, thetaddot=0.0, psiddot=0.0):
-    """Angles, angular speeds and angular accelerations (rad/s^2).
+    """Positions, speeds and accelerations: coupler_accel (rad/s^2), coupler2_accel (rad/s^2).
     
     Returns a dict of arrays: coupler, coupler2, coupler_speed, coupler2_speed, coupler_accel, coupler2_accel;
     and assembled: False where the linkage cannot close (the outputs are NaN there).

@@ -18,7 +18,7 @@ def _clamped_sqrt(x, scale):
 
 
 def positions(theta, a, d):
-    """Rocker angle (rad) and the block's distance from D along it.
+    """Positions: rocker (rad), slider (length).
     
     Returns a dict of arrays: rocker, slider;
     and assembled: False where the linkage cannot close (the outputs are NaN there).
@@ -38,7 +38,7 @@ def positions(theta, a, d):
 
 
 def velocities(theta, a, d, thetadot=0.0):
-    """Positions, the rocker's angular speed (rad/s) and the block's sliding speed (length/s).
+    """Positions and speeds: rocker_speed (rad/s), slider_speed (length/s).
     
     Returns a dict of arrays: rocker, slider, rocker_speed, slider_speed;
     and assembled: False where the linkage cannot close (the outputs are NaN there).
@@ -64,7 +64,7 @@ def velocities(theta, a, d, thetadot=0.0):
 
 
 def accelerations(theta, a, d, thetadot=0.0, thetaddot=0.0):
-    """Positions, speeds and accelerations (rad/s^2, length/s^2).
+    """Positions, speeds and accelerations: rocker_accel (rad/s^2), slider_accel (length/s^2).
     
     Returns a dict of arrays: rocker, slider, rocker_speed, slider_speed, rocker_accel, slider_accel;
     and assembled: False where the linkage cannot close (the outputs are NaN there).

@@ -18,7 +18,7 @@ def _clamped_sqrt(x, scale):
 
 
 def positions(theta, a, b, offset, branch=1):
-    """Connecting-rod angle (rad) and slider position.
+    """Positions: conrod (rad), slider (length).
     
     Returns a dict of arrays: conrod, slider;
     and assembled: False where the linkage cannot close (the outputs are NaN there).
@@ -40,7 +40,7 @@ def positions(theta, a, b, offset, branch=1):
 
 
 def velocities(theta, a, b, offset, branch=1, thetadot=0.0):
-    """Positions, the rod's angular speed (rad/s) and the slider's speed (length/s).
+    """Positions and speeds: conrod_speed (rad/s), slider_speed (length/s).
     
     Returns a dict of arrays: conrod, slider, conrod_speed, slider_speed;
     and assembled: False where the linkage cannot close (the outputs are NaN there).
@@ -68,7 +68,7 @@ def velocities(theta, a, b, offset, branch=1, thetadot=0.0):
 
 
 def accelerations(theta, a, b, offset, branch=1, thetadot=0.0, thetaddot=0.0):
-    """Positions, speeds and accelerations (rad/s^2, length/s^2).
+    """Positions, speeds and accelerations: conrod_accel (rad/s^2), slider_accel (length/s^2).
     
     Returns a dict of arrays: conrod, slider, conrod_speed, slider_speed, conrod_accel, slider_accel;
     and assembled: False where the linkage cannot close (the outputs are NaN there).

@@ -18,7 +18,7 @@ def _clamped_sqrt(x, scale):
 
 
 def positions(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_DEFG=1):
-    """Angles (rad) of BC, DC, EF and the output GF.
+    """Positions: coupler (rad), rocker (rad), coupler2 (rad), output (rad).
     
     Returns a dict of arrays: coupler, rocker, coupler2, output;
     and assembled: False where the linkage cannot close (the outputs are NaN there).
@@ -67,7 +67,7 @@ def positions(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_D
 
 
 def velocities(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_DEFG=1, thetadot=0.0):
-    """Angles and angular speeds (rad/s).
+    """Positions and speeds: coupler_speed (rad/s), rocker_speed (rad/s), coupler2_speed (rad/s), output_speed (rad/s).
     
     Returns a dict of arrays: coupler, rocker, coupler2, output, coupler_speed, rocker_speed, coupler2_speed, output_speed;
     and assembled: False where the linkage cannot close (the outputs are NaN there).
@@ -127,7 +127,7 @@ def velocities(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_
 
 
 def accelerations(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_DEFG=1, thetadot=0.0, thetaddot=0.0):
-    """Angles, angular speeds and angular accelerations (rad/s^2).
+    """Positions, speeds and accelerations: coupler_accel (rad/s^2), rocker_accel (rad/s^2), coupler2_accel (rad/s^2), output_accel (rad/s^2).
     
     Returns a dict of arrays: coupler, rocker, coupler2, output, coupler_speed, rocker_speed, coupler2_speed, output_speed, coupler_accel, rocker_accel, coupler2_accel, output_accel;
     and assembled: False where the linkage cannot close (the outputs are NaN there).

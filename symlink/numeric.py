@@ -44,7 +44,7 @@ from .linkage import Linkage, Program
 from .solver import check_lengths
 from .vectors import acceleration, rate, time_derivative
 
-__all__ = ["ClosureSystem", "closure_system", "numeric_module", "numeric_latex", "NumericSolver"]
+__all__ = ["ClosureSystem", "closure_system", "numeric_module", "numeric_latex", "NumericSolver", "is_angle"]
 
 
 @dataclass(frozen=True)
@@ -95,12 +95,10 @@ def closure_system(linkage: Linkage) -> ClosureSystem:
     acceleration_rhs = tuple(-f.subs({acceleration(u): 0 for u in unknowns}) for f in second)
     units = []
     for u in unknowns:
-        owners = [(loop, vector) for loop in linkage.loops for _, vector in loop.terms
-                  if u in vector.length.free_symbols | vector.angle.free_symbols]
-        if any(u in vector.angle.free_symbols for _, vector in owners):
+        if is_angle(linkage, u):
             units.append(sp.S.One)
         else:
-            loop = owners[0][0]
+            loop = next(loop for loop in linkage.loops if u in loop.symbols())
             units.append(sp.Add(*(sp.Abs(v.length) for _, v in loop.terms)) / len(loop.terms))
     return ClosureSystem(linkage, tuple(residuals), jacobian, velocity_rhs, acceleration_rhs,
                          tuple(scales), tuple(units))
@@ -434,7 +432,8 @@ def accelerations({signature}guess, {rates}, {accels}):
 '''
 
 
-def _is_angle(linkage: Linkage, symbol: sp.Symbol) -> bool:
+def is_angle(linkage: Linkage, symbol: sp.Symbol) -> bool:
+    """Whether a coordinate is an angle (it turns a vector) rather than a length (a slider's travel)."""
     return any(symbol in vector.angle.free_symbols for loop in linkage.loops for _, vector in loop.terms)
 
 
@@ -454,7 +453,7 @@ def numeric_module(linkage: Linkage, title: str = "", regenerate: str = "") -> s
     parts = [numpy_module([], title, regenerate)]
     names = lambda symbols: "(" + "".join(f"{s.name!r}, " for s in symbols) + ")"  # noqa: E731
     parts.append(f"\n\nINPUTS = {names(inputs)}\nPARAMETERS = {names(parameters)}\nUNKNOWNS = {names(unknowns)}\n"
-                 f"ANGLE_INPUTS = {names([x for x in inputs if _is_angle(linkage, x)])}\n"
+                 f"ANGLE_INPUTS = {names([x for x in inputs if is_angle(linkage, x)])}\n"
                  f"ROLES = {dict((role, q.name) for role, q in linkage.roles.items())!r}\n")
     parts.append(_DRIVER)
     base = inputs + parameters + unknowns

@@ -8,22 +8,12 @@ import numpy as np
 import pytest
 
 from references import mp_slider_crank
+from test_cli import run, wrapped_degrees
 from symlink.cli import main
 from symlink.cli_slider import slider_crank_range
 
 HEADER = "crank,branch,conrod,slider,conrod_speed,slider_speed,conrod_accel,slider_accel"
 BASE = ["slider-crank", "--crank", "20", "--conrod", "66", "--offset", "-5"]
-
-
-def run(capsys, *argv):
-    status = main(list(argv))
-    out, err = capsys.readouterr()
-    return status, out, err
-
-
-def wrapped_degrees(radians):
-    wrapped = math.remainder(math.degrees(radians), 360.0)
-    return 180.0 if wrapped == -180.0 else wrapped
 
 
 def test_csv_header_and_rows_match_50_digits(capsys):

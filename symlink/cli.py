@@ -225,6 +225,8 @@ def build_parser() -> argparse.ArgumentParser:
     from . import loopcase, synthesis  # symlink loop, symlink quick-return (seeds 000 and 002)
     loopcase.add_command(commands)
     synthesis.add_command(commands)
+    from . import export  # symlink export NAME --to numpy|c|octave|latex
+    export.add_command(commands)
     return parser
 
 

@@ -1,0 +1,276 @@
+"""C export: a header and a source in plain C99 with ``math.h``, one loop function per output set.
+
+Each function evaluates ``n`` configurations in one loop, without allocating.
+Every argument is passed as a pointer and a step: configuration ``i`` reads
+``x[i * x_step]``, so a step of 1 walks an array of ``n`` values and a step of
+0 shares one value (a link length, say) between all of them.  Each output is
+an array of ``n`` doubles, and ``assembled[i]`` is 1 where the linkage closes,
+0 where it cannot be assembled (its outputs are NaN there)::
+
+    void fourbar_positions(size_t n,
+        const double *theta, ptrdiff_t theta_step, const double *a, ptrdiff_t a_step, ...,
+        double *coupler, double *rocker, unsigned char *assembled);
+
+The body is the same common-subexpression-eliminated straight-line code as the
+NumPy module (:func:`symlink.codegen.straight_line`), in an inline function
+called once per configuration.  The clamped square root has exactly the
+semantics of the NumPy module's ``_clamped_sqrt``; small integer powers become
+multiplications.
+
+>>> from symlink.catalog import fourbar
+>>> header, source = c_code([("fourbar_positions", fourbar().program(["rocker"]), "Rocker angle.")], "fourbar")
+>>> print(header.split("void ")[1].split(";")[0])
+fourbar_positions(size_t n,
+    const double *theta, ptrdiff_t theta_step,
+    const double *a, ptrdiff_t a_step,
+    const double *b, ptrdiff_t b_step,
+    const double *c, ptrdiff_t c_step,
+    const double *d, ptrdiff_t d_step,
+    const double *branch, ptrdiff_t branch_step,
+    double *rocker, unsigned char *assembled)
+>>> "atan2(" in source and "malloc" not in source
+True
+"""
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from typing import Sequence
+
+import sympy as sp
+from sympy.core.relational import Relational
+from sympy.logic.boolalg import BooleanAtom, BooleanFunction
+from sympy.printing.c import C99CodePrinter
+
+from . import __version__
+from .codegen import straight_line
+from .linkage import Program
+from .position import TOLERANCE
+
+__all__ = ["CFunction", "c_function", "c_library", "c_code", "c_identifier", "is_flag"]
+
+#: Integer powers up to this size are written as multiplications.
+LARGEST_MULTIPLIED_POWER = 4
+
+C_KEYWORDS = frozenset(C99CodePrinter.reserved_words) | {
+    "inline", "restrict", "_Bool", "_Complex", "_Imaginary", "size_t", "ptrdiff_t", "NAN", "INFINITY"}
+
+_IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
+
+
+def c_identifier(name: str, what: str = "name") -> str:
+    """``name`` if it is a valid C identifier that is not a keyword; ``ValueError`` otherwise.
+
+    >>> c_identifier("phi_1")
+    'phi_1'
+    """
+    if not _IDENTIFIER.match(name) or name in C_KEYWORDS or name.startswith("symlink_"):
+        raise ValueError(f"{what} {name!r} is not usable as a C identifier "
+                         "(letters, digits and underscores, not a keyword, not starting with 'symlink_')")
+    return name
+
+
+def is_flag(expr: sp.Basic) -> bool:
+    """Whether an output is true/false (a comparison or a logical combination) rather than a number.
+
+    >>> x = sp.Symbol("x")
+    >>> is_flag(sp.Eq(x, 0)), is_flag(sp.false), is_flag(x)
+    (True, True, False)
+    """
+    return isinstance(expr, (Relational, BooleanFunction, BooleanAtom))
+
+
+class _CPrinter(C99CodePrinter):
+    """C99 printer with symlink's clamped square root, exact double literals and multiplied powers."""
+
+    def __init__(self):
+        super().__init__({"math_macros": {}, "allow_unknown_functions": False})
+
+    def _print_Symbol(self, expr):
+        return c_identifier(expr.name, "symbol")
+
+    def _print_Float(self, expr):
+        return repr(float(expr))
+
+    _print_Integer = _print_Rational = _print_Float  # the nearest double, as NumPy would compute it
+
+    def _print_NumberSymbol(self, expr):  # pi and E as literals: M_PI is not C99
+        return repr(float(expr))
+
+    _print_Pi = _print_Exp1 = _print_NumberSymbol
+
+    def _print_Pow(self, expr, rational=False):
+        base, exponent = expr.base, expr.exp
+        if exponent.is_Integer and 0 < abs(int(exponent)) <= LARGEST_MULTIPLIED_POWER:
+            # Parenthesised, so that a*x**2 multiplies a by x*x as NumPy does.
+            factor = self._print(base) if base.is_Atom or base.is_Function else f"({self._print(base)})"
+            text = {1: factor, 2: f"({factor}*{factor})", 3: f"({factor}*{factor}*{factor})",
+                    4: f"(({factor}*{factor})*({factor}*{factor}))"}[abs(int(exponent))]
+            return text if exponent > 0 else f"1.0/{text}"
+        if exponent == sp.S.Half:
+            return f"sqrt({self._print(base)})"
+        if exponent == -sp.S.Half:
+            return f"1.0/sqrt({self._print(base)})"
+        return f"pow({self._print(base)}, {self._print(sp.Float(exponent) if exponent.is_Rational else exponent)})"
+
+    def _print_BooleanTrue(self, expr):
+        return "1"
+
+    def _print_BooleanFalse(self, expr):
+        return "0"
+
+    def _print_ClampedSqrt(self, expr):
+        return f"symlink_clamped_sqrt({self._print(expr.args[0])}, {self._print(expr.args[1])})"
+
+    def _print_Piecewise(self, expr):  # pragma: no cover - a guard, never reached by symlink's own forms
+        raise ValueError("symlink never writes Piecewise into generated code")
+
+
+@dataclass(frozen=True)
+class CFunction:
+    """One generated C function: its name, arguments and outputs in calling order, and its text.
+
+    ``arguments`` and ``outputs`` are the names of the generated Python
+    function's arguments and result keys; ``output_parameters`` are the C
+    names of the output arrays (an output named like an argument gets
+    ``_out``); ``flags`` tells the true/false outputs (``unsigned char``
+    arrays of 0 and 1) from the numbers (``double`` arrays).  ``prototype``
+    goes into the header, ``definition`` into the source.
+    """
+
+    name: str
+    arguments: tuple[str, ...]
+    outputs: tuple[str, ...]
+    output_parameters: tuple[str, ...]
+    flags: tuple[bool, ...]
+    prototype: str
+    definition: str
+
+
+class _Names:
+    """Fresh C names that collide neither with each other nor with the program's symbols."""
+
+    def __init__(self, taken):
+        self.taken = set(taken)
+
+    def __call__(self, wanted: str) -> str:
+        name = wanted
+        while name in self.taken or name in C_KEYWORDS:
+            name += "_"
+        self.taken.add(name)
+        return name
+
+
+def _comment(text: str, indent: str = "") -> str:
+    lines = text.strip().replace("*/", "* /").splitlines() or [""]
+    return "\n".join([f"{indent}/* {lines[0]}".rstrip()] + [f"{indent} * {line}".rstrip() for line in lines[1:]]
+                     ) + (" */" if len(lines) == 1 else f"\n{indent} */")
+
+
+def c_function(program: Program, name: str, doc: str = "") -> CFunction:
+    """The C loop function (and its inline kernel) that computes the program's outputs."""
+    c_identifier(name, "function name")
+    if not program.outputs:
+        raise ValueError(f"{name}: a C function needs at least one output")
+    code = straight_line(program)
+    printer = _CPrinter()
+    arguments = [c_identifier(s.name, "argument") for s in code.arguments]
+    locals_ = [c_identifier(s.name, "symbol") for s, _ in code.assignments]
+    names = _Names(arguments + locals_)
+    steps = [names(f"{a}_step") for a in arguments]
+    outputs = list(code.outputs)
+    output_parameters = [names(c_identifier(o, "output") if o not in arguments else f"{o}_out") for o in outputs]
+    flags = [is_flag(e) for e in code.outputs.values()]
+    assembled, count, index, offset, out = (names(w) for w in ("assembled", "n", "i", "k", "out"))
+    kernel = f"symlink_{name}_at"
+
+    inputs = ",\n".join(f"    const double *{a}, ptrdiff_t {s}" for a, s in zip(arguments, steps))
+    results = ", ".join(f"{'unsigned char' if flag else 'double'} *{o}"
+                        for o, flag in zip(output_parameters, flags)) + f", unsigned char *{assembled}"
+    signature = f"void {name}(size_t {count},\n" + (inputs + ",\n" if inputs else "") + f"    {results})"
+    summary = (doc.strip() + "\n" if doc.strip() else "") + (
+        f"Outputs (arrays of n doubles): {', '.join(o for o, f in zip(output_parameters, flags) if not f)};\n"
+        + "".join(f"{o}[i] is 1 where true, 0 where false;\n" for o, f in zip(output_parameters, flags) if f) +
+        f"{assembled}[i] is 1 where the linkage closes, 0 where it cannot be assembled (outputs NaN).")
+    prototype = _comment(summary) + "\n" + signature + ";\n"
+
+    lines = [f"static inline int {kernel}(" + ", ".join([f"double {a}" for a in arguments]
+                                                         + [f"double *restrict {out}"]) + ")", "{"]
+    used = set().union(*(e.free_symbols for _, e in code.assignments), *(e.free_symbols for e in code.outputs.values()))
+    lines += [f"    (void){s.name};  /* not needed by these outputs */" for s in code.arguments if s not in used]
+    for symbol, expr in code.assignments:
+        lines.append(f"    const double {symbol.name} = {printer.doprint(expr)};")
+    for k, (output, expr) in enumerate(code.outputs.items()):
+        lines.append(f"    {out}[{k}] = {printer.doprint(expr)};  /* {output} */")
+    finite = " && ".join(f"isfinite({r.name})" for r in code.roots) or "1"
+    lines += [f"    return {finite};", "}", ""]
+    restricted = "SYMLINK_LOOP " + signature.replace("double *", "double *restrict ").replace(
+        "unsigned char *", "unsigned char *restrict ")
+    lines += [restricted, "{", f"    for (size_t {index} = 0; {index} < {count}; ++{index}) {{",
+              f"        const ptrdiff_t {offset} = (ptrdiff_t){index};",
+              f"        double {out}[{len(outputs)}];"]
+    reads = ", ".join([f"{a}[{offset} * {s}]" for a, s in zip(arguments, steps)] + [out])
+    lines.append(f"        {assembled}[{index}] = (unsigned char){kernel}({reads});")
+    lines += [f"        {o}[{index}] = (unsigned char)({out}[{k}] != 0.0);" if flag else f"        {o}[{index}] = {out}[{k}];"
+              for k, (o, flag) in enumerate(zip(output_parameters, flags))]
+    lines += ["    }", "}"]
+    return CFunction(name, tuple(arguments), tuple(outputs), tuple(output_parameters), tuple(flags),
+                     prototype, "\n".join(lines) + "\n")
+
+
+_HEADER = """{title}
+
+Generated by symlink {version} with SymPy {sympy}. Plain C99 and math.h, no allocation; do not edit.{regenerate}
+
+Every function evaluates n configurations in one loop. Each argument x comes
+as a pointer and a step: configuration i reads x[i * x_step], so a step of 1
+walks an array of n values and a step of 0 uses one value for all of them.
+Each output is an array of n doubles, not overlapping the inputs;
+assembled[i] is 1 where the linkage closes and 0 where it cannot be
+assembled (the outputs are NaN there). Angles in radians."""
+
+_PRELUDE = """\
+/* SYMLINK_LOOP may mark the loop functions for the compiler (symlink's compiled
+ * backend defines it to vectorise them); it is empty by default. */
+#ifndef SYMLINK_LOOP
+#define SYMLINK_LOOP
+#endif
+
+static const double symlink_tolerance = {tolerance!r};
+
+/* sqrt(x), taking x >= -tolerance*scale as rounding at a toggle (0) and anything lower,
+ * or NaN, as no assembly (NaN). The same as sqrt(fmax(x, 0.0)) where x is not NaN. */
+static inline double symlink_clamped_sqrt(double x, double scale)
+{{
+    return x >= -symlink_tolerance * scale ? sqrt(x > 0.0 ? x : 0.0) : NAN;
+}}
+"""
+
+
+def c_library(functions: Sequence[CFunction], name: str, title: str = "A symlink solver.",
+              regenerate: str = "", standalone: bool = False) -> tuple[str, str]:
+    """``(header, source)`` of the functions; the source includes ``"<name>.h"``, or repeats its prototypes if ``standalone``."""
+    c_identifier(name, "library name")
+    seen = [f.name for f in functions]
+    if len(set(seen)) != len(seen):
+        raise ValueError(f"function names repeat: {', '.join(seen)}")
+    comment = _comment(_HEADER.format(title=title, version=__version__, sympy=sp.__version__,
+                                      regenerate=f"\nRegenerate with: {regenerate}" if regenerate else ""))
+    guard = f"SYMLINK_{name.upper()}_H"
+    header = "\n".join([comment, f"#ifndef {guard}", f"#define {guard}", "", "#include <stddef.h>", "",
+                        "#ifdef __cplusplus", 'extern "C" {', "#endif", ""]
+                       + [f.prototype for f in functions]
+                       + ["#ifdef __cplusplus", "}", "#endif", "", f"#endif /* {guard} */", ""])
+    if standalone:
+        own = ["#include <stddef.h>", ""] + [f.prototype for f in functions]
+    else:
+        own = [f'#include "{name}.h"', ""]
+    source = "\n".join([comment, "#include <math.h>", ""] + own + [_PRELUDE.format(tolerance=TOLERANCE)]
+                       + [f.definition for f in functions])
+    return header, source
+
+
+def c_code(functions: Sequence[tuple[str, Program, str]], name: str, title: str = "A symlink solver.",
+           regenerate: str = "") -> tuple[str, str]:
+    """``(header, source)`` with one loop function for each ``(function name, program, docstring)``."""
+    return c_library([c_function(p, function, doc) for function, p, doc in functions], name, title, regenerate)

@@ -1,0 +1,320 @@
+"""An optional compiled backend: the generated C, built with the system compiler, called through ctypes.
+
+NumPy evaluates one operation at a time over whole arrays; the compiled loop
+evaluates every operation of one configuration in registers before moving to
+the next.  :func:`compiled_solver` takes the same outputs and is called with
+the same keywords as :class:`symlink.solver.Solver` and returns the same dict
+of arrays; where no C compiler exists it says so in a warning and returns the
+NumPy solver.
+
+The library is compiled on first use with ``$CC`` (else ``cc``, ``gcc`` or
+``clang``) and :data:`FLAGS`, and cached on disk by a hash of the source, the
+flags and the compiler (in ``$SYMLINK_CACHE/compiled``, else
+``~/.cache/symlink/compiled``).  Each entry is written under a temporary name
+and moved into place, with the SHA-256 of its bytes beside it; an entry whose
+bytes do not match is rebuilt, never loaded.
+
+The flags are portable: no ``-march=native`` (a cache folder may be shared
+between machines); ``-O3`` so that the loops are vectorised;
+``-ffp-contract=off`` (no fused multiply-adds, so the arithmetic rounds as
+NumPy's does); ``-fno-math-errno`` (only ``errno`` is affected; ``sqrt``
+becomes one instruction).  ``-ffast-math`` is NOT used: it assumes that no
+NaN occurs, and NaN is how an unassembled configuration is reported; it would
+also let the compiler rewrite the arguments of ``atan2``.  Where GCC targets
+glibc on x86-64, :data:`VECTOR_MATH` is included first: it tells GCC that
+glibc's vector math library (libmvec) has ``sin``, ``cos`` and ``atan2`` for
+whole SIMD registers, and compiles each loop for baseline x86-64, AVX2 and
+AVX-512, chosen when the library loads.  libmvec's functions are accurate to
+a few units in the last place, as NumPy's own SIMD functions are.
+
+>>> import numpy
+>>> from symlink.catalog import fourbar
+>>> solver = compiled_solver(fourbar(), ["rocker"])
+>>> result = solver(theta=numpy.radians([0.0, 40.0]), a=20, b=66, c=56, d=80, branch=1)
+>>> numpy.degrees(result["rocker"]).round(2).tolist(), result["assembled"].tolist()
+([110.74, 103.82], [True, True])
+"""
+from __future__ import annotations
+
+import atexit
+import ctypes
+import hashlib
+import json
+import os
+import platform
+import shlex
+import shutil
+import subprocess
+import tempfile
+import warnings
+from pathlib import Path
+from typing import Mapping, Sequence
+
+import numpy
+
+from . import cache
+from .c_code import c_function, c_library
+from .codegen import _defaults
+from .files import write_atomic
+from .linkage import Linkage
+from .solver import Solver
+
+__all__ = ["FLAGS", "CompilerUnavailable", "CompileError", "CompiledSolver", "cache_directory",
+           "find_compiler", "compile_shared", "c_solver_source", "compiled_solver"]
+
+#: Compiler flags of every library symlink builds (see the module docstring for why these).
+#: ``-fno-builtin-sin/cos`` keep GCC from fusing sin and cos into a scalar-only sincos.
+FLAGS = ("-std=c99", "-O3", "-ffp-contract=off", "-fno-math-errno", "-fno-builtin-sin", "-fno-builtin-cos",
+         "-fPIC", "-shared")
+
+#: Included before every source (``-include``); inert except for GCC on glibc x86-64.
+VECTOR_MATH = r"""/* symlink: let GCC vectorise loops over sin, cos and atan2 with glibc's libmvec. */
+#include <math.h>
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__GLIBC__) && __GNUC__ >= 11
+#define SYMLINK_SIMD __attribute__((simd("notinbranch"), const, nothrow, leaf))
+double sin(double) SYMLINK_SIMD;
+double cos(double) SYMLINK_SIMD;
+double exp(double) SYMLINK_SIMD;
+double log(double) SYMLINK_SIMD;
+#if __GLIBC_PREREQ(2, 35)
+double atan2(double, double) SYMLINK_SIMD;
+double atan(double) SYMLINK_SIMD;
+double asin(double) SYMLINK_SIMD;
+double acos(double) SYMLINK_SIMD;
+double tan(double) SYMLINK_SIMD;
+#endif
+#define SYMLINK_LOOP __attribute__((target_clones("default", "avx2", "arch=x86-64-v4")))
+#endif
+"""
+_VECTOR_MATH_FILE = "symlink_vector_math.h"
+
+_PROBE = "#include <math.h>\ndouble symlink_probe(double x) { return sqrt(x); }\n"
+_loaded: dict[str, ctypes.CDLL] = {}
+_private_folder: list[Path] = []
+
+
+class CompilerUnavailable(RuntimeError):
+    """No C compiler, or one that cannot build a shared library with ``math.h``."""
+
+
+class CompileError(RuntimeError):
+    """The compiler works but rejected this source."""
+
+
+def _private() -> Path:
+    """A temporary folder of this process, removed when it exits."""
+    if not _private_folder:
+        _private_folder.append(Path(tempfile.mkdtemp(prefix="symlink-")))
+        atexit.register(shutil.rmtree, _private_folder[0], ignore_errors=True)
+    return _private_folder[0]
+
+
+def cache_directory() -> Path:
+    """Where compiled libraries are kept: ``compiled/`` in symlink's cache (:mod:`symlink.cache`).
+
+    With the disk cache turned off (``SYMLINK_CACHE`` set empty), or a cache
+    folder that cannot be written, a private temporary folder of this process
+    is used instead.
+
+    >>> cache_directory().name
+    'compiled'
+    """
+    root = cache.cache_directory()
+    folder = (root if root is not None else _private()) / "compiled"
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        if os.access(folder, os.W_OK):
+            return folder
+    except OSError:
+        pass
+    return _private() / "compiled"
+
+
+def find_compiler() -> list[str]:
+    """The compiler command: ``$CC`` if set, else the first of cc, gcc, clang on ``PATH``."""
+    requested = os.environ.get("CC", "").strip()
+    if requested:
+        command = shlex.split(requested)
+        if shutil.which(command[0]) is None:
+            raise CompilerUnavailable(f"CC={requested!r} is not an executable on PATH")
+        return command
+    for candidate in ("cc", "gcc", "clang"):
+        if shutil.which(candidate):
+            return [candidate]
+    raise CompilerUnavailable("no C compiler found (none of cc, gcc, clang on PATH, and CC is not set); "
+                              "install one, e.g. apt-get install gcc libc6-dev")
+
+
+def _identity(command: list[str]) -> dict:
+    """What the cached binary depends on besides the source: the compiler file, flags, platform."""
+    path = Path(shutil.which(command[0]) or command[0]).resolve()
+    stat = path.stat()
+    return {"compiler": [str(path)] + command[1:], "size": stat.st_size, "mtime": stat.st_mtime_ns,
+            "flags": FLAGS, "vector_math": VECTOR_MATH, "machine": platform.machine(), "system": platform.system()}
+
+
+def _run_compiler(command: list[str], folder: Path, vector_math: bool = True) -> subprocess.CompletedProcess:
+    """Compile ``folder/symlink.c`` into ``folder/symlink.so`` (run in the folder, so the bytes do not depend on it)."""
+    # Without vectorised epilogues: the last few values of a loop run one at a time, and compiling is faster.
+    include = ["-include", _VECTOR_MATH_FILE, "--param", "vect-epilogues-nomask=0"] if vector_math else []
+    return subprocess.run(command + list(FLAGS) + include + ["-o", "symlink.so", "symlink.c", "-lm"],
+                          cwd=folder, capture_output=True, text=True, timeout=300, check=False)
+
+
+def _build(source: str, headers: Mapping[str, str], command: list[str], target: Path) -> None:
+    """Compile into a temporary folder beside ``target``, then move the library and its digest into place.
+
+    With :data:`VECTOR_MATH` first; without it where that fails (a compiler
+    that does not take ``-include`` or the attributes).
+    """
+    target.parent.mkdir(parents=True, exist_ok=True)
+    folder = Path(tempfile.mkdtemp(prefix=".build-", dir=target.parent))
+    try:
+        for name, text in {**headers, _VECTOR_MATH_FILE: VECTOR_MATH, "symlink.c": source}.items():
+            write_atomic(folder / name, text)
+        try:
+            result = _run_compiler(command, folder)
+            if result.returncode != 0:
+                result = _run_compiler(command, folder, vector_math=False)
+        except OSError as error:
+            raise CompilerUnavailable(f"{command[0]} cannot be run: {error}") from None
+        if result.returncode != 0:
+            write_atomic(folder / "symlink.c", _PROBE)
+            if _run_compiler(command, folder, vector_math=False).returncode != 0:
+                raise CompilerUnavailable(f"{' '.join(command)} cannot build a shared library with math.h "
+                                          f"(missing libc6-dev?): {result.stderr.strip()[:500]}")
+            raise CompileError(f"{' '.join(command)} rejected the source:\n{result.stderr.strip()[:2000]}")
+        binary = (folder / "symlink.so").read_bytes()
+        os.replace(folder / "symlink.so", target)
+        write_atomic(target.with_suffix(".sha256"), hashlib.sha256(binary).hexdigest() + "\n")
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+def _intact(target: Path) -> bool:
+    """True when the cached library exists and its bytes match the digest written with it."""
+    try:
+        expected = target.with_suffix(".sha256").read_text().strip()
+        return hashlib.sha256(target.read_bytes()).hexdigest() == expected
+    except OSError:
+        return False
+
+
+def compile_shared(source: str, headers: Mapping[str, str] | None = None) -> ctypes.CDLL:
+    """A C source string compiled with :data:`FLAGS` into a shared library, cached, and loaded.
+
+    ``headers`` are further files (name -> text) that the source includes.
+    ``CompilerUnavailable`` where no compiler can build it, ``CompileError``
+    where the source is at fault.
+
+    >>> library = compile_shared("double twice(double x) { return 2 * x; }")  # doctest: +SKIP
+    >>> library.twice.restype = ctypes.c_double; library.twice.argtypes = [ctypes.c_double]  # doctest: +SKIP
+    >>> library.twice(1.5)  # doctest: +SKIP
+    3.0
+    """
+    headers = dict(headers or {})
+    command = find_compiler()
+    key = hashlib.sha256(json.dumps({"source": source, "headers": headers, **_identity(command)},
+                                    sort_keys=True).encode()).hexdigest()
+    if key in _loaded:
+        return _loaded[key]
+    target = cache_directory() / f"{key}.so"
+    if not _intact(target):
+        _build(source, headers, command, target)
+    library = ctypes.CDLL(str(target))
+    _loaded[key] = library
+    return library
+
+
+class _Entry:
+    """Calls one generated C loop function on NumPy arrays, broadcasting like the NumPy module."""
+
+    def __init__(self, library: ctypes.CDLL, name: str, arguments: Sequence[str], outputs: Sequence[str],
+                 flags: Sequence[bool], defaults: Mapping[str, float]):
+        self.name, self.arguments, self.outputs, self.flags = name, list(arguments), list(outputs), list(flags)
+        self.defaults = dict(defaults)
+        self.entry = getattr(library, name)
+        self.entry.restype = None
+        self.entry.argtypes = ([ctypes.c_size_t] + [ctypes.c_void_p, ctypes.c_ssize_t] * len(self.arguments)
+                               + [ctypes.c_void_p] * (len(self.outputs) + 1))
+
+    def __call__(self, **values) -> dict[str, numpy.ndarray]:
+        missing = [a for a in self.arguments if a not in values and a not in self.defaults]
+        if missing:
+            raise TypeError(f"{self.name}() missing arguments: {', '.join(missing)}")
+        arrays = [numpy.asarray(values[a] if a in values else self.defaults[a], dtype=numpy.float64)
+                  for a in self.arguments]
+        shape = numpy.broadcast_shapes(*(a.shape for a in arrays))
+        count = int(numpy.prod(shape, dtype=numpy.int64))
+        outputs = {name: numpy.empty(shape, dtype=bool if flag else numpy.float64)
+                   for name, flag in zip(self.outputs, self.flags)}
+        assembled = numpy.empty(shape, dtype=bool)
+        if count:
+            strided = [_strided(array, shape) for array in arrays]  # keeps any copy alive during the call
+            pointers = [value for pointer, step, _ in strided for value in (pointer, step)]
+            self.entry(count, *pointers, *(o.ctypes.data for o in outputs.values()), assembled.ctypes.data)
+        return {**outputs, "assembled": assembled}
+
+
+def _strided(array: numpy.ndarray, shape: tuple[int, ...]) -> tuple[int, int, numpy.ndarray]:
+    """(data pointer, step in elements, the array): no copy for a scalar, a contiguous or a strided 1-d array."""
+    item = array.itemsize
+    if array.size == 1:
+        return array.ctypes.data, 0, array
+    if array.shape == shape and array.flags.c_contiguous:
+        return array.ctypes.data, 1, array
+    if array.shape == shape and array.ndim == 1 and array.strides[0] % item == 0:
+        return array.ctypes.data, array.strides[0] // item, array
+    copy = numpy.ascontiguousarray(numpy.broadcast_to(array, shape))
+    return copy.ctypes.data, 1, copy
+
+
+def c_solver_source(linkage: Linkage, outputs: Sequence[str]) -> dict:
+    """The standalone C source of one function ``solve`` for ``outputs``, with its calling facts.
+
+    Derived on the first request only, then read from symlink's cache
+    (:func:`symlink.cache.cached_text`): ``{"source", "arguments", "outputs",
+    "flags", "defaults"}``.
+    """
+    outputs = list(outputs)
+    for name in outputs:
+        linkage.output(name)  # ValueError naming the outputs there are, before any work
+
+    def build() -> str:
+        program = linkage.program(outputs)
+        function = c_function(program, "solve", f"{linkage.name}: {', '.join(outputs)}.")
+        _, source = c_library([function], "solver", standalone=True)
+        defaults = {s.name: float(_defaults(s)[1:]) for s in program.arguments if _defaults(s)}
+        return json.dumps({"source": source, "arguments": function.arguments, "outputs": function.outputs,
+                           "flags": function.flags, "defaults": defaults})
+
+    return json.loads(cache.cached_text(cache.cache_key(linkage, outputs, "c-solver"), build))
+
+
+class CompiledSolver(Solver):
+    """A :class:`~symlink.solver.Solver` whose arithmetic runs in the compiled C loop.
+
+    ``CompilerUnavailable`` where no C compiler works; :func:`compiled_solver`
+    falls back to NumPy instead.
+    """
+
+    def __init__(self, linkage: Linkage, outputs: Sequence[str]) -> None:
+        self.linkage = linkage
+        self.outputs = list(outputs)
+        if not self.outputs:
+            raise ValueError(f"ask {linkage.name} for at least one output; it has {', '.join(linkage.output_names())}")
+        facts = c_solver_source(linkage, self.outputs)
+        self.source = facts["source"]
+        self.arguments = list(facts["arguments"])
+        self.library = compile_shared(self.source)
+        self.function = _Entry(self.library, "solve", facts["arguments"], facts["outputs"], facts["flags"],
+                               facts["defaults"])
+
+
+def compiled_solver(linkage: Linkage, outputs: Sequence[str]) -> Solver:
+    """The compiled solver of ``outputs``, or the NumPy :class:`~symlink.solver.Solver` with a warning where no compiler works."""
+    try:
+        return CompiledSolver(linkage, outputs)
+    except CompilerUnavailable as error:
+        warnings.warn(f"symlink: no compiled backend, using NumPy instead: {error}", RuntimeWarning, stacklevel=2)
+        return Solver(linkage, outputs)

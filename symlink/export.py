@@ -1,0 +1,136 @@
+"""``symlink export``: a catalog linkage's solvers as NumPy, C, MATLAB/Octave or LaTeX files.
+
+By default each format gets the output sets an engineer reaches for: the
+positions of the unknowns, then with velocities, then with accelerations and
+the extras, and the joints' coordinates.  ``--outputs`` asks for one set
+instead.  The texts are derived once and then read from symlink's cache
+(:mod:`symlink.cache`), and written atomically only after all of them exist.
+
+>>> sets = output_sets(catalog_linkage("fourbar"))
+>>> [(name, outputs) for name, outputs, _ in sets][:2]
+[('positions', ['coupler', 'rocker']), ('velocities', ['coupler', 'rocker', 'coupler_speed', 'rocker_speed'])]
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import re
+from pathlib import Path
+from typing import Sequence
+
+from . import cache
+from .catalog import CATALOG
+from .linkage import ACCEL_SUFFIX, SPEED_SUFFIX, Linkage
+from .scene import catalog_linkage
+from .vectors import acceleration, rate
+
+__all__ = ["FORMATS", "output_sets", "export_texts", "export", "add_command", "run"]
+
+FORMATS = ("numpy", "c", "octave", "latex")
+
+
+def _role_name(linkage: Linkage, q) -> str | None:
+    return next((role for role, symbol in linkage.roles.items() if symbol == q), None)
+
+
+def output_sets(linkage: Linkage) -> list[tuple[str, list[str], str]]:
+    """The default ``(name, outputs, description)`` sets: positions, velocities, accelerations, joints."""
+    positions, speeds, accels = [], [], []
+    for q in linkage.unknowns:
+        role = _role_name(linkage, q)
+        positions.append(role or q.name)
+        speeds.append(role + SPEED_SUFFIX if role else rate(q).name)
+        accels.append(role + ACCEL_SUFFIX if role else acceleration(q).name)
+    coordinates = set(linkage.coordinates)
+    joints = [f"{point}_{axis}" for point in linkage.points for axis in "xy"
+              if linkage.point(point)[axis == "y"].free_symbols & coordinates]
+    sets = [("positions", positions, "Positions of the unknowns (angles in rad)."),
+            ("velocities", positions + speeds, "Positions and their rates (per second)."),
+            ("accelerations", positions + speeds + accels + list(linkage.extras),
+             "Positions, rates, accelerations (per second squared) and the extras.")]
+    if joints:
+        sets.append(("joints", joints, "Coordinates of the moving joints."))
+    return sets
+
+
+def _identifier(name: str) -> str:
+    stem = re.sub(r"\W", "_", name)
+    return stem if re.match(r"[A-Za-z]", stem) else f"linkage_{stem}"
+
+
+def export_texts(name: str, fmt: str, outputs: Sequence[str] | None = None) -> dict[str, str]:
+    """File name -> text of catalog linkage ``name`` in format ``fmt`` (cached; nothing is written)."""
+    if fmt not in FORMATS:
+        raise ValueError(f"unknown export format {fmt!r}; choose one of {', '.join(FORMATS)}")
+    linkage = catalog_linkage(name)
+    if not getattr(linkage, "has_closed_form", True):
+        raise ValueError(f"{name} has no closed-form solve plan; only closed forms can be exported")
+    if outputs is not None:
+        outputs = list(outputs)
+        if not outputs:
+            raise ValueError(f"--outputs needs at least one output of {name}; it has {', '.join(linkage.output_names())}")
+        for output in outputs:
+            linkage.output(output)  # ValueError naming the outputs there are
+        sets = [("solve", outputs, f"{name}: {', '.join(outputs)}.")]
+    else:
+        sets = output_sets(linkage)
+    stem = _identifier(name)
+    wanted = sorted({o for _, names, _ in sets for o in names})
+    command = f"symlink export {name} --to {fmt}" + (f" --outputs {','.join(outputs)}" if outputs else "")
+    kind = "export:" + json.dumps([fmt, stem, sets])
+    build = lambda: json.dumps(_build(linkage, fmt, stem, sets, command, outputs))  # noqa: E731
+    return json.loads(cache.cached_text(cache.cache_key(linkage, wanted, kind), build))
+
+
+def _build(linkage: Linkage, fmt: str, stem: str, sets, command: str, outputs) -> dict[str, str]:
+    doc = (CATALOG[linkage.name].__doc__ or "").strip().splitlines() if linkage.name in CATALOG else []
+    title = f"{linkage.name}: {doc[0]}" if doc else f"{linkage.name} solver."
+    if fmt == "numpy":
+        from .codegen import numpy_module
+        return {f"{stem}.py": numpy_module([(n, linkage.program(o), d) for n, o, d in sets], title, command)}
+    if fmt == "c":
+        from .c_code import c_code
+        header, source = c_code([(f"{stem}_{n}", linkage.program(o), d) for n, o, d in sets], stem, title, command)
+        return {f"{stem}.h": header, f"{stem}.c": source}
+    if fmt == "octave":
+        from .octave import octave_function
+        return {f"{stem}_{n}.m": octave_function(linkage.program(o), f"{stem}_{n}", d) for n, o, d in sets}
+    from .latex import latex_document
+    asked = set().union(*(linkage.output(o).free_symbols for o in outputs)) if outputs else None
+    accels = asked is None or any(acceleration(q) in asked for q in linkage.unknowns)
+    rates = accels or any(rate(q) in asked for q in linkage.unknowns)
+    return {f"{stem}.tex": latex_document(linkage, title, velocities=rates, accelerations=accels)}
+
+
+def export(name: str, fmt: str, folder: str | Path, outputs: Sequence[str] | None = None) -> list[Path]:
+    """Write the export files into ``folder`` (atomically, all texts made first); returns their paths."""
+    from .files import write_atomic
+    texts = export_texts(name, fmt, outputs)
+    folder = Path(folder)
+    if folder.exists() and not folder.is_dir():
+        raise ValueError(f"--out {folder} exists and is not a folder")
+    paths = []
+    for file_name, text in texts.items():
+        write_atomic(folder / file_name, text)
+        paths.append(folder / file_name)
+    return paths
+
+
+def add_command(commands) -> None:
+    """Register ``symlink export NAME --to numpy|c|octave|latex --out DIR [--outputs LIST]``."""
+    command = commands.add_parser("export", help="write a catalog linkage's solvers as NumPy, C, Octave or LaTeX")
+    command.add_argument("name", metavar="NAME", help=f"a catalog linkage ({', '.join(sorted(CATALOG))})")
+    command.add_argument("--to", required=True, choices=list(FORMATS), help="the format")
+    command.add_argument("--out", required=True, metavar="DIR", help="the folder to write into")
+    command.add_argument("--outputs", metavar="LIST",
+                         help="comma-separated output names, as one function (default: positions, velocities, "
+                              "accelerations and joints)")
+    command.set_defaults(run=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """``symlink export``: write the files and name them."""
+    outputs = None if args.outputs is None else [o.strip() for o in args.outputs.split(",") if o.strip()]
+    for path in export(args.name, args.to, args.out, outputs):
+        print(f"wrote {path}")
+    return 0

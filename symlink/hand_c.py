@@ -1,0 +1,109 @@
+"""Hand-written C loops of the four-bar positions: the baselines that the generated C is measured against.
+
+:data:`HAND_C_SOURCE` is what a careful programmer writes by hand for the
+four-bar of DESIGN.md (``a e^{i theta} + b e^{i beta} = d + c e^{i phi}``),
+with the link lengths as scalars and the parameter-only terms hoisted out of
+the loop:
+
+* ``hand_fourbar_positions`` (``hand-c`` in the benchmark): the triangle B, C,
+  D solved with atan2 and Heron's product, derived on paper from the geometry,
+  with the same clamped square root as symlink (NaN where it cannot close).
+  Let W = B - D (length w).  C lies at the distance (b^2 - c^2 + w^2)/(2w)
+  from B along D - B and sqrt(Heron)/(2w) to its left (branch +1), so
+  ``b e^{i beta}`` is parallel to ``-(b^2 - c^2 + w^2) W + branch sqrt(H) n``
+  and ``c e^{i phi}`` to ``(w^2 - b^2 + c^2) W + branch sqrt(H) n``, with
+  ``n = (Wy, -Wx)`` (W turned clockwise) and
+  ``H = (b+c+w)(b+c-w)(w+b-c)(w-b+c)``.
+* ``hand_fourbar_halfangle``: the half-angle (Freudenstein) solution of
+  ``seeds/003`` (K, A, B, C; phi = 2 atan((-B - branch sqrt(B^2 - 4AC))/(2A)),
+  its "-" root being branch +1), beta from the loop's x and y components.
+
+Both are compiled with :func:`symlink.compiled.compile_shared`, so with the
+same flags as the generated C, and marked ``SYMLINK_LOOP`` as its loops are
+(vectorised where the compiler can).
+
+>>> import numpy
+>>> result = hand_positions(numpy.radians([0.0]), 20.0, 66.0, 56.0, 80.0, 1)  # doctest: +SKIP
+>>> round(float(numpy.degrees(result["rocker"][0])), 2)  # doctest: +SKIP
+110.74
+"""
+from __future__ import annotations
+
+import ctypes
+
+import numpy
+
+from .position import TOLERANCE
+
+__all__ = ["HAND_C_SOURCE", "hand_library", "hand_positions"]
+
+HAND_C_SOURCE = r"""
+#include <math.h>
+#include <stddef.h>
+#ifndef SYMLINK_LOOP  /* set by symlink's compiled backend, as for the generated C */
+#define SYMLINK_LOOP
+#endif
+
+SYMLINK_LOOP void hand_fourbar_positions(size_t n, const double *theta, double a, double b, double c, double d,
+                            double branch, double *beta, double *phi, unsigned char *assembled)
+{
+    const double s = b + c, t = b - c, bc = s * t;      /* b^2 - c^2 */
+    for (size_t i = 0; i < n; ++i) {
+        const double wx = a * cos(theta[i]) - d, wy = a * sin(theta[i]);   /* W = B - D */
+        const double w2 = wx * wx + wy * wy, w = sqrt(w2);
+        const double heron = (s + w) * (s - w) * (t + w) * (w - t);
+        const double scale = (s + w) * (s + w);
+        const double root = heron >= -TOLERANCE * (scale * scale) ? sqrt(heron > 0.0 ? heron : 0.0) : NAN;
+        const double along_b = bc + w2, along_c = w2 - bc, across = branch * root;
+        beta[i] = atan2(-wy * along_b - wx * across, -wx * along_b + wy * across);
+        phi[i] = atan2(wy * along_c - wx * across, wx * along_c + wy * across);
+        assembled[i] = (unsigned char)isfinite(root);
+    }
+}
+
+SYMLINK_LOOP void hand_fourbar_halfangle(size_t n, const double *theta, double a, double b, double c, double d,
+                            double branch, double *beta, double *phi, unsigned char *assembled)
+{
+    const double K = (a * a - b * b + c * c + d * d) / 2;
+    for (size_t i = 0; i < n; ++i) {
+        const double ct = cos(theta[i]), st = sin(theta[i]);
+        const double A = K - a * (d - c) * ct - c * d, B = -2 * a * c * st, C = K - a * (d + c) * ct + c * d;
+        const double discriminant = B * B - 4 * A * C;
+        const double p = 2 * atan((-B - branch * sqrt(discriminant)) / (2 * A));
+        phi[i] = p;
+        beta[i] = atan2(c * sin(p) - a * st, d + c * cos(p) - a * ct);
+        assembled[i] = discriminant >= 0;
+    }
+}
+""".replace("TOLERANCE", repr(TOLERANCE))
+
+_FUNCTIONS = ("hand_fourbar_positions", "hand_fourbar_halfangle")
+
+
+def hand_library() -> ctypes.CDLL:
+    """:data:`HAND_C_SOURCE` compiled with the flags of the generated C (``CompilerUnavailable`` without a compiler)."""
+    from .compiled import compile_shared
+    library = compile_shared(HAND_C_SOURCE)
+    for name in _FUNCTIONS:
+        function = getattr(library, name)
+        function.restype = None
+        function.argtypes = ([ctypes.c_size_t, ctypes.c_void_p] + [ctypes.c_double] * 5
+                             + [ctypes.c_void_p] * 3)
+    return library
+
+
+def hand_positions(theta, a: float, b: float, c: float, d: float, branch: int = 1,
+                   formula: str = "atan2") -> dict[str, numpy.ndarray]:
+    """Coupler and rocker angles by the hand-written C: ``formula`` ``"atan2"`` (hand-c) or ``"halfangle"`` (seed 003).
+
+    ``theta`` is an array of crank angles (radians); the lengths and the branch are scalars.
+    """
+    names = {"atan2": "hand_fourbar_positions", "halfangle": "hand_fourbar_halfangle"}
+    if formula not in names:
+        raise ValueError(f"formula must be 'atan2' or 'halfangle', got {formula!r}")
+    theta = numpy.ascontiguousarray(theta, dtype=numpy.float64)
+    coupler, rocker = numpy.empty_like(theta), numpy.empty_like(theta)
+    assembled = numpy.empty(theta.shape, dtype=bool)
+    getattr(hand_library(), names[formula])(theta.size, theta.ctypes.data, a, b, c, d, float(branch),
+                                            coupler.ctypes.data, rocker.ctypes.data, assembled.ctypes.data)
+    return {"coupler": coupler, "rocker": rocker, "assembled": assembled}

@@ -1,0 +1,158 @@
+"""MATLAB/Octave export: one vectorised ``.m`` function file per output set.
+
+The body is the same common-subexpression-eliminated straight-line code as the
+NumPy module (:func:`symlink.codegen.straight_line`), printed element-wise
+(``.*``, ``./``, ``.^``), so one call evaluates whole arrays of crank angles,
+or of link lengths: the arguments are scalars or arrays whose sizes broadcast
+(implicit expansion, MATLAB R2016b and later, GNU Octave).  The function
+returns the outputs in order and then ``assembled``, false where the linkage
+cannot be assembled (the outputs are NaN there).
+
+The clamped square root is ``sqrt(max(x, 0)) ./ (x >= -tol*scale)``: x where it
+is not negative, 0 where it is negative only by rounding, and 0/0 = NaN below
+that (or where x is NaN), exactly as the NumPy module's ``_clamped_sqrt``.
+
+>>> from symlink.catalog import fourbar
+>>> text = octave_function(fourbar().program(["rocker"]), "fourbar_rocker", "Rocker angle (rad).")
+>>> print(text.splitlines()[0])
+function [rocker, assembled] = fourbar_rocker(theta, a, b, c, d, branch)
+>>> "atan2(" in text and ".*" in text
+True
+"""
+from __future__ import annotations
+
+import re
+
+import sympy as sp
+from sympy.printing.octave import OctaveCodePrinter
+
+from . import __version__
+from .c_code import is_flag
+from .codegen import _defaults, straight_line
+from .linkage import Program
+from .position import TOLERANCE
+
+__all__ = ["octave_function", "octave_identifier"]
+
+OCTAVE_KEYWORDS = frozenset("""
+break case catch classdef continue do else elseif end end_try_catch end_unwind_protect endclassdef
+endenumeration endevents endfor endfunction endif endmethods endparfor endproperties endspmd endswitch
+endwhile enumeration events for function global if methods otherwise parfor persistent properties
+return spmd switch try until unwind_protect unwind_protect_cleanup while nargin nargout varargin
+varargout ans""".split())
+
+_IDENTIFIER = re.compile(r"[A-Za-z][A-Za-z0-9_]{0,62}\Z")
+
+
+def octave_identifier(name: str, what: str = "name") -> str:
+    """``name`` if MATLAB and Octave take it as a variable or function name; ``ValueError`` otherwise.
+
+    >>> octave_identifier("Wx_1")
+    'Wx_1'
+    """
+    if not _IDENTIFIER.match(name) or name in OCTAVE_KEYWORDS:
+        raise ValueError(f"{what} {name!r} is not usable as a MATLAB/Octave name "
+                         "(a letter, then up to 62 letters, digits or underscores; not a keyword)")
+    return name
+
+
+class _OctavePrinter(OctaveCodePrinter):
+    """Element-wise Octave printer with symlink's clamped square root and exact double literals."""
+
+    def __init__(self):
+        super().__init__({"allow_unknown_functions": False})
+
+    def _print_Symbol(self, expr):
+        return octave_identifier(expr.name, "symbol")
+
+    def _print_Float(self, expr):
+        return repr(float(expr))
+
+    def _print_NumberSymbol(self, expr):  # pi as a literal, safe from a variable named pi
+        return repr(float(expr))
+
+    _print_Pi = _print_NumberSymbol
+
+    def _print_ClampedSqrt(self, expr):
+        x, scale = (self._print(a) for a in expr.args)
+        return f"(sqrt(max({x}, 0)) ./ (({x}) >= {-TOLERANCE!r} .* ({scale})))"
+
+    def _print_Piecewise(self, expr):  # pragma: no cover - a guard, never reached by symlink's own forms
+        raise ValueError("symlink never writes Piecewise into generated code")
+
+
+def _arguments_behind(code, expr: sp.Expr) -> set[sp.Symbol]:
+    """The arguments that an expression depends on, through the assignments."""
+    definitions = dict(code.assignments)
+    found, stack, seen = set(), list(expr.free_symbols), set()
+    while stack:
+        symbol = stack.pop()
+        if symbol in seen:
+            continue
+        seen.add(symbol)
+        if symbol in definitions:
+            stack += list(definitions[symbol].free_symbols)
+        else:
+            found.add(symbol)
+    return found & set(code.arguments)
+
+
+def octave_function(program: Program, name: str, doc: str = "") -> str:
+    """The text of ``<name>.m``: one vectorised function computing the program's outputs, then ``assembled``."""
+    octave_identifier(name, "function name")
+    if not program.outputs:
+        raise ValueError(f"{name}: an Octave function needs at least one output")
+    code = straight_line(program)
+    printer = _OctavePrinter()
+    arguments = [octave_identifier(s.name, "argument") for s in code.arguments]
+    taken = set(arguments) | {octave_identifier(s.name, "symbol") for s, _ in code.assignments} | {name}
+    variables = []
+    for output in code.outputs:
+        variable = octave_identifier(output, "output")
+        while variable in taken or variable in ("assembled", "shape"):
+            variable += "_out"
+        taken.add(variable)
+        variables.append(variable)
+    assembled, shape = ("assembled", "shape")
+    results = ", ".join(variables + [assembled])
+    call = f"[{results}] = {name}({', '.join(arguments)})"
+    defaults = [(i, s.name, _defaults(s)[1:]) for i, s in enumerate(code.arguments, 1) if _defaults(s)]
+    summary = doc.strip().splitlines()[0] if doc.strip() else f"Outputs {', '.join(code.outputs)} of a linkage."
+    help_lines = [f"%{name.upper()} {summary}", f"%   {call}"] + [f"%   {line}" for line in doc.strip().splitlines()[1:]]
+    help_lines += [
+        "%   evaluates element-wise: the arguments are scalars or arrays of sizes that",
+        "%   broadcast. assembled is false where the linkage cannot close (the outputs are",
+        "%   NaN there). Angles in radians."]
+    if defaults:
+        help_lines.append("%   Defaults: " + ", ".join(f"{arg} = {value}" for _, arg, value in defaults) + ".")
+    renamed = [f"{v} is {o}" for v, o in zip(variables, code.outputs) if v != o]
+    if renamed:
+        help_lines.append("%   Output names: " + ", ".join(renamed) + ".")
+    help_lines += ["%", f"%   Generated by symlink {__version__} with SymPy {sp.__version__}; do not edit."]
+    lines = [f"function {call}"] + help_lines
+    for position, argument, value in defaults:
+        lines += [f"  if nargin < {position}", f"    {argument} = {value};", "  end"]
+    for symbol, expr in code.assignments:
+        lines.append(f"  {symbol.name} = {printer.doprint(expr)};")
+    everything = set(code.arguments)
+    expressions = list(code.outputs.values())
+    finite = " & ".join(f"isfinite({r.name})" for r in code.roots)
+    if any(_arguments_behind(code, e) != everything for e in expressions) or not code.roots or (
+            set().union(*(_arguments_behind(code, r) for r in code.roots)) != everything):
+        lines.append(f"  {shape} = size({' + '.join(arguments) or '0'});")
+        broadcast = True
+    else:
+        broadcast = False
+    for variable, expr in zip(variables, expressions):
+        text = printer.doprint(expr)
+        if broadcast and _arguments_behind(code, expr) != everything:
+            text = f"({text}) & true({shape})" if is_flag(expr) else f"({text}) .* ones({shape})"
+        lines.append(f"  {variable} = {text};")
+    if not code.roots:
+        lines.append(f"  {assembled} = true({shape});")
+    elif broadcast and set().union(*(_arguments_behind(code, r) for r in code.roots)) != everything:
+        lines.append(f"  {assembled} = ({finite}) & true({shape});")
+    else:
+        lines.append(f"  {assembled} = {finite};")
+    lines.append("end")
+    return "\n".join(lines) + "\n"

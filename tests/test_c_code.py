@@ -1,0 +1,238 @@
+"""The C export: compiled with the system compiler here, called through ctypes, compared with the NumPy module.
+
+The C is compiled exactly as exported (plain C99, ``-pedantic -Wall -Wextra
+-Werror``, no symlink flags) and checked against the NumPy module generated
+from the same program, for every catalog entry that has a closed form, on
+random arguments (both branches, assemblies that fail included), and for the
+four-bar against the independent 50-digit reference of ``tests/references.py``.
+"""
+from __future__ import annotations
+
+import ctypes
+import shutil
+import subprocess
+
+import numpy
+import pytest
+import sympy as sp
+
+from export_checks import angles_of, assert_agree, closed_form_catalog, export_sets, random_arguments, rounding_spread
+from references import SEED003_LINKAGE, mp_fourbar, seed003_positions
+from symlink.c_code import c_code, c_function, c_identifier, c_library, _CPrinter
+from symlink.codegen import load_numpy_module, numpy_module
+from symlink.linkage import Program
+from symlink.position import TOLERANCE, ClampedSqrt
+from symlink.scene import catalog_linkage
+
+STRICT = ["-std=c99", "-pedantic", "-Wall", "-Wextra", "-Werror", "-O2", "-fPIC", "-shared"]
+
+
+def _compiler() -> str:
+    for name in ("cc", "gcc", "clang"):
+        if shutil.which(name):
+            return name
+    pytest.skip("no C compiler (cc, gcc or clang) on PATH: the generated C is not compiled")
+
+
+def build(tmp_path, header: str, source: str, name: str) -> ctypes.CDLL:
+    """Write the two files and compile them strictly into a shared library."""
+    (tmp_path / f"{name}.h").write_text(header)
+    (tmp_path / f"{name}.c").write_text(source)
+    result = subprocess.run([_compiler(), *STRICT, "-o", f"{name}.so", f"{name}.c", "-lm"], cwd=tmp_path,
+                            capture_output=True, text=True, check=False)
+    if result.returncode and "math.h" in result.stderr and "No such file" in result.stderr:
+        pytest.skip(f"the C compiler has no C library headers (install libc6-dev): {result.stderr.strip()}")
+    assert result.returncode == 0, result.stderr
+    return ctypes.CDLL(str(tmp_path / f"{name}.so"))
+
+
+def call(library: ctypes.CDLL, function, values: dict, steps: dict | None = None) -> dict[str, numpy.ndarray]:
+    """Call a generated loop on 1-d arrays (step 1) or scalars (step 0) written independently of symlink.compiled."""
+    arrays = [numpy.ascontiguousarray(values[a], dtype=numpy.float64) for a in function.arguments]
+    count = max(a.size for a in arrays)
+    outputs = [numpy.full(count, 7, dtype=numpy.uint8) if flag else numpy.full(count, 12345.0)
+               for flag in function.flags]
+    assembled = numpy.full(count, 7, dtype=numpy.uint8)
+    arguments = []
+    for name, array in zip(function.arguments, arrays):
+        step = (steps or {}).get(name, 0 if array.size == 1 else 1)
+        arguments += [ctypes.c_void_p(array.ctypes.data), ctypes.c_ssize_t(step)]
+    entry = getattr(library, function.name)
+    entry.restype = None
+    entry(ctypes.c_size_t(count), *arguments, *(ctypes.c_void_p(o.ctypes.data) for o in outputs),
+          ctypes.c_void_p(assembled.ctypes.data))
+    for flags in [assembled] + [o for o, flag in zip(outputs, function.flags) if flag]:
+        assert set(numpy.unique(flags)) <= {0, 1}
+    outputs = [o.astype(bool) if flag else o for o, flag in zip(outputs, function.flags)]
+    return {**dict(zip(function.outputs, outputs)), "assembled": assembled.astype(bool)}
+
+
+@pytest.mark.parametrize("name", closed_form_catalog())
+def test_every_catalog_entry_agrees_with_numpy(tmp_path, name):
+    linkage = catalog_linkage(name)
+    sets = export_sets(name)
+    stem = name.replace("-", "_")
+    functions = [c_function(linkage.program(outputs), f"{stem}_{set_name}", doc) for set_name, outputs, doc in sets]
+    header, source = c_library(functions, stem, "test")
+    assert "malloc" not in source and "free(" not in source
+    assert [line for line in source.splitlines() if line.startswith("#include")] == [
+        "#include <math.h>", f'#include "{stem}.h"']
+    library = build(tmp_path, header, source, stem)
+    module = load_numpy_module(numpy_module([(s, linkage.program(o), d) for s, o, d in sets]))
+    for (set_name, outputs, _), function in zip(sets, functions):
+        values = random_arguments(linkage, function.arguments, 400, seed=len(set_name))
+        expected = module[set_name](**values)
+        assembled = numpy.asarray(expected["assembled"])
+        assert 40 < assembled.sum(), f"{name}: too few assembled samples to test"
+        with numpy.errstate(all="ignore"):
+            actual = call(library, function, values)
+        assert_agree(actual, {k: numpy.asarray(v) for k, v in expected.items()},
+                     angles_of(name, outputs), 1e-12, f"{name} {set_name}", rounding_spread(module[set_name], values))
+
+
+def test_steps_broadcast_scalars_arrays_and_strides(tmp_path):
+    linkage = catalog_linkage("fourbar")
+    function = c_function(linkage.program(["coupler", "rocker_speed"]), "fb", "")
+    library = build(tmp_path, *c_library([function], "fb"), "fb")
+    theta = numpy.linspace(-3, 3, 21)
+    lengths = numpy.linspace(15, 25, 21)
+    spread = numpy.zeros(42)
+    spread[::2] = theta  # theta at a step of 2 elements
+    values = dict(theta=spread, a=lengths, b=66.0, c=56.0, d=80.0, branch=-1.0, thetadot=10.5)
+    actual = call(library, function, values, steps={"theta": 2})
+    actual = {k: v[:21] for k, v in actual.items()}  # the call's n is the largest size, 42
+    expected = load_numpy_module(numpy_module([("fb", linkage.program(["coupler", "rocker_speed"]), "")]))["fb"](
+        theta=theta, a=lengths, b=66.0, c=56.0, d=80.0, branch=-1.0, thetadot=10.5)
+    assert_agree(actual, {k: numpy.asarray(v) for k, v in expected.items()}, {"coupler"}, 1e-12)
+
+
+def test_fourbar_matches_the_50_digit_reference_and_seed_003(tmp_path):
+    linkage = catalog_linkage("fourbar")
+    function = c_function(linkage.program(["coupler", "rocker", "coupler_speed", "rocker_speed",
+                                           "coupler_accel", "rocker_accel"]), "fb", "")
+    library = build(tmp_path, *c_library([function], "fb"), "fb")
+    a, b, c, d = (SEED003_LINKAGE[k] for k in "abcd")
+    theta = numpy.radians(numpy.arange(0.0, 360.0, 40.0) + 0.5)
+    for branch in (1, -1):
+        result = call(library, function, dict(theta=theta, a=a, b=b, c=c, d=d, branch=float(branch),
+                                              thetadot=10.5, thetaddot=3.0))
+        assert result["assembled"].all()
+        hand_beta, hand_phi = seed003_positions(a, b, c, d, theta, branch)
+        numpy.testing.assert_allclose(numpy.cos(result["rocker"] - hand_phi), 1.0, atol=1e-24)
+        for i, angle in enumerate(theta):
+            reference = mp_fourbar(a, b, c, d, float(angle), branch, 10.5, 3.0)
+            for key, output in (("beta", "coupler"), ("phi", "rocker"), ("beta_speed", "coupler_speed"),
+                                ("phi_speed", "rocker_speed"), ("beta_accel", "coupler_accel"),
+                                ("phi_accel", "rocker_accel")):
+                want = float(reference[key])
+                assert abs(result[output][i] - want) <= 1e-12 * max(1.0, abs(want)), (branch, angle, key)
+
+
+def test_unassembled_configurations_are_nan_and_flagged(tmp_path):
+    linkage = catalog_linkage("fourbar")
+    function = c_function(linkage.program(["rocker", "C_x"]), "fb", "")
+    library = build(tmp_path, *c_library([function], "fb"), "fb")
+    # a = 50 cannot pass theta = 0 with b + c = 30 + 40 < |a - d| + ... : crank range is limited.
+    theta = numpy.radians([0.0, 90.0, 180.0])
+    result = call(library, function, dict(theta=theta, a=50.0, b=30.0, c=40.0, d=45.0, branch=1.0))
+    for angle, assembled in zip(theta, result["assembled"]):
+        try:
+            mp_fourbar(50.0, 30.0, 40.0, 45.0, float(angle), 1)
+            reachable = True
+        except ValueError:
+            reachable = False
+        assert bool(assembled) == reachable
+    assert not result["assembled"].all() and result["assembled"].any()
+    assert numpy.isnan(result["rocker"][~result["assembled"]]).all()
+    assert numpy.isnan(result["C_x"][~result["assembled"]]).all()
+
+
+def test_clamped_square_root_has_the_numpy_semantics(tmp_path):
+    x, scale = sp.symbols("x scale", real=True)
+    root = sp.Symbol("Delta_1", real=True)
+    program = Program((x, scale), ((root, ClampedSqrt(x, scale)),), {"root": root})
+    function = c_function(program, "clamped", "")
+    library = build(tmp_path, *c_library([function], "clamped"), "clamped")
+    xs = numpy.array([4.0, 0.0, -0.0, -0.5 * TOLERANCE, -TOLERANCE, -2 * TOLERANCE, -1.0, numpy.nan, numpy.inf])
+    result = call(library, function, dict(x=xs, scale=1.0))
+    # By definition (ClampedSqrt's docstring): sqrt for x >= 0, 0 down to -TOLERANCE*scale, NaN below or for NaN.
+    expected = numpy.array([2.0, 0.0, 0.0, 0.0, 0.0, numpy.nan, numpy.nan, numpy.nan, numpy.inf])
+    numpy.testing.assert_array_equal(result["root"], expected)
+    assert not numpy.signbit(result["root"][2])  # sqrt(-0.0) would be -0.0; NumPy's maximum gives +0.0
+    numpy.testing.assert_array_equal(result["assembled"], numpy.isfinite(expected))
+    reference = load_numpy_module(numpy_module([("clamped", program, "")]))["clamped"](x=xs, scale=1.0)
+    numpy.testing.assert_array_equal(result["root"], reference["root"])
+
+
+def test_true_false_outputs_are_unsigned_char_arrays(tmp_path):
+    x = sp.Symbol("x", real=True)
+    root = sp.Symbol("Delta_1", real=True)
+    program = Program((x,), ((root, ClampedSqrt(x, 1)),),
+                      {"root": root, "toggle": sp.Eq(root, 0), "never": sp.false, "either": sp.Or(x > 3, x < -3)})
+    function = c_function(program, "flags", "")
+    assert function.flags == (False, True, True, True)
+    assert "double *root, unsigned char *toggle, unsigned char *never, unsigned char *either" in function.prototype
+    library = build(tmp_path, *c_library([function], "flags"), "flags")
+    xs = numpy.array([4.0, 0.0, -1.0])
+    result = call(library, function, dict(x=xs))
+    assert result["toggle"].tolist() == [False, True, False]
+    assert result["never"].tolist() == [False] * 3
+    assert result["either"].tolist() == [True, False, False]
+    reference = load_numpy_module(numpy_module([("flags", program, "")]))["flags"](x=xs)
+    for key in ("toggle", "never", "either"):
+        numpy.testing.assert_array_equal(result[key], numpy.broadcast_to(reference[key], xs.shape))
+
+
+def test_printer_writes_small_powers_as_products_and_exact_literals():
+    x, y = sp.symbols("x y", real=True)
+    printer = _CPrinter()
+    assert printer.doprint(x**2) == "(x*x)"
+    assert printer.doprint(1 / x) == "1.0/x"
+    assert printer.doprint(x**-2) == "1.0/(x*x)"
+    assert printer.doprint((x + y)**4) == "(((x + y)*(x + y))*((x + y)*(x + y)))"
+    assert printer.doprint(x**5) == "pow(x, 5.0)"
+    assert printer.doprint(sp.sqrt(x)) == "sqrt(x)"
+    assert printer.doprint(sp.pi * x) == f"{numpy.pi!r}*x"  # no M_PI: it is not C99
+    assert printer.doprint(sp.Float(0.1) * x) == "0.1*x"
+    assert printer.doprint(sp.atan2(y, x)) == "atan2(y, x)"
+    assert printer.doprint(sp.Abs(x)) == "fabs(x)"
+
+
+def test_names_that_are_not_c_identifiers_are_refused():
+    assert c_identifier("theta_1") == "theta_1"
+    for bad in ("int", "2x", "a-b", "symlink_x", "θ"):
+        with pytest.raises(ValueError, match="C identifier"):
+            c_identifier(bad)
+    x = sp.Symbol("double", real=True)
+    with pytest.raises(ValueError, match="'double'"):
+        c_function(Program((x,), (), {"y": 2 * x}), "f", "")
+    with pytest.raises(ValueError, match="at least one output"):
+        c_function(Program((), (), {}), "f", "")
+    program = catalog_linkage("fourbar").program(["rocker"])
+    with pytest.raises(ValueError, match="repeat"):
+        c_library([c_function(program, "f"), c_function(program, "f")], "lib")
+
+
+def test_an_output_named_like_an_argument_gets_its_own_parameter(tmp_path):
+    linkage = catalog_linkage("fourbar")
+    program = linkage.program(["rocker"])
+    program = Program(program.arguments, program.assignments, {**program.outputs, "theta": program.arguments[0]})
+    function = c_function(program, "fb", "")
+    assert function.output_parameters == ("rocker", "theta_out")
+    library = build(tmp_path, *c_library([function], "fb"), "fb")
+    theta = numpy.array([0.1, 0.2])
+    result = call(library, function, dict(theta=theta, a=20.0, b=66.0, c=56.0, d=80.0, branch=1.0))
+    numpy.testing.assert_array_equal(result["theta"], theta)
+
+
+def test_c_code_header_declares_every_function_and_compiles_as_cpp(tmp_path):
+    linkage = catalog_linkage("fourbar")
+    header, source = c_code([("fb_positions", linkage.program(["coupler", "rocker"]), "Positions."),
+                             ("fb_joints", linkage.program(["C_x", "C_y"]), "Joints.")], "fb", "Four-bar.")
+    assert header.count("\nvoid fb_") == 2 and "SYMLINK_FB_H" in header
+    if shutil.which("g++"):
+        (tmp_path / "fb.h").write_text(header)
+        (tmp_path / "use.cpp").write_text('#include "fb.h"\nint main() { return 0; }\n')
+        result = subprocess.run(["g++", "-fsyntax-only", "-Wall", "-Werror", "use.cpp"], cwd=tmp_path,
+                                capture_output=True, text=True, check=False)
+        assert result.returncode == 0, result.stderr

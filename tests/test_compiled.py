@@ -1,0 +1,237 @@
+"""The compiled backend: agreement with the NumPy solver and the 50-digit reference, the disk cache, the fallback."""
+from __future__ import annotations
+
+import ctypes
+import warnings
+from pathlib import Path
+
+import numpy
+import pytest
+
+from export_checks import angles_of, assert_agree, closed_form_catalog, random_arguments, rounding_spread
+from references import SEED003_LINKAGE, mp_fourbar
+from symlink import cache, compiled
+from symlink.compiled import (CompiledSolver, CompileError, CompilerUnavailable, compile_shared,
+                              compiled_solver, find_compiler)
+from symlink.scene import catalog_linkage
+from symlink.solver import Solver
+
+FOURBAR_OUTPUTS = ["coupler", "rocker", "coupler_speed", "rocker_speed", "coupler_accel", "rocker_accel",
+                   "transmission", "C_x", "C_y"]
+
+
+def _forget() -> None:
+    cache.clear_memory()
+    compiled._loaded.clear()
+
+
+@pytest.fixture(scope="module", autouse=True)
+def module_cache(tmp_path_factory):
+    """One cache folder for this module's tests (so a library is compiled once), never the user's."""
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setenv("SYMLINK_CACHE", str(tmp_path_factory.mktemp("cache")))
+        _forget()
+        yield
+    _forget()
+
+
+@pytest.fixture()
+def fresh_cache(tmp_path, monkeypatch):
+    """An empty cache folder, and nothing remembered in memory: the first run on a new machine."""
+    monkeypatch.setenv("SYMLINK_CACHE", str(tmp_path / "cache"))
+    _forget()
+    yield
+    _forget()
+
+
+@pytest.fixture(scope="module")
+def compiler(module_cache):
+    try:
+        find_compiler()
+        compile_shared("double symlink_test_probe(double x) { return x; }\n")
+    except CompilerUnavailable as error:
+        pytest.skip(f"no working C compiler, the compiled backend is not tested: {error}")
+
+
+@pytest.fixture()
+def compiler_runs(monkeypatch):
+    """A list that grows by one each time the compiler is run."""
+    runs = []
+    original = compiled._run_compiler
+
+    def counting(*args, **kwargs):
+        runs.append(args)
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(compiled, "_run_compiler", counting)
+    return runs
+
+
+@pytest.mark.parametrize("name", closed_form_catalog())
+def test_compiled_agrees_with_numpy_on_every_catalog_entry(compiler, name):
+    linkage = catalog_linkage(name)
+    outputs = linkage.output_names()
+    fast, reference = compiled_solver(linkage, outputs), Solver(linkage, outputs)
+    assert isinstance(fast, CompiledSolver)
+    assert fast.arguments == reference.arguments
+    values = random_arguments(linkage, fast.arguments, 500, seed=7)
+    want = {k: numpy.asarray(v) for k, v in reference(**values).items()}
+    got = fast(**values)
+    assert want["assembled"].sum() > 50
+    assert_agree(got, want, angles_of(name, outputs), 1e-12, name, rounding_spread(reference, values))
+    for key, value in got.items():
+        assert value.dtype == want[key].dtype, key
+
+
+def test_compiled_matches_the_50_digit_reference(compiler):
+    solver = compiled_solver(catalog_linkage("fourbar"), FOURBAR_OUTPUTS)
+    a, b, c, d = (SEED003_LINKAGE[k] for k in "abcd")
+    theta = numpy.radians(numpy.arange(0.0, 360.0, 15.0) + 0.1)
+    for branch in (1, -1):
+        result = solver(theta=theta, a=a, b=b, c=c, d=d, branch=branch, thetadot=10.5, thetaddot=-2.0)
+        assert result["assembled"].all()
+        for i, angle in enumerate(theta):
+            reference = mp_fourbar(a, b, c, d, float(angle), branch, 10.5, -2.0)
+            for key, output in (("beta", "coupler"), ("phi", "rocker"), ("beta_speed", "coupler_speed"),
+                                ("phi_speed", "rocker_speed"), ("beta_accel", "coupler_accel"),
+                                ("phi_accel", "rocker_accel")):
+                want = float(reference[key])
+                assert abs(result[output][i] - want) <= 1e-12 * max(1.0, abs(want)), (branch, angle, key)
+
+
+def test_broadcasting_views_and_scalars_like_the_numpy_solver(compiler):
+    linkage = catalog_linkage("fourbar")
+    fast, reference = compiled_solver(linkage, ["rocker", "C_x"]), Solver(linkage, ["rocker", "C_x"])
+    theta = numpy.linspace(-3.0, 3.0, 40)
+    cases = [
+        dict(theta=0.3, a=20, b=66, c=56, d=80),                                   # all scalars: 0-d
+        dict(theta=theta, a=20, b=66, c=56, d=80, branch=-1),                       # the usual sweep
+        dict(theta=theta[::3], a=20.0, b=66, c=56, d=80),                           # a strided view
+        dict(theta=theta[::-1], a=20.0, b=66, c=56, d=80),                          # a reversed view
+        dict(theta=theta.astype(numpy.float32), a=20, b=66, c=56, d=80),            # another dtype
+        dict(theta=theta, a=numpy.array([[15.0], [20.0], [40.0]]), b=66, c=56, d=80),  # 2-d broadcasting
+        dict(theta=list(theta[:4]), a=[20, 21, 22, 23], b=66, c=56, d=80, branch=[1, -1, 1, -1]),
+        dict(theta=numpy.empty(0), a=20, b=66, c=56, d=80),                        # nothing to do
+    ]
+    for values in cases:
+        want = {k: numpy.asarray(v) for k, v in reference(**values).items()}
+        assert_agree(fast(**values), want, {"rocker"}, 1e-12, str(values)[:60])
+
+
+def test_inputs_are_checked_like_the_numpy_solver(compiler):
+    fast = compiled_solver(catalog_linkage("fourbar"), ["rocker"])
+    with pytest.raises(ValueError, match="a must be a positive finite length"):
+        fast(theta=0.0, a=-1, b=66, c=56, d=80)
+    with pytest.raises(ValueError, match="branch must be"):
+        fast(theta=0.0, a=20, b=66, c=56, d=80, branch=0)
+    with pytest.raises(ValueError, match="not e"):
+        fast(theta=0.0, a=20, b=66, c=56, d=80, e=1)
+    with pytest.raises(ValueError, match="theta must be finite"):
+        fast(theta=numpy.nan, a=20, b=66, c=56, d=80)
+    with pytest.raises(ValueError, match="no output"):
+        compiled_solver(catalog_linkage("fourbar"), ["rocker", "nope"])
+
+
+def test_second_use_loads_from_the_cache_without_compiling(compiler, fresh_cache, compiler_runs):
+    linkage = catalog_linkage("fourbar")
+    first = compiled_solver(linkage, ["rocker"])
+    assert len(compiler_runs) == 1
+    libraries = set(compiled.cache_directory().glob("*.so"))
+    _forget()  # a new process: memory forgotten, disk kept
+    second = compiled_solver(linkage, ["rocker"])
+    assert len(compiler_runs) == 1
+    assert second.source == first.source and set(compiled.cache_directory().glob("*.so")) == libraries
+    assert float(second(theta=0.0, a=20, b=66, c=56, d=80)["rocker"]) == pytest.approx(1.932819, abs=1e-6)
+
+
+@pytest.mark.parametrize("damage", ["garbage", "truncated", "digest missing", "digest wrong"])
+def test_a_corrupt_cache_entry_is_detected_and_rebuilt(compiler, fresh_cache, compiler_runs, damage):
+    linkage = catalog_linkage("fourbar")
+    solver = compiled_solver(linkage, ["rocker"])
+    want = solver(theta=1.0, a=20, b=66, c=56, d=80)["rocker"]
+    library = Path(solver.library._name)
+    digest = library.with_suffix(".sha256")
+    binary = library.read_bytes()
+    library.unlink()  # a new file: never overwrite a library that this process has mapped
+    if damage == "garbage":
+        library.write_bytes(b"\x7fELF" + b"\0" * 100)
+    elif damage == "truncated":
+        library.write_bytes(binary[: len(binary) // 2])
+    else:
+        library.write_bytes(binary)
+        if damage == "digest missing":
+            digest.unlink()
+        else:
+            digest.write_text("0" * 64 + "\n")
+    _forget()
+    runs = len(compiler_runs)
+    got = compiled_solver(linkage, ["rocker"])(theta=1.0, a=20, b=66, c=56, d=80)["rocker"]
+    assert len(compiler_runs) == runs + 1
+    assert got == want
+    assert compiled._intact(library)
+
+
+def test_without_a_compiler_it_says_so_and_uses_numpy(tmp_path, monkeypatch):
+    empty = tmp_path / "bin"
+    empty.mkdir()
+    monkeypatch.setenv("PATH", str(empty))
+    monkeypatch.delenv("CC", raising=False)
+    with pytest.raises(CompilerUnavailable, match="no C compiler found"):
+        find_compiler()
+    with pytest.warns(RuntimeWarning, match="no compiled backend, using NumPy instead"):
+        solver = compiled_solver(catalog_linkage("fourbar"), ["rocker"])
+    assert type(solver) is Solver
+    assert float(solver(theta=0.0, a=20, b=66, c=56, d=80)["rocker"]) == pytest.approx(1.932819, abs=1e-6)
+
+
+def test_cc_naming_a_missing_or_broken_compiler(monkeypatch):
+    monkeypatch.setenv("CC", "/nonexistent/cc -O1")
+    with pytest.raises(CompilerUnavailable, match="CC='/nonexistent/cc -O1' is not an executable"):
+        find_compiler()
+    monkeypatch.setenv("CC", "false")  # runs, and fails on everything
+    with pytest.raises(CompilerUnavailable, match="cannot build a shared library"):
+        compile_shared("double f(double x) { return x; }\n")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        solver = compiled_solver(catalog_linkage("fourbar"), ["rocker"])
+    assert type(solver) is Solver and "cannot build" in str(caught[0].message)
+
+
+def test_compile_shared_builds_any_source_and_reports_errors(compiler, fresh_cache):
+    library = compile_shared("double twice(double x) { return 2.0 * x; }\n")
+    library.twice.restype, library.twice.argtypes = ctypes.c_double, [ctypes.c_double]
+    assert library.twice(1.25) == 2.5
+    assert compile_shared("double twice(double x) { return 2.0 * x; }\n") is library
+    with pytest.raises(CompileError, match="rejected the source"):
+        compile_shared("double broken(double x) { return x +; }\n")
+    with_header = compile_shared('#include "k.h"\ndouble k(void) { return K; }\n', {"k.h": "#define K 3.5\n"})
+    with_header.k.restype = ctypes.c_double
+    assert with_header.k() == 3.5
+
+
+def test_with_the_disk_cache_off_a_private_folder_is_used(compiler, monkeypatch):
+    monkeypatch.setenv("SYMLINK_CACHE", "")
+    assert cache.cache_directory() is None
+    folder = compiled.cache_directory()
+    assert folder.name == "compiled" and folder.parent.name.startswith("symlink-")
+    solver = compiled_solver(catalog_linkage("fourbar"), ["rocker"])
+    assert isinstance(solver, CompiledSolver) and list(folder.glob("*.so"))
+
+
+def test_source_has_no_fast_math_and_the_library_keeps_nan_semantics(compiler):
+    assert not any("fast-math" in flag or flag.startswith("-march") for flag in compiled.FLAGS)
+    fast = compiled_solver(catalog_linkage("fourbar"), ["rocker", "C_x"])
+    result = fast(theta=numpy.array([numpy.pi / 2, numpy.pi]), a=50.0, b=30.0, c=40.0, d=45.0)
+    # At theta = pi/2 B is 67.3 from D: 30 and 40 reach it. At theta = pi B is 95 from D: 30 + 40 < 95.
+    assert result["assembled"].tolist() == [True, False]
+    assert numpy.isfinite(result["rocker"][0]) and numpy.isnan(result["rocker"][1])
+    assert numpy.isnan(result["C_x"][1])
+    toggle = fast(theta=0.0, a=20.0, b=30.0, c=40.0, d=90.0)  # B 70 from D = b + c: the extended toggle
+    assert bool(toggle["assembled"]) and abs(float(toggle["rocker"])) == pytest.approx(numpy.pi, abs=1e-12)  # C on BD
+
+
+def test_an_unwritable_cache_folder_falls_back_to_a_private_one(tmp_path, monkeypatch):
+    blocker = tmp_path / "a file"
+    blocker.write_text("")
+    monkeypatch.setenv("SYMLINK_CACHE", str(blocker))
+    assert compiled.cache_directory().parent.name.startswith("symlink-")

@@ -17,10 +17,10 @@ def _clamped_sqrt(x, scale):
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
 
 
-INPUTS = ('theta', )
-PARAMETERS = ('a', 'b', 'c', 'd', 'e', 'f', 'g', 'h', 'alpha', 'delta', )
-UNKNOWNS = ('beta', 'mu', 'phi', 'eta', )
-ANGLE_INPUTS = ('theta', )
+INPUTS = ('theta',)
+PARAMETERS = ('a', 'b', 'c', 'd', 'e', 'f', 'g', 'h', 'alpha', 'delta')
+UNKNOWNS = ('beta', 'mu', 'phi', 'eta')
+ANGLE_INPUTS = ('theta',)
 ROLES = {'crank': 'theta', 'coupler': 'beta', 'rocker': 'phi'}
 
 EPSILON = float(numpy.finfo(float).eps)
@@ -361,17 +361,17 @@ def positions(theta, a, b, c, d, e, f, g, h, alpha, delta, guess):
     residual relative to its loop's size) and assembled (True: a point that
     cannot be solved raises ValueError naming its input value instead).
     """
-    shape, inputs, q, _, _, residual = _sweep((theta, ), (a, b, c, d, e, f, g, h, alpha, delta, ), guess)
-    return _results(shape, inputs, (a, b, c, d, e, f, g, h, alpha, delta, ), q, None, None, residual, 0)
+    shape, inputs, q, _, _, residual = _sweep((theta,), (a, b, c, d, e, f, g, h, alpha, delta), guess)
+    return _results(shape, inputs, (a, b, c, d, e, f, g, h, alpha, delta), q, None, None, residual, 0)
 
 
 def velocities(theta, a, b, c, d, e, f, g, h, alpha, delta, guess, thetadot=0.0):
     """Positions and rates (name + 'dot', role + '_speed') over the sweep; see positions()."""
-    shape, inputs, q, qdot, _, residual = _sweep((theta, ), (a, b, c, d, e, f, g, h, alpha, delta, ), guess, (thetadot, ), (0.0, ))
-    return _results(shape, inputs, (a, b, c, d, e, f, g, h, alpha, delta, ), q, qdot, None, residual, 1)
+    shape, inputs, q, qdot, _, residual = _sweep((theta,), (a, b, c, d, e, f, g, h, alpha, delta), guess, (thetadot,), (0.0,))
+    return _results(shape, inputs, (a, b, c, d, e, f, g, h, alpha, delta), q, qdot, None, residual, 1)
 
 
 def accelerations(theta, a, b, c, d, e, f, g, h, alpha, delta, guess, thetadot=0.0, thetaddot=0.0):
     """Positions, rates and accelerations (name + 'ddot', role + '_accel') over the sweep; see positions()."""
-    shape, inputs, q, qdot, qddot, residual = _sweep((theta, ), (a, b, c, d, e, f, g, h, alpha, delta, ), guess, (thetadot, ), (thetaddot, ))
-    return _results(shape, inputs, (a, b, c, d, e, f, g, h, alpha, delta, ), q, qdot, qddot, residual, 2)
+    shape, inputs, q, qdot, qddot, residual = _sweep((theta,), (a, b, c, d, e, f, g, h, alpha, delta), guess, (thetadot,), (thetaddot,))
+    return _results(shape, inputs, (a, b, c, d, e, f, g, h, alpha, delta), q, qdot, qddot, residual, 2)

@@ -451,7 +451,7 @@ def numeric_module(linkage: Linkage, title: str = "", regenerate: str = "") -> s
     unknown_rates = tuple(rate(u) for u in unknowns)
     title = title or f"{linkage.name}: Newton's method on the closure equations, over an input sweep."
     parts = [numpy_module([], title, regenerate)]
-    names = lambda symbols: "(" + "".join(f"{s.name!r}, " for s in symbols) + ")"  # noqa: E731
+    names = lambda symbols: repr(tuple(s.name for s in symbols))  # noqa: E731
     parts.append(f"\n\nINPUTS = {names(inputs)}\nPARAMETERS = {names(parameters)}\nUNKNOWNS = {names(unknowns)}\n"
                  f"ANGLE_INPUTS = {names([x for x in inputs if is_angle(linkage, x)])}\n"
                  f"ROLES = {dict((role, q.name) for role, q in linkage.roles.items())!r}\n")
@@ -469,7 +469,7 @@ def numeric_module(linkage: Linkage, title: str = "", regenerate: str = "") -> s
         [("r", system.acceleration_rhs)], "Right-hand side of J qddot = r."))
     outputs, _ = _outputs_function(linkage, inputs + parameters + unknowns)
     parts.append("\n\n" + outputs)
-    as_tuple = lambda items: "(" + "".join(f"{item}, " for item in items) + ")"  # noqa: E731
+    as_tuple = lambda items: repr(tuple(items)).replace("'", "")  # noqa: E731  (names, not strings)
     parts.append(_PUBLIC.format(
         signature="".join(f"{s.name}, " for s in inputs + parameters),
         inputs=as_tuple(s.name for s in inputs), parameters=as_tuple(s.name for s in parameters),

@@ -390,31 +390,37 @@ def _subset(sweeps: list[Sweep], limit: int) -> list[Sweep]:
     return cut
 
 
-def _timed(method: Method, sweeps: list[Sweep], budget: float) -> tuple[float, list]:
-    """Best time of calling the method on every sweep (repeated within ``budget`` seconds, up to 7 times).
+def _timed(methods: list[Method], work: dict[str, list[Sweep]], budget: float) -> dict[str, tuple[float, list]]:
+    """Best time of each method over all its sweeps, and its results.
 
-    The garbage collector is off while timing, as in :mod:`timeit`.
+    The methods take turns, round after round (up to 7), so that a change in
+    the machine's load falls on all of them alike; a method sits out further
+    rounds once its time would exceed ``budget`` seconds.  The garbage
+    collector is off while timing, as in :mod:`timeit`.
     """
-    best, spent, repeats, results = math.inf, 0.0, 0, []
+    best = {m.name: math.inf for m in methods}
+    spent = {m.name: 0.0 for m in methods}
+    results: dict[str, list] = {}
     gc.collect()
     gc.disable()
     try:
-        while repeats == 0 or (repeats < 7 and spent + best < budget):
-            results = []  # the previous repeat's arrays are freed before timing
-            start = time.perf_counter()
-            results = [method.solve(sweep) for sweep in sweeps]
-            elapsed = time.perf_counter() - start
-            best, spent, repeats = min(best, elapsed), spent + elapsed, repeats + 1
+        for round_ in range(7):
+            for method in methods:
+                if round_ and spent[method.name] + best[method.name] > budget:
+                    continue
+                results[method.name] = []  # the previous round's arrays are freed before timing
+                start = time.perf_counter()
+                results[method.name] = [method.solve(sweep) for sweep in work[method.name]]
+                elapsed = time.perf_counter() - start
+                best[method.name] = min(best[method.name], elapsed)
+                spent[method.name] += elapsed
     finally:
         gc.enable()
-    return best, results
+    return {name: (best[name], results[name]) for name in best}
 
 
-def measure(method: Method, sweeps: list[Sweep], budget: float) -> dict:
+def _record(method: Method, sweeps: list[Sweep], seconds: float, results: list) -> dict:
     """One record: time per value and the errors of ``method`` on ``sweeps``."""
-    if method.limit is not None:
-        sweeps = _subset(sweeps, method.limit)
-    seconds, results = _timed(method, sweeps, budget)
     n = sum(len(s.theta) for s in sweeps)
     errors = numpy.concatenate([angle_errors(s, *r) for s, r in zip(sweeps, results)])
     residuals = numpy.concatenate([closure_residual(s, *r) for s, r in zip(sweeps, results)])
@@ -520,10 +526,11 @@ def benchmark(sizes: Sequence[int] = FULL_SIZES, methods: Sequence[str] = METHOD
     records = []
     for size in sorted(sizes):
         sweeps = workload(size, seed, reference)
-        for method in ready:
-            if method.limit is not None and size != min(sizes):
-                continue
-            records.append(measure(method, sweeps, budget=0.5 if quick else 2.0))
+        running = [m for m in ready if m.limit is None or size == min(sizes)]
+        work = {m.name: sweeps if m.limit is None else _subset(sweeps, m.limit) for m in running}
+        timed = _timed(running, work, budget=0.5 if quick else 2.0)
+        for method in running:
+            records.append(_record(method, work[method.name], *timed[method.name]))
             _say(verbose, f"  {method.name:>18} N={records[-1]['n']:<8} {records[-1]['us_per_value']:.4g} us/value")
     _ratios(records)
     return records

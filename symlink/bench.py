@@ -248,17 +248,29 @@ class Unavailable(Exception):
     """A method that cannot run here (a missing optional dependency or compiler)."""
 
 
+def _keywords(function: Callable[..., dict], **extra) -> Callable[[Sweep], tuple]:
+    """A sweep solver from a function called as the generated ones are (keywords in, dict of arrays out)."""
+    def solve(sweep):
+        a, b, c, d = sweep.lengths
+        result = function(theta=sweep.theta, a=a, b=b, c=c, d=d, branch=sweep.branch, **extra)
+        return result["coupler"], result["rocker"]
+    return solve
+
+
+def _inlined(definitions) -> dict:
+    """``(symbol, expression)`` pairs in dependency order, each with the earlier ones substituted."""
+    whole: dict = {}
+    for symbol, expr in definitions:
+        whole[symbol] = expr.xreplace(whole)
+    return whole
+
+
 def _symlink(outputs: Sequence[str]):
     from .cache import generated_code
     from .scene import catalog_linkage
     function = generated_code(catalog_linkage("fourbar"), outputs).function
     rates = {"thetadot": CRANK_SPEED, "thetaddot": CRANK_ACCEL} if len(outputs) > 2 else {}
-
-    def solve(sweep):
-        a, b, c, d = sweep.lengths
-        result = function(theta=sweep.theta, a=a, b=b, c=c, d=d, branch=sweep.branch, **rates)
-        return result["coupler"], result["rocker"]
-    return solve
+    return _keywords(function, **rates)
 
 
 def _lambdify():
@@ -266,9 +278,7 @@ def _lambdify():
     from .position import ClampedSqrt
     from .scene import catalog_linkage
     program = catalog_linkage("fourbar").program(EVERYTHING)
-    whole: dict = {}
-    for symbol, expr in program.assignments:
-        whole[symbol] = expr.xreplace(whole)
+    whole = _inlined(program.assignments)
     expressions = [program.outputs[name].xreplace(whole).replace(ClampedSqrt, lambda x, _: sp.sqrt(x))
                    for name in EVERYTHING]
     function = sp.lambdify(program.arguments, expressions, modules="numpy", cse=False)
@@ -310,9 +320,7 @@ def _evalf():
     import sympy as sp
     from .scene import catalog_linkage
     linkage = catalog_linkage("fourbar")
-    whole: dict = {}
-    for symbol, expr in linkage.positions.items():
-        whole[symbol] = expr.xreplace(whole)
+    whole = _inlined(linkage.positions.items())
     beta, phi = (whole[q] for q in linkage.unknowns)
     symbols = linkage.inputs + linkage.parameters + linkage.branches
 
@@ -332,15 +340,9 @@ def _compiled():
         raise Unavailable("symlink.compiled is not available") from None
     from .scene import catalog_linkage
     try:
-        function = CompiledSolver(catalog_linkage("fourbar"), POSITIONS).function
+        return _keywords(CompiledSolver(catalog_linkage("fourbar"), POSITIONS).function)
     except CompilerUnavailable as error:
         raise Unavailable(f"no C compiler: {error}") from None
-
-    def solve(sweep):
-        a, b, c, d = sweep.lengths
-        result = function(theta=sweep.theta, a=a, b=b, c=c, d=d, branch=sweep.branch)
-        return result["coupler"], result["rocker"]
-    return solve
 
 
 def _hand_c():

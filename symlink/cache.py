@@ -17,6 +17,7 @@ silently (the memory cache still works).
 
 >>> import os, tempfile
 >>> os.environ["SYMLINK_CACHE"] = tempfile.mkdtemp()
+>>> clear_memory()  # as in a new process
 >>> from symlink.catalog import fourbar
 >>> code = generated_code(fourbar(), ["rocker"])
 >>> sorted(code.function(theta=0.0, a=20, b=66, c=56, d=80))

@@ -8,22 +8,17 @@ from pathlib import Path
 import numpy
 import pytest
 
+from cache_fixture import empty_cache  # noqa: F401 - a fixture
 from references import mp_fourbar, seed003_positions
 from symlink.analysis import crank_range
 from symlink.bench import (METHODS, SEED_LINKAGES, benchmark, hand_numpy, is_grashof, newton, reference_positions,
                            targets, workload)
-from symlink.cache import clear_memory
 from symlink.cli import main
 
 REQUIRED = {"symlink", "symlink-positions", "hand-numpy", "lambdify-nocse", "newton", "sympy-evalf"}
 
 
-@pytest.fixture(autouse=True)
-def own_cache(tmp_path, monkeypatch):
-    monkeypatch.setenv("SYMLINK_CACHE", str(tmp_path / "cache"))
-    clear_memory()
-    yield
-    clear_memory()
+pytestmark = pytest.mark.usefixtures("empty_cache")  # every test derives from scratch
 
 
 def has_scipy():

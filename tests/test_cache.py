@@ -11,6 +11,7 @@ import pytest
 import sympy as sp
 
 import symlink.cache as cache
+from cache_fixture import empty_cache  # noqa: F401 - a fixture
 from references import mp_fourbar
 from symlink.cache import cache_directory, cache_key, clear_memory, definition, generated_code
 from symlink.catalog import fourbar
@@ -23,12 +24,8 @@ SEED003 = dict(a=20.0, b=66.0, c=56.0, d=80.0)
 
 
 @pytest.fixture
-def folder(tmp_path, monkeypatch):
-    """An empty cache folder and an empty memory cache: a first run."""
-    monkeypatch.setenv("SYMLINK_CACHE", str(tmp_path / "cache"))
-    clear_memory()
-    yield tmp_path / "cache"
-    clear_memory()
+def folder(empty_cache):
+    return empty_cache
 
 
 def count_calls(monkeypatch, owner, name):

@@ -7,8 +7,8 @@ import re
 
 import pytest
 
+from cache_fixture import empty_cache  # noqa: F401 - a fixture
 from references import SEED003_LINKAGE, mp_fourbar
-from symlink.cache import clear_memory
 from symlink.cli import main
 
 SCENE = """\
@@ -27,12 +27,7 @@ d = 80
 """
 
 
-@pytest.fixture(autouse=True)
-def own_cache(tmp_path, monkeypatch):
-    monkeypatch.setenv("SYMLINK_CACHE", str(tmp_path / "cache"))
-    clear_memory()
-    yield
-    clear_memory()
+pytestmark = pytest.mark.usefixtures("empty_cache")  # every test derives from scratch
 
 
 def scene_file(tmp_path, outputs='["coupler", "rocker", "rocker_speed", "transmission"]', branch='"both"',

@@ -5,8 +5,8 @@ import numpy
 import pytest
 from hypothesis import given, settings, strategies as st
 
+from cache_fixture import empty_cache  # noqa: F401 - a fixture
 from references import mp_fourbar
-from symlink.cache import clear_memory
 from symlink.catalog import fourbar
 from symlink.scene import Scene, angle_outputs, catalog_linkage
 from symlink.vectors import acceleration, rate
@@ -15,13 +15,7 @@ SEED003 = dict(a=20.0, b=66.0, c=56.0, d=80.0)
 ANGLES = numpy.radians([0.0, 40.0, 135.0, 250.0])
 
 
-@pytest.fixture(autouse=True)
-def empty_cache(tmp_path, monkeypatch):
-    """Every test derives from scratch, in its own cache folder."""
-    monkeypatch.setenv("SYMLINK_CACHE", str(tmp_path / "cache"))
-    clear_memory()
-    yield
-    clear_memory()
+pytestmark = pytest.mark.usefixtures("empty_cache")  # every test derives from scratch
 
 
 def assignments(source: str) -> list[str]:

@@ -29,7 +29,7 @@ def positions(theta, a, d):
     Wx_1 = -a*numpy.cos(theta) + d
     Wy_1 = -a*numpy.sin(theta)
     phi = numpy.arctan2(-Wy_1, -Wx_1)
-    r = numpy.sqrt(Wx_1**2.0 + Wy_1**2.0)
+    r = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
     return {
         'rocker': numpy.broadcast_to(phi, shape),
         'slider': numpy.broadcast_to(r, shape),
@@ -51,7 +51,7 @@ def velocities(theta, a, d, thetadot=0.0):
     Wy_1 = -a*numpy.sin(theta)
     phi = numpy.arctan2(-Wy_1, -Wx_1)
     cse_0 = phi - theta
-    r = numpy.sqrt(Wx_1**2.0 + Wy_1**2.0)
+    r = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
     phidot = cse_1*numpy.cos(cse_0)/r
     rdot = cse_1*numpy.sin(cse_0)
     return {
@@ -72,19 +72,19 @@ def accelerations(theta, a, d, thetadot=0.0, thetaddot=0.0):
     """
     theta, a, d, thetadot, thetaddot = _as_arrays(theta, a, d, thetadot, thetaddot)
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(d), numpy.shape(thetadot), numpy.shape(thetaddot))
-    cse_4 = thetadot**2.0
+    cse_4 = numpy.square(thetadot)
     Wx_1 = -a*numpy.cos(theta) + d
     Wy_1 = -a*numpy.sin(theta)
     phi = numpy.arctan2(-Wy_1, -Wx_1)
     cse_1 = phi - theta
     cse_2 = a*numpy.cos(cse_1)
     cse_3 = a*numpy.sin(cse_1)
-    r = numpy.sqrt(Wx_1**2.0 + Wy_1**2.0)
+    r = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
     cse_0 = 1/(r)
     phidot = cse_0*cse_2*thetadot
     rdot = cse_3*thetadot
     phiddot = -cse_0*(-cse_2*thetaddot - cse_3*cse_4 + 2.0*phidot*rdot)
-    rddot = -cse_2*cse_4 + cse_3*thetaddot + phidot**2.0*r
+    rddot = -cse_2*cse_4 + cse_3*thetaddot + numpy.square(phidot)*r
     return {
         'rocker': numpy.broadcast_to(phi, shape),
         'slider': numpy.broadcast_to(r, shape),

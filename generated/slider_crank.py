@@ -78,7 +78,7 @@ def accelerations(theta, a, b, offset, branch=1, thetadot=0.0, thetaddot=0.0):
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(b), numpy.shape(offset), numpy.shape(branch), numpy.shape(thetadot), numpy.shape(thetaddot))
     cse_0 = a*numpy.cos(theta)
     cse_1 = a*numpy.sin(theta)
-    cse_7 = thetadot**2.0
+    cse_7 = numpy.square(thetadot)
     Wx_1 = -cse_0
     Wy_1 = -cse_1 + offset
     Delta_1 = _clamped_sqrt((-Wy_1 + b)*(Wy_1 + b), 2.0*b*(a + b + abs(offset)))
@@ -90,7 +90,7 @@ def accelerations(theta, a, b, offset, branch=1, thetadot=0.0, thetaddot=0.0):
     cse_5 = numpy.sin(cse_4)
     s = -Wx_1 + cse_2
     betadot = -cse_0*cse_3*thetadot
-    cse_8 = b*betadot**2.0
+    cse_8 = b*numpy.square(betadot)
     sdot = a*cse_5*cse_6*thetadot
     betaddot = cse_3*(-cse_0*thetaddot + cse_1*cse_7 + cse_8*numpy.sin(beta))
     sddot = cse_6*(a*cse_5*thetaddot - a*cse_7*numpy.cos(cse_4) - cse_8)

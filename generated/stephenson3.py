@@ -310,19 +310,19 @@ def _velocity_rhs(theta, a, b, c, d, e, f, g, h, alpha, delta, beta, mu, phi, et
 
 def _acceleration_rhs(theta, a, b, c, d, e, f, g, h, alpha, delta, beta, mu, phi, eta, betadot, mudot, phidot, etadot, thetadot, thetaddot):
     """Right-hand side of J qddot = r."""
-    cse_0 = betadot**2.0
+    cse_0 = numpy.square(betadot)
     cse_1 = b*cse_0
-    cse_2 = c*mudot**2.0
-    cse_3 = phidot**2.0
+    cse_2 = c*numpy.square(mudot)
+    cse_3 = numpy.square(phidot)
     cse_4 = cse_3*f
     cse_5 = a*numpy.sin(theta)
-    cse_6 = thetadot**2.0
+    cse_6 = numpy.square(thetadot)
     cse_7 = a*numpy.cos(theta)
     cse_8 = cse_5*thetaddot + cse_6*cse_7
     cse_9 = cse_5*cse_6 - cse_7*thetaddot
     cse_10 = alpha + beta
     cse_11 = cse_0*e
-    cse_12 = etadot**2.0*g
+    cse_12 = numpy.square(etadot)*g
     cse_13 = delta + phi
     cse_14 = cse_3*h
     return _stack([cse_1*numpy.cos(beta) + cse_2*numpy.cos(mu) - cse_4*numpy.cos(phi) + cse_8, cse_1*numpy.sin(beta) + cse_2*numpy.sin(mu) - cse_4*numpy.sin(phi) + cse_9, cse_11*numpy.cos(cse_10) + cse_12*numpy.cos(eta) - cse_14*numpy.cos(cse_13) + cse_8, cse_11*numpy.sin(cse_10) + cse_12*numpy.sin(eta) - cse_14*numpy.sin(cse_13) + cse_9])

@@ -96,6 +96,8 @@ class _Printer(NumPyPrinter):
     def _print_Pow(self, expr, rational=False):
         if expr.exp == -1:
             return f"1/{self.parenthesize(expr.base, 1000)}"
+        if expr.exp == 2:  # x*x, correctly rounded; a NumPy scalar's x**2.0 calls pow(), which is not
+            return f"numpy.square({self._print(expr.base)})"
         return super()._print_Pow(expr, rational=rational)
 
     def _print_Integer(self, expr):

@@ -61,7 +61,15 @@ closes the loop, and ``singular`` is True.
 (the toggle, to within rounding) the generated code returns ``singular`` True
 and speeds and accelerations that are not finite (inf or NaN): that is how
 the API says "singular".  Everywhere else in the reachable range they are
-finite.
+finite.  Where the angles are well conditioned (the bound's factor
+``kappa = P / w + P / (m sin mu)`` at most 100) the speeds are within
+``K eps kappa^2`` of the reference relative to ``max(|speed|, crank speed)``,
+and the accelerations relative to ``max(|accel|, w^2 + |al|)``: they divide
+by ``sin(mu)``, whose relative rounding error is about ``eps P / delta``,
+i.e. ``eps kappa^2``.  Nearer a toggle that error grows like
+``1 / |theta - theta_t|`` (faster for the accelerations), and within rounding
+of one (a toggle at a change point, where the exact rates stay bounded) only
+their finiteness is promised.
 
 Run ``python tests/test_stability.py`` to print the tables of the README's
 accuracy section.
@@ -78,7 +86,7 @@ import numpy
 import pytest
 from hypothesis import HealthCheck, assume, given, settings, strategies as st
 
-from references import mp_fourbar, mp_slider_crank
+from references import mp_fourbar, mp_slider_crank, seed002_positions, seed003_positions
 from symlink import catalog
 from symlink.solver import Solver
 
@@ -141,6 +149,14 @@ def error_bounds(a, b, c, d, geometry) -> tuple[float, float]:
         if s == 0 or w == 0:
             return math.inf, math.inf
         return float(L / w + L / (b * s)), float(L / w + L / (c * s))
+
+
+def rate_errors(got: dict, exact: dict) -> list[float]:
+    """Errors of the speeds relative to max(|speed|, crank speed), of the accelerations to max(|accel|, w^2 + |al|)."""
+    floors = (abs(CRANK_SPEED),) * 2 + (CRANK_SPEED**2 + abs(CRANK_ACCEL),) * 2
+    pairs = (("coupler_speed", "beta_speed"), ("rocker_speed", "phi_speed"),
+             ("coupler_accel", "beta_accel"), ("rocker_accel", "phi_accel"))
+    return [float(abs(got[k] - exact[r]) / max(abs(exact[r]), floor)) for (k, r), floor in zip(pairs, floors)]
 
 
 def closure_residual(a, b, c, d, theta, beta, phi) -> float:
@@ -255,6 +271,7 @@ def test_fourbar_inside_the_reachable_range(data, linkage, place):
             assert beta_error <= K * EPS * bound_beta and phi_error <= K * EPS * bound_phi
             if max(bound_beta, bound_phi) <= WELL_CONDITIONED:
                 assert max(beta_error, phi_error) < 1e-13
+                assert max(rate_errors(got, exact)) <= K * EPS * max(bound_beta, bound_phi) ** 2
         rates = [got[k] for k in ("coupler_speed", "rocker_speed", "coupler_accel", "rocker_accel")]
         if got["singular"]:  # the root is zero: only at a toggle, to within rounding
             assert geometry["defect"] <= 2 * TOLERANCE * geometry["size"]
@@ -296,6 +313,18 @@ def test_fourbar_scaling_by_a_power_of_two_changes_no_bit(data, linkage, place, 
         for key, value in got.items():
             assert scaled[key] == value or (math.isnan(scaled[key]) and math.isnan(value)), key
 
+
+@settings(STRESS, max_examples=100)
+@given(linkage=fourbars(), thetas=st.lists(st.floats(-math.pi, math.pi), min_size=1, max_size=20))
+def test_fourbar_a_sweep_and_single_calls_give_the_same_bits(linkage, thetas):
+    """Array and scalar evaluation take the same path (x*x, not pow(x, 2.0), for squares)."""
+    a, b, c, d, _ = linkage
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        sweep = generated.accelerations(numpy.array(thetas), a, b, c, d, 1, CRANK_SPEED, CRANK_ACCEL)
+    for i, theta in enumerate(thetas):
+        single = solve_fourbar(theta, a, b, c, d, 1)
+        for key, value in single.items():
+            assert sweep[key][i] == value or (math.isnan(value) and math.isnan(sweep[key][i])), key
 
 @STRESS
 @given(data=st.data(), linkage=fourbars(), place=st.sampled_from(PLACES), exponent=st.floats(-6, 6))
@@ -513,7 +542,7 @@ def _random_angle(rng, a, b, c, d, place, distance=None):
 def measure_bound(count: int = 2000, seed: int = 1) -> dict:
     """Largest error / (eps * bound factor), residual, and well-conditioned error over random draws."""
     rng = numpy.random.default_rng(seed)
-    worst = dict(ratio=0.0, residual=0.0, well_conditioned=0.0, samples=0)
+    worst = dict(ratio=0.0, residual=0.0, well_conditioned=0.0, rates=0.0, rates_ratio=0.0, samples=0)
     while worst["samples"] < count:
         a, b, c, d, _ = _random_fourbar(rng)
         place = PLACES[rng.integers(len(PLACES))]
@@ -536,9 +565,112 @@ def measure_bound(count: int = 2000, seed: int = 1) -> dict:
                                     closure_residual(a, b, c, d, theta, got["coupler"], got["rocker"]))
             if max(bounds) <= WELL_CONDITIONED:
                 worst["well_conditioned"] = max(worst["well_conditioned"], *errors)
+                rates = rate_errors(got, mp_fourbar(a, b, c, d, theta, branch, CRANK_SPEED, CRANK_ACCEL))
+                worst["rates"] = max(worst["rates"], *rates)
+                worst["rates_ratio"] = max(worst["rates_ratio"], max(rates) / (EPS * max(bounds) ** 2))
         worst["samples"] += 1
     return worst
 
 
+def toggle_table(count: int = 200, seed: int = 2, distances=(1e-3, 1e-6, 1e-9, 1e-12)) -> list[dict]:
+    """Largest angle errors at a given distance inside a toggle: symlink, the bound, two textbook forms.
+
+    Random linkages with toggles (link ratios up to 3, unit scale), both
+    branches; the half-angle form is seed 003's eq. 2, the arccos form seed
+    002's "imaginary line" (branch +1 only), both from tests/references.py.
+    """
+    rng = numpy.random.default_rng(seed)
+    rows = []
+    for distance in distances:
+        worst = dict(distance=distance, symlink=0.0, bound=0.0, half_angle=0.0, arccos=0.0)
+        samples = 0
+        while samples < count:
+            a, b, c, d, _ = _random_fourbar(rng, ("double-rocker", "triple-rocker", "rocker-crank"), 0.5, 0.0)
+            place = ("extended toggle", "folded toggle")[rng.integers(2)]
+            theta = _random_angle(rng, a, b, c, d, place, distance)
+            if theta is None:
+                continue
+            geometry = fourbar_geometry(a, b, c, d, theta)
+            if geometry["sin_mu"] == 0:
+                continue
+            samples += 1
+            bounds = error_bounds(a, b, c, d, geometry)
+            worst["bound"] = max(worst["bound"], K * EPS * max(bounds))
+            for branch in (1, -1):
+                exact = mp_fourbar(a, b, c, d, theta, branch)
+                got = solve_fourbar(theta, a, b, c, d, branch)
+                worst["symlink"] = max(worst["symlink"], angle_error(got["coupler"], exact["beta"]),
+                                       angle_error(got["rocker"], exact["phi"]))
+                with numpy.errstate(invalid="ignore", divide="ignore"):
+                    beta, phi = seed003_positions(a, b, c, d, theta, branch)
+                worst["half_angle"] = max(worst["half_angle"], _error_or_inf(beta, exact["beta"]),
+                                          _error_or_inf(phi, exact["phi"]))
+                if branch == 1:
+                    with numpy.errstate(invalid="ignore"):
+                        _, _, beta, rocker_back, _ = seed002_positions(d, a, b, c, 0.0, theta)
+                    worst["arccos"] = max(worst["arccos"], _error_or_inf(beta, exact["beta"]),
+                                          _error_or_inf(rocker_back - math.pi, exact["phi"]))
+        rows.append(worst)
+    return rows
+
+
+def _error_or_inf(value, exact) -> float:
+    value = float(value)
+    return angle_error(value, exact) if math.isfinite(value) else math.inf
+
+
+def half_angle_zero_table(count: int = 300, seed: int = 3) -> dict:
+    """Largest errors within 1e-12 to 1e-3 rad of seed 003's A = 0 (rocker at 180 deg): symlink, half-angle."""
+    rng = numpy.random.default_rng(seed)
+    worst = dict(symlink=0.0, half_angle=0.0, samples=0)
+    while worst["samples"] < count:
+        a, b, c, d, _ = _random_fourbar(rng, GRASHOF_CLASSES[:4] + ("triple-rocker",), 0.5, 0.0)
+        theta = _random_angle(rng, a, b, c, d, "half-angle A = 0")
+        if theta is None or fourbar_geometry(a, b, c, d, theta)["sin_mu"] < 0.1:
+            continue
+        worst["samples"] += 1
+        for branch in (1, -1):
+            exact = mp_fourbar(a, b, c, d, theta, branch)
+            got = solve_fourbar(theta, a, b, c, d, branch)
+            with numpy.errstate(invalid="ignore", divide="ignore"):
+                beta, phi = seed003_positions(a, b, c, d, theta, branch)
+            worst["symlink"] = max(worst["symlink"], angle_error(got["rocker"], exact["phi"]))
+            worst["half_angle"] = max(worst["half_angle"], _error_or_inf(phi, exact["phi"]))
+    return worst
+
+
+def scaling_table(count: int = 2000, seed: int = 4) -> dict:
+    """Power-of-two scalings: outputs that differ in any bit; factors 10^e: largest change / (eps kappa)."""
+    rng = numpy.random.default_rng(seed)
+    worst = dict(samples=0, bits_differing=0, ratio=0.0)
+    while worst["samples"] < count:
+        a, b, c, d, _ = _random_fourbar(rng)
+        place = PLACES[rng.integers(len(PLACES))]
+        theta = rng.uniform(-math.pi, math.pi) if place == "anywhere" else _random_angle(rng, a, b, c, d, place)
+        if theta is None:
+            continue
+        geometry = fourbar_geometry(a, b, c, d, theta)
+        if geometry["defect"] <= 2 * TOLERANCE * geometry["size"]:
+            continue
+        worst["samples"] += 1
+        bounds = error_bounds(a, b, c, d, geometry)
+        two, ten = 2.0 ** rng.integers(-40, 41), 10 ** rng.uniform(-6, 6)
+        for branch in (1, -1):
+            got = solve_fourbar(theta, a, b, c, d, branch)
+            by_two = solve_fourbar(theta, a * two, b * two, c * two, d * two, branch)
+            worst["bits_differing"] += sum(by_two[k] != v and not (math.isnan(v) and math.isnan(by_two[k]))
+                                           for k, v in got.items())
+            by_ten = solve_fourbar(theta, a * ten, b * ten, c * ten, d * ten, branch)
+            for key, bound in zip(("coupler", "rocker"), bounds):
+                worst["ratio"] = max(worst["ratio"], angle_error(by_ten[key], mp.mpf(got[key])) / (EPS * bound))
+    return worst
+
+
 if __name__ == "__main__":
-    print(measure_bound())
+    print("bound:", measure_bound(45000 // 3, seed=2))
+    print("| distance inside a toggle (rad) | symlink | stated bound | half-angle (seed 003) | arccos (seed 002) |")
+    for row in toggle_table():
+        print(f"| {row['distance']:.0e} | {row['symlink']:.1e} | {row['bound']:.1e} | "
+              f"{row['half_angle']:.1e} | {row['arccos']:.1e} |")
+    print("A = 0:", half_angle_zero_table())
+    print("scaling:", scaling_table())

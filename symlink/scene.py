@@ -49,7 +49,6 @@ from __future__ import annotations
 
 import argparse
 import inspect
-import sys
 from functools import cached_property, lru_cache
 from pathlib import Path
 from typing import Mapping, Sequence
@@ -62,6 +61,11 @@ from .catalog import CATALOG
 from .linkage import Linkage, Program
 from .solver import Solver, crank_speeds
 from .vectors import acceleration, rate
+
+try:
+    from tomllib import loads as toml_loads
+except ImportError:  # Python 3.10: the strict subset reader
+    from .minitoml import loads as toml_loads
 
 __all__ = ["Scene", "SceneFile", "catalog_linkage", "angle_outputs", "read_scene", "scene_from_mapping",
            "add_command", "run"]
@@ -285,15 +289,10 @@ def read_scene(path: str | Path) -> SceneFile:
     except (OSError, UnicodeDecodeError) as error:
         raise ValueError(f"cannot read scene file {path}: {getattr(error, 'strerror', None) or error}") from None
     try:
-        if sys.version_info >= (3, 11):
-            import tomllib
-            try:
-                data = tomllib.loads(text)
-            except tomllib.TOMLDecodeError as error:
-                raise ValueError(f"not valid TOML: {error}") from None
-        else:  # pragma: no cover - exercised on Python 3.10 only
-            from .minitoml import loads
-            data = loads(text)
+        try:
+            data = toml_loads(text)
+        except ValueError as error:  # tomllib.TOMLDecodeError is a ValueError
+            raise ValueError(f"not valid TOML: {error}") from None
         return scene_from_mapping(data)
     except ValueError as error:
         raise ValueError(f"{path}: {error}") from None

@@ -158,3 +158,16 @@ def test_missing_file_and_bad_option(tmp_path, capsys):
     assert status == 2 and "cannot read scene file" in err and err.count("\n") == 1
     status, _, err = run(capsys, "run", scene_file(tmp_path), "--format", "xml")
     assert status == 2 and err.count("\n") == 1
+
+
+def test_the_python_310_reader_gives_the_same_table(tmp_path, capsys, monkeypatch):
+    import symlink.scene
+    from symlink.minitoml import loads
+    path = scene_file(tmp_path)
+    _, expected, _ = run(capsys, "run", path, "--format", "csv")
+    monkeypatch.setattr(symlink.scene, "toml_loads", loads)
+    status, out, _ = run(capsys, "run", path, "--format", "csv")
+    assert status == 0 and out == expected
+    path.write_text(path.read_text() + "[input]\n")
+    status, _, err = run(capsys, "run", path)
+    assert status == 2 and "not valid TOML: line 14: [input] is defined twice" in err

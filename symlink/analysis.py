@@ -34,6 +34,7 @@ from functools import lru_cache
 import numpy
 import sympy as sp
 
+from .angles import wrap_angle
 from .catalog import fourbar
 from .linkage import Linkage
 from .position import TOLERANCE
@@ -238,15 +239,6 @@ def grashof(a: float, b: float, c: float, d: float, tolerance: float = 1e-12) ->
 @lru_cache(maxsize=None)
 def _fourbar_solver(outputs: tuple[str, ...]) -> Solver:
     return Solver(fourbar(), list(outputs))
-
-
-def wrap_angle(angle: float) -> float:
-    """An angle (radians) wrapped to (-pi, pi].
-
-    >>> wrap_angle(-math.pi), wrap_angle(3 * math.pi / 2)
-    (3.141592653589793, -1.5707963267948966)
-    """
-    return math.pi - (math.pi - angle) % (2 * math.pi)
 
 
 def triangle_angle(opposite, side1, side2):

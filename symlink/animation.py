@@ -26,7 +26,8 @@ from typing import Callable
 import numpy
 
 from .catalog import fourbar
-from .cli import finite, to_radians, wrap
+from .angles import to_radians, wrap
+from .cli import finite
 from .files import write_atomic
 from .linkage import Linkage
 from .plot import (MechanismDrawing, TURN_SAMPLES, add_length_options, check_assembles, check_coupler_point,

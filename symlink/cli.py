@@ -9,12 +9,14 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import re
 import sys
 from typing import Collection, Sequence
 
 import numpy
 
 from .analysis import crank_range
+from .angles import from_radians, half_turn, to_radians, wrap  # noqa: F401 - wrap is used by the commands
 from .catalog import fourbar
 from .solver import Solver, check_lengths, crank_speeds
 
@@ -29,7 +31,16 @@ class UsageError(ValueError):
     """Bad input from the command line."""
 
 
+_NUMBER = r"(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?"
+
+
 class _Parser(argparse.ArgumentParser):
+    """argparse with one-line errors, and negative numbers (-1e-3, -70,0) taken as values, not options."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = re.compile(rf"^-{_NUMBER}(,\s*[-+]?{_NUMBER})*$")
+
     def error(self, message: str) -> None:  # one line, exit status 2, no usage dump
         raise UsageError(message)
 
@@ -48,12 +59,6 @@ def finite(text: str) -> float:
 def number_list(text: str) -> list[float]:
     """Comma-separated finite numbers."""
     return [finite(item) for item in text.split(",") if item.strip()]
-
-
-def wrap(angle, half_turn: float = math.pi):
-    """Angles wrapped to (-half_turn, half_turn]: (-pi, pi] or (-180, 180]."""
-    angle = numpy.asarray(angle, dtype=float)
-    return half_turn - numpy.mod(half_turn - angle, 2 * half_turn)
 
 
 def add_sweep_options(parser: argparse.ArgumentParser) -> None:
@@ -92,17 +97,6 @@ def sweep_angles(args: argparse.Namespace) -> numpy.ndarray:
         raise UsageError(f"{count} crank angles is too many; use a larger --step")
     return start + step * numpy.arange(count)
 
-
-def to_radians(values, units: str):
-    return numpy.radians(values) if units == "deg" else numpy.asarray(values, dtype=float)
-
-
-def from_radians(values, units: str):
-    return numpy.degrees(values) if units == "deg" else numpy.asarray(values, dtype=float)
-
-
-def half_turn(units: str) -> float:
-    return 180.0 if units == "deg" else math.pi
 
 
 def branches(args: argparse.Namespace) -> list[int]:
@@ -200,7 +194,7 @@ def assemble_rows(angles, results: dict, columns: list[str], units: str, spans: 
               f"(reachable crank range: {spans})", file=sys.stderr)
     if singular:
         print(f"symlink: singular (toggle) position at crank angles {listed(singular)} {units}: "
-              "rates and accelerations are not defined there (nan)", file=sys.stderr)
+              "rates and accelerations are not defined there (inf or nan)", file=sys.stderr)
     return rows
 
 

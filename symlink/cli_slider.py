@@ -61,7 +61,8 @@ def add_command(commands: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from .cli import assemble_rows, branches, describe_spans, print_rows, sweep_angles, to_radians
+    from .angles import to_radians
+    from .cli import assemble_rows, branches, describe_spans, print_rows, sweep_angles
 
     check_lengths(crank=args.crank, conrod=args.conrod)
     angles = sweep_angles(args)

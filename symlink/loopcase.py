@@ -205,7 +205,8 @@ def add_command(commands) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from .cli import from_radians, half_turn, json_number, print_rows, to_radians, wrap
+    from .angles import from_radians, half_turn, to_radians, wrap
+    from .cli import json_number, print_rows
     draw_loop = None
     if args.plot:
         try:

@@ -33,7 +33,8 @@ import sympy as sp
 
 from .analysis import crank_range, transmission_curve, transmission_range
 from .catalog import fourbar
-from .cli import branches as chosen_branches, finite, number_list, to_radians, wrap
+from .angles import to_radians, wrap
+from .cli import branches as chosen_branches, finite, number_list
 from .files import write_atomic
 from .linkage import Linkage
 from .solver import Solver, check_lengths

@@ -35,7 +35,6 @@ from __future__ import annotations
 import argparse
 import json
 import math
-import re
 import sys
 from dataclasses import dataclass, replace
 
@@ -351,9 +350,6 @@ def add_command(commands) -> None:
                               f"(default {MAX_LINK_RATIO:g})")
     command.add_argument("--format", choices=["table", "json"], default="table")
     command.set_defaults(run=run)
-    # Let "--crank-pivot -70,0" through: argparse takes words that start with "-" for options
-    # unless they look like a single negative number.
-    command._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?(,.*)?$")
 
 
 def run(args: argparse.Namespace) -> int:

@@ -26,7 +26,8 @@ import numpy
 
 from .analysis import crank_range, grashof
 from .catalog import fourbar
-from .cli import describe_spans, finite, to_radians, wrap
+from .angles import to_radians, wrap
+from .cli import describe_spans, finite
 from .plot import MechanismDrawing, TRANSMISSION_LIMITS, add_length_options, extent, figure_path, save_figure
 from .solver import Solver, check_lengths
 

@@ -114,3 +114,9 @@ def test_console_entry_point_runs_as_a_module():
     done = subprocess.run([sys.executable, "-m", "symlink", *SEED003, "--crank", "-3"],
                           capture_output=True, text=True)
     assert done.returncode == 2 and "Traceback" not in done.stderr
+
+
+def test_negative_numbers_are_values_not_options(capsys):
+    status, out, _ = run(capsys, *SEED003, "--angles", "-90,-1e-3", "--branch", "1", "--format", "csv")
+    assert status == 0
+    assert [float(r["crank"]) for r in csv.DictReader(io.StringIO(out))] == [-90.0, -0.001]

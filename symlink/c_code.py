@@ -181,7 +181,9 @@ def c_function(program: Program, name: str, doc: str = "") -> CFunction:
     outputs = list(code.outputs)
     output_parameters = [names(c_identifier(o, "output") if o not in arguments else f"{o}_out") for o in outputs]
     flags = [is_flag(e) for e in code.outputs.values()]
-    assembled, count, index, offset, out = (names(w) for w in ("assembled", "n", "i", "k", "out"))
+    assembled, count, start, size, index, out = (names(w) for w in ("assembled", "n", "start", "m", "i", "out"))
+    blocks = [names(f"{a}_block") for a in arguments]
+    views = [names(f"{a}_at") for a in arguments]
     kernel = f"symlink_{name}_at"
 
     inputs = ",\n".join(f"    const double *{a}, ptrdiff_t {s}" for a, s in zip(arguments, steps))
@@ -206,14 +208,22 @@ def c_function(program: Program, name: str, doc: str = "") -> CFunction:
     lines += [f"    return {finite};", "}", ""]
     restricted = "SYMLINK_LOOP " + signature.replace("double *", "double *restrict ").replace(
         "unsigned char *", "unsigned char *restrict ")
-    lines += [restricted, "{", f"    for (size_t {index} = 0; {index} < {count}; ++{index}) {{",
-              f"        const ptrdiff_t {offset} = (ptrdiff_t){index};",
-              f"        double {out}[{len(outputs)}];"]
-    reads = ", ".join([f"{a}[{offset} * {s}]" for a, s in zip(arguments, steps)] + [out])
-    lines.append(f"        {assembled}[{index}] = (unsigned char){kernel}({reads});")
-    lines += [f"        {o}[{index}] = (unsigned char)({out}[{k}] != 0.0);" if flag else f"        {o}[{index}] = {out}[{k}];"
+    # Blocks of configurations: each argument's values of a block are contiguous (the array
+    # itself at step 1, else copied), so that the inner loop reads them without strides.
+    lines += [restricted, "{"]
+    if arguments:
+        lines.append("    double " + ", ".join(f"{b}[SYMLINK_BLOCK]" for b in blocks) + ";")
+    lines += [f"    for (size_t {start} = 0; {start} < {count}; {start} += SYMLINK_BLOCK) {{",
+              f"        const size_t {size} = {count} - {start} < SYMLINK_BLOCK ? {count} - {start} : SYMLINK_BLOCK;"]
+    lines += [f"        const double *{v} = symlink_block({b}, {a}, {s}, {start}, {size});"
+              for a, s, b, v in zip(arguments, steps, blocks, views)]
+    lines += [f"        for (size_t {index} = 0; {index} < {size}; ++{index}) {{",
+              f"            double {out}[{len(outputs)}];"]
+    reads = ", ".join([f"{v}[{index}]" for v in views] + [out])
+    lines.append(f"            {assembled}[{start} + {index}] = (unsigned char){kernel}({reads});")
+    lines += [f"            {o}[{start} + {index}] = " + (f"(unsigned char)({out}[{k}] != 0.0);" if flag else f"{out}[{k}];")
               for k, (o, flag) in enumerate(zip(output_parameters, flags))]
-    lines += ["    }", "}"]
+    lines += ["        }", "    }", "}"]
     return CFunction(name, tuple(arguments), tuple(outputs), tuple(output_parameters), tuple(flags),
                      prototype, "\n".join(lines) + "\n")
 
@@ -237,6 +247,31 @@ _PRELUDE = """\
 #endif
 
 static const double symlink_tolerance = {tolerance!r};
+
+/* Configurations a loop function works on at a time. */
+#define SYMLINK_BLOCK 128
+
+/* The values of one argument for configurations start to start + m - 1, contiguous:
+ * the array itself where its step is 1, else copied into block. A step of 0 repeats
+ * one value, copied on the first block only. */
+static inline const double *symlink_block(double *block, const double *x, ptrdiff_t step, size_t start, size_t m)
+{{
+    if (step == 1) {{
+        return x + start;
+    }}
+    if (step == 0) {{
+        if (start == 0) {{
+            for (size_t j = 0; j < SYMLINK_BLOCK; ++j) {{
+                block[j] = *x;
+            }}
+        }}
+        return block;
+    }}
+    for (size_t j = 0; j < m; ++j) {{
+        block[j] = x[(ptrdiff_t)(start + j) * step];
+    }}
+    return block;
+}}
 
 /* sqrt(x), taking x >= -tolerance*scale as rounding at a toggle (0) and anything lower,
  * or NaN, as no assembly (NaN). The same as sqrt(fmax(x, 0.0)) where x is not NaN. */

@@ -7,7 +7,8 @@ the loop:
 
 * ``hand_fourbar_positions`` (``hand-c`` in the benchmark): the triangle B, C,
   D solved with atan2 and Heron's product, derived on paper from the geometry,
-  with the same clamped square root as symlink (NaN where it cannot close).
+  with the same clamped square root as symlink: rounding tolerated at a toggle
+  in proportion to 8 b c w (a + b + c + w + d), NaN where it cannot close.
   Let W = B - D (length w).  C lies at the distance (b^2 - c^2 + w^2)/(2w)
   from B along D - B and sqrt(Heron)/(2w) to its left (branch +1), so
   ``b e^{i beta}`` is parallel to ``-(b^2 - c^2 + w^2) W + branch sqrt(H) n``
@@ -52,8 +53,8 @@ SYMLINK_LOOP void hand_fourbar_positions(size_t n, const double *theta, double a
         const double wx = a * cos(theta[i]) - d, wy = a * sin(theta[i]);   /* W = B - D */
         const double w2 = wx * wx + wy * wy, w = sqrt(w2);
         const double heron = (s + w) * (s - w) * (t + w) * (w - t);
-        const double scale = (s + w) * (s + w);
-        const double root = heron >= -TOLERANCE * (scale * scale) ? sqrt(heron > 0.0 ? heron : 0.0) : NAN;
+        const double scale = 8 * b * c * w * (a + s + w + d);   /* a flat triangle's rounding */
+        const double root = heron >= -TOLERANCE * scale ? sqrt(heron > 0.0 ? heron : 0.0) : NAN;
         const double along_b = bc + w2, along_c = w2 - bc, across = branch * root;
         beta[i] = atan2(-wy * along_b - wx * across, -wx * along_b + wy * across);
         phi[i] = atan2(wy * along_c - wx * across, wx * along_c + wy * across);

@@ -46,10 +46,11 @@ def build(tmp_path, header: str, source: str, name: str) -> ctypes.CDLL:
     return ctypes.CDLL(str(tmp_path / f"{name}.so"))
 
 
-def call(library: ctypes.CDLL, function, values: dict, steps: dict | None = None) -> dict[str, numpy.ndarray]:
+def call(library: ctypes.CDLL, function, values: dict, steps: dict | None = None,
+         count: int | None = None) -> dict[str, numpy.ndarray]:
     """Call a generated loop on 1-d arrays (step 1) or scalars (step 0) written independently of symlink.compiled."""
     arrays = [numpy.ascontiguousarray(values[a], dtype=numpy.float64) for a in function.arguments]
-    count = max(a.size for a in arrays)
+    count = max(a.size for a in arrays) if count is None else count
     outputs = [numpy.full(count, 7, dtype=numpy.uint8) if flag else numpy.full(count, 12345.0)
                for flag in function.flags]
     assembled = numpy.full(count, 7, dtype=numpy.uint8)
@@ -94,13 +95,13 @@ def test_steps_broadcast_scalars_arrays_and_strides(tmp_path):
     linkage = catalog_linkage("fourbar")
     function = c_function(linkage.program(["coupler", "rocker_speed"]), "fb", "")
     library = build(tmp_path, *c_library([function], "fb"), "fb")
-    theta = numpy.linspace(-3, 3, 21)
-    lengths = numpy.linspace(15, 25, 21)
-    spread = numpy.zeros(42)
-    spread[::2] = theta  # theta at a step of 2 elements
+    count = 301  # more than one block of the loop (SYMLINK_BLOCK configurations)
+    theta = numpy.linspace(-3, 3, count)
+    lengths = numpy.linspace(15, 25, count)
+    spread = numpy.zeros(3 * count)
+    spread[::3] = theta  # theta at a step of 3 elements
     values = dict(theta=spread, a=lengths, b=66.0, c=56.0, d=80.0, branch=-1.0, thetadot=10.5)
-    actual = call(library, function, values, steps={"theta": 2})
-    actual = {k: v[:21] for k, v in actual.items()}  # the call's n is the largest size, 42
+    actual = call(library, function, values, steps={"theta": 3}, count=count)
     expected = load_numpy_module(numpy_module([("fb", linkage.program(["coupler", "rocker_speed"]), "")]))["fb"](
         theta=theta, a=lengths, b=66.0, c=56.0, d=80.0, branch=-1.0, thetadot=10.5)
     assert_agree(actual, {k: numpy.asarray(v) for k, v in expected.items()}, {"coupler"}, 1e-12)

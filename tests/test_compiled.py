@@ -102,7 +102,7 @@ def test_compiled_matches_the_50_digit_reference(compiler):
 def test_broadcasting_views_and_scalars_like_the_numpy_solver(compiler):
     linkage = catalog_linkage("fourbar")
     fast, reference = compiled_solver(linkage, ["rocker", "C_x"]), Solver(linkage, ["rocker", "C_x"])
-    theta = numpy.linspace(-3.0, 3.0, 40)
+    theta = numpy.linspace(-3.0, 3.0, 400)  # views longer than one block of the C loop (128)
     cases = [
         dict(theta=0.3, a=20, b=66, c=56, d=80),                                   # all scalars: 0-d
         dict(theta=theta, a=20, b=66, c=56, d=80, branch=-1),                       # the usual sweep

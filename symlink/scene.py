@@ -59,6 +59,7 @@ import sympy as sp
 from .cache import GeneratedCode, generated_code
 from .catalog import CATALOG
 from .linkage import Linkage, Program
+from .numeric import is_angle
 from .solver import Solver, crank_speeds
 from .vectors import acceleration, rate
 
@@ -89,10 +90,6 @@ def catalog_linkage(name: str) -> Linkage:
     return CATALOG[name]()
 
 
-def _is_angle(linkage: Linkage, coordinate: sp.Symbol) -> bool:
-    return any(coordinate in vector.angle.free_symbols for loop in linkage.loops for _, vector in loop.terms)
-
-
 def angle_outputs(linkage: Linkage, outputs: Sequence[str]) -> set[str]:
     """The outputs that are angles: coordinates that turn a vector, and extras made by an inverse trig function.
 
@@ -105,7 +102,7 @@ def angle_outputs(linkage: Linkage, outputs: Sequence[str]) -> set[str]:
     for name in outputs:
         expr = linkage.output(name)
         if isinstance(expr, sp.Symbol) and expr in linkage.coordinates:
-            if _is_angle(linkage, expr):
+            if is_angle(linkage, expr):
                 found.add(name)
         elif name in linkage.extras:
             while isinstance(expr, sp.Abs):
@@ -219,7 +216,8 @@ def scene_from_mapping(data: Mapping) -> SceneFile:
     >>> round(float(numpy.degrees(found.scene.evaluate()[1]["rocker"][0])), 2)
     110.74
     """
-    from .cli import UsageError, sweep_angles, to_radians
+    from .angles import to_radians
+    from .cli import UsageError, sweep_angles
 
     data = _table(dict(data), "", TOP_KEYS)
     if "linkage" not in data:
@@ -252,7 +250,7 @@ def scene_from_mapping(data: Mapping) -> SceneFile:
         if names[name].is_positive and parameters[name] <= 0:
             raise ValueError(f"parameters.{name} must be a positive length, got {value!r}")
 
-    if len(linkage.inputs) != 1 or not _is_angle(linkage, linkage.inputs[0]):
+    if len(linkage.inputs) != 1 or not is_angle(linkage, linkage.inputs[0]):
         raise ValueError(f"scene files drive linkages with one input angle; {linkage.name} has "
                          f"{', '.join(map(str, linkage.inputs))}")
     driven = linkage.inputs[0]

@@ -43,7 +43,7 @@ from sympy.logic.boolalg import BooleanAtom, BooleanFunction
 from sympy.printing.c import C99CodePrinter
 
 from . import __version__
-from .codegen import straight_line
+from .codegen import StraightLine, straight_line
 from .linkage import Program
 from .position import TOLERANCE
 
@@ -167,14 +167,22 @@ def _comment(text: str, indent: str = "") -> str:
                      ) + (" */" if len(lines) == 1 else f"\n{indent} */")
 
 
+def named_straight_line(program: Program, name: str, identifier, language: str) -> tuple[StraightLine, list[str]]:
+    """The program after CSE and its argument names, checked by ``identifier`` for ``language``.
+
+    ``ValueError`` for a name the language cannot take or a program without outputs.
+    """
+    identifier(name, "function name")
+    if not program.outputs:
+        raise ValueError(f"{name}: a {language} function needs at least one output")
+    code = straight_line(program)
+    return code, [identifier(s.name, "argument") for s in code.arguments]
+
+
 def c_function(program: Program, name: str, doc: str = "") -> CFunction:
     """The C loop function (and its inline kernel) that computes the program's outputs."""
-    c_identifier(name, "function name")
-    if not program.outputs:
-        raise ValueError(f"{name}: a C function needs at least one output")
-    code = straight_line(program)
+    code, arguments = named_straight_line(program, name, c_identifier, "C")
     printer = _CPrinter()
-    arguments = [c_identifier(s.name, "argument") for s in code.arguments]
     locals_ = [c_identifier(s.name, "symbol") for s, _ in code.assignments]
     names = _Names(arguments + locals_)
     steps = [names(f"{a}_step") for a in arguments]

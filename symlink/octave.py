@@ -27,8 +27,8 @@ import sympy as sp
 from sympy.printing.octave import OctaveCodePrinter
 
 from . import __version__
-from .c_code import is_flag
-from .codegen import _defaults, straight_line
+from .c_code import is_flag, named_straight_line
+from .codegen import _defaults
 from .linkage import Program
 from .position import TOLERANCE
 
@@ -99,12 +99,8 @@ def _arguments_behind(code, expr: sp.Expr) -> set[sp.Symbol]:
 
 def octave_function(program: Program, name: str, doc: str = "") -> str:
     """The text of ``<name>.m``: one vectorised function computing the program's outputs, then ``assembled``."""
-    octave_identifier(name, "function name")
-    if not program.outputs:
-        raise ValueError(f"{name}: an Octave function needs at least one output")
-    code = straight_line(program)
+    code, arguments = named_straight_line(program, name, octave_identifier, "MATLAB/Octave")
     printer = _OctavePrinter()
-    arguments = [octave_identifier(s.name, "argument") for s in code.arguments]
     taken = set(arguments) | {octave_identifier(s.name, "symbol") for s, _ in code.assignments} | {name}
     variables = []
     for output in code.outputs:

@@ -31,6 +31,7 @@ same flags as the generated C, and marked ``SYMLINK_LOOP`` as its loops are
 from __future__ import annotations
 
 import ctypes
+import functools
 
 import numpy
 
@@ -81,8 +82,12 @@ SYMLINK_LOOP void hand_fourbar_halfangle(size_t n, const double *theta, double a
 _FUNCTIONS = ("hand_fourbar_positions", "hand_fourbar_halfangle")
 
 
+@functools.lru_cache(maxsize=1)
 def hand_library() -> ctypes.CDLL:
-    """:data:`HAND_C_SOURCE` compiled with the flags of the generated C (``CompilerUnavailable`` without a compiler)."""
+    """:data:`HAND_C_SOURCE` compiled with the flags of the generated C (``CompilerUnavailable`` without a compiler).
+
+    Loaded once a process, as a caller of a C library would.
+    """
     from .compiled import compile_shared
     library = compile_shared(HAND_C_SOURCE)
     for name in _FUNCTIONS:

@@ -149,3 +149,12 @@ def test_target_lines_state_the_ratios():
     assert "fsolve (100 values) / symlink-positions at N=1000, per value: 375x (target >= 100x: held)" in lines
     records[1]["us_per_value"] = 0.15
     assert "target <= 1.3x: MISSED" in "\n".join(targets(records))
+
+
+def test_stacked_call_gives_the_per_sweep_results():
+    from symlink.bench import hand_numpy, stacked, unstacked, workload
+    sweeps = workload(90, seed=3, reference=10)
+    together = unstacked(hand_numpy(*(lambda s: (s.theta, *s.lengths, s.branch))(stacked(sweeps))), sweeps)
+    for sweep, (beta, phi) in zip(sweeps, together):
+        alone = hand_numpy(sweep.theta, *sweep.lengths, sweep.branch)
+        assert numpy.array_equal(alone[0], beta) and numpy.array_equal(alone[1], phi)

@@ -11,7 +11,7 @@ import json
 import math
 import re
 import sys
-from typing import Collection, Sequence
+from typing import Collection, Mapping, Sequence
 
 import numpy
 
@@ -61,8 +61,8 @@ def number_list(text: str) -> list[float]:
     return [finite(item) for item in text.split(",") if item.strip()]
 
 
-def add_sweep_options(parser: argparse.ArgumentParser) -> None:
-    """The input sweep and output options shared by the table commands."""
+def add_sweep_options(parser: argparse.ArgumentParser, branch: bool = True) -> None:
+    """The input sweep and output options shared by the table commands (``branch=False``: no ``--branch``)."""
     parser.add_argument("--crank-speed", type=finite, default=0.0, metavar="W", help="rad/s (default 0)")
     parser.add_argument("--crank-accel", type=finite, default=0.0, metavar="AL",
                         help="rad/s^2, uniform from the first angle (default 0)")
@@ -70,7 +70,8 @@ def add_sweep_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--stop", type=finite, help="last crank angle, exclusive (default 360 deg)")
     parser.add_argument("--step", type=finite, help="crank angle step (default 10 deg)")
     parser.add_argument("--angles", type=number_list, metavar="LIST", help="comma-separated crank angles")
-    parser.add_argument("--branch", choices=["+1", "1", "-1", "both"], default="both")
+    if branch:
+        parser.add_argument("--branch", choices=["+1", "1", "-1", "both"], default="both")
     parser.add_argument("--units", choices=["deg", "rad"], default="deg")
     parser.add_argument("--format", choices=["table", "csv", "json"], default="table")
 
@@ -110,7 +111,7 @@ def format_number(value: float) -> str:
 
 def json_number(value):
     """A number for JSON: full precision, and null for NaN (JSON has no NaN)."""
-    if isinstance(value, int):
+    if isinstance(value, (int, str)):  # a branch: a sign, or one sign a loop ("+1/-1")
         return value
     return float(value) if math.isfinite(value) else None
 
@@ -128,7 +129,8 @@ def print_rows(rows: list[dict], columns: list[str], fmt: str, out=None) -> None
         width = max(10, *(len(c) + 1 for c in columns))
         print("".join(f"{c:>{width}}" for c in columns), file=out)
         for row in rows:
-            cells = [f"{row[c]:+d}" if c == "branch" else f"{row[c]:.4f}" for c in columns]
+            cells = [(row[c] if isinstance(row[c], str) else f"{row[c]:+d}") if c == "branch" else f"{row[c]:.4f}"
+                     for c in columns]
             print("".join(f"{cell:>{width}}" for cell in cells), file=out)
 
 
@@ -159,19 +161,24 @@ def run_fourbar(args: argparse.Namespace) -> int:
     return 0
 
 
-def assemble_rows(angles, results: dict, columns: list[str], units: str, spans: str,
+def assemble_rows(angles, results: dict, columns: list[str], units: str, spans: str | Mapping[object, str],
                   angle_columns: Collection[str] = ANGLE_COLUMNS) -> list[dict]:
     """Table rows (angle, then branch) of the assembled results; the rest named on stderr.
+
+    ``spans`` describes the reachable crank range; a mapping gives one for each
+    branch of ``results`` (they differ between branches), and the angles that
+    cannot be assembled are then named branch by branch.
 
     Angles in ``columns`` are converted to ``units`` and wrapped; speeds and
     accelerations stay per second.  Singular rows (a toggle, where the rates
     are not defined) are kept with NaN rates and named on stderr too.
     """
-    rows, unassembled, singular = [], set(), set()
+    rows, singular = [], set()
+    unassembled: dict[object, set[int]] = {sign: set() for sign in results}
     for i, angle in enumerate(angles):
         for sign, result in results.items():
             if not result["assembled"][i]:
-                unassembled.add(i)
+                unassembled[sign].add(i)
                 continue
             row = {columns[0]: float(wrap(angle, half_turn(units))), "branch": sign}
             for column in columns[2:]:
@@ -184,14 +191,21 @@ def assemble_rows(angles, results: dict, columns: list[str], units: str, spans: 
                     singular.add(i)
                 row[column] = value
             rows.append(row)
+    by_branch = isinstance(spans, Mapping)
     if not rows:
+        known = "; ".join(f"branch {sign}: {text}" for sign, text in spans.items()) if by_branch else spans
         raise ValueError(f"the linkage cannot be assembled at any requested crank angle "
-                         f"(reachable crank range: {spans})")
+                         f"(reachable crank range: {known})")
     def listed(indices):
         return ", ".join(f"{float(wrap(angles[i], half_turn(units))):.6g}" for i in sorted(indices))
-    if unassembled:
-        print(f"symlink: cannot be assembled at crank angles {listed(unassembled)} {units} "
-              f"(reachable crank range: {spans})", file=sys.stderr)
+    if by_branch:
+        for sign, indices in unassembled.items():
+            if indices:
+                print(f"symlink: branch {sign} cannot be assembled at crank angles {listed(indices)} {units} "
+                      f"(reachable crank range: {spans[sign]})", file=sys.stderr)
+    elif any(unassembled.values()):
+        print(f"symlink: cannot be assembled at crank angles {listed(set().union(*unassembled.values()))} "
+              f"{units} (reachable crank range: {spans})", file=sys.stderr)
     if singular:
         print(f"symlink: singular (toggle) position at crank angles {listed(singular)} {units}: "
               "rates and accelerations are not defined there (inf or nan)", file=sys.stderr)
@@ -208,6 +222,8 @@ def build_parser() -> argparse.ArgumentParser:
     table.set_defaults(run=run_fourbar)
     from . import cli_slider, plan  # symlink slider-crank, symlink plan NAME
     cli_slider.add_command(commands)
+    from . import cli_tables  # symlink inverted-slider-crank, watt2, stephenson3, fivebar
+    cli_tables.add_commands(commands)
     plan.add_command(commands)
     from . import animation, plot, view  # light: Matplotlib is imported when something is drawn
     plot.add_fourbar_options(table)

@@ -8,21 +8,17 @@
 
 Angles (crank, conrod) in degrees or radians, wrapped; the slider position in
 the length unit, its speed and acceleration per second and per second squared.
-Branch +1 is the assembly with the larger slider position.
+Branch +1 is the assembly with the larger slider position.  The command is
+built by :mod:`symlink.cli_tables` from the catalog entry and :data:`SLIDER_TABLE`.
 """
 from __future__ import annotations
 
 import argparse
 import math
 
-from .catalog import slider_crank
-from .solver import Solver, check_lengths, crank_speeds
+from .cli_tables import NUMBER, Option, Table, add_table_command
 
-__all__ = ["SLIDER_COLUMNS", "slider_crank_range", "add_command", "run"]
-
-SLIDER_COLUMNS = ["crank", "branch", "conrod", "slider", "conrod_speed", "slider_speed",
-                  "conrod_accel", "slider_accel"]
-SLIDER_ANGLE_COLUMNS = {"crank", "conrod"}
+__all__ = ["SLIDER_TABLE", "slider_crank_range", "add_command"]
 
 
 def slider_crank_range(a: float, b: float, offset: float) -> list[tuple[float, float]]:
@@ -47,32 +43,16 @@ def slider_crank_range(a: float, b: float, offset: float) -> list[tuple[float, f
     return [(math.asin(low), math.asin(high)), (math.pi - math.asin(high), math.pi - math.asin(low))]
 
 
+SLIDER_TABLE = Table(
+    "slider-crank", "positions, speeds and accelerations of a slider-crank",
+    (Option("crank", "a", "A", "crank length AB"),
+     Option("conrod", "b", "B", "connecting rod length BC"),
+     Option("offset", "offset", "E", "the slider's line is y = offset (any sign)", kind=NUMBER, default=0.0)),
+    notes="Branch +1 is the assembly with the larger slider position.\nThe slider column is its x on the "
+          "line y = offset, in the length unit; its speed and acceleration per second and per second squared.",
+    reachable=lambda values: slider_crank_range(values["a"], values["b"], values["offset"]))
+
+
 def add_command(commands: argparse._SubParsersAction) -> None:
     """Register ``symlink slider-crank``."""
-    from .cli import add_sweep_options, finite
-
-    table = commands.add_parser("slider-crank", help="positions, speeds and accelerations of a slider-crank")
-    table.add_argument("--crank", type=finite, required=True, metavar="A", help="crank length AB")
-    table.add_argument("--conrod", type=finite, required=True, metavar="B", help="connecting rod length BC")
-    table.add_argument("--offset", type=finite, default=0.0, metavar="E",
-                       help="the slider's line is y = offset (any sign; default 0)")
-    add_sweep_options(table)
-    table.set_defaults(run=run)
-
-
-def run(args: argparse.Namespace) -> int:
-    from .angles import to_radians
-    from .cli import assemble_rows, branches, describe_spans, print_rows, sweep_angles
-
-    check_lengths(crank=args.crank, conrod=args.conrod)
-    angles = sweep_angles(args)
-    theta = to_radians(angles, args.units)
-    speeds = crank_speeds(theta, args.crank_speed, args.crank_accel)
-    solver = Solver(slider_crank(), SLIDER_COLUMNS[2:])
-    results = {sign: solver(theta=theta, a=args.crank, b=args.conrod, offset=args.offset, branch=sign,
-                            thetadot=speeds, thetaddot=args.crank_accel)
-               for sign in branches(args)}
-    spans = describe_spans(slider_crank_range(args.crank, args.conrod, args.offset), args.units)
-    rows = assemble_rows(angles, results, SLIDER_COLUMNS, args.units, spans, angle_columns=SLIDER_ANGLE_COLUMNS)
-    print_rows(rows, SLIDER_COLUMNS, args.format)
-    return 0
+    add_table_command(commands, SLIDER_TABLE)

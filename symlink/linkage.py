@@ -173,7 +173,11 @@ class Linkage:
 
     @cached_property
     def singular(self) -> sp.Expr:
-        """Output ``"singular"``: True where a loop's root is zero (a toggle), where the rates are not finite."""
+        """Output ``"singular"``: True where a loop's square root is zero (a toggle: its two branches meet).
+
+        The generated rates divide by that root, so they are inf or NaN exactly there and
+        finite elsewhere.  Loops with one assembly (no root) never set it.
+        """
         roots = [s for step in self.plan for s, e in step.intermediates.items() if isinstance(e, ClampedSqrt)]
         return sp.Or(*(sp.Eq(root, 0) for root in roots))
 
@@ -193,7 +197,7 @@ class Linkage:
             names += [role, role + SPEED_SUFFIX, role + ACCEL_SUFFIX]
         for point in self.points:
             names += [f"{point}_x", f"{point}_y"]
-        return names + list(self.extras) + ["singular"]
+        return names + list(self.extras) + (["singular"] if self.has_closed_form else [])
 
     def output(self, name: str) -> sp.Expr:
         """What an output name stands for: a coordinate or rate symbol, or an expression of them."""

@@ -221,6 +221,9 @@ def fourbars(draw, classes=GRASHOF_CLASSES):
     return a, b, c, d, kind
 
 
+#: Crank angles anywhere: 0, or at least 1e-12 rad from it (nearer, B is within 1e-12 of the
+#: frame line and a rhombus's B within 1e-12 of D, where products of such distances underflow).
+ANY_CRANK_ANGLE = st.one_of(st.just(0.0), st.floats(1e-12, math.pi), st.floats(-math.pi, -1e-12))
 PLACES = ("extended toggle", "folded toggle", "crank-frame", "crank-coupler", "half-angle A = 0", "anywhere")
 
 
@@ -238,7 +241,7 @@ def crank_angle(draw, a, b, c, d, place: str, outside: bool | None = None) -> fl
         return float(centre + draw(st.sampled_from((-1, 1))) * 10 ** draw(st.floats(-12, -3)))
     centres = toggle_angles(a, b, c, d).get(place, [])
     if not centres:
-        return draw(st.floats(-math.pi, math.pi))
+        return draw(ANY_CRANK_ANGLE)
     centre = draw(st.sampled_from(centres))
     distance, side = 10 ** draw(st.floats(-12, -3)), draw(st.sampled_from((-1, 1)))
     with mp.workdps(50):
@@ -391,6 +394,13 @@ def slider_geometry(a, b, offset, theta) -> dict:
                     perimeter=a + b + abs(offset))
 
 
+def slider_residual(a, b, offset, theta, beta, s) -> float:
+    """|a e^{i theta} + b e^{i beta} - s - i offset| / max(a, b, |offset|), at 50 digits."""
+    with mp.workdps(50):
+        a, b, offset, theta, beta, s = (mp.mpf(v) for v in (a, b, offset, theta, beta, s))
+        return float(abs(a * mp.expj(theta) + b * mp.expj(beta) - s - 1j * offset) / max(a, b, abs(offset)))
+
+
 @st.composite
 def slider_cranks(draw):
     """(a, b, offset): 1e-6 to 1e6 in scale, ratios up to 1e4, offset zero or of either sign."""
@@ -418,7 +428,7 @@ def slider_crank_angle(draw, a, b, offset, place: str, outside: bool | None = No
         else:
             centres = []
         if not centres:
-            return draw(st.floats(-math.pi, math.pi))
+            return draw(ANY_CRANK_ANGLE)
         centre = draw(st.sampled_from(centres))
         distance, side = mp.mpf(10 ** draw(st.floats(-12, -3))), draw(st.sampled_from((-1, 1)))
         theta = float(centre + side * distance)
@@ -447,9 +457,7 @@ def test_slider_crank_inside_the_reachable_range(data, linkage, place):
     for branch in (1, -1):
         got = solve_slider_crank(theta, a, b, offset, branch)
         assert got["assembled"] and math.isfinite(got["conrod"]) and math.isfinite(got["slider"])
-        with mp.workdps(50):
-            gap = a * mp.expj(theta) + b * mp.expj(got["conrod"]) - got["slider"] - 1j * mp.mpf(offset)
-            assert abs(gap) < 1e-12 * max(a, b, abs(offset))
+        assert slider_residual(a, b, offset, theta, got["conrod"], got["slider"]) < 1e-12
         exact = mp_slider_crank(a, b, offset, theta, branch, CRANK_SPEED, CRANK_ACCEL)
         assert angle_error(got["conrod"], exact["beta"]) <= beta_bound
         assert abs(got["slider"] - exact["s"]) <= s_bound
@@ -474,9 +482,7 @@ def test_slider_crank_outside_the_reachable_range_is_reported_never_a_number(dat
             assert not got["assembled"] and not got["singular"]
             assert all(math.isnan(v) for k, v in got.items() if k not in ("assembled", "singular"))
         elif got["assembled"]:
-            with mp.workdps(50):
-                gap = a * mp.expj(theta) + b * mp.expj(got["conrod"]) - got["slider"] - 1j * mp.mpf(offset)
-                assert abs(gap) < 1e-12 * max(a, b, abs(offset))
+            assert slider_residual(a, b, offset, theta, got["conrod"], got["slider"]) < 1e-12
 
 
 @settings(STRESS, max_examples=200)
@@ -663,6 +669,34 @@ def scaling_table(count: int = 2000, seed: int = 4) -> dict:
             by_ten = solve_fourbar(theta, a * ten, b * ten, c * ten, d * ten, branch)
             for key, bound in zip(("coupler", "rocker"), bounds):
                 worst["ratio"] = max(worst["ratio"], angle_error(by_ten[key], mp.mpf(got[key])) / (EPS * bound))
+    return worst
+
+
+def measure_slider_bound(count: int = 3000, seed: int = 5) -> dict:
+    """Largest slider-crank errors / their stated bounds, near toggles, dead centres and anywhere."""
+    rng = numpy.random.default_rng(seed)
+    worst = dict(beta=0.0, s=0.0, samples=0)
+    while worst["samples"] < count:
+        scale = 10 ** rng.uniform(-6, 6)
+        a, b = 10 ** rng.uniform(-2, 2, 2) * scale
+        offset = float(rng.choice((0, 1, -1)) * 10 ** rng.uniform(-2, 2) * scale)
+        with mp.workdps(50):
+            sines = [(mp.mpf(offset) - s * mp.mpf(b)) / mp.mpf(a) for s in (1, -1)]
+            centres = [t for x in sines if abs(x) <= 1 for t in (mp.asin(x), mp.pi - mp.asin(x))]
+            if not centres:
+                continue
+            theta = float(centres[rng.integers(len(centres))] + rng.choice((1, -1)) * 10 ** rng.uniform(-12, -3))
+        geometry = slider_geometry(a, b, offset, theta)
+        if geometry["defect"] <= 0:
+            continue
+        worst["samples"] += 1
+        for branch in (1, -1):
+            got = solve_slider_crank(theta, a, b, offset, branch)
+            exact = mp_slider_crank(a, b, offset, theta, branch)
+            with mp.workdps(50):
+                P, root = geometry["perimeter"], geometry["root"]
+                worst["beta"] = max(worst["beta"], float(angle_error(got["conrod"], exact["beta"]) * root / (EPS * P)))
+                worst["s"] = max(worst["s"], float(abs(got["slider"] - exact["s"]) / (EPS * P * (1 + b / root))))
     return worst
 
 

@@ -41,8 +41,9 @@ from .loops import Loop, LoopCase, Unknown
 __all__ = ["ClampedSqrt", "LoopSolution", "solve_loop", "TOLERANCE"]
 
 #: Relative size below which a negative square-root argument is rounding, not
-#: a configuration that cannot be assembled (a few units in the last place of
-#: the longest length involved).
+#: a configuration that cannot be assembled: with the scales the cases give
+#: (see ``_rounding_size``), inputs within ``TOLERANCE`` times the loop's size of
+#: a toggle are taken as at the toggle (about 45 units in the last place).
 TOLERANCE = 1e-14
 
 

@@ -31,7 +31,7 @@ angle ``psi_B`` at B changes by ``dw cos(psi_D) / (b sin mu)``,
 ``db cos(mu) / (b sin mu)`` and ``dc / (b sin mu)``: at most
 ``eps P / (b sin mu)`` each; likewise at D with c.  The coupler angle is the
 direction of B -> D plus ``psi_B``, the rocker's the same direction plus
-``pi - psi_D``.  K = 4 covers the few ulps (measured: at most 1.14 in 45,000
+``pi - psi_D``.  K = 4 covers the few ulps (measured: at most 1.14 in 55,000
 draws; see the README's accuracy section, made by running this file).
 
 Near a toggle ``sin(mu)`` vanishes like the square root of the triangle's
@@ -40,8 +40,8 @@ folded one): Heron gives ``sin(mu) ~ sqrt(2 w_t delta / (b c))`` with
 ``w_t = b + c`` or ``|b - c|``, and ``delta ~ (a d |sin(theta_t)| / w_t)
 |theta - theta_t|`` grows linearly with the crank's distance to the toggle
 ``theta_t``.  So the bound, and the error, grow like
-``eps / sqrt(|theta - theta_t|)``: about 1e-10 rad at 1e-12 rad from a toggle
-of a well-proportioned linkage, 1e-14 at 1e-3.  That is the conditioning of
+``eps / sqrt(|theta - theta_t|)``: up to about 1e-9 rad at 1e-12 rad from a
+toggle of a linkage with link ratios up to 3, 4e-14 at 1e-3 (measured).  That is the conditioning of
 the problem (the data's own rounding moves the exact answer that much), not a
 weakness of the formulas: the half-angle form of seed 003 is worse, see the
 README.
@@ -53,16 +53,16 @@ nearly has at a toggle, where the coupler and rocker turn together.
 **Outside the reachable range** the solvers report ``assembled`` False and NaN.
 Within ``TOLERANCE`` (1e-14) times the loop's size of a toggle
 (``a + b + c + d + w``, the size of the rounding in the triangle's defect)
-the input is taken as at the toggle: the result is the toggle position and
-closes the loop, and ``singular`` is True.
+the input is taken as at the toggle: the result is the toggle position (to
+rounding, ``singular`` True where the root comes out zero) and closes the loop.
 
 **Singular configurations.**  The rates divide by the loop's root
 (``sin(beta - phi) = -branch Delta / (2 b c)``), so where the root is zero
 (the toggle, to within rounding) the generated code returns ``singular`` True
 and speeds and accelerations that are not finite (inf or NaN): that is how
 the API says "singular".  Everywhere else in the reachable range they are
-finite.  Where the angles are well conditioned (the bound's factor
-``kappa = P / w + P / (m sin mu)`` at most 100) the speeds are within
+finite.  Where the angles are well conditioned (``kappa``, the larger of the
+bound's two factors, at most 100) the speeds are within
 ``K eps kappa^2`` of the reference relative to ``max(|speed|, crank speed)``,
 and the accelerations relative to ``max(|accel|, w^2 + |al|)``: they divide
 by ``sin(mu)``, whose relative rounding error is about ``eps P / delta``,
@@ -94,7 +94,7 @@ ROOT = pathlib.Path(__file__).resolve().parent.parent
 EPS = float(numpy.finfo(float).eps)
 #: The constant of the stated error bound (module docstring).
 K = 4.0
-#: Well conditioned: the bound's factor (P/w + P/(m sin mu)) at most this; error within 1e-13 rad there.
+#: Well conditioned: P/w + P/(min(b, c) sin mu) at most this; angle errors within 1e-13 rad there.
 WELL_CONDITIONED = 100.0
 #: The generated code's rounding tolerance at a toggle (symlink.position.TOLERANCE, restated).
 TOLERANCE = 1e-14

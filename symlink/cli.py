@@ -39,7 +39,7 @@ class _Parser(argparse.ArgumentParser):
 
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
-        self._negative_number_matcher = re.compile(rf"^-{_NUMBER}(,\s*[-+]?{_NUMBER})*$")
+        self._negative_number_matcher = re.compile(rf"^-{_NUMBER}(,\s*([-+]?{_NUMBER}|both))*$")  # -1,both
 
     def error(self, message: str) -> None:  # one line, exit status 2, no usage dump
         raise UsageError(message)

@@ -392,7 +392,7 @@ def _methods(quick: bool) -> dict[str, Callable[[], Method]]:
         "fsolve": lambda: Method("fsolve", _fsolve(), limit=200 if quick else 1000, note="default xtol"),
         "newton": lambda: Method("newton", _newton(), batched=True),
         "sympy-evalf": lambda: Method("sympy-evalf", _evalf(), limit=10 if quick else 60),
-        "symlink-c": lambda: Method("symlink-c", _compiled(), batched=True),
+        "symlink-c": lambda: Method("symlink-c", _compiled()),  # per sweep, like hand-c
         "hand-c": lambda: Method("hand-c", _hand_c()),
     }
 

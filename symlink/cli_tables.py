@@ -20,7 +20,8 @@ range is known in closed form.  Everything else follows from the linkage:
 * a linkage without a closed form is solved by the generated Newton solver
   (:mod:`symlink.numeric`), continued along the sweep from an assembly at the
   first crank angle: the one nearest ``--guess``, or by default the first (in
-  order of the first unknown's angle) that continues over the whole sweep.
+  the order the entry lists them: Stephenson III by coupler angle) that
+  continues over the whole sweep.
 
 >>> print(", ".join(table_columns(catalog_linkage("watt2"))))
 crank, branch, coupler, rocker, coupler2, output, coupler_speed, rocker_speed, coupler2_speed, output_speed, coupler_accel, rocker_accel, coupler2_accel, output_accel
@@ -220,8 +221,9 @@ def add_table_command(commands: argparse._SubParsersAction, table: Table) -> arg
         command.add_argument("--guess", type=_guess, metavar="NAME=ANGLE,...",
                              help=f"start from the assembly nearest these angles at the first crank angle "
                                   f"(names: {names}; any of them; in --units)")
-        command.add_argument("--list-assemblies", action="store_true",
-                             help="print the assemblies found at the first crank angle and exit")
+        if table.assemblies is not None:
+            command.add_argument("--list-assemblies", action="store_true",
+                                 help="print the assemblies found at the first crank angle and exit")
     command.set_defaults(run=lambda args: run_table(table, args))
     return command
 
@@ -342,11 +344,13 @@ def _print_assemblies(table: Table, linkage: Linkage, values: dict, angles, args
     from .cli import print_rows
 
     theta = float(to_radians(angles[0], args.units))
-    columns = [_label(linkage, q) for q in (linkage.inputs[0],) + linkage.unknowns]
-    rows = [{_label(linkage, q): float(wrap(from_radians(({linkage.inputs[0].name: theta} | found)[q.name],
-                                                         args.units), half_turn(args.units)))
-             for q in (linkage.inputs[0],) + linkage.unknowns}
-            for found in table.assemblies(theta, values)]
+    shown = (linkage.inputs[0],) + linkage.unknowns
+    columns = [_label(linkage, q) for q in shown]
+    rows = []
+    for found in table.assemblies(theta, values):
+        radians = {linkage.inputs[0].name: theta, **found}
+        rows.append({_label(linkage, q): float(wrap(from_radians(radians[q.name], args.units), half_turn(args.units)))
+                     for q in shown})
     print_rows(rows, columns, args.format)
 
 

@@ -16,6 +16,7 @@ Python installation.  A cache folder that cannot be written is skipped
 silently (the memory cache still works).
 
 >>> import os, tempfile
+>>> previous = os.environ.get("SYMLINK_CACHE")
 >>> os.environ["SYMLINK_CACHE"] = tempfile.mkdtemp()
 >>> clear_memory()  # as in a new process
 >>> from symlink.catalog import fourbar
@@ -24,7 +25,7 @@ silently (the memory cache still works).
 ['assembled', 'rocker']
 >>> (cache_directory() / f"{code.key}.json").is_file()
 True
->>> del os.environ["SYMLINK_CACHE"]
+>>> _ = os.environ.pop("SYMLINK_CACHE") if previous is None else os.environ.update(SYMLINK_CACHE=previous)
 """
 from __future__ import annotations
 

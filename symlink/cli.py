@@ -37,9 +37,16 @@ _NUMBER = r"(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?"
 class _Parser(argparse.ArgumentParser):
     """argparse with one-line errors, and negative numbers (-1e-3, -70,0) taken as values, not options."""
 
-    def __init__(self, *args, **kwargs):
+    def __init__(self, *args, populate: Callable[[argparse.ArgumentParser], None] | None = None, **kwargs):
         super().__init__(*args, **kwargs)
         self._negative_number_matcher = re.compile(rf"^-{_NUMBER}(,\s*([-+]?{_NUMBER}|both))*$")  # -1,both
+        self._populate = populate  # adds a subcommand's arguments when it is used, not at start-up
+
+    def parse_known_args(self, args=None, namespace=None):
+        if self._populate is not None:
+            populate, self._populate = self._populate, None
+            populate(self)
+        return super().parse_known_args(args, namespace)
 
     def error(self, message: str) -> None:  # one line, exit status 2, no usage dump
         raise UsageError(message)

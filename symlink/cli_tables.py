@@ -192,12 +192,22 @@ def _description(table: Table, linkage: Linkage) -> str:
 
 
 def add_table_command(commands: argparse._SubParsersAction, table: Table) -> argparse.ArgumentParser:
-    """Register the command of ``table``; returns its parser."""
+    """Register the command of ``table``; returns its parser.
+
+    The linkage is built, and the command's options added, only when the
+    command is used: every other command starts without that symbolic work.
+    """
+    return commands.add_parser(table.linkage, help=table.summary,
+                               formatter_class=argparse.RawDescriptionHelpFormatter,
+                               populate=lambda command: _add_options(command, table))
+
+
+def _add_options(command: argparse.ArgumentParser, table: Table) -> None:
+    """The options of ``table``'s command, from its catalog linkage."""
     from .cli import add_sweep_options, finite
 
     linkage = catalog_linkage(table.linkage)
-    command = commands.add_parser(table.linkage, help=table.summary, description=_description(table, linkage),
-                                  formatter_class=argparse.RawDescriptionHelpFormatter)
+    command.description = _description(table, linkage)
     for option in table.options:
         default = "" if option.default is None else f"; default {option.default:g}"
         command.add_argument(f"--{option.name}", type=finite, required=option.default is None,
@@ -225,7 +235,6 @@ def add_table_command(commands: argparse._SubParsersAction, table: Table) -> arg
             command.add_argument("--list-assemblies", action="store_true",
                                  help="print the assemblies found at the first crank angle and exit")
     command.set_defaults(run=lambda args: run_table(table, args))
-    return command
 
 
 def _values(table: Table, linkage: Linkage, args: argparse.Namespace) -> dict[str, float]:

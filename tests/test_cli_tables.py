@@ -428,3 +428,16 @@ def test_bad_input_one_line_exit_2(capsys, argv):
     status, out, err = run(capsys, *argv)
     assert status == 2 and out == ""
     assert err.startswith("symlink: error: ") and err.count("\n") == 1
+
+
+def test_commands_build_their_linkage_only_when_used(monkeypatch, capsys):
+    import symlink.cli_tables as tables
+    from symlink.cli import build_parser
+
+    def refuse(name):
+        raise AssertionError(f"{name} built at start-up")
+    monkeypatch.setattr(tables, "catalog_linkage", refuse)
+    parser = build_parser()  # every command registered, no linkage built
+    assert parser.parse_args(["plan", "fourbar"]).command == "plan"
+    with pytest.raises(AssertionError, match="watt2 built"):
+        parser.parse_args(["watt2", "--help"])

@@ -32,7 +32,7 @@ import sympy as sp
 from .loops import Loop
 from .motion import loop_rates
 from .position import ClampedSqrt, LoopSolution, solve_loop
-from .vectors import Vector, VectorSum, acceleration, rate
+from .vectors import Vector, VectorSum, acceleration, expression, rate
 
 __all__ = ["Linkage", "Program"]
 
@@ -77,7 +77,7 @@ class Linkage:
         self.unknowns = tuple(unknowns)
         self.points = dict(points or {})
         self.roles = dict(roles or {})
-        self.extras = {k: sp.sympify(v) for k, v in (extras or {}).items()}
+        self.extras = {k: expression(v) for k, v in (extras or {}).items()}
         coordinates = set(self.inputs) | set(self.unknowns)
         if len(coordinates) != len(self.inputs) + len(self.unknowns):
             raise ValueError("a coordinate is listed twice among inputs and unknowns")

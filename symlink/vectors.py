@@ -27,9 +27,26 @@ from typing import Iterable
 import sympy as sp
 
 __all__ = [
-    "Vector", "VectorSum", "coordinates", "lengths", "rate", "acceleration",
+    "Vector", "VectorSum", "expression", "coordinates", "lengths", "rate", "acceleration",
     "time_derivative",
 ]
+
+
+def expression(value) -> sp.Expr:
+    """A SymPy expression from a number or an expression, never from text (no parsing, no eval).
+
+    >>> expression(2), expression(sp.pi / 2)
+    (2, pi/2)
+    >>> expression("a + 1")
+    Traceback (most recent call last):
+    ValueError: give a number or a SymPy expression, not text: 'a + 1'
+    """
+    if isinstance(value, str):
+        raise ValueError(f"give a number or a SymPy expression, not text: {value!r}")
+    try:
+        return sp.sympify(value, strict=True)
+    except sp.SympifyError:
+        raise ValueError(f"not a number or a SymPy expression: {value!r}") from None
 
 
 def coordinates(names: str) -> tuple[sp.Symbol, ...]:
@@ -60,7 +77,7 @@ def time_derivative(expr: sp.Expr, coordinates: Iterable[sp.Symbol]) -> sp.Expr:
     coordinate's rate symbol differentiates to its acceleration symbol, so
     applying this twice gives second derivatives.
     """
-    expr = sp.sympify(expr)
+    expr = expression(expr)
     chain = {}
     for q in coordinates:
         chain[q] = rate(q)
@@ -87,8 +104,8 @@ class Vector:
     name: str = ""
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "length", sp.sympify(self.length))
-        object.__setattr__(self, "angle", sp.sympify(self.angle))
+        object.__setattr__(self, "length", expression(self.length))
+        object.__setattr__(self, "angle", expression(self.angle))
 
     @property
     def x(self) -> sp.Expr:

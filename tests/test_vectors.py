@@ -49,3 +49,11 @@ def test_time_derivative_matches_sympy_functions_of_time():
     theirs = theirs.subs({q.diff(t, 2): acceleration(theta), r.diff(t, 2): acceleration(s)})
     theirs = theirs.subs({q.diff(t): rate(theta), r.diff(t): rate(s)}).subs({q: theta, r: s})
     assert sp.expand(ours - theirs) == 0
+
+
+def test_text_is_never_parsed():
+    import pytest
+    with pytest.raises(ValueError, match="not text"):
+        Vector("__import__('os').system('true')", 0)
+    with pytest.raises(ValueError, match="not text"):
+        time_derivative("a*cos(theta)", [])

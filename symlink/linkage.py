@@ -34,10 +34,20 @@ from .motion import loop_rates
 from .position import ClampedSqrt, LoopSolution, solve_loop
 from .vectors import Vector, VectorSum, acceleration, expression, rate
 
-__all__ = ["Linkage", "Program"]
+__all__ = ["Linkage", "Program", "is_branch_name"]
 
+BRANCH = "branch"
 SPEED_SUFFIX = "_speed"
 ACCEL_SUFFIX = "_accel"
+
+
+def is_branch_name(name: str) -> bool:
+    """Whether an argument name is a branch sign (``branch``, ``branch_<loop>``).
+
+    >>> is_branch_name("branch_ABCD"), is_branch_name("b")
+    (True, False)
+    """
+    return name == BRANCH or name.startswith(BRANCH + "_")
 
 
 @dataclass(frozen=True)
@@ -88,15 +98,24 @@ class Linkage:
         if parameters is None:
             parameters = sorted(found - coordinates, key=lambda s: s.name)
         self.parameters = tuple(parameters)
-        self.branches: tuple[sp.Symbol, ...] = tuple(
-            step.branch for step in self.plan if step.branch is not None) if self.has_closed_form else ()
+        if 2 * len(self.loops) != len(self.unknowns):
+            self.plan  # raises, saying how many unknowns each loop has
+            raise ValueError(f"{name}: {len(self.loops)} loops give {2 * len(self.loops)} equations "
+                             f"for {len(self.unknowns)} unknowns")
+
+    @cached_property
+    def branches(self) -> tuple[sp.Symbol, ...]:
+        """The branch symbols (+1 or -1 each), one a loop with two assemblies, in plan order."""
+        if not self.has_closed_form:
+            return ()
+        return tuple(step.branch for step in self.plan if step.branch is not None)
 
     @property
     def coordinates(self) -> tuple[sp.Symbol, ...]:
         return self.inputs + self.unknowns
 
     def _branch_symbol(self, loop: Loop) -> sp.Symbol:
-        return sp.Symbol("branch" if len(self.loops) == 1 else f"branch_{loop.name}", integer=True)
+        return sp.Symbol(BRANCH if len(self.loops) == 1 else f"{BRANCH}_{loop.name}", integer=True)
 
     @cached_property
     def plan(self) -> tuple[LoopSolution, ...]:

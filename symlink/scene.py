@@ -167,7 +167,7 @@ class Scene:
                    if name not in merged and argument.default is inspect.Parameter.empty]
         if missing:
             raise ValueError(f"{self.linkage.name} needs values for {', '.join(missing)}")
-        return {sign: self.solver(**merged, **{b.name: sign for b in self.linkage.branches})
+        return {sign: self.solver(**merged, **{name: sign for name in self.solver.branches})
                 for sign in self.signs}
 
     def __repr__(self) -> str:

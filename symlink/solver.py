@@ -20,7 +20,7 @@ from typing import Sequence
 import numpy
 
 from .cache import generated_code
-from .linkage import Linkage, Program
+from .linkage import Linkage, Program, is_branch_name
 
 __all__ = ["Solver", "check_lengths", "crank_speeds"]
 
@@ -42,6 +42,11 @@ class Solver:
         code = generated_code(linkage, self.outputs)  # derived once, then from the scene cache
         self.source, self.function, self.arguments = code.source, code.function, code.arguments
 
+    @property
+    def branches(self) -> list[str]:
+        """The names of the branch arguments (+1 or -1 each)."""
+        return [name for name in self.arguments if is_branch_name(name)]
+
     @cached_property
     def program(self) -> Program:
         """The straight-line program behind the code (derived on first access only)."""
@@ -54,9 +59,9 @@ class Solver:
         lengths = {s.name: values[s.name] for s in self.linkage.parameters
                    if s.is_positive and s.name in values}
         check_lengths(**lengths)
-        for branch in self.linkage.branches:
-            if branch.name in values and not numpy.all(numpy.isin(values[branch.name], (1, -1))):
-                raise ValueError(f"{branch.name} must be +1 or -1, got {values[branch.name]}")
+        for branch in self.branches:
+            if branch in values and not numpy.all(numpy.isin(values[branch], (1, -1))):
+                raise ValueError(f"{branch} must be +1 or -1, got {values[branch]}")
         for name, value in values.items():
             if not numpy.all(numpy.isfinite(numpy.asarray(value, dtype=float))):
                 raise ValueError(f"{name} must be finite, got {value}")

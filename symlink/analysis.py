@@ -376,3 +376,108 @@ def transmission_curve(a: float, b: float, c: float, d: float, theta) -> numpy.n
     solved = _fourbar_solver(("transmission",))(theta=numpy.asarray(theta, dtype=float), a=a, b=b, c=c, d=d,
                                                 branch=1)
     return numpy.where(solved["assembled"], solved["transmission"], numpy.nan)
+
+
+# --- the command line -----------------------------------------------------------------
+
+def fourbar_report(a: float, b: float, c: float, d: float, branch: int = 1) -> dict:
+    """Everything :mod:`symlink.analysis` says of one four-bar, as a flat record (radians).
+
+    ``limit_positions``, ``stroke`` and ``time_ratio`` are None unless the linkage is a
+    crank-rocker (otherwise the output does not swing between two limits as the crank
+    turns); ``toggles`` are the ends of the crank's range (empty for a full turn).
+
+    >>> report = fourbar_report(20, 66, 56, 80)
+    >>> report["grashof"], report["dof"], round(math.degrees(report["transmission_min"]), 2)
+    ('crank-rocker', 1, 58.23)
+    """
+    from .catalog import fourbar
+    kind = grashof(a, b, c, d)
+    spans = crank_range(a, b, c, d)
+    if not spans:
+        raise ValueError(f"the four-bar {a:g}, {b:g}, {c:g}, {d:g} cannot be assembled at any crank angle")
+    transmission = transmission_range(a, b, c, d)
+    limits = limit_positions(a, b, c, d, branch) if kind.name == "crank-rocker" else None
+    return {
+        "crank": a, "coupler": b, "rocker": c, "ground": d, "branch": branch,
+        "dof": degrees_of_freedom(fourbar()).dof,
+        "grashof": kind.name, "shortest": kind.shortest, "longest": kind.longest,
+        "shortest_plus_longest": kind.shortest_plus_longest, "other_two": kind.other_two,
+        "crank_range": spans,
+        "toggles": [] if spans == [(-math.pi, math.pi)] else [end for span in spans for end in span],
+        "limit_positions": None if limits is None else {
+            "extended_crank": limits.extended_crank, "extended_rocker": limits.extended_rocker,
+            "folded_crank": limits.folded_crank, "folded_rocker": limits.folded_rocker},
+        "stroke": None if limits is None else limits.stroke,
+        "time_ratio": None if limits is None else limits.time_ratio,
+        "transmission_min": transmission.minimum, "transmission_min_at": transmission.minimum_at,
+        "transmission_max": transmission.maximum, "transmission_max_at": transmission.maximum_at,
+        "worst_transmission": transmission.worst,
+    }
+
+
+#: Fields of :func:`fourbar_report` that are angles (converted to the command's units).
+_ANGLE_FIELDS = {"stroke", "transmission_min", "transmission_min_at", "transmission_max", "transmission_max_at",
+                 "worst_transmission", "extended_crank", "extended_rocker", "folded_crank", "folded_rocker"}
+
+
+def _in_units(report: dict, units: str) -> dict:
+    from .angles import from_radians
+    convert = lambda x: float(from_radians(x, units))  # noqa: E731
+    shown = dict(report)
+    for key in _ANGLE_FIELDS & set(report):
+        if report[key] is not None:
+            shown[key] = convert(report[key])
+    shown["crank_range"] = [[convert(lo), convert(hi)] for lo, hi in report["crank_range"]]
+    shown["toggles"] = [convert(x) for x in report["toggles"]]
+    if report["limit_positions"] is not None:
+        shown["limit_positions"] = {k: convert(v) for k, v in report["limit_positions"].items()}
+    return shown
+
+
+def add_command(commands) -> None:
+    """Register ``symlink analyze``."""
+    from .cli import finite
+    command = commands.add_parser(
+        "analyze", help="Grashof class, mobility, crank range, limit positions and transmission angle of a four-bar")
+    for option, what in (("crank", "AB"), ("coupler", "BC"), ("rocker", "DC"), ("ground", "AD")):
+        command.add_argument(f"--{option}", type=finite, required=True, help=f"length {what}")
+    command.add_argument("--branch", choices=["+1", "1", "-1"], default="+1",
+                         help="assembly for the limit positions (default +1)")
+    command.add_argument("--units", choices=["deg", "rad"], default="deg")
+    command.add_argument("--format", choices=["table", "json"], default="table")
+    command.set_defaults(run=run)
+
+
+def run(args) -> int:
+    import json
+    report = _in_units(fourbar_report(args.crank, args.coupler, args.rocker, args.ground, int(args.branch)),
+                       args.units)
+    if args.format == "json":
+        print(json.dumps(report, indent=1))
+        return 0
+    unit = args.units
+    spans = ("full turn" if not report["toggles"] else
+             ", ".join(f"[{lo:.4f}, {hi:.4f}] {unit}" for lo, hi in report["crank_range"]))
+    lines = [
+        f"four-bar: crank {args.crank:g}, coupler {args.coupler:g}, rocker {args.rocker:g}, ground {args.ground:g}",
+        f"degrees of freedom   {report['dof']}",
+        f"Grashof              {report['grashof']} (s + l = {report['shortest_plus_longest']:g}, "
+        f"p + q = {report['other_two']:g}; shortest: {report['shortest']})",
+        f"crank range          {spans}",
+    ]
+    if report["toggles"]:
+        lines.append("toggle positions     crank at " + ", ".join(f"{x:.4f}" for x in report["toggles"]) + f" {unit}")
+    if report["limit_positions"] is not None:
+        limits = report["limit_positions"]
+        lines += [
+            f"limit positions      extended: crank {limits['extended_crank']:.4f}, rocker "
+            f"{limits['extended_rocker']:.4f} {unit}; folded: crank {limits['folded_crank']:.4f}, "
+            f"rocker {limits['folded_rocker']:.4f} {unit} (branch {int(args.branch):+d})",
+            f"stroke               {report['stroke']:.4f} {unit}",
+            f"time ratio           {report['time_ratio']:.4f}",
+        ]
+    lines.append(f"transmission angle   {report['transmission_min']:.4f} at crank {report['transmission_min_at']:.4f} "
+                 f"to {report['transmission_max']:.4f} at crank {report['transmission_max_at']:.4f} {unit}")
+    print("\n".join(lines))
+    return 0

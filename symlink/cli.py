@@ -239,7 +239,8 @@ def build_parser() -> argparse.ArgumentParser:
     from . import bench, scene  # symlink run SCENE.toml, symlink bench
     scene.add_command(commands)
     bench.add_command(commands)
-    from . import loopcase, synthesis  # symlink loop, symlink quick-return (seeds 000 and 002)
+    from . import analysis, loopcase, synthesis  # symlink analyze, loop, quick-return (seeds 000, 002, 003)
+    analysis.add_command(commands)
     loopcase.add_command(commands)
     synthesis.add_command(commands)
     from . import export  # symlink export NAME --to numpy|c|octave|latex

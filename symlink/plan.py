@@ -110,7 +110,12 @@ def add_command(commands: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from .analysis import degrees_of_freedom
     from .catalog import CATALOG
 
-    print(solve_plan(CATALOG[args.name]()))
+    linkage = CATALOG[args.name]()
+    mobility = degrees_of_freedom(linkage)
+    print(solve_plan(linkage))
+    print(f"degrees of freedom: {mobility.dof} (Gruebler: {mobility.links} links with the ground, "
+          f"{mobility.revolute} revolute and {mobility.prismatic} prismatic joints)")
     return 0

@@ -76,7 +76,9 @@ def test_every_catalog_entry_has_a_plan():
 def test_symlink_plan_prints_the_plan(capsys):
     assert main(["plan", "stephenson3"]) == 0
     out, err = capsys.readouterr()
-    assert err == "" and out == str(solve_plan(stephenson3())) + "\n"
+    # the plan, then its mobility: 6 links, 7 revolute joints -> 3 * 5 - 2 * 7 = 1
+    assert err == "" and out == str(solve_plan(stephenson3())) + "\n" + (
+        "degrees of freedom: 1 (Gruebler: 6 links with the ground, 7 revolute and 0 prismatic joints)\n")
     assert "Newton's method on all 4 closure equations" in out
 
 

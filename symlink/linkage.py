@@ -236,10 +236,19 @@ class Linkage:
             return self.point(point)[axis == "y"]
         raise ValueError(f"{self.name} has no output {name!r}; it has {', '.join(self.output_names())}")
 
-    def expression(self, name: str) -> sp.Expr:
-        """The closed form behind an output name, one level deep (in terms of coordinates and rates)."""
+    def expression(self, name: str, simplify: bool = False) -> sp.Expr:
+        """The closed form behind an output name, one level deep (in terms of coordinates and rates).
+
+        ``simplify=True`` runs SymPy's ``simplify`` on it: opt-in, for reading, since it can be
+        slow and the derived forms are already compact; generated code never uses it.
+
+        >>> from symlink.catalog import fourbar
+        >>> fourbar().expression("rocker_accel", simplify=True)
+        (a*thetaddot*sin(beta - theta) - a*thetadot**2*cos(beta - theta) - b*betadot**2 + c*phidot**2*cos(beta - phi))/(c*sin(beta - phi))
+        """
         symbol = self.output(name)
-        return self._definitions_of([symbol]).get(symbol, symbol)
+        found = self._definitions_of([symbol]).get(symbol, symbol)
+        return sp.simplify(found) if simplify else found
 
     def _definitions_of(self, symbols: Iterable[sp.Symbol]) -> dict[sp.Symbol, sp.Expr]:
         """The definitions that the symbols need: positions, and rates only if asked for."""

@@ -2,12 +2,6 @@
 import contextlib
 import io
 import pathlib
-import re
-import shlex
-
-import pytest
-
-from symlink.cli import main
 
 README = pathlib.Path(__file__).resolve().parent.parent / "README.md"
 
@@ -57,22 +51,3 @@ def test_the_users_own_linkage_runs_and_prints_what_the_readme_says(tmp_path, mo
     assert "sympy" not in (tmp_path / "press_solver.py").read_text().split('"""', 2)[2]
     printed = run_python(numeric)
     assert printed == "[ 80.934  86.891 111.938 111.949]\n[-0.5714  0.5903  0.3636 -0.402 ]\n"
-
-
-def shell_examples():
-    for block in blocks(""):
-        for command, output in re.findall(r"^\$ (symlink .*)\n((?:(?!\$ ).*\n)*)", block, flags=re.M):
-            yield command, output
-
-
-@pytest.mark.parametrize("command, output", list(shell_examples()), ids=lambda value: value[:40])
-def test_shell_examples_show_real_output(capsys, command, output):
-    assert main(shlex.split(command)[1:]) == 0
-    out, _ = capsys.readouterr()
-    assert out == output
-
-
-def test_there_are_shell_examples_for_plan_and_slider_crank():
-    commands = [command for command, _ in shell_examples()]
-    assert any(c.startswith("symlink plan") for c in commands)
-    assert any(c.startswith("symlink slider-crank") for c in commands)

@@ -45,13 +45,15 @@ class StraightLine:
     ``assignments`` define temporaries and the program's own symbols in an
     order where every right-hand side uses only arguments and earlier names;
     ``outputs`` map output names to expressions of those; ``roots`` are the
-    square roots whose finiteness says that the linkage is assembled.
+    square roots whose finiteness says that the linkage is assembled;
+    ``defaults`` are the program's argument defaults.
     """
 
     arguments: tuple[sp.Symbol, ...]
     assignments: tuple[tuple[sp.Symbol, sp.Expr], ...]
     outputs: dict[str, sp.Expr]
     roots: tuple[sp.Symbol, ...]
+    defaults: dict[str, float]
 
 
 def straight_line(program: Program) -> StraightLine:
@@ -66,7 +68,7 @@ def straight_line(program: Program) -> StraightLine:
     nodes = list(replacements) + list(zip(names, reduced[:len(names)]))
     outputs = dict(zip(output_names, reduced[len(names):]))
     roots = tuple(s for s, e in program.assignments if isinstance(e, ClampedSqrt))
-    return StraightLine(program.arguments, _dependency_order(nodes), outputs, roots)
+    return StraightLine(program.arguments, _dependency_order(nodes), outputs, roots, dict(program.defaults))
 
 
 def _dependency_order(nodes: list[tuple[sp.Symbol, sp.Expr]]) -> tuple[tuple[sp.Symbol, sp.Expr], ...]:
@@ -87,7 +89,7 @@ def _dependency_order(nodes: list[tuple[sp.Symbol, sp.Expr]]) -> tuple[tuple[sp.
     return tuple(ordered)
 
 
-class _Printer(NumPyPrinter):
+class NumPyCodePrinter(NumPyPrinter):
     """NumPy printer with symlink's clamped square root and plain ``numpy.`` names."""
 
     def __init__(self):
@@ -110,20 +112,17 @@ class _Printer(NumPyPrinter):
         raise ValueError("symlink never writes Piecewise into NumPy code")
 
 
-def _defaults(symbol: sp.Symbol) -> str:
-    if symbol.name.startswith("branch"):
-        return "=1"
-    if symbol.name.endswith("dot"):
-        return "=0.0"
-    return ""
+def format_default(value: float) -> str:
+    """An argument default as code: 1 for a branch, 0.0 for a rate."""
+    return str(int(value)) if value == 1 else repr(value)  # branch=1, thetadot=0.0
 
 
 def numpy_function(program: Program, name: str, doc: str = "") -> str:
     """Python source of one vectorised function computing the program's outputs."""
     code = straight_line(program)
-    printer = _Printer()
+    printer = NumPyCodePrinter()
     arguments = [s.name for s in code.arguments]
-    signature = ", ".join(f"{a}{_defaults(s)}" for a, s in zip(arguments, code.arguments))
+    signature = ", ".join(f"{a}={format_default(code.defaults[a])}" if a in code.defaults else a for a in arguments)
     outputs = ", ".join(code.outputs)
     lines = [f"def {name}({signature}):"]
     text = (doc.strip() + "\n\n" if doc else "") + (

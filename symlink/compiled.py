@@ -54,7 +54,6 @@ import numpy
 
 from . import cache
 from .c_code import c_function, c_library
-from .codegen import _defaults
 from .files import write_atomic
 from .linkage import Linkage
 from .solver import Solver
@@ -284,7 +283,7 @@ def c_solver_source(linkage: Linkage, outputs: Sequence[str]) -> dict:
         program = linkage.program(outputs)
         function = c_function(program, "solve", f"{linkage.name}: {', '.join(outputs)}.")
         _, source = c_library([function], "solver", standalone=True)
-        defaults = {s.name: float(_defaults(s)[1:]) for s in program.arguments if _defaults(s)}
+        defaults = dict(program.defaults)
         return json.dumps({"source": source, "arguments": function.arguments, "outputs": function.outputs,
                            "flags": function.flags, "defaults": defaults})
 

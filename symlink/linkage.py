@@ -23,7 +23,7 @@ a*thetadot*sin(beta - theta)/(c*sin(beta - phi))
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Iterable, Mapping, Sequence
 
@@ -56,12 +56,15 @@ class Program:
 
     ``arguments`` are the free symbols in calling order; ``assignments`` are
     ``(symbol, expression)`` in dependency order; ``outputs`` maps output
-    names to the symbols or expressions that hold them.
+    names to the symbols or expressions that hold them; ``defaults`` gives
+    the arguments that may be left out their values (a branch +1, an input's
+    rate and acceleration 0).
     """
 
     arguments: tuple[sp.Symbol, ...]
     assignments: tuple[tuple[sp.Symbol, sp.Expr], ...]
     outputs: dict[str, sp.Expr]
+    defaults: dict[str, float] = field(default_factory=dict)
 
 
 class Linkage:
@@ -288,7 +291,9 @@ class Linkage:
             raise ValueError(f"outputs depend on unknown symbols {sorted(map(str, unexpected))}")
         always = set(self.inputs) | set(self.parameters) | set(self.branches)
         arguments = tuple(s for s in order if s in free or s in always)
-        return Program(arguments, assignments, wanted)
+        defaults = {s.name: 1.0 for s in self.branches}
+        defaults.update({s.name: 0.0 for q in self.inputs for s in (rate(q), acceleration(q))})
+        return Program(arguments, assignments, wanted, {a.name: defaults[a.name] for a in arguments if a.name in defaults})
 
     def call_signature(self) -> tuple[sp.Symbol, ...]:
         """The order of a generated function's arguments: inputs, parameters, branches, input rates."""

@@ -39,7 +39,7 @@ from typing import Mapping, Sequence
 import numpy
 import sympy as sp
 
-from .codegen import _Printer, load_numpy_module, numpy_module, straight_line
+from .codegen import NumPyCodePrinter, load_numpy_module, numpy_module, straight_line
 from .linkage import Linkage, Program
 from .solver import check_lengths
 from .vectors import acceleration, rate, time_derivative
@@ -117,7 +117,7 @@ def _array_function(name: str, arguments: Sequence[sp.Symbol], results: Sequence
             for i, expr in enumerate(value):
                 flat[f"{label}_{i}"] = sp.sympify(expr)
     code = straight_line(Program(tuple(arguments), (), flat))
-    printer = _Printer()
+    printer = NumPyCodePrinter()
     lines = [f"def {name}({', '.join(s.name for s in arguments)}):", f'    """{doc}"""']
     lines += [f"    {symbol.name} = {printer.doprint(expr)}" for symbol, expr in code.assignments]
     returned = []
@@ -140,7 +140,7 @@ def _outputs_function(linkage: Linkage, arguments: Sequence[sp.Symbol]) -> tuple
     if not names:
         return "def _outputs(*values):\n    return {}\n", []
     code = straight_line(Program(tuple(arguments), (), dict(zip(names, expressions))))
-    printer = _Printer()
+    printer = NumPyCodePrinter()
     lines = [f"def _outputs({', '.join(s.name for s in arguments)}):",
              '    """Named points and extra outputs from the solved coordinates."""']
     lines += [f"    {symbol.name} = {printer.doprint(expr)}" for symbol, expr in code.assignments]

@@ -28,7 +28,7 @@ from sympy.printing.octave import OctaveCodePrinter
 
 from . import __version__
 from .c_code import is_flag, named_straight_line
-from .codegen import _defaults
+from .codegen import format_default
 from .linkage import Program
 from .position import TOLERANCE
 
@@ -112,7 +112,8 @@ def octave_function(program: Program, name: str, doc: str = "") -> str:
     assembled, shape = ("assembled", "shape")
     results = ", ".join(variables + [assembled])
     call = f"[{results}] = {name}({', '.join(arguments)})"
-    defaults = [(i, s.name, _defaults(s)[1:]) for i, s in enumerate(code.arguments, 1) if _defaults(s)]
+    defaults = [(i, s.name, format_default(code.defaults[s.name])) for i, s in enumerate(code.arguments, 1)
+                if s.name in code.defaults]
     summary = doc.strip().splitlines()[0] if doc.strip() else f"Outputs {', '.join(code.outputs)} of a linkage."
     help_lines = [f"%{name.upper()} {summary}", f"%   {call}"] + [f"%   {line}" for line in doc.strip().splitlines()[1:]]
     help_lines += [

@@ -33,7 +33,8 @@ from . import __version__
 from .linkage import Program
 from .position import TOLERANCE, ClampedSqrt
 
-__all__ = ["StraightLine", "straight_line", "numpy_function", "numpy_module", "load_numpy_module"]
+__all__ = ["StraightLine", "straight_line", "NumPyCodePrinter", "numpy_function", "numpy_module", "load_numpy_module",
+           "format_default"]
 
 CSE_PREFIX = "cse_"
 

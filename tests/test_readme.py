@@ -4,39 +4,22 @@ Transcripts of commands that write files, open windows, read a scene file from
 the reader's folder or time things (bench) are left out; where a transcript
 shows a warning, it stands before the output as on a terminal (stderr, then stdout).
 """
-import pathlib
 import re
 import shlex
 
 import pytest
 
+from readme_text import fenced_blocks, readme
 from symlink.cli import main
 
-README = pathlib.Path(__file__).resolve().parent.parent / "README.md"
 NOT_REPLAYED = {"bench", "view", "animate", "curve", "run", "export"}
 WRITES_FILES = {"--out", "--plot", "--plot-transmission", "--save", "--json"}
-
-
-def fenced_blocks(language: str) -> list[str]:
-    """The README's fenced blocks in ``language`` ("" for plain ones)."""
-    found, current, kind = [], None, ""
-    for line in README.read_text(encoding="utf-8").splitlines(keepends=True):
-        if line.startswith("```"):
-            if current is None:
-                current, kind = [], line[3:].strip()
-            else:
-                if kind == language:
-                    found.append("".join(current))
-                current = None
-        elif current is not None:
-            current.append(line)
-    return found
 
 
 def transcripts() -> list[tuple[str, str]]:
     """(command, what it prints) for every replayable `$ symlink ...` in a plain block."""
     found = []
-    for block in fenced_blocks(""):
+    for block in fenced_blocks(readme(), ""):
         for command, output in re.findall(r"^\$ (symlink .*)\n((?:(?!\$ ).*\n)*)", block, flags=re.M):
             argv = shlex.split(command)
             if argv[1] not in NOT_REPLAYED and not WRITES_FILES & set(argv):
@@ -44,7 +27,7 @@ def transcripts() -> list[tuple[str, str]]:
     return found
 
 
-PYTHON = fenced_blocks("python")
+PYTHON = fenced_blocks(readme(), "python")
 TRANSCRIPTS = transcripts()
 
 

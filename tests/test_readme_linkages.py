@@ -1,31 +1,13 @@
 """The README's 'New linkages and your own' section: its code runs and its printed output is current."""
 import contextlib
 import io
-import pathlib
 
-README = pathlib.Path(__file__).resolve().parent.parent / "README.md"
-
-
-def section() -> str:
-    text = README.read_text(encoding="utf-8")
-    start = text.index("## New linkages and your own")
-    return text[start:text.index("\n## ", start + 1)]
+from readme_text import fenced_blocks, readme
 
 
 def blocks(kind: str) -> list[str]:
     """The fenced blocks of the section whose language is ``kind`` ("" for plain ones)."""
-    found, current, language = [], None, ""
-    for line in section().splitlines(keepends=True):
-        if line.startswith("```"):
-            if current is None:
-                current, language = [], line[3:].strip()
-            else:
-                if language == kind:
-                    found.append("".join(current))
-                current = None
-        elif current is not None:
-            current.append(line)
-    return found
+    return fenced_blocks(readme("New linkages and your own"), kind)
 
 
 def run_python(code: str) -> str:

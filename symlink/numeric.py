@@ -522,8 +522,10 @@ class NumericSolver:
     """
 
     def __init__(self, linkage: Linkage) -> None:
+        from .cache import cache_key, cached_text
         self.linkage = linkage
-        self.source = numeric_module(linkage)
+        # Derived once, then from the scene cache, as every other generated solver.
+        self.source = cached_text(cache_key(linkage, [], "numeric"), lambda: numeric_module(linkage))
         self.functions = load_numpy_module(self.source)
 
     @property

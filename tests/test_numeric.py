@@ -218,3 +218,19 @@ def test_a_linkage_with_too_few_equations_is_refused():
     with pytest.raises(ValueError, match="exactly two unknowns"):
         Linkage("three", [Loop(Vector(a, theta) + Vector(b, p) + Vector(c, q) + Vector(1, r))],
                 inputs=[theta], unknowns=[p, q, r])
+
+
+def test_second_solver_comes_from_the_cache(tmp_path, monkeypatch):
+    import symlink.numeric
+    from symlink import cache
+    monkeypatch.setenv("SYMLINK_CACHE", str(tmp_path))
+    cache.clear_memory()
+    first = stephenson3().numeric()
+    cache.clear_memory()  # a new process: only the disk entry is left
+
+    def fail(linkage):
+        raise AssertionError("derived again")
+    monkeypatch.setattr(symlink.numeric, "numeric_module", fail)
+    second = stephenson3().numeric()
+    assert second.source == first.source
+    cache.clear_memory()

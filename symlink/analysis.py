@@ -41,10 +41,20 @@ from .position import TOLERANCE
 from .solver import Solver, check_lengths
 
 __all__ = [
-    "crank_range", "Mobility", "degrees_of_freedom", "Grashof", "GRASHOF_CLASSES", "grashof",
+    "crank_range", "assembled_crank_range", "Mobility", "degrees_of_freedom", "Grashof", "GRASHOF_CLASSES", "grashof",
     "LimitPositions", "limit_positions", "TransmissionRange", "transmission_range",
     "transmission_curve", "triangle_angle", "wrap_angle",
 ]
+
+
+def assembled_crank_range(a: float, b: float, c: float, d: float) -> list[tuple[float, float]]:
+    """:func:`crank_range` of checked lengths; ``ValueError`` where the four-bar closes at no crank angle."""
+    check_lengths(crank=a, coupler=b, rocker=c, ground=d)
+    spans = crank_range(a, b, c, d)
+    if not spans:
+        raise ValueError(f"a four-bar with crank {a:g}, coupler {b:g}, rocker {c:g} and ground {d:g} "
+                         "cannot be assembled at any crank angle")
+    return spans
 
 
 def crank_range(a: float, b: float, c: float, d: float) -> list[tuple[float, float]]:
@@ -346,10 +356,7 @@ def transmission_range(a: float, b: float, c: float, d: float) -> TransmissionRa
     (the toggles, where mu is 0 or pi).  It is the same on both branches; the generated
     solver evaluates it at those crank angles.
     """
-    check_lengths(crank=a, coupler=b, rocker=c, ground=d)
-    spans = crank_range(a, b, c, d)
-    if not spans:
-        raise ValueError(f"the four-bar {a:g}, {b:g}, {c:g}, {d:g} cannot be assembled at any crank angle")
+    spans = assembled_crank_range(a, b, c, d)
     candidates: dict[float, float] = {}
     reachable = [x for x in (0.0, math.pi) if any(lo <= x <= hi or lo <= x - 2 * math.pi <= hi
                                                   for lo, hi in spans)]
@@ -392,10 +399,8 @@ def fourbar_report(a: float, b: float, c: float, d: float, branch: int = 1) -> d
     ('crank-rocker', 1, 58.23)
     """
     from .catalog import fourbar
+    spans = assembled_crank_range(a, b, c, d)
     kind = grashof(a, b, c, d)
-    spans = crank_range(a, b, c, d)
-    if not spans:
-        raise ValueError(f"the four-bar {a:g}, {b:g}, {c:g}, {d:g} cannot be assembled at any crank angle")
     transmission = transmission_range(a, b, c, d)
     limits = limit_positions(a, b, c, d, branch) if kind.name == "crank-rocker" else None
     return {

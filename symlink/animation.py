@@ -25,12 +25,13 @@ from typing import Callable
 
 import numpy
 
+from .analysis import assembled_crank_range
 from .catalog import fourbar
 from .angles import to_radians, wrap
 from .cli import finite
 from .files import write_atomic
 from .linkage import Linkage
-from .plot import (MechanismDrawing, TURN_SAMPLES, add_length_options, check_assembles, check_coupler_point,
+from .plot import (MechanismDrawing, TURN_SAMPLES, add_length_options, check_coupler_point,
                    coupler_point_linkage, coupler_point_option, extent, fourbar_positions, turn_angles)
 
 __all__ = ["FRAMES", "ANIMATION_SUFFIXES", "frame_positions", "animate", "Rendered"]
@@ -62,7 +63,7 @@ def frame_positions(a: float, b: float, c: float, d: float, *, branch: int = 1, 
     fresh linkage is derived unless ``linkage`` is given (the four-bar, or
     :func:`~symlink.plot.coupler_point_linkage` for a coupler point).
     """
-    check_assembles(a, b, c, d)
+    assembled_crank_range(a, b, c, d)
     check_coupler_point(coupler_point)
     if isinstance(frames, bool) or not isinstance(frames, (int, numpy.integer)) or not 1 <= frames <= MAX_FRAMES:
         raise ValueError(f"frames must be a whole number from 1 to {MAX_FRAMES}, got {frames!r}")

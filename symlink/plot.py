@@ -31,7 +31,7 @@ from typing import TYPE_CHECKING, Sequence
 import numpy
 import sympy as sp
 
-from .analysis import crank_range, transmission_curve, transmission_range
+from .analysis import assembled_crank_range, crank_range, transmission_curve, transmission_range
 from .catalog import fourbar
 from .angles import to_radians, wrap
 from .cli import branches as chosen_branches, finite, number_list
@@ -44,7 +44,7 @@ if TYPE_CHECKING:  # Matplotlib is imported when a drawing is made
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-__all__ = ["coupler_point_linkage", "fourbar_positions", "reachable_turn", "turn_angles", "check_assembles",
+__all__ = ["coupler_point_linkage", "fourbar_positions", "reachable_turn", "turn_angles",
            "check_coupler_point", "angle_figure", "transmission_figure", "coupler_curve_figure", "draw_loop",
            "MechanismDrawing", "extent", "save_figure", "figure_suffix", "FIGURE_SUFFIXES"]
 
@@ -155,14 +155,6 @@ def turn_angles(a: float, b: float, c: float, d: float, samples: int = TURN_SAMP
     return numpy.unique(numpy.concatenate([even, toggles]))
 
 
-def check_assembles(a: float, b: float, c: float, d: float) -> None:
-    """``ValueError`` for positive finite lengths that close at no crank angle at all."""
-    check_lengths(crank=a, coupler=b, rocker=c, ground=d)
-    if not crank_range(a, b, c, d):
-        raise ValueError(f"a four-bar with crank {a:g}, coupler {b:g}, rocker {c:g} and ground {d:g} "
-                         "cannot be assembled at any crank angle")
-
-
 def _unit(units: str) -> tuple[str, float]:
     if units not in ("deg", "rad"):
         raise ValueError(f"units must be 'deg' or 'rad', got {units!r}")
@@ -212,7 +204,7 @@ def angle_figure(a: float, b: float, c: float, d: float, branches: Sequence[int]
     One line per branch (solid +1, dashed -1), angles wrapped to (-180, 180]
     deg or (-pi, pi] rad; unreachable crank angles are shaded.
     """
-    check_assembles(a, b, c, d)
+    assembled_crank_range(a, b, c, d)
     units, half = _unit(units)
     scale = half / math.pi
     theta = turn_angles(a, b, c, d, samples)
@@ -250,7 +242,7 @@ def transmission_figure(a: float, b: float, c: float, d: float, units: str = "de
     (:func:`~symlink.analysis.transmission_range`), and the usual design
     range 45 to 135 deg shaded.
     """
-    check_assembles(a, b, c, d)
+    assembled_crank_range(a, b, c, d)
     units, half = _unit(units)
     scale = half / math.pi
     theta = turn_angles(a, b, c, d, samples)
@@ -356,7 +348,7 @@ def coupler_curve_figure(a: float, b: float, c: float, d: float, distance: float
     direction B->C.  The mechanism is drawn at ``crank_angle`` (radians) on
     the first branch, by default at the first reachable crank angle from 0.
     """
-    check_assembles(a, b, c, d)
+    assembled_crank_range(a, b, c, d)
     point = (distance, angle)
     check_coupler_point(point)
     branches = _checked_branches(branches)

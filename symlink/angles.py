@@ -11,7 +11,7 @@ import math
 
 import numpy
 
-__all__ = ["wrap", "wrap_angle", "to_radians", "from_radians", "half_turn"]
+__all__ = ["UNITS", "wrap", "wrap_angle", "to_radians", "from_radians", "half_turn"]
 
 
 def wrap(angle, half_turn: float = math.pi):
@@ -30,16 +30,25 @@ def wrap_angle(angle: float) -> float:
     return float(wrap(angle))
 
 
+UNITS = ("deg", "rad")
+
+
+def _in_degrees(units: str) -> bool:
+    if units not in UNITS:
+        raise ValueError(f"units must be 'deg' or 'rad', got {units!r}")
+    return units == "deg"
+
+
 def to_radians(values, units: str):
     """Values in ``units`` ("deg" or "rad") as radians."""
-    return numpy.radians(values) if units == "deg" else numpy.asarray(values, dtype=float)
+    return numpy.radians(values) if _in_degrees(units) else numpy.asarray(values, dtype=float)
 
 
 def from_radians(values, units: str):
     """Radians as values in ``units`` ("deg" or "rad")."""
-    return numpy.degrees(values) if units == "deg" else numpy.asarray(values, dtype=float)
+    return numpy.degrees(values) if _in_degrees(units) else numpy.asarray(values, dtype=float)
 
 
 def half_turn(units: str) -> float:
     """Half a turn in ``units``: 180 or pi."""
-    return 180.0 if units == "deg" else math.pi
+    return 180.0 if _in_degrees(units) else math.pi

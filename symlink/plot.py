@@ -33,7 +33,7 @@ import sympy as sp
 
 from .analysis import assembled_crank_range, crank_range, transmission_curve, transmission_range
 from .catalog import fourbar
-from .angles import to_radians, wrap
+from .angles import half_turn, to_radians, wrap
 from .cli import branches as chosen_branches, finite, number_list
 from .files import write_atomic
 from .linkage import Linkage
@@ -155,12 +155,6 @@ def turn_angles(a: float, b: float, c: float, d: float, samples: int = TURN_SAMP
     return numpy.unique(numpy.concatenate([even, toggles]))
 
 
-def _unit(units: str) -> tuple[str, float]:
-    if units not in ("deg", "rad"):
-        raise ValueError(f"units must be 'deg' or 'rad', got {units!r}")
-    return units, (180.0 if units == "deg" else math.pi)
-
-
 def _wrapped_with_breaks(x: numpy.ndarray, angles: numpy.ndarray, half: float) -> tuple[numpy.ndarray, numpy.ndarray]:
     """Angles wrapped to (-half, half], with a NaN gap where they wrap (no vertical line across the plot)."""
     y = wrap(angles, half)
@@ -205,7 +199,7 @@ def angle_figure(a: float, b: float, c: float, d: float, branches: Sequence[int]
     deg or (-pi, pi] rad; unreachable crank angles are shaded.
     """
     assembled_crank_range(a, b, c, d)
-    units, half = _unit(units)
+    half = half_turn(units)
     scale = half / math.pi
     theta = turn_angles(a, b, c, d, samples)
     figure, (top, bottom) = _new_figure(7.0, 6.0, rows=2)
@@ -243,7 +237,7 @@ def transmission_figure(a: float, b: float, c: float, d: float, units: str = "de
     range 45 to 135 deg shaded.
     """
     assembled_crank_range(a, b, c, d)
-    units, half = _unit(units)
+    half = half_turn(units)
     scale = half / math.pi
     theta = turn_angles(a, b, c, d, samples)
     mu = transmission_curve(a, b, c, d, theta)

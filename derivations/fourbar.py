@@ -14,7 +14,7 @@ import sympy as sp
 from symlink import Linkage, Loop, Vector, coordinates, lengths
 from symlink.catalog import fourbar
 from symlink.codegen import numpy_module
-from symlink.files import write_atomic
+from symlink.derivation import write_generated
 from symlink.latex import latex_document
 
 GENERATED = Path(__file__).resolve().parent.parent / "generated"
@@ -67,10 +67,7 @@ def derive() -> dict[str, str]:
 
 
 def main() -> int:
-    for name, text in derive().items():
-        write_atomic(GENERATED / name, text)
-        print(f"wrote generated/{name}")
-    return 0
+    return write_generated(derive(), GENERATED)
 
 
 if __name__ == "__main__":

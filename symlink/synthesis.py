@@ -115,8 +115,7 @@ def _check_request(time_ratio: float, stroke: float, rocker: float) -> None:
                          f"stroke), got {time_ratio:g}")
     if not math.isfinite(stroke) or not 0 < stroke < math.pi:
         raise ValueError(f"the stroke must lie strictly between 0 and 180 deg, got {math.degrees(stroke):g} deg")
-    if not math.isfinite(rocker) or rocker <= 0:
-        raise ValueError(f"the rocker must be a positive finite length, got {rocker:g}")
+    check_lengths(rocker=rocker)
 
 
 def _rocker_ends(rocker: float, rocker_min_angle: float, stroke: float) -> numpy.ndarray:

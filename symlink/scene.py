@@ -80,7 +80,7 @@ INPUT_KEYS = {"start", "stop", "step", "angles", "speed", "accel"}
 
 @lru_cache(maxsize=None)
 def catalog_linkage(name: str) -> Linkage:
-    """The catalog's linkage ``name``, built once a process.
+    """A fresh instance of the catalog's linkage ``name`` (cheap: its derivations happen on first use).
 
     >>> catalog_linkage("fourbar").unknowns
     (beta, phi)

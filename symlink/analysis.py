@@ -4,8 +4,8 @@
   with its links and joints counted from the loops.
 * :func:`grashof`: the Grashof class of a four-bar, which depends on which link is the
   shortest and which one is the ground.
-* :func:`crank_range`: the crank angles at which a four-bar can be assembled; its ends are
-  the toggle positions (coupler and rocker in line, the crank can go no further).
+* :func:`~symlink.reachability.crank_range` (in :mod:`symlink.reachability`): the crank
+  angles at which a four-bar can be assembled; its ends are the toggle positions.
 * :func:`limit_positions`: the rocker's two extreme positions (crank and coupler in line),
   with the rocker's stroke and the crank-rocker's time ratio.
 * :func:`transmission_range` and :func:`transmission_curve`: the transmission angle (the
@@ -38,46 +38,14 @@ from .angles import wrap_angle
 from .catalog import fourbar
 from .linkage import Linkage
 from .position import TOLERANCE
+from .reachability import assembled_crank_range, crank_range
 from .solver import Solver, check_lengths
 
 __all__ = [
-    "crank_range", "assembled_crank_range", "Mobility", "degrees_of_freedom", "Grashof", "GRASHOF_CLASSES", "grashof",
+    "Mobility", "degrees_of_freedom", "Grashof", "GRASHOF_CLASSES", "grashof",
     "LimitPositions", "limit_positions", "TransmissionRange", "transmission_range",
     "transmission_curve", "triangle_angle", "wrap_angle",
 ]
-
-
-def assembled_crank_range(a: float, b: float, c: float, d: float) -> list[tuple[float, float]]:
-    """:func:`crank_range` of checked lengths; ``ValueError`` where the four-bar closes at no crank angle."""
-    check_lengths(crank=a, coupler=b, rocker=c, ground=d)
-    spans = crank_range(a, b, c, d)
-    if not spans:
-        raise ValueError(f"a four-bar with crank {a:g}, coupler {b:g}, rocker {c:g} and ground {d:g} "
-                         "cannot be assembled at any crank angle")
-    return spans
-
-
-def crank_range(a: float, b: float, c: float, d: float) -> list[tuple[float, float]]:
-    """The crank angles (radians) at which a four-bar can be assembled, as closed intervals.
-
-    The coupler and rocker close a triangle over the diagonal BD when
-    ``|b - c| <= |BD| <= b + c``, with ``|BD|^2 = a^2 + d^2 - 2 a d cos(theta)``;
-    that bounds ``cos(theta)``.  A full turn is ``[(-pi, pi)]``; an empty list
-    means the linkage cannot be assembled at all.
-    """
-    lowest = (a * a + d * d - (b + c) ** 2) / (2 * a * d)   # cos(theta) at the extended toggle
-    highest = (a * a + d * d - (b - c) ** 2) / (2 * a * d)  # cos(theta) at the folded toggle
-    if lowest > 1 or highest < -1 or lowest > highest:
-        return []
-    if lowest <= -1 and highest >= 1:
-        return [(-math.pi, math.pi)]
-    far = math.acos(max(lowest, -1.0))
-    near = math.acos(min(highest, 1.0))
-    if highest >= 1:
-        return [(-far, far)]
-    if lowest <= -1:
-        return [(near, 2 * math.pi - near)]
-    return [(-far, -near), (near, far)]
 
 
 # --- mobility -------------------------------------------------------------------------
@@ -398,7 +366,6 @@ def fourbar_report(a: float, b: float, c: float, d: float, branch: int = 1) -> d
     >>> report["grashof"], report["dof"], round(math.degrees(report["transmission_min"]), 2)
     ('crank-rocker', 1, 58.23)
     """
-    from .catalog import fourbar
     spans = assembled_crank_range(a, b, c, d)
     kind = grashof(a, b, c, d)
     transmission = transmission_range(a, b, c, d)
@@ -419,70 +386,3 @@ def fourbar_report(a: float, b: float, c: float, d: float, branch: int = 1) -> d
         "transmission_max": transmission.maximum, "transmission_max_at": transmission.maximum_at,
         "worst_transmission": transmission.worst,
     }
-
-
-#: Fields of :func:`fourbar_report` that are angles (converted to the command's units).
-_ANGLE_FIELDS = {"stroke", "transmission_min", "transmission_min_at", "transmission_max", "transmission_max_at",
-                 "worst_transmission", "extended_crank", "extended_rocker", "folded_crank", "folded_rocker"}
-
-
-def _in_units(report: dict, units: str) -> dict:
-    from .angles import from_radians
-    convert = lambda x: float(from_radians(x, units))  # noqa: E731
-    shown = dict(report)
-    for key in _ANGLE_FIELDS & set(report):
-        if report[key] is not None:
-            shown[key] = convert(report[key])
-    shown["crank_range"] = [[convert(lo), convert(hi)] for lo, hi in report["crank_range"]]
-    shown["toggles"] = [convert(x) for x in report["toggles"]]
-    if report["limit_positions"] is not None:
-        shown["limit_positions"] = {k: convert(v) for k, v in report["limit_positions"].items()}
-    return shown
-
-
-def add_command(commands) -> None:
-    """Register ``symlink analyze``."""
-    from .cli import finite
-    command = commands.add_parser(
-        "analyze", help="Grashof class, mobility, crank range, limit positions and transmission angle of a four-bar")
-    for option, what in (("crank", "AB"), ("coupler", "BC"), ("rocker", "DC"), ("ground", "AD")):
-        command.add_argument(f"--{option}", type=finite, required=True, help=f"length {what}")
-    command.add_argument("--branch", choices=["+1", "1", "-1"], default="+1",
-                         help="assembly for the limit positions (default +1)")
-    command.add_argument("--units", choices=["deg", "rad"], default="deg")
-    command.add_argument("--format", choices=["table", "json"], default="table")
-    command.set_defaults(run=run)
-
-
-def run(args) -> int:
-    import json
-    report = _in_units(fourbar_report(args.crank, args.coupler, args.rocker, args.ground, int(args.branch)),
-                       args.units)
-    if args.format == "json":
-        print(json.dumps(report, indent=1))
-        return 0
-    unit = args.units
-    spans = ("full turn" if not report["toggles"] else
-             ", ".join(f"[{lo:.4f}, {hi:.4f}] {unit}" for lo, hi in report["crank_range"]))
-    lines = [
-        f"four-bar: crank {args.crank:g}, coupler {args.coupler:g}, rocker {args.rocker:g}, ground {args.ground:g}",
-        f"degrees of freedom   {report['dof']}",
-        f"Grashof              {report['grashof']} (s + l = {report['shortest_plus_longest']:g}, "
-        f"p + q = {report['other_two']:g}; shortest: {report['shortest']})",
-        f"crank range          {spans}",
-    ]
-    if report["toggles"]:
-        lines.append("toggle positions     crank at " + ", ".join(f"{x:.4f}" for x in report["toggles"]) + f" {unit}")
-    if report["limit_positions"] is not None:
-        limits = report["limit_positions"]
-        lines += [
-            f"limit positions      extended: crank {limits['extended_crank']:.4f}, rocker "
-            f"{limits['extended_rocker']:.4f} {unit}; folded: crank {limits['folded_crank']:.4f}, "
-            f"rocker {limits['folded_rocker']:.4f} {unit} (branch {int(args.branch):+d})",
-            f"stroke               {report['stroke']:.4f} {unit}",
-            f"time ratio           {report['time_ratio']:.4f}",
-        ]
-    lines.append(f"transmission angle   {report['transmission_min']:.4f} at crank {report['transmission_min_at']:.4f} "
-                 f"to {report['transmission_max']:.4f} at crank {report['transmission_max_at']:.4f} {unit}")
-    print("\n".join(lines))
-    return 0

@@ -15,9 +15,7 @@ titled as such.
 """
 from __future__ import annotations
 
-import argparse
 import math
-import sys
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
@@ -25,14 +23,11 @@ from typing import Callable
 
 import numpy
 
-from .analysis import assembled_crank_range
 from .catalog import fourbar
-from .angles import to_radians, wrap
-from .cli import finite
+from .reachability import TURN_SAMPLES, assembled_crank_range, turn_angles
 from .files import write_atomic
 from .linkage import Linkage
-from .plot import (MechanismDrawing, TURN_SAMPLES, add_length_options, check_coupler_point,
-                   coupler_point_linkage, coupler_point_option, extent, fourbar_positions, turn_angles)
+from .plot import MechanismDrawing, check_coupler_point, coupler_point_linkage, extent, fourbar_positions
 
 __all__ = ["FRAMES", "ANIMATION_SUFFIXES", "frame_positions", "animate", "Rendered"]
 
@@ -145,41 +140,3 @@ def animate(a: float, b: float, c: float, d: float, path, *, branch: int = 1, fr
                     progress(k + 1, len(positions["theta"]))
         write_atomic(path, scratch.read_bytes())
     return Rendered(path, len(positions["theta"]), tuple(unassembled))
-
-
-# --- command line ----------------------------------------------------------------
-def add_command(commands) -> None:
-    """Register ``symlink animate``."""
-    parser = commands.add_parser("animate", help="animate a four-bar over a crank turn (GIF, or MP4 with ffmpeg)")
-    add_length_options(parser)
-    parser.add_argument("--branch", choices=["+1", "1", "-1"], default="+1")
-    parser.add_argument("--frames", type=int, default=FRAMES, help=f"frames in a turn (default {FRAMES})")
-    parser.add_argument("--fps", type=finite, default=10.0, help="frames per second (default 10)")
-    parser.add_argument("--coupler-point", type=coupler_point_option, metavar="DIST,ANGLE",
-                        help="also draw a coupler point: distance from B, angle from the coupler's direction B->C")
-    parser.add_argument("--units", choices=["deg", "rad"], default="deg", help="of the coupler point's angle")
-    parser.add_argument("--out", required=True, metavar="FILE", help=".gif or .mp4")
-    parser.set_defaults(run=run)
-
-
-def run(args: argparse.Namespace) -> int:
-    point = None
-    if args.coupler_point is not None:
-        point = (args.coupler_point[0], float(to_radians(args.coupler_point[1], args.units)))
-    in_place = sys.stderr.isatty()
-    every = 1 if in_place else max(1, args.frames // 4)
-
-    def report(done: int, total: int) -> None:  # every frame on a terminal, in place; else every quarter
-        if done % every == 0 or done == total:
-            end = ("\n" if done == total else "") if in_place else "\n"
-            print(f"{chr(13) if in_place else ''}symlink: rendered {done}/{total} frames", end=end,
-                  file=sys.stderr, flush=True)
-
-    rendered = animate(args.crank, args.coupler, args.rocker, args.ground, args.out, branch=int(args.branch),
-                       frames=args.frames, coupler_point=point, fps=args.fps, progress=report)
-    if rendered.unassembled:
-        angles = ", ".join(f"{float(wrap(math.degrees(t), 180.0)):.6g}" for t in rendered.unassembled)
-        print(f"symlink: cannot be assembled at crank angles {angles} deg (those frames show the crank only)",
-              file=sys.stderr)
-    print(f"wrote {rendered.path} ({rendered.frames} frames)")
-    return 0

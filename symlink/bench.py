@@ -59,7 +59,7 @@ from typing import Callable, Sequence
 import mpmath
 import numpy
 
-from .analysis import crank_range
+from .reachability import crank_range
 from .files import write_atomic
 
 __all__ = ["benchmark", "METHODS", "main", "add_command", "run", "hand_numpy", "reference_positions"]
@@ -676,7 +676,7 @@ def report_derivations(rows: list[dict]) -> list[str]:
 # --- the command line ----------------------------------------------------------
 
 def add_options(parser: argparse.ArgumentParser) -> None:
-    from .cli import number_list
+    from .cli.options import number_list
     parser.add_argument("--quick", action="store_true", help=f"N = {', '.join(map(str, QUICK_SIZES))} (under a minute)")
     parser.add_argument("--sizes", type=number_list, metavar="LIST", help="comma-separated N (overrides --quick's)")
     parser.add_argument("--methods", metavar="LIST", help=f"comma-separated, from {', '.join(METHODS)} (default all)")
@@ -684,13 +684,6 @@ def add_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--json", metavar="FILE", help="write the records as JSON")
     parser.add_argument("--plot", metavar="FILE", help="write the run-time-against-error plot (PNG)")
     parser.add_argument("--no-derivation", action="store_true", help="skip the symbolic-side timings")
-
-
-def add_command(commands) -> None:
-    """Register ``symlink bench``."""
-    command = commands.add_parser("bench", help="run time against error of the four-bar solvers")
-    add_options(command)
-    command.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -725,15 +718,15 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def main(argv: Sequence[str] | None = None) -> int:
+def main(argv: Sequence[str] | None = None, prog: str = "python -m symlink.bench") -> int:
     """``python -m symlink.bench``: the same as ``symlink bench``."""
-    from .cli import _Parser
-    parser = _Parser(prog="python -m symlink.bench", description="Run time against error of the four-bar solvers.")
+    from .cli.options import Parser
+    parser = Parser(prog=prog, description="Run time against error of the four-bar solvers.")
     add_options(parser)
     try:
         return run(parser.parse_args(argv))
     except ValueError as error:
-        print(f"symlink bench: error: {error}", file=sys.stderr)
+        print(f"symlink: error: {error}", file=sys.stderr)
         return 2
 
 

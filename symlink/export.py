@@ -12,7 +12,6 @@ instead.  The texts are derived once and then read from symlink's cache
 """
 from __future__ import annotations
 
-import argparse
 import json
 import re
 from pathlib import Path
@@ -24,7 +23,7 @@ from .linkage import ACCEL_SUFFIX, SPEED_SUFFIX, Linkage
 from .scene import catalog_linkage
 from .vectors import acceleration, rate
 
-__all__ = ["FORMATS", "output_sets", "export_texts", "export", "add_command", "run"]
+__all__ = ["FORMATS", "output_sets", "export_texts", "export"]
 
 FORMATS = ("numpy", "c", "octave", "latex")
 
@@ -103,34 +102,10 @@ def _build(linkage: Linkage, fmt: str, stem: str, sets, command: str, outputs) -
 
 
 def export(name: str, fmt: str, folder: str | Path, outputs: Sequence[str] | None = None) -> list[Path]:
-    """Write the export files into ``folder`` (atomically, all texts made first); returns their paths."""
-    from .files import write_atomic
+    """Write the export files into ``folder``, all of them or none; returns their paths."""
+    from .files import write_files_atomic
     texts = export_texts(name, fmt, outputs)
     folder = Path(folder)
     if folder.exists() and not folder.is_dir():
         raise ValueError(f"--out {folder} exists and is not a folder")
-    paths = []
-    for file_name, text in texts.items():
-        write_atomic(folder / file_name, text)
-        paths.append(folder / file_name)
-    return paths
-
-
-def add_command(commands) -> None:
-    """Register ``symlink export NAME --to numpy|c|octave|latex --out DIR [--outputs LIST]``."""
-    command = commands.add_parser("export", help="write a catalog linkage's solvers as NumPy, C, Octave or LaTeX")
-    command.add_argument("name", metavar="NAME", help=f"a catalog linkage ({', '.join(sorted(CATALOG))})")
-    command.add_argument("--to", required=True, choices=list(FORMATS), help="the format")
-    command.add_argument("--out", required=True, metavar="DIR", help="the folder to write into")
-    command.add_argument("--outputs", metavar="LIST",
-                         help="comma-separated output names, as one function (default: positions, velocities, "
-                              "accelerations and joints)")
-    command.set_defaults(run=run)
-
-
-def run(args: argparse.Namespace) -> int:
-    """``symlink export``: write the files and name them."""
-    outputs = None if args.outputs is None else [o.strip() for o in args.outputs.split(",") if o.strip()]
-    for path in export(args.name, args.to, args.out, outputs):
-        print(f"wrote {path}")
-    return 0
+    return write_files_atomic(folder, texts)

@@ -11,8 +11,9 @@ from __future__ import annotations
 import os
 import tempfile
 from pathlib import Path
+from typing import Mapping
 
-__all__ = ["write_atomic"]
+__all__ = ["write_atomic", "write_files_atomic"]
 
 
 def _umask() -> int:
@@ -38,3 +39,36 @@ def write_atomic(path: str | os.PathLike, data: str | bytes) -> None:
         if os.path.exists(temporary):
             os.unlink(temporary)
         raise
+
+
+def write_files_atomic(folder: str | os.PathLike, texts: Mapping[str, str | bytes]) -> list[Path]:
+    """Write a set of files into ``folder``: all of them, or (on any failure) none.
+
+    Every file is written first into a hidden temporary folder beside them,
+    then each is renamed into place; a failure removes what was written.
+    Returns the paths written.
+
+    >>> import tempfile, pathlib
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> [p.name for p in write_files_atomic(folder, {"a.h": "x", "a.c": "y"})]
+    ['a.h', 'a.c']
+    """
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    staging = Path(tempfile.mkdtemp(dir=folder, prefix=".symlink-files-", suffix=".tmp"))
+    moved: list[Path] = []
+    try:
+        for name, data in texts.items():
+            write_atomic(staging / name, data)
+        for name in texts:
+            os.replace(staging / name, folder / name)
+            moved.append(folder / name)
+    except BaseException:
+        for path in moved:
+            path.unlink(missing_ok=True)
+        raise
+    finally:
+        for leftover in staging.iterdir():
+            leftover.unlink(missing_ok=True)
+        staging.rmdir()
+    return moved

@@ -22,10 +22,7 @@ loop that cannot close raises ``ValueError`` saying why.
 """
 from __future__ import annotations
 
-import argparse
-import json
 import math
-import sys
 from dataclasses import dataclass
 from functools import lru_cache
 from typing import Mapping
@@ -184,62 +181,3 @@ def solve_case(values: Mapping[str, float | None]) -> LoopCaseResult:
     if not solutions:
         raise ValueError("the loop cannot close with positive lengths: " + "; ".join(notes))
     return LoopCaseResult(case, missing, given, tuple(solutions), tuple(branches), tuple(notes))
-
-
-# --- command line ---------------------------------------------------------------------
-
-def add_command(commands) -> None:
-    """Register ``symlink loop``."""
-    from .cli import finite
-    command = commands.add_parser(
-        "loop", help="solve z1+z2+z3+z4=0 for the two values left out (seed 000's four cases)",
-        description="Solve the loop z1+z2+z3+z4 = 0, z_n = R_n e^(i t_n), for the two of its eight values "
-                    "that are left out.")
-    for k in "1234":
-        command.add_argument(f"--r{k}", type=finite, metavar="R", help=f"length of z{k}")
-        command.add_argument(f"--t{k}", type=finite, metavar="T", help=f"angle of z{k}")
-    command.add_argument("--units", choices=["deg", "rad"], default="deg")
-    command.add_argument("--format", choices=["table", "json"], default="table")
-    command.add_argument("--plot", metavar="FILE.png", help="draw the closed loop")
-    command.set_defaults(run=run)
-
-
-def run(args: argparse.Namespace) -> int:
-    from .angles import from_radians, half_turn, to_radians, wrap
-    from .cli import json_number, print_rows
-    draw_loop = None
-    if args.plot:
-        try:
-            from .plot import draw_loop
-        except ImportError as error:
-            raise ValueError(f"--plot needs symlink.plot.draw_loop, which is not available here ({error})") from None
-    values = {n: getattr(args, n) for n in NAMES}
-    values = {n: (float(to_radians(v, args.units)) if n.startswith("t") and v is not None else v)
-              for n, v in values.items()}
-    result = solve_case(values)
-
-    def shown(name: str, value: float) -> float:
-        if name.startswith("t"):
-            return float(wrap(from_radians(value, args.units), half_turn(args.units)))
-        return value
-
-    rows = [{"branch": b, **{n: shown(n, s[n]) for n in result.missing}}
-            for b, s in zip(result.branches, result.solutions)]
-    for note in result.notes:
-        print(f"symlink: note: {note}", file=sys.stderr)
-    if args.format == "json":
-        print(json.dumps({"case": result.case,
-                          "solutions": [{n: json_number(row[n]) for n in result.missing} for row in rows]}))
-    else:
-        print(f"case {result.case}: {result.description} ({', '.join(result.missing)}; angles in {args.units})")
-        columns = (["branch"] if result.branches[0] else []) + list(result.missing)
-        print_rows(rows, columns, "table")
-    if draw_loop is not None:
-        values = result.values(0)
-        branch = f", branch {result.branches[0]:+d}" if result.branches[0] else ""
-        draw_loop([values[f"r{k}"] for k in "1234"], [values[f"t{k}"] for k in "1234"], args.plot,
-                  title=f"case {result.case}: {result.description}{branch}")
-        if len(result.solutions) > 1:
-            print(f"symlink: note: {args.plot} shows the first solution (branch {result.branches[0]:+d})",
-                  file=sys.stderr)
-    return 0

@@ -16,7 +16,6 @@ watt2: closed form, loop by loop (inputs: theta)
 """
 from __future__ import annotations
 
-import argparse
 from dataclasses import dataclass
 
 from .linkage import Linkage
@@ -97,25 +96,3 @@ def solve_plan(linkage: Linkage) -> SolvePlan:
                               solution.branch.name if solution.branch is not None else None))
         solved_in.update({u: number for u in solution.positions})
     return SolvePlan(linkage.name, inputs, True, tuple(steps), "closed form, loop by loop")
-
-
-def add_command(commands: argparse._SubParsersAction) -> None:
-    """Register ``symlink plan NAME``."""
-    from .catalog import CATALOG
-
-    command = commands.add_parser("plan", help="show how a catalog linkage is solved, loop by loop")
-    command.add_argument("name", choices=sorted(CATALOG), metavar="NAME",
-                         help=f"a catalog linkage: {', '.join(sorted(CATALOG))}")
-    command.set_defaults(run=run)
-
-
-def run(args: argparse.Namespace) -> int:
-    from .analysis import degrees_of_freedom
-    from .catalog import CATALOG
-
-    linkage = CATALOG[args.name]()
-    mobility = degrees_of_freedom(linkage)
-    print(solve_plan(linkage))
-    print(f"degrees of freedom: {mobility.dof} (Gruebler: {mobility.links} links with the ground, "
-          f"{mobility.revolute} revolute and {mobility.prismatic} prismatic joints)")
-    return 0

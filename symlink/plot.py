@@ -21,7 +21,6 @@ angle ``gamma`` measured counter-clockwise from the coupler's direction B->C:
 """
 from __future__ import annotations
 
-import argparse
 import functools
 import io
 import math
@@ -31,10 +30,10 @@ from typing import TYPE_CHECKING, Sequence
 import numpy
 import sympy as sp
 
-from .analysis import assembled_crank_range, crank_range, transmission_curve, transmission_range
+from .analysis import transmission_curve, transmission_range
 from .catalog import fourbar
 from .angles import half_turn, to_radians, wrap
-from .cli import branches as chosen_branches, finite, number_list
+from .reachability import TURN_SAMPLES, assembled_crank_range, crank_range, reachable_turn, turn_angles
 from .files import write_atomic
 from .linkage import Linkage
 from .solver import Solver, check_lengths
@@ -48,8 +47,6 @@ __all__ = ["coupler_point_linkage", "fourbar_positions", "reachable_turn", "turn
            "check_coupler_point", "angle_figure", "transmission_figure", "coupler_curve_figure", "draw_loop",
            "MechanismDrawing", "extent", "save_figure", "figure_suffix", "FIGURE_SUFFIXES"]
 
-#: Samples of a full crank turn in the plots: every half degree, both ends included.
-TURN_SAMPLES = 721
 #: File suffixes :func:`save_figure` writes, and the Matplotlib format of each.
 FIGURE_SUFFIXES = {".png": "png", ".svg": "svg"}
 #: The loop colours of ``seeds/000`` (z1..z4).
@@ -126,33 +123,6 @@ def fourbar_positions(a: float, b: float, c: float, d: float, theta, branch: int
             raise ValueError(f"{linkage.name} has no coupler point P; use coupler_point_linkage()")
         solver = Solver(linkage, outputs)
     return solver(**values)
-
-
-def reachable_turn(a: float, b: float, c: float, d: float) -> list[tuple[float, float]]:
-    """The crank angles in [0, 2 pi] where the four-bar closes, as intervals (radians).
-
-    >>> reachable_turn(20, 66, 56, 80) == [(0.0, 2 * math.pi)]
-    True
-    """
-    full = 2 * math.pi
-    pieces = []
-    for low, high in crank_range(a, b, c, d):
-        if high - low >= full:
-            return [(0.0, full)]
-        low, high = low % full, high % full
-        pieces += [(low, high)] if low <= high else [(0.0, high), (low, full)]
-    return sorted(pieces)
-
-
-def turn_angles(a: float, b: float, c: float, d: float, samples: int = TURN_SAMPLES) -> numpy.ndarray:
-    """A full crank turn [0, 2 pi] in ``samples`` even steps plus the exact toggle angles.
-
-    >>> len(turn_angles(0.1, 0.4, 0.25, 0.30, 5)), len(turn_angles(0.3, 0.1, 0.25, 0.30, 5))
-    (5, 9)
-    """
-    even = numpy.linspace(0.0, 2 * math.pi, samples)
-    toggles = [bound for piece in reachable_turn(a, b, c, d) for bound in piece]
-    return numpy.unique(numpy.concatenate([even, toggles]))
 
 
 def _wrapped_with_breaks(x: numpy.ndarray, angles: numpy.ndarray, half: float) -> tuple[numpy.ndarray, numpy.ndarray]:
@@ -453,72 +423,3 @@ def save_figure(figure: "Figure", path, dpi: float = 100) -> None:
     with matplotlib.rc_context({"svg.hashsalt": "symlink"}):
         figure.savefig(buffer, format=fmt, dpi=dpi, metadata=metadata)
     write_atomic(path, buffer.getvalue())
-
-
-# --- command line ----------------------------------------------------------------
-def figure_path(text: str) -> str:
-    """An argparse type: a .png or .svg file name."""
-    try:
-        figure_suffix(text)
-    except ValueError as error:
-        raise argparse.ArgumentTypeError(str(error)) from None
-    return text
-
-
-def coupler_point_option(text: str) -> tuple[float, float]:
-    """An argparse type: ``DIST,ANGLE``, the coupler point's distance from B and angle from B->C."""
-    values = number_list(text)
-    if len(values) != 2:
-        raise argparse.ArgumentTypeError(f"--coupler-point takes DIST,ANGLE (two numbers), got {text!r}")
-    return values[0], values[1]
-
-
-def add_length_options(parser: argparse.ArgumentParser, defaults: dict[str, float] | None = None) -> None:
-    """``--crank --coupler --rocker --ground``, required unless given defaults."""
-    for option, what in (("crank", "AB"), ("coupler", "BC"), ("rocker", "DC"), ("ground", "AD")):
-        if defaults:
-            parser.add_argument(f"--{option}", type=finite, default=defaults[option],
-                                help=f"length {what} (default {defaults[option]:g})")
-        else:
-            parser.add_argument(f"--{option}", type=finite, required=True, help=f"length {what}")
-
-
-def add_fourbar_options(parser: argparse.ArgumentParser) -> None:
-    """The drawing options of ``symlink fourbar``."""
-    parser.add_argument("--plot", type=figure_path, metavar="FILE",
-                        help="also draw coupler and rocker angle over a full crank turn (.png or .svg)")
-    parser.add_argument("--plot-transmission", type=figure_path, metavar="FILE",
-                        help="also draw the transmission angle over a full crank turn (.png or .svg)")
-
-
-def write_fourbar_plots(args: argparse.Namespace) -> None:
-    """The drawings ``symlink fourbar --plot/--plot-transmission`` asked for, of the table's linkage."""
-    lengths = (args.crank, args.coupler, args.rocker, args.ground)
-    if args.plot:
-        save_figure(angle_figure(*lengths, branches=chosen_branches(args), units=args.units), args.plot)
-    if args.plot_transmission:
-        save_figure(transmission_figure(*lengths, units=args.units), args.plot_transmission)
-
-
-def add_command(commands) -> None:
-    """Register ``symlink curve``."""
-    curve = commands.add_parser("curve", help="the curve of a coupler point over a crank turn, as PNG or SVG")
-    add_length_options(curve)
-    curve.add_argument("--coupler-point", type=coupler_point_option, required=True, metavar="DIST,ANGLE",
-                       help="distance from B, and angle from the coupler's direction B->C")
-    curve.add_argument("--branch", choices=["+1", "1", "-1", "both"], default="+1")
-    curve.add_argument("--crank-angle", type=finite, metavar="ANGLE",
-                       help="where the mechanism is drawn (default: 0, or the first reachable angle)")
-    curve.add_argument("--units", choices=["deg", "rad"], default="deg", help="of the angles given")
-    curve.add_argument("--out", type=figure_path, required=True, metavar="FILE", help=".png or .svg")
-    curve.set_defaults(run=run_curve)
-
-
-def run_curve(args: argparse.Namespace) -> int:
-    distance, angle = args.coupler_point
-    crank_angle = None if args.crank_angle is None else float(to_radians(args.crank_angle, args.units))
-    figure = coupler_curve_figure(args.crank, args.coupler, args.rocker, args.ground, distance,
-                                  float(to_radians(angle, args.units)), branches=chosen_branches(args),
-                                  crank_angle=crank_angle)
-    save_figure(figure, args.out)
-    return 0

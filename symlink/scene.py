@@ -47,8 +47,8 @@ is checked; anything unknown or out of range is one line of error.
 """
 from __future__ import annotations
 
-import argparse
 import inspect
+import math
 from functools import cached_property, lru_cache
 from pathlib import Path
 from typing import Mapping, Sequence
@@ -58,6 +58,8 @@ import sympy as sp
 
 from .cache import GeneratedCode, generated_code
 from .catalog import CATALOG
+from .input_sweep import InputSweep
+from .angles import to_radians
 from .linkage import Linkage, Program
 from .numeric import is_angle
 from .solver import Solver, crank_speeds
@@ -177,22 +179,51 @@ class Scene:
 # --- scene files -----------------------------------------------------------
 
 class SceneFile:
-    """A scene read from a file, with how to drive and print it."""
+    """A scene read from a file, with how to drive and print it.
 
-    def __init__(self, scene: Scene, input_column: str, angles: numpy.ndarray, units: str, fmt: str) -> None:
-        self.scene, self.input_column, self.angles, self.units, self.format = scene, input_column, angles, units, fmt
+    ``sweep`` holds the input angles in ``units``; :meth:`values_at` gives the
+    scene's input values (radians, and the rates the outputs need) at a block
+    of them, so that a long sweep is evaluated a block at a time.
+    """
+
+    def __init__(self, scene: Scene, input_column: str, sweep: InputSweep, units: str, fmt: str,
+                 speed: float = 0.0, accel: float = 0.0) -> None:
+        self.scene, self.input_column, self.sweep, self.units, self.format = scene, input_column, sweep, units, fmt
+        self.speed, self.accel = speed, accel
+
+    @property
+    def angles(self) -> numpy.ndarray:
+        """Every input angle, in ``units``."""
+        return self.sweep.array()
+
+    def values_at(self, angles: numpy.ndarray) -> dict[str, object]:
+        """The driven input's values at ``angles`` (in ``units``): its angle in radians, rate and acceleration."""
+        driven = self.scene.linkage.inputs[0]
+        theta = to_radians(angles, self.units)
+        values: dict[str, object] = {driven.name: theta}
+        takes = self.scene.code.arguments  # rates only where the outputs need them
+        if rate(driven).name in takes:
+            first = float(to_radians(self.sweep.first, self.units))
+            values[rate(driven).name] = crank_speeds(theta, self.speed, self.accel, first)
+        if acceleration(driven).name in takes:
+            values[acceleration(driven).name] = self.accel
+        return values
 
 
 def _number(value, where: str) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise ValueError(f"{where} must be a number, got {value!r}")
-    if not numpy.isfinite(value):
-        raise ValueError(f"{where} must be finite, got {value!r}")
-    return float(value)
+    try:
+        number = float(value)
+    except OverflowError:
+        number = math.inf
+    if not math.isfinite(number):
+        raise ValueError(f"{where} must be finite, got {value if isinstance(value, float) else 'a huge integer'}")
+    return number
 
 
 def _choice(value, where: str, choices: Sequence) -> object:
-    if isinstance(value, bool) or value not in choices:
+    if isinstance(value, (bool, float)) or value not in choices:
         raise ValueError(f"{where} must be one of {', '.join(map(repr, choices))}, got {value!r}")
     return value
 
@@ -216,9 +247,6 @@ def scene_from_mapping(data: Mapping) -> SceneFile:
     >>> round(float(numpy.degrees(found.scene.evaluate()[1]["rocker"][0])), 2)
     110.74
     """
-    from .angles import to_radians
-    from .cli import UsageError, sweep_angles
-
     data = _table(dict(data), "", TOP_KEYS)
     if "linkage" not in data:
         raise ValueError(f"missing key linkage (one of {', '.join(sorted(CATALOG))})")
@@ -254,73 +282,54 @@ def scene_from_mapping(data: Mapping) -> SceneFile:
         raise ValueError(f"scene files drive linkages with one input angle; {linkage.name} has "
                          f"{', '.join(map(str, linkage.inputs))}")
     driven = linkage.inputs[0]
-    sweep = _table(data.get("input", {}), "input", INPUT_KEYS)
-    options = {key: (None if key not in sweep else _number(sweep[key], f"input.{key}"))
+    sweep_table = _table(data.get("input", {}), "input", INPUT_KEYS)
+    options = {key: (None if key not in sweep_table else _number(sweep_table[key], f"input.{key}"))
                for key in ("start", "stop", "step")}
-    angles = sweep.get("angles")
+    angles = sweep_table.get("angles")
     if angles is not None:
         if not isinstance(angles, list):
             raise ValueError(f"input.angles must be a list of numbers, got {angles!r}")
         angles = [_number(v, f"input.angles[{i}]") for i, v in enumerate(angles)]
     try:
-        values = sweep_angles(argparse.Namespace(angles=angles, units=units, **options))
-    except UsageError as error:
-        raise ValueError(f"input: {str(error).replace('--', '')}") from None
-    theta = to_radians(values, units)
-    speed = _number(sweep.get("speed", 0.0), "input.speed")
-    accel = _number(sweep.get("accel", 0.0), "input.accel")
-    scene = Scene(linkage, outputs, {driven.name: theta, **parameters}, branch)
-    takes = scene.code.arguments  # rates only where the outputs need them
-    if rate(driven).name in takes:
-        scene.values[rate(driven).name] = crank_speeds(theta, speed, accel)
-    if acceleration(driven).name in takes:
-        scene.values[acceleration(driven).name] = accel
+        sweep = InputSweep.from_options(angles=angles, units=units, **options)
+    except ValueError as error:
+        raise ValueError(f"input: {error}") from None
+    speed = _number(sweep_table.get("speed", 0.0), "input.speed")
+    accel = _number(sweep_table.get("accel", 0.0), "input.accel")
+    scene = Scene(linkage, outputs, dict(parameters), branch)
     roles = [role for role, q in linkage.roles.items() if q == driven]
-    return SceneFile(scene, roles[0] if roles else driven.name, values, units, fmt)
+    found = SceneFile(scene, roles[0] if roles else driven.name, sweep, units, fmt, speed, accel)
+    scene.values.update(found.values_at(sweep.array() if len(sweep) <= 4096 else sweep.block(0, 1)))
+    return found
+
+
+#: Scene files larger than this are refused unread (a scene is a few lines).
+MAX_SCENE_BYTES = 1 << 20
+
+
+def scene_from_text(text: str, source: str) -> SceneFile:
+    """A :class:`SceneFile` from TOML text; ``ValueError`` starting with ``source`` on any problem."""
+    try:
+        if len(text) > MAX_SCENE_BYTES:
+            raise ValueError(f"larger than {MAX_SCENE_BYTES} bytes: not a scene file")
+        try:
+            data = toml_loads(text)
+        except ValueError as error:  # tomllib.TOMLDecodeError is a ValueError
+            raise ValueError(f"not valid TOML: {error}") from None
+        except RecursionError:
+            raise ValueError("not valid TOML: nested too deeply") from None
+        return scene_from_mapping(data)
+    except ValueError as error:
+        raise ValueError(f"{source}: {error}") from None
 
 
 def read_scene(path: str | Path) -> SceneFile:
     """Read and check a TOML scene file; ``ValueError`` starting with the file name on any problem."""
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        with open(path, "rb") as file:
+            data = file.read(MAX_SCENE_BYTES + 1)
+        text = data.decode("utf-8")
     except (OSError, UnicodeDecodeError) as error:
         raise ValueError(f"cannot read scene file {path}: {getattr(error, 'strerror', None) or error}") from None
-    try:
-        try:
-            data = toml_loads(text)
-        except ValueError as error:  # tomllib.TOMLDecodeError is a ValueError
-            raise ValueError(f"not valid TOML: {error}") from None
-        return scene_from_mapping(data)
-    except ValueError as error:
-        raise ValueError(f"{path}: {error}") from None
-
-
-# --- the command line ------------------------------------------------------
-
-def add_command(commands) -> None:
-    """Register ``symlink run SCENE.toml``."""
-    command = commands.add_parser("run", help="evaluate a scene file (TOML: numbers and names only)")
-    command.add_argument("scene", help="a TOML scene file")
-    command.add_argument("--format", choices=list(FORMATS), help="override the file's format")
-    command.set_defaults(run=run)
-
-
-def run(args: argparse.Namespace) -> int:
-    """``symlink run``: print the scene's outputs at each input angle and branch."""
-    from .analysis import crank_range
-    from .cli import assemble_rows, describe_spans, print_rows
-
-    found = read_scene(args.scene)
-    scene = found.scene
-    results = scene.evaluate()
-    columns = [found.input_column, "branch", *scene.outputs]
-    if scene.linkage.name == "fourbar":
-        lengths = (scene.values[n] for n in "abcd")
-        spans = describe_spans(crank_range(*lengths), found.units)
-    else:
-        spans = f"not computed for {scene.linkage.name}"
-    angle_columns = {found.input_column} | angle_outputs(scene.linkage, scene.outputs)
-    rows = assemble_rows(found.angles, results, columns, found.units, spans, angle_columns=angle_columns)
-    print_rows(rows, columns, args.format or found.format)
-    return 0
+    return scene_from_text(text, str(path))

@@ -32,10 +32,7 @@ four-bar solver): Grashof class, limit positions, stroke, time ratio, transmissi
 """
 from __future__ import annotations
 
-import argparse
-import json
 import math
-import sys
 from dataclasses import dataclass, replace
 
 import numpy
@@ -320,59 +317,3 @@ def as_record(design: QuickReturn) -> dict:
         "method": design.method,
         "warnings": list(design.warnings),
     }
-
-
-def _pivot(text: str) -> tuple[float, float]:
-    from .cli import number_list
-    values = number_list(text)
-    if len(values) != 2:
-        raise argparse.ArgumentTypeError(f"expected X,Y (two numbers), got {text!r}")
-    return values[0], values[1]
-
-
-def add_command(commands) -> None:
-    """Register ``symlink quick-return``."""
-    from .cli import finite
-    command = commands.add_parser(
-        "quick-return", help="synthesize a quick-return crank-rocker from time ratio, stroke and rocker",
-        description="Quick-return crank-rocker synthesis (seed 002, exact). The rocker pivot is at the origin; "
-                    "lengths in the rocker's unit, angles in degrees.")
-    command.add_argument("--time-ratio", type=finite, required=True, metavar="TR", help="slow over quick stroke, >= 1")
-    command.add_argument("--stroke", type=finite, required=True, metavar="DEG", help="rocker swing, degrees")
-    command.add_argument("--rocker", type=finite, required=True, metavar="L", help="rocker length")
-    command.add_argument("--rocker-min-angle", type=finite, default=90.0, metavar="DEG",
-                         help="rocker angle at its minimum position (default 90)")
-    command.add_argument("--crank-pivot", type=_pivot, metavar="X,Y",
-                         help="fix the crank pivot (the paper's procedure); default: the best one")
-    command.add_argument("--max-link-ratio", type=finite, default=MAX_LINK_RATIO, metavar="K",
-                         help="without a crank pivot: longest link at most K times the crank "
-                              f"(default {MAX_LINK_RATIO:g})")
-    command.add_argument("--format", choices=["table", "json"], default="table")
-    command.set_defaults(run=run)
-
-
-def run(args: argparse.Namespace) -> int:
-    design = quick_return(args.time_ratio, math.radians(args.stroke), args.rocker,
-                          math.radians(args.rocker_min_angle), args.crank_pivot, args.max_link_ratio)
-    record = as_record(design)
-    for warning in design.warnings:
-        print(f"symlink: warning: {warning}", file=sys.stderr)
-    if args.format == "json":
-        print(json.dumps(record, indent=1))
-        return 0
-    lines = [
-        f"Quick-return crank-rocker ({design.method}); rocker pivot O4 at (0, 0)",
-        f"crank          {design.crank:.4f}",
-        f"coupler        {design.coupler:.4f}",
-        f"rocker         {design.rocker:.4f}",
-        f"ground         {design.ground:.4f}",
-        f"crank pivot    ({design.crank_pivot[0]:.4f}, {design.crank_pivot[1]:.4f})",
-        f"stroke         {record['stroke']:.4f} deg (requested {record['requested_stroke']:g})",
-        f"time ratio     {design.time_ratio:.4f} (requested {design.requested_time_ratio:g})",
-        f"transmission   {record['transmission_min']:.4f} to {record['transmission_max']:.4f} deg "
-        f"(worst {record['worst_transmission']:.4f})",
-        f"rocker swings  {record['rocker_extremes'][0]:.4f} <-> {record['rocker_extremes'][1]:.4f} deg",
-        f"Grashof        {design.grashof}",
-    ]
-    print("\n".join(lines))
-    return 0

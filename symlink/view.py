@@ -18,17 +18,16 @@ crank angle       θ =   90.000°
 """
 from __future__ import annotations
 
-import argparse
 import math
 from typing import TYPE_CHECKING
 
 import numpy
 
-from .analysis import crank_range, grashof
+from .analysis import grashof
 from .catalog import fourbar
-from .angles import to_radians, wrap
-from .cli import describe_spans, finite
-from .plot import MechanismDrawing, TRANSMISSION_LIMITS, add_length_options, extent, figure_path, save_figure
+from .angles import wrap
+from .plot import MechanismDrawing, TRANSMISSION_LIMITS, extent
+from .reachability import crank_range, describe_spans
 from .solver import Solver, check_lengths
 
 if TYPE_CHECKING:
@@ -41,6 +40,39 @@ SEED001 = {"crank": 0.1, "coupler": 0.4, "rocker": 0.25, "ground": 0.30}
 OUTPUTS = ["B_x", "B_y", "C_x", "C_y", "coupler", "rocker", "coupler_speed", "rocker_speed", "transmission"]
 LENGTH_SLIDERS = (("crank", "crank a"), ("coupler", "coupler b"), ("rocker", "rocker c"), ("ground", "ground d"))
 NON_INTERACTIVE = {"agg", "cairo", "pdf", "pgf", "ps", "svg", "template"}
+#: A length slider spans the longest length divided by this to the longest times :data:`SLIDER_ABOVE`.
+SLIDER_BELOW, SLIDER_ABOVE = 50.0, 2.5
+
+
+def check_slider_range(crank: float, coupler: float, rocker: float, ground: float, crank_speed: float = 1.0) -> None:
+    """``ValueError`` unless the lengths are positive and fit the sliders (which would clamp them silently).
+
+    >>> check_slider_range(0.1, 0.4, 0.25, 0.3)
+    >>> check_slider_range(0.001, 0.4, 0.25, 0.3)
+    Traceback (most recent call last):
+    ValueError: the view's length sliders span 1/50 of the longest length to 2.5 times it (0.008 to 1); crank 0.001 is outside: write a picture of the table instead, or scale the lengths
+    """
+    check_lengths(crank=crank, coupler=coupler, rocker=rocker, ground=ground)
+    lengths = {"crank": crank, "coupler": coupler, "rocker": rocker, "ground": ground}
+    top = max(lengths.values())
+    low, high = top / SLIDER_BELOW, top * SLIDER_ABOVE
+    for name, value in lengths.items():
+        if not low <= value <= high:
+            raise ValueError(f"the view's length sliders span 1/{SLIDER_BELOW:g} of the longest length to "
+                             f"{SLIDER_ABOVE:g} times it ({low:g} to {high:g}); {name} {value:g} is outside: "
+                             "write a picture of the table instead, or scale the lengths")
+    if not math.isfinite(crank_speed) or abs(crank_speed) > 1e6:
+        raise ValueError(f"the view's crank speed must be finite and at most 1e6 rad/s in size, got {crank_speed:g}")
+
+
+def interactive_backend():
+    """pyplot, where Matplotlib has an interactive backend; ``ValueError`` saying what to do otherwise."""
+    import matplotlib.pyplot as pyplot
+    backend = pyplot.get_backend().lower()
+    if backend in NON_INTERACTIVE:
+        raise ValueError(f"Matplotlib has no interactive backend here (it uses {backend!r}: no display?); "
+                         "set MPLBACKEND to one (e.g. TkAgg, QtAgg), or write a picture with --save FILE.png")
+    return pyplot
 
 
 class FourbarView:
@@ -59,7 +91,7 @@ class FourbarView:
                  figure: "Figure | None" = None) -> None:
         from matplotlib.widgets import RadioButtons, Slider
         initial = {"crank": crank, "coupler": coupler, "rocker": rocker, "ground": ground}
-        check_lengths(crank=crank, coupler=coupler, rocker=rocker, ground=ground)
+        check_slider_range(crank, coupler, rocker, ground, crank_speed)
         self.solver = Solver(fourbar(), OUTPUTS)
         self.solver(theta=crank_angle, a=crank, b=coupler, c=rocker, d=ground, branch=branch,
                     thetadot=crank_speed)  # validates everything with the solver's own messages
@@ -77,7 +109,8 @@ class FourbarView:
                                transform=panel.transAxes)
         top = max(initial.values())
         self.sliders: dict[str, Slider] = {}
-        rows = [(name, label, top / 50, top * 2.5, initial[name], "%.4g") for name, label in LENGTH_SLIDERS]
+        rows = [(name, label, top / SLIDER_BELOW, top * SLIDER_ABOVE, initial[name], "%.4g")
+                for name, label in LENGTH_SLIDERS]
         rows.append(("angle", "crank θ (deg)", 0.0, 360.0, float(numpy.mod(math.degrees(crank_angle), 360)),
                      "%.1f"))
         speed_range = max(10.0, 2 * abs(crank_speed))
@@ -157,38 +190,3 @@ class FourbarView:
                   "reachable crank range:"]
         lines += ["  " + describe_spans(pieces, "deg") for pieces in ([[span] for span in spans] or [[]])]
         return "\n".join(lines)
-
-
-# --- command line ----------------------------------------------------------------
-def add_command(commands) -> None:
-    """Register ``symlink view``."""
-    parser = commands.add_parser("view", help="an interactive four-bar (Matplotlib window with sliders)")
-    add_length_options(parser, defaults=SEED001)
-    parser.add_argument("--crank-angle", type=finite, default=0.0, metavar="ANGLE", help="initial (default 0)")
-    parser.add_argument("--crank-speed", type=finite, default=1.0, metavar="W", help="rad/s (default 1)")
-    parser.add_argument("--branch", choices=["+1", "1", "-1"], default="+1")
-    parser.add_argument("--units", choices=["deg", "rad"], default="deg", help="of --crank-angle")
-    parser.add_argument("--save", type=figure_path, metavar="FILE",
-                        help="write the figure to a .png or .svg instead of opening a window")
-    parser.set_defaults(run=run)
-
-
-def run(args: argparse.Namespace) -> int:
-    settings = dict(crank_angle=float(to_radians(args.crank_angle, args.units)), branch=int(args.branch),
-                    crank_speed=args.crank_speed)
-    lengths = (args.crank, args.coupler, args.rocker, args.ground)
-    if args.save:
-        from matplotlib.figure import Figure
-        figure = Figure(figsize=(10, 6.5))
-        FourbarView(*lengths, figure=figure, **settings)
-        save_figure(figure, args.save)
-        return 0
-    import matplotlib.pyplot as pyplot
-    backend = pyplot.get_backend().lower()
-    if backend in NON_INTERACTIVE:
-        raise ValueError(f"Matplotlib has no interactive backend here (it uses {backend!r}: no display?); "
-                         "set MPLBACKEND to one (e.g. TkAgg, QtAgg), or write a picture with --save FILE.png")
-    view = FourbarView(*lengths, **settings)
-    pyplot.show()
-    del view
-    return 0

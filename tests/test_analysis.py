@@ -9,7 +9,8 @@ from hypothesis import strategies as st
 
 from references import mp_fourbar, transmission_angle
 from symlink import Linkage, Loop, Vector, coordinates, lengths
-from symlink.analysis import (GRASHOF_CLASSES, crank_range, degrees_of_freedom, grashof, limit_positions,
+from symlink.reachability import crank_range
+from symlink.analysis import (GRASHOF_CLASSES, degrees_of_freedom, grashof, limit_positions,
                               transmission_curve, transmission_range, triangle_angle)
 from symlink.catalog import CATALOG, fourbar
 

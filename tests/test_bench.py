@@ -10,7 +10,7 @@ import pytest
 
 from cache_fixture import empty_cache  # noqa: F401 - a fixture
 from references import mp_fourbar, seed003_positions
-from symlink.analysis import crank_range
+from symlink.reachability import crank_range
 from symlink.bench import (METHODS, SEED_LINKAGES, benchmark, hand_numpy, is_grashof, newton, reference_positions,
                            targets, workload)
 from symlink.cli import main

@@ -34,26 +34,32 @@ import argparse
 import itertools
 import math
 from dataclasses import dataclass
-from typing import Callable, Mapping
+from typing import Callable, Collection, Iterable, Mapping
 
 import numpy
 import sympy as sp
 
-from .analysis import crank_range
-from .angles import from_radians, half_turn, to_radians, wrap
-from .assemblies import stephenson3_assemblies
-from .linkage import Linkage
-from .numeric import is_angle
-from .scene import catalog_linkage
-from .solver import Solver, check_lengths, crank_speeds
-from .vectors import acceleration, rate
+from ..angles import from_radians, half_turn, to_radians, wrap
+from ..assemblies import stephenson3_assemblies
+from ..catalog import fourbar
+from ..input_sweep import InputSweep
+from ..linkage import Linkage
+from ..numeric import is_angle
+from ..reachability import (crank_range, fivebar_range, inverted_slider_crank_range, scanned_range,
+                            slider_crank_range)
+from ..scene import catalog_linkage
+from ..solver import Solver, check_lengths, crank_speeds
+from ..vectors import acceleration, rate
+from .options import (FOURBAR_LENGTHS, UsageError, add_sweep_options, branches, command_help, finite, fourbar_lengths,
+                      input_sweep)
+from .output import RowWriter, TableAssembler, describe_spans, print_rows
 
-__all__ = ["Option", "Table", "TABLES", "table_columns", "loop_branches", "scanned_range",
-           "add_table_command", "add_commands", "run_table"]
+__all__ = ["Option", "Table", "TABLES", "table_columns", "loop_branches", "write_table", "register"]
 
 LENGTH, NUMBER, ANGLE = "length", "number", "angle"
-#: Points a turn of the scan that finds a reachable crank range without a closed form.
-SCAN_POINTS = 3600
+FOURBAR_COLUMNS = ["crank", "branch", "coupler", "rocker", "coupler_speed", "rocker_speed",
+                   "coupler_accel", "rocker_accel", "transmission"]
+ANGLE_COLUMNS = {"crank", "coupler", "rocker"}
 
 
 @dataclass(frozen=True)
@@ -90,6 +96,7 @@ class Table:
     linkage: str
     summary: str
     options: tuple[Option, ...]
+    example: str
     notes: str = ""
     reachable: Callable[[Mapping[str, float]], list[tuple[float, float]] | str | None] | None = None
     undetermined: Callable[[Mapping[str, float], Mapping[str, numpy.ndarray]], numpy.ndarray] | None = None
@@ -134,8 +141,6 @@ def loop_branches(loops: int) -> Callable[[str], list[tuple[int, ...]]]:
 
 def _guess(text: str) -> dict[str, float]:
     """``NAME=ANGLE,...`` from the command line (numbers only)."""
-    from .cli import finite
-
     guess = {}
     for item in text.split(","):
         name, equals, value = item.partition("=")
@@ -145,49 +150,19 @@ def _guess(text: str) -> dict[str, float]:
     return guess
 
 
-def scanned_range(assembled: Callable[[numpy.ndarray], numpy.ndarray],
-                  points: int = SCAN_POINTS) -> list[tuple[float, float]]:
-    """The crank angles where ``assembled`` holds, from a scan of a full turn, edges bisected to rounding.
-
-    ``assembled`` maps an array of crank angles (radians) to a boolean mask.
-    Intervals as in :func:`symlink.analysis.crank_range`; stretches narrower
-    than the scan step (a tenth of a degree) can be missed.
-
-    >>> [tuple(round(math.degrees(x), 9) for x in span) for span in scanned_range(lambda t: numpy.cos(t) >= 0.5)]
-    [(-60.0, 60.0)]
-    """
-    step = 2 * math.pi / points
-    grid = -math.pi + step * numpy.arange(points)
-    inside = numpy.asarray(assembled(grid), dtype=bool)
-    if inside.all():
-        return [(-math.pi, math.pi)]
-    if not inside.any():
-        return []
-    edges = numpy.flatnonzero(inside != numpy.roll(inside, -1))
-    low, high, rising = grid[edges], grid[edges] + step, ~inside[edges]
-    for _ in range(60):
-        middle = 0.5 * (low + high)
-        same = numpy.asarray(assembled(middle), dtype=bool) == inside[edges]
-        low, high = numpy.where(same, middle, low), numpy.where(same, high, middle)
-    # The boundary points are reachable: rising edges start at `high`, falling edges end at `low`.
-    marks = sorted(zip(numpy.where(rising, high, low).tolist(), rising.tolist()))
-    if not marks[0][1]:  # the first interval began before -pi: start it a turn earlier
-        marks.append((marks[0][0] + 2 * math.pi, False))
-        marks = marks[1:]
-    return [(start, end) for (start, _), (end, _) in zip(marks[::2], marks[1::2])]
-
-
 def _spans_text(spans: list[tuple[float, float]] | str, units: str) -> str:
     """A reachable crank range for messages: intervals in ``units``, or a sentence as it is."""
-    from .cli import describe_spans
-
     return spans if isinstance(spans, str) else describe_spans(spans, units)
 
 
 # --- the command ------------------------------------------------------------------
 
 def _description(table: Table, linkage: Linkage) -> str:
-    lines = [table.summary + ".", "", "csv header: " + ",".join(table_columns(linkage))]
+    lines = [table.summary[0].upper() + table.summary[1:] + ".", "",
+             "units: lengths in any one unit; angles in --units (deg by default), speeds rad/s, "
+             "accelerations rad/s^2",
+             f"example: symlink {table.linkage} {table.example}", "",
+             "csv header: " + ",".join(table_columns(linkage))]
     return "\n".join(lines + (["", table.notes] if table.notes else []))
 
 
@@ -198,14 +173,11 @@ def add_table_command(commands: argparse._SubParsersAction, table: Table) -> arg
     command is used: every other command starts without that symbolic work.
     """
     return commands.add_parser(table.linkage, help=table.summary,
-                               formatter_class=argparse.RawDescriptionHelpFormatter,
                                populate=lambda command: _add_options(command, table))
 
 
 def _add_options(command: argparse.ArgumentParser, table: Table) -> None:
     """The options of ``table``'s command, from its catalog linkage."""
-    from .cli import add_sweep_options, finite
-
     linkage = catalog_linkage(table.linkage)
     command.description = _description(table, linkage)
     for option in table.options:
@@ -266,8 +238,6 @@ def _input_values(linkage: Linkage, values: Mapping[str, float], theta, speeds, 
 
 def _branch_signs(linkage: Linkage, args: argparse.Namespace) -> dict[object, dict[str, int]]:
     """The branch column's value and the branch arguments, for each branch asked for."""
-    from .cli import branches
-
     names = [b.name for b in linkage.branches]
     if not names:
         return {1: {}}
@@ -276,8 +246,8 @@ def _branch_signs(linkage: Linkage, args: argparse.Namespace) -> dict[object, di
     return {"/".join(f"{s:+d}" for s in signs): dict(zip(names, signs)) for signs in itertools.product(*args.branch)}
 
 
-def _closed_form(table: Table, linkage: Linkage, values: dict, inputs: dict, args: argparse.Namespace):
-    """Results for each branch asked for, and a function giving the reachable crank range of each."""
+def _closed_form(table: Table, linkage: Linkage, values: dict, args: argparse.Namespace):
+    """A solver of one block of inputs for each branch asked for, and the reachable crank range of each."""
     outputs = _outputs(linkage)
     solver = Solver(linkage, list(outputs.values()))
     parameters = {s.name: values[s.name] for s in linkage.parameters}
@@ -291,7 +261,8 @@ def _closed_form(table: Table, linkage: Linkage, values: dict, inputs: dict, arg
         solved = {column: result[name] for column, name in outputs.items()}
         return {**solved, **{_label(linkage, x): given[x.name] for x in linkage.inputs[1:]}, "assembled": assembled}
 
-    results = {key: solve(branch, inputs) for key, branch in choices.items()}
+    def solve_block(inputs: Mapping) -> dict:
+        return {key: solve(branch, inputs) for key, branch in choices.items()}
 
     def reachable():
         known = table.reachable(values) if table.reachable is not None else None
@@ -305,7 +276,7 @@ def _closed_form(table: Table, linkage: Linkage, values: dict, inputs: dict, arg
                  for key, branch in choices.items()}
         return texts if len(set(texts.values())) > 1 else next(iter(texts.values()))
 
-    return results, reachable
+    return solve_block, reachable
 
 
 def _start(table: Table, linkage: Linkage, values: dict, theta: float, args: argparse.Namespace):
@@ -348,11 +319,9 @@ def _numeric(table: Table, linkage: Linkage, values: dict, inputs: dict, angles,
     raise failure
 
 
-def _print_assemblies(table: Table, linkage: Linkage, values: dict, angles, args: argparse.Namespace) -> None:
+def _print_assemblies(table: Table, linkage: Linkage, values: dict, first: float, args: argparse.Namespace) -> None:
     """``--list-assemblies``: the assemblies at the first crank angle, angles wrapped, in the table's format."""
-    from .cli import print_rows
-
-    theta = float(to_radians(angles[0], args.units))
+    theta = float(to_radians(first, args.units))
     shown = (linkage.inputs[0],) + linkage.unknowns
     columns = [_label(linkage, q) for q in shown]
     rows = []
@@ -363,75 +332,87 @@ def _print_assemblies(table: Table, linkage: Linkage, values: dict, angles, args
     print_rows(rows, columns, args.format)
 
 
+def write_table(blocks: Iterable[tuple[numpy.ndarray, Mapping[object, Mapping[str, numpy.ndarray]]]],
+                columns: list[str], units: str, fmt: str, angle_columns: Collection[str],
+                spans: Callable[[], str | Mapping[object, str]]) -> None:
+    """Print a table block by block: ``blocks`` yields input angles (in ``units``) and each branch's results.
+
+    Rows that cannot be assembled are left out and named on stderr, with the
+    reachable range ``spans()``; nothing at all assembled is a ``ValueError``
+    (and nothing is printed).
+    """
+    assembler = TableAssembler(columns, units, angle_columns)
+    writer = RowWriter(columns, fmt)
+    for angles, results in blocks:
+        writer.write(assembler.rows_of(angles, results))
+    assembler.finish(spans)
+    writer.close()
+
+
+def _check_crank_speeds(sweep: InputSweep, units: str, speed: float, accel: float) -> None:
+    """``ValueError`` before anything is printed if a uniformly accelerated crank stops within the sweep."""
+    if accel != 0:
+        first = float(to_radians(sweep.first, units))
+        for angles in sweep.blocks():
+            crank_speeds(to_radians(angles, units), speed, accel, first)
+
+
+def _speeds_at(sweep: InputSweep, args: argparse.Namespace) -> Callable[[numpy.ndarray], tuple]:
+    """Crank angles (radians) and speeds at a block of the sweep (in the command's units)."""
+    first = float(to_radians(sweep.first, args.units))
+
+    def at(angles: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
+        theta = to_radians(angles, args.units)
+        return theta, crank_speeds(theta, args.crank_speed, args.crank_accel, first)
+
+    return at
+
+
 def run_table(table: Table, args: argparse.Namespace) -> int:
     """Print the table of ``table``'s linkage for the parsed ``args``."""
-    from .cli import assemble_rows, print_rows, sweep_angles
-
     linkage = catalog_linkage(table.linkage)
     values = _values(table, linkage, args)
-    angles = sweep_angles(args)
+    sweep = input_sweep(args)
     if getattr(args, "list_assemblies", False):
-        _print_assemblies(table, linkage, values, angles, args)
+        _print_assemblies(table, linkage, values, sweep.first, args)
         return 0
-    theta = to_radians(angles, args.units)
-    speeds = crank_speeds(theta, args.crank_speed, args.crank_accel)
-    inputs = _input_values(linkage, values, theta, speeds, args.crank_accel)
-    spans: str | dict = ""
+    _check_crank_speeds(sweep, args.units, args.crank_speed, args.crank_accel)
+    speeds_at = _speeds_at(sweep, args)
+
+    def inputs_at(angles):
+        theta, speeds = speeds_at(angles)
+        return _input_values(linkage, values, theta, speeds, args.crank_accel)
+
     if linkage.has_closed_form:
-        results, reachable = _closed_form(table, linkage, values, inputs, args)
-        if not all(result["assembled"].all() for result in results.values()):
-            spans = reachable()
-    else:
-        results = _numeric(table, linkage, values, inputs, angles, args)
+        solve_block, reachable = _closed_form(table, linkage, values, args)
+        blocks = ((angles, solve_block(inputs_at(angles))) for angles in sweep.blocks())
+    else:  # Newton continues along the whole sweep: one block
+        angles = sweep.array()
+        blocks = [(angles, _numeric(table, linkage, values, inputs_at(angles), angles, args))]
+        reachable = lambda: ""  # noqa: E731 - the numeric solver stops with a message instead
     columns = table_columns(linkage)
     angle_columns = {_label(linkage, q) for q in linkage.coordinates if is_angle(linkage, q)}
-    rows = assemble_rows(angles, results, columns, args.units, spans, angle_columns=angle_columns)
-    print_rows(rows, columns, args.format)
+    write_table(blocks, columns, args.units, args.format, angle_columns, reachable)
     return 0
 
 
 # --- the catalog's entries ----------------------------------------------------------
-
-def _inverted_reachable(values: Mapping[str, float]) -> list[tuple[float, float]] | str:
-    if values["a"] != values["d"]:
-        return [(-math.pi, math.pi)]
-    return "every crank angle but 0, where B passes over the rocker pivot D and the rocker angle is undetermined"
-
 
 def _inverted_undetermined(values: Mapping[str, float], result: Mapping[str, numpy.ndarray]) -> numpy.ndarray:
     """B over D: the block sits on the pivot and the rocker angle follows from nothing."""
     return result["r"] <= 64 * numpy.finfo(float).eps * (values["a"] + values["d"])
 
 
-def _fivebar_reachable(values: Mapping[str, float]) -> list[tuple[float, float]] | str | None:
-    """Crank 2 held still: a four-bar over the ground A -> D (an exact range); geared: a scan."""
-    ratio = values["psi_ratio"]
-    if ratio != 0:
-        if ratio != round(ratio):
-            return "not periodic in the crank angle for a non-integer --crank2-ratio; not computed"
-        return None
-    D = values["d"] + values["e"] * complex(math.cos(values["psi"]), math.sin(values["psi"]))
-    a, b, c = values["a"], values["b"], values["c"]
-    if abs(D) <= 64 * numpy.finfo(float).eps * (values["d"] + values["e"]):  # D on A: |BD| = a everywhere
-        return [(-math.pi, math.pi)] if abs(b - c) <= a <= b + c else []
-    spans = crank_range(a, b, c, abs(D))
-    if spans == [(-math.pi, math.pi)]:
-        return spans
-    turn = math.atan2(D.imag, D.real)
-    shifted = [(low + turn, high + turn) for low, high in spans]
-    return [(low - 2 * math.pi, high - 2 * math.pi) if low > math.pi else
-            (low + 2 * math.pi, high + 2 * math.pi) if low <= -math.pi else (low, high) for low, high in shifted]
-
-
 INVERTED = Table(
     "inverted-slider-crank", "positions, speeds and accelerations of an inverted slider-crank (crank-shaper)",
     (Option("crank", "a", "A", "crank length AB"),
      Option("ground", "d", "D", "distance AD to the rocker pivot D = (d, 0)")),
+    "--crank 2 --ground 1.2 --crank-speed 3 --step 40",
     notes="One assembly (the block at distance slider = r >= 0 along the rocker), printed as branch +1; "
           "no --branch.\nThe slider column is r = DB in the length unit, its speed and acceleration per "
           "second and per second squared.\nWhere B passes over D (crank = ground, crank angle 0) the rocker "
           "angle is undetermined: that angle is left out.",
-    reachable=_inverted_reachable, undetermined=_inverted_undetermined)
+    reachable=inverted_slider_crank_range, undetermined=_inverted_undetermined)
 
 WATT2 = Table(
     "watt2", "positions, speeds and accelerations of a Watt II six-bar",
@@ -446,6 +427,8 @@ WATT2 = Table(
      Option("output", "g", "G", "output rocker length GF"),
      Option("output-x", "gx", "GX", "x of the output rocker's pivot G", kind=NUMBER),
      Option("output-y", "gy", "GY", "y of the output rocker's pivot G", kind=NUMBER)),
+    "--crank 1 --coupler 3.5 --rocker 3 --ground 3.2 --rocker-arm 2 --rocker-arm-angle 35 --coupler2 4 "
+    "--output 3 --output-x 4.5 --output-y 3.5 --angles 0,90 --branch +1,both",
     notes="Branch: one sign a loop, ABCD then DEFG, as in the four-bar: +1 puts C left of B->D and F left "
           "of E->G.\nThe reachable crank range of a branch is found by a scan (0.1 deg, edges bisected).")
 
@@ -463,6 +446,8 @@ STEPHENSON3 = Table(
      Option("link-cf", "c", "C", "binary link CF (its angle is the mu column)"),
      Option("link-eh", "g", "G", "binary link EH (its angle is the eta column)"),
      Option("ground", "d", "D", "ground length AD, D = (d, 0)")),
+    "--crank 1 --coupler 3.1 --link-cf 2.2 --ground 4.5 --coupler-arm 3.9 --rocker 3.1 --link-eh 4.1 "
+    "--rocker-arm 3.1 --coupler-arm-angle 51.5 --rocker-arm-angle 17.2 --step 30",
     notes="No closed form: Newton's method continued along the sweep (in the order given) from one assembly "
           "at the first crank angle, printed as branch +1; no --branch.\nThe assemblies there are found by a "
           "scan of the coupler angle (--list-assemblies prints them); --guess picks the nearest, and by "
@@ -479,15 +464,65 @@ FIVEBAR = Table(
      Option("coupler2", "c", "C", "second coupler length DC"),
      Option("crank2", "e", "E", "second crank length ED (input psi)"),
      Option("ground", "d", "D", "ground length AE, E = (d, 0)")),
+    "--crank 2 --coupler 3 --coupler2 3 --crank2 2 --ground 5 --crank2-angle 90 --step 30",
     notes="Branch +1 puts C left of the line B->D.\nWith crank 2 held still (ratio 0) the reachable crank "
           "range is exact (a four-bar over A->D); with an integer ratio it is found by a scan.",
-    reachable=_fivebar_reachable)
+    reachable=fivebar_range)
 
-#: The table commands of this module (``symlink slider-crank`` is registered by :mod:`symlink.cli_slider`).
-TABLES = (INVERTED, WATT2, STEPHENSON3, FIVEBAR)
+SLIDER = Table(
+    "slider-crank", "positions, speeds and accelerations of a slider-crank",
+    (Option("crank", "a", "A", "crank length AB"),
+     Option("conrod", "b", "B", "connecting rod length BC"),
+     Option("offset", "offset", "E", "the slider's line is y = offset (any sign)", kind=NUMBER, default=0.0)),
+    "--crank 20 --conrod 66 --offset 5 --crank-speed 10 --step 90",
+    notes="Branch +1 is the assembly with the larger slider position.\nThe slider column is its x on the "
+          "line y = offset, in the length unit; its speed and acceleration per second and per second squared.",
+    reachable=lambda values: slider_crank_range(values["a"], values["b"], values["offset"]))
+
+#: The table commands made from catalog entries, in the order ``symlink --help`` lists them.
+TABLES = (SLIDER, INVERTED, WATT2, STEPHENSON3, FIVEBAR)
 
 
-def add_commands(commands: argparse._SubParsersAction) -> None:
-    """Register ``symlink inverted-slider-crank``, ``watt2``, ``stephenson3`` and ``fivebar``."""
+# --- symlink fourbar ------------------------------------------------------------------
+
+def _add_fourbar_options(command: argparse.ArgumentParser) -> None:
+    for option, what in FOURBAR_LENGTHS:
+        command.add_argument(f"--{option}", type=finite, required=True, help=f"length {what}")
+    add_sweep_options(command)
+    from .pictures import add_fourbar_plot_options
+    add_fourbar_plot_options(command)
+
+
+def run_fourbar(args: argparse.Namespace) -> int:
+    """``symlink fourbar``: the table of seed 003, and optionally its plots."""
+    a, b, c, d = fourbar_lengths(args)
+    check_lengths(crank=a, coupler=b, rocker=c, ground=d)
+    sweep = input_sweep(args)
+    _check_crank_speeds(sweep, args.units, args.crank_speed, args.crank_accel)
+    speeds_at = _speeds_at(sweep, args)
+    solver = Solver(fourbar(), FOURBAR_COLUMNS[2:])
+    signs = branches(args)
+
+    def blocks():
+        for angles in sweep.blocks():
+            theta, speeds = speeds_at(angles)
+            yield angles, {sign: solver(theta=theta, a=a, b=b, c=c, d=d, branch=sign, thetadot=speeds,
+                                        thetaddot=args.crank_accel) for sign in signs}
+
+    write_table(blocks(), FOURBAR_COLUMNS, args.units, args.format, ANGLE_COLUMNS,
+                lambda: describe_spans(crank_range(a, b, c, d), args.units))
+    if args.plot or args.plot_transmission:
+        from .pictures import write_fourbar_plots
+        write_fourbar_plots(a, b, c, d, signs, args.units, args.plot, args.plot_transmission)
+    return 0
+
+
+def register(commands: argparse._SubParsersAction) -> None:
+    """Register ``symlink fourbar`` and a table command for each entry of :data:`TABLES`."""
+    commands.add_parser("fourbar", populate=_add_fourbar_options, **command_help(
+        "positions, rates and accelerations of a four-bar, as a table",
+        "lengths in any one unit; angles in --units (deg by default), speeds rad/s, accelerations rad/s^2",
+        "symlink fourbar --crank 20 --coupler 66 --rocker 56 --ground 80 --crank-speed 10.5 --step 40",
+        "csv header: " + ",".join(FOURBAR_COLUMNS))).set_defaults(run=run_fourbar)
     for table in TABLES:
         add_table_command(commands, table)

@@ -1,0 +1,123 @@
+"""The ``symlink`` command: a leaf over the library (nothing in symlink imports it).
+
+Every subcommand parses numbers and names only (never code), prints angles in
+degrees (``--units rad`` for radians) wrapped to (-180, 180], writes results
+to stdout and notes and progress to stderr.
+
+Exit status: 0 success; 1 a file could not be written or read, or the
+machine ran out of memory; 2 bad input (one line on stderr, ``symlink:
+error: ...``); 130 interrupted (Ctrl-C).  A closed pipe (``| head``) ends
+the command quietly.  No command shows a traceback.
+
+One module a command or family: :mod:`.tables` (``fourbar`` and a table
+command for each catalog linkage), :mod:`.pictures` (``curve``, ``animate``,
+``view``), :mod:`.plan`, :mod:`.run` (scene files), :mod:`.bench`,
+:mod:`.analyze`, :mod:`.loop`, :mod:`.quick_return`, :mod:`.export`; shared
+options in :mod:`.options`, writers in :mod:`.output`.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import warnings
+from typing import Sequence
+
+import numpy
+
+from .. import __version__
+from . import analyze, bench, export, loop, pictures, plan, quick_return, run, tables
+from .options import Parser
+
+__all__ = ["main", "build_parser"]
+
+#: The command modules, in the order ``symlink --help`` lists their commands.
+COMMANDS = (tables, plan, pictures, run, bench, analyze, loop, quick_return, export)
+
+EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The ``symlink`` parser with every subcommand (each builds its options when used)."""
+    parser = Parser(prog="symlink", description="Symbolic derivation toolkit for planar linkages.",
+                    epilog="Exit status: 0 done, 1 a file could not be written or read, 2 bad input, "
+                           "130 interrupted.  'symlink COMMAND --help' describes a command.")
+    parser.add_argument("--version", action="version", version=f"symlink {__version__}")
+    commands = parser.add_subparsers(dest="command", required=True, parser_class=Parser, metavar="COMMAND")
+    for module in COMMANDS:
+        module.register(commands)
+    return parser
+
+
+def _one_line(message: object) -> str:
+    return " ".join(str(message).split())
+
+
+def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
+    """Warnings as one line on stderr (RuntimeWarnings from NumPy are not shown at all)."""
+    if issubclass(category, RuntimeWarning):
+        return
+    print(f"symlink: warning: {_one_line(message)}", file=sys.stderr)
+
+
+def _quiet_stdout() -> None:
+    """After a closed pipe: send what is left to /dev/null, so Python's exit flush stays quiet."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError):
+        pass
+
+
+def _error(text: str, status: int) -> int:
+    try:
+        sys.stdout.flush()
+    except (OSError, ValueError):
+        pass
+    print(f"symlink: error: {_one_line(text)}", file=sys.stderr)
+    return status
+
+
+def _os_error(error: OSError) -> str:
+    reason = error.strerror or str(error)
+    where = error.filename
+    return f"cannot write or read {where}: {reason}" if where else reason
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; returns the exit status (see the module's documentation)."""
+    with warnings.catch_warnings(), numpy.errstate(all="ignore"):
+        warnings.simplefilter("default")
+        warnings.showwarning = _show_warning
+        try:
+            parser = build_parser()
+            args, rest = parser.parse_known_args(argv)
+            if getattr(args, "passes_arguments_on", False):
+                args.arguments = rest
+            elif rest:
+                parser.error(f"unrecognized arguments: {' '.join(rest)}")
+            return args.run(args)
+        except SystemExit as done:  # --help and --version
+            return done.code if isinstance(done.code, int) else EXIT_OK
+        except BrokenPipeError:
+            _quiet_stdout()
+            return EXIT_OK
+        except KeyboardInterrupt:
+            print("symlink: interrupted", file=sys.stderr)
+            return EXIT_INTERRUPTED
+        except RecursionError:
+            return _error("the input is nested too deeply", EXIT_USAGE)
+        except ValueError as error:  # UsageError included
+            return _error(str(error), EXIT_USAGE)
+        except OSError as error:
+            return _error(_os_error(error), EXIT_FAILED)
+        except MemoryError:
+            return _error("out of memory: ask for fewer values at a time (a larger --step, fewer frames)",
+                          EXIT_FAILED)
+        except Exception as error:  # noqa: BLE001 - a bug: one line, never a traceback
+            return _error(f"internal error ({type(error).__name__}: {error}); please report it with the "
+                          "command line that caused it", EXIT_FAILED)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

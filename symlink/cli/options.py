@@ -1,0 +1,164 @@
+"""Parsing the command line: the parser, value types and the option groups that several commands share.
+
+Every value is parsed as a number or a name, never as code.  Negative numbers
+(``-1e-3``, ``--angles -90,0``) are values, not options.  A bad value is one
+line of error and exit status 2.
+
+>>> finite("1e3"), number_list("-90, 0,90")
+(1000.0, [-90.0, 0.0, 90.0])
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import re
+from pathlib import Path
+from typing import Callable
+
+from ..input_sweep import InputSweep
+
+__all__ = ["UsageError", "Parser", "finite", "number_list", "pair", "figure_path", "add_sweep_options",
+           "add_fourbar_lengths", "fourbar_lengths", "add_branch_option", "add_units_option", "add_format_option",
+           "input_sweep", "branches", "command_help"]
+
+FOURBAR_LENGTHS = (("crank", "AB"), ("coupler", "BC"), ("rocker", "DC"), ("ground", "AD"))
+FIGURE_SUFFIXES = (".png", ".svg")
+
+
+class UsageError(ValueError):
+    """Bad input from the command line."""
+
+
+_NUMBER = r"(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?"
+
+
+class Parser(argparse.ArgumentParser):
+    """argparse with one-line errors, and negative numbers (-1e-3, -70,0) taken as values, not options.
+
+    ``populate`` adds a command's arguments when that command is used, so the
+    command line starts without building every command's linkage.
+    """
+
+    def __init__(self, *args, populate: Callable[[argparse.ArgumentParser], None] | None = None, **kwargs):
+        kwargs.setdefault("formatter_class", argparse.RawDescriptionHelpFormatter)
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = re.compile(rf"^-{_NUMBER}(,\s*([-+]?{_NUMBER}|both))*$")  # -1,both
+        self._populate = populate
+
+    def parse_known_args(self, args=None, namespace=None):
+        if self._populate is not None:
+            populate, self._populate = self._populate, None
+            populate(self)
+        return super().parse_known_args(args, namespace)
+
+    def format_help(self) -> str:
+        if self._populate is not None:
+            populate, self._populate = self._populate, None
+            populate(self)
+        return super().format_help()
+
+    def error(self, message: str) -> None:  # one line, exit status 2, no usage dump
+        raise UsageError(message)
+
+
+def command_help(summary: str, units: str, example: str, more: str = "") -> dict:
+    """``help`` and ``description`` of a subcommand: a one-line summary, its units and an example."""
+    description = f"{summary[0].upper()}{summary[1:]}.\n\nunits: {units}\nexample: {example}"
+    return {"help": summary, "description": description + (f"\n\n{more}" if more else "")}
+
+
+def finite(text: str) -> float:
+    """A finite number from the command line (no expressions)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"not a finite number: {text!r}")
+    return value
+
+
+def whole(text: str) -> int:
+    """A whole number from the command line."""
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
+
+
+def number_list(text: str) -> list[float]:
+    """Comma-separated finite numbers."""
+    return [finite(item) for item in text.split(",") if item.strip()]
+
+
+def pair(what: str) -> Callable[[str], tuple[float, float]]:
+    """A parser of two comma-separated numbers, named ``what`` in messages (``X,Y``, ``DIST,ANGLE``)."""
+    def parse(text: str) -> tuple[float, float]:
+        values = number_list(text)
+        if len(values) != 2:
+            raise argparse.ArgumentTypeError(f"expected {what} (two numbers), got {text!r}")
+        return values[0], values[1]
+    return parse
+
+
+def figure_path(text: str) -> str:
+    """A .png or .svg file name."""
+    if Path(text).suffix.lower() not in FIGURE_SUFFIXES:
+        raise argparse.ArgumentTypeError(f"cannot draw into {text!r}: the file must end in "
+                                         f"{' or '.join(FIGURE_SUFFIXES)}")
+    return text
+
+
+def add_fourbar_lengths(parser: argparse.ArgumentParser, defaults: dict[str, float] | None = None) -> None:
+    """``--crank --coupler --rocker --ground``, required unless given defaults."""
+    for option, what in FOURBAR_LENGTHS:
+        if defaults:
+            parser.add_argument(f"--{option}", type=finite, default=defaults[option],
+                                help=f"length {what} (default {defaults[option]:g})")
+        else:
+            parser.add_argument(f"--{option}", type=finite, required=True, help=f"length {what}")
+
+
+def fourbar_lengths(args: argparse.Namespace) -> tuple[float, float, float, float]:
+    """The four-bar's lengths a, b, c, d from ``--crank --coupler --rocker --ground``."""
+    return args.crank, args.coupler, args.rocker, args.ground
+
+
+def add_units_option(parser: argparse.ArgumentParser, what: str = "input and printed angles") -> None:
+    parser.add_argument("--units", choices=["deg", "rad"], default="deg", help=f"of the {what} (default deg)")
+
+
+def add_format_option(parser: argparse.ArgumentParser, formats=("table", "csv", "json")) -> None:
+    parser.add_argument("--format", choices=list(formats), default=formats[0], help=f"default {formats[0]}")
+
+
+def add_branch_option(parser: argparse.ArgumentParser, both: bool = True, default: str = "both") -> None:
+    choices = ["+1", "1", "-1"] + (["both"] if both else [])
+    parser.add_argument("--branch", choices=choices, default=default,
+                        help=f"assembly: +1 (C left of B->D), -1{', or both' if both else ''} (default {default})")
+
+
+def add_sweep_options(parser: argparse.ArgumentParser, branch: bool = True) -> None:
+    """The input sweep and output options shared by the table commands (``branch=False``: no ``--branch``)."""
+    parser.add_argument("--crank-speed", type=finite, default=0.0, metavar="W", help="rad/s (default 0)")
+    parser.add_argument("--crank-accel", type=finite, default=0.0, metavar="AL",
+                        help="rad/s^2, uniform from the first angle (default 0)")
+    parser.add_argument("--start", type=finite, help="first crank angle (default 0)")
+    parser.add_argument("--stop", type=finite, help="last crank angle, exclusive (default 360 deg)")
+    parser.add_argument("--step", type=finite, help="crank angle step (default 10 deg)")
+    parser.add_argument("--angles", type=number_list, metavar="LIST", help="comma-separated crank angles")
+    if branch:
+        add_branch_option(parser)
+    add_units_option(parser)
+    add_format_option(parser)
+
+
+def input_sweep(args: argparse.Namespace) -> InputSweep:
+    """The crank angles asked for by ``--start/--stop/--step`` or ``--angles``, in the command's units."""
+    return InputSweep.from_options(args.start, args.stop, args.step, args.angles, args.units, prefix="--")
+
+
+def branches(args: argparse.Namespace) -> list[int]:
+    """The branch signs of ``--branch`` (``both``: +1 and -1)."""
+    return [1, -1] if args.branch == "both" else [int(args.branch)]
+

@@ -1,0 +1,196 @@
+"""Writing results: aligned tables, csv with an exact header, JSON records, streamed row by row.
+
+Results go to stdout, notes and progress to stderr.  A table of millions of
+rows is written as it is computed, a block at a time, so memory stays bounded
+and the first row appears at once.
+
+>>> import io
+>>> out = io.StringIO()
+>>> writer = RowWriter(["crank", "branch", "rocker"], "csv", out)
+>>> writer.write([{"crank": 0.0, "branch": 1, "rocker": 110.74}])
+>>> writer.close()
+>>> print(out.getvalue().strip())
+crank,branch,rocker
+0.0,1,110.74
+"""
+from __future__ import annotations
+
+import json
+import math
+import sys
+from typing import Callable, Collection, Iterable, Iterator, Mapping, TextIO
+
+import numpy
+
+from ..angles import from_radians, half_turn, wrap
+from ..reachability import describe_spans
+
+__all__ = ["format_number", "json_number", "RowWriter", "print_rows", "describe_spans", "TableAssembler", "note"]
+
+#: Angles named one by one in a note before the rest are counted.
+LISTED_ANGLES = 50
+#: Lines written at once.
+CHUNK = 2048
+
+
+def note(text: str) -> None:
+    """One line on stderr: ``symlink: TEXT``."""
+    print(f"symlink: {text}", file=sys.stderr)
+
+
+def format_number(value: float) -> str:
+    """Full double precision for machine-readable output."""
+    return repr(float(value))
+
+
+def json_number(value):
+    """A number for JSON: full precision, and null for NaN (JSON has no NaN)."""
+    if isinstance(value, (int, str)):  # a branch: a sign, or one sign a loop ("+1/-1")
+        return value
+    return float(value) if math.isfinite(value) else None
+
+
+class RowWriter:
+    """Rows as an aligned table, csv with the exact header, or JSON records, written as they come.
+
+    The header (and JSON's opening bracket) is written with the first rows,
+    so a command that fails before any row has printed nothing.
+    """
+
+    def __init__(self, columns: list[str], fmt: str, out: TextIO | None = None) -> None:
+        if fmt not in ("table", "csv", "json"):
+            raise ValueError(f"format must be table, csv or json, got {fmt!r}")
+        self.columns, self.format, self.out = list(columns), fmt, out or sys.stdout
+        self.rows = 0
+        self._width = max(10, *(len(c) + 1 for c in self.columns))
+
+    def _header(self) -> str:
+        if self.format == "csv":
+            return ",".join(self.columns) + "\n"
+        if self.format == "json":
+            return "["
+        return "".join(f"{c:>{self._width}}" for c in self.columns) + "\n"
+
+    def _line(self, row: Mapping) -> str:
+        if self.format == "csv":
+            return ",".join(str(row[c]) if c == "branch" else format_number(row[c]) for c in self.columns) + "\n"
+        if self.format == "json":
+            record = json.dumps([{c: json_number(row[c]) for c in self.columns}], indent=1)[1:-2]
+            return ("," if self.rows else "") + record
+        cells = [(row[c] if isinstance(row[c], str) else f"{row[c]:+d}") if c == "branch" else f"{row[c]:.4f}"
+                 for c in self.columns]
+        return "".join(f"{cell:>{self._width}}" for cell in cells) + "\n"
+
+    def write(self, rows: Iterable[Mapping]) -> None:
+        """Write these rows (the header first, with the first row), a few thousand lines at a time."""
+        parts = []
+        for row in rows:
+            if not self.rows:
+                parts.append(self._header())
+            parts.append(self._line(row))
+            self.rows += 1
+            if len(parts) >= CHUNK:
+                self.out.write("".join(parts))
+                parts.clear()
+        if parts:
+            self.out.write("".join(parts))
+        self.out.flush()
+
+    def close(self) -> None:
+        """Finish the output: the header of an empty table, JSON's closing bracket."""
+        if not self.rows:
+            self.out.write(self._header())
+        if self.format == "json":
+            self.out.write("\n]\n" if self.rows else "]\n")
+        self.out.flush()
+
+
+def print_rows(rows: list[dict], columns: list[str], fmt: str, out: TextIO | None = None) -> None:
+    """Rows as an aligned table, csv with the exact header, or JSON records."""
+    writer = RowWriter(columns, fmt, out)
+    writer.write(rows)
+    writer.close()
+
+
+class TableAssembler:
+    """Table rows (input angle, then branch) from solver results, block by block; the rest named on stderr.
+
+    ``columns`` are the input column, ``branch``, then result names; angles
+    among them (``angle_columns``) are converted to ``units`` and wrapped,
+    ``transmission`` converted; speeds and accelerations stay per second.
+    Rows that cannot be assembled are left out and, with singular rows (a
+    toggle, where rates are not defined), named on stderr by :meth:`finish`.
+    """
+
+    def __init__(self, columns: list[str], units: str, angle_columns: Collection[str]) -> None:
+        self.columns, self.units, self.angle_columns = columns, units, set(angle_columns)
+        self.half = half_turn(units)
+        self.rows = 0
+        self.seen = 0  # input values so far: the index of the next block's first
+        self.unassembled: dict[object, list[tuple[int, float]]] = {}
+        self.singular: list[tuple[int, float]] = []
+
+    @staticmethod
+    def _listed(found: list[tuple[int, float]]) -> str:
+        shown = ", ".join(f"{angle:.6g}" for _, angle in found[:LISTED_ANGLES])
+        more = len(found) - LISTED_ANGLES
+        return shown + (f" and {more} more" if more > 0 else "")
+
+    def rows_of(self, angles: numpy.ndarray, results: Mapping[object, Mapping[str, numpy.ndarray]]) -> Iterator[dict]:
+        """The rows of one block, one at a time: ``angles`` in ``units`` and each branch's results there."""
+        shown_angles = numpy.atleast_1d(wrap(numpy.asarray(angles, dtype=float), self.half))
+        converted = {}
+        for sign, result in results.items():
+            self.unassembled.setdefault(sign, [])
+            columns = {}
+            for column in self.columns[2:]:
+                values = numpy.broadcast_to(numpy.asarray(result[column], dtype=float), shown_angles.shape)
+                if column in self.angle_columns:
+                    values = wrap(from_radians(values, self.units), self.half)
+                elif column == "transmission":
+                    values = from_radians(values, self.units)
+                columns[column] = numpy.broadcast_to(values, shown_angles.shape).tolist()
+            converted[sign] = (numpy.broadcast_to(result["assembled"], shown_angles.shape).tolist(), columns)
+        rates = [c for c in self.columns[2:] if c not in self.angle_columns and c != "transmission"]
+        first = self.seen
+        self.seen += len(shown_angles)
+        for i, angle in enumerate(shown_angles.tolist()):
+            singular = False
+            for sign, (assembled, columns) in converted.items():
+                if not assembled[i]:
+                    self.unassembled[sign].append((first + i, angle))
+                    continue
+                row = {self.columns[0]: angle, "branch": sign}
+                for column in self.columns[2:]:
+                    row[column] = columns[column][i]
+                singular = singular or any(not math.isfinite(row[c]) for c in rates)
+                self.rows += 1
+                yield row
+            if singular:
+                self.singular.append((first + i, angle))
+
+    def finish(self, spans: Callable[[], str | Mapping[object, str]]) -> None:
+        """Name on stderr what was left out; ``ValueError`` if nothing could be assembled.
+
+        ``spans()`` describes the reachable input range (one text, or one a
+        branch), computed only when something was left out.
+        """
+        if not self.rows or any(self.unassembled.values()):
+            known = spans()
+            by_branch = isinstance(known, Mapping)
+            if not self.rows:
+                text = "; ".join(f"branch {sign}: {t}" for sign, t in known.items()) if by_branch else known
+                raise ValueError(f"the linkage cannot be assembled at any requested crank angle "
+                                 f"(reachable crank range: {text})")
+            if by_branch:
+                for sign, angles in self.unassembled.items():
+                    if angles:
+                        note(f"branch {sign} cannot be assembled at crank angles {self._listed(angles)} "
+                             f"{self.units} (reachable crank range: {known[sign]})")
+            else:
+                found = sorted(set().union(*map(set, self.unassembled.values())))
+                note(f"cannot be assembled at crank angles {self._listed(found)} {self.units} "
+                     f"(reachable crank range: {known})")
+        if self.singular:
+            note(f"singular (toggle) position at crank angles {self._listed(self.singular)} {self.units}: "
+                 "rates and accelerations are not defined there (inf or nan)")

@@ -1,0 +1,190 @@
+"""Every bad command line ends in one line on stderr and a documented exit status, never a traceback.
+
+Exit status 2 for bad input, 1 for a file that cannot be written or read; the
+error is one line starting ``symlink: error:``, and nothing is left behind in
+the folder the command was asked to write into.
+"""
+from __future__ import annotations
+
+import os
+
+import pytest
+
+from symlink.cli import main
+
+FOURBAR = ["fourbar", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80"]
+SLIDER = ["slider-crank", "--crank", "20", "--conrod", "66"]
+INVERTED = ["inverted-slider-crank", "--crank", "2", "--ground", "1.2"]
+WATT2 = ["watt2", "--crank", "1", "--coupler", "3.5", "--rocker", "3", "--ground", "3.2", "--rocker-arm", "2",
+         "--rocker-arm-angle", "35", "--coupler2", "4", "--output", "3", "--output-x", "4.5", "--output-y", "3.5"]
+FIVEBAR = ["fivebar", "--crank", "2", "--coupler", "3", "--coupler2", "3", "--crank2", "2", "--ground", "5",
+           "--crank2-angle", "90"]
+STEPHENSON3 = ["stephenson3", "--crank", "1", "--coupler", "3.1", "--link-cf", "2.2", "--ground", "4.5",
+               "--coupler-arm", "3.9", "--rocker", "3.1", "--link-eh", "4.1", "--rocker-arm", "3.1",
+               "--coupler-arm-angle", "51.57", "--rocker-arm-angle", "17.19"]
+TABLES = {"fourbar": FOURBAR, "slider-crank": SLIDER, "inverted-slider-crank": INVERTED, "watt2": WATT2,
+          "fivebar": FIVEBAR, "stephenson3": STEPHENSON3}
+
+#: (what, extra arguments) that every table command must refuse with exit status 2.
+TABLE_MISTAKES = [
+    ("unknown option", ["--bogus", "3"]),
+    ("first length not a number", ["--crank", "x"]),
+    ("first length nan", ["--crank", "nan"]),
+    ("first length inf", ["--crank", "inf"]),
+    ("negative length", ["--crank", "-2"]),
+    ("zero length", ["--crank", "0"]),
+    ("unknown units", ["--units", "grad"]),
+    ("unknown format", ["--format", "xml"]),
+    ("zero step", ["--step", "0"]),
+    ("negative step", ["--step", "-5"]),
+    ("subnormal step", ["--step", "1e-320"]),
+    ("step too small for the start", ["--start", "1e8", "--stop", "100000001", "--step", "1e-9"]),
+    ("stop before start", ["--start", "10", "--stop", "5"]),
+    ("angles and a step", ["--angles", "10", "--step", "5"]),
+    ("a huge angle", ["--angles", "1e300"]),
+    ("an empty angle list", ["--angles", ","]),
+    ("an angle that is text", ["--angles", "10,x"]),
+    ("too many angles", ["--step", "1e-6"]),
+    ("crank speed whose square overflows", ["--crank-speed", "1e308", "--angles", "0"]),
+    ("crank that stops", ["--crank-speed", "1", "--crank-accel", "-100", "--step", "90"]),
+]
+
+CASES = [(f"{name}: {what}", argv + extra, 2) for name, argv in TABLES.items() for what, extra in TABLE_MISTAKES]
+CASES += [
+    ("no command", [], 2),
+    ("unknown command", ["sixbar"], 2),
+    ("fourbar: a missing length", FOURBAR[:-2], 2),
+    ("fourbar: branch 2", FOURBAR + ["--branch", "2"], 2),
+    ("fourbar: cannot be assembled anywhere", ["fourbar", "--crank", "1", "--coupler", "1", "--rocker", "1",
+                                              "--ground", "10"], 2),
+    ("fourbar: plot of the wrong kind", FOURBAR + ["--plot", "{tmp}/angles.pdf"], 2),
+    ("slider-crank: conrod text", SLIDER[:-1] + ["long"], 2),
+    ("watt2: a branch for three loops", WATT2 + ["--branch", "+1,-1,+1"], 2),
+    ("fivebar: a missing crank-2 angle", FIVEBAR[:-2], 2),
+    ("stephenson3: guess of an unknown name", STEPHENSON3 + ["--guess", "psi=10"], 2),
+    ("stephenson3: guess that is not NAME=ANGLE", STEPHENSON3 + ["--guess", "coupler"], 2),
+    ("plan: unknown linkage", ["plan", "sixbar"], 2),
+    ("plan: no linkage", ["plan"], 2),
+    ("analyze: negative length", ["analyze", "--crank", "-1", "--coupler", "2", "--rocker", "2", "--ground", "2"], 2),
+    ("analyze: cannot close", ["analyze", "--crank", "1", "--coupler", "1", "--rocker", "1", "--ground", "10"], 2),
+    ("analyze: branch both", ["analyze", "--crank", "1", "--coupler", "3", "--rocker", "3", "--ground", "3",
+                              "--branch", "both"], 2),
+    ("loop: three values missing", ["loop", "--r1", "3", "--t1", "0", "--r2", "4", "--t2", "90", "--r3", "5"], 2),
+    ("loop: nothing missing", ["loop"] + [f"--{k}" for k in ("r1", "1", "r2", "1", "r3", "1", "r4", "1", "t1", "0",
+                                                              "t2", "90", "t3", "180", "t4", "270")], 2),
+    ("loop: negative length", ["loop", "--r1", "-3", "--t1", "0", "--r2", "4", "--t2", "90", "--t3", "180",
+                               "--t4", "270"], 2),
+    ("loop: a plot of the wrong kind", ["loop", "--r1", "300", "--t1", "270", "--r2", "640.3124", "--t2", "308.663",
+                                        "--t3", "180", "--t4", "63.435", "--plot", "{tmp}/loop.gif"], 2),
+    ("quick-return: time ratio below 1", ["quick-return", "--time-ratio", "0.5", "--stroke", "40", "--rocker", "50"], 2),
+    ("quick-return: stroke of 200 degrees", ["quick-return", "--time-ratio", "1.25", "--stroke", "200",
+                                             "--rocker", "50"], 2),
+    ("quick-return: pivot of three numbers", ["quick-return", "--time-ratio", "1.25", "--stroke", "40",
+                                              "--rocker", "50", "--crank-pivot", "1,2,3"], 2),
+    ("curve: no --out", ["curve", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80",
+                         "--coupler-point", "40,30"], 2),
+    ("curve: coupler point of one number", ["curve", "--crank", "20", "--coupler", "66", "--rocker", "56",
+                                            "--ground", "80", "--coupler-point", "40", "--out", "{tmp}/c.png"], 2),
+    ("curve: negative coupler distance", ["curve", "--crank", "20", "--coupler", "66", "--rocker", "56",
+                                          "--ground", "80", "--coupler-point", "-40,30", "--out", "{tmp}/c.png"], 2),
+    ("animate: zero frames", ["animate", "--crank", "1", "--coupler", "4", "--rocker", "2.5", "--ground", "3",
+                              "--frames", "0", "--out", "{tmp}/a.gif"], 2),
+    ("animate: frames not whole", ["animate", "--crank", "1", "--coupler", "4", "--rocker", "2.5", "--ground", "3",
+                                   "--frames", "2.5", "--out", "{tmp}/a.gif"], 2),
+    ("animate: a billion frames", ["animate", "--crank", "1", "--coupler", "4", "--rocker", "2.5", "--ground", "3",
+                                   "--frames", "1000000000", "--out", "{tmp}/a.gif"], 2),
+    ("animate: zero fps", ["animate", "--crank", "1", "--coupler", "4", "--rocker", "2.5", "--ground", "3",
+                           "--fps", "0", "--out", "{tmp}/a.gif"], 2),
+    ("animate: a file of the wrong kind", ["animate", "--crank", "1", "--coupler", "4", "--rocker", "2.5",
+                                           "--ground", "3", "--out", "{tmp}/a.avi"], 2),
+    ("view: a length outside its sliders", ["view", "--crank", "0.001", "--save", "{tmp}/v.png"], 2),
+    ("view: a picture of the wrong kind", ["view", "--save", "{tmp}/v.jpg"], 2),
+    ("view: a huge crank speed", ["view", "--crank-speed", "1e300", "--save", "{tmp}/v.png"], 2),
+    ("run: no such file", ["run", "{tmp}/missing.toml"], 2),
+    ("run: a folder", ["run", "{tmp}"], 2),
+    ("run: /dev/zero", ["run", "/dev/zero"], 2),
+    ("run: huge integer", ["run", "{scene:huge}"], 2),
+    ("run: deep nesting", ["run", "{scene:deep}"], 2),
+    ("run: branch 1.0", ["run", "{scene:float branch}"], 2),
+    ("run: not TOML", ["run", "{scene:not toml}"], 2),
+    ("run: not UTF-8", ["run", "{scene:binary}"], 2),
+    ("run: unknown format", ["run", "{scene:good}", "--format", "xml"], 2),
+    ("export: unknown linkage", ["export", "sixbar", "--to", "c", "--out", "{tmp}/out"], 2),
+    ("export: unknown format", ["export", "fourbar", "--to", "fortran", "--out", "{tmp}/out"], 2),
+    ("export: unknown output", ["export", "fourbar", "--to", "c", "--out", "{tmp}/out", "--outputs", "piston"], 2),
+    ("export: --out is a file", ["export", "fourbar", "--to", "c", "--out", "{file}"], 2),
+    ("export: no closed form", ["export", "stephenson3", "--to", "numpy", "--out", "{tmp}/out"], 2),
+    ("bench: unknown method", ["bench", "--methods", "abacus", "--no-derivation"], 2),
+    # Failed writes: exit status 1.
+    ("fourbar: plot into /proc", FOURBAR + ["--angles", "0", "--plot", "/proc/symlink-test.png"], 1),
+    ("fourbar: plot where a folder is", FOURBAR + ["--angles", "0", "--plot", "{folder}"], 1),
+    ("curve: into /proc", ["curve", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80",
+                           "--coupler-point", "40,30", "--out", "/proc/symlink-test.png"], 1),
+    ("curve: where a folder is", ["curve", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80",
+                                  "--coupler-point", "40,30", "--out", "{folder}"], 1),
+    ("animate: where a folder is", ["animate", "--crank", "1", "--coupler", "4", "--rocker", "2.5", "--ground", "3",
+                                    "--frames", "2", "--out", "{folder:gif}"], 1),
+    ("view: into /proc", ["view", "--save", "/proc/symlink-test.png"], 1),
+    ("export: into /proc", ["export", "fourbar", "--to", "c", "--out", "/proc/symlink-test"], 1),
+    ("export: where a folder is", ["export", "fourbar", "--to", "latex", "--out", "{tmp}/tex", "--outputs", "rocker"],
+     1),
+]
+
+SCENES = {
+    "good": 'linkage = "fourbar"\noutputs = ["rocker"]\n[parameters]\na = 20\nb = 66\nc = 56\nd = 80\n',
+    "huge": 'linkage = "fourbar"\noutputs = ["rocker"]\n[parameters]\na = 1' + "0" * 400 + "\nb = 66\nc = 56\nd = 80\n",
+    "deep": 'linkage = "fourbar"\noutputs = ' + "[" * 100000 + "]" * 100000 + "\n",
+    "float branch": 'linkage = "fourbar"\noutputs = ["rocker"]\nbranch = 1.0\n[parameters]\na = 20\nb = 66\nc = 56\n'
+                    "d = 80\n",
+    "not toml": "linkage = fourbar\n",
+    "binary": b"\xff\xfe\x00linkage",
+}
+
+
+def _expand(argv: list[str], tmp_path) -> list[str]:
+    expanded = []
+    for item in argv:
+        if item.startswith("{scene:"):
+            name = item[len("{scene:"):-1]
+            path = tmp_path / f"{name.replace(' ', '_')}.toml"
+            data = SCENES[name]
+            path.write_bytes(data if isinstance(data, bytes) else data.encode())
+            item = str(path)
+        elif item == "{folder}" or item == "{folder:gif}":
+            folder = tmp_path / ("taken.gif" if item.endswith("gif}") else "taken.png")
+            folder.mkdir()
+            item = str(folder)
+        elif item == "{file}":
+            (tmp_path / "a_file").write_text("")
+            item = str(tmp_path / "a_file")
+        expanded.append(item.replace("{tmp}", str(tmp_path)))
+    if "{tmp}/tex" in argv:  # the export's .tex file name is taken by a folder
+        (tmp_path / "tex" / "fourbar.tex").mkdir(parents=True)
+    return expanded
+
+
+def _listing(folder) -> set[str]:
+    return {str(p.relative_to(folder)) for p in folder.rglob("*")}
+
+
+@pytest.mark.parametrize("argv, status", [pytest.param(argv, status, id=what) for what, argv, status in CASES])
+def test_bad_command_line(argv, status, tmp_path, capsys, monkeypatch):
+    monkeypatch.setenv("TMPDIR", str(tmp_path))
+    argv = _expand(argv, tmp_path)
+    before = _listing(tmp_path)
+    got = main(argv)
+    out, err = capsys.readouterr()
+    errors = [line for line in err.splitlines() if line.startswith("symlink: error:")]
+    assert "Traceback" not in err, err
+    assert got == status, f"exit {got}, stderr: {err}"
+    assert len(errors) == 1 and err.rstrip("\n").endswith(errors[0]), err
+    assert _listing(tmp_path) == before, "files left behind"
+    assert not os.path.exists("/proc/symlink-test.png")
+
+
+def test_the_table_has_a_hundred_cases_over_every_command():
+    from symlink.cli import build_parser
+    assert len(CASES) >= 100
+    commands = build_parser()._subparsers._group_actions[0].choices
+    covered = {argv[0] for _, argv, _ in CASES if argv}
+    assert set(commands) <= covered, set(commands) - covered

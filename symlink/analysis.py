@@ -29,7 +29,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy
 import sympy as sp
@@ -39,7 +38,7 @@ from .catalog import fourbar
 from .linkage import Linkage
 from .position import TOLERANCE
 from .reachability import assembled_crank_range, crank_range
-from .solver import Solver, check_lengths
+from .solver import check_lengths, shared_solver
 
 __all__ = [
     "Mobility", "degrees_of_freedom", "Grashof", "GRASHOF_CLASSES", "grashof",
@@ -214,11 +213,6 @@ def grashof(a: float, b: float, c: float, d: float, tolerance: float = 1e-12) ->
 
 # --- positions with the generated solver ---------------------------------------------
 
-@lru_cache(maxsize=None)
-def _fourbar_solver(outputs: tuple[str, ...]) -> Solver:
-    return Solver(fourbar(), list(outputs))
-
-
 def triangle_angle(opposite, side1, side2):
     """The angle between ``side1`` and ``side2`` of a triangle, accurate when it is flat.
 
@@ -293,7 +287,7 @@ def limit_positions(a: float, b: float, c: float, d: float, branch: int = 1) -> 
         # C above the ground line is branch +1, except when folded with a > b, where C is on the crank.
         side = -branch if folded and a > b else branch
         crank.append(wrap_angle(side * angle + (math.pi if folded and b > a else 0.0)))
-    solved = _fourbar_solver(("rocker",))(theta=numpy.array(crank), a=a, b=b, c=c, d=d, branch=branch)
+    solved = shared_solver(fourbar, ("rocker",))(theta=numpy.array(crank), a=a, b=b, c=c, d=d, branch=branch)
     rocker = [float(value) for value in solved["rocker"]]
     return LimitPositions(branch, crank[0], rocker[0], crank[1], rocker[1])
 
@@ -329,7 +323,7 @@ def transmission_range(a: float, b: float, c: float, d: float) -> TransmissionRa
     reachable = [x for x in (0.0, math.pi) if any(lo <= x <= hi or lo <= x - 2 * math.pi <= hi
                                                   for lo, hi in spans)]
     if reachable:
-        solved = _fourbar_solver(("transmission",))(theta=numpy.array(reachable), a=a, b=b, c=c, d=d, branch=1)
+        solved = shared_solver(fourbar, ("transmission",))(theta=numpy.array(reachable), a=a, b=b, c=c, d=d, branch=1)
         candidates.update(zip(reachable, (float(mu) for mu in solved["transmission"])))
     if spans != [(-math.pi, math.pi)]:
         far = math.acos(max((a * a + d * d - (b + c) ** 2) / (2 * a * d), -1.0))
@@ -348,7 +342,7 @@ def transmission_curve(a: float, b: float, c: float, d: float, theta) -> numpy.n
     [58.23, 109.83]
     """
     check_lengths(crank=a, coupler=b, rocker=c, ground=d)
-    solved = _fourbar_solver(("transmission",))(theta=numpy.asarray(theta, dtype=float), a=a, b=b, c=c, d=d,
+    solved = shared_solver(fourbar, ("transmission",))(theta=numpy.asarray(theta, dtype=float), a=a, b=b, c=c, d=d,
                                                 branch=1)
     return numpy.where(solved["assembled"], solved["transmission"], numpy.nan)
 

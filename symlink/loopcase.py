@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import lru_cache
 from typing import Mapping
 
 import numpy
@@ -32,7 +31,7 @@ import numpy
 from .analysis import wrap_angle
 from .linkage import Linkage
 from .loops import CASE_NAMES, Loop
-from .solver import Solver, check_lengths
+from .solver import check_lengths, shared_solver
 from .vectors import Vector, coordinates, lengths
 
 __all__ = ["NAMES", "LoopCaseResult", "solve_case", "add_command", "run"]
@@ -69,17 +68,14 @@ class LoopCaseResult:
         return {name: merged[name] for name in NAMES}
 
 
-@lru_cache(maxsize=None)
-def _solver(missing: tuple[str, str]) -> tuple[str, Solver]:
-    """The loop's case and a generated solver for the two missing values (one per pair, cached)."""
+def loop_linkage(missing: tuple[str, str]) -> Linkage:
+    """The loop ``z1 + z2 + z3 + z4 = 0`` as a linkage whose unknowns are the two ``missing`` values."""
     r, t = lengths("r1 r2 r3 r4"), coordinates("t1 t2 t3 t4")
     symbol = dict(zip(NAMES, r + t))
     z1, z2, z3, z4 = (Vector(r[k], t[k], f"z{k + 1}") for k in range(4))
     loop = Loop(z1 + z2 + z3 + z4, name="z1+z2+z3+z4")
-    linkage = Linkage("seed 000 loop", [loop], inputs=[], unknowns=[symbol[n] for n in missing],
-                      parameters=[symbol[n] for n in NAMES if n not in missing])
-    case = linkage.plan[0].case.name
-    return case, Solver(linkage, list(missing))
+    return Linkage("seed_000_loop", [loop], inputs=[], unknowns=[symbol[n] for n in missing],
+                   parameters=[symbol[n] for n in NAMES if n not in missing])
 
 
 def _check(values: Mapping[str, float | None]) -> tuple[dict[str, float], tuple[str, str]]:
@@ -149,7 +145,8 @@ def solve_case(values: Mapping[str, float | None]) -> LoopCaseResult:
     missing values, and for a loop that cannot close, saying why.
     """
     given, missing = _check(values)
-    case, solver = _solver(missing)
+    solver = shared_solver(loop_linkage, missing, missing)
+    case = solver.linkage.plan[0].case.name
     if case == "1":
         _parallel_lengths(given, missing)
     if case == "2a" and abs(_known_sum(given, missing)) <= ROUNDING * max(given[n] for n in given if n[0] == "r"):

@@ -21,7 +21,6 @@ angle ``gamma`` measured counter-clockwise from the coupler's direction B->C:
 """
 from __future__ import annotations
 
-import functools
 import io
 import math
 from pathlib import Path
@@ -36,7 +35,7 @@ from .angles import half_turn, to_radians, wrap
 from .reachability import TURN_SAMPLES, assembled_crank_range, crank_range, reachable_turn, turn_angles
 from .files import write_atomic
 from .linkage import Linkage
-from .solver import Solver, check_lengths
+from .solver import Solver, check_lengths, shared_solver
 from .vectors import Vector, coordinates, lengths
 
 if TYPE_CHECKING:  # Matplotlib is imported when a drawing is made
@@ -78,16 +77,6 @@ def coupler_point_linkage() -> Linkage:
                    roles=base.roles, extras=base.extras)
 
 
-@functools.lru_cache(maxsize=None)
-def _linkage(coupler_point: bool) -> Linkage:
-    return coupler_point_linkage() if coupler_point else fourbar()
-
-
-@functools.lru_cache(maxsize=None)
-def _solver(outputs: tuple[str, ...], coupler_point: bool) -> Solver:
-    return Solver(_linkage(coupler_point), outputs)
-
-
 def check_coupler_point(coupler_point: tuple[float, float] | None) -> None:
     """``ValueError`` unless the coupler point is (positive finite distance, finite angle)."""
     if coupler_point is None:
@@ -117,7 +106,7 @@ def fourbar_positions(a: float, b: float, c: float, d: float, theta, branch: int
     if coupler_point is not None:
         values.update(p=coupler_point[0], gamma=coupler_point[1])
     if linkage is None:
-        solver = _solver(tuple(outputs), coupler_point is not None)
+        solver = shared_solver(fourbar if coupler_point is None else coupler_point_linkage, tuple(outputs))
     else:
         if coupler_point is not None and "P" not in linkage.points:
             raise ValueError(f"{linkage.name} has no coupler point P; use coupler_point_linkage()")

@@ -14,15 +14,15 @@ says so in its ``assembled`` mask.
 from __future__ import annotations
 
 import math
-from functools import cached_property
-from typing import Sequence
+from functools import cached_property, lru_cache
+from typing import Callable, Sequence
 
 import numpy
 
 from .cache import generated_code
 from .linkage import Linkage, Program, is_branch_name
 
-__all__ = ["Solver", "check_lengths", "crank_speeds"]
+__all__ = ["Solver", "shared_solver", "check_lengths", "crank_speeds"]
 
 
 def check_lengths(**lengths: float) -> None:
@@ -67,6 +67,22 @@ class Solver:
                 raise ValueError(f"{name} must be finite, got {value}")
         with numpy.errstate(invalid="ignore", divide="ignore"):
             return self.function(**values)
+
+
+@lru_cache(maxsize=None)
+def shared_solver(build: Callable[..., Linkage], outputs: tuple[str, ...], *arguments: object) -> Solver:
+    """A :class:`Solver` of ``outputs`` of ``build(*arguments)``, made once a process and then shared.
+
+    The one memo in front of the scene cache, for library code that solves the
+    same linkage over and over (a four-bar's analysis, its plots, the four
+    cases of a vector loop): building a linkage and computing its cache key
+    costs about half a millisecond, a call of the solver far less.
+
+    >>> from symlink.catalog import fourbar
+    >>> shared_solver(fourbar, ("rocker",)) is shared_solver(fourbar, ("rocker",))
+    True
+    """
+    return Solver(build(*arguments), list(outputs))
 
 
 def crank_speeds(angles: numpy.ndarray, speed: float, accel: float, first: float | None = None) -> numpy.ndarray:

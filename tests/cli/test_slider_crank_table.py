@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from references import mp_slider_crank
-from test_cli import run, wrapped_degrees
+from test_fourbar_table import run, wrapped_degrees
 from symlink.cli import main
 from symlink.reachability import slider_crank_range
 

@@ -22,7 +22,7 @@ import pytest
 from scipy.optimize import fsolve
 
 import mp_closures as ref
-from test_cli import run, wrapped_degrees
+from test_fourbar_table import run, wrapped_degrees
 from symlink.cli.tables import loop_branches
 from symlink.reachability import scanned_range
 
@@ -96,7 +96,7 @@ def test_help_maps_each_option_to_its_catalog_symbol_and_shows_the_header(capsys
 
 
 def test_readme_documents_each_header():
-    readme = (pathlib.Path(__file__).resolve().parent.parent / "README.md").read_text(encoding="utf-8")
+    readme = (pathlib.Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
     for header in HEADERS.values():
         assert header in readme
 

@@ -27,11 +27,13 @@ inside a sine) has no closed form here and raises ``ValueError``.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Sequence
 
 import sympy as sp
 
+from .names import identifier
 from .vectors import Vector, VectorSum
 
 __all__ = ["Loop", "Unknown", "LoopCase", "CASE_NAMES"]
@@ -74,10 +76,38 @@ class Loop:
     """A closed vector loop ``sum of signed vectors = 0``."""
 
     def __init__(self, vectors: VectorSum | Vector, name: str = "loop") -> None:
+        self.name = identifier(name, "loop name")
+        if not isinstance(vectors, (Vector, VectorSum)):
+            raise ValueError(f"loop {name!r} is a sum of Vector objects, not {vectors!r}")
         self.vectors = vectors.as_sum()
-        self.name = name
         if len(self.vectors.terms) < 2:
-            raise ValueError(f"loop {name!r} needs at least two vectors")
+            raise ValueError(f"loop {name!r} has one vector, which closes only at zero length: "
+                             "a loop needs at least two vectors (did you forget the ground vector?)")
+        why = self._never_closes()
+        if why:
+            raise ValueError(f"loop {name!r} cannot close for any values: {why} (did you forget the ground vector?)")
+
+    def _never_closes(self) -> str | None:
+        """Why the closure has no solution for any values, where that is certain; else None.
+
+        A sound, cheap test: when every vector turns with one common angle (or none turns) and
+        every length is known positive, the closure is ``e^{i t} sum_k s_k r_k e^{i c_k}`` with
+        constant directions ``s_k e^{i c_k}``.  If those directions lie in an open half-plane
+        (the widest gap between them exceeds a half turn) no positive lengths sum them to zero.
+        """
+        reference = self.terms[0][1].angle
+        directions = []
+        for sign, vector in self.terms:
+            offset = sp.expand(vector.angle - reference)
+            if offset.free_symbols or vector.length.is_positive is not True:
+                return None
+            directions.append(float(offset) + (0.0 if sign > 0 else math.pi))
+        turns = sorted(d % (2 * math.pi) for d in directions)
+        gaps = [b - a for a, b in zip(turns, turns[1:])] + [turns[0] + 2 * math.pi - turns[-1]]
+        if max(gaps) > math.pi + 1e-9:
+            return ("its vectors turn together and all point into one half-plane, "
+                    "so no positive lengths make them add up to zero")
+        return None
 
     @property
     def terms(self) -> tuple[tuple[int, Vector], ...]:

@@ -21,7 +21,7 @@ value in code generated later.
 'theta'
 >>> identifier("w_1", "parameter")
 Traceback (most recent call last):
-ValueError: parameter 'w_1' clashes with a generated intermediate (closed-form helpers are named Wx_1, w_1, Delta_1, ...); rename it
+ValueError: parameter 'w_1' clashes with a generated intermediate (closed-form helpers are named Wx_1, w_1, Delta_1, size_1, ...); rename it
 >>> label("inverted slider-crank")
 'inverted slider-crank'
 """
@@ -40,8 +40,8 @@ _IDENTIFIER = re.compile(r"[A-Za-z][A-Za-z0-9_]*\Z", re.ASCII)
 _LABEL = re.compile(r"[A-Za-z][A-Za-z0-9_]*(?:[ -][A-Za-z0-9_]+)*\Z", re.ASCII)
 
 #: Names of the closed forms' intermediates, each followed by ``_<loop number>`` (see symlink.position).
-INTERMEDIATE_FAMILIES = ("Wx", "Wy", "w", "Delta")
-_INTERMEDIATE = re.compile(r"(?:%s)_[0-9]+\Z" % "|".join(INTERMEDIATE_FAMILIES))
+INTERMEDIATE_FAMILIES = ("Wx", "Wy", "w", "Delta", "size", "rho")
+_INTERMEDIATE = re.compile(r"(?:%s)(?:_[0-9]+)+\Z" % "|".join(INTERMEDIATE_FAMILIES))
 
 _C_KEYWORDS = frozenset("""
 auto break case char const continue default do double else enum extern float for goto if inline int long
@@ -85,7 +85,7 @@ def reason_reserved(name: str) -> str | None:
         return "is a name the generated code uses itself"
     if _INTERMEDIATE.match(name):
         return ("clashes with a generated intermediate (closed-form helpers are named "
-                "Wx_1, w_1, Delta_1, ...)")
+                "Wx_1, w_1, Delta_1, size_1, ...)")
     if name == "branch" or name.startswith("branch_"):
         return "clashes with the branch signs (branch, branch_<loop>) that the linkage adds"
     if name.startswith("cse_"):

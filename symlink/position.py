@@ -184,7 +184,6 @@ def _two_lengths(case: LoopCase, wx, wy, branch, named, unit, size):
     # Parallel unknown lengths: the loop closes nowhere or along a whole line; either way not assembled.
     magnitude = named("Delta", _nonzero_length(determinant**2))
     guarded = sp.sign(determinant) * magnitude
-    named.identity(sp.sin, tq - tp, guarded, odd=True)
     rp = size * _cross(wx, wy, sp.cos(tq), sp.sin(tq)) / (p.sign * guarded)
     rq = size * _cross(sp.cos(tp), sp.sin(tp), wx, wy) / (q.sign * guarded)
     return {p.symbol: _absolute(p, rp), q.symbol: _absolute(q, rq)}
@@ -197,7 +196,7 @@ def _length_and_angle_of_one(case: LoopCase, wx, wy, branch, named, unit, size):
     w = named("w", _nonzero_length(wx**2 + wy**2))
     return {
         length.symbol: _absolute(length, size * w),
-        angle.symbol: _absolute(angle, sp.atan2(s * wy, s * wx)),
+        angle.symbol: _absolute(angle, sp.atan2(s * wy / w, s * wx / w)),  # NaN with w: no direction
     }
 
 

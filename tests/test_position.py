@@ -127,3 +127,27 @@ def test_unreachable_loop_is_reported_not_garbage():
     solver = Solver(Linkage("z", [loop], inputs=[], unknowns=[symbols["t3"], symbols["t4"]]), ["t3"])
     result = solver(**values, branch=1)
     assert not bool(result["assembled"]) and numpy.isnan(result["t3"])
+
+
+def test_seed003_fourbar_gives_the_same_angles_at_any_scale():
+    """a, b, c, d = 20, 66, 56, 80 scaled by 1e-300 ... 1e300: the same angles as at unit scale, lengths scaled back.
+
+    The scaled inputs are themselves rounded, so bit equality is not expected; measured (73 angles, both
+    branches, every 25th power of ten): angles within 2 ulps of max(|angle|, 1) (9 ulps of a coupler angle
+    near zero, in its own ulps), points within 2.5 ulps of 86, the largest coordinate."""
+    from symlink.catalog import fourbar
+    solver = Solver(fourbar(), ["beta", "phi", "C_x", "C_y"])
+    theta = numpy.linspace(-numpy.pi, numpy.pi, 73)
+    for branch in (1, -1):
+        unit = solver(theta=theta, a=20.0, b=66.0, c=56.0, d=80.0, branch=branch)
+        assert unit["assembled"].all()
+        for exponent in range(-300, 301, 25):
+            k = 10.0 ** exponent
+            scaled = solver(theta=theta, a=20 * k, b=66 * k, c=56 * k, d=80 * k, branch=branch)
+            assert scaled["assembled"].all(), exponent
+            for name in ("beta", "phi"):
+                ulps = numpy.abs(scaled[name] - unit[name]) / numpy.spacing(numpy.maximum(numpy.abs(unit[name]), 1.0))
+                assert ulps.max() <= 4, (exponent, name, ulps.max())
+            for name in ("C_x", "C_y"):
+                ulps = numpy.abs(scaled[name] / k - unit[name]) / numpy.spacing(86.0)
+                assert ulps.max() <= 4, (exponent, name, ulps.max())

@@ -14,8 +14,9 @@ Branches (the sign ``sigma`` of the square root):
   from ``W``, i.e. the joint between the two unknown vectors lies to the left
   of the line they close.  For the four-bar with unknowns (beta, phi) this is
   DESIGN.md's rule: joint C left of the directed line from B to D.
-* case 2b (a length and another vector's angle): ``+1`` gives the larger
-  unknown length (the slider-crank's far position).
+* cases 2b (a length and another vector's angle) and 2c (a length on a body
+  that the unknown angle turns): ``+1`` gives the larger unknown length (the
+  slider-crank's far position).
 * cases 1 and 2a have one solution (a non-negative length in 2a).
 
 >>> from symlink.vectors import Vector, coordinates, lengths
@@ -252,7 +253,7 @@ def _length_on_a_turning_body(case: LoopCase, wx, wy, branch, named, unit, size)
     times ``s_p r e^{i c_p}`` (the unknown length ``r``) plus a known part ``C``.
     In the frame of the unknown-length vector, ``s_p r + A + i B = W e^{-i(theta + c_p)}``
     with ``A + i B = C e^{-i c_p}``: so ``(s_p r + A)^2 + B^2 = w^2`` fixes ``r`` (two
-    branches, +1 the larger ``s_p r``) and the direction of ``W`` fixes ``theta``.
+    branches, +1 the larger ``r``) and the direction of ``W`` fixes ``theta``.
     """
     p, q = (case.first, case.second) if case.first.part == "length" else (case.second, case.first)
     c_p = p.vector.angle - q.symbol
@@ -261,7 +262,7 @@ def _length_on_a_turning_body(case: LoopCase, wx, wy, branch, named, unit, size)
     w = named("w", sp.sqrt(wx**2 + wy**2))
     root = named("Delta", ClampedSqrt((w - across) * (w + across),
                                       2 * sp.Abs(across) * (w + sp.Abs(across) + _rounding_size(case, unit))))
-    x = branch * root                       # s_p r + A
+    x = p.sign * branch * root              # s_p r + A; branch +1 gives the larger r, as in case 2b
     rp = size * p.sign * (x - along)
     angle = sp.atan2(wy * x - wx * across, wx * x + wy * across) - c_p
     return {p.symbol: _absolute(p, rp), q.symbol: angle}

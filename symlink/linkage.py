@@ -30,6 +30,7 @@ from typing import Iterable, Mapping, Sequence
 import sympy as sp
 
 from .loops import Loop
+from .names import identifier, label
 from .motion import loop_rates
 from .position import ClampedSqrt, LoopSolution, solve_loop
 from .vectors import Vector, VectorSum, acceleration, expression, rate
@@ -84,16 +85,25 @@ class Linkage:
                  points: Mapping[str, Vector | VectorSum | None] | None = None,
                  roles: Mapping[str, sp.Symbol] | None = None,
                  extras: Mapping[str, sp.Expr] | None = None) -> None:
-        self.name = name
+        self.name = label(name, "linkage name")
         self.loops = tuple(loops)
+        for loop in self.loops:
+            if not isinstance(loop, Loop):
+                raise ValueError(f"{name}: loops must be Loop objects, not {loop!r}")
         self.inputs = tuple(inputs)
         self.unknowns = tuple(unknowns)
         self.points = dict(points or {})
         self.roles = dict(roles or {})
         self.extras = {k: expression(v) for k, v in (extras or {}).items()}
-        coordinates = set(self.inputs) | set(self.unknowns)
-        if len(coordinates) != len(self.inputs) + len(self.unknowns):
-            raise ValueError("a coordinate is listed twice among inputs and unknowns")
+        for kind, symbols in (("input", self.inputs), ("unknown", self.unknowns)):
+            for symbol in symbols:
+                if not isinstance(symbol, sp.Symbol):
+                    raise ValueError(f"{name}: {kind} {symbol!r} must be a SymPy symbol (see vectors.coordinates)")
+        listed = self.inputs + self.unknowns
+        twice = [q.name for k, q in enumerate(listed) if q in listed[:k]]
+        if twice:
+            raise ValueError(f"{name}: coordinate {twice[0]!r} is listed twice among inputs and unknowns")
+        coordinates = set(listed)
         found = set().union(*(loop.symbols() for loop in self.loops))
         missing = [u for u in self.unknowns if u not in found]
         if missing:
@@ -101,10 +111,93 @@ class Linkage:
         if parameters is None:
             parameters = sorted(found - coordinates, key=lambda s: s.name)
         self.parameters = tuple(parameters)
+        for symbol in self.parameters:
+            if not isinstance(symbol, sp.Symbol):
+                raise ValueError(f"{name}: parameter {symbol!r} must be a SymPy symbol")
+        self._check_names()
         if 2 * len(self.loops) != len(self.unknowns):
             self.plan  # raises, saying how many unknowns each loop has
             raise ValueError(f"{name}: {len(self.loops)} loops give {2 * len(self.loops)} equations "
                              f"for {len(self.unknowns)} unknowns")
+
+    def _check_names(self) -> None:
+        """Refuse names that generated code cannot take or that clash with each other (see symlink.names)."""
+        derived = {rate(q) for q in self.coordinates} | {acceleration(q) for q in self.coordinates}
+        kinds: dict[sp.Symbol, str] = {}
+        for symbol in self.parameters:
+            kinds[symbol] = "parameter"
+        for symbol in self.inputs:
+            kinds[symbol] = "input"
+        for symbol in self.unknowns:
+            kinds[symbol] = "unknown"
+        others = set().union(*(loop.symbols() for loop in self.loops))
+        for vectors in self.points.values():
+            if vectors is not None:
+                if not isinstance(vectors, (Vector, VectorSum)):
+                    raise ValueError(f"{self.name}: a point is a Vector, a sum of vectors or None, not {vectors!r}")
+                others |= vectors.x.free_symbols | vectors.y.free_symbols
+        for expr in self.extras.values():
+            others |= expr.free_symbols
+        for symbol in others - set(kinds) - derived:
+            kinds[symbol] = "symbol"
+        by_name: dict[str, sp.Symbol] = {}
+        for symbol, kind in kinds.items():
+            identifier(symbol.name, kind)
+            if symbol.name in by_name and by_name[symbol.name] != symbol:
+                raise ValueError(f"two different symbols are named {symbol.name!r} (with different assumptions, "
+                                 f"such as a positive length and a real coordinate); use one symbol")
+            by_name[symbol.name] = symbol
+        # A coordinate's rate and acceleration are names too: <q>dot and <q>ddot.
+        made_by: dict[str, str] = {}
+        for q in self.coordinates:
+            for what, symbol in (("rate", rate(q)), ("acceleration", acceleration(q))):
+                source = f"the {what} of {kinds[q]} {q.name!r}"
+                if symbol.name in made_by:
+                    raise ValueError(f"{made_by[symbol.name]} and {source} are both named {symbol.name!r}; "
+                                     "rename one of the coordinates")
+                made_by[symbol.name] = source
+                if symbol.name in by_name and (kinds[by_name[symbol.name]] != "symbol"
+                                               or by_name[symbol.name] != symbol):
+                    other = by_name[symbol.name]
+                    raise ValueError(f"{kinds[other]} {other.name!r} clashes with {source}; rename it")
+        loop_names = [loop.name for loop in self.loops]
+        for loop_name in loop_names:
+            if loop_names.count(loop_name) > 1:
+                raise ValueError(f"{self.name}: two loops are named {loop_name!r}; each loop needs its own name "
+                                 "(it names the loop's branch sign)")
+        # Output names: distinct from each other and from the symbols.
+        outputs: dict[str, str] = {}
+
+        def output(name: str, source: str) -> None:
+            try:
+                identifier(name, "output")
+            except ValueError as error:
+                raise ValueError(f"{source}: {error}") from None
+            if name in outputs:
+                raise ValueError(f"{source} gives the output {name!r}, as {outputs[name]} does; rename one")
+            if name in by_name and not (name in made_by or kinds[by_name[name]] in ("input", "unknown")):
+                raise ValueError(f"{source} gives the output {name!r}, which is also the name of "
+                                 f"{kinds[by_name[name]]} {name!r}; rename one")
+            outputs[name] = source
+
+        for q in self.coordinates:
+            output(q.name, f"{kinds[q]} {q.name!r}")
+            output(rate(q).name, made_by[rate(q).name])
+            output(acceleration(q).name, made_by[acceleration(q).name])
+        for role, q in self.roles.items():
+            identifier(role, "role")
+            if not isinstance(q, sp.Symbol) or q not in kinds or kinds[q] not in ("input", "unknown"):
+                raise ValueError(f"role {role!r} names {q!r}, which is not an input or unknown of {self.name}")
+            output(role, f"role {role!r}")
+            output(role + SPEED_SUFFIX, f"the speed of role {role!r}")
+            output(role + ACCEL_SUFFIX, f"the acceleration of role {role!r}")
+        for point in self.points:
+            identifier(point, "point")
+            output(f"{point}_x", f"point {point!r}")
+            output(f"{point}_y", f"point {point!r}")
+        for extra in self.extras:
+            identifier(extra, "extra output")
+            output(extra, f"extra output {extra!r}")
 
     @cached_property
     def branches(self) -> tuple[sp.Symbol, ...]:

@@ -73,7 +73,7 @@ def loop_linkage(missing: tuple[str, str]) -> Linkage:
     r, t = lengths("r1 r2 r3 r4"), coordinates("t1 t2 t3 t4")
     symbol = dict(zip(NAMES, r + t))
     z1, z2, z3, z4 = (Vector(r[k], t[k], f"z{k + 1}") for k in range(4))
-    loop = Loop(z1 + z2 + z3 + z4, name="z1+z2+z3+z4")
+    loop = Loop(z1 + z2 + z3 + z4, name="z1_z2_z3_z4")
     return Linkage("seed_000_loop", [loop], inputs=[], unknowns=[symbol[n] for n in missing],
                    parameters=[symbol[n] for n in NAMES if n not in missing])
 

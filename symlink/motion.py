@@ -61,6 +61,21 @@ def _projected_equation(loop: Loop, eliminated: Unknown, coordinates, order) -> 
     return total
 
 
+def _by_cramer(loop: Loop, unknowns, coordinates, order, target) -> dict[sp.Symbol, sp.Expr]:
+    """The two unknowns' derivatives from the differentiated closure, by Cramer's rule."""
+    equations = [sp.expand(component) for component in loop.equations()]
+    for _ in range(order):
+        equations = [time_derivative(e, coordinates) for e in equations]
+    symbols = [target(u) for u in unknowns]
+    matrix = [[sp.diff(e, x) for x in symbols] for e in equations]
+    rest = [-e.subs({x: 0 for x in symbols}) for e in equations]
+    determinant = matrix[0][0] * matrix[1][1] - matrix[0][1] * matrix[1][0]
+    return {
+        symbols[0]: (rest[0] * matrix[1][1] - matrix[0][1] * rest[1]) / determinant,
+        symbols[1]: (matrix[0][0] * rest[1] - rest[0] * matrix[1][0]) / determinant,
+    }
+
+
 def loop_rates(loop: Loop, unknowns: Sequence[sp.Symbol], coordinates: Sequence[sp.Symbol],
                order: int) -> dict[sp.Symbol, sp.Expr]:
     """The two unknowns' rates (``order=1``) or accelerations (``order=2``).
@@ -69,8 +84,11 @@ def loop_rates(loop: Loop, unknowns: Sequence[sp.Symbol], coordinates: Sequence[
     unknowns).  The result is written in terms of the coordinates, their lower
     derivatives and the inputs' rates, all of which are known by then.
     """
-    first, second = (loop.locate(u) for u in unknowns)
     target = rate if order == 1 else acceleration
+    try:
+        first, second = (loop.locate(u) for u in unknowns)
+    except ValueError:  # an unknown angle turns several vectors (case 2c): solve the 2x2 system directly
+        return _by_cramer(loop, unknowns, coordinates, order, target)
     result = {}
     for solved, eliminated in ((first, second), (second, first)):
         equation = _projected_equation(loop, eliminated, coordinates, order)

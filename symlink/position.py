@@ -14,8 +14,9 @@ Branches (the sign ``sigma`` of the square root):
   from ``W``, i.e. the joint between the two unknown vectors lies to the left
   of the line they close.  For the four-bar with unknowns (beta, phi) this is
   DESIGN.md's rule: joint C left of the directed line from B to D.
-* case 2b (a length and another vector's angle): ``+1`` gives the larger
-  unknown length (the slider-crank's far position).
+* cases 2b (a length and another vector's angle) and 2c (a length on a body
+  that the unknown angle turns): ``+1`` gives the larger unknown length (the
+  slider-crank's far position).
 * cases 1 and 2a have one solution (a non-negative length in 2a).
 
 >>> from symlink.vectors import Vector, coordinates, lengths
@@ -54,6 +55,8 @@ class ClampedSqrt(sp.Function):
     gives 0 (the toggle position itself); anything lower cannot be assembled
     and gives NaN, which the generated solvers report as not assembled.
     Printed as ``sqrt(max(x, 0))`` in every language, never as a Piecewise.
+    A negative ``scale`` makes it a guard: NaN for any ``x`` below
+    ``-TOLERANCE*scale`` (a length that is zero within rounding).
 
     >>> ClampedSqrt(4, 1), ClampedSqrt(-1e-16, 1), ClampedSqrt(-1, 1)
     (2, 0, nan)
@@ -125,14 +128,33 @@ class _Intermediates(dict):
             if isinstance(function(arg), function):
                 self.singular_factors[function(arg)] = val
 
-    def __call__(self, name: str, expr: sp.Expr) -> sp.Symbol:
-        symbol = sp.Symbol(f"{name}_{self.label}", real=True)
+    def __call__(self, name: str, expr: sp.Expr, positive: bool = False) -> sp.Symbol:
+        symbol = (sp.Symbol(f"{name}_{self.label}", positive=True) if positive
+                  else sp.Symbol(f"{name}_{self.label}", real=True))
         self[symbol] = expr
         return symbol
 
 
-def _rounding_size(case: LoopCase) -> sp.Expr:
-    """Sum of the known vectors' lengths: ``W`` carries a rounding error of a few ulps of it.
+def _characteristic_length(case: LoopCase) -> sp.Expr:
+    """The loop's mean known length: the unit the closed forms compute in.
+
+    Every formula below is homogeneous in the lengths, so computing with
+    lengths divided by this (and scaling unknown lengths back) gives the same
+    angles at any scale: 1e-300 or 1e300 as at 1.  The mean, not the sum, so
+    that it cannot overflow for any finite lengths.
+    """
+    lengths = [v.length for _, v in case.known]
+    unknowns = {case.first.symbol, case.second.symbol}
+    lengths += [u.vector.length for u in (case.first, case.second)
+                if u.part == "angle" and not u.vector.length.free_symbols & unknowns]
+    lengths += [v.length for _, v in case.turning]
+    if not lengths:
+        return sp.S.One
+    return sp.Add(*(sp.Abs(r) for r in lengths)) / len(lengths)
+
+
+def _rounding_size(case: LoopCase, unit) -> sp.Expr:
+    """Sum of the known vectors' lengths (in loop units): ``W`` carries a rounding error of a few ulps of it.
 
     A root's argument is a product with one factor that vanishes at the
     toggle; that factor's rounding error is a few ulps of the loop's size
@@ -141,52 +163,70 @@ def _rounding_size(case: LoopCase) -> sp.Expr:
     within ``TOLERANCE`` times the loop's size of a toggle are taken as at
     the toggle, anything farther out cannot be assembled.
     """
-    return sp.Add(*(sp.Abs(v.length) for _, v in case.known))
+    return sp.Add(*(sp.Abs(unit(v.length)) for _, v in case.known))
 
 
-def _two_lengths(case: LoopCase, wx, wy, branch, named):
+def _nonzero_length(squared: sp.Expr) -> ClampedSqrt:
+    """``sqrt(squared)``, but NaN where it is zero within rounding (below TOLERANCE, in loop units).
+
+    A :class:`ClampedSqrt` with a negative scale: the same printed form in every
+    language, exactly ``sqrt`` above the threshold.  It marks configurations
+    where a direction is undefined (two points that coincide, parallel guides)
+    as not assembled instead of letting ``atan2(0, 0)`` or a division by zero through.
+    """
+    return ClampedSqrt(squared, -TOLERANCE)  # NaN below TOLERANCE**2, exactly sqrt above
+
+
+def _two_lengths(case: LoopCase, wx, wy, branch, named, unit, size):
     p, q = case.first, case.second
     tp, tq = p.vector.angle, q.vector.angle
-    determinant = sp.sin(tq - tp)
-    rp = _cross(wx, wy, sp.cos(tq), sp.sin(tq)) / (p.sign * determinant)
-    rq = _cross(sp.cos(tp), sp.sin(tp), wx, wy) / (q.sign * determinant)
+    # sin(tq - tp), written out so that the rates' sin(tq - tp) can be replaced by it without a cycle.
+    determinant = _cross(sp.cos(tp), sp.sin(tp), sp.cos(tq), sp.sin(tq))
+    # Parallel unknown lengths: the loop closes nowhere or along a whole line; either way not assembled.
+    magnitude = named("Delta", _nonzero_length(determinant**2))
+    guarded = sp.sign(determinant) * magnitude
+    rp = size * _cross(wx, wy, sp.cos(tq), sp.sin(tq)) / (p.sign * guarded)
+    rq = size * _cross(sp.cos(tp), sp.sin(tp), wx, wy) / (q.sign * guarded)
     return {p.symbol: _absolute(p, rp), q.symbol: _absolute(q, rq)}
 
 
-def _length_and_angle_of_one(case: LoopCase, wx, wy, branch, named):
+def _length_and_angle_of_one(case: LoopCase, wx, wy, branch, named, unit, size):
     length, angle = (case.first, case.second) if case.first.part == "length" else (case.second, case.first)
     s = length.sign
+    # The vector's length is |W|; where W vanishes its angle is undefined: not assembled.
+    w = named("w", _nonzero_length(wx**2 + wy**2))
     return {
-        length.symbol: _absolute(length, sp.sqrt(wx**2 + wy**2)),
-        angle.symbol: _absolute(angle, sp.atan2(s * wy, s * wx)),
+        length.symbol: _absolute(length, size * w),
+        angle.symbol: _absolute(angle, sp.atan2(s * wy / w, s * wx / w)),  # NaN with w: no direction
     }
 
 
-def _length_and_other_angle(case: LoopCase, wx, wy, branch, named):
+def _length_and_other_angle(case: LoopCase, wx, wy, branch, named, unit, size):
     # p owns the unknown length, q the unknown angle.
     p, q = (case.first, case.second) if case.first.part == "length" else (case.second, case.first)
-    tp, rq = p.vector.angle, q.vector.length
+    tp, rq = p.vector.angle, unit(q.vector.length)
     ux, uy = sp.cos(tp), sp.sin(tp)
     across = _cross(ux, uy, wx, wy)          # s_q r_q sin(t_q - t_p)
     along = ux * wx + uy * wy                # s_p r_p + s_q r_q cos(t_q - t_p)
     # At a toggle one factor vanishes, off by a few ulps of the loop's size,
     # and the other is 2 r_q.
     root = named("Delta", ClampedSqrt((rq - across) * (rq + across),
-                                      2 * sp.Abs(rq) * (sp.Abs(rq) + _rounding_size(case))))
-    rp = p.sign * along + branch * root
+                                      2 * sp.Abs(rq) * (sp.Abs(rq) + _rounding_size(case, unit))))
+    rp = size * (p.sign * along + branch * root)
     tq = tp + sp.atan2(q.sign * across, -p.sign * q.sign * branch * root)
-    if rq.is_positive:
+    if q.vector.length.is_positive:
         named.identity(sp.cos, q.vector.angle - tp, -p.sign * q.sign * branch * root / rq, odd=False)
     return {p.symbol: _absolute(p, rp), q.symbol: _absolute(q, tq)}
 
 
-def _two_angles(case: LoopCase, wx, wy, branch, named):
+def _two_angles(case: LoopCase, wx, wy, branch, named, unit, size):
     p, q = case.first, case.second
     sign_q = q.sign * p.sign
     if p.sign < 0:  # walk the loop the other way so that the first vector is added
         wx, wy = -wx, -wy
-    rp, rq = p.vector.length, q.vector.length
-    w = named("w", sp.sqrt(wx**2 + wy**2))
+    rp, rq = unit(p.vector.length), unit(q.vector.length)
+    # Where the two known points coincide (W = 0) the direction of W, and so the pose, is undefined.
+    w = named("w", _nonzero_length(wx**2 + wy**2))
     # Triangle P + Q = W with |P| = rp, |Q| = rq: 2w times the components of P
     # along and across W are xp and y; Heron's product keeps y accurate near
     # the toggles, where the triangle is flat.
@@ -194,20 +234,42 @@ def _two_angles(case: LoopCase, wx, wy, branch, named):
     xq = (rq - rp) * (rq + rp) + w**2
     # At a toggle (w = rp + rq or |rp - rq|) one factor vanishes, off by a few
     # ulps of the loop's size, and the other three multiply to 8 rp rq w.
-    size = sp.Abs(rp) + sp.Abs(rq) + w + _rounding_size(case)
+    scale = sp.Abs(rp) + sp.Abs(rq) + w + _rounding_size(case, unit)
     y = branch * named("Delta", ClampedSqrt((rp + rq + w) * (rp + rq - w) * (w + rq - rp) * (w + rp - rq),
-                                            8 * sp.Abs(rp * rq) * w * size))
+                                            8 * sp.Abs(rp * rq) * w * scale))
     tp = sp.atan2(xp * wy + y * wx, xp * wx - y * wy)
     tq = sp.atan2(sign_q * (xq * wy - y * wx), sign_q * (xq * wx + y * wy))
     # P = (xp + i y) W / (2 w^2) and Q = (xq - i y) W / (2 w^2), so the cross
     # product P x Q = rp rq sign_q sin(tq - tp) is -y (xp + xq) / (4 w^2) = -y/2.
-    if rp.is_positive and rq.is_positive:
+    if p.vector.length.is_positive and q.vector.length.is_positive:
         named.identity(sp.sin, q.vector.angle - p.vector.angle, -sign_q * y / (2 * rp * rq), odd=True)
     return {p.symbol: _absolute(p, tp), q.symbol: _absolute(q, tq)}
 
 
-_SOLVERS = {"1": _two_lengths, "2a": _length_and_angle_of_one,
-            "2b": _length_and_other_angle, "3": _two_angles}
+def _length_on_a_turning_body(case: LoopCase, wx, wy, branch, named, unit, size):
+    """Case 2c: the unknown angle turns several vectors, one of which has the unknown length.
+
+    With ``theta`` the unknown angle, the turning vectors are ``e^{i theta}``
+    times ``s_p r e^{i c_p}`` (the unknown length ``r``) plus a known part ``C``.
+    In the frame of the unknown-length vector, ``s_p r + A + i B = W e^{-i(theta + c_p)}``
+    with ``A + i B = C e^{-i c_p}``: so ``(s_p r + A)^2 + B^2 = w^2`` fixes ``r`` (two
+    branches, +1 the larger ``r``) and the direction of ``W`` fixes ``theta``.
+    """
+    p, q = (case.first, case.second) if case.first.part == "length" else (case.second, case.first)
+    c_p = p.vector.angle - q.symbol
+    along = sp.Add(*(sign * unit(v.length) * sp.cos(v.angle - q.symbol - c_p) for sign, v in case.turning))
+    across = sp.Add(*(sign * unit(v.length) * sp.sin(v.angle - q.symbol - c_p) for sign, v in case.turning))
+    w = named("w", sp.sqrt(wx**2 + wy**2))
+    root = named("Delta", ClampedSqrt((w - across) * (w + across),
+                                      2 * sp.Abs(across) * (w + sp.Abs(across) + _rounding_size(case, unit))))
+    x = p.sign * branch * root              # s_p r + A; branch +1 gives the larger r, as in case 2b
+    rp = size * p.sign * (x - along)
+    angle = sp.atan2(wy * x - wx * across, wx * x + wy * across) - c_p
+    return {p.symbol: _absolute(p, rp), q.symbol: angle}
+
+
+_SOLVERS = {"1": _two_lengths, "2a": _length_and_angle_of_one, "2b": _length_and_other_angle,
+            "2c": _length_on_a_turning_body, "3": _two_angles}
 
 
 def solve_loop(loop: Loop, unknowns: Sequence[sp.Symbol], branch: sp.Symbol | None = None,
@@ -222,10 +284,24 @@ def solve_loop(loop: Loop, unknowns: Sequence[sp.Symbol], branch: sp.Symbol | No
     if case.branches == 2 and branch is None:
         raise ValueError(f"loop {loop.name!r} (case {case.name}) has two assemblies: give a branch symbol")
     named = _Intermediates(label)
+    # Compute in units of the loop's characteristic length, so that any scale gives the same angles.
+    size = named("size", _characteristic_length(case))
+
+    scaled: dict[sp.Expr, sp.Symbol] = {}
+
+    def unit(length: sp.Expr) -> sp.Expr:
+        """A length in loop units, as a named intermediate (rho_<loop>_<k>) so that no product of
+        two lengths (which could overflow or underflow) is ever formed."""
+        if length.is_number:
+            return length / size
+        if length not in scaled:
+            scaled[length] = named(f"rho_{len(scaled) + 1}", length / size, positive=bool(length.is_positive))
+        return scaled[length]
+
     # W: the vector that the two unknown terms must add up to.
-    wx = named("Wx", -sp.Add(*(s * v.x for s, v in case.known)))
-    wy = named("Wy", -sp.Add(*(s * v.y for s, v in case.known)))
-    positions = _SOLVERS[case.name](case, wx, wy, branch, named)
+    wx = named("Wx", -sp.Add(*(s * unit(v.length) * sp.cos(v.angle) for s, v in case.known)))
+    wy = named("Wy", -sp.Add(*(s * unit(v.length) * sp.sin(v.angle) for s, v in case.known)))
+    positions = _SOLVERS[case.name](case, wx, wy, branch, named, unit, size)
     positions = {u: positions[u] for u in unknowns}
     return LoopSolution(loop, case, branch if case.branches == 2 else None, dict(named), positions,
                         named.singular_factors)

@@ -26,6 +26,8 @@ from typing import Iterable
 
 import sympy as sp
 
+from .names import label
+
 __all__ = [
     "Vector", "VectorSum", "expression", "coordinates", "lengths", "rate", "acceleration",
     "time_derivative",
@@ -104,6 +106,8 @@ class Vector:
     name: str = ""
 
     def __post_init__(self) -> None:
+        if self.name != "":
+            label(self.name, "vector name")
         object.__setattr__(self, "length", expression(self.length))
         object.__setattr__(self, "angle", expression(self.angle))
 

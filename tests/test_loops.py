@@ -33,11 +33,30 @@ def test_three_unknowns_are_refused():
         paper_loop().case([R3, R4, t3])
 
 
-def test_unknown_in_two_vectors_is_refused():
+def test_unknown_turning_two_vectors_at_different_rates_is_refused():
     theta, = coordinates("theta")
-    loop = Loop(Vector(R1, theta) + Vector(R2, theta + 1) + Vector(R3, t3))
+    loop = Loop(Vector(R1, theta) + Vector(R2, 2 * theta) + Vector(R3, t3))
     with pytest.raises(ValueError, match="appears in 2 vectors"):
         loop.case([theta, t3])
+
+
+def test_vectors_turning_together_combine_into_one():
+    theta, = coordinates("theta")
+    loop = Loop(Vector(R1, theta) + Vector(R2, theta + 1) + Vector(R3, t3) + Vector(R4, 0))
+    case = loop.case([theta, t3])
+    assert case.name == "3"
+    combined = case.first.vector
+    # R1 + R2 e^{i} as one vector: its length and its angle past theta.
+    assert sp.simplify(combined.length**2 - (R1**2 + R2**2 + 2 * R1 * R2 * sp.cos(1))) == 0
+    assert sp.simplify(case.first.offset - sp.atan2(R2 * sp.sin(1), R1 + R2 * sp.cos(1))) == 0
+
+
+def test_length_on_the_turning_body_is_case_2c():
+    theta, s = coordinates("theta s")
+    loop = Loop(Vector(R1, t1) - Vector(s, theta) - Vector(R2, theta + sp.pi / 2) - Vector(R3, 0))
+    case = loop.case([theta, s])
+    assert case.name == "2c" and case.branches == 2
+    assert [v for _, v in case.turning] == [Vector(R2, theta + sp.pi / 2)]
 
 
 def test_unknown_inside_a_function_is_refused():

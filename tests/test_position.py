@@ -127,3 +127,74 @@ def test_unreachable_loop_is_reported_not_garbage():
     solver = Solver(Linkage("z", [loop], inputs=[], unknowns=[symbols["t3"], symbols["t4"]]), ["t3"])
     result = solver(**values, branch=1)
     assert not bool(result["assembled"]) and numpy.isnan(result["t3"])
+
+
+def test_seed003_fourbar_gives_the_same_angles_at_any_scale():
+    """a, b, c, d = 20, 66, 56, 80 scaled by 1e-300 ... 1e300: the same angles as at unit scale, lengths scaled back.
+
+    The scaled inputs are themselves rounded, so bit equality is not expected; measured (73 angles, both
+    branches, every 25th power of ten): angles within 2 ulps of max(|angle|, 1) (9 ulps of a coupler angle
+    near zero, in its own ulps), points within 2.5 ulps of 86, the largest coordinate."""
+    from symlink.catalog import fourbar
+    solver = Solver(fourbar(), ["beta", "phi", "C_x", "C_y"])
+    theta = numpy.linspace(-numpy.pi, numpy.pi, 73)
+    for branch in (1, -1):
+        unit = solver(theta=theta, a=20.0, b=66.0, c=56.0, d=80.0, branch=branch)
+        assert unit["assembled"].all()
+        for exponent in range(-300, 301, 25):
+            k = 10.0 ** exponent
+            scaled = solver(theta=theta, a=20 * k, b=66 * k, c=56 * k, d=80 * k, branch=branch)
+            assert scaled["assembled"].all(), exponent
+            for name in ("beta", "phi"):
+                ulps = numpy.abs(scaled[name] - unit[name]) / numpy.spacing(numpy.maximum(numpy.abs(unit[name]), 1.0))
+                assert ulps.max() <= 4, (exponent, name, ulps.max())
+            for name in ("C_x", "C_y"):
+                ulps = numpy.abs(scaled[name] / k - unit[name]) / numpy.spacing(86.0)
+                assert ulps.max() <= 4, (exponent, name, ulps.max())
+
+
+def _mp_offset_inverted(theta, a, d, e, branch):
+    """50-digit reference for the offset inverted slider-crank: the guide is a tangent from B to the circle
+    of radius e about D (a circle/tangent construction, not the solver's formula); +1 the larger s."""
+    import mpmath as mp
+    with mp.workdps(max(50, mp.mp.dps)):  # never lower: mp.diff raises the precision to step
+        b = mp.mpc(a * mp.cos(theta), a * mp.sin(theta)) - d
+        w = abs(b)
+        opening = mp.acos(e / w)
+        solutions = []
+        for turn in (opening, -opening):
+            foot = e * b / w * mp.expj(turn)                 # T - D, the foot of the offset
+            phi = mp.arg(foot) - mp.pi / 2
+            s = mp.re((b - foot) * mp.expj(-phi))
+            solutions.append((s, phi))
+        s, phi = max(solutions) if branch > 0 else min(solutions)
+        return s, phi
+
+
+@pytest.mark.parametrize("branch", [1, -1])
+def test_offset_inverted_slider_crank_in_closed_form_against_mpmath(branch):
+    import mpmath as mp
+    theta, phi, s = coordinates("theta phi s")
+    a, d, e = lengths("a d e")
+    loop = Loop(Vector(a, theta) - Vector(d, 0) - Vector(s, phi) - Vector(e, phi + sp.pi / 2), name="ABD")
+    linkage = Linkage("offset inverted slider-crank", [loop], [theta], [phi, s])
+    assert linkage.plan[0].case.name == "2c"
+    solver = Solver(linkage, ["phi", "s", "phidot", "sdot", "phiddot", "sddot"])
+    values = dict(a=1.0, d=2.5, e=0.4)
+    omega, alpha = 1.7, -0.6
+    for angle in numpy.linspace(-3.0, 3.0, 13):
+        got = solver(theta=angle, branch=branch, thetadot=omega, thetaddot=alpha, **values)
+        assert bool(got["assembled"])
+        with mp.workdps(50):
+            position = lambda t, k: _mp_offset_inverted(t, 1, mp.mpf(5) / 2, mp.mpf(2) / 5, branch)[k]  # noqa: E731
+            t0 = mp.mpf(float(angle))
+            for k, name in ((0, "s"), (1, "phi")):
+                exact = position(t0, k)
+                first, second = mp.diff(lambda t: position(t, k), t0, 1), mp.diff(lambda t: position(t, k), t0, 2)
+                expected = {name: exact, name + "dot": first * omega,
+                            name + "ddot": second * omega**2 + first * alpha}
+                for key, value in expected.items():
+                    difference = float(got[key]) - float(value)
+                    if name == "phi" and key == "phi":
+                        difference = math.remainder(difference, 2 * math.pi)
+                    assert abs(difference) <= 1e-13 * (1 + abs(float(value))), (angle, key, float(got[key]), float(value))

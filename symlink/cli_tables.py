@@ -18,7 +18,7 @@ range is known in closed form.  Everything else follows from the linkage:
   when the crank is at 0 and ``--ROLE-ratio`` turns them with the crank,
   ``angle + ratio * crank`` (default 0: held still);
 * a linkage without a closed form is solved by the generated Newton solver
-  (:mod:`symlink.numeric`), continued along the sweep from an assembly at the
+  (:class:`symlink.solver.NumericSolver`), continued along the sweep from an assembly at the
   first crank angle: the one nearest ``--guess``, or by default the first (in
   the order the entry lists them: Stephenson III by coupler angle) that
   continues over the whole sweep.
@@ -42,10 +42,10 @@ import sympy as sp
 from .analysis import crank_range
 from .angles import from_radians, half_turn, to_radians, wrap
 from .assemblies import stephenson3_assemblies
+from .closure import is_angle
 from .linkage import Linkage
-from .numeric import is_angle
 from .scene import catalog_linkage
-from .solver import Solver, check_lengths, crank_speeds
+from .solver import NumericSolver, Solver, check_lengths, crank_speeds
 from .vectors import acceleration, rate
 
 __all__ = ["Option", "Table", "TABLES", "table_columns", "loop_branches", "scanned_range",
@@ -334,7 +334,7 @@ def _numeric(table: Table, linkage: Linkage, values: dict, inputs: dict, angles,
                              f"({', '.join(_label(linkage, u) for u in linkage.unknowns)}) at crank angle {first}")
         raise ValueError(f"{linkage.name} cannot be assembled at the first crank angle, {first} "
                          "(its scan for assemblies finds none)")
-    solver = linkage.numeric()
+    solver = NumericSolver(linkage)
     parameters = {s.name: values[s.name] for s in linkage.parameters}
     failure = None
     for start in candidates:

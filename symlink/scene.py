@@ -59,7 +59,7 @@ import sympy as sp
 from .cache import GeneratedCode, generated_code
 from .catalog import CATALOG
 from .linkage import Linkage, Program
-from .numeric import is_angle
+from .closure import is_angle
 from .solver import Solver, crank_speeds
 from .vectors import acceleration, rate
 

@@ -311,7 +311,7 @@ def c_code(functions: Sequence[tuple[str, Program, str]], name: str, title: str 
 
 def export_files(linkage: Linkage, stem: str, functions: Sequence[tuple[str, Sequence[str], str]],
                  title: str, regenerate: str = "") -> dict[str, str]:
-    """``{"<stem>.h": header, "<stem>.c": source}``: a loop function ``<stem>_<name>`` for each ``(name, outputs, doc)``."""
-    header, source = c_code([(f"{stem}_{name}", linkage.program(list(outputs)), doc) for name, outputs, doc in functions],
-                            stem, title, regenerate)
+    """``{"<stem>.h": header, "<stem>.c": source}``: a loop function ``<stem>_<name>`` each ``(name, outputs, doc)``."""
+    programs = [(f"{stem}_{name}", linkage.program(list(outputs)), doc) for name, outputs, doc in functions]
+    header, source = c_code(programs, stem, title, regenerate)
     return {f"{stem}.h": header, f"{stem}.c": source}

@@ -131,8 +131,9 @@ def _clamped_sqrt(x, scale):
 def numpy_module(functions: Sequence[tuple[str, Program, str]], title: str = "A symlink solver.",
                  regenerate: str = "") -> str:
     """A standalone module of vectorised functions, each ``(name, program, docstring)``."""
+    again = f"\nRegenerate with: {docstring_text(regenerate)}" if regenerate else ""
     header = _HEADER.format(title=docstring_text(title), version=__version__, sympy=sp.__version__,
-                            tolerance=TOLERANCE, regenerate=f"\nRegenerate with: {docstring_text(regenerate)}" if regenerate else "")
+                            tolerance=TOLERANCE, regenerate=again)
     return header + "".join("\n\n" + numpy_function(p, name, doc) for name, p, doc in functions)
 
 
@@ -146,5 +147,5 @@ def load_numpy_module(source: str) -> dict:
 def export_files(linkage: Linkage, stem: str, functions: Sequence[tuple[str, Sequence[str], str]],
                  title: str, regenerate: str = "") -> dict[str, str]:
     """``{"<stem>.py": module}``: one function for each ``(name, outputs, docstring)``; the shape of every printer."""
-    return {f"{stem}.py": numpy_module([(name, linkage.program(list(outputs)), doc) for name, outputs, doc in functions],
-                                       title, regenerate)}
+    programs = [(name, linkage.program(list(outputs)), doc) for name, outputs, doc in functions]
+    return {f"{stem}.py": numpy_module(programs, title, regenerate)}

@@ -13,9 +13,9 @@ import sympy as sp
 
 from symlink import Linkage, Loop, Vector, coordinates, lengths
 from symlink.catalog import fourbar
-from symlink.codegen import numpy_module
+from symlink.codegen.latex import latex_document
+from symlink.codegen.numpy import numpy_module
 from symlink.derivation import write_generated
-from symlink.latex import latex_document
 
 GENERATED = Path(__file__).resolve().parent.parent / "generated"
 REGENERATE = "python derivations/fourbar.py"

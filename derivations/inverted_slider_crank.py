@@ -14,8 +14,8 @@ import sympy as sp
 
 from symlink import Linkage, Loop, Vector, coordinates, lengths
 from symlink.catalog import inverted_slider_crank
+from symlink.codegen.latex import latex_document
 from symlink.derivation import kinematics_module, write_generated
-from symlink.latex import latex_document
 
 GENERATED = Path(__file__).resolve().parent.parent / "generated"
 REGENERATE = "python derivations/inverted_slider_crank.py"

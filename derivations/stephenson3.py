@@ -14,8 +14,10 @@ import sympy as sp
 
 from symlink import Linkage, Loop, Vector, coordinates, lengths
 from symlink.catalog import stephenson3
+from symlink.closure import closure_system
+from symlink.codegen.latex import newton_document
+from symlink.codegen.newton import numeric_module
 from symlink.derivation import write_generated
-from symlink.numeric import closure_system, numeric_latex, numeric_module
 from symlink.plan import solve_plan
 
 GENERATED = Path(__file__).resolve().parent.parent / "generated"
@@ -54,7 +56,7 @@ def derive() -> dict[str, str]:
     solver = numeric_module(
         catalog, title="Stephenson III six-bar: Newton's method on loops ABCFD and ABEHD over a crank sweep.",
         regenerate=REGENERATE)
-    tex = numeric_latex(catalog, "Stephenson III six-bar")
+    tex = newton_document(catalog, "Stephenson III six-bar")
     return {"stephenson3.py": solver, "stephenson3.tex": tex}
 
 

@@ -26,25 +26,32 @@ def positions(theta, psi, a, b, c, d, e, branch=1):
     """
     theta, psi, a, b, c, d, e, branch = _as_arrays(theta, psi, a, b, c, d, e, branch)
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(psi), numpy.shape(a), numpy.shape(b), numpy.shape(c), numpy.shape(d), numpy.shape(e), numpy.shape(branch))
-    cse_0 = b + c
-    cse_2 = b - c
-    Wx_1 = a*numpy.cos(theta) - d - e*numpy.cos(psi)
-    Wy_1 = a*numpy.sin(theta) - e*numpy.sin(psi)
-    w_1 = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
-    cse_1 = cse_0 + w_1
-    cse_3 = numpy.square(w_1)
-    cse_4 = cse_0*cse_2 + cse_3
-    cse_8 = -cse_0*cse_2 + cse_3
-    Delta_1 = _clamped_sqrt(cse_1*(cse_0 - w_1)*(cse_2 + w_1)*(-b + c + w_1), 8.0*b*c*w_1*(a + cse_1 + d + e))
-    cse_5 = Delta_1*branch
-    cse_6 = Wx_1*cse_5
-    cse_7 = Wy_1*cse_5
-    beta = numpy.arctan2(-Wy_1*cse_4 - cse_6, -Wx_1*cse_4 + cse_7)
-    phi = numpy.arctan2(Wy_1*cse_8 - cse_6, Wx_1*cse_8 + cse_7)
+    size_1 = (1/5)*a + (1/5)*b + (1/5)*c + (1/5)*d + (1/5)*e
+    cse_0 = 1/(size_1)
+    rho_1_1 = cse_0*d
+    rho_2_1 = cse_0*e
+    rho_3_1 = a*cse_0
+    Wx_1 = -rho_1_1 - rho_2_1*numpy.cos(psi) + rho_3_1*numpy.cos(theta)
+    Wy_1 = -rho_2_1*numpy.sin(psi) + rho_3_1*numpy.sin(theta)
+    rho_4_1 = b*cse_0
+    rho_5_1 = c*cse_0
+    cse_1 = rho_4_1 + rho_5_1
+    cse_3 = rho_4_1 - rho_5_1
+    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -1.0e-14)
+    cse_2 = cse_1 + w_1
+    cse_4 = numpy.square(w_1)
+    cse_5 = cse_1*cse_3 + cse_4
+    cse_9 = -cse_1*cse_3 + cse_4
+    Delta_1 = _clamped_sqrt(cse_2*(cse_1 - w_1)*(cse_3 + w_1)*(-rho_4_1 + rho_5_1 + w_1), 8.0*rho_4_1*rho_5_1*w_1*(cse_2 + rho_1_1 + rho_2_1 + rho_3_1))
+    cse_6 = Delta_1*branch
+    cse_7 = Wx_1*cse_6
+    cse_8 = Wy_1*cse_6
+    beta = numpy.arctan2(-Wy_1*cse_5 - cse_7, -Wx_1*cse_5 + cse_8)
+    phi = numpy.arctan2(Wy_1*cse_9 - cse_7, Wx_1*cse_9 + cse_8)
     return {
         'coupler': numpy.broadcast_to(beta, shape),
         'coupler2': numpy.broadcast_to(phi, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(Delta_1), shape),
+        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1), shape),
     }
 
 
@@ -57,33 +64,41 @@ def velocities(theta, psi, a, b, c, d, e, branch=1, thetadot=0.0, psidot=0.0):
     """
     theta, psi, a, b, c, d, e, branch, thetadot, psidot = _as_arrays(theta, psi, a, b, c, d, e, branch, thetadot, psidot)
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(psi), numpy.shape(a), numpy.shape(b), numpy.shape(c), numpy.shape(d), numpy.shape(e), numpy.shape(branch), numpy.shape(thetadot), numpy.shape(psidot))
-    cse_0 = b + c
-    cse_2 = b - c
-    cse_9 = -theta
-    cse_10 = a*thetadot
-    cse_11 = -psi
-    Wx_1 = a*numpy.cos(theta) - d - e*numpy.cos(psi)
-    Wy_1 = a*numpy.sin(theta) - e*numpy.sin(psi)
-    w_1 = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
-    cse_1 = cse_0 + w_1
-    cse_3 = numpy.square(w_1)
-    cse_4 = cse_0*cse_2 + cse_3
-    cse_8 = -cse_0*cse_2 + cse_3
-    Delta_1 = _clamped_sqrt(cse_1*(cse_0 - w_1)*(cse_2 + w_1)*(-b + c + w_1), 8.0*b*c*w_1*(a + cse_1 + d + e))
-    cse_5 = Delta_1*branch
-    cse_6 = Wx_1*cse_5
-    cse_7 = Wy_1*cse_5
-    cse_12 = 2.0/(Delta_1*branch)
-    beta = numpy.arctan2(-Wy_1*cse_4 - cse_6, -Wx_1*cse_4 + cse_7)
-    phi = numpy.arctan2(Wy_1*cse_8 - cse_6, Wx_1*cse_8 + cse_7)
-    betadot = c*cse_12*(-cse_10*numpy.sin(cse_9 + phi) + e*psidot*numpy.sin(cse_11 + phi))
-    phidot = b*cse_12*(-cse_10*numpy.sin(beta + cse_9) + e*psidot*numpy.sin(beta + cse_11))
+    cse_11 = -theta
+    cse_12 = a*thetadot
+    cse_13 = -psi
+    size_1 = (1/5)*a + (1/5)*b + (1/5)*c + (1/5)*d + (1/5)*e
+    cse_0 = 1/(size_1)
+    rho_1_1 = cse_0*d
+    rho_2_1 = cse_0*e
+    rho_3_1 = a*cse_0
+    Wx_1 = -rho_1_1 - rho_2_1*numpy.cos(psi) + rho_3_1*numpy.cos(theta)
+    Wy_1 = -rho_2_1*numpy.sin(psi) + rho_3_1*numpy.sin(theta)
+    rho_4_1 = b*cse_0
+    rho_5_1 = c*cse_0
+    cse_1 = rho_4_1 + rho_5_1
+    cse_3 = rho_4_1 - rho_5_1
+    cse_4 = rho_4_1*rho_5_1
+    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -1.0e-14)
+    cse_2 = cse_1 + w_1
+    cse_5 = numpy.square(w_1)
+    cse_6 = cse_1*cse_3 + cse_5
+    cse_10 = -cse_1*cse_3 + cse_5
+    Delta_1 = _clamped_sqrt(cse_2*(cse_1 - w_1)*(cse_3 + w_1)*(-rho_4_1 + rho_5_1 + w_1), 8.0*cse_4*w_1*(cse_2 + rho_1_1 + rho_2_1 + rho_3_1))
+    cse_7 = Delta_1*branch
+    cse_8 = Wx_1*cse_7
+    cse_9 = Wy_1*cse_7
+    cse_14 = 2.0*cse_4/(Delta_1*branch)
+    beta = numpy.arctan2(-Wy_1*cse_6 - cse_8, -Wx_1*cse_6 + cse_9)
+    phi = numpy.arctan2(Wy_1*cse_10 - cse_8, Wx_1*cse_10 + cse_9)
+    betadot = cse_14*(-cse_12*numpy.sin(cse_11 + phi) + e*psidot*numpy.sin(cse_13 + phi))/b
+    phidot = cse_14*(-cse_12*numpy.sin(beta + cse_11) + e*psidot*numpy.sin(beta + cse_13))/c
     return {
         'coupler': numpy.broadcast_to(beta, shape),
         'coupler2': numpy.broadcast_to(phi, shape),
         'coupler_speed': numpy.broadcast_to(betadot, shape),
         'coupler2_speed': numpy.broadcast_to(phidot, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(Delta_1), shape),
+        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1), shape),
     }
 
 
@@ -96,45 +111,53 @@ def accelerations(theta, psi, a, b, c, d, e, branch=1, thetadot=0.0, psidot=0.0,
     """
     theta, psi, a, b, c, d, e, branch, thetadot, psidot, thetaddot, psiddot = _as_arrays(theta, psi, a, b, c, d, e, branch, thetadot, psidot, thetaddot, psiddot)
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(psi), numpy.shape(a), numpy.shape(b), numpy.shape(c), numpy.shape(d), numpy.shape(e), numpy.shape(branch), numpy.shape(thetadot), numpy.shape(psidot), numpy.shape(thetaddot), numpy.shape(psiddot))
-    cse_0 = b + c
-    cse_2 = b - c
-    cse_9 = -theta
-    cse_12 = a*thetadot
-    cse_13 = -psi
-    cse_24 = a*thetaddot
-    cse_25 = e*numpy.square(psidot)
-    cse_26 = numpy.square(thetadot)
-    Wx_1 = a*numpy.cos(theta) - d - e*numpy.cos(psi)
-    Wy_1 = a*numpy.sin(theta) - e*numpy.sin(psi)
-    w_1 = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
-    cse_1 = cse_0 + w_1
-    cse_3 = numpy.square(w_1)
-    cse_4 = cse_0*cse_2 + cse_3
-    cse_8 = -cse_0*cse_2 + cse_3
-    Delta_1 = _clamped_sqrt(cse_1*(cse_0 - w_1)*(cse_2 + w_1)*(-b + c + w_1), 8.0*b*c*w_1*(a + cse_1 + d + e))
-    cse_5 = Delta_1*branch
-    cse_6 = Wx_1*cse_5
-    cse_7 = Wy_1*cse_5
-    cse_16 = 2.0/(Delta_1*branch)
-    cse_17 = c*cse_16
-    cse_22 = b*cse_16
-    beta = numpy.arctan2(-Wy_1*cse_4 - cse_6, -Wx_1*cse_4 + cse_7)
-    cse_18 = beta + cse_9
-    cse_19 = numpy.sin(cse_18)
-    cse_20 = beta + cse_13
+    cse_11 = -theta
+    cse_14 = a*thetadot
+    cse_15 = -psi
+    cse_26 = a*thetaddot
+    cse_27 = e*numpy.square(psidot)
+    cse_28 = numpy.square(thetadot)
+    size_1 = (1/5)*a + (1/5)*b + (1/5)*c + (1/5)*d + (1/5)*e
+    cse_0 = 1/(size_1)
+    rho_1_1 = cse_0*d
+    rho_2_1 = cse_0*e
+    rho_3_1 = a*cse_0
+    Wx_1 = -rho_1_1 - rho_2_1*numpy.cos(psi) + rho_3_1*numpy.cos(theta)
+    Wy_1 = -rho_2_1*numpy.sin(psi) + rho_3_1*numpy.sin(theta)
+    rho_4_1 = b*cse_0
+    rho_5_1 = c*cse_0
+    cse_1 = rho_4_1 + rho_5_1
+    cse_3 = rho_4_1 - rho_5_1
+    cse_4 = rho_4_1*rho_5_1
+    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -1.0e-14)
+    cse_2 = cse_1 + w_1
+    cse_5 = numpy.square(w_1)
+    cse_6 = cse_1*cse_3 + cse_5
+    cse_10 = -cse_1*cse_3 + cse_5
+    Delta_1 = _clamped_sqrt(cse_2*(cse_1 - w_1)*(cse_3 + w_1)*(-rho_4_1 + rho_5_1 + w_1), 8.0*cse_4*w_1*(cse_2 + rho_1_1 + rho_2_1 + rho_3_1))
+    cse_7 = Delta_1*branch
+    cse_8 = Wx_1*cse_7
+    cse_9 = Wy_1*cse_7
+    cse_18 = 2.0*cse_4/(Delta_1*branch)
+    cse_19 = cse_18/b
+    cse_24 = cse_18/c
+    beta = numpy.arctan2(-Wy_1*cse_6 - cse_8, -Wx_1*cse_6 + cse_9)
+    cse_20 = beta + cse_11
     cse_21 = numpy.sin(cse_20)
-    phi = numpy.arctan2(Wy_1*cse_8 - cse_6, Wx_1*cse_8 + cse_7)
-    cse_10 = cse_9 + phi
-    cse_11 = numpy.sin(cse_10)
-    cse_14 = cse_13 + phi
-    cse_15 = numpy.sin(cse_14)
-    cse_28 = numpy.cos(beta - phi)
-    betadot = cse_17*(-cse_11*cse_12 + cse_15*e*psidot)
-    cse_27 = numpy.square(betadot)
-    phidot = cse_22*(-cse_12*cse_19 + cse_21*e*psidot)
-    cse_23 = c*numpy.square(phidot)
-    betaddot = cse_17*(a*cse_26*numpy.cos(cse_10) + b*cse_27*cse_28 - cse_11*cse_24 + cse_15*e*psiddot - cse_23 - cse_25*numpy.cos(cse_14))
-    phiddot = cse_22*(a*cse_26*numpy.cos(cse_18) + b*cse_27 - cse_19*cse_24 + cse_21*e*psiddot - cse_23*cse_28 - cse_25*numpy.cos(cse_20))
+    cse_22 = beta + cse_15
+    cse_23 = numpy.sin(cse_22)
+    phi = numpy.arctan2(Wy_1*cse_10 - cse_8, Wx_1*cse_10 + cse_9)
+    cse_12 = cse_11 + phi
+    cse_13 = numpy.sin(cse_12)
+    cse_16 = cse_15 + phi
+    cse_17 = numpy.sin(cse_16)
+    cse_30 = numpy.cos(beta - phi)
+    betadot = cse_19*(-cse_13*cse_14 + cse_17*e*psidot)
+    cse_29 = numpy.square(betadot)
+    phidot = cse_24*(-cse_14*cse_21 + cse_23*e*psidot)
+    cse_25 = c*numpy.square(phidot)
+    betaddot = cse_19*(a*cse_28*numpy.cos(cse_12) + b*cse_29*cse_30 - cse_13*cse_26 + cse_17*e*psiddot - cse_25 - cse_27*numpy.cos(cse_16))
+    phiddot = cse_24*(a*cse_28*numpy.cos(cse_20) + b*cse_29 - cse_21*cse_26 + cse_23*e*psiddot - cse_25*cse_30 - cse_27*numpy.cos(cse_22))
     return {
         'coupler': numpy.broadcast_to(beta, shape),
         'coupler2': numpy.broadcast_to(phi, shape),
@@ -142,7 +165,7 @@ def accelerations(theta, psi, a, b, c, d, e, branch=1, thetadot=0.0, psidot=0.0,
         'coupler2_speed': numpy.broadcast_to(phidot, shape),
         'coupler_accel': numpy.broadcast_to(betaddot, shape),
         'coupler2_accel': numpy.broadcast_to(phiddot, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(Delta_1), shape),
+        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1), shape),
     }
 
 
@@ -155,27 +178,35 @@ def joints(theta, psi, a, b, c, d, e, branch=1):
     """
     theta, psi, a, b, c, d, e, branch = _as_arrays(theta, psi, a, b, c, d, e, branch)
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(psi), numpy.shape(a), numpy.shape(b), numpy.shape(c), numpy.shape(d), numpy.shape(e), numpy.shape(branch))
-    cse_0 = numpy.cos(theta)
-    cse_1 = d + e*numpy.cos(psi)
-    cse_2 = a*numpy.sin(theta)
-    cse_3 = e*numpy.sin(psi)
-    cse_4 = b + c
-    cse_6 = b - c
-    cse_9 = a*cse_0
-    Wx_1 = a*cse_0 - cse_1
-    Wy_1 = cse_2 - cse_3
-    w_1 = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
-    cse_5 = cse_4 + w_1
-    cse_7 = cse_4*cse_6 + numpy.square(w_1)
-    Delta_1 = _clamped_sqrt(cse_5*(cse_4 - w_1)*(cse_6 + w_1)*(-b + c + w_1), 8.0*b*c*w_1*(a + cse_5 + d + e))
-    cse_8 = Delta_1*branch
-    beta = numpy.arctan2(-Wx_1*cse_8 - Wy_1*cse_7, -Wx_1*cse_7 + Wy_1*cse_8)
+    cse_1 = numpy.cos(psi)
+    cse_2 = numpy.cos(theta)
+    cse_3 = numpy.sin(psi)
+    cse_4 = numpy.sin(theta)
+    cse_10 = a*cse_2
+    cse_11 = a*cse_4
+    size_1 = (1/5)*a + (1/5)*b + (1/5)*c + (1/5)*d + (1/5)*e
+    cse_0 = 1/(size_1)
+    rho_1_1 = cse_0*d
+    rho_2_1 = cse_0*e
+    rho_3_1 = a*cse_0
+    Wx_1 = -cse_1*rho_2_1 + cse_2*rho_3_1 - rho_1_1
+    Wy_1 = -cse_3*rho_2_1 + cse_4*rho_3_1
+    rho_4_1 = b*cse_0
+    rho_5_1 = c*cse_0
+    cse_5 = rho_4_1 + rho_5_1
+    cse_7 = rho_4_1 - rho_5_1
+    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -1.0e-14)
+    cse_6 = cse_5 + w_1
+    cse_8 = cse_5*cse_7 + numpy.square(w_1)
+    Delta_1 = _clamped_sqrt(cse_6*(cse_5 - w_1)*(cse_7 + w_1)*(-rho_4_1 + rho_5_1 + w_1), 8.0*rho_4_1*rho_5_1*w_1*(cse_6 + rho_1_1 + rho_2_1 + rho_3_1))
+    cse_9 = Delta_1*branch
+    beta = numpy.arctan2(-Wx_1*cse_9 - Wy_1*cse_8, -Wx_1*cse_8 + Wy_1*cse_9)
     return {
-        'B_x': numpy.broadcast_to(cse_9, shape),
-        'B_y': numpy.broadcast_to(cse_2, shape),
-        'C_x': numpy.broadcast_to(b*numpy.cos(beta) + cse_9, shape),
-        'C_y': numpy.broadcast_to(b*numpy.sin(beta) + cse_2, shape),
-        'D_x': numpy.broadcast_to(cse_1, shape),
-        'D_y': numpy.broadcast_to(cse_3, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(Delta_1), shape),
+        'B_x': numpy.broadcast_to(cse_10, shape),
+        'B_y': numpy.broadcast_to(cse_11, shape),
+        'C_x': numpy.broadcast_to(b*numpy.cos(beta) + cse_10, shape),
+        'C_y': numpy.broadcast_to(b*numpy.sin(beta) + cse_11, shape),
+        'D_x': numpy.broadcast_to(cse_1*e + d, shape),
+        'D_y': numpy.broadcast_to(cse_3*e, shape),
+        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1), shape),
     }

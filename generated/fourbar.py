@@ -26,25 +26,31 @@ def positions(theta, a, b, c, d, branch=1):
     """
     theta, a, b, c, d, branch = _as_arrays(theta, a, b, c, d, branch)
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(b), numpy.shape(c), numpy.shape(d), numpy.shape(branch))
-    cse_0 = b + c
-    cse_2 = b - c
-    Wx_1 = a*numpy.cos(theta) - d
-    Wy_1 = a*numpy.sin(theta)
-    w_1 = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
-    cse_1 = cse_0 + w_1
-    cse_3 = numpy.square(w_1)
-    cse_4 = cse_0*cse_2 + cse_3
-    cse_8 = -cse_0*cse_2 + cse_3
-    Delta_1 = _clamped_sqrt(cse_1*(cse_0 - w_1)*(cse_2 + w_1)*(-b + c + w_1), 8.0*b*c*w_1*(a + cse_1 + d))
-    cse_5 = Delta_1*branch
-    cse_6 = Wx_1*cse_5
-    cse_7 = Wy_1*cse_5
-    beta = numpy.arctan2(-Wy_1*cse_4 - cse_6, -Wx_1*cse_4 + cse_7)
-    phi = numpy.arctan2(Wy_1*cse_8 - cse_6, Wx_1*cse_8 + cse_7)
+    size_1 = (1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d
+    cse_0 = 1/(size_1)
+    rho_1_1 = cse_0*d
+    rho_2_1 = a*cse_0
+    Wx_1 = -rho_1_1 + rho_2_1*numpy.cos(theta)
+    Wy_1 = rho_2_1*numpy.sin(theta)
+    rho_3_1 = b*cse_0
+    rho_4_1 = c*cse_0
+    cse_1 = rho_3_1 + rho_4_1
+    cse_3 = rho_3_1 - rho_4_1
+    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -1.0e-14)
+    cse_2 = cse_1 + w_1
+    cse_4 = numpy.square(w_1)
+    cse_5 = cse_1*cse_3 + cse_4
+    cse_9 = -cse_1*cse_3 + cse_4
+    Delta_1 = _clamped_sqrt(cse_2*(cse_1 - w_1)*(cse_3 + w_1)*(-rho_3_1 + rho_4_1 + w_1), 8.0*rho_3_1*rho_4_1*w_1*(cse_2 + rho_1_1 + rho_2_1))
+    cse_6 = Delta_1*branch
+    cse_7 = Wx_1*cse_6
+    cse_8 = Wy_1*cse_6
+    beta = numpy.arctan2(-Wy_1*cse_5 - cse_7, -Wx_1*cse_5 + cse_8)
+    phi = numpy.arctan2(Wy_1*cse_9 - cse_7, Wx_1*cse_9 + cse_8)
     return {
         'coupler': numpy.broadcast_to(beta, shape),
         'rocker': numpy.broadcast_to(phi, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(Delta_1), shape),
+        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1), shape),
     }
 
 
@@ -57,32 +63,39 @@ def velocities(theta, a, b, c, d, branch=1, thetadot=0.0):
     """
     theta, a, b, c, d, branch, thetadot = _as_arrays(theta, a, b, c, d, branch, thetadot)
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(b), numpy.shape(c), numpy.shape(d), numpy.shape(branch), numpy.shape(thetadot))
-    cse_0 = b + c
-    cse_2 = b - c
-    cse_9 = -theta
-    Wx_1 = a*numpy.cos(theta) - d
-    Wy_1 = a*numpy.sin(theta)
-    w_1 = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
-    cse_1 = cse_0 + w_1
-    cse_3 = numpy.square(w_1)
-    cse_4 = cse_0*cse_2 + cse_3
-    cse_8 = -cse_0*cse_2 + cse_3
-    Delta_1 = _clamped_sqrt(cse_1*(cse_0 - w_1)*(cse_2 + w_1)*(-b + c + w_1), 8.0*b*c*w_1*(a + cse_1 + d))
-    cse_5 = Delta_1*branch
-    cse_6 = Wx_1*cse_5
-    cse_7 = Wy_1*cse_5
-    cse_10 = 2.0*a*thetadot/(Delta_1*branch)
-    beta = numpy.arctan2(-Wy_1*cse_4 - cse_6, -Wx_1*cse_4 + cse_7)
-    phi = numpy.arctan2(Wy_1*cse_8 - cse_6, Wx_1*cse_8 + cse_7)
-    betadot = -c*cse_10*numpy.sin(cse_9 + phi)
-    phidot = -b*cse_10*numpy.sin(beta + cse_9)
+    cse_11 = -theta
+    size_1 = (1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d
+    cse_0 = 1/(size_1)
+    rho_1_1 = cse_0*d
+    rho_2_1 = a*cse_0
+    Wx_1 = -rho_1_1 + rho_2_1*numpy.cos(theta)
+    Wy_1 = rho_2_1*numpy.sin(theta)
+    rho_3_1 = b*cse_0
+    rho_4_1 = c*cse_0
+    cse_1 = rho_3_1 + rho_4_1
+    cse_3 = rho_3_1 - rho_4_1
+    cse_4 = rho_3_1*rho_4_1
+    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -1.0e-14)
+    cse_2 = cse_1 + w_1
+    cse_5 = numpy.square(w_1)
+    cse_6 = cse_1*cse_3 + cse_5
+    cse_10 = -cse_1*cse_3 + cse_5
+    Delta_1 = _clamped_sqrt(cse_2*(cse_1 - w_1)*(cse_3 + w_1)*(-rho_3_1 + rho_4_1 + w_1), 8.0*cse_4*w_1*(cse_2 + rho_1_1 + rho_2_1))
+    cse_7 = Delta_1*branch
+    cse_8 = Wx_1*cse_7
+    cse_9 = Wy_1*cse_7
+    cse_12 = 2.0*a*cse_4*thetadot/(Delta_1*branch)
+    beta = numpy.arctan2(-Wy_1*cse_6 - cse_8, -Wx_1*cse_6 + cse_9)
+    phi = numpy.arctan2(Wy_1*cse_10 - cse_8, Wx_1*cse_10 + cse_9)
+    betadot = -cse_12*numpy.sin(cse_11 + phi)/b
+    phidot = -cse_12*numpy.sin(beta + cse_11)/c
     return {
         'coupler': numpy.broadcast_to(beta, shape),
         'rocker': numpy.broadcast_to(phi, shape),
         'coupler_speed': numpy.broadcast_to(betadot, shape),
         'rocker_speed': numpy.broadcast_to(phidot, shape),
-        'singular': numpy.broadcast_to(numpy.equal(Delta_1, 0.0), shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(Delta_1), shape),
+        'singular': numpy.broadcast_to(numpy.logical_or.reduce((numpy.equal(Delta_1, 0.0),numpy.equal(w_1, 0.0))), shape),
+        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1), shape),
     }
 
 
@@ -95,40 +108,47 @@ def accelerations(theta, a, b, c, d, branch=1, thetadot=0.0, thetaddot=0.0):
     """
     theta, a, b, c, d, branch, thetadot, thetaddot = _as_arrays(theta, a, b, c, d, branch, thetadot, thetaddot)
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(b), numpy.shape(c), numpy.shape(d), numpy.shape(branch), numpy.shape(thetadot), numpy.shape(thetaddot))
-    cse_0 = b + c
-    cse_2 = b - c
-    cse_9 = -theta
-    cse_14 = a*thetadot
-    cse_19 = a*thetaddot
-    cse_20 = numpy.square(thetadot)
-    Wx_1 = a*numpy.cos(theta) - d
-    Wy_1 = a*numpy.sin(theta)
-    w_1 = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
-    cse_1 = cse_0 + w_1
-    cse_3 = numpy.square(w_1)
-    cse_4 = cse_0*cse_2 + cse_3
-    cse_8 = -cse_0*cse_2 + cse_3
-    Delta_1 = _clamped_sqrt(cse_1*(cse_0 - w_1)*(cse_2 + w_1)*(-b + c + w_1), 8.0*b*c*w_1*(a + cse_1 + d))
-    cse_5 = Delta_1*branch
-    cse_6 = Wx_1*cse_5
-    cse_7 = Wy_1*cse_5
-    cse_12 = 2.0/(Delta_1*branch)
-    cse_13 = c*cse_12
-    cse_17 = b*cse_12
-    beta = numpy.arctan2(-Wy_1*cse_4 - cse_6, -Wx_1*cse_4 + cse_7)
-    cse_15 = beta + cse_9
-    cse_16 = numpy.sin(cse_15)
-    phi = numpy.arctan2(Wy_1*cse_8 - cse_6, Wx_1*cse_8 + cse_7)
-    cse_10 = cse_9 + phi
-    cse_11 = numpy.sin(cse_10)
-    cse_22 = beta - phi
-    cse_23 = numpy.cos(cse_22)
-    betadot = -cse_11*cse_13*cse_14
-    cse_21 = numpy.square(betadot)
-    phidot = -cse_14*cse_16*cse_17
-    cse_18 = c*numpy.square(phidot)
-    betaddot = cse_13*(a*cse_20*numpy.cos(cse_10) + b*cse_21*cse_23 - cse_11*cse_19 - cse_18)
-    phiddot = cse_17*(a*cse_20*numpy.cos(cse_15) + b*cse_21 - cse_16*cse_19 - cse_18*cse_23)
+    cse_11 = -theta
+    cse_16 = a*thetadot
+    cse_21 = a*thetaddot
+    cse_22 = numpy.square(thetadot)
+    size_1 = (1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d
+    cse_0 = 1/(size_1)
+    rho_1_1 = cse_0*d
+    rho_2_1 = a*cse_0
+    Wx_1 = -rho_1_1 + rho_2_1*numpy.cos(theta)
+    Wy_1 = rho_2_1*numpy.sin(theta)
+    rho_3_1 = b*cse_0
+    rho_4_1 = c*cse_0
+    cse_1 = rho_3_1 + rho_4_1
+    cse_3 = rho_3_1 - rho_4_1
+    cse_4 = rho_3_1*rho_4_1
+    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -1.0e-14)
+    cse_2 = cse_1 + w_1
+    cse_5 = numpy.square(w_1)
+    cse_6 = cse_1*cse_3 + cse_5
+    cse_10 = -cse_1*cse_3 + cse_5
+    Delta_1 = _clamped_sqrt(cse_2*(cse_1 - w_1)*(cse_3 + w_1)*(-rho_3_1 + rho_4_1 + w_1), 8.0*cse_4*w_1*(cse_2 + rho_1_1 + rho_2_1))
+    cse_7 = Delta_1*branch
+    cse_8 = Wx_1*cse_7
+    cse_9 = Wy_1*cse_7
+    cse_14 = 2.0*cse_4/(Delta_1*branch)
+    cse_15 = cse_14/b
+    cse_19 = cse_14/c
+    beta = numpy.arctan2(-Wy_1*cse_6 - cse_8, -Wx_1*cse_6 + cse_9)
+    cse_17 = beta + cse_11
+    cse_18 = numpy.sin(cse_17)
+    phi = numpy.arctan2(Wy_1*cse_10 - cse_8, Wx_1*cse_10 + cse_9)
+    cse_12 = cse_11 + phi
+    cse_13 = numpy.sin(cse_12)
+    cse_24 = beta - phi
+    cse_25 = numpy.cos(cse_24)
+    betadot = -cse_13*cse_15*cse_16
+    cse_23 = numpy.square(betadot)
+    phidot = -cse_16*cse_18*cse_19
+    cse_20 = c*numpy.square(phidot)
+    betaddot = cse_15*(a*cse_22*numpy.cos(cse_12) + b*cse_23*cse_25 - cse_13*cse_21 - cse_20)
+    phiddot = cse_19*(a*cse_22*numpy.cos(cse_17) + b*cse_23 - cse_18*cse_21 - cse_20*cse_25)
     return {
         'coupler': numpy.broadcast_to(beta, shape),
         'rocker': numpy.broadcast_to(phi, shape),
@@ -136,9 +156,9 @@ def accelerations(theta, a, b, c, d, branch=1, thetadot=0.0, thetaddot=0.0):
         'rocker_speed': numpy.broadcast_to(phidot, shape),
         'coupler_accel': numpy.broadcast_to(betaddot, shape),
         'rocker_accel': numpy.broadcast_to(phiddot, shape),
-        'transmission': numpy.broadcast_to(abs(numpy.arctan2(numpy.sin(cse_22), cse_23)), shape),
-        'singular': numpy.broadcast_to(numpy.equal(Delta_1, 0.0), shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(Delta_1), shape),
+        'transmission': numpy.broadcast_to(abs(numpy.arctan2(numpy.sin(cse_24), cse_25)), shape),
+        'singular': numpy.broadcast_to(numpy.logical_or.reduce((numpy.equal(Delta_1, 0.0),numpy.equal(w_1, 0.0))), shape),
+        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1), shape),
     }
 
 
@@ -151,22 +171,30 @@ def joints(theta, a, b, c, d, branch=1):
     """
     theta, a, b, c, d, branch = _as_arrays(theta, a, b, c, d, branch)
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(b), numpy.shape(c), numpy.shape(d), numpy.shape(branch))
-    cse_0 = a*numpy.cos(theta)
-    cse_1 = a*numpy.sin(theta)
-    cse_2 = b + c
-    cse_4 = b - c
-    Wx_1 = cse_0 - d
-    Wy_1 = cse_1
-    w_1 = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
-    cse_3 = cse_2 + w_1
-    cse_5 = cse_2*cse_4 + numpy.square(w_1)
-    Delta_1 = _clamped_sqrt(cse_3*(cse_2 - w_1)*(cse_4 + w_1)*(-b + c + w_1), 8.0*b*c*w_1*(a + cse_3 + d))
-    cse_6 = Delta_1*branch
-    beta = numpy.arctan2(-Wx_1*cse_6 - Wy_1*cse_5, -Wx_1*cse_5 + Wy_1*cse_6)
+    cse_1 = numpy.cos(theta)
+    cse_2 = numpy.sin(theta)
+    cse_8 = a*cse_1
+    cse_9 = a*cse_2
+    size_1 = (1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d
+    cse_0 = 1/(size_1)
+    rho_1_1 = cse_0*d
+    rho_2_1 = a*cse_0
+    Wx_1 = cse_1*rho_2_1 - rho_1_1
+    Wy_1 = cse_2*rho_2_1
+    rho_3_1 = b*cse_0
+    rho_4_1 = c*cse_0
+    cse_3 = rho_3_1 + rho_4_1
+    cse_5 = rho_3_1 - rho_4_1
+    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -1.0e-14)
+    cse_4 = cse_3 + w_1
+    cse_6 = cse_3*cse_5 + numpy.square(w_1)
+    Delta_1 = _clamped_sqrt(cse_4*(cse_3 - w_1)*(cse_5 + w_1)*(-rho_3_1 + rho_4_1 + w_1), 8.0*rho_3_1*rho_4_1*w_1*(cse_4 + rho_1_1 + rho_2_1))
+    cse_7 = Delta_1*branch
+    beta = numpy.arctan2(-Wx_1*cse_7 - Wy_1*cse_6, -Wx_1*cse_6 + Wy_1*cse_7)
     return {
-        'B_x': numpy.broadcast_to(cse_0, shape),
-        'B_y': numpy.broadcast_to(cse_1, shape),
-        'C_x': numpy.broadcast_to(b*numpy.cos(beta) + cse_0, shape),
-        'C_y': numpy.broadcast_to(b*numpy.sin(beta) + cse_1, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(Delta_1), shape),
+        'B_x': numpy.broadcast_to(cse_8, shape),
+        'B_y': numpy.broadcast_to(cse_9, shape),
+        'C_x': numpy.broadcast_to(b*numpy.cos(beta) + cse_8, shape),
+        'C_y': numpy.broadcast_to(b*numpy.sin(beta) + cse_9, shape),
+        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1), shape),
     }

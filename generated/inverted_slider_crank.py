@@ -26,14 +26,20 @@ def positions(theta, a, d):
     """
     theta, a, d = _as_arrays(theta, a, d)
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(d))
-    Wx_1 = -a*numpy.cos(theta) + d
-    Wy_1 = -a*numpy.sin(theta)
-    phi = numpy.arctan2(-Wy_1, -Wx_1)
-    r = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
+    size_1 = (1/2)*a + (1/2)*d
+    cse_0 = 1/(size_1)
+    rho_1_1 = a*cse_0
+    rho_2_1 = cse_0*d
+    Wx_1 = -rho_1_1*numpy.cos(theta) + rho_2_1
+    Wy_1 = -rho_1_1*numpy.sin(theta)
+    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -1.0e-14)
+    cse_1 = 1/(w_1)
+    phi = numpy.arctan2(-Wy_1*cse_1, -Wx_1*cse_1)
+    r = size_1*w_1
     return {
         'rocker': numpy.broadcast_to(phi, shape),
         'slider': numpy.broadcast_to(r, shape),
-        'assembled': numpy.broadcast_to(True, shape),
+        'assembled': numpy.broadcast_to(numpy.isfinite(w_1), shape),
     }
 
 
@@ -46,20 +52,26 @@ def velocities(theta, a, d, thetadot=0.0):
     """
     theta, a, d, thetadot = _as_arrays(theta, a, d, thetadot)
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(d), numpy.shape(thetadot))
-    cse_1 = a*thetadot
-    Wx_1 = -a*numpy.cos(theta) + d
-    Wy_1 = -a*numpy.sin(theta)
-    phi = numpy.arctan2(-Wy_1, -Wx_1)
-    cse_0 = phi - theta
-    r = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
-    phidot = cse_1*numpy.cos(cse_0)/r
-    rdot = cse_1*numpy.sin(cse_0)
+    cse_3 = a*thetadot
+    size_1 = (1/2)*a + (1/2)*d
+    cse_0 = 1/(size_1)
+    rho_1_1 = a*cse_0
+    rho_2_1 = cse_0*d
+    Wx_1 = -rho_1_1*numpy.cos(theta) + rho_2_1
+    Wy_1 = -rho_1_1*numpy.sin(theta)
+    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -1.0e-14)
+    cse_1 = 1/(w_1)
+    phi = numpy.arctan2(-Wy_1*cse_1, -Wx_1*cse_1)
+    cse_2 = phi - theta
+    r = size_1*w_1
+    phidot = cse_3*numpy.cos(cse_2)/r
+    rdot = cse_3*numpy.sin(cse_2)
     return {
         'rocker': numpy.broadcast_to(phi, shape),
         'slider': numpy.broadcast_to(r, shape),
         'rocker_speed': numpy.broadcast_to(phidot, shape),
         'slider_speed': numpy.broadcast_to(rdot, shape),
-        'assembled': numpy.broadcast_to(True, shape),
+        'assembled': numpy.broadcast_to(numpy.isfinite(w_1), shape),
     }
 
 
@@ -72,19 +84,25 @@ def accelerations(theta, a, d, thetadot=0.0, thetaddot=0.0):
     """
     theta, a, d, thetadot, thetaddot = _as_arrays(theta, a, d, thetadot, thetaddot)
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(d), numpy.shape(thetadot), numpy.shape(thetaddot))
-    cse_4 = numpy.square(thetadot)
-    Wx_1 = -a*numpy.cos(theta) + d
-    Wy_1 = -a*numpy.sin(theta)
-    phi = numpy.arctan2(-Wy_1, -Wx_1)
-    cse_1 = phi - theta
-    cse_2 = a*numpy.cos(cse_1)
-    cse_3 = a*numpy.sin(cse_1)
-    r = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
-    cse_0 = 1/(r)
-    phidot = cse_0*cse_2*thetadot
-    rdot = cse_3*thetadot
-    phiddot = -cse_0*(-cse_2*thetaddot - cse_3*cse_4 + 2.0*phidot*rdot)
-    rddot = -cse_2*cse_4 + cse_3*thetaddot + numpy.square(phidot)*r
+    cse_6 = numpy.square(thetadot)
+    size_1 = (1/2)*a + (1/2)*d
+    cse_0 = 1/(size_1)
+    rho_1_1 = a*cse_0
+    rho_2_1 = cse_0*d
+    Wx_1 = -rho_1_1*numpy.cos(theta) + rho_2_1
+    Wy_1 = -rho_1_1*numpy.sin(theta)
+    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -1.0e-14)
+    cse_1 = 1/(w_1)
+    phi = numpy.arctan2(-Wy_1*cse_1, -Wx_1*cse_1)
+    cse_3 = phi - theta
+    cse_4 = a*numpy.cos(cse_3)
+    cse_5 = a*numpy.sin(cse_3)
+    r = size_1*w_1
+    cse_2 = 1/(r)
+    phidot = cse_2*cse_4*thetadot
+    rdot = cse_5*thetadot
+    phiddot = -cse_2*(-cse_4*thetaddot - cse_5*cse_6 + 2.0*phidot*rdot)
+    rddot = -cse_4*cse_6 + cse_5*thetaddot + numpy.square(phidot)*r
     return {
         'rocker': numpy.broadcast_to(phi, shape),
         'slider': numpy.broadcast_to(r, shape),
@@ -92,5 +110,5 @@ def accelerations(theta, a, d, thetadot=0.0, thetaddot=0.0):
         'slider_speed': numpy.broadcast_to(rdot, shape),
         'rocker_accel': numpy.broadcast_to(phiddot, shape),
         'slider_accel': numpy.broadcast_to(rddot, shape),
-        'assembled': numpy.broadcast_to(True, shape),
+        'assembled': numpy.broadcast_to(numpy.isfinite(w_1), shape),
     }

@@ -26,12 +26,17 @@ def positions(theta, a, b, offset, branch=1):
     """
     theta, a, b, offset, branch = _as_arrays(theta, a, b, offset, branch)
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(b), numpy.shape(offset), numpy.shape(branch))
-    Wx_1 = -a*numpy.cos(theta)
-    Wy_1 = -a*numpy.sin(theta) + offset
-    Delta_1 = _clamped_sqrt((-Wy_1 + b)*(Wy_1 + b), 2.0*b*(a + b + abs(offset)))
-    cse_0 = Delta_1*branch
-    beta = numpy.arctan2(Wy_1, cse_0)
-    s = -Wx_1 + cse_0
+    size_1 = (1/3)*a + (1/3)*b + (1/3)*abs(offset)
+    cse_0 = 1/(size_1)
+    rho_1_1 = a*cse_0
+    rho_2_1 = cse_0*offset
+    Wx_1 = -rho_1_1*numpy.cos(theta)
+    Wy_1 = -rho_1_1*numpy.sin(theta) + rho_2_1
+    rho_3_1 = b*cse_0
+    Delta_1 = _clamped_sqrt((-Wy_1 + rho_3_1)*(Wy_1 + rho_3_1), 2.0*rho_3_1*(rho_1_1 + rho_3_1 + abs(rho_2_1)))
+    cse_1 = Delta_1*branch
+    beta = numpy.arctan2(Wy_1, cse_1)
+    s = size_1*(-Wx_1 + cse_1)
     return {
         'conrod': numpy.broadcast_to(beta, shape),
         'slider': numpy.broadcast_to(s, shape),
@@ -48,16 +53,21 @@ def velocities(theta, a, b, offset, branch=1, thetadot=0.0):
     """
     theta, a, b, offset, branch, thetadot = _as_arrays(theta, a, b, offset, branch, thetadot)
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(b), numpy.shape(offset), numpy.shape(branch), numpy.shape(thetadot))
-    cse_0 = a*numpy.cos(theta)
-    Wx_1 = -cse_0
-    Wy_1 = -a*numpy.sin(theta) + offset
-    Delta_1 = _clamped_sqrt((-Wy_1 + b)*(Wy_1 + b), 2.0*b*(a + b + abs(offset)))
-    cse_1 = Delta_1*branch
-    cse_2 = thetadot/(Delta_1*branch)
-    beta = numpy.arctan2(Wy_1, cse_1)
-    s = -Wx_1 + cse_1
-    betadot = -cse_0*cse_2
-    sdot = a*b*cse_2*numpy.sin(beta - theta)
+    cse_1 = numpy.cos(theta)
+    size_1 = (1/3)*a + (1/3)*b + (1/3)*abs(offset)
+    cse_0 = 1/(size_1)
+    rho_1_1 = a*cse_0
+    rho_2_1 = cse_0*offset
+    Wx_1 = -cse_1*rho_1_1
+    Wy_1 = -rho_1_1*numpy.sin(theta) + rho_2_1
+    rho_3_1 = b*cse_0
+    Delta_1 = _clamped_sqrt((-Wy_1 + rho_3_1)*(Wy_1 + rho_3_1), 2.0*rho_3_1*(rho_1_1 + rho_3_1 + abs(rho_2_1)))
+    cse_2 = Delta_1*branch
+    cse_3 = a*rho_3_1*thetadot/(Delta_1*branch)
+    beta = numpy.arctan2(Wy_1, cse_2)
+    s = size_1*(-Wx_1 + cse_2)
+    betadot = -cse_1*cse_3/b
+    sdot = cse_3*numpy.sin(beta - theta)
     return {
         'conrod': numpy.broadcast_to(beta, shape),
         'slider': numpy.broadcast_to(s, shape),
@@ -76,24 +86,30 @@ def accelerations(theta, a, b, offset, branch=1, thetadot=0.0, thetaddot=0.0):
     """
     theta, a, b, offset, branch, thetadot, thetaddot = _as_arrays(theta, a, b, offset, branch, thetadot, thetaddot)
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(b), numpy.shape(offset), numpy.shape(branch), numpy.shape(thetadot), numpy.shape(thetaddot))
-    cse_0 = a*numpy.cos(theta)
-    cse_1 = a*numpy.sin(theta)
-    cse_7 = numpy.square(thetadot)
-    Wx_1 = -cse_0
-    Wy_1 = -cse_1 + offset
-    Delta_1 = _clamped_sqrt((-Wy_1 + b)*(Wy_1 + b), 2.0*b*(a + b + abs(offset)))
-    cse_2 = Delta_1*branch
-    cse_3 = 1.0/(Delta_1*branch)
-    cse_6 = b*cse_3
-    beta = numpy.arctan2(Wy_1, cse_2)
-    cse_4 = beta - theta
-    cse_5 = numpy.sin(cse_4)
-    s = -Wx_1 + cse_2
-    betadot = -cse_0*cse_3*thetadot
-    cse_8 = b*numpy.square(betadot)
-    sdot = a*cse_5*cse_6*thetadot
-    betaddot = cse_3*(-cse_0*thetaddot + cse_1*cse_7 + cse_8*numpy.sin(beta))
-    sddot = cse_6*(a*cse_5*thetaddot - a*cse_7*numpy.cos(cse_4) - cse_8)
+    cse_1 = numpy.cos(theta)
+    cse_2 = numpy.sin(theta)
+    cse_6 = a*thetadot
+    cse_9 = a*numpy.square(thetadot)
+    size_1 = (1/3)*a + (1/3)*b + (1/3)*abs(offset)
+    cse_0 = 1/(size_1)
+    rho_1_1 = a*cse_0
+    rho_2_1 = cse_0*offset
+    Wx_1 = -cse_1*rho_1_1
+    Wy_1 = -cse_2*rho_1_1 + rho_2_1
+    rho_3_1 = b*cse_0
+    Delta_1 = _clamped_sqrt((-Wy_1 + rho_3_1)*(Wy_1 + rho_3_1), 2.0*rho_3_1*(rho_1_1 + rho_3_1 + abs(rho_2_1)))
+    cse_3 = Delta_1*branch
+    cse_4 = rho_3_1/(Delta_1*branch)
+    cse_5 = cse_4/b
+    beta = numpy.arctan2(Wy_1, cse_3)
+    cse_7 = beta - theta
+    cse_8 = numpy.sin(cse_7)
+    s = size_1*(-Wx_1 + cse_3)
+    betadot = -cse_1*cse_5*cse_6
+    cse_10 = b*numpy.square(betadot)
+    sdot = cse_4*cse_6*cse_8
+    betaddot = cse_5*(-a*cse_1*thetaddot + cse_10*numpy.sin(beta) + cse_2*cse_9)
+    sddot = cse_4*(a*cse_8*thetaddot - cse_10 - cse_9*numpy.cos(cse_7))
     return {
         'conrod': numpy.broadcast_to(beta, shape),
         'slider': numpy.broadcast_to(s, shape),
@@ -114,15 +130,20 @@ def joints(theta, a, b, offset, branch=1):
     """
     theta, a, b, offset, branch = _as_arrays(theta, a, b, offset, branch)
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(b), numpy.shape(offset), numpy.shape(branch))
-    cse_0 = a*numpy.cos(theta)
-    cse_1 = a*numpy.sin(theta)
-    Wx_1 = -cse_0
-    Wy_1 = -cse_1 + offset
-    Delta_1 = _clamped_sqrt((-Wy_1 + b)*(Wy_1 + b), 2.0*b*(a + b + abs(offset)))
-    s = Delta_1*branch - Wx_1
+    cse_1 = numpy.cos(theta)
+    cse_2 = numpy.sin(theta)
+    size_1 = (1/3)*a + (1/3)*b + (1/3)*abs(offset)
+    cse_0 = 1/(size_1)
+    rho_1_1 = a*cse_0
+    rho_2_1 = cse_0*offset
+    Wx_1 = -cse_1*rho_1_1
+    Wy_1 = -cse_2*rho_1_1 + rho_2_1
+    rho_3_1 = b*cse_0
+    Delta_1 = _clamped_sqrt((-Wy_1 + rho_3_1)*(Wy_1 + rho_3_1), 2.0*rho_3_1*(rho_1_1 + rho_3_1 + abs(rho_2_1)))
+    s = size_1*(Delta_1*branch - Wx_1)
     return {
-        'B_x': numpy.broadcast_to(cse_0, shape),
-        'B_y': numpy.broadcast_to(cse_1, shape),
+        'B_x': numpy.broadcast_to(a*cse_1, shape),
+        'B_y': numpy.broadcast_to(a*cse_2, shape),
         'C_x': numpy.broadcast_to(s, shape),
         'C_y': numpy.broadcast_to(offset, shape),
         'assembled': numpy.broadcast_to(numpy.isfinite(Delta_1), shape),

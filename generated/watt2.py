@@ -26,43 +26,57 @@ def positions(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_D
     """
     theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG = _as_arrays(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG)
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(b), numpy.shape(c), numpy.shape(d), numpy.shape(e), numpy.shape(f), numpy.shape(g), numpy.shape(alpha), numpy.shape(gx), numpy.shape(gy), numpy.shape(branch_ABCD), numpy.shape(branch_DEFG))
-    cse_0 = b + c
-    cse_2 = b - c
-    cse_10 = f + g
-    cse_12 = f - g
-    Wx_1 = a*numpy.cos(theta) - d
-    Wy_1 = a*numpy.sin(theta)
-    w_1 = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
-    cse_1 = cse_0 + w_1
-    cse_3 = numpy.square(w_1)
-    cse_4 = cse_0*cse_2 + cse_3
-    cse_8 = -cse_0*cse_2 + cse_3
-    Delta_1 = _clamped_sqrt(cse_1*(cse_0 - w_1)*(cse_2 + w_1)*(-b + c + w_1), 8.0*b*c*w_1*(a + cse_1 + d))
-    cse_5 = Delta_1*branch_ABCD
-    cse_6 = Wx_1*cse_5
-    cse_7 = Wy_1*cse_5
-    beta = numpy.arctan2(-Wy_1*cse_4 - cse_6, -Wx_1*cse_4 + cse_7)
-    phi = numpy.arctan2(Wy_1*cse_8 - cse_6, Wx_1*cse_8 + cse_7)
-    cse_9 = alpha + phi
-    Wx_2 = d + e*numpy.cos(cse_9) - gx
-    Wy_2 = e*numpy.sin(cse_9) - gy
-    w_2 = numpy.sqrt(numpy.square(Wx_2) + numpy.square(Wy_2))
-    cse_11 = cse_10 + w_2
-    cse_13 = numpy.square(w_2)
-    cse_14 = cse_10*cse_12 + cse_13
-    cse_18 = -cse_10*cse_12 + cse_13
-    Delta_2 = _clamped_sqrt(cse_11*(cse_10 - w_2)*(cse_12 + w_2)*(-f + g + w_2), 8.0*f*g*w_2*(cse_11 + d + e + abs(gx) + abs(gy)))
-    cse_15 = Delta_2*branch_DEFG
-    cse_16 = Wx_2*cse_15
-    cse_17 = Wy_2*cse_15
-    mu = numpy.arctan2(-Wy_2*cse_14 - cse_16, -Wx_2*cse_14 + cse_17)
-    psi = numpy.arctan2(Wy_2*cse_18 - cse_16, Wx_2*cse_18 + cse_17)
+    size_1 = (1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d
+    cse_0 = 1/(size_1)
+    rho_1_1 = cse_0*d
+    rho_2_1 = a*cse_0
+    Wx_1 = -rho_1_1 + rho_2_1*numpy.cos(theta)
+    Wy_1 = rho_2_1*numpy.sin(theta)
+    rho_3_1 = b*cse_0
+    rho_4_1 = c*cse_0
+    cse_1 = rho_3_1 + rho_4_1
+    cse_3 = rho_3_1 - rho_4_1
+    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -1.0e-14)
+    cse_2 = cse_1 + w_1
+    cse_4 = numpy.square(w_1)
+    cse_5 = cse_1*cse_3 + cse_4
+    cse_9 = -cse_1*cse_3 + cse_4
+    Delta_1 = _clamped_sqrt(cse_2*(cse_1 - w_1)*(cse_3 + w_1)*(-rho_3_1 + rho_4_1 + w_1), 8.0*rho_3_1*rho_4_1*w_1*(cse_2 + rho_1_1 + rho_2_1))
+    cse_6 = Delta_1*branch_ABCD
+    cse_7 = Wx_1*cse_6
+    cse_8 = Wy_1*cse_6
+    beta = numpy.arctan2(-Wy_1*cse_5 - cse_7, -Wx_1*cse_5 + cse_8)
+    phi = numpy.arctan2(Wy_1*cse_9 - cse_7, Wx_1*cse_9 + cse_8)
+    cse_11 = alpha + phi
+    size_2 = (1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy)
+    cse_10 = 1/(size_2)
+    rho_1_2 = cse_10*gx
+    rho_2_2 = cse_10*gy
+    rho_3_2 = cse_10*e
+    rho_4_2 = cse_10*d
+    Wx_2 = -rho_1_2 + rho_3_2*numpy.cos(cse_11) + rho_4_2
+    Wy_2 = -rho_2_2 + rho_3_2*numpy.sin(cse_11)
+    rho_5_2 = cse_10*f
+    rho_6_2 = cse_10*g
+    cse_12 = rho_5_2 + rho_6_2
+    cse_14 = rho_5_2 - rho_6_2
+    w_2 = _clamped_sqrt(numpy.square(Wx_2) + numpy.square(Wy_2), -1.0e-14)
+    cse_13 = cse_12 + w_2
+    cse_15 = numpy.square(w_2)
+    cse_16 = cse_12*cse_14 + cse_15
+    cse_20 = -cse_12*cse_14 + cse_15
+    Delta_2 = _clamped_sqrt(cse_13*(cse_12 - w_2)*(cse_14 + w_2)*(-rho_5_2 + rho_6_2 + w_2), 8.0*rho_5_2*rho_6_2*w_2*(cse_13 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
+    cse_17 = Delta_2*branch_DEFG
+    cse_18 = Wx_2*cse_17
+    cse_19 = Wy_2*cse_17
+    mu = numpy.arctan2(-Wy_2*cse_16 - cse_18, -Wx_2*cse_16 + cse_19)
+    psi = numpy.arctan2(Wy_2*cse_20 - cse_18, Wx_2*cse_20 + cse_19)
     return {
         'coupler': numpy.broadcast_to(beta, shape),
         'rocker': numpy.broadcast_to(phi, shape),
         'coupler2': numpy.broadcast_to(mu, shape),
         'output': numpy.broadcast_to(psi, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(Delta_1) & numpy.isfinite(Delta_2), shape),
+        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2), shape),
     }
 
 
@@ -75,44 +89,60 @@ def velocities(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_
     """
     theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG, thetadot = _as_arrays(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG, thetadot)
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(b), numpy.shape(c), numpy.shape(d), numpy.shape(e), numpy.shape(f), numpy.shape(g), numpy.shape(alpha), numpy.shape(gx), numpy.shape(gy), numpy.shape(branch_ABCD), numpy.shape(branch_DEFG), numpy.shape(thetadot))
-    cse_0 = b + c
-    cse_2 = b - c
-    cse_10 = f + g
-    cse_12 = f - g
-    cse_19 = -theta
-    Wx_1 = a*numpy.cos(theta) - d
-    Wy_1 = a*numpy.sin(theta)
-    w_1 = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
-    cse_1 = cse_0 + w_1
-    cse_3 = numpy.square(w_1)
-    cse_4 = cse_0*cse_2 + cse_3
-    cse_8 = -cse_0*cse_2 + cse_3
-    Delta_1 = _clamped_sqrt(cse_1*(cse_0 - w_1)*(cse_2 + w_1)*(-b + c + w_1), 8.0*b*c*w_1*(a + cse_1 + d))
-    cse_5 = Delta_1*branch_ABCD
-    cse_6 = Wx_1*cse_5
-    cse_7 = Wy_1*cse_5
-    cse_20 = 2.0*a*thetadot/(Delta_1*branch_ABCD)
-    beta = numpy.arctan2(-Wy_1*cse_4 - cse_6, -Wx_1*cse_4 + cse_7)
-    phi = numpy.arctan2(Wy_1*cse_8 - cse_6, Wx_1*cse_8 + cse_7)
-    cse_9 = alpha + phi
-    Wx_2 = d + e*numpy.cos(cse_9) - gx
-    Wy_2 = e*numpy.sin(cse_9) - gy
-    w_2 = numpy.sqrt(numpy.square(Wx_2) + numpy.square(Wy_2))
-    cse_11 = cse_10 + w_2
-    cse_13 = numpy.square(w_2)
-    cse_14 = cse_10*cse_12 + cse_13
-    cse_18 = -cse_10*cse_12 + cse_13
-    Delta_2 = _clamped_sqrt(cse_11*(cse_10 - w_2)*(cse_12 + w_2)*(-f + g + w_2), 8.0*f*g*w_2*(cse_11 + d + e + abs(gx) + abs(gy)))
-    cse_15 = Delta_2*branch_DEFG
-    cse_16 = Wx_2*cse_15
-    cse_17 = Wy_2*cse_15
-    mu = numpy.arctan2(-Wy_2*cse_14 - cse_16, -Wx_2*cse_14 + cse_17)
-    psi = numpy.arctan2(Wy_2*cse_18 - cse_16, Wx_2*cse_18 + cse_17)
-    betadot = -c*cse_20*numpy.sin(cse_19 + phi)
-    phidot = -b*cse_20*numpy.sin(beta + cse_19)
-    cse_21 = 2.0*e*phidot/(Delta_2*branch_DEFG)
-    mudot = cse_21*g*numpy.sin(cse_9 - psi)
-    psidot = cse_21*f*numpy.sin(cse_9 - mu)
+    cse_23 = -theta
+    size_1 = (1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d
+    cse_0 = 1/(size_1)
+    rho_1_1 = cse_0*d
+    rho_2_1 = a*cse_0
+    Wx_1 = -rho_1_1 + rho_2_1*numpy.cos(theta)
+    Wy_1 = rho_2_1*numpy.sin(theta)
+    rho_3_1 = b*cse_0
+    rho_4_1 = c*cse_0
+    cse_1 = rho_3_1 + rho_4_1
+    cse_3 = rho_3_1 - rho_4_1
+    cse_4 = rho_3_1*rho_4_1
+    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -1.0e-14)
+    cse_2 = cse_1 + w_1
+    cse_5 = numpy.square(w_1)
+    cse_6 = cse_1*cse_3 + cse_5
+    cse_10 = -cse_1*cse_3 + cse_5
+    Delta_1 = _clamped_sqrt(cse_2*(cse_1 - w_1)*(cse_3 + w_1)*(-rho_3_1 + rho_4_1 + w_1), 8.0*cse_4*w_1*(cse_2 + rho_1_1 + rho_2_1))
+    cse_7 = Delta_1*branch_ABCD
+    cse_8 = Wx_1*cse_7
+    cse_9 = Wy_1*cse_7
+    cse_24 = 2.0*a*cse_4*thetadot/(Delta_1*branch_ABCD)
+    beta = numpy.arctan2(-Wy_1*cse_6 - cse_8, -Wx_1*cse_6 + cse_9)
+    phi = numpy.arctan2(Wy_1*cse_10 - cse_8, Wx_1*cse_10 + cse_9)
+    cse_12 = alpha + phi
+    size_2 = (1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy)
+    cse_11 = 1/(size_2)
+    rho_1_2 = cse_11*gx
+    rho_2_2 = cse_11*gy
+    rho_3_2 = cse_11*e
+    rho_4_2 = cse_11*d
+    Wx_2 = -rho_1_2 + rho_3_2*numpy.cos(cse_12) + rho_4_2
+    Wy_2 = -rho_2_2 + rho_3_2*numpy.sin(cse_12)
+    rho_5_2 = cse_11*f
+    rho_6_2 = cse_11*g
+    cse_13 = rho_5_2 + rho_6_2
+    cse_15 = rho_5_2 - rho_6_2
+    cse_16 = rho_5_2*rho_6_2
+    w_2 = _clamped_sqrt(numpy.square(Wx_2) + numpy.square(Wy_2), -1.0e-14)
+    cse_14 = cse_13 + w_2
+    cse_17 = numpy.square(w_2)
+    cse_18 = cse_13*cse_15 + cse_17
+    cse_22 = -cse_13*cse_15 + cse_17
+    Delta_2 = _clamped_sqrt(cse_14*(cse_13 - w_2)*(cse_15 + w_2)*(-rho_5_2 + rho_6_2 + w_2), 8.0*cse_16*w_2*(cse_14 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
+    cse_19 = Delta_2*branch_DEFG
+    cse_20 = Wx_2*cse_19
+    cse_21 = Wy_2*cse_19
+    mu = numpy.arctan2(-Wy_2*cse_18 - cse_20, -Wx_2*cse_18 + cse_21)
+    psi = numpy.arctan2(Wy_2*cse_22 - cse_20, Wx_2*cse_22 + cse_21)
+    betadot = -cse_24*numpy.sin(cse_23 + phi)/b
+    phidot = -cse_24*numpy.sin(beta + cse_23)/c
+    cse_25 = 2.0*cse_16*e*phidot/(Delta_2*branch_DEFG)
+    mudot = cse_25*numpy.sin(cse_12 - psi)/f
+    psidot = cse_25*numpy.sin(cse_12 - mu)/g
     return {
         'coupler': numpy.broadcast_to(beta, shape),
         'rocker': numpy.broadcast_to(phi, shape),
@@ -122,7 +152,7 @@ def velocities(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_
         'rocker_speed': numpy.broadcast_to(phidot, shape),
         'coupler2_speed': numpy.broadcast_to(mudot, shape),
         'output_speed': numpy.broadcast_to(psidot, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(Delta_1) & numpy.isfinite(Delta_2), shape),
+        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2), shape),
     }
 
 
@@ -135,74 +165,90 @@ def accelerations(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, bran
     """
     theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG, thetadot, thetaddot = _as_arrays(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG, thetadot, thetaddot)
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(b), numpy.shape(c), numpy.shape(d), numpy.shape(e), numpy.shape(f), numpy.shape(g), numpy.shape(alpha), numpy.shape(gx), numpy.shape(gy), numpy.shape(branch_ABCD), numpy.shape(branch_DEFG), numpy.shape(thetadot), numpy.shape(thetaddot))
-    cse_0 = b + c
-    cse_2 = b - c
-    cse_10 = f + g
-    cse_12 = f - g
-    cse_19 = -theta
-    cse_24 = a*thetadot
-    cse_39 = a*thetaddot
-    cse_40 = numpy.square(thetadot)
-    Wx_1 = a*numpy.cos(theta) - d
-    Wy_1 = a*numpy.sin(theta)
-    w_1 = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
-    cse_1 = cse_0 + w_1
-    cse_3 = numpy.square(w_1)
-    cse_4 = cse_0*cse_2 + cse_3
-    cse_8 = -cse_0*cse_2 + cse_3
-    Delta_1 = _clamped_sqrt(cse_1*(cse_0 - w_1)*(cse_2 + w_1)*(-b + c + w_1), 8.0*b*c*w_1*(a + cse_1 + d))
-    cse_5 = Delta_1*branch_ABCD
-    cse_6 = Wx_1*cse_5
-    cse_7 = Wy_1*cse_5
-    cse_22 = 2.0/(Delta_1*branch_ABCD)
-    cse_23 = c*cse_22
-    cse_27 = b*cse_22
-    beta = numpy.arctan2(-Wy_1*cse_4 - cse_6, -Wx_1*cse_4 + cse_7)
-    cse_25 = beta + cse_19
-    cse_26 = numpy.sin(cse_25)
-    phi = numpy.arctan2(Wy_1*cse_8 - cse_6, Wx_1*cse_8 + cse_7)
-    cse_9 = alpha + phi
-    cse_20 = cse_19 + phi
-    cse_21 = numpy.sin(cse_20)
-    cse_42 = numpy.cos(beta - phi)
-    Wx_2 = d + e*numpy.cos(cse_9) - gx
-    Wy_2 = e*numpy.sin(cse_9) - gy
-    w_2 = numpy.sqrt(numpy.square(Wx_2) + numpy.square(Wy_2))
-    cse_11 = cse_10 + w_2
-    cse_13 = numpy.square(w_2)
-    cse_14 = cse_10*cse_12 + cse_13
-    cse_18 = -cse_10*cse_12 + cse_13
-    Delta_2 = _clamped_sqrt(cse_11*(cse_10 - w_2)*(cse_12 + w_2)*(-f + g + w_2), 8.0*f*g*w_2*(cse_11 + d + e + abs(gx) + abs(gy)))
-    cse_15 = Delta_2*branch_DEFG
-    cse_16 = Wx_2*cse_15
-    cse_17 = Wy_2*cse_15
-    cse_31 = 2.0/(Delta_2*branch_DEFG)
-    cse_32 = cse_31*g
-    cse_36 = cse_31*f
-    mu = numpy.arctan2(-Wy_2*cse_14 - cse_16, -Wx_2*cse_14 + cse_17)
-    cse_34 = cse_9 - mu
-    cse_35 = numpy.sin(cse_34)
-    psi = numpy.arctan2(Wy_2*cse_18 - cse_16, Wx_2*cse_18 + cse_17)
-    cse_28 = -psi
-    cse_29 = cse_28 + cse_9
+    cse_23 = -theta
+    cse_28 = a*thetadot
+    cse_43 = a*thetaddot
+    cse_44 = numpy.square(thetadot)
+    size_1 = (1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d
+    cse_0 = 1/(size_1)
+    rho_1_1 = cse_0*d
+    rho_2_1 = a*cse_0
+    Wx_1 = -rho_1_1 + rho_2_1*numpy.cos(theta)
+    Wy_1 = rho_2_1*numpy.sin(theta)
+    rho_3_1 = b*cse_0
+    rho_4_1 = c*cse_0
+    cse_1 = rho_3_1 + rho_4_1
+    cse_3 = rho_3_1 - rho_4_1
+    cse_4 = rho_3_1*rho_4_1
+    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -1.0e-14)
+    cse_2 = cse_1 + w_1
+    cse_5 = numpy.square(w_1)
+    cse_6 = cse_1*cse_3 + cse_5
+    cse_10 = -cse_1*cse_3 + cse_5
+    Delta_1 = _clamped_sqrt(cse_2*(cse_1 - w_1)*(cse_3 + w_1)*(-rho_3_1 + rho_4_1 + w_1), 8.0*cse_4*w_1*(cse_2 + rho_1_1 + rho_2_1))
+    cse_7 = Delta_1*branch_ABCD
+    cse_8 = Wx_1*cse_7
+    cse_9 = Wy_1*cse_7
+    cse_26 = 2.0*cse_4/(Delta_1*branch_ABCD)
+    cse_27 = cse_26/b
+    cse_31 = cse_26/c
+    beta = numpy.arctan2(-Wy_1*cse_6 - cse_8, -Wx_1*cse_6 + cse_9)
+    cse_29 = beta + cse_23
     cse_30 = numpy.sin(cse_29)
-    cse_46 = numpy.cos(cse_28 + mu)
-    betadot = -cse_21*cse_23*cse_24
-    cse_41 = numpy.square(betadot)
-    phidot = -cse_24*cse_26*cse_27
-    cse_33 = e*phidot
-    cse_37 = numpy.square(phidot)
-    cse_38 = c*cse_37
-    cse_45 = cse_37*e
-    mudot = cse_30*cse_32*cse_33
-    cse_47 = f*numpy.square(mudot)
-    psidot = cse_33*cse_35*cse_36
-    cse_43 = g*numpy.square(psidot)
-    betaddot = cse_23*(a*cse_40*numpy.cos(cse_20) + b*cse_41*cse_42 - cse_21*cse_39 - cse_38)
-    phiddot = cse_27*(a*cse_40*numpy.cos(cse_25) + b*cse_41 - cse_26*cse_39 - cse_38*cse_42)
-    cse_44 = e*phiddot
-    muddot = cse_32*(cse_30*cse_44 - cse_43 + cse_45*numpy.cos(cse_29) + cse_46*cse_47)
-    psiddot = cse_36*(cse_35*cse_44 - cse_43*cse_46 + cse_45*numpy.cos(cse_34) + cse_47)
+    phi = numpy.arctan2(Wy_1*cse_10 - cse_8, Wx_1*cse_10 + cse_9)
+    cse_12 = alpha + phi
+    cse_24 = cse_23 + phi
+    cse_25 = numpy.sin(cse_24)
+    cse_46 = numpy.cos(beta - phi)
+    size_2 = (1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy)
+    cse_11 = 1/(size_2)
+    rho_1_2 = cse_11*gx
+    rho_2_2 = cse_11*gy
+    rho_3_2 = cse_11*e
+    rho_4_2 = cse_11*d
+    Wx_2 = -rho_1_2 + rho_3_2*numpy.cos(cse_12) + rho_4_2
+    Wy_2 = -rho_2_2 + rho_3_2*numpy.sin(cse_12)
+    rho_5_2 = cse_11*f
+    rho_6_2 = cse_11*g
+    cse_13 = rho_5_2 + rho_6_2
+    cse_15 = rho_5_2 - rho_6_2
+    cse_16 = rho_5_2*rho_6_2
+    w_2 = _clamped_sqrt(numpy.square(Wx_2) + numpy.square(Wy_2), -1.0e-14)
+    cse_14 = cse_13 + w_2
+    cse_17 = numpy.square(w_2)
+    cse_18 = cse_13*cse_15 + cse_17
+    cse_22 = -cse_13*cse_15 + cse_17
+    Delta_2 = _clamped_sqrt(cse_14*(cse_13 - w_2)*(cse_15 + w_2)*(-rho_5_2 + rho_6_2 + w_2), 8.0*cse_16*w_2*(cse_14 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
+    cse_19 = Delta_2*branch_DEFG
+    cse_20 = Wx_2*cse_19
+    cse_21 = Wy_2*cse_19
+    cse_35 = 2.0*cse_16/(Delta_2*branch_DEFG)
+    cse_36 = cse_35/f
+    cse_40 = cse_35/g
+    mu = numpy.arctan2(-Wy_2*cse_18 - cse_20, -Wx_2*cse_18 + cse_21)
+    cse_38 = cse_12 - mu
+    cse_39 = numpy.sin(cse_38)
+    psi = numpy.arctan2(Wy_2*cse_22 - cse_20, Wx_2*cse_22 + cse_21)
+    cse_32 = -psi
+    cse_33 = cse_12 + cse_32
+    cse_34 = numpy.sin(cse_33)
+    cse_50 = numpy.cos(cse_32 + mu)
+    betadot = -cse_25*cse_27*cse_28
+    cse_45 = numpy.square(betadot)
+    phidot = -cse_28*cse_30*cse_31
+    cse_37 = e*phidot
+    cse_41 = numpy.square(phidot)
+    cse_42 = c*cse_41
+    cse_49 = cse_41*e
+    mudot = cse_34*cse_36*cse_37
+    cse_51 = f*numpy.square(mudot)
+    psidot = cse_37*cse_39*cse_40
+    cse_47 = g*numpy.square(psidot)
+    betaddot = cse_27*(a*cse_44*numpy.cos(cse_24) + b*cse_45*cse_46 - cse_25*cse_43 - cse_42)
+    phiddot = cse_31*(a*cse_44*numpy.cos(cse_29) + b*cse_45 - cse_30*cse_43 - cse_42*cse_46)
+    cse_48 = e*phiddot
+    muddot = cse_36*(cse_34*cse_48 - cse_47 + cse_49*numpy.cos(cse_33) + cse_50*cse_51)
+    psiddot = cse_40*(cse_39*cse_48 - cse_47*cse_50 + cse_49*numpy.cos(cse_38) + cse_51)
     return {
         'coupler': numpy.broadcast_to(beta, shape),
         'rocker': numpy.broadcast_to(phi, shape),
@@ -216,7 +262,7 @@ def accelerations(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, bran
         'rocker_accel': numpy.broadcast_to(phiddot, shape),
         'coupler2_accel': numpy.broadcast_to(muddot, shape),
         'output_accel': numpy.broadcast_to(psiddot, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(Delta_1) & numpy.isfinite(Delta_2), shape),
+        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2), shape),
     }
 
 
@@ -229,44 +275,62 @@ def joints(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_DEFG
     """
     theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG = _as_arrays(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG)
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(b), numpy.shape(c), numpy.shape(d), numpy.shape(e), numpy.shape(f), numpy.shape(g), numpy.shape(alpha), numpy.shape(gx), numpy.shape(gy), numpy.shape(branch_ABCD), numpy.shape(branch_DEFG))
-    cse_0 = a*numpy.cos(theta)
-    cse_1 = a*numpy.sin(theta)
-    cse_2 = b + c
-    cse_4 = b - c
-    cse_14 = f + g
-    cse_16 = f - g
-    Wx_1 = cse_0 - d
-    Wy_1 = cse_1
-    w_1 = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
-    cse_3 = cse_2 + w_1
-    cse_5 = numpy.square(w_1)
-    cse_6 = cse_2*cse_4 + cse_5
-    cse_10 = -cse_2*cse_4 + cse_5
-    Delta_1 = _clamped_sqrt(cse_3*(cse_2 - w_1)*(cse_4 + w_1)*(-b + c + w_1), 8.0*b*c*w_1*(a + cse_3 + d))
-    cse_7 = Delta_1*branch_ABCD
-    cse_8 = Wx_1*cse_7
-    cse_9 = Wy_1*cse_7
-    beta = numpy.arctan2(-Wy_1*cse_6 - cse_8, -Wx_1*cse_6 + cse_9)
-    phi = numpy.arctan2(Wy_1*cse_10 - cse_8, Wx_1*cse_10 + cse_9)
-    cse_11 = alpha + phi
-    cse_12 = d + e*numpy.cos(cse_11)
-    cse_13 = e*numpy.sin(cse_11)
-    Wx_2 = cse_12 - gx
-    Wy_2 = cse_13 - gy
-    w_2 = numpy.sqrt(numpy.square(Wx_2) + numpy.square(Wy_2))
-    cse_15 = cse_14 + w_2
-    cse_17 = cse_14*cse_16 + numpy.square(w_2)
-    Delta_2 = _clamped_sqrt(cse_15*(cse_14 - w_2)*(cse_16 + w_2)*(-f + g + w_2), 8.0*f*g*w_2*(cse_15 + d + e + abs(gx) + abs(gy)))
-    cse_18 = Delta_2*branch_DEFG
-    mu = numpy.arctan2(-Wx_2*cse_18 - Wy_2*cse_17, -Wx_2*cse_17 + Wy_2*cse_18)
+    cse_1 = numpy.cos(theta)
+    cse_2 = numpy.sin(theta)
+    cse_21 = a*cse_1
+    cse_22 = a*cse_2
+    size_1 = (1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d
+    cse_0 = 1/(size_1)
+    rho_1_1 = cse_0*d
+    rho_2_1 = a*cse_0
+    Wx_1 = cse_1*rho_2_1 - rho_1_1
+    Wy_1 = cse_2*rho_2_1
+    rho_3_1 = b*cse_0
+    rho_4_1 = c*cse_0
+    cse_3 = rho_3_1 + rho_4_1
+    cse_5 = rho_3_1 - rho_4_1
+    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -1.0e-14)
+    cse_4 = cse_3 + w_1
+    cse_6 = numpy.square(w_1)
+    cse_7 = cse_3*cse_5 + cse_6
+    cse_11 = -cse_3*cse_5 + cse_6
+    Delta_1 = _clamped_sqrt(cse_4*(cse_3 - w_1)*(cse_5 + w_1)*(-rho_3_1 + rho_4_1 + w_1), 8.0*rho_3_1*rho_4_1*w_1*(cse_4 + rho_1_1 + rho_2_1))
+    cse_8 = Delta_1*branch_ABCD
+    cse_9 = Wx_1*cse_8
+    cse_10 = Wy_1*cse_8
+    beta = numpy.arctan2(-Wy_1*cse_7 - cse_9, -Wx_1*cse_7 + cse_10)
+    phi = numpy.arctan2(Wy_1*cse_11 - cse_9, Wx_1*cse_11 + cse_10)
+    cse_13 = alpha + phi
+    cse_14 = numpy.cos(cse_13)
+    cse_15 = numpy.sin(cse_13)
+    cse_23 = cse_14*e + d
+    cse_24 = cse_15*e
+    size_2 = (1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy)
+    cse_12 = 1/(size_2)
+    rho_1_2 = cse_12*gx
+    rho_2_2 = cse_12*gy
+    rho_3_2 = cse_12*e
+    rho_4_2 = cse_12*d
+    Wx_2 = cse_14*rho_3_2 - rho_1_2 + rho_4_2
+    Wy_2 = cse_15*rho_3_2 - rho_2_2
+    rho_5_2 = cse_12*f
+    rho_6_2 = cse_12*g
+    cse_16 = rho_5_2 + rho_6_2
+    cse_18 = rho_5_2 - rho_6_2
+    w_2 = _clamped_sqrt(numpy.square(Wx_2) + numpy.square(Wy_2), -1.0e-14)
+    cse_17 = cse_16 + w_2
+    cse_19 = cse_16*cse_18 + numpy.square(w_2)
+    Delta_2 = _clamped_sqrt(cse_17*(cse_16 - w_2)*(cse_18 + w_2)*(-rho_5_2 + rho_6_2 + w_2), 8.0*rho_5_2*rho_6_2*w_2*(cse_17 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
+    cse_20 = Delta_2*branch_DEFG
+    mu = numpy.arctan2(-Wx_2*cse_20 - Wy_2*cse_19, -Wx_2*cse_19 + Wy_2*cse_20)
     return {
-        'B_x': numpy.broadcast_to(cse_0, shape),
-        'B_y': numpy.broadcast_to(cse_1, shape),
-        'C_x': numpy.broadcast_to(b*numpy.cos(beta) + cse_0, shape),
-        'C_y': numpy.broadcast_to(b*numpy.sin(beta) + cse_1, shape),
-        'E_x': numpy.broadcast_to(cse_12, shape),
-        'E_y': numpy.broadcast_to(cse_13, shape),
-        'F_x': numpy.broadcast_to(cse_12 + f*numpy.cos(mu), shape),
-        'F_y': numpy.broadcast_to(cse_13 + f*numpy.sin(mu), shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(Delta_1) & numpy.isfinite(Delta_2), shape),
+        'B_x': numpy.broadcast_to(cse_21, shape),
+        'B_y': numpy.broadcast_to(cse_22, shape),
+        'C_x': numpy.broadcast_to(b*numpy.cos(beta) + cse_21, shape),
+        'C_y': numpy.broadcast_to(b*numpy.sin(beta) + cse_22, shape),
+        'E_x': numpy.broadcast_to(cse_23, shape),
+        'E_y': numpy.broadcast_to(cse_24, shape),
+        'F_x': numpy.broadcast_to(cse_23 + f*numpy.cos(mu), shape),
+        'F_y': numpy.broadcast_to(cse_24 + f*numpy.sin(mu), shape),
+        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2), shape),
     }

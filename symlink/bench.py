@@ -522,7 +522,7 @@ def derivation_times(scenes: list[tuple[str, list[str]]]) -> list[dict]:
             done = subprocess.run([sys.executable, "-c", _DERIVATION_SCRIPT, json.dumps(scenes)],
                                   capture_output=True, text=True, env=env, check=True)
             runs.append(json.loads(done.stdout))
-    from .codegen import load_numpy_module
+    from .codegen.numpy import load_numpy_module
     for cold, cached in zip(runs[0]["scenes"], runs[1]["scenes"]):
         loads = []
         for _ in range(5):

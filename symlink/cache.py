@@ -41,7 +41,7 @@ from typing import Callable, Sequence
 import sympy as sp
 
 from . import __version__
-from .codegen import load_numpy_module, numpy_module
+from .codegen.numpy import load_numpy_module, numpy_module
 from .files import write_atomic
 from .linkage import Linkage
 
@@ -95,8 +95,9 @@ def definition(linkage: Linkage) -> str:
 def _source_digest() -> str:
     """SHA-256 of symlink's own modules: a change to any derivation is a new key."""
     digest = hashlib.sha256()
-    for path in sorted(Path(__file__).parent.glob("*.py")):
-        digest.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
+    package = Path(__file__).parent
+    for path in sorted(package.rglob("*.py")):  # the codegen package's printers included
+        digest.update(path.relative_to(package).as_posix().encode() + b"\0" + path.read_bytes() + b"\0")
     return digest.hexdigest()
 
 

@@ -180,7 +180,7 @@ def stephenson3() -> Linkage:
     The two ternary links are not adjacent (a Stephenson chain) and the
     ground holds the crank and the ternary rocker, so every loop has three
     unknowns whatever the order: there is no loop-by-loop closed form, and
-    the linkage is solved numerically (:mod:`symlink.numeric`); it has up to
+    the linkage is solved numerically (:class:`symlink.solver.NumericSolver`); it has up to
     six assemblies, chosen by the initial guess.
 
     >>> stephenson3().has_closed_form

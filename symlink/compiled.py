@@ -53,7 +53,7 @@ from typing import Mapping, Sequence
 import numpy
 
 from . import cache
-from .c_code import c_function, c_library
+from .codegen.c import c_function, c_library
 from .files import write_atomic
 from .linkage import Linkage
 from .solver import Solver

@@ -18,10 +18,10 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Mapping, Sequence
 
-from .codegen import numpy_module
+from .closure import is_angle
+from .codegen.numpy import numpy_module
 from .files import write_atomic
 from .linkage import ACCEL_SUFFIX, SPEED_SUFFIX, Linkage
-from .numeric import is_angle
 
 __all__ = ["kinematics_module", "write_generated"]
 

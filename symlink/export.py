@@ -19,13 +19,13 @@ from typing import Sequence
 
 from . import cache
 from .catalog import CATALOG
+from .codegen import PRINTERS, printer
 from .linkage import ACCEL_SUFFIX, SPEED_SUFFIX, Linkage
 from .scene import catalog_linkage
-from .vectors import acceleration, rate
 
 __all__ = ["FORMATS", "output_sets", "export_texts", "export"]
 
-FORMATS = ("numpy", "c", "octave", "latex")
+FORMATS = tuple(PRINTERS)
 
 
 def _role_name(linkage: Linkage, q) -> str | None:
@@ -77,28 +77,14 @@ def export_texts(name: str, fmt: str, outputs: Sequence[str] | None = None) -> d
     wanted = sorted({o for _, names, _ in sets for o in names})
     command = f"symlink export {name} --to {fmt}" + (f" --outputs {','.join(outputs)}" if outputs else "")
     kind = "export:" + json.dumps([fmt, stem, sets])
-    build = lambda: json.dumps(_build(linkage, fmt, stem, sets, command, outputs))  # noqa: E731
+    build = lambda: json.dumps(_build(linkage, fmt, stem, sets, command))  # noqa: E731
     return json.loads(cache.cached_text(cache.cache_key(linkage, wanted, kind), build))
 
 
-def _build(linkage: Linkage, fmt: str, stem: str, sets, command: str, outputs) -> dict[str, str]:
+def _build(linkage: Linkage, fmt: str, stem: str, sets, command: str) -> dict[str, str]:
     doc = (CATALOG[linkage.name].__doc__ or "").strip().splitlines() if linkage.name in CATALOG else []
     title = f"{linkage.name}: {doc[0]}" if doc else f"{linkage.name} solver."
-    if fmt == "numpy":
-        from .codegen import numpy_module
-        return {f"{stem}.py": numpy_module([(n, linkage.program(o), d) for n, o, d in sets], title, command)}
-    if fmt == "c":
-        from .c_code import c_code
-        header, source = c_code([(f"{stem}_{n}", linkage.program(o), d) for n, o, d in sets], stem, title, command)
-        return {f"{stem}.h": header, f"{stem}.c": source}
-    if fmt == "octave":
-        from .octave import octave_function
-        return {f"{stem}_{n}.m": octave_function(linkage.program(o), f"{stem}_{n}", d) for n, o, d in sets}
-    from .latex import latex_document
-    asked = set().union(*(linkage.output(o).free_symbols for o in outputs)) if outputs else None
-    accels = asked is None or any(acceleration(q) in asked for q in linkage.unknowns)
-    rates = accels or any(rate(q) in asked for q in linkage.unknowns)
-    return {f"{stem}.tex": latex_document(linkage, title, velocities=rates, accelerations=accels)}
+    return printer(fmt).export_files(linkage, stem, sets, title, command)
 
 
 def export(name: str, fmt: str, folder: str | Path, outputs: Sequence[str] | None = None) -> list[Path]:

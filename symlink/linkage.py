@@ -242,7 +242,7 @@ class Linkage:
 
     @cached_property
     def has_closed_form(self) -> bool:
-        """Whether a loop-by-loop closed-form :attr:`plan` exists; if not, use :meth:`numeric`.
+        """Whether a loop-by-loop closed-form :attr:`plan` exists; if not, use :class:`symlink.solver.NumericSolver`.
 
         A linkage whose loops give as many equations as it has unknowns but no
         closed-form order (the Stephenson III six-bar) is still a linkage; any
@@ -255,11 +255,6 @@ class Linkage:
                 raise
             return False
         return True
-
-    def numeric(self) -> "NumericSolver":
-        """A generated Newton solver on the closure (:mod:`symlink.numeric`), with or without a closed form."""
-        from .numeric import NumericSolver
-        return NumericSolver(self)
 
     @cached_property
     def positions(self) -> dict[sp.Symbol, sp.Expr]:
@@ -394,7 +389,7 @@ class Linkage:
                 + tuple(rate(q) for q in self.inputs) + tuple(acceleration(q) for q in self.inputs))
 
     def _repr_latex_(self) -> str:
-        from .latex import equations_latex
+        from .codegen.latex import equations_latex  # on first use: the printer does not import linkage
         return "$\\displaystyle " + equations_latex(self) + "$"
 
     def __repr__(self) -> str:

@@ -5,7 +5,7 @@
 its case, its two unknowns, the earlier results (inputs and unknowns solved by
 earlier steps) that its equations use, and its branch sign.  Where no
 closed-form order exists, the plan is one numeric step over all loops
-(:mod:`symlink.numeric`) and says why.  ``symlink plan NAME`` prints it for a
+(:mod:`symlink.codegen.newton`) and says why.  ``symlink plan NAME`` prints it for a
 catalog entry.
 
 >>> from symlink.catalog import watt2
@@ -17,9 +17,12 @@ watt2: closed form, loop by loop (inputs: theta)
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
-from .linkage import Linkage
 from .loops import CASE_NAMES
+
+if TYPE_CHECKING:
+    from .linkage import Linkage
 
 __all__ = ["PlanStep", "SolvePlan", "solve_plan"]
 

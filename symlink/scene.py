@@ -61,7 +61,7 @@ from .catalog import CATALOG
 from .input_sweep import InputSweep
 from .angles import to_radians
 from .linkage import Linkage, Program
-from .numeric import is_angle
+from .closure import is_angle
 from .solver import Solver, crank_speeds
 from .vectors import acceleration, rate
 

@@ -3,7 +3,9 @@
 A :class:`Solver` generates the NumPy code for the outputs it is asked for,
 loads it, and calls it with validated values: lengths must be positive and
 finite, branches +1 or -1.  Where the linkage cannot be assembled the result
-says so in its ``assembled`` mask.
+says so in its ``assembled`` mask.  A :class:`NumericSolver` generates and
+loads Newton's method on the closure instead, for linkages without a closed
+form (and any other).
 
 >>> from symlink.catalog import fourbar
 >>> solver = Solver(fourbar(), ["rocker"])
@@ -15,14 +17,17 @@ from __future__ import annotations
 
 import math
 from functools import cached_property, lru_cache
-from typing import Callable, Sequence
+from typing import Callable, Mapping, Sequence
 
 import numpy
 
-from .cache import generated_code
+from .cache import cache_key, cached_text, generated_code
+from .codegen import newton
+from .codegen.numpy import load_numpy_module
 from .linkage import Linkage, Program, is_branch_name
+from .vectors import acceleration, rate
 
-__all__ = ["Solver", "shared_solver", "check_lengths", "crank_speeds"]
+__all__ = ["Solver", "NumericSolver", "shared_solver", "check_lengths", "crank_speeds"]
 
 
 def check_lengths(**lengths: float) -> None:
@@ -67,6 +72,46 @@ class Solver:
                 raise ValueError(f"{name} must be finite, got {value}")
         with numpy.errstate(invalid="ignore", divide="ignore"):
             return self.function(**values)
+
+
+class NumericSolver:
+    """Newton's method on a linkage's closure, generated as NumPy code and loaded.
+
+    Call it with the inputs (a one-dimensional sweep), the parameters (one
+    number each), ``guess`` (the unknowns near the wanted assembly at the first
+    input value) and optionally the inputs' rates and accelerations; it
+    returns positions, rates and accelerations like the closed-form solvers.
+    It works with or without a closed form; see :mod:`symlink.codegen.newton`
+    for how the generated module solves.
+
+    >>> from symlink.catalog import fourbar
+    >>> solver = NumericSolver(fourbar())
+    >>> result = solver(theta=[0.0, 0.1], a=20, b=66, c=56, d=80, guess={"beta": 1.0, "phi": 2.0})
+    >>> [round(float(v), 2) for v in numpy.degrees(result["rocker"])]
+    [110.74, 108.94]
+    """
+
+    def __init__(self, linkage: Linkage) -> None:
+        self.linkage = linkage
+        # Derived once, then from the scene cache, as every other generated solver.
+        self.source = cached_text(cache_key(linkage, [], "numeric"), lambda: newton.numeric_module(linkage))
+        self.functions = load_numpy_module(self.source)
+
+    @property
+    def arguments(self) -> list[str]:
+        signature = self.linkage.inputs + self.linkage.parameters
+        rates = tuple(rate(x) for x in self.linkage.inputs) + tuple(acceleration(x) for x in self.linkage.inputs)
+        return [s.name for s in signature] + ["guess"] + [s.name for s in rates]
+
+    def __call__(self, guess: Mapping[str, float] | Sequence[float], **values) -> dict[str, numpy.ndarray]:
+        names = self.arguments
+        unknown = set(values) - set(names)
+        missing = [s.name for s in self.linkage.inputs + self.linkage.parameters if s.name not in values]
+        if unknown or missing:
+            raise ValueError(f"{self.linkage.name} takes {', '.join(names)}; "
+                             + (f"not {', '.join(sorted(unknown))}" if unknown else f"missing {', '.join(missing)}"))
+        check_lengths(**{s.name: values[s.name] for s in self.linkage.parameters if s.is_positive})
+        return self.functions["accelerations"](guess=guess, **values)
 
 
 @lru_cache(maxsize=None)

@@ -12,7 +12,7 @@ from references import mp_fourbar
 from symlink import cache
 from symlink.catalog import CATALOG
 from symlink.cli import main
-from symlink.codegen import load_numpy_module
+from symlink.codegen.numpy import load_numpy_module
 from symlink.export import export_texts, output_sets
 from symlink.scene import catalog_linkage
 

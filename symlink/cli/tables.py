@@ -18,7 +18,7 @@ range is known in closed form.  Everything else follows from the linkage:
   when the crank is at 0 and ``--ROLE-ratio`` turns them with the crank,
   ``angle + ratio * crank`` (default 0: held still);
 * a linkage without a closed form is solved by the generated Newton solver
-  (:mod:`symlink.numeric`), continued along the sweep from an assembly at the
+  (:class:`symlink.solver.NumericSolver`), continued along the sweep from an assembly at the
   first crank angle: the one nearest ``--guess``, or by default the first (in
   the order the entry lists them: Stephenson III by coupler angle) that
   continues over the whole sweep.
@@ -44,11 +44,11 @@ from ..assemblies import stephenson3_assemblies
 from ..catalog import fourbar
 from ..input_sweep import InputSweep
 from ..linkage import Linkage
-from ..numeric import is_angle
+from ..closure import is_angle
 from ..reachability import (crank_range, fivebar_range, inverted_slider_crank_range, scanned_range,
                             slider_crank_range)
 from ..scene import catalog_linkage
-from ..solver import Solver, check_lengths, crank_speeds
+from ..solver import NumericSolver, Solver, check_lengths, crank_speeds
 from ..vectors import acceleration, rate
 from .options import (FOURBAR_LENGTHS, UsageError, add_sweep_options, branches, command_help, finite, fourbar_lengths,
                       input_sweep)
@@ -305,7 +305,7 @@ def _numeric(table: Table, linkage: Linkage, values: dict, inputs: dict, angles,
                              f"({', '.join(_label(linkage, u) for u in linkage.unknowns)}) at crank angle {first}")
         raise ValueError(f"{linkage.name} cannot be assembled at the first crank angle, {first} "
                          "(its scan for assemblies finds none)")
-    solver = linkage.numeric()
+    solver = NumericSolver(linkage)
     parameters = {s.name: values[s.name] for s in linkage.parameters}
     failure = None
     for start in candidates:

@@ -1,17 +1,16 @@
-"""The generated Newton fallback: against the closed forms, against 50 digits on Stephenson III, and its errors."""
+"""Runtime solvers: the generated Newton fallback (NumericSolver) against the closed forms, against 50 digits
+on Stephenson III, and its errors."""
 import itertools
 import math
 
 import numpy as np
 import pytest
-import sympy as sp
 
 import mp_closures as ref
 from symlink.catalog import CATALOG, fivebar, fourbar, stephenson3
 from symlink.linkage import Linkage
 from symlink.loops import Loop
-from symlink.numeric import closure_system, numeric_module
-from symlink.solver import Solver
+from symlink.solver import NumericSolver, Solver
 from symlink.vectors import Vector, coordinates, lengths
 
 STEPHENSON3 = dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.9, delta=0.3)
@@ -41,7 +40,7 @@ def test_numeric_agrees_with_the_closed_form(name):
     linkage = CATALOG[name]()
     dimensions, guess = CLOSED_FORMS[name]
     theta = np.radians(np.arange(-180.0, 180.0, 3.0))
-    numeric = linkage.numeric()(theta=theta, guess=guess, thetadot=2.5, thetaddot=-0.7, **dimensions)
+    numeric = NumericSolver(linkage)(theta=theta, guess=guess, thetadot=2.5, thetaddot=-0.7, **dimensions)
     assert np.all(numeric["residual"] <= 64 * np.finfo(float).eps)
     # The branch the numeric solver followed is the one whose closed form it matches.
     matched = 0
@@ -74,14 +73,14 @@ def test_numeric_fivebar_sweeps_both_inputs_together():
     rates = dict(thetadot=1.1, psidot=-0.3, thetaddot=0.2, psiddot=0.5)
     closed = Solver(linkage, kinematics(linkage))(theta=theta, psi=psi, branch=1, **dimensions, **rates)
     start = {name: float(closed[name][0]) + 0.05 for name in ("beta", "phi")}
-    numeric = linkage.numeric()(theta=theta, psi=psi, guess=start, **dimensions, **rates)
+    numeric = NumericSolver(linkage)(theta=theta, psi=psi, guess=start, **dimensions, **rates)
     for name in kinematics(linkage):
         gap = angle_gap if name in ("beta", "phi") else (lambda x, y: np.abs(x - y))
         assert np.max(gap(numeric[name], closed[name])) < 1e-11, name
 
 
 def test_stephenson3_full_turn_against_a_50_digit_continuation():
-    solver = stephenson3().numeric()
+    solver = NumericSolver(stephenson3())
     theta = np.radians(np.arange(0.0, 361.0, 15.0))
     result = solver(theta=theta, guess=STEPHENSON3_GUESS, thetadot=3.0, thetaddot=1.5, **STEPHENSON3)
     unknowns = ["beta", "mu", "phi", "eta"]
@@ -99,7 +98,7 @@ def test_stephenson3_full_turn_against_a_50_digit_continuation():
 
 
 def test_coarse_and_fine_sweeps_follow_the_same_branch():
-    solver = stephenson3().numeric()
+    solver = NumericSolver(stephenson3())
     fine = solver(theta=np.radians(np.arange(0.0, 360.0, 1.0)), guess=STEPHENSON3_GUESS, **STEPHENSON3)
     coarse = solver(theta=np.radians(np.arange(0.0, 360.0, 60.0)), guess=STEPHENSON3_GUESS, **STEPHENSON3)
     for name in ("beta", "mu", "phi", "eta", "E_x", "H_y"):
@@ -113,7 +112,7 @@ FOLDING = dict(beta=0.785649, mu=-2.447163, phi=2.88568, eta=-1.361976)
 
 
 def test_each_assembly_is_kept_from_its_guess():
-    solver = stephenson3().numeric()
+    solver = NumericSolver(stephenson3())
     theta = np.radians(np.arange(0.0, 360.0, 5.0))
     first = solver(theta=theta, guess=STEPHENSON3_GUESS, **STEPHENSON3)
     second = solver(theta=theta, guess=OTHER_FULL_TURN, **STEPHENSON3)
@@ -126,7 +125,7 @@ def test_each_assembly_is_kept_from_its_guess():
 
 
 def test_a_circuit_that_folds_back_stops_with_the_input_value():
-    solver = stephenson3().numeric()
+    solver = NumericSolver(stephenson3())
     reached = solver(theta=np.radians(np.arange(0.0, 54.6, 1.0)), guess=FOLDING, **STEPHENSON3)
     assert np.all(reached["residual"] <= 64 * np.finfo(float).eps)
     with pytest.raises(ValueError, match=r"did not converge beyond theta = .*\(54\.6.* deg\) on the way to "
@@ -141,7 +140,7 @@ def test_a_circuit_that_folds_back_stops_with_the_input_value():
 
 
 def test_points_roles_and_scalar_inputs():
-    solver = stephenson3().numeric()
+    solver = NumericSolver(stephenson3())
     result = solver(theta=0.0, guess=STEPHENSON3_GUESS, **STEPHENSON3)
     assert result["phi"].shape == () and result["rocker"] == result["phi"]
     F = STEPHENSON3["d"] + STEPHENSON3["f"] * np.exp(1j * result["phi"])
@@ -152,7 +151,7 @@ def test_points_roles_and_scalar_inputs():
 
 def test_sweep_beyond_the_reachable_range_names_the_input_value():
     # a=50, b=20, c=40, d=30: the crank reaches |theta| <= 93.82 deg only.
-    solver = fourbar().numeric()
+    solver = NumericSolver(fourbar())
     theta = np.radians([30.0, 60.0, 90.0, 100.0, 110.0])
     with pytest.raises(ValueError, match=r"did not converge beyond theta = .*\(93\.82.* deg\) on the way to "
                                          r"theta = .*\(100 deg\)"):
@@ -161,16 +160,16 @@ def test_sweep_beyond_the_reachable_range_names_the_input_value():
 
 def test_no_assembly_near_the_first_input_is_an_error():
     with pytest.raises(ValueError, match=r"did not converge at theta = 0 rad \(0 deg\) from the initial guess"):
-        fourbar().numeric()(theta=[0.0, 0.1], a=1, b=1, c=1, d=100, guess={"beta": 1.0, "phi": 2.0})
+        NumericSolver(fourbar())(theta=[0.0, 0.1], a=1, b=1, c=1, d=100, guess={"beta": 1.0, "phi": 2.0})
 
 
 def test_singular_jacobian_is_an_error():
     # a=1, b=2, c=5, d=4 at theta = 0: |BD| = 3 = c - b, coupler and rocker lie along one line.
     with pytest.raises(ValueError, match=r"singular Jacobian at theta = 0 rad \(0 deg\)"):
-        fourbar().numeric()(theta=[0.0, 0.1], a=1, b=2, c=5, d=4, guess={"beta": 2.5, "phi": 3.0})
+        NumericSolver(fourbar())(theta=[0.0, 0.1], a=1, b=2, c=5, d=4, guess={"beta": 2.5, "phi": 3.0})
     # A guess where coupler and rocker are parallel: J is exactly singular there.
     with pytest.raises(ValueError, match=r"singular Jacobian at theta = 0\.3 rad"):
-        fourbar().numeric()(theta=0.3, a=20, b=66, c=56, d=80, guess={"beta": 1.0, "phi": 1.0})
+        NumericSolver(fourbar())(theta=0.3, a=20, b=66, c=56, d=80, guess={"beta": 1.0, "phi": 1.0})
 
 
 @pytest.mark.parametrize("change, message", [
@@ -188,17 +187,7 @@ def test_bad_input(change, message):
     values = dict(theta=[0.0, 0.1], a=20.0, b=66.0, c=56.0, d=80.0, guess={"beta": 0.3, "phi": 1.9})
     values.update(change)
     with pytest.raises(ValueError, match=message):
-        fourbar().numeric()(**values)
-
-
-def test_generated_module_imports_numpy_only_and_uses_the_symbolic_jacobian():
-    source = numeric_module(stephenson3())
-    assert "import numpy" in source and "sympy" not in source.split('"""', 2)[2]
-    system = closure_system(stephenson3())
-    beta, mu, phi, eta = stephenson3().unknowns
-    assert system.jacobian[0, 3] == 0 and system.jacobian[2, 1] == 0   # eta is not in ABCFD, mu not in ABEHD
-    assert sp.simplify(system.jacobian[2, 2] - sp.Symbol("h", positive=True) * sp.sin(
-        phi + sp.Symbol("delta", real=True))) == 0
+        NumericSolver(fourbar())(**values)
 
 
 def test_a_slider_unknown_uses_a_length_unit():
@@ -207,7 +196,7 @@ def test_a_slider_unknown_uses_a_length_unit():
     a, b = lengths("a b")
     loop = Loop(Vector(a, theta) + Vector(b, beta) - Vector(s, 0), name="ABC")
     linkage = Linkage("rod", [loop], inputs=[theta], unknowns=[beta, s])
-    result = linkage.numeric()(theta=np.radians(np.arange(0, 360, 30.0)), a=1.0, b=3.0, guess=[0.1, 3.9])
+    result = NumericSolver(linkage)(theta=np.radians(np.arange(0, 360, 30.0)), a=1.0, b=3.0, guess=[0.1, 3.9])
     expected = np.cos(np.radians(np.arange(0, 360, 30.0))) + np.sqrt(9 - np.sin(np.radians(np.arange(0, 360, 30.0)))**2)
     assert np.max(np.abs(result["s"] - expected)) < 1e-14 * 4
 
@@ -221,16 +210,16 @@ def test_a_linkage_with_too_few_equations_is_refused():
 
 
 def test_second_solver_comes_from_the_cache(tmp_path, monkeypatch):
-    import symlink.numeric
     from symlink import cache
+    from symlink.codegen import newton
     monkeypatch.setenv("SYMLINK_CACHE", str(tmp_path))
     cache.clear_memory()
-    first = stephenson3().numeric()
+    first = NumericSolver(stephenson3())
     cache.clear_memory()  # a new process: only the disk entry is left
 
     def fail(linkage):
         raise AssertionError("derived again")
-    monkeypatch.setattr(symlink.numeric, "numeric_module", fail)
-    second = stephenson3().numeric()
+    monkeypatch.setattr(newton, "numeric_module", fail)
+    second = NumericSolver(stephenson3())
     assert second.source == first.source
     cache.clear_memory()

@@ -12,7 +12,7 @@ an array of ``n`` doubles, and ``assembled[i]`` is 1 where the linkage closes,
         double *coupler, double *rocker, unsigned char *assembled);
 
 The body is the same common-subexpression-eliminated straight-line code as the
-NumPy module (:func:`symlink.codegen.straight_line`), in an inline function
+NumPy module (:func:`symlink.codegen.program.straight_line`), in an inline function
 called once per configuration.  The clamped square root has exactly the
 semantics of the NumPy module's ``_clamped_sqrt``; small integer powers become
 multiplications.
@@ -35,19 +35,19 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from typing import Sequence
+from typing import TYPE_CHECKING, Sequence
 
 import sympy as sp
-from sympy.core.relational import Relational
-from sympy.logic.boolalg import BooleanAtom, BooleanFunction
 from sympy.printing.c import C99CodePrinter
 
-from . import __version__
-from .codegen import StraightLine, straight_line
-from .linkage import Program
-from .position import TOLERANCE
+from .. import __version__
+from ..position import TOLERANCE
+from .program import is_flag, named_straight_line
 
-__all__ = ["CFunction", "c_function", "c_library", "c_code", "c_identifier", "is_flag"]
+if TYPE_CHECKING:
+    from ..linkage import Linkage, Program
+
+__all__ = ["CFunction", "c_function", "c_library", "c_code", "c_identifier", "c_comment", "export_files"]
 
 #: Integer powers up to this size are written as multiplications.
 LARGEST_MULTIPLIED_POWER = 4
@@ -68,16 +68,6 @@ def c_identifier(name: str, what: str = "name") -> str:
         raise ValueError(f"{what} {name!r} is not usable as a C identifier "
                          "(letters, digits and underscores, not a keyword, not starting with 'symlink_')")
     return name
-
-
-def is_flag(expr: sp.Basic) -> bool:
-    """Whether an output is true/false (a comparison or a logical combination) rather than a number.
-
-    >>> x = sp.Symbol("x")
-    >>> is_flag(sp.Eq(x, 0)), is_flag(sp.false), is_flag(x)
-    (True, True, False)
-    """
-    return isinstance(expr, (Relational, BooleanFunction, BooleanAtom))
 
 
 class _CPrinter(C99CodePrinter):
@@ -119,7 +109,7 @@ class _CPrinter(C99CodePrinter):
     def _print_BooleanFalse(self, expr):
         return "0"
 
-    def _print_ClampedSqrt(self, expr):
+    def _print_ClampedSqrt(self, expr):  # the source's prelude defines symlink_clamped_sqrt
         return f"symlink_clamped_sqrt({self._print(expr.args[0])}, {self._print(expr.args[1])})"
 
     def _print_Piecewise(self, expr):  # pragma: no cover - a guard, never reached by symlink's own forms
@@ -161,22 +151,22 @@ class _Names:
         return name
 
 
-def _comment(text: str, indent: str = "") -> str:
-    lines = text.strip().replace("*/", "* /").splitlines() or [""]
+def c_comment(text: str, indent: str = "") -> str:
+    """``text`` as a C block comment that it can neither end nor nest: ``*/``, ``/*`` and ``??`` are spaced out.
+
+    (``??`` could start a trigraph; ``-Wall`` warns of one that ends a line.)
+
+    >>> print(c_comment("Ends */ here, /* nests??/\\nSecond line."))
+    /* Ends * / here, / * nests? ?/
+     * Second line.
+     */
+    """
+    text = text.strip().replace("*/", "* /").replace("/*", "/ *")
+    while "??" in text:
+        text = text.replace("??", "? ?")
+    lines = text.splitlines() or [""]
     return "\n".join([f"{indent}/* {lines[0]}".rstrip()] + [f"{indent} * {line}".rstrip() for line in lines[1:]]
                      ) + (" */" if len(lines) == 1 else f"\n{indent} */")
-
-
-def named_straight_line(program: Program, name: str, identifier, language: str) -> tuple[StraightLine, list[str]]:
-    """The program after CSE and its argument names, checked by ``identifier`` for ``language``.
-
-    ``ValueError`` for a name the language cannot take or a program without outputs.
-    """
-    identifier(name, "function name")
-    if not program.outputs:
-        raise ValueError(f"{name}: a {language} function needs at least one output")
-    code = straight_line(program)
-    return code, [identifier(s.name, "argument") for s in code.arguments]
 
 
 def c_function(program: Program, name: str, doc: str = "") -> CFunction:
@@ -202,7 +192,7 @@ def c_function(program: Program, name: str, doc: str = "") -> CFunction:
         f"Outputs (arrays of n doubles): {', '.join(o for o, f in zip(output_parameters, flags) if not f)};\n"
         + "".join(f"{o}[i] is 1 where true, 0 where false;\n" for o, f in zip(output_parameters, flags) if f) +
         f"{assembled}[i] is 1 where the linkage closes, 0 where it cannot be assembled (outputs NaN).")
-    prototype = _comment(summary) + "\n" + signature + ";\n"
+    prototype = c_comment(summary) + "\n" + signature + ";\n"
 
     lines = [f"static inline int {kernel}(" + ", ".join([f"double {a}" for a in arguments]
                                                          + [f"double *restrict {out}"]) + ")", "{"]
@@ -297,7 +287,7 @@ def c_library(functions: Sequence[CFunction], name: str, title: str = "A symlink
     seen = [f.name for f in functions]
     if len(set(seen)) != len(seen):
         raise ValueError(f"function names repeat: {', '.join(seen)}")
-    comment = _comment(_HEADER.format(title=title, version=__version__, sympy=sp.__version__,
+    comment = c_comment(_HEADER.format(title=title, version=__version__, sympy=sp.__version__,
                                       regenerate=f"\nRegenerate with: {regenerate}" if regenerate else ""))
     guard = f"SYMLINK_{name.upper()}_H"
     header = "\n".join([comment, f"#ifndef {guard}", f"#define {guard}", "", "#include <stddef.h>", "",
@@ -317,3 +307,11 @@ def c_code(functions: Sequence[tuple[str, Program, str]], name: str, title: str 
            regenerate: str = "") -> tuple[str, str]:
     """``(header, source)`` with one loop function for each ``(function name, program, docstring)``."""
     return c_library([c_function(p, function, doc) for function, p, doc in functions], name, title, regenerate)
+
+
+def export_files(linkage: Linkage, stem: str, functions: Sequence[tuple[str, Sequence[str], str]],
+                 title: str, regenerate: str = "") -> dict[str, str]:
+    """``{"<stem>.h": header, "<stem>.c": source}``: a loop function ``<stem>_<name>`` each ``(name, outputs, doc)``."""
+    programs = [(f"{stem}_{name}", linkage.program(list(outputs)), doc) for name, outputs, doc in functions]
+    header, source = c_code(programs, stem, title, regenerate)
+    return {f"{stem}.h": header, f"{stem}.c": source}

@@ -13,8 +13,8 @@ import pytest
 
 from export_checks import angles_of, assert_agree, closed_form_catalog, export_sets, random_arguments, rounding_spread
 from references import SEED003_LINKAGE, mp_fourbar
-from symlink.codegen import load_numpy_module, numpy_module
-from symlink.octave import octave_function, octave_identifier
+from symlink.codegen.numpy import load_numpy_module, numpy_module
+from symlink.codegen.octave import comment_lines, octave_function, octave_identifier
 from symlink.scene import catalog_linkage
 
 SAMPLES = 300
@@ -188,3 +188,20 @@ def test_output_names_that_collide_are_renamed_and_documented():
     text = octave_function(renamed, "fb")
     assert text.splitlines()[0].startswith("function [theta_out, Wx_1_out, assembled] = fb(")
     assert "Output names: theta_out is theta, Wx_1_out is Wx_1." in text
+
+
+def test_help_text_cannot_leave_the_comment():
+    assert comment_lines("one\rtwo\u2028three\x00four") == ["one", "two", "three four"]
+    text = octave_function(catalog_linkage("fourbar").program(["rocker"]), "fb_rocker",
+                           "Rocker.\rdisp('injected')\u2028x = 1;")
+    body = [line for line in text.splitlines() if not line.startswith("%")]
+    assert not any("injected" in line or line.startswith("x = 1") for line in body)
+    assert all(line.isprintable() for line in text.splitlines())
+
+
+def test_export_files_are_one_function_file_each():
+    from symlink.codegen.octave import export_files
+    files = export_files(catalog_linkage("fourbar"), "fb", [("positions", ["rocker"], "Rocker."),
+                                                              ("speeds", ["rocker_speed"], "Speed.")], "Four-bar.")
+    assert list(files) == ["fb_positions.m", "fb_speeds.m"]
+    assert files["fb_speeds.m"].startswith("function [rocker_speed, assembled] = fb_speeds(")

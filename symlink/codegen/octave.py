@@ -1,7 +1,7 @@
 """MATLAB/Octave export: one vectorised ``.m`` function file per output set.
 
 The body is the same common-subexpression-eliminated straight-line code as the
-NumPy module (:func:`symlink.codegen.straight_line`), printed element-wise
+NumPy module (:func:`symlink.codegen.program.straight_line`), printed element-wise
 (``.*``, ``./``, ``.^``), so one call evaluates whole arrays of crank angles,
 or of link lengths: the arguments are scalars or arrays whose sizes broadcast
 (implicit expansion, MATLAB R2016b and later, GNU Octave).  The function
@@ -22,17 +22,19 @@ True
 from __future__ import annotations
 
 import re
+from typing import TYPE_CHECKING, Sequence
 
 import sympy as sp
 from sympy.printing.octave import OctaveCodePrinter
 
-from . import __version__
-from .c_code import is_flag, named_straight_line
-from .codegen import format_default
-from .linkage import Program
-from .position import TOLERANCE
+from .. import __version__
+from ..position import TOLERANCE
+from .program import format_default, is_flag, named_straight_line
 
-__all__ = ["octave_function", "octave_identifier"]
+if TYPE_CHECKING:
+    from ..linkage import Linkage, Program
+
+__all__ = ["octave_function", "octave_identifier", "comment_lines", "export_files"]
 
 OCTAVE_KEYWORDS = frozenset("""
 break case catch classdef continue do else elseif end end_try_catch end_unwind_protect endclassdef
@@ -56,6 +58,15 @@ def octave_identifier(name: str, what: str = "name") -> str:
     return name
 
 
+def comment_lines(text: str) -> list[str]:
+    """The lines of ``text`` for ``%`` comments: no line break of any kind (nor other control character) left in one.
+
+    >>> comment_lines("First.\\rSecond.\\u2028Third.")
+    ['First.', 'Second.', 'Third.']
+    """
+    return ["".join(c if c.isprintable() else " " for c in line) for line in text.strip().splitlines()]
+
+
 class _OctavePrinter(OctaveCodePrinter):
     """Element-wise Octave printer with symlink's clamped square root and exact double literals."""
 
@@ -73,7 +84,7 @@ class _OctavePrinter(OctaveCodePrinter):
 
     _print_Pi = _print_NumberSymbol
 
-    def _print_ClampedSqrt(self, expr):
+    def _print_ClampedSqrt(self, expr):  # inline: a function file holds one function
         x, scale = (self._print(a) for a in expr.args)
         return f"(sqrt(max({x}, 0)) ./ (({x}) >= {-TOLERANCE!r} .* ({scale})))"
 
@@ -114,8 +125,9 @@ def octave_function(program: Program, name: str, doc: str = "") -> str:
     call = f"[{results}] = {name}({', '.join(arguments)})"
     defaults = [(i, s.name, format_default(code.defaults[s.name])) for i, s in enumerate(code.arguments, 1)
                 if s.name in code.defaults]
-    summary = doc.strip().splitlines()[0] if doc.strip() else f"Outputs {', '.join(code.outputs)} of a linkage."
-    help_lines = [f"%{name.upper()} {summary}", f"%   {call}"] + [f"%   {line}" for line in doc.strip().splitlines()[1:]]
+    described = comment_lines(doc)
+    summary = described[0] if described else f"Outputs {', '.join(code.outputs)} of a linkage."
+    help_lines = [f"%{name.upper()} {summary}", f"%   {call}"] + [f"%   {line}" for line in described[1:]]
     help_lines += [
         "%   evaluates element-wise: the arguments are scalars or arrays of sizes that",
         "%   broadcast. assembled is false where the linkage cannot close (the outputs are",
@@ -153,3 +165,14 @@ def octave_function(program: Program, name: str, doc: str = "") -> str:
         lines.append(f"  {assembled} = {finite};")
     lines.append("end")
     return "\n".join(lines) + "\n"
+
+
+def export_files(linkage: Linkage, stem: str, functions: Sequence[tuple[str, Sequence[str], str]],
+                 title: str, regenerate: str = "") -> dict[str, str]:
+    """``{"<stem>_<name>.m": text}``: one function file for each ``(name, outputs, doc)``.
+
+    A function file has no room for a module title: ``title`` and
+    ``regenerate`` are taken for the common shape of the printers and not written.
+    """
+    return {f"{stem}_{name}.m": octave_function(linkage.program(list(outputs)), f"{stem}_{name}", doc)
+            for name, outputs, doc in functions}

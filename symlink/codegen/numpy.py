@@ -1,10 +1,8 @@
-"""Code generation: common-subexpression elimination and vectorised NumPy modules.
+"""The NumPy printer: vectorised Python modules that import NumPy only.
 
-A :class:`~symlink.linkage.Program` (straight-line assignments for some
-outputs) becomes :class:`StraightLine` code with common subexpressions
-eliminated across everything requested, and then a Python function that
-imports NumPy only.  Every NumPy call broadcasts, so one call evaluates a
-whole sweep of crank angles, or of link lengths.
+A program's :class:`~symlink.codegen.program.StraightLine` form becomes a
+Python function; every NumPy call broadcasts, so one call evaluates a whole
+sweep of crank angles, or of link lengths.
 
 The NaN of a square root that cannot be taken (:class:`ClampedSqrt`) spreads
 to everything that depends on it; each function also returns ``assembled``,
@@ -22,72 +20,37 @@ guess what a NaN means.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import Sequence
+from typing import TYPE_CHECKING, Sequence
 
 import numpy
 import sympy as sp
 from sympy.printing.numpy import NumPyPrinter
 
-from . import __version__
-from .linkage import Program
-from .position import TOLERANCE, ClampedSqrt
+from .. import __version__
+from ..position import TOLERANCE
+from .program import format_default, straight_line
 
-__all__ = ["StraightLine", "straight_line", "NumPyCodePrinter", "numpy_function", "numpy_module", "load_numpy_module",
-           "format_default"]
+if TYPE_CHECKING:
+    from ..linkage import Linkage, Program
 
-CSE_PREFIX = "cse_"
+__all__ = ["NumPyCodePrinter", "numpy_function", "numpy_module", "load_numpy_module", "docstring_text",
+           "export_files"]
 
 
-@dataclass(frozen=True)
-class StraightLine:
-    """Program after common-subexpression elimination, ready for any printer.
+_PYTHON_ESCAPES = {"\\": "\\\\", '"': '\\"'}
 
-    ``assignments`` define temporaries and the program's own symbols in an
-    order where every right-hand side uses only arguments and earlier names;
-    ``outputs`` map output names to expressions of those; ``roots`` are the
-    square roots whose finiteness says that the linkage is assembled;
-    ``defaults`` are the program's argument defaults.
+
+def docstring_text(text: str) -> str:
+    r"""``text`` as it may stand inside a triple-quoted docstring: it can neither end it nor escape out of it.
+
+    Backslashes and double quotes are escaped, and so is every character that
+    is not printable but the newline, so that the docstring reads as ``text``.
+
+    >>> print(docstring_text('say ' + '"' * 3 + ' and \\ and \x00'))
+    say \"\"\" and \\ and \x00
     """
-
-    arguments: tuple[sp.Symbol, ...]
-    assignments: tuple[tuple[sp.Symbol, sp.Expr], ...]
-    outputs: dict[str, sp.Expr]
-    roots: tuple[sp.Symbol, ...]
-    defaults: dict[str, float]
-
-
-def straight_line(program: Program) -> StraightLine:
-    """Eliminate common subexpressions across the program's assignments and outputs."""
-    names = [s for s, _ in program.assignments]
-    output_names = list(program.outputs)
-    expressions = [e for _, e in program.assignments] + [program.outputs[n] for n in output_names]
-    taken = {s.name for s in program.arguments} | {s.name for s in names}
-    temporaries = (sp.Symbol(f"{CSE_PREFIX}{i}", real=True) for i in range(10**9)
-                   if f"{CSE_PREFIX}{i}" not in taken)
-    replacements, reduced = sp.cse(expressions, symbols=temporaries, order="none")
-    nodes = list(replacements) + list(zip(names, reduced[:len(names)]))
-    outputs = dict(zip(output_names, reduced[len(names):]))
-    roots = tuple(s for s, e in program.assignments if isinstance(e, ClampedSqrt))
-    return StraightLine(program.arguments, _dependency_order(nodes), outputs, roots, dict(program.defaults))
-
-
-def _dependency_order(nodes: list[tuple[sp.Symbol, sp.Expr]]) -> tuple[tuple[sp.Symbol, sp.Expr], ...]:
-    """Order assignments so that each one's symbols are defined before it (stable)."""
-    defined_by = {s for s, _ in nodes}
-    done: set[sp.Symbol] = set()
-    ordered = []
-    pending = list(nodes)
-    while pending:
-        for index, (symbol, expr) in enumerate(pending):
-            if (expr.free_symbols & defined_by) <= done:
-                ordered.append((symbol, expr))
-                done.add(symbol)
-                del pending[index]
-                break
-        else:
-            raise ValueError("circular definitions in generated code")
-    return tuple(ordered)
+    return "".join(_PYTHON_ESCAPES.get(character, character) if character == "\n" or character.isprintable()
+                   else character.encode("unicode_escape").decode("ascii") for character in text)
 
 
 class NumPyCodePrinter(NumPyPrinter):
@@ -106,16 +69,11 @@ class NumPyCodePrinter(NumPyPrinter):
     def _print_Integer(self, expr):
         return f"{float(expr)!r}"
 
-    def _print_ClampedSqrt(self, expr):
+    def _print_ClampedSqrt(self, expr):  # the module header defines _clamped_sqrt
         return f"_clamped_sqrt({self._print(expr.args[0])}, {self._print(expr.args[1])})"
 
     def _print_Piecewise(self, expr):  # pragma: no cover - a guard, never reached by symlink's own forms
         raise ValueError("symlink never writes Piecewise into NumPy code")
-
-
-def format_default(value: float) -> str:
-    """An argument default as code: 1 for a branch, 0.0 for a rate."""
-    return str(int(value)) if value == 1 else repr(value)  # branch=1, thetadot=0.0
 
 
 def numpy_function(program: Program, name: str, doc: str = "") -> str:
@@ -126,7 +84,7 @@ def numpy_function(program: Program, name: str, doc: str = "") -> str:
     signature = ", ".join(f"{a}={format_default(code.defaults[a])}" if a in code.defaults else a for a in arguments)
     outputs = ", ".join(code.outputs)
     lines = [f"def {name}({signature}):"]
-    text = (doc.strip() + "\n\n" if doc else "") + (
+    text = (docstring_text(doc.strip()) + "\n\n" if doc else "") + (
         f"Returns a dict of arrays: {outputs};\n"
         "and assembled: False where the linkage cannot close (the outputs are NaN there).\n"
         "The arguments broadcast against each other.")
@@ -173,8 +131,9 @@ def _clamped_sqrt(x, scale):
 def numpy_module(functions: Sequence[tuple[str, Program, str]], title: str = "A symlink solver.",
                  regenerate: str = "") -> str:
     """A standalone module of vectorised functions, each ``(name, program, docstring)``."""
-    header = _HEADER.format(title=title, version=__version__, sympy=sp.__version__, tolerance=TOLERANCE,
-                            regenerate=f"\nRegenerate with: {regenerate}" if regenerate else "")
+    again = f"\nRegenerate with: {docstring_text(regenerate)}" if regenerate else ""
+    header = _HEADER.format(title=docstring_text(title), version=__version__, sympy=sp.__version__,
+                            tolerance=TOLERANCE, regenerate=again)
     return header + "".join("\n\n" + numpy_function(p, name, doc) for name, p, doc in functions)
 
 
@@ -183,3 +142,10 @@ def load_numpy_module(source: str) -> dict:
     namespace: dict = {"__name__": "symlink_generated"}
     exec(compile(source, "<symlink generated>", "exec"), namespace)  # noqa: S102 - our own generated code
     return namespace
+
+
+def export_files(linkage: Linkage, stem: str, functions: Sequence[tuple[str, Sequence[str], str]],
+                 title: str, regenerate: str = "") -> dict[str, str]:
+    """``{"<stem>.py": module}``: one function for each ``(name, outputs, docstring)``; the shape of every printer."""
+    programs = [(name, linkage.program(list(outputs)), doc) for name, outputs, doc in functions]
+    return {f"{stem}.py": numpy_module(programs, title, regenerate)}

@@ -18,8 +18,8 @@ import sympy as sp
 
 from export_checks import angles_of, assert_agree, closed_form_catalog, export_sets, random_arguments, rounding_spread
 from references import SEED003_LINKAGE, mp_fourbar, seed003_positions
-from symlink.c_code import c_code, c_function, c_identifier, c_library, _CPrinter
-from symlink.codegen import load_numpy_module, numpy_module
+from symlink.codegen.c import c_code, c_comment, c_function, c_identifier, c_library, _CPrinter
+from symlink.codegen.numpy import load_numpy_module, numpy_module
 from symlink.linkage import Program
 from symlink.position import TOLERANCE, ClampedSqrt
 from symlink.scene import catalog_linkage
@@ -237,3 +237,22 @@ def test_c_code_header_declares_every_function_and_compiles_as_cpp(tmp_path):
         result = subprocess.run(["g++", "-fsyntax-only", "-Wall", "-Werror", "use.cpp"], cwd=tmp_path,
                                 capture_output=True, text=True, check=False)
         assert result.returncode == 0, result.stderr
+
+
+def test_comment_text_cannot_end_the_comment(tmp_path):
+    assert c_comment("a */ b") == "/* a * / b */"
+    for text in ("**/*/", "/*/", "*/*", "???/", "a ??/"):
+        inside = c_comment(text)[2:-2]
+        assert "*/" not in inside and "/*" not in inside and "??" not in inside, text
+    hostile = "Title */ int injected(void) { return 1; } /* ??/"
+    linkage = catalog_linkage("fourbar")
+    header, source = c_code([("fb_rocker", linkage.program(["rocker"]), hostile)], "fb", title=hostile,
+                            regenerate=hostile)
+    library = build(tmp_path, header, source, "fb")  # compiles strictly: the text stayed inside comments
+    assert not hasattr(library, "injected") and hasattr(library, "fb_rocker")
+
+
+def test_export_files_are_a_header_and_a_source():
+    from symlink.codegen.c import export_files
+    files = export_files(catalog_linkage("fourbar"), "fb", [("positions", ["rocker"], "Rocker.")], "Four-bar.")
+    assert list(files) == ["fb.h", "fb.c"] and "void fb_positions(size_t n," in files["fb.h"]

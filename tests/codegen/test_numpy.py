@@ -1,4 +1,4 @@
-"""Code generation: CSE, no SymPy or Piecewise in the output, broadcasting, assembly mask."""
+"""The NumPy printer: CSE, no SymPy or Piecewise in the output, broadcasting, assembly mask, escaped docstrings."""
 import ast
 import collections
 
@@ -6,7 +6,7 @@ import numpy
 import sympy as sp
 
 from symlink.catalog import fourbar
-from symlink.codegen import load_numpy_module, numpy_module, straight_line
+from symlink.codegen.numpy import docstring_text, export_files, load_numpy_module, numpy_module
 
 
 def test_common_subexpressions_are_computed_once():
@@ -25,16 +25,6 @@ def test_no_sympy_no_piecewise_no_eval():
     assert "eval(" not in source
 
 
-def test_straight_line_defines_before_use():
-    code = straight_line(fourbar().program(["coupler_accel", "transmission", "C_y"]))
-    defined = set(code.arguments)
-    for symbol, expr in code.assignments:
-        assert expr.free_symbols <= defined, symbol
-        defined.add(symbol)
-    for expr in code.outputs.values():
-        assert expr.free_symbols <= defined
-
-
 def test_constant_outputs_broadcast_to_the_input_shape():
     namespace = load_numpy_module(numpy_module([("f", fourbar().program(["A_x", "D_x", "rocker"]), "")]))
     result = namespace["f"](numpy.zeros(4), 20, 66, 56, 80)
@@ -44,3 +34,27 @@ def test_constant_outputs_broadcast_to_the_input_shape():
 def test_module_header_names_versions():
     source = numpy_module([("f", fourbar().program(["rocker"]), "")], regenerate="python derivations/x.py")
     assert f"SymPy {sp.__version__}" in source and "Regenerate with: python derivations/x.py" in source
+
+
+def test_titles_and_docstrings_cannot_break_out_of_the_module():
+    hostile = 'x""" + __import__("os").system("echo no") + """\\'
+    source = numpy_module([("f", fourbar().program(["rocker"]), hostile)], title=hostile, regenerate=hostile)
+    tree = ast.parse(source)  # still a docstring, the import, TOLERANCE and functions: nothing else would run
+    assert ast.get_docstring(tree).startswith(hostile)
+    assert [type(n).__name__ for n in tree.body] == ["Expr", "Import", "Assign"] + ["FunctionDef"] * 3
+    function = next(n for n in tree.body if isinstance(n, ast.FunctionDef) and n.name == "f")
+    assert ast.get_docstring(function).startswith(hostile)
+    assert [type(n).__name__ for n in function.body[:2]] == ["Expr", "Assign"]
+
+
+def test_docstring_text_reads_back_as_the_text():
+    for text in ['"', '""', '"""', "\\", "a\\", '\\"""', "tab\there", "nul\x00", "line\u2028sep", "é"]:
+        assert ast.literal_eval('"""' + docstring_text(text) + '\n"""') == text + "\n", text
+
+
+def test_export_files_is_one_module():
+    files = export_files(fourbar(), "fb", [("positions", ["rocker"], "Rocker."), ("speeds", ["rocker_speed"], "")],
+                         "Four-bar.", "make it")
+    assert list(files) == ["fb.py"]
+    namespace = load_numpy_module(files["fb.py"])
+    assert {"positions", "speeds"} <= set(namespace)

@@ -1,0 +1,154 @@
+r"""The LaTeX printer: a linkage's derivation as a document, and its equations for Jupyter.
+
+:func:`latex_document` writes a closed-form derivation (closure, solve plan,
+positions, velocities, accelerations); :func:`newton_document` writes the
+numeric fallback's (closure, Newton's iteration, the Jacobian and the rate
+systems).  Both share one preamble (:func:`document`), and text that is not
+mathematics (titles, loop names) is escaped (:func:`latex_text`).
+
+This module imports no linkage at run time: ``Linkage._repr_latex_`` imports
+it on first use.
+
+>>> from symlink.catalog import fourbar
+>>> text = latex_document(fourbar(), "Four-bar")
+>>> r"\dot{\phi}" in text and r"\begin{document}" in text
+True
+"""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Sequence
+
+import sympy as sp
+
+from ..closure import closure_system
+from ..loops import CASE_NAMES
+from ..vectors import acceleration, rate
+
+if TYPE_CHECKING:
+    from ..linkage import Linkage
+
+__all__ = ["latex_text", "document", "closure_rows", "equations_latex", "latex_document", "newton_document",
+           "export_files"]
+
+_LATEX_ESCAPES = {
+    "\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_", "{": r"\{", "}": r"\}",
+    "~": r"\textasciitilde{}", "^": r"\textasciicircum{}", "<": r"\textless{}", ">": r"\textgreater{}",
+    "|": r"\textbar{}",
+}
+
+
+def latex_text(text: str) -> str:
+    r"""``text`` as LaTeX prints it in running text: special characters escaped, line breaks as spaces.
+
+    >>> print(latex_text("a_1 & 50% of {x^2}"))
+    a\_1 \& 50\% of \{x\textasciicircum{}2\}
+    """
+    return "".join(_LATEX_ESCAPES.get(c, c) if c.isprintable() else " " for c in text)
+
+
+def document(title: str, body: Sequence[str]) -> str:
+    """A standalone ``article`` with ``amsmath``: the title (escaped) as an unnumbered section, then ``body``."""
+    parts = ["\\documentclass{article}", "\\usepackage{amsmath}", "\\allowdisplaybreaks",
+             "\\begin{document}", f"\\section*{{{latex_text(title)}}}", *body, "\\end{document}"]
+    return "\n".join(parts) + "\n"
+
+
+def _symbol_names(expressions) -> dict[sp.Symbol, str]:
+    """Textbook names: sigma for a branch, W_{x,1} for loop 1's closing vector."""
+    names = {}
+    for symbol in set().union(*(sp.sympify(e).free_symbols for e in expressions)):
+        stem, _, label = symbol.name.partition("_")
+        if symbol.name == "branch":
+            names[symbol] = r"\sigma"
+        elif stem == "branch":
+            names[symbol] = r"\sigma_{\mathrm{%s}}" % label
+        elif stem in ("Wx", "Wy") and label.isdigit():
+            names[symbol] = "W_{%s,%s}" % (stem[1], label)
+    return names
+
+
+def _aligned(rows: list[tuple[sp.Expr, sp.Expr]]) -> str:
+    names = _symbol_names([e for row in rows for e in row])
+    return "\\\\\n".join(f"{sp.latex(lhs, symbol_names=names)} &= {sp.latex(rhs, symbol_names=names)}"
+                         for lhs, rhs in rows)
+
+
+def _align(rows: list[tuple[sp.Expr, sp.Expr]]) -> list[str]:
+    return ["\\begin{align*}", _aligned(rows), "\\end{align*}"]
+
+
+def closure_rows(linkage: Linkage) -> list[tuple[sp.Expr, sp.Expr]]:
+    """The closure equations ``x = 0`` and ``y = 0`` of every loop."""
+    rows = []
+    for loop in linkage.loops:
+        x, y = loop.equations()
+        rows += [(x, sp.S.Zero), (y, sp.S.Zero)]
+    return rows
+
+
+def equations_latex(linkage: Linkage) -> str:
+    """All equations of the linkage as one ``aligned`` block (for Jupyter)."""
+    rows = closure_rows(linkage) + list(linkage.positions.items())
+    return "\\begin{aligned}" + _aligned(rows) + "\\end{aligned}"
+
+
+def latex_document(linkage: Linkage, title: str, *, velocities: bool = True, accelerations: bool = True) -> str:
+    """A standalone LaTeX document with the linkage's closed-form derivation, section by section."""
+    parts = [
+        "Angles are measured counter-clockwise from $+x$. "
+        "$\\left[x\\right]_{+}$ is $\\max(x, 0)$ where $x$ is negative only by rounding "
+        "(a toggle position); below that the linkage cannot be assembled.",
+        "\\subsection*{Closure}", *_align(closure_rows(linkage)),
+        "\\subsection*{Solve plan}", "\\begin{enumerate}",
+    ]
+    for step in linkage.plan:
+        unknowns = ", ".join(f"${sp.latex(u)}$" for u in step.positions)
+        branch = (f", branch ${sp.latex(step.branch, symbol_names=_symbol_names([step.branch]))} = \\pm 1$"
+                  if step.branch is not None else "")
+        parts.append(f"\\item loop {latex_text(step.loop.name)}: case {latex_text(step.case.name)} "
+                     f"({latex_text(CASE_NAMES[step.case.name])}), unknowns {unknowns}{branch}")
+    parts += ["\\end{enumerate}", "\\subsection*{Positions}", *_align(list(linkage.positions.items()))]
+    if velocities:
+        parts += ["\\subsection*{Velocities}", *_align(list(linkage.velocities.items()))]
+    if accelerations:
+        parts += ["\\subsection*{Accelerations}", *_align(list(linkage.accelerations.items()))]
+    return document(title, parts)
+
+
+def newton_document(linkage: Linkage, title: str) -> str:
+    """A standalone LaTeX document: closure, why there is no closed form, Newton's iteration and the rate systems."""
+    from ..plan import solve_plan
+
+    system = closure_system(linkage)
+    q = sp.Matrix(linkage.unknowns)
+    qdot = sp.Matrix([rate(u) for u in linkage.unknowns])
+    qddot = sp.Matrix([acceleration(u) for u in linkage.unknowns])
+    plan = solve_plan(linkage)
+    rows = [(sp.Symbol(f"J_{{{i + 1}{j + 1}}}"), system.jacobian[i, j])
+            for i in range(system.jacobian.rows) for j in range(system.jacobian.cols) if system.jacobian[i, j] != 0]
+    rhs = [(sp.Symbol(f"r_{{{i + 1}}}"), e) for i, e in enumerate(system.velocity_rhs)]
+    rhs2 = [(sp.Symbol(f"s_{{{i + 1}}}"), e) for i, e in enumerate(system.acceleration_rhs)]
+    return document(title, [
+        "Angles are measured counter-clockwise from $+x$.",
+        "\\subsection*{Closure}", *_align(closure_rows(linkage)),
+        "\\subsection*{Solve plan}", latex_text(plan.note) + ".",
+        f"The closure $F(q) = 0$, $q = {sp.latex(q.T)}^T$, is solved by Newton's method, "
+        "$J\\,\\Delta q = -F$, with the Jacobian $J = \\partial F / \\partial q$ below; each input value "
+        "continues from the previous one, and the first assembly (from an initial guess) fixes the branch.",
+        "\\subsection*{Jacobian}", *_align(rows),
+        f"\\subsection*{{Velocities: $J {sp.latex(qdot)} = r$}}", *_align(rhs),
+        f"\\subsection*{{Accelerations: $J {sp.latex(qddot)} = s$}}", *_align(rhs2),
+    ])
+
+
+def export_files(linkage: Linkage, stem: str, functions: Sequence[tuple[str, Sequence[str], str]],
+                 title: str, regenerate: str = "") -> dict[str, str]:
+    """``{"<stem>.tex": document}``: the derivation, as far as the ``(name, outputs, doc)`` sets need it.
+
+    The velocities are written if any output depends on a rate, the
+    accelerations if any depends on an acceleration; ``regenerate`` is not written.
+    """
+    asked = set().union(*(linkage.output(o).free_symbols for _, outputs, _ in functions for o in outputs))
+    accelerations = any(acceleration(q) in asked for q in linkage.unknowns)
+    velocities = accelerations or any(rate(q) in asked for q in linkage.unknowns)
+    return {f"{stem}.tex": latex_document(linkage, title, velocities=velocities, accelerations=accelerations)}

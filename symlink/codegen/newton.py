@@ -1,0 +1,162 @@
+"""The generator of the numeric fallback: a standalone NumPy module solving a linkage by Newton's method.
+
+Where no loop-by-loop closed form exists (the Stephenson III six-bar), the
+closure equations of all loops are solved together.  The residuals, their
+Jacobian with respect to the unknowns and the right-hand sides of the
+velocity and acceleration systems (:mod:`symlink.closure`) are printed as
+NumPy code (:func:`symlink.codegen.program.straight_line`, common
+subexpressions eliminated), and the Newton driver
+(:mod:`symlink.codegen.newton_driver`) is copied in from its source, so the
+generated module imports NumPy only.  :class:`symlink.solver.NumericSolver`
+loads it at run time.
+
+>>> from symlink.catalog import fourbar
+>>> source = numeric_module(fourbar())
+>>> "import sympy" in source, "def accelerations(theta, a, b, c, d, guess, thetadot=0.0, thetaddot=0.0):" in source
+(False, True)
+"""
+from __future__ import annotations
+
+from importlib import resources
+from typing import Sequence
+
+import sympy as sp
+
+from ..closure import closure_system, is_angle
+from ..linkage import Linkage, Program
+from ..vectors import acceleration, rate
+from . import newton_driver
+from .numpy import NumPyCodePrinter, numpy_module
+from .program import straight_line
+
+__all__ = ["numeric_module", "driver_source"]
+
+
+def driver_source() -> str:
+    """The text of the Newton driver that every generated module embeds: its module's source after the marker.
+
+    >>> driver_source().lstrip().startswith("EPSILON = ")
+    True
+    """
+    text = resources.files(__package__).joinpath("newton_driver.py").read_text(encoding="utf-8")
+    lines = text.splitlines(keepends=True)
+    marker = [line.rstrip("\n") for line in lines].index(newton_driver.DRIVER_BEGINS)
+    return "".join(lines[marker + 1:])
+
+
+def _array_function(name: str, arguments: Sequence[sp.Symbol], results: Sequence[tuple[str, object]],
+                    doc: str) -> str:
+    """Source of a function returning arrays: each result is a list (a vector) or a list of lists (a matrix)."""
+    flat: dict[str, sp.Expr] = {}
+    for label, value in results:
+        if isinstance(value, sp.MatrixBase):
+            for i in range(value.rows):
+                for j in range(value.cols):
+                    flat[f"{label}_{i}_{j}"] = value[i, j]
+        else:
+            for i, expr in enumerate(value):
+                flat[f"{label}_{i}"] = sp.sympify(expr)
+    code = straight_line(Program(tuple(arguments), (), flat))
+    printer = NumPyCodePrinter()
+    lines = [f"def {name}({', '.join(s.name for s in arguments)}):", f'    """{doc}"""']
+    lines += [f"    {symbol.name} = {printer.doprint(expr)}" for symbol, expr in code.assignments]
+    returned = []
+    for label, value in results:
+        if isinstance(value, sp.MatrixBase):
+            rows = ", ".join("[" + ", ".join(printer.doprint(code.outputs[f"{label}_{i}_{j}"])
+                                             for j in range(value.cols)) + "]" for i in range(value.rows))
+            returned.append(f"_matrix([{rows}])")
+        else:
+            returned.append("_stack([" + ", ".join(printer.doprint(code.outputs[f"{label}_{i}"])
+                                                   for i in range(len(value))) + "])")
+    lines.append("    return " + ", ".join(returned))
+    return "\n".join(lines) + "\n"
+
+
+def _outputs_function(linkage: Linkage, arguments: Sequence[sp.Symbol]) -> tuple[str, list[str]]:
+    """Source of ``_outputs``: roles, named points and extras, as expressions of the coordinates."""
+    names = [f"{point}_{axis}" for point in linkage.points for axis in "xy"] + list(linkage.extras)
+    expressions = [linkage.output(name) for name in names]
+    if not names:
+        return "def _outputs(*values):\n    return {}\n", []
+    code = straight_line(Program(tuple(arguments), (), dict(zip(names, expressions))))
+    printer = NumPyCodePrinter()
+    lines = [f"def _outputs({', '.join(s.name for s in arguments)}):",
+             '    """Named points and extra outputs from the solved coordinates."""']
+    lines += [f"    {symbol.name} = {printer.doprint(expr)}" for symbol, expr in code.assignments]
+    lines.append("    return {")
+    lines += [f"        {name!r}: {printer.doprint(code.outputs[name])}," for name in names]
+    lines.append("    }")
+    return "\n".join(lines) + "\n", names
+
+
+_PUBLIC = '''
+
+def positions({signature}guess):
+    """Positions over a sweep of {input_names} (one-dimensional), from an initial guess.
+
+    guess: {unknown_names} near the wanted assembly at the first input value,
+    as a dict or in that order.  Returns a dict of arrays: the unknowns by
+    name, roles, points and extras; residual (each point's largest closure
+    residual relative to its loop's size) and assembled (True: a point that
+    cannot be solved raises ValueError naming its input value instead).
+    """
+    shape, inputs, q, _, _, residual = _sweep({inputs}, {parameters}, guess)
+    return _results(shape, inputs, {parameters}, q, None, None, residual, 0)
+
+
+def velocities({signature}guess, {rates}):
+    """Positions and rates (name + 'dot', role + '_speed') over the sweep; see positions()."""
+    shape, inputs, q, qdot, _, residual = _sweep({inputs}, {parameters}, guess, {rate_names}, {zeros})
+    return _results(shape, inputs, {parameters}, q, qdot, None, residual, 1)
+
+
+def accelerations({signature}guess, {rates}, {accels}):
+    """Positions, rates and accelerations (name + 'ddot', role + '_accel') over the sweep; see positions()."""
+    shape, inputs, q, qdot, qddot, residual = _sweep({inputs}, {parameters}, guess, {rate_names}, {accel_names})
+    return _results(shape, inputs, {parameters}, q, qdot, qddot, residual, 2)
+'''
+
+
+def numeric_module(linkage: Linkage, title: str = "", regenerate: str = "") -> str:
+    """Source of a standalone NumPy module solving ``linkage`` by Newton's method over an input sweep.
+
+    It defines ``positions``, ``velocities`` and ``accelerations`` with the
+    arguments ``inputs..., parameters..., guess, input rates..., input
+    accelerations...`` (see their docstrings).
+    """
+    system = closure_system(linkage)
+    inputs, parameters, unknowns = linkage.inputs, linkage.parameters, linkage.unknowns
+    input_rates = tuple(rate(x) for x in inputs)
+    input_accels = tuple(acceleration(x) for x in inputs)
+    unknown_rates = tuple(rate(u) for u in unknowns)
+    title = title or f"{linkage.name}: Newton's method on the closure equations, over an input sweep."
+    parts = [numpy_module([], title, regenerate)]
+    names = lambda symbols: repr(tuple(s.name for s in symbols))  # noqa: E731
+    parts.append(f"\n\nINPUTS = {names(inputs)}\nPARAMETERS = {names(parameters)}\nUNKNOWNS = {names(unknowns)}\n"
+                 f"ANGLE_INPUTS = {names([x for x in inputs if is_angle(linkage, x)])}\n"
+                 f"ROLES = {dict((role, q.name) for role, q in linkage.roles.items())!r}\n")
+    parts.append(driver_source())
+    base = inputs + parameters + unknowns
+    parts.append("\n\n" + _array_function(
+        "_closure", base, [("F", system.residuals), ("J", system.jacobian),
+                           ("scale", system.scales), ("unit", system.units)],
+        "Closure residuals F, Jacobian J = dF/dq, each equation's scale and each unknown's unit."))
+    parts.append("\n\n" + _array_function(
+        "_velocity_rhs", base + input_rates, [("r", system.velocity_rhs)],
+        "Right-hand side of J qdot = r."))
+    parts.append("\n\n" + _array_function(
+        "_acceleration_rhs", base + unknown_rates + input_rates + input_accels,
+        [("r", system.acceleration_rhs)], "Right-hand side of J qddot = r."))
+    outputs, _ = _outputs_function(linkage, inputs + parameters + unknowns)
+    parts.append("\n\n" + outputs)
+    as_tuple = lambda items: repr(tuple(items)).replace("'", "")  # noqa: E731  (names, not strings)
+    parts.append(_PUBLIC.format(
+        signature="".join(f"{s.name}, " for s in inputs + parameters),
+        inputs=as_tuple(s.name for s in inputs), parameters=as_tuple(s.name for s in parameters),
+        input_names=", ".join(s.name for s in inputs), unknown_names=", ".join(s.name for s in unknowns),
+        rates=", ".join(f"{s.name}=0.0" for s in input_rates),
+        accels=", ".join(f"{s.name}=0.0" for s in input_accels),
+        rate_names=as_tuple(s.name for s in input_rates), accel_names=as_tuple(s.name for s in input_accels),
+        zeros=as_tuple("0.0" for _ in inputs)))
+    return "".join(parts)

@@ -1,0 +1,115 @@
+"""The one intermediate form of code generation: a straight-line program with common subexpressions eliminated.
+
+A :class:`~symlink.linkage.Program` (the assignments a linkage derives for
+some outputs) becomes a :class:`StraightLine`: common subexpressions are
+eliminated across everything requested, and the assignments are ordered so
+that each uses only arguments and earlier names.  Every printer (NumPy, C,
+MATLAB/Octave) prints this same form, so the languages compute the same
+thing in the same order.
+
+>>> from symlink.catalog import fourbar
+>>> code = straight_line(fourbar().program(["rocker"]))
+>>> [s.name for s in code.arguments], list(code.outputs), [r.name for r in code.roots]
+(['theta', 'a', 'b', 'c', 'd', 'branch'], ['rocker'], ['Delta_1'])
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Callable
+
+import sympy as sp
+from sympy.core.relational import Relational
+from sympy.logic.boolalg import BooleanAtom, BooleanFunction
+
+from ..position import ClampedSqrt
+
+if TYPE_CHECKING:
+    from ..linkage import Program
+
+__all__ = ["StraightLine", "straight_line", "named_straight_line", "format_default", "is_flag", "CSE_PREFIX"]
+
+#: The prefix of the temporaries that common-subexpression elimination introduces.
+CSE_PREFIX = "cse_"
+
+
+@dataclass(frozen=True)
+class StraightLine:
+    """Program after common-subexpression elimination, ready for any printer.
+
+    ``assignments`` define temporaries and the program's own symbols in an
+    order where every right-hand side uses only arguments and earlier names;
+    ``outputs`` map output names to expressions of those; ``roots`` are the
+    square roots whose finiteness says that the linkage is assembled;
+    ``defaults`` are the program's argument defaults.
+    """
+
+    arguments: tuple[sp.Symbol, ...]
+    assignments: tuple[tuple[sp.Symbol, sp.Expr], ...]
+    outputs: dict[str, sp.Expr]
+    roots: tuple[sp.Symbol, ...]
+    defaults: dict[str, float]
+
+
+def straight_line(program: Program) -> StraightLine:
+    """Eliminate common subexpressions across the program's assignments and outputs."""
+    names = [s for s, _ in program.assignments]
+    output_names = list(program.outputs)
+    expressions = [e for _, e in program.assignments] + [program.outputs[n] for n in output_names]
+    taken = {s.name for s in program.arguments} | {s.name for s in names}
+    temporaries = (sp.Symbol(f"{CSE_PREFIX}{i}", real=True) for i in range(10**9)
+                   if f"{CSE_PREFIX}{i}" not in taken)
+    replacements, reduced = sp.cse(expressions, symbols=temporaries, order="none")
+    nodes = list(replacements) + list(zip(names, reduced[:len(names)]))
+    outputs = dict(zip(output_names, reduced[len(names):]))
+    roots = tuple(s for s, e in program.assignments if isinstance(e, ClampedSqrt))
+    return StraightLine(program.arguments, _dependency_order(nodes), outputs, roots, dict(program.defaults))
+
+
+def _dependency_order(nodes: list[tuple[sp.Symbol, sp.Expr]]) -> tuple[tuple[sp.Symbol, sp.Expr], ...]:
+    """Order assignments so that each one's symbols are defined before it (stable)."""
+    defined_by = {s for s, _ in nodes}
+    done: set[sp.Symbol] = set()
+    ordered = []
+    pending = list(nodes)
+    while pending:
+        for index, (symbol, expr) in enumerate(pending):
+            if (expr.free_symbols & defined_by) <= done:
+                ordered.append((symbol, expr))
+                done.add(symbol)
+                del pending[index]
+                break
+        else:
+            raise ValueError("circular definitions in generated code")
+    return tuple(ordered)
+
+
+def named_straight_line(program: Program, name: str, identifier: Callable[[str, str], str],
+                        language: str) -> tuple[StraightLine, list[str]]:
+    """The program after CSE and its argument names, checked by ``identifier`` for ``language``.
+
+    ``ValueError`` for a name the language cannot take or a program without outputs.
+    """
+    identifier(name, "function name")
+    if not program.outputs:
+        raise ValueError(f"{name}: a {language} function needs at least one output")
+    code = straight_line(program)
+    return code, [identifier(s.name, "argument") for s in code.arguments]
+
+
+def format_default(value: float) -> str:
+    """An argument default as code (Python and MATLAB alike): 1 for a branch, 0.0 for a rate.
+
+    >>> format_default(1.0), format_default(0.0)
+    ('1', '0.0')
+    """
+    return str(int(value)) if value == 1 else repr(value)  # branch=1, thetadot=0.0
+
+
+def is_flag(expr: sp.Basic) -> bool:
+    """Whether an output is true/false (a comparison or a logical combination) rather than a number.
+
+    >>> x = sp.Symbol("x")
+    >>> is_flag(sp.Eq(x, 0)), is_flag(sp.false), is_flag(x)
+    (True, True, False)
+    """
+    return isinstance(expr, (Relational, BooleanFunction, BooleanAtom))

@@ -236,9 +236,13 @@ def build_parser() -> argparse.ArgumentParser:
     plot.add_fourbar_options(table)
     for module in (plot, animation, view):
         module.add_command(commands)
-    from . import bench, scene  # symlink run SCENE.toml, symlink bench
+    from . import scene  # symlink run SCENE.toml
     scene.add_command(commands)
-    bench.add_command(commands)
+    # symlink bench: every argument goes to the benchmark (no option prefix here, so none is parsed)
+    bench = commands.add_parser("bench", help="run time against error of the four-bar solvers (source checkout)",
+                                add_help=False, prefix_chars="\0")
+    bench.add_argument("arguments", nargs=argparse.REMAINDER)
+    bench.set_defaults(run=run_bench)
     from . import analysis, loopcase, synthesis  # symlink analyze, loop, quick-return (seeds 000, 002, 003)
     analysis.add_command(commands)
     loopcase.add_command(commands)
@@ -246,6 +250,23 @@ def build_parser() -> argparse.ArgumentParser:
     from . import export  # symlink export NAME --to numpy|c|octave|latex
     export.add_command(commands)
     return parser
+
+
+def run_bench(args: argparse.Namespace) -> int:
+    """``symlink bench``: the benchmark of the source checkout (``benchmarks/``, beside ``symlink/``), imported now."""
+    import os
+    checkout = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    if checkout not in sys.path:
+        sys.path.append(checkout)  # an editable install maps only symlink/
+    try:
+        from benchmarks.bench import main as bench
+    except ModuleNotFoundError as error:
+        if not (error.name or "").startswith("benchmarks"):
+            raise
+        print("symlink: error: symlink bench needs the source checkout's benchmarks/ folder; "
+              "run it from the repository root (python -m benchmarks)", file=sys.stderr)
+        return 2
+    return bench(args.arguments, prog="symlink bench")
 
 
 def main(argv: Sequence[str] | None = None) -> int:

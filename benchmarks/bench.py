@@ -358,7 +358,7 @@ def _evalf():
 
 def _compiled():
     try:
-        from symlink.compiled import CompiledSolver, CompilerUnavailable
+        from symlink.compiled import CompiledSolver, CompileError, CompilerUnavailable
     except ImportError:
         raise Unavailable("symlink.compiled is not available") from None
     from symlink.scene import catalog_linkage
@@ -366,11 +366,13 @@ def _compiled():
         return _keywords(CompiledSolver(catalog_linkage("fourbar"), POSITIONS).function)
     except CompilerUnavailable as error:
         raise Unavailable(f"no C compiler: {error}") from None
+    except (CompileError, OSError) as error:
+        raise Unavailable(f"cannot build or load the library: {error}") from None
 
 
 def _hand_c():
     try:
-        from symlink.compiled import CompilerUnavailable
+        from symlink.compiled import CompileError, CompilerUnavailable
         from benchmarks.hand_c import hand_library, hand_positions
     except ImportError:
         raise Unavailable("benchmarks.hand_c is not available") from None
@@ -378,6 +380,8 @@ def _hand_c():
         hand_library()
     except CompilerUnavailable as error:
         raise Unavailable(f"no C compiler: {error}") from None
+    except (CompileError, OSError) as error:
+        raise Unavailable(f"cannot build or load the library: {error}") from None
 
     def solve(sweep):
         result = hand_positions(sweep.theta, *sweep.lengths, sweep.branch)

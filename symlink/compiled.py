@@ -51,6 +51,7 @@ import platform
 import secrets
 import shlex
 import shutil
+import struct
 import subprocess
 import tempfile
 import warnings
@@ -218,6 +219,34 @@ def _intact(target: Path) -> bool:
     return _verified_bytes(target) is not None
 
 
+def _whole_elf(binary: bytes) -> bool:
+    """False for an ELF file whose headers or loaded segments reach past its end (the loader would fault).
+
+    Other formats are not inspected (True).
+
+    >>> _whole_elf(b"\\x7fELF" + bytes(12)), _whole_elf(b"not ELF")
+    (False, True)
+    """
+    if not binary.startswith(b"\x7fELF"):
+        return True
+    if len(binary) < 52 or binary[4] not in (1, 2) or binary[5] not in (1, 2):
+        return False
+    wide, order = binary[4] == 2, "<" if binary[5] == 1 else ">"
+    header = f"{order}16xHHIQQQIHHHHHH" if wide else f"{order}16xHHIIIIIHHHHHH"
+    if len(binary) < struct.calcsize(header):
+        return False
+    _, _, _, _, phoff, shoff, _, _, phentsize, phnum, shentsize, shnum, _ = struct.unpack_from(header, binary)
+    if phoff + phentsize * phnum > len(binary) or shoff + shentsize * shnum > len(binary):
+        return False
+    segment = f"{order}IIQQQQ" if wide else f"{order}IIIIII"  # type, (flags,) offset, ..., size in file
+    for index in range(phnum):
+        fields = struct.unpack_from(segment, binary, phoff + index * phentsize)
+        offset, size = (fields[2], fields[5]) if wide else (fields[1], fields[4])
+        if offset + size > len(binary):
+            return False
+    return True
+
+
 def _load(target: Path) -> ctypes.CDLL | None:
     """The cached library, loaded from a private copy whose bytes match its digest; ``None`` if it cannot be.
 
@@ -241,7 +270,8 @@ def _load(target: Path) -> ctypes.CDLL | None:
         chunks = []
         while chunk := os.read(handle, 1 << 20):
             chunks.append(chunk)
-        if hashlib.sha256(b"".join(chunks)).hexdigest() != expected:
+        copied = b"".join(chunks)
+        if hashlib.sha256(copied).hexdigest() != expected or not _whole_elf(copied):
             return None
         try:
             return ctypes.CDLL(str(copy))

@@ -255,7 +255,9 @@ def build_parser() -> argparse.ArgumentParser:
 def run_bench(args: argparse.Namespace) -> int:
     """``symlink bench``: the benchmark of the source checkout (``benchmarks/``, beside ``symlink/``), imported now."""
     import os
-    checkout = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+    import symlink
+    checkout = os.path.dirname(os.path.dirname(os.path.abspath(symlink.__file__)))  # wherever this module moves
     if checkout not in sys.path:
         sys.path.append(checkout)  # an editable install maps only symlink/
     try:

@@ -3,17 +3,24 @@
 The key of an entry is a SHA-256 over a canonical description of the linkage
 (its loops, inputs, unknowns, parameters, points, roles and extras, written
 with :func:`sympy.srepr`), the outputs asked for, the kind of code, the
-versions of symlink and SymPy and a digest of symlink's own source files (so
-that a development change to the derivations never serves stale code).
+versions of symlink and SymPy and a digest of the modules that shape
+generated code (:data:`CODE_SHAPING`: a change to a derivation or a printer
+is a new key; a change to a plot or the command line is not).
 
-Entries live in ``$SYMLINK_CACHE`` (default ``~/.cache/symlink``; an empty
-value turns the disk cache off), one JSON file a key, written atomically.
-Each entry carries its key and a checksum of key and content: an entry that
-cannot be read, belongs to another key or fails its checksum is rebuilt and
-rewritten, never used.  The checksum detects corruption, not tampering: the
-cache holds code that symlink runs, so keep the folder as private as your
-Python installation.  A cache folder that cannot be written is skipped
-silently (the memory cache still works).
+Entries live in ``$SYMLINK_CACHE``, else ``$XDG_CACHE_HOME/symlink``, else
+``~/.cache/symlink`` (an empty ``SYMLINK_CACHE`` turns the disk cache off),
+one JSON file a key, written atomically.  Each entry carries its key and a
+checksum of key and content: an entry that cannot be read, belongs to
+another key or fails its checksum is rebuilt and rewritten, never used.
+
+The cache holds code that symlink runs, so only its owner may write it: the
+folder is created 0700 and entries 0600 whatever the umask, and nothing is
+loaded from a folder or an entry that another user owns or that group or
+others can write (a :class:`CacheWarning` says so once, and the code is
+derived again in memory).  Entries are opened without blocking and only if
+they are regular files; anything unreadable is rebuilt.  A cache folder that
+cannot be created or written is skipped silently (the memory cache still
+works).
 
 >>> import os, tempfile
 >>> previous = os.environ.get("SYMLINK_CACHE")
@@ -33,6 +40,7 @@ import hashlib
 import inspect
 import json
 import os
+import warnings
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -42,11 +50,12 @@ import sympy as sp
 
 from . import __version__
 from .codegen.numpy import load_numpy_module, numpy_module
-from .files import write_atomic
+from .files import LEFTOVER_AGE, NotPrivate, private_folder, read_private, remove_leftovers, write_atomic
 from .linkage import Linkage
 
-__all__ = ["GeneratedCode", "generated_code", "cache_directory", "definition", "cache_key",
-           "cached_text", "clear_memory", "ENVIRONMENT_VARIABLE"]
+__all__ = ["GeneratedCode", "generated_code", "cache_directory", "trusted_directory", "definition", "cache_key",
+           "cached_text", "clear_memory", "warn_once", "CacheWarning", "CODE_SHAPING", "code_shaping_files",
+           "ENVIRONMENT_VARIABLE"]
 
 ENVIRONMENT_VARIABLE = "SYMLINK_CACHE"
 #: Bumped whenever the layout of an entry changes.
@@ -54,16 +63,71 @@ FORMAT = 1
 #: The name of the function in every cached solver module.
 FUNCTION = "solve"
 
+#: The modules (relative to the package, without ``.py``) whose text shapes generated code: their digest
+#: is part of every key.  A name may be a module or a package folder (then every module in it counts).
+#: Add a module here when it starts to shape generated text; benchmarks, plots and the command line
+#: stay out, so that editing them keeps the cache.
+CODE_SHAPING = ("names", "vectors", "loops", "position", "motion", "linkage", "closure", "plan",  # the derivation
+                "catalog", "codegen", "export", "compiled")  # printing it
+#: Largest entry read back (a generated module is some kilobytes; anything far larger is not ours).
+ENTRY_LIMIT = 64 << 20
+
 _TEXTS: dict[str, str] = {}
 _LOADED: dict[str, "GeneratedCode"] = {}
+_FOLDERS: dict[str, Path | None] = {}  # folder -> itself when trusted and usable, else None (decided once)
+_WARNED: set[str] = set()
+
+
+class CacheWarning(RuntimeWarning):
+    """Something in the disk cache was not used (not private to this user, or unreadable); it was rebuilt."""
+
+
+def warn_once(message: str, category: type[Warning] = CacheWarning) -> None:
+    """Warn with ``message`` the first time this process meets it (``clear_memory`` forgets)."""
+    if message not in _WARNED:
+        _WARNED.add(message)
+        warnings.warn(message, category, stacklevel=3)
 
 
 def cache_directory() -> Path | None:
-    """Where entries live: ``$SYMLINK_CACHE``, else ``~/.cache/symlink``; ``None`` when set empty."""
+    """Where entries live: ``$SYMLINK_CACHE``, else ``$XDG_CACHE_HOME/symlink``, else ``~/.cache/symlink``.
+
+    ``None`` when ``SYMLINK_CACHE`` is set empty (no disk cache).  A relative
+    ``XDG_CACHE_HOME`` is ignored, as the XDG specification says.
+    """
     configured = os.environ.get(ENVIRONMENT_VARIABLE)
-    if configured is None:
-        return Path.home() / ".cache" / "symlink"
-    return Path(configured).expanduser() if configured.strip() else None
+    if configured is not None:
+        return Path(configured).expanduser() if configured.strip() else None
+    xdg = os.environ.get("XDG_CACHE_HOME", "")
+    if xdg and Path(xdg).is_absolute():
+        return Path(xdg) / "symlink"
+    return Path.home() / ".cache" / "symlink"
+
+
+def trusted_directory(folder: Path | None = None) -> Path | None:
+    """``folder`` (default :func:`cache_directory`) if it is usable: private to this user, created 0700.
+
+    ``None`` when the disk cache is off, when the folder cannot be created
+    (silently), or when another user owns it or group or others can write it
+    (with a :class:`CacheWarning`: nothing is loaded from it or written to it).
+    Decided once a process; the first time, leftovers of killed runs in it
+    are removed.
+    """
+    folder = cache_directory() if folder is None else folder
+    if folder is None:
+        return None
+    name = str(folder)
+    if name not in _FOLDERS:
+        try:
+            _FOLDERS[name] = private_folder(folder)
+            remove_leftovers(folder, (".build-", ".load-"), LEFTOVER_AGE)
+        except NotPrivate as why:
+            warn_once(f"symlink: not using the cache folder: {why}; only you may be able to write it "
+                      f"(chmod go-w, or set {ENVIRONMENT_VARIABLE} to a folder of your own)")
+            _FOLDERS[name] = None
+        except OSError:
+            _FOLDERS[name] = None  # read-only, or a file in the way: the memory cache still works
+    return _FOLDERS[name]
 
 
 def _terms(vectors) -> list:
@@ -91,13 +155,35 @@ def definition(linkage: Linkage) -> str:
     return json.dumps(described, separators=(",", ":"))
 
 
+def code_shaping_files() -> list[Path]:
+    """The files of the :data:`CODE_SHAPING` modules, in a fixed order.
+
+    >>> names = {path.stem for path in code_shaping_files()}
+    >>> "position" in names, "plot" in names
+    (True, False)
+    """
+    package = Path(__file__).parent
+    files = []
+    for name in CODE_SHAPING:
+        module, folder = package / f"{name}.py", package / name
+        if module.is_file():
+            files.append(module)
+        if folder.is_dir():
+            files.extend(sorted(folder.rglob("*.py")))
+    return files
+
+
+def _module_bytes(path: Path) -> bytes:
+    return path.read_bytes()
+
+
 @lru_cache(maxsize=1)
 def _source_digest() -> str:
-    """SHA-256 of symlink's own modules: a change to any derivation is a new key."""
+    """SHA-256 of the modules that shape generated code: a change to any of them is a new key."""
     digest = hashlib.sha256()
     package = Path(__file__).parent
-    for path in sorted(package.rglob("*.py")):  # the codegen package's printers included
-        digest.update(path.relative_to(package).as_posix().encode() + b"\0" + path.read_bytes() + b"\0")
+    for path in code_shaping_files():
+        digest.update(path.relative_to(package).as_posix().encode() + b"\0" + _module_bytes(path) + b"\0")
     return digest.hexdigest()
 
 
@@ -115,15 +201,29 @@ def _checksum(key: str, text: str) -> str:
 
 
 def _read(path: Path, key: str) -> str | None:
-    """The entry's text if it is whole and belongs to ``key``; ``None`` otherwise."""
+    """The entry's text if it is private to this user, whole and belongs to ``key``; ``None`` otherwise.
+
+    A missing entry is ``None`` silently; anything else that is not used says
+    why in one :class:`CacheWarning`.
+    """
     try:
-        entry = json.loads(path.read_text(encoding="utf-8"))
+        entry = json.loads(read_private(path, ENTRY_LIMIT).decode("utf-8"))
+        if not isinstance(entry, dict):
+            raise ValueError("not a JSON object")
         text = entry["text"]
-        if (entry["format"] == FORMAT and entry["key"] == key and isinstance(text, str)
-                and entry["sha256"] == _checksum(key, text)):
-            return text
-    except (OSError, ValueError, KeyError, TypeError):
-        pass
+        if entry["format"] != FORMAT or entry["key"] != key or not isinstance(text, str):
+            raise ValueError("written for another key or format")
+        if entry["sha256"] != _checksum(key, text):
+            raise ValueError("its checksum does not match")
+        return text
+    except FileNotFoundError:
+        return None
+    except NotPrivate as why:
+        warn_once(f"symlink: not loading a cache entry: {why}; rebuilt")
+    except RecursionError:
+        warn_once(f"symlink: cache entry {path} is nested too deeply to be ours; rebuilt")
+    except (OSError, ValueError, KeyError, TypeError, MemoryError) as why:
+        warn_once(f"symlink: cache entry {path} is unreadable ({why}); rebuilt")
     return None
 
 
@@ -135,7 +235,7 @@ def cached_text(key: str, build: Callable[[], str]) -> str:
     """
     if key in _TEXTS:
         return _TEXTS[key]
-    folder = cache_directory()
+    folder = trusted_directory()
     path = None if folder is None else folder / f"{key}.json"
     text = None if path is None else _read(path, key)
     if text is None:
@@ -143,9 +243,9 @@ def cached_text(key: str, build: Callable[[], str]) -> str:
         if path is not None:
             entry = {"format": FORMAT, "key": key, "sha256": _checksum(key, text), "text": text}
             try:
-                write_atomic(path, json.dumps(entry, indent=0) + "\n")
+                write_atomic(path, json.dumps(entry, indent=0) + "\n", mode=0o600)
             except OSError:
-                pass  # a read-only cache folder: keep the text in memory only
+                pass  # a full disk, a read-only folder, a folder in the way: keep the text in memory only
     _TEXTS[key] = text
     return text
 
@@ -154,6 +254,8 @@ def clear_memory() -> None:
     """Forget what is cached in memory (the disk cache stays): the state of a new process."""
     _TEXTS.clear()
     _LOADED.clear()
+    _FOLDERS.clear()
+    _WARNED.clear()
 
 
 @dataclass(frozen=True)

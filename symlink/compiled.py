@@ -9,10 +9,16 @@ NumPy solver.
 
 The library is compiled on first use with ``$CC`` (else ``cc``, ``gcc`` or
 ``clang``) and :data:`FLAGS`, and cached on disk by a hash of the source, the
-flags and the compiler (in ``$SYMLINK_CACHE/compiled``, else
-``~/.cache/symlink/compiled``).  Each entry is written under a temporary name
-and moved into place, with the SHA-256 of its bytes beside it; an entry whose
-bytes do not match is rebuilt, never loaded.
+flags and the compiler (in ``compiled/`` of symlink's cache folder, see
+:mod:`symlink.cache`).  Each library is built in a ``.build-*`` folder beside
+it and moved into place, 0600, with the SHA-256 of its bytes beside it.  It
+is loaded only from a private copy: copied into a new 0600 file in the
+owner-only folder, the copy's bytes checked against the digest, then the
+copy handed to the loader, so that a library that is truncated or swapped
+between the check and the load never reaches it.  A library that fails the
+check is rebuilt.  Any failure to compile, link, write or load (no compiler,
+a full disk, a folder where the library should go) gives one warning and the
+NumPy solver.
 
 The flags are portable: no ``-march=native`` (a cache folder may be shared
 between machines); ``-O3`` so that the loops are vectorised;
@@ -42,8 +48,10 @@ import hashlib
 import json
 import os
 import platform
+import secrets
 import shlex
 import shutil
+import struct
 import subprocess
 import tempfile
 import warnings
@@ -54,11 +62,11 @@ import numpy
 
 from . import cache
 from .codegen.c import c_function, c_library
-from .files import write_atomic
+from .files import NotPrivate, read_private, write_atomic
 from .linkage import Linkage
 from .solver import Solver
 
-__all__ = ["FLAGS", "CompilerUnavailable", "CompileError", "CompiledSolver", "cache_directory",
+__all__ = ["FLAGS", "FallbackWarning", "CompilerUnavailable", "CompileError", "CompiledSolver", "cache_directory",
            "find_compiler", "compile_shared", "c_solver_source", "compiled_solver"]
 
 #: Compiler flags of every library symlink builds (see the module docstring for why these).
@@ -88,8 +96,14 @@ double tan(double) SYMLINK_SIMD;
 _VECTOR_MATH_FILE = "symlink_vector_math.h"
 
 _PROBE = "#include <math.h>\ndouble symlink_probe(double x) { return sqrt(x); }\n"
+#: Largest library read back from the cache (ours are tens of kilobytes).
+LIBRARY_LIMIT = 256 << 20
 _loaded: dict[str, ctypes.CDLL] = {}
 _private_folder: list[Path] = []
+
+
+class FallbackWarning(RuntimeWarning):
+    """The compiled backend failed (no compiler, a full disk, a library that will not load): NumPy is used."""
 
 
 class CompilerUnavailable(RuntimeError):
@@ -109,24 +123,23 @@ def _private() -> Path:
 
 
 def cache_directory() -> Path:
-    """Where compiled libraries are kept: ``compiled/`` in symlink's cache (:mod:`symlink.cache`).
+    """Where compiled libraries are kept: ``compiled/`` in symlink's cache (:mod:`symlink.cache`), 0700.
 
     With the disk cache turned off (``SYMLINK_CACHE`` set empty), or a cache
-    folder that cannot be written, a private temporary folder of this process
-    is used instead.
+    folder that cannot be written or is not private to this user, a private
+    temporary folder of this process is used instead.
 
     >>> cache_directory().name
     'compiled'
     """
-    root = cache.cache_directory()
-    folder = (root if root is not None else _private()) / "compiled"
-    try:
-        folder.mkdir(parents=True, exist_ok=True)
-        if os.access(folder, os.W_OK):
-            return folder
-    except OSError:
-        pass
-    return _private() / "compiled"
+    root = cache.trusted_directory()
+    folder = None if root is None else cache.trusted_directory(root / "compiled")
+    if folder is not None and os.access(folder, os.W_OK):
+        return folder
+    folder = cache.trusted_directory(_private() / "compiled")
+    if folder is None:
+        raise OSError(f"cannot create a private folder in {_private()}")
+    return folder
 
 
 def find_compiler() -> list[str]:
@@ -170,7 +183,7 @@ def _build(source: str, headers: Mapping[str, str], command: list[str], target: 
     folder = Path(tempfile.mkdtemp(prefix=".build-", dir=target.parent))
     try:
         for name, text in {**headers, _VECTOR_MATH_FILE: VECTOR_MATH, "symlink.c": source}.items():
-            write_atomic(folder / name, text)
+            write_atomic(folder / name, text, mode=0o600)
         try:
             result = _run_compiler(command, folder)
             if result.returncode != 0:
@@ -178,25 +191,102 @@ def _build(source: str, headers: Mapping[str, str], command: list[str], target: 
         except OSError as error:
             raise CompilerUnavailable(f"{command[0]} cannot be run: {error}") from None
         if result.returncode != 0:
-            write_atomic(folder / "symlink.c", _PROBE)
+            write_atomic(folder / "symlink.c", _PROBE, mode=0o600)
             if _run_compiler(command, folder, vector_math=False).returncode != 0:
                 raise CompilerUnavailable(f"{' '.join(command)} cannot build a shared library with math.h "
                                           f"(missing libc6-dev?): {result.stderr.strip()[:500]}")
             raise CompileError(f"{' '.join(command)} rejected the source:\n{result.stderr.strip()[:2000]}")
-        binary = (folder / "symlink.so").read_bytes()
-        os.replace(folder / "symlink.so", target)
-        write_atomic(target.with_suffix(".sha256"), hashlib.sha256(binary).hexdigest() + "\n")
+        built = folder / "symlink.so"
+        os.chmod(built, 0o600)  # read and mapped by its owner only; never executed as a program
+        binary = built.read_bytes()
+        os.replace(built, target)
+        write_atomic(target.with_suffix(".sha256"), hashlib.sha256(binary).hexdigest() + "\n", mode=0o600)
     finally:
         shutil.rmtree(folder, ignore_errors=True)
 
 
-def _intact(target: Path) -> bool:
-    """True when the cached library exists and its bytes match the digest written with it."""
+def _verified_bytes(target: Path) -> bytes | None:
+    """The cached library's bytes if it and its digest are private to this user and agree; else ``None``."""
     try:
-        expected = target.with_suffix(".sha256").read_text().strip()
-        return hashlib.sha256(target.read_bytes()).hexdigest() == expected
-    except OSError:
+        expected = read_private(target.with_suffix(".sha256"), 1024).decode("ascii").strip()
+        binary = read_private(target, LIBRARY_LIMIT)
+    except NotPrivate as why:
+        cache.warn_once(f"symlink: not loading a compiled library: {why}; rebuilt")
+        return None
+    except (OSError, UnicodeDecodeError):
+        return None
+    return binary if hashlib.sha256(binary).hexdigest() == expected else None
+
+
+def _intact(target: Path) -> bool:
+    """True when the cached library exists, is private to this user and its bytes match its digest."""
+    return _verified_bytes(target) is not None
+
+
+def _whole_elf(binary: bytes) -> bool:
+    """False for an ELF file whose headers or loaded segments reach past its end (the loader would fault).
+
+    Other formats are not inspected (True).
+
+    >>> _whole_elf(b"\\x7fELF" + bytes(12)), _whole_elf(b"not ELF")
+    (False, True)
+    """
+    if not binary.startswith(b"\x7fELF"):
+        return True
+    if len(binary) < 52 or binary[4] not in (1, 2) or binary[5] not in (1, 2):
         return False
+    wide, order = binary[4] == 2, "<" if binary[5] == 1 else ">"
+    header = f"{order}16xHHIQQQIHHHHHH" if wide else f"{order}16xHHIIIIIHHHHHH"
+    if len(binary) < struct.calcsize(header):
+        return False
+    _, _, _, _, phoff, shoff, _, _, phentsize, phnum, shentsize, shnum, _ = struct.unpack_from(header, binary)
+    if phoff + phentsize * phnum > len(binary) or shoff + shentsize * shnum > len(binary):
+        return False
+    segment = f"{order}IIQQQQ" if wide else f"{order}IIIIII"  # type, (flags,) offset, ..., size in file
+    for index in range(phnum):
+        fields = struct.unpack_from(segment, binary, phoff + index * phentsize)
+        offset, size = (fields[2], fields[5]) if wide else (fields[1], fields[4])
+        if offset + size > len(binary):
+            return False
+    return True
+
+
+def _load(target: Path) -> ctypes.CDLL | None:
+    """The cached library, loaded from a private copy whose bytes match its digest; ``None`` if it cannot be.
+
+    The copy is a new file (``O_EXCL``, 0600) in the owner-only folder, so
+    nothing can change it between its check and its load; it is removed once
+    loaded (the loader keeps its mapping).
+    """
+    binary = _verified_bytes(target)
+    if binary is None:
+        return None
+    expected = hashlib.sha256(binary).hexdigest()
+    copy = target.parent / f".load-{secrets.token_hex(8)}.so"
+    flags = os.O_RDWR | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_CLOEXEC", 0)
+    handle = os.open(copy, flags, 0o600)
+    try:
+        os.fchmod(handle, 0o600)
+        view = memoryview(binary)
+        while view:
+            view = view[os.write(handle, view):]
+        os.lseek(handle, 0, os.SEEK_SET)
+        chunks = []
+        while chunk := os.read(handle, 1 << 20):
+            chunks.append(chunk)
+        copied = b"".join(chunks)
+        if hashlib.sha256(copied).hexdigest() != expected or not _whole_elf(copied):
+            return None
+        try:
+            return ctypes.CDLL(str(copy))
+        except OSError:
+            return None  # not a library this loader takes (a truncated one with a recomputed digest): rebuilt
+    finally:
+        os.close(handle)
+        try:
+            os.unlink(copy)
+        except OSError:
+            pass
 
 
 def compile_shared(source: str, headers: Mapping[str, str] | None = None) -> ctypes.CDLL:
@@ -204,7 +294,8 @@ def compile_shared(source: str, headers: Mapping[str, str] | None = None) -> cty
 
     ``headers`` are further files (name -> text) that the source includes.
     ``CompilerUnavailable`` where no compiler can build it, ``CompileError``
-    where the source is at fault.
+    where the source is at fault, ``OSError`` where it cannot be written or
+    loaded.
 
     >>> library = compile_shared("double twice(double x) { return 2 * x; }")  # doctest: +SKIP
     >>> library.twice.restype = ctypes.c_double; library.twice.argtypes = [ctypes.c_double]  # doctest: +SKIP
@@ -218,9 +309,12 @@ def compile_shared(source: str, headers: Mapping[str, str] | None = None) -> cty
     if key in _loaded:
         return _loaded[key]
     target = cache_directory() / f"{key}.so"
-    if not _intact(target):
+    library = _load(target)
+    if library is None:
         _build(source, headers, command, target)
-    library = ctypes.CDLL(str(target))
+        library = _load(target)
+        if library is None:
+            raise OSError(f"the library just built at {target} cannot be loaded")
     _loaded[key] = library
     return library
 
@@ -311,9 +405,16 @@ class CompiledSolver(Solver):
 
 
 def compiled_solver(linkage: Linkage, outputs: Sequence[str]) -> Solver:
-    """The compiled solver of ``outputs``, or the NumPy :class:`~symlink.solver.Solver` with a warning where no compiler works."""
+    """The compiled solver of ``outputs``, or the NumPy :class:`~symlink.solver.Solver` with one warning.
+
+    Any failure to compile, link, write or load (no compiler, a full disk, a
+    folder at the library's name) falls back; bad ``outputs`` still raise
+    ``ValueError``.
+    """
+    for name in outputs:
+        linkage.output(name)  # ValueError naming the outputs there are, whatever the backend
     try:
         return CompiledSolver(linkage, outputs)
-    except CompilerUnavailable as error:
-        warnings.warn(f"symlink: no compiled backend, using NumPy instead: {error}", RuntimeWarning, stacklevel=2)
+    except (CompilerUnavailable, CompileError, OSError, subprocess.SubprocessError) as error:
+        warnings.warn(f"symlink: no compiled backend, using NumPy instead: {error}", FallbackWarning, stacklevel=2)
         return Solver(linkage, outputs)

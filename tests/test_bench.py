@@ -1,4 +1,4 @@
-"""``symlink bench``: it runs, writes valid records, and its references and baselines are right (no timings)."""
+"""The benchmark (``benchmarks/bench.py``, ``symlink bench``): it runs, writes valid records, and its references and baselines are right (no timings)."""
 import json
 import math
 import subprocess
@@ -11,7 +11,7 @@ import pytest
 from cache_fixture import empty_cache  # noqa: F401 - a fixture
 from references import mp_fourbar, seed003_positions
 from symlink.reachability import crank_range
-from symlink.bench import (METHODS, SEED_LINKAGES, benchmark, hand_numpy, is_grashof, newton, reference_positions,
+from benchmarks.bench import (METHODS, SEED_LINKAGES, benchmark, hand_numpy, is_grashof, newton, reference_positions,
                            targets, workload)
 from symlink.cli import main
 
@@ -49,13 +49,38 @@ def test_quick_run_writes_records_and_plot(tmp_path, capsys):
     assert "from cache" in out and "loading the generated module" in out
 
 
-def test_module_entry_point_and_method_choice(tmp_path):
+ROOT = Path(__file__).parent.parent
+
+
+@pytest.mark.parametrize("command", [["-m", "benchmarks"], [str(ROOT / "benchmarks" / "bench.py")]])
+def test_entry_points_and_method_choice_progress_on_stderr(tmp_path, command):
     records = tmp_path / "r.json"
-    done = subprocess.run([sys.executable, "-m", "symlink.bench", "--sizes", "60", "--methods", "hand-numpy,newton",
+    done = subprocess.run([sys.executable, *command, "--sizes", "60", "--methods", "hand-numpy,newton",
                            "--no-derivation", "--json", str(records)], capture_output=True, text=True,
-                          cwd=Path(__file__).parent.parent)
+                          cwd=ROOT if command[0] == "-m" else tmp_path)  # the script runs from anywhere
     assert done.returncode == 0, done.stderr
     assert sorted(r["method"] for r in json.loads(records.read_text())) == ["hand-numpy", "newton"]
+    assert "N = 60" in done.stderr and "us/value" in done.stderr  # progress
+    assert "N = 60" not in done.stdout and done.stdout.splitlines()[0].split()[:2] == ["method", "N"]  # results
+
+
+def test_symlink_bench_without_the_source_checkout_says_so_in_one_line(monkeypatch, capsys):
+    monkeypatch.setitem(sys.modules, "benchmarks", None)  # as if benchmarks/ were not importable
+    monkeypatch.setitem(sys.modules, "benchmarks.bench", None)
+    assert main(["bench", "--quick"]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err.count("\n") == 1 and err.startswith("symlink: error: symlink bench needs")
+
+
+def test_failed_write_is_one_line_exit_1(tmp_path, capsys):
+    (tmp_path / "taken").mkdir()  # a folder where the file should go
+    status = main(["bench", "--sizes", "30", "--methods", "hand-numpy", "--no-derivation",
+                   "--json", str(tmp_path / "taken")])
+    _, err = capsys.readouterr()
+    errors = [line for line in err.splitlines() if ": error:" in line or "Traceback" in line]
+    assert status == 1 and len(errors) == 1 and errors[0].startswith("symlink: error: cannot write")
+    assert err.endswith(errors[0] + "\n")  # after the progress lines, and nothing after it
+    assert [p.name for p in tmp_path.iterdir()] == ["taken"]  # no temporary file left
 
 
 @pytest.mark.parametrize("argv, message", [
@@ -75,10 +100,10 @@ def test_missing_optional_methods_are_skipped_with_a_note(monkeypatch, capsys):
     monkeypatch.setitem(sys.modules, "scipy.optimize", None)
     monkeypatch.setitem(sys.modules, "symlink.compiled", None)
     status = main(["bench", "--sizes", "40", "--methods", "fsolve,symlink-c,hand-c,hand-numpy", "--no-derivation"])
-    out, _ = capsys.readouterr()
+    out, err = capsys.readouterr()
     assert status == 0
-    assert "skipped fsolve: scipy is not installed" in out
-    assert "skipped symlink-c" in out and "skipped hand-c" in out
+    assert "skipped fsolve: scipy is not installed" in err  # a note, with the progress
+    assert "skipped symlink-c" in err and "skipped hand-c" in err
     assert "hand-numpy" in out.split("method")[-1]
 
 
@@ -152,7 +177,7 @@ def test_target_lines_state_the_ratios():
 
 
 def test_stacked_call_gives_the_per_sweep_results():
-    from symlink.bench import hand_numpy, stacked, unstacked, workload
+    from benchmarks.bench import hand_numpy, stacked, unstacked, workload
     sweeps = workload(90, seed=3, reference=10)
     together = unstacked(hand_numpy(*(lambda s: (s.theta, *s.lengths, s.branch))(stacked(sweeps))), sweeps)
     for sweep, (beta, phi) in zip(sweeps, together):

@@ -210,3 +210,225 @@ def test_solver_goes_through_the_cache(folder, monkeypatch):
     assert second.source == first.source and second.arguments == first.arguments
     result = second(theta=numpy.array([0.0]), **SEED003, branch=1)
     assert numpy.degrees(result["rocker"][0]) == pytest.approx(110.7424, abs=1e-4)  # seed 003 table
+
+
+# --- what the key digests ------------------------------------------------------
+
+def edited(stem: str):
+    """A stand-in for reading a module's bytes in which the module ``stem`` has been edited."""
+    original = cache._module_bytes
+
+    def read(path: Path) -> bytes:
+        return original(path) + (b"\n# edited\n" if path.stem == stem else b"")
+    return read
+
+
+def key_with(monkeypatch, reader) -> str:
+    monkeypatch.setattr(cache, "_module_bytes", reader)
+    cache._source_digest.cache_clear()
+    try:
+        return cache_key(fourbar(), OUTPUTS)
+    finally:
+        cache._source_digest.cache_clear()
+
+
+@pytest.mark.parametrize("stem", ["plot", "animation", "view", "cli", "bench", "hand_c", "analysis", "files"])
+def test_editing_a_module_that_shapes_no_code_keeps_the_key(monkeypatch, stem):
+    base = key_with(monkeypatch, cache._module_bytes)
+    assert key_with(monkeypatch, edited(stem)) == base
+
+
+@pytest.mark.parametrize("stem", ["vectors", "loops", "position", "motion", "linkage", "c_code", "octave",
+                                  "numeric", "latex", "export", "compiled"])
+def test_editing_a_module_that_shapes_code_changes_the_key(monkeypatch, stem):
+    if not any(path.stem == stem for path in cache.code_shaping_files()):
+        pytest.skip(f"{stem} has moved; CODE_SHAPING names where it went")
+    base = key_with(monkeypatch, cache._module_bytes)
+    assert key_with(monkeypatch, edited(stem)) != base
+
+
+def test_every_code_shaping_name_is_a_module_or_package():
+    package = Path(cache.__file__).parent
+    for name in cache.CODE_SHAPING:
+        assert (package / f"{name}.py").is_file() or (package / name).is_dir(), \
+            f"cache.CODE_SHAPING names {name!r}, which is gone: update the list"
+    files = cache.code_shaping_files()
+    if (package / "codegen").is_dir():  # every printer of the code generation package counts
+        assert set((package / "codegen").rglob("*.py")) <= set(files)
+    assert not {path.stem for path in files} & {"plot", "animation", "view", "cli", "bench", "scene", "solver"}
+
+
+def test_folder_follows_xdg_when_symlink_cache_is_unset(tmp_path, monkeypatch):
+    monkeypatch.delenv("SYMLINK_CACHE", raising=False)
+    monkeypatch.setenv("HOME", str(tmp_path))
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
+    assert cache_directory() == tmp_path / "xdg" / "symlink"
+    monkeypatch.setenv("XDG_CACHE_HOME", "relative/path")  # ignored, as the XDG specification says
+    assert cache_directory() == tmp_path / ".cache" / "symlink"
+    monkeypatch.setenv("SYMLINK_CACHE", str(tmp_path / "mine"))  # the variable of symlink comes first
+    assert cache_directory() == tmp_path / "mine"
+
+
+# --- a cache only its owner can write ------------------------------------------
+
+def planted(folder: Path, marker: Path) -> None:
+    """Rewrite every entry in ``folder`` as an attacker would: code that leaves ``marker``, checksum fixed up."""
+    for path in folder.glob("*.json"):
+        entry = json.loads(path.read_text())
+        entry["text"] = f"import pathlib; pathlib.Path({str(marker)!r}).write_text('ran')\n" + entry["text"]
+        entry["sha256"] = cache._checksum(entry["key"], entry["text"])
+        path.write_text(json.dumps(entry))
+        path.chmod(0o600)
+
+
+def cache_warnings(caught) -> list[str]:
+    return [str(w.message) for w in caught if issubclass(w.category, cache.CacheWarning)]
+
+
+def test_created_private_whatever_the_umask(folder):
+    previous = os.umask(0)
+    try:
+        code = generated_code(fourbar(), ["rocker"])
+    finally:
+        os.umask(previous)
+    assert oct(os.stat(folder).st_mode & 0o777) == "0o700"
+    assert oct(os.stat(folder / f"{code.key}.json").st_mode & 0o777) == "0o600"
+
+
+def chown_to_nobody(path: Path) -> None:
+    try:
+        os.chown(path, 65534, -1)
+    except (PermissionError, AttributeError):
+        pytest.skip("cannot give a file to another user here")
+
+
+@pytest.mark.parametrize("how", ["folder group-writable", "folder other-writable", "folder owned by another user",
+                                 "entry group-writable", "entry owned by another user"])
+def test_nothing_is_loaded_unless_only_its_owner_could_have_written_it(folder, tmp_path, monkeypatch, how):
+    good = generated_code(fourbar(), OUTPUTS)
+    marker = tmp_path / "planted-code-ran"
+    planted(folder, marker)
+    entry = folder / f"{good.key}.json"
+    what, change = how.split(" ", 1)
+    target = folder if what == "folder" else entry
+    if change == "owned by another user":
+        chown_to_nobody(target)
+    else:
+        target.chmod((0o700 if what == "folder" else 0o600) | (0o020 if "group" in change else 0o002))
+    clear_memory()
+    programs = count_calls(monkeypatch, Linkage, "program")
+    with pytest.warns(cache.CacheWarning) as caught:
+        code = generated_code(fourbar(), OUTPUTS)
+    assert not marker.exists() and len(programs) == 1  # derived again, the planted code never ran
+    check_against_reference(code)
+    messages = cache_warnings(caught)
+    assert len(messages) == 1 and ("owned by user" in messages[0] or "writable by" in messages[0])
+    if what == "folder":  # and nothing is written to such a folder either
+        assert json.loads(entry.read_text())["text"].startswith("import pathlib")
+
+
+def test_the_planted_entry_would_run_from_a_private_folder(folder, tmp_path):
+    """The control of the test above: with the folder private, the owner's (planted) entry is used."""
+    generated_code(fourbar(), OUTPUTS)
+    marker = tmp_path / "planted-code-ran"
+    planted(folder, marker)
+    clear_memory()
+    generated_code(fourbar(), OUTPUTS)
+    assert marker.exists()
+
+
+@pytest.mark.parametrize("how", ["group-writable", "owned by another user", "private (control)"])
+def test_command_line_loads_nothing_from_a_cache_others_can_write(tmp_path, how):
+    folder, marker = tmp_path / "cache", tmp_path / "planted-code-ran"
+    command = [sys.executable, "-m", "symlink", "fourbar", "--crank", "20", "--coupler", "66", "--rocker", "56",
+               "--ground", "80", "--step", "90"]
+    env = dict(os.environ, SYMLINK_CACHE=str(folder))
+    run = lambda: subprocess.run(command, capture_output=True, text=True, env=env,  # noqa: E731
+                                 cwd=Path(__file__).parent.parent)
+    first = run()
+    assert first.returncode == 0, first.stderr
+    planted(folder, marker)
+    if how == "group-writable":
+        folder.chmod(0o770)
+    elif how == "owned by another user":
+        chown_to_nobody(folder)
+    second = run()
+    assert second.returncode == 0 and second.stdout == first.stdout, second.stderr
+    assert marker.exists() == (how == "private (control)")
+
+
+# --- faults: each entry that cannot be used is rebuilt, with one warning ---------------
+
+@pytest.fixture
+def bounded_time():
+    """Fail (instead of hanging the suite) if the test blocks for a minute."""
+    import signal
+
+    def hung(*_):
+        raise TimeoutError("blocked on a cache entry")
+    previous = signal.signal(signal.SIGALRM, hung)
+    signal.alarm(60)
+    yield
+    signal.alarm(0)
+    signal.signal(signal.SIGALRM, previous)
+
+
+@pytest.mark.parametrize("kind", ["deeply nested", "a FIFO", "a folder", "a symbolic link", "binary garbage"])
+def test_an_entry_that_is_not_a_readable_file_is_rebuilt_with_one_warning(folder, tmp_path, monkeypatch,
+                                                                          bounded_time, kind):
+    good = generated_code(fourbar(), OUTPUTS)
+    path = folder / f"{good.key}.json"
+    path.unlink()
+    if kind == "deeply nested":
+        path.write_text("[" * 200_000)
+    elif kind == "a FIFO":
+        os.mkfifo(path)
+    elif kind == "a folder":
+        path.mkdir()
+    elif kind == "a symbolic link":
+        elsewhere = tmp_path / "elsewhere.json"
+        elsewhere.write_text(json.dumps({"format": 1, "key": good.key, "text": "x = 1",
+                                         "sha256": cache._checksum(good.key, "x = 1")}))
+        path.symlink_to(elsewhere)
+    else:
+        path.write_bytes(bytes(range(256)) * 10)
+    clear_memory()
+    programs = count_calls(monkeypatch, Linkage, "program")
+    with pytest.warns(cache.CacheWarning) as caught:
+        code = generated_code(fourbar(), OUTPUTS)
+    assert len(programs) == 1 and code.source == good.source
+    check_against_reference(code)
+    assert len(cache_warnings(caught)) == 1
+    if kind != "a folder":  # replaced by a good entry (a folder in the way stays: memory only)
+        assert path.is_file() and not path.is_symlink() and json.loads(path.read_text())["text"] == good.source
+
+
+def test_a_full_disk_keeps_the_text_in_memory_and_leaves_nothing(folder, monkeypatch):
+    import errno
+
+    def full(*_):
+        raise OSError(errno.ENOSPC, "No space left on device")
+    private = cache.trusted_directory()  # the folder exists; writing into it fails
+    with pytest.MonkeyPatch.context() as disk:
+        disk.setattr(os, "write", full)
+        code = generated_code(fourbar(), OUTPUTS)
+    check_against_reference(code)
+    assert list(private.iterdir()) == []  # no entry, no temporary file
+
+
+def test_leftovers_of_killed_runs_are_removed_on_the_next_run(folder):
+    import time
+    generated_code(fourbar(), ["rocker"])
+    old = time.time() - 2 * cache.LEFTOVER_AGE
+    leftovers = [folder / ".build-abc123", folder / f".{'0' * 64}.json.1a2b3c.tmp", folder / ".load-77.so"]
+    leftovers[0].mkdir()
+    (leftovers[0] / "symlink.c").write_text("int x;")
+    for path in leftovers[1:]:
+        path.write_text("partial")
+    for path in leftovers:
+        os.utime(path, (old, old))
+    running = folder / ".build-running"  # another process's, still young
+    running.mkdir()
+    clear_memory()  # the next run
+    generated_code(fourbar(), ["rocker"])
+    assert not any(path.exists() for path in leftovers) and running.is_dir()

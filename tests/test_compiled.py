@@ -2,6 +2,10 @@
 from __future__ import annotations
 
 import ctypes
+import errno
+import hashlib
+import os
+import stat
 import warnings
 from pathlib import Path
 
@@ -23,6 +27,7 @@ FOURBAR_OUTPUTS = ["coupler", "rocker", "coupler_speed", "rocker_speed", "couple
 def _forget() -> None:
     cache.clear_memory()
     compiled._loaded.clear()
+    compiled._private_folder.clear()  # a new process gets a new private folder
 
 
 @pytest.fixture(scope="module", autouse=True)
@@ -144,16 +149,21 @@ def test_second_use_loads_from_the_cache_without_compiling(compiler, fresh_cache
     assert float(second(theta=0.0, a=20, b=66, c=56, d=80)["rocker"]) == pytest.approx(1.932819, abs=1e-6)
 
 
-@pytest.mark.parametrize("damage", ["garbage", "truncated", "digest missing", "digest wrong"])
+@pytest.mark.parametrize("damage", ["garbage", "truncated", "digest missing", "digest wrong",
+                                    "truncated, digest recomputed", "garbage, digest recomputed"])
 def test_a_corrupt_cache_entry_is_detected_and_rebuilt(compiler, fresh_cache, compiler_runs, damage):
     linkage = catalog_linkage("fourbar")
     solver = compiled_solver(linkage, ["rocker"])
     want = solver(theta=1.0, a=20, b=66, c=56, d=80)["rocker"]
-    library = Path(solver.library._name)
+    (library,) = compiled.cache_directory().glob("*.so")
     digest = library.with_suffix(".sha256")
     binary = library.read_bytes()
     library.unlink()  # a new file: never overwrite a library that this process has mapped
-    if damage == "garbage":
+    if damage.endswith("digest recomputed"):  # passes the digest: the loader itself must refuse it, no crash
+        bad = binary[: len(binary) // 2] if damage.startswith("truncated") else b"\x7fELF" + b"\0" * 100
+        library.write_bytes(bad)
+        digest.write_text(hashlib.sha256(bad).hexdigest() + "\n")
+    elif damage == "garbage":
         library.write_bytes(b"\x7fELF" + b"\0" * 100)
     elif damage == "truncated":
         library.write_bytes(binary[: len(binary) // 2])
@@ -235,3 +245,87 @@ def test_an_unwritable_cache_folder_falls_back_to_a_private_one(tmp_path, monkey
     blocker.write_text("")
     monkeypatch.setenv("SYMLINK_CACHE", str(blocker))
     assert compiled.cache_directory().parent.name.startswith("symlink-")
+
+
+def fallback_warnings(caught) -> list[str]:
+    return [str(w.message) for w in caught if "no compiled backend, using NumPy instead" in str(w.message)]
+
+
+def check_numpy_fallback(solver) -> None:
+    assert type(solver) is Solver
+    assert float(solver(theta=0.0, a=20, b=66, c=56, d=80)["rocker"]) == pytest.approx(1.932819, abs=1e-6)
+
+
+def test_a_folder_at_the_librarys_name_falls_back_with_one_warning(compiler, fresh_cache):
+    linkage = catalog_linkage("fourbar")
+    compiled_solver(linkage, ["rocker"])
+    (library,) = compiled.cache_directory().glob("*.so")
+    library.unlink()
+    library.mkdir()
+    _forget()
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        solver = compiled_solver(linkage, ["rocker"])
+    check_numpy_fallback(solver)
+    assert len(fallback_warnings(caught)) == 1 and len(caught) == 1
+    assert library.is_dir() and not [p for p in library.parent.iterdir() if p.name.startswith(".")]
+
+
+def test_a_full_disk_falls_back_with_one_warning_and_leaves_nothing(compiler, fresh_cache, monkeypatch):
+    def full(*_):
+        raise OSError(errno.ENOSPC, "No space left on device")
+    with warnings.catch_warnings(record=True) as caught, pytest.MonkeyPatch.context() as disk:
+        warnings.simplefilter("always")
+        disk.setattr(os, "write", full)
+        solver = compiled_solver(catalog_linkage("fourbar"), ["rocker"])
+    check_numpy_fallback(solver)
+    assert len(fallback_warnings(caught)) == 1 and "No space left" in fallback_warnings(caught)[0]
+    assert list(compiled.cache_directory().iterdir()) == []  # no library, no .build-* folder, no temporary
+
+
+def test_a_library_that_cannot_be_loaded_falls_back_with_one_warning(compiler, fresh_cache, monkeypatch):
+    def broken_loader(name, *args, **kwargs):
+        raise OSError(f"{name}: cannot open shared object file")
+    monkeypatch.setattr(ctypes, "CDLL", broken_loader)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        solver = compiled_solver(catalog_linkage("fourbar"), ["rocker"])
+    check_numpy_fallback(solver)
+    assert len(fallback_warnings(caught)) == 1 and "cannot be loaded" in fallback_warnings(caught)[0]
+
+
+def test_libraries_are_private_and_loaded_from_a_checked_private_copy(compiler, fresh_cache, monkeypatch):
+    previous = os.umask(0)
+    try:
+        loaded = []
+        original = ctypes.CDLL
+
+        def loader(name, *args, **kwargs):
+            path = Path(name)
+            loaded.append((path, stat.S_IMODE(path.stat().st_mode), path.read_bytes()))
+            return original(name, *args, **kwargs)
+        monkeypatch.setattr(ctypes, "CDLL", loader)
+        compiled_solver(catalog_linkage("fourbar"), ["rocker"])
+    finally:
+        os.umask(previous)
+    folder = compiled.cache_directory()
+    (library,) = folder.glob("*.so")
+    assert stat.S_IMODE(folder.stat().st_mode) == 0o700
+    assert {stat.S_IMODE(p.stat().st_mode) for p in folder.iterdir()} == {0o600}
+    ((copy, mode, binary),) = loaded
+    assert copy != library and copy.parent == folder and copy.name.startswith(".load-") and mode == 0o600
+    assert binary == library.read_bytes()
+    assert library.with_suffix(".sha256").read_text().strip() == hashlib.sha256(binary).hexdigest()
+    assert not copy.exists()  # removed once loaded
+
+
+def test_a_compiled_folder_others_can_write_is_not_used(compiler, fresh_cache, compiler_runs):
+    linkage = catalog_linkage("fourbar")
+    compiled_solver(linkage, ["rocker"])
+    shared = compiled.cache_directory()
+    shared.chmod(0o777)
+    _forget()
+    with pytest.warns(cache.CacheWarning, match="writable by group and others"):
+        solver = compiled_solver(linkage, ["rocker"])
+    assert isinstance(solver, CompiledSolver) and len(compiler_runs) == 2  # built again, privately
+    assert compiled.cache_directory() != shared and compiled.cache_directory().parent.name.startswith("symlink-")

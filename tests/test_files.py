@@ -1,10 +1,26 @@
-"""Atomic writes: the whole file or nothing, with ordinary permissions."""
+"""Files symlink writes and reads back: atomic writes, owner-only folders, reads that never block."""
+import errno
 import os
 import stat
+import threading
 
 import pytest
 
-from symlink.files import write_atomic
+from symlink import files
+from symlink.files import NotPrivate, private_folder, read_private, remove_leftovers, write_atomic
+
+
+def mode_of(path) -> int:
+    return stat.S_IMODE(os.lstat(path).st_mode)
+
+
+@pytest.fixture
+def umask():
+    """Set the umask for one test (tests run one at a time); restored after."""
+    previous = os.umask(0o022)
+    os.umask(previous)
+    yield lambda mask: os.umask(mask)
+    os.umask(previous)
 
 
 def test_writes_text_and_bytes_with_umask_permissions(tmp_path):
@@ -13,7 +29,16 @@ def test_writes_text_and_bytes_with_umask_permissions(tmp_path):
     assert (tmp_path / "a.txt").read_text() == "text\n" and (tmp_path / "sub" / "b.bin").read_bytes() == b"\x00\x01"
     mask = os.umask(0)
     os.umask(mask)
-    assert stat.S_IMODE((tmp_path / "a.txt").stat().st_mode) == 0o666 & ~mask
+    assert mode_of(tmp_path / "a.txt") == 0o666 & ~mask
+
+
+@pytest.mark.parametrize("mask", [0o000, 0o022, 0o077, 0o277])
+def test_a_mode_asked_for_is_exact_whatever_the_umask(tmp_path, umask, mask):
+    umask(mask)
+    write_atomic(tmp_path / "private", "x", mode=0o600)
+    write_atomic(tmp_path / "ordinary", "x")
+    assert mode_of(tmp_path / "private") == 0o600
+    assert mode_of(tmp_path / "ordinary") == 0o666 & ~mask
 
 
 def test_failure_leaves_the_old_file_and_no_temporary(tmp_path):
@@ -28,3 +53,109 @@ def test_failure_leaves_the_old_file_and_no_temporary(tmp_path):
         write_atomic(target, Boom())
     assert target.read_text() == "old"
     assert [p.name for p in tmp_path.iterdir()] == ["keep.txt"]
+
+
+def test_a_full_disk_leaves_the_old_file_and_no_temporary(tmp_path, monkeypatch):
+    target = tmp_path / "keep.txt"
+    target.write_text("old")
+
+    def full(*_):
+        raise OSError(errno.ENOSPC, "No space left on device")
+    with pytest.MonkeyPatch.context() as disk:
+        disk.setattr(os, "write", full)
+        with pytest.raises(OSError, match="No space left"):
+            write_atomic(target, "new" * 1000)
+    assert target.read_text() == "old" and [p.name for p in tmp_path.iterdir()] == ["keep.txt"]
+
+
+def test_the_process_umask_is_never_changed(tmp_path, monkeypatch):
+    def forbidden(*_):
+        raise AssertionError("write_atomic changed the process umask")
+    monkeypatch.setattr(os, "umask", forbidden)
+    write_atomic(tmp_path / "a", "x")
+    write_atomic(tmp_path / "b", b"x", mode=0o600)
+    private_folder(tmp_path / "c")
+
+
+def test_no_permission_drift_while_another_thread_creates_folders(tmp_path, umask):
+    """An unrelated thread makes folders with the default mode while symlink writes files."""
+    umask(0o022)
+    stop, drifted, made = threading.Event(), [], []
+
+    def make_folders():
+        index = 0
+        while not stop.is_set():
+            path = tmp_path / "folders" / str(index)
+            os.makedirs(path)
+            made.append(path)
+            if mode_of(path) != 0o755:
+                drifted.append((path.name, oct(mode_of(path))))
+            index += 1
+
+    (tmp_path / "folders").mkdir()
+    worker = threading.Thread(target=make_folders)
+    worker.start()
+    try:
+        for index in range(400):
+            write_atomic(tmp_path / "files" / f"{index}.txt", "x", mode=0o600 if index % 2 else None)
+            private_folder(tmp_path / "private" / str(index))
+    finally:
+        stop.set()
+        worker.join()
+    assert made and drifted == []
+    assert {mode_of(p) for p in (tmp_path / "files").iterdir()} == {0o600, 0o644}
+    assert {mode_of(p) for p in (tmp_path / "private").iterdir()} == {0o700}
+
+
+def test_private_folder_is_created_0700_and_an_open_one_is_refused(tmp_path, umask):
+    umask(0)
+    assert mode_of(private_folder(tmp_path / "a" / "b")) == 0o700
+    open_folder = tmp_path / "open"
+    open_folder.mkdir(0o777)
+    with pytest.raises(NotPrivate, match="writable by group and others"):
+        private_folder(open_folder)
+    assert mode_of(open_folder) == 0o777  # checked, never changed
+    (tmp_path / "file").write_text("")
+    with pytest.raises(NotADirectoryError):
+        private_folder(tmp_path / "file")
+
+
+def test_read_private_takes_only_a_regular_file_of_this_user(tmp_path):
+    good = tmp_path / "good"
+    good.write_bytes(b"data")
+    good.chmod(0o600)
+    assert read_private(good, 100) == b"data"
+    with pytest.raises(OSError, match="larger than 3 bytes"):
+        read_private(good, 3)
+    with pytest.raises(FileNotFoundError):
+        read_private(tmp_path / "missing", 100)
+    fifo = tmp_path / "fifo"
+    os.mkfifo(fifo)
+    with pytest.raises(OSError, match="not a regular file"):
+        read_private(fifo, 100)  # returns at once: opened without blocking
+    (tmp_path / "link").symlink_to(good)
+    with pytest.raises(OSError, match="symbolic link"):
+        read_private(tmp_path / "link", 100)
+    good.chmod(0o622)
+    with pytest.raises(NotPrivate, match="writable by group and others"):
+        read_private(good, 100)
+    good.chmod(0o600)
+    try:
+        os.chown(good, 65534, -1)
+    except PermissionError:
+        pytest.skip("cannot give a file to another user here")
+    with pytest.raises(NotPrivate, match="owned by user 65534"):
+        read_private(good, 100)
+
+
+def test_leftovers_older_than_the_age_are_removed(tmp_path):
+    old, young = tmp_path / ".build-1", tmp_path / ".x.json.ab12.tmp"
+    old.mkdir()
+    young.write_text("")
+    kept = tmp_path / "entry.json"
+    kept.write_text("")
+    os.utime(old, (0, 0))
+    os.utime(kept, (0, 0))
+    assert remove_leftovers(tmp_path, (".build-",), older_than=60) == [".build-1"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == [".x.json.ab12.tmp", "entry.json"]
+    assert files.TEMPORARY_SUFFIX == ".tmp"

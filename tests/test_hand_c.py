@@ -7,7 +7,7 @@ import pytest
 from references import SEED003_LINKAGE, mp_fourbar, seed003_positions
 from symlink import cache, compiled
 from symlink.compiled import CompilerUnavailable, compiled_solver
-from symlink.hand_c import hand_positions
+from benchmarks.hand_c import hand_positions
 from symlink.scene import catalog_linkage
 
 

@@ -54,8 +54,8 @@ def _one_line(message: object) -> str:
 
 
 def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
-    """Warnings as one line on stderr (RuntimeWarnings from NumPy are not shown at all)."""
-    if issubclass(category, RuntimeWarning):
+    """Warnings as one line on stderr; NumPy's plain RuntimeWarnings (overflow, 0/0) are not shown at all."""
+    if category is RuntimeWarning:
         return
     print(f"symlink: warning: {_one_line(message)}", file=sys.stderr)
 

@@ -1,4 +1,4 @@
-"""``symlink bench``: run time against error of four-bar position solvers, in one run.
+"""The benchmark (``python -m benchmarks``, also ``symlink bench``): run time against error of four-bar position solvers, in one run.
 
 The workload is a fixed-seed set of four-bars: random ones (link lengths
 log-uniform over a decade, scaled by 10^-3 to 10^3, half of them Grashof,
@@ -14,7 +14,7 @@ Methods (``--methods`` picks some):
 ==================  ===========================================================
 ``symlink``          symlink's generated NumPy solver, positions + rates + accelerations
 ``symlink-positions`` the same, positions only (coupler and rocker angles)
-``hand-numpy``       the half-angle (A, B, C) formula of ``seeds/003``, vectorised by hand
+``hand-numpy``       the half-angle (A, B, C) formula of seed paper 003, vectorised by hand
 ``lambdify-nocse``   symlink's expressions (positions + rates + accelerations), fully
                      substituted, through ``sympy.lambdify`` without common subexpressions
 ``fsolve``           ``scipy.optimize.fsolve`` on the loop closure, one call per value
@@ -59,10 +59,13 @@ from typing import Callable, Sequence
 import mpmath
 import numpy
 
-from .reachability import crank_range
-from .files import write_atomic
+if __package__ in (None, ""):  # run as a script, python benchmarks/bench.py: import from this checkout
+    sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-__all__ = ["benchmark", "METHODS", "main", "add_command", "run", "hand_numpy", "reference_positions"]
+from symlink.analysis import crank_range
+from symlink.files import write_atomic
+
+__all__ = ["benchmark", "METHODS", "main", "hand_numpy", "reference_positions"]
 
 METHODS = ("symlink", "symlink-positions", "hand-numpy", "lambdify-nocse", "fsolve", "newton", "sympy-evalf",
            "symlink-c", "hand-c")
@@ -190,7 +193,7 @@ def closure_residual(sweep: Sweep, beta: numpy.ndarray, phi: numpy.ndarray) -> n
 # --- the methods -------------------------------------------------------------
 
 def hand_numpy(theta, a: float, b: float, c: float, d: float, branch: int):
-    """(beta, phi) by the half-angle solution of ``seeds/003``, vectorised by hand.
+    """(beta, phi) by the half-angle solution of seed paper 003, vectorised by hand.
 
     ``A t^2 + B t + C = 0`` with ``t = tan(phi/2)``, K = (a^2 - b^2 + c^2 + d^2)/2,
     A = K - a(d - c) cos(theta) - c d, B = -2 a c sin(theta),
@@ -286,8 +289,8 @@ def _inlined(definitions) -> dict:
 
 
 def _symlink(outputs: Sequence[str]):
-    from .cache import generated_code
-    from .scene import catalog_linkage
+    from symlink.cache import generated_code
+    from symlink.scene import catalog_linkage
     function = generated_code(catalog_linkage("fourbar"), outputs).function
     rates = {"thetadot": CRANK_SPEED, "thetaddot": CRANK_ACCEL} if len(outputs) > 2 else {}
     return _keywords(function, **rates)
@@ -295,8 +298,8 @@ def _symlink(outputs: Sequence[str]):
 
 def _lambdify():
     import sympy as sp
-    from .position import ClampedSqrt
-    from .scene import catalog_linkage
+    from symlink.position import ClampedSqrt
+    from symlink.scene import catalog_linkage
     program = catalog_linkage("fourbar").program(EVERYTHING)
     whole = _inlined(program.assignments)
     expressions = [program.outputs[name].xreplace(whole).replace(ClampedSqrt, lambda x, _: sp.sqrt(x))
@@ -338,7 +341,7 @@ def _newton():
 
 def _evalf():
     import sympy as sp
-    from .scene import catalog_linkage
+    from symlink.scene import catalog_linkage
     linkage = catalog_linkage("fourbar")
     whole = _inlined(linkage.positions.items())
     beta, phi = (whole[q] for q in linkage.unknowns)
@@ -355,26 +358,30 @@ def _evalf():
 
 def _compiled():
     try:
-        from .compiled import CompiledSolver, CompilerUnavailable
+        from symlink.compiled import CompiledSolver, CompileError, CompilerUnavailable
     except ImportError:
         raise Unavailable("symlink.compiled is not available") from None
-    from .scene import catalog_linkage
+    from symlink.scene import catalog_linkage
     try:
         return _keywords(CompiledSolver(catalog_linkage("fourbar"), POSITIONS).function)
     except CompilerUnavailable as error:
         raise Unavailable(f"no C compiler: {error}") from None
+    except (CompileError, OSError) as error:
+        raise Unavailable(f"cannot build or load the library: {error}") from None
 
 
 def _hand_c():
     try:
-        from .compiled import CompilerUnavailable
-        from .hand_c import hand_library, hand_positions
+        from symlink.compiled import CompileError, CompilerUnavailable
+        from benchmarks.hand_c import hand_library, hand_positions
     except ImportError:
-        raise Unavailable("symlink.hand_c is not available") from None
+        raise Unavailable("benchmarks.hand_c is not available") from None
     try:
         hand_library()
     except CompilerUnavailable as error:
         raise Unavailable(f"no C compiler: {error}") from None
+    except (CompileError, OSError) as error:
+        raise Unavailable(f"cannot build or load the library: {error}") from None
 
     def solve(sweep):
         result = hand_positions(sweep.theta, *sweep.lengths, sweep.branch)
@@ -498,9 +505,9 @@ print(json.dumps(result))
 
 def derivation_scenes(quick: bool) -> list[tuple[str, list[str]]]:
     """The four-bar's positions and its full scene; unless quick, every closed-form catalog linkage's full scene."""
-    from .catalog import CATALOG
-    from .scene import catalog_linkage
-    from .vectors import acceleration, rate
+    from symlink.catalog import CATALOG
+    from symlink.scene import catalog_linkage
+    from symlink.vectors import acceleration, rate
     scenes = [("fourbar", POSITIONS), ("fourbar", EVERYTHING)]
     for name in ([] if quick else CATALOG):
         linkage = catalog_linkage(name)
@@ -522,7 +529,7 @@ def derivation_times(scenes: list[tuple[str, list[str]]]) -> list[dict]:
             done = subprocess.run([sys.executable, "-c", _DERIVATION_SCRIPT, json.dumps(scenes)],
                                   capture_output=True, text=True, env=env, check=True)
             runs.append(json.loads(done.stdout))
-    from .codegen.numpy import load_numpy_module
+    from symlink.codegen.numpy import load_numpy_module
     for cold, cached in zip(runs[0]["scenes"], runs[1]["scenes"]):
         loads = []
         for _ in range(5):
@@ -564,8 +571,9 @@ def benchmark(sizes: Sequence[int] = FULL_SIZES, methods: Sequence[str] = METHOD
 
 
 def _say(verbose: bool, text: str) -> None:
+    """A progress line, on stderr (stdout carries the results only)."""
     if verbose:
-        print(text, flush=True)
+        print(text, file=sys.stderr, flush=True)
 
 
 # --- reporting ---------------------------------------------------------------
@@ -675,19 +683,50 @@ def report_derivations(rows: list[dict]) -> list[str]:
 
 # --- the command line ----------------------------------------------------------
 
-def add_options(parser: argparse.ArgumentParser) -> None:
-    from .cli.options import number_list
+class _UsageError(ValueError):
+    """A bad command line: reported in one line, exit status 2."""
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse whose errors are one line (raised, then printed by :func:`main`), not a usage dump."""
+
+    def error(self, message: str) -> None:
+        raise _UsageError(message)
+
+
+def _sizes(text: str) -> list[float]:
+    """Comma-separated numbers (checked to be positive whole numbers later, with the other options)."""
+    values = []
+    for item in (part.strip() for part in text.split(",")):
+        if not item:
+            continue
+        try:
+            value = float(item)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"not a number: {item!r}") from None
+        if not math.isfinite(value):
+            raise argparse.ArgumentTypeError(f"not a finite number: {item!r}")
+        values.append(value)
+    return values
+
+
+def build_parser(prog: str = "python -m benchmarks") -> argparse.ArgumentParser:
+    """The benchmark's options."""
+    parser = _Parser(prog=prog, description="Run time against error of the four-bar position solvers. "
+                     "Progress goes to stderr, the table and the targets to stdout.",
+                     epilog=f"example: {prog} --quick --json bench.json --plot bench.png")
     parser.add_argument("--quick", action="store_true", help=f"N = {', '.join(map(str, QUICK_SIZES))} (under a minute)")
-    parser.add_argument("--sizes", type=number_list, metavar="LIST", help="comma-separated N (overrides --quick's)")
+    parser.add_argument("--sizes", type=_sizes, metavar="LIST", help="comma-separated N (overrides --quick's)")
     parser.add_argument("--methods", metavar="LIST", help=f"comma-separated, from {', '.join(METHODS)} (default all)")
     parser.add_argument("--seed", type=int, default=2024, help="random four-bars (default 2024)")
     parser.add_argument("--json", metavar="FILE", help="write the records as JSON")
     parser.add_argument("--plot", metavar="FILE", help="write the run-time-against-error plot (PNG)")
     parser.add_argument("--no-derivation", action="store_true", help="skip the symbolic-side timings")
+    return parser
 
 
 def run(args: argparse.Namespace) -> int:
-    """Run the benchmark as the options say; print the table, targets and symbolic timings."""
+    """Run the benchmark as the options say: progress on stderr; the table, targets and symbolic timings on stdout."""
     if args.sizes is not None:
         if not args.sizes or any(n != int(n) or n < 1 for n in args.sizes):
             raise ValueError(f"--sizes must be positive whole numbers, got {args.sizes}")
@@ -695,14 +734,16 @@ def run(args: argparse.Namespace) -> int:
     else:
         sizes = list(QUICK_SIZES if args.quick else FULL_SIZES)
     methods = METHODS if args.methods is None else [m.strip() for m in args.methods.split(",") if m.strip()]
+    unknown = [m for m in methods if m not in METHODS]
+    if unknown:
+        raise ValueError(f"unknown method {unknown[0]!r}; choose from {', '.join(METHODS)}")
     for path in (args.json, args.plot):
         if path is not None and not Path(path).parent.is_dir():
             raise ValueError(f"cannot write {path}: no folder {Path(path).parent}")
     reference = 400 if args.quick else 2000
-    print(f"symlink bench: N = {', '.join(map(str, sizes))}; errors on up to {reference} values a size "
-          f"(50-digit mpmath), residuals on all", flush=True)
+    _say(True, f"symlink bench: N = {', '.join(map(str, sizes))}; errors on up to {reference} values a size "
+               f"(50-digit mpmath), residuals on all")
     records = benchmark(sizes, methods, quick=args.quick, seed=args.seed, reference=reference)
-    print()
     print(table(records))
     print()
     for line in targets(records):
@@ -718,17 +759,25 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def main(argv: Sequence[str] | None = None, prog: str = "python -m symlink.bench") -> int:
-    """``python -m symlink.bench``: the same as ``symlink bench``."""
-    from .cli.options import Parser
-    parser = Parser(prog=prog, description="Run time against error of the four-bar solvers.")
-    add_options(parser)
+def main(argv: Sequence[str] | None = None, prog: str = "python -m benchmarks") -> int:
+    """Run the benchmark from command-line arguments; returns the exit status.
+
+    Bad options: one line on stderr, status 2; a file that cannot be written:
+    one line, status 1; Ctrl-C: status 130, quietly.
+    """
     try:
-        return run(parser.parse_args(argv))
+        return run(build_parser(prog).parse_args(argv))
     except ValueError as error:
         print(f"symlink: error: {error}", file=sys.stderr)
         return 2
+    except OSError as error:
+        if isinstance(error, BrokenPipeError):
+            return 0
+        print(f"symlink: error: cannot write: {error}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        return 130
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(main(prog="python benchmarks/bench.py"))

@@ -1,7 +1,7 @@
 """Hand-written C loops of the four-bar positions: the baselines that the generated C is measured against.
 
 :data:`HAND_C_SOURCE` is what a careful programmer writes by hand for the
-four-bar of DESIGN.md (``a e^{i theta} + b e^{i beta} = d + c e^{i phi}``),
+four-bar (``a e^{i theta} + b e^{i beta} = d + c e^{i phi}``),
 with the link lengths as scalars and the parameter-only terms hoisted out of
 the loop:
 
@@ -16,7 +16,7 @@ the loop:
   ``n = (Wy, -Wx)`` (W turned clockwise) and
   ``H = (b+c+w)(b+c-w)(w+b-c)(w-b+c)``.
 * ``hand_fourbar_halfangle``: the half-angle (Freudenstein) solution of
-  ``seeds/003`` (K, A, B, C; phi = 2 atan((-B - branch sqrt(B^2 - 4AC))/(2A)),
+  seed paper 003 (K, A, B, C; phi = 2 atan((-B - branch sqrt(B^2 - 4AC))/(2A)),
   its "-" root being branch +1), beta from the loop's x and y components.
 
 Both are compiled with :func:`symlink.compiled.compile_shared`, so with the
@@ -35,7 +35,7 @@ import functools
 
 import numpy
 
-from .position import TOLERANCE
+from symlink.position import TOLERANCE
 
 __all__ = ["HAND_C_SOURCE", "hand_library", "hand_positions"]
 
@@ -88,7 +88,7 @@ def hand_library() -> ctypes.CDLL:
 
     Loaded once a process, as a caller of a C library would.
     """
-    from .compiled import compile_shared
+    from symlink.compiled import compile_shared
     library = compile_shared(HAND_C_SOURCE)
     for name in _FUNCTIONS:
         function = getattr(library, name)

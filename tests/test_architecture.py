@@ -1,0 +1,136 @@
+"""The house stays standing: symlink's import graph has no cycle, and the command line is a leaf.
+
+The graph is read from the source with ``ast``: every ``import`` and ``from
+... import`` of a symlink module, at the top of a module or inside a
+function, is an edge (imports under ``if TYPE_CHECKING:`` are for type
+checkers only and are left out).  Importing a name from a package counts as
+importing that package's ``__init__``, and a submodule's import of its own
+package is implied, not counted.
+"""
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+PACKAGE = Path(__file__).resolve().parent.parent / "symlink"
+
+
+def module_name(path: Path) -> str:
+    parts = path.relative_to(PACKAGE.parent).with_suffix("").parts
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def _is_type_checking(node: ast.If) -> bool:
+    test = node.test
+    return (isinstance(test, ast.Name) and test.id == "TYPE_CHECKING") or (
+        isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING")
+
+
+def _imports(tree: ast.AST):
+    """Import nodes of a module, skipping ``if TYPE_CHECKING:`` blocks."""
+    for node in ast.iter_child_nodes(tree):
+        if isinstance(node, ast.If) and _is_type_checking(node):
+            yield from (n for child in node.orelse for n in _imports_of(child))
+            continue
+        yield from _imports_of(node)
+
+
+def _imports_of(node: ast.AST):
+    if isinstance(node, (ast.Import, ast.ImportFrom)):
+        yield node
+    else:
+        yield from _imports(node)
+
+
+def imported_modules(path: Path, modules: set[str]) -> set[str]:
+    """The symlink modules (and other top-level names, e.g. ``argparse``) that ``path`` imports."""
+    name = module_name(path)
+    package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+    found = set()
+    for node in _imports(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.Import):
+            for alias in node.names:
+                found.add(alias.name)
+            continue
+        if node.level:
+            base = package.split(".")
+            base = base[:len(base) - node.level + 1]
+            target = ".".join(base + ([node.module] if node.module else []))
+        else:
+            target = node.module
+        for alias in node.names:  # from package import submodule
+            candidate = f"{target}.{alias.name}"
+            found.add(candidate if candidate in modules else target)
+    return found
+
+
+def import_graph() -> dict[str, set[str]]:
+    paths = sorted(PACKAGE.rglob("*.py"))
+    modules = {module_name(p) for p in paths}
+    graph = {}
+    for path in paths:
+        name = module_name(path)
+        edges = set()
+        for target in imported_modules(path, modules):
+            if target in modules or target.split(".")[0] in {"argparse"}:
+                if target != name and not name.startswith(target + "."):  # a package's own __init__: implied
+                    edges.add(target)
+        graph[name] = edges
+    return graph
+
+
+def find_cycle(graph: dict[str, set[str]]) -> list[str] | None:
+    """One cycle of the graph as a list of modules, or None."""
+    state: dict[str, int] = {}
+    stack: list[str] = []
+
+    def visit(node: str) -> list[str] | None:
+        state[node] = 1
+        stack.append(node)
+        for target in sorted(graph.get(node, ())):
+            if target not in graph:
+                continue
+            if state.get(target) == 1:
+                return stack[stack.index(target):] + [target]
+            if target not in state:
+                found = visit(target)
+                if found:
+                    return found
+        stack.pop()
+        state[node] = 2
+        return None
+
+    for node in sorted(graph):
+        if node not in state:
+            found = visit(node)
+            if found:
+                return found
+    return None
+
+
+def test_the_graph_is_read_from_the_source():
+    graph = import_graph()
+    assert "symlink.cli" in graph and "symlink.linkage" in graph
+    assert "symlink.loops" in graph["symlink.linkage"]  # a top-level import
+    assert "symlink.linkage" in graph["symlink.cli.tables"]
+
+
+def test_the_cycle_finder_finds_cycles():
+    assert find_cycle({"a": {"b"}, "b": {"c"}, "c": {"a"}}) == ["a", "b", "c", "a"]
+    assert find_cycle({"a": {"b"}, "b": set(), "c": {"a", "b"}}) is None
+
+
+def test_no_import_cycle():
+    cycle = find_cycle(import_graph())
+    assert cycle is None, "import cycle: " + " -> ".join(cycle)
+
+
+@pytest.mark.parametrize("forbidden", ["symlink.cli", "argparse"])
+def test_the_command_line_is_a_leaf(forbidden):
+    """Nothing outside symlink/cli imports the command line or argparse (``__main__`` runs it)."""
+    offenders = sorted(name for name, edges in import_graph().items()
+                       if not (name == "symlink.cli" or name.startswith("symlink.cli.") or name == "symlink.__main__")
+                       and any(e == forbidden or e.startswith(forbidden + ".") for e in edges))
+    assert offenders == [], f"{forbidden} imported by {', '.join(offenders)}"

@@ -1,0 +1,355 @@
+"""Rigid bodies and joints of a linkage, derived from its vector loops and points, and its mobility.
+
+A :class:`~symlink.linkage.Linkage` says how its vectors close; this module
+reads off what a drawing and a mobility count need from the same vectors:
+
+* **Joints are where vectors meet.**  Every vector is a segment from its tail
+  to its head.  Consecutive terms of a loop or of a named point's sum share
+  an end (a term walked backwards, ``- BC``, goes from its head to its tail),
+  every point's sum starts at the origin, and one :class:`Vector` used in
+  several loops and points is one segment.  So the ends of the segments fall
+  into nodes: the joints, the corners inside a body, and the named points.
+* **A vector's direction tells its body.**  Vectors with a constant angle lie
+  on the ground; vectors whose angles share the same time-varying part
+  (``phi`` and ``phi + alpha``) turn together, so they lie on one rigid body
+  (the Watt II rocker ``DC``, ``DE``: a ternary link).
+* **A vector whose length is a coordinate is a slider travel**: a prismatic
+  joint whose tail lies on the guide (the body of its direction) and whose
+  head lies on a block, one more body.  Fixed vectors in the guide's direction
+  that carry on from the head move with the block (a translating block keeps
+  its guide's orientation): the slider-crank's offset ``SC`` after the travel
+  ``AS = s e^{i 0}`` is part of the block that the connecting rod is pinned to.
+* Where vectors of k different bodies meet at one node there is a pin joining
+  k bodies, which counts as k - 1 revolute joints.
+
+Where the vectors alone are ambiguous (two links that a user drives with the
+same angle, or a fixed vector that sits on a block rather than the ground),
+say it with ``bodies={"body name": ["vector name", ...]}``: each listed vector
+is put on that body, every other one is placed as above.
+
+The mobility is Gruebler/Kutzbach's ``M = 3 (n - 1) - 2 j1 - j2`` with n
+bodies (the ground included), j1 one-freedom joints (revolute and prismatic)
+and j2 two-freedom joints (none here: every joint of a vector-loop linkage is
+a pin or a slider).
+
+>>> from symlink.catalog import fourbar, watt2
+>>> four = mechanism(fourbar())
+>>> [body.name for body in four.bodies], four.mobility
+(['ground', 'crank', 'coupler', 'rocker'], 1)
+>>> four.body("coupler").joints
+('B', 'C')
+>>> six = mechanism(watt2())
+>>> six.body("rocker").joints, six.mobility
+(('C', 'D', 'E'), 1)
+>>> str(six.joint("C").position)
+'AB + BC'
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Mapping, Sequence
+
+import sympy as sp
+
+from .linkage import Linkage
+from .vectors import Vector, VectorSum
+
+__all__ = ["Body", "Joint", "Mechanism", "mechanism", "REVOLUTE", "PRISMATIC", "GROUND"]
+
+REVOLUTE = "revolute"
+PRISMATIC = "prismatic"
+GROUND = "ground"
+_ORIGIN = "origin"
+
+
+@dataclass(frozen=True)
+class Joint:
+    """A pin or a slider.
+
+    ``bodies`` are the names of the bodies it joins: a pin joining k bodies
+    counts as k - 1 joints (:attr:`count`), a slider joins its guide and its
+    block.  ``position`` is the joint as a sum of vectors from the origin
+    (an empty sum at the origin), evaluated like a linkage's points, or
+    ``None`` where no point's vectors tie the joint to the origin.  A
+    slider also has ``guide_start``, the tail of its travel on the guide, and
+    ``direction``, the angle of its guide.
+    """
+
+    name: str
+    kind: str
+    bodies: tuple[str, ...]
+    position: VectorSum | None
+    guide_start: VectorSum | None = None
+    direction: sp.Expr | None = None
+
+    @property
+    def count(self) -> int:
+        """How many one-freedom joints this is in a Gruebler count: k - 1 for a pin joining k bodies."""
+        return len(self.bodies) - 1 if self.kind == REVOLUTE else 1
+
+    @property
+    def grounded(self) -> bool:
+        """Whether the ground is one of the bodies joined (a ground pivot or a slider on a fixed guide)."""
+        return GROUND in self.bodies
+
+
+@dataclass(frozen=True)
+class Body:
+    """A rigid body: the vectors on it and the names of its joints.
+
+    A body with two joints is a binary link (draw it as a bar), with three or
+    more a ternary or larger link (draw it as a polygon through its joints).
+    """
+
+    name: str
+    vectors: tuple[str, ...]
+    joints: tuple[str, ...]
+
+    @property
+    def is_ground(self) -> bool:
+        return self.name == GROUND
+
+
+@dataclass(frozen=True)
+class Mechanism:
+    """A linkage's bodies and joints, and its Gruebler/Kutzbach mobility."""
+
+    bodies: tuple[Body, ...]
+    joints: tuple[Joint, ...]
+
+    @property
+    def one_freedom_joints(self) -> int:
+        """j1: revolute joints (a pin joining k bodies counted k - 1 times) plus prismatic joints."""
+        return sum(joint.count for joint in self.joints)
+
+    @property
+    def mobility(self) -> int:
+        """Gruebler/Kutzbach: ``3 (n - 1) - 2 j1 - j2``, with j2 = 0 (no two-freedom joints)."""
+        return 3 * (len(self.bodies) - 1) - 2 * self.one_freedom_joints
+
+    def body(self, name: str) -> Body:
+        for body in self.bodies:
+            if body.name == name:
+                return body
+        raise ValueError(f"no body {name!r}; the bodies are {', '.join(b.name for b in self.bodies)}")
+
+    def joint(self, name: str) -> Joint:
+        for joint in self.joints:
+            if joint.name == name:
+                return joint
+        raise ValueError(f"no joint {name!r}; the joints are {', '.join(j.name for j in self.joints)}")
+
+
+class _Nodes:
+    """Union-find over the ends of the vectors: ``(vector, "tail")`` and ``(vector, "head")``."""
+
+    def __init__(self) -> None:
+        self.parent: dict[object, object] = {}
+
+    def find(self, item: object) -> object:
+        self.parent.setdefault(item, item)
+        while self.parent[item] != item:
+            self.parent[item] = self.parent[self.parent[item]]
+            item = self.parent[item]
+        return item
+
+    def join(self, first: object, second: object) -> None:
+        first, second = self.find(first), self.find(second)
+        if first != second:
+            self.parent[second] = first
+
+
+def _start(sign: int, vector: Vector) -> tuple:
+    return (vector, "tail") if sign > 0 else (vector, "head")
+
+
+def _end(sign: int, vector: Vector) -> tuple:
+    return (vector, "head") if sign > 0 else (vector, "tail")
+
+
+def _moving_part(angle: sp.Expr, coordinates: set[sp.Symbol]) -> sp.Expr:
+    """The time-varying part of an angle: zero for a fixed direction, ``phi`` for ``phi + alpha``."""
+    return sp.Add(*(term for term in sp.Add.make_args(sp.expand(angle)) if term.free_symbols & coordinates))
+
+
+def _vector_name(vector: Vector) -> str:
+    return vector.name or str(vector)
+
+
+def mechanism(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | None = None) -> Mechanism:
+    """The bodies and joints of ``linkage``, derived from its loops and points (see the module docstring).
+
+    ``bodies`` maps a body name to names of vectors that lie on it, overriding
+    where they would be placed from their directions alone.
+
+    >>> from symlink.catalog import slider_crank
+    >>> found = mechanism(slider_crank())
+    >>> [(body.name, body.joints) for body in found.bodies]
+    [('ground', ('A', 'AS')), ('crank', ('A', 'B')), ('slider', ('C', 'AS')), ('conrod', ('B', 'C'))]
+    >>> found.joint("AS").kind, str(found.joint("AS").position), found.mobility
+    ('prismatic', 'AS', 1)
+    """
+    coordinates = set(linkage.coordinates)
+    nodes = _Nodes()
+    vectors: list[Vector] = []  # every vector once, in order of first use
+    chains: list[tuple[tuple[tuple[int, Vector], ...], bool]] = [
+        (point.as_sum().terms, False) for point in linkage.points.values() if point is not None]
+    chains += [(loop.terms, True) for loop in linkage.loops]
+    for terms, closed in chains:
+        for _, vector in terms:
+            if vector not in vectors:
+                vectors.append(vector)
+        pairs = zip(terms, terms[1:] + (terms[:1] if closed else ()))
+        for before, after in pairs:
+            nodes.join(_end(*before), _start(*after))
+        if not closed:
+            nodes.join(_ORIGIN, _start(*terms[0]))
+    names = [_vector_name(v) for v in vectors]
+    repeated = sorted({n for n in names if names.count(n) > 1})
+    if repeated:
+        raise ValueError(f"{linkage.name}: two different vectors are both named {repeated[0]!r}; "
+                         "give each vector its own name (or use one Vector object for one segment)")
+
+    # Names of nodes: the linkage's points, the origin.
+    point_names: dict[object, str] = {}
+    for name, point in linkage.points.items():
+        node = nodes.find(_ORIGIN if point is None else _end(*point.as_sum().terms[-1]))
+        point_names.setdefault(node, name)
+
+    # Bodies of the vectors: ground, turning with a coordinate, or a slider block.
+    travels = [v for v in vectors if v.length.free_symbols & coordinates]
+    body_of: dict[Vector, str] = {}
+    for vector in vectors:
+        body_of[vector] = _body_name(linkage, _moving_part(vector.angle, coordinates))
+    block_of: dict[Vector, str] = {}
+    for travel in travels:
+        block_of[travel] = _block_name(linkage, travel, coordinates)
+    for travel in travels:
+        guide = _moving_part(travel.angle, coordinates)
+        frontier = [nodes.find(_end(1, travel))]
+        seen = set(frontier)
+        while frontier:
+            node = frontier.pop()
+            for vector in vectors:
+                if vector in block_of or _moving_part(vector.angle, coordinates) != guide:
+                    continue
+                ends = {nodes.find(_start(1, vector)), nodes.find(_end(1, vector))}
+                if node in ends and body_of[vector] != block_of[travel]:
+                    body_of[vector] = block_of[travel]
+                    for other in ends - seen:
+                        seen.add(other)
+                        frontier.append(other)
+    by_name = dict(zip(names, vectors))
+    for body, listed in (bodies or {}).items():
+        if not isinstance(body, str) or not body:
+            raise ValueError(f"body names must be non-empty strings, got {body!r}")
+        for name in listed:
+            if name not in by_name:
+                raise ValueError(f"body {body!r}: {linkage.name} has no vector {name!r}; "
+                                 f"its vectors are {', '.join(names)}")
+            if by_name[name] in block_of:
+                raise ValueError(f"body {body!r}: {name} is a slider travel, the joint between its guide and "
+                                 "its block; list the block's other vectors instead")
+            body_of[by_name[name]] = body
+
+    # Which bodies meet at each node.
+    at_node: dict[object, list[str]] = {}
+    order: list[object] = []
+
+    def touch(node: object, body: str) -> None:
+        node = nodes.find(node)
+        if node not in at_node:
+            at_node[node] = []
+            order.append(node)
+        if body not in at_node[node]:
+            at_node[node].append(body)
+
+    if linkage.points and any(p is None for p in linkage.points.values()):
+        touch(_ORIGIN, GROUND)
+    for vector in vectors:
+        touch(_start(1, vector), body_of[vector])
+        touch(_end(1, vector), block_of.get(vector, body_of[vector]))
+
+    positions = _positions(vectors, nodes)
+    for name, point in linkage.points.items():  # a named point keeps the sum it was defined by
+        node = nodes.find(_ORIGIN if point is None else _end(*point.as_sum().terms[-1]))
+        positions[node] = VectorSum(()) if point is None else point.as_sum()
+    joints: list[Joint] = []
+    joint_names: dict[object, str] = {}
+    used = set(linkage.points)
+    for node in order:
+        if len(at_node[node]) < 2:
+            continue
+        name = point_names.get(node) or _fresh("J", used)
+        used.add(name)
+        joint_names[node] = name
+        joints.append(Joint(name, REVOLUTE, _ground_first(at_node[node]), positions.get(node)))
+    slider_joints: dict[Vector, str] = {}
+    for travel in travels:
+        name = _vector_name(travel)
+        if name in used:
+            name = _fresh(name + "_", used)
+        used.add(name)
+        slider_joints[travel] = name
+        head, tail = nodes.find(_end(1, travel)), nodes.find(_start(1, travel))
+        joints.append(Joint(name, PRISMATIC, (body_of[travel], block_of[travel]), positions.get(head),
+                            positions.get(tail), travel.angle))
+
+    body_names = _ground_first([GROUND] + list(dict.fromkeys(body_of.values())) + list(block_of.values()))
+    result = []
+    for body in dict.fromkeys(body_names):
+        on_body = [v for v in vectors if body_of[v] == body and v not in block_of]
+        members = [joint_names[n] for n in order if n in joint_names and body in at_node[n]]
+        members += [slider_joints[t] for t in travels if body in (body_of[t], block_of[t])]
+        if body == GROUND or on_body or members:
+            result.append(Body(body, tuple(_vector_name(v) for v in on_body), tuple(members)))
+    return Mechanism(tuple(result), tuple(joints))
+
+
+def _ground_first(names: Sequence[str]) -> tuple[str, ...]:
+    unique = list(dict.fromkeys(names))
+    return tuple(([GROUND] if GROUND in unique else []) + [n for n in unique if n != GROUND])
+
+
+def _fresh(prefix: str, used: set[str]) -> str:
+    number = 1
+    while f"{prefix}{number}" in used:
+        number += 1
+    return f"{prefix}{number}"
+
+
+def _body_name(linkage: Linkage, moving: sp.Expr) -> str:
+    """A body's name: ``ground``, else the role of the coordinate it turns with, else that coordinate."""
+    if moving == 0:
+        return GROUND
+    for role, coordinate in linkage.roles.items():
+        if moving == coordinate:
+            return role
+    return str(moving)
+
+
+def _block_name(linkage: Linkage, travel: Vector, coordinates: set[sp.Symbol]) -> str:
+    """A slider block's name: the role of its travel coordinate, else ``block_<travel vector>``."""
+    moving = _moving_part(travel.length, coordinates)
+    for role, coordinate in linkage.roles.items():
+        if moving == coordinate:
+            return role
+    return f"block_{_vector_name(travel)}"
+
+
+def _positions(vectors: Sequence[Vector], nodes: _Nodes) -> dict[object, VectorSum]:
+    """Every node reachable from the origin, as a sum of vectors from it (walked breadth first)."""
+    positions: dict[object, VectorSum] = {nodes.find(_ORIGIN): VectorSum(())}
+    frontier = [nodes.find(_ORIGIN)]
+    while frontier:
+        following = []
+        for node in frontier:
+            for vector in vectors:
+                for sign in (1, -1):
+                    start, end = nodes.find(_start(sign, vector)), nodes.find(_end(sign, vector))
+                    if start == node and end not in positions:
+                        step = VectorSum(((sign, vector),))
+                        positions[end] = positions[node] + step
+                        following.append(end)
+        frontier = following
+    return positions

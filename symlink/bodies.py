@@ -29,8 +29,8 @@ is put on that body, every other one is placed as above.
 
 The mobility is Gruebler/Kutzbach's ``M = 3 (n - 1) - 2 j1 - j2`` with n
 bodies (the ground included), j1 one-freedom joints (revolute and prismatic)
-and j2 two-freedom joints (none here: every joint of a vector-loop linkage is
-a pin or a slider).
+and j2 two-freedom joints: every joint that vector loops show is a pin or a
+slider, so j2 counts only the gear pairs and cams given as ``higher_pairs``.
 
 >>> from symlink.catalog import fourbar, watt2
 >>> four = mechanism(fourbar())
@@ -99,11 +99,14 @@ class Body:
 
     A body with two joints is a binary link (draw it as a bar), with three or
     more a ternary or larger link (draw it as a polygon through its joints).
+    ``points`` are the linkage's named points on the body, joints or not (the
+    Jansen leg's foot H is a corner of its lower triangle but no joint).
     """
 
     name: str
     vectors: tuple[str, ...]
     joints: tuple[str, ...]
+    points: tuple[str, ...] = ()
 
     @property
     def is_ground(self) -> bool:
@@ -116,6 +119,7 @@ class Mechanism:
 
     bodies: tuple[Body, ...]
     joints: tuple[Joint, ...]
+    higher_pairs: tuple[tuple[str, str], ...] = ()
 
     @property
     def one_freedom_joints(self) -> int:
@@ -124,8 +128,8 @@ class Mechanism:
 
     @property
     def mobility(self) -> int:
-        """Gruebler/Kutzbach: ``3 (n - 1) - 2 j1 - j2``, with j2 = 0 (no two-freedom joints)."""
-        return 3 * (len(self.bodies) - 1) - 2 * self.one_freedom_joints
+        """Gruebler/Kutzbach: ``3 (n - 1) - 2 j1 - j2``, j2 the :attr:`higher_pairs` (gears, cams)."""
+        return 3 * (len(self.bodies) - 1) - 2 * self.one_freedom_joints - len(self.higher_pairs)
 
     def body(self, name: str) -> Body:
         for body in self.bodies:
@@ -176,11 +180,14 @@ def _vector_name(vector: Vector) -> str:
     return vector.name or str(vector)
 
 
-def mechanism(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | None = None) -> Mechanism:
+def mechanism(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | None = None,
+              higher_pairs: Sequence[tuple[str, str]] = ()) -> Mechanism:
     """The bodies and joints of ``linkage``, derived from its loops and points (see the module docstring).
 
     ``bodies`` maps a body name to names of vectors that lie on it, overriding
-    where they would be placed from their directions alone.
+    where they would be placed from their directions alone.  ``higher_pairs``
+    names pairs of bodies in two-freedom contact (a gear pair, a cam and its
+    follower), which vector loops cannot show; each counts once in j2.
 
     >>> from symlink.catalog import slider_crank
     >>> found = mechanism(slider_crank())
@@ -224,10 +231,11 @@ def mechanism(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | None = Non
     block_of: dict[Vector, str] = {}
     for travel in travels:
         block_of[travel] = _block_name(linkage, travel, coordinates)
+    block_nodes: dict[Vector, set] = {}
     for travel in travels:
         guide = _moving_part(travel.angle, coordinates)
         frontier = [nodes.find(_end(1, travel))]
-        seen = set(frontier)
+        seen = block_nodes[travel] = set(frontier)
         while frontier:
             node = frontier.pop()
             for vector in vectors:
@@ -239,6 +247,12 @@ def mechanism(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | None = Non
                     for other in ends - seen:
                         seen.add(other)
                         frontier.append(other)
+    for travel in travels:  # a guide on a block (a Scotch yoke's slot) moves with that block
+        tail = nodes.find(_start(1, travel))
+        for other in travels:
+            if (other is not travel and tail in block_nodes[other]
+                    and _moving_part(other.angle, coordinates) == _moving_part(travel.angle, coordinates)):
+                body_of[travel] = block_of[other]
     by_name = dict(zip(names, vectors))
     for body, listed in (bodies or {}).items():
         if not isinstance(body, str) or not body:
@@ -270,7 +284,7 @@ def mechanism(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | None = Non
         touch(_start(1, vector), body_of[vector])
         touch(_end(1, vector), block_of.get(vector, body_of[vector]))
 
-    positions = _positions(vectors, nodes)
+    positions = _positions(linkage, vectors, nodes)
     for name, point in linkage.points.items():  # a named point keeps the sum it was defined by
         node = nodes.find(_ORIGIN if point is None else _end(*point.as_sum().terms[-1]))
         positions[node] = VectorSum(()) if point is None else point.as_sum()
@@ -301,9 +315,21 @@ def mechanism(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | None = Non
         on_body = [v for v in vectors if body_of[v] == body and v not in block_of]
         members = [joint_names[n] for n in order if n in joint_names and body in at_node[n]]
         members += [slider_joints[t] for t in travels if body in (body_of[t], block_of[t])]
+        corners = {nodes.find(end) for v in on_body for end in (_start(1, v), _end(1, v))}
+        if body == GROUND and any(p is None for p in linkage.points.values()):
+            corners.add(nodes.find(_ORIGIN))
+        points = [point_names[n] for n in order if n in corners and n in point_names]
+        points += [point_names[n] for n in point_names if n in corners and point_names[n] not in points]
         if body == GROUND or on_body or members:
-            result.append(Body(body, tuple(_vector_name(v) for v in on_body), tuple(members)))
-    return Mechanism(tuple(result), tuple(joints))
+            result.append(Body(body, tuple(_vector_name(v) for v in on_body), tuple(members), tuple(points)))
+    known = [body.name for body in result]
+    pairs = []
+    for pair in higher_pairs:
+        if len(pair) != 2 or any(name not in known for name in pair) or pair[0] == pair[1]:
+            raise ValueError(f"higher pair {pair!r} must name two different bodies of {linkage.name} "
+                             f"({', '.join(known)})")
+        pairs.append((pair[0], pair[1]))
+    return Mechanism(tuple(result), tuple(joints), tuple(pairs))
 
 
 def _ground_first(names: Sequence[str]) -> tuple[str, ...]:
@@ -337,8 +363,23 @@ def _block_name(linkage: Linkage, travel: Vector, coordinates: set[sp.Symbol]) -
     return f"block_{_vector_name(travel)}"
 
 
-def _positions(vectors: Sequence[Vector], nodes: _Nodes) -> dict[object, VectorSum]:
-    """Every node reachable from the origin, as a sum of vectors from it (walked breadth first)."""
+def _positions(linkage: Linkage, vectors: Sequence[Vector], nodes: _Nodes) -> dict[object, VectorSum]:
+    """Every node reachable from the origin, as a sum of vectors from it (walked breadth first).
+
+    Two walks to one node must agree up to whole loops (which add up to zero);
+    if they do not, a loop's or a point's vectors were not written in walking
+    order, and the joints read off them would be wrong: ``ValueError``.
+    """
+    index = {vector: k for k, vector in enumerate(vectors)}
+
+    def formal(terms) -> list[int]:
+        row = [0] * len(vectors)
+        for sign, vector in terms:
+            row[index[vector]] += sign
+        return row
+
+    closures = [formal(loop.terms) for loop in linkage.loops]
+    rank = sp.Matrix(closures).rank() if closures else 0
     positions: dict[object, VectorSum] = {nodes.find(_ORIGIN): VectorSum(())}
     frontier = [nodes.find(_ORIGIN)]
     while frontier:
@@ -347,9 +388,22 @@ def _positions(vectors: Sequence[Vector], nodes: _Nodes) -> dict[object, VectorS
             for vector in vectors:
                 for sign in (1, -1):
                     start, end = nodes.find(_start(sign, vector)), nodes.find(_end(sign, vector))
-                    if start == node and end not in positions:
-                        step = VectorSum(((sign, vector),))
-                        positions[end] = positions[node] + step
+                    if start != node:
+                        continue
+                    reached = positions[node] + VectorSum(((sign, vector),))
+                    if end not in positions:
+                        positions[end] = reached
                         following.append(end)
+                        continue
+                    difference = [x - y for x, y in zip(formal(reached.terms), formal(positions[end].terms))]
+                    if any(difference) and sp.Matrix(closures + [difference]).rank() > rank:
+                        raise ValueError(
+                            f"{linkage.name}: {_described(reached)} and {_described(positions[end])} end at one joint but are not the "
+                            "same point; write each loop's and each point's vectors in walking order "
+                            "(every vector starting where the one before it ends)")
         frontier = following
     return positions
+
+
+def _described(position: VectorSum) -> str:
+    return str(position) if position.terms else "the origin"

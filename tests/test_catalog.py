@@ -423,3 +423,24 @@ def test_jansen_leg_walks_a_flat_stride():
     x, y = result["H_x"], result["H_y"]
     low = y < y.min() + 0.01 * np.ptp(y)
     assert low.sum() > 90 and np.ptp(x[low]) > 0.5 * np.ptp(x)
+
+
+def test_generated_jansen_module_against_50_digits():
+    import importlib.util
+    from pathlib import Path
+    path = Path(__file__).resolve().parent.parent / "generated" / "jansen.py"
+    spec = importlib.util.spec_from_file_location("generated_jansen", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    theta = np.radians(np.arange(0.0, 360.0, 45.0))
+    joints = module.joints(theta, **jansen_parameters())
+    speeds = module.velocities(theta, **jansen_parameters(), thetadot=2.0)
+    with mp.workdps(ref.DPS):
+        for n, t in enumerate(theta):
+            expected = mp_jansen_joints(mp.mpf(t), JANSEN_HOLY_NUMBERS, (1, 1, 1))
+            for point in "BCEFGH":
+                assert abs(joints[point + "_x"][n] - float(expected[point].real)) < 1e-12
+                assert abs(joints[point + "_y"][n] - float(expected[point].imag)) < 1e-12
+            near = mp.mpf(float(speeds["leg"][n]))
+            rate = 2 * mp.diff(lambda s: mp_jansen_angle(s, "eta", JANSEN_HOLY_NUMBERS, (1, 1, 1), near), mp.mpf(t))
+            assert abs(speeds["leg_speed"][n] - float(rate)) < 1e-11 * max(1.0, abs(float(rate)))

@@ -21,7 +21,7 @@ from .loops import Loop
 from .vectors import Vector, coordinates, lengths
 
 __all__ = ["fourbar", "slider_crank", "inverted_slider_crank", "watt2", "stephenson3", "fivebar", "jansen",
-           "JANSEN_HOLY_NUMBERS", "jansen_parameters", "CATALOG"]
+           "JANSEN_HOLY_NUMBERS", "jansen_parameters", "CATALOG", "EXAMPLE_VALUES"]
 
 
 def transmission_angle(coupler_angle: sp.Expr, rocker_angle: sp.Expr) -> sp.Expr:
@@ -327,4 +327,16 @@ CATALOG = {
     "stephenson3": stephenson3,
     "fivebar": fivebar,
     "jansen": jansen,
+}
+
+#: Example dimensions of each entry (the defaults of its linkage file in ``linkages/``): the four-bar
+#: of ``seeds/003``, Jansen's holy numbers, and for the others dimensions whose input turns fully.
+EXAMPLE_VALUES = {
+    "fourbar": dict(a=20.0, b=66.0, c=56.0, d=80.0),
+    "slider-crank": dict(a=1.3, b=4.1, offset=0.7),
+    "inverted-slider-crank": dict(a=2.0, d=1.2),
+    "watt2": dict(a=1.0, b=3.5, c=3.0, d=3.2, e=2.0, f=4.0, g=3.0, alpha=0.6, gx=4.5, gy=3.5),
+    "stephenson3": dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.9, delta=0.3),
+    "fivebar": dict(a=2.0, b=4.0, c=4.0, d=3.0, e=2.0, psi=2.2),
+    "jansen": jansen_parameters(),
 }

@@ -105,7 +105,7 @@ except ImportError:  # Python 3.10: the strict subset reader (linkage files stay
     from .minitoml import loads as toml_loads
 
 __all__ = ["LinkageFile", "read_linkage", "linkage_from_text", "linkage_from_mapping", "linkage_text",
-           "write_linkage"]
+           "write_linkage", "write_catalog_files"]
 
 TOP_KEYS = ("name", "inputs", "unknowns", "lengths", "constants")
 TABLES = ("vectors", "loops", "points", "roles", "defaults")
@@ -177,6 +177,8 @@ def _line_of(problem: _Problem, text: str | None) -> int | None:
         return headers[f"{problem.table}.{problem.key}"]
     if problem.table and problem.table in headers:
         return headers[problem.table]
+    if not problem.table and problem.key in headers:  # a table the top level does not allow
+        return headers[problem.key]
     if ("", problem.table) in keys:  # an inline table: the line of its key
         return keys[("", problem.table)]
     return 1
@@ -624,3 +626,18 @@ def linkage_text(linkage: Linkage, defaults: Mapping[str, float] | None = None) 
 def write_linkage(linkage: Linkage, path: str | Path, defaults: Mapping[str, float] | None = None) -> None:
     """Write ``linkage`` (and optional ``defaults``) as a linkage file, atomically."""
     write_atomic(path, linkage_text(linkage, defaults))
+
+
+def write_catalog_files(folder: str | Path) -> list[Path]:
+    """Write every catalog entry as ``<folder>/<name>.toml`` with its example values: the shipped examples.
+
+    The repository's ``linkages/`` folder is made by
+    ``python -c "from symlink.linkage_file import write_catalog_files; write_catalog_files('linkages')"``.
+    """
+    from .catalog import CATALOG, EXAMPLE_VALUES
+    written = []
+    for name, build in CATALOG.items():
+        path = Path(folder) / f"{name}.toml"
+        write_linkage(build(), path, EXAMPLE_VALUES.get(name))
+        written.append(path)
+    return written

@@ -399,6 +399,8 @@ def _from_mapping(data: Mapping, source: str) -> LinkageFile:
         if key not in TOP_KEYS + TABLES:
             raise _Problem("", key, f"unknown key {key!r} (a linkage file has {', '.join(TOP_KEYS + TABLES)})")
     name = data.get("name")
+    if "name" not in data:
+        raise _Problem("", "", 'missing name (such as name = "fourbar")')
     if not isinstance(name, str) or not name.strip():
         raise _Problem("", "name" if "name" in data else "", f"name must be a non-empty string, got {name!r}")
     inputs, unknowns = _names(data, "inputs", True), _names(data, "unknowns", True)

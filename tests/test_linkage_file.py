@@ -148,7 +148,7 @@ MALFORMED = [
     (replaced('name = "fourbar"', 'name = "fourbar'), 1, "not valid TOML"),
     (replaced("[roles]", "[roles]\n[roles]"), 20, "not valid TOML"),
     (replaced('name = "fourbar"', 'colour = "red"'), 1, "unknown key 'colour'"),
-    (replaced('name = "fourbar"\n', ""), 1, "name must be a non-empty string"),
+    (replaced('name = "fourbar"\n', ""), 1, "missing name"),
     (replaced('name = "fourbar"', "name = 3"), 1, "name must be a non-empty string"),
     (replaced('name = "fourbar"', 'name = ""'), 1, "name must be a non-empty string"),
     (replaced('inputs = ["theta"]', 'inputs = "theta"'), 2, "inputs must be a list of names"),
@@ -244,3 +244,18 @@ def test_the_writer_refuses_what_the_grammar_cannot_hold(tmp_path):
     with pytest.raises(ValueError, match="cannot be written in a linkage file"):
         write_linkage(linkage, tmp_path / "x.toml")
     assert not (tmp_path / "x.toml").exists()
+
+
+def test_readme_shows_the_shipped_fourbar_file():
+    from readme_text import fenced_blocks, readme
+    (shown,) = fenced_blocks(readme("New linkages and your own"), "toml")
+    assert shown == (ROOT / "linkages" / "fourbar.toml").read_text()
+    assert linkage_from_text(shown).linkage.positions == CATALOG["fourbar"]().positions
+
+
+def test_readme_error_example_is_what_the_reader_says():
+    from readme_text import readme
+    text = (ROOT / "linkages" / "fourbar.toml").read_text().replace('AB = ["a", "theta"]', 'AB = ["a", "theta * 2"]')
+    with pytest.raises(ValueError) as caught:
+        linkage_from_text(text, "fourbar.toml")
+    assert f"`{caught.value}`" in readme("New linkages and your own")

@@ -1,4 +1,4 @@
-"""Theo Jansen's strandbeest leg, three four-bar-like loops in a chain, in the worksheet style of derivations/fourbar.py.
+"""Theo Jansen's strandbeest leg: three four-bar-like loops in a chain, in the style of derivations/fourbar.py.
 
 Run ``python derivations/jansen.py`` to rewrite ``generated/jansen.py`` (a
 NumPy-only solver) and ``generated/jansen.tex`` (the equations).  The output is

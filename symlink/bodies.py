@@ -217,12 +217,6 @@ def mechanism(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | None = Non
         raise ValueError(f"{linkage.name}: two different vectors are both named {repeated[0]!r}; "
                          "give each vector its own name (or use one Vector object for one segment)")
 
-    # Names of nodes: the linkage's points, the origin.
-    point_names: dict[object, str] = {}
-    for name, point in linkage.points.items():
-        node = nodes.find(_ORIGIN if point is None else _end(*point.as_sum().terms[-1]))
-        point_names.setdefault(node, name)
-
     # Bodies of the vectors: ground, turning with a coordinate, or a slider block.
     travels = [v for v in vectors if v.length.free_symbols & coordinates]
     body_of: dict[Vector, str] = {}
@@ -266,23 +260,29 @@ def mechanism(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | None = Non
                                  "its block; list the block's other vectors instead")
             body_of[by_name[name]] = body
 
-    # Which bodies meet at each node.
-    at_node: dict[object, list[str]] = {}
-    order: list[object] = []
-
-    def touch(node: object, body: str) -> None:
-        node = nodes.find(node)
-        if node not in at_node:
-            at_node[node] = []
-            order.append(node)
-        if body not in at_node[node]:
-            at_node[node].append(body)
-
-    if linkage.points and any(p is None for p in linkage.points.values()):
-        touch(_ORIGIN, GROUND)
-    for vector in vectors:
-        touch(_start(1, vector), body_of[vector])
-        touch(_end(1, vector), block_of.get(vector, body_of[vector]))
+    # Which bodies meet at each node.  Two bodies that turn relative to each other can share one
+    # pin only: where two nodes join the same two bodies (a pivot that two loops reach by
+    # different vectors), they are one point, and are merged.
+    origin_on_ground = any(p is None for p in linkage.points.values())
+    refused: set[frozenset] = set()
+    while True:
+        at_node, order = _bodies_at_nodes(vectors, nodes, body_of, block_of, origin_on_ground)
+        pairs = [(first, second) for k, first in enumerate(order) for second in order[k + 1:]
+                 if len(set(at_node[first]) & set(at_node[second])) >= 2
+                 and frozenset((first, second)) not in refused]
+        if not pairs:
+            break
+        first, second = pairs[0]
+        # Points the vectors place apart stay apart (then the bodies were misread: say them explicitly).
+        placed = _positions(linkage, vectors, nodes)
+        if first in placed and second in placed and not _coincide(linkage, vectors, placed[first], placed[second]):
+            refused.add(frozenset((first, second)))
+            continue
+        nodes.join(first, second)
+    point_names: dict[object, str] = {}  # names of nodes: the linkage's points
+    for name, point in linkage.points.items():
+        node = nodes.find(_ORIGIN if point is None else _end(*point.as_sum().terms[-1]))
+        point_names.setdefault(node, name)
 
     positions = _positions(linkage, vectors, nodes)
     for name, point in linkage.points.items():  # a named point keeps the sum it was defined by
@@ -332,6 +332,27 @@ def mechanism(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | None = Non
     return Mechanism(tuple(result), tuple(joints), tuple(pairs))
 
 
+def _bodies_at_nodes(vectors, nodes: _Nodes, body_of, block_of, origin_on_ground: bool):
+    """The bodies that meet at each node, and the nodes in order of first appearance."""
+    at_node: dict[object, list[str]] = {}
+    order: list[object] = []
+
+    def touch(node: object, body: str) -> None:
+        node = nodes.find(node)
+        if node not in at_node:
+            at_node[node] = []
+            order.append(node)
+        if body not in at_node[node]:
+            at_node[node].append(body)
+
+    if origin_on_ground:
+        touch(_ORIGIN, GROUND)
+    for vector in vectors:
+        touch(_start(1, vector), body_of[vector])
+        touch(_end(1, vector), block_of.get(vector, body_of[vector]))
+    return at_node, order
+
+
 def _ground_first(names: Sequence[str]) -> tuple[str, ...]:
     unique = list(dict.fromkeys(names))
     return tuple(([GROUND] if GROUND in unique else []) + [n for n in unique if n != GROUND])
@@ -370,16 +391,6 @@ def _positions(linkage: Linkage, vectors: Sequence[Vector], nodes: _Nodes) -> di
     if they do not, a loop's or a point's vectors were not written in walking
     order, and the joints read off them would be wrong: ``ValueError``.
     """
-    index = {vector: k for k, vector in enumerate(vectors)}
-
-    def formal(terms) -> list[int]:
-        row = [0] * len(vectors)
-        for sign, vector in terms:
-            row[index[vector]] += sign
-        return row
-
-    closures = [formal(loop.terms) for loop in linkage.loops]
-    rank = sp.Matrix(closures).rank() if closures else 0
     positions: dict[object, VectorSum] = {nodes.find(_ORIGIN): VectorSum(())}
     frontier = [nodes.find(_ORIGIN)]
     while frontier:
@@ -395,15 +406,31 @@ def _positions(linkage: Linkage, vectors: Sequence[Vector], nodes: _Nodes) -> di
                         positions[end] = reached
                         following.append(end)
                         continue
-                    difference = [x - y for x, y in zip(formal(reached.terms), formal(positions[end].terms))]
-                    if any(difference) and sp.Matrix(closures + [difference]).rank() > rank:
+                    if not _coincide(linkage, vectors, reached, positions[end]):
                         raise ValueError(
-                            f"{linkage.name}: {_described(reached)} and {_described(positions[end])} end at one joint but are not the "
-                            "same point; write each loop's and each point's vectors in walking order "
-                            "(every vector starting where the one before it ends)")
+                            f"{linkage.name}: {_described(reached)} and {_described(positions[end])} end at one "
+                            "joint but are not the same point; write each loop's and each point's vectors in "
+                            "walking order (every vector starting where the one before it ends)")
         frontier = following
     return positions
 
 
 def _described(position: VectorSum) -> str:
     return str(position) if position.terms else "the origin"
+
+
+def _coincide(linkage: Linkage, vectors: Sequence[Vector], first: VectorSum, second: VectorSum) -> bool:
+    """Whether two walks from the origin end at one point for every pose: they differ by whole loops."""
+    index = {vector: k for k, vector in enumerate(vectors)}
+
+    def formal(terms) -> list[int]:
+        row = [0] * len(vectors)
+        for sign, vector in terms:
+            row[index[vector]] += sign
+        return row
+
+    difference = [x - y for x, y in zip(formal(first.terms), formal(second.terms))]
+    if not any(difference):
+        return True
+    closures = [formal(loop.terms) for loop in linkage.loops]
+    return sp.Matrix(closures + [difference]).rank() == sp.Matrix(closures).rank()

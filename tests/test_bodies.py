@@ -72,7 +72,8 @@ def test_joint_positions_evaluate_to_the_solved_points(name):
     for joint in found.joints:
         x, y = (float(sp.sympify(part).subs(numbers)) for part in (joint.position.x, joint.position.y))
         if joint.name in linkage.points:
-            assert abs(x - float(points[joint.name + "_x"])) < 1e-12 and abs(y - float(points[joint.name + "_y"])) < 1e-12
+            assert abs(x - float(points[joint.name + "_x"])) < 1e-12
+            assert abs(y - float(points[joint.name + "_y"])) < 1e-12
     assert all(joint.position is not None for joint in found.joints)
 
 
@@ -150,3 +151,20 @@ def test_two_vectors_with_one_name_are_refused():
     closure = Loop(Vector(d, 0, "X") + Vector(c, phi, "DC") - Vector(b, beta, "X") - Vector(a, theta, "AB"))
     with pytest.raises(ValueError, match="both named 'X'"):
         mechanism(Linkage("twice", [closure], [theta], [beta, phi]))
+
+
+def test_a_pivot_reached_by_two_loops_through_different_vectors_is_one_pin():
+    """Watt II written without points, its second loop starting at D with its own ground vector DG.
+
+    Hand count: ground, crank, coupler, ternary rocker DCE, coupler EF, output GF: n = 6; pins A, B, C, D,
+    E, F, G, each joining two bodies: j1 = 7; M = 15 - 14 = 1.  (Counting D once per loop would give -1.)
+    """
+    theta, beta, phi, mu, psi = coordinates("theta beta phi mu psi")
+    a, b, c, d, e, f, g, h = lengths("a b c d e f g h")
+    alpha = sp.Symbol("alpha", real=True)
+    first = Loop(Vector(a, theta, "AB") + Vector(b, beta, "BC") - Vector(c, phi, "DC") - Vector(d, 0, "AD"), "ABCD")
+    second = Loop(Vector(e, phi + alpha, "DE") + Vector(f, mu, "EF") - Vector(g, psi, "GF")
+                  - Vector(h, 0, "DG"), "DEFG")
+    found = mechanism(Linkage("watt", [first, second], [theta], [beta, phi, mu, psi]))
+    assert len(found.bodies) == 6 and found.one_freedom_joints == 7 and found.mobility == 1
+    assert sorted(len(body.joints) for body in found.bodies) == [2, 2, 2, 2, 3, 3]  # ground A D G; rocker D C E

@@ -259,3 +259,12 @@ def test_readme_error_example_is_what_the_reader_says():
     with pytest.raises(ValueError) as caught:
         linkage_from_text(text, "fourbar.toml")
     assert f"`{caught.value}`" in readme("New linkages and your own")
+
+
+@pytest.mark.parametrize("name", sorted(CATALOG))
+def test_shipped_files_stay_inside_the_python_310_reader(name):
+    """On Python 3.10 (no tomllib) linkage files are read by symlink.minitoml: the files keep to its subset."""
+    import tomllib
+    from symlink.minitoml import loads
+    text = (ROOT / "linkages" / f"{name}.toml").read_text()
+    assert loads(text) == tomllib.loads(text)

@@ -268,3 +268,15 @@ def test_shipped_files_stay_inside_the_python_310_reader(name):
     from symlink.minitoml import loads
     text = (ROOT / "linkages" / f"{name}.toml").read_text()
     assert loads(text) == tomllib.loads(text)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.text(alphabet="thetapidegr0123456789.+-*/ eE_$()", max_size=20))
+def test_any_angle_text_reads_or_fails_with_one_located_line(text):
+    document = GOOD.replace('AB = ["a", "theta"]', f'AB = ["a", "{text}"]')
+    try:
+        linkage_from_text(document, "any.toml")
+    except ValueError as error:
+        message = str(error)
+        assert message.startswith("any.toml:") and "\n" not in message
+        assert message.split(":")[1].isdigit()

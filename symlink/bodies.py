@@ -66,6 +66,8 @@ _ORIGIN = "origin"
 class Joint:
     """A pin or a slider.
 
+    ``name`` is the linkage's point there, else ``J1``, ``J2``, ...; a slider
+    is named after its travel vector (else ``P1``, ...).
     ``bodies`` are the names of the bodies it joins: a pin joining k bodies
     counts as k - 1 joints (:attr:`count`), a slider joins its guide and its
     block.  ``position`` is the joint as a sum of vectors from the origin
@@ -300,9 +302,7 @@ def mechanism(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | None = Non
         joints.append(Joint(name, REVOLUTE, _ground_first(at_node[node]), positions.get(node)))
     slider_joints: dict[Vector, str] = {}
     for travel in travels:
-        name = _vector_name(travel)
-        if name in used:
-            name = _fresh(name + "_", used)
+        name = travel.name if travel.name and travel.name not in used else _fresh("P", used)
         used.add(name)
         slider_joints[travel] = name
         head, tail = nodes.find(_end(1, travel)), nodes.find(_start(1, travel))
@@ -376,12 +376,12 @@ def _body_name(linkage: Linkage, moving: sp.Expr) -> str:
 
 
 def _block_name(linkage: Linkage, travel: Vector, coordinates: set[sp.Symbol]) -> str:
-    """A slider block's name: the role of its travel coordinate, else ``block_<travel vector>``."""
+    """A slider block's name: the role of its travel coordinate, else ``block_<travel coordinate>``."""
     moving = _moving_part(travel.length, coordinates)
     for role, coordinate in linkage.roles.items():
         if moving == coordinate:
             return role
-    return f"block_{_vector_name(travel)}"
+    return f"block_{moving}"
 
 
 def _positions(linkage: Linkage, vectors: Sequence[Vector], nodes: _Nodes) -> dict[object, VectorSum]:

@@ -168,3 +168,21 @@ def test_a_pivot_reached_by_two_loops_through_different_vectors_is_one_pin():
     found = mechanism(Linkage("watt", [first, second], [theta], [beta, phi, mu, psi]))
     assert len(found.bodies) == 6 and found.one_freedom_joints == 7 and found.mobility == 1
     assert sorted(len(body.joints) for body in found.bodies) == [2, 2, 2, 2, 3, 3]  # ground A D G; rocker D C E
+
+
+def test_unnamed_vectors_and_points_get_plain_names():
+    """The README's press: crank-rocker ABCD driving a rod CF to a slider F on y = h; only C is named.
+
+    Hand count: ground, crank, coupler, rocker, rod, slider block: n = 6; pins A, B, D, F (two bodies
+    each) and C (coupler, rocker, rod: 2 joints); one slider: j1 = 7; M = 15 - 14 = 1.
+    """
+    theta, beta, phi, psi, s = coordinates("theta beta phi psi s")
+    a, b, c, d, e, h = lengths("a b c d e h")
+    AB, BC, DC, AD = Vector(a, theta), Vector(b, beta), Vector(c, phi), Vector(d, 0)
+    CF, AS, SF = Vector(e, psi), Vector(s, 0), Vector(h, sp.pi / 2)
+    press = Linkage("press", [Loop(AD + DC - BC - AB, "ABCD"), Loop(AD + DC + CF - SF - AS, "DCF")],
+                    inputs=[theta], unknowns=[beta, phi, psi, s], points={"C": AD + DC})
+    found = mechanism(press)
+    assert found.mobility == 1 and len(found.bodies) == 6
+    assert sorted(j.name for j in found.joints) == ["C", "J1", "J2", "J3", "J4", "P1"]
+    assert found.joint("C").count == 2 and found.joint("P1").bodies == (GROUND, "block_s")

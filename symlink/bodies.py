@@ -199,56 +199,14 @@ def mechanism(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | None = Non
     ('prismatic', 'AS', 1)
     """
     coordinates = set(linkage.coordinates)
-    nodes = _Nodes()
-    vectors: list[Vector] = []  # every vector once, in order of first use
-    chains: list[tuple[tuple[tuple[int, Vector], ...], bool]] = [
-        (point.as_sum().terms, False) for point in linkage.points.values() if point is not None]
-    chains += [(loop.terms, True) for loop in linkage.loops]
-    for terms, closed in chains:
-        for _, vector in terms:
-            if vector not in vectors:
-                vectors.append(vector)
-        pairs = zip(terms, terms[1:] + (terms[:1] if closed else ()))
-        for before, after in pairs:
-            nodes.join(_end(*before), _start(*after))
-        if not closed:
-            nodes.join(_ORIGIN, _start(*terms[0]))
+    nodes, vectors = _segments(linkage)
     names = [_vector_name(v) for v in vectors]
     repeated = sorted({n for n in names if names.count(n) > 1})
     if repeated:
         raise ValueError(f"{linkage.name}: two different vectors are both named {repeated[0]!r}; "
                          "give each vector its own name (or use one Vector object for one segment)")
-
-    # Bodies of the vectors: ground, turning with a coordinate, or a slider block.
     travels = [v for v in vectors if v.length.free_symbols & coordinates]
-    body_of: dict[Vector, str] = {}
-    for vector in vectors:
-        body_of[vector] = _body_name(linkage, _moving_part(vector.angle, coordinates))
-    block_of: dict[Vector, str] = {}
-    for travel in travels:
-        block_of[travel] = _block_name(linkage, travel, coordinates)
-    block_nodes: dict[Vector, set] = {}
-    for travel in travels:
-        guide = _moving_part(travel.angle, coordinates)
-        frontier = [nodes.find(_end(1, travel))]
-        seen = block_nodes[travel] = set(frontier)
-        while frontier:
-            node = frontier.pop()
-            for vector in vectors:
-                if vector in block_of or _moving_part(vector.angle, coordinates) != guide:
-                    continue
-                ends = {nodes.find(_start(1, vector)), nodes.find(_end(1, vector))}
-                if node in ends and body_of[vector] != block_of[travel]:
-                    body_of[vector] = block_of[travel]
-                    for other in ends - seen:
-                        seen.add(other)
-                        frontier.append(other)
-    for travel in travels:  # a guide on a block (a Scotch yoke's slot) moves with that block
-        tail = nodes.find(_start(1, travel))
-        for other in travels:
-            if (other is not travel and tail in block_nodes[other]
-                    and _moving_part(other.angle, coordinates) == _moving_part(travel.angle, coordinates)):
-                body_of[travel] = block_of[other]
+    body_of, block_of = _bodies_of_vectors(linkage, vectors, travels, nodes)
     by_name = dict(zip(names, vectors))
     for body, listed in (bodies or {}).items():
         if not isinstance(body, str) or not body:
@@ -330,6 +288,55 @@ def mechanism(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | None = Non
                              f"({', '.join(known)})")
         pairs.append((pair[0], pair[1]))
     return Mechanism(tuple(result), tuple(joints), tuple(pairs))
+
+
+def _segments(linkage: Linkage) -> tuple[_Nodes, list[Vector]]:
+    """Every vector once (points' vectors first, then the loops'), and which of their ends are one node."""
+    nodes = _Nodes()
+    vectors: list[Vector] = []
+    chains: list[tuple[tuple[tuple[int, Vector], ...], bool]] = [
+        (point.as_sum().terms, False) for point in linkage.points.values() if point is not None]
+    chains += [(loop.terms, True) for loop in linkage.loops]
+    for terms, closed in chains:
+        for _, vector in terms:
+            if vector not in vectors:
+                vectors.append(vector)
+        for before, after in zip(terms, terms[1:] + (terms[:1] if closed else ())):
+            nodes.join(_end(*before), _start(*after))
+        if not closed:
+            nodes.join(_ORIGIN, _start(*terms[0]))
+    return nodes, vectors
+
+
+def _bodies_of_vectors(linkage: Linkage, vectors: Sequence[Vector], travels: Sequence[Vector],
+                       nodes: _Nodes) -> tuple[dict[Vector, str], dict[Vector, str]]:
+    """The body of each vector (a travel's: its guide), and the block at the head of each travel."""
+    coordinates = set(linkage.coordinates)
+    body_of = {vector: _body_name(linkage, _moving_part(vector.angle, coordinates)) for vector in vectors}
+    block_of = {travel: _block_name(linkage, travel, coordinates) for travel in travels}
+    block_nodes: dict[Vector, set] = {}
+    for travel in travels:  # fixed vectors along the guide that carry on from the head ride on the block
+        guide = _moving_part(travel.angle, coordinates)
+        frontier = [nodes.find(_end(1, travel))]
+        seen = block_nodes[travel] = set(frontier)
+        while frontier:
+            node = frontier.pop()
+            for vector in vectors:
+                if vector in block_of or _moving_part(vector.angle, coordinates) != guide:
+                    continue
+                ends = {nodes.find(_start(1, vector)), nodes.find(_end(1, vector))}
+                if node in ends and body_of[vector] != block_of[travel]:
+                    body_of[vector] = block_of[travel]
+                    for other in ends - seen:
+                        seen.add(other)
+                        frontier.append(other)
+    for travel in travels:  # a guide on a block (a Scotch yoke's slot) moves with that block
+        tail = nodes.find(_start(1, travel))
+        for other in travels:
+            if (other is not travel and tail in block_nodes[other]
+                    and _moving_part(other.angle, coordinates) == _moving_part(travel.angle, coordinates)):
+                body_of[travel] = block_of[other]
+    return body_of, block_of
 
 
 def _bodies_at_nodes(vectors, nodes: _Nodes, body_of, block_of, origin_on_ground: bool):

@@ -9,6 +9,9 @@ reads off what a drawing and a mobility count need from the same vectors:
   every point's sum starts at the origin, and one :class:`Vector` used in
   several loops and points is one segment.  So the ends of the segments fall
   into nodes: the joints, the corners inside a body, and the named points.
+  This needs each loop and point written in walking order (each vector
+  starting where the one before ends); where the points show that it is not,
+  ``ValueError`` says so.
 * **A vector's direction tells its body.**  Vectors with a constant angle lie
   on the ground; vectors whose angles share the same time-varying part
   (``phi`` and ``phi + alpha``) turn together, so they lie on one rigid body
@@ -19,8 +22,13 @@ reads off what a drawing and a mobility count need from the same vectors:
   that carry on from the head move with the block (a translating block keeps
   its guide's orientation): the slider-crank's offset ``SC`` after the travel
   ``AS = s e^{i 0}`` is part of the block that the connecting rod is pinned to.
+  A travel that starts on a block along its own direction slides on that
+  block (a Scotch yoke's slot, cut in the yoke that slides on the ground).
 * Where vectors of k different bodies meet at one node there is a pin joining
-  k bodies, which counts as k - 1 revolute joints.
+  k bodies, which counts as k - 1 revolute joints.  Two bodies that turn
+  relative to each other share at most one pin, so two nodes that join the
+  same two bodies (a pivot reached by two loops through different vectors)
+  are one joint.
 
 Where the vectors alone are ambiguous (two links that a user drives with the
 same angle, or a fixed vector that sits on a block rather than the ground),

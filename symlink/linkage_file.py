@@ -184,10 +184,6 @@ def _line_of(problem: _Problem, text: str | None) -> int | None:
     return 1
 
 
-def _where(table: str, key: str) -> str:
-    return ".".join(part for part in (table, key) if part)
-
-
 # --- the expression grammar --------------------------------------------------------------
 
 def _tokens(text: str) -> list[tuple[str, str]]:
@@ -314,7 +310,7 @@ def _expression(value, names: Mapping[str, sp.Symbol], units: bool) -> sp.Expr:
         raise ValueError(f"{value!r}: {error}") from None
 
 
-def _signed_sum(text, vectors: Mapping[str, Vector], what: str) -> VectorSum:
+def _signed_sum(text, vectors: Mapping[str, Vector]) -> VectorSum:
     """A loop or a point: vector names joined by + and -."""
     if not isinstance(text, str):
         raise ValueError(f"must be a string such as 'AB + BC - DC', got {text!r}")
@@ -433,7 +429,7 @@ def _from_mapping(data: Mapping, source: str) -> LinkageFile:
     loops = []
     for key, value in _table(data, "loops").items():
         try:
-            loops.append(Loop(_signed_sum(value, vectors, "loop"), name=key))
+            loops.append(Loop(_signed_sum(value, vectors), name=key))
         except ValueError as error:
             raise _Problem("loops", key, f"loops.{key}: {error}") from None
     if not loops:
@@ -445,7 +441,7 @@ def _from_mapping(data: Mapping, source: str) -> LinkageFile:
             points[key] = None
             continue
         try:
-            points[key] = _signed_sum(value, vectors, "point")
+            points[key] = _signed_sum(value, vectors)
         except ValueError as error:
             raise _Problem("points", key, f"points.{key}: {error}") from None
 

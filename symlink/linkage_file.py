@@ -365,6 +365,9 @@ def _table(data: Mapping, name: str) -> dict:
     for key, item in value.items():
         if isinstance(item, dict):
             raise _Problem(name, key, f"{name}.{key}: nested tables are not part of linkage files")
+        if not _NAME.match(key):
+            raise _Problem(name, key, f"{name}.{key}: a name is ASCII letters, digits and _, "
+                                      "not starting with a digit")
     return value
 
 
@@ -412,8 +415,6 @@ def _from_mapping(data: Mapping, source: str) -> LinkageFile:
 
     vectors: dict[str, Vector] = {}
     for key, value in _table(data, "vectors").items():
-        if not _NAME.match(key):
-            raise _Problem("vectors", key, f"vectors.{key}: a vector name is ASCII letters, digits and _")
         if not isinstance(value, list) or len(value) != 2:
             raise _Problem("vectors", key, f"vectors.{key} must be [length, angle], got {value!r}")
         try:

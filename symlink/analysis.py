@@ -31,9 +31,9 @@ import math
 from dataclasses import dataclass
 
 import numpy
-import sympy as sp
 
 from .angles import wrap_angle
+from .bodies import PRISMATIC, mechanism
 from .catalog import fourbar
 from .linkage import Linkage
 from .position import TOLERANCE
@@ -70,82 +70,19 @@ class Mobility:
         return 3 * (self.links - 1) - 2 * self.joints
 
 
-def _body(angle: sp.Expr, coordinates: set[sp.Symbol]) -> object:
-    """The rigid body a vector's direction belongs to: the ground, or its moving part of the angle."""
-    moving = sp.Add(*(term for term in sp.Add.make_args(sp.expand(angle))
-                      if term.free_symbols & coordinates))
-    return "ground" if moving == 0 else moving
-
-
-def _attach_to_blocks(loop, ends: list[list[object]], coordinates: set[sp.Symbol]) -> None:
-    """Move fixed vectors that carry on from a slider block, in the guide's direction, onto the block.
-
-    A block translates: it keeps its guide's orientation, and it meets its guide only in
-    the prismatic joint.  So fixed-length vectors with the guide's orientation that follow
-    on from the block's end of a slider travel (the slider-crank's offset ``SC`` after
-    ``AS = s e^{i 0}``) are parts of the block, not of the guide.
-    """
-    count = len(ends)
-    for index, (sign, vector) in enumerate(loop.terms):
-        if not vector.length.free_symbols & coordinates:
-            continue
-        block, guide = ("block", vector), _body(vector.angle, coordinates)
-        step = 1 if sign > 0 else -1  # the walk leaves the block forwards if it walks the travel tail to head
-        other = (index + step) % count
-        while other != index:
-            _, carried = loop.terms[other]
-            if carried.length.free_symbols & coordinates or _body(carried.angle, coordinates) != guide:
-                break
-            ends[other] = [block, block]
-            other = (other + step) % count
-
-
 def degrees_of_freedom(linkage: Linkage) -> Mobility:
-    """Gruebler/Kutzbach mobility of ``linkage``, counting links and joints from its loops.
+    """Gruebler/Kutzbach mobility of ``linkage``: ``3 (n - 1) - 2 j1 - j2`` over its bodies and joints.
 
-    How the loops are read:
-
-    * A vector's direction tells its body: vectors with a constant angle lie on the
-      ground; vectors whose angles share the same time-varying part (``phi`` and
-      ``phi + pi/2``) lie on one rigid body.
-    * A vector whose length is a coordinate (a slider travel) is a prismatic joint: its
-      tail is on the body that carries the guide (the body of its direction) and its head
-      on a slider block, one more link.  Fixed vectors in the guide's direction that carry
-      on from the head belong to the block (a translating block keeps its guide's
-      orientation).  So the slider-crank ``AB + BC - SC - AS`` with travel
-      ``AS = s e^{i 0}`` and offset ``SC`` counts ground, crank, rod and block, the
-      revolutes A, B and C and one prismatic joint.
-    * Where two consecutive vectors of a loop end on different bodies there is a revolute
-      joint between those bodies; vectors of one body meeting make no joint.  A pair of
-      bodies is joined once however many loops pass through the joint, so a pin shared by
-      two loops counts once (a pin joining three bodies counts as two joints only when the
-      loops name two of its pairs).
-    * The ground is always a link (the frame the inputs are measured from).
+    The bodies and joints are those :func:`symlink.bodies.mechanism` derives
+    from the loops and points (a pin joining k bodies counts as k - 1 joints;
+    a slider on its guide is one prismatic joint).
 
     >>> degrees_of_freedom(fourbar()).dof
     1
     """
-    coordinates = set(linkage.coordinates)
-    links: set[object] = {"ground"}
-    revolute: set[frozenset] = set()
-    prismatic: set[object] = set()
-    for loop in linkage.loops:
-        ends = []  # (body where the walk enters the term, body where it leaves it)
-        for sign, vector in loop.terms:
-            tail = _body(vector.angle, coordinates)
-            head = tail
-            if vector.length.free_symbols & coordinates:
-                head = ("block", vector)
-                prismatic.add(vector)
-            ends.append([tail, head] if sign > 0 else [head, tail])
-        _attach_to_blocks(loop, ends, coordinates)
-        for start, end in ends:
-            links.update((start, end))
-        for (_, arriving), (leaving, _) in zip(ends, ends[1:] + ends[:1]):
-            if arriving != leaving:
-                revolute.add(frozenset((arriving, leaving)))
-    return Mobility(len(links), len(revolute), len(prismatic))
-
+    found = mechanism(linkage)
+    prismatic = sum(joint.kind == PRISMATIC for joint in found.joints)
+    return Mobility(len(found.bodies), found.one_freedom_joints - prismatic, prismatic)
 
 # --- Grashof --------------------------------------------------------------------------
 

@@ -8,9 +8,11 @@ Every entry is built the way a user builds a linkage: vectors, loops, a
 >>> linkage.unknowns
 (beta, phi)
 >>> sorted(CATALOG)
-['fivebar', 'fourbar', 'inverted-slider-crank', 'slider-crank', 'stephenson3', 'watt2']
+['fivebar', 'fourbar', 'inverted-slider-crank', 'jansen', 'slider-crank', 'stephenson3', 'watt2']
 """
 from __future__ import annotations
+
+import math
 
 import sympy as sp
 
@@ -18,7 +20,8 @@ from .linkage import Linkage
 from .loops import Loop
 from .vectors import Vector, coordinates, lengths
 
-__all__ = ["fourbar", "slider_crank", "inverted_slider_crank", "watt2", "stephenson3", "fivebar", "CATALOG"]
+__all__ = ["fourbar", "slider_crank", "inverted_slider_crank", "watt2", "stephenson3", "fivebar", "jansen",
+           "JANSEN_HOLY_NUMBERS", "jansen_parameters", "CATALOG", "EXAMPLE_VALUES"]
 
 
 def transmission_angle(coupler_angle: sp.Expr, rocker_angle: sp.Expr) -> sp.Expr:
@@ -238,6 +241,83 @@ def fivebar() -> Linkage:
     )
 
 
+#: Theo Jansen's "holy numbers" (strandbeest.com, "Explains"; the lengths of the Wikipedia article
+#: "Jansen's linkage"), in his letters: a and l place the fixed pivot D relative to the crank axle A,
+#: m is the crank; j and k join the crank pin to the upper and lower rockers b and c; b, d, e are
+#: the upper triangle, f and g join it to the lower triangle g, h, i, whose corner H is the foot.
+JANSEN_HOLY_NUMBERS = dict(a=38.0, b=41.5, c=39.3, d=40.1, e=55.8, f=39.4, g=36.7, h=65.7,
+                           i=49.0, j=50.0, k=61.9, l=7.8, m=15.0)
+
+
+def jansen_parameters(numbers: dict[str, float] | None = None) -> dict[str, float]:
+    """The parameters of :func:`jansen` from Jansen's 13 lengths (default: the holy numbers).
+
+    The triangles are rigid, so their third sides e and h enter as the corner
+    angles opposite them (law of cosines): alpha at D between DC (b) and DE
+    (d), gamma at F between FG (g) and FH (i).
+
+    >>> values = jansen_parameters()
+    >>> round(math.degrees(values["alpha"]), 4), round(math.degrees(values["gamma"]), 4)
+    (86.2683, 99.0963)
+    """
+    n = dict(JANSEN_HOLY_NUMBERS if numbers is None else numbers)
+    alpha = math.acos((n["b"] ** 2 + n["d"] ** 2 - n["e"] ** 2) / (2 * n["b"] * n["d"]))
+    gamma = math.acos((n["g"] ** 2 + n["i"] ** 2 - n["h"] ** 2) / (2 * n["g"] * n["i"]))
+    values = {k: v for k, v in n.items() if k not in ("e", "h")}
+    return values | {"alpha": alpha, "gamma": gamma}
+
+
+def jansen() -> Linkage:
+    """Theo Jansen's strandbeest leg: one crank, eight links, three four-bar-like loops in a chain.
+
+    Crank axle A at the origin, crank pin B (AB = m at theta), fixed pivot D
+    at (-a, -l); the upper triangle DCE (sides b, e, d) and the lower rocker
+    DF (c) turn about D; the links j = BC and k = BF drive them from the
+    crank pin; the tie f = EG and the lower triangle FGH (sides g, h, i)
+    carry the foot H.  With the holy numbers at theta = 0 the joints are
+    near B (15, 0), C (-24, 31), D (-38, -8), E (-75, 8), F (-27, -45),
+    G (-59, -28) and the foot H (-43, -92): the leg hangs left of and below
+    the crank.
+
+    Lengths in Jansen's letters (:data:`JANSEN_HOLY_NUMBERS`; e and h enter
+    as the triangle angles alpha and gamma, :func:`jansen_parameters`).  The
+    loops, each with two unknown angles (case 3), solved in turn:
+
+    * ``ABCD``: ``AD + DC = AB + BC``, upper rocker DC = b at phi and
+      j = BC at beta; branch +1 puts C left of the line D -> B;
+    * ``ABFD``: ``AB + BF = AD + DF``, k = BF at mu and lower rocker
+      DF = c at psi; branch +1 puts F left of B -> D;
+    * ``DFGE``: ``DF + FG = DE + EG`` with DE = d at phi + alpha, the lower
+      triangle's side FG = g at eta and f = EG at kappa; branch +1 puts G
+      left of F -> E.  The foot is H = F + FH, FH = i at eta + gamma.
+
+    Every branch +1 is Jansen's leg (the foot below the crank).
+
+    >>> linkage = jansen()
+    >>> [(step.loop.name, step.case.name) for step in linkage.plan]
+    [('ABCD', '3'), ('ABFD', '3'), ('DFGE', '3')]
+    """
+    theta, phi, beta, mu, psi, eta, kappa = coordinates("theta phi beta mu psi eta kappa")
+    a, b, c, d, f, g, i, j, k, l, m = lengths("a b c d f g i j k l m")
+    alpha, gamma = sp.symbols("alpha gamma", real=True)
+    AB, BC, BF = Vector(m, theta, "AB"), Vector(j, beta, "BC"), Vector(k, mu, "BF")
+    ADx, ADy = Vector(a, sp.pi, "ADx"), Vector(l, -sp.pi / 2, "ADy")
+    AD = ADx + ADy
+    DC, DE, DF = Vector(b, phi, "DC"), Vector(d, phi + alpha, "DE"), Vector(c, psi, "DF")
+    FG, FH, EG = Vector(g, eta, "FG"), Vector(i, eta + gamma, "FH"), Vector(f, kappa, "EG")
+    upper = Loop(AD + DC - BC - AB, name="ABCD")
+    lower = Loop(AB + BF - DF - ADy - ADx, name="ABFD")  # terms in walking order: A, B, F, D, A
+    legs = Loop(DF + FG - EG - DE, name="DFGE")
+    return Linkage(
+        "jansen", [upper, lower, legs], inputs=[theta], unknowns=[phi, beta, mu, psi, eta, kappa],
+        parameters=[a, b, c, d, f, g, i, j, k, l, m, alpha, gamma],
+        points={"A": None, "B": AB.as_sum(), "C": AD + DC, "D": AD, "E": AD + DE, "F": AD + DF,
+                "G": AD + DF + FG, "H": AD + DF + FH},
+        roles={"crank": theta, "upper_rocker": phi, "upper_link": beta, "lower_link": mu, "lower_rocker": psi,
+               "leg": eta, "tie": kappa},
+    )
+
+
 #: Catalog entries by name: functions that build a fresh :class:`Linkage`.
 CATALOG = {
     "fourbar": fourbar,
@@ -246,4 +326,17 @@ CATALOG = {
     "watt2": watt2,
     "stephenson3": stephenson3,
     "fivebar": fivebar,
+    "jansen": jansen,
+}
+
+#: Example dimensions of each entry (the defaults of its linkage file in ``linkages/``): the four-bar
+#: of ``seeds/003``, Jansen's holy numbers, and for the others dimensions whose input turns fully.
+EXAMPLE_VALUES = {
+    "fourbar": dict(a=20.0, b=66.0, c=56.0, d=80.0),
+    "slider-crank": dict(a=1.3, b=4.1, offset=0.7),
+    "inverted-slider-crank": dict(a=2.0, d=1.2),
+    "watt2": dict(a=1.0, b=3.5, c=3.0, d=3.2, e=2.0, f=4.0, g=3.0, alpha=0.6, gx=4.5, gy=3.5),
+    "stephenson3": dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.9, delta=0.3),
+    "fivebar": dict(a=2.0, b=4.0, c=4.0, d=3.0, e=2.0, psi=2.2),
+    "jansen": jansen_parameters(),
 }

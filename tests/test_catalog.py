@@ -17,7 +17,8 @@ from hypothesis import given, settings, strategies as st
 
 import mp_closures as ref
 from references import mp_fourbar, mp_slider_crank
-from symlink.catalog import CATALOG, fivebar, inverted_slider_crank, slider_crank, stephenson3, watt2
+from symlink.catalog import (CATALOG, JANSEN_HOLY_NUMBERS, fivebar, inverted_slider_crank, jansen, jansen_parameters,
+                             slider_crank, stephenson3, watt2)
 from symlink.solver import NumericSolver, Solver
 
 RNG_SEED = 20240601
@@ -270,6 +271,7 @@ CLOSED_FORM_CASES = {
     "watt2": dict(a=1.0, b=3.5, c=3.0, d=3.2, e=2.0, f=4.0, g=3.0, alpha=0.6, gx=4.5, gy=3.5,
                   branch_ABCD=1, branch_DEFG=-1),
     "fivebar": dict(a=2.0, b=4.0, c=4.0, d=3.0, e=2.0, psi=2.2, branch=1),
+    "jansen": jansen_parameters(),
 }
 
 
@@ -322,7 +324,8 @@ STEPHENSON3 = (dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alph
 
 
 def test_catalog_entries_are_fresh_linkages_with_documented_names():
-    assert set(CATALOG) == {"fourbar", "slider-crank", "inverted-slider-crank", "watt2", "stephenson3", "fivebar"}
+    assert set(CATALOG) == {"fourbar", "slider-crank", "inverted-slider-crank", "watt2", "stephenson3", "fivebar",
+                            "jansen"}
     for name, build in CATALOG.items():
         first, second = build(), build()
         assert first is not second and first.name == name
@@ -331,3 +334,113 @@ def test_catalog_entries_are_fresh_linkages_with_documented_names():
     assert slider_crank().roles == {"crank": theta, "conrod": beta, "slider": s}
     assert not stephenson3().has_closed_form and all(CATALOG[n]().has_closed_form for n in CLOSED_FORM_CASES)
 
+
+
+# --- Theo Jansen leg: chains of circle intersections at 50 digits -------------------------------------------
+
+def mp_circles(centre0, radius0, centre1, radius1, left):
+    """The intersection of two circles left (or right) of the line from centre0 to centre1; None if they miss."""
+    span = centre1 - centre0
+    distance = abs(span)
+    along = (radius0 ** 2 - radius1 ** 2 + distance ** 2) / (2 * distance)
+    square = radius0 ** 2 - along ** 2
+    if square < 0:
+        return None
+    across = mp.sqrt(square) * (1 if left else -1)
+    return centre0 + span / distance * mp.mpc(along, across)
+
+
+def mp_jansen_joints(theta, n, signs):
+    """Joints of a Jansen leg with Jansen's lengths ``n`` (e and h as lengths, not angles) at crank angle theta.
+
+    ``signs`` choose each intersection: C left of D->B, F left of B->D, G left of F->E (+1 each is the leg);
+    E is left of D->C and the foot H left of F->G (the triangles' orientation, not a choice).
+    """
+    n = {k: mp.mpf(v) for k, v in n.items()}
+    B = n["m"] * mp.expjpi(theta / mp.pi)
+    D = mp.mpc(-n["a"], -n["l"])
+    C = mp_circles(D, n["b"], B, n["j"], signs[0] > 0)
+    F = mp_circles(B, n["k"], D, n["c"], signs[1] > 0)
+    if C is None or F is None:
+        return None
+    E = mp_circles(D, n["d"], C, n["e"], True)
+    G = mp_circles(F, n["g"], E, n["f"], signs[2] > 0)
+    if G is None:
+        return None
+    H = mp_circles(F, n["i"], G, n["h"], True)
+    return dict(B=B, C=C, D=D, E=E, F=F, G=G, H=H)
+
+
+#: Each unknown angle of jansen() as the direction from one joint to another.
+JANSEN_ANGLES = dict(phi=("D", "C"), beta=("B", "C"), mu=("B", "F"), psi=("D", "F"), eta=("F", "G"), kappa=("E", "G"))
+
+
+def mp_jansen_angle(theta, name, n, signs, near):
+    joints = mp_jansen_joints(theta, n, signs)
+    start, end = JANSEN_ANGLES[name]
+    angle = mp.arg(joints[end] - joints[start])
+    return near + mp.atan2(mp.sin(angle - near), mp.cos(angle - near))  # continuous near ``near``
+
+
+@pytest.mark.parametrize("signs", [(1, 1, 1), (1, 1, -1), (1, -1, 1), (-1, 1, 1), (-1, -1, -1)])
+def test_jansen_against_50_digits(signs):
+    linkage = jansen()
+    outputs = kinematic_outputs(linkage) + [f"{p}_{axis}" for p in "CEFGH" for axis in "xy"]
+    branches = dict(branch_ABCD=signs[0], branch_ABFD=signs[1], branch_DFGE=signs[2])
+    solver = Solver(linkage, outputs)
+    rng = np.random.default_rng(RNG_SEED + 7 * signs[0] + 3 * signs[1] + signs[2])
+    checked = unassembled = 0
+    for theta in np.radians(np.arange(-180.0, 180.0, 30.0)) + rng.uniform(0, 0.1):
+        w, al = rng.uniform(-5, 5), rng.uniform(-5, 5)
+        result = solver(theta=theta, thetadot=w, thetaddot=al, **branches, **jansen_parameters())
+        with mp.workdps(ref.DPS):
+            joints = mp_jansen_joints(mp.mpf(theta), JANSEN_HOLY_NUMBERS, signs)
+            if joints is None:
+                assert not bool(result["assembled"])
+                unassembled += 1
+                continue
+            assert bool(result["assembled"])
+            for point in "CEFGH":
+                assert abs(float(result[point + "_x"]) - float(joints[point].real)) < 1e-12
+                assert abs(float(result[point + "_y"]) - float(joints[point].imag)) < 1e-12
+            for name in JANSEN_ANGLES:
+                near = mp.mpf(float(result[name]))
+                q = lambda t: mp_jansen_angle(t, name, JANSEN_HOLY_NUMBERS, signs, near)  # noqa: E731
+                first, second = mp.diff(q, mp.mpf(theta), 1), mp.diff(q, mp.mpf(theta), 2)
+                rate, accel = first * w, second * w ** 2 + first * al
+                assert abs(wrapped(float(result[name]) - float(q(mp.mpf(theta))))) < 1e-13, name
+                assert abs(float(result[name + "dot"]) - float(rate)) < 1e-11 * max(1.0, abs(float(rate))), name
+                assert abs(float(result[name + "ddot"]) - float(accel)) < 1e-10 * max(1.0, abs(float(accel))), name
+        checked += 1
+    assert checked >= 6
+
+
+def test_jansen_leg_walks_a_flat_stride():
+    """The holy numbers' point: for over a quarter of the turn the foot stays within 1 % of the
+    path's height above its lowest point, over more than half of the path's width (a circle
+    would stay there for a few degrees only)."""
+    result = Solver(jansen(), ["H_x", "H_y"])(theta=np.radians(np.arange(0.0, 360.0, 1.0)), **jansen_parameters())
+    x, y = result["H_x"], result["H_y"]
+    low = y < y.min() + 0.01 * np.ptp(y)
+    assert low.sum() > 90 and np.ptp(x[low]) > 0.5 * np.ptp(x)
+
+
+def test_generated_jansen_module_against_50_digits():
+    import importlib.util
+    from pathlib import Path
+    path = Path(__file__).resolve().parent.parent / "generated" / "jansen.py"
+    spec = importlib.util.spec_from_file_location("generated_jansen", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    theta = np.radians(np.arange(0.0, 360.0, 45.0))
+    joints = module.joints(theta, **jansen_parameters())
+    speeds = module.velocities(theta, **jansen_parameters(), thetadot=2.0)
+    with mp.workdps(ref.DPS):
+        for n, t in enumerate(theta):
+            expected = mp_jansen_joints(mp.mpf(t), JANSEN_HOLY_NUMBERS, (1, 1, 1))
+            for point in "BCEFGH":
+                assert abs(joints[point + "_x"][n] - float(expected[point].real)) < 1e-12
+                assert abs(joints[point + "_y"][n] - float(expected[point].imag)) < 1e-12
+            near = mp.mpf(float(speeds["leg"][n]))
+            rate = 2 * mp.diff(lambda s: mp_jansen_angle(s, "eta", JANSEN_HOLY_NUMBERS, (1, 1, 1), near), mp.mpf(t))
+            assert abs(speeds["leg_speed"][n] - float(rate)) < 1e-11 * max(1.0, abs(float(rate)))

@@ -1,0 +1,642 @@
+"""Linkage files: a new linkage in a TOML file, without writing Python.
+
+A linkage file names the linkage's coordinates and constants, its vectors, its
+loops as signed sums of vectors, its named points, roles and default values.
+Numbers and names only: every expression is read by a small tokenizer and
+parser of its own (below), never by ``eval``, ``sympify`` or ``parse_expr``.
+
+The four-bar of the catalog as a file::
+
+    name = "fourbar"
+    inputs = ["theta"]                 # driven coordinates
+    unknowns = ["beta", "phi"]         # what the loops determine, in the order that fixes each branch
+    lengths = ["a", "b", "c", "d"]     # positive constants
+    constants = []                     # other constants (fixed angles, signed offsets); may be left out
+
+    [vectors]                          # name = [length, angle]
+    AB = ["a", "theta"]
+    BC = ["b", "beta"]
+    DC = ["c", "phi"]
+    AD = ["d", 0]
+
+    [loops]                            # name = the vectors walked around the loop, each from where the last ends
+    ABCD = "AD + DC - BC - AB"
+
+    [points]                           # name = vectors walked from the origin ("0" is the origin)
+    A = "0"
+    B = "AB"
+    C = "AB + BC"
+    D = "AD"
+
+    [roles]                            # plain names for coordinates
+    crank = "theta"
+    coupler = "beta"
+    rocker = "phi"
+
+    [defaults]                         # optional values of constants and inputs
+    a = 20
+    b = 66
+    c = 56
+    d = 80
+    theta = "30 deg"
+
+The parameters of the generated functions are the lengths, then the
+constants, in the order listed.  The grammar of a length, an angle or a
+default value::
+
+    sum      := ["-"] term (("+" | "-") term)*
+    term     := name | constant
+    constant := number ["/" number] [unit] | [number "*"] "pi" ["/" number]
+    unit     := "deg" | "rad"                       (angles only)
+    name     := a coordinate or constant of the file (ASCII letters, digits, _)
+
+so ``"theta"``, ``0``, ``"pi/2"``, ``"-pi/2"``, ``"3*pi/4"``, ``"35 deg"``,
+``"beta + 35 deg"`` and ``"phi + alpha"`` are all angles.  A name is never
+multiplied: a vector turns with a coordinate or it does not.  A default
+value is a number or a constant (``"30 deg"``).
+
+Anything else is one line of error naming the file, the line and the
+problem, such as ``fourbar.toml:9: vectors.AB: 'gamma' is not a coordinate
+or constant of this file``.
+
+>>> found = linkage_from_text('''
+... name = "fourbar"
+... inputs = ["theta"]
+... unknowns = ["beta", "phi"]
+... lengths = ["a", "b", "c", "d"]
+... [vectors]
+... AB = ["a", "theta"]
+... BC = ["b", "beta"]
+... DC = ["c", "phi"]
+... AD = ["d", 0]
+... [loops]
+... ABCD = "AD + DC - BC - AB"
+... [points]
+... A = "0"
+... C = "AB + BC"
+... [defaults]
+... theta = "30 deg"
+... ''', source="fourbar.toml")
+>>> found.linkage.unknowns, round(found.defaults["theta"], 12)
+((beta, phi), 0.523598775598)
+>>> linkage_from_text('name = "x"\\ninputs = ["theta"]\\nunknowns = ["beta"]\\nlengths = ["a"]\\n'
+...                   '[vectors]\\nAB = ["a", "theta * 2"]\\n', source="x.toml")
+Traceback (most recent call last):
+ValueError: x.toml:6: vectors.AB: angle 'theta * 2': a name cannot be multiplied (write a sum of names and constants)
+"""
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Mapping
+
+import sympy as sp
+
+from .files import write_atomic
+from .linkage import Linkage
+from .loops import Loop
+from .vectors import Vector, VectorSum
+
+try:
+    from tomllib import loads as toml_loads
+except ImportError:  # Python 3.10: the strict subset reader (linkage files stay inside its subset)
+    from .minitoml import loads as toml_loads
+
+__all__ = ["LinkageFile", "read_linkage", "linkage_from_text", "linkage_from_mapping", "linkage_text",
+           "write_linkage", "write_catalog_files"]
+
+TOP_KEYS = ("name", "inputs", "unknowns", "lengths", "constants")
+TABLES = ("vectors", "loops", "points", "roles", "defaults")
+RESERVED = {"pi", "deg", "rad"}
+ORIGIN = "0"
+_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
+_TOKEN = re.compile(r"\s*(?:(?P<number>(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)"
+                    r"|(?P<name>[A-Za-z_][A-Za-z0-9_]*)|(?P<operator>[-+*/]))")
+
+
+@dataclass(frozen=True)
+class LinkageFile:
+    """A linkage read from a file, with the file's default values (radians for angles) and where it came from."""
+
+    linkage: Linkage
+    defaults: dict[str, float] = field(default_factory=dict)
+    source: str = ""
+
+
+class _Problem(ValueError):
+    """A problem at a key of the file: ``table`` ("" at the top level) and ``key`` ("" for the whole table)."""
+
+    def __init__(self, table: str, key: str, message: str) -> None:
+        super().__init__(message)
+        self.table, self.key, self.message = table, key, message
+
+
+# --- where keys are in the text -------------------------------------------------------
+
+_HEADER_LINE = re.compile(r"\s*\[\s*([A-Za-z0-9_.-]+)\s*\]\s*(?:#.*)?$")
+_KEY_LINE = re.compile(r"""\s*(?:([A-Za-z0-9_-]+)|"([^"\\]*)"|'([^']*)')\s*=""")
+
+
+def _key_lines(text: str) -> tuple[dict[tuple[str, str], int], dict[str, int]]:
+    """The line of each ``(table, key)`` and of each table header, found by scanning the text.
+
+    tomllib reports no positions; linkage files are plain enough (one key a
+    line, simple headers) for a line scan to find every key it accepts.
+    """
+    keys: dict[tuple[str, str], int] = {}
+    headers: dict[str, int] = {}
+    table = ""
+    in_multiline = False
+    for number, line in enumerate(text.splitlines(), start=1):
+        if in_multiline:  # skip the continuation of an array written over several lines
+            in_multiline = line.count("[") >= line.count("]") and "]" not in line
+            continue
+        header = _HEADER_LINE.match(line)
+        if header:
+            table = header.group(1)
+            headers.setdefault(table, number)
+            continue
+        key = _KEY_LINE.match(line)
+        if key:
+            name = next(group for group in key.groups() if group is not None)
+            keys.setdefault((table, name), number)
+            rest = line[key.end():]
+            in_multiline = rest.count("[") > rest.count("]")
+    return keys, headers
+
+
+def _line_of(problem: _Problem, text: str | None) -> int | None:
+    if text is None:
+        return None
+    keys, headers = _key_lines(text)
+    if (problem.table, problem.key) in keys:
+        return keys[(problem.table, problem.key)]
+    if f"{problem.table}.{problem.key}" in headers:  # a nested table [vectors.AB]
+        return headers[f"{problem.table}.{problem.key}"]
+    if problem.table and problem.table in headers:
+        return headers[problem.table]
+    if not problem.table and problem.key in headers:  # a table the top level does not allow
+        return headers[problem.key]
+    if ("", problem.table) in keys:  # an inline table: the line of its key
+        return keys[("", problem.table)]
+    return 1
+
+
+# --- the expression grammar --------------------------------------------------------------
+
+def _tokens(text: str) -> list[tuple[str, str]]:
+    """``(kind, text)`` tokens of an expression: number, name, operator; ``ValueError`` for anything else."""
+    found, position = [], 0
+    while position < len(text):
+        if text[position:].strip() == "":
+            break
+        match = _TOKEN.match(text, position)
+        if not match:
+            bad = text[position:].lstrip()[0]
+            raise ValueError(f"unexpected {bad!r} (a sum of names and constants such as 'beta + 35 deg' or 'pi/2')")
+        kind = match.lastgroup
+        found.append((kind, match.group(kind)))
+        position = match.end()
+    return found
+
+
+class _Parser:
+    """Recursive descent over the tokens of one expression (see the module docstring for the grammar)."""
+
+    def __init__(self, text: str, names: Mapping[str, sp.Symbol], units: bool) -> None:
+        self.text, self.names, self.units = text, names, units
+        self.tokens = _tokens(text)
+        self.position = 0
+
+    def peek(self) -> tuple[str, str] | None:
+        return self.tokens[self.position] if self.position < len(self.tokens) else None
+
+    def take(self) -> tuple[str, str]:
+        token = self.peek()
+        if token is None:
+            raise ValueError("ends too early")
+        self.position += 1
+        return token
+
+    def accept(self, operator: str) -> bool:
+        if self.peek() == ("operator", operator):
+            self.position += 1
+            return True
+        return False
+
+    def parse(self) -> sp.Expr:
+        if not self.tokens:
+            raise ValueError("is empty")
+        terms = []
+        sign = -1 if self.accept("-") else 1
+        while True:
+            terms.append(sign * self.term())
+            token = self.peek()
+            if token is None:
+                return sp.Add(*terms)
+            if token[0] != "operator" or token[1] not in "+-":
+                raise ValueError(f"expected + or - before {token[1]!r}")
+            sign = 1 if self.take()[1] == "+" else -1
+
+    def number(self) -> sp.Expr:
+        kind, text = self.take()
+        if kind != "number":
+            raise ValueError(f"expected a number, got {text!r}")
+        if any(c in text for c in ".eE"):
+            value = sp.Float(text)
+            if not math.isfinite(float(value)):
+                raise ValueError(f"{text} is not a finite number")
+            return value
+        return sp.Integer(text)
+
+    def divisor(self) -> sp.Expr:
+        value = self.number()
+        if value == 0:
+            raise ValueError("division by zero")
+        return value
+
+    def term(self) -> sp.Expr:
+        kind, text = self.peek() or ("", "")
+        if kind == "name" and text == "pi":
+            self.take()
+            return sp.pi / self.divisor() if self.accept("/") else sp.pi
+        if kind == "name":
+            self.take()
+            if text in RESERVED:
+                raise ValueError(f"{text!r} must follow a number (as in '35 deg')")
+            if text not in self.names:
+                raise ValueError(f"{text!r} is not a coordinate or constant of this file")
+            if self.peek() in (("operator", "*"), ("operator", "/")):
+                raise ValueError("a name cannot be multiplied (write a sum of names and constants)")
+            return self.names[text]
+        if kind != "number":
+            raise ValueError(f"expected a name or a number, got {text!r}" if text else "ends too early")
+        value = self.number()
+        if self.accept("/"):
+            value = value / self.divisor()
+        if self.accept("*"):
+            kind, text = self.take()
+            if (kind, text) != ("name", "pi"):
+                raise ValueError("a name cannot be multiplied (write a sum of names and constants)"
+                                 if kind == "name" else f"only pi may follow '*', got {text!r}")
+            value = value * sp.pi
+            if self.accept("/"):
+                value = value / self.divisor()
+            return value
+        following = self.peek()
+        if following is not None and following[0] == "name":
+            if following[1] not in ("deg", "rad"):
+                raise ValueError(f"unexpected {following[1]!r} after a number (units are deg and rad)")
+            if not self.units:
+                raise ValueError(f"a unit ({following[1]}) belongs to angles only")
+            self.take()
+            return value * sp.pi / 180 if following[1] == "deg" else value
+        return value
+
+
+def _expression(value, names: Mapping[str, sp.Symbol], units: bool) -> sp.Expr:
+    """A length, an angle or a default from a TOML number or a string of the grammar."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+        raise ValueError(f"must be a number or a string such as 'beta + 35 deg', got {value!r}")
+    if isinstance(value, (int, float)):
+        if not math.isfinite(value):
+            raise ValueError(f"must be finite, got {value!r}")
+        return sp.Integer(value) if isinstance(value, int) else sp.Float(value)
+    try:
+        return _Parser(value, names, units).parse()
+    except ValueError as error:
+        raise ValueError(f"{value!r}: {error}") from None
+
+
+def _signed_sum(text, vectors: Mapping[str, Vector]) -> VectorSum:
+    """A loop or a point: vector names joined by + and -."""
+    if not isinstance(text, str):
+        raise ValueError(f"must be a string such as 'AB + BC - DC', got {text!r}")
+    tokens = _tokens(text)
+    if not tokens:
+        raise ValueError("is empty")
+    terms, sign, expect_name = [], 1, True
+    for index, (kind, token) in enumerate(tokens):
+        if expect_name:
+            if kind == "operator" and token in "+-" and index == 0:
+                sign = -1 if token == "-" else 1
+                continue
+            if kind != "name":
+                raise ValueError(f"{text!r}: expected a vector name, got {token!r}")
+            if token not in vectors:
+                raise ValueError(f"{text!r}: {token!r} is not a vector of [vectors]")
+            terms.append((sign, vectors[token]))
+            expect_name = False
+        else:
+            if kind != "operator" or token not in "+-":
+                raise ValueError(f"{text!r}: expected + or - between vectors, got {token!r}")
+            sign = 1 if token == "+" else -1
+            expect_name = True
+    if expect_name:
+        raise ValueError(f"{text!r}: ends with {tokens[-1][1]!r}")
+    return VectorSum(tuple(terms))
+
+
+# --- reading --------------------------------------------------------------------------
+
+def _names(data: Mapping, key: str, required: bool) -> list[str]:
+    if key not in data:
+        if required:
+            raise _Problem("", "", f"missing {key} (a list of names, such as {key} = [\"theta\"])")
+        return []
+    value = data[key]
+    if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
+        raise _Problem("", key, f"{key} must be a list of names, got {value!r}")
+    for name in value:
+        if not _NAME.match(name):
+            raise _Problem("", key, f"{key}: {name!r} is not a name (ASCII letters, digits and _, "
+                                    "not starting with a digit)")
+        if name in RESERVED:
+            raise _Problem("", key, f"{key}: {name!r} is reserved by the grammar (pi, deg, rad)")
+    return list(value)
+
+
+def _table(data: Mapping, name: str) -> dict:
+    value = data.get(name, {})
+    if not isinstance(value, dict):
+        raise _Problem("", name, f"{name} must be a table ([{name}]), got {value!r}")
+    for key, item in value.items():
+        if isinstance(item, dict):
+            raise _Problem(name, key, f"{name}.{key}: nested tables are not part of linkage files")
+        if not _NAME.match(key):
+            raise _Problem(name, key, f"{name}.{key}: a name is ASCII letters, digits and _, "
+                                      "not starting with a digit")
+    return value
+
+
+def linkage_from_mapping(data: Mapping, source: str = "<mapping>", text: str | None = None) -> LinkageFile:
+    """A :class:`LinkageFile` from parsed TOML; ``ValueError`` ``"source:line: problem"`` on anything wrong.
+
+    ``text`` is the TOML the mapping was read from, to find the line of a
+    problem; without it the message names ``source`` only.
+
+    >>> found = linkage_from_mapping({"name": "crank", "inputs": ["theta"], "unknowns": ["beta", "s"],
+    ...     "lengths": ["a", "b"], "vectors": {"AB": ["a", "theta"], "BC": ["b", "beta"], "AC": ["s", 0]},
+    ...     "loops": {"ABC": "AB + BC - AC"}})
+    >>> found.linkage.parameters, [step.case.name for step in found.linkage.plan]
+    ((a, b), ['2b'])
+    """
+    try:
+        return _from_mapping(data, source)
+    except _Problem as problem:
+        line = _line_of(problem, text)
+        at = f"{source}:{line}" if line is not None else source
+        raise ValueError(f"{at}: {problem.message}") from None
+
+
+def _from_mapping(data: Mapping, source: str) -> LinkageFile:
+    if not isinstance(data, Mapping):
+        raise _Problem("", "", f"a linkage file is a TOML table, got {type(data).__name__}")
+    for key in data:
+        if key not in TOP_KEYS + TABLES:
+            raise _Problem("", key, f"unknown key {key!r} (a linkage file has {', '.join(TOP_KEYS + TABLES)})")
+    name = data.get("name")
+    if "name" not in data:
+        raise _Problem("", "", 'missing name (such as name = "fourbar")')
+    if not isinstance(name, str) or not name.strip():
+        raise _Problem("", "name" if "name" in data else "", f"name must be a non-empty string, got {name!r}")
+    inputs, unknowns = _names(data, "inputs", True), _names(data, "unknowns", True)
+    positive, constants = _names(data, "lengths", False), _names(data, "constants", False)
+    declared: dict[str, str] = {}
+    for key, listed in (("inputs", inputs), ("unknowns", unknowns), ("lengths", positive), ("constants", constants)):
+        for item in listed:
+            if item in declared:
+                raise _Problem("", key, f"{item!r} is listed in {declared[item]} and again in {key}")
+            declared[item] = key
+    symbols = {n: sp.Symbol(n, real=True) for n in inputs + unknowns + constants}
+    symbols |= {n: sp.Symbol(n, positive=True) for n in positive}
+
+    vectors: dict[str, Vector] = {}
+    for key, value in _table(data, "vectors").items():
+        if not isinstance(value, list) or len(value) != 2:
+            raise _Problem("vectors", key, f"vectors.{key} must be [length, angle], got {value!r}")
+        try:
+            length = _expression(value[0], symbols, units=False)
+        except ValueError as error:
+            raise _Problem("vectors", key, f"vectors.{key}: length {error}") from None
+        try:
+            angle = _expression(value[1], symbols, units=True)
+        except ValueError as error:
+            raise _Problem("vectors", key, f"vectors.{key}: angle {error}") from None
+        vectors[key] = Vector(length, angle, key)
+
+    loops = []
+    for key, value in _table(data, "loops").items():
+        try:
+            loops.append(Loop(_signed_sum(value, vectors), name=key))
+        except ValueError as error:
+            raise _Problem("loops", key, f"loops.{key}: {error}") from None
+    if not loops:
+        raise _Problem("loops", "", "no loops: give at least one under [loops], such as ABCD = \"AD + DC - BC - AB\"")
+
+    points: dict[str, VectorSum | None] = {}
+    for key, value in _table(data, "points").items():
+        if value == ORIGIN:
+            points[key] = None
+            continue
+        try:
+            points[key] = _signed_sum(value, vectors)
+        except ValueError as error:
+            raise _Problem("points", key, f"points.{key}: {error}") from None
+
+    used = {v for loop in loops for _, v in loop.terms} | {v for p in points.values() if p for _, v in p.terms}
+    for key, vector in vectors.items():
+        if vector not in used:
+            raise _Problem("vectors", key, f"vectors.{key} is in no loop and no point")
+    in_vectors = set().union(*(v.length.free_symbols | v.angle.free_symbols for v in vectors.values()))
+    for key, listed in (("lengths", positive), ("constants", constants), ("inputs", inputs), ("unknowns", unknowns)):
+        for item in listed:
+            if symbols[item] not in in_vectors:
+                raise _Problem("", key, f"{key}: {item!r} appears in no vector")
+
+    roles = {}
+    for key, value in _table(data, "roles").items():
+        if not isinstance(value, str) or value not in inputs + unknowns:
+            raise _Problem("roles", key, f"roles.{key} must name a coordinate ({', '.join(inputs + unknowns)}), "
+                                         f"got {value!r}")
+        roles[key] = symbols[value]
+
+    angles = set().union(*(v.angle.free_symbols for v in vectors.values()))
+    defaults = {}
+    for key, value in _table(data, "defaults").items():
+        if key not in positive + constants + inputs:
+            raise _Problem("defaults", key, f"defaults.{key}: only constants and inputs have defaults "
+                                            f"({', '.join(positive + constants + inputs)})")
+        try:
+            number = _expression(value, {}, units=symbols[key] in angles)
+        except ValueError as error:
+            raise _Problem("defaults", key, f"defaults.{key}: {error}") from None
+        defaults[key] = float(number)
+        if key in positive and not defaults[key] > 0:
+            raise _Problem("defaults", key, f"defaults.{key} must be a positive length, got {value!r}")
+
+    try:
+        linkage = Linkage(name, loops, [symbols[n] for n in inputs], [symbols[n] for n in unknowns],
+                          parameters=[symbols[n] for n in positive + constants], points=points, roles=roles)
+        missing = set().union(*(loop.symbols() for loop in loops)) - set(linkage.coordinates) - set(linkage.parameters)
+        if missing:
+            raise ValueError(f"the loops use {', '.join(sorted(map(str, missing)))}, which is not declared")
+        linkage.has_closed_form  # a linkage with no solve plan at all is an error in its definition
+    except ValueError as error:
+        raise _Problem("loops", "", f"{error}") from None
+    return LinkageFile(linkage, defaults, source)
+
+
+def linkage_from_text(text: str, source: str = "<text>") -> LinkageFile:
+    """A :class:`LinkageFile` from the TOML text of a linkage file (see the module docstring)."""
+    try:
+        data = toml_loads(text)
+    except ValueError as error:  # tomllib.TOMLDecodeError: its message ends "(at line L, column C)"
+        found = re.search(r"line (\d+)", str(error))
+        line = found.group(1) if found else "1"
+        message = re.sub(r"\s*\(at line \d+, column \d+\)|^line \d+: ", "", str(error))
+        raise ValueError(f"{source}:{line}: not valid TOML: {message}") from None
+    return linkage_from_mapping(data, source, text)
+
+
+def read_linkage(path: str | Path) -> LinkageFile:
+    """Read a linkage file; ``ValueError`` ``"path:line: problem"`` if it cannot be read or is not valid."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as error:
+        raise ValueError(f"{path}:1: cannot read linkage file: {getattr(error, 'strerror', None) or error}") from None
+    return linkage_from_text(text, str(path))
+
+
+# --- writing --------------------------------------------------------------------------
+
+def _constant_text(value: sp.Expr) -> str:
+    ratio = sp.nsimplify(value / sp.pi) if value.has(sp.pi) else None
+    if ratio is not None and ratio.is_Rational and not value.free_symbols:
+        p, q = ratio.p, ratio.q
+        head = "pi" if abs(p) == 1 else f"{abs(p)}*pi"
+        return ("-" if p < 0 else "") + head + (f"/{q}" if q != 1 else "")
+    if value.is_Integer:
+        return str(int(value))
+    if value.is_Rational:
+        return f"{value.p}/{value.q}"
+    if value.is_Float:
+        return repr(float(value))
+    raise ValueError(f"{value} cannot be written in a linkage file (a sum of names and constants)")
+
+
+def _expression_text(expr: sp.Expr) -> str | int | float:
+    """The grammar's text for an expression: names with sign +-1 and one constant."""
+    if expr.is_Integer:
+        return int(expr)
+    constant = sp.S.Zero
+    names = []
+    for term in sp.Add.make_args(expr):
+        if term.is_Symbol:
+            names.append((1, term))
+        elif term.is_Mul and term.args[0] == -1 and len(term.args) == 2 and term.args[1].is_Symbol:
+            names.append((-1, term.args[1]))
+        elif not term.free_symbols:
+            constant += term
+        else:
+            raise ValueError(f"{expr} cannot be written in a linkage file: {term} is not a name or a constant")
+    names.sort(key=lambda pair: pair[1].name)
+    text = ""
+    for sign, symbol in names:
+        text += (" - " if sign < 0 else (" + " if text else "")) + symbol.name
+    if constant != 0 or not text:
+        part = _constant_text(constant)
+        if text:
+            text += (" - " + part[1:]) if part.startswith("-") else (" + " + part)
+        else:
+            text = part
+    return text.strip()
+
+
+def _sum_text(vectors: VectorSum) -> str:
+    text = ""
+    for sign, vector in vectors.terms:
+        text += (" - " if sign < 0 else (" + " if text else "")) + vector.name
+    return text.lstrip()
+
+
+def _toml_value(value) -> str:
+    if isinstance(value, str):
+        if '"' in value or "\\" in value:
+            raise ValueError(f"{value!r} cannot be written as a simple TOML string")
+        return f'"{value}"'
+    if isinstance(value, float):
+        return repr(value)
+    if isinstance(value, list):
+        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    return str(value)
+
+
+def linkage_text(linkage: Linkage, defaults: Mapping[str, float] | None = None) -> str:
+    """The TOML text of a linkage file for ``linkage`` (that :func:`linkage_from_text` reads back to it).
+
+    Extras (named expressions such as the four-bar's transmission angle) are
+    Python only and left out.
+
+    >>> from symlink.catalog import slider_crank
+    >>> print(linkage_text(slider_crank()).split("[vectors]")[0].strip())
+    # A symlink linkage file: vectors, loops and points (see symlink.linkage_file).
+    name = "slider-crank"
+    inputs = ["theta"]
+    unknowns = ["beta", "s"]
+    lengths = ["a", "b"]
+    constants = ["offset"]
+    """
+    vectors: dict[str, Vector] = {}
+    sums = [p.as_sum() for p in linkage.points.values() if p is not None] + [loop.vectors for loop in linkage.loops]
+    for vectors_sum in sums:
+        for _, vector in vectors_sum.terms:
+            if not vector.name or not _NAME.match(vector.name):
+                raise ValueError(f"vector {vector} needs a name of ASCII letters, digits and _ to be written")
+            if vectors.setdefault(vector.name, vector) != vector:
+                raise ValueError(f"two different vectors are named {vector.name!r}")
+    positive = [s.name for s in linkage.parameters if s.is_positive]
+    constants = [s.name for s in linkage.parameters if not s.is_positive]
+    lines = ["# A symlink linkage file: vectors, loops and points (see symlink.linkage_file).",
+             f"name = {_toml_value(linkage.name)}",
+             f"inputs = {_toml_value([q.name for q in linkage.inputs])}",
+             f"unknowns = {_toml_value([q.name for q in linkage.unknowns])}",
+             f"lengths = {_toml_value(positive)}"]
+    if constants:
+        lines.append(f"constants = {_toml_value(constants)}")
+    lines += ["", "[vectors]"]
+    lines += [f"{name} = {_toml_value([_expression_text(v.length), _expression_text(v.angle)])}"
+              for name, v in vectors.items()]
+    lines += ["", "[loops]"] + [f"{loop.name} = {_toml_value(_sum_text(loop.vectors))}" for loop in linkage.loops]
+    if linkage.points:
+        lines += ["", "[points]"]
+        lines += [f"{name} = {_toml_value(ORIGIN if p is None else _sum_text(p.as_sum()))}"
+                  for name, p in linkage.points.items()]
+    if linkage.roles:
+        lines += ["", "[roles]"] + [f"{role} = {_toml_value(q.name)}" for role, q in linkage.roles.items()]
+    if defaults:
+        lines += ["", "[defaults]"] + [f"{name} = {_toml_value(float(value))}" for name, value in defaults.items()]
+    return "\n".join(lines) + "\n"
+
+
+def write_linkage(linkage: Linkage, path: str | Path, defaults: Mapping[str, float] | None = None) -> None:
+    """Write ``linkage`` (and optional ``defaults``) as a linkage file, atomically."""
+    write_atomic(path, linkage_text(linkage, defaults))
+
+
+def write_catalog_files(folder: str | Path) -> list[Path]:
+    """Write every catalog entry as ``<folder>/<name>.toml`` with its example values: the shipped examples.
+
+    The repository's ``linkages/`` folder is made by
+    ``python -c "from symlink.linkage_file import write_catalog_files; write_catalog_files('linkages')"``.
+    """
+    from .catalog import CATALOG, EXAMPLE_VALUES
+    written = []
+    for name, build in CATALOG.items():
+        path = Path(folder) / f"{name}.toml"
+        write_linkage(build(), path, EXAMPLE_VALUES.get(name))
+        written.append(path)
+    return written

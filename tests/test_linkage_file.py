@@ -1,0 +1,285 @@
+"""Linkage files: every catalog entry round-trips, the shipped examples are current, bad files say where."""
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+import sympy as sp
+from hypothesis import given, settings, strategies as st
+
+from symlink.catalog import CATALOG, EXAMPLE_VALUES
+from symlink.linkage_file import (linkage_from_mapping, linkage_from_text, linkage_text, read_linkage,
+                                  write_catalog_files, write_linkage)
+from symlink.solver import Solver
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+@pytest.mark.parametrize("name", sorted(CATALOG))
+def test_every_catalog_entry_round_trips(name, tmp_path):
+    original = CATALOG[name]()
+    path = tmp_path / f"{name}.toml"
+    write_linkage(original, path, EXAMPLE_VALUES[name])
+    found = read_linkage(path)
+    copy = found.linkage
+    assert [loop.equations() for loop in copy.loops] == [loop.equations() for loop in original.loops]
+    assert [loop.name for loop in copy.loops] == [loop.name for loop in original.loops]
+    assert (copy.inputs, copy.unknowns, copy.parameters) == (original.inputs, original.unknowns, original.parameters)
+    assert copy.call_signature() == original.call_signature()
+    assert {p: copy.point(p) for p in copy.points} == {p: original.point(p) for p in original.points}
+    assert copy.roles == original.roles
+    assert copy.has_closed_form == original.has_closed_form
+    if original.has_closed_form:
+        assert copy.positions == original.positions
+    assert found.defaults == pytest.approx(EXAMPLE_VALUES[name], rel=0, abs=0)
+    assert linkage_text(copy, found.defaults) == path.read_text()  # and the text is a fixed point
+
+
+@pytest.mark.parametrize("name", sorted(CATALOG))
+def test_shipped_example_files_are_current(name):
+    path = ROOT / "linkages" / f"{name}.toml"
+    regenerate = "python -c \"from symlink.linkage_file import write_catalog_files; write_catalog_files('linkages')\""
+    assert path.exists(), f"linkages/{name}.toml is missing: run {regenerate}"
+    assert path.read_text() == linkage_text(CATALOG[name](), EXAMPLE_VALUES[name]), f"stale: run {regenerate}"
+
+
+def test_write_catalog_files_writes_one_file_per_entry(tmp_path):
+    written = write_catalog_files(tmp_path)
+    assert sorted(p.name for p in written) == sorted(f"{n}.toml" for n in CATALOG)
+
+
+def test_a_file_linkage_solves_like_the_catalog():
+    found = read_linkage(ROOT / "linkages" / "fourbar.toml")
+    theta = np.radians(np.arange(0.0, 360.0, 40.0))
+    by_file = Solver(found.linkage, ["rocker"])(theta=theta, **found.defaults)["rocker"]
+    # seed 003: a=20, b=66, c=56, d=80 at theta = 0 on branch +1 gives phi = 110.74 deg
+    assert round(math.degrees(by_file[0]), 2) == 110.74
+    assert np.array_equal(by_file, Solver(CATALOG["fourbar"](), ["rocker"])(theta=theta, **found.defaults)["rocker"])
+
+
+# --- the grammar -------------------------------------------------------------------
+
+HEAD = 'name = "x"\ninputs = ["theta"]\nunknowns = ["beta", "phi"]\nlengths = ["a", "b", "c", "d"]\n'
+LOOP = '[loops]\nABCD = "AD + DC - BC - AB"\n'
+
+
+def angle_of(text):
+    vectors = f'[vectors]\nAB = ["a", "{text}"]\nBC = ["b", "beta"]\nDC = ["c", "phi"]\nAD = ["d", 0]\n'
+    constants = 'constants = ["alpha"]\n' if "alpha" in text else ""
+    found = linkage_from_text(HEAD + constants + vectors + LOOP)
+    return found.linkage.loops[0].terms[-1][1].angle
+
+
+THETA, ALPHA = sp.Symbol("theta", real=True), sp.Symbol("alpha", real=True)
+
+
+@pytest.mark.parametrize("text, expected", [
+    ("theta", THETA),
+    ("theta + 35 deg", THETA + 7 * sp.pi / 36),
+    ("theta - pi/2", THETA - sp.pi / 2),
+    ("-theta", -THETA),
+    ("theta + 3*pi/4", THETA + 3 * sp.pi / 4),
+    ("theta + 0.5 rad", THETA + sp.Float(0.5)),
+    ("theta + 1/3", THETA + sp.Rational(1, 3)),
+    ("theta + alpha - 10deg", THETA + ALPHA - sp.pi / 18),
+    ("theta + 1e-3", THETA + sp.Float(0.001)),
+])
+def test_angle_grammar(text, expected):
+    assert angle_of(text) == expected
+
+
+constants = st.one_of(st.integers(-720, 720).map(lambda k: sp.pi * k / 180),
+                      st.integers(-9, 9).map(sp.Integer),
+                      st.fractions(max_denominator=12).filter(lambda f: abs(f) < 50).map(sp.Rational))
+
+
+@settings(max_examples=60, deadline=None)
+@given(sign=st.sampled_from([1, -1]), constant=constants, with_alpha=st.booleans())
+def test_written_angles_read_back(sign, constant, with_alpha):
+    """Any angle the grammar can hold is written by the writer and read back to the same expression."""
+    theta, alpha = sp.Symbol("theta", real=True), sp.Symbol("alpha", real=True)
+    from symlink import Linkage, Loop, Vector, lengths
+    beta, phi = sp.symbols("beta phi", real=True)
+    a, b, c, d = lengths("a b c d")
+    angle = sign * theta + constant + (alpha if with_alpha else 0)
+    AB, BC, DC, AD = Vector(a, angle, "AB"), Vector(b, beta, "BC"), Vector(c, phi, "DC"), Vector(d, 0, "AD")
+    linkage = Linkage("x", [Loop(AD + DC - BC - AB, name="ABCD")], [theta], [beta, phi])
+    copy = linkage_from_text(linkage_text(linkage)).linkage
+    assert copy.loops[0].terms[-1][1].angle == angle
+
+
+# --- malformed files: one line naming the file, the line and the problem ------------------
+
+GOOD = """\
+name = "fourbar"
+inputs = ["theta"]
+unknowns = ["beta", "phi"]
+lengths = ["a", "b", "c", "d"]
+
+[vectors]
+AB = ["a", "theta"]
+BC = ["b", "beta"]
+DC = ["c", "phi"]
+AD = ["d", 0]
+
+[loops]
+ABCD = "AD + DC - BC - AB"
+
+[points]
+A = "0"
+C = "AB + BC"
+
+[roles]
+crank = "theta"
+
+[defaults]
+a = 20
+theta = "30 deg"
+"""
+
+
+def replaced(old, new):
+    assert old in GOOD, old
+    return GOOD.replace(old, new, 1)
+
+
+MALFORMED = [
+    # (file text, line of the problem, words of the message)
+    (replaced('name = "fourbar"', 'name = "fourbar'), 1, "not valid TOML"),
+    (replaced("[roles]", "[roles]\n[roles]"), 20, "not valid TOML"),
+    (replaced('name = "fourbar"', 'colour = "red"'), 1, "unknown key 'colour'"),
+    (replaced('name = "fourbar"\n', ""), 1, "missing name"),
+    (replaced('name = "fourbar"', "name = 3"), 1, "name must be a non-empty string"),
+    (replaced('name = "fourbar"', 'name = ""'), 1, "name must be a non-empty string"),
+    (replaced('inputs = ["theta"]', 'inputs = "theta"'), 2, "inputs must be a list of names"),
+    (replaced('inputs = ["theta"]', 'inputs = ["theta", 3]'), 2, "inputs must be a list of names"),
+    (replaced('inputs = ["theta"]\n', ""), 1, "missing inputs"),
+    (replaced('unknowns = ["beta", "phi"]', 'unknowns = ["beta", "2phi"]'), 3, "'2phi' is not a name"),
+    (replaced('unknowns = ["beta", "phi"]', 'unknowns = ["beta", "pi"]'), 3, "reserved"),
+    (replaced('unknowns = ["beta", "phi"]', 'unknowns = ["beta", "phi", "theta"]'), 3, "listed in inputs and again"),
+    (replaced('lengths = ["a", "b", "c", "d"]', 'lengths = ["a", "b", "c", "d", "e"]'), 4, "'e' appears in no vector"),
+    (replaced('lengths = ["a", "b", "c", "d"]', 'lengths = ["a", "b", "c", "d"]\nconstants = ["gx"]'), 5,
+     "'gx' appears in no vector"),
+    (replaced('AB = ["a", "theta"]', 'AB = ["a"]'), 7, "vectors.AB must be [length, angle]"),
+    (replaced('AB = ["a", "theta"]', 'AB = "a"'), 7, "vectors.AB must be [length, angle]"),
+    (replaced('AB = ["a", "theta"]', 'AB = ["a", "theta * 2"]'), 7, "a name cannot be multiplied"),
+    (replaced('AB = ["a", "theta"]', 'AB = ["a", "2 * theta"]'), 7, "a name cannot be multiplied"),
+    (replaced('AB = ["a", "theta"]', 'AB = ["a", "gamma"]'), 7, "'gamma' is not a coordinate or constant"),
+    (replaced('AB = ["a", "theta"]', 'AB = ["2 deg", "theta"]'), 7, "a unit (deg) belongs to angles only"),
+    (replaced('AB = ["a", "theta"]', 'AB = ["a", "theta + 35 km"]'), 7, "units are deg and rad"),
+    (replaced('AB = ["a", "theta"]', 'AB = ["a", "theta +"]'), 7, "ends too early"),
+    (replaced('AB = ["a", "theta"]', 'AB = ["a", "theta $ 2"]'), 7, "unexpected '$'"),
+    (replaced('AB = ["a", "theta"]', 'AB = ["a", "theta + pi/0"]'), 7, "division by zero"),
+    (replaced('AB = ["a", "theta"]', 'AB = ["a", true]'), 7, "must be a number or a string"),
+    (replaced('AB = ["a", "theta"]', 'AB = ["a", ""]'), 7, "is empty"),
+    (replaced('AB = ["a", "theta"]', 'AB = ["a", "theta deg"]'), 7, "expected + or - before 'deg'"),
+    (replaced('AB = ["a", "theta"]', 'AB = ["a", "deg"]'), 7, "'deg' must follow a number"),
+    (replaced('AB = ["a", "theta"]', 'AB = ["a", "theta + 2 * 3"]'), 7, "only pi may follow '*'"),
+    (replaced('AD = ["d", 0]', 'AD = ["d", 0]\nXY = ["d", "pi"]'), 11, "vectors.XY is in no loop and no point"),
+    (replaced('AD = ["d", 0]', 'AD = ["d", 0]\nA-B = ["d", "pi"]'), 11, "vectors.A-B: a name is ASCII"),
+    (replaced('ABCD = "AD + DC - BC - AB"', 'AB-CD = "AD + DC - BC - AB"'), 13, "loops.AB-CD: a name is ASCII"),
+    (replaced('C = "AB + BC"', '2C = "AB + BC"'), 17, "points.2C: a name is ASCII"),
+    (replaced('crank = "theta"', '"the crank" = "theta"'), 20, "roles.the crank: a name is ASCII"),
+    (replaced('AD = ["d", 0]', 'AD = ["d", 0]\n[vectors.EF]\nlength = "d"'), 11, "nested tables"),
+    (replaced('ABCD = "AD + DC - BC - AB"', 'ABCD = "AD + DC - BC - XY"'), 13, "'XY' is not a vector"),
+    (replaced('ABCD = "AD + DC - BC - AB"', 'ABCD = "AD + DC BC - AB"'), 13, "expected + or - between vectors"),
+    (replaced('ABCD = "AD + DC - BC - AB"', 'ABCD = "AD + DC - BC - AB -"'), 13, "ends with '-'"),
+    (replaced('ABCD = "AD + DC - BC - AB"', "ABCD = 5"), 13, "must be a string"),
+    (replaced('ABCD = "AD + DC - BC - AB"', 'ABCD = "AD + DC - BC - AB"\nBACK = "AB - AB"'), 12,
+     "no loop of 'fourbar' has exactly two unknowns left"),
+    (replaced('[loops]\nABCD = "AD + DC - BC - AB"\n', ""), 1, "no loops"),
+    (replaced('C = "AB + BC"', 'C = "AB + ZZ"'), 17, "'ZZ' is not a vector"),
+    (replaced('crank = "theta"', 'crank = "a"'), 20, "roles.crank must name a coordinate"),
+    (replaced("a = 20", "a = -1"), 23, "defaults.a must be a positive length"),
+    (replaced("a = 20", "zz = 1"), 23, "only constants and inputs have defaults"),
+    (replaced("a = 20", "a = nan"), 23, "must be finite"),
+    (replaced('theta = "30 deg"', 'theta = "30 km"'), 24, "units are deg and rad"),
+    (replaced("a = 20", 'a = "30 deg"'), 23, "a unit (deg) belongs to angles only"),
+    (replaced('theta = "30 deg"', 'theta = "theta"'), 24, "'theta' is not a coordinate or constant"),
+    (replaced("[roles]", "[roles2]"), 19, "unknown key 'roles2'"),
+    (GOOD.split("[defaults]")[0].replace('name = "fourbar"', 'name = "fourbar"\ndefaults = 3'), 2,
+     "defaults must be a table"),
+    (replaced('C = "AB + BC"', 'C = ["AB", "BC"]'), 17, "must be a string"),
+]
+
+
+def test_there_are_enough_malformed_files():
+    assert len(MALFORMED) >= 30
+
+
+@pytest.mark.parametrize("text, line, words", MALFORMED, ids=[f"{n}-{c[2][:30]}" for n, c in enumerate(MALFORMED)])
+def test_malformed_file_names_file_line_and_problem(text, line, words, tmp_path):
+    path = tmp_path / "bad.toml"
+    path.write_text(text)
+    with pytest.raises(ValueError) as caught:
+        read_linkage(path)
+    message = str(caught.value)
+    assert "\n" not in message
+    assert message.startswith(f"{path}:{line}: "), message
+    assert words in message, message
+
+
+def test_the_good_file_is_good(tmp_path):
+    path = tmp_path / "good.toml"
+    path.write_text(GOOD)
+    found = read_linkage(path)
+    assert found.defaults == {"a": 20.0, "theta": pytest.approx(math.pi / 6, rel=1e-15)}
+    assert found.source == str(path)
+
+
+def test_unreadable_file(tmp_path):
+    with pytest.raises(ValueError, match=r"missing\.toml:1: cannot read linkage file"):
+        read_linkage(tmp_path / "missing.toml")
+
+
+def test_mapping_without_text_names_the_source_only():
+    with pytest.raises(ValueError, match=r"^from Python: missing inputs"):
+        linkage_from_mapping({"name": "x"}, source="from Python")
+
+
+def test_the_writer_refuses_what_the_grammar_cannot_hold(tmp_path):
+    from symlink import Linkage, Loop, Vector, coordinates, lengths
+    theta, beta, phi = coordinates("theta beta phi")
+    a, b, c, d = lengths("a b c d")
+    bent = Vector(c, sp.acos(a / d) + phi, "DC")
+    linkage = Linkage("x", [Loop(Vector(d, 0, "AD") + bent - Vector(b, beta, "BC") - Vector(a, theta, "AB"))],
+                      [theta], [beta, phi])
+    with pytest.raises(ValueError, match="cannot be written in a linkage file"):
+        write_linkage(linkage, tmp_path / "x.toml")
+    assert not (tmp_path / "x.toml").exists()
+
+
+def test_readme_shows_the_shipped_fourbar_file():
+    from readme_text import fenced_blocks, readme
+    (shown,) = fenced_blocks(readme("New linkages and your own"), "toml")
+    assert shown == (ROOT / "linkages" / "fourbar.toml").read_text()
+    assert linkage_from_text(shown).linkage.positions == CATALOG["fourbar"]().positions
+
+
+def test_readme_error_example_is_what_the_reader_says():
+    from readme_text import readme
+    text = (ROOT / "linkages" / "fourbar.toml").read_text().replace('AB = ["a", "theta"]', 'AB = ["a", "theta * 2"]')
+    with pytest.raises(ValueError) as caught:
+        linkage_from_text(text, "fourbar.toml")
+    assert f"`{caught.value}`" in readme("New linkages and your own")
+
+
+@pytest.mark.parametrize("name", sorted(CATALOG))
+def test_shipped_files_stay_inside_the_python_310_reader(name):
+    """On Python 3.10 (no tomllib) linkage files are read by symlink.minitoml: the files keep to its subset."""
+    import tomllib
+    from symlink.minitoml import loads
+    text = (ROOT / "linkages" / f"{name}.toml").read_text()
+    assert loads(text) == tomllib.loads(text)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.text(alphabet="thetapidegr0123456789.+-*/ eE_$()", max_size=20))
+def test_any_angle_text_reads_or_fails_with_one_located_line(text):
+    document = GOOD.replace('AB = ["a", "theta"]', f'AB = ["a", "{text}"]')
+    try:
+        linkage_from_text(document, "any.toml")
+    except ValueError as error:
+        message = str(error)
+        assert message.startswith("any.toml:") and "\n" not in message
+        assert message.split(":")[1].isdigit()

@@ -1,4 +1,4 @@
-"""``symlink export``: a catalog linkage's solvers as NumPy, C, MATLAB/Octave or LaTeX files.
+"""Exports: a linkage's solvers as NumPy, C, MATLAB/Octave or LaTeX files (``symlink export``, ``symlink derive``).
 
 By default each format gets the output sets an engineer reaches for: the
 positions of the unknowns, then with velocities, then with accelerations and
@@ -22,6 +22,7 @@ from .catalog import CATALOG
 from .codegen import PRINTERS, printer
 from .linkage import ACCEL_SUFFIX, SPEED_SUFFIX, Linkage
 from .scene import catalog_linkage
+from .vectors import acceleration, rate
 
 __all__ = ["FORMATS", "output_sets", "export_texts", "export"]
 
@@ -57,11 +58,13 @@ def _identifier(name: str) -> str:
     return stem if re.match(r"[A-Za-z]", stem) else f"linkage_{stem}"
 
 
-def export_texts(name: str, fmt: str, outputs: Sequence[str] | None = None) -> dict[str, str]:
-    """File name -> text of catalog linkage ``name`` in format ``fmt`` (cached; nothing is written)."""
+def export_texts(linkage: Linkage | str, fmt: str, outputs: Sequence[str] | None = None) -> dict[str, str]:
+    """File name -> text of ``linkage`` (or a catalog name) in format ``fmt`` (cached; nothing is written)."""
     if fmt not in FORMATS:
         raise ValueError(f"unknown export format {fmt!r}; choose one of {', '.join(FORMATS)}")
-    linkage = catalog_linkage(name)
+    if isinstance(linkage, str):
+        linkage = catalog_linkage(linkage)
+    name = linkage.name
     if not getattr(linkage, "has_closed_form", True):
         raise ValueError(f"{name} has no closed-form solve plan; only closed forms can be exported")
     if outputs is not None:
@@ -75,7 +78,8 @@ def export_texts(name: str, fmt: str, outputs: Sequence[str] | None = None) -> d
         sets = output_sets(linkage)
     stem = _identifier(name)
     wanted = sorted({o for _, names, _ in sets for o in names})
-    command = f"symlink export {name} --to {fmt}" + (f" --outputs {','.join(outputs)}" if outputs else "")
+    verb = "export" if name in CATALOG else "derive"
+    command = f"symlink {verb} {name} --to {fmt}" + (f" --outputs {','.join(outputs)}" if outputs else "")
     kind = "export:" + json.dumps([fmt, stem, sets])
     build = lambda: json.dumps(_build(linkage, fmt, stem, sets, command))  # noqa: E731
     return json.loads(cache.cached_text(cache.cache_key(linkage, wanted, kind), build))
@@ -87,10 +91,10 @@ def _build(linkage: Linkage, fmt: str, stem: str, sets, command: str) -> dict[st
     return printer(fmt).export_files(linkage, stem, sets, title, command)
 
 
-def export(name: str, fmt: str, folder: str | Path, outputs: Sequence[str] | None = None) -> list[Path]:
-    """Write the export files into ``folder``, all of them or none; returns their paths."""
+def export(linkage: Linkage | str, fmt: str, folder: str | Path, outputs: Sequence[str] | None = None) -> list[Path]:
+    """Write the export files of ``linkage`` (or a catalog name) into ``folder``, all or none; returns their paths."""
     from .files import write_files_atomic
-    texts = export_texts(name, fmt, outputs)
+    texts = export_texts(linkage, fmt, outputs)
     folder = Path(folder)
     if folder.exists() and not folder.is_dir():
         raise ValueError(f"--out {folder} exists and is not a folder")

@@ -104,7 +104,7 @@ try:
 except ImportError:  # Python 3.10: the strict subset reader (linkage files stay inside its subset)
     from .minitoml import loads as toml_loads
 
-__all__ = ["LinkageFile", "read_linkage", "linkage_from_text", "linkage_from_mapping", "linkage_text",
+__all__ = ["LinkageFile", "load_linkage", "read_linkage", "linkage_from_text", "linkage_from_mapping", "linkage_text",
            "write_linkage", "write_catalog_files"]
 
 TOP_KEYS = ("name", "inputs", "unknowns", "lengths", "constants")
@@ -509,6 +509,27 @@ def read_linkage(path: str | Path) -> LinkageFile:
     except (OSError, UnicodeDecodeError) as error:
         raise ValueError(f"{path}:1: cannot read linkage file: {getattr(error, 'strerror', None) or error}") from None
     return linkage_from_text(text, str(path))
+
+
+def load_linkage(source: str | Path, folder: str | Path | None = None) -> LinkageFile:
+    """A catalog entry by name (with its example values as defaults), or a linkage file by path.
+
+    Every command that takes a linkage takes either; a relative path is
+    looked for in ``folder`` when given (a scene file's own folder).
+
+    >>> found = load_linkage("fourbar")
+    >>> found.linkage.name, found.defaults["a"], found.source
+    ('fourbar', 20.0, 'catalog')
+    """
+    from .catalog import CATALOG, EXAMPLE_VALUES
+    text = str(source)
+    if text in CATALOG:
+        return LinkageFile(CATALOG[text](), dict(EXAMPLE_VALUES.get(text, {})), "catalog")
+    path = Path(folder) / text if folder is not None else Path(text)
+    if text.endswith(".toml") or path.exists():
+        return read_linkage(path)
+    raise ValueError(f"no linkage {text!r} in the catalog ({', '.join(sorted(CATALOG))}), "
+                     "and it is not a linkage file (.toml)")
 
 
 # --- writing --------------------------------------------------------------------------

@@ -21,7 +21,7 @@ uses, goes through the same cache.
 Scene files (``symlink run scene.toml``) hold numbers and names only, never
 code::
 
-    linkage = "fourbar"                 # a catalog name
+    linkage = "fourbar"                 # a catalog name, or a linkage file ("legs/jansen.toml", beside this one)
     outputs = ["rocker", "rocker_speed"]  # any of the linkage's output names
     branch = "both"                     # 1, -1 or "both" (default 1)
     units = "deg"                       # "deg" (default) or "rad": input and printed angles
@@ -59,6 +59,7 @@ import sympy as sp
 from .cache import GeneratedCode, generated_code
 from .catalog import CATALOG
 from .input_sweep import InputSweep
+from .linkage_file import load_linkage
 from .angles import to_radians
 from .linkage import Linkage, Program
 from .closure import is_angle
@@ -239,8 +240,12 @@ def _table(data, where: str, allowed: set[str] | None) -> dict:
     return data
 
 
-def scene_from_mapping(data: Mapping) -> SceneFile:
+def scene_from_mapping(data: Mapping, folder: str | Path = ".") -> SceneFile:
     """A :class:`SceneFile` from a parsed scene file; ``ValueError`` naming the first bad key or value.
+
+    ``linkage`` is a catalog name or the path of a linkage file (relative to
+    ``folder``, the scene file's folder); a linkage file's defaults stand in
+    for parameters the scene leaves out.
 
     >>> found = scene_from_mapping({"linkage": "fourbar", "outputs": ["rocker"],
     ...                             "parameters": dict(a=20, b=66, c=56, d=80), "input": {"angles": [0]}})
@@ -251,8 +256,10 @@ def scene_from_mapping(data: Mapping) -> SceneFile:
     if "linkage" not in data:
         raise ValueError(f"missing key linkage (one of {', '.join(sorted(CATALOG))})")
     if not isinstance(data["linkage"], str):
-        raise ValueError(f"linkage must be a catalog name, got {data['linkage']!r}")
-    linkage = catalog_linkage(data["linkage"])
+        raise ValueError(f"linkage must be a catalog name or a linkage file, got {data['linkage']!r}")
+    found = load_linkage(data["linkage"], folder)
+    linkage = found.linkage
+    defaults = {} if found.source == "catalog" else found.defaults  # a catalog scene names every parameter
     outputs = data.get("outputs")
     if not isinstance(outputs, list) or not outputs or not all(isinstance(o, str) for o in outputs):
         raise ValueError(f"outputs must be a non-empty list of output names of {linkage.name} "
@@ -269,6 +276,7 @@ def scene_from_mapping(data: Mapping) -> SceneFile:
 
     names = {s.name: s for s in linkage.parameters}
     given = _table(data.get("parameters", {}), "parameters", set(names))
+    given = {**{n: v for n, v in defaults.items() if n in names}, **given}
     missing = [n for n in names if n not in given]
     if missing:
         raise ValueError(f"missing parameters.{missing[0]} ({linkage.name} needs {', '.join(names)})")
@@ -307,8 +315,11 @@ def scene_from_mapping(data: Mapping) -> SceneFile:
 MAX_SCENE_BYTES = 1 << 20
 
 
-def scene_from_text(text: str, source: str) -> SceneFile:
-    """A :class:`SceneFile` from TOML text; ``ValueError`` starting with ``source`` on any problem."""
+def scene_from_text(text: str, source: str, folder: str | Path = ".") -> SceneFile:
+    """A :class:`SceneFile` from TOML text; ``ValueError`` starting with ``source`` on any problem.
+
+    ``folder`` is where a linkage file named in the scene is looked for.
+    """
     try:
         if len(text) > MAX_SCENE_BYTES:
             raise ValueError(f"larger than {MAX_SCENE_BYTES} bytes: not a scene file")
@@ -318,7 +329,7 @@ def scene_from_text(text: str, source: str) -> SceneFile:
             raise ValueError(f"not valid TOML: {error}") from None
         except RecursionError:
             raise ValueError("not valid TOML: nested too deeply") from None
-        return scene_from_mapping(data)
+        return scene_from_mapping(data, folder)
     except ValueError as error:
         raise ValueError(f"{source}: {error}") from None
 
@@ -332,4 +343,4 @@ def read_scene(path: str | Path) -> SceneFile:
         text = data.decode("utf-8")
     except (OSError, UnicodeDecodeError) as error:
         raise ValueError(f"cannot read scene file {path}: {getattr(error, 'strerror', None) or error}") from None
-    return scene_from_text(text, str(path))
+    return scene_from_text(text, str(path), path.parent)

@@ -1,20 +1,15 @@
-"""``symlink export NAME --to numpy|c|octave|latex --out DIR``: a catalog linkage's solvers as files."""
+"""``symlink export NAME|FILE`` and ``symlink derive FILE``: a linkage's solvers as NumPy, C, Octave or LaTeX."""
 from __future__ import annotations
 
 import argparse
 
 from ..catalog import CATALOG
 from ..export import FORMATS, export
+from ..linkage_file import load_linkage
 from .options import command_help
 
 
-def register(commands) -> None:
-    """Register ``symlink export``."""
-    command = commands.add_parser("export", **command_help(
-        "write a catalog linkage's solvers as NumPy, C, Octave or LaTeX",
-        "the generated functions take angles in rad, speeds in rad/s, lengths in any one unit",
-        "symlink export fourbar --to c --out build/"))
-    command.add_argument("name", metavar="NAME", help=f"a catalog linkage ({', '.join(sorted(CATALOG))})")
+def _add_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("--to", required=True, choices=list(FORMATS), help="the format")
     command.add_argument("--out", required=True, metavar="DIR", help="the folder to write into")
     command.add_argument("--outputs", metavar="LIST",
@@ -23,9 +18,25 @@ def register(commands) -> None:
     command.set_defaults(run=run)
 
 
+def register(commands) -> None:
+    """Register ``symlink export`` and ``symlink derive``."""
+    units = "the generated functions take angles in rad, speeds in rad/s, lengths in any one unit"
+    command = commands.add_parser("export", **command_help(
+        "write a linkage's solvers as NumPy, C, Octave or LaTeX", units,
+        "symlink export fourbar --to c --out build/"))
+    command.add_argument("name", metavar="NAME|FILE",
+                         help=f"a catalog linkage ({', '.join(sorted(CATALOG))}) or a linkage file (.toml)")
+    _add_options(command)
+    command = commands.add_parser("derive", **command_help(
+        "derive a linkage file's closed forms and write them as NumPy, C, Octave or LaTeX", units,
+        "symlink derive linkages/fourbar.toml --to numpy --out build/"))
+    command.add_argument("name", metavar="FILE|NAME", help="a linkage file (.toml) or a catalog linkage")
+    _add_options(command)
+
+
 def run(args: argparse.Namespace) -> int:
     """Write the files (all or none) and name them."""
     outputs = None if args.outputs is None else [o.strip() for o in args.outputs.split(",") if o.strip()]
-    for path in export(args.name, args.to, args.out, outputs):
+    for path in export(load_linkage(args.name).linkage, args.to, args.out, outputs):
         print(f"wrote {path}")
     return 0

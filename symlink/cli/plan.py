@@ -5,6 +5,7 @@ import argparse
 
 from ..analysis import degrees_of_freedom
 from ..catalog import CATALOG
+from ..linkage_file import load_linkage
 from ..plan import solve_plan
 from .options import command_help
 
@@ -12,15 +13,15 @@ from .options import command_help
 def register(commands) -> None:
     """Register ``symlink plan NAME``."""
     command = commands.add_parser("plan", **command_help(
-        "show how a catalog linkage is solved, loop by loop",
+        "show how a linkage (catalog name or file) is solved, loop by loop",
         "none (names and counts only)", "symlink plan watt2"))
-    command.add_argument("name", choices=sorted(CATALOG), metavar="NAME",
-                         help=f"a catalog linkage: {', '.join(sorted(CATALOG))}")
+    command.add_argument("name", metavar="NAME|FILE",
+                         help=f"a catalog linkage ({', '.join(sorted(CATALOG))}) or a linkage file (.toml)")
     command.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    linkage = CATALOG[args.name]()
+    linkage = load_linkage(args.name).linkage
     mobility = degrees_of_freedom(linkage)
     print(solve_plan(linkage))
     print(f"degrees of freedom: {mobility.dof} (Gruebler: {mobility.links} links with the ground, "

@@ -44,6 +44,7 @@ from ..assemblies import stephenson3_assemblies
 from ..catalog import fourbar
 from ..input_sweep import InputSweep
 from ..linkage import Linkage
+from ..linkage_file import load_linkage
 from ..closure import is_angle
 from ..reachability import (crank_range, fivebar_range, inverted_slider_crank_range, scanned_range,
                             slider_crank_range)
@@ -371,7 +372,11 @@ def _speeds_at(sweep: InputSweep, args: argparse.Namespace) -> Callable[[numpy.n
 def run_table(table: Table, args: argparse.Namespace) -> int:
     """Print the table of ``table``'s linkage for the parsed ``args``."""
     linkage = catalog_linkage(table.linkage)
-    values = _values(table, linkage, args)
+    return _print_table(table, linkage, _values(table, linkage, args), args)
+
+
+def _print_table(table: Table, linkage: Linkage, values: dict[str, float], args: argparse.Namespace) -> int:
+    """The table of ``linkage`` at parameter ``values`` (by symbol name, angles in radians)."""
     sweep = input_sweep(args)
     if getattr(args, "list_assemblies", False):
         _print_assemblies(table, linkage, values, sweep.first, args)
@@ -517,12 +522,73 @@ def run_fourbar(args: argparse.Namespace) -> int:
     return 0
 
 
+# --- symlink table NAME|FILE ---------------------------------------------------------
+
+def _assignments(text: str) -> dict[str, float]:
+    """``NAME=VALUE,...`` from the command line (numbers only)."""
+    values = {}
+    for item in text.split(","):
+        name, equals, value = item.partition("=")
+        if not equals or not name.strip():
+            raise argparse.ArgumentTypeError(f"expected NAME=VALUE,..., got {item.strip()!r}")
+        values[name.strip()] = finite(value)
+    return values
+
+
+def _add_generic_options(command: argparse.ArgumentParser) -> None:
+    command.add_argument("linkage", metavar="NAME|FILE", help="a catalog linkage or a linkage file (.toml)")
+    command.add_argument("--set", type=_assignments, default={}, metavar="NAME=VALUE,...",
+                         help="parameter values by symbol (angles in --units); the rest from the file's defaults "
+                              "(a catalog entry: its example values); NAME_ratio gears a further input to the crank")
+    add_sweep_options(command, branch=False)
+    command.add_argument("--branch", default="both", metavar="+1|-1|both[,...]",
+                         help="both (default: every combination), one sign for every loop, or one of +1, -1, both "
+                              "a loop, in solve-plan order, separated by commas")
+    command.add_argument("--guess", type=_guess, metavar="NAME=ANGLE,...",
+                         help="without a closed form: the assembly to start from at the first crank angle")
+    command.set_defaults(run=run_generic_table)
+
+
+def run_generic_table(args: argparse.Namespace) -> int:
+    """``symlink table``: the table of any linkage, from the catalog or a file."""
+    found = load_linkage(args.linkage)
+    linkage = found.linkage
+    if not linkage.inputs:
+        raise ValueError(f"{linkage.name} has no input to sweep")
+    names = {s.name: s for s in linkage.parameters} | {x.name: x for x in linkage.inputs[1:]}
+    ratios = {f"{x.name}_ratio" for x in linkage.inputs[1:]}
+    unknown = sorted(set(args.set) - set(names) - ratios)
+    if unknown:
+        raise ValueError(f"--set names {', '.join(unknown)}; {linkage.name} has {', '.join([*names, *sorted(ratios)])}")
+    given = {name: float(to_radians(value, args.units)) if name in names and is_angle(linkage, names[name]) else value
+             for name, value in args.set.items()}
+    values = {**found.defaults, **given}
+    missing = [name for name in names if name not in values]
+    if missing:
+        raise ValueError(f"{linkage.name} needs values for {', '.join(missing)} (--set NAME=VALUE,...)")
+    values.update({ratio: values.get(ratio, 0.0) for ratio in ratios})
+    check_lengths(**{name: values[name] for name, symbol in names.items() if symbol.is_positive})
+    if len(linkage.branches) > 1:
+        try:
+            args.branch = loop_branches(len(linkage.branches))(args.branch)
+        except argparse.ArgumentTypeError as error:
+            raise ValueError(f"--branch: {error}") from None
+    elif args.branch not in ("+1", "1", "-1", "both"):
+        raise ValueError(f"--branch must be +1, -1 or both for {linkage.name}, got {args.branch!r}")
+    table = Table(linkage.name, f"the table of {linkage.name}", (), "")
+    return _print_table(table, linkage, values, args)
+
+
 def register(commands: argparse._SubParsersAction) -> None:
-    """Register ``symlink fourbar`` and a table command for each entry of :data:`TABLES`."""
+    """Register ``symlink fourbar``, ``symlink table`` and a table command for each entry of :data:`TABLES`."""
     commands.add_parser("fourbar", populate=_add_fourbar_options, **command_help(
         "positions, rates and accelerations of a four-bar, as a table",
         "lengths in any one unit; angles in --units (deg by default), speeds rad/s, accelerations rad/s^2",
         "symlink fourbar --crank 20 --coupler 66 --rocker 56 --ground 80 --crank-speed 10.5 --step 40",
         "csv header: " + ",".join(FOURBAR_COLUMNS))).set_defaults(run=run_fourbar)
+    commands.add_parser("table", populate=_add_generic_options, **command_help(
+        "positions, speeds and accelerations of any linkage (a catalog name or a linkage file), as a table",
+        "lengths in any one unit; angles in --units (deg by default), speeds rad/s, accelerations rad/s^2",
+        "symlink table linkages/jansen.toml --step 90 --branch +1")).set_defaults(run=run_generic_table)
     for table in TABLES:
         add_table_command(commands, table)

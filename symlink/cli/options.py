@@ -17,7 +17,7 @@ from typing import Callable
 
 from ..input_sweep import InputSweep
 
-__all__ = ["UsageError", "Parser", "finite", "number_list", "pair", "figure_path", "add_sweep_options",
+__all__ = ["UsageError", "Parser", "finite", "number_list", "pair", "assignments", "figure_path", "add_sweep_options",
            "add_fourbar_lengths", "fourbar_lengths", "add_branch_option", "add_units_option", "add_format_option",
            "input_sweep", "branches", "command_help"]
 
@@ -98,6 +98,19 @@ def pair(what: str) -> Callable[[str], tuple[float, float]]:
         if len(values) != 2:
             raise argparse.ArgumentTypeError(f"expected {what} (two numbers), got {text!r}")
         return values[0], values[1]
+    return parse
+
+
+def assignments(what: str) -> Callable[[str], dict[str, float]]:
+    """A parser of ``NAME=VALUE,...`` (numbers only), named ``what`` (``NAME=ANGLE``) in messages."""
+    def parse(text: str) -> dict[str, float]:
+        values = {}
+        for item in text.split(","):
+            name, equals, value = item.partition("=")
+            if not equals or not name.strip():
+                raise argparse.ArgumentTypeError(f"expected {what},..., got {item.strip()!r}")
+            values[name.strip()] = finite(value)
+        return values
     return parse
 
 

@@ -51,7 +51,7 @@ from ..reachability import (crank_range, fivebar_range, inverted_slider_crank_ra
 from ..scene import catalog_linkage
 from ..solver import NumericSolver, Solver, check_lengths, crank_speeds
 from ..vectors import acceleration, rate
-from .options import (FOURBAR_LENGTHS, UsageError, add_sweep_options, branches, command_help, finite, fourbar_lengths,
+from .options import (FOURBAR_LENGTHS, UsageError, add_sweep_options, assignments, branches, command_help, finite, fourbar_lengths,
                       input_sweep)
 from .output import RowWriter, TableAssembler, describe_spans, print_rows
 
@@ -140,15 +140,7 @@ def loop_branches(loops: int) -> Callable[[str], list[tuple[int, ...]]]:
     return parse
 
 
-def _guess(text: str) -> dict[str, float]:
-    """``NAME=ANGLE,...`` from the command line (numbers only)."""
-    guess = {}
-    for item in text.split(","):
-        name, equals, value = item.partition("=")
-        if not equals or not name.strip():
-            raise argparse.ArgumentTypeError(f"expected NAME=ANGLE,..., got {item.strip()!r}")
-        guess[name.strip()] = finite(value)
-    return guess
+_guess = assignments("NAME=ANGLE")
 
 
 def _spans_text(spans: list[tuple[float, float]] | str, units: str) -> str:
@@ -524,15 +516,7 @@ def run_fourbar(args: argparse.Namespace) -> int:
 
 # --- symlink table NAME|FILE ---------------------------------------------------------
 
-def _assignments(text: str) -> dict[str, float]:
-    """``NAME=VALUE,...`` from the command line (numbers only)."""
-    values = {}
-    for item in text.split(","):
-        name, equals, value = item.partition("=")
-        if not equals or not name.strip():
-            raise argparse.ArgumentTypeError(f"expected NAME=VALUE,..., got {item.strip()!r}")
-        values[name.strip()] = finite(value)
-    return values
+_assignments = assignments("NAME=VALUE")
 
 
 def _add_generic_options(command: argparse.ArgumentParser) -> None:

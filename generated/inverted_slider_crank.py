@@ -26,7 +26,7 @@ def positions(theta, a, d):
     """
     theta, a, d = _as_arrays(theta, a, d)
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(d))
-    size_1 = (1/2)*a + (1/2)*d
+    size_1 = 2.0**numpy.floor(numpy.log((1/2)*a + (1/2)*d)/numpy.log(2.0))
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
     rho_2_1 = cse_0*d
@@ -53,7 +53,7 @@ def velocities(theta, a, d, thetadot=0.0):
     theta, a, d, thetadot = _as_arrays(theta, a, d, thetadot)
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(d), numpy.shape(thetadot))
     cse_3 = a*thetadot
-    size_1 = (1/2)*a + (1/2)*d
+    size_1 = 2.0**numpy.floor(numpy.log((1/2)*a + (1/2)*d)/numpy.log(2.0))
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
     rho_2_1 = cse_0*d
@@ -85,7 +85,7 @@ def accelerations(theta, a, d, thetadot=0.0, thetaddot=0.0):
     theta, a, d, thetadot, thetaddot = _as_arrays(theta, a, d, thetadot, thetaddot)
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(d), numpy.shape(thetadot), numpy.shape(thetaddot))
     cse_6 = numpy.square(thetadot)
-    size_1 = (1/2)*a + (1/2)*d
+    size_1 = 2.0**numpy.floor(numpy.log((1/2)*a + (1/2)*d)/numpy.log(2.0))
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
     rho_2_1 = cse_0*d

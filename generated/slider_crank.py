@@ -26,7 +26,7 @@ def positions(theta, a, b, offset, branch=1):
     """
     theta, a, b, offset, branch = _as_arrays(theta, a, b, offset, branch)
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(b), numpy.shape(offset), numpy.shape(branch))
-    size_1 = (1/3)*a + (1/3)*b + (1/3)*abs(offset)
+    size_1 = 2.0**numpy.floor(numpy.log((1/3)*a + (1/3)*b + (1/3)*abs(offset))/numpy.log(2.0))
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
     rho_2_1 = cse_0*offset
@@ -54,7 +54,7 @@ def velocities(theta, a, b, offset, branch=1, thetadot=0.0):
     theta, a, b, offset, branch, thetadot = _as_arrays(theta, a, b, offset, branch, thetadot)
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(b), numpy.shape(offset), numpy.shape(branch), numpy.shape(thetadot))
     cse_1 = numpy.cos(theta)
-    size_1 = (1/3)*a + (1/3)*b + (1/3)*abs(offset)
+    size_1 = 2.0**numpy.floor(numpy.log((1/3)*a + (1/3)*b + (1/3)*abs(offset))/numpy.log(2.0))
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
     rho_2_1 = cse_0*offset
@@ -90,7 +90,7 @@ def accelerations(theta, a, b, offset, branch=1, thetadot=0.0, thetaddot=0.0):
     cse_2 = numpy.sin(theta)
     cse_6 = a*thetadot
     cse_9 = a*numpy.square(thetadot)
-    size_1 = (1/3)*a + (1/3)*b + (1/3)*abs(offset)
+    size_1 = 2.0**numpy.floor(numpy.log((1/3)*a + (1/3)*b + (1/3)*abs(offset))/numpy.log(2.0))
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
     rho_2_1 = cse_0*offset
@@ -132,7 +132,7 @@ def joints(theta, a, b, offset, branch=1):
     shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(b), numpy.shape(offset), numpy.shape(branch))
     cse_1 = numpy.cos(theta)
     cse_2 = numpy.sin(theta)
-    size_1 = (1/3)*a + (1/3)*b + (1/3)*abs(offset)
+    size_1 = 2.0**numpy.floor(numpy.log((1/3)*a + (1/3)*b + (1/3)*abs(offset))/numpy.log(2.0))
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
     rho_2_1 = cse_0*offset

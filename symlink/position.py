@@ -32,6 +32,7 @@ Branches (the sign ``sigma`` of the square root):
 """
 from __future__ import annotations
 
+import sys
 from dataclasses import dataclass, field
 from typing import Sequence
 
@@ -136,12 +137,13 @@ class _Intermediates(dict):
 
 
 def _characteristic_length(case: LoopCase) -> sp.Expr:
-    """The loop's mean known length: the unit the closed forms compute in.
+    """The loop's mean known length, rounded down to a power of two: the unit the closed forms compute in.
 
     Every formula below is homogeneous in the lengths, so computing with
     lengths divided by this (and scaling unknown lengths back) gives the same
     angles at any scale: 1e-300 or 1e300 as at 1.  The mean, not the sum, so
-    that it cannot overflow for any finite lengths.
+    that it cannot overflow for any finite lengths; a power of two, so that
+    the scaled lengths are the lengths themselves, exactly, only in other units.
     """
     lengths = [v.length for _, v in case.known]
     unknowns = {case.first.symbol, case.second.symbol}
@@ -150,7 +152,10 @@ def _characteristic_length(case: LoopCase) -> sp.Expr:
     lengths += [v.length for _, v in case.turning]
     if not lengths:
         return sp.S.One
-    return sp.Add(*(sp.Abs(r) for r in lengths)) / len(lengths)
+    mean = sp.Add(*(sp.Abs(r) for r in lengths)) / len(lengths)
+    # A power of two, so that dividing by it is exact: data that meet a toggle exactly
+    # (integers, say) still meet it exactly in loop units, and no length gains a rounding.
+    return 2 ** sp.floor(sp.log(mean, 2))
 
 
 def _rounding_size(case: LoopCase, unit) -> sp.Expr:
@@ -166,15 +171,22 @@ def _rounding_size(case: LoopCase, unit) -> sp.Expr:
     return sp.Add(*(sp.Abs(unit(v.length)) for _, v in case.known))
 
 
-def _nonzero_length(squared: sp.Expr) -> ClampedSqrt:
-    """``sqrt(squared)``, but NaN where it is zero within rounding (below TOLERANCE, in loop units).
+def _nonzero_length(squared: sp.Expr, smallest: float = TOLERANCE**2) -> ClampedSqrt:
+    """``sqrt(squared)``, but NaN where ``squared`` is below ``smallest`` (in loop units).
 
     A :class:`ClampedSqrt` with a negative scale: the same printed form in every
     language, exactly ``sqrt`` above the threshold.  It marks configurations
     where a direction is undefined (two points that coincide, parallel guides)
     as not assembled instead of letting ``atan2(0, 0)`` or a division by zero through.
+    The default takes a length below ``TOLERANCE`` as zero, for the cases where
+    the length itself sets the direction; :data:`_SMALLEST_SQUARE` takes only a
+    length that is zero (its square not even a normal number) as zero.
     """
-    return ClampedSqrt(squared, -TOLERANCE)  # NaN below TOLERANCE**2, exactly sqrt above
+    return ClampedSqrt(squared, -smallest / TOLERANCE)  # NaN below smallest, exactly sqrt above
+
+
+#: The smallest normal double: a squared length below it is zero (or has lost its digits to underflow).
+_SMALLEST_SQUARE = sys.float_info.min
 
 
 def _two_lengths(case: LoopCase, wx, wy, branch, named, unit, size):
@@ -226,7 +238,9 @@ def _two_angles(case: LoopCase, wx, wy, branch, named, unit, size):
         wx, wy = -wx, -wy
     rp, rq = unit(p.vector.length), unit(q.vector.length)
     # Where the two known points coincide (W = 0) the direction of W, and so the pose, is undefined.
-    w = named("w", _nonzero_length(wx**2 + wy**2))
+    # Only there: however short W is, if it is not zero the triangle is flat but well defined (a
+    # toggle with rp = rq, or just inside one), its pose closes the loop and the root is Heron's.
+    w = named("w", _nonzero_length(wx**2 + wy**2, _SMALLEST_SQUARE))
     # Triangle P + Q = W with |P| = rp, |Q| = rq: 2w times the components of P
     # along and across W are xp and y; Heron's product keeps y accurate near
     # the toggles, where the triangle is flat.

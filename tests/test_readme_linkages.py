@@ -28,7 +28,7 @@ def test_the_users_own_linkage_runs_and_prints_what_the_readme_says(tmp_path, mo
     assert "True 4.747 7.2297" in printed
     assert r"- \frac{c \dot{\phi} \sin{\left(\phi - \psi \right)}}{\cos{\left(\psi \right)}}" in printed
     tex = (tmp_path / "press.tex").read_text()
-    assert r"s &= \Delta_{2} \sigma_{\mathrm{DCF}} - W_{x,2}" in tex
+    assert r"s &= size_{2} \left(\Delta_{2} \sigma_{\mathrm{DCF}} - W_{x,2}\right)" in tex
     assert (tmp_path / "press.png").stat().st_size > 1000
     assert "sympy" not in (tmp_path / "press_solver.py").read_text().split('"""', 2)[2]
     printed = run_python(numeric)

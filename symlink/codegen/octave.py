@@ -8,9 +8,11 @@ or of link lengths: the arguments are scalars or arrays whose sizes broadcast
 returns the outputs in order and then ``assembled``, false where the linkage
 cannot be assembled (the outputs are NaN there).
 
-The clamped square root is ``sqrt(max(x, 0)) ./ (x >= -tol*scale)``: x where it
-is not negative, 0 where it is negative only by rounding, and 0/0 = NaN below
-that (or where x is NaN), exactly as the NumPy module's ``_clamped_sqrt``.
+The clamped square root is ``sqrt(max(x, 0)) + 0 ./ (x >= -tol*scale)``: the
+root of x where it is not negative, 0 where it is negative only by rounding,
+and 0/0 = NaN below the threshold (or where x is NaN), exactly as the NumPy
+module's ``_clamped_sqrt``; also for a guard (negative scale), whose threshold
+is positive.
 
 >>> from symlink.catalog import fourbar
 >>> text = octave_function(fourbar().program(["rocker"]), "fourbar_rocker", "Rocker angle (rad).")
@@ -86,7 +88,8 @@ class _OctavePrinter(OctaveCodePrinter):
 
     def _print_ClampedSqrt(self, expr):  # inline: a function file holds one function
         x, scale = (self._print(a) for a in expr.args)
-        return f"(sqrt(max({x}, 0)) ./ (({x}) >= {-TOLERANCE!r} .* ({scale})))"
+        # + 0/flag, not ./flag: a guard (negative scale) fails for a positive x, and sqrt(x)/0 is Inf, not NaN
+        return f"(sqrt(max({x}, 0)) + 0 ./ (({x}) >= {-TOLERANCE!r} .* ({scale})))"
 
     def _print_Piecewise(self, expr):  # pragma: no cover - a guard, never reached by symlink's own forms
         raise ValueError("symlink never writes Piecewise into generated code")

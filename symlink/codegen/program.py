@@ -10,7 +10,7 @@ thing in the same order.
 >>> from symlink.catalog import fourbar
 >>> code = straight_line(fourbar().program(["rocker"]))
 >>> [s.name for s in code.arguments], list(code.outputs), [r.name for r in code.roots]
-(['theta', 'a', 'b', 'c', 'd', 'branch'], ['rocker'], ['Delta_1'])
+(['theta', 'a', 'b', 'c', 'd', 'branch'], ['rocker'], ['w_1', 'Delta_1'])
 """
 from __future__ import annotations
 

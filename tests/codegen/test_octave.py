@@ -169,6 +169,19 @@ def test_broadcasting_and_defaults_follow_numpy(fourbar_folder):
         numpy.testing.assert_allclose(got[k], want[key], rtol=1e-12)
 
 
+def test_a_guard_below_its_threshold_gives_nan_not_inf(tmp_path):
+    """The inverted slider-crank with the crank pin on the pivot (|W| = 2.4e-16 at theta = 2 pi, a = d):
+    not assembled, and then every output is NaN, as in NumPy; not sqrt(x)/0 = Inf and a finite angle."""
+    _octave()
+    linkage = catalog_linkage("inverted-slider-crank")
+    (tmp_path / "isc.m").write_text(octave_function(linkage.program(["phi", "r"]), "isc", "Guard."))
+    script = "[p, r, ok] = isc([2*pi 0 0.5], 1, 1); fprintf('%.17g ', [p; r; double(ok)]); fprintf('\\n');\n"
+    got = numpy.array([float(v) for v in run_octave(tmp_path, script).split()]).reshape(3, 3)
+    for (phi, r, ok), reachable in zip(got, (False, False, True)):
+        assert bool(ok) == reachable
+        assert numpy.isnan(phi) == numpy.isnan(r) == (not reachable)
+
+
 def test_names_that_octave_cannot_take_are_refused():
     assert octave_identifier("Wx_1") == "Wx_1"
     for bad in ("end", "_x", "2x", "a-b", "x" * 64):

@@ -21,7 +21,8 @@ from typing import Mapping, Sequence
 from .closure import is_angle
 from .codegen.numpy import numpy_module
 from .files import write_atomic
-from .linkage import ACCEL_SUFFIX, SPEED_SUFFIX, Linkage
+from .linkage import Linkage
+from .outputs import derivative_outputs, output_sets
 
 __all__ = ["kinematics_module", "write_generated"]
 
@@ -29,22 +30,18 @@ __all__ = ["kinematics_module", "write_generated"]
 def kinematics_module(linkage: Linkage, roles: Sequence[str], joints: Sequence[str], title: str,
                       regenerate: str = "", joints_doc: str = "Joint positions.") -> str:
     """A NumPy module: positions, velocities and accelerations of the ``roles``, and the ``joints``' x and y."""
-    speeds = [role + SPEED_SUFFIX for role in roles]
-    accels = [role + ACCEL_SUFFIX for role in roles]
+    speeds, accels = derivative_outputs(linkage, roles)
 
     def described(names, units):
         angles = [is_angle(linkage, linkage.roles[role]) for role in roles]
         return ", ".join(f"{name} ({units[angle]})" for name, angle in zip(names, angles))
 
-    functions = [
-        ("positions", linkage.program(list(roles)), f"Positions: {described(roles, ('length', 'rad'))}."),
-        ("velocities", linkage.program(list(roles) + speeds),
-         f"Positions and speeds: {described(speeds, ('length/s', 'rad/s'))}."),
-        ("accelerations", linkage.program(list(roles) + speeds + accels),
-         f"Positions, speeds and accelerations: {described(accels, ('length/s^2', 'rad/s^2'))}."),
-    ]
-    if joints:
-        functions.append(("joints", linkage.program(list(joints)), joints_doc))
+    docs = {"positions": f"Positions: {described(roles, ('length', 'rad'))}.",
+            "velocities": f"Positions and speeds: {described(speeds, ('length/s', 'rad/s'))}.",
+            "accelerations": f"Positions, speeds and accelerations: {described(accels, ('length/s^2', 'rad/s^2'))}.",
+            "joints": joints_doc}
+    functions = [(name, linkage.program(outputs), docs[name])
+                 for name, outputs in output_sets(linkage, roles, joints, extras=False)]
     return numpy_module(functions, title=title, regenerate=regenerate)
 
 

@@ -20,37 +20,25 @@ from typing import Sequence
 from . import cache
 from .catalog import CATALOG
 from .codegen import PRINTERS, printer
-from .linkage import ACCEL_SUFFIX, SPEED_SUFFIX, Linkage
+from .linkage import Linkage
+from .outputs import output_sets as standard_output_sets
 from .scene import catalog_linkage
-from .vectors import acceleration, rate
 
 __all__ = ["FORMATS", "output_sets", "export_texts", "export"]
 
 FORMATS = tuple(PRINTERS)
 
 
-def _role_name(linkage: Linkage, q) -> str | None:
-    return next((role for role, symbol in linkage.roles.items() if symbol == q), None)
+#: What each standard output set holds, for the exported functions' documentation.
+SET_DESCRIPTIONS = {"positions": "Positions of the unknowns (angles in rad).",
+                    "velocities": "Positions and their rates (per second).",
+                    "accelerations": "Positions, rates, accelerations (per second squared) and the extras.",
+                    "joints": "Coordinates of the moving joints."}
 
 
 def output_sets(linkage: Linkage) -> list[tuple[str, list[str], str]]:
     """The default ``(name, outputs, description)`` sets: positions, velocities, accelerations, joints."""
-    positions, speeds, accels = [], [], []
-    for q in linkage.unknowns:
-        role = _role_name(linkage, q)
-        positions.append(role or q.name)
-        speeds.append(role + SPEED_SUFFIX if role else rate(q).name)
-        accels.append(role + ACCEL_SUFFIX if role else acceleration(q).name)
-    coordinates = set(linkage.coordinates)
-    joints = [f"{point}_{axis}" for point in linkage.points for axis in "xy"
-              if linkage.point(point)[axis == "y"].free_symbols & coordinates]
-    sets = [("positions", positions, "Positions of the unknowns (angles in rad)."),
-            ("velocities", positions + speeds, "Positions and their rates (per second)."),
-            ("accelerations", positions + speeds + accels + list(linkage.extras),
-             "Positions, rates, accelerations (per second squared) and the extras.")]
-    if joints:
-        sets.append(("joints", joints, "Coordinates of the moving joints."))
-    return sets
+    return [(name, outputs, SET_DESCRIPTIONS[name]) for name, outputs in standard_output_sets(linkage)]
 
 
 def _identifier(name: str) -> str:

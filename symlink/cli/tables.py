@@ -45,6 +45,7 @@ from ..catalog import fourbar
 from ..input_sweep import InputSweep
 from ..linkage import Linkage
 from ..linkage_file import load_linkage
+from ..outputs import label, table_outputs
 from ..closure import is_angle
 from ..reachability import (crank_range, fivebar_range, inverted_slider_crank_range, scanned_range,
                             slider_crank_range)
@@ -104,23 +105,10 @@ class Table:
     assemblies: Callable[[float, Mapping[str, float]], list[dict[str, float]]] | None = None
 
 
-def _label(linkage: Linkage, q: sp.Symbol) -> str:
-    """A coordinate's column name: its role, else its own name."""
-    return next((role for role, symbol in linkage.roles.items() if symbol == q), q.name)
-
-
-def _outputs(linkage: Linkage) -> dict[str, str]:
-    """The solved columns and the output names behind them: unknowns, then their rates, then accelerations."""
-    columns = {_label(linkage, u): u.name for u in linkage.unknowns}
-    columns.update({_label(linkage, u) + "_speed": rate(u).name for u in linkage.unknowns})
-    columns.update({_label(linkage, u) + "_accel": acceleration(u).name for u in linkage.unknowns})
-    return columns
-
-
 def table_columns(linkage: Linkage) -> list[str]:
     """The csv header of a linkage's table command."""
     first, *further = linkage.inputs
-    return [_label(linkage, first), "branch"] + [_label(linkage, x) for x in further] + list(_outputs(linkage))
+    return [label(linkage, first), "branch"] + [label(linkage, x) for x in further] + list(table_outputs(linkage))
 
 
 def loop_branches(loops: int) -> Callable[[str], list[tuple[int, ...]]]:
@@ -179,7 +167,7 @@ def _add_options(command: argparse.ArgumentParser, table: Table) -> None:
                              default=option.default, metavar=option.metavar,
                              help=f"{option.symbol} = {option.meaning}{default}")
     for x in linkage.inputs[1:]:
-        role = _label(linkage, x)
+        role = label(linkage, x)
         command.add_argument(f"--{role}-angle", type=finite, required=True, metavar="DEG",
                              help=f"{x.name} = {role} angle when the crank is at 0 (in --units)")
         command.add_argument(f"--{role}-ratio", type=finite, default=0.0, metavar="R",
@@ -192,7 +180,7 @@ def _add_options(command: argparse.ArgumentParser, table: Table) -> None:
                              help="both (default: every combination), one sign for every loop, or one of "
                                   "+1, -1, both a loop, in solve-plan order, separated by commas")
     if not linkage.has_closed_form:
-        names = ", ".join(_label(linkage, u) for u in linkage.unknowns)
+        names = ", ".join(label(linkage, u) for u in linkage.unknowns)
         command.add_argument("--guess", type=_guess, metavar="NAME=ANGLE,...",
                              help=f"start from the assembly nearest these angles at the first crank angle "
                                   f"(names: {names}; any of them; in --units)")
@@ -212,7 +200,7 @@ def _values(table: Table, linkage: Linkage, args: argparse.Namespace) -> dict[st
         value = getattr(args, option.name.replace("-", "_"))
         values[option.symbol] = float(to_radians(value, args.units)) if option.kind == ANGLE else value
     for x in linkage.inputs[1:]:
-        role = _label(linkage, x).replace("-", "_")
+        role = label(linkage, x).replace("-", "_")
         values[x.name] = float(to_radians(getattr(args, f"{role}_angle"), args.units))
         values[f"{x.name}_ratio"] = getattr(args, f"{role}_ratio")
     return values
@@ -241,7 +229,7 @@ def _branch_signs(linkage: Linkage, args: argparse.Namespace) -> dict[object, di
 
 def _closed_form(table: Table, linkage: Linkage, values: dict, args: argparse.Namespace):
     """A solver of one block of inputs for each branch asked for, and the reachable crank range of each."""
-    outputs = _outputs(linkage)
+    outputs = table_outputs(linkage)
     solver = Solver(linkage, list(outputs.values()))
     parameters = {s.name: values[s.name] for s in linkage.parameters}
     choices = _branch_signs(linkage, args)
@@ -252,7 +240,7 @@ def _closed_form(table: Table, linkage: Linkage, values: dict, args: argparse.Na
         if table.undetermined is not None:
             assembled = assembled & ~table.undetermined(values, result)
         solved = {column: result[name] for column, name in outputs.items()}
-        return {**solved, **{_label(linkage, x): given[x.name] for x in linkage.inputs[1:]}, "assembled": assembled}
+        return {**solved, **{label(linkage, x): given[x.name] for x in linkage.inputs[1:]}, "assembled": assembled}
 
     def solve_block(inputs: Mapping) -> dict:
         return {key: solve(branch, inputs) for key, branch in choices.items()}
@@ -274,7 +262,7 @@ def _closed_form(table: Table, linkage: Linkage, values: dict, args: argparse.Na
 
 def _start(table: Table, linkage: Linkage, values: dict, theta: float, args: argparse.Namespace):
     """The assemblies to continue from at the first crank angle, in the order they are tried."""
-    labels = {_label(linkage, u): u.name for u in linkage.unknowns}
+    labels = {label(linkage, u): u.name for u in linkage.unknowns}
     found = table.assemblies(theta, values) if table.assemblies is not None else []
     if args.guess is None:
         return found
@@ -295,7 +283,7 @@ def _numeric(table: Table, linkage: Linkage, values: dict, inputs: dict, angles,
         first = f"{float(wrap(angles[0], half_turn(args.units))):.6g} {args.units}"
         if table.assemblies is None:
             raise ValueError(f"{linkage.name} needs a --guess of every unknown "
-                             f"({', '.join(_label(linkage, u) for u in linkage.unknowns)}) at crank angle {first}")
+                             f"({', '.join(label(linkage, u) for u in linkage.unknowns)}) at crank angle {first}")
         raise ValueError(f"{linkage.name} cannot be assembled at the first crank angle, {first} "
                          "(its scan for assemblies finds none)")
     solver = NumericSolver(linkage)
@@ -307,7 +295,7 @@ def _numeric(table: Table, linkage: Linkage, values: dict, inputs: dict, angles,
         except ValueError as error:
             failure = failure or error
             continue
-        columns = {column: result[name] for column, name in _outputs(linkage).items()}
+        columns = {column: result[name] for column, name in table_outputs(linkage).items()}
         return {1: {**columns, "assembled": result["assembled"]}}
     raise failure
 
@@ -316,11 +304,11 @@ def _print_assemblies(table: Table, linkage: Linkage, values: dict, first: float
     """``--list-assemblies``: the assemblies at the first crank angle, angles wrapped, in the table's format."""
     theta = float(to_radians(first, args.units))
     shown = (linkage.inputs[0],) + linkage.unknowns
-    columns = [_label(linkage, q) for q in shown]
+    columns = [label(linkage, q) for q in shown]
     rows = []
     for found in table.assemblies(theta, values):
         radians = {linkage.inputs[0].name: theta, **found}
-        rows.append({_label(linkage, q): float(wrap(from_radians(radians[q.name], args.units), half_turn(args.units)))
+        rows.append({label(linkage, q): float(wrap(from_radians(radians[q.name], args.units), half_turn(args.units)))
                      for q in shown})
     print_rows(rows, columns, args.format)
 
@@ -388,7 +376,7 @@ def _print_table(table: Table, linkage: Linkage, values: dict[str, float], args:
         blocks = [(angles, _numeric(table, linkage, values, inputs_at(angles), angles, args))]
         reachable = lambda: ""  # noqa: E731 - the numeric solver stops with a message instead
     columns = table_columns(linkage)
-    angle_columns = {_label(linkage, q) for q in linkage.coordinates if is_angle(linkage, q)}
+    angle_columns = {label(linkage, q) for q in linkage.coordinates if is_angle(linkage, q)}
     write_table(blocks, columns, args.units, args.format, angle_columns, reachable)
     return 0
 

@@ -26,7 +26,6 @@ import math
 from dataclasses import dataclass
 from typing import Mapping
 
-import numpy
 
 from .analysis import wrap_angle
 from .linkage import Linkage
@@ -34,7 +33,7 @@ from .loops import CASE_NAMES, Loop
 from .solver import check_lengths, shared_solver
 from .vectors import Vector, coordinates, lengths
 
-__all__ = ["NAMES", "LoopCaseResult", "solve_case", "add_command", "run"]
+__all__ = ["NAMES", "LoopCaseResult", "solve_case", "loop_linkage"]
 
 #: The eight values of the loop, in the order that fixes which unknown is "first".
 NAMES = ("r1", "r2", "r3", "r4", "t1", "t2", "t3", "t4")

@@ -72,7 +72,7 @@ except ImportError:  # Python 3.10: the strict subset reader
     from .minitoml import loads as toml_loads
 
 __all__ = ["Scene", "SceneFile", "catalog_linkage", "angle_outputs", "read_scene", "scene_from_mapping",
-           "add_command", "run"]
+           "scene_from_text"]
 
 BRANCH_CHOICES = (1, -1, "both")
 UNITS = ("deg", "rad")

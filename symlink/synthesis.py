@@ -42,8 +42,7 @@ from .analysis import (LimitPositions, TransmissionRange, grashof, limit_positio
 from .solver import check_lengths
 
 __all__ = ["QuickReturn", "quick_return", "delta_for_time_ratio", "GOOD_TRANSMISSION", "MAX_LINK_RATIO",
-           "as_record",
-           "add_command", "run"]
+           "as_record"]
 
 #: The usual lower bound on the worst transmission angle (radians): 45 deg.
 GOOD_TRANSMISSION = math.pi / 4

@@ -32,12 +32,10 @@ from __future__ import annotations
 
 import argparse
 import itertools
-import math
 from dataclasses import dataclass
 from typing import Callable, Collection, Iterable, Mapping
 
 import numpy
-import sympy as sp
 
 from ..angles import from_radians, half_turn, to_radians, wrap
 from ..assemblies import stephenson3_assemblies
@@ -52,7 +50,7 @@ from ..reachability import (crank_range, fivebar_range, inverted_slider_crank_ra
 from ..scene import catalog_linkage
 from ..solver import NumericSolver, Solver, check_lengths, crank_speeds
 from ..vectors import acceleration, rate
-from .options import (FOURBAR_LENGTHS, UsageError, add_sweep_options, assignments, branches, command_help, finite, fourbar_lengths,
+from .options import (add_fourbar_lengths, add_sweep_options, assignments, branches, command_help, finite, fourbar_lengths,
                       input_sweep)
 from .output import RowWriter, TableAssembler, describe_spans, print_rows
 
@@ -471,8 +469,7 @@ TABLES = (SLIDER, INVERTED, WATT2, STEPHENSON3, FIVEBAR)
 # --- symlink fourbar ------------------------------------------------------------------
 
 def _add_fourbar_options(command: argparse.ArgumentParser) -> None:
-    for option, what in FOURBAR_LENGTHS:
-        command.add_argument(f"--{option}", type=finite, required=True, help=f"length {what}")
+    add_fourbar_lengths(command)
     add_sweep_options(command)
     from .pictures import add_fourbar_plot_options
     add_fourbar_plot_options(command)

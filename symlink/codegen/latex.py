@@ -87,8 +87,13 @@ def closure_rows(linkage: Linkage) -> list[tuple[sp.Expr, sp.Expr]]:
 
 
 def equations_latex(linkage: Linkage) -> str:
-    """All equations of the linkage as one ``aligned`` block (for Jupyter)."""
-    rows = closure_rows(linkage) + list(linkage.positions.items())
+    """All equations of the linkage as one ``aligned`` block (for Jupyter).
+
+    The closure equations, then the closed-form positions where the linkage
+    has a solve plan; without one (the Newton fallback solves it) the
+    closure alone.
+    """
+    rows = closure_rows(linkage) + (list(linkage.positions.items()) if linkage.has_closed_form else [])
     return "\\begin{aligned}" + _aligned(rows) + "\\end{aligned}"
 
 

@@ -47,3 +47,10 @@ def test_the_printer_does_not_import_linkage_at_run_time():
     type_checking = {id(n) for node in tree.body if isinstance(node, ast.If) for n in ast.walk(node)}
     at_run_time = [n.module for n in ast.walk(tree) if isinstance(n, ast.ImportFrom) and id(n) not in type_checking]
     assert "closure" in at_run_time and "linkage" not in at_run_time
+
+
+def test_a_linkage_without_a_closed_form_displays_its_closure():
+    """Jupyter shows the closure of a linkage the Newton fallback solves (it used to raise ValueError)."""
+    from symlink.catalog import stephenson3
+    shown = stephenson3()._repr_latex_()
+    assert shown.startswith("$\\displaystyle \\begin{aligned}") and shown.count("= 0") == 4

@@ -29,7 +29,7 @@ import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 
-from symlink.animation import animate  # noqa: E402
+from symlink.plot.animation import animate  # noqa: E402
 from symlink.plot import angle_figure, coupler_curve_figure, save_figure, transmission_figure  # noqa: E402
 
 SEED001 = (0.1, 0.4, 0.25, 0.30)

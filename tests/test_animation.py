@@ -14,7 +14,7 @@ from PIL import Image  # noqa: E402
 
 from references import mp_fourbar  # noqa: E402
 from symlink import cache  # noqa: E402
-from symlink.animation import FRAMES, animate, frame_positions  # noqa: E402
+from symlink.plot.animation import FRAMES, animate, frame_positions  # noqa: E402
 from symlink.catalog import fourbar  # noqa: E402
 from symlink.cli import main  # noqa: E402
 from symlink.plot import coupler_point_linkage  # noqa: E402

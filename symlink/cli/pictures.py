@@ -50,7 +50,7 @@ def run_curve(args: argparse.Namespace) -> int:
 
 
 def run_animate(args: argparse.Namespace) -> int:
-    from ..animation import animate
+    from ..plot.animation import animate
     in_place = sys.stderr.isatty()
     every = 1 if in_place else max(1, args.frames // 4)
 
@@ -70,7 +70,7 @@ def run_animate(args: argparse.Namespace) -> int:
 
 
 def run_view(args: argparse.Namespace) -> int:
-    from ..view import FourbarView, check_slider_range, interactive_backend
+    from ..plot.view import FourbarView, check_slider_range, interactive_backend
     settings = dict(crank_angle=float(to_radians(args.crank_angle, args.units)), branch=int(args.branch),
                     crank_speed=args.crank_speed)
     lengths = fourbar_lengths(args)
@@ -91,8 +91,8 @@ def run_view(args: argparse.Namespace) -> int:
 
 def register(commands) -> None:
     """Register ``symlink curve``, ``animate`` and ``view``."""
-    from ..animation import FRAMES
-    from ..view import SEED001
+    from ..plot.animation import FRAMES
+    from ..plot.view import SEED001
     curve = commands.add_parser("curve", **command_help(
         "the curve of a coupler point over a crank turn, as PNG or SVG",
         "lengths in any one unit; angles in --units (deg by default)",

@@ -23,11 +23,11 @@ from typing import Callable
 
 import numpy
 
-from .catalog import fourbar
-from .reachability import TURN_SAMPLES, assembled_crank_range, turn_angles
-from .files import write_atomic
-from .linkage import Linkage
-from .plot import MechanismDrawing, check_coupler_point, coupler_point_linkage, extent, fourbar_positions
+from ..catalog import fourbar
+from ..reachability import TURN_SAMPLES, assembled_crank_range, turn_angles
+from ..files import write_atomic
+from ..linkage import Linkage
+from .figures import MechanismDrawing, check_coupler_point, coupler_point_linkage, extent, fourbar_positions
 
 __all__ = ["FRAMES", "ANIMATION_SUFFIXES", "frame_positions", "animate", "Rendered"]
 

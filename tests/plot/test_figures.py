@@ -243,7 +243,7 @@ def test_curve_command(tmp_path, capsys):
 
 
 def test_readme_pictures_exist_and_the_gif_is_small():
-    root = Path(__file__).resolve().parent.parent
+    root = Path(__file__).resolve().parents[2]
     text = (root / "README.md").read_text(encoding="utf-8")
     section = text.split("## Pictures and animation", 1)[1].split("\n## ", 1)[0]
     pictures = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", section)

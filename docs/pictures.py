@@ -6,7 +6,8 @@
   ``seeds/002`` synthesises for time ratio 1.25 (L1 = 70, L2 = 16.084, L3 = 69.743, L4 = 50 mm),
   as its Fig. 9;
 * ``coupler_curve.png``: the curves of a coupler point of the seed 001 linkage, both branches;
-* ``fourbar.gif``: the seed 001 linkage over a turn in 30 frames, with the coupler point.
+* ``fourbar.gif``: the seed 001 linkage over a turn in 30 frames, with the coupler point;
+* ``jansen.png`` and ``jansen.gif``: Theo Jansen's leg (his holy numbers) with the path of its foot H.
 
 The same pictures come from the command line::
 
@@ -14,6 +15,8 @@ The same pictures come from the command line::
     symlink fourbar --crank 16.084 --coupler 69.743 --rocker 50 --ground 70 --plot-transmission mu.png
     symlink curve --crank 0.1 --coupler 0.4 --rocker 0.25 --ground 0.3 --coupler-point 0.3,30 --branch both --out curve.png
     symlink animate --crank 0.1 --coupler 0.4 --rocker 0.25 --ground 0.3 --coupler-point 0.3,30 --out fourbar.gif
+    symlink draw jansen --trace H --out jansen.png
+    symlink animate jansen --trace H --out jansen.gif
 """
 from __future__ import annotations
 
@@ -29,14 +32,17 @@ import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 
-from symlink.animation import animate  # noqa: E402
+from symlink.catalog import EXAMPLE_VALUES, jansen  # noqa: E402
 from symlink.plot import angle_figure, coupler_curve_figure, save_figure, transmission_figure  # noqa: E402
+from symlink.plot.animation import animate, animate_linkage  # noqa: E402
+from symlink.plot.drawing import draw_linkage  # noqa: E402
 
 SEED001 = (0.1, 0.4, 0.25, 0.30)
 SEED002 = (16.084, 69.743, 50.0, 70.0)  # crank L2, coupler L3, rocker L4, ground L1
 COUPLER_POINT = (0.3, math.radians(30))
 #: File names, in the order they are written.
-PICTURES = ("angles_seed001.png", "transmission_seed002.png", "coupler_curve.png", "fourbar.gif")
+PICTURES = ("angles_seed001.png", "transmission_seed002.png", "coupler_curve.png", "fourbar.gif", "jansen.png",
+            "jansen.gif")
 
 
 def render(folder: Path = IMAGES) -> list[Path]:
@@ -48,6 +54,10 @@ def render(folder: Path = IMAGES) -> list[Path]:
     save_figure(coupler_curve_figure(*SEED001, *COUPLER_POINT, branches=(1, -1), crank_angle=math.radians(60),
                                      unit="m"), paths[2])
     animate(*SEED001, paths[3], coupler_point=COUPLER_POINT, size_px=(400, 300), fps=10)
+    leg = jansen()
+    save_figure(draw_linkage(leg, EXAMPLE_VALUES["jansen"], trace=("H",),
+                             title="Theo Jansen's leg (holy numbers) and the path of its foot H").figure, paths[4])
+    animate_linkage(leg, EXAMPLE_VALUES["jansen"], paths[5], frames=30, trace=("H",), size_px=(360, 360), fps=10)
     return paths
 
 

@@ -1,4 +1,8 @@
-"""Pictures from the command line: ``symlink curve``, ``animate``, ``view`` and ``fourbar --plot``."""
+"""Pictures from the command line: ``symlink draw``, ``curve``, ``animate``, ``view`` and ``fourbar --plot``.
+
+``draw`` and ``animate`` take a catalog NAME (its example values, changed with
+``--set a=20,b=66``) besides the four-bar's length options.
+"""
 from __future__ import annotations
 
 import argparse
@@ -11,7 +15,72 @@ from .options import (add_branch_option, add_fourbar_lengths, add_units_option, 
                       finite, fourbar_lengths, pair, whole)
 from .output import note
 
-__all__ = ["register", "add_fourbar_plot_options", "write_fourbar_plots"]
+__all__ = ["register", "add_fourbar_plot_options", "write_fourbar_plots", "catalog_values"]
+
+
+def settings(text: str) -> dict[str, float]:
+    """``--set a=20,b=66``: names and finite numbers (no expressions)."""
+    found = {}
+    for item in text.split(","):
+        if not item.strip():
+            continue
+        name, equals, value = item.partition("=")
+        if not equals or not name.strip().isidentifier():
+            raise argparse.ArgumentTypeError(f"expected NAME=VALUE pairs separated by commas, got {item.strip()!r}")
+        found[name.strip()] = finite(value.strip())
+    return found
+
+
+def catalog_values(args: argparse.Namespace):
+    """The catalog linkage NAME and its values: the example values, ``--set`` (angles in --units),
+    ``--angle`` (the first input, in --units) and ``--branch`` for every branch."""
+    from ..catalog import CATALOG, EXAMPLE_VALUES
+    from ..closure import is_angle
+    if args.linkage not in CATALOG:
+        raise ValueError(f"no catalog linkage {args.linkage!r}; the catalog has {', '.join(sorted(CATALOG))}")
+    linkage = CATALOG[args.linkage]()
+    values = dict(EXAMPLE_VALUES[args.linkage])
+    known = {s.name: s for s in linkage.parameters + linkage.inputs}
+    for name, value in (args.set or {}).items():
+        if name not in known:
+            raise ValueError(f"--set: {args.linkage} has no value {name!r}; it takes {', '.join(known)}")
+        values[name] = float(to_radians(value, args.units)) if is_angle(linkage, known[name]) else value
+    if args.angle is not None:
+        first = linkage.inputs[0]
+        values[first.name] = float(to_radians(args.angle, args.units)) if is_angle(linkage, first) else args.angle
+    for branch in linkage.branches:
+        values[branch.name] = int(args.branch)
+    return linkage, values
+
+
+def _add_catalog_options(parser: argparse.ArgumentParser, what: str) -> None:
+    parser.add_argument("--set", type=settings, metavar="NAME=VALUE,...",
+                        help="change example values (fixed angles in --units), e.g. --set a=20,b=66")
+    parser.add_argument("--angle", type=finite, metavar="A", help=f"{what} (in --units, default 0)")
+    parser.add_argument("--trace", type=lambda text: [n.strip() for n in text.split(",") if n.strip()],
+                        default=None, metavar="POINTS", help="draw the paths of these points, e.g. --trace H")
+    parser.add_argument("--unit", default=None, metavar="UNIT", help="length unit for the axis labels, e.g. mm")
+
+
+def _default_trace(linkage) -> list[str]:
+    """The last named point: the Jansen leg's foot, a coupler's tip."""
+    return [list(linkage.points)[-1]] if linkage.points else []
+
+
+def _four_lengths_or_name(args: argparse.Namespace, command: str) -> None:
+    lengths = [args.crank, args.coupler, args.rocker, args.ground]
+    if args.linkage is not None and any(v is not None for v in lengths):
+        raise ValueError(f"{command}: give a catalog NAME or the four-bar's --crank --coupler --rocker --ground, "
+                         "not both")
+    if args.linkage is None and any(v is None for v in lengths):
+        raise ValueError(f"{command}: give a catalog NAME (e.g. jansen) or all of --crank --coupler --rocker "
+                         "--ground")
+
+
+def _spans_note(rendered, name: str, units: str) -> None:
+    if not rendered.full_turn and rendered.spans:
+        low, high = (math.degrees(x) if units == "deg" else x for x in rendered.spans[0])
+        note(f"the {name} cannot turn fully: swept from {low:.6g} to {high:.6g} {units} and back")
 
 
 def add_fourbar_plot_options(parser: argparse.ArgumentParser) -> None:
@@ -50,7 +119,7 @@ def run_curve(args: argparse.Namespace) -> int:
 
 
 def run_animate(args: argparse.Namespace) -> int:
-    from ..animation import animate
+    from ..plot.animation import animate
     in_place = sys.stderr.isatty()
     every = 1 if in_place else max(1, args.frames // 4)
 
@@ -60,8 +129,21 @@ def run_animate(args: argparse.Namespace) -> int:
             print(f"{chr(13) if in_place else ''}symlink: rendered {done}/{total} frames", end=end,
                   file=sys.stderr, flush=True)
 
+    _four_lengths_or_name(args, "animate")
+    if args.linkage is not None:
+        from ..plot.animation import animate_linkage
+        linkage, values = catalog_values(args)
+        trace = _default_trace(linkage) if args.trace is None else args.trace
+        rendered = animate_linkage(linkage, values, args.out, frames=args.frames, trace=trace, fps=args.fps,
+                                   unit=args.unit, progress=report)
+        first = linkage.inputs[0]
+        role = next((role for role, symbol in linkage.roles.items() if symbol == first), first.name)
+        _spans_note(rendered, role, args.units)
+        print(f"wrote {rendered.path} ({rendered.frames} frames)")
+        return 0
     rendered = animate(*fourbar_lengths(args), args.out, branch=int(args.branch), frames=args.frames,
                        coupler_point=_coupler_point(args), fps=args.fps, progress=report)
+    _spans_note(rendered, "crank", "deg")
     if rendered.unassembled:
         angles = ", ".join(f"{float(wrap(math.degrees(t), 180.0)):.6g}" for t in rendered.unassembled)
         note(f"cannot be assembled at crank angles {angles} deg (those frames show the crank only)")
@@ -69,8 +151,19 @@ def run_animate(args: argparse.Namespace) -> int:
     return 0
 
 
+def run_draw(args: argparse.Namespace) -> int:
+    from ..plot import save_figure
+    from ..plot.drawing import draw_linkage
+    linkage, values = catalog_values(args)
+    trace = _default_trace(linkage) if args.trace is None else args.trace
+    drawing = draw_linkage(linkage, values, trace=trace, unit=args.unit)
+    save_figure(drawing.figure, args.out)
+    print(f"wrote {args.out}")
+    return 0
+
+
 def run_view(args: argparse.Namespace) -> int:
-    from ..view import FourbarView, check_slider_range, interactive_backend
+    from ..plot.view import FourbarView, check_slider_range, interactive_backend
     settings = dict(crank_angle=float(to_radians(args.crank_angle, args.units)), branch=int(args.branch),
                     crank_speed=args.crank_speed)
     lengths = fourbar_lengths(args)
@@ -91,8 +184,20 @@ def run_view(args: argparse.Namespace) -> int:
 
 def register(commands) -> None:
     """Register ``symlink curve``, ``animate`` and ``view``."""
-    from ..animation import FRAMES
-    from ..view import SEED001
+    from ..catalog import CATALOG
+    from ..plot.animation import FRAMES
+    from ..plot.view import SEED001
+    draw = commands.add_parser("draw", **command_help(
+        "draw a catalog linkage at one input value, with the paths of its points, as PNG or SVG",
+        "values of the catalog's example (lengths in any one unit); angles in --units (deg by default)",
+        "symlink draw jansen --angle 30 --trace H --out jansen.png"))
+    draw.add_argument("linkage", metavar="NAME", help="a catalog linkage: " + ", ".join(sorted(CATALOG)))
+    _add_catalog_options(draw, "the first input's value")
+    add_branch_option(draw, both=False, default="+1")
+    add_units_option(draw, "angles given")
+    draw.add_argument("--out", type=figure_path, required=True, metavar="FILE", help=".png or .svg")
+    draw.set_defaults(run=run_draw)
+
     curve = commands.add_parser("curve", **command_help(
         "the curve of a coupler point over a crank turn, as PNG or SVG",
         "lengths in any one unit; angles in --units (deg by default)",
@@ -108,10 +213,15 @@ def register(commands) -> None:
     curve.set_defaults(run=run_curve)
 
     animation = commands.add_parser("animate", **command_help(
-        "animate a four-bar over a crank turn (GIF, or MP4 with ffmpeg)",
-        "lengths in any one unit; the coupler point's angle in --units (deg by default)",
-        "symlink animate --crank 0.1 --coupler 0.4 --rocker 0.25 --ground 0.3 --out fourbar.gif"))
-    add_fourbar_lengths(animation)
+        "animate a catalog linkage or a four-bar over a turn of its input (GIF, or MP4 with ffmpeg)",
+        "lengths in any one unit; angles in --units (deg by default)",
+        "symlink animate --crank 0.1 --coupler 0.4 --rocker 0.25 --ground 0.3 --out fourbar.gif",
+        "A catalog NAME animates that linkage with its example values: symlink animate jansen --out jansen.gif.\n"
+        "An input that cannot turn fully is swept over its reachable range, forward and back."))
+    animation.add_argument("linkage", nargs="?", metavar="NAME", help="a catalog linkage: " + ", ".join(sorted(CATALOG)))
+    for option, what in (("crank", "AB"), ("coupler", "BC"), ("rocker", "DC"), ("ground", "AD")):
+        animation.add_argument(f"--{option}", type=finite, help=f"four-bar length {what} (without NAME)")
+    _add_catalog_options(animation, "where the input starts")
     add_branch_option(animation, both=False, default="+1")
     animation.add_argument("--frames", type=whole, default=FRAMES, help=f"frames in a turn (default {FRAMES})")
     animation.add_argument("--fps", type=finite, default=10.0, help="frames per second (default 10)")

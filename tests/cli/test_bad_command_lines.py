@@ -87,6 +87,8 @@ CASES += [
                                             "--ground", "80", "--coupler-point", "40", "--out", "{tmp}/c.png"], 2),
     ("curve: negative coupler distance", ["curve", "--crank", "20", "--coupler", "66", "--rocker", "56",
                                           "--ground", "80", "--coupler-point", "-40,30", "--out", "{tmp}/c.png"], 2),
+    ("draw: unknown linkage", ["draw", "sixbar", "--out", "{tmp}/d.png"], 2),
+    ("draw: --set without a value", ["draw", "jansen", "--set", "a", "--out", "{tmp}/d.png"], 2),
     ("animate: zero frames", ["animate", "--crank", "1", "--coupler", "4", "--rocker", "2.5", "--ground", "3",
                               "--frames", "0", "--out", "{tmp}/a.gif"], 2),
     ("animate: frames not whole", ["animate", "--crank", "1", "--coupler", "4", "--rocker", "2.5", "--ground", "3",

@@ -14,7 +14,7 @@ from PIL import Image  # noqa: E402
 
 from references import mp_fourbar  # noqa: E402
 from symlink import cache  # noqa: E402
-from symlink.animation import FRAMES, animate, frame_positions  # noqa: E402
+from symlink.plot.animation import FRAMES, animate, frame_positions  # noqa: E402
 from symlink.catalog import fourbar  # noqa: E402
 from symlink.cli import main  # noqa: E402
 from symlink.plot import coupler_point_linkage  # noqa: E402
@@ -75,17 +75,61 @@ def test_frame_positions_match_the_reference(branch):
         assert abs(math.hypot(C[0] - d, C[1]) - c) < 1e-14  # the rocker's length, as a check on the check
 
 
-def test_frames_that_cannot_close_are_reported(tmp_path):
+def test_a_crank_that_cannot_turn_rocks_over_its_arc_and_every_frame_closes(tmp_path):
     a, b, c, d = NOT_A_CRANK
     progress = []
     rendered = animate(a, b, c, d, tmp_path / "partial.gif", frames=12, size_px=SMALL,
                        progress=lambda done, total: progress.append((done, total)))
-    # law of cosines: |BD|^2 = a^2 + d^2 - 2 a d cos(theta) must lie in [(b - c)^2, (b + c)^2]
-    expected = [2 * math.pi * k / 12 for k in range(12)
-                if not (b - c) ** 2 <= a * a + d * d - 2 * a * d * math.cos(2 * math.pi * k / 12) <= (b + c) ** 2]
-    assert numpy.allclose(rendered.unassembled, expected) and len(expected) == 8
+    # law of cosines: |BD|^2 = a^2 + d^2 - 2 a d cos(theta) must lie in [(b - c)^2, (b + c)^2]; the arc below 0
+    far = math.acos((a * a + d * d - (b + c) ** 2) / (2 * a * d))
+    near = math.acos((a * a + d * d - (b - c) ** 2) / (2 * a * d))
+    assert rendered.unassembled == () and not rendered.full_turn
+    assert numpy.allclose(rendered.spans[0], (-far, -near), rtol=0, atol=1e-12)
+    theta = frame_positions(a, b, c, d, frames=12)["theta"]
+    assert theta.min() >= -far - 1e-12 and theta.max() <= -near + 1e-12
+    assert math.isclose(theta[0], -far, abs_tol=1e-12) and math.isclose(theta[6], -near, abs_tol=1e-12)
+    assert numpy.allclose(theta[1:6], theta[11:6:-1], rtol=0, atol=1e-12)  # out and back over the same angles
     assert progress == [(k, 12) for k in range(1, 13)]
     assert gif_frames(tmp_path / "partial.gif") == (12, SMALL)
+    assert [p.name for p in tmp_path.iterdir()] == ["partial.gif"]  # no hidden frames file left
+
+
+def test_frames_are_written_beside_the_output_never_in_tmpdir(tmp_path, monkeypatch):
+    """A killed run leaves ``.symlink-animation-*.tmp`` in the output folder; the next run removes old ones."""
+    import os
+    import time
+    from symlink.plot import animation
+    elsewhere = tmp_path / "tmpdir"
+    elsewhere.mkdir()
+    monkeypatch.setenv("TMPDIR", str(elsewhere))
+    out = tmp_path / "out"
+    out.mkdir()
+    stale = out / f"{animation.LEFTOVER_PREFIX}dead.tmp"
+    stale.mkdir()
+    (stale / "frames.gif").write_bytes(b"GIF89a")
+    old = time.time() - 2 * animation.LEFTOVER_AGE
+    os.utime(stale, (old, old))
+    young = out / f"{animation.LEFTOVER_PREFIX}running.tmp"  # a running process's: kept
+    young.mkdir()
+    seen = []
+
+    def look(done, total):
+        seen.append(sorted(p.name for p in out.iterdir()))
+
+    animate(*SEED001, out / "fourbar.gif", frames=2, size_px=SMALL, progress=look)
+    assert all(any(name.startswith(animation.LEFTOVER_PREFIX) and name.endswith(".tmp") and
+                   name not in (young.name,) for name in names) for names in seen)
+    assert sorted(p.name for p in out.iterdir()) == [young.name, "fourbar.gif"]
+    assert list(elsewhere.iterdir()) == []
+
+
+def test_frames_times_pixels_is_capped_before_anything_is_drawn(tmp_path):
+    with pytest.raises(ValueError, match=r"3600 frames of 480x360 pixels is 622 million pixels .* lower the frames "
+                                         r"to 578 or fewer"):
+        animate(*SEED001, tmp_path / "fourbar.gif", frames=3600)
+    assert 578 * 480 * 360 <= 100_000_000 < 579 * 480 * 360
+    animate(*SEED001, tmp_path / "small.gif", frames=578 // 100, size_px=SMALL)  # well under: fine
+    assert [p.name for p in tmp_path.iterdir()] == ["small.gif"]
 
 
 def test_mp4_read_back_with_ffprobe(tmp_path):
@@ -138,7 +182,7 @@ def test_animate_command(tmp_path, capsys):
     partial = ["animate", "--crank", "0.3", "--coupler", "0.1", "--rocker", "0.25", "--ground", "0.3",
                "--frames", "4", "--out", str(tmp_path / "partial.gif")]
     assert main(partial) == 0
-    assert "cannot be assembled at crank angles 0, 90, 180, -90 deg" in capsys.readouterr().err
+    assert "the crank cannot turn fully: swept from -71.3707 to -28.955 deg and back" in capsys.readouterr().err
     assert main([*argv[:-2], "--out", str(tmp_path / "fourbar.webm")]) == 2
     assert "must end in .gif or .mp4" in capsys.readouterr().err
     assert main([*argv[:2], "-0.1", *argv[3:]]) == 2

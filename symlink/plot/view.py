@@ -23,12 +23,12 @@ from typing import TYPE_CHECKING
 
 import numpy
 
-from .analysis import grashof
-from .catalog import fourbar
-from .angles import wrap
-from .plot import MechanismDrawing, TRANSMISSION_LIMITS, extent
-from .reachability import crank_range, describe_spans
-from .solver import Solver, check_lengths
+from ..analysis import grashof
+from ..catalog import fourbar
+from ..angles import wrap
+from .figures import MechanismDrawing, TRANSMISSION_LIMITS, extent
+from ..reachability import crank_range, describe_spans
+from ..solver import Solver, check_lengths
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure

@@ -243,15 +243,15 @@ def test_curve_command(tmp_path, capsys):
 
 
 def test_readme_pictures_exist_and_the_gif_is_small():
-    root = Path(__file__).resolve().parent.parent
+    root = Path(__file__).resolve().parents[2]
     text = (root / "README.md").read_text(encoding="utf-8")
     section = text.split("## Pictures and animation", 1)[1].split("\n## ", 1)[0]
     pictures = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", section)
-    assert len(pictures) == 4 and "python docs/pictures.py" in section
+    assert len(pictures) == 6 and "python docs/pictures.py" in section
     for name in pictures:
         with Image.open(root / name) as image:
             assert image.size[0] >= 300
-    gif = root / "docs/images/fourbar.gif"
-    assert gif.stat().st_size < 400_000
-    with Image.open(gif) as image:
-        assert image.n_frames == 30
+    for gif in (root / "docs/images/fourbar.gif", root / "docs/images/jansen.gif"):
+        assert gif.stat().st_size < 400_000
+        with Image.open(gif) as image:
+            assert image.n_frames == 30

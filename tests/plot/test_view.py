@@ -12,7 +12,7 @@ from PIL import Image  # noqa: E402
 
 from references import mp_fourbar  # noqa: E402
 from symlink.cli import main  # noqa: E402
-from symlink.view import FourbarView  # noqa: E402
+from symlink.plot.view import FourbarView  # noqa: E402
 
 SEED003 = dict(crank=20.0, coupler=66.0, rocker=56.0, ground=80.0)
 

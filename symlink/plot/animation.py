@@ -1,0 +1,274 @@
+"""Animations of a linkage over its input, as GIF (Pillow) or MP4 (ffmpeg).
+
+:func:`animate_linkage` animates any linkage, drawn as
+:mod:`symlink.plot.drawing` draws it, over a turn of its first input;
+:func:`animate` the four-bar from its four lengths, as in the worksheet of
+``seeds/001``: 30 frames by default at crank angles ``2 pi k / frames``,
+links drawn as bars, pin joints as disks and the ground pivots marked, with a
+coupler point's plate and curve if asked for.  Only positions are derived
+and evaluated: an animation never differentiates anything.
+
+An input that cannot turn fully (a rocker, a non-Grashof four-bar) is swept
+over its reachable range forward and back
+(:func:`~symlink.plot.drawing.sweep_inputs`), so no frame shows a pose that
+cannot be assembled.  Frames are written into a hidden file in the output
+folder (``.symlink-animation-*.tmp``, removed by the next run if a run is
+killed) and renamed into place when complete; an animation is capped by
+frames times pixels (:data:`MAX_FRAME_PIXELS`) before anything is drawn.
+
+>>> positions = frame_positions(0.1, 0.4, 0.25, 0.30, frames=4)
+>>> [round(math.degrees(t)) for t in positions["theta"]]
+[0, 90, 180, 270]
+"""
+from __future__ import annotations
+
+import math
+import os
+import secrets
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable, Mapping, Sequence
+
+import numpy
+
+from ..catalog import fourbar
+from ..closure import is_angle
+from ..files import LEFTOVER_AGE, TEMPORARY_SUFFIX, remove_leftovers
+from ..linkage import Linkage
+from ..reachability import TURN_SAMPLES, assembled_crank_range, crank_range, turn_angles
+from .drawing import Geometry, LinkageDrawing, input_range, sweep_inputs, traced_paths
+from .figures import MechanismDrawing, check_coupler_point, coupler_point_linkage, extent, fourbar_positions
+
+__all__ = ["FRAMES", "MAX_FRAMES", "MAX_FRAME_PIXELS", "ANIMATION_SUFFIXES", "LEFTOVER_PREFIX", "frame_positions",
+           "animate", "animate_linkage", "check_animation_size", "Rendered"]
+
+#: Frames in a turn, as in ``seeds/001`` (t from 0 to 29/30).
+FRAMES = 30
+#: More frames than this is a mistake, not an animation.
+MAX_FRAMES = 3600
+#: Frames times pixels an animation may have: a GIF's frames are held in memory (4 bytes a pixel) until written.
+MAX_FRAME_PIXELS = 100_000_000
+#: The start of the names of the hidden files that frames are written to, in the output folder.
+LEFTOVER_PREFIX = ".symlink-animation-"
+#: The files an animation can be written to, and the Matplotlib writer of each.
+ANIMATION_SUFFIXES = {".gif": "pillow", ".mp4": "ffmpeg"}
+JOINTS = ["B_x", "B_y", "C_x", "C_y"]
+
+
+@dataclass(frozen=True)
+class Rendered:
+    """What an animation wrote: the file, its frame count, the input values (rad) that could not close
+    (none where the input is swept over its reachable range) and that range, ``[(-pi, pi)]`` for a full turn."""
+
+    path: Path
+    frames: int
+    unassembled: tuple[float, ...]
+    spans: tuple[tuple[float, float], ...] = ((-math.pi, math.pi),)
+
+    @property
+    def full_turn(self) -> bool:
+        """Whether the input turned fully (else it was swept forward and back over ``spans[0]``)."""
+        return bool(self.spans) and self.spans[0][1] - self.spans[0][0] >= 2 * math.pi
+
+
+def frame_positions(a: float, b: float, c: float, d: float, *, branch: int = 1, frames: int = FRAMES,
+                    coupler_point: tuple[float, float] | None = None,
+                    linkage: Linkage | None = None) -> dict[str, numpy.ndarray]:
+    """Crank angles ``theta`` and the joints B, C (and P) at each, positions only.
+
+    A crank that turns fully is at ``2 pi k / frames``; one that cannot is
+    swept over its reachable range from 0 (or its first arc), forward and
+    back (:func:`~symlink.plot.drawing.sweep_inputs`).  ``coupler_point`` is (distance from B, angle from B->C in radians).  A
+    fresh linkage is derived unless ``linkage`` is given (the four-bar, or
+    :func:`~symlink.plot.coupler_point_linkage` for a coupler point).
+    """
+    assembled_crank_range(a, b, c, d)
+    check_coupler_point(coupler_point)
+    if isinstance(frames, bool) or not isinstance(frames, (int, numpy.integer)) or not 1 <= frames <= MAX_FRAMES:
+        raise ValueError(f"frames must be a whole number from 1 to {MAX_FRAMES}, got {frames!r}")
+    if linkage is None:
+        linkage = fourbar() if coupler_point is None else coupler_point_linkage()
+    theta = sweep_inputs(crank_range(a, b, c, d), 0.0, frames)
+    outputs = JOINTS + (["P_x", "P_y"] if coupler_point is not None else [])
+    result = fourbar_positions(a, b, c, d, theta, branch, outputs, coupler_point, linkage=linkage)
+    return {"theta": theta, **result}
+
+
+def _writer(path: Path, fps: float):
+    from matplotlib import animation
+    suffix = path.suffix.lower()
+    if suffix not in ANIMATION_SUFFIXES:
+        raise ValueError(f"cannot animate into {str(path)!r}: the file must end in {' or '.join(ANIMATION_SUFFIXES)}")
+    if suffix == ".gif":
+        return animation.PillowWriter(fps=fps)
+    if not animation.writers.is_available("ffmpeg"):
+        raise ValueError(f"writing {path.name} needs ffmpeg, which was not found on PATH "
+                         "(or at Matplotlib's animation.ffmpeg_path); install it, or write a .gif")
+    return animation.FFMpegWriter(fps=fps, codec="libx264", extra_args=["-pix_fmt", "yuv420p"])
+
+
+def check_animation_size(frames: int, size_px: tuple[int, int]) -> tuple[int, int]:
+    """``(width, height)`` of a frame, after ``ValueError`` for a bad size or more than :data:`MAX_FRAME_PIXELS` in all.
+
+    >>> check_animation_size(30, (480, 360))
+    (480, 360)
+    >>> check_animation_size(3600, (480, 360))
+    Traceback (most recent call last):
+    ValueError: an animation of 3600 frames of 480x360 pixels is 622 million pixels (about 2.5 GB of frames in memory); the limit is 100 million: lower the frames to 578 or fewer, or the frame size
+    """
+    width, height = (int(v) for v in size_px)
+    if width < 16 or height < 16 or width % 2 or height % 2:
+        raise ValueError(f"the frame size must be even and at least 16 pixels, got {width}x{height}")
+    if isinstance(frames, bool) or not isinstance(frames, (int, numpy.integer)) or not 1 <= frames <= MAX_FRAMES:
+        raise ValueError(f"frames must be a whole number from 1 to {MAX_FRAMES}, got {frames!r}")
+    total = frames * width * height
+    if total > MAX_FRAME_PIXELS:
+        raise ValueError(f"an animation of {frames} frames of {width}x{height} pixels is {total / 1e6:.0f} million "
+                         f"pixels (about {4 * total / 1e9:.2g} GB of frames in memory); the limit is "
+                         f"{MAX_FRAME_PIXELS / 1e6:.0f} million: lower the frames to "
+                         f"{MAX_FRAME_PIXELS // (width * height)} or fewer, or the frame size")
+    return width, height
+
+
+def _checked_request(path, fps: float, frames: int, size_px: tuple[int, int]):
+    path = Path(path)
+    if not (math.isfinite(fps) and fps > 0):
+        raise ValueError(f"fps must be a positive number, got {fps}")
+    writer = _writer(path, fps)
+    width, height = check_animation_size(frames, size_px)
+    return path, writer, width, height
+
+
+def _write_frames(path: Path, writer, figure, count: int, draw: Callable[[int], None],
+                  progress: Callable[[int, int], None] | None) -> None:
+    """Draw ``count`` frames into a hidden file beside ``path`` and rename it into place when complete.
+
+    The hidden file is ``.symlink-animation-<random>.tmp/frames.<suffix>`` in the
+    output folder (never the system's temporary folder, which may be small or
+    shared); what killed runs left there is removed first.
+    """
+    folder = path.parent
+    remove_leftovers(folder if str(folder) else ".", (LEFTOVER_PREFIX,), LEFTOVER_AGE)
+    scratch_folder = folder / f"{LEFTOVER_PREFIX}{secrets.token_hex(6)}{TEMPORARY_SUFFIX}"
+    scratch_folder.mkdir(mode=0o700)
+    scratch = scratch_folder / f"frames{path.suffix.lower()}"
+    try:
+        with writer.saving(figure, str(scratch), figure.dpi):
+            for k in range(count):
+                draw(k)
+                writer.grab_frame()
+                if progress is not None:
+                    progress(k + 1, count)
+        os.chmod(scratch, 0o644)
+        os.replace(scratch, path)
+    finally:
+        scratch.unlink(missing_ok=True)
+        scratch_folder.rmdir()
+
+
+def _figure(width: int, height: int):
+    from matplotlib.figure import Figure
+    dpi = 100
+    figure = Figure(figsize=(width / dpi, height / dpi), dpi=dpi, layout="constrained")
+    return figure, figure.add_subplot()
+
+
+def animate(a: float, b: float, c: float, d: float, path, *, branch: int = 1, frames: int = FRAMES,
+            coupler_point: tuple[float, float] | None = None, fps: float = 10,
+            size_px: tuple[int, int] = (480, 360), progress: Callable[[int, int], None] | None = None,
+            linkage: Linkage | None = None) -> Rendered:
+    """Animate a four-bar over a crank turn into ``path`` (.gif, or .mp4 where ffmpeg is present).
+
+    A crank that cannot turn fully is swept over its reachable arc (the one
+    holding 0, else the first) forward and back.  ``progress(done, total)``
+    is called after each frame.  The file appears whole or not at all.
+    """
+    path, writer, width, height = _checked_request(path, fps, frames, size_px)
+    positions = frame_positions(a, b, c, d, branch=branch, frames=frames, coupler_point=coupler_point,
+                                linkage=linkage)
+    figure, axes = _figure(width, height)
+    xs, ys = [0.0, d, positions["B_x"], positions["C_x"]], [0.0, 0.0, positions["B_y"], positions["C_y"]]
+    if coupler_point is not None:
+        theta = turn_angles(a, b, c, d, TURN_SAMPLES)
+        curve = fourbar_positions(a, b, c, d, theta, branch, ["P_x", "P_y"], coupler_point, linkage=linkage)
+        axes.plot(curve["P_x"], curve["P_y"], color="tab:purple", linewidth=1, alpha=0.7, zorder=1)
+        xs += [positions["P_x"], curve["P_x"]]
+        ys += [positions["P_y"], curve["P_y"]]
+    (x0, x1), (y0, y1) = extent(numpy.concatenate([numpy.ravel(v) for v in xs]),
+                                numpy.concatenate([numpy.ravel(v) for v in ys]), margin=0.12)
+    axes.set_xlim(x0, x1)
+    axes.set_ylim(y0, y1)
+    axes.set_aspect("equal")
+    axes.grid(True, alpha=0.3)
+    axes.tick_params(labelsize="small")
+    drawing = MechanismDrawing(axes, coupler_point=coupler_point is not None)
+    title = axes.set_title("", fontsize="medium")
+    unassembled = []
+
+    def draw(k: int) -> None:
+        angle = positions["theta"][k]
+        B = (positions["B_x"][k], positions["B_y"][k])
+        assembled = bool(positions["assembled"][k])
+        C = (positions["C_x"][k], positions["C_y"][k]) if assembled else None
+        P = (positions["P_x"][k], positions["P_y"][k]) if coupler_point is not None else None
+        drawing.update(d, B, C, P)
+        label = f"θ = {math.degrees(angle):.0f}°"
+        title.set_text(label if assembled else f"{label}: cannot be assembled")
+        if not assembled:
+            unassembled.append(float(angle))
+
+    _write_frames(path, writer, figure, len(positions["theta"]), draw, progress)
+    return Rendered(path, len(positions["theta"]), tuple(unassembled), tuple(crank_range(a, b, c, d)))
+
+
+def animate_linkage(linkage: Linkage, values: Mapping[str, float], path, *, frames: int = FRAMES,
+                    trace: Sequence[str] = (), fps: float = 10, size_px: tuple[int, int] = (480, 360),
+                    unit: str | None = None, guess: Mapping[str, float] | None = None,
+                    progress: Callable[[int, int], None] | None = None,
+                    geometry: Geometry | None = None) -> Rendered:
+    """Animate any linkage over its first input into ``path`` (.gif, or .mp4 where ffmpeg is present).
+
+    ``values`` by symbol name as for :func:`~symlink.plot.drawing.draw_linkage`;
+    the first input starts at its value there (default 0) and turns fully
+    where it can, else is swept over its reachable range forward and back;
+    ``trace`` names points whose paths are drawn.  Linkages without a closed
+    form follow Newton's method from ``guess`` (default: one found).
+
+    >>> import tempfile, pathlib
+    >>> from symlink.catalog import fourbar
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "rocker.gif"
+    >>> rendered = animate_linkage(fourbar(), dict(a=0.3, b=0.1, c=0.25, d=0.3), path, frames=4, size_px=(160, 120))
+    >>> rendered.frames, rendered.unassembled, rendered.full_turn
+    (4, (), False)
+    """
+    path, writer, width, height = _checked_request(path, fps, frames, size_px)
+    geometry = geometry or Geometry(linkage)
+    completed = geometry.check_values(values)
+    first = geometry.input_names[0]
+    spans = input_range(geometry, completed, guess)
+    if not spans:
+        raise ValueError(f"{linkage.name} cannot be assembled at any value of {first} with the values given")
+    angles = sweep_inputs(spans, float(completed[first]), frames)
+    if guess is None and not geometry.linkage.has_closed_form:
+        guess = geometry.find_guess(completed)
+    completed[first] = float(angles[0])
+    poses = geometry.poses(completed, {first: angles}, guess)
+    paths = traced_paths(geometry, completed, trace, guess)
+    figure, axes = _figure(width, height)
+    drawing = LinkageDrawing(axes, geometry, poses, paths, unit)
+    axes.tick_params(labelsize="small")
+    title = axes.set_title("", fontsize="medium")
+    unassembled = []
+    angle_input = is_angle(linkage, linkage.inputs[0])
+
+    def draw(k: int) -> None:
+        drawing.update(k)
+        value = angles[k]
+        label = f"{first} = {math.degrees(value):.0f}°" if angle_input else f"{first} = {value:.4g}"
+        if not poses.assembled[k]:
+            unassembled.append(float(value))
+            label += ": cannot be assembled"
+        title.set_text(label)
+
+    _write_frames(path, writer, figure, frames, draw, progress)
+    return Rendered(path, frames, tuple(unassembled), tuple(spans))

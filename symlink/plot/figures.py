@@ -27,12 +27,11 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Sequence
 
 import numpy
-import sympy as sp
 
 from ..analysis import transmission_curve, transmission_range
 from ..catalog import fourbar
-from ..angles import half_turn, to_radians, wrap
-from ..reachability import TURN_SAMPLES, assembled_crank_range, crank_range, reachable_turn, turn_angles
+from ..angles import half_turn, wrap
+from ..reachability import TURN_SAMPLES, assembled_crank_range, reachable_turn, turn_angles
 from ..files import write_atomic
 from ..linkage import Linkage
 from ..solver import Solver, check_lengths, shared_solver

@@ -11,35 +11,22 @@ import sys
 from typing import Sequence
 
 from ..angles import to_radians, wrap
-from .options import (add_branch_option, add_fourbar_lengths, add_units_option, branches, command_help, figure_path,
+from .options import (add_branch_option, add_fourbar_lengths, add_units_option, assignments, branches, command_help,
+                      figure_path,
                       finite, fourbar_lengths, pair, whole)
 from .output import note
 
-__all__ = ["register", "add_fourbar_plot_options", "write_fourbar_plots", "catalog_values"]
+__all__ = ["register", "add_fourbar_plot_options", "write_fourbar_plots", "linkage_values"]
 
 
-def settings(text: str) -> dict[str, float]:
-    """``--set a=20,b=66``: names and finite numbers (no expressions)."""
-    found = {}
-    for item in text.split(","):
-        if not item.strip():
-            continue
-        name, equals, value = item.partition("=")
-        if not equals or not name.strip().isidentifier():
-            raise argparse.ArgumentTypeError(f"expected NAME=VALUE pairs separated by commas, got {item.strip()!r}")
-        found[name.strip()] = finite(value.strip())
-    return found
-
-
-def catalog_values(args: argparse.Namespace):
-    """The catalog linkage NAME and its values: the example values, ``--set`` (angles in --units),
-    ``--angle`` (the first input, in --units) and ``--branch`` for every branch."""
-    from ..catalog import CATALOG, EXAMPLE_VALUES
+def linkage_values(args: argparse.Namespace):
+    """The linkage NAME|FILE and its values: its defaults (a catalog entry's example values), ``--set``
+    (angles in --units), ``--angle`` (the first input, in --units) and ``--branch`` for every branch."""
     from ..closure import is_angle
-    if args.linkage not in CATALOG:
-        raise ValueError(f"no catalog linkage {args.linkage!r}; the catalog has {', '.join(sorted(CATALOG))}")
-    linkage = CATALOG[args.linkage]()
-    values = dict(EXAMPLE_VALUES[args.linkage])
+    from ..linkage_file import load_linkage
+    found = load_linkage(args.linkage)
+    linkage = found.linkage
+    values = dict(found.defaults)
     known = {s.name: s for s in linkage.parameters + linkage.inputs}
     for name, value in (args.set or {}).items():
         if name not in known:
@@ -54,7 +41,7 @@ def catalog_values(args: argparse.Namespace):
 
 
 def _add_catalog_options(parser: argparse.ArgumentParser, what: str) -> None:
-    parser.add_argument("--set", type=settings, metavar="NAME=VALUE,...",
+    parser.add_argument("--set", type=assignments("NAME=VALUE"), metavar="NAME=VALUE,...",
                         help="change example values (fixed angles in --units), e.g. --set a=20,b=66")
     parser.add_argument("--angle", type=finite, metavar="A", help=f"{what} (in --units, default 0)")
     parser.add_argument("--trace", type=lambda text: [n.strip() for n in text.split(",") if n.strip()],
@@ -132,7 +119,7 @@ def run_animate(args: argparse.Namespace) -> int:
     _four_lengths_or_name(args, "animate")
     if args.linkage is not None:
         from ..plot.animation import animate_linkage
-        linkage, values = catalog_values(args)
+        linkage, values = linkage_values(args)
         trace = _default_trace(linkage) if args.trace is None else args.trace
         rendered = animate_linkage(linkage, values, args.out, frames=args.frames, trace=trace, fps=args.fps,
                                    unit=args.unit, progress=report)
@@ -154,7 +141,7 @@ def run_animate(args: argparse.Namespace) -> int:
 def run_draw(args: argparse.Namespace) -> int:
     from ..plot import save_figure
     from ..plot.drawing import draw_linkage
-    linkage, values = catalog_values(args)
+    linkage, values = linkage_values(args)
     trace = _default_trace(linkage) if args.trace is None else args.trace
     drawing = draw_linkage(linkage, values, trace=trace, unit=args.unit)
     save_figure(drawing.figure, args.out)
@@ -188,10 +175,11 @@ def register(commands) -> None:
     from ..plot.animation import FRAMES
     from ..plot.view import SEED001
     draw = commands.add_parser("draw", **command_help(
-        "draw a catalog linkage at one input value, with the paths of its points, as PNG or SVG",
+        "draw a linkage (catalog name or file) at one input value, with the paths of its points, as PNG or SVG",
         "values of the catalog's example (lengths in any one unit); angles in --units (deg by default)",
         "symlink draw jansen --angle 30 --trace H --out jansen.png"))
-    draw.add_argument("linkage", metavar="NAME", help="a catalog linkage: " + ", ".join(sorted(CATALOG)))
+    draw.add_argument("linkage", metavar="NAME|FILE",
+                      help="a catalog linkage (" + ", ".join(sorted(CATALOG)) + ") or a linkage file (.toml)")
     _add_catalog_options(draw, "the first input's value")
     add_branch_option(draw, both=False, default="+1")
     add_units_option(draw, "angles given")
@@ -218,7 +206,8 @@ def register(commands) -> None:
         "symlink animate --crank 0.1 --coupler 0.4 --rocker 0.25 --ground 0.3 --out fourbar.gif",
         "A catalog NAME animates that linkage with its example values: symlink animate jansen --out jansen.gif.\n"
         "An input that cannot turn fully is swept over its reachable range, forward and back."))
-    animation.add_argument("linkage", nargs="?", metavar="NAME", help="a catalog linkage: " + ", ".join(sorted(CATALOG)))
+    animation.add_argument("linkage", nargs="?", metavar="NAME|FILE",
+                           help="a catalog linkage (" + ", ".join(sorted(CATALOG)) + ") or a linkage file (.toml)")
     for option, what in (("crank", "AB"), ("coupler", "BC"), ("rocker", "DC"), ("ground", "AD")):
         animation.add_argument(f"--{option}", type=finite, help=f"four-bar length {what} (without NAME)")
     _add_catalog_options(animation, "where the input starts")

@@ -127,7 +127,7 @@ def test_draw_and_animate_commands(tmp_path, capsys):
                  "--out", str(tmp_path / "rocker.gif")]) == 0
     assert "the crank cannot turn fully: swept from -97.9032 to 97.9032 deg and back" in capsys.readouterr().err
     for argv, message in ((["draw", "jansen", "--set", "zz=1"], "jansen has no value 'zz'"),
-                          (["draw", "sixbar"], "no catalog linkage 'sixbar'"),
+                          (["draw", "sixbar"], "no linkage 'sixbar' in the catalog"),
                           (["animate", "jansen", "--crank", "2"], "not both"),
                           (["animate"], "give a catalog NAME"),
                           (["draw", "jansen", "--set", "a"], "NAME=VALUE")):

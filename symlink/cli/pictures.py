@@ -11,8 +11,8 @@ import sys
 from typing import Sequence
 
 from ..angles import to_radians, wrap
-from .options import (add_branch_option, add_fourbar_lengths, add_units_option, assignments, branches, command_help,
-                      figure_path,
+from .options import (add_branch_option, add_units_option, assignments, branches, command_help,
+                      figure_path, FOURBAR_LENGTHS,
                       finite, fourbar_lengths, pair, whole)
 from .output import note
 
@@ -97,6 +97,11 @@ def _coupler_point(args: argparse.Namespace) -> tuple[float, float] | None:
 
 def run_curve(args: argparse.Namespace) -> int:
     from ..plot import coupler_curve_figure, save_figure
+    _four_lengths_or_name(args, "curve")
+    if args.linkage is not None:
+        return run_draw(args)
+    if args.coupler_point is None:
+        raise ValueError("curve: the four-bar form needs --coupler-point DIST,ANGLE")
     crank_angle = None if args.crank_angle is None else float(to_radians(args.crank_angle, args.units))
     distance, angle = _coupler_point(args)
     figure = coupler_curve_figure(*fourbar_lengths(args), distance, angle, branches=branches(args),
@@ -150,7 +155,26 @@ def run_draw(args: argparse.Namespace) -> int:
 
 
 def run_view(args: argparse.Namespace) -> int:
-    from ..plot.view import FourbarView, check_slider_range, interactive_backend
+    from ..plot.view import SEED001, FourbarView, LinkageView, check_slider_range, interactive_backend
+    if args.linkage is not None:
+        _four_lengths_or_name(args, "view")
+        linkage, values = linkage_values(args)
+        trace = _default_trace(linkage) if args.trace is None else args.trace
+        if args.save:
+            from matplotlib.figure import Figure
+            from ..plot import save_figure
+            figure = Figure(figsize=(10, 7))
+            LinkageView(linkage, values, trace=trace, figure=figure)
+            save_figure(figure, args.save)
+            return 0
+        pyplot = interactive_backend()
+        view = LinkageView(linkage, values, trace=trace)
+        pyplot.show()
+        del view
+        return 0
+    for name, value in SEED001.items():
+        if getattr(args, name) is None:
+            setattr(args, name, value)
     settings = dict(crank_angle=float(to_radians(args.crank_angle, args.units)), branch=int(args.branch),
                     crank_speed=args.crank_speed)
     lengths = fourbar_lengths(args)
@@ -170,7 +194,7 @@ def run_view(args: argparse.Namespace) -> int:
 
 
 def register(commands) -> None:
-    """Register ``symlink curve``, ``animate`` and ``view``."""
+    """Register ``symlink draw``, ``curve``, ``animate`` and ``view``."""
     from ..catalog import CATALOG
     from ..plot.animation import FRAMES
     from ..plot.view import SEED001
@@ -187,12 +211,16 @@ def register(commands) -> None:
     draw.set_defaults(run=run_draw)
 
     curve = commands.add_parser("curve", **command_help(
-        "the curve of a coupler point over a crank turn, as PNG or SVG",
+        "the curve of a coupler point over a crank turn (or of any linkage's points: NAME --trace P), as PNG or SVG",
         "lengths in any one unit; angles in --units (deg by default)",
         "symlink curve --crank 20 --coupler 66 --rocker 56 --ground 80 --coupler-point 40,30 --out curve.png"))
-    add_fourbar_lengths(curve)
-    curve.add_argument("--coupler-point", type=pair("DIST,ANGLE"), required=True, metavar="DIST,ANGLE",
-                       help="distance from B, and angle from the coupler's direction B->C")
+    curve.add_argument("linkage", nargs="?", metavar="NAME|FILE",
+                       help="a catalog linkage or a linkage file: draws it with the paths of --trace points")
+    for option, what in FOURBAR_LENGTHS:
+        curve.add_argument(f"--{option}", type=finite, help=f"four-bar length {what} (without NAME)")
+    curve.add_argument("--coupler-point", type=pair("DIST,ANGLE"), metavar="DIST,ANGLE",
+                       help="the four-bar's coupler point: distance from B, and angle from the coupler's direction B->C")
+    _add_catalog_options(curve, "where the linkage is drawn (with NAME)")
     add_branch_option(curve, default="+1")
     curve.add_argument("--crank-angle", type=finite, metavar="ANGLE",
                        help="where the mechanism is drawn (default: 0, or the first reachable angle)")
@@ -208,7 +236,7 @@ def register(commands) -> None:
         "An input that cannot turn fully is swept over its reachable range, forward and back."))
     animation.add_argument("linkage", nargs="?", metavar="NAME|FILE",
                            help="a catalog linkage (" + ", ".join(sorted(CATALOG)) + ") or a linkage file (.toml)")
-    for option, what in (("crank", "AB"), ("coupler", "BC"), ("rocker", "DC"), ("ground", "AD")):
+    for option, what in FOURBAR_LENGTHS:
         animation.add_argument(f"--{option}", type=finite, help=f"four-bar length {what} (without NAME)")
     _add_catalog_options(animation, "where the input starts")
     add_branch_option(animation, both=False, default="+1")
@@ -221,14 +249,20 @@ def register(commands) -> None:
     animation.set_defaults(run=run_animate)
 
     view = commands.add_parser("view", **command_help(
-        "an interactive four-bar (Matplotlib window with sliders)",
+        "an interactive linkage (Matplotlib window with a slider for each parameter)",
         "lengths in any one unit; --crank-angle in --units (deg by default); --crank-speed rad/s",
-        "symlink view --crank 0.1 --coupler 0.4 --rocker 0.25 --ground 0.3 --save view.png"))
-    add_fourbar_lengths(view, defaults=SEED001)
+        "symlink view --crank 0.1 --coupler 0.4 --rocker 0.25 --ground 0.3 --save view.png",
+        "Without NAME|FILE the four-bar view (lengths default to the Maple worksheet's); with one, any linkage:\n"
+        "symlink view jansen --save jansen-view.png"))
+    view.add_argument("linkage", nargs="?", metavar="NAME|FILE", help="a catalog linkage or a linkage file")
+    for option, what in FOURBAR_LENGTHS:
+        default = SEED001[option]
+        view.add_argument(f"--{option}", type=finite, help=f"four-bar length {what} (without NAME; default {default:g})")
+    _add_catalog_options(view, "the first input's initial value (with NAME)")
     view.add_argument("--crank-angle", type=finite, default=0.0, metavar="ANGLE", help="initial (default 0)")
     view.add_argument("--crank-speed", type=finite, default=1.0, metavar="W", help="rad/s (default 1)")
     add_branch_option(view, both=False, default="+1")
-    add_units_option(view, "--crank-angle")
+    add_units_option(view, "--crank-angle and --angle")
     view.add_argument("--save", type=figure_path, metavar="FILE",
                       help="write the figure to a .png or .svg instead of opening a window")
     view.set_defaults(run=run_view)

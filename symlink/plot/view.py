@@ -33,7 +33,7 @@ from ..solver import Solver, check_lengths
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-__all__ = ["FourbarView", "SEED001", "OUTPUTS"]
+__all__ = ["FourbarView", "LinkageView", "SEED001", "OUTPUTS"]
 
 #: The worksheet's data (``seeds/001``), metres: the view's default linkage.
 SEED001 = {"crank": 0.1, "coupler": 0.4, "rocker": 0.25, "ground": 0.30}
@@ -190,3 +190,80 @@ class FourbarView:
                   "reachable crank range:"]
         lines += ["  " + describe_spans(pieces, "deg") for pieces in ([[span] for span in spans] or [[]])]
         return "\n".join(lines)
+
+
+class LinkageView:
+    """Any linkage as an interactive figure: its drawing, a slider for each parameter and input, branch buttons.
+
+    ``values`` by symbol name (lengths, fixed angles and inputs in radians);
+    each length's slider spans a fifth of its value to three times it, each
+    angle's a full turn (in degrees).  Moving a slider redraws the linkage
+    (:func:`~symlink.plot.drawing.draw_linkage`); a pose that cannot be
+    assembled is said in the title, and the last drawing stays.  ``figure``
+    defaults to a new pyplot figure; :meth:`values` is what is set.
+    """
+
+    def __init__(self, linkage, values, *, trace=(), figure: "Figure | None" = None) -> None:
+        from matplotlib.widgets import RadioButtons, Slider
+
+        from ..closure import is_angle
+        from .drawing import Geometry
+        self.linkage, self.trace = linkage, tuple(trace)
+        self.geometry = Geometry(linkage)
+        self.fixed = self.geometry.check_values(values)  # every value, checked (lengths positive and finite)
+        if figure is None:
+            import matplotlib.pyplot as pyplot
+            figure = pyplot.figure(figsize=(10, 7))
+        self.figure = figure
+        adjustable = list(linkage.parameters) + list(linkage.inputs)
+        rows = len(adjustable)
+        top = 0.06 + 0.035 * rows
+        self.axes = figure.add_axes((0.06, top + 0.06, 0.62, 0.90 - top - 0.06))
+        self.sliders: dict[str, Slider] = {}
+        turning = set().union(*(v.angle.free_symbols for point in linkage.points.values() if point is not None
+                                for _, v in point.as_sum().terms))
+        self.angles = {s.name for s in adjustable if is_angle(linkage, s) or s in turning}
+        for row, symbol in enumerate(adjustable):
+            value = float(self.fixed[symbol.name])
+            if symbol.name in self.angles:
+                low, high, shown, fmt = -180.0, 180.0, float(wrap(math.degrees(value), 180.0)), "%.1f°"
+            else:
+                size = abs(value) or 1.0
+                low, high, shown, fmt = (value / 5, value * 3, value, "%.4g") if symbol.is_positive else \
+                    (value - 2 * size, value + 2 * size, value, "%.4g")
+            slider_axes = figure.add_axes((0.16, 0.02 + 0.035 * (rows - 1 - row), 0.50, 0.025))
+            self.sliders[symbol.name] = Slider(slider_axes, symbol.name, low, high, valinit=shown, valfmt=fmt)
+            self.sliders[symbol.name].on_changed(self.update)
+        self.branch_buttons = None
+        if linkage.branches:
+            button_axes = figure.add_axes((0.74, 0.70, 0.12, 0.14))
+            button_axes.set_title("branch", fontsize="small")
+            self.branch_buttons = RadioButtons(button_axes, ("+1", "-1"), active=0)
+            self.branch_buttons.on_clicked(self.update)
+        self.message = ""
+        self.shown = dict(self.fixed)  # the values of the drawing on screen
+        self.update()
+
+    def values(self) -> dict[str, float]:
+        """The values as set: the sliders' (angles in radians) and the branch sign on every loop."""
+        values = dict(self.fixed)
+        for name, slider in self.sliders.items():
+            values[name] = math.radians(float(slider.val)) if name in self.angles else float(slider.val)
+        sign = 1 if self.branch_buttons is None else int(self.branch_buttons.value_selected)
+        values.update({branch.name: sign for branch in self.linkage.branches})
+        return values
+
+    def update(self, _changed=None) -> None:
+        """Redraw the linkage at the values set (every widget calls this)."""
+        from .drawing import draw_linkage
+        values = self.values()
+        poses = self.geometry.poses(self.geometry.check_values(values))
+        self.message = "" if poses.assembled[0] else (
+            f"{self.linkage.name} cannot be assembled here; the drawing shows the last pose that can")
+        if not self.message:
+            self.shown = values
+        self.axes.clear()
+        draw_linkage(self.linkage, self.shown, ax=self.axes, trace=self.trace, geometry=self.geometry)
+        if self.message:
+            self.axes.set_title(self.message, color="red", fontsize="small")
+        self.figure.canvas.draw_idle()

@@ -122,3 +122,18 @@ def test_view_command(tmp_path, capsys):
     assert "--save" in capsys.readouterr().err
     assert main(["view", "--rocker", "0", "--save", str(path)]) == 2
     assert "rocker must be a positive finite length" in capsys.readouterr().err
+
+
+def test_any_linkage_gets_a_slider_for_each_parameter_and_input():
+    from matplotlib.figure import Figure
+
+    from symlink.catalog import EXAMPLE_VALUES, jansen
+    from symlink.plot.view import LinkageView
+    linkage = jansen()
+    view = LinkageView(linkage, EXAMPLE_VALUES["jansen"], trace=["H"], figure=Figure())
+    assert set(view.sliders) == {s.name for s in linkage.parameters + linkage.inputs}
+    assert {"alpha", "gamma", "theta"} <= view.angles  # fixed corner angles and the crank, in degrees
+    view.sliders["theta"].set_val(90.0)
+    assert view.message == "" and abs(view.values()["theta"] - math.pi / 2) < 1e-12
+    view.sliders["m"].set_val(200.0)  # a crank longer than the leg: cannot close
+    assert "cannot be assembled" in view.message and view.shown["m"] == EXAMPLE_VALUES["jansen"]["m"]

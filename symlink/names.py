@@ -56,7 +56,8 @@ varargout ans""".split())
 #: Functions and constants the generated code calls by their bare name (C's math.h, Octave's builtins).
 _FUNCTIONS = frozenset("""
 sin cos tan asin acos atan atan2 sinh cosh tanh asinh acosh atanh exp log log10 log2 sqrt cbrt pow hypot
-abs fabs floor ceil round fmod fmax fmin max min sign copysign isfinite isnan isinf size true false ones
+abs fabs floor ceil round fmod fmax fmin max min sign copysign isfinite isnan isinf size true false ones all
+isnumeric isreal error
 zeros nan NaN Inf inf pi""".split())
 #: Names the generated modules use themselves: modules, locals, outputs and the Newton driver's globals.
 _GENERATED = frozenset("""

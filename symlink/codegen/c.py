@@ -34,6 +34,7 @@ True
 from __future__ import annotations
 
 import re
+import textwrap
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Sequence
 
@@ -42,6 +43,7 @@ from sympy.printing.c import C99CodePrinter
 
 from .. import __version__
 from ..position import TOLERANCE
+from .numpy import ARGUMENT_CONTRACT
 from .program import is_flag, named_straight_line
 
 if TYPE_CHECKING:
@@ -235,7 +237,13 @@ as a pointer and a step: configuration i reads x[i * x_step], so a step of 1
 walks an array of n values and a step of 0 uses one value for all of them.
 Each output is an array of n doubles, not overlapping the inputs;
 assembled[i] is 1 where the linkage closes and 0 where it cannot be
-assembled (the outputs are NaN there). Angles in radians."""
+assembled (the outputs are NaN there). Angles in radians.
+
+The arguments must satisfy what the NumPy module checks:
+{contract}
+These loops do not check them (they never allocate or fail): a NaN gives
+NaN outputs and assembled 0, but a branch sign other than +1 or -1 or a
+length that is not positive gives meaningless numbers."""
 
 _PRELUDE = """\
 /* SYMLINK_LOOP may mark the loop functions for the compiler (symlink's compiled
@@ -288,6 +296,7 @@ def c_library(functions: Sequence[CFunction], name: str, title: str = "A symlink
     if len(set(seen)) != len(seen):
         raise ValueError(f"function names repeat: {', '.join(seen)}")
     comment = c_comment(_HEADER.format(title=title, version=__version__, sympy=sp.__version__,
+                                      contract=textwrap.fill(ARGUMENT_CONTRACT + ".", 76),
                                       regenerate=f"\nRegenerate with: {regenerate}" if regenerate else ""))
     guard = f"SYMLINK_{name.upper()}_H"
     header = "\n".join([comment, f"#ifndef {guard}", f"#define {guard}", "", "#include <stddef.h>", "",

@@ -46,12 +46,12 @@ def available_memory() -> int | None:
 def format_bytes(count: float) -> str:
     """A byte count the way people read it: two significant digits and a decimal unit.
 
-    >>> format_bytes(512), format_bytes(1.234e6), format_bytes(58e9)
-    ('512 bytes', '1.2 MB', '58 GB')
+    >>> format_bytes(512), format_bytes(1.234e6), format_bytes(58e9), format_bytes(158e9)
+    ('512 bytes', '1.2 MB', '58 GB', '158 GB')
     """
     for unit, size in (("TB", 1e12), ("GB", 1e9), ("MB", 1e6), ("kB", 1e3)):
         if count >= size:
-            return f"{count / size:.2g} {unit}"
+            return f"{count / size:{'.0f' if count >= 100 * size else '.2g'}} {unit}"
     return f"{count:.0f} bytes"
 
 

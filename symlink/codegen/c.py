@@ -33,7 +33,6 @@ True
 """
 from __future__ import annotations
 
-import re
 import textwrap
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Sequence
@@ -42,6 +41,7 @@ import sympy as sp
 from sympy.printing.c import C99CodePrinter
 
 from .. import __version__
+from ..names import C_KEYWORDS as RESERVED_IN_C, PLAIN_NAME
 from ..position import TOLERANCE
 from .numpy import ARGUMENT_CONTRACT
 from .program import is_flag, named_straight_line
@@ -54,21 +54,20 @@ __all__ = ["CFunction", "c_function", "c_library", "c_code", "c_identifier", "c_
 #: Integer powers up to this size are written as multiplications.
 LARGEST_MULTIPLIED_POWER = 4
 
-C_KEYWORDS = frozenset(C99CodePrinter.reserved_words) | {
-    "inline", "restrict", "_Bool", "_Complex", "_Imaginary", "size_t", "ptrdiff_t", "NAN", "INFINITY"}
-
-_IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
+#: C's keywords and the names its headers define, which no identifier may take.
+C_KEYWORDS = frozenset(C99CodePrinter.reserved_words) | RESERVED_IN_C
 
 
 def c_identifier(name: str, what: str = "name") -> str:
-    """``name`` if it is a valid C identifier that is not a keyword; ``ValueError`` otherwise.
+    """``name`` if it is a plain name (:data:`symlink.names.PLAIN_NAME`) that is not a C keyword; ``ValueError`` otherwise.
 
     >>> c_identifier("phi_1")
     'phi_1'
     """
-    if not _IDENTIFIER.match(name) or name in C_KEYWORDS or name.startswith("symlink_"):
+    if not PLAIN_NAME.match(name) or name in C_KEYWORDS or name.startswith("symlink_"):
         raise ValueError(f"{what} {name!r} is not usable as a C identifier "
-                         "(letters, digits and underscores, not a keyword, not starting with 'symlink_')")
+                         "(an ASCII letter, then letters, digits and underscores; not a keyword; "
+                         "not starting with 'symlink_')")
     return name
 
 

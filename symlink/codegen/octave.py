@@ -21,7 +21,6 @@ True
 """
 from __future__ import annotations
 
-import re
 import textwrap
 from typing import TYPE_CHECKING, Sequence
 
@@ -30,6 +29,7 @@ from sympy.printing.octave import OctaveCodePrinter
 
 from .. import __version__
 from ..linkage import is_branch_name
+from ..names import OCTAVE_KEYWORDS, PLAIN_NAME
 from ..position import TOLERANCE
 from .numpy import ARGUMENT_CONTRACT
 from .program import format_default, is_flag, named_straight_line
@@ -39,14 +39,8 @@ if TYPE_CHECKING:
 
 __all__ = ["octave_function", "octave_identifier", "comment_lines", "export_files"]
 
-OCTAVE_KEYWORDS = frozenset("""
-break case catch classdef continue do else elseif end end_try_catch end_unwind_protect endclassdef
-endenumeration endevents endfor endfunction endif endmethods endparfor endproperties endspmd endswitch
-endwhile enumeration events for function global if methods otherwise parfor persistent properties
-return spmd switch try until unwind_protect unwind_protect_cleanup while nargin nargout varargin
-varargout ans""".split())
-
-_IDENTIFIER = re.compile(r"[A-Za-z][A-Za-z0-9_]{0,62}\Z")
+#: MATLAB's longest name.
+_LONGEST = 63
 
 
 def octave_identifier(name: str, what: str = "name") -> str:
@@ -55,7 +49,7 @@ def octave_identifier(name: str, what: str = "name") -> str:
     >>> octave_identifier("Wx_1")
     'Wx_1'
     """
-    if not _IDENTIFIER.match(name) or name in OCTAVE_KEYWORDS:
+    if not PLAIN_NAME.match(name) or len(name) > _LONGEST or name in OCTAVE_KEYWORDS:
         raise ValueError(f"{what} {name!r} is not usable as a MATLAB/Octave name "
                          "(a letter, then up to 62 letters, digits or underscores; not a keyword)")
     return name

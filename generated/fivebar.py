@@ -8,8 +8,55 @@ import numpy
 TOLERANCE = 1e-14
 
 
-def _as_arrays(*values):
-    return tuple(numpy.asarray(v, dtype=float) for v in values)
+def _arguments(check, names, values, lengths=(), signs=()):
+    """The arguments as float arrays and their broadcast shape; with ``check``, ``ValueError`` naming a bad one.
+
+    Checked, one vectorised test an argument: real numbers only (a complex
+    value is refused rather than cut to its real part), shapes that broadcast
+    together, branch signs exactly +1 or -1, lengths positive and finite,
+    every other value finite.  ``check=False`` converts only, for hot loops.
+    """
+    if not check:
+        arrays = tuple(numpy.asarray(value, dtype=float) for value in values)
+        return arrays, numpy.broadcast_shapes(*(array.shape for array in arrays))
+    arrays = []
+    for name, value in zip(names, values):
+        array = numpy.asarray(value)
+        kind = array.dtype.kind
+        if kind != "f":
+            try:
+                if kind not in "biuO":
+                    raise TypeError
+                array = array.astype(float)  # an object array of Python numbers; complex ones raise TypeError
+            except (TypeError, ValueError, OverflowError):
+                why = " (its imaginary part would be lost)" if kind == "c" else ""
+                raise ValueError(f"{name} must be real numbers, got {array.dtype} values{why}") from None
+        arrays.append(array)
+    try:
+        shape = numpy.broadcast_shapes(*(array.shape for array in arrays))
+    except ValueError:
+        shapes = ", ".join(f"{name} has shape {array.shape}" for name, array in zip(names, arrays) if array.ndim)
+        raise ValueError(f"the arguments do not broadcast together: {shapes}") from None
+    for name, array in zip(names, arrays):
+        if array.ndim == 0:  # a single number, the usual length or sign: tested without NumPy's overhead
+            x = float(array)
+            if name in signs:
+                good = x == 1.0 or x == -1.0
+            elif name in lengths:
+                good = 0.0 < x < numpy.inf
+            else:
+                good = x - x == 0.0
+        elif name in signs:
+            good = numpy.abs(array) == 1.0
+        elif name in lengths:
+            good = (array > 0.0) & (array < numpy.inf)
+        else:
+            good = numpy.isfinite(array)
+        if not (good if array.ndim == 0 else good.all()):
+            wanted = ("must be +1 or -1" if name in signs else "must be a positive finite length" if name in lengths
+                      else "must be finite")
+            raise ValueError(f"{name} {wanted}, got {float(array if array.ndim == 0 else array[~good].flat[0])!r}")
+    return tuple(arrays), shape
 
 
 def _clamped_sqrt(x, scale):
@@ -17,15 +64,18 @@ def _clamped_sqrt(x, scale):
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
 
 
-def positions(theta, psi, a, b, c, d, e, branch=1):
+def positions(theta, psi, a, b, c, d, e, branch=1, *, check=True):
     """Positions: coupler (rad), coupler2 (rad).
     
     Returns a dict of arrays: coupler, coupler2;
     and assembled: False where the linkage cannot close (the outputs are NaN there).
-    The arguments broadcast against each other.
+    The arguments broadcast against each other.  They are checked (ValueError naming the argument):
+    branch signs exactly +1 or -1; lengths positive and finite; every value finite and real (complex
+    values are refused); array arguments whose shapes broadcast together; check=False skips that for
+    hot loops.
     """
-    theta, psi, a, b, c, d, e, branch = _as_arrays(theta, psi, a, b, c, d, e, branch)
-    shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(psi), numpy.shape(a), numpy.shape(b), numpy.shape(c), numpy.shape(d), numpy.shape(e), numpy.shape(branch))
+    (theta, psi, a, b, c, d, e, branch,), shape = _arguments(
+        check, ('theta', 'psi', 'a', 'b', 'c', 'd', 'e', 'branch'), (theta, psi, a, b, c, d, e, branch,), ('a', 'b', 'c', 'd', 'e'), ('branch',))
     size_1 = 2.0**numpy.floor(numpy.log((1/5)*a + (1/5)*b + (1/5)*c + (1/5)*d + (1/5)*e)/numpy.log(2.0))
     cse_0 = 1/(size_1)
     rho_1_1 = cse_0*d
@@ -55,15 +105,18 @@ def positions(theta, psi, a, b, c, d, e, branch=1):
     }
 
 
-def velocities(theta, psi, a, b, c, d, e, branch=1, thetadot=0.0, psidot=0.0):
+def velocities(theta, psi, a, b, c, d, e, branch=1, thetadot=0.0, psidot=0.0, *, check=True):
     """Positions and speeds: coupler_speed (rad/s), coupler2_speed (rad/s).
     
     Returns a dict of arrays: coupler, coupler2, coupler_speed, coupler2_speed;
     and assembled: False where the linkage cannot close (the outputs are NaN there).
-    The arguments broadcast against each other.
+    The arguments broadcast against each other.  They are checked (ValueError naming the argument):
+    branch signs exactly +1 or -1; lengths positive and finite; every value finite and real (complex
+    values are refused); array arguments whose shapes broadcast together; check=False skips that for
+    hot loops.
     """
-    theta, psi, a, b, c, d, e, branch, thetadot, psidot = _as_arrays(theta, psi, a, b, c, d, e, branch, thetadot, psidot)
-    shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(psi), numpy.shape(a), numpy.shape(b), numpy.shape(c), numpy.shape(d), numpy.shape(e), numpy.shape(branch), numpy.shape(thetadot), numpy.shape(psidot))
+    (theta, psi, a, b, c, d, e, branch, thetadot, psidot,), shape = _arguments(
+        check, ('theta', 'psi', 'a', 'b', 'c', 'd', 'e', 'branch', 'thetadot', 'psidot'), (theta, psi, a, b, c, d, e, branch, thetadot, psidot,), ('a', 'b', 'c', 'd', 'e'), ('branch',))
     cse_11 = -theta
     cse_12 = a*thetadot
     cse_13 = -psi
@@ -102,15 +155,18 @@ def velocities(theta, psi, a, b, c, d, e, branch=1, thetadot=0.0, psidot=0.0):
     }
 
 
-def accelerations(theta, psi, a, b, c, d, e, branch=1, thetadot=0.0, psidot=0.0, thetaddot=0.0, psiddot=0.0):
+def accelerations(theta, psi, a, b, c, d, e, branch=1, thetadot=0.0, psidot=0.0, thetaddot=0.0, psiddot=0.0, *, check=True):
     """Positions, speeds and accelerations: coupler_accel (rad/s^2), coupler2_accel (rad/s^2).
     
     Returns a dict of arrays: coupler, coupler2, coupler_speed, coupler2_speed, coupler_accel, coupler2_accel;
     and assembled: False where the linkage cannot close (the outputs are NaN there).
-    The arguments broadcast against each other.
+    The arguments broadcast against each other.  They are checked (ValueError naming the argument):
+    branch signs exactly +1 or -1; lengths positive and finite; every value finite and real (complex
+    values are refused); array arguments whose shapes broadcast together; check=False skips that for
+    hot loops.
     """
-    theta, psi, a, b, c, d, e, branch, thetadot, psidot, thetaddot, psiddot = _as_arrays(theta, psi, a, b, c, d, e, branch, thetadot, psidot, thetaddot, psiddot)
-    shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(psi), numpy.shape(a), numpy.shape(b), numpy.shape(c), numpy.shape(d), numpy.shape(e), numpy.shape(branch), numpy.shape(thetadot), numpy.shape(psidot), numpy.shape(thetaddot), numpy.shape(psiddot))
+    (theta, psi, a, b, c, d, e, branch, thetadot, psidot, thetaddot, psiddot,), shape = _arguments(
+        check, ('theta', 'psi', 'a', 'b', 'c', 'd', 'e', 'branch', 'thetadot', 'psidot', 'thetaddot', 'psiddot'), (theta, psi, a, b, c, d, e, branch, thetadot, psidot, thetaddot, psiddot,), ('a', 'b', 'c', 'd', 'e'), ('branch',))
     cse_11 = -theta
     cse_14 = a*thetadot
     cse_15 = -psi
@@ -169,15 +225,18 @@ def accelerations(theta, psi, a, b, c, d, e, branch=1, thetadot=0.0, psidot=0.0,
     }
 
 
-def joints(theta, psi, a, b, c, d, e, branch=1):
+def joints(theta, psi, a, b, c, d, e, branch=1, *, check=True):
     """Joints B, C and D (the pivots are A = (0, 0) and E = (d, 0)).
     
     Returns a dict of arrays: B_x, B_y, C_x, C_y, D_x, D_y;
     and assembled: False where the linkage cannot close (the outputs are NaN there).
-    The arguments broadcast against each other.
+    The arguments broadcast against each other.  They are checked (ValueError naming the argument):
+    branch signs exactly +1 or -1; lengths positive and finite; every value finite and real (complex
+    values are refused); array arguments whose shapes broadcast together; check=False skips that for
+    hot loops.
     """
-    theta, psi, a, b, c, d, e, branch = _as_arrays(theta, psi, a, b, c, d, e, branch)
-    shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(psi), numpy.shape(a), numpy.shape(b), numpy.shape(c), numpy.shape(d), numpy.shape(e), numpy.shape(branch))
+    (theta, psi, a, b, c, d, e, branch,), shape = _arguments(
+        check, ('theta', 'psi', 'a', 'b', 'c', 'd', 'e', 'branch'), (theta, psi, a, b, c, d, e, branch,), ('a', 'b', 'c', 'd', 'e'), ('branch',))
     cse_1 = numpy.cos(psi)
     cse_2 = numpy.cos(theta)
     cse_3 = numpy.sin(psi)

@@ -8,8 +8,55 @@ import numpy
 TOLERANCE = 1e-14
 
 
-def _as_arrays(*values):
-    return tuple(numpy.asarray(v, dtype=float) for v in values)
+def _arguments(check, names, values, lengths=(), signs=()):
+    """The arguments as float arrays and their broadcast shape; with ``check``, ``ValueError`` naming a bad one.
+
+    Checked, one vectorised test an argument: real numbers only (a complex
+    value is refused rather than cut to its real part), shapes that broadcast
+    together, branch signs exactly +1 or -1, lengths positive and finite,
+    every other value finite.  ``check=False`` converts only, for hot loops.
+    """
+    if not check:
+        arrays = tuple(numpy.asarray(value, dtype=float) for value in values)
+        return arrays, numpy.broadcast_shapes(*(array.shape for array in arrays))
+    arrays = []
+    for name, value in zip(names, values):
+        array = numpy.asarray(value)
+        kind = array.dtype.kind
+        if kind != "f":
+            try:
+                if kind not in "biuO":
+                    raise TypeError
+                array = array.astype(float)  # an object array of Python numbers; complex ones raise TypeError
+            except (TypeError, ValueError, OverflowError):
+                why = " (its imaginary part would be lost)" if kind == "c" else ""
+                raise ValueError(f"{name} must be real numbers, got {array.dtype} values{why}") from None
+        arrays.append(array)
+    try:
+        shape = numpy.broadcast_shapes(*(array.shape for array in arrays))
+    except ValueError:
+        shapes = ", ".join(f"{name} has shape {array.shape}" for name, array in zip(names, arrays) if array.ndim)
+        raise ValueError(f"the arguments do not broadcast together: {shapes}") from None
+    for name, array in zip(names, arrays):
+        if array.ndim == 0:  # a single number, the usual length or sign: tested without NumPy's overhead
+            x = float(array)
+            if name in signs:
+                good = x == 1.0 or x == -1.0
+            elif name in lengths:
+                good = 0.0 < x < numpy.inf
+            else:
+                good = x - x == 0.0
+        elif name in signs:
+            good = numpy.abs(array) == 1.0
+        elif name in lengths:
+            good = (array > 0.0) & (array < numpy.inf)
+        else:
+            good = numpy.isfinite(array)
+        if not (good if array.ndim == 0 else good.all()):
+            wanted = ("must be +1 or -1" if name in signs else "must be a positive finite length" if name in lengths
+                      else "must be finite")
+            raise ValueError(f"{name} {wanted}, got {float(array if array.ndim == 0 else array[~good].flat[0])!r}")
+    return tuple(arrays), shape
 
 
 def _clamped_sqrt(x, scale):
@@ -17,15 +64,18 @@ def _clamped_sqrt(x, scale):
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
 
 
-def positions(theta, a, d):
+def positions(theta, a, d, *, check=True):
     """Positions: rocker (rad), slider (length).
     
     Returns a dict of arrays: rocker, slider;
     and assembled: False where the linkage cannot close (the outputs are NaN there).
-    The arguments broadcast against each other.
+    The arguments broadcast against each other.  They are checked (ValueError naming the argument):
+    branch signs exactly +1 or -1; lengths positive and finite; every value finite and real (complex
+    values are refused); array arguments whose shapes broadcast together; check=False skips that for
+    hot loops.
     """
-    theta, a, d = _as_arrays(theta, a, d)
-    shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(d))
+    (theta, a, d,), shape = _arguments(
+        check, ('theta', 'a', 'd'), (theta, a, d,), ('a', 'd'), ())
     size_1 = 2.0**numpy.floor(numpy.log((1/2)*a + (1/2)*d)/numpy.log(2.0))
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
@@ -43,15 +93,18 @@ def positions(theta, a, d):
     }
 
 
-def velocities(theta, a, d, thetadot=0.0):
+def velocities(theta, a, d, thetadot=0.0, *, check=True):
     """Positions and speeds: rocker_speed (rad/s), slider_speed (length/s).
     
     Returns a dict of arrays: rocker, slider, rocker_speed, slider_speed;
     and assembled: False where the linkage cannot close (the outputs are NaN there).
-    The arguments broadcast against each other.
+    The arguments broadcast against each other.  They are checked (ValueError naming the argument):
+    branch signs exactly +1 or -1; lengths positive and finite; every value finite and real (complex
+    values are refused); array arguments whose shapes broadcast together; check=False skips that for
+    hot loops.
     """
-    theta, a, d, thetadot = _as_arrays(theta, a, d, thetadot)
-    shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(d), numpy.shape(thetadot))
+    (theta, a, d, thetadot,), shape = _arguments(
+        check, ('theta', 'a', 'd', 'thetadot'), (theta, a, d, thetadot,), ('a', 'd'), ())
     cse_3 = a*thetadot
     size_1 = 2.0**numpy.floor(numpy.log((1/2)*a + (1/2)*d)/numpy.log(2.0))
     cse_0 = 1/(size_1)
@@ -75,15 +128,18 @@ def velocities(theta, a, d, thetadot=0.0):
     }
 
 
-def accelerations(theta, a, d, thetadot=0.0, thetaddot=0.0):
+def accelerations(theta, a, d, thetadot=0.0, thetaddot=0.0, *, check=True):
     """Positions, speeds and accelerations: rocker_accel (rad/s^2), slider_accel (length/s^2).
     
     Returns a dict of arrays: rocker, slider, rocker_speed, slider_speed, rocker_accel, slider_accel;
     and assembled: False where the linkage cannot close (the outputs are NaN there).
-    The arguments broadcast against each other.
+    The arguments broadcast against each other.  They are checked (ValueError naming the argument):
+    branch signs exactly +1 or -1; lengths positive and finite; every value finite and real (complex
+    values are refused); array arguments whose shapes broadcast together; check=False skips that for
+    hot loops.
     """
-    theta, a, d, thetadot, thetaddot = _as_arrays(theta, a, d, thetadot, thetaddot)
-    shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(d), numpy.shape(thetadot), numpy.shape(thetaddot))
+    (theta, a, d, thetadot, thetaddot,), shape = _arguments(
+        check, ('theta', 'a', 'd', 'thetadot', 'thetaddot'), (theta, a, d, thetadot, thetaddot,), ('a', 'd'), ())
     cse_6 = numpy.square(thetadot)
     size_1 = 2.0**numpy.floor(numpy.log((1/2)*a + (1/2)*d)/numpy.log(2.0))
     cse_0 = 1/(size_1)

@@ -8,8 +8,55 @@ import numpy
 TOLERANCE = 1e-14
 
 
-def _as_arrays(*values):
-    return tuple(numpy.asarray(v, dtype=float) for v in values)
+def _arguments(check, names, values, lengths=(), signs=()):
+    """The arguments as float arrays and their broadcast shape; with ``check``, ``ValueError`` naming a bad one.
+
+    Checked, one vectorised test an argument: real numbers only (a complex
+    value is refused rather than cut to its real part), shapes that broadcast
+    together, branch signs exactly +1 or -1, lengths positive and finite,
+    every other value finite.  ``check=False`` converts only, for hot loops.
+    """
+    if not check:
+        arrays = tuple(numpy.asarray(value, dtype=float) for value in values)
+        return arrays, numpy.broadcast_shapes(*(array.shape for array in arrays))
+    arrays = []
+    for name, value in zip(names, values):
+        array = numpy.asarray(value)
+        kind = array.dtype.kind
+        if kind != "f":
+            try:
+                if kind not in "biuO":
+                    raise TypeError
+                array = array.astype(float)  # an object array of Python numbers; complex ones raise TypeError
+            except (TypeError, ValueError, OverflowError):
+                why = " (its imaginary part would be lost)" if kind == "c" else ""
+                raise ValueError(f"{name} must be real numbers, got {array.dtype} values{why}") from None
+        arrays.append(array)
+    try:
+        shape = numpy.broadcast_shapes(*(array.shape for array in arrays))
+    except ValueError:
+        shapes = ", ".join(f"{name} has shape {array.shape}" for name, array in zip(names, arrays) if array.ndim)
+        raise ValueError(f"the arguments do not broadcast together: {shapes}") from None
+    for name, array in zip(names, arrays):
+        if array.ndim == 0:  # a single number, the usual length or sign: tested without NumPy's overhead
+            x = float(array)
+            if name in signs:
+                good = x == 1.0 or x == -1.0
+            elif name in lengths:
+                good = 0.0 < x < numpy.inf
+            else:
+                good = x - x == 0.0
+        elif name in signs:
+            good = numpy.abs(array) == 1.0
+        elif name in lengths:
+            good = (array > 0.0) & (array < numpy.inf)
+        else:
+            good = numpy.isfinite(array)
+        if not (good if array.ndim == 0 else good.all()):
+            wanted = ("must be +1 or -1" if name in signs else "must be a positive finite length" if name in lengths
+                      else "must be finite")
+            raise ValueError(f"{name} {wanted}, got {float(array if array.ndim == 0 else array[~good].flat[0])!r}")
+    return tuple(arrays), shape
 
 
 def _clamped_sqrt(x, scale):
@@ -17,15 +64,18 @@ def _clamped_sqrt(x, scale):
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
 
 
-def positions(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD=1, branch_ABFD=1, branch_DFGE=1):
+def positions(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD=1, branch_ABFD=1, branch_DFGE=1, *, check=True):
     """Positions: upper_rocker (rad), upper_link (rad), lower_link (rad), lower_rocker (rad), leg (rad), tie (rad).
     
     Returns a dict of arrays: upper_rocker, upper_link, lower_link, lower_rocker, leg, tie;
     and assembled: False where the linkage cannot close (the outputs are NaN there).
-    The arguments broadcast against each other.
+    The arguments broadcast against each other.  They are checked (ValueError naming the argument):
+    branch signs exactly +1 or -1; lengths positive and finite; every value finite and real (complex
+    values are refused); array arguments whose shapes broadcast together; check=False skips that for
+    hot loops.
     """
-    theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE = _as_arrays(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE)
-    shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(b), numpy.shape(c), numpy.shape(d), numpy.shape(f), numpy.shape(g), numpy.shape(i), numpy.shape(j), numpy.shape(k), numpy.shape(l), numpy.shape(m), numpy.shape(alpha), numpy.shape(gamma), numpy.shape(branch_ABCD), numpy.shape(branch_ABFD), numpy.shape(branch_DFGE))
+    (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE,), shape = _arguments(
+        check, ('theta', 'a', 'b', 'c', 'd', 'f', 'g', 'i', 'j', 'k', 'l', 'm', 'alpha', 'gamma', 'branch_ABCD', 'branch_ABFD', 'branch_DFGE'), (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE,), ('a', 'b', 'c', 'd', 'f', 'g', 'i', 'j', 'k', 'l', 'm'), ('branch_ABCD', 'branch_ABFD', 'branch_DFGE'))
     cse_0 = 1/(numpy.log(2.0))
     cse_1 = (1/5)*a + (1/5)*l + (1/5)*m
     cse_3 = numpy.cos(theta)
@@ -107,15 +157,18 @@ def positions(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD=
     }
 
 
-def velocities(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD=1, branch_ABFD=1, branch_DFGE=1, thetadot=0.0):
+def velocities(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD=1, branch_ABFD=1, branch_DFGE=1, thetadot=0.0, *, check=True):
     """Positions and speeds: upper_rocker_speed (rad/s), upper_link_speed (rad/s), lower_link_speed (rad/s), lower_rocker_speed (rad/s), leg_speed (rad/s), tie_speed (rad/s).
     
     Returns a dict of arrays: upper_rocker, upper_link, lower_link, lower_rocker, leg, tie, upper_rocker_speed, upper_link_speed, lower_link_speed, lower_rocker_speed, leg_speed, tie_speed;
     and assembled: False where the linkage cannot close (the outputs are NaN there).
-    The arguments broadcast against each other.
+    The arguments broadcast against each other.  They are checked (ValueError naming the argument):
+    branch signs exactly +1 or -1; lengths positive and finite; every value finite and real (complex
+    values are refused); array arguments whose shapes broadcast together; check=False skips that for
+    hot loops.
     """
-    theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, thetadot = _as_arrays(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, thetadot)
-    shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(b), numpy.shape(c), numpy.shape(d), numpy.shape(f), numpy.shape(g), numpy.shape(i), numpy.shape(j), numpy.shape(k), numpy.shape(l), numpy.shape(m), numpy.shape(alpha), numpy.shape(gamma), numpy.shape(branch_ABCD), numpy.shape(branch_ABFD), numpy.shape(branch_DFGE), numpy.shape(thetadot))
+    (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, thetadot,), shape = _arguments(
+        check, ('theta', 'a', 'b', 'c', 'd', 'f', 'g', 'i', 'j', 'k', 'l', 'm', 'alpha', 'gamma', 'branch_ABCD', 'branch_ABFD', 'branch_DFGE', 'thetadot'), (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, thetadot,), ('a', 'b', 'c', 'd', 'f', 'g', 'i', 'j', 'k', 'l', 'm'), ('branch_ABCD', 'branch_ABFD', 'branch_DFGE'))
     cse_0 = 1/(numpy.log(2.0))
     cse_1 = (1/5)*a + (1/5)*l + (1/5)*m
     cse_3 = numpy.cos(theta)
@@ -220,15 +273,18 @@ def velocities(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD
     }
 
 
-def accelerations(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD=1, branch_ABFD=1, branch_DFGE=1, thetadot=0.0, thetaddot=0.0):
+def accelerations(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD=1, branch_ABFD=1, branch_DFGE=1, thetadot=0.0, thetaddot=0.0, *, check=True):
     """Positions, speeds and accelerations: upper_rocker_accel (rad/s^2), upper_link_accel (rad/s^2), lower_link_accel (rad/s^2), lower_rocker_accel (rad/s^2), leg_accel (rad/s^2), tie_accel (rad/s^2).
     
     Returns a dict of arrays: upper_rocker, upper_link, lower_link, lower_rocker, leg, tie, upper_rocker_speed, upper_link_speed, lower_link_speed, lower_rocker_speed, leg_speed, tie_speed, upper_rocker_accel, upper_link_accel, lower_link_accel, lower_rocker_accel, leg_accel, tie_accel;
     and assembled: False where the linkage cannot close (the outputs are NaN there).
-    The arguments broadcast against each other.
+    The arguments broadcast against each other.  They are checked (ValueError naming the argument):
+    branch signs exactly +1 or -1; lengths positive and finite; every value finite and real (complex
+    values are refused); array arguments whose shapes broadcast together; check=False skips that for
+    hot loops.
     """
-    theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, thetadot, thetaddot = _as_arrays(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, thetadot, thetaddot)
-    shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(b), numpy.shape(c), numpy.shape(d), numpy.shape(f), numpy.shape(g), numpy.shape(i), numpy.shape(j), numpy.shape(k), numpy.shape(l), numpy.shape(m), numpy.shape(alpha), numpy.shape(gamma), numpy.shape(branch_ABCD), numpy.shape(branch_ABFD), numpy.shape(branch_DFGE), numpy.shape(thetadot), numpy.shape(thetaddot))
+    (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, thetadot, thetaddot,), shape = _arguments(
+        check, ('theta', 'a', 'b', 'c', 'd', 'f', 'g', 'i', 'j', 'k', 'l', 'm', 'alpha', 'gamma', 'branch_ABCD', 'branch_ABFD', 'branch_DFGE', 'thetadot', 'thetaddot'), (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, thetadot, thetaddot,), ('a', 'b', 'c', 'd', 'f', 'g', 'i', 'j', 'k', 'l', 'm'), ('branch_ABCD', 'branch_ABFD', 'branch_DFGE'))
     cse_0 = 1/(numpy.log(2.0))
     cse_1 = (1/5)*a + (1/5)*l + (1/5)*m
     cse_3 = numpy.cos(theta)
@@ -384,15 +440,18 @@ def accelerations(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_A
     }
 
 
-def joints(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD=1, branch_ABFD=1, branch_DFGE=1):
+def joints(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD=1, branch_ABFD=1, branch_DFGE=1, *, check=True):
     """Joints B, C, E, F, G and the foot H (the pivots are A = (0, 0) and D = (-a, -l)).
     
     Returns a dict of arrays: B_x, B_y, C_x, C_y, E_x, E_y, F_x, F_y, G_x, G_y, H_x, H_y;
     and assembled: False where the linkage cannot close (the outputs are NaN there).
-    The arguments broadcast against each other.
+    The arguments broadcast against each other.  They are checked (ValueError naming the argument):
+    branch signs exactly +1 or -1; lengths positive and finite; every value finite and real (complex
+    values are refused); array arguments whose shapes broadcast together; check=False skips that for
+    hot loops.
     """
-    theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE = _as_arrays(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE)
-    shape = numpy.broadcast_shapes(numpy.shape(theta), numpy.shape(a), numpy.shape(b), numpy.shape(c), numpy.shape(d), numpy.shape(f), numpy.shape(g), numpy.shape(i), numpy.shape(j), numpy.shape(k), numpy.shape(l), numpy.shape(m), numpy.shape(alpha), numpy.shape(gamma), numpy.shape(branch_ABCD), numpy.shape(branch_ABFD), numpy.shape(branch_DFGE))
+    (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE,), shape = _arguments(
+        check, ('theta', 'a', 'b', 'c', 'd', 'f', 'g', 'i', 'j', 'k', 'l', 'm', 'alpha', 'gamma', 'branch_ABCD', 'branch_ABFD', 'branch_DFGE'), (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE,), ('a', 'b', 'c', 'd', 'f', 'g', 'i', 'j', 'k', 'l', 'm'), ('branch_ABCD', 'branch_ABFD', 'branch_DFGE'))
     cse_0 = 1/(numpy.log(2.0))
     cse_1 = (1/5)*a + (1/5)*l + (1/5)*m
     cse_3 = numpy.cos(theta)

@@ -8,8 +8,55 @@ import numpy
 TOLERANCE = 1e-14
 
 
-def _as_arrays(*values):
-    return tuple(numpy.asarray(v, dtype=float) for v in values)
+def _arguments(check, names, values, lengths=(), signs=()):
+    """The arguments as float arrays and their broadcast shape; with ``check``, ``ValueError`` naming a bad one.
+
+    Checked, one vectorised test an argument: real numbers only (a complex
+    value is refused rather than cut to its real part), shapes that broadcast
+    together, branch signs exactly +1 or -1, lengths positive and finite,
+    every other value finite.  ``check=False`` converts only, for hot loops.
+    """
+    if not check:
+        arrays = tuple(numpy.asarray(value, dtype=float) for value in values)
+        return arrays, numpy.broadcast_shapes(*(array.shape for array in arrays))
+    arrays = []
+    for name, value in zip(names, values):
+        array = numpy.asarray(value)
+        kind = array.dtype.kind
+        if kind != "f":
+            try:
+                if kind not in "biuO":
+                    raise TypeError
+                array = array.astype(float)  # an object array of Python numbers; complex ones raise TypeError
+            except (TypeError, ValueError, OverflowError):
+                why = " (its imaginary part would be lost)" if kind == "c" else ""
+                raise ValueError(f"{name} must be real numbers, got {array.dtype} values{why}") from None
+        arrays.append(array)
+    try:
+        shape = numpy.broadcast_shapes(*(array.shape for array in arrays))
+    except ValueError:
+        shapes = ", ".join(f"{name} has shape {array.shape}" for name, array in zip(names, arrays) if array.ndim)
+        raise ValueError(f"the arguments do not broadcast together: {shapes}") from None
+    for name, array in zip(names, arrays):
+        if array.ndim == 0:  # a single number, the usual length or sign: tested without NumPy's overhead
+            x = float(array)
+            if name in signs:
+                good = x == 1.0 or x == -1.0
+            elif name in lengths:
+                good = 0.0 < x < numpy.inf
+            else:
+                good = x - x == 0.0
+        elif name in signs:
+            good = numpy.abs(array) == 1.0
+        elif name in lengths:
+            good = (array > 0.0) & (array < numpy.inf)
+        else:
+            good = numpy.isfinite(array)
+        if not (good if array.ndim == 0 else good.all()):
+            wanted = ("must be +1 or -1" if name in signs else "must be a positive finite length" if name in lengths
+                      else "must be finite")
+            raise ValueError(f"{name} {wanted}, got {float(array if array.ndim == 0 else array[~good].flat[0])!r}")
+    return tuple(arrays), shape
 
 
 def _clamped_sqrt(x, scale):
@@ -352,7 +399,7 @@ def _outputs(theta, a, b, c, d, e, f, g, h, alpha, delta, beta, mu, phi, eta):
     }
 
 
-def positions(theta, a, b, c, d, e, f, g, h, alpha, delta, guess):
+def positions(theta, a, b, c, d, e, f, g, h, alpha, delta, guess, *, check=True):
     """Positions over a sweep of theta (one-dimensional), from an initial guess.
 
     guess: beta, mu, phi, eta near the wanted assembly at the first input value,
@@ -360,18 +407,29 @@ def positions(theta, a, b, c, d, e, f, g, h, alpha, delta, guess):
     name, roles, points and extras; residual (each point's largest closure
     residual relative to its loop's size) and assembled (True: a point that
     cannot be solved raises ValueError naming its input value instead).
+    The arguments are checked (ValueError naming the argument):
+    branch signs exactly +1 or -1; lengths positive and finite; every value finite and real (complex
+    values are refused); array arguments whose shapes broadcast together; check=False skips
+    that.
     """
-    shape, inputs, q, _, _, residual = _sweep((theta,), (a, b, c, d, e, f, g, h, alpha, delta), guess)
-    return _results(shape, inputs, (a, b, c, d, e, f, g, h, alpha, delta), q, None, None, residual, 0)
+    _arguments(check, ('theta', 'a', 'b', 'c', 'd', 'e', 'f', 'g', 'h', 'alpha', 'delta'), (theta, a, b, c, d, e, f, g, h, alpha, delta), ('a', 'b', 'c', 'd', 'e', 'f', 'g', 'h'))
+    symlink_shape, symlink_inputs, symlink_q, _, _, symlink_residual = _sweep((theta,), (a, b, c, d, e, f, g, h, alpha, delta), guess)
+    return _results(symlink_shape, symlink_inputs, (a, b, c, d, e, f, g, h, alpha, delta), symlink_q, None, None, symlink_residual, 0)
 
 
-def velocities(theta, a, b, c, d, e, f, g, h, alpha, delta, guess, thetadot=0.0):
+def velocities(theta, a, b, c, d, e, f, g, h, alpha, delta, guess, thetadot=0.0, *, check=True):
     """Positions and rates (name + 'dot', role + '_speed') over the sweep; see positions()."""
-    shape, inputs, q, qdot, _, residual = _sweep((theta,), (a, b, c, d, e, f, g, h, alpha, delta), guess, (thetadot,), (0.0,))
-    return _results(shape, inputs, (a, b, c, d, e, f, g, h, alpha, delta), q, qdot, None, residual, 1)
+    _arguments(check, ('theta', 'a', 'b', 'c', 'd', 'e', 'f', 'g', 'h', 'alpha', 'delta', 'thetadot'), (theta, a, b, c, d, e, f, g, h, alpha, delta, thetadot), ('a', 'b', 'c', 'd', 'e', 'f', 'g', 'h'))
+    symlink_shape, symlink_inputs, symlink_q, symlink_qdot, _, symlink_residual = _sweep(
+        (theta,), (a, b, c, d, e, f, g, h, alpha, delta), guess, (thetadot,), (0.0,))
+    return _results(symlink_shape, symlink_inputs, (a, b, c, d, e, f, g, h, alpha, delta), symlink_q, symlink_qdot, None,
+                    symlink_residual, 1)
 
 
-def accelerations(theta, a, b, c, d, e, f, g, h, alpha, delta, guess, thetadot=0.0, thetaddot=0.0):
+def accelerations(theta, a, b, c, d, e, f, g, h, alpha, delta, guess, thetadot=0.0, thetaddot=0.0, *, check=True):
     """Positions, rates and accelerations (name + 'ddot', role + '_accel') over the sweep; see positions()."""
-    shape, inputs, q, qdot, qddot, residual = _sweep((theta,), (a, b, c, d, e, f, g, h, alpha, delta), guess, (thetadot,), (thetaddot,))
-    return _results(shape, inputs, (a, b, c, d, e, f, g, h, alpha, delta), q, qdot, qddot, residual, 2)
+    _arguments(check, ('theta', 'a', 'b', 'c', 'd', 'e', 'f', 'g', 'h', 'alpha', 'delta', 'thetadot', 'thetaddot'), (theta, a, b, c, d, e, f, g, h, alpha, delta, thetadot, thetaddot), ('a', 'b', 'c', 'd', 'e', 'f', 'g', 'h'))
+    symlink_shape, symlink_inputs, symlink_q, symlink_qdot, symlink_qddot, symlink_residual = _sweep(
+        (theta,), (a, b, c, d, e, f, g, h, alpha, delta), guess, (thetadot,), (thetaddot,))
+    return _results(symlink_shape, symlink_inputs, (a, b, c, d, e, f, g, h, alpha, delta), symlink_q, symlink_qdot, symlink_qddot,
+                    symlink_residual, 2)

@@ -268,8 +268,9 @@ class GeneratedCode:
 
     @property
     def arguments(self) -> list[str]:
-        """The function's argument names, in calling order."""
-        return list(inspect.signature(self.function).parameters)
+        """The function's argument names, in calling order (not the keyword-only ``check``)."""
+        return [name for name, parameter in inspect.signature(self.function).parameters.items()
+                if parameter.kind is not parameter.KEYWORD_ONLY]
 
 
 def generated_code(linkage: Linkage, outputs: Sequence[str]) -> GeneratedCode:

@@ -30,24 +30,26 @@ from __future__ import annotations
 import keyword
 import re
 
-__all__ = ["identifier", "label", "reason_reserved", "INTERMEDIATE_FAMILIES", "MAX_LENGTH", "RESERVED"]
+__all__ = ["identifier", "label", "reason_reserved", "INTERMEDIATE_FAMILIES", "MAX_LENGTH", "RESERVED", "PLAIN_NAME",
+           "C_KEYWORDS", "OCTAVE_KEYWORDS"]
 
 #: Longest user name: derived names (``<name>ddot``, ``<role>_accel``, ``branch_<loop>``) must fit
 #: MATLAB's 63 characters.
 MAX_LENGTH = 56
 
-_IDENTIFIER = re.compile(r"[A-Za-z][A-Za-z0-9_]*\Z", re.ASCII)
+#: The shape of every name in generated code: an ASCII letter, then ASCII letters, digits or underscores.
+PLAIN_NAME = re.compile(r"[A-Za-z][A-Za-z0-9_]*\Z", re.ASCII)
 _LABEL = re.compile(r"[A-Za-z][A-Za-z0-9_]*(?:[ -][A-Za-z0-9_]+)*\Z", re.ASCII)
 
 #: Names of the closed forms' intermediates, each followed by ``_<loop number>`` (see symlink.position).
 INTERMEDIATE_FAMILIES = ("Wx", "Wy", "w", "Delta", "size", "rho")
 _INTERMEDIATE = re.compile(r"(?:%s)(?:_[0-9]+)+\Z" % "|".join(INTERMEDIATE_FAMILIES))
 
-_C_KEYWORDS = frozenset("""
+C_KEYWORDS = frozenset("""
 auto break case char const continue default do double else enum extern float for goto if inline int long
 register restrict return short signed sizeof static struct switch typedef union unsigned void volatile while
 _Bool _Complex _Imaginary size_t ptrdiff_t NAN INFINITY""".split())
-_OCTAVE_KEYWORDS = frozenset("""
+OCTAVE_KEYWORDS = frozenset("""
 break case catch classdef continue do else elseif end end_try_catch end_unwind_protect endclassdef
 endenumeration endevents endfor endfunction endif endmethods endparfor endproperties endspmd endswitch
 endwhile enumeration events for function global if methods otherwise parfor persistent properties
@@ -56,17 +58,18 @@ varargout ans""".split())
 #: Functions and constants the generated code calls by their bare name (C's math.h, Octave's builtins).
 _FUNCTIONS = frozenset("""
 sin cos tan asin acos atan atan2 sinh cosh tanh asinh acosh atanh exp log log10 log2 sqrt cbrt pow hypot
-abs fabs floor ceil round fmod fmax fmin max min sign copysign isfinite isnan isinf size true false ones
+abs fabs floor ceil round fmod fmax fmin max min sign copysign isfinite isnan isinf size true false ones all
+isnumeric isreal error
 zeros nan NaN Inf inf pi""".split())
 #: Names the generated modules use themselves: modules, locals, outputs and the Newton driver's globals.
 _GENERATED = frozenset("""
-numpy math sympy shape solve singular assembled residual guess inputs parameters unknowns positions
+numpy math sympy shape check solve singular assembled residual guess inputs parameters unknowns positions
 velocities accelerations TOLERANCE EPSILON RESIDUAL_TOLERANCE SINGULAR_CONDITION POSITION_TOLERANCE
 MAX_PREDICTION MAX_CORRECTION CONTRACTION MAX_ITERATIONS ASSEMBLY_ITERATIONS MIN_FRACTION LARGEST_BLOCK
 INPUTS PARAMETERS UNKNOWNS ANGLE_INPUTS ROLES""".split())
 
 #: Every whole name a user may not take (prefixes and intermediate families are checked apart).
-RESERVED = frozenset(keyword.kwlist) | _C_KEYWORDS | _OCTAVE_KEYWORDS | _FUNCTIONS | _GENERATED
+RESERVED = frozenset(keyword.kwlist) | C_KEYWORDS | OCTAVE_KEYWORDS | _FUNCTIONS | _GENERATED
 
 
 def reason_reserved(name: str) -> str | None:
@@ -77,7 +80,7 @@ def reason_reserved(name: str) -> str | None:
     >>> reason_reserved("beta") is None
     True
     """
-    if name in keyword.kwlist or name in _C_KEYWORDS or name in _OCTAVE_KEYWORDS:
+    if name in keyword.kwlist or name in C_KEYWORDS or name in OCTAVE_KEYWORDS:
         return "is a keyword of Python, C or MATLAB/Octave"
     if name in _FUNCTIONS:
         return "is a function or constant that the generated C or MATLAB/Octave code calls"
@@ -99,7 +102,7 @@ def identifier(name: object, what: str) -> str:
     """``name`` if generated code can take it as an identifier; ``ValueError`` naming ``what`` and why otherwise."""
     if not isinstance(name, str):
         raise ValueError(f"{what} name must be text, got {name!r}")
-    if not _IDENTIFIER.match(name):
+    if not PLAIN_NAME.match(name):
         raise ValueError(f"{what} {name!r} is not a plain name: use an ASCII letter, then ASCII letters, "
                          "digits or underscores")
     if len(name) > MAX_LENGTH:
@@ -127,6 +130,6 @@ def label(name: object, what: str = "linkage name") -> str:
                          "with single spaces or hyphens between words")
     if len(name) > 2 * MAX_LENGTH:
         raise ValueError(f"{what} {name!r} is longer than {2 * MAX_LENGTH} characters")
-    if name in keyword.kwlist or name in _C_KEYWORDS or name in _OCTAVE_KEYWORDS:
+    if name in keyword.kwlist or name in C_KEYWORDS or name in OCTAVE_KEYWORDS:
         raise ValueError(f"{what} {name!r} is a keyword of Python, C or MATLAB/Octave; rename it")
     return name

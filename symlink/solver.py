@@ -2,8 +2,11 @@
 
 A :class:`Solver` generates the NumPy code for the outputs it is asked for,
 loads it, and calls it with validated values: lengths must be positive and
-finite, branches +1 or -1.  Where the linkage cannot be assembled the result
-says so in its ``assembled`` mask.  A :class:`NumericSolver` generates and
+finite, branches +1 or -1, every value finite and real, shapes broadcasting
+(the check that every generated function makes,
+:func:`symlink.codegen.numpy.checked_arguments`), and the call must fit in
+the memory the machine has (:mod:`symlink.limits`).  Where the linkage cannot
+be assembled the result says so in its ``assembled`` mask.  A :class:`NumericSolver` generates and
 loads Newton's method on the closure instead, for linkages without a closed
 form (and any other).
 
@@ -15,7 +18,10 @@ form (and any other).
 """
 from __future__ import annotations
 
+import functools
+import inspect
 import math
+import re
 from functools import cached_property, lru_cache
 from typing import Callable, Mapping, Sequence
 
@@ -23,7 +29,8 @@ import numpy
 
 from .cache import cache_key, cached_text, generated_code
 from .codegen import newton
-from .codegen.numpy import load_numpy_module
+from .codegen.numpy import checked_arguments, load_numpy_module
+from .limits import require_memory
 from .linkage import Linkage, Program, is_branch_name
 from .vectors import acceleration, rate
 
@@ -31,11 +38,13 @@ __all__ = ["Solver", "NumericSolver", "shared_solver", "check_lengths", "crank_s
 
 
 def check_lengths(**lengths: float) -> None:
-    """``ValueError`` naming the first length that is not a positive finite number."""
-    for name, value in lengths.items():
-        values = numpy.asarray(value, dtype=float)
-        if not numpy.all(numpy.isfinite(values)) or not numpy.all(values > 0):
-            raise ValueError(f"{name} must be a positive finite length, got {value}")
+    """``ValueError`` naming the first length that is not a positive finite (real) number.
+
+    >>> check_lengths(crank=20.0, rocker=[56.0, -1.0])
+    Traceback (most recent call last):
+    ValueError: rocker must be a positive finite length, got -1.0
+    """
+    checked_arguments(list(lengths), list(lengths.values()), lengths=list(lengths))
 
 
 class Solver:
@@ -57,21 +66,48 @@ class Solver:
         """The straight-line program behind the code (derived on first access only)."""
         return self.linkage.program(self.outputs)
 
+    @cached_property
+    def _unchecked(self) -> Callable[..., dict]:
+        """The function, told not to check again what :meth:`__call__` has checked (where it checks at all)."""
+        if "check" in inspect.signature(self.function).parameters:
+            return functools.partial(self.function, check=False)
+        return self.function
+
+    @cached_property
+    def bytes_per_value(self) -> int:
+        """Memory a call needs for each input value: its outputs, the generated code's intermediates, temporaries."""
+        return 8 * (len(self.outputs) + 2 + _assignments(self.source) + _TEMPORARIES)
+
     def __call__(self, **values) -> dict[str, numpy.ndarray]:
         unknown = set(values) - set(self.arguments)
         if unknown:
             raise ValueError(f"{self.linkage.name} takes {', '.join(self.arguments)}; not {', '.join(sorted(unknown))}")
-        lengths = {s.name: values[s.name] for s in self.linkage.parameters
-                   if s.is_positive and s.name in values}
-        check_lengths(**lengths)
-        for branch in self.branches:
-            if branch in values and not numpy.all(numpy.isin(values[branch], (1, -1))):
-                raise ValueError(f"{branch} must be +1 or -1, got {values[branch]}")
-        for name, value in values.items():
-            if not numpy.all(numpy.isfinite(numpy.asarray(value, dtype=float))):
-                raise ValueError(f"{name} must be finite, got {value}")
+        _require_memory(self, values, self.bytes_per_value, "solver")
+        names = list(values)
+        lengths = [s.name for s in self.linkage.parameters if s.is_positive]
+        arrays, _ = checked_arguments(names, [values[name] for name in names], lengths, self.branches)
         with numpy.errstate(invalid="ignore", divide="ignore"):
-            return self.function(**values)
+            return self._unchecked(**dict(zip(names, arrays)))
+
+
+#: NumPy's own temporaries while it evaluates one generated line (counted generously), in arrays.
+_TEMPORARIES = 4
+
+
+def _assignments(source: str) -> int:
+    """The most assignments of any function of generated Python ``source``: its arrays, all alive at its end."""
+    return max((len(re.findall(r"^    [A-Za-z_]\w* = ", function, re.MULTILINE))
+                for function in source.split("\ndef ")[1:]), default=0)
+
+
+def _require_memory(solver: object, values: Mapping[str, object], bytes_per_value: int, kind: str) -> None:
+    """Refuse (one line, :func:`symlink.limits.require_memory`) a call of ``solver`` too large for the memory."""
+    try:
+        shape = numpy.broadcast_shapes(*(numpy.shape(value) for value in values.values()))
+    except ValueError:
+        return  # the argument check says which shapes do not broadcast
+    count = math.prod(shape)
+    require_memory(count, bytes_per_value, f"solving {count:.3g} input values with the {solver.linkage.name} {kind}")
 
 
 class NumericSolver:
@@ -110,8 +146,15 @@ class NumericSolver:
         if unknown or missing:
             raise ValueError(f"{self.linkage.name} takes {', '.join(names)}; "
                              + (f"not {', '.join(sorted(unknown))}" if unknown else f"missing {', '.join(missing)}"))
-        check_lengths(**{s.name: values[s.name] for s in self.linkage.parameters if s.is_positive})
+        _require_memory(self, values, self.bytes_per_value, "numeric solver")
         return self.functions["accelerations"](guess=guess, **values)
+
+    @cached_property
+    def bytes_per_value(self) -> int:
+        """Memory a call needs for each input value: positions, rates, Jacobians and their work arrays, outputs."""
+        unknowns = len(self.linkage.unknowns)
+        outputs = 2 * len(self.linkage.points) + len(self.linkage.extras) + 3 * (unknowns + len(self.linkage.roles))
+        return 8 * (6 * unknowns * unknowns + 12 * unknowns + _assignments(self.source) + outputs + 2 + _TEMPORARIES)
 
 
 @lru_cache(maxsize=None)

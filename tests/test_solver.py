@@ -223,3 +223,59 @@ def test_second_solver_comes_from_the_cache(tmp_path, monkeypatch):
     second = NumericSolver(stephenson3())
     assert second.source == first.source
     cache.clear_memory()
+
+
+@pytest.mark.parametrize("change, message", [
+    (dict(theta=np.array([0.0, 1j])), "theta must be real numbers, got complex128"),
+    (dict(a=20 + 0j), "a must be real numbers"),
+    (dict(branch=0), r"branch must be \+1 or -1, got 0.0"),
+    (dict(branch=np.nan), r"branch must be \+1 or -1, got nan"),
+    (dict(theta=np.zeros(3), a=np.full(2, 20.0)), "do not broadcast together: theta has shape"),
+    (dict(d=np.inf), "d must be a positive finite length, got inf"),
+])
+def test_the_closed_form_solver_checks_like_the_generated_functions(change, message):
+    with pytest.raises(ValueError, match=message):
+        Solver(fourbar(), ["rocker"])(**{**dict(theta=0.3, a=20.0, b=66.0, c=56.0, d=80.0, branch=1), **change})
+
+
+@pytest.mark.parametrize("change, message", [
+    (dict(theta=np.array([0.0, 0.1 + 1j])), "theta must be real numbers, got complex128"),
+    (dict(a=np.inf), "a must be a positive finite length"),
+    (dict(thetadot=1j), "thetadot must be real numbers"),
+])
+def test_the_numeric_solver_checks_like_the_generated_functions(change, message):
+    values = dict(theta=[0.0, 0.1], a=20.0, b=66.0, c=56.0, d=80.0, guess={"beta": 0.3, "phi": 1.9})
+    with pytest.raises(ValueError, match=message):
+        NumericSolver(fourbar())(**{**values, **change})
+
+
+def _seed001_fourbar(crank: str, lengths_: str) -> Linkage:
+    """The worksheet's four-bar with its own names: crank angle ``crank``, lengths ``lengths_`` (crank first)."""
+    q, beta, phi = coordinates(f"{crank} beta phi")
+    a1, a2, a3, a4 = lengths(lengths_)
+    AB, BC = Vector(a1, q, "AB"), Vector(a2, beta, "BC")
+    loop = Loop(Vector(a4, 0, "AD") + Vector(a3, phi, "DC") - BC - AB, name="ABCD")
+    return Linkage("seed001", [loop], inputs=[q], unknowns=[beta, phi], points={"B": AB.as_sum(), "C": AB + BC})
+
+
+@pytest.mark.parametrize("crank, lengths_", [("q", "a1 a2 a3 a4"), ("theta", "q qdot qddot a4")])
+def test_names_q_qdot_qddot_reach_no_local_of_the_numeric_module(crank, lengths_):
+    # seed 001 calls the crank angle q; the Newton module's own locals once were q, qdot and qddot.
+    linkage = _seed001_fourbar(crank, lengths_)
+    names = lengths_.split()
+    dimensions = dict(zip(names, (0.1, 0.4, 0.25, 0.30)))  # the worksheet's a1..a4 (m)
+    angles = np.radians(np.arange(0.0, 361.0, 30.0))
+    numeric = NumericSolver(linkage)(**{crank: angles, f"{crank}dot": 2.0}, **dimensions,
+                                     guess={"beta": 0.9, "phi": 1.9})
+    # B is the crank's end: a1 (cos q, sin q), by hand.
+    assert np.max(np.abs(numeric["B_x"] - 0.1 * np.cos(angles))) < 1e-15
+    assert np.max(np.abs(numeric["B_y"] - 0.1 * np.sin(angles))) < 1e-15
+    # The loop closes at the solved angles, and C lies a3 from D = (a4, 0).
+    C = numeric["C_x"] + 1j * numeric["C_y"]
+    assert np.max(np.abs(np.abs(C - 0.30) - 0.25)) < 1e-14
+    assert np.max(np.abs(np.abs(C - (numeric["B_x"] + 1j * numeric["B_y"])) - 0.4)) < 1e-14
+    closed = Solver(linkage, ["phi", "phidot"])(**{crank: angles, f"{crank}dot": 2.0}, **dimensions, branch=1)
+    branch = 1 if abs(angle_gap(closed["phi"][0], numeric["phi"][0])) < 1e-9 else -1
+    closed = Solver(linkage, ["phi", "phidot"])(**{crank: angles, f"{crank}dot": 2.0}, **dimensions, branch=branch)
+    assert np.max(angle_gap(closed["phi"], numeric["phi"])) < 1e-13
+    assert np.max(np.abs(closed["phidot"] - numeric["phidot"])) < 1e-12

@@ -33,7 +33,7 @@ True
 """
 from __future__ import annotations
 
-import re
+import textwrap
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Sequence
 
@@ -41,7 +41,9 @@ import sympy as sp
 from sympy.printing.c import C99CodePrinter
 
 from .. import __version__
+from ..names import C_KEYWORDS as RESERVED_IN_C, PLAIN_NAME
 from ..position import TOLERANCE
+from .numpy import ARGUMENT_CONTRACT
 from .program import is_flag, named_straight_line
 
 if TYPE_CHECKING:
@@ -52,21 +54,20 @@ __all__ = ["CFunction", "c_function", "c_library", "c_code", "c_identifier", "c_
 #: Integer powers up to this size are written as multiplications.
 LARGEST_MULTIPLIED_POWER = 4
 
-C_KEYWORDS = frozenset(C99CodePrinter.reserved_words) | {
-    "inline", "restrict", "_Bool", "_Complex", "_Imaginary", "size_t", "ptrdiff_t", "NAN", "INFINITY"}
-
-_IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
+#: C's keywords and the names its headers define, which no identifier may take.
+C_KEYWORDS = frozenset(C99CodePrinter.reserved_words) | RESERVED_IN_C
 
 
 def c_identifier(name: str, what: str = "name") -> str:
-    """``name`` if it is a valid C identifier that is not a keyword; ``ValueError`` otherwise.
+    """``name`` if it is a plain name (:data:`symlink.names.PLAIN_NAME`) that is not a C keyword; ``ValueError`` otherwise.
 
     >>> c_identifier("phi_1")
     'phi_1'
     """
-    if not _IDENTIFIER.match(name) or name in C_KEYWORDS or name.startswith("symlink_"):
+    if not PLAIN_NAME.match(name) or name in C_KEYWORDS or name.startswith("symlink_"):
         raise ValueError(f"{what} {name!r} is not usable as a C identifier "
-                         "(letters, digits and underscores, not a keyword, not starting with 'symlink_')")
+                         "(an ASCII letter, then letters, digits and underscores; not a keyword; "
+                         "not starting with 'symlink_')")
     return name
 
 
@@ -235,7 +236,13 @@ as a pointer and a step: configuration i reads x[i * x_step], so a step of 1
 walks an array of n values and a step of 0 uses one value for all of them.
 Each output is an array of n doubles, not overlapping the inputs;
 assembled[i] is 1 where the linkage closes and 0 where it cannot be
-assembled (the outputs are NaN there). Angles in radians."""
+assembled (the outputs are NaN there). Angles in radians.
+
+The arguments must satisfy what the NumPy module checks:
+{contract}
+These loops do not check them (they never allocate or fail): a NaN gives
+NaN outputs and assembled 0, but a branch sign other than +1 or -1 or a
+length that is not positive gives meaningless numbers."""
 
 _PRELUDE = """\
 /* SYMLINK_LOOP may mark the loop functions for the compiler (symlink's compiled
@@ -288,6 +295,7 @@ def c_library(functions: Sequence[CFunction], name: str, title: str = "A symlink
     if len(set(seen)) != len(seen):
         raise ValueError(f"function names repeat: {', '.join(seen)}")
     comment = c_comment(_HEADER.format(title=title, version=__version__, sympy=sp.__version__,
+                                      contract=textwrap.fill(ARGUMENT_CONTRACT + ".", 76),
                                       regenerate=f"\nRegenerate with: {regenerate}" if regenerate else ""))
     guard = f"SYMLINK_{name.upper()}_H"
     header = "\n".join([comment, f"#ifndef {guard}", f"#define {guard}", "", "#include <stddef.h>", "",

@@ -12,11 +12,12 @@ loads it at run time.
 
 >>> from symlink.catalog import fourbar
 >>> source = numeric_module(fourbar())
->>> "import sympy" in source, "def accelerations(theta, a, b, c, d, guess, thetadot=0.0, thetaddot=0.0):" in source
+>>> "import sympy" in source, "def accelerations(theta, a, b, c, d, guess, thetadot=0.0, thetaddot=0.0, *, check=True):" in source
 (False, True)
 """
 from __future__ import annotations
 
+import textwrap
 from importlib import resources
 from typing import Sequence
 
@@ -26,7 +27,7 @@ from ..closure import closure_system, is_angle
 from ..linkage import Linkage, Program
 from ..vectors import acceleration, rate
 from . import newton_driver
-from .numpy import NumPyCodePrinter, numpy_module
+from .numpy import ARGUMENT_CONTRACT, NumPyCodePrinter, numpy_module
 from .program import straight_line
 
 __all__ = ["numeric_module", "driver_source"]
@@ -92,7 +93,7 @@ def _outputs_function(linkage: Linkage, arguments: Sequence[sp.Symbol]) -> tuple
 
 _PUBLIC = '''
 
-def positions({signature}guess):
+def positions({signature}guess, *, check=True):
     """Positions over a sweep of {input_names} (one-dimensional), from an initial guess.
 
     guess: {unknown_names} near the wanted assembly at the first input value,
@@ -100,21 +101,30 @@ def positions({signature}guess):
     name, roles, points and extras; residual (each point's largest closure
     residual relative to its loop's size) and assembled (True: a point that
     cannot be solved raises ValueError naming its input value instead).
+    The arguments are checked (ValueError naming the argument):
+    {contract}
     """
-    shape, inputs, q, _, _, residual = _sweep({inputs}, {parameters}, guess)
-    return _results(shape, inputs, {parameters}, q, None, None, residual, 0)
+    _arguments(check, {checked_names}, {checked_values}, {lengths})
+    symlink_shape, symlink_inputs, symlink_q, _, _, symlink_residual = _sweep({inputs}, {parameters}, guess)
+    return _results(symlink_shape, symlink_inputs, {parameters}, symlink_q, None, None, symlink_residual, 0)
 
 
-def velocities({signature}guess, {rates}):
+def velocities({signature}guess, {rates}, *, check=True):
     """Positions and rates (name + 'dot', role + '_speed') over the sweep; see positions()."""
-    shape, inputs, q, qdot, _, residual = _sweep({inputs}, {parameters}, guess, {rate_names}, {zeros})
-    return _results(shape, inputs, {parameters}, q, qdot, None, residual, 1)
+    _arguments(check, {checked_names_rates}, {checked_values_rates}, {lengths})
+    symlink_shape, symlink_inputs, symlink_q, symlink_qdot, _, symlink_residual = _sweep(
+        {inputs}, {parameters}, guess, {rate_names}, {zeros})
+    return _results(symlink_shape, symlink_inputs, {parameters}, symlink_q, symlink_qdot, None,
+                    symlink_residual, 1)
 
 
-def accelerations({signature}guess, {rates}, {accels}):
+def accelerations({signature}guess, {rates}, {accels}, *, check=True):
     """Positions, rates and accelerations (name + 'ddot', role + '_accel') over the sweep; see positions()."""
-    shape, inputs, q, qdot, qddot, residual = _sweep({inputs}, {parameters}, guess, {rate_names}, {accel_names})
-    return _results(shape, inputs, {parameters}, q, qdot, qddot, residual, 2)
+    _arguments(check, {checked_names_accels}, {checked_values_accels}, {lengths})
+    symlink_shape, symlink_inputs, symlink_q, symlink_qdot, symlink_qddot, symlink_residual = _sweep(
+        {inputs}, {parameters}, guess, {rate_names}, {accel_names})
+    return _results(symlink_shape, symlink_inputs, {parameters}, symlink_q, symlink_qdot, symlink_qddot,
+                    symlink_residual, 2)
 '''
 
 
@@ -151,7 +161,16 @@ def numeric_module(linkage: Linkage, title: str = "", regenerate: str = "") -> s
     outputs, _ = _outputs_function(linkage, inputs + parameters + unknowns)
     parts.append("\n\n" + outputs)
     as_tuple = lambda items: repr(tuple(items)).replace("'", "")  # noqa: E731  (names, not strings)
+    checked = lambda symbols: {"names": repr(tuple(s.name for s in symbols)),  # noqa: E731
+                               "values": as_tuple(s.name for s in symbols)}
+    plain, with_rates, with_accels = (checked(inputs + parameters), checked(inputs + parameters + input_rates),
+                                      checked(inputs + parameters + input_rates + input_accels))
     parts.append(_PUBLIC.format(
+        contract=textwrap.fill(ARGUMENT_CONTRACT + "; check=False skips that.", 96, subsequent_indent="    "),
+        lengths=repr(tuple(s.name for s in parameters if s.is_positive)),
+        checked_names=plain["names"], checked_values=plain["values"],
+        checked_names_rates=with_rates["names"], checked_values_rates=with_rates["values"],
+        checked_names_accels=with_accels["names"], checked_values_accels=with_accels["values"],
         signature="".join(f"{s.name}, " for s in inputs + parameters),
         inputs=as_tuple(s.name for s in inputs), parameters=as_tuple(s.name for s in parameters),
         input_names=", ".join(s.name for s in inputs), unknown_names=", ".join(s.name for s in unknowns),

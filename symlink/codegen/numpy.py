@@ -20,6 +20,8 @@ guess what a NaN means.
 """
 from __future__ import annotations
 
+import inspect
+import textwrap
 from typing import TYPE_CHECKING, Sequence
 
 import numpy
@@ -27,6 +29,7 @@ import sympy as sp
 from sympy.printing.numpy import NumPyPrinter
 
 from .. import __version__
+from ..linkage import is_branch_name
 from ..position import TOLERANCE
 from .program import format_default, straight_line
 
@@ -34,7 +37,11 @@ if TYPE_CHECKING:
     from ..linkage import Linkage, Program
 
 __all__ = ["NumPyCodePrinter", "numpy_function", "numpy_module", "load_numpy_module", "docstring_text",
-           "export_files"]
+           "export_files", "checked_arguments", "ARGUMENT_CONTRACT"]
+
+#: What every generated function accepts, in words: its docstring, and the C and Octave exports' header comments.
+ARGUMENT_CONTRACT = ("branch signs exactly +1 or -1; lengths positive and finite; every value finite and real "
+                     "(complex values are refused); array arguments whose shapes broadcast together")
 
 
 _PYTHON_ESCAPES = {"\\": "\\\\", '"': '\\"'}
@@ -76,23 +83,98 @@ class NumPyCodePrinter(NumPyPrinter):
         raise ValueError("symlink never writes Piecewise into NumPy code")
 
 
+def _arguments(check, names, values, lengths=(), signs=()):
+    """The arguments as float arrays and their broadcast shape; with ``check``, ``ValueError`` naming a bad one.
+
+    Checked, one vectorised test an argument: real numbers only (a complex
+    value is refused rather than cut to its real part), shapes that broadcast
+    together, branch signs exactly +1 or -1, lengths positive and finite,
+    every other value finite.  ``check=False`` converts only, for hot loops.
+    """
+    if not check:
+        arrays = tuple(numpy.asarray(value, dtype=float) for value in values)
+        return arrays, numpy.broadcast_shapes(*(array.shape for array in arrays))
+    arrays = []
+    for name, value in zip(names, values):
+        array = numpy.asarray(value)
+        kind = array.dtype.kind
+        if kind != "f":
+            try:
+                if kind not in "biuO":
+                    raise TypeError
+                array = array.astype(float)  # an object array of Python numbers; complex ones raise TypeError
+            except (TypeError, ValueError, OverflowError):
+                why = " (its imaginary part would be lost)" if kind == "c" else ""
+                raise ValueError(f"{name} must be real numbers, got {array.dtype} values{why}") from None
+        arrays.append(array)
+    try:
+        shape = numpy.broadcast_shapes(*(array.shape for array in arrays))
+    except ValueError:
+        shapes = ", ".join(f"{name} has shape {array.shape}" for name, array in zip(names, arrays) if array.ndim)
+        raise ValueError(f"the arguments do not broadcast together: {shapes}") from None
+    for name, array in zip(names, arrays):
+        if array.ndim == 0:  # a single number, the usual length or sign: tested without NumPy's overhead
+            x = float(array)
+            if name in signs:
+                good = x == 1.0 or x == -1.0
+            elif name in lengths:
+                good = 0.0 < x < numpy.inf
+            else:
+                good = x - x == 0.0
+        elif name in signs:
+            good = numpy.abs(array) == 1.0
+        elif name in lengths:
+            good = (array > 0.0) & (array < numpy.inf)
+        else:
+            good = numpy.isfinite(array)
+        if not (good if array.ndim == 0 else good.all()):
+            wanted = ("must be +1 or -1" if name in signs else "must be a positive finite length" if name in lengths
+                      else "must be finite")
+            raise ValueError(f"{name} {wanted}, got {float(array if array.ndim == 0 else array[~good].flat[0])!r}")
+    return tuple(arrays), shape
+
+
+def checked_arguments(names: Sequence[str], values: Sequence[object], lengths: Sequence[str] = (),
+                      signs: Sequence[str] = ()) -> tuple[tuple[numpy.ndarray, ...], tuple[int, ...]]:
+    """The arguments as float arrays and their broadcast shape, checked as every generated function checks them.
+
+    The one home of the check: its source is copied into each generated module.
+
+    >>> checked_arguments(["theta", "branch"], [[0.0, 1.0], 1])[1]
+    (2,)
+    >>> checked_arguments(["a"], [-1.0], lengths=["a"])
+    Traceback (most recent call last):
+    ValueError: a must be a positive finite length, got -1.0
+    >>> checked_arguments(["theta"], [1j])
+    Traceback (most recent call last):
+    ValueError: theta must be real numbers, got complex128 values (its imaginary part would be lost)
+    """
+    return _arguments(True, tuple(names), tuple(values), tuple(lengths), tuple(signs))
+
+
 def numpy_function(program: Program, name: str, doc: str = "") -> str:
-    """Python source of one vectorised function computing the program's outputs."""
+    """Python source of one vectorised function computing the program's outputs.
+
+    Its arguments are checked (see :func:`checked_arguments`) unless it is called with ``check=False``.
+    """
     code = straight_line(program)
     printer = NumPyCodePrinter()
     arguments = [s.name for s in code.arguments]
-    signature = ", ".join(f"{a}={format_default(code.defaults[a])}" if a in code.defaults else a for a in arguments)
+    lengths = tuple(s.name for s in code.arguments if s.is_positive)
+    signs = tuple(a for a in arguments if is_branch_name(a))
+    signature = ", ".join([f"{a}={format_default(code.defaults[a])}" if a in code.defaults else a
+                           for a in arguments] + ["*", "check=True"])
     outputs = ", ".join(code.outputs)
     lines = [f"def {name}({signature}):"]
     text = (docstring_text(doc.strip()) + "\n\n" if doc else "") + (
         f"Returns a dict of arrays: {outputs};\n"
         "and assembled: False where the linkage cannot close (the outputs are NaN there).\n"
-        "The arguments broadcast against each other.")
+        "The arguments broadcast against each other.  They are checked (ValueError naming the argument):\n"
+        + textwrap.fill(f"{ARGUMENT_CONTRACT}; check=False skips that for hot loops.", 96))
     lines.append('    """' + text.replace("\n", "\n    ") + '\n    """')
     if arguments:
-        lines.append(f"    {', '.join(arguments)}{',' if len(arguments) == 1 else ''} = "
-                     f"_as_arrays({', '.join(arguments)})")
-        lines.append(f"    shape = numpy.broadcast_shapes({', '.join(f'numpy.shape({a})' for a in arguments)})")
+        lines.append(f"    ({', '.join(arguments)},), shape = _arguments(\n"
+                     f"        check, {tuple(arguments)!r}, ({', '.join(arguments)},), {lengths!r}, {signs!r})")
     else:
         lines.append("    shape = ()")
     for symbol, expr in code.assignments:
@@ -118,9 +200,7 @@ import numpy
 TOLERANCE = {tolerance!r}
 
 
-def _as_arrays(*values):
-    return tuple(numpy.asarray(v, dtype=float) for v in values)
-
+{arguments}
 
 def _clamped_sqrt(x, scale):
     """sqrt(x), taking x >= -TOLERANCE*scale as rounding at a toggle (0) and anything lower as no assembly (NaN)."""
@@ -133,7 +213,8 @@ def numpy_module(functions: Sequence[tuple[str, Program, str]], title: str = "A 
     """A standalone module of vectorised functions, each ``(name, program, docstring)``."""
     again = f"\nRegenerate with: {docstring_text(regenerate)}" if regenerate else ""
     header = _HEADER.format(title=docstring_text(title), version=__version__, sympy=sp.__version__,
-                            tolerance=TOLERANCE, regenerate=again)
+                            tolerance=TOLERANCE, regenerate=again,
+                            arguments=inspect.getsource(_arguments))
     return header + "".join("\n\n" + numpy_function(p, name, doc) for name, p, doc in functions)
 
 

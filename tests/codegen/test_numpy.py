@@ -1,12 +1,17 @@
-"""The NumPy printer: CSE, no SymPy or Piecewise in the output, broadcasting, assembly mask, escaped docstrings."""
+"""The NumPy printer: CSE, no SymPy or Piecewise in the output, broadcasting, assembly mask, escaped docstrings,
+checked arguments."""
 import ast
 import collections
+import inspect
+import warnings
+from pathlib import Path
 
 import numpy
+import pytest
 import sympy as sp
 
 from symlink.catalog import fourbar
-from symlink.codegen.numpy import docstring_text, export_files, load_numpy_module, numpy_module
+from symlink.codegen.numpy import _arguments, docstring_text, export_files, load_numpy_module, numpy_module
 
 
 def test_common_subexpressions_are_computed_once():
@@ -58,3 +63,80 @@ def test_export_files_is_one_module():
     assert list(files) == ["fb.py"]
     namespace = load_numpy_module(files["fb.py"])
     assert {"positions", "speeds"} <= set(namespace)
+
+
+# --- argument checks (every generated function; check=False skips them) -------------------------------
+
+GOOD = dict(theta=numpy.array([0.0, 1.0, 2.0]), a=20.0, b=66.0, c=56.0, d=80.0, branch=1)
+
+
+def _generated_fourbar():
+    """The committed generated module (as a user copies it), not one generated in this test."""
+    path = Path(__file__).resolve().parents[2] / "generated" / "fourbar.py"
+    return load_numpy_module(path.read_text(encoding="utf-8"))
+
+
+@pytest.mark.parametrize("change, message", [
+    (dict(branch=0), r"branch must be \+1 or -1, got 0.0"),
+    (dict(branch=2), r"branch must be \+1 or -1, got 2.0"),
+    (dict(branch=0.5), r"branch must be \+1 or -1, got 0.5"),
+    (dict(branch=float("nan")), r"branch must be \+1 or -1, got nan"),
+    (dict(branch=[1, -1, 0]), r"branch must be \+1 or -1, got 0.0"),
+    (dict(a=float("inf")), "a must be a positive finite length, got inf"),
+    (dict(b=0.0), "b must be a positive finite length, got 0.0"),
+    (dict(c=-56.0), "c must be a positive finite length, got -56.0"),
+    (dict(d=[80.0, float("nan"), 80.0]), "d must be a positive finite length, got nan"),
+    (dict(theta=[0.0, float("inf")]), "theta must be finite, got inf"),
+    (dict(theta=float("nan")), "theta must be finite, got nan"),
+    (dict(thetadot=float("-inf")), "thetadot must be finite, got -inf"),
+    (dict(theta=numpy.array([0.0, 1.0 + 1e-9j])), r"theta must be real numbers, got complex128 values \(its imaginary"),
+    (dict(a=20 + 0j), "a must be real numbers, got complex128"),
+    (dict(theta=numpy.array([0.0, 1j], dtype=object)), "theta must be real numbers, got object values"),
+    (dict(theta="0.5"), "theta must be real numbers, got <U3 values"),
+    (dict(theta=numpy.zeros(3), a=numpy.ones(4) * 20), r"do not broadcast together: theta has shape \(3,\), a has "
+                                                        r"shape \(4,\)"),
+])
+def test_generated_functions_refuse_bad_arguments(change, message):
+    function = _generated_fourbar()["velocities"]
+    values = {**GOOD, "thetadot": 1.0, **change}
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # refused before NumPy could warn (of a dropped imaginary part, say)
+        with pytest.raises(ValueError, match=message):
+            function(**values)
+
+
+def test_good_arguments_of_every_kind_pass_the_check():
+    function = _generated_fourbar()["positions"]
+    expected = function(**GOOD, check=False)["rocker"]
+    for values in [GOOD, {**GOOD, "theta": GOOD["theta"].astype(numpy.float32)}, {**GOOD, "a": 20, "branch": -1},
+                   {**GOOD, "theta": list(GOOD["theta"]), "branch": numpy.array([1, -1, 1])},
+                   {**GOOD, "a": numpy.array([[20.0], [21.0]])}, {**GOOD, "branch": True},
+                   {**GOOD, "theta": numpy.array([0.0, 1.0, 2.0], dtype=object)}]:
+        result = function(**values)
+        assert result["rocker"].shape == numpy.broadcast_shapes(*(numpy.shape(v) for v in values.values()))
+    assert numpy.array_equal(function(**GOOD)["rocker"], expected)
+
+
+def test_check_false_skips_the_check():
+    function = _generated_fourbar()["positions"]
+    result = function(**{**GOOD, "branch": 0}, check=False)  # no error: the caller vouched for the arguments
+    assert result["rocker"].shape == (3,)
+    with pytest.raises(ValueError, match="branch must be"):
+        function(**{**GOOD, "branch": 0}, check=True)
+
+
+def test_every_generated_module_embeds_the_check_and_imports_numpy_only():
+    folder = Path(__file__).resolve().parents[2] / "generated"
+    for path in sorted(folder.glob("*.py")):
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        imports = [alias.name for node in ast.walk(tree) if isinstance(node, ast.Import) for alias in node.names]
+        imports += [node.module for node in ast.walk(tree) if isinstance(node, ast.ImportFrom)]
+        assert imports == ["numpy"], path.name
+        public = [n for n in tree.body if isinstance(n, ast.FunctionDef) and not n.name.startswith("_")]
+        assert public and all([a.arg for a in n.args.kwonlyargs] == ["check"] for n in public), path.name
+        assert any(isinstance(n, ast.FunctionDef) and n.name == "_arguments" for n in tree.body), path.name
+
+
+def test_checked_arguments_is_the_function_every_module_embeds():
+    source = numpy_module([("f", fourbar().program(["rocker"]), "")])
+    assert inspect.getsource(_arguments) in source

@@ -218,3 +218,27 @@ def test_export_files_are_one_function_file_each():
                                                               ("speeds", ["rocker_speed"], "Speed.")], "Four-bar.")
     assert list(files) == ["fb_positions.m", "fb_speeds.m"]
     assert files["fb_speeds.m"].startswith("function [rocker_speed, assembled] = fb_speeds(")
+
+
+def test_the_function_checks_its_arguments(tmp_path):
+    _octave()
+    (tmp_path / "fb_rocker.m").write_text(octave_function(catalog_linkage("fourbar").program(["rocker"]),
+                                                          "fb_rocker", "Rocker."))
+    calls = {
+        "branch 0": ("fb_rocker(0, 20, 66, 56, 80, 0)", "branch must be +1 or -1"),
+        "branch 0.5": ("fb_rocker(0, 20, 66, 56, 80, [1, 0.5])", "branch must be +1 or -1"),
+        "branch NaN": ("fb_rocker(0, 20, 66, 56, 80, NaN)", "branch must be +1 or -1"),
+        "length Inf": ("fb_rocker(0, Inf, 66, 56, 80)", "a must be a positive finite length"),
+        "length 0": ("fb_rocker(0, 20, [66, 0], 56, 80)", "b must be a positive finite length"),
+        "complex length": ("fb_rocker(0, 20, 66, 56 + 1i, 80)", "c must be a positive finite length"),
+        "complex angle": ("fb_rocker([0, 1i], 20, 66, 56, 80)", "theta must be finite real numbers"),
+        "NaN angle": ("fb_rocker(NaN, 20, 66, 56, 80)", "theta must be finite real numbers"),
+        "text": ("fb_rocker('0', 20, 66, 56, 80)", "theta must be finite real numbers"),
+        "good": ("fb_rocker(0, 20, 66, 56, 80, -1)", "no error"),
+    }
+    script = "".join(f"try\n  {call};\n  disp('{label}: no error');\ncatch err\n  disp(['{label}: ' err.message]);\nend\n"
+                     for label, (call, _) in calls.items())
+    output = run_octave(tmp_path, script).splitlines()
+    found = dict(line.split(": ", 1) for line in output if ": " in line)
+    for label, (_, message) in calls.items():
+        assert found.get(label) == message, (label, found.get(label))

@@ -13,8 +13,9 @@ def _arguments(check, names, values, lengths=(), signs=()):
 
     Checked, one vectorised test an argument: real numbers only (a complex
     value is refused rather than cut to its real part), shapes that broadcast
-    together, branch signs exactly +1 or -1, lengths positive and finite,
-    every other value finite.  ``check=False`` converts only, for hot loops.
+    together, branch signs exactly +1 or -1, lengths positive and finite
+    from 1e-305 to 1e305 (so that a loop's sums and its unit stay normal
+    doubles), every other value finite.  ``check=False`` converts only, for hot loops.
     """
     if not check:
         arrays = tuple(numpy.asarray(value, dtype=float) for value in values)
@@ -43,19 +44,22 @@ def _arguments(check, names, values, lengths=(), signs=()):
             if name in signs:
                 good = x == 1.0 or x == -1.0
             elif name in lengths:
-                good = 0.0 < x < numpy.inf
+                good = 1e-305 <= x <= 1e305
             else:
                 good = x - x == 0.0
         elif name in signs:
             good = numpy.abs(array) == 1.0
         elif name in lengths:
-            good = (array > 0.0) & (array < numpy.inf)
+            good = (array >= 1e-305) & (array <= 1e305)
         else:
             good = numpy.isfinite(array)
         if not (good if array.ndim == 0 else good.all()):
+            bad = float(array if array.ndim == 0 else array[~good].flat[0])
             wanted = ("must be +1 or -1" if name in signs else "must be a positive finite length" if name in lengths
                       else "must be finite")
-            raise ValueError(f"{name} {wanted}, got {float(array if array.ndim == 0 else array[~good].flat[0])!r}")
+            if name in lengths and 0.0 < bad < numpy.inf:  # lengths whose sums or squares would over- or underflow
+                wanted = "must be from 1e-305 to 1e305 in size (express the lengths in another unit)"
+            raise ValueError(f"{name} {wanted}, got {bad!r}")
     return tuple(arrays), shape
 
 

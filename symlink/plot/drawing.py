@@ -191,7 +191,7 @@ class Geometry:
         coordinates = {q.name: numpy.broadcast_to(numpy.asarray(result[q.name], dtype=float), (length,))
                        for q in self.linkage.unknowns}
         with numpy.errstate(invalid="ignore"):
-            ends = self._evaluate(**inputs, **coordinates, **parameters)
+            ends = self._evaluate(**inputs, **coordinates, **parameters, check=False)  # NaN where not assembled
         vectors = {vector: ends[f"x{k}"] + 1j * ends[f"y{k}"] for k, vector in enumerate(self.vectors)}
         positions = {}
         for name, total in self.sums.items():

@@ -22,6 +22,7 @@ from typing import Callable, Mapping
 
 import numpy
 
+from .angles import wrap_angle
 from .cache import cache_key, cached_text
 from .closure import is_angle
 from .codegen.numpy import load_numpy_module, numpy_module
@@ -346,18 +347,22 @@ class InputMotion:
 def _margin_function(linkage: Linkage) -> tuple[Callable[..., dict], list[tuple[str, str]]]:
     """Generated code of every clamped root's argument over its scale (plus rounding), and their loops.
 
-    A root's margin is ``x / scale + TOLERANCE``: the loop closes where it is not
-    negative.  Later loops' margins are NaN where an earlier loop does not close.
+    A root's margin (``margin_k``) is ``x / scale + TOLERANCE``: the loop closes
+    where it is not negative.  A guard's (``guard_k``: a length that must not
+    vanish) is its argument less the square of TOLERANCE.  Later loops'
+    margins are NaN where an earlier loop does not close.
     """
     plan_steps = linkage.plan
     roots = [(step.loop.name, symbol, expr) for step in plan_steps for symbol, expr in step.intermediates.items()
-             if isinstance(expr, ClampedSqrt) and not expr.args[1].is_negative]
-    names = [f"margin_{k}" for k in range(len(roots))]
+             if isinstance(expr, ClampedSqrt)]
+    names = [f"margin_{k}" if not expr.args[1].is_negative else f"guard_{k}" for k, (_, _, expr) in enumerate(roots)]
     key = cache_key(linkage, names, "root-margins")
     if key not in _MARGINS:
         def build() -> str:
             base = linkage.program([q.name for q in linkage.unknowns])
-            margins = {name: expr.args[0] / expr.args[1] + TOLERANCE for name, (_, _, expr) in zip(names, roots)}
+            # A guard (negative scale) is NaN below TOLERANCE^2: its margin is the argument past that.
+            margins = {name: (expr.args[0] / expr.args[1] + TOLERANCE if name.startswith("margin")
+                              else expr.args[0] + TOLERANCE * expr.args[1]) for name, (_, _, expr) in zip(names, roots)}
             program = Program(base.arguments, base.assignments, margins, base.defaults)
             return numpy_module([("margins", program, f"{linkage.name}: the margins of its clamped roots.")])
         _MARGINS[key] = load_numpy_module(cached_text(key, build))["margins"]
@@ -452,7 +457,7 @@ def _closed_form_range(motion: InputMotion, low: float, high: float, points: int
     grid = low + step * numpy.arange(points + (0 if periodic else 1))
     found = margin_values(grid)
     inside = numpy.asarray(found["assembled"], dtype=bool)
-    toggles = _touching_toggles(margin_values, roots, grid, found, step)
+    toggles = _touching_toggles(margin_values, roots, grid, found, step, periodic)
     if inside.all():
         spans = [(low, high)]
     elif not inside.any():
@@ -469,7 +474,7 @@ def _closed_form_range(motion: InputMotion, low: float, high: float, points: int
         for k in range(len(edges)):
             name, loop = next(((name, loop) for name, loop in roots if beyond[name][k] < 0), (None, None))
             at_low, at_high = in_low[k:k + 1], out_high[k:k + 1]
-            if name is not None:
+            if name is not None and name.startswith("margin"):
                 # The clamp takes rounding below zero as the toggle itself; the toggle is where the
                 # root's argument changes sign: bisect that, from the scan's bracket.
                 def closes(inputs, name=name):
@@ -477,22 +482,25 @@ def _closed_form_range(motion: InputMotion, low: float, high: float, points: int
                 at_low, at_high = _bisect(closes, start[k:k + 1], end[k:k + 1], numpy.array([inside[edges][k]]))
             at = float(at_high[0] if rising[k] else at_low[0])  # the reachable side of the edge
             bounds.append(at)
-            toggles.append(Toggle(at, loop, True, loop is None))
+            toggles.append(Toggle(at, loop, True, name is None or name.startswith("guard")))
         marks = sorted(zip(bounds, rising.tolist()))
         spans = _spans_from_marks(marks, periodic, float(grid[0]), float(grid[-1]))
     toggles.sort(key=lambda t: t.at)
     return InputRange(motion.input, tuple(spans), tuple(toggles), True, motion.periodic)
 
 
-def _touching_toggles(margin_values, roots, grid, found, step) -> list[Toggle]:
+def _touching_toggles(margin_values, roots, grid, found, step, periodic) -> list[Toggle]:
     """Toggles inside the range: a root's margin with a local minimum that reaches zero (within TOUCH)."""
     toggles = []
     for name, loop in roots:
+        if not name.startswith("margin"):
+            continue
         margin = numpy.asarray(found[name], dtype=float)
-        middle = margin[1:-1]
-        lowest = numpy.flatnonzero((middle <= margin[:-2]) & (middle <= margin[2:]) & (middle >= 0)
-                                   & (middle < 1e-3)) + 1
-        for i in lowest:
+        before, after = numpy.roll(margin, 1), numpy.roll(margin, -1)
+        lowest = (margin <= before) & (margin <= after) & (margin >= 0) & (margin < 1e-3)
+        if not periodic:  # the ends of an interval are no minimum inside it
+            lowest[[0, -1]] = False
+        for i in numpy.flatnonzero(lowest):
             left, right = float(grid[i] - step), float(grid[i] + step)
             for _ in range(BISECTIONS):  # golden-section search for the minimum
                 one = right - 0.618 * (right - left)
@@ -506,7 +514,8 @@ def _touching_toggles(margin_values, roots, grid, found, step) -> list[Toggle]:
             margins = margin_values(tried)[name]
             best = int(numpy.argmin(margins))
             if margins[best] <= TOUCH:
-                toggles.append(Toggle(float(tried[best]), loop, False))
+                at = float(tried[best])
+                toggles.append(Toggle(wrap_angle(at) if periodic else at, loop, False))
     return toggles
 
 

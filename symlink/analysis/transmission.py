@@ -1,4 +1,4 @@
-"""The transmission angle: of a four-bar in closed form, and of every two-angle loop of any linkage.
+"""The transmission angle: of a four-bar in closed form, and of every two-angle or rod-and-slider loop of any linkage.
 
 A loop whose two unknowns are angles (case 3) closes a triangle: its two
 unknown vectors meet at a joint (C of the four-bar), and the transmission
@@ -6,7 +6,10 @@ angle is the interior angle there, in [0, pi]: 0 or pi at a toggle, where the
 loop locks, and best near pi/2.  The four-bar's is the angle at C between
 coupler and rocker (:func:`transmission_range`, :func:`transmission_curve`,
 from the triangle over the diagonal BD); :func:`loop_transmissions` finds it
-for each such loop of any one-input linkage over its reachable range.
+for each such loop of any one-input linkage over its reachable range, and
+for each loop where a rod drives a slider (case 2b) the angle between the rod
+and the normal of the guide.  A slider on a turning guide (cases 2a, 2c)
+pushes normal to it whatever the input: it has no transmission angle to watch.
 
 >>> [round(math.degrees(x), 2) for x in transmission_curve(20, 66, 56, 80, [0.0, math.pi])]
 [58.23, 109.83]
@@ -115,11 +118,18 @@ class TransmissionJoint:
     in order (a negative sign walks a vector backwards), ``into`` ends at the
     joint and ``out`` starts there; the interior angle at the joint is the angle
     between ``-into`` and ``out``.
+
+    ``guide``: a rod driving a slider (case 2b: ``into`` is the slider's travel,
+    ``out`` the rod).  The guide acts as a rocker of infinite length at right
+    angles to it, so the transmission angle is the angle between the rod and
+    the normal of the guide (turned a quarter turn counter-clockwise from the
+    travel's own direction), in [0, pi]: pi/2 with the rod along the guide.
     """
 
     loop: str
     into: tuple[int, Vector, sp.Symbol]
     out: tuple[int, Vector, sp.Symbol]
+    guide: bool = False
 
     @property
     def name(self) -> str:
@@ -139,6 +149,12 @@ def transmission_joints(linkage: Linkage) -> tuple[TransmissionJoint, ...]:
     """
     joints = []
     for step in linkage.plan:
+        if step.case.name == "2b":
+            travel, rod = ((step.case.first, step.case.second) if step.case.first.part == "length"
+                           else (step.case.second, step.case.first))
+            joints.append(TransmissionJoint(step.loop.name, (1, travel.vector, travel.symbol),
+                                            (1, rod.vector, rod.symbol), guide=True))
+            continue
         if step.case.name != "3":
             continue
         first, second = step.case.first, step.case.second
@@ -167,12 +183,16 @@ def _direction(sign: int, vector: Vector, values: Mapping[str, float], solved: M
     angle = vector.angle
     numbers = {s: values[s.name] for s in angle.free_symbols if s.name in values}
     moving = [s for s in angle.free_symbols if s.name not in values]
-    if len(moving) != 1 or sp.diff(angle, moving[0]) != 1:
-        raise ValueError(f"the angle of {vector.name or vector} is not an unknown plus a constant")
+    if len(moving) > 1 or (moving and sp.diff(angle, moving[0]) != 1):
+        raise ValueError(f"the angle of {vector.name or vector} is not a coordinate plus a constant")
+    flip = 0.0 if sign > 0 else math.pi
+    if vector.length.free_symbols <= {s for s in vector.length.free_symbols if s.name in values}:
+        length = vector.length.subs({s: values[s.name] for s in vector.length.free_symbols})
+        flip += math.pi if float(length) < 0 else 0.0
+    if not moving:  # a guide at a fixed angle
+        return numpy.full(numpy.shape(solved["assembled"]), float(angle.subs(numbers)) + flip), 0.0
     q = moving[0]
     offset = float((angle - q).subs(numbers))
-    length = vector.length.subs({s: values[s.name] for s in vector.length.free_symbols if s.name in values})
-    flip = (0.0 if sign > 0 else math.pi) + (math.pi if float(length) < 0 else 0.0)
     return solved[q.name] + offset + flip, solved[q.name + "dot"]
 
 
@@ -180,7 +200,7 @@ def _interior(joint: TransmissionJoint, values, solved) -> tuple[numpy.ndarray, 
     """The interior angle at the joint, in [0, pi], and its derivative with respect to the input."""
     into, into_rate = _direction(*joint.into[:2], values, solved)
     out, out_rate = _direction(*joint.out[:2], values, solved)
-    turn = wrap(out - (into + math.pi))  # from -into to out
+    turn = wrap(out - (into + (math.pi / 2 if joint.guide else math.pi)))  # from -into (or the normal) to out
     return numpy.abs(turn), numpy.sign(turn) * (out_rate - into_rate)
 
 

@@ -33,7 +33,7 @@ from .vectors import rate
 
 __all__ = ["crank_range", "assembled_crank_range", "slider_crank_range", "inverted_slider_crank_range",
            "fivebar_range", "scanned_range", "describe_spans", "reachable_turn", "turn_angles", "SCAN_POINTS", "TURN_SAMPLES",
-           "Toggle", "InputRange", "InputMotion", "reachable_range"]
+           "BISECTIONS", "Toggle", "InputRange", "InputMotion", "reachable_range"]
 
 #: Points a turn of the scan that finds a reachable crank range without a closed form.
 SCAN_POINTS = 3600
@@ -257,7 +257,8 @@ class InputMotion:
     linkage without one is continued by Newton's method from ``guess`` (the
     unknowns near the wanted assembly at the input value ``start``), each
     requested input value solved from the nearest pose of a scan that
-    :func:`reachable_range` fills in.
+    :func:`reachable_range` fills in (``numeric=True`` takes that way for any
+    linkage, to cross-check a closed form).
 
     >>> from symlink.catalog import fourbar
     >>> motion = InputMotion(fourbar(), dict(a=20, b=66, c=56, d=80))
@@ -266,7 +267,7 @@ class InputMotion:
     """
 
     def __init__(self, linkage: Linkage, values: Mapping[str, float], *, input: str | None = None,
-                 guess: Mapping[str, float] | None = None, start: float = 0.0) -> None:
+                 guess: Mapping[str, float] | None = None, start: float = 0.0, numeric: bool = False) -> None:
         driven = [q.name for q in linkage.inputs]
         self.input = driven[0] if input is None else input
         if self.input not in driven:
@@ -286,7 +287,7 @@ class InputMotion:
         self.values = {name: float(value) for name, value in values.items()}
         symbol = next(q for q in linkage.inputs if q.name == self.input)
         self.periodic = is_angle(linkage, symbol)
-        self.exact = linkage.has_closed_form
+        self.exact = linkage.has_closed_form and not numeric
         self.names = [q.name for q in linkage.unknowns]
         self.rates = [rate(q).name for q in linkage.unknowns]
         self.speeds = {rate(q).name: (1.0 if q.name == self.input else 0.0) for q in linkage.inputs}
@@ -320,6 +321,14 @@ class InputMotion:
         grid, poses = self._scan
         result = {name: numpy.full(inputs.shape, numpy.nan) for name in self.names + self.rates}
         result["assembled"] = numpy.zeros(inputs.shape, dtype=bool)
+        if inputs.size > 2:  # a sweep: continue along it in one go from the scan's pose nearest its start
+            nearest = int(numpy.argmin(numpy.abs(grid - inputs[0])))
+            solved = self._sweep(numpy.concatenate([grid[nearest:nearest + 1], inputs]), poses[nearest])
+            if solved is not None:
+                for name in self.names + self.rates:
+                    result[name] = numpy.asarray(solved[name])[1:]
+                result["assembled"][:] = True
+                return result
         for k, value in enumerate(inputs):
             nearest = int(numpy.argmin(numpy.abs(grid - value)))
             solved = self._sweep(numpy.array([grid[nearest], value]), poses[nearest])
@@ -404,7 +413,7 @@ def _spans_from_marks(marks: list[tuple[float, bool]], periodic: bool, first: fl
 def reachable_range(linkage: Linkage, values: Mapping[str, float], *, input: str | None = None,
                     guess: Mapping[str, float] | None = None, start: float = 0.0,
                     interval: tuple[float, float] | None = None, points: int = SCAN_POINTS,
-                    motion: InputMotion | None = None) -> InputRange:
+                    motion: InputMotion | None = None, numeric: bool = False) -> InputRange:
     """Where a linkage with one moving input can be assembled, and its toggles.
 
     ``values`` by name: every parameter, any branch sign (+1 default) and the
@@ -415,7 +424,9 @@ def reachable_range(linkage: Linkage, values: Mapping[str, float], *, input: str
     too.  Without a closed form, Newton's continuation from ``guess`` (the
     unknowns at input ``start``) forward and back, each failure bisected: the
     span of the assembly the guess is on.  An angle input is scanned over a
-    turn; a length input over ``interval`` (required).
+    turn; a length input over ``interval`` (required).  ``numeric=True``
+    continues by Newton's method even where a closed form exists; ``motion``
+    reuses an :class:`InputMotion` of the same linkage and values.
 
     >>> from symlink.catalog import slider_crank
     >>> found = reachable_range(slider_crank(), dict(a=2.0, b=1.0, offset=0.0))
@@ -425,7 +436,7 @@ def reachable_range(linkage: Linkage, values: Mapping[str, float], *, input: str
     ['ABC', 'ABC', 'ABC', 'ABC']
     """
     if motion is None:
-        motion = InputMotion(linkage, values, input=input, guess=guess, start=start)
+        motion = InputMotion(linkage, values, input=input, guess=guess, start=start, numeric=numeric)
     if motion.periodic:
         low, high = (-math.pi, math.pi) if interval is None else interval
     elif interval is None:

@@ -48,17 +48,19 @@ class LinkageReport:
 
 def analyze_linkage(linkage: Linkage, values: Mapping[str, float], output: str | None = None, *,
                     input: str | None = None, guess: Mapping[str, float] | None = None, start: float = 0.0,
-                    interval: tuple[float, float] | None = None, points: int = SCAN_POINTS) -> LinkageReport:
+                    interval: tuple[float, float] | None = None, points: int = SCAN_POINTS,
+                    numeric: bool = False) -> LinkageReport:
     """Mobility, reachable input range and toggles, transmission angles and an output's limit positions.
 
     ``values`` by name: every parameter, branch signs (default +1) and the
     inputs other than the moving one (``input``, default the first).  A linkage
     without a closed form needs ``guess``: its unknowns near the wanted
     assembly at input ``start``.  A length input needs the ``interval`` to
-    search.  ``ValueError`` for missing or unknown names, and where the
+    search; ``numeric=True`` solves by Newton's method even where a closed
+    form exists.  ``ValueError`` for missing or unknown names, and where the
     linkage cannot be assembled at any input.
     """
-    motion = InputMotion(linkage, values, input=input, guess=guess, start=start)
+    motion = InputMotion(linkage, values, input=input, guess=guess, start=start, numeric=numeric)
     reach = reachable_range(linkage, values, interval=interval, points=points, motion=motion)
     if not reach.spans:
         raise ValueError(f"{linkage.name} cannot be assembled at any {motion.input} with these values")

@@ -148,6 +148,8 @@ def transmission_joints(linkage: Linkage) -> tuple[TransmissionJoint, ...]:
     [('ABCD', 'DC/BC')]
     """
     joints = []
+    if not linkage.has_closed_form:  # every loop has more than two unknowns: none closes a triangle alone
+        return ()
     for step in linkage.plan:
         if step.case.name == "2b":
             travel, rod = ((step.case.first, step.case.second) if step.case.first.part == "length"

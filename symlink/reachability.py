@@ -285,6 +285,12 @@ class InputMotion:
                              f"not {', '.join(unexpected)}")
         self.linkage = linkage
         self.values = {name: float(value) for name, value in values.items()}
+        check_lengths(**{s.name: self.values[s.name] for s in linkage.parameters if s.is_positive})
+        for name, value in self.values.items():
+            if not math.isfinite(value):
+                raise ValueError(f"{name} must be finite, got {value}")
+            if name in {s.name for s in linkage.branches} and value not in (1.0, -1.0):
+                raise ValueError(f"{name} must be +1 or -1, got {value:g}")
         symbol = next(q for q in linkage.inputs if q.name == self.input)
         self.periodic = is_angle(linkage, symbol)
         self.exact = linkage.has_closed_form and not numeric

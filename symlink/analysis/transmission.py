@@ -203,7 +203,8 @@ def _interior(joint: TransmissionJoint, values, solved) -> tuple[numpy.ndarray, 
     into, into_rate = _direction(*joint.into[:2], values, solved)
     out, out_rate = _direction(*joint.out[:2], values, solved)
     turn = wrap(out - (into + (math.pi / 2 if joint.guide else math.pi)))  # from -into (or the normal) to out
-    return numpy.abs(turn), numpy.sign(turn) * (out_rate - into_rate)
+    with numpy.errstate(invalid="ignore"):  # rates are not finite at a toggle
+        return numpy.abs(turn), numpy.sign(turn) * (out_rate - into_rate)
 
 
 def transmission_angles(linkage: Linkage, values: Mapping[str, float], inputs, *, input: str | None = None,
@@ -244,9 +245,9 @@ def loop_transmissions(linkage: Linkage, values: Mapping[str, float], *, input: 
                        points: int = 3600) -> tuple[LoopTransmission, ...]:
     """Extremes of the transmission angle of every two-angle loop over the reachable input range.
 
-    Candidates: the ends of each span (toggles, where it is 0 or pi) and the
-    input values where its derivative changes sign, found on a scan of
-    ``points`` and bisected to rounding.
+    Candidates: the ends of each span, the loop's toggles (where it is 0 or
+    pi: the triangle is flat), and the input values where its derivative
+    changes sign, found on a scan of ``points`` and bisected to rounding.
 
     >>> (found,) = loop_transmissions(fourbar(), dict(a=20, b=66, c=56, d=80))
     >>> found.loop, round(math.degrees(found.minimum), 2), round(math.degrees(found.maximum), 2)
@@ -282,6 +283,11 @@ def loop_transmissions(linkage: Linkage, values: Mapping[str, float], *, input: 
                     value = float(angle_and_rate(numpy.array([at]))[0][0])
                     if math.isfinite(value):
                         candidates[at] = value
+        for toggle in reach.toggles:  # the loop's own toggles: flat, so exactly 0 or pi there
+            if toggle.loop == joint.loop and not toggle.degenerate:
+                value = float(angle_and_rate(numpy.array([toggle.at]))[0][0])
+                if math.isfinite(value):
+                    candidates[toggle.at] = 0.0 if value < math.pi / 2 else math.pi
         low_at = min(candidates, key=candidates.__getitem__)
         high_at = max(candidates, key=candidates.__getitem__)
         found.append(LoopTransmission(joint.loop, joint.name, candidates[low_at], low_at,

@@ -5,7 +5,6 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from references import mp_fourbar
 from symlink.analysis import (analyze_linkage, fourbar_report, limit_positions, loop_transmissions, output_limits,
                               transmission_angles, transmission_joints, transmission_range)
 from symlink.catalog import EXAMPLE_VALUES, fourbar, inverted_slider_crank, jansen, slider_crank, stephenson3, watt2

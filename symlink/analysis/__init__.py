@@ -18,10 +18,10 @@ Reachable input ranges and toggles live in :mod:`symlink.reachability` (their on
 """
 from __future__ import annotations
 
-import math
+import math  # noqa: F401 - the doctests' namespace
 
 from ..angles import wrap_angle
-from ..catalog import fourbar
+from ..catalog import fourbar  # noqa: F401 - the doctests' namespace
 from ..reachability import InputRange, Toggle, crank_range, reachable_range
 from .grashof import GRASHOF_CLASSES, Grashof, grashof
 from .limits import LimitPosition, LimitPositions, OutputLimits, limit_positions, output_limits

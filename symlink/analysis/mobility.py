@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..bodies import PRISMATIC, mechanism
-from ..catalog import fourbar
+from ..catalog import fourbar  # noqa: F401 - the doctests' namespace
 from ..linkage import Linkage
 
 __all__ = ["Mobility", "degrees_of_freedom"]

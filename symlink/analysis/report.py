@@ -12,7 +12,7 @@ class, and its transmission extremes from the closed form over the diagonal
 """
 from __future__ import annotations
 
-import math
+import math  # noqa: F401 - the doctests' namespace
 from dataclasses import dataclass
 from typing import Mapping
 
@@ -20,6 +20,7 @@ from ..angles import wrap_angle
 from ..catalog import fourbar
 from ..linkage import Linkage
 from ..reachability import SCAN_POINTS, InputMotion, InputRange, assembled_crank_range, reachable_range
+from ..solver import shared_solver
 from .grashof import grashof
 from .limits import OutputLimits, output_limits
 from .mobility import Mobility, degrees_of_freedom
@@ -116,6 +117,6 @@ def fourbar_report(a: float, b: float, c: float, d: float, branch: int = 1) -> d
 
 
 def _coupler(a: float, b: float, c: float, d: float, theta: float, branch: int) -> float:
-    from ..solver import shared_solver
+    """The four-bar's coupler angle at crank angle ``theta``."""
     solved = shared_solver(fourbar, ("coupler",))(theta=theta, a=a, b=b, c=c, d=d, branch=branch)
     return float(solved["coupler"])

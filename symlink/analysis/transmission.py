@@ -171,10 +171,9 @@ def transmission_joints(linkage: Linkage) -> tuple[TransmissionJoint, ...]:
             into, out = (first, second)
         elif (j + 1) % n == i:
             into, out = (second, first)
-        else:  # head to head: -into walks out of the joint as much as -out walks into it
+        else:  # not walked one after the other: taken to meet head to head, the second walked back out
             into, out = (first, second)
             out = type(out)(out.symbol, -out.sign, out.vector, out.part, out.offset)
-            into = type(into)(into.symbol, into.sign, into.vector, into.part, into.offset)
         joints.append(TransmissionJoint(step.loop.name, (into.sign, into.vector, into.symbol),
                                         (out.sign, out.vector, out.symbol)))
     return tuple(joints)

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import lru_cache
 from typing import Callable, Mapping
 
 import numpy
@@ -23,6 +22,7 @@ import sympy as sp
 
 from ..angles import wrap_angle
 from ..catalog import fourbar
+from ..cache import cache_key, cached_text
 from ..codegen.numpy import load_numpy_module, numpy_module
 from ..linkage import Linkage, Program
 from ..reachability import BISECTIONS, InputMotion, InputRange, reachable_range
@@ -124,18 +124,25 @@ class OutputLimits:
     time_ratio: float | None
 
 
-@lru_cache(maxsize=None)
+_OUTPUT_FUNCTIONS: dict[str, Callable[..., dict]] = {}
+
+
 def _output_function(linkage: Linkage, output: str) -> Callable[..., dict]:
-    """Generated code of an output and its time derivative from the coordinates and their rates."""
+    """Generated code of an output and its time derivative from the coordinates and their rates (kept by key)."""
     expr = linkage.output(output)
     if any(isinstance(s, sp.Symbol) and s.name.endswith("dot") and s not in linkage.coordinates
            for s in getattr(expr, "free_symbols", ())) or output == "singular":
         raise ValueError(f"{output!r} is not a position output of {linkage.name}; give a coordinate, role, "
                          "point coordinate or extra")
-    coordinates = linkage.coordinates
-    arguments = (tuple(coordinates) + tuple(rate(q) for q in coordinates) + tuple(linkage.parameters))
-    program = Program(arguments, (), {"value": expr, "rate": time_derivative(expr, coordinates)})
-    return load_numpy_module(numpy_module([("output", program, f"{linkage.name}: {output} and its rate.")]))["output"]
+    key = cache_key(linkage, [output], "output-and-rate")
+    if key not in _OUTPUT_FUNCTIONS:
+        def build() -> str:
+            coordinates = linkage.coordinates
+            arguments = tuple(coordinates) + tuple(rate(q) for q in coordinates) + tuple(linkage.parameters)
+            program = Program(arguments, (), {"value": expr, "rate": time_derivative(expr, coordinates)})
+            return numpy_module([("output", program, f"{linkage.name}: {output} and its rate.")])
+        _OUTPUT_FUNCTIONS[key] = load_numpy_module(cached_text(key, build))["output"]
+    return _OUTPUT_FUNCTIONS[key]
 
 
 def output_limits(linkage: Linkage, values: Mapping[str, float], output: str, *, input: str | None = None,

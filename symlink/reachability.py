@@ -482,7 +482,10 @@ def _closed_form_range(motion: InputMotion, low: float, high: float, points: int
     else:
         edges = _edges(inside, periodic)
         start = grid[edges]
-        end = start + step if periodic else grid[edges + 1]
+        # the next scan point itself (a turn later past the last), not start + step, which can round
+        # past a point where the linkage does not close
+        following = numpy.append(grid, grid[0] + 2 * math.pi) if periodic else grid
+        end = following[edges + 1]
         in_low, out_high = _bisect(assembled, start, end, inside[edges])
         rising = ~inside[edges]
         outside = numpy.where(rising, in_low, out_high)

@@ -17,14 +17,23 @@ turn and an empty list means the linkage closes at no input angle.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Callable, Mapping
 
 import numpy
 
-from .solver import check_lengths
+from .angles import wrap_angle
+from .cache import cache_key, cached_text
+from .closure import is_angle
+from .codegen.numpy import load_numpy_module, numpy_module
+from .linkage import Linkage, Program
+from .position import TOLERANCE, ClampedSqrt
+from .solver import NumericSolver, Solver, check_lengths
+from .vectors import rate
 
 __all__ = ["crank_range", "assembled_crank_range", "slider_crank_range", "inverted_slider_crank_range",
-           "fivebar_range", "scanned_range", "describe_spans", "reachable_turn", "turn_angles", "SCAN_POINTS", "TURN_SAMPLES"]
+           "fivebar_range", "scanned_range", "describe_spans", "reachable_turn", "turn_angles", "SCAN_POINTS", "TURN_SAMPLES",
+           "BISECTIONS", "Toggle", "InputRange", "InputMotion", "reachable_range"]
 
 #: Points a turn of the scan that finds a reachable crank range without a closed form.
 SCAN_POINTS = 3600
@@ -190,3 +199,406 @@ def describe_spans(spans: list[tuple[float, float]], units: str) -> str:
     if spans == [(-math.pi, math.pi)]:
         return "full turn"
     return ", ".join(f"[{convert(lo):.6g}, {convert(hi):.6g}] {units}" for lo, hi in spans)
+
+
+# --- any linkage with one input -----------------------------------------------------------
+
+#: Bisection steps that take a scan step (a tenth of a degree) down to rounding: 2^-60 of it.
+BISECTIONS = 60
+#: A root's argument, relative to its scale, at most this small at a local minimum inside the
+#: range: the loop passes through a toggle there (its branches meet) without leaving the range.
+TOUCH = 100 * TOLERANCE
+
+
+@dataclass(frozen=True)
+class Toggle:
+    """An input value where a loop's two assemblies meet: its root vanishes, its Jacobian is singular.
+
+    ``loop`` names the loop (None where a linkage without a closed form is found
+    singular by Newton's method); ``ends_range``: the input cannot go on (an end
+    of a span), else the linkage passes through it (a change point).
+    ``degenerate``: not a toggle of two assemblies but a direction the pose does not
+    fix (two points that coincide, parallel guides).
+    """
+
+    at: float
+    loop: str | None
+    ends_range: bool = True
+    degenerate: bool = False
+
+
+@dataclass(frozen=True)
+class InputRange:
+    """Where a one-input linkage can be assembled: closed intervals of its input, and its toggles.
+
+    ``exact``: every loop is in closed form and each end was bisected to rounding
+    on the sign of its root's argument; otherwise a scan of continuation by
+    Newton's method (from ``guess``), ends bisected the same way.  Spans of an
+    angle input lie in ``[-pi, pi)`` at their start and may end past ``pi``;
+    ``[(-pi, pi)]`` is a full turn.
+    """
+
+    input: str
+    spans: tuple[tuple[float, float], ...]
+    toggles: tuple[Toggle, ...]
+    exact: bool
+    periodic: bool
+
+    @property
+    def full_turn(self) -> bool:
+        return self.periodic and self.spans == ((-math.pi, math.pi),)
+
+
+class InputMotion:
+    """A one-input linkage at given values, evaluated at any input values: coordinates and rates.
+
+    The input's rate is 1, so the rates are derivatives with respect to the input.
+    Closed forms go straight to a generated :class:`~symlink.solver.Solver`; a
+    linkage without one is continued by Newton's method from ``guess`` (the
+    unknowns near the wanted assembly at the input value ``start``), each
+    requested input value solved from the nearest pose of a scan that
+    :func:`reachable_range` fills in (``numeric=True`` takes that way for any
+    linkage, to cross-check a closed form).
+
+    >>> from symlink.catalog import fourbar
+    >>> motion = InputMotion(fourbar(), dict(a=20, b=66, c=56, d=80))
+    >>> round(float(numpy.degrees(motion.at([0.0])["phi"][0])), 2)
+    110.74
+    """
+
+    def __init__(self, linkage: Linkage, values: Mapping[str, float], *, input: str | None = None,
+                 guess: Mapping[str, float] | None = None, start: float = 0.0, numeric: bool = False) -> None:
+        driven = [q.name for q in linkage.inputs]
+        self.input = driven[0] if input is None else input
+        if self.input not in driven:
+            raise ValueError(f"{linkage.name} has the inputs {', '.join(driven)}; not {self.input!r}")
+        held = [name for name in driven if name != self.input]
+        needed = [s.name for s in linkage.parameters] + held
+        missing = [name for name in needed if name not in values]
+        if missing:
+            raise ValueError(f"{linkage.name}: give a value for {', '.join(missing)}"
+                             + (f" (the inputs other than {self.input} are held still)" if held else ""))
+        allowed = set(needed) | {s.name for s in linkage.branches}
+        unexpected = sorted(set(values) - allowed)
+        if unexpected:
+            raise ValueError(f"{linkage.name} takes values for {', '.join(sorted(allowed))}; "
+                             f"not {', '.join(unexpected)}")
+        self.linkage = linkage
+        self.values = {name: float(value) for name, value in values.items()}
+        check_lengths(**{s.name: self.values[s.name] for s in linkage.parameters if s.is_positive})
+        for name, value in self.values.items():
+            if not math.isfinite(value):
+                raise ValueError(f"{name} must be finite, got {value}")
+            if name in {s.name for s in linkage.branches} and value not in (1.0, -1.0):
+                raise ValueError(f"{name} must be +1 or -1, got {value:g}")
+        symbol = next(q for q in linkage.inputs if q.name == self.input)
+        self.periodic = is_angle(linkage, symbol)
+        self.exact = linkage.has_closed_form and not numeric
+        self.names = [q.name for q in linkage.unknowns]
+        self.rates = [rate(q).name for q in linkage.unknowns]
+        self.speeds = {rate(q).name: (1.0 if q.name == self.input else 0.0) for q in linkage.inputs}
+        if self.exact:
+            if guess is not None:
+                raise ValueError(f"{linkage.name} is solved in closed form: give branch signs, not a guess")
+            self._solver = Solver(linkage, self.names + self.rates)
+        else:
+            if guess is None:
+                raise ValueError(f"{linkage.name} has no closed form: give a guess of "
+                                 f"{', '.join(self.names)} at {self.input} = {start:g}")
+            self._numeric = NumericSolver(linkage)
+            self.guess = dict(guess)
+            self.start = float(start)
+            self._scan: tuple[numpy.ndarray, numpy.ndarray] | None = None  # inputs, unknowns of the scan
+
+    def _arguments(self) -> dict[str, float]:
+        arguments = {name: value for name, value in self.values.items()}
+        if self.exact:
+            arguments.update(self.speeds)
+        return arguments
+
+    def at(self, inputs) -> dict[str, numpy.ndarray]:
+        """Unknowns and their rates (by name) and ``assembled`` at ``inputs``; NaN where not assembled."""
+        inputs = numpy.atleast_1d(numpy.asarray(inputs, dtype=float))
+        if self.exact:
+            found = self._solver(**{self.input: inputs}, **self._arguments())
+            return {name: numpy.asarray(found[name]) for name in self.names + self.rates + ["assembled"]}
+        if self._scan is None:
+            raise ValueError("scan the linkage first (reachable_range) to solve it at any input")
+        grid, poses = self._scan
+        result = {name: numpy.full(inputs.shape, numpy.nan) for name in self.names + self.rates}
+        result["assembled"] = numpy.zeros(inputs.shape, dtype=bool)
+        if inputs.size > 2:  # a sweep: continue along it in one go from the scan's pose nearest its start
+            nearest = int(numpy.argmin(numpy.abs(grid - inputs[0])))
+            solved = self._sweep(numpy.concatenate([grid[nearest:nearest + 1], inputs]), poses[nearest])
+            if solved is not None:
+                for name in self.names + self.rates:
+                    result[name] = numpy.asarray(solved[name])[1:]
+                result["assembled"][:] = True
+                return result
+        for k, value in enumerate(inputs):
+            nearest = int(numpy.argmin(numpy.abs(grid - value)))
+            solved = self._sweep(numpy.array([grid[nearest], value]), poses[nearest])
+            if solved is not None:
+                for name in self.names + self.rates:
+                    result[name][k] = solved[name][-1]
+                result["assembled"][k] = True
+        return result
+
+    def _sweep(self, inputs: numpy.ndarray, guess) -> dict[str, numpy.ndarray] | None:
+        """Newton's continuation along ``inputs`` from ``guess``; None where it fails on the way."""
+        held = {q.name: self.values[q.name] for q in self.linkage.inputs if q.name != self.input}
+        if held:
+            inputs_of = {self.input: inputs, **{k: numpy.full(inputs.shape, v) for k, v in held.items()}}
+        else:
+            inputs_of = {self.input: inputs}
+        parameters = {s.name: self.values[s.name] for s in self.linkage.parameters}
+        try:
+            with numpy.errstate(all="ignore"):
+                return self._numeric(guess=guess, **inputs_of, **parameters, **self.speeds)
+        except ValueError:
+            return None
+
+
+def _margin_function(linkage: Linkage) -> tuple[Callable[..., dict], list[tuple[str, str]]]:
+    """Generated code of every clamped root's argument over its scale (plus rounding), and their loops.
+
+    A root's margin (``margin_k``) is ``x / scale + TOLERANCE``: the loop closes
+    where it is not negative.  A guard's (``guard_k``: a length that must not
+    vanish) is its argument less the square of TOLERANCE.  Later loops'
+    margins are NaN where an earlier loop does not close.
+    """
+    plan_steps = linkage.plan
+    roots = [(step.loop.name, symbol, expr) for step in plan_steps for symbol, expr in step.intermediates.items()
+             if isinstance(expr, ClampedSqrt)]
+    names = [f"margin_{k}" if not expr.args[1].is_negative else f"guard_{k}" for k, (_, _, expr) in enumerate(roots)]
+    key = cache_key(linkage, names, "root-margins")
+    if key not in _MARGINS:
+        def build() -> str:
+            base = linkage.program([q.name for q in linkage.unknowns])
+            # A guard (negative scale) is NaN below TOLERANCE^2: its margin is the argument past that.
+            margins = {name: (expr.args[0] / expr.args[1] + TOLERANCE if name.startswith("margin")
+                              else expr.args[0] + TOLERANCE * expr.args[1]) for name, (_, _, expr) in zip(names, roots)}
+            program = Program(base.arguments, base.assignments, margins, base.defaults)
+            return numpy_module([("margins", program, f"{linkage.name}: the margins of its clamped roots.")])
+        _MARGINS[key] = load_numpy_module(cached_text(key, build))["margins"]
+    return _MARGINS[key], [(name, loop) for name, (loop, _, _) in zip(names, roots)]
+
+
+_MARGINS: dict[str, Callable[..., dict]] = {}
+
+
+def _edges(inside: numpy.ndarray, periodic: bool) -> numpy.ndarray:
+    """Indices i where the mask changes between grid points i and i + 1 (and around, if periodic)."""
+    if periodic:
+        return numpy.flatnonzero(inside != numpy.roll(inside, -1))
+    return numpy.flatnonzero(inside[:-1] != inside[1:])
+
+
+def _bisect(test: Callable[[numpy.ndarray], numpy.ndarray], low: numpy.ndarray, high: numpy.ndarray,
+            low_value: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
+    """Bisect brackets [low, high] where ``test`` changes from ``low_value``, to rounding."""
+    for _ in range(BISECTIONS):
+        middle = 0.5 * (low + high)
+        same = numpy.asarray(test(middle), dtype=bool) == low_value
+        low, high = numpy.where(same, middle, low), numpy.where(same, high, middle)
+    return low, high
+
+
+def _spans_from_marks(marks: list[tuple[float, bool]], periodic: bool, first: float, last: float):
+    """Closed intervals from sorted (boundary, rising) marks."""
+    if periodic and not marks[0][1]:  # the first interval began before the scan: start it a turn earlier
+        marks = marks[1:] + [(marks[0][0] + 2 * math.pi, False)]
+    if not periodic:
+        if not marks[0][1]:
+            marks = [(first, True)] + marks
+        if marks[-1][1]:
+            marks = marks + [(last, False)]
+    return [(start, end) for (start, _), (end, _) in zip(marks[::2], marks[1::2])]
+
+
+def reachable_range(linkage: Linkage, values: Mapping[str, float], *, input: str | None = None,
+                    guess: Mapping[str, float] | None = None, start: float = 0.0,
+                    interval: tuple[float, float] | None = None, points: int = SCAN_POINTS,
+                    motion: InputMotion | None = None, numeric: bool = False) -> InputRange:
+    """Where a linkage with one moving input can be assembled, and its toggles.
+
+    ``values`` by name: every parameter, any branch sign (+1 default) and the
+    other inputs (held still).  In closed form, where every loop's clamped root
+    has a non-negative argument: a scan of ``points`` input values, each edge
+    bisected to rounding, the loop whose root goes negative named at each end,
+    and a root that only touches zero inside the range named as a toggle there
+    too.  Without a closed form, Newton's continuation from ``guess`` (the
+    unknowns at input ``start``) forward and back, each failure bisected: the
+    span of the assembly the guess is on.  An angle input is scanned over a
+    turn; a length input over ``interval`` (required).  ``numeric=True``
+    continues by Newton's method even where a closed form exists; ``motion``
+    reuses an :class:`InputMotion` of the same linkage and values.
+
+    >>> from symlink.catalog import slider_crank
+    >>> found = reachable_range(slider_crank(), dict(a=2.0, b=1.0, offset=0.0))
+    >>> [tuple(round(math.degrees(x), 9) for x in span) for span in found.spans]
+    [(-30.0, 30.0), (150.0, 210.0)]
+    >>> [t.loop for t in found.toggles]
+    ['ABC', 'ABC', 'ABC', 'ABC']
+    """
+    if motion is None:
+        motion = InputMotion(linkage, values, input=input, guess=guess, start=start, numeric=numeric)
+    if motion.periodic:
+        low, high = (-math.pi, math.pi) if interval is None else interval
+    elif interval is None:
+        raise ValueError(f"{motion.input} is a length: give the interval to search it over")
+    else:
+        low, high = interval
+    if not (math.isfinite(low) and math.isfinite(high) and low < high):
+        raise ValueError(f"the interval must be two finite numbers, low < high; got {interval}")
+    if points < 4:
+        raise ValueError(f"scan at least 4 points, got {points}")
+    if motion.exact:
+        return _closed_form_range(motion, low, high, points)
+    return _continued_range(motion, low, high, points)
+
+
+def _closed_form_range(motion: InputMotion, low: float, high: float, points: int) -> InputRange:
+    periodic = motion.periodic and (low, high) == (-math.pi, math.pi)
+    margins, roots = _margin_function(motion.linkage)
+    arguments = {k: v for k, v in motion.values.items()}
+
+    def margin_values(inputs: numpy.ndarray) -> dict[str, numpy.ndarray]:
+        with numpy.errstate(all="ignore"):
+            return margins(**{motion.input: inputs}, **arguments)
+
+    def assembled(inputs: numpy.ndarray) -> numpy.ndarray:
+        return numpy.asarray(margin_values(inputs)["assembled"], dtype=bool)
+
+    step = (high - low) / points
+    grid = low + step * numpy.arange(points + (0 if periodic else 1))
+    found = margin_values(grid)
+    inside = numpy.asarray(found["assembled"], dtype=bool)
+    toggles = _touching_toggles(margin_values, roots, grid, found, step, periodic)
+    if inside.all():
+        spans = [(low, high)]
+    elif not inside.any():
+        spans = []
+    else:
+        edges = _edges(inside, periodic)
+        start = grid[edges]
+        # the next scan point itself (a turn later past the last), not start + step, which can round
+        # past a point where the linkage does not close
+        following = numpy.append(grid, grid[0] + 2 * math.pi) if periodic else grid
+        end = following[edges + 1]
+        in_low, out_high = _bisect(assembled, start, end, inside[edges])
+        rising = ~inside[edges]
+        outside = numpy.where(rising, in_low, out_high)
+        beyond = margin_values(outside)
+        bounds = []
+        for k in range(len(edges)):
+            name, loop = next(((name, loop) for name, loop in roots if beyond[name][k] < 0), (None, None))
+            at_low, at_high = in_low[k:k + 1], out_high[k:k + 1]
+            if name is not None and name.startswith("margin"):
+                # The clamp takes rounding below zero as the toggle itself; the toggle is where the
+                # root's argument changes sign: bisect that, from the scan's bracket.
+                def closes(inputs, name=name):
+                    return margin_values(inputs)[name] - TOLERANCE >= 0
+                at_low, at_high = _bisect(closes, start[k:k + 1], end[k:k + 1], numpy.array([inside[edges][k]]))
+            at = float(at_high[0] if rising[k] else at_low[0])  # the reachable side of the edge
+            bounds.append(at)
+            toggles.append(Toggle(at, loop, True, name is None or name.startswith("guard")))
+        marks = sorted(zip(bounds, rising.tolist()))
+        spans = _spans_from_marks(marks, periodic, float(grid[0]), float(grid[-1]))
+    toggles.sort(key=lambda t: t.at)
+    return InputRange(motion.input, tuple(spans), tuple(toggles), True, motion.periodic)
+
+
+def _touching_toggles(margin_values, roots, grid, found, step, periodic) -> list[Toggle]:
+    """Toggles inside the range: a root's margin with a local minimum that reaches zero (within TOUCH)."""
+    toggles = []
+    for name, loop in roots:
+        if not name.startswith("margin"):
+            continue
+        margin = numpy.asarray(found[name], dtype=float)
+        before, after = numpy.roll(margin, 1), numpy.roll(margin, -1)
+        lowest = (margin <= before) & (margin <= after) & (margin >= 0) & (margin < 1e-3)
+        if not periodic:  # the ends of an interval are no minimum inside it
+            lowest[[0, -1]] = False
+        for i in numpy.flatnonzero(lowest):
+            left, right = float(grid[i] - step), float(grid[i] + step)
+            for _ in range(BISECTIONS):  # golden-section search for the minimum
+                one = right - 0.618 * (right - left)
+                two = left + 0.618 * (right - left)
+                values = margin_values(numpy.array([one, two]))[name]
+                if values[0] <= values[1]:
+                    right = two
+                else:
+                    left = one
+            tried = numpy.array([0.5 * (left + right), grid[i]])  # the scan's own point may be the exact one
+            margins = margin_values(tried)[name]
+            best = int(numpy.argmin(margins))
+            if margins[best] <= TOUCH:
+                at = float(tried[best])
+                toggles.append(Toggle(wrap_angle(at) if periodic else at, loop, False))
+    return toggles
+
+
+def _continued_range(motion: InputMotion, low: float, high: float, points: int) -> InputRange:
+    """The span of the guessed assembly: continued forward and back from ``start`` until Newton fails."""
+    step = (high - low) / points
+    start = motion.start
+    if motion.periodic:
+        length = points + 1
+        forward, backward = start + step * numpy.arange(length), start - step * numpy.arange(length)
+    else:
+        if not low <= start <= high:
+            raise ValueError(f"the guess is at {motion.input} = {start:g}, outside the interval [{low:g}, {high:g}]")
+        forward = numpy.append(numpy.arange(start, high, step), high)
+        backward = numpy.append(numpy.arange(start, low, -step), low)
+    first = motion._sweep(forward[:1], motion.guess)
+    if first is None:
+        raise ValueError(f"{motion.linkage.name} cannot be assembled near the guess at {motion.input} = {start:g}")
+    poses: dict[float, numpy.ndarray] = {}
+    ends = []
+    for path in (forward, backward):
+        good, solved = _longest_sweep(motion, path)
+        for k in range(good):
+            poses[float(path[k])] = numpy.array([solved[name][k] for name in motion.names])
+        if good == len(path):
+            ends.append((float(path[-1]), None))
+            continue
+        last = numpy.array([solved[name][good - 1] for name in motion.names])
+
+        def solvable(inputs, last=last, at=float(path[good - 1])):
+            return numpy.array([motion._sweep(numpy.array([at, x]), last) is not None for x in inputs])
+
+        inside, _ = _bisect(solvable, numpy.array([path[good - 1]]), numpy.array([path[good]]), numpy.array([True]))
+        ends.append((float(inside[0]), Toggle(float(inside[0]), None)))
+    grid = numpy.array(sorted(poses))
+    motion._scan = (grid, numpy.array([poses[x] for x in grid]))
+    (high_end, high_toggle), (low_end, low_toggle) = ends
+    toggles = tuple(t for t in (low_toggle, high_toggle) if t is not None)
+    if motion.periodic and high_toggle is None and low_toggle is None:
+        spans = ((-math.pi, math.pi),)
+    elif motion.periodic and (high_toggle is None or low_toggle is None):
+        spans = ((-math.pi, math.pi),)  # continued a whole turn one way: the input turns fully
+        toggles = ()
+    else:
+        shift = 0.0
+        if motion.periodic:
+            shift = 2 * math.pi * math.floor((low_end + math.pi) / (2 * math.pi))
+        spans = ((low_end - shift, high_end - shift),)
+        toggles = tuple(Toggle(t.at - shift, None) for t in toggles)
+    return InputRange(motion.input, spans, toggles, False, motion.periodic)
+
+
+def _longest_sweep(motion: InputMotion, path: numpy.ndarray) -> tuple[int, dict | None]:
+    """How many points of ``path`` continuation solves from the guess (binary search), and their solution."""
+    whole = motion._sweep(path, motion.guess)
+    if whole is not None:
+        return len(path), whole
+    good, bad, solved = 1, len(path), motion._sweep(path[:1], motion.guess)
+    while bad - good > 1:
+        middle = (good + bad) // 2
+        attempt = motion._sweep(path[:middle], motion.guess)
+        if attempt is None:
+            bad = middle
+        else:
+            good, solved = middle, attempt
+    return good, solved

@@ -1,0 +1,214 @@
+"""Limit positions: where an output stops and turns back as the input moves on (its rate vanishes).
+
+* :func:`limit_positions`: a four-bar's rocker extremes in closed form (crank and
+  coupler in line), with the rocker's stroke and the crank-rocker's time ratio;
+* :func:`output_limits`: the same for any output of any one-input linkage, found
+  where the output's rate with respect to the input changes sign (a scan of the
+  reachable range, each change bisected to rounding).  They are the dead
+  centres of the linkage driven from that output: there it cannot move the input.
+
+>>> limits = limit_positions(16.0843, 69.9385, 50, 70)
+>>> round(math.degrees(limits.stroke), 2), round(limits.time_ratio, 3)
+(40.0, 1.115)
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable, Mapping
+
+import numpy
+import sympy as sp
+
+from ..angles import wrap_angle
+from ..catalog import fourbar
+from ..cache import cache_key, cached_text
+from ..codegen.numpy import load_numpy_module, numpy_module
+from ..linkage import Linkage, Program
+from ..reachability import BISECTIONS, InputMotion, InputRange, reachable_range
+from ..scene import angle_outputs
+from ..solver import check_lengths, shared_solver
+from ..vectors import rate, time_derivative
+from .transmission import triangle_angle
+
+__all__ = ["LimitPositions", "limit_positions", "LimitPosition", "OutputLimits", "output_limits"]
+
+
+@dataclass(frozen=True)
+class LimitPositions:
+    """The rocker's extreme positions, where crank and coupler are in line (radians).
+
+    ``extended``: the crank points along the coupler (|AC| = a + b); ``folded``: the
+    crank points back along it.  Angles of crank and rocker in each, on ``branch``.
+    """
+
+    branch: int
+    extended_crank: float
+    extended_rocker: float
+    folded_crank: float
+    folded_rocker: float
+
+    @property
+    def stroke(self) -> float:
+        """The rocker's swing between its extremes."""
+        return abs(wrap_angle(self.folded_rocker - self.extended_rocker))
+
+    @property
+    def crank_turns(self) -> tuple[float, float]:
+        """Crank rotation (counter-clockwise) from extended to folded, and back to extended."""
+        forward = (self.folded_crank - self.extended_crank) % (2 * math.pi)
+        return forward, 2 * math.pi - forward
+
+    @property
+    def time_ratio(self) -> float:
+        """Slow stroke over quick stroke at constant crank speed (1 or more)."""
+        forward, back = self.crank_turns
+        return max(forward, back) / min(forward, back)
+
+
+def limit_positions(a: float, b: float, c: float, d: float, branch: int = 1) -> LimitPositions:
+    """The limit positions of a four-bar on ``branch``, with its stroke and time ratio.
+
+    Crank and coupler are in line when ``|AC|`` is ``a + b`` (extended) or ``|b - a|``
+    (folded); the triangle A, D, C then gives the crank angle in closed form (on branch
+    +1, C lies above the ground line when b > a) and the generated solver gives the rocker
+    angle there.  ``ValueError`` if either limit position cannot be assembled (the rocker
+    of such a linkage stops at toggles instead: see :func:`crank_range`).
+    """
+    check_lengths(crank=a, coupler=b, rocker=c, ground=d)
+    if branch not in (1, -1):
+        raise ValueError(f"branch must be +1 or -1, got {branch}")
+    if a == b:
+        raise ValueError("crank and coupler are equally long: the folded limit puts C on A")
+    crank = []
+    for reach, folded in ((a + b, False), (abs(b - a), True)):
+        angle = float(triangle_angle(c, reach, d))  # at A, between A->D and A->C
+        if math.isnan(angle):
+            kind = "folded" if folded else "extended"
+            raise ValueError(f"the {kind} limit position (|AC| = {reach:g}) cannot be assembled with "
+                             f"rocker {c:g} and ground {d:g}")
+        # C above the ground line is branch +1, except when folded with a > b, where C is on the crank.
+        side = -branch if folded and a > b else branch
+        crank.append(wrap_angle(side * angle + (math.pi if folded and b > a else 0.0)))
+    solved = shared_solver(fourbar, ("rocker",))(theta=numpy.array(crank), a=a, b=b, c=c, d=d, branch=branch)
+    rocker = [float(value) for value in solved["rocker"]]
+    return LimitPositions(branch, crank[0], rocker[0], crank[1], rocker[1])
+
+
+
+
+# --- any output of any one-input linkage --------------------------------------------------
+
+@dataclass(frozen=True)
+class LimitPosition:
+    """An output's extreme: at input ``at`` it reaches ``value`` (``"maximum"`` or ``"minimum"``) and turns back."""
+
+    at: float
+    value: float
+    kind: str
+
+
+@dataclass(frozen=True)
+class OutputLimits:
+    """The limit positions of one output over the reachable input range, in input order.
+
+    ``stroke`` (the output's travel between them) and ``time_ratio`` (slow
+    stroke over quick stroke at constant input speed) are given when the input
+    turns fully and the output has exactly two limits; otherwise None.
+    """
+
+    output: str
+    angle: bool
+    positions: tuple[LimitPosition, ...]
+    stroke: float | None
+    time_ratio: float | None
+
+
+_OUTPUT_FUNCTIONS: dict[str, Callable[..., dict]] = {}
+
+
+def _output_function(linkage: Linkage, output: str) -> Callable[..., dict]:
+    """Generated code of an output and its time derivative from the coordinates and their rates (kept by key)."""
+    expr = linkage.output(output)
+    if any(isinstance(s, sp.Symbol) and s.name.endswith("dot") and s not in linkage.coordinates
+           for s in getattr(expr, "free_symbols", ())) or output == "singular":
+        raise ValueError(f"{output!r} is not a position output of {linkage.name}; give a coordinate, role, "
+                         "point coordinate or extra")
+    key = cache_key(linkage, [output], "output-and-rate")
+    if key not in _OUTPUT_FUNCTIONS:
+        def build() -> str:
+            coordinates = linkage.coordinates
+            arguments = tuple(coordinates) + tuple(rate(q) for q in coordinates) + tuple(linkage.parameters)
+            program = Program(arguments, (), {"value": expr, "rate": time_derivative(expr, coordinates)})
+            return numpy_module([("output", program, f"{linkage.name}: {output} and its rate.")])
+        _OUTPUT_FUNCTIONS[key] = load_numpy_module(cached_text(key, build))["output"]
+    return _OUTPUT_FUNCTIONS[key]
+
+
+def output_limits(linkage: Linkage, values: Mapping[str, float], output: str, *, input: str | None = None,
+                  reach: InputRange | None = None, motion: InputMotion | None = None,
+                  points: int = 3600) -> OutputLimits:
+    """Where ``output`` reaches its extremes as the input moves over its reachable range (radians).
+
+    The output's rate with respect to the input (its time derivative at unit
+    input speed, by the chain rule through the solved rates) changes sign
+    there; each change on a scan of ``points`` over a turn is bisected to
+    rounding.  ``values`` as for :func:`~symlink.reachability.reachable_range`.
+
+    >>> from symlink.catalog import slider_crank
+    >>> found = output_limits(slider_crank(), dict(a=1.0, b=3.0, offset=0.0), "slider")
+    >>> [(round(p.at, 12) + 0.0, round(p.value, 12), p.kind) for p in found.positions], round(found.stroke, 12)
+    ([(0.0, 4.0, 'maximum'), (3.14159265359, 2.0, 'minimum')], 2.0)
+    """
+    motion = InputMotion(linkage, values, input=input) if motion is None else motion
+    reach = reachable_range(linkage, values, motion=motion) if reach is None else reach
+    function = _output_function(linkage, output)
+    held = {q.name: motion.values[q.name] for q in linkage.inputs if q.name != motion.input}
+    parameters = {s.name: motion.values[s.name] for s in linkage.parameters}
+
+    def value_and_rate(inputs: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
+        solved = motion.at(inputs)
+        arguments = {name: solved[name] for name in motion.names + motion.rates}
+        arguments.update({motion.input: inputs, **held, **parameters})
+        arguments.update({rate(q).name: (1.0 if q.name == motion.input else 0.0) for q in linkage.inputs})
+        with numpy.errstate(all="ignore"):
+            found = function(**arguments)
+        return numpy.asarray(found["value"], dtype=float), numpy.asarray(found["rate"], dtype=float)
+
+    positions = []
+    for low, high in reach.spans:
+        grid = numpy.linspace(low, high, max(8, int(points * (high - low) / (2 * math.pi))))
+        if reach.full_turn:
+            grid = grid[:-1]  # a turn: the last point is the first
+        _, slope = value_and_rate(grid)
+        ahead = numpy.roll(slope, -1) if reach.full_turn else slope[1:]
+        here = slope if reach.full_turn else slope[:-1]
+        turns = numpy.flatnonzero(numpy.isfinite(here) & numpy.isfinite(ahead) & (here != 0)
+                                  & (numpy.sign(here) != numpy.sign(ahead)))
+        for i in turns.tolist():
+            left = float(grid[i])
+            right = float(grid[i + 1]) if i + 1 < len(grid) else float(grid[0] + 2 * math.pi)
+            rising = bool(here[i] > 0)
+            for _ in range(BISECTIONS):
+                middle = 0.5 * (left + right)
+                middle_rate = float(value_and_rate(numpy.array([middle]))[1][0])
+                if middle_rate == 0:
+                    left = right = middle
+                    break
+                if (middle_rate > 0) == rising:
+                    left = middle
+                else:
+                    right = middle
+            at = wrap_angle(left) if reach.full_turn else left
+            value = float(value_and_rate(numpy.array([at]))[0][0])
+            positions.append(LimitPosition(at, value, "maximum" if rising else "minimum"))
+    positions.sort(key=lambda p: p.at)
+    angle = output in angle_outputs(linkage, [output])
+    stroke = time_ratio = None
+    if reach.full_turn and len(positions) == 2:
+        first, second = positions
+        travel = second.value - first.value
+        stroke = abs(wrap_angle(travel)) if angle else abs(travel)
+        forward = (second.at - first.at) % (2 * math.pi)
+        time_ratio = max(forward, 2 * math.pi - forward) / min(forward, 2 * math.pi - forward)
+    return OutputLimits(output, angle, tuple(positions), stroke, time_ratio)

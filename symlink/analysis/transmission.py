@@ -1,0 +1,302 @@
+"""The transmission angle: of a four-bar in closed form, and of every two-angle or rod-and-slider loop of any linkage.
+
+A loop whose two unknowns are angles (case 3) closes a triangle: its two
+unknown vectors meet at a joint (C of the four-bar), and the transmission
+angle is the interior angle there, in [0, pi]: 0 or pi at a toggle, where the
+loop locks, and best near pi/2.  The four-bar's is the angle at C between
+coupler and rocker (:func:`transmission_range`, :func:`transmission_curve`,
+from the triangle over the diagonal BD); :func:`loop_transmissions` finds it
+for each such loop of any one-input linkage over its reachable range, and
+for each loop where a rod drives a slider (case 2b) the angle between the rod
+and the normal of the guide.  A slider on a turning guide (cases 2a, 2c)
+pushes normal to it whatever the input: it has no transmission angle to watch.
+
+>>> [round(math.degrees(x), 2) for x in transmission_curve(20, 66, 56, 80, [0.0, math.pi])]
+[58.23, 109.83]
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Mapping
+
+import numpy
+import sympy as sp
+
+from ..angles import wrap, wrap_angle
+from ..catalog import fourbar
+from ..linkage import Linkage
+from ..position import TOLERANCE
+from ..reachability import BISECTIONS, InputMotion, InputRange, assembled_crank_range, reachable_range
+from ..solver import check_lengths, shared_solver
+from ..vectors import Vector
+
+__all__ = ["triangle_angle", "TransmissionRange", "transmission_range", "transmission_curve",
+           "TransmissionJoint", "transmission_joints", "transmission_angles", "LoopTransmission",
+           "loop_transmissions"]
+
+
+def triangle_angle(opposite, side1, side2):
+    """The angle between ``side1`` and ``side2`` of a triangle, accurate when it is flat.
+
+    ``atan2`` of Heron's product and the law of cosines, so that angles near 0 and pi
+    keep their digits; NaN where the three lengths make no triangle (beyond rounding).
+    Broadcasts over arrays.
+
+    >>> float(numpy.degrees(triangle_angle(5.0, 3.0, 4.0)))
+    90.0
+    """
+    opposite, side1, side2 = (numpy.asarray(x, dtype=float) for x in (opposite, side1, side2))
+    product = ((side1 + side2 + opposite) * (side1 + side2 - opposite)
+               * (opposite + side1 - side2) * (opposite - side1 + side2))
+    product = numpy.where(product >= -TOLERANCE * (side1 + side2 + opposite) ** 4, numpy.maximum(product, 0.0),
+                          numpy.nan)
+    return numpy.arctan2(numpy.sqrt(product), side1 * side1 + side2 * side2 - opposite * opposite)
+
+
+
+@dataclass(frozen=True)
+class TransmissionRange:
+    """Smallest and largest transmission angle over the reachable crank angles, and where (radians)."""
+
+    minimum: float
+    minimum_at: float
+    maximum: float
+    maximum_at: float
+
+    @property
+    def worst(self) -> float:
+        """The smallest of ``min(mu, pi - mu)``: how close the linkage comes to locking."""
+        return min(self.minimum, math.pi - self.maximum)
+
+
+def transmission_range(a: float, b: float, c: float, d: float) -> TransmissionRange:
+    """Extremes of the transmission angle mu over every crank angle the four-bar reaches.
+
+    ``|BD|^2 = b^2 + c^2 - 2 b c cos(mu) = a^2 + d^2 - 2 a d cos(theta)``: mu grows with
+    |BD|, which falls with cos(theta).  So mu is smallest at theta = 0 and largest at
+    theta = pi when the crank gets there, and otherwise at the ends of the crank's range
+    (the toggles, where mu is 0 or pi).  It is the same on both branches; the generated
+    solver evaluates it at those crank angles.
+    """
+    spans = assembled_crank_range(a, b, c, d)
+    candidates: dict[float, float] = {}
+    reachable = [x for x in (0.0, math.pi) if any(lo <= x <= hi or lo <= x - 2 * math.pi <= hi
+                                                  for lo, hi in spans)]
+    if reachable:
+        solved = shared_solver(fourbar, ("transmission",))(theta=numpy.array(reachable), a=a, b=b, c=c, d=d, branch=1)
+        candidates.update(zip(reachable, (float(mu) for mu in solved["transmission"])))
+    if spans != [(-math.pi, math.pi)]:
+        far = math.acos(max((a * a + d * d - (b + c) ** 2) / (2 * a * d), -1.0))
+        for lo, hi in spans:  # toggles: coupler and rocker in line
+            for end in (lo, hi):
+                candidates.setdefault(wrap_angle(end), math.pi if math.isclose(abs(wrap_angle(end)), far) else 0.0)
+    low = min(candidates, key=candidates.__getitem__)
+    high = max(candidates, key=candidates.__getitem__)
+    return TransmissionRange(candidates[low], low, candidates[high], high)
+
+
+def transmission_curve(a: float, b: float, c: float, d: float, theta) -> numpy.ndarray:
+    """The transmission angle (radians) at crank angles ``theta``, NaN where it cannot be assembled.
+
+    >>> [round(math.degrees(x), 2) for x in transmission_curve(20, 66, 56, 80, [0.0, math.pi])]
+    [58.23, 109.83]
+    """
+    check_lengths(crank=a, coupler=b, rocker=c, ground=d)
+    solved = shared_solver(fourbar, ("transmission",))(theta=numpy.asarray(theta, dtype=float), a=a, b=b, c=c, d=d,
+                                                branch=1)
+    return numpy.where(solved["assembled"], solved["transmission"], numpy.nan)
+
+
+# --- any linkage ----------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class TransmissionJoint:
+    """The joint of a two-angle loop: the loop, and its two unknown vectors as walked into and out of it.
+
+    ``into`` and ``out`` are ``(sign, vector, unknown)``: walking the loop's terms
+    in order (a negative sign walks a vector backwards), ``into`` ends at the
+    joint and ``out`` starts there; the interior angle at the joint is the angle
+    between ``-into`` and ``out``.
+
+    ``guide``: a rod driving a slider (case 2b: ``into`` is the slider's travel,
+    ``out`` the rod).  The guide acts as a rocker of infinite length at right
+    angles to it, so the transmission angle is the angle between the rod and
+    the normal of the guide (turned a quarter turn counter-clockwise from the
+    travel's own direction), in [0, pi]: pi/2 with the rod along the guide.
+    """
+
+    loop: str
+    into: tuple[int, Vector, sp.Symbol]
+    out: tuple[int, Vector, sp.Symbol]
+    guide: bool = False
+
+    @property
+    def name(self) -> str:
+        """The joint, in the vectors' names: ``BC/DC``."""
+        return f"{self.into[1].name or self.into[2]}/{self.out[1].name or self.out[2]}"
+
+
+def transmission_joints(linkage: Linkage) -> tuple[TransmissionJoint, ...]:
+    """The joint of every loop whose two unknowns are angles (case 3), in plan order.
+
+    The two unknown vectors follow each other in the loop's terms (cyclically)
+    when the loop is written in walking order, as every catalog loop is; if they
+    do not, they are taken to meet head to head, as coupler and rocker do at C.
+
+    >>> [(j.loop, j.name) for j in transmission_joints(fourbar())]
+    [('ABCD', 'DC/BC')]
+    """
+    joints = []
+    if not linkage.has_closed_form:  # every loop has more than two unknowns: none closes a triangle alone
+        return ()
+    for step in linkage.plan:
+        if step.case.name == "2b":
+            travel, rod = ((step.case.first, step.case.second) if step.case.first.part == "length"
+                           else (step.case.second, step.case.first))
+            joints.append(TransmissionJoint(step.loop.name, (1, travel.vector, travel.symbol),
+                                            (1, rod.vector, rod.symbol), guide=True))
+            continue
+        if step.case.name != "3":
+            continue
+        first, second = step.case.first, step.case.second
+        terms = list(step.loop.terms)
+        where = {}
+        for unknown in (first, second):
+            where[unknown.symbol] = next(k for k, (sign, vector) in enumerate(terms)
+                                         if vector == unknown.vector and sign == unknown.sign)
+        i, j = where[first.symbol], where[second.symbol]
+        n = len(terms)
+        if (i + 1) % n == j:
+            into, out = (first, second)
+        elif (j + 1) % n == i:
+            into, out = (second, first)
+        else:  # not walked one after the other: taken to meet head to head, the second walked back out
+            into, out = (first, second)
+            out = type(out)(out.symbol, -out.sign, out.vector, out.part, out.offset)
+        joints.append(TransmissionJoint(step.loop.name, (into.sign, into.vector, into.symbol),
+                                        (out.sign, out.vector, out.symbol)))
+    return tuple(joints)
+
+
+def _direction(sign: int, vector: Vector, values: Mapping[str, float], solved: Mapping[str, numpy.ndarray]):
+    """The walked direction of a vector (radians) and its rate, from solved coordinates and values."""
+    angle = vector.angle
+    numbers = {s: values[s.name] for s in angle.free_symbols if s.name in values}
+    moving = [s for s in angle.free_symbols if s.name not in values]
+    if len(moving) > 1 or (moving and sp.diff(angle, moving[0]) != 1):
+        raise ValueError(f"the angle of {vector.name or vector} is not a coordinate plus a constant")
+    flip = 0.0 if sign > 0 else math.pi
+    if vector.length.free_symbols <= {s for s in vector.length.free_symbols if s.name in values}:
+        length = vector.length.subs({s: values[s.name] for s in vector.length.free_symbols})
+        flip += math.pi if float(length) < 0 else 0.0
+    if not moving:  # a guide at a fixed angle
+        return numpy.full(numpy.shape(solved["assembled"]), float(angle.subs(numbers)) + flip), 0.0
+    q = moving[0]
+    offset = float((angle - q).subs(numbers))
+    return solved[q.name] + offset + flip, solved[q.name + "dot"]
+
+
+def _interior(joint: TransmissionJoint, values, solved) -> tuple[numpy.ndarray, numpy.ndarray]:
+    """The interior angle at the joint, in [0, pi], and its derivative with respect to the input."""
+    into, into_rate = _direction(*joint.into[:2], values, solved)
+    out, out_rate = _direction(*joint.out[:2], values, solved)
+    turn = wrap(out - (into + (math.pi / 2 if joint.guide else math.pi)))  # from -into (or the normal) to out
+    with numpy.errstate(invalid="ignore"):  # rates are not finite at a toggle
+        return numpy.abs(turn), numpy.sign(turn) * (out_rate - into_rate)
+
+
+def transmission_angles(linkage: Linkage, values: Mapping[str, float], inputs, *, input: str | None = None,
+                        motion: InputMotion | None = None) -> dict[str, numpy.ndarray]:
+    """The transmission angle (radians, [0, pi]) of every two-angle loop at ``inputs``, by loop name.
+
+    NaN where the linkage cannot be assembled.  ``values`` as for
+    :func:`~symlink.reachability.reachable_range`.
+
+    >>> angles = transmission_angles(fourbar(), dict(a=20, b=66, c=56, d=80), [0.0])
+    >>> round(math.degrees(float(angles["ABCD"][0])), 2)
+    58.23
+    """
+    motion = InputMotion(linkage, values, input=input) if motion is None else motion
+    solved = motion.at(inputs)
+    return {joint.loop: _interior(joint, motion.values, solved)[0] for joint in transmission_joints(linkage)}
+
+
+@dataclass(frozen=True)
+class LoopTransmission:
+    """One loop's transmission angle over the reachable input range: extremes and where (radians)."""
+
+    loop: str
+    joint: str
+    minimum: float
+    minimum_at: float
+    maximum: float
+    maximum_at: float
+
+    @property
+    def worst(self) -> float:
+        """The smallest of ``min(mu, pi - mu)``: how close the loop comes to locking."""
+        return min(self.minimum, math.pi - self.maximum)
+
+
+def loop_transmissions(linkage: Linkage, values: Mapping[str, float], *, input: str | None = None,
+                       reach: InputRange | None = None, motion: InputMotion | None = None,
+                       points: int = 3600) -> tuple[LoopTransmission, ...]:
+    """Extremes of the transmission angle of every two-angle loop over the reachable input range.
+
+    Candidates: the ends of each span, the loop's toggles (where it is 0 or
+    pi: the triangle is flat), and the input values where its derivative
+    changes sign, found on a scan of ``points`` and bisected to rounding.
+
+    >>> (found,) = loop_transmissions(fourbar(), dict(a=20, b=66, c=56, d=80))
+    >>> found.loop, round(math.degrees(found.minimum), 2), round(math.degrees(found.maximum), 2)
+    ('ABCD', 58.23, 109.83)
+    """
+    motion = InputMotion(linkage, values, input=input) if motion is None else motion
+    reach = reachable_range(linkage, values, motion=motion) if reach is None else reach
+    joints = transmission_joints(linkage)
+    if not reach.spans or not joints:
+        return ()
+    found = []
+    for joint in joints:
+        def angle_and_rate(inputs, joint=joint):
+            return _interior(joint, motion.values, motion.at(inputs))
+
+        candidates: dict[float, float] = {}
+        for low, high in reach.spans:
+            grid = numpy.linspace(low, high, max(8, int(points * (high - low) / (2 * math.pi))))
+            mu, slope = angle_and_rate(grid)
+            for at, value in zip(grid[[0, -1]], mu[[0, -1]]):
+                if numpy.isfinite(value):
+                    candidates[float(at)] = float(value)
+            finite = numpy.isfinite(slope)
+            turns = numpy.flatnonzero(finite[:-1] & finite[1:] & (numpy.sign(slope[:-1]) != numpy.sign(slope[1:])))
+            if turns.size:
+                rising = slope[turns] > 0
+
+                def rises(inputs):
+                    return angle_and_rate(inputs)[1] > 0
+
+                lower, upper = _bisect_sign(rises, grid[turns], grid[turns + 1], rising)
+                for at in numpy.concatenate([lower, upper]).tolist():
+                    value = float(angle_and_rate(numpy.array([at]))[0][0])
+                    if math.isfinite(value):
+                        candidates[at] = value
+        for toggle in reach.toggles:  # the loop's own toggles: flat, so exactly 0 or pi there
+            if toggle.loop == joint.loop and not toggle.degenerate:
+                value = float(angle_and_rate(numpy.array([toggle.at]))[0][0])
+                if math.isfinite(value):
+                    candidates[toggle.at] = 0.0 if value < math.pi / 2 else math.pi
+        low_at = min(candidates, key=candidates.__getitem__)
+        high_at = max(candidates, key=candidates.__getitem__)
+        found.append(LoopTransmission(joint.loop, joint.name, candidates[low_at], low_at,
+                                      candidates[high_at], high_at))
+    return tuple(found)
+
+
+def _bisect_sign(test, low, high, low_value):
+    for _ in range(BISECTIONS):
+        middle = 0.5 * (low + high)
+        same = numpy.asarray(test(middle), dtype=bool) == low_value
+        low, high = numpy.where(same, middle, low), numpy.where(same, high, middle)
+    return low, high

@@ -4,9 +4,11 @@ from __future__ import annotations
 import argparse
 import json
 
-from ..analysis import fourbar_report
-from ..angles import from_radians
-from .options import add_fourbar_lengths, add_units_option, command_help, fourbar_lengths
+from ..analysis import analyze_linkage, fourbar_report
+from ..angles import from_radians, to_radians
+from ..closure import is_angle
+from ..linkage_file import load_linkage
+from .options import FOURBAR_LENGTHS, add_units_option, assignments, command_help, finite, fourbar_lengths
 
 #: Fields of :func:`~symlink.analysis.fourbar_report` that are angles (converted to the command's units).
 ANGLE_FIELDS = {"stroke", "transmission_min", "transmission_min_at", "transmission_max", "transmission_max_at",
@@ -30,19 +32,34 @@ def in_units(report: dict, units: str) -> dict:
 def register(commands) -> None:
     """Register ``symlink analyze``."""
     command = commands.add_parser("analyze", **command_help(
-        "Grashof class, mobility, crank range, limit positions and transmission angle of a four-bar",
+        "mobility, reachable range, toggles, transmission angles and limit positions of a linkage",
         "lengths in any one unit; printed angles in --units (deg by default)",
-        "symlink analyze --crank 20 --coupler 66 --rocker 56 --ground 80"))
-    add_fourbar_lengths(command)
+        "symlink analyze --crank 20 --coupler 66 --rocker 56 --ground 80",
+        "With NAME|FILE any one-input linkage (values from its file or the catalog's example, --set to change):\n"
+        "symlink analyze jansen --output H_y"))
+    command.add_argument("linkage", nargs="?", metavar="NAME|FILE",
+                         help="a catalog linkage or a linkage file (without it: the four-bar of the length options)")
+    for option, what in FOURBAR_LENGTHS:
+        command.add_argument(f"--{option}", type=finite, help=f"four-bar length {what} (without NAME)")
+    command.add_argument("--set", type=assignments("NAME=VALUE"), default={}, metavar="NAME=VALUE,...",
+                         help="with NAME|FILE: parameter values (fixed angles in --units)")
+    command.add_argument("--output", metavar="NAME", help="with NAME|FILE: the output whose limit positions to find")
     command.add_argument("--branch", choices=["+1", "1", "-1"], default="+1",
-                         help="assembly for the limit positions (default +1)")
+                         help="assembly (every loop's sign) for the limit positions (default +1)")
     add_units_option(command, "printed angles")
     command.add_argument("--format", choices=["table", "json"], default="table", help="default table")
     command.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    a, b, c, d = fourbar_lengths(args)
+    lengths = fourbar_lengths(args)
+    if args.linkage is not None:
+        if any(v is not None for v in lengths):
+            raise ValueError("analyze: give a linkage NAME|FILE or the four-bar's lengths, not both")
+        return run_linkage(args)
+    if any(v is None for v in lengths):
+        raise ValueError("analyze: give a linkage NAME|FILE or all of --crank --coupler --rocker --ground")
+    a, b, c, d = lengths
     report = in_units(fourbar_report(a, b, c, d, int(args.branch)), args.units)
     if args.format == "json":
         print(json.dumps(report, indent=1))
@@ -70,5 +87,67 @@ def run(args: argparse.Namespace) -> int:
         ]
     lines.append(f"transmission angle   {report['transmission_min']:.4f} at crank {report['transmission_min_at']:.4f} "
                  f"to {report['transmission_max']:.4f} at crank {report['transmission_max_at']:.4f} {unit}")
+    print("\n".join(lines))
+    return 0
+
+
+def run_linkage(args: argparse.Namespace) -> int:
+    """``symlink analyze NAME|FILE``: the general analysis of any one-input linkage."""
+    found = load_linkage(args.linkage)
+    linkage = found.linkage
+    known = {s.name: s for s in linkage.parameters + linkage.inputs}
+    unknown = sorted(set(args.set) - set(known))
+    if unknown:
+        raise ValueError(f"--set names {', '.join(unknown)}; {linkage.name} takes {', '.join(known)}")
+    values = dict(found.defaults)
+    values.update({name: float(to_radians(value, args.units)) if is_angle(linkage, known[name]) else value
+                   for name, value in args.set.items()})
+    values = {name: value for name, value in values.items() if name not in {q.name for q in linkage.inputs[:1]}}
+    values.update({branch.name: int(args.branch) for branch in linkage.branches})
+    if not linkage.has_closed_form:
+        raise ValueError(f"{linkage.name} has no closed form; analyze it from Python with analyze_linkage(..., "
+                         "guess=...) (its assemblies must be chosen)")
+    report = analyze_linkage(linkage, values, args.output)
+    unit = args.units
+    angle = lambda x: float(from_radians(x, unit))  # noqa: E731
+    reach = report.reach
+    shown_input = angle if is_angle(linkage, known[report.input]) else float
+    record = {
+        "linkage": linkage.name, "input": report.input, "dof": report.mobility.dof,
+        "reachable": [[shown_input(lo), shown_input(hi)] for lo, hi in reach.spans], "full_turn": reach.full_turn,
+        "exact": reach.exact,
+        "toggles": [{"at": shown_input(t.at), "loop": t.loop, "ends_range": t.ends_range, "degenerate": t.degenerate}
+                    for t in reach.toggles],
+        "transmission": [{"loop": t.loop, "joint": t.joint, "minimum": angle(t.minimum),
+                          "minimum_at": shown_input(t.minimum_at), "maximum": angle(t.maximum),
+                          "maximum_at": shown_input(t.maximum_at)} for t in report.transmission],
+        "limits": None if report.limits is None else {
+            "output": report.limits.output,
+            "positions": [{"at": shown_input(p.at), "value": angle(p.value) if report.limits.angle else p.value,
+                           "kind": p.kind} for p in report.limits.positions],
+            "stroke": None if report.limits.stroke is None else
+            (angle(report.limits.stroke) if report.limits.angle else report.limits.stroke),
+            "time_ratio": report.limits.time_ratio},
+    }
+    if args.format == "json":
+        print(json.dumps(record, indent=1))
+        return 0
+    spans = "full turn" if reach.full_turn else ", ".join(f"[{lo:.4f}, {hi:.4f}]" for lo, hi in record["reachable"])
+    lines = [f"{linkage.name}: input {report.input}",
+             f"degrees of freedom   {report.mobility.dof}",
+             f"reachable range      {spans}{'' if reach.full_turn else ' ' + unit} "
+             f"({'exact' if reach.exact else 'scanned'})"]
+    for toggle in record["toggles"]:
+        what = "degenerate" if toggle["degenerate"] else "toggle" if toggle["ends_range"] else "change point"
+        lines.append(f"{what:<21}{report.input} = {toggle['at']:.4f} (loop {toggle['loop']})")
+    for t in record["transmission"]:
+        lines.append(f"transmission {t['loop']:<8}at {t['joint']}: {t['minimum']:.4f} at {t['minimum_at']:.4f} to "
+                     f"{t['maximum']:.4f} at {t['maximum_at']:.4f} {unit}")
+    if record["limits"] is not None:
+        limits = record["limits"]
+        for p in limits["positions"]:
+            lines.append(f"limit of {limits['output']:<12}{p['kind']} {p['value']:.6g} at {report.input} = {p['at']:.4f}")
+        if limits["stroke"] is not None:
+            lines.append(f"stroke               {limits['stroke']:.6g}; time ratio {limits['time_ratio']:.4f}")
     print("\n".join(lines))
     return 0

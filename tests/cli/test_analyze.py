@@ -71,3 +71,26 @@ def test_table_names_every_result(capsys):
 def test_impossible_or_bad_lengths_exit_2(capsys, lengths):
     status, out, err = analyze(capsys, *lengths)
     assert status == 2 and out == "" and err.startswith("symlink: error: ") and err.count("\n") == 1
+
+
+def test_any_linkage_by_name_against_the_slider_cranks_hand_stroke(capsys):
+    """An offset slider-crank's stroke, sqrt((a + b)^2 - e^2) - sqrt((b - a)^2 - e^2), from `analyze NAME`."""
+    import json
+    import math
+    a, b, e = 1.3, 4.1, 0.7
+    assert main(["analyze", "slider-crank", "--set", f"a={a},b={b},offset={e}", "--output", "slider",
+                 "--format", "json"]) == 0
+    report = json.loads(capsys.readouterr().out)
+    stroke = math.sqrt((a + b) ** 2 - e**2) - math.sqrt((b - a) ** 2 - e**2)
+    assert report["dof"] == 1 and report["full_turn"] and report["exact"]
+    assert abs(report["limits"]["stroke"] - stroke) < 1e-12
+    extended = math.degrees(math.asin(e / (a + b)))  # crank and rod in line, pointing along the guide
+    assert any(abs(p["at"] - extended) < 1e-9 and p["kind"] == "maximum" for p in report["limits"]["positions"])
+
+
+def test_a_file_and_its_transmission_in_text(capsys):
+    import pathlib
+    shipped = pathlib.Path(__file__).resolve().parents[2] / "linkages" / "fourbar.toml"
+    assert main(["analyze", str(shipped), "--output", "phi"]) == 0
+    out = capsys.readouterr().out
+    assert "degrees of freedom   1" in out and "transmission ABCD" in out and "limit of phi" in out

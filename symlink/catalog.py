@@ -7,8 +7,9 @@ Every entry is built the way a user builds a linkage: vectors, loops, a
 >>> linkage = fourbar()
 >>> linkage.unknowns
 (beta, phi)
->>> sorted(CATALOG)
-['fivebar', 'fourbar', 'inverted-slider-crank', 'jansen', 'slider-crank', 'stephenson3', 'watt2']
+>>> sorted(CATALOG)  # doctest: +NORMALIZE_WHITESPACE
+['fivebar', 'fourbar', 'inverted-slider-crank', 'jansen', 'offset-inverted-slider-crank', 'slider-crank', 'stephenson3',
+ 'watt2']
 """
 from __future__ import annotations
 
@@ -20,7 +21,7 @@ from .linkage import Linkage
 from .loops import Loop
 from .vectors import Vector, coordinates, lengths
 
-__all__ = ["fourbar", "slider_crank", "inverted_slider_crank", "watt2", "stephenson3", "fivebar", "jansen",
+__all__ = ["fourbar", "slider_crank", "inverted_slider_crank", "offset_inverted_slider_crank", "watt2", "stephenson3", "fivebar", "jansen",
            "JANSEN_HOLY_NUMBERS", "jansen_parameters", "CATALOG", "EXAMPLE_VALUES"]
 
 
@@ -114,6 +115,41 @@ def inverted_slider_crank() -> Linkage:
         "inverted-slider-crank", [closure], inputs=[theta], unknowns=[phi, r],
         points={"A": None, "B": AB.as_sum(), "D": AD.as_sum()},
         roles={"crank": theta, "rocker": phi, "slider": r},
+    )
+
+
+def offset_inverted_slider_crank() -> Linkage:
+    r"""The inverted slider-crank with its guide offset from the rocker pivot by ``e``.
+
+    ::
+
+                  B  <- block pinned to the crank at B, sliding along the guide
+                 /|
+              a / | s (along the guide, from its foot T)
+               /  T
+              A    \ e (perpendicular offset, turning with the rocker)
+        ====^=======D====   A at the origin, D at (d, 0)
+
+    The guide turns with the rocker: its foot is T = D + e e^{i (phi + pi/2)}
+    and the block sits at distance s along it, ``a e^{i theta} = d +
+    e e^{i (phi + pi/2)} + s e^{i phi}``.  The rocker angle turns two vectors
+    (the offset and the guide), so the loop is solved in closed form as one
+    vector of constant length and offset angle (case 2c).  Branch +1: the
+    larger s (the guide a tangent from B to the circle of radius e about D).
+
+    >>> linkage = offset_inverted_slider_crank()
+    >>> [step.case.name for step in linkage.plan], [b.name for b in linkage.branches]
+    (['2c'], ['branch'])
+    """
+    theta, phi, s = coordinates("theta phi s")
+    a, d, e = lengths("a d e")
+    AB, AD = Vector(a, theta, "AB"), Vector(d, 0, "AD")
+    DT, TB = Vector(e, phi + sp.pi / 2, "DT"), Vector(s, phi, "TB")
+    closure = Loop(AB - TB - DT - AD, name="ABTD")  # walked A -> B -> T -> D -> A
+    return Linkage(
+        "offset-inverted-slider-crank", [closure], inputs=[theta], unknowns=[phi, s],
+        points={"A": None, "B": AB.as_sum(), "D": AD.as_sum(), "T": AD + DT},
+        roles={"crank": theta, "rocker": phi, "slider": s},
     )
 
 
@@ -323,6 +359,7 @@ CATALOG = {
     "fourbar": fourbar,
     "slider-crank": slider_crank,
     "inverted-slider-crank": inverted_slider_crank,
+    "offset-inverted-slider-crank": offset_inverted_slider_crank,
     "watt2": watt2,
     "stephenson3": stephenson3,
     "fivebar": fivebar,
@@ -335,6 +372,7 @@ EXAMPLE_VALUES = {
     "fourbar": dict(a=20.0, b=66.0, c=56.0, d=80.0),
     "slider-crank": dict(a=1.3, b=4.1, offset=0.7),
     "inverted-slider-crank": dict(a=2.0, d=1.2),
+    "offset-inverted-slider-crank": dict(a=1.0, d=2.5, e=0.4),
     "watt2": dict(a=1.0, b=3.5, c=3.0, d=3.2, e=2.0, f=4.0, g=3.0, alpha=0.6, gx=4.5, gy=3.5),
     "stephenson3": dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.9, delta=0.3),
     "fivebar": dict(a=2.0, b=4.0, c=4.0, d=3.0, e=2.0, psi=2.2),

@@ -150,3 +150,21 @@ def continue_sweep(closure, inputs, q0, p, substeps=4):
             solved.append(q)
             previous_x = x
         return solved
+
+
+def offset_inverted_positions(theta, a, d, e, branch):
+    """50-digit reference for the offset inverted slider-crank: the guide is a tangent from B to the circle
+    of radius e about D (a circle/tangent construction, not the solver's formula); +1 the larger s."""
+    import mpmath as mp
+    with mp.workdps(max(50, mp.mp.dps)):  # never lower: mp.diff raises the precision to step
+        b = mp.mpc(a * mp.cos(theta), a * mp.sin(theta)) - d
+        w = abs(b)
+        opening = mp.acos(e / w)
+        solutions = []
+        for turn in (opening, -opening):
+            foot = e * b / w * mp.expj(turn)                 # T - D, the foot of the offset
+            phi = mp.arg(foot) - mp.pi / 2
+            s = mp.re((b - foot) * mp.expj(-phi))
+            solutions.append((s, phi))
+        s, phi = max(solutions) if branch > 0 else min(solutions)
+        return s, phi

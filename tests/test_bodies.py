@@ -17,6 +17,8 @@ HAND_COUNTS = {
     "fourbar": (4, {"A": 2, "B": 2, "C": 2, "D": 2}, 0, 1),
     "slider-crank": (4, {"A": 2, "B": 2, "C": 2}, 1, 1),
     "inverted-slider-crank": (4, {"A": 2, "B": 2, "D": 2}, 1, 1),
+    # ground, crank, rocker (with its offset arm DT and guide), block; the block slides on the guide
+    "offset-inverted-slider-crank": (4, {"A": 2, "B": 2, "D": 2}, 1, 1),
     "watt2": (6, {"A": 2, "B": 2, "C": 2, "D": 2, "E": 2, "F": 2, "G": 2}, 0, 1),
     "stephenson3": (6, {"A": 2, "B": 2, "C": 2, "D": 2, "E": 2, "F": 2, "H": 2}, 0, 1),
     "fivebar": (5, {"A": 2, "B": 2, "C": 2, "D": 2, "E": 2}, 0, 2),

@@ -324,8 +324,8 @@ STEPHENSON3 = (dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alph
 
 
 def test_catalog_entries_are_fresh_linkages_with_documented_names():
-    assert set(CATALOG) == {"fourbar", "slider-crank", "inverted-slider-crank", "watt2", "stephenson3", "fivebar",
-                            "jansen"}
+    assert set(CATALOG) == {"fourbar", "slider-crank", "inverted-slider-crank", "offset-inverted-slider-crank",
+                            "watt2", "stephenson3", "fivebar", "jansen"}
     for name, build in CATALOG.items():
         first, second = build(), build()
         assert first is not second and first.name == name
@@ -444,3 +444,35 @@ def test_generated_jansen_module_against_50_digits():
             near = mp.mpf(float(speeds["leg"][n]))
             rate = 2 * mp.diff(lambda s: mp_jansen_angle(s, "eta", JANSEN_HOLY_NUMBERS, (1, 1, 1), near), mp.mpf(t))
             assert abs(speeds["leg_speed"][n] - float(rate)) < 1e-11 * max(1.0, abs(float(rate)))
+
+
+@pytest.mark.parametrize("branch", [1, -1])
+def test_offset_inverted_slider_crank_against_its_tangent_construction(branch):
+    """The catalog entry and its generated module against a 50-digit tangent-line construction (mp_closures):
+    positions, rates and accelerations by mpmath differentiation, both branches, the guide's foot T."""
+    import mpmath as mp
+
+    from mp_closures import offset_inverted_positions
+    from symlink.catalog import offset_inverted_slider_crank
+    linkage = offset_inverted_slider_crank()
+    solver = Solver(linkage, ["rocker", "slider", "rocker_speed", "slider_speed", "rocker_accel", "slider_accel",
+                              "T_x", "T_y"])
+    a, d, e, omega, alpha = 1.0, 2.5, 0.4, 2.0, 0.3
+    for angle in np.linspace(-3.1, 3.1, 11):
+        got = solver(theta=angle, a=a, d=d, e=e, branch=branch, thetadot=omega, thetaddot=alpha)
+        assert bool(got["assembled"])
+        with mp.workdps(50):
+            t0 = mp.mpf(float(angle))
+            for k, name in ((0, "slider"), (1, "rocker")):
+                position = lambda t: offset_inverted_positions(t, 1, mp.mpf(5) / 2, mp.mpf(2) / 5, branch)[k]  # noqa: E731
+                first, second = mp.diff(position, t0, 1), mp.diff(position, t0, 2)
+                expected = {name: position(t0), name + "_speed": first * omega,
+                            name + "_accel": second * omega**2 + first * alpha}
+                for key, value in expected.items():
+                    difference = float(got[key]) - float(value)
+                    if key == "rocker":
+                        difference = math.remainder(difference, 2 * math.pi)
+                    assert abs(difference) <= 1e-13 * (1 + abs(float(value))), (angle, key)
+            phi = offset_inverted_positions(t0, 1, mp.mpf(5) / 2, mp.mpf(2) / 5, branch)[1]
+            foot = mp.mpf(5) / 2 + mp.mpf(2) / 5 * mp.expj(phi + mp.pi / 2)
+            assert abs(float(got["T_x"]) - float(mp.re(foot))) < 1e-14 and abs(float(got["T_y"]) - float(mp.im(foot))) < 1e-14

@@ -13,6 +13,7 @@ import pytest
 import sympy as sp
 from hypothesis import given, settings, strategies as st
 
+from mp_closures import offset_inverted_positions
 from symlink.linkage import Linkage
 from symlink.loops import Loop
 from symlink.position import ClampedSqrt
@@ -153,24 +154,6 @@ def test_seed003_fourbar_gives_the_same_angles_at_any_scale():
                 assert ulps.max() <= 4, (exponent, name, ulps.max())
 
 
-def _mp_offset_inverted(theta, a, d, e, branch):
-    """50-digit reference for the offset inverted slider-crank: the guide is a tangent from B to the circle
-    of radius e about D (a circle/tangent construction, not the solver's formula); +1 the larger s."""
-    import mpmath as mp
-    with mp.workdps(max(50, mp.mp.dps)):  # never lower: mp.diff raises the precision to step
-        b = mp.mpc(a * mp.cos(theta), a * mp.sin(theta)) - d
-        w = abs(b)
-        opening = mp.acos(e / w)
-        solutions = []
-        for turn in (opening, -opening):
-            foot = e * b / w * mp.expj(turn)                 # T - D, the foot of the offset
-            phi = mp.arg(foot) - mp.pi / 2
-            s = mp.re((b - foot) * mp.expj(-phi))
-            solutions.append((s, phi))
-        s, phi = max(solutions) if branch > 0 else min(solutions)
-        return s, phi
-
-
 @pytest.mark.parametrize("branch", [1, -1])
 def test_offset_inverted_slider_crank_in_closed_form_against_mpmath(branch):
     import mpmath as mp
@@ -186,7 +169,7 @@ def test_offset_inverted_slider_crank_in_closed_form_against_mpmath(branch):
         got = solver(theta=angle, branch=branch, thetadot=omega, thetaddot=alpha, **values)
         assert bool(got["assembled"])
         with mp.workdps(50):
-            position = lambda t, k: _mp_offset_inverted(t, 1, mp.mpf(5) / 2, mp.mpf(2) / 5, branch)[k]  # noqa: E731
+            position = lambda t, k: offset_inverted_positions(t, 1, mp.mpf(5) / 2, mp.mpf(2) / 5, branch)[k]  # noqa: E731
             t0 = mp.mpf(float(angle))
             for k, name in ((0, "s"), (1, "phi")):
                 exact = position(t0, k)

@@ -19,7 +19,9 @@ from symlink.plot.drawing import Geometry, draw_linkage, sweep_inputs  # noqa: E
 SMALL = (160, 120)
 #: Links drawn per entry, counted by hand from each catalog sketch: (bars, polygons, slider blocks).
 #: Jansen: crank, lower rocker, links j and k, tie f as bars; the triangles DCE and FGH as polygons.
+#: The offset inverted slider-crank: crank AB and the rocker's offset arm DT as bars, the block on the guide.
 HAND_COUNT = {"fourbar": (3, 0, 0), "slider-crank": (3, 0, 1), "inverted-slider-crank": (1, 0, 1),
+              "offset-inverted-slider-crank": (2, 0, 1),
               "watt2": (4, 1, 0), "stephenson3": (3, 2, 0), "fivebar": (4, 0, 0), "jansen": (5, 2, 0)}
 
 

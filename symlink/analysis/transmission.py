@@ -223,20 +223,12 @@ def transmission_angles(linkage: Linkage, values: Mapping[str, float], inputs, *
 
 
 @dataclass(frozen=True)
-class LoopTransmission:
-    """One loop's transmission angle over the reachable input range: extremes and where (radians)."""
+class LoopTransmission(TransmissionRange):
+    """One loop's transmission angle over the reachable input range: extremes and where (radians),
+    with the loop and the joint (its two unknown vectors) where it is measured."""
 
-    loop: str
-    joint: str
-    minimum: float
-    minimum_at: float
-    maximum: float
-    maximum_at: float
-
-    @property
-    def worst(self) -> float:
-        """The smallest of ``min(mu, pi - mu)``: how close the loop comes to locking."""
-        return min(self.minimum, math.pi - self.maximum)
+    loop: str = ""
+    joint: str = ""
 
 
 def loop_transmissions(linkage: Linkage, values: Mapping[str, float], *, input: str | None = None,
@@ -289,8 +281,8 @@ def loop_transmissions(linkage: Linkage, values: Mapping[str, float], *, input: 
                     candidates[toggle.at] = 0.0 if value < math.pi / 2 else math.pi
         low_at = min(candidates, key=candidates.__getitem__)
         high_at = max(candidates, key=candidates.__getitem__)
-        found.append(LoopTransmission(joint.loop, joint.name, candidates[low_at], low_at,
-                                      candidates[high_at], high_at))
+        found.append(LoopTransmission(candidates[low_at], low_at, candidates[high_at], high_at,
+                                      loop=joint.loop, joint=joint.name))
     return tuple(found)
 
 

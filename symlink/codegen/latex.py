@@ -6,6 +6,12 @@ numeric fallback's (closure, Newton's iteration, the Jacobian and the rate
 systems).  Both share one preamble (:func:`document`), and text that is not
 mathematics (titles, loop names) is escaped (:func:`latex_text`).
 
+Equations fit a letter or A4 page: the positions print as the named
+intermediates of the closed forms, one row each, and a right-hand side still
+wider than the page breaks between terms, factors or ``atan2`` arguments and
+continues on indented lines (standard ``amsmath`` only; where to break is
+decided from an estimate of the typeset width, :func:`latex_width`).
+
 This module imports no linkage at run time: ``Linkage._repr_latex_`` imports
 it on first use.
 
@@ -32,7 +38,7 @@ from ..vectors import acceleration, rate
 if TYPE_CHECKING:
     from ..linkage import Linkage
 
-__all__ = ["latex_text", "document", "closure_rows", "equations_latex", "latex_document", "newton_document",
+__all__ = ["latex_text", "latex_width", "document", "closure_rows", "equations_latex", "latex_document", "newton_document",
            "export_files"]
 
 _LATEX_ESCAPES = {

@@ -1,4 +1,12 @@
-"""LaTeX export and Jupyter rendering."""
+"""LaTeX export and Jupyter rendering, and the page width of the documents (checked with pdflatex where installed)."""
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+import sympy as sp
+
 from symlink.catalog import fourbar, stephenson3
 from symlink.codegen.latex import latex_document, latex_text, newton_document
 
@@ -57,14 +65,6 @@ def test_a_linkage_without_a_closed_form_displays_its_closure():
 
 
 # --- fitting the page --------------------------------------------------------
-import re
-import shutil
-import subprocess
-from pathlib import Path
-
-import pytest
-import sympy as sp
-
 ROOT = Path(__file__).resolve().parents[2]
 PDFLATEX = shutil.which("pdflatex")
 needs_tex = pytest.mark.skipif(PDFLATEX is None, reason="pdflatex is not installed (Debian: apt-get install "
@@ -108,6 +108,8 @@ def test_long_sums_products_fractions_roots_and_atan2_break_across_lines(tmp_pat
             (x, ClampedSqrt(sp.Mul(*(r + s - q for r, s, q in zip(lengths, lengths[1:], angles))), 1)),
             (x, -lengths[0] * sp.Mul(*(r + s for r, s in zip(lengths, lengths[1:]))))]
     block = _align(rows)
+    first = block[1].split("\\\\\nx &=")[0]
+    assert first.count("\\cos") == 24 and first.count("a_{") == 24  # broken, not cut: every term is there once
     assert [row.count("&\\qquad") >= 1 for row in block[1].split("\\\\\nx &=")] == [True] * len(rows)
     body = ["\\begin{align*}", *block[1:-1], "\\end{align*}"]
     tex = "\\documentclass{article}\n\\usepackage{amsmath}\n\\begin{document}\n" + "\n".join(body) + "\n\\end{document}\n"

@@ -109,7 +109,7 @@ def test_long_sums_products_fractions_roots_and_atan2_break_across_lines(tmp_pat
             (x, -lengths[0] * sp.Mul(*(r + s for r, s in zip(lengths, lengths[1:]))))]
     block = _align(rows)
     first = block[1].split("\\\\\nx &=")[0]
-    assert first.count("\\cos") == 24 and first.count("a_{") == 24  # broken, not cut: every term is there once
+    assert first.count("\\cos") == 24 and len(re.findall(r"(?<![a-z])a_\{", first)) == 24  # every term, once
     assert [row.count("&\\qquad") >= 1 for row in block[1].split("\\\\\nx &=")] == [True] * len(rows)
     body = ["\\begin{align*}", *block[1:-1], "\\end{align*}"]
     tex = "\\documentclass{article}\n\\usepackage{amsmath}\n\\begin{document}\n" + "\n".join(body) + "\n\\end{document}\n"

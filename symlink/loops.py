@@ -40,6 +40,7 @@ from typing import Sequence
 import sympy as sp
 
 from .names import identifier
+from .notation import math_text
 from .vectors import Vector, VectorSum
 
 __all__ = ["Loop", "Unknown", "LoopCase", "CASE_NAMES"]
@@ -231,3 +232,24 @@ class Loop:
 
     def __repr__(self) -> str:
         return f"Loop({self.vectors}, name={self.name!r})"
+
+    def __str__(self) -> str:
+        """The closure in words: the signed sum of the vectors by name, then what each named vector is.
+
+        >>> from symlink.vectors import Vector, coordinates, lengths
+        >>> theta, = coordinates("theta")
+        >>> a, d = lengths("a d")
+        >>> print(Loop(Vector(d, 0, "AD") + Vector(a, theta, "DB") - Vector(d + a, 0), "ADB"))
+        loop ADB: AD + DB - (a + d) = 0, where AD = d, DB = a*e^(i*theta)
+        """
+        named = [f"{vector.name} = {vector.polar_text()}" for _, vector in self.terms if vector.name]
+        return f"loop {self.name}: {self.vectors} = 0" + (", where " + ", ".join(named) if named else "")
+
+    def _repr_latex_(self) -> str:
+        r"""Jupyter's display: the closure with every vector in polar form.
+
+        >>> from symlink.catalog import fourbar
+        >>> print(fourbar().loops[0]._repr_latex_())
+        $\text{ABCD}:\quad d + c\,e^{i \phi} - b\,e^{i \beta} - a\,e^{i \theta} = 0$
+        """
+        return f"${math_text(self.name)}:\\quad {self.vectors.polar_latex()} = 0$"

@@ -16,10 +16,12 @@ watt2: closed form, loop by loop (inputs: theta)
 """
 from __future__ import annotations
 
+import html
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from .loops import CASE_NAMES
+from .notation import branch_html
 
 if TYPE_CHECKING:
     from .linkage import Linkage
@@ -69,6 +71,29 @@ class SolvePlan:
         lines = [f"{self.linkage}: {self.note} (inputs: {', '.join(self.inputs)})"]
         lines += [f"  {step}" for step in self.steps]
         return "\n".join(lines)
+
+    def _repr_html_(self) -> str:
+        """Jupyter's display: the note, then one table row a step, branch signs written as in the equations (σ).
+
+        >>> from symlink.catalog import fourbar
+        >>> table = solve_plan(fourbar())._repr_html_()
+        >>> "<td>ABCD</td>" in table, "σ" in table, "(argument branch)" in table
+        (True, True, True)
+        """
+        def cell(text: str) -> str:
+            return f"<td>{html.escape(text)}</td>"
+
+        head = "".join(f"<th>{h}</th>" for h in ("step", "loops", "case", "unknowns", "from", "branch sign"))
+        rows = []
+        for step in self.steps:
+            used = ", ".join(f"{name} (step {n})" if n else name for name, n in step.uses.items()) or "the parameters"
+            sign = (f"<td>{branch_html(step.branch)} (argument {html.escape(step.branch)})</td>"
+                    if step.branch else cell("none" if step.case != NUMERIC else "nearest the initial guess"))
+            rows.append(f"<tr>{cell(str(step.number))}{cell(', '.join(step.loops))}"
+                        f"{cell(f'{step.case} ({step.description})')}{cell(', '.join(step.unknowns))}"
+                        f"{cell(used)}{sign}</tr>")
+        caption = html.escape(f"{self.linkage}: {self.note} (inputs: {', '.join(self.inputs)})")
+        return (f"<table><caption>{caption}</caption><tr>{head}</tr>" + "".join(rows) + "</table>")
 
 
 def solve_plan(linkage: Linkage) -> SolvePlan:

@@ -63,6 +63,7 @@ from .linkage_file import load_linkage
 from .angles import to_radians
 from .linkage import Linkage, Program
 from .closure import is_angle
+from .notation import math_text
 from .solver import Solver, crank_speeds
 from .vectors import acceleration, rate
 
@@ -175,6 +176,54 @@ class Scene:
 
     def __repr__(self) -> str:
         return f"Scene({self.linkage.name!r}, {list(self.outputs)}, branch={self.branch!r})"
+
+    def derivation(self) -> tuple[tuple[sp.Symbol, ...], tuple[sp.Symbol, ...]]:
+        """What the scene's code computes and what it skips: unknowns, their rates and accelerations.
+
+        Symbolic work (the positions, and the rates only if an output needs them),
+        done once per linkage; ``ValueError`` for a linkage without a closed form.
+        """
+        kept = {symbol for symbol, _ in self.program().assignments}
+        unknowns = self.linkage.unknowns
+        every = unknowns + tuple(rate(q) for q in unknowns) + tuple(acceleration(q) for q in unknowns)
+        return tuple(s for s in every if s in kept), tuple(s for s in every if s not in kept)
+
+    def _branch_words(self) -> str:
+        return "both branches" if self.branch == "both" else f"branch {self.branch:+d}"
+
+    def __str__(self) -> str:
+        """What the scene asks for, and what its code will compute and skip.
+
+        >>> from symlink.catalog import fourbar
+        >>> print(Scene(fourbar(), ["rocker"]))
+        scene of fourbar: rocker (branch +1)
+          computes phi
+          skips beta, betadot, phidot, betaddot, phiddot
+        """
+        head = f"scene of {self.linkage.name}: {', '.join(self.outputs)} ({self._branch_words()})"
+        if not self.linkage.has_closed_form:
+            return head + "\n  no closed form: solved numerically, all loops at once (see symlink plan)"
+        computed, skipped = self.derivation()
+        return "\n".join([head, f"  computes {', '.join(map(str, computed)) or 'nothing'}",
+                          f"  skips {', '.join(map(str, skipped)) or 'nothing'}"])
+
+    def _repr_latex_(self) -> str:
+        r"""Jupyter's display: the outputs, the branch sign, and the coordinates computed and skipped.
+
+        >>> from symlink.catalog import fourbar
+        >>> print(Scene(fourbar(), ["rocker"], branch="both")._repr_latex_())
+        $\begin{array}{ll}\text{scene of fourbar} & \text{rocker},\ \sigma = \pm 1\\ \text{computes} & \phi\\ \text{skips} & \beta, \dot{\beta}, \dot{\phi}, \ddot{\beta}, \ddot{\phi}\end{array}$
+        """
+        sign = r"\pm 1" if self.branch == "both" else f"{self.branch:+d}"
+        rows = [f"{math_text('scene of ' + self.linkage.name)} & "
+                f"{', '.join(math_text(o) for o in self.outputs)},\\ \\sigma = {sign}"]
+        if not self.linkage.has_closed_form:
+            rows.append(r"\text{no closed form} & \text{solved numerically, all loops at once}")
+        else:
+            computed, skipped = self.derivation()
+            for word, symbols in (("computes", computed), ("skips", skipped)):
+                rows.append(f"\\text{{{word}}} & " + (", ".join(sp.latex(s) for s in symbols) or r"\text{nothing}"))
+        return "$\\begin{array}{ll}" + "\\\\ ".join(rows) + "\\end{array}$"
 
 
 # --- scene files -----------------------------------------------------------

@@ -27,6 +27,7 @@ from typing import Iterable
 import sympy as sp
 
 from .names import label
+from .notation import math_text
 
 __all__ = [
     "Vector", "VectorSum", "expression", "coordinates", "lengths", "rate", "acceleration",
@@ -131,8 +132,38 @@ class Vector:
     def __neg__(self) -> "VectorSum":
         return -self.as_sum()
 
+    def polar_text(self) -> str:
+        """The vector as text, ``length*e^(i*angle)`` (the length alone at angle zero)."""
+        length = f"({self.length})" if isinstance(self.length, sp.Add) else str(self.length)
+        if self.angle == 0:
+            return length
+        return f"{length}*e^(i*{self.angle if self.angle.is_Atom else f'({self.angle})'})"
+
+    def polar_latex(self) -> str:
+        r"""The vector as LaTeX, ``a\,e^{i \theta}`` (the length alone at angle zero)."""
+        length = sp.latex(self.length)
+        if self.angle == 0:
+            return length
+        if isinstance(self.length, sp.Add):
+            length = r"\left(%s\right)" % length
+        angle = sp.latex(self.angle)
+        return f"{length}\\,e^{{i {angle}}}" if self.angle.is_Atom else f"{length}\\,e^{{i\\left({angle}\\right)}}"
+
     def __str__(self) -> str:
-        return self.name or f"{self.length}*e^(i*{self.angle})"
+        return self.name or self.polar_text()
+
+    def _repr_latex_(self) -> str:
+        r"""Jupyter's display: ``AB = a e^{i theta}`` with the name as an arrow over the letters.
+
+        >>> a, theta = lengths("a")[0], coordinates("theta")[0]
+        >>> print(Vector(a, theta + sp.pi / 2, "AB")._repr_latex_())
+        $\overrightarrow{\text{AB}} = a\,e^{i\left(\theta + \frac{\pi}{2}\right)}$
+        >>> print(Vector(a, theta + sp.pi / 2).polar_text())
+        a*e^(i*(theta + pi/2))
+        """
+        if not self.name:
+            return f"${self.polar_latex()}$"
+        return f"$\\overrightarrow{{{math_text(self.name)}}} = {self.polar_latex()}$"
 
 
 @dataclass(frozen=True)
@@ -168,3 +199,18 @@ class VectorSum:
         for sign, vector in self.terms:
             text += (" - " if sign < 0 else (" + " if text else "")) + str(vector)
         return text.strip()
+
+    def polar_latex(self) -> str:
+        """The sum as LaTeX, each vector in polar form.
+
+        >>> a, d = lengths("a d")
+        >>> print((Vector(d, 0) - Vector(a, coordinates("theta")[0])).polar_latex())
+        d - a\\,e^{i \\theta}
+        """
+        text = ""
+        for sign, vector in self.terms:
+            text += ("- " if sign < 0 else ("+ " if text else "")) + vector.polar_latex() + " "
+        return text.strip()
+
+    def _repr_latex_(self) -> str:
+        return f"${self.polar_latex()}$"

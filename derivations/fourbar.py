@@ -1,4 +1,4 @@
-"""The four-bar, derived step by step as in the MBsymba worksheet of seeds/001.
+"""The four-bar, derived step by step as in the MBSymba (Maple) worksheet.
 
 Run ``python derivations/fourbar.py`` to rewrite ``generated/fourbar.py`` (a
 NumPy-only solver) and ``generated/fourbar.tex`` (the equations).  The output

@@ -32,7 +32,7 @@ def transmission_angle(coupler_angle: sp.Expr, rocker_angle: sp.Expr) -> sp.Expr
 
 
 def fourbar() -> Linkage:
-    """The four-bar of DESIGN.md, closed as in the worksheet of ``seeds/001``.
+    """The four-bar of the conventions (crank at A, rocker pivot D = (d, 0)), closed as in the Maple worksheet.
 
     Crank a = AB at theta from pivot A at the origin, coupler b = BC at beta,
     rocker c = DC at phi from pivot D at (d, 0):
@@ -367,7 +367,7 @@ CATALOG = {
 }
 
 #: Example dimensions of each entry (the defaults of its linkage file in ``linkages/``): the four-bar
-#: of ``seeds/003``, Jansen's holy numbers, and for the others dimensions whose input turns fully.
+#: of the C-program paper (20, 66, 56, 80), Jansen's holy numbers, and for the others dimensions whose input turns fully.
 EXAMPLE_VALUES = {
     "fourbar": dict(a=20.0, b=66.0, c=56.0, d=80.0),
     "slider-crank": dict(a=1.3, b=4.1, offset=0.7),

@@ -1,4 +1,4 @@
-"""The loop of ``seeds/000``, ``z1 + z2 + z3 + z4 = 0``, with two of its eight values missing.
+"""The loop of the MATLAB GUI paper, ``z1 + z2 + z3 + z4 = 0``, with two of its eight values missing.
 
 Each ``z_n = r_n e^{i t_n}``.  Leave out exactly two of ``r1..r4, t1..t4``: they become the
 unknowns of a :class:`~symlink.loops.Loop` of four :class:`~symlink.vectors.Vector`, the

@@ -2,7 +2,7 @@
 
 A loop is a signed sum of vectors that must vanish.  With two unknowns the
 loop falls into one of the four cases of the position-study paper
-(``seeds/000``):
+(the four cases of the MATLAB GUI paper on vector loops):
 
 ==== ==================================================================
 case unknowns

@@ -6,7 +6,7 @@ Differentiating ``sum_k s_k r_k e^{i t_k} = 0`` once gives
 Both are linear in the unknown rates.  Rather than invert the 2x2 system, each
 equation is projected across the direction in which the other unknown acts
 (the classic trick of the textbooks): the other rate drops out and the one
-left is a ratio, with sines of angle differences, as in ``seeds/003``:
+left is a ratio, with sines of angle differences, as in the C-program paper on velocities and accelerations:
 
     rocker_speed = a * crank_speed * sin(beta - theta) / (c * sin(beta - phi))
 

@@ -13,7 +13,7 @@ Branches (the sign ``sigma`` of the square root):
 * case 3 (two angles): ``+1`` turns the first unknown vector counter-clockwise
   from ``W``, i.e. the joint between the two unknown vectors lies to the left
   of the line they close.  For the four-bar with unknowns (beta, phi) this is
-  DESIGN.md's rule: joint C left of the directed line from B to D.
+  the four-bar's rule: joint C left of the directed line from B to D.
 * cases 2b (a length and another vector's angle) and 2c (a length on a body
   that the unknown angle turns): ``+1`` gives the larger unknown length (the
   slider-crank's far position).

@@ -1,4 +1,4 @@
-"""Quick-return synthesis of a crank-rocker four-bar (``seeds/002``, after Norton), done exactly.
+"""Quick-return synthesis of a crank-rocker four-bar (the MATLAB quick-return paper, after Norton), done exactly.
 
 A crank-rocker's rocker swings between two extremes B1 and B2, reached where crank and
 coupler are in line: at the extended one C is ``a + b`` from the crank pivot O2, at the
@@ -60,7 +60,7 @@ class QuickReturn:
 
     Frame: the rocker pivot O4 at the origin.  ``ground_angle`` is the direction of the
     ground line from the crank pivot to the rocker pivot; crank angles in ``limits`` and
-    ``transmission`` are measured from it (the four-bar convention of DESIGN.md), and
+    ``transmission`` are measured from it (the four-bar convention of the README), and
     ``branch`` is the assembly on which the rocker passes through B1 and B2.
     """
 

@@ -3,7 +3,7 @@
 :func:`animate_linkage` animates any linkage, drawn as
 :mod:`symlink.plot.drawing` draws it, over a turn of its first input;
 :func:`animate` the four-bar from its four lengths, as in the worksheet of
-``seeds/001``: 30 frames by default at crank angles ``2 pi k / frames``,
+the Maple worksheet: 30 frames by default at crank angles ``2 pi k / frames``,
 links drawn as bars, pin joints as disks and the ground pivots marked, with a
 coupler point's plate and curve if asked for.  Only positions are derived
 and evaluated: an animation never differentiates anything.
@@ -42,7 +42,7 @@ from .figures import MechanismDrawing, check_coupler_point, coupler_point_linkag
 __all__ = ["FRAMES", "MAX_FRAMES", "MAX_FRAME_PIXELS", "ANIMATION_SUFFIXES", "LEFTOVER_PREFIX", "frame_positions",
            "animate", "animate_linkage", "check_animation_size", "Rendered"]
 
-#: Frames in a turn, as in ``seeds/001`` (t from 0 to 29/30).
+#: Frames in a turn, as in the Maple worksheet (t from 0 to 29/30).
 FRAMES = 30
 #: More frames than this is a mistake, not an animation.
 MAX_FRAMES = 3600

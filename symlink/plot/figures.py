@@ -47,9 +47,9 @@ __all__ = ["coupler_point_linkage", "fourbar_positions", "reachable_turn", "turn
 
 #: File suffixes :func:`save_figure` writes, and the Matplotlib format of each.
 FIGURE_SUFFIXES = {".png": "png", ".svg": "svg"}
-#: The loop colours of ``seeds/000`` (z1..z4).
+#: The loop colours of the MATLAB GUI paper (z1..z4).
 LOOP_COLORS = ("red", "yellow", "blue", "green")
-#: The usual design limits of the transmission angle (``seeds/002``), degrees.
+#: The usual design limits of the transmission angle (the quick-return synthesis paper), degrees.
 TRANSMISSION_LIMITS = (45.0, 135.0)
 BRANCH_STYLES = {1: "-", -1: "--"}
 LINK_COLORS = {"crank": "tab:red", "coupler": "tab:blue", "rocker": "tab:green"}
@@ -151,7 +151,7 @@ def _crank_axis(axes: "Axes", units: str) -> None:
 
 def angle_figure(a: float, b: float, c: float, d: float, branches: Sequence[int] = (1, -1),
                  units: str = "deg", title: str | None = None, samples: int = TURN_SAMPLES) -> "Figure":
-    """Coupler and rocker angle against the crank angle over a full turn (``seeds/001``'s two plots).
+    """Coupler and rocker angle against the crank angle over a full turn (the Maple worksheet's two plots).
 
     One line per branch (solid +1, dashed -1), angles wrapped to (-180, 180]
     deg or (-pi, pi] rad; unreachable crank angles are shaded.
@@ -186,7 +186,7 @@ def _checked_branches(branches: Sequence[int]) -> list[int]:
 
 def transmission_figure(a: float, b: float, c: float, d: float, units: str = "deg",
                         title: str | None = None, samples: int = TURN_SAMPLES) -> "Figure":
-    """The transmission angle against the crank angle over a turn (``seeds/002``, Fig. 5, 7, 9).
+    """The transmission angle against the crank angle over a turn (the quick-return synthesis paper, Fig. 5, 7, 9).
 
     The angle is the interior angle at C between coupler and rocker, the same
     on both branches (:func:`~symlink.analysis.transmission_curve`).  Its
@@ -338,9 +338,9 @@ def coupler_curve_figure(a: float, b: float, c: float, d: float, distance: float
     return figure
 
 
-# --- the loop of seeds/000 ------------------------------------------------------------
+# --- the loop of the MATLAB GUI paper ------------------------------------------------------------
 def draw_loop(lengths: Sequence[float], angles_rad: Sequence[float], path, title: str = "") -> "Figure":
-    """Draw a closed loop ``z1 + z2 + z3 + z4 = 0`` head to tail, as ``seeds/000`` does, and save it.
+    """Draw a closed loop ``z1 + z2 + z3 + z4 = 0`` head to tail, as the MATLAB GUI paper does, and save it.
 
     ``z_k = R_k e^{i t_k}``, starting at the origin; links red, yellow, blue,
     green with a legend of each length and angle (degrees).  ``ValueError``

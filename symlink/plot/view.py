@@ -1,4 +1,4 @@
-"""``symlink view``: the four-bar as an interactive Matplotlib figure, the GUI of ``seeds/000`` and ``seeds/002``.
+"""``symlink view``: the four-bar as an interactive Matplotlib figure, the GUIs of the MATLAB papers.
 
 Sliders set the four link lengths, the crank angle and the crank speed; a
 radio button picks the branch.  The mechanism is redrawn and the angles,
@@ -35,7 +35,7 @@ if TYPE_CHECKING:
 
 __all__ = ["FourbarView", "LinkageView", "SEED001", "OUTPUTS"]
 
-#: The worksheet's data (``seeds/001``), metres: the view's default linkage.
+#: The Maple worksheet's data, metres: the view's default linkage.
 SEED001 = {"crank": 0.1, "coupler": 0.4, "rocker": 0.25, "ground": 0.30}
 OUTPUTS = ["B_x", "B_y", "C_x", "C_y", "coupler", "rocker", "coupler_speed", "rocker_speed", "transmission"]
 LENGTH_SLIDERS = (("crank", "crank a"), ("coupler", "coupler b"), ("rocker", "rocker c"), ("ground", "ground d"))

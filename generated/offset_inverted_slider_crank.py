@@ -114,9 +114,9 @@ def velocities(theta, a, d, e, branch=1, thetadot=0.0, *, check=True):
         check, ('theta', 'a', 'd', 'e', 'branch', 'thetadot'), (theta, a, d, e, branch, thetadot,), ('a', 'd', 'e'), ('branch',))
     cse_1 = numpy.cos(theta)
     cse_2 = numpy.sin(theta)
-    cse_10 = a*thetadot
-    cse_11 = cse_1*cse_10
-    cse_12 = cse_10*cse_2
+    cse_7 = a*thetadot
+    cse_8 = cse_1*cse_7
+    cse_10 = cse_2*cse_7
     size_1 = 2.0**numpy.floor(numpy.log((1/3)*a + (1/3)*d + (1/3)*e)/numpy.log(2.0))
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
@@ -129,14 +129,12 @@ def velocities(theta, a, d, e, branch=1, thetadot=0.0, *, check=True):
     Delta_1 = _clamped_sqrt(cse_3*(-rho_3_1 + w_1), 2.0*rho_3_1*(cse_3 + rho_1_1 + rho_2_1))
     cse_4 = Delta_1*branch
     phi = numpy.arctan2(Wx_1*rho_3_1 - Wy_1*cse_4, -Wx_1*cse_4 - Wy_1*rho_3_1)
-    cse_5 = numpy.sin(phi)
     cse_6 = numpy.cos(phi)
+    cse_9 = numpy.sin(phi)
     s = cse_4*size_1
-    cse_7 = cse_5*e - cse_6*s
-    cse_8 = cse_5*s + cse_6*e
-    cse_9 = 1/(-cse_5*cse_8 + cse_6*cse_7)
-    phidot = cse_9*(-cse_11*cse_6 - cse_12*cse_5)
-    sdot = cse_9*(-cse_11*cse_8 - cse_12*cse_7)
+    cse_5 = 1/(s)
+    phidot = -cse_5*(-cse_10*cse_9 - cse_6*cse_8)
+    sdot = -cse_5*(-cse_10*(-cse_6*s + cse_9*e) - cse_8*(cse_6*e + cse_9*s))
     return {
         'rocker': numpy.broadcast_to(phi, shape),
         'slider': numpy.broadcast_to(s, shape),
@@ -160,10 +158,10 @@ def accelerations(theta, a, d, e, branch=1, thetadot=0.0, thetaddot=0.0, *, chec
         check, ('theta', 'a', 'd', 'e', 'branch', 'thetadot', 'thetaddot'), (theta, a, d, e, branch, thetadot, thetaddot,), ('a', 'd', 'e'), ('branch',))
     cse_1 = numpy.cos(theta)
     cse_2 = numpy.sin(theta)
-    cse_10 = a*cse_1
+    cse_7 = a*cse_1
+    cse_8 = cse_7*thetadot
+    cse_10 = a*cse_2
     cse_11 = cse_10*thetadot
-    cse_12 = a*cse_2
-    cse_13 = cse_12*thetadot
     cse_15 = numpy.square(thetadot)
     size_1 = 2.0**numpy.floor(numpy.log((1/3)*a + (1/3)*d + (1/3)*e)/numpy.log(2.0))
     cse_0 = 1/(size_1)
@@ -177,19 +175,19 @@ def accelerations(theta, a, d, e, branch=1, thetadot=0.0, thetaddot=0.0, *, chec
     Delta_1 = _clamped_sqrt(cse_3*(-rho_3_1 + w_1), 2.0*rho_3_1*(cse_3 + rho_1_1 + rho_2_1))
     cse_4 = Delta_1*branch
     phi = numpy.arctan2(Wx_1*rho_3_1 - Wy_1*cse_4, -Wx_1*cse_4 - Wy_1*rho_3_1)
-    cse_5 = numpy.sin(phi)
     cse_6 = numpy.cos(phi)
+    cse_9 = numpy.sin(phi)
     s = cse_4*size_1
-    cse_7 = cse_5*e - cse_6*s
-    cse_8 = cse_5*s + cse_6*e
-    cse_9 = 1/(-cse_5*cse_8 + cse_6*cse_7)
-    phidot = cse_9*(-cse_11*cse_6 - cse_13*cse_5)
-    sdot = cse_9*(-cse_11*cse_8 - cse_13*cse_7)
-    cse_14 = cse_5*sdot
-    cse_16 = cse_10*cse_15 + cse_12*thetaddot - cse_14*phidot - phidot*(cse_14 - cse_7*phidot)
-    cse_17 = a*cse_15*cse_2 - cse_10*thetaddot + cse_6*phidot*sdot - phidot*(-cse_6*sdot + cse_8*phidot)
-    phiddot = cse_9*(-cse_16*cse_5 + cse_17*cse_6)
-    sddot = cse_9*(-cse_16*cse_7 + cse_17*cse_8)
+    cse_5 = 1/(s)
+    cse_12 = cse_6*e + cse_9*s
+    cse_13 = -cse_6*s + cse_9*e
+    phidot = -cse_5*(-cse_11*cse_9 - cse_6*cse_8)
+    sdot = -cse_5*(-cse_11*cse_13 - cse_12*cse_8)
+    cse_14 = cse_9*sdot
+    cse_16 = cse_10*thetaddot - cse_14*phidot + cse_15*cse_7 - phidot*(-cse_13*phidot + cse_14)
+    cse_17 = a*cse_15*cse_2 + cse_6*phidot*sdot - cse_7*thetaddot - phidot*(cse_12*phidot - cse_6*sdot)
+    phiddot = -cse_5*(-cse_16*cse_9 + cse_17*cse_6)
+    sddot = -cse_5*(cse_12*cse_17 - cse_13*cse_16)
     return {
         'rocker': numpy.broadcast_to(phi, shape),
         'slider': numpy.broadcast_to(s, shape),

@@ -69,7 +69,10 @@ def _by_cramer(loop: Loop, unknowns, coordinates, order, target) -> dict[sp.Symb
     symbols = [target(u) for u in unknowns]
     matrix = [[sp.diff(e, x) for x in symbols] for e in equations]
     rest = [-e.subs({x: 0 for x in symbols}) for e in equations]
-    determinant = matrix[0][0] * matrix[1][1] - matrix[0][1] * matrix[1][0]
+    # The determinant is a short trigonometric polynomial of the loop's own angles (for a slider on a turning
+    # guide it is the slider's travel, -s): simplified once here, at derivation time, it prints short and
+    # cancels no digits when evaluated.
+    determinant = sp.trigsimp(sp.expand(matrix[0][0] * matrix[1][1] - matrix[0][1] * matrix[1][0]))
     return {
         symbols[0]: (rest[0] * matrix[1][1] - matrix[0][1] * rest[1]) / determinant,
         symbols[1]: (matrix[0][0] * rest[1] - rest[0] * matrix[1][0]) / determinant,

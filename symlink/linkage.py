@@ -35,7 +35,7 @@ from .motion import loop_rates
 from .position import ClampedSqrt, LoopSolution, solve_loop
 from .vectors import Vector, VectorSum, acceleration, expression, rate
 
-__all__ = ["Linkage", "Program", "is_branch_name"]
+__all__ = ["Linkage", "Equations", "Program", "is_branch_name"]
 
 BRANCH = "branch"
 SPEED_SUFFIX = "_speed"
@@ -66,6 +66,19 @@ class Program:
     assignments: tuple[tuple[sp.Symbol, sp.Expr], ...]
     outputs: dict[str, sp.Expr]
     defaults: dict[str, float] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class Equations:
+    """A linkage's equations as a Jupyter display: closure, positions, and optionally rates (LaTeX)."""
+
+    linkage: "Linkage"
+    velocities: bool = False
+    accelerations: bool = False
+
+    def _repr_latex_(self) -> str:
+        from .codegen.latex import equations_latex  # on first use: the printer does not import linkage
+        return "$\\displaystyle " + equations_latex(self.linkage, self.velocities, self.accelerations) + "$"
 
 
 class Linkage:
@@ -389,8 +402,19 @@ class Linkage:
                 + tuple(rate(q) for q in self.inputs) + tuple(acceleration(q) for q in self.inputs))
 
     def _repr_latex_(self) -> str:
-        from .codegen.latex import equations_latex  # on first use: the printer does not import linkage
-        return "$\\displaystyle " + equations_latex(self) + "$"
+        return self.equations()._repr_latex_()
+
+    def equations(self, velocities: bool = False, accelerations: bool = False) -> "Equations":
+        r"""The closure and the closed forms as a Jupyter display (velocities and accelerations on request).
+
+        Displaying a linkage shows the closure and positions; this shows more
+        without deriving anything that is not asked for.
+
+        >>> from symlink.catalog import fourbar
+        >>> "\\dot{\\phi}" in fourbar().equations(velocities=True)._repr_latex_()
+        True
+        """
+        return Equations(self, velocities, accelerations)
 
     def __repr__(self) -> str:
         return (f"Linkage({self.name!r}, loops={[loop.name for loop in self.loops]}, "

@@ -249,14 +249,18 @@ def closure_rows(linkage: Linkage) -> list[tuple[sp.Expr, sp.Expr]]:
     return rows
 
 
-def equations_latex(linkage: Linkage) -> str:
+def equations_latex(linkage: Linkage, velocities: bool = False, accelerations: bool = False) -> str:
     """All equations of the linkage as one ``aligned`` block (for Jupyter).
 
     The closure equations, then the closed-form positions where the linkage
-    has a solve plan; without one (the Newton fallback solves it) the
-    closure alone.
+    has a solve plan (and, when asked for, the velocities and accelerations);
+    without one (the Newton fallback solves it) the closure alone.
     """
-    rows = closure_rows(linkage) + (list(linkage.positions.items()) if linkage.has_closed_form else [])
+    rows = closure_rows(linkage)
+    if linkage.has_closed_form:
+        rows += list(linkage.positions.items())
+        rows += list(linkage.velocities.items()) if velocities else []
+        rows += list(linkage.accelerations.items()) if accelerations else []
     return "\\begin{aligned}" + _aligned(rows) + "\\end{aligned}"
 
 

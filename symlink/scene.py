@@ -64,6 +64,7 @@ from .angles import to_radians
 from .linkage import Linkage, Program
 from .closure import is_angle
 from .notation import math_text
+from .results import Results
 from .solver import Solver, crank_speeds
 from .vectors import acceleration, rate
 
@@ -163,8 +164,14 @@ class Scene:
         """The straight-line program behind the code: symbolic work, for inspection only."""
         return self.linkage.program(self.outputs)
 
-    def evaluate(self, **values) -> dict[int, dict[str, numpy.ndarray]]:
-        """The outputs on each branch sign, at the scene's values updated by ``values``."""
+    def evaluate(self, **values) -> dict[int, Results]:
+        """The outputs on each branch sign, at the scene's values updated by ``values``.
+
+        Each is a :class:`~symlink.results.Results` (a dict that shows as a
+        table and has ``to_frame()``); ``values`` may be pint quantities, as
+        for :class:`~symlink.solver.Solver`, but not mixed with the scene's
+        plain lengths.
+        """
         merged = {**self.values, **values}
         signature = inspect.signature(self.code.function).parameters
         missing = [name for name, argument in signature.items()

@@ -10,6 +10,12 @@ be assembled the result says so in its ``assembled`` mask.  A :class:`NumericSol
 loads Newton's method on the closure instead, for linkages without a closed
 form (and any other).
 
+Both return :class:`~symlink.results.Results`: a dict of arrays by output
+name that also knows each output's unit and shows itself as a table in a
+notebook (``to_frame()`` for pandas).  Arguments may be pint quantities,
+converted as :mod:`symlink.units` says (angles to radians, lengths to one
+unit, rates per second) or refused where they would mix.
+
 >>> from symlink.catalog import fourbar
 >>> solver = Solver(fourbar(), ["rocker"])
 >>> result = solver(theta=0.0, a=20, b=66, c=56, d=80, branch=1)
@@ -32,6 +38,8 @@ from .codegen import newton
 from .codegen.numpy import checked_arguments, load_numpy_module
 from .limits import require_memory
 from .linkage import Linkage, Program, is_branch_name
+from .results import Results
+from .units import ANY_LENGTH, output_units, plain_values
 from .vectors import acceleration, rate
 
 __all__ = ["Solver", "NumericSolver", "shared_solver", "check_lengths", "crank_speeds"]
@@ -78,20 +86,33 @@ class Solver:
         """Memory a call needs for each input value: its outputs, the generated code's intermediates, temporaries."""
         return 8 * (len(self.outputs) + 2 + _assignments(self.source) + _TEMPORARIES)
 
-    def __call__(self, **values) -> dict[str, numpy.ndarray]:
+    @cached_property
+    def units(self) -> dict[str, str]:
+        """The unit of each output, lengths named ``length`` (:func:`symlink.units.output_units`)."""
+        return output_units(self.linkage, self.outputs + ["assembled"])
+
+    def __call__(self, **values) -> Results:
         unknown = set(values) - set(self.arguments)
         if unknown:
             raise ValueError(f"{self.linkage.name} takes {', '.join(self.arguments)}; not {', '.join(sorted(unknown))}")
+        values, length_unit = plain_values(self.linkage, values)
         _require_memory(self, values, self.bytes_per_value, "solver")
         names = list(values)
         lengths = [s.name for s in self.linkage.parameters if s.is_positive]
         arrays, _ = checked_arguments(names, [values[name] for name in names], lengths, self.branches)
         with numpy.errstate(invalid="ignore", divide="ignore"):
-            return self._unchecked(**dict(zip(names, arrays)))
+            return _results(self._unchecked(**dict(zip(names, arrays))), self.units, length_unit)
 
 
 #: NumPy's own temporaries while it evaluates one generated line (counted generously), in arrays.
 _TEMPORARIES = 4
+
+
+def _results(values: Mapping[str, numpy.ndarray], units: Mapping[str, str], length_unit: str | None) -> Results:
+    """``values`` as :class:`~symlink.results.Results`, lengths in ``length_unit`` where one was given."""
+    if length_unit is not None:
+        units = {name: unit.replace(ANY_LENGTH, length_unit) for name, unit in units.items()}
+    return Results(values, {name: units.get(name, "") for name in values})
 
 
 def _assignments(source: str) -> int:
@@ -139,15 +160,21 @@ class NumericSolver:
         rates = tuple(rate(x) for x in self.linkage.inputs) + tuple(acceleration(x) for x in self.linkage.inputs)
         return [s.name for s in signature] + ["guess"] + [s.name for s in rates]
 
-    def __call__(self, guess: Mapping[str, float] | Sequence[float], **values) -> dict[str, numpy.ndarray]:
+    @cached_property
+    def units(self) -> dict[str, str]:
+        """The unit of each output, lengths named ``length`` (:func:`symlink.units.output_units`)."""
+        return output_units(self.linkage, self.linkage.output_names() + ["assembled"])
+
+    def __call__(self, guess: Mapping[str, float] | Sequence[float], **values) -> Results:
         names = self.arguments
         unknown = set(values) - set(names)
         missing = [s.name for s in self.linkage.inputs + self.linkage.parameters if s.name not in values]
         if unknown or missing:
             raise ValueError(f"{self.linkage.name} takes {', '.join(names)}; "
                              + (f"not {', '.join(sorted(unknown))}" if unknown else f"missing {', '.join(missing)}"))
+        values, length_unit = plain_values(self.linkage, values)
         _require_memory(self, values, self.bytes_per_value, "numeric solver")
-        return self.functions["accelerations"](guess=guess, **values)
+        return _results(self.functions["accelerations"](guess=guess, **values), self.units, length_unit)
 
     @cached_property
     def bytes_per_value(self) -> int:

@@ -279,3 +279,58 @@ def test_names_q_qdot_qddot_reach_no_local_of_the_numeric_module(crank, lengths_
     closed = Solver(linkage, ["phi", "phidot"])(**{crank: angles, f"{crank}dot": 2.0}, **dimensions, branch=branch)
     assert np.max(angle_gap(closed["phi"], numeric["phi"])) < 1e-13
     assert np.max(np.abs(closed["phidot"] - numeric["phidot"])) < 1e-12
+
+
+# --- pint quantities: converted consistently or refused ---------------------------------------------------------
+def test_pint_quantities_convert_to_one_length_unit_and_radians():
+    pint = pytest.importorskip("pint")
+    units = pint.UnitRegistry()
+    solver = Solver(fourbar(), ["rocker", "rocker_speed", "C_x"])
+    mixed = solver(theta=units.Quantity([0.0, 30.0], "degree"), a=2 * units.cm, b=0.066 * units.m,
+                   c=56 * units.mm, d=80 * units.mm, branch=1, thetadot=60 * units.rpm)
+    # The same linkage by hand: lengths in cm (the first length's unit), angles in rad, rates in rad/s.
+    plain = solver(theta=[0.0, math.pi / 6], a=2.0, b=6.6, c=5.6, d=8.0, branch=1, thetadot=2 * math.pi)
+    for name in ("rocker", "rocker_speed", "C_x"):
+        np.testing.assert_allclose(mixed[name], plain[name], rtol=1e-12)
+    assert mixed.units["C_x"] == "centimeter" and mixed.units["rocker_speed"] == "rad/s"
+
+
+def test_pint_length_rates_follow_the_length_unit():
+    pint = pytest.importorskip("pint")
+    units = pint.UnitRegistry()
+    linkage = CATALOG["slider-crank"]()
+    solver = Solver(linkage, ["s", "sdot"])
+    quantities = solver(theta=0.4, a=1.3 * units.m, b=4100 * units.mm, offset=70 * units.cm, branch=1, thetadot=3.0)
+    plain = solver(theta=0.4, a=1.3, b=4.1, offset=0.7, branch=1, thetadot=3.0)
+    for name in ("s", "sdot"):
+        np.testing.assert_allclose(quantities[name], plain[name], rtol=1e-12)
+    assert quantities.units["s"] == "meter" and quantities.units["sdot"] == "meter/s"
+
+
+@pytest.mark.parametrize("values, message", [
+    (dict(a="mm"), "carry units but"),                 # one length with units, the others plain numbers
+    (dict(a="s", b="mm", c="mm", d="mm"), "a must be a length"),
+    (dict(a="mm", b="kg", c="mm", d="mm"), "b must be a length"),
+    (dict(theta="mm"), "theta must be an angle"),
+    (dict(thetadot="m"), "thetadot must be an angle per second"),
+    (dict(branch="dimensionless"), "branch is a plain number"),
+])
+def test_pint_quantities_that_would_mix_are_refused(values, message):
+    pint = pytest.importorskip("pint")
+    units = pint.UnitRegistry()
+    arguments = dict(theta=0.1, a=20.0, b=66.0, c=56.0, d=80.0, branch=1)
+    arguments.update({name: units.Quantity(arguments.get(name, 1.0), unit) for name, unit in values.items()})
+    with pytest.raises(ValueError, match=message):
+        Solver(fourbar(), ["rocker", "rocker_speed"])(**arguments)
+
+
+def test_numeric_solver_converts_quantities():
+    pint = pytest.importorskip("pint")
+    units = pint.UnitRegistry()
+    solver = NumericSolver(fourbar())
+    guess = {"beta": 1.0, "phi": 2.0}
+    mixed = solver(theta=units.Quantity([0.0, 5.0], "degree"), a=20 * units.mm, b=6.6 * units.cm,
+                   c=56 * units.mm, d=80 * units.mm, guess=guess)
+    plain = solver(theta=[0.0, math.radians(5.0)], a=20.0, b=66.0, c=56.0, d=80.0, guess=guess)
+    np.testing.assert_allclose(mixed["rocker"], plain["rocker"], rtol=1e-12)
+    assert mixed.units["C_x"] == "millimeter"

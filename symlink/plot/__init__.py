@@ -5,8 +5,13 @@
 * :mod:`~symlink.plot.figures`: the four-bar's angle, transmission and
   coupler-curve figures, the seed 000 loop, and :func:`save_figure`;
 * :mod:`~symlink.plot.animation`: animations of any linkage (and of the
-  four-bar from its four lengths) as GIF or MP4;
-* :mod:`~symlink.plot.view`: the interactive four-bar.
+  four-bar from its four lengths) as GIF or MP4, or inline in a notebook
+  (:func:`~symlink.plot.animation.inline_animation`);
+* :mod:`~symlink.plot.view`: the interactive four-bar and any linkage
+  (in Jupyter with ``%matplotlib widget``, the ``notebook`` extra);
+* :mod:`~symlink.plot.inline`: figures that display inline in a notebook.
+
+Every figure function takes the Matplotlib axes to draw on (``ax=``).
 
 The figure functions are importable from here.  Matplotlib is imported only
 when a drawing is made, so the ``symlink`` command starts fast.

@@ -1,4 +1,4 @@
-"""Animations of a linkage over its input, as GIF (Pillow) or MP4 (ffmpeg).
+"""Animations of a linkage over its input, as GIF (Pillow) or MP4 (ffmpeg), or inline in a notebook.
 
 :func:`animate_linkage` animates any linkage, drawn as
 :mod:`symlink.plot.drawing` draws it, over a turn of its first input;
@@ -15,6 +15,12 @@ cannot be assembled.  Frames are written into a hidden file in the output
 folder (``.symlink-animation-*.tmp``, removed by the next run if a run is
 killed) and renamed into place when complete; an animation is capped by
 frames times pixels (:data:`MAX_FRAME_PIXELS`) before anything is drawn.
+
+In a notebook, :func:`inline_animation` and :func:`inline_fourbar_animation`
+make the same frames into an :class:`InlineAnimation`: an HTML player with
+the frames embedded as PNG (Matplotlib's ``to_jshtml``) that the notebook
+shows and that survives ``jupyter nbconvert --to html``, with no file left
+behind.
 
 >>> positions = frame_positions(0.1, 0.4, 0.25, 0.30, frames=4)
 >>> [round(math.degrees(t)) for t in positions["theta"]]
@@ -40,7 +46,8 @@ from .drawing import Geometry, LinkageDrawing, input_range, sweep_inputs, traced
 from .figures import MechanismDrawing, check_coupler_point, coupler_point_linkage, extent, fourbar_positions
 
 __all__ = ["FRAMES", "MAX_FRAMES", "MAX_FRAME_PIXELS", "ANIMATION_SUFFIXES", "LEFTOVER_PREFIX", "frame_positions",
-           "animate", "animate_linkage", "check_animation_size", "Rendered"]
+           "animate", "animate_linkage", "check_animation_size", "Rendered", "InlineAnimation", "inline_animation",
+           "inline_fourbar_animation"]
 
 #: Frames in a turn, as in the Maple worksheet (t from 0 to 29/30).
 FRAMES = 30
@@ -69,6 +76,33 @@ class Rendered:
     def full_turn(self) -> bool:
         """Whether the input turned fully (else it was swept forward and back over ``spans[0]``)."""
         return bool(self.spans) and self.spans[0][1] - self.spans[0][0] >= 2 * math.pi
+
+
+@dataclass(frozen=True)
+class InlineAnimation:
+    """An animation for a notebook: ``html`` (a JavaScript player holding every frame as PNG), shown by
+    ``_repr_html_``; ``frames``, ``unassembled`` and ``spans`` as :class:`Rendered` says."""
+
+    html: str
+    frames: int
+    unassembled: tuple[float, ...]
+    spans: tuple[tuple[float, float], ...] = ((-math.pi, math.pi),)
+
+    full_turn = Rendered.full_turn
+
+    def _repr_html_(self) -> str:
+        return self.html
+
+
+@dataclass
+class _Frames:
+    """A figure ready to animate: ``draw(k)`` poses frame ``k`` of ``count``; what could not close is collected."""
+
+    figure: object
+    count: int
+    draw: Callable[[int], None]
+    unassembled: list
+    spans: tuple
 
 
 def frame_positions(a: float, b: float, c: float, d: float, *, branch: int = 1, frames: int = FRAMES,
@@ -132,11 +166,44 @@ def check_animation_size(frames: int, size_px: tuple[int, int]) -> tuple[int, in
 
 def _checked_request(path, fps: float, frames: int, size_px: tuple[int, int]):
     path = Path(path)
-    if not (math.isfinite(fps) and fps > 0):
-        raise ValueError(f"fps must be a positive number, got {fps}")
+    _check_fps(fps)
     writer = _writer(path, fps)
     width, height = check_animation_size(frames, size_px)
     return path, writer, width, height
+
+
+def _check_fps(fps: float) -> None:
+    if not (isinstance(fps, (int, float, numpy.number)) and math.isfinite(fps) and fps > 0):
+        raise ValueError(f"fps must be a positive number, got {fps}")
+
+
+#: How an embedded frame starts in Matplotlib's HTML player.
+FRAME_MARK = "data:image/png;base64,"
+
+
+def _html_frames(frames: _Frames, fps: float, progress: Callable[[int, int], None] | None) -> str:
+    """The frames as Matplotlib's JavaScript player (``to_jshtml``), every frame embedded, or ``ValueError``."""
+    import matplotlib
+    from matplotlib.animation import FuncAnimation
+
+    def draw(k: int) -> list:
+        frames.draw(k)
+        if progress is not None:
+            progress(k + 1, frames.count)
+        return []
+
+    width, height = frames.figure.canvas.get_width_height()
+    # Matplotlib drops the frames past animation.embed_limit (MB) with a warning only: allow what the frame cap
+    # allows (PNG frames are smaller than their raw pixels, base64 a third more), and check the count after.
+    limit = max(matplotlib.rcParams["animation.embed_limit"], 4 * frames.count * width * height * 1.5 / 2 ** 20)
+    with matplotlib.rc_context({"animation.embed_limit": limit}):
+        player = FuncAnimation(frames.figure, draw, frames=frames.count, init_func=lambda: [], repeat=True,
+                               cache_frame_data=False, interval=1000 / fps)
+        text = player.to_jshtml(fps=fps, default_mode="loop")
+    embedded = text.count(FRAME_MARK)
+    if embedded != frames.count:
+        raise ValueError(f"the notebook player holds {embedded} of {frames.count} frames; lower the frames or size")
+    return text
 
 
 def _write_frames(path: Path, writer, figure, count: int, draw: Callable[[int], None],
@@ -184,6 +251,33 @@ def animate(a: float, b: float, c: float, d: float, path, *, branch: int = 1, fr
     is called after each frame.  The file appears whole or not at all.
     """
     path, writer, width, height = _checked_request(path, fps, frames, size_px)
+    drawn = _fourbar_frames(a, b, c, d, branch, frames, coupler_point, linkage, width, height)
+    _write_frames(path, writer, drawn.figure, drawn.count, drawn.draw, progress)
+    return Rendered(path, drawn.count, tuple(drawn.unassembled), drawn.spans)
+
+
+def inline_fourbar_animation(a: float, b: float, c: float, d: float, *, branch: int = 1, frames: int = FRAMES,
+                             coupler_point: tuple[float, float] | None = None, fps: float = 10,
+                             size_px: tuple[int, int] = (480, 360),
+                             progress: Callable[[int, int], None] | None = None,
+                             linkage: Linkage | None = None) -> InlineAnimation:
+    """:func:`animate`'s frames as an :class:`InlineAnimation` for a notebook; no file is written.
+
+    >>> shown = inline_fourbar_animation(0.1, 0.4, 0.25, 0.30, frames=3, size_px=(160, 120))
+    >>> shown.frames, shown.html.count("data:image/png;base64,")
+    (3, 3)
+    """
+    _check_fps(fps)
+    width, height = check_animation_size(frames, size_px)
+    drawn = _fourbar_frames(a, b, c, d, branch, frames, coupler_point, linkage, width, height)
+    html = _html_frames(drawn, fps, progress)
+    return InlineAnimation(html, drawn.count, tuple(drawn.unassembled), drawn.spans)
+
+
+def _fourbar_frames(a: float, b: float, c: float, d: float, branch: int, frames: int,
+                    coupler_point: tuple[float, float] | None, linkage: Linkage | None,
+                    width: int, height: int) -> _Frames:
+    """The four-bar's figure and frame drawer, as :func:`animate` describes."""
     positions = frame_positions(a, b, c, d, branch=branch, frames=frames, coupler_point=coupler_point,
                                 linkage=linkage)
     figure, axes = _figure(width, height)
@@ -217,8 +311,7 @@ def animate(a: float, b: float, c: float, d: float, path, *, branch: int = 1, fr
         if not assembled:
             unassembled.append(float(angle))
 
-    _write_frames(path, writer, figure, len(positions["theta"]), draw, progress)
-    return Rendered(path, len(positions["theta"]), tuple(unassembled), tuple(crank_range(a, b, c, d)))
+    return _Frames(figure, len(positions["theta"]), draw, unassembled, tuple(crank_range(a, b, c, d)))
 
 
 def animate_linkage(linkage: Linkage, values: Mapping[str, float], path, *, frames: int = FRAMES,
@@ -242,6 +335,37 @@ def animate_linkage(linkage: Linkage, values: Mapping[str, float], path, *, fram
     (4, (), False)
     """
     path, writer, width, height = _checked_request(path, fps, frames, size_px)
+    drawn = _linkage_frames(linkage, values, frames, trace, unit, guess, geometry, width, height)
+    _write_frames(path, writer, drawn.figure, drawn.count, drawn.draw, progress)
+    return Rendered(path, drawn.count, tuple(drawn.unassembled), drawn.spans)
+
+
+def inline_animation(linkage: Linkage, values: Mapping[str, float], *, frames: int = FRAMES,
+                     trace: Sequence[str] = (), fps: float = 10, size_px: tuple[int, int] = (480, 360),
+                     unit: str | None = None, guess: Mapping[str, float] | None = None,
+                     progress: Callable[[int, int], None] | None = None,
+                     geometry: Geometry | None = None) -> InlineAnimation:
+    """:func:`animate_linkage`'s frames as an :class:`InlineAnimation` for a notebook; no file is written.
+
+    The last expression of a notebook cell shows it as a player; ``.html``
+    is the HTML itself (for ``IPython.display.HTML`` or a page).
+
+    >>> from symlink.catalog import fourbar
+    >>> shown = inline_animation(fourbar(), dict(a=0.1, b=0.4, c=0.25, d=0.3), frames=4, size_px=(160, 120))
+    >>> shown.frames, shown.full_turn, shown._repr_html_().count("data:image/png;base64,")
+    (4, True, 4)
+    """
+    _check_fps(fps)
+    width, height = check_animation_size(frames, size_px)
+    drawn = _linkage_frames(linkage, values, frames, trace, unit, guess, geometry, width, height)
+    html = _html_frames(drawn, fps, progress)
+    return InlineAnimation(html, drawn.count, tuple(drawn.unassembled), drawn.spans)
+
+
+def _linkage_frames(linkage: Linkage, values: Mapping[str, float], frames: int, trace: Sequence[str],
+                    unit: str | None, guess: Mapping[str, float] | None, geometry: Geometry | None,
+                    width: int, height: int) -> _Frames:
+    """Any linkage's figure and frame drawer, as :func:`animate_linkage` describes."""
     geometry = geometry or Geometry(linkage)
     completed = geometry.check_values(values)
     first = geometry.input_names[0]
@@ -270,5 +394,4 @@ def animate_linkage(linkage: Linkage, values: Mapping[str, float], path, *, fram
             label += ": cannot be assembled"
         title.set_text(label)
 
-    _write_frames(path, writer, figure, frames, draw, progress)
-    return Rendered(path, frames, tuple(unassembled), tuple(spans))
+    return _Frames(figure, frames, draw, unassembled, tuple(spans))

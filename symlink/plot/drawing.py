@@ -446,8 +446,8 @@ class LinkageDrawing:
 def _axes(ax: "Axes | None", size: tuple[float, float] = (6.4, 5.2)) -> "Axes":
     if ax is not None:
         return ax
-    from matplotlib.figure import Figure
-    return Figure(figsize=size, layout="constrained").add_subplot()
+    from .inline import NotebookFigure
+    return NotebookFigure(figsize=size, layout="constrained").add_subplot()
 
 
 def traced_paths(geometry: Geometry, values: Mapping[str, float], trace: Sequence[str],

@@ -2,8 +2,12 @@
 
 Every ``*_figure`` function returns a :class:`matplotlib.figure.Figure` that
 pyplot does not know about (nothing global is kept, and it is freed like any
-object); :func:`save_figure` writes one atomically as PNG or SVG, chosen by
-the file's suffix.  Matplotlib is imported only when a drawing is made, so the
+object) and that a notebook displays inline by itself
+(:class:`~symlink.plot.inline.NotebookFigure`); :func:`save_figure` writes
+one atomically as PNG or SVG, chosen by the file's suffix.  Each also draws
+on axes you give it (``ax=``, or ``axes=`` two of them for the two panels of
+:func:`angle_figure`), to compose with other plots, and then returns the
+figure those axes are on.  Matplotlib is imported only when a drawing is made, so the
 ``symlink`` command starts fast.
 
 The curves are evaluated by generated solvers that derive positions only,
@@ -18,6 +22,11 @@ angle ``gamma`` measured counter-clockwise from the coupler's direction B->C:
 >>> figure = angle_figure(0.1, 0.4, 0.25, 0.30)
 >>> [axes.get_ylabel() for axes in figure.axes]
 ['coupler angle β (deg)', 'rocker angle φ (deg)']
+>>> from matplotlib.figure import Figure
+>>> mine = Figure()
+>>> left, right = mine.subplots(1, 2)
+>>> transmission_figure(0.1, 0.4, 0.25, 0.30, ax=right) is mine
+True
 """
 from __future__ import annotations
 
@@ -129,11 +138,23 @@ def _shade_unreachable(axes: "Axes", a: float, b: float, c: float, d: float, sca
             label = None
 
 
-def _new_figure(width: float, height: float, rows: int = 1) -> tuple["Figure", list["Axes"]]:
-    from matplotlib.figure import Figure
-    figure = Figure(figsize=(width, height), layout="constrained")
+def _new_figure(width: float, height: float, rows: int = 1,
+                given: "Sequence[Axes] | None" = None) -> tuple["Figure", list["Axes"]]:
+    """A new figure (one that displays itself in a notebook) with ``rows`` axes, or the ``given`` axes' figure."""
+    if given is not None:
+        given = list(given)
+        if len(given) != rows or not all(hasattr(axes, "plot") and hasattr(axes, "figure") for axes in given):
+            raise ValueError(f"give {'one Matplotlib Axes' if rows == 1 else f'{rows} Matplotlib Axes'} to draw on, "
+                             f"got {given!r}")
+        return given[0].figure, given
+    from .inline import NotebookFigure
+    figure = NotebookFigure(figsize=(width, height), layout="constrained")
     axes = figure.subplots(rows, 1, sharex=True, squeeze=False)[:, 0]
     return figure, list(axes)
+
+
+def _given(ax: "Axes | None") -> "list[Axes] | None":
+    return None if ax is None else [ax]
 
 
 def _lengths_title(a: float, b: float, c: float, d: float) -> str:
@@ -150,30 +171,37 @@ def _crank_axis(axes: "Axes", units: str) -> None:
 
 
 def angle_figure(a: float, b: float, c: float, d: float, branches: Sequence[int] = (1, -1),
-                 units: str = "deg", title: str | None = None, samples: int = TURN_SAMPLES) -> "Figure":
+                 units: str = "deg", title: str | None = None, samples: int = TURN_SAMPLES,
+                 axes: "Sequence[Axes] | None" = None) -> "Figure":
     """Coupler and rocker angle against the crank angle over a full turn (the Maple worksheet's two plots).
 
     One line per branch (solid +1, dashed -1), angles wrapped to (-180, 180]
-    deg or (-pi, pi] rad; unreachable crank angles are shaded.
+    deg or (-pi, pi] rad; unreachable crank angles are shaded.  ``axes``:
+    two Matplotlib Axes to draw the coupler and the rocker on (default: a new
+    figure); the title then goes on the first.
     """
     assembled_crank_range(a, b, c, d)
     half = half_turn(units)
     scale = half / math.pi
     theta = turn_angles(a, b, c, d, samples)
-    figure, (top, bottom) = _new_figure(7.0, 6.0, rows=2)
+    figure, (top, bottom) = _new_figure(7.0, 6.0, rows=2, given=axes)
     for sign in _checked_branches(branches):
         result = fourbar_positions(a, b, c, d, theta, sign, ["coupler", "rocker"])
-        for axes, name in ((top, "coupler"), (bottom, "rocker")):
+        for panel, name in ((top, "coupler"), (bottom, "rocker")):
             x, y = _wrapped_with_breaks(theta * scale, result[name] * scale, half)
-            axes.plot(x, y, BRANCH_STYLES[sign], color=LINK_COLORS[name], label=f"branch {sign:+d}")
-    for axes, name, symbol in ((top, "coupler", "β"), (bottom, "rocker", "φ")):
-        _shade_unreachable(axes, a, b, c, d, scale)
-        axes.set_ylabel(f"{name} angle {symbol} ({units})")
-        axes.grid(True, alpha=0.4)
-        axes.legend(loc="best", fontsize="small")
-        _crank_axis(axes, units)
-    top.set_xlabel("")
-    figure.suptitle(title if title is not None else _lengths_title(a, b, c, d))
+            panel.plot(x, y, BRANCH_STYLES[sign], color=LINK_COLORS[name], label=f"branch {sign:+d}")
+    for panel, name, symbol in ((top, "coupler", "β"), (bottom, "rocker", "φ")):
+        _shade_unreachable(panel, a, b, c, d, scale)
+        panel.set_ylabel(f"{name} angle {symbol} ({units})")
+        panel.grid(True, alpha=0.4)
+        panel.legend(loc="best", fontsize="small")
+        _crank_axis(panel, units)
+    heading = title if title is not None else _lengths_title(a, b, c, d)
+    if axes is None:
+        top.set_xlabel("")
+        figure.suptitle(heading)
+    else:
+        top.set_title(heading, fontsize="medium")
     return figure
 
 
@@ -185,21 +213,22 @@ def _checked_branches(branches: Sequence[int]) -> list[int]:
 
 
 def transmission_figure(a: float, b: float, c: float, d: float, units: str = "deg",
-                        title: str | None = None, samples: int = TURN_SAMPLES) -> "Figure":
+                        title: str | None = None, samples: int = TURN_SAMPLES, ax: "Axes | None" = None) -> "Figure":
     """The transmission angle against the crank angle over a turn (the quick-return synthesis paper, Fig. 5, 7, 9).
 
     The angle is the interior angle at C between coupler and rocker, the same
     on both branches (:func:`~symlink.analysis.transmission_curve`).  Its
     smallest and largest values over the turn are marked where they occur
     (:func:`~symlink.analysis.transmission_range`), and the usual design
-    range 45 to 135 deg shaded.
+    range 45 to 135 deg shaded.  ``ax``: the Matplotlib Axes to draw on
+    (default: a new figure's).
     """
     assembled_crank_range(a, b, c, d)
     half = half_turn(units)
     scale = half / math.pi
     theta = turn_angles(a, b, c, d, samples)
     mu = transmission_curve(a, b, c, d, theta)
-    figure, (axes,) = _new_figure(7.0, 4.2)
+    figure, (axes,) = _new_figure(7.0, 4.2, given=_given(ax))
     axes.plot(theta * scale, mu * scale, color="tab:purple", label="transmission angle μ")
     low, high = (math.radians(limit) * scale for limit in TRANSMISSION_LIMITS)
     axes.axhspan(low, high, color="tab:green", alpha=0.08, label="usual range 45°–135°")
@@ -293,19 +322,21 @@ def extent(xs: Sequence, ys: Sequence, margin: float = 0.08) -> tuple[tuple[floa
 
 def coupler_curve_figure(a: float, b: float, c: float, d: float, distance: float, angle: float,
                          branches: Sequence[int] = (1,), crank_angle: float | None = None,
-                         title: str | None = None, unit: str = "", samples: int = TURN_SAMPLES) -> "Figure":
+                         title: str | None = None, unit: str = "", samples: int = TURN_SAMPLES,
+                         ax: "Axes | None" = None) -> "Figure":
     """The curve of a coupler point over a crank turn, with the mechanism drawn at ``crank_angle``.
 
     The point is ``distance`` from B at ``angle`` (radians) from the coupler's
     direction B->C.  The mechanism is drawn at ``crank_angle`` (radians) on
     the first branch, by default at the first reachable crank angle from 0.
+    ``ax``: the Matplotlib Axes to draw on (default: a new figure's).
     """
     assembled_crank_range(a, b, c, d)
     point = (distance, angle)
     check_coupler_point(point)
     branches = _checked_branches(branches)
     theta = turn_angles(a, b, c, d, samples)
-    figure, (axes,) = _new_figure(6.4, 5.2)
+    figure, (axes,) = _new_figure(6.4, 5.2, given=_given(ax))
     xs, ys = [0.0, d], [0.0, 0.0]
     for sign in branches:
         result = fourbar_positions(a, b, c, d, theta, sign, ["P_x", "P_y", "B_x", "B_y", "C_x", "C_y"], point)
@@ -339,12 +370,16 @@ def coupler_curve_figure(a: float, b: float, c: float, d: float, distance: float
 
 
 # --- the loop of the MATLAB GUI paper ------------------------------------------------------------
-def draw_loop(lengths: Sequence[float], angles_rad: Sequence[float], path, title: str = "") -> "Figure":
+def draw_loop(lengths: Sequence[float], angles_rad: Sequence[float], path=None, title: str = "", *,
+              ax: "Axes | None" = None) -> "Figure":
     """Draw a closed loop ``z1 + z2 + z3 + z4 = 0`` head to tail, as the MATLAB GUI paper does, and save it.
 
     ``z_k = R_k e^{i t_k}``, starting at the origin; links red, yellow, blue,
     green with a legend of each length and angle (degrees).  ``ValueError``
-    if the loop does not close (to 1e-6 of its total length).
+    if the loop does not close (to 1e-6 of its total length).  The figure is
+    saved to ``path`` where one is given (PNG or SVG); ``ax`` is the
+    Matplotlib Axes to draw on (default: a new figure's, with the legend
+    below the axes; on given axes the legend is inside them).
 
     >>> import tempfile, pathlib
     >>> path = pathlib.Path(tempfile.mkdtemp()) / "loop.png"
@@ -366,7 +401,9 @@ def draw_loop(lengths: Sequence[float], angles_rad: Sequence[float], path, title
     if total == 0 or abs(heads[-1]) > 1e-6 * total:
         raise ValueError(f"the loop does not close: z1 + z2 + z3 + z4 is {abs(heads[-1]):.6g} away from 0")
     tails = numpy.concatenate([[0], heads[:-1]])
-    figure, (axes,) = _new_figure(6.4, 5.2)
+    if path is not None:
+        figure_suffix(path)  # a bad suffix is refused before anything is drawn
+    figure, (axes,) = _new_figure(6.4, 5.2, given=_given(ax))
     outline = [patheffects.Stroke(linewidth=6, foreground="black"), patheffects.Normal()]
     for k, (tail, head, color) in enumerate(zip(tails, heads, LOOP_COLORS), start=1):
         degrees = float(wrap(math.degrees(angles[k - 1]), 180.0))
@@ -386,9 +423,13 @@ def draw_loop(lengths: Sequence[float], angles_rad: Sequence[float], path, title
     axes.grid(True, alpha=0.3)
     axes.set_xlabel("real axis")
     axes.set_ylabel("imaginary axis")
-    figure.legend(loc="outside lower center", ncols=2, fontsize="small")
+    if ax is None:
+        figure.legend(loc="outside lower center", ncols=2, fontsize="small")
+    else:
+        axes.legend(loc="best", fontsize="small")
     axes.set_title(title or "loop z1 + z2 + z3 + z4 = 0")
-    save_figure(figure, path)
+    if path is not None:
+        save_figure(figure, path)
     return figure
 
 

@@ -7,6 +7,13 @@ cannot close, the figure says so (and shows the reachable crank range)
 instead of drawing anything made up; at a toggle the rates are undefined and
 shown as such.
 
+The views never call ``pyplot.show`` themselves: the ``symlink view``
+command does.  In Jupyter they are interactive with ipympl (the ``notebook``
+extra, ``pip install 'symlink-kinematics[notebook]'``): run
+``%matplotlib widget`` first, then ``FourbarView()`` and the last figure of
+the cell has working sliders.  With the inline backend a figure is a still
+picture, so a view without a figure is refused there with that advice.
+
 The view works on any Matplotlib figure, so it can be driven without a
 display, as the tests do:
 
@@ -69,6 +76,10 @@ def interactive_backend():
     """pyplot, where Matplotlib has an interactive backend; ``ValueError`` saying what to do otherwise."""
     import matplotlib.pyplot as pyplot
     backend = pyplot.get_backend().lower()
+    if "inline" in backend:
+        raise ValueError("Matplotlib draws still pictures in this notebook (the inline backend): run "
+                         "%matplotlib widget first (pip install 'symlink-kinematics[notebook]' for ipympl), "
+                         "or pass figure= to drive the view from code")
     if backend in NON_INTERACTIVE:
         raise ValueError(f"Matplotlib has no interactive backend here (it uses {backend!r}: no display?); "
                          "set MPLBACKEND to one (e.g. TkAgg, QtAgg), or write a picture with --save FILE.png")

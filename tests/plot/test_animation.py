@@ -187,3 +187,58 @@ def test_animate_command(tmp_path, capsys):
     assert "must end in .gif or .mp4" in capsys.readouterr().err
     assert main([*argv[:2], "-0.1", *argv[3:]]) == 2
     assert "crank must be a positive finite length" in capsys.readouterr().err
+
+
+# --- inline in a notebook -----------------------------------------------------------------------------------------
+def embedded_frames(html):
+    """The PNG frames embedded in Matplotlib's HTML player, decoded."""
+    import base64
+    import io
+    import re
+    frames = re.findall(r'data:image/png;base64,([A-Za-z0-9+/=\\\n]+)"', html)
+    return [Image.open(io.BytesIO(base64.b64decode(frame.replace("\\", "").replace("\n", "")))) for frame in frames]
+
+
+def test_inline_animation_embeds_every_frame_and_leaves_no_file(tmp_path, monkeypatch):
+    import tempfile
+    from symlink.plot.animation import InlineAnimation, inline_animation
+    elsewhere = tmp_path / "tmpdir"
+    elsewhere.mkdir()
+    monkeypatch.setattr(tempfile, "tempdir", str(elsewhere))
+    monkeypatch.chdir(tmp_path)
+    seen = []
+    shown = inline_animation(fourbar(), dict(a=0.1, b=0.4, c=0.25, d=0.3), frames=5, size_px=SMALL,
+                             progress=lambda done, total: seen.append((done, total)))
+    assert isinstance(shown, InlineAnimation) and shown._repr_html_() is shown.html
+    assert (shown.frames, shown.unassembled, shown.full_turn) == (5, (), True)
+    assert seen == [(k, 5) for k in range(1, 6)]  # each frame drawn once
+    images = embedded_frames(shown.html)
+    assert len(images) == 5
+    assert all(image.size == SMALL for image in images)
+    assert len({image.tobytes() for image in images}) == 5  # the mechanism moves from frame to frame
+    assert "<script" in shown.html and "loop" in shown.html
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["tmpdir"] and list(elsewhere.iterdir()) == []
+
+
+def test_inline_fourbar_animation_rocks_a_crank_that_cannot_turn():
+    from symlink.plot.animation import inline_fourbar_animation
+    shown = inline_fourbar_animation(*NOT_A_CRANK, frames=6, size_px=SMALL, coupler_point=(0.05, 0.3))
+    assert shown.frames == 6 and shown.unassembled == () and not shown.full_turn
+    assert len(embedded_frames(shown.html)) == 6
+
+
+def test_inline_animation_is_capped_before_anything_is_drawn(monkeypatch):
+    from symlink.plot import animation
+
+    def never(*arguments, **keywords):
+        raise AssertionError("drew before checking the size")
+
+    monkeypatch.setattr(animation, "_linkage_frames", never)
+    monkeypatch.setattr(animation, "_fourbar_frames", never)
+    with pytest.raises(ValueError, match="lower the frames to 578 or fewer"):
+        animation.inline_animation(fourbar(), dict(a=0.1, b=0.4, c=0.25, d=0.3), frames=3600)
+    with pytest.raises(ValueError, match="lower the frames to 578 or fewer"):
+        animation.inline_fourbar_animation(*SEED001, frames=3600)
+    for fps in (0, -1.0, float("nan")):
+        with pytest.raises(ValueError, match="fps must be a positive number"):
+            animation.inline_fourbar_animation(*SEED001, frames=2, fps=fps)

@@ -255,3 +255,50 @@ def test_readme_pictures_exist_and_the_gif_is_small():
         assert gif.stat().st_size < 400_000
         with Image.open(gif) as image:
             assert image.n_frames == 30
+
+
+# --- notebooks: figures on given axes, figures that display themselves -------------------------------------------
+def test_every_figure_draws_on_given_axes(tmp_path):
+    from matplotlib.figure import Figure
+    mine = Figure()
+    grid = mine.subplots(2, 3)
+    assert angle_figure(*SEED001, axes=grid[:, 0]) is mine
+    assert transmission_figure(*SEED001, ax=grid[0, 1]) is mine
+    assert coupler_curve_figure(*SEED001, 0.2, 0.5, ax=grid[1, 1]) is mine
+    angles = [math.radians(t) for t in (270, 308.663, 180, 63.435)]
+    assert draw_loop([300, 640.3124, 800.0158, 894.4019], angles, ax=grid[0, 2]) is mine
+    assert len(mine.axes) == 6 and not grid[1, 2].get_lines()
+    assert set(lines_by_label(grid[0, 0])) >= {"branch +1", "branch -1"}
+    assert grid[0, 0].get_ylabel().startswith("coupler angle") and grid[1, 0].get_ylabel().startswith("rocker angle")
+    assert any(line.get_label() == "transmission angle μ" for line in grid[0, 1].get_lines())
+    assert any(line.get_label().startswith("coupler curve") for line in grid[1, 1].get_lines())
+    assert len(grid[0, 2].get_lines()) >= 4 and grid[0, 2].get_legend() is not None
+    assert list(tmp_path.iterdir()) == []  # draw_loop without a path writes nothing
+
+
+def test_given_axes_are_checked():
+    from matplotlib.figure import Figure
+    one = Figure().add_subplot()
+    with pytest.raises(ValueError, match="2 Matplotlib Axes"):
+        angle_figure(*SEED001, axes=[one])
+    with pytest.raises(ValueError, match="one Matplotlib Axes"):
+        transmission_figure(*SEED001, ax="not axes")
+
+
+def test_returned_figures_display_in_a_notebook_without_pyplot():
+    import matplotlib.pyplot as pyplot
+    before = pyplot.get_fignums()
+    for figure in (angle_figure(*SEED001), transmission_figure(*SEED001),
+                   coupler_curve_figure(*SEED001, 0.2, 0.5)):
+        png = figure._repr_png_()
+        assert png[:8] == b"\x89PNG\r\n\x1a\n"
+        with Image.open(__import__("io").BytesIO(png)) as image:
+            assert image.width > 200 and image.height > 200
+    assert pyplot.get_fignums() == before  # nothing registered with pyplot
+
+
+def test_ipython_shows_a_returned_figure_as_png_once():
+    interactiveshell = pytest.importorskip("IPython.core.interactiveshell")
+    shell = interactiveshell.InteractiveShell.instance()
+    data, _ = shell.display_formatter.format(transmission_figure(*SEED001))
+    assert "image/png" in data

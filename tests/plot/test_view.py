@@ -137,3 +137,33 @@ def test_any_linkage_gets_a_slider_for_each_parameter_and_input():
     assert view.message == "" and abs(view.values()["theta"] - math.pi / 2) < 1e-12
     view.sliders["m"].set_val(200.0)  # a crank longer than the leg: cannot close
     assert "cannot be assembled" in view.message and view.shown["m"] == EXAMPLE_VALUES["jansen"]["m"]
+
+
+def test_views_build_on_a_given_figure_and_never_show_it(monkeypatch):
+    """In a notebook (ipympl) the figure is shown by Jupyter: a view must not call pyplot.show itself."""
+    import matplotlib.pyplot as pyplot
+    from symlink.catalog import slider_crank
+    from symlink.plot.view import LinkageView
+
+    def no_show(*arguments, **keywords):
+        raise AssertionError("a view called pyplot.show")
+
+    monkeypatch.setattr(pyplot, "show", no_show)
+    figure = Figure()
+    fourbar_view = FourbarView(**SEED003, figure=figure)
+    fourbar_view.sliders["angle"].set_val(45)
+    assert fourbar_view.figure is figure and fourbar_view.axes in figure.axes
+    other = Figure()
+    linkage_view = LinkageView(slider_crank(), dict(a=1.3, b=4.1, offset=0.7), figure=other)
+    linkage_view.sliders["theta"].set_val(30)
+    assert linkage_view.figure is other and linkage_view.axes in other.axes
+
+
+def test_the_inline_backend_is_refused_with_the_notebook_advice(monkeypatch):
+    import matplotlib.pyplot as pyplot
+    from symlink.plot.view import interactive_backend
+    monkeypatch.setattr(pyplot, "get_backend", lambda: "module://matplotlib_inline.backend_inline")
+    with pytest.raises(ValueError, match="%matplotlib widget"):
+        interactive_backend()
+    monkeypatch.setattr(pyplot, "get_backend", lambda: "module://ipympl.backend_nbagg")
+    assert interactive_backend() is pyplot

@@ -1,0 +1,31 @@
+"""Units: which arguments are angles or lengths, and pint quantities converted to them."""
+import math
+
+import numpy as np
+import pytest
+
+from symlink.catalog import fourbar, slider_crank
+from symlink.plot import coupler_point_linkage
+from symlink.units import is_quantity, output_units, plain_values
+
+
+def test_plain_numbers_pass_unchanged():
+    values = {"theta": np.array([0.0, 1.0]), "a": 2.0, "branch": 1}
+    plain, unit = plain_values(fourbar(), values)
+    assert plain == values and unit is None
+    assert not any(is_quantity(value) for value in values.values())
+
+
+def test_a_coupler_points_angle_is_an_angle_and_its_distance_a_length():
+    pint = pytest.importorskip("pint")
+    units = pint.UnitRegistry()
+    values = dict(theta=0.0, a=1 * units.m, b=4 * units.m, c=2.5 * units.m, d=3 * units.m,
+                  p=50 * units.cm, gamma=90 * units.degree)
+    plain, unit = plain_values(coupler_point_linkage(), values)
+    assert unit == "meter"
+    assert plain["p"] == pytest.approx(0.5) and plain["gamma"] == pytest.approx(math.pi / 2)
+
+
+def test_output_units_of_a_slider():
+    units = output_units(slider_crank(), ["s", "sdot", "beta", "C_x", "singular"])
+    assert units == {"s": "length", "sdot": "length/s", "beta": "rad", "C_x": "length", "singular": ""}

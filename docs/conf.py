@@ -41,9 +41,8 @@ myst_heading_anchors = 3
 autodoc_default_options = {
     "members": True,
     "member-order": "bysource",
-    "show-inheritance": False,
 }
-autodoc_typehints = "description"  # hints beside the parameters, not in a long signature
+autodoc_typehints = "signature"  # the docstrings do not list parameters: the hints stay in the signature
 autodoc_typehints_format = "short"
 autodoc_preserve_defaults = True  # show defaults as written (names, not repr of objects)
 

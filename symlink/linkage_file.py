@@ -101,8 +101,8 @@ from .vectors import Vector, VectorSum
 
 try:
     from tomllib import loads as toml_loads
-except ImportError:  # Python 3.10: the strict subset reader (linkage files stay inside its subset)
-    from .minitoml import loads as toml_loads
+except ImportError:  # Python 3.10: tomli is tomllib before it joined the standard library
+    from tomli import loads as toml_loads
 
 __all__ = ["LinkageFile", "load_linkage", "read_linkage", "linkage_from_text", "linkage_from_mapping", "linkage_text",
            "write_linkage", "write_catalog_files"]

@@ -42,7 +42,7 @@ code::
     accel = 0                           # rad/s^2, uniform from the first angle (default 0)
 
 They are read with ``tomllib`` (Python 3.11 and later) or, on Python 3.10,
-with the strict subset reader :mod:`symlink.minitoml`.  Every key and value
+with ``tomli`` (the same reader, published separately).  Every key and value
 is checked; anything unknown or out of range is one line of error.
 """
 from __future__ import annotations
@@ -69,8 +69,8 @@ from .vectors import acceleration, rate
 
 try:
     from tomllib import loads as toml_loads
-except ImportError:  # Python 3.10: the strict subset reader
-    from .minitoml import loads as toml_loads
+except ImportError:  # Python 3.10: tomli is tomllib before it joined the standard library
+    from tomli import loads as toml_loads
 
 __all__ = ["Scene", "SceneFile", "catalog_linkage", "angle_outputs", "read_scene", "scene_from_mapping",
            "scene_from_text"]

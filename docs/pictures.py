@@ -1,10 +1,11 @@
 """Render the README's pictures into docs/images/: ``python docs/pictures.py``.
 
 * ``angles_seed001.png``: coupler and rocker angle over a crank turn, both branches, for the
-  worksheet data of ``seeds/001`` (a1 = 0.1, a2 = 0.4, a3 = 0.25, a4 = 0.30 m);
-* ``transmission_seed002.png``: the transmission angle over a turn of the linkage that
-  ``seeds/002`` synthesises for time ratio 1.25 (L1 = 70, L2 = 16.084, L3 = 69.743, L4 = 50 mm),
-  as its Fig. 9;
+  data of the MBsymba worksheet "Kinematic Analysis of a Four Bar Linkage" (a1 = 0.1, a2 = 0.4,
+  a3 = 0.25, a4 = 0.30 m);
+* ``transmission_seed002.png``: the transmission angle over a turn of the linkage that the
+  quick-return paper ("Matlab-Based Graphical Synthesis of Planar Mechanisms") synthesises for
+  time ratio 1.25 (L1 = 70, L2 = 16.084, L3 = 69.743, L4 = 50 mm), as its Fig. 9;
 * ``coupler_curve.png``: the curves of a coupler point of the seed 001 linkage, both branches;
 * ``fourbar.gif``: the seed 001 linkage over a turn in 30 frames, with the coupler point;
 * ``jansen.png`` and ``jansen.gif``: Theo Jansen's leg (his holy numbers) with the path of its foot H.
@@ -48,8 +49,9 @@ PICTURES = ("angles_seed001.png", "transmission_seed002.png", "coupler_curve.png
 def render(folder: Path = IMAGES) -> list[Path]:
     """Write every picture into ``folder``; returns their paths."""
     paths = [Path(folder) / name for name in PICTURES]
-    save_figure(angle_figure(*SEED001, title="seeds/001: a1 = 0.1, a2 = 0.4, a3 = 0.25, a4 = 0.30 m"), paths[0])
-    save_figure(transmission_figure(*SEED002, title="seeds/002, time ratio 1.25: L1 = 70, L2 = 16.084, "
+    save_figure(angle_figure(*SEED001, title="MBsymba four-bar worksheet: a1 = 0.1, a2 = 0.4, a3 = 0.25, "
+                                             "a4 = 0.30 m"), paths[0])
+    save_figure(transmission_figure(*SEED002, title="Quick-return paper: L1 = 70, L2 = 16.084, "
                                                     "L3 = 69.743, L4 = 50 mm"), paths[1])
     save_figure(coupler_curve_figure(*SEED001, *COUPLER_POINT, branches=(1, -1), crank_angle=math.radians(60),
                                      unit="m"), paths[2])

@@ -163,7 +163,7 @@ def remove_leftovers(folder: str | os.PathLike, prefixes: tuple[str, ...], older
     files of :func:`write_atomic`, untouched for ``older_than`` seconds (younger ones may be a running
     process's).  Returns the names removed; never follows a symbolic link, never fails.
     """
-    removed = []
+    removed: list[str] = []
     now = time.time()
     try:
         names = os.listdir(folder)

@@ -88,6 +88,7 @@ from __future__ import annotations
 
 import math
 import re
+import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Mapping
@@ -99,10 +100,10 @@ from .linkage import Linkage
 from .loops import Loop
 from .vectors import Vector, VectorSum
 
-try:
+if sys.version_info >= (3, 11):
     from tomllib import loads as toml_loads
-except ImportError:  # Python 3.10: the strict subset reader (linkage files stay inside its subset)
-    from .minitoml import loads as toml_loads
+else:  # Python 3.10: tomli is tomllib before it joined the standard library
+    from tomli import loads as toml_loads
 
 __all__ = ["LinkageFile", "load_linkage", "read_linkage", "linkage_from_text", "linkage_from_mapping", "linkage_text",
            "write_linkage", "write_catalog_files"]
@@ -188,7 +189,8 @@ def _line_of(problem: _Problem, text: str | None) -> int | None:
 
 def _tokens(text: str) -> list[tuple[str, str]]:
     """``(kind, text)`` tokens of an expression: number, name, operator; ``ValueError`` for anything else."""
-    found, position = [], 0
+    found: list[tuple[str, str]] = []
+    position = 0
     while position < len(text):
         if text[position:].strip() == "":
             break
@@ -196,7 +198,7 @@ def _tokens(text: str) -> list[tuple[str, str]]:
         if not match:
             bad = text[position:].lstrip()[0]
             raise ValueError(f"unexpected {bad!r} (a sum of names and constants such as 'beta + 35 deg' or 'pi/2')")
-        kind = match.lastgroup
+        kind = match.lastgroup or ""  # always a group's name: the pattern is all named groups
         found.append((kind, match.group(kind)))
         position = match.end()
     return found

@@ -81,7 +81,7 @@ def _check(values: Mapping[str, float | None]) -> tuple[dict[str, float], tuple[
     unknown = set(values) - set(NAMES)
     if unknown:
         raise ValueError(f"the loop has values {', '.join(NAMES)}; not {', '.join(sorted(unknown))}")
-    given = {n: float(values[n]) for n in NAMES if values.get(n) is not None}
+    given = {n: float(value) for n in NAMES if (value := values.get(n)) is not None}
     missing = tuple(n for n in NAMES if n not in given)
     if len(missing) != 2:
         listed = f" ({', '.join(missing)})" if missing else ""

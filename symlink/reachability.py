@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Callable, Mapping
+from typing import Any, Callable, Mapping
 
 import numpy
 
@@ -555,7 +555,7 @@ def _continued_range(motion: InputMotion, low: float, high: float, points: int) 
     if first is None:
         raise ValueError(f"{motion.linkage.name} cannot be assembled near the guess at {motion.input} = {start:g}")
     poses: dict[float, numpy.ndarray] = {}
-    ends = []
+    ends: list[tuple[float, Toggle | None]] = []
     for path in (forward, backward):
         good, solved = _longest_sweep(motion, path)
         for k in range(good):
@@ -588,7 +588,7 @@ def _continued_range(motion: InputMotion, low: float, high: float, points: int) 
     return InputRange(motion.input, spans, toggles, False, motion.periodic)
 
 
-def _longest_sweep(motion: InputMotion, path: numpy.ndarray) -> tuple[int, dict | None]:
+def _longest_sweep(motion: InputMotion, path: numpy.ndarray) -> tuple[int, Any]:
     """How many points of ``path`` continuation solves from the guess (binary search), and their solution."""
     whole = motion._sweep(path, motion.guess)
     if whole is not None:

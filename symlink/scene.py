@@ -42,16 +42,17 @@ code::
     accel = 0                           # rad/s^2, uniform from the first angle (default 0)
 
 They are read with ``tomllib`` (Python 3.11 and later) or, on Python 3.10,
-with the strict subset reader :mod:`symlink.minitoml`.  Every key and value
+with ``tomli`` (the same reader, published separately).  Every key and value
 is checked; anything unknown or out of range is one line of error.
 """
 from __future__ import annotations
 
 import inspect
 import math
+import sys
 from functools import cached_property, lru_cache
 from pathlib import Path
-from typing import Mapping, Sequence
+from typing import Any, Mapping, Sequence
 
 import numpy
 import sympy as sp
@@ -68,10 +69,10 @@ from .results import Results
 from .solver import Solver, crank_speeds
 from .vectors import acceleration, rate
 
-try:
+if sys.version_info >= (3, 11):
     from tomllib import loads as toml_loads
-except ImportError:  # Python 3.10: the strict subset reader
-    from .minitoml import loads as toml_loads
+else:  # Python 3.10: tomli is tomllib before it joined the standard library
+    from tomli import loads as toml_loads
 
 __all__ = ["Scene", "SceneFile", "catalog_linkage", "angle_outputs", "read_scene", "scene_from_mapping",
            "scene_from_text"]
@@ -143,7 +144,7 @@ class Scene:
     @property
     def signs(self) -> tuple[int, ...]:
         """The branch signs the scene is evaluated on."""
-        return (1, -1) if self.branch == "both" else (self.branch,)
+        return (1, -1) if self.branch == "both" else (int(self.branch),)
 
     @cached_property
     def code(self) -> GeneratedCode:
@@ -279,7 +280,7 @@ def _number(value, where: str) -> float:
     return number
 
 
-def _choice(value, where: str, choices: Sequence) -> object:
+def _choice(value, where: str, choices: Sequence) -> Any:
     if isinstance(value, (bool, float)) or value not in choices:
         raise ValueError(f"{where} must be one of {', '.join(map(repr, choices))}, got {value!r}")
     return value
@@ -347,7 +348,7 @@ def scene_from_mapping(data: Mapping, folder: str | Path = ".") -> SceneFile:
                          f"{', '.join(map(str, linkage.inputs))}")
     driven = linkage.inputs[0]
     sweep_table = _table(data.get("input", {}), "input", INPUT_KEYS)
-    options = {key: (None if key not in sweep_table else _number(sweep_table[key], f"input.{key}"))
+    options: dict[str, Any] = {key: (None if key not in sweep_table else _number(sweep_table[key], f"input.{key}"))
                for key in ("start", "stop", "step")}
     angles = sweep_table.get("angles")
     if angles is not None:
@@ -362,9 +363,9 @@ def scene_from_mapping(data: Mapping, folder: str | Path = ".") -> SceneFile:
     accel = _number(sweep_table.get("accel", 0.0), "input.accel")
     scene = Scene(linkage, outputs, dict(parameters), branch)
     roles = [role for role, q in linkage.roles.items() if q == driven]
-    found = SceneFile(scene, roles[0] if roles else driven.name, sweep, units, fmt, speed, accel)
-    scene.values.update(found.values_at(sweep.array() if len(sweep) <= 4096 else sweep.block(0, 1)))
-    return found
+    scene_file = SceneFile(scene, roles[0] if roles else driven.name, sweep, units, fmt, speed, accel)
+    scene.values.update(scene_file.values_at(sweep.array() if len(sweep) <= 4096 else sweep.block(0, 1)))
+    return scene_file
 
 
 #: Scene files larger than this are refused unread (a scene is a few lines).

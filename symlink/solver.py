@@ -29,7 +29,7 @@ import inspect
 import math
 import re
 from functools import cached_property, lru_cache
-from typing import Callable, Mapping, Sequence
+from typing import Any, Callable, Mapping, Sequence
 
 import numpy
 
@@ -121,7 +121,7 @@ def _assignments(source: str) -> int:
                 for function in source.split("\ndef ")[1:]), default=0)
 
 
-def _require_memory(solver: object, values: Mapping[str, object], bytes_per_value: int, kind: str) -> None:
+def _require_memory(solver: Any, values: Mapping[str, Any], bytes_per_value: int, kind: str) -> None:
     """Refuse (one line, :func:`symlink.limits.require_memory`) a call of ``solver`` too large for the memory."""
     try:
         shape = numpy.broadcast_shapes(*(numpy.shape(value) for value in values.values()))

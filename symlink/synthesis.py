@@ -239,10 +239,11 @@ def quick_return(time_ratio: float, stroke: float, rocker: float, rocker_min_ang
     else:
         if not max_link_ratio > 1:
             raise ValueError(f"the largest link ratio must be more than 1, got {max_link_ratio:g}")
-        pivot = _best_pivot(ends, delta, rocker, max_link_ratio)
-        if pivot is None:
+        best = _best_pivot(ends, delta, rocker, max_link_ratio)
+        if best is None:
             raise ValueError(f"no crank-rocker gives a time ratio of {time_ratio:g} with a stroke of "
                              f"{math.degrees(stroke):g} deg")
+        pivot = best
         method = "best transmission angle"
     design = _analyse(pivot, ends, rocker, time_ratio, stroke, method)
     if crank_pivot is None and max(design.coupler, design.ground, rocker) > (1 - 1e-6) * max_link_ratio * design.crank:

@@ -432,3 +432,116 @@ def test_leftovers_of_killed_runs_are_removed_on_the_next_run(folder):
     clear_memory()  # the next run
     generated_code(fourbar(), ["rocker"])
     assert not any(path.exists() for path in leftovers) and running.is_dir()
+
+
+# symlink cache info / clear: counting and removing symlink's own names only.
+
+HEX = "0123456789abcdef" * 4
+
+
+def plant_others(folder):
+    """Names in the cache folder that symlink never writes: each must survive a clear.  Returns them."""
+    outside = folder.parent / "outside.json"
+    outside.write_text("not in the cache")
+    planted = {
+        "notes.txt": "mine", "ABC.json": "{}", f"{HEX}.json.bak": "{}", f"{HEX.upper()}.json": "{}",
+        f".other.{HEX[:12]}.tmp": "", "compiled/mine.so": "x", f"compiled/{HEX}.json": "{}",
+    }
+    for name, text in planted.items():
+        (folder / name).parent.mkdir(parents=True, exist_ok=True)
+        (folder / name).write_text(text)
+    (folder / f"{'f' * 64}.json").symlink_to(outside)  # our kind of name, but a link: not ours
+    (folder / ".build-abcdefgh").mkdir()  # our kind of name, but only in compiled/
+    return set(planted) | {f"{'f' * 64}.json", ".build-abcdefgh"}, outside
+
+
+def listing(folder):
+    return {path.relative_to(folder).as_posix() for path in folder.rglob("*") if not path.is_dir() or
+            path.name.startswith(".build-")}
+
+
+def test_info_counts_and_clear_removes_only_what_symlink_wrote(folder):
+    from symlink.cache import cache_contents, clear_cache
+    code = generated_code(fourbar(), ["rocker"])
+    entry = folder / f"{code.key}.json"
+    ours = {entry.name: entry.stat().st_size}
+    (folder / "compiled").mkdir(mode=0o700)
+    build = folder / "compiled" / ".build-x1y2z3_4"  # a killed build: a folder with a half-written source
+    build.mkdir()
+    (build / "symlink.c").write_text("double f(double x) { return x; }\n")
+    ours["compiled/.build-x1y2z3_4"] = len("double f(double x) { return x; }\n")
+    for name, text in {f"compiled/{HEX}.so": "\x7fELF...", f"compiled/{HEX}.sha256": "ab\n",
+                       f"compiled/.load-{HEX[:16]}.so": "\x7fELF", f".{HEX}.json.{HEX[:12]}.tmp": "{"}.items():
+        (folder / name).write_text(text)
+        ours[name] = len(text.encode())
+    others, outside = plant_others(folder)
+
+    contents = cache_contents(folder)
+    assert (contents.trusted, contents.problem, contents.exists) == (True, "", True)
+    assert (contents.entries, contents.size, contents.others) == (len(ours), sum(ours.values()), len(others))
+    assert listing(folder) >= set(ours) | others, "counting changes nothing"
+
+    removed = clear_cache(folder)
+    assert (removed.entries, removed.size, removed.others) == (len(ours), sum(ours.values()), len(others))
+    left = listing(folder)
+    assert not left & set(ours) and left >= others, left
+    assert outside.read_text() == "not in the cache"
+    assert cache_contents(folder).entries == 0
+    again = generated_code(fourbar(), ["rocker"])  # the next run derives it again
+    assert again.key == code.key and entry.is_file()
+
+
+def test_a_real_compiled_library_is_counted_and_cleared(folder):
+    from symlink.cache import cache_contents, clear_cache
+    from symlink.compiled import CompilerUnavailable, compile_shared
+    try:
+        compile_shared("double twice(double x) { return 2 * x; }")
+    except CompilerUnavailable as why:
+        pytest.skip(f"no C compiler: {why}")
+    written = list((folder / "compiled").iterdir())
+    assert sorted(path.suffix for path in written) == [".sha256", ".so"]
+    assert cache_contents(folder).entries == 2 and cache_contents(folder).others == 0
+    size = sum(path.stat().st_size for path in written)
+    assert cache_contents(folder).size == size and clear_cache(folder).size == size
+    assert not (folder / "compiled").exists()  # symlink made it; empty now, so it goes too
+
+
+@pytest.mark.parametrize("mode, why", [(0o770, "writable by group"), (0o707, "writable by others")])
+def test_clear_refuses_a_folder_others_can_write(tmp_path, mode, why):
+    from symlink.cache import cache_contents, clear_cache
+    folder = tmp_path / "shared"
+    folder.mkdir()
+    (folder / f"{HEX}.json").write_text("{}")
+    folder.chmod(mode)
+    contents = cache_contents(folder)
+    assert not contents.trusted and why in contents.problem and contents.entries == 0
+    with pytest.raises(ValueError, match=f"not clearing the cache folder: .*{why}"):
+        clear_cache(folder)
+    assert (folder / f"{HEX}.json").read_text() == "{}"
+
+
+def test_a_compiled_folder_others_can_write_is_left_alone(folder):
+    from symlink.cache import cache_contents, clear_cache
+    folder.mkdir(mode=0o700)
+    (folder / "compiled").mkdir()
+    (folder / "compiled" / f"{HEX}.so").write_text("planted")
+    (folder / "compiled").chmod(0o777)
+    assert (cache_contents(folder).entries, cache_contents(folder).others) == (0, 1)
+    assert clear_cache(folder).entries == 0
+    assert (folder / "compiled" / f"{HEX}.so").read_text() == "planted"
+
+
+def test_a_folder_that_does_not_exist_is_empty_and_not_created(tmp_path):
+    from symlink.cache import cache_contents, clear_cache
+    folder = tmp_path / "never"
+    assert (cache_contents(folder).exists, clear_cache(folder).entries) == (False, 0)
+    assert not folder.exists()
+
+
+def test_a_file_where_the_folder_should_be_is_not_trusted(tmp_path):
+    from symlink.cache import cache_contents, clear_cache
+    (tmp_path / "file").write_text("")
+    assert "not a folder" in cache_contents(tmp_path / "file").problem
+    with pytest.raises(ValueError, match="not a folder"):
+        clear_cache(tmp_path / "file")
+    assert (tmp_path / "file").is_file()

@@ -264,15 +264,6 @@ def test_readme_error_example_is_what_the_reader_says():
     assert f"`{caught.value}`" in readme("New linkages and your own")
 
 
-@pytest.mark.parametrize("name", sorted(CATALOG))
-def test_shipped_files_stay_inside_the_python_310_reader(name):
-    """On Python 3.10 (no tomllib) linkage files are read by symlink.minitoml: the files keep to its subset."""
-    import tomllib
-    from symlink.minitoml import loads
-    text = (ROOT / "linkages" / f"{name}.toml").read_text()
-    assert loads(text) == tomllib.loads(text)
-
-
 @settings(max_examples=200, deadline=None)
 @given(st.text(alphabet="thetapidegr0123456789.+-*/ eE_$()", max_size=20))
 def test_any_angle_text_reads_or_fails_with_one_located_line(text):

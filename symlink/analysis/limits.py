@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Callable, Mapping
+from typing import Any, Callable, Mapping
 
 import numpy
 import sympy as sp
@@ -168,7 +168,7 @@ def output_limits(linkage: Linkage, values: Mapping[str, float], output: str, *,
 
     def value_and_rate(inputs: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
         solved = motion.at(inputs)
-        arguments = {name: solved[name] for name in motion.names + motion.rates}
+        arguments: dict[str, Any] = {name: solved[name] for name in motion.names + motion.rates}
         arguments.update({motion.input: inputs, **held, **parameters})
         arguments.update({rate(q).name: (1.0 if q.name == motion.input else 0.0) for q in linkage.inputs})
         with numpy.errstate(all="ignore"):

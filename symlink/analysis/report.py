@@ -92,10 +92,11 @@ def fourbar_report(a: float, b: float, c: float, d: float, branch: int = 1) -> d
                               output="rocker" if crank_rocker else None)
     spans = list(general.reach.spans)
     transmission = transmission_range(a, b, c, d)
+    swing = general.limits  # asked for (output="rocker") exactly when the four-bar is a crank-rocker
     limits = None
-    if crank_rocker:
+    if swing is not None:
         # extended: the crank along the coupler; folded: back along it (the rocker's two extremes)
-        found = general.limits.positions
+        found = swing.positions
         extended = min(found, key=lambda p: abs(wrap_angle(_coupler(a, b, c, d, p.at, branch) - p.at)))
         folded = next(p for p in found if p is not extended)
         limits = {"extended_crank": extended.at, "extended_rocker": extended.value,
@@ -108,8 +109,8 @@ def fourbar_report(a: float, b: float, c: float, d: float, branch: int = 1) -> d
         "crank_range": spans,
         "toggles": [] if general.reach.full_turn else [t.at for t in general.reach.toggles if t.ends_range],
         "limit_positions": limits,
-        "stroke": None if limits is None else general.limits.stroke,
-        "time_ratio": None if limits is None else general.limits.time_ratio,
+        "stroke": None if swing is None else swing.stroke,
+        "time_ratio": None if swing is None else swing.time_ratio,
         "transmission_min": transmission.minimum, "transmission_min_at": transmission.minimum_at,
         "transmission_max": transmission.maximum, "transmission_max_at": transmission.maximum_at,
         "worst_transmission": transmission.worst,

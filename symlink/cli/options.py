@@ -13,7 +13,7 @@ import argparse
 import math
 import re
 from pathlib import Path
-from typing import Callable
+from typing import Callable, NoReturn
 
 from ..input_sweep import InputSweep
 
@@ -57,7 +57,7 @@ class Parser(argparse.ArgumentParser):
             populate(self)
         return super().format_help()
 
-    def error(self, message: str) -> None:  # one line, exit status 2, no usage dump
+    def error(self, message: str) -> NoReturn:  # one line, exit status 2, no usage dump
         raise UsageError(message)
 
 

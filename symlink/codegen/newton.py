@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import textwrap
 from importlib import resources
-from typing import Sequence
+from typing import Any, Sequence
 
 import sympy as sp
 
@@ -45,7 +45,7 @@ def driver_source() -> str:
     return "".join(lines[marker + 1:])
 
 
-def _array_function(name: str, arguments: Sequence[sp.Symbol], results: Sequence[tuple[str, object]],
+def _array_function(name: str, arguments: Sequence[sp.Symbol], results: Sequence[tuple[str, Any]],
                     doc: str) -> str:
     """Source of a function returning arrays: each result is a list (a vector) or a list of lists (a matrix)."""
     flat: dict[str, sp.Expr] = {}

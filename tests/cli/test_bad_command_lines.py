@@ -142,6 +142,12 @@ CASES += [
     ("table: no guess without a closed form", ["table", "stephenson3", "--angles", "0"], 2),
     ("plan: a file that is not a linkage", ["plan", "{scene:not toml}"], 2),
     ("bench: unknown method", ["bench", "--methods", "abacus", "--no-derivation"], 2),
+    ("cache: no action", ["cache"], 2),
+    ("cache: unknown action", ["cache", "purge"], 2),
+    ("cache: unknown option", ["cache", "info", "--all"], 2),
+    ("cache: --folder without a path", ["cache", "clear", "--folder"], 2),
+    ("cache: clear a folder others can write", ["cache", "clear", "--folder", "/tmp"], 2),
+    ("cache: clear a file, not a folder", ["cache", "clear", "--folder", "{file}"], 2),
     # Failed writes: exit status 1.
     ("fourbar: plot into /proc", FOURBAR + ["--angles", "0", "--plot", "/proc/symlink-test.png"], 1),
     ("fourbar: plot where a folder is", FOURBAR + ["--angles", "0", "--plot", "{folder}"], 1),

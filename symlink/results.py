@@ -35,8 +35,8 @@ class Results(dict):
     unit, ``""`` for none or unknown); outputs not in it have no stated unit.
     """
 
-    def __init__(self, values: Mapping[str, object] = (), units: Mapping[str, str] | None = None) -> None:
-        super().__init__(values)
+    def __init__(self, values: Mapping[str, object] | None = None, units: Mapping[str, str] | None = None) -> None:
+        super().__init__(values or {})
         self.units: dict[str, str] = dict(units or {})
 
     def column(self, name: str) -> str:
@@ -61,7 +61,7 @@ class Results(dict):
         ``ImportError`` naming the extra to install where pandas is missing.
         """
         try:
-            import pandas
+            import pandas  # an optional extra
         except ImportError:
             raise ImportError("Results.to_frame needs pandas: pip install 'symlink-kinematics[pandas]' "
                               "(or pip install pandas)") from None

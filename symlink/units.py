@@ -26,7 +26,7 @@ pint is never imported here: quantities are recognised by their attributes.
 """
 from __future__ import annotations
 
-from typing import Mapping, Sequence
+from typing import Any, Mapping, Sequence
 
 import sympy as sp
 
@@ -90,9 +90,10 @@ def plain_values(linkage: Linkage, values: Mapping[str, object]) -> tuple[dict[s
                          "do not; give every length (and length rate) as a quantity, or none")
     if quantities:
         first = next((name for name in quantities if kinds[name][1] == 0), quantities[0])
-        unit = values[first].units
+        quantity: Any = values[first]  # a pint Quantity (pint is an optional extra: not imported here)
+        unit = quantity.units
         for _ in range(kinds[first][1]):
-            unit = unit * values[first]._REGISTRY.second
+            unit = unit * quantity._REGISTRY.second
         if str(unit.dimensionality) != "[length]":
             raise ValueError(f"{first} must be a length{'' if kinds[first][1] == 0 else ' per second'}, "
                              f"got {values[first]}")
@@ -104,9 +105,13 @@ def plain_values(linkage: Linkage, values: Mapping[str, object]) -> tuple[dict[s
         if is_branch_name(name) or name not in kinds:
             raise ValueError(f"{name} is a plain number (a branch sign or a setting), not a quantity; got {value}")
         kind, order = kinds[name]
-        target = _per_second("radian" if kind == "angle" else length_unit, order).replace("^", "**")
+        base = "radian" if kind == "angle" else length_unit
+        if base is None:  # unreachable: every length quantity set length_unit above
+            raise ValueError(f"{name}: no length unit to convert to")
+        target = _per_second(base, order).replace("^", "**")
+        given: Any = value
         try:
-            plain[name] = value.to(target).magnitude
+            plain[name] = given.to(target).magnitude
         except Exception as error:  # pint's DimensionalityError, without importing pint
             raise ValueError(f"{name} must be {'an angle' if kind == 'angle' else 'a length'}"
                              f"{'' if order == 0 else ' per second' if order == 1 else ' per second squared'}, "

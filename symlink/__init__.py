@@ -4,7 +4,7 @@ Describe a linkage as vector loops, get its closure equations, their
 closed-form solution with the assembly branch, velocities and accelerations
 by differentiation, LaTeX, and fast vectorised NumPy solvers.
 """
-__version__ = "0.1.0"
+from .version import __version__
 
 from .vectors import Vector, VectorSum, coordinates, lengths, rate, acceleration, time_derivative  # noqa: E402
 from .loops import Loop  # noqa: E402

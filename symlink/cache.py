@@ -56,7 +56,7 @@ from typing import Callable, Sequence
 
 import sympy as sp
 
-from . import __version__
+from .version import __version__
 from .codegen.numpy import load_numpy_module, numpy_module
 from .files import LEFTOVER_AGE, NotPrivate, private_folder, read_private, remove_leftovers, write_atomic
 from .linkage import Linkage

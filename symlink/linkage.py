@@ -33,6 +33,7 @@ from .loops import Loop
 from .names import identifier, label
 from .motion import loop_rates
 from .position import ClampedSqrt, LoopSolution, solve_loop
+from .typeset import aligned_rows, closure_rows
 from .vectors import Vector, VectorSum, acceleration, expression, rate
 
 __all__ = ["Linkage", "Equations", "Program", "is_branch_name"]
@@ -77,8 +78,15 @@ class Equations:
     accelerations: bool = False
 
     def _repr_latex_(self) -> str:
-        from .codegen.latex import equations_latex  # on first use: the printer does not import linkage
-        return "$\\displaystyle " + equations_latex(self.linkage, self.velocities, self.accelerations) + "$"
+        """The closure equations, then the closed forms where the linkage has a solve plan (and the rates asked
+        for); without one (the Newton fallback solves it) the closure alone."""
+        linkage = self.linkage
+        rows = closure_rows(linkage.loops)
+        if linkage.has_closed_form:
+            rows += list(linkage.positions.items())
+            rows += list(linkage.velocities.items()) if self.velocities else []
+            rows += list(linkage.accelerations.items()) if self.accelerations else []
+        return "$\\displaystyle \\begin{aligned}" + aligned_rows(rows) + "\\end{aligned}$"
 
 
 class Linkage:

@@ -2,10 +2,11 @@
 
 The graph is read from the source with ``ast``: every ``import`` and ``from
 ... import`` of a symlink module, at the top of a module or inside a
-function, is an edge (imports under ``if TYPE_CHECKING:`` are for type
-checkers only and are left out).  Importing a name from a package counts as
-importing that package's ``__init__``, and a submodule's import of its own
-package is implied, not counted.
+function, is an edge, and so is one under ``if TYPE_CHECKING:`` (a type hint is a
+dependency too: a lower layer names a higher one's type only by importing
+it).  Importing a name from a package counts as
+importing that package's ``__init__``, its own parent packages included
+(``from .. import x``); the parents Python loads on the way are not edges.
 """
 from __future__ import annotations
 
@@ -22,26 +23,9 @@ def module_name(path: Path) -> str:
     return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
 
 
-def _is_type_checking(node: ast.If) -> bool:
-    test = node.test
-    return (isinstance(test, ast.Name) and test.id == "TYPE_CHECKING") or (
-        isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING")
-
-
 def _imports(tree: ast.AST):
-    """Import nodes of a module, skipping ``if TYPE_CHECKING:`` blocks."""
-    for node in ast.iter_child_nodes(tree):
-        if isinstance(node, ast.If) and _is_type_checking(node):
-            yield from (n for child in node.orelse for n in _imports_of(child))
-            continue
-        yield from _imports_of(node)
-
-
-def _imports_of(node: ast.AST):
-    if isinstance(node, (ast.Import, ast.ImportFrom)):
-        yield node
-    else:
-        yield from _imports(node)
+    """Every import node of a module, at the top, in functions, and under ``if TYPE_CHECKING:`` alike."""
+    return (node for node in ast.walk(tree) if isinstance(node, (ast.Import, ast.ImportFrom)))
 
 
 def imported_modules(path: Path, modules: set[str]) -> set[str]:
@@ -75,7 +59,7 @@ def import_graph() -> dict[str, set[str]]:
         edges = set()
         for target in imported_modules(path, modules):
             if target in modules or target.split(".")[0] in {"argparse"}:
-                if target != name and not name.startswith(target + "."):  # a package's own __init__: implied
+                if target != name:
                     edges.add(target)
         graph[name] = edges
     return graph
@@ -115,6 +99,14 @@ def test_the_graph_is_read_from_the_source():
     assert "symlink.cli" in graph and "symlink.linkage" in graph
     assert "symlink.loops" in graph["symlink.linkage"]  # a top-level import
     assert "symlink.linkage" in graph["symlink.cli.tables"]
+
+
+def test_a_name_imported_from_a_parent_package_is_an_edge(tmp_path):
+    """``from .. import __version__`` in symlink/codegen/numpy.py would reach symlink/__init__ (and the linkage)."""
+    module = PACKAGE / "codegen" / "numpy.py"
+    modules = {"symlink", "symlink.codegen", "symlink.codegen.numpy", "symlink.version"}
+    assert "symlink.version" in imported_modules(module, modules | {"symlink.version"})
+    assert "symlink" not in imported_modules(module, modules)
 
 
 def test_the_cycle_finder_finds_cycles():

@@ -25,7 +25,7 @@ from typing import Sequence
 
 import numpy
 
-from .. import __version__
+from ..version import __version__
 from . import analyze, bench, cache, export, loop, pictures, plan, quick_return, run, tables
 from .options import Parser
 

@@ -40,7 +40,7 @@ from typing import TYPE_CHECKING, Sequence
 import sympy as sp
 from sympy.printing.c import C99CodePrinter
 
-from .. import __version__
+from ..version import __version__
 from ..names import C_KEYWORDS as RESERVED_IN_C, PLAIN_NAME
 from ..position import TOLERANCE
 from .numpy import ARGUMENT_CONTRACT

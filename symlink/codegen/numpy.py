@@ -28,7 +28,7 @@ import numpy
 import sympy as sp
 from sympy.printing.numpy import NumPyPrinter
 
-from .. import __version__
+from ..version import __version__
 from ..linkage import is_branch_name
 from ..position import TOLERANCE
 from .program import format_default, straight_line

@@ -29,7 +29,7 @@ from typing import TYPE_CHECKING, Sequence
 import sympy as sp
 from sympy.printing.octave import OctaveCodePrinter
 
-from .. import __version__
+from ..version import __version__
 from ..linkage import is_branch_name
 from ..names import OCTAVE_KEYWORDS, PLAIN_NAME
 from ..position import TOLERANCE

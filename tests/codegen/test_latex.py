@@ -94,7 +94,7 @@ def test_every_generated_document_fits_the_page(path, tmp_path):
 @needs_tex
 def test_long_sums_products_fractions_roots_and_atan2_break_across_lines(tmp_path):
     """Each breakable form, far wider than the page, is broken to fit; the row count shows it was broken."""
-    from symlink.codegen.latex import _align
+    from symlink.typeset import align_block as _align
     from symlink.position import ClampedSqrt
 
     angles = sp.symbols("theta_1:25", real=True)
@@ -118,14 +118,14 @@ def test_long_sums_products_fractions_roots_and_atan2_break_across_lines(tmp_pat
 
 
 def test_a_short_row_stays_on_one_line():
-    from symlink.codegen.latex import _aligned
+    from symlink.typeset import aligned_rows as _aligned
     a, theta = sp.symbols("a theta")
     assert _aligned([(sp.Symbol("x"), a * sp.cos(theta))]) == "x &= a \\cos{\\left(\\theta \\right)}"
 
 
 def test_the_width_estimate_tracks_tex(tmp_path):
     """The estimate that decides the breaks is within 25% of TeX's own measure, checked where TeX is installed."""
-    from symlink.codegen.latex import latex_width
+    from symlink.typeset import latex_width
     samples = [r"\frac{m \dot{\theta} \sin{\left(\beta - \theta \right)}}{b \sin{\left(\beta - \phi \right)}}",
                r"\Delta_{1} W_{x,1} \sigma_{\mathrm{ABCD}} + W_{y,1} \left(w_{1}^{2} + \left(\rho_{4,1} - \rho_{5,1}\right)\right)",
                r"c \ddot{\psi} \sin{\left(\kappa - \psi \right)} - c \dot{\psi}^{2} \cos{\left(\kappa - \psi \right)}",

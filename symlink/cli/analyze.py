@@ -5,10 +5,11 @@ import argparse
 import json
 
 from ..analysis import analyze_linkage, fourbar_report
-from ..angles import from_radians, to_radians
+from ..angles import from_radians
 from ..closure import is_angle
 from ..linkage_file import load_linkage
-from .options import FOURBAR_LENGTHS, add_units_option, assignments, command_help, finite, fourbar_lengths
+from .options import (add_fourbar_lengths, add_units_option, assignments, command_help, fourbar_lengths,
+                      fourbar_or_linkage, linkage_values)
 
 #: Fields of :func:`~symlink.analysis.fourbar_report` that are angles (converted to the command's units).
 ANGLE_FIELDS = {"stroke", "transmission_min", "transmission_min_at", "transmission_max", "transmission_max_at",
@@ -39,8 +40,7 @@ def register(commands) -> None:
         "symlink analyze jansen --output H_y"))
     command.add_argument("linkage", nargs="?", metavar="NAME|FILE",
                          help="a catalog linkage or a linkage file (without it: the four-bar of the length options)")
-    for option, what in FOURBAR_LENGTHS:
-        command.add_argument(f"--{option}", type=finite, help=f"four-bar length {what} (without NAME)")
+    add_fourbar_lengths(command, beside_linkage=True)
     command.add_argument("--set", type=assignments("NAME=VALUE"), default={}, metavar="NAME=VALUE,...",
                          help="with NAME|FILE: parameter values (fixed angles in --units)")
     command.add_argument("--output", metavar="NAME", help="with NAME|FILE: the output whose limit positions to find")
@@ -52,14 +52,9 @@ def register(commands) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    lengths = fourbar_lengths(args)
-    if args.linkage is not None:
-        if any(v is not None for v in lengths):
-            raise ValueError("analyze: give a linkage NAME|FILE or the four-bar's lengths, not both")
+    if fourbar_or_linkage(args, "analyze"):
         return run_linkage(args)
-    if any(v is None for v in lengths):
-        raise ValueError("analyze: give a linkage NAME|FILE or all of --crank --coupler --rocker --ground")
-    a, b, c, d = lengths
+    a, b, c, d = fourbar_lengths(args)
     report = in_units(fourbar_report(a, b, c, d, int(args.branch)), args.units)
     if args.format == "json":
         print(json.dumps(report, indent=1))
@@ -94,14 +89,8 @@ def run(args: argparse.Namespace) -> int:
 def run_linkage(args: argparse.Namespace) -> int:
     """``symlink analyze NAME|FILE``: the general analysis of any one-input linkage."""
     found = load_linkage(args.linkage)
-    linkage = found.linkage
+    linkage, values = found.linkage, linkage_values(found, args.set, args.units)
     known = {s.name: s for s in linkage.parameters + linkage.inputs}
-    unknown = sorted(set(args.set) - set(known))
-    if unknown:
-        raise ValueError(f"--set names {', '.join(unknown)}; {linkage.name} takes {', '.join(known)}")
-    values = dict(found.defaults)
-    values.update({name: float(to_radians(value, args.units)) if is_angle(linkage, known[name]) else value
-                   for name, value in args.set.items()})
     values = {name: value for name, value in values.items() if name not in {q.name for q in linkage.inputs[:1]}}
     values.update({branch.name: int(args.branch) for branch in linkage.branches})
     if not linkage.has_closed_form:

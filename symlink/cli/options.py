@@ -13,13 +13,16 @@ import argparse
 import math
 import re
 from pathlib import Path
-from typing import Callable, NoReturn
+from typing import Callable, Collection, Mapping, NoReturn
 
+from ..angles import to_radians
+from ..closure import is_angle
 from ..input_sweep import InputSweep
+from ..linkage_file import LinkageFile
 
 __all__ = ["UsageError", "Parser", "finite", "number_list", "pair", "assignments", "figure_path", "add_sweep_options",
            "add_fourbar_lengths", "fourbar_lengths", "add_branch_option", "add_units_option", "add_format_option",
-           "input_sweep", "branches", "command_help"]
+           "input_sweep", "branches", "command_help", "linkage_values", "fourbar_or_linkage"]
 
 FOURBAR_LENGTHS = (("crank", "AB"), ("coupler", "BC"), ("rocker", "DC"), ("ground", "AD"))
 FIGURE_SUFFIXES = (".png", ".svg")
@@ -114,6 +117,26 @@ def assignments(what: str) -> Callable[[str], dict[str, float]]:
     return parse
 
 
+def linkage_values(found: LinkageFile, settings: Mapping[str, float], units: str,
+                   extra: Collection[str] = ()) -> dict[str, float]:
+    """A linkage's values by symbol name: its defaults (a catalog entry's example values, see
+    :func:`~symlink.linkage_file.load_linkage`) updated by ``--set`` (fixed angles and inputs in
+    ``units``, stored in radians).
+
+    Names other than the linkage's parameters, inputs and ``extra`` (a
+    command's own settings, such as a geared input's ``psi_ratio``) are refused.
+    """
+    linkage = found.linkage
+    known = {s.name: s for s in linkage.parameters + linkage.inputs}
+    for name in settings:
+        if name not in known and name not in extra:
+            raise ValueError(f"--set: {linkage.name} has no value {name!r}; it takes {', '.join([*known, *extra])}")
+    values = dict(found.defaults)
+    values.update({name: float(to_radians(value, units)) if name in known and is_angle(linkage, known[name]) else value
+                   for name, value in settings.items()})
+    return values
+
+
 def figure_path(text: str) -> str:
     """A .png or .svg file name."""
     if Path(text).suffix.lower() not in FIGURE_SUFFIXES:
@@ -122,14 +145,32 @@ def figure_path(text: str) -> str:
     return text
 
 
-def add_fourbar_lengths(parser: argparse.ArgumentParser, defaults: dict[str, float] | None = None) -> None:
-    """``--crank --coupler --rocker --ground``, required unless given defaults."""
+def add_fourbar_lengths(parser: argparse.ArgumentParser, defaults: dict[str, float] | None = None,
+                        beside_linkage: bool = False) -> None:
+    """``--crank --coupler --rocker --ground``: required, or with ``defaults``; ``beside_linkage``: the
+    four-bar form of a command that also takes a linkage NAME|FILE (see :func:`fourbar_or_linkage`)."""
     for option, what in FOURBAR_LENGTHS:
-        if defaults:
+        if beside_linkage:
+            default = "" if not defaults else f"; default {defaults[option]:g}"
+            parser.add_argument(f"--{option}", type=finite, help=f"four-bar length {what} (without NAME{default})")
+        elif defaults:
             parser.add_argument(f"--{option}", type=finite, default=defaults[option],
                                 help=f"length {what} (default {defaults[option]:g})")
         else:
             parser.add_argument(f"--{option}", type=finite, required=True, help=f"length {what}")
+
+
+def fourbar_or_linkage(args: argparse.Namespace, command: str, lengths_required: bool = True) -> bool:
+    """Whether a command was given a linkage NAME|FILE (else the four-bar's lengths); ``ValueError`` for
+    both, or (``lengths_required``) for neither."""
+    given = [v is not None for v in fourbar_lengths(args)]
+    if args.linkage is not None and any(given):
+        raise ValueError(f"{command}: give a catalog NAME or a linkage FILE, or the four-bar's --crank --coupler "
+                         "--rocker --ground, not both")
+    if args.linkage is None and lengths_required and not all(given):
+        raise ValueError(f"{command}: give a catalog NAME (e.g. jansen) or a linkage FILE, or all of --crank "
+                         "--coupler --rocker --ground")
+    return args.linkage is not None
 
 
 def fourbar_lengths(args: argparse.Namespace) -> tuple[float, float, float, float]:

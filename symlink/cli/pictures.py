@@ -11,27 +11,20 @@ import sys
 from typing import Sequence
 
 from ..angles import to_radians, wrap
-from .options import (add_branch_option, add_units_option, assignments, branches, command_help,
-                      figure_path, FOURBAR_LENGTHS,
-                      finite, fourbar_lengths, pair, whole)
+from ..linkage_file import load_linkage
+from .options import (add_branch_option, add_fourbar_lengths, add_units_option, assignments, branches, command_help,
+                      figure_path, finite, fourbar_lengths, fourbar_or_linkage, linkage_values, pair, whole)
 from .output import note
 
-__all__ = ["register", "add_fourbar_plot_options", "write_fourbar_plots", "linkage_values"]
+__all__ = ["register", "add_fourbar_plot_options", "write_fourbar_plots", "drawn_linkage"]
 
 
-def linkage_values(args: argparse.Namespace):
-    """The linkage NAME|FILE and its values: its defaults (a catalog entry's example values), ``--set``
-    (angles in --units), ``--angle`` (the first input, in --units) and ``--branch`` for every branch."""
+def drawn_linkage(args: argparse.Namespace):
+    """The linkage NAME|FILE and its values (``--set``), ``--angle`` (the first input, in --units) and
+    ``--branch`` for every branch."""
     from ..closure import is_angle
-    from ..linkage_file import load_linkage
     found = load_linkage(args.linkage)
-    linkage = found.linkage
-    values = dict(found.defaults)
-    known = {s.name: s for s in linkage.parameters + linkage.inputs}
-    for name, value in (args.set or {}).items():
-        if name not in known:
-            raise ValueError(f"--set: {args.linkage} has no value {name!r}; it takes {', '.join(known)}")
-        values[name] = float(to_radians(value, args.units)) if is_angle(linkage, known[name]) else value
+    linkage, values = found.linkage, linkage_values(found, args.set or {}, args.units)
     if args.angle is not None:
         first = linkage.inputs[0]
         values[first.name] = float(to_radians(args.angle, args.units)) if is_angle(linkage, first) else args.angle
@@ -52,16 +45,6 @@ def _add_catalog_options(parser: argparse.ArgumentParser, what: str) -> None:
 def _default_trace(linkage) -> list[str]:
     """The last named point: the Jansen leg's foot, a coupler's tip."""
     return [list(linkage.points)[-1]] if linkage.points else []
-
-
-def _four_lengths_or_name(args: argparse.Namespace, command: str) -> None:
-    lengths = [args.crank, args.coupler, args.rocker, args.ground]
-    if args.linkage is not None and any(v is not None for v in lengths):
-        raise ValueError(f"{command}: give a catalog NAME or the four-bar's --crank --coupler --rocker --ground, "
-                         "not both")
-    if args.linkage is None and any(v is None for v in lengths):
-        raise ValueError(f"{command}: give a catalog NAME (e.g. jansen) or all of --crank --coupler --rocker "
-                         "--ground")
 
 
 def _spans_note(rendered, name: str, units: str) -> None:
@@ -97,8 +80,7 @@ def _coupler_point(args: argparse.Namespace) -> tuple[float, float] | None:
 
 def run_curve(args: argparse.Namespace) -> int:
     from ..plot import coupler_curve_figure, save_figure
-    _four_lengths_or_name(args, "curve")
-    if args.linkage is not None:
+    if fourbar_or_linkage(args, "curve"):
         return run_draw(args)
     if args.coupler_point is None:
         raise ValueError("curve: the four-bar form needs --coupler-point DIST,ANGLE")
@@ -121,10 +103,9 @@ def run_animate(args: argparse.Namespace) -> int:
             print(f"{chr(13) if in_place else ''}symlink: rendered {done}/{total} frames", end=end,
                   file=sys.stderr, flush=True)
 
-    _four_lengths_or_name(args, "animate")
-    if args.linkage is not None:
+    if fourbar_or_linkage(args, "animate"):
         from ..plot.animation import animate_linkage
-        linkage, values = linkage_values(args)
+        linkage, values = drawn_linkage(args)
         trace = _default_trace(linkage) if args.trace is None else args.trace
         rendered = animate_linkage(linkage, values, args.out, frames=args.frames, trace=trace, fps=args.fps,
                                    unit=args.unit, progress=report)
@@ -146,7 +127,7 @@ def run_animate(args: argparse.Namespace) -> int:
 def run_draw(args: argparse.Namespace) -> int:
     from ..plot import save_figure
     from ..plot.drawing import draw_linkage
-    linkage, values = linkage_values(args)
+    linkage, values = drawn_linkage(args)
     trace = _default_trace(linkage) if args.trace is None else args.trace
     drawing = draw_linkage(linkage, values, trace=trace, unit=args.unit)
     save_figure(drawing.figure, args.out)
@@ -156,9 +137,8 @@ def run_draw(args: argparse.Namespace) -> int:
 
 def run_view(args: argparse.Namespace) -> int:
     from ..plot.view import SEED001, FourbarView, LinkageView, check_slider_range, interactive_backend
-    if args.linkage is not None:
-        _four_lengths_or_name(args, "view")
-        linkage, values = linkage_values(args)
+    if fourbar_or_linkage(args, "view", lengths_required=False):
+        linkage, values = drawn_linkage(args)
         trace = _default_trace(linkage) if args.trace is None else args.trace
         if args.save:
             from matplotlib.figure import Figure
@@ -216,8 +196,7 @@ def register(commands) -> None:
         "symlink curve --crank 20 --coupler 66 --rocker 56 --ground 80 --coupler-point 40,30 --out curve.png"))
     curve.add_argument("linkage", nargs="?", metavar="NAME|FILE",
                        help="a catalog linkage or a linkage file: draws it with the paths of --trace points")
-    for option, what in FOURBAR_LENGTHS:
-        curve.add_argument(f"--{option}", type=finite, help=f"four-bar length {what} (without NAME)")
+    add_fourbar_lengths(curve, beside_linkage=True)
     curve.add_argument("--coupler-point", type=pair("DIST,ANGLE"), metavar="DIST,ANGLE",
                        help="the four-bar's coupler point: distance from B, and angle from the coupler's direction B->C")
     _add_catalog_options(curve, "where the linkage is drawn (with NAME)")
@@ -236,8 +215,7 @@ def register(commands) -> None:
         "An input that cannot turn fully is swept over its reachable range, forward and back."))
     animation.add_argument("linkage", nargs="?", metavar="NAME|FILE",
                            help="a catalog linkage (" + ", ".join(sorted(CATALOG)) + ") or a linkage file (.toml)")
-    for option, what in FOURBAR_LENGTHS:
-        animation.add_argument(f"--{option}", type=finite, help=f"four-bar length {what} (without NAME)")
+    add_fourbar_lengths(animation, beside_linkage=True)
     _add_catalog_options(animation, "where the input starts")
     add_branch_option(animation, both=False, default="+1")
     animation.add_argument("--frames", type=whole, default=FRAMES, help=f"frames in a turn (default {FRAMES})")
@@ -255,9 +233,7 @@ def register(commands) -> None:
         "Without NAME|FILE the four-bar view (lengths default to the Maple worksheet's); with one, any linkage:\n"
         "symlink view jansen --save jansen-view.png"))
     view.add_argument("linkage", nargs="?", metavar="NAME|FILE", help="a catalog linkage or a linkage file")
-    for option, what in FOURBAR_LENGTHS:
-        default = SEED001[option]
-        view.add_argument(f"--{option}", type=finite, help=f"four-bar length {what} (without NAME; default {default:g})")
+    add_fourbar_lengths(view, defaults=SEED001, beside_linkage=True)
     _add_catalog_options(view, "the first input's initial value (with NAME)")
     view.add_argument("--crank-angle", type=finite, default=0.0, metavar="ANGLE", help="initial (default 0)")
     view.add_argument("--crank-speed", type=finite, default=1.0, metavar="W", help="rad/s (default 1)")

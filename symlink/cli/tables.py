@@ -51,7 +51,7 @@ from ..scene import catalog_linkage
 from ..solver import NumericSolver, Solver, check_lengths, crank_speeds
 from ..vectors import acceleration, rate
 from .options import (add_fourbar_lengths, add_sweep_options, assignments, branches, command_help, finite, fourbar_lengths,
-                      input_sweep)
+                      input_sweep, linkage_values)
 from .output import RowWriter, TableAssembler, describe_spans, print_rows
 
 __all__ = ["Option", "Table", "TABLES", "table_columns", "loop_branches", "write_table", "register"]
@@ -522,16 +522,13 @@ def run_generic_table(args: argparse.Namespace) -> int:
     """``symlink table``: the table of any linkage, from the catalog or a file."""
     found = load_linkage(args.linkage)
     linkage = found.linkage
+    ratios = {f"{x.name}_ratio" for x in linkage.inputs[1:]}
+    values = linkage_values(found, args.set, args.units, extra=sorted(ratios))
     if not linkage.inputs:
         raise ValueError(f"{linkage.name} has no input to sweep")
+    if linkage.inputs[0].name in args.set:
+        raise ValueError(f"--set: {linkage.inputs[0].name} is the swept input; give --start/--stop/--step or --angles")
     names = {s.name: s for s in linkage.parameters} | {x.name: x for x in linkage.inputs[1:]}
-    ratios = {f"{x.name}_ratio" for x in linkage.inputs[1:]}
-    unknown = sorted(set(args.set) - set(names) - ratios)
-    if unknown:
-        raise ValueError(f"--set names {', '.join(unknown)}; {linkage.name} has {', '.join([*names, *sorted(ratios)])}")
-    given = {name: float(to_radians(value, args.units)) if name in names and is_angle(linkage, names[name]) else value
-             for name, value in args.set.items()}
-    values = {**found.defaults, **given}
     missing = [name for name in names if name not in values]
     if missing:
         raise ValueError(f"{linkage.name} needs values for {', '.join(missing)} (--set NAME=VALUE,...)")

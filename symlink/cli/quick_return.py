@@ -5,7 +5,7 @@ import argparse
 import json
 import math
 
-from ..synthesis import MAX_LINK_RATIO, as_record, quick_return
+from ..synthesis.quick_return import MAX_LINK_RATIO, as_record, quick_return
 from .options import command_help, finite, pair
 from .output import note
 

@@ -37,9 +37,9 @@ from dataclasses import dataclass, replace
 
 import numpy
 
-from .analysis import (LimitPositions, TransmissionRange, grashof, limit_positions, transmission_range,
+from ..analysis import (LimitPositions, TransmissionRange, grashof, limit_positions, transmission_range,
                        triangle_angle, wrap_angle)
-from .solver import check_lengths
+from ..solver import check_lengths
 
 __all__ = ["QuickReturn", "quick_return", "delta_for_time_ratio", "GOOD_TRANSMISSION", "MAX_LINK_RATIO",
            "as_record"]

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq, minimize_scalar
 
-from symlink.synthesis import GOOD_TRANSMISSION, as_record, delta_for_time_ratio, quick_return
+from symlink.synthesis.quick_return import GOOD_TRANSMISSION, as_record, delta_for_time_ratio, quick_return
 
 deg = math.radians
 PAPER = dict(time_ratio=1.25, stroke=deg(40), rocker=50.0, rocker_min_angle=deg(90))

@@ -1,0 +1,5 @@
+"""Synthesis: find the linkage that does a job.
+
+:mod:`symlink.synthesis.quick_return` designs a quick-return crank-rocker exactly
+from its time ratio and stroke.
+"""

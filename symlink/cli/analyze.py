@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import argparse
 import json
+from typing import Any
 
 from ..analysis import analyze_linkage, fourbar_report
 from ..angles import from_radians
@@ -101,7 +102,7 @@ def run_linkage(args: argparse.Namespace) -> int:
     angle = lambda x: float(from_radians(x, unit))  # noqa: E731
     reach = report.reach
     shown_input = angle if is_angle(linkage, known[report.input]) else float
-    record = {
+    record: dict[str, Any] = {
         "linkage": linkage.name, "input": report.input, "dof": report.mobility.dof,
         "reachable": [[shown_input(lo), shown_input(hi)] for lo, hi in reach.spans], "full_turn": reach.full_turn,
         "exact": reach.exact,

@@ -177,12 +177,12 @@ class TableAssembler:
         """
         if not self.rows or any(self.unassembled.values()):
             known = spans()
-            by_branch = isinstance(known, Mapping)
             if not self.rows:
-                text = "; ".join(f"branch {sign}: {t}" for sign, t in known.items()) if by_branch else known
+                text = known if isinstance(known, str) else "; ".join(f"branch {sign}: {t}"
+                                                                       for sign, t in known.items())
                 raise ValueError(f"the linkage cannot be assembled at any requested crank angle "
                                  f"(reachable crank range: {text})")
-            if by_branch:
+            if not isinstance(known, str):
                 for sign, angles in self.unassembled.items():
                     if angles:
                         note(f"branch {sign} cannot be assembled at crank angles {self._listed(angles)} "

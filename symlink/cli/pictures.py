@@ -82,10 +82,11 @@ def run_curve(args: argparse.Namespace) -> int:
     from ..plot import coupler_curve_figure, save_figure
     if fourbar_or_linkage(args, "curve"):
         return run_draw(args)
-    if args.coupler_point is None:
+    point = _coupler_point(args)
+    if point is None:
         raise ValueError("curve: the four-bar form needs --coupler-point DIST,ANGLE")
     crank_angle = None if args.crank_angle is None else float(to_radians(args.crank_angle, args.units))
-    distance, angle = _coupler_point(args)
+    distance, angle = point
     figure = coupler_curve_figure(*fourbar_lengths(args), distance, angle, branches=branches(args),
                                   crank_angle=crank_angle)
     save_figure(figure, args.out)
@@ -167,9 +168,9 @@ def run_view(args: argparse.Namespace) -> int:
         save_figure(figure, args.save)
         return 0
     pyplot = interactive_backend()
-    view = FourbarView(*lengths, **settings)
+    fourbar_view = FourbarView(*lengths, **settings)
     pyplot.show()
-    del view
+    del fourbar_view
     return 0
 
 

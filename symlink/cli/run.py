@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+from typing import cast
 
 from ..scene import FORMATS, angle_outputs, read_scene, scene_from_text
 from ..reachability import crank_range
@@ -34,7 +35,7 @@ def run(args: argparse.Namespace) -> int:
 
     def spans() -> str:
         if scene.linkage.name == "fourbar":
-            return describe_spans(crank_range(*(scene.values[n] for n in "abcd")), found.units)
+            return describe_spans(crank_range(*(cast(float, scene.values[n]) for n in "abcd")), found.units)
         return f"not computed for {scene.linkage.name}"
 
     def blocks():

@@ -33,7 +33,7 @@ from __future__ import annotations
 import argparse
 import itertools
 from dataclasses import dataclass
-from typing import Callable, Collection, Iterable, Mapping
+from typing import Any, Callable, Collection, Iterable, Mapping
 
 import numpy
 
@@ -286,7 +286,7 @@ def _numeric(table: Table, linkage: Linkage, values: dict, inputs: dict, angles,
                          "(its scan for assemblies finds none)")
     solver = NumericSolver(linkage)
     parameters = {s.name: values[s.name] for s in linkage.parameters}
-    failure = None
+    failure: ValueError | None = None
     for start in candidates:
         try:
             result = solver(guess=start, **inputs, **parameters)
@@ -295,6 +295,7 @@ def _numeric(table: Table, linkage: Linkage, values: dict, inputs: dict, angles,
             continue
         columns = {column: result[name] for column, name in table_outputs(linkage).items()}
         return {1: {**columns, "assembled": result["assembled"]}}
+    assert failure is not None  # there was a candidate, and each one failed
     raise failure
 
 
@@ -304,6 +305,7 @@ def _print_assemblies(table: Table, linkage: Linkage, values: dict, first: float
     shown = (linkage.inputs[0],) + linkage.unknowns
     columns = [label(linkage, q) for q in shown]
     rows = []
+    assert table.assemblies is not None  # the option exists only for tables that list assemblies
     for found in table.assemblies(theta, values):
         radians = {linkage.inputs[0].name: theta, **found}
         rows.append({label(linkage, q): float(wrap(from_radians(radians[q.name], args.units), half_turn(args.units)))
@@ -368,7 +370,8 @@ def _print_table(table: Table, linkage: Linkage, values: dict[str, float], args:
 
     if linkage.has_closed_form:
         solve_block, reachable = _closed_form(table, linkage, values, args)
-        blocks = ((angles, solve_block(inputs_at(angles))) for angles in sweep.blocks())
+        blocks: Iterable[tuple[numpy.ndarray, Any]] = ((angles, solve_block(inputs_at(angles)))
+                                                       for angles in sweep.blocks())
     else:  # Newton continues along the whole sweep: one block
         angles = sweep.array()
         blocks = [(angles, _numeric(table, linkage, values, inputs_at(angles), angles, args))]

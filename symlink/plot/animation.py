@@ -33,7 +33,7 @@ import os
 import secrets
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable, Mapping, Sequence
+from typing import TYPE_CHECKING, Callable, Mapping, Sequence
 
 import numpy
 
@@ -44,6 +44,10 @@ from ..linkage import Linkage
 from ..reachability import TURN_SAMPLES, assembled_crank_range, crank_range, turn_angles
 from .drawing import Geometry, LinkageDrawing, input_range, sweep_inputs, traced_paths
 from .figures import MechanismDrawing, check_coupler_point, coupler_point_linkage, extent, fourbar_positions
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+    from numpy.typing import ArrayLike
 
 __all__ = ["FRAMES", "MAX_FRAMES", "MAX_FRAME_PIXELS", "ANIMATION_SUFFIXES", "LEFTOVER_PREFIX", "frame_positions",
            "animate", "animate_linkage", "check_animation_size", "Rendered", "InlineAnimation", "inline_animation",
@@ -98,7 +102,7 @@ class InlineAnimation:
 class _Frames:
     """A figure ready to animate: ``draw(k)`` poses frame ``k`` of ``count``; what could not close is collected."""
 
-    figure: object
+    figure: "Figure"
     count: int
     draw: Callable[[int], None]
     unassembled: list
@@ -134,11 +138,12 @@ def _writer(path: Path, fps: float):
     if suffix not in ANIMATION_SUFFIXES:
         raise ValueError(f"cannot animate into {str(path)!r}: the file must end in {' or '.join(ANIMATION_SUFFIXES)}")
     if suffix == ".gif":
-        return animation.PillowWriter(fps=fps)
+        return animation.PillowWriter(fps=fps)  # type: ignore[arg-type]  # Matplotlib takes a float rate
     if not animation.writers.is_available("ffmpeg"):
         raise ValueError(f"writing {path.name} needs ffmpeg, which was not found on PATH "
                          "(or at Matplotlib's animation.ffmpeg_path); install it, or write a .gif")
-    return animation.FFMpegWriter(fps=fps, codec="libx264", extra_args=["-pix_fmt", "yuv420p"])
+    return animation.FFMpegWriter(fps=fps, codec="libx264",  # type: ignore[arg-type]  # a float rate works
+                                  extra_args=["-pix_fmt", "yuv420p"])
 
 
 def check_animation_size(frames: int, size_px: tuple[int, int]) -> tuple[int, int]:
@@ -199,7 +204,7 @@ def _html_frames(frames: _Frames, fps: float, progress: Callable[[int, int], Non
     with matplotlib.rc_context({"animation.embed_limit": limit}):
         player = FuncAnimation(frames.figure, draw, frames=frames.count, init_func=lambda: [], repeat=True,
                                cache_frame_data=False, interval=1000 / fps)
-        text = player.to_jshtml(fps=fps, default_mode="loop")
+        text = player.to_jshtml(fps=fps, default_mode="loop")  # type: ignore[arg-type]  # a float rate works
     embedded = text.count(FRAME_MARK)
     if embedded != frames.count:
         raise ValueError(f"the notebook player holds {embedded} of {frames.count} frames; lower the frames or size")
@@ -281,7 +286,8 @@ def _fourbar_frames(a: float, b: float, c: float, d: float, branch: int, frames:
     positions = frame_positions(a, b, c, d, branch=branch, frames=frames, coupler_point=coupler_point,
                                 linkage=linkage)
     figure, axes = _figure(width, height)
-    xs, ys = [0.0, d, positions["B_x"], positions["C_x"]], [0.0, 0.0, positions["B_y"], positions["C_y"]]
+    xs: list["ArrayLike"] = [0.0, d, positions["B_x"], positions["C_x"]]
+    ys: list["ArrayLike"] = [0.0, 0.0, positions["B_y"], positions["C_y"]]
     if coupler_point is not None:
         theta = turn_angles(a, b, c, d, TURN_SAMPLES)
         curve = fourbar_positions(a, b, c, d, theta, branch, ["P_x", "P_y"], coupler_point, linkage=linkage)

@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Mapping, Sequence
+from typing import TYPE_CHECKING, Mapping, Sequence, cast
 
 import numpy
 import sympy as sp
@@ -48,6 +48,10 @@ from .figures import _ground_marker, extent
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Polygon
+    from numpy.typing import ArrayLike
 
 __all__ = ["Geometry", "Poses", "LinkageDrawing", "draw_linkage", "input_range", "sweep_inputs", "TRACE_SAMPLES"]
 
@@ -157,7 +161,7 @@ class Geometry:
                          + f" (Newton's method closed from none of {GUESSES} starting guesses); "
                          "give a guess near an assembly")
 
-    def poses(self, values: Mapping[str, float], sweep: Mapping[str, Sequence[float]] | None = None,
+    def poses(self, values: Mapping[str, float], sweep: Mapping[str, "ArrayLike"] | None = None,
               guess: Mapping[str, float] | None = None) -> Poses:
         """Every joint and point at ``values``, with inputs swept over ``sweep`` (name -> values) where given.
 
@@ -165,13 +169,13 @@ class Geometry:
         ``guess`` (default: :meth:`find_guess` at the sweep's first values).
         """
         values = self.check_values(values)
-        sweep = {name: numpy.atleast_1d(numpy.asarray(v, dtype=float)) for name, v in (sweep or {}).items()}
-        for name in sweep:
+        swept = {name: numpy.atleast_1d(numpy.asarray(v, dtype=float)) for name, v in (sweep or {}).items()}
+        for name in swept:
             if name not in self.input_names:
                 raise ValueError(f"{self.linkage.name} has no input {name!r}; its inputs are "
                                  f"{', '.join(self.input_names)}")
-        length = max([len(v) for v in sweep.values()] + [1])
-        inputs = {name: numpy.broadcast_to(sweep.get(name, numpy.float64(values[name])), (length,)).astype(float)
+        length = max([len(v) for v in swept.values()] + [1])
+        inputs = {name: numpy.broadcast_to(swept.get(name, numpy.float64(values[name])), (length,)).astype(float)
                   for name in self.input_names}
         parameters = {s.name: float(values[s.name]) for s in self.linkage.parameters}
         if isinstance(self.solver, Solver):
@@ -296,7 +300,8 @@ class LinkageDrawing:
                  traces: Mapping[str, numpy.ndarray] | None = None, unit: str | None = None,
                  letters: bool = True) -> None:
         from matplotlib.patches import Polygon
-        self.axes, self.figure, self.geometry, self.poses = axes, axes.figure, geometry, poses
+        self.axes, self.geometry, self.poses = axes, geometry, poses
+        self.figure: "Figure" = axes.figure.figure  # the top-level figure, also for a subfigure's axes
         found = geometry.mechanism
         self.scale = self._scale(poses, traces)
         self.traces = {name: axes.plot(path.real, path.imag, color="tab:purple", linewidth=1.2, alpha=0.8,
@@ -309,6 +314,7 @@ class LinkageDrawing:
                 continue
             corners = self._corners(body)
             color = next(colors)
+            artist: "Polygon | Line2D"
             if len(corners) >= 3:
                 artist = Polygon(numpy.zeros((len(corners), 2)), closed=True, facecolor=color, alpha=0.45,
                                  edgecolor=color, linewidth=2.5, zorder=3, label=body.name)
@@ -406,22 +412,23 @@ class LinkageDrawing:
         for corners, artist in self._bodies:
             xy = [at[name] for name in corners]
             if len(corners) >= 3:
-                artist.set_visible(shown)
+                plate = cast("Polygon", artist)
+                plate.set_visible(shown)
                 if shown:
                     ordered = _corner_order(xy)
-                    artist.set_xy([(p.real, p.imag) for p in ordered])
+                    plate.set_xy([(p.real, p.imag) for p in ordered])
             else:
-                artist.set_data(*(([p.real for p in xy], [p.imag for p in xy]) if shown else ([], [])))
+                cast("Line2D", artist).set_data(*(([p.real for p in xy], [p.imag for p in xy]) if shown else ([], [])))
         for index, joint in enumerate(self.geometry.sliders):
             start, end = self._guide_span(k, index)
             self.guides[index].set_data(*(([start.real, end.real], [start.imag, end.imag]) if shown else ([], [])))
             centre, along = at[joint.name], numpy.exp(1j * self.poses.directions[joint.name][k])
             half_length, half_width = 0.06 * self.scale, 0.035 * self.scale
-            corners = [centre + along * (sx * half_length + 1j * sy * half_width)
+            outline = [centre + along * (sx * half_length + 1j * sy * half_width)
                        for sx, sy in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
             self.blocks[index].set_visible(shown and numpy.isfinite(centre))
             if shown and numpy.isfinite(centre):
-                self.blocks[index].set_xy([(p.real, p.imag) for p in corners])
+                self.blocks[index].set_xy([(p.real, p.imag) for p in outline])
         pivots = [at[name] for name in self._pivots]
         self.ground.set_data([p.real for p in pivots], [p.imag for p in pivots])
         self.frame.set_data([p.real for p in pivots], [p.imag for p in pivots])

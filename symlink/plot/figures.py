@@ -49,6 +49,7 @@ from ..vectors import Vector, coordinates, lengths
 if TYPE_CHECKING:  # Matplotlib is imported when a drawing is made
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
+    from numpy.typing import ArrayLike
 
 __all__ = ["coupler_point_linkage", "fourbar_positions", "reachable_turn", "turn_angles",
            "check_coupler_point", "angle_figure", "transmission_figure", "coupler_curve_figure", "draw_loop",
@@ -79,7 +80,9 @@ def coupler_point_linkage() -> Linkage:
     (p,), (gamma,) = lengths("p"), coordinates("gamma")
     beta = base.roles["coupler"]
     points = dict(base.points)
-    points["P"] = base.points["B"] + Vector(p, beta + gamma, "BP")
+    crank_end = base.points["B"]
+    assert crank_end is not None  # the catalog four-bar names B
+    points["P"] = crank_end + Vector(p, beta + gamma, "BP")
     return Linkage("fourbar_coupler_point", base.loops, base.inputs, base.unknowns,
                    parameters=base.parameters + (p, gamma), points=points,
                    roles=base.roles, extras=base.extras)
@@ -131,7 +134,7 @@ def _wrapped_with_breaks(x: numpy.ndarray, angles: numpy.ndarray, half: float) -
 
 def _shade_unreachable(axes: "Axes", a: float, b: float, c: float, d: float, scale: float) -> None:
     edges = [0.0] + [bound for piece in reachable_turn(a, b, c, d) for bound in piece] + [2 * math.pi]
-    label = "cannot be assembled"
+    label: str | None = "cannot be assembled"
     for low, high in zip(edges[0::2], edges[1::2]):
         if high > low:
             axes.axvspan(low * scale, high * scale, color="0.88", zorder=0, label=label)
@@ -146,7 +149,8 @@ def _new_figure(width: float, height: float, rows: int = 1,
         if len(given) != rows or not all(hasattr(axes, "plot") and hasattr(axes, "figure") for axes in given):
             raise ValueError(f"give {'one Matplotlib Axes' if rows == 1 else f'{rows} Matplotlib Axes'} to draw on, "
                              f"got {given!r}")
-        return given[0].figure, given
+        # The top-level figure, also for a subfigure's axes (a Figure is its own ``figure``).
+        return given[0].figure.figure, given
     from .inline import NotebookFigure
     figure = NotebookFigure(figsize=(width, height), layout="constrained")
     axes = figure.subplots(rows, 1, sharex=True, squeeze=False)[:, 0]
@@ -271,8 +275,8 @@ class MechanismDrawing:
 
     def __init__(self, axes: "Axes", coupler_point: bool = False) -> None:
         from matplotlib.patches import Polygon
-        bar = dict(linewidth=7, solid_capstyle="round", zorder=3)
-        self.links = {name: axes.plot([], [], color=color, label=name, **bar)[0]
+        self.links = {name: axes.plot([], [], color=color, label=name, linewidth=7, solid_capstyle="round",
+                                      zorder=3)[0]
                       for name, color in LINK_COLORS.items()}
         self.frame, = axes.plot([], [], color="0.5", linestyle="--", linewidth=1, zorder=1)
         self.ground, = axes.plot([], [], linestyle="none", marker=_ground_marker(), markersize=24,
@@ -301,23 +305,23 @@ class MechanismDrawing:
         self.links["crank"].set_data([A[0], B[0]], [A[1], B[1]])
         joints = [A, B, D] if C is None else [A, B, C, D]
         self.pins.set_data([p[0] for p in joints], [p[1] for p in joints])
-        for name, (start, end) in (("coupler", (B, C)), ("rocker", (D, C))):
-            self.links[name].set_data(*(([], []) if C is None else ([start[0], end[0]], [start[1], end[1]])))
+        for name, start in (("coupler", B), ("rocker", D)):
+            self.links[name].set_data(*(([], []) if C is None else ([start[0], C[0]], [start[1], C[1]])))
         shown = C is not None and P is not None
-        self.point.set_data(*(([P[0]], [P[1]]) if shown else ([], [])))
+        self.point.set_data(*(([P[0]], [P[1]]) if P is not None and C is not None else ([], [])))
         if self.body is not None:
             self.body.set_visible(shown)
-            if shown:
+            if C is not None and P is not None:
                 self.body.set_xy([B, C, P])
 
 
-def extent(xs: Sequence, ys: Sequence, margin: float = 0.08) -> tuple[tuple[float, float], tuple[float, float]]:
+def extent(xs: "ArrayLike", ys: "ArrayLike", margin: float = 0.08) -> tuple[tuple[float, float], tuple[float, float]]:
     """Axis limits around the finite points, with a margin of the larger side."""
-    xs, ys = numpy.asarray(xs, dtype=float).ravel(), numpy.asarray(ys, dtype=float).ravel()
-    keep = numpy.isfinite(xs) & numpy.isfinite(ys)
-    xs, ys = xs[keep], ys[keep]
-    pad = margin * max(numpy.ptp(xs), numpy.ptp(ys), 1e-300)
-    return (xs.min() - pad, xs.max() + pad), (ys.min() - pad, ys.max() + pad)
+    x, y = numpy.asarray(xs, dtype=float).ravel(), numpy.asarray(ys, dtype=float).ravel()
+    keep = numpy.isfinite(x) & numpy.isfinite(y)
+    x, y = x[keep], y[keep]
+    pad = margin * max(numpy.ptp(x), numpy.ptp(y), 1e-300)
+    return (float(x.min() - pad), float(x.max() + pad)), (float(y.min() - pad), float(y.max() + pad))
 
 
 def coupler_curve_figure(a: float, b: float, c: float, d: float, distance: float, angle: float,
@@ -337,7 +341,8 @@ def coupler_curve_figure(a: float, b: float, c: float, d: float, distance: float
     branches = _checked_branches(branches)
     theta = turn_angles(a, b, c, d, samples)
     figure, (axes,) = _new_figure(6.4, 5.2, given=_given(ax))
-    xs, ys = [0.0, d], [0.0, 0.0]
+    xs: list["ArrayLike"] = [0.0, d]
+    ys: list["ArrayLike"] = [0.0, 0.0]
     for sign in branches:
         result = fourbar_positions(a, b, c, d, theta, sign, ["P_x", "P_y", "B_x", "B_y", "C_x", "C_y"], point)
         axes.plot(result["P_x"], result["P_y"], BRANCH_STYLES[sign], color="tab:purple",

@@ -63,10 +63,12 @@ from ..solver import shared_solver
 
 __all__ = ["Dyad", "Design", "check_poses", "pole", "pole_triangle", "two_pose_centre", "centre_point",
            "circle_point", "four_pose_dyads", "BurmesterCurves", "burmester_curves", "burmester_points",
-           "fourbar_from_dyads", "motion_generation", "as_record"]
+           "fourbar_from_dyads", "motion_generation", "as_record", "MAX_LENGTH"]
 
 _TOLERANCE = 1e-9        # relative residual for a solution of the dyad equations
 _DISTINCT = 1e-7         # relative distance below which two dyads or points are one
+#: Default largest distance of a Burmester dyad's pivots from pose 1, in units of the poses' spread.
+MAX_LENGTH = 1e3
 
 
 # --- poses -----------------------------------------------------------------------------
@@ -445,12 +447,17 @@ def _newton(poses: numpy.ndarray, fixed: complex, moving: complex) -> tuple[comp
     return g, complex(x[2], x[3]), float(numpy.abs(values).max()) / size
 
 
-def burmester_points(poses) -> list[Dyad]:
+def burmester_points(poses, max_length: float = MAX_LENGTH) -> list[Dyad]:
     """The dyads that guide the coupler through five poses (up to four real), sorted by fixed pivot.
 
     Solved with the compatibility polynomial (see the module's docstring) and polished by
     Newton's method; every dyad returned carries its moving pivot through the five
-    poses on a circle about its fixed pivot to rounding.
+    poses on a circle about its fixed pivot to rounding.  The elimination singles out
+    two poses (1 and 2 of the module's docstring); it is run with the three most
+    distinct pairs of poses in those roles and the solutions pooled, so that two poses
+    close together cannot hide a solution.  Dyads whose crank or fixed pivot lies more
+    than ``max_length`` times the poses' spread away are left out: they are sliders in
+    all but name, and their pivots are not determined to working precision.
 
     >>> poses = [(0, 0, 0), (1, 0.2, 0.3), (1.8, 0.9, 0.8), (2.2, 2.0, 1.4), (2.0, 3.0, 2.0)]
     >>> dyads = burmester_points(poses)
@@ -458,7 +465,41 @@ def burmester_points(poses) -> list[Dyad]:
     (4, True)
     """
     poses = check_poses(poses, 5, 5)
+    if not max_length > 0:
+        raise ValueError(f"the largest crank length (relative to the poses' spread) must be positive, got {max_length}")
     frame = _Normalised(poses)
+    local = (numpy.array(frame.delta), numpy.array(frame.turn))    # pose 1 at the origin, unturned
+    found: list[tuple[complex, complex]] = []
+    for order in _orders(frame):
+        reordered = _Normalised(poses[list(order)])
+        for fixed, first_position in _candidates(reordered):
+            # the candidate in the frame of the poses as given: fixed pivot and the moving pivot in pose 1
+            moving = _local(poses[list(order)], first_position)
+            g = (fixed - frame.origin) / frame.scale
+            m = (_place(poses[:1], moving)[0] - frame.origin) / frame.scale
+            g, m, error = _newton(local, g, m)
+            size = max(abs(g), abs(m))
+            if not (error <= _TOLERANCE and abs(m - g) > 1e-9 and size <= max_length):
+                continue
+            if all(abs(g - g0) + abs(m - m0) > _DISTINCT * (1 + size) for g0, m0 in found):
+                found.append((g, m))
+    dyads = [_dyad(poses, g * frame.scale + frame.origin, m * frame.scale + frame.origin) for g, m in found]
+    return sorted(dyads, key=lambda dyad: dyad.fixed)
+
+
+def _orders(frame: _Normalised, count: int = 3) -> list[tuple[int, ...]]:
+    """Orders of the poses for the elimination: the ``count`` most distinct pairs first (as poses 1 and 2)."""
+    pairs = []
+    for j in range(5):
+        for k in range(j + 1, 5):
+            distance = abs(frame.turn[j] - frame.turn[k]) + abs(frame.delta[j] - frame.delta[k])
+            pairs.append((distance, j, k))
+    pairs.sort(reverse=True)
+    return [(j, k) + tuple(i for i in range(5) if i not in (j, k)) for _, j, k in pairs[:count]]
+
+
+def _candidates(frame: _Normalised) -> list[tuple[complex, complex]]:
+    """Rough solutions (fixed pivot, moving pivot in pose 1; ground frame) from the compatibility resultant."""
     first = _quadratic_in_t3(frame.cofactors((1, 2, 3)))
     second = _quadratic_in_t3(frame.cofactors((1, 2, 4)))
     a, b, c = first
@@ -470,10 +511,8 @@ def burmester_points(poses) -> list[Dyad]:
     resultant = poly.polysub(poly.polymul(af_cd, af_cd), poly.polymul(ae_bd, bf_ce))
     resultant = numpy.trim_zeros(resultant / numpy.abs(resultant).max(), "b")
     roots = poly.polyroots(resultant) if len(resultant) > 1 else numpy.array([])
-    # Local (normalised) frame: pose 1 at the origin, unturned.
-    local = (numpy.array(frame.delta), numpy.array(frame.turn))
     c_first, c_second = frame.cofactors((1, 2, 3)), frame.cofactors((1, 2, 4))
-    found: list[tuple[complex, complex]] = []
+    found = []
     for t2 in roots:
         if not abs(abs(t2) - 1) <= 1e-3:
             continue
@@ -485,24 +524,9 @@ def burmester_points(poses) -> list[Dyad]:
             if not numpy.all(numpy.abs(numpy.abs(rotations) - 1) <= 1e-3):
                 continue
             dyad = frame.dyad(rotations / numpy.abs(rotations), (1, 2, 3, 4))
-            if dyad is None:
-                continue
-            w, z = dyad
-            g, m, error = _newton(local, -z - w, -z)
-            if not error <= _TOLERANCE or not abs(_place_first(local, m) - g) > 1e-9:
-                continue
-            if all(abs(g - g0) + abs(m - m0) > _DISTINCT * (1 + abs(g0) + abs(m0)) for g0, m0 in found):
-                found.append((g, m))
-    dyads = []
-    for g, m in found:
-        fixed = g * frame.scale + frame.origin
-        moving = _place_first(local, m) * frame.scale + frame.origin
-        dyads.append(_dyad(poses, fixed, moving))
-    return sorted(dyads, key=lambda dyad: dyad.fixed)
-
-
-def _place_first(local: tuple[numpy.ndarray, numpy.ndarray], m: complex) -> complex:
-    return complex(local[0][0] + local[1][0] * m)
+            if dyad is not None:
+                found.append(frame.ground(*dyad))
+    return found
 
 
 def _common_roots(first: list[numpy.ndarray], second: list[numpy.ndarray], t2: complex) -> list[complex]:

@@ -381,3 +381,27 @@ SQUARE = [(0, 0, 0), (1, 0, 0.2), (1, 1, 0.5), (0, 1, 0.9), (-0.5, 0.5, 1.4)]
 def test_bad_input_is_refused_with_a_reason(call, message):
     with pytest.raises(ValueError, match=message):
         call()
+
+
+@pytest.mark.slow
+def test_burmester_recovery_of_many_fourbars_of_every_class():
+    """1000 random four-bars of any class and branch, crank angles anywhere it assembles (close pairs too)."""
+    rng = np.random.default_rng(12345)
+    recovered = tried = 0
+    while tried < 1000:
+        a, b, c, d = rng.uniform(0.3, 4, 4)
+        thetas = rng.uniform(-math.pi, math.pi, 5)
+        diagonals = np.abs(d - a * np.exp(1j * thetas))
+        if not np.all((abs(b - c) < diagonals) & (diagonals < b + c)):
+            continue
+        linkage = KnownFourbar(a, b, c, d, rng.uniform(0, 3), rng.uniform(-3, 3), rng.uniform(-3, 3),
+                               complex(*rng.uniform(-5, 5, 2)), rng.uniform(-3, 3), int(rng.choice([1, -1])))
+        poses = linkage.poses(thetas)
+        tried += 1
+        dyads = burmester_points(poses)
+        assert len(dyads) <= 4
+        b1, c1 = linkage.moving_pivots(thetas[0])
+        scale = float(linkage.d + linkage.b)
+        recovered += bool(find(dyads, linkage.crank_pivot, b1, poses, scale)
+                          and find(dyads, linkage.rocker_pivot, c1, poses, scale))
+    assert recovered == tried

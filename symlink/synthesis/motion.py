@@ -413,13 +413,14 @@ def _quadratic_in_t3(cofactors: numpy.ndarray) -> list[numpy.ndarray]:
     return [a, b, c]
 
 
-def _newton(poses: numpy.ndarray, fixed: complex, moving: complex) -> tuple[complex, complex, float]:
+def _newton(origins: numpy.ndarray, turns: numpy.ndarray, fixed: complex,
+            moving: complex) -> tuple[complex, complex, float]:
     """Polish a dyad (normalised ground frame): the moving pivot's positions equidistant from the centre.
 
     Unknowns: the centre G and the moving pivot's frame coordinates m; equations
-    ``|M_j - G|^2 - |M_1 - G|^2 = 0`` for j = 2..n.  Returns G, M_1 and the relative residual.
+    ``|M_j - G|^2 - |M_1 - G|^2 = 0`` for j = 2..n, with ``M_j = origins_j + turns_j m``.
+    Returns G, M_1 (pose 1 is unturned at the origin) and the relative residual.
     """
-    origins, turns = poses[0], poses[1]
     x = numpy.array([fixed.real, fixed.imag, moving.real, moving.imag])
 
     def residual(x):
@@ -432,11 +433,8 @@ def _newton(poses: numpy.ndarray, fixed: complex, moving: complex) -> tuple[comp
         values, places, g = residual(x)
         arm = places - g
         # d|M_j - G|^2 / dG = -2 (M_j - G); / dm = 2 R_j^T (M_j - G)
-        rows = []
-        for j in range(len(places)):
-            rotated = arm[j] * numpy.conj(turns[j])
-            rows.append([-2 * arm[j].real, -2 * arm[j].imag, 2 * rotated.real, 2 * rotated.imag])
-        rows = numpy.array(rows)
+        rotated = arm * numpy.conj(turns)
+        rows = numpy.stack([-2 * arm.real, -2 * arm.imag, 2 * rotated.real, 2 * rotated.imag], axis=-1)
         jacobian = rows[1:] - rows[0]
         step, *_ = numpy.linalg.lstsq(jacobian, -values, rcond=None)
         x = x + step
@@ -468,7 +466,6 @@ def burmester_points(poses, max_length: float = MAX_LENGTH) -> list[Dyad]:
     if not max_length > 0:
         raise ValueError(f"the largest crank length (relative to the poses' spread) must be positive, got {max_length}")
     frame = _Normalised(poses)
-    local = (numpy.array(frame.delta), numpy.array(frame.turn))    # pose 1 at the origin, unturned
     found: list[tuple[complex, complex]] = []
     for order in _orders(frame):
         reordered = _Normalised(poses[list(order)])
@@ -477,7 +474,7 @@ def burmester_points(poses, max_length: float = MAX_LENGTH) -> list[Dyad]:
             moving = _local(poses[list(order)], first_position)
             g = (fixed - frame.origin) / frame.scale
             m = (_place(poses[:1], moving)[0] - frame.origin) / frame.scale
-            g, m, error = _newton(local, g, m)
+            g, m, error = _newton(frame.delta, frame.turn, g, m)   # pose 1 at the origin, unturned
             size = max(abs(g), abs(m))
             if not (error <= _TOLERANCE and abs(m - g) > 1e-9 and size <= max_length):
                 continue
@@ -704,7 +701,7 @@ def motion_generation(poses, *, moving_pivots: Sequence[tuple[float, float]] | N
         _unused(fixed_pivots=fixed_pivots, rotations=rotations)
         pivots = _two(moving_pivots, "moving pivots (in pose 1)")
         shifts = _two(offsets, "offsets (of each centre along its bisector)")
-        pairs = [tuple(two_pose_centre(poses, p, s) for p, s in zip(pivots, shifts))]  # type: ignore[misc]
+        pairs = [(two_pose_centre(poses, pivots[0], shifts[0]), two_pose_centre(poses, pivots[1], shifts[1]))]
     designs = []
     for crank_dyad, rocker_dyad in pairs:
         try:

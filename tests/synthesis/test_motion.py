@@ -162,6 +162,35 @@ def test_burmester_points_do_not_depend_on_the_units_or_the_frame():
         assert np.allclose(np.array(one.moving) * 1000, two.moving, rtol=1e-9, atol=1e-6)
 
 
+@pytest.mark.parametrize("seed", range(3))
+def test_no_solution_found_by_brute_force_is_missing(seed):
+    """Random poses; scipy's least squares from 60 random starts on the equal-radius equations finds no dyad we miss."""
+    from scipy.optimize import least_squares
+    rng = np.random.default_rng(500 + seed)
+    poses = np.column_stack([rng.uniform(-1, 1, (5, 2)), rng.uniform(-1.5, 1.5, 5)])
+    origins, turns = poses[:, 0] + 1j * poses[:, 1], np.exp(1j * poses[:, 2])
+
+    def residual(x):  # unknowns: fixed pivot G and the moving pivot's frame coordinates m
+        places = origins + turns * complex(x[2], x[3])
+        radii = np.abs(places - complex(x[0], x[1])) ** 2
+        return radii[1:] - radii[0]
+
+    brute = []
+    for _ in range(60):
+        fit = least_squares(residual, rng.uniform(-4, 4, 4), xtol=1e-15, ftol=1e-15, gtol=1e-15)
+        g, m = complex(*fit.x[:2]), complex(*fit.x[2:])
+        if np.abs(residual(fit.x)).max() < 1e-10 and abs(origins[0] + turns[0] * m - g) > 1e-6 and abs(g) < 50:
+            brute.append((g, m))
+    dyads = burmester_points(poses)
+    assert brute, "the brute force found nothing to compare"
+    assert len(dyads) <= 4
+    ours = [(complex(*dyad.fixed), complex(*dyad.moving)) for dyad in dyads]
+    for g, m in brute:
+        assert min(abs(g - g0) + abs(m - m0) for g0, m0 in ours) < 1e-6
+    for dyad in dyads:
+        assert dyad.radius_spread(poses) < 1e-9 * max(1.0, dyad.length(poses))
+
+
 # --- four poses: the curves pass through the pivots ------------------------------------------------
 
 @pytest.mark.parametrize("seed", range(10))

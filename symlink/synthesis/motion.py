@@ -554,7 +554,9 @@ class Design:
     angle ``coupler_point_angle`` from the coupler's direction B->C, and a pose's angle
     is the coupler's angle beta plus ``pose_angle_offset``.  ``order_direction`` is +1
     when the crank visits the poses turning counter-clockwise, -1 clockwise, 0 when no
-    monotonic motion does (``order_defect``).
+    monotonic motion does (``order_defect``).  ``transmission_worst`` is the smallest of
+    ``min(mu, 180 deg - mu)`` over the poses, ``pose_error`` the largest difference between
+    the rocker angle the generated solver gives at a pose and the rocker dyad's own.
     """
 
     crank_dyad: Dyad
@@ -745,6 +747,7 @@ def as_record(design: Design) -> dict:
         "branch_defect": design.branch_defect, "order_defect": design.order_defect,
         "order_direction": design.order_direction,
         "transmission_worst": deg(design.transmission_worst),
+        "pose_error": deg(design.pose_error),
     }
     for j, (theta, branch) in enumerate(zip(design.crank_angles, design.branches), start=1):
         record[f"crank_angle_{j}"] = deg(theta)

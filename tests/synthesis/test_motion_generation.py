@@ -214,6 +214,18 @@ def test_four_pose_dyads_at_the_true_crank_rotation_are_the_fourbars_own(seed):
                for design in designs)
 
 
+@pytest.mark.parametrize("seed", range(5))
+def test_the_centre_point_curve_passes_through_the_pole_p12(seed):
+    """Burmester: the pole P12 is a centre point; its crank turns with the coupler (beta_2 = alpha_2)."""
+    rng = np.random.default_rng(300 + seed)
+    poses = np.column_stack([rng.uniform(-1, 1, (4, 2)), rng.uniform(-1.5, 1.5, 4)])
+    turn = cmath.exp(1j * (poses[1, 2] - poses[0, 2]))
+    first, second = complex(*poses[0, :2]), complex(*poses[1, :2])
+    p12 = (second - turn * first) / (1 - turn)  # the fixed point of the displacement from pose 1 to 2
+    fixed = [complex(*dyad.fixed) for dyad in four_pose_dyads(poses, poses[1, 2] - poses[0, 2])]
+    assert min(abs(f - p12) for f in fixed) < 1e-9 * max(1.0, abs(p12))
+
+
 def test_sampled_curves_pass_near_the_pivots_and_every_sample_is_a_dyad():
     rng = np.random.default_rng(11)
     linkage = random_crank_rocker(rng)

@@ -98,7 +98,7 @@ def check_coupler_point(coupler_point: tuple[float, float] | None) -> None:
         raise ValueError(f"the coupler point's angle must be finite, got {angle}")
 
 
-def fourbar_positions(a: float, b: float, c: float, d: float, theta, branch: int,
+def fourbar_positions(a: float, b: float, c: float, d: float, theta, branch: "int | numpy.ndarray",
                       outputs: Sequence[str], coupler_point: tuple[float, float] | None = None,
                       linkage: Linkage | None = None) -> dict[str, numpy.ndarray]:
     """Position outputs of a four-bar (radians, lengths' unit) at crank angles ``theta``.

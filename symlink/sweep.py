@@ -167,6 +167,8 @@ class SweepSettings:
         missing = [name for name in [*parameters, *held] if name not in self.ranges and name not in self.fixed]
         if missing:
             raise ValueError(f"give {linkage.name} a value or a range for {', '.join(missing)}")
+        if not linkage.has_closed_form:
+            raise ValueError(f"{linkage.name} has no closed form: a sweep needs one (its assemblies are chosen by sign)")
         if not linkage.inputs or not is_angle(linkage, linkage.inputs[0]):
             raise ValueError(f"{linkage.name}'s input is not an angle: a sweep evaluates designs over a turn")
         if self.mode not in MODES:
@@ -565,12 +567,24 @@ def _chunks(settings: SweepSettings, todo: list[int], scheduler: Any, workers: i
             window: int | None) -> Iterator[tuple[int, bytes]]:
     """(index, Parquet bytes) of each chunk in ``todo``, as they finish, a bounded window under way."""
     if isinstance(scheduler, str) and scheduler in SCHEDULERS:
+        import os
+        from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
+
         import dask
-        width = window or 4 * (workers or 2)
-        tasks = [dask.delayed(chunk_table, pure=False)(settings, k) for k in todo]
-        for start in range(0, len(todo), width):
-            found = dask.compute(*tasks[start:start + width], scheduler=scheduler, num_workers=workers)
-            yield from zip(todo[start:start + width], found)
+        import dask.multiprocessing
+        count = workers or os.cpu_count() or 1
+        width = window or 4 * count
+        # One pool for the whole sweep: Dask would start (and import symlink in) a new one every compute.
+        pool = (ProcessPoolExecutor(count, mp_context=dask.multiprocessing.get_context()) if scheduler == "processes"
+                else ThreadPoolExecutor(count) if scheduler == "threads" else None)
+        try:
+            for start in range(0, len(todo), width):  # a window at a time: bounded memory, however many chunks
+                tasks = [dask.delayed(chunk_table, pure=False)(settings, k) for k in todo[start:start + width]]
+                found = dask.compute(*tasks, scheduler=scheduler, pool=pool, num_workers=count)
+                yield from zip(todo[start:start + width], found)
+        finally:
+            if pool is not None:
+                pool.shutdown(cancel_futures=True)
         return
     from distributed import Client, as_completed
     client = scheduler if isinstance(scheduler, Client) else None

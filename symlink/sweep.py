@@ -444,9 +444,9 @@ def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[st
     # the path's Fourier coefficients over the whole turn
     coefficients = numpy.fft.fft(path, axis=1) / samples
     for k in _harmonics(settings.harmonics):
-        value = numpy.where(assembles, coefficients[:, k % samples], numpy.nan)
-        table[f"path_{_harmonic(k)}_re"] = value.real.copy()
-        table[f"path_{_harmonic(k)}_im"] = value.imag.copy()
+        value = coefficients[:, k % samples]
+        table[f"path_{_harmonic(k)}_re"] = numpy.where(assembles, value.real, numpy.nan)
+        table[f"path_{_harmonic(k)}_im"] = numpy.where(assembles, value.imag, numpy.nan)
     return table
 
 

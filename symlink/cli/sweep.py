@@ -83,7 +83,7 @@ def run(args: argparse.Namespace) -> int:
              if name in known and is_angle(linkage, known[name]) else bounds for name, bounds in args.vary.items()}
     values = {name: value for name, value in values.items()
               if name not in swept and name != linkage.inputs[0].name}
-    mode, count = ("random", args.random) if args.random is not None else ("grid", args.grid or 10)
+    mode, count = ("random", args.random) if args.random is not None else ("grid", 10 if args.grid is None else args.grid)
     settings = SweepSettings(args.linkage, swept, values=values, mode=mode, count=count, seed=args.seed,
                              samples=args.samples, output=args.output, point=args.point, harmonics=args.harmonics,
                              branch=int(args.branch), chunk=args.chunk)

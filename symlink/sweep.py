@@ -21,27 +21,29 @@ Dask, distributed and pyarrow are the optional extra ``sweep``
 
 The columns (a contract; angles in radians):
 
-==================  ==========================================================================
-``design``          the design's number (int64): the grid index or the random sample's number
-one per parameter   every parameter of the linkage (float64), the swept ones and the fixed ones
-``assembles``       it assembles over the whole turn of its input (bool)
-``reach``           the share of the turn where it assembles, 0 to 1 (from the reachable range)
-``spans``           how many separate intervals of the input it assembles in (int64)
-``grashof``         the four-bar's Grashof class (:data:`~symlink.analysis.grashof.GRASHOF_CLASSES`);
-                    empty for other linkages
-``transmission_min``, ``transmission_max``
-                    extremes of the transmission angle (every two-angle loop) over the sampled
-                    input values where it assembles; NaN without such a loop
-``worst_transmission``
-                    ``min(transmission_min, pi - transmission_max)``: how close it comes to locking
-``stroke``          the travel of the chosen output between its two limit positions, and
-``time_ratio``      slow over quick stroke at constant input speed: when it assembles over the
-                    turn and the output has exactly two limits, else NaN
-``path_K_re``,      the Fourier coefficients ``c_K`` of the chosen point's path
-``path_K_im``       ``x + i y = sum c_K exp(i K input)`` over the turn, for ``K`` in ``-H .. H``
-                    (written ``m2, m1, 0, p1, p2`` for H = 2): the centre (``0``), the ellipse
-                    of best fit (``p1``, ``m1``) and the shape's detail; NaN unless it assembles
-==================  ==========================================================================
+======================  ======================================================================
+column                  what it holds
+======================  ======================================================================
+``design``              the design's number (int64): its grid index or its random sample's number
+one per parameter       every parameter of the linkage (float64), the swept ones and the fixed ones
+``assembles``           it assembles over the whole turn of its input (bool)
+``reach``               the share of the turn where it assembles, 0 to 1 (its reachable range)
+``spans``               how many separate intervals of the input it assembles in (int64)
+``grashof``             the four-bar's Grashof class (``crank-rocker`` ...); empty for others
+``transmission_min``    the smallest transmission angle (every two-angle loop) over the sampled
+                        input values where it assembles; NaN without such a loop
+``transmission_max``    the largest, likewise
+``worst_transmission``  ``min(transmission_min, pi - transmission_max)``: how near it locks
+``stroke``              the chosen output's travel between its two limit positions, when it
+                        assembles over the turn and the output has exactly two; else NaN
+``time_ratio``          slow over quick stroke at constant input speed (1 or more), likewise
+``path_K_re``           real part of the Fourier coefficient ``c_K`` of the chosen point's path
+                        ``x + i y = sum c_K exp(i K input)`` over the turn, ``K`` from ``-H``
+                        to ``H``, written ``m2, m1, 0, p1, p2`` for H = 2: the centre (``0``),
+                        the ellipse of best fit (``p1``, ``m1``), the shape's detail; NaN unless
+                        it assembles over the turn
+``path_K_im``           its imaginary part
+======================  ======================================================================
 
 The reachable range comes from :mod:`symlink.reachability` (the four-bar's
 closed form; for another linkage the sampled mask where every sample

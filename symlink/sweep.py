@@ -194,13 +194,12 @@ class SweepSettings:
         if self.output is None:
             roles = list(linkage.roles)
             object.__setattr__(self, "output", roles[-1] if roles else linkage.unknowns[-1].name)
-        _position_output(linkage, self.output)
+        _position_output(linkage, str(self.output))
         if self.point is None:
-            unknowns = set(linkage.unknowns) | set(linkage.inputs)
-            moving = [name for name, where in linkage.points.items()
-                      if where is not None and unknowns & set().union(*(v.angle.free_symbols | v.length.free_symbols
-                                                                         for _, v in where.terms))]
-            object.__setattr__(self, "point", moving[-1] if moving else None)
+            moving = set(linkage.unknowns) | set(linkage.inputs)
+            points = [name for name in linkage.points
+                      if moving & (linkage.output(f"{name}_x").free_symbols | linkage.output(f"{name}_y").free_symbols)]
+            object.__setattr__(self, "point", points[-1] if points else None)
         if self.point is None or self.point not in linkage.points:
             raise ValueError(f"{linkage.name} has no point {self.point!r}; it has {', '.join(linkage.points)}")
 
@@ -371,7 +370,7 @@ def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[st
     # reachable range: the four-bar's closed form; else every sample, or the bisected scan
     reach, spans, assembles, classes = numpy.zeros(count), numpy.zeros(count, dtype=numpy.int64), \
         numpy.zeros(count, dtype=bool), [""] * count
-    sampled_full = mask.all(axis=1)
+    sampled_full = numpy.asarray(mask.all(axis=1))
     for k in range(count):
         values = {s.name: float(table[s.name][k]) for s in linkage.parameters}
         if fourbar:
@@ -399,11 +398,11 @@ def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[st
         filled_low, filled_high = numpy.where(numpy.isfinite(mu), mu, numpy.inf), numpy.where(numpy.isfinite(mu),
                                                                                             mu, -numpy.inf)
         low_at, high_at = filled_low.argmin(axis=1), filled_high.argmax(axis=1)
-        rows = numpy.arange(count)
+        every = numpy.arange(count)
         low, _ = _refined(mu, low_at, step)
         high, _ = _refined(mu, high_at, step)
-        low = numpy.where(assembles, numpy.clip(low, 0.0, math.pi), mu[rows, low_at])
-        high = numpy.where(assembles, numpy.clip(high, 0.0, math.pi), mu[rows, high_at])
+        low = numpy.where(assembles, numpy.clip(low, 0.0, math.pi), mu[every, low_at])
+        high = numpy.where(assembles, numpy.clip(high, 0.0, math.pi), mu[every, high_at])
         low, high = numpy.where(anywhere, low, numpy.nan), numpy.where(anywhere, high, numpy.nan)
     table.update(transmission_min=low, transmission_max=high, worst_transmission=numpy.minimum(low, math.pi - high))
 
@@ -513,9 +512,10 @@ def _prepare(settings: SweepSettings, folder: Path) -> list[int]:
         except (OSError, ValueError) as error:
             raise ValueError(f"{path} is not a sweep's manifest ({error}); choose another folder") from None
         old_settings = old.get("settings") if isinstance(old, dict) else None
-        if old_settings != json.loads(json.dumps(manifest["settings"])):
-            keys = sorted(k for k in set(old_settings or {}) | set(manifest["settings"])
-                          if (old_settings or {}).get(k) != json.loads(json.dumps(manifest["settings"])).get(k))
+        new_settings: dict[str, Any] = json.loads(json.dumps(manifest["settings"]))
+        if old_settings != new_settings:
+            old_settings = old_settings if isinstance(old_settings, dict) else {}
+            keys = sorted(k for k in set(old_settings) | set(new_settings) if old_settings.get(k) != new_settings.get(k))
             raise ValueError(f"{folder} holds a sweep with other settings ({', '.join(keys) or 'unreadable'} "
                              "differ); choose another folder or the same settings to continue it")
     elif folder.exists() and any(folder.iterdir()):
@@ -526,7 +526,7 @@ def _prepare(settings: SweepSettings, folder: Path) -> list[int]:
     return [k for k in range(settings.chunks) if chunk_name(k) not in done]
 
 
-def run_sweep(settings: SweepSettings, folder: str | Path, *, scheduler: str = "threads", workers: int | None = None,
+def run_sweep(settings: SweepSettings, folder: str | Path, *, scheduler: Any = "threads", workers: int | None = None,
               progress: bool = False, window: int | None = None) -> dict[str, Any]:
     """Evaluate the sweep into ``folder`` (one Parquet file a chunk and the manifest), continuing a run there.
 
@@ -537,85 +537,97 @@ def run_sweep(settings: SweepSettings, folder: str | Path, *, scheduler: str = "
     is bounded.  Returns what was done: designs, chunks written and skipped,
     seconds and designs per second.
     """
-    _require(("dask", "pyarrow") if isinstance(scheduler, str) and scheduler in SCHEDULERS
-             else ("dask", "distributed", "pyarrow"))
     import time
-    folder = Path(folder)
-    todo = _prepare(settings, folder)
-    skipped = settings.chunks - len(todo)
-    started = time.perf_counter()
-    bar = None
-    if progress:
-        try:
-            from tqdm import tqdm
-            bar = tqdm(total=settings.chunks, initial=skipped, unit="chunk", file=sys.stderr, desc="sweep")
-        except ImportError:
-            bar = None
-    written = 0
-    for index, data in _chunks(settings, todo, scheduler, workers, window):
-        write_atomic(folder / chunk_name(index), data)
-        written += 1
+    local = isinstance(scheduler, str) and scheduler in SCHEDULERS
+    _require(("dask", "pyarrow") if local else ("dask", "distributed", "pyarrow"))
+    client, own = None, False
+    if not local:
+        from distributed import Client
+        if isinstance(scheduler, Client):
+            client = scheduler
+        elif isinstance(scheduler, str) and scheduler.startswith(("tcp://", "tls://", "inproc://", "ucx://")):
+            try:  # reached before anything is written
+                client, own = Client(scheduler, timeout="10s"), True
+            except OSError as error:
+                raise OSError(f"cannot reach the Dask scheduler at {scheduler}: {error}") from None
+        else:
+            raise ValueError(f"scheduler must be {', '.join(SCHEDULERS)}, a cluster's address (tcp://HOST:PORT) "
+                             f"or a distributed.Client; got {scheduler!r}")
+    try:
+        folder = Path(folder)
+        todo = _prepare(settings, folder)
+        skipped = settings.chunks - len(todo)
+        started = time.perf_counter()
+        bar = None
+        if progress:
+            try:
+                from tqdm import tqdm
+                bar = tqdm(total=settings.chunks, initial=skipped, unit="chunk", file=sys.stderr, desc="sweep")
+            except ImportError:
+                bar = None
+        written = 0
+        found = (_local_chunks(settings, todo, str(scheduler), workers, window) if client is None
+                 else _cluster_chunks(settings, todo, client, window))
+        for index, data in found:
+            write_atomic(folder / chunk_name(index), data)
+            written += 1
+            if bar is not None:
+                bar.update(1)
         if bar is not None:
-            bar.update(1)
-    if bar is not None:
-        bar.close()
+            bar.close()
+    finally:
+        if own and client is not None:
+            client.close()
     seconds = time.perf_counter() - started
     evaluated = sum(min(settings.chunk, settings.designs - k * settings.chunk) for k in todo)
     return {"designs": settings.designs, "chunks": settings.chunks, "written": written, "skipped": skipped,
             "seconds": seconds, "designs_per_second": evaluated / seconds if evaluated and seconds > 0 else math.nan}
 
 
-def _chunks(settings: SweepSettings, todo: list[int], scheduler: Any, workers: int | None,
-            window: int | None) -> Iterator[tuple[int, bytes]]:
-    """(index, Parquet bytes) of each chunk in ``todo``, as they finish, a bounded window under way."""
-    if isinstance(scheduler, str) and scheduler in SCHEDULERS:
-        import os
-        from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
+def _local_chunks(settings: SweepSettings, todo: list[int], scheduler: str, workers: int | None,
+                  window: int | None) -> Iterator[tuple[int, bytes]]:
+    """(index, Parquet bytes) of each chunk in ``todo`` on a local scheduler, a window of chunks at a time."""
+    import os
+    from concurrent.futures import Executor, ProcessPoolExecutor, ThreadPoolExecutor
 
-        import dask
-        import dask.multiprocessing
-        count = workers or os.cpu_count() or 1
-        width = window or 4 * count
-        # One pool for the whole sweep: Dask would start (and import symlink in) a new one every compute.
-        pool = (ProcessPoolExecutor(count, mp_context=dask.multiprocessing.get_context()) if scheduler == "processes"
-                else ThreadPoolExecutor(count) if scheduler == "threads" else None)
-        try:
-            for start in range(0, len(todo), width):  # a window at a time: bounded memory, however many chunks
-                tasks = [dask.delayed(chunk_table, pure=False)(settings, k) for k in todo[start:start + width]]
-                found = dask.compute(*tasks, scheduler=scheduler, pool=pool, num_workers=count)
-                yield from zip(todo[start:start + width], found)
-        finally:
-            if pool is not None:
-                pool.shutdown(cancel_futures=True)
-        return
-    from distributed import Client, as_completed
-    client = scheduler if isinstance(scheduler, Client) else None
-    own = client is None
-    if own:
-        if not str(scheduler).startswith(("tcp://", "tls://", "inproc://", "ucx://")):
-            raise ValueError(f"scheduler must be {', '.join(SCHEDULERS)} or a cluster's address (tcp://HOST:PORT), "
-                             f"got {scheduler!r}")
-        client = Client(str(scheduler), timeout="10s")
+    import dask
+    import dask.multiprocessing
+    count = workers or os.cpu_count() or 1
+    width = window or 4 * count
+    # One pool for the whole sweep: Dask would start (and import symlink in) a new one every compute.
+    pool: Executor | None = (ProcessPoolExecutor(count, mp_context=dask.multiprocessing.get_context())
+                             if scheduler == "processes" else ThreadPoolExecutor(count) if scheduler == "threads"
+                             else None)
     try:
-        width = window or 4 * max(1, sum(client.nthreads().values()))
-        pending = iter(todo)
-        futures = {}
-        for k in pending:
-            futures[client.submit(chunk_table, settings, k, pure=False)] = k
-            if len(futures) >= width:
-                break
-        running = as_completed(list(futures))
-        for future in running:
-            index = futures.pop(future)
-            yield index, future.result()
-            for k in pending:
-                new = client.submit(chunk_table, settings, k, pure=False)
-                futures[new] = k
-                running.add(new)
-                break
+        for start in range(0, len(todo), width):  # a window at a time: bounded memory, however many chunks
+            tasks = [dask.delayed(chunk_table, pure=False)(settings, k) for k in todo[start:start + width]]
+            found = dask.compute(*tasks, scheduler=scheduler, pool=pool, num_workers=count)
+            yield from zip(todo[start:start + width], found)
     finally:
-        if own:
-            client.close()
+        if pool is not None:
+            pool.shutdown(cancel_futures=True)
+
+
+def _cluster_chunks(settings: SweepSettings, todo: list[int], client: Any,
+                    window: int | None) -> Iterator[tuple[int, bytes]]:
+    """(index, Parquet bytes) of each chunk in ``todo`` on a distributed cluster, as they finish."""
+    from distributed import as_completed
+    width = window or 4 * max(1, sum(client.nthreads().values()))
+    pending = iter(todo)
+    futures = {}
+    for k in pending:
+        futures[client.submit(chunk_table, settings, k, pure=False)] = k
+        if len(futures) >= width:
+            break
+    running = as_completed(list(futures))
+    for future in running:
+        index = futures.pop(future)
+        yield index, future.result()
+        for k in pending:  # one more under way for each one done
+            new = client.submit(chunk_table, settings, k, pure=False)
+            futures[new] = k
+            running.add(new)
+            break
 
 
 def read_sweep(folder: str | Path):

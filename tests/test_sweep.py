@@ -252,3 +252,37 @@ def test_the_manifest_holds_the_settings_and_columns(tmp_path):
     assert manifest["columns"] == read_sweep(tmp_path).column_names
     assert manifest["columns"][-6:] == ["path_m1_re", "path_m1_im", "path_0_re", "path_0_im", "path_p1_re",
                                         "path_p1_im"]
+
+
+def test_any_linkage_matches_its_per_design_analysis():
+    """A slider-crank (no closed-form shortcut in the sweep) against symlink.analysis design by design.
+
+    Without offset its stroke is 2 a (the crank's diameter), its time ratio 1, and its transmission
+    angle (rod against the guide's normal) is smallest and largest at crank angles of +-90 deg.
+    """
+    from symlink.analysis import loop_transmissions, output_limits
+    settings = SweepSettings("slider-crank", {"a": (0.5, 1.5), "b": (2.0, 3.0)}, values={"offset": 0.0}, count=2,
+                             samples=72, harmonics=1)
+    table = evaluate_designs(settings, range(settings.designs))
+    linkage = catalog_linkage("slider-crank")
+    for k in range(settings.designs):
+        values = {"a": table["a"][k], "b": table["b"][k], "offset": 0.0, "branch": 1.0}
+        limits = output_limits(linkage, values, "slider")
+        (transmission,) = loop_transmissions(linkage, values)
+        assert table["assembles"][k] and table["reach"][k] == 1.0 and table["grashof"][k] == ""
+        assert table["stroke"][k] == pytest.approx(limits.stroke, abs=1e-9) == pytest.approx(2 * values["a"])
+        assert table["time_ratio"][k] == pytest.approx(limits.time_ratio, abs=1e-9) == pytest.approx(1.0)
+        assert table["transmission_min"][k] == pytest.approx(transmission.minimum, abs=1e-12)
+        assert table["transmission_max"][k] == pytest.approx(transmission.maximum, abs=1e-12)
+        mu = math.asin(values["a"] / values["b"])  # the rod's tilt at +-90 deg, from the right triangle
+        assert table["worst_transmission"][k] == pytest.approx(math.pi / 2 - mu, abs=1e-12)
+
+
+def test_a_linkage_that_does_not_turn_has_its_reach_from_the_bisected_scan():
+    """A slider-crank whose rod cannot span the crank turns between +-30 deg and 150..210 deg: reach 1/3."""
+    settings = SweepSettings("slider-crank", {"a": (2.0, 2.0)}, values={"b": 1.0, "offset": 0.0}, count=1,
+                             samples=72, harmonics=1)
+    table = evaluate_designs(settings, [0])
+    assert not table["assembles"][0] and table["spans"][0] == 2
+    assert table["reach"][0] == pytest.approx(1 / 3, abs=1e-12)  # two spans of 60 deg (asin(b / a) = 30 deg)
+    assert math.isnan(table["stroke"][0]) and math.isnan(table["path_p1_re"][0])

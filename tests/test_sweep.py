@@ -286,3 +286,22 @@ def test_a_linkage_that_does_not_turn_has_its_reach_from_the_bisected_scan():
     assert not table["assembles"][0] and table["spans"][0] == 2
     assert table["reach"][0] == pytest.approx(1 / 3, abs=1e-12)  # two spans of 60 deg (asin(b / a) = 30 deg)
     assert math.isnan(table["stroke"][0]) and math.isnan(table["path_p1_re"][0])
+
+
+def test_a_linkage_file_sweeps_as_its_catalog_entry(tmp_path, monkeypatch):
+    """The file's text goes with the settings (workers anywhere read the same linkage), and the table is alike."""
+    from symlink.linkage_file import write_linkage
+    path = tmp_path / "four.toml"
+    write_linkage(catalog_linkage("fourbar"), path, {"a": 20.0, "b": 66.0, "c": 56.0, "d": 80.0})
+    from_file = SweepSettings(str(path), {"a": (10.0, 30.0)}, count=3, samples=36)
+    from_catalog = SweepSettings("fourbar", {"a": (10.0, 30.0)}, values={"b": 66.0, "c": 56.0, "d": 80.0}, count=3,
+                                 samples=36)
+    assert from_file.linkage_text == path.read_text()
+    path.unlink()  # evaluated from the text, not the file
+    found, expected = evaluate_designs(from_file, range(3)), evaluate_designs(from_catalog, range(3))
+    assert found["grashof"] == expected["grashof"]
+    for name in expected:  # the file's transmission angle is generated from its own text: alike to rounding
+        if name != "grashof":
+            numpy.testing.assert_allclose(numpy.asarray(found[name], dtype=float),
+                                          numpy.asarray(expected[name], dtype=float), rtol=1e-13, err_msg=name)
+    assert len(from_file.manifest()["linkage_sha256"]) == 64

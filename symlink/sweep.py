@@ -77,6 +77,7 @@ from .analysis.transmission import transmission_angles
 from .closure import is_angle
 from .files import write_atomic
 from .linkage import Linkage
+from .limits import require_memory
 from .linkage_file import LinkageFile, linkage_from_text, load_linkage
 from .reachability import InputMotion, crank_range, reachable_range
 from .solver import Solver
@@ -96,6 +97,8 @@ BLOCK_VALUES = 1 << 16
 #: The most designs a sweep may number (the design numbers are int64).
 MAX_DESIGNS = 1 << 62
 MODES = ("grid", "random")
+#: Bytes a chunk holds for each design and sample: its arrays (a complex path among them) and temporaries.
+CHUNK_BYTES_PER_VALUE = 8 * 12
 #: Rounds of :func:`_polish`: each one takes the bracket of an extreme down by a factor of 8.
 POLISH_ROUNDS = 4
 
@@ -185,6 +188,7 @@ class SweepSettings:
             raise ValueError(f"{self.harmonics} harmonics need at least {2 * self.harmonics + 1} samples")
         if self.mode == "grid" and self.count == 1 and any(low != high for low, high in self.ranges.values()):
             raise ValueError("a grid of 1 value a parameter cannot span a range: give count 2 or more")
+        _require_chunk_memory(min(self.chunk, self.designs), self.samples)
         if self.designs > MAX_DESIGNS:
             raise ValueError(f"{self.designs:.3g} designs are too many (at most 2^62)")
         if self.branch not in (1, -1) or isinstance(self.branch, bool):
@@ -231,6 +235,12 @@ class SweepSettings:
         data["linkage_sha256"] = None if text is None else hashlib.sha256(text.encode()).hexdigest()
         data["fixed"] = self.fixed
         return data
+
+
+def _require_chunk_memory(designs: int, samples: int) -> None:
+    """``ValueError`` if a chunk's designs-by-samples arrays (mask, output, complex path, temporaries) do not fit."""
+    require_memory(designs * samples, CHUNK_BYTES_PER_VALUE,
+                   f"a chunk of {designs:,} designs x {samples} samples (use a smaller chunk)")
 
 
 @lru_cache(maxsize=16)
@@ -328,7 +338,10 @@ def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[st
     """The table's rows for the numbered designs: a dict of columns (lists or arrays) by name."""
     found = settings.found()
     linkage = found.linkage
+    if hasattr(designs, "__len__"):  # refused before anything is allocated
+        _require_chunk_memory(len(designs), settings.samples)  # type: ignore[arg-type]
     numbers = numpy.asarray(list(designs), dtype=numpy.int64)
+    _require_chunk_memory(numbers.size, settings.samples)
     swept = design_values(settings, numbers)
     fixed = settings.fixed
     table: dict[str, Any] = {"design": numbers}

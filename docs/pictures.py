@@ -8,7 +8,9 @@
   time ratio 1.25 (L1 = 70, L2 = 16.084, L3 = 69.743, L4 = 50 mm), as its Fig. 9;
 * ``coupler_curve.png``: the curves of a coupler point of the seed 001 linkage, both branches;
 * ``fourbar.gif``: the seed 001 linkage over a turn in 30 frames, with the coupler point;
-* ``jansen.png`` and ``jansen.gif``: Theo Jansen's leg (his holy numbers) with the path of its foot H.
+* ``jansen.png`` and ``jansen.gif``: Theo Jansen's leg (his holy numbers) with the path of its foot H;
+* ``design_atlas.png``: the four-bar's ratio space (crank and coupler over ground, at three rocker
+  ratios) coloured by Grashof class and by worst transmission angle, computed by a design sweep.
 
 The same pictures come from the command line::
 
@@ -18,6 +20,7 @@ The same pictures come from the command line::
     symlink animate --crank 0.1 --coupler 0.4 --rocker 0.25 --ground 0.3 --coupler-point 0.3,30 --out fourbar.gif
     symlink draw jansen --trace H --out jansen.png
     symlink animate jansen --trace H --out jansen.gif
+    symlink sweep fourbar atlas/ --vary a=0.05:3,b=0.05:3 --set c=1,d=1 --grid 121   # one slice of the atlas
 """
 from __future__ import annotations
 
@@ -43,7 +46,11 @@ SEED002 = (16.084, 69.743, 50.0, 70.0)  # crank L2, coupler L3, rocker L4, groun
 COUPLER_POINT = (0.3, math.radians(30))
 #: File names, in the order they are written.
 PICTURES = ("angles_seed001.png", "transmission_seed002.png", "coupler_curve.png", "fourbar.gif", "jansen.png",
-            "jansen.gif")
+            "jansen.gif", "design_atlas.png")
+#: The atlas: crank and coupler over ground from ATLAS_RANGE, ATLAS_GRID values each, at these rocker ratios.
+ATLAS_ROCKERS = (0.5, 1.0, 2.0)
+ATLAS_RANGE = (0.05, 3.0)
+ATLAS_GRID = 121
 
 
 def render(folder: Path = IMAGES) -> list[Path]:
@@ -60,7 +67,60 @@ def render(folder: Path = IMAGES) -> list[Path]:
     save_figure(draw_linkage(leg, EXAMPLE_VALUES["jansen"], trace=("H",),
                              title="Theo Jansen's leg (holy numbers) and the path of its foot H").figure, paths[4])
     animate_linkage(leg, EXAMPLE_VALUES["jansen"], paths[5], frames=30, trace=("H",), size_px=(360, 360), fps=10)
+    save_figure(atlas_figure(), paths[6])
     return paths
+
+
+def atlas_figure():
+    """The four-bar's design atlas: Grashof class and worst transmission angle over its ratio space.
+
+    Three slices (rocker over ground 0.5, 1 and 2), each a grid sweep of crank
+    and coupler over ground (:mod:`symlink.sweep`, run through Dask's local
+    scheduler into Parquet chunks); white where the linkage does not turn its
+    crank fully (no worst transmission angle over a turn).
+    """
+    import tempfile
+
+    import numpy
+    from matplotlib.colors import ListedColormap
+    from matplotlib.figure import Figure
+
+    from symlink.analysis.grashof import GRASHOF_CLASSES
+    from symlink.sweep import SweepSettings, read_sweep, run_sweep
+
+    classes = list(GRASHOF_CLASSES)
+    colours = ListedColormap(["#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#222222", "#e6ab02"])
+    figure = Figure(figsize=(11, 7.2), layout="constrained")
+    axes = figure.subplots(2, len(ATLAS_ROCKERS), sharex=True, sharey=True)
+    low, high = ATLAS_RANGE
+    extent = (low, high, low, high)
+    with tempfile.TemporaryDirectory() as folder:
+        for column, rocker in enumerate(ATLAS_ROCKERS):
+            settings = SweepSettings("fourbar", {"a": ATLAS_RANGE, "b": ATLAS_RANGE}, values={"c": rocker, "d": 1.0},
+                                     count=ATLAS_GRID, samples=180, harmonics=1, chunk=2000)
+            run_sweep(settings, Path(folder) / f"rocker-{column}", scheduler="threads", workers=2)
+            table = read_sweep(Path(folder) / f"rocker-{column}")
+            shape = (ATLAS_GRID, ATLAS_GRID)  # rows: crank a (the slower index), columns: coupler b
+            kind = numpy.array([classes.index(name) for name in table.column("grashof").to_pylist()]).reshape(shape)
+            worst = numpy.degrees(numpy.array(table.column("worst_transmission").to_numpy(zero_copy_only=False)))
+            turns = numpy.array(table.column("assembles").to_pylist())
+            worst = numpy.where(turns, worst, numpy.nan).reshape(shape)
+            top, bottom = axes[0][column], axes[1][column]
+            classes_image = top.imshow(kind.T, origin="lower", extent=extent, cmap=colours, vmin=-0.5,
+                                       vmax=len(classes) - 0.5, interpolation="nearest")
+            angle_image = bottom.imshow(worst.T, origin="lower", extent=extent, cmap="viridis", vmin=0, vmax=90,
+                                        interpolation="nearest")
+            top.set_title(f"rocker / ground = {rocker:g}")
+            bottom.set_xlabel("crank / ground")
+        for row in axes:
+            row[0].set_ylabel("coupler / ground")
+    bar = figure.colorbar(classes_image, ax=axes[0].tolist(), ticks=range(len(classes)), shrink=0.9)
+    bar.ax.set_yticklabels(classes)
+    figure.colorbar(angle_image, ax=axes[1].tolist(), shrink=0.9,
+                    label="worst transmission angle over a turn (deg)")
+    figure.suptitle("Four-bar design atlas: Grashof class (top) and worst transmission angle where the crank "
+                    "turns fully (bottom)")
+    return figure
 
 
 if __name__ == "__main__":

@@ -148,7 +148,11 @@ CASES += [
     ("cache: --folder without a path", ["cache", "clear", "--folder"], 2),
     ("cache: clear a folder others can write", ["cache", "clear", "--folder", "/tmp"], 2),
     ("cache: clear a file, not a folder", ["cache", "clear", "--folder", "{file}"], 2),
+    ("sweep: unknown parameter", ["sweep", "fourbar", "{tmp}/sweep", "--vary", "e=1:2"], 2),
+    ("sweep: reversed range", ["sweep", "fourbar", "{tmp}/sweep", "--vary", "a=2:1"], 2),
     # Failed writes: exit status 1.
+    ("sweep: into /proc", ["sweep", "fourbar", "/proc/symlink-sweep", "--vary", "a=0.2:0.3", "--grid", "2",
+                           "--scheduler", "synchronous", "--no-progress"], 1),
     ("fourbar: plot into /proc", FOURBAR + ["--angles", "0", "--plot", "/proc/symlink-test.png"], 1),
     ("fourbar: plot where a folder is", FOURBAR + ["--angles", "0", "--plot", "{folder}"], 1),
     ("curve: into /proc", ["curve", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80",

@@ -1,0 +1,96 @@
+"""``symlink sweep``: properties of many designs of a linkage, on Dask, into a folder of Parquet files.
+
+The columns are those of :mod:`symlink.sweep` (angles in radians there,
+whatever ``--units`` says about the command line's own angles).  Needs the
+``sweep`` extra; without it the command says how to install it.
+"""
+from __future__ import annotations
+
+import argparse
+import math
+
+from ..angles import to_radians
+from ..closure import is_angle
+from ..linkage_file import load_linkage
+from ..sweep import SCHEDULERS, SWEEP_EXTRA, SweepSettings, missing_modules, run_sweep
+from .options import add_units_option, assignments, command_help, finite, linkage_values, whole
+from .output import note
+
+
+def ranges(text: str) -> dict[str, tuple[float, float]]:
+    """``NAME=LOW:HIGH,...`` (numbers only)."""
+    found = {}
+    for item in text.split(","):
+        name, equals, bounds = item.partition("=")
+        low, colon, high = bounds.partition(":")
+        if not equals or not colon or not name.strip():
+            raise argparse.ArgumentTypeError(f"expected NAME=LOW:HIGH,..., got {item.strip()!r}")
+        found[name.strip()] = (finite(low), finite(high))
+    return found
+
+
+def register(commands) -> None:
+    """Register ``symlink sweep``."""
+    command = commands.add_parser("sweep", **command_help(
+        "evaluate many designs of a linkage on Dask into Parquet files (assembly, reach, Grashof, transmission, "
+        "stroke, time ratio, path)",
+        "lengths in any one unit; fixed angles and angle ranges in --units; angles in the table in radians",
+        "symlink sweep fourbar atlas/ --vary a=0.1:1,b=0.2:2,c=0.2:2 --set d=1 --grid 40",
+        "Run again with the same settings to continue an interrupted sweep.  Needs the sweep extra: "
+        f"{SWEEP_EXTRA}"))
+    command.add_argument("linkage", metavar="NAME|FILE", help="a catalog linkage or a linkage file")
+    command.add_argument("folder", metavar="FOLDER", help="where the chunks (chunk-NNNNNN.parquet) and manifest go")
+    command.add_argument("--vary", type=ranges, required=True, metavar="NAME=LOW:HIGH,...",
+                         help="the parameters swept and their ranges")
+    command.add_argument("--set", type=assignments("NAME=VALUE"), default={}, metavar="NAME=VALUE,...",
+                         help="values of the other parameters (default: the catalog's example or the file's)")
+    how = command.add_mutually_exclusive_group()
+    how.add_argument("--grid", type=whole, metavar="N", help="N values of each swept parameter (default 10)")
+    how.add_argument("--random", type=whole, metavar="N", help="N designs uniform in the ranges (seeded)")
+    command.add_argument("--seed", type=whole, default=0, help="of --random (default 0)")
+    command.add_argument("--samples", type=whole, default=360, metavar="N", help="input values a turn (default 360)")
+    command.add_argument("--output", metavar="NAME", help="the output whose stroke and time ratio are found "
+                                                          "(default: the last role)")
+    command.add_argument("--point", metavar="NAME", help="the point whose path is described (default: the last "
+                                                         "moving point)")
+    command.add_argument("--harmonics", type=whole, default=3, metavar="H",
+                         help="Fourier coefficients -H..H of the path (default 3)")
+    command.add_argument("--branch", choices=["+1", "1", "-1"], default="+1", help="every loop's sign (default +1)")
+    command.add_argument("--chunk", type=whole, default=1000, metavar="N", help="designs a chunk (default 1000)")
+    command.add_argument("--scheduler", default="processes", metavar="WHERE",
+                         help=f"{', '.join(SCHEDULERS)} (Dask's local schedulers; default processes) or a "
+                              "distributed cluster's address tcp://HOST:PORT")
+    command.add_argument("--workers", type=whole, metavar="N", help="local workers (default: one a core)")
+    command.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
+    add_units_option(command, "fixed angles and angle ranges")
+    command.set_defaults(run=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    missing = missing_modules()
+    if missing:
+        raise ValueError(f"symlink sweep needs {', '.join(missing)}: {SWEEP_EXTRA}")
+    if args.workers is not None and args.workers < 1:
+        raise ValueError(f"--workers must be at least 1, got {args.workers}")
+    if args.scheduler not in SCHEDULERS and not args.scheduler.startswith(("tcp://", "tls://")):
+        raise ValueError(f"--scheduler must be {', '.join(SCHEDULERS)} or a cluster's address tcp://HOST:PORT, "
+                         f"got {args.scheduler!r}")
+    found = load_linkage(args.linkage)
+    linkage = found.linkage
+    values = linkage_values(found, args.set, args.units)
+    known = {s.name: s for s in linkage.parameters + linkage.inputs}
+    swept = {name: tuple(float(to_radians(x, args.units)) for x in bounds)
+             if name in known and is_angle(linkage, known[name]) else bounds for name, bounds in args.vary.items()}
+    values = {name: value for name, value in values.items()
+              if name not in swept and name != linkage.inputs[0].name}
+    mode, count = ("random", args.random) if args.random is not None else ("grid", 10 if args.grid is None else args.grid)
+    settings = SweepSettings(args.linkage, swept, values=values, mode=mode, count=count, seed=args.seed,
+                             samples=args.samples, output=args.output, point=args.point, harmonics=args.harmonics,
+                             branch=int(args.branch), chunk=args.chunk)
+    done = run_sweep(settings, args.folder, scheduler=args.scheduler, workers=args.workers,
+                     progress=not args.no_progress)
+    rate = done["designs_per_second"]
+    note(f"{done['designs']} designs in {done['chunks']} chunks: wrote {done['written']}, found {done['skipped']} "
+         f"already there" + ("" if math.isnan(rate) else f"; {rate:.4g} designs/s"))
+    print(args.folder)
+    return 0

@@ -1,0 +1,308 @@
+"""Design-space sweeps: the same table on a LocalCluster, on the local scheduler and from a plain loop.
+
+The plain loop is written here with symlink's public per-design functions
+(the four-bar's closed-form crank range, Grashof class, transmission range and
+limit positions, and a Solver call per design for the sampled values), and a
+couple of designs are checked against hand formulas: Grashof's inequality
+and the law of cosines for the transmission angle at crank angle 0.
+"""
+from __future__ import annotations
+
+import logging
+import math
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy
+import pytest
+
+from symlink.analysis import grashof, limit_positions, transmission_range
+from symlink.reachability import crank_range
+from symlink.scene import catalog_linkage
+from symlink.solver import Solver
+from symlink.sweep import (MANIFEST, SweepSettings, columns, design_values, evaluate_designs, missing_modules,
+                           read_sweep, run_sweep)
+
+pytestmark = pytest.mark.skipif(bool(missing_modules()), reason="the sweep extra is not installed")
+
+ROOT = Path(__file__).resolve().parent.parent
+SAMPLES = 120
+SMALL = SweepSettings("fourbar", {"a": (0.1, 0.6), "b": (0.4, 1.6), "c": (0.4, 1.6)}, values={"d": 1.0},
+                      mode="random", count=48, seed=7, samples=SAMPLES, chunk=16, harmonics=2)
+
+
+def plain_loop(settings: SweepSettings) -> dict[str, list]:
+    """The table row by row, from public per-design functions (four-bar, branch +1)."""
+    solver = Solver(catalog_linkage("fourbar"), ["rocker", "C_x", "C_y", "transmission"])
+    inputs = 2 * math.pi * numpy.arange(settings.samples) / settings.samples
+    swept = design_values(settings, range(settings.designs))
+    rows: dict[str, list] = {name: [] for name in columns(settings)}
+    for k in range(settings.designs):
+        a, b, c = (float(swept[name][k]) for name in "abc")
+        d = 1.0
+        spans = crank_range(a, b, c, d)
+        full = spans == [(-math.pi, math.pi)]
+        solved = solver(theta=inputs, a=a, b=b, c=c, d=d, branch=1)
+        mu = numpy.where(solved["assembled"], solved["transmission"], numpy.nan)
+        if full:
+            extremes = transmission_range(a, b, c, d)
+            low, high = extremes.minimum, extremes.maximum
+        else:
+            low, high = numpy.nanmin(mu), numpy.nanmax(mu)
+        kind = grashof(a, b, c, d).name
+        stroke = ratio = math.nan
+        if full and kind == "crank-rocker":
+            limits = limit_positions(a, b, c, d, 1)
+            stroke, ratio = limits.stroke, limits.time_ratio
+        path = solved["C_x"] + 1j * solved["C_y"]
+        row = {"design": k, "a": a, "b": b, "c": c, "d": d, "assembles": full,
+               "reach": sum(hi - lo for lo, hi in spans) / (2 * math.pi), "spans": len(spans), "grashof": kind,
+               "transmission_min": low, "transmission_max": high, "worst_transmission": min(low, math.pi - high),
+               "stroke": stroke, "time_ratio": ratio}
+        for harmonic, name in zip(range(-2, 3), ("m2", "m1", "0", "p1", "p2")):
+            coefficient = numpy.mean(path * numpy.exp(-1j * harmonic * inputs)) if full else complex(math.nan,
+                                                                                                  math.nan)
+            row[f"path_{name}_re"], row[f"path_{name}_im"] = coefficient.real, coefficient.imag
+        for name, value in row.items():
+            rows[name].append(value)
+    return rows
+
+
+def assert_same_table(found, expected, tolerance: float = 1e-9) -> None:
+    assert list(found) == list(expected)
+    for name in expected:
+        got, want = list(found[name]), list(expected[name])
+        assert len(got) == len(want), name
+        if name in ("grashof", "assembles", "spans", "design"):
+            assert [type(w)(g) for g, w in zip(got, want)] == want, name
+        else:
+            numpy.testing.assert_allclose(numpy.array(got, dtype=float), numpy.array(want, dtype=float),
+                                          rtol=tolerance, atol=tolerance, equal_nan=True, err_msg=name)
+
+
+@pytest.fixture(scope="module")
+def expected():
+    return plain_loop(SMALL)
+
+
+def as_columns(table) -> dict[str, list]:
+    return {name: table.column(name).to_pylist() for name in table.column_names}
+
+
+def test_the_plain_loop_agrees_with_hand_formulas(expected):
+    """Two designs by hand: Grashof's inequality and the transmission angle at crank 0 by the law of cosines."""
+    checked = 0
+    for k in range(SMALL.designs):
+        a, b, c, d = (expected[name][k] for name in "abcd")
+        s, p, q, l = sorted([a, b, c, d])
+        if s + l < p + q and s == a:
+            assert expected["grashof"][k] == "crank-rocker"
+            # at theta = 0, |BD| = d - a: the triangle B, C, D gives mu there, the smallest over the turn
+            mu0 = math.acos((b * b + c * c - (d - a) ** 2) / (2 * b * c))
+            assert math.isclose(expected["transmission_min"][k], mu0, rel_tol=1e-12)
+            checked += 1
+        if s + l > p + q:
+            assert expected["grashof"][k] == "triple-rocker" and not expected["assembles"][k]
+    assert checked >= 2
+
+
+def test_local_scheduler_writes_the_plain_loops_table(tmp_path, expected):
+    done = run_sweep(SMALL, tmp_path / "out", scheduler="threads", workers=2)
+    assert (done["written"], done["skipped"], done["chunks"]) == (3, 0, 3)
+    assert_same_table(as_columns(read_sweep(tmp_path / "out")), expected)
+
+
+def test_a_distributed_client_writes_the_same_table(tmp_path, expected):
+    """The distributed path (submit, a bounded window, results as they complete) on an in-process cluster."""
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None,
+                                  silence_logs=logging.ERROR) as cluster, distributed.Client(cluster) as client:
+        run_sweep(SMALL, tmp_path / "cluster", scheduler=client, window=2)
+    assert_same_table(as_columns(read_sweep(tmp_path / "cluster")), expected)
+
+
+@pytest.mark.slow  # starting two worker processes takes 15-30 s on a shared machine
+def test_local_cluster_with_two_worker_processes_writes_the_same_table(tmp_path, expected):
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+                                  silence_logs=logging.ERROR) as cluster:
+        run_sweep(SMALL, tmp_path / "cluster", scheduler=cluster.scheduler_address)
+    run_sweep(SMALL, tmp_path / "local", scheduler="synchronous")
+    on_cluster, local = read_sweep(tmp_path / "cluster"), read_sweep(tmp_path / "local")
+    assert on_cluster.to_pandas().equals(local.to_pandas())  # bit for bit (NaN where NaN): chunks are made alike anywhere
+    assert_same_table(as_columns(on_cluster), expected)
+
+
+def test_a_failed_sweep_resumes_to_the_same_table(tmp_path, monkeypatch):
+    """A chunk that fails stops the sweep after the chunks before it landed; run again, it ends alike."""
+    import symlink.sweep as sweep
+    evaluate = sweep.chunk_table
+
+    def failing(settings, index):
+        if index == 2:
+            raise RuntimeError("injected failure")
+        return evaluate(settings, index)
+
+    monkeypatch.setattr(sweep, "chunk_table", failing)
+    with pytest.raises(RuntimeError, match="injected"):
+        run_sweep(SMALL, tmp_path / "failed", scheduler="synchronous", window=1)
+    assert sorted(p.name for p in (tmp_path / "failed").glob("chunk-*")) == ["chunk-000000.parquet",
+                                                                              "chunk-000001.parquet"]
+    monkeypatch.setattr(sweep, "chunk_table", evaluate)
+    done = run_sweep(SMALL, tmp_path / "failed", scheduler="synchronous")
+    assert (done["written"], done["skipped"]) == (1, 2)
+    run_sweep(SMALL, tmp_path / "whole", scheduler="synchronous")
+    assert read_sweep(tmp_path / "failed").to_pandas().equals(read_sweep(tmp_path / "whole").to_pandas())
+
+
+@pytest.mark.slow  # two runs of the command, each importing symlink and Dask: 20-30 s on a shared machine
+def test_a_killed_sweep_resumes_to_the_same_table(tmp_path):
+    """A sweep killed after its first chunks land, started again, ends with the table of one whole run."""
+    folder = tmp_path / "killed"
+    command = [sys.executable, "-m", "symlink", "sweep", "fourbar", str(folder), "--vary", "a=0.1:0.6,b=0.4:1.6",
+               "--set", "c=1,d=1", "--grid", "40", "--chunk", "20", "--samples", "60", "--scheduler", "synchronous",
+               "--no-progress"]
+    process = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                               start_new_session=True)
+    try:
+        deadline = time.monotonic() + 120
+        while len(list(folder.glob("chunk-*.parquet"))) < 3:
+            assert process.poll() is None, process.stderr.read().decode()
+            assert time.monotonic() < deadline, "no chunks written in two minutes"
+            time.sleep(0.02)
+        os.killpg(process.pid, signal.SIGKILL)
+    finally:
+        process.wait()
+    landed = len(list(folder.glob("chunk-*.parquet")))
+    assert 3 <= landed < 80, "the sweep was not interrupted midway"
+    again = subprocess.run(command, cwd=ROOT, capture_output=True, text=True, timeout=300)
+    assert again.returncode == 0, again.stderr
+    assert f"found {landed} already there" in again.stderr
+    settings = SweepSettings("fourbar", {"a": (0.1, 0.6), "b": (0.4, 1.6)}, values={"c": 1.0, "d": 1.0}, count=40,
+                             samples=60, chunk=20)
+    run_sweep(settings, tmp_path / "whole", scheduler="synchronous")
+    assert read_sweep(folder).to_pandas().equals(read_sweep(tmp_path / "whole").to_pandas())
+
+
+def test_a_folder_of_other_settings_is_refused(tmp_path):
+    settings = SweepSettings("fourbar", {"a": (0.2, 0.3)}, values={"d": 1.0}, count=2, samples=16)
+    run_sweep(settings, tmp_path, scheduler="synchronous")
+    other = SweepSettings("fourbar", {"a": (0.2, 0.3)}, values={"d": 1.0}, count=2, samples=32)
+    with pytest.raises(ValueError, match="other settings .*samples"):
+        run_sweep(other, tmp_path, scheduler="synchronous")
+    assert run_sweep(settings, tmp_path, scheduler="synchronous")["skipped"] == 1
+    (tmp_path / "elsewhere").mkdir()
+    (tmp_path / "elsewhere" / "notes.txt").write_text("mine")
+    with pytest.raises(ValueError, match="not empty"):
+        run_sweep(settings, tmp_path / "elsewhere", scheduler="synchronous")
+
+
+def test_designs_are_made_from_their_numbers_alone():
+    """No design is materialised: the last of 10^12 designs is made on its own, and alike in any company."""
+    huge = SweepSettings("fourbar", {"a": (1, 2), "b": (3, 4), "c": (5, 6)}, values={"d": 5.0}, count=10_000)
+    assert huge.designs == 10**12
+    assert {k: v.tolist() for k, v in design_values(huge, [10**12 - 1]).items()} == {"a": [2.0], "b": [4.0],
+                                                                                         "c": [6.0]}
+    alone = design_values(SMALL, [17])
+    together = design_values(SMALL, range(SMALL.designs))
+    assert all(alone[name][0] == together[name][17] for name in alone)
+    assert evaluate_designs(huge, [10**12 - 1])["grashof"] == ["crank-rocker"]  # s + l = 2 + 6 < 4 + 5, s = a
+
+
+@pytest.mark.parametrize("arguments, message", [
+    (dict(ranges={}), "at least one parameter"),
+    (dict(ranges={"e": (1, 2)}), "no parameter 'e'"),
+    (dict(ranges={"a": (2, 1)}), "low <= high"),
+    (dict(ranges={"a": (0, 1)}), "is a length"),
+    (dict(ranges={"a": (1, math.nan)}), "finite"),
+    (dict(mode="sobol"), "mode must be"),
+    (dict(count=0), "count must be"),
+    (dict(count=2.5), "count must be"),
+    (dict(samples=4), "samples must be"),
+    (dict(chunk=0), "chunk must be"),
+    (dict(harmonics=-1), "harmonics must be"),
+    (dict(harmonics=20, samples=16), "harmonics need"),
+    (dict(branch=0), "branch must be"),
+    (dict(seed=-1), "seed must be"),
+    (dict(output="rocker_speed"), "no position output"),
+    (dict(output="nowhere"), "no position output"),
+    (dict(point="Q"), "no point 'Q'"),
+    (dict(values={"q": 1.0}), "not 'q'"),
+    (dict(values={"d": math.inf}), "finite"),
+    (dict(count=1, ranges={"a": (1, 2)}), "count 2 or more"),
+    (dict(linkage="nonesuch"), "no linkage 'nonesuch'"),
+    (dict(mode="random", count=10**9, chunk=10**9, samples=100_000), "use a smaller chunk"),
+])
+def test_bad_settings_are_refused(arguments, message):
+    given = dict(linkage="fourbar", ranges={"a": (1, 2)})
+    given.update(arguments)
+    with pytest.raises(ValueError, match=message):
+        SweepSettings(**given)
+
+
+def test_the_manifest_holds_the_settings_and_columns(tmp_path):
+    settings = SweepSettings("fourbar", {"a": (0.2, 0.3)}, values={"d": 1.0}, count=2, samples=16, harmonics=1)
+    run_sweep(settings, tmp_path, scheduler="synchronous")
+    import json
+    manifest = json.loads((tmp_path / MANIFEST).read_text())
+    assert manifest["settings"]["samples"] == 16 and manifest["designs"] == 2
+    assert manifest["columns"] == read_sweep(tmp_path).column_names
+    assert manifest["columns"][-6:] == ["path_m1_re", "path_m1_im", "path_0_re", "path_0_im", "path_p1_re",
+                                        "path_p1_im"]
+
+
+def test_any_linkage_matches_its_per_design_analysis():
+    """A slider-crank (no closed-form shortcut in the sweep) against symlink.analysis design by design.
+
+    Without offset its stroke is 2 a (the crank's diameter), its time ratio 1, and its transmission
+    angle (rod against the guide's normal) is smallest and largest at crank angles of +-90 deg.
+    """
+    from symlink.analysis import loop_transmissions, output_limits
+    settings = SweepSettings("slider-crank", {"a": (0.5, 1.5), "b": (2.0, 3.0)}, values={"offset": 0.0}, count=2,
+                             samples=72, harmonics=1)
+    table = evaluate_designs(settings, range(settings.designs))
+    linkage = catalog_linkage("slider-crank")
+    for k in range(settings.designs):
+        values = {"a": table["a"][k], "b": table["b"][k], "offset": 0.0, "branch": 1.0}
+        limits = output_limits(linkage, values, "slider")
+        (transmission,) = loop_transmissions(linkage, values)
+        assert table["assembles"][k] and table["reach"][k] == 1.0 and table["grashof"][k] == ""
+        assert table["stroke"][k] == pytest.approx(limits.stroke, abs=1e-9) == pytest.approx(2 * values["a"])
+        assert table["time_ratio"][k] == pytest.approx(limits.time_ratio, abs=1e-9) == pytest.approx(1.0)
+        assert table["transmission_min"][k] == pytest.approx(transmission.minimum, abs=1e-12)
+        assert table["transmission_max"][k] == pytest.approx(transmission.maximum, abs=1e-12)
+        mu = math.asin(values["a"] / values["b"])  # the rod's tilt at +-90 deg, from the right triangle
+        assert table["worst_transmission"][k] == pytest.approx(math.pi / 2 - mu, abs=1e-12)
+
+
+def test_a_linkage_that_does_not_turn_has_its_reach_from_the_bisected_scan():
+    """A slider-crank whose rod cannot span the crank turns between +-30 deg and 150..210 deg: reach 1/3."""
+    settings = SweepSettings("slider-crank", {"a": (2.0, 2.0)}, values={"b": 1.0, "offset": 0.0}, count=1,
+                             samples=72, harmonics=1)
+    table = evaluate_designs(settings, [0])
+    assert not table["assembles"][0] and table["spans"][0] == 2
+    assert table["reach"][0] == pytest.approx(1 / 3, abs=1e-12)  # two spans of 60 deg (asin(b / a) = 30 deg)
+    assert math.isnan(table["stroke"][0]) and math.isnan(table["path_p1_re"][0])
+
+
+def test_a_linkage_file_sweeps_as_its_catalog_entry(tmp_path, monkeypatch):
+    """The file's text goes with the settings (workers anywhere read the same linkage), and the table is alike."""
+    from symlink.linkage_file import write_linkage
+    path = tmp_path / "four.toml"
+    write_linkage(catalog_linkage("fourbar"), path, {"a": 20.0, "b": 66.0, "c": 56.0, "d": 80.0})
+    from_file = SweepSettings(str(path), {"a": (10.0, 30.0)}, count=3, samples=36)
+    from_catalog = SweepSettings("fourbar", {"a": (10.0, 30.0)}, values={"b": 66.0, "c": 56.0, "d": 80.0}, count=3,
+                                 samples=36)
+    assert from_file.linkage_text == path.read_text()
+    path.unlink()  # evaluated from the text, not the file
+    found, expected = evaluate_designs(from_file, range(3)), evaluate_designs(from_catalog, range(3))
+    assert found["grashof"] == expected["grashof"]
+    for name in expected:  # the file's transmission angle is generated from its own text: alike to rounding
+        if name != "grashof":
+            numpy.testing.assert_allclose(numpy.asarray(found[name], dtype=float),
+                                          numpy.asarray(expected[name], dtype=float), rtol=1e-13, err_msg=name)
+    assert len(from_file.manifest()["linkage_sha256"]) == 64

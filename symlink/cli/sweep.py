@@ -79,8 +79,11 @@ def run(args: argparse.Namespace) -> int:
     linkage = found.linkage
     values = linkage_values(found, args.set, args.units)
     known = {s.name: s for s in linkage.parameters + linkage.inputs}
-    swept = {name: tuple(float(to_radians(x, args.units)) for x in bounds)
-             if name in known and is_angle(linkage, known[name]) else bounds for name, bounds in args.vary.items()}
+    swept: dict[str, tuple[float, float]] = {}
+    for name, (low, high) in args.vary.items():
+        turned = name in known and is_angle(linkage, known[name])
+        swept[name] = ((float(to_radians(low, args.units)), float(to_radians(high, args.units))) if turned
+                       else (low, high))
     values = {name: value for name, value in values.items()
               if name not in swept and name != linkage.inputs[0].name}
     mode, count = ("random", args.random) if args.random is not None else ("grid", 10 if args.grid is None else args.grid)

@@ -1025,7 +1025,8 @@ def plot(records: list[dict], path: str | os.PathLike) -> None:
         mine = sorted((r for r in records if r["method"] == name), key=lambda r: r["n"])
         style = dict(marker=markers[index % len(markers)], linestyle="-" if mine[0]["kind"] == "full" else "--",
                      color="black" if name == "physical-limit" else None)
-        by_size.plot([r["n"] for r in mine], [r["us_per_value"] for r in mine], label=name, alpha=0.85, **style)
+        if len(mine) > 1:  # the per-value methods (one N) are on the right only
+            by_size.plot([r["n"] for r in mine], [r["us_per_value"] for r in mine], label=name, alpha=0.85, **style)
         last = mine[-1]
         if last["max_error"] is not None:
             by_error.scatter([max(last["max_error"], ERROR_FLOOR)], [last["us_per_value"]], marker=style["marker"],

@@ -26,14 +26,16 @@ __all__ = ["Vector", "VectorSum", "Loop", "Linkage", "coordinates", "lengths", "
 def __getattr__(name: str) -> Any:
     """The public names, imported when first asked for (PEP 562)."""
     if name in _VECTOR_NAMES:
-        from . import vectors as module
+        from . import vectors
+        value = getattr(vectors, name)
     elif name == "Loop":
-        from . import loops as module
+        from . import loops
+        value = loops.Loop
     elif name == "Linkage":
-        from . import linkage as module
+        from . import linkage
+        value = linkage.Linkage
     else:
         raise AttributeError(f"module 'symlink' has no attribute {name!r}")
-    value = getattr(module, name)
     globals()[name] = value
     return value
 

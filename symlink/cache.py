@@ -254,8 +254,8 @@ def catalog_key(name: str, outputs: Sequence[str], kind: str) -> str:
     uses (:data:`CATALOG_SHAPING`, hashed) and SymPy's version, so those stand in for its definition.
     Computed in about a millisecond, with no SymPy import.
 
-    >>> len(catalog_key("fourbar", ["rocker"], "scene")), catalog_key("fourbar", ["rocker"], "scene") == \
-    ...     catalog_key("fourbar", ["coupler"], "scene")
+    >>> key = catalog_key("fourbar", ["rocker"], "scene")
+    >>> len(key), key == catalog_key("fourbar", ["coupler"], "scene")
     (64, False)
     """
     described = json.dumps({

@@ -1,4 +1,4 @@
-"""The benchmark (``python -m benchmarks``, also ``symlink bench``): run time against error of four-bar position solvers, in one run.
+"""The benchmark (``python -m benchmarks``, also ``symlink bench``): run time against error of four-bar solvers, in one run.
 
 The workload is a fixed-seed set of four-bars: random ones (link lengths
 log-uniform over a decade, scaled by 10^-3 to 10^3, half of them Grashof,
@@ -6,40 +6,60 @@ half not) and the seed linkages (seeds 001, 002 and 003), each on both
 branches.  Every (linkage, branch) is one sweep of crank angles drawn
 uniformly over the angles where it can be assembled (so non-Grashof sweeps
 come close to their toggle positions); N input values are split evenly over
-the sweeps, and each method is called once a sweep with scalar link lengths,
-the way a crank sweep is computed.
+the sweeps.  Every method is called the same way: once for all N values, with
+the crank angle, the four lengths and the branch as per-value arrays (and, for
+full kinematics, the crank's speed and acceleration), as a user evaluates
+many linkages at once.  pylinkage alone, whose API simulates one linkage with
+a crank that steps evenly, is called once a linkage on its own angles (below).
 
-Methods (``--methods`` picks some):
+Methods (``--methods`` picks some); ``full`` ones compute positions, speeds and accelerations:
 
-==================  ===========================================================
-``symlink``          symlink's generated NumPy solver, positions + rates + accelerations
-``symlink-positions`` the same, positions only (coupler and rocker angles)
-``hand-numpy``       the half-angle (A, B, C) formula of seed paper 003, vectorised by hand
-``lambdify-nocse``   symlink's expressions (positions + rates + accelerations), fully
-                     substituted, through ``sympy.lambdify`` without common subexpressions
-``fsolve``           ``scipy.optimize.fsolve`` on the loop closure, one call per value
-``newton``           a vectorised Newton iteration on the loop closure
-``sympy-evalf``      substitution into symlink's closed forms and ``evalf``, per value
-``symlink-c``        symlink's generated C (positions), compiled (:mod:`symlink.compiled`)
-``hand-c``           a hand-written C loop of the same formulas, same compiler and flags
-==================  ===========================================================
+===========================  ==========  ====================================================
+``symlink``                  full        symlink's generated NumPy module
+``hand-numpy``               full        the same atan2 formulas written by hand in NumPy, rates by hand
+``numba``                    full        the same formulas as a hand-written numba loop
+``symengine-llvm``           full        symlink's expressions through SymEngine's ``Lambdify``
+                                         (LLVM backend, ``cse=True``)
+``lambdify-cse``             full        symlink's expressions through ``sympy.lambdify(cse=True)``
+``pylinkage``                full        pylinkage's numba simulation (``step_fast_with_kinematics``)
+``symlink-c``                full        symlink's generated C, compiled (:mod:`symlink.compiled`)
+``symlink-positions``        positions   symlink's generated NumPy module
+``hand-numpy-positions``     positions   symlink's atan2 formula written by hand in NumPy
+``halfangle-numpy``          positions   the textbook half-angle (Freudenstein) form, seed paper 003
+``numba-positions``          positions   hand-written numba loop, atan2 formula
+``symengine-llvm-positions`` positions   SymEngine LLVM ``Lambdify``
+``lambdify-cse-positions``   positions   ``sympy.lambdify(cse=True)``
+``pylinkage-positions``      positions   pylinkage's ``step_fast``
+``symlink-c-positions``      positions   symlink's generated C
+``hand-c-positions``         positions   a hand-written C loop of the atan2 formula, same compiler and flags
+``halfangle-c``              positions   the textbook half-angle form in C
+``newton``                   positions   a vectorised Newton iteration on the loop closure
+``fsolve``                   positions   ``scipy.optimize.fsolve`` on the loop closure, one call per value
+``sympy-evalf``              positions   substitution into symlink's closed forms and ``evalf``, per value
+===========================  ==========  ====================================================
 
 ``fsolve`` and ``newton`` start 0.05 rad from the answer (what one continuation
 step of a few degrees gives) and ``fsolve`` uses its default tolerance;
-``fsolve`` (scipy is an optional extra) and ``sympy-evalf`` run on a
-subsample of the smallest N, the C methods only where a C compiler works.
-Methods that are not available are skipped with a note.
+``fsolve`` and ``sympy-evalf`` run on a subsample of the smallest N, the C
+methods only where a C compiler works, numba, SymEngine, pylinkage and scipy
+where installed (the ``bench`` extra).  Methods that are not available are
+skipped with a note.  pylinkage gets each sweep whose crank turns fully, with
+as many evenly spaced angles over the turn (its N is therefore smaller).
 
 Errors are measured against a 50-digit mpmath reference (the intersection
-of two circles, computed independently of symlink), on every value for
-N <= ``reference`` values and on a fixed-seed subsample above that (the
-maximum is then the maximum over the subsample).  The closure residual
+of two circles, computed independently of symlink; the rates from the loop
+differentiated by hand, in mpmath), on every value for N <= ``reference``
+values and on a fixed-seed subsample above that (the maximum is then the
+maximum over the subsample).  The closure residual
 ``|a e^{i theta} + b e^{i beta} - d - c e^{i phi}| / max(a, b, c, d)`` is
-computed on every value, in extended precision.
+computed on every value, in extended precision.  The physical limit is the
+time of a C loop that does only the vector-math calls every solver of the
+positions needs (cos, sin, a square root, two atan2) and two stores a value.
 
->>> records = benchmark(sizes=[200], methods=["symlink-positions", "hand-numpy"], reference=50, verbose=False)
+>>> records = benchmark(sizes=[200], methods=["symlink-positions", "hand-numpy-positions"], reference=50,
+...                     verbose=False)
 >>> sorted(r["method"] for r in records), all(r["max_error"] < 1e-6 for r in records)
-(['hand-numpy', 'symlink-positions'], True)
+(['hand-numpy-positions', 'symlink-positions'], True)
 """
 from __future__ import annotations
 
@@ -64,19 +84,24 @@ if __package__ in (None, ""):  # run as a script, python benchmarks/bench.py: im
 
 from symlink.analysis import crank_range
 from symlink.files import write_atomic
+from symlink.position import TOLERANCE
 
-__all__ = ["benchmark", "METHODS", "main", "hand_numpy", "reference_positions"]
+__all__ = ["benchmark", "METHODS", "main", "hand_numpy", "halfangle_numpy", "hand_rates", "reference_positions",
+           "reference_rates", "physical_limit"]
 
-METHODS = ("symlink", "symlink-positions", "hand-numpy", "lambdify-nocse", "fsolve", "newton", "sympy-evalf",
-           "symlink-c", "hand-c")
+METHODS = ("symlink", "hand-numpy", "numba", "symengine-llvm", "lambdify-cse", "pylinkage", "symlink-c",
+           "symlink-positions", "hand-numpy-positions", "halfangle-numpy", "numba-positions",
+           "symengine-llvm-positions", "lambdify-cse-positions", "pylinkage-positions", "symlink-c-positions",
+           "hand-c-positions", "halfangle-c", "newton", "fsolve", "sympy-evalf")
 POSITIONS = ["coupler", "rocker"]
-EVERYTHING = POSITIONS + ["coupler_speed", "rocker_speed", "coupler_accel", "rocker_accel"]
+RATES = ["coupler_speed", "rocker_speed", "coupler_accel", "rocker_accel"]
+EVERYTHING = POSITIONS + RATES
 CRANK_SPEED, CRANK_ACCEL = 10.5, 2.0
 START_OFFSET = 0.05
 #: (a, b, c, d) of the seed papers' four-bars (seed 002: its time ratio 1.25 design).
 SEED_LINKAGES = {"seed001": (0.1, 0.4, 0.25, 0.30), "seed002": (16.084, 69.743, 50.0, 70.0),
                  "seed003": (20.0, 66.0, 56.0, 80.0)}
-FULL_SIZES = (10**3, 10**5, 10**6)
+FULL_SIZES = (10**3, 10**4, 10**5, 10**6)
 QUICK_SIZES = (10**3, 2 * 10**4)
 ERROR_FLOOR = 1e-17  # where a plot needs a positive error
 
@@ -91,6 +116,7 @@ class Sweep:
     theta: numpy.ndarray
     sample: numpy.ndarray = field(default_factory=lambda: numpy.zeros(0, dtype=int))
     reference: tuple[numpy.ndarray, ...] = ()  # beta_hi, beta_lo, phi_hi, phi_lo at the sample
+    rates: tuple[numpy.ndarray, ...] = ()  # coupler and rocker speed and acceleration at the sample
 
 
 # --- the workload and its reference ------------------------------------------
@@ -145,6 +171,30 @@ def reference_positions(a: float, b: float, c: float, d: float, theta: float, br
         return mpmath.atan2(cy - by, cx - bx), mpmath.atan2(cy, cx - d)
 
 
+def reference_rates(a: float, b: float, c: float, theta: float, beta, phi, speed: float, accel: float) -> list:
+    """Coupler and rocker speed and acceleration at 50 digits, from the exact positions (mpmath numbers).
+
+    The loop ``a e^{i theta} + b e^{i beta} = d + c e^{i phi}`` differentiated by hand, its imaginary
+    parts taken after turning by -phi and by -beta:
+    ``beta' = -a w sin(theta - phi) / (b sin(beta - phi))``, ``phi' = -a w sin(theta - beta) / (c sin(beta - phi))``,
+    and once more for the accelerations.
+
+    >>> beta, phi = reference_positions(20, 66, 56, 80, 0.0, 1)
+    >>> [round(float(x), 4) for x in reference_rates(20, 66, 56, 0.0, beta, phi, 10.5, 2.0)]
+    [-3.5, -3.5, -19.2237, 36.9151]
+    """
+    with mpmath.workdps(50):
+        a, b, c, theta, w, alpha = (mpmath.mpf(v) for v in (a, b, c, theta, speed, accel))
+        s_tp, c_tp = mpmath.sin(theta - phi), mpmath.cos(theta - phi)
+        s_tb, c_tb = mpmath.sin(theta - beta), mpmath.cos(theta - beta)
+        s_bp, c_bp = mpmath.sin(beta - phi), mpmath.cos(beta - phi)
+        beta_speed = -a * w * s_tp / (b * s_bp)
+        phi_speed = -a * w * s_tb / (c * s_bp)
+        beta_accel = -(a * alpha * s_tp + a * w * w * c_tp + b * beta_speed ** 2 * c_bp - c * phi_speed ** 2) / (b * s_bp)
+        phi_accel = -(a * alpha * s_tb + a * w * w * c_tb + b * beta_speed ** 2 - c * phi_speed ** 2 * c_bp) / (c * s_bp)
+        return [beta_speed, phi_speed, beta_accel, phi_accel]
+
+
 def _split(value) -> tuple[float, float]:
     """A 50-digit number as a double-double (hi + lo)."""
     high = float(value)
@@ -161,14 +211,42 @@ def workload(size: int, seed: int, reference: int) -> list[Sweep]:
     share = min(reference, size) / size
     for sweep, count in zip(sweeps, counts):
         sweep.theta = _angles(rng, crank_range(*sweep.lengths), int(count))
-        picked = rng.choice(count, size=min(count, max(1, round(share * count))), replace=False)
-        values = [reference_positions(*sweep.lengths, t, sweep.branch) for t in sweep.theta[picked]]
-        kept = [i for i, v in zip(picked, values) if v is not None]
-        sweep.sample = numpy.array(sorted(kept), dtype=int)
-        exact = dict(zip(picked, values))
-        parts = numpy.array([_split(exact[i][0]) + _split(exact[i][1]) for i in sweep.sample]).reshape(-1, 4)
-        sweep.reference = tuple(parts.T)
+        _with_reference(sweep, rng, share)
     return sweeps
+
+
+def _with_reference(sweep: Sweep, rng: numpy.random.Generator, share: float) -> None:
+    """Pick ``share`` of the sweep's values at random and put the 50-digit positions and rates there."""
+    count = len(sweep.theta)
+    picked = rng.choice(count, size=min(count, max(1, round(share * count))), replace=False)
+    values = [reference_positions(*sweep.lengths, t, sweep.branch) for t in sweep.theta[picked]]
+    kept = [i for i, v in zip(picked, values) if v is not None]
+    sweep.sample = numpy.array(sorted(kept), dtype=int)
+    exact = dict(zip(picked, values))
+    parts = numpy.array([_split(exact[i][0]) + _split(exact[i][1]) for i in sweep.sample]).reshape(-1, 4)
+    sweep.reference = tuple(parts.T)
+    a, b, c, _ = sweep.lengths
+    rates = [[float(x) for x in reference_rates(a, b, c, sweep.theta[i], *exact[i], CRANK_SPEED, CRANK_ACCEL)]
+             for i in sweep.sample]
+    sweep.rates = tuple(numpy.array(rates).reshape(-1, 4).T)
+
+
+def pylinkage_sweeps(sweeps: list[Sweep], seed: int, reference: int) -> list[Sweep]:
+    """pylinkage's workload: each sweep whose crank turns fully, as many angles evenly over a turn from its first.
+
+    (pylinkage steps its crank evenly from where the linkage is assembled; see :mod:`benchmarks.peers`.)
+    """
+    from benchmarks.peers import even_angles
+    rng = numpy.random.default_rng(seed + 1)
+    full = [s for s in sweeps if len(s.theta) > 1 and crank_range(*s.lengths) == [(-math.pi, math.pi)]]
+    size = sum(len(s.theta) for s in full)
+    own = []
+    for sweep in full:
+        theta, _ = even_angles(float(sweep.theta[0]), len(sweep.theta))
+        mine = Sweep(sweep.name, sweep.lengths, sweep.branch, theta)
+        _with_reference(mine, rng, min(reference, size) / max(size, 1))
+        own.append(mine)
+    return own
 
 
 def angle_errors(sweep: Sweep, beta: numpy.ndarray, phi: numpy.ndarray) -> numpy.ndarray:
@@ -191,16 +269,49 @@ def closure_residual(sweep: Sweep, beta: numpy.ndarray, phi: numpy.ndarray) -> n
 
 
 # --- the methods -------------------------------------------------------------
+#
+# Every method gets the whole workload in one call: crank angles, the four lengths and the branch as per-value
+# arrays (N values of 18 linkages), and for full kinematics the crank speed and acceleration; it returns a dict
+# with at least "coupler" and "rocker" (and the four rates for full kinematics).  Only pylinkage, whose API
+# simulates one linkage with a uniformly stepping crank, is called once a linkage (see _pylinkage).
 
-def hand_numpy(theta, a: float, b: float, c: float, d: float, branch: int):
-    """(beta, phi) by the half-angle solution of seed paper 003, vectorised by hand.
+def hand_numpy(theta, a, b, c, d, branch):
+    """(beta, phi) by the atan2 formula that symlink derives (the triangle B, C, D), vectorised by hand.
+
+    W = B - D = (a cos theta - d, a sin theta), w = |W|; Heron's product
+    H = (b+c+w)(b+c-w)(w+b-c)(w-b+c) = 4 b^2 c^2 sin^2(phi - beta), clamped as symlink clamps it (rounding
+    tolerated in proportion to 8 b c w (a + b + c + w + d), NaN beyond); then
+    ``beta = atan2(-Wy L - Wx sigma sqrt(H), -Wx L + Wy sigma sqrt(H))`` with L = b^2 - c^2 + w^2 and
+    ``phi = atan2(Wy M - Wx sigma sqrt(H), Wx M + Wy sigma sqrt(H))`` with M = w^2 - b^2 + c^2.
+    All arguments broadcast (arrays of lengths and branches: many linkages at once).
+
+    >>> beta, phi = hand_numpy(numpy.array([0.0]), 20.0, 66.0, 56.0, 80.0, 1)
+    >>> round(float(numpy.degrees(phi[0])), 4), round(float(numpy.degrees(beta[0])), 4)
+    (110.7424, 52.5127)
+    """
+    wx, wy = a * numpy.cos(theta) - d, a * numpy.sin(theta)
+    w2 = wx * wx + wy * wy
+    w = numpy.sqrt(w2)
+    s, t = b + c, b - c
+    heron = (s + w) * (s - w) * (t + w) * (w - t)
+    with numpy.errstate(invalid="ignore"):
+        root = numpy.where(heron >= -TOLERANCE * 8 * b * c * w * (a + s + w + d), numpy.sqrt(numpy.maximum(heron, 0.0)),
+                           numpy.nan)
+    along_b, along_c, across = s * t + w2, w2 - s * t, branch * root
+    beta = numpy.arctan2(-wy * along_b - wx * across, -wx * along_b + wy * across)
+    phi = numpy.arctan2(wy * along_c - wx * across, wx * along_c + wy * across)
+    return beta, phi
+
+
+def halfangle_numpy(theta, a, b, c, d, branch):
+    """(beta, phi) by the textbook half-angle solution (Freudenstein; seed paper 003), vectorised by hand.
 
     ``A t^2 + B t + C = 0`` with ``t = tan(phi/2)``, K = (a^2 - b^2 + c^2 + d^2)/2,
     A = K - a(d - c) cos(theta) - c d, B = -2 a c sin(theta),
     C = K - a(d + c) cos(theta) + c d; its "-" root is branch +1.  beta from
     the loop's x and y components with atan2 (the seed's asin loses the quadrant).
 
-    >>> beta, phi = hand_numpy(numpy.array([0.0]), 20.0, 66.0, 56.0, 80.0, 1)
+    >>> beta, phi = halfangle_numpy(numpy.array([0.0]), 20.0, 66.0, 56.0, 80.0, 1)
     >>> round(float(numpy.degrees(phi[0])), 4), round(float(numpy.degrees(beta[0])), 4)
     (110.7424, 52.5127)
     """
@@ -213,6 +324,33 @@ def hand_numpy(theta, a: float, b: float, c: float, d: float, branch: int):
         phi = 2 * numpy.arctan((-B - branch * numpy.sqrt(B * B - 4 * A * C)) / (2 * A))
     beta = numpy.arctan2(c * numpy.sin(phi) - a * sin_t, d + c * numpy.cos(phi) - a * cos_t)
     return beta, phi
+
+
+def hand_rates(theta, a, b, c, beta, phi, speed, accel):
+    """Coupler and rocker speeds and accelerations from the positions: the loop differentiated by hand.
+
+    With ``a w e^{i theta} + b beta' e^{i beta} = c phi' e^{i phi}`` (imaginary parts after turning by
+    -phi and -beta): ``beta' = -a w sin(theta - phi) / (b sin(beta - phi))``,
+    ``phi' = a w sin(theta - beta) / (c sin(phi - beta))``, and once more for the accelerations.
+    """
+    s_tp, c_tp = numpy.sin(theta - phi), numpy.cos(theta - phi)
+    s_tb, c_tb = numpy.sin(theta - beta), numpy.cos(theta - beta)
+    s_bp, c_bp = numpy.sin(beta - phi), numpy.cos(beta - phi)
+    with numpy.errstate(invalid="ignore", divide="ignore"):
+        beta_speed = -a * speed * s_tp / (b * s_bp)
+        phi_speed = -a * speed * s_tb / (c * s_bp)
+        beta_accel = -(a * accel * s_tp + a * speed * speed * c_tp + b * beta_speed * beta_speed * c_bp
+                       - c * phi_speed * phi_speed) / (b * s_bp)
+        phi_accel = -(a * accel * s_tb + a * speed * speed * c_tb + b * beta_speed * beta_speed
+                      - c * phi_speed * phi_speed * c_bp) / (c * s_bp)
+    return beta_speed, phi_speed, beta_accel, phi_accel
+
+
+def _as_dict(beta, phi, rates=None) -> dict:
+    found = {"coupler": beta, "rocker": phi}
+    if rates is not None:
+        found.update(zip(RATES, rates))
+    return found
 
 
 def _start(sweep: Sweep) -> tuple[numpy.ndarray, numpy.ndarray]:
@@ -239,44 +377,47 @@ def newton(theta, a, b, c, d, beta, phi, iterations: int = 30):
 
 @dataclass
 class Method:
-    """A method's name, what it computes a sweep with, and how many values it can afford.
+    """A method's name, what it computes (``positions`` or ``full`` kinematics), its solver of the workload.
 
-    A ``batched`` method broadcasts over link lengths too, so it gets all
-    sweeps as one call (lengths and branch as arrays), as a user of a
-    vectorised solver would call it; the others get one call per sweep.
+    ``solve`` takes the workload as one :class:`Sweep` with per-value arrays (see :func:`stacked`) and
+    returns a dict of arrays.  ``limit``: values per size for the slow ones (taken from the reference
+    sample, at the smallest N only).  ``per_linkage``: it takes the sweeps one at a time (pylinkage).
     """
 
     name: str
-    solve: Callable[[Sweep], tuple[numpy.ndarray, numpy.ndarray]]
-    limit: int | None = None  # values per size, for the slow ones (taken from the reference sample)
+    solve: Callable[[Sweep], dict]
+    kind: str = "positions"
+    limit: int | None = None
     note: str = ""
-    batched: bool = False
+    per_linkage: bool = False
 
 
 def stacked(sweeps: list[Sweep]) -> Sweep:
     """All sweeps as one, with per-value arrays for the lengths and the branch."""
     counts = [len(s.theta) for s in sweeps]
     lengths = tuple(numpy.repeat([s.lengths[k] for s in sweeps], counts) for k in range(4))
-    return Sweep("all", lengths, numpy.repeat([s.branch for s in sweeps], counts),
+    return Sweep("all", lengths, numpy.repeat(numpy.array([s.branch for s in sweeps], dtype=float), counts),
                  numpy.concatenate([s.theta for s in sweeps]))
 
 
-def unstacked(result: tuple[numpy.ndarray, ...], sweeps: list[Sweep]) -> list[tuple[numpy.ndarray, ...]]:
+def unstacked(result: dict, sweeps: list[Sweep]) -> list[dict]:
     """A stacked call's result, split back into one result per sweep."""
     bounds = numpy.cumsum([len(s.theta) for s in sweeps])[:-1]
-    return list(zip(*(numpy.split(part, bounds) for part in result)))
+    parts = {name: numpy.split(numpy.asarray(values), bounds) for name, values in result.items()}
+    return [{name: pieces[i] for name, pieces in parts.items()} for i in range(len(sweeps))]
 
 
 class Unavailable(Exception):
     """A method that cannot run here (a missing optional dependency or compiler)."""
 
 
-def _keywords(function: Callable[..., dict], **extra) -> Callable[[Sweep], tuple]:
-    """A sweep solver from a function called as the generated ones are (keywords in, dict of arrays out)."""
+def _keywords(function: Callable[..., dict], full: bool) -> Callable[[Sweep], dict]:
+    """A workload solver from a function called as the generated ones are (keywords in, dict of arrays out)."""
+    rates = {"thetadot": CRANK_SPEED, "thetaddot": CRANK_ACCEL} if full else {}
+
     def solve(sweep):
         a, b, c, d = sweep.lengths
-        result = function(theta=sweep.theta, a=a, b=b, c=c, d=d, branch=sweep.branch, **extra)
-        return result["coupler"], result["rocker"]
+        return function(theta=sweep.theta, a=a, b=b, c=c, d=d, branch=sweep.branch, **rates)
     return solve
 
 
@@ -288,28 +429,96 @@ def _inlined(definitions) -> dict:
     return whole
 
 
-def _symlink(outputs: Sequence[str]):
+def _outputs(full: bool) -> list[str]:
+    return EVERYTHING if full else POSITIONS
+
+
+def _symlink(full: bool):
     from symlink.cache import generated_code
     from symlink.scene import catalog_linkage
-    function = generated_code(catalog_linkage("fourbar"), outputs).function
-    rates = {"thetadot": CRANK_SPEED, "thetaddot": CRANK_ACCEL} if len(outputs) > 2 else {}
-    return _keywords(function, **rates)
+    return _keywords(generated_code(catalog_linkage("fourbar"), _outputs(full)).function, full)
 
 
-def _lambdify():
+def _symbolic(full: bool):
+    """symlink's closed forms as plain SymPy expressions (clamped roots as square roots) and their arguments."""
     import sympy as sp
     from symlink.position import ClampedSqrt
     from symlink.scene import catalog_linkage
-    program = catalog_linkage("fourbar").program(EVERYTHING)
+    program = catalog_linkage("fourbar").program(_outputs(full))
     whole = _inlined(program.assignments)
     expressions = [program.outputs[name].xreplace(whole).replace(ClampedSqrt, lambda x, _: sp.sqrt(x))
-                   for name in EVERYTHING]
-    function = sp.lambdify(program.arguments, expressions, modules="numpy", cse=False)
+                   for name in _outputs(full)]
+    return list(program.arguments), expressions
+
+
+def _values(sweep: Sweep, count: int) -> list:
+    return [sweep.theta, *sweep.lengths, sweep.branch, CRANK_SPEED, CRANK_ACCEL][:count]
+
+
+def _lambdify(full: bool):
+    import sympy as sp
+    arguments, expressions = _symbolic(full)
+    function = sp.lambdify(arguments, expressions, modules="numpy", cse=True)
 
     def solve(sweep):
         with numpy.errstate(invalid="ignore", divide="ignore"):
-            values = function(sweep.theta, *sweep.lengths, sweep.branch, CRANK_SPEED, CRANK_ACCEL)
-        return values[0], values[1]
+            values = function(*_values(sweep, len(arguments)))
+        return dict(zip(_outputs(full), values))
+    return solve
+
+
+def _symengine(full: bool):
+    try:
+        import symengine
+    except ImportError:
+        raise Unavailable("symengine is not installed (pip install 'symlink-kinematics[bench]')") from None
+    arguments, expressions = _symbolic(full)
+    try:
+        function = symengine.Lambdify([symengine.sympify(a) for a in arguments],
+                                      [symengine.sympify(e) for e in expressions], backend="llvm", cse=True)
+        note = "LLVM backend, cse=True"
+    except (RuntimeError, ValueError, TypeError):
+        function = symengine.Lambdify([symengine.sympify(a) for a in arguments],
+                                      [symengine.sympify(e) for e in expressions], backend="lambda", cse=True)
+        note = "no LLVM in this symengine: its lambda backend"
+
+    def solve(sweep):
+        inputs = numpy.empty((len(sweep.theta), len(arguments)))
+        for k, value in enumerate(_values(sweep, len(arguments))):
+            inputs[:, k] = value
+        values = function(inputs)  # one row of outputs per row of inputs
+        return dict(zip(_outputs(full), numpy.asarray(values).T))
+    solve.note = note  # type: ignore[attr-defined]
+    return solve
+
+
+def _numba(full: bool):
+    try:
+        import numba
+    except ImportError:
+        raise Unavailable("numba is not installed (pip install 'symlink-kinematics[bench]')") from None
+    from benchmarks.numba_loops import numba_kernels
+    positions, everything = numba_kernels(numba, TOLERANCE)
+
+    def solve(sweep):
+        a, b, c, d = sweep.lengths
+        if not full:
+            beta, phi = numpy.empty_like(sweep.theta), numpy.empty_like(sweep.theta)
+            positions(sweep.theta, a, b, c, d, sweep.branch, beta, phi)
+            return _as_dict(beta, phi)
+        out = numpy.empty((6, len(sweep.theta)))
+        everything(sweep.theta, a, b, c, d, sweep.branch, CRANK_SPEED, CRANK_ACCEL, *out)
+        return dict(zip(EVERYTHING, out))
+    return solve
+
+
+def _hand(full: bool):
+    def solve(sweep):
+        beta, phi = hand_numpy(sweep.theta, *sweep.lengths, sweep.branch)
+        if not full:
+            return _as_dict(beta, phi)
+        a, b, c, _ = sweep.lengths
+        return _as_dict(beta, phi, hand_rates(sweep.theta, a, b, c, beta, phi, CRANK_SPEED, CRANK_ACCEL))
     return solve
 
 
@@ -328,14 +537,15 @@ def _fsolve():
         starts = _start(sweep)
         beta, phi = numpy.empty_like(sweep.theta), numpy.empty_like(sweep.theta)
         for i, theta in enumerate(sweep.theta):
-            beta[i], phi[i] = fsolve(closure, (starts[0][i], starts[1][i]), args=(theta, *sweep.lengths))
-        return beta, phi
+            lengths = tuple(float(x[i]) for x in sweep.lengths)
+            beta[i], phi[i] = fsolve(closure, (starts[0][i], starts[1][i]), args=(theta, *lengths))
+        return _as_dict(beta, phi)
     return solve
 
 
 def _newton():
     def solve(sweep):
-        return newton(sweep.theta, *sweep.lengths, *_start(sweep))
+        return _as_dict(*newton(sweep.theta, *sweep.lengths, *_start(sweep)))
     return solve
 
 
@@ -350,27 +560,28 @@ def _evalf():
     def solve(sweep):
         out = numpy.empty((2, len(sweep.theta)))
         for i, theta in enumerate(sweep.theta):
-            values = dict(zip(symbols, (sp.Float(theta), *map(sp.Float, sweep.lengths), sweep.branch)))
+            numbers = (sp.Float(theta), *(sp.Float(float(x[i])) for x in sweep.lengths), int(sweep.branch[i]))
+            values = dict(zip(symbols, numbers))
             out[:, i] = [float(beta.subs(values).evalf()), float(phi.subs(values).evalf())]
-        return out[0], out[1]
+        return _as_dict(out[0], out[1])
     return solve
 
 
-def _compiled():
+def _compiled(full: bool):
     try:
         from symlink.compiled import CompiledSolver, CompileError, CompilerUnavailable
     except ImportError:
         raise Unavailable("symlink.compiled is not available") from None
     from symlink.scene import catalog_linkage
     try:
-        return _keywords(CompiledSolver(catalog_linkage("fourbar"), POSITIONS).function)
+        return _keywords(CompiledSolver(catalog_linkage("fourbar"), _outputs(full)).function, full)
     except CompilerUnavailable as error:
         raise Unavailable(f"no C compiler: {error}") from None
     except (CompileError, OSError) as error:
         raise Unavailable(f"cannot build or load the library: {error}") from None
 
 
-def _hand_c():
+def _hand_c(formula: str):
     try:
         from symlink.compiled import CompileError, CompilerUnavailable
         from benchmarks.hand_c import hand_library, hand_positions
@@ -384,23 +595,84 @@ def _hand_c():
         raise Unavailable(f"cannot build or load the library: {error}") from None
 
     def solve(sweep):
-        result = hand_positions(sweep.theta, *sweep.lengths, sweep.branch)
-        return result["coupler"], result["rocker"]
+        return hand_positions(sweep.theta, *sweep.lengths, sweep.branch, formula)
     return solve
 
 
+def _pylinkage(full: bool):
+    """pylinkage's compiled (numba) simulation: one linkage a call, its crank stepping uniformly.
+
+    Its API takes no list of crank angles: a crank turns by a fixed step from where the linkage is
+    assembled, and each position continues from the one before.  So it gets each sweep of a linkage
+    whose crank turns fully (its angles are then evenly spaced over the turn, as many as the sweep has,
+    see :func:`pylinkage_sweeps`), starting on the sweep's branch; errors are measured at its own angles.
+    """
+    try:
+        import pylinkage  # noqa: F401
+    except ImportError:
+        raise Unavailable("pylinkage is not installed (pip install 'symlink-kinematics[bench]')") from None
+    from benchmarks.peers import pylinkage_fourbar
+
+    def solve(sweep):
+        linkage, crank, step = pylinkage_fourbar(sweep)
+        if full:
+            linkage.set_input_velocity(crank, CRANK_SPEED, CRANK_ACCEL)
+            positions, velocities, accelerations = linkage.step_fast_with_kinematics(iterations=len(sweep.theta))
+            return pylinkage_angles(sweep, positions, velocities, accelerations)
+        return pylinkage_angles(sweep, linkage.step_fast(iterations=len(sweep.theta)))
+    return solve
+
+
+def pylinkage_angles(sweep: Sweep, positions, velocities=None, accelerations=None) -> dict:
+    """Coupler and rocker angles (and rates) from pylinkage's joint positions: B is joint 2, C joint 3."""
+    a, b, c, d = sweep.lengths
+    bx, by, cx, cy = positions[:, 2, 0], positions[:, 2, 1], positions[:, 3, 0], positions[:, 3, 1]
+    beta, phi = numpy.arctan2(cy - by, cx - bx), numpy.arctan2(cy, cx - d)
+    if velocities is None:
+        return _as_dict(beta, phi)
+    # angular rates from the joints' velocities and accelerations: w = (r x v) / |r|^2
+    rx, ry, ux, uy = cx - bx, cy - by, cx - d, cy
+    vbx, vby, vcx, vcy = velocities[:, 2, 0], velocities[:, 2, 1], velocities[:, 3, 0], velocities[:, 3, 1]
+    abx, aby, acx, acy = accelerations[:, 2, 0], accelerations[:, 2, 1], accelerations[:, 3, 0], accelerations[:, 3, 1]
+    beta_speed = (rx * (vcy - vby) - ry * (vcx - vbx)) / (b * b)
+    phi_speed = (ux * vcy - uy * vcx) / (c * c)
+    beta_accel = (rx * (acy - aby) - ry * (acx - abx)) / (b * b)
+    phi_accel = (ux * acy - uy * acx) / (c * c)
+    return _as_dict(beta, phi, (beta_speed, phi_speed, beta_accel, phi_accel))
+
+
 def _methods(quick: bool) -> dict[str, Callable[[], Method]]:
+    """Every method by name: how to make it (a method that cannot run here raises :class:`Unavailable`)."""
+    def made(name, factory, kind, **options):
+        def make():
+            solve = factory()
+            return Method(name, solve, kind, note=getattr(solve, "note", options.pop("note", "")), **options)
+        return make
     return {
-        "symlink": lambda: Method("symlink", _symlink(EVERYTHING), batched=True),
-        "symlink-positions": lambda: Method("symlink-positions", _symlink(POSITIONS), batched=True),
-        "hand-numpy": lambda: Method("hand-numpy", lambda s: hand_numpy(s.theta, *s.lengths, s.branch),
-                                     batched=True),
-        "lambdify-nocse": lambda: Method("lambdify-nocse", _lambdify(), batched=True),
-        "fsolve": lambda: Method("fsolve", _fsolve(), limit=200 if quick else 1000, note="default xtol"),
-        "newton": lambda: Method("newton", _newton(), batched=True),
-        "sympy-evalf": lambda: Method("sympy-evalf", _evalf(), limit=10 if quick else 60),
-        "symlink-c": lambda: Method("symlink-c", _compiled()),  # per sweep, like hand-c
-        "hand-c": lambda: Method("hand-c", _hand_c()),
+        "symlink": made("symlink", lambda: _symlink(True), "full"),
+        "hand-numpy": made("hand-numpy", lambda: _hand(True), "full"),
+        "numba": made("numba", lambda: _numba(True), "full"),
+        "symengine-llvm": made("symengine-llvm", lambda: _symengine(True), "full"),
+        "lambdify-cse": made("lambdify-cse", lambda: _lambdify(True), "full"),
+        "pylinkage": made("pylinkage", lambda: _pylinkage(True), "full", per_linkage=True,
+                          note="its own evenly stepped crank, crank-rocker sweeps only"),
+        "symlink-c": made("symlink-c", lambda: _compiled(True), "full"),
+        "symlink-positions": made("symlink-positions", lambda: _symlink(False), "positions"),
+        "hand-numpy-positions": made("hand-numpy-positions", lambda: _hand(False), "positions"),
+        "halfangle-numpy": made("halfangle-numpy", lambda: (lambda s: _as_dict(*halfangle_numpy(
+            s.theta, *s.lengths, s.branch))), "positions", note="textbook half-angle form"),
+        "numba-positions": made("numba-positions", lambda: _numba(False), "positions"),
+        "symengine-llvm-positions": made("symengine-llvm-positions", lambda: _symengine(False), "positions"),
+        "lambdify-cse-positions": made("lambdify-cse-positions", lambda: _lambdify(False), "positions"),
+        "pylinkage-positions": made("pylinkage-positions", lambda: _pylinkage(False), "positions", per_linkage=True,
+                                    note="its own evenly stepped crank, crank-rocker sweeps only"),
+        "symlink-c-positions": made("symlink-c-positions", lambda: _compiled(False), "positions"),
+        "hand-c-positions": made("hand-c-positions", lambda: _hand_c("atan2"), "positions"),
+        "halfangle-c": made("halfangle-c", lambda: _hand_c("halfangle"), "positions",
+                            note="textbook half-angle form"),
+        "newton": made("newton", _newton, "positions"),
+        "fsolve": made("fsolve", _fsolve, "positions", limit=200 if quick else 1000, note="default xtol"),
+        "sympy-evalf": made("sympy-evalf", _evalf, "positions", limit=10 if quick else 60),
     }
 
 
@@ -415,23 +687,23 @@ def _subset(sweeps: list[Sweep], limit: int) -> list[Sweep]:
         if not len(keep):
             continue
         part = Sweep(sweep.name, sweep.lengths, sweep.branch, sweep.theta[keep], numpy.arange(len(keep)),
-                     tuple(r[: len(keep)] for r in sweep.reference))
+                     tuple(r[: len(keep)] for r in sweep.reference), tuple(r[: len(keep)] for r in sweep.rates))
         cut.append(part)
     return cut
 
 
 def _timed(methods: list[Method], work: dict[str, list[Sweep]], budget: float) -> dict[str, tuple[float, list]]:
-    """Best time of each method over all its sweeps, and its results.
+    """Best time of each method over its whole workload, and its results, one per sweep.
 
-    The methods take turns, round after round (up to 7), so that a change in
-    the machine's load falls on all of them alike; a method sits out further
-    rounds once its time would exceed ``budget`` seconds.  The garbage
-    collector is off while timing, as in :mod:`timeit`.
+    Each method is called once for the whole workload (pylinkage: once a linkage).  The methods take
+    turns, round after round (up to 7), so that a change in the machine's load falls on all of them
+    alike; a method sits out further rounds once its time would exceed ``budget`` seconds.  The
+    garbage collector is off while timing, as in :mod:`timeit`.
     """
     best = {m.name: math.inf for m in methods}
     spent = {m.name: 0.0 for m in methods}
     results: dict[str, list] = {}
-    calls = {m.name: [stacked(work[m.name])] if m.batched else work[m.name] for m in methods}
+    calls = {m.name: work[m.name] if m.per_linkage else [stacked(work[m.name])] for m in methods}
     gc.collect()
     gc.disable()
     try:
@@ -448,37 +720,64 @@ def _timed(methods: list[Method], work: dict[str, list[Sweep]], budget: float) -
     finally:
         gc.enable()
     for method in methods:
-        if method.batched:
+        if not method.per_linkage:
             results[method.name] = unstacked(results[method.name][0], work[method.name])
     return {name: (best[name], results[name]) for name in best}
+
+
+def rate_errors(sweep: Sweep, result: dict) -> numpy.ndarray:
+    """Relative error of the worst of the four rates at the sampled values (NaN where a method gave none).
+
+    Each rate's error is scaled by its size or the crank's (omega for speeds, omega^2 for accelerations),
+    whichever is larger, so that a rate passing through zero does not inflate it.
+    """
+    scales = (CRANK_SPEED, CRANK_SPEED, CRANK_SPEED ** 2, CRANK_SPEED ** 2)
+    worst = numpy.zeros(len(sweep.sample))
+    for name, exact, scale in zip(RATES, sweep.rates, scales):
+        found = numpy.asarray(result[name])[sweep.sample]
+        worst = numpy.maximum(worst, numpy.abs(found - exact) / numpy.maximum(numpy.abs(exact), scale))
+    return worst
 
 
 def _record(method: Method, sweeps: list[Sweep], seconds: float, results: list) -> dict:
     """One record: time per value and the errors of ``method`` on ``sweeps``."""
     n = sum(len(s.theta) for s in sweeps)
-    errors = numpy.concatenate([angle_errors(s, *r) for s, r in zip(sweeps, results)])
-    residuals = numpy.concatenate([closure_residual(s, *r) for s, r in zip(sweeps, results)])
+    errors = numpy.concatenate([angle_errors(s, r["coupler"], r["rocker"]) for s, r in zip(sweeps, results)])
+    residuals = numpy.concatenate([closure_residual(s, r["coupler"], r["rocker"]) for s, r in zip(sweeps, results)])
     failures = int(numpy.sum(~numpy.isfinite(errors)))
     finite = errors[numpy.isfinite(errors)]
-    return {
-        "method": method.name, "n": n, "us_per_value": seconds / n * 1e6,
+    record = {
+        "method": method.name, "kind": method.kind, "n": n, "us_per_value": seconds / n * 1e6,
         "max_error": float(finite.max()) if finite.size else None,
         "median_error": float(numpy.median(finite)) if finite.size else None,
         "max_residual": float(numpy.nanmax(residuals)) if numpy.isfinite(residuals).any() else None,
         "failures": failures, "reference_n": int(errors.size), "note": method.note,
+        "max_rate_error": None,
     }
+    if method.kind == "full":
+        rates = numpy.concatenate([rate_errors(s, r) for s, r in zip(sweeps, results)])
+        rates = rates[numpy.isfinite(rates)]
+        record["max_rate_error"] = float(rates.max()) if rates.size else None
+    return record
 
 
 def _ratios(records: list[dict]) -> None:
-    """Each record's time per value over symlink's at the same N (the smallest N for subsampled methods)."""
-    symlink = {r["n"]: r["us_per_value"] for r in records if r["method"] == "symlink"}
+    """Each record's time per value over symlink's of the same kind at the same N (the smallest N for subsampled
+    methods): ``symlink`` for full kinematics, ``symlink-positions`` for positions."""
+    reference = {"full": "symlink", "positions": "symlink-positions"}
+    times = {(r["kind"], r.get("size", r["n"])): r["us_per_value"] for r in records
+             if r["method"] == reference.get(r["kind"])}
     for record in records:
-        if not symlink:
+        mine = {n: t for (kind, n), t in times.items() if kind == record["kind"]}
+        if not mine:
             record["ratio_to_symlink"] = None
             continue
-        size = record["n"] if record["n"] in symlink else min(symlink)
-        record["ratio_to_symlink"] = record["us_per_value"] / symlink[size]
+        size = record.get("size", record["n"])
+        size = size if size in mine else min(mine)
+        record["ratio_to_symlink"] = record["us_per_value"] / mine[size]
         record["compared_at_n"] = size
+    for record in records:
+        record.setdefault("size", record["n"])
 
 
 _DERIVATION_SCRIPT = r"""
@@ -542,9 +841,38 @@ def derivation_times(scenes: list[tuple[str, list[str]]]) -> list[dict]:
     return rows
 
 
+def physical_limit(size: int, repeats: int = 7) -> dict | None:
+    """Nanoseconds a value of the vector-math floor of four-bar positions (see :func:`benchmarks.hand_c.vector_math_limit`).
+
+    Measured at ``size`` values (best of ``repeats``); ``None`` where no C compiler works.
+    """
+    try:
+        from symlink.compiled import CompileError, CompilerUnavailable
+        from benchmarks.hand_c import vector_math_limit
+    except ImportError:
+        return None
+    try:
+        vector_math_limit(numpy.zeros(4))
+    except (CompilerUnavailable, CompileError, OSError):
+        return None
+    theta = numpy.random.default_rng(1).uniform(-math.pi, math.pi, size)
+    best = math.inf
+    for _ in range(repeats):
+        start = time.perf_counter()
+        vector_math_limit(theta)
+        best = min(best, time.perf_counter() - start)
+    return {"method": "physical-limit", "kind": "positions", "n": size, "us_per_value": best / size * 1e6,
+            "max_error": None, "median_error": None, "max_residual": None, "failures": 0, "reference_n": 0,
+            "max_rate_error": None,
+            "note": "C loop of cos, sin, sqrt, 2 atan2 and 2 stores a value (symlink.compiled's flags, glibc libmvec)"}
+
+
 def benchmark(sizes: Sequence[int] = FULL_SIZES, methods: Sequence[str] = METHODS, quick: bool = False,
-              seed: int = 2024, reference: int = 2000, verbose: bool = True) -> list[dict]:
-    """Measure ``methods`` at each size; returns the records (and prints progress if ``verbose``)."""
+              seed: int = 2024, reference: int = 2000, verbose: bool = True, limit: bool = False) -> list[dict]:
+    """Measure ``methods`` at each size; returns the records (and prints progress if ``verbose``).
+
+    ``limit``: also measure the physical limit (:func:`physical_limit`) at each size, as a record of its own.
+    """
     factories = _methods(quick)
     unknown = [m for m in methods if m not in factories]
     if unknown:
@@ -561,11 +889,18 @@ def benchmark(sizes: Sequence[int] = FULL_SIZES, methods: Sequence[str] = METHOD
     for size in sorted(sizes):
         sweeps = workload(size, seed, reference)
         running = [m for m in ready if m.limit is None or size == min(sizes)]
-        work = {m.name: sweeps if m.limit is None else _subset(sweeps, m.limit) for m in running}
+        own = pylinkage_sweeps(sweeps, seed, reference) if any(m.per_linkage for m in running) else []
+        work = {m.name: own if m.per_linkage else sweeps if m.limit is None else _subset(sweeps, m.limit)
+                for m in running}
         timed = _timed(running, work, budget=0.5 if quick else 2.0)
         for method in running:
-            records.append(_record(method, work[method.name], *timed[method.name]))
-            _say(verbose, f"  {method.name:>18} N={records[-1]['n']:<8} {records[-1]['us_per_value']:.4g} us/value")
+            records.append({**_record(method, work[method.name], *timed[method.name]), "size": size})
+            _say(verbose, f"  {method.name:>24} N={records[-1]['n']:<8} {records[-1]['us_per_value']:.4g} us/value")
+        if limit:
+            found = physical_limit(size)
+            if found is not None:
+                records.append(found)
+                _say(verbose, f"  {'physical-limit':>24} N={size:<8} {found['us_per_value']:.4g} us/value")
     _ratios(records)
     return records
 
@@ -583,89 +918,136 @@ def _short(value, digits: int = 2) -> str:
 
 
 def table(records: list[dict]) -> str:
-    """The records as an aligned text table."""
-    header = f"{'method':>18} {'N':>8} {'us/value':>10} {'ratio':>8} {'max err':>9} {'median err':>10} " \
-             f"{'max resid':>9} {'fail':>5}"
+    """The records as an aligned text table: full kinematics first, then positions, each by N.
+
+    ``ratio`` is the time per value over symlink's NumPy module's of the same kind at the same N;
+    ``rate err`` the largest relative error of the speeds and accelerations (full kinematics).
+    """
+    header = f"{'method':>24} {'kind':>9} {'N':>8} {'us/value':>10} {'ratio':>8} {'max err':>9} {'median err':>10} " \
+             f"{'max resid':>9} {'rate err':>9} {'fail':>5}"
     lines = [header]
-    for r in records:
+    order = {"full": 0, "positions": 1}
+    for r in sorted(records, key=lambda r: (order.get(r["kind"], 2), r["n"])):
         ratio = "-" if r.get("ratio_to_symlink") is None else f"{r['ratio_to_symlink']:.3g}"
-        lines.append(f"{r['method']:>18} {r['n']:>8} {r['us_per_value']:>10.4g} {ratio:>8} "
+        lines.append(f"{r['method']:>24} {r['kind']:>9} {r['n']:>8} {r['us_per_value']:>10.4g} {ratio:>8} "
                      f"{_short(r['max_error']):>9} {_short(r['median_error']):>10} {_short(r['max_residual']):>9} "
-                     f"{r['failures']:>5}")
+                     f"{_short(r.get('max_rate_error')):>9} {r['failures']:>5}")
     return "\n".join(lines)
 
 
-def _find(records, method, n=None):
-    found = [r for r in records if r["method"] == method and (n is None or r["n"] == n)]
+def _find(records, method, size=None):
+    """The record of ``method`` at workload size ``size`` (the N asked for; pylinkage's own N may be smaller)."""
+    found = [r for r in records if r["method"] == method and (size is None or r.get("size", r["n"]) == size)]
     return found[-1] if found else None
 
 
 def targets(records: list[dict]) -> list[str]:
-    """The issue's targets, as ratios measured in this run, each marked held or missed."""
+    """Ratios measured in this run, each against a fair baseline, with the issue's targets marked held or missed.
+
+    Every comparison is between methods called the same way on the same values, at the largest N both have.
+    """
     lines = []
-    largest = max((r["n"] for r in records if r["method"] == "symlink-positions"), default=None)
 
     def verdict(ok):
         return "held" if ok else "MISSED"
-    positions, hand = _find(records, "symlink-positions", largest), _find(records, "hand-numpy", largest)
-    if positions and hand:
-        ratio = positions["us_per_value"] / hand["us_per_value"]
-        accurate = (positions["max_error"] or 0) <= (hand["max_error"] or 0) and positions["failures"] <= hand["failures"]
-        lines.append(f"symlink-positions / hand-numpy at N={largest}: {ratio:.2f}x (target <= 1.3x: "
-                     f"{verdict(ratio <= 1.3)}); max error {_short(positions['max_error'])} vs "
-                     f"{_short(hand['max_error'])} rad (at least as accurate: {verdict(accurate)})")
-    full = _find(records, "symlink", largest)
-    if positions and full:
-        ratio = positions["us_per_value"] / full["us_per_value"]
-        lines.append(f"symlink-positions / symlink at N={largest}: {ratio:.2f}x (target <= 0.5x: {verdict(ratio <= 0.5)})")
+
+    def largest(*names):
+        sizes = [{r.get("size", r["n"]) for r in records if r["method"] == name} for name in names]
+        common = set.intersection(*sizes) if sizes else set()
+        return max(common) if common else None
+
+    def ratio_line(mine, theirs, what, target=None, at=None):
+        size = at if at is not None else largest(mine, theirs)
+        first, second = _find(records, mine, size), _find(records, theirs, size)
+        if not (first and second):
+            return
+        ratio = first["us_per_value"] / second["us_per_value"]
+        goal = "" if target is None else f" (target <= {target}x: {verdict(ratio <= target)})"
+        lines.append(f"{mine} / {theirs} at N={size}: {ratio:.2f}x{goal}{what}")
+
+    ratio_line("symlink", "numba", "; full kinematics against a fused hand-written loop", 1.3)
+    ratio_line("symlink-positions", "hand-numpy-positions", "; the same atan2 formula written by hand in NumPy")
+    accurate = []
+    for mine, theirs in (("symlink-positions", "halfangle-numpy"),):
+        size = largest(mine, theirs)
+        first, second = _find(records, mine, size), _find(records, theirs, size)
+        if first and second:
+            ratio = first["us_per_value"] / second["us_per_value"]
+            accurate.append(f"{mine} / {theirs} (textbook half-angle form) at N={size}: {ratio:.2f}x; max error "
+                            f"{_short(first['max_error'])} vs {_short(second['max_error'])} rad")
+    lines += accurate
+    for peer in ("symengine-llvm", "lambdify-cse", "pylinkage"):
+        size = largest("symlink", peer)
+        first, second = _find(records, "symlink", size), _find(records, peer, size)
+        if first and second:
+            lines.append(f"symlink / {peer} at N={size}: {first['us_per_value'] / second['us_per_value']:.2f}x "
+                         f"(full kinematics; {peer} {second['us_per_value']:.3g} us a value"
+                         + ("" if second["n"] == size else f" on its {second['n']} values") + ")")
+    full, positions = largest("symlink"), largest("symlink-positions")
+    if full is not None:  # flat in N: the largest N against 10^5 (or the smallest N measured)
+        sizes = sorted({r.get("size", r["n"]) for r in records if r["method"] == "symlink"})
+        base = 10**5 if 10**5 in sizes and full > 10**5 else sizes[0]
+        first, last = _find(records, "symlink", base), _find(records, "symlink", full)
+        if base != full:
+            ratio = last["us_per_value"] / first["us_per_value"]
+            goal = f" (target <= 1.2x: {verdict(ratio <= 1.2)})" if base == 10**5 else ""
+            lines.append(f"symlink at N={full} / at N={base}, per value: {ratio:.2f}x{goal}; flat in N")
+    ratio_line("symlink-c-positions", "hand-c-positions", "; the same formula in hand-written C, same flags", 1.2)
+    ratio_line("symlink-positions", "symlink-c-positions", "; the NumPy module over the compiled C")
+    for name in ("symlink-c-positions", "hand-c-positions", "numba-positions", "symlink-positions"):
+        size = largest(name, "physical-limit")
+        mine, limit = _find(records, name, size), _find(records, "physical-limit", size)
+        if limit and mine:
+            lines.append(f"{name} / physical limit at N={size}: {mine['us_per_value'] / limit['us_per_value']:.2f}x "
+                         f"(the limit: {limit['us_per_value'] * 1e3:.3g} ns a value)")
     fsolve = _find(records, "fsolve")
     if fsolve:  # one call a value: its time per value does not depend on N; both solve positions only
-        for size in sorted({min(r["n"] for r in records if r["method"] == "symlink-positions"), largest} - {None}):
+        for size in sorted({min((r["n"] for r in records if r["method"] == "symlink-positions"), default=None),
+                            positions} - {None}):
             symlink = _find(records, "symlink-positions", size)
             if symlink:
                 ratio = fsolve["us_per_value"] / symlink["us_per_value"]
                 lines.append(f"fsolve ({fsolve['n']} values) / symlink-positions at N={size}, per value: "
                              f"{ratio:.0f}x (target >= 100x: {verdict(ratio >= 100)})")
-    compiled, hand_c = _find(records, "symlink-c", largest), _find(records, "hand-c", largest)
-    if compiled and hand_c:
-        ratio = compiled["us_per_value"] / hand_c["us_per_value"]
-        lines.append(f"symlink-c / hand-c at N={largest}: {ratio:.2f}x (target <= 1.2x: {verdict(ratio <= 1.2)})")
-    if compiled and positions:
-        ratio = positions["us_per_value"] / compiled["us_per_value"]
-        lines.append(f"symlink-positions / symlink-c at N={largest}: {ratio:.2f}x (target >= 3x: {verdict(ratio >= 3)})")
     return lines
 
 
 def plot(records: list[dict], path: str | os.PathLike) -> None:
-    """Log-log run time against error: one marker per method and N."""
+    """Two panels: time per value against N (each method a line), and time against error at the largest N."""
     import io
 
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    markers = "os^vD<>pXh*"
-    figure, axes = plt.subplots(figsize=(8, 5.5))
-    names = list(dict.fromkeys(r["method"] for r in records))
-    sizes = sorted({r["n"] for r in records})
+    markers = "os^vD<>pXh*P"
+    figure, (by_size, by_error) = plt.subplots(1, 2, figsize=(13, 6))
+    names = [name for name in dict.fromkeys(r["method"] for r in records)]
     for index, name in enumerate(names):
-        mine = [r for r in records if r["method"] == name and r["max_error"] is not None]
-        axes.scatter([max(r["max_error"], ERROR_FLOOR) for r in mine], [r["us_per_value"] for r in mine],
-                     s=[30 + 60 * sizes.index(r["n"]) for r in mine], marker=markers[index % len(markers)],
-                     label=name, alpha=0.8)
-        for r in mine:
-            axes.annotate(f"{r['n']:.0e}".replace("e+0", "e"), (max(r["max_error"], ERROR_FLOOR), r["us_per_value"]),
-                          fontsize=6, xytext=(4, 3), textcoords="offset points")
-    axes.set_xscale("log")
-    axes.set_yscale("log")
-    axes.set_xlabel("max angle error against 50-digit mpmath (rad)")
-    axes.set_ylabel("run time per input value (microseconds)")
-    axes.set_title("Four-bar positions: run time against error (marker size: N)")
-    axes.grid(True, which="both", alpha=0.3)
-    axes.legend(fontsize=8, loc="best")
+        mine = sorted((r for r in records if r["method"] == name), key=lambda r: r["n"])
+        style = dict(marker=markers[index % len(markers)], linestyle="-" if mine[0]["kind"] == "full" else "--",
+                     color="black" if name == "physical-limit" else None)
+        if len(mine) > 1:  # the per-value methods (one N) are on the right only
+            by_size.plot([r["n"] for r in mine], [r["us_per_value"] for r in mine], label=name, alpha=0.85, **style)
+        last = mine[-1]
+        if last["max_error"] is not None:
+            by_error.scatter([max(last["max_error"], ERROR_FLOOR)], [last["us_per_value"]], marker=style["marker"],
+                             s=50, label=f"{name} (N={last['n']:.0e})".replace("e+0", "e"), alpha=0.85)
+            by_error.annotate(name, (max(last["max_error"], ERROR_FLOOR), last["us_per_value"]), fontsize=6,
+                              xytext=(4, 3), textcoords="offset points")
+    for axes in (by_size, by_error):
+        axes.set_xscale("log")
+        axes.set_yscale("log")
+        axes.grid(True, which="both", alpha=0.3)
+        axes.set_ylabel("run time per input value (microseconds)")
+    by_size.set_xlabel("N, input values in one call")
+    by_size.set_title("Four-bar: time per value against N\n(solid: full kinematics, dashed: positions)")
+    by_size.legend(fontsize=6, loc="upper right", ncol=2)
+    by_error.set_xlabel("max angle error against 50-digit mpmath (rad)")
+    by_error.set_title("Time against error, at each method's largest N")
     figure.tight_layout()
     buffer = io.BytesIO()
-    figure.savefig(buffer, format="png", dpi=110)
+    figure.savefig(buffer, format="png", dpi=100)
     plt.close(figure)
     write_atomic(path, buffer.getvalue())
 
@@ -722,6 +1104,7 @@ def build_parser(prog: str = "python -m benchmarks") -> argparse.ArgumentParser:
     parser.add_argument("--json", metavar="FILE", help="write the records as JSON")
     parser.add_argument("--plot", metavar="FILE", help="write the run-time-against-error plot (PNG)")
     parser.add_argument("--no-derivation", action="store_true", help="skip the symbolic-side timings")
+    parser.add_argument("--no-limit", action="store_true", help="skip measuring the physical limit")
     return parser
 
 
@@ -743,9 +1126,14 @@ def run(args: argparse.Namespace) -> int:
     reference = 400 if args.quick else 2000
     _say(True, f"symlink bench: N = {', '.join(map(str, sizes))}; errors on up to {reference} values a size "
                f"(50-digit mpmath), residuals on all")
-    records = benchmark(sizes, methods, quick=args.quick, seed=args.seed, reference=reference)
+    records = benchmark(sizes, methods, quick=args.quick, seed=args.seed, reference=reference,
+                        limit=not args.no_limit)
     print(table(records))
     print()
+    limit = _find(records, "physical-limit", max(sizes))
+    if limit is not None:
+        print(f"physical limit (this machine): {limit['us_per_value'] * 1e3:.3g} ns a value at N={limit['n']}: "
+              f"{limit['note']}")
     for line in targets(records):
         print(line)
     if not args.no_derivation:

@@ -42,6 +42,7 @@ True
 from __future__ import annotations
 
 import hashlib
+import importlib.util
 import inspect
 import json
 import os
@@ -52,18 +53,18 @@ import warnings
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
-from typing import Callable, Sequence
-
-import sympy as sp
+from typing import TYPE_CHECKING, Callable, Sequence
 
 from .version import __version__
-from .codegen.numpy import load_numpy_module, numpy_module
 from .files import LEFTOVER_AGE, NotPrivate, private_folder, read_private, remove_leftovers, write_atomic
-from .linkage import Linkage
+
+if TYPE_CHECKING:
+    from .linkage import Linkage
 
 __all__ = ["GeneratedCode", "generated_code", "cache_directory", "trusted_directory", "definition", "cache_key",
            "cached_text", "clear_memory", "warn_once", "CacheWarning", "CODE_SHAPING", "code_shaping_files",
-           "ENVIRONMENT_VARIABLE", "CacheContents", "cache_contents", "clear_cache", "COMPILED_FOLDER"]
+           "ENVIRONMENT_VARIABLE", "CacheContents", "cache_contents", "clear_cache", "COMPILED_FOLDER",
+           "CATALOG_SHAPING", "catalog_key", "sympy_version"]
 
 ENVIRONMENT_VARIABLE = "SYMLINK_CACHE"
 #: Bumped whenever the layout of an entry changes.
@@ -77,6 +78,10 @@ FUNCTION = "solve"
 #: stay out, so that editing them keeps the cache.
 CODE_SHAPING = ("names", "vectors", "loops", "position", "motion", "linkage", "closure", "plan",  # the derivation
                 "catalog", "codegen", "export", "compiled")  # printing it
+#: What builds a catalog linkage (:mod:`symlink.catalog` and every symlink module it imports, directly or
+#: not) beyond :data:`CODE_SHAPING`: with it, the digest stands in for the linkage's definition in
+#: :func:`catalog_key`, so that a cached catalog scene is found without building the linkage (or importing SymPy).
+CATALOG_SHAPING = CODE_SHAPING + ("notation", "typeset")
 #: Largest entry read back (a generated module is some kilobytes; anything far larger is not ours).
 ENTRY_LIMIT = 64 << 20
 
@@ -150,6 +155,7 @@ def trusted_directory(folder: Path | None = None) -> Path | None:
 
 
 def _terms(vectors) -> list:
+    import sympy as sp
     return [[sign, sp.srepr(v.length), sp.srepr(v.angle), v.name] for sign, v in vectors.terms]
 
 
@@ -160,6 +166,7 @@ def definition(linkage: Linkage) -> str:
     >>> definition(fourbar()) == definition(fourbar())
     True
     """
+    import sympy as sp
     symbols = lambda items: [sp.srepr(s) for s in items]  # noqa: E731
     described = {
         "name": linkage.name,
@@ -174,8 +181,8 @@ def definition(linkage: Linkage) -> str:
     return json.dumps(described, separators=(",", ":"))
 
 
-def code_shaping_files() -> list[Path]:
-    """The files of the :data:`CODE_SHAPING` modules, in a fixed order.
+def code_shaping_files(modules: Sequence[str] = CODE_SHAPING) -> list[Path]:
+    """The files of the :data:`CODE_SHAPING` modules (or of ``modules``), in a fixed order.
 
     >>> names = {path.stem for path in code_shaping_files()}
     >>> "position" in names, "plot" in names
@@ -183,7 +190,7 @@ def code_shaping_files() -> list[Path]:
     """
     package = Path(__file__).parent
     files = []
-    for name in CODE_SHAPING:
+    for name in modules:
         module, folder = package / f"{name}.py", package / name
         if module.is_file():
             files.append(module)
@@ -196,21 +203,64 @@ def _module_bytes(path: Path) -> bytes:
     return path.read_bytes()
 
 
-@lru_cache(maxsize=1)
-def _source_digest() -> str:
+@lru_cache(maxsize=2)
+def _source_digest(modules: Sequence[str] = CODE_SHAPING) -> str:
     """SHA-256 of the modules that shape generated code: a change to any of them is a new key."""
     digest = hashlib.sha256()
     package = Path(__file__).parent
-    for path in code_shaping_files():
+    for path in code_shaping_files(modules):
         digest.update(path.relative_to(package).as_posix().encode() + b"\0" + _module_bytes(path) + b"\0")
     return digest.hexdigest()
 
 
 def cache_key(linkage: Linkage, outputs: Sequence[str], kind: str = "numpy") -> str:
     """The key of the ``kind`` code of ``outputs`` of ``linkage``: 64 hex digits."""
+    import sympy as sp
     described = json.dumps({
         "format": FORMAT, "kind": kind, "outputs": list(outputs), "linkage": definition(linkage),
         "symlink": __version__, "sympy": sp.__version__, "source": _source_digest(),
+    }, separators=(",", ":"))
+    return hashlib.sha256(described.encode()).hexdigest()
+
+
+@lru_cache(maxsize=1)
+def sympy_version() -> str:
+    """The installed SymPy's version, read from its ``release.py`` without importing SymPy (which takes 0.5 s).
+
+    Where that file cannot be read, its location and modification time stand in: still a new key whenever
+    SymPy is replaced.
+
+    >>> import sympy
+    >>> sympy_version() == sympy.__version__
+    True
+    """
+    spec = importlib.util.find_spec("sympy")
+    if spec is None or spec.origin is None:
+        return "none"
+    release = Path(spec.origin).parent / "release.py"
+    try:
+        found = re.search(r"""^__version__\s*=\s*["']([^"']+)["']""", release.read_text(encoding="utf-8"), re.MULTILINE)
+        if found:
+            return found.group(1)
+        return f"{release}@{release.stat().st_mtime_ns}"
+    except (OSError, UnicodeDecodeError):
+        return f"{spec.origin}@unreadable"
+
+
+def catalog_key(name: str, outputs: Sequence[str], kind: str) -> str:
+    """The key of the ``kind`` entry of ``outputs`` of the catalog linkage ``name``, without building it.
+
+    A catalog linkage takes no arguments: it is a function of the catalog's code, the modules that code
+    uses (:data:`CATALOG_SHAPING`, hashed) and SymPy's version, so those stand in for its definition.
+    Computed in about a millisecond, with no SymPy import.
+
+    >>> key = catalog_key("fourbar", ["rocker"], "scene")
+    >>> len(key), key == catalog_key("fourbar", ["coupler"], "scene")
+    (64, False)
+    """
+    described = json.dumps({
+        "format": FORMAT, "kind": kind, "outputs": list(outputs), "catalog": name,
+        "symlink": __version__, "sympy": sympy_version(), "source": _source_digest(CATALOG_SHAPING),
     }, separators=(",", ":"))
     return hashlib.sha256(described.encode()).hexdigest()
 
@@ -435,6 +485,7 @@ def generated_code(linkage: Linkage, outputs: Sequence[str]) -> GeneratedCode:
 
     Unknown output names raise ``ValueError`` before anything is derived or cached.
     """
+    from .codegen.numpy import load_numpy_module, numpy_module
     outputs = list(outputs)
     if not outputs:
         raise ValueError(f"ask {linkage.name} for at least one output; it has {', '.join(linkage.output_names())}")

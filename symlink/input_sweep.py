@@ -21,7 +21,7 @@ import numpy
 
 from .angles import UNITS
 
-__all__ = ["InputSweep", "MAX_VALUES", "MAX_ANGLE"]
+__all__ = ["InputSweep", "MAX_VALUES", "MAX_ANGLE", "crank_speeds"]
 
 #: More input values than this in one sweep is a mistake, not a table.
 MAX_VALUES = 10_000_000
@@ -122,3 +122,29 @@ class InputSweep:
     def array(self) -> numpy.ndarray:
         """All values at once (for sweeps known to be small)."""
         return self.block(0, self.count)
+
+
+def crank_speeds(angles: numpy.ndarray, speed: float, accel: float, first: float | None = None) -> numpy.ndarray:
+    """Crank speed at each angle (radians) when it speeds up uniformly from ``first`` (default: the first angle).
+
+    ``omega^2 = speed^2 + 2 accel (theta - theta_first)``, as the C program of
+    the velocity and acceleration paper steps it.  ``ValueError`` where the
+    crank would have stopped.
+
+    >>> crank_speeds(numpy.array([0.0, 1.0]), 2.0, 1.5).tolist()  # sqrt(4 + 2 * 1.5 * 1) = sqrt(7)
+    [2.0, 2.6457513110645907]
+    """
+    angles = numpy.asarray(angles, dtype=float)
+    if angles.size == 0:
+        return angles
+    first = angles.flat[0] if first is None else first
+    with numpy.errstate(over="ignore", invalid="ignore"):
+        squared = numpy.square(numpy.float64(speed)) + 2 * numpy.float64(accel) * (angles - first)
+    if not numpy.all(numpy.isfinite(squared)):
+        raise ValueError(f"a crank speed of {speed:g} rad/s with an acceleration of {accel:g} rad/s^2 is too large: "
+                         "its square overflows")
+    if numpy.any(squared < 0):
+        first = angles[squared < 0].flat[0]
+        raise ValueError(f"the crank stops before reaching {math.degrees(first):.6g} deg "
+                         f"(speed {speed} rad/s, acceleration {accel} rad/s^2)")
+    return numpy.sign(speed if speed != 0 else accel) * numpy.sqrt(squared)

@@ -11,19 +11,23 @@ import pytest
 from cache_fixture import empty_cache  # noqa: F401 - a fixture
 from references import mp_fourbar, seed003_positions
 from symlink.reachability import crank_range
-from benchmarks.bench import (METHODS, SEED_LINKAGES, benchmark, hand_numpy, is_grashof, newton, reference_positions,
-                           targets, workload)
+from benchmarks.bench import (EVERYTHING, METHODS, SEED_LINKAGES, Method, benchmark, halfangle_numpy, hand_numpy,
+                               hand_rates, is_grashof, newton, pylinkage_sweeps, reference_positions, reference_rates,
+                               targets, workload)
 from symlink.cli import main
 
-REQUIRED = {"symlink", "symlink-positions", "hand-numpy", "lambdify-nocse", "newton", "sympy-evalf"}
+#: The peers of the bench extra, and what each needs.
+OPTIONAL = {"numba": "numba", "numba-positions": "numba", "symengine-llvm": "symengine",
+            "symengine-llvm-positions": "symengine", "pylinkage": "pylinkage", "pylinkage-positions": "pylinkage",
+            "fsolve": "scipy.optimize"}
 
 
 pytestmark = pytest.mark.usefixtures("empty_cache")  # every test derives from scratch
 
 
-def has_scipy():
+def installed(module: str) -> bool:
     try:
-        import scipy.optimize  # noqa: F401
+        __import__(module)
     except ImportError:
         return False
     return True
@@ -31,22 +35,35 @@ def has_scipy():
 
 def test_quick_run_writes_records_and_plot(tmp_path, capsys):
     records, picture = tmp_path / "bench.json", tmp_path / "bench.png"
-    status = main(["bench", "--quick", "--sizes", "120", "--json", str(records), "--plot", str(picture)])
+    status = main(["bench", "--quick", "--sizes", "120", "--json", str(records), "--plot", str(picture),
+                   "--no-derivation", "--methods", "symlink,symlink-positions,hand-numpy,hand-numpy-positions,"
+                   "halfangle-numpy,newton,fsolve"])
     out, err = capsys.readouterr()
     assert status == 0, err
     found = json.loads(records.read_text())
     assert isinstance(found, list) and found
     for record in found:
         assert {"method", "n", "us_per_value", "max_error"} <= set(record)
-        assert record["method"] in METHODS and record["n"] >= 1 and record["us_per_value"] > 0
+        assert record["method"] in METHODS + ("physical-limit",) and record["n"] >= 1 and record["us_per_value"] > 0
     names = {r["method"] for r in found}
-    assert REQUIRED | ({"fsolve"} if has_scipy() else set()) <= names
+    assert {"symlink", "symlink-positions", "hand-numpy", "hand-numpy-positions", "halfangle-numpy",
+            "newton"} | ({"fsolve"} if installed("scipy.optimize") else set()) <= names
     by_name = {r["method"]: r for r in found}
-    for name in ("symlink", "symlink-positions", "hand-numpy", "sympy-evalf"):
+    for name in ("symlink", "symlink-positions", "hand-numpy"):
         assert by_name[name]["max_error"] < 1e-9, name  # closed forms, against 50 digits
     assert picture.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    assert "us/value" in out and "symlink-positions / hand-numpy" in out
+    assert "us/value" in out and "symlink-positions / hand-numpy-positions" in out
+    assert "halfangle-numpy (textbook half-angle form)" in out and "nocse" not in out
+    assert "physical limit (this machine)" in out or "no C compiler" in err
+
+
+@pytest.mark.slow  # derives every scene twice in new processes, and runs sympy-evalf
+def test_symbolic_side_and_slow_methods(capsys):
+    status = main(["bench", "--quick", "--sizes", "60", "--methods", "sympy-evalf,symlink", "--no-limit"])
+    out, err = capsys.readouterr()
+    assert status == 0, err
     assert "from cache" in out and "loading the generated module" in out
+    assert "sympy-evalf" in out
 
 
 ROOT = Path(__file__).parent.parent
@@ -56,12 +73,12 @@ ROOT = Path(__file__).parent.parent
 def test_entry_points_and_method_choice_progress_on_stderr(tmp_path, command):
     records = tmp_path / "r.json"
     done = subprocess.run([sys.executable, *command, "--sizes", "60", "--methods", "hand-numpy,newton",
-                           "--no-derivation", "--json", str(records)], capture_output=True, text=True,
+                           "--no-derivation", "--no-limit", "--json", str(records)], capture_output=True, text=True,
                           cwd=ROOT if command[0] == "-m" else tmp_path)  # the script runs from anywhere
     assert done.returncode == 0, done.stderr
     assert sorted(r["method"] for r in json.loads(records.read_text())) == ["hand-numpy", "newton"]
     assert "N = 60" in done.stderr and "us/value" in done.stderr  # progress
-    assert "N = 60" not in done.stdout and done.stdout.splitlines()[0].split()[:2] == ["method", "N"]  # results
+    assert "N = 60" not in done.stdout and done.stdout.splitlines()[0].split()[:3] == ["method", "kind", "N"]  # results
 
 
 def test_symlink_bench_without_the_source_checkout_says_so_in_one_line(monkeypatch, capsys):
@@ -74,7 +91,7 @@ def test_symlink_bench_without_the_source_checkout_says_so_in_one_line(monkeypat
 
 def test_failed_write_is_one_line_exit_1(tmp_path, capsys):
     (tmp_path / "taken").mkdir()  # a folder where the file should go
-    status = main(["bench", "--sizes", "30", "--methods", "hand-numpy", "--no-derivation",
+    status = main(["bench", "--sizes", "30", "--methods", "hand-numpy", "--no-derivation", "--no-limit",
                    "--json", str(tmp_path / "taken")])
     _, err = capsys.readouterr()
     errors = [line for line in err.splitlines() if ": error:" in line or "Traceback" in line]
@@ -91,19 +108,23 @@ def test_failed_write_is_one_line_exit_1(tmp_path, capsys):
     (["--sizes", "x"], "not a number"),
 ])
 def test_bad_options_one_line_exit_2(capsys, argv, message):
-    status = main(["bench", "--no-derivation", *argv])
+    status = main(["bench", "--no-derivation", "--no-limit", *argv])
     _, err = capsys.readouterr()
     assert status == 2 and err.count("\n") == 1 and message in err
 
 
 def test_missing_optional_methods_are_skipped_with_a_note(monkeypatch, capsys):
-    monkeypatch.setitem(sys.modules, "scipy.optimize", None)
-    monkeypatch.setitem(sys.modules, "symlink.compiled", None)
-    status = main(["bench", "--sizes", "40", "--methods", "fsolve,symlink-c,hand-c,hand-numpy", "--no-derivation"])
+    for module in ("scipy.optimize", "symlink.compiled", "numba", "symengine", "pylinkage"):
+        monkeypatch.setitem(sys.modules, module, None)
+    status = main(["bench", "--sizes", "40", "--no-derivation", "--methods",
+                   "fsolve,symlink-c,hand-c-positions,numba,symengine-llvm,pylinkage,hand-numpy"])
     out, err = capsys.readouterr()
     assert status == 0
     assert "skipped fsolve: scipy is not installed" in err  # a note, with the progress
-    assert "skipped symlink-c" in err and "skipped hand-c" in err
+    for name in ("numba", "symengine-llvm", "pylinkage"):
+        assert f"skipped {name}: " in err and "pip install 'symlink-kinematics[bench]'" in err
+    assert "skipped symlink-c" in err and "skipped hand-c-positions" in err
+    assert "physical limit" not in out  # no C here either
     assert "hand-numpy" in out.split("method")[-1]
 
 
@@ -122,12 +143,42 @@ def test_reference_agrees_with_the_independent_one():
                 assert abs(float(mine[1] - theirs["phi"])) < 1e-40
 
 
-def test_hand_numpy_is_the_seed_formula():
+def test_halfangle_numpy_is_the_seed_formula():
     theta = numpy.radians(numpy.arange(0.0, 360.0, 7.0))
     lengths = SEED_LINKAGES["seed003"]
     for branch in (1, -1):
-        numpy.testing.assert_allclose(hand_numpy(theta, *lengths, branch),
+        numpy.testing.assert_allclose(halfangle_numpy(theta, *lengths, branch),
                                       seed003_positions(*lengths, theta, branch), rtol=0, atol=1e-13)
+
+
+def test_hand_numpy_and_hand_rates_match_the_independent_reference():
+    rng = numpy.random.default_rng(8)
+    for name, lengths in SEED_LINKAGES.items():
+        theta = numpy.sort(rng.uniform(-math.pi, math.pi, 12))
+        for branch in (1, -1):
+            beta, phi = hand_numpy(theta, *lengths, branch)
+            rates = hand_rates(theta, *lengths[:3], beta, phi, 10.5, 2.0)
+            for i, angle in enumerate(theta):
+                try:
+                    exact = mp_fourbar(*lengths, theta=angle, branch=branch, crank_speed=10.5, crank_accel=2.0)
+                except ValueError:
+                    assert numpy.isnan(phi[i])
+                    continue
+                assert abs(numpy.angle(numpy.exp(1j * (phi[i] - float(exact["phi"]))))) < 1e-12
+                assert abs(numpy.angle(numpy.exp(1j * (beta[i] - float(exact["beta"]))))) < 1e-12
+                for value, key in zip((r[i] for r in rates), ("beta_speed", "phi_speed", "beta_accel", "phi_accel")):
+                    assert value == pytest.approx(float(exact[key]), rel=1e-9, abs=1e-9), (name, key)
+
+
+def test_reference_rates_agree_with_the_independent_ones():
+    lengths = SEED_LINKAGES["seed002"]
+    for theta in (-2.0, 0.3, 1.7):
+        for branch in (1, -1):
+            beta, phi = reference_positions(*lengths, theta, branch)
+            mine = reference_rates(*lengths[:3], theta, beta, phi, 10.5, 2.0)
+            theirs = mp_fourbar(*lengths, theta=theta, branch=branch, crank_speed=10.5, crank_accel=2.0)
+            for value, key in zip(mine, ("beta_speed", "phi_speed", "beta_accel", "phi_accel")):
+                assert abs(float(value - theirs[key])) < 1e-30 * max(1.0, abs(float(theirs[key])))
 
 
 def test_newton_converges_from_the_offset_start():
@@ -159,27 +210,124 @@ def test_records_carry_errors_and_residuals():
         assert record["max_residual"] < 1e-12 and record["median_error"] <= record["max_error"]
 
 
+def _available(names):
+    return [name for name in names if name not in OPTIONAL or installed(OPTIONAL[name])]
+
+
+NUMPY_METHODS = ["symlink", "symlink-positions", "hand-numpy", "hand-numpy-positions", "halfangle-numpy"]
+#: Every method but the slow per-value ones (fsolve, sympy-evalf) and newton (it may converge to the other branch
+#: near a toggle: the benchmark reports that as its error).
+EVERY_METHOD = [m for m in METHODS if m not in ("fsolve", "sympy-evalf", "newton")]
+
+
+@pytest.mark.parametrize("chosen", [NUMPY_METHODS, pytest.param(EVERY_METHOD, marks=pytest.mark.slow)],
+                         ids=["numpy", "every"])
+def test_every_method_gives_the_right_numbers(chosen):
+    """Positions against 50-digit mpmath for every method, rates too for full kinematics (no timings).
+
+    The peers (numba, SymEngine, pylinkage) compile for some 30 s here: that run is marked slow.
+    """
+    chosen = _available(chosen)
+    stepping = [name for name in chosen if name.startswith("pylinkage")]
+    # pylinkage continues each position from the one before: at 20 steps a turn it can jump to the other
+    # assembly (a property of its method, which the benchmark reports as its error), so it gets 100 a turn
+    records = benchmark(sizes=[360], methods=[m for m in chosen if m not in stepping], reference=360, verbose=False)
+    if stepping:
+        records += benchmark(sizes=[1800], methods=stepping, reference=360, verbose=False)
+    found = {r["method"]: r for r in records}
+    for name in chosen:
+        if name not in found:  # a C method without a compiler
+            assert "-c" in name
+            continue
+        record = found[name]
+        bound = 1e-12 if "halfangle" in name else 1e-13  # the half-angle form loses digits where A is small
+        assert record["failures"] == 0 and record["max_error"] < bound, name
+        assert record["max_residual"] < 1e-12, name
+        if record["kind"] == "full":
+            assert record["max_rate_error"] < 1e-9, name
+        assert record["reference_n"] >= (100 if name.startswith("pylinkage") else 300), name
+
+
+@pytest.mark.slow  # compiles the numba loops and SymEngine's LLVM code
+def test_methods_agree_with_each_other_on_every_output():
+    """All full-kinematics methods on the same values give the same six outputs (to rounding)."""
+    from benchmarks.bench import _methods, stacked
+    sweeps = [s for s in workload(240, seed=9, reference=1) if s.name.startswith("seed")]
+    everything = stacked(sweeps)
+    names = _available(["symlink", "hand-numpy", "numba", "symengine-llvm", "lambdify-cse", "symlink-c"])
+    results = {}
+    for name in names:
+        from benchmarks.bench import Unavailable
+        try:
+            results[name] = _methods(True)[name]().solve(everything)
+        except Unavailable:
+            continue
+    reference = results["symlink"]
+    for name, result in results.items():
+        for output in EVERYTHING:
+            mine, theirs = numpy.asarray(result[output]), numpy.asarray(reference[output])
+            scale = numpy.maximum(numpy.abs(theirs), 10.5 if "speed" in output else 110.25 if "accel" in output
+                                  else 1.0)
+            assert numpy.nanmax(numpy.abs(mine - theirs) / scale) < 1e-9, (name, output)
+
+
+def test_every_method_is_called_once_for_the_whole_workload():
+    """The same calling convention for all: one call with every value (pylinkage: one call a linkage)."""
+    from benchmarks.bench import _timed
+    sweeps = workload(180, seed=4, reference=10)
+    calls = []
+
+    def solve(sweep):
+        calls.append(len(sweep.theta))
+        return {"coupler": numpy.zeros(len(sweep.theta)), "rocker": numpy.zeros(len(sweep.theta))}
+    methods = [Method("together", solve), Method("alone", solve, per_linkage=True)]
+    _timed(methods[:1], {"together": sweeps}, budget=0.0)
+    assert calls == [180]  # once (the budget stops further rounds), with all 180 values
+    calls.clear()
+    _timed(methods[1:], {"alone": sweeps}, budget=0.0)
+    assert calls == [len(s.theta) for s in sweeps]
+
+
+def test_pylinkage_workload_is_the_full_turn_sweeps_evenly_spaced():
+    sweeps = workload(900, seed=2, reference=50)
+    own = pylinkage_sweeps(sweeps, seed=2, reference=50)
+    assert own and len(own) < len(sweeps)
+    for sweep in own:
+        assert crank_range(*sweep.lengths) == [(-math.pi, math.pi)]
+        steps = numpy.diff(sweep.theta)
+        assert numpy.allclose(steps, 2 * math.pi / len(sweep.theta), rtol=1e-12)
+        assert len(sweep.sample) and len(sweep.rates) == 4
+
+
 def test_target_lines_state_the_ratios():
+    def record(method, n, us, kind="positions", size=None, error=1e-15):
+        return {"method": method, "kind": kind, "n": n, "size": size or n, "us_per_value": us, "max_error": error,
+                "failures": 0}
     records = [
-        {"method": "symlink", "n": 1000, "us_per_value": 0.2, "max_error": 1e-15, "failures": 0},
-        {"method": "symlink-positions", "n": 1000, "us_per_value": 0.08, "max_error": 1e-15, "failures": 0},
-        {"method": "hand-numpy", "n": 1000, "us_per_value": 0.1, "max_error": 1e-13, "failures": 0},
-        {"method": "fsolve", "n": 100, "us_per_value": 30.0, "max_error": 1e-10, "failures": 0},
+        record("symlink", 1000, 0.2, "full"), record("numba", 1000, 0.16, "full"),
+        record("pylinkage", 600, 0.8, "full", size=1000),
+        record("symlink-positions", 1000, 0.08), record("hand-numpy-positions", 1000, 0.1),
+        record("halfangle-numpy", 1000, 0.1, error=1e-13), record("physical-limit", 1000, 0.01, error=None),
+        record("fsolve", 100, 30.0),
     ]
     lines = "\n".join(targets(records))
-    assert "symlink-positions / hand-numpy at N=1000: 0.80x (target <= 1.3x: held)" in lines
-    assert "at least as accurate: held" in lines
-    assert "symlink-positions / symlink at N=1000: 0.40x (target <= 0.5x: held)" in lines
+    assert "symlink / numba at N=1000: 1.25x (target <= 1.3x: held)" in lines
+    assert "symlink-positions / hand-numpy-positions at N=1000: 0.80x" in lines
+    assert "halfangle-numpy (textbook half-angle form) at N=1000: 0.80x; max error 1.00e-15 vs 1.00e-13" in lines
+    assert "symlink / pylinkage at N=1000: 0.25x (full kinematics; pylinkage 0.8 us a value on its 600 values)" in lines
+    assert "symlink-positions / physical limit at N=1000: 8.00x" in lines
     # fsolve solves positions only: compared with symlink-positions, 30 / 0.08 = 375
     assert "fsolve (100 values) / symlink-positions at N=1000, per value: 375x (target >= 100x: held)" in lines
-    records[1]["us_per_value"] = 0.15
+    records[1]["us_per_value"] = 0.1
     assert "target <= 1.3x: MISSED" in "\n".join(targets(records))
 
 
 def test_stacked_call_gives_the_per_sweep_results():
-    from benchmarks.bench import hand_numpy, stacked, unstacked, workload
+    from benchmarks.bench import stacked, unstacked
     sweeps = workload(90, seed=3, reference=10)
-    together = unstacked(hand_numpy(*(lambda s: (s.theta, *s.lengths, s.branch))(stacked(sweeps))), sweeps)
-    for sweep, (beta, phi) in zip(sweeps, together):
+    whole = stacked(sweeps)
+    beta, phi = hand_numpy(whole.theta, *whole.lengths, whole.branch)
+    together = unstacked({"coupler": beta, "rocker": phi}, sweeps)
+    for sweep, part in zip(sweeps, together):
         alone = hand_numpy(sweep.theta, *sweep.lengths, sweep.branch)
-        assert numpy.array_equal(alone[0], beta) and numpy.array_equal(alone[1], phi)
+        assert numpy.array_equal(alone[0], part["coupler"]) and numpy.array_equal(alone[1], part["rocker"])

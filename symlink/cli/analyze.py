@@ -5,10 +5,7 @@ import argparse
 import json
 from typing import Any
 
-from ..analysis import analyze_linkage, fourbar_report
 from ..angles import from_radians
-from ..closure import is_angle
-from ..linkage_file import load_linkage
 from .options import (add_fourbar_lengths, add_units_option, assignments, command_help, fourbar_lengths,
                       fourbar_or_linkage, linkage_values)
 
@@ -33,12 +30,15 @@ def in_units(report: dict, units: str) -> dict:
 
 def register(commands) -> None:
     """Register ``symlink analyze``."""
-    command = commands.add_parser("analyze", **command_help(
+    commands.add_parser("analyze", populate=_add_options, **command_help(
         "mobility, reachable range, toggles, transmission angles and limit positions of a linkage",
         "lengths in any one unit; printed angles in --units (deg by default)",
         "symlink analyze --crank 20 --coupler 66 --rocker 56 --ground 80",
         "With NAME|FILE any one-input linkage (values from its file or the catalog's example, --set to change):\n"
         "symlink analyze jansen --output H_y"))
+
+
+def _add_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("linkage", nargs="?", metavar="NAME|FILE",
                          help="a catalog linkage or a linkage file (without it: the four-bar of the length options)")
     add_fourbar_lengths(command, beside_linkage=True)
@@ -55,6 +55,7 @@ def register(commands) -> None:
 def run(args: argparse.Namespace) -> int:
     if fourbar_or_linkage(args, "analyze"):
         return run_linkage(args)
+    from ..analysis import fourbar_report
     a, b, c, d = fourbar_lengths(args)
     report = in_units(fourbar_report(a, b, c, d, int(args.branch)), args.units)
     if args.format == "json":
@@ -89,6 +90,9 @@ def run(args: argparse.Namespace) -> int:
 
 def run_linkage(args: argparse.Namespace) -> int:
     """``symlink analyze NAME|FILE``: the general analysis of any one-input linkage."""
+    from ..analysis import analyze_linkage
+    from ..closure import is_angle
+    from ..linkage_file import load_linkage
     found = load_linkage(args.linkage)
     linkage, values = found.linkage, linkage_values(found, args.set, args.units)
     known = {s.name: s for s in linkage.parameters + linkage.inputs}

@@ -3,13 +3,11 @@ from __future__ import annotations
 
 import argparse
 
-from ..catalog import CATALOG
-from ..export import FORMATS, export
-from ..linkage_file import load_linkage
 from .options import command_help
 
 
 def _add_options(command: argparse.ArgumentParser) -> None:
+    from ..export import FORMATS
     command.add_argument("--to", required=True, choices=list(FORMATS), help="the format")
     command.add_argument("--out", required=True, metavar="DIR", help="the folder to write into")
     command.add_argument("--outputs", metavar="LIST",
@@ -21,21 +19,30 @@ def _add_options(command: argparse.ArgumentParser) -> None:
 def register(commands) -> None:
     """Register ``symlink export`` and ``symlink derive``."""
     units = "the generated functions take angles in rad, speeds in rad/s, lengths in any one unit"
-    command = commands.add_parser("export", **command_help(
+    commands.add_parser("export", populate=_add_export_options, **command_help(
         "write a linkage's solvers as NumPy, C, Octave or LaTeX", units,
         "symlink export fourbar --to c --out build/"))
+    commands.add_parser("derive", populate=_add_derive_options, **command_help(
+        "derive a linkage file's closed forms and write them as NumPy, C, Octave or LaTeX", units,
+        "symlink derive linkages/fourbar.toml --to numpy --out build/"))
+
+
+def _add_export_options(command: argparse.ArgumentParser) -> None:
+    from ..catalog import CATALOG
     command.add_argument("name", metavar="NAME|FILE",
                          help=f"a catalog linkage ({', '.join(sorted(CATALOG))}) or a linkage file (.toml)")
     _add_options(command)
-    command = commands.add_parser("derive", **command_help(
-        "derive a linkage file's closed forms and write them as NumPy, C, Octave or LaTeX", units,
-        "symlink derive linkages/fourbar.toml --to numpy --out build/"))
+
+
+def _add_derive_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("name", metavar="FILE|NAME", help="a linkage file (.toml) or a catalog linkage")
     _add_options(command)
 
 
 def run(args: argparse.Namespace) -> int:
     """Write the files (all or none) and name them."""
+    from ..export import export
+    from ..linkage_file import load_linkage
     outputs = None if args.outputs is None else [o.strip() for o in args.outputs.split(",") if o.strip()]
     for path in export(load_linkage(args.name).linkage, args.to, args.out, outputs):
         print(f"wrote {path}")

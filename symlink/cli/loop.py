@@ -5,7 +5,6 @@ import argparse
 import json
 
 from ..angles import from_radians, half_turn, to_radians, wrap
-from ..loopcase import NAMES, solve_case
 from .options import add_units_option, command_help, figure_path, finite
 from .output import json_number, note, print_rows
 
@@ -27,6 +26,7 @@ def register(commands) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from ..loopcase import NAMES, solve_case
     values = {n: getattr(args, n) for n in NAMES}
     values = {n: (float(to_radians(v, args.units)) if n.startswith("t") and v is not None else v)
               for n, v in values.items()}

@@ -13,12 +13,13 @@ import argparse
 import math
 import re
 from pathlib import Path
-from typing import Callable, Collection, Mapping, NoReturn
+from typing import TYPE_CHECKING, Callable, Collection, Mapping, NoReturn
 
 from ..angles import to_radians
-from ..closure import is_angle
 from ..input_sweep import InputSweep
-from ..linkage_file import LinkageFile
+
+if TYPE_CHECKING:
+    from ..linkage_file import LinkageFile
 
 __all__ = ["UsageError", "Parser", "finite", "number_list", "pair", "assignments", "figure_path", "add_sweep_options",
            "add_fourbar_lengths", "fourbar_lengths", "add_branch_option", "add_units_option", "add_format_option",
@@ -126,6 +127,7 @@ def linkage_values(found: LinkageFile, settings: Mapping[str, float], units: str
     Names other than the linkage's parameters, inputs and ``extra`` (a
     command's own settings, such as a geared input's ``psi_ratio``) are refused.
     """
+    from ..closure import is_angle
     linkage = found.linkage
     known = {s.name: s for s in linkage.parameters + linkage.inputs}
     for name in settings:

@@ -23,9 +23,8 @@ from typing import Callable, Collection, Iterable, Iterator, Mapping, TextIO
 import numpy
 
 from ..angles import from_radians, half_turn, wrap
-from ..reachability import describe_spans
 
-__all__ = ["format_number", "json_number", "RowWriter", "print_rows", "describe_spans", "TableAssembler", "note"]
+__all__ = ["format_number", "json_number", "RowWriter", "print_rows", "TableAssembler", "note"]
 
 #: Angles named one by one in a note before the rest are counted.
 LISTED_ANGLES = 50

@@ -11,7 +11,6 @@ import sys
 from typing import Sequence
 
 from ..angles import to_radians, wrap
-from ..linkage_file import load_linkage
 from .options import (add_branch_option, add_fourbar_lengths, add_units_option, assignments, branches, command_help,
                       figure_path, finite, fourbar_lengths, fourbar_or_linkage, linkage_values, pair, whole)
 from .output import note
@@ -23,6 +22,7 @@ def drawn_linkage(args: argparse.Namespace):
     """The linkage NAME|FILE and its values (``--set``), ``--angle`` (the first input, in --units) and
     ``--branch`` for every branch."""
     from ..closure import is_angle
+    from ..linkage_file import load_linkage
     found = load_linkage(args.linkage)
     linkage, values = found.linkage, linkage_values(found, args.set or {}, args.units)
     if args.angle is not None:
@@ -174,27 +174,47 @@ def run_view(args: argparse.Namespace) -> int:
     return 0
 
 
-def register(commands) -> None:
-    """Register ``symlink draw``, ``curve``, ``animate`` and ``view``."""
+def _catalog_names() -> str:
     from ..catalog import CATALOG
-    from ..plot.animation import FRAMES
-    from ..plot.view import SEED001
-    draw = commands.add_parser("draw", **command_help(
+    return ", ".join(sorted(CATALOG))
+
+
+def register(commands) -> None:
+    """Register ``symlink draw``, ``curve``, ``animate`` and ``view`` (their options are added when used: the
+    catalog and Matplotlib are imported only then)."""
+    commands.add_parser("draw", populate=_add_draw_options, **command_help(
         "draw a linkage (catalog name or file) at one input value, with the paths of its points, as PNG or SVG",
         "values of the catalog's example (lengths in any one unit); angles in --units (deg by default)",
         "symlink draw jansen --angle 30 --trace H --out jansen.png"))
+    commands.add_parser("curve", populate=_add_curve_options, **command_help(
+        "the curve of a coupler point over a crank turn (or of any linkage's points: NAME --trace P), as PNG or SVG",
+        "lengths in any one unit; angles in --units (deg by default)",
+        "symlink curve --crank 20 --coupler 66 --rocker 56 --ground 80 --coupler-point 40,30 --out curve.png"))
+    commands.add_parser("animate", populate=_add_animate_options, **command_help(
+        "animate a catalog linkage or a four-bar over a turn of its input (GIF, or MP4 with ffmpeg)",
+        "lengths in any one unit; angles in --units (deg by default)",
+        "symlink animate --crank 0.1 --coupler 0.4 --rocker 0.25 --ground 0.3 --out fourbar.gif",
+        "A catalog NAME animates that linkage with its example values: symlink animate jansen --out jansen.gif.\n"
+        "An input that cannot turn fully is swept over its reachable range, forward and back."))
+    commands.add_parser("view", populate=_add_view_options, **command_help(
+        "an interactive linkage (Matplotlib window with a slider for each parameter)",
+        "lengths in any one unit; --crank-angle in --units (deg by default); --crank-speed rad/s",
+        "symlink view --crank 0.1 --coupler 0.4 --rocker 0.25 --ground 0.3 --save view.png",
+        "Without NAME|FILE the four-bar view (lengths default to the Maple worksheet's); with one, any linkage:\n"
+        "symlink view jansen --save jansen-view.png"))
+
+
+def _add_draw_options(draw: argparse.ArgumentParser) -> None:
     draw.add_argument("linkage", metavar="NAME|FILE",
-                      help="a catalog linkage (" + ", ".join(sorted(CATALOG)) + ") or a linkage file (.toml)")
+                      help="a catalog linkage (" + _catalog_names() + ") or a linkage file (.toml)")
     _add_catalog_options(draw, "the first input's value")
     add_branch_option(draw, both=False, default="+1")
     add_units_option(draw, "angles given")
     draw.add_argument("--out", type=figure_path, required=True, metavar="FILE", help=".png or .svg")
     draw.set_defaults(run=run_draw)
 
-    curve = commands.add_parser("curve", **command_help(
-        "the curve of a coupler point over a crank turn (or of any linkage's points: NAME --trace P), as PNG or SVG",
-        "lengths in any one unit; angles in --units (deg by default)",
-        "symlink curve --crank 20 --coupler 66 --rocker 56 --ground 80 --coupler-point 40,30 --out curve.png"))
+
+def _add_curve_options(curve: argparse.ArgumentParser) -> None:
     curve.add_argument("linkage", nargs="?", metavar="NAME|FILE",
                        help="a catalog linkage or a linkage file: draws it with the paths of --trace points")
     add_fourbar_lengths(curve, beside_linkage=True)
@@ -208,14 +228,11 @@ def register(commands) -> None:
     curve.add_argument("--out", type=figure_path, required=True, metavar="FILE", help=".png or .svg")
     curve.set_defaults(run=run_curve)
 
-    animation = commands.add_parser("animate", **command_help(
-        "animate a catalog linkage or a four-bar over a turn of its input (GIF, or MP4 with ffmpeg)",
-        "lengths in any one unit; angles in --units (deg by default)",
-        "symlink animate --crank 0.1 --coupler 0.4 --rocker 0.25 --ground 0.3 --out fourbar.gif",
-        "A catalog NAME animates that linkage with its example values: symlink animate jansen --out jansen.gif.\n"
-        "An input that cannot turn fully is swept over its reachable range, forward and back."))
+
+def _add_animate_options(animation: argparse.ArgumentParser) -> None:
+    from ..plot.animation import FRAMES
     animation.add_argument("linkage", nargs="?", metavar="NAME|FILE",
-                           help="a catalog linkage (" + ", ".join(sorted(CATALOG)) + ") or a linkage file (.toml)")
+                           help="a catalog linkage (" + _catalog_names() + ") or a linkage file (.toml)")
     add_fourbar_lengths(animation, beside_linkage=True)
     _add_catalog_options(animation, "where the input starts")
     add_branch_option(animation, both=False, default="+1")
@@ -227,12 +244,9 @@ def register(commands) -> None:
     animation.add_argument("--out", required=True, metavar="FILE", help=".gif or .mp4")
     animation.set_defaults(run=run_animate)
 
-    view = commands.add_parser("view", **command_help(
-        "an interactive linkage (Matplotlib window with a slider for each parameter)",
-        "lengths in any one unit; --crank-angle in --units (deg by default); --crank-speed rad/s",
-        "symlink view --crank 0.1 --coupler 0.4 --rocker 0.25 --ground 0.3 --save view.png",
-        "Without NAME|FILE the four-bar view (lengths default to the Maple worksheet's); with one, any linkage:\n"
-        "symlink view jansen --save jansen-view.png"))
+
+def _add_view_options(view: argparse.ArgumentParser) -> None:
+    from ..plot.view import SEED001
     view.add_argument("linkage", nargs="?", metavar="NAME|FILE", help="a catalog linkage or a linkage file")
     add_fourbar_lengths(view, defaults=SEED001, beside_linkage=True)
     _add_catalog_options(view, "the first input's initial value (with NAME)")

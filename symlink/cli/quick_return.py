@@ -5,18 +5,21 @@ import argparse
 import json
 import math
 
-from ..synthesis.quick_return import MAX_LINK_RATIO, as_record, quick_return
 from .options import command_help, finite, pair
 from .output import note
 
 
 def register(commands) -> None:
     """Register ``symlink quick-return``."""
-    command = commands.add_parser("quick-return", **command_help(
+    commands.add_parser("quick-return", populate=_add_options, **command_help(
         "synthesize a quick-return crank-rocker from time ratio, stroke and rocker",
         "lengths in the rocker's unit; angles in degrees",
         "symlink quick-return --time-ratio 1.25 --stroke 40 --rocker 50",
         "Quick-return crank-rocker synthesis, exact. The rocker pivot is at the origin."))
+
+
+def _add_options(command: argparse.ArgumentParser) -> None:
+    from ..synthesis.quick_return import MAX_LINK_RATIO
     command.add_argument("--time-ratio", type=finite, required=True, metavar="TR", help="slow over quick stroke, >= 1")
     command.add_argument("--stroke", type=finite, required=True, metavar="DEG", help="rocker swing, degrees")
     command.add_argument("--rocker", type=finite, required=True, metavar="L", help="rocker length")
@@ -32,6 +35,7 @@ def register(commands) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from ..synthesis.quick_return import as_record, quick_return
     design = quick_return(args.time_ratio, math.radians(args.stroke), args.rocker,
                           math.radians(args.rocker_min_angle), args.crank_pivot, args.max_link_ratio)
     record = as_record(design)

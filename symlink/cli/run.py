@@ -5,20 +5,21 @@ import argparse
 import sys
 from typing import cast
 
-from ..scene import FORMATS, angle_outputs, read_scene, scene_from_text
-from ..reachability import crank_range
 from .options import command_help
-from .output import describe_spans
 from .tables import write_table
 
 
 def register(commands) -> None:
     """Register ``symlink run``."""
-    command = commands.add_parser("run", **command_help(
+    commands.add_parser("run", populate=_add_options, **command_help(
         "evaluate a scene file (TOML: numbers and names only)",
         "as the file says: units = \"deg\" (default) or \"rad\" for input and printed angles",
         "symlink run scene.toml --format csv",
         "The file names a catalog linkage, its outputs, parameters and the input sweep; - reads it from stdin."))
+
+
+def _add_options(command: argparse.ArgumentParser) -> None:
+    from ..scene import FORMATS
     command.add_argument("scene", help="a TOML scene file, or - for standard input")
     command.add_argument("--format", choices=list(FORMATS), help="override the file's format")
     command.set_defaults(run=run)
@@ -26,6 +27,7 @@ def register(commands) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Print the scene's outputs at each input angle and branch."""
+    from ..scene import angle_outputs, read_scene, scene_from_text
     if args.scene == "-":
         found = scene_from_text(sys.stdin.read(), "<stdin>")
     else:
@@ -35,6 +37,7 @@ def run(args: argparse.Namespace) -> int:
 
     def spans() -> str:
         if scene.linkage.name == "fourbar":
+            from ..reachability import crank_range, describe_spans
             return describe_spans(crank_range(*(cast(float, scene.values[n]) for n in "abcd")), found.units)
         return f"not computed for {scene.linkage.name}"
 

@@ -23,6 +23,7 @@ range is known in closed form.  Everything else follows from the linkage:
   the order the entry lists them: Stephenson III by coupler angle) that
   continues over the whole sweep.
 
+>>> from symlink.scene import catalog_linkage
 >>> print(", ".join(table_columns(catalog_linkage("watt2"))))
 crank, branch, coupler, rocker, coupler2, output, coupler_speed, rocker_speed, coupler2_speed, output_speed, coupler_accel, rocker_accel, coupler2_accel, output_accel
 >>> loop_branches(2)("+1,both")
@@ -33,26 +34,22 @@ from __future__ import annotations
 import argparse
 import itertools
 from dataclasses import dataclass
-from typing import Any, Callable, Collection, Iterable, Mapping
+from typing import TYPE_CHECKING, Any, Callable, Collection, Iterable, Mapping
 
 import numpy
 
 from ..angles import from_radians, half_turn, to_radians, wrap
 from ..assemblies import stephenson3_assemblies
-from ..catalog import fourbar
-from ..input_sweep import InputSweep
-from ..linkage import Linkage
-from ..linkage_file import load_linkage
-from ..outputs import label, table_outputs
-from ..closure import is_angle
-from ..reachability import (crank_range, fivebar_range, inverted_slider_crank_range, scanned_range,
-                            slider_crank_range)
-from ..scene import catalog_linkage
-from ..solver import NumericSolver, Solver, check_lengths, crank_speeds
-from ..vectors import acceleration, rate
+from ..input_sweep import InputSweep, crank_speeds
 from .options import (add_fourbar_lengths, add_sweep_options, assignments, branches, command_help, finite, fourbar_lengths,
                       input_sweep, linkage_values)
-from .output import RowWriter, TableAssembler, describe_spans, print_rows
+from .output import RowWriter, TableAssembler, print_rows
+
+if TYPE_CHECKING:
+    from ..linkage import Linkage
+
+# The symbolic side (linkages, their labels, Solver: SymPy) is imported inside the functions that need it, so
+# that ``symlink fourbar`` with its code in the disk cache never imports SymPy (symlink.cached_solver).
 
 __all__ = ["Option", "Table", "TABLES", "table_columns", "loop_branches", "write_table", "register"]
 
@@ -105,6 +102,7 @@ class Table:
 
 def table_columns(linkage: Linkage) -> list[str]:
     """The csv header of a linkage's table command."""
+    from ..outputs import label, table_outputs
     first, *further = linkage.inputs
     return [label(linkage, first), "branch"] + [label(linkage, x) for x in further] + list(table_outputs(linkage))
 
@@ -131,6 +129,7 @@ _guess = assignments("NAME=ANGLE")
 
 def _spans_text(spans: list[tuple[float, float]] | str, units: str) -> str:
     """A reachable crank range for messages: intervals in ``units``, or a sentence as it is."""
+    from ..reachability import describe_spans
     return spans if isinstance(spans, str) else describe_spans(spans, units)
 
 
@@ -157,6 +156,8 @@ def add_table_command(commands: argparse._SubParsersAction, table: Table) -> arg
 
 def _add_options(command: argparse.ArgumentParser, table: Table) -> None:
     """The options of ``table``'s command, from its catalog linkage."""
+    from ..outputs import label
+    from ..scene import catalog_linkage
     linkage = catalog_linkage(table.linkage)
     command.description = _description(table, linkage)
     for option in table.options:
@@ -190,6 +191,8 @@ def _add_options(command: argparse.ArgumentParser, table: Table) -> None:
 
 def _values(table: Table, linkage: Linkage, args: argparse.Namespace) -> dict[str, float]:
     """The parameter values by symbol name (angles in radians), lengths checked, by option name."""
+    from ..outputs import label
+    from ..solver import check_lengths
     lengths = {option.name: getattr(args, option.name.replace("-", "_"))
                for option in table.options if option.kind == LENGTH}
     check_lengths(**lengths)
@@ -206,6 +209,7 @@ def _values(table: Table, linkage: Linkage, args: argparse.Namespace) -> dict[st
 
 def _input_values(linkage: Linkage, values: Mapping[str, float], theta, speeds, accel) -> dict:
     """The inputs, their rates and accelerations along the sweep (further inputs geared to the crank)."""
+    from ..vectors import acceleration, rate
     first, *further = linkage.inputs
     inputs = {first.name: theta, rate(first).name: speeds, acceleration(first).name: accel}
     for x in further:
@@ -227,6 +231,9 @@ def _branch_signs(linkage: Linkage, args: argparse.Namespace) -> dict[object, di
 
 def _closed_form(table: Table, linkage: Linkage, values: dict, args: argparse.Namespace):
     """A solver of one block of inputs for each branch asked for, and the reachable crank range of each."""
+    from ..outputs import label, table_outputs
+    from ..reachability import scanned_range
+    from ..solver import Solver
     outputs = table_outputs(linkage)
     solver = Solver(linkage, list(outputs.values()))
     parameters = {s.name: values[s.name] for s in linkage.parameters}
@@ -260,6 +267,7 @@ def _closed_form(table: Table, linkage: Linkage, values: dict, args: argparse.Na
 
 def _start(table: Table, linkage: Linkage, values: dict, theta: float, args: argparse.Namespace):
     """The assemblies to continue from at the first crank angle, in the order they are tried."""
+    from ..outputs import label
     labels = {label(linkage, u): u.name for u in linkage.unknowns}
     found = table.assemblies(theta, values) if table.assemblies is not None else []
     if args.guess is None:
@@ -275,6 +283,8 @@ def _start(table: Table, linkage: Linkage, values: dict, theta: float, args: arg
 
 def _numeric(table: Table, linkage: Linkage, values: dict, inputs: dict, angles, args: argparse.Namespace):
     """Results of the Newton solver, continued from the first assembly (of those chosen) that gets through."""
+    from ..outputs import label, table_outputs
+    from ..solver import NumericSolver
     theta = inputs[linkage.inputs[0].name]
     candidates = _start(table, linkage, values, float(theta[0]), args)
     if not candidates:
@@ -301,6 +311,7 @@ def _numeric(table: Table, linkage: Linkage, values: dict, inputs: dict, angles,
 
 def _print_assemblies(table: Table, linkage: Linkage, values: dict, first: float, args: argparse.Namespace) -> None:
     """``--list-assemblies``: the assemblies at the first crank angle, angles wrapped, in the table's format."""
+    from ..outputs import label
     theta = float(to_radians(first, args.units))
     shown = (linkage.inputs[0],) + linkage.unknowns
     columns = [label(linkage, q) for q in shown]
@@ -351,12 +362,15 @@ def _speeds_at(sweep: InputSweep, args: argparse.Namespace) -> Callable[[numpy.n
 
 def run_table(table: Table, args: argparse.Namespace) -> int:
     """Print the table of ``table``'s linkage for the parsed ``args``."""
+    from ..scene import catalog_linkage
     linkage = catalog_linkage(table.linkage)
     return _print_table(table, linkage, _values(table, linkage, args), args)
 
 
 def _print_table(table: Table, linkage: Linkage, values: dict[str, float], args: argparse.Namespace) -> int:
     """The table of ``linkage`` at parameter ``values`` (by symbol name, angles in radians)."""
+    from ..closure import is_angle
+    from ..outputs import label
     sweep = input_sweep(args)
     if getattr(args, "list_assemblies", False):
         _print_assemblies(table, linkage, values, sweep.first, args)
@@ -384,6 +398,12 @@ def _print_table(table: Table, linkage: Linkage, values: dict[str, float], args:
 
 # --- the catalog's entries ----------------------------------------------------------
 
+def _reachability():
+    """:mod:`symlink.reachability`, imported when a table needs a reachable range (it imports SymPy)."""
+    from .. import reachability
+    return reachability
+
+
 def _inverted_undetermined(values: Mapping[str, float], result: Mapping[str, numpy.ndarray]) -> numpy.ndarray:
     """B over D: the block sits on the pivot and the rocker angle follows from nothing."""
     return result["r"] <= 64 * numpy.finfo(float).eps * (values["a"] + values["d"])
@@ -398,7 +418,7 @@ INVERTED = Table(
           "no --branch.\nThe slider column is r = DB in the length unit, its speed and acceleration per "
           "second and per second squared.\nWhere B passes over D (crank = ground, crank angle 0) the rocker "
           "angle is undetermined: that angle is left out.",
-    reachable=inverted_slider_crank_range, undetermined=_inverted_undetermined)
+    reachable=lambda values: _reachability().inverted_slider_crank_range(values), undetermined=_inverted_undetermined)
 
 WATT2 = Table(
     "watt2", "positions, speeds and accelerations of a Watt II six-bar",
@@ -453,7 +473,7 @@ FIVEBAR = Table(
     "--crank 2 --coupler 3 --coupler2 3 --crank2 2 --ground 5 --crank2-angle 90 --step 30",
     notes="Branch +1 puts C left of the line B->D.\nWith crank 2 held still (ratio 0) the reachable crank "
           "range is exact (a four-bar over A->D); with an integer ratio it is found by a scan.",
-    reachable=fivebar_range)
+    reachable=lambda values: _reachability().fivebar_range(values))
 
 SLIDER = Table(
     "slider-crank", "positions, speeds and accelerations of a slider-crank",
@@ -463,7 +483,7 @@ SLIDER = Table(
     "--crank 20 --conrod 66 --offset 5 --crank-speed 10 --step 90",
     notes="Branch +1 is the assembly with the larger slider position.\nThe slider column is its x on the "
           "line y = offset, in the length unit; its speed and acceleration per second and per second squared.",
-    reachable=lambda values: slider_crank_range(values["a"], values["b"], values["offset"]))
+    reachable=lambda values: _reachability().slider_crank_range(values["a"], values["b"], values["offset"]))
 
 #: The table commands made from catalog entries, in the order ``symlink --help`` lists them.
 TABLES = (SLIDER, INVERTED, WATT2, STEPHENSON3, FIVEBAR)
@@ -480,12 +500,13 @@ def _add_fourbar_options(command: argparse.ArgumentParser) -> None:
 
 def run_fourbar(args: argparse.Namespace) -> int:
     """``symlink fourbar``: the table of seed 003, and optionally its plots."""
+    from ..cached_solver import CachedSolver
     a, b, c, d = fourbar_lengths(args)
-    check_lengths(crank=a, coupler=b, rocker=c, ground=d)
+    solver = CachedSolver("fourbar", FOURBAR_COLUMNS[2:])  # from the disk cache without SymPy, once derived
+    solver.check_lengths(crank=a, coupler=b, rocker=c, ground=d)
     sweep = input_sweep(args)
     _check_crank_speeds(sweep, args.units, args.crank_speed, args.crank_accel)
     speeds_at = _speeds_at(sweep, args)
-    solver = Solver(fourbar(), FOURBAR_COLUMNS[2:])
     signs = branches(args)
 
     def blocks():
@@ -494,8 +515,11 @@ def run_fourbar(args: argparse.Namespace) -> int:
             yield angles, {sign: solver(theta=theta, a=a, b=b, c=c, d=d, branch=sign, thetadot=speeds,
                                         thetaddot=args.crank_accel) for sign in signs}
 
-    write_table(blocks(), FOURBAR_COLUMNS, args.units, args.format, ANGLE_COLUMNS,
-                lambda: describe_spans(crank_range(a, b, c, d), args.units))
+    def spans() -> str:
+        from ..reachability import crank_range, describe_spans
+        return describe_spans(crank_range(a, b, c, d), args.units)
+
+    write_table(blocks(), FOURBAR_COLUMNS, args.units, args.format, ANGLE_COLUMNS, spans)
     if args.plot or args.plot_transmission:
         from .pictures import write_fourbar_plots
         write_fourbar_plots(a, b, c, d, signs, args.units, args.plot, args.plot_transmission)
@@ -523,6 +547,8 @@ def _add_generic_options(command: argparse.ArgumentParser) -> None:
 
 def run_generic_table(args: argparse.Namespace) -> int:
     """``symlink table``: the table of any linkage, from the catalog or a file."""
+    from ..linkage_file import load_linkage
+    from ..solver import check_lengths
     found = load_linkage(args.linkage)
     linkage = found.linkage
     ratios = {f"{x.name}_ratio" for x in linkage.inputs[1:]}

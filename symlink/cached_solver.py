@@ -1,0 +1,125 @@
+"""A catalog linkage's solver from the disk cache alone: a warm process never imports SymPy.
+
+Deriving a linkage needs SymPy, whose import alone takes half a second; a
+catalog linkage whose code is already cached needs none of it.  The first
+request for some outputs of a catalog linkage derives them as
+:class:`~symlink.solver.Solver` does and stores, beside the generated module,
+what a call needs: the argument names, which of them are lengths and branch
+signs, each output's unit and the memory a value takes.  That entry's key
+(:func:`symlink.cache.catalog_key`) is computed from the catalog name, the
+outputs and the digest of the code that builds and prints the linkage, so a
+later process finds it without building the linkage, and runs the generated
+module (NumPy only).
+
+:class:`CachedSolver` checks and returns what :class:`~symlink.solver.Solver`
+does (the generated function checks its arguments, as ``Solver`` does with
+the same check); pint quantities are handed to a ``Solver``, built then.
+
+>>> solver = CachedSolver("fourbar", ["rocker"])
+>>> round(float(numpy.degrees(solver(theta=0.0, a=20, b=66, c=56, d=80, branch=1)["rocker"])), 2)
+110.74
+>>> solver.check_lengths(crank=20.0, rocker=-1.0)
+Traceback (most recent call last):
+ValueError: rocker must be a positive finite length, got -1.0
+"""
+from __future__ import annotations
+
+import math
+import numbers
+from functools import cached_property
+from typing import Any, Callable, Sequence
+
+import numpy
+
+from .cache import cached_text, catalog_key
+from .limits import require_memory
+from .results import Results
+
+__all__ = ["CachedSolver", "ENTRY_KIND", "DESCRIPTION"]
+
+#: The kind of cache entry (:func:`symlink.cache.catalog_key`) that holds a catalog solver.
+ENTRY_KIND = "catalog-solver"
+#: The name of the function in the generated module, and of its argument check.
+FUNCTION, CHECK = "solve", "_arguments"
+#: The name of the dictionary that the entry adds to the module: arguments, lengths, branches, units, memory.
+DESCRIPTION = "SOLVER_DESCRIPTION"
+
+
+def _derived_entry(name: str, outputs: Sequence[str]) -> str:
+    """The cache entry of ``outputs`` of the catalog linkage ``name``: symbolic work (SymPy), done once.
+
+    The generated module, followed by a dictionary of what a call needs (:data:`DESCRIPTION`).
+    """
+    from .catalog import CATALOG
+    from .solver import Solver
+    if name not in CATALOG:
+        raise ValueError(f"no linkage {name!r} in the catalog; it has {', '.join(sorted(CATALOG))}")
+    linkage = CATALOG[name]()
+    solver = Solver(linkage, outputs)
+    described = {
+        "arguments": solver.arguments, "branches": solver.branches,
+        "lengths": [s.name for s in linkage.parameters if s.is_positive], "units": solver.units,
+        "bytes_per_value": solver.bytes_per_value,
+    }
+    return (f"{solver.source.rstrip()}\n\n\n#: What a call needs, for symlink.cached_solver (names, units, memory).\n"
+            f"{DESCRIPTION} = {described!r}\n")
+
+
+def _plain(value: object) -> bool:
+    """A number, an array or a list of numbers: what the generated code takes as it is (not a pint quantity)."""
+    return isinstance(value, (numbers.Number, numpy.ndarray, numpy.generic, list, tuple))
+
+
+class CachedSolver:
+    """The solver of ``outputs`` of the catalog linkage ``name``, run from its cache entry (see the module).
+
+    The entry is derived the first time (SymPy); ``ValueError`` for a name that is not in the catalog, or an
+    output the linkage does not have.
+    """
+
+    def __init__(self, name: str, outputs: Sequence[str]) -> None:
+        self.name = name
+        self.outputs = list(outputs)
+        self.source = cached_text(catalog_key(name, self.outputs, ENTRY_KIND),
+                                  lambda: _derived_entry(name, self.outputs))
+        namespace: dict = {"__name__": "symlink_generated"}
+        # symlink's own generated module, from a verified entry of a private cache (never user text)
+        exec(compile(self.source, "<symlink generated>", "exec"), namespace)  # noqa: S102
+        entry = namespace[DESCRIPTION]
+        self.arguments: list[str] = entry["arguments"]
+        self.branches: list[str] = entry["branches"]
+        self.lengths: list[str] = entry["lengths"]
+        self.units: dict[str, str] = entry["units"]
+        self.bytes_per_value: int = entry["bytes_per_value"]
+        self.function: Callable[..., dict] = namespace[FUNCTION]
+        self._check: Callable[..., Any] = namespace[CHECK]
+
+    def check_lengths(self, **lengths: float) -> None:
+        """``ValueError`` naming the first length that is not a positive finite number (the generated check)."""
+        self._check(True, tuple(lengths), tuple(lengths.values()), tuple(lengths))
+
+    @cached_property
+    def full(self) -> Any:
+        """The :class:`~symlink.solver.Solver` of the same outputs (builds the linkage: SymPy), for quantities."""
+        from .catalog import CATALOG
+        from .solver import Solver
+        return Solver(CATALOG[self.name](), self.outputs)
+
+    def __call__(self, **values) -> Results:
+        unknown = set(values) - set(self.arguments)
+        if unknown:
+            raise ValueError(f"{self.name} takes {', '.join(self.arguments)}; not {', '.join(sorted(unknown))}")
+        if not all(_plain(value) for value in values.values()):
+            return self.full(**values)
+        try:
+            count = math.prod(numpy.broadcast_shapes(*(numpy.shape(value) for value in values.values())))
+        except ValueError:
+            count = 0  # the argument check says which shapes do not broadcast
+        if count:
+            require_memory(count, self.bytes_per_value, f"solving {count:.3g} input values with the {self.name} solver")
+        with numpy.errstate(invalid="ignore", divide="ignore"):
+            result = self.function(**values)
+        return Results(result, {name: self.units.get(name, "") for name in result})
+
+    def __repr__(self) -> str:
+        return f"CachedSolver({self.name!r}, {self.outputs})"

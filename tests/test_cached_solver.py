@@ -1,0 +1,138 @@
+"""A cached catalog scene runs without SymPy: the warm ``symlink fourbar`` never imports it, and agrees with a cold run."""
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy
+import pytest
+
+from cache_fixture import empty_cache  # noqa: F401 - a fixture
+from references import mp_fourbar
+from symlink import cache
+from symlink.cached_solver import ENTRY_KIND, CachedSolver
+from symlink.scene import catalog_linkage
+from symlink.solver import Solver
+
+ROOT = Path(__file__).resolve().parent.parent
+FOURBAR = ["fourbar", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80",
+           "--crank-speed", "10.5", "--crank-accel", "2", "--step", "40", "--format", "csv"]
+
+# Runs the command line as ``python -m symlink`` does and reports, as JSON on stderr's last line, its exit status
+# and every SymPy module the process imported (anything on the path that imports SymPy leaves it in sys.modules).
+_WATCHED = r"""
+import json, sys
+from symlink.cli import main
+status = main(sys.argv[1:])
+loaded = sorted(name for name in sys.modules if name.split(".")[0] == "sympy")
+print(json.dumps({"status": status, "sympy": loaded[:3]}), file=sys.stderr)
+"""
+
+
+def _run(arguments: list[str], cache_folder: Path) -> tuple[subprocess.CompletedProcess, dict]:
+    env = dict(os.environ, SYMLINK_CACHE=str(cache_folder), PYTHONPATH=str(ROOT))
+    done = subprocess.run([sys.executable, "-c", _WATCHED, *arguments], capture_output=True, text=True, env=env,
+                          cwd=ROOT, timeout=300)
+    return done, json.loads(done.stderr.strip().splitlines()[-1])
+
+
+def test_a_warm_fourbar_table_never_imports_sympy_and_equals_the_cold_one(tmp_path):
+    folder = tmp_path / "cache"
+    cold, cold_report = _run(FOURBAR, folder)
+    assert cold_report["status"] == 0, cold.stderr
+    assert cold_report["sympy"], "the check cannot fail: a cold run derives, with SymPy"
+    warm, report = _run(FOURBAR, folder)
+    assert report == {"status": 0, "sympy": []}, warm.stderr
+    assert warm.stdout == cold.stdout
+    assert cold.stdout.count("\n") == 1 + 2 * 9  # header, 9 angles on both branches
+
+
+def test_bad_lengths_are_one_line_from_the_cached_solver(tmp_path):
+    folder = tmp_path / "cache"
+    assert _run(FOURBAR, folder)[1]["status"] == 0
+    arguments = list(FOURBAR)
+    arguments[arguments.index("--rocker") + 1] = "-5"
+    warm, report = _run(arguments, folder)
+    assert warm.stderr.startswith("symlink: error: rocker must be a positive finite length, got -5.0\n")
+    assert report == {"status": 2, "sympy": []}
+
+
+@pytest.mark.usefixtures("empty_cache")
+def test_cached_solver_matches_the_solver_and_the_50_digit_reference():
+    outputs = ["coupler", "rocker", "rocker_speed", "transmission"]
+    theta = numpy.radians(numpy.arange(-170.0, 180.0, 20.0))
+    values = dict(theta=theta, a=20.0, b=66.0, c=56.0, d=80.0, thetadot=10.5)
+    derived = CachedSolver("fourbar", outputs)  # an empty cache: derived, entry written
+    cache.clear_memory()  # as in a new process
+    loaded = CachedSolver("fourbar", outputs)  # from the disk entry
+    full = Solver(catalog_linkage("fourbar"), outputs)
+    for sign in (1, -1):
+        mine, again, theirs = (s(**values, branch=sign) for s in (derived, loaded, full))
+        for name in outputs + ["assembled"]:
+            assert numpy.array_equal(mine[name], theirs[name]) and numpy.array_equal(again[name], theirs[name])
+        assert mine.units == theirs.units
+        for angle, coupler, rocker in zip(theta, mine["coupler"], mine["rocker"]):
+            reference = mp_fourbar(20.0, 66.0, 56.0, 80.0, theta=float(angle), branch=sign)
+            assert abs(numpy.angle(numpy.exp(1j * (rocker - float(reference["phi"]))))) < 1e-12
+            assert abs(numpy.angle(numpy.exp(1j * (coupler - float(reference["beta"]))))) < 1e-12
+
+
+@pytest.mark.usefixtures("empty_cache")
+@pytest.mark.parametrize("name, outputs, values, message", [
+    ("abacus", ["rocker"], {}, "no linkage 'abacus' in the catalog"),
+    ("fourbar", ["stroke"], {}, "stroke"),
+    ("fourbar", ["rocker"], {"theta": 0.0, "a": 1.0, "b": 1.0, "c": 1.0, "d": 1.0, "e": 1.0}, "not e"),
+    ("fourbar", ["rocker"], {"theta": 0.0, "a": -1.0, "b": 1.0, "c": 1.0, "d": 1.0}, "a must be a positive"),
+    ("fourbar", ["rocker"], {"theta": 0.0, "a": 1.0, "b": 1.0, "c": 1.0, "d": 1.0, "branch": 2},
+     r"branch must be \+1 or -1"),
+    ("fourbar", ["rocker"], {"theta": [0.0, 1.0, 2.0], "a": [1.0, 2.0], "b": 1.0, "c": 1.0, "d": 1.0},
+     "do not broadcast"),
+])
+def test_bad_requests_and_values_are_refused(name, outputs, values, message):
+    with pytest.raises(ValueError, match=message):
+        CachedSolver(name, outputs)(**values)
+
+
+@pytest.mark.usefixtures("empty_cache")
+def test_quantities_go_through_the_full_solver():
+    pint = pytest.importorskip("pint")
+    unit = pint.UnitRegistry()
+    solver = CachedSolver("fourbar", ["rocker", "C_x"])
+    result = solver(theta=0.0, a=20 * unit.mm, b=66 * unit.mm, c=56 * unit.mm, d=80 * unit.mm, branch=1)
+    plain = solver(theta=0.0, a=20.0, b=66.0, c=56.0, d=80.0, branch=1)
+    assert result["rocker"] == plain["rocker"] and result.units["C_x"] == "millimeter"
+
+
+def test_the_catalog_key_covers_what_builds_a_catalog_linkage():
+    """Every symlink module that symlink.catalog imports, directly or not, is hashed into the catalog key."""
+    from test_architecture import import_graph
+    graph = import_graph()
+    seen, todo = set(), ["symlink.catalog"]
+    while todo:
+        module = todo.pop()
+        if module not in seen:
+            seen.add(module)
+            todo.extend(target for target in graph.get(module, ()) if target in graph)
+    hashed = {path.relative_to(ROOT).with_suffix("").as_posix().replace("/", ".")
+              for path in cache.code_shaping_files(cache.CATALOG_SHAPING)}
+    assert seen - {"symlink"} <= {name.removesuffix(".__init__") for name in hashed}
+
+
+def test_the_catalog_key_changes_with_what_it_stands_for(monkeypatch):
+    key = cache.catalog_key("fourbar", ["rocker"], ENTRY_KIND)
+    assert key != cache.catalog_key("fourbar", ["rocker"], "numpy")
+    assert key != cache.catalog_key("slider-crank", ["rocker"], ENTRY_KIND)
+    monkeypatch.setattr(cache, "sympy_version", lambda: "0.0")
+    assert key != cache.catalog_key("fourbar", ["rocker"], ENTRY_KIND)
+    monkeypatch.undo()
+    original = cache._module_bytes
+    monkeypatch.setattr(cache, "_module_bytes", lambda path: original(path) + (b" " if path.stem == "notation" else b""))
+    cache._source_digest.cache_clear()
+    try:
+        assert key != cache.catalog_key("fourbar", ["rocker"], ENTRY_KIND)
+    finally:
+        monkeypatch.undo()
+        cache._source_digest.cache_clear()

@@ -10,9 +10,6 @@ import argparse
 import math
 
 from ..angles import to_radians
-from ..closure import is_angle
-from ..linkage_file import load_linkage
-from ..sweep import SCHEDULERS, SWEEP_EXTRA, SweepSettings, missing_modules, run_sweep
 from .options import add_units_option, assignments, command_help, finite, linkage_values, whole
 from .output import note
 
@@ -30,14 +27,18 @@ def ranges(text: str) -> dict[str, tuple[float, float]]:
 
 
 def register(commands) -> None:
-    """Register ``symlink sweep``."""
-    command = commands.add_parser("sweep", **command_help(
+    """Register ``symlink sweep`` (its options are added when it is used: they need the sweep module)."""
+    commands.add_parser("sweep", populate=_add_options, **command_help(
         "evaluate many designs of a linkage on Dask into Parquet files (assembly, reach, Grashof, transmission, "
         "stroke, time ratio, path)",
         "lengths in any one unit; fixed angles and angle ranges in --units; angles in the table in radians",
         "symlink sweep fourbar atlas/ --vary a=0.1:1,b=0.2:2,c=0.2:2 --set d=1 --grid 40",
-        "Run again with the same settings to continue an interrupted sweep.  Needs the sweep extra: "
-        f"{SWEEP_EXTRA}"))
+        "Run again with the same settings to continue an interrupted sweep.  Needs the sweep extra "
+        "(symlink-kinematics[sweep])."))
+
+
+def _add_options(command: argparse.ArgumentParser) -> None:
+    from ..sweep import SCHEDULERS
     command.add_argument("linkage", metavar="NAME|FILE", help="a catalog linkage or a linkage file")
     command.add_argument("folder", metavar="FOLDER", help="where the chunks (chunk-NNNNNN.parquet) and manifest go")
     command.add_argument("--vary", type=ranges, required=True, metavar="NAME=LOW:HIGH,...",
@@ -67,6 +68,9 @@ def register(commands) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from ..closure import is_angle
+    from ..linkage_file import load_linkage
+    from ..sweep import SCHEDULERS, SWEEP_EXTRA, SweepSettings, missing_modules, run_sweep
     missing = missing_modules()
     if missing:
         raise ValueError(f"symlink sweep needs {', '.join(missing)}: {SWEEP_EXTRA}")

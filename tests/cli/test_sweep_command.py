@@ -5,7 +5,7 @@ import json
 
 import pytest
 
-import symlink.cli.sweep as command
+import symlink.sweep as sweep_module
 from symlink.cli import main
 from symlink.sweep import MANIFEST, missing_modules, read_sweep
 
@@ -41,7 +41,7 @@ def test_angles_in_degrees_are_stored_in_radians(tmp_path, capsys):
 
 
 def test_without_the_extra_it_says_how_to_install_it(tmp_path, capsys, monkeypatch):
-    monkeypatch.setattr(command, "missing_modules", lambda: ["dask", "pyarrow"])
+    monkeypatch.setattr(sweep_module, "missing_modules", lambda: ["dask", "pyarrow"])
     assert main(["sweep", SMALL[0], str(tmp_path / "x"), *SMALL[1:]]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "pip install 'symlink-kinematics[sweep]'" in err

@@ -75,7 +75,7 @@ FUNCTION = "solve"
 #: is part of every key.  A name may be a module or a package folder (then every module in it counts).
 #: Add a module here when it starts to shape generated text; benchmarks, plots and the command line
 #: stay out, so that editing them keeps the cache.
-CODE_SHAPING = ("names", "vectors", "loops", "position", "motion", "linkage", "closure", "plan",  # the derivation
+CODE_SHAPING = ("names", "vectors", "loops", "position", "motion", "sensitivity", "linkage", "closure", "plan",
                 "catalog", "codegen", "export", "compiled")  # printing it
 #: Largest entry read back (a generated module is some kilobytes; anything far larger is not ours).
 ENTRY_LIMIT = 64 << 20

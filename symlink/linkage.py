@@ -75,11 +75,12 @@ class Program:
 
 @dataclass(frozen=True)
 class Equations:
-    """A linkage's equations as a Jupyter display: closure, positions, and optionally rates (LaTeX)."""
+    """A linkage's equations as a Jupyter display: closure, positions, and optionally rates and sensitivities."""
 
     linkage: "Linkage"
     velocities: bool = False
     accelerations: bool = False
+    sensitivities: tuple[sp.Symbol, ...] = ()
 
     def _repr_latex_(self) -> str:
         """The closure equations, then the closed forms where the linkage has a solve plan (and the rates asked
@@ -90,6 +91,8 @@ class Equations:
             rows += list(linkage.positions.items())
             rows += list(linkage.velocities.items()) if self.velocities else []
             rows += list(linkage.accelerations.items()) if self.accelerations else []
+            for parameter in self.sensitivities:
+                rows += list(linkage.sensitivities(parameter).items())
         return "$\\displaystyle \\begin{aligned}" + aligned_rows(rows) + "\\end{aligned}$"
 
 
@@ -458,8 +461,10 @@ class Linkage:
     def _repr_latex_(self) -> str:
         return self.equations()._repr_latex_()
 
-    def equations(self, velocities: bool = False, accelerations: bool = False) -> "Equations":
-        r"""The closure and the closed forms as a Jupyter display (velocities and accelerations on request).
+    def equations(self, velocities: bool = False, accelerations: bool = False,
+                  sensitivities: Sequence[str] = ()) -> "Equations":
+        r"""The closure and the closed forms as a Jupyter display (velocities, accelerations and the
+        unknowns' derivatives by the named parameters on request).
 
         Displaying a linkage shows the closure and positions; this shows more
         without deriving anything that is not asked for.
@@ -467,8 +472,14 @@ class Linkage:
         >>> from symlink.catalog import fourbar
         >>> "\\dot{\\phi}" in fourbar().equations(velocities=True)._repr_latex_()
         True
+        >>> "\\frac{\\partial \\phi}{\\partial a}" in fourbar().equations(sensitivities=["a"])._repr_latex_()
+        True
         """
-        return Equations(self, velocities, accelerations)
+        by_name = {p.name: p for p in self.parameters}
+        unknown = [name for name in sensitivities if name not in by_name]
+        if unknown:
+            raise ValueError(f"{self.name} has no parameter {unknown[0]!r}; it has {', '.join(by_name)}")
+        return Equations(self, velocities, accelerations, tuple(by_name[name] for name in sensitivities))
 
     def __repr__(self) -> str:
         return (f"Linkage({self.name!r}, loops={[loop.name for loop in self.loops]}, "

@@ -41,6 +41,7 @@ import sympy as sp
 from .loops import Loop
 from .motion import loop_rates
 from .names import PLAIN_NAME, reason_reserved
+from .notation import SENSITIVITY_SEPARATOR
 from .position import LoopSolution
 from .vectors import Vector, VectorSum, rate
 
@@ -48,7 +49,7 @@ __all__ = ["SEPARATOR", "MAX_NAME_LENGTH", "sensitivity_name", "sensitivity_symb
            "loop_sensitivities", "plan_sensitivities", "total_derivative", "closure_parameter_rhs"]
 
 #: Between an output's name and a parameter's in a sensitivity's name: ``rocker__d_a``.
-SEPARATOR = "__d_"
+SEPARATOR = SENSITIVITY_SEPARATOR
 #: Longest sensitivity name: MATLAB's limit on identifiers and struct fields.
 MAX_NAME_LENGTH = 63
 

@@ -396,3 +396,16 @@ def test_scaling_every_length_turns_nothing(name, theta, scale):
     size = sum(weights)
     assert np.allclose(euler[:len(angles)], 0.0, atol=1e-9 * np.max(np.abs(slopes[:len(angles)]) * size))
     assert np.allclose(euler[len(angles):], [found[p] for p in points], atol=1e-12 * size)
+
+
+def test_exports_take_sensitivities_and_latex_shows_them_as_partial_derivatives():
+    from symlink.export import export_texts
+    outputs = ["rocker", "rocker__d_a", "C_x__d_d"]
+    for fmt in ("numpy", "c", "octave"):
+        text = "\n".join(export_texts("fourbar", fmt, outputs).values())
+        assert "rocker__d_a" in text and "C_x__d_d" in text and "phidot" not in text, fmt
+    document = "\n".join(export_texts("fourbar", "latex", outputs).values())
+    assert r"\frac{\partial \phi}{\partial a}" in document and r"\frac{\partial \beta}{\partial d}" in document
+    assert r"\dot" not in document and r"\partial b}" not in document  # no rates, no parameter not asked for
+    with pytest.raises(ValueError, match="no parameter 'theta'"):
+        CATALOG["fourbar"]().equations(sensitivities=["theta"])

@@ -409,3 +409,58 @@ def test_exports_take_sensitivities_and_latex_shows_them_as_partial_derivatives(
     assert r"\dot" not in document and r"\partial b}" not in document  # no rates, no parameter not asked for
     with pytest.raises(ValueError, match="no parameter 'theta'"):
         CATALOG["fourbar"]().equations(sensitivities=["theta"])
+
+
+# --- the four-bar of path synthesis: its whole design space ---------------------------------------------
+
+def synthesis_fourbar() -> Linkage:
+    """A four-bar placed anywhere: crank pivot (x0, y0), frame at angle theta0, coupler point at r, gamma from B."""
+    from symlink.loops import Loop
+    from symlink.vectors import Vector, coordinates, lengths
+    theta, beta, phi = coordinates("theta beta phi")
+    a, b, c, d, r = lengths("a b c d r")
+    x0, y0, theta0, gamma = sp.symbols("x0 y0 theta0 gamma", real=True)
+    AB, BC, DC, AD = Vector(a, theta + theta0), Vector(b, beta), Vector(c, phi), Vector(d, theta0)
+    pivot = Vector(x0, 0) + Vector(y0, sp.pi / 2)
+    return Linkage("path fourbar", [Loop(AD + DC - BC - AB, name="ABCD")], inputs=[theta], unknowns=[beta, phi],
+                   parameters=[a, b, c, d, gamma, r, theta0, x0, y0],
+                   points={"P": pivot + AB + Vector(r, beta + gamma)})
+
+
+def synthesis_closure(x, q, p):
+    (theta,), (beta, phi) = x, q
+    z = (p["a"] * mp.expj(theta + p["theta0"]) + p["b"] * mp.expj(beta) - p["c"] * mp.expj(phi)
+         - p["d"] * mp.expj(p["theta0"]))
+    return [z.real, z.imag]
+
+
+def test_the_path_synthesis_fourbar_against_50_digits():
+    """Pivot position, frame angle, four lengths and the coupler point: every parameter synthesis moves."""
+    linkage = synthesis_fourbar()
+    outputs = ["beta", "phi", "P_x", "P_y"]
+    jacobian = DesignJacobian(linkage, outputs)
+    assert jacobian.parameters == ["a", "b", "c", "d", "gamma", "r", "theta0", "x0", "y0"]
+    rng = np.random.default_rng(RNG_SEED)
+    checked = tries = 0
+    while checked < 3:
+        tries += 1
+        assert tries < 60
+        p = dict(a=rng.uniform(0.5, 1.5), b=rng.uniform(2, 4), c=rng.uniform(2, 4), d=rng.uniform(2.5, 4),
+                 r=rng.uniform(0.5, 3), gamma=rng.uniform(-3, 3), theta0=rng.uniform(-3, 3),
+                 x0=rng.uniform(-5, 5), y0=rng.uniform(-5, 5))
+        theta = rng.uniform(-math.pi, math.pi)
+        values, slopes = jacobian(theta=theta, branch=int(rng.choice([1, -1])), **p)
+        if not bool(values["assembled"]):
+            continue
+        with mp.workdps(DPS):
+            mp_p = {k: mp.mpf(v) for k, v in p.items()}
+            x = [mp.mpf(theta)]
+            q0 = mp_root(synthesis_closure, x, mp_p, [mp.mpf(float(values[u])) for u in ("beta", "phi")])
+        if unit_column_determinant(synthesis_closure, x, mp_p, q0) < TOGGLE_GUARD:
+            continue
+        expected = mp_sensitivities(linkage, synthesis_closure, outputs, [theta], mp_p, q0)
+        got = {sensitivity_name(o, name): slopes[k, j]
+               for k, o in enumerate(outputs) for j, name in enumerate(jacobian.parameters)}
+        error, where = worst_error(got, expected, linkage, outputs)
+        assert error <= TOLERANCE, f"at theta = {theta}, {p}: {where}"
+        checked += 1

@@ -376,7 +376,10 @@ class Linkage:
             if symbol.name in taken:
                 raise ValueError(f"{self.name}: the sensitivity {symbol.name!r} of {q.name!r} by {parameter.name!r} "
                                  "has the name of a coordinate or parameter; rename one")
-        return total_derivative(expr, self.unknowns, parameter)
+        # A parameter of the points or extras alone (a coupler-point offset, a pivot placing the whole
+        # linkage) moves no unknown: no chain terms, so nothing multiplies a zero in generated code.
+        closes = any(parameter in loop.symbols() for loop in self.loops)
+        return total_derivative(expr, self.unknowns if closes else (), parameter)
 
     def sensitivities(self, parameter: sp.Symbol) -> dict[sp.Symbol, sp.Expr]:
         """Every unknown's derivative by ``parameter`` (``phi__d_a``), in plan order; derived once, on first use.

@@ -69,7 +69,8 @@ class DesignJacobian:
     unknowns near the wanted assembly at the first input value, over a
     one-dimensional sweep).  It returns ``(values, jacobian)``: ``values``
     maps each output (and ``assembled``) to its array; ``jacobian[..., i, j]``
-    is d(outputs[i])/d(parameters[j]).
+    is d(outputs[i])/d(parameters[j]).  The generated code checks its arguments; in a hot loop whose
+    arguments are known good, ``check=False`` skips that.
     """
 
     def __init__(self, linkage: Linkage, outputs: Sequence[str], parameters: Sequence[str] | None = None) -> None:

@@ -327,6 +327,20 @@ def _results(shape, inputs, parameters, q, qdot, qddot, residual, order):
     return {name: numpy.reshape(numpy.broadcast_to(value, residual.shape), shape) for name, value in result.items()}
 
 
+def _sensitivity_results(shape, inputs, parameters, q, residual):
+    """Positions and their derivatives by each parameter, from J dq/dp = -dF/dp at the converged points."""
+    columns = numpy.moveaxis(q, -1, 0)
+    _, J, _, _, _ = _system(inputs, parameters, q)
+    rhs = numpy.broadcast_to(_parameter_rhs(*inputs, *parameters, *columns), J.shape[:-1] + (len(PARAMETERS),))
+    slopes = numpy.linalg.solve(J, rhs)  # (points, unknowns, parameters)
+    result = _results(shape, inputs, parameters, q, None, None, residual, 0)
+    flat = numpy.moveaxis(slopes.reshape(len(q), -1), -1, 0)
+    found = _sensitivity_outputs(*inputs, *parameters, *columns, *flat)
+    result.update({name: numpy.reshape(numpy.broadcast_to(value, residual.shape), shape)
+                   for name, value in found.items()})
+    return result
+
+
 def _closure(theta, a, b, c, d, e, f, g, h, alpha, delta, beta, mu, phi, eta):
     """Closure residuals F, Jacobian J = dF/dq, each equation's scale and each unknown's unit."""
     cse_0 = b*numpy.cos(beta)
@@ -379,6 +393,19 @@ def _acceleration_rhs(theta, a, b, c, d, e, f, g, h, alpha, delta, beta, mu, phi
     return _stack([cse_1*numpy.cos(beta) + cse_2*numpy.cos(mu) - cse_4*numpy.cos(phi) + cse_8, cse_1*numpy.sin(beta) + cse_2*numpy.sin(mu) - cse_4*numpy.sin(phi) + cse_9, cse_11*numpy.cos(cse_10) + cse_12*numpy.cos(eta) - cse_14*numpy.cos(cse_13) + cse_8, cse_11*numpy.sin(cse_10) + cse_12*numpy.sin(eta) - cse_14*numpy.sin(cse_13) + cse_9])
 
 
+def _parameter_rhs(theta, a, b, c, d, e, f, g, h, alpha, delta, beta, mu, phi, eta):
+    """Right-hand sides of J dq/dp = R, one column a parameter."""
+    cse_0 = -numpy.cos(theta)
+    cse_1 = -numpy.sin(theta)
+    cse_2 = alpha + beta
+    cse_3 = numpy.cos(cse_2)
+    cse_4 = delta + phi
+    cse_5 = numpy.cos(cse_4)
+    cse_6 = numpy.sin(cse_2)
+    cse_7 = numpy.sin(cse_4)
+    return _matrix([[cse_0, -numpy.cos(beta), -numpy.cos(mu), 1.0, 0.0, numpy.cos(phi), 0.0, 0.0, 0.0, 0.0], [cse_1, -numpy.sin(beta), -numpy.sin(mu), 0.0, 0.0, numpy.sin(phi), 0.0, 0.0, 0.0, 0.0], [cse_0, 0.0, 0.0, 1.0, -cse_3, 0.0, -numpy.cos(eta), cse_5, cse_6*e, -cse_7*h], [cse_1, 0.0, 0.0, 0.0, -cse_6, 0.0, -numpy.sin(eta), cse_7, -cse_3*e, cse_5*h]])
+
+
 def _outputs(theta, a, b, c, d, e, f, g, h, alpha, delta, beta, mu, phi, eta):
     """Named points and extra outputs from the solved coordinates."""
     cse_0 = a*numpy.cos(theta)
@@ -400,6 +427,243 @@ def _outputs(theta, a, b, c, d, e, f, g, h, alpha, delta, beta, mu, phi, eta):
         'F_y': f*numpy.sin(phi),
         'H_x': d + h*numpy.cos(cse_3),
         'H_y': h*numpy.sin(cse_3),
+    }
+
+
+def _sensitivity_outputs(theta, a, b, c, d, e, f, g, h, alpha, delta, beta, mu, phi, eta, beta__d_a, beta__d_b, beta__d_c, beta__d_d, beta__d_e, beta__d_f, beta__d_g, beta__d_h, beta__d_alpha, beta__d_delta, mu__d_a, mu__d_b, mu__d_c, mu__d_d, mu__d_e, mu__d_f, mu__d_g, mu__d_h, mu__d_alpha, mu__d_delta, phi__d_a, phi__d_b, phi__d_c, phi__d_d, phi__d_e, phi__d_f, phi__d_g, phi__d_h, phi__d_alpha, phi__d_delta, eta__d_a, eta__d_b, eta__d_c, eta__d_d, eta__d_e, eta__d_f, eta__d_g, eta__d_h, eta__d_alpha, eta__d_delta):
+    """Each position output's derivative by each parameter, from the unknowns' (name + '__d_' + parameter)."""
+    cse_0 = numpy.cos(theta)
+    cse_1 = numpy.sin(theta)
+    cse_2 = -cse_0
+    cse_3 = numpy.sin(beta)
+    cse_4 = b*cse_3
+    cse_5 = numpy.cos(beta)
+    cse_6 = b*cse_5
+    cse_7 = alpha + beta
+    cse_8 = numpy.sin(cse_7)
+    cse_9 = cse_8*e
+    cse_10 = numpy.cos(cse_7)
+    cse_11 = cse_10*e
+    cse_12 = numpy.sin(phi)
+    cse_13 = cse_12*f
+    cse_14 = numpy.cos(phi)
+    cse_15 = cse_14*f
+    cse_16 = delta + phi
+    cse_17 = numpy.sin(cse_16)
+    cse_18 = cse_17*h
+    cse_19 = numpy.cos(cse_16)
+    cse_20 = cse_19*h
+    return {
+        'beta__d_a': beta__d_a,
+        'beta__d_b': beta__d_b,
+        'beta__d_c': beta__d_c,
+        'beta__d_d': beta__d_d,
+        'beta__d_e': beta__d_e,
+        'beta__d_f': beta__d_f,
+        'beta__d_g': beta__d_g,
+        'beta__d_h': beta__d_h,
+        'beta__d_alpha': beta__d_alpha,
+        'beta__d_delta': beta__d_delta,
+        'mu__d_a': mu__d_a,
+        'mu__d_b': mu__d_b,
+        'mu__d_c': mu__d_c,
+        'mu__d_d': mu__d_d,
+        'mu__d_e': mu__d_e,
+        'mu__d_f': mu__d_f,
+        'mu__d_g': mu__d_g,
+        'mu__d_h': mu__d_h,
+        'mu__d_alpha': mu__d_alpha,
+        'mu__d_delta': mu__d_delta,
+        'phi__d_a': phi__d_a,
+        'phi__d_b': phi__d_b,
+        'phi__d_c': phi__d_c,
+        'phi__d_d': phi__d_d,
+        'phi__d_e': phi__d_e,
+        'phi__d_f': phi__d_f,
+        'phi__d_g': phi__d_g,
+        'phi__d_h': phi__d_h,
+        'phi__d_alpha': phi__d_alpha,
+        'phi__d_delta': phi__d_delta,
+        'eta__d_a': eta__d_a,
+        'eta__d_b': eta__d_b,
+        'eta__d_c': eta__d_c,
+        'eta__d_d': eta__d_d,
+        'eta__d_e': eta__d_e,
+        'eta__d_f': eta__d_f,
+        'eta__d_g': eta__d_g,
+        'eta__d_h': eta__d_h,
+        'eta__d_alpha': eta__d_alpha,
+        'eta__d_delta': eta__d_delta,
+        'crank__d_a': 0.0,
+        'crank__d_b': 0.0,
+        'crank__d_c': 0.0,
+        'crank__d_d': 0.0,
+        'crank__d_e': 0.0,
+        'crank__d_f': 0.0,
+        'crank__d_g': 0.0,
+        'crank__d_h': 0.0,
+        'crank__d_alpha': 0.0,
+        'crank__d_delta': 0.0,
+        'coupler__d_a': beta__d_a,
+        'coupler__d_b': beta__d_b,
+        'coupler__d_c': beta__d_c,
+        'coupler__d_d': beta__d_d,
+        'coupler__d_e': beta__d_e,
+        'coupler__d_f': beta__d_f,
+        'coupler__d_g': beta__d_g,
+        'coupler__d_h': beta__d_h,
+        'coupler__d_alpha': beta__d_alpha,
+        'coupler__d_delta': beta__d_delta,
+        'rocker__d_a': phi__d_a,
+        'rocker__d_b': phi__d_b,
+        'rocker__d_c': phi__d_c,
+        'rocker__d_d': phi__d_d,
+        'rocker__d_e': phi__d_e,
+        'rocker__d_f': phi__d_f,
+        'rocker__d_g': phi__d_g,
+        'rocker__d_h': phi__d_h,
+        'rocker__d_alpha': phi__d_alpha,
+        'rocker__d_delta': phi__d_delta,
+        'A_x__d_a': 0.0,
+        'A_x__d_b': 0.0,
+        'A_x__d_c': 0.0,
+        'A_x__d_d': 0.0,
+        'A_x__d_e': 0.0,
+        'A_x__d_f': 0.0,
+        'A_x__d_g': 0.0,
+        'A_x__d_h': 0.0,
+        'A_x__d_alpha': 0.0,
+        'A_x__d_delta': 0.0,
+        'A_y__d_a': 0.0,
+        'A_y__d_b': 0.0,
+        'A_y__d_c': 0.0,
+        'A_y__d_d': 0.0,
+        'A_y__d_e': 0.0,
+        'A_y__d_f': 0.0,
+        'A_y__d_g': 0.0,
+        'A_y__d_h': 0.0,
+        'A_y__d_alpha': 0.0,
+        'A_y__d_delta': 0.0,
+        'B_x__d_a': cse_0,
+        'B_x__d_b': 0.0,
+        'B_x__d_c': 0.0,
+        'B_x__d_d': 0.0,
+        'B_x__d_e': 0.0,
+        'B_x__d_f': 0.0,
+        'B_x__d_g': 0.0,
+        'B_x__d_h': 0.0,
+        'B_x__d_alpha': 0.0,
+        'B_x__d_delta': 0.0,
+        'B_y__d_a': cse_1,
+        'B_y__d_b': 0.0,
+        'B_y__d_c': 0.0,
+        'B_y__d_d': 0.0,
+        'B_y__d_e': 0.0,
+        'B_y__d_f': 0.0,
+        'B_y__d_g': 0.0,
+        'B_y__d_h': 0.0,
+        'B_y__d_alpha': 0.0,
+        'B_y__d_delta': 0.0,
+        'C_x__d_a': -beta__d_a*cse_4 - cse_2,
+        'C_x__d_b': -beta__d_b*cse_4 + cse_5,
+        'C_x__d_c': -beta__d_c*cse_4,
+        'C_x__d_d': -beta__d_d*cse_4,
+        'C_x__d_e': -beta__d_e*cse_4,
+        'C_x__d_f': -beta__d_f*cse_4,
+        'C_x__d_g': -beta__d_g*cse_4,
+        'C_x__d_h': -beta__d_h*cse_4,
+        'C_x__d_alpha': -beta__d_alpha*cse_4,
+        'C_x__d_delta': -beta__d_delta*cse_4,
+        'C_y__d_a': beta__d_a*cse_6 + cse_1,
+        'C_y__d_b': beta__d_b*cse_6 + cse_3,
+        'C_y__d_c': beta__d_c*cse_6,
+        'C_y__d_d': beta__d_d*cse_6,
+        'C_y__d_e': beta__d_e*cse_6,
+        'C_y__d_f': beta__d_f*cse_6,
+        'C_y__d_g': beta__d_g*cse_6,
+        'C_y__d_h': beta__d_h*cse_6,
+        'C_y__d_alpha': beta__d_alpha*cse_6,
+        'C_y__d_delta': beta__d_delta*cse_6,
+        'E_x__d_a': -beta__d_a*cse_9 - cse_2,
+        'E_x__d_b': -beta__d_b*cse_9,
+        'E_x__d_c': -beta__d_c*cse_9,
+        'E_x__d_d': -beta__d_d*cse_9,
+        'E_x__d_e': -beta__d_e*cse_9 + cse_10,
+        'E_x__d_f': -beta__d_f*cse_9,
+        'E_x__d_g': -beta__d_g*cse_9,
+        'E_x__d_h': -beta__d_h*cse_9,
+        'E_x__d_alpha': -beta__d_alpha*cse_9 - cse_9,
+        'E_x__d_delta': -beta__d_delta*cse_9,
+        'E_y__d_a': beta__d_a*cse_11 + cse_1,
+        'E_y__d_b': beta__d_b*cse_11,
+        'E_y__d_c': beta__d_c*cse_11,
+        'E_y__d_d': beta__d_d*cse_11,
+        'E_y__d_e': beta__d_e*cse_11 + cse_8,
+        'E_y__d_f': beta__d_f*cse_11,
+        'E_y__d_g': beta__d_g*cse_11,
+        'E_y__d_h': beta__d_h*cse_11,
+        'E_y__d_alpha': beta__d_alpha*cse_11 + cse_11,
+        'E_y__d_delta': beta__d_delta*cse_11,
+        'D_x__d_a': 0.0,
+        'D_x__d_b': 0.0,
+        'D_x__d_c': 0.0,
+        'D_x__d_d': 1.0,
+        'D_x__d_e': 0.0,
+        'D_x__d_f': 0.0,
+        'D_x__d_g': 0.0,
+        'D_x__d_h': 0.0,
+        'D_x__d_alpha': 0.0,
+        'D_x__d_delta': 0.0,
+        'D_y__d_a': 0.0,
+        'D_y__d_b': 0.0,
+        'D_y__d_c': 0.0,
+        'D_y__d_d': 0.0,
+        'D_y__d_e': 0.0,
+        'D_y__d_f': 0.0,
+        'D_y__d_g': 0.0,
+        'D_y__d_h': 0.0,
+        'D_y__d_alpha': 0.0,
+        'D_y__d_delta': 0.0,
+        'F_x__d_a': -cse_13*phi__d_a,
+        'F_x__d_b': -cse_13*phi__d_b,
+        'F_x__d_c': -cse_13*phi__d_c,
+        'F_x__d_d': -cse_13*phi__d_d + 1.0,
+        'F_x__d_e': -cse_13*phi__d_e,
+        'F_x__d_f': -cse_13*phi__d_f + cse_14,
+        'F_x__d_g': -cse_13*phi__d_g,
+        'F_x__d_h': -cse_13*phi__d_h,
+        'F_x__d_alpha': -cse_13*phi__d_alpha,
+        'F_x__d_delta': -cse_13*phi__d_delta,
+        'F_y__d_a': cse_15*phi__d_a,
+        'F_y__d_b': cse_15*phi__d_b,
+        'F_y__d_c': cse_15*phi__d_c,
+        'F_y__d_d': cse_15*phi__d_d,
+        'F_y__d_e': cse_15*phi__d_e,
+        'F_y__d_f': cse_12 + cse_15*phi__d_f,
+        'F_y__d_g': cse_15*phi__d_g,
+        'F_y__d_h': cse_15*phi__d_h,
+        'F_y__d_alpha': cse_15*phi__d_alpha,
+        'F_y__d_delta': cse_15*phi__d_delta,
+        'H_x__d_a': -cse_18*phi__d_a,
+        'H_x__d_b': -cse_18*phi__d_b,
+        'H_x__d_c': -cse_18*phi__d_c,
+        'H_x__d_d': -cse_18*phi__d_d + 1.0,
+        'H_x__d_e': -cse_18*phi__d_e,
+        'H_x__d_f': -cse_18*phi__d_f,
+        'H_x__d_g': -cse_18*phi__d_g,
+        'H_x__d_h': -cse_18*phi__d_h + cse_19,
+        'H_x__d_alpha': -cse_18*phi__d_alpha,
+        'H_x__d_delta': -cse_18*phi__d_delta - cse_18,
+        'H_y__d_a': cse_20*phi__d_a,
+        'H_y__d_b': cse_20*phi__d_b,
+        'H_y__d_c': cse_20*phi__d_c,
+        'H_y__d_d': cse_20*phi__d_d,
+        'H_y__d_e': cse_20*phi__d_e,
+        'H_y__d_f': cse_20*phi__d_f,
+        'H_y__d_g': cse_20*phi__d_g,
+        'H_y__d_h': cse_17 + cse_20*phi__d_h,
+        'H_y__d_alpha': cse_20*phi__d_alpha,
+        'H_y__d_delta': cse_20*phi__d_delta + cse_20,
     }
 
 
@@ -437,3 +701,14 @@ def accelerations(theta, a, b, c, d, e, f, g, h, alpha, delta, guess, thetadot=0
         (theta,), (a, b, c, d, e, f, g, h, alpha, delta), guess, (thetadot,), (thetaddot,))
     return _results(symlink_shape, symlink_inputs, (a, b, c, d, e, f, g, h, alpha, delta), symlink_q, symlink_qdot, symlink_qddot,
                     symlink_residual, 2)
+
+
+def sensitivities(theta, a, b, c, d, e, f, g, h, alpha, delta, guess, *, check=True):
+    """Positions and their derivatives by each parameter (output + '__d_' + parameter) over the sweep.
+
+    The unknowns' derivatives solve J dq/dp = -dF/dp with the converged Jacobian J; roles, points and
+    extras follow by the chain rule.  See positions() for the arguments; rates are not computed.
+    """
+    _arguments(check, ('theta', 'a', 'b', 'c', 'd', 'e', 'f', 'g', 'h', 'alpha', 'delta'), (theta, a, b, c, d, e, f, g, h, alpha, delta), ('a', 'b', 'c', 'd', 'e', 'f', 'g', 'h'))
+    symlink_shape, symlink_inputs, symlink_q, _, _, symlink_residual = _sweep((theta,), (a, b, c, d, e, f, g, h, alpha, delta), guess)
+    return _sensitivity_results(symlink_shape, symlink_inputs, (a, b, c, d, e, f, g, h, alpha, delta), symlink_q, symlink_residual)

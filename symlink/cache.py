@@ -76,7 +76,7 @@ FUNCTION = "solve"
 #: is part of every key.  A name may be a module or a package folder (then every module in it counts).
 #: Add a module here when it starts to shape generated text; benchmarks, plots and the command line
 #: stay out, so that editing them keeps the cache.
-CODE_SHAPING = ("names", "vectors", "loops", "position", "motion", "linkage", "closure", "plan",  # the derivation
+CODE_SHAPING = ("names", "vectors", "loops", "position", "motion", "sensitivity", "linkage", "closure", "plan",
                 "catalog", "codegen", "export", "compiled")  # printing it
 #: What builds a catalog linkage (:mod:`symlink.catalog` and every symlink module it imports, directly or
 #: not) beyond :data:`CODE_SHAPING`: with it, the digest stands in for the linkage's definition in

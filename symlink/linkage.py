@@ -12,7 +12,9 @@ Outputs are named by strings:
 * a role given to a coordinate (``"rocker"``), with ``"rocker_speed"`` and
   ``"rocker_accel"`` for its derivatives;
 * a point's coordinates (``"C_x"``, ``"C_y"``) and any extra named expression
-  (the four-bar's ``"transmission"``).
+  (the four-bar's ``"transmission"``);
+* the derivative of any of those positions by a parameter, ``"rocker__d_a"``
+  (see :mod:`symlink.sensitivity`): derived only when asked for, without rates.
 
 >>> from symlink.catalog import fourbar
 >>> linkage = fourbar()
@@ -33,6 +35,8 @@ from .loops import Loop
 from .names import identifier, label
 from .motion import loop_rates
 from .position import ClampedSqrt, LoopSolution, solve_loop
+from .sensitivity import (plan_sensitivities, sensitivity_name, sensitivity_symbol, split_sensitivity_name,
+                          total_derivative)
 from .typeset import aligned_rows, closure_rows
 from .vectors import Vector, VectorSum, acceleration, expression, rate
 
@@ -71,11 +75,12 @@ class Program:
 
 @dataclass(frozen=True)
 class Equations:
-    """A linkage's equations as a Jupyter display: closure, positions, and optionally rates (LaTeX)."""
+    """A linkage's equations as a Jupyter display: closure, positions, and optionally rates and sensitivities."""
 
     linkage: "Linkage"
     velocities: bool = False
     accelerations: bool = False
+    sensitivities: tuple[sp.Symbol, ...] = ()
 
     def _repr_latex_(self) -> str:
         """The closure equations, then the closed forms where the linkage has a solve plan (and the rates asked
@@ -86,6 +91,8 @@ class Equations:
             rows += list(linkage.positions.items())
             rows += list(linkage.velocities.items()) if self.velocities else []
             rows += list(linkage.accelerations.items()) if self.accelerations else []
+            for parameter in self.sensitivities:
+                rows += list(linkage.sensitivities(parameter).items())
         return "$\\displaystyle \\begin{aligned}" + aligned_rows(rows) + "\\end{aligned}$"
 
 
@@ -116,6 +123,7 @@ class Linkage:
         self.points = dict(points or {})
         self.roles = dict(roles or {})
         self.extras = {k: expression(v) for k, v in (extras or {}).items()}
+        self._sensitivities: dict[sp.Symbol, dict[sp.Symbol, sp.Expr]] = {}
         for kind, symbols in (("input", self.inputs), ("unknown", self.unknowns)):
             for symbol in symbols:
                 if not isinstance(symbol, sp.Symbol):
@@ -346,7 +354,48 @@ class Linkage:
         point, _, axis = name.rpartition("_")
         if point in self.points and axis in ("x", "y"):
             return self.point(point)[axis == "y"]
+        found = split_sensitivity_name(name, self.parameters)
+        if found is not None:
+            return self._sensitivity_output(*found)
         raise ValueError(f"{self.name} has no output {name!r}; it has {', '.join(self.output_names())}")
+
+    def _sensitivity_output(self, name: str, parameter: sp.Symbol) -> sp.Expr:
+        """d(output)/d(parameter) at fixed inputs, in terms of the coordinates and the unknowns' sensitivities."""
+        if split_sensitivity_name(name, self.parameters) is not None:
+            raise ValueError(f"{self.name}: {sensitivity_name(name, parameter.name)!r} is a second derivative; "
+                             "only first derivatives by parameters are derived")
+        expr = self.output(name)
+        moving = {rate(q) for q in self.coordinates} | {acceleration(q) for q in self.coordinates}
+        if name == "singular" or expr.free_symbols & moving:
+            raise ValueError(f"{self.name}: {sensitivity_name(name, parameter.name)!r} asks for a sensitivity of "
+                             f"{name!r}; sensitivities are derived for positions (coordinates, roles, points and "
+                             "extras) only, not for rates, accelerations or flags")
+        taken = {s.name: s for s in self.coordinates + self.parameters}
+        for q in self.unknowns:
+            symbol = sensitivity_symbol(q, parameter)
+            if symbol.name in taken:
+                raise ValueError(f"{self.name}: the sensitivity {symbol.name!r} of {q.name!r} by {parameter.name!r} "
+                                 "has the name of a coordinate or parameter; rename one")
+        # A parameter of the points or extras alone (a coupler-point offset, a pivot placing the whole
+        # linkage) moves no unknown: no chain terms, so nothing multiplies a zero in generated code.
+        closes = any(parameter in loop.symbols() for loop in self.loops)
+        return total_derivative(expr, self.unknowns if closes else (), parameter)
+
+    def sensitivities(self, parameter: sp.Symbol) -> dict[sp.Symbol, sp.Expr]:
+        """Every unknown's derivative by ``parameter`` (``phi__d_a``), in plan order; derived once, on first use.
+
+        >>> from symlink.catalog import fourbar
+        >>> linkage = fourbar()
+        >>> a = linkage.parameters[0]
+        >>> linkage.sensitivities(a)[sensitivity_symbol(linkage.unknowns[1], a)]
+        cos(beta - theta)/(c*sin(beta - phi))
+        """
+        if parameter not in self.parameters:
+            raise ValueError(f"{self.name} has no parameter {parameter!r}; "
+                             f"it has {', '.join(s.name for s in self.parameters)}")
+        if parameter not in self._sensitivities:
+            self._sensitivities[parameter] = plan_sensitivities(self.plan, parameter)
+        return self._sensitivities[parameter]
 
     def expression(self, name: str, simplify: bool = False) -> sp.Expr:
         """The closed form behind an output name, one level deep (in terms of coordinates and rates).
@@ -363,7 +412,7 @@ class Linkage:
         return sp.simplify(found) if simplify else found
 
     def _definitions_of(self, symbols: Iterable[sp.Symbol]) -> dict[sp.Symbol, sp.Expr]:
-        """The definitions that the symbols need: positions, and rates only if asked for."""
+        """The definitions that the symbols need: positions, and rates or sensitivities only if asked for."""
         symbols = set(symbols)
         unknown_rates = {rate(q) for q in self.unknowns}
         unknown_accels = {acceleration(q) for q in self.unknowns}
@@ -372,6 +421,9 @@ class Linkage:
             definitions.update(self.velocities)
         if symbols & unknown_accels:
             definitions.update(self.accelerations)
+        for parameter in self.parameters:
+            if {sensitivity_symbol(q, parameter) for q in self.unknowns} & symbols:
+                definitions.update(self.sensitivities(parameter))
         return definitions
 
     def program(self, outputs: Sequence[str]) -> Program:
@@ -412,8 +464,10 @@ class Linkage:
     def _repr_latex_(self) -> str:
         return self.equations()._repr_latex_()
 
-    def equations(self, velocities: bool = False, accelerations: bool = False) -> "Equations":
-        r"""The closure and the closed forms as a Jupyter display (velocities and accelerations on request).
+    def equations(self, velocities: bool = False, accelerations: bool = False,
+                  sensitivities: Sequence[str] = ()) -> "Equations":
+        r"""The closure and the closed forms as a Jupyter display (velocities, accelerations and the
+        unknowns' derivatives by the named parameters on request).
 
         Displaying a linkage shows the closure and positions; this shows more
         without deriving anything that is not asked for.
@@ -421,8 +475,14 @@ class Linkage:
         >>> from symlink.catalog import fourbar
         >>> "\\dot{\\phi}" in fourbar().equations(velocities=True)._repr_latex_()
         True
+        >>> "\\frac{\\partial \\phi}{\\partial a}" in fourbar().equations(sensitivities=["a"])._repr_latex_()
+        True
         """
-        return Equations(self, velocities, accelerations)
+        by_name = {p.name: p for p in self.parameters}
+        unknown = [name for name in sensitivities if name not in by_name]
+        if unknown:
+            raise ValueError(f"{self.name} has no parameter {unknown[0]!r}; it has {', '.join(by_name)}")
+        return Equations(self, velocities, accelerations, tuple(by_name[name] for name in sensitivities))
 
     def __repr__(self) -> str:
         return (f"Linkage({self.name!r}, loops={[loop.name for loop in self.loops]}, "

@@ -64,7 +64,7 @@ zeros nan NaN Inf inf pi""".split())
 #: Names the generated modules use themselves: modules, locals, outputs and the Newton driver's globals.
 _GENERATED = frozenset("""
 numpy math sympy shape check solve singular assembled residual guess inputs parameters unknowns positions
-velocities accelerations TOLERANCE EPSILON RESIDUAL_TOLERANCE SINGULAR_CONDITION POSITION_TOLERANCE
+velocities accelerations sensitivities TOLERANCE EPSILON RESIDUAL_TOLERANCE SINGULAR_CONDITION POSITION_TOLERANCE
 MAX_PREDICTION MAX_CORRECTION CONTRACTION MAX_ITERATIONS ASSEMBLY_ITERATIONS MIN_FRACTION LARGEST_BLOCK
 INPUTS PARAMETERS UNKNOWNS ANGLE_INPUTS ROLES""".split())
 

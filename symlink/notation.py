@@ -61,12 +61,21 @@ def branch_html(name: str) -> str:
     return f"σ<sub>{html.escape(name[len(BRANCH) + 1:])}</sub>"
 
 
+#: The separator in a design sensitivity's name, ``phi__d_a`` (the scheme of :mod:`symlink.sensitivity`, which
+#: takes it from here: this module sits below it, so every display can read it).
+SENSITIVITY_SEPARATOR = "__d_"
+
+
 def latex_names(expressions: Iterable[sp.Basic]) -> dict[sp.Symbol, str]:
     """LaTeX names for the generated symbols among the expressions' free symbols (a ``symbol_names`` mapping).
 
     Branch signs print as sigma, a loop's closing vector as ``W_{x,1}``, its
-    scaled lengths as ``\\rho_{2,1}`` (length 2 of loop 1); every other symbol
-    keeps SymPy's own name.
+    scaled lengths as ``\\rho_{2,1}`` (length 2 of loop 1), a design sensitivity
+    ``phi__d_a`` as the partial derivative it is; every other symbol keeps
+    SymPy's own name.
+
+    >>> print(latex_names([sp.Symbol("phi__d_a")])[sp.Symbol("phi__d_a")])
+    \\frac{\\partial \\phi}{\\partial a}
     """
     names = {}
     for symbol in set().union(*(sp.sympify(e).free_symbols for e in expressions)):
@@ -78,4 +87,8 @@ def latex_names(expressions: Iterable[sp.Basic]) -> dict[sp.Symbol, str]:
             names[symbol] = "W_{%s,%s}" % (stem[1], label)
         elif scaled:
             names[symbol] = r"\rho_{%s,%s}" % scaled.groups()
+        elif SENSITIVITY_SEPARATOR in symbol.name:
+            output, _, parameter = symbol.name.rpartition(SENSITIVITY_SEPARATOR)
+            names[symbol] = r"\frac{\partial %s}{\partial %s}" % (sp.latex(sp.Symbol(output)),
+                                                                   sp.latex(sp.Symbol(parameter)))
     return names

@@ -25,6 +25,7 @@ import sympy as sp
 from ..closure import closure_system
 from ..loops import CASE_NAMES
 from ..notation import branch_latex
+from ..sensitivity import sensitivity_symbol
 from ..typeset import align_block, closure_rows
 from ..vectors import acceleration, rate
 
@@ -56,8 +57,13 @@ def document(title: str, body: Sequence[str]) -> str:
     return "\n".join(parts) + "\n"
 
 
-def latex_document(linkage: Linkage, title: str, *, velocities: bool = True, accelerations: bool = True) -> str:
-    """A standalone LaTeX document with the linkage's closed-form derivation, section by section."""
+def latex_document(linkage: Linkage, title: str, *, velocities: bool = True, accelerations: bool = True,
+                   sensitivities: Sequence[sp.Symbol] = ()) -> str:
+    """A standalone LaTeX document with the linkage's closed-form derivation, section by section.
+
+    ``sensitivities`` names parameters whose design sensitivities (the unknowns' derivatives by them,
+    :mod:`symlink.sensitivity`) get a section of their own.
+    """
     parts = [
         "Angles are measured counter-clockwise from $+x$. "
         "$\\left[x\\right]_{+}$ is $\\max(x, 0)$ where $x$ is negative only by rounding "
@@ -76,6 +82,9 @@ def latex_document(linkage: Linkage, title: str, *, velocities: bool = True, acc
         parts += ["\\subsection*{Velocities}", *align_block(list(linkage.velocities.items()))]
     if accelerations:
         parts += ["\\subsection*{Accelerations}", *align_block(list(linkage.accelerations.items()))]
+    for parameter in sensitivities:
+        parts += [f"\\subsection*{{Sensitivities to ${sp.latex(parameter)}$}}",
+                  *align_block(list(linkage.sensitivities(parameter).items()))]
     return document(title, parts)
 
 
@@ -110,9 +119,12 @@ def export_files(linkage: Linkage, stem: str, functions: Sequence[tuple[str, Seq
     """``{"<stem>.tex": document}``: the derivation, as far as the ``(name, outputs, doc)`` sets need it.
 
     The velocities are written if any output depends on a rate, the
-    accelerations if any depends on an acceleration; ``regenerate`` is not written.
+    accelerations if any depends on an acceleration, the sensitivities to a
+    parameter if any output is a derivative by it; ``regenerate`` is not written.
     """
     asked = set().union(*(linkage.output(o).free_symbols for _, outputs, _ in functions for o in outputs))
     accelerations = any(acceleration(q) in asked for q in linkage.unknowns)
     velocities = accelerations or any(rate(q) in asked for q in linkage.unknowns)
-    return {f"{stem}.tex": latex_document(linkage, title, velocities=velocities, accelerations=accelerations)}
+    sensitivities = [p for p in linkage.parameters if any(sensitivity_symbol(q, p) in asked for q in linkage.unknowns)]
+    return {f"{stem}.tex": latex_document(linkage, title, velocities=velocities, accelerations=accelerations,
+                                          sensitivities=sensitivities)}

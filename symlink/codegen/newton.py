@@ -25,6 +25,7 @@ import sympy as sp
 
 from ..closure import closure_system, is_angle
 from ..linkage import Linkage, Program
+from ..sensitivity import closure_parameter_rhs, sensitivity_name, sensitivity_symbol
 from ..vectors import acceleration, rate
 from . import newton_driver
 from .numpy import ARGUMENT_CONTRACT, NumPyCodePrinter, numpy_module
@@ -74,21 +75,41 @@ def _array_function(name: str, arguments: Sequence[sp.Symbol], results: Sequence
     return "\n".join(lines) + "\n"
 
 
+def _named_function(name: str, doc: str, arguments: Sequence[sp.Symbol], outputs: dict[str, sp.Expr]) -> str:
+    """Source of a function returning a dict of named expressions of its arguments (CSE across them)."""
+    if not outputs:
+        return f"def {name}(*values):\n    return {{}}\n"
+    code = straight_line(Program(tuple(arguments), (), outputs))
+    printer = NumPyCodePrinter()
+    lines = [f"def {name}({', '.join(s.name for s in arguments)}):", f'    """{doc}"""']
+    lines += [f"    {symbol.name} = {printer.doprint(expr)}" for symbol, expr in code.assignments]
+    lines.append("    return {")
+    lines += [f"        {output!r}: {printer.doprint(code.outputs[output])}," for output in outputs]
+    lines.append("    }")
+    return "\n".join(lines) + "\n"
+
+
 def _outputs_function(linkage: Linkage, arguments: Sequence[sp.Symbol]) -> tuple[str, list[str]]:
     """Source of ``_outputs``: roles, named points and extras, as expressions of the coordinates."""
     names = [f"{point}_{axis}" for point in linkage.points for axis in "xy"] + list(linkage.extras)
-    expressions = [linkage.output(name) for name in names]
-    if not names:
-        return "def _outputs(*values):\n    return {}\n", []
-    code = straight_line(Program(tuple(arguments), (), dict(zip(names, expressions))))
-    printer = NumPyCodePrinter()
-    lines = [f"def _outputs({', '.join(s.name for s in arguments)}):",
-             '    """Named points and extra outputs from the solved coordinates."""']
-    lines += [f"    {symbol.name} = {printer.doprint(expr)}" for symbol, expr in code.assignments]
-    lines.append("    return {")
-    lines += [f"        {name!r}: {printer.doprint(code.outputs[name])}," for name in names]
-    lines.append("    }")
-    return "\n".join(lines) + "\n", names
+    source = _named_function("_outputs", "Named points and extra outputs from the solved coordinates.", arguments,
+                             {name: linkage.output(name) for name in names})
+    return source, names
+
+
+def _sensitivity_function(linkage: Linkage, arguments: Sequence[sp.Symbol]) -> str:
+    """Source of ``_sensitivity_outputs``: every position output's derivative by every parameter.
+
+    Its arguments are ``arguments`` and then the unknowns' sensitivities (unknown by unknown, parameter by
+    parameter), which the driver solves from ``J S = -dF/dp``; the outputs follow by the chain rule.
+    """
+    names = ([q.name for q in linkage.unknowns] + [role for role in linkage.roles]
+             + [f"{point}_{axis}" for point in linkage.points for axis in "xy"] + list(linkage.extras))
+    outputs = {sensitivity_name(name, p.name): linkage.output(sensitivity_name(name, p.name))
+               for name in names for p in linkage.parameters}
+    columns = tuple(sensitivity_symbol(q, p) for q in linkage.unknowns for p in linkage.parameters)
+    return _named_function("_sensitivity_outputs", "Each position output's derivative by each parameter, from the "
+                           "unknowns' (name + '__d_' + parameter).", tuple(arguments) + columns, outputs)
 
 
 _PUBLIC = '''
@@ -125,13 +146,25 @@ def accelerations({signature}guess, {rates}, {accels}, *, check=True):
         {inputs}, {parameters}, guess, {rate_names}, {accel_names})
     return _results(symlink_shape, symlink_inputs, {parameters}, symlink_q, symlink_qdot, symlink_qddot,
                     symlink_residual, 2)
+
+
+def sensitivities({signature}guess, *, check=True):
+    """Positions and their derivatives by each parameter (output + '__d_' + parameter) over the sweep.
+
+    The unknowns' derivatives solve J dq/dp = -dF/dp with the converged Jacobian J; roles, points and
+    extras follow by the chain rule.  See positions() for the arguments; rates are not computed.
+    """
+    _arguments(check, {checked_names}, {checked_values}, {lengths})
+    symlink_shape, symlink_inputs, symlink_q, _, _, symlink_residual = _sweep({inputs}, {parameters}, guess)
+    return _sensitivity_results(symlink_shape, symlink_inputs, {parameters}, symlink_q, symlink_residual)
 '''
 
 
 def numeric_module(linkage: Linkage, title: str = "", regenerate: str = "") -> str:
     """Source of a standalone NumPy module solving ``linkage`` by Newton's method over an input sweep.
 
-    It defines ``positions``, ``velocities`` and ``accelerations`` with the
+    It defines ``positions``, ``velocities``, ``accelerations`` and
+    ``sensitivities`` (positions and their derivatives by the parameters) with the
     arguments ``inputs..., parameters..., guess, input rates..., input
     accelerations...`` (see their docstrings).
     """
@@ -158,8 +191,12 @@ def numeric_module(linkage: Linkage, title: str = "", regenerate: str = "") -> s
     parts.append("\n\n" + _array_function(
         "_acceleration_rhs", base + unknown_rates + input_rates + input_accels,
         [("r", system.acceleration_rhs)], "Right-hand side of J qddot = r."))
+    parts.append("\n\n" + _array_function(
+        "_parameter_rhs", base, [("R", closure_parameter_rhs(system.residuals, parameters))],
+        "Right-hand sides of J dq/dp = R, one column a parameter."))
     outputs, _ = _outputs_function(linkage, inputs + parameters + unknowns)
     parts.append("\n\n" + outputs)
+    parts.append("\n\n" + _sensitivity_function(linkage, inputs + parameters + unknowns))
     as_tuple = lambda items: repr(tuple(items)).replace("'", "")  # noqa: E731  (names, not strings)
     checked = lambda symbols: {"names": repr(tuple(s.name for s in symbols)),  # noqa: E731
                                "values": as_tuple(s.name for s in symbols)}

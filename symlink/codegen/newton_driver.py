@@ -17,7 +17,11 @@ around it and which stand here as placeholders (an empty system):
   ``_acceleration_rhs(*inputs, *parameters, *unknowns, *unknown_rates,
   *input_rates, *input_accels)``: the right-hand sides of ``J qdot = r`` and
   ``J qddot = s``;
-* ``_outputs(*inputs, *parameters, *unknowns) -> dict``: named points and extras.
+* ``_outputs(*inputs, *parameters, *unknowns) -> dict``: named points and extras;
+* ``_parameter_rhs(*inputs, *parameters, *unknowns) -> R`` (..., n, parameters): the
+  right-hand sides of ``J dq/dp = R`` (``-dF/dp``), and
+  ``_sensitivity_outputs(*inputs, *parameters, *unknowns, *dq/dp) -> dict``: every position
+  output's derivative by every parameter (the design sensitivities).
 
 How it works:
 
@@ -35,7 +39,8 @@ How it works:
   the positions do not follow from the input) raise ``ValueError`` naming the
   input value; a wrong configuration is never returned silently.
 * Velocities and accelerations solve ``J qdot = r1`` and ``J qddot = r2``
-  over the whole sweep with ``numpy.linalg.solve``.
+  over the whole sweep with ``numpy.linalg.solve``, and the design
+  sensitivities ``J dq/dp = -dF/dp`` with the same converged Jacobian.
 
 >>> _stack([1.0, numpy.zeros(2)]).tolist()
 [[1.0, 0.0], [1.0, 0.0]]
@@ -66,6 +71,16 @@ def _acceleration_rhs(*values):
 
 def _outputs(*values):
     """Named points and extra outputs from the solved coordinates (generated)."""
+    raise NotImplementedError("the generated module defines the closure system")
+
+
+def _parameter_rhs(*values):
+    """Right-hand sides of J dq/dp = R, one column a parameter (generated)."""
+    raise NotImplementedError("the generated module defines the closure system")
+
+
+def _sensitivity_outputs(*values):
+    """Each position output's derivative by each parameter, from the unknowns' (generated)."""
     raise NotImplementedError("the generated module defines the closure system")
 
 
@@ -324,3 +339,17 @@ def _results(shape, inputs, parameters, q, qdot, qddot, residual, order):
     result["residual"] = residual
     result["assembled"] = numpy.ones(len(residual), dtype=bool)
     return {name: numpy.reshape(numpy.broadcast_to(value, residual.shape), shape) for name, value in result.items()}
+
+
+def _sensitivity_results(shape, inputs, parameters, q, residual):
+    """Positions and their derivatives by each parameter, from J dq/dp = -dF/dp at the converged points."""
+    columns = numpy.moveaxis(q, -1, 0)
+    _, J, _, _, _ = _system(inputs, parameters, q)
+    rhs = numpy.broadcast_to(_parameter_rhs(*inputs, *parameters, *columns), J.shape[:-1] + (len(PARAMETERS),))
+    slopes = numpy.linalg.solve(J, rhs)  # (points, unknowns, parameters)
+    result = _results(shape, inputs, parameters, q, None, None, residual, 0)
+    flat = numpy.moveaxis(slopes.reshape(len(q), -1), -1, 0)
+    found = _sensitivity_outputs(*inputs, *parameters, *columns, *flat)
+    result.update({name: numpy.reshape(numpy.broadcast_to(value, residual.shape), shape)
+                   for name, value in found.items()})
+    return result

@@ -26,7 +26,7 @@ branches.
 >>> design = function_generator(math.log10, (1.0, 2.0), (math.radians(45), math.radians(105)),
 ...                             (math.radians(135), math.radians(225)))
 >>> design.method, design.branch, design.structural_error < math.radians(0.5)
-('three-point', -1, True)
+('three-point', 1, True)
 """
 from __future__ import annotations
 

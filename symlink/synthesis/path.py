@@ -9,12 +9,11 @@ B->C, v to its left), so that in the four-bar's own frame (:func:`symlink.catalo
 * With timing (:func:`synthesize_path` with ``theta``) the crank angles of the points are
   given (measured from the ground line, as everywhere in symlink); the unknowns are the
   nine dimensions.
-* Without, the crank angles are unknowns too, written as the first angle and the
-  non-negative steps to the next ones (bounds), so the points are reached in order,
-  turning one way.
+* Without, the crank angles are unknowns too, written as the first angle and squared
+  steps to the next ones, so the points are reached in order, turning one way.
 
-Each start is refined by ``scipy.optimize.least_squares`` (the ``synthesis`` extra) with
-the exact Jacobian: the closed-form coupler point is differentiated by SymPy once
+Each start is refined by ``scipy.optimize.least_squares`` (Levenberg-Marquardt; SciPy is the
+``synthesis`` extra) with the exact Jacobian: the closed-form coupler point is differentiated by SymPy once
 (forward mode through the four-bar's solve plan) and printed as a NumPy module by symlink's
 code generator, cached like every generated solver (:func:`coupler_point_gradient`).
 
@@ -69,7 +68,7 @@ _INFEASIBLE = 1e6        # residual of a design that breaks a constraint (the so
 _PATH_SAMPLES = 24       # crank angles checked between consecutive points for assembly and toggles
 _ATLAS = 1500            # random four-bars in the coarse atlas
 _CURVE_SAMPLES = 96      # points of each atlas curve (without timing)
-_MAX_EVALUATIONS = 150   # residual evaluations of one refinement (three times that without timing)
+_MAX_EVALUATIONS = 300   # residual evaluations of one refinement (three times that without timing)
 _DEBUG = False
 
 
@@ -451,7 +450,13 @@ def _interpolate_rows(where: numpy.ndarray, arc: numpy.ndarray, grid: numpy.ndar
 
 def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: numpy.ndarray, timed: bool,
             constraints: _Constraints, size: float, tolerance: float):
-    """least_squares from one start; returns (design vector, crank angles, evaluations)."""
+    """Levenberg-Marquardt (``least_squares(method="lm")``, where there are enough points) from one start: (design vector, crank angles, evaluations).
+
+    Without timing the crank angles are the first angle and squared steps to the next
+    (``theta_i = theta_1 + direction * sum(s_k^2)``), so they turn one way with no bounds.
+    No bounds are needed for the lengths either: a length at or below zero breaks a
+    constraint and is never accepted.
+    """
     from scipy.optimize import least_squares
 
     count = len(targets)
@@ -460,7 +465,7 @@ def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: nu
     def unpack(x: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
         if timed:
             return x, theta
-        return x[:9], x[9] + direction * numpy.concatenate([[0.0], numpy.cumsum(x[10:])])
+        return x[:9], x[9] + direction * numpy.concatenate([[0.0], numpy.cumsum(x[10:] ** 2)])
 
     last: dict[str, numpy.ndarray] = {}  # the generated code gives points and Jacobian in one call: keep it
 
@@ -487,28 +492,26 @@ def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: nu
             return dimensions / size
         by_theta = jac[:, :, 0]  # (count, 2): d point_i / d theta_i
         angle_columns = numpy.zeros((2 * count, count))
+        chain = 2 * direction * x[10:]  # d theta_i / d s_k for k < i
         for i in range(count):
             angle_columns[2 * i:2 * i + 2, 0] = by_theta[i]
-            angle_columns[2 * i:2 * i + 2, 1:i + 1] = direction * by_theta[i][:, None]
+            angle_columns[2 * i:2 * i + 2, 1:i + 1] = by_theta[i][:, None] * chain[None, :i]
         return numpy.concatenate([dimensions, angle_columns], axis=1) / size
 
-    lower = numpy.array([-numpy.inf] * 3 + [0.0] * 4 + [-numpy.inf] * 2)
     x0 = start.copy()
     if not timed:
-        steps = numpy.abs(numpy.diff(theta))
-        x0 = numpy.concatenate([start, [theta[0]], steps])
-        lower = numpy.concatenate([lower, [-numpy.inf], numpy.zeros(count - 1)])
-    upper = numpy.full_like(lower, numpy.inf)
-    x0 = numpy.maximum(x0, lower + 1e-12)
+        x0 = numpy.concatenate([start, [theta[0]], numpy.sqrt(numpy.abs(numpy.diff(theta)))])
     if residuals(x0)[0] == _INFEASIBLE:
         return None
-    fit = least_squares(residuals, x0, jac=jacobian, bounds=(lower, upper), method="trf", x_scale="jac",
-                        xtol=tolerance, ftol=tolerance, gtol=tolerance,
-                        max_nfev=_MAX_EVALUATIONS * (1 if timed else 3))
+    # Levenberg-Marquardt needs at least as many residuals as unknowns; fewer points (an underdetermined
+    # problem without timing) go to the trust-region reflective method.
+    method = "lm" if 2 * count >= len(x0) else "trf"
+    fit = least_squares(residuals, x0, jac=jacobian, method=method, x_scale="jac", xtol=tolerance, ftol=tolerance,
+                        gtol=tolerance, max_nfev=_MAX_EVALUATIONS * (1 if timed else 2))
     if _DEBUG:
         print(fit.status, fit.nfev, fit.njev, fit.cost, fit.message)
     design, angles = unpack(fit.x)
-    return design, angles, fit.nfev + fit.njev
+    return design, angles, fit.nfev + (fit.njev or 0)
 
 
 def synthesize_path(targets, theta: Sequence[float] | None = None, *, starts: int = 8, designs: int = 3,

@@ -32,9 +32,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Callable, Sequence
+from typing import Callable
 
 import numpy
+from numpy.typing import ArrayLike
 
 from ..analysis import grashof, wrap_angle
 from ..catalog import fourbar
@@ -131,7 +132,7 @@ def chebyshev_points(start: float, end: float, count: int = 3) -> numpy.ndarray:
     return (start + end) / 2 - (end - start) / 2 * numpy.cos((2 * j - 1) * math.pi / (2 * count))
 
 
-def _angles(theta: Sequence[float], phi: Sequence[float], least: int) -> tuple[numpy.ndarray, numpy.ndarray]:
+def _angles(theta: ArrayLike, phi: ArrayLike, least: int) -> tuple[numpy.ndarray, numpy.ndarray]:
     theta_array, phi_array = numpy.asarray(theta, dtype=float), numpy.asarray(phi, dtype=float)
     if theta_array.ndim != 1 or theta_array.shape != phi_array.shape:
         raise ValueError(f"theta and phi must be two lists of the same length, got shapes {theta_array.shape} "
@@ -148,7 +149,7 @@ def _rows(theta: numpy.ndarray, phi: numpy.ndarray) -> tuple[numpy.ndarray, nump
     return numpy.stack([numpy.cos(phi), -numpy.cos(theta), numpy.ones_like(theta)], axis=1), numpy.cos(theta - phi)
 
 
-def three_point_design(theta: Sequence[float], phi: Sequence[float], ground: float = 1.0) -> FunctionDesign:
+def three_point_design(theta: ArrayLike, phi: ArrayLike, ground: float = 1.0) -> FunctionDesign:
     """The four-bar through three precision points ``(theta_j, phi_j)`` exactly (one linear solve).
 
     >>> design = three_point_design([0.1, 0.6, 1.1], [1.9, 2.1, 2.4])
@@ -164,10 +165,10 @@ def three_point_design(theta: Sequence[float], phi: Sequence[float], ground: flo
             k = numpy.linalg.solve(rows, right)
         except numpy.linalg.LinAlgError:
             k = numpy.full(3, numpy.nan)
-    return _verified(tuple(float(x) for x in k), ground, theta_array, phi_array, "three-point")
+    return _verified((float(k[0]), float(k[1]), float(k[2])), ground, theta_array, phi_array, "three-point")
 
 
-def least_squares_design(theta: Sequence[float], phi: Sequence[float], ground: float = 1.0) -> FunctionDesign:
+def least_squares_design(theta: ArrayLike, phi: ArrayLike, ground: float = 1.0) -> FunctionDesign:
     """The four-bar closest to many ``(theta, phi)`` pairs: weighted linear least squares in the K's.
 
     Each Freudenstein equation is divided by its derivative with respect to phi at the
@@ -210,7 +211,8 @@ def least_squares_design(theta: Sequence[float], phi: Sequence[float], ground: f
             error = float(numpy.max(angle_errors(k)))
             if error < best_error:
                 best, best_error = k, error
-    return _verified(tuple(float(x) for x in best), ground, theta_array, phi_array, "least-squares")
+    return _verified((float(best[0]), float(best[1]), float(best[2])), ground, theta_array, phi_array,
+                     "least-squares")
 
 
 def _solve_rocker(lengths: tuple[float, float, float, float], theta: numpy.ndarray, branch: int,
@@ -223,8 +225,8 @@ def _solve_rocker(lengths: tuple[float, float, float, float], theta: numpy.ndarr
     return solved
 
 
-def structural_error(lengths: tuple[float, float, float, float], branch: int, theta: Sequence[float],
-                     phi: Sequence[float], offsets: tuple[float, float] = (0.0, 0.0)) -> numpy.ndarray:
+def structural_error(lengths: tuple[float, float, float, float], branch: int, theta: ArrayLike,
+                     phi: ArrayLike, offsets: tuple[float, float] = (0.0, 0.0)) -> numpy.ndarray:
     """Generated minus wanted rocker angle (wrapped, radians) at crank angles ``theta`` on ``branch``.
 
     ``offsets`` are a design's ``crank_offset`` and ``rocker_offset``.  ``ValueError`` where

@@ -41,12 +41,13 @@ from __future__ import annotations
 import hashlib
 import inspect
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from functools import lru_cache
 from typing import Callable, Sequence
 
 import numpy
 import sympy as sp
+from numpy.typing import ArrayLike
 
 from ..analysis import grashof, transmission_range
 from ..cache import cache_key, cached_text
@@ -116,25 +117,25 @@ class PathDesign:
         """The design vector in :data:`DESIGN_NAMES` order."""
         return numpy.array([*self.crank_pivot, self.frame, *self.lengths, *self.coupler_point])
 
-    def joints(self, theta: Sequence[float] | float) -> dict[str, numpy.ndarray]:
+    def joints(self, theta: ArrayLike) -> dict[str, numpy.ndarray]:
         """Joints A, B, C, D and the coupler point P in the plane (complex numbers) at crank angles ``theta``.
 
         Solved by the generated four-bar solver (not the Jacobian's code); NaN where it cannot close.
         """
-        theta = numpy.asarray(theta, dtype=float)
+        angles = numpy.asarray(theta, dtype=float)
         a, b, c, d = self.lengths
         solved = shared_solver(fourbar, ("B_x", "B_y", "C_x", "C_y", "coupler"))(
-            theta=theta, a=a, b=b, c=c, d=d, branch=self.branch)
+            theta=angles, a=a, b=b, c=c, d=d, branch=self.branch)
         origin, turn = complex(*self.crank_pivot), complex(math.cos(self.frame), math.sin(self.frame))
         ok = numpy.asarray(solved["assembled"])
         B = numpy.where(ok, solved["B_x"] + 1j * solved["B_y"], numpy.nan)
         C = numpy.where(ok, solved["C_x"] + 1j * solved["C_y"], numpy.nan)
         P = B + complex(*self.coupler_point) * numpy.exp(1j * numpy.asarray(solved["coupler"]))
         place = lambda z: origin + turn * z  # noqa: E731
-        return {"A": numpy.broadcast_to(origin, theta.shape), "B": place(B), "C": place(C),
-                "D": numpy.broadcast_to(place(d), theta.shape), "P": place(P)}
+        return {"A": numpy.broadcast_to(origin, angles.shape), "B": place(B), "C": place(C),
+                "D": numpy.broadcast_to(place(d), angles.shape), "P": place(P)}
 
-    def points(self, theta: Sequence[float] | float) -> numpy.ndarray:
+    def points(self, theta: ArrayLike) -> numpy.ndarray:
         """The coupler point at crank angles ``theta`` as rows (x, y)."""
         P = self.joints(theta)["P"]
         return numpy.stack([P.real, P.imag], axis=-1)
@@ -251,7 +252,7 @@ class _Constraints:
     max_link_ratio: float = math.inf
     min_transmission: float = 0.0
 
-    def allow(self, lengths: Sequence[float]) -> bool:
+    def allow(self, lengths: Sequence[float] | numpy.ndarray) -> bool:
         a, b, c, d = lengths
         if min(lengths) <= 0 or not all(math.isfinite(x) for x in lengths):
             return False
@@ -268,9 +269,9 @@ class _Constraints:
         return True
 
 
-def _reached_in_order(design: PathDesign, theta: Sequence[float]) -> str | None:
+def _reached_in_order(design: PathDesign, crank_angles: ArrayLike) -> str | None:
     """Why the crank cannot move from point to point on one branch (None if it can)."""
-    theta = numpy.asarray(theta, dtype=float)
+    theta = numpy.asarray(crank_angles, dtype=float)
     a, b, c, d = design.lengths
     solver = shared_solver(fourbar, ("singular",))
     steps = numpy.linspace(0.0, 1.0, _PATH_SAMPLES + 1)
@@ -285,7 +286,7 @@ def _reached_in_order(design: PathDesign, theta: Sequence[float]) -> str | None:
     return None
 
 
-def check_design(design: PathDesign, targets: numpy.ndarray, theta: Sequence[float],
+def check_design(design: PathDesign, targets: ArrayLike, crank_angles: ArrayLike,
                  grashof_class: str = "any", max_link_ratio: float = math.inf,
                  min_transmission: float = 0.0) -> PathDesign:
     """Verify a design with symlink's four-bar solver and return it with its errors; ``ValueError`` if it fails.
@@ -294,10 +295,10 @@ def check_design(design: PathDesign, targets: numpy.ndarray, theta: Sequence[flo
     point's angle to the next without leaving the assembly or passing a toggle), the turn
     from first to last point is less than a full turn, and the constraints hold.
     """
-    targets = _targets(targets)
-    theta = numpy.asarray(theta, dtype=float)
-    if theta.shape != (len(targets),):
-        raise ValueError(f"{len(targets)} targets need {len(targets)} crank angles, got {theta.size}")
+    points = _targets(targets)
+    theta = numpy.asarray(crank_angles, dtype=float)
+    if theta.shape != (len(points),):
+        raise ValueError(f"{len(points)} targets need {len(points)} crank angles, got {theta.size}")
     constraints = _Constraints(grashof_class, max_link_ratio, min_transmission)
     if not constraints.allow(design.lengths):
         raise ValueError(f"the design {tuple(round(x, 6) for x in design.lengths)} breaks a constraint "
@@ -310,19 +311,19 @@ def check_design(design: PathDesign, targets: numpy.ndarray, theta: Sequence[flo
     if why is not None:
         raise ValueError(why)
     reached = design.points(theta)
-    errors = numpy.hypot(*(reached - targets).T)
+    errors = numpy.hypot(*(reached - points).T)
     a, b, c, d = design.lengths
     worst = transmission_range(a, b, c, d).worst if grashof(a, b, c, d).name in ("crank-rocker", "double-crank") \
         else math.nan
     return replace(design, theta=tuple(map(float, theta)), errors=tuple(map(float, errors)),
-                   error=float(errors.max() / _size(targets)), grashof=grashof(a, b, c, d).name,
+                   error=float(errors.max() / _size(points)), grashof=grashof(a, b, c, d).name,
                    worst_transmission=float(worst))
 
 
-def path_error(design: PathDesign, targets: numpy.ndarray) -> float:
+def path_error(design: PathDesign, targets: ArrayLike) -> float:
     """The largest distance from a target to the design's coupler point at its crank angle, over the targets' size."""
-    targets = _targets(targets)
-    return float(numpy.max(numpy.hypot(*(design.points(design.theta) - targets).T)) / _size(targets))
+    points = _targets(targets)
+    return float(numpy.max(numpy.hypot(*(design.points(design.theta) - points).T)) / _size(points))
 
 
 def _targets(targets) -> numpy.ndarray:
@@ -384,7 +385,7 @@ def _timed_starts(w: numpy.ndarray, theta: numpy.ndarray, rng, count: int, const
     z, ok = _local_points(rows, theta[None, :])
     factor, shift, rms = _similarity(z, w[None, :])
     rms = numpy.where(numpy.all(ok, axis=1) & numpy.isfinite(rms), rms, numpy.inf)
-    starts = []
+    starts: list[tuple[numpy.ndarray, int, numpy.ndarray]] = []
     for k in numpy.argsort(rms):
         if not numpy.isfinite(rms[k]) or len(starts) >= count:
             break
@@ -423,7 +424,7 @@ def _untimed_starts(w: numpy.ndarray, rng, count: int, constraints: _Constraints
                     if numpy.isfinite(rms[k]):
                         best.append((rms[k], k, factor[k], shift[k], theta[k]))
     best.sort(key=lambda item: item[0])
-    starts = []
+    starts: list[tuple[numpy.ndarray, int, numpy.ndarray]] = []
     for _, k, factor, shift, theta in best:
         if len(starts) >= count:
             break
@@ -514,7 +515,7 @@ def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: nu
     return design, angles, fit.nfev + (fit.njev or 0)
 
 
-def synthesize_path(targets, theta: Sequence[float] | None = None, *, starts: int = 8, designs: int = 3,
+def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, starts: int = 8, designs: int = 3,
                     grashof_class: str = "any", max_link_ratio: float = 20.0, min_transmission: float = 0.0,
                     seed: int | None = 0, tolerance: float = 1e-15) -> list[PathDesign]:
     """Four-bars whose coupler point passes through ``targets`` (rows x, y), best first, up to ``designs``.
@@ -531,20 +532,19 @@ def synthesize_path(targets, theta: Sequence[float] | None = None, *, starts: in
         import scipy.optimize  # noqa: F401
     except ImportError as missing:  # pragma: no cover - the extra is installed in the tests
         raise ImportError("path synthesis needs SciPy: pip install 'symlink-kinematics[synthesis]'") from missing
-    targets = _targets(targets)
-    count = len(targets)
+    points = _targets(targets)
+    count = len(points)
     timed = theta is not None
     if count < (3 if timed else 4):
         raise ValueError(f"path synthesis needs at least {3 if timed else 4} target points, got {count}")
-    size = _size(targets)
+    size = _size(points)
     if not size > 0:
         raise ValueError("the target points are all the same point")
-    if timed:
-        theta = numpy.asarray(theta, dtype=float)
-        if theta.shape != (count,):
-            raise ValueError(f"{count} target points need {count} crank angles, got {theta.size}")
-        if not numpy.all(numpy.isfinite(theta)):
-            raise ValueError("the crank angles must be finite numbers")
+    crank_angles = numpy.asarray(theta if theta is not None else numpy.zeros(count), dtype=float)
+    if crank_angles.shape != (count,):
+        raise ValueError(f"{count} target points need {count} crank angles, got {crank_angles.size}")
+    if not numpy.all(numpy.isfinite(crank_angles)):
+        raise ValueError("the crank angles must be finite numbers")
     if grashof_class not in GRASHOF_CHOICES:
         raise ValueError(f"grashof_class must be one of {', '.join(GRASHOF_CHOICES)}, not {grashof_class!r}")
     if not (max_link_ratio >= 1):
@@ -556,22 +556,23 @@ def synthesize_path(targets, theta: Sequence[float] | None = None, *, starts: in
         raise ValueError("starts and designs must be at least 1")
     constraints = _Constraints(grashof_class, max_link_ratio, min_transmission)
     rng = numpy.random.default_rng(seed)
-    w = targets[:, 0] + 1j * targets[:, 1]
+    w = points[:, 0] + 1j * points[:, 1]
     found: list[PathDesign] = []
     for attempt in range(4):
-        candidates = (_timed_starts(w, theta, rng, starts, constraints) if timed
+        candidates = (_timed_starts(w, crank_angles, rng, starts, constraints) if timed
                       else _untimed_starts(w, rng, starts, constraints))
         for vector, branch, angles in candidates:
-            refined = _refine(vector, branch, numpy.asarray(angles, dtype=float), targets, timed, constraints, size,
+            refined = _refine(vector, branch, numpy.asarray(angles, dtype=float), points, timed, constraints, size,
                               tolerance)
             if refined is None:
                 continue
             design_vector, design_theta, evaluations = refined
-            design = PathDesign((design_vector[0], design_vector[1]), float(design_vector[2]),
-                                *map(float, design_vector[3:7]), (float(design_vector[7]), float(design_vector[8])),
-                                branch, evaluations=evaluations)
+            a, b, c, d = (float(x) for x in design_vector[3:7])
+            design = PathDesign((float(design_vector[0]), float(design_vector[1])), float(design_vector[2]),
+                                a, b, c, d, (float(design_vector[7]), float(design_vector[8])), branch,
+                                evaluations=evaluations)
             try:
-                found.append(check_design(design, targets, design_theta, grashof_class, max_link_ratio,
+                found.append(check_design(design, points, design_theta, grashof_class, max_link_ratio,
                                           min_transmission))
             except ValueError:
                 continue

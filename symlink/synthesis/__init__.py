@@ -1,6 +1,13 @@
 """Synthesis: find the linkage that does a job.
 
-:mod:`symlink.synthesis.quick_return` designs a quick-return crank-rocker exactly
-from its time ratio and stroke; :mod:`symlink.synthesis.motion` guides a coupler through
-given poses (motion generation by Burmester theory).
+* :mod:`symlink.synthesis.quick_return` designs a quick-return crank-rocker exactly
+  from its time ratio and stroke;
+* :mod:`symlink.synthesis.function` generates a function (rocker angle against crank
+  angle) with Freudenstein's equation: three Chebyshev precision points in closed form, or
+  least squares over many points, verified over the range;
+* :mod:`symlink.synthesis.path` puts a coupler point through N points, with or without
+  timing, by least squares with the exact Jacobian of the closed form (SciPy, the
+  ``synthesis`` extra), with constraints enforced;
+* :mod:`symlink.synthesis.motion` guides a coupler through given poses (motion
+  generation by Burmester theory).
 """

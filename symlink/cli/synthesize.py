@@ -1,0 +1,263 @@
+"""``symlink synthesize function|path``: four-bars from targets in a csv file.
+
+Each kind of synthesis is one entry of :data:`KINDS` (its parser and its run), so another
+kind (motion generation) is one more entry.  Targets are read from a csv file with a
+header row (``-`` reads stdin); numbers only, never expressions:
+
+* ``function``: columns ``theta,phi`` (crank and rocker angle, degrees or ``--units rad``).
+  Three rows: the exact three-point design; more: least squares.
+* ``path``: columns ``x,y`` (the crank angles are found too, the points reached in their
+  order), or ``theta,x,y`` (timing: the crank angle at each point, measured from the
+  ground line).
+
+Designs are printed as a table, csv or json; ``--plot FILE`` (.png or .svg) draws target
+against achieved: the points, the achieved curve, and the linkage at each precision point.
+"""
+from __future__ import annotations
+
+import argparse
+import csv
+import io
+import json
+import math
+import sys
+from typing import Callable
+
+import numpy
+
+from ..angles import from_radians, to_radians, wrap
+from .options import Parser, add_format_option, add_units_option, command_help, figure_path, finite, whole
+from .output import json_number, note, print_rows
+
+#: Columns a csv of targets may have, by kind.
+FUNCTION_COLUMNS = (("theta", "phi"),)
+PATH_COLUMNS = (("x", "y"), ("theta", "x", "y"))
+#: Most rows a target file may have.
+MAX_ROWS = 10_000
+#: Most linkage poses drawn by --plot (evenly chosen among the precision points).
+MAX_POSES = 12
+
+
+def read_targets(path: str, allowed: tuple[tuple[str, ...], ...]) -> dict[str, numpy.ndarray]:
+    """Columns of a csv file with one of the ``allowed`` headers, as float arrays; ``ValueError`` naming a bad line."""
+    if path == "-":
+        text = sys.stdin.read()
+    else:
+        with open(path, encoding="utf-8", newline="") as file:
+            text = file.read()
+    rows = [row for row in csv.reader(io.StringIO(text)) if any(cell.strip() for cell in row)]
+    if not rows:
+        raise ValueError(f"{path}: no header row; expected columns {' or '.join(','.join(a) for a in allowed)}")
+    header = tuple(cell.strip().lower() for cell in rows[0])
+    if header not in allowed:
+        raise ValueError(f"{path}: the header is {','.join(header)!r}; expected "
+                         f"{' or '.join(repr(','.join(a)) for a in allowed)}")
+    if len(rows) - 1 > MAX_ROWS:
+        raise ValueError(f"{path}: more than {MAX_ROWS} rows of targets")
+    values = []
+    for number, row in enumerate(rows[1:], start=2):
+        if len(row) != len(header):
+            raise ValueError(f"{path}, line {number}: {len(row)} values, expected {len(header)} ({','.join(header)})")
+        try:
+            parsed = [float(cell) for cell in row]
+        except ValueError:
+            raise ValueError(f"{path}, line {number}: not a number among {','.join(row)!r}") from None
+        if not all(math.isfinite(x) for x in parsed):
+            raise ValueError(f"{path}, line {number}: values must be finite numbers")
+        values.append(parsed)
+    array = numpy.array(values, dtype=float).reshape(-1, len(header))
+    return {name: array[:, k] for k, name in enumerate(header)}
+
+
+# --- function generation ------------------------------------------------------------------------
+
+def _register_function(kinds) -> None:
+    command = kinds.add_parser("function", **command_help(
+        "a four-bar whose rocker angle follows the crank angle through (theta, phi) pairs (Freudenstein)",
+        "angles in degrees (--units rad); lengths in the ground's unit",
+        "symlink synthesize function pairs.csv --ground 1",
+        "The csv has the header theta,phi.  Three rows give the exact three-point design, more rows the least-"
+        "squares design (weighted to rocker-angle error, re-weighted towards the smallest largest error).  The "
+        "crank pivot is at the origin and the rocker pivot at (ground, 0)."))
+    command.add_argument("targets", metavar="FILE", help="csv of theta,phi (- for stdin)")
+    command.add_argument("--ground", type=finite, default=1.0, metavar="L", help="ground length (default 1)")
+    add_units_option(command)
+    add_format_option(command)
+    command.add_argument("--plot", type=figure_path, metavar="FILE", help="draw wanted against generated (.png/.svg)")
+    command.set_defaults(run=_run_function)
+
+
+FUNCTION_FIELDS = ["crank", "coupler", "rocker", "ground", "branch", "crank_offset", "rocker_offset",
+                   "K1", "K2", "K3", "structural_error"]
+
+
+def _run_function(args: argparse.Namespace) -> int:
+    from ..synthesis.function import least_squares_design, three_point_design
+    columns = read_targets(args.targets, FUNCTION_COLUMNS)
+    theta, phi = (numpy.asarray(to_radians(columns[name], args.units), dtype=float) for name in ("theta", "phi"))
+    design = (three_point_design if len(theta) == 3 else least_squares_design)(theta, phi, ground=args.ground)
+    angle = lambda x: float(from_radians(x, args.units))  # noqa: E731
+    row = {"method": design.method, "crank": design.crank, "coupler": design.coupler, "rocker": design.rocker,
+           "ground": design.ground, "branch": design.branch, "crank_offset": angle(design.crank_offset),
+           "rocker_offset": angle(design.rocker_offset), "K1": design.coefficients[0],
+           "K2": design.coefficients[1], "K3": design.coefficients[2], "grashof": design.grashof,
+           "structural_error": angle(design.structural_error)}
+    if args.format == "json":
+        print(json.dumps([{k: json_number(v) for k, v in row.items()}], indent=1))
+    else:
+        print_rows([row], FUNCTION_FIELDS, args.format)
+        note(f"{design.method} design, {design.grashof}; structural error in {args.units} over the given crank angles")
+    if args.plot:
+        _plot_function(design, args.plot, args.units)
+        note(f"wrote {args.plot}")
+    return 0
+
+
+def _plot_function(design, path: str, units: str) -> None:
+    from matplotlib.figure import Figure
+
+    from ..plot.figures import save_figure
+    from ..synthesis.function import ERROR_SAMPLES, _solve_rocker
+    figure = Figure(figsize=(7.0, 4.5), layout="constrained")
+    axis = figure.subplots()
+    theta = numpy.asarray(design.theta)
+    sweep = numpy.linspace(theta.min(), theta.max(), ERROR_SAMPLES)
+    generated = _solve_rocker(design.lengths, sweep, design.branch, design.offsets)["rocker"]
+    generated = numpy.unwrap(numpy.asarray(generated))
+    shift = 2 * math.pi * numpy.round((design.phi[0] - generated[numpy.argmin(abs(sweep - theta[0]))]) / (2 * math.pi))
+    axis.plot(from_radians(sweep, units), from_radians(generated + shift, units), color="tab:blue",
+              label="generated")
+    axis.plot(from_radians(theta, units), from_radians(numpy.asarray(design.phi), units), "o", color="tab:red",
+              label="wanted")
+    axis.set_xlabel(f"crank angle theta ({units})")
+    axis.set_ylabel(f"rocker angle phi ({units})")
+    axis.set_title(f"Function generation ({design.method}): structural error "
+                   f"{float(from_radians(design.structural_error, units)):.3g} {units}", fontsize="medium")
+    axis.legend(loc="best", fontsize="small")
+    save_figure(figure, path)
+
+
+# --- path generation ----------------------------------------------------------------------------
+
+def _register_path(kinds) -> None:
+    from ..synthesis.path import GRASHOF_CHOICES
+    command = kinds.add_parser("path", **command_help(
+        "a four-bar whose coupler point passes through points, with or without timing",
+        "lengths in the points' unit; angles in degrees (--units rad)",
+        "symlink synthesize path points.csv --grashof crank-rocker --plot path.png",
+        "The csv has the header x,y (the crank angles are found too; the points are reached in their order) or "
+        "theta,x,y (the crank angle at each point, from the ground line).  Needs SciPy: "
+        "pip install 'symlink-kinematics[synthesis]'.  The coupler point is (u, v) in the coupler's frame "
+        "(u along B->C, v to its left); frame is the direction from the crank pivot to the rocker pivot."))
+    command.add_argument("targets", metavar="FILE", help="csv of x,y or theta,x,y (- for stdin)")
+    command.add_argument("--designs", type=whole, default=3, metavar="K", help="print up to K distinct designs (default 3)")
+    command.add_argument("--starts", type=whole, default=8, metavar="N", help="refine N atlas starts (default 8)")
+    command.add_argument("--grashof", choices=GRASHOF_CHOICES, default="any",
+                         help="Grashof class (crank-turns: crank-rocker or double-crank; default any)")
+    command.add_argument("--max-link-ratio", type=finite, default=20.0, metavar="R",
+                         help="longest link at most R times the shortest (default 20)")
+    command.add_argument("--min-transmission", type=finite, default=0.0, metavar="ANGLE",
+                         help="worst transmission angle over the crank's turn at least this (default 0)")
+    command.add_argument("--seed", type=whole, default=0, help="seed of the atlas of starts (default 0)")
+    add_units_option(command)
+    add_format_option(command)
+    command.add_argument("--plot", type=figure_path, metavar="FILE",
+                         help="draw targets, achieved curve and the linkage at each point (.png/.svg)")
+    command.set_defaults(run=_run_path)
+
+
+PATH_FIELDS = ["rank", "error", "x0", "y0", "frame", "crank", "coupler", "rocker", "ground", "u", "v", "branch",
+               "worst_transmission"]
+
+
+def _run_path(args: argparse.Namespace) -> int:
+    from ..synthesis.path import synthesize_path
+    columns = read_targets(args.targets, PATH_COLUMNS)
+    targets = numpy.stack([columns["x"], columns["y"]], axis=1)
+    theta = numpy.asarray(to_radians(columns["theta"], args.units), dtype=float) if "theta" in columns else None
+    designs = synthesize_path(targets, theta, starts=args.starts, designs=args.designs, grashof_class=args.grashof,
+                              max_link_ratio=args.max_link_ratio,
+                              min_transmission=float(to_radians(args.min_transmission, args.units)), seed=args.seed)
+    angle = lambda x: float(wrap(from_radians(x, args.units), 180.0 if args.units == "deg" else math.pi))  # noqa: E731
+    rows = []
+    for rank, design in enumerate(designs, start=1):
+        rows.append({"rank": rank, "error": design.error, "x0": design.crank_pivot[0], "y0": design.crank_pivot[1],
+                     "frame": angle(design.frame), "crank": design.crank, "coupler": design.coupler,
+                     "rocker": design.rocker, "ground": design.ground, "u": design.coupler_point[0],
+                     "v": design.coupler_point[1], "branch": design.branch, "grashof": design.grashof,
+                     "worst_transmission": (float(from_radians(design.worst_transmission, args.units))
+                                            if math.isfinite(design.worst_transmission) else math.nan)})
+    if args.format == "json":
+        for row, design in zip(rows, designs):
+            row.update(grashof=design.grashof, theta=[angle(t) for t in design.theta], errors=list(design.errors))
+        print(json.dumps([{k: [json_number(x) for x in v] if isinstance(v, list) else json_number(v)
+                           for k, v in row.items()} for row in rows], indent=1))
+    else:
+        print_rows(rows, PATH_FIELDS, args.format)
+        for rank, design in enumerate(designs, start=1):
+            note(f"design {rank}: {design.grashof}; crank angles at the points ({args.units}): "
+                 + " ".join(f"{angle(t):.6g}" for t in design.theta))
+    note("the error column: the largest distance from a target to the coupler point, over the targets' size "
+         "(their bounding-box diagonal)")
+    if args.plot:
+        plot_path(designs[0], targets, args.plot)
+        note(f"wrote {args.plot}")
+    return 0
+
+
+def plot_path(design, targets: numpy.ndarray, path: str) -> None:
+    """Targets, the achieved coupler curve, and the linkage at each precision point (up to :data:`MAX_POSES`)."""
+    from matplotlib.figure import Figure
+    from matplotlib.transforms import Affine2D
+
+    from ..plot.figures import MechanismDrawing, extent, save_figure
+    figure = Figure(figsize=(6.4, 5.6), layout="constrained")
+    axis = figure.subplots()
+    theta = numpy.asarray(design.theta)
+    span = theta[-1] - theta[0]
+    sweep = numpy.linspace(theta[0], theta[0] + (2 * math.pi if abs(span) < 1e-12 else 2 * math.pi * numpy.sign(span)),
+                           721)
+    curve = design.joints(sweep)["P"]
+    axis.plot(curve.real, curve.imag, color="0.3", linewidth=1, label="coupler curve", zorder=4)
+    place = Affine2D().rotate(design.frame).translate(*design.crank_pivot) + axis.transData
+    shown = numpy.unique(numpy.linspace(0, len(theta) - 1, min(len(theta), MAX_POSES)).round().astype(int))
+    everything = [curve, targets[:, 0] + 1j * targets[:, 1]]
+    for index in shown:
+        drawing = MechanismDrawing(axis, coupler_point=True)
+        a, b, c, d = design.lengths
+        local = design.joints([theta[index]])
+        turn = complex(math.cos(-design.frame), math.sin(-design.frame))
+        origin = complex(*design.crank_pivot)
+        B, C, P = ((local[name][0] - origin) * turn for name in ("B", "C", "P"))
+        drawing.update(d, (B.real, B.imag), (C.real, C.imag), (P.real, P.imag))
+        for artist in drawing.artists:
+            artist.set_transform(place)
+            artist.set_alpha(0.35 if len(shown) > 1 else 1.0)
+            if index != shown[0]:
+                artist.set_label("_nolegend_")
+        everything += [local[name] for name in ("A", "B", "C", "D")]
+    axis.plot(targets[:, 0], targets[:, 1], "x", color="black", markersize=9, markeredgewidth=2, label="targets",
+              zorder=7)
+    points = numpy.concatenate([numpy.ravel(z) for z in everything])
+    xlim, ylim = extent(points.real, points.imag)
+    axis.set_xlim(*xlim)
+    axis.set_ylim(*ylim)
+    axis.set_aspect("equal")
+    axis.set_title(f"Path generation: error {design.error:.2g} of the targets' size", fontsize="medium")
+    axis.legend(loc="best", fontsize="small")
+    save_figure(figure, path)
+
+
+#: The kinds of synthesis: name -> function registering its parser (motion generation joins here).
+KINDS: dict[str, Callable] = {"function": _register_function, "path": _register_path}
+
+
+def register(commands) -> None:
+    """Register ``symlink synthesize KIND``."""
+    command = commands.add_parser("synthesize", **command_help(
+        "synthesize four-bars from targets in a csv: " + "|".join(KINDS),
+        "angles in degrees (--units rad)", "symlink synthesize path points.csv",
+        "'symlink synthesize KIND --help' describes a kind."))
+    kinds = command.add_subparsers(dest="kind", required=True, parser_class=Parser, metavar="KIND")
+    for add in KINDS.values():
+        add(kinds)

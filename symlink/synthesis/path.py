@@ -1,0 +1,600 @@
+"""Path generation: a four-bar whose coupler point passes through given points, with or without timing.
+
+The design space is the four-bar's whole: crank pivot ``(x0, y0)``, frame angle (the
+direction of the ground line from the crank pivot to the rocker pivot), crank a, coupler
+b, rocker c, ground d, and the coupler point ``(u, v)`` in the coupler's frame (u along
+B->C, v to its left), so that in the four-bar's own frame (:func:`symlink.catalog.fourbar`)
+``P = a e^{i theta} + (u + i v) e^{i beta}`` and in the plane ``(x0, y0) + e^{i frame} P``.
+
+* With timing (:func:`synthesize_path` with ``theta``) the crank angles of the points are
+  given (measured from the ground line, as everywhere in symlink); the unknowns are the
+  nine dimensions.
+* Without, the crank angles are unknowns too, written as the first angle and squared
+  steps to the next ones, so the points are reached in order, turning one way.
+
+Each start is refined by ``scipy.optimize.least_squares`` (Levenberg-Marquardt; SciPy is the
+``synthesis`` extra) with the exact Jacobian: the closed-form coupler point is differentiated by SymPy once
+(forward mode through the four-bar's solve plan) and printed as a NumPy module by symlink's
+code generator, cached like every generated solver (:func:`coupler_point_gradient`).
+
+Starts come from a coarse atlas of random four-bars: the coupler points of each, at the
+given crank angles (with timing) or at crank angles matched to the points by arc length
+(without), are fitted to the targets by the best rotation, scale and shift (a complex
+least-squares fit), and the best fits are refined.
+
+Constraints are enforced, not only penalised.  A trial design that breaks one (cannot be
+assembled at a point, passes a toggle, breaks the Grashof class asked for, the link-ratio
+bound or the minimum transmission angle) gets a residual far above any feasible one, so
+the trust-region solver never accepts it, and every start is feasible.  Each design is
+then verified afresh with symlink's generated four-bar solver, independently of the
+Jacobian's code: every point is reached on the one branch, and between consecutive points
+the crank moves without leaving the assembly or passing a toggle (:func:`check_design`).
+
+>>> design = fourbar_design((0.0, 0.0), 0.0, (1.0, 3.0, 2.5, 3.2), (1.5, 0.8), branch=1)
+>>> targets = design.points(numpy.linspace(0.0, 5.0, 6))
+>>> found = synthesize_path(targets, theta=numpy.linspace(0.0, 5.0, 6))[0]
+>>> found.error < 1e-8
+True
+"""
+from __future__ import annotations
+
+import hashlib
+import inspect
+import math
+from dataclasses import dataclass, replace
+from functools import lru_cache
+from typing import Callable, Sequence
+
+import numpy
+import sympy as sp
+from numpy.typing import ArrayLike
+
+from ..analysis import grashof, transmission_range
+from ..cache import cache_key, cached_text
+from ..catalog import fourbar
+from ..codegen.numpy import load_numpy_module, numpy_module
+from ..linkage import Program
+from ..solver import check_lengths, shared_solver
+
+__all__ = ["PathDesign", "fourbar_design", "synthesize_path", "coupler_point_gradient", "check_design",
+           "DESIGN_NAMES", "GRASHOF_CHOICES", "path_error"]
+
+#: The nine dimensions of a path-generating four-bar, in the order of the design vector.
+DESIGN_NAMES = ("x0", "y0", "frame", "a", "b", "c", "d", "u", "v")
+#: Grashof classes that can be asked for (None: any).
+GRASHOF_CHOICES = ("crank-rocker", "double-crank", "rocker-crank", "double-rocker", "triple-rocker", "any",
+                   "crank-turns")
+
+_INFEASIBLE = 1e6        # residual of a design that breaks a constraint (the solver never accepts it)
+_PATH_SAMPLES = 24       # crank angles checked between consecutive points for assembly and toggles
+_ATLAS = 1500            # random four-bars in the coarse atlas
+_CURVE_SAMPLES = 96      # points of each atlas curve (without timing)
+_MAX_EVALUATIONS = 300   # residual evaluations of one refinement (three times that without timing)
+_DEBUG = False
+
+
+@dataclass(frozen=True)
+class PathDesign:
+    """A path-generating four-bar: dimensions, branch, the crank angle at each target point, and its errors.
+
+    Lengths in the targets' unit, angles in radians.  ``errors`` are the distances from each
+    target to the coupler point at its crank angle; ``error`` is the largest over the size of
+    the targets (the diagonal of their bounding box).
+    """
+
+    crank_pivot: tuple[float, float]
+    frame: float
+    crank: float
+    coupler: float
+    rocker: float
+    ground: float
+    coupler_point: tuple[float, float]
+    branch: int
+    theta: tuple[float, ...] = ()
+    errors: tuple[float, ...] = ()
+    error: float = math.nan
+    grashof: str = ""
+    worst_transmission: float = math.nan
+    evaluations: int = 0
+
+    @property
+    def lengths(self) -> tuple[float, float, float, float]:
+        return self.crank, self.coupler, self.rocker, self.ground
+
+    @property
+    def rocker_pivot(self) -> tuple[float, float]:
+        return (self.crank_pivot[0] + self.ground * math.cos(self.frame),
+                self.crank_pivot[1] + self.ground * math.sin(self.frame))
+
+    @property
+    def coupler_point_polar(self) -> tuple[float, float]:
+        """The coupler point as (distance from B, angle from B->C): the form of ``symlink curve --coupler-point``."""
+        u, v = self.coupler_point
+        return math.hypot(u, v), math.atan2(v, u)
+
+    @property
+    def vector(self) -> numpy.ndarray:
+        """The design vector in :data:`DESIGN_NAMES` order."""
+        return numpy.array([*self.crank_pivot, self.frame, *self.lengths, *self.coupler_point])
+
+    def joints(self, theta: ArrayLike) -> dict[str, numpy.ndarray]:
+        """Joints A, B, C, D and the coupler point P in the plane (complex numbers) at crank angles ``theta``.
+
+        Solved by the generated four-bar solver (not the Jacobian's code); NaN where it cannot close.
+        """
+        angles = numpy.asarray(theta, dtype=float)
+        a, b, c, d = self.lengths
+        solved = shared_solver(fourbar, ("B_x", "B_y", "C_x", "C_y", "coupler"))(
+            theta=angles, a=a, b=b, c=c, d=d, branch=self.branch)
+        origin, turn = complex(*self.crank_pivot), complex(math.cos(self.frame), math.sin(self.frame))
+        ok = numpy.asarray(solved["assembled"])
+        B = numpy.where(ok, solved["B_x"] + 1j * solved["B_y"], numpy.nan)
+        C = numpy.where(ok, solved["C_x"] + 1j * solved["C_y"], numpy.nan)
+        P = B + complex(*self.coupler_point) * numpy.exp(1j * numpy.asarray(solved["coupler"]))
+        place = lambda z: origin + turn * z  # noqa: E731
+        return {"A": numpy.broadcast_to(origin, angles.shape), "B": place(B), "C": place(C),
+                "D": numpy.broadcast_to(place(d), angles.shape), "P": place(P)}
+
+    def points(self, theta: ArrayLike) -> numpy.ndarray:
+        """The coupler point at crank angles ``theta`` as rows (x, y)."""
+        P = self.joints(theta)["P"]
+        return numpy.stack([P.real, P.imag], axis=-1)
+
+
+def fourbar_design(crank_pivot: tuple[float, float], frame: float, lengths: Sequence[float],
+                   coupler_point: tuple[float, float], branch: int = 1) -> PathDesign:
+    """A :class:`PathDesign` from its dimensions (no errors yet), checked: positive lengths, finite numbers.
+
+    >>> fourbar_design((0, 0), 0, (1, 3, 2.5, 3.2), (1.5, 0.8)).rocker_pivot
+    (3.2, 0.0)
+    """
+    a, b, c, d = (float(x) for x in lengths)
+    check_lengths(crank=a, coupler=b, rocker=c, ground=d)
+    numbers = [*crank_pivot, frame, *coupler_point]
+    if not all(math.isfinite(float(x)) for x in numbers):
+        raise ValueError("the crank pivot, frame angle and coupler point must be finite numbers")
+    if branch not in (1, -1):
+        raise ValueError(f"branch must be +1 or -1, got {branch}")
+    return PathDesign((float(crank_pivot[0]), float(crank_pivot[1])), float(frame), a, b, c, d,
+                      (float(coupler_point[0]), float(coupler_point[1])), int(branch))
+
+
+# --- the exact Jacobian -------------------------------------------------------------------------
+
+def _gradient_program() -> Program:
+    """The coupler point in the plane and its derivatives by theta and the nine dimensions.
+
+    Forward-mode differentiation through the four-bar's solve plan: each intermediate's
+    derivative is its expression's partial derivatives chained with the earlier ones'.  The
+    plan's scale (a power of two of the link lengths, for rounding) is held constant: the
+    angles it scales do not depend on it.
+    """
+    base = fourbar()
+    (theta,), beta = base.inputs, base.roles["coupler"]
+    a, b, c, d = base.parameters
+    x0, y0, frame, u, v = sp.symbols("x0 y0 frame u v", real=True)
+    variables = (theta, x0, y0, frame, a, b, c, d, u, v)
+    local_x = a * sp.cos(theta) + u * sp.cos(beta) - v * sp.sin(beta)
+    local_y = a * sp.sin(theta) + u * sp.sin(beta) + v * sp.cos(beta)
+    point = {"P_x": x0 + sp.cos(frame) * local_x - sp.sin(frame) * local_y,
+             "P_y": y0 + sp.sin(frame) * local_x + sp.cos(frame) * local_y}
+    gradients: dict[sp.Symbol, dict[sp.Symbol, sp.Expr]] = {}
+    assignments: list[tuple[sp.Symbol, sp.Expr]] = []
+
+    def derivative(expr: sp.Expr, variable: sp.Symbol) -> sp.Expr:
+        total = sp.diff(expr, variable) if variable in expr.free_symbols else sp.S.Zero
+        for symbol in expr.free_symbols & set(gradients):
+            if variable in gradients[symbol]:
+                total += sp.diff(expr, symbol) * gradients[symbol][variable]
+        return total
+
+    for symbol, expr in base.positions.items():
+        assignments.append((symbol, expr))
+        gradients[symbol] = {}
+        if symbol.name.startswith("size"):
+            continue
+        for variable in variables:
+            found = derivative(expr, variable)
+            if found != 0:
+                name = sp.Symbol(f"d_{symbol.name}_by_{variable.name}", real=True)
+                assignments.append((name, found))
+                gradients[symbol][variable] = name
+    outputs = dict(point)
+    for axis, expr in point.items():
+        for variable in variables:
+            outputs[f"d{axis}_by_{variable.name}"] = derivative(expr, variable)
+    outputs["singular"] = base.singular
+    branch = base.branches[0]
+    return Program(variables + (branch,), tuple(assignments), outputs, {branch.name: 1.0})
+
+
+@lru_cache(maxsize=None)
+def coupler_point_gradient() -> Callable[..., dict]:
+    """The generated NumPy function ``(theta, x0, y0, frame, a, b, c, d, u, v, branch)`` -> coupler point and Jacobian.
+
+    Returns a dict with ``P_x``, ``P_y``, ``dP_x_by_<name>`` and ``dP_y_by_<name>`` for theta
+    and every dimension, ``singular`` and ``assembled``.  Derived once, then loaded from the
+    scene cache.  This is the one place the Jacobian comes from (a generic sensitivity
+    API can replace it).
+
+    >>> f = coupler_point_gradient()
+    >>> out = f(0.0, 0.0, 0.0, 0.0, 1.0, 3.0, 2.5, 3.2, 1.0, 0.0, 1, check=False)
+    >>> round(float(out["P_x"]), 9), float(out["dP_x_by_x0"])  # 1 + cos(beta), cos(beta) = 1.725 / 3
+    (1.575, 1.0)
+    """
+    digest = hashlib.sha256(inspect.getsource(_gradient_program).encode()).hexdigest()[:16]
+    source = cached_text(cache_key(fourbar(), ["P_x", "P_y"], f"path-gradient-{digest}"),
+                         lambda: numpy_module([("coupler_point_gradient", _gradient_program(),
+                                                "The four-bar's coupler point in the plane and its derivatives.")],
+                                              "Coupler point of a placed four-bar and its exact Jacobian."))
+    return load_numpy_module(source)["coupler_point_gradient"]
+
+
+_VARIABLE_NAMES = ("theta",) + DESIGN_NAMES
+
+
+def _evaluate(design: numpy.ndarray, theta: numpy.ndarray, branch: int) -> tuple[numpy.ndarray, numpy.ndarray,
+                                                                                 numpy.ndarray]:
+    """Coupler points (N, 2), Jacobian (N, 2, 10: theta then the dimensions) and a feasibility mask (N)."""
+    out = coupler_point_gradient()(theta, *design, branch, check=False)
+    points = numpy.stack([out["P_x"], out["P_y"]], axis=-1)
+    jacobian = numpy.stack([numpy.stack([numpy.broadcast_to(out[f"d{axis}_by_{name}"], theta.shape)
+                                         for name in _VARIABLE_NAMES], axis=-1) for axis in ("P_x", "P_y")], axis=-2)
+    ok = numpy.asarray(out["assembled"]) & ~numpy.asarray(out["singular"]) & numpy.all(numpy.isfinite(points), axis=-1)
+    return points, jacobian, ok
+
+
+# --- constraints --------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class _Constraints:
+    grashof: str = "any"
+    max_link_ratio: float = math.inf
+    min_transmission: float = 0.0
+
+    def allow(self, lengths: Sequence[float] | numpy.ndarray) -> bool:
+        a, b, c, d = lengths
+        if min(lengths) <= 0 or not all(math.isfinite(x) for x in lengths):
+            return False
+        if max(lengths) > self.max_link_ratio * min(lengths):
+            return False
+        if self.grashof != "any":
+            name = grashof(a, b, c, d).name
+            wanted = ("crank-rocker", "double-crank") if self.grashof == "crank-turns" else (self.grashof,)
+            if name not in wanted:
+                return False
+        if self.min_transmission > 0:
+            if transmission_range(a, b, c, d).worst < self.min_transmission:
+                return False
+        return True
+
+
+def _reached_in_order(design: PathDesign, crank_angles: ArrayLike) -> str | None:
+    """Why the crank cannot move from point to point on one branch (None if it can)."""
+    theta = numpy.asarray(crank_angles, dtype=float)
+    a, b, c, d = design.lengths
+    solver = shared_solver(fourbar, ("singular",))
+    steps = numpy.linspace(0.0, 1.0, _PATH_SAMPLES + 1)
+    moves = theta[:-1, None] + (theta[1:] - theta[:-1])[:, None] * steps[None, :] if len(theta) > 1 \
+        else theta[:, None]
+    solved = solver(theta=moves, a=a, b=b, c=c, d=d, branch=design.branch)
+    ok = numpy.asarray(solved["assembled"]) & ~numpy.asarray(solved["singular"])
+    if not numpy.all(ok):
+        where = numpy.argwhere(~ok)[0]
+        return (f"the crank cannot move from point {where[0] + 1} to point {where[0] + 2} on branch "
+                f"{design.branch:+d} (no assembly or a toggle at {math.degrees(moves[tuple(where)]):.6g} deg)")
+    return None
+
+
+def check_design(design: PathDesign, targets: ArrayLike, crank_angles: ArrayLike,
+                 grashof_class: str = "any", max_link_ratio: float = math.inf,
+                 min_transmission: float = 0.0) -> PathDesign:
+    """Verify a design with symlink's four-bar solver and return it with its errors; ``ValueError`` if it fails.
+
+    Every target is reached on the design's branch, in order (the crank moves from each
+    point's angle to the next without leaving the assembly or passing a toggle), the turn
+    from first to last point is less than a full turn, and the constraints hold.
+    """
+    points = _targets(targets)
+    theta = numpy.asarray(crank_angles, dtype=float)
+    if theta.shape != (len(points),):
+        raise ValueError(f"{len(points)} targets need {len(points)} crank angles, got {theta.size}")
+    constraints = _Constraints(grashof_class, max_link_ratio, min_transmission)
+    if not constraints.allow(design.lengths):
+        raise ValueError(f"the design {tuple(round(x, 6) for x in design.lengths)} breaks a constraint "
+                         f"(Grashof class {grashof_class}, link ratio <= {max_link_ratio:g}, transmission >= "
+                         f"{math.degrees(min_transmission):g} deg)")
+    if abs(theta[-1] - theta[0]) >= 2 * math.pi or (len(theta) > 2 and not (
+            numpy.all(numpy.diff(theta) >= 0) or numpy.all(numpy.diff(theta) <= 0))):
+        raise ValueError("the crank angles must turn one way, less than a full turn from the first to the last point")
+    why = _reached_in_order(design, theta)
+    if why is not None:
+        raise ValueError(why)
+    reached = design.points(theta)
+    errors = numpy.hypot(*(reached - points).T)
+    a, b, c, d = design.lengths
+    worst = transmission_range(a, b, c, d).worst if grashof(a, b, c, d).name in ("crank-rocker", "double-crank") \
+        else math.nan
+    return replace(design, theta=tuple(map(float, theta)), errors=tuple(map(float, errors)),
+                   error=float(errors.max() / _size(points)), grashof=grashof(a, b, c, d).name,
+                   worst_transmission=float(worst))
+
+
+def path_error(design: PathDesign, targets: ArrayLike) -> float:
+    """The largest distance from a target to the design's coupler point at its crank angle, over the targets' size."""
+    points = _targets(targets)
+    return float(numpy.max(numpy.hypot(*(design.points(design.theta) - points).T)) / _size(points))
+
+
+def _targets(targets) -> numpy.ndarray:
+    array = numpy.asarray(targets, dtype=float)
+    if array.ndim != 2 or array.shape[1] != 2:
+        raise ValueError(f"the target points must be rows of (x, y), got shape {array.shape}")
+    if not numpy.all(numpy.isfinite(array)):
+        raise ValueError("the target points must be finite numbers")
+    return array
+
+
+def _size(targets: numpy.ndarray) -> float:
+    return float(numpy.hypot(*(targets.max(axis=0) - targets.min(axis=0))))
+
+
+# --- the atlas of starts ------------------------------------------------------------------------
+
+def _atlas(rng: numpy.random.Generator, count: int) -> numpy.ndarray:
+    """Random four-bars in their own frame, ground 1: rows (a, b, c, d, u, v) and a branch column."""
+    a = rng.uniform(0.15, 1.0, count)
+    b = rng.uniform(0.4, 3.0, count)
+    c = rng.uniform(0.4, 3.0, count)
+    u = rng.uniform(-1.5, 2.5, count) * b
+    v = rng.uniform(-1.5, 1.5, count) * b
+    branch = rng.choice([-1.0, 1.0], count)
+    return numpy.stack([a, b, c, numpy.ones(count), u, v, branch], axis=1)
+
+
+def _local_points(rows: numpy.ndarray, theta: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
+    """Coupler points (complex, rows x angles) of atlas four-bars in their own frame, and where they are feasible."""
+    out = coupler_point_gradient()(theta, 0.0, 0.0, 0.0, *(rows[:, [k]] for k in range(6)), rows[:, [6]], check=False)
+    shape = numpy.broadcast_shapes(theta.shape, rows[:, :1].shape)
+    z = numpy.broadcast_to(out["P_x"] + 1j * out["P_y"], shape)
+    ok = numpy.broadcast_to(numpy.asarray(out["assembled"]) & ~numpy.asarray(out["singular"]), shape)
+    return z, ok
+
+
+def _similarity(z: numpy.ndarray, w: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray, numpy.ndarray]:
+    """Best ``w ~ scale_turn * z + shift`` (complex least squares, along the last axis): factor, shift, rms error."""
+    zm, wm = z.mean(axis=-1, keepdims=True), w.mean(axis=-1, keepdims=True)
+    dz, dw = z - zm, w - wm
+    with numpy.errstate(all="ignore"):
+        factor = numpy.sum(numpy.conj(dz) * dw, axis=-1, keepdims=True) / numpy.sum(numpy.abs(dz) ** 2, axis=-1,
+                                                                                   keepdims=True)
+    shift = wm - factor * zm
+    rms = numpy.sqrt(numpy.mean(numpy.abs(factor * z + shift - w) ** 2, axis=-1))
+    return factor[..., 0], shift[..., 0], rms
+
+
+def _placed(row: numpy.ndarray, factor: complex, shift: complex) -> numpy.ndarray:
+    """The design vector of an atlas four-bar scaled, turned and shifted by a similarity."""
+    scale, turn = abs(factor), math.atan2(factor.imag, factor.real)
+    a, b, c, d, u, v = row[:6] * scale
+    return numpy.array([shift.real, shift.imag, turn, a, b, c, d, u, v])
+
+
+def _timed_starts(w: numpy.ndarray, theta: numpy.ndarray, rng, count: int, constraints: _Constraints):
+    rows = _atlas(rng, _ATLAS)
+    z, ok = _local_points(rows, theta[None, :])
+    factor, shift, rms = _similarity(z, w[None, :])
+    rms = numpy.where(numpy.all(ok, axis=1) & numpy.isfinite(rms), rms, numpy.inf)
+    starts: list[tuple[numpy.ndarray, int, numpy.ndarray]] = []
+    for k in numpy.argsort(rms):
+        if not numpy.isfinite(rms[k]) or len(starts) >= count:
+            break
+        vector = _placed(rows[k], factor[k], shift[k])
+        if constraints.allow(vector[3:7]):
+            starts.append((vector, int(rows[k, 6]), theta.copy()))
+    return starts
+
+
+def _untimed_starts(w: numpy.ndarray, rng, count: int, constraints: _Constraints):
+    """Atlas curves matched to the targets by arc length: several phases, spans and both directions."""
+    rows = _atlas(rng, _ATLAS // 3)
+    samples = numpy.linspace(-math.pi, math.pi, _CURVE_SAMPLES + 1)[:-1]
+    z, ok = _local_points(rows, samples[None, :])
+    turning = numpy.all(ok, axis=1)
+    rows, z = rows[turning], z[turning]
+    closed = numpy.concatenate([z, z[:, :1]], axis=1)
+    arc = numpy.concatenate([numpy.zeros((len(z), 1)), numpy.cumsum(numpy.abs(numpy.diff(closed, axis=1)), axis=1)],
+                            axis=1)
+    arc /= arc[:, -1:]
+    chords = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(w)))])
+    fraction = chords / chords[-1] if chords[-1] > 0 else numpy.linspace(0, 1, len(w))
+    grid_theta = numpy.linspace(-math.pi, math.pi, _CURVE_SAMPLES + 1)
+    best = []
+    for span in (0.95, 0.8, 0.6, 0.4):
+        for phase in numpy.linspace(0, 1, 12, endpoint=False):
+            for direction in (1, -1):
+                where = (phase + direction * span * fraction) % 1.0
+                theta = _interpolate_rows(where, arc, grid_theta)
+                # unwrap so the angles turn one way
+                theta = numpy.unwrap(theta, axis=1)
+                zz, okk = _local_points(rows, theta)
+                factor, shift, rms = _similarity(zz, w[None, :])
+                rms = numpy.where(numpy.all(okk, axis=1) & numpy.isfinite(rms), rms, numpy.inf)
+                for k in numpy.argsort(rms)[:count]:
+                    if numpy.isfinite(rms[k]):
+                        best.append((rms[k], k, factor[k], shift[k], theta[k]))
+    best.sort(key=lambda item: item[0])
+    starts: list[tuple[numpy.ndarray, int, numpy.ndarray]] = []
+    for _, k, factor, shift, theta in best:
+        if len(starts) >= count:
+            break
+        steps = numpy.diff(theta)
+        if not (numpy.all(steps >= 0) or numpy.all(steps <= 0)) or abs(theta[-1] - theta[0]) >= 2 * math.pi:
+            continue
+        vector = _placed(rows[k], factor, shift)
+        if constraints.allow(vector[3:7]):
+            starts.append((vector, int(rows[k, 6]), theta))
+    return starts
+
+
+def _interpolate_rows(where: numpy.ndarray, arc: numpy.ndarray, grid: numpy.ndarray) -> numpy.ndarray:
+    """``numpy.interp(where, arc[k], grid)`` for every row k at once (each row of ``arc`` rising from 0 to 1)."""
+    index = numpy.clip(numpy.sum(arc[:, :, None] <= where[None, None, :], axis=1) - 1, 0, arc.shape[1] - 2)
+    low = numpy.take_along_axis(arc, index, axis=1)
+    high = numpy.take_along_axis(arc, index + 1, axis=1)
+    with numpy.errstate(all="ignore"):
+        part = numpy.where(high > low, (where[None, :] - low) / (high - low), 0.0)
+    return grid[index] + part * (grid[index + 1] - grid[index])
+
+
+# --- the refinement -----------------------------------------------------------------------------
+
+def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: numpy.ndarray, timed: bool,
+            constraints: _Constraints, size: float, tolerance: float):
+    """Levenberg-Marquardt (``least_squares(method="lm")``, where there are enough points) from one start: (design vector, crank angles, evaluations).
+
+    Without timing the crank angles are the first angle and squared steps to the next
+    (``theta_i = theta_1 + direction * sum(s_k^2)``), so they turn one way with no bounds.
+    No bounds are needed for the lengths either: a length at or below zero breaks a
+    constraint and is never accepted.
+    """
+    from scipy.optimize import least_squares
+
+    count = len(targets)
+    direction = 1.0 if timed or len(theta) < 2 or theta[-1] >= theta[0] else -1.0
+
+    def unpack(x: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
+        if timed:
+            return x, theta
+        return x[:9], x[9] + direction * numpy.concatenate([[0.0], numpy.cumsum(x[10:] ** 2)])
+
+    last: dict[str, numpy.ndarray] = {}  # the generated code gives points and Jacobian in one call: keep it
+
+    def residuals(x: numpy.ndarray) -> numpy.ndarray:
+        design, angles = unpack(x)
+        if not constraints.allow(design[3:7]) or (not timed and abs(angles[-1] - angles[0]) >= 2 * math.pi):
+            return numpy.full(2 * count, _INFEASIBLE)
+        with numpy.errstate(all="ignore"):
+            points, jac, ok = _evaluate(design, angles, branch)
+        if not numpy.all(ok):
+            return numpy.full(2 * count, _INFEASIBLE)
+        last.update(x=x.copy(), jac=jac)
+        return ((points - targets) / size).ravel()
+
+    def jacobian(x: numpy.ndarray) -> numpy.ndarray:
+        design, angles = unpack(x)
+        if "x" in last and numpy.array_equal(last["x"], x):
+            jac = last["jac"]
+        else:
+            with numpy.errstate(all="ignore"):
+                _, jac, _ = _evaluate(design, angles, branch)
+        dimensions = jac[:, :, 1:].reshape(2 * count, 9)
+        if timed:
+            return dimensions / size
+        by_theta = jac[:, :, 0]  # (count, 2): d point_i / d theta_i
+        angle_columns = numpy.zeros((2 * count, count))
+        chain = 2 * direction * x[10:]  # d theta_i / d s_k for k < i
+        for i in range(count):
+            angle_columns[2 * i:2 * i + 2, 0] = by_theta[i]
+            angle_columns[2 * i:2 * i + 2, 1:i + 1] = by_theta[i][:, None] * chain[None, :i]
+        return numpy.concatenate([dimensions, angle_columns], axis=1) / size
+
+    x0 = start.copy()
+    if not timed:
+        x0 = numpy.concatenate([start, [theta[0]], numpy.sqrt(numpy.abs(numpy.diff(theta)))])
+    if residuals(x0)[0] == _INFEASIBLE:
+        return None
+    # Levenberg-Marquardt needs at least as many residuals as unknowns; fewer points (an underdetermined
+    # problem without timing) go to the trust-region reflective method.
+    method = "lm" if 2 * count >= len(x0) else "trf"
+    fit = least_squares(residuals, x0, jac=jacobian, method=method, x_scale="jac", xtol=tolerance, ftol=tolerance,
+                        gtol=tolerance, max_nfev=_MAX_EVALUATIONS * (1 if timed else 2))
+    if _DEBUG:
+        print(fit.status, fit.nfev, fit.njev, fit.cost, fit.message)
+    design, angles = unpack(fit.x)
+    return design, angles, fit.nfev + (fit.njev or 0)
+
+
+def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, starts: int = 8, designs: int = 3,
+                    grashof_class: str = "any", max_link_ratio: float = 20.0, min_transmission: float = 0.0,
+                    seed: int | None = 0, tolerance: float = 1e-15) -> list[PathDesign]:
+    """Four-bars whose coupler point passes through ``targets`` (rows x, y), best first, up to ``designs``.
+
+    ``theta``: the crank angles at the targets (timing), or None to find them too (the
+    points are then reached in their order, the crank turning one way).  ``starts`` atlas
+    fits are refined; ``grashof_class`` is one of :data:`GRASHOF_CHOICES` ("crank-turns":
+    crank-rocker or double-crank); ``max_link_ratio`` bounds the longest link over the
+    shortest; ``min_transmission`` (radians) bounds the worst transmission angle over the
+    crank's turn.  Needs SciPy (``pip install 'symlink-kinematics[synthesis]'``).
+    ``ValueError`` for bad input or when no start satisfies the constraints.
+    """
+    try:
+        import scipy.optimize  # noqa: F401
+    except ImportError as missing:  # pragma: no cover - the extra is installed in the tests
+        raise ImportError("path synthesis needs SciPy: pip install 'symlink-kinematics[synthesis]'") from missing
+    points = _targets(targets)
+    count = len(points)
+    timed = theta is not None
+    if count < (3 if timed else 4):
+        raise ValueError(f"path synthesis needs at least {3 if timed else 4} target points, got {count}")
+    size = _size(points)
+    if not size > 0:
+        raise ValueError("the target points are all the same point")
+    crank_angles = numpy.asarray(theta if theta is not None else numpy.zeros(count), dtype=float)
+    if crank_angles.shape != (count,):
+        raise ValueError(f"{count} target points need {count} crank angles, got {crank_angles.size}")
+    if not numpy.all(numpy.isfinite(crank_angles)):
+        raise ValueError("the crank angles must be finite numbers")
+    if grashof_class not in GRASHOF_CHOICES:
+        raise ValueError(f"grashof_class must be one of {', '.join(GRASHOF_CHOICES)}, not {grashof_class!r}")
+    if not (max_link_ratio >= 1):
+        raise ValueError(f"the link ratio bound must be at least 1, got {max_link_ratio:g}")
+    if not (0 <= min_transmission < math.pi / 2):
+        raise ValueError(f"the minimum transmission angle must lie in [0, 90) deg, got "
+                         f"{math.degrees(min_transmission):g} deg")
+    if starts < 1 or designs < 1:
+        raise ValueError("starts and designs must be at least 1")
+    constraints = _Constraints(grashof_class, max_link_ratio, min_transmission)
+    rng = numpy.random.default_rng(seed)
+    w = points[:, 0] + 1j * points[:, 1]
+    found: list[PathDesign] = []
+    for attempt in range(4):
+        candidates = (_timed_starts(w, crank_angles, rng, starts, constraints) if timed
+                      else _untimed_starts(w, rng, starts, constraints))
+        for vector, branch, angles in candidates:
+            refined = _refine(vector, branch, numpy.asarray(angles, dtype=float), points, timed, constraints, size,
+                              tolerance)
+            if refined is None:
+                continue
+            design_vector, design_theta, evaluations = refined
+            a, b, c, d = (float(x) for x in design_vector[3:7])
+            design = PathDesign((float(design_vector[0]), float(design_vector[1])), float(design_vector[2]),
+                                a, b, c, d, (float(design_vector[7]), float(design_vector[8])), branch,
+                                evaluations=evaluations)
+            try:
+                found.append(check_design(design, points, design_theta, grashof_class, max_link_ratio,
+                                          min_transmission))
+            except ValueError:
+                continue
+            if found[-1].error < 1e-10:
+                break
+        if found and min(d.error for d in found) < 1e-8:
+            break
+    if not found:
+        raise ValueError("no four-bar satisfying the constraints was found from the starts; relax the constraints "
+                         "or allow more starts")
+    return _distinct(sorted(found, key=lambda d: d.error), designs, size)
+
+
+def _distinct(ordered: list[PathDesign], count: int, size: float) -> list[PathDesign]:
+    """The best designs that differ from each other (dimensions over the targets' size, frame angle)."""
+    kept: list[PathDesign] = []
+    for design in ordered:
+        vector = design.vector / numpy.array([size, size, 1, size, size, size, size, size, size])
+        if all(numpy.max(numpy.abs(vector - other.vector / numpy.array([size, size, 1, size, size, size, size, size,
+                                                                         size]))) > 1e-4 or
+               design.branch != other.branch for other in kept):
+            kept.append(design)
+        if len(kept) >= count:
+            break
+    return kept

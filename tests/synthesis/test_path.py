@@ -1,0 +1,185 @@
+"""Path generation, checked independently: coupler points by 30-digit circle intersections (mpmath), the
+Jacobian by central differences of those, Grashof classes and transmission angles by hand formulas."""
+import math
+
+import mpmath as mp
+import numpy as np
+import pytest
+
+from symlink.synthesis.path import (DESIGN_NAMES, check_design, coupler_point_gradient, fourbar_design,
+                                    synthesize_path)
+
+
+def mp_point(vector, theta, branch):
+    """The coupler point of the design vector (x0, y0, frame, a, b, c, d, u, v) at crank angle theta, 30 digits."""
+    with mp.workdps(30):
+        x0, y0, frame, a, b, c, d, u, v = (mp.mpf(float(x)) if not isinstance(x, mp.mpf) else x for x in vector)
+        B = a * mp.expj(theta)
+        w = abs(d - B)
+        along = (b ** 2 - c ** 2 + w ** 2) / (2 * w)
+        unit = (d - B) / w
+        C = B + along * unit + branch * mp.sqrt(b ** 2 - along ** 2) * 1j * unit  # +1: C left of B->D
+        beta = mp.arg(C - B)
+        return mp.mpc(x0, y0) + mp.expj(frame) * (B + mp.mpc(u, v) * mp.expj(beta))
+
+
+def random_crank_rocker(rng):
+    """A random crank-rocker (s + l < p + q, crank shortest: the hand rule) placed anywhere, with a coupler point."""
+    while True:
+        a, b, c, d = rng.uniform(0.2, 1.0), *rng.uniform(0.5, 3.0, 3)
+        s, l = min(a, b, c, d), max(a, b, c, d)
+        if a == s and s + l < a + b + c + d - s - l - 0.05:
+            break
+    return fourbar_design(tuple(rng.normal(size=2)), rng.uniform(-3, 3), (a, b, c, d),
+                          (rng.uniform(-1, 2) * b, rng.uniform(-1, 1) * b), branch=int(rng.choice([-1, 1])))
+
+
+def test_generated_jacobian_against_mpmath_central_differences():
+    vector = [0.3, -0.2, 0.7, 0.8, 2.4, 2.0, 2.6, 1.1, -0.5]
+    out = coupler_point_gradient()(np.array([0.4, 2.5]), *vector, -1, check=False)
+    for k, theta in enumerate((0.4, 2.5)):
+        point = mp_point(vector, mp.mpf(theta), -1)
+        assert out["P_x"][k] == pytest.approx(float(point.real), abs=1e-13)
+        assert out["P_y"][k] == pytest.approx(float(point.imag), abs=1e-13)
+        for index, name in enumerate(("theta",) + DESIGN_NAMES):
+            with mp.workdps(30):
+                h = mp.mpf("1e-12")
+
+                def shifted(step):
+                    values = [mp.mpf(x) for x in vector]
+                    angle = mp.mpf(theta)
+                    if index == 0:
+                        angle += step
+                    else:
+                        values[index - 1] += step
+                    return mp_point(values, angle, -1)
+                derivative = (shifted(h) - shifted(-h)) / (2 * h)
+            assert out[f"dP_x_by_{name}"][k] == pytest.approx(float(derivative.real), rel=1e-9, abs=1e-11)
+            assert out[f"dP_y_by_{name}"][k] == pytest.approx(float(derivative.imag), rel=1e-9, abs=1e-11)
+
+
+def _check_against_mpmath(design, targets):
+    """The design's own points (mpmath) at its crank angles match the targets; its reported errors are right."""
+    for theta, target, error in zip(design.theta, targets, design.errors):
+        point = mp_point(design.vector, mp.mpf(theta), design.branch)
+        distance = float(abs(point - mp.mpc(*target)))
+        assert error == pytest.approx(distance, abs=1e-12)
+
+
+@pytest.mark.parametrize("seed", [3, 11])
+def test_timed_recovery_of_a_random_crank_rocker(seed):
+    rng = np.random.default_rng(seed)
+    true = random_crank_rocker(rng)
+    theta = np.sort(rng.uniform(0, 2 * np.pi, 8))
+    targets = np.array([[float(p.real), float(p.imag)] for p in (mp_point(true.vector, t, true.branch)
+                                                                 for t in theta)])
+    designs = synthesize_path(targets, theta, seed=seed)
+    best = designs[0]
+    assert best.error < 1e-8
+    assert best.theta == pytest.approx(tuple(theta))
+    _check_against_mpmath(best, targets)
+    size = math.hypot(*(targets.max(axis=0) - targets.min(axis=0)))
+    assert max(best.errors) / size == pytest.approx(best.error)
+
+
+def test_untimed_recovery_finds_angles_in_order():
+    rng = np.random.default_rng(7)
+    true = fourbar_design((0.2, 0.1), 0.4, (0.5, 2.0, 1.8, 2.2), (1.0, 0.6), branch=1)
+    theta = np.sort(rng.uniform(0, 2 * np.pi, 6))
+    targets = true.points(theta)
+    best = synthesize_path(targets, None, seed=5)[0]
+    assert best.error < 1e-8
+    steps = np.diff(best.theta)
+    assert np.all(steps > 0) or np.all(steps < 0)
+    assert abs(best.theta[-1] - best.theta[0]) < 2 * math.pi
+    _check_against_mpmath(best, targets)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", range(10))
+def test_many_recoveries(seed):
+    rng = np.random.default_rng(100 + seed)
+    true = random_crank_rocker(rng)
+    theta = np.sort(rng.uniform(0, 2 * np.pi, 10))
+    targets = true.points(theta)
+    assert synthesize_path(targets, theta, seed=seed)[0].error < 1e-8
+    assert synthesize_path(targets, None, seed=seed)[0].error < 1e-8
+
+
+def hand_transmission_worst(a, b, c, d, samples=3601):
+    """The worst transmission angle over a crank turn: cos mu = (b^2 + c^2 - |BD|^2) / (2 b c)."""
+    theta = np.linspace(-math.pi, math.pi, samples)
+    bd2 = a * a + d * d - 2 * a * d * np.cos(theta)
+    mu = np.arccos(np.clip((b * b + c * c - bd2) / (2 * b * c), -1, 1))
+    return float(np.min(np.minimum(mu, math.pi - mu)))
+
+
+def test_constraints_hold_in_every_returned_design():
+    # Points off any one crank-rocker's curve (a wobbly arc), so the constraints bind.
+    angles = np.linspace(0.3, 2.2, 7)
+    targets = np.stack([3 * np.cos(angles), 2 * np.sin(angles) + 0.2 * np.sin(5 * angles)], axis=1)
+    theta = np.linspace(0.0, 3.0, 7)
+    limit = math.radians(35)
+    designs = synthesize_path(targets, theta, grashof_class="crank-rocker", max_link_ratio=6.0,
+                              min_transmission=limit, designs=2, starts=3, seed=2)
+    for design in designs:
+        a, b, c, d = design.lengths
+        s, l = min(design.lengths), max(design.lengths)
+        assert a == s and s + l < a + b + c + d - s - l  # crank-rocker by hand
+        assert l / s <= 6.0
+        assert hand_transmission_worst(a, b, c, d) >= limit - 1e-3
+        _check_against_mpmath(design, targets)
+
+
+def test_impossible_constraints_are_reported():
+    targets = np.array([[0.0, 0.0], [1.0, 0.2], [2.0, 0.1], [3.0, 0.5]])
+    with pytest.raises(ValueError, match="no four-bar"):
+        synthesize_path(targets, [0.0, 0.5, 1.0, 1.5], max_link_ratio=1.0, starts=2)
+
+
+def test_branch_and_order_defects_are_refused():
+    # A triple rocker: its crank swings between two toggles; points on both sides of a toggle cannot be reached in
+    # order on one branch.
+    design = fourbar_design((0.0, 0.0), 0.0, (2.0, 1.0, 2.5, 3.0), (0.5, 0.3), branch=1)
+    # |BD|^2 = 13 - 12 cos(theta) between (c - b)^2 and (b + c)^2: theta in [26.4, 86.4] deg and its mirror
+    lower_toggle = math.acos((4 + 9 - (2.5 - 1) ** 2) / (2 * 2 * 3))  # |BD| = c - b
+    inside = [lower_toggle + 0.1, lower_toggle + 0.3]
+    targets = design.points(inside)
+    checked = check_design(design, targets, inside)
+    assert checked.error < 1e-12
+    across = [lower_toggle + 0.1, -(lower_toggle + 0.1)]  # through theta = 0, where it cannot be assembled
+    with pytest.raises(ValueError, match="cannot move from point 1 to point 2"):
+        check_design(design, design.points([lower_toggle + 0.1, lower_toggle + 0.2]), across)
+
+
+TARGETS = np.array([[0.0, 0.0], [1.0, 0.2], [2.0, 0.1], [3.0, 0.5]])
+BAD = [
+    ("not rows of two", dict(targets=np.zeros((4, 3))), "rows of"),
+    ("NaN target", dict(targets=np.array([[0, 0], [1, np.nan], [2, 0], [3, 1]])), "finite"),
+    ("too few", dict(targets=TARGETS[:2], theta=[0.0, 1.0]), "at least 3"),
+    ("too few untimed", dict(targets=TARGETS[:3]), "at least 4"),
+    ("angles mismatch", dict(targets=TARGETS, theta=[0.0, 1.0]), "crank angles"),
+    ("NaN angle", dict(targets=TARGETS, theta=[0.0, 1.0, np.nan, 2.0]), "finite"),
+    ("one point", dict(targets=np.ones((4, 2)), theta=[0.0, 1.0, 2.0, 3.0]), "same point"),
+    ("grashof", dict(targets=TARGETS, grashof_class="crank"), "grashof_class"),
+    ("ratio", dict(targets=TARGETS, max_link_ratio=0.5), "link ratio"),
+    ("transmission", dict(targets=TARGETS, min_transmission=2.0), "transmission"),
+    ("starts", dict(targets=TARGETS, starts=0), "starts"),
+]
+
+
+@pytest.mark.parametrize("name,kwargs,message", BAD, ids=[b[0] for b in BAD])
+def test_bad_input(name, kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        synthesize_path(**kwargs)
+
+
+@pytest.mark.parametrize("kwargs,message", [
+    (dict(lengths=(1, -2, 3, 4)), "coupler must be a positive"),
+    (dict(branch=0), "branch"),
+    (dict(frame=float("inf")), "finite"),
+])
+def test_bad_designs(kwargs, message):
+    base = dict(crank_pivot=(0, 0), frame=0.0, lengths=(1, 2, 3, 4), coupler_point=(1, 1), branch=1)
+    with pytest.raises(ValueError, match=message):
+        fourbar_design(**{**base, **kwargs})

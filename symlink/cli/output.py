@@ -38,7 +38,9 @@ def note(text: str) -> None:
 
 
 def format_number(value: float) -> str:
-    """Full double precision for machine-readable output."""
+    """Full double precision for machine-readable output (a whole number, such as a rank, as it is)."""
+    if isinstance(value, (int, numpy.integer)) and not isinstance(value, bool):
+        return str(int(value))
     return repr(float(value))
 
 
@@ -47,6 +49,13 @@ def json_number(value):
     if isinstance(value, (int, str)):  # a branch: a sign, or one sign a loop ("+1/-1")
         return value
     return float(value) if math.isfinite(value) else None
+
+
+def _text(value) -> str | None:
+    """A cell that is words, not a number: a name (a Grashof class, a branch ``+1/-1``) or a yes/no flag."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return value if isinstance(value, str) else None
 
 
 class RowWriter:
@@ -72,12 +81,12 @@ class RowWriter:
 
     def _line(self, row: Mapping) -> str:
         if self.format == "csv":
-            return ",".join(str(row[c]) if c == "branch" else format_number(row[c]) for c in self.columns) + "\n"
+            return ",".join(_text(row[c]) or (str(row[c]) if c == "branch" else format_number(row[c]))
+                            for c in self.columns) + "\n"
         if self.format == "json":
             record = json.dumps([{c: json_number(row[c]) for c in self.columns}], indent=1)[1:-2]
             return ("," if self.rows else "") + record
-        cells = [(row[c] if isinstance(row[c], str) else f"{row[c]:+d}") if c == "branch" else f"{row[c]:.4f}"
-                 for c in self.columns]
+        cells = [_text(row[c]) or (f"{row[c]:+d}" if c == "branch" else f"{row[c]:.4f}") for c in self.columns]
         return "".join(f"{cell:>{self._width}}" for cell in cells) + "\n"
 
     def write(self, rows: Iterable[Mapping]) -> None:

@@ -1,7 +1,6 @@
-"""``symlink synthesize function|path``: four-bars from targets in a csv file.
+"""``symlink synthesize function|path|motion``: four-bars from targets in a csv file.
 
-Each kind of synthesis is one entry of :data:`KINDS` (its parser and its run), so another
-kind (motion generation) is one more entry.  Targets are read from a csv file with a
+Each kind of synthesis is one entry of :data:`KINDS` (its parser and its run).  Targets are read from a csv file with a
 header row (``-`` reads stdin); numbers only, never expressions:
 
 * ``function``: columns ``theta,phi`` (crank and rocker angle, degrees or ``--units rad``).
@@ -9,6 +8,9 @@ header row (``-`` reads stdin); numbers only, never expressions:
 * ``path``: columns ``x,y`` (the crank angles are found too, the points reached in their
   order), or ``theta,x,y`` (timing: the crank angle at each point, measured from the
   ground line).
+* ``motion``: columns ``x,y,angle`` (2 to 5 poses of the coupler; the angle in degrees or
+  ``--units rad``): Burmester theory, with the free choices of fewer than five poses given
+  as options.
 
 Designs are printed as a table, csv or json; ``--plot FILE`` (.png or .svg) draws target
 against achieved: the points, the achieved curve, and the linkage at each precision point.
@@ -26,12 +28,14 @@ from typing import Callable
 import numpy
 
 from ..angles import from_radians, to_radians, wrap
-from .options import Parser, add_format_option, add_units_option, command_help, figure_path, finite, whole
+from .options import (Parser, add_format_option, add_units_option, command_help, figure_path, finite, pair,
+                      whole)
 from .output import json_number, note, print_rows
 
 #: Columns a csv of targets may have, by kind.
 FUNCTION_COLUMNS = (("theta", "phi"),)
 PATH_COLUMNS = (("x", "y"), ("theta", "x", "y"))
+MOTION_COLUMNS = (("x", "y", "angle"),)
 #: Most rows a target file may have.
 MAX_ROWS = 10_000
 #: Most linkage poses drawn by --plot (evenly chosen among the precision points).
@@ -248,8 +252,83 @@ def plot_path(design, targets: numpy.ndarray, path: str) -> None:
     save_figure(figure, path)
 
 
-#: The kinds of synthesis: name -> function registering its parser (motion generation joins here).
-KINDS: dict[str, Callable] = {"function": _register_function, "path": _register_path}
+# --- motion generation --------------------------------------------------------------------------
+
+def _register_motion(kinds) -> None:
+    command = kinds.add_parser("motion", **command_help(
+        "four-bars whose coupler passes through 2 to 5 poses (rigid-body guidance, Burmester theory)",
+        "lengths in the poses' unit; angles in degrees (--units rad)",
+        "symlink synthesize motion poses.csv --defect-free --plot motion.png",
+        "The csv has the header x,y,angle: the coupler's reference point and its angle in each pose.  Five "
+        "poses: the Burmester points, every pair of them as crank and rocker.  Fewer poses leave free choices: "
+        "four need --rotation twice (the crank's turn from pose 1 to pose 2 of each dyad), three need "
+        "--moving-pivot twice (in pose 1's coupler position) or --fixed-pivot twice, two need --moving-pivot "
+        "and --offset twice each (along the perpendicular bisectors).  Designs are listed defect-free first, "
+        "then by their worst transmission angle at the poses."))
+    command.add_argument("targets", metavar="FILE", help="csv of x,y,angle (- for stdin)")
+    command.add_argument("--moving-pivot", type=pair("X,Y"), action="append", metavar="X,Y",
+                         help="a moving pivot in pose 1 (give two)")
+    command.add_argument("--fixed-pivot", type=pair("X,Y"), action="append", metavar="X,Y",
+                         help="a fixed pivot (give two, three poses)")
+    command.add_argument("--rotation", type=finite, action="append", metavar="ANGLE",
+                         help="a dyad's turn from pose 1 to pose 2 (give two, four poses)")
+    command.add_argument("--offset", type=finite, action="append", metavar="L",
+                         help="a fixed pivot's place along its bisector (give two, two poses)")
+    command.add_argument("--defect-free", action="store_true", help="only designs without a branch or order defect")
+    command.add_argument("--designs", type=whole, default=12, metavar="K", help="print up to K designs (default 12)")
+    add_units_option(command)
+    add_format_option(command)
+    command.add_argument("--plot", type=figure_path, metavar="FILE",
+                         help="draw the poses, Burmester curves and the first design at each pose (.png/.svg)")
+    command.set_defaults(run=_run_motion)
+
+
+#: Columns of ``symlink synthesize motion`` before the per-pose ``crank_angle_K, branch_K``; angles in --units.
+MOTION_FIELDS = ["rank", "crank", "coupler", "rocker", "ground", "crank_pivot_x", "crank_pivot_y", "rocker_pivot_x",
+                 "rocker_pivot_y", "crank_moving_x", "crank_moving_y", "rocker_moving_x", "rocker_moving_y",
+                 "ground_angle", "coupler_point_distance", "coupler_point_angle", "pose_angle_offset", "grashof",
+                 "branch_defect", "order_defect", "order_direction", "transmission_worst", "pose_error"]
+MOTION_ANGLES = {"ground_angle", "coupler_point_angle", "pose_angle_offset", "transmission_worst", "pose_error"}
+
+
+def _run_motion(args: argparse.Namespace) -> int:
+    from ..synthesis.motion import as_record, motion_generation
+    if args.designs < 1:
+        raise ValueError(f"--designs must be at least 1, got {args.designs}")
+    columns = read_targets(args.targets, MOTION_COLUMNS)
+    angles = numpy.asarray(to_radians(columns["angle"], args.units), dtype=float)
+    poses = [(float(x), float(y), float(a)) for x, y, a in zip(columns["x"], columns["y"], angles)]
+    rotations = None if args.rotation is None else [float(to_radians(r, args.units)) for r in args.rotation]
+    designs = motion_generation(poses, moving_pivots=args.moving_pivot, fixed_pivots=args.fixed_pivot,
+                                rotations=rotations, offsets=args.offset, defect_free=args.defect_free)
+    if not designs:
+        raise ValueError("no four-bar guides the coupler through these poses with the choices given"
+                         + (" without a defect" if args.defect_free else ""))
+    shown = designs[:args.designs]
+    per_pose = [f"{name}_{k}" for k in range(1, len(poses) + 1) for name in ("crank_angle", "branch")]
+    rows = []
+    for rank, design in enumerate(shown, start=1):
+        record = as_record(design)  # angles in degrees
+        for name in MOTION_ANGLES | {f"crank_angle_{k}" for k in range(1, len(poses) + 1)}:
+            record[name] = float(to_radians(record[name], "deg")) if args.units == "rad" else record[name]
+        rows.append({"rank": rank, **record})
+    if args.format == "json":
+        print(json.dumps([{k: json_number(v) if isinstance(v, float) else v for k, v in row.items()}
+                          for row in rows], indent=1))
+    else:
+        print_rows(rows, MOTION_FIELDS + per_pose, args.format)
+        note(f"{len(designs)} design(s), {sum(d.defect_free for d in designs)} without a branch or order defect; "
+             f"angles in {args.units}")
+    if args.plot:
+        from ..plot.figures import save_figure
+        from ..plot.synthesis import motion_figure
+        save_figure(motion_figure(poses, shown[0]), args.plot)
+        note(f"wrote {args.plot}")
+    return 0
+
+
+#: The kinds of synthesis: name -> function registering its parser.
+KINDS: dict[str, Callable] = {"function": _register_function, "path": _register_path, "motion": _register_motion}
 
 
 def register(commands) -> None:

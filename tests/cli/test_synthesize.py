@@ -1,4 +1,4 @@
-"""``symlink synthesize function|path``: designs from csv targets, checked independently; bad input is one line, exit 2."""
+"""``symlink synthesize function|path|motion``: designs from csv targets, checked independently; bad input is one line, exit 2."""
 from __future__ import annotations
 
 import csv
@@ -126,6 +126,8 @@ def test_bad_function_files(name, text, message, tmp_path, capsys):
 @pytest.mark.parametrize("arguments,message", [
     (["synthesize"], "required"),
     (["synthesize", "motion-x", "f.csv"], "invalid choice"),
+    (["synthesize", "motion", "f.csv", "--moving-pivot", "1"], "X,Y"),
+    (["synthesize", "motion", "f.csv", "--rotation", "ten"], "not a number"),
     (["synthesize", "path", "f.csv", "--grashof", "crank"], "invalid choice"),
     (["synthesize", "path", "f.csv", "--plot", "x.pdf"], ".png or .svg"),
     (["synthesize", "path", "f.csv", "--max-link-ratio", "x"], "not a number"),
@@ -138,3 +140,81 @@ def test_bad_command_lines(arguments, message, capsys):
 def test_missing_file_is_exit_1(tmp_path, capsys):
     assert main(["synthesize", "path", str(tmp_path / "none.csv")]) == 1
     assert capsys.readouterr().err.startswith("symlink: error: cannot write or read")
+
+
+# --- motion generation ------------------------------------------------------------------------
+
+def _hand_poses(a, b, c, d, thetas, branch=1):
+    """Coupler poses (B, angle of B->C) of the four-bar A=(0,0), D=(d,0), by circle intersection (plain floats)."""
+    poses = []
+    for theta in thetas:
+        B = a * complex(math.cos(theta), math.sin(theta))
+        w = abs(d - B)
+        along = (b * b - c * c + w * w) / (2 * w)
+        unit = (d - B) / w
+        C = B + along * unit + branch * math.sqrt(b * b - along * along) * 1j * unit
+        poses.append((B.real, B.imag, math.atan2((C - B).imag, (C - B).real)))
+    return poses
+
+
+def _poses_csv(path, poses, degrees=True):
+    rows = [f"{x!r},{y!r},{(math.degrees(g) if degrees else g)!r}" for x, y, g in poses]
+    path.write_text("x,y,angle\n" + "\n".join(rows) + "\n")
+    return path
+
+
+@pytest.mark.parametrize("units", ["deg", "rad"])
+def test_five_poses_give_back_the_four_bar_they_came_from(units, tmp_path, capsys):
+    poses = _hand_poses(1.0, 3.0, 2.5, 3.2, [0.2, 0.7, 1.3, 2.0, 2.6])
+    path = _poses_csv(tmp_path / "poses.csv", poses, degrees=units == "deg")
+    assert main(["synthesize", "motion", str(path), "--format", "csv", "--units", units,
+                 "--plot", str(tmp_path / "motion.png")]) == 0
+    out, err = capsys.readouterr()
+    rows = list(csv.DictReader(io.StringIO(out)))
+    assert [row["rank"] for row in rows] == [str(k) for k in range(1, len(rows) + 1)]
+    pivots = lambda row: {(round(float(row[f"{p}_pivot_x"]), 9), round(float(row[f"{p}_pivot_y"]), 9))
+                          for p in ("crank", "rocker")}  # noqa: E731
+    original = [row for row in rows if pivots(row) == {(0.0, 0.0), (3.2, 0.0)} and float(row["crank"]) < 1.5]
+    assert original, out
+    row = original[0]
+    assert [float(row[k]) for k in ("crank", "coupler", "rocker", "ground")] == pytest.approx([1.0, 3.0, 2.5, 3.2],
+                                                                                             rel=1e-9)
+    assert row["grashof"] == "crank-rocker" and row["branch_defect"] == "false" and row["order_defect"] == "false"
+    turn = 1.0 if units == "rad" else math.degrees(1.0)  # crank angles in the command's units
+    assert [float(row[f"crank_angle_{k}"]) / turn for k in range(1, 6)] == pytest.approx([0.2, 0.7, 1.3, 2.0, 2.6],
+                                                                                         abs=1e-9)
+    assert (tmp_path / "motion.png").stat().st_size > 0 and err.rstrip().endswith("motion.png")
+
+
+def test_three_poses_with_two_moving_pivots_put_each_on_a_circle(tmp_path, capsys):
+    poses = [(0.0, 0.0, 0.0), (1.0, 0.3, math.radians(20)), (1.8, 1.0, math.radians(45))]
+    path = _poses_csv(tmp_path / "poses.csv", poses)
+    assert main(["synthesize", "motion", str(path), "--moving-pivot", "0.5,0.2", "--moving-pivot", "1.5,-0.1",
+                 "--format", "json"]) == 0
+    designs = json.loads(capsys.readouterr().out)
+    assert designs
+    for design in designs:  # each moving pivot's three positions are equally far from its fixed pivot
+        for which, local in (("crank", (0.5, 0.2)), ("rocker", (1.5, -0.1))):
+            centre = complex(design[f"{which}_pivot_x"], design[f"{which}_pivot_y"])
+            if abs(complex(design[f"{which}_moving_x"], design[f"{which}_moving_y"]) - complex(*local)) > 1e-9:
+                continue  # this design uses the pivots the other way round
+            radii = [abs(complex(x, y) + complex(*local) * complex(math.cos(g), math.sin(g)) - centre)
+                     for x, y, g in poses]
+            assert radii == pytest.approx([radii[0]] * 3, rel=1e-9)
+
+
+BAD_MOTION = [
+    ("six poses", "x,y,angle\n" + "".join(f"{k},{k % 2},{10 * k}\n" for k in range(6)), [], "2 to 5 poses"),
+    ("path header", "x,y\n1,2\n3,4\n", [], "header"),
+    ("four poses, no rotation", "x,y,angle\n0,0,0\n1,0,10\n2,1,20\n3,1,30\n", [], "rotations"),
+    ("one moving pivot", "x,y,angle\n0,0,0\n1,0,10\n2,1,20\n", ["--moving-pivot", "1,1"], "two moving pivots"),
+    ("no designs asked", "x,y,angle\n0,0,0\n1,0,10\n2,1,20\n", ["--designs", "0"], "--designs"),
+]
+
+
+@pytest.mark.parametrize("name,text,options,message", BAD_MOTION, ids=[b[0] for b in BAD_MOTION])
+def test_bad_motion_files(name, text, options, message, tmp_path, capsys):
+    path = tmp_path / "bad.csv"
+    path.write_text(text)
+    assert main(["synthesize", "motion", str(path), *options]) == 2
+    assert_one_error_line(capsys.readouterr().err, message)

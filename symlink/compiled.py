@@ -24,11 +24,15 @@ The flags are portable: no ``-march=native`` (a cache folder may be shared
 between machines); ``-O3`` so that the loops are vectorised;
 ``-ffp-contract=off`` (no fused multiply-adds, so the arithmetic rounds as
 NumPy's does); ``-fno-math-errno`` (only ``errno`` is affected; ``sqrt``
-becomes one instruction).  ``-ffast-math`` is NOT used: it assumes that no
+becomes one instruction); ``-fno-trapping-math`` (no program of ours traps
+on a floating-point exception, so the compiler may evaluate both sides of the
+clamped square root's test and ``floor`` in vector registers: without it no
+loop with a square root or the size normalisation's ``floor`` vectorises;
+values are unchanged).  ``-ffast-math`` is NOT used: it assumes that no
 NaN occurs, and NaN is how an unassembled configuration is reported; it would
 also let the compiler rewrite the arguments of ``atan2``.  Where GCC targets
 glibc on x86-64, :data:`VECTOR_MATH` is included first: it tells GCC that
-glibc's vector math library (libmvec) has ``sin``, ``cos`` and ``atan2`` for
+glibc's vector math library (libmvec) has ``sin``, ``cos``, ``atan2``, ``log`` and ``pow`` for
 whole SIMD registers, and compiles each loop for baseline x86-64, AVX2 and
 AVX-512, chosen when the library loads.  libmvec's functions are accurate to
 a few units in the last place, as NumPy's own SIMD functions are.
@@ -71,8 +75,8 @@ __all__ = ["FLAGS", "FallbackWarning", "CompilerUnavailable", "CompileError", "C
 
 #: Compiler flags of every library symlink builds (see the module docstring for why these).
 #: ``-fno-builtin-sin/cos`` keep GCC from fusing sin and cos into a scalar-only sincos.
-FLAGS = ("-std=c99", "-O3", "-ffp-contract=off", "-fno-math-errno", "-fno-builtin-sin", "-fno-builtin-cos",
-         "-fPIC", "-shared")
+FLAGS = ("-std=c99", "-O3", "-ffp-contract=off", "-fno-math-errno", "-fno-trapping-math", "-fno-builtin-sin",
+         "-fno-builtin-cos", "-fPIC", "-shared")
 
 #: Included before every source (``-include``); inert except for GCC on glibc x86-64.
 VECTOR_MATH = r"""/* symlink: let GCC vectorise loops over sin, cos and atan2 with glibc's libmvec. */
@@ -83,6 +87,7 @@ double sin(double) SYMLINK_SIMD;
 double cos(double) SYMLINK_SIMD;
 double exp(double) SYMLINK_SIMD;
 double log(double) SYMLINK_SIMD;
+double pow(double, double) SYMLINK_SIMD;
 #if __GLIBC_PREREQ(2, 35)
 double atan2(double, double) SYMLINK_SIMD;
 double atan(double) SYMLINK_SIMD;

@@ -329,3 +329,32 @@ def test_a_compiled_folder_others_can_write_is_not_used(compiler, fresh_cache, c
         solver = compiled_solver(linkage, ["rocker"])
     assert isinstance(solver, CompiledSolver) and len(compiler_runs) == 2  # built again, privately
     assert compiled.cache_directory() != shared and compiled.cache_directory().parent.name.startswith("symlink-")
+
+
+def _vector_math_expected() -> bool:
+    """GCC >= 11 on x86-64 glibc >= 2.35: where VECTOR_MATH declares atan2 for vector registers."""
+    import platform
+    import subprocess
+    if platform.machine() != "x86_64" or platform.libc_ver()[0] != "glibc":
+        return False
+    if tuple(int(p) for p in platform.libc_ver()[1].split(".")[:2]) < (2, 35):
+        return False
+    command = find_compiler()
+    probe = subprocess.run(command + ["-dM", "-E", "-x", "c", "/dev/null"], capture_output=True, text=True,
+                           check=False).stdout
+    version = [line.split()[2] for line in probe.splitlines() if line.startswith("#define __GNUC__ ")]
+    return "__clang__" not in probe and bool(version) and int(version[0]) >= 11
+
+
+@pytest.mark.parametrize("name", ["fourbar", "watt2", "jansen"])
+def test_full_kinematics_loops_are_vectorised(compiler, name, tmp_path):
+    """Every loop calls glibc's vector atan2 (a loop that does not vectorise calls only the scalar one)."""
+    if not _vector_math_expected():
+        pytest.skip("glibc's vector math is used only by GCC >= 11 on x86-64 glibc >= 2.35")
+    linkage = catalog_linkage(name)
+    unknowns = [q.name for q in linkage.unknowns]
+    outputs = unknowns + [f"{q}dot" for q in unknowns] + [f"{q}ddot" for q in unknowns]
+    source = compiled.c_solver_source(linkage, outputs)["source"]
+    compiled._build(source, {}, find_compiler(), tmp_path / "solver.so")
+    binary = (tmp_path / "solver.so").read_bytes()
+    assert b"_ZGVdN4vv_atan2" in binary  # the AVX2 loop's vector atan2

@@ -13,7 +13,8 @@ an array of ``n`` doubles, and ``assembled[i]`` is 1 where the linkage closes,
 
 The body is the same common-subexpression-eliminated straight-line code as the
 NumPy module (:func:`symlink.codegen.program.straight_line`), in an inline function
-called once per configuration.  The clamped square root has exactly the
+called once per configuration and always inlined into the loop (GCC and Clang), so
+that the loop stays one vectorisable body however large the linkage.  The clamped square root has exactly the
 semantics of the NumPy module's ``_clamped_sqrt``; small integer powers become
 multiplications.
 
@@ -195,7 +196,7 @@ def c_function(program: Program, name: str, doc: str = "") -> CFunction:
         f"{assembled}[i] is 1 where the linkage closes, 0 where it cannot be assembled (outputs NaN).")
     prototype = c_comment(summary) + "\n" + signature + ";\n"
 
-    lines = [f"static inline int {kernel}(" + ", ".join([f"double {a}" for a in arguments]
+    lines = [f"SYMLINK_INLINE int {kernel}(" + ", ".join([f"double {a}" for a in arguments]
                                                          + [f"double *restrict {out}"]) + ")", "{"]
     used = set().union(*(e.free_symbols for _, e in code.assignments), *(e.free_symbols for e in code.outputs.values()))
     lines += [f"    (void){s.name};  /* not needed by these outputs */" for s in code.arguments if s not in used]
@@ -203,7 +204,9 @@ def c_function(program: Program, name: str, doc: str = "") -> CFunction:
         lines.append(f"    const double {symbol.name} = {printer.doprint(expr)};")
     for k, (output, expr) in enumerate(code.outputs.items()):
         lines.append(f"    {out}[{k}] = {printer.doprint(expr)};  /* {output} */")
-    finite = " && ".join(f"isfinite({r.name})" for r in code.roots) or "1"
+    # All roots finite: 0*x is 0 for a finite x and NaN for an infinite or NaN one. One test, no
+    # short-circuit branches, so that the loop stays vectorisable however many loops the linkage has.
+    finite = f"isfinite({' + '.join(f'0.0 * {r.name}' for r in code.roots)})" if code.roots else "1"
     lines += [f"    return {finite};", "}", ""]
     restricted = "SYMLINK_LOOP " + signature.replace("double *", "double *restrict ").replace(
         "unsigned char *", "unsigned char *restrict ")
@@ -251,6 +254,14 @@ _PRELUDE = """\
 #define SYMLINK_LOOP
 #endif
 
+/* The per-configuration kernels are inlined into their loops whatever their size,
+ * so that a compiler can vectorise the loop of a large linkage too. */
+#if defined(__GNUC__)
+#define SYMLINK_INLINE static inline __attribute__((always_inline))
+#else
+#define SYMLINK_INLINE static inline
+#endif
+
 static const double symlink_tolerance = {tolerance!r};
 
 /* Configurations a loop function works on at a time. */
@@ -280,7 +291,7 @@ static inline const double *symlink_block(double *block, const double *x, ptrdif
 
 /* sqrt(x), taking x >= -tolerance*scale as rounding at a toggle (0) and anything lower,
  * or NaN, as no assembly (NaN). The same as sqrt(fmax(x, 0.0)) where x is not NaN. */
-static inline double symlink_clamped_sqrt(double x, double scale)
+SYMLINK_INLINE double symlink_clamped_sqrt(double x, double scale)
 {{
     return x >= -symlink_tolerance * scale ? sqrt(x > 0.0 ? x : 0.0) : NAN;
 }}

@@ -353,7 +353,7 @@ def test_full_kinematics_loops_are_vectorised(compiler, name, tmp_path):
         pytest.skip("glibc's vector math is used only by GCC >= 11 on x86-64 glibc >= 2.35")
     linkage = catalog_linkage(name)
     unknowns = [q.name for q in linkage.unknowns]
-    outputs = unknowns + [f"{q}dot" for q in unknowns] + [f"{q}ddot" for q in unknowns]
+    outputs = unknowns + [f"{q}dot" for q in unknowns] + [f"{q}ddot" for q in unknowns] + ["singular"]
     source = compiled.c_solver_source(linkage, outputs)["source"]
     compiled._build(source, {}, find_compiler(), tmp_path / "solver.so")
     binary = (tmp_path / "solver.so").read_bytes()

@@ -50,7 +50,7 @@ from .program import is_flag, named_straight_line
 if TYPE_CHECKING:
     from ..linkage import Linkage, Program
 
-__all__ = ["CFunction", "c_function", "c_library", "c_code", "c_identifier", "c_comment", "export_files"]
+__all__ = ["CFunction", "c_function", "c_library", "c_code", "c_identifier", "c_comment", "c_packed", "export_files"]
 
 #: Integer powers up to this size are written as multiplications.
 LARGEST_MULTIPLIED_POWER = 4
@@ -104,6 +104,14 @@ class _CPrinter(C99CodePrinter):
         if exponent == -sp.S.Half:
             return f"1.0/sqrt({self._print(base)})"
         return f"pow({self._print(base)}, {self._print(sp.Float(exponent) if exponent.is_Rational else exponent)})"
+
+    # Or and And as sums and products of 1.0/0.0 selects: no short circuit, and no mix of int and double
+    # lanes, either of which keeps GCC from vectorising a loop with a flag output such as singular.
+    def _print_Or(self, expr):
+        return "(" + " + ".join(f"({self._print(a)} ? 1.0 : 0.0)" for a in sorted(expr.args, key=sp.default_sort_key)) + ")"
+
+    def _print_And(self, expr):
+        return "(" + " * ".join(f"({self._print(a)} ? 1.0 : 0.0)" for a in sorted(expr.args, key=sp.default_sort_key)) + ")"
 
     def _print_BooleanTrue(self, expr):
         return "1"
@@ -228,6 +236,28 @@ def c_function(program: Program, name: str, doc: str = "") -> CFunction:
     lines += ["        }", "    }", "}"]
     return CFunction(name, tuple(arguments), tuple(outputs), tuple(output_parameters), tuple(flags),
                      prototype, "\n".join(lines) + "\n")
+
+
+def c_packed(function: CFunction) -> str:
+    """A wrapper ``<name>_packed(n, pointers, steps)`` of a loop function: its arrays and steps as two arrays.
+
+    ``pointers`` holds the arguments' arrays, then the outputs' and
+    ``assembled``, in calling order; ``steps`` the arguments' steps.  A caller
+    from another language (symlink's compiled backend through ctypes) then
+    passes three values a call instead of two an argument.
+
+    >>> from symlink.catalog import fourbar
+    >>> print(c_packed(c_function(fourbar().program(["rocker"]), "rocker")).splitlines()[0])
+    void rocker_packed(size_t n, void *const *pointers, const ptrdiff_t *steps)
+    """
+    arguments = [f"(const double *)pointers[{k}], steps[{k}]" for k in range(len(function.arguments))]
+    first = len(function.arguments)
+    outputs = [f"({'unsigned char' if flag else 'double'} *)pointers[{first + k}]"
+               for k, flag in enumerate(function.flags)]
+    outputs.append(f"(unsigned char *)pointers[{first + len(function.flags)}]")
+    call = ",\n        ".join(["n"] + arguments + outputs)
+    return (f"void {function.name}_packed(size_t n, void *const *pointers, const ptrdiff_t *steps)\n"
+            f"{{\n    (void)steps;\n    {function.name}({call});\n}}\n")
 
 
 _HEADER = """{title}

@@ -402,7 +402,8 @@ class _Entry:
             for index, name in enumerate(self.arguments):
                 value = values[name] if name in values else self.defaults.get(name)
                 kind = type(value)
-                if kind is float or kind is int or kind is numpy.float64:
+                if kind is float or kind is int or kind is numpy.float64 or (
+                        kind is numpy.ndarray and value.ndim == 0 and value.dtype == numpy.float64):
                     numbers[index] = value
                     pointers.append(self._numbers_at + 8 * index)
                     steps.append(0)

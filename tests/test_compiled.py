@@ -358,3 +358,21 @@ def test_full_kinematics_loops_are_vectorised(compiler, name, tmp_path):
     compiled._build(source, {}, find_compiler(), tmp_path / "solver.so")
     binary = (tmp_path / "solver.so").read_bytes()
     assert b"_ZGVdN4vv_atan2" in binary  # the AVX2 loop's vector atan2
+
+
+def test_small_calls_take_the_fast_path_and_agree_with_the_general_one(compiler):
+    fast = CompiledSolver(catalog_linkage("fourbar"), ["rocker", "coupler_accel", "singular"]).function
+    lengths = dict(a=20.0, b=66.0, c=56.0, d=80.0, branch=1.0, thetadot=10.5, thetaddot=2.0)
+    theta = numpy.linspace(0.0, 6.0, 25)
+    first = fast(theta=theta, **lengths)
+    assert fast._last_arrays[0] is theta  # the fast path ran and remembered the array
+    theta *= 0.5  # the same array, changed in place: read again, not remembered values
+    second = fast(theta=theta, **lengths)
+    general = fast(theta=list(theta), **lengths)  # a list: the general path
+    third = fast(theta=theta.copy(), **{**lengths, "a": numpy.float64(20.0), "b": numpy.array(66.0)})
+    for name in ["rocker", "coupler_accel", "singular", "assembled"]:
+        assert numpy.array_equal(second[name], general[name], equal_nan=True), name
+        assert numpy.array_equal(third[name], general[name], equal_nan=True), name
+        assert second[name].dtype == general[name].dtype and second[name].shape == (25,)
+    assert not numpy.array_equal(first["rocker"], second["rocker"])
+    assert list(second) == ["rocker", "coupler_accel", "singular", "assembled"]

@@ -7,6 +7,9 @@ import numpy
 
 TOLERANCE = 1e-14
 
+#: Values a kernel evaluates at a time: its temporaries of one block stay in cache.
+BLOCK = 4096
+
 
 def _arguments(check, names, values, lengths=(), signs=()):
     """The arguments as float arrays and their broadcast shape; with ``check``, ``ValueError`` naming a bad one.
@@ -19,9 +22,13 @@ def _arguments(check, names, values, lengths=(), signs=()):
     """
     if not check:
         arrays = tuple(numpy.asarray(value, dtype=float) for value in values)
-        return arrays, numpy.broadcast_shapes(*(array.shape for array in arrays))
+        shapes = {array.shape for array in arrays} - {()}
+        return arrays, shapes.pop() if len(shapes) == 1 else numpy.broadcast_shapes(*(a.shape for a in arrays))
     arrays = []
     for name, value in zip(names, values):
+        if type(value) is float:  # the usual length, sign or rate: no conversion to check
+            arrays.append(numpy.float64(value))
+            continue
         array = numpy.asarray(value)
         kind = array.dtype.kind
         if kind != "f":
@@ -33,8 +40,9 @@ def _arguments(check, names, values, lengths=(), signs=()):
                 why = " (its imaginary part would be lost)" if kind == "c" else ""
                 raise ValueError(f"{name} must be real numbers, got {array.dtype} values{why}") from None
         arrays.append(array)
+    shapes = {array.shape for array in arrays} - {()}
     try:
-        shape = numpy.broadcast_shapes(*(array.shape for array in arrays))
+        shape = shapes.pop() if len(shapes) == 1 else numpy.broadcast_shapes(*(array.shape for array in arrays))
     except ValueError:
         shapes = ", ".join(f"{name} has shape {array.shape}" for name, array in zip(names, arrays) if array.ndim)
         raise ValueError(f"the arguments do not broadcast together: {shapes}") from None
@@ -63,6 +71,35 @@ def _arguments(check, names, values, lengths=(), signs=()):
     return tuple(arrays), shape
 
 
+def _evaluate(kernel, arguments, shape, keys, flags):
+    """``{key: array}``: the kernel's results broadcast to ``shape``; a long input evaluated a block of rows at a time.
+
+    Up to :data:`BLOCK` values, one call of ``kernel`` on the whole arguments.
+    Beyond, the outputs are allocated once (``flags`` tells the true/false
+    ones) and the kernel is called on consecutive slices of the leading axis
+    of about ``BLOCK`` values each (an argument that broadcasts along that axis
+    is passed whole), so its temporaries stay in cache and the memory a call
+    needs beyond its outputs does not grow with the input.  Every value is
+    computed by the same elementwise operations either way: the results are
+    bit for bit those of one call on the whole arguments.
+    """
+    count = 1
+    for extent in shape:
+        count *= extent
+    if count <= BLOCK:
+        return {key: numpy.broadcast_to(result, shape) for key, result in zip(keys, kernel(*arguments))}
+    rows, dimensions = shape[0], len(shape)
+    step = max(1, BLOCK // (count // rows))
+    outputs = [numpy.empty(shape, dtype=bool if flag else float) for flag in flags]
+    sliced = [argument.ndim == dimensions and argument.shape[0] != 1 for argument in arguments]
+    for start in range(0, rows, step):
+        stop = start + step
+        results = kernel(*[argument[start:stop] if cut else argument for argument, cut in zip(arguments, sliced)])
+        for output, result in zip(outputs, results):
+            output[start:stop] = result
+    return dict(zip(keys, outputs))
+
+
 def _clamped_sqrt(x, scale):
     """sqrt(x), taking x >= -TOLERANCE*scale as rounding at a toggle (0) and anything lower as no assembly (NaN)."""
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
@@ -78,10 +115,16 @@ def positions(theta, psi, a, b, c, d, e, branch=1, *, check=True):
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, psi, a, b, c, d, e, branch,), shape = _arguments(
-        check, ('theta', 'psi', 'a', 'b', 'c', 'd', 'e', 'branch'), (theta, psi, a, b, c, d, e, branch,), ('a', 'b', 'c', 'd', 'e'), ('branch',))
+    (theta, psi, a, b, c, d, e, branch, ), shape = _arguments(
+        check, ('theta', 'psi', 'a', 'b', 'c', 'd', 'e', 'branch'), (theta, psi, a, b, c, d, e, branch, ), ('a', 'b', 'c', 'd', 'e'), ('branch',))
+    return _evaluate(_positions_block, (theta, psi, a, b, c, d, e, branch, ), shape, ('coupler', 'coupler2', 'assembled'), (False, False, True))
+
+
+def _positions_block(theta, psi, a, b, c, d, e, branch):
+    """The outputs of positions and the assembled mask, for arguments that broadcast together."""
     size_1 = 2.0**numpy.floor(numpy.log((1/5)*a + (1/5)*b + (1/5)*c + (1/5)*d + (1/5)*e)/numpy.log(2.0))
     cse_0 = 1/(size_1)
+    del size_1
     rho_1_1 = cse_0*d
     rho_2_1 = cse_0*e
     rho_3_1 = a*cse_0
@@ -89,6 +132,7 @@ def positions(theta, psi, a, b, c, d, e, branch=1, *, check=True):
     Wy_1 = -rho_2_1*numpy.sin(psi) + rho_3_1*numpy.sin(theta)
     rho_4_1 = b*cse_0
     rho_5_1 = c*cse_0
+    del cse_0
     cse_1 = rho_4_1 + rho_5_1
     cse_3 = rho_4_1 - rho_5_1
     w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
@@ -96,17 +140,22 @@ def positions(theta, psi, a, b, c, d, e, branch=1, *, check=True):
     cse_4 = numpy.square(w_1)
     cse_5 = cse_1*cse_3 + cse_4
     cse_9 = -cse_1*cse_3 + cse_4
+    del cse_4
     Delta_1 = _clamped_sqrt(cse_2*(cse_1 - w_1)*(cse_3 + w_1)*(-rho_4_1 + rho_5_1 + w_1), 8.0*rho_4_1*rho_5_1*w_1*(cse_2 + rho_1_1 + rho_2_1 + rho_3_1))
+    del cse_1, cse_2, cse_3, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
     cse_6 = Delta_1*branch
     cse_7 = Wx_1*cse_6
     cse_8 = Wy_1*cse_6
+    del cse_6
     beta = numpy.arctan2(-Wy_1*cse_5 - cse_7, -Wx_1*cse_5 + cse_8)
+    del cse_5
     phi = numpy.arctan2(Wy_1*cse_9 - cse_7, Wx_1*cse_9 + cse_8)
-    return {
-        'coupler': numpy.broadcast_to(beta, shape),
-        'coupler2': numpy.broadcast_to(phi, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1), shape),
-    }
+    del Wx_1, Wy_1, cse_7, cse_8, cse_9
+    return (
+        beta,  # coupler
+        phi,  # coupler2
+        numpy.isfinite(w_1) & numpy.isfinite(Delta_1),  # assembled
+    )
 
 
 def velocities(theta, psi, a, b, c, d, e, branch=1, thetadot=0.0, psidot=0.0, *, check=True):
@@ -119,13 +168,19 @@ def velocities(theta, psi, a, b, c, d, e, branch=1, thetadot=0.0, psidot=0.0, *,
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, psi, a, b, c, d, e, branch, thetadot, psidot,), shape = _arguments(
-        check, ('theta', 'psi', 'a', 'b', 'c', 'd', 'e', 'branch', 'thetadot', 'psidot'), (theta, psi, a, b, c, d, e, branch, thetadot, psidot,), ('a', 'b', 'c', 'd', 'e'), ('branch',))
+    (theta, psi, a, b, c, d, e, branch, thetadot, psidot, ), shape = _arguments(
+        check, ('theta', 'psi', 'a', 'b', 'c', 'd', 'e', 'branch', 'thetadot', 'psidot'), (theta, psi, a, b, c, d, e, branch, thetadot, psidot, ), ('a', 'b', 'c', 'd', 'e'), ('branch',))
+    return _evaluate(_velocities_block, (theta, psi, a, b, c, d, e, branch, thetadot, psidot, ), shape, ('coupler', 'coupler2', 'coupler_speed', 'coupler2_speed', 'assembled'), (False, False, False, False, True))
+
+
+def _velocities_block(theta, psi, a, b, c, d, e, branch, thetadot, psidot):
+    """The outputs of velocities and the assembled mask, for arguments that broadcast together."""
     cse_11 = -theta
     cse_12 = a*thetadot
     cse_13 = -psi
     size_1 = 2.0**numpy.floor(numpy.log((1/5)*a + (1/5)*b + (1/5)*c + (1/5)*d + (1/5)*e)/numpy.log(2.0))
     cse_0 = 1/(size_1)
+    del size_1
     rho_1_1 = cse_0*d
     rho_2_1 = cse_0*e
     rho_3_1 = a*cse_0
@@ -133,6 +188,7 @@ def velocities(theta, psi, a, b, c, d, e, branch=1, thetadot=0.0, psidot=0.0, *,
     Wy_1 = -rho_2_1*numpy.sin(psi) + rho_3_1*numpy.sin(theta)
     rho_4_1 = b*cse_0
     rho_5_1 = c*cse_0
+    del cse_0
     cse_1 = rho_4_1 + rho_5_1
     cse_3 = rho_4_1 - rho_5_1
     cse_4 = rho_4_1*rho_5_1
@@ -141,22 +197,29 @@ def velocities(theta, psi, a, b, c, d, e, branch=1, thetadot=0.0, psidot=0.0, *,
     cse_5 = numpy.square(w_1)
     cse_6 = cse_1*cse_3 + cse_5
     cse_10 = -cse_1*cse_3 + cse_5
+    del cse_5
     Delta_1 = _clamped_sqrt(cse_2*(cse_1 - w_1)*(cse_3 + w_1)*(-rho_4_1 + rho_5_1 + w_1), 8.0*cse_4*w_1*(cse_2 + rho_1_1 + rho_2_1 + rho_3_1))
+    del cse_1, cse_2, cse_3, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
     cse_7 = Delta_1*branch
     cse_8 = Wx_1*cse_7
     cse_9 = Wy_1*cse_7
+    del cse_7
     cse_14 = 2.0*cse_4/(Delta_1*branch)
+    del cse_4
     beta = numpy.arctan2(-Wy_1*cse_6 - cse_8, -Wx_1*cse_6 + cse_9)
+    del cse_6
     phi = numpy.arctan2(Wy_1*cse_10 - cse_8, Wx_1*cse_10 + cse_9)
+    del Wx_1, Wy_1, cse_10, cse_8, cse_9
     betadot = cse_14*(-cse_12*numpy.sin(cse_11 + phi) + e*psidot*numpy.sin(cse_13 + phi))/b
     phidot = cse_14*(-cse_12*numpy.sin(beta + cse_11) + e*psidot*numpy.sin(beta + cse_13))/c
-    return {
-        'coupler': numpy.broadcast_to(beta, shape),
-        'coupler2': numpy.broadcast_to(phi, shape),
-        'coupler_speed': numpy.broadcast_to(betadot, shape),
-        'coupler2_speed': numpy.broadcast_to(phidot, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1), shape),
-    }
+    del cse_11, cse_12, cse_13, cse_14
+    return (
+        beta,  # coupler
+        phi,  # coupler2
+        betadot,  # coupler_speed
+        phidot,  # coupler2_speed
+        numpy.isfinite(w_1) & numpy.isfinite(Delta_1),  # assembled
+    )
 
 
 def accelerations(theta, psi, a, b, c, d, e, branch=1, thetadot=0.0, psidot=0.0, thetaddot=0.0, psiddot=0.0, *, check=True):
@@ -169,8 +232,13 @@ def accelerations(theta, psi, a, b, c, d, e, branch=1, thetadot=0.0, psidot=0.0,
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, psi, a, b, c, d, e, branch, thetadot, psidot, thetaddot, psiddot,), shape = _arguments(
-        check, ('theta', 'psi', 'a', 'b', 'c', 'd', 'e', 'branch', 'thetadot', 'psidot', 'thetaddot', 'psiddot'), (theta, psi, a, b, c, d, e, branch, thetadot, psidot, thetaddot, psiddot,), ('a', 'b', 'c', 'd', 'e'), ('branch',))
+    (theta, psi, a, b, c, d, e, branch, thetadot, psidot, thetaddot, psiddot, ), shape = _arguments(
+        check, ('theta', 'psi', 'a', 'b', 'c', 'd', 'e', 'branch', 'thetadot', 'psidot', 'thetaddot', 'psiddot'), (theta, psi, a, b, c, d, e, branch, thetadot, psidot, thetaddot, psiddot, ), ('a', 'b', 'c', 'd', 'e'), ('branch',))
+    return _evaluate(_accelerations_block, (theta, psi, a, b, c, d, e, branch, thetadot, psidot, thetaddot, psiddot, ), shape, ('coupler', 'coupler2', 'coupler_speed', 'coupler2_speed', 'coupler_accel', 'coupler2_accel', 'assembled'), (False, False, False, False, False, False, True))
+
+
+def _accelerations_block(theta, psi, a, b, c, d, e, branch, thetadot, psidot, thetaddot, psiddot):
+    """The outputs of accelerations and the assembled mask, for arguments that broadcast together."""
     cse_11 = -theta
     cse_14 = a*thetadot
     cse_15 = -psi
@@ -179,6 +247,7 @@ def accelerations(theta, psi, a, b, c, d, e, branch=1, thetadot=0.0, psidot=0.0,
     cse_28 = numpy.square(thetadot)
     size_1 = 2.0**numpy.floor(numpy.log((1/5)*a + (1/5)*b + (1/5)*c + (1/5)*d + (1/5)*e)/numpy.log(2.0))
     cse_0 = 1/(size_1)
+    del size_1
     rho_1_1 = cse_0*d
     rho_2_1 = cse_0*e
     rho_3_1 = a*cse_0
@@ -186,6 +255,7 @@ def accelerations(theta, psi, a, b, c, d, e, branch=1, thetadot=0.0, psidot=0.0,
     Wy_1 = -rho_2_1*numpy.sin(psi) + rho_3_1*numpy.sin(theta)
     rho_4_1 = b*cse_0
     rho_5_1 = c*cse_0
+    del cse_0
     cse_1 = rho_4_1 + rho_5_1
     cse_3 = rho_4_1 - rho_5_1
     cse_4 = rho_4_1*rho_5_1
@@ -194,39 +264,51 @@ def accelerations(theta, psi, a, b, c, d, e, branch=1, thetadot=0.0, psidot=0.0,
     cse_5 = numpy.square(w_1)
     cse_6 = cse_1*cse_3 + cse_5
     cse_10 = -cse_1*cse_3 + cse_5
+    del cse_5
     Delta_1 = _clamped_sqrt(cse_2*(cse_1 - w_1)*(cse_3 + w_1)*(-rho_4_1 + rho_5_1 + w_1), 8.0*cse_4*w_1*(cse_2 + rho_1_1 + rho_2_1 + rho_3_1))
+    del cse_1, cse_2, cse_3, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
     cse_7 = Delta_1*branch
     cse_8 = Wx_1*cse_7
     cse_9 = Wy_1*cse_7
+    del cse_7
     cse_18 = 2.0*cse_4/(Delta_1*branch)
+    del cse_4
     cse_19 = cse_18/b
     cse_24 = cse_18/c
+    del cse_18
     beta = numpy.arctan2(-Wy_1*cse_6 - cse_8, -Wx_1*cse_6 + cse_9)
+    del cse_6
     cse_20 = beta + cse_11
     cse_21 = numpy.sin(cse_20)
     cse_22 = beta + cse_15
     cse_23 = numpy.sin(cse_22)
     phi = numpy.arctan2(Wy_1*cse_10 - cse_8, Wx_1*cse_10 + cse_9)
+    del Wx_1, Wy_1, cse_10, cse_8, cse_9
     cse_12 = cse_11 + phi
+    del cse_11
     cse_13 = numpy.sin(cse_12)
     cse_16 = cse_15 + phi
+    del cse_15
     cse_17 = numpy.sin(cse_16)
     cse_30 = numpy.cos(beta - phi)
     betadot = cse_19*(-cse_13*cse_14 + cse_17*e*psidot)
     cse_29 = numpy.square(betadot)
     phidot = cse_24*(-cse_14*cse_21 + cse_23*e*psidot)
+    del cse_14
     cse_25 = c*numpy.square(phidot)
     betaddot = cse_19*(a*cse_28*numpy.cos(cse_12) + b*cse_29*cse_30 - cse_13*cse_26 + cse_17*e*psiddot - cse_25 - cse_27*numpy.cos(cse_16))
+    del cse_12, cse_13, cse_16, cse_17, cse_19
     phiddot = cse_24*(a*cse_28*numpy.cos(cse_20) + b*cse_29 - cse_21*cse_26 + cse_23*e*psiddot - cse_25*cse_30 - cse_27*numpy.cos(cse_22))
-    return {
-        'coupler': numpy.broadcast_to(beta, shape),
-        'coupler2': numpy.broadcast_to(phi, shape),
-        'coupler_speed': numpy.broadcast_to(betadot, shape),
-        'coupler2_speed': numpy.broadcast_to(phidot, shape),
-        'coupler_accel': numpy.broadcast_to(betaddot, shape),
-        'coupler2_accel': numpy.broadcast_to(phiddot, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1), shape),
-    }
+    del cse_20, cse_21, cse_22, cse_23, cse_24, cse_25, cse_26, cse_27, cse_28, cse_29, cse_30
+    return (
+        beta,  # coupler
+        phi,  # coupler2
+        betadot,  # coupler_speed
+        phidot,  # coupler2_speed
+        betaddot,  # coupler_accel
+        phiddot,  # coupler2_accel
+        numpy.isfinite(w_1) & numpy.isfinite(Delta_1),  # assembled
+    )
 
 
 def joints(theta, psi, a, b, c, d, e, branch=1, *, check=True):
@@ -239,8 +321,13 @@ def joints(theta, psi, a, b, c, d, e, branch=1, *, check=True):
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, psi, a, b, c, d, e, branch,), shape = _arguments(
-        check, ('theta', 'psi', 'a', 'b', 'c', 'd', 'e', 'branch'), (theta, psi, a, b, c, d, e, branch,), ('a', 'b', 'c', 'd', 'e'), ('branch',))
+    (theta, psi, a, b, c, d, e, branch, ), shape = _arguments(
+        check, ('theta', 'psi', 'a', 'b', 'c', 'd', 'e', 'branch'), (theta, psi, a, b, c, d, e, branch, ), ('a', 'b', 'c', 'd', 'e'), ('branch',))
+    return _evaluate(_joints_block, (theta, psi, a, b, c, d, e, branch, ), shape, ('B_x', 'B_y', 'C_x', 'C_y', 'D_x', 'D_y', 'assembled'), (False, False, False, False, False, False, True))
+
+
+def _joints_block(theta, psi, a, b, c, d, e, branch):
+    """The outputs of joints and the assembled mask, for arguments that broadcast together."""
     cse_1 = numpy.cos(psi)
     cse_2 = numpy.cos(theta)
     cse_3 = numpy.sin(psi)
@@ -249,27 +336,33 @@ def joints(theta, psi, a, b, c, d, e, branch=1, *, check=True):
     cse_11 = a*cse_4
     size_1 = 2.0**numpy.floor(numpy.log((1/5)*a + (1/5)*b + (1/5)*c + (1/5)*d + (1/5)*e)/numpy.log(2.0))
     cse_0 = 1/(size_1)
+    del size_1
     rho_1_1 = cse_0*d
     rho_2_1 = cse_0*e
     rho_3_1 = a*cse_0
     Wx_1 = -cse_1*rho_2_1 + cse_2*rho_3_1 - rho_1_1
+    del cse_2
     Wy_1 = -cse_3*rho_2_1 + cse_4*rho_3_1
+    del cse_4
     rho_4_1 = b*cse_0
     rho_5_1 = c*cse_0
+    del cse_0
     cse_5 = rho_4_1 + rho_5_1
     cse_7 = rho_4_1 - rho_5_1
     w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
     cse_6 = cse_5 + w_1
     cse_8 = cse_5*cse_7 + numpy.square(w_1)
     Delta_1 = _clamped_sqrt(cse_6*(cse_5 - w_1)*(cse_7 + w_1)*(-rho_4_1 + rho_5_1 + w_1), 8.0*rho_4_1*rho_5_1*w_1*(cse_6 + rho_1_1 + rho_2_1 + rho_3_1))
+    del cse_5, cse_6, cse_7, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
     cse_9 = Delta_1*branch
     beta = numpy.arctan2(-Wx_1*cse_9 - Wy_1*cse_8, -Wx_1*cse_8 + Wy_1*cse_9)
-    return {
-        'B_x': numpy.broadcast_to(cse_10, shape),
-        'B_y': numpy.broadcast_to(cse_11, shape),
-        'C_x': numpy.broadcast_to(b*numpy.cos(beta) + cse_10, shape),
-        'C_y': numpy.broadcast_to(b*numpy.sin(beta) + cse_11, shape),
-        'D_x': numpy.broadcast_to(cse_1*e + d, shape),
-        'D_y': numpy.broadcast_to(cse_3*e, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1), shape),
-    }
+    del Wx_1, Wy_1, cse_8, cse_9
+    return (
+        cse_10,  # B_x
+        cse_11,  # B_y
+        b*numpy.cos(beta) + cse_10,  # C_x
+        b*numpy.sin(beta) + cse_11,  # C_y
+        cse_1*e + d,  # D_x
+        cse_3*e,  # D_y
+        numpy.isfinite(w_1) & numpy.isfinite(Delta_1),  # assembled
+    )

@@ -7,6 +7,9 @@ import numpy
 
 TOLERANCE = 1e-14
 
+#: Values a kernel evaluates at a time: its temporaries of one block stay in cache.
+BLOCK = 4096
+
 
 def _arguments(check, names, values, lengths=(), signs=()):
     """The arguments as float arrays and their broadcast shape; with ``check``, ``ValueError`` naming a bad one.
@@ -19,9 +22,13 @@ def _arguments(check, names, values, lengths=(), signs=()):
     """
     if not check:
         arrays = tuple(numpy.asarray(value, dtype=float) for value in values)
-        return arrays, numpy.broadcast_shapes(*(array.shape for array in arrays))
+        shapes = {array.shape for array in arrays} - {()}
+        return arrays, shapes.pop() if len(shapes) == 1 else numpy.broadcast_shapes(*(a.shape for a in arrays))
     arrays = []
     for name, value in zip(names, values):
+        if type(value) is float:  # the usual length, sign or rate: no conversion to check
+            arrays.append(numpy.float64(value))
+            continue
         array = numpy.asarray(value)
         kind = array.dtype.kind
         if kind != "f":
@@ -33,8 +40,9 @@ def _arguments(check, names, values, lengths=(), signs=()):
                 why = " (its imaginary part would be lost)" if kind == "c" else ""
                 raise ValueError(f"{name} must be real numbers, got {array.dtype} values{why}") from None
         arrays.append(array)
+    shapes = {array.shape for array in arrays} - {()}
     try:
-        shape = numpy.broadcast_shapes(*(array.shape for array in arrays))
+        shape = shapes.pop() if len(shapes) == 1 else numpy.broadcast_shapes(*(array.shape for array in arrays))
     except ValueError:
         shapes = ", ".join(f"{name} has shape {array.shape}" for name, array in zip(names, arrays) if array.ndim)
         raise ValueError(f"the arguments do not broadcast together: {shapes}") from None
@@ -63,6 +71,35 @@ def _arguments(check, names, values, lengths=(), signs=()):
     return tuple(arrays), shape
 
 
+def _evaluate(kernel, arguments, shape, keys, flags):
+    """``{key: array}``: the kernel's results broadcast to ``shape``; a long input evaluated a block of rows at a time.
+
+    Up to :data:`BLOCK` values, one call of ``kernel`` on the whole arguments.
+    Beyond, the outputs are allocated once (``flags`` tells the true/false
+    ones) and the kernel is called on consecutive slices of the leading axis
+    of about ``BLOCK`` values each (an argument that broadcasts along that axis
+    is passed whole), so its temporaries stay in cache and the memory a call
+    needs beyond its outputs does not grow with the input.  Every value is
+    computed by the same elementwise operations either way: the results are
+    bit for bit those of one call on the whole arguments.
+    """
+    count = 1
+    for extent in shape:
+        count *= extent
+    if count <= BLOCK:
+        return {key: numpy.broadcast_to(result, shape) for key, result in zip(keys, kernel(*arguments))}
+    rows, dimensions = shape[0], len(shape)
+    step = max(1, BLOCK // (count // rows))
+    outputs = [numpy.empty(shape, dtype=bool if flag else float) for flag in flags]
+    sliced = [argument.ndim == dimensions and argument.shape[0] != 1 for argument in arguments]
+    for start in range(0, rows, step):
+        stop = start + step
+        results = kernel(*[argument[start:stop] if cut else argument for argument, cut in zip(arguments, sliced)])
+        for output, result in zip(outputs, results):
+            output[start:stop] = result
+    return dict(zip(keys, outputs))
+
+
 def _clamped_sqrt(x, scale):
     """sqrt(x), taking x >= -TOLERANCE*scale as rounding at a toggle (0) and anything lower as no assembly (NaN)."""
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
@@ -78,16 +115,23 @@ def positions(theta, a, b, c, d, branch=1, *, check=True):
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, a, b, c, d, branch,), shape = _arguments(
-        check, ('theta', 'a', 'b', 'c', 'd', 'branch'), (theta, a, b, c, d, branch,), ('a', 'b', 'c', 'd'), ('branch',))
+    (theta, a, b, c, d, branch, ), shape = _arguments(
+        check, ('theta', 'a', 'b', 'c', 'd', 'branch'), (theta, a, b, c, d, branch, ), ('a', 'b', 'c', 'd'), ('branch',))
+    return _evaluate(_positions_block, (theta, a, b, c, d, branch, ), shape, ('coupler', 'rocker', 'assembled'), (False, False, True))
+
+
+def _positions_block(theta, a, b, c, d, branch):
+    """The outputs of positions and the assembled mask, for arguments that broadcast together."""
     size_1 = 2.0**numpy.floor(numpy.log((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d)/numpy.log(2.0))
     cse_0 = 1/(size_1)
+    del size_1
     rho_1_1 = cse_0*d
     rho_2_1 = a*cse_0
     Wx_1 = -rho_1_1 + rho_2_1*numpy.cos(theta)
     Wy_1 = rho_2_1*numpy.sin(theta)
     rho_3_1 = b*cse_0
     rho_4_1 = c*cse_0
+    del cse_0
     cse_1 = rho_3_1 + rho_4_1
     cse_3 = rho_3_1 - rho_4_1
     w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
@@ -95,17 +139,22 @@ def positions(theta, a, b, c, d, branch=1, *, check=True):
     cse_4 = numpy.square(w_1)
     cse_5 = cse_1*cse_3 + cse_4
     cse_9 = -cse_1*cse_3 + cse_4
+    del cse_4
     Delta_1 = _clamped_sqrt(cse_2*(cse_1 - w_1)*(cse_3 + w_1)*(-rho_3_1 + rho_4_1 + w_1), 8.0*rho_3_1*rho_4_1*w_1*(cse_2 + rho_1_1 + rho_2_1))
+    del cse_1, cse_2, cse_3, rho_1_1, rho_2_1, rho_3_1, rho_4_1
     cse_6 = Delta_1*branch
     cse_7 = Wx_1*cse_6
     cse_8 = Wy_1*cse_6
+    del cse_6
     beta = numpy.arctan2(-Wy_1*cse_5 - cse_7, -Wx_1*cse_5 + cse_8)
+    del cse_5
     phi = numpy.arctan2(Wy_1*cse_9 - cse_7, Wx_1*cse_9 + cse_8)
-    return {
-        'coupler': numpy.broadcast_to(beta, shape),
-        'rocker': numpy.broadcast_to(phi, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1), shape),
-    }
+    del Wx_1, Wy_1, cse_7, cse_8, cse_9
+    return (
+        beta,  # coupler
+        phi,  # rocker
+        numpy.isfinite(w_1) & numpy.isfinite(Delta_1),  # assembled
+    )
 
 
 def velocities(theta, a, b, c, d, branch=1, thetadot=0.0, *, check=True):
@@ -118,17 +167,24 @@ def velocities(theta, a, b, c, d, branch=1, thetadot=0.0, *, check=True):
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, a, b, c, d, branch, thetadot,), shape = _arguments(
-        check, ('theta', 'a', 'b', 'c', 'd', 'branch', 'thetadot'), (theta, a, b, c, d, branch, thetadot,), ('a', 'b', 'c', 'd'), ('branch',))
+    (theta, a, b, c, d, branch, thetadot, ), shape = _arguments(
+        check, ('theta', 'a', 'b', 'c', 'd', 'branch', 'thetadot'), (theta, a, b, c, d, branch, thetadot, ), ('a', 'b', 'c', 'd'), ('branch',))
+    return _evaluate(_velocities_block, (theta, a, b, c, d, branch, thetadot, ), shape, ('coupler', 'rocker', 'coupler_speed', 'rocker_speed', 'singular', 'assembled'), (False, False, False, False, True, True))
+
+
+def _velocities_block(theta, a, b, c, d, branch, thetadot):
+    """The outputs of velocities and the assembled mask, for arguments that broadcast together."""
     cse_11 = -theta
     size_1 = 2.0**numpy.floor(numpy.log((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d)/numpy.log(2.0))
     cse_0 = 1/(size_1)
+    del size_1
     rho_1_1 = cse_0*d
     rho_2_1 = a*cse_0
     Wx_1 = -rho_1_1 + rho_2_1*numpy.cos(theta)
     Wy_1 = rho_2_1*numpy.sin(theta)
     rho_3_1 = b*cse_0
     rho_4_1 = c*cse_0
+    del cse_0
     cse_1 = rho_3_1 + rho_4_1
     cse_3 = rho_3_1 - rho_4_1
     cse_4 = rho_3_1*rho_4_1
@@ -137,23 +193,30 @@ def velocities(theta, a, b, c, d, branch=1, thetadot=0.0, *, check=True):
     cse_5 = numpy.square(w_1)
     cse_6 = cse_1*cse_3 + cse_5
     cse_10 = -cse_1*cse_3 + cse_5
+    del cse_5
     Delta_1 = _clamped_sqrt(cse_2*(cse_1 - w_1)*(cse_3 + w_1)*(-rho_3_1 + rho_4_1 + w_1), 8.0*cse_4*w_1*(cse_2 + rho_1_1 + rho_2_1))
+    del cse_1, cse_2, cse_3, rho_1_1, rho_2_1, rho_3_1, rho_4_1
     cse_7 = Delta_1*branch
     cse_8 = Wx_1*cse_7
     cse_9 = Wy_1*cse_7
+    del cse_7
     cse_12 = 2.0*a*cse_4*thetadot/(Delta_1*branch)
+    del cse_4
     beta = numpy.arctan2(-Wy_1*cse_6 - cse_8, -Wx_1*cse_6 + cse_9)
+    del cse_6
     phi = numpy.arctan2(Wy_1*cse_10 - cse_8, Wx_1*cse_10 + cse_9)
+    del Wx_1, Wy_1, cse_10, cse_8, cse_9
     betadot = -cse_12*numpy.sin(cse_11 + phi)/b
     phidot = -cse_12*numpy.sin(beta + cse_11)/c
-    return {
-        'coupler': numpy.broadcast_to(beta, shape),
-        'rocker': numpy.broadcast_to(phi, shape),
-        'coupler_speed': numpy.broadcast_to(betadot, shape),
-        'rocker_speed': numpy.broadcast_to(phidot, shape),
-        'singular': numpy.broadcast_to(numpy.logical_or.reduce((numpy.equal(Delta_1, 0.0),numpy.equal(w_1, 0.0))), shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1), shape),
-    }
+    del cse_11, cse_12
+    return (
+        beta,  # coupler
+        phi,  # rocker
+        betadot,  # coupler_speed
+        phidot,  # rocker_speed
+        numpy.logical_or.reduce((numpy.equal(Delta_1, 0.0),numpy.equal(w_1, 0.0))),  # singular
+        numpy.isfinite(w_1) & numpy.isfinite(Delta_1),  # assembled
+    )
 
 
 def accelerations(theta, a, b, c, d, branch=1, thetadot=0.0, thetaddot=0.0, *, check=True):
@@ -166,20 +229,27 @@ def accelerations(theta, a, b, c, d, branch=1, thetadot=0.0, thetaddot=0.0, *, c
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, a, b, c, d, branch, thetadot, thetaddot,), shape = _arguments(
-        check, ('theta', 'a', 'b', 'c', 'd', 'branch', 'thetadot', 'thetaddot'), (theta, a, b, c, d, branch, thetadot, thetaddot,), ('a', 'b', 'c', 'd'), ('branch',))
+    (theta, a, b, c, d, branch, thetadot, thetaddot, ), shape = _arguments(
+        check, ('theta', 'a', 'b', 'c', 'd', 'branch', 'thetadot', 'thetaddot'), (theta, a, b, c, d, branch, thetadot, thetaddot, ), ('a', 'b', 'c', 'd'), ('branch',))
+    return _evaluate(_accelerations_block, (theta, a, b, c, d, branch, thetadot, thetaddot, ), shape, ('coupler', 'rocker', 'coupler_speed', 'rocker_speed', 'coupler_accel', 'rocker_accel', 'transmission', 'singular', 'assembled'), (False, False, False, False, False, False, False, True, True))
+
+
+def _accelerations_block(theta, a, b, c, d, branch, thetadot, thetaddot):
+    """The outputs of accelerations and the assembled mask, for arguments that broadcast together."""
     cse_11 = -theta
     cse_16 = a*thetadot
     cse_21 = a*thetaddot
     cse_22 = numpy.square(thetadot)
     size_1 = 2.0**numpy.floor(numpy.log((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d)/numpy.log(2.0))
     cse_0 = 1/(size_1)
+    del size_1
     rho_1_1 = cse_0*d
     rho_2_1 = a*cse_0
     Wx_1 = -rho_1_1 + rho_2_1*numpy.cos(theta)
     Wy_1 = rho_2_1*numpy.sin(theta)
     rho_3_1 = b*cse_0
     rho_4_1 = c*cse_0
+    del cse_0
     cse_1 = rho_3_1 + rho_4_1
     cse_3 = rho_3_1 - rho_4_1
     cse_4 = rho_3_1*rho_4_1
@@ -188,38 +258,49 @@ def accelerations(theta, a, b, c, d, branch=1, thetadot=0.0, thetaddot=0.0, *, c
     cse_5 = numpy.square(w_1)
     cse_6 = cse_1*cse_3 + cse_5
     cse_10 = -cse_1*cse_3 + cse_5
+    del cse_5
     Delta_1 = _clamped_sqrt(cse_2*(cse_1 - w_1)*(cse_3 + w_1)*(-rho_3_1 + rho_4_1 + w_1), 8.0*cse_4*w_1*(cse_2 + rho_1_1 + rho_2_1))
+    del cse_1, cse_2, cse_3, rho_1_1, rho_2_1, rho_3_1, rho_4_1
     cse_7 = Delta_1*branch
     cse_8 = Wx_1*cse_7
     cse_9 = Wy_1*cse_7
+    del cse_7
     cse_14 = 2.0*cse_4/(Delta_1*branch)
+    del cse_4
     cse_15 = cse_14/b
     cse_19 = cse_14/c
+    del cse_14
     beta = numpy.arctan2(-Wy_1*cse_6 - cse_8, -Wx_1*cse_6 + cse_9)
+    del cse_6
     cse_17 = beta + cse_11
     cse_18 = numpy.sin(cse_17)
     phi = numpy.arctan2(Wy_1*cse_10 - cse_8, Wx_1*cse_10 + cse_9)
+    del Wx_1, Wy_1, cse_10, cse_8, cse_9
     cse_12 = cse_11 + phi
+    del cse_11
     cse_13 = numpy.sin(cse_12)
     cse_24 = beta - phi
     cse_25 = numpy.cos(cse_24)
     betadot = -cse_13*cse_15*cse_16
     cse_23 = numpy.square(betadot)
     phidot = -cse_16*cse_18*cse_19
+    del cse_16
     cse_20 = c*numpy.square(phidot)
     betaddot = cse_15*(a*cse_22*numpy.cos(cse_12) + b*cse_23*cse_25 - cse_13*cse_21 - cse_20)
+    del cse_12, cse_13, cse_15
     phiddot = cse_19*(a*cse_22*numpy.cos(cse_17) + b*cse_23 - cse_18*cse_21 - cse_20*cse_25)
-    return {
-        'coupler': numpy.broadcast_to(beta, shape),
-        'rocker': numpy.broadcast_to(phi, shape),
-        'coupler_speed': numpy.broadcast_to(betadot, shape),
-        'rocker_speed': numpy.broadcast_to(phidot, shape),
-        'coupler_accel': numpy.broadcast_to(betaddot, shape),
-        'rocker_accel': numpy.broadcast_to(phiddot, shape),
-        'transmission': numpy.broadcast_to(abs(numpy.arctan2(numpy.sin(cse_24), cse_25)), shape),
-        'singular': numpy.broadcast_to(numpy.logical_or.reduce((numpy.equal(Delta_1, 0.0),numpy.equal(w_1, 0.0))), shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1), shape),
-    }
+    del cse_17, cse_18, cse_19, cse_20, cse_21, cse_22, cse_23
+    return (
+        beta,  # coupler
+        phi,  # rocker
+        betadot,  # coupler_speed
+        phidot,  # rocker_speed
+        betaddot,  # coupler_accel
+        phiddot,  # rocker_accel
+        abs(numpy.arctan2(numpy.sin(cse_24), cse_25)),  # transmission
+        numpy.logical_or.reduce((numpy.equal(Delta_1, 0.0),numpy.equal(w_1, 0.0))),  # singular
+        numpy.isfinite(w_1) & numpy.isfinite(Delta_1),  # assembled
+    )
 
 
 def joints(theta, a, b, c, d, branch=1, *, check=True):
@@ -232,32 +313,43 @@ def joints(theta, a, b, c, d, branch=1, *, check=True):
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, a, b, c, d, branch,), shape = _arguments(
-        check, ('theta', 'a', 'b', 'c', 'd', 'branch'), (theta, a, b, c, d, branch,), ('a', 'b', 'c', 'd'), ('branch',))
+    (theta, a, b, c, d, branch, ), shape = _arguments(
+        check, ('theta', 'a', 'b', 'c', 'd', 'branch'), (theta, a, b, c, d, branch, ), ('a', 'b', 'c', 'd'), ('branch',))
+    return _evaluate(_joints_block, (theta, a, b, c, d, branch, ), shape, ('B_x', 'B_y', 'C_x', 'C_y', 'assembled'), (False, False, False, False, True))
+
+
+def _joints_block(theta, a, b, c, d, branch):
+    """The outputs of joints and the assembled mask, for arguments that broadcast together."""
     cse_1 = numpy.cos(theta)
     cse_2 = numpy.sin(theta)
     cse_8 = a*cse_1
     cse_9 = a*cse_2
     size_1 = 2.0**numpy.floor(numpy.log((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d)/numpy.log(2.0))
     cse_0 = 1/(size_1)
+    del size_1
     rho_1_1 = cse_0*d
     rho_2_1 = a*cse_0
     Wx_1 = cse_1*rho_2_1 - rho_1_1
+    del cse_1
     Wy_1 = cse_2*rho_2_1
+    del cse_2
     rho_3_1 = b*cse_0
     rho_4_1 = c*cse_0
+    del cse_0
     cse_3 = rho_3_1 + rho_4_1
     cse_5 = rho_3_1 - rho_4_1
     w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
     cse_4 = cse_3 + w_1
     cse_6 = cse_3*cse_5 + numpy.square(w_1)
     Delta_1 = _clamped_sqrt(cse_4*(cse_3 - w_1)*(cse_5 + w_1)*(-rho_3_1 + rho_4_1 + w_1), 8.0*rho_3_1*rho_4_1*w_1*(cse_4 + rho_1_1 + rho_2_1))
+    del cse_3, cse_4, cse_5, rho_1_1, rho_2_1, rho_3_1, rho_4_1
     cse_7 = Delta_1*branch
     beta = numpy.arctan2(-Wx_1*cse_7 - Wy_1*cse_6, -Wx_1*cse_6 + Wy_1*cse_7)
-    return {
-        'B_x': numpy.broadcast_to(cse_8, shape),
-        'B_y': numpy.broadcast_to(cse_9, shape),
-        'C_x': numpy.broadcast_to(b*numpy.cos(beta) + cse_8, shape),
-        'C_y': numpy.broadcast_to(b*numpy.sin(beta) + cse_9, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1), shape),
-    }
+    del Wx_1, Wy_1, cse_6, cse_7
+    return (
+        cse_8,  # B_x
+        cse_9,  # B_y
+        b*numpy.cos(beta) + cse_8,  # C_x
+        b*numpy.sin(beta) + cse_9,  # C_y
+        numpy.isfinite(w_1) & numpy.isfinite(Delta_1),  # assembled
+    )

@@ -7,6 +7,9 @@ import numpy
 
 TOLERANCE = 1e-14
 
+#: Values a kernel evaluates at a time: its temporaries of one block stay in cache.
+BLOCK = 4096
+
 
 def _arguments(check, names, values, lengths=(), signs=()):
     """The arguments as float arrays and their broadcast shape; with ``check``, ``ValueError`` naming a bad one.
@@ -19,9 +22,13 @@ def _arguments(check, names, values, lengths=(), signs=()):
     """
     if not check:
         arrays = tuple(numpy.asarray(value, dtype=float) for value in values)
-        return arrays, numpy.broadcast_shapes(*(array.shape for array in arrays))
+        shapes = {array.shape for array in arrays} - {()}
+        return arrays, shapes.pop() if len(shapes) == 1 else numpy.broadcast_shapes(*(a.shape for a in arrays))
     arrays = []
     for name, value in zip(names, values):
+        if type(value) is float:  # the usual length, sign or rate: no conversion to check
+            arrays.append(numpy.float64(value))
+            continue
         array = numpy.asarray(value)
         kind = array.dtype.kind
         if kind != "f":
@@ -33,8 +40,9 @@ def _arguments(check, names, values, lengths=(), signs=()):
                 why = " (its imaginary part would be lost)" if kind == "c" else ""
                 raise ValueError(f"{name} must be real numbers, got {array.dtype} values{why}") from None
         arrays.append(array)
+    shapes = {array.shape for array in arrays} - {()}
     try:
-        shape = numpy.broadcast_shapes(*(array.shape for array in arrays))
+        shape = shapes.pop() if len(shapes) == 1 else numpy.broadcast_shapes(*(array.shape for array in arrays))
     except ValueError:
         shapes = ", ".join(f"{name} has shape {array.shape}" for name, array in zip(names, arrays) if array.ndim)
         raise ValueError(f"the arguments do not broadcast together: {shapes}") from None
@@ -63,6 +71,35 @@ def _arguments(check, names, values, lengths=(), signs=()):
     return tuple(arrays), shape
 
 
+def _evaluate(kernel, arguments, shape, keys, flags):
+    """``{key: array}``: the kernel's results broadcast to ``shape``; a long input evaluated a block of rows at a time.
+
+    Up to :data:`BLOCK` values, one call of ``kernel`` on the whole arguments.
+    Beyond, the outputs are allocated once (``flags`` tells the true/false
+    ones) and the kernel is called on consecutive slices of the leading axis
+    of about ``BLOCK`` values each (an argument that broadcasts along that axis
+    is passed whole), so its temporaries stay in cache and the memory a call
+    needs beyond its outputs does not grow with the input.  Every value is
+    computed by the same elementwise operations either way: the results are
+    bit for bit those of one call on the whole arguments.
+    """
+    count = 1
+    for extent in shape:
+        count *= extent
+    if count <= BLOCK:
+        return {key: numpy.broadcast_to(result, shape) for key, result in zip(keys, kernel(*arguments))}
+    rows, dimensions = shape[0], len(shape)
+    step = max(1, BLOCK // (count // rows))
+    outputs = [numpy.empty(shape, dtype=bool if flag else float) for flag in flags]
+    sliced = [argument.ndim == dimensions and argument.shape[0] != 1 for argument in arguments]
+    for start in range(0, rows, step):
+        stop = start + step
+        results = kernel(*[argument[start:stop] if cut else argument for argument, cut in zip(arguments, sliced)])
+        for output, result in zip(outputs, results):
+            output[start:stop] = result
+    return dict(zip(keys, outputs))
+
+
 def _clamped_sqrt(x, scale):
     """sqrt(x), taking x >= -TOLERANCE*scale as rounding at a toggle (0) and anything lower as no assembly (NaN)."""
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
@@ -78,23 +115,33 @@ def positions(theta, a, d, *, check=True):
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, a, d,), shape = _arguments(
-        check, ('theta', 'a', 'd'), (theta, a, d,), ('a', 'd'), ())
+    (theta, a, d, ), shape = _arguments(
+        check, ('theta', 'a', 'd'), (theta, a, d, ), ('a', 'd'), ())
+    return _evaluate(_positions_block, (theta, a, d, ), shape, ('rocker', 'slider', 'assembled'), (False, False, True))
+
+
+def _positions_block(theta, a, d):
+    """The outputs of positions and the assembled mask, for arguments that broadcast together."""
     size_1 = 2.0**numpy.floor(numpy.log((1/2)*a + (1/2)*d)/numpy.log(2.0))
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
     rho_2_1 = cse_0*d
+    del cse_0
     Wx_1 = -rho_1_1*numpy.cos(theta) + rho_2_1
+    del rho_2_1
     Wy_1 = -rho_1_1*numpy.sin(theta)
+    del rho_1_1
     w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -1.0e-14)
     cse_1 = 1/(w_1)
     phi = numpy.arctan2(-Wy_1*cse_1, -Wx_1*cse_1)
+    del Wx_1, Wy_1, cse_1
     r = size_1*w_1
-    return {
-        'rocker': numpy.broadcast_to(phi, shape),
-        'slider': numpy.broadcast_to(r, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(w_1), shape),
-    }
+    del size_1
+    return (
+        phi,  # rocker
+        r,  # slider
+        numpy.isfinite(w_1),  # assembled
+    )
 
 
 def velocities(theta, a, d, thetadot=0.0, *, check=True):
@@ -107,29 +154,40 @@ def velocities(theta, a, d, thetadot=0.0, *, check=True):
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, a, d, thetadot,), shape = _arguments(
-        check, ('theta', 'a', 'd', 'thetadot'), (theta, a, d, thetadot,), ('a', 'd'), ())
+    (theta, a, d, thetadot, ), shape = _arguments(
+        check, ('theta', 'a', 'd', 'thetadot'), (theta, a, d, thetadot, ), ('a', 'd'), ())
+    return _evaluate(_velocities_block, (theta, a, d, thetadot, ), shape, ('rocker', 'slider', 'rocker_speed', 'slider_speed', 'assembled'), (False, False, False, False, True))
+
+
+def _velocities_block(theta, a, d, thetadot):
+    """The outputs of velocities and the assembled mask, for arguments that broadcast together."""
     cse_3 = a*thetadot
     size_1 = 2.0**numpy.floor(numpy.log((1/2)*a + (1/2)*d)/numpy.log(2.0))
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
     rho_2_1 = cse_0*d
+    del cse_0
     Wx_1 = -rho_1_1*numpy.cos(theta) + rho_2_1
+    del rho_2_1
     Wy_1 = -rho_1_1*numpy.sin(theta)
+    del rho_1_1
     w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -1.0e-14)
     cse_1 = 1/(w_1)
     phi = numpy.arctan2(-Wy_1*cse_1, -Wx_1*cse_1)
+    del Wx_1, Wy_1, cse_1
     cse_2 = phi - theta
     r = size_1*w_1
+    del size_1
     phidot = cse_3*numpy.cos(cse_2)/r
     rdot = cse_3*numpy.sin(cse_2)
-    return {
-        'rocker': numpy.broadcast_to(phi, shape),
-        'slider': numpy.broadcast_to(r, shape),
-        'rocker_speed': numpy.broadcast_to(phidot, shape),
-        'slider_speed': numpy.broadcast_to(rdot, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(w_1), shape),
-    }
+    del cse_2, cse_3
+    return (
+        phi,  # rocker
+        r,  # slider
+        phidot,  # rocker_speed
+        rdot,  # slider_speed
+        numpy.isfinite(w_1),  # assembled
+    )
 
 
 def accelerations(theta, a, d, thetadot=0.0, thetaddot=0.0, *, check=True):
@@ -142,33 +200,46 @@ def accelerations(theta, a, d, thetadot=0.0, thetaddot=0.0, *, check=True):
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, a, d, thetadot, thetaddot,), shape = _arguments(
-        check, ('theta', 'a', 'd', 'thetadot', 'thetaddot'), (theta, a, d, thetadot, thetaddot,), ('a', 'd'), ())
+    (theta, a, d, thetadot, thetaddot, ), shape = _arguments(
+        check, ('theta', 'a', 'd', 'thetadot', 'thetaddot'), (theta, a, d, thetadot, thetaddot, ), ('a', 'd'), ())
+    return _evaluate(_accelerations_block, (theta, a, d, thetadot, thetaddot, ), shape, ('rocker', 'slider', 'rocker_speed', 'slider_speed', 'rocker_accel', 'slider_accel', 'assembled'), (False, False, False, False, False, False, True))
+
+
+def _accelerations_block(theta, a, d, thetadot, thetaddot):
+    """The outputs of accelerations and the assembled mask, for arguments that broadcast together."""
     cse_6 = numpy.square(thetadot)
     size_1 = 2.0**numpy.floor(numpy.log((1/2)*a + (1/2)*d)/numpy.log(2.0))
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
     rho_2_1 = cse_0*d
+    del cse_0
     Wx_1 = -rho_1_1*numpy.cos(theta) + rho_2_1
+    del rho_2_1
     Wy_1 = -rho_1_1*numpy.sin(theta)
+    del rho_1_1
     w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -1.0e-14)
     cse_1 = 1/(w_1)
     phi = numpy.arctan2(-Wy_1*cse_1, -Wx_1*cse_1)
+    del Wx_1, Wy_1, cse_1
     cse_3 = phi - theta
     cse_4 = a*numpy.cos(cse_3)
     cse_5 = a*numpy.sin(cse_3)
+    del cse_3
     r = size_1*w_1
+    del size_1
     cse_2 = 1/(r)
     phidot = cse_2*cse_4*thetadot
     rdot = cse_5*thetadot
     phiddot = -cse_2*(-cse_4*thetaddot - cse_5*cse_6 + 2.0*phidot*rdot)
+    del cse_2
     rddot = -cse_4*cse_6 + cse_5*thetaddot + numpy.square(phidot)*r
-    return {
-        'rocker': numpy.broadcast_to(phi, shape),
-        'slider': numpy.broadcast_to(r, shape),
-        'rocker_speed': numpy.broadcast_to(phidot, shape),
-        'slider_speed': numpy.broadcast_to(rdot, shape),
-        'rocker_accel': numpy.broadcast_to(phiddot, shape),
-        'slider_accel': numpy.broadcast_to(rddot, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(w_1), shape),
-    }
+    del cse_4, cse_5, cse_6
+    return (
+        phi,  # rocker
+        r,  # slider
+        phidot,  # rocker_speed
+        rdot,  # slider_speed
+        phiddot,  # rocker_accel
+        rddot,  # slider_accel
+        numpy.isfinite(w_1),  # assembled
+    )

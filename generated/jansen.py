@@ -7,6 +7,9 @@ import numpy
 
 TOLERANCE = 1e-14
 
+#: Values a kernel evaluates at a time: its temporaries of one block stay in cache.
+BLOCK = 4096
+
 
 def _arguments(check, names, values, lengths=(), signs=()):
     """The arguments as float arrays and their broadcast shape; with ``check``, ``ValueError`` naming a bad one.
@@ -19,9 +22,13 @@ def _arguments(check, names, values, lengths=(), signs=()):
     """
     if not check:
         arrays = tuple(numpy.asarray(value, dtype=float) for value in values)
-        return arrays, numpy.broadcast_shapes(*(array.shape for array in arrays))
+        shapes = {array.shape for array in arrays} - {()}
+        return arrays, shapes.pop() if len(shapes) == 1 else numpy.broadcast_shapes(*(a.shape for a in arrays))
     arrays = []
     for name, value in zip(names, values):
+        if type(value) is float:  # the usual length, sign or rate: no conversion to check
+            arrays.append(numpy.float64(value))
+            continue
         array = numpy.asarray(value)
         kind = array.dtype.kind
         if kind != "f":
@@ -33,8 +40,9 @@ def _arguments(check, names, values, lengths=(), signs=()):
                 why = " (its imaginary part would be lost)" if kind == "c" else ""
                 raise ValueError(f"{name} must be real numbers, got {array.dtype} values{why}") from None
         arrays.append(array)
+    shapes = {array.shape for array in arrays} - {()}
     try:
-        shape = numpy.broadcast_shapes(*(array.shape for array in arrays))
+        shape = shapes.pop() if len(shapes) == 1 else numpy.broadcast_shapes(*(array.shape for array in arrays))
     except ValueError:
         shapes = ", ".join(f"{name} has shape {array.shape}" for name, array in zip(names, arrays) if array.ndim)
         raise ValueError(f"the arguments do not broadcast together: {shapes}") from None
@@ -63,6 +71,35 @@ def _arguments(check, names, values, lengths=(), signs=()):
     return tuple(arrays), shape
 
 
+def _evaluate(kernel, arguments, shape, keys, flags):
+    """``{key: array}``: the kernel's results broadcast to ``shape``; a long input evaluated a block of rows at a time.
+
+    Up to :data:`BLOCK` values, one call of ``kernel`` on the whole arguments.
+    Beyond, the outputs are allocated once (``flags`` tells the true/false
+    ones) and the kernel is called on consecutive slices of the leading axis
+    of about ``BLOCK`` values each (an argument that broadcasts along that axis
+    is passed whole), so its temporaries stay in cache and the memory a call
+    needs beyond its outputs does not grow with the input.  Every value is
+    computed by the same elementwise operations either way: the results are
+    bit for bit those of one call on the whole arguments.
+    """
+    count = 1
+    for extent in shape:
+        count *= extent
+    if count <= BLOCK:
+        return {key: numpy.broadcast_to(result, shape) for key, result in zip(keys, kernel(*arguments))}
+    rows, dimensions = shape[0], len(shape)
+    step = max(1, BLOCK // (count // rows))
+    outputs = [numpy.empty(shape, dtype=bool if flag else float) for flag in flags]
+    sliced = [argument.ndim == dimensions and argument.shape[0] != 1 for argument in arguments]
+    for start in range(0, rows, step):
+        stop = start + step
+        results = kernel(*[argument[start:stop] if cut else argument for argument, cut in zip(arguments, sliced)])
+        for output, result in zip(outputs, results):
+            output[start:stop] = result
+    return dict(zip(keys, outputs))
+
+
 def _clamped_sqrt(x, scale):
     """sqrt(x), taking x >= -TOLERANCE*scale as rounding at a toggle (0) and anything lower as no assembly (NaN)."""
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
@@ -78,14 +115,20 @@ def positions(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD=
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE,), shape = _arguments(
-        check, ('theta', 'a', 'b', 'c', 'd', 'f', 'g', 'i', 'j', 'k', 'l', 'm', 'alpha', 'gamma', 'branch_ABCD', 'branch_ABFD', 'branch_DFGE'), (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE,), ('a', 'b', 'c', 'd', 'f', 'g', 'i', 'j', 'k', 'l', 'm'), ('branch_ABCD', 'branch_ABFD', 'branch_DFGE'))
+    (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, ), shape = _arguments(
+        check, ('theta', 'a', 'b', 'c', 'd', 'f', 'g', 'i', 'j', 'k', 'l', 'm', 'alpha', 'gamma', 'branch_ABCD', 'branch_ABFD', 'branch_DFGE'), (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, ), ('a', 'b', 'c', 'd', 'f', 'g', 'i', 'j', 'k', 'l', 'm'), ('branch_ABCD', 'branch_ABFD', 'branch_DFGE'))
+    return _evaluate(_positions_block, (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, ), shape, ('upper_rocker', 'upper_link', 'lower_link', 'lower_rocker', 'leg', 'tie', 'assembled'), (False, False, False, False, False, False, True))
+
+
+def _positions_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE):
+    """The outputs of positions and the assembled mask, for arguments that broadcast together."""
     cse_0 = 1/(numpy.log(2.0))
     cse_1 = (1/5)*a + (1/5)*l + (1/5)*m
     cse_3 = numpy.cos(theta)
     cse_4 = numpy.sin(theta)
     size_1 = 2.0**numpy.floor(cse_0*numpy.log((1/5)*b + cse_1 + (1/5)*j))
     cse_2 = 1/(size_1)
+    del size_1
     rho_1_1 = a*cse_2
     rho_2_1 = cse_2*l
     rho_3_1 = cse_2*m
@@ -93,6 +136,7 @@ def positions(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD=
     Wy_1 = cse_4*rho_3_1 + rho_2_1
     rho_4_1 = b*cse_2
     rho_5_1 = cse_2*j
+    del cse_2
     cse_5 = rho_4_1 + rho_5_1
     cse_7 = rho_4_1 - rho_5_1
     w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
@@ -100,22 +144,32 @@ def positions(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD=
     cse_8 = numpy.square(w_1)
     cse_9 = cse_5*cse_7 + cse_8
     cse_13 = -cse_5*cse_7 + cse_8
+    del cse_8
     Delta_1 = _clamped_sqrt(cse_6*(cse_5 - w_1)*(cse_7 + w_1)*(-rho_4_1 + rho_5_1 + w_1), 8.0*rho_4_1*rho_5_1*w_1*(cse_6 + rho_1_1 + rho_2_1 + rho_3_1))
+    del cse_5, cse_6, cse_7, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
     cse_10 = Delta_1*branch_ABCD
     cse_11 = Wx_1*cse_10
     cse_12 = Wy_1*cse_10
+    del cse_10
     phi = numpy.arctan2(Wy_1*cse_9 + cse_11, Wx_1*cse_9 - cse_12)
+    del cse_9
     cse_25 = alpha + phi
     beta = numpy.arctan2(-Wy_1*cse_13 + cse_11, -Wx_1*cse_13 - cse_12)
+    del Wx_1, Wy_1, cse_11, cse_12, cse_13
     size_2 = 2.0**numpy.floor(cse_0*numpy.log((1/5)*c + cse_1 + (1/5)*k))
+    del cse_1
     cse_14 = 1/(size_2)
+    del size_2
     rho_1_2 = cse_14*m
     rho_2_2 = cse_14*l
     rho_3_2 = a*cse_14
     Wx_2 = -cse_3*rho_1_2 - rho_3_2
+    del cse_3
     Wy_2 = -cse_4*rho_1_2 - rho_2_2
+    del cse_4
     rho_4_2 = cse_14*k
     rho_5_2 = c*cse_14
+    del cse_14
     cse_15 = rho_4_2 + rho_5_2
     cse_17 = rho_4_2 - rho_5_2
     w_2 = _clamped_sqrt(numpy.square(Wx_2) + numpy.square(Wy_2), -2.2250738585072e-294)
@@ -123,20 +177,29 @@ def positions(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD=
     cse_18 = numpy.square(w_2)
     cse_19 = cse_15*cse_17 + cse_18
     cse_23 = -cse_15*cse_17 + cse_18
+    del cse_18
     Delta_2 = _clamped_sqrt(cse_16*(cse_15 - w_2)*(cse_17 + w_2)*(-rho_4_2 + rho_5_2 + w_2), 8.0*rho_4_2*rho_5_2*w_2*(cse_16 + rho_1_2 + rho_2_2 + rho_3_2))
+    del cse_15, cse_16, cse_17, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2
     cse_20 = Delta_2*branch_ABFD
     cse_21 = Wx_2*cse_20
     cse_22 = Wy_2*cse_20
+    del cse_20
     mu = numpy.arctan2(Wy_2*cse_19 + cse_21, Wx_2*cse_19 - cse_22)
+    del cse_19
     psi = numpy.arctan2(-Wy_2*cse_23 + cse_21, -Wx_2*cse_23 - cse_22)
+    del Wx_2, Wy_2, cse_21, cse_22, cse_23
     size_3 = 2.0**numpy.floor(cse_0*numpy.log((1/4)*c + (1/4)*d + (1/4)*f + (1/4)*g))
+    del cse_0
     cse_24 = 1/(size_3)
+    del size_3
     rho_1_3 = c*cse_24
     rho_2_3 = cse_24*d
     Wx_3 = -rho_1_3*numpy.cos(psi) + rho_2_3*numpy.cos(cse_25)
     Wy_3 = -rho_1_3*numpy.sin(psi) + rho_2_3*numpy.sin(cse_25)
+    del cse_25
     rho_3_3 = cse_24*g
     rho_4_3 = cse_24*f
+    del cse_24
     cse_26 = rho_3_3 + rho_4_3
     cse_28 = rho_3_3 - rho_4_3
     w_3 = _clamped_sqrt(numpy.square(Wx_3) + numpy.square(Wy_3), -2.2250738585072e-294)
@@ -144,21 +207,26 @@ def positions(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD=
     cse_29 = numpy.square(w_3)
     cse_30 = cse_26*cse_28 + cse_29
     cse_34 = -cse_26*cse_28 + cse_29
+    del cse_29
     Delta_3 = _clamped_sqrt(cse_27*(cse_26 - w_3)*(cse_28 + w_3)*(-rho_3_3 + rho_4_3 + w_3), 8.0*rho_3_3*rho_4_3*w_3*(cse_27 + rho_1_3 + rho_2_3))
+    del cse_26, cse_27, cse_28, rho_1_3, rho_2_3, rho_3_3, rho_4_3
     cse_31 = Delta_3*branch_DFGE
     cse_32 = Wx_3*cse_31
     cse_33 = Wy_3*cse_31
+    del cse_31
     eta = numpy.arctan2(Wy_3*cse_30 + cse_32, Wx_3*cse_30 - cse_33)
+    del cse_30
     kappa = numpy.arctan2(-Wy_3*cse_34 + cse_32, -Wx_3*cse_34 - cse_33)
-    return {
-        'upper_rocker': numpy.broadcast_to(phi, shape),
-        'upper_link': numpy.broadcast_to(beta, shape),
-        'lower_link': numpy.broadcast_to(mu, shape),
-        'lower_rocker': numpy.broadcast_to(psi, shape),
-        'leg': numpy.broadcast_to(eta, shape),
-        'tie': numpy.broadcast_to(kappa, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2) & numpy.isfinite(w_3) & numpy.isfinite(Delta_3), shape),
-    }
+    del Wx_3, Wy_3, cse_32, cse_33, cse_34
+    return (
+        phi,  # upper_rocker
+        beta,  # upper_link
+        mu,  # lower_link
+        psi,  # lower_rocker
+        eta,  # leg
+        kappa,  # tie
+        numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2) & numpy.isfinite(w_3) & numpy.isfinite(Delta_3),  # assembled
+    )
 
 
 def velocities(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD=1, branch_ABFD=1, branch_DFGE=1, thetadot=0.0, *, check=True):
@@ -171,8 +239,13 @@ def velocities(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, thetadot,), shape = _arguments(
-        check, ('theta', 'a', 'b', 'c', 'd', 'f', 'g', 'i', 'j', 'k', 'l', 'm', 'alpha', 'gamma', 'branch_ABCD', 'branch_ABFD', 'branch_DFGE', 'thetadot'), (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, thetadot,), ('a', 'b', 'c', 'd', 'f', 'g', 'i', 'j', 'k', 'l', 'm'), ('branch_ABCD', 'branch_ABFD', 'branch_DFGE'))
+    (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, thetadot, ), shape = _arguments(
+        check, ('theta', 'a', 'b', 'c', 'd', 'f', 'g', 'i', 'j', 'k', 'l', 'm', 'alpha', 'gamma', 'branch_ABCD', 'branch_ABFD', 'branch_DFGE', 'thetadot'), (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, thetadot, ), ('a', 'b', 'c', 'd', 'f', 'g', 'i', 'j', 'k', 'l', 'm'), ('branch_ABCD', 'branch_ABFD', 'branch_DFGE'))
+    return _evaluate(_velocities_block, (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, thetadot, ), shape, ('upper_rocker', 'upper_link', 'lower_link', 'lower_rocker', 'leg', 'tie', 'upper_rocker_speed', 'upper_link_speed', 'lower_link_speed', 'lower_rocker_speed', 'leg_speed', 'tie_speed', 'assembled'), (False, False, False, False, False, False, False, False, False, False, False, False, True))
+
+
+def _velocities_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, thetadot):
+    """The outputs of velocities and the assembled mask, for arguments that broadcast together."""
     cse_0 = 1/(numpy.log(2.0))
     cse_1 = (1/5)*a + (1/5)*l + (1/5)*m
     cse_3 = numpy.cos(theta)
@@ -181,6 +254,7 @@ def velocities(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD
     cse_39 = 2.0*m*thetadot
     size_1 = 2.0**numpy.floor(cse_0*numpy.log((1/5)*b + cse_1 + (1/5)*j))
     cse_2 = 1/(size_1)
+    del size_1
     rho_1_1 = a*cse_2
     rho_2_1 = cse_2*l
     rho_3_1 = cse_2*m
@@ -188,6 +262,7 @@ def velocities(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD
     Wy_1 = cse_4*rho_3_1 + rho_2_1
     rho_4_1 = b*cse_2
     rho_5_1 = cse_2*j
+    del cse_2
     cse_5 = rho_4_1 + rho_5_1
     cse_7 = rho_4_1 - rho_5_1
     cse_8 = rho_4_1*rho_5_1
@@ -196,23 +271,34 @@ def velocities(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD
     cse_9 = numpy.square(w_1)
     cse_10 = cse_5*cse_7 + cse_9
     cse_14 = -cse_5*cse_7 + cse_9
+    del cse_9
     Delta_1 = _clamped_sqrt(cse_6*(cse_5 - w_1)*(cse_7 + w_1)*(-rho_4_1 + rho_5_1 + w_1), 8.0*cse_8*w_1*(cse_6 + rho_1_1 + rho_2_1 + rho_3_1))
+    del cse_5, cse_6, cse_7, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
     cse_11 = Delta_1*branch_ABCD
     cse_12 = Wx_1*cse_11
     cse_13 = Wy_1*cse_11
+    del cse_11
     cse_40 = cse_39*cse_8/(Delta_1*branch_ABCD)
+    del cse_8
     phi = numpy.arctan2(Wy_1*cse_10 + cse_12, Wx_1*cse_10 - cse_13)
+    del cse_10
     cse_27 = alpha + phi
     beta = numpy.arctan2(-Wy_1*cse_14 + cse_12, -Wx_1*cse_14 - cse_13)
+    del Wx_1, Wy_1, cse_12, cse_13, cse_14
     size_2 = 2.0**numpy.floor(cse_0*numpy.log((1/5)*c + cse_1 + (1/5)*k))
+    del cse_1
     cse_15 = 1/(size_2)
+    del size_2
     rho_1_2 = cse_15*m
     rho_2_2 = cse_15*l
     rho_3_2 = a*cse_15
     Wx_2 = -cse_3*rho_1_2 - rho_3_2
+    del cse_3
     Wy_2 = -cse_4*rho_1_2 - rho_2_2
+    del cse_4
     rho_4_2 = cse_15*k
     rho_5_2 = c*cse_15
+    del cse_15
     cse_16 = rho_4_2 + rho_5_2
     cse_18 = rho_4_2 - rho_5_2
     cse_19 = rho_4_2*rho_5_2
@@ -221,22 +307,31 @@ def velocities(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD
     cse_20 = numpy.square(w_2)
     cse_21 = cse_16*cse_18 + cse_20
     cse_25 = -cse_16*cse_18 + cse_20
+    del cse_20
     Delta_2 = _clamped_sqrt(cse_17*(cse_16 - w_2)*(cse_18 + w_2)*(-rho_4_2 + rho_5_2 + w_2), 8.0*cse_19*w_2*(cse_17 + rho_1_2 + rho_2_2 + rho_3_2))
+    del cse_16, cse_17, cse_18, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2
     cse_22 = Delta_2*branch_ABFD
     cse_23 = Wx_2*cse_22
     cse_24 = Wy_2*cse_22
+    del cse_22
     cse_41 = cse_19*cse_39/(Delta_2*branch_ABFD)
+    del cse_19, cse_39
     mu = numpy.arctan2(Wy_2*cse_21 + cse_23, Wx_2*cse_21 - cse_24)
+    del cse_21
     psi = numpy.arctan2(-Wy_2*cse_25 + cse_23, -Wx_2*cse_25 - cse_24)
+    del Wx_2, Wy_2, cse_23, cse_24, cse_25
     cse_43 = -psi
     size_3 = 2.0**numpy.floor(cse_0*numpy.log((1/4)*c + (1/4)*d + (1/4)*f + (1/4)*g))
+    del cse_0
     cse_26 = 1/(size_3)
+    del size_3
     rho_1_3 = c*cse_26
     rho_2_3 = cse_26*d
     Wx_3 = -rho_1_3*numpy.cos(psi) + rho_2_3*numpy.cos(cse_27)
     Wy_3 = -rho_1_3*numpy.sin(psi) + rho_2_3*numpy.sin(cse_27)
     rho_3_3 = cse_26*g
     rho_4_3 = cse_26*f
+    del cse_26
     cse_28 = rho_3_3 + rho_4_3
     cse_30 = rho_3_3 - rho_4_3
     cse_31 = rho_3_3*rho_4_3
@@ -245,36 +340,45 @@ def velocities(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD
     cse_32 = numpy.square(w_3)
     cse_33 = cse_28*cse_30 + cse_32
     cse_37 = -cse_28*cse_30 + cse_32
+    del cse_32
     Delta_3 = _clamped_sqrt(cse_29*(cse_28 - w_3)*(cse_30 + w_3)*(-rho_3_3 + rho_4_3 + w_3), 8.0*cse_31*w_3*(cse_29 + rho_1_3 + rho_2_3))
+    del cse_28, cse_29, cse_30, rho_1_3, rho_2_3, rho_3_3, rho_4_3
     cse_34 = Delta_3*branch_DFGE
     cse_35 = Wx_3*cse_34
     cse_36 = Wy_3*cse_34
+    del cse_34
     cse_45 = 2.0*cse_31/(Delta_3*branch_DFGE)
+    del cse_31
     eta = numpy.arctan2(Wy_3*cse_33 + cse_35, Wx_3*cse_33 - cse_36)
+    del cse_33
     kappa = numpy.arctan2(-Wy_3*cse_37 + cse_35, -Wx_3*cse_37 - cse_36)
+    del Wx_3, Wy_3, cse_35, cse_36, cse_37
     phidot = cse_40*numpy.sin(beta + cse_38)/b
     cse_42 = d*phidot
     betadot = cse_40*numpy.sin(cse_38 + phi)/j
+    del cse_40
     mudot = -cse_41*numpy.sin(cse_38 + psi)/k
     psidot = -cse_41*numpy.sin(cse_38 + mu)/c
+    del cse_38, cse_41
     cse_44 = c*psidot
     etadot = -cse_45*(cse_42*numpy.sin(cse_27 - kappa) + cse_44*numpy.sin(cse_43 + kappa))/g
     kappadot = -cse_45*(cse_42*numpy.sin(cse_27 - eta) + cse_44*numpy.sin(cse_43 + eta))/f
-    return {
-        'upper_rocker': numpy.broadcast_to(phi, shape),
-        'upper_link': numpy.broadcast_to(beta, shape),
-        'lower_link': numpy.broadcast_to(mu, shape),
-        'lower_rocker': numpy.broadcast_to(psi, shape),
-        'leg': numpy.broadcast_to(eta, shape),
-        'tie': numpy.broadcast_to(kappa, shape),
-        'upper_rocker_speed': numpy.broadcast_to(phidot, shape),
-        'upper_link_speed': numpy.broadcast_to(betadot, shape),
-        'lower_link_speed': numpy.broadcast_to(mudot, shape),
-        'lower_rocker_speed': numpy.broadcast_to(psidot, shape),
-        'leg_speed': numpy.broadcast_to(etadot, shape),
-        'tie_speed': numpy.broadcast_to(kappadot, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2) & numpy.isfinite(w_3) & numpy.isfinite(Delta_3), shape),
-    }
+    del cse_27, cse_42, cse_43, cse_44, cse_45
+    return (
+        phi,  # upper_rocker
+        beta,  # upper_link
+        mu,  # lower_link
+        psi,  # lower_rocker
+        eta,  # leg
+        kappa,  # tie
+        phidot,  # upper_rocker_speed
+        betadot,  # upper_link_speed
+        mudot,  # lower_link_speed
+        psidot,  # lower_rocker_speed
+        etadot,  # leg_speed
+        kappadot,  # tie_speed
+        numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2) & numpy.isfinite(w_3) & numpy.isfinite(Delta_3),  # assembled
+    )
 
 
 def accelerations(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD=1, branch_ABFD=1, branch_DFGE=1, thetadot=0.0, thetaddot=0.0, *, check=True):
@@ -287,8 +391,13 @@ def accelerations(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_A
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, thetadot, thetaddot,), shape = _arguments(
-        check, ('theta', 'a', 'b', 'c', 'd', 'f', 'g', 'i', 'j', 'k', 'l', 'm', 'alpha', 'gamma', 'branch_ABCD', 'branch_ABFD', 'branch_DFGE', 'thetadot', 'thetaddot'), (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, thetadot, thetaddot,), ('a', 'b', 'c', 'd', 'f', 'g', 'i', 'j', 'k', 'l', 'm'), ('branch_ABCD', 'branch_ABFD', 'branch_DFGE'))
+    (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, thetadot, thetaddot, ), shape = _arguments(
+        check, ('theta', 'a', 'b', 'c', 'd', 'f', 'g', 'i', 'j', 'k', 'l', 'm', 'alpha', 'gamma', 'branch_ABCD', 'branch_ABFD', 'branch_DFGE', 'thetadot', 'thetaddot'), (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, thetadot, thetaddot, ), ('a', 'b', 'c', 'd', 'f', 'g', 'i', 'j', 'k', 'l', 'm'), ('branch_ABCD', 'branch_ABFD', 'branch_DFGE'))
+    return _evaluate(_accelerations_block, (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, thetadot, thetaddot, ), shape, ('upper_rocker', 'upper_link', 'lower_link', 'lower_rocker', 'leg', 'tie', 'upper_rocker_speed', 'upper_link_speed', 'lower_link_speed', 'lower_rocker_speed', 'leg_speed', 'tie_speed', 'upper_rocker_accel', 'upper_link_accel', 'lower_link_accel', 'lower_rocker_accel', 'leg_accel', 'tie_accel', 'assembled'), (False, False, False, False, False, False, False, False, False, False, False, False, False, False, False, False, False, False, True))
+
+
+def _accelerations_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, thetadot, thetaddot):
+    """The outputs of accelerations and the assembled mask, for arguments that broadcast together."""
     cse_0 = 1/(numpy.log(2.0))
     cse_1 = (1/5)*a + (1/5)*l + (1/5)*m
     cse_3 = numpy.cos(theta)
@@ -300,6 +409,7 @@ def accelerations(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_A
     cse_78 = cse_74*m
     size_1 = 2.0**numpy.floor(cse_0*numpy.log((1/5)*b + cse_1 + (1/5)*j))
     cse_2 = 1/(size_1)
+    del size_1
     rho_1_1 = a*cse_2
     rho_2_1 = cse_2*l
     rho_3_1 = cse_2*m
@@ -307,6 +417,7 @@ def accelerations(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_A
     Wy_1 = cse_4*rho_3_1 + rho_2_1
     rho_4_1 = b*cse_2
     rho_5_1 = cse_2*j
+    del cse_2
     cse_5 = rho_4_1 + rho_5_1
     cse_7 = rho_4_1 - rho_5_1
     cse_8 = rho_4_1*rho_5_1
@@ -315,30 +426,42 @@ def accelerations(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_A
     cse_9 = numpy.square(w_1)
     cse_10 = cse_5*cse_7 + cse_9
     cse_14 = -cse_5*cse_7 + cse_9
+    del cse_9
     Delta_1 = _clamped_sqrt(cse_6*(cse_5 - w_1)*(cse_7 + w_1)*(-rho_4_1 + rho_5_1 + w_1), 8.0*cse_8*w_1*(cse_6 + rho_1_1 + rho_2_1 + rho_3_1))
+    del cse_5, cse_6, cse_7, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
     cse_11 = Delta_1*branch_ABCD
     cse_12 = Wx_1*cse_11
     cse_13 = Wy_1*cse_11
+    del cse_11
     cse_41 = 2.0*cse_8/(Delta_1*branch_ABCD)
+    del cse_8
     cse_42 = cse_41/b
     cse_46 = cse_41/j
+    del cse_41
     phi = numpy.arctan2(Wy_1*cse_10 + cse_12, Wx_1*cse_10 - cse_13)
+    del cse_10
     cse_27 = alpha + phi
     cse_44 = cse_38 + phi
     cse_45 = numpy.sin(cse_44)
     beta = numpy.arctan2(-Wy_1*cse_14 + cse_12, -Wx_1*cse_14 - cse_13)
+    del Wx_1, Wy_1, cse_12, cse_13, cse_14
     cse_39 = beta + cse_38
     cse_40 = numpy.sin(cse_39)
     cse_71 = numpy.cos(beta - phi)
     size_2 = 2.0**numpy.floor(cse_0*numpy.log((1/5)*c + cse_1 + (1/5)*k))
+    del cse_1
     cse_15 = 1/(size_2)
+    del size_2
     rho_1_2 = cse_15*m
     rho_2_2 = cse_15*l
     rho_3_2 = a*cse_15
     Wx_2 = -cse_3*rho_1_2 - rho_3_2
+    del cse_3
     Wy_2 = -cse_4*rho_1_2 - rho_2_2
+    del cse_4
     rho_4_2 = cse_15*k
     rho_5_2 = c*cse_15
+    del cse_15
     cse_16 = rho_4_2 + rho_5_2
     cse_18 = rho_4_2 - rho_5_2
     cse_19 = rho_4_2*rho_5_2
@@ -347,29 +470,40 @@ def accelerations(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_A
     cse_20 = numpy.square(w_2)
     cse_21 = cse_16*cse_18 + cse_20
     cse_25 = -cse_16*cse_18 + cse_20
+    del cse_20
     Delta_2 = _clamped_sqrt(cse_17*(cse_16 - w_2)*(cse_18 + w_2)*(-rho_4_2 + rho_5_2 + w_2), 8.0*cse_19*w_2*(cse_17 + rho_1_2 + rho_2_2 + rho_3_2))
+    del cse_16, cse_17, cse_18, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2
     cse_22 = Delta_2*branch_ABFD
     cse_23 = Wx_2*cse_22
     cse_24 = Wy_2*cse_22
+    del cse_22
     cse_49 = 2.0*cse_19/(Delta_2*branch_ABFD)
+    del cse_19
     cse_50 = cse_49/k
     cse_53 = cse_49/c
+    del cse_49
     mu = numpy.arctan2(Wy_2*cse_21 + cse_23, Wx_2*cse_21 - cse_24)
+    del cse_21
     cse_51 = cse_38 + mu
     cse_52 = numpy.sin(cse_51)
     psi = numpy.arctan2(-Wy_2*cse_25 + cse_23, -Wx_2*cse_25 - cse_24)
+    del Wx_2, Wy_2, cse_23, cse_24, cse_25
     cse_47 = cse_38 + psi
+    del cse_38
     cse_48 = numpy.sin(cse_47)
     cse_58 = -psi
     cse_76 = numpy.cos(cse_58 + mu)
     size_3 = 2.0**numpy.floor(cse_0*numpy.log((1/4)*c + (1/4)*d + (1/4)*f + (1/4)*g))
+    del cse_0
     cse_26 = 1/(size_3)
+    del size_3
     rho_1_3 = c*cse_26
     rho_2_3 = cse_26*d
     Wx_3 = -rho_1_3*numpy.cos(psi) + rho_2_3*numpy.cos(cse_27)
     Wy_3 = -rho_1_3*numpy.sin(psi) + rho_2_3*numpy.sin(cse_27)
     rho_3_3 = cse_26*g
     rho_4_3 = cse_26*f
+    del cse_26
     cse_28 = rho_3_3 + rho_4_3
     cse_30 = rho_3_3 - rho_4_3
     cse_31 = rho_3_3*rho_4_3
@@ -378,70 +512,89 @@ def accelerations(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_A
     cse_32 = numpy.square(w_3)
     cse_33 = cse_28*cse_30 + cse_32
     cse_37 = -cse_28*cse_30 + cse_32
+    del cse_32
     Delta_3 = _clamped_sqrt(cse_29*(cse_28 - w_3)*(cse_30 + w_3)*(-rho_3_3 + rho_4_3 + w_3), 8.0*cse_31*w_3*(cse_29 + rho_1_3 + rho_2_3))
+    del cse_28, cse_29, cse_30, rho_1_3, rho_2_3, rho_3_3, rho_4_3
     cse_34 = Delta_3*branch_DFGE
     cse_35 = Wx_3*cse_34
     cse_36 = Wy_3*cse_34
+    del cse_34
     cse_62 = 2.0*cse_31/(Delta_3*branch_DFGE)
+    del cse_31
     cse_63 = cse_62/g
     cse_68 = cse_62/f
+    del cse_62
     eta = numpy.arctan2(Wy_3*cse_33 + cse_35, Wx_3*cse_33 - cse_36)
+    del cse_33
     cse_64 = cse_27 - eta
     cse_65 = numpy.sin(cse_64)
     cse_66 = cse_58 + eta
     cse_67 = numpy.sin(cse_66)
     kappa = numpy.arctan2(-Wy_3*cse_37 + cse_35, -Wx_3*cse_37 - cse_36)
+    del Wx_3, Wy_3, cse_35, cse_36, cse_37
     cse_54 = -kappa
     cse_55 = cse_27 + cse_54
+    del cse_27
     cse_56 = numpy.sin(cse_55)
     cse_59 = cse_58 + kappa
+    del cse_58
     cse_60 = numpy.sin(cse_59)
     cse_83 = numpy.cos(cse_54 + eta)
+    del cse_54
     phidot = cse_40*cse_42*cse_43
     cse_57 = d*phidot
     cse_72 = numpy.square(phidot)
     cse_73 = b*cse_72
     cse_82 = cse_72*d
+    del cse_72
     betadot = cse_43*cse_45*cse_46
     cse_69 = numpy.square(betadot)
     mudot = -cse_43*cse_48*cse_50
     cse_77 = k*numpy.square(mudot)
     psidot = -cse_43*cse_52*cse_53
+    del cse_43
     cse_61 = c*psidot
     cse_75 = c*numpy.square(psidot)
     etadot = -cse_63*(cse_56*cse_57 + cse_60*cse_61)
     cse_84 = numpy.square(etadot)*g
     kappadot = -cse_68*(cse_57*cse_65 + cse_61*cse_67)
+    del cse_57, cse_61
     cse_79 = f*numpy.square(kappadot)
     phiddot = -cse_42*(-cse_40*cse_70 + cse_69*j - cse_71*cse_73 + cse_74*m*numpy.cos(cse_39))
+    del cse_39, cse_40, cse_42
     cse_80 = d*phiddot
     betaddot = -cse_46*(-cse_45*cse_70 + cse_69*cse_71*j - cse_73 + cse_74*m*numpy.cos(cse_44))
+    del cse_44, cse_45, cse_46, cse_69, cse_71, cse_73, cse_74
     muddot = -cse_50*(cse_48*cse_70 + cse_75 - cse_76*cse_77 - cse_78*numpy.cos(cse_47))
+    del cse_47, cse_48, cse_50
     psiddot = -cse_53*(cse_52*cse_70 + cse_75*cse_76 - cse_77 - cse_78*numpy.cos(cse_51))
+    del cse_51, cse_52, cse_53, cse_70, cse_76, cse_77, cse_78
     cse_81 = c*psiddot
     etaddot = -cse_63*(cse_56*cse_80 + cse_60*cse_81 - cse_75*numpy.cos(cse_59) + cse_79 + cse_82*numpy.cos(cse_55) - cse_83*cse_84)
+    del cse_55, cse_56, cse_59, cse_60, cse_63
     kappaddot = -cse_68*(cse_65*cse_80 + cse_67*cse_81 - cse_75*numpy.cos(cse_66) + cse_79*cse_83 + cse_82*numpy.cos(cse_64) - cse_84)
-    return {
-        'upper_rocker': numpy.broadcast_to(phi, shape),
-        'upper_link': numpy.broadcast_to(beta, shape),
-        'lower_link': numpy.broadcast_to(mu, shape),
-        'lower_rocker': numpy.broadcast_to(psi, shape),
-        'leg': numpy.broadcast_to(eta, shape),
-        'tie': numpy.broadcast_to(kappa, shape),
-        'upper_rocker_speed': numpy.broadcast_to(phidot, shape),
-        'upper_link_speed': numpy.broadcast_to(betadot, shape),
-        'lower_link_speed': numpy.broadcast_to(mudot, shape),
-        'lower_rocker_speed': numpy.broadcast_to(psidot, shape),
-        'leg_speed': numpy.broadcast_to(etadot, shape),
-        'tie_speed': numpy.broadcast_to(kappadot, shape),
-        'upper_rocker_accel': numpy.broadcast_to(phiddot, shape),
-        'upper_link_accel': numpy.broadcast_to(betaddot, shape),
-        'lower_link_accel': numpy.broadcast_to(muddot, shape),
-        'lower_rocker_accel': numpy.broadcast_to(psiddot, shape),
-        'leg_accel': numpy.broadcast_to(etaddot, shape),
-        'tie_accel': numpy.broadcast_to(kappaddot, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2) & numpy.isfinite(w_3) & numpy.isfinite(Delta_3), shape),
-    }
+    del cse_64, cse_65, cse_66, cse_67, cse_68, cse_75, cse_79, cse_80, cse_81, cse_82, cse_83, cse_84
+    return (
+        phi,  # upper_rocker
+        beta,  # upper_link
+        mu,  # lower_link
+        psi,  # lower_rocker
+        eta,  # leg
+        kappa,  # tie
+        phidot,  # upper_rocker_speed
+        betadot,  # upper_link_speed
+        mudot,  # lower_link_speed
+        psidot,  # lower_rocker_speed
+        etadot,  # leg_speed
+        kappadot,  # tie_speed
+        phiddot,  # upper_rocker_accel
+        betaddot,  # upper_link_accel
+        muddot,  # lower_link_accel
+        psiddot,  # lower_rocker_accel
+        etaddot,  # leg_accel
+        kappaddot,  # tie_accel
+        numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2) & numpy.isfinite(w_3) & numpy.isfinite(Delta_3),  # assembled
+    )
 
 
 def joints(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD=1, branch_ABFD=1, branch_DFGE=1, *, check=True):
@@ -454,8 +607,13 @@ def joints(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD=1, 
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE,), shape = _arguments(
-        check, ('theta', 'a', 'b', 'c', 'd', 'f', 'g', 'i', 'j', 'k', 'l', 'm', 'alpha', 'gamma', 'branch_ABCD', 'branch_ABFD', 'branch_DFGE'), (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE,), ('a', 'b', 'c', 'd', 'f', 'g', 'i', 'j', 'k', 'l', 'm'), ('branch_ABCD', 'branch_ABFD', 'branch_DFGE'))
+    (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, ), shape = _arguments(
+        check, ('theta', 'a', 'b', 'c', 'd', 'f', 'g', 'i', 'j', 'k', 'l', 'm', 'alpha', 'gamma', 'branch_ABCD', 'branch_ABFD', 'branch_DFGE'), (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, ), ('a', 'b', 'c', 'd', 'f', 'g', 'i', 'j', 'k', 'l', 'm'), ('branch_ABCD', 'branch_ABFD', 'branch_DFGE'))
+    return _evaluate(_joints_block, (theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, ), shape, ('B_x', 'B_y', 'C_x', 'C_y', 'E_x', 'E_y', 'F_x', 'F_y', 'G_x', 'G_y', 'H_x', 'H_y', 'assembled'), (False, False, False, False, False, False, False, False, False, False, False, False, True))
+
+
+def _joints_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE):
+    """The outputs of joints and the assembled mask, for arguments that broadcast together."""
     cse_0 = 1/(numpy.log(2.0))
     cse_1 = (1/5)*a + (1/5)*l + (1/5)*m
     cse_3 = numpy.cos(theta)
@@ -463,6 +621,7 @@ def joints(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD=1, 
     cse_27 = -l
     size_1 = 2.0**numpy.floor(cse_0*numpy.log((1/5)*b + cse_1 + (1/5)*j))
     cse_2 = 1/(size_1)
+    del size_1
     rho_1_1 = a*cse_2
     rho_2_1 = cse_2*l
     rho_3_1 = cse_2*m
@@ -470,19 +629,25 @@ def joints(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD=1, 
     Wy_1 = cse_4*rho_3_1 + rho_2_1
     rho_4_1 = b*cse_2
     rho_5_1 = cse_2*j
+    del cse_2
     cse_5 = rho_4_1 + rho_5_1
     cse_7 = rho_4_1 - rho_5_1
     w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
     cse_6 = cse_5 + w_1
     cse_8 = cse_5*cse_7 + numpy.square(w_1)
     Delta_1 = _clamped_sqrt(cse_6*(cse_5 - w_1)*(cse_7 + w_1)*(-rho_4_1 + rho_5_1 + w_1), 8.0*rho_4_1*rho_5_1*w_1*(cse_6 + rho_1_1 + rho_2_1 + rho_3_1))
+    del cse_5, cse_6, cse_7, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
     cse_9 = Delta_1*branch_ABCD
     phi = numpy.arctan2(Wx_1*cse_9 + Wy_1*cse_8, Wx_1*cse_8 - Wy_1*cse_9)
+    del Wx_1, Wy_1, cse_8, cse_9
     cse_18 = alpha + phi
     cse_19 = numpy.cos(cse_18)
     cse_21 = numpy.sin(cse_18)
+    del cse_18
     size_2 = 2.0**numpy.floor(cse_0*numpy.log((1/5)*c + cse_1 + (1/5)*k))
+    del cse_1
     cse_10 = 1/(size_2)
+    del size_2
     rho_1_2 = cse_10*m
     rho_2_2 = cse_10*l
     rho_3_2 = a*cse_10
@@ -490,47 +655,57 @@ def joints(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD=1, 
     Wy_2 = -cse_4*rho_1_2 - rho_2_2
     rho_4_2 = cse_10*k
     rho_5_2 = c*cse_10
+    del cse_10
     cse_11 = rho_4_2 + rho_5_2
     cse_13 = rho_4_2 - rho_5_2
     w_2 = _clamped_sqrt(numpy.square(Wx_2) + numpy.square(Wy_2), -2.2250738585072e-294)
     cse_12 = cse_11 + w_2
     cse_14 = -cse_11*cse_13 + numpy.square(w_2)
     Delta_2 = _clamped_sqrt(cse_12*(cse_11 - w_2)*(cse_13 + w_2)*(-rho_4_2 + rho_5_2 + w_2), 8.0*rho_4_2*rho_5_2*w_2*(cse_12 + rho_1_2 + rho_2_2 + rho_3_2))
+    del cse_11, cse_12, cse_13, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2
     cse_15 = Delta_2*branch_ABFD
     psi = numpy.arctan2(Wx_2*cse_15 - Wy_2*cse_14, -Wx_2*cse_14 - Wy_2*cse_15)
+    del Wx_2, Wy_2, cse_14, cse_15
     cse_17 = numpy.cos(psi)
     cse_20 = numpy.sin(psi)
+    del psi
     cse_28 = c*cse_20 + cse_27
     cse_29 = -a + c*cse_17
     size_3 = 2.0**numpy.floor(cse_0*numpy.log((1/4)*c + (1/4)*d + (1/4)*f + (1/4)*g))
+    del cse_0
     cse_16 = 1/(size_3)
+    del size_3
     rho_1_3 = c*cse_16
     rho_2_3 = cse_16*d
     Wx_3 = -cse_17*rho_1_3 + cse_19*rho_2_3
     Wy_3 = -cse_20*rho_1_3 + cse_21*rho_2_3
+    del cse_20
     rho_3_3 = cse_16*g
     rho_4_3 = cse_16*f
+    del cse_16
     cse_22 = rho_3_3 + rho_4_3
     cse_24 = rho_3_3 - rho_4_3
     w_3 = _clamped_sqrt(numpy.square(Wx_3) + numpy.square(Wy_3), -2.2250738585072e-294)
     cse_23 = cse_22 + w_3
     cse_25 = cse_22*cse_24 + numpy.square(w_3)
     Delta_3 = _clamped_sqrt(cse_23*(cse_22 - w_3)*(cse_24 + w_3)*(-rho_3_3 + rho_4_3 + w_3), 8.0*rho_3_3*rho_4_3*w_3*(cse_23 + rho_1_3 + rho_2_3))
+    del cse_22, cse_23, cse_24, rho_1_3, rho_2_3, rho_3_3, rho_4_3
     cse_26 = Delta_3*branch_DFGE
     eta = numpy.arctan2(Wx_3*cse_26 + Wy_3*cse_25, Wx_3*cse_25 - Wy_3*cse_26)
+    del Wx_3, Wy_3, cse_25, cse_26
     cse_30 = eta + gamma
-    return {
-        'B_x': numpy.broadcast_to(cse_3*m, shape),
-        'B_y': numpy.broadcast_to(cse_4*m, shape),
-        'C_x': numpy.broadcast_to(-a + b*numpy.cos(phi), shape),
-        'C_y': numpy.broadcast_to(b*numpy.sin(phi) + cse_27, shape),
-        'E_x': numpy.broadcast_to(-a + cse_19*d, shape),
-        'E_y': numpy.broadcast_to(cse_21*d + cse_27, shape),
-        'F_x': numpy.broadcast_to(-a + c*cse_17, shape),
-        'F_y': numpy.broadcast_to(cse_28, shape),
-        'G_x': numpy.broadcast_to(cse_29 + g*numpy.cos(eta), shape),
-        'G_y': numpy.broadcast_to(cse_28 + g*numpy.sin(eta), shape),
-        'H_x': numpy.broadcast_to(cse_29 + i*numpy.cos(cse_30), shape),
-        'H_y': numpy.broadcast_to(cse_28 + i*numpy.sin(cse_30), shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2) & numpy.isfinite(w_3) & numpy.isfinite(Delta_3), shape),
-    }
+    return (
+        cse_3*m,  # B_x
+        cse_4*m,  # B_y
+        -a + b*numpy.cos(phi),  # C_x
+        b*numpy.sin(phi) + cse_27,  # C_y
+        -a + cse_19*d,  # E_x
+        cse_21*d + cse_27,  # E_y
+        -a + c*cse_17,  # F_x
+        cse_28,  # F_y
+        cse_29 + g*numpy.cos(eta),  # G_x
+        cse_28 + g*numpy.sin(eta),  # G_y
+        cse_29 + i*numpy.cos(cse_30),  # H_x
+        cse_28 + i*numpy.sin(cse_30),  # H_y
+        numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2) & numpy.isfinite(w_3) & numpy.isfinite(Delta_3),  # assembled
+    )

@@ -7,6 +7,9 @@ import numpy
 
 TOLERANCE = 1e-14
 
+#: Values a kernel evaluates at a time: its temporaries of one block stay in cache.
+BLOCK = 4096
+
 
 def _arguments(check, names, values, lengths=(), signs=()):
     """The arguments as float arrays and their broadcast shape; with ``check``, ``ValueError`` naming a bad one.
@@ -19,9 +22,13 @@ def _arguments(check, names, values, lengths=(), signs=()):
     """
     if not check:
         arrays = tuple(numpy.asarray(value, dtype=float) for value in values)
-        return arrays, numpy.broadcast_shapes(*(array.shape for array in arrays))
+        shapes = {array.shape for array in arrays} - {()}
+        return arrays, shapes.pop() if len(shapes) == 1 else numpy.broadcast_shapes(*(a.shape for a in arrays))
     arrays = []
     for name, value in zip(names, values):
+        if type(value) is float:  # the usual length, sign or rate: no conversion to check
+            arrays.append(numpy.float64(value))
+            continue
         array = numpy.asarray(value)
         kind = array.dtype.kind
         if kind != "f":
@@ -33,8 +40,9 @@ def _arguments(check, names, values, lengths=(), signs=()):
                 why = " (its imaginary part would be lost)" if kind == "c" else ""
                 raise ValueError(f"{name} must be real numbers, got {array.dtype} values{why}") from None
         arrays.append(array)
+    shapes = {array.shape for array in arrays} - {()}
     try:
-        shape = numpy.broadcast_shapes(*(array.shape for array in arrays))
+        shape = shapes.pop() if len(shapes) == 1 else numpy.broadcast_shapes(*(array.shape for array in arrays))
     except ValueError:
         shapes = ", ".join(f"{name} has shape {array.shape}" for name, array in zip(names, arrays) if array.ndim)
         raise ValueError(f"the arguments do not broadcast together: {shapes}") from None
@@ -63,6 +71,35 @@ def _arguments(check, names, values, lengths=(), signs=()):
     return tuple(arrays), shape
 
 
+def _evaluate(kernel, arguments, shape, keys, flags):
+    """``{key: array}``: the kernel's results broadcast to ``shape``; a long input evaluated a block of rows at a time.
+
+    Up to :data:`BLOCK` values, one call of ``kernel`` on the whole arguments.
+    Beyond, the outputs are allocated once (``flags`` tells the true/false
+    ones) and the kernel is called on consecutive slices of the leading axis
+    of about ``BLOCK`` values each (an argument that broadcasts along that axis
+    is passed whole), so its temporaries stay in cache and the memory a call
+    needs beyond its outputs does not grow with the input.  Every value is
+    computed by the same elementwise operations either way: the results are
+    bit for bit those of one call on the whole arguments.
+    """
+    count = 1
+    for extent in shape:
+        count *= extent
+    if count <= BLOCK:
+        return {key: numpy.broadcast_to(result, shape) for key, result in zip(keys, kernel(*arguments))}
+    rows, dimensions = shape[0], len(shape)
+    step = max(1, BLOCK // (count // rows))
+    outputs = [numpy.empty(shape, dtype=bool if flag else float) for flag in flags]
+    sliced = [argument.ndim == dimensions and argument.shape[0] != 1 for argument in arguments]
+    for start in range(0, rows, step):
+        stop = start + step
+        results = kernel(*[argument[start:stop] if cut else argument for argument, cut in zip(arguments, sliced)])
+        for output, result in zip(outputs, results):
+            output[start:stop] = result
+    return dict(zip(keys, outputs))
+
+
 def _clamped_sqrt(x, scale):
     """sqrt(x), taking x >= -TOLERANCE*scale as rounding at a toggle (0) and anything lower as no assembly (NaN)."""
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
@@ -78,8 +115,13 @@ def positions(theta, a, d, e, branch=1, *, check=True):
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, a, d, e, branch,), shape = _arguments(
-        check, ('theta', 'a', 'd', 'e', 'branch'), (theta, a, d, e, branch,), ('a', 'd', 'e'), ('branch',))
+    (theta, a, d, e, branch, ), shape = _arguments(
+        check, ('theta', 'a', 'd', 'e', 'branch'), (theta, a, d, e, branch, ), ('a', 'd', 'e'), ('branch',))
+    return _evaluate(_positions_block, (theta, a, d, e, branch, ), shape, ('rocker', 'slider', 'assembled'), (False, False, True))
+
+
+def _positions_block(theta, a, d, e, branch):
+    """The outputs of positions and the assembled mask, for arguments that broadcast together."""
     size_1 = 2.0**numpy.floor(numpy.log((1/3)*a + (1/3)*d + (1/3)*e)/numpy.log(2.0))
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
@@ -87,17 +129,21 @@ def positions(theta, a, d, e, branch=1, *, check=True):
     Wx_1 = -rho_1_1*numpy.cos(theta) + rho_2_1
     Wy_1 = -rho_1_1*numpy.sin(theta)
     rho_3_1 = cse_0*e
+    del cse_0
     w_1 = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
     cse_1 = rho_3_1 + w_1
     Delta_1 = _clamped_sqrt(cse_1*(-rho_3_1 + w_1), 2.0*rho_3_1*(cse_1 + rho_1_1 + rho_2_1))
+    del cse_1, rho_1_1, rho_2_1, w_1
     cse_2 = Delta_1*branch
     phi = numpy.arctan2(Wx_1*rho_3_1 - Wy_1*cse_2, -Wx_1*cse_2 - Wy_1*rho_3_1)
+    del Wx_1, Wy_1, rho_3_1
     s = cse_2*size_1
-    return {
-        'rocker': numpy.broadcast_to(phi, shape),
-        'slider': numpy.broadcast_to(s, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(Delta_1), shape),
-    }
+    del cse_2, size_1
+    return (
+        phi,  # rocker
+        s,  # slider
+        numpy.isfinite(Delta_1),  # assembled
+    )
 
 
 def velocities(theta, a, d, e, branch=1, thetadot=0.0, *, check=True):
@@ -110,38 +156,51 @@ def velocities(theta, a, d, e, branch=1, thetadot=0.0, *, check=True):
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, a, d, e, branch, thetadot,), shape = _arguments(
-        check, ('theta', 'a', 'd', 'e', 'branch', 'thetadot'), (theta, a, d, e, branch, thetadot,), ('a', 'd', 'e'), ('branch',))
+    (theta, a, d, e, branch, thetadot, ), shape = _arguments(
+        check, ('theta', 'a', 'd', 'e', 'branch', 'thetadot'), (theta, a, d, e, branch, thetadot, ), ('a', 'd', 'e'), ('branch',))
+    return _evaluate(_velocities_block, (theta, a, d, e, branch, thetadot, ), shape, ('rocker', 'slider', 'rocker_speed', 'slider_speed', 'assembled'), (False, False, False, False, True))
+
+
+def _velocities_block(theta, a, d, e, branch, thetadot):
+    """The outputs of velocities and the assembled mask, for arguments that broadcast together."""
     cse_1 = numpy.cos(theta)
     cse_2 = numpy.sin(theta)
     cse_7 = a*thetadot
     cse_8 = cse_1*cse_7
     cse_10 = cse_2*cse_7
+    del cse_7
     size_1 = 2.0**numpy.floor(numpy.log((1/3)*a + (1/3)*d + (1/3)*e)/numpy.log(2.0))
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
     rho_2_1 = cse_0*d
     Wx_1 = -cse_1*rho_1_1 + rho_2_1
+    del cse_1
     Wy_1 = -cse_2*rho_1_1
+    del cse_2
     rho_3_1 = cse_0*e
+    del cse_0
     w_1 = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
     cse_3 = rho_3_1 + w_1
     Delta_1 = _clamped_sqrt(cse_3*(-rho_3_1 + w_1), 2.0*rho_3_1*(cse_3 + rho_1_1 + rho_2_1))
+    del cse_3, rho_1_1, rho_2_1, w_1
     cse_4 = Delta_1*branch
     phi = numpy.arctan2(Wx_1*rho_3_1 - Wy_1*cse_4, -Wx_1*cse_4 - Wy_1*rho_3_1)
+    del Wx_1, Wy_1, rho_3_1
     cse_6 = numpy.cos(phi)
     cse_9 = numpy.sin(phi)
     s = cse_4*size_1
+    del cse_4, size_1
     cse_5 = 1/(s)
     phidot = -cse_5*(-cse_10*cse_9 - cse_6*cse_8)
     sdot = -cse_5*(-cse_10*(-cse_6*s + cse_9*e) - cse_8*(cse_6*e + cse_9*s))
-    return {
-        'rocker': numpy.broadcast_to(phi, shape),
-        'slider': numpy.broadcast_to(s, shape),
-        'rocker_speed': numpy.broadcast_to(phidot, shape),
-        'slider_speed': numpy.broadcast_to(sdot, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(Delta_1), shape),
-    }
+    del cse_10, cse_5, cse_6, cse_8, cse_9
+    return (
+        phi,  # rocker
+        s,  # slider
+        phidot,  # rocker_speed
+        sdot,  # slider_speed
+        numpy.isfinite(Delta_1),  # assembled
+    )
 
 
 def accelerations(theta, a, d, e, branch=1, thetadot=0.0, thetaddot=0.0, *, check=True):
@@ -154,8 +213,13 @@ def accelerations(theta, a, d, e, branch=1, thetadot=0.0, thetaddot=0.0, *, chec
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, a, d, e, branch, thetadot, thetaddot,), shape = _arguments(
-        check, ('theta', 'a', 'd', 'e', 'branch', 'thetadot', 'thetaddot'), (theta, a, d, e, branch, thetadot, thetaddot,), ('a', 'd', 'e'), ('branch',))
+    (theta, a, d, e, branch, thetadot, thetaddot, ), shape = _arguments(
+        check, ('theta', 'a', 'd', 'e', 'branch', 'thetadot', 'thetaddot'), (theta, a, d, e, branch, thetadot, thetaddot, ), ('a', 'd', 'e'), ('branch',))
+    return _evaluate(_accelerations_block, (theta, a, d, e, branch, thetadot, thetaddot, ), shape, ('rocker', 'slider', 'rocker_speed', 'slider_speed', 'rocker_accel', 'slider_accel', 'assembled'), (False, False, False, False, False, False, True))
+
+
+def _accelerations_block(theta, a, d, e, branch, thetadot, thetaddot):
+    """The outputs of accelerations and the assembled mask, for arguments that broadcast together."""
     cse_1 = numpy.cos(theta)
     cse_2 = numpy.sin(theta)
     cse_7 = a*cse_1
@@ -168,35 +232,45 @@ def accelerations(theta, a, d, e, branch=1, thetadot=0.0, thetaddot=0.0, *, chec
     rho_1_1 = a*cse_0
     rho_2_1 = cse_0*d
     Wx_1 = -cse_1*rho_1_1 + rho_2_1
+    del cse_1
     Wy_1 = -cse_2*rho_1_1
     rho_3_1 = cse_0*e
+    del cse_0
     w_1 = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
     cse_3 = rho_3_1 + w_1
     Delta_1 = _clamped_sqrt(cse_3*(-rho_3_1 + w_1), 2.0*rho_3_1*(cse_3 + rho_1_1 + rho_2_1))
+    del cse_3, rho_1_1, rho_2_1, w_1
     cse_4 = Delta_1*branch
     phi = numpy.arctan2(Wx_1*rho_3_1 - Wy_1*cse_4, -Wx_1*cse_4 - Wy_1*rho_3_1)
+    del Wx_1, Wy_1, rho_3_1
     cse_6 = numpy.cos(phi)
     cse_9 = numpy.sin(phi)
     s = cse_4*size_1
+    del cse_4, size_1
     cse_5 = 1/(s)
     cse_12 = cse_6*e + cse_9*s
     cse_13 = -cse_6*s + cse_9*e
     phidot = -cse_5*(-cse_11*cse_9 - cse_6*cse_8)
     sdot = -cse_5*(-cse_11*cse_13 - cse_12*cse_8)
+    del cse_11, cse_8
     cse_14 = cse_9*sdot
     cse_16 = cse_10*thetaddot - cse_14*phidot + cse_15*cse_7 - phidot*(-cse_13*phidot + cse_14)
+    del cse_10, cse_14
     cse_17 = a*cse_15*cse_2 + cse_6*phidot*sdot - cse_7*thetaddot - phidot*(cse_12*phidot - cse_6*sdot)
+    del cse_15, cse_2, cse_7
     phiddot = -cse_5*(-cse_16*cse_9 + cse_17*cse_6)
+    del cse_6, cse_9
     sddot = -cse_5*(cse_12*cse_17 - cse_13*cse_16)
-    return {
-        'rocker': numpy.broadcast_to(phi, shape),
-        'slider': numpy.broadcast_to(s, shape),
-        'rocker_speed': numpy.broadcast_to(phidot, shape),
-        'slider_speed': numpy.broadcast_to(sdot, shape),
-        'rocker_accel': numpy.broadcast_to(phiddot, shape),
-        'slider_accel': numpy.broadcast_to(sddot, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(Delta_1), shape),
-    }
+    del cse_12, cse_13, cse_16, cse_17, cse_5
+    return (
+        phi,  # rocker
+        s,  # slider
+        phidot,  # rocker_speed
+        sdot,  # slider_speed
+        phiddot,  # rocker_accel
+        sddot,  # slider_accel
+        numpy.isfinite(Delta_1),  # assembled
+    )
 
 
 def joints(theta, a, d, e, branch=1, *, check=True):
@@ -209,22 +283,31 @@ def joints(theta, a, d, e, branch=1, *, check=True):
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, a, d, e, branch,), shape = _arguments(
-        check, ('theta', 'a', 'd', 'e', 'branch'), (theta, a, d, e, branch,), ('a', 'd', 'e'), ('branch',))
+    (theta, a, d, e, branch, ), shape = _arguments(
+        check, ('theta', 'a', 'd', 'e', 'branch'), (theta, a, d, e, branch, ), ('a', 'd', 'e'), ('branch',))
+    return _evaluate(_joints_block, (theta, a, d, e, branch, ), shape, ('T_x', 'T_y', 'assembled'), (False, False, True))
+
+
+def _joints_block(theta, a, d, e, branch):
+    """The outputs of joints and the assembled mask, for arguments that broadcast together."""
     size_1 = 2.0**numpy.floor(numpy.log((1/3)*a + (1/3)*d + (1/3)*e)/numpy.log(2.0))
     cse_0 = 1/(size_1)
+    del size_1
     rho_1_1 = a*cse_0
     rho_2_1 = cse_0*d
     Wx_1 = -rho_1_1*numpy.cos(theta) + rho_2_1
     Wy_1 = -rho_1_1*numpy.sin(theta)
     rho_3_1 = cse_0*e
+    del cse_0
     w_1 = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
     cse_1 = rho_3_1 + w_1
     Delta_1 = _clamped_sqrt(cse_1*(-rho_3_1 + w_1), 2.0*rho_3_1*(cse_1 + rho_1_1 + rho_2_1))
+    del cse_1, rho_1_1, rho_2_1, w_1
     cse_2 = Delta_1*branch
     phi = numpy.arctan2(Wx_1*rho_3_1 - Wy_1*cse_2, -Wx_1*cse_2 - Wy_1*rho_3_1)
-    return {
-        'T_x': numpy.broadcast_to(d - e*numpy.sin(phi), shape),
-        'T_y': numpy.broadcast_to(e*numpy.cos(phi), shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(Delta_1), shape),
-    }
+    del Wx_1, Wy_1, cse_2, rho_3_1
+    return (
+        d - e*numpy.sin(phi),  # T_x
+        e*numpy.cos(phi),  # T_y
+        numpy.isfinite(Delta_1),  # assembled
+    )

@@ -7,6 +7,9 @@ import numpy
 
 TOLERANCE = 1e-14
 
+#: Values a kernel evaluates at a time: its temporaries of one block stay in cache.
+BLOCK = 4096
+
 
 def _arguments(check, names, values, lengths=(), signs=()):
     """The arguments as float arrays and their broadcast shape; with ``check``, ``ValueError`` naming a bad one.
@@ -19,9 +22,13 @@ def _arguments(check, names, values, lengths=(), signs=()):
     """
     if not check:
         arrays = tuple(numpy.asarray(value, dtype=float) for value in values)
-        return arrays, numpy.broadcast_shapes(*(array.shape for array in arrays))
+        shapes = {array.shape for array in arrays} - {()}
+        return arrays, shapes.pop() if len(shapes) == 1 else numpy.broadcast_shapes(*(a.shape for a in arrays))
     arrays = []
     for name, value in zip(names, values):
+        if type(value) is float:  # the usual length, sign or rate: no conversion to check
+            arrays.append(numpy.float64(value))
+            continue
         array = numpy.asarray(value)
         kind = array.dtype.kind
         if kind != "f":
@@ -33,8 +40,9 @@ def _arguments(check, names, values, lengths=(), signs=()):
                 why = " (its imaginary part would be lost)" if kind == "c" else ""
                 raise ValueError(f"{name} must be real numbers, got {array.dtype} values{why}") from None
         arrays.append(array)
+    shapes = {array.shape for array in arrays} - {()}
     try:
-        shape = numpy.broadcast_shapes(*(array.shape for array in arrays))
+        shape = shapes.pop() if len(shapes) == 1 else numpy.broadcast_shapes(*(array.shape for array in arrays))
     except ValueError:
         shapes = ", ".join(f"{name} has shape {array.shape}" for name, array in zip(names, arrays) if array.ndim)
         raise ValueError(f"the arguments do not broadcast together: {shapes}") from None
@@ -63,6 +71,35 @@ def _arguments(check, names, values, lengths=(), signs=()):
     return tuple(arrays), shape
 
 
+def _evaluate(kernel, arguments, shape, keys, flags):
+    """``{key: array}``: the kernel's results broadcast to ``shape``; a long input evaluated a block of rows at a time.
+
+    Up to :data:`BLOCK` values, one call of ``kernel`` on the whole arguments.
+    Beyond, the outputs are allocated once (``flags`` tells the true/false
+    ones) and the kernel is called on consecutive slices of the leading axis
+    of about ``BLOCK`` values each (an argument that broadcasts along that axis
+    is passed whole), so its temporaries stay in cache and the memory a call
+    needs beyond its outputs does not grow with the input.  Every value is
+    computed by the same elementwise operations either way: the results are
+    bit for bit those of one call on the whole arguments.
+    """
+    count = 1
+    for extent in shape:
+        count *= extent
+    if count <= BLOCK:
+        return {key: numpy.broadcast_to(result, shape) for key, result in zip(keys, kernel(*arguments))}
+    rows, dimensions = shape[0], len(shape)
+    step = max(1, BLOCK // (count // rows))
+    outputs = [numpy.empty(shape, dtype=bool if flag else float) for flag in flags]
+    sliced = [argument.ndim == dimensions and argument.shape[0] != 1 for argument in arguments]
+    for start in range(0, rows, step):
+        stop = start + step
+        results = kernel(*[argument[start:stop] if cut else argument for argument, cut in zip(arguments, sliced)])
+        for output, result in zip(outputs, results):
+            output[start:stop] = result
+    return dict(zip(keys, outputs))
+
+
 def _clamped_sqrt(x, scale):
     """sqrt(x), taking x >= -TOLERANCE*scale as rounding at a toggle (0) and anything lower as no assembly (NaN)."""
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
@@ -78,8 +115,13 @@ def positions(theta, a, b, offset, branch=1, *, check=True):
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, a, b, offset, branch,), shape = _arguments(
-        check, ('theta', 'a', 'b', 'offset', 'branch'), (theta, a, b, offset, branch,), ('a', 'b'), ('branch',))
+    (theta, a, b, offset, branch, ), shape = _arguments(
+        check, ('theta', 'a', 'b', 'offset', 'branch'), (theta, a, b, offset, branch, ), ('a', 'b'), ('branch',))
+    return _evaluate(_positions_block, (theta, a, b, offset, branch, ), shape, ('conrod', 'slider', 'assembled'), (False, False, True))
+
+
+def _positions_block(theta, a, b, offset, branch):
+    """The outputs of positions and the assembled mask, for arguments that broadcast together."""
     size_1 = 2.0**numpy.floor(numpy.log((1/3)*a + (1/3)*b + (1/3)*abs(offset))/numpy.log(2.0))
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
@@ -87,15 +129,19 @@ def positions(theta, a, b, offset, branch=1, *, check=True):
     Wx_1 = -rho_1_1*numpy.cos(theta)
     Wy_1 = -rho_1_1*numpy.sin(theta) + rho_2_1
     rho_3_1 = b*cse_0
+    del cse_0
     Delta_1 = _clamped_sqrt((-Wy_1 + rho_3_1)*(Wy_1 + rho_3_1), 2.0*rho_3_1*(rho_1_1 + rho_3_1 + abs(rho_2_1)))
+    del rho_1_1, rho_2_1, rho_3_1
     cse_1 = Delta_1*branch
     beta = numpy.arctan2(Wy_1, cse_1)
+    del Wy_1
     s = size_1*(-Wx_1 + cse_1)
-    return {
-        'conrod': numpy.broadcast_to(beta, shape),
-        'slider': numpy.broadcast_to(s, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(Delta_1), shape),
-    }
+    del Wx_1, cse_1, size_1
+    return (
+        beta,  # conrod
+        s,  # slider
+        numpy.isfinite(Delta_1),  # assembled
+    )
 
 
 def velocities(theta, a, b, offset, branch=1, thetadot=0.0, *, check=True):
@@ -108,8 +154,13 @@ def velocities(theta, a, b, offset, branch=1, thetadot=0.0, *, check=True):
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, a, b, offset, branch, thetadot,), shape = _arguments(
-        check, ('theta', 'a', 'b', 'offset', 'branch', 'thetadot'), (theta, a, b, offset, branch, thetadot,), ('a', 'b'), ('branch',))
+    (theta, a, b, offset, branch, thetadot, ), shape = _arguments(
+        check, ('theta', 'a', 'b', 'offset', 'branch', 'thetadot'), (theta, a, b, offset, branch, thetadot, ), ('a', 'b'), ('branch',))
+    return _evaluate(_velocities_block, (theta, a, b, offset, branch, thetadot, ), shape, ('conrod', 'slider', 'conrod_speed', 'slider_speed', 'assembled'), (False, False, False, False, True))
+
+
+def _velocities_block(theta, a, b, offset, branch, thetadot):
+    """The outputs of velocities and the assembled mask, for arguments that broadcast together."""
     cse_1 = numpy.cos(theta)
     size_1 = 2.0**numpy.floor(numpy.log((1/3)*a + (1/3)*b + (1/3)*abs(offset))/numpy.log(2.0))
     cse_0 = 1/(size_1)
@@ -118,20 +169,27 @@ def velocities(theta, a, b, offset, branch=1, thetadot=0.0, *, check=True):
     Wx_1 = -cse_1*rho_1_1
     Wy_1 = -rho_1_1*numpy.sin(theta) + rho_2_1
     rho_3_1 = b*cse_0
+    del cse_0
     Delta_1 = _clamped_sqrt((-Wy_1 + rho_3_1)*(Wy_1 + rho_3_1), 2.0*rho_3_1*(rho_1_1 + rho_3_1 + abs(rho_2_1)))
+    del rho_1_1, rho_2_1
     cse_2 = Delta_1*branch
     cse_3 = a*rho_3_1*thetadot/(Delta_1*branch)
+    del rho_3_1
     beta = numpy.arctan2(Wy_1, cse_2)
+    del Wy_1
     s = size_1*(-Wx_1 + cse_2)
+    del Wx_1, cse_2, size_1
     betadot = -cse_1*cse_3/b
+    del cse_1
     sdot = cse_3*numpy.sin(beta - theta)
-    return {
-        'conrod': numpy.broadcast_to(beta, shape),
-        'slider': numpy.broadcast_to(s, shape),
-        'conrod_speed': numpy.broadcast_to(betadot, shape),
-        'slider_speed': numpy.broadcast_to(sdot, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(Delta_1), shape),
-    }
+    del cse_3
+    return (
+        beta,  # conrod
+        s,  # slider
+        betadot,  # conrod_speed
+        sdot,  # slider_speed
+        numpy.isfinite(Delta_1),  # assembled
+    )
 
 
 def accelerations(theta, a, b, offset, branch=1, thetadot=0.0, thetaddot=0.0, *, check=True):
@@ -144,8 +202,13 @@ def accelerations(theta, a, b, offset, branch=1, thetadot=0.0, thetaddot=0.0, *,
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, a, b, offset, branch, thetadot, thetaddot,), shape = _arguments(
-        check, ('theta', 'a', 'b', 'offset', 'branch', 'thetadot', 'thetaddot'), (theta, a, b, offset, branch, thetadot, thetaddot,), ('a', 'b'), ('branch',))
+    (theta, a, b, offset, branch, thetadot, thetaddot, ), shape = _arguments(
+        check, ('theta', 'a', 'b', 'offset', 'branch', 'thetadot', 'thetaddot'), (theta, a, b, offset, branch, thetadot, thetaddot, ), ('a', 'b'), ('branch',))
+    return _evaluate(_accelerations_block, (theta, a, b, offset, branch, thetadot, thetaddot, ), shape, ('conrod', 'slider', 'conrod_speed', 'slider_speed', 'conrod_accel', 'slider_accel', 'assembled'), (False, False, False, False, False, False, True))
+
+
+def _accelerations_block(theta, a, b, offset, branch, thetadot, thetaddot):
+    """The outputs of accelerations and the assembled mask, for arguments that broadcast together."""
     cse_1 = numpy.cos(theta)
     cse_2 = numpy.sin(theta)
     cse_6 = a*thetadot
@@ -157,28 +220,36 @@ def accelerations(theta, a, b, offset, branch=1, thetadot=0.0, thetaddot=0.0, *,
     Wx_1 = -cse_1*rho_1_1
     Wy_1 = -cse_2*rho_1_1 + rho_2_1
     rho_3_1 = b*cse_0
+    del cse_0
     Delta_1 = _clamped_sqrt((-Wy_1 + rho_3_1)*(Wy_1 + rho_3_1), 2.0*rho_3_1*(rho_1_1 + rho_3_1 + abs(rho_2_1)))
+    del rho_1_1, rho_2_1
     cse_3 = Delta_1*branch
     cse_4 = rho_3_1/(Delta_1*branch)
+    del rho_3_1
     cse_5 = cse_4/b
     beta = numpy.arctan2(Wy_1, cse_3)
+    del Wy_1
     cse_7 = beta - theta
     cse_8 = numpy.sin(cse_7)
     s = size_1*(-Wx_1 + cse_3)
+    del Wx_1, cse_3, size_1
     betadot = -cse_1*cse_5*cse_6
     cse_10 = b*numpy.square(betadot)
     sdot = cse_4*cse_6*cse_8
+    del cse_6
     betaddot = cse_5*(-a*cse_1*thetaddot + cse_10*numpy.sin(beta) + cse_2*cse_9)
+    del cse_1, cse_2, cse_5
     sddot = cse_4*(a*cse_8*thetaddot - cse_10 - cse_9*numpy.cos(cse_7))
-    return {
-        'conrod': numpy.broadcast_to(beta, shape),
-        'slider': numpy.broadcast_to(s, shape),
-        'conrod_speed': numpy.broadcast_to(betadot, shape),
-        'slider_speed': numpy.broadcast_to(sdot, shape),
-        'conrod_accel': numpy.broadcast_to(betaddot, shape),
-        'slider_accel': numpy.broadcast_to(sddot, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(Delta_1), shape),
-    }
+    del cse_10, cse_4, cse_7, cse_8, cse_9
+    return (
+        beta,  # conrod
+        s,  # slider
+        betadot,  # conrod_speed
+        sdot,  # slider_speed
+        betaddot,  # conrod_accel
+        sddot,  # slider_accel
+        numpy.isfinite(Delta_1),  # assembled
+    )
 
 
 def joints(theta, a, b, offset, branch=1, *, check=True):
@@ -191,8 +262,13 @@ def joints(theta, a, b, offset, branch=1, *, check=True):
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, a, b, offset, branch,), shape = _arguments(
-        check, ('theta', 'a', 'b', 'offset', 'branch'), (theta, a, b, offset, branch,), ('a', 'b'), ('branch',))
+    (theta, a, b, offset, branch, ), shape = _arguments(
+        check, ('theta', 'a', 'b', 'offset', 'branch'), (theta, a, b, offset, branch, ), ('a', 'b'), ('branch',))
+    return _evaluate(_joints_block, (theta, a, b, offset, branch, ), shape, ('B_x', 'B_y', 'C_x', 'C_y', 'assembled'), (False, False, False, False, True))
+
+
+def _joints_block(theta, a, b, offset, branch):
+    """The outputs of joints and the assembled mask, for arguments that broadcast together."""
     cse_1 = numpy.cos(theta)
     cse_2 = numpy.sin(theta)
     size_1 = 2.0**numpy.floor(numpy.log((1/3)*a + (1/3)*b + (1/3)*abs(offset))/numpy.log(2.0))
@@ -202,12 +278,15 @@ def joints(theta, a, b, offset, branch=1, *, check=True):
     Wx_1 = -cse_1*rho_1_1
     Wy_1 = -cse_2*rho_1_1 + rho_2_1
     rho_3_1 = b*cse_0
+    del cse_0
     Delta_1 = _clamped_sqrt((-Wy_1 + rho_3_1)*(Wy_1 + rho_3_1), 2.0*rho_3_1*(rho_1_1 + rho_3_1 + abs(rho_2_1)))
+    del Wy_1, rho_1_1, rho_2_1, rho_3_1
     s = size_1*(Delta_1*branch - Wx_1)
-    return {
-        'B_x': numpy.broadcast_to(a*cse_1, shape),
-        'B_y': numpy.broadcast_to(a*cse_2, shape),
-        'C_x': numpy.broadcast_to(s, shape),
-        'C_y': numpy.broadcast_to(offset, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(Delta_1), shape),
-    }
+    del Wx_1, size_1
+    return (
+        a*cse_1,  # B_x
+        a*cse_2,  # B_y
+        s,  # C_x
+        offset,  # C_y
+        numpy.isfinite(Delta_1),  # assembled
+    )

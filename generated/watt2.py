@@ -7,6 +7,9 @@ import numpy
 
 TOLERANCE = 1e-14
 
+#: Values a kernel evaluates at a time: its temporaries of one block stay in cache.
+BLOCK = 4096
+
 
 def _arguments(check, names, values, lengths=(), signs=()):
     """The arguments as float arrays and their broadcast shape; with ``check``, ``ValueError`` naming a bad one.
@@ -19,9 +22,13 @@ def _arguments(check, names, values, lengths=(), signs=()):
     """
     if not check:
         arrays = tuple(numpy.asarray(value, dtype=float) for value in values)
-        return arrays, numpy.broadcast_shapes(*(array.shape for array in arrays))
+        shapes = {array.shape for array in arrays} - {()}
+        return arrays, shapes.pop() if len(shapes) == 1 else numpy.broadcast_shapes(*(a.shape for a in arrays))
     arrays = []
     for name, value in zip(names, values):
+        if type(value) is float:  # the usual length, sign or rate: no conversion to check
+            arrays.append(numpy.float64(value))
+            continue
         array = numpy.asarray(value)
         kind = array.dtype.kind
         if kind != "f":
@@ -33,8 +40,9 @@ def _arguments(check, names, values, lengths=(), signs=()):
                 why = " (its imaginary part would be lost)" if kind == "c" else ""
                 raise ValueError(f"{name} must be real numbers, got {array.dtype} values{why}") from None
         arrays.append(array)
+    shapes = {array.shape for array in arrays} - {()}
     try:
-        shape = numpy.broadcast_shapes(*(array.shape for array in arrays))
+        shape = shapes.pop() if len(shapes) == 1 else numpy.broadcast_shapes(*(array.shape for array in arrays))
     except ValueError:
         shapes = ", ".join(f"{name} has shape {array.shape}" for name, array in zip(names, arrays) if array.ndim)
         raise ValueError(f"the arguments do not broadcast together: {shapes}") from None
@@ -63,6 +71,35 @@ def _arguments(check, names, values, lengths=(), signs=()):
     return tuple(arrays), shape
 
 
+def _evaluate(kernel, arguments, shape, keys, flags):
+    """``{key: array}``: the kernel's results broadcast to ``shape``; a long input evaluated a block of rows at a time.
+
+    Up to :data:`BLOCK` values, one call of ``kernel`` on the whole arguments.
+    Beyond, the outputs are allocated once (``flags`` tells the true/false
+    ones) and the kernel is called on consecutive slices of the leading axis
+    of about ``BLOCK`` values each (an argument that broadcasts along that axis
+    is passed whole), so its temporaries stay in cache and the memory a call
+    needs beyond its outputs does not grow with the input.  Every value is
+    computed by the same elementwise operations either way: the results are
+    bit for bit those of one call on the whole arguments.
+    """
+    count = 1
+    for extent in shape:
+        count *= extent
+    if count <= BLOCK:
+        return {key: numpy.broadcast_to(result, shape) for key, result in zip(keys, kernel(*arguments))}
+    rows, dimensions = shape[0], len(shape)
+    step = max(1, BLOCK // (count // rows))
+    outputs = [numpy.empty(shape, dtype=bool if flag else float) for flag in flags]
+    sliced = [argument.ndim == dimensions and argument.shape[0] != 1 for argument in arguments]
+    for start in range(0, rows, step):
+        stop = start + step
+        results = kernel(*[argument[start:stop] if cut else argument for argument, cut in zip(arguments, sliced)])
+        for output, result in zip(outputs, results):
+            output[start:stop] = result
+    return dict(zip(keys, outputs))
+
+
 def _clamped_sqrt(x, scale):
     """sqrt(x), taking x >= -TOLERANCE*scale as rounding at a toggle (0) and anything lower as no assembly (NaN)."""
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
@@ -78,17 +115,24 @@ def positions(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_D
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG,), shape = _arguments(
-        check, ('theta', 'a', 'b', 'c', 'd', 'e', 'f', 'g', 'alpha', 'gx', 'gy', 'branch_ABCD', 'branch_DEFG'), (theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG,), ('a', 'b', 'c', 'd', 'e', 'f', 'g'), ('branch_ABCD', 'branch_DEFG'))
+    (theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG, ), shape = _arguments(
+        check, ('theta', 'a', 'b', 'c', 'd', 'e', 'f', 'g', 'alpha', 'gx', 'gy', 'branch_ABCD', 'branch_DEFG'), (theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG, ), ('a', 'b', 'c', 'd', 'e', 'f', 'g'), ('branch_ABCD', 'branch_DEFG'))
+    return _evaluate(_positions_block, (theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG, ), shape, ('coupler', 'rocker', 'coupler2', 'output', 'assembled'), (False, False, False, False, True))
+
+
+def _positions_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG):
+    """The outputs of positions and the assembled mask, for arguments that broadcast together."""
     cse_0 = 1/(numpy.log(2.0))
     size_1 = 2.0**numpy.floor(cse_0*numpy.log((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d))
     cse_1 = 1/(size_1)
+    del size_1
     rho_1_1 = cse_1*d
     rho_2_1 = a*cse_1
     Wx_1 = -rho_1_1 + rho_2_1*numpy.cos(theta)
     Wy_1 = rho_2_1*numpy.sin(theta)
     rho_3_1 = b*cse_1
     rho_4_1 = c*cse_1
+    del cse_1
     cse_2 = rho_3_1 + rho_4_1
     cse_4 = rho_3_1 - rho_4_1
     w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
@@ -96,23 +140,32 @@ def positions(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_D
     cse_5 = numpy.square(w_1)
     cse_6 = cse_2*cse_4 + cse_5
     cse_10 = -cse_2*cse_4 + cse_5
+    del cse_5
     Delta_1 = _clamped_sqrt(cse_3*(cse_2 - w_1)*(cse_4 + w_1)*(-rho_3_1 + rho_4_1 + w_1), 8.0*rho_3_1*rho_4_1*w_1*(cse_3 + rho_1_1 + rho_2_1))
+    del cse_2, cse_3, cse_4, rho_1_1, rho_2_1, rho_3_1, rho_4_1
     cse_7 = Delta_1*branch_ABCD
     cse_8 = Wx_1*cse_7
     cse_9 = Wy_1*cse_7
+    del cse_7
     beta = numpy.arctan2(-Wy_1*cse_6 - cse_8, -Wx_1*cse_6 + cse_9)
+    del cse_6
     phi = numpy.arctan2(Wy_1*cse_10 - cse_8, Wx_1*cse_10 + cse_9)
+    del Wx_1, Wy_1, cse_10, cse_8, cse_9
     cse_12 = alpha + phi
     size_2 = 2.0**numpy.floor(cse_0*numpy.log((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy)))
+    del cse_0
     cse_11 = 1/(size_2)
+    del size_2
     rho_1_2 = cse_11*gx
     rho_2_2 = cse_11*gy
     rho_3_2 = cse_11*e
     rho_4_2 = cse_11*d
     Wx_2 = -rho_1_2 + rho_3_2*numpy.cos(cse_12) + rho_4_2
     Wy_2 = -rho_2_2 + rho_3_2*numpy.sin(cse_12)
+    del cse_12
     rho_5_2 = cse_11*f
     rho_6_2 = cse_11*g
+    del cse_11
     cse_13 = rho_5_2 + rho_6_2
     cse_15 = rho_5_2 - rho_6_2
     w_2 = _clamped_sqrt(numpy.square(Wx_2) + numpy.square(Wy_2), -2.2250738585072e-294)
@@ -120,19 +173,24 @@ def positions(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_D
     cse_16 = numpy.square(w_2)
     cse_17 = cse_13*cse_15 + cse_16
     cse_21 = -cse_13*cse_15 + cse_16
+    del cse_16
     Delta_2 = _clamped_sqrt(cse_14*(cse_13 - w_2)*(cse_15 + w_2)*(-rho_5_2 + rho_6_2 + w_2), 8.0*rho_5_2*rho_6_2*w_2*(cse_14 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
+    del cse_13, cse_14, cse_15, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2, rho_6_2
     cse_18 = Delta_2*branch_DEFG
     cse_19 = Wx_2*cse_18
     cse_20 = Wy_2*cse_18
+    del cse_18
     mu = numpy.arctan2(-Wy_2*cse_17 - cse_19, -Wx_2*cse_17 + cse_20)
+    del cse_17
     psi = numpy.arctan2(Wy_2*cse_21 - cse_19, Wx_2*cse_21 + cse_20)
-    return {
-        'coupler': numpy.broadcast_to(beta, shape),
-        'rocker': numpy.broadcast_to(phi, shape),
-        'coupler2': numpy.broadcast_to(mu, shape),
-        'output': numpy.broadcast_to(psi, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2), shape),
-    }
+    del Wx_2, Wy_2, cse_19, cse_20, cse_21
+    return (
+        beta,  # coupler
+        phi,  # rocker
+        mu,  # coupler2
+        psi,  # output
+        numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2),  # assembled
+    )
 
 
 def velocities(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_DEFG=1, thetadot=0.0, *, check=True):
@@ -145,18 +203,25 @@ def velocities(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG, thetadot,), shape = _arguments(
-        check, ('theta', 'a', 'b', 'c', 'd', 'e', 'f', 'g', 'alpha', 'gx', 'gy', 'branch_ABCD', 'branch_DEFG', 'thetadot'), (theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG, thetadot,), ('a', 'b', 'c', 'd', 'e', 'f', 'g'), ('branch_ABCD', 'branch_DEFG'))
+    (theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG, thetadot, ), shape = _arguments(
+        check, ('theta', 'a', 'b', 'c', 'd', 'e', 'f', 'g', 'alpha', 'gx', 'gy', 'branch_ABCD', 'branch_DEFG', 'thetadot'), (theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG, thetadot, ), ('a', 'b', 'c', 'd', 'e', 'f', 'g'), ('branch_ABCD', 'branch_DEFG'))
+    return _evaluate(_velocities_block, (theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG, thetadot, ), shape, ('coupler', 'rocker', 'coupler2', 'output', 'coupler_speed', 'rocker_speed', 'coupler2_speed', 'output_speed', 'assembled'), (False, False, False, False, False, False, False, False, True))
+
+
+def _velocities_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG, thetadot):
+    """The outputs of velocities and the assembled mask, for arguments that broadcast together."""
     cse_0 = 1/(numpy.log(2.0))
     cse_24 = -theta
     size_1 = 2.0**numpy.floor(cse_0*numpy.log((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d))
     cse_1 = 1/(size_1)
+    del size_1
     rho_1_1 = cse_1*d
     rho_2_1 = a*cse_1
     Wx_1 = -rho_1_1 + rho_2_1*numpy.cos(theta)
     Wy_1 = rho_2_1*numpy.sin(theta)
     rho_3_1 = b*cse_1
     rho_4_1 = c*cse_1
+    del cse_1
     cse_2 = rho_3_1 + rho_4_1
     cse_4 = rho_3_1 - rho_4_1
     cse_5 = rho_3_1*rho_4_1
@@ -165,16 +230,24 @@ def velocities(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_
     cse_6 = numpy.square(w_1)
     cse_7 = cse_2*cse_4 + cse_6
     cse_11 = -cse_2*cse_4 + cse_6
+    del cse_6
     Delta_1 = _clamped_sqrt(cse_3*(cse_2 - w_1)*(cse_4 + w_1)*(-rho_3_1 + rho_4_1 + w_1), 8.0*cse_5*w_1*(cse_3 + rho_1_1 + rho_2_1))
+    del cse_2, cse_3, cse_4, rho_1_1, rho_2_1, rho_3_1, rho_4_1
     cse_8 = Delta_1*branch_ABCD
     cse_9 = Wx_1*cse_8
     cse_10 = Wy_1*cse_8
+    del cse_8
     cse_25 = 2.0*a*cse_5*thetadot/(Delta_1*branch_ABCD)
+    del cse_5
     beta = numpy.arctan2(-Wy_1*cse_7 - cse_9, -Wx_1*cse_7 + cse_10)
+    del cse_7
     phi = numpy.arctan2(Wy_1*cse_11 - cse_9, Wx_1*cse_11 + cse_10)
+    del Wx_1, Wy_1, cse_10, cse_11, cse_9
     cse_13 = alpha + phi
     size_2 = 2.0**numpy.floor(cse_0*numpy.log((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy)))
+    del cse_0
     cse_12 = 1/(size_2)
+    del size_2
     rho_1_2 = cse_12*gx
     rho_2_2 = cse_12*gy
     rho_3_2 = cse_12*e
@@ -183,6 +256,7 @@ def velocities(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_
     Wy_2 = -rho_2_2 + rho_3_2*numpy.sin(cse_13)
     rho_5_2 = cse_12*f
     rho_6_2 = cse_12*g
+    del cse_12
     cse_14 = rho_5_2 + rho_6_2
     cse_16 = rho_5_2 - rho_6_2
     cse_17 = rho_5_2*rho_6_2
@@ -191,28 +265,36 @@ def velocities(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_
     cse_18 = numpy.square(w_2)
     cse_19 = cse_14*cse_16 + cse_18
     cse_23 = -cse_14*cse_16 + cse_18
+    del cse_18
     Delta_2 = _clamped_sqrt(cse_15*(cse_14 - w_2)*(cse_16 + w_2)*(-rho_5_2 + rho_6_2 + w_2), 8.0*cse_17*w_2*(cse_15 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
+    del cse_14, cse_15, cse_16, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2, rho_6_2
     cse_20 = Delta_2*branch_DEFG
     cse_21 = Wx_2*cse_20
     cse_22 = Wy_2*cse_20
+    del cse_20
     mu = numpy.arctan2(-Wy_2*cse_19 - cse_21, -Wx_2*cse_19 + cse_22)
+    del cse_19
     psi = numpy.arctan2(Wy_2*cse_23 - cse_21, Wx_2*cse_23 + cse_22)
+    del Wx_2, Wy_2, cse_21, cse_22, cse_23
     betadot = -cse_25*numpy.sin(cse_24 + phi)/b
     phidot = -cse_25*numpy.sin(beta + cse_24)/c
+    del cse_24, cse_25
     cse_26 = 2.0*cse_17*e*phidot/(Delta_2*branch_DEFG)
+    del cse_17
     mudot = cse_26*numpy.sin(cse_13 - psi)/f
     psidot = cse_26*numpy.sin(cse_13 - mu)/g
-    return {
-        'coupler': numpy.broadcast_to(beta, shape),
-        'rocker': numpy.broadcast_to(phi, shape),
-        'coupler2': numpy.broadcast_to(mu, shape),
-        'output': numpy.broadcast_to(psi, shape),
-        'coupler_speed': numpy.broadcast_to(betadot, shape),
-        'rocker_speed': numpy.broadcast_to(phidot, shape),
-        'coupler2_speed': numpy.broadcast_to(mudot, shape),
-        'output_speed': numpy.broadcast_to(psidot, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2), shape),
-    }
+    del cse_13, cse_26
+    return (
+        beta,  # coupler
+        phi,  # rocker
+        mu,  # coupler2
+        psi,  # output
+        betadot,  # coupler_speed
+        phidot,  # rocker_speed
+        mudot,  # coupler2_speed
+        psidot,  # output_speed
+        numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2),  # assembled
+    )
 
 
 def accelerations(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_DEFG=1, thetadot=0.0, thetaddot=0.0, *, check=True):
@@ -225,8 +307,13 @@ def accelerations(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, bran
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG, thetadot, thetaddot,), shape = _arguments(
-        check, ('theta', 'a', 'b', 'c', 'd', 'e', 'f', 'g', 'alpha', 'gx', 'gy', 'branch_ABCD', 'branch_DEFG', 'thetadot', 'thetaddot'), (theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG, thetadot, thetaddot,), ('a', 'b', 'c', 'd', 'e', 'f', 'g'), ('branch_ABCD', 'branch_DEFG'))
+    (theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG, thetadot, thetaddot, ), shape = _arguments(
+        check, ('theta', 'a', 'b', 'c', 'd', 'e', 'f', 'g', 'alpha', 'gx', 'gy', 'branch_ABCD', 'branch_DEFG', 'thetadot', 'thetaddot'), (theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG, thetadot, thetaddot, ), ('a', 'b', 'c', 'd', 'e', 'f', 'g'), ('branch_ABCD', 'branch_DEFG'))
+    return _evaluate(_accelerations_block, (theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG, thetadot, thetaddot, ), shape, ('coupler', 'rocker', 'coupler2', 'output', 'coupler_speed', 'rocker_speed', 'coupler2_speed', 'output_speed', 'coupler_accel', 'rocker_accel', 'coupler2_accel', 'output_accel', 'assembled'), (False, False, False, False, False, False, False, False, False, False, False, False, True))
+
+
+def _accelerations_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG, thetadot, thetaddot):
+    """The outputs of accelerations and the assembled mask, for arguments that broadcast together."""
     cse_0 = 1/(numpy.log(2.0))
     cse_24 = -theta
     cse_29 = a*thetadot
@@ -234,12 +321,14 @@ def accelerations(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, bran
     cse_45 = numpy.square(thetadot)
     size_1 = 2.0**numpy.floor(cse_0*numpy.log((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d))
     cse_1 = 1/(size_1)
+    del size_1
     rho_1_1 = cse_1*d
     rho_2_1 = a*cse_1
     Wx_1 = -rho_1_1 + rho_2_1*numpy.cos(theta)
     Wy_1 = rho_2_1*numpy.sin(theta)
     rho_3_1 = b*cse_1
     rho_4_1 = c*cse_1
+    del cse_1
     cse_2 = rho_3_1 + rho_4_1
     cse_4 = rho_3_1 - rho_4_1
     cse_5 = rho_3_1*rho_4_1
@@ -248,23 +337,33 @@ def accelerations(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, bran
     cse_6 = numpy.square(w_1)
     cse_7 = cse_2*cse_4 + cse_6
     cse_11 = -cse_2*cse_4 + cse_6
+    del cse_6
     Delta_1 = _clamped_sqrt(cse_3*(cse_2 - w_1)*(cse_4 + w_1)*(-rho_3_1 + rho_4_1 + w_1), 8.0*cse_5*w_1*(cse_3 + rho_1_1 + rho_2_1))
+    del cse_2, cse_3, cse_4, rho_1_1, rho_2_1, rho_3_1, rho_4_1
     cse_8 = Delta_1*branch_ABCD
     cse_9 = Wx_1*cse_8
     cse_10 = Wy_1*cse_8
+    del cse_8
     cse_27 = 2.0*cse_5/(Delta_1*branch_ABCD)
+    del cse_5
     cse_28 = cse_27/b
     cse_32 = cse_27/c
+    del cse_27
     beta = numpy.arctan2(-Wy_1*cse_7 - cse_9, -Wx_1*cse_7 + cse_10)
+    del cse_7
     cse_30 = beta + cse_24
     cse_31 = numpy.sin(cse_30)
     phi = numpy.arctan2(Wy_1*cse_11 - cse_9, Wx_1*cse_11 + cse_10)
+    del Wx_1, Wy_1, cse_10, cse_11, cse_9
     cse_13 = alpha + phi
     cse_25 = cse_24 + phi
+    del cse_24
     cse_26 = numpy.sin(cse_25)
     cse_47 = numpy.cos(beta - phi)
     size_2 = 2.0**numpy.floor(cse_0*numpy.log((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy)))
+    del cse_0
     cse_12 = 1/(size_2)
+    del size_2
     rho_1_2 = cse_12*gx
     rho_2_2 = cse_12*gy
     rho_3_2 = cse_12*e
@@ -273,6 +372,7 @@ def accelerations(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, bran
     Wy_2 = -rho_2_2 + rho_3_2*numpy.sin(cse_13)
     rho_5_2 = cse_12*f
     rho_6_2 = cse_12*g
+    del cse_12
     cse_14 = rho_5_2 + rho_6_2
     cse_16 = rho_5_2 - rho_6_2
     cse_17 = rho_5_2*rho_6_2
@@ -281,52 +381,68 @@ def accelerations(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, bran
     cse_18 = numpy.square(w_2)
     cse_19 = cse_14*cse_16 + cse_18
     cse_23 = -cse_14*cse_16 + cse_18
+    del cse_18
     Delta_2 = _clamped_sqrt(cse_15*(cse_14 - w_2)*(cse_16 + w_2)*(-rho_5_2 + rho_6_2 + w_2), 8.0*cse_17*w_2*(cse_15 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
+    del cse_14, cse_15, cse_16, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2, rho_6_2
     cse_20 = Delta_2*branch_DEFG
     cse_21 = Wx_2*cse_20
     cse_22 = Wy_2*cse_20
+    del cse_20
     cse_36 = 2.0*cse_17/(Delta_2*branch_DEFG)
+    del cse_17
     cse_37 = cse_36/f
     cse_41 = cse_36/g
+    del cse_36
     mu = numpy.arctan2(-Wy_2*cse_19 - cse_21, -Wx_2*cse_19 + cse_22)
+    del cse_19
     cse_39 = cse_13 - mu
     cse_40 = numpy.sin(cse_39)
     psi = numpy.arctan2(Wy_2*cse_23 - cse_21, Wx_2*cse_23 + cse_22)
+    del Wx_2, Wy_2, cse_21, cse_22, cse_23
     cse_33 = -psi
     cse_34 = cse_13 + cse_33
+    del cse_13
     cse_35 = numpy.sin(cse_34)
     cse_51 = numpy.cos(cse_33 + mu)
+    del cse_33
     betadot = -cse_26*cse_28*cse_29
     cse_46 = numpy.square(betadot)
     phidot = -cse_29*cse_31*cse_32
+    del cse_29
     cse_38 = e*phidot
     cse_42 = numpy.square(phidot)
     cse_43 = c*cse_42
     cse_50 = cse_42*e
+    del cse_42
     mudot = cse_35*cse_37*cse_38
     cse_52 = f*numpy.square(mudot)
     psidot = cse_38*cse_40*cse_41
+    del cse_38
     cse_48 = g*numpy.square(psidot)
     betaddot = cse_28*(a*cse_45*numpy.cos(cse_25) + b*cse_46*cse_47 - cse_26*cse_44 - cse_43)
+    del cse_25, cse_26, cse_28
     phiddot = cse_32*(a*cse_45*numpy.cos(cse_30) + b*cse_46 - cse_31*cse_44 - cse_43*cse_47)
+    del cse_30, cse_31, cse_32, cse_43, cse_44, cse_45, cse_46, cse_47
     cse_49 = e*phiddot
     muddot = cse_37*(cse_35*cse_49 - cse_48 + cse_50*numpy.cos(cse_34) + cse_51*cse_52)
+    del cse_34, cse_35, cse_37
     psiddot = cse_41*(cse_40*cse_49 - cse_48*cse_51 + cse_50*numpy.cos(cse_39) + cse_52)
-    return {
-        'coupler': numpy.broadcast_to(beta, shape),
-        'rocker': numpy.broadcast_to(phi, shape),
-        'coupler2': numpy.broadcast_to(mu, shape),
-        'output': numpy.broadcast_to(psi, shape),
-        'coupler_speed': numpy.broadcast_to(betadot, shape),
-        'rocker_speed': numpy.broadcast_to(phidot, shape),
-        'coupler2_speed': numpy.broadcast_to(mudot, shape),
-        'output_speed': numpy.broadcast_to(psidot, shape),
-        'coupler_accel': numpy.broadcast_to(betaddot, shape),
-        'rocker_accel': numpy.broadcast_to(phiddot, shape),
-        'coupler2_accel': numpy.broadcast_to(muddot, shape),
-        'output_accel': numpy.broadcast_to(psiddot, shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2), shape),
-    }
+    del cse_39, cse_40, cse_41, cse_48, cse_49, cse_50, cse_51, cse_52
+    return (
+        beta,  # coupler
+        phi,  # rocker
+        mu,  # coupler2
+        psi,  # output
+        betadot,  # coupler_speed
+        phidot,  # rocker_speed
+        mudot,  # coupler2_speed
+        psidot,  # output_speed
+        betaddot,  # coupler_accel
+        phiddot,  # rocker_accel
+        muddot,  # coupler2_accel
+        psiddot,  # output_accel
+        numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2),  # assembled
+    )
 
 
 def joints(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_DEFG=1, *, check=True):
@@ -339,8 +455,13 @@ def joints(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_DEFG
     values are refused); array arguments whose shapes broadcast together; check=False skips that for
     hot loops.
     """
-    (theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG,), shape = _arguments(
-        check, ('theta', 'a', 'b', 'c', 'd', 'e', 'f', 'g', 'alpha', 'gx', 'gy', 'branch_ABCD', 'branch_DEFG'), (theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG,), ('a', 'b', 'c', 'd', 'e', 'f', 'g'), ('branch_ABCD', 'branch_DEFG'))
+    (theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG, ), shape = _arguments(
+        check, ('theta', 'a', 'b', 'c', 'd', 'e', 'f', 'g', 'alpha', 'gx', 'gy', 'branch_ABCD', 'branch_DEFG'), (theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG, ), ('a', 'b', 'c', 'd', 'e', 'f', 'g'), ('branch_ABCD', 'branch_DEFG'))
+    return _evaluate(_joints_block, (theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG, ), shape, ('B_x', 'B_y', 'C_x', 'C_y', 'E_x', 'E_y', 'F_x', 'F_y', 'assembled'), (False, False, False, False, False, False, False, False, True))
+
+
+def _joints_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG):
+    """The outputs of joints and the assembled mask, for arguments that broadcast together."""
     cse_0 = 1/(numpy.log(2.0))
     cse_2 = numpy.cos(theta)
     cse_3 = numpy.sin(theta)
@@ -348,12 +469,16 @@ def joints(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_DEFG
     cse_23 = a*cse_3
     size_1 = 2.0**numpy.floor(cse_0*numpy.log((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d))
     cse_1 = 1/(size_1)
+    del size_1
     rho_1_1 = cse_1*d
     rho_2_1 = a*cse_1
     Wx_1 = cse_2*rho_2_1 - rho_1_1
+    del cse_2
     Wy_1 = cse_3*rho_2_1
+    del cse_3
     rho_3_1 = b*cse_1
     rho_4_1 = c*cse_1
+    del cse_1
     cse_4 = rho_3_1 + rho_4_1
     cse_6 = rho_3_1 - rho_4_1
     w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
@@ -361,43 +486,57 @@ def joints(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_DEFG
     cse_7 = numpy.square(w_1)
     cse_8 = cse_4*cse_6 + cse_7
     cse_12 = -cse_4*cse_6 + cse_7
+    del cse_7
     Delta_1 = _clamped_sqrt(cse_5*(cse_4 - w_1)*(cse_6 + w_1)*(-rho_3_1 + rho_4_1 + w_1), 8.0*rho_3_1*rho_4_1*w_1*(cse_5 + rho_1_1 + rho_2_1))
+    del cse_4, cse_5, cse_6, rho_1_1, rho_2_1, rho_3_1, rho_4_1
     cse_9 = Delta_1*branch_ABCD
     cse_10 = Wx_1*cse_9
     cse_11 = Wy_1*cse_9
+    del cse_9
     beta = numpy.arctan2(-Wy_1*cse_8 - cse_10, -Wx_1*cse_8 + cse_11)
+    del cse_8
     phi = numpy.arctan2(Wy_1*cse_12 - cse_10, Wx_1*cse_12 + cse_11)
+    del Wx_1, Wy_1, cse_10, cse_11, cse_12
     cse_14 = alpha + phi
+    del phi
     cse_15 = numpy.cos(cse_14)
     cse_16 = numpy.sin(cse_14)
+    del cse_14
     cse_24 = cse_15*e + d
     cse_25 = cse_16*e
     size_2 = 2.0**numpy.floor(cse_0*numpy.log((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy)))
+    del cse_0
     cse_13 = 1/(size_2)
+    del size_2
     rho_1_2 = cse_13*gx
     rho_2_2 = cse_13*gy
     rho_3_2 = cse_13*e
     rho_4_2 = cse_13*d
     Wx_2 = cse_15*rho_3_2 - rho_1_2 + rho_4_2
+    del cse_15
     Wy_2 = cse_16*rho_3_2 - rho_2_2
+    del cse_16
     rho_5_2 = cse_13*f
     rho_6_2 = cse_13*g
+    del cse_13
     cse_17 = rho_5_2 + rho_6_2
     cse_19 = rho_5_2 - rho_6_2
     w_2 = _clamped_sqrt(numpy.square(Wx_2) + numpy.square(Wy_2), -2.2250738585072e-294)
     cse_18 = cse_17 + w_2
     cse_20 = cse_17*cse_19 + numpy.square(w_2)
     Delta_2 = _clamped_sqrt(cse_18*(cse_17 - w_2)*(cse_19 + w_2)*(-rho_5_2 + rho_6_2 + w_2), 8.0*rho_5_2*rho_6_2*w_2*(cse_18 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
+    del cse_17, cse_18, cse_19, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2, rho_6_2
     cse_21 = Delta_2*branch_DEFG
     mu = numpy.arctan2(-Wx_2*cse_21 - Wy_2*cse_20, -Wx_2*cse_20 + Wy_2*cse_21)
-    return {
-        'B_x': numpy.broadcast_to(cse_22, shape),
-        'B_y': numpy.broadcast_to(cse_23, shape),
-        'C_x': numpy.broadcast_to(b*numpy.cos(beta) + cse_22, shape),
-        'C_y': numpy.broadcast_to(b*numpy.sin(beta) + cse_23, shape),
-        'E_x': numpy.broadcast_to(cse_24, shape),
-        'E_y': numpy.broadcast_to(cse_25, shape),
-        'F_x': numpy.broadcast_to(cse_24 + f*numpy.cos(mu), shape),
-        'F_y': numpy.broadcast_to(cse_25 + f*numpy.sin(mu), shape),
-        'assembled': numpy.broadcast_to(numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2), shape),
-    }
+    del Wx_2, Wy_2, cse_20, cse_21
+    return (
+        cse_22,  # B_x
+        cse_23,  # B_y
+        b*numpy.cos(beta) + cse_22,  # C_x
+        b*numpy.sin(beta) + cse_23,  # C_y
+        cse_24,  # E_x
+        cse_25,  # E_y
+        cse_24 + f*numpy.cos(mu),  # F_x
+        cse_25 + f*numpy.sin(mu),  # F_y
+        numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2),  # assembled
+    )

@@ -24,11 +24,15 @@ The flags are portable: no ``-march=native`` (a cache folder may be shared
 between machines); ``-O3`` so that the loops are vectorised;
 ``-ffp-contract=off`` (no fused multiply-adds, so the arithmetic rounds as
 NumPy's does); ``-fno-math-errno`` (only ``errno`` is affected; ``sqrt``
-becomes one instruction).  ``-ffast-math`` is NOT used: it assumes that no
+becomes one instruction); ``-fno-trapping-math`` (no program of ours traps
+on a floating-point exception, so the compiler may evaluate both sides of the
+clamped square root's test and ``floor`` in vector registers: without it no
+loop with a square root or the size normalisation's ``floor`` vectorises;
+values are unchanged).  ``-ffast-math`` is NOT used: it assumes that no
 NaN occurs, and NaN is how an unassembled configuration is reported; it would
 also let the compiler rewrite the arguments of ``atan2``.  Where GCC targets
 glibc on x86-64, :data:`VECTOR_MATH` is included first: it tells GCC that
-glibc's vector math library (libmvec) has ``sin``, ``cos`` and ``atan2`` for
+glibc's vector math library (libmvec) has ``sin``, ``cos``, ``atan2``, ``log`` and ``pow`` for
 whole SIMD registers, and compiles each loop for baseline x86-64, AVX2 and
 AVX-512, chosen when the library loads.  libmvec's functions are accurate to
 a few units in the last place, as NumPy's own SIMD functions are.
@@ -54,6 +58,7 @@ import shutil
 import struct
 import subprocess
 import tempfile
+import threading
 import warnings
 from pathlib import Path
 from typing import Mapping, Sequence
@@ -61,7 +66,7 @@ from typing import Mapping, Sequence
 import numpy
 
 from . import cache
-from .codegen.c import c_function, c_library
+from .codegen.c import c_function, c_library, c_packed
 from .files import NotPrivate, read_private, write_atomic
 from .linkage import Linkage
 from .solver import Solver
@@ -71,8 +76,8 @@ __all__ = ["FLAGS", "FallbackWarning", "CompilerUnavailable", "CompileError", "C
 
 #: Compiler flags of every library symlink builds (see the module docstring for why these).
 #: ``-fno-builtin-sin/cos`` keep GCC from fusing sin and cos into a scalar-only sincos.
-FLAGS = ("-std=c99", "-O3", "-ffp-contract=off", "-fno-math-errno", "-fno-builtin-sin", "-fno-builtin-cos",
-         "-fPIC", "-shared")
+FLAGS = ("-std=c99", "-O3", "-ffp-contract=off", "-fno-math-errno", "-fno-trapping-math", "-fno-builtin-sin",
+         "-fno-builtin-cos", "-fPIC", "-shared")
 
 #: Included before every source (``-include``); inert except for GCC on glibc x86-64.
 VECTOR_MATH = r"""/* symlink: let GCC vectorise loops over sin, cos and atan2 with glibc's libmvec. */
@@ -83,6 +88,7 @@ double sin(double) SYMLINK_SIMD;
 double cos(double) SYMLINK_SIMD;
 double exp(double) SYMLINK_SIMD;
 double log(double) SYMLINK_SIMD;
+double pow(double, double) SYMLINK_SIMD;
 #if __GLIBC_PREREQ(2, 35)
 double atan2(double, double) SYMLINK_SIMD;
 double atan(double) SYMLINK_SIMD;
@@ -319,8 +325,20 @@ def compile_shared(source: str, headers: Mapping[str, str] | None = None) -> cty
     return library
 
 
+#: Calls of at most this many values take the fast path of :class:`_Entry` (larger ones gain nothing from it).
+SMALL_CALL = 4096
+
+
 class _Entry:
-    """Calls one generated C loop function on NumPy arrays, broadcasting like the NumPy module."""
+    """Calls one generated C loop function on NumPy arrays, broadcasting like the NumPy module.
+
+    A small call (at most :data:`SMALL_CALL` values) whose arguments are
+    numbers and one-dimensional float arrays of one length takes a fast path:
+    the argument layout (pointer and step slots, a buffer for the numbers) is
+    made once, numbers are written into it, an array seen in the previous
+    call reuses its pointer, the outputs are one allocation, and the library
+    is entered once through ``<name>_packed`` (:func:`symlink.codegen.c.c_packed`).
+    """
 
     def __init__(self, library: ctypes.CDLL, name: str, arguments: Sequence[str], outputs: Sequence[str],
                  flags: Sequence[bool], defaults: Mapping[str, float]):
@@ -330,8 +348,31 @@ class _Entry:
         self.entry.restype = None
         self.entry.argtypes = ([ctypes.c_size_t] + [ctypes.c_void_p, ctypes.c_ssize_t] * len(self.arguments)
                                + [ctypes.c_void_p] * (len(self.outputs) + 1))
+        self.packed = getattr(library, f"{name}_packed", None)
+        if self.packed is not None:
+            self.packed.restype = None
+            self.packed.argtypes = [ctypes.c_size_t, ctypes.c_void_p, ctypes.c_void_p]
+        count = len(self.arguments)
+        self._numbers = numpy.zeros(max(count, 1))  # the numbers of a call, each read with a step of 0
+        self._numbers_at = self._numbers.ctypes.data
+        self._pointers = (ctypes.c_void_p * (count + len(self.outputs) + 1))()
+        self._steps = (ctypes.c_ssize_t * max(count, 1))()
+        self._pointers_at, self._steps_at = ctypes.addressof(self._pointers), ctypes.addressof(self._steps)
+        self._last_arrays: list = [None] * count  # held, so that their buffers (and pointers) stay valid
+        self._last_pointers = [0] * count
+        self._float_names = [o for o, flag in zip(self.outputs, self.flags) if not flag]
+        self._flag_names = [o for o, flag in zip(self.outputs, self.flags) if flag] + ["assembled"]
+        floats = iter(range(len(self._float_names)))
+        flags_ = iter(range(len(self._flag_names)))
+        # Where each output's pointer goes among the slots: (is a flag, its row in the float or flag block).
+        self._rows = [(True, next(flags_)) if flag else (False, next(floats)) for flag in self.flags] + [(True, next(flags_))]
+        self._lock = threading.Lock()  # the slots are shared: one small call at a time
 
     def __call__(self, **values) -> dict[str, numpy.ndarray]:
+        if self.packed is not None:
+            result = self._small(values)
+            if result is not None:
+                return result
         missing = [a for a in self.arguments if a not in values and a not in self.defaults]
         if missing:
             raise TypeError(f"{self.name}() missing arguments: {', '.join(missing)}")
@@ -347,6 +388,49 @@ class _Entry:
             pointers = [value for pointer, step, _ in strided for value in (pointer, step)]
             self.entry(count, *pointers, *(o.ctypes.data for o in outputs.values()), assembled.ctypes.data)
         return {**outputs, "assembled": assembled}
+
+    def _small(self, values: dict) -> dict[str, numpy.ndarray] | None:
+        """The fast path's result, or ``None`` where the call does not qualify (the general path then runs)."""
+        if len(values) > len(self.arguments):
+            return None  # an unknown keyword: the general path says so
+        with self._lock:  # the slots, and the arrays remembered with their pointers, belong to one call at a time
+            length = 0
+            numbers = self._numbers
+            last_arrays, last_pointers = self._last_arrays, self._last_pointers
+            pointers = []
+            steps = []
+            for index, name in enumerate(self.arguments):
+                value = values[name] if name in values else self.defaults.get(name)
+                kind = type(value)
+                if kind is float or kind is int or kind is numpy.float64 or (
+                        kind is numpy.ndarray and value.ndim == 0 and value.dtype == numpy.float64):
+                    numbers[index] = value
+                    pointers.append(self._numbers_at + 8 * index)
+                    steps.append(0)
+                elif kind is numpy.ndarray and value.dtype == numpy.float64 and value.ndim == 1 \
+                        and value.flags.c_contiguous and 0 < value.shape[0] <= SMALL_CALL \
+                        and (length == 0 or value.shape[0] == length):
+                    length = value.shape[0]
+                    if value is not last_arrays[index]:
+                        last_arrays[index] = value
+                        last_pointers[index] = value.ctypes.data
+                    pointers.append(last_pointers[index])
+                    steps.append(1)
+                else:
+                    return None
+            if not length:
+                return None  # numbers only: the general path returns arrays of shape ()
+            floats = numpy.empty((len(self._float_names), length))
+            flags = numpy.empty((len(self._flag_names), length), dtype=bool)
+            float_at, flag_at = floats.ctypes.data, flags.ctypes.data
+            pointers += [flag_at + row * length if is_flag else float_at + 8 * row * length
+                         for is_flag, row in self._rows]
+            self._pointers[:] = pointers
+            self._steps[:len(steps)] = steps
+            self.packed(length, self._pointers_at, self._steps_at)
+        result = dict(zip(self._float_names, floats))
+        result.update(zip(self._flag_names, flags))
+        return {name: result[name] for name in self.outputs + ["assembled"]}
 
 
 def _strided(array: numpy.ndarray, shape: tuple[int, ...]) -> tuple[int, int, numpy.ndarray]:
@@ -377,6 +461,7 @@ def c_solver_source(linkage: Linkage, outputs: Sequence[str]) -> dict:
         program = linkage.program(outputs)
         function = c_function(program, "solve", f"{linkage.name}: {', '.join(outputs)}.")
         _, source = c_library([function], "solver", standalone=True)
+        source += "\n" + c_packed(function)
         defaults = dict(program.defaults)
         return json.dumps({"source": source, "arguments": function.arguments, "outputs": function.outputs,
                            "flags": function.flags, "defaults": defaults})

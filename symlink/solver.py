@@ -92,17 +92,47 @@ class Solver:
         """The unit of each output, lengths named ``length`` (:func:`symlink.units.output_units`)."""
         return output_units(self.linkage, self.outputs + ["assembled"])
 
+    @cached_property
+    def _layout(self) -> tuple[frozenset[str], list[str], list[str]]:
+        """What every call checks against, made once: the argument names, the lengths and the branches."""
+        return frozenset(self.arguments), [s.name for s in self.linkage.parameters if s.is_positive], self.branches
+
     def __call__(self, **values) -> Results:
-        unknown = set(values) - set(self.arguments)
-        if unknown:
+        accepted, lengths, branches = self._layout
+        if not accepted.issuperset(values):
+            unknown = set(values) - accepted
             raise ValueError(f"{self.linkage.name} takes {', '.join(self.arguments)}; not {', '.join(sorted(unknown))}")
-        values, length_unit = plain_values(self.linkage, values)
-        _require_memory(self, values, self.bytes_per_value, "solver")
+        if all(type(value) in _PLAIN_TYPES for value in values.values()):  # no quantities: nothing to convert
+            length_unit = None
+        else:
+            values, length_unit = plain_values(self.linkage, values)
+        if not _surely_small(values, self.bytes_per_value):
+            _require_memory(self, values, self.bytes_per_value, "solver")
         names = list(values)
-        lengths = [s.name for s in self.linkage.parameters if s.is_positive]
-        arrays, _ = checked_arguments(names, [values[name] for name in names], lengths, self.branches)
+        arrays, _ = checked_arguments(names, list(values.values()), lengths, branches)
         with numpy.errstate(invalid="ignore", divide="ignore"):
             return _results(self._unchecked(**dict(zip(names, arrays))), self.units, length_unit)
+
+
+#: Argument types that are never quantities and whose size is known without converting them.
+_PLAIN_TYPES = frozenset({float, int, bool, numpy.float64, numpy.ndarray})
+
+#: A call surely needing less memory than this is not checked against the memory available (a file read a call).
+_SMALL_CALL_BYTES = 1 << 26
+
+
+def _surely_small(values: Mapping[str, Any], bytes_per_value: int) -> bool:
+    """Whether a call surely needs less than :data:`_SMALL_CALL_BYTES`: its broadcast size is at most the product of its arrays' sizes."""
+    bound = bytes_per_value
+    for value in values.values():
+        kind = type(value)
+        if kind is numpy.ndarray:
+            bound *= value.size
+        elif kind not in _PLAIN_TYPES:
+            return False
+        if bound > _SMALL_CALL_BYTES:
+            return False
+    return True
 
 
 #: NumPy's own temporaries while it evaluates one generated line (counted generously), in arrays.

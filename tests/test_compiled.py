@@ -329,3 +329,50 @@ def test_a_compiled_folder_others_can_write_is_not_used(compiler, fresh_cache, c
         solver = compiled_solver(linkage, ["rocker"])
     assert isinstance(solver, CompiledSolver) and len(compiler_runs) == 2  # built again, privately
     assert compiled.cache_directory() != shared and compiled.cache_directory().parent.name.startswith("symlink-")
+
+
+def _vector_math_expected() -> bool:
+    """GCC >= 11 on x86-64 glibc >= 2.35: where VECTOR_MATH declares atan2 for vector registers."""
+    import platform
+    import subprocess
+    if platform.machine() != "x86_64" or platform.libc_ver()[0] != "glibc":
+        return False
+    if tuple(int(p) for p in platform.libc_ver()[1].split(".")[:2]) < (2, 35):
+        return False
+    command = find_compiler()
+    probe = subprocess.run(command + ["-dM", "-E", "-x", "c", "/dev/null"], capture_output=True, text=True,
+                           check=False).stdout
+    version = [line.split()[2] for line in probe.splitlines() if line.startswith("#define __GNUC__ ")]
+    return "__clang__" not in probe and bool(version) and int(version[0]) >= 11
+
+
+@pytest.mark.parametrize("name", ["fourbar", "watt2", "jansen"])
+def test_full_kinematics_loops_are_vectorised(compiler, name, tmp_path):
+    """Every loop calls glibc's vector atan2 (a loop that does not vectorise calls only the scalar one)."""
+    if not _vector_math_expected():
+        pytest.skip("glibc's vector math is used only by GCC >= 11 on x86-64 glibc >= 2.35")
+    linkage = catalog_linkage(name)
+    unknowns = [q.name for q in linkage.unknowns]
+    outputs = unknowns + [f"{q}dot" for q in unknowns] + [f"{q}ddot" for q in unknowns] + ["singular"]
+    source = compiled.c_solver_source(linkage, outputs)["source"]
+    compiled._build(source, {}, find_compiler(), tmp_path / "solver.so")
+    binary = (tmp_path / "solver.so").read_bytes()
+    assert b"_ZGVdN4vv_atan2" in binary  # the AVX2 loop's vector atan2
+
+
+def test_small_calls_take_the_fast_path_and_agree_with_the_general_one(compiler):
+    fast = CompiledSolver(catalog_linkage("fourbar"), ["rocker", "coupler_accel", "singular"]).function
+    lengths = dict(a=20.0, b=66.0, c=56.0, d=80.0, branch=1.0, thetadot=10.5, thetaddot=2.0)
+    theta = numpy.linspace(0.0, 6.0, 25)
+    first = fast(theta=theta, **lengths)
+    assert fast._last_arrays[0] is theta  # the fast path ran and remembered the array
+    theta *= 0.5  # the same array, changed in place: read again, not remembered values
+    second = fast(theta=theta, **lengths)
+    general = fast(theta=list(theta), **lengths)  # a list: the general path
+    third = fast(theta=theta.copy(), **{**lengths, "a": numpy.float64(20.0), "b": numpy.array(66.0)})
+    for name in ["rocker", "coupler_accel", "singular", "assembled"]:
+        assert numpy.array_equal(second[name], general[name], equal_nan=True), name
+        assert numpy.array_equal(third[name], general[name], equal_nan=True), name
+        assert second[name].dtype == general[name].dtype and second[name].shape == (25,)
+    assert not numpy.array_equal(first["rocker"], second["rocker"])
+    assert list(second) == ["rocker", "coupler_accel", "singular", "assembled"]

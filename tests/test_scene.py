@@ -21,7 +21,7 @@ pytestmark = pytest.mark.usefixtures("empty_cache")  # every test derives from s
 def assignments(source: str) -> list[str]:
     """Names assigned in the generated function, in order."""
     function = next(node for node in ast.parse(source).body
-                    if isinstance(node, ast.FunctionDef) and node.name == "solve")
+                    if isinstance(node, ast.FunctionDef) and node.name == "_solve_block")
     return [target.id for node in function.body if isinstance(node, ast.Assign)
             for target in node.targets if isinstance(target, ast.Name)]
 
@@ -29,7 +29,7 @@ def assignments(source: str) -> list[str]:
 def dead_assignments(source: str) -> set[str]:
     """Names the generated function computes and never uses."""
     function = next(node for node in ast.parse(source).body
-                    if isinstance(node, ast.FunctionDef) and node.name == "solve")
+                    if isinstance(node, ast.FunctionDef) and node.name == "_solve_block")
     arguments = {a.arg for a in function.args.args}
     assigned = set(assignments(source)) - arguments
     used = {node.id for node in ast.walk(function) if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load)}

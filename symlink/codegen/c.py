@@ -13,7 +13,8 @@ an array of ``n`` doubles, and ``assembled[i]`` is 1 where the linkage closes,
 
 The body is the same common-subexpression-eliminated straight-line code as the
 NumPy module (:func:`symlink.codegen.program.straight_line`), in an inline function
-called once per configuration.  The clamped square root has exactly the
+called once per configuration and always inlined into the loop (GCC and Clang), so
+that the loop stays one vectorisable body however large the linkage.  The clamped square root has exactly the
 semantics of the NumPy module's ``_clamped_sqrt``; small integer powers become
 multiplications.
 
@@ -49,7 +50,7 @@ from .program import is_flag, named_straight_line
 if TYPE_CHECKING:
     from ..linkage import Linkage, Program
 
-__all__ = ["CFunction", "c_function", "c_library", "c_code", "c_identifier", "c_comment", "export_files"]
+__all__ = ["CFunction", "c_function", "c_library", "c_code", "c_identifier", "c_comment", "c_packed", "export_files"]
 
 #: Integer powers up to this size are written as multiplications.
 LARGEST_MULTIPLIED_POWER = 4
@@ -103,6 +104,14 @@ class _CPrinter(C99CodePrinter):
         if exponent == -sp.S.Half:
             return f"1.0/sqrt({self._print(base)})"
         return f"pow({self._print(base)}, {self._print(sp.Float(exponent) if exponent.is_Rational else exponent)})"
+
+    # Or and And as sums and products of 1.0/0.0 selects: no short circuit, and no mix of int and double
+    # lanes, either of which keeps GCC from vectorising a loop with a flag output such as singular.
+    def _print_Or(self, expr):
+        return "(" + " + ".join(f"({self._print(a)} ? 1.0 : 0.0)" for a in sorted(expr.args, key=sp.default_sort_key)) + ")"
+
+    def _print_And(self, expr):
+        return "(" + " * ".join(f"({self._print(a)} ? 1.0 : 0.0)" for a in sorted(expr.args, key=sp.default_sort_key)) + ")"
 
     def _print_BooleanTrue(self, expr):
         return "1"
@@ -195,7 +204,7 @@ def c_function(program: Program, name: str, doc: str = "") -> CFunction:
         f"{assembled}[i] is 1 where the linkage closes, 0 where it cannot be assembled (outputs NaN).")
     prototype = c_comment(summary) + "\n" + signature + ";\n"
 
-    lines = [f"static inline int {kernel}(" + ", ".join([f"double {a}" for a in arguments]
+    lines = [f"SYMLINK_INLINE int {kernel}(" + ", ".join([f"double {a}" for a in arguments]
                                                          + [f"double *restrict {out}"]) + ")", "{"]
     used = set().union(*(e.free_symbols for _, e in code.assignments), *(e.free_symbols for e in code.outputs.values()))
     lines += [f"    (void){s.name};  /* not needed by these outputs */" for s in code.arguments if s not in used]
@@ -203,7 +212,9 @@ def c_function(program: Program, name: str, doc: str = "") -> CFunction:
         lines.append(f"    const double {symbol.name} = {printer.doprint(expr)};")
     for k, (output, expr) in enumerate(code.outputs.items()):
         lines.append(f"    {out}[{k}] = {printer.doprint(expr)};  /* {output} */")
-    finite = " && ".join(f"isfinite({r.name})" for r in code.roots) or "1"
+    # All roots finite: 0*x is 0 for a finite x and NaN for an infinite or NaN one. One test, no
+    # short-circuit branches, so that the loop stays vectorisable however many loops the linkage has.
+    finite = f"isfinite({' + '.join(f'0.0 * {r.name}' for r in code.roots)})" if code.roots else "1"
     lines += [f"    return {finite};", "}", ""]
     restricted = "SYMLINK_LOOP " + signature.replace("double *", "double *restrict ").replace(
         "unsigned char *", "unsigned char *restrict ")
@@ -225,6 +236,28 @@ def c_function(program: Program, name: str, doc: str = "") -> CFunction:
     lines += ["        }", "    }", "}"]
     return CFunction(name, tuple(arguments), tuple(outputs), tuple(output_parameters), tuple(flags),
                      prototype, "\n".join(lines) + "\n")
+
+
+def c_packed(function: CFunction) -> str:
+    """A wrapper ``<name>_packed(n, pointers, steps)`` of a loop function: its arrays and steps as two arrays.
+
+    ``pointers`` holds the arguments' arrays, then the outputs' and
+    ``assembled``, in calling order; ``steps`` the arguments' steps.  A caller
+    from another language (symlink's compiled backend through ctypes) then
+    passes three values a call instead of two an argument.
+
+    >>> from symlink.catalog import fourbar
+    >>> print(c_packed(c_function(fourbar().program(["rocker"]), "rocker")).splitlines()[0])
+    void rocker_packed(size_t n, void *const *pointers, const ptrdiff_t *steps)
+    """
+    arguments = [f"(const double *)pointers[{k}], steps[{k}]" for k in range(len(function.arguments))]
+    first = len(function.arguments)
+    outputs = [f"({'unsigned char' if flag else 'double'} *)pointers[{first + k}]"
+               for k, flag in enumerate(function.flags)]
+    outputs.append(f"(unsigned char *)pointers[{first + len(function.flags)}]")
+    call = ",\n        ".join(["n"] + arguments + outputs)
+    return (f"void {function.name}_packed(size_t n, void *const *pointers, const ptrdiff_t *steps)\n"
+            f"{{\n    (void)steps;\n    {function.name}({call});\n}}\n")
 
 
 _HEADER = """{title}
@@ -249,6 +282,14 @@ _PRELUDE = """\
  * backend defines it to vectorise them); it is empty by default. */
 #ifndef SYMLINK_LOOP
 #define SYMLINK_LOOP
+#endif
+
+/* The per-configuration kernels are inlined into their loops whatever their size,
+ * so that a compiler can vectorise the loop of a large linkage too. */
+#if defined(__GNUC__)
+#define SYMLINK_INLINE static inline __attribute__((always_inline))
+#else
+#define SYMLINK_INLINE static inline
 #endif
 
 static const double symlink_tolerance = {tolerance!r};
@@ -280,7 +321,7 @@ static inline const double *symlink_block(double *block, const double *x, ptrdif
 
 /* sqrt(x), taking x >= -tolerance*scale as rounding at a toggle (0) and anything lower,
  * or NaN, as no assembly (NaN). The same as sqrt(fmax(x, 0.0)) where x is not NaN. */
-static inline double symlink_clamped_sqrt(double x, double scale)
+SYMLINK_INLINE double symlink_clamped_sqrt(double x, double scale)
 {{
     return x >= -symlink_tolerance * scale ? sqrt(x > 0.0 ? x : 0.0) : NAN;
 }}

@@ -31,7 +31,7 @@ from sympy.printing.numpy import NumPyPrinter
 from ..version import __version__
 from ..linkage import is_branch_name
 from ..position import TOLERANCE
-from .program import format_default, straight_line
+from .program import format_default, is_flag, straight_line
 
 if TYPE_CHECKING:
     from ..linkage import Linkage, Program
@@ -43,6 +43,9 @@ __all__ = ["NumPyCodePrinter", "numpy_function", "numpy_module", "load_numpy_mod
 ARGUMENT_CONTRACT = ("branch signs exactly +1 or -1; lengths positive and finite; every value finite and real "
                      "(complex values are refused); array arguments whose shapes broadcast together")
 
+
+#: Values a generated kernel evaluates at a time (see ``_evaluate``): a block's temporaries stay in cache.
+BLOCK = 4096
 
 _PYTHON_ESCAPES = {"\\": "\\\\", '"': '\\"'}
 
@@ -94,9 +97,13 @@ def _arguments(check, names, values, lengths=(), signs=()):
     """
     if not check:
         arrays = tuple(numpy.asarray(value, dtype=float) for value in values)
-        return arrays, numpy.broadcast_shapes(*(array.shape for array in arrays))
+        shapes = {array.shape for array in arrays} - {()}
+        return arrays, shapes.pop() if len(shapes) == 1 else numpy.broadcast_shapes(*(a.shape for a in arrays))
     arrays = []
     for name, value in zip(names, values):
+        if type(value) is float:  # the usual length, sign or rate: no conversion to check
+            arrays.append(numpy.float64(value))
+            continue
         array = numpy.asarray(value)
         kind = array.dtype.kind
         if kind != "f":
@@ -108,8 +115,9 @@ def _arguments(check, names, values, lengths=(), signs=()):
                 why = " (its imaginary part would be lost)" if kind == "c" else ""
                 raise ValueError(f"{name} must be real numbers, got {array.dtype} values{why}") from None
         arrays.append(array)
+    shapes = {array.shape for array in arrays} - {()}
     try:
-        shape = numpy.broadcast_shapes(*(array.shape for array in arrays))
+        shape = shapes.pop() if len(shapes) == 1 else numpy.broadcast_shapes(*(array.shape for array in arrays))
     except ValueError:
         shapes = ", ".join(f"{name} has shape {array.shape}" for name, array in zip(names, arrays) if array.ndim)
         raise ValueError(f"the arguments do not broadcast together: {shapes}") from None
@@ -156,10 +164,59 @@ def checked_arguments(names: Sequence[str], values: Sequence[object], lengths: S
     return _arguments(True, tuple(names), tuple(values), tuple(lengths), tuple(signs))
 
 
+def _evaluate(kernel, arguments, shape, keys, flags):
+    """``{key: array}``: the kernel's results broadcast to ``shape``; a long input evaluated a block of rows at a time.
+
+    Up to :data:`BLOCK` values, one call of ``kernel`` on the whole arguments.
+    Beyond, the outputs are allocated once (``flags`` tells the true/false
+    ones) and the kernel is called on consecutive slices of the leading axis
+    of about ``BLOCK`` values each (an argument that broadcasts along that axis
+    is passed whole), so its temporaries stay in cache and the memory a call
+    needs beyond its outputs does not grow with the input.  Every value is
+    computed by the same elementwise operations either way: the results are
+    bit for bit those of one call on the whole arguments.
+    """
+    count = 1
+    for extent in shape:
+        count *= extent
+    if count <= BLOCK:
+        return {key: numpy.broadcast_to(result, shape) for key, result in zip(keys, kernel(*arguments))}
+    rows, dimensions = shape[0], len(shape)
+    step = max(1, BLOCK // (count // rows))
+    outputs = [numpy.empty(shape, dtype=bool if flag else float) for flag in flags]
+    sliced = [argument.ndim == dimensions and argument.shape[0] != 1 for argument in arguments]
+    for start in range(0, rows, step):
+        stop = start + step
+        results = kernel(*[argument[start:stop] if cut else argument for argument, cut in zip(arguments, sliced)])
+        for output, result in zip(outputs, results):
+            output[start:stop] = result
+    return dict(zip(keys, outputs))
+
+
+def _last_uses(code) -> dict[int, list[str]]:
+    """``{statement index: temporaries no later statement or output needs}``: where the kernel may drop them."""
+    kept = {s.name for s in set().union(*(expr.free_symbols for expr in code.outputs.values())) | set(code.roots)}
+    last: dict[str, int] = {}
+    for index, (symbol, expr) in enumerate(code.assignments):
+        for used in expr.free_symbols:
+            last[used.name] = index
+        last.setdefault(symbol.name, index)
+    arguments = {s.name for s in code.arguments}
+    dropped: dict[int, list[str]] = {}
+    for name, index in last.items():
+        if name not in arguments and name not in kept:
+            dropped.setdefault(index, []).append(name)
+    return dropped
+
+
 def numpy_function(program: Program, name: str, doc: str = "") -> str:
     """Python source of one vectorised function computing the program's outputs.
 
-    Its arguments are checked (see :func:`checked_arguments`) unless it is called with ``check=False``.
+    Its arguments are checked (see :func:`checked_arguments`) unless it is
+    called with ``check=False``.  The arithmetic lives in a kernel beside it,
+    ``_<name>_block``, called by ``_evaluate`` once for a short input and a
+    block at a time for a long one; the kernel drops each temporary once no
+    later line needs it, so that its arrays are reused while they are in cache.
     """
     code = straight_line(program)
     printer = NumPyCodePrinter()
@@ -169,6 +226,7 @@ def numpy_function(program: Program, name: str, doc: str = "") -> str:
     signature = ", ".join([f"{a}={format_default(code.defaults[a])}" if a in code.defaults else a
                            for a in arguments] + ["*", "check=True"])
     outputs = ", ".join(code.outputs)
+    kernel = f"_{name}_block"
     lines = [f"def {name}({signature}):"]
     text = (docstring_text(doc.strip()) + "\n\n" if doc else "") + (
         f"Returns a dict of arrays: {outputs};\n"
@@ -176,22 +234,31 @@ def numpy_function(program: Program, name: str, doc: str = "") -> str:
         "The arguments broadcast against each other.  They are checked (ValueError naming the argument):\n"
         + textwrap.fill(f"{ARGUMENT_CONTRACT}; check=False skips that for hot loops.", 96))
     lines.append('    """' + text.replace("\n", "\n    ") + '\n    """')
+    listed = "".join(f"{a}, " for a in arguments)
     if arguments:
-        lines.append(f"    ({', '.join(arguments)},), shape = _arguments(\n"
-                     f"        check, {tuple(arguments)!r}, ({', '.join(arguments)},), {lengths!r}, {signs!r})")
+        lines.append(f"    ({listed}), shape = _arguments(\n"
+                     f"        check, {tuple(arguments)!r}, ({listed}), {lengths!r}, {signs!r})")
     else:
         lines.append("    shape = ()")
-    for symbol, expr in code.assignments:
+    flags = tuple(is_flag(expr) for expr in code.outputs.values()) + (True,)
+    keys = tuple(code.outputs) + ("assembled",)
+    lines.append(f"    return _evaluate({kernel}, ({listed}), shape, {keys!r}, {flags!r})")
+    lines += ["", "", f"def {kernel}({', '.join(arguments)}):",
+              f'    """The outputs of {name} and the assembled mask, for arguments that broadcast together."""']
+    dropped = _last_uses(code)
+    for index, (symbol, expr) in enumerate(code.assignments):
         lines.append(f"    {symbol.name} = {printer.doprint(expr)}")
+        if dropped.get(index):
+            lines.append(f"    del {', '.join(sorted(dropped[index]))}")
     if code.roots:
         assembled = " & ".join(f"numpy.isfinite({r.name})" for r in code.roots)
     else:
         assembled = "True"
-    lines.append("    return {")
+    lines.append("    return (")
     for output, expr in code.outputs.items():
-        lines.append(f"        {output!r}: numpy.broadcast_to({printer.doprint(expr)}, shape),")
-    lines.append(f"        'assembled': numpy.broadcast_to({assembled}, shape),")
-    lines.append("    }")
+        lines.append(f"        {printer.doprint(expr)},  # {output}")
+    lines.append(f"        {assembled},  # assembled")
+    lines.append("    )")
     return "\n".join(lines) + "\n"
 
 
@@ -203,8 +270,13 @@ import numpy
 
 TOLERANCE = {tolerance!r}
 
+#: Values a kernel evaluates at a time: its temporaries of one block stay in cache.
+BLOCK = {block!r}
+
 
 {arguments}
+
+{evaluate}
 
 def _clamped_sqrt(x, scale):
     """sqrt(x), taking x >= -TOLERANCE*scale as rounding at a toggle (0) and anything lower as no assembly (NaN)."""
@@ -218,7 +290,8 @@ def numpy_module(functions: Sequence[tuple[str, Program, str]], title: str = "A 
     again = f"\nRegenerate with: {docstring_text(regenerate)}" if regenerate else ""
     header = _HEADER.format(title=docstring_text(title), version=__version__, sympy=sp.__version__,
                             tolerance=TOLERANCE, regenerate=again,
-                            arguments=inspect.getsource(_arguments))
+                            arguments=inspect.getsource(_arguments), block=BLOCK,
+                            evaluate=inspect.getsource(_evaluate))
     return header + "".join("\n\n" + numpy_function(p, name, doc) for name, p, doc in functions)
 
 

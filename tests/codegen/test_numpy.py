@@ -16,8 +16,9 @@ from symlink.codegen.numpy import _arguments, docstring_text, export_files, load
 
 def test_common_subexpressions_are_computed_once():
     source = numpy_module([("f", fourbar().program(["coupler_accel", "rocker_accel"]), "")])
-    function = next(n for n in ast.parse(source).body if isinstance(n, ast.FunctionDef) and n.name == "f")
+    function = next(n for n in ast.parse(source).body if isinstance(n, ast.FunctionDef) and n.name == "_f_block")
     values = [ast.dump(node.value) for node in function.body if isinstance(node, ast.Assign)]
+    assert len(values) > 20
     calls = collections.Counter(ast.dump(n) for v in function.body if isinstance(v, ast.Assign)
                                 for n in ast.walk(v.value) if isinstance(n, ast.Call))
     assert len(values) == len(set(values))
@@ -44,9 +45,9 @@ def test_module_header_names_versions():
 def test_titles_and_docstrings_cannot_break_out_of_the_module():
     hostile = 'x""" + __import__("os").system("echo no") + """\\'
     source = numpy_module([("f", fourbar().program(["rocker"]), hostile)], title=hostile, regenerate=hostile)
-    tree = ast.parse(source)  # still a docstring, the import, TOLERANCE and functions: nothing else would run
+    tree = ast.parse(source)  # still a docstring, the import, TOLERANCE, BLOCK and functions: nothing else would run
     assert ast.get_docstring(tree).startswith(hostile)
-    assert [type(n).__name__ for n in tree.body] == ["Expr", "Import", "Assign"] + ["FunctionDef"] * 3
+    assert [type(n).__name__ for n in tree.body] == ["Expr", "Import", "Assign", "Assign"] + ["FunctionDef"] * 5
     function = next(n for n in tree.body if isinstance(n, ast.FunctionDef) and n.name == "f")
     assert ast.get_docstring(function).startswith(hostile)
     assert [type(n).__name__ for n in function.body[:2]] == ["Expr", "Assign"]
@@ -140,3 +141,68 @@ def test_every_generated_module_embeds_the_check_and_imports_numpy_only():
 def test_checked_arguments_is_the_function_every_module_embeds():
     source = numpy_module([("f", fourbar().program(["rocker"]), "")])
     assert inspect.getsource(_arguments) in source
+
+
+# --- blocked evaluation: bit for bit the unblocked result, memory bounded by a block --------------------
+
+def _random_arguments(function, rng, shape):
+    """Random arguments of a generated function: angles anywhere, lengths over a decade (many do not assemble)."""
+    values = {}
+    for name, parameter in inspect.signature(function).parameters.items():
+        if parameter.kind is inspect.Parameter.KEYWORD_ONLY:
+            continue
+        if name.startswith("branch"):
+            values[name] = rng.choice([-1.0, 1.0], size=shape)
+        elif parameter.default is not inspect.Parameter.empty:  # a rate or an acceleration of the input
+            values[name] = rng.normal(0.0, 5.0, size=shape)
+        else:
+            values[name] = rng.uniform(-4.0, 4.0, size=shape)
+    return values
+
+
+@pytest.mark.parametrize("stem", ["fourbar", "watt2", "jansen", "slider_crank", "fivebar"])
+def test_blocked_evaluation_is_bit_identical_to_one_call(stem):
+    path = Path(__file__).resolve().parents[2] / "generated" / f"{stem}.py"
+    namespace = load_numpy_module(path.read_text(encoding="utf-8"))
+    namespace["BLOCK"] = 7  # many blocks and a ragged last one, even for a short input
+    rng = numpy.random.default_rng(13)
+    public = [name for name in namespace if not name.startswith("_") and callable(namespace[name])
+              and name[0].islower() and "check" in inspect.signature(namespace[name]).parameters]
+    assert public
+    for name in public:
+        function, kernel = namespace[name], namespace[f"_{name}_block"]
+        for shape in [(101,), (23, 5), (1, 40)]:
+            values = _random_arguments(function, rng, shape)
+            for argument in list(values)[1:]:  # lengths positive; some arguments shared (scalars, broadcast rows)
+                if rng.random() < 0.5:
+                    values[argument] = values[argument].flat[0] if rng.random() < 0.5 else values[argument][:1]
+                values[argument] = numpy.abs(values[argument]) + 0.5 if not argument.startswith("branch") \
+                    else values[argument]
+            blocked = function(**values, check=False)
+            arrays = [numpy.asarray(values[a], dtype=float) for a in inspect.signature(kernel).parameters]
+            whole = kernel(*arrays)
+            assert list(blocked) == list(blocked)[:len(whole)] and len(blocked) == len(whole)
+            for key, expected in zip(blocked, whole):
+                expected = numpy.broadcast_to(expected, shape)
+                assert blocked[key].shape == shape and blocked[key].dtype == expected.dtype, (stem, name, key)
+                assert numpy.array_equal(blocked[key], expected, equal_nan=True), (stem, name, key, shape)
+            assembled = blocked["assembled"]
+            if name == public[0] and shape == (101,):
+                assert 0 < assembled.sum() < assembled.size, (stem, name)  # NaN patterns of both kinds compared
+
+
+def test_a_long_input_needs_about_one_block_beyond_its_outputs():
+    import tracemalloc
+    namespace = _generated_fourbar()
+    function = namespace["accelerations"]
+    theta = numpy.linspace(0.0, 6.0, 200_000)
+    tracemalloc.start()
+    try:
+        before = tracemalloc.get_traced_memory()[0]
+        result = function(theta, 20.0, 66.0, 56.0, 80.0, 1, 10.5, 2.0, check=False)
+        peak = tracemalloc.get_traced_memory()[1] - before
+    finally:
+        tracemalloc.stop()
+    outputs = sum(array.nbytes for array in result.values())
+    block = namespace["BLOCK"] * 8
+    assert peak - outputs < 64 * block  # an unblocked call holds dozens of input-sized temporaries (~100 MB here)

@@ -81,7 +81,7 @@ def _linkage(place: str, name: str):
 def _numpy_module_is_safe(linkage, named, files):
     tree = ast.parse(files["h.py"])
     kinds = [type(node).__name__ for node in tree.body]
-    assert kinds[:3] == ["Expr", "Import", "Assign"] and set(kinds[3:]) == {"FunctionDef"}, kinds
+    assert kinds[:4] == ["Expr", "Import", "Assign", "Assign"] and set(kinds[4:]) == {"FunctionDef"}, kinds
     namespace = load_numpy_module(files["h.py"])
     values = {named["coordinate"]: [0.0, 0.5], named["length"]: 20.0, "b": 66.0, "c": 56.0, "d": 80.0}
     result = namespace["positions"](**values)

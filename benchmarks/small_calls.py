@@ -1,0 +1,109 @@
+"""Small calls: microseconds a call at 1 to 1000 input values, through every way symlink is called.
+
+Full kinematics of the four-bar (coupler and rocker angles, speeds and
+accelerations) and its positions alone, one set of lengths, N crank angles:
+
+* ``module``: the generated NumPy function (``check=True``, as a user calls it);
+* ``module-nocheck``: the same with ``check=False`` (a hot loop);
+* ``Solver``: :class:`symlink.solver.Solver` (units, memory and argument checks, a Results table);
+* ``compiled-entry``: the compiled C loop through its ctypes entry (``CompiledSolver.function``);
+* ``compiled``: :class:`symlink.compiled.CompiledSolver`, called as a ``Solver`` is;
+* ``numba``: a hand-written numba loop of the same formulas (the floor of a Python call).
+
+Targets: a compiled call with 10 values at most 10 us; a generated solver
+called with 20 values at most 20 us.
+
+    python -m benchmarks.small_calls
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import time
+
+import numpy
+
+from benchmarks.blocks import LENGTHS, OUTPUTS, SPEED, ACCEL, numba_function
+
+POSITIONS = ["coupler", "rocker"]
+SIZES = (1, 10, 20, 100, 1000)
+
+
+def per_call(call, budget: float = 0.3) -> float:
+    """Microseconds of one call: the best mean of batches of calls, within about ``budget`` seconds."""
+    call()
+    batch = 1
+    while True:  # a batch lasting about a millisecond
+        start = time.perf_counter()
+        for _ in range(batch):
+            call()
+        if time.perf_counter() - start > 1e-3:
+            break
+        batch *= 2
+    best = math.inf
+    end = time.perf_counter() + budget
+    while time.perf_counter() < end:
+        start = time.perf_counter()
+        for _ in range(batch):
+            call()
+        best = min(best, (time.perf_counter() - start) / batch)
+    return 1e6 * best
+
+
+def methods(outputs: list[str]) -> dict:
+    from symlink.catalog import fourbar
+    from symlink.compiled import CompiledSolver
+    from symlink.solver import Solver
+    linkage = fourbar()
+    solver = Solver(linkage, outputs)
+    compiled = CompiledSolver(linkage, outputs)
+    rates = {"thetadot": SPEED, "thetaddot": ACCEL} if len(outputs) > 2 else {}
+    lengths = dict(zip("abcd", LENGTHS))
+    found = {
+        "module": lambda theta: solver.function(theta, **lengths, branch=1, **rates),
+        "module-nocheck": lambda theta: solver.function(theta, **lengths, branch=1, **rates, check=False),
+        "Solver": lambda theta: solver(theta=theta, **lengths, branch=1, **rates),
+        "compiled-entry": lambda theta: compiled.function(theta=theta, **lengths, branch=1, **rates),
+        "compiled": lambda theta: compiled(theta=theta, **lengths, branch=1, **rates),
+    }
+    if len(outputs) > 2:
+        hand = numba_function()
+        found["numba"] = hand
+    return found
+
+
+def measure(sizes=SIZES) -> dict[str, dict[str, dict[int, float]]]:
+    table: dict = {}
+    for label, outputs in (("full kinematics", OUTPUTS), ("positions", POSITIONS)):
+        table[label] = {}
+        for name, call in methods(outputs).items():
+            table[label][name] = {}
+            for n in sizes:
+                theta = numpy.linspace(0.0, 2 * math.pi, n)
+                table[label][name][n] = per_call(lambda: call(theta))
+    return table
+
+
+def report(table) -> str:
+    lines = []
+    for label, rows in table.items():
+        sizes = list(next(iter(rows.values())))
+        lines.append(f"{label}: us a call")
+        lines.append(f"{'method':>16} " + " ".join(f"{f'N={n}':>9}" for n in sizes))
+        for name, row in rows.items():
+            lines.append(f"{name:>16} " + " ".join(f"{row[n]:>9.1f}" for n in sizes))
+    full = table["full kinematics"]
+    lines.append(f"compiled at N=10: {full['compiled'][10]:.1f} us (target <= 10); "
+                 f"Solver at N=20: {full['Solver'][20]:.1f} us, compiled at N=20: {full['compiled'][20]:.1f} us "
+                 "(target <= 20)")
+    return "\n".join(lines)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.parse_args()
+    print(report(measure()))
+
+
+if __name__ == "__main__":
+    main()

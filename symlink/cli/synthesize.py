@@ -332,11 +332,14 @@ KINDS: dict[str, Callable] = {"function": _register_function, "path": _register_
 
 
 def register(commands) -> None:
-    """Register ``symlink synthesize KIND``."""
-    command = commands.add_parser("synthesize", **command_help(
+    """Register ``symlink synthesize KIND`` (the kinds are added when it is used: they need the synthesis modules)."""
+    commands.add_parser("synthesize", populate=_add_kinds, **command_help(
         "synthesize four-bars from targets in a csv: " + "|".join(KINDS),
         "angles in degrees (--units rad)", "symlink synthesize path points.csv",
         "'symlink synthesize KIND --help' describes a kind."))
+
+
+def _add_kinds(command: argparse.ArgumentParser) -> None:
     kinds = command.add_subparsers(dest="kind", required=True, parser_class=Parser, metavar="KIND")
     for add in KINDS.values():
         add(kinds)

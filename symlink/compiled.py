@@ -61,7 +61,7 @@ import tempfile
 import threading
 import warnings
 from pathlib import Path
-from typing import Mapping, Sequence
+from typing import Any, Mapping, Sequence
 
 import numpy
 
@@ -355,8 +355,8 @@ class _Entry:
         count = len(self.arguments)
         self._numbers = numpy.zeros(max(count, 1))  # the numbers of a call, each read with a step of 0
         self._numbers_at = self._numbers.ctypes.data
-        self._pointers = (ctypes.c_void_p * (count + len(self.outputs) + 1))()
-        self._steps = (ctypes.c_ssize_t * max(count, 1))()
+        self._pointers: Any = (ctypes.c_void_p * (count + len(self.outputs) + 1))()  # filled by slices
+        self._steps: Any = (ctypes.c_ssize_t * max(count, 1))()
         self._pointers_at, self._steps_at = ctypes.addressof(self._pointers), ctypes.addressof(self._steps)
         self._last_arrays: list = [None] * count  # held, so that their buffers (and pointers) stay valid
         self._last_pointers = [0] * count
@@ -391,8 +391,9 @@ class _Entry:
 
     def _small(self, values: dict) -> dict[str, numpy.ndarray] | None:
         """The fast path's result, or ``None`` where the call does not qualify (the general path then runs)."""
-        if len(values) > len(self.arguments):
-            return None  # an unknown keyword: the general path says so
+        packed = self.packed
+        if packed is None or len(values) > len(self.arguments):
+            return None  # no packed entry, or an unknown keyword: the general path says so
         with self._lock:  # the slots, and the arrays remembered with their pointers, belong to one call at a time
             length = 0
             numbers = self._numbers
@@ -400,7 +401,7 @@ class _Entry:
             pointers = []
             steps = []
             for index, name in enumerate(self.arguments):
-                value = values[name] if name in values else self.defaults.get(name)
+                value: Any = values[name] if name in values else self.defaults.get(name)
                 kind = type(value)
                 if kind is float or kind is int or kind is numpy.float64 or (
                         kind is numpy.ndarray and value.ndim == 0 and value.dtype == numpy.float64):
@@ -427,7 +428,7 @@ class _Entry:
                          for is_flag, row in self._rows]
             self._pointers[:] = pointers
             self._steps[:len(steps)] = steps
-            self.packed(length, self._pointers_at, self._steps_at)
+            packed(length, self._pointers_at, self._steps_at)
         result = dict(zip(self._float_names, floats))
         result.update(zip(self._flag_names, flags))
         return {name: result[name] for name in self.outputs + ["assembled"]}

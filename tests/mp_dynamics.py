@@ -66,7 +66,7 @@ def slider_case() -> Case:
                 {"crank": ("A", lambda x, q, p: mp.mpc(0), lambda x, q, p: x[0]),
                  "conrod": ("B", B, lambda x, q, p: q[0]),
                  "slider": ("C", C, lambda x, q, p: mp.mpf(0))},
-                {"A": lambda x, q, p: mp.mpc(0), "B": B, "C": C},
+                {"A": lambda x, q, p: mp.mpc(0), "B": B, "C": C, "AS": lambda x, q, p: mp.mpc(q[1], 0)},
                 dict(a=1.3, b=4.1, offset=0.7))
 
 

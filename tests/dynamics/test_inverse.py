@@ -184,6 +184,10 @@ def test_bodies_balance_their_reactions(name):
             first, second = joint.bodies
             push(second, point[joint.name], force)
             push(first, point[joint.name], -force)
+            if key + "_moment" in found:  # a slider's couple, on its block and back on its guide
+                for body, sign in ((second, 1), (first, -1)):
+                    if body in net:
+                        net[body][1] += sign * found[key + "_moment"]
         net["crank"][1] += found["input_torque"]
         gravity = mp.mpc(p["g_x"], p["g_y"])
         for body, (mass, _, _, _) in masses.items():
@@ -282,7 +286,9 @@ def test_statics_fourbar_rocker_torque_by_virtual_work():
     ratio = a * mp.sin(beta - theta) / (c * mp.sin(beta - phi))
     values = {"a": a, "b": b, "c": c, "d": d, "theta": theta, "beta": beta, "phi": phi, "T4": 7.5}
     values.update({f"{q}{suffix}": 0 for q in ("theta", "beta", "phi") for suffix in ("dot", "ddot")})
-    assert abs(evaluate(model.linkage.extras["input_torque"], values) + 7.5 * ratio) < 1e-40
+    with mp.workdps(DPS):
+        ratio = a * mp.sin(beta - theta) / (c * mp.sin(beta - phi))
+        assert abs(evaluate(model.linkage.extras["input_torque"], values) + 7.5 * ratio) < 1e-40
 
 
 def test_a_torque_request_derives_no_reactions_and_positions_no_dynamics():
@@ -294,4 +300,5 @@ def test_a_torque_request_derives_no_reactions_and_positions_no_dynamics():
     assert sp.count_ops(torque.outputs["input_torque"]) < sp.count_ops(model.linkage.extras["joint_A_x"])
     positions = model.linkage.program(["rocker"])
     assert not {rate(sp.Symbol(q, real=True)) for q in ("beta", "phi")} & {s for s, _ in positions.assignments}
-    assert not {s.name for s in positions.arguments} & {"m_crank", "k", "thetadot"}
+    plain = CATALOG["fourbar"]().program(["rocker"])
+    assert positions.assignments == plain.assignments and positions.outputs == plain.outputs

@@ -122,7 +122,7 @@ def power_reference(name: str, case, values: dict, masses: dict, motion: Motion)
         return rate_of_energy - power
 
 
-@pytest.mark.parametrize("name", ["fourbar", "slider-crank", "watt2", "fivebar"])
+@pytest.mark.parametrize("name", ["fourbar", "slider-crank", pytest.param("watt2", marks=pytest.mark.slow), "fivebar"])
 @pytest.mark.parametrize("seed", [1, pytest.param(2, marks=pytest.mark.slow)])
 def test_power_balance(name, seed):
     """Q q' (the driving effort's power) equals the rate of energy less the loads' power, to 1e-12."""
@@ -139,7 +139,7 @@ def test_power_balance(name, seed):
         assert abs(power - expected) <= mp.mpf("1e-12") * (abs(expected) + 1e-3), (power, expected)
 
 
-@pytest.mark.parametrize("name", ["fourbar", "slider-crank"])
+@pytest.mark.parametrize("name", [pytest.param("fourbar", marks=pytest.mark.slow), "slider-crank"])
 def test_generated_torque_matches_the_power_balance(name):
     """The NumPy module's torque (positions solved by it) matches the reference effort to 1e-9."""
     model = model_of(name)
@@ -152,7 +152,8 @@ def test_generated_torque_matches_the_power_balance(name):
     assert float(result["input_torque"]) == pytest.approx(float(expected), rel=1e-9)
 
 
-@pytest.mark.parametrize("name", ["fourbar", "slider-crank", pytest.param("watt2", marks=pytest.mark.slow)])
+@pytest.mark.parametrize("name", [pytest.param("fourbar", marks=pytest.mark.slow), "slider-crank",
+                                  pytest.param("watt2", marks=pytest.mark.slow)])
 def test_bodies_balance_their_reactions(name):
     """Each moving body: joint forces + loads = m a_G and moments about G = I alpha (a_G by finite differences)."""
     model = model_of(name)

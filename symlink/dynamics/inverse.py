@@ -47,12 +47,13 @@ import sympy as sp
 
 from ..bodies import GROUND, PRISMATIC
 from ..closure import is_angle
+from ..linkage import Linkage
 from ..vectors import expression
 
 if TYPE_CHECKING:
     from .model import DynamicModel
 
-__all__ = ["driving_efforts", "reactions", "dynamic_outputs"]
+__all__ = ["driving_efforts", "reactions", "dynamic_outputs", "DynamicLinkage", "dynamic_linkage"]
 
 
 def driving_efforts(model: DynamicModel) -> list[sp.Expr]:
@@ -81,7 +82,7 @@ class _Unknown:
 def _input_drives(model: DynamicModel):
     """Per input: ``(body that turns with it, None)`` for an angle, ``(guide, block, point, direction)`` for a travel."""
     linkage = model.kinematics
-    drives = []
+    drives: list[tuple] = []
     for q in linkage.inputs:
         if is_angle(linkage, q):
             turning = [b.name for b in model.mechanism.bodies if not b.is_ground and model.body_angle(b.name) == q]
@@ -281,3 +282,32 @@ def dynamic_outputs(model: DynamicModel) -> dict[str, sp.Expr]:
         outputs["applied_generalised_force"] = model.applied_generalised_forces()[0]
     return outputs
 
+
+class DynamicLinkage(Linkage):
+    """A linkage whose extra outputs include the dynamic ones; :attr:`dynamic_outputs` names them."""
+
+    dynamic_outputs: tuple[str, ...] = ()
+    model: DynamicModel
+
+
+def dynamic_linkage(model: DynamicModel) -> DynamicLinkage:
+    """The model's kinematic linkage with the dynamic outputs as extras and the model's symbols as parameters.
+
+    Scenes, exports and LaTeX take it like any linkage, and derive only what a request
+    needs (a torque: accelerations, no reactions).  Building it derives every output's
+    expression once: keep it rather than calling this again.
+
+    >>> from symlink.catalog import fourbar
+    >>> from symlink.dynamics.model import DynamicModel, MassProperties
+    >>> linkage = dynamic_linkage(DynamicModel(fourbar(), [MassProperties("crank", "m2", inertia="I2")]))
+    >>> linkage.dynamic_outputs[:3], linkage.extras["input_torque"]
+    (('input_torque', 'joint_A_x', 'joint_A_y'), I2*thetaddot)
+    """
+    outputs = dynamic_outputs(model)
+    base = model.kinematics
+    result = DynamicLinkage(base.name, base.loops, base.inputs, base.unknowns,
+                            parameters=list(base.parameters) + model.new_parameters,
+                            points=base.points, roles=base.roles, extras={**base.extras, **outputs})
+    result.dynamic_outputs = tuple(outputs)
+    result.model = model
+    return result

@@ -32,7 +32,7 @@ for each input ``q`` (velocities are linear in the input rates), from which
 
 so that a one-input linkage moves by ``M q'' + M'(q) q'^2 / 2 = Q_applied + Q_drive``.
 :mod:`symlink.dynamics.inverse` adds the driving effort and the joint reactions, and
-:attr:`DynamicModel.linkage` is a :class:`~symlink.linkage.Linkage` whose extra outputs
+:func:`symlink.dynamics.inverse.dynamic_linkage` gives a :class:`~symlink.linkage.Linkage` whose extra outputs
 are all of them, so scenes, exports and LaTeX take them like any other output.
 
 >>> from symlink.catalog import fourbar
@@ -59,7 +59,7 @@ from ..names import identifier
 from ..vectors import Vector, expression, rate, time_derivative
 
 __all__ = ["Value", "MassProperties", "Gravity", "PointForce", "BodyTorque", "Spring", "Damper", "Load",
-           "DynamicModel", "DynamicLinkage"]
+           "DynamicModel"]
 
 #: A value of the model: a number, a SymPy expression, or the name of a symbol.
 Value = Union[int, float, str, sp.Expr]
@@ -138,13 +138,6 @@ class AppliedForce:
     force: tuple[sp.Expr, sp.Expr]
 
 
-class DynamicLinkage(Linkage):
-    """A linkage whose extra outputs include the dynamic ones; :attr:`dynamic_outputs` names them."""
-
-    dynamic_outputs: tuple[str, ...] = ()
-    model: "DynamicModel"
-
-
 class DynamicModel:
     """Mass properties and loads on the bodies of ``linkage`` (see the module docstring).
 
@@ -199,9 +192,9 @@ class DynamicModel:
         self.loads = tuple(loads)
         self.forces: list[AppliedForce] = []
         self.couples: list[tuple[str, sp.Expr]] = []
-        for body, (mass, centre, _) in self.masses.items():
+        for name, (mass, centre, _) in self.masses.items():
             if self.gravity != (0, 0):
-                self.forces.append(AppliedForce(body, centre, (mass * self.gravity[0], mass * self.gravity[1])))
+                self.forces.append(AppliedForce(name, centre, (mass * self.gravity[0], mass * self.gravity[1])))
         for load in self.loads:
             self._resolve(load)
 
@@ -351,7 +344,7 @@ class DynamicModel:
     def acceleration_of(self, point: tuple[sp.Expr, sp.Expr]) -> tuple[sp.Expr, sp.Expr]:
         """A point's acceleration in terms of coordinates, their rates and accelerations (symbols)."""
         coordinates = self.kinematics.coordinates
-        return tuple(time_derivative(time_derivative(c, coordinates), coordinates) for c in point)  # type: ignore
+        return tuple(time_derivative(time_derivative(c, coordinates), coordinates) for c in point)
 
     def angular_acceleration(self, body: str) -> sp.Expr:
         coordinates = self.kinematics.coordinates
@@ -397,17 +390,3 @@ class DynamicModel:
         q = self.kinematics.inputs[index]
         stem = "input_torque" if is_angle(self.kinematics, q) else "input_force"
         return stem if len(self.kinematics.inputs) == 1 else f"{stem}_{q.name}"
-
-    @cached_property
-    def linkage(self) -> DynamicLinkage:
-        """The kinematic linkage with the dynamic outputs as extras and the model's symbols as parameters."""
-        from .inverse import dynamic_outputs
-        outputs = dynamic_outputs(self)
-        base = self.kinematics
-        result = DynamicLinkage(base.name, base.loops, base.inputs, base.unknowns,
-                                parameters=list(base.parameters) + self.new_parameters,
-                                points=base.points, roles=base.roles, extras={**base.extras, **outputs})
-        result.dynamic_outputs = tuple(outputs)
-        result.model = self
-        return result
-

@@ -22,7 +22,7 @@ from mp_closures import DPS
 from mp_dynamics import CASES, Motion, derivative, random_masses
 from symlink.catalog import CATALOG
 from symlink.dynamics import BodyTorque, Damper, DynamicModel, Gravity, MassProperties, PointForce, Spring
-from symlink.dynamics.inverse import driving_efforts, reactions
+from symlink.dynamics.inverse import driving_efforts, dynamic_linkage, reactions
 from symlink.scene import Scene
 from symlink.vectors import acceleration, rate
 
@@ -131,7 +131,7 @@ def test_power_balance(name, seed):
     motion = Motion(case, case.parameters, x0, xdot, xddot)
     values.update(case.parameters)
     values.update(state(case, motion))
-    outputs = model.linkage.extras
+    outputs = dynamic_linkage(model).extras
     efforts = [outputs[model.input_effort_name(i)] for i in range(len(case.inputs))]
     with mp.workdps(DPS):
         power = sum(evaluate(e, values) * mp.mpf(values[q + "dot"]) for e, q in zip(efforts, case.inputs))
@@ -148,7 +148,7 @@ def test_generated_torque_matches_the_power_balance(name):
     values.update(case.parameters)
     expected = power_reference(name, case, {**values}, masses, motion) / mp.mpf(xdot[0])
     arguments = {**values, "theta": x0[0], "thetadot": xdot[0], "thetaddot": xddot[0]}
-    result = Scene(model.linkage, ["input_torque"], arguments).evaluate()[1]
+    result = Scene(dynamic_linkage(model), ["input_torque"], arguments).evaluate()[1]
     assert float(result["input_torque"]) == pytest.approx(float(expected), rel=1e-9)
 
 
@@ -262,7 +262,7 @@ def test_newton_euler_effort_equals_virtual_power(name):
 def test_statics_slider_crank_by_virtual_work():
     """At rest with a force P along the slider's line, T = -P ds/dtheta (virtual work, by hand)."""
     model = DynamicModel(CATALOG["slider-crank"](), [], [PointForce("C", "P", 0, body="slider")])
-    torque = model.linkage.extras["input_torque"]
+    torque = dynamic_linkage(model).extras["input_torque"]
     a, b, offset, theta, P = 1.3, 4.1, 0.7, 0.9, 250.0
     root = numpy.sqrt(b * b - (offset - a * numpy.sin(theta)) ** 2)
     s = a * numpy.cos(theta) + root
@@ -273,7 +273,7 @@ def test_statics_slider_crank_by_virtual_work():
     found = float(evaluate(torque, values))
     assert found == pytest.approx(-P * ds, rel=1e-12)
     # The generated code, which solves its own positions, agrees.
-    result = Scene(model.linkage, ["input_torque", "joint_AS_y"], {"a": a, "b": b, "offset": offset, "theta": theta,
+    result = Scene(dynamic_linkage(model), ["input_torque", "joint_AS_y"], {"a": a, "b": b, "offset": offset, "theta": theta,
                                                                      "P": P}).evaluate()[1]
     assert float(result["input_torque"]) == pytest.approx(-P * ds, rel=1e-12)
 
@@ -289,17 +289,17 @@ def test_statics_fourbar_rocker_torque_by_virtual_work():
     values.update({f"{q}{suffix}": 0 for q in ("theta", "beta", "phi") for suffix in ("dot", "ddot")})
     with mp.workdps(DPS):
         ratio = a * mp.sin(beta - theta) / (c * mp.sin(beta - phi))
-        assert abs(evaluate(model.linkage.extras["input_torque"], values) + 7.5 * ratio) < 1e-40
+        assert abs(evaluate(dynamic_linkage(model).extras["input_torque"], values) + 7.5 * ratio) < 1e-40
 
 
 def test_a_torque_request_derives_no_reactions_and_positions_no_dynamics():
     """Laziness: the torque's program has the accelerations but no reaction; the rocker's has no rates."""
-    model = model_of("fourbar")
-    torque = model.linkage.program(["input_torque"])
+    linkage = dynamic_linkage(model_of("fourbar"))
+    torque = linkage.program(["input_torque"])
     kept = {symbol for symbol, _ in torque.assignments}
     assert acceleration(sp.Symbol("phi", real=True)) in kept
-    assert sp.count_ops(torque.outputs["input_torque"]) < sp.count_ops(model.linkage.extras["joint_A_x"])
-    positions = model.linkage.program(["rocker"])
+    assert sp.count_ops(torque.outputs["input_torque"]) < sp.count_ops(linkage.extras["joint_A_x"])
+    positions = linkage.program(["rocker"])
     assert not {rate(sp.Symbol(q, real=True)) for q in ("beta", "phi")} & {s for s, _ in positions.assignments}
     plain = CATALOG["fourbar"]().program(["rocker"])
     assert positions.assignments == plain.assignments and positions.outputs == plain.outputs

@@ -2,10 +2,13 @@
 
 :mod:`symlink.dynamics.model` holds the model (masses, centres, inertias, loads; the
 generalised inertia ``M(q)``, ``dM/dq`` and applied forces); :mod:`symlink.dynamics.inverse`
-derives the driving effort, joint reactions and shaking force and moment.
+derives the driving effort, joint reactions and shaking force and moment;
+:mod:`symlink.dynamics.forward` integrates the motion under a motor (SciPy, the extra
+``dynamics``) and :mod:`symlink.dynamics.flywheel` sizes a flywheel.
 """
+from .forward import ConstantTorque, ForwardDynamics, LinearMotor, Motion, Stop
 from .model import (BodyTorque, Damper, DynamicLinkage, DynamicModel, Gravity, MassProperties, PointForce,
                     Spring)
 
 __all__ = ["BodyTorque", "Damper", "DynamicLinkage", "DynamicModel", "Gravity", "MassProperties", "PointForce",
-           "Spring"]
+           "Spring", "ConstantTorque", "ForwardDynamics", "LinearMotor", "Motion", "Stop"]

@@ -6,9 +6,11 @@ derives the driving effort, joint reactions and shaking force and moment;
 :mod:`symlink.dynamics.forward` integrates the motion under a motor (SciPy, the extra
 ``dynamics``) and :mod:`symlink.dynamics.flywheel` sizes a flywheel.
 """
+from .flywheel import FlywheelSizing, SpeedBand, TorqueCycle, energy_fluctuation, flywheel_inertia
 from .forward import ConstantTorque, ForwardDynamics, LinearMotor, Motion, Stop
 from .model import (BodyTorque, Damper, DynamicLinkage, DynamicModel, Gravity, MassProperties, PointForce,
                     Spring)
 
 __all__ = ["BodyTorque", "Damper", "DynamicLinkage", "DynamicModel", "Gravity", "MassProperties", "PointForce",
-           "Spring", "ConstantTorque", "ForwardDynamics", "LinearMotor", "Motion", "Stop"]
+           "Spring", "ConstantTorque", "ForwardDynamics", "LinearMotor", "Motion", "Stop", "FlywheelSizing", "SpeedBand",
+           "TorqueCycle", "energy_fluctuation", "flywheel_inertia"]

@@ -471,6 +471,8 @@ TABLES = (SLIDER, INVERTED, WATT2, STEPHENSON3, FIVEBAR)
 def _add_fourbar_options(command: argparse.ArgumentParser) -> None:
     add_fourbar_lengths(command)
     add_sweep_options(command)
+    from .dynamics import add_mass_options
+    add_mass_options(command)
     from .pictures import add_fourbar_plot_options
     add_fourbar_plot_options(command)
 
@@ -482,7 +484,10 @@ def run_fourbar(args: argparse.Namespace) -> int:
     sweep = input_sweep(args)
     _check_crank_speeds(sweep, args.units, args.crank_speed, args.crank_accel)
     speeds_at = _speeds_at(sweep, args)
-    solver = Solver(fourbar(), FOURBAR_COLUMNS[2:])
+    from .dynamics import fourbar_dynamics
+    linkage, mass_columns = fourbar_dynamics(args, (a, b, c, d))  # torque and reactions with --masses
+    columns = FOURBAR_COLUMNS + mass_columns
+    solver = Solver(linkage, columns[2:])
     signs = branches(args)
 
     def blocks():
@@ -491,7 +496,7 @@ def run_fourbar(args: argparse.Namespace) -> int:
             yield angles, {sign: solver(theta=theta, a=a, b=b, c=c, d=d, branch=sign, thetadot=speeds,
                                         thetaddot=args.crank_accel) for sign in signs}
 
-    write_table(blocks(), FOURBAR_COLUMNS, args.units, args.format, ANGLE_COLUMNS,
+    write_table(blocks(), columns, args.units, args.format, ANGLE_COLUMNS,
                 lambda: describe_spans(crank_range(a, b, c, d), args.units))
     if args.plot or args.plot_transmission:
         from .pictures import write_fourbar_plots

@@ -257,8 +257,8 @@ def reactions(model: DynamicModel) -> dict[str, sp.Expr]:
         fx, fy = direction[0] * value, direction[1] * value
         shaking_x, shaking_y = shaking_x + fx, shaking_y + fy
         moment += point[0] * fy - point[1] * fx
-    # The ground's share of a force is minus the body's: act() stored it with the ground's sign.
-    result.update({"shaking_force_x": -shaking_x, "shaking_force_y": -shaking_y, "shaking_moment": -moment})
+    # act() stored each force and couple on the ground with the ground's sign: they are the shaking loads.
+    result.update({"shaking_force_x": shaking_x, "shaking_force_y": shaking_y, "shaking_moment": moment})
     return {name: value.xreplace(placeholders) for name, value in result.items()}
 
 

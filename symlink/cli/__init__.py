@@ -12,7 +12,8 @@ the command quietly.  No command shows a traceback.
 One module a command or family: :mod:`.tables` (``fourbar`` and a table
 command for each catalog linkage), :mod:`.pictures` (``curve``, ``animate``,
 ``view``), :mod:`.plan`, :mod:`.run` (scene files), :mod:`.bench`,
-:mod:`.analyze`, :mod:`.loop`, :mod:`.quick_return`, :mod:`.synthesize`, :mod:`.export`, :mod:`.cache`, :mod:`.sweep`; shared
+:mod:`.analyze`, :mod:`.loop`, :mod:`.quick_return`, :mod:`.synthesize`, :mod:`.export`, :mod:`.cache`, :mod:`.sweep`,
+:mod:`.dynamics` (``flywheel``, and the four-bar's mass columns); shared
 options in :mod:`.options`, writers in :mod:`.output`.
 """
 from __future__ import annotations
@@ -26,13 +27,13 @@ from typing import Sequence
 import numpy
 
 from ..version import __version__
-from . import analyze, bench, cache, export, loop, pictures, plan, quick_return, run, sweep, synthesize, tables
+from . import analyze, bench, cache, dynamics, export, loop, pictures, plan, quick_return, run, sweep, synthesize, tables
 from .options import Parser
 
 __all__ = ["main", "build_parser"]
 
 #: The command modules, in the order ``symlink --help`` lists their commands.
-COMMANDS = (tables, plan, pictures, run, bench, analyze, loop, quick_return, synthesize, export, cache, sweep)
+COMMANDS = (tables, dynamics, plan, pictures, run, bench, analyze, loop, quick_return, synthesize, export, cache, sweep)
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
 

@@ -46,7 +46,9 @@ from .options import (add_fourbar_lengths, add_sweep_options, assignments, branc
 from .output import RowWriter, TableAssembler, print_rows
 
 if TYPE_CHECKING:
+    from ..cached_solver import CachedSolver
     from ..linkage import Linkage
+    from ..solver import Solver
 
 # The symbolic side (linkages, their labels, Solver: SymPy) is imported inside the functions that need it, so
 # that ``symlink fourbar`` with its code in the disk cache never imports SymPy (symlink.cached_solver).
@@ -494,6 +496,8 @@ TABLES = (SLIDER, INVERTED, WATT2, STEPHENSON3, FIVEBAR)
 def _add_fourbar_options(command: argparse.ArgumentParser) -> None:
     add_fourbar_lengths(command)
     add_sweep_options(command)
+    from .dynamics import add_mass_options
+    add_mass_options(command)
     from .pictures import add_fourbar_plot_options
     add_fourbar_plot_options(command)
 
@@ -502,11 +506,20 @@ def run_fourbar(args: argparse.Namespace) -> int:
     """``symlink fourbar``: the table of seed 003, and optionally its plots."""
     from ..cached_solver import CachedSolver
     a, b, c, d = fourbar_lengths(args)
-    solver = CachedSolver("fourbar", FOURBAR_COLUMNS[2:])  # from the disk cache without SymPy, once derived
-    solver.check_lengths(crank=a, coupler=b, rocker=c, ground=d)
+    cached = CachedSolver("fourbar", FOURBAR_COLUMNS[2:])  # from the disk cache without SymPy, once derived
+    cached.check_lengths(crank=a, coupler=b, rocker=c, ground=d)
+    solver: CachedSolver | Solver = cached
     sweep = input_sweep(args)
     _check_crank_speeds(sweep, args.units, args.crank_speed, args.crank_accel)
     speeds_at = _speeds_at(sweep, args)
+    from .dynamics import fourbar_dynamics
+    dynamic = fourbar_dynamics(args, (a, b, c, d))  # torque and reactions with --masses (derived, with SymPy)
+    columns = FOURBAR_COLUMNS
+    if dynamic is not None:
+        from ..solver import Solver
+        linkage, mass_columns = dynamic
+        columns = FOURBAR_COLUMNS + mass_columns
+        solver = Solver(linkage, columns[2:])
     signs = branches(args)
 
     def blocks():
@@ -519,7 +532,7 @@ def run_fourbar(args: argparse.Namespace) -> int:
         from ..reachability import crank_range, describe_spans
         return describe_spans(crank_range(a, b, c, d), args.units)
 
-    write_table(blocks(), FOURBAR_COLUMNS, args.units, args.format, ANGLE_COLUMNS, spans)
+    write_table(blocks(), columns, args.units, args.format, ANGLE_COLUMNS, spans)
     if args.plot or args.plot_transmission:
         from .pictures import write_fourbar_plots
         write_fourbar_plots(a, b, c, d, signs, args.units, args.plot, args.plot_transmission)

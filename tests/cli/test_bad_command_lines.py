@@ -86,6 +86,8 @@ CASES += [
                                "--t4", "270"], 2),
     ("loop: a plot of the wrong kind", ["loop", "--r1", "300", "--t1", "270", "--r2", "640.3124", "--t2", "308.663",
                                         "--t3", "180", "--t4", "63.435", "--plot", "{tmp}/loop.gif"], 2),
+    ("flywheel: no masses", ["flywheel", "--crank", "2", "--coupler", "6", "--rocker", "5", "--ground", "8", "--rpm", "60",
+                             "--coefficient", "0.05"], 2),  # the rest: tests/cli/test_dynamics.py
     ("quick-return: time ratio below 1", ["quick-return", "--time-ratio", "0.5", "--stroke", "40", "--rocker", "50"], 2),
     ("quick-return: stroke of 200 degrees", ["quick-return", "--time-ratio", "1.25", "--stroke", "200",
                                              "--rocker", "50"], 2),

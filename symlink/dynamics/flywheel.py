@@ -1,0 +1,365 @@
+"""Flywheel sizing: the driving torque over a cycle, its energy fluctuation, the inertia that holds the speed.
+
+The classic machine-design calculation, from a linkage's inverse dynamics:
+
+1. the driving torque ``T(theta)`` over one turn of the input at a constant mean speed
+   ``w`` (the model's ``input_torque`` at ``theta' = w``, ``theta'' = 0``);
+2. the mean (load) torque ``T_mean``, which a motor of constant torque supplies;
+3. the energy fluctuation ``dE``: the largest minus the smallest value over the cycle
+   of ``E(theta) = integral of (T - T_mean) dtheta``;
+4. the flywheel inertia for a coefficient of speed fluctuation
+   ``Cs = (w_max - w_min) / w_mean``, with ``w_mean = (w_max + w_min) / 2`` (the
+   convention of Shigley's *Mechanical Engineering Design* and Norton's *Design of
+   Machinery*): ``I = dE / (Cs w^2)``.
+
+Step 4 is the textbook approximation: it treats ``I`` as the whole inertia on the input
+shaft and the torque as that at constant speed.  It is exact for a rigid rotor of
+inertia ``I`` driven by a torque that depends on the angle only, since
+``I (w_max^2 - w_min^2) / 2 = I Cs w_mean^2``; a linkage's own inertia varies over the
+cycle, and its inertia torque ``M'(theta) theta'^2 / 2`` follows the actual speed.
+:meth:`FlywheelSizing.exact_inertia` removes the approximation: with constant motor
+torque and loads that depend on the position only, energy gives the speed over the
+cycle in closed form,
+
+    ``(J + M(theta)) w(theta)^2 = C + 2 integral of (T_mean + Q_applied) dtheta``,
+
+and it finds the flywheel ``J`` added to the linkage, and the constant ``C``, that make
+``(w_max + w_min) / 2 = w`` and ``(w_max - w_min) / w = Cs`` exactly.
+:meth:`FlywheelSizing.speed_band` checks either inertia by integrating the forward
+dynamics (:class:`~symlink.dynamics.forward.ForwardDynamics`) over one cycle with the
+flywheel on the input and a motor holding ``T_mean``.
+
+Integrals over the cycle are spectral: the torque is sampled at ``samples`` equally
+spaced angles, integrated term by term as a Fourier series (exact for a trigonometric
+polynomial of degree below ``samples / 2``), and the extremes of the energy are refined
+by Newton's method on that series.
+
+>>> import numpy
+>>> angles = numpy.linspace(0, 2 * numpy.pi, 64, endpoint=False)
+>>> cycle = energy_fluctuation(3.0 + 2.0 * numpy.sin(2 * angles))  # E = -cos(2 theta): dE = 2
+>>> round(cycle.mean_torque, 12), round(cycle.energy_fluctuation, 12)
+(3.0, 2.0)
+>>> flywheel_inertia(2.0, 10.0, 0.02)  # dE / (Cs w^2)
+1.0
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Mapping
+
+import numpy
+
+from ..solver import Solver
+from ..vectors import acceleration, rate
+from .forward import ConstantTorque, ForwardDynamics, Motion, equation_linkage, require_scipy
+from .model import DynamicModel
+
+__all__ = ["TorqueCycle", "energy_fluctuation", "flywheel_inertia", "FlywheelSizing", "SpeedBand", "size_flywheel",
+           "rpm_to_rad_per_s"]
+
+
+def rpm_to_rad_per_s(rpm: float) -> float:
+    """Revolutions per minute in rad/s.
+
+    >>> round(rpm_to_rad_per_s(60.0), 12) == round(2 * math.pi, 12)
+    True
+    """
+    return rpm * 2 * math.pi / 60
+
+
+def _finite(value: Any, name: str, positive: bool = False) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float, numpy.floating, numpy.integer)):
+        raise ValueError(f"{name} must be a number, got {value!r}")
+    value = float(value)
+    if not math.isfinite(value) or (positive and value <= 0):
+        raise ValueError(f"{name} must be a {'positive ' if positive else ''}finite number, got {value!r}")
+    return value
+
+
+class _Periodic:
+    """A periodic function from equally spaced samples over one period, as a Fourier series."""
+
+    def __init__(self, samples: numpy.ndarray, period: float) -> None:
+        self.count, self.period = len(samples), period
+        self.coefficients = numpy.fft.rfft(samples) / self.count
+        self.wavenumbers = 2 * math.pi / period * numpy.arange(len(self.coefficients))
+        if self.count % 2 == 0:  # the Nyquist term: half of it is the cosine, its derivative is not resolved
+            self.coefficients = self.coefficients.copy()
+            self.coefficients[-1] = 0.5 * self.coefficients[-1].real
+
+    @property
+    def mean(self) -> float:
+        return float(self.coefficients[0].real)
+
+    def _series(self, x, coefficients) -> numpy.ndarray:
+        x = numpy.asarray(x, dtype=float)
+        phases = numpy.exp(1j * numpy.multiply.outer(x, self.wavenumbers))
+        terms = phases @ coefficients
+        return 2 * terms.real - coefficients[0].real
+
+    def value(self, x) -> numpy.ndarray:
+        return self._series(x, self.coefficients)
+
+    def slope(self, x) -> numpy.ndarray:
+        return self._series(x, 1j * self.wavenumbers * self.coefficients)
+
+    def integral(self, x) -> numpy.ndarray:
+        """``integral from 0 to x of (f - mean)``: periodic."""
+        k = self.wavenumbers[1:]
+        integrated = numpy.concatenate([[0.0], self.coefficients[1:] / (1j * k)])
+        return self._series(x, integrated) - self._series(0.0, integrated)
+
+
+@dataclass(frozen=True)
+class TorqueCycle:
+    """A driving torque over one cycle and its energy: ``angles`` from 0, ``torque`` there, ``energy``
+    ``E(theta) = integral of (T - T_mean)`` from 0, and ``(angle, E)`` where E is largest and smallest.
+
+    With ``torque`` the torque a linkage needs and a motor supplying its mean, the linkage
+    has drawn the most energy from the flywheel where E is largest: the speed is lowest
+    there, and highest where E is smallest (for an engine's output torque, the reverse).
+    """
+
+    angles: numpy.ndarray
+    torque: numpy.ndarray
+    mean_torque: float
+    energy: numpy.ndarray
+    energy_fluctuation: float
+    energy_max: tuple[float, float]
+    energy_min: tuple[float, float]
+    series: Any = field(repr=False, default=None)
+
+
+def energy_fluctuation(torque, period: float = 2 * math.pi) -> TorqueCycle:
+    """The mean torque and energy fluctuation of ``torque`` sampled at equally spaced angles over one ``period``.
+
+    The samples start at angle 0 and leave out the end of the period (which repeats the
+    start); a four-stroke engine's cycle is ``period = 4 pi``.  ``ValueError`` for fewer than
+    four samples or values that are not finite.
+    """
+    values = numpy.asarray(torque, dtype=float)
+    if values.ndim != 1 or len(values) < 4:
+        raise ValueError(f"the torque must be at least 4 equally spaced samples over one cycle, got shape "
+                         f"{values.shape}")
+    if not numpy.all(numpy.isfinite(values)):
+        raise ValueError("the torque must be finite at every sample (can the linkage turn through the whole cycle?)")
+    period = _finite(period, "period", positive=True)
+    series = _Periodic(values, period)
+    angles = numpy.arange(len(values)) * period / len(values)
+    energy = series.integral(angles)
+    extremes = []
+    for index in (int(numpy.argmax(energy)), int(numpy.argmin(energy))):
+        x = float(angles[index])
+        for _ in range(8):  # Newton on E' = T - T_mean = 0, from the best sample
+            curvature = float(series.slope(x))
+            if curvature == 0:
+                break
+            step = float(series.value(x) - series.mean) / curvature
+            if abs(step) > period / len(values):
+                break  # not converging near this sample: keep the sample
+            x -= step
+            if abs(step) < 1e-15 * period:
+                break
+        best = float(series.integral(x))
+        sample = float(energy[index])
+        extremes.append((x, best) if (best >= sample) == (index == int(numpy.argmax(energy))) else
+                        (float(angles[index]), sample))
+    (high_angle, high), (low_angle, low) = extremes
+    return TorqueCycle(angles, values, series.mean, energy, high - low, (high_angle % period, high),
+                       (low_angle % period, low), series)
+
+
+def flywheel_inertia(energy: float, mean_speed: float, coefficient: float) -> float:
+    """``dE / (Cs w^2)``: the inertia that keeps the speed within ``Cs`` of the mean ``w`` (rad/s)."""
+    energy = _finite(energy, "energy fluctuation")
+    if energy < 0:
+        raise ValueError(f"the energy fluctuation must not be negative, got {energy!r}")
+    mean_speed = _finite(mean_speed, "mean speed", positive=True)
+    coefficient = _finite(coefficient, "coefficient of speed fluctuation", positive=True)
+    if coefficient >= 2:
+        raise ValueError(f"the coefficient of speed fluctuation must be below 2 (the speed stays positive), "
+                         f"got {coefficient!r}")
+    return energy / (coefficient * mean_speed * mean_speed)
+
+
+@dataclass(frozen=True)
+class SpeedBand:
+    """The input speed over one cycle with a flywheel ``inertia``: its highest and lowest value, their mean
+    ``(highest + lowest) / 2`` and the ``coefficient`` ``(highest - lowest) / mean`` achieved, from ``motion``."""
+
+    inertia: float
+    highest: float
+    lowest: float
+    mean: float
+    coefficient: float
+    motion: Motion | None = field(repr=False, default=None)
+
+
+class FlywheelSizing:
+    """A flywheel for a one-input ``model`` at parameter ``values`` running at ``mean_speed`` (rad/s) with
+    speed fluctuation ``coefficient``; see the module docstring.
+
+    ``cycle`` is the :class:`TorqueCycle` of the driving torque at constant speed;
+    ``inertia`` the textbook flywheel ``dE / (Cs w^2)`` (the whole inertia on the input shaft).
+    """
+
+    def __init__(self, model: DynamicModel, values: Mapping[str, float], mean_speed: float, coefficient: float,
+                 branch: int | Mapping[str, int] = 1, samples: int = 720) -> None:
+        self.mean_speed = _finite(mean_speed, "mean speed", positive=True)
+        self.coefficient = _finite(coefficient, "coefficient of speed fluctuation", positive=True)
+        if isinstance(samples, bool) or not isinstance(samples, int) or samples < 16:
+            raise ValueError(f"samples must be a whole number of at least 16, got {samples!r}")
+        self.dynamics = ForwardDynamics(model, values, branch)
+        linkage = equation_linkage(model)
+        effort = model.input_effort_name(0)
+        if effort != "input_torque":
+            raise ValueError(f"a flywheel turns with a crank; the input of {linkage.name} is a slider")
+        if self.dynamics.takes_speed:
+            raise ValueError("the loads depend on speed (a damper): the flywheel sizing needs loads that depend on "
+                             "the position only")
+        self.samples = samples
+        angles = numpy.arange(samples) * 2 * math.pi / samples
+        solver = Solver(linkage, ["input_torque"])
+        arguments = {name: value for name, value in self.dynamics.values.items() if name in solver.arguments}
+        driven = linkage.inputs[0]
+        found = solver(**{driven.name: angles, rate(driven).name: self.mean_speed,
+                          acceleration(driven).name: 0.0, **arguments})
+        if not numpy.all(found["assembled"]):
+            first = float(angles[~numpy.asarray(found["assembled"])][0])
+            raise ValueError(f"{linkage.name} cannot be assembled at crank angle {math.degrees(first):.6g} deg: "
+                             "the crank does not turn a whole cycle, so there is no flywheel cycle")
+        self.cycle = energy_fluctuation(found["input_torque"])
+        self._terms: tuple[_Periodic, _Periodic] | None = None
+        self._fine: dict[int, tuple[numpy.ndarray, numpy.ndarray]] = {}
+        self.inertia = flywheel_inertia(self.cycle.energy_fluctuation, self.mean_speed, self.coefficient)
+
+    @property
+    def mean_torque(self) -> float:
+        """The mean driving torque over the cycle: the constant torque a motor supplies."""
+        return self.cycle.mean_torque
+
+    @property
+    def energy_fluctuation(self) -> float:
+        return self.cycle.energy_fluctuation
+
+    # --- the speed from energy ------------------------------------------------------------
+    def _energy_terms(self) -> tuple[_Periodic, _Periodic]:
+        """``M(theta)`` and the work ``integral of (T_mean + Q_applied)`` as periodic series (made once)."""
+        if self._terms is None:
+            terms = self.dynamics.terms(self.cycle.angles)
+            self._terms = (_Periodic(terms["generalised_inertia"] - self.dynamics.input_inertia, 2 * math.pi),
+                           _Periodic(self.mean_torque + terms["applied_generalised_force"], 2 * math.pi))
+        return self._terms
+
+    def _fine_terms(self, fine: int) -> tuple[numpy.ndarray, numpy.ndarray]:
+        """``M`` and the work at ``fine`` times the samples (made once a ``fine``)."""
+        if fine not in self._fine:
+            inertia_series, work_series = self._energy_terms()
+            angles = numpy.arange(fine * self.samples) * 2 * math.pi / (fine * self.samples)
+            self._fine[fine] = (inertia_series.value(angles), work_series.integral(angles))
+        return self._fine[fine]
+
+    def _energy_band(self, flywheel: float, fine: int = 8) -> tuple[SpeedBand, float]:
+        """The band with ``flywheel`` added from the energy equation, its mean at the mean speed, and its ``C``."""
+        optimize = _require_optimize()
+        inertia, work = self._fine_terms(fine)
+        inertia = flywheel + inertia
+
+        def band(constant: float) -> tuple[float, float]:
+            speeds = numpy.sqrt(numpy.maximum(constant + 2 * work, 0.0) / inertia)
+            return _refined_max(speeds), -_refined_max(-speeds)
+
+        lowest_constant = float(numpy.max(-2 * work))  # below it the speed would vanish somewhere
+        scale = max(abs(lowest_constant), float(numpy.max(inertia)) * self.mean_speed ** 2)
+        low, high = lowest_constant, lowest_constant + 4 * scale
+        while sum(band(high)) / 2 < self.mean_speed:
+            high += 4 * scale
+        constant = optimize.brentq(lambda c: sum(band(c)) / 2 - self.mean_speed, low, high, xtol=1e-15 * scale,
+                                   rtol=1e-15)
+        highest, lowest = band(constant)
+        mean = (highest + lowest) / 2
+        return SpeedBand(flywheel, highest, lowest, mean, (highest - lowest) / mean), float(constant)
+
+    def speed_from_energy(self, flywheel: float) -> SpeedBand:
+        """The speed band with ``flywheel`` added, from the energy equation, its mean set to the mean speed.
+
+        Exact (to the sampling) where the motor torque is constant and the loads depend on the
+        position only; needs SciPy (a root of the mean condition).
+        """
+        flywheel = _finite(flywheel, "flywheel inertia")
+        if flywheel < 0:
+            raise ValueError(f"the flywheel inertia must not be negative, got {flywheel!r}")
+        return self._energy_band(flywheel)[0]
+
+    def exact_inertia(self) -> float:
+        """The flywheel to add to the linkage so that the speed band is exactly the coefficient asked for.
+
+        0 when the linkage alone keeps the speed within it.  Needs SciPy.
+        """
+        optimize = _require_optimize()
+        target = self.coefficient
+
+        def excess(flywheel: float) -> float:
+            return self.speed_from_energy(flywheel).coefficient - target
+
+        if excess(0.0) <= 0:
+            return 0.0
+        high = max(self.inertia, 1e-300)
+        while excess(high) > 0:
+            high *= 2
+        return float(optimize.brentq(excess, 0.0, high, xtol=1e-13 * high, rtol=1e-14))
+
+    # --- the check by forward dynamics ------------------------------------------------------
+    def speed_band(self, flywheel: float | None = None, rtol: float = 1e-10) -> SpeedBand:
+        """The speed over one cycle by integrating the forward dynamics, with ``flywheel`` (default the textbook
+        :attr:`inertia`) on the input and a motor holding the mean torque.
+
+        The run starts at angle 0 at the speed that the energy equation gives there for a
+        mean speed of ``w`` and lasts one cycle; the band is read from the dense solution.
+        """
+        flywheel = self.inertia if flywheel is None else _finite(flywheel, "flywheel inertia")
+        if flywheel < 0:
+            raise ValueError(f"the flywheel inertia must not be negative, got {flywheel!r}")
+        _, constant = self._energy_band(flywheel)
+        inertia_series, work_series = self._energy_terms()
+        angles = self.cycle.angles  # the start speed, and the time of one cycle, from the energy equation
+        speeds = numpy.sqrt((constant + 2 * work_series.integral(angles)) / (flywheel + inertia_series.value(angles)))
+        period = float(numpy.mean(1.0 / speeds)) * 2 * math.pi
+        parameters = {s.name: self.dynamics.values[s.name] for s in self.dynamics.linkage.parameters}
+        dynamics = ForwardDynamics(self.dynamics.model, parameters, _branches(self.dynamics),
+                                   input_inertia=flywheel)
+        motion = dynamics.simulate(0.0, float(speeds[0]), period, ConstantTorque(self.mean_torque), rtol=rtol,
+                                   atol=rtol * self.mean_speed)
+        if not motion.finished:
+            raise ValueError(f"the forward dynamics stopped: {motion.message}")
+        times = numpy.arange(8 * self.samples) * period / (8 * self.samples)  # one period of a periodic motion
+        simulated = motion.solution.sol(times)[1]
+        highest, lowest = _refined_max(simulated), -_refined_max(-simulated)
+        mean = (highest + lowest) / 2
+        return SpeedBand(flywheel, highest, lowest, mean, (highest - lowest) / mean, motion)
+
+
+def _branches(dynamics: ForwardDynamics) -> dict[str, int]:
+    return {s.name: int(dynamics.values[s.name]) for s in dynamics.linkage.branches}
+
+
+def _refined_max(values: numpy.ndarray) -> float:
+    """The largest of equally spaced samples over one period of a smooth periodic function, refined by the
+    parabola through it and its two neighbours."""
+    index = int(numpy.argmax(values))
+    left, middle, right = values[index - 1], values[index], values[(index + 1) % len(values)]
+    denominator = left - 2 * middle + right
+    return float(middle - (right - left) ** 2 / (8 * denominator)) if denominator < 0 else float(middle)
+
+
+def _require_optimize() -> Any:
+    require_scipy()
+    import scipy.optimize
+    return scipy.optimize
+
+
+def size_flywheel(model: DynamicModel, values: Mapping[str, float], mean_speed: float, coefficient: float,
+                  branch: int | Mapping[str, int] = 1, samples: int = 720) -> FlywheelSizing:
+    """A :class:`FlywheelSizing` (the textbook numbers at once; the exact inertia and the check on request)."""
+    return FlywheelSizing(model, values, mean_speed, coefficient, branch, samples)

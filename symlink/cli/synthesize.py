@@ -214,7 +214,7 @@ def plot_path(design, targets: numpy.ndarray, path: str) -> None:
     from matplotlib.figure import Figure
     from matplotlib.transforms import Affine2D
 
-    from ..plot.figures import MechanismDrawing, extent, save_figure
+    from ..plot.figures import MechanismDrawing, frame_plane, save_figure
     figure = Figure(figsize=(6.4, 5.6), layout="constrained")
     axis = figure.subplots()
     theta = numpy.asarray(design.theta)
@@ -243,10 +243,7 @@ def plot_path(design, targets: numpy.ndarray, path: str) -> None:
     axis.plot(targets[:, 0], targets[:, 1], "x", color="black", markersize=9, markeredgewidth=2, label="targets",
               zorder=7)
     points = numpy.concatenate([numpy.ravel(z) for z in everything])
-    xlim, ylim = extent(points.real, points.imag)
-    axis.set_xlim(*xlim)
-    axis.set_ylim(*ylim)
-    axis.set_aspect("equal")
+    frame_plane(axis, points.real, points.imag)
     axis.set_title(f"Path generation: error {design.error:.2g} of the targets' size", fontsize="medium")
     axis.legend(loc="best", fontsize="small")
     save_figure(figure, path)

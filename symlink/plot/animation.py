@@ -43,7 +43,8 @@ from ..files import LEFTOVER_AGE, TEMPORARY_SUFFIX, remove_leftovers
 from ..linkage import Linkage
 from ..reachability import TURN_SAMPLES, assembled_crank_range, crank_range, turn_angles
 from .drawing import Geometry, LinkageDrawing, input_range, sweep_inputs, traced_paths
-from .figures import MechanismDrawing, check_coupler_point, coupler_point_linkage, extent, fourbar_positions
+from .figures import (MechanismDrawing, check_coupler_point, coupler_point_linkage, fourbar_positions,
+                      frame_plane)
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -294,12 +295,8 @@ def _fourbar_frames(a: float, b: float, c: float, d: float, branch: int, frames:
         axes.plot(curve["P_x"], curve["P_y"], color="tab:purple", linewidth=1, alpha=0.7, zorder=1)
         xs += [positions["P_x"], curve["P_x"]]
         ys += [positions["P_y"], curve["P_y"]]
-    (x0, x1), (y0, y1) = extent(numpy.concatenate([numpy.ravel(v) for v in xs]),
-                                numpy.concatenate([numpy.ravel(v) for v in ys]), margin=0.12)
-    axes.set_xlim(x0, x1)
-    axes.set_ylim(y0, y1)
-    axes.set_aspect("equal")
-    axes.grid(True, alpha=0.3)
+    frame_plane(axes, numpy.concatenate([numpy.ravel(v) for v in xs]),
+                numpy.concatenate([numpy.ravel(v) for v in ys]), None, margin=0.12)
     axes.tick_params(labelsize="small")
     drawing = MechanismDrawing(axes, coupler_point=coupler_point is not None)
     title = axes.set_title("", fontsize="medium")

@@ -53,7 +53,7 @@ if TYPE_CHECKING:  # Matplotlib is imported when a drawing is made
 
 __all__ = ["coupler_point_linkage", "fourbar_positions", "reachable_turn", "turn_angles",
            "check_coupler_point", "angle_figure", "transmission_figure", "coupler_curve_figure", "draw_loop",
-           "MechanismDrawing", "extent", "save_figure", "figure_suffix", "FIGURE_SUFFIXES"]
+           "MechanismDrawing", "extent", "frame_plane", "save_figure", "figure_suffix", "FIGURE_SUFFIXES"]
 
 #: File suffixes :func:`save_figure` writes, and the Matplotlib format of each.
 FIGURE_SUFFIXES = {".png": "png", ".svg": "svg"}
@@ -324,6 +324,20 @@ def extent(xs: "ArrayLike", ys: "ArrayLike", margin: float = 0.08) -> tuple[tupl
     return (float(x.min() - pad), float(x.max() + pad)), (float(y.min() - pad), float(y.max() + pad))
 
 
+def frame_plane(axes: "Axes", xs: "ArrayLike", ys: "ArrayLike", unit: str | None = "", margin: float = 0.08) -> None:
+    """A mechanism's plane on ``axes``: limits around the finite points, equal scales, a light grid, and
+    ``x``/``y`` labels with the length ``unit`` (no labels for ``None``)."""
+    (x0, x1), (y0, y1) = extent(xs, ys, margin=margin)
+    axes.set_xlim(x0, x1)
+    axes.set_ylim(y0, y1)
+    axes.set_aspect("equal")
+    axes.grid(True, alpha=0.3)
+    if unit is not None:
+        suffix = f" ({unit})" if unit else ""
+        axes.set_xlabel(f"x{suffix}")
+        axes.set_ylabel(f"y{suffix}")
+
+
 def coupler_curve_figure(a: float, b: float, c: float, d: float, distance: float, angle: float,
                          branches: Sequence[int] = (1,), crank_angle: float | None = None,
                          title: str | None = None, unit: str = "", samples: int = TURN_SAMPLES,
@@ -358,15 +372,8 @@ def coupler_curve_figure(a: float, b: float, c: float, d: float, distance: float
     drawing = MechanismDrawing(axes, coupler_point=True)
     joint = {name: (float(at[f"{name}_x"]), float(at[f"{name}_y"])) for name in ("B", "C", "P")}
     drawing.update(d, joint["B"], joint["C"] if at["assembled"] else None, joint["P"])
-    (x0, x1), (y0, y1) = extent(numpy.concatenate([numpy.ravel(v) for v in xs]),
-                                numpy.concatenate([numpy.ravel(v) for v in ys]))
-    axes.set_xlim(x0, x1)
-    axes.set_ylim(y0, y1)
-    axes.set_aspect("equal")
-    suffix = f" ({unit})" if unit else ""
-    axes.set_xlabel(f"x{suffix}")
-    axes.set_ylabel(f"y{suffix}")
-    axes.grid(True, alpha=0.3)
+    frame_plane(axes, numpy.concatenate([numpy.ravel(v) for v in xs]),
+                numpy.concatenate([numpy.ravel(v) for v in ys]), unit)
     axes.legend(loc="best", fontsize="small")
     axes.set_title(title if title is not None else
                    f"coupler point {distance:g} from B at {math.degrees(angle):g}° from BC; "

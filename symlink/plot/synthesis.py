@@ -24,7 +24,7 @@ import numpy
 
 from ..reachability import turn_angles
 from ..synthesis.motion import Design, burmester_curves, burmester_points, check_poses
-from .figures import LINK_COLORS, _given, _new_figure, extent, fourbar_positions
+from .figures import LINK_COLORS, _given, _new_figure, fourbar_positions, frame_plane
 
 if TYPE_CHECKING:  # Matplotlib is imported when a drawing is made
     from matplotlib.axes import Axes
@@ -132,14 +132,7 @@ def motion_figure(poses, design: Design | None = None, *, curves: bool = True, t
             xs += list(joints[name].real)
             ys += list(joints[name].imag)
     _frames(axes, poses, _FRAME * spread, "black", "target poses")
-    (x0, x1), (y0, y1) = extent(xs, ys, margin=0.15)
-    axes.set_xlim(x0, x1)
-    axes.set_ylim(y0, y1)
-    axes.set_aspect("equal")
-    suffix = f" ({unit})" if unit else ""
-    axes.set_xlabel(f"x{suffix}")
-    axes.set_ylabel(f"y{suffix}")
-    axes.grid(True, alpha=0.3)
+    frame_plane(axes, xs, ys, unit, margin=0.15)
     axes.legend(loc="best", fontsize="x-small")
     if title is None:
         title = f"motion generation through {len(poses)} poses"

@@ -32,6 +32,7 @@ from typing import Any, Callable, Sequence
 import numpy
 
 from .cache import cached_text, catalog_key
+from .codegen.loading import load_numpy_module
 from .limits import require_memory
 from .results import Results
 
@@ -82,9 +83,7 @@ class CachedSolver:
         self.outputs = list(outputs)
         self.source = cached_text(catalog_key(name, self.outputs, ENTRY_KIND),
                                   lambda: _derived_entry(name, self.outputs))
-        namespace: dict = {"__name__": "symlink_generated"}
-        # symlink's own generated module, from a verified entry of a private cache (never user text)
-        exec(compile(self.source, "<symlink generated>", "exec"), namespace)  # noqa: S102
+        namespace = load_numpy_module(self.source)  # from a verified entry of a private cache (never user text)
         entry = namespace[DESCRIPTION]
         self.arguments: list[str] = entry["arguments"]
         self.branches: list[str] = entry["branches"]

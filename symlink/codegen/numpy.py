@@ -31,6 +31,7 @@ from sympy.printing.numpy import NumPyPrinter
 from ..version import __version__
 from ..linkage import is_branch_name
 from ..position import TOLERANCE
+from .loading import load_numpy_module
 from .program import format_default, is_flag, straight_line
 
 if TYPE_CHECKING:
@@ -293,13 +294,6 @@ def numpy_module(functions: Sequence[tuple[str, Program, str]], title: str = "A 
                             arguments=inspect.getsource(_arguments), block=BLOCK,
                             evaluate=inspect.getsource(_evaluate))
     return header + "".join("\n\n" + numpy_function(p, name, doc) for name, p, doc in functions)
-
-
-def load_numpy_module(source: str) -> dict:
-    """Run generated module source (symlink's own output, never user text) and return its namespace."""
-    namespace: dict = {"__name__": "symlink_generated"}
-    exec(compile(source, "<symlink generated>", "exec"), namespace)  # noqa: S102 - our own generated code
-    return namespace
 
 
 def export_files(linkage: Linkage, stem: str, functions: Sequence[tuple[str, Sequence[str], str]],

@@ -504,11 +504,15 @@ def _add_fourbar_options(command: argparse.ArgumentParser) -> None:
 
 def run_fourbar(args: argparse.Namespace) -> int:
     """``symlink fourbar``: the table of seed 003, and optionally its plots."""
-    from ..cached_solver import CachedSolver
     a, b, c, d = fourbar_lengths(args)
-    cached = CachedSolver("fourbar", FOURBAR_COLUMNS[2:])  # from the disk cache without SymPy, once derived
-    cached.check_lengths(crank=a, coupler=b, rocker=c, ground=d)
-    solver: CachedSolver | Solver = cached
+    solver: CachedSolver | Solver
+    if args.masses is None:  # the plain table: from the disk cache without SymPy, once derived
+        from ..cached_solver import CachedSolver
+        solver = CachedSolver("fourbar", FOURBAR_COLUMNS[2:])
+        solver.check_lengths(crank=a, coupler=b, rocker=c, ground=d)
+    else:  # with mass properties the dynamic linkage is derived below: no plain solver is needed
+        from ..solver import check_lengths
+        check_lengths(crank=a, coupler=b, rocker=c, ground=d)
     sweep = input_sweep(args)
     _check_crank_speeds(sweep, args.units, args.crank_speed, args.crank_accel)
     speeds_at = _speeds_at(sweep, args)

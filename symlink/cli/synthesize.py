@@ -285,7 +285,6 @@ MOTION_FIELDS = ["rank", "crank", "coupler", "rocker", "ground", "crank_pivot_x"
                  "rocker_pivot_y", "crank_moving_x", "crank_moving_y", "rocker_moving_x", "rocker_moving_y",
                  "ground_angle", "coupler_point_distance", "coupler_point_angle", "pose_angle_offset", "grashof",
                  "branch_defect", "order_defect", "order_direction", "transmission_worst", "pose_error"]
-MOTION_ANGLES = {"ground_angle", "coupler_point_angle", "pose_angle_offset", "transmission_worst", "pose_error"}
 
 
 def _run_motion(args: argparse.Namespace) -> int:
@@ -303,12 +302,7 @@ def _run_motion(args: argparse.Namespace) -> int:
                          + (" without a defect" if args.defect_free else ""))
     shown = designs[:args.designs]
     per_pose = [f"{name}_{k}" for k in range(1, len(poses) + 1) for name in ("crank_angle", "branch")]
-    rows = []
-    for rank, design in enumerate(shown, start=1):
-        record = as_record(design)  # angles in degrees
-        for name in MOTION_ANGLES | {f"crank_angle_{k}" for k in range(1, len(poses) + 1)}:
-            record[name] = float(to_radians(record[name], "deg")) if args.units == "rad" else record[name]
-        rows.append({"rank": rank, **record})
+    rows = [{"rank": rank, **as_record(design, args.units)} for rank, design in enumerate(shown, start=1)]
     if args.format == "json":
         print(json.dumps([{k: json_number(v) if isinstance(v, float) else v for k, v in row.items()}
                           for row in rows], indent=1))

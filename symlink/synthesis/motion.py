@@ -606,7 +606,6 @@ def fourbar_from_dyads(poses, crank_dyad: Dyad, rocker_dyad: Dyad) -> Design:
     ground_angle = math.atan2(d_pivot.imag - a_pivot.imag, d_pivot.real - a_pivot.real)
     frame = numpy.exp(-1j * ground_angle)
     theta = numpy.angle((b_places - a_pivot) * frame)
-    beta = numpy.angle((c_places - b_places) * frame)
     phi = numpy.angle((c_places - d_pivot) * frame)
     solver = shared_solver(fourbar, ("coupler", "rocker"))
     branches, error = [], 0.0
@@ -730,9 +729,11 @@ def _two(values, what: str) -> list:
     return values
 
 
-def as_record(design: Design) -> dict:
-    """The design as JSON-ready values (lengths in the poses' unit, angles in degrees), one row of a table."""
-    deg = math.degrees
+def as_record(design: Design, units: str = "deg") -> dict:
+    """The design as JSON-ready values (lengths in the poses' unit, angles in ``units``: deg or rad), one row."""
+    if units not in ("deg", "rad"):
+        raise ValueError(f"units must be deg or rad, got {units!r}")
+    deg = math.degrees if units == "deg" else float
     record = {
         "crank": design.crank, "coupler": design.coupler, "rocker": design.rocker, "ground": design.ground,
         "crank_pivot_x": design.crank_pivot[0], "crank_pivot_y": design.crank_pivot[1],

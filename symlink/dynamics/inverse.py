@@ -264,8 +264,69 @@ def reactions(model: DynamicModel) -> dict[str, sp.Expr]:
 
 
 def _solve(matrix: sp.Matrix, rhs: sp.Matrix) -> list[sp.Expr]:
-    """Solve the generic sparse system by elimination (LU on placeholders: structural zero tests only)."""
-    return list(matrix.LUsolve(rhs))
+    """Solve the generic sparse system so that no step divides by what may vanish where the system does not.
+
+    Gaussian elimination first uses only pivots that are nonzero numbers (the unit
+    coefficients of the force balances, a drive's unit couple), chosen by Markowitz's
+    rule to keep the rows short; what is left (the moment balances, a few rows) is solved
+    by Cramer's rule, whose one denominator, its determinant, is the whole system's
+    determinant over the numeric pivots: it vanishes only where the linkage cannot carry
+    the load (a toggle), never at a pose where a lever arm happens to be zero.  An
+    elimination that pivoted on an arm (say ``sin(theta)`` of the crank) would return NaN
+    there although the forces are finite.
+
+    >>> a, b = sp.symbols("a b")
+    >>> _solve(sp.Matrix([[a, 1], [1, 0]]), sp.Matrix([b, 2]))   # pivots on the 1s, never on a
+    [2, -2*a + b]
+    """
+    size = matrix.rows
+    rows: dict[int, dict[int, sp.Expr]] = {
+        i: {j: matrix[i, j] for j in range(size) if matrix[i, j] != 0} for i in range(size)}
+    right = list(rhs)
+    steps: list[tuple[int, int, dict[int, sp.Expr]]] = []  # (row, column, the row as eliminated)
+    while True:
+        column_counts: dict[int, int] = {}
+        for entries in rows.values():
+            for j in entries:
+                column_counts[j] = column_counts.get(j, 0) + 1
+        candidates = [((len(entries) - 1) * (column_counts[j] - 1), abs(value) != 1, i, j)
+                      for i, entries in rows.items() for j, value in entries.items() if value.is_number]
+        if not candidates:
+            break
+        _, _, pivot_row, pivot_column = min(candidates)
+        entries = rows.pop(pivot_row)
+        pivot = entries[pivot_column]
+        for i, other in rows.items():
+            if pivot_column not in other:
+                continue
+            factor = other.pop(pivot_column) / pivot
+            for j, value in entries.items():
+                if j != pivot_column:
+                    updated = other.get(j, 0) - factor * value
+                    if updated == 0:
+                        other.pop(j, None)
+                    else:
+                        other[j] = updated
+            right[i] = right[i] - factor * right[pivot_row]
+        steps.append((pivot_row, pivot_column, entries))
+    solution: dict[int, sp.Expr] = {}
+    rest_rows = sorted(rows)
+    rest_columns = sorted({j for i in rest_rows for j in rows[i]} | (set(range(size)) - {c for _, c, _ in steps}))
+    if len(rest_rows) != len(rest_columns):
+        raise ValueError("the Newton-Euler equations are structurally singular")
+    if rest_rows:
+        schur = sp.Matrix([[rows[i].get(j, 0) for j in rest_columns] for i in rest_rows])
+        determinant = schur.det(method="berkowitz")
+        if determinant == 0:
+            raise ValueError("the Newton-Euler equations are structurally singular")
+        for k, j in enumerate(rest_columns):
+            replaced = schur.copy()
+            replaced[:, k] = sp.Matrix([right[i] for i in rest_rows])
+            solution[j] = replaced.det(method="berkowitz") / determinant
+    for row, column, entries in reversed(steps):
+        known = sum((value * solution[j] for j, value in entries.items() if j != column), sp.S.Zero)
+        solution[column] = (right[row] - known) / entries[column]
+    return [solution[j] for j in range(size)]
 
 
 def dynamic_outputs(model: DynamicModel) -> dict[str, sp.Expr]:

@@ -77,11 +77,11 @@ FUNCTION = "solve"
 #: Add a module here when it starts to shape generated text; benchmarks, plots and the command line
 #: stay out, so that editing them keeps the cache.
 CODE_SHAPING = ("names", "vectors", "loops", "position", "motion", "sensitivity", "linkage", "closure", "plan",
-                "catalog", "codegen", "export", "compiled")  # printing it
+                "catalog", "bodies", "dynamics", "typeset", "codegen", "export", "compiled")  # printing it
 #: What builds a catalog linkage (:mod:`symlink.catalog` and every symlink module it imports, directly or
 #: not) beyond :data:`CODE_SHAPING`: with it, the digest stands in for the linkage's definition in
 #: :func:`catalog_key`, so that a cached catalog scene is found without building the linkage (or importing SymPy).
-CATALOG_SHAPING = CODE_SHAPING + ("notation", "typeset")
+CATALOG_SHAPING = CODE_SHAPING + ("notation",)
 #: Largest entry read back (a generated module is some kilobytes; anything far larger is not ours).
 ENTRY_LIMIT = 64 << 20
 

@@ -33,7 +33,9 @@ FORMATS = tuple(PRINTERS)
 SET_DESCRIPTIONS = {"positions": "Positions of the unknowns (angles in rad).",
                     "velocities": "Positions and their rates (per second).",
                     "accelerations": "Positions, rates, accelerations (per second squared) and the extras.",
-                    "joints": "Coordinates of the moving joints."}
+                    "joints": "Coordinates of the moving joints.",
+                    "dynamics": "Positions, rates, accelerations, the driving efforts, joint reactions and shaking "
+                                "loads, and the generalised inertia, its slope and the applied generalised force."}
 
 
 def output_sets(linkage: Linkage) -> list[tuple[str, list[str], str]]:

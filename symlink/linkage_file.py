@@ -40,6 +40,46 @@ The four-bar of the catalog as a file::
     d = 80
     theta = "30 deg"
 
+An optional ``[dynamics]`` table gives the bodies mass properties and the
+linkage loads (see :mod:`symlink.dynamics.model`); with it the linkage also
+has the dynamic outputs (``input_torque``, ``joint_B_x``, ``shaking_force_x``,
+...; see :func:`LinkageFile.dynamic_linkage`)::
+
+    [dynamics]
+    gravity = [0, -9.81]               # frame components (default none)
+
+    [dynamics.masses.crank]            # a moving body, by the name symlink.bodies gives it
+    mass = 1.2                         # a number, or a name (its value in [defaults])
+    distance = 10                      # centre of mass: from origin (default the body's first joint),
+    angle = "0 deg"                    # at this angle from the body's line (default 0)
+    inertia = "I2"                     # about the centre of mass (default 0)
+    origin = "A"
+
+    [[dynamics.forces]]                # a force (frame components) at a point or joint
+    point = "C"
+    x = 0
+    y = "-F"                           # a name's value in [defaults]; a leading - negates it
+
+    [[dynamics.torques]]               # a couple on a body, counter-clockwise positive
+    body = "rocker"
+    torque = -15
+
+    [[dynamics.springs]]               # tension stiffness * (length - free_length)
+    first = "B"
+    second = "D"
+    stiffness = 100
+    free_length = 50
+
+    [[dynamics.dampers]]               # tension coefficient * (rate of the distance)
+    first = "C"
+    second = "D"
+    coefficient = 2
+
+A value is a number, a constant of the grammar below (``"30 deg"``), or a
+name with an optional leading ``-``: the linkage's own constants keep their
+meaning, other names become parameters of the dynamic outputs (give their
+values under ``[defaults]`` or when evaluating).
+
 The parameters of the generated functions are the lengths, then the
 constants, in the order listed.  The grammar of a length, an angle or a
 default value::
@@ -91,7 +131,7 @@ import re
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Mapping
+from typing import TYPE_CHECKING, Mapping
 
 import sympy as sp
 
@@ -99,6 +139,10 @@ from .files import write_atomic
 from .linkage import Linkage
 from .loops import Loop
 from .vectors import Vector, VectorSum
+
+if TYPE_CHECKING:
+    from .dynamics.inverse import DynamicLinkage
+    from .dynamics.model import DynamicModel
 
 if sys.version_info >= (3, 11):
     from tomllib import loads as toml_loads
@@ -109,7 +153,14 @@ __all__ = ["LinkageFile", "load_linkage", "read_linkage", "linkage_from_text", "
            "write_linkage", "write_catalog_files"]
 
 TOP_KEYS = ("name", "inputs", "unknowns", "lengths", "constants")
-TABLES = ("vectors", "loops", "points", "roles", "defaults")
+TABLES = ("vectors", "loops", "points", "roles", "defaults", "dynamics")
+#: The keys of ``[dynamics]`` and of each of its entries (the first key of each entry is required).
+DYNAMICS_KEYS = ("gravity", "masses", "forces", "torques", "springs", "dampers")
+DYNAMICS_ENTRIES = {"masses": ("mass", "distance", "angle", "inertia", "origin"),
+                    "forces": ("point", "x", "y", "body"),
+                    "torques": ("body", "torque"),
+                    "springs": ("first", "second", "stiffness", "free_length", "first_body", "second_body"),
+                    "dampers": ("first", "second", "coefficient", "first_body", "second_body")}
 RESERVED = {"pi", "deg", "rad"}
 ORIGIN = "0"
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
@@ -119,11 +170,29 @@ _TOKEN = re.compile(r"\s*(?:(?P<number>(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+
 
 @dataclass(frozen=True)
 class LinkageFile:
-    """A linkage read from a file, with the file's default values (radians for angles) and where it came from."""
+    """A linkage read from a file, with the file's default values (radians for angles) and where it came from.
+
+    ``model`` holds the mass properties and loads of the file's ``[dynamics]`` table, if it has one.
+    """
 
     linkage: Linkage
     defaults: dict[str, float] = field(default_factory=dict)
     source: str = ""
+    model: DynamicModel | None = None
+
+    def dynamic_linkage(self) -> DynamicLinkage:
+        """The linkage with its dynamic outputs (derived here: keep the result); ``ValueError`` without dynamics."""
+        if self.model is None:
+            raise ValueError(f"{self.source or self.linkage.name}: no [dynamics] table (masses and loads) to derive "
+                             "torques and joint forces from")
+        from .dynamics.inverse import dynamic_linkage
+        return dynamic_linkage(self.model)
+
+    def with_dynamics(self) -> LinkageFile:
+        """This file with its dynamic linkage in place of the plain one (itself without a ``[dynamics]`` table)."""
+        if self.model is None:
+            return self
+        return LinkageFile(self.dynamic_linkage(), self.defaults, self.source, self.model)
 
 
 class _Problem(ValueError):
@@ -136,7 +205,7 @@ class _Problem(ValueError):
 
 # --- where keys are in the text -------------------------------------------------------
 
-_HEADER_LINE = re.compile(r"\s*\[\s*([A-Za-z0-9_.-]+)\s*\]\s*(?:#.*)?$")
+_HEADER_LINE = re.compile(r"\s*(\[\[?)\s*([A-Za-z0-9_.-]+)\s*\]\]?\s*(?:#.*)?$")
 _KEY_LINE = re.compile(r"""\s*(?:([A-Za-z0-9_-]+)|"([^"\\]*)"|'([^']*)')\s*=""")
 
 
@@ -150,13 +219,17 @@ def _key_lines(text: str) -> tuple[dict[tuple[str, str], int], dict[str, int]]:
     headers: dict[str, int] = {}
     table = ""
     in_multiline = False
+    entries: dict[str, int] = {}  # how many [[name]] headers so far: the k-th is table "name[k]" (from 0)
     for number, line in enumerate(text.splitlines(), start=1):
         if in_multiline:  # skip the continuation of an array written over several lines
             in_multiline = line.count("[") >= line.count("]") and "]" not in line
             continue
         header = _HEADER_LINE.match(line)
         if header:
-            table = header.group(1)
+            table = header.group(2)
+            if header.group(1) == "[[":
+                entries[table] = entries.get(table, -1) + 1
+                table = f"{table}[{entries[table]}]"
             headers.setdefault(table, number)
             continue
         key = _KEY_LINE.match(line)
@@ -466,19 +539,6 @@ def _from_mapping(data: Mapping, source: str) -> LinkageFile:
         roles[key] = symbols[value]
 
     angles = set().union(*(v.angle.free_symbols for v in vectors.values()))
-    defaults = {}
-    for key, value in _table(data, "defaults").items():
-        if key not in positive + constants + inputs:
-            raise _Problem("defaults", key, f"defaults.{key}: only constants and inputs have defaults "
-                                            f"({', '.join(positive + constants + inputs)})")
-        try:
-            number = _expression(value, {}, units=symbols[key] in angles)
-        except ValueError as error:
-            raise _Problem("defaults", key, f"defaults.{key}: {error}") from None
-        defaults[key] = float(number)
-        if key in positive and not defaults[key] > 0:
-            raise _Problem("defaults", key, f"defaults.{key} must be a positive length, got {value!r}")
-
     try:
         linkage = Linkage(name, loops, [symbols[n] for n in inputs], [symbols[n] for n in unknowns],
                           parameters=[symbols[n] for n in positive + constants], points=points, roles=roles)
@@ -488,7 +548,112 @@ def _from_mapping(data: Mapping, source: str) -> LinkageFile:
         linkage.has_closed_form  # a linkage with no solve plan at all is an error in its definition
     except ValueError as error:
         raise _Problem("loops", "", f"{error}") from None
-    return LinkageFile(linkage, defaults, source)
+    model = _dynamics(data["dynamics"], linkage) if "dynamics" in data else None
+    dynamic_names = [symbol.name for symbol in model.new_parameters] if model is not None else []
+    defaults = {}
+    for key, value in _table(data, "defaults").items():
+        if key not in positive + constants + inputs + dynamic_names:
+            raise _Problem("defaults", key, f"defaults.{key}: only constants, inputs and the names of [dynamics] "
+                                            f"have defaults ({', '.join(positive + constants + inputs + dynamic_names)})")
+        try:
+            number = _expression(value, {}, units=key in symbols and symbols[key] in angles)
+        except ValueError as error:
+            raise _Problem("defaults", key, f"defaults.{key}: {error}") from None
+        defaults[key] = float(number)
+        if key in positive and not defaults[key] > 0:
+            raise _Problem("defaults", key, f"defaults.{key} must be a positive length, got {value!r}")
+    return LinkageFile(linkage, defaults, source, model)
+
+
+def _dynamic_value(value, table: str, key: str, known: Mapping[str, sp.Symbol], angle: bool = False):
+    """A value of ``[dynamics]``: a number, a constant of the grammar (``"30 deg"``), or a name, maybe negated."""
+    where = f"{table}.{key}"
+    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+        raise _Problem(table, key, f"{where} must be a number or a name, got {value!r}")
+    if isinstance(value, (int, float)):
+        if not math.isfinite(value):
+            raise _Problem(table, key, f"{where} must be finite, got {value!r}")
+        return value
+    text = value.strip()
+    negated = text.startswith("-") and bool(_NAME.match(text[1:].strip()))
+    name = text[1:].strip() if negated else text
+    if _NAME.match(name) and name not in RESERVED:
+        return -known.get(name, sp.Symbol(name, real=True)) if negated else name
+    try:
+        return float(_expression(text, {}, units=angle))
+    except ValueError as error:
+        raise _Problem(table, key, f"{where}: {error}") from None
+
+
+def _dynamics(data, linkage: Linkage) -> DynamicModel:
+    """The :class:`~symlink.dynamics.model.DynamicModel` of a ``[dynamics]`` table (see the module docstring)."""
+    from .dynamics.model import BodyTorque, Damper, DynamicModel, Gravity, MassProperties, PointForce, Spring
+    if not isinstance(data, dict):
+        raise _Problem("", "dynamics", f"dynamics must be a table ([dynamics]), got {data!r}")
+    known = {symbol.name: symbol for symbol in linkage.parameters + linkage.coordinates}
+    for key in data:
+        if key not in DYNAMICS_KEYS:
+            raise _Problem("dynamics", key, f"dynamics.{key}: unknown key (dynamics has {', '.join(DYNAMICS_KEYS)})")
+    gravity = None
+    if "gravity" in data:
+        pair = data["gravity"]
+        if not isinstance(pair, list) or len(pair) != 2:
+            raise _Problem("dynamics", "gravity", f"dynamics.gravity must be [x, y], got {pair!r}")
+        gravity = Gravity(*(_dynamic_value(v, "dynamics", "gravity", known) for v in pair))
+
+    def entry(kind: str, table: str, key: str, item) -> dict:
+        where = f"{table}.{key}" if key else table
+        allowed = DYNAMICS_ENTRIES[kind]
+        if not isinstance(item, dict):
+            raise _Problem(table, key, f"{where} must be a table of {', '.join(allowed)}, got {item!r}")
+        for name in item:
+            if name not in allowed:
+                raise _Problem(f"{table}.{key}" if key else table, name,
+                               f"{where}.{name}: unknown key ({kind} take {', '.join(allowed)})")
+        first = allowed[0] if kind != "forces" else "point"
+        if first not in item:
+            raise _Problem(table, key, f"{where}: missing {first}")
+        inner = f"{table}.{key}" if key else table
+        found = {}
+        for name, value in item.items():
+            if name in ("origin", "point", "body", "first", "second", "first_body", "second_body"):
+                if not isinstance(value, str) or not _NAME.match(value):
+                    raise _Problem(inner, name, f"{where}.{name} must name a point, joint or body, got {value!r}")
+                found[name] = value
+            else:
+                found[name] = _dynamic_value(value, inner, name, known, angle=name == "angle")
+        return found
+
+    masses = []
+    bodies = data.get("masses", {})
+    if not isinstance(bodies, dict):
+        raise _Problem("dynamics", "masses", f"dynamics.masses must be a table of bodies, got {bodies!r}")
+    for body, item in bodies.items():
+        masses.append(MassProperties(body, **entry("masses", "dynamics.masses", body, item)))
+    loads: list = []
+    kinds = {"forces": PointForce, "torques": BodyTorque, "springs": Spring, "dampers": Damper}
+    for kind, make in kinds.items():
+        items = data.get(kind, [])
+        if not isinstance(items, list):
+            raise _Problem("dynamics", kind, f"dynamics.{kind} must be a list of tables ([[dynamics.{kind}]]), "
+                                             f"got {items!r}")
+        for k, item in enumerate(items):
+            found = entry(kind, f"dynamics.{kind}[{k}]", "", item)
+            if kind == "forces":
+                found.setdefault("x", 0)
+                found.setdefault("y", 0)
+            if kind == "torques" and "torque" not in found:
+                raise _Problem(f"dynamics.{kind}[{k}]", "", f"dynamics.{kind}[{k}]: missing torque")
+            if kind in ("springs", "dampers"):
+                needed = ("second", "stiffness" if kind == "springs" else "coefficient")
+                for name in needed:
+                    if name not in found:
+                        raise _Problem(f"dynamics.{kind}[{k}]", "", f"dynamics.{kind}[{k}]: missing {name}")
+            loads.append(make(**found))
+    try:
+        return DynamicModel(linkage, masses, loads, gravity)
+    except ValueError as error:
+        raise _Problem("dynamics", "", f"dynamics: {error}") from None
 
 
 def linkage_from_text(text: str, source: str = "<text>") -> LinkageFile:

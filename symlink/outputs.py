@@ -59,9 +59,12 @@ def output_sets(linkage: Linkage, unknowns: Sequence[str] | None = None, joints:
     positions = list(unknowns) if unknowns is not None else [label(linkage, q) for q in linkage.unknowns]
     speeds, accels = derivative_outputs(linkage, positions)
     joints = moving_joints(linkage) if joints is None else list(joints)
+    dynamic = list(getattr(linkage, "dynamic_outputs", ()))
+    kinematic_extras = [name for name in linkage.extras if name not in dynamic] if extras else []
     sets = [("positions", positions), ("velocities", positions + speeds),
-            ("accelerations", positions + speeds + accels + (list(linkage.extras) if extras else []))]
-    return sets + ([("joints", joints)] if joints else [])
+            ("accelerations", positions + speeds + accels + kinematic_extras)]
+    sets += [("joints", joints)] if joints else []
+    return sets + ([("dynamics", positions + speeds + accels + dynamic)] if dynamic else [])
 
 
 def table_outputs(linkage: Linkage) -> dict[str, str]:
@@ -70,4 +73,5 @@ def table_outputs(linkage: Linkage) -> dict[str, str]:
     columns = dict(zip(names, (q.name for q in linkage.unknowns)))
     columns.update({name + SPEED_SUFFIX: rate(q).name for name, q in zip(names, linkage.unknowns)})
     columns.update({name + ACCEL_SUFFIX: acceleration(q).name for name, q in zip(names, linkage.unknowns)})
+    columns.update({name: name for name in getattr(linkage, "force_outputs", ())})  # a linkage with mass properties
     return columns

@@ -315,12 +315,14 @@ def scene_from_mapping(data: Mapping, folder: str | Path = ".") -> SceneFile:
     if not isinstance(data["linkage"], str):
         raise ValueError(f"linkage must be a catalog name or a linkage file, got {data['linkage']!r}")
     found = load_linkage(data["linkage"], folder)
-    linkage = found.linkage
     defaults = {} if found.source == "catalog" else found.defaults  # a catalog scene names every parameter
     outputs = data.get("outputs")
     if not isinstance(outputs, list) or not outputs or not all(isinstance(o, str) for o in outputs):
-        raise ValueError(f"outputs must be a non-empty list of output names of {linkage.name} "
-                         f"({', '.join(linkage.output_names())}), got {outputs!r}")
+        raise ValueError(f"outputs must be a non-empty list of output names of {found.linkage.name} "
+                         f"({', '.join(found.linkage.output_names())}), got {outputs!r}")
+    if found.model is not None and not set(outputs) <= set(found.linkage.output_names()):
+        found = found.with_dynamics()  # torques or joint forces of a linkage file with a [dynamics] table
+    linkage = found.linkage
     for name in outputs:
         try:
             linkage.output(name)

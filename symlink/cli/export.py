@@ -12,7 +12,7 @@ def _add_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("--out", required=True, metavar="DIR", help="the folder to write into")
     command.add_argument("--outputs", metavar="LIST",
                          help="comma-separated output names, as one function (default: positions, velocities, "
-                              "accelerations and joints)")
+                              "accelerations and joints; and dynamics for a linkage file with [dynamics])")
     command.set_defaults(run=run)
 
 
@@ -44,6 +44,6 @@ def run(args: argparse.Namespace) -> int:
     from ..export import export
     from ..linkage_file import load_linkage
     outputs = None if args.outputs is None else [o.strip() for o in args.outputs.split(",") if o.strip()]
-    for path in export(load_linkage(args.name).linkage, args.to, args.out, outputs):
+    for path in export(load_linkage(args.name).with_dynamics().linkage, args.to, args.out, outputs):
         print(f"wrote {path}")
     return 0

@@ -566,7 +566,7 @@ def run_generic_table(args: argparse.Namespace) -> int:
     """``symlink table``: the table of any linkage, from the catalog or a file."""
     from ..linkage_file import load_linkage
     from ..solver import check_lengths
-    found = load_linkage(args.linkage)
+    found = load_linkage(args.linkage).with_dynamics()  # a [dynamics] table adds the torque and force columns
     linkage = found.linkage
     ratios = {f"{x.name}_ratio" for x in linkage.inputs[1:]}
     values = linkage_values(found, args.set, args.units, extra=sorted(ratios))

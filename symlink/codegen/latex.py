@@ -58,11 +58,12 @@ def document(title: str, body: Sequence[str]) -> str:
 
 
 def latex_document(linkage: Linkage, title: str, *, velocities: bool = True, accelerations: bool = True,
-                   sensitivities: Sequence[sp.Symbol] = ()) -> str:
+                   sensitivities: Sequence[sp.Symbol] = (), dynamics: bool = False) -> str:
     """A standalone LaTeX document with the linkage's closed-form derivation, section by section.
 
     ``sensitivities`` names parameters whose design sensitivities (the unknowns' derivatives by them,
-    :mod:`symlink.sensitivity`) get a section of their own.
+    :mod:`symlink.sensitivity`) get a section of their own; ``dynamics`` adds the sections of a linkage
+    with mass properties (its ``derivation_sections``: see :mod:`symlink.dynamics.inverse`).
     """
     parts = [
         "Angles are measured counter-clockwise from $+x$. "
@@ -85,6 +86,9 @@ def latex_document(linkage: Linkage, title: str, *, velocities: bool = True, acc
     for parameter in sensitivities:
         parts += [f"\\subsection*{{Sensitivities to ${sp.latex(parameter)}$}}",
                   *align_block(list(linkage.sensitivities(parameter).items()))]
+    if dynamics:
+        for heading, rows in linkage.derivation_sections():  # type: ignore[attr-defined]
+            parts += [f"\\subsection*{{{latex_text(heading)}}}", *align_block(rows)]
     return document(title, parts)
 
 
@@ -126,5 +130,8 @@ def export_files(linkage: Linkage, stem: str, functions: Sequence[tuple[str, Seq
     accelerations = any(acceleration(q) in asked for q in linkage.unknowns)
     velocities = accelerations or any(rate(q) in asked for q in linkage.unknowns)
     sensitivities = [p for p in linkage.parameters if any(sensitivity_symbol(q, p) in asked for q in linkage.unknowns)]
-    return {f"{stem}.tex": latex_document(linkage, title, velocities=velocities, accelerations=accelerations,
-                                          sensitivities=sensitivities)}
+    dynamic = set(getattr(linkage, "dynamic_outputs", ()))
+    dynamics = any(o in dynamic for _, outputs, _ in functions for o in outputs)
+    return {f"{stem}.tex": latex_document(linkage, title, velocities=velocities or dynamics,
+                                          accelerations=accelerations or dynamics, sensitivities=sensitivities,
+                                          dynamics=dynamics)}

@@ -41,6 +41,7 @@ I2*thetaddot
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import sympy as sp
@@ -53,7 +54,10 @@ from ..vectors import expression
 if TYPE_CHECKING:
     from .model import DynamicModel
 
-__all__ = ["driving_efforts", "reactions", "dynamic_outputs", "DynamicLinkage", "dynamic_linkage"]
+__all__ = ["FORWARD_OUTPUTS", "NewtonEuler", "driving_efforts", "newton_euler", "reactions", "dynamic_outputs", "DynamicLinkage", "dynamic_linkage"]
+
+#: The outputs that serve forward dynamics (one input), not a table of forces.
+FORWARD_OUTPUTS = ("generalised_inertia", "generalised_inertia_slope", "applied_generalised_force")
 
 
 def driving_efforts(model: DynamicModel) -> list[sp.Expr]:
@@ -114,12 +118,72 @@ def _names(model: DynamicModel) -> list[str]:
     return names
 
 
+@dataclass
+class NewtonEuler:
+    """The Newton-Euler equations of a model's moving bodies, ``matrix * unknowns = rhs``, three rows a body.
+
+    Rows ``3k, 3k+1, 3k+2`` of body ``bodies[k]`` are its force balance in x and y and its
+    moment balance about its centre of mass; ``matrix`` and ``rhs`` hold generic placeholders
+    (``placeholders`` maps them to their expressions) so that solving them never tests a real
+    expression for zero; ``symbols`` are readable names of the unknowns (``F_{B,x}``, ``N_{J}``,
+    ``T_{theta}``) for the derivation document.
+    """
+
+    bodies: list[str]
+    unknowns: list[sp.Symbol]
+    symbols: list[sp.Symbol]
+    matrix: sp.Matrix
+    rhs: sp.Matrix
+    placeholders: dict[sp.Symbol, sp.Expr]
+    outputs: dict[str, sp.Expr]
+    ground_loads: list[tuple[sp.Symbol, tuple[sp.Expr, sp.Expr], tuple[sp.Expr, sp.Expr], sp.Expr]]
+    applied: list[sp.Expr]
+    massive: tuple[str, ...] = ()
+
+    def equations(self) -> list[tuple[sp.Symbol, sp.Expr]]:
+        """Each row as ``m a_G,x = the joint forces and drives in x + the applied loads in x`` (and y, and
+        ``I alpha`` = the moments about G), the unknowns by their readable names."""
+        readable = dict(zip(self.unknowns, self.symbols))
+        rows = []
+        for k, body in enumerate(self.bodies):
+            names = (f"m_{{{body}}} a_{{G,{body},x}}", f"m_{{{body}}} a_{{G,{body},y}}",
+                     f"I_{{G,{body}}} \\alpha_{{{body}}}")
+            for offset, name in enumerate(names):
+                row = 3 * k + offset
+                forces = sum((self.matrix[row, j] * readable[u] for j, u in enumerate(self.unknowns)
+                              if self.matrix[row, j] != 0), sp.S.Zero)
+                left = sp.Symbol(name) if body in self.massive else sp.S.Zero  # a massless body balances
+                rows.append((left, (forces + self.applied[row]).xreplace(self.placeholders)))
+        return rows
+
+
 def reactions(model: DynamicModel) -> dict[str, sp.Expr]:
     """Every joint's reaction, the driving efforts and the shaking force and moment (Newton-Euler, solved once).
 
     Keys are the output names of the module docstring (the efforts under their
     :meth:`~symlink.dynamics.model.DynamicModel.input_effort_name`).
     """
+    system = newton_euler(model)
+    solution = _solve(system.matrix, system.rhs)
+    by_unknown = dict(zip(system.unknowns, solution))
+    result = {name: value.xreplace(by_unknown) for name, value in system.outputs.items()}
+    # The frame: what the moving parts exert on it through its joints and drives.
+    shaking_x = shaking_y = moment = sp.S.Zero
+    for symbol, point, direction, couple in system.ground_loads:
+        value = by_unknown[symbol]
+        if couple:
+            moment += couple * value
+            continue
+        fx, fy = direction[0] * value, direction[1] * value
+        shaking_x, shaking_y = shaking_x + fx, shaking_y + fy
+        moment += point[0] * fy - point[1] * fx
+    # act() stored each force and couple on the ground with the ground's sign: they are the shaking loads.
+    result.update({"shaking_force_x": shaking_x, "shaking_force_y": shaking_y, "shaking_moment": moment})
+    return {name: value.xreplace(system.placeholders) for name, value in result.items()}
+
+
+def newton_euler(model: DynamicModel) -> NewtonEuler:
+    """The Newton-Euler equations of ``model`` (see :class:`NewtonEuler`); ``ValueError`` if not square."""
     bodies = list(model.moving_bodies)
     row_of = {body: 3 * k for k, body in enumerate(bodies)}
     centres = {body: model.masses[body][1] if body in model.masses else model.point(
@@ -145,13 +209,15 @@ def reactions(model: DynamicModel) -> dict[str, sp.Expr]:
         return arms[key]
 
     unknowns: list[sp.Symbol] = []
+    readable: list[sp.Symbol] = []
     columns: list[dict[int, sp.Expr]] = []  # per unknown: row -> coefficient
     ground_loads: list[tuple[sp.Symbol, tuple[sp.Expr, sp.Expr], tuple[sp.Expr, sp.Expr], sp.Expr]] = []
     outputs: dict[str, sp.Expr] = {}  # name -> placeholder expression of unknowns
 
-    def unknown() -> sp.Symbol:
+    def unknown(name: str) -> sp.Symbol:
         symbol = sp.Dummy(f"x{len(unknowns)}")
         unknowns.append(symbol)
+        readable.append(sp.Symbol(name))
         columns.append({})
         return symbol
 
@@ -184,7 +250,7 @@ def reactions(model: DynamicModel) -> dict[str, sp.Expr]:
             guide, block = joint.bodies
             angle = expression(joint.direction) + sp.pi / 2
             normal = (hold(sp.cos(angle)), hold(sp.sin(angle)))
-            force, couple = unknown(), unknown()
+            force, couple = unknown(f"N_{{{joint.name}}}"), unknown(f"M_{{{joint.name}}}")
             for body, sign in ((block, 1), (guide, -1)):
                 act(force, body, position, normal, sign)
                 act(couple, body, None, None, sign)
@@ -194,14 +260,15 @@ def reactions(model: DynamicModel) -> dict[str, sp.Expr]:
             continue
         first = joint.bodies[0]
         for other in joint.bodies[1:]:
-            fx, fy = unknown(), unknown()
+            at = joint.name if len(joint.bodies) == 2 else f"{joint.name},{other}"
+            fx, fy = unknown(f"F_{{{at},x}}"), unknown(f"F_{{{at},y}}")
             for symbol, axis in ((fx, x_axis), (fy, y_axis)):
                 act(symbol, other, position, axis, 1)
                 act(symbol, first, position, axis, -1)
             outputs[next(names)] = fx
             outputs[next(names)] = fy
     for index, drive in enumerate(_input_drives(model)):
-        effort = unknown()
+        effort = unknown(f"{'T' if drive[0] == 'torque' else 'P'}_{{{sp.latex(model.kinematics.inputs[index])}}}")
         if drive[0] == "torque":
             act(effort, drive[1], None, None, 1)
             act(effort, GROUND, None, None, -1)
@@ -223,44 +290,29 @@ def reactions(model: DynamicModel) -> dict[str, sp.Expr]:
         for row, value in column.items():
             matrix[row, k] = value
     # Right-hand sides: m a_G - applied forces, I alpha - applied moments about G.
-    rhs = [sp.S.Zero] * size
+    inertial = [sp.S.Zero] * size
+    applied = [sp.S.Zero] * size
     for body in bodies:
         row = row_of[body]
         if body in model.masses:
             mass, centre, inertia = model.masses[body]
             a = model.acceleration_of(centre)
-            rhs[row] += mass * a[0]
-            rhs[row + 1] += mass * a[1]
-            rhs[row + 2] += inertia * model.angular_acceleration(body)
+            inertial[row:row + 3] = [mass * a[0], mass * a[1], inertia * model.angular_acceleration(body)]
     for force in model.forces:
         if force.body == GROUND:
             continue
         row = row_of[force.body]
         g = centres[force.body]
         rx, ry = force.point[0] - g[0], force.point[1] - g[1]
-        rhs[row] -= force.force[0]
-        rhs[row + 1] -= force.force[1]
-        rhs[row + 2] -= rx * force.force[1] - ry * force.force[0]
+        applied[row] += force.force[0]
+        applied[row + 1] += force.force[1]
+        applied[row + 2] += rx * force.force[1] - ry * force.force[0]
     for body, couple in model.couples:
         if body != GROUND:
-            rhs[row_of[body] + 2] -= couple
-    held_rhs = sp.Matrix([hold(value) for value in rhs])
-    solution = _solve(matrix, held_rhs)
-    by_unknown = dict(zip(unknowns, solution))
-    result = {name: value.xreplace(by_unknown) for name, value in outputs.items()}
-    # The frame: what the moving parts exert on it through its joints and drives.
-    shaking_x = shaking_y = moment = sp.S.Zero
-    for symbol, point, direction, couple in ground_loads:
-        value = by_unknown[symbol]
-        if couple:
-            moment += couple * value
-            continue
-        fx, fy = direction[0] * value, direction[1] * value
-        shaking_x, shaking_y = shaking_x + fx, shaking_y + fy
-        moment += point[0] * fy - point[1] * fx
-    # act() stored each force and couple on the ground with the ground's sign: they are the shaking loads.
-    result.update({"shaking_force_x": shaking_x, "shaking_force_y": shaking_y, "shaking_moment": moment})
-    return {name: value.xreplace(placeholders) for name, value in result.items()}
+            applied[row_of[body] + 2] += couple
+    held_rhs = sp.Matrix([hold(m - f) for m, f in zip(inertial, applied)])
+    return NewtonEuler(bodies, unknowns, readable, matrix, held_rhs, placeholders, outputs, ground_loads, applied,
+                       tuple(model.masses))
 
 
 def _solve(matrix: sp.Matrix, rhs: sp.Matrix) -> list[sp.Expr]:
@@ -338,9 +390,10 @@ def dynamic_outputs(model: DynamicModel) -> dict[str, sp.Expr]:
         found.pop(model.input_effort_name(i))
     outputs.update(found)
     if len(model.kinematics.inputs) == 1:
-        outputs["generalised_inertia"] = model.generalised_inertia()[0, 0]
-        outputs["generalised_inertia_slope"] = model.generalised_inertia_slope()
-        outputs["applied_generalised_force"] = model.applied_generalised_forces()[0]
+        inertia, slope, applied = FORWARD_OUTPUTS
+        outputs[inertia] = model.generalised_inertia()[0, 0]
+        outputs[slope] = model.generalised_inertia_slope()
+        outputs[applied] = model.applied_generalised_forces()[0]
     return outputs
 
 
@@ -349,6 +402,46 @@ class DynamicLinkage(Linkage):
 
     dynamic_outputs: tuple[str, ...] = ()
     model: DynamicModel
+
+    @property
+    def force_outputs(self) -> tuple[str, ...]:
+        """The driving efforts, joint reactions and shaking loads: the columns a table adds."""
+        return tuple(name for name in self.dynamic_outputs if name not in FORWARD_OUTPUTS)
+
+    def derivation_sections(self) -> list[tuple[str, list[tuple[sp.Expr, sp.Expr]]]]:
+        """``(title, rows)`` of the dynamics for the derivation document: the mass properties, the driving
+        effort by virtual power, the Newton-Euler equations body by body, and (one input) the equation of motion.
+
+        The reactions are shown as the equations they solve, in terms of the coordinates and their
+        rates and accelerations, not as their long closed forms.
+        """
+        model = self.model
+        masses, accelerations = [], []
+        for body, (mass, centre, inertia) in model.masses.items():
+            masses += [(sp.Symbol(f"m_{{{body}}}"), mass), (sp.Symbol(f"x_{{G,{body}}}"), centre[0]),
+                       (sp.Symbol(f"y_{{G,{body}}}"), centre[1]), (sp.Symbol(f"I_{{G,{body}}}"), inertia)]
+            a = model.acceleration_of(centre)
+            accelerations += [(sp.Symbol(f"a_{{G,{body},x}}"), a[0]), (sp.Symbol(f"a_{{G,{body},y}}"), a[1]),
+                              (sp.Symbol(f"\\alpha_{{{body}}}"), model.angular_acceleration(body))]
+        system = newton_euler(model)
+        effort_symbols = {name: system.symbols[system.unknowns.index(value)]
+                          for name, value in system.outputs.items() if value in system.unknowns}
+        efforts = [(effort_symbols[model.input_effort_name(i)], effort)
+                   for i, effort in enumerate(driving_efforts(model))]
+        sections = [("Mass properties (centres of mass in the frame)", masses),
+                    ("Accelerations of the centres of mass and angular accelerations", accelerations),
+                    ("Driving effort by virtual power", efforts),
+                    ("Newton-Euler equations, body by body: the joint forces F (of a pin's first body on the other), "
+                     "slider normal forces N and couples M, and the drive", system.equations())]
+        if len(model.kinematics.inputs) == 1:
+            inertia, slope, applied = FORWARD_OUTPUTS
+            q = sp.latex(model.kinematics.inputs[0])
+            motion = sp.Symbol(f"M \\ddot{{{q}}} + \\frac{{1}}{{2}} M' \\dot{{{q}}}^{{2}}")
+            sections.append(("Equation of motion, with the generalised inertia M, its slope M' = dM/dq and the "
+                             "applied generalised force Q",
+                             [(motion, sp.Symbol("Q") + efforts[0][0]), (sp.Symbol("M"), self.extras[inertia]),
+                              (sp.Symbol("M'"), self.extras[slope]), (sp.Symbol("Q"), self.extras[applied])]))
+        return sections
 
 
 def dynamic_linkage(model: DynamicModel) -> DynamicLinkage:

@@ -150,7 +150,7 @@ else:  # Python 3.10: tomli is tomllib before it joined the standard library
     from tomli import loads as toml_loads
 
 __all__ = ["LinkageFile", "load_linkage", "read_linkage", "linkage_from_text", "linkage_from_mapping", "linkage_text",
-           "write_linkage", "write_catalog_files"]
+           "write_linkage", "write_catalog_files", "dynamic_model"]
 
 TOP_KEYS = ("name", "inputs", "unknowns", "lengths", "constants")
 TABLES = ("vectors", "loops", "points", "roles", "defaults", "dynamics")
@@ -563,6 +563,22 @@ def _from_mapping(data: Mapping, source: str) -> LinkageFile:
         if key in positive and not defaults[key] > 0:
             raise _Problem("defaults", key, f"defaults.{key} must be a positive length, got {value!r}")
     return LinkageFile(linkage, defaults, source, model)
+
+
+def dynamic_model(table: Mapping, linkage: Linkage, source: str = "<dynamics>") -> DynamicModel:
+    """The mass properties and loads of a ``[dynamics]`` table (see the module docstring) on ``linkage``.
+
+    Scene files take the same table.  ``ValueError`` ``"source: problem"``.
+
+    >>> from symlink.catalog import fourbar
+    >>> model = dynamic_model({"masses": {"crank": {"mass": 2, "distance": 0.1}}}, fourbar())
+    >>> model.generalised_inertia()[0, 0]
+    0.02*sin(theta)**2 + 0.02*cos(theta)**2
+    """
+    try:
+        return _dynamics(table, linkage)
+    except _Problem as problem:
+        raise ValueError(f"{source}: {problem.message}") from None
 
 
 def _dynamic_value(value, table: str, key: str, known: Mapping[str, sp.Symbol], angle: bool = False):

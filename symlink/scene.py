@@ -41,6 +41,10 @@ code::
     speed = 10.5                        # rad/s at the first angle (default 0)
     accel = 0                           # rad/s^2, uniform from the first angle (default 0)
 
+    [dynamics.masses.crank]             # optional: masses and loads as in a linkage file's [dynamics]
+    mass = "m2"                         # (a name's value under [parameters]); outputs may then name
+    distance = 10                       # input_torque, joint_A_x, shaking_moment, ...
+
 They are read with ``tomllib`` (Python 3.11 and later) or, on Python 3.10,
 with ``tomli`` (the same reader, published separately).  Every key and value
 is checked; anything unknown or out of range is one line of error.
@@ -60,7 +64,7 @@ import sympy as sp
 from .cache import GeneratedCode, generated_code
 from .catalog import CATALOG
 from .input_sweep import InputSweep
-from .linkage_file import load_linkage
+from .linkage_file import LinkageFile, dynamic_model, load_linkage
 from .angles import to_radians
 from .linkage import Linkage, Program
 from .closure import is_angle
@@ -80,7 +84,7 @@ __all__ = ["Scene", "SceneFile", "catalog_linkage", "angle_outputs", "read_scene
 BRANCH_CHOICES = (1, -1, "both")
 UNITS = ("deg", "rad")
 FORMATS = ("table", "csv", "json")
-TOP_KEYS = {"linkage", "outputs", "branch", "units", "format", "parameters", "input"}
+TOP_KEYS = {"linkage", "outputs", "branch", "units", "format", "parameters", "input", "dynamics"}
 INPUT_KEYS = {"start", "stop", "step", "angles", "speed", "accel"}
 
 
@@ -320,6 +324,11 @@ def scene_from_mapping(data: Mapping, folder: str | Path = ".") -> SceneFile:
     if not isinstance(outputs, list) or not outputs or not all(isinstance(o, str) for o in outputs):
         raise ValueError(f"outputs must be a non-empty list of output names of {found.linkage.name} "
                          f"({', '.join(found.linkage.output_names())}), got {outputs!r}")
+    if "dynamics" in data:  # mass properties and loads given in the scene, on a catalog linkage or a file's
+        if found.model is not None:
+            raise ValueError(f"dynamics: {data['linkage']} has a [dynamics] table of its own; give it in one place")
+        found = LinkageFile(found.linkage, found.defaults, found.source,
+                            dynamic_model(data["dynamics"], found.linkage, "dynamics"))
     if found.model is not None and not set(outputs) <= set(found.linkage.output_names()):
         found = found.with_dynamics()  # torques or joint forces of a linkage file with a [dynamics] table
     linkage = found.linkage

@@ -220,6 +220,45 @@ def test_a_scene_file_asks_for_the_torque_of_a_linkage_file(tmp_path, capsys):
     assert float(out.splitlines()[1].split(",")[-1]) == pytest.approx(torque, rel=1e-12)
 
 
+def test_a_scene_file_gives_a_catalog_linkage_its_masses(tmp_path, capsys):
+    (tmp_path / "scene.toml").write_text(textwrap.dedent("""\
+        linkage = "fourbar"
+        outputs = ["input_torque", "joint_A_y"]
+        format = "csv"
+        [parameters]
+        a = 0.2
+        b = 0.66
+        c = 0.56
+        d = 0.8
+        m2 = 1.5
+        g = 9.81
+        [input]
+        angles = [0, 50]
+        accel = 2
+        [dynamics]
+        gravity = [0, "-g"]
+        [dynamics.masses.crank]
+        mass = "m2"
+        distance = 0.08
+        inertia = 0.02
+        """))
+    status, out, err = run(capsys, "run", tmp_path / "scene.toml")
+    assert status == 0, err
+    for line in out.splitlines()[1:]:
+        crank, _, torque, force = (float(v) for v in line.split(","))
+        speed = math.sqrt(2 * 2.0 * math.radians(crank))
+        expected = hand(math.radians(crank), speed, 2.0, load=0.0)
+        assert (torque, force) == pytest.approx((expected[0], expected[2]), rel=1e-12)
+
+
+def test_a_scene_cannot_give_masses_twice(tmp_path, capsys):
+    (tmp_path / "crank.toml").write_text(CRANK_ONLY)
+    (tmp_path / "scene.toml").write_text('linkage = "crank.toml"\noutputs = ["input_torque"]\n'
+                                         '[dynamics.masses.rocker]\nmass = 1\n')
+    status, out, err = run(capsys, "run", tmp_path / "scene.toml")
+    assert status == 2 and "has a [dynamics] table of its own" in err and len(err.strip().splitlines()) == 1
+
+
 def test_symlink_derive_of_a_file_with_dynamics_writes_the_dynamics_set(tmp_path, capsys):
     path = tmp_path / "crank.toml"
     path.write_text(CRANK_ONLY)

@@ -4,6 +4,7 @@
   subexpressions eliminated, which every printer prints;
 * :mod:`symlink.codegen.numpy`, :mod:`symlink.codegen.c`,
   :mod:`symlink.codegen.octave`, :mod:`symlink.codegen.latex`: the printers;
+* :mod:`symlink.codegen.scalar`: one state on single floats (for an integrator);
 * :mod:`symlink.codegen.newton` and :mod:`symlink.codegen.newton_driver`: the
   numeric fallback's NumPy module and the Newton driver it embeds.
 

@@ -54,10 +54,10 @@ from ..vectors import expression
 if TYPE_CHECKING:
     from .model import DynamicModel
 
-__all__ = ["FORWARD_OUTPUTS", "NewtonEuler", "driving_efforts", "newton_euler", "reactions", "dynamic_outputs", "DynamicLinkage", "dynamic_linkage"]
+__all__ = ["EQUATION_OUTPUTS", "NewtonEuler", "driving_efforts", "newton_euler", "reactions", "dynamic_outputs", "DynamicLinkage", "dynamic_linkage"]
 
-#: The outputs that serve forward dynamics (one input), not a table of forces.
-FORWARD_OUTPUTS = ("generalised_inertia", "generalised_inertia_slope", "applied_generalised_force")
+#: The outputs the equation of motion is made of (one input): M, dM/dq, Q_applied; not a table of forces.
+EQUATION_OUTPUTS = ("generalised_inertia", "generalised_inertia_slope", "applied_generalised_force")
 
 
 def driving_efforts(model: DynamicModel) -> list[sp.Expr]:
@@ -390,7 +390,7 @@ def dynamic_outputs(model: DynamicModel) -> dict[str, sp.Expr]:
         found.pop(model.input_effort_name(i))
     outputs.update(found)
     if len(model.kinematics.inputs) == 1:
-        inertia, slope, applied = FORWARD_OUTPUTS
+        inertia, slope, applied = EQUATION_OUTPUTS
         outputs[inertia] = model.generalised_inertia()[0, 0]
         outputs[slope] = model.generalised_inertia_slope()
         outputs[applied] = model.applied_generalised_forces()[0]
@@ -406,7 +406,7 @@ class DynamicLinkage(Linkage):
     @property
     def force_outputs(self) -> tuple[str, ...]:
         """The driving efforts, joint reactions and shaking loads: the columns a table adds."""
-        return tuple(name for name in self.dynamic_outputs if name not in FORWARD_OUTPUTS)
+        return tuple(name for name in self.dynamic_outputs if name not in EQUATION_OUTPUTS)
 
     def derivation_sections(self) -> list[tuple[str, list[tuple[sp.Expr, sp.Expr]]]]:
         """``(title, rows)`` of the dynamics for the derivation document: the mass properties, the driving
@@ -434,7 +434,7 @@ class DynamicLinkage(Linkage):
                     ("Newton-Euler equations, body by body: the joint forces F (of a pin's first body on the other), "
                      "slider normal forces N and couples M, and the drive", system.equations())]
         if len(model.kinematics.inputs) == 1:
-            inertia, slope, applied = FORWARD_OUTPUTS
+            inertia, slope, applied = EQUATION_OUTPUTS
             q = sp.latex(model.kinematics.inputs[0])
             motion = sp.Symbol(f"M \\ddot{{{q}}} + \\frac{{1}}{{2}} M' \\dot{{{q}}}^{{2}}")
             sections.append(("Equation of motion, with the generalised inertia M, its slope M' = dM/dq and the "

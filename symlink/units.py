@@ -32,6 +32,7 @@ import sympy as sp
 
 from .closure import is_angle
 from .linkage import ACCEL_SUFFIX, SPEED_SUFFIX, Linkage, is_branch_name
+from .notation import SENSITIVITY_SEPARATOR
 from .vectors import acceleration, rate
 
 __all__ = ["is_quantity", "plain_values", "output_units", "ANY_LENGTH"]
@@ -123,7 +124,9 @@ def output_units(linkage: Linkage, names: Sequence[str], length_unit: str | None
     """The unit of each output: ``rad``, ``rad/s``, ``rad/s^2``, the length unit (per second), or ``''``.
 
     ``''`` for what has no unit (``assembled``) or whose unit symlink cannot
-    know (extra outputs and ``singular``, defined freely by the linkage).
+    know (extra outputs and ``singular``, defined freely by the linkage).  A
+    design sensitivity ``<output>__d_<parameter>`` has the output's unit over
+    the parameter's (``rad/mm``; ``''`` where they are the same).
     """
     length = length_unit or ANY_LENGTH
     angles = _angles(linkage)
@@ -140,6 +143,13 @@ def output_units(linkage: Linkage, names: Sequence[str], length_unit: str | None
             units[name] = _per_second("rad" if q in angles else length, order)
         elif point in linkage.points and axis in ("x", "y"):
             units[name] = length
+        elif SENSITIVITY_SEPARATOR in name:
+            output, _, parameter = name.rpartition(SENSITIVITY_SEPARATOR)
+            numerator = output_units(linkage, [output], length_unit)[output]
+            symbol = next((p for p in linkage.parameters if p.name == parameter), None)
+            denominator = "" if symbol is None else "rad" if symbol in angles else length
+            units[name] = "" if not numerator or not denominator or numerator == denominator \
+                else f"{numerator}/{denominator}"
         else:
             units[name] = ""
     return units

@@ -29,3 +29,11 @@ def test_a_coupler_points_angle_is_an_angle_and_its_distance_a_length():
 def test_output_units_of_a_slider():
     units = output_units(slider_crank(), ["s", "sdot", "beta", "C_x", "singular"])
     assert units == {"s": "length", "sdot": "length/s", "beta": "rad", "C_x": "length", "singular": ""}
+
+
+def test_output_units_of_design_sensitivities():
+    # d(angle)/d(length) is rad per length; d(length)/d(length) has no unit; a fixed angle divides by rad.
+    from symlink.catalog import watt2
+    units = output_units(watt2(), ["phi__d_a", "C_x__d_b", "E_x__d_alpha", "phi__d_alpha", "rocker__d_a"], "mm")
+    assert units == {"phi__d_a": "rad/mm", "C_x__d_b": "", "E_x__d_alpha": "mm/rad", "phi__d_alpha": "",
+                     "rocker__d_a": "rad/mm"}

@@ -17,6 +17,7 @@ ValueError: solving 1e+08 input values needs about 24 GB of memory, more than th
 from __future__ import annotations
 
 import os
+from typing import Callable
 
 __all__ = ["available_memory", "format_bytes", "require_memory"]
 
@@ -55,13 +56,15 @@ def format_bytes(count: float) -> str:
     return f"{count:.0f} bytes"
 
 
-def require_memory(values: int, bytes_per_value: int, what: str, available: int | None = None) -> None:
+def require_memory(values: int, bytes_per_value: int, what: str, available: int | None = None,
+                   advice: Callable[[int], str] | None = None) -> None:
     """``ValueError`` (one line) if ``values`` at ``bytes_per_value`` each need more memory than is available.
 
     ``what`` names the request (``"solving 1e+08 input values"``);
     ``available`` defaults to :func:`available_memory` (no check where that
-    is unknown).  The message gives the number of values per call that fits
-    in half the available memory.
+    is unknown).  The message ends with what to do, given the number of values
+    that fits in half the available memory: ``advice(fits)`` if given, else
+    calling with at most that many values at a time.
     """
     needed = values * bytes_per_value
     if available is None:
@@ -69,6 +72,8 @@ def require_memory(values: int, bytes_per_value: int, what: str, available: int 
     if available is None or needed <= available:
         return
     fits = max(1, available // 2 // max(1, bytes_per_value))
+    remedy = advice(fits) if advice is not None else (
+        f"call it with at most {fits:,} values at a time and join the results "
+        "(InputSweep.blocks() yields a long sweep block by block)")
     raise ValueError(f"{what} needs about {format_bytes(needed)} of memory, more than the "
-                     f"{format_bytes(available)} available; call it with at most {fits:,} values at a time "
-                     "and join the results (InputSweep.blocks() yields a long sweep block by block)")
+                     f"{format_bytes(available)} available; {remedy}")

@@ -239,8 +239,8 @@ class SweepSettings:
 
 def _require_chunk_memory(designs: int, samples: int) -> None:
     """``ValueError`` if a chunk's designs-by-samples arrays (mask, output, complex path, temporaries) do not fit."""
-    require_memory(designs * samples, CHUNK_BYTES_PER_VALUE,
-                   f"a chunk of {designs:,} designs x {samples} samples (use a smaller chunk)")
+    require_memory(designs * samples, CHUNK_BYTES_PER_VALUE, f"a chunk of {designs:,} designs x {samples} samples",
+                   advice=lambda fits: f"give a chunk of at most {max(1, fits // samples):,} designs (--chunk)")
 
 
 @lru_cache(maxsize=16)

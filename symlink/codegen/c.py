@@ -189,7 +189,8 @@ def angle_sums(code: StraightLine, taken: set[str]) -> StraightLine:
         calls |= expr.atoms(sp.sin, sp.cos)
     if not angles or not calls:
         return code
-    forms = {call.args[0]: _linear_form(call.args[0], definitions) for call in calls}
+    linear = {call.args[0]: _linear_form(call.args[0], definitions) for call in calls}
+    forms: dict[sp.Expr, dict] = {argument: form for argument, form in linear.items() if form}
     called = {(call.func, call.args[0]) for call in calls}
     pairs: list = []  # the known pairs, largest sums first
 
@@ -208,8 +209,8 @@ def angle_sums(code: StraightLine, taken: set[str]) -> StraightLine:
         return found + sorted(remaining.items(), key=lambda item: sp.default_sort_key(item[0]))
 
     # A pair is known unless it is itself a sum of smaller known pairs and unknown angles (beta - theta).
-    for argument in sorted((argument for argument, form in forms.items()
-                            if form and (sp.sin, argument) in called and (sp.cos, argument) in called),
+    for argument in sorted((argument for argument in forms
+                            if (sp.sin, argument) in called and (sp.cos, argument) in called),
                            key=lambda argument: (len(forms[argument]), sp.default_sort_key(argument))):
         if parts(forms[argument]) is None:
             pairs.insert(0, argument)
@@ -263,7 +264,7 @@ def angle_sums(code: StraightLine, taken: set[str]) -> StraightLine:
     replacements = {}
     for call in sorted(calls, key=sp.default_sort_key):
         argument = call.args[0]
-        form = forms[argument]
+        form = forms.get(argument)
         if not form or argument in pairs:
             continue
         found = parts(form)
@@ -403,26 +404,54 @@ def c_function(program: Program, name: str, doc: str = "") -> CFunction:
                      prototype, "\n".join(lines) + "\n")
 
 
-def c_packed(function: CFunction) -> str:
-    """A wrapper ``<name>_packed(n, pointers, steps)`` of a loop function: its arrays and steps as two arrays.
+def c_packed(function: CFunction, lengths: Sequence[str] = (), signs: Sequence[str] = ()) -> str:
+    """A wrapper ``<name>_packed(n, pointers, steps, numbers, flags)`` of a loop function that checks its arguments.
 
-    ``pointers`` holds the arguments' arrays, then the outputs' and
-    ``assembled``, in calling order; ``steps`` the arguments' steps.  A caller
-    from another language (symlink's compiled backend through ctypes) then
-    passes three values a call instead of two an argument.
+    ``pointers`` and ``steps`` hold the arguments' arrays and steps in
+    calling order; the outputs are the rows of two blocks, ``numbers`` (the
+    number outputs, ``n`` doubles a row, in order) and ``flags`` (the
+    true/false outputs, then ``assembled``, ``n`` bytes a row).  It first
+    checks the arguments as the NumPy module does (``signs`` exactly +1 or
+    -1, ``lengths`` from 1e-305 to 1e305, every other value finite) and
+    returns ``k + 1`` for the first argument ``k`` that breaks that, without
+    evaluating; else it runs the loop and returns 0.  A caller from another
+    language (symlink's compiled backend through ctypes) then passes five
+    values a call, and checks nothing itself.
 
     >>> from symlink.catalog import fourbar
-    >>> print(c_packed(c_function(fourbar().program(["rocker"]), "rocker")).splitlines()[0])
-    void rocker_packed(size_t n, void *const *pointers, const ptrdiff_t *steps)
+    >>> print(next(line for line in c_packed(c_function(fourbar().program(["rocker"]), "rocker")).splitlines()
+    ...            if line.startswith("int ")))
+    int rocker_packed(size_t n, void *const *pointers, const ptrdiff_t *steps, double *numbers, unsigned char *flags)
     """
+    checker = f"symlink_{function.name}_valid"
+    tests = []
+    for k, argument in enumerate(function.arguments):
+        kind = 1 if argument in signs else 2 if argument in lengths else 0
+        tests.append(f"    if (!{checker}((const double *)pointers[{k}], steps[{k}], n, {kind})) {{\n"
+                     f"        return {k + 1};\n    }}\n")
     arguments = [f"(const double *)pointers[{k}], steps[{k}]" for k in range(len(function.arguments))]
-    first = len(function.arguments)
-    outputs = [f"({'unsigned char' if flag else 'double'} *)pointers[{first + k}]"
-               for k, flag in enumerate(function.flags)]
-    outputs.append(f"(unsigned char *)pointers[{first + len(function.flags)}]")
+    rows = {False: 0, True: 0}
+    outputs = []
+    for flag in list(function.flags) + [True]:
+        block = "flags" if flag else "numbers"
+        outputs.append(f"{block} + {rows[flag]} * n")
+        rows[flag] += 1
     call = ",\n        ".join(["n"] + arguments + outputs)
-    return (f"void {function.name}_packed(size_t n, void *const *pointers, const ptrdiff_t *steps)\n"
-            f"{{\n    (void)steps;\n    {function.name}({call});\n}}\n")
+    return (f"/* Whether the n values of x (one value at a step of 0) are finite (kind 0), +1 or -1 (1), or a length\n"
+            f" * from 1e-305 to 1e305 (2). */\n"
+            f"static int {checker}(const double *x, ptrdiff_t step, size_t n, int kind)\n{{\n"
+            f"    const size_t m = step == 0 ? 1 : n;\n"
+            f"    int good = 1;\n"
+            f"    for (size_t j = 0; j < m; ++j) {{\n"
+            f"        const double v = x[(ptrdiff_t)j * step];\n"
+            f"        good &= kind == 1 ? (v == 1.0 || v == -1.0) : kind == 2 ? (v >= 1e-305 && v <= 1e305) "
+            f": v - v == 0.0;\n"
+            f"    }}\n    return good;\n}}\n\n"
+            f"int {function.name}_packed(size_t n, void *const *pointers, const ptrdiff_t *steps, double *numbers, "
+            f"unsigned char *flags)\n{{\n"
+            + ("    (void)numbers;\n" if rows[False] == 0 else "")
+            + "".join(tests)
+            + f"    {function.name}({call});\n    return 0;\n}}\n")
 
 
 _HEADER = """{title}
@@ -464,15 +493,15 @@ static const double symlink_tolerance = {tolerance!r};
 
 /* The values of one argument for configurations start to start + m - 1, contiguous:
  * the array itself where its step is 1, else copied into block. A step of 0 repeats
- * one value, copied on the first block only. */
+ * one value, copied on the first block only (every later block is no longer). */
 static inline const double *symlink_block(double *block, const double *x, ptrdiff_t step, size_t start, size_t m)
 {{
     if (step == 1) {{
         return x + start;
     }}
     if (step == 0) {{
-        if (start == 0) {{
-            for (size_t j = 0; j < SYMLINK_BLOCK; ++j) {{
+        if (start == 0) {{  /* m values: all of a call of at most SYMLINK_BLOCK, else the block */
+            for (size_t j = 0; j < m; ++j) {{
                 block[j] = *x;
             }}
         }}

@@ -481,16 +481,18 @@ class _Outputs:
         self.numbers_at = _address(number_block) if numbers else None
         self.flags_at = _address(flag_block)
         self.rows = [flag_block[row] if flag else number_block[row] for flag, row in rows]
-        self.blocks = (number_block, flag_block)
+        self._objects = self.rows + [number_block, flag_block]  # a held result shows first in its rows
         del number_block, flag_block
-        self.counts = self._counts()  # references now, all of them ours
-
-    def _counts(self) -> list[int]:
-        return [sys.getrefcount(block) for block in self.blocks] + [sys.getrefcount(row) for row in self.rows]
+        # References now, all of them ours (counted as free() counts them: no loop variable holds one).
+        self._counts = [sys.getrefcount(self._objects[index]) for index in range(len(self._objects))]
 
     def free(self) -> bool:
         """Whether nothing but this object references the blocks and rows (no caller holds a result or a view)."""
-        return self._counts() == self.counts
+        objects, counts = self._objects, self._counts
+        for index in range(len(objects)):
+            if sys.getrefcount(objects[index]) != counts[index]:
+                return False
+        return True
 
 
 def _address(array: numpy.ndarray) -> int:

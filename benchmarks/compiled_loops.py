@@ -3,11 +3,20 @@
 For the four-bar, the Watt II six-bar and Jansen's leg (:mod:`symlink.catalog`),
 the compiled solver (:class:`symlink.compiled.CompiledSolver`) of the
 unknowns' angles (positions) and of the angles, their rates and their
-accelerations (full kinematics), called on N = 10^5 crank angles, one set of
-parameters.  Printed: nanoseconds per value of each and their ratio (target:
-full kinematics at most 1.5x positions, as the four-bar's are).  A loop that
-stops vectorising costs 5-6x instead (glibc's vector sin, cos and atan2 are
-then no longer called).
+accelerations (full kinematics), on N = 10^4 and 10^5 crank angles (the
+outputs of the larger N no longer fit in the cache), one set of parameters,
+CPU time of this thread, best of repeated calls:
+
+* ``loop``: the C loop function alone, writing into output arrays allocated
+  once beforehand (what vectorisation decides);
+* ``call``: a call of the compiled function as a user makes it, new output
+  arrays each call (at this size, writing fresh pages costs about as much as
+  the arithmetic, and full kinematics write three times as many outputs).
+
+Printed: nanoseconds per value of each and the ratio full/positions (target:
+the loop's at most 1.5 for every linkage).  A loop that stops vectorising
+costs 5-6x instead (glibc's vector sin, cos and atan2 are then no longer
+called).
 
     python -m benchmarks.compiled_loops
 """
@@ -43,6 +52,18 @@ def cpu_time(call, budget: float = 1.0) -> float:
     return min(times)
 
 
+def loop_alone(entry, arguments: dict, n: int):
+    """A call of ``entry``'s C loop function on ``arguments`` into outputs allocated here, once."""
+    arrays = [numpy.ascontiguousarray(arguments[a] if a in arguments else entry.defaults[a], dtype=numpy.float64)
+              for a in entry.arguments]
+    slots = [value for array in arrays for value in (array.ctypes.data, 0 if array.size == 1 else 1)]
+    outputs = [numpy.empty(n, dtype=numpy.uint8 if flag else numpy.float64) for flag in entry.flags]
+    outputs.append(numpy.empty(n, dtype=numpy.uint8))
+    pointers = [o.ctypes.data for o in outputs]
+    kept = arrays + outputs  # alive as long as the call that uses their pointers
+    return lambda: entry.entry(n, *slots, *pointers) if kept else None
+
+
 def measure(n: int = 10**5) -> list[dict]:
     from symlink.catalog import fourbar, jansen, watt2
     from symlink.compiled import CompiledSolver
@@ -53,32 +74,37 @@ def measure(n: int = 10**5) -> list[dict]:
         unknowns = [q.name for q in linkage.unknowns]
         full = unknowns + [f"{q}dot" for q in unknowns] + [f"{q}ddot" for q in unknowns]
         values = dict(parameters(linkage.name), theta=theta, thetadot=10.5, thetaddot=2.0)
-        row = {"linkage": linkage.name, "unknowns": len(unknowns)}
+        row = {"linkage": linkage.name, "unknowns": len(unknowns), "n": n}
         for label, outputs in (("positions", unknowns), ("full", full)):
             entry = CompiledSolver(linkage, outputs).function
             arguments = {k: v for k, v in values.items() if k in entry.arguments}
             result = entry(**arguments)
             row[f"{label}_assembled"] = float(numpy.mean(result["assembled"]))
-            row[f"{label}_ns"] = 1e9 * cpu_time(lambda: entry(**arguments)) / n
+            row[f"{label}_call_ns"] = 1e9 * cpu_time(lambda: entry(**arguments)) / n
+            row[f"{label}_loop_ns"] = 1e9 * cpu_time(loop_alone(entry, arguments, n)) / n
         rows.append(row)
     return rows
 
 
 def report(rows: list[dict]) -> str:
-    lines = [f"{'linkage':>10} {'unknowns':>8} {'positions ns':>13} {'full ns':>8} {'full/positions':>15} {'assembled':>9}"]
+    lines = [f"{'linkage':>10} {'unknowns':>8} {'N':>7} | {'loop: positions':>15} {'full':>6} {'full/pos':>8} | "
+             f"{'call: positions':>15} {'full':>6} {'full/pos':>8} | {'assembled':>9}"]
     for r in rows:
-        lines.append(f"{r['linkage']:>10} {r['unknowns']:>8} {r['positions_ns']:>13.1f} {r['full_ns']:>8.1f} "
-                     f"{r['full_ns'] / r['positions_ns']:>15.2f} {r['full_assembled']:>9.2f}")
-    worst = max(r["full_ns"] / r["positions_ns"] for r in rows)
-    lines.append(f"worst full/positions {worst:.2f} (target <= 1.5)")
+        loop = r["full_loop_ns"] / r["positions_loop_ns"]
+        call = r["full_call_ns"] / r["positions_call_ns"]
+        lines.append(f"{r['linkage']:>10} {r['unknowns']:>8} {r['n']:>7} | {r['positions_loop_ns']:>15.1f} "
+                     f"{r['full_loop_ns']:>6.1f} {loop:>8.2f} | {r['positions_call_ns']:>15.1f} "
+                     f"{r['full_call_ns']:>6.1f} {call:>8.2f} | {r['full_assembled']:>9.2f}")
+    worst = max(r["full_loop_ns"] / r["positions_loop_ns"] for r in rows)
+    lines.append(f"ns per value; worst loop full/positions {worst:.2f} (target <= 1.5)")
     return "\n".join(lines)
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("-n", type=float, default=1e5, help="input values a call")
+    parser.add_argument("-n", type=float, nargs="+", default=[1e4, 1e5], help="input values a call (one or more)")
     options = parser.parse_args()
-    print(report(measure(int(options.n))))
+    print(report([row for n in options.n for row in measure(int(n))]))
 
 
 if __name__ == "__main__":

@@ -8,6 +8,8 @@ accelerations) and its positions alone, one set of lengths, N crank angles:
 * ``Solver``: :class:`symlink.solver.Solver` (units, memory and argument checks, a Results table);
 * ``compiled-entry``: the compiled C loop through its ctypes entry (``CompiledSolver.function``);
 * ``compiled``: :class:`symlink.compiled.CompiledSolver`, called as a ``Solver`` is;
+* ``compiled-kept``: the same, each result kept until four calls later (so that its
+  output block cannot be reused: every call allocates, as when a caller keeps results);
 * ``numba``: a hand-written numba loop of the same formulas (the floor of a Python call).
 
 Targets: a compiled call with 10 values at most 10 us; a generated solver
@@ -18,6 +20,7 @@ called with 20 values at most 20 us.
 from __future__ import annotations
 
 import argparse
+import collections
 import math
 import time
 
@@ -59,12 +62,14 @@ def methods(outputs: list[str]) -> dict:
     compiled = CompiledSolver(linkage, outputs)
     rates = {"thetadot": SPEED, "thetaddot": ACCEL} if len(outputs) > 2 else {}
     lengths = dict(zip("abcd", LENGTHS))
+    kept: collections.deque = collections.deque(maxlen=4)
     found = {
         "module": lambda theta: solver.function(theta, **lengths, branch=1, **rates),
         "module-nocheck": lambda theta: solver.function(theta, **lengths, branch=1, **rates, check=False),
         "Solver": lambda theta: solver(theta=theta, **lengths, branch=1, **rates),
         "compiled-entry": lambda theta: compiled.function(theta=theta, **lengths, branch=1, **rates),
         "compiled": lambda theta: compiled(theta=theta, **lengths, branch=1, **rates),
+        "compiled-kept": lambda theta: kept.append(compiled(theta=theta, **lengths, branch=1, **rates)),
     }
     if len(outputs) > 2:
         hand = numba_function()
@@ -93,7 +98,8 @@ def report(table) -> str:
         for name, row in rows.items():
             lines.append(f"{name:>16} " + " ".join(f"{row[n]:>9.1f}" for n in sizes))
     full = table["full kinematics"]
-    lines.append(f"compiled at N=10: {full['compiled'][10]:.1f} us (target <= 10); "
+    lines.append(f"compiled-entry at N=10: {full['compiled-entry'][10]:.1f} us, "
+                 f"compiled at N=10: {full['compiled'][10]:.1f} us (target <= 10); "
                  f"Solver at N=20: {full['Solver'][20]:.1f} us, compiled at N=20: {full['compiled'][20]:.1f} us "
                  "(target <= 20)")
     return "\n".join(lines)

@@ -57,9 +57,11 @@ import shlex
 import shutil
 import struct
 import subprocess
+import sys
 import tempfile
 import threading
 import warnings
+from functools import cached_property
 from pathlib import Path
 from typing import Any, Mapping, Sequence
 
@@ -68,7 +70,8 @@ import numpy
 from . import cache
 from .codegen.c import c_function, c_library, c_packed
 from .files import NotPrivate, read_private, write_atomic
-from .linkage import Linkage
+from .linkage import Linkage, is_branch_name
+from .results import Results
 from .solver import Solver
 
 __all__ = ["FLAGS", "FallbackWarning", "CompilerUnavailable", "CompileError", "CompiledSolver", "cache_directory",
@@ -328,16 +331,24 @@ def compile_shared(source: str, headers: Mapping[str, str] | None = None) -> cty
 #: Calls of at most this many values take the fast path of :class:`_Entry` (larger ones gain nothing from it).
 SMALL_CALL = 4096
 
+#: A ctypes type whose ``from_buffer`` hands a NumPy array's address to a C function (faster than ``.ctypes.data``).
+_BYTE = ctypes.c_char * 1
+
 
 class _Entry:
     """Calls one generated C loop function on NumPy arrays, broadcasting like the NumPy module.
 
     A small call (at most :data:`SMALL_CALL` values) whose arguments are
-    numbers and one-dimensional float arrays of one length takes a fast path:
-    the argument layout (pointer and step slots, a buffer for the numbers) is
-    made once, numbers are written into it, an array seen in the previous
-    call reuses its pointer, the outputs are one allocation, and the library
-    is entered once through ``<name>_packed`` (:func:`symlink.codegen.c.c_packed`).
+    numbers and one-dimensional contiguous float arrays of one length takes a
+    fast path, so that a call of a few dozen values costs microseconds: the
+    argument slots (a pointer and a step each, a buffer for the numbers) are
+    made once and rewritten only where an argument changes from a number to an
+    array or to another array; the outputs are two allocations (the number
+    outputs and the true/false ones, a row each); and the library is entered
+    once, through ``<name>_packed`` (:func:`symlink.codegen.c.c_packed`), which
+    checks the arguments as the NumPy module does before it evaluates.  A call
+    that does not qualify, or whose arguments that check refuses, takes the
+    general path.
     """
 
     def __init__(self, library: ctypes.CDLL, name: str, arguments: Sequence[str], outputs: Sequence[str],
@@ -350,22 +361,27 @@ class _Entry:
                                + [ctypes.c_void_p] * (len(self.outputs) + 1))
         self.packed = getattr(library, f"{name}_packed", None)
         if self.packed is not None:
-            self.packed.restype = None
-            self.packed.argtypes = [ctypes.c_size_t, ctypes.c_void_p, ctypes.c_void_p]
+            self.packed.restype = ctypes.c_int
+            self.packed.argtypes = [ctypes.c_size_t, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p,
+                                    ctypes.c_void_p]
         count = len(self.arguments)
-        self._numbers = numpy.zeros(max(count, 1))  # the numbers of a call, each read with a step of 0
-        self._numbers_at = self._numbers.ctypes.data
-        self._pointers: Any = (ctypes.c_void_p * (count + len(self.outputs) + 1))()  # filled by slices
+        self._index = {name: index for index, name in enumerate(self.arguments)}
+        self._numbers: Any = (ctypes.c_double * max(count, 1))()  # the numbers of a call, each read at a step of 0
+        self._numbers_at = ctypes.addressof(self._numbers)
+        self._pointers: Any = (ctypes.c_void_p * max(count, 1))()
         self._steps: Any = (ctypes.c_ssize_t * max(count, 1))()
         self._pointers_at, self._steps_at = ctypes.addressof(self._pointers), ctypes.addressof(self._steps)
-        self._last_arrays: list = [None] * count  # held, so that their buffers (and pointers) stay valid
-        self._last_pointers = [0] * count
+        # What each slot holds: _NUMBER, or the array whose pointer it holds (kept, so that the pointer stays valid).
+        self._held: list = [None] * count
         self._float_names = [o for o, flag in zip(self.outputs, self.flags) if not flag]
         self._flag_names = [o for o, flag in zip(self.outputs, self.flags) if flag] + ["assembled"]
         floats = iter(range(len(self._float_names)))
         flags_ = iter(range(len(self._flag_names)))
-        # Where each output's pointer goes among the slots: (is a flag, its row in the float or flag block).
-        self._rows = [(True, next(flags_)) if flag else (False, next(floats)) for flag in self.flags] + [(True, next(flags_))]
+        # Each result in order: (its name, is a flag, its row in the float or flag block).
+        rows = [(True, next(flags_)) if flag else (False, next(floats)) for flag in self.flags] + [(True, next(flags_))]
+        self._result_names = self.outputs + ["assembled"]
+        self._result_rows = rows
+        self._kept: list[_Outputs] = []
         self._lock = threading.Lock()  # the slots are shared: one small call at a time
 
     def __call__(self, **values) -> dict[str, numpy.ndarray]:
@@ -391,47 +407,102 @@ class _Entry:
 
     def _small(self, values: dict) -> dict[str, numpy.ndarray] | None:
         """The fast path's result, or ``None`` where the call does not qualify (the general path then runs)."""
-        packed = self.packed
-        if packed is None or len(values) > len(self.arguments):
-            return None  # no packed entry, or an unknown keyword: the general path says so
-        with self._lock:  # the slots, and the arrays remembered with their pointers, belong to one call at a time
+        packed, index_of = self.packed, self._index
+        if packed is None:
+            return None
+        if len(values) != len(index_of):  # arguments left to their defaults
+            if not values.keys() <= index_of.keys() or not self.defaults.keys() >= index_of.keys() - values.keys():
+                return None  # an unknown or a missing argument: the general path says so
+            values = {**{name: self.defaults[name] for name in index_of.keys() - values.keys()}, **values}
+        with self._lock:  # the slots, and the arrays held with their pointers, belong to one call at a time
             length = 0
-            numbers = self._numbers
-            last_arrays, last_pointers = self._last_arrays, self._last_pointers
-            pointers = []
-            steps = []
-            for index, name in enumerate(self.arguments):
-                value: Any = values[name] if name in values else self.defaults.get(name)
+            numbers, pointers, steps, held = self._numbers, self._pointers, self._steps, self._held
+            for name, value in values.items():
+                index = index_of.get(name)
+                if index is None:
+                    return None
                 kind = type(value)
-                if kind is float or kind is int or kind is numpy.float64 or (
-                        kind is numpy.ndarray and value.ndim == 0 and value.dtype == numpy.float64):
-                    numbers[index] = value
-                    pointers.append(self._numbers_at + 8 * index)
-                    steps.append(0)
-                elif kind is numpy.ndarray and value.dtype == numpy.float64 and value.ndim == 1 \
+                if kind is float or kind is numpy.float64 or kind is int:
+                    try:
+                        numbers[index] = value
+                    except OverflowError:
+                        return None
+                    if held[index] is not _NUMBER:
+                        held[index] = _NUMBER
+                        pointers[index] = self._numbers_at + 8 * index
+                        steps[index] = 0
+                elif kind is numpy.ndarray and value.dtype is _FLOAT and value.ndim == 1 \
                         and value.flags.c_contiguous and 0 < value.shape[0] <= SMALL_CALL \
                         and (length == 0 or value.shape[0] == length):
                     length = value.shape[0]
-                    if value is not last_arrays[index]:
-                        last_arrays[index] = value
-                        last_pointers[index] = value.ctypes.data
-                    pointers.append(last_pointers[index])
-                    steps.append(1)
+                    if value is not held[index]:
+                        held[index] = value
+                        pointers[index] = value.ctypes.data
+                        steps[index] = 1
                 else:
                     return None
             if not length:
                 return None  # numbers only: the general path returns arrays of shape ()
-            floats = numpy.empty((len(self._float_names), length))
-            flags = numpy.empty((len(self._flag_names), length), dtype=bool)
-            float_at, flag_at = floats.ctypes.data, flags.ctypes.data
-            pointers += [flag_at + row * length if is_flag else float_at + 8 * row * length
-                         for is_flag, row in self._rows]
-            self._pointers[:] = pointers
-            self._steps[:len(steps)] = steps
-            packed(length, self._pointers_at, self._steps_at)
-        result = dict(zip(self._float_names, floats))
-        result.update(zip(self._flag_names, flags))
-        return {name: result[name] for name in self.outputs + ["assembled"]}
+            outputs = self._free_outputs(length)
+            if packed(length, self._pointers_at, self._steps_at, outputs.numbers_at, outputs.flags_at):
+                return None  # an argument the NumPy module would refuse: the general path
+            return dict(zip(self._result_names, outputs.rows))
+
+    def _free_outputs(self, length: int) -> _Outputs:
+        """Output blocks of ``length`` values no caller holds any more (nothing of them referenced), else new ones.
+
+        The last :data:`KEPT_OUTPUTS` blocks are kept: a caller that drops
+        each result before the next call but one (``result = solver(...)`` in
+        a loop) is then answered without allocating.  A block, or any of its
+        rows, still referenced anywhere (a kept result, a view, a slice) is
+        never written again.
+        """
+        kept = self._kept
+        for outputs in kept:
+            if outputs.length == length and outputs.free():
+                return outputs
+        outputs = _Outputs(len(self._float_names), len(self._flag_names), length, self._result_rows)
+        kept.insert(0, outputs)
+        del kept[KEPT_OUTPUTS:]
+        return outputs
+
+
+#: Output blocks of small calls kept for reuse by each compiled function (see :meth:`_Entry._free_outputs`).
+KEPT_OUTPUTS = 3
+
+
+class _Outputs:
+    """The outputs of one small call: a block of number rows and one of true/false rows, their addresses, the rows."""
+
+    def __init__(self, numbers: int, flags: int, length: int, rows: Sequence[tuple[bool, int]]):
+        self.length = length
+        number_block = numpy.empty((numbers, length))
+        flag_block = numpy.empty((flags, length), dtype=bool)
+        self.numbers_at = _address(number_block) if numbers else None
+        self.flags_at = _address(flag_block)
+        self.rows = [flag_block[row] if flag else number_block[row] for flag, row in rows]
+        self._objects = self.rows + [number_block, flag_block]  # a held result shows first in its rows
+        del number_block, flag_block
+        # References now, all of them ours (counted as free() counts them: no loop variable holds one).
+        self._counts = [sys.getrefcount(self._objects[index]) for index in range(len(self._objects))]
+
+    def free(self) -> bool:
+        """Whether nothing but this object references the blocks and rows (no caller holds a result or a view)."""
+        objects, counts = self._objects, self._counts
+        for index in range(len(objects)):
+            if sys.getrefcount(objects[index]) != counts[index]:
+                return False
+        return True
+
+
+def _address(array: numpy.ndarray) -> int:
+    """The address of a writable array's first byte (``ctypes.from_buffer``: faster than ``array.ctypes.data``)."""
+    return ctypes.addressof(_BYTE.from_buffer(array))  # type: ignore[arg-type]  # an ndarray is a buffer
+
+
+#: Marks an argument slot holding a number (in the numbers buffer, at a step of 0).
+_NUMBER = object()
+_FLOAT = numpy.dtype(numpy.float64)
 
 
 def _strided(array: numpy.ndarray, shape: tuple[int, ...]) -> tuple[int, int, numpy.ndarray]:
@@ -462,7 +533,8 @@ def c_solver_source(linkage: Linkage, outputs: Sequence[str]) -> dict:
         program = linkage.program(outputs)
         function = c_function(program, "solve", f"{linkage.name}: {', '.join(outputs)}.")
         _, source = c_library([function], "solver", standalone=True)
-        source += "\n" + c_packed(function)
+        lengths = [s.name for s in program.arguments if s.is_positive]
+        source += "\n" + c_packed(function, lengths, [a for a in function.arguments if is_branch_name(a)])
         defaults = dict(program.defaults)
         return json.dumps({"source": source, "arguments": function.arguments, "outputs": function.outputs,
                            "flags": function.flags, "defaults": defaults})
@@ -486,8 +558,26 @@ class CompiledSolver(Solver):
         self.source = facts["source"]
         self.arguments = list(facts["arguments"])
         self.library = compile_shared(self.source)
-        self.function = _Entry(self.library, "solve", facts["arguments"], facts["outputs"], facts["flags"],
-                               facts["defaults"])
+        self.function: _Entry = _Entry(self.library, "solve", facts["arguments"], facts["outputs"], facts["flags"],
+                                       facts["defaults"])
+
+    def __call__(self, **values) -> Results:
+        """The outputs at ``values``, as :class:`~symlink.solver.Solver` computes and checks them.
+
+        A small call of plain numbers and float arrays takes the compiled
+        function's fast path, whose C wrapper checks the values as the NumPy
+        module does; anything else (quantities, other shapes or types, a value
+        that check refuses, which is then named in a ``ValueError``) goes
+        through :meth:`Solver.__call__ <symlink.solver.Solver.__call__>`.
+        """
+        result = self.function._small(values)
+        if result is not None:
+            return Results(result, self._units)
+        return super().__call__(**values)
+
+    @cached_property
+    def _units(self) -> dict[str, str]:
+        return {name: self.units.get(name, "") for name in self.outputs + ["assembled"]}
 
 
 def compiled_solver(linkage: Linkage, outputs: Sequence[str]) -> Solver:

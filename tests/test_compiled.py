@@ -365,7 +365,7 @@ def test_small_calls_take_the_fast_path_and_agree_with_the_general_one(compiler)
     lengths = dict(a=20.0, b=66.0, c=56.0, d=80.0, branch=1.0, thetadot=10.5, thetaddot=2.0)
     theta = numpy.linspace(0.0, 6.0, 25)
     first = fast(theta=theta, **lengths)
-    assert fast._last_arrays[0] is theta  # the fast path ran and remembered the array
+    assert fast._held[0] is theta  # the fast path ran and holds the array whose pointer it keeps
     theta *= 0.5  # the same array, changed in place: read again, not remembered values
     second = fast(theta=theta, **lengths)
     general = fast(theta=list(theta), **lengths)  # a list: the general path
@@ -376,3 +376,53 @@ def test_small_calls_take_the_fast_path_and_agree_with_the_general_one(compiler)
         assert second[name].dtype == general[name].dtype and second[name].shape == (25,)
     assert not numpy.array_equal(first["rocker"], second["rocker"])
     assert list(second) == ["rocker", "coupler_accel", "singular", "assembled"]
+
+
+BAD_SMALL_CALLS = [  # (argument, value): each refused by the C wrapper's check, then named by the Solver's
+    ("a", -20.0), ("a", 0.0), ("b", numpy.inf), ("c", numpy.nan), ("d", 1e306), ("branch", 0.5), ("branch", 0.0),
+    ("thetadot", numpy.nan), ("thetaddot", -numpy.inf), ("theta", "array with a NaN"), ("a", "array with a zero"),
+    ("branch", "array with a 2"),
+]
+
+
+@pytest.mark.parametrize("argument, value", BAD_SMALL_CALLS)
+def test_small_calls_refuse_what_the_numpy_solver_refuses(compiler, argument, value):
+    outputs = ["rocker", "coupler_accel"]
+    compiled_, plain = CompiledSolver(catalog_linkage("fourbar"), outputs), Solver(catalog_linkage("fourbar"), outputs)
+    values = dict(theta=numpy.linspace(0.0, 6.0, 10), a=20.0, b=66.0, c=56.0, d=80.0, branch=1.0, thetadot=10.5,
+                  thetaddot=2.0)
+    if isinstance(value, str):
+        array = numpy.full(10, values[argument])
+        array[3] = {"array with a NaN": numpy.nan, "array with a zero": 0.0, "array with a 2": 2.0}[value]
+        value = array
+    values[argument] = value
+    with pytest.raises(ValueError) as expected:
+        plain(**values)
+    assert compiled_.function._small(values) is None  # the C wrapper refused it
+    with pytest.raises(ValueError) as refused:
+        compiled_(**values)
+    assert str(refused.value) == str(expected.value)
+
+
+def test_small_call_results_are_never_overwritten_while_held(compiler):
+    solver = CompiledSolver(catalog_linkage("fourbar"), ["rocker", "singular"])
+    lengths = dict(a=20.0, b=66.0, c=56.0, d=80.0, branch=1.0)
+    first = solver(theta=numpy.linspace(0.0, 1.0, 12), **lengths)
+    kept_row = first["rocker"]
+    kept_slice = first["singular"][2:5].copy(), first["singular"][2:5]
+    snapshot = kept_row.copy()
+    for start in range(1, 8):  # more calls than blocks kept: each must find the held ones busy
+        later = solver(theta=numpy.linspace(start, start + 1.0, 12), **lengths)
+        assert not numpy.shares_memory(later["rocker"], kept_row)
+        assert not numpy.shares_memory(later["singular"], kept_slice[1])
+        del later
+    numpy.testing.assert_array_equal(kept_row, snapshot)
+    numpy.testing.assert_array_equal(kept_slice[1], kept_slice[0])
+    expected = Solver(catalog_linkage("fourbar"), ["rocker", "singular"])(
+        theta=numpy.linspace(0.0, 1.0, 12), **lengths)
+    numpy.testing.assert_array_equal(first["rocker"], expected["rocker"])
+    # A result dropped before the next call: its block is written again (no allocation).
+    del first, kept_row, kept_slice
+    address = solver(theta=numpy.linspace(0.0, 1.0, 12), **lengths)["rocker"].__array_interface__["data"][0]
+    again = solver(theta=numpy.linspace(2.0, 3.0, 12), **lengths)["rocker"].__array_interface__["data"][0]
+    assert again == address

@@ -16,7 +16,11 @@ NumPy module (:func:`symlink.codegen.program.straight_line`), in an inline funct
 called once per configuration and always inlined into the loop (GCC and Clang), so
 that the loop stays one vectorisable body however large the linkage.  The clamped square root has exactly the
 semantics of the NumPy module's ``_clamped_sqrt``; small integer powers become
-multiplications.
+multiplications.  One difference in form: the sines and cosines of the solved
+angles and of their sums (which the rates need) are computed from the
+arguments of the ``atan2`` that gave each angle and the addition theorems
+(:func:`angle_sums`), not called again, so that full kinematics call the
+vector math library no more often than positions do.
 
 >>> from symlink.catalog import fourbar
 >>> header, source = c_code([("fourbar_positions", fourbar().program(["rocker"]), "Rocker angle.")], "fourbar")
@@ -45,12 +49,12 @@ from ..version import __version__
 from ..names import C_KEYWORDS as RESERVED_IN_C, PLAIN_NAME
 from ..position import TOLERANCE
 from .numpy import ARGUMENT_CONTRACT
-from .program import is_flag, named_straight_line
+from .program import StraightLine, _dependency_order, is_flag, named_straight_line
 
 if TYPE_CHECKING:
     from ..linkage import Linkage, Program
 
-__all__ = ["CFunction", "c_function", "c_library", "c_code", "c_identifier", "c_comment", "c_packed", "export_files"]
+__all__ = ["CFunction", "angle_sums", "c_function", "c_library", "c_code", "c_identifier", "c_comment", "c_packed", "export_files"]
 
 #: Integer powers up to this size are written as multiplications.
 LARGEST_MULTIPLIED_POWER = 4
@@ -119,11 +123,172 @@ class _CPrinter(C99CodePrinter):
     def _print_BooleanFalse(self, expr):
         return "0"
 
+    def _print_CosineOfAtan2(self, expr):  # the prelude defines symlink_cos_atan2 and symlink_sin_atan2
+        return f"symlink_cos_atan2({self._print(expr.args[0])}, {self._print(expr.args[1])})"
+
+    def _print_SineOfAtan2(self, expr):
+        return f"symlink_sin_atan2({self._print(expr.args[0])}, {self._print(expr.args[1])})"
+
     def _print_ClampedSqrt(self, expr):  # the source's prelude defines symlink_clamped_sqrt
         return f"symlink_clamped_sqrt({self._print(expr.args[0])}, {self._print(expr.args[1])})"
 
     def _print_Piecewise(self, expr):  # pragma: no cover - a guard, never reached by symlink's own forms
         raise ValueError("symlink never writes Piecewise into generated code")
+
+
+class CosineOfAtan2(sp.Function):
+    """``cos(atan2(y, x))`` given ``(x, r)`` with ``r = sqrt(x*x + y*y)``: ``x/r``, and atan2's ``copysign(1, x)`` at ``r = 0``."""
+
+
+class SineOfAtan2(sp.Function):
+    """``sin(atan2(y, x))`` given ``(y, r)`` with ``r = sqrt(x*x + y*y)``: ``y/r``, and ``y`` (a signed zero) at ``r = 0``."""
+
+
+def _linear_form(expr: sp.Expr, definitions: dict) -> dict | None:
+    """``expr`` as ``{atom: integer coefficient}`` of a sum, following names defined as sums; ``None`` with a constant term."""
+    form: dict = {}
+
+    def add(term: sp.Expr, factor: int) -> bool:
+        if term in definitions and (definitions[term].is_Add or definitions[term].is_Mul):
+            coefficient, _ = definitions[term].as_coeff_Mul()
+            if definitions[term].is_Add or (coefficient.is_Integer and coefficient != 1):
+                return add(definitions[term], factor)
+        if term.is_Add:
+            return all(add(part, factor) for part in term.args)
+        if term.is_Mul:
+            coefficient, rest = term.as_coeff_Mul()
+            if coefficient.is_Integer and coefficient != 1:
+                return add(rest, factor * int(coefficient))
+        if term.is_Number:
+            return False
+        form[term] = form.get(term, 0) + factor
+        return True
+
+    return {atom: k for atom, k in form.items() if k} if add(expr, 1) else None
+
+
+def angle_sums(code: StraightLine, taken: set[str]) -> StraightLine:
+    """The program with every ``sin`` and ``cos`` it can spare written as sums of angles it already knows.
+
+    Full kinematics call ``sin`` and ``cos`` of the unknown angles and of their
+    differences (``cos(beta - phi)``), each as costly as a square root and a
+    division or two: about as many calls again as the positions make.  Every
+    unknown angle ``q = atan2(y, x)`` has ``cos q = x/r`` and ``sin q = y/r``
+    with ``r = sqrt(x*x + y*y)``; an angle whose ``sin`` and ``cos`` are both
+    called (the input ``theta``, a coupler angle ``alpha + phi``) is a known
+    pair.  A ``sin`` or ``cos`` of a sum of these with coefficients +1 and -1
+    is then expanded by the addition theorems, so that full kinematics cost
+    no more calls than positions.  The values agree with the calls to a few
+    units in the last place of the pair (the angle differences themselves
+    round that much).  ``taken`` holds names the new temporaries must avoid.
+    """
+    definitions = dict(code.assignments)
+    angles = {s: e for s, e in code.assignments if isinstance(e, sp.atan2)}
+    calls: set = set()
+    for expr in [*definitions.values(), *code.outputs.values()]:
+        calls |= expr.atoms(sp.sin, sp.cos)
+    if not angles or not calls:
+        return code
+    linear = {call.args[0]: _linear_form(call.args[0], definitions) for call in calls}
+    forms: dict[sp.Expr, dict] = {argument: form for argument, form in linear.items() if form}
+    called = {(call.func, call.args[0]) for call in calls}
+    pairs: list = []  # the known pairs, largest sums first
+
+    def parts(form: dict) -> list | None:
+        """``form`` as known pairs and unknown angles, each +1 or -1 times; ``None`` where it is not."""
+        remaining, found = dict(form), []
+        for pair in pairs:
+            for sign in (1, -1):
+                if all(remaining.get(atom) == sign * k for atom, k in forms[pair].items()):
+                    for atom in forms[pair]:
+                        del remaining[atom]
+                    found.append((pair, sign))
+                    break
+        if any(atom not in angles or abs(k) != 1 for atom, k in remaining.items()):
+            return None
+        return found + sorted(remaining.items(), key=lambda item: sp.default_sort_key(item[0]))
+
+    # A pair is known unless it is itself a sum of smaller known pairs and unknown angles (beta - theta).
+    for argument in sorted((argument for argument in forms
+                            if (sp.sin, argument) in called and (sp.cos, argument) in called),
+                           key=lambda argument: (len(forms[argument]), sp.default_sort_key(argument))):
+        if parts(forms[argument]) is None:
+            pairs.insert(0, argument)
+
+    names = _Names(taken | {s.name for s in code.arguments} | {s.name for s, _ in code.assignments})
+    added: list = []
+    known: dict = {}  # an angle or pair -> (its sine, its cosine) as symbols
+
+    def sine_cosine(element) -> tuple[sp.Symbol, sp.Symbol]:
+        if element not in known:
+            stem = element.name if isinstance(element, sp.Symbol) else "angle"
+            if element in angles:
+                y, x = angles[element].args
+                parts_ = []
+                for role, value in (("y", y), ("x", x)):
+                    if not isinstance(value, sp.Symbol):
+                        symbol = sp.Symbol(names(f"{stem}_{role}"), real=True)
+                        added.append((symbol, value))
+                        value = symbol
+                    parts_.append(value)
+                y, x = parts_
+                definitions[element] = sp.atan2(y, x)
+                radius = sp.Symbol(names(f"{stem}_r"), real=True)
+                added.append((radius, sp.sqrt(x**2 + y**2)))
+                values = (SineOfAtan2(y, radius), CosineOfAtan2(x, radius))
+            else:
+                values = (sp.sin(element), sp.cos(element))
+            sine, cosine = sp.Symbol(names(f"sin_{stem}"), real=True), sp.Symbol(names(f"cos_{stem}"), real=True)
+            added.extend([(sine, values[0]), (cosine, values[1])])
+            known[element] = (sine, cosine)
+        return known[element]
+
+    sums: dict = {}  # a tuple of (element, sign) -> (sine, cosine) of their sum
+
+    def sum_of(terms: tuple) -> tuple[sp.Expr, sp.Expr]:
+        if terms not in sums:
+            element, sign = terms[-1]
+            sine, cosine = sine_cosine(element)
+            if len(terms) == 1:
+                sums[terms] = (sign * sine, cosine)
+            else:
+                before_sine, before_cosine = sum_of(terms[:-1])
+                if len(terms) > 2:  # the partial sum before: named, as other sums may share it
+                    named = sp.Symbol(names("sin_sum"), real=True), sp.Symbol(names("cos_sum"), real=True)
+                    added.extend(zip(named, (before_sine, before_cosine)))
+                    before_sine, before_cosine = named
+                sums[terms] = (before_sine * cosine + sign * before_cosine * sine,
+                               before_cosine * cosine - sign * before_sine * sine)
+        return sums[terms]
+
+    replacements = {}
+    for call in sorted(calls, key=sp.default_sort_key):
+        argument = call.args[0]
+        form = forms.get(argument)
+        if not form or argument in pairs:
+            continue
+        found = parts(form)
+        if found is None:
+            continue
+        sine, cosine = sum_of(tuple(found))
+        replacements[call] = sine if call.func is sp.sin else cosine
+    if not replacements:
+        return code
+    calls_made = {}  # the known pairs' own calls, made once under their names
+    for element, (sine, cosine) in known.items():
+        if element not in angles:
+            calls_made.update({sine: sp.sin(element), cosine: sp.cos(element)})
+            replacements.update({sp.sin(element): sine, sp.cos(element): cosine})
+    rewritten = [(s, definitions[s].xreplace(replacements)) for s, _ in code.assignments]
+    outputs = {name: expr.xreplace(replacements) for name, expr in code.outputs.items()}
+    nodes = [(s, calls_made.get(s, e.xreplace(replacements))) for s, e in added] + rewritten
+    needed = set(code.roots).union(*(e.free_symbols for e in outputs.values()))
+    kept = []
+    for symbol, expr in reversed(_dependency_order(nodes)):
+        if symbol in needed:
+            kept.append((symbol, expr))
+            needed |= expr.free_symbols
+    return StraightLine(code.arguments, tuple(reversed(kept)), outputs, code.roots, code.defaults)
 
 
 @dataclass(frozen=True)
@@ -182,6 +347,7 @@ def c_comment(text: str, indent: str = "") -> str:
 def c_function(program: Program, name: str, doc: str = "") -> CFunction:
     """The C loop function (and its inline kernel) that computes the program's outputs."""
     code, arguments = named_straight_line(program, name, c_identifier, "C")
+    code = angle_sums(code, set(arguments))
     printer = _CPrinter()
     locals_ = [c_identifier(s.name, "symbol") for s, _ in code.assignments]
     names = _Names(arguments + locals_)
@@ -238,26 +404,54 @@ def c_function(program: Program, name: str, doc: str = "") -> CFunction:
                      prototype, "\n".join(lines) + "\n")
 
 
-def c_packed(function: CFunction) -> str:
-    """A wrapper ``<name>_packed(n, pointers, steps)`` of a loop function: its arrays and steps as two arrays.
+def c_packed(function: CFunction, lengths: Sequence[str] = (), signs: Sequence[str] = ()) -> str:
+    """A wrapper ``<name>_packed(n, pointers, steps, numbers, flags)`` of a loop function that checks its arguments.
 
-    ``pointers`` holds the arguments' arrays, then the outputs' and
-    ``assembled``, in calling order; ``steps`` the arguments' steps.  A caller
-    from another language (symlink's compiled backend through ctypes) then
-    passes three values a call instead of two an argument.
+    ``pointers`` and ``steps`` hold the arguments' arrays and steps in
+    calling order; the outputs are the rows of two blocks, ``numbers`` (the
+    number outputs, ``n`` doubles a row, in order) and ``flags`` (the
+    true/false outputs, then ``assembled``, ``n`` bytes a row).  It first
+    checks the arguments as the NumPy module does (``signs`` exactly +1 or
+    -1, ``lengths`` from 1e-305 to 1e305, every other value finite) and
+    returns ``k + 1`` for the first argument ``k`` that breaks that, without
+    evaluating; else it runs the loop and returns 0.  A caller from another
+    language (symlink's compiled backend through ctypes) then passes five
+    values a call, and checks nothing itself.
 
     >>> from symlink.catalog import fourbar
-    >>> print(c_packed(c_function(fourbar().program(["rocker"]), "rocker")).splitlines()[0])
-    void rocker_packed(size_t n, void *const *pointers, const ptrdiff_t *steps)
+    >>> print(next(line for line in c_packed(c_function(fourbar().program(["rocker"]), "rocker")).splitlines()
+    ...            if line.startswith("int ")))
+    int rocker_packed(size_t n, void *const *pointers, const ptrdiff_t *steps, double *numbers, unsigned char *flags)
     """
+    checker = f"symlink_{function.name}_valid"
+    tests = []
+    for k, argument in enumerate(function.arguments):
+        kind = 1 if argument in signs else 2 if argument in lengths else 0
+        tests.append(f"    if (!{checker}((const double *)pointers[{k}], steps[{k}], n, {kind})) {{\n"
+                     f"        return {k + 1};\n    }}\n")
     arguments = [f"(const double *)pointers[{k}], steps[{k}]" for k in range(len(function.arguments))]
-    first = len(function.arguments)
-    outputs = [f"({'unsigned char' if flag else 'double'} *)pointers[{first + k}]"
-               for k, flag in enumerate(function.flags)]
-    outputs.append(f"(unsigned char *)pointers[{first + len(function.flags)}]")
+    rows = {False: 0, True: 0}
+    outputs = []
+    for flag in list(function.flags) + [True]:
+        block = "flags" if flag else "numbers"
+        outputs.append(f"{block} + {rows[flag]} * n")
+        rows[flag] += 1
     call = ",\n        ".join(["n"] + arguments + outputs)
-    return (f"void {function.name}_packed(size_t n, void *const *pointers, const ptrdiff_t *steps)\n"
-            f"{{\n    (void)steps;\n    {function.name}({call});\n}}\n")
+    return (f"/* Whether the n values of x (one value at a step of 0) are finite (kind 0), +1 or -1 (1), or a length\n"
+            f" * from 1e-305 to 1e305 (2). */\n"
+            f"static int {checker}(const double *x, ptrdiff_t step, size_t n, int kind)\n{{\n"
+            f"    const size_t m = step == 0 ? 1 : n;\n"
+            f"    int good = 1;\n"
+            f"    for (size_t j = 0; j < m; ++j) {{\n"
+            f"        const double v = x[(ptrdiff_t)j * step];\n"
+            f"        good &= kind == 1 ? (v == 1.0 || v == -1.0) : kind == 2 ? (v >= 1e-305 && v <= 1e305) "
+            f": v - v == 0.0;\n"
+            f"    }}\n    return good;\n}}\n\n"
+            f"int {function.name}_packed(size_t n, void *const *pointers, const ptrdiff_t *steps, double *numbers, "
+            f"unsigned char *flags)\n{{\n"
+            + ("    (void)numbers;\n" if rows[False] == 0 else "")
+            + "".join(tests)
+            + f"    {function.name}({call});\n    return 0;\n}}\n")
 
 
 _HEADER = """{title}
@@ -299,15 +493,15 @@ static const double symlink_tolerance = {tolerance!r};
 
 /* The values of one argument for configurations start to start + m - 1, contiguous:
  * the array itself where its step is 1, else copied into block. A step of 0 repeats
- * one value, copied on the first block only. */
+ * one value, copied on the first block only (every later block is no longer). */
 static inline const double *symlink_block(double *block, const double *x, ptrdiff_t step, size_t start, size_t m)
 {{
     if (step == 1) {{
         return x + start;
     }}
     if (step == 0) {{
-        if (start == 0) {{
-            for (size_t j = 0; j < SYMLINK_BLOCK; ++j) {{
+        if (start == 0) {{  /* m values: all of a call of at most SYMLINK_BLOCK, else the block */
+            for (size_t j = 0; j < m; ++j) {{
                 block[j] = *x;
             }}
         }}
@@ -324,6 +518,19 @@ static inline const double *symlink_block(double *block, const double *x, ptrdif
 SYMLINK_INLINE double symlink_clamped_sqrt(double x, double scale)
 {{
     return x >= -symlink_tolerance * scale ? sqrt(x > 0.0 ? x : 0.0) : NAN;
+}}
+
+/* cos and sin of atan2(y, x) without calling them, from r = sqrt(x*x + y*y): x/r and y/r
+ * (one division for both once inlined), and atan2's values where x = y = 0: cos 1 or -1 by
+ * the sign of x, sin the signed zero y. */
+SYMLINK_INLINE double symlink_cos_atan2(double x, double r)
+{{
+    return r != 0.0 ? x * (1.0 / r) : copysign(1.0, x);
+}}
+
+SYMLINK_INLINE double symlink_sin_atan2(double y, double r)
+{{
+    return r != 0.0 ? y * (1.0 / r) : y;
 }}
 """
 

@@ -256,3 +256,48 @@ def test_export_files_are_a_header_and_a_source():
     from symlink.codegen.c import export_files
     files = export_files(catalog_linkage("fourbar"), "fb", [("positions", ["rocker"], "Rocker.")], "Four-bar.")
     assert list(files) == ["fb.h", "fb.c"] and "void fb_positions(size_t n," in files["fb.h"]
+
+
+def test_sines_and_cosines_of_solved_angles_come_from_their_atan2(tmp_path):
+    """cos and sin of q = atan2(y, x), and of q - t, without calls: x/r, y/r and the addition theorems.
+
+    Checked against NumPy's own cos(arctan2(y, x)) (zeros of both signs included, where atan2
+    decides the quadrant) and the generated C calls no sin or cos of q.
+    """
+    x, y, t = sp.symbols("x y t", real=True)
+    q = sp.Symbol("q", real=True)
+    program = Program((x, y, t), ((q, sp.atan2(y, x)),),
+                      {"q": q, "cos_q": sp.cos(q), "sin_q": sp.sin(q), "sin_t": sp.sin(t), "cos_t": sp.cos(t),
+                       "sin_difference": sp.sin(q - t), "cos_difference": sp.cos(q - t)})
+    function = c_function(program, "angles", "")
+    kernel = function.definition.split("SYMLINK_LOOP")[0]
+    assert "sin(q" not in kernel and "cos(q" not in kernel and "symlink_cos_atan2(" in kernel
+    assert kernel.count("sin(") - kernel.count("_sin(") == 1  # sin(t), once, and no other call
+    library = build(tmp_path, *c_library([function], "angles"), "angles")
+    rng = numpy.random.default_rng(5)
+    xs = numpy.concatenate([[0.0, -0.0, 0.0, -0.0, 3.0, -3.0, 0.0, 0.0], rng.normal(size=200)])
+    ys = numpy.concatenate([[0.0, 0.0, -0.0, -0.0, 0.0, -0.0, 2.0, -2.0], rng.normal(size=200)])
+    ts = rng.uniform(-4, 4, size=xs.size)
+    result = call(library, function, dict(x=xs, y=ys, t=ts))
+    angle = numpy.arctan2(ys, xs)
+    expected = {"q": angle, "cos_q": numpy.cos(angle), "sin_q": numpy.sin(angle), "sin_t": numpy.sin(ts),
+                "cos_t": numpy.cos(ts), "sin_difference": numpy.sin(angle - ts), "cos_difference": numpy.cos(angle - ts)}
+    for key, want in expected.items():  # a few units in the last place of 1 (angle - ts itself rounds by 4e-16)
+        numpy.testing.assert_allclose(result[key], want, rtol=0, atol=1.5e-15 if "difference" in key else 4.5e-16,
+                                      err_msg=key)
+    numpy.testing.assert_array_equal(result["cos_q"][:8], [1.0, -1.0, 1.0, -1.0, 1.0, -1.0, 0.0, 0.0])
+    numpy.testing.assert_array_equal(result["sin_q"][:8], [0.0, 0.0, -0.0, -0.0, 0.0, -0.0, 1.0, -1.0])
+    assert result["assembled"].all()
+
+
+@pytest.mark.parametrize("name", ["fourbar", "watt2", "jansen"])
+def test_full_kinematics_call_sin_and_cos_no_more_than_positions(name):
+    linkage = catalog_linkage(name)
+    unknowns = [q.name for q in linkage.unknowns]
+    full = unknowns + [f"{q}dot" for q in unknowns] + [f"{q}ddot" for q in unknowns]
+
+    def calls(outputs):
+        kernel = c_function(linkage.program(outputs), "f", "").definition.split("SYMLINK_LOOP")[0]
+        return sum(kernel.count(f"{f}(") - kernel.count(f"_{f}(") for f in ("sin", "cos", "atan2"))
+
+    assert calls(full) == calls(unknowns)

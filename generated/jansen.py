@@ -80,7 +80,7 @@ def _evaluate(kernel, arguments, shape, keys, flags):
     of about ``BLOCK`` values each (an argument that broadcasts along that axis
     is passed whole), so its temporaries stay in cache and the memory a call
     needs beyond its outputs does not grow with the input.  A block is at most
-    1/32 of the input (and at least ``BLOCK // 4`` values): a block's few dozen
+    1/16 of the input (and at least ``BLOCK // 4`` values): a block's few dozen
     temporaries then take less memory than two outputs, which the C allocator
     keeps for the next block instead of handing it back to the system and
     faulting it in again (measured: blocks of ``BLOCK`` values over inputs of
@@ -101,7 +101,7 @@ def _evaluate(kernel, arguments, shape, keys, flags):
             results[key] = result
         return results
     rows, dimensions = shape[0], len(shape)
-    step = max(1, max(BLOCK // 4, min(BLOCK, count // 32)) // (count // rows))
+    step = max(1, max(BLOCK // 4, min(BLOCK, count // 16)) // (count // rows))
     outputs = [numpy.empty(shape, dtype=bool if flag else float) for flag in flags]
     sliced = [argument.ndim == dimensions and argument.shape[0] != 1 for argument in arguments]
     for start in range(0, rows, step):

@@ -8,7 +8,7 @@ import numpy
 TOLERANCE = 1e-14
 
 #: Values a kernel evaluates at a time: its temporaries of one block stay in cache.
-BLOCK = 4096
+BLOCK = 16384
 
 
 def _arguments(check, names, values, lengths=(), signs=()):
@@ -79,17 +79,29 @@ def _evaluate(kernel, arguments, shape, keys, flags):
     ones) and the kernel is called on consecutive slices of the leading axis
     of about ``BLOCK`` values each (an argument that broadcasts along that axis
     is passed whole), so its temporaries stay in cache and the memory a call
-    needs beyond its outputs does not grow with the input.  Every value is
-    computed by the same elementwise operations either way: the results are
-    bit for bit those of one call on the whole arguments.
+    needs beyond its outputs does not grow with the input.  A block is at most
+    1/16 of the input (and at least ``BLOCK // 4`` values): a block's few dozen
+    temporaries then take less memory than two outputs, which the C allocator
+    keeps for the next block instead of handing it back to the system and
+    faulting it in again (measured: blocks of ``BLOCK`` values over inputs of
+    2-4 blocks ran 1.4x slower a value).  Every value is computed by the same
+    elementwise operations either way: the results are bit for bit those of
+    one call on the whole arguments.
     """
     count = 1
     for extent in shape:
         count *= extent
     if count <= BLOCK:
-        return {key: numpy.broadcast_to(result, shape) for key, result in zip(keys, kernel(*arguments))}
+        results, taken = {}, {id(argument) for argument in arguments}
+        for key, result in zip(keys, kernel(*arguments)):
+            if type(result) is numpy.ndarray and result.shape == shape and id(result) not in taken:
+                taken.add(id(result))  # a fresh array of its own, as it is
+            else:  # a scalar, a smaller shape, an argument or another output: broadcast (a read-only view)
+                result = numpy.broadcast_to(result, shape)
+            results[key] = result
+        return results
     rows, dimensions = shape[0], len(shape)
-    step = max(1, BLOCK // (count // rows))
+    step = max(1, max(BLOCK // 4, min(BLOCK, count // 16)) // (count // rows))
     outputs = [numpy.empty(shape, dtype=bool if flag else float) for flag in flags]
     sliced = [argument.ndim == dimensions and argument.shape[0] != 1 for argument in arguments]
     for start in range(0, rows, step):
@@ -103,6 +115,20 @@ def _evaluate(kernel, arguments, shape, keys, flags):
 def _clamped_sqrt(x, scale):
     """sqrt(x), taking x >= -TOLERANCE*scale as rounding at a toggle (0) and anything lower as no assembly (NaN)."""
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
+
+
+def _power_of_two(exponent):
+    """2.0**exponent for whole-number exponents (a loop's unit), bit for bit, without calling pow() a value.
+
+    A power of two in the normal range is its exponent's bits; an exponent outside it (NaN, infinite, a
+    power that overflows or is subnormal) leaves the whole array to ``2.0**exponent``, exact there too.
+    """
+    if numpy.ndim(exponent) == 0 or not ((exponent >= -1022.0) & (exponent <= 1023.0)).all():
+        return 2.0**exponent
+    bits = exponent.astype(numpy.int64)
+    bits += 1023
+    bits <<= 52
+    return bits.view(numpy.float64)
 
 
 def positions(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_DEFG=1, *, check=True):
@@ -123,12 +149,12 @@ def positions(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_D
 def _positions_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG):
     """The outputs of positions and the assembled mask, for arguments that broadcast together."""
     cse_0 = 1/(numpy.log(2.0))
-    size_1 = 2.0**numpy.floor(cse_0*numpy.log((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d))
+    size_1 = _power_of_two(numpy.floor(cse_0*numpy.log((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d)))
     cse_1 = 1/(size_1)
     del size_1
     rho_1_1 = cse_1*d
     rho_2_1 = a*cse_1
-    Wx_1 = -rho_1_1 + rho_2_1*numpy.cos(theta)
+    Wx_1 = rho_2_1*numpy.cos(theta) - rho_1_1
     Wy_1 = rho_2_1*numpy.sin(theta)
     rho_3_1 = b*cse_1
     rho_4_1 = c*cse_1
@@ -139,20 +165,20 @@ def _positions_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, bra
     cse_3 = cse_2 + w_1
     cse_5 = numpy.square(w_1)
     cse_6 = cse_2*cse_4 + cse_5
-    cse_10 = -cse_2*cse_4 + cse_5
+    cse_10 = cse_5 - cse_2*cse_4
     del cse_5
-    Delta_1 = _clamped_sqrt(cse_3*(cse_2 - w_1)*(cse_4 + w_1)*(-rho_3_1 + rho_4_1 + w_1), 8.0*rho_3_1*rho_4_1*w_1*(cse_3 + rho_1_1 + rho_2_1))
+    Delta_1 = _clamped_sqrt(cse_3*(cse_2 - w_1)*(cse_4 + w_1)*(rho_4_1 - rho_3_1 + w_1), 8.0*rho_3_1*rho_4_1*w_1*(cse_3 + rho_1_1 + rho_2_1))
     del cse_2, cse_3, cse_4, rho_1_1, rho_2_1, rho_3_1, rho_4_1
     cse_7 = Delta_1*branch_ABCD
     cse_8 = Wx_1*cse_7
     cse_9 = Wy_1*cse_7
     del cse_7
-    beta = numpy.arctan2(-Wy_1*cse_6 - cse_8, -Wx_1*cse_6 + cse_9)
+    beta = numpy.arctan2(-Wy_1*cse_6 - cse_8, cse_9 - Wx_1*cse_6)
     del cse_6
     phi = numpy.arctan2(Wy_1*cse_10 - cse_8, Wx_1*cse_10 + cse_9)
     del Wx_1, Wy_1, cse_10, cse_8, cse_9
     cse_12 = alpha + phi
-    size_2 = 2.0**numpy.floor(cse_0*numpy.log((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy)))
+    size_2 = _power_of_two(numpy.floor(cse_0*numpy.log((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy))))
     del cse_0
     cse_11 = 1/(size_2)
     del size_2
@@ -160,8 +186,8 @@ def _positions_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, bra
     rho_2_2 = cse_11*gy
     rho_3_2 = cse_11*e
     rho_4_2 = cse_11*d
-    Wx_2 = -rho_1_2 + rho_3_2*numpy.cos(cse_12) + rho_4_2
-    Wy_2 = -rho_2_2 + rho_3_2*numpy.sin(cse_12)
+    Wx_2 = rho_3_2*numpy.cos(cse_12) - rho_1_2 + rho_4_2
+    Wy_2 = rho_3_2*numpy.sin(cse_12) - rho_2_2
     del cse_12
     rho_5_2 = cse_11*f
     rho_6_2 = cse_11*g
@@ -172,15 +198,15 @@ def _positions_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, bra
     cse_14 = cse_13 + w_2
     cse_16 = numpy.square(w_2)
     cse_17 = cse_13*cse_15 + cse_16
-    cse_21 = -cse_13*cse_15 + cse_16
+    cse_21 = cse_16 - cse_13*cse_15
     del cse_16
-    Delta_2 = _clamped_sqrt(cse_14*(cse_13 - w_2)*(cse_15 + w_2)*(-rho_5_2 + rho_6_2 + w_2), 8.0*rho_5_2*rho_6_2*w_2*(cse_14 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
+    Delta_2 = _clamped_sqrt(cse_14*(cse_13 - w_2)*(cse_15 + w_2)*(rho_6_2 - rho_5_2 + w_2), 8.0*rho_5_2*rho_6_2*w_2*(cse_14 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
     del cse_13, cse_14, cse_15, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2, rho_6_2
     cse_18 = Delta_2*branch_DEFG
     cse_19 = Wx_2*cse_18
     cse_20 = Wy_2*cse_18
     del cse_18
-    mu = numpy.arctan2(-Wy_2*cse_17 - cse_19, -Wx_2*cse_17 + cse_20)
+    mu = numpy.arctan2(-Wy_2*cse_17 - cse_19, cse_20 - Wx_2*cse_17)
     del cse_17
     psi = numpy.arctan2(Wy_2*cse_21 - cse_19, Wx_2*cse_21 + cse_20)
     del Wx_2, Wy_2, cse_19, cse_20, cse_21
@@ -212,12 +238,12 @@ def _velocities_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, br
     """The outputs of velocities and the assembled mask, for arguments that broadcast together."""
     cse_0 = 1/(numpy.log(2.0))
     cse_24 = -theta
-    size_1 = 2.0**numpy.floor(cse_0*numpy.log((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d))
+    size_1 = _power_of_two(numpy.floor(cse_0*numpy.log((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d)))
     cse_1 = 1/(size_1)
     del size_1
     rho_1_1 = cse_1*d
     rho_2_1 = a*cse_1
-    Wx_1 = -rho_1_1 + rho_2_1*numpy.cos(theta)
+    Wx_1 = rho_2_1*numpy.cos(theta) - rho_1_1
     Wy_1 = rho_2_1*numpy.sin(theta)
     rho_3_1 = b*cse_1
     rho_4_1 = c*cse_1
@@ -229,9 +255,9 @@ def _velocities_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, br
     cse_3 = cse_2 + w_1
     cse_6 = numpy.square(w_1)
     cse_7 = cse_2*cse_4 + cse_6
-    cse_11 = -cse_2*cse_4 + cse_6
+    cse_11 = cse_6 - cse_2*cse_4
     del cse_6
-    Delta_1 = _clamped_sqrt(cse_3*(cse_2 - w_1)*(cse_4 + w_1)*(-rho_3_1 + rho_4_1 + w_1), 8.0*cse_5*w_1*(cse_3 + rho_1_1 + rho_2_1))
+    Delta_1 = _clamped_sqrt(cse_3*(cse_2 - w_1)*(cse_4 + w_1)*(rho_4_1 - rho_3_1 + w_1), 8.0*cse_5*w_1*(cse_3 + rho_1_1 + rho_2_1))
     del cse_2, cse_3, cse_4, rho_1_1, rho_2_1, rho_3_1, rho_4_1
     cse_8 = Delta_1*branch_ABCD
     cse_9 = Wx_1*cse_8
@@ -239,12 +265,12 @@ def _velocities_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, br
     del cse_8
     cse_25 = 2.0*a*cse_5*thetadot/(Delta_1*branch_ABCD)
     del cse_5
-    beta = numpy.arctan2(-Wy_1*cse_7 - cse_9, -Wx_1*cse_7 + cse_10)
+    beta = numpy.arctan2(-Wy_1*cse_7 - cse_9, cse_10 - Wx_1*cse_7)
     del cse_7
     phi = numpy.arctan2(Wy_1*cse_11 - cse_9, Wx_1*cse_11 + cse_10)
     del Wx_1, Wy_1, cse_10, cse_11, cse_9
     cse_13 = alpha + phi
-    size_2 = 2.0**numpy.floor(cse_0*numpy.log((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy)))
+    size_2 = _power_of_two(numpy.floor(cse_0*numpy.log((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy))))
     del cse_0
     cse_12 = 1/(size_2)
     del size_2
@@ -252,8 +278,8 @@ def _velocities_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, br
     rho_2_2 = cse_12*gy
     rho_3_2 = cse_12*e
     rho_4_2 = cse_12*d
-    Wx_2 = -rho_1_2 + rho_3_2*numpy.cos(cse_13) + rho_4_2
-    Wy_2 = -rho_2_2 + rho_3_2*numpy.sin(cse_13)
+    Wx_2 = rho_3_2*numpy.cos(cse_13) - rho_1_2 + rho_4_2
+    Wy_2 = rho_3_2*numpy.sin(cse_13) - rho_2_2
     rho_5_2 = cse_12*f
     rho_6_2 = cse_12*g
     del cse_12
@@ -264,15 +290,15 @@ def _velocities_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, br
     cse_15 = cse_14 + w_2
     cse_18 = numpy.square(w_2)
     cse_19 = cse_14*cse_16 + cse_18
-    cse_23 = -cse_14*cse_16 + cse_18
+    cse_23 = cse_18 - cse_14*cse_16
     del cse_18
-    Delta_2 = _clamped_sqrt(cse_15*(cse_14 - w_2)*(cse_16 + w_2)*(-rho_5_2 + rho_6_2 + w_2), 8.0*cse_17*w_2*(cse_15 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
+    Delta_2 = _clamped_sqrt(cse_15*(cse_14 - w_2)*(cse_16 + w_2)*(rho_6_2 - rho_5_2 + w_2), 8.0*cse_17*w_2*(cse_15 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
     del cse_14, cse_15, cse_16, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2, rho_6_2
     cse_20 = Delta_2*branch_DEFG
     cse_21 = Wx_2*cse_20
     cse_22 = Wy_2*cse_20
     del cse_20
-    mu = numpy.arctan2(-Wy_2*cse_19 - cse_21, -Wx_2*cse_19 + cse_22)
+    mu = numpy.arctan2(-Wy_2*cse_19 - cse_21, cse_22 - Wx_2*cse_19)
     del cse_19
     psi = numpy.arctan2(Wy_2*cse_23 - cse_21, Wx_2*cse_23 + cse_22)
     del Wx_2, Wy_2, cse_21, cse_22, cse_23
@@ -319,12 +345,12 @@ def _accelerations_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD,
     cse_29 = a*thetadot
     cse_44 = a*thetaddot
     cse_45 = numpy.square(thetadot)
-    size_1 = 2.0**numpy.floor(cse_0*numpy.log((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d))
+    size_1 = _power_of_two(numpy.floor(cse_0*numpy.log((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d)))
     cse_1 = 1/(size_1)
     del size_1
     rho_1_1 = cse_1*d
     rho_2_1 = a*cse_1
-    Wx_1 = -rho_1_1 + rho_2_1*numpy.cos(theta)
+    Wx_1 = rho_2_1*numpy.cos(theta) - rho_1_1
     Wy_1 = rho_2_1*numpy.sin(theta)
     rho_3_1 = b*cse_1
     rho_4_1 = c*cse_1
@@ -336,9 +362,9 @@ def _accelerations_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD,
     cse_3 = cse_2 + w_1
     cse_6 = numpy.square(w_1)
     cse_7 = cse_2*cse_4 + cse_6
-    cse_11 = -cse_2*cse_4 + cse_6
+    cse_11 = cse_6 - cse_2*cse_4
     del cse_6
-    Delta_1 = _clamped_sqrt(cse_3*(cse_2 - w_1)*(cse_4 + w_1)*(-rho_3_1 + rho_4_1 + w_1), 8.0*cse_5*w_1*(cse_3 + rho_1_1 + rho_2_1))
+    Delta_1 = _clamped_sqrt(cse_3*(cse_2 - w_1)*(cse_4 + w_1)*(rho_4_1 - rho_3_1 + w_1), 8.0*cse_5*w_1*(cse_3 + rho_1_1 + rho_2_1))
     del cse_2, cse_3, cse_4, rho_1_1, rho_2_1, rho_3_1, rho_4_1
     cse_8 = Delta_1*branch_ABCD
     cse_9 = Wx_1*cse_8
@@ -349,7 +375,7 @@ def _accelerations_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD,
     cse_28 = cse_27/b
     cse_32 = cse_27/c
     del cse_27
-    beta = numpy.arctan2(-Wy_1*cse_7 - cse_9, -Wx_1*cse_7 + cse_10)
+    beta = numpy.arctan2(-Wy_1*cse_7 - cse_9, cse_10 - Wx_1*cse_7)
     del cse_7
     cse_30 = beta + cse_24
     cse_31 = numpy.sin(cse_30)
@@ -360,7 +386,7 @@ def _accelerations_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD,
     del cse_24
     cse_26 = numpy.sin(cse_25)
     cse_47 = numpy.cos(beta - phi)
-    size_2 = 2.0**numpy.floor(cse_0*numpy.log((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy)))
+    size_2 = _power_of_two(numpy.floor(cse_0*numpy.log((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy))))
     del cse_0
     cse_12 = 1/(size_2)
     del size_2
@@ -368,8 +394,8 @@ def _accelerations_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD,
     rho_2_2 = cse_12*gy
     rho_3_2 = cse_12*e
     rho_4_2 = cse_12*d
-    Wx_2 = -rho_1_2 + rho_3_2*numpy.cos(cse_13) + rho_4_2
-    Wy_2 = -rho_2_2 + rho_3_2*numpy.sin(cse_13)
+    Wx_2 = rho_3_2*numpy.cos(cse_13) - rho_1_2 + rho_4_2
+    Wy_2 = rho_3_2*numpy.sin(cse_13) - rho_2_2
     rho_5_2 = cse_12*f
     rho_6_2 = cse_12*g
     del cse_12
@@ -380,9 +406,9 @@ def _accelerations_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD,
     cse_15 = cse_14 + w_2
     cse_18 = numpy.square(w_2)
     cse_19 = cse_14*cse_16 + cse_18
-    cse_23 = -cse_14*cse_16 + cse_18
+    cse_23 = cse_18 - cse_14*cse_16
     del cse_18
-    Delta_2 = _clamped_sqrt(cse_15*(cse_14 - w_2)*(cse_16 + w_2)*(-rho_5_2 + rho_6_2 + w_2), 8.0*cse_17*w_2*(cse_15 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
+    Delta_2 = _clamped_sqrt(cse_15*(cse_14 - w_2)*(cse_16 + w_2)*(rho_6_2 - rho_5_2 + w_2), 8.0*cse_17*w_2*(cse_15 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
     del cse_14, cse_15, cse_16, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2, rho_6_2
     cse_20 = Delta_2*branch_DEFG
     cse_21 = Wx_2*cse_20
@@ -393,7 +419,7 @@ def _accelerations_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD,
     cse_37 = cse_36/f
     cse_41 = cse_36/g
     del cse_36
-    mu = numpy.arctan2(-Wy_2*cse_19 - cse_21, -Wx_2*cse_19 + cse_22)
+    mu = numpy.arctan2(-Wy_2*cse_19 - cse_21, cse_22 - Wx_2*cse_19)
     del cse_19
     cse_39 = cse_13 - mu
     cse_40 = numpy.sin(cse_39)
@@ -467,7 +493,7 @@ def _joints_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch
     cse_3 = numpy.sin(theta)
     cse_22 = a*cse_2
     cse_23 = a*cse_3
-    size_1 = 2.0**numpy.floor(cse_0*numpy.log((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d))
+    size_1 = _power_of_two(numpy.floor(cse_0*numpy.log((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d)))
     cse_1 = 1/(size_1)
     del size_1
     rho_1_1 = cse_1*d
@@ -485,15 +511,15 @@ def _joints_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch
     cse_5 = cse_4 + w_1
     cse_7 = numpy.square(w_1)
     cse_8 = cse_4*cse_6 + cse_7
-    cse_12 = -cse_4*cse_6 + cse_7
+    cse_12 = cse_7 - cse_4*cse_6
     del cse_7
-    Delta_1 = _clamped_sqrt(cse_5*(cse_4 - w_1)*(cse_6 + w_1)*(-rho_3_1 + rho_4_1 + w_1), 8.0*rho_3_1*rho_4_1*w_1*(cse_5 + rho_1_1 + rho_2_1))
+    Delta_1 = _clamped_sqrt(cse_5*(cse_4 - w_1)*(cse_6 + w_1)*(rho_4_1 - rho_3_1 + w_1), 8.0*rho_3_1*rho_4_1*w_1*(cse_5 + rho_1_1 + rho_2_1))
     del cse_4, cse_5, cse_6, rho_1_1, rho_2_1, rho_3_1, rho_4_1
     cse_9 = Delta_1*branch_ABCD
     cse_10 = Wx_1*cse_9
     cse_11 = Wy_1*cse_9
     del cse_9
-    beta = numpy.arctan2(-Wy_1*cse_8 - cse_10, -Wx_1*cse_8 + cse_11)
+    beta = numpy.arctan2(-Wy_1*cse_8 - cse_10, cse_11 - Wx_1*cse_8)
     del cse_8
     phi = numpy.arctan2(Wy_1*cse_12 - cse_10, Wx_1*cse_12 + cse_11)
     del Wx_1, Wy_1, cse_10, cse_11, cse_12
@@ -504,7 +530,7 @@ def _joints_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch
     del cse_14
     cse_24 = cse_15*e + d
     cse_25 = cse_16*e
-    size_2 = 2.0**numpy.floor(cse_0*numpy.log((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy)))
+    size_2 = _power_of_two(numpy.floor(cse_0*numpy.log((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy))))
     del cse_0
     cse_13 = 1/(size_2)
     del size_2
@@ -524,10 +550,10 @@ def _joints_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch
     w_2 = _clamped_sqrt(numpy.square(Wx_2) + numpy.square(Wy_2), -2.2250738585072e-294)
     cse_18 = cse_17 + w_2
     cse_20 = cse_17*cse_19 + numpy.square(w_2)
-    Delta_2 = _clamped_sqrt(cse_18*(cse_17 - w_2)*(cse_19 + w_2)*(-rho_5_2 + rho_6_2 + w_2), 8.0*rho_5_2*rho_6_2*w_2*(cse_18 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
+    Delta_2 = _clamped_sqrt(cse_18*(cse_17 - w_2)*(cse_19 + w_2)*(rho_6_2 - rho_5_2 + w_2), 8.0*rho_5_2*rho_6_2*w_2*(cse_18 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
     del cse_17, cse_18, cse_19, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2, rho_6_2
     cse_21 = Delta_2*branch_DEFG
-    mu = numpy.arctan2(-Wx_2*cse_21 - Wy_2*cse_20, -Wx_2*cse_20 + Wy_2*cse_21)
+    mu = numpy.arctan2(-Wx_2*cse_21 - Wy_2*cse_20, Wy_2*cse_21 - Wx_2*cse_20)
     del Wx_2, Wy_2, cse_20, cse_21
     return (
         cse_22,  # B_x

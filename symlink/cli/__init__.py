@@ -15,10 +15,16 @@ command for each catalog linkage), :mod:`.pictures` (``curve``, ``animate``,
 :mod:`.analyze`, :mod:`.loop`, :mod:`.quick_return`, :mod:`.synthesize`, :mod:`.export`, :mod:`.cache`, :mod:`.sweep`,
 :mod:`.dynamics` (``flywheel``, and the four-bar's mass columns); shared
 options in :mod:`.options`, writers in :mod:`.output`.
+
+A command module is imported when the command line needs it: ``symlink
+fourbar ...`` imports :mod:`.tables` (and what its options use) and no other
+command's module, so a warm table costs little beyond importing NumPy;
+``symlink --help`` and a word that is no command import them all.
 """
 from __future__ import annotations
 
 import argparse
+import importlib
 import os
 import sys
 import warnings
@@ -27,27 +33,44 @@ from typing import Sequence
 import numpy
 
 from ..version import __version__
-from . import analyze, bench, cache, dynamics, export, loop, pictures, plan, quick_return, run, sweep, synthesize, tables
 from .options import Parser
 
-__all__ = ["main", "build_parser"]
+__all__ = ["main", "build_parser", "COMMANDS"]
 
-#: The command modules, in the order ``symlink --help`` lists their commands.
-COMMANDS = (tables, dynamics, plan, pictures, run, bench, analyze, loop, quick_return, synthesize, export, cache, sweep)
+#: The command modules (in this package), in the order ``symlink --help`` lists their commands; each has
+#: ``register(commands)``, which adds its commands to the subparsers ``commands``.
+COMMANDS = ("tables", "dynamics", "plan", "pictures", "run", "bench", "analyze", "loop", "quick_return", "synthesize",
+            "export", "cache", "sweep")
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """The ``symlink`` parser with every subcommand (each builds its options when used)."""
+def build_parser(command: str | None = None) -> argparse.ArgumentParser:
+    """The ``symlink`` parser with every subcommand (each builds its options when used).
+
+    With ``command`` (the first word of a command line), the command modules are imported and registered
+    in order only until one has registered that command: the others are not imported.  A word that no
+    module registers ends with every command registered, so that the error lists them all.
+
+    >>> sorted(build_parser("fourbar")._subparsers._group_actions[0].choices)[:2]
+    ['fivebar', 'fourbar']
+    """
     parser = Parser(prog="symlink", description="Symbolic derivation toolkit for planar linkages.",
                     epilog="Exit status: 0 done, 1 a file could not be written or read, 2 bad input, "
                            "130 interrupted.  'symlink COMMAND --help' describes a command.")
     parser.add_argument("--version", action="version", version=f"symlink {__version__}")
     commands = parser.add_subparsers(dest="command", required=True, parser_class=Parser, metavar="COMMAND")
-    for module in COMMANDS:
-        module.register(commands)
+    for name in COMMANDS:
+        importlib.import_module(f"{__name__}.{name}").register(commands)
+        if command is not None and command in commands.choices:
+            break
     return parser
+
+
+def _command_word(argv: Sequence[str] | None) -> str | None:
+    """The command a command line names (its first word), or ``None`` when it starts with an option."""
+    words = sys.argv[1:] if argv is None else argv
+    return words[0] if words and not words[0].startswith("-") else None
 
 
 def _one_line(message: object) -> str:
@@ -91,7 +114,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         warnings.simplefilter("default")
         warnings.showwarning = _show_warning
         try:
-            parser = build_parser()
+            parser = build_parser(_command_word(argv))
             args, rest = parser.parse_known_args(argv)
             if getattr(args, "passes_arguments_on", False):
                 args.arguments = rest

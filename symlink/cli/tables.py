@@ -39,7 +39,6 @@ from typing import TYPE_CHECKING, Any, Callable, Collection, Iterable, Mapping
 import numpy
 
 from ..angles import from_radians, half_turn, to_radians, wrap
-from ..assemblies import stephenson3_assemblies
 from ..input_sweep import InputSweep, crank_speeds
 from .options import (add_fourbar_lengths, add_sweep_options, assignments, branches, command_help, finite, fourbar_lengths,
                       input_sweep, linkage_values)
@@ -406,6 +405,13 @@ def _reachability():
     return reachability
 
 
+def _stephenson3_assemblies(theta: float, values: Mapping[str, float]) -> Any:
+    """The Stephenson III's assemblies at crank angle ``theta`` (:mod:`symlink.assemblies`, imported when asked)."""
+    from ..assemblies import stephenson3_assemblies
+    return stephenson3_assemblies(theta, **{k: values[k] for k in "abcdefgh"}, alpha=values["alpha"],
+                                  delta=values["delta"])
+
+
 def _inverted_undetermined(values: Mapping[str, float], result: Mapping[str, numpy.ndarray]) -> numpy.ndarray:
     """B over D: the block sits on the pivot and the rocker angle follows from nothing."""
     return result["r"] <= 64 * numpy.finfo(float).eps * (values["a"] + values["d"])
@@ -462,8 +468,7 @@ STEPHENSON3 = Table(
           "default the first in order of the coupler angle that continues over the whole sweep is used.\n"
           "Where Newton's method does not converge (the linkage cannot be assembled, or a dead centre) the "
           "command stops with one line naming the crank angle.",
-    assemblies=lambda theta, values: stephenson3_assemblies(theta, **{k: values[k] for k in "abcdefgh"},
-                                                            alpha=values["alpha"], delta=values["delta"]))
+    assemblies=lambda theta, values: _stephenson3_assemblies(theta, values))
 
 FIVEBAR = Table(
     "fivebar", "positions, speeds and accelerations of a five-bar with two driven cranks",

@@ -47,7 +47,7 @@ def test_titles_and_docstrings_cannot_break_out_of_the_module():
     source = numpy_module([("f", fourbar().program(["rocker"]), hostile)], title=hostile, regenerate=hostile)
     tree = ast.parse(source)  # still a docstring, the import, TOLERANCE, BLOCK and functions: nothing else would run
     assert ast.get_docstring(tree).startswith(hostile)
-    assert [type(n).__name__ for n in tree.body] == ["Expr", "Import", "Assign", "Assign"] + ["FunctionDef"] * 5
+    assert [type(n).__name__ for n in tree.body] == ["Expr", "Import", "Assign", "Assign"] + ["FunctionDef"] * 6
     function = next(n for n in tree.body if isinstance(n, ast.FunctionDef) and n.name == "f")
     assert ast.get_docstring(function).startswith(hostile)
     assert [type(n).__name__ for n in function.body[:2]] == ["Expr", "Assign"]
@@ -206,3 +206,52 @@ def test_a_long_input_needs_about_one_block_beyond_its_outputs():
     outputs = sum(array.nbytes for array in result.values())
     block = namespace["BLOCK"] * 8
     assert peak - outputs < 64 * block  # an unblocked call holds dozens of input-sized temporaries (~100 MB here)
+
+
+# --- fewer NumPy calls, the same bits ---------------------------------------------------------------------
+
+def _power_of_two():
+    return load_numpy_module(numpy_module([("f", fourbar().program(["rocker"]), "")]))["_power_of_two"]
+
+
+def test_the_power_of_two_of_a_loop_unit_is_exact_for_every_whole_exponent():
+    import math
+    power = _power_of_two()
+    exponents = numpy.arange(-1100.0, 1101.0)  # the normal range, the subnormal one and beyond both ends
+    normal = exponents[(exponents >= -1022) & (exponents <= 1023)]
+    expected = numpy.array([math.ldexp(1.0, int(k)) if k <= 1023 else math.inf for k in exponents])
+    assert power(normal).view(numpy.int64).tolist() == \
+        numpy.array([math.ldexp(1.0, int(k)) for k in normal]).view(numpy.int64).tolist()
+    with numpy.errstate(over="ignore"):
+        assert power(exponents).view(numpy.int64).tolist() == expected.view(numpy.int64).tolist()
+        assert power(numpy.array([numpy.nan, numpy.inf, -numpy.inf, 3.0])).tolist()[1:] == [math.inf, 0.0, 8.0]
+    assert numpy.isnan(power(numpy.array([numpy.nan, 3.0]))[0])
+    assert power(numpy.float64(-3.0)) == 0.125 and power(numpy.full((2, 3), 4.0)).tolist() == [[16.0] * 3] * 2
+
+
+def test_a_sum_that_starts_with_a_negative_term_is_printed_as_a_difference():
+    from symlink.codegen.numpy import NumPyCodePrinter
+    x, y, z, w = sp.symbols("x y z w")
+    printer = NumPyCodePrinter()
+    assert printer.doprint(-x + y) == "y - x"
+    assert printer.doprint(-x * y + z) == "z - x*y"
+    assert printer.doprint(-x - y) == "-x - y"  # nothing positive to start with: as SymPy prints it
+    from sympy.printing.numpy import NumPyPrinter
+    assert NumPyPrinter().doprint(-2 * x + y + z) == "-2*x + y + z"  # SymPy's own order of the terms
+    assert printer.doprint(-2 * x + y + z) == "y - 2.0*x + z"  # only the first two terms trade places
+    assert printer.doprint(w - x + y) == NumPyPrinter().doprint(w - x + y) == "w - x + y"  # starts positive: as is
+    rng = numpy.random.default_rng(5)
+    a, b, c = (rng.normal(size=1000) * 10.0 ** rng.integers(-200, 200, size=1000) for _ in range(3))
+    with numpy.errstate(over="ignore", invalid="ignore"):  # infinities and NaN among them
+        assert ((-a) * b + c).tobytes() == (c - a * b).tobytes()  # the same bits: IEEE negation is exact
+        assert ((-a) + b + c).tobytes() == (b - a + c).tobytes()
+
+
+def test_a_short_input_returns_fresh_arrays_that_share_no_memory():
+    namespace = _generated_fourbar()
+    theta = numpy.linspace(0.0, 6.0, 50)
+    result = namespace["accelerations"](theta, 20.0, 66.0, 56.0, 80.0, 1, 10.5, 2.0)
+    arrays = list(result.values())
+    assert all(array.shape == theta.shape for array in arrays)
+    assert not any(numpy.shares_memory(array, theta) for array in arrays)
+    assert not any(numpy.shares_memory(first, second) for k, first in enumerate(arrays) for second in arrays[k + 1:])

@@ -13,9 +13,9 @@ B->C, v to its left), so that in the four-bar's own frame (:func:`symlink.catalo
   steps to the next ones, so the points are reached in order, turning one way.
 
 Each start is refined by ``scipy.optimize.least_squares`` (Levenberg-Marquardt; SciPy is the
-``synthesis`` extra) with the exact Jacobian: the closed-form coupler point is differentiated by SymPy once
-(forward mode through the four-bar's solve plan) and printed as a NumPy module by symlink's
-code generator, cached like every generated solver (:func:`coupler_point_gradient`).
+``synthesis`` extra) with the exact Jacobian: the design sensitivities of the placed four-bar's
+coupler point (:func:`path_fourbar`), generated and cached like every solver and called through
+:class:`symlink.design_jacobian.DesignJacobian` (:func:`path_jacobian`).
 
 Starts come from a coarse atlas of random four-bars: the coupler points of each, at the
 given crank angles (with timing) or at crank angles matched to the points by arc length
@@ -38,25 +38,24 @@ True
 """
 from __future__ import annotations
 
-import hashlib
-import inspect
 import math
 from dataclasses import dataclass, replace
 from functools import lru_cache
-from typing import Callable, Sequence
+from typing import Sequence
 
 import numpy
 import sympy as sp
 from numpy.typing import ArrayLike
 
 from ..analysis import grashof, transmission_range
-from ..cache import cache_key, cached_text
 from ..catalog import fourbar
-from ..codegen.numpy import load_numpy_module, numpy_module
-from ..linkage import Program
+from ..design_jacobian import DesignJacobian
+from ..linkage import Linkage
+from ..loops import Loop
 from ..solver import check_lengths, shared_solver
+from ..vectors import Vector, coordinates, lengths as length_symbols
 
-__all__ = ["PathDesign", "fourbar_design", "synthesize_path", "coupler_point_gradient", "check_design",
+__all__ = ["PathDesign", "fourbar_design", "synthesize_path", "path_fourbar", "path_jacobian", "check_design",
            "DESIGN_NAMES", "GRASHOF_CHOICES", "path_error"]
 
 #: The nine dimensions of a path-generating four-bar, in the order of the design vector.
@@ -161,86 +160,60 @@ def fourbar_design(crank_pivot: tuple[float, float], frame: float, lengths: Sequ
 
 # --- the exact Jacobian -------------------------------------------------------------------------
 
-def _gradient_program() -> Program:
-    """The coupler point in the plane and its derivatives by theta and the nine dimensions.
+#: The path four-bar's parameters, in the order of the Jacobian's columns: the crank phase, then the dimensions.
+_PARAMETERS = ("crank_phase",) + DESIGN_NAMES
 
-    Forward-mode differentiation through the four-bar's solve plan: each intermediate's
-    derivative is its expression's partial derivatives chained with the earlier ones'.  The
-    plan's scale (a power of two of the link lengths, for rounding) is held constant: the
-    angles it scales do not depend on it.
+
+def path_fourbar() -> Linkage:
+    """The four-bar of :func:`symlink.catalog.fourbar` placed in the plane, with its coupler point ``P``.
+
+    The loop is the catalog four-bar's, in its own frame (crank pivot at the origin, ground
+    along x); the extras ``P_x`` and ``P_y`` place the coupler point ``(u, v)`` (coupler frame)
+    by the crank pivot ``(x0, y0)`` and the frame angle.  The crank stands at ``theta +
+    crank_phase``: the sensitivities are derivatives by parameters, and held at zero the
+    phase's is the derivative by the crank angle, which synthesis without timing needs.
+
+    >>> [p.name for p in path_fourbar().parameters]
+    ['crank_phase', 'x0', 'y0', 'frame', 'a', 'b', 'c', 'd', 'u', 'v']
     """
-    base = fourbar()
-    (theta,), beta = base.inputs, base.roles["coupler"]
-    a, b, c, d = base.parameters
-    x0, y0, frame, u, v = sp.symbols("x0 y0 frame u v", real=True)
-    variables = (theta, x0, y0, frame, a, b, c, d, u, v)
-    local_x = a * sp.cos(theta) + u * sp.cos(beta) - v * sp.sin(beta)
-    local_y = a * sp.sin(theta) + u * sp.sin(beta) + v * sp.cos(beta)
-    point = {"P_x": x0 + sp.cos(frame) * local_x - sp.sin(frame) * local_y,
-             "P_y": y0 + sp.sin(frame) * local_x + sp.cos(frame) * local_y}
-    gradients: dict[sp.Symbol, dict[sp.Symbol, sp.Expr]] = {}
-    assignments: list[tuple[sp.Symbol, sp.Expr]] = []
-
-    def derivative(expr: sp.Expr, variable: sp.Symbol) -> sp.Expr:
-        total = sp.diff(expr, variable) if variable in expr.free_symbols else sp.S.Zero
-        for symbol in expr.free_symbols & set(gradients):
-            if variable in gradients[symbol]:
-                total += sp.diff(expr, symbol) * gradients[symbol][variable]
-        return total
-
-    for symbol, expr in base.positions.items():
-        assignments.append((symbol, expr))
-        gradients[symbol] = {}
-        if symbol.name.startswith("size"):
-            continue
-        for variable in variables:
-            found = derivative(expr, variable)
-            if found != 0:
-                name = sp.Symbol(f"d_{symbol.name}_by_{variable.name}", real=True)
-                assignments.append((name, found))
-                gradients[symbol][variable] = name
-    outputs = dict(point)
-    for axis, expr in point.items():
-        for variable in variables:
-            outputs[f"d{axis}_by_{variable.name}"] = derivative(expr, variable)
-    outputs["singular"] = base.singular
-    branch = base.branches[0]
-    return Program(variables + (branch,), tuple(assignments), outputs, {branch.name: 1.0})
+    theta, beta, phi = coordinates("theta beta phi")
+    a, b, c, d = length_symbols("a b c d")
+    phase, x0, y0, frame, u, v = sp.symbols("crank_phase x0 y0 frame u v", real=True)
+    AB, BC = Vector(a, theta + phase, "AB"), Vector(b, beta, "BC")
+    DC, AD = Vector(c, phi, "DC"), Vector(d, 0, "AD")
+    local = AB.as_sum() + Vector(u, beta) + Vector(v, beta + sp.pi / 2)
+    return Linkage("path_fourbar", [Loop(AD + DC - BC - AB, name="ABCD")], inputs=[theta], unknowns=[beta, phi],
+                   parameters=[phase, x0, y0, frame, a, b, c, d, u, v],
+                   roles={"crank": theta, "coupler": beta, "rocker": phi},
+                   extras={"P_x": x0 + sp.cos(frame) * local.x - sp.sin(frame) * local.y,
+                           "P_y": y0 + sp.sin(frame) * local.x + sp.cos(frame) * local.y})
 
 
 @lru_cache(maxsize=None)
-def coupler_point_gradient() -> Callable[..., dict]:
-    """The generated NumPy function ``(theta, x0, y0, frame, a, b, c, d, u, v, branch)`` -> coupler point and Jacobian.
+def path_jacobian() -> DesignJacobian:
+    """The coupler point of :func:`path_fourbar` and its Jacobian by the crank angle and the nine dimensions.
 
-    Returns a dict with ``P_x``, ``P_y``, ``dP_x_by_<name>`` and ``dP_y_by_<name>`` for theta
-    and every dimension, ``singular`` and ``assembled``.  Derived once, then loaded from the
-    scene cache.  This is the one place the Jacobian comes from (a generic sensitivity
-    API can replace it).
+    A :class:`symlink.design_jacobian.DesignJacobian` (generated once, then loaded from the
+    scene cache); synthesis calls its unchecked :meth:`~symlink.design_jacobian.DesignJacobian.arrays`.
 
-    >>> f = coupler_point_gradient()
-    >>> out = f(0.0, 0.0, 0.0, 0.0, 1.0, 3.0, 2.5, 3.2, 1.0, 0.0, 1, check=False)
-    >>> round(float(out["P_x"]), 9), float(out["dP_x_by_x0"])  # 1 + cos(beta), cos(beta) = 1.725 / 3
+    >>> values, slopes, assembled = path_jacobian().arrays(0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 3.0, 2.5, 3.2, 1.0, 0.0,
+    ...                                                  1.0)
+    >>> round(float(values[0]), 9), float(slopes[0, 1])  # P_x = 1 + cos(beta), cos(beta) = 1.725 / 3; dP_x/dx0
     (1.575, 1.0)
     """
-    digest = hashlib.sha256(inspect.getsource(_gradient_program).encode()).hexdigest()[:16]
-    source = cached_text(cache_key(fourbar(), ["P_x", "P_y"], f"path-gradient-{digest}"),
-                         lambda: numpy_module([("coupler_point_gradient", _gradient_program(),
-                                                "The four-bar's coupler point in the plane and its derivatives.")],
-                                              "Coupler point of a placed four-bar and its exact Jacobian."))
-    return load_numpy_module(source)["coupler_point_gradient"]
-
-
-_VARIABLE_NAMES = ("theta",) + DESIGN_NAMES
+    return DesignJacobian(path_fourbar(), ["P_x", "P_y"], list(_PARAMETERS))
 
 
 def _evaluate(design: numpy.ndarray, theta: numpy.ndarray, branch: int) -> tuple[numpy.ndarray, numpy.ndarray,
                                                                                  numpy.ndarray]:
-    """Coupler points (N, 2), Jacobian (N, 2, 10: theta then the dimensions) and a feasibility mask (N)."""
-    out = coupler_point_gradient()(theta, *design, branch, check=False)
-    points = numpy.stack([out["P_x"], out["P_y"]], axis=-1)
-    jacobian = numpy.stack([numpy.stack([numpy.broadcast_to(out[f"d{axis}_by_{name}"], theta.shape)
-                                         for name in _VARIABLE_NAMES], axis=-1) for axis in ("P_x", "P_y")], axis=-2)
-    ok = numpy.asarray(out["assembled"]) & ~numpy.asarray(out["singular"]) & numpy.all(numpy.isfinite(points), axis=-1)
+    """Coupler points (N, 2), Jacobian (N, 2, 10: theta then the dimensions) and a feasibility mask (N).
+
+    Feasible: assembled and away from a toggle (where the derivatives divide by zero).
+    """
+    values, slopes, assembled = path_jacobian().arrays(theta, 0.0, *design, float(branch))
+    points = values.T
+    jacobian = numpy.moveaxis(slopes, -1, 0)
+    ok = assembled & numpy.all(numpy.isfinite(slopes), axis=(0, 1)) & numpy.all(numpy.isfinite(values), axis=0)
     return points, jacobian, ok
 
 
@@ -354,10 +327,10 @@ def _atlas(rng: numpy.random.Generator, count: int) -> numpy.ndarray:
 
 def _local_points(rows: numpy.ndarray, theta: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
     """Coupler points (complex, rows x angles) of atlas four-bars in their own frame, and where they are feasible."""
-    out = coupler_point_gradient()(theta, 0.0, 0.0, 0.0, *(rows[:, [k]] for k in range(6)), rows[:, [6]], check=False)
-    shape = numpy.broadcast_shapes(theta.shape, rows[:, :1].shape)
-    z = numpy.broadcast_to(out["P_x"] + 1j * out["P_y"], shape)
-    ok = numpy.broadcast_to(numpy.asarray(out["assembled"]) & ~numpy.asarray(out["singular"]), shape)
+    values, slopes, assembled = path_jacobian().arrays(theta, 0.0, 0.0, 0.0, 0.0,
+                                                      *(rows[:, [k]] for k in range(6)), rows[:, [6]])
+    z = values[0] + 1j * values[1]
+    ok = assembled & numpy.isfinite(slopes[0, 0]) & numpy.isfinite(slopes[1, 0])
     return z, ok
 
 

@@ -6,8 +6,7 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from symlink.synthesis.path import (DESIGN_NAMES, check_design, coupler_point_gradient, fourbar_design,
-                                    synthesize_path)
+from symlink.synthesis.path import DESIGN_NAMES, check_design, fourbar_design, path_jacobian, synthesize_path
 
 
 def mp_point(vector, theta, branch):
@@ -36,11 +35,16 @@ def random_crank_rocker(rng):
 
 def test_generated_jacobian_against_mpmath_central_differences():
     vector = [0.3, -0.2, 0.7, 0.8, 2.4, 2.0, 2.6, 1.1, -0.5]
-    out = coupler_point_gradient()(np.array([0.4, 2.5]), *vector, -1, check=False)
+    values, slopes, assembled = path_jacobian().arrays(np.array([0.4, 2.5]), 0.0, *vector, -1.0)
+    keywords = dict(zip(DESIGN_NAMES, vector), theta=np.array([0.4, 2.5]), crank_phase=0.0, branch=-1.0)
+    checked_values, checked_slopes = path_jacobian()(**keywords)  # the checked call gives the same numbers
+    assert np.array_equal(np.moveaxis(checked_slopes, 0, -1), slopes)
+    assert np.array_equal(checked_values["P_x"], values[0]) and assembled.all()
     for k, theta in enumerate((0.4, 2.5)):
         point = mp_point(vector, mp.mpf(theta), -1)
-        assert out["P_x"][k] == pytest.approx(float(point.real), abs=1e-13)
-        assert out["P_y"][k] == pytest.approx(float(point.imag), abs=1e-13)
+        assert values[0, k] == pytest.approx(float(point.real), abs=1e-13)
+        assert values[1, k] == pytest.approx(float(point.imag), abs=1e-13)
+        # column 0 is the crank phase, whose derivative is the crank angle's
         for index, name in enumerate(("theta",) + DESIGN_NAMES):
             with mp.workdps(30):
                 h = mp.mpf("1e-12")
@@ -54,8 +58,16 @@ def test_generated_jacobian_against_mpmath_central_differences():
                         values[index - 1] += step
                     return mp_point(values, angle, -1)
                 derivative = (shifted(h) - shifted(-h)) / (2 * h)
-            assert out[f"dP_x_by_{name}"][k] == pytest.approx(float(derivative.real), rel=1e-9, abs=1e-11)
-            assert out[f"dP_y_by_{name}"][k] == pytest.approx(float(derivative.imag), rel=1e-9, abs=1e-11)
+            assert slopes[0, index, k] == pytest.approx(float(derivative.real), rel=1e-9, abs=1e-11), name
+            assert slopes[1, index, k] == pytest.approx(float(derivative.imag), rel=1e-9, abs=1e-11), name
+
+
+def test_jacobian_is_no_number_where_the_four_bar_cannot_close():
+    # crank 1, coupler and rocker 0.1, ground 1.5: |BD| >= 0.5 > b + c, never assembled; d/dx0 is a constant 1
+    values, slopes, assembled = path_jacobian().arrays(np.array([0.0, 3.0]), 0.0, 0.0, 0.0, 0.0, 1.0, 0.1, 0.1,
+                                                       1.5, 0.5, 0.2, 1.0)
+    assert not assembled.any()
+    assert np.isnan(values).all() and np.isnan(slopes).all()
 
 
 def _check_against_mpmath(design, targets):

@@ -68,7 +68,15 @@ _INFEASIBLE = 1e6        # residual of a design that breaks a constraint (the so
 _PATH_SAMPLES = 24       # crank angles checked between consecutive points for assembly and toggles
 _ATLAS = 1500            # random four-bars in the coarse atlas
 _CURVE_SAMPLES = 96      # points of each atlas curve (without timing)
-_MAX_EVALUATIONS = 300   # residual evaluations of one refinement (three times that without timing)
+_CURVE_ATLAS = 500       # four-bars in each atlas without timing
+_PROJECTED = 160         # the best arc-length fits kept from all phases and spans
+_MAX_EVALUATIONS = 300   # residual evaluations of one refinement (twice that without timing)
+_ALTERNATIONS = 4        # timed solves and projections before each untimed refinement ...
+_ALTERNATION_EVALUATIONS = 40  # ... each timed solve this long ...
+_PROJECTION_SAMPLES = 360  # ... each projection onto this many points of the curve
+_POLISHED = 2            # designs of each batch of starts that get a long second refinement ...
+_POLISH_BELOW = 1e-3     # ... if their error is below this
+_POLISH_EVALUATIONS = 6000
 _DEBUG = False
 
 
@@ -368,46 +376,84 @@ def _timed_starts(w: numpy.ndarray, theta: numpy.ndarray, rng, count: int, const
     return starts
 
 
-def _untimed_starts(w: numpy.ndarray, rng, count: int, constraints: _Constraints):
-    """Atlas curves matched to the targets by arc length: several phases, spans and both directions."""
-    rows = _atlas(rng, _ATLAS // 3)
+@lru_cache(maxsize=1)
+def _curve_atlas() -> tuple[numpy.ndarray, numpy.ndarray]:
+    """The first atlas without timing, the same in every call (made once a process): rows and closed curves.
+
+    Rows (a, b, c, d, u, v, branch) of four-bars whose crank turns fully, and their coupler
+    points (complex, own frame) at :data:`_CURVE_SAMPLES` crank angles over a turn.
+    """
+    return _curves(_atlas(numpy.random.default_rng(20240611), _CURVE_ATLAS))
+
+
+def _curves(rows: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
     samples = numpy.linspace(-math.pi, math.pi, _CURVE_SAMPLES + 1)[:-1]
     z, ok = _local_points(rows, samples[None, :])
     turning = numpy.all(ok, axis=1)
-    rows, z = rows[turning], z[turning]
+    return rows[turning], z[turning]
+
+
+def _untimed_starts(w: numpy.ndarray, rng, count: int, constraints: _Constraints, first: bool):
+    """Atlas curves matched to the targets by arc length: several phases, spans and both directions; the best fits.
+
+    The crank angles where a curve's arc length has the targets' chord-length fractions give a
+    similarity fit (rotation, scale, shift).  The curve's samples, interpolated, stand in for its
+    coupler points (no solver call).  Projecting the targets onto the atlas curves and fitting
+    again (as :func:`_alternate` does on the refined design) was tried here and found fewer
+    solutions: it pulls poor curves' fits down to the good ones'.
+    """
+    rows, z = _curve_atlas() if first else _curves(_atlas(rng, _CURVE_ATLAS))
+    samples = len(z[0])
+    grid = numpy.linspace(-math.pi, math.pi, samples + 1)[:-1]
     closed = numpy.concatenate([z, z[:, :1]], axis=1)
     arc = numpy.concatenate([numpy.zeros((len(z), 1)), numpy.cumsum(numpy.abs(numpy.diff(closed, axis=1)), axis=1)],
                             axis=1)
     arc /= arc[:, -1:]
     chords = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(w)))])
     fraction = chords / chords[-1] if chords[-1] > 0 else numpy.linspace(0, 1, len(w))
-    grid_theta = numpy.linspace(-math.pi, math.pi, _CURVE_SAMPLES + 1)
-    best = []
+    positions = numpy.arange(samples + 1, dtype=float)
+    fits = []  # (rms, row, sample positions)
     for span in (0.95, 0.8, 0.6, 0.4):
-        for phase in numpy.linspace(0, 1, 12, endpoint=False):
+        for phase in numpy.linspace(0, 1, 16, endpoint=False):
             for direction in (1, -1):
                 where = (phase + direction * span * fraction) % 1.0
-                theta = _interpolate_rows(where, arc, grid_theta)
-                # unwrap so the angles turn one way
-                theta = numpy.unwrap(theta, axis=1)
-                zz, okk = _local_points(rows, theta)
-                factor, shift, rms = _similarity(zz, w[None, :])
-                rms = numpy.where(numpy.all(okk, axis=1) & numpy.isfinite(rms), rms, numpy.inf)
-                for k in numpy.argsort(rms)[:count]:
-                    if numpy.isfinite(rms[k]):
-                        best.append((rms[k], k, factor[k], shift[k], theta[k]))
-    best.sort(key=lambda item: item[0])
+                position = _interpolate_rows(where, arc, positions)  # fractional sample index, rows x targets
+                zz = _sampled(closed, position)
+                _, _, rms = _similarity(zz, w[None, :])
+                rms = numpy.where(numpy.isfinite(rms), rms, numpy.inf)
+                for k in numpy.argsort(rms)[:_PROJECTED // 8]:
+                    fits.append((rms[k], k, position[k]))
+    fits.sort(key=lambda item: item[0])
+    fits = fits[:_PROJECTED]
+    chosen = numpy.array([k for _, k, _ in fits])
+    position = numpy.array([p for _, _, p in fits])
+    curves = z[chosen]
+    factor, shift, rms = _similarity(_sampled(numpy.concatenate([curves, curves[:, :1]], axis=1), position),
+                                     w[None, :])
     starts: list[tuple[numpy.ndarray, int, numpy.ndarray]] = []
-    for _, k, factor, shift, theta in best:
-        if len(starts) >= count:
+    used: set[int] = set()
+    for m in numpy.argsort(numpy.where(numpy.isfinite(rms), rms, numpy.inf)):
+        if len(starts) >= count or not numpy.isfinite(rms[m]):
             break
-        steps = numpy.diff(theta)
-        if not (numpy.all(steps >= 0) or numpy.all(steps <= 0)) or abs(theta[-1] - theta[0]) >= 2 * math.pi:
+        forward = numpy.diff(position[m]) % samples
+        steps = forward if numpy.sum(forward) < samples else -((-numpy.diff(position[m])) % samples)
+        theta = grid[0] + (position[m][0] + numpy.concatenate([[0.0], numpy.cumsum(steps)])) * (2 * math.pi / samples)
+        if chosen[m] in used or abs(theta[-1] - theta[0]) >= 2 * math.pi:
             continue
-        vector = _placed(rows[k], factor, shift)
+        vector = _placed(rows[chosen[m]], factor[m], shift[m])
         if constraints.allow(vector[3:7]):
-            starts.append((vector, int(rows[k, 6]), theta))
+            used.add(chosen[m])
+            starts.append((vector, int(rows[chosen[m], 6]), theta))
     return starts
+
+
+def _sampled(closed: numpy.ndarray, position: numpy.ndarray) -> numpy.ndarray:
+    """A closed curve's samples (rows, samples + 1, the first repeated) linearly interpolated at fractional indices."""
+    position = position % (closed.shape[1] - 1)
+    low = numpy.floor(position).astype(int)
+    part = position - low
+    first = numpy.take_along_axis(closed, low, axis=1)
+    return first + part * (numpy.take_along_axis(closed, low + 1, axis=1) - first)
 
 
 def _interpolate_rows(where: numpy.ndarray, arc: numpy.ndarray, grid: numpy.ndarray) -> numpy.ndarray:
@@ -423,7 +469,7 @@ def _interpolate_rows(where: numpy.ndarray, arc: numpy.ndarray, grid: numpy.ndar
 # --- the refinement -----------------------------------------------------------------------------
 
 def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: numpy.ndarray, timed: bool,
-            constraints: _Constraints, size: float, tolerance: float):
+            constraints: _Constraints, size: float, tolerance: float, evaluations: int):
     """Levenberg-Marquardt (``least_squares(method="lm")``, where there are enough points) from one start: (design vector, crank angles, evaluations).
 
     Without timing the crank angles are the first angle and squared steps to the next
@@ -447,6 +493,7 @@ def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: nu
         design, angles = unpack(x)
         if not constraints.allow(design[3:7]) or (not timed and abs(angles[-1] - angles[0]) >= 2 * math.pi):
             return numpy.full(2 * count, _INFEASIBLE)
+
         with numpy.errstate(all="ignore"):
             points, jac, ok = _evaluate(design, angles, branch)
         if not numpy.all(ok):
@@ -465,27 +512,57 @@ def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: nu
         if timed:
             return dimensions / size
         by_theta = jac[:, :, 0]  # (count, 2): d point_i / d theta_i
-        angle_columns = numpy.zeros((2 * count, count))
-        chain = 2 * direction * x[10:]  # d theta_i / d s_k for k < i
-        for i in range(count):
-            angle_columns[2 * i:2 * i + 2, 0] = by_theta[i]
-            angle_columns[2 * i:2 * i + 2, 1:i + 1] = by_theta[i][:, None] * chain[None, :i]
+        # d theta_i / d theta_1 = 1 and d theta_i / d s_k = 2 direction s_k for k < i: a lower triangle
+        chain = numpy.tril(numpy.concatenate([[1.0], 2 * direction * x[10:]])[None, :].repeat(count, axis=0))
+        angle_columns = (by_theta[:, :, None] * chain[:, None, :]).reshape(2 * count, count)
         return numpy.concatenate([dimensions, angle_columns], axis=1) / size
 
     x0 = start.copy()
     if not timed:
         x0 = numpy.concatenate([start, [theta[0]], numpy.sqrt(numpy.abs(numpy.diff(theta)))])
+
     if residuals(x0)[0] == _INFEASIBLE:
         return None
     # Levenberg-Marquardt needs at least as many residuals as unknowns; fewer points (an underdetermined
     # problem without timing) go to the trust-region reflective method.
     method = "lm" if 2 * count >= len(x0) else "trf"
     fit = least_squares(residuals, x0, jac=jacobian, method=method, x_scale="jac", xtol=tolerance, ftol=tolerance,
-                        gtol=tolerance, max_nfev=_MAX_EVALUATIONS * (1 if timed else 2))
+                        gtol=tolerance, max_nfev=evaluations)
     if _DEBUG:
         print(fit.status, fit.nfev, fit.njev, fit.cost, fit.message)
     design, angles = unpack(fit.x)
     return design, angles, fit.nfev + (fit.njev or 0)
+
+
+def _alternate(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: numpy.ndarray,
+               constraints: _Constraints, size: float) -> tuple[numpy.ndarray, numpy.ndarray]:
+    """Alternating projection before the untimed refinement: a few short timed solves, each followed by moving
+    every target's crank angle to the nearest point of the current coupler curve.
+
+    The joint refinement moves the angles only locally; a projection may move one across the curve,
+    to the part it belongs to, which widens the basin a start leads into.  A projection is kept only
+    if the angles still turn one way by less than a turn (and its timed solve is feasible).
+    """
+    grid = numpy.linspace(-math.pi, math.pi, _PROJECTION_SAMPLES + 1)[:-1]
+    vector, angles = start, theta
+    for _ in range(_ALTERNATIONS):
+        result = _refine(vector, branch, angles, targets, True, constraints, size, 1e-12, _ALTERNATION_EVALUATIONS)
+        if result is None:
+            break
+        vector = result[0]
+        with numpy.errstate(all="ignore"):
+            points, _, ok = _evaluate(vector, grid, branch)
+        if not numpy.any(ok):
+            break
+        distance = numpy.hypot(points[None, :, 0] - targets[:, None, 0], points[None, :, 1] - targets[:, None, 1])
+        nearest = grid[numpy.argmin(numpy.where(ok[None, :], distance, numpy.inf), axis=1)]
+        forward = numpy.diff(nearest) % (2 * math.pi)
+        backward = -((-numpy.diff(nearest)) % (2 * math.pi))
+        steps = forward if numpy.sum(forward) < 2 * math.pi else backward
+        if abs(numpy.sum(steps)) >= 2 * math.pi:
+            break
+        angles = nearest[0] + numpy.concatenate([[0.0], numpy.cumsum(steps)])
+    return vector, angles
 
 
 def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, starts: int = 8, designs: int = 3,
@@ -531,26 +608,48 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
     rng = numpy.random.default_rng(seed)
     w = points[:, 0] + 1j * points[:, 1]
     found: list[PathDesign] = []
+
+    def refined(vector, branch, angles, evaluations) -> PathDesign | None:
+        """A start refined and verified (None if it fails the constraints or the check)."""
+        result = _refine(vector, branch, numpy.asarray(angles, dtype=float), points, timed, constraints, size,
+                         tolerance, evaluations)
+        if result is None:
+            return None
+        design_vector, design_theta, used = result
+        a, b, c, d = (float(x) for x in design_vector[3:7])
+        design = PathDesign((float(design_vector[0]), float(design_vector[1])), float(design_vector[2]),
+                            a, b, c, d, (float(design_vector[7]), float(design_vector[8])), branch,
+                            evaluations=used)
+        try:
+            return check_design(design, points, design_theta, grashof_class, max_link_ratio, min_transmission)
+        except ValueError:
+            return None
+
+    polished: list[PathDesign] = []
     for attempt in range(4):
         candidates = (_timed_starts(w, crank_angles, rng, starts, constraints) if timed
-                      else _untimed_starts(w, rng, starts, constraints))
+                      else _untimed_starts(w, rng, starts, constraints, attempt == 0))
         for vector, branch, angles in candidates:
-            refined = _refine(vector, branch, numpy.asarray(angles, dtype=float), points, timed, constraints, size,
-                              tolerance)
-            if refined is None:
-                continue
-            design_vector, design_theta, evaluations = refined
-            a, b, c, d = (float(x) for x in design_vector[3:7])
-            design = PathDesign((float(design_vector[0]), float(design_vector[1])), float(design_vector[2]),
-                                a, b, c, d, (float(design_vector[7]), float(design_vector[8])), branch,
-                                evaluations=evaluations)
-            try:
-                found.append(check_design(design, points, design_theta, grashof_class, max_link_ratio,
-                                          min_transmission))
-            except ValueError:
-                continue
-            if found[-1].error < 1e-10:
-                break
+            if not timed:
+                vector, angles = _alternate(vector, branch, numpy.asarray(angles, dtype=float), points, constraints,
+                                            size)
+            design = refined(vector, branch, angles, _MAX_EVALUATIONS * (1 if timed else 2))
+            if design is not None:
+                found.append(design)
+                if design.error < 1e-10:
+                    break
+        if found and min(d.error for d in found) < 1e-8:
+            break
+        # Near-degenerate problems (points that barely fix the four-bar) crawl along a flat valley and stop
+        # short: the closest designs get a long second run from where they stopped.
+        for design in _distinct(sorted(found, key=lambda d: d.error), _POLISHED, size):
+            if design.error < _POLISH_BELOW and all(design is not other for other in polished):
+                polished.append(design)
+                again = refined(design.vector, design.branch, design.theta, _POLISH_EVALUATIONS)
+                if again is not None:
+                    found.append(again)
+                    if again.error < 1e-8:
+                        break
         if found and min(d.error for d in found) < 1e-8:
             break
     if not found:

@@ -20,7 +20,10 @@ coupler point (:func:`path_fourbar`), generated and cached like every solver and
 Starts come from a coarse atlas of random four-bars: the coupler points of each, at the
 given crank angles (with timing) or at crank angles matched to the points by arc length
 (without), are fitted to the targets by the best rotation, scale and shift (a complex
-least-squares fit), and the best fits are refined.
+least-squares fit), and the best fits are refined.  Without timing, four times as many fits
+are first screened by a short refinement and the closest refined in full; a design that
+stops short (points that barely fix the four-bar leave a long, flat valley) gets a long
+second refinement.
 
 Constraints are enforced, not only penalised.  A trial design that breaks one (cannot be
 assembled at a point, passes a toggle, breaks the Grashof class asked for, the link-ratio
@@ -71,9 +74,8 @@ _CURVE_SAMPLES = 96      # points of each atlas curve (without timing)
 _CURVE_ATLAS = 500       # four-bars in each atlas without timing
 _PROJECTED = 160         # the best arc-length fits kept from all phases and spans
 _MAX_EVALUATIONS = 300   # residual evaluations of one refinement (twice that without timing)
-_ALTERNATIONS = 4        # timed solves and projections before each untimed refinement ...
-_ALTERNATION_EVALUATIONS = 40  # ... each timed solve this long ...
-_PROJECTION_SAMPLES = 360  # ... each projection onto this many points of the curve
+_SCREENED = 4            # untimed: this many times ``starts`` atlas fits are screened ...
+_SCREEN_EVALUATIONS = 80  # ... by a refinement this short, and the best ``starts`` refined in full
 _POLISHED = 2            # designs of each batch of starts that get a long second refinement ...
 _POLISH_BELOW = 1e-3     # ... if their error is below this
 _POLISH_EVALUATIONS = 6000
@@ -398,9 +400,9 @@ def _untimed_starts(w: numpy.ndarray, rng, count: int, constraints: _Constraints
 
     The crank angles where a curve's arc length has the targets' chord-length fractions give a
     similarity fit (rotation, scale, shift).  The curve's samples, interpolated, stand in for its
-    coupler points (no solver call).  Projecting the targets onto the atlas curves and fitting
-    again (as :func:`_alternate` does on the refined design) was tried here and found fewer
-    solutions: it pulls poor curves' fits down to the good ones'.
+    coupler points (no solver call).  (Projecting the targets onto the atlas curves and fitting
+    again, and alternating timed solves with projections of the angles onto the refined curve,
+    were tried and found no more solutions on twenty test problems.)
     """
     rows, z = _curve_atlas() if first else _curves(_atlas(rng, _CURVE_ATLAS))
     samples = len(z[0])
@@ -531,38 +533,23 @@ def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: nu
     if _DEBUG:
         print(fit.status, fit.nfev, fit.njev, fit.cost, fit.message)
     design, angles = unpack(fit.x)
-    return design, angles, fit.nfev + (fit.njev or 0)
+    return design, angles, fit.nfev + (fit.njev or 0), fit.cost
 
 
-def _alternate(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: numpy.ndarray,
-               constraints: _Constraints, size: float) -> tuple[numpy.ndarray, numpy.ndarray]:
-    """Alternating projection before the untimed refinement: a few short timed solves, each followed by moving
-    every target's crank angle to the nearest point of the current coupler curve.
+def _screened(candidates: list, targets: numpy.ndarray, constraints: _Constraints, size: float) -> list:
+    """Starts without timing after a short untimed refinement, the closest first.
 
-    The joint refinement moves the angles only locally; a projection may move one across the curve,
-    to the part it belongs to, which widens the basin a start leads into.  A projection is kept only
-    if the angles still turn one way by less than a turn (and its timed solve is feasible).
+    Many starts are cheap to try and most lead nowhere: a few dozen evaluations each tell the
+    promising ones, which then get the full refinement from where they stopped.
     """
-    grid = numpy.linspace(-math.pi, math.pi, _PROJECTION_SAMPLES + 1)[:-1]
-    vector, angles = start, theta
-    for _ in range(_ALTERNATIONS):
-        result = _refine(vector, branch, angles, targets, True, constraints, size, 1e-12, _ALTERNATION_EVALUATIONS)
-        if result is None:
-            break
-        vector = result[0]
-        with numpy.errstate(all="ignore"):
-            points, _, ok = _evaluate(vector, grid, branch)
-        if not numpy.any(ok):
-            break
-        distance = numpy.hypot(points[None, :, 0] - targets[:, None, 0], points[None, :, 1] - targets[:, None, 1])
-        nearest = grid[numpy.argmin(numpy.where(ok[None, :], distance, numpy.inf), axis=1)]
-        forward = numpy.diff(nearest) % (2 * math.pi)
-        backward = -((-numpy.diff(nearest)) % (2 * math.pi))
-        steps = forward if numpy.sum(forward) < 2 * math.pi else backward
-        if abs(numpy.sum(steps)) >= 2 * math.pi:
-            break
-        angles = nearest[0] + numpy.concatenate([[0.0], numpy.cumsum(steps)])
-    return vector, angles
+    screened = []
+    for vector, branch, angles in candidates:
+        angles = numpy.asarray(angles, dtype=float)
+        result = _refine(vector, branch, angles, targets, False, constraints, size, 1e-15, _SCREEN_EVALUATIONS)
+        if result is not None:
+            screened.append((result[3], (result[0], branch, result[1])))
+    screened.sort(key=lambda item: item[0])
+    return [start for _, start in screened]
 
 
 def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, starts: int = 8, designs: int = 3,
@@ -615,7 +602,7 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
                          tolerance, evaluations)
         if result is None:
             return None
-        design_vector, design_theta, used = result
+        design_vector, design_theta, used, _ = result
         a, b, c, d = (float(x) for x in design_vector[3:7])
         design = PathDesign((float(design_vector[0]), float(design_vector[1])), float(design_vector[2]),
                             a, b, c, d, (float(design_vector[7]), float(design_vector[8])), branch,
@@ -628,11 +615,9 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
     polished: list[PathDesign] = []
     for attempt in range(4):
         candidates = (_timed_starts(w, crank_angles, rng, starts, constraints) if timed
-                      else _untimed_starts(w, rng, starts, constraints, attempt == 0))
+                      else _screened(_untimed_starts(w, rng, _SCREENED * starts, constraints, attempt == 0),
+                                     points, constraints, size)[:starts])
         for vector, branch, angles in candidates:
-            if not timed:
-                vector, angles = _alternate(vector, branch, numpy.asarray(angles, dtype=float), points, constraints,
-                                            size)
             design = refined(vector, branch, angles, _MAX_EVALUATIONS * (1 if timed else 2))
             if design is not None:
                 found.append(design)

@@ -17,7 +17,8 @@ problem, when symlink first had a verified design at least as good as differenti
 evolution's final one (symlink's time "to DE's error").
 
 Each problem is one JSON line in ``--log`` as soon as it is done; the table is printed at the
-end (or from a log alone with ``--summarize``).  Symlink runs every case first, then
+end (or from a log alone with ``--summarize``).  ``--part symlink`` and ``--part de`` run one
+method each, so that two processes started together can share the machine and one log.  Symlink runs every case first, then
 differential evolution goes round the cases, one problem each, until ``--de-problems`` each
 or the wall clock reaches ``--until`` (HH:MM, UTC), with at least ``--de-minimum`` each.
 Run from the repository root (not a test; SciPy needed)::
@@ -201,6 +202,8 @@ def main(argv=None) -> int:
                         help="which cases, e.g. timed5,untimed10")
     parser.add_argument("--log", default=None, help="append one JSON line per problem to this file")
     parser.add_argument("--summarize", default=None, help="print the table of a log and stop")
+    parser.add_argument("--part", choices=("both", "symlink", "de"), default="both",
+                        help="run one method only (two processes side by side share one --log)")
     args = parser.parse_args(argv)
     if args.summarize:
         with open(args.summarize) as log:
@@ -222,13 +225,19 @@ def main(argv=None) -> int:
             log.flush()
     print(f"load average at start {os.getloadavg()}", flush=True)
     cases = {case: problems(*case, args.seed, max(args.problems, args.de_problems)) for case in wanted}
+    # Imports and generated code loaded before any clock starts, for both methods.
+    warm_targets, warm_theta, _ = problems("timed", 5, args.seed + 1, 1)[0]
+    run_symlink(warm_targets, warm_theta, True, 0)
+    run_differential_evolution(warm_targets, warm_theta, True, 0, 2)
     for (timing, count), chosen in cases.items():
+        if args.part == "de":
+            break
         for k, (targets, theta, _) in enumerate(chosen[:args.problems]):
             record = run_symlink(targets, theta, timing == "timed", k)
             keep({"method": "symlink", "case": f"{timing}{count}", "problem": k, **record,
                   "load": os.getloadavg()[0]})
         print(f"symlink {timing}{count} done, load {os.getloadavg()}", flush=True)
-    for k in range(args.de_problems):
+    for k in range(args.de_problems if args.part != "symlink" else 0):
         late = deadline is not None and datetime.datetime.now(datetime.timezone.utc) >= deadline
         if late and k >= args.de_minimum:
             break

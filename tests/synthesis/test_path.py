@@ -68,6 +68,10 @@ def test_jacobian_is_no_number_where_the_four_bar_cannot_close():
                                                        1.5, 0.5, 0.2, 1.0)
     assert not assembled.any()
     assert np.isnan(values).all() and np.isnan(slopes).all()
+    keywords = dict(zip(DESIGN_NAMES, (0.0, 0.0, 0.0, 1.0, 0.1, 0.1, 1.5, 0.5, 0.2)), theta=np.array([0.0, 3.0]),
+                    crank_phase=0.0, branch=1.0)
+    checked_values, checked_slopes = path_jacobian()(**keywords)
+    assert not checked_values["assembled"].any() and np.isnan(checked_slopes).all()
 
 
 def _check_against_mpmath(design, targets):
@@ -124,11 +128,11 @@ def test_many_timed_recoveries(seed):
 
 @pytest.mark.slow
 def test_untimed_recoveries_keep_their_measured_rate():
-    """Without timing the crank angles are unknowns too, and the search is harder: on these ten problems 7 reach
-    1e-8 (seeds 1, 4 and 7 stop at 9e-7, 3e-8 and 2e-4: the known weak spot of untimed synthesis); the test keeps
-    that rate from falling."""
+    """Without timing the crank angles are unknowns too, and the search is harder: on these ten problems 9 reach
+    1e-8 (seed 1 stops at 7e-8 after every start and its long second refinement: points that barely fix the
+    four-bar); the test keeps that rate from falling (it was 7 before the starts were screened)."""
     reached = [synthesize_path(*_recovery_problem(seed)[:1], None, seed=seed)[0].error < 1e-8 for seed in range(10)]
-    assert sum(reached) >= 7, reached
+    assert sum(reached) >= 9, reached
 
 
 def hand_transmission_worst(a, b, c, d, samples=3601):

@@ -13,7 +13,14 @@ form go through the generated Newton module, whose sensitivities come from
 the converged closure Jacobian; they need an initial ``guess``.
 
 Where the linkage cannot be assembled ``assembled`` is False and the
-Jacobian's entries there are NaN, never a number.
+Jacobian's entries there are NaN, never a number (a derivative that is a
+constant, such as that of a placed point by its pivot, too).
+
+An optimiser's inner loop calls :meth:`DesignJacobian.arrays` instead: the
+generated arithmetic alone, on arguments known good, given in calling order
+(:attr:`DesignJacobian.arguments`), filling one array output by output; it
+skips the argument check and the per-output dictionaries of the keyword call,
+which on a few dozen input values cost more than the arithmetic.
 
 >>> from symlink.catalog import fourbar
 >>> jacobian = DesignJacobian(fourbar(), ["B_x", "C_y"], ["a", "b"])
@@ -30,7 +37,7 @@ from typing import Callable, Mapping, Sequence
 
 import numpy
 
-from .cache import generated_code
+from .cache import FUNCTION, generated_code
 from .linkage import Linkage
 from .sensitivity import sensitivity_name
 from .solver import NumericSolver
@@ -81,19 +88,64 @@ class DesignJacobian:
         self.parameters = [p.name for p in linkage.parameters] if parameters is None else list(parameters)
         self.names = sensitivity_outputs(linkage, self.outputs, self.parameters)
         self._function: Callable[..., Mapping[str, numpy.ndarray]]
+        #: The generated arithmetic (closed forms only): arguments in calling order, results in output order.
+        self._kernel: Callable[..., tuple] | None = None
+        #: The generated function's argument names in calling order (what :meth:`arrays` takes).
+        self.arguments: list[str]
         if linkage.has_closed_form:
-            self._function = generated_code(linkage, self.outputs + self.names).function
+            code = generated_code(linkage, self.outputs + self.names)
+            self._function = code.function
+            self.arguments = code.arguments
+            self._kernel = code.function.__globals__[f"_{FUNCTION}_block"]
         else:
-            self._function = NumericSolver(linkage).functions["sensitivities"]
+            numeric = NumericSolver(linkage)
+            self._function = numeric.functions["sensitivities"]
+            self.arguments = numeric.arguments
 
     def __call__(self, **values: object) -> tuple[dict[str, numpy.ndarray], numpy.ndarray]:
         found = self._function(**values)
-        shape = numpy.shape(found["assembled"])
+        assembled = numpy.asarray(found["assembled"])
+        shape = assembled.shape
         columns = [numpy.broadcast_to(found[name], shape) for name in self.names]
         jacobian = numpy.stack(columns, axis=-1).reshape(shape + (len(self.outputs), len(self.parameters)))
+        if not numpy.all(assembled):  # constant derivatives too are no numbers where nothing is assembled
+            jacobian = numpy.where(assembled[..., None, None], jacobian, numpy.nan)
         result = {name: numpy.broadcast_to(found[name], shape) for name in self.outputs}
-        result["assembled"] = numpy.asarray(found["assembled"])
+        result["assembled"] = assembled
         return result, jacobian
+
+    def arrays(self, *arguments: float | numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray, numpy.ndarray]:
+        """``(values, jacobian, assembled)`` for float arguments in calling order, unchecked: the hot-loop entry.
+
+        Output-major, the layout one array is filled fastest in: ``values[i]`` is output i and
+        ``jacobian[i, j]`` d(output i)/d(parameter j), each of the arguments' broadcast shape
+        (the inputs' values last), NaN where ``assembled`` is False.  The arguments are
+        :attr:`arguments` in order (branch signs as floats), NumPy arrays or floats that
+        broadcast together; nothing checks them.  Closed forms only (``ValueError`` otherwise:
+        the Newton module needs its guess, so call the object).
+
+        >>> from symlink.catalog import fourbar
+        >>> jacobian = DesignJacobian(fourbar(), ["B_x"], ["a"])
+        >>> jacobian.arguments
+        ['theta', 'a', 'b', 'c', 'd', 'branch']
+        >>> values, slopes, assembled = jacobian.arrays(numpy.array([0.0, 0.5]), 20.0, 66.0, 56.0, 80.0, 1.0)
+        >>> slopes.shape, bool(abs(slopes[0, 0, 1] - numpy.cos(0.5)) < 1e-15)  # d(B_x)/da = cos(theta)
+        ((1, 1, 2), True)
+        """
+        if self._kernel is None:
+            raise ValueError(f"{self.linkage.name} has no closed form: call the DesignJacobian with keywords and "
+                             "a guess instead of arrays()")
+        results = self._kernel(*arguments)
+        shape = (numpy.broadcast(*arguments).shape if len(arguments) <= 32  # numpy.broadcast takes at most 32
+                 else numpy.broadcast_shapes(*(numpy.shape(argument) for argument in arguments)))
+        block = numpy.empty((len(results) - 1,) + shape)
+        for index, result in enumerate(results[:-1]):
+            block[index] = result
+        assembled = numpy.broadcast_to(results[-1], shape)
+        if not assembled.all():
+            block[:, ~assembled] = numpy.nan
+        count = len(self.outputs)
+        return block[:count], block[count:].reshape((count, len(self.parameters)) + shape), assembled
 
     def __repr__(self) -> str:
         return f"DesignJacobian({self.linkage.name!r}, {self.outputs}, {self.parameters})"

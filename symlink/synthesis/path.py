@@ -13,14 +13,17 @@ B->C, v to its left), so that in the four-bar's own frame (:func:`symlink.catalo
   steps to the next ones, so the points are reached in order, turning one way.
 
 Each start is refined by ``scipy.optimize.least_squares`` (Levenberg-Marquardt; SciPy is the
-``synthesis`` extra) with the exact Jacobian: the closed-form coupler point is differentiated by SymPy once
-(forward mode through the four-bar's solve plan) and printed as a NumPy module by symlink's
-code generator, cached like every generated solver (:func:`coupler_point_gradient`).
+``synthesis`` extra) with the exact Jacobian: the design sensitivities of the placed four-bar's
+coupler point (:func:`path_fourbar`), generated and cached like every solver and called through
+:class:`symlink.design_jacobian.DesignJacobian` (:func:`path_jacobian`).
 
 Starts come from a coarse atlas of random four-bars: the coupler points of each, at the
 given crank angles (with timing) or at crank angles matched to the points by arc length
 (without), are fitted to the targets by the best rotation, scale and shift (a complex
-least-squares fit), and the best fits are refined.
+least-squares fit), and the best fits are refined.  Without timing, four times as many fits
+are first screened by a short refinement and the closest refined in full; a design that
+stops short (points that barely fix the four-bar leave a long, flat valley) gets a long
+second refinement.
 
 Constraints are enforced, not only penalised.  A trial design that breaks one (cannot be
 assembled at a point, passes a toggle, breaks the Grashof class asked for, the link-ratio
@@ -38,25 +41,24 @@ True
 """
 from __future__ import annotations
 
-import hashlib
-import inspect
 import math
 from dataclasses import dataclass, replace
 from functools import lru_cache
-from typing import Callable, Sequence
+from typing import Sequence
 
 import numpy
 import sympy as sp
 from numpy.typing import ArrayLike
 
 from ..analysis import grashof, transmission_range
-from ..cache import cache_key, cached_text
 from ..catalog import fourbar
-from ..codegen.numpy import load_numpy_module, numpy_module
-from ..linkage import Program
+from ..design_jacobian import DesignJacobian
+from ..linkage import Linkage
+from ..loops import Loop
 from ..solver import check_lengths, shared_solver
+from ..vectors import Vector, coordinates, lengths as length_symbols
 
-__all__ = ["PathDesign", "fourbar_design", "synthesize_path", "coupler_point_gradient", "check_design",
+__all__ = ["PathDesign", "fourbar_design", "synthesize_path", "path_fourbar", "path_jacobian", "check_design",
            "DESIGN_NAMES", "GRASHOF_CHOICES", "path_error"]
 
 #: The nine dimensions of a path-generating four-bar, in the order of the design vector.
@@ -69,7 +71,14 @@ _INFEASIBLE = 1e6        # residual of a design that breaks a constraint (the so
 _PATH_SAMPLES = 24       # crank angles checked between consecutive points for assembly and toggles
 _ATLAS = 1500            # random four-bars in the coarse atlas
 _CURVE_SAMPLES = 96      # points of each atlas curve (without timing)
-_MAX_EVALUATIONS = 300   # residual evaluations of one refinement (three times that without timing)
+_CURVE_ATLAS = 500       # four-bars in each atlas without timing
+_PROJECTED = 160         # the best arc-length fits kept from all phases and spans
+_MAX_EVALUATIONS = 300   # residual evaluations of one refinement (twice that without timing)
+_SCREENED = 4            # untimed: this many times ``starts`` atlas fits are screened ...
+_SCREEN_EVALUATIONS = 80  # ... by a refinement this short, and the best ``starts`` refined in full
+_POLISHED = 2            # designs of each batch of starts that get a long second refinement ...
+_POLISH_BELOW = 1e-3     # ... if their error is below this
+_POLISH_EVALUATIONS = 6000
 _DEBUG = False
 
 
@@ -161,86 +170,60 @@ def fourbar_design(crank_pivot: tuple[float, float], frame: float, lengths: Sequ
 
 # --- the exact Jacobian -------------------------------------------------------------------------
 
-def _gradient_program() -> Program:
-    """The coupler point in the plane and its derivatives by theta and the nine dimensions.
+#: The path four-bar's parameters, in the order of the Jacobian's columns: the crank phase, then the dimensions.
+_PARAMETERS = ("crank_phase",) + DESIGN_NAMES
 
-    Forward-mode differentiation through the four-bar's solve plan: each intermediate's
-    derivative is its expression's partial derivatives chained with the earlier ones'.  The
-    plan's scale (a power of two of the link lengths, for rounding) is held constant: the
-    angles it scales do not depend on it.
+
+def path_fourbar() -> Linkage:
+    """The four-bar of :func:`symlink.catalog.fourbar` placed in the plane, with its coupler point ``P``.
+
+    The loop is the catalog four-bar's, in its own frame (crank pivot at the origin, ground
+    along x); the extras ``P_x`` and ``P_y`` place the coupler point ``(u, v)`` (coupler frame)
+    by the crank pivot ``(x0, y0)`` and the frame angle.  The crank stands at ``theta +
+    crank_phase``: the sensitivities are derivatives by parameters, and held at zero the
+    phase's is the derivative by the crank angle, which synthesis without timing needs.
+
+    >>> [p.name for p in path_fourbar().parameters]
+    ['crank_phase', 'x0', 'y0', 'frame', 'a', 'b', 'c', 'd', 'u', 'v']
     """
-    base = fourbar()
-    (theta,), beta = base.inputs, base.roles["coupler"]
-    a, b, c, d = base.parameters
-    x0, y0, frame, u, v = sp.symbols("x0 y0 frame u v", real=True)
-    variables = (theta, x0, y0, frame, a, b, c, d, u, v)
-    local_x = a * sp.cos(theta) + u * sp.cos(beta) - v * sp.sin(beta)
-    local_y = a * sp.sin(theta) + u * sp.sin(beta) + v * sp.cos(beta)
-    point = {"P_x": x0 + sp.cos(frame) * local_x - sp.sin(frame) * local_y,
-             "P_y": y0 + sp.sin(frame) * local_x + sp.cos(frame) * local_y}
-    gradients: dict[sp.Symbol, dict[sp.Symbol, sp.Expr]] = {}
-    assignments: list[tuple[sp.Symbol, sp.Expr]] = []
-
-    def derivative(expr: sp.Expr, variable: sp.Symbol) -> sp.Expr:
-        total = sp.diff(expr, variable) if variable in expr.free_symbols else sp.S.Zero
-        for symbol in expr.free_symbols & set(gradients):
-            if variable in gradients[symbol]:
-                total += sp.diff(expr, symbol) * gradients[symbol][variable]
-        return total
-
-    for symbol, expr in base.positions.items():
-        assignments.append((symbol, expr))
-        gradients[symbol] = {}
-        if symbol.name.startswith("size"):
-            continue
-        for variable in variables:
-            found = derivative(expr, variable)
-            if found != 0:
-                name = sp.Symbol(f"d_{symbol.name}_by_{variable.name}", real=True)
-                assignments.append((name, found))
-                gradients[symbol][variable] = name
-    outputs = dict(point)
-    for axis, expr in point.items():
-        for variable in variables:
-            outputs[f"d{axis}_by_{variable.name}"] = derivative(expr, variable)
-    outputs["singular"] = base.singular
-    branch = base.branches[0]
-    return Program(variables + (branch,), tuple(assignments), outputs, {branch.name: 1.0})
+    theta, beta, phi = coordinates("theta beta phi")
+    a, b, c, d = length_symbols("a b c d")
+    phase, x0, y0, frame, u, v = sp.symbols("crank_phase x0 y0 frame u v", real=True)
+    AB, BC = Vector(a, theta + phase, "AB"), Vector(b, beta, "BC")
+    DC, AD = Vector(c, phi, "DC"), Vector(d, 0, "AD")
+    local = AB.as_sum() + Vector(u, beta) + Vector(v, beta + sp.pi / 2)
+    return Linkage("path_fourbar", [Loop(AD + DC - BC - AB, name="ABCD")], inputs=[theta], unknowns=[beta, phi],
+                   parameters=[phase, x0, y0, frame, a, b, c, d, u, v],
+                   roles={"crank": theta, "coupler": beta, "rocker": phi},
+                   extras={"P_x": x0 + sp.cos(frame) * local.x - sp.sin(frame) * local.y,
+                           "P_y": y0 + sp.sin(frame) * local.x + sp.cos(frame) * local.y})
 
 
 @lru_cache(maxsize=None)
-def coupler_point_gradient() -> Callable[..., dict]:
-    """The generated NumPy function ``(theta, x0, y0, frame, a, b, c, d, u, v, branch)`` -> coupler point and Jacobian.
+def path_jacobian() -> DesignJacobian:
+    """The coupler point of :func:`path_fourbar` and its Jacobian by the crank angle and the nine dimensions.
 
-    Returns a dict with ``P_x``, ``P_y``, ``dP_x_by_<name>`` and ``dP_y_by_<name>`` for theta
-    and every dimension, ``singular`` and ``assembled``.  Derived once, then loaded from the
-    scene cache.  This is the one place the Jacobian comes from (a generic sensitivity
-    API can replace it).
+    A :class:`symlink.design_jacobian.DesignJacobian` (generated once, then loaded from the
+    scene cache); synthesis calls its unchecked :meth:`~symlink.design_jacobian.DesignJacobian.arrays`.
 
-    >>> f = coupler_point_gradient()
-    >>> out = f(0.0, 0.0, 0.0, 0.0, 1.0, 3.0, 2.5, 3.2, 1.0, 0.0, 1, check=False)
-    >>> round(float(out["P_x"]), 9), float(out["dP_x_by_x0"])  # 1 + cos(beta), cos(beta) = 1.725 / 3
+    >>> values, slopes, assembled = path_jacobian().arrays(0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 3.0, 2.5, 3.2, 1.0, 0.0,
+    ...                                                  1.0)
+    >>> round(float(values[0]), 9), float(slopes[0, 1])  # P_x = 1 + cos(beta), cos(beta) = 1.725 / 3; dP_x/dx0
     (1.575, 1.0)
     """
-    digest = hashlib.sha256(inspect.getsource(_gradient_program).encode()).hexdigest()[:16]
-    source = cached_text(cache_key(fourbar(), ["P_x", "P_y"], f"path-gradient-{digest}"),
-                         lambda: numpy_module([("coupler_point_gradient", _gradient_program(),
-                                                "The four-bar's coupler point in the plane and its derivatives.")],
-                                              "Coupler point of a placed four-bar and its exact Jacobian."))
-    return load_numpy_module(source)["coupler_point_gradient"]
-
-
-_VARIABLE_NAMES = ("theta",) + DESIGN_NAMES
+    return DesignJacobian(path_fourbar(), ["P_x", "P_y"], list(_PARAMETERS))
 
 
 def _evaluate(design: numpy.ndarray, theta: numpy.ndarray, branch: int) -> tuple[numpy.ndarray, numpy.ndarray,
                                                                                  numpy.ndarray]:
-    """Coupler points (N, 2), Jacobian (N, 2, 10: theta then the dimensions) and a feasibility mask (N)."""
-    out = coupler_point_gradient()(theta, *design, branch, check=False)
-    points = numpy.stack([out["P_x"], out["P_y"]], axis=-1)
-    jacobian = numpy.stack([numpy.stack([numpy.broadcast_to(out[f"d{axis}_by_{name}"], theta.shape)
-                                         for name in _VARIABLE_NAMES], axis=-1) for axis in ("P_x", "P_y")], axis=-2)
-    ok = numpy.asarray(out["assembled"]) & ~numpy.asarray(out["singular"]) & numpy.all(numpy.isfinite(points), axis=-1)
+    """Coupler points (N, 2), Jacobian (N, 2, 10: theta then the dimensions) and a feasibility mask (N).
+
+    Feasible: assembled and away from a toggle (where the derivatives divide by zero).
+    """
+    values, slopes, assembled = path_jacobian().arrays(theta, 0.0, *design, float(branch))
+    points = values.T
+    jacobian = numpy.moveaxis(slopes, -1, 0)
+    ok = assembled & numpy.all(numpy.isfinite(slopes), axis=(0, 1)) & numpy.all(numpy.isfinite(values), axis=0)
     return points, jacobian, ok
 
 
@@ -354,10 +337,10 @@ def _atlas(rng: numpy.random.Generator, count: int) -> numpy.ndarray:
 
 def _local_points(rows: numpy.ndarray, theta: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
     """Coupler points (complex, rows x angles) of atlas four-bars in their own frame, and where they are feasible."""
-    out = coupler_point_gradient()(theta, 0.0, 0.0, 0.0, *(rows[:, [k]] for k in range(6)), rows[:, [6]], check=False)
-    shape = numpy.broadcast_shapes(theta.shape, rows[:, :1].shape)
-    z = numpy.broadcast_to(out["P_x"] + 1j * out["P_y"], shape)
-    ok = numpy.broadcast_to(numpy.asarray(out["assembled"]) & ~numpy.asarray(out["singular"]), shape)
+    values, slopes, assembled = path_jacobian().arrays(theta, 0.0, 0.0, 0.0, 0.0,
+                                                      *(rows[:, [k]] for k in range(6)), rows[:, [6]])
+    z = values[0] + 1j * values[1]
+    ok = assembled & numpy.isfinite(slopes[0, 0]) & numpy.isfinite(slopes[1, 0])
     return z, ok
 
 
@@ -395,46 +378,84 @@ def _timed_starts(w: numpy.ndarray, theta: numpy.ndarray, rng, count: int, const
     return starts
 
 
-def _untimed_starts(w: numpy.ndarray, rng, count: int, constraints: _Constraints):
-    """Atlas curves matched to the targets by arc length: several phases, spans and both directions."""
-    rows = _atlas(rng, _ATLAS // 3)
+@lru_cache(maxsize=1)
+def _curve_atlas() -> tuple[numpy.ndarray, numpy.ndarray]:
+    """The first atlas without timing, the same in every call (made once a process): rows and closed curves.
+
+    Rows (a, b, c, d, u, v, branch) of four-bars whose crank turns fully, and their coupler
+    points (complex, own frame) at :data:`_CURVE_SAMPLES` crank angles over a turn.
+    """
+    return _curves(_atlas(numpy.random.default_rng(20240611), _CURVE_ATLAS))
+
+
+def _curves(rows: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
     samples = numpy.linspace(-math.pi, math.pi, _CURVE_SAMPLES + 1)[:-1]
     z, ok = _local_points(rows, samples[None, :])
     turning = numpy.all(ok, axis=1)
-    rows, z = rows[turning], z[turning]
+    return rows[turning], z[turning]
+
+
+def _untimed_starts(w: numpy.ndarray, rng, count: int, constraints: _Constraints, first: bool):
+    """Atlas curves matched to the targets by arc length: several phases, spans and both directions; the best fits.
+
+    The crank angles where a curve's arc length has the targets' chord-length fractions give a
+    similarity fit (rotation, scale, shift).  The curve's samples, interpolated, stand in for its
+    coupler points (no solver call).  (Projecting the targets onto the atlas curves and fitting
+    again, and alternating timed solves with projections of the angles onto the refined curve,
+    were tried and found no more solutions on twenty test problems.)
+    """
+    rows, z = _curve_atlas() if first else _curves(_atlas(rng, _CURVE_ATLAS))
+    samples = len(z[0])
+    grid = numpy.linspace(-math.pi, math.pi, samples + 1)[:-1]
     closed = numpy.concatenate([z, z[:, :1]], axis=1)
     arc = numpy.concatenate([numpy.zeros((len(z), 1)), numpy.cumsum(numpy.abs(numpy.diff(closed, axis=1)), axis=1)],
                             axis=1)
     arc /= arc[:, -1:]
     chords = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(w)))])
     fraction = chords / chords[-1] if chords[-1] > 0 else numpy.linspace(0, 1, len(w))
-    grid_theta = numpy.linspace(-math.pi, math.pi, _CURVE_SAMPLES + 1)
-    best = []
+    positions = numpy.arange(samples + 1, dtype=float)
+    fits = []  # (rms, row, sample positions)
     for span in (0.95, 0.8, 0.6, 0.4):
-        for phase in numpy.linspace(0, 1, 12, endpoint=False):
+        for phase in numpy.linspace(0, 1, 16, endpoint=False):
             for direction in (1, -1):
                 where = (phase + direction * span * fraction) % 1.0
-                theta = _interpolate_rows(where, arc, grid_theta)
-                # unwrap so the angles turn one way
-                theta = numpy.unwrap(theta, axis=1)
-                zz, okk = _local_points(rows, theta)
-                factor, shift, rms = _similarity(zz, w[None, :])
-                rms = numpy.where(numpy.all(okk, axis=1) & numpy.isfinite(rms), rms, numpy.inf)
-                for k in numpy.argsort(rms)[:count]:
-                    if numpy.isfinite(rms[k]):
-                        best.append((rms[k], k, factor[k], shift[k], theta[k]))
-    best.sort(key=lambda item: item[0])
+                position = _interpolate_rows(where, arc, positions)  # fractional sample index, rows x targets
+                zz = _sampled(closed, position)
+                _, _, rms = _similarity(zz, w[None, :])
+                rms = numpy.where(numpy.isfinite(rms), rms, numpy.inf)
+                for k in numpy.argsort(rms)[:_PROJECTED // 8]:
+                    fits.append((rms[k], k, position[k]))
+    fits.sort(key=lambda item: item[0])
+    fits = fits[:_PROJECTED]
+    chosen = numpy.array([k for _, k, _ in fits])
+    position = numpy.array([p for _, _, p in fits])
+    curves = z[chosen]
+    factor, shift, rms = _similarity(_sampled(numpy.concatenate([curves, curves[:, :1]], axis=1), position),
+                                     w[None, :])
     starts: list[tuple[numpy.ndarray, int, numpy.ndarray]] = []
-    for _, k, factor, shift, theta in best:
-        if len(starts) >= count:
+    used: set[int] = set()
+    for m in numpy.argsort(numpy.where(numpy.isfinite(rms), rms, numpy.inf)):
+        if len(starts) >= count or not numpy.isfinite(rms[m]):
             break
-        steps = numpy.diff(theta)
-        if not (numpy.all(steps >= 0) or numpy.all(steps <= 0)) or abs(theta[-1] - theta[0]) >= 2 * math.pi:
+        forward = numpy.diff(position[m]) % samples
+        steps = forward if numpy.sum(forward) < samples else -((-numpy.diff(position[m])) % samples)
+        theta = grid[0] + (position[m][0] + numpy.concatenate([[0.0], numpy.cumsum(steps)])) * (2 * math.pi / samples)
+        if chosen[m] in used or abs(theta[-1] - theta[0]) >= 2 * math.pi:
             continue
-        vector = _placed(rows[k], factor, shift)
+        vector = _placed(rows[chosen[m]], factor[m], shift[m])
         if constraints.allow(vector[3:7]):
-            starts.append((vector, int(rows[k, 6]), theta))
+            used.add(chosen[m])
+            starts.append((vector, int(rows[chosen[m], 6]), theta))
     return starts
+
+
+def _sampled(closed: numpy.ndarray, position: numpy.ndarray) -> numpy.ndarray:
+    """A closed curve's samples (rows, samples + 1, the first repeated) linearly interpolated at fractional indices."""
+    position = position % (closed.shape[1] - 1)
+    low = numpy.floor(position).astype(int)
+    part = position - low
+    first = numpy.take_along_axis(closed, low, axis=1)
+    return first + part * (numpy.take_along_axis(closed, low + 1, axis=1) - first)
 
 
 def _interpolate_rows(where: numpy.ndarray, arc: numpy.ndarray, grid: numpy.ndarray) -> numpy.ndarray:
@@ -450,7 +471,7 @@ def _interpolate_rows(where: numpy.ndarray, arc: numpy.ndarray, grid: numpy.ndar
 # --- the refinement -----------------------------------------------------------------------------
 
 def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: numpy.ndarray, timed: bool,
-            constraints: _Constraints, size: float, tolerance: float):
+            constraints: _Constraints, size: float, tolerance: float, evaluations: int):
     """Levenberg-Marquardt (``least_squares(method="lm")``, where there are enough points) from one start: (design vector, crank angles, evaluations).
 
     Without timing the crank angles are the first angle and squared steps to the next
@@ -474,6 +495,7 @@ def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: nu
         design, angles = unpack(x)
         if not constraints.allow(design[3:7]) or (not timed and abs(angles[-1] - angles[0]) >= 2 * math.pi):
             return numpy.full(2 * count, _INFEASIBLE)
+
         with numpy.errstate(all="ignore"):
             points, jac, ok = _evaluate(design, angles, branch)
         if not numpy.all(ok):
@@ -492,27 +514,42 @@ def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: nu
         if timed:
             return dimensions / size
         by_theta = jac[:, :, 0]  # (count, 2): d point_i / d theta_i
-        angle_columns = numpy.zeros((2 * count, count))
-        chain = 2 * direction * x[10:]  # d theta_i / d s_k for k < i
-        for i in range(count):
-            angle_columns[2 * i:2 * i + 2, 0] = by_theta[i]
-            angle_columns[2 * i:2 * i + 2, 1:i + 1] = by_theta[i][:, None] * chain[None, :i]
+        # d theta_i / d theta_1 = 1 and d theta_i / d s_k = 2 direction s_k for k < i: a lower triangle
+        chain = numpy.tril(numpy.concatenate([[1.0], 2 * direction * x[10:]])[None, :].repeat(count, axis=0))
+        angle_columns = (by_theta[:, :, None] * chain[:, None, :]).reshape(2 * count, count)
         return numpy.concatenate([dimensions, angle_columns], axis=1) / size
 
     x0 = start.copy()
     if not timed:
         x0 = numpy.concatenate([start, [theta[0]], numpy.sqrt(numpy.abs(numpy.diff(theta)))])
+
     if residuals(x0)[0] == _INFEASIBLE:
         return None
     # Levenberg-Marquardt needs at least as many residuals as unknowns; fewer points (an underdetermined
     # problem without timing) go to the trust-region reflective method.
     method = "lm" if 2 * count >= len(x0) else "trf"
     fit = least_squares(residuals, x0, jac=jacobian, method=method, x_scale="jac", xtol=tolerance, ftol=tolerance,
-                        gtol=tolerance, max_nfev=_MAX_EVALUATIONS * (1 if timed else 2))
+                        gtol=tolerance, max_nfev=evaluations)
     if _DEBUG:
         print(fit.status, fit.nfev, fit.njev, fit.cost, fit.message)
     design, angles = unpack(fit.x)
-    return design, angles, fit.nfev + (fit.njev or 0)
+    return design, angles, fit.nfev + (fit.njev or 0), fit.cost
+
+
+def _screened(candidates: list, targets: numpy.ndarray, constraints: _Constraints, size: float) -> list:
+    """Starts without timing after a short untimed refinement, the closest first.
+
+    Many starts are cheap to try and most lead nowhere: a few dozen evaluations each tell the
+    promising ones, which then get the full refinement from where they stopped.
+    """
+    screened = []
+    for vector, branch, angles in candidates:
+        angles = numpy.asarray(angles, dtype=float)
+        result = _refine(vector, branch, angles, targets, False, constraints, size, 1e-15, _SCREEN_EVALUATIONS)
+        if result is not None:
+            screened.append((result[3], (result[0], branch, result[1])))
+    screened.sort(key=lambda item: item[0])
+    return [start for _, start in screened]
 
 
 def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, starts: int = 8, designs: int = 3,
@@ -558,26 +595,46 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
     rng = numpy.random.default_rng(seed)
     w = points[:, 0] + 1j * points[:, 1]
     found: list[PathDesign] = []
+
+    def refined(vector, branch, angles, evaluations) -> PathDesign | None:
+        """A start refined and verified (None if it fails the constraints or the check)."""
+        result = _refine(vector, branch, numpy.asarray(angles, dtype=float), points, timed, constraints, size,
+                         tolerance, evaluations)
+        if result is None:
+            return None
+        design_vector, design_theta, used, _ = result
+        a, b, c, d = (float(x) for x in design_vector[3:7])
+        design = PathDesign((float(design_vector[0]), float(design_vector[1])), float(design_vector[2]),
+                            a, b, c, d, (float(design_vector[7]), float(design_vector[8])), branch,
+                            evaluations=used)
+        try:
+            return check_design(design, points, design_theta, grashof_class, max_link_ratio, min_transmission)
+        except ValueError:
+            return None
+
+    polished: list[PathDesign] = []
     for attempt in range(4):
         candidates = (_timed_starts(w, crank_angles, rng, starts, constraints) if timed
-                      else _untimed_starts(w, rng, starts, constraints))
+                      else _screened(_untimed_starts(w, rng, _SCREENED * starts, constraints, attempt == 0),
+                                     points, constraints, size)[:starts])
         for vector, branch, angles in candidates:
-            refined = _refine(vector, branch, numpy.asarray(angles, dtype=float), points, timed, constraints, size,
-                              tolerance)
-            if refined is None:
-                continue
-            design_vector, design_theta, evaluations = refined
-            a, b, c, d = (float(x) for x in design_vector[3:7])
-            design = PathDesign((float(design_vector[0]), float(design_vector[1])), float(design_vector[2]),
-                                a, b, c, d, (float(design_vector[7]), float(design_vector[8])), branch,
-                                evaluations=evaluations)
-            try:
-                found.append(check_design(design, points, design_theta, grashof_class, max_link_ratio,
-                                          min_transmission))
-            except ValueError:
-                continue
-            if found[-1].error < 1e-10:
-                break
+            design = refined(vector, branch, angles, _MAX_EVALUATIONS * (1 if timed else 2))
+            if design is not None:
+                found.append(design)
+                if design.error < 1e-10:
+                    break
+        if found and min(d.error for d in found) < 1e-8:
+            break
+        # Near-degenerate problems (points that barely fix the four-bar) crawl along a flat valley and stop
+        # short: the closest designs get a long second run from where they stopped.
+        for design in _distinct(sorted(found, key=lambda d: d.error), _POLISHED, size):
+            if design.error < _POLISH_BELOW and all(design is not other for other in polished):
+                polished.append(design)
+                again = refined(design.vector, design.branch, design.theta, _POLISH_EVALUATIONS)
+                if again is not None:
+                    found.append(again)
+                    if again.error < 1e-8:
+                        break
         if found and min(d.error for d in found) < 1e-8:
             break
     if not found:

@@ -6,8 +6,7 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from symlink.synthesis.path import (DESIGN_NAMES, check_design, coupler_point_gradient, fourbar_design,
-                                    synthesize_path)
+from symlink.synthesis.path import DESIGN_NAMES, check_design, fourbar_design, path_jacobian, synthesize_path
 
 
 def mp_point(vector, theta, branch):
@@ -36,11 +35,16 @@ def random_crank_rocker(rng):
 
 def test_generated_jacobian_against_mpmath_central_differences():
     vector = [0.3, -0.2, 0.7, 0.8, 2.4, 2.0, 2.6, 1.1, -0.5]
-    out = coupler_point_gradient()(np.array([0.4, 2.5]), *vector, -1, check=False)
+    values, slopes, assembled = path_jacobian().arrays(np.array([0.4, 2.5]), 0.0, *vector, -1.0)
+    keywords = dict(zip(DESIGN_NAMES, vector), theta=np.array([0.4, 2.5]), crank_phase=0.0, branch=-1.0)
+    checked_values, checked_slopes = path_jacobian()(**keywords)  # the checked call gives the same numbers
+    assert np.array_equal(np.moveaxis(checked_slopes, 0, -1), slopes)
+    assert np.array_equal(checked_values["P_x"], values[0]) and assembled.all()
     for k, theta in enumerate((0.4, 2.5)):
         point = mp_point(vector, mp.mpf(theta), -1)
-        assert out["P_x"][k] == pytest.approx(float(point.real), abs=1e-13)
-        assert out["P_y"][k] == pytest.approx(float(point.imag), abs=1e-13)
+        assert values[0, k] == pytest.approx(float(point.real), abs=1e-13)
+        assert values[1, k] == pytest.approx(float(point.imag), abs=1e-13)
+        # column 0 is the crank phase, whose derivative is the crank angle's
         for index, name in enumerate(("theta",) + DESIGN_NAMES):
             with mp.workdps(30):
                 h = mp.mpf("1e-12")
@@ -54,8 +58,20 @@ def test_generated_jacobian_against_mpmath_central_differences():
                         values[index - 1] += step
                     return mp_point(values, angle, -1)
                 derivative = (shifted(h) - shifted(-h)) / (2 * h)
-            assert out[f"dP_x_by_{name}"][k] == pytest.approx(float(derivative.real), rel=1e-9, abs=1e-11)
-            assert out[f"dP_y_by_{name}"][k] == pytest.approx(float(derivative.imag), rel=1e-9, abs=1e-11)
+            assert slopes[0, index, k] == pytest.approx(float(derivative.real), rel=1e-9, abs=1e-11), name
+            assert slopes[1, index, k] == pytest.approx(float(derivative.imag), rel=1e-9, abs=1e-11), name
+
+
+def test_jacobian_is_no_number_where_the_four_bar_cannot_close():
+    # crank 1, coupler and rocker 0.1, ground 1.5: |BD| >= 0.5 > b + c, never assembled; d/dx0 is a constant 1
+    values, slopes, assembled = path_jacobian().arrays(np.array([0.0, 3.0]), 0.0, 0.0, 0.0, 0.0, 1.0, 0.1, 0.1,
+                                                       1.5, 0.5, 0.2, 1.0)
+    assert not assembled.any()
+    assert np.isnan(values).all() and np.isnan(slopes).all()
+    keywords = dict(zip(DESIGN_NAMES, (0.0, 0.0, 0.0, 1.0, 0.1, 0.1, 1.5, 0.5, 0.2)), theta=np.array([0.0, 3.0]),
+                    crank_phase=0.0, branch=1.0)
+    checked_values, checked_slopes = path_jacobian()(**keywords)
+    assert not checked_values["assembled"].any() and np.isnan(checked_slopes).all()
 
 
 def _check_against_mpmath(design, targets):
@@ -112,11 +128,11 @@ def test_many_timed_recoveries(seed):
 
 @pytest.mark.slow
 def test_untimed_recoveries_keep_their_measured_rate():
-    """Without timing the crank angles are unknowns too, and the search is harder: on these ten problems 7 reach
-    1e-8 (seeds 1, 4 and 7 stop at 9e-7, 3e-8 and 2e-4: the known weak spot of untimed synthesis); the test keeps
-    that rate from falling."""
+    """Without timing the crank angles are unknowns too, and the search is harder: on these ten problems 9 reach
+    1e-8 (seed 1 stops at 7e-8 after every start and its long second refinement: points that barely fix the
+    four-bar); the test keeps that rate from falling (it was 7 before the starts were screened)."""
     reached = [synthesize_path(*_recovery_problem(seed)[:1], None, seed=seed)[0].error < 1e-8 for seed in range(10)]
-    assert sum(reached) >= 7, reached
+    assert sum(reached) >= 9, reached
 
 
 def hand_transmission_worst(a, b, c, d, samples=3601):

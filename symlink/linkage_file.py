@@ -154,13 +154,15 @@ __all__ = ["LinkageFile", "load_linkage", "read_linkage", "linkage_from_text", "
 
 TOP_KEYS = ("name", "inputs", "unknowns", "lengths", "constants")
 TABLES = ("vectors", "loops", "points", "roles", "defaults", "dynamics")
-#: The keys of ``[dynamics]`` and of each of its entries (the first key of each entry is required).
+#: The keys of ``[dynamics]``; of each of its entries, the keys it needs and those it may have.
 DYNAMICS_KEYS = ("gravity", "masses", "forces", "torques", "springs", "dampers")
-DYNAMICS_ENTRIES = {"masses": ("mass", "distance", "angle", "inertia", "origin"),
-                    "forces": ("point", "x", "y", "body"),
-                    "torques": ("body", "torque"),
-                    "springs": ("first", "second", "stiffness", "free_length", "first_body", "second_body"),
-                    "dampers": ("first", "second", "coefficient", "first_body", "second_body")}
+DYNAMICS_ENTRIES = {"masses": (("mass",), ("distance", "angle", "inertia", "origin")),
+                    "forces": (("point",), ("x", "y", "body")),
+                    "torques": (("body", "torque"), ()),
+                    "springs": (("first", "second", "stiffness"), ("free_length", "first_body", "second_body")),
+                    "dampers": (("first", "second", "coefficient"), ("first_body", "second_body"))}
+#: The entries' keys that name a point, joint or body (the others are values).
+DYNAMICS_NAMES = frozenset({"origin", "point", "body", "first", "second", "first_body", "second_body"})
 RESERVED = {"pi", "deg", "rad"}
 ORIGIN = "0"
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
@@ -565,10 +567,11 @@ def _from_mapping(data: Mapping, source: str) -> LinkageFile:
     return LinkageFile(linkage, defaults, source, model)
 
 
-def dynamic_model(table: Mapping, linkage: Linkage, source: str = "<dynamics>") -> DynamicModel:
+def dynamic_model(table: Mapping, linkage: Linkage, source: str = "") -> DynamicModel:
     """The mass properties and loads of a ``[dynamics]`` table (see the module docstring) on ``linkage``.
 
-    Scene files take the same table.  ``ValueError`` ``"source: problem"``.
+    Scene files take the same table.  ``ValueError`` naming the key and the problem (after ``"source: "``
+    if a source is given).
 
     >>> from symlink.catalog import fourbar
     >>> model = dynamic_model({"masses": {"crank": {"mass": 2, "distance": 0.1}}}, fourbar())
@@ -578,7 +581,7 @@ def dynamic_model(table: Mapping, linkage: Linkage, source: str = "<dynamics>") 
     try:
         return _dynamics(table, linkage)
     except _Problem as problem:
-        raise ValueError(f"{source}: {problem.message}") from None
+        raise ValueError(f"{source}: {problem.message}" if source else problem.message) from None
 
 
 def _dynamic_value(value, table: str, key: str, known: Mapping[str, sp.Symbol], angle: bool = False):
@@ -618,21 +621,20 @@ def _dynamics(data, linkage: Linkage) -> DynamicModel:
         gravity = Gravity(*(_dynamic_value(v, "dynamics", "gravity", known) for v in pair))
 
     def entry(kind: str, table: str, key: str, item) -> dict:
-        where = f"{table}.{key}" if key else table
-        allowed = DYNAMICS_ENTRIES[kind]
+        where = inner = f"{table}.{key}" if key else table
+        required, optional = DYNAMICS_ENTRIES[kind]
+        allowed = required + optional
         if not isinstance(item, dict):
             raise _Problem(table, key, f"{where} must be a table of {', '.join(allowed)}, got {item!r}")
         for name in item:
             if name not in allowed:
-                raise _Problem(f"{table}.{key}" if key else table, name,
-                               f"{where}.{name}: unknown key ({kind} take {', '.join(allowed)})")
-        first = allowed[0] if kind != "forces" else "point"
-        if first not in item:
-            raise _Problem(table, key, f"{where}: missing {first}")
-        inner = f"{table}.{key}" if key else table
+                raise _Problem(inner, name, f"{where}.{name}: unknown key ({kind} take {', '.join(allowed)})")
+        for name in required:
+            if name not in item:
+                raise _Problem(table, key, f"{where}: missing {name}")
         found = {}
         for name, value in item.items():
-            if name in ("origin", "point", "body", "first", "second", "first_body", "second_body"):
+            if name in DYNAMICS_NAMES:
                 if not isinstance(value, str) or not _NAME.match(value):
                     raise _Problem(inner, name, f"{where}.{name} must name a point, joint or body, got {value!r}")
                 found[name] = value
@@ -655,16 +657,9 @@ def _dynamics(data, linkage: Linkage) -> DynamicModel:
                                              f"got {items!r}")
         for k, item in enumerate(items):
             found = entry(kind, f"dynamics.{kind}[{k}]", "", item)
-            if kind == "forces":
+            if kind == "forces":  # a component left out is zero
                 found.setdefault("x", 0)
                 found.setdefault("y", 0)
-            if kind == "torques" and "torque" not in found:
-                raise _Problem(f"dynamics.{kind}[{k}]", "", f"dynamics.{kind}[{k}]: missing torque")
-            if kind in ("springs", "dampers"):
-                needed = ("second", "stiffness" if kind == "springs" else "coefficient")
-                for name in needed:
-                    if name not in found:
-                        raise _Problem(f"dynamics.{kind}[{k}]", "", f"dynamics.{kind}[{k}]: missing {name}")
             loads.append(make(**found))
     try:
         return DynamicModel(linkage, masses, loads, gravity)

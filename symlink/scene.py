@@ -328,7 +328,7 @@ def scene_from_mapping(data: Mapping, folder: str | Path = ".") -> SceneFile:
         if found.model is not None:
             raise ValueError(f"dynamics: {data['linkage']} has a [dynamics] table of its own; give it in one place")
         found = LinkageFile(found.linkage, found.defaults, found.source,
-                            dynamic_model(data["dynamics"], found.linkage, "dynamics"))
+                            dynamic_model(data["dynamics"], found.linkage))
     if found.model is not None and not set(outputs) <= set(found.linkage.output_names()):
         found = found.with_dynamics()  # torques or joint forces of a linkage file with a [dynamics] table
     linkage = found.linkage

@@ -47,7 +47,7 @@ from ..codegen.scalar import scalar_module
 from ..linkage import Linkage, Program
 from ..position import ClampedSqrt
 from ..vectors import rate
-from .inverse import EQUATION_OUTPUTS, driving_efforts
+from .inverse import EQUATION_OUTPUTS, driving_efforts, equation_of_motion, linkage_with_outputs
 from .model import DynamicModel
 
 __all__ = ["ForwardDynamics", "Motion", "Stop", "ConstantTorque", "LinearMotor", "Motor", "require_scipy",
@@ -91,13 +91,8 @@ def equation_linkage(model: DynamicModel) -> Linkage:
         if len(model.kinematics.inputs) != 1:
             raise ValueError(f"forward dynamics is for one-input linkages; {model.kinematics.name} has "
                              f"{len(model.kinematics.inputs)} inputs ({', '.join(map(str, model.kinematics.inputs))})")
-        base = model.kinematics
-        inertia, slope, applied = EQUATION_OUTPUTS
-        extras = {**base.extras, inertia: model.generalised_inertia()[0, 0], slope: model.generalised_inertia_slope(),
-                  applied: model.applied_generalised_forces()[0], model.input_effort_name(0): driving_efforts(model)[0]}
-        _EQUATION_LINKAGES[model] = Linkage(base.name, base.loops, base.inputs, base.unknowns,
-                                            parameters=list(base.parameters) + list(model.new_parameters),
-                                            points=base.points, roles=base.roles, extras=extras)
+        outputs = {**equation_of_motion(model), model.input_effort_name(0): driving_efforts(model)[0]}
+        _EQUATION_LINKAGES[model] = linkage_with_outputs(model, outputs)
     return _EQUATION_LINKAGES[model]
 
 

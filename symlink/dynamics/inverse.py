@@ -42,7 +42,7 @@ I2*thetaddot
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Mapping, TypeVar
 
 import sympy as sp
 
@@ -54,7 +54,10 @@ from ..vectors import expression
 if TYPE_CHECKING:
     from .model import DynamicModel
 
-__all__ = ["EQUATION_OUTPUTS", "NewtonEuler", "driving_efforts", "newton_euler", "reactions", "dynamic_outputs", "DynamicLinkage", "dynamic_linkage"]
+__all__ = ["EQUATION_OUTPUTS", "NewtonEuler", "driving_efforts", "newton_euler", "reactions", "equation_of_motion",
+           "linkage_with_outputs", "dynamic_outputs", "DynamicLinkage", "dynamic_linkage"]
+
+LinkageKind = TypeVar("LinkageKind", bound=Linkage)
 
 #: The outputs the equation of motion is made of (one input): M, dM/dq, Q_applied; not a table of forces.
 EQUATION_OUTPUTS = ("generalised_inertia", "generalised_inertia_slope", "applied_generalised_force")
@@ -363,7 +366,7 @@ def _solve(matrix: sp.Matrix, rhs: sp.Matrix) -> list[sp.Expr]:
         steps.append((pivot_row, pivot_column, entries))
     solution: dict[int, sp.Expr] = {}
     rest_rows = sorted(rows)
-    rest_columns = sorted({j for i in rest_rows for j in rows[i]} | (set(range(size)) - {c for _, c, _ in steps}))
+    rest_columns = sorted(set(range(size)) - {c for _, c, _ in steps})  # the rows left hold no other columns
     if len(rest_rows) != len(rest_columns):
         raise ValueError("the Newton-Euler equations are structurally singular")
     if rest_rows:
@@ -390,11 +393,25 @@ def dynamic_outputs(model: DynamicModel) -> dict[str, sp.Expr]:
         found.pop(model.input_effort_name(i))
     outputs.update(found)
     if len(model.kinematics.inputs) == 1:
-        inertia, slope, applied = EQUATION_OUTPUTS
-        outputs[inertia] = model.generalised_inertia()[0, 0]
-        outputs[slope] = model.generalised_inertia_slope()
-        outputs[applied] = model.applied_generalised_forces()[0]
+        outputs.update(equation_of_motion(model))
     return outputs
+
+
+def equation_of_motion(model: DynamicModel) -> dict[str, sp.Expr]:
+    """``M``, ``dM/dq`` and ``Q_applied`` of a one-input model, under the names of :data:`EQUATION_OUTPUTS`."""
+    inertia, slope, applied = EQUATION_OUTPUTS
+    return {inertia: model.generalised_inertia()[0, 0], slope: model.generalised_inertia_slope(),
+            applied: model.applied_generalised_forces()[0]}
+
+
+def linkage_with_outputs(model: DynamicModel, outputs: Mapping[str, sp.Expr],
+                         kind: type[LinkageKind] = Linkage) -> LinkageKind:  # type: ignore[assignment]  # a default for a TypeVar
+    """The model's kinematic linkage (as ``kind``) with ``outputs`` as further extras and the model's symbols as
+    parameters."""
+    base = model.kinematics
+    return kind(base.name, base.loops, base.inputs, base.unknowns,
+                parameters=list(base.parameters) + list(model.new_parameters),
+                points=base.points, roles=base.roles, extras={**base.extras, **outputs})
 
 
 class DynamicLinkage(Linkage):
@@ -458,10 +475,7 @@ def dynamic_linkage(model: DynamicModel) -> DynamicLinkage:
     (('input_torque', 'joint_A_x', 'joint_A_y'), I2*thetaddot)
     """
     outputs = dynamic_outputs(model)
-    base = model.kinematics
-    result = DynamicLinkage(base.name, base.loops, base.inputs, base.unknowns,
-                            parameters=list(base.parameters) + model.new_parameters,
-                            points=base.points, roles=base.roles, extras={**base.extras, **outputs})
+    result = linkage_with_outputs(model, outputs, DynamicLinkage)
     result.dynamic_outputs = tuple(outputs)
     result.model = model
     return result

@@ -72,16 +72,17 @@ FORMAT = 1
 #: The name of the function in every cached solver module.
 FUNCTION = "solve"
 
-#: The modules (relative to the package, without ``.py``) whose text shapes generated code: their digest
-#: is part of every key.  A name may be a module or a package folder (then every module in it counts).
-#: Add a module here when it starts to shape generated text; benchmarks, plots and the command line
-#: stay out, so that editing them keeps the cache.
-CODE_SHAPING = ("names", "vectors", "loops", "position", "motion", "sensitivity", "linkage", "closure", "plan",
-                "catalog", "bodies", "dynamics", "typeset", "codegen", "export", "compiled")  # printing it
-#: What builds a catalog linkage (:mod:`symlink.catalog` and every symlink module it imports, directly or
-#: not) beyond :data:`CODE_SHAPING`: with it, the digest stands in for the linkage's definition in
-#: :func:`catalog_key`, so that a cached catalog scene is found without building the linkage (or importing SymPy).
-CATALOG_SHAPING = CODE_SHAPING + ("notation",)
+#: What builds and prints a catalog linkage (:mod:`symlink.catalog` and every symlink module it imports,
+#: directly or not, and the printers), relative to the package, without ``.py``; a name may be a module or a
+#: package folder (then every module in it counts).  Its digest stands in for the linkage's definition in
+#: :func:`catalog_key`, so that a cached catalog scene is found without building the linkage (or importing
+#: SymPy); it is hashed at every warm start, so it holds nothing a catalog linkage does not use.
+CATALOG_SHAPING = ("names", "vectors", "loops", "position", "motion", "sensitivity", "linkage", "closure", "plan",
+                   "catalog", "notation", "typeset", "codegen", "export", "compiled")
+#: The modules whose text shapes generated code: their digest is part of every key.  Add a module here
+#: when it starts to shape generated text; benchmarks, plots and the command line stay out, so that editing
+#: them keeps the cache.  Beyond the catalog's: what builds a linkage with masses and its derivation text.
+CODE_SHAPING = CATALOG_SHAPING + ("bodies", "dynamics")
 #: Largest entry read back (a generated module is some kilobytes; anything far larger is not ours).
 ENTRY_LIMIT = 64 << 20
 

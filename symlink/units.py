@@ -32,7 +32,7 @@ import sympy as sp
 
 from .closure import is_angle
 from .linkage import ACCEL_SUFFIX, SPEED_SUFFIX, Linkage, is_branch_name
-from .notation import SENSITIVITY_SEPARATOR
+from .sensitivity import split_sensitivity_name
 from .vectors import acceleration, rate
 
 __all__ = ["is_quantity", "plain_values", "output_units", "ANY_LENGTH"]
@@ -143,13 +143,11 @@ def output_units(linkage: Linkage, names: Sequence[str], length_unit: str | None
             units[name] = _per_second("rad" if q in angles else length, order)
         elif point in linkage.points and axis in ("x", "y"):
             units[name] = length
-        elif SENSITIVITY_SEPARATOR in name:
-            output, _, parameter = name.rpartition(SENSITIVITY_SEPARATOR)
+        elif (split := split_sensitivity_name(name, linkage.parameters)) is not None:
+            output, parameter = split
             numerator = output_units(linkage, [output], length_unit)[output]
-            symbol = next((p for p in linkage.parameters if p.name == parameter), None)
-            denominator = "" if symbol is None else "rad" if symbol in angles else length
-            units[name] = "" if not numerator or not denominator or numerator == denominator \
-                else f"{numerator}/{denominator}"
+            denominator = "rad" if parameter in angles else length
+            units[name] = "" if not numerator or numerator == denominator else f"{numerator}/{denominator}"
         else:
             units[name] = ""
     return units

@@ -57,11 +57,13 @@ def _arguments(check, names, values, lengths=(), signs=()):
                 good = x - x == 0.0
         elif name in signs:
             good = numpy.abs(array) == 1.0
-        elif name in lengths:
-            good = (array >= 1e-305) & (array <= 1e305)
+        elif name in lengths:  # two passes without a temporary; a NaN fails both comparisons
+            good = array.size == 0 or bool(1e-305 <= array.min() and array.max() <= 1e305)
         else:
             good = numpy.isfinite(array)
-        if not (good if array.ndim == 0 else good.all()):
+        if not (good if array.ndim == 0 or name in lengths else good.all()):
+            if name in lengths:
+                good = (array >= 1e-305) & (array <= 1e305)
             bad = float(array if array.ndim == 0 else array[~good].flat[0])
             wanted = ("must be +1 or -1" if name in signs else "must be a positive finite length" if name in lengths
                       else "must be finite")
@@ -117,6 +119,25 @@ def _clamped_sqrt(x, scale):
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
 
 
+def _power_of_two_below(x):
+    """2.0**floor(log2(x)) for positive x (a loop's unit): the largest power of two not above x, from x's exponent.
+
+    ``frexp`` splits x into a mantissa in [0.5, 1) and a power of two, so the
+    power is exact where a logarithm rounded near a power of two could be one off.
+    """
+    return numpy.ldexp(0.5, numpy.frexp(x)[1])
+
+
+def _cos_atan2(x, r):
+    """cos(atan2(y, x)) from r = sqrt(x*x + y*y): x/r, and atan2's 1 or -1 by the sign of x where x = y = 0."""
+    return numpy.where(r != 0.0, x * (1.0 / r), numpy.copysign(1.0, x))
+
+
+def _sin_atan2(y, r):
+    """sin(atan2(y, x)) from r = sqrt(x*x + y*y): y/r, and the signed zero y where x = y = 0."""
+    return numpy.where(r != 0.0, y * (1.0 / r), y)
+
+
 def _power_of_two(exponent):
     """2.0**exponent for whole-number exponents (a loop's unit), bit for bit, without calling pow() a value.
 
@@ -148,7 +169,7 @@ def positions(theta, psi, a, b, c, d, e, branch=1, *, check=True):
 
 def _positions_block(theta, psi, a, b, c, d, e, branch):
     """The outputs of positions and the assembled mask, for arguments that broadcast together."""
-    size_1 = _power_of_two(numpy.floor(numpy.log((1/5)*a + (1/5)*b + (1/5)*c + (1/5)*d + (1/5)*e)/numpy.log(2.0)))
+    size_1 = _power_of_two_below((1/5)*a + (1/5)*b + (1/5)*c + (1/5)*d + (1/5)*e)
     cse_0 = 1/(size_1)
     del size_1
     rho_1_1 = cse_0*d
@@ -201,17 +222,19 @@ def velocities(theta, psi, a, b, c, d, e, branch=1, thetadot=0.0, psidot=0.0, *,
 
 def _velocities_block(theta, psi, a, b, c, d, e, branch, thetadot, psidot):
     """The outputs of velocities and the assembled mask, for arguments that broadcast together."""
-    cse_11 = -theta
+    sin_theta = numpy.sin(theta)
+    cos_theta = numpy.cos(theta)
+    sin_psi = numpy.sin(psi)
+    cos_psi = numpy.cos(psi)
     cse_12 = a*thetadot
-    cse_13 = -psi
-    size_1 = _power_of_two(numpy.floor(numpy.log((1/5)*a + (1/5)*b + (1/5)*c + (1/5)*d + (1/5)*e)/numpy.log(2.0)))
+    size_1 = _power_of_two_below((1/5)*a + (1/5)*b + (1/5)*c + (1/5)*d + (1/5)*e)
     cse_0 = 1/(size_1)
     del size_1
     rho_1_1 = cse_0*d
     rho_2_1 = cse_0*e
     rho_3_1 = a*cse_0
-    Wx_1 = -rho_1_1 - rho_2_1*numpy.cos(psi) + rho_3_1*numpy.cos(theta)
-    Wy_1 = rho_3_1*numpy.sin(theta) - rho_2_1*numpy.sin(psi)
+    Wx_1 = cos_theta*rho_3_1 - cos_psi*rho_2_1 - rho_1_1
+    Wy_1 = rho_3_1*sin_theta - rho_2_1*sin_psi
     rho_4_1 = b*cse_0
     rho_5_1 = c*cse_0
     del cse_0
@@ -228,17 +251,33 @@ def _velocities_block(theta, psi, a, b, c, d, e, branch, thetadot, psidot):
     del cse_1, cse_2, cse_3, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
     cse_7 = Delta_1*branch
     cse_8 = Wx_1*cse_7
+    beta_y = -Wy_1*cse_6 - cse_8
+    phi_y = Wy_1*cse_10 - cse_8
+    del cse_8
     cse_9 = Wy_1*cse_7
-    del cse_7
+    del Wy_1, cse_7
+    beta_x = cse_9 - Wx_1*cse_6
+    del cse_6
+    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
+    sin_beta = _sin_atan2(beta_y, beta_r)
+    cos_beta = _cos_atan2(beta_x, beta_r)
+    del beta_r
+    phi_x = Wx_1*cse_10 + cse_9
+    del Wx_1, cse_10, cse_9
+    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
+    sin_phi = _sin_atan2(phi_y, phi_r)
+    cos_phi = _cos_atan2(phi_x, phi_r)
+    del phi_r
     cse_14 = 2.0*cse_4/(Delta_1*branch)
     del cse_4
-    beta = numpy.arctan2(-Wy_1*cse_6 - cse_8, cse_9 - Wx_1*cse_6)
-    del cse_6
-    phi = numpy.arctan2(Wy_1*cse_10 - cse_8, Wx_1*cse_10 + cse_9)
-    del Wx_1, Wy_1, cse_10, cse_8, cse_9
-    betadot = cse_14*(e*psidot*numpy.sin(cse_13 + phi) - cse_12*numpy.sin(cse_11 + phi))/b
-    phidot = cse_14*(e*psidot*numpy.sin(beta + cse_13) - cse_12*numpy.sin(beta + cse_11))/c
-    del cse_11, cse_12, cse_13, cse_14
+    beta = numpy.arctan2(beta_y, beta_x)
+    del beta_x, beta_y
+    phi = numpy.arctan2(phi_y, phi_x)
+    del phi_x, phi_y
+    betadot = cse_14*(e*psidot*(cos_psi*sin_phi - cos_phi*sin_psi) - cse_12*(cos_theta*sin_phi - cos_phi*sin_theta))/b
+    del cos_phi, sin_phi
+    phidot = cse_14*(e*psidot*(cos_psi*sin_beta - cos_beta*sin_psi) - cse_12*(cos_theta*sin_beta - cos_beta*sin_theta))/c
+    del cos_beta, cos_psi, cos_theta, cse_12, cse_14, sin_beta, sin_psi, sin_theta
     return (
         beta,  # coupler
         phi,  # coupler2
@@ -265,20 +304,22 @@ def accelerations(theta, psi, a, b, c, d, e, branch=1, thetadot=0.0, psidot=0.0,
 
 def _accelerations_block(theta, psi, a, b, c, d, e, branch, thetadot, psidot, thetaddot, psiddot):
     """The outputs of accelerations and the assembled mask, for arguments that broadcast together."""
-    cse_11 = -theta
+    sin_theta = numpy.sin(theta)
+    cos_theta = numpy.cos(theta)
+    sin_psi = numpy.sin(psi)
+    cos_psi = numpy.cos(psi)
     cse_14 = a*thetadot
-    cse_15 = -psi
     cse_26 = a*thetaddot
     cse_27 = e*numpy.square(psidot)
     cse_28 = numpy.square(thetadot)
-    size_1 = _power_of_two(numpy.floor(numpy.log((1/5)*a + (1/5)*b + (1/5)*c + (1/5)*d + (1/5)*e)/numpy.log(2.0)))
+    size_1 = _power_of_two_below((1/5)*a + (1/5)*b + (1/5)*c + (1/5)*d + (1/5)*e)
     cse_0 = 1/(size_1)
     del size_1
     rho_1_1 = cse_0*d
     rho_2_1 = cse_0*e
     rho_3_1 = a*cse_0
-    Wx_1 = -rho_1_1 - rho_2_1*numpy.cos(psi) + rho_3_1*numpy.cos(theta)
-    Wy_1 = rho_3_1*numpy.sin(theta) - rho_2_1*numpy.sin(psi)
+    Wx_1 = cos_theta*rho_3_1 - cos_psi*rho_2_1 - rho_1_1
+    Wy_1 = rho_3_1*sin_theta - rho_2_1*sin_psi
     rho_4_1 = b*cse_0
     rho_5_1 = c*cse_0
     del cse_0
@@ -295,37 +336,46 @@ def _accelerations_block(theta, psi, a, b, c, d, e, branch, thetadot, psidot, th
     del cse_1, cse_2, cse_3, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
     cse_7 = Delta_1*branch
     cse_8 = Wx_1*cse_7
+    phi_y = Wy_1*cse_10 - cse_8
+    beta_y = -Wy_1*cse_6 - cse_8
+    del cse_8
     cse_9 = Wy_1*cse_7
-    del cse_7
+    del Wy_1, cse_7
+    phi_x = Wx_1*cse_10 + cse_9
+    del cse_10
+    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
+    sin_phi = _sin_atan2(phi_y, phi_r)
+    cos_phi = _cos_atan2(phi_x, phi_r)
+    del phi_r
+    beta_x = cse_9 - Wx_1*cse_6
+    del Wx_1, cse_6, cse_9
+    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
+    sin_beta = _sin_atan2(beta_y, beta_r)
+    cos_beta = _cos_atan2(beta_x, beta_r)
+    del beta_r
     cse_18 = 2.0*cse_4/(Delta_1*branch)
     del cse_4
     cse_19 = cse_18/b
     cse_24 = cse_18/c
     del cse_18
-    beta = numpy.arctan2(-Wy_1*cse_6 - cse_8, cse_9 - Wx_1*cse_6)
-    del cse_6
-    cse_20 = beta + cse_11
-    cse_21 = numpy.sin(cse_20)
-    cse_22 = beta + cse_15
-    cse_23 = numpy.sin(cse_22)
-    phi = numpy.arctan2(Wy_1*cse_10 - cse_8, Wx_1*cse_10 + cse_9)
-    del Wx_1, Wy_1, cse_10, cse_8, cse_9
-    cse_12 = cse_11 + phi
-    del cse_11
-    cse_13 = numpy.sin(cse_12)
-    cse_16 = cse_15 + phi
-    del cse_15
-    cse_17 = numpy.sin(cse_16)
-    cse_30 = numpy.cos(beta - phi)
+    beta = numpy.arctan2(beta_y, beta_x)
+    del beta_x, beta_y
+    cse_21 = cos_theta*sin_beta - cos_beta*sin_theta
+    cse_23 = cos_psi*sin_beta - cos_beta*sin_psi
+    phi = numpy.arctan2(phi_y, phi_x)
+    del phi_x, phi_y
+    cse_13 = cos_theta*sin_phi - cos_phi*sin_theta
+    cse_17 = cos_psi*sin_phi - cos_phi*sin_psi
+    cse_30 = cos_beta*cos_phi + sin_beta*sin_phi
     betadot = cse_19*(cse_17*e*psidot - cse_13*cse_14)
     cse_29 = numpy.square(betadot)
     phidot = cse_24*(cse_23*e*psidot - cse_14*cse_21)
     del cse_14
     cse_25 = c*numpy.square(phidot)
-    betaddot = cse_19*(a*cse_28*numpy.cos(cse_12) + b*cse_29*cse_30 - cse_13*cse_26 + cse_17*e*psiddot - cse_25 - cse_27*numpy.cos(cse_16))
-    del cse_12, cse_13, cse_16, cse_17, cse_19
-    phiddot = cse_24*(a*cse_28*numpy.cos(cse_20) + b*cse_29 - cse_21*cse_26 + cse_23*e*psiddot - cse_25*cse_30 - cse_27*numpy.cos(cse_22))
-    del cse_20, cse_21, cse_22, cse_23, cse_24, cse_25, cse_26, cse_27, cse_28, cse_29, cse_30
+    betaddot = cse_19*(a*cse_28*(cos_phi*cos_theta + sin_phi*sin_theta) + b*cse_29*cse_30 - cse_13*cse_26 + cse_17*e*psiddot - cse_25 - cse_27*(cos_phi*cos_psi + sin_phi*sin_psi))
+    del cos_phi, cse_13, cse_17, cse_19, sin_phi
+    phiddot = cse_24*(a*cse_28*(cos_beta*cos_theta + sin_beta*sin_theta) + b*cse_29 - cse_21*cse_26 + cse_23*e*psiddot - cse_25*cse_30 - cse_27*(cos_beta*cos_psi + sin_beta*sin_psi))
+    del cos_beta, cos_psi, cos_theta, cse_21, cse_23, cse_24, cse_25, cse_26, cse_27, cse_28, cse_29, cse_30, sin_beta, sin_psi, sin_theta
     return (
         beta,  # coupler
         phi,  # coupler2
@@ -360,7 +410,7 @@ def _joints_block(theta, psi, a, b, c, d, e, branch):
     cse_4 = numpy.sin(theta)
     cse_10 = a*cse_2
     cse_11 = a*cse_4
-    size_1 = _power_of_two(numpy.floor(numpy.log((1/5)*a + (1/5)*b + (1/5)*c + (1/5)*d + (1/5)*e)/numpy.log(2.0)))
+    size_1 = _power_of_two_below((1/5)*a + (1/5)*b + (1/5)*c + (1/5)*d + (1/5)*e)
     cse_0 = 1/(size_1)
     del size_1
     rho_1_1 = cse_0*d
@@ -381,13 +431,19 @@ def _joints_block(theta, psi, a, b, c, d, e, branch):
     Delta_1 = _clamped_sqrt(cse_6*(cse_5 - w_1)*(cse_7 + w_1)*(rho_5_1 - rho_4_1 + w_1), 8.0*rho_4_1*rho_5_1*w_1*(cse_6 + rho_1_1 + rho_2_1 + rho_3_1))
     del cse_5, cse_6, cse_7, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
     cse_9 = Delta_1*branch
-    beta = numpy.arctan2(-Wx_1*cse_9 - Wy_1*cse_8, Wy_1*cse_9 - Wx_1*cse_8)
+    beta_y = -Wx_1*cse_9 - Wy_1*cse_8
+    beta_x = Wy_1*cse_9 - Wx_1*cse_8
     del Wx_1, Wy_1, cse_8, cse_9
+    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
+    sin_beta = _sin_atan2(beta_y, beta_r)
+    del beta_y
+    cos_beta = _cos_atan2(beta_x, beta_r)
+    del beta_r, beta_x
     return (
         cse_10,  # B_x
         cse_11,  # B_y
-        b*numpy.cos(beta) + cse_10,  # C_x
-        b*numpy.sin(beta) + cse_11,  # C_y
+        b*cos_beta + cse_10,  # C_x
+        b*sin_beta + cse_11,  # C_y
         cse_1*e + d,  # D_x
         cse_3*e,  # D_y
         numpy.isfinite(w_1) & numpy.isfinite(Delta_1),  # assembled

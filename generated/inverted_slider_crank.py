@@ -57,11 +57,13 @@ def _arguments(check, names, values, lengths=(), signs=()):
                 good = x - x == 0.0
         elif name in signs:
             good = numpy.abs(array) == 1.0
-        elif name in lengths:
-            good = (array >= 1e-305) & (array <= 1e305)
+        elif name in lengths:  # two passes without a temporary; a NaN fails both comparisons
+            good = array.size == 0 or bool(1e-305 <= array.min() and array.max() <= 1e305)
         else:
             good = numpy.isfinite(array)
-        if not (good if array.ndim == 0 else good.all()):
+        if not (good if array.ndim == 0 or name in lengths else good.all()):
+            if name in lengths:
+                good = (array >= 1e-305) & (array <= 1e305)
             bad = float(array if array.ndim == 0 else array[~good].flat[0])
             wanted = ("must be +1 or -1" if name in signs else "must be a positive finite length" if name in lengths
                       else "must be finite")
@@ -117,6 +119,25 @@ def _clamped_sqrt(x, scale):
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
 
 
+def _power_of_two_below(x):
+    """2.0**floor(log2(x)) for positive x (a loop's unit): the largest power of two not above x, from x's exponent.
+
+    ``frexp`` splits x into a mantissa in [0.5, 1) and a power of two, so the
+    power is exact where a logarithm rounded near a power of two could be one off.
+    """
+    return numpy.ldexp(0.5, numpy.frexp(x)[1])
+
+
+def _cos_atan2(x, r):
+    """cos(atan2(y, x)) from r = sqrt(x*x + y*y): x/r, and atan2's 1 or -1 by the sign of x where x = y = 0."""
+    return numpy.where(r != 0.0, x * (1.0 / r), numpy.copysign(1.0, x))
+
+
+def _sin_atan2(y, r):
+    """sin(atan2(y, x)) from r = sqrt(x*x + y*y): y/r, and the signed zero y where x = y = 0."""
+    return numpy.where(r != 0.0, y * (1.0 / r), y)
+
+
 def _power_of_two(exponent):
     """2.0**exponent for whole-number exponents (a loop's unit), bit for bit, without calling pow() a value.
 
@@ -148,7 +169,7 @@ def positions(theta, a, d, *, check=True):
 
 def _positions_block(theta, a, d):
     """The outputs of positions and the assembled mask, for arguments that broadcast together."""
-    size_1 = _power_of_two(numpy.floor(numpy.log((1/2)*a + (1/2)*d)/numpy.log(2.0)))
+    size_1 = _power_of_two_below((1/2)*a + (1/2)*d)
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
     rho_2_1 = cse_0*d
@@ -187,26 +208,35 @@ def velocities(theta, a, d, thetadot=0.0, *, check=True):
 
 def _velocities_block(theta, a, d, thetadot):
     """The outputs of velocities and the assembled mask, for arguments that broadcast together."""
+    sin_theta = numpy.sin(theta)
+    cos_theta = numpy.cos(theta)
     cse_3 = a*thetadot
-    size_1 = _power_of_two(numpy.floor(numpy.log((1/2)*a + (1/2)*d)/numpy.log(2.0)))
+    size_1 = _power_of_two_below((1/2)*a + (1/2)*d)
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
     rho_2_1 = cse_0*d
     del cse_0
-    Wx_1 = rho_2_1 - rho_1_1*numpy.cos(theta)
+    Wx_1 = rho_2_1 - cos_theta*rho_1_1
     del rho_2_1
-    Wy_1 = -rho_1_1*numpy.sin(theta)
+    Wy_1 = -rho_1_1*sin_theta
     del rho_1_1
     w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -1.0e-14)
     cse_1 = 1/(w_1)
-    phi = numpy.arctan2(-Wy_1*cse_1, -Wx_1*cse_1)
-    del Wx_1, Wy_1, cse_1
-    cse_2 = phi - theta
+    phi_y = -Wy_1*cse_1
+    del Wy_1
+    phi_x = -Wx_1*cse_1
+    del Wx_1, cse_1
+    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
+    sin_phi = _sin_atan2(phi_y, phi_r)
+    cos_phi = _cos_atan2(phi_x, phi_r)
+    del phi_r
+    phi = numpy.arctan2(phi_y, phi_x)
+    del phi_x, phi_y
     r = size_1*w_1
     del size_1
-    phidot = cse_3*numpy.cos(cse_2)/r
-    rdot = cse_3*numpy.sin(cse_2)
-    del cse_2, cse_3
+    phidot = cse_3*(cos_phi*cos_theta + sin_phi*sin_theta)/r
+    rdot = cse_3*(cos_theta*sin_phi - cos_phi*sin_theta)
+    del cos_phi, cos_theta, cse_3, sin_phi, sin_theta
     return (
         phi,  # rocker
         r,  # slider
@@ -233,24 +263,33 @@ def accelerations(theta, a, d, thetadot=0.0, thetaddot=0.0, *, check=True):
 
 def _accelerations_block(theta, a, d, thetadot, thetaddot):
     """The outputs of accelerations and the assembled mask, for arguments that broadcast together."""
+    sin_theta = numpy.sin(theta)
+    cos_theta = numpy.cos(theta)
     cse_6 = numpy.square(thetadot)
-    size_1 = _power_of_two(numpy.floor(numpy.log((1/2)*a + (1/2)*d)/numpy.log(2.0)))
+    size_1 = _power_of_two_below((1/2)*a + (1/2)*d)
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
     rho_2_1 = cse_0*d
     del cse_0
-    Wx_1 = rho_2_1 - rho_1_1*numpy.cos(theta)
+    Wx_1 = rho_2_1 - cos_theta*rho_1_1
     del rho_2_1
-    Wy_1 = -rho_1_1*numpy.sin(theta)
+    Wy_1 = -rho_1_1*sin_theta
     del rho_1_1
     w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -1.0e-14)
     cse_1 = 1/(w_1)
-    phi = numpy.arctan2(-Wy_1*cse_1, -Wx_1*cse_1)
-    del Wx_1, Wy_1, cse_1
-    cse_3 = phi - theta
-    cse_4 = a*numpy.cos(cse_3)
-    cse_5 = a*numpy.sin(cse_3)
-    del cse_3
+    phi_y = -Wy_1*cse_1
+    del Wy_1
+    phi_x = -Wx_1*cse_1
+    del Wx_1, cse_1
+    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
+    sin_phi = _sin_atan2(phi_y, phi_r)
+    cos_phi = _cos_atan2(phi_x, phi_r)
+    del phi_r
+    phi = numpy.arctan2(phi_y, phi_x)
+    del phi_x, phi_y
+    cse_4 = a*(cos_phi*cos_theta + sin_phi*sin_theta)
+    cse_5 = a*(cos_theta*sin_phi - cos_phi*sin_theta)
+    del cos_phi, cos_theta, sin_phi, sin_theta
     r = size_1*w_1
     del size_1
     cse_2 = 1/(r)

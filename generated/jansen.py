@@ -57,11 +57,13 @@ def _arguments(check, names, values, lengths=(), signs=()):
                 good = x - x == 0.0
         elif name in signs:
             good = numpy.abs(array) == 1.0
-        elif name in lengths:
-            good = (array >= 1e-305) & (array <= 1e305)
+        elif name in lengths:  # two passes without a temporary; a NaN fails both comparisons
+            good = array.size == 0 or bool(1e-305 <= array.min() and array.max() <= 1e305)
         else:
             good = numpy.isfinite(array)
-        if not (good if array.ndim == 0 else good.all()):
+        if not (good if array.ndim == 0 or name in lengths else good.all()):
+            if name in lengths:
+                good = (array >= 1e-305) & (array <= 1e305)
             bad = float(array if array.ndim == 0 else array[~good].flat[0])
             wanted = ("must be +1 or -1" if name in signs else "must be a positive finite length" if name in lengths
                       else "must be finite")
@@ -115,6 +117,25 @@ def _evaluate(kernel, arguments, shape, keys, flags):
 def _clamped_sqrt(x, scale):
     """sqrt(x), taking x >= -TOLERANCE*scale as rounding at a toggle (0) and anything lower as no assembly (NaN)."""
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
+
+
+def _power_of_two_below(x):
+    """2.0**floor(log2(x)) for positive x (a loop's unit): the largest power of two not above x, from x's exponent.
+
+    ``frexp`` splits x into a mantissa in [0.5, 1) and a power of two, so the
+    power is exact where a logarithm rounded near a power of two could be one off.
+    """
+    return numpy.ldexp(0.5, numpy.frexp(x)[1])
+
+
+def _cos_atan2(x, r):
+    """cos(atan2(y, x)) from r = sqrt(x*x + y*y): x/r, and atan2's 1 or -1 by the sign of x where x = y = 0."""
+    return numpy.where(r != 0.0, x * (1.0 / r), numpy.copysign(1.0, x))
+
+
+def _sin_atan2(y, r):
+    """sin(atan2(y, x)) from r = sqrt(x*x + y*y): y/r, and the signed zero y where x = y = 0."""
+    return numpy.where(r != 0.0, y * (1.0 / r), y)
 
 
 def _power_of_two(exponent):
@@ -208,21 +229,29 @@ def _positions_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branc
     del cse_15, cse_16, cse_17, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2
     cse_20 = Delta_2*branch_ABFD
     cse_21 = Wx_2*cse_20
+    psi_y = cse_21 - Wy_2*cse_23
     cse_22 = Wy_2*cse_20
     del cse_20
+    psi_x = -Wx_2*cse_23 - cse_22
+    del cse_23
+    psi_r = numpy.sqrt(numpy.square(psi_x) + numpy.square(psi_y))
+    sin_psi = _sin_atan2(psi_y, psi_r)
+    cos_psi = _cos_atan2(psi_x, psi_r)
+    del psi_r
     mu = numpy.arctan2(Wy_2*cse_19 + cse_21, Wx_2*cse_19 - cse_22)
-    del cse_19
-    psi = numpy.arctan2(cse_21 - Wy_2*cse_23, -Wx_2*cse_23 - cse_22)
-    del Wx_2, Wy_2, cse_21, cse_22, cse_23
+    del Wx_2, Wy_2, cse_19, cse_21, cse_22
+    psi = numpy.arctan2(psi_y, psi_x)
+    del psi_x, psi_y
     size_3 = _power_of_two(numpy.floor(cse_0*numpy.log((1/4)*c + (1/4)*d + (1/4)*f + (1/4)*g)))
     del cse_0
     cse_24 = 1/(size_3)
     del size_3
     rho_1_3 = c*cse_24
     rho_2_3 = cse_24*d
-    Wx_3 = rho_2_3*numpy.cos(cse_25) - rho_1_3*numpy.cos(psi)
-    Wy_3 = rho_2_3*numpy.sin(cse_25) - rho_1_3*numpy.sin(psi)
-    del cse_25
+    Wx_3 = rho_2_3*numpy.cos(cse_25) - cos_psi*rho_1_3
+    del cos_psi
+    Wy_3 = rho_2_3*numpy.sin(cse_25) - rho_1_3*sin_psi
+    del cse_25, sin_psi
     rho_3_3 = cse_24*g
     rho_4_3 = cse_24*f
     del cse_24
@@ -272,11 +301,12 @@ def velocities(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD
 
 def _velocities_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, thetadot):
     """The outputs of velocities and the assembled mask, for arguments that broadcast together."""
+    sin_theta = numpy.sin(theta)
+    cos_theta = numpy.cos(theta)
     cse_0 = 1/(numpy.log(2.0))
     cse_1 = (1/5)*a + (1/5)*l + (1/5)*m
-    cse_3 = numpy.cos(theta)
-    cse_4 = numpy.sin(theta)
-    cse_38 = -theta
+    cse_3 = cos_theta
+    cse_4 = sin_theta
     cse_39 = 2.0*m*thetadot
     size_1 = _power_of_two(numpy.floor(cse_0*numpy.log((1/5)*b + cse_1 + (1/5)*j)))
     cse_2 = 1/(size_1)
@@ -302,15 +332,33 @@ def _velocities_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, bran
     del cse_5, cse_6, cse_7, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
     cse_11 = Delta_1*branch_ABCD
     cse_12 = Wx_1*cse_11
+    beta_y = cse_12 - Wy_1*cse_14
+    phi_y = Wy_1*cse_10 + cse_12
+    del cse_12
     cse_13 = Wy_1*cse_11
-    del cse_11
+    del Wy_1, cse_11
+    beta_x = -Wx_1*cse_14 - cse_13
+    del cse_14
+    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
+    sin_beta = _sin_atan2(beta_y, beta_r)
+    cos_beta = _cos_atan2(beta_x, beta_r)
+    del beta_r
+    phi_x = Wx_1*cse_10 - cse_13
+    del Wx_1, cse_10, cse_13
+    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
+    sin_phi = _sin_atan2(phi_y, phi_r)
+    cos_phi = _cos_atan2(phi_x, phi_r)
+    del phi_r
     cse_40 = cse_39*cse_8/(Delta_1*branch_ABCD)
     del cse_8
-    phi = numpy.arctan2(Wy_1*cse_10 + cse_12, Wx_1*cse_10 - cse_13)
-    del cse_10
+    phi = numpy.arctan2(phi_y, phi_x)
+    del phi_x, phi_y
     cse_27 = alpha + phi
-    beta = numpy.arctan2(cse_12 - Wy_1*cse_14, -Wx_1*cse_14 - cse_13)
-    del Wx_1, Wy_1, cse_12, cse_13, cse_14
+    sin_cse_27 = numpy.sin(cse_27)
+    cos_cse_27 = numpy.cos(cse_27)
+    del cse_27
+    beta = numpy.arctan2(beta_y, beta_x)
+    del beta_x, beta_y
     size_2 = _power_of_two(numpy.floor(cse_0*numpy.log((1/5)*c + cse_1 + (1/5)*k)))
     del cse_1
     cse_15 = 1/(size_2)
@@ -338,23 +386,37 @@ def _velocities_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, bran
     del cse_16, cse_17, cse_18, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2
     cse_22 = Delta_2*branch_ABFD
     cse_23 = Wx_2*cse_22
+    psi_y = cse_23 - Wy_2*cse_25
+    mu_y = Wy_2*cse_21 + cse_23
+    del cse_23
     cse_24 = Wy_2*cse_22
-    del cse_22
+    del Wy_2, cse_22
+    psi_x = -Wx_2*cse_25 - cse_24
+    del cse_25
+    psi_r = numpy.sqrt(numpy.square(psi_x) + numpy.square(psi_y))
+    sin_psi = _sin_atan2(psi_y, psi_r)
+    cos_psi = _cos_atan2(psi_x, psi_r)
+    del psi_r
+    mu_x = Wx_2*cse_21 - cse_24
+    del Wx_2, cse_21, cse_24
+    mu_r = numpy.sqrt(numpy.square(mu_x) + numpy.square(mu_y))
+    sin_mu = _sin_atan2(mu_y, mu_r)
+    cos_mu = _cos_atan2(mu_x, mu_r)
+    del mu_r
     cse_41 = cse_19*cse_39/(Delta_2*branch_ABFD)
     del cse_19, cse_39
-    mu = numpy.arctan2(Wy_2*cse_21 + cse_23, Wx_2*cse_21 - cse_24)
-    del cse_21
-    psi = numpy.arctan2(cse_23 - Wy_2*cse_25, -Wx_2*cse_25 - cse_24)
-    del Wx_2, Wy_2, cse_23, cse_24, cse_25
-    cse_43 = -psi
+    mu = numpy.arctan2(mu_y, mu_x)
+    del mu_x, mu_y
+    psi = numpy.arctan2(psi_y, psi_x)
+    del psi_x, psi_y
     size_3 = _power_of_two(numpy.floor(cse_0*numpy.log((1/4)*c + (1/4)*d + (1/4)*f + (1/4)*g)))
     del cse_0
     cse_26 = 1/(size_3)
     del size_3
     rho_1_3 = c*cse_26
     rho_2_3 = cse_26*d
-    Wx_3 = rho_2_3*numpy.cos(cse_27) - rho_1_3*numpy.cos(psi)
-    Wy_3 = rho_2_3*numpy.sin(cse_27) - rho_1_3*numpy.sin(psi)
+    Wx_3 = cos_cse_27*rho_2_3 - cos_psi*rho_1_3
+    Wy_3 = rho_2_3*sin_cse_27 - rho_1_3*sin_psi
     rho_3_3 = cse_26*g
     rho_4_3 = cse_26*f
     del cse_26
@@ -371,25 +433,42 @@ def _velocities_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, bran
     del cse_28, cse_29, cse_30, rho_1_3, rho_2_3, rho_3_3, rho_4_3
     cse_34 = Delta_3*branch_DFGE
     cse_35 = Wx_3*cse_34
+    eta_y = Wy_3*cse_33 + cse_35
+    kappa_y = cse_35 - Wy_3*cse_37
+    del cse_35
     cse_36 = Wy_3*cse_34
-    del cse_34
+    del Wy_3, cse_34
+    eta_x = Wx_3*cse_33 - cse_36
+    del cse_33
+    eta_r = numpy.sqrt(numpy.square(eta_x) + numpy.square(eta_y))
+    sin_eta = _sin_atan2(eta_y, eta_r)
+    cos_eta = _cos_atan2(eta_x, eta_r)
+    del eta_r
+    kappa_x = -Wx_3*cse_37 - cse_36
+    del Wx_3, cse_36, cse_37
+    kappa_r = numpy.sqrt(numpy.square(kappa_x) + numpy.square(kappa_y))
+    sin_kappa = _sin_atan2(kappa_y, kappa_r)
+    cos_kappa = _cos_atan2(kappa_x, kappa_r)
+    del kappa_r
     cse_45 = 2.0*cse_31/(Delta_3*branch_DFGE)
     del cse_31
-    eta = numpy.arctan2(Wy_3*cse_33 + cse_35, Wx_3*cse_33 - cse_36)
-    del cse_33
-    kappa = numpy.arctan2(cse_35 - Wy_3*cse_37, -Wx_3*cse_37 - cse_36)
-    del Wx_3, Wy_3, cse_35, cse_36, cse_37
-    phidot = cse_40*numpy.sin(beta + cse_38)/b
+    eta = numpy.arctan2(eta_y, eta_x)
+    del eta_x, eta_y
+    kappa = numpy.arctan2(kappa_y, kappa_x)
+    del kappa_x, kappa_y
+    phidot = cse_40*(cos_theta*sin_beta - cos_beta*sin_theta)/b
+    del cos_beta, sin_beta
     cse_42 = d*phidot
-    betadot = cse_40*numpy.sin(cse_38 + phi)/j
-    del cse_40
-    mudot = -cse_41*numpy.sin(cse_38 + psi)/k
-    psidot = -cse_41*numpy.sin(cse_38 + mu)/c
-    del cse_38, cse_41
+    betadot = cse_40*(cos_theta*sin_phi - cos_phi*sin_theta)/j
+    del cos_phi, cse_40, sin_phi
+    mudot = -cse_41*(cos_theta*sin_psi - cos_psi*sin_theta)/k
+    psidot = -cse_41*(cos_theta*sin_mu - cos_mu*sin_theta)/c
+    del cos_mu, cos_theta, cse_41, sin_mu, sin_theta
     cse_44 = c*psidot
-    etadot = -cse_45*(cse_42*numpy.sin(cse_27 - kappa) + cse_44*numpy.sin(cse_43 + kappa))/g
-    kappadot = -cse_45*(cse_42*numpy.sin(cse_27 - eta) + cse_44*numpy.sin(cse_43 + eta))/f
-    del cse_27, cse_42, cse_43, cse_44, cse_45
+    etadot = -cse_45*(cse_42*(cos_kappa*sin_cse_27 - cos_cse_27*sin_kappa) + cse_44*(cos_psi*sin_kappa - cos_kappa*sin_psi))/g
+    del cos_kappa, sin_kappa
+    kappadot = -cse_45*(cse_42*(cos_eta*sin_cse_27 - cos_cse_27*sin_eta) + cse_44*(cos_psi*sin_eta - cos_eta*sin_psi))/f
+    del cos_cse_27, cos_eta, cos_psi, cse_42, cse_44, cse_45, sin_cse_27, sin_eta, sin_psi
     return (
         phi,  # upper_rocker
         beta,  # upper_link
@@ -424,11 +503,12 @@ def accelerations(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_A
 
 def _accelerations_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE, thetadot, thetaddot):
     """The outputs of accelerations and the assembled mask, for arguments that broadcast together."""
+    sin_theta = numpy.sin(theta)
+    cos_theta = numpy.cos(theta)
     cse_0 = 1/(numpy.log(2.0))
     cse_1 = (1/5)*a + (1/5)*l + (1/5)*m
-    cse_3 = numpy.cos(theta)
-    cse_4 = numpy.sin(theta)
-    cse_38 = -theta
+    cse_3 = cos_theta
+    cse_4 = sin_theta
     cse_43 = m*thetadot
     cse_70 = m*thetaddot
     cse_74 = numpy.square(thetadot)
@@ -457,23 +537,39 @@ def _accelerations_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, b
     del cse_5, cse_6, cse_7, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
     cse_11 = Delta_1*branch_ABCD
     cse_12 = Wx_1*cse_11
+    beta_y = cse_12 - Wy_1*cse_14
+    phi_y = Wy_1*cse_10 + cse_12
+    del cse_12
     cse_13 = Wy_1*cse_11
-    del cse_11
+    del Wy_1, cse_11
+    beta_x = -Wx_1*cse_14 - cse_13
+    del cse_14
+    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
+    sin_beta = _sin_atan2(beta_y, beta_r)
+    cos_beta = _cos_atan2(beta_x, beta_r)
+    del beta_r
+    phi_x = Wx_1*cse_10 - cse_13
+    del Wx_1, cse_10, cse_13
+    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
+    sin_phi = _sin_atan2(phi_y, phi_r)
+    cos_phi = _cos_atan2(phi_x, phi_r)
+    del phi_r
     cse_41 = 2.0*cse_8/(Delta_1*branch_ABCD)
     del cse_8
     cse_42 = cse_41/b
     cse_46 = cse_41/j
     del cse_41
-    phi = numpy.arctan2(Wy_1*cse_10 + cse_12, Wx_1*cse_10 - cse_13)
-    del cse_10
+    phi = numpy.arctan2(phi_y, phi_x)
+    del phi_x, phi_y
     cse_27 = alpha + phi
-    cse_44 = cse_38 + phi
-    cse_45 = numpy.sin(cse_44)
-    beta = numpy.arctan2(cse_12 - Wy_1*cse_14, -Wx_1*cse_14 - cse_13)
-    del Wx_1, Wy_1, cse_12, cse_13, cse_14
-    cse_39 = beta + cse_38
-    cse_40 = numpy.sin(cse_39)
-    cse_71 = numpy.cos(beta - phi)
+    sin_cse_27 = numpy.sin(cse_27)
+    cos_cse_27 = numpy.cos(cse_27)
+    del cse_27
+    cse_45 = cos_theta*sin_phi - cos_phi*sin_theta
+    beta = numpy.arctan2(beta_y, beta_x)
+    del beta_x, beta_y
+    cse_40 = cos_theta*sin_beta - cos_beta*sin_theta
+    cse_71 = cos_beta*cos_phi + sin_beta*sin_phi
     size_2 = _power_of_two(numpy.floor(cse_0*numpy.log((1/5)*c + cse_1 + (1/5)*k)))
     del cse_1
     cse_15 = 1/(size_2)
@@ -501,32 +597,43 @@ def _accelerations_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, b
     del cse_16, cse_17, cse_18, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2
     cse_22 = Delta_2*branch_ABFD
     cse_23 = Wx_2*cse_22
+    psi_y = cse_23 - Wy_2*cse_25
+    mu_y = Wy_2*cse_21 + cse_23
+    del cse_23
     cse_24 = Wy_2*cse_22
-    del cse_22
+    del Wy_2, cse_22
+    psi_x = -Wx_2*cse_25 - cse_24
+    del cse_25
+    psi_r = numpy.sqrt(numpy.square(psi_x) + numpy.square(psi_y))
+    sin_psi = _sin_atan2(psi_y, psi_r)
+    cos_psi = _cos_atan2(psi_x, psi_r)
+    del psi_r
+    mu_x = Wx_2*cse_21 - cse_24
+    del Wx_2, cse_21, cse_24
+    mu_r = numpy.sqrt(numpy.square(mu_x) + numpy.square(mu_y))
+    sin_mu = _sin_atan2(mu_y, mu_r)
+    cos_mu = _cos_atan2(mu_x, mu_r)
+    del mu_r
     cse_49 = 2.0*cse_19/(Delta_2*branch_ABFD)
     del cse_19
     cse_50 = cse_49/k
     cse_53 = cse_49/c
     del cse_49
-    mu = numpy.arctan2(Wy_2*cse_21 + cse_23, Wx_2*cse_21 - cse_24)
-    del cse_21
-    cse_51 = cse_38 + mu
-    cse_52 = numpy.sin(cse_51)
-    psi = numpy.arctan2(cse_23 - Wy_2*cse_25, -Wx_2*cse_25 - cse_24)
-    del Wx_2, Wy_2, cse_23, cse_24, cse_25
-    cse_47 = cse_38 + psi
-    del cse_38
-    cse_48 = numpy.sin(cse_47)
-    cse_58 = -psi
-    cse_76 = numpy.cos(cse_58 + mu)
+    mu = numpy.arctan2(mu_y, mu_x)
+    del mu_x, mu_y
+    cse_52 = cos_theta*sin_mu - cos_mu*sin_theta
+    psi = numpy.arctan2(psi_y, psi_x)
+    del psi_x, psi_y
+    cse_48 = cos_theta*sin_psi - cos_psi*sin_theta
+    cse_76 = cos_mu*cos_psi + sin_mu*sin_psi
     size_3 = _power_of_two(numpy.floor(cse_0*numpy.log((1/4)*c + (1/4)*d + (1/4)*f + (1/4)*g)))
     del cse_0
     cse_26 = 1/(size_3)
     del size_3
     rho_1_3 = c*cse_26
     rho_2_3 = cse_26*d
-    Wx_3 = rho_2_3*numpy.cos(cse_27) - rho_1_3*numpy.cos(psi)
-    Wy_3 = rho_2_3*numpy.sin(cse_27) - rho_1_3*numpy.sin(psi)
+    Wx_3 = cos_cse_27*rho_2_3 - cos_psi*rho_1_3
+    Wy_3 = rho_2_3*sin_cse_27 - rho_1_3*sin_psi
     rho_3_3 = cse_26*g
     rho_4_3 = cse_26*f
     del cse_26
@@ -543,30 +650,37 @@ def _accelerations_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, b
     del cse_28, cse_29, cse_30, rho_1_3, rho_2_3, rho_3_3, rho_4_3
     cse_34 = Delta_3*branch_DFGE
     cse_35 = Wx_3*cse_34
+    kappa_y = cse_35 - Wy_3*cse_37
+    eta_y = Wy_3*cse_33 + cse_35
+    del cse_35
     cse_36 = Wy_3*cse_34
-    del cse_34
+    del Wy_3, cse_34
+    kappa_x = -Wx_3*cse_37 - cse_36
+    del cse_37
+    kappa_r = numpy.sqrt(numpy.square(kappa_x) + numpy.square(kappa_y))
+    sin_kappa = _sin_atan2(kappa_y, kappa_r)
+    cos_kappa = _cos_atan2(kappa_x, kappa_r)
+    del kappa_r
+    eta_x = Wx_3*cse_33 - cse_36
+    del Wx_3, cse_33, cse_36
+    eta_r = numpy.sqrt(numpy.square(eta_x) + numpy.square(eta_y))
+    sin_eta = _sin_atan2(eta_y, eta_r)
+    cos_eta = _cos_atan2(eta_x, eta_r)
+    del eta_r
     cse_62 = 2.0*cse_31/(Delta_3*branch_DFGE)
     del cse_31
     cse_63 = cse_62/g
     cse_68 = cse_62/f
     del cse_62
-    eta = numpy.arctan2(Wy_3*cse_33 + cse_35, Wx_3*cse_33 - cse_36)
-    del cse_33
-    cse_64 = cse_27 - eta
-    cse_65 = numpy.sin(cse_64)
-    cse_66 = cse_58 + eta
-    cse_67 = numpy.sin(cse_66)
-    kappa = numpy.arctan2(cse_35 - Wy_3*cse_37, -Wx_3*cse_37 - cse_36)
-    del Wx_3, Wy_3, cse_35, cse_36, cse_37
-    cse_54 = -kappa
-    cse_55 = cse_27 + cse_54
-    del cse_27
-    cse_56 = numpy.sin(cse_55)
-    cse_59 = cse_58 + kappa
-    del cse_58
-    cse_60 = numpy.sin(cse_59)
-    cse_83 = numpy.cos(cse_54 + eta)
-    del cse_54
+    eta = numpy.arctan2(eta_y, eta_x)
+    del eta_x, eta_y
+    cse_65 = cos_eta*sin_cse_27 - cos_cse_27*sin_eta
+    cse_67 = cos_psi*sin_eta - cos_eta*sin_psi
+    kappa = numpy.arctan2(kappa_y, kappa_x)
+    del kappa_x, kappa_y
+    cse_56 = cos_kappa*sin_cse_27 - cos_cse_27*sin_kappa
+    cse_60 = cos_psi*sin_kappa - cos_kappa*sin_psi
+    cse_83 = cos_eta*cos_kappa + sin_eta*sin_kappa
     phidot = cse_40*cse_42*cse_43
     cse_57 = d*phidot
     cse_72 = numpy.square(phidot)
@@ -586,20 +700,20 @@ def _accelerations_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, b
     kappadot = -cse_68*(cse_57*cse_65 + cse_61*cse_67)
     del cse_57, cse_61
     cse_79 = f*numpy.square(kappadot)
-    phiddot = -cse_42*(cse_69*j - cse_40*cse_70 - cse_71*cse_73 + cse_74*m*numpy.cos(cse_39))
-    del cse_39, cse_40, cse_42
+    phiddot = -cse_42*(cse_69*j - cse_40*cse_70 - cse_71*cse_73 + cse_74*m*(cos_beta*cos_theta + sin_beta*sin_theta))
+    del cos_beta, cse_40, cse_42, sin_beta
     cse_80 = d*phiddot
-    betaddot = -cse_46*(cse_69*cse_71*j - cse_45*cse_70 - cse_73 + cse_74*m*numpy.cos(cse_44))
-    del cse_44, cse_45, cse_46, cse_69, cse_71, cse_73, cse_74
-    muddot = -cse_50*(cse_48*cse_70 + cse_75 - cse_76*cse_77 - cse_78*numpy.cos(cse_47))
-    del cse_47, cse_48, cse_50
-    psiddot = -cse_53*(cse_52*cse_70 + cse_75*cse_76 - cse_77 - cse_78*numpy.cos(cse_51))
-    del cse_51, cse_52, cse_53, cse_70, cse_76, cse_77, cse_78
+    betaddot = -cse_46*(cse_69*cse_71*j - cse_45*cse_70 - cse_73 + cse_74*m*(cos_phi*cos_theta + sin_phi*sin_theta))
+    del cos_phi, cse_45, cse_46, cse_69, cse_71, cse_73, cse_74, sin_phi
+    muddot = -cse_50*(cse_48*cse_70 + cse_75 - cse_76*cse_77 - cse_78*(cos_psi*cos_theta + sin_psi*sin_theta))
+    del cse_48, cse_50
+    psiddot = -cse_53*(cse_52*cse_70 + cse_75*cse_76 - cse_77 - cse_78*(cos_mu*cos_theta + sin_mu*sin_theta))
+    del cos_mu, cos_theta, cse_52, cse_53, cse_70, cse_76, cse_77, cse_78, sin_mu, sin_theta
     cse_81 = c*psiddot
-    etaddot = -cse_63*(cse_56*cse_80 + cse_60*cse_81 - cse_75*numpy.cos(cse_59) + cse_79 + cse_82*numpy.cos(cse_55) - cse_83*cse_84)
-    del cse_55, cse_56, cse_59, cse_60, cse_63
-    kappaddot = -cse_68*(cse_65*cse_80 + cse_67*cse_81 - cse_75*numpy.cos(cse_66) + cse_79*cse_83 + cse_82*numpy.cos(cse_64) - cse_84)
-    del cse_64, cse_65, cse_66, cse_67, cse_68, cse_75, cse_79, cse_80, cse_81, cse_82, cse_83, cse_84
+    etaddot = -cse_63*(cse_56*cse_80 + cse_60*cse_81 - cse_75*(cos_kappa*cos_psi + sin_kappa*sin_psi) + cse_79 + cse_82*(cos_cse_27*cos_kappa + sin_cse_27*sin_kappa) - cse_83*cse_84)
+    del cos_kappa, cse_56, cse_60, cse_63, sin_kappa
+    kappaddot = -cse_68*(cse_65*cse_80 + cse_67*cse_81 - cse_75*(cos_eta*cos_psi + sin_eta*sin_psi) + cse_79*cse_83 + cse_82*(cos_cse_27*cos_eta + sin_cse_27*sin_eta) - cse_84)
+    del cos_cse_27, cos_eta, cos_psi, cse_65, cse_67, cse_68, cse_75, cse_79, cse_80, cse_81, cse_82, cse_83, cse_84, sin_cse_27, sin_eta, sin_psi
     return (
         phi,  # upper_rocker
         beta,  # upper_link
@@ -664,9 +778,17 @@ def _joints_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_A
     Delta_1 = _clamped_sqrt(cse_6*(cse_5 - w_1)*(cse_7 + w_1)*(rho_5_1 - rho_4_1 + w_1), 8.0*rho_4_1*rho_5_1*w_1*(cse_6 + rho_1_1 + rho_2_1 + rho_3_1))
     del cse_5, cse_6, cse_7, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
     cse_9 = Delta_1*branch_ABCD
-    phi = numpy.arctan2(Wx_1*cse_9 + Wy_1*cse_8, Wx_1*cse_8 - Wy_1*cse_9)
+    phi_y = Wx_1*cse_9 + Wy_1*cse_8
+    phi_x = Wx_1*cse_8 - Wy_1*cse_9
     del Wx_1, Wy_1, cse_8, cse_9
+    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
+    sin_phi = _sin_atan2(phi_y, phi_r)
+    cos_phi = _cos_atan2(phi_x, phi_r)
+    del phi_r
+    phi = numpy.arctan2(phi_y, phi_x)
+    del phi_x, phi_y
     cse_18 = alpha + phi
+    del phi
     cse_19 = numpy.cos(cse_18)
     cse_21 = numpy.sin(cse_18)
     del cse_18
@@ -690,11 +812,18 @@ def _joints_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_A
     Delta_2 = _clamped_sqrt(cse_12*(cse_11 - w_2)*(cse_13 + w_2)*(rho_5_2 - rho_4_2 + w_2), 8.0*rho_4_2*rho_5_2*w_2*(cse_12 + rho_1_2 + rho_2_2 + rho_3_2))
     del cse_11, cse_12, cse_13, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2
     cse_15 = Delta_2*branch_ABFD
-    psi = numpy.arctan2(Wx_2*cse_15 - Wy_2*cse_14, -Wx_2*cse_14 - Wy_2*cse_15)
+    psi_y = Wx_2*cse_15 - Wy_2*cse_14
+    psi_x = -Wx_2*cse_14 - Wy_2*cse_15
     del Wx_2, Wy_2, cse_14, cse_15
-    cse_17 = numpy.cos(psi)
-    cse_20 = numpy.sin(psi)
-    del psi
+    psi_r = numpy.sqrt(numpy.square(psi_x) + numpy.square(psi_y))
+    sin_psi = _sin_atan2(psi_y, psi_r)
+    del psi_y
+    cos_psi = _cos_atan2(psi_x, psi_r)
+    del psi_r, psi_x
+    cse_17 = cos_psi
+    del cos_psi
+    cse_20 = sin_psi
+    del sin_psi
     cse_28 = c*cse_20 + cse_27
     cse_29 = c*cse_17 - a
     size_3 = _power_of_two(numpy.floor(cse_0*numpy.log((1/4)*c + (1/4)*d + (1/4)*f + (1/4)*g)))
@@ -717,20 +846,28 @@ def _joints_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_A
     Delta_3 = _clamped_sqrt(cse_23*(cse_22 - w_3)*(cse_24 + w_3)*(rho_4_3 - rho_3_3 + w_3), 8.0*rho_3_3*rho_4_3*w_3*(cse_23 + rho_1_3 + rho_2_3))
     del cse_22, cse_23, cse_24, rho_1_3, rho_2_3, rho_3_3, rho_4_3
     cse_26 = Delta_3*branch_DFGE
-    eta = numpy.arctan2(Wx_3*cse_26 + Wy_3*cse_25, Wx_3*cse_25 - Wy_3*cse_26)
+    eta_y = Wx_3*cse_26 + Wy_3*cse_25
+    eta_x = Wx_3*cse_25 - Wy_3*cse_26
     del Wx_3, Wy_3, cse_25, cse_26
+    eta_r = numpy.sqrt(numpy.square(eta_x) + numpy.square(eta_y))
+    sin_eta = _sin_atan2(eta_y, eta_r)
+    cos_eta = _cos_atan2(eta_x, eta_r)
+    del eta_r
+    eta = numpy.arctan2(eta_y, eta_x)
+    del eta_x, eta_y
     cse_30 = eta + gamma
+    del eta
     return (
         cse_3*m,  # B_x
         cse_4*m,  # B_y
-        b*numpy.cos(phi) - a,  # C_x
-        b*numpy.sin(phi) + cse_27,  # C_y
+        b*cos_phi - a,  # C_x
+        b*sin_phi + cse_27,  # C_y
         cse_19*d - a,  # E_x
         cse_21*d + cse_27,  # E_y
         c*cse_17 - a,  # F_x
         cse_28,  # F_y
-        cse_29 + g*numpy.cos(eta),  # G_x
-        cse_28 + g*numpy.sin(eta),  # G_y
+        cos_eta*g + cse_29,  # G_x
+        cse_28 + g*sin_eta,  # G_y
         cse_29 + i*numpy.cos(cse_30),  # H_x
         cse_28 + i*numpy.sin(cse_30),  # H_y
         numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2) & numpy.isfinite(w_3) & numpy.isfinite(Delta_3),  # assembled

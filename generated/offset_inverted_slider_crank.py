@@ -57,11 +57,13 @@ def _arguments(check, names, values, lengths=(), signs=()):
                 good = x - x == 0.0
         elif name in signs:
             good = numpy.abs(array) == 1.0
-        elif name in lengths:
-            good = (array >= 1e-305) & (array <= 1e305)
+        elif name in lengths:  # two passes without a temporary; a NaN fails both comparisons
+            good = array.size == 0 or bool(1e-305 <= array.min() and array.max() <= 1e305)
         else:
             good = numpy.isfinite(array)
-        if not (good if array.ndim == 0 else good.all()):
+        if not (good if array.ndim == 0 or name in lengths else good.all()):
+            if name in lengths:
+                good = (array >= 1e-305) & (array <= 1e305)
             bad = float(array if array.ndim == 0 else array[~good].flat[0])
             wanted = ("must be +1 or -1" if name in signs else "must be a positive finite length" if name in lengths
                       else "must be finite")
@@ -117,6 +119,25 @@ def _clamped_sqrt(x, scale):
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
 
 
+def _power_of_two_below(x):
+    """2.0**floor(log2(x)) for positive x (a loop's unit): the largest power of two not above x, from x's exponent.
+
+    ``frexp`` splits x into a mantissa in [0.5, 1) and a power of two, so the
+    power is exact where a logarithm rounded near a power of two could be one off.
+    """
+    return numpy.ldexp(0.5, numpy.frexp(x)[1])
+
+
+def _cos_atan2(x, r):
+    """cos(atan2(y, x)) from r = sqrt(x*x + y*y): x/r, and atan2's 1 or -1 by the sign of x where x = y = 0."""
+    return numpy.where(r != 0.0, x * (1.0 / r), numpy.copysign(1.0, x))
+
+
+def _sin_atan2(y, r):
+    """sin(atan2(y, x)) from r = sqrt(x*x + y*y): y/r, and the signed zero y where x = y = 0."""
+    return numpy.where(r != 0.0, y * (1.0 / r), y)
+
+
 def _power_of_two(exponent):
     """2.0**exponent for whole-number exponents (a loop's unit), bit for bit, without calling pow() a value.
 
@@ -148,7 +169,7 @@ def positions(theta, a, d, e, branch=1, *, check=True):
 
 def _positions_block(theta, a, d, e, branch):
     """The outputs of positions and the assembled mask, for arguments that broadcast together."""
-    size_1 = _power_of_two(numpy.floor(numpy.log((1/3)*a + (1/3)*d + (1/3)*e)/numpy.log(2.0)))
+    size_1 = _power_of_two_below((1/3)*a + (1/3)*d + (1/3)*e)
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
     rho_2_1 = cse_0*d
@@ -195,7 +216,7 @@ def _velocities_block(theta, a, d, e, branch, thetadot):
     cse_8 = cse_1*cse_7
     cse_10 = cse_2*cse_7
     del cse_7
-    size_1 = _power_of_two(numpy.floor(numpy.log((1/3)*a + (1/3)*d + (1/3)*e)/numpy.log(2.0)))
+    size_1 = _power_of_two_below((1/3)*a + (1/3)*d + (1/3)*e)
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
     rho_2_1 = cse_0*d
@@ -210,10 +231,19 @@ def _velocities_block(theta, a, d, e, branch, thetadot):
     Delta_1 = _clamped_sqrt(cse_3*(w_1 - rho_3_1), 2.0*rho_3_1*(cse_3 + rho_1_1 + rho_2_1))
     del cse_3, rho_1_1, rho_2_1, w_1
     cse_4 = Delta_1*branch
-    phi = numpy.arctan2(Wx_1*rho_3_1 - Wy_1*cse_4, -Wx_1*cse_4 - Wy_1*rho_3_1)
+    phi_y = Wx_1*rho_3_1 - Wy_1*cse_4
+    phi_x = -Wx_1*cse_4 - Wy_1*rho_3_1
     del Wx_1, Wy_1, rho_3_1
-    cse_6 = numpy.cos(phi)
-    cse_9 = numpy.sin(phi)
+    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
+    sin_phi = _sin_atan2(phi_y, phi_r)
+    cos_phi = _cos_atan2(phi_x, phi_r)
+    del phi_r
+    phi = numpy.arctan2(phi_y, phi_x)
+    del phi_x, phi_y
+    cse_6 = cos_phi
+    del cos_phi
+    cse_9 = sin_phi
+    del sin_phi
     s = cse_4*size_1
     del cse_4, size_1
     cse_5 = 1/(s)
@@ -253,7 +283,7 @@ def _accelerations_block(theta, a, d, e, branch, thetadot, thetaddot):
     cse_10 = a*cse_2
     cse_11 = cse_10*thetadot
     cse_15 = numpy.square(thetadot)
-    size_1 = _power_of_two(numpy.floor(numpy.log((1/3)*a + (1/3)*d + (1/3)*e)/numpy.log(2.0)))
+    size_1 = _power_of_two_below((1/3)*a + (1/3)*d + (1/3)*e)
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
     rho_2_1 = cse_0*d
@@ -267,10 +297,19 @@ def _accelerations_block(theta, a, d, e, branch, thetadot, thetaddot):
     Delta_1 = _clamped_sqrt(cse_3*(w_1 - rho_3_1), 2.0*rho_3_1*(cse_3 + rho_1_1 + rho_2_1))
     del cse_3, rho_1_1, rho_2_1, w_1
     cse_4 = Delta_1*branch
-    phi = numpy.arctan2(Wx_1*rho_3_1 - Wy_1*cse_4, -Wx_1*cse_4 - Wy_1*rho_3_1)
+    phi_y = Wx_1*rho_3_1 - Wy_1*cse_4
+    phi_x = -Wx_1*cse_4 - Wy_1*rho_3_1
     del Wx_1, Wy_1, rho_3_1
-    cse_6 = numpy.cos(phi)
-    cse_9 = numpy.sin(phi)
+    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
+    sin_phi = _sin_atan2(phi_y, phi_r)
+    cos_phi = _cos_atan2(phi_x, phi_r)
+    del phi_r
+    phi = numpy.arctan2(phi_y, phi_x)
+    del phi_x, phi_y
+    cse_6 = cos_phi
+    del cos_phi
+    cse_9 = sin_phi
+    del sin_phi
     s = cse_4*size_1
     del cse_4, size_1
     cse_5 = 1/(s)
@@ -316,7 +355,7 @@ def joints(theta, a, d, e, branch=1, *, check=True):
 
 def _joints_block(theta, a, d, e, branch):
     """The outputs of joints and the assembled mask, for arguments that broadcast together."""
-    size_1 = _power_of_two(numpy.floor(numpy.log((1/3)*a + (1/3)*d + (1/3)*e)/numpy.log(2.0)))
+    size_1 = _power_of_two_below((1/3)*a + (1/3)*d + (1/3)*e)
     cse_0 = 1/(size_1)
     del size_1
     rho_1_1 = a*cse_0
@@ -330,10 +369,16 @@ def _joints_block(theta, a, d, e, branch):
     Delta_1 = _clamped_sqrt(cse_1*(w_1 - rho_3_1), 2.0*rho_3_1*(cse_1 + rho_1_1 + rho_2_1))
     del cse_1, rho_1_1, rho_2_1, w_1
     cse_2 = Delta_1*branch
-    phi = numpy.arctan2(Wx_1*rho_3_1 - Wy_1*cse_2, -Wx_1*cse_2 - Wy_1*rho_3_1)
+    phi_y = Wx_1*rho_3_1 - Wy_1*cse_2
+    phi_x = -Wx_1*cse_2 - Wy_1*rho_3_1
     del Wx_1, Wy_1, cse_2, rho_3_1
+    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
+    sin_phi = _sin_atan2(phi_y, phi_r)
+    del phi_y
+    cos_phi = _cos_atan2(phi_x, phi_r)
+    del phi_r, phi_x
     return (
-        d - e*numpy.sin(phi),  # T_x
-        e*numpy.cos(phi),  # T_y
+        d - e*sin_phi,  # T_x
+        cos_phi*e,  # T_y
         numpy.isfinite(Delta_1),  # assembled
     )

@@ -57,11 +57,13 @@ def _arguments(check, names, values, lengths=(), signs=()):
                 good = x - x == 0.0
         elif name in signs:
             good = numpy.abs(array) == 1.0
-        elif name in lengths:
-            good = (array >= 1e-305) & (array <= 1e305)
+        elif name in lengths:  # two passes without a temporary; a NaN fails both comparisons
+            good = array.size == 0 or bool(1e-305 <= array.min() and array.max() <= 1e305)
         else:
             good = numpy.isfinite(array)
-        if not (good if array.ndim == 0 else good.all()):
+        if not (good if array.ndim == 0 or name in lengths else good.all()):
+            if name in lengths:
+                good = (array >= 1e-305) & (array <= 1e305)
             bad = float(array if array.ndim == 0 else array[~good].flat[0])
             wanted = ("must be +1 or -1" if name in signs else "must be a positive finite length" if name in lengths
                       else "must be finite")
@@ -117,6 +119,25 @@ def _clamped_sqrt(x, scale):
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
 
 
+def _power_of_two_below(x):
+    """2.0**floor(log2(x)) for positive x (a loop's unit): the largest power of two not above x, from x's exponent.
+
+    ``frexp`` splits x into a mantissa in [0.5, 1) and a power of two, so the
+    power is exact where a logarithm rounded near a power of two could be one off.
+    """
+    return numpy.ldexp(0.5, numpy.frexp(x)[1])
+
+
+def _cos_atan2(x, r):
+    """cos(atan2(y, x)) from r = sqrt(x*x + y*y): x/r, and atan2's 1 or -1 by the sign of x where x = y = 0."""
+    return numpy.where(r != 0.0, x * (1.0 / r), numpy.copysign(1.0, x))
+
+
+def _sin_atan2(y, r):
+    """sin(atan2(y, x)) from r = sqrt(x*x + y*y): y/r, and the signed zero y where x = y = 0."""
+    return numpy.where(r != 0.0, y * (1.0 / r), y)
+
+
 def _power_of_two(exponent):
     """2.0**exponent for whole-number exponents (a loop's unit), bit for bit, without calling pow() a value.
 
@@ -148,7 +169,7 @@ def positions(theta, a, b, offset, branch=1, *, check=True):
 
 def _positions_block(theta, a, b, offset, branch):
     """The outputs of positions and the assembled mask, for arguments that broadcast together."""
-    size_1 = _power_of_two(numpy.floor(numpy.log((1/3)*a + (1/3)*b + (1/3)*abs(offset))/numpy.log(2.0)))
+    size_1 = _power_of_two_below((1/3)*a + (1/3)*b + (1/3)*abs(offset))
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
     rho_2_1 = cse_0*offset
@@ -187,18 +208,24 @@ def velocities(theta, a, b, offset, branch=1, thetadot=0.0, *, check=True):
 
 def _velocities_block(theta, a, b, offset, branch, thetadot):
     """The outputs of velocities and the assembled mask, for arguments that broadcast together."""
-    cse_1 = numpy.cos(theta)
-    size_1 = _power_of_two(numpy.floor(numpy.log((1/3)*a + (1/3)*b + (1/3)*abs(offset))/numpy.log(2.0)))
+    sin_theta = numpy.sin(theta)
+    cos_theta = numpy.cos(theta)
+    cse_1 = cos_theta
+    size_1 = _power_of_two_below((1/3)*a + (1/3)*b + (1/3)*abs(offset))
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
     rho_2_1 = cse_0*offset
     Wx_1 = -cse_1*rho_1_1
-    Wy_1 = rho_2_1 - rho_1_1*numpy.sin(theta)
+    Wy_1 = rho_2_1 - rho_1_1*sin_theta
     rho_3_1 = b*cse_0
     del cse_0
     Delta_1 = _clamped_sqrt((rho_3_1 - Wy_1)*(Wy_1 + rho_3_1), 2.0*rho_3_1*(rho_1_1 + rho_3_1 + abs(rho_2_1)))
     del rho_1_1, rho_2_1
     cse_2 = Delta_1*branch
+    beta_r = numpy.sqrt(numpy.square(Wy_1) + numpy.square(cse_2))
+    sin_beta = _sin_atan2(Wy_1, beta_r)
+    cos_beta = _cos_atan2(cse_2, beta_r)
+    del beta_r
     cse_3 = a*rho_3_1*thetadot/(Delta_1*branch)
     del rho_3_1
     beta = numpy.arctan2(Wy_1, cse_2)
@@ -207,8 +234,8 @@ def _velocities_block(theta, a, b, offset, branch, thetadot):
     del Wx_1, cse_2, size_1
     betadot = -cse_1*cse_3/b
     del cse_1
-    sdot = cse_3*numpy.sin(beta - theta)
-    del cse_3
+    sdot = cse_3*(cos_theta*sin_beta - cos_beta*sin_theta)
+    del cos_beta, cos_theta, cse_3, sin_beta, sin_theta
     return (
         beta,  # conrod
         s,  # slider
@@ -235,11 +262,13 @@ def accelerations(theta, a, b, offset, branch=1, thetadot=0.0, thetaddot=0.0, *,
 
 def _accelerations_block(theta, a, b, offset, branch, thetadot, thetaddot):
     """The outputs of accelerations and the assembled mask, for arguments that broadcast together."""
-    cse_1 = numpy.cos(theta)
-    cse_2 = numpy.sin(theta)
+    sin_theta = numpy.sin(theta)
+    cos_theta = numpy.cos(theta)
+    cse_1 = cos_theta
+    cse_2 = sin_theta
     cse_6 = a*thetadot
     cse_9 = a*numpy.square(thetadot)
-    size_1 = _power_of_two(numpy.floor(numpy.log((1/3)*a + (1/3)*b + (1/3)*abs(offset))/numpy.log(2.0)))
+    size_1 = _power_of_two_below((1/3)*a + (1/3)*b + (1/3)*abs(offset))
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
     rho_2_1 = cse_0*offset
@@ -250,23 +279,26 @@ def _accelerations_block(theta, a, b, offset, branch, thetadot, thetaddot):
     Delta_1 = _clamped_sqrt((rho_3_1 - Wy_1)*(Wy_1 + rho_3_1), 2.0*rho_3_1*(rho_1_1 + rho_3_1 + abs(rho_2_1)))
     del rho_1_1, rho_2_1
     cse_3 = Delta_1*branch
+    beta_r = numpy.sqrt(numpy.square(Wy_1) + numpy.square(cse_3))
+    sin_beta = _sin_atan2(Wy_1, beta_r)
+    cos_beta = _cos_atan2(cse_3, beta_r)
+    del beta_r
     cse_4 = rho_3_1/(Delta_1*branch)
     del rho_3_1
     cse_5 = cse_4/b
     beta = numpy.arctan2(Wy_1, cse_3)
     del Wy_1
-    cse_7 = beta - theta
-    cse_8 = numpy.sin(cse_7)
+    cse_8 = cos_theta*sin_beta - cos_beta*sin_theta
     s = size_1*(cse_3 - Wx_1)
     del Wx_1, cse_3, size_1
     betadot = -cse_1*cse_5*cse_6
     cse_10 = b*numpy.square(betadot)
     sdot = cse_4*cse_6*cse_8
     del cse_6
-    betaddot = cse_5*(cse_10*numpy.sin(beta) - a*cse_1*thetaddot + cse_2*cse_9)
+    betaddot = cse_5*(cse_10*sin_beta - a*cse_1*thetaddot + cse_2*cse_9)
     del cse_1, cse_2, cse_5
-    sddot = cse_4*(a*cse_8*thetaddot - cse_10 - cse_9*numpy.cos(cse_7))
-    del cse_10, cse_4, cse_7, cse_8, cse_9
+    sddot = cse_4*(a*cse_8*thetaddot - cse_10 - cse_9*(cos_beta*cos_theta + sin_beta*sin_theta))
+    del cos_beta, cos_theta, cse_10, cse_4, cse_8, cse_9, sin_beta, sin_theta
     return (
         beta,  # conrod
         s,  # slider
@@ -297,7 +329,7 @@ def _joints_block(theta, a, b, offset, branch):
     """The outputs of joints and the assembled mask, for arguments that broadcast together."""
     cse_1 = numpy.cos(theta)
     cse_2 = numpy.sin(theta)
-    size_1 = _power_of_two(numpy.floor(numpy.log((1/3)*a + (1/3)*b + (1/3)*abs(offset))/numpy.log(2.0)))
+    size_1 = _power_of_two_below((1/3)*a + (1/3)*b + (1/3)*abs(offset))
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
     rho_2_1 = cse_0*offset

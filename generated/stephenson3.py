@@ -57,11 +57,13 @@ def _arguments(check, names, values, lengths=(), signs=()):
                 good = x - x == 0.0
         elif name in signs:
             good = numpy.abs(array) == 1.0
-        elif name in lengths:
-            good = (array >= 1e-305) & (array <= 1e305)
+        elif name in lengths:  # two passes without a temporary; a NaN fails both comparisons
+            good = array.size == 0 or bool(1e-305 <= array.min() and array.max() <= 1e305)
         else:
             good = numpy.isfinite(array)
-        if not (good if array.ndim == 0 else good.all()):
+        if not (good if array.ndim == 0 or name in lengths else good.all()):
+            if name in lengths:
+                good = (array >= 1e-305) & (array <= 1e305)
             bad = float(array if array.ndim == 0 else array[~good].flat[0])
             wanted = ("must be +1 or -1" if name in signs else "must be a positive finite length" if name in lengths
                       else "must be finite")
@@ -115,6 +117,25 @@ def _evaluate(kernel, arguments, shape, keys, flags):
 def _clamped_sqrt(x, scale):
     """sqrt(x), taking x >= -TOLERANCE*scale as rounding at a toggle (0) and anything lower as no assembly (NaN)."""
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
+
+
+def _power_of_two_below(x):
+    """2.0**floor(log2(x)) for positive x (a loop's unit): the largest power of two not above x, from x's exponent.
+
+    ``frexp`` splits x into a mantissa in [0.5, 1) and a power of two, so the
+    power is exact where a logarithm rounded near a power of two could be one off.
+    """
+    return numpy.ldexp(0.5, numpy.frexp(x)[1])
+
+
+def _cos_atan2(x, r):
+    """cos(atan2(y, x)) from r = sqrt(x*x + y*y): x/r, and atan2's 1 or -1 by the sign of x where x = y = 0."""
+    return numpy.where(r != 0.0, x * (1.0 / r), numpy.copysign(1.0, x))
+
+
+def _sin_atan2(y, r):
+    """sin(atan2(y, x)) from r = sqrt(x*x + y*y): y/r, and the signed zero y where x = y = 0."""
+    return numpy.where(r != 0.0, y * (1.0 / r), y)
 
 
 def _power_of_two(exponent):

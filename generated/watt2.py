@@ -57,11 +57,13 @@ def _arguments(check, names, values, lengths=(), signs=()):
                 good = x - x == 0.0
         elif name in signs:
             good = numpy.abs(array) == 1.0
-        elif name in lengths:
-            good = (array >= 1e-305) & (array <= 1e305)
+        elif name in lengths:  # two passes without a temporary; a NaN fails both comparisons
+            good = array.size == 0 or bool(1e-305 <= array.min() and array.max() <= 1e305)
         else:
             good = numpy.isfinite(array)
-        if not (good if array.ndim == 0 else good.all()):
+        if not (good if array.ndim == 0 or name in lengths else good.all()):
+            if name in lengths:
+                good = (array >= 1e-305) & (array <= 1e305)
             bad = float(array if array.ndim == 0 else array[~good].flat[0])
             wanted = ("must be +1 or -1" if name in signs else "must be a positive finite length" if name in lengths
                       else "must be finite")
@@ -115,6 +117,25 @@ def _evaluate(kernel, arguments, shape, keys, flags):
 def _clamped_sqrt(x, scale):
     """sqrt(x), taking x >= -TOLERANCE*scale as rounding at a toggle (0) and anything lower as no assembly (NaN)."""
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
+
+
+def _power_of_two_below(x):
+    """2.0**floor(log2(x)) for positive x (a loop's unit): the largest power of two not above x, from x's exponent.
+
+    ``frexp`` splits x into a mantissa in [0.5, 1) and a power of two, so the
+    power is exact where a logarithm rounded near a power of two could be one off.
+    """
+    return numpy.ldexp(0.5, numpy.frexp(x)[1])
+
+
+def _cos_atan2(x, r):
+    """cos(atan2(y, x)) from r = sqrt(x*x + y*y): x/r, and atan2's 1 or -1 by the sign of x where x = y = 0."""
+    return numpy.where(r != 0.0, x * (1.0 / r), numpy.copysign(1.0, x))
+
+
+def _sin_atan2(y, r):
+    """sin(atan2(y, x)) from r = sqrt(x*x + y*y): y/r, and the signed zero y where x = y = 0."""
+    return numpy.where(r != 0.0, y * (1.0 / r), y)
 
 
 def _power_of_two(exponent):
@@ -236,15 +257,16 @@ def velocities(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_
 
 def _velocities_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG, thetadot):
     """The outputs of velocities and the assembled mask, for arguments that broadcast together."""
+    sin_theta = numpy.sin(theta)
+    cos_theta = numpy.cos(theta)
     cse_0 = 1/(numpy.log(2.0))
-    cse_24 = -theta
     size_1 = _power_of_two(numpy.floor(cse_0*numpy.log((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d)))
     cse_1 = 1/(size_1)
     del size_1
     rho_1_1 = cse_1*d
     rho_2_1 = a*cse_1
-    Wx_1 = rho_2_1*numpy.cos(theta) - rho_1_1
-    Wy_1 = rho_2_1*numpy.sin(theta)
+    Wx_1 = cos_theta*rho_2_1 - rho_1_1
+    Wy_1 = rho_2_1*sin_theta
     rho_3_1 = b*cse_1
     rho_4_1 = c*cse_1
     del cse_1
@@ -261,15 +283,33 @@ def _velocities_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, br
     del cse_2, cse_3, cse_4, rho_1_1, rho_2_1, rho_3_1, rho_4_1
     cse_8 = Delta_1*branch_ABCD
     cse_9 = Wx_1*cse_8
+    beta_y = -Wy_1*cse_7 - cse_9
+    phi_y = Wy_1*cse_11 - cse_9
+    del cse_9
     cse_10 = Wy_1*cse_8
-    del cse_8
+    del Wy_1, cse_8
+    beta_x = cse_10 - Wx_1*cse_7
+    del cse_7
+    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
+    sin_beta = _sin_atan2(beta_y, beta_r)
+    cos_beta = _cos_atan2(beta_x, beta_r)
+    del beta_r
+    phi_x = Wx_1*cse_11 + cse_10
+    del Wx_1, cse_10, cse_11
+    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
+    sin_phi = _sin_atan2(phi_y, phi_r)
+    cos_phi = _cos_atan2(phi_x, phi_r)
+    del phi_r
     cse_25 = 2.0*a*cse_5*thetadot/(Delta_1*branch_ABCD)
     del cse_5
-    beta = numpy.arctan2(-Wy_1*cse_7 - cse_9, cse_10 - Wx_1*cse_7)
-    del cse_7
-    phi = numpy.arctan2(Wy_1*cse_11 - cse_9, Wx_1*cse_11 + cse_10)
-    del Wx_1, Wy_1, cse_10, cse_11, cse_9
+    beta = numpy.arctan2(beta_y, beta_x)
+    del beta_x, beta_y
+    phi = numpy.arctan2(phi_y, phi_x)
+    del phi_x, phi_y
     cse_13 = alpha + phi
+    sin_cse_13 = numpy.sin(cse_13)
+    cos_cse_13 = numpy.cos(cse_13)
+    del cse_13
     size_2 = _power_of_two(numpy.floor(cse_0*numpy.log((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy))))
     del cse_0
     cse_12 = 1/(size_2)
@@ -278,8 +318,8 @@ def _velocities_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, br
     rho_2_2 = cse_12*gy
     rho_3_2 = cse_12*e
     rho_4_2 = cse_12*d
-    Wx_2 = rho_3_2*numpy.cos(cse_13) - rho_1_2 + rho_4_2
-    Wy_2 = rho_3_2*numpy.sin(cse_13) - rho_2_2
+    Wx_2 = cos_cse_13*rho_3_2 - rho_1_2 + rho_4_2
+    Wy_2 = rho_3_2*sin_cse_13 - rho_2_2
     rho_5_2 = cse_12*f
     rho_6_2 = cse_12*g
     del cse_12
@@ -296,20 +336,37 @@ def _velocities_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, br
     del cse_14, cse_15, cse_16, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2, rho_6_2
     cse_20 = Delta_2*branch_DEFG
     cse_21 = Wx_2*cse_20
+    mu_y = -Wy_2*cse_19 - cse_21
+    psi_y = Wy_2*cse_23 - cse_21
+    del cse_21
     cse_22 = Wy_2*cse_20
-    del cse_20
-    mu = numpy.arctan2(-Wy_2*cse_19 - cse_21, cse_22 - Wx_2*cse_19)
+    del Wy_2, cse_20
+    mu_x = cse_22 - Wx_2*cse_19
     del cse_19
-    psi = numpy.arctan2(Wy_2*cse_23 - cse_21, Wx_2*cse_23 + cse_22)
-    del Wx_2, Wy_2, cse_21, cse_22, cse_23
-    betadot = -cse_25*numpy.sin(cse_24 + phi)/b
-    phidot = -cse_25*numpy.sin(beta + cse_24)/c
-    del cse_24, cse_25
+    mu_r = numpy.sqrt(numpy.square(mu_x) + numpy.square(mu_y))
+    sin_mu = _sin_atan2(mu_y, mu_r)
+    cos_mu = _cos_atan2(mu_x, mu_r)
+    del mu_r
+    psi_x = Wx_2*cse_23 + cse_22
+    del Wx_2, cse_22, cse_23
+    psi_r = numpy.sqrt(numpy.square(psi_x) + numpy.square(psi_y))
+    sin_psi = _sin_atan2(psi_y, psi_r)
+    cos_psi = _cos_atan2(psi_x, psi_r)
+    del psi_r
+    mu = numpy.arctan2(mu_y, mu_x)
+    del mu_x, mu_y
+    psi = numpy.arctan2(psi_y, psi_x)
+    del psi_x, psi_y
+    betadot = -cse_25*(cos_theta*sin_phi - cos_phi*sin_theta)/b
+    del cos_phi, sin_phi
+    phidot = -cse_25*(cos_theta*sin_beta - cos_beta*sin_theta)/c
+    del cos_beta, cos_theta, cse_25, sin_beta, sin_theta
     cse_26 = 2.0*cse_17*e*phidot/(Delta_2*branch_DEFG)
     del cse_17
-    mudot = cse_26*numpy.sin(cse_13 - psi)/f
-    psidot = cse_26*numpy.sin(cse_13 - mu)/g
-    del cse_13, cse_26
+    mudot = cse_26*(cos_psi*sin_cse_13 - cos_cse_13*sin_psi)/f
+    del cos_psi, sin_psi
+    psidot = cse_26*(cos_mu*sin_cse_13 - cos_cse_13*sin_mu)/g
+    del cos_cse_13, cos_mu, cse_26, sin_cse_13, sin_mu
     return (
         beta,  # coupler
         phi,  # rocker
@@ -340,8 +397,9 @@ def accelerations(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, bran
 
 def _accelerations_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG, thetadot, thetaddot):
     """The outputs of accelerations and the assembled mask, for arguments that broadcast together."""
+    sin_theta = numpy.sin(theta)
+    cos_theta = numpy.cos(theta)
     cse_0 = 1/(numpy.log(2.0))
-    cse_24 = -theta
     cse_29 = a*thetadot
     cse_44 = a*thetaddot
     cse_45 = numpy.square(thetadot)
@@ -350,8 +408,8 @@ def _accelerations_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD,
     del size_1
     rho_1_1 = cse_1*d
     rho_2_1 = a*cse_1
-    Wx_1 = rho_2_1*numpy.cos(theta) - rho_1_1
-    Wy_1 = rho_2_1*numpy.sin(theta)
+    Wx_1 = cos_theta*rho_2_1 - rho_1_1
+    Wy_1 = rho_2_1*sin_theta
     rho_3_1 = b*cse_1
     rho_4_1 = c*cse_1
     del cse_1
@@ -368,24 +426,39 @@ def _accelerations_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD,
     del cse_2, cse_3, cse_4, rho_1_1, rho_2_1, rho_3_1, rho_4_1
     cse_8 = Delta_1*branch_ABCD
     cse_9 = Wx_1*cse_8
+    phi_y = Wy_1*cse_11 - cse_9
+    beta_y = -Wy_1*cse_7 - cse_9
+    del cse_9
     cse_10 = Wy_1*cse_8
-    del cse_8
+    del Wy_1, cse_8
+    phi_x = Wx_1*cse_11 + cse_10
+    del cse_11
+    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
+    sin_phi = _sin_atan2(phi_y, phi_r)
+    cos_phi = _cos_atan2(phi_x, phi_r)
+    del phi_r
+    beta_x = cse_10 - Wx_1*cse_7
+    del Wx_1, cse_10, cse_7
+    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
+    sin_beta = _sin_atan2(beta_y, beta_r)
+    cos_beta = _cos_atan2(beta_x, beta_r)
+    del beta_r
     cse_27 = 2.0*cse_5/(Delta_1*branch_ABCD)
     del cse_5
     cse_28 = cse_27/b
     cse_32 = cse_27/c
     del cse_27
-    beta = numpy.arctan2(-Wy_1*cse_7 - cse_9, cse_10 - Wx_1*cse_7)
-    del cse_7
-    cse_30 = beta + cse_24
-    cse_31 = numpy.sin(cse_30)
-    phi = numpy.arctan2(Wy_1*cse_11 - cse_9, Wx_1*cse_11 + cse_10)
-    del Wx_1, Wy_1, cse_10, cse_11, cse_9
+    beta = numpy.arctan2(beta_y, beta_x)
+    del beta_x, beta_y
+    cse_31 = cos_theta*sin_beta - cos_beta*sin_theta
+    phi = numpy.arctan2(phi_y, phi_x)
+    del phi_x, phi_y
     cse_13 = alpha + phi
-    cse_25 = cse_24 + phi
-    del cse_24
-    cse_26 = numpy.sin(cse_25)
-    cse_47 = numpy.cos(beta - phi)
+    sin_cse_13 = numpy.sin(cse_13)
+    cos_cse_13 = numpy.cos(cse_13)
+    del cse_13
+    cse_26 = cos_theta*sin_phi - cos_phi*sin_theta
+    cse_47 = cos_beta*cos_phi + sin_beta*sin_phi
     size_2 = _power_of_two(numpy.floor(cse_0*numpy.log((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy))))
     del cse_0
     cse_12 = 1/(size_2)
@@ -394,8 +467,8 @@ def _accelerations_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD,
     rho_2_2 = cse_12*gy
     rho_3_2 = cse_12*e
     rho_4_2 = cse_12*d
-    Wx_2 = rho_3_2*numpy.cos(cse_13) - rho_1_2 + rho_4_2
-    Wy_2 = rho_3_2*numpy.sin(cse_13) - rho_2_2
+    Wx_2 = cos_cse_13*rho_3_2 - rho_1_2 + rho_4_2
+    Wy_2 = rho_3_2*sin_cse_13 - rho_2_2
     rho_5_2 = cse_12*f
     rho_6_2 = cse_12*g
     del cse_12
@@ -412,25 +485,35 @@ def _accelerations_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD,
     del cse_14, cse_15, cse_16, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2, rho_6_2
     cse_20 = Delta_2*branch_DEFG
     cse_21 = Wx_2*cse_20
+    psi_y = Wy_2*cse_23 - cse_21
+    mu_y = -Wy_2*cse_19 - cse_21
+    del cse_21
     cse_22 = Wy_2*cse_20
-    del cse_20
+    del Wy_2, cse_20
+    psi_x = Wx_2*cse_23 + cse_22
+    del cse_23
+    psi_r = numpy.sqrt(numpy.square(psi_x) + numpy.square(psi_y))
+    sin_psi = _sin_atan2(psi_y, psi_r)
+    cos_psi = _cos_atan2(psi_x, psi_r)
+    del psi_r
+    mu_x = cse_22 - Wx_2*cse_19
+    del Wx_2, cse_19, cse_22
+    mu_r = numpy.sqrt(numpy.square(mu_x) + numpy.square(mu_y))
+    sin_mu = _sin_atan2(mu_y, mu_r)
+    cos_mu = _cos_atan2(mu_x, mu_r)
+    del mu_r
     cse_36 = 2.0*cse_17/(Delta_2*branch_DEFG)
     del cse_17
     cse_37 = cse_36/f
     cse_41 = cse_36/g
     del cse_36
-    mu = numpy.arctan2(-Wy_2*cse_19 - cse_21, cse_22 - Wx_2*cse_19)
-    del cse_19
-    cse_39 = cse_13 - mu
-    cse_40 = numpy.sin(cse_39)
-    psi = numpy.arctan2(Wy_2*cse_23 - cse_21, Wx_2*cse_23 + cse_22)
-    del Wx_2, Wy_2, cse_21, cse_22, cse_23
-    cse_33 = -psi
-    cse_34 = cse_13 + cse_33
-    del cse_13
-    cse_35 = numpy.sin(cse_34)
-    cse_51 = numpy.cos(cse_33 + mu)
-    del cse_33
+    mu = numpy.arctan2(mu_y, mu_x)
+    del mu_x, mu_y
+    cse_40 = cos_mu*sin_cse_13 - cos_cse_13*sin_mu
+    psi = numpy.arctan2(psi_y, psi_x)
+    del psi_x, psi_y
+    cse_35 = cos_psi*sin_cse_13 - cos_cse_13*sin_psi
+    cse_51 = cos_mu*cos_psi + sin_mu*sin_psi
     betadot = -cse_26*cse_28*cse_29
     cse_46 = numpy.square(betadot)
     phidot = -cse_29*cse_31*cse_32
@@ -445,15 +528,15 @@ def _accelerations_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD,
     psidot = cse_38*cse_40*cse_41
     del cse_38
     cse_48 = g*numpy.square(psidot)
-    betaddot = cse_28*(a*cse_45*numpy.cos(cse_25) + b*cse_46*cse_47 - cse_26*cse_44 - cse_43)
-    del cse_25, cse_26, cse_28
-    phiddot = cse_32*(a*cse_45*numpy.cos(cse_30) + b*cse_46 - cse_31*cse_44 - cse_43*cse_47)
-    del cse_30, cse_31, cse_32, cse_43, cse_44, cse_45, cse_46, cse_47
+    betaddot = cse_28*(a*cse_45*(cos_phi*cos_theta + sin_phi*sin_theta) + b*cse_46*cse_47 - cse_26*cse_44 - cse_43)
+    del cos_phi, cse_26, cse_28, sin_phi
+    phiddot = cse_32*(a*cse_45*(cos_beta*cos_theta + sin_beta*sin_theta) + b*cse_46 - cse_31*cse_44 - cse_43*cse_47)
+    del cos_beta, cos_theta, cse_31, cse_32, cse_43, cse_44, cse_45, cse_46, cse_47, sin_beta, sin_theta
     cse_49 = e*phiddot
-    muddot = cse_37*(cse_35*cse_49 - cse_48 + cse_50*numpy.cos(cse_34) + cse_51*cse_52)
-    del cse_34, cse_35, cse_37
-    psiddot = cse_41*(cse_40*cse_49 - cse_48*cse_51 + cse_50*numpy.cos(cse_39) + cse_52)
-    del cse_39, cse_40, cse_41, cse_48, cse_49, cse_50, cse_51, cse_52
+    muddot = cse_37*(cse_35*cse_49 - cse_48 + cse_50*(cos_cse_13*cos_psi + sin_cse_13*sin_psi) + cse_51*cse_52)
+    del cos_psi, cse_35, cse_37, sin_psi
+    psiddot = cse_41*(cse_40*cse_49 - cse_48*cse_51 + cse_50*(cos_cse_13*cos_mu + sin_cse_13*sin_mu) + cse_52)
+    del cos_cse_13, cos_mu, cse_40, cse_41, cse_48, cse_49, cse_50, cse_51, cse_52, sin_cse_13, sin_mu
     return (
         beta,  # coupler
         phi,  # rocker
@@ -517,10 +600,16 @@ def _joints_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch
     del cse_4, cse_5, cse_6, rho_1_1, rho_2_1, rho_3_1, rho_4_1
     cse_9 = Delta_1*branch_ABCD
     cse_10 = Wx_1*cse_9
+    beta_y = -Wy_1*cse_8 - cse_10
     cse_11 = Wy_1*cse_9
     del cse_9
-    beta = numpy.arctan2(-Wy_1*cse_8 - cse_10, cse_11 - Wx_1*cse_8)
+    beta_x = cse_11 - Wx_1*cse_8
     del cse_8
+    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
+    sin_beta = _sin_atan2(beta_y, beta_r)
+    del beta_y
+    cos_beta = _cos_atan2(beta_x, beta_r)
+    del beta_r, beta_x
     phi = numpy.arctan2(Wy_1*cse_12 - cse_10, Wx_1*cse_12 + cse_11)
     del Wx_1, Wy_1, cse_10, cse_11, cse_12
     cse_14 = alpha + phi
@@ -553,16 +642,22 @@ def _joints_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch
     Delta_2 = _clamped_sqrt(cse_18*(cse_17 - w_2)*(cse_19 + w_2)*(rho_6_2 - rho_5_2 + w_2), 8.0*rho_5_2*rho_6_2*w_2*(cse_18 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
     del cse_17, cse_18, cse_19, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2, rho_6_2
     cse_21 = Delta_2*branch_DEFG
-    mu = numpy.arctan2(-Wx_2*cse_21 - Wy_2*cse_20, Wy_2*cse_21 - Wx_2*cse_20)
+    mu_y = -Wx_2*cse_21 - Wy_2*cse_20
+    mu_x = Wy_2*cse_21 - Wx_2*cse_20
     del Wx_2, Wy_2, cse_20, cse_21
+    mu_r = numpy.sqrt(numpy.square(mu_x) + numpy.square(mu_y))
+    sin_mu = _sin_atan2(mu_y, mu_r)
+    del mu_y
+    cos_mu = _cos_atan2(mu_x, mu_r)
+    del mu_r, mu_x
     return (
         cse_22,  # B_x
         cse_23,  # B_y
-        b*numpy.cos(beta) + cse_22,  # C_x
-        b*numpy.sin(beta) + cse_23,  # C_y
+        b*cos_beta + cse_22,  # C_x
+        b*sin_beta + cse_23,  # C_y
         cse_24,  # E_x
         cse_25,  # E_y
-        cse_24 + f*numpy.cos(mu),  # F_x
-        cse_25 + f*numpy.sin(mu),  # F_y
+        cos_mu*f + cse_24,  # F_x
+        cse_25 + f*sin_mu,  # F_y
         numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2),  # assembled
     )

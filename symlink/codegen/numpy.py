@@ -7,7 +7,10 @@ sweep of crank angles, or of link lengths.
 The NaN of a square root that cannot be taken (:class:`ClampedSqrt`) spreads
 to everything that depends on it; each function also returns ``assembled``,
 the mask of the inputs where the linkage closes, so callers never have to
-guess what a NaN means.
+guess what a NaN means.  The sines and cosines that speeds and accelerations
+need come from the solved angles' ``atan2`` arguments
+(:func:`~symlink.codegen.trigonometry.angle_sums`): full kinematics call the
+transcendental functions no more often than positions do.
 
 >>> from symlink.catalog import fourbar
 >>> source = numpy_module([("rocker_angle", fourbar().program(["phi"]), "Rocker angle.")])
@@ -34,6 +37,7 @@ from ..linkage import is_branch_name
 from ..position import TOLERANCE
 from .loading import load_numpy_module
 from .program import format_default, is_flag, straight_line
+from .trigonometry import angle_sums
 
 if TYPE_CHECKING:
     from ..linkage import Linkage, Program
@@ -74,6 +78,10 @@ class NumPyCodePrinter(NumPyPrinter):
 
     def _print_Pow(self, expr, rational=False):
         if expr.base == 2 and isinstance(expr.exp, sp.floor):  # a loop's unit: the module header defines it
+            logarithm = expr.exp.args[0]
+            if logarithm.is_Mul and len(logarithm.args) == 2 and sp.log(2) ** -1 in logarithm.args:
+                (argument,) = [arg for arg in logarithm.args if arg != sp.log(2) ** -1][0].args
+                return f"_power_of_two_below({self._print(argument)})"
             return f"_power_of_two({self._print(expr.exp)})"
         if expr.exp == -1:
             return f"1/{self.parenthesize(expr.base, 1000)}"
@@ -104,6 +112,12 @@ class NumPyCodePrinter(NumPyPrinter):
 
     def _print_Integer(self, expr):
         return f"{float(expr)!r}"
+
+    def _print_CosineOfAtan2(self, expr):  # the module header defines _cos_atan2 and _sin_atan2
+        return f"_cos_atan2({self._print(expr.args[0])}, {self._print(expr.args[1])})"
+
+    def _print_SineOfAtan2(self, expr):
+        return f"_sin_atan2({self._print(expr.args[0])}, {self._print(expr.args[1])})"
 
     def _print_ClampedSqrt(self, expr):  # the module header defines _clamped_sqrt
         return f"_clamped_sqrt({self._print(expr.args[0])}, {self._print(expr.args[1])})"
@@ -158,11 +172,13 @@ def _arguments(check, names, values, lengths=(), signs=()):
                 good = x - x == 0.0
         elif name in signs:
             good = numpy.abs(array) == 1.0
-        elif name in lengths:
-            good = (array >= 1e-305) & (array <= 1e305)
+        elif name in lengths:  # two passes without a temporary; a NaN fails both comparisons
+            good = array.size == 0 or bool(1e-305 <= array.min() and array.max() <= 1e305)
         else:
             good = numpy.isfinite(array)
-        if not (good if array.ndim == 0 else good.all()):
+        if not (good if array.ndim == 0 or name in lengths else good.all()):
+            if name in lengths:
+                good = (array >= 1e-305) & (array <= 1e305)
             bad = float(array if array.ndim == 0 else array[~good].flat[0])
             wanted = ("must be +1 or -1" if name in signs else "must be a positive finite length" if name in lengths
                       else "must be finite")
@@ -257,8 +273,9 @@ def numpy_function(program: Program, name: str, doc: str = "") -> str:
     later line needs it, so that its arrays are reused while they are in cache.
     """
     code = straight_line(program)
-    printer = NumPyCodePrinter()
     arguments = [s.name for s in code.arguments]
+    code = angle_sums(code, set(arguments))
+    printer = NumPyCodePrinter()
     lengths = tuple(s.name for s in code.arguments if s.is_positive)
     signs = tuple(a for a in arguments if is_branch_name(a))
     signature = ", ".join([f"{a}={format_default(code.defaults[a])}" if a in code.defaults else a
@@ -319,6 +336,25 @@ BLOCK = {block!r}
 def _clamped_sqrt(x, scale):
     """sqrt(x), taking x >= -TOLERANCE*scale as rounding at a toggle (0) and anything lower as no assembly (NaN)."""
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
+
+
+def _power_of_two_below(x):
+    """2.0**floor(log2(x)) for positive x (a loop's unit): the largest power of two not above x, from x's exponent.
+
+    ``frexp`` splits x into a mantissa in [0.5, 1) and a power of two, so the
+    power is exact where a logarithm rounded near a power of two could be one off.
+    """
+    return numpy.ldexp(0.5, numpy.frexp(x)[1])
+
+
+def _cos_atan2(x, r):
+    """cos(atan2(y, x)) from r = sqrt(x*x + y*y): x/r, and atan2's 1 or -1 by the sign of x where x = y = 0."""
+    return numpy.where(r != 0.0, x * (1.0 / r), numpy.copysign(1.0, x))
+
+
+def _sin_atan2(y, r):
+    """sin(atan2(y, x)) from r = sqrt(x*x + y*y): y/r, and the signed zero y where x = y = 0."""
+    return numpy.where(r != 0.0, y * (1.0 / r), y)
 
 
 def _power_of_two(exponent):

@@ -26,7 +26,7 @@ from ..position import ClampedSqrt
 if TYPE_CHECKING:
     from ..linkage import Program
 
-__all__ = ["StraightLine", "straight_line", "named_straight_line", "format_default", "is_flag", "CSE_PREFIX"]
+__all__ = ["StraightLine", "straight_line", "named_straight_line", "format_default", "is_flag", "FreshNames", "CSE_PREFIX"]
 
 #: The prefix of the temporaries that common-subexpression elimination introduces.
 CSE_PREFIX = "cse_"
@@ -113,3 +113,23 @@ def is_flag(expr: sp.Basic) -> bool:
     (True, True, False)
     """
     return isinstance(expr, (Relational, BooleanFunction, BooleanAtom))
+
+
+class FreshNames:
+    """Names for new temporaries that collide neither with each other, nor with ``taken``, nor with ``reserved`` words.
+
+    >>> fresh = FreshNames({"x"}, reserved={"x_"})
+    >>> fresh("x"), fresh("x"), fresh("y")
+    ('x__', 'x___', 'y')
+    """
+
+    def __init__(self, taken, reserved=frozenset()):
+        self.taken = set(taken)
+        self.reserved = reserved
+
+    def __call__(self, wanted: str) -> str:
+        name = wanted
+        while name in self.taken or name in self.reserved:
+            name += "_"
+        self.taken.add(name)
+        return name

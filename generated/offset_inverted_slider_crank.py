@@ -130,12 +130,13 @@ def _power_of_two_below(x):
 
 def _cos_atan2(x, r):
     """cos(atan2(y, x)) from r = sqrt(x*x + y*y): x/r, and atan2's 1 or -1 by the sign of x where x = y = 0."""
-    return numpy.where(r != 0.0, x * (1.0 / r), numpy.copysign(1.0, x))
+    nonzero = r != 0.0  # a quotient only where it is one: no division by zero, no warning
+    return numpy.where(nonzero, x, numpy.copysign(1.0, x)) / numpy.where(nonzero, r, 1.0)
 
 
 def _sin_atan2(y, r):
     """sin(atan2(y, x)) from r = sqrt(x*x + y*y): y/r, and the signed zero y where x = y = 0."""
-    return numpy.where(r != 0.0, y * (1.0 / r), y)
+    return y / numpy.where(r != 0.0, r, 1.0)
 
 
 def _power_of_two(exponent):

@@ -107,3 +107,36 @@ def assert_agree(actual: dict, expected: dict, angles: set[str], rtol: float, wh
 
 def angles_of(name: str, outputs) -> set[str]:
     return angle_outputs(catalog_linkage(name), list(outputs))
+
+
+def atan2_angle_case():
+    """``(program, arguments, expected)``: q = atan2(y, x) with cos q, sin q, cos t, sin t, sin(q - t) and cos(q - t).
+
+    The arguments start with zeros of both signs (where atan2 picks the quadrant) and the axes; the expected
+    values are NumPy's own calls.  For the printers' sines and cosines of solved angles (``angle_sums``).
+    """
+    import sympy as sp
+    from symlink.linkage import Program
+    x, y, t, q = sp.symbols("x y t q", real=True)
+    program = Program((x, y, t), ((q, sp.atan2(y, x)),),
+                      {"q": q, "cos_q": sp.cos(q), "sin_q": sp.sin(q), "sin_t": sp.sin(t), "cos_t": sp.cos(t),
+                       "sin_difference": sp.sin(q - t), "cos_difference": sp.cos(q - t)})
+    rng = numpy.random.default_rng(5)
+    xs = numpy.concatenate([[0.0, -0.0, 0.0, -0.0, 3.0, -3.0, 0.0, 0.0], rng.normal(size=200)])
+    ys = numpy.concatenate([[0.0, 0.0, -0.0, -0.0, 0.0, -0.0, 2.0, -2.0], rng.normal(size=200)])
+    ts = rng.uniform(-4, 4, size=xs.size)
+    angle = numpy.arctan2(ys, xs)
+    expected = {"q": angle, "cos_q": numpy.cos(angle), "sin_q": numpy.sin(angle), "sin_t": numpy.sin(ts),
+                "cos_t": numpy.cos(ts), "sin_difference": numpy.sin(angle - ts), "cos_difference": numpy.cos(angle - ts)}
+    return program, {"x": xs, "y": ys, "t": ts}, expected
+
+
+def assert_atan2_angles(result: dict, expected: dict) -> None:
+    """``result`` agrees with :func:`atan2_angle_case`'s expected values: a few ulps of 1, atan2's exact values at zero."""
+    for key, want in expected.items():  # a few units in the last place of 1 (angle - ts itself rounds by 4e-16)
+        numpy.testing.assert_allclose(result[key], want, rtol=0, atol=1.5e-15 if "difference" in key else 4.5e-16,
+                                      err_msg=key)
+    # where x = y = 0, atan2 picks 0 or pi by the sign of x, and the sine keeps y's signed zero
+    numpy.testing.assert_array_equal(result["cos_q"][:8], [1.0, -1.0, 1.0, -1.0, 1.0, -1.0, 0.0, 0.0])
+    numpy.testing.assert_array_equal(result["sin_q"][:8], [0.0, 0.0, -0.0, -0.0, 0.0, -0.0, 1.0, -1.0])
+    numpy.testing.assert_array_equal(numpy.signbit(result["sin_q"][:6]), numpy.signbit(expected["sin_q"][:6]))

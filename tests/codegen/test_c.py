@@ -16,7 +16,8 @@ import numpy
 import pytest
 import sympy as sp
 
-from export_checks import angles_of, assert_agree, closed_form_catalog, export_sets, random_arguments, rounding_spread
+from export_checks import (angles_of, assert_agree, assert_atan2_angles, atan2_angle_case, closed_form_catalog, export_sets,
+                           random_arguments, rounding_spread)
 from references import SEED003_LINKAGE, mp_fourbar, seed003_positions
 from symlink.codegen.c import c_code, c_comment, c_function, c_identifier, c_library, _CPrinter
 from symlink.codegen.numpy import load_numpy_module, numpy_module
@@ -264,29 +265,14 @@ def test_sines_and_cosines_of_solved_angles_come_from_their_atan2(tmp_path):
     Checked against NumPy's own cos(arctan2(y, x)) (zeros of both signs included, where atan2
     decides the quadrant) and the generated C calls no sin or cos of q.
     """
-    x, y, t = sp.symbols("x y t", real=True)
-    q = sp.Symbol("q", real=True)
-    program = Program((x, y, t), ((q, sp.atan2(y, x)),),
-                      {"q": q, "cos_q": sp.cos(q), "sin_q": sp.sin(q), "sin_t": sp.sin(t), "cos_t": sp.cos(t),
-                       "sin_difference": sp.sin(q - t), "cos_difference": sp.cos(q - t)})
+    program, arguments, expected = atan2_angle_case()
     function = c_function(program, "angles", "")
     kernel = function.definition.split("SYMLINK_LOOP")[0]
     assert "sin(q" not in kernel and "cos(q" not in kernel and "symlink_cos_atan2(" in kernel
     assert kernel.count("sin(") - kernel.count("_sin(") == 1  # sin(t), once, and no other call
     library = build(tmp_path, *c_library([function], "angles"), "angles")
-    rng = numpy.random.default_rng(5)
-    xs = numpy.concatenate([[0.0, -0.0, 0.0, -0.0, 3.0, -3.0, 0.0, 0.0], rng.normal(size=200)])
-    ys = numpy.concatenate([[0.0, 0.0, -0.0, -0.0, 0.0, -0.0, 2.0, -2.0], rng.normal(size=200)])
-    ts = rng.uniform(-4, 4, size=xs.size)
-    result = call(library, function, dict(x=xs, y=ys, t=ts))
-    angle = numpy.arctan2(ys, xs)
-    expected = {"q": angle, "cos_q": numpy.cos(angle), "sin_q": numpy.sin(angle), "sin_t": numpy.sin(ts),
-                "cos_t": numpy.cos(ts), "sin_difference": numpy.sin(angle - ts), "cos_difference": numpy.cos(angle - ts)}
-    for key, want in expected.items():  # a few units in the last place of 1 (angle - ts itself rounds by 4e-16)
-        numpy.testing.assert_allclose(result[key], want, rtol=0, atol=1.5e-15 if "difference" in key else 4.5e-16,
-                                      err_msg=key)
-    numpy.testing.assert_array_equal(result["cos_q"][:8], [1.0, -1.0, 1.0, -1.0, 1.0, -1.0, 0.0, 0.0])
-    numpy.testing.assert_array_equal(result["sin_q"][:8], [0.0, 0.0, -0.0, -0.0, 0.0, -0.0, 1.0, -1.0])
+    result = call(library, function, arguments)
+    assert_atan2_angles(result, expected)
     assert result["assembled"].all()
 
 

@@ -8,10 +8,10 @@ from __future__ import annotations
 
 import re
 
-import numpy
 import pytest
 import sympy as sp
 
+from export_checks import assert_atan2_angles, atan2_angle_case
 from symlink.codegen.numpy import load_numpy_module, numpy_module
 from symlink.codegen.program import straight_line
 from symlink.codegen.trigonometry import angle_sums
@@ -21,27 +21,11 @@ from symlink.scene import catalog_linkage
 
 def test_numpy_module_takes_sines_and_cosines_of_a_solved_angle_from_its_atan2():
     """cos q, sin q, sin(q - t), cos(q - t) for q = atan2(y, x) without calling them, zeros of both signs included."""
-    x, y, t, q = sp.symbols("x y t q", real=True)
-    program = Program((x, y, t), ((q, sp.atan2(y, x)),),
-                      {"q": q, "cos_q": sp.cos(q), "sin_q": sp.sin(q), "sin_t": sp.sin(t), "cos_t": sp.cos(t),
-                       "sin_difference": sp.sin(q - t), "cos_difference": sp.cos(q - t)})
+    program, arguments, expected = atan2_angle_case()
     source = numpy_module([("angles", program, "")])
     kernel = source.split("def _angles_block")[1]
     assert "numpy.sin(q" not in kernel and "numpy.cos(q" not in kernel and "_cos_atan2(" in kernel
-    rng = numpy.random.default_rng(5)
-    xs = numpy.concatenate([[0.0, -0.0, 0.0, -0.0, 3.0, -3.0, 0.0, 0.0], rng.normal(size=200)])
-    ys = numpy.concatenate([[0.0, 0.0, -0.0, -0.0, 0.0, -0.0, 2.0, -2.0], rng.normal(size=200)])
-    ts = rng.uniform(-4, 4, size=xs.size)
-    result = load_numpy_module(source)["angles"](xs, ys, ts)
-    angle = numpy.arctan2(ys, xs)
-    expected = {"q": angle, "cos_q": numpy.cos(angle), "sin_q": numpy.sin(angle), "sin_t": numpy.sin(ts),
-                "cos_t": numpy.cos(ts), "sin_difference": numpy.sin(angle - ts), "cos_difference": numpy.cos(angle - ts)}
-    for key, want in expected.items():  # a few units in the last place of 1 (angle - ts itself rounds by 4e-16)
-        numpy.testing.assert_allclose(result[key], want, rtol=0, atol=1.5e-15 if "difference" in key else 4.5e-16,
-                                      err_msg=key)
-    # where x = y = 0, atan2 picks 0 or pi by the sign of x, and the sine keeps y's signed zero
-    numpy.testing.assert_array_equal(result["cos_q"][:8], [1.0, -1.0, 1.0, -1.0, 1.0, -1.0, 0.0, 0.0])
-    numpy.testing.assert_array_equal(numpy.signbit(result["sin_q"][:6]), numpy.signbit(ys[:6]))
+    assert_atan2_angles(load_numpy_module(source)["angles"](**arguments), expected)
 
 
 def _transcendental_calls(source: str) -> int:

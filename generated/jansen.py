@@ -174,7 +174,7 @@ def _positions_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branc
     cse_1 = (1/5)*a + (1/5)*l + (1/5)*m
     cse_3 = numpy.cos(theta)
     cse_4 = numpy.sin(theta)
-    size_1 = _power_of_two(numpy.floor(cse_0*numpy.log((1/5)*b + cse_1 + (1/5)*j)))
+    size_1 = _power_of_two_below((1/5)*b + cse_1 + (1/5)*j)
     cse_2 = 1/(size_1)
     del size_1
     rho_1_1 = a*cse_2
@@ -204,7 +204,7 @@ def _positions_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branc
     cse_25 = alpha + phi
     beta = numpy.arctan2(cse_11 - Wy_1*cse_13, -Wx_1*cse_13 - cse_12)
     del Wx_1, Wy_1, cse_11, cse_12, cse_13
-    size_2 = _power_of_two(numpy.floor(cse_0*numpy.log((1/5)*c + cse_1 + (1/5)*k)))
+    size_2 = _power_of_two_below((1/5)*c + cse_1 + (1/5)*k)
     del cse_1
     cse_14 = 1/(size_2)
     del size_2
@@ -243,7 +243,7 @@ def _positions_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branc
     del Wx_2, Wy_2, cse_19, cse_21, cse_22
     psi = numpy.arctan2(psi_y, psi_x)
     del psi_x, psi_y
-    size_3 = _power_of_two(numpy.floor(cse_0*numpy.log((1/4)*c + (1/4)*d + (1/4)*f + (1/4)*g)))
+    size_3 = _power_of_two_below((1/4)*c + (1/4)*d + (1/4)*f + (1/4)*g)
     del cse_0
     cse_24 = 1/(size_3)
     del size_3
@@ -309,7 +309,7 @@ def _velocities_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, bran
     cse_3 = cos_theta
     cse_4 = sin_theta
     cse_39 = 2.0*m*thetadot
-    size_1 = _power_of_two(numpy.floor(cse_0*numpy.log((1/5)*b + cse_1 + (1/5)*j)))
+    size_1 = _power_of_two_below((1/5)*b + cse_1 + (1/5)*j)
     cse_2 = 1/(size_1)
     del size_1
     rho_1_1 = a*cse_2
@@ -360,7 +360,7 @@ def _velocities_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, bran
     del cse_27
     beta = numpy.arctan2(beta_y, beta_x)
     del beta_x, beta_y
-    size_2 = _power_of_two(numpy.floor(cse_0*numpy.log((1/5)*c + cse_1 + (1/5)*k)))
+    size_2 = _power_of_two_below((1/5)*c + cse_1 + (1/5)*k)
     del cse_1
     cse_15 = 1/(size_2)
     del size_2
@@ -410,7 +410,7 @@ def _velocities_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, bran
     del mu_x, mu_y
     psi = numpy.arctan2(psi_y, psi_x)
     del psi_x, psi_y
-    size_3 = _power_of_two(numpy.floor(cse_0*numpy.log((1/4)*c + (1/4)*d + (1/4)*f + (1/4)*g)))
+    size_3 = _power_of_two_below((1/4)*c + (1/4)*d + (1/4)*f + (1/4)*g)
     del cse_0
     cse_26 = 1/(size_3)
     del size_3
@@ -514,7 +514,7 @@ def _accelerations_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, b
     cse_70 = m*thetaddot
     cse_74 = numpy.square(thetadot)
     cse_78 = cse_74*m
-    size_1 = _power_of_two(numpy.floor(cse_0*numpy.log((1/5)*b + cse_1 + (1/5)*j)))
+    size_1 = _power_of_two_below((1/5)*b + cse_1 + (1/5)*j)
     cse_2 = 1/(size_1)
     del size_1
     rho_1_1 = a*cse_2
@@ -571,7 +571,7 @@ def _accelerations_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, b
     del beta_x, beta_y
     cse_40 = cos_theta*sin_beta - cos_beta*sin_theta
     cse_71 = cos_beta*cos_phi + sin_beta*sin_phi
-    size_2 = _power_of_two(numpy.floor(cse_0*numpy.log((1/5)*c + cse_1 + (1/5)*k)))
+    size_2 = _power_of_two_below((1/5)*c + cse_1 + (1/5)*k)
     del cse_1
     cse_15 = 1/(size_2)
     del size_2
@@ -627,7 +627,7 @@ def _accelerations_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, b
     del psi_x, psi_y
     cse_48 = cos_theta*sin_psi - cos_psi*sin_theta
     cse_76 = cos_mu*cos_psi + sin_mu*sin_psi
-    size_3 = _power_of_two(numpy.floor(cse_0*numpy.log((1/4)*c + (1/4)*d + (1/4)*f + (1/4)*g)))
+    size_3 = _power_of_two_below((1/4)*c + (1/4)*d + (1/4)*f + (1/4)*g)
     del cse_0
     cse_26 = 1/(size_3)
     del size_3
@@ -760,7 +760,7 @@ def _joints_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_A
     cse_3 = numpy.cos(theta)
     cse_4 = numpy.sin(theta)
     cse_27 = -l
-    size_1 = _power_of_two(numpy.floor(cse_0*numpy.log((1/5)*b + cse_1 + (1/5)*j)))
+    size_1 = _power_of_two_below((1/5)*b + cse_1 + (1/5)*j)
     cse_2 = 1/(size_1)
     del size_1
     rho_1_1 = a*cse_2
@@ -793,7 +793,7 @@ def _joints_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_A
     cse_19 = numpy.cos(cse_18)
     cse_21 = numpy.sin(cse_18)
     del cse_18
-    size_2 = _power_of_two(numpy.floor(cse_0*numpy.log((1/5)*c + cse_1 + (1/5)*k)))
+    size_2 = _power_of_two_below((1/5)*c + cse_1 + (1/5)*k)
     del cse_1
     cse_10 = 1/(size_2)
     del size_2
@@ -827,7 +827,7 @@ def _joints_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_A
     del sin_psi
     cse_28 = c*cse_20 + cse_27
     cse_29 = c*cse_17 - a
-    size_3 = _power_of_two(numpy.floor(cse_0*numpy.log((1/4)*c + (1/4)*d + (1/4)*f + (1/4)*g)))
+    size_3 = _power_of_two_below((1/4)*c + (1/4)*d + (1/4)*f + (1/4)*g)
     del cse_0
     cse_16 = 1/(size_3)
     del size_3

@@ -171,7 +171,7 @@ def positions(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD=1, branch_D
 def _positions_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch_DEFG):
     """The outputs of positions and the assembled mask, for arguments that broadcast together."""
     cse_0 = 1/(numpy.log(2.0))
-    size_1 = _power_of_two(numpy.floor(cse_0*numpy.log((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d)))
+    size_1 = _power_of_two_below((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d)
     cse_1 = 1/(size_1)
     del size_1
     rho_1_1 = cse_1*d
@@ -200,7 +200,7 @@ def _positions_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, bra
     phi = numpy.arctan2(Wy_1*cse_10 - cse_8, Wx_1*cse_10 + cse_9)
     del Wx_1, Wy_1, cse_10, cse_8, cse_9
     cse_12 = alpha + phi
-    size_2 = _power_of_two(numpy.floor(cse_0*numpy.log((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy))))
+    size_2 = _power_of_two_below((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy))
     del cse_0
     cse_11 = 1/(size_2)
     del size_2
@@ -261,7 +261,7 @@ def _velocities_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, br
     sin_theta = numpy.sin(theta)
     cos_theta = numpy.cos(theta)
     cse_0 = 1/(numpy.log(2.0))
-    size_1 = _power_of_two(numpy.floor(cse_0*numpy.log((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d)))
+    size_1 = _power_of_two_below((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d)
     cse_1 = 1/(size_1)
     del size_1
     rho_1_1 = cse_1*d
@@ -311,7 +311,7 @@ def _velocities_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, br
     sin_cse_13 = numpy.sin(cse_13)
     cos_cse_13 = numpy.cos(cse_13)
     del cse_13
-    size_2 = _power_of_two(numpy.floor(cse_0*numpy.log((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy))))
+    size_2 = _power_of_two_below((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy))
     del cse_0
     cse_12 = 1/(size_2)
     del size_2
@@ -404,7 +404,7 @@ def _accelerations_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD,
     cse_29 = a*thetadot
     cse_44 = a*thetaddot
     cse_45 = numpy.square(thetadot)
-    size_1 = _power_of_two(numpy.floor(cse_0*numpy.log((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d)))
+    size_1 = _power_of_two_below((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d)
     cse_1 = 1/(size_1)
     del size_1
     rho_1_1 = cse_1*d
@@ -460,7 +460,7 @@ def _accelerations_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD,
     del cse_13
     cse_26 = cos_theta*sin_phi - cos_phi*sin_theta
     cse_47 = cos_beta*cos_phi + sin_beta*sin_phi
-    size_2 = _power_of_two(numpy.floor(cse_0*numpy.log((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy))))
+    size_2 = _power_of_two_below((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy))
     del cse_0
     cse_12 = 1/(size_2)
     del size_2
@@ -577,7 +577,7 @@ def _joints_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch
     cse_3 = numpy.sin(theta)
     cse_22 = a*cse_2
     cse_23 = a*cse_3
-    size_1 = _power_of_two(numpy.floor(cse_0*numpy.log((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d)))
+    size_1 = _power_of_two_below((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d)
     cse_1 = 1/(size_1)
     del size_1
     rho_1_1 = cse_1*d
@@ -620,7 +620,7 @@ def _joints_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch
     del cse_14
     cse_24 = cse_15*e + d
     cse_25 = cse_16*e
-    size_2 = _power_of_two(numpy.floor(cse_0*numpy.log((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy))))
+    size_2 = _power_of_two_below((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy))
     del cse_0
     cse_13 = 1/(size_2)
     del size_2

@@ -73,15 +73,18 @@ def docstring_text(text: str) -> str:
 class NumPyCodePrinter(NumPyPrinter):
     """NumPy printer with symlink's clamped square root and plain ``numpy.`` names."""
 
-    def __init__(self):
+    def __init__(self, inverse_log_two: frozenset = frozenset()):
         super().__init__({"fully_qualified_modules": True, "inline": True, "allow_unknown_functions": False})
+        #: Temporaries that common-subexpression elimination made of 1/log(2), shared by several loop units.
+        self.inverse_log_two = inverse_log_two | {1 / sp.log(2)}
 
     def _print_Pow(self, expr, rational=False):
         if expr.base == 2 and isinstance(expr.exp, sp.floor):  # a loop's unit: the module header defines it
-            logarithm = expr.exp.args[0]
-            if logarithm.is_Mul and len(logarithm.args) == 2 and sp.log(2) ** -1 in logarithm.args:
-                (argument,) = [arg for arg in logarithm.args if arg != sp.log(2) ** -1][0].args
-                return f"_power_of_two_below({self._print(argument)})"
+            factors = sp.Mul.make_args(expr.exp.args[0])  # floor(log(mean)/log(2)): the unit of that mean
+            if len(factors) == 2 and any(f in self.inverse_log_two for f in factors):
+                logarithm = factors[1] if factors[0] in self.inverse_log_two else factors[0]
+                if isinstance(logarithm, sp.log) and len(logarithm.args) == 1:
+                    return f"_power_of_two_below({self._print(logarithm.args[0])})"
             return f"_power_of_two({self._print(expr.exp)})"
         if expr.exp == -1:
             return f"1/{self.parenthesize(expr.base, 1000)}"
@@ -275,7 +278,7 @@ def numpy_function(program: Program, name: str, doc: str = "") -> str:
     code = straight_line(program)
     arguments = [s.name for s in code.arguments]
     code = angle_sums(code, set(arguments))
-    printer = NumPyCodePrinter()
+    printer = NumPyCodePrinter(frozenset(s for s, e in code.assignments if e == 1 / sp.log(2)))
     lengths = tuple(s.name for s in code.arguments if s.is_positive)
     signs = tuple(a for a in arguments if is_branch_name(a))
     signature = ", ".join([f"{a}={format_default(code.defaults[a])}" if a in code.defaults else a

@@ -214,6 +214,19 @@ def _power_of_two():
     return load_numpy_module(numpy_module([("f", fourbar().program(["rocker"]), "")]))["_power_of_two"]
 
 
+def test_a_loop_unit_is_the_largest_power_of_two_not_above_the_mean_length():
+    """Against the exponent of each number's hexadecimal form (``0x1.8p+3`` is 1.5 * 2**3), at powers of two and next to them."""
+    import math
+    unit = load_numpy_module(numpy_module([("f", fourbar().program(["rocker"]), "")]))["_power_of_two_below"]
+    powers = numpy.ldexp(1.0, numpy.arange(-1020, 1023))
+    rng = numpy.random.default_rng(11)
+    values = numpy.concatenate([powers, numpy.nextafter(powers, 0.0), numpy.nextafter(powers, numpy.inf),
+                                10.0 ** rng.uniform(-300, 300, 2000)])
+    expected = [math.ldexp(1.0, int(float(v).hex().split("p")[1])) for v in values]
+    assert unit(values).tolist() == expected
+    assert [unit(float(v)) for v in values[:50]] == expected[:50]  # one number, as for lengths given alone
+
+
 def test_the_power_of_two_of_a_loop_unit_is_exact_for_every_whole_exponent():
     import math
     power = _power_of_two()

@@ -54,7 +54,7 @@ from .program import StraightLine, _dependency_order, is_flag, named_straight_li
 if TYPE_CHECKING:
     from ..linkage import Linkage, Program
 
-__all__ = ["CFunction", "angle_sums", "c_function", "c_library", "c_code", "c_identifier", "c_comment", "c_packed", "export_files"]
+__all__ = ["CFunction", "angle_sums", "c_function", "c_library", "c_code", "c_identifier", "c_comment", "c_packed", "PACKED_CALL", "export_files"]
 
 #: Integer powers up to this size are written as multiplications.
 LARGEST_MULTIPLIED_POWER = 4
@@ -448,24 +448,43 @@ def c_function(program: Program, name: str, doc: str = "") -> CFunction:
                      prototype, "\n".join(lines) + "\n")
 
 
-def c_packed(function: CFunction, lengths: Sequence[str] = (), signs: Sequence[str] = ()) -> str:
-    """A wrapper ``<name>_packed(n, pointers, steps, numbers, flags)`` of a loop function that checks its arguments.
+#: The one argument of every ``<name>_packed`` wrapper (:func:`c_packed`), defined once a source.
+PACKED_CALL = """#ifndef SYMLINK_PACKED_CALL
+#define SYMLINK_PACKED_CALL
+/* One call of a <name>_packed wrapper: n configurations; the arguments' arrays and steps in calling
+ * order; the outputs as the rows of two blocks, numbers (the number outputs, n doubles a row) and
+ * flags (the true/false outputs, then assembled, n bytes a row). */
+struct symlink_packed_call {
+    size_t n;
+    void *const *pointers;
+    const ptrdiff_t *steps;
+    double *numbers;
+    unsigned char *flags;
+};
+#endif
+"""
 
-    ``pointers`` and ``steps`` hold the arguments' arrays and steps in
-    calling order; the outputs are the rows of two blocks, ``numbers`` (the
-    number outputs, ``n`` doubles a row, in order) and ``flags`` (the
-    true/false outputs, then ``assembled``, ``n`` bytes a row).  It first
-    checks the arguments as the NumPy module does (``signs`` exactly +1 or
-    -1, ``lengths`` from 1e-305 to 1e305, every other value finite) and
-    returns ``k + 1`` for the first argument ``k`` that breaks that, without
-    evaluating; else it runs the loop and returns 0.  A caller from another
-    language (symlink's compiled backend through ctypes) then passes five
-    values a call, and checks nothing itself.
+
+def c_packed(function: CFunction, lengths: Sequence[str] = (), signs: Sequence[str] = ()) -> str:
+    """A wrapper ``<name>_packed(call)`` of a loop function that checks its arguments, ``call`` one struct.
+
+    ``call`` (``struct symlink_packed_call``, :data:`PACKED_CALL`, defined
+    before the wrapper) holds the count ``n``, the arguments' arrays and
+    steps in calling order, and the outputs as the rows of two blocks,
+    ``numbers`` (the number outputs, ``n`` doubles a row, in order) and
+    ``flags`` (the true/false outputs, then ``assembled``, ``n`` bytes a
+    row).  It first checks the arguments as the NumPy module does (``signs``
+    exactly +1 or -1, ``lengths`` from 1e-305 to 1e305, every other value
+    finite) and returns ``k + 1`` for the first argument ``k`` that breaks
+    that, without evaluating; else it runs the loop and returns 0.  A caller
+    from another language (symlink's compiled backend through ctypes) then
+    passes one pointer a call, to a struct it fills once for many calls, and
+    checks nothing itself.
 
     >>> from symlink.catalog import fourbar
     >>> print(next(line for line in c_packed(c_function(fourbar().program(["rocker"]), "rocker")).splitlines()
     ...            if line.startswith("int ")))
-    int rocker_packed(size_t n, void *const *pointers, const ptrdiff_t *steps, double *numbers, unsigned char *flags)
+    int rocker_packed(const struct symlink_packed_call *call)
     """
     checker = f"symlink_{function.name}_valid"
     tests = []
@@ -477,11 +496,12 @@ def c_packed(function: CFunction, lengths: Sequence[str] = (), signs: Sequence[s
     rows = {False: 0, True: 0}
     outputs = []
     for flag in list(function.flags) + [True]:
-        block = "flags" if flag else "numbers"
+        block = "call->flags" if flag else "call->numbers"
         outputs.append(f"{block} + {rows[flag]} * n")
         rows[flag] += 1
     call = ",\n        ".join(["n"] + arguments + outputs)
-    return (f"/* Whether the n values of x (one value at a step of 0) are finite (kind 0), +1 or -1 (1), or a length\n"
+    return (PACKED_CALL + "\n"
+            f"/* Whether the n values of x (one value at a step of 0) are finite (kind 0), +1 or -1 (1), or a length\n"
             f" * from 1e-305 to 1e305 (2). */\n"
             f"static int {checker}(const double *x, ptrdiff_t step, size_t n, int kind)\n{{\n"
             f"    const size_t m = step == 0 ? 1 : n;\n"
@@ -491,9 +511,10 @@ def c_packed(function: CFunction, lengths: Sequence[str] = (), signs: Sequence[s
             f"        good &= kind == 1 ? (v == 1.0 || v == -1.0) : kind == 2 ? (v >= 1e-305 && v <= 1e305) "
             f": v - v == 0.0;\n"
             f"    }}\n    return good;\n}}\n\n"
-            f"int {function.name}_packed(size_t n, void *const *pointers, const ptrdiff_t *steps, double *numbers, "
-            f"unsigned char *flags)\n{{\n"
-            + ("    (void)numbers;\n" if rows[False] == 0 else "")
+            f"int {function.name}_packed(const struct symlink_packed_call *call)\n{{\n"
+            f"    const size_t n = call->n;\n"
+            + (f"    void *const *pointers = call->pointers;\n    const ptrdiff_t *steps = call->steps;\n"
+               if function.arguments else "")
             + "".join(tests)
             + f"    {function.name}({call});\n    return 0;\n}}\n")
 

@@ -504,12 +504,17 @@ class _Outputs:
     def __init__(self, numbers: int, flags: int, length: int, rows: Sequence[tuple[bool, int]],
                  names: Sequence[str], slots: tuple[int, int]):
         self.length = length
-        number_block = numpy.empty((numbers, length))
-        flag_block = numpy.empty((flags, length), dtype=bool)
-        self.rows = [flag_block[row] if flag else number_block[row] for flag, row in rows]
+        # One allocation whose address ctypes knows (an array's address costs more to ask NumPy for than
+        # the allocation): the number rows, then the true/false rows.
+        size = numbers * length
+        memory: Any = (ctypes.c_double * (size + (flags * length + 7) // 8))()  # a buffer NumPy reads
+        address = ctypes.addressof(memory)
+        number_block = numpy.frombuffer(memory, numpy.float64, size)
+        flag_block = numpy.frombuffer(memory, numpy.bool_, flags * length, 8 * size)
+        # Rows (and any view of them a caller makes) have the block as their base.
+        self.rows = [(flag_block if flag else number_block)[row * length:(row + 1) * length] for flag, row in rows]
         self.results = dict(zip(names, self.rows))
-        self._call = _PackedCall(length, slots[0], slots[1], _address(number_block) if numbers else None,
-                                 _address(flag_block))
+        self._call = _PackedCall(length, slots[0], slots[1], address, address + 8 * size)
         self.call = ctypes.c_void_p(ctypes.addressof(self._call))
         self._objects = self.rows + [number_block, flag_block]  # a held result shows first in its rows
         del number_block, flag_block

@@ -447,3 +447,22 @@ def test_a_value_does_not_depend_on_the_size_or_place_of_its_call(compiler, coun
         part = function(theta=theta[start:start + count].copy(), **values)
         for key, array in part.items():
             assert numpy.array_equal(array, whole[key][start:start + count], equal_nan=True), (start, key)
+
+
+def test_small_calls_read_a_new_number_object_and_read_only_arrays(compiler):
+    fast = CompiledSolver(catalog_linkage("fourbar"), ["rocker"]).function
+    theta = numpy.linspace(0.0, 6.0, 10)
+    theta.flags.writeable = False  # its address comes another way than a writable array's
+    lengths = dict(b=66.0, c=56.0, d=80.0, branch=1.0)
+    first = None
+    for a in (20.0, 21.0, 20.0, 20):  # a new object each time, then an int: each written into its slot
+        small = fast(theta=theta, a=a, **lengths)
+        general = fast(theta=list(theta), a=a, **lengths)  # a list: the general path
+        assert fast._held[0] is theta
+        assert numpy.array_equal(small["rocker"], general["rocker"]), a
+        if first is None:
+            first = small["rocker"].copy()
+        elif a == 21.0:
+            assert not numpy.array_equal(small["rocker"], first)
+        else:
+            assert numpy.array_equal(small["rocker"], first)

@@ -56,6 +56,9 @@ if TYPE_CHECKING:
 
 __all__ = ["CFunction", "angle_sums", "c_function", "c_library", "c_code", "c_identifier", "c_comment", "c_packed", "PACKED_CALL", "export_files"]
 
+#: The C type of true/false values inside a loop (1 and 0), before they are written out as bytes.
+FLAG_LANE = "unsigned short"
+
 #: Integer powers up to this size are written as multiplications.
 LARGEST_MULTIPLIED_POWER = 4
 
@@ -386,24 +389,23 @@ def c_function(program: Program, name: str, doc: str = "") -> CFunction:
     # vectorisable however many loops the linkage has.
     finite = f"{' + '.join(f'0.0 * {r.name}' for r in code.roots)} == 0.0 ? 1.0 : 0.0" if code.roots else "1.0"
     lines += [f"    return {finite};", "}", ""]
-    # The kernel over m configurations whose arguments are contiguous; true/false outputs as floats
-    # 1 and 0. No byte lane: a byte output makes GCC vectorise by the bytes of a register (32
-    # configurations at a time with AVX2), so that a call of fewer than 32 runs one configuration
-    # at a time, about 5x slower. Floats (8 at a time with AVX2, 16 with AVX-512) keep the two
-    # doubles a step that run this loop of vector math calls as fast as 32 did (by 4, doubles
-    # alone, it is about 1.2x slower).
+    # The kernel over m configurations whose arguments are contiguous; true/false outputs as 16-bit
+    # 1 and 0. GCC vectorises the loop by its narrowest lane: byte outputs made it take 32
+    # configurations at a time with AVX2 (64 with AVX-512), so that a call of fewer ran one at a
+    # time, about 5x slower; 16-bit lanes take 16 (32), which measured fastest (floats, 8 at a
+    # time, ran positions 5-10 % slower; doubles alone, 4 at a time, 20 % slower).
     numbers_out = [o for o, flag in zip(output_parameters, flags) if not flag]
     flags_out = [o for o, flag in zip(output_parameters, flags) if flag] + [assembled]
     run = f"symlink_{name}_run"
     lines += [f"SYMLINK_INLINE void {run}(size_t {size}, " + ", ".join(
         [f"const double *restrict {a}" for a in arguments]
-        + [f"{'float' if flag else 'double'} *restrict {o}" for o, flag in zip(output_parameters, flags)]
-        + [f"float *restrict {assembled}"]) + ")", "{",
+        + [f"{FLAG_LANE if flag else 'double'} *restrict {o}" for o, flag in zip(output_parameters, flags)]
+        + [f"{FLAG_LANE} *restrict {assembled}"]) + ")", "{",
         f"    for (size_t {index} = 0; {index} < {size}; ++{index}) {{",
         f"        double {out}[{len(outputs)}];",
-        f"        {assembled}[{index}] = (float){kernel}(" + ", ".join([f"{a}[{index}]" for a in arguments] + [out])
+        f"        {assembled}[{index}] = ({FLAG_LANE}){kernel}(" + ", ".join([f"{a}[{index}]" for a in arguments] + [out])
         + ");"]
-    lines += [f"        {o}[{index}] = " + (f"(float){out}[{k}];" if flag else f"{out}[{k}];")
+    lines += [f"        {o}[{index}] = " + (f"({FLAG_LANE}){out}[{k}];" if flag else f"{out}[{k}];")
               for k, (o, flag) in enumerate(zip(output_parameters, flags))]
     lines += ["    }", "}", ""]
     restricted = "SYMLINK_LOOP " + signature.replace("double *", "double *restrict ").replace(
@@ -423,7 +425,7 @@ def c_function(program: Program, name: str, doc: str = "") -> CFunction:
         lines.append("    double " + ", ".join(f"{b}[SYMLINK_BLOCK]" for b in blocks) + ";")
     if tails:
         lines.append("    double " + ", ".join(f"{t}[SYMLINK_BLOCK]" for t in tails) + ";")
-    lines.append("    float " + ", ".join(f"{b}[SYMLINK_BLOCK]" for b in flag_blocks) + ";")
+    lines.append(f"    {FLAG_LANE} " + ", ".join(f"{b}[SYMLINK_BLOCK]" for b in flag_blocks) + ";")
     lines += [f"    for (size_t {start} = 0; {start} < {count}; {start} += SYMLINK_BLOCK) {{",
               f"        const size_t {size} = {count} - {start} < SYMLINK_BLOCK ? {count} - {start} : SYMLINK_BLOCK;",
               f"        const size_t {width} = ({size} + SYMLINK_LANES - 1) / SYMLINK_LANES * SYMLINK_LANES;"]
@@ -435,7 +437,7 @@ def c_function(program: Program, name: str, doc: str = "") -> CFunction:
     lines.append(f"        {run}({width}, " + ", ".join(
         views + [destination[o] for o in output_parameters] + [destination[assembled]]) + ");")
     lines += [f"        for (size_t {index} = 0; {index} < {size}; ++{index}) {{"]
-    lines += [f"            {o}[{start} + {index}] = (unsigned char)({b}[{index}] != 0.0f);"
+    lines += [f"            {o}[{start} + {index}] = (unsigned char)({b}[{index}] != 0);"
               for o, b in zip(flags_out, flag_blocks)]
     lines.append("        }")
     if tails:
@@ -554,9 +556,9 @@ _PRELUDE = """\
 static const double symlink_tolerance = {tolerance!r};
 
 /* Configurations a loop function works on at a time, and a multiple of those it evaluates at
- * once (16: the floats of the widest vector registers); SYMLINK_BLOCK is a multiple of it. */
+ * once (32: the 16-bit lanes of the widest vector registers); SYMLINK_BLOCK is a multiple of it. */
 #define SYMLINK_BLOCK 128
-#define SYMLINK_LANES 16
+#define SYMLINK_LANES 32
 
 /* The values of one argument for configurations start to start + m - 1, contiguous, and
  * up to start + w - 1 (w >= m) repeating the last one: the array itself where its step is 1

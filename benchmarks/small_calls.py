@@ -8,6 +8,8 @@ accelerations) and its positions alone, one set of lengths, N crank angles:
 * ``Solver``: :class:`symlink.solver.Solver` (units, memory and argument checks, a Results table);
 * ``compiled-entry``: the compiled C loop through its ctypes entry (``CompiledSolver.function``);
 * ``compiled``: :class:`symlink.compiled.CompiledSolver`, called as a ``Solver`` is;
+* ``compiled-new-lengths``: the same, each call with new length objects (other values, as an
+  optimiser's steps: an argument that is the very object of the call before is not read again);
 * ``compiled-kept``: the same, each result kept until four calls later (so that its
   output block cannot be reused: every call allocates, as when a caller keeps results);
 * ``numba``: a hand-written numba loop of the same formulas (the floor of a Python call).
@@ -21,7 +23,9 @@ from __future__ import annotations
 
 import argparse
 import collections
+import itertools
 import math
+import statistics
 import time
 
 import numpy
@@ -32,8 +36,8 @@ POSITIONS = ["coupler", "rocker"]
 SIZES = (1, 10, 20, 100, 1000)
 
 
-def per_call(call, budget: float = 0.3) -> float:
-    """Microseconds of one call: the best mean of batches of calls, within about ``budget`` seconds."""
+def per_call(call, budget: float = 0.3) -> tuple[float, float]:
+    """Microseconds of one call: the best and the median mean of batches of calls, within about ``budget`` seconds."""
     call()
     batch = 1
     while True:  # a batch lasting about a millisecond
@@ -43,14 +47,14 @@ def per_call(call, budget: float = 0.3) -> float:
         if time.perf_counter() - start > 1e-3:
             break
         batch *= 2
-    best = math.inf
+    means = []
     end = time.perf_counter() + budget
-    while time.perf_counter() < end:
+    while time.perf_counter() < end or len(means) < 5:
         start = time.perf_counter()
         for _ in range(batch):
             call()
-        best = min(best, (time.perf_counter() - start) / batch)
-    return 1e6 * best
+        means.append((time.perf_counter() - start) / batch)
+    return 1e6 * min(means), 1e6 * statistics.median(means)
 
 
 def methods(outputs: list[str]) -> dict:
@@ -63,12 +67,14 @@ def methods(outputs: list[str]) -> dict:
     rates = {"thetadot": SPEED, "thetaddot": ACCEL} if len(outputs) > 2 else {}
     lengths = dict(zip("abcd", LENGTHS))
     kept: collections.deque = collections.deque(maxlen=4)
+    steps = itertools.cycle([{k: v * (1.0 + 1e-9 * step) for k, v in lengths.items()} for step in range(1000)])
     found = {
         "module": lambda theta: solver.function(theta, **lengths, branch=1, **rates),
         "module-nocheck": lambda theta: solver.function(theta, **lengths, branch=1, **rates, check=False),
         "Solver": lambda theta: solver(theta=theta, **lengths, branch=1, **rates),
         "compiled-entry": lambda theta: compiled.function(theta=theta, **lengths, branch=1, **rates),
         "compiled": lambda theta: compiled(theta=theta, **lengths, branch=1, **rates),
+        "compiled-new-lengths": lambda theta: compiled(theta=theta, **next(steps), branch=1, **rates),
         "compiled-kept": lambda theta: kept.append(compiled(theta=theta, **lengths, branch=1, **rates)),
     }
     if len(outputs) > 2:
@@ -77,7 +83,7 @@ def methods(outputs: list[str]) -> dict:
     return found
 
 
-def measure(sizes=SIZES) -> dict[str, dict[str, dict[int, float]]]:
+def measure(sizes=SIZES) -> dict[str, dict[str, dict[int, tuple[float, float]]]]:
     table: dict = {}
     for label, outputs in (("full kinematics", OUTPUTS), ("positions", POSITIONS)):
         table[label] = {}
@@ -93,14 +99,18 @@ def report(table) -> str:
     lines = []
     for label, rows in table.items():
         sizes = list(next(iter(rows.values())))
-        lines.append(f"{label}: us a call")
-        lines.append(f"{'method':>16} " + " ".join(f"{f'N={n}':>9}" for n in sizes))
+        lines.append(f"{label}: us a call (best mean of batches)")
+        lines.append(f"{'method':>20} " + " ".join(f"{f'N={n}':>9}" for n in sizes))
         for name, row in rows.items():
-            lines.append(f"{name:>16} " + " ".join(f"{row[n]:>9.1f}" for n in sizes))
+            lines.append(f"{name:>20} " + " ".join(f"{row[n][0]:>9.1f}" for n in sizes))
     full = table["full kinematics"]
-    lines.append(f"compiled-entry at N=10: {full['compiled-entry'][10]:.1f} us, "
-                 f"compiled at N=10: {full['compiled'][10]:.1f} us (target <= 10); "
-                 f"Solver at N=20: {full['Solver'][20]:.1f} us, compiled at N=20: {full['compiled'][20]:.1f} us "
+
+    def both(name: str, n: int) -> str:
+        return f"{full[name][n][0]:.1f} (median {full[name][n][1]:.1f}) us"
+
+    lines.append(f"full kinematics, best and median batch: compiled-entry at N=10: {both('compiled-entry', 10)}, "
+                 f"compiled at N=10: {both('compiled', 10)}, with new lengths: {both('compiled-new-lengths', 10)} "
+                 f"(target <= 10); Solver at N=20: {both('Solver', 20)}, compiled at N=20: {both('compiled', 20)} "
                  "(target <= 20)")
     return "\n".join(lines)
 

@@ -335,20 +335,30 @@ SMALL_CALL = 4096
 _BYTE = ctypes.c_char * 1
 
 
+class _PackedCall(ctypes.Structure):
+    """``struct symlink_packed_call`` (:data:`symlink.codegen.c.PACKED_CALL`), the one argument of ``<name>_packed``."""
+
+    _fields_ = [("n", ctypes.c_size_t), ("pointers", ctypes.c_void_p), ("steps", ctypes.c_void_p),
+                ("numbers", ctypes.c_void_p), ("flags", ctypes.c_void_p)]
+
+
 class _Entry:
     """Calls one generated C loop function on NumPy arrays, broadcasting like the NumPy module.
 
     A small call (at most :data:`SMALL_CALL` values) whose arguments are
     numbers and one-dimensional contiguous float arrays of one length takes a
-    fast path, so that a call of a few dozen values costs microseconds: the
+    fast path, so that a call of a few values costs a few microseconds: the
     argument slots (a pointer and a step each, a buffer for the numbers) are
-    made once and rewritten only where an argument changes from a number to an
-    array or to another array; the outputs are two allocations (the number
-    outputs and the true/false ones, a row each); and the library is entered
-    once, through ``<name>_packed`` (:func:`symlink.codegen.c.c_packed`), which
-    checks the arguments as the NumPy module does before it evaluates.  A call
-    that does not qualify, or whose arguments that check refuses, takes the
-    general path.
+    made once, and a slot is rewritten only where its argument is another
+    object than in the call before (the very same float or array costs one
+    comparison; an array is read again, so a change in place counts); the
+    outputs are two allocations (the number outputs and the true/false ones,
+    a row each), made with the one struct the library is called with (:class:`_Outputs`)
+    and reused once no caller holds them; and the library is entered once,
+    with that struct's address, through ``<name>_packed``
+    (:func:`symlink.codegen.c.c_packed`), which checks the arguments as the
+    NumPy module does before it evaluates.  A call that does not qualify, or
+    whose arguments that check refuses, takes the general path.
     """
 
     def __init__(self, library: ctypes.CDLL, name: str, arguments: Sequence[str], outputs: Sequence[str],
@@ -362,8 +372,7 @@ class _Entry:
         self.packed = getattr(library, f"{name}_packed", None)
         if self.packed is not None:
             self.packed.restype = ctypes.c_int
-            self.packed.argtypes = [ctypes.c_size_t, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p,
-                                    ctypes.c_void_p]
+            self.packed.argtypes = [ctypes.c_void_p]
         count = len(self.arguments)
         self._index = {name: index for index, name in enumerate(self.arguments)}
         self._numbers: Any = (ctypes.c_double * max(count, 1))()  # the numbers of a call, each read at a step of 0
@@ -371,8 +380,10 @@ class _Entry:
         self._pointers: Any = (ctypes.c_void_p * max(count, 1))()
         self._steps: Any = (ctypes.c_ssize_t * max(count, 1))()
         self._pointers_at, self._steps_at = ctypes.addressof(self._pointers), ctypes.addressof(self._steps)
-        # What each slot holds: _NUMBER, or the array whose pointer it holds (kept, so that the pointer stays valid).
+        # What each slot holds: the number (in the numbers buffer) or the array (kept, so that its pointer stays
+        # valid) of the call before; and whether the slot points at anything but its number (an array, or nothing).
         self._held: list = [None] * count
+        self._not_number: list[bool] = [True] * count
         self._float_names = [o for o, flag in zip(self.outputs, self.flags) if not flag]
         self._flag_names = [o for o, flag in zip(self.outputs, self.flags) if flag] + ["assembled"]
         floats = iter(range(len(self._float_names)))
@@ -407,6 +418,11 @@ class _Entry:
 
     def _small(self, values: dict) -> dict[str, numpy.ndarray] | None:
         """The fast path's result, or ``None`` where the call does not qualify (the general path then runs)."""
+        outputs = self._small_outputs(values)
+        return None if outputs is None else outputs.results.copy()
+
+    def _small_outputs(self, values: dict) -> _Outputs | None:
+        """The outputs the fast path wrote, or ``None`` where the call does not qualify."""
         packed, index_of = self.packed, self._index
         if packed is None:
             return None
@@ -416,37 +432,41 @@ class _Entry:
             values = {**{name: self.defaults[name] for name in index_of.keys() - values.keys()}, **values}
         with self._lock:  # the slots, and the arrays held with their pointers, belong to one call at a time
             length = 0
-            numbers, pointers, steps, held = self._numbers, self._pointers, self._steps, self._held
+            held, not_number = self._held, self._not_number
             for name, value in values.items():
                 index = index_of.get(name)
                 if index is None:
                     return None
                 kind = type(value)
                 if kind is float or kind is numpy.float64 or kind is int:
+                    if value is held[index]:  # the number of the call before, in the buffer already
+                        continue
                     try:
-                        numbers[index] = value
+                        self._numbers[index] = value
                     except OverflowError:
                         return None
-                    if held[index] is not _NUMBER:
-                        held[index] = _NUMBER
-                        pointers[index] = self._numbers_at + 8 * index
-                        steps[index] = 0
+                    held[index] = value
+                    if not_number[index]:
+                        not_number[index] = False
+                        self._pointers[index] = self._numbers_at + 8 * index
+                        self._steps[index] = 0
                 elif kind is numpy.ndarray and value.dtype is _FLOAT and value.ndim == 1 \
                         and value.flags.c_contiguous and 0 < value.shape[0] <= SMALL_CALL \
                         and (length == 0 or value.shape[0] == length):
                     length = value.shape[0]
                     if value is not held[index]:
                         held[index] = value
-                        pointers[index] = value.ctypes.data
-                        steps[index] = 1
+                        not_number[index] = True
+                        self._pointers[index] = _data_address(value)
+                        self._steps[index] = 1
                 else:
                     return None
             if not length:
                 return None  # numbers only: the general path returns arrays of shape ()
             outputs = self._free_outputs(length)
-            if packed(length, self._pointers_at, self._steps_at, outputs.numbers_at, outputs.flags_at):
+            if packed(outputs.call):
                 return None  # an argument the NumPy module would refuse: the general path
-            return dict(zip(self._result_names, outputs.rows))
+            return outputs
 
     def _free_outputs(self, length: int) -> _Outputs:
         """Output blocks of ``length`` values no caller holds any more (nothing of them referenced), else new ones.
@@ -461,7 +481,8 @@ class _Entry:
         for outputs in kept:
             if outputs.length == length and outputs.free():
                 return outputs
-        outputs = _Outputs(len(self._float_names), len(self._flag_names), length, self._result_rows)
+        outputs = _Outputs(len(self._float_names), len(self._flag_names), length, self._result_rows,
+                           self._result_names, (self._pointers_at, self._steps_at))
         kept.insert(0, outputs)
         del kept[KEPT_OUTPUTS:]
         return outputs
@@ -472,27 +493,38 @@ KEPT_OUTPUTS = 3
 
 
 class _Outputs:
-    """The outputs of one small call: a block of number rows and one of true/false rows, their addresses, the rows."""
+    """The outputs of one small call: a block of number rows and one of true/false rows, and how to fill them.
 
-    def __init__(self, numbers: int, flags: int, length: int, rows: Sequence[tuple[bool, int]]):
+    ``rows`` are the results in order (views of the two blocks), ``results``
+    maps their names to them, and ``call`` is the address of the
+    :class:`_PackedCall` that the library is called with to fill them (the
+    count, the argument slots ``slots`` of the compiled function, the blocks).
+    """
+
+    def __init__(self, numbers: int, flags: int, length: int, rows: Sequence[tuple[bool, int]],
+                 names: Sequence[str], slots: tuple[int, int]):
         self.length = length
-        number_block = numpy.empty((numbers, length))
-        flag_block = numpy.empty((flags, length), dtype=bool)
-        self.numbers_at = _address(number_block) if numbers else None
-        self.flags_at = _address(flag_block)
-        self.rows = [flag_block[row] if flag else number_block[row] for flag, row in rows]
+        # One allocation whose address ctypes knows (an array's address costs more to ask NumPy for than
+        # the allocation): the number rows, then the true/false rows.
+        size = numbers * length
+        memory: Any = (ctypes.c_double * (size + (flags * length + 7) // 8))()  # a buffer NumPy reads
+        address = ctypes.addressof(memory)
+        number_block = numpy.frombuffer(memory, numpy.float64, size)
+        flag_block = numpy.frombuffer(memory, numpy.bool_, flags * length, 8 * size)
+        # Rows (and any view of them a caller makes) have the block as their base.
+        self.rows = [(flag_block if flag else number_block)[row * length:(row + 1) * length] for flag, row in rows]
+        self.results = dict(zip(names, self.rows))
+        self._call = _PackedCall(length, slots[0], slots[1], address, address + 8 * size)
+        self.call = ctypes.c_void_p(ctypes.addressof(self._call))
         self._objects = self.rows + [number_block, flag_block]  # a held result shows first in its rows
         del number_block, flag_block
-        # References now, all of them ours (counted as free() counts them: no loop variable holds one).
-        self._counts = [sys.getrefcount(self._objects[index]) for index in range(len(self._objects))]
+        # References now, all of them ours, summed as free() sums them. No count can fall below its
+        # own (ours stay), so the sum is the same exactly where every count is.
+        self._references = sum(map(sys.getrefcount, self._objects))
 
     def free(self) -> bool:
         """Whether nothing but this object references the blocks and rows (no caller holds a result or a view)."""
-        objects, counts = self._objects, self._counts
-        for index in range(len(objects)):
-            if sys.getrefcount(objects[index]) != counts[index]:
-                return False
-        return True
+        return sum(map(sys.getrefcount, self._objects)) == self._references
 
 
 def _address(array: numpy.ndarray) -> int:
@@ -500,8 +532,14 @@ def _address(array: numpy.ndarray) -> int:
     return ctypes.addressof(_BYTE.from_buffer(array))  # type: ignore[arg-type]  # an ndarray is a buffer
 
 
-#: Marks an argument slot holding a number (in the numbers buffer, at a step of 0).
-_NUMBER = object()
+def _data_address(array: numpy.ndarray) -> int:
+    """The address of a contiguous array's first byte, writable or not."""
+    try:
+        return _address(array)
+    except (TypeError, BufferError, ValueError):  # a read-only array
+        return array.ctypes.data
+
+
 _FLOAT = numpy.dtype(numpy.float64)
 
 
@@ -570,9 +608,9 @@ class CompiledSolver(Solver):
         that check refuses, which is then named in a ``ValueError``) goes
         through :meth:`Solver.__call__ <symlink.solver.Solver.__call__>`.
         """
-        result = self.function._small(values)
-        if result is not None:
-            return Results(result, self._units)
+        outputs = self.function._small_outputs(values)
+        if outputs is not None:
+            return Results(outputs.results, self._units)
         return super().__call__(**values)
 
     @cached_property

@@ -130,11 +130,12 @@ def test_many_timed_recoveries(seed):
 
 @pytest.mark.slow
 def test_untimed_recoveries_keep_their_measured_rate():
-    """Without timing the crank angles are unknowns too, and the search is harder: on these ten problems 9 reach
-    1e-8 (seed 1 stops at 7e-8 after every start and its long second refinement: points that barely fix the
-    four-bar); the test keeps that rate from falling (it was 7 before the starts were screened)."""
-    reached = [synthesize_path(*_recovery_problem(seed)[:1], None, seed=seed)[0].error < 1e-8 for seed in range(10)]
-    assert sum(reached) >= 9, reached
+    """Without timing the crank angles are unknowns too, and the search is harder: on these ten problems all ten
+    reach 1e-8 (9 did with plain Levenberg-Marquardt and screened starts: seed 1 stopped at 7e-8 along a flat
+    valley); the test keeps that rate from falling.  Each call's work is bounded (four batches of starts, at most
+    two long second refinements), about 20 s for the ten on an idle machine."""
+    errors = [synthesize_path(*_recovery_problem(seed)[:1], None, seed=seed)[0].error for seed in range(10)]
+    assert sum(error < 1e-8 for error in errors) >= 10, errors
 
 
 def test_accelerated_levenberg_marquardt_walks_the_rosenbrock_valley():

@@ -33,10 +33,10 @@ Constraints are enforced, not only penalised.  A trial design that breaks one (c
 assembled at a point, passes a toggle, breaks the Grashof class asked for, the link-ratio
 bound or the minimum transmission angle) gets a residual far above any feasible one (with
 timing) or is refused as a trial step (without), so the solvers never accept it, and every
-start is feasible.  Each design is
-then verified afresh with symlink's generated four-bar solver, independently of the
-Jacobian's code: every point is reached on the one branch, and between consecutive points
-the crank moves without leaving the assembly or passing a toggle (:func:`check_design`).
+start is feasible.  Each design is then verified afresh with symlink's generated four-bar
+solver, independently of the Jacobian's code: every point is reached on the one branch, and
+between consecutive points the crank moves without leaving the assembly or passing a toggle
+(:func:`check_design`).
 
 >>> design = fourbar_design((0.0, 0.0), 0.0, (1.0, 3.0, 2.5, 3.2), (1.5, 0.8), branch=1)
 >>> targets = design.points(numpy.linspace(0.0, 5.0, 6))
@@ -85,7 +85,8 @@ _MAX_EVALUATIONS = 300   # residual evaluations of one refinement with timing
 _SCREENED = 4            # untimed: this many times ``starts`` atlas fits are refined by successive halving ...
 _SCREEN_EVALUATIONS = 40  # ... this many evaluations each in the first round, twice as many each round after ...
 _LAST_ROUND = 1280       # ... up to this many
-_ATTEMPTS = 4            # batches of starts (a new atlas each) before giving up
+_ATTEMPTS = 4            # batches of starts (a new atlas each) before giving up ...
+_WIDER = 2               # ... the batches after the first this many times as many
 _POLISHED = 2            # designs of a call (in all) that get a long second refinement ...
 _POLISH_BELOW = 1e-3     # ... if their error is below this
 _POLISH_EVALUATIONS = 6000
@@ -752,8 +753,8 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
                     found.append(design)
                     if design.error < 1e-10:
                         break
-        elif _successive_halving(_untimed_starts(w, rng, _SCREENED * starts, constraints, attempt == 0), points,
-                                 constraints, size, tolerance, kept):
+        elif _successive_halving(_untimed_starts(w, rng, _SCREENED * starts * (1 if attempt == 0 else _WIDER),
+                                                 constraints, attempt == 0), points, constraints, size, tolerance, kept):
             break
         if found and min(d.error for d in found) < 1e-8:
             break

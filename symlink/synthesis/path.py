@@ -26,8 +26,9 @@ given crank angles (with timing) or at crank angles matched to the points by arc
 (without), are fitted to the targets by the best rotation, scale and shift (a complex
 least-squares fit), and the best fits are refined.  Without timing, four times as many fits
 are refined by successive halving (a short refinement each, then the closer half twice as
-long, and so on), each new closest design verified at once; a design that stops short gets
-one long second refinement (at most two a call).
+long, and so on), each new closest design verified at once; if none reaches the targets,
+new atlases give batches twice as wide, and a design that stops short gets one long second
+refinement (at most two a call).
 
 Constraints are enforced, not only penalised.  A trial design that breaks one (cannot be
 assembled at a point, passes a toggle, breaks the Grashof class asked for, the link-ratio
@@ -680,7 +681,8 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
 
     ``theta``: the crank angles at the targets (timing), or None to find them too (the
     points are then reached in their order, the crank turning one way).  ``starts`` atlas
-    fits are refined; ``grashof_class`` is one of :data:`GRASHOF_CHOICES` ("crank-turns":
+    fits are refined (without timing four times as many by successive halving, twice that in
+    the batches after the first); ``grashof_class`` is one of :data:`GRASHOF_CHOICES` ("crank-turns":
     crank-rocker or double-crank); ``max_link_ratio`` bounds the longest link over the
     shortest; ``min_transmission`` (radians) bounds the worst transmission angle over the
     crank's turn.  Needs SciPy (``pip install 'symlink-kinematics[synthesis]'``).

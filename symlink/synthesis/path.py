@@ -497,8 +497,9 @@ def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: nu
     """One start refined: (design vector, crank angles, evaluations, cost), or None if the start is infeasible.
 
     With timing: Levenberg-Marquardt (``least_squares(method="lm")``; trust-region reflective
-    for fewer than five points) over the nine dimensions.  Without: :func:`_refine_untimed`.  No bounds are needed for the lengths:
-    a length at or below zero breaks a constraint and is never accepted.
+    for fewer than five points) over the nine dimensions.  Without: :func:`_refine_untimed`.
+    No bounds are needed for the lengths: a length at or below zero breaks a constraint and is
+    never accepted.
     """
     if not timed:
         return _refine_untimed(start, branch, theta, targets, constraints, size, tolerance, evaluations)
@@ -585,7 +586,7 @@ def _accelerated_levenberg_marquardt(residuals, x0: numpy.ndarray, evaluations: 
     each step along the valley: with the velocity ``v`` (the damped Gauss-Newton step) and the
     residuals' second derivative along it by one extra evaluation, ``r_vv ~ 2/h ((r(x + h v) -
     r(x)) / h - J v)``, the acceleration ``a`` solves the same damped system with ``J^T r_vv``,
-    and the step ``v + a / 2`` is tried if ``|a| <= alpha |v|`` (scaled).  Damping: Marquardt's
+    and the step ``v + a / 2`` is tried if ``|a| <= alpha |v|`` (scaled), else ``v``.  Damping: Marquardt's
     diagonal scaling (the largest column norms seen), Nielsen's update from the gain ratio.
     Stops when the residuals' norm, the step (relative to x) or the cost's decrease (relative
     to the cost) is below ``tolerance``, or the damping grows hopeless.
@@ -609,14 +610,15 @@ def _accelerated_levenberg_marquardt(residuals, x0: numpy.ndarray, evaluations: 
             continue
         probed = residuals(x + probe * velocity)
         used += 1
-        trial, step = None, velocity
+        step = velocity
         if probed is not None:
             second = 2.0 / probe * ((probed[0] - r) / probe - J @ velocity)
             acceleration = -numpy.linalg.solve(system, J.T @ second)
             if 2 * math.sqrt(acceleration @ (scale * acceleration)) <= alpha * math.sqrt(velocity @ (scale * velocity)):
                 step = velocity + 0.5 * acceleration
-                trial = residuals(x + step)
-                used += 1
+        # Near convergence the second difference is rounding noise and fails the test: the plain step then.
+        trial = residuals(x + step)
+        used += 1
         if trial is not None and 0.5 * float(trial[0] @ trial[0]) < cost:
             new_cost = 0.5 * float(trial[0] @ trial[0])
             stalled = cost - new_cost <= tolerance * cost
@@ -756,7 +758,8 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
                     if design.error < 1e-10:
                         break
         elif _successive_halving(_untimed_starts(w, rng, _SCREENED * starts * (1 if attempt == 0 else _WIDER),
-                                                 constraints, attempt == 0), points, constraints, size, tolerance, kept):
+                                                 constraints, attempt == 0),
+                                 points, constraints, size, tolerance, kept):
             break
         if found and min(d.error for d in found) < 1e-8:
             break

@@ -12,26 +12,32 @@ B->C, v to its left), so that in the four-bar's own frame (:func:`symlink.catalo
 * Without, the crank angles are unknowns too, written as the first angle and squared
   steps to the next ones, so the points are reached in order, turning one way.
 
-Each start is refined by ``scipy.optimize.least_squares`` (Levenberg-Marquardt; SciPy is the
-``synthesis`` extra) with the exact Jacobian: the design sensitivities of the placed four-bar's
-coupler point (:func:`path_fourbar`), generated and cached like every solver and called through
-:class:`symlink.design_jacobian.DesignJacobian` (:func:`path_jacobian`).
+With timing each start is refined by ``scipy.optimize.least_squares`` (Levenberg-Marquardt;
+SciPy is the ``synthesis`` extra) with the exact Jacobian: the design sensitivities of the
+placed four-bar's coupler point (:func:`path_fourbar`), generated and cached like every solver
+and called through :class:`symlink.design_jacobian.DesignJacobian` (:func:`path_jacobian`).
+Without timing ten points barely fix the four-bar (twenty residuals, nineteen unknowns) and
+leave long curved valleys, along which plain Levenberg-Marquardt crawls: there the same
+Jacobian drives Levenberg-Marquardt with geodesic acceleration
+(:func:`_accelerated_levenberg_marquardt`).
 
 Starts come from a coarse atlas of random four-bars: the coupler points of each, at the
 given crank angles (with timing) or at crank angles matched to the points by arc length
 (without), are fitted to the targets by the best rotation, scale and shift (a complex
 least-squares fit), and the best fits are refined.  Without timing, four times as many fits
-are first screened by a short refinement and the closest refined in full; a design that
-stops short (points that barely fix the four-bar leave a long, flat valley) gets a long
-second refinement.
+are refined by successive halving (a short refinement each, then the closer half twice as
+long, and so on), each new closest design verified at once; if none reaches the targets,
+new atlases give batches twice as wide, and a design that stops short gets one long second
+refinement (at most two a call).
 
 Constraints are enforced, not only penalised.  A trial design that breaks one (cannot be
 assembled at a point, passes a toggle, breaks the Grashof class asked for, the link-ratio
-bound or the minimum transmission angle) gets a residual far above any feasible one, so
-the trust-region solver never accepts it, and every start is feasible.  Each design is
-then verified afresh with symlink's generated four-bar solver, independently of the
-Jacobian's code: every point is reached on the one branch, and between consecutive points
-the crank moves without leaving the assembly or passing a toggle (:func:`check_design`).
+bound or the minimum transmission angle) gets a residual far above any feasible one (with
+timing) or is refused as a trial step (without), so the solvers never accept it, and every
+start is feasible.  Each design is then verified afresh with symlink's generated four-bar
+solver, independently of the Jacobian's code: every point is reached on the one branch, and
+between consecutive points the crank moves without leaving the assembly or passing a toggle
+(:func:`check_design`).
 
 >>> design = fourbar_design((0.0, 0.0), 0.0, (1.0, 3.0, 2.5, 3.2), (1.5, 0.8), branch=1)
 >>> targets = design.points(numpy.linspace(0.0, 5.0, 6))
@@ -72,14 +78,19 @@ _PATH_SAMPLES = 24       # crank angles checked between consecutive points for a
 _ATLAS = 1500            # random four-bars in the coarse atlas
 _CURVE_SAMPLES = 96      # points of each atlas curve (without timing)
 _CURVE_ATLAS = 500       # four-bars in each atlas without timing
+_ARC_BINS = 512          # arc-length fractions tabulated for each atlas curve
 _PROJECTED = 160         # the best arc-length fits kept from all phases and spans
-_MAX_EVALUATIONS = 300   # residual evaluations of one refinement (twice that without timing)
-_SCREENED = 4            # untimed: this many times ``starts`` atlas fits are screened ...
-_SCREEN_EVALUATIONS = 80  # ... by a refinement this short, and the best ``starts`` refined in full
-_POLISHED = 2            # designs of each batch of starts that get a long second refinement ...
+_SPANS = (0.95, 0.8, 0.6, 0.4)  # fractions of an atlas curve's arc length the targets are matched along ...
+_PHASES = 16             # ... from this many starting points spread along it
+_MAX_EVALUATIONS = 300   # residual evaluations of one refinement with timing
+_SCREENED = 4            # untimed: this many times ``starts`` atlas fits are refined by successive halving ...
+_SCREEN_EVALUATIONS = 40  # ... this many evaluations each in the first round, twice as many each round after ...
+_LAST_ROUND = 1280       # ... up to this many
+_ATTEMPTS = 4            # batches of starts (a new atlas each) before giving up ...
+_WIDER = 2               # ... the batches after the first this many times as many
+_POLISHED = 2            # designs of a call (in all) that get a long second refinement ...
 _POLISH_BELOW = 1e-3     # ... if their error is below this
 _POLISH_EVALUATIONS = 6000
-_DEBUG = False
 
 
 @dataclass(frozen=True)
@@ -379,20 +390,33 @@ def _timed_starts(w: numpy.ndarray, theta: numpy.ndarray, rng, count: int, const
 
 
 @lru_cache(maxsize=1)
-def _curve_atlas() -> tuple[numpy.ndarray, numpy.ndarray]:
-    """The first atlas without timing, the same in every call (made once a process): rows and closed curves.
+def _curve_atlas() -> tuple[numpy.ndarray, numpy.ndarray, numpy.ndarray]:
+    """The first atlas without timing, the same in every call (made once a process): rows, curves, arc tables.
 
-    Rows (a, b, c, d, u, v, branch) of four-bars whose crank turns fully, and their coupler
-    points (complex, own frame) at :data:`_CURVE_SAMPLES` crank angles over a turn.
+    Rows (a, b, c, d, u, v, branch) of four-bars whose crank turns fully, their coupler
+    points (complex, own frame) at :data:`_CURVE_SAMPLES` crank angles over a turn, and the
+    arc-length tables of :func:`_curves`.
     """
     return _curves(_atlas(numpy.random.default_rng(20240611), _CURVE_ATLAS))
 
 
-def _curves(rows: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
+def _curves(rows: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray, numpy.ndarray]:
+    """The atlas four-bars whose crank turns fully, their curves, and each curve's arc-length table.
+
+    The table inverts the arc length: column j holds the fractional sample position where the
+    curve's arc length from the first sample is the fraction ``j / _ARC_BINS`` of the whole.
+    """
     samples = numpy.linspace(-math.pi, math.pi, _CURVE_SAMPLES + 1)[:-1]
     z, ok = _local_points(rows, samples[None, :])
     turning = numpy.all(ok, axis=1)
-    return rows[turning], z[turning]
+    rows, z = rows[turning], z[turning]
+    closed = numpy.concatenate([z, z[:, :1]], axis=1)
+    arc = numpy.concatenate([numpy.zeros((len(z), 1)), numpy.cumsum(numpy.abs(numpy.diff(closed, axis=1)), axis=1)],
+                            axis=1)
+    arc /= arc[:, -1:]
+    fractions, positions = numpy.linspace(0.0, 1.0, _ARC_BINS + 1), numpy.arange(_CURVE_SAMPLES + 1, dtype=float)
+    table = numpy.array([numpy.interp(fractions, row, positions) for row in arc]).reshape(len(z), _ARC_BINS + 1)
+    return rows, z, table
 
 
 def _untimed_starts(w: numpy.ndarray, rng, count: int, constraints: _Constraints, first: bool):
@@ -404,22 +428,18 @@ def _untimed_starts(w: numpy.ndarray, rng, count: int, constraints: _Constraints
     again, and alternating timed solves with projections of the angles onto the refined curve,
     were tried and found no more solutions on twenty test problems.)
     """
-    rows, z = _curve_atlas() if first else _curves(_atlas(rng, _CURVE_ATLAS))
+    rows, z, table = _curve_atlas() if first else _curves(_atlas(rng, _CURVE_ATLAS))
     samples = len(z[0])
     grid = numpy.linspace(-math.pi, math.pi, samples + 1)[:-1]
     closed = numpy.concatenate([z, z[:, :1]], axis=1)
-    arc = numpy.concatenate([numpy.zeros((len(z), 1)), numpy.cumsum(numpy.abs(numpy.diff(closed, axis=1)), axis=1)],
-                            axis=1)
-    arc /= arc[:, -1:]
     chords = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(w)))])
     fraction = chords / chords[-1] if chords[-1] > 0 else numpy.linspace(0, 1, len(w))
-    positions = numpy.arange(samples + 1, dtype=float)
     fits = []  # (rms, row, sample positions)
-    for span in (0.95, 0.8, 0.6, 0.4):
-        for phase in numpy.linspace(0, 1, 16, endpoint=False):
+    for span in _SPANS:
+        for phase in numpy.linspace(0, 1, _PHASES, endpoint=False):
             for direction in (1, -1):
                 where = (phase + direction * span * fraction) % 1.0
-                position = _interpolate_rows(where, arc, positions)  # fractional sample index, rows x targets
+                position = _arc_position(table, where)  # fractional sample index, rows x targets
                 zz = _sampled(closed, position)
                 _, _, rms = _similarity(zz, w[None, :])
                 rms = numpy.where(numpy.isfinite(rms), rms, numpy.inf)
@@ -458,98 +478,202 @@ def _sampled(closed: numpy.ndarray, position: numpy.ndarray) -> numpy.ndarray:
     return first + part * (numpy.take_along_axis(closed, low + 1, axis=1) - first)
 
 
-def _interpolate_rows(where: numpy.ndarray, arc: numpy.ndarray, grid: numpy.ndarray) -> numpy.ndarray:
-    """``numpy.interp(where, arc[k], grid)`` for every row k at once (each row of ``arc`` rising from 0 to 1)."""
-    index = numpy.clip(numpy.sum(arc[:, :, None] <= where[None, None, :], axis=1) - 1, 0, arc.shape[1] - 2)
-    low = numpy.take_along_axis(arc, index, axis=1)
-    high = numpy.take_along_axis(arc, index + 1, axis=1)
-    with numpy.errstate(all="ignore"):
-        part = numpy.where(high > low, (where[None, :] - low) / (high - low), 0.0)
-    return grid[index] + part * (grid[index + 1] - grid[index])
+def _arc_position(table: numpy.ndarray, where: numpy.ndarray) -> numpy.ndarray:
+    """Fractional sample positions (rows x len(where)) where each curve's arc length has the fractions ``where``.
+
+    ``table[k, j]`` is curve k's position at the fraction ``j / (columns - 1)``; linear in between.
+    """
+    bins = table.shape[1] - 1
+    scaled = numpy.clip(where, 0.0, 1.0) * bins
+    low = numpy.minimum(numpy.floor(scaled).astype(int), bins - 1)
+    part = scaled - low
+    return table[:, low] + part * (table[:, low + 1] - table[:, low])
 
 
 # --- the refinement -----------------------------------------------------------------------------
 
 def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: numpy.ndarray, timed: bool,
             constraints: _Constraints, size: float, tolerance: float, evaluations: int):
-    """Levenberg-Marquardt (``least_squares(method="lm")``, where there are enough points) from one start: (design vector, crank angles, evaluations).
+    """One start refined: (design vector, crank angles, evaluations, cost), or None if the start is infeasible.
 
-    Without timing the crank angles are the first angle and squared steps to the next
-    (``theta_i = theta_1 + direction * sum(s_k^2)``), so they turn one way with no bounds.
-    No bounds are needed for the lengths either: a length at or below zero breaks a
-    constraint and is never accepted.
+    With timing: Levenberg-Marquardt (``least_squares(method="lm")``; trust-region reflective
+    for fewer than five points) over the nine dimensions.  Without: :func:`_refine_untimed`.
+    No bounds are needed for the lengths: a length at or below zero breaks a constraint and is
+    never accepted.
     """
+    if not timed:
+        return _refine_untimed(start, branch, theta, targets, constraints, size, tolerance, evaluations)
     from scipy.optimize import least_squares
 
     count = len(targets)
-    direction = 1.0 if timed or len(theta) < 2 or theta[-1] >= theta[0] else -1.0
-
-    def unpack(x: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
-        if timed:
-            return x, theta
-        return x[:9], x[9] + direction * numpy.concatenate([[0.0], numpy.cumsum(x[10:] ** 2)])
-
     last: dict[str, numpy.ndarray] = {}  # the generated code gives points and Jacobian in one call: keep it
 
     def residuals(x: numpy.ndarray) -> numpy.ndarray:
-        design, angles = unpack(x)
-        if not constraints.allow(design[3:7]) or (not timed and abs(angles[-1] - angles[0]) >= 2 * math.pi):
+        if not constraints.allow(x[3:7]):
             return numpy.full(2 * count, _INFEASIBLE)
-
         with numpy.errstate(all="ignore"):
-            points, jac, ok = _evaluate(design, angles, branch)
+            points, jac, ok = _evaluate(x, theta, branch)
         if not numpy.all(ok):
             return numpy.full(2 * count, _INFEASIBLE)
         last.update(x=x.copy(), jac=jac)
         return ((points - targets) / size).ravel()
 
     def jacobian(x: numpy.ndarray) -> numpy.ndarray:
-        design, angles = unpack(x)
         if "x" in last and numpy.array_equal(last["x"], x):
             jac = last["jac"]
         else:
             with numpy.errstate(all="ignore"):
-                _, jac, _ = _evaluate(design, angles, branch)
-        dimensions = jac[:, :, 1:].reshape(2 * count, 9)
-        if timed:
-            return dimensions / size
+                _, jac, _ = _evaluate(x, theta, branch)
+        return jac[:, :, 1:].reshape(2 * count, 9) / size
+
+    x0 = start.copy()
+    if residuals(x0)[0] == _INFEASIBLE:
+        return None
+    # Levenberg-Marquardt needs at least as many residuals as unknowns; fewer points (three or four) go to the
+    # trust-region reflective method.
+    method = "lm" if 2 * count >= len(x0) else "trf"
+    fit = least_squares(residuals, x0, jac=jacobian, method=method, x_scale="jac", xtol=tolerance, ftol=tolerance,
+                        gtol=tolerance, max_nfev=evaluations)
+    return fit.x, theta, fit.nfev + (fit.njev or 0), fit.cost
+
+
+def _refine_untimed(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: numpy.ndarray,
+                    constraints: _Constraints, size: float, tolerance: float, evaluations: int):
+    """:func:`_refine` without timing: the nine dimensions and the crank angles, in order.
+
+    The angles are the first one and squared steps to the next (``theta_i = theta_1 +
+    direction * sum(s_k^2)``), so they turn one way with no bounds, and two points at one
+    angle are no wall; a trial turning a full turn or more is infeasible.  (One free angle per
+    point, with trials out of order infeasible, solved fewer problems.)
+    """
+    count = len(targets)
+    direction = 1.0 if len(theta) < 2 or theta[-1] >= theta[0] else -1.0
+
+    def angles_of(x: numpy.ndarray) -> numpy.ndarray:
+        return x[9] + direction * numpy.concatenate([[0.0], numpy.cumsum(x[10:] ** 2)])
+
+    def residuals(x: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray] | None:
+        design, angles = x[:9], angles_of(x)
+        if not constraints.allow(design[3:7]) or abs(angles[-1] - angles[0]) >= 2 * math.pi:
+            return None
+        with numpy.errstate(all="ignore"):
+            points, jac, ok = _evaluate(design, angles, branch)
+        if not numpy.all(ok):
+            return None
         by_theta = jac[:, :, 0]  # (count, 2): d point_i / d theta_i
         # d theta_i / d theta_1 = 1 and d theta_i / d s_k = 2 direction s_k for k < i: a lower triangle
         chain = numpy.tril(numpy.concatenate([[1.0], 2 * direction * x[10:]])[None, :].repeat(count, axis=0))
         angle_columns = (by_theta[:, :, None] * chain[:, None, :]).reshape(2 * count, count)
-        return numpy.concatenate([dimensions, angle_columns], axis=1) / size
+        jacobian = numpy.concatenate([jac[:, :, 1:].reshape(2 * count, 9), angle_columns], axis=1)
+        return ((points - targets) / size).ravel(), jacobian / size
 
-    x0 = start.copy()
-    if not timed:
-        x0 = numpy.concatenate([start, [theta[0]], numpy.sqrt(numpy.abs(numpy.diff(theta)))])
-
-    if residuals(x0)[0] == _INFEASIBLE:
+    x0 = numpy.concatenate([start, [theta[0]], numpy.sqrt(numpy.abs(numpy.diff(theta)))])
+    result = _accelerated_levenberg_marquardt(residuals, x0, evaluations, tolerance)
+    if result is None:
         return None
-    # Levenberg-Marquardt needs at least as many residuals as unknowns; fewer points (an underdetermined
-    # problem without timing) go to the trust-region reflective method.
-    method = "lm" if 2 * count >= len(x0) else "trf"
-    fit = least_squares(residuals, x0, jac=jacobian, method=method, x_scale="jac", xtol=tolerance, ftol=tolerance,
-                        gtol=tolerance, max_nfev=evaluations)
-    if _DEBUG:
-        print(fit.status, fit.nfev, fit.njev, fit.cost, fit.message)
-    design, angles = unpack(fit.x)
-    return design, angles, fit.nfev + (fit.njev or 0), fit.cost
+    x, cost, used = result
+    return x[:9], angles_of(x), used, cost
 
 
-def _screened(candidates: list, targets: numpy.ndarray, constraints: _Constraints, size: float) -> list:
-    """Starts without timing after a short untimed refinement, the closest first.
+def _accelerated_levenberg_marquardt(residuals, x0: numpy.ndarray, evaluations: int, tolerance: float):
+    """Levenberg-Marquardt with geodesic acceleration: (x, cost = |r|^2 / 2, evaluations), None if x0 is infeasible.
 
-    Many starts are cheap to try and most lead nowhere: a few dozen evaluations each tell the
-    promising ones, which then get the full refinement from where they stopped.
+    ``residuals(x)`` gives ``(r, J)`` or None where x is infeasible (never accepted).  Coupler
+    points that barely fix the four-bar (ten points, nineteen unknowns without timing) leave
+    long curved valleys, along which plain Levenberg-Marquardt crawls in short steps; the
+    second-order correction of Transtrum and Sethna (Phys. Rev. E 83, 036701 (2011); "Improvements
+    to the Levenberg-Marquardt algorithm for nonlinear least-squares minimization", 2012) bends
+    each step along the valley: with the velocity ``v`` (the damped Gauss-Newton step) and the
+    residuals' second derivative along it by one extra evaluation, ``r_vv ~ 2/h ((r(x + h v) -
+    r(x)) / h - J v)``, the acceleration ``a`` solves the same damped system with ``J^T r_vv``,
+    and the step ``v + a / 2`` is tried if ``|a| <= alpha |v|`` (scaled), else ``v``.  Damping: Marquardt's
+    diagonal scaling (the largest column norms seen), Nielsen's update from the gain ratio.
+    Stops when the residuals' norm, the step (relative to x) or the cost's decrease (relative
+    to the cost) is below ``tolerance``, or the damping grows hopeless.
     """
-    screened = []
-    for vector, branch, angles in candidates:
-        angles = numpy.asarray(angles, dtype=float)
-        result = _refine(vector, branch, angles, targets, False, constraints, size, 1e-15, _SCREEN_EVALUATIONS)
-        if result is not None:
-            screened.append((result[3], (result[0], branch, result[1])))
-    screened.sort(key=lambda item: item[0])
-    return [start for _, start in screened]
+    first = residuals(x0)
+    if first is None:
+        return None
+    r, J = first
+    x, cost, used = x0.copy(), 0.5 * float(r @ r), 1
+    scale = numpy.maximum(numpy.sum(J * J, axis=0), 1e-300)
+    damping, growth = 1e-3, 2.0
+    probe, alpha = 0.1, 0.75
+    while used < evaluations and math.sqrt(2 * cost) > tolerance:
+        gradient, normal = J.T @ r, J.T @ J
+        scale = numpy.maximum(scale, numpy.sum(J * J, axis=0))
+        system = normal + damping * numpy.diag(scale)
+        try:
+            velocity = -numpy.linalg.solve(system, gradient)
+        except numpy.linalg.LinAlgError:
+            damping *= 10
+            continue
+        probed = residuals(x + probe * velocity)
+        used += 1
+        step = velocity
+        if probed is not None:
+            second = 2.0 / probe * ((probed[0] - r) / probe - J @ velocity)
+            acceleration = -numpy.linalg.solve(system, J.T @ second)
+            if 2 * math.sqrt(acceleration @ (scale * acceleration)) <= alpha * math.sqrt(velocity @ (scale * velocity)):
+                step = velocity + 0.5 * acceleration
+        # Near convergence the second difference is rounding noise and fails the test: the plain step then.
+        trial = residuals(x + step)
+        used += 1
+        if trial is not None and 0.5 * float(trial[0] @ trial[0]) < cost:
+            new_cost = 0.5 * float(trial[0] @ trial[0])
+            stalled = cost - new_cost <= tolerance * cost
+            predicted = -float(gradient @ velocity) - 0.5 * float(velocity @ (normal @ velocity))
+            gain = (cost - new_cost) / predicted if predicted > 0 else 0.0
+            damping = max(damping * max(1 / 3, 1 - (2 * min(gain, 1.0) - 1) ** 3), 1e-15)
+            growth = 2.0
+            x, (r, J), cost = x + step, trial, new_cost
+            if stalled or numpy.max(numpy.abs(step) / (numpy.abs(x) + 1e-300)) < tolerance:
+                break
+            continue
+        damping *= growth
+        growth *= 2
+        if damping > 1e16:
+            break
+    return x, cost, used
+
+
+def _successive_halving(candidates: list, targets: numpy.ndarray, constraints: _Constraints, size: float,
+                        tolerance: float, keep) -> bool:
+    """Untimed starts refined in rounds, the closest half kept each round with twice the evaluations: solved?
+
+    Most starts lead nowhere, and a few dozen evaluations tell the promising ones: every start
+    gets :data:`_SCREEN_EVALUATIONS`, then the better half as many again, and so on, each from
+    where it stopped, until one is left or a start has had :data:`_LAST_ROUND` in one round (a
+    start that stops on its own, converged or stalled, is not refined again).
+    ``keep(vector, branch, angles, evaluations)`` verifies a design (None if it fails); every
+    refined start closer than every verified one before it is verified at once, so a verified design is at
+    hand from the first start on; True as soon as one verifies below 1e-8.
+    """
+    alive = [(math.inf, vector, branch, numpy.asarray(angles, dtype=float), 0, False)
+             for vector, branch, angles in candidates]
+    budget, closest = _SCREEN_EVALUATIONS, math.inf
+    while alive:
+        results = []
+        for cost, vector, branch, angles, used, stopped in alive:
+            if not stopped:
+                result = _refine(vector, branch, angles, targets, False, constraints, size, tolerance, budget)
+                if result is None:
+                    continue
+                vector, angles, spent, cost = result
+                used, stopped = used + spent, spent < budget
+                if cost < closest:
+                    design = keep(vector, branch, angles, used)
+                    if design is not None:
+                        closest = cost
+                        if design.error < 1e-8:
+                            return True
+            results.append((cost, vector, branch, angles, used, stopped))
+        results.sort(key=lambda item: item[0])
+        if len(results) <= 1 or budget >= _LAST_ROUND:
+            break
+        alive = results[:len(results) // 2]
+        budget *= 2
+    return False
 
 
 def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, starts: int = 8, designs: int = 3,
@@ -559,7 +683,8 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
 
     ``theta``: the crank angles at the targets (timing), or None to find them too (the
     points are then reached in their order, the crank turning one way).  ``starts`` atlas
-    fits are refined; ``grashof_class`` is one of :data:`GRASHOF_CHOICES` ("crank-turns":
+    fits are refined (without timing four times as many by successive halving, twice that in
+    the batches after the first); ``grashof_class`` is one of :data:`GRASHOF_CHOICES` ("crank-turns":
     crank-rocker or double-crank); ``max_link_ratio`` bounds the longest link over the
     shortest; ``min_transmission`` (radians) bounds the worst transmission angle over the
     crank's turn.  Needs SciPy (``pip install 'symlink-kinematics[synthesis]'``).
@@ -603,6 +728,10 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
         if result is None:
             return None
         design_vector, design_theta, used, _ = result
+        return verified(design_vector, branch, design_theta, used)
+
+    def verified(design_vector, branch, design_theta, used) -> PathDesign | None:
+        """A design checked by :func:`check_design` (None if it fails)."""
         a, b, c, d = (float(x) for x in design_vector[3:7])
         design = PathDesign((float(design_vector[0]), float(design_vector[1])), float(design_vector[2]),
                             a, b, c, d, (float(design_vector[7]), float(design_vector[8])), branch,
@@ -612,24 +741,33 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
         except ValueError:
             return None
 
-    polished: list[PathDesign] = []
-    for attempt in range(4):
-        candidates = (_timed_starts(w, crank_angles, rng, starts, constraints) if timed
-                      else _screened(_untimed_starts(w, rng, _SCREENED * starts, constraints, attempt == 0),
-                                     points, constraints, size)[:starts])
-        for vector, branch, angles in candidates:
-            design = refined(vector, branch, angles, _MAX_EVALUATIONS * (1 if timed else 2))
-            if design is not None:
-                found.append(design)
-                if design.error < 1e-10:
-                    break
+    def kept(vector, branch, angles, used) -> PathDesign | None:
+        """An untimed design verified (None if it fails the check) and kept."""
+        design = verified(vector, branch, angles, used)
+        if design is not None:
+            found.append(design)
+        return design
+
+    polished = 0
+    for attempt in range(_ATTEMPTS):
+        if timed:
+            for vector, branch, angles in _timed_starts(w, crank_angles, rng, starts, constraints):
+                design = refined(vector, branch, angles, _MAX_EVALUATIONS)
+                if design is not None:
+                    found.append(design)
+                    if design.error < 1e-10:
+                        break
+        elif _successive_halving(_untimed_starts(w, rng, _SCREENED * starts * (1 if attempt == 0 else _WIDER),
+                                                 constraints, attempt == 0),
+                                 points, constraints, size, tolerance, kept):
+            break
         if found and min(d.error for d in found) < 1e-8:
             break
         # Near-degenerate problems (points that barely fix the four-bar) crawl along a flat valley and stop
-        # short: the closest designs get a long second run from where they stopped.
-        for design in _distinct(sorted(found, key=lambda d: d.error), _POLISHED, size):
-            if design.error < _POLISH_BELOW and all(design is not other for other in polished):
-                polished.append(design)
+        # short: the closest designs get a long second run from where they stopped, at most _POLISHED in all.
+        for design in _distinct(sorted(found, key=lambda d: d.error), _POLISHED - polished, size):
+            if design.error < _POLISH_BELOW and polished < _POLISHED and design.evaluations < _POLISH_EVALUATIONS:
+                polished += 1
                 again = refined(design.vector, design.branch, design.theta, _POLISH_EVALUATIONS)
                 if again is not None:
                     found.append(again)
@@ -644,14 +782,20 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
 
 
 def _distinct(ordered: list[PathDesign], count: int, size: float) -> list[PathDesign]:
-    """The best designs that differ from each other (dimensions over the targets' size, frame angle)."""
+    """The best designs that differ from each other (dimensions over the targets' size, frame angle modulo a turn)."""
+    scale = numpy.array([size, size, 1, size, size, size, size, size, size])
     kept: list[PathDesign] = []
     for design in ordered:
-        vector = design.vector / numpy.array([size, size, 1, size, size, size, size, size, size])
-        if all(numpy.max(numpy.abs(vector - other.vector / numpy.array([size, size, 1, size, size, size, size, size,
-                                                                         size]))) > 1e-4 or
-               design.branch != other.branch for other in kept):
+        if count < 1:
+            break
+        if all(design.branch != other.branch or _differs(design.vector - other.vector, scale) for other in kept):
             kept.append(design)
         if len(kept) >= count:
             break
     return kept
+
+
+def _differs(difference: numpy.ndarray, scale: numpy.ndarray) -> bool:
+    relative = difference / scale
+    relative[2] = math.remainder(relative[2], 2 * math.pi)
+    return bool(numpy.max(numpy.abs(relative)) > 1e-4)

@@ -698,7 +698,9 @@ def _timed(methods: list[Method], work: dict[str, list[Sweep]], budget: float,
 
     Each method is called once for the whole workload (pylinkage: once a linkage).  The methods take
     turns, round after round (up to 7), so that a change in the machine's load falls on all of them
-    alike; a method sits out further rounds once its time would exceed ``budget`` seconds.  A method
+    alike; after three rounds, a method sits out further rounds once its time would exceed ``budget``
+    seconds (at 10^7 values a call takes seconds, and a single call pays for new memory that later
+    rounds reuse: symlink's 10^7 time a value read 226 ns from one round, 183 ns from several).  A method
     whose first call took less than ``least`` seconds is called that many times more in each later
     round, back to back, and timed by their mean: a single call of a few hundred microseconds,
     right after thirteen other methods have run, measures cold caches as much as the method.  The
@@ -714,7 +716,7 @@ def _timed(methods: list[Method], work: dict[str, list[Sweep]], budget: float,
     try:
         for round_ in range(7):
             for method in methods:
-                if round_ and spent[method.name] + best[method.name] * calls_a_round[method.name] > budget:
+                if round_ >= 3 and spent[method.name] + best[method.name] * calls_a_round[method.name] > budget:
                     continue
                 repeats = calls_a_round[method.name]
                 results[method.name] = []  # the previous round's arrays are freed before timing

@@ -282,10 +282,11 @@ def test_every_method_is_called_once_for_the_whole_workload():
         return {"coupler": numpy.zeros(len(sweep.theta)), "rocker": numpy.zeros(len(sweep.theta))}
     methods = [Method("together", solve), Method("alone", solve, per_linkage=True)]
     _timed(methods[:1], {"together": sweeps}, budget=0.0)
-    assert calls == [180]  # once (the budget stops further rounds), with all 180 values
+    assert len(calls) >= 3 and set(calls) == {180}  # at least three rounds, each call with all 180 values
     calls.clear()
     _timed(methods[1:], {"alone": sweeps}, budget=0.0)
-    assert calls == [len(s.theta) for s in sweeps]
+    one_round = [len(s.theta) for s in sweeps]
+    assert len(calls) >= 3 * len(one_round) and calls == one_round * (len(calls) // len(one_round))
 
 
 def test_pylinkage_workload_is_the_full_turn_sweeps_evenly_spaced():

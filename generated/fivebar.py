@@ -139,20 +139,6 @@ def _sin_atan2(y, r):
     return y / numpy.where(r != 0.0, r, 1.0)
 
 
-def _power_of_two(exponent):
-    """2.0**exponent for whole-number exponents (a loop's unit), bit for bit, without calling pow() a value.
-
-    A power of two in the normal range is its exponent's bits; an exponent outside it (NaN, infinite, a
-    power that overflows or is subnormal) leaves the whole array to ``2.0**exponent``, exact there too.
-    """
-    if numpy.ndim(exponent) == 0 or not ((exponent >= -1022.0) & (exponent <= 1023.0)).all():
-        return 2.0**exponent
-    bits = exponent.astype(numpy.int64)
-    bits += 1023
-    bits <<= 52
-    return bits.view(numpy.float64)
-
-
 def positions(theta, psi, a, b, c, d, e, branch=1, *, check=True):
     """Positions: coupler (rad), coupler2 (rad).
     

@@ -83,6 +83,9 @@ class _OctavePrinter(OctaveCodePrinter):
 
     _print_Pi = _print_NumberSymbol
 
+    def _print_PowerOfTwoBelow(self, expr):  # a loop's unit; any power of two near x scales exactly
+        return f"pow2(floor(log2({self._print(expr.args[0])})))"
+
     def _print_ClampedSqrt(self, expr):  # inline: a function file holds one function
         require_loop_units(expr)
         x, scale = (self._print(a) for a in expr.args)

@@ -675,6 +675,8 @@ def _parquet_rows(data: bytes) -> int:
 
 #: prctl(2)'s option that has the kernel signal a process when its parent ends (Linux).
 PR_SET_PDEATHSIG = 1
+#: The warning filter that keeps multiprocessing's resource tracker quiet about a killed sweep's semaphores.
+QUIET_TRACKER = "ignore::UserWarning:multiprocessing.resource_tracker"
 #: How often a worker process looks for its parent, where the kernel cannot be asked to signal it (seconds).
 WATCH_SECONDS = 0.5
 
@@ -716,6 +718,42 @@ def _watch_parent(parent: int, direct: bool) -> None:
         time.sleep(WATCH_SECONDS)
 
 
+def _process_pool(count: int) -> Any:
+    """A pool of ``count`` worker processes (see :func:`_worker_start`), started now with Ctrl-C ignored.
+
+    A worker takes seconds to import symlink before its initializer runs; a
+    Ctrl-C meanwhile would print its traceback.  So the workers are started
+    here, while this process ignores SIGINT (a disposition they inherit from
+    their first instruction): one task each, submitted while none is idle yet.
+    Off the main thread (where signals cannot be set) only the initializer
+    ignores it.  Multiprocessing's resource tracker, started with the pool,
+    is told not to warn of the pool's semaphores when this process is killed
+    (``-W``, which spawned processes take from ``sys.warnoptions``).
+    """
+    import os
+    import signal
+    import threading
+    from concurrent.futures import ProcessPoolExecutor
+
+    import dask.multiprocessing
+    previous = signal.getsignal(signal.SIGINT)
+    ignore = previous is not None and threading.current_thread() is threading.main_thread()
+    if ignore:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+    options = list(sys.warnoptions)
+    sys.warnoptions.append(QUIET_TRACKER)
+    try:
+        pool = ProcessPoolExecutor(count, mp_context=dask.multiprocessing.get_context(), initializer=_worker_start,
+                                   initargs=(os.getpid(),))
+        for _ in range(count):
+            pool.submit(int)
+    finally:
+        sys.warnoptions[:] = options
+        if ignore:
+            signal.signal(signal.SIGINT, previous)
+    return pool
+
+
 def _stop_processes(pool: Any) -> None:
     """End a process pool's workers now (their chunks are lost; they would be done again)."""
     for process in list((getattr(pool, "_processes", None) or {}).values()):
@@ -733,17 +771,14 @@ def _local_chunks(settings: SweepSettings, todo: list[int], scheduler: str, work
     pool's are left to finish the chunk they are on, unwaited.
     """
     import os
-    from concurrent.futures import Executor, ProcessPoolExecutor, ThreadPoolExecutor
+    from concurrent.futures import Executor, ThreadPoolExecutor
 
     import dask
-    import dask.multiprocessing
     count = workers or os.cpu_count() or 1
     width = window or 4 * count
     # One pool for the whole sweep: Dask would start (and import symlink in) a new one every compute.
-    pool: Executor | None = (ProcessPoolExecutor(count, mp_context=dask.multiprocessing.get_context(),
-                                                 initializer=_worker_start, initargs=(os.getpid(),))
-                             if scheduler == "processes" else ThreadPoolExecutor(count) if scheduler == "threads"
-                             else None)
+    pool: Executor | None = (_process_pool(count) if scheduler == "processes"
+                             else ThreadPoolExecutor(count) if scheduler == "threads" else None)
     finished = False
     try:
         for start in range(0, len(todo), width):  # a window at a time: bounded memory, however many chunks

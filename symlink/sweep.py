@@ -567,7 +567,7 @@ def _require_feasible(settings: SweepSettings, folder: Path, workers: int) -> No
     if free is not None:
         most = min(most, free // LEAST_BYTES_PER_DESIGN)
     if settings.mode == "random":
-        advice = f"--random {most:,} or fewer (count)"
+        advice = f"a random sample of at most {most:,} (--random)"
     else:
         dimensions = len(settings.ranges)
         per = int(round(most ** (1 / dimensions)))
@@ -575,7 +575,7 @@ def _require_feasible(settings: SweepSettings, folder: Path, workers: int) -> No
             per -= 1
         while (per + 1) ** dimensions <= most:
             per += 1
-        advice = (f"--grid {per:,} or fewer values a parameter (count) for {dimensions} parameters"
+        advice = (f"a grid of at most {per:,} values a parameter (--grid) for {dimensions} parameters"
                   if per >= 2 else "fewer swept parameters")
     years = seconds / (365 * 86400)
     taken = f"{years:.3g} years" if years >= 1 else f"{seconds / 86400:.3g} days"

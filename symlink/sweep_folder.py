@@ -225,7 +225,7 @@ def _problem(path: Path, record: ChunkRecord | None, expected: tuple[int, int] |
     if status.st_size == 0:
         return "empty"
     if status.st_size != record.size:
-        return f"{status.st_size} bytes where the manifest recorded {record.size} (truncated or overwritten)"
+        return f"{status.st_size} bytes where the manifest recorded {record.size}: truncated or overwritten"
     try:
         size, digest = _digest(path, record.size)
     except OSError as error:

@@ -541,9 +541,12 @@ def _free_bytes(folder: Path) -> int | None:
     while not there.exists() and there != there.parent:
         there = there.parent
     try:
-        free = shutil.disk_usage(there).free
+        usage = shutil.disk_usage(there)
     except OSError:
         return None
+    if usage.total == 0:  # a pseudo file system (/proc): no size to go by
+        return None
+    free = usage.free
     if folder.is_dir():  # continuing: the chunks done already take part of the table's room
         for path in folder.glob("chunk-*.parquet"):
             try:
@@ -566,8 +569,10 @@ def _require_feasible(settings: SweepSettings, folder: Path, workers: int) -> No
     most = int(LONGEST_SWEEP_SECONDS * FASTEST_DESIGNS_PER_SECOND * max(1, workers))
     if free is not None:
         most = min(most, free // LEAST_BYTES_PER_DESIGN)
-    if settings.mode == "random":
-        advice = f"a random sample of at most {most:,} (--random)"
+    if most < 1:
+        advice = "free some space on that disk, or choose a folder on another"
+    elif settings.mode == "random":
+        advice = f"ask for at most {most:,} designs: a random sample of at most {most:,} (--random)"
     else:
         dimensions = len(settings.ranges)
         per = int(round(most ** (1 / dimensions)))
@@ -575,15 +580,16 @@ def _require_feasible(settings: SweepSettings, folder: Path, workers: int) -> No
             per -= 1
         while (per + 1) ** dimensions <= most:
             per += 1
-        advice = (f"a grid of at most {per:,} values a parameter (--grid) for {dimensions} parameters"
-                  if per >= 2 else "fewer swept parameters")
-    years = seconds / (365 * 86400)
-    taken = f"{years:.3g} years" if years >= 1 else f"{seconds / 86400:.3g} days"
+        advice = f"ask for at most {most:,} designs: " + (
+            f"a grid of at most {per:,} values a parameter (--grid) for {dimensions} parameters" if per >= 2
+            else "fewer swept parameters")
+    taken = next(f"{seconds / span:.3g} {unit}" for unit, span in (("years", 365 * 86400), ("days", 86400),
+                                                                     ("hours", 3600), ("seconds", 1))
+                 if seconds >= span or unit == "seconds")
     room = "" if free is None else f" ({folder}'s disk has {format_bytes(free)} free)"
     raise ValueError(f"a sweep of {settings.designs:.3g} designs needs at least {format_bytes(size)} of disk for "
                      f"its table{room} and at least {taken} on {workers} worker{'s' if workers > 1 else ''} "
-                     f"(at {FASTEST_DESIGNS_PER_SECOND:,} designs/s each, an optimistic rate); ask for at most "
-                     f"{most:,} designs: {advice}")
+                     f"(at {FASTEST_DESIGNS_PER_SECOND:,} designs/s each, an optimistic rate); {advice}")
 
 
 def run_sweep(settings: SweepSettings, folder: str | Path, *, scheduler: Any = "threads", workers: int | None = None,

@@ -43,7 +43,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Iterator, Mapping
 
-from .files import TEMPORARY_SUFFIX, write_atomic
+from .files import LEFTOVER_AGE, TEMPORARY_SUFFIX, write_atomic
 
 __all__ = ["MANIFEST", "FORMAT", "SweepWarning", "ChunkRecord", "SweepFolder", "open_folder", "read_manifest",
            "verified_chunks", "chunk_name", "chunk_range"]
@@ -377,8 +377,8 @@ def open_folder(folder: str | os.PathLike, manifest: dict[str, Any], designs: in
 
     ``manifest`` holds the sweep's ``settings`` and ``columns`` (and whatever
     else the manifest should say; the numbers of ``designs``, of chunks and
-    of designs a ``chunk`` are added); a folder holding another sweep's settings, or
-    other files and no sweep, is refused (``ValueError``).  The folder is
+    of designs a ``chunk`` are added); a folder holding another sweep's
+    settings, or other files and no sweep, is refused (``ValueError``).  The folder is
     locked until :meth:`SweepFolder.close`; the temporaries of killed writes
     are removed; every chunk that is not what its record says is removed
     with one :class:`SweepWarning` and is done again.
@@ -445,10 +445,11 @@ def _chunk_like(folder: Path) -> list[str]:
         return [entry.name for entry in entries if entry.name.startswith("chunk-") and entry.name.endswith(".parquet")]
 
 
-def _older(path: Path, seconds: float = 600.0) -> bool:
-    """Untouched for ``seconds``: where no lock tells, a temporary this old is no running write's."""
+def _older(path: Path) -> bool:
+    """Untouched for :data:`symlink.files.LEFTOVER_AGE`: where no lock tells, a temporary this old is no running
+    write's."""
     try:
-        return time.time() - os.lstat(path).st_mtime >= seconds
+        return time.time() - os.lstat(path).st_mtime >= LEFTOVER_AGE
     except OSError:
         return False
 

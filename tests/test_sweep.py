@@ -353,6 +353,11 @@ def _into_a_link(folder, other):
     (folder / CHUNK).symlink_to(folder / "chunk-000000.parquet")
 
 
+def _into_a_fifo(folder, other):
+    (folder / CHUNK).unlink()
+    os.mkfifo(folder / CHUNK)  # reading it would wait forever for a writer
+
+
 def _unrecorded(folder, other):
     manifest = _manifest(folder)
     del manifest["done"][CHUNK]
@@ -377,6 +382,7 @@ DAMAGES = [
     ("another sweep's chunk", lambda folder, other: shutil.copyfile(other / CHUNK, folder / CHUNK), 1),
     ("a folder", _into_a_folder, 1),
     ("a symbolic link", _into_a_link, 1),
+    ("a FIFO", _into_a_fifo, 1),
     ("unrecorded", _unrecorded, 1),
     ("record edited to a copy", _record_edited, 1),
     ("an extra chunk beyond the last",

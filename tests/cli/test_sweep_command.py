@@ -111,6 +111,25 @@ def test_a_sweep_that_cannot_end_is_one_line_and_exit_2(tmp_path, capsys):
     assert not folder.exists()
 
 
+def test_an_interrupted_sweep_is_one_line_and_exit_130_and_continues(tmp_path, capsys, monkeypatch):
+    """Ctrl-C as the command sees it (a KeyboardInterrupt while chunk 1 is evaluated), then the same command."""
+    folder = tmp_path / "out"
+    evaluate = sweep_module.chunk_table
+
+    def interrupted(settings, index):
+        if index == 1:
+            raise KeyboardInterrupt
+        return evaluate(settings, index)
+
+    monkeypatch.setattr(sweep_module, "chunk_table", interrupted)
+    assert main(["sweep", SMALL[0], str(folder), *SMALL[1:]]) == 130
+    assert capsys.readouterr().err == "symlink: interrupted\n"
+    monkeypatch.setattr(sweep_module, "chunk_table", evaluate)
+    assert main(["sweep", SMALL[0], str(folder), *SMALL[1:]]) == 0
+    assert "wrote 2, found 1 already there" in capsys.readouterr().err
+    assert read_sweep(folder).column("design").to_pylist() == list(range(9))
+
+
 # --- Ctrl-C: one line, exit 130 (the command line's "interrupted"), no worker traceback ---------------------------
 
 @pytest.mark.slow  # a process pool's workers import symlink: 10-20 s a case on a shared machine

@@ -71,7 +71,7 @@ import sys
 from dataclasses import asdict, dataclass, field
 from functools import lru_cache
 from pathlib import Path
-from typing import Any, Generator, Iterable, Mapping, Sequence
+from typing import Any, Callable, Iterable, Mapping, Sequence
 
 import numpy
 
@@ -646,16 +646,20 @@ def run_sweep(settings: SweepSettings, folder: str | Path, *, scheduler: Any = "
                 except ImportError:
                     bar = None
             written = 0
-            found = (_local_chunks(settings, todo, str(scheduler), workers, window) if client is None
-                     else _cluster_chunks(settings, todo, client, window))
+
+            def land(index: int, data: bytes) -> None:  # each chunk as soon as it is done
+                nonlocal written
+                opened.stage(index, data, rows=_parquet_rows(data))
+                written += 1
+                if bar is not None:
+                    bar.update(1)
+
             try:
-                for index, data in found:
-                    opened.stage(index, data, rows=_parquet_rows(data))
-                    written += 1
-                    if bar is not None:
-                        bar.update(1)
+                if client is None:
+                    _local_chunks(settings, todo, str(scheduler), workers, window, land)
+                else:
+                    _cluster_chunks(settings, todo, client, window, land)
             finally:
-                found.close()  # a local pool stops at once, whatever stopped the loop
                 if bar is not None:
                     bar.close()
     finally:
@@ -770,27 +774,38 @@ def _stop_processes(pool: Any) -> None:
 
 
 def _local_chunks(settings: SweepSettings, todo: list[int], scheduler: str, workers: int | None,
-                  window: int | None) -> Generator[tuple[int, bytes], None, None]:
-    """(index, Parquet bytes) of each chunk in ``todo`` on a local scheduler, a window of chunks at a time.
+                  window: int | None, land: Callable[[int, bytes], None]) -> None:
+    """Each chunk in ``todo`` on a local scheduler, a window of chunks at a time: ``land(index, Parquet bytes)``
+    as soon as each is done (in this thread: a Dask callback), so that a stop keeps every chunk done.
 
-    Stopped early (an error, Ctrl-C, or closed), a process pool's workers are ended at once and a thread
-    pool's are left to finish the chunk they are on, unwaited.
+    Stopped early (an error, Ctrl-C), a process pool's workers are ended at once and a thread pool's are
+    left to finish the chunk they are on, unwaited.
     """
     import os
     from concurrent.futures import Executor, ThreadPoolExecutor
 
     import dask
+    from dask.callbacks import Callback
     count = workers or os.cpu_count() or 1
     width = window or 4 * count
     # One pool for the whole sweep: Dask would start (and import symlink in) a new one every compute.
     pool: Executor | None = (_process_pool(count) if scheduler == "processes"
                              else ThreadPoolExecutor(count) if scheduler == "threads" else None)
     finished = False
+    indices: dict[Any, int] = {}
+
+    def done(key: Any, result: bytes, *rest: Any) -> None:
+        if key in indices:  # not another computation's task
+            land(indices.pop(key), result)
+
     try:
-        for start in range(0, len(todo), width):  # a window at a time: bounded memory, however many chunks
-            tasks = [dask.delayed(chunk_table, pure=False)(settings, k) for k in todo[start:start + width]]
-            found = dask.compute(*tasks, scheduler=scheduler, pool=pool, num_workers=count)
-            yield from zip(todo[start:start + width], found)
+        with Callback(posttask=done):
+            for start in range(0, len(todo), width):  # a window at a time: bounded memory, however many chunks
+                tasks = [dask.delayed(chunk_table, pure=False)(settings, k) for k in todo[start:start + width]]
+                indices.update((task.key, k) for task, k in zip(tasks, todo[start:start + width]))
+                dask.compute(*tasks, scheduler=scheduler, pool=pool, num_workers=count)
+                if indices:
+                    raise RuntimeError(f"Dask did not report chunks {sorted(indices.values())} done")
         finished = True
     finally:
         if pool is not None:
@@ -799,9 +814,9 @@ def _local_chunks(settings: SweepSettings, todo: list[int], scheduler: str, work
             pool.shutdown(wait=finished, cancel_futures=True)
 
 
-def _cluster_chunks(settings: SweepSettings, todo: list[int], client: Any,
-                    window: int | None) -> Generator[tuple[int, bytes], None, None]:
-    """(index, Parquet bytes) of each chunk in ``todo`` on a distributed cluster, as they finish."""
+def _cluster_chunks(settings: SweepSettings, todo: list[int], client: Any, window: int | None,
+                    land: Callable[[int, bytes], None]) -> None:
+    """Each chunk in ``todo`` on a distributed cluster: ``land(index, Parquet bytes)`` as each finishes."""
     from distributed import as_completed
     width = window or 4 * max(1, sum(client.nthreads().values()))
     pending = iter(todo)
@@ -814,7 +829,7 @@ def _cluster_chunks(settings: SweepSettings, todo: list[int], client: Any,
     try:
         for future in running:
             index = futures.pop(future)
-            yield index, future.result()
+            land(index, future.result())
             for k in pending:  # one more under way for each one done
                 new = client.submit(chunk_table, settings, k, pure=False)
                 futures[new] = k

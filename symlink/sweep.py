@@ -199,7 +199,8 @@ class SweepSettings:
             raise ValueError("a grid of 1 value a parameter cannot span a range: give count 2 or more")
         _require_chunk_memory(min(self.chunk, self.designs), self.samples)
         if self.designs > MAX_DESIGNS:
-            raise ValueError(f"{self.designs:.3g} designs are too many (at most 2^62)")
+            raise ValueError(f"{self.designs:.3g} designs are too many to number (at most 2^62, and a sweep that "
+                             "can end has far fewer): ask for fewer values a parameter (--grid) or designs (--random)")
         if self.branch not in (1, -1) or isinstance(self.branch, bool):
             raise ValueError(f"branch must be +1 or -1, got {self.branch!r}")
         if not isinstance(self.seed, int) or isinstance(self.seed, bool) or self.seed < 0:

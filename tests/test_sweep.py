@@ -236,6 +236,7 @@ def test_designs_are_made_from_their_numbers_alone():
     (dict(count=1, ranges={"a": (1, 2)}), "count 2 or more"),
     (dict(linkage="nonesuch"), "no linkage 'nonesuch'"),
     (dict(mode="random", count=10**9, chunk=10**9, samples=100_000), r"at most [0-9,]+ designs \(--chunk\)"),
+    (dict(count=10**7, ranges={"a": (1, 2), "b": (1, 2), "c": (1, 2)}), r"1e\+21 designs are too many .*--grid"),
 ])
 def test_bad_settings_are_refused(arguments, message):
     given = dict(linkage="fourbar", ranges={"a": (1, 2)})

@@ -766,7 +766,11 @@ def _process_pool(count: int) -> Any:
 
 
 def _stop_processes(pool: Any) -> None:
-    """End a process pool's workers now (their chunks are lost; they would be done again)."""
+    """End a process pool's workers now (their chunks are lost; they would be done again).
+
+    Through the executor's ``_processes``: ``concurrent.futures`` has no public way to end a pool's workers at
+    once (``shutdown`` waits for the chunks under way, or leaves them running); absent, nothing is done.
+    """
     for process in list((getattr(pool, "_processes", None) or {}).values()):
         try:
             process.terminate()

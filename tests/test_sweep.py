@@ -5,27 +5,40 @@ The plain loop is written here with symlink's public per-design functions
 limit positions, and a Solver call per design for the sampled values), and a
 couple of designs are checked against hand formulas: Grashof's inequality
 and the law of cosines for the transmission angle at crank angle 0.
+
+Then the folder's integrity, table-driven: chunks damaged every way a disk,
+a kill or a hand can damage them are refused by name when read and rebuilt
+(one warning) when the sweep continues, their records checked against hashes
+computed here; temporaries, the lock, interruptions, sweeps too large to end
+(the advice checked against hand-computed cube roots); and, marked slow, a
+process-pool sweep killed with SIGKILL whose workers must be gone in 5 s.
 """
 from __future__ import annotations
 
+import hashlib
+import json
 import logging
 import math
 import os
+import shutil
 import signal
 import subprocess
 import sys
 import time
+import warnings
 from pathlib import Path
 
 import numpy
 import pytest
 
+import symlink.sweep as sweep_module
 from symlink.analysis import grashof, limit_positions, transmission_range
 from symlink.reachability import crank_range
 from symlink.scene import catalog_linkage
 from symlink.solver import Solver
 from symlink.sweep import (MANIFEST, SweepSettings, columns, design_values, evaluate_designs, missing_modules,
                            read_sweep, run_sweep)
+from symlink.sweep_folder import SweepWarning, open_folder
 
 pytestmark = pytest.mark.skipif(bool(missing_modules()), reason="the sweep extra is not installed")
 
@@ -310,14 +323,6 @@ def test_a_linkage_file_sweeps_as_its_catalog_entry(tmp_path, monkeypatch):
 
 
 # --- sweep folders that verify what they resume and what they read (issue 22, item 4) ---------------------------
-
-import hashlib  # noqa: E402
-import json  # noqa: E402
-import shutil  # noqa: E402
-import warnings  # noqa: E402
-
-import symlink.sweep as sweep_module  # noqa: E402
-from symlink.sweep_folder import SweepWarning, open_folder  # noqa: E402
 
 #: Nine designs in three chunks of three: each chunk has the same size, so one can be copied over another.
 TINY = SweepSettings("fourbar", {"a": (0.2, 0.4), "b": (0.9, 1.1)}, values={"c": 1.0, "d": 1.0}, count=3, samples=16,

@@ -410,7 +410,8 @@ def open_folder(folder: str | os.PathLike, manifest: dict[str, Any], designs: in
         old_settings = old.get("settings")
         if old_settings != new_settings or (old["designs"], old["chunk"]) != (designs, chunk):
             old_settings = old_settings if isinstance(old_settings, dict) else {}
-            keys = sorted(k for k in set(old_settings) | set(new_settings) if old_settings.get(k) != new_settings.get(k))
+            keys = sorted(k for k in set(old_settings) | set(new_settings)
+                          if old_settings.get(k) != new_settings.get(k))
             raise ValueError(f"{path} holds a sweep with other settings ({', '.join(keys) or 'its size'} "
                              "differ); choose another folder or the same settings to continue it")
         good: dict[str, ChunkRecord] = {}

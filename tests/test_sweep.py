@@ -544,9 +544,10 @@ class _Disk:
     (10**9, 10**8, 1, "random", ["1e+08 designs", "1.6 GB", "a random sample of at most 62,500,000 (--random)"]),
     # disk enough for anything: a year at 20,000 designs/s on one worker is 630,720,000,000 designs
     (10**30, 10**15, 1, "random", ["1e+15 designs", "1.59e+03 years on 1 worker", "630,720,000,000 designs"]),
+    # 8575**3 = 630,525,109,375 <= 630,720,000,000 < 8576**3 = 630,745,726,976
     (10**30, 10**5, 3, "grid", ["1e+15 designs", "a grid of at most 8,575 values"]),
-    (0, 3, 1, "grid", ["3 designs", "48 bytes of disk", "0 bytes free", "free some space on that disk"]),  # 8575**3 = 630,525,109,375 <= that
-    #                                                               < 8576**3 = 630,745,726,976
+    # a full disk: no design fits
+    (0, 3, 1, "grid", ["3 designs", "48 bytes of disk", "0 bytes free", "free some space on that disk"]),
 ])
 def test_a_sweep_that_cannot_end_is_refused_with_its_estimate(tmp_path, monkeypatch, free, count, ranges, mode,
                                                               words):

@@ -106,7 +106,8 @@ def run(args: argparse.Namespace) -> int:
     done = run_sweep(settings, args.folder, scheduler=args.scheduler, workers=args.workers,
                      progress=not args.no_progress)
     rate = done["designs_per_second"]
-    note(f"{done['designs']} designs in {done['chunks']} chunk{'s' if done['chunks'] != 1 else ''}: wrote {done['written']}, found {done['skipped']} "
-         f"already there" + ("" if math.isnan(rate) else f"; {rate:.4g} designs/s"))
+    chunks = f"{done['chunks']} chunk{'s' if done['chunks'] != 1 else ''}"
+    note(f"{done['designs']} designs in {chunks}: wrote {done['written']}, found {done['skipped']} already there"
+         + ("" if math.isnan(rate) else f"; {rate:.4g} designs/s"))
     print(args.folder)
     return 0

@@ -104,6 +104,9 @@ class PowerOfTwoBelow(sp.Function):
 
     @classmethod
     def eval(cls, x):
+        if x.is_Float and x.is_positive:  # exact: the float's own exponent
+            mantissa, exponent = sp.Float(x)._mpf_[1], sp.Float(x)._mpf_[2]
+            return sp.Integer(2) ** (exponent + int(mantissa).bit_length() - 1)
         if x.is_Rational and x.is_positive:
             exponent = sp.floor(sp.log(x, 2))
             while 2**exponent > x:  # floor of an exact logarithm: SymPy evaluates it, this only guards

@@ -488,8 +488,10 @@ def c_code(functions: Sequence[tuple[str, Program, str]], name: str, title: str 
 
 
 def export_files(linkage: Linkage, stem: str, functions: Sequence[tuple[str, Sequence[str], str]],
-                 title: str, regenerate: str = "") -> dict[str, str]:
-    """``{"<stem>.h": header, "<stem>.c": source}``: a loop function ``<stem>_<name>`` each ``(name, outputs, doc)``."""
+                 title: str, regenerate: str = "", form: str = "atan2") -> dict[str, str]:
+    """``{"<stem>.h": header, "<stem>.c": source}``: a loop function ``<stem>_<name>`` each ``(name, outputs, doc)``.
+    ``form`` is the LaTeX printer's (a seed paper's form of the equations): code has one form, the atan2 form.
+    """
     programs = [(f"{stem}_{name}", linkage.program(list(outputs)), doc) for name, outputs, doc in functions]
     header, source = c_code(programs, stem, title, regenerate)
     return {f"{stem}.h": header, f"{stem}.c": source}

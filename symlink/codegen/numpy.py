@@ -371,7 +371,9 @@ def numpy_module(functions: Sequence[tuple[str, Program, str]], title: str = "A 
 
 
 def export_files(linkage: Linkage, stem: str, functions: Sequence[tuple[str, Sequence[str], str]],
-                 title: str, regenerate: str = "") -> dict[str, str]:
-    """``{"<stem>.py": module}``: one function for each ``(name, outputs, docstring)``; the shape of every printer."""
+                 title: str, regenerate: str = "", form: str = "atan2") -> dict[str, str]:
+    """``{"<stem>.py": module}``: one function for each ``(name, outputs, docstring)``; the shape of every printer.
+    ``form`` is the LaTeX printer's (a seed paper's form of the equations): code has one form, the atan2 form.
+    """
     programs = [(name, linkage.program(list(outputs)), doc) for name, outputs, doc in functions]
     return {f"{stem}.py": numpy_module(programs, title, regenerate)}

@@ -43,7 +43,7 @@ it holds (that link's first side), a slider drives its travel.
 >>> drawn.linkage.inputs, drawn.linkage.unknowns, [s.case.name for s in drawn.linkage.plan]
 ((theta_AB,), (theta_BC, theta_DC), ['3'])
 >>> drawn.parameters["AB"], drawn.branches
-(20.0, {'branch': -1})
+(20.0, {'branch': 1})
 """
 from __future__ import annotations
 
@@ -445,8 +445,7 @@ def from_joints(links: Mapping[str, Sequence[str]], coordinates: Mapping[str, Se
     else:
         raise ValueError("links: give a mapping of link names to the joints each link holds")
     sliders = _joint_kinds(joints, listed)
-    chain = Chain({k: tuple(v) for k, v in links.items()} if all(not isinstance(v, str) for v in links.values())
-                  else links, {j: s.guide for j, s in sliders.items()}, ground)
+    chain = Chain(links, {j: s.guide for j, s in sliders.items()}, ground)
     points = _drawn(coordinates, chain.joints)
     repeated = [d for k, d in enumerate(drivers) if d in drivers[:k]]
     if repeated:

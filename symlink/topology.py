@@ -88,7 +88,7 @@ class Chain:
     joints, a slider whose guide does not hold it, ...).
     """
 
-    links: Mapping[str, tuple[str, ...]]
+    links: Mapping[str, Sequence[str]]
     sliders: Mapping[str, str] = field(default_factory=dict)
     ground: str = GROUND
 
@@ -211,17 +211,17 @@ class Chain:
 
     def _joined(self, group: Sequence[str]) -> bool:
         """Whether the links of ``group`` hang together through joints between them."""
-        group = set(group)
-        start = next(iter(group))
+        members = set(group)
+        start = next(iter(members))
         reached, stack = {start}, [start]
         while stack:
             link = stack.pop()
             for joint in self.links[link]:
                 for other in self.links_of(joint):
-                    if other in group and other not in reached:
+                    if other in members and other not in reached:
                         reached.add(other)
                         stack.append(other)
-        return reached == group
+        return reached == members
 
     # --- loops --------------------------------------------------------------
     def cycles(self) -> tuple[Cycle, ...]:

@@ -8,12 +8,15 @@ drawing:
 
 * **One vector a link side, named after its joints.**  Side ``AB`` of a link
   is ``Vector(AB, theta_AB)`` from joint A to joint B, its length the symbol
-  ``AB`` (the distance in the drawing).  A moving link turns with one angle,
-  that of its first side (its first two joints as listed); every other side
-  sits at a fixed angle to it, ``theta_AB + alpha_AC``, with ``alpha_AC`` read
-  from the drawing (a ternary link's shape).  The ground's sides have fixed
-  angles ``alpha_AD``; if the ground's first joint is not at the origin, the
-  points start with its coordinates ``x_A``, ``y_A``.
+  ``AB`` (the distance in the drawing).  A link with k joints has the k - 1
+  sides from its first joint (as listed) to the others, so that its shape is
+  fixed by independent dimensions; a loop that crosses a ternary link between
+  two other joints walks through its first joint.  A moving link turns with
+  one angle, that of its first side; every other side sits at a fixed angle
+  to it, ``theta_AB + alpha_AC``, with ``alpha_AC`` read from the drawing (a
+  ternary link's shape).  The ground's sides have fixed angles ``alpha_AD``;
+  if the ground's first joint is not at the origin, the points start with its
+  coordinates ``x_A``, ``y_A``.
 * **A slider** (:class:`Slider`) is a pin in a slot: the joint's pin slides
   along a line of its guide link, through the joint's drawn position at the
   drawn angle, and turns in the other links that hold it.  On the guide, the
@@ -221,7 +224,7 @@ class _Builder:
 
     # --- vectors ------------------------------------------------------------
     def side(self, link: str, first: str, second: str) -> Vector:
-        """The vector of a link side from ``first`` to ``second`` (``first`` listed earlier on the link)."""
+        """The vector of a link side from ``first`` (the link's first fixed joint) to ``second``."""
         key = (link, first, second)
         if key not in self.sides:
             name = _side_name(first, second)
@@ -263,10 +266,12 @@ class _Builder:
             return before
         if guide.get(start) == link:
             return -self.walk(link, end, start)
-        order = self.chain.links[link]
-        if order.index(start) < order.index(end):
-            return self.side(link, start, end).as_sum()
-        return -self.side(link, end, start)
+        base = self.chain.rigid_joints(link)[0]
+        if start == base:
+            return self.side(link, base, end).as_sum()
+        if end == base:
+            return -self.side(link, base, start)
+        return -self.side(link, base, start) + self.side(link, base, end)
 
     def loop(self, cycle: Cycle) -> Loop:
         total = VectorSum(())

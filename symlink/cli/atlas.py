@@ -39,9 +39,9 @@ def run(args: argparse.Namespace) -> int:
         return 0
     entry = atlas_entry(args.name)
     drawn = entry.joint_linkage()
-    links, _ = entry.description()
+    description, _ = entry.description()
     print(entry.summary())
-    print("links: " + "; ".join(f"{name} {' '.join(joints)}" for name, joints in links.items()))
+    print("links: " + "; ".join(f"{name} {' '.join(joints)}" for name, joints in description.items()))
     print("joints: " + ", ".join(f"{pin} ({x:.6g}, {y:.6g})" for pin, (x, y) in entry.coordinates().items()))
     from ..plan import solve_plan
     print(solve_plan(drawn.linkage))

@@ -51,7 +51,7 @@ it holds (that link's first side), a slider drives its travel.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Mapping, Sequence
 
 import sympy as sp
@@ -62,7 +62,7 @@ from .loops import Loop
 from .topology import GROUND, Chain, Cycle, Traversal, independent
 from .vectors import Vector, VectorSum
 
-__all__ = ["Slider", "REVOLUTE", "JointLinkage", "from_joints", "DrawnPoseError"]
+__all__ = ["Slider", "REVOLUTE", "JointLinkage", "JointDescription", "from_joints", "DrawnPoseError"]
 
 REVOLUTE = "R"
 
@@ -103,6 +103,8 @@ class JointLinkage:
     loop's assembly sign there (none for a linkage solved by Newton's method).
     ``structure`` lists the groups the linkage is solved in, in order: each dyad's
     links and loop, then (if any) the rest that Newton's method solves together.
+    ``coordinates``, ``sliders`` and ``drivers`` are the description it was made
+    from (the writers of other tools' formats need them).
     """
 
     linkage: Linkage
@@ -112,6 +114,14 @@ class JointLinkage:
     branches: dict[str, int]
     mobility: Mobility
     structure: tuple[tuple[str, tuple[str, ...]], ...]
+    coordinates: Mapping[str, tuple[float, float]] = field(default_factory=dict)
+    sliders: Mapping[str, Slider] = field(default_factory=dict)
+    drivers: tuple[tuple[str, str | None], ...] = ()
+
+    @property
+    def slider_angles(self) -> dict[str, float]:
+        """Each slider's line angle in the drawing (radians)."""
+        return {joint: slider.angle for joint, slider in self.sliders.items()}
 
     @property
     def defaults(self) -> dict[str, float]:
@@ -123,6 +133,31 @@ class JointLinkage:
     def guess(self) -> dict[str, float]:
         """The unknowns at the drawn pose: the initial guess of :class:`symlink.solver.NumericSolver`."""
         return {q.name: self.pose[q.name] for q in self.linkage.unknowns}
+
+
+@dataclass(frozen=True)
+class JointDescription:
+    """The arguments of :func:`from_joints` as data: what the readers of other tools' files return.
+
+    ``names`` maps the names the source used (a tool's joint ids) to the joint names here.
+
+    >>> JointDescription({"ground": ["A", "D"], "crank": ["A", "B"], "coupler": ["B", "C"], "rocker": ["D", "C"]},
+    ...                  {"A": (0, 0), "B": (0, 1), "C": (3, 2), "D": (3, 0)}, ("A",)).build().linkage.unknowns
+    (theta_BC, theta_DC)
+    """
+
+    links: Mapping[str, Sequence[str]]
+    coordinates: Mapping[str, tuple[float, float]]
+    drivers: tuple[str | tuple[str, str], ...]
+    joints: Mapping[str, object] | None = None
+    ground: str = GROUND
+    name: str = "linkage"
+    names: Mapping[str, str] | None = None
+
+    def build(self) -> "JointLinkage":
+        """The linkage (:func:`from_joints`)."""
+        return from_joints(self.links, self.coordinates, driver=list(self.drivers), joints=self.joints,
+                           ground=self.ground, name=self.name)
 
 
 def _number(value: object, what: str) -> float:
@@ -148,7 +183,7 @@ class _Builder:
     """The vectors of a chain drawn at ``points``: sides, sliders and walks along links."""
 
     def __init__(self, chain: Chain, points: Mapping[str, tuple[float, float]], sliders: Mapping[str, Slider],
-                 drivers: Sequence[str]) -> None:
+                 drivers: Sequence[tuple[str, str | None]]) -> None:
         self.chain, self.points, self.sliders = chain, points, sliders
         self.values: dict[sp.Symbol, float] = {}
         self.lengths: list[sp.Symbol] = []
@@ -162,14 +197,18 @@ class _Builder:
         self.angle_of: dict[str, sp.Expr] = {}      # a moving link's angle symbol
         self.reference: dict[str, float] = {}       # its value in the drawing
         self.travel: dict[str, sp.Symbol] = {}
-        self.driven: dict[sp.Symbol, str] = {}
+        self.driven: dict[sp.Symbol, tuple[str, str | None]] = {}
         for link in chain.links:
             if link != chain.ground:
                 self._link_angle(link)
         for joint in chain.sliders:
             self.travel[joint] = sp.Symbol(f"s_{joint}", real=True)
-        for joint in drivers:
-            self.driven[self._driven_coordinate(joint)] = joint
+        for driver in drivers:
+            coordinate = self._driven_coordinate(driver)
+            if coordinate in self.driven:
+                raise ValueError(f"drivers {self.driven[coordinate][0]!r} and {driver[0]!r} drive the same "
+                                 f"{coordinate}")
+            self.driven[coordinate] = driver
 
     # --- symbols ------------------------------------------------------------
     def _parameter(self, name: str, value: float, kind: list, **assumptions) -> sp.Symbol:
@@ -197,19 +236,27 @@ class _Builder:
         symbol = sp.Symbol(f"theta_{name}", real=True)
         self.angle_of[link], self.reference[link], self.pose[symbol] = symbol, value, value
 
-    def _driven_coordinate(self, joint: str) -> sp.Symbol:
+    def _driven_coordinate(self, driver: tuple[str, str | None]) -> sp.Symbol:
+        joint, link = driver
         if joint not in self.points:
             raise ValueError(f"driver {joint!r} is not a joint of the linkage")
         if joint in self.chain.sliders:
+            if link is not None:
+                raise ValueError(f"driver {joint!r} is a slider: it drives its travel, not link {link!r}")
             return self.travel[joint]
         holders = self.chain.links_of(joint)
         if self.chain.ground not in holders:
             raise ValueError(f"driver {joint!r} joins {', '.join(holders)}, none of them the ground: "
                              "drive a pin on the ground or a slider (relative drivers are not supported)")
-        moving = [link for link in holders if link != self.chain.ground]
+        moving = [other for other in holders if other != self.chain.ground]
+        if link is not None:
+            if link not in moving:
+                raise ValueError(f"driver ({joint!r}, {link!r}): {link!r} is not a moving link at {joint!r} "
+                                 f"(those are {', '.join(moving)})")
+            return self.angle_of[link]
         if len(moving) != 1:
             raise ValueError(f"driver {joint!r} joins the ground to {len(moving)} links ({', '.join(moving)}); "
-                             "a driven pin turns one link")
+                             f"name the driven one: ({joint!r}, {moving[0]!r})")
         return self.angle_of[moving[0]]
 
     def _turning(self, link: str, absolute: float, name: str) -> sp.Expr:
@@ -340,16 +387,18 @@ def _drawn(coordinates: Mapping[str, Sequence[float]], joints: Sequence[str]) ->
     return points
 
 
-def _check_structure(chain: Chain, drivers: Sequence[str]) -> Mobility:
+def _check_structure(chain: Chain, drivers: Sequence[tuple[str, str | None]]) -> Mobility:
     mobility = chain.mobility()
-    stuck = chain.overconstrained(drivers)
+    given = [joint if link is None else (joint, link) for joint, link in drivers]
+    stuck = chain.overconstrained(given)
     if stuck is not None:
         joints = sorted({j for link in stuck for j in chain.links[link]
-                         if all(other in stuck for other in chain.links_of(j))})
-        raise ValueError(f"links {', '.join(stuck)} are over-constrained: joined by {', '.join(joints)} they "
-                         f"have mobility {chain.local_mobility(stuck, drivers) + sum(1 for d in drivers if d in joints)}"
-                         f"{' with ' + ', '.join(d for d in drivers if d in joints) + ' driven' if any(d in joints for d in drivers) else ''}"
-                         ", so they move only for special dimensions (a rigid part, or a loop that closes twice)")
+                         if sum(other in stuck for other in chain.links_of(j)) > 1})
+        inside = [d for d in given if all(link in stuck for link in chain.driven_links(d))]
+        driven = f" and {len(inside)} driver{'s' if len(inside) > 1 else ''}" if inside else ""
+        raise ValueError(f"links {', '.join(stuck)} are over-constrained: joined by {', '.join(joints)}{driven} "
+                         f"they have mobility {chain.local_mobility(stuck, given)}, so they move only for special "
+                         "dimensions (a rigid part, or a loop that closes twice)")
     if mobility.dof != len(drivers):
         kind = "under" if mobility.dof > len(drivers) else "over"
         raise ValueError(f"the linkage is {kind}-constrained: Gruebler gives mobility {mobility.dof} "
@@ -423,15 +472,32 @@ def _branches(linkage: Linkage, values: dict[sp.Symbol, float], scale: float) ->
     return signs
 
 
+def _drivers(driver: object) -> list[tuple[str, str | None]]:
+    """Drivers as (joint, driven link or None): a joint name, or a list of joint names and (joint, link) pairs."""
+    items = [driver] if isinstance(driver, str) else driver
+    if not isinstance(items, (list, tuple)) or not items:
+        raise ValueError("driver: name the driven joint (a pin on the ground or a slider), or list them")
+    found: list[tuple[str, str | None]] = []
+    for item in items:
+        if isinstance(item, str):
+            found.append((item, None))
+        elif isinstance(item, (list, tuple)) and len(item) == 2 and all(isinstance(i, str) for i in item):
+            found.append((item[0], item[1]))
+        else:
+            raise ValueError(f"driver {item!r}: give a joint name or a (joint, link) pair")
+    return found
+
+
 def from_joints(links: Mapping[str, Sequence[str]], coordinates: Mapping[str, Sequence[float]],
-                driver: str | Sequence[str], joints: Mapping[str, object] | None = None, *,
+                driver: str | Sequence[str | tuple[str, str]], joints: Mapping[str, object] | None = None, *,
                 ground: str = GROUND, name: str = "linkage") -> JointLinkage:
     """The linkage that ``links`` and ``joints`` make, dimensioned and posed by the drawn ``coordinates``.
 
     ``links`` maps each link (``ground`` among them) to the joints it holds, in an
     order that names its sides (the first two give the link's angle);
     ``coordinates`` gives every joint's (x, y) in one assembled pose; ``driver``
-    is the driven joint (or a list, one per degree of freedom); ``joints`` gives
+    is the driven joint (or a list, one per degree of freedom; a pin on the ground
+    that holds several moving links is given with the driven one, ``("A", "crank")``); ``joints`` gives
     the kind of any joint that is not a revolute pin (``Slider(guide, angle)``).
     The result's :attr:`~JointLinkage.linkage` is an ordinary linkage; its
     :attr:`~JointLinkage.defaults` reproduce the drawing.
@@ -442,9 +508,7 @@ def from_joints(links: Mapping[str, Sequence[str]], coordinates: Mapping[str, Se
     >>> slider.linkage.unknowns, [s.case.name for s in slider.linkage.plan], slider.pose["s_C"]
     ((theta_BC, s_C), ['2b'], 4.0)
     """
-    drivers = [driver] if isinstance(driver, str) else list(driver)
-    if not drivers:
-        raise ValueError("driver: name the driven joint (a pin on the ground or a slider)")
+    drivers = _drivers(driver)
     if isinstance(links, Mapping):
         listed = [j for js in links.values() if not isinstance(js, str) for j in js]
     else:
@@ -452,9 +516,6 @@ def from_joints(links: Mapping[str, Sequence[str]], coordinates: Mapping[str, Se
     sliders = _joint_kinds(joints, listed)
     chain = Chain(links, {j: s.guide for j, s in sliders.items()}, ground)
     points = _drawn(coordinates, chain.joints)
-    repeated = [d for k, d in enumerate(drivers) if d in drivers[:k]]
-    if repeated:
-        raise ValueError(f"driver {repeated[0]!r} is listed twice")
     mobility = _check_structure(chain, drivers)
     builder = _Builder(chain, points, sliders, drivers)
     inputs = list(builder.driven)
@@ -487,4 +548,5 @@ def from_joints(links: Mapping[str, Sequence[str]], coordinates: Mapping[str, Se
     values.update(builder.pose)
     branches = _branches(linkage, values, builder.scale) if linkage.has_closed_form else {}
     return JointLinkage(linkage, chain, {s.name: v for s, v in builder.values.items()},
-                        {s.name: v for s, v in builder.pose.items()}, branches, mobility, tuple(structure))
+                        {s.name: v for s, v in builder.pose.items()}, branches, mobility, tuple(structure),
+                        points, dict(sliders), tuple(drivers))

@@ -173,7 +173,13 @@ class Chain:
                 revolute += len(holders) - 1
         return Mobility(links, revolute, prismatic)
 
-    def local_mobility(self, group: Iterable[str], drivers: Sequence[str] = ()) -> int:
+    def driven_links(self, driver: "str | tuple[str, str]") -> tuple[str, ...]:
+        """The links a driver acts between: a joint's links, or (joint, link) the ground and that link."""
+        if isinstance(driver, str):
+            return self.links_of(driver)
+        return (self.ground, driver[1])
+
+    def local_mobility(self, group: Iterable[str], drivers: "Sequence[str | tuple[str, str]]" = ()) -> int:
         """The mobility of the links ``group`` on their own (the first one held still), less their drivers.
 
         Counts only the joints between links of the group: a pin shared by k of them is
@@ -190,10 +196,10 @@ class Chain:
                 constraints += (1 + 2 * (others - 1)) if others else 0
             elif inside:
                 constraints += 2 * (len(inside) - 1)
-        driven = sum(1 for joint in drivers if all(link in group for link in self.links_of(joint)))
+        driven = sum(1 for driver in drivers if all(link in group for link in self.driven_links(driver)))
         return 3 * (len(group) - 1) - constraints - driven
 
-    def overconstrained(self, drivers: Sequence[str] = ()) -> tuple[str, ...] | None:
+    def overconstrained(self, drivers: "Sequence[str | tuple[str, str]]" = ()) -> tuple[str, ...] | None:
         """The smallest group of links that cannot move as its joints (and drivers) say, or None.
 
         A group whose own mobility (:meth:`local_mobility`) is negative is over-constrained:

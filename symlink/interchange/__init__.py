@@ -1,0 +1,12 @@
+"""Other tools' descriptions of linkages, read and written: pylinkage's JSON mechanisms, Pyslvs's expressions.
+
+Each reader is a strict grammar of its own (no ``eval``) that returns a
+:class:`~symlink.joints.JointDescription`; ``.build()`` gives the linkage
+(:func:`symlink.joints.from_joints`), and :func:`symlink.linkage_file.linkage_text`
+writes symlink's own linkage file from it.  Each writer takes what
+:func:`~symlink.joints.from_joints` returns.
+"""
+from .pylinkage import read_pylinkage, write_pylinkage
+from .pyslvs import read_pyslvs, write_pyslvs
+
+__all__ = ["read_pylinkage", "write_pylinkage", "read_pyslvs", "write_pyslvs"]

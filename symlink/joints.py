@@ -379,7 +379,7 @@ def _drawn(coordinates: Mapping[str, Sequence[float]], joints: Sequence[str]) ->
     if extra:
         raise ValueError(f"coordinates: {', '.join(map(repr, extra))} is on no link")
     points = {}
-    for joint in joints:
+    for joint in coordinates:  # in the order given (a tool's joint order survives a round trip)
         xy = coordinates[joint]
         if isinstance(xy, str) or len(xy) != 2:
             raise ValueError(f"coordinates: joint {joint!r} needs two numbers (x, y), not {xy!r}")

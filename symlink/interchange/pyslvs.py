@@ -239,14 +239,13 @@ def _number_text(value: float) -> str:
 def write_pyslvs(drawn: JointLinkage) -> str:
     """The Pyslvs expression of a linkage from its joints, at its drawn pose (angles of RP joints in degrees).
 
-    Pyslvs names no joints: they are written in the order of the chain's joints
-    (``drawn.chain.joints``), and its input pair is (the driver's index, the index
-    of another joint of the driven link).
+    Pyslvs names no joints: they are written in the order of the drawn coordinates
+    (a Pyslvs expression read here keeps its order, and so its input pairs).
     """
     chain = drawn.chain
-    points = {name: drawn.coordinates[name] for name in chain.joints}
+    points = drawn.coordinates
     parts = []
-    for joint in chain.joints:
+    for joint in points:
         held = list(chain.links_of(joint))
         x, y = points[joint]
         position = f"P[{_number_text(x)}, {_number_text(y)}]"

@@ -471,6 +471,13 @@ def linkage_from_mapping(data: Mapping, source: str = "<mapping>", text: str | N
 def _from_mapping(data: Mapping, source: str) -> LinkageFile:
     if not isinstance(data, Mapping):
         raise _Problem("", "", f"a linkage file is a TOML table, got {type(data).__name__}")
+    if "links" in data or "joints" in data:  # a linkage by its joints: symlink.joint_tables derives the loops
+        from .joint_tables import TableProblem, linkage_from_tables
+        try:
+            drawn = linkage_from_tables(data, angle=lambda value: float(_expression(value, {}, units=True)))
+        except TableProblem as problem:
+            raise _Problem(problem.table, problem.key, str(problem)) from None
+        return LinkageFile(drawn.linkage, drawn.defaults, source)
     for key in data:
         if key not in TOP_KEYS + TABLES:
             raise _Problem("", key, f"unknown key {key!r} (a linkage file has {', '.join(TOP_KEYS + TABLES)})")

@@ -413,3 +413,59 @@ def test_the_cycles_of_a_watt_chain_and_their_rank():
                    "c2": ["E", "F"], "out": ["G", "F"]})
     assert [c.name for c in chain.cycles()] == ["ABCD", "DEFG", "ABCEFG"]
     assert chain.cycle_rank() == 2
+
+
+# --- the [links] and [joints] tables of a linkage file --------------------------------------------------------------
+
+JOINT_FILE = '''
+name = "offset slider-crank"
+driver = "A"
+
+[links]
+ground = ["A", "C"]
+crank = ["A", "B"]
+rod = ["B", "C"]
+
+[joints]
+A = [0, 0]
+B = [0.6, 1.0]
+C = {at = [3.0, 0.4], slider = "ground", angle = "0 deg"}
+'''
+
+
+def test_a_linkage_file_by_its_joints_gives_the_linkage_and_its_drawing():
+    from symlink.linkage_file import linkage_from_text
+    found = linkage_from_text(JOINT_FILE, source="slider.toml")
+    linkage = found.linkage
+    assert [s.case.name for s in linkage.plan] == ["2b"]
+    got = Solver(linkage, ["C_x", "C_y", "B_x", "B_y"])(**found.defaults)
+    assert (float(got["C_x"]), float(got["C_y"])) == pytest.approx((3.0, 0.4), abs=1e-14)
+    assert (float(got["B_x"]), float(got["B_y"])) == pytest.approx((0.6, 1.0), abs=1e-14)
+    # Along a turn the pin stays on its line y = 0.4 and the rod keeps its drawn length.
+    turn = Solver(linkage, ["C_x", "C_y", "B_x", "B_y"])(**{**found.defaults, "theta_AB": np.linspace(0, 6.2, 32)})
+    assert np.max(np.abs(np.asarray(turn["C_y"]) - 0.4)) < 1e-14
+    rod = np.hypot(np.asarray(turn["C_x"]) - turn["B_x"], np.asarray(turn["C_y"]) - turn["B_y"])
+    assert np.max(np.abs(rod - math.hypot(2.4, 0.6))) < 1e-13
+
+
+@pytest.mark.parametrize("change, message", [
+    (('B = [0.6, 1.0]', 'B = [0.6, "one"]'), "slider.toml:12: joints.B: y must be a number, got 'one'"),
+    (('B = [0.6, 1.0]', 'B = [0.6]'), "slider.toml:12: joints.B: a position is [x, y]"),
+    (('angle = "0 deg"', 'angle = "sin(0)"'), "slider.toml:13: joints.C: angle"),
+    (('angle = "0 deg"}', 'angle = "0 deg", speed = 2}'), "slider.toml:13: joints.C: a slider is"),
+    (('driver = "A"', 'driver = 3'), "slider.toml:3: driver must be a joint name"),
+    (('rod = ["B", "C"]', 'rod = ["B"]'), "slider.toml:8: links.rod: link 'rod' holds 1 joint"),
+    (('driver = "A"', 'driver = "A"\ninputs = ["x"]'), "slider.toml:4: unknown key 'inputs'"),
+    (('crank = ["A", "B"]', 'crank = ["A", "B"]\nspare = ["B", "Q"]'), "slider.toml:11: coordinates: no position for joint Q"),
+    ((('crank = ["A", "B"]', 'crank = ["A", "B"]\nspare = ["B", "Q"]'), ("A = [0, 0]", "A = [0, 0]\nQ = [5, 5]")),
+     "slider.toml:5: the linkage is under-constrained: Gruebler gives mobility 2"),
+
+])
+def test_a_bad_joint_file_is_one_line_naming_the_file_and_line(change, message):
+    from symlink.linkage_file import linkage_from_text
+    text = JOINT_FILE
+    for old, new in (change if isinstance(change[0], tuple) else [change]):
+        text = text.replace(old, new)
+    with pytest.raises(ValueError) as error:
+        linkage_from_text(text, source="slider.toml")
+    assert message in str(error.value) and "\n" not in str(error.value)

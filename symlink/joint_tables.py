@@ -23,8 +23,8 @@ and loops (:func:`symlink.joints.from_joints` derives those)::
 
 The angle is a number (radians) or a constant of the linkage file grammar
 (``"10 deg"``, ``"pi/2"``), read by the caller's grammar (``angle``).  The
-linkage's defaults are the dimensions of the drawing, the inputs at the drawn
-pose and the branch signs that reproduce it.  Problems are :class:`TableProblem`
+linkage's defaults are the dimensions of the drawing and the inputs at the
+drawn pose; every branch sign is +1 there (see :mod:`symlink.joints`).  Problems are :class:`TableProblem`
 naming the table and key, which :mod:`symlink.linkage_file` turns into its
 ``file:line`` errors.
 

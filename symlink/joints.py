@@ -32,7 +32,10 @@ drawing:
   solved by Newton's method (:class:`symlink.solver.NumericSolver`) as any
   linkage without a closed form.
 * **Branch signs from the drawing**: each loop's assembly is the one the
-  drawing shows, so the returned values reproduce the drawn pose exactly.
+  drawing shows, so the returned values reproduce the drawn pose exactly; the
+  order of a loop's two angles (and the direction a slider's travel is
+  measured in) is chosen so that the drawn assembly is branch +1, the
+  default of every solver and command.
 * **Mobility** by Gruebler and Kutzbach; a structure whose mobility differs
   from its number of drivers, or that has an over-constrained part, is
   refused with a ``ValueError`` naming the links.
@@ -52,7 +55,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Mapping, Sequence
+from typing import Collection, Mapping, Sequence
 
 import sympy as sp
 
@@ -100,7 +103,10 @@ class JointLinkage:
 
     ``parameters`` are the lengths, fixed angles and offsets read from the drawing;
     ``pose`` every coordinate (inputs and unknowns) in the drawing; ``branches`` each
-    loop's assembly sign there (none for a linkage solved by Newton's method).
+    loop's assembly sign there (none for a linkage solved by Newton's method): +1
+    wherever the loop allows (each case-3 loop takes its two angles, each slider
+    its travel, in the order or direction that makes the drawing +1), so that
+    the branches' default shows the drawing.
     ``structure`` lists the groups the linkage is solved in, in order: each dyad's
     links and loop, then (if any) the rest that Newton's method solves together.
     ``coordinates``, ``sliders`` and ``drivers`` are the description it was made
@@ -122,6 +128,11 @@ class JointLinkage:
     def slider_angles(self) -> dict[str, float]:
         """Each slider's line angle in the drawing (radians)."""
         return {joint: slider.angle for joint, slider in self.sliders.items()}
+
+    @property
+    def values(self) -> dict[str, float]:
+        """Parameters and the inputs at the drawn pose: a linkage file's defaults (every branch is +1 there)."""
+        return {**self.parameters, **{q.name: self.pose[q.name] for q in self.linkage.inputs}}
 
     @property
     def defaults(self) -> dict[str, float]:
@@ -408,7 +419,8 @@ def _check_structure(chain: Chain, drivers: Sequence[tuple[str, str | None]]) ->
     return mobility
 
 
-def _plan(builder: _Builder, cycles: Sequence[Cycle], unknowns: Sequence[sp.Symbol]) -> list[tuple[Cycle, Loop, list]]:
+def _plan(builder: _Builder, cycles: Sequence[Cycle], unknowns: Sequence[sp.Symbol],
+          swapped: Collection[str] = frozenset()) -> list[tuple[Cycle, Loop, list]]:
     """Loops that each solve two new unknowns (dyads), in order, with the unknowns each solves."""
     left = list(unknowns)
     chosen: list[tuple[Cycle, Loop, list]] = []
@@ -424,7 +436,7 @@ def _plan(builder: _Builder, cycles: Sequence[Cycle], unknowns: Sequence[sp.Symb
                 loop.case(found)
             except ValueError:
                 continue
-            chosen.append((cycle, loop, found))
+            chosen.append((cycle, loop, found[::-1] if cycle.name in swapped else found))
             left = [q for q in left if q not in found]
             progress = True
             break
@@ -472,6 +484,44 @@ def _branches(linkage: Linkage, values: dict[sp.Symbol, float], scale: float) ->
     return signs
 
 
+def _derive(chain: Chain, points: Mapping[str, tuple[float, float]], sliders: Mapping[str, Slider],
+            drivers: Sequence[tuple[str, str | None]], name: str, swapped: set[str]) -> tuple:
+    """The linkage, its builder, its structure and its branch signs at the drawing (``swapped``: loops whose two
+    unknowns are taken in the other order)."""
+    ground = chain.ground
+    builder = _Builder(chain, points, sliders, drivers)
+    inputs = list(builder.driven)
+    unknowns = [q for link in chain.links if link in builder.angle_of for q in [builder.angle_of[link]]
+                if q not in builder.driven]
+    unknowns += [s for s in builder.travel.values() if s not in builder.driven]
+    cycles = chain.cycles()
+    steps = _plan(builder, cycles, unknowns, swapped)
+    loops = [loop for _, loop, _ in steps]
+    order = [q for _, _, found in steps for q in found]
+    link_of = {q: link for link, q in builder.angle_of.items()}
+    structure: list[tuple[str, tuple[str, ...]]] = [
+        (loop.name, tuple(link_of[q] for q in found if q in link_of)) for _, loop, found in steps]
+    rest = [q for q in unknowns if q not in order]
+    if rest:
+        more = _complete(builder, [cycle for cycle, _, _ in steps], cycles, len(unknowns))
+        loops += [builder.loop(cycle) for cycle in more]
+        structure.append(("+".join(c.name for c in more), tuple(link_of[q] for q in rest if q in link_of)))
+        order += rest
+    for joint in chain.joints:  # every slider's vectors, in the drawing, even one that no loop walks
+        if joint in chain.sliders:
+            builder.slide(joint)
+    points_from_origin = builder.points_from_origin()
+    parameters = builder.lengths + builder.angles + builder.offsets
+    taken = {s.name for s in parameters + inputs + order} | set(points)
+    roles = {link: q for link, q in builder.angle_of.items() if link not in taken and link != ground}
+    linkage = Linkage(name, loops, inputs=inputs, unknowns=order,
+                      parameters=parameters, points=points_from_origin, roles=roles)
+    values = dict(builder.values)
+    values.update(builder.pose)
+    branches = _branches(linkage, values, builder.scale) if linkage.has_closed_form else {}
+    return linkage, builder, tuple(structure), branches
+
+
 def _drivers(driver: object) -> list[tuple[str, str | None]]:
     """Drivers as (joint, driven link or None): a joint name, or a list of joint names and (joint, link) pairs."""
     items = [driver] if isinstance(driver, str) else driver
@@ -517,36 +567,24 @@ def from_joints(links: Mapping[str, Sequence[str]], coordinates: Mapping[str, Se
     chain = Chain(links, {j: s.guide for j, s in sliders.items()}, ground)
     points = _drawn(coordinates, chain.joints)
     mobility = _check_structure(chain, drivers)
-    builder = _Builder(chain, points, sliders, drivers)
-    inputs = list(builder.driven)
-    unknowns = [q for link in chain.links if link in builder.angle_of for q in [builder.angle_of[link]]
-                if q not in builder.driven]
-    unknowns += [s for s in builder.travel.values() if s not in builder.driven]
-    cycles = chain.cycles()
-    steps = _plan(builder, cycles, unknowns)
-    loops = [loop for _, loop, _ in steps]
-    order = [q for _, _, found in steps for q in found]
-    link_of = {q: link for link, q in builder.angle_of.items()}
-    structure: list[tuple[str, tuple[str, ...]]] = [
-        (loop.name, tuple(link_of[q] for q in found if q in link_of)) for _, loop, found in steps]
-    rest = [q for q in unknowns if q not in order]
-    if rest:
-        more = _complete(builder, [cycle for cycle, _, _ in steps], cycles, len(unknowns))
-        loops += [builder.loop(cycle) for cycle in more]
-        structure.append(("+".join(c.name for c in more), tuple(link_of[q] for q in rest if q in link_of)))
-        order += rest
-    for joint in chain.joints:  # every slider's vectors, in the drawing, even one that no loop walks
-        if joint in chain.sliders:
-            builder.slide(joint)
-    points_from_origin = builder.points_from_origin()
-    parameters = builder.lengths + builder.angles + builder.offsets
-    taken = {s.name for s in parameters + inputs + order} | set(points)
-    roles = {link: q for link, q in builder.angle_of.items() if link not in taken and link != ground}
-    linkage = Linkage(name, loops, inputs=inputs, unknowns=order,
-                      parameters=parameters, points=points_from_origin, roles=roles)
-    values = dict(builder.values)
-    values.update(builder.pose)
-    branches = _branches(linkage, values, builder.scale) if linkage.has_closed_form else {}
+    linkage, builder, structure, branches = _derive(chain, points, sliders, drivers, name, set())
+    # Make the drawing every loop's assembly +1, so that anything that takes the branches' default (+1) shows it:
+    # a case-3 loop takes its two angles in the other order, a slider's travel is measured the other way along
+    # its line (cases 2b and 2c: +1 is the larger travel).
+    swapped: set[str] = set()
+    flipped = dict(sliders)
+    for step in linkage.plan if linkage.has_closed_form else ():
+        if step.branch is None or branches[step.branch.name] == 1:
+            continue
+        if step.case.name == "3":
+            swapped.add(step.loop.name)
+        else:
+            travel = next(u for u in (step.case.first, step.case.second) if u.part == "length").symbol
+            joint = next(j for j, q in builder.travel.items() if q == travel)
+            flipped[joint] = Slider(flipped[joint].guide, _wrap(flipped[joint].angle + math.pi))
+    if swapped or flipped != sliders:
+        linkage, builder, structure, branches = _derive(chain, points, flipped, drivers, name, swapped)
+        sliders = flipped
     return JointLinkage(linkage, chain, {s.name: v for s, v in builder.values.items()},
-                        {s.name: v for s, v in builder.pose.items()}, branches, mobility, tuple(structure),
+                        {s.name: v for s, v in builder.pose.items()}, branches, mobility, structure,
                         points, dict(sliders), tuple(drivers))

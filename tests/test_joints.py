@@ -54,6 +54,7 @@ def test_a_catalog_linkage_from_its_joints_moves_as_its_hand_written_loops(name,
     drawn = from_joints(coordinates=pose, driver="A", **spec)
     linkage = drawn.linkage
     assert linkage.has_closed_form
+    assert set(drawn.branches.values()) == {1}  # the drawn assembly is every loop's +1
     assert 2 * len(linkage.loops) == len(linkage.unknowns)
     sweep = np.linspace(drawn_at, drawn_at + 2 * math.pi, 73)
     expected = catalog_points(name, sweep, branch, names)
@@ -438,7 +439,7 @@ def test_a_linkage_file_by_its_joints_gives_the_linkage_and_its_drawing():
     found = linkage_from_text(JOINT_FILE, source="slider.toml")
     linkage = found.linkage
     assert [s.case.name for s in linkage.plan] == ["2b"]
-    got = Solver(linkage, ["C_x", "C_y", "B_x", "B_y"])(**found.defaults)
+    got = Solver(linkage, ["C_x", "C_y", "B_x", "B_y"])(**found.defaults)  # the branches' default: the drawing
     assert (float(got["C_x"]), float(got["C_y"])) == pytest.approx((3.0, 0.4), abs=1e-14)
     assert (float(got["B_x"]), float(got["B_y"])) == pytest.approx((0.6, 1.0), abs=1e-14)
     # Along a turn the pin stays on its line y = 0.4 and the rod keeps its drawn length.

@@ -54,7 +54,7 @@ it holds (that link's first side), a slider drives its travel.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Collection, Mapping, Sequence
 
 import sympy as sp
@@ -82,13 +82,16 @@ class Slider:
     """A slider joint: its pin slides on link ``guide`` along a line at ``angle`` (radians, in the drawing).
 
     The line passes through the joint's drawn position and turns with the guide.
+    With ``turns=False`` the joint is a prismatic joint proper: the one other link
+    that holds it is a block that slides on the guide without turning on it.
 
     >>> Slider("ground", 0.0)
-    Slider(guide='ground', angle=0.0)
+    Slider(guide='ground', angle=0.0, turns=True)
     """
 
     guide: str
     angle: float
+    turns: bool = True
 
     def __post_init__(self) -> None:
         if not isinstance(self.guide, str):
@@ -210,7 +213,7 @@ class _Builder:
         self.travel: dict[str, sp.Symbol] = {}
         self.driven: dict[sp.Symbol, tuple[str, str | None]] = {}
         for link in chain.links:
-            if link != chain.ground:
+            if self.frame(link) == link:
                 self._link_angle(link)
         for joint in chain.sliders:
             self.travel[joint] = sp.Symbol(f"s_{joint}", real=True)
@@ -236,6 +239,19 @@ class _Builder:
                              f"{_side_name(first, second)} has no direction; draw them apart")
         return math.atan2(y1 - y0, x1 - x0)
 
+    def frame(self, link: str) -> str | None:
+        """The link whose angle turns ``link``: itself, its guide's frame for a block, None on the ground."""
+        seen: list[str] = []
+        while link != self.chain.ground:
+            guide = self.chain.block_guide(link)
+            if guide is None:
+                return link
+            if link in seen:
+                raise ValueError(f"links {', '.join(seen)} slide on each other in a ring, without turning")
+            seen.append(link)
+            link = guide
+        return None
+
     def _link_angle(self, link: str) -> None:
         """A moving link's angle: of its first side, or of its slider's line if it holds one fixed joint only."""
         rigid = self.chain.rigid_joints(link)
@@ -260,6 +276,8 @@ class _Builder:
             raise ValueError(f"driver {joint!r} joins {', '.join(holders)}, none of them the ground: "
                              "drive a pin on the ground or a slider (relative drivers are not supported)")
         moving = [other for other in holders if other != self.chain.ground]
+        if any(other not in self.angle_of for other in ([link] if link is not None else moving)):
+            raise ValueError(f"driver {joint!r} turns a link that slides on its guide without turning")
         if link is not None:
             if link not in moving:
                 raise ValueError(f"driver ({joint!r}, {link!r}): {link!r} is not a moving link at {joint!r} "
@@ -271,14 +289,15 @@ class _Builder:
         return self.angle_of[moving[0]]
 
     def _turning(self, link: str, absolute: float, name: str) -> sp.Expr:
-        """The angle of a line drawn at ``absolute`` on ``link``: a fixed angle on the ground, else the link's
-        angle plus a fixed offset (none for the link's own reference line)."""
-        if link == self.chain.ground:
+        """The angle of a line drawn at ``absolute`` on ``link``: a fixed angle on the ground (or a block sliding
+        on it), else the angle of the link that turns it plus a fixed offset (none for that link's own line)."""
+        frame = self.frame(link)
+        if frame is None:
             return self._parameter(f"alpha_{name}", absolute, self.angles, real=True)
-        offset = _wrap(absolute - self.reference[link])
-        if f"theta_{name}" == self.angle_of[link].name:
+        offset = _wrap(absolute - self.reference[frame])
+        if frame == link and f"theta_{name}" == self.angle_of[link].name:
             return self.angle_of[link]
-        return self.angle_of[link] + self._parameter(f"alpha_{name}", offset, self.angles, real=True)
+        return self.angle_of[frame] + self._parameter(f"alpha_{name}", offset, self.angles, real=True)
 
     # --- vectors ------------------------------------------------------------
     def side(self, link: str, first: str, second: str) -> Vector:
@@ -343,8 +362,9 @@ class _Builder:
         for joint in (traversal.entry, traversal.exit):
             if self.chain.sliders.get(joint) == traversal.link:
                 found.append(self.travel[joint])
-        if traversal.link in self.angle_of:
-            found.insert(0, self.angle_of[traversal.link])
+        frame = self.frame(traversal.link)
+        if frame is not None:
+            found.insert(0, self.angle_of[frame])
         return found
 
     def points_from_origin(self) -> dict[str, VectorSum | None]:
@@ -564,7 +584,8 @@ def from_joints(links: Mapping[str, Sequence[str]], coordinates: Mapping[str, Se
     else:
         raise ValueError("links: give a mapping of link names to the joints each link holds")
     sliders = _joint_kinds(joints, listed)
-    chain = Chain(links, {j: s.guide for j, s in sliders.items()}, ground)
+    chain = Chain(links, {j: s.guide for j, s in sliders.items()}, ground,
+                  frozenset(j for j, s in sliders.items() if not s.turns))
     points = _drawn(coordinates, chain.joints)
     mobility = _check_structure(chain, drivers)
     linkage, builder, structure, branches = _derive(chain, points, sliders, drivers, name, set())
@@ -581,7 +602,7 @@ def from_joints(links: Mapping[str, Sequence[str]], coordinates: Mapping[str, Se
         else:
             travel = next(u for u in (step.case.first, step.case.second) if u.part == "length").symbol
             joint = next(j for j, q in builder.travel.items() if q == travel)
-            flipped[joint] = Slider(flipped[joint].guide, _wrap(flipped[joint].angle + math.pi))
+            flipped[joint] = replace(flipped[joint], angle=_wrap(flipped[joint].angle + math.pi))
     if swapped or flipped != sliders:
         linkage, builder, structure, branches = _derive(chain, points, flipped, drivers, name, swapped)
         sliders = flipped

@@ -82,7 +82,9 @@ class Chain:
     ``links`` maps a link name to the joints it holds.  ``sliders`` maps a slider
     joint to its guide: the joint's pin slides along a line of the guide link
     (which lists the joint too) and turns in the other links that hold it.
-    Every other joint is a revolute pin; a "joint" that one link alone holds is a
+    A slider in ``translating`` is a prismatic joint proper: the one other link
+    that holds it slides on the guide without turning on it (a block; Pyslvs's
+    ``P`` joint).  Every other joint is a revolute pin; a "joint" that one link alone holds is a
     point of that link (a coupler point, a foot), no joint.  ``ValueError`` names
     the problem with a chain that is no linkage (a link with fewer than two
     joints, a slider whose guide does not hold it, ...).
@@ -91,6 +93,7 @@ class Chain:
     links: Mapping[str, Sequence[str]]
     sliders: Mapping[str, str] = field(default_factory=dict)
     ground: str = GROUND
+    translating: frozenset[str] = frozenset()
 
     def __post_init__(self) -> None:
         links = {}
@@ -122,6 +125,19 @@ class Chain:
                 raise ValueError(f"slider {joint!r}: its guide {guide!r} is not a link")
             if joint not in links[guide]:
                 raise ValueError(f"slider {joint!r}: its guide {guide!r} does not list it among its joints")
+        object.__setattr__(self, "translating", frozenset(self.translating))
+        blocks: dict[str, str] = {}
+        for joint in self.translating:
+            if joint not in self.sliders:
+                raise ValueError(f"prismatic joint {joint!r} names no guide")
+            others = [link for link in self.links_of(joint) if link != self.sliders[joint]]
+            if len(others) != 1:
+                raise ValueError(f"prismatic joint {joint!r} joins its guide to {len(others)} links; "
+                                 "a block that slides without turning is one link")
+            if others[0] in blocks:
+                raise ValueError(f"link {others[0]!r} slides without turning on two guides "
+                                 f"({blocks[others[0]]} and {joint})")
+            blocks[others[0]] = joint
         for name in links:
             if not self.rigid_joints(name):
                 raise ValueError(f"link {name!r} holds only sliders that slide on it: "
@@ -139,6 +155,11 @@ class Chain:
 
     def links_of(self, joint: str) -> tuple[str, ...]:
         return tuple(name for name, joints in self.links.items() if joint in joints)
+
+    def block_guide(self, link: str) -> str | None:
+        """The guide that ``link`` slides on without turning (through a translating joint), if any."""
+        return next((self.sliders[j] for j in self.translating if j in self.links[link] and self.sliders[j] != link),
+                    None)
 
     def rigid_joints(self, link: str) -> tuple[str, ...]:
         """The joints fixed on ``link`` (all but the sliders it guides), in its order."""
@@ -162,12 +183,15 @@ class Chain:
         """Gruebler/Kutzbach: a pin joining k links is k - 1 revolute joints; a slider is a hidden block.
 
         The block of a slider joint slides on the guide (one prismatic joint) and is
-        pinned to the k other links holding the joint (k revolute joints).
+        pinned to the k other links holding the joint (k revolute joints); a
+        translating joint is one prismatic joint between its guide and its block.
         """
         links, revolute, prismatic = len(self.links), 0, 0
         for joint in self.joints:
             holders = self.links_of(joint)
-            if joint in self.sliders:
+            if joint in self.translating:
+                prismatic += 1
+            elif joint in self.sliders:
                 links, prismatic, revolute = links + 1, prismatic + 1, revolute + len(holders) - 1
             else:
                 revolute += len(holders) - 1
@@ -191,7 +215,9 @@ class Chain:
         for joint in self.joints:
             inside = [link for link in self.links_of(joint) if link in group]
             guide = self.sliders.get(joint)
-            if guide in inside:
+            if joint in self.translating:
+                constraints += 2 if len(inside) == 2 else 0
+            elif guide in inside:
                 others = len(inside) - 1
                 constraints += (1 + 2 * (others - 1)) if others else 0
             elif inside:

@@ -1,6 +1,6 @@
 """Other tools' descriptions (symlink.interchange): Pyslvs expressions and pylinkage JSON mechanisms.
 
-* Pyslvs: examples that Pyslvs publishes (``pyslvs/example.py``, Copyright (C) 2016-2022 Yuan Chang, AGPL; the
+* Pyslvs: examples that Pyslvs publishes (R, RP and P joints) (``pyslvs/example.py``, Copyright (C) 2016-2022 Yuan Chang, AGPL; the
   expressions and their input pairs are quoted as test data) read, build and move along a turn of their
   input with every link keeping the lengths of its drawing and every slot its line (a check by geometry,
   independent of the solver); written back and read again to the same joints; bad text refused with a column.
@@ -77,6 +77,32 @@ PYSLVS_EXAMPLES = {
         "J[R, color[Green], P[122.0, 76.5], L[L4, L5]],"
         "J[R, color[Green], P[64.0, 0.0], L[ground, L5]]"
         "]", ((0, 1),)),
+    "Crank slider (P joint)": (
+        "M["
+        "J[R, color[Green], P[-33.625, -19.625], L[ground, L1]],"
+        "J[R, color[Green], P[-48.375, 12.125], L[L1, L3]],"
+        "J[R, color[Green], P[17.125, 33.875], L[L2, L3]],"
+        "J[P, A[30.0], color[Green], P[51.38, -12.63], L[ground, L2]],"
+        "J[R, color[Green], P[50.35, 53.117], L[L2, L5]],"
+        "J[R, color[Green], P[143.455, 65.967], L[L4, L5]],"
+        "J[R, color[Green], P[99.244, 20.447], L[ground, L4]]"
+        "]", ((0, 1),)),
+    "Inverted slider": (
+        "M["
+        "J[R, color[Green], P[0, 0], L[ground, L1]],"
+        "J[R, color[Green], P[56, 0], L[ground, L3]],"
+        "J[R, color[Green], P[7, 25], L[L1, L2]],"
+        "J[P, A[0.0], color[Green], P[59, 41], L[L3, L2]]"
+        "]", ((0, 2),)),
+    "Watt II (slider)": (
+        "M["
+        "J[R, color[Blue], P[0, 0], L[ground, link_3]],"
+        "J[R, color[Green], P[-4.1011, -49.6944], L[link_1, link_3]],"
+        "J[R, color[Green], P[-151.1537, -50.2107], L[link_1, link_2]],"
+        "J[RP, A[45.0], color[Blue], P[-139.0458, 20.2296], L[ground, link_2]],"
+        "J[P, A[45.0], color[Green], P[-47.356, -102.562], L[link_1, link_4]],"
+        "J[R, color[Blue], P[15.3065, -161.8204], L[ground, link_4]]"
+        "]", ((0, 1),)),
     "Arm": (
         "M["
         "J[R, color[Green], P[-34.25, -20.625], L[ground, L1, L2]],"
@@ -129,6 +155,14 @@ def check_rigid(drawn, got, assembled, size):
         across = ((got[joint][1] - got[first][1]) * np.cos(direction)
                   - (got[joint][0] - got[first][0]) * np.sin(direction))
         assert np.max(np.abs(across - drawn_across)[assembled]) < 1e-9 * size, joint
+    for joint in drawn.chain.translating:  # a block keeps its drawn angle to its guide
+        guide = drawn.chain.sliders[joint]
+        block = next(link for link in drawn.chain.links_of(joint) if link != guide)
+        first, second = drawn.chain.links[block][:2]
+        turned = np.arctan2(got[second][1] - got[first][1], got[second][0] - got[first][0])
+        guide_turned = got[guide] - got[guide][0] if guide != drawn.chain.ground else 0.0
+        change = np.remainder(turned - turned[0] - guide_turned + np.pi, 2 * np.pi) - np.pi
+        assert np.max(np.abs(change)[assembled]) < 1e-9, (joint, block)
 
 
 @pytest.mark.parametrize("name", sorted(PYSLVS_EXAMPLES))
@@ -154,6 +188,9 @@ def test_pyslvs_plans_name_the_closed_forms_and_the_newton_fallback():
     assert [s.case.name for s in plans["Jansen's linkage (Single)"].plan] == ["3", "3", "3"]
     assert not plans["Stephenson III"].has_closed_form
     assert len(plans["Arm"].inputs) == 2
+    # Pyslvs's P joints: a block that slides on its guide without turning (the inverted slider's rod in its sleeve).
+    assert [s.case.name for s in plans["Inverted slider"].plan] == ["2c"]
+    assert [s.case.name for s in plans["Watt II (slider)"].plan] == ["2c", "2b"]
 
 
 @pytest.mark.parametrize("name", sorted(PYSLVS_EXAMPLES))
@@ -176,7 +213,7 @@ def test_a_pyslvs_expression_written_and_read_again_is_the_same_mechanism(name):
     ("M[J[R, P[0, 0], L[ground]]] extra", "column 29: expected the end"),
     ("M[J[R, P[0, 0], L[ground]]]; x", "column 28: unexpected ';'"),
     ("M[J[RP, P[0, 0], L[ground, L1]]]", "column 9: expected 'A'"),
-    ("M[J[P, A[0], P[0, 0], L[ground, L1]], J[R, P[1, 0], L[ground, L1]]]", "is a P joint"),
+    ("M[J[P, A[0], P[0, 0], L[L1]], J[R, P[1, 0], L[ground, L1]]]", "is a P joint on one link only"),
     ("M[]", "has no joints"),
     ("M[J[R, P[0, 0], L[ground, L1]], J[R, P[1, 1], L[L1]]]", "input pair"),
 ])

@@ -195,6 +195,9 @@ def write_pylinkage(drawn: JointLinkage) -> dict[str, Any]:
         holders = chain.links_of(joint)
         entry: dict[str, Any] = {"id": joint, "type": "revolute", "position": [x, y]}
         if joint in chain.sliders:
+            if joint in chain.translating:
+                raise ValueError(f"joint {joint!r} is a block that slides without turning: pylinkage's prismatic "
+                                 "joints are pins in a slot")
             if chain.sliders[joint] != chain.ground:
                 raise ValueError(f"slider {joint!r} slides on {chain.sliders[joint]!r}, a moving link: pylinkage's "
                                  "prismatic joints slide along an axis fixed in the frame")

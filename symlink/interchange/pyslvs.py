@@ -13,8 +13,8 @@ Pyslvs (and its interface Pyslvs-UI) describes a mechanism by its joints, one
 hold the joint; ``ground`` is the frame.  An ``RP`` joint (a pin in a slot)
 slides on the first of its links along a line at angle ``A`` (degrees,
 drawn pose) and turns in the others: a :class:`~symlink.joints.Slider`.  A
-``P`` joint, whose block keeps the guide's direction, is refused (not
-supported).  Joints are named ``A``, ``B``, ... in their order; the
+``P`` joint slides the same way but its other link (one) does not turn on
+the guide: ``Slider(..., turns=False)``.  Joints are named ``A``, ``B``, ... in their order; the
 driver, which an expression does not carry, is given as Pyslvs's input
 pair ``(base, drive)``: joint indices, the base a pin on the ground and
 the drive a joint on the driven link.
@@ -198,9 +198,6 @@ def read_pyslvs(text: str, inputs: Iterable[Sequence[int]] = ((0, 1),), name: st
         joint = pyslvs_joint_name(index)
         if not held:
             raise ValueError(f"Pyslvs joint {index} ({joint}) is on no link")
-        if kind == "P":
-            raise ValueError(f"Pyslvs joint {index} ({joint}) is a P joint (a block that keeps its guide's "
-                             "direction): not supported; an RP joint (a pin in a slot) is")
         if len(set(held)) != len(held):
             raise ValueError(f"Pyslvs joint {index} ({joint}) lists a link twice: {', '.join(held)}")
         for link in held:
@@ -209,11 +206,11 @@ def read_pyslvs(text: str, inputs: Iterable[Sequence[int]] = ((0, 1),), name: st
                                  "(ASCII letters, digits, _)")
             links.setdefault(link, []).append(joint)
         coordinates[joint] = point
-        if kind == "RP":
+        if kind in ("RP", "P"):
             assert angle is not None
             if len(held) < 2:
-                raise ValueError(f"Pyslvs joint {index} ({joint}) is an RP joint on one link only")
-            kinds[joint] = Slider(held[0], math.radians(angle))
+                raise ValueError(f"Pyslvs joint {index} ({joint}) is a {kind} joint on one link only")
+            kinds[joint] = Slider(held[0], math.radians(angle), turns=kind == "RP")
     drivers: list[str | tuple[str, str]] = []
     for pair in inputs:
         if len(pair) != 2 or not all(isinstance(k, int) and 0 <= k < len(joints) for k in pair):
@@ -254,7 +251,8 @@ def write_pyslvs(drawn: JointLinkage) -> str:
             held.remove(guide)
             held.insert(0, guide)
             angle = math.degrees(drawn.slider_angles[joint])
-            parts.append(f"J[RP, A[{_number_text(angle)}], color[Green], {position}, L[{', '.join(held)}]]")
+            kind = "RP" if drawn.sliders[joint].turns else "P"
+            parts.append(f"J[{kind}, A[{_number_text(angle)}], color[Green], {position}, L[{', '.join(held)}]]")
         else:
             parts.append(f"J[R, color[Green], {position}, L[{', '.join(held)}]]")
     return "M[" + ", ".join(parts) + "]"

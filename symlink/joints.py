@@ -19,10 +19,11 @@ drawing:
   coordinates ``x_A``, ``y_A``.
 * **A slider** (:class:`Slider`) is a pin in a slot: the joint's pin slides
   along a line of its guide link, through the joint's drawn position at the
-  drawn angle, and turns in the other links that hold it.  On the guide, the
-  joint is the guide's first fixed joint R, then the offset ``e_C`` square to
-  the line (left out where the line passes through R), then the travel
-  ``s_C`` along it (a coordinate).
+  drawn angle, and turns in the other links that hold it (with
+  ``turns=False`` the one other link is a block that does not turn on the
+  guide).  On the guide, the joint is the guide's first fixed joint R plus
+  the travel ``s_C`` along the line (a coordinate) and the offset ``e_C``
+  square to it (left out where the line passes through R).
 * **Loops found, not written.**  The loops are simple cycles of the joint
   graph, chosen one after another so that each has exactly two unknowns that
   earlier loops have not solved (a dyad, in closed form by the four cases of
@@ -312,7 +313,10 @@ class _Builder:
         return self.sides[key]
 
     def slide(self, joint: str) -> tuple[Vector, ...]:
-        """The vectors from the guide's first fixed joint to the slider: the offset (if any), then the travel."""
+        """The vectors from the guide's first fixed joint to the slider: the travel along the line and the offset
+        square to it (if any), in the order :mod:`symlink.bodies` reads as a block on its guide: on a fixed line
+        the travel first (the offset rides on the block), on a turning guide the offset first (it turns with
+        the guide)."""
         if joint not in self.slides:
             guide = self.chain.sliders[joint]
             anchor = self.chain.rigid_joints(guide)[0]
@@ -321,15 +325,19 @@ class _Builder:
             along = math.cos(angle) * (x1 - x0) + math.sin(angle) * (y1 - y0)
             across = math.cos(angle) * (y1 - y0) - math.sin(angle) * (x1 - x0)
             direction = self._turning(guide, angle, _side_name(anchor, joint))
-            vectors = []
-            if abs(across) > _COINCIDENT * self.scale:
-                offset = self._parameter(f"e_{joint}", abs(across), self.offsets, positive=True)
-                vectors.append(Vector(offset, direction + math.copysign(1, across) * sp.pi / 2,
-                                      _side_name(anchor, f"{joint}e")))
             travel = self.travel[joint]
             self.pose[travel] = along
-            vectors.append(Vector(travel, direction, _side_name(f"{joint}s", joint)))
-            self.slides[joint] = tuple(vectors)
+            if abs(across) <= _COINCIDENT * self.scale:
+                self.slides[joint] = (Vector(travel, direction, _side_name(f"{joint}s", joint)),)
+                return self.slides[joint]
+            offset = self._parameter(f"e_{joint}", abs(across), self.offsets, positive=True)
+            square = direction + math.copysign(1, across) * sp.pi / 2
+            if self.frame(guide) is None:  # on a fixed line the offset rides on the block, after the travel
+                self.slides[joint] = (Vector(travel, direction, _side_name(anchor, f"{joint}s")),
+                                      Vector(offset, square, _side_name(f"{joint}s", joint)))
+            else:  # on a turning guide the offset turns with the guide, before the travel
+                self.slides[joint] = (Vector(offset, square, _side_name(anchor, f"{joint}e")),
+                                      Vector(travel, direction, _side_name(f"{joint}s", joint)))
         return self.slides[joint]
 
     def walk(self, link: str, start: str, end: str) -> VectorSum:

@@ -20,6 +20,8 @@ and loops (:func:`symlink.joints.from_joints` derives those)::
     P = [3.95, 3.53]
     # a slider (pin in a slot) on a guide link, its line at an angle through the joint:
     # S = {at = [4, 0.5], slider = "ground", angle = "10 deg"}
+    # a block that slides on its guide without turning on it (the one other link that holds it):
+    # T = {at = [1, 2], block = "rocker", angle = 0}
 
 The angle is a number (radians) or a constant of the linkage file grammar
 (``"10 deg"``, ``"pi/2"``), read by the caller's grammar (``angle``).  The
@@ -40,7 +42,7 @@ from typing import Any, Callable, Mapping
 
 from .joints import JointLinkage, Slider, from_joints
 
-__all__ = ["TableProblem", "linkage_from_tables", "TOP_KEYS", "TABLES"]
+__all__ = ["TableProblem", "linkage_from_tables", "joint_file_text", "TOP_KEYS", "TABLES"]
 
 TOP_KEYS = ("name", "driver")
 TABLES = ("links", "joints")
@@ -95,15 +97,16 @@ def linkage_from_tables(data: Mapping[str, Any], angle: Callable[[Any], float]) 
     kinds: dict[str, object] = {}
     for key, value in table.items():
         if isinstance(value, dict):
-            unknown = set(value) - {"at", "slider", "angle"}
-            if unknown or not {"at", "slider", "angle"} <= set(value):
+            kind = "block" if "block" in value else "slider"
+            if set(value) != {"at", kind, "angle"}:
                 raise TableProblem("joints", key, f"joints.{key}: a slider is {{at = [x, y], slider = \"guide link\", "
-                                                  f"angle = \"10 deg\"}}, got {value!r}")
+                                                  f"angle = \"10 deg\"}} (block = for a block that does not turn on "
+                                                  f"its guide), got {value!r}")
             coordinates[key] = _point(value["at"], key)
-            if not isinstance(value["slider"], str):
-                raise TableProblem("joints", key, f"joints.{key}: slider names its guide link, got {value['slider']!r}")
+            if not isinstance(value[kind], str):
+                raise TableProblem("joints", key, f"joints.{key}: {kind} names its guide link, got {value[kind]!r}")
             try:
-                kinds[key] = Slider(value["slider"], angle(value["angle"]))
+                kinds[key] = Slider(value[kind], angle(value["angle"]), turns=kind == "slider")
             except ValueError as error:
                 raise TableProblem("joints", key, f"joints.{key}: angle {error}") from None
         else:
@@ -126,3 +129,47 @@ def _where(message: str, links: Mapping[str, Any], joints: Mapping[str, Any]) ->
         if f"joint {key!r}" in message or f"joints {key!r}" in message or f"{key!r}" in message:
             return "joints", key
     return "links", ""
+
+
+def _toml_number(value: float) -> str:
+    text = repr(float(value))
+    return text if text not in ("inf", "-inf", "nan") else "nan"
+
+
+def joint_file_text(drawn: JointLinkage) -> str:
+    """The text of a linkage file by joints (``[links]``, ``[joints]``) for a linkage from its joints.
+
+    Whatever described it (Python, a Pyslvs expression, a pylinkage mechanism), the
+    file reads back to the same linkage (:func:`symlink.linkage_file.linkage_from_text`).
+
+    >>> drawn = from_joints({"ground": ["A", "D"], "crank": ["A", "B"], "coupler": ["B", "C"], "rocker": ["D", "C"]},
+    ...                     {"A": (0, 0), "B": (0, 20), "C": (60, 50), "D": (80, 0)}, driver="A", name="fourbar")
+    >>> print(joint_file_text(drawn).splitlines()[2])
+    driver = ["A"]
+    """
+    drivers = []
+    for joint, link in drawn.drivers:
+        if link is not None and sum(1 for other in drawn.chain.links_of(joint) if other != drawn.chain.ground) > 1:
+            raise ValueError(f"driver ({joint!r}, {link!r}): a linkage file names driven joints only, and {joint!r} "
+                             "holds several moving links")
+        drivers.append(joint)
+    lines = ["# A symlink linkage file by its joints (see symlink.joint_tables).",
+             f"name = {_quoted(drawn.linkage.name)}",
+             f"driver = [{', '.join(_quoted(d) for d in drivers)}]", "", "[links]"]
+    for link, joints in drawn.chain.links.items():
+        lines.append(f"{link} = [{', '.join(_quoted(j) for j in joints)}]")
+    lines += ["", "[joints]"]
+    for joint, (x, y) in drawn.coordinates.items():
+        at = f"[{_toml_number(x)}, {_toml_number(y)}]"
+        slider = drawn.sliders.get(joint)
+        if slider is None:
+            lines.append(f"{joint} = {at}")
+        else:
+            kind = "slider" if slider.turns else "block"
+            lines.append(f"{joint} = {{at = {at}, {kind} = {_quoted(slider.guide)}, "
+                         f"angle = {_toml_number(slider.angle)}}}")
+    return "\n".join(lines) + "\n"
+
+
+def _quoted(text: str) -> str:
+    return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'

@@ -16,7 +16,8 @@ import math
 import numpy as np
 import pytest
 
-from symlink.interchange import read_pylinkage, read_pyslvs, write_pylinkage, write_pyslvs
+from symlink.interchange import pyslvs_inputs, read_pylinkage, read_pyslvs, write_pylinkage, write_pyslvs
+from symlink.joint_tables import joint_file_text
 from symlink.joints import Slider, from_joints
 from symlink.linkage_file import linkage_from_text, linkage_text
 from symlink.solver import NumericSolver, Solver
@@ -198,7 +199,8 @@ def test_a_pyslvs_expression_written_and_read_again_is_the_same_mechanism(name):
     description = read_pyslvs(*PYSLVS_EXAMPLES[name])
     drawn = description.build()
     text = write_pyslvs(drawn)
-    again = read_pyslvs(text, PYSLVS_EXAMPLES[name][1])
+    assert pyslvs_inputs(drawn) == list(PYSLVS_EXAMPLES[name][1])
+    again = read_pyslvs(text, pyslvs_inputs(drawn))
     assert {k: sorted(v) for k, v in again.links.items()} == {k: sorted(v) for k, v in description.links.items()}
     assert again.coordinates == description.coordinates
     assert again.drivers == description.drivers
@@ -336,3 +338,12 @@ def test_a_description_written_as_a_symlink_linkage_file_solves_the_same(name):
     second = Solver(again.linkage, points)(**{**again.defaults, **drawn.branches, start: sweep})
     for p in points:
         assert np.allclose(np.asarray(first[p]), np.asarray(second[p]), rtol=0, atol=1e-12, equal_nan=True), p
+
+
+@pytest.mark.parametrize("name", ["Crank lifter", "Inverted slider", "Watt II (slider)", "Jansen's linkage (Single)"])
+def test_a_description_written_as_a_linkage_file_by_joints_reads_back_the_same(name):
+    drawn = read_pyslvs(*PYSLVS_EXAMPLES[name]).build()
+    again = linkage_from_text(joint_file_text(drawn), source=f"{name}.toml")
+    assert again.linkage.unknowns == drawn.linkage.unknowns
+    assert [loop.name for loop in again.linkage.loops] == [loop.name for loop in drawn.linkage.loops]
+    assert again.defaults == drawn.values

@@ -2,11 +2,12 @@
 
 Each reader is a strict grammar of its own (no ``eval``) that returns a
 :class:`~symlink.joints.JointDescription`; ``.build()`` gives the linkage
-(:func:`symlink.joints.from_joints`), and :func:`symlink.linkage_file.linkage_text`
-writes symlink's own linkage file from it.  Each writer takes what
+(:func:`symlink.joints.from_joints`), and :func:`symlink.joint_tables.joint_file_text`
+(by joints) or :func:`symlink.linkage_file.linkage_text` (by vectors and loops) write
+symlink's own linkage file from it.  Each writer takes what
 :func:`~symlink.joints.from_joints` returns.
 """
 from .pylinkage import read_pylinkage, write_pylinkage
-from .pyslvs import read_pyslvs, write_pyslvs
+from .pyslvs import pyslvs_inputs, read_pyslvs, write_pyslvs
 
-__all__ = ["read_pylinkage", "write_pylinkage", "read_pyslvs", "write_pyslvs"]
+__all__ = ["read_pylinkage", "write_pylinkage", "read_pyslvs", "write_pyslvs", "pyslvs_inputs"]

@@ -40,7 +40,7 @@ from typing import Iterable, Sequence
 from ..joints import JointDescription, JointLinkage, Slider
 from ..topology import GROUND
 
-__all__ = ["read_pyslvs", "write_pyslvs", "pyslvs_joint_name"]
+__all__ = ["read_pyslvs", "write_pyslvs", "pyslvs_inputs", "pyslvs_joint_name"]
 
 _TOKEN = re.compile(r"""
     (?P<space>\s+|\#[^\n]*)
@@ -256,3 +256,24 @@ def write_pyslvs(drawn: JointLinkage) -> str:
         else:
             parts.append(f"J[R, color[Green], {position}, L[{', '.join(held)}]]")
     return "M[" + ", ".join(parts) + "]"
+
+
+def pyslvs_inputs(drawn: JointLinkage) -> list[tuple[int, int]]:
+    """Pyslvs's input pairs of a linkage from its joints, by the joint order of :func:`write_pyslvs`:
+    (the driven pin on the ground, another joint of the driven link), or (a slider, itself).
+
+    >>> crank_rocker = ("M[J[R, P[0, 0], L[ground, L1]], J[R, P[0, 20], L[L1, L2]], J[R, P[60, 50], L[L2, L3]],"
+    ...                 " J[R, P[80, 0], L[ground, L3]]]")
+    >>> pyslvs_inputs(read_pyslvs(crank_rocker, [(0, 1)]).build())
+    [(0, 1)]
+    """
+    order = {joint: k for k, joint in enumerate(drawn.coordinates)}
+    pairs = []
+    for joint, link in drawn.drivers:
+        if joint in drawn.chain.sliders:
+            pairs.append((order[joint], order[joint]))
+            continue
+        driven = link or next(m for m in drawn.chain.links_of(joint) if m != drawn.chain.ground)
+        other = next(j for j in drawn.chain.links[driven] if j != joint)
+        pairs.append((order[joint], order[other]))
+    return pairs

@@ -349,8 +349,9 @@ class _Builder:
             for vector in self.slide(end):
                 before = before + vector
             return before
-        if guide.get(start) == link:
-            return -self.walk(link, end, start)
+        if guide.get(start) == link:  # the way back: the same vectors in the reverse order, each walked backwards
+            back = self.walk(link, end, start)
+            return VectorSum(tuple((-sign, vector) for sign, vector in reversed(back.terms)))
         base = self.chain.rigid_joints(link)[0]
         if start == base:
             return self.side(link, base, end).as_sum()

@@ -347,3 +347,16 @@ def test_a_description_written_as_a_linkage_file_by_joints_reads_back_the_same(n
     assert again.linkage.unknowns == drawn.linkage.unknowns
     assert [loop.name for loop in again.linkage.loops] == [loop.name for loop in drawn.linkage.loops]
     assert again.defaults == drawn.values
+
+
+@pytest.mark.parametrize("name", sorted(PYSLVS_EXAMPLES))
+def test_the_bodies_read_off_the_vectors_are_the_joints_links(name):
+    """symlink.bodies reads bodies and joints back off the derived vectors, by its own rules (walking order,
+    directions, travels): its Gruebler count equals the joints' own, and the drawing of the linkage works."""
+    from symlink.analysis.mobility import degrees_of_freedom
+    from symlink.plot.drawing import draw_linkage
+    drawn = read_pyslvs(*PYSLVS_EXAMPLES[name]).build()
+    assert degrees_of_freedom(drawn.linkage) == drawn.mobility
+    guess = None if drawn.linkage.has_closed_form else drawn.guess
+    drawing = draw_linkage(drawn.linkage, drawn.defaults, guess=guess)
+    assert drawing.axes.get_title().startswith("pyslvs at")

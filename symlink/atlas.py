@@ -44,7 +44,7 @@ from dataclasses import dataclass
 from functools import cached_property, lru_cache
 from typing import TYPE_CHECKING, Iterator, Mapping, Sequence
 
-from .topology import GROUND, Chain
+from .topology import GROUND
 
 if TYPE_CHECKING:
     from .joints import JointLinkage

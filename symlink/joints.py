@@ -28,8 +28,8 @@ drawing:
   graph, chosen one after another so that each has exactly two unknowns that
   earlier loops have not solved (a dyad, in closed form by the four cases of
   :mod:`symlink.loops`).  Where no such loop is left (an Assur group of a
-  higher class, such as the Stephenson III six-bar driven at the wrong link),
-  the rest are completed to an independent set of loops and the linkage is
+  higher class, such as the triad of the Stephenson III six-bar driven from
+  either ground pivot), the rest are completed to an independent set of loops and the linkage is
   solved by Newton's method (:class:`symlink.solver.NumericSolver`) as any
   linkage without a closed form.
 * **Branch signs from the drawing**: each loop's assembly is the one the
@@ -61,7 +61,7 @@ from typing import Collection, Mapping, Sequence
 import sympy as sp
 
 from .analysis.mobility import Mobility
-from .linkage import BRANCH, Linkage
+from .linkage import Linkage
 from .loops import Loop
 from .topology import GROUND, Chain, Cycle, Traversal, independent
 from .vectors import Vector, VectorSum

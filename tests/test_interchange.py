@@ -360,3 +360,94 @@ def test_the_bodies_read_off_the_vectors_are_the_joints_links(name):
     guess = None if drawn.linkage.has_closed_form else drawn.guess
     drawing = draw_linkage(drawn.linkage, drawn.defaults, guess=guess)
     assert drawing.axes.get_title().startswith("pyslvs at")
+
+
+# pylinkage's legacy JSON (Linkage.to_dict before 1.0), written here as its serializer wrote it: its README
+# four-bar (``Crank`` B about (0, 0); ``Revolute`` C from B and the point (3, 0)), with a coupler point P
+# (``Fixed`` on B-C) and, in a second file, a crank-slider (``Prismatic`` C along the line of two statics).
+LEGACY_FOURBAR = {
+    "name": "My four-bar linkage",
+    "joints": [
+        {"type": "Crank", "name": "B", "x": 0, "y": 1, "distance": 1, "angle": 0.31,
+         "joint0": {"inline": True, "type": "Static", "x": 0, "y": 0, "name": "140093"}},
+        {"type": "Revolute", "name": "C", "x": 3, "y": 2, "distance0": 3, "distance1": 1,
+         "joint0": {"ref": "B"}, "joint1": {"inline": True, "type": "Static", "x": 3, "y": 0, "name": "140094"}},
+        {"type": "Fixed", "name": "P", "x": 2, "y": 3, "distance": 2, "angle": 0.5,
+         "joint0": {"ref": "B"}, "joint1": {"ref": "C"}},
+    ],
+    "solve_order": ["B", "C", "P"],
+}
+LEGACY_SLIDER = {
+    "name": "crank slider",
+    "joints": [
+        {"type": "Static", "name": "O", "x": 0, "y": 0},
+        {"type": "Static", "name": "L", "x": -5, "y": 0.5},
+        {"type": "Static", "name": "R", "x": 5, "y": 0.5},
+        {"type": "Crank", "name": "B", "x": 0.6, "y": 0.8, "distance": 1, "angle": 0.1, "joint0": {"ref": "O"}},
+        {"type": "Prismatic", "name": "S", "x": 3.5, "y": 0.5, "revolute_radius": 3, "joint0": {"ref": "B"},
+         "joint1": {"ref": "L"}, "joint2": {"ref": "R"}},
+    ],
+}
+
+
+def test_pylinkage_s_legacy_four_bar_takes_its_distances_and_keeps_them_along_a_turn():
+    description = read_pylinkage(json.dumps(LEGACY_FOURBAR))
+    drawn = description.build()
+    name = description.names
+    b, c, p = name["B"], name["C"], name["P"]
+    origin, pivot = description.coordinates[name["140093"]], description.coordinates[name["140094"]]
+    assert (origin, pivot) == ((0.0, 0.0), (3.0, 0.0))
+    # Placed as pylinkage places it: C where the circles (B, 3) and ((3, 0), 1) meet nearest its stored (3, 2).
+    bx, by = description.coordinates[b]
+    assert (bx, by) == pytest.approx((0.0, 1.0), abs=1e-15)
+    d = math.dist((bx, by), pivot)
+    along = (9 - 1 + d * d) / (2 * d)
+    across = math.sqrt(9 - along * along)
+    ux, uy = (pivot[0] - bx) / d, (pivot[1] - by) / d
+    candidates = [(bx + along * ux - k * across * uy, by + along * uy + k * across * ux) for k in (1, -1)]
+    expected_c = min(candidates, key=lambda q: math.dist(q, (3, 2)))
+    assert description.coordinates[c] == pytest.approx(expected_c, abs=1e-14)
+    angle = math.atan2(expected_c[1] - by, expected_c[0] - bx) + 0.5
+    assert description.coordinates[p] == pytest.approx((bx + 2 * math.cos(angle), by + 2 * math.sin(angle)), abs=1e-14)
+    assert drawn.parameters[f"{b}{c}" if len(b) == len(c) == 1 else f"{b}_{c}"] == pytest.approx(3, rel=1e-15)
+    # Along a turn: the crank 1, B-C 3, C to (3, 0) 1, and P at 2 from B, 0.5 rad from B-C.
+    sweep = drawn.pose[drawn.linkage.inputs[0].name] + np.linspace(0, 2 * math.pi, 25)
+    got, assembled = joint_positions(drawn, [sweep])
+    assert bool(np.all(assembled))
+    assert np.allclose(np.hypot(*got[b]), 1, atol=1e-13)
+    assert np.allclose(np.hypot(got[c][0] - got[b][0], got[c][1] - got[b][1]), 3, atol=1e-13)
+    assert np.allclose(np.hypot(got[c][0] - 3, got[c][1]), 1, atol=1e-13)
+    turned = np.arctan2(got[p][1] - got[b][1], got[p][0] - got[b][0]) - np.arctan2(got[c][1] - got[b][1],
+                                                                                  got[c][0] - got[b][0])
+    assert np.allclose(np.remainder(turned, 2 * np.pi), 0.5, atol=1e-12)
+
+
+def test_pylinkage_s_legacy_prismatic_is_a_pin_sliding_along_its_line():
+    description = read_pylinkage(LEGACY_SLIDER)
+    drawn = description.build()
+    assert [s.case.name for s in drawn.linkage.plan] == ["2b"]
+    # S where the circle (B, 3) meets the line y = 0.5 nearest its stored (3.5, 0.5).
+    bx, by = 0.6, 0.8
+    assert description.coordinates["S"] == pytest.approx((bx + math.sqrt(9 - 0.3 ** 2), 0.5), abs=1e-14)
+    sweep = drawn.pose[drawn.linkage.inputs[0].name] + np.linspace(0, 2 * math.pi, 25)
+    got, assembled = joint_positions(drawn, [sweep])
+    assert bool(np.all(assembled))
+    assert np.allclose(got["S"][1], 0.5, atol=1e-13)
+    assert np.allclose(np.hypot(got["S"][0] - got["B"][0], got["S"][1] - got["B"][1]), 3, atol=1e-13)
+
+
+@pytest.mark.parametrize("change, message", [
+    (lambda d: d["joints"][1].update(joint0={"ref": "Q"}), "its parent 'Q' is not a joint"),
+    (lambda d: d["joints"][1].update(distance0=10), "cannot be placed: its constraints do not meet"),
+    (lambda d: d["joints"][1].update(distance1="1"), "distance1 must be a finite number"),
+    (lambda d: d.update(joints=[{"type": "Static", "name": "O", "x": 0, "y": 0}]), "no Crank joint"),
+    (lambda d: d["joints"].pop(0), "its parent 'B' is not a joint"),
+    (lambda d: d["joints"].append({"type": "Crank", "name": "K", "x": 4, "y": 0, "distance": 1, "angle": 0.1,
+                                   "joint0": {"ref": "C"}}), "crank 'K' turns about 'C', which is not a Static"),
+    (lambda d: d["joints"][0].update(joint0={"ref": "C"}), "their parents form a loop"),
+])
+def test_bad_legacy_pylinkage_files_are_refused(change, message):
+    data = json.loads(json.dumps(LEGACY_FOURBAR))
+    change(data)
+    with pytest.raises(ValueError, match=message):
+        read_pylinkage(data)

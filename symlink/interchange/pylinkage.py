@@ -81,12 +81,19 @@ def _link_name(identifier: Any, what: str) -> str:
 
 
 def read_pylinkage(data: Mapping[str, Any] | str) -> JointDescription:
-    """A pylinkage mechanism (a dict, or its JSON text) as joints, links, drivers and the drawn pose."""
+    """A pylinkage mechanism (a dict, or its JSON text) as joints, links, drivers and the drawn pose.
+
+    Both of pylinkage's JSON formats are read: the mechanism format (joints and links, above) and the
+    legacy format of ``Linkage.to_dict`` (pylinkage before 1.0: ``Static``, ``Crank``, ``Revolute``,
+    ``Fixed`` and ``Prismatic``/``Linear`` joints, see :func:`_read_legacy`).
+    """
     if isinstance(data, str):
         try:
             data = json.loads(data)
         except json.JSONDecodeError as error:
             raise ValueError(f"pylinkage JSON: {error.msg} at line {error.lineno}, column {error.colno}") from None
+    if isinstance(data, Mapping) and _is_legacy(data):
+        return _read_legacy(data)
     top = _entry(data, "mechanism", ("joints", "links"))
     joints, links = top["joints"], top["links"]
     if not isinstance(joints, list) or not isinstance(links, list) or not joints or not links:
@@ -229,3 +236,193 @@ def write_pylinkage(drawn: JointLinkage) -> dict[str, Any]:
             entry.update(type="driver", initial_angle=math.atan2(y1 - y0, x1 - x0), motor_joint=motor)
         links.append(entry)
     return {"name": drawn.linkage.name, "joints": joints, "links": links, "ground": chain.ground}
+
+
+_LEGACY_TYPES = ("Static", "Crank", "Revolute", "Fixed", "Prismatic", "Linear")
+
+
+def _is_legacy(data: Mapping[str, Any]) -> bool:
+    joints = data.get("joints")
+    return (isinstance(joints, list) and bool(joints) and "links" not in data
+            and all(isinstance(j, Mapping) and j.get("type") in _LEGACY_TYPES for j in joints))
+
+
+def _circles(p: tuple[float, float], r: float, q: tuple[float, float], s: float,
+             near: tuple[float, float]) -> tuple[float, float] | None:
+    """The meeting point of the circles (p, r) and (q, s) nearest ``near``, or None where they do not meet."""
+    d = math.dist(p, q)
+    if d == 0:
+        return None
+    along = (r * r - s * s + d * d) / (2 * d)
+    across2 = r * r - along * along
+    if across2 < -1e-12 * max(r, s, d) ** 2:
+        return None
+    across = math.sqrt(max(across2, 0.0))
+    ux, uy = (q[0] - p[0]) / d, (q[1] - p[1]) / d
+    found = [(p[0] + along * ux - k * across * uy, p[1] + along * uy + k * across * ux) for k in (1, -1)]
+    return min(found, key=lambda point: math.dist(point, near))
+
+
+def _read_legacy(data: Mapping[str, Any]) -> JointDescription:
+    """pylinkage's legacy ``Linkage.to_dict``: joints that each place themselves from their parents.
+
+    ``Static`` joints (listed, or written inline as a parent) are pins on the ground; a
+    ``Crank`` turns about its ``joint0`` at ``distance``; a ``Revolute`` joins two links from
+    ``joint0`` and ``joint1`` (``distance0``, ``distance1``); a ``Fixed`` joint rides on the link of
+    ``joint0`` and ``joint1`` at ``distance`` and ``angle`` from ``joint0`` (measured from the
+    direction to ``joint1``); a ``Prismatic`` (``Linear``) joint is a pin on a link from ``joint0``
+    (``revolute_radius``) sliding along the line through ``joint1`` and ``joint2``.  The given
+    distances are the dimensions: each joint is placed from its parents in dependency order, where
+    two circles (or a circle and a line) meet nearest its stored position, as pylinkage does.
+    """
+    raw = data["joints"]
+    entries: list[dict[str, Any]] = []
+    inline: dict[tuple, str] = {}
+
+    def reference(value: Any, where: str) -> str | None:
+        if value is None:
+            return None
+        if not isinstance(value, Mapping):
+            raise ValueError(f"pylinkage {where}: a parent is {{'ref': name}} or an inline Static, not {value!r}")
+        if value.get("inline"):
+            x, y = _pair([value.get("x"), value.get("y")], f"{where} (inline Static)")
+            key = (value.get("name"), x, y)
+            if key not in inline:
+                inline[key] = str(value.get("name") or f"static{len(inline) + 1}")
+                entries.append({"type": "Static", "name": inline[key], "x": x, "y": y})
+            return inline[key]
+        if not isinstance(value.get("ref"), str):
+            raise ValueError(f"pylinkage {where}: a parent reference names a joint, not {value!r}")
+        return value["ref"]
+
+    parents: dict[str, list[str | None]] = {}
+    listed = []
+    for k, joint in enumerate(raw):
+        name = joint.get("name")
+        if not isinstance(name, str) or not name:
+            raise ValueError(f"pylinkage joints[{k}]: a legacy joint needs a name, got {name!r}")
+        listed.append(dict(joint))
+        parents[name] = [reference(joint.get(key), f"joints[{k}] ({name}) {key}")
+                         for key in ("joint0", "joint1", "joint2")]
+    entries = listed + [e for e in entries if e["name"] not in {j["name"] for j in listed}]
+    ids = [e["name"] for e in entries]
+    twice = [i for k, i in enumerate(ids) if i in ids[:k]]
+    if twice:
+        raise ValueError(f"pylinkage joints: the name {twice[0]!r} is used twice")
+    keep = all(_PLAIN.match(i) for i in ids)
+    names = {i: (i if keep else (chr(ord("A") + k) if k < 26 else f"J{k}")) for k, i in enumerate(ids)}
+    kind = {e["name"]: e["type"] for e in entries}
+    for name, refs in parents.items():
+        for ref in refs:
+            if ref is not None and ref not in kind:
+                raise ValueError(f"pylinkage joint {name!r}: its parent {ref!r} is not a joint")
+
+    def number(entry: Mapping[str, Any], key: str) -> float:
+        value = entry.get(key)
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+            raise ValueError(f"pylinkage joint {entry['name']!r}: {key} must be a finite number, got {value!r}")
+        return float(value)
+
+    # Place every joint from its parents, in dependency order.
+    placed: dict[str, tuple[float, float]] = {}
+    pending = list(entries)
+    while pending:
+        progress = False
+        for entry in list(pending):
+            name, refs = entry["name"], parents.get(entry["name"], [None, None, None])
+            if any(r is not None and r not in placed for r in refs):
+                continue
+            stored = _pair([entry.get("x"), entry.get("y")], f"joint {name!r} position")
+            if entry["type"] == "Static":
+                point: tuple[float, float] | None = stored
+            elif entry["type"] == "Crank":
+                centre, radius = placed[_required(refs[0], name, "joint0")], number(entry, "distance")
+                angle = math.atan2(stored[1] - centre[1], stored[0] - centre[0])
+                point = (centre[0] + radius * math.cos(angle), centre[1] + radius * math.sin(angle))
+            elif entry["type"] == "Revolute":
+                point = _circles(placed[_required(refs[0], name, "joint0")], number(entry, "distance0"),
+                                 placed[_required(refs[1], name, "joint1")], number(entry, "distance1"), stored)
+            elif entry["type"] == "Fixed":
+                a, b = placed[_required(refs[0], name, "joint0")], placed[_required(refs[1], name, "joint1")]
+                angle = math.atan2(b[1] - a[1], b[0] - a[0]) + number(entry, "angle")
+                radius = number(entry, "distance")
+                point = (a[0] + radius * math.cos(angle), a[1] + radius * math.sin(angle))
+            else:  # Prismatic / Linear: the circle about joint0 meets the line through joint1 and joint2
+                centre = placed[_required(refs[0], name, "joint0")]
+                a, b = placed[_required(refs[1], name, "joint1")], placed[_required(refs[2], name, "joint2")]
+                point = _circle_and_line(centre, number(entry, "revolute_radius"), a, b, stored)
+            if point is None:
+                raise ValueError(f"pylinkage joint {name!r} cannot be placed: its constraints do not meet")
+            placed[name] = point
+            pending.remove(entry)
+            progress = True
+        if not progress:
+            raise ValueError(f"pylinkage joints {', '.join(e['name'] for e in pending)}: their parents form a "
+                             "loop that no joint starts")
+
+    links: dict[str, list[str]] = {GROUND: [names[e["name"]] for e in entries if e["type"] == "Static"]}
+    kinds: dict[str, object] = {}
+    drivers: list[str | tuple[str, str]] = []
+
+    def new_link(*members: str) -> str:
+        link = f"L{len(links)}"
+        links[link] = [names[m] for m in members]
+        return link
+
+    fixed = []
+    for entry in entries:  # the parents a joint needs were checked when it was placed
+        name = entry["name"]
+        r = [ref or "" for ref in parents.get(name, [None, None, None])]
+        if entry["type"] == "Crank":
+            if kind[r[0]] != "Static":
+                raise ValueError(f"pylinkage crank {name!r} turns about {r[0]!r}, which is not a Static joint")
+            drivers.append((names[r[0]], new_link(r[0], name)))
+        elif entry["type"] == "Revolute":
+            new_link(r[0], name)
+            new_link(r[1], name)
+        elif entry["type"] in ("Prismatic", "Linear"):
+            new_link(r[0], name)
+            line = [names[r[1]], names[r[2]]]
+            guide = next((link for link, held in links.items() if all(j in held for j in line)), None)
+            if guide is None:
+                raise ValueError(f"pylinkage joint {name!r} slides along {r[1]!r}-{r[2]!r}, which no link "
+                                 "holds both of")
+            links[guide].append(names[name])
+            (x1, y1), (x2, y2) = placed[r[1]], placed[r[2]]
+            kinds[names[name]] = Slider(guide, math.atan2(y2 - y1, x2 - x1))
+        elif entry["type"] == "Fixed":
+            fixed.append((name, r))
+    for name, r in fixed:  # a Fixed joint rides on the link that holds both of its parents
+        pair = [names[r[0]], names[r[1]]]
+        holder = next((link for link, held in links.items() if all(j in held for j in pair)), None)
+        if holder is None:
+            holder = new_link(r[0], r[1])
+        links[holder].append(names[name])
+    if not drivers:
+        raise ValueError("pylinkage legacy linkage: no Crank joint to drive it")
+    coordinates = {names[n]: placed[n] for n in ids}
+    return JointDescription(links, coordinates, tuple(drivers), kinds or None, GROUND,
+                            str(data.get("name") or "pylinkage"), names)
+
+
+def _required(ref: str | None, name: str, key: str) -> str:
+    if ref is None:
+        raise ValueError(f"pylinkage joint {name!r} has no {key}")
+    return ref
+
+
+def _circle_and_line(centre: tuple[float, float], radius: float, a: tuple[float, float], b: tuple[float, float],
+                     near: tuple[float, float]) -> tuple[float, float] | None:
+    """Where the circle (centre, radius) meets the line through a and b, nearest ``near``; None if nowhere."""
+    length = math.dist(a, b)
+    if length == 0:
+        return None
+    ux, uy = (b[0] - a[0]) / length, (b[1] - a[1]) / length
+    along = (centre[0] - a[0]) * ux + (centre[1] - a[1]) * uy
+    across = (centre[1] - a[1]) * ux - (centre[0] - a[0]) * uy
+    half2 = radius * radius - across * across
+    if half2 < -1e-12 * radius * radius:
+        return None
+    half = math.sqrt(max(half2, 0.0))
+    found = [(a[0] + (along + k * half) * ux, a[1] + (along + k * half) * uy) for k in (1, -1)]
+    return min(found, key=lambda point: math.dist(point, near))

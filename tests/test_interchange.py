@@ -183,6 +183,21 @@ def test_a_pyslvs_example_moves_as_its_drawing_says(name):
     check_rigid(drawn, got, assembled, size)
 
 
+def test_pyslvs_comments_colours_and_trailing_commas_are_its_grammar():
+    text = """# a crank-rocker
+    M[
+      J[R, color[(255, 0, 0)], P[0, 0], L[ground, L1]],  # the crank pivot
+      #[ a comment
+         over lines #]
+      J[R, A[0], color[brick-red], P[0, 20], L[L1, L2,]],
+      J[R, color[GREEN], P[+60, 5e1], L[L2, L3]],
+      J[R, P[80.0, -.0], L[ground, L3]],
+    ]"""
+    description = read_pyslvs(text)
+    assert description.coordinates == {"A": (0.0, 0.0), "B": (0.0, 20.0), "C": (60.0, 50.0), "D": (80.0, 0.0)}
+    assert description.links == {"ground": ["A", "D"], "L1": ["A", "B"], "L2": ["B", "C"], "L3": ["C", "D"]}
+
+
 def test_pyslvs_plans_name_the_closed_forms_and_the_newton_fallback():
     plans = {name: read_pyslvs(*PYSLVS_EXAMPLES[name]).build().linkage for name in PYSLVS_EXAMPLES}
     assert [s.case.name for s in plans["Crank lifter"].plan] == ["2b", "3", "2c"]  # a slot on a turning link: 2c

@@ -4,12 +4,13 @@ Pyslvs (and its interface Pyslvs-UI) describes a mechanism by its joints, one
 ``J[...]`` each, in the grammar of ``pyslvs/expression_parser.py``::
 
     mechanism := "M[" [joint ("," joint)* [","]] "]"
-    joint     := "J[" type ["," "A[" number "]"] ["," color] "," "P[" number "," number "]" ","
+    joint     := "J[" type ["," "A[" number "]"] ["," color] "," "P[" number "," number "]" ","   (A: P and RP)
                  "L[" [name ("," name)* [","]] "]" "]"
     type      := "R" | "P" | "RP"
     color     := "color[" (colour name | "(" int "," int "," int ")") "]"
 
-``#`` starts a comment to the end of the line.  The links named in ``L[...]``
+``#`` starts a comment to the end of the line, ``#[`` one that ends with ``#]``
+(Pyslvs's grammar).  The links named in ``L[...]``
 hold the joint; ``ground`` is the frame.  An ``RP`` joint (a pin in a slot)
 slides on the first of its links along a line at angle ``A`` (degrees,
 drawn pose) and turns in the others: a :class:`~symlink.joints.Slider`.  A
@@ -43,7 +44,7 @@ from ..topology import GROUND
 __all__ = ["read_pyslvs", "write_pyslvs", "pyslvs_inputs", "pyslvs_joint_name"]
 
 _TOKEN = re.compile(r"""
-    (?P<space>\s+|\#[^\n]*)
+    (?P<space>\s+|\#\[[\s\S]*\#\][^\n]*|\#[^\n]*)
   | (?P<number>[+-]?(?:\d+\.\d*|\.\d+|\d+)(?:[eE][+-]?\d+)?)
   | (?P<name>[A-Za-z_][A-Za-z0-9_-]*)
   | (?P<punct>[\[\],()])
@@ -140,7 +141,7 @@ class _Parser:
         kind = self.keyword("R", "P", "RP").upper()
         self.expect(",")
         angle = None
-        if kind != "R":
+        if kind != "R" or (self.peek() or "").upper() == "A":  # an angle is optional on an R joint (unused)
             self.keyword("A")
             self.expect("[")
             angle = self.number()

@@ -16,7 +16,8 @@ import math
 import numpy as np
 import pytest
 
-from symlink.interchange import pyslvs_inputs, read_pylinkage, read_pyslvs, write_pylinkage, write_pyslvs
+from symlink.interchange import (pyslvs_inputs, read_pylinkage, read_pyslvs, read_pyslvs_project, write_pylinkage,
+                                 write_pyslvs)
 from symlink.joint_tables import joint_file_text
 from symlink.joints import Slider, from_joints
 from symlink.linkage_file import linkage_from_text, linkage_text
@@ -466,3 +467,20 @@ def test_bad_legacy_pylinkage_files_are_refused(change, message):
     change(data)
     with pytest.raises(ValueError, match=message):
         read_pylinkage(data)
+
+
+def test_a_pyslvs_ui_project_gives_its_expression_and_input_pairs():
+    yaml = pytest.importorskip("yaml")
+    expression, inputs = PYSLVS_EXAMPLES["Watt I"]
+    text = yaml.safe_dump({"pyslvs_ver": "21.12.0", "file_type": 0, "mechanism": expression,
+                           "links": {"ground": "White", "L1": "Blue"}, "input": [list(p) for p in inputs],
+                           "storage": {}, "collection": [], "path": {}})
+    description = read_pyslvs_project(text)
+    assert description.drivers == read_pyslvs(expression, inputs).drivers
+    assert description.build().linkage.has_closed_form
+    with pytest.raises(ValueError, match="'input' must list the input pairs"):
+        read_pyslvs_project({"mechanism": expression})
+    with pytest.raises(ValueError, match="an input pair is"):
+        read_pyslvs_project({"mechanism": expression, "input": [[0, "1"]]})
+    with pytest.raises(ValueError, match="not YAML"):
+        read_pyslvs_project("mechanism: [unclosed")

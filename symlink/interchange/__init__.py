@@ -1,4 +1,5 @@
-"""Other tools' descriptions of linkages, read and written: pylinkage's JSON mechanisms, Pyslvs's expressions.
+"""Other tools' descriptions of linkages, read and written: pylinkage's JSON mechanisms, Pyslvs's expressions
+(and the Pyslvs-UI projects that hold them).
 
 Each reader is a strict grammar of its own (no ``eval``) that returns a
 :class:`~symlink.joints.JointDescription`; ``.build()`` gives the linkage
@@ -8,6 +9,6 @@ symlink's own linkage file from it.  Each writer takes what
 :func:`~symlink.joints.from_joints` returns.
 """
 from .pylinkage import read_pylinkage, write_pylinkage
-from .pyslvs import pyslvs_inputs, read_pyslvs, write_pyslvs
+from .pyslvs import pyslvs_inputs, read_pyslvs, read_pyslvs_project, write_pyslvs
 
-__all__ = ["read_pylinkage", "write_pylinkage", "read_pyslvs", "write_pyslvs", "pyslvs_inputs"]
+__all__ = ["read_pylinkage", "write_pylinkage", "read_pyslvs", "read_pyslvs_project", "write_pyslvs", "pyslvs_inputs"]

@@ -36,12 +36,12 @@ from __future__ import annotations
 
 import math
 import re
-from typing import Iterable, Sequence
+from typing import Any, Iterable, Mapping, Sequence
 
 from ..joints import JointDescription, JointLinkage, Slider
 from ..topology import GROUND
 
-__all__ = ["read_pyslvs", "write_pyslvs", "pyslvs_inputs", "pyslvs_joint_name"]
+__all__ = ["read_pyslvs", "read_pyslvs_project", "write_pyslvs", "pyslvs_inputs", "pyslvs_joint_name"]
 
 _TOKEN = re.compile(r"""
     (?P<space>\s+|\#\[[\s\S]*\#\][^\n]*|\#[^\n]*)
@@ -278,3 +278,37 @@ def pyslvs_inputs(drawn: JointLinkage) -> list[tuple[int, int]]:
         other = next(j for j in drawn.chain.links[driven] if j != joint)
         pairs.append((order[joint], order[other]))
     return pairs
+
+
+def read_pyslvs_project(data: Mapping[str, Any] | str, name: str = "pyslvs") -> JointDescription:
+    """A Pyslvs-UI project (its YAML text, or the mapping it loads to): the ``mechanism`` expression driven at
+    the project's ``input`` pairs.  The other keys (paths, storage, synthesis settings) are left out.
+
+    YAML text is read with PyYAML's ``safe_load`` (data only, no objects), which must be installed.
+
+    >>> read_pyslvs_project({"mechanism": "M[J[R, P[0, 0], L[ground, L1]], J[R, P[0, 1], L[L1, L2]],"
+    ...                      " J[R, P[3, 2], L[L2, L3]], J[R, P[3, 0], L[ground, L3]]]", "input": [[0, 1]]}).drivers
+    (('A', 'L1'),)
+    """
+    if isinstance(data, str):
+        try:
+            import yaml  # type: ignore[import-untyped]
+        except ImportError:
+            raise ValueError("reading a Pyslvs-UI project's YAML text needs PyYAML; or give the loaded mapping") from None
+        try:
+            data = yaml.safe_load(data)
+        except yaml.YAMLError as error:
+            raise ValueError(f"Pyslvs-UI project: not YAML ({' '.join(str(error).split())})") from None
+    if not isinstance(data, Mapping):
+        raise ValueError("a Pyslvs-UI project is a mapping with 'mechanism' and 'input'")
+    expression = data.get("mechanism")
+    if not isinstance(expression, str):
+        raise ValueError(f"Pyslvs-UI project: 'mechanism' must be an expression, got {expression!r}")
+    pairs = data.get("input", [])
+    if not isinstance(pairs, list) or not pairs:
+        raise ValueError(f"Pyslvs-UI project: 'input' must list the input pairs [base, drive], got {pairs!r}")
+    for pair in pairs:
+        if not isinstance(pair, (list, tuple)) or len(pair) != 2 or not all(
+                isinstance(k, int) and not isinstance(k, bool) for k in pair):
+            raise ValueError(f"Pyslvs-UI project: an input pair is [base, drive] (joint indices), got {pair!r}")
+    return read_pyslvs(expression, [tuple(p) for p in pairs], name)

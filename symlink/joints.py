@@ -55,6 +55,7 @@ it holds (that link's first side), a slider drives its travel.
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass, field, replace
 from typing import Collection, Mapping, Sequence
 
@@ -176,7 +177,8 @@ class JointDescription:
 
 
 def _number(value: object, what: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
+    """A finite real number (NumPy's scalars too), never text."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise ValueError(f"{what} must be a number, not {value!r}")
     value = float(value)
     if not math.isfinite(value):
@@ -421,7 +423,7 @@ def _drawn(coordinates: Mapping[str, Sequence[float]], joints: Sequence[str]) ->
     points = {}
     for joint in coordinates:  # in the order given (a tool's joint order survives a round trip)
         xy = coordinates[joint]
-        if isinstance(xy, str) or len(xy) != 2:
+        if isinstance(xy, str) or not hasattr(xy, "__len__") or len(xy) != 2:
             raise ValueError(f"coordinates: joint {joint!r} needs two numbers (x, y), not {xy!r}")
         points[joint] = (_number(xy[0], f"coordinates: {joint}.x"), _number(xy[1], f"coordinates: {joint}.y"))
     return points

@@ -42,7 +42,10 @@ drawing:
   refused with a ``ValueError`` naming the links.
 
 A driver is a joint: a pin on the ground drives the angle of the moving link
-it holds (that link's first side), a slider drives its travel.
+it holds (that link's first side), a slider drives its travel, and a pin
+between two moving links drives their relative angle ``theta_<joint>`` (from
+the first side of one to the first side of the other, the driven one named
+as ``(joint, link)`` or else the second that holds it).
 
 >>> drawn = from_joints(
 ...     links={"ground": ["A", "D"], "crank": ["A", "B"], "coupler": ["B", "C"], "rocker": ["D", "C"]},
@@ -276,8 +279,7 @@ class _Builder:
             return self.travel[joint]
         holders = self.chain.links_of(joint)
         if self.chain.ground not in holders:
-            raise ValueError(f"driver {joint!r} joins {', '.join(holders)}, none of them the ground: "
-                             "drive a pin on the ground or a slider (relative drivers are not supported)")
+            return self._relative(joint, link, holders)
         moving = [other for other in holders if other != self.chain.ground]
         if any(other not in self.angle_of for other in ([link] if link is not None else moving)):
             raise ValueError(f"driver {joint!r} turns a link that slides on its guide without turning")
@@ -291,6 +293,24 @@ class _Builder:
                              f"name the driven one: ({joint!r}, {moving[0]!r})")
         return self.angle_of[moving[0]]
 
+    def _relative(self, joint: str, link: str | None, holders: Sequence[str]) -> sp.Symbol:
+        """A pin between two moving links driven by their relative angle ``theta_<joint>``: the driven link (the
+        one named, else the second that holds the pin) turns with the other one's angle plus this input, which
+        is the angle from the other link's first side to the driven link's, as drawn."""
+        if len(holders) != 2 or (link is not None and link not in holders):
+            raise ValueError(f"driver {joint!r} joins {', '.join(holders)}: a relative driver is a pin between "
+                             "two moving links (name the driven one as (joint, link))")
+        driven = link if link is not None else holders[1]
+        base = next(other for other in holders if other != driven)
+        if not isinstance(self.angle_of.get(driven), sp.Symbol) or base not in self.angle_of:
+            raise ValueError(f"driver {joint!r}: link {driven!r} turns with another link already; "
+                             "drive a pin between two links that each turn on their own")
+        symbol = sp.Symbol(f"theta_{joint}", real=True)
+        self.pose[symbol] = _wrap(self.reference[driven] - self.reference[base])
+        self.pose.pop(self.angle_of[driven])  # no coordinate of its own any more
+        self.angle_of[driven] = self.angle_of[base] + symbol
+        return symbol
+
     def _turning(self, link: str, absolute: float, name: str) -> sp.Expr:
         """The angle of a line drawn at ``absolute`` on ``link``: a fixed angle on the ground (or a block sliding
         on it), else the angle of the link that turns it plus a fixed offset (none for that link's own line)."""
@@ -298,7 +318,7 @@ class _Builder:
         if frame is None:
             return self._parameter(f"alpha_{name}", absolute, self.angles, real=True)
         offset = _wrap(absolute - self.reference[frame])
-        if frame == link and f"theta_{name}" == self.angle_of[link].name:
+        if frame == link and f"theta_{name}" == getattr(self.angle_of[link], "name", None):
             return self.angle_of[link]
         return self.angle_of[frame] + self._parameter(f"alpha_{name}", offset, self.angles, real=True)
 
@@ -374,8 +394,11 @@ class _Builder:
             if self.chain.sliders.get(joint) == traversal.link:
                 found.append(self.travel[joint])
         frame = self.frame(traversal.link)
-        if frame is not None:
-            found.insert(0, self.angle_of[frame])
+        if frame is not None:  # the link's own angle, or (driven relative to another) that one's and the input
+            angle = self.angle_of[frame]
+            turning = [angle] if isinstance(angle, sp.Symbol) else sorted(
+                (q for q in angle.free_symbols if q.name.startswith("theta_") and q not in self.values), key=str)
+            found[:0] = turning
         return found
 
     def points_from_origin(self) -> dict[str, VectorSum | None]:
@@ -523,13 +546,13 @@ def _derive(chain: Chain, points: Mapping[str, tuple[float, float]], sliders: Ma
     builder = _Builder(chain, points, sliders, drivers)
     inputs = list(builder.driven)
     unknowns = [q for link in chain.links if link in builder.angle_of for q in [builder.angle_of[link]]
-                if q not in builder.driven]
+                if isinstance(q, sp.Symbol) and q not in builder.driven]
     unknowns += [s for s in builder.travel.values() if s not in builder.driven]
     cycles = chain.cycles()
     steps = _plan(builder, cycles, unknowns, swapped)
     loops = [loop for _, loop, _ in steps]
     order = [q for _, _, found in steps for q in found]
-    link_of = {q: link for link, q in builder.angle_of.items()}
+    link_of = {q: link for link, q in builder.angle_of.items() if isinstance(q, sp.Symbol)}
     structure: list[tuple[str, tuple[str, ...]]] = [
         (loop.name, tuple(link_of[q] for q in found if q in link_of)) for _, loop, found in steps]
     rest = [q for q in unknowns if q not in order]
@@ -544,7 +567,8 @@ def _derive(chain: Chain, points: Mapping[str, tuple[float, float]], sliders: Ma
     points_from_origin = builder.points_from_origin()
     parameters = builder.lengths + builder.angles + builder.offsets
     taken = {s.name for s in parameters + inputs + order} | set(points)
-    roles = {link: q for link, q in builder.angle_of.items() if link not in taken and link != ground}
+    roles = {link: q for link, q in builder.angle_of.items()
+             if isinstance(q, sp.Symbol) and link not in taken and link != ground}
     linkage = Linkage(name, loops, inputs=inputs, unknowns=order,
                       parameters=parameters, points=points_from_origin, roles=roles)
     values = dict(builder.values)

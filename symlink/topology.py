@@ -198,9 +198,10 @@ class Chain:
         return Mobility(links, revolute, prismatic)
 
     def driven_links(self, driver: "str | tuple[str, str]") -> tuple[str, ...]:
-        """The links a driver acts between: a joint's links, or (joint, link) the ground and that link."""
-        if isinstance(driver, str):
-            return self.links_of(driver)
+        """The links a driver acts between: a joint's links, or (joint, link) at a ground pin the ground and that
+        link."""
+        if isinstance(driver, str) or self.ground not in self.links_of(driver[0]):
+            return self.links_of(driver if isinstance(driver, str) else driver[0])
         return (self.ground, driver[1])
 
     def local_mobility(self, group: Iterable[str], drivers: "Sequence[str | tuple[str, str]]" = ()) -> int:

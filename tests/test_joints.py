@@ -470,3 +470,41 @@ def test_a_bad_joint_file_is_one_line_naming_the_file_and_line(change, message):
     with pytest.raises(ValueError) as error:
         linkage_from_text(text, source="slider.toml")
     assert message in str(error.value) and "\n" not in str(error.value)
+
+
+def test_a_pin_between_two_moving_links_drives_their_relative_angle():
+    # A four-bar driven at C by the angle between coupler and rocker.  Reference: the triangle B, C, D has the
+    # sides BC, DC and the angle q at C, so BD by the law of cosines; B where the circles (A, AB) and (D, BD)
+    # meet on its drawn side of A-D; C the meeting point of (B, BC) and (D, DC) whose angle from C->B to C->D is q.
+    links = {"ground": ["A", "D"], "crank": ["A", "B"], "coupler": ["B", "C"], "rocker": ["D", "C"]}
+    drawing = {"A": (0.0, 0.0), "B": (0.5, 1.9), "C": (3.2, 2.6), "D": (4.0, 0.0)}
+    drawn = from_joints(links, drawing, driver="C")
+    linkage = drawn.linkage
+    assert [q.name for q in linkage.inputs] == ["theta_C"] and linkage.has_closed_form
+    ab, bc, dc = (math.dist(drawing[p], drawing[q]) for p, q in (("A", "B"), ("B", "C"), ("D", "C")))
+    a, d = drawing["A"], drawing["D"]
+    side = side_of(a, d, drawing["B"])
+    q0 = drawn.pose["theta_C"]
+    assert q0 == pytest.approx(math.remainder(math.atan2(-2.6, 0.8) - math.atan2(-0.7, -2.7), 2 * math.pi), abs=1e-15)
+    sweep = q0 + np.linspace(-0.4, 0.4, 17)
+    solver = Solver(linkage, ["B_x", "B_y", "C_x", "C_y", "theta_ABdot"])
+    got = solver(**{**drawn.defaults, "theta_C": sweep, "theta_Cdot": 1.0})
+
+    def reference(q):
+        bd = math.sqrt(bc * bc + dc * dc - 2 * bc * dc * math.cos(q))
+        b = circles(a, ab, d, bd, side)
+        both = [circles(b, bc, d, dc, s) for s in (1, -1)]
+        c = min(both, key=lambda p: abs(math.remainder(
+            math.atan2(d[1] - p[1], d[0] - p[0]) - math.atan2(b[1] - p[1], b[0] - p[0]) - q, 2 * math.pi)))
+        return b, c
+
+    for k, q in enumerate(sweep):
+        b, c = reference(q)
+        assert abs(got["B_x"][k] - b[0]) < 1e-12 * 4 and abs(got["B_y"][k] - b[1]) < 1e-12 * 4, q
+        assert abs(got["C_x"][k] - c[0]) < 1e-12 * 4 and abs(got["C_y"][k] - c[1]) < 1e-12 * 4, q
+        h = 1e-6
+        (b1, _), (b0, _) = reference(q + h), reference(q - h)
+        finite = math.remainder(math.atan2(b1[1], b1[0]) - math.atan2(b0[1], b0[0]), 2 * math.pi) / (2 * h)
+        assert abs(got["theta_ABdot"][k] - finite) < 1e-6 * max(1.0, abs(finite)), q
+    with pytest.raises(ValueError, match="a relative driver is a pin between two moving links"):
+        from_joints({**links, "extra": ["B", "E"], "tie": ["E", "D"]}, {**drawing, "E": (2.0, -1.0)}, driver="B")

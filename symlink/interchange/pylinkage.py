@@ -223,8 +223,9 @@ def write_pylinkage(drawn: JointLinkage) -> dict[str, Any]:
     links: list[dict[str, Any]] = []
     driven = {}
     for driver, link in drawn.drivers:
-        if driver in chain.sliders:
-            raise ValueError(f"driver {driver!r}: pylinkage drives a link about a ground joint, not a slider")
+        if driver in chain.sliders or chain.ground not in chain.links_of(driver):
+            raise ValueError(f"driver {driver!r}: pylinkage drives a link about a ground joint (not a slider, "
+                             "not a pin between two moving links)")
         driven[link or next(m for m in chain.links_of(driver) if m != chain.ground)] = driver
     for link, held in chain.links.items():
         shown = [j for j in held if not (link == chain.ground and j in chain.sliders)]

@@ -170,6 +170,9 @@ def test_the_command_lists_the_atlas_with_its_counts(capsys):
     out = capsys.readouterr().out
     assert "4 links: 1 chains, 1 mechanisms by choice of ground (literature: 1 and 1)" in out
     assert "6 links: 2 chains, 5 mechanisms by choice of ground (literature: 2 and 5)" in out
+    # Watt I and II, Stephenson II and III each have two drivers up to symmetry, Stephenson I one; the
+    # Stephenson II at one of its two and the Stephenson III at both need Newton's method (a triad is left).
+    assert "9 by ground and driven link, 6 of them in closed form" in out
     assert "8 links: 16 chains, 71 mechanisms by choice of ground (literature: 16 and 71)" in out
     assert out.count("\n  ") == 77
 
@@ -191,3 +194,35 @@ def test_bad_atlas_command_lines_are_one_line_and_status_2(argv, message, capsys
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert message in err and err.count("\n") == 1 and "Traceback" not in err
+
+
+#: The 19 one-DOF topologies of pylinkage's catalog (``src/pylinkage/topology/data/catalog.json``, pylinkage 1.x,
+#: MIT licence, (c) Hugo Farajallah), each as the link pairs of its joints (its joint ids ``J<a>_<b>``):
+#: an independent enumeration to compare with.
+PYLINKAGE_TOPOLOGIES = {
+    "four-bar": [(0, 1), (0, 2), (1, 3), (2, 3)],
+    "watt": [(0, 1), (0, 4), (1, 5), (2, 3), (2, 4), (3, 5), (4, 5)],
+    "stephenson": [(0, 1), (0, 4), (1, 5), (2, 4), (2, 5), (3, 4), (3, 5)],
+    "eight-bar-01": [(0, 1), (0, 6), (1, 7), (2, 3), (2, 6), (3, 7), (4, 5), (4, 6), (5, 7), (6, 7)],
+    "eight-bar-02": [(0, 1), (0, 6), (1, 7), (2, 3), (2, 6), (3, 7), (4, 6), (4, 7), (5, 6), (5, 7)],
+    "eight-bar-03": [(0, 1), (0, 5), (1, 7), (2, 3), (2, 6), (3, 7), (4, 5), (4, 6), (5, 7), (6, 7)],
+    "eight-bar-04": [(0, 1), (0, 5), (1, 7), (2, 3), (2, 6), (3, 7), (4, 5), (4, 7), (5, 6), (6, 7)],
+    "eight-bar-05": [(0, 1), (0, 5), (1, 7), (2, 5), (2, 6), (3, 6), (3, 7), (4, 6), (4, 7), (5, 7)],
+    "eight-bar-06": [(0, 1), (0, 5), (1, 7), (2, 5), (2, 7), (3, 6), (3, 7), (4, 6), (4, 7), (5, 6)],
+    "eight-bar-07": [(0, 5), (0, 6), (1, 5), (1, 7), (2, 5), (2, 7), (3, 6), (3, 7), (4, 6), (4, 7)],
+    "eight-bar-08": [(0, 1), (0, 4), (1, 5), (2, 3), (2, 6), (3, 7), (4, 5), (4, 6), (5, 7), (6, 7)],
+    "eight-bar-09": [(0, 1), (0, 4), (1, 5), (2, 3), (2, 6), (3, 7), (4, 6), (4, 7), (5, 6), (5, 7)],
+    "eight-bar-10": [(0, 1), (0, 4), (1, 5), (2, 4), (2, 6), (3, 5), (3, 6), (4, 7), (5, 7), (6, 7)],
+    "eight-bar-11": [(0, 1), (0, 4), (1, 5), (2, 4), (2, 6), (3, 5), (3, 7), (4, 7), (5, 6), (6, 7)],
+    "eight-bar-12": [(0, 1), (0, 4), (1, 5), (2, 4), (2, 6), (3, 6), (3, 7), (4, 7), (5, 6), (5, 7)],
+    "eight-bar-13": [(0, 1), (0, 4), (1, 5), (2, 6), (2, 7), (3, 6), (3, 7), (4, 5), (4, 6), (5, 7)],
+    "eight-bar-14": [(0, 4), (0, 5), (1, 4), (1, 5), (2, 6), (2, 7), (3, 6), (3, 7), (4, 6), (5, 7)],
+    "eight-bar-15": [(0, 4), (0, 5), (1, 4), (1, 6), (2, 4), (2, 7), (3, 5), (3, 6), (5, 7), (6, 7)],
+    "eight-bar-16": [(0, 4), (0, 5), (1, 4), (1, 6), (2, 5), (2, 7), (3, 6), (3, 7), (4, 7), (5, 6)],
+}
+
+
+def test_the_chains_are_pylinkage_s_nineteen_topologies():
+    ours = {c.code for n in (4, 6, 8) for c in chains(n)}
+    theirs = {ChainGraph(max(max(e) for e in edges) + 1, tuple(edges)).code for edges in PYLINKAGE_TOPOLOGIES.values()}
+    assert len(theirs) == 19 and theirs == ours

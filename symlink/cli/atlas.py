@@ -32,8 +32,10 @@ def run(args: argparse.Namespace) -> int:
                 continue
             entries = [e for e in ATLAS.values() if e.links == links]
             expected = LITERATURE_COUNTS[links]
+            driven = [ok for entry in entries for _, ok in entry.drivers]
             print(f"{links} links: {len(chains(links))} chains, {len(entries)} mechanisms by choice of ground "
-                  f"(literature: {expected[0]} and {expected[1]})")
+                  f"(literature: {expected[0]} and {expected[1]}); {len(driven)} by ground and driven link, "
+                  f"{sum(driven)} of them in closed form")
             for entry in entries:
                 print(f"  {entry.summary()}")
         return 0

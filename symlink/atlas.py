@@ -21,6 +21,9 @@ links  chains  mechanisms (choice of ground)
 8      16      71
 ====== ======= ==========================
 
+The nineteen chains are also the nineteen topologies that pylinkage catalogues
+(its ``topology/data/catalog.json``), an enumeration made independently.
+
 A *mechanism* is a chain with one link held as the ground; two grounds give
 the same mechanism when an automorphism of the chain maps one onto the other
 (:meth:`ChainGraph.orbits`).  Each entry of :data:`ATLAS` is a mechanism with

@@ -159,7 +159,7 @@ class SweepSettings:
         object.__setattr__(self, "ranges", {name: (float(low), float(high))
                                             for name, (low, high) in dict(self.ranges).items()})
         object.__setattr__(self, "values", {name: float(value) for name, value in dict(self.values).items()})
-        if self.linkage_text is None and found.source != "catalog":
+        if self.linkage_text is None and found.source not in ("catalog", "atlas"):
             object.__setattr__(self, "linkage_text", Path(self.linkage).read_text(encoding="utf-8"))
         parameters = {s.name: s for s in linkage.parameters}
         if not self.ranges:

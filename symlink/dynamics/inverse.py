@@ -46,7 +46,7 @@ from typing import TYPE_CHECKING, Mapping, TypeVar
 
 import sympy as sp
 
-from ..bodies import GROUND, PRISMATIC
+from ..bodies import GROUND, PRISMATIC, _moving_part, same_point
 from ..closure import is_angle
 from ..linkage import Linkage
 from ..vectors import expression
@@ -92,17 +92,18 @@ def _input_drives(model: DynamicModel):
     drives: list[tuple] = []
     for q in linkage.inputs:
         if is_angle(linkage, q):
-            turning = [b.name for b in model.mechanism.bodies if not b.is_ground and model.body_angle(b.name) == q]
+            turning = [b.name for b in model.mechanism.bodies
+                       if not b.is_ground and _moving_part(model.body_angle(b.name), set(linkage.coordinates)) == q]
             if not turning:
                 raise ValueError(f"input {q} of {linkage.name} is not the angle of a body; its torque has no body "
                                  "to act on")
             drives.append(("torque", turning[0]))
             continue
         travel = next((v for loop in linkage.loops for _, v in loop.terms if q in v.length.free_symbols), None)
+        # The travel's head, however the points write it (the crank side of the loop or the guide side).
         joint = next((j for j in model.mechanism.joints if j.kind == PRISMATIC and travel is not None
                       and j.position is not None and j.guide_start is not None
-                      and sp.expand(j.position.x - j.guide_start.x - travel.x) == 0
-                      and sp.expand(j.position.y - j.guide_start.y - travel.y) == 0), None)
+                      and same_point(linkage, j.position, j.guide_start + travel)), None)
         if joint is None or travel is None:
             raise ValueError(f"input {q} of {linkage.name} is neither a body's angle nor a slider's travel")
         drives.append(("force", joint, travel))

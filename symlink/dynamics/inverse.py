@@ -489,6 +489,11 @@ class DynamicLinkage(Linkage):
     dynamic_outputs: tuple[str, ...] = ()
     model: DynamicModel
 
+    def divides_by_determinant(self, name: str) -> bool:
+        """Every dynamic output does: the efforts and ``M(q)`` through the rates, the reactions through the
+        Newton-Euler determinant, both zero at a toggle."""
+        return name in self.dynamic_outputs or super().divides_by_determinant(name)
+
     @property
     def force_outputs(self) -> tuple[str, ...]:
         """The driving efforts, joint reactions and shaking loads: the columns a table adds."""

@@ -31,6 +31,15 @@ HTML_ROWS = 10
 class Results(dict):
     """Outputs by name (arrays broadcast to one shape, ``assembled`` a bool mask), with their units.
 
+    Two bool masks say where the numbers are not to be read as they stand:
+
+    * ``assembled``: False where the linkage cannot close (every output is NaN there);
+    * ``singular``: True where it closes at a toggle, a pose where a loop's determinant
+      vanishes (its two assemblies meet).  Rates, accelerations, joint forces, driving
+      efforts and sensitivities divide by that determinant, so they are inf, NaN or
+      meaningless there while the positions are right.  A :class:`~symlink.solver.Solver`
+      adds it to any request with such an output (the loops those outputs depend on).
+
     ``units`` maps an output to its unit (``"rad"``, ``"rad/s"``, a length
     unit, ``""`` for none or unknown); outputs not in it have no stated unit.
     """

@@ -6,7 +6,10 @@ finite, branches +1 or -1, every value finite and real, shapes broadcasting
 (the check that every generated function makes,
 :func:`symlink.codegen.numpy.checked_arguments`), and the call must fit in
 the memory the machine has (:mod:`symlink.limits`).  Where the linkage cannot
-be assembled the result says so in its ``assembled`` mask.  A :class:`NumericSolver` generates and
+be assembled the result says so in its ``assembled`` mask; where it is assembled at a
+toggle (a loop's determinant is zero) a request for rates, accelerations, dynamic forces
+or sensitivities, which divide by that determinant, also gets the ``singular`` mask,
+True there (see :class:`~symlink.results.Results`).  A :class:`NumericSolver` generates and
 loads Newton's method on the closure instead, for linkages without a closed
 form (and any other).
 
@@ -61,7 +64,7 @@ class Solver:
 
     def __init__(self, linkage: Linkage, outputs: Sequence[str]) -> None:
         self.linkage = linkage
-        self.outputs = list(outputs)
+        self.outputs = linkage.with_singular(outputs)  # a rate, force or sensitivity brings its flag
         code = generated_code(linkage, self.outputs)  # derived once, then from the scene cache
         self.source, self.function, self.arguments = code.source, code.function, code.arguments
 

@@ -42,13 +42,15 @@ def fourbar_results(count=3):
 def test_results_stay_a_plain_dict():
     results = fourbar_results()
     assert isinstance(results, dict)
-    assert list(results) == ["rocker", "rocker_speed", "C_x", "assembled"]
+    # A rate divides by the loop's determinant: its request brings the singular mask, beside assembled.
+    assert list(results) == ["rocker", "rocker_speed", "C_x", "singular", "assembled"]
     assert dict(results).keys() == results.keys()
-    assert results["assembled"].all()
+    assert results["assembled"].all() and not results["singular"].any()
 
 
 def test_units_of_angles_rates_lengths():
-    assert fourbar_results().units == {"rocker": "rad", "rocker_speed": "rad/s", "C_x": "length", "assembled": ""}
+    assert fourbar_results().units == {"rocker": "rad", "rocker_speed": "rad/s", "C_x": "length", "singular": "",
+                                       "assembled": ""}
     units = output_units(slider_crank(), ["s", "sdot", "sddot", "beta", "betaddot", "B_y"], "m")
     assert units == {"s": "m", "sdot": "m/s", "sddot": "m/s^2", "beta": "rad", "betaddot": "rad/s^2", "B_y": "m"}
 
@@ -59,11 +61,11 @@ def test_html_table_shows_the_first_rows_with_units():
     parser = TableParser()
     parser.feed(text)
     header, *rows = parser.rows
-    assert header == ["", "rocker (rad)", "rocker_speed (rad/s)", "C_x (length)", "assembled"]
+    assert header == ["", "rocker (rad)", "rocker_speed (rad/s)", "C_x (length)", "singular", "assembled"]
     assert len(rows) == HTML_ROWS
     # Row 0 at theta = 0: C_x = d + c cos(phi) with the closed form of the first row.
     assert float(rows[0][1]) == pytest.approx(float(results["rocker"][0]), rel=1e-5)
-    assert rows[0][4] == "True"
+    assert rows[0][4:] == ["False", "True"]
     assert f"5 more rows of {HTML_ROWS + 5}" in text
 
 
@@ -88,7 +90,7 @@ def test_to_frame_carries_units():
     results = fourbar_results(4)
     frame = results.to_frame()
     assert isinstance(frame, pandas.DataFrame)
-    assert list(frame.columns) == ["rocker (rad)", "rocker_speed (rad/s)", "C_x (length)", "assembled"]
+    assert list(frame.columns) == ["rocker (rad)", "rocker_speed (rad/s)", "C_x (length)", "singular", "assembled"]
     assert frame.attrs["units"] == results.units
     np.testing.assert_array_equal(frame["rocker (rad)"].to_numpy(), results["rocker"])
     assert len(frame) == 4

@@ -12,7 +12,6 @@ from symlink.linkage_file import (catalog_file, linkage_from_mapping, linkage_fr
 from symlink.solver import Solver
 
 
-
 @pytest.mark.parametrize("name", sorted(CATALOG))
 def test_every_catalog_entry_round_trips(name, tmp_path):
     original = CATALOG[name]()

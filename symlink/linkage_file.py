@@ -135,6 +135,7 @@ from typing import TYPE_CHECKING, Mapping
 
 import sympy as sp
 
+from .display import record_html
 from .files import write_atomic
 from .linkage import Linkage
 from .loops import Loop
@@ -180,6 +181,8 @@ class LinkageFile:
 
     ``model`` holds the mass properties and loads of the file's ``[dynamics]`` table, if it has one.
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     linkage: Linkage
     defaults: dict[str, float] = field(default_factory=dict)

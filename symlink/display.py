@@ -3,7 +3,8 @@
 A record (a :func:`dataclasses.dataclass` such as
 :class:`~symlink.analysis.report.LinkageReport`, or any object with public
 attributes) is shown as its class name over a two-column table, one row a
-field: numbers to six significant digits, short arrays written out and long
+field or a public property (lengths in the record's unit, angles in radians as
+symlink computes them): numbers to six significant digits, short arrays written out and long
 ones by shape and range, nested records as nested tables, long sequences cut
 after :data:`SHOWN_ITEMS` items with a count of the rest.  A record class
 gets it with one line, ``_repr_html_ = record_html``; Jupyter, nbconvert
@@ -39,11 +40,21 @@ MAX_TEXT = 160
 
 
 def _fields(record: Any) -> list[tuple[str, Any]]:
-    """``(name, value)`` of a record's public fields (a dataclass's, else its public instance attributes)."""
+    """``(name, value)`` of a record's public fields (a dataclass's, else its public instance attributes),
+    then of its public properties (``dof``, ``full_turn``: what it derives from them), those that answer."""
     if dataclasses.is_dataclass(record) and not isinstance(record, type):
-        return [(field.name, getattr(record, field.name)) for field in dataclasses.fields(record)
-                if not field.name.startswith("_")]
-    return [(name, value) for name, value in vars(record).items() if not name.startswith("_")]
+        fields = [(field.name, getattr(record, field.name)) for field in dataclasses.fields(record)
+                  if not field.name.startswith("_")]
+    else:
+        fields = [(name, value) for name, value in vars(record).items() if not name.startswith("_")]
+    for cls in reversed(type(record).__mro__):
+        for name, attribute in vars(cls).items():
+            if isinstance(attribute, property) and not name.startswith("_"):
+                try:
+                    fields.append((name, getattr(record, name)))
+                except Exception:  # noqa: BLE001 - a property that cannot answer here is left out of the display
+                    pass
+    return fields
 
 
 def _is_record(value: Any) -> bool:

@@ -105,6 +105,12 @@ class LoopSolution:
     positions: dict[sp.Symbol, sp.Expr]
     singular_factors: dict[sp.Expr, sp.Expr] = field(default_factory=dict)
 
+    def _repr_latex_(self) -> str:
+        """The intermediates, then the unknowns, one equation a line: what a notebook shows."""
+        lines = [f"{sp.latex(name)} &= {sp.latex(value)}" for name, value in
+                 list(self.intermediates.items()) + list(self.positions.items())]
+        return "$\\displaystyle \\begin{aligned}" + " \\\\ ".join(lines) + "\\end{aligned}$"
+
 
 def _cross(ux, uy, vx, vy):
     return ux * vy - uy * vx

@@ -63,6 +63,7 @@ import sympy as sp
 
 from .cache import GeneratedCode, generated_code
 from .catalog import CATALOG
+from .display import record_html
 from .input_sweep import InputSweep
 from .linkage_file import LinkageFile, dynamic_model, load_linkage
 from .angles import to_radians
@@ -247,6 +248,8 @@ class SceneFile:
     scene's input values (radians, and the rates the outputs need) at a block
     of them, so that a long sweep is evaluated a block at a time.
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     def __init__(self, scene: Scene, input_column: str, sweep: InputSweep, units: str, fmt: str,
                  speed: float = 0.0, accel: float = 0.0) -> None:

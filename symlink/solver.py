@@ -25,6 +25,7 @@ unit, rates per second) or refused where they would mix.
 from __future__ import annotations
 
 import functools
+import html
 import inspect
 import math
 import re
@@ -92,6 +93,24 @@ class Solver:
     def units(self) -> dict[str, str]:
         """The unit of each output, lengths named ``length`` (:func:`symlink.units.output_units`)."""
         return output_units(self.linkage, self.outputs + ["assembled"])
+
+    def _repr_html_(self) -> str:
+        """What a call takes and gives, with units: a notebook's view of the solver.
+
+        >>> from symlink.catalog import fourbar
+        >>> "<td>branch</td><td></td><td>no (default)</td>" in Solver(fourbar(), ["rocker"])._repr_html_()
+        True
+        """
+        def rows(names: list[str], units: Mapping[str, str], needed: Callable[[str], str]) -> str:
+            return "".join(f"<tr><td>{html.escape(name)}</td><td>{html.escape(units.get(name, ''))}</td>"
+                           f"<td>{needed(name)}</td></tr>" for name in names)
+        required = set(self.required)
+        takes = rows(self.arguments, self.input_units, lambda name: "yes" if name in required else "no (default)")
+        gives = rows(self.outputs + ["assembled"], self.units, lambda name: "")
+        return (f"<p>{html.escape(type(self).__name__)} of {html.escape(self.linkage.name)}</p>"
+                f"<table><thead><tr><th>argument</th><th>unit</th><th>required</th></tr></thead>"
+                f"<tbody>{takes}</tbody></table><table><thead><tr><th>output</th><th>unit</th><th></th></tr></thead>"
+                f"<tbody>{gives}</tbody></table>")
 
     @cached_property
     def input_units(self) -> dict[str, str]:

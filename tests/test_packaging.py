@@ -12,7 +12,8 @@ machine.  Read with :mod:`ast`, without running anything:
   doctest example, count;
 - an import is optional, and may name any package, where it is guarded: in the
   body of a ``try`` that catches ``ImportError`` (the code falls back or says
-  which extra to install), or in a test marked ``skipif(..., reason=...)``;
+  which extra to install), in a test marked ``skipif(..., reason=...)``, or
+  under ``if TYPE_CHECKING:`` (never imported at run time);
 - ``pytest.importorskip("x")`` of a package that the ``test`` extra does not
   bring must say why it skips and what installs it (``reason=``);
 - calls that import a package behind their name count as that import
@@ -111,6 +112,12 @@ def imports(tree: ast.AST, functions_optional: bool = False) -> list[tuple[str, 
             for child in node.body:
                 visit(child, guarded or caught)
             for child in node.handlers + node.orelse + node.finalbody:
+                visit(child, guarded)
+            return
+        if isinstance(node, ast.If) and ast.unparse(node.test) in ("TYPE_CHECKING", "typing.TYPE_CHECKING"):
+            for child in node.body:  # for the type checker only: never imported at run time
+                visit(child, True)
+            for child in node.orelse:
                 visit(child, guarded)
             return
         if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)) and (
@@ -232,6 +239,8 @@ def test_the_scan_tells_required_guarded_and_skipping_imports_apart():
     source = '''
 import numpy.linalg
 from scipy import optimize
+if TYPE_CHECKING:
+    import pandas
 try:
     import pint
 except ImportError:
@@ -244,9 +253,9 @@ def test_frame(results):
     widgets = pytest.importorskip("ipympl", reason="pip install -e '.[notebook]'")
     results.to_frame()
 '''
-    assert scan(source) == [("numpy", 2, "required"), ("scipy", 3, "required"), ("pint", 5, "guarded"),
-                            ("sphinx", 10, "guarded"), ("IPython", 12, "importorskip"),
-                            ("ipympl", 13, "importorskip with reason"), ("pandas", 14, "required")]
+    assert scan(source) == [("numpy", 2, "required"), ("scipy", 3, "required"), ("pandas", 5, "guarded"),
+                            ("pint", 7, "guarded"), ("sphinx", 12, "guarded"), ("IPython", 14, "importorskip"),
+                            ("ipympl", 15, "importorskip with reason"), ("pandas", 16, "required")]
 
 
 def test_a_package_outside_the_dependencies_is_reported():
@@ -269,3 +278,23 @@ def test_doctest_examples_are_scanned(tmp_path):
     tree = ast.parse(module.read_text())
     found = [entry for example, _ in doctest_trees(tree, module) for entry in imports(example)]
     assert [(name, how) for name, _, how in found] == [("numba", "required"), ("pandas", "required")]
+
+
+def test_the_wheel_ships_every_catalog_linkage_file():
+    """The package data patterns cover the linkage files (``pip wheel . --no-deps`` lists them in the wheel)."""
+    import fnmatch
+    patterns = PYPROJECT["tool"]["setuptools"]["package-data"]["symlink"]
+    shipped = sorted((ROOT / "symlink" / "linkages").glob("*.toml"))
+    assert shipped, "symlink/linkages/ holds no linkage file"
+    for path in shipped:
+        relative = path.relative_to(ROOT / "symlink").as_posix()
+        assert any(fnmatch.fnmatch(relative, pattern) for pattern in patterns), f"{relative} is not package data"
+
+
+def test_the_extras_all_and_dev_name_existing_extras():
+    extras = PYPROJECT["project"]["optional-dependencies"]
+    for name, wanted in (("all", {"notebook", "pandas", "units", "dynamics", "sweep", "synthesis"}),
+                         ("dev", {"test", "docs", "bench", "typecheck"})):
+        (requirement,) = [Requirement(text) for text in extras[name]]
+        assert normalized(requirement.name) == normalized(PROJECT)
+        assert requirement.extras == wanted and wanted <= set(extras)

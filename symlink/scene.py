@@ -51,7 +51,6 @@ is checked; anything unknown or out of range is one line of error.
 """
 from __future__ import annotations
 
-import inspect
 import math
 import sys
 from functools import cached_property, lru_cache
@@ -62,6 +61,7 @@ import numpy
 import sympy as sp
 
 from .cache import GeneratedCode, generated_code
+from .call_arguments import check_argument_names
 from .catalog import CATALOG
 from .display import record_html
 from .input_sweep import InputSweep
@@ -179,13 +179,10 @@ class Scene:
         plain lengths.
         """
         merged = {**self.values, **values}
-        signature = inspect.signature(self.code.function).parameters
-        missing = [name for name, argument in signature.items()
-                   if name not in merged and argument.default is inspect.Parameter.empty]
-        if missing:
-            raise ValueError(f"{self.linkage.name} needs values for {', '.join(missing)}")
-        return {sign: self.solver(**merged, **{name: sign for name in self.solver.branches})
-                for sign in self.signs}
+        branches = self.solver.branches
+        # the scene gives the branch signs: a value missing or unknown is named as the solver names it
+        check_argument_names(self.linkage.name, self.solver.arguments, self.solver.required, [*merged, *branches])
+        return {sign: self.solver(**merged, **{name: sign for name in branches}) for sign in self.signs}
 
     def __repr__(self) -> str:
         return f"Scene({self.linkage.name!r}, {list(self.outputs)}, branch={self.branch!r})"

@@ -127,8 +127,7 @@ class CachedSolver:
             require_memory(count, self.bytes_per_value, f"solving {count:.3g} input values with the {self.name} solver")
         with numpy.errstate(invalid="ignore", divide="ignore"):
             result = self.function(**values)
-        return Results(result, {name: self.units.get(name, "") for name in result}, values,
-                       {name: self.input_units.get(name, "") for name in values})
+        return Results(result, {name: self.units.get(name, "") for name in result}, values, self.input_units)
 
     def __repr__(self) -> str:
         return f"CachedSolver({self.name!r}, {self.outputs})"

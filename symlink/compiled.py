@@ -610,8 +610,7 @@ class CompiledSolver(Solver):
         """
         outputs = self.function._small_outputs(values)
         if outputs is not None:
-            return Results(outputs.results, self._units, values,
-                           {name: self.input_units.get(name, "") for name in values})
+            return Results(outputs.results, self._units, values, self.input_units)
         return super().__call__(**values)
 
     @cached_property

@@ -51,8 +51,9 @@ class Results(dict):
                  inputs: Mapping[str, object] | None = None, input_units: Mapping[str, str] | None = None) -> None:
         super().__init__(values or {})
         self.units: dict[str, str] = dict(units or {})
-        self.inputs: dict[str, Any] = {name: value for name, value in (inputs or {}).items() if name not in self}
-        self.input_units: dict[str, str] = dict(input_units or {})
+        # kept as given (a solver call's hot path); an input named like an output is left out where read
+        self.inputs: dict[str, Any] = dict(inputs) if inputs else {}
+        self.input_units: dict[str, str] = dict(input_units) if input_units else {}
 
     def _unit(self, name: str) -> str:
         return self.units.get(name, "") if name in self else self.input_units.get(name, "")
@@ -64,7 +65,7 @@ class Results(dict):
 
     def varying_inputs(self) -> list[str]:
         """The inputs given as arrays (the columns or index levels of :meth:`to_frame`), in call order."""
-        return [name for name, value in self.inputs.items() if numpy.ndim(value) > 0]
+        return [name for name, value in self.inputs.items() if name not in self and numpy.ndim(value) > 0]
 
     def columns(self) -> list[str]:
         """The column names of :meth:`to_frame` for a one-dimensional result: the varying inputs, then the outputs."""
@@ -138,7 +139,8 @@ class Results(dict):
             names = varying + list(self)
             frame = pandas.DataFrame(self._table(names))
         frame.attrs["units"] = {name: self._unit(name) for name in levels + names}
-        frame.attrs["constants"] = {name: value for name, value in self.inputs.items() if numpy.ndim(value) == 0}
+        frame.attrs["constants"] = {name: value for name, value in self.inputs.items()
+                                    if name not in self and numpy.ndim(value) == 0}
         return frame
 
     def _repr_html_(self) -> str:

@@ -191,8 +191,7 @@ def _results(values: Mapping[str, numpy.ndarray], units: Mapping[str, str], leng
     if length_unit is not None:
         units = {name: unit.replace(ANY_LENGTH, length_unit) for name, unit in units.items()}
         input_units = {name: unit.replace(ANY_LENGTH, length_unit) for name, unit in input_units.items()}
-    return Results(values, {name: units.get(name, "") for name in values}, inputs,
-                   {name: input_units.get(name, "") for name in inputs})
+    return Results(values, {name: units.get(name, "") for name in values}, inputs, input_units)
 
 
 def _assignments(source: str) -> int:

@@ -78,7 +78,7 @@ FUNCTION = "solve"
 #: :func:`catalog_key`, so that a cached catalog scene is found without building the linkage (or importing
 #: SymPy); it is hashed at every warm start, so it holds nothing a catalog linkage does not use.
 CATALOG_SHAPING = ("names", "vectors", "loops", "position", "motion", "sensitivity", "linkage", "closure", "plan",
-                   "catalog", "notation", "typeset", "codegen", "export", "compiled")
+                   "catalog", "notation", "typeset", "codegen", "export", "compiled", "seed_forms")
 #: The modules whose text shapes generated code: their digest is part of every key.  Add a module here
 #: when it starts to shape generated text; benchmarks, plots and the command line stay out, so that editing
 #: them keeps the cache.  Beyond the catalog's: what builds a linkage with masses and its derivation text.

@@ -23,6 +23,7 @@ from .codegen import PRINTERS, printer
 from .linkage import Linkage
 from .outputs import output_sets as standard_output_sets
 from .scene import catalog_linkage
+from .seed_forms import FORMS
 
 __all__ = ["FORMATS", "output_sets", "export_texts", "export"]
 
@@ -48,10 +49,19 @@ def _identifier(name: str) -> str:
     return stem if re.match(r"[A-Za-z]", stem) else f"linkage_{stem}"
 
 
-def export_texts(linkage: Linkage | str, fmt: str, outputs: Sequence[str] | None = None) -> dict[str, str]:
-    """File name -> text of ``linkage`` (or a catalog name) in format ``fmt`` (cached; nothing is written)."""
+def export_texts(linkage: Linkage | str, fmt: str, outputs: Sequence[str] | None = None,
+                 form: str = "atan2") -> dict[str, str]:
+    """File name -> text of ``linkage`` (or a catalog name) in format ``fmt`` (cached; nothing is written).
+
+    ``form`` adds the positions in a seed paper's form to a LaTeX document (:mod:`symlink.seed_forms`).
+    """
     if fmt not in FORMATS:
         raise ValueError(f"unknown export format {fmt!r}; choose one of {', '.join(FORMATS)}")
+    if form not in FORMS:
+        raise ValueError(f"no form {form!r}; the forms are {', '.join(FORMS)}")
+    if form != "atan2" and fmt != "latex":
+        raise ValueError(f"--form {form} is a way of writing the equations: it applies to --to latex only "
+                         "(generated code always computes the atan2 form)")
     if isinstance(linkage, str):
         linkage = catalog_linkage(linkage)
     name = linkage.name
@@ -70,21 +80,25 @@ def export_texts(linkage: Linkage | str, fmt: str, outputs: Sequence[str] | None
     wanted = sorted({o for _, names, _ in sets for o in names})
     verb = "export" if name in CATALOG else "derive"
     command = f"symlink {verb} {name} --to {fmt}" + (f" --outputs {','.join(outputs)}" if outputs else "")
-    kind = "export:" + json.dumps([fmt, stem, sets])
-    build = lambda: json.dumps(_build(linkage, fmt, stem, sets, command))  # noqa: E731
+    command += f" --form {form}" if form != "atan2" else ""
+    kind = "export:" + json.dumps([fmt, stem, sets] + ([form] if form != "atan2" else []))
+    build = lambda: json.dumps(_build(linkage, fmt, stem, sets, command, form))  # noqa: E731
     return json.loads(cache.cached_text(cache.cache_key(linkage, wanted, kind), build))
 
 
-def _build(linkage: Linkage, fmt: str, stem: str, sets, command: str) -> dict[str, str]:
+def _build(linkage: Linkage, fmt: str, stem: str, sets, command: str, form: str = "atan2") -> dict[str, str]:
     doc = (CATALOG[linkage.name].__doc__ or "").strip().splitlines() if linkage.name in CATALOG else []
     title = f"{linkage.name}: {doc[0]}" if doc else f"{linkage.name} solver."
+    if form != "atan2":
+        return printer(fmt).export_files(linkage, stem, sets, title, command, form=form)
     return printer(fmt).export_files(linkage, stem, sets, title, command)
 
 
-def export(linkage: Linkage | str, fmt: str, folder: str | Path, outputs: Sequence[str] | None = None) -> list[Path]:
+def export(linkage: Linkage | str, fmt: str, folder: str | Path, outputs: Sequence[str] | None = None,
+           form: str = "atan2") -> list[Path]:
     """Write the export files of ``linkage`` (or a catalog name) into ``folder``, all or none; returns their paths."""
     from .files import write_files_atomic
-    texts = export_texts(linkage, fmt, outputs)
+    texts = export_texts(linkage, fmt, outputs, form)
     folder = Path(folder)
     if folder.exists() and not folder.is_dir():
         raise ValueError(f"--out {folder} exists and is not a folder")

@@ -35,9 +35,10 @@ from .loops import Loop
 from .names import identifier, label
 from .motion import loop_rates
 from .position import ClampedSqrt, LoopSolution, solve_loop
+from .seed_forms import FORMS, seed_form_rows
 from .sensitivity import (plan_sensitivities, sensitivity_name, sensitivity_symbol, split_sensitivity_name,
                           total_derivative)
-from .typeset import aligned_rows, closure_rows
+from .typeset import EquationSet, closure_rows, display_latex
 from .vectors import Vector, VectorSum, acceleration, expression, rate
 
 __all__ = ["Linkage", "Equations", "Program", "is_branch_name"]
@@ -64,13 +65,16 @@ class Program:
     ``(symbol, expression)`` in dependency order; ``outputs`` maps output
     names to the symbols or expressions that hold them; ``defaults`` gives
     the arguments that may be left out their values (a branch +1, an input's
-    rate and acceleration 0).
+    rate and acceleration 0).  ``plan`` holds the closed-form loop solutions whose
+    textbook assignments code generation computes in loop units instead
+    (:func:`symlink.codegen.program.in_loop_units`); empty once that is done.
     """
 
     arguments: tuple[sp.Symbol, ...]
     assignments: tuple[tuple[sp.Symbol, sp.Expr], ...]
     outputs: dict[str, sp.Expr]
     defaults: dict[str, float] = field(default_factory=dict)
+    plan: tuple[LoopSolution, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -81,6 +85,7 @@ class Equations:
     velocities: bool = False
     accelerations: bool = False
     sensitivities: tuple[sp.Symbol, ...] = ()
+    form: str = "atan2"
 
     def _repr_latex_(self) -> str:
         """The closure equations, then the closed forms where the linkage has a solve plan (and the rates asked
@@ -88,12 +93,12 @@ class Equations:
         linkage = self.linkage
         rows = closure_rows(linkage.loops)
         if linkage.has_closed_form:
-            rows += list(linkage.positions.items())
+            rows += seed_form_rows(linkage, self.form)
             rows += list(linkage.velocities.items()) if self.velocities else []
             rows += list(linkage.accelerations.items()) if self.accelerations else []
             for parameter in self.sensitivities:
                 rows += list(linkage.sensitivities(parameter).items())
-        return "$\\displaystyle \\begin{aligned}" + aligned_rows(rows) + "\\end{aligned}$"
+        return display_latex(rows)
 
 
 class Linkage:
@@ -123,7 +128,7 @@ class Linkage:
         self.points = dict(points or {})
         self.roles = dict(roles or {})
         self.extras = {k: expression(v) for k, v in (extras or {}).items()}
-        self._sensitivities: dict[sp.Symbol, dict[sp.Symbol, sp.Expr]] = {}
+        self._sensitivities: dict[sp.Symbol, EquationSet] = {}
         for kind, symbols in (("input", self.inputs), ("unknown", self.unknowns)):
             for symbol in symbols:
                 if not isinstance(symbol, sp.Symbol):
@@ -286,27 +291,40 @@ class Linkage:
         return True
 
     @cached_property
-    def positions(self) -> dict[sp.Symbol, sp.Expr]:
-        """Every unknown and intermediate in closed form, in plan order."""
-        result: dict[sp.Symbol, sp.Expr] = {}
+    def positions(self) -> EquationSet:
+        """Every unknown and intermediate in closed form, in plan order, as a textbook writes them.
+
+        In the linkage's own lengths and angles and each loop's intermediates
+        (``Wx_k, Wy_k``: the vector the unknowns close, ``w_k`` its length,
+        ``Delta_k`` the root); generated code computes the same in loop units
+        (:func:`symlink.codegen.program.in_loop_units`).
+
+        >>> from symlink.catalog import fourbar
+        >>> for symbol, expr in list(fourbar().positions.items())[:3]:
+        ...     print(symbol, "=", expr)
+        Wx_1 = a*cos(theta) - d
+        Wy_1 = a*sin(theta)
+        w_1 = sqrt(Wx_1**2 + Wy_1**2)
+        """
+        result = EquationSet()
         for step in self.plan:
             result.update(step.intermediates)
             result.update(step.positions)
         return result
 
-    def _rates(self, order: int) -> dict[sp.Symbol, sp.Expr]:
-        result: dict[sp.Symbol, sp.Expr] = {}
+    def _rates(self, order: int) -> EquationSet:
+        result = EquationSet()
         for step in self.plan:
             result.update(loop_rates(step.loop, list(step.positions), self.coordinates, order))
         return result
 
     @cached_property
-    def velocities(self) -> dict[sp.Symbol, sp.Expr]:
+    def velocities(self) -> EquationSet:
         """The unknowns' rates, in terms of positions and the inputs' rates."""
         return self._rates(1)
 
     @cached_property
-    def accelerations(self) -> dict[sp.Symbol, sp.Expr]:
+    def accelerations(self) -> EquationSet:
         """The unknowns' accelerations, in terms of positions, rates and the inputs' accelerations."""
         return self._rates(2)
 
@@ -317,7 +335,8 @@ class Linkage:
         The generated rates divide by that root, so they are inf or NaN exactly there and
         finite elsewhere.  Loops with one assembly (no root) never set it.
         """
-        roots = [s for step in self.plan for s, e in step.intermediates.items() if isinstance(e, ClampedSqrt)]
+        roots = [s for step in self.plan for s, e in step.in_loop_units.intermediates.items()
+                 if isinstance(e, ClampedSqrt)]
         return sp.Or(*(sp.Eq(root, 0) for root in roots))
 
     def point(self, name: str) -> tuple[sp.Expr, sp.Expr]:
@@ -381,7 +400,7 @@ class Linkage:
         closes = any(parameter in loop.symbols() for loop in self.loops)
         return total_derivative(expr, self.unknowns if closes else (), parameter)
 
-    def sensitivities(self, parameter: sp.Symbol) -> dict[sp.Symbol, sp.Expr]:
+    def sensitivities(self, parameter: sp.Symbol) -> EquationSet:
         """Every unknown's derivative by ``parameter`` (``phi__d_a``), in plan order; derived once, on first use.
 
         >>> from symlink.catalog import fourbar
@@ -394,7 +413,7 @@ class Linkage:
             raise ValueError(f"{self.name} has no parameter {parameter!r}; "
                              f"it has {', '.join(s.name for s in self.parameters)}")
         if parameter not in self._sensitivities:
-            self._sensitivities[parameter] = plan_sensitivities(self.plan, parameter)
+            self._sensitivities[parameter] = EquationSet(plan_sensitivities(self.plan, parameter))
         return self._sensitivities[parameter]
 
     def expression(self, name: str, simplify: bool = False) -> sp.Expr:
@@ -430,9 +449,7 @@ class Linkage:
         """Straight-line code for ``outputs``: only what they depend on is derived and kept."""
         wanted = {name: self.output(name) for name in outputs}
         needed = set().union(*(e.free_symbols for e in wanted.values())) if wanted else set()
-        # Code divides by the loops' roots, so the rates are not finite exactly at a toggle.
-        factors = {k: v for step in self.plan for k, v in step.singular_factors.items()}
-        definitions = {s: e.xreplace(factors) for s, e in self._definitions_of(needed).items()}
+        definitions = self._definitions_of(needed)
         # Walk the dependencies; definitions are in dependency order already.
         keep: set[sp.Symbol] = set()
         stack = [s for s in needed if s in definitions]
@@ -454,7 +471,8 @@ class Linkage:
         arguments = tuple(s for s in order if s in free or s in always)
         defaults = {s.name: 1.0 for s in self.branches}
         defaults.update({s.name: 0.0 for q in self.inputs for s in (rate(q), acceleration(q))})
-        return Program(arguments, assignments, wanted, {a.name: defaults[a.name] for a in arguments if a.name in defaults})
+        return Program(arguments, assignments, wanted, {a.name: defaults[a.name] for a in arguments if a.name in defaults},
+                       self.plan if self.has_closed_form else ())
 
     def call_signature(self) -> tuple[sp.Symbol, ...]:
         """The order of a generated function's arguments: inputs, parameters, branches, input rates."""
@@ -465,12 +483,15 @@ class Linkage:
         return self.equations()._repr_latex_()
 
     def equations(self, velocities: bool = False, accelerations: bool = False,
-                  sensitivities: Sequence[str] = ()) -> "Equations":
+                  sensitivities: Sequence[str] = (), form: str = "atan2") -> "Equations":
         r"""The closure and the closed forms as a Jupyter display (velocities, accelerations and the
         unknowns' derivatives by the named parameters on request).
 
         Displaying a linkage shows the closure and positions; this shows more
-        without deriving anything that is not asked for.
+        without deriving anything that is not asked for.  ``form`` writes the
+        positions as a seed paper does (``"complex"``, ``"freudenstein"``,
+        ``"half-angle"``: :mod:`symlink.seed_forms`); generated code always
+        computes symlink's own ``"atan2"`` form.
 
         >>> from symlink.catalog import fourbar
         >>> "\\dot{\\phi}" in fourbar().equations(velocities=True)._repr_latex_()
@@ -482,7 +503,9 @@ class Linkage:
         unknown = [name for name in sensitivities if name not in by_name]
         if unknown:
             raise ValueError(f"{self.name} has no parameter {unknown[0]!r}; it has {', '.join(by_name)}")
-        return Equations(self, velocities, accelerations, tuple(by_name[name] for name in sensitivities))
+        if form not in FORMS:
+            raise ValueError(f"no form {form!r}; the forms are {', '.join(FORMS)}")
+        return Equations(self, velocities, accelerations, tuple(by_name[name] for name in sensitivities), form)
 
     def __repr__(self) -> str:
         return (f"Linkage({self.name!r}, loops={[loop.name for loop in self.loops]}, "

@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import sys
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Sequence
 
 import sympy as sp
@@ -50,8 +51,12 @@ TOLERANCE = 1e-14
 
 
 class ClampedSqrt(sp.Function):
-    """``sqrt(x)`` where ``x`` may round below zero: ``ClampedSqrt(x, scale)``.
+    """``sqrt(x)`` where ``x`` may round below zero: ``ClampedSqrt(x)`` as a textbook writes it, ``[x]_+``.
 
+    The equations a user reads (:attr:`symlink.linkage.Linkage.positions`, LaTeX)
+    carry the one-argument form: the square root of ``x``, which is zero at a
+    toggle and has no real value (no assembly) below it.  Generated code carries
+    ``ClampedSqrt(x, scale)`` in loop units (see :attr:`LoopSolution.in_loop_units`):
     ``x >= 0`` gives ``sqrt(x)``; ``-TOLERANCE*scale <= x < 0`` is rounding and
     gives 0 (the toggle position itself); anything lower cannot be assembled
     and gives NaN, which the generated solvers report as not assembled.
@@ -59,18 +64,20 @@ class ClampedSqrt(sp.Function):
     A negative ``scale`` makes it a guard: NaN for any ``x`` below
     ``-TOLERANCE*scale`` (a length that is zero within rounding).
 
+    >>> ClampedSqrt(4), ClampedSqrt(-1)
+    (2, nan)
     >>> ClampedSqrt(4, 1), ClampedSqrt(-1e-16, 1), ClampedSqrt(-1, 1)
     (2, 0, nan)
     """
 
-    nargs = 2
+    nargs = (1, 2)
 
     @classmethod
-    def eval(cls, x, scale):
-        if x.is_Number and scale.is_Number:
+    def eval(cls, x, scale=None):
+        if x.is_Number and (scale is None or scale.is_Number):
             if x >= 0:
                 return sp.sqrt(x)
-            return sp.S.Zero if x >= -TOLERANCE * scale else sp.nan
+            return sp.S.Zero if scale is not None and x >= -TOLERANCE * scale else sp.nan
         return None
 
     def fdiff(self, argindex=1):
@@ -96,6 +103,9 @@ class LoopSolution:
     meet) in terms of the root ``Delta_k``: ``sin(beta - phi)`` of the
     four-bar is ``-branch Delta_1 / (2 b c)``.  With it the rates divide by
     exactly zero where the root is zero, and are not finite there.
+
+    These are the textbook forms, in the linkage's own lengths and angles.
+    :attr:`in_loop_units` is the same solution as generated code computes it.
     """
 
     loop: Loop
@@ -104,6 +114,30 @@ class LoopSolution:
     intermediates: dict[sp.Symbol, sp.Expr]
     positions: dict[sp.Symbol, sp.Expr]
     singular_factors: dict[sp.Expr, sp.Expr] = field(default_factory=dict)
+    label: str = "1"
+    branch_symbol: sp.Symbol | None = None
+
+    @cached_property
+    def in_loop_units(self) -> "LoopSolution":
+        """The same solution as generated code computes it: exact at any scale, guarded at the toggles.
+
+        Lengths are divided by the loop's unit ``size_k`` (its mean known length
+        rounded down to a power of two, so the division is exact) into ``rho_j_k``,
+        unknown lengths are scaled back, and each square root carries the clamping
+        scale that tells rounding at a toggle from a loop that cannot close.  The
+        intermediates keep their names (``Wx_k``, ``w_k``, ``Delta_k``) and hold the
+        same quantities in loop units, so the rates can use either form.  Code
+        generation swaps this in (:func:`symlink.codegen.program.in_loop_units`);
+        nothing a user reads shows it.
+
+        >>> from symlink.catalog import fourbar
+        >>> step = fourbar().plan[0]
+        >>> str(step.intermediates[sp.Symbol("Wx_1", real=True)])
+        'a*cos(theta) - d'
+        >>> str(step.in_loop_units.intermediates[sp.Symbol("Wx_1", real=True)])
+        '-rho_1_1 + rho_2_1*cos(theta)'
+        """
+        return solve_loop(self.loop, list(self.positions), self.branch_symbol, self.label, loop_units=True)
 
     def _repr_latex_(self) -> str:
         """The intermediates, then the unknowns, one equation a line: what a notebook shows."""
@@ -122,12 +156,25 @@ def _absolute(unknown: Unknown, value: sp.Expr) -> sp.Expr:
 
 
 class _Intermediates(dict):
-    """Named helper quantities of loop ``label``: ``name(expr)`` stores and returns the symbol."""
+    """Named helper quantities of loop ``label``: ``name(expr)`` stores and returns the symbol.
 
-    def __init__(self, label: str):
+    With ``loop_units`` the square roots carry their numeric guards (what generated
+    code computes); without, they are written as a textbook writes them.
+    """
+
+    def __init__(self, label: str, loop_units: bool = False):
         super().__init__()
         self.label = label
+        self.loop_units = loop_units
         self.singular_factors: dict[sp.Expr, sp.Expr] = {}
+
+    def clamped(self, x: sp.Expr, scale: sp.Expr) -> sp.Expr:
+        """``[x]_+`` under a square root; in loop units with the scale that tells rounding from no assembly."""
+        return ClampedSqrt(x, scale) if self.loop_units else ClampedSqrt(x)
+
+    def nonzero(self, squared: sp.Expr, smallest: float = TOLERANCE**2) -> sp.Expr:
+        """A length from its square; in loop units NaN where the square is below ``smallest`` (no direction)."""
+        return _nonzero_length(squared, smallest) if self.loop_units else sp.sqrt(squared)
 
     def identity(self, function, argument: sp.Expr, value: sp.Expr, odd: bool) -> None:
         """Record ``function(argument) = value`` (and of ``-argument``) for the rates' denominators."""
@@ -200,9 +247,12 @@ def _two_lengths(case: LoopCase, wx, wy, branch, named, unit, size):
     tp, tq = p.vector.angle, q.vector.angle
     # sin(tq - tp), written out so that the rates' sin(tq - tp) can be replaced by it without a cycle.
     determinant = _cross(sp.cos(tp), sp.sin(tp), sp.cos(tq), sp.sin(tq))
-    # Parallel unknown lengths: the loop closes nowhere or along a whole line; either way not assembled.
-    magnitude = named("Delta", _nonzero_length(determinant**2))
-    guarded = sp.sign(determinant) * magnitude
+    if named.loop_units:
+        # Parallel unknown lengths: the loop closes nowhere or along a whole line; either way not assembled.
+        magnitude = named("Delta", _nonzero_length(determinant**2))
+        guarded = sp.sign(determinant) * magnitude
+    else:  # Cramer's rule, as a textbook writes it
+        guarded = named("Delta", determinant)
     rp = size * _cross(wx, wy, sp.cos(tq), sp.sin(tq)) / (p.sign * guarded)
     rq = size * _cross(sp.cos(tp), sp.sin(tp), wx, wy) / (q.sign * guarded)
     return {p.symbol: _absolute(p, rp), q.symbol: _absolute(q, rq)}
@@ -212,10 +262,12 @@ def _length_and_angle_of_one(case: LoopCase, wx, wy, branch, named, unit, size):
     length, angle = (case.first, case.second) if case.first.part == "length" else (case.second, case.first)
     s = length.sign
     # The vector's length is |W|; where W vanishes its angle is undefined: not assembled.
-    w = named("w", _nonzero_length(wx**2 + wy**2))
+    w = named("w", named.nonzero(wx**2 + wy**2))
+    # In loop units the components are divided by w, which is NaN where W vanishes: no direction.
+    direction = w if named.loop_units else sp.S.One
     return {
         length.symbol: _absolute(length, size * w),
-        angle.symbol: _absolute(angle, sp.atan2(s * wy / w, s * wx / w)),  # NaN with w: no direction
+        angle.symbol: _absolute(angle, sp.atan2(s * wy / direction, s * wx / direction)),
     }
 
 
@@ -228,8 +280,8 @@ def _length_and_other_angle(case: LoopCase, wx, wy, branch, named, unit, size):
     along = ux * wx + uy * wy                # s_p r_p + s_q r_q cos(t_q - t_p)
     # At a toggle one factor vanishes, off by a few ulps of the loop's size,
     # and the other is 2 r_q.
-    root = named("Delta", ClampedSqrt((rq - across) * (rq + across),
-                                      2 * sp.Abs(rq) * (sp.Abs(rq) + _rounding_size(case, unit))))
+    root = named("Delta", named.clamped((rq - across) * (rq + across),
+                                        2 * sp.Abs(rq) * (sp.Abs(rq) + _rounding_size(case, unit))))
     rp = size * (p.sign * along + branch * root)
     tq = tp + sp.atan2(q.sign * across, -p.sign * q.sign * branch * root)
     if q.vector.length.is_positive:
@@ -246,7 +298,7 @@ def _two_angles(case: LoopCase, wx, wy, branch, named, unit, size):
     # Where the two known points coincide (W = 0) the direction of W, and so the pose, is undefined.
     # Only there: however short W is, if it is not zero the triangle is flat but well defined (a
     # toggle with rp = rq, or just inside one), its pose closes the loop and the root is Heron's.
-    w = named("w", _nonzero_length(wx**2 + wy**2, _SMALLEST_SQUARE))
+    w = named("w", named.nonzero(wx**2 + wy**2, _SMALLEST_SQUARE))
     # Triangle P + Q = W with |P| = rp, |Q| = rq: 2w times the components of P
     # along and across W are xp and y; Heron's product keeps y accurate near
     # the toggles, where the triangle is flat.
@@ -255,8 +307,8 @@ def _two_angles(case: LoopCase, wx, wy, branch, named, unit, size):
     # At a toggle (w = rp + rq or |rp - rq|) one factor vanishes, off by a few
     # ulps of the loop's size, and the other three multiply to 8 rp rq w.
     scale = sp.Abs(rp) + sp.Abs(rq) + w + _rounding_size(case, unit)
-    y = branch * named("Delta", ClampedSqrt((rp + rq + w) * (rp + rq - w) * (w + rq - rp) * (w + rp - rq),
-                                            8 * sp.Abs(rp * rq) * w * scale))
+    y = branch * named("Delta", named.clamped((rp + rq + w) * (rp + rq - w) * (w + rq - rp) * (w + rp - rq),
+                                              8 * sp.Abs(rp * rq) * w * scale))
     tp = sp.atan2(xp * wy + y * wx, xp * wx - y * wy)
     tq = sp.atan2(sign_q * (xq * wy - y * wx), sign_q * (xq * wx + y * wy))
     # P = (xp + i y) W / (2 w^2) and Q = (xq - i y) W / (2 w^2), so the cross
@@ -280,8 +332,8 @@ def _length_on_a_turning_body(case: LoopCase, wx, wy, branch, named, unit, size)
     along = sp.Add(*(sign * unit(v.length) * sp.cos(v.angle - q.symbol - c_p) for sign, v in case.turning))
     across = sp.Add(*(sign * unit(v.length) * sp.sin(v.angle - q.symbol - c_p) for sign, v in case.turning))
     w = named("w", sp.sqrt(wx**2 + wy**2))
-    root = named("Delta", ClampedSqrt((w - across) * (w + across),
-                                      2 * sp.Abs(across) * (w + sp.Abs(across) + _rounding_size(case, unit))))
+    root = named("Delta", named.clamped((w - across) * (w + across),
+                                        2 * sp.Abs(across) * (w + sp.Abs(across) + _rounding_size(case, unit))))
     x = p.sign * branch * root              # s_p r + A; branch +1 gives the larger r, as in case 2b
     rp = size * p.sign * (x - along)
     angle = sp.atan2(wy * x - wx * across, wx * x + wy * across) - c_p
@@ -293,25 +345,31 @@ _SOLVERS = {"1": _two_lengths, "2a": _length_and_angle_of_one, "2b": _length_and
 
 
 def solve_loop(loop: Loop, unknowns: Sequence[sp.Symbol], branch: sp.Symbol | None = None,
-               label: str = "1") -> LoopSolution:
+               label: str = "1", *, loop_units: bool = False) -> LoopSolution:
     """Solve ``loop`` for its two ``unknowns`` in closed form.
 
     ``branch`` is the symbol that carries the assembly sign (+1 or -1) for
     the cases that have two solutions; it is ignored by the others.
     ``label`` tells this loop's intermediates from other loops' (``w_1``).
+    ``loop_units`` gives the form generated code computes (see
+    :attr:`LoopSolution.in_loop_units`) instead of the textbook form.
     """
     case = loop.case(list(unknowns))
     if case.branches == 2 and branch is None:
         raise ValueError(f"loop {loop.name!r} (case {case.name}) has two assemblies: give a branch symbol")
-    named = _Intermediates(label)
-    # Compute in units of the loop's characteristic length, so that any scale gives the same angles.
-    size = named("size", _characteristic_length(case))
-
+    named = _Intermediates(label, loop_units)
     scaled: dict[sp.Expr, sp.Symbol] = {}
+    if loop_units:
+        # Compute in units of the loop's characteristic length, so that any scale gives the same angles.
+        size: sp.Expr = named("size", _characteristic_length(case))
+    else:
+        size = sp.S.One
 
     def unit(length: sp.Expr) -> sp.Expr:
         """A length in loop units, as a named intermediate (rho_<loop>_<k>) so that no product of
-        two lengths (which could overflow or underflow) is ever formed."""
+        two lengths (which could overflow or underflow) is ever formed; the length itself in a textbook."""
+        if not loop_units:
+            return length
         if length.is_number:
             return length / size
         if length not in scaled:
@@ -324,4 +382,4 @@ def solve_loop(loop: Loop, unknowns: Sequence[sp.Symbol], branch: sp.Symbol | No
     positions = _SOLVERS[case.name](case, wx, wy, branch, named, unit, size)
     positions = {u: positions[u] for u in unknowns}
     return LoopSolution(loop, case, branch if case.branches == 2 else None, dict(named), positions,
-                        named.singular_factors)
+                        named.singular_factors, label, branch)

@@ -17,7 +17,7 @@ turn and an empty list means the linkage closes at no input angle.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Callable, Mapping
 
 import numpy
@@ -26,8 +26,9 @@ from .angles import wrap_angle
 from .cache import cache_key, cached_text
 from .closure import is_angle
 from .codegen.numpy import load_numpy_module, numpy_module
+from .codegen.program import in_loop_units
 from .display import record_html
-from .linkage import Linkage, Program
+from .linkage import Linkage
 from .position import TOLERANCE, ClampedSqrt
 from .solver import NumericSolver, Solver, check_lengths
 from .vectors import rate
@@ -373,7 +374,8 @@ def _margin_function(linkage: Linkage) -> tuple[Callable[..., dict], list[tuple[
     margins are NaN where an earlier loop does not close.
     """
     plan_steps = linkage.plan
-    roots = [(step.loop.name, symbol, expr) for step in plan_steps for symbol, expr in step.intermediates.items()
+    roots = [(step.loop.name, symbol, expr) for step in plan_steps
+             for symbol, expr in step.in_loop_units.intermediates.items()
              if isinstance(expr, ClampedSqrt)]
     names = [f"margin_{k}" if not expr.args[1].is_negative else f"guard_{k}" for k, (_, _, expr) in enumerate(roots)]
     key = cache_key(linkage, names, "root-margins")
@@ -383,7 +385,7 @@ def _margin_function(linkage: Linkage) -> tuple[Callable[..., dict], list[tuple[
             # A guard (negative scale) is NaN below TOLERANCE^2: its margin is the argument past that.
             margins = {name: (expr.args[0] / expr.args[1] + TOLERANCE if name.startswith("margin")
                               else expr.args[0] + TOLERANCE * expr.args[1]) for name, (_, _, expr) in zip(names, roots)}
-            program = Program(base.arguments, base.assignments, margins, base.defaults)
+            program = replace(in_loop_units(base), outputs=margins)
             return numpy_module([("margins", program, f"{linkage.name}: the margins of its clamped roots.")])
         _MARGINS[key] = load_numpy_module(cached_text(key, build))["margins"]
     return _MARGINS[key], [(name, loop) for name, (loop, _, _) in zip(names, roots)]

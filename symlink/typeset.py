@@ -199,6 +199,26 @@ def aligned_rows(rows: list[tuple[sp.Expr, sp.Expr]], width: float = DISPLAY_WID
     return "\\\\\n".join(body)
 
 
+def display_latex(rows: list[tuple[sp.Expr, sp.Expr]]) -> str:
+    """Rows as one Jupyter display: ``$\\displaystyle \\begin{aligned} ... \\end{aligned}$``."""
+    return "$\\displaystyle \\begin{aligned}" + aligned_rows(rows) + "\\end{aligned}$"
+
+
+class EquationSet(dict):
+    r"""Equations ``symbol: expression`` (positions, rates, sensitivities) that display as maths in Jupyter.
+
+    A plain ``dict`` in every other way, so code that reads equations is unchanged.
+
+    >>> theta, a = sp.symbols("theta a")
+    >>> shown = EquationSet({sp.Symbol("x"): a * sp.cos(theta)})._repr_latex_()
+    >>> shown.startswith("$\displaystyle") and "x &= a \cos" in shown
+    True
+    """
+
+    def _repr_latex_(self) -> str:
+        return display_latex(list(self.items()))
+
+
 def align_block(rows: list[tuple[sp.Expr, sp.Expr]]) -> list[str]:
     """Rows as an ``align*`` environment, one line a list item."""
     return ["\\begin{align*}", aligned_rows(rows), "\\end{align*}"]

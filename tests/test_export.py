@@ -122,3 +122,13 @@ def test_texts_come_from_the_cache_the_second_time(monkeypatch):
     monkeypatch.setattr(type(catalog_linkage("fourbar")), "program",
                         lambda *_: pytest.fail("derived again instead of reading the cache"))
     assert export_texts("fourbar", "octave") == first
+
+
+def test_latex_in_a_seed_papers_form_and_refused_for_code(tmp_path, capsys):
+    """``--form`` writes the seed's form beside the atan2 form; generated code has one form, so code refuses it."""
+    status, out, err = run(capsys, "export", "fourbar", "--to", "latex", "--form", "half-angle", "--out", tmp_path / "t")
+    text = (tmp_path / "t" / "fourbar.tex").read_text()
+    assert status == 0 and "half-angle form (seed 003)" in text and "\\tan^{2}" in text
+    status, out, err = run(capsys, "export", "fourbar", "--to", "c", "--form", "freudenstein", "--out", tmp_path / "c")
+    assert status == 2 and "applies to --to latex only" in err and len(err.strip().splitlines()) == 1
+    assert not (tmp_path / "c").exists()

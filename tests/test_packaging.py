@@ -35,6 +35,7 @@ import doctest
 import importlib.metadata
 import re
 import sys
+import warnings
 from functools import lru_cache
 from pathlib import Path
 
@@ -67,6 +68,13 @@ OWN = {"symlink", "benchmarks", "tests", "conftest"}
 def normalized(name: str) -> str:
     """A distribution name as PEP 503 compares them."""
     return re.sub(r"[-_.]+", "-", name).lower()
+
+
+def parse(source: str, name: str = "<unknown>") -> ast.AST:
+    """``source`` parsed, quietly: an escape sequence in a string (LaTeX in a doctest) is the file's own business."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", (SyntaxWarning, DeprecationWarning))
+        return ast.parse(source, name)
 
 
 def scanned_files() -> list[Path]:
@@ -152,7 +160,7 @@ def doctest_trees(tree: ast.AST, path: Path) -> list[tuple[ast.AST, int]]:
             if text and ">>>" in text:
                 source = "\n".join(example.source for example in parser.get_examples(text, str(path)))
                 try:
-                    found.append((ast.parse(source), getattr(node, "lineno", 1)))
+                    found.append((parse(source, str(path)), getattr(node, "lineno", 1)))
                 except SyntaxError:
                     pass  # the doctest run itself reports it
     return found
@@ -163,7 +171,7 @@ def all_imports() -> list[tuple[str, str, str]]:
     skip = set(sys.stdlib_module_names) | OWN | local_modules()
     found = []
     for path in scanned_files():
-        tree = ast.parse(path.read_text(encoding="utf-8"), str(path))
+        tree = parse(path.read_text(encoding="utf-8"), str(path))
         relative = path.relative_to(ROOT).as_posix()
         for name, line, how in imports(tree, functions_optional=relative.startswith("benchmarks/")):
             found.append((name, f"{relative}:{line}", how))
@@ -171,7 +179,7 @@ def all_imports() -> list[tuple[str, str, str]]:
             for name, _, how in imports(example):
                 found.append((name, f"{relative}:{line} (doctest)", how))
     for index, block in enumerate(fenced_blocks(readme(), "python")):
-        found.extend((name, f"README.md python block {index}", how) for name, _, how in imports(ast.parse(block)))
+        found.extend((name, f"README.md python block {index}", how) for name, _, how in imports(parse(block)))
     return [entry for entry in found if entry[0] not in skip and not entry[0].startswith("_")]
 
 

@@ -8,8 +8,12 @@ from .options import command_help
 
 def _add_options(command: argparse.ArgumentParser) -> None:
     from ..export import FORMATS
+    from ..seed_forms import FORMS
     command.add_argument("--to", required=True, choices=list(FORMATS), help="the format")
     command.add_argument("--out", required=True, metavar="DIR", help="the folder to write into")
+    command.add_argument("--form", default="atan2", choices=list(FORMS),
+                         help="with --to latex: also write the positions in a seed paper's form (complex: seed 000, "
+                              "freudenstein: seed 002, half-angle: seed 003); generated code always computes atan2")
     command.add_argument("--outputs", metavar="LIST",
                          help="comma-separated output names, as one function (default: positions, velocities, "
                               "accelerations and joints; and dynamics for a linkage file with [dynamics])")
@@ -44,6 +48,6 @@ def run(args: argparse.Namespace) -> int:
     from ..export import export
     from ..linkage_file import load_linkage
     outputs = None if args.outputs is None else [o.strip() for o in args.outputs.split(",") if o.strip()]
-    for path in export(load_linkage(args.name).with_dynamics().linkage, args.to, args.out, outputs):
+    for path in export(load_linkage(args.name).with_dynamics().linkage, args.to, args.out, outputs, args.form):
         print(f"wrote {path}")
     return 0

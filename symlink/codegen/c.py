@@ -49,7 +49,7 @@ from ..version import __version__
 from ..names import C_KEYWORDS as RESERVED_IN_C, PLAIN_NAME
 from ..position import TOLERANCE
 from .numpy import ARGUMENT_CONTRACT
-from .program import FreshNames, is_flag, named_straight_line
+from .program import require_loop_units, FreshNames, is_flag, named_straight_line
 from .trigonometry import angle_sums
 
 if TYPE_CHECKING:
@@ -134,6 +134,7 @@ class _CPrinter(C99CodePrinter):
         return f"symlink_sin_atan2({self._print(expr.args[0])}, {self._print(expr.args[1])})"
 
     def _print_ClampedSqrt(self, expr):  # the source's prelude defines symlink_clamped_sqrt
+        require_loop_units(expr)
         return f"symlink_clamped_sqrt({self._print(expr.args[0])}, {self._print(expr.args[1])})"
 
     def _print_Piecewise(self, expr):  # pragma: no cover - a guard, never reached by symlink's own forms

@@ -25,6 +25,7 @@ import sympy as sp
 from ..closure import closure_system
 from ..loops import CASE_NAMES
 from ..notation import branch_latex
+from ..seed_forms import SEED_FORM_TITLES, seed_form_rows
 from ..sensitivity import sensitivity_symbol
 from ..typeset import align_block, closure_rows
 from ..vectors import acceleration, rate
@@ -58,12 +59,14 @@ def document(title: str, body: Sequence[str]) -> str:
 
 
 def latex_document(linkage: Linkage, title: str, *, velocities: bool = True, accelerations: bool = True,
-                   sensitivities: Sequence[sp.Symbol] = (), dynamics: bool = False) -> str:
+                   sensitivities: Sequence[sp.Symbol] = (), dynamics: bool = False, form: str = "atan2") -> str:
     """A standalone LaTeX document with the linkage's closed-form derivation, section by section.
 
     ``sensitivities`` names parameters whose design sensitivities (the unknowns' derivatives by them,
     :mod:`symlink.sensitivity`) get a section of their own; ``dynamics`` adds the sections of a linkage
     with mass properties (its ``derivation_sections``: see :mod:`symlink.dynamics.inverse`).
+    ``form`` other than ``"atan2"`` adds the positions in that seed paper's form
+    (:data:`symlink.seed_forms.FORMS`) after symlink's own, which generated code computes.
     """
     parts = [
         "Angles are measured counter-clockwise from $+x$. "
@@ -79,6 +82,9 @@ def latex_document(linkage: Linkage, title: str, *, velocities: bool = True, acc
         parts.append(f"\\item loop {latex_text(step.loop.name)}: case {latex_text(step.case.name)} "
                      f"({latex_text(CASE_NAMES[step.case.name])}), unknowns {unknowns}{branch}")
     parts += ["\\end{enumerate}", "\\subsection*{Positions}", *align_block(list(linkage.positions.items()))]
+    rows = seed_form_rows(linkage, form)
+    if form != "atan2":
+        parts += [f"\\subsection*{{Positions in the {latex_text(SEED_FORM_TITLES[form])}}}", *align_block(rows)]
     if velocities:
         parts += ["\\subsection*{Velocities}", *align_block(list(linkage.velocities.items()))]
     if accelerations:
@@ -119,12 +125,13 @@ def newton_document(linkage: Linkage, title: str) -> str:
 
 
 def export_files(linkage: Linkage, stem: str, functions: Sequence[tuple[str, Sequence[str], str]],
-                 title: str, regenerate: str = "") -> dict[str, str]:
+                 title: str, regenerate: str = "", form: str = "atan2") -> dict[str, str]:
     """``{"<stem>.tex": document}``: the derivation, as far as the ``(name, outputs, doc)`` sets need it.
 
     The velocities are written if any output depends on a rate, the
     accelerations if any depends on an acceleration, the sensitivities to a
     parameter if any output is a derivative by it; ``regenerate`` is not written.
+    ``form`` writes the positions in a seed paper's form (:mod:`symlink.seed_forms`).
     """
     asked = set().union(*(linkage.output(o).free_symbols for _, outputs, _ in functions for o in outputs))
     accelerations = any(acceleration(q) in asked for q in linkage.unknowns)
@@ -134,4 +141,4 @@ def export_files(linkage: Linkage, stem: str, functions: Sequence[tuple[str, Seq
     dynamics = any(o in dynamic for _, outputs, _ in functions for o in outputs)
     return {f"{stem}.tex": latex_document(linkage, title, velocities=velocities or dynamics,
                                           accelerations=accelerations or dynamics, sensitivities=sensitivities,
-                                          dynamics=dynamics)}
+                                          dynamics=dynamics, form=form)}

@@ -36,7 +36,7 @@ from ..version import __version__
 from ..linkage import is_branch_name
 from ..position import TOLERANCE
 from .loading import load_numpy_module
-from .program import format_default, is_flag, straight_line
+from .program import require_loop_units, format_default, is_flag, straight_line
 from .trigonometry import angle_sums
 
 if TYPE_CHECKING:
@@ -123,6 +123,7 @@ class NumPyCodePrinter(NumPyPrinter):
         return f"_sin_atan2({self._print(expr.args[0])}, {self._print(expr.args[1])})"
 
     def _print_ClampedSqrt(self, expr):  # the module header defines _clamped_sqrt
+        require_loop_units(expr)
         return f"_clamped_sqrt({self._print(expr.args[0])}, {self._print(expr.args[1])})"
 
     def _print_Piecewise(self, expr):  # pragma: no cover - a guard, never reached by symlink's own forms

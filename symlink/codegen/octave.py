@@ -34,7 +34,7 @@ from ..linkage import is_branch_name
 from ..names import OCTAVE_KEYWORDS, PLAIN_NAME
 from ..position import TOLERANCE
 from .numpy import ARGUMENT_CONTRACT
-from .program import format_default, is_flag, named_straight_line
+from .program import require_loop_units, format_default, is_flag, named_straight_line
 
 if TYPE_CHECKING:
     from ..linkage import Linkage, Program
@@ -84,6 +84,7 @@ class _OctavePrinter(OctaveCodePrinter):
     _print_Pi = _print_NumberSymbol
 
     def _print_ClampedSqrt(self, expr):  # inline: a function file holds one function
+        require_loop_units(expr)
         x, scale = (self._print(a) for a in expr.args)
         # + 0/flag, not ./flag: a guard (negative scale) fails for a positive x, and sqrt(x)/0 is Inf, not NaN
         return f"(sqrt(max({x}, 0)) + 0 ./ (({x}) >= {-TOLERANCE!r} .* ({scale})))"

@@ -14,7 +14,7 @@ thing in the same order.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Callable
 
 import sympy as sp
@@ -26,7 +26,7 @@ from ..position import ClampedSqrt
 if TYPE_CHECKING:
     from ..linkage import Program
 
-__all__ = ["StraightLine", "straight_line", "named_straight_line", "format_default", "is_flag", "FreshNames", "CSE_PREFIX"]
+__all__ = ["StraightLine", "in_loop_units", "require_loop_units", "straight_line", "named_straight_line", "format_default", "is_flag", "FreshNames", "CSE_PREFIX"]
 
 #: The prefix of the temporaries that common-subexpression elimination introduces.
 CSE_PREFIX = "cse_"
@@ -50,8 +50,70 @@ class StraightLine:
     defaults: dict[str, float]
 
 
+def in_loop_units(program: Program) -> Program:
+    """The program as generated code computes it: each closed-form loop in its own units, its roots guarded.
+
+    A linkage's equations are written as a textbook writes them, in its own
+    lengths (:attr:`symlink.linkage.Linkage.positions`).  Floating point needs
+    more: every loop is computed in units of its mean known length (a power of
+    two, so the division is exact), which keeps the angles exact from lengths of
+    1e-300 to 1e300, and every square root carries the scale that tells
+    rounding at a toggle from a loop that cannot close.  This swaps each loop's
+    textbook assignments for that form (:attr:`symlink.position.LoopSolution.in_loop_units`),
+    and writes the sines and cosines that vanish at the toggles through the
+    loops' roots, so that rates divide by exactly zero there.  Every printer
+    (NumPy, C, Octave, scalar Python) prints the result; nothing a user reads shows it.
+
+    >>> from symlink.catalog import fourbar
+    >>> program = fourbar().program(["rocker"])
+    >>> [s.name for s, _ in program.assignments][:3]
+    ['Wx_1', 'Wy_1', 'w_1']
+    >>> [s.name for s, _ in in_loop_units(program).assignments][:3]
+    ['size_1', 'rho_1_1', 'rho_2_1']
+    """
+    if not program.plan:
+        return program
+    defined = {s for s, _ in program.assignments}
+    loop_code: list[tuple[sp.Symbol, sp.Expr]] = []
+    replaced: set[sp.Symbol] = set()
+    factors: dict[sp.Expr, sp.Expr] = {}
+    for step in program.plan:
+        own = set(step.intermediates) | set(step.positions)
+        if own & defined:
+            code = step.in_loop_units
+            loop_code += list(code.intermediates.items()) + list(code.positions.items())
+            replaced |= own
+            factors.update(code.singular_factors)
+    rest = [(s, e.xreplace(factors)) for s, e in program.assignments if s not in replaced]
+    outputs = program.outputs
+    assignments = loop_code + rest
+    # Keep what the outputs need (a loop's code form may define helpers the outputs do not use).
+    definitions = dict(assignments)
+    keep: set[sp.Symbol] = set()
+    stack = [s for e in outputs.values() for s in e.free_symbols if s in definitions]
+    while stack:
+        symbol = stack.pop()
+        if symbol not in keep:
+            keep.add(symbol)
+            stack += [s for s in definitions[symbol].free_symbols if s in definitions]
+    return replace(program, assignments=tuple((s, e) for s, e in assignments if s in keep), outputs=outputs,
+                   plan=())
+
+
+def require_loop_units(root: ClampedSqrt) -> None:
+    """``ValueError`` for a textbook square root in a printer: its program lost the plan that scales it.
+
+    A :class:`~symlink.linkage.Program` copied field by field loses its ``plan``;
+    ``dataclasses.replace(program, outputs=...)`` keeps it.
+    """
+    if len(root.args) != 2:
+        raise ValueError("a program with textbook square roots but no plan to compute them in loop units; "
+                         "copy programs with dataclasses.replace, which keeps their plan")
+
+
 def straight_line(program: Program) -> StraightLine:
-    """Eliminate common subexpressions across the program's assignments and outputs."""
+    """Eliminate common subexpressions across the program's assignments and outputs (in loop units)."""
+    program = in_loop_units(program)
     names = [s for s, _ in program.assignments]
     output_names = list(program.outputs)
     expressions = [e for _, e in program.assignments] + [program.outputs[n] for n in output_names]

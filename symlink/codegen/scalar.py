@@ -24,7 +24,7 @@ from sympy.printing.pycode import PythonCodePrinter
 
 from ..linkage import Program
 from ..position import TOLERANCE
-from .program import straight_line
+from .program import require_loop_units, straight_line
 
 __all__ = ["ScalarPrinter", "scalar_module"]
 
@@ -57,6 +57,7 @@ class ScalarPrinter(PythonCodePrinter):
         return f"{float(expr)!r}"
 
     def _print_ClampedSqrt(self, expr):
+        require_loop_units(expr)
         return f"_clamped_sqrt({self._print(expr.args[0])}, {self._print(expr.args[1])})"
 
     def _print_Piecewise(self, expr):  # pragma: no cover - a guard, never reached by symlink's own forms

@@ -36,16 +36,17 @@ from __future__ import annotations
 import functools
 import math
 import weakref
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Callable, Mapping
 
 import numpy
 
 from ..cache import cache_key, cached_text, generated_code
 from ..codegen.numpy import checked_arguments, load_numpy_module
+from ..codegen.program import in_loop_units
 from ..codegen.scalar import scalar_module
 from ..display import record_html
-from ..linkage import Linkage, Program
+from ..linkage import Linkage
 from ..position import ClampedSqrt
 from ..vectors import rate
 from .inverse import EQUATION_OUTPUTS, driving_efforts, equation_of_motion, linkage_with_outputs
@@ -108,10 +109,10 @@ def scalar_source(linkage: Linkage, outputs: tuple[str, ...] = EQUATION_OUTPUTS)
     integrator can stop on reaching one.  It may raise ``ZeroDivisionError`` exactly
     at a toggle.
     """
-    program = linkage.program(list(outputs))
+    program = in_loop_units(linkage.program(list(outputs)))
     roots = [expr for _, expr in program.assignments if isinstance(expr, ClampedSqrt)]
     margins = {f"margin_{k}": expr.args[0] / abs(expr.args[1]) for k, expr in enumerate(roots)}
-    program = Program(program.arguments, program.assignments, {**program.outputs, **margins}, program.defaults)
+    program = replace(program, outputs={**program.outputs, **margins})
     return scalar_module(program, outputs, smallest=list(margins))
 
 

@@ -8,6 +8,8 @@ four-bar against the independent 50-digit reference of ``tests/references.py``.
 """
 from __future__ import annotations
 
+from dataclasses import replace
+
 import ctypes
 import shutil
 import subprocess
@@ -218,7 +220,7 @@ def test_names_that_are_not_c_identifiers_are_refused():
 def test_an_output_named_like_an_argument_gets_its_own_parameter(tmp_path):
     linkage = catalog_linkage("fourbar")
     program = linkage.program(["rocker"])
-    program = Program(program.arguments, program.assignments, {**program.outputs, "theta": program.arguments[0]})
+    program = replace(program, outputs={**program.outputs, "theta": program.arguments[0]})
     function = c_function(program, "fb", "")
     assert function.output_parameters == ("rocker", "theta_out")
     library = build(tmp_path, *c_library([function], "fb"), "fb")

@@ -5,6 +5,8 @@ files, bit for bit).  Without Octave the tests skip and say so.
 """
 from __future__ import annotations
 
+from dataclasses import replace
+
 import shutil
 import subprocess
 
@@ -197,7 +199,7 @@ def test_output_names_that_collide_are_renamed_and_documented():
     assert text.splitlines()[0] == "function [rocker, crank, assembled] = fb(theta, a, b, c, d, branch)"
     program = linkage.program(["rocker"])
     from symlink.linkage import Program
-    renamed = Program(program.arguments, program.assignments, {"theta": program.arguments[0], "Wx_1": program.outputs["rocker"]})
+    renamed = replace(program, outputs={"theta": program.arguments[0], "Wx_1": program.outputs["rocker"]})
     text = octave_function(renamed, "fb")
     assert text.splitlines()[0].startswith("function [theta_out, Wx_1_out, assembled] = fb(")
     assert "Output names: theta_out is theta, Wx_1_out is Wx_1." in text

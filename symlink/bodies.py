@@ -60,6 +60,7 @@ from typing import Mapping, Sequence
 
 import sympy as sp
 
+from .display import record_html
 from .linkage import Linkage
 from .vectors import Vector, VectorSum
 
@@ -85,6 +86,8 @@ class Joint:
     slider also has ``guide_start``, the tail of its travel on the guide, and
     ``direction``, the angle of its guide.
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     name: str
     kind: str
@@ -114,6 +117,8 @@ class Body:
     Jansen leg's foot H is a corner of its lower triangle but no joint).
     """
 
+    _repr_html_ = record_html  # a notebook shows the fields as a table
+
     name: str
     vectors: tuple[str, ...]
     joints: tuple[str, ...]
@@ -127,6 +132,8 @@ class Body:
 @dataclass(frozen=True)
 class Mechanism:
     """A linkage's bodies and joints, and its Gruebler/Kutzbach mobility."""
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     bodies: tuple[Body, ...]
     joints: tuple[Joint, ...]

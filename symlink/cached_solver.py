@@ -32,14 +32,16 @@ from typing import Any, Callable, Sequence
 import numpy
 
 from .cache import cached_text, catalog_key
+from .call_arguments import check_argument_names
 from .codegen.loading import load_numpy_module
 from .limits import require_memory
 from .results import Results
 
 __all__ = ["CachedSolver", "ENTRY_KIND", "DESCRIPTION"]
 
-#: The kind of cache entry (:func:`symlink.cache.catalog_key`) that holds a catalog solver.
-ENTRY_KIND = "catalog-solver"
+#: The kind of cache entry (:func:`symlink.cache.catalog_key`) that holds a catalog solver (``/2``: its
+#: description has the arguments' units).
+ENTRY_KIND = "catalog-solver/2"
 #: The name of the function in the generated module, and of its argument check.
 FUNCTION, CHECK = "solve", "_arguments"
 #: The name of the dictionary that the entry adds to the module: arguments, lengths, branches, units, memory.
@@ -60,6 +62,7 @@ def _derived_entry(name: str, outputs: Sequence[str]) -> str:
     described = {
         "arguments": solver.arguments, "branches": solver.branches,
         "lengths": [s.name for s in linkage.parameters if s.is_positive], "units": solver.units,
+        "input_units": solver.input_units, "required": solver.required,
         "bytes_per_value": solver.bytes_per_value,
     }
     return (f"{solver.source.rstrip()}\n\n\n#: What a call needs, for symlink.cached_solver (names, units, memory).\n"
@@ -89,6 +92,8 @@ class CachedSolver:
         self.branches: list[str] = entry["branches"]
         self.lengths: list[str] = entry["lengths"]
         self.units: dict[str, str] = entry["units"]
+        self.input_units: dict[str, str] = entry["input_units"]
+        self.required: list[str] = entry["required"]
         self.bytes_per_value: int = entry["bytes_per_value"]
         self.function: Callable[..., dict] = namespace[FUNCTION]
         self._check: Callable[..., Any] = namespace[CHECK]
@@ -105,9 +110,13 @@ class CachedSolver:
         return Solver(CATALOG[self.name](), self.outputs)
 
     def __call__(self, **values) -> Results:
-        unknown = set(values) - set(self.arguments)
-        if unknown:
-            raise ValueError(f"{self.name} takes {', '.join(self.arguments)}; not {', '.join(sorted(unknown))}")
+        """The outputs at ``values``, checked and returned as :class:`~symlink.solver.Solver` does it.
+
+        >>> CachedSolver("fourbar", ["rocker"])(theta=0.0, a=20, b=66, d=80)
+        Traceback (most recent call last):
+        ValueError: fourbar needs c (missing); it takes theta, a, b, c, d, branch
+        """
+        check_argument_names(self.name, self.arguments, self.required, values)
         if not all(_plain(value) for value in values.values()):
             return self.full(**values)
         try:
@@ -118,7 +127,7 @@ class CachedSolver:
             require_memory(count, self.bytes_per_value, f"solving {count:.3g} input values with the {self.name} solver")
         with numpy.errstate(invalid="ignore", divide="ignore"):
             result = self.function(**values)
-        return Results(result, {name: self.units.get(name, "") for name in result})
+        return Results(result, {name: self.units.get(name, "") for name in result}, values, self.input_units)
 
     def __repr__(self) -> str:
         return f"CachedSolver({self.name!r}, {self.outputs})"

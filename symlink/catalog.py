@@ -366,7 +366,7 @@ CATALOG = {
     "jansen": jansen,
 }
 
-#: Example dimensions of each entry (the defaults of its linkage file in ``linkages/``): the four-bar
+#: Example dimensions of each entry (the defaults of its shipped linkage file, ``symlink/linkages/``): the four-bar
 #: of the C-program paper (20, 66, 56, 80), Jansen's holy numbers, and for the others dimensions whose input turns fully.
 EXAMPLE_VALUES = {
     "fourbar": dict(a=20.0, b=66.0, c=56.0, d=80.0),

@@ -68,6 +68,7 @@ from typing import Any, Mapping, Sequence
 import numpy
 
 from . import cache
+from .call_arguments import check_argument_names
 from .codegen.c import c_function, c_library, c_packed
 from .files import NotPrivate, read_private, write_atomic
 from .linkage import Linkage, is_branch_name
@@ -400,9 +401,8 @@ class _Entry:
             result = self._small(values)
             if result is not None:
                 return result
-        missing = [a for a in self.arguments if a not in values and a not in self.defaults]
-        if missing:
-            raise TypeError(f"{self.name}() missing arguments: {', '.join(missing)}")
+        check_argument_names(self.name, self.arguments, [a for a in self.arguments if a not in self.defaults],
+                             values)
         arrays = [numpy.asarray(values[a] if a in values else self.defaults[a], dtype=numpy.float64)
                   for a in self.arguments]
         shape = numpy.broadcast_shapes(*(a.shape for a in arrays))
@@ -610,8 +610,13 @@ class CompiledSolver(Solver):
         """
         outputs = self.function._small_outputs(values)
         if outputs is not None:
-            return Results(outputs.results, self._units)
+            return Results(outputs.results, self._units, values, self.input_units)
         return super().__call__(**values)
+
+    @cached_property
+    def required(self) -> list[str]:
+        """The arguments a call must give: those of the C function without a default."""
+        return [name for name in self.arguments if name not in self.function.defaults]
 
     @cached_property
     def _units(self) -> dict[str, str]:

@@ -135,6 +135,7 @@ from typing import TYPE_CHECKING, Mapping
 
 import sympy as sp
 
+from .display import record_html
 from .files import write_atomic
 from .linkage import Linkage
 from .loops import Loop
@@ -150,7 +151,11 @@ else:  # Python 3.10: tomli is tomllib before it joined the standard library
     from tomli import loads as toml_loads
 
 __all__ = ["LinkageFile", "load_linkage", "read_linkage", "linkage_from_text", "linkage_from_mapping", "linkage_text",
-           "write_linkage", "write_catalog_files", "dynamic_model"]
+           "write_linkage", "write_catalog_files", "catalog_file", "CATALOG_FOLDER", "dynamic_model"]
+
+#: Where the catalog's linkage files ship: package data of symlink (``symlink/linkages/<name>.toml``),
+#: installed with it, so that they are found from any folder (:func:`catalog_file`).
+CATALOG_FOLDER = Path(__file__).resolve().parent / "linkages"
 
 TOP_KEYS = ("name", "inputs", "unknowns", "lengths", "constants")
 TABLES = ("vectors", "loops", "points", "roles", "defaults", "dynamics")
@@ -176,6 +181,8 @@ class LinkageFile:
 
     ``model`` holds the mass properties and loads of the file's ``[dynamics]`` table, if it has one.
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     linkage: Linkage
     defaults: dict[str, float] = field(default_factory=dict)
@@ -838,11 +845,28 @@ def write_linkage(linkage: Linkage, path: str | Path, defaults: Mapping[str, flo
     write_atomic(path, linkage_text(linkage, defaults))
 
 
-def write_catalog_files(folder: str | Path) -> list[Path]:
+def catalog_file(name: str) -> Path:
+    """The shipped linkage file of the catalog entry ``name``, wherever symlink is installed.
+
+    Every catalog linkage ships as a file (:data:`CATALOG_FOLDER`): a starting
+    point to copy and edit into a linkage of your own.  ``ValueError`` naming
+    the catalog for a name that is not in it.
+
+    >>> path = catalog_file("fourbar")
+    >>> path.name, read_linkage(path).defaults["a"]
+    ('fourbar.toml', 20.0)
+    """
+    from .catalog import CATALOG
+    if name not in CATALOG:
+        raise ValueError(f"no linkage {name!r} in the catalog ({', '.join(sorted(CATALOG))})")
+    return CATALOG_FOLDER / f"{name}.toml"
+
+
+def write_catalog_files(folder: str | Path = CATALOG_FOLDER) -> list[Path]:
     """Write every catalog entry as ``<folder>/<name>.toml`` with its example values: the shipped examples.
 
-    The repository's ``linkages/`` folder is made by
-    ``python -c "from symlink.linkage_file import write_catalog_files; write_catalog_files('linkages')"``.
+    By default into :data:`CATALOG_FOLDER`, the package's own ``symlink/linkages/`` (regenerate it from a
+    checkout with ``python -c "from symlink.linkage_file import write_catalog_files; write_catalog_files()"``).
     """
     from .catalog import CATALOG, EXAMPLE_VALUES
     written = []

@@ -28,6 +28,7 @@ from typing import Mapping
 
 
 from .analysis import wrap_angle
+from .display import record_html
 from .linkage import Linkage
 from .loops import CASE_NAMES, Loop
 from .solver import check_lengths, shared_solver
@@ -49,6 +50,8 @@ class LoopCaseResult:
     ``branches`` holds each solution's branch (+1 or -1; 0 where the case has one
     solution); ``notes`` say which solutions were left out and why.
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     case: str
     missing: tuple[str, str]

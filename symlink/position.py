@@ -167,6 +167,12 @@ class LoopSolution:
         """
         return solve_loop(self.loop, list(self.positions), self.branch_symbol, self.label, loop_units=True)
 
+    def _repr_latex_(self) -> str:
+        """The intermediates, then the unknowns, one equation a line: what a notebook shows."""
+        lines = [f"{sp.latex(name)} &= {sp.latex(value)}" for name, value in
+                 list(self.intermediates.items()) + list(self.positions.items())]
+        return "$\\displaystyle \\begin{aligned}" + " \\\\ ".join(lines) + "\\end{aligned}$"
+
 
 def _cross(ux, uy, vx, vy):
     return ux * vy - uy * vx

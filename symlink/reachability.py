@@ -27,6 +27,7 @@ from .cache import cache_key, cached_text
 from .closure import is_angle
 from .codegen.numpy import load_numpy_module, numpy_module
 from .codegen.program import in_loop_units
+from .display import record_html
 from .linkage import Linkage
 from .position import TOLERANCE, ClampedSqrt
 from .solver import NumericSolver, Solver, check_lengths
@@ -222,6 +223,8 @@ class Toggle:
     fix (two points that coincide, parallel guides).
     """
 
+    _repr_html_ = record_html  # a notebook shows the fields as a table
+
     at: float
     loop: str | None
     ends_range: bool = True
@@ -238,6 +241,8 @@ class InputRange:
     angle input lie in ``[-pi, pi)`` at their start and may end past ``pi``;
     ``[(-pi, pi)]`` is a full turn.
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     input: str
     spans: tuple[tuple[float, float], ...]

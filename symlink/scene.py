@@ -51,7 +51,6 @@ is checked; anything unknown or out of range is one line of error.
 """
 from __future__ import annotations
 
-import inspect
 import math
 import sys
 from functools import cached_property, lru_cache
@@ -62,7 +61,9 @@ import numpy
 import sympy as sp
 
 from .cache import GeneratedCode, generated_code
+from .call_arguments import check_argument_names
 from .catalog import CATALOG
+from .display import record_html
 from .input_sweep import InputSweep
 from .linkage_file import LinkageFile, dynamic_model, load_linkage
 from .angles import to_radians
@@ -178,13 +179,10 @@ class Scene:
         plain lengths.
         """
         merged = {**self.values, **values}
-        signature = inspect.signature(self.solver.function).parameters  # its code: the outputs and their flag
-        missing = [name for name, argument in signature.items()
-                   if name not in merged and argument.default is inspect.Parameter.empty]
-        if missing:
-            raise ValueError(f"{self.linkage.name} needs values for {', '.join(missing)}")
-        return {sign: self.solver(**merged, **{name: sign for name in self.solver.branches})
-                for sign in self.signs}
+        branches = self.solver.branches
+        # the scene gives the branch signs: a value missing or unknown is named as the solver names it
+        check_argument_names(self.linkage.name, self.solver.arguments, self.solver.required, [*merged, *branches])
+        return {sign: self.solver(**merged, **{name: sign for name in branches}) for sign in self.signs}
 
     def __repr__(self) -> str:
         return f"Scene({self.linkage.name!r}, {list(self.outputs)}, branch={self.branch!r})"
@@ -247,6 +245,8 @@ class SceneFile:
     scene's input values (radians, and the rates the outputs need) at a block
     of them, so that a long sweep is evaluated a block at a time.
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     def __init__(self, scene: Scene, input_column: str, sweep: InputSweep, units: str, fmt: str,
                  speed: float = 0.0, accel: float = 0.0) -> None:

@@ -28,6 +28,7 @@ unit, rates per second) or refused where they would mix.
 from __future__ import annotations
 
 import functools
+import html
 import inspect
 import math
 import re
@@ -37,13 +38,14 @@ from typing import Any, Callable, Mapping, Sequence
 import numpy
 
 from .cache import cache_key, cached_text, generated_code
+from .call_arguments import check_argument_names, required_arguments
 from .codegen import newton
 from .codegen.numpy import checked_arguments, load_numpy_module
 from .input_sweep import crank_speeds  # noqa: F401 - its home is input_sweep (no SymPy); kept here for callers
 from .limits import require_memory
 from .linkage import Linkage, Program, is_branch_name
 from .results import Results
-from .units import ANY_LENGTH, output_units, plain_values
+from .units import ANY_LENGTH, argument_units, output_units, plain_values
 from .vectors import acceleration, rate
 
 __all__ = ["Solver", "NumericSolver", "shared_solver", "check_lengths", "crank_speeds"]
@@ -95,16 +97,58 @@ class Solver:
         """The unit of each output, lengths named ``length`` (:func:`symlink.units.output_units`)."""
         return output_units(self.linkage, self.outputs + ["assembled"])
 
+    def _repr_html_(self) -> str:
+        """What a call takes and gives, with units: a notebook's view of the solver.
+
+        >>> from symlink.catalog import fourbar
+        >>> "<td>branch</td><td></td><td>no (default)</td>" in Solver(fourbar(), ["rocker"])._repr_html_()
+        True
+        """
+        def rows(names: list[str], units: Mapping[str, str], needed: Callable[[str], str]) -> str:
+            return "".join(f"<tr><td>{html.escape(name)}</td><td>{html.escape(units.get(name, ''))}</td>"
+                           f"<td>{needed(name)}</td></tr>" for name in names)
+        required = set(self.required)
+        takes = rows(self.arguments, self.input_units, lambda name: "yes" if name in required else "no (default)")
+        gives = rows(self.outputs + ["assembled"], self.units, lambda name: "")
+        return (f"<p>{html.escape(type(self).__name__)} of {html.escape(self.linkage.name)}</p>"
+                f"<table><thead><tr><th>argument</th><th>unit</th><th>required</th></tr></thead>"
+                f"<tbody>{takes}</tbody></table><table><thead><tr><th>output</th><th>unit</th><th></th></tr></thead>"
+                f"<tbody>{gives}</tbody></table>")
+
     @cached_property
-    def _layout(self) -> tuple[frozenset[str], list[str], list[str]]:
-        """What every call checks against, made once: the argument names, the lengths and the branches."""
-        return frozenset(self.arguments), [s.name for s in self.linkage.parameters if s.is_positive], self.branches
+    def input_units(self) -> dict[str, str]:
+        """The unit of each argument (``rad``, ``rad/s``, ``length``; ``''`` for a branch sign)."""
+        return argument_units(self.linkage, self.arguments)
+
+    @cached_property
+    def required(self) -> list[str]:
+        """The arguments a call must give; the others (the inputs' rates and accelerations) default to 0."""
+        return required_arguments(self.function)
+
+    @cached_property
+    def _layout(self) -> tuple[frozenset[str], frozenset[str], list[str], list[str]]:
+        """What every call checks against, made once: the argument names, the required ones, the lengths and
+        the branches."""
+        return (frozenset(self.arguments), frozenset(self.required),
+                [s.name for s in self.linkage.parameters if s.is_positive], self.branches)
 
     def __call__(self, **values) -> Results:
-        accepted, lengths, branches = self._layout
-        if not accepted.issuperset(values):
-            unknown = set(values) - accepted
-            raise ValueError(f"{self.linkage.name} takes {', '.join(self.arguments)}; not {', '.join(sorted(unknown))}")
+        """The outputs at ``values`` (keyword arguments by name: the inputs, the lengths, the branch signs and,
+        optionally, the inputs' rates and accelerations), as :class:`~symlink.results.Results`.
+
+        ``ValueError`` naming an unknown or a missing argument
+        (:func:`symlink.call_arguments.check_argument_names`), a length that
+        is not positive, a branch that is not +1 or -1, shapes that do not
+        broadcast, or a call too large for the memory.
+
+        >>> from symlink.catalog import fourbar
+        >>> Solver(fourbar(), ["rocker"])(theta=0.0, a=20, b=66, c=56, branch=1)
+        Traceback (most recent call last):
+        ValueError: fourbar needs d (missing); it takes theta, a, b, c, d, branch
+        """
+        accepted, required, lengths, branches = self._layout
+        if not (accepted.issuperset(values) and required.issubset(values)):
+            check_argument_names(self.linkage.name, self.arguments, self.required, values)
         if all(type(value) in _PLAIN_TYPES for value in values.values()):  # no quantities: nothing to convert
             length_unit = None
         else:
@@ -114,7 +158,8 @@ class Solver:
         names = list(values)
         arrays, _ = checked_arguments(names, list(values.values()), lengths, branches)
         with numpy.errstate(invalid="ignore", divide="ignore"):
-            return _results(self._unchecked(**dict(zip(names, arrays))), self.units, length_unit)
+            return _results(self._unchecked(**dict(zip(names, arrays))), self.units, length_unit,
+                            values, self.input_units)
 
 
 #: Argument types that are never quantities and whose size is known without converting them.
@@ -142,11 +187,14 @@ def _surely_small(values: Mapping[str, Any], bytes_per_value: int) -> bool:
 _TEMPORARIES = 4
 
 
-def _results(values: Mapping[str, numpy.ndarray], units: Mapping[str, str], length_unit: str | None) -> Results:
-    """``values`` as :class:`~symlink.results.Results`, lengths in ``length_unit`` where one was given."""
+def _results(values: Mapping[str, numpy.ndarray], units: Mapping[str, str], length_unit: str | None,
+             inputs: Mapping[str, object], input_units: Mapping[str, str]) -> Results:
+    """``values`` as :class:`~symlink.results.Results` with the call's ``inputs``, lengths in ``length_unit``
+    where one was given."""
     if length_unit is not None:
         units = {name: unit.replace(ANY_LENGTH, length_unit) for name, unit in units.items()}
-    return Results(values, {name: units.get(name, "") for name in values})
+        input_units = {name: unit.replace(ANY_LENGTH, length_unit) for name, unit in input_units.items()}
+    return Results(values, {name: units.get(name, "") for name in values}, inputs, input_units)
 
 
 def _assignments(source: str) -> int:
@@ -199,16 +247,14 @@ class NumericSolver:
         """The unit of each output, lengths named ``length`` (:func:`symlink.units.output_units`)."""
         return output_units(self.linkage, self.linkage.output_names() + ["assembled"])
 
-    def __call__(self, guess: Mapping[str, float] | Sequence[float], **values) -> Results:
-        names = self.arguments
-        unknown = set(values) - set(names)
-        missing = [s.name for s in self.linkage.inputs + self.linkage.parameters if s.name not in values]
-        if unknown or missing:
-            raise ValueError(f"{self.linkage.name} takes {', '.join(names)}; "
-                             + (f"not {', '.join(sorted(unknown))}" if unknown else f"missing {', '.join(missing)}"))
+    def __call__(self, guess: Mapping[str, float] | Sequence[float] | None = None, **values) -> Results:
+        required = [s.name for s in self.linkage.inputs + self.linkage.parameters] + ["guess"]
+        check_argument_names(self.linkage.name, self.arguments, required,
+                             list(values) + (["guess"] if guess is not None else []))
         values, length_unit = plain_values(self.linkage, values)
         _require_memory(self, values, self.bytes_per_value, "numeric solver")
-        return _results(self.functions["accelerations"](guess=guess, **values), self.units, length_unit)
+        return _results(self.functions["accelerations"](guess=guess, **values), self.units, length_unit,
+                        values, argument_units(self.linkage, list(values)))
 
     @cached_property
     def bytes_per_value(self) -> int:

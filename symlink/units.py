@@ -35,7 +35,7 @@ from .linkage import ACCEL_SUFFIX, SPEED_SUFFIX, Linkage, is_branch_name
 from .sensitivity import split_sensitivity_name
 from .vectors import acceleration, rate
 
-__all__ = ["is_quantity", "plain_values", "output_units", "ANY_LENGTH"]
+__all__ = ["is_quantity", "plain_values", "output_units", "argument_units", "ANY_LENGTH"]
 
 #: The name of the length unit where lengths were given as plain numbers.
 ANY_LENGTH = "length"
@@ -118,6 +118,20 @@ def plain_values(linkage: Linkage, values: Mapping[str, object]) -> tuple[dict[s
                              f"{'' if order == 0 else ' per second' if order == 1 else ' per second squared'}, "
                              f"got {value} ({error})") from None
     return plain, length_unit
+
+
+def argument_units(linkage: Linkage, names: Sequence[str], length_unit: str | None = None) -> dict[str, str]:
+    """The unit of each argument of a solver: ``rad`` or the length unit for an input or a parameter, per
+    second for their rates, ``''`` for a branch sign or anything else.
+
+    >>> from symlink.catalog import slider_crank
+    >>> argument_units(slider_crank(), ["theta", "a", "thetadot", "branch"], "mm")
+    {'theta': 'rad', 'a': 'mm', 'thetadot': 'rad/s', 'branch': ''}
+    """
+    kinds = _argument_kinds(linkage)
+    length = length_unit or ANY_LENGTH
+    return {name: _per_second("rad" if kinds[name][0] == "angle" else length, kinds[name][1])
+            if name in kinds else "" for name in names}
 
 
 def output_units(linkage: Linkage, names: Sequence[str], length_unit: str | None = None) -> dict[str, str]:

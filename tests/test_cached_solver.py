@@ -39,7 +39,7 @@ print(json.dumps({"status": status, "sympy": loaded[:3], "symlink": symlink, "ma
 #: the option groups it shares (mass and plot options), the cached solver and the cache, and nothing else.
 WARM_TABLE_MODULES = {
     "symlink", "symlink.version", "symlink.angles", "symlink.input_sweep", "symlink.files", "symlink.limits",
-    "symlink.results", "symlink.cache", "symlink.cached_solver", "symlink.codegen", "symlink.codegen.loading",
+    "symlink.results", "symlink.call_arguments", "symlink.cache", "symlink.cached_solver", "symlink.codegen", "symlink.codegen.loading",
     "symlink.cli", "symlink.cli.options", "symlink.cli.output", "symlink.cli.tables", "symlink.cli.dynamics",
     "symlink.cli.pictures"}
 

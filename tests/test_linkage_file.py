@@ -1,6 +1,5 @@
 """Linkage files: every catalog entry round-trips, the shipped examples are current, bad files say where."""
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -8,11 +7,9 @@ import sympy as sp
 from hypothesis import given, settings, strategies as st
 
 from symlink.catalog import CATALOG, EXAMPLE_VALUES
-from symlink.linkage_file import (linkage_from_mapping, linkage_from_text, linkage_text, read_linkage,
+from symlink.linkage_file import (catalog_file, linkage_from_mapping, linkage_from_text, linkage_text, read_linkage,
                                   write_catalog_files, write_linkage)
 from symlink.solver import Solver
-
-ROOT = Path(__file__).resolve().parent.parent
 
 
 @pytest.mark.parametrize("name", sorted(CATALOG))
@@ -37,9 +34,9 @@ def test_every_catalog_entry_round_trips(name, tmp_path):
 
 @pytest.mark.parametrize("name", sorted(CATALOG))
 def test_shipped_example_files_are_current(name):
-    path = ROOT / "linkages" / f"{name}.toml"
-    regenerate = "python -c \"from symlink.linkage_file import write_catalog_files; write_catalog_files('linkages')\""
-    assert path.exists(), f"linkages/{name}.toml is missing: run {regenerate}"
+    path = catalog_file(name)
+    regenerate = "python -c \"from symlink.linkage_file import write_catalog_files; write_catalog_files()\""
+    assert path.exists(), f"symlink/linkages/{name}.toml is missing: run {regenerate}"
     assert path.read_text() == linkage_text(CATALOG[name](), EXAMPLE_VALUES[name]), f"stale: run {regenerate}"
 
 
@@ -49,7 +46,7 @@ def test_write_catalog_files_writes_one_file_per_entry(tmp_path):
 
 
 def test_a_file_linkage_solves_like_the_catalog():
-    found = read_linkage(ROOT / "linkages" / "fourbar.toml")
+    found = read_linkage(catalog_file("fourbar"))
     theta = np.radians(np.arange(0.0, 360.0, 40.0))
     by_file = Solver(found.linkage, ["rocker"])(theta=theta, **found.defaults)["rocker"]
     # seed 003: a=20, b=66, c=56, d=80 at theta = 0 on branch +1 gives phi = 110.74 deg
@@ -252,13 +249,13 @@ def test_the_writer_refuses_what_the_grammar_cannot_hold(tmp_path):
 def test_readme_shows_the_shipped_fourbar_file():
     from readme_text import fenced_blocks, readme
     (shown,) = fenced_blocks(readme("New linkages and your own"), "toml")
-    assert shown == (ROOT / "linkages" / "fourbar.toml").read_text()
+    assert shown == (catalog_file("fourbar")).read_text()
     assert linkage_from_text(shown).linkage.positions == CATALOG["fourbar"]().positions
 
 
 def test_readme_error_example_is_what_the_reader_says():
     from readme_text import readme
-    text = (ROOT / "linkages" / "fourbar.toml").read_text().replace('AB = ["a", "theta"]', 'AB = ["a", "theta * 2"]')
+    text = (catalog_file("fourbar")).read_text().replace('AB = ["a", "theta"]', 'AB = ["a", "theta * 2"]')
     with pytest.raises(ValueError) as caught:
         linkage_from_text(text, "fourbar.toml")
     assert f"`{caught.value}`" in readme("New linkages and your own")
@@ -274,3 +271,13 @@ def test_any_angle_text_reads_or_fails_with_one_located_line(text):
         message = str(error)
         assert message.startswith("any.toml:") and "\n" not in message
         assert message.split(":")[1].isdigit()
+
+
+def test_catalog_file_names_the_catalog_for_an_unknown_name():
+    with pytest.raises(ValueError, match=r"no linkage 'fourbars' in the catalog \(.*fourbar.*\)"):
+        catalog_file("fourbars")
+
+
+def test_every_shipped_linkage_file_is_a_catalog_entry():
+    shipped = {path.stem for path in catalog_file("fourbar").parent.glob("*.toml")}
+    assert shipped == set(CATALOG)  # nothing stale left beside them

@@ -8,7 +8,7 @@ import pytest
 from symlink.catalog import fourbar, slider_crank
 from symlink.results import HTML_ROWS, Results
 from symlink.solver import Solver
-from symlink.units import output_units
+from symlink.units import argument_units, output_units
 
 
 class TableParser(html.parser.HTMLParser):
@@ -53,6 +53,8 @@ def test_units_of_angles_rates_lengths():
                                        "assembled": ""}
     units = output_units(slider_crank(), ["s", "sdot", "sddot", "beta", "betaddot", "B_y"], "m")
     assert units == {"s": "m", "sdot": "m/s", "sddot": "m/s^2", "beta": "rad", "betaddot": "rad/s^2", "B_y": "m"}
+    inputs = argument_units(slider_crank(), ["theta", "thetaddot", "a", "b", "branch"], "mm")
+    assert inputs == {"theta": "rad", "thetaddot": "rad/s^2", "a": "mm", "b": "mm", "branch": ""}
 
 
 def test_html_table_shows_the_first_rows_with_units():
@@ -61,17 +63,23 @@ def test_html_table_shows_the_first_rows_with_units():
     parser = TableParser()
     parser.feed(text)
     header, *rows = parser.rows
-    assert header == ["", "rocker (rad)", "rocker_speed (rad/s)", "C_x (length)", "singular", "assembled"]
+    assert header == ["", "theta (rad)", "rocker (rad)", "rocker_speed (rad/s)", "C_x (length)", "singular", "assembled"]
     assert len(rows) == HTML_ROWS
-    # Row 0 at theta = 0: C_x = d + c cos(phi) with the closed form of the first row.
-    assert float(rows[0][1]) == pytest.approx(float(results["rocker"][0]), rel=1e-5)
-    assert rows[0][4:] == ["False", "True"]
+    assert float(rows[1][1]) == pytest.approx(1.0 / (HTML_ROWS + 4), rel=1e-5)  # linspace(0, 1, 15)[1]
+    assert float(rows[0][2]) == pytest.approx(np.pi - cosine_rule_gamma(56.0), rel=1e-5)
+    assert rows[0][5:] == ["False", "True"]
     assert f"5 more rows of {HTML_ROWS + 5}" in text
 
 
 def test_html_escapes_names():
     text = Results({"<b>": np.array([1.0])})._repr_html_()
     assert "<b>" not in text.replace("<th>", "").replace("</th>", "")
+
+
+def cosine_rule_gamma(c, a=20.0, b=66.0, d=80.0):
+    """The interior angle at D of the four-bar at theta = 0 (crank along the ground: the diagonal is d - a)."""
+    diagonal = d - a
+    return np.arccos((c ** 2 + diagonal ** 2 - b ** 2) / (2 * c * diagonal))
 
 
 def test_scalar_results_make_one_row():
@@ -85,15 +93,49 @@ def test_scalar_results_make_one_row():
     assert float(parser.rows[1][1]) == pytest.approx(np.pi - gamma, rel=1e-5)
 
 
-def test_to_frame_carries_units():
+def test_to_frame_names_columns_plainly_with_the_input_and_units_in_attrs():
     pandas = pytest.importorskip("pandas")
     results = fourbar_results(4)
     frame = results.to_frame()
     assert isinstance(frame, pandas.DataFrame)
-    assert list(frame.columns) == ["rocker (rad)", "rocker_speed (rad/s)", "C_x (length)", "singular", "assembled"]
-    assert frame.attrs["units"] == results.units
-    np.testing.assert_array_equal(frame["rocker (rad)"].to_numpy(), results["rocker"])
+    assert list(frame.columns) == ["theta", "rocker", "rocker_speed", "C_x", "singular", "assembled"]
+    assert frame.attrs["units"] == {"theta": "rad", "rocker": "rad", "rocker_speed": "rad/s", "C_x": "length",
+                                    "singular": "", "assembled": ""}
+    assert frame.attrs["constants"] == {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1, "thetadot": 2.0}
+    np.testing.assert_array_equal(frame["theta"].to_numpy(), np.linspace(0.0, 1.0, 4))
+    assert frame["rocker"].iloc[0] == pytest.approx(np.pi - cosine_rule_gamma(56.0), rel=1e-12)
     assert len(frame) == 4
+
+
+def test_a_fourbar_solve_has_theta_beta_phi_columns():
+    pytest.importorskip("pandas")
+    frame = Solver(fourbar(), ["beta", "phi"])(theta=np.array([0.0, np.pi]), a=20, b=66, c=56, d=80,
+                                               branch=1).to_frame()
+    assert list(frame.columns) == ["theta", "beta", "phi", "assembled"]
+    # theta = pi: the crank points back, the diagonal from B to D is a + d = 100, C above the ground (branch +1)
+    diagonal = 100.0
+    at_d = np.arccos((56 ** 2 + diagonal ** 2 - 66 ** 2) / (2 * 56 * diagonal))
+    assert frame["phi"].iloc[1] == pytest.approx(np.pi - at_d, rel=1e-12)
+
+
+def test_a_grid_keeps_its_axes_as_a_multiindex():
+    pytest.importorskip("pandas")
+    theta, rockers = np.array([0.0, 0.5, 1.0]), np.array([50.0, 56.0])
+    results = Solver(fourbar(), ["rocker"])(theta=theta[:, None], a=20, b=66, c=rockers, d=80, branch=1)
+    frame = results.to_frame()
+    assert frame.index.names == ["theta", "c"]
+    assert frame.index.tolist() == [(t, c) for t in theta for c in rockers]
+    assert list(frame.columns) == ["rocker", "assembled"]
+    assert frame.attrs["units"] == {"theta": "rad", "c": "length", "rocker": "rad", "assembled": ""}
+    for c in rockers:
+        assert frame.loc[(0.0, c), "rocker"] == pytest.approx(np.pi - cosine_rule_gamma(c), rel=1e-12)
+
+
+def test_a_grid_axis_no_single_input_spans_is_numbered():
+    pd = pytest.importorskip("pandas")
+    frame = Results({"x": np.arange(6.0).reshape(2, 3)}, inputs={"t": np.ones((2, 3))}).to_frame()
+    assert frame.index.names == ["axis_0", "axis_1"] and list(frame.columns) == ["t", "x"]
+    assert isinstance(frame.index, pd.MultiIndex) and frame["x"].tolist() == [0.0, 1.0, 2.0, 3.0, 4.0, 5.0]
 
 
 def test_to_frame_broadcasts_scalars():
@@ -113,3 +155,9 @@ def test_to_frame_without_pandas_names_the_extra(monkeypatch):
     monkeypatch.setattr(builtins, "__import__", without_pandas)
     with pytest.raises(ImportError, match=r"symlink-kinematics\[pandas\]"):
         fourbar_results().to_frame()
+
+
+def test_a_grid_says_its_shape_in_html():
+    results = Solver(fourbar(), ["rocker"])(theta=np.zeros((3, 1)), a=20, b=66, c=np.array([50.0, 56.0]), d=80,
+                                            branch=1)
+    assert "6 rows (a 3 x 2 grid, in row-major order)" in results._repr_html_()

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..display import record_html
 from ..solver import check_lengths
 
 __all__ = ["Grashof", "GRASHOF_CLASSES", "grashof"]
@@ -29,6 +30,8 @@ _LINK_NAMES = ("crank", "coupler", "rocker", "ground")
 @dataclass(frozen=True)
 class Grashof:
     """A four-bar's Grashof class and the sums it was decided by."""
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     name: str
     shortest: str

@@ -24,6 +24,7 @@ from ..angles import wrap_angle
 from ..catalog import fourbar
 from ..cache import cache_key, cached_text
 from ..codegen.numpy import load_numpy_module, numpy_module
+from ..display import record_html
 from ..linkage import Linkage, Program
 from ..reachability import BISECTIONS, InputMotion, InputRange, reachable_range
 from ..scene import angle_outputs
@@ -41,6 +42,8 @@ class LimitPositions:
     ``extended``: the crank points along the coupler (|AC| = a + b); ``folded``: the
     crank points back along it.  Angles of crank and rocker in each, on ``branch``.
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     branch: int
     extended_crank: float
@@ -103,6 +106,8 @@ def limit_positions(a: float, b: float, c: float, d: float, branch: int = 1) -> 
 class LimitPosition:
     """An output's extreme: at input ``at`` it reaches ``value`` (``"maximum"`` or ``"minimum"``) and turns back."""
 
+    _repr_html_ = record_html  # a notebook shows the fields as a table
+
     at: float
     value: float
     kind: str
@@ -116,6 +121,8 @@ class OutputLimits:
     stroke over quick stroke at constant input speed) are given when the input
     turns fully and the output has exactly two limits; otherwise None.
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     output: str
     angle: bool

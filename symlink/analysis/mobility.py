@@ -10,6 +10,7 @@ from dataclasses import dataclass
 
 from ..bodies import PRISMATIC, mechanism
 from ..catalog import fourbar  # noqa: F401 - the doctests' namespace
+from ..display import record_html
 from ..linkage import Linkage
 
 __all__ = ["Mobility", "degrees_of_freedom"]
@@ -22,6 +23,8 @@ class Mobility:
     ``links`` counts the ground; every joint is a one-freedom pair (revolute or
     prismatic), so ``dof = 3 (links - 1) - 2 (revolute + prismatic)``.
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     links: int
     revolute: int

@@ -18,6 +18,7 @@ from typing import Mapping
 
 from ..angles import wrap_angle
 from ..catalog import fourbar
+from ..display import record_html
 from ..linkage import Linkage
 from ..reachability import SCAN_POINTS, InputMotion, InputRange, assembled_crank_range, reachable_range
 from ..solver import shared_solver
@@ -37,6 +38,8 @@ class LinkageReport:
     ``transmission``: one entry a two-angle loop; ``limits``: the limit
     positions of ``output`` (None when no output was asked for).
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     linkage: str
     input: str

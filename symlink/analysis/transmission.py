@@ -25,6 +25,7 @@ import sympy as sp
 
 from ..angles import wrap, wrap_angle
 from ..catalog import fourbar
+from ..display import record_html
 from ..linkage import Linkage
 from ..position import TOLERANCE
 from ..reachability import BISECTIONS, InputMotion, InputRange, assembled_crank_range, reachable_range
@@ -58,6 +59,8 @@ def triangle_angle(opposite, side1, side2):
 @dataclass(frozen=True)
 class TransmissionRange:
     """Smallest and largest transmission angle over the reachable crank angles, and where (radians)."""
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     minimum: float
     minimum_at: float
@@ -125,6 +128,8 @@ class TransmissionJoint:
     the normal of the guide (turned a quarter turn counter-clockwise from the
     travel's own direction), in [0, pi]: pi/2 with the rod along the guide.
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     loop: str
     into: tuple[int, Vector, sp.Symbol]
@@ -226,6 +231,8 @@ def transmission_angles(linkage: Linkage, values: Mapping[str, float], inputs, *
 class LoopTransmission(TransmissionRange):
     """One loop's transmission angle over the reachable input range: extremes and where (radians),
     with the loop and the joint (its two unknown vectors) where it is measured."""
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     loop: str = ""
     joint: str = ""

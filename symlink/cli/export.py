@@ -28,7 +28,7 @@ def register(commands) -> None:
         "symlink export fourbar --to c --out build/"))
     commands.add_parser("derive", populate=_add_derive_options, **command_help(
         "derive a linkage file's closed forms and write them as NumPy, C, Octave or LaTeX", units,
-        "symlink derive linkages/fourbar.toml --to numpy --out build/"))
+        "symlink derive fourbar --to numpy --out build/"))
 
 
 def _add_export_options(command: argparse.ArgumentParser) -> None:

@@ -608,6 +608,6 @@ def register(commands: argparse._SubParsersAction) -> None:
     commands.add_parser("table", populate=_add_generic_options, **command_help(
         "positions, speeds and accelerations of any linkage (a catalog name or a linkage file), as a table",
         "lengths in any one unit; angles in --units (deg by default), speeds rad/s, accelerations rad/s^2",
-        "symlink table linkages/jansen.toml --step 90 --branch +1")).set_defaults(run=run_generic_table)
+        "symlink table jansen --step 90 --branch +1")).set_defaults(run=run_generic_table)
     for table in TABLES:
         add_table_command(commands, table)

@@ -50,6 +50,7 @@ from typing import Any, Mapping
 
 import numpy
 
+from ..display import record_html
 from ..solver import Solver
 from ..vectors import acceleration, rate
 from .forward import ConstantTorque, ForwardDynamics, Motion, equation_linkage, require_scipy
@@ -121,6 +122,8 @@ class TorqueCycle:
     there, and highest where E is smallest (for an engine's output torque, the reverse).
     """
 
+    _repr_html_ = record_html  # a notebook shows the fields as a table
+
     angles: numpy.ndarray
     torque: numpy.ndarray
     mean_torque: float
@@ -188,6 +191,8 @@ class SpeedBand:
     """The input speed over one cycle with a flywheel ``inertia``: its highest and lowest value, their mean
     ``(highest + lowest) / 2`` and the ``coefficient`` ``(highest - lowest) / mean`` achieved, from ``motion``."""
 
+    _repr_html_ = record_html  # a notebook shows the fields as a table
+
     inertia: float
     highest: float
     lowest: float
@@ -203,6 +208,8 @@ class FlywheelSizing:
     ``cycle`` is the :class:`TorqueCycle` of the driving torque at constant speed;
     ``inertia`` the textbook flywheel ``dE / (Cs w^2)`` (the whole inertia on the input shaft).
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     def __init__(self, model: DynamicModel, values: Mapping[str, float], mean_speed: float, coefficient: float,
                  branch: int | Mapping[str, int] = 1, samples: int = 720) -> None:

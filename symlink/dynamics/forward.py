@@ -45,6 +45,7 @@ from ..cache import cache_key, cached_text, generated_code
 from ..codegen.numpy import checked_arguments, load_numpy_module
 from ..codegen.program import in_loop_units
 from ..codegen.scalar import scalar_module
+from ..display import record_html
 from ..linkage import Linkage
 from ..position import ClampedSqrt
 from ..vectors import rate
@@ -160,6 +161,8 @@ class Stop:
     linkage has come to rest in an equilibrium.
     """
 
+    _repr_html_ = record_html  # a notebook shows the fields as a table
+
     time: float
     angle: float
     acceleration: float
@@ -178,6 +181,8 @@ class Motion:
     into it (None otherwise); ``message`` says how the integration ended; ``solution`` is
     SciPy's result (``solution.sol(t)`` interpolates the state ``[angle, speed]``).
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     time: numpy.ndarray
     angle: numpy.ndarray

@@ -20,7 +20,12 @@ In a notebook, :func:`inline_animation` and :func:`inline_fourbar_animation`
 make the same frames into an :class:`InlineAnimation`: an HTML player with
 the frames embedded as PNG (Matplotlib's ``to_jshtml``) that the notebook
 shows and that survives ``jupyter nbconvert --to html``, with no file left
-behind.
+behind.  The player is self-contained: Matplotlib's loads its button icons
+from a CDN (Font Awesome), so symlink drops that stylesheet and draws the
+buttons with Unicode symbols (:data:`PLAYER_SYMBOLS`), and the page works
+offline.  The :class:`Rendered` file that :func:`animate_linkage` returns
+shows itself too, embedded (a GIF as an ``<img>``, an MP4 as a ``<video>``),
+so a notebook whose cell ends with it keeps the animation in its HTML export.
 
 >>> positions = frame_positions(0.1, 0.4, 0.25, 0.30, frames=4)
 >>> [round(math.degrees(t)) for t in positions["theta"]]
@@ -28,8 +33,11 @@ behind.
 """
 from __future__ import annotations
 
+import base64
+import html as html_text
 import math
 import os
+import re
 import secrets
 from dataclasses import dataclass
 from pathlib import Path
@@ -52,7 +60,7 @@ if TYPE_CHECKING:
 
 __all__ = ["FRAMES", "MAX_FRAMES", "MAX_FRAME_PIXELS", "ANIMATION_SUFFIXES", "LEFTOVER_PREFIX", "frame_positions",
            "animate", "animate_linkage", "check_animation_size", "Rendered", "InlineAnimation", "inline_animation",
-           "inline_fourbar_animation"]
+           "inline_fourbar_animation", "self_contained_player", "PLAYER_SYMBOLS"]
 
 #: Frames in a turn, as in the Maple worksheet (t from 0 to 29/30).
 FRAMES = 30
@@ -81,6 +89,18 @@ class Rendered:
     def full_turn(self) -> bool:
         """Whether the input turned fully (else it was swept forward and back over ``spans[0]``)."""
         return bool(self.spans) and self.spans[0][1] - self.spans[0][0] >= 2 * math.pi
+
+    def _repr_mimebundle_(self, include=None, exclude=None) -> dict[str, str]:
+        """The file embedded for a notebook: ``image/gif`` (what Jupyter shows) and ``text/html`` (an
+        ``<img>`` or ``<video>`` with the data inline: what ``nbconvert --to html`` keeps), and a text line."""
+        data = base64.b64encode(Path(self.path).read_bytes()).decode("ascii")
+        title = html_text.escape(f"{Path(self.path).name}: {self.frames} frames", quote=True)
+        if Path(self.path).suffix.lower() == ".gif":
+            return {"image/gif": data, "text/html": f'<img src="data:image/gif;base64,{data}" alt="{title}">',
+                    "text/plain": repr(self)}
+        return {"text/html": f'<video controls loop autoplay muted title="{title}">'
+                             f'<source type="video/mp4" src="data:video/mp4;base64,{data}"></video>',
+                "text/plain": repr(self)}
 
 
 @dataclass(frozen=True)
@@ -185,6 +205,30 @@ def _check_fps(fps: float) -> None:
 
 #: How an embedded frame starts in Matplotlib's HTML player.
 FRAME_MARK = "data:image/png;base64,"
+#: The Unicode symbol drawn on each button of the player, by the Font Awesome icon class Matplotlib gives it.
+PLAYER_SYMBOLS = {"fa-minus": "\u2212", "fa-fast-backward": "\u23ee", "fa-step-backward": "|\u25c0",
+                  "fa-play fa-flip-horizontal": "\u25c0", "fa-pause": "\u23f8", "fa-play": "\u25b6",
+                  "fa-step-forward": "\u25b6|", "fa-fast-forward": "\u23ed", "fa-plus": "+"}
+_STYLESHEET = re.compile(r"<link\b[^>]*>", re.IGNORECASE)
+_ICON = re.compile(r'<i class="fa ([^"]*)"></i>')
+
+
+def self_contained_player(text: str) -> str:
+    """Matplotlib's ``to_jshtml`` player without anything loaded from the network.
+
+    Its stylesheet link (Font Awesome, from a CDN) is dropped and each icon is
+    replaced by a symbol of :data:`PLAYER_SYMBOLS`; ``ValueError`` where the
+    player still refers to another address (a Matplotlib whose player changed).
+
+    >>> self_contained_player('<link rel="stylesheet" href="https://x/fa.css"><button><i class="fa fa-play"></i></button>')
+    '<button>\u25b6</button>'
+    """
+    text = _STYLESHEET.sub("", text)
+    text = _ICON.sub(lambda icon: PLAYER_SYMBOLS.get(icon.group(1), "\u2022"), text)
+    address = re.search(r"(?:https?:)?//[\w.-]+\.[a-z]{2,}/", text)
+    if address is not None:
+        raise ValueError(f"the notebook player loads {address.group(0)}: it would not work offline")
+    return text
 
 
 def _html_frames(frames: _Frames, fps: float, progress: Callable[[int, int], None] | None) -> str:
@@ -209,7 +253,7 @@ def _html_frames(frames: _Frames, fps: float, progress: Callable[[int, int], Non
     embedded = text.count(FRAME_MARK)
     if embedded != frames.count:
         raise ValueError(f"the notebook player holds {embedded} of {frames.count} frames; lower the frames or size")
-    return text
+    return self_contained_player(text)
 
 
 def _write_frames(path: Path, writer, figure, count: int, draw: Callable[[int], None],

@@ -39,6 +39,7 @@ from numpy.typing import ArrayLike
 
 from ..analysis import grashof, wrap_angle
 from ..catalog import fourbar
+from ..display import record_html
 from ..solver import check_lengths, shared_solver
 
 __all__ = ["FunctionDesign", "freudenstein_coefficients", "lengths_from_coefficients", "chebyshev_points",
@@ -63,6 +64,8 @@ class FunctionDesign:
     at ``error_theta`` (``errors``): the given pairs, or for :func:`function_generator`
     samples of the function over its whole range; measured with the generated solver.
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     crank: float
     coupler: float

@@ -58,6 +58,7 @@ import numpy
 from ..analysis import grashof
 from ..angles import wrap_angle
 from ..catalog import fourbar
+from ..display import record_html
 from ..reachability import crank_range
 from ..solver import shared_solver
 
@@ -144,6 +145,8 @@ class Dyad:
     ``moving`` is the moving pivot in the coupler's frame; :meth:`positions` places it in
     every pose (its first position is the circle point as drawn in pose 1).
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     fixed: tuple[float, float]
     moving: tuple[float, float]
@@ -366,6 +369,8 @@ class BurmesterCurves:
     it does not close.  Each of the two branches is a run of samples in ``rotation``.
     """
 
+    _repr_html_ = record_html  # a notebook shows the fields as a table
+
     rotation: numpy.ndarray
     centre_points: numpy.ndarray      # (2, samples, 2): assembly, sample, (x, y)
     circle_points: numpy.ndarray      # (2, samples, 2)
@@ -558,6 +563,8 @@ class Design:
     ``min(mu, 180 deg - mu)`` over the poses, ``pose_error`` the largest difference between
     the rocker angle the generated solver gives at a pose and the rocker dyad's own.
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     crank_dyad: Dyad
     rocker_dyad: Dyad

@@ -59,6 +59,7 @@ from numpy.typing import ArrayLike
 from ..analysis import grashof, transmission_range
 from ..catalog import fourbar
 from ..design_jacobian import DesignJacobian
+from ..display import record_html
 from ..linkage import Linkage
 from ..loops import Loop
 from ..solver import check_lengths, shared_solver
@@ -101,6 +102,8 @@ class PathDesign:
     target to the coupler point at its crank angle; ``error`` is the largest over the size of
     the targets (the diagonal of their bounding box).
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     crank_pivot: tuple[float, float]
     frame: float

@@ -39,6 +39,7 @@ import numpy
 
 from ..analysis import (LimitPositions, TransmissionRange, grashof, limit_positions, transmission_range,
                        triangle_angle, wrap_angle)
+from ..display import record_html
 from ..solver import check_lengths
 
 __all__ = ["QuickReturn", "quick_return", "delta_for_time_ratio", "GOOD_TRANSMISSION", "MAX_LINK_RATIO",
@@ -63,6 +64,8 @@ class QuickReturn:
     ``transmission`` are measured from it (the four-bar convention of the README), and
     ``branch`` is the assembly on which the rocker passes through B1 and B2.
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     crank: float
     coupler: float

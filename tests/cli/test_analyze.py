@@ -89,8 +89,8 @@ def test_any_linkage_by_name_against_the_slider_cranks_hand_stroke(capsys):
 
 
 def test_a_file_and_its_transmission_in_text(capsys):
-    import pathlib
-    shipped = pathlib.Path(__file__).resolve().parents[2] / "linkages" / "fourbar.toml"
+    from symlink.linkage_file import catalog_file
+    shipped = catalog_file("fourbar")
     assert main(["analyze", str(shipped), "--output", "phi"]) == 0
     out = capsys.readouterr().out
     assert "degrees of freedom   1" in out and "transmission ABCD" in out and "limit of phi" in out

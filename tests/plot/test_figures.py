@@ -298,7 +298,8 @@ def test_returned_figures_display_in_a_notebook_without_pyplot():
 
 
 def test_ipython_shows_a_returned_figure_as_png_once():
-    interactiveshell = pytest.importorskip("IPython.core.interactiveshell")
+    interactiveshell = pytest.importorskip("IPython.core.interactiveshell",
+                                           reason="IPython comes with the notebook extra: pip install -e '.[notebook]'")
     shell = interactiveshell.InteractiveShell.instance()
     data, _ = shell.display_formatter.format(transmission_figure(*SEED001))
     assert "image/png" in data

@@ -33,6 +33,31 @@ class Results(dict):
 
     ``units`` maps an output to its unit (``"rad"``, ``"rad/s"``, a length
     unit, ``""`` for none or unknown); outputs not in it have no stated unit.
+    What every solver returns (:class:`~symlink.solver.Solver`,
+    :class:`~symlink.solver.NumericSolver`, the compiled solver): a plain
+    dict, so ``result["rocker"]`` works as before, that shows itself as a
+    table in a notebook and becomes a pandas DataFrame with :meth:`to_frame`.
+
+    Parameters
+    ----------
+    values : mapping of str to array_like, optional
+        The outputs by name.
+    units : mapping of str to str, optional
+        Each output's unit.
+
+    Attributes
+    ----------
+    units : dict of str to str
+        Each output's unit, as given.
+
+    Examples
+    --------
+    >>> from symlink.catalog import fourbar
+    >>> from symlink.solver import Solver
+    >>> result = Solver(fourbar(), ["rocker", "rocker_speed"])(theta=[0.0, 0.5], a=20, b=66, c=56, d=80,
+    ...                                                       branch=1, thetadot=10.5)
+    >>> sorted(result), result.units["rocker_speed"]
+    (['assembled', 'rocker', 'rocker_speed'], 'rad/s')
     """
 
     def __init__(self, values: Mapping[str, object] | None = None, units: Mapping[str, str] | None = None) -> None:
@@ -58,7 +83,23 @@ class Results(dict):
         """A :class:`pandas.DataFrame`, a row per input value, columns named with their units.
 
         ``DataFrame.attrs["units"]`` maps each output name to its unit.
-        ``ImportError`` naming the extra to install where pandas is missing.
+
+        Returns
+        -------
+        pandas.DataFrame
+            One column per output (and ``assembled``), one row per value of
+            the broadcast inputs.
+
+        Raises
+        ------
+        ImportError
+            pandas is not installed (the message names the extra to install).
+
+        Examples
+        --------
+        >>> frame = Results({"rocker": numpy.array([1.0, 2.0])}, units={"rocker": "rad"}).to_frame()
+        >>> len(frame), frame.attrs["units"]
+        (2, {'rocker': 'rad'})
         """
         try:
             import pandas  # an optional extra

@@ -133,14 +133,15 @@ def _option_row(action: argparse.Action) -> str:
     names = ", ".join(f"`{name}`" for name in action.option_strings) or f"`{action.metavar or action.dest}`"
     if action.option_strings and action.nargs != 0:
         names += f" `{action.metavar or action.dest.upper()}`" if not isinstance(action.metavar, tuple) else ""
-    choices = f" (one of {', '.join(f'`{c}`' for c in action.choices)})" if action.choices else ""
+    choices = f"one of {', '.join(f'`{c}`' for c in action.choices)}" if action.choices else ""
     default = action.default
     shown = "" if default in (None, False, argparse.SUPPRESS) or isinstance(default, (list, dict)) and not default \
         else f"`{default}`"
     help_text = "" if action.help == argparse.SUPPRESS else (action.help or "")
     if "%(default)" in help_text:
         help_text = help_text.replace("%(default)s", str(default))
-    return f"| {names} | {_cell(help_text)}{_cell(choices)} | {_cell(shown)} |"
+    what = "; ".join(part for part in (_cell(help_text), _cell(choices)) if part)
+    return f"| {names} | {what} | {_cell(shown)} |"
 
 
 def command_section(path: str, summary: str, parser: argparse.ArgumentParser, depth: int) -> list[str]:

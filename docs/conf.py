@@ -59,7 +59,7 @@ nb_merge_streams = True
 nb_render_image_options = {"width": "100%"}
 
 # autodoc and napoleon: numpy-style sections only (a "Note:" in running text stays text).
-autodoc_default_options = {"member-order": "bysource"}
+autodoc_default_options = {"member-order": "bysource", "special-members": "__call__"}  # Solver(...)(...) is the call
 autodoc_typehints = "signature"
 autodoc_typehints_format = "short"
 autodoc_preserve_defaults = True  # show defaults as written (names, not repr of objects)
@@ -92,5 +92,26 @@ def _escape_distance_bars(app, what, name, obj, options, lines: list[str]) -> No
                                for number, part in enumerate(parts))
 
 
+def _napoleon_outside_attributes(app) -> None:
+    """Let napoleon read the docstrings of functions, classes and modules only.
+
+    On a property or attribute napoleon takes a first line ``text: more`` as ``type: description``,
+    which would turn the package's one-line property docstrings ("Memory a call needs: ...") into a
+    type; their text stays as written instead.
+    """
+    from sphinx.ext import napoleon
+
+    for listener in list(app.events.listeners.get("autodoc-process-docstring", [])):
+        if listener.handler is napoleon._process_docstring:
+            app.disconnect(listener.id)
+
+    def numpy_sections(app, what, name, obj, options, lines) -> None:
+        if what not in ("attribute", "data", "property"):
+            napoleon._process_docstring(app, what, name, obj, options, lines)
+
+    app.connect("autodoc-process-docstring", numpy_sections)
+
+
 def setup(app) -> None:
-    app.connect("autodoc-process-docstring", _escape_distance_bars)
+    app.connect("autodoc-process-docstring", _escape_distance_bars, priority=400)
+    _napoleon_outside_attributes(app)

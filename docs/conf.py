@@ -67,6 +67,7 @@ autodoc_inherit_docstrings = False  # e.g. Results is a dict: do not repeat dict
 napoleon_google_docstring = False
 napoleon_numpy_docstring = True
 napoleon_use_rtype = False
+napoleon_use_ivar = True  # an Attributes section as a field list of the class, not as separate objects
 
 html_theme = "furo"
 html_title = f"symlink {release}"

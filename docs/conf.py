@@ -43,6 +43,7 @@ extensions = [
 ]
 source_suffix = {".md": "myst-nb", ".ipynb": "myst-nb"}
 root_doc = "index"
+smartquotes = False  # "--trace" stays two hyphens, quotes stay as typed (command lines are copied from here)
 exclude_patterns = ["_build", "Thumbs.db", ".DS_Store", "**.ipynb_checkpoints", "example.ipynb", "pictures.py",
                     "benchmark/*", "_ext"]
 

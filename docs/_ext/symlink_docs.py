@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
 from pathlib import Path
 
 DOCS = Path(__file__).resolve().parent.parent
@@ -168,6 +169,19 @@ def command_section(path: str, summary: str, parser: argparse.ArgumentParser, de
 
 
 def write_cli_page() -> None:
+    """The command-line reference, with usage lines wrapped at 100 columns whatever the terminal."""
+    before = os.environ.get("COLUMNS")
+    os.environ["COLUMNS"] = "100"  # argparse wraps at the terminal's width: make the page the same everywhere
+    try:
+        _write_cli_page()
+    finally:
+        if before is None:
+            del os.environ["COLUMNS"]
+        else:
+            os.environ["COLUMNS"] = before
+
+
+def _write_cli_page() -> None:
     cli = importlib.import_module("symlink.cli")
     parser = cli.build_parser()  # every command registered
     commands = _subcommands(parser)

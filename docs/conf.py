@@ -51,8 +51,10 @@ exclude_patterns = ["_build", "Thumbs.db", ".DS_Store", "**.ipynb_checkpoints", 
 myst_enable_extensions = ["colon_fence", "dollarmath", "amsmath"]
 myst_heading_anchors = 3
 
-# MyST-NB: execute every notebook page at build time; an error in a cell fails the build.
-nb_execution_mode = "cache"
+# MyST-NB: execute every notebook page whenever Sphinx reads it (every page on a fresh build, as in CI
+# and tests/test_docs.py); an error in a cell fails the build. Not "cache": a cache keyed on the cells'
+# code would keep outputs of an older symlink.
+nb_execution_mode = "force"
 nb_execution_timeout = 180
 nb_execution_raise_on_error = True
 nb_execution_show_tb = True

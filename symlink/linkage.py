@@ -111,6 +111,60 @@ class Linkage:
     ``points`` are named vector sums from the origin, ``roles`` give
     coordinates plain names (``{"rocker": phi}``) and ``extras`` are further
     named expressions of the coordinates.
+
+    Making a linkage checks it and solves nothing: its plan, closed forms and
+    rates (:attr:`plan`, :attr:`positions`, :attr:`velocities`,
+    :attr:`accelerations`) are derived on first use and kept.  In Jupyter it
+    displays as its closure equations and their solution.
+
+    Parameters
+    ----------
+    name : str
+        An identifier; it names the generated functions and files.
+    loops : sequence of Loop
+        The closure loops, each a signed sum of vectors that must vanish.
+    inputs : sequence of sympy.Symbol
+        The driven coordinates (from :func:`~symlink.vectors.coordinates`).
+    unknowns : sequence of sympy.Symbol
+        The coordinates the loops determine: two per loop.
+    parameters : sequence of sympy.Symbol, optional
+        The constants, in the order generated functions take them; default
+        every other symbol of the loops, sorted by name.
+    points : mapping of str to Vector, VectorSum or None, optional
+        Named points as vector sums from the origin (``None`` is the origin);
+        each gives the outputs ``<name>_x`` and ``<name>_y``.
+    roles : mapping of str to sympy.Symbol, optional
+        Plain names of coordinates: ``{"rocker": phi}`` gives the outputs
+        ``rocker``, ``rocker_speed`` and ``rocker_accel``.
+    extras : mapping of str to sympy.Expr, optional
+        Further named outputs, expressions of the coordinates and parameters.
+
+    Raises
+    ------
+    ValueError
+        A name that is not an identifier or is used twice (or is a reserved
+        word of a target language), a loop that is not a :class:`Loop`, an
+        input or unknown that is not a symbol or appears in no loop, or a
+        number of unknowns other than two per loop.
+
+    See Also
+    --------
+    symlink.catalog : ready-made linkages.
+    symlink.linkage_file.read_linkage : a linkage from a TOML file.
+    symlink.solver.Solver : numbers from a linkage.
+
+    Examples
+    --------
+    >>> from symlink import Loop, Vector, coordinates, lengths
+    >>> theta, beta, phi = coordinates("theta beta phi")
+    >>> a, b, c, d = lengths("a b c d")
+    >>> AB, BC, DC, AD = Vector(a, theta), Vector(b, beta), Vector(c, phi), Vector(d, 0)
+    >>> fourbar = Linkage("fourbar", [Loop(AD + DC - BC - AB)], inputs=[theta], unknowns=[beta, phi],
+    ...                   roles={"rocker": phi})
+    >>> fourbar.parameters, [step.case.name for step in fourbar.plan]
+    ((a, b, c, d), ['3'])
+    >>> fourbar.expression("rocker_speed")
+    a*thetadot*sin(beta - theta)/(c*sin(beta - phi))
     """
 
     def __init__(self, name: str, loops: Sequence[Loop], inputs: Sequence[sp.Symbol],

@@ -1,4 +1,5 @@
 """Linkage files: every catalog entry round-trips, the shipped examples are current, bad files say where."""
+from pathlib import Path
 import math
 
 import numpy as np
@@ -246,7 +247,7 @@ def test_the_writer_refuses_what_the_grammar_cannot_hold(tmp_path):
     assert not (tmp_path / "x.toml").exists()
 
 
-GUIDE = ROOT / "docs" / "howto" / "linkage_files.md"  # the how-to guide on linkage files
+GUIDE = Path(__file__).resolve().parent.parent / "docs" / "howto" / "linkage_files.md"  # the how-to guide on linkage files
 
 
 def test_guide_shows_the_shipped_fourbar_file():

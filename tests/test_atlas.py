@@ -226,3 +226,15 @@ def test_the_chains_are_pylinkage_s_nineteen_topologies():
     ours = {c.code for n in (4, 6, 8) for c in chains(n)}
     theirs = {ChainGraph(max(max(e) for e in edges) + 1, tuple(edges)).code for edges in PYLINKAGE_TOPOLOGIES.values()}
     assert len(theirs) == 19 and theirs == ours
+
+
+def test_an_atlas_entry_by_name_is_a_linkage_for_every_command(capsys):
+    from symlink.linkage_file import load_linkage
+    found = load_linkage("atlas:watt-ii")
+    points = [f"{p}_{axis}" for p in ATLAS["watt-ii"].coordinates() for axis in "xy"]
+    got = Solver(found.linkage, points)(**found.defaults)  # branches by default +1: the example's assembly
+    for p, (x, y) in ATLAS["watt-ii"].coordinates().items():
+        assert abs(float(got[p + "_x"]) - x) < 1e-12 and abs(float(got[p + "_y"]) - y) < 1e-12, p
+    assert main(["plan", "atlas:stephenson-iii"]) == 0
+    assert "solved numerically" in capsys.readouterr().out
+    assert main(["plan", "atlas:watt-iii"]) == 2

@@ -1,9 +1,11 @@
 """Other tools' descriptions (symlink.interchange): Pyslvs expressions and pylinkage JSON mechanisms.
 
-* Pyslvs: examples that Pyslvs publishes (R, RP and P joints) (``pyslvs/example.py``, Copyright (C) 2016-2022 Yuan Chang, AGPL; the
-  expressions and their input pairs are quoted as test data) read, build and move along a turn of their
-  input with every link keeping the lengths of its drawing and every slot its line (a check by geometry,
-  independent of the solver); written back and read again to the same joints; bad text refused with a column.
+* Pyslvs: mechanism expressions written for this test in Pyslvs's grammar (R, RP and P joints; a four-bar,
+  slider-cranks, a slotted lever, a translating block, an inverted slider-crank, a Scotch yoke, Watt II and
+  Stephenson III six-bars, Jansen's eight-bar leg and a two-input arm; at symlink's catalog values or at
+  coordinates chosen here) read, build and move along a turn of their input with every link keeping the
+  lengths of its drawing and every slot its line (a check by geometry, independent of the solver); written back
+  and read again to the same joints; bad text refused with a column.
 * pylinkage: its own published examples (the four-bar, crank-slider and Chebyshev mechanisms of its
   ``api/routers/examples.py``) built and serialised by the installed pylinkage, read here, and solved along the
   steps of pylinkage's own simulation to its positions; and symlink's linkages written for pylinkage, loaded
@@ -24,99 +26,102 @@ from symlink.linkage_file import linkage_from_text, linkage_text
 from symlink.solver import NumericSolver, Solver
 
 PYSLVS_EXAMPLES = {
-    "Crank rocker": (
+    "four-bar crank-rocker": (  # the seed four-bar a = 20, b = 66, c = 56, d = 80, its crank at 50 degrees
         "M["
-        "J[R, color[Green], P[0.0, 0.0], L[ground, L1]],"
-        "J[R, color[Green], P[12.92, 32.53], L[L1, L2]],"
-        "J[R, color[Green], P[73.28, 67.97], L[L2, L3]],"
-        "J[R, color[Green], P[33.3, 66.95], L[L2]],"
-        "J[R, color[Green], P[90.0, 0.0], L[ground, L3]]"
-        "]", ((0, 1),)),
-    "Crank lifter": (
-        "M["
-        "J[R, color[Green], P[-67.38, 36.13], L[ground, L1]],"
-        "J[R, color[Green], P[-68.925, 55.925], L[L1, L2]],"
-        "J[RP, A[0.0], color[Green], P[11.88, 0.0], L[ground, L2, L3]],"
-        "J[R, color[Green], P[50.775, 24.7908], L[L3, L4]],"
-        "J[R, color[Green], P[80.375, 8.625], L[ground, L4]],"
-        "J[R, color[Green], P[109.1972, 63.8805], L[L3, L5]],"
-        "J[RP, A[0.0], color[Green], P[0.82, 64.42], L[L5, L4]]"
-        "]", ((0, 1),)),
-    "Crank slider (Three bar)": (
-        "M["
-        "J[R, color[Green], P[-30.0, -10.0], L[ground, L1]],"
-        "J[R, color[Green], P[-9.9986, 4.999], L[L1, L2]],"
-        "J[RP, A[0.0], color[Green], P[65.0, -45.0], L[L2, ground]]"
-        "]", ((0, 1),)),
-    "Jansen's linkage (Single)": (
-        "M["
-        "J[R, color[Green], P[0.0, 0.0], L[ground, L1]],"
-        "J[R, color[Green], P[9.61, 11.52], L[L1, L2, L4]],"
-        "J[R, color[Blue], P[-38.0, -7.8], L[ground, L3, L5]],"
-        "J[R, color[Green], P[-35.24, 33.61], L[L2, L3]],"
-        "J[R, color[Green], P[-77.75, -2.54], L[L3, L6]],"
-        "J[R, color[Green], P[-20.1, -42.79], L[L4, L5, L7]],"
-        "J[R, color[Green], P[-56.05, -35.42], L[L6, L7]],"
-        "J[R, color[Green], P[-22.22, -91.74], L[L7]]"
-        "]", ((0, 1),)),
-    "Stephenson III": (
-        "M["
-        "J[R, color[Green], P[0.25, -0.625], L[ground, L1]],"
-        "J[R, color[Green], P[15.375, 41.125], L[L1, L2]],"
-        "J[R, color[Green], P[61.375, 95.125], L[L2, L3]],"
-        "J[R, color[Green], P[102.875, 84.375], L[L3, L4]],"
-        "J[R, color[Green], P[117.125, 23.375], L[ground, L4]],"
-        "J[R, color[Green], P[134.625, 119.875], L[L3, L5]],"
-        "J[R, color[Green], P[138.875, 33.125], L[ground, L5]]"
-        "]", ((0, 1),)),
-    "Watt I": (
-        "M["
-        "J[R, color[Green], P[0.0, 0.0], L[ground, L1]],"
-        "J[R, color[Green], P[-18.6154, 41.3846], L[L1, L2]],"
-        "J[R, color[Green], P[29.0, 116.5], L[L2, L3]],"
-        "J[R, color[Green], P[38.0, 69.0], L[L2, L5]],"
-        "J[R, color[Green], P[95.0, 143.0], L[L3, L4]],"
-        "J[R, color[Green], P[122.0, 76.5], L[L4, L5]],"
-        "J[R, color[Green], P[64.0, 0.0], L[ground, L5]]"
-        "]", ((0, 1),)),
-    "Crank slider (P joint)": (
-        "M["
-        "J[R, color[Green], P[-33.625, -19.625], L[ground, L1]],"
-        "J[R, color[Green], P[-48.375, 12.125], L[L1, L3]],"
-        "J[R, color[Green], P[17.125, 33.875], L[L2, L3]],"
-        "J[P, A[30.0], color[Green], P[51.38, -12.63], L[ground, L2]],"
-        "J[R, color[Green], P[50.35, 53.117], L[L2, L5]],"
-        "J[R, color[Green], P[143.455, 65.967], L[L4, L5]],"
-        "J[R, color[Green], P[99.244, 20.447], L[ground, L4]]"
-        "]", ((0, 1),)),
-    "Inverted slider": (
-        "M["
-        "J[R, color[Green], P[0, 0], L[ground, L1]],"
-        "J[R, color[Green], P[56, 0], L[ground, L3]],"
-        "J[R, color[Green], P[7, 25], L[L1, L2]],"
-        "J[P, A[0.0], color[Green], P[59, 41], L[L3, L2]]"
+        "J[R, color[Blue], P[0, 0], L[ground, crank]],  # the crank's pivot\n"
+        "J[R, color[Blue], P[80, 0], L[ground, rocker]],\n"
+        "J[R, color[Red], P[12.856, 15.321], L[crank, coupler]],\n"
+        "J[R, color[Green], P[66.146, 54.259], L[coupler, rocker]],\n"
+        "J[R, color[Orange], P[20.035, 44.449], L[coupler]]  # a point of the coupler, 30 from the crank pin\n"
         "]", ((0, 2),)),
-    "Watt II (slider)": (
+    "slider-crank (RP on the ground)": (  # symlink's slider_crank at 10 times its example values, at 45 degrees
         "M["
-        "J[R, color[Blue], P[0, 0], L[ground, link_3]],"
-        "J[R, color[Green], P[-4.1011, -49.6944], L[link_1, link_3]],"
-        "J[R, color[Green], P[-151.1537, -50.2107], L[link_1, link_2]],"
-        "J[RP, A[45.0], color[Blue], P[-139.0458, 20.2296], L[ground, link_2]],"
-        "J[P, A[45.0], color[Green], P[-47.356, -102.562], L[link_1, link_4]],"
-        "J[R, color[Blue], P[15.3065, -161.8204], L[ground, link_4]]"
+        "J[R, color[Blue], P[0, 0], L[ground, crank]],"
+        "J[R, color[Green], P[9.192, 9.192], L[crank, rod]],"
+        "J[RP, A[0], color[Dark-Green], P[50.134, 7], L[ground, rod]]"
         "]", ((0, 1),)),
-    "Arm": (
+    "oscillating cylinder (RP: a slot in the rod)": (  # the rod slides through a trunnion pinned to the ground
         "M["
-        "J[R, color[Green], P[-34.25, -20.625], L[ground, L1, L2]],"
-        "J[R, color[Green], P[29.75, 77.375], L[L2, L5, L6]],"
-        "J[R, color[Green], P[-54.0, 10.875], L[L1, L3]],"
-        "J[R, color[Green], P[-86.25, -3.125], L[ground, L4]],"
-        "J[R, color[Green], P[-7.25, 94.625], L[L4, L5]],"
-        "J[R, color[Green], P[57.0, 110.875], L[L5, L8]],"
-        "J[R, color[Green], P[126.5, 56.125], L[L7, L8]],"
-        "J[R, color[Green], P[114.5, 35.625], L[L6, L7]],"
-        "J[R, color[Green], P[7.0, 131.125], L[L3, L6]],"
-        "J[R, color[Green], P[163.5, 47.875], L[L7]]"
+        "J[R, color[Blue], P[0, 0], L[ground, crank]],"
+        "J[R, color[Green], P[-6, 10.392], L[crank, rod]],"
+        "J[RP, A[-5.454], color[Magenta], P[40, 6], L[rod, ground]]"
+        "]", ((0, 1),)),
+    "lifter (RP on the ground and on a lever)": (
+        "M["
+        "#[ a slider-crank on a guide at 10 degrees; a pin of its rod\n"
+        "   drives a slotted lever about (40, 60) #]\n"
+        "J[R, color[Blue], P[0, 0], L[ground, crank]],\n"
+        "J[R, color[Green], P[7.5, 12.99], L[crank, rod]],\n"
+        "J[RP, A[10], color[Green], P[50.967, 1.344], L[ground, rod]],\n"
+        "J[RP, A[-100], color[Cyan], P[32, 20], L[lever, rod]],  # the slot is in the lever\n"
+        "J[R, color[Blue], P[40, 60], L[ground, lever]],\n"
+        "J[R, color[(200, 120, 0)], P[75, 85], L[lever]],\n"
+        "]", ((0, 1),)),
+    "block on an inclined guide (P on the ground)": (
+        "M["
+        "J[R, color[Blue], P[0, 0], L[ground, crank]],"
+        "J[R, color[Green], P[-3.126, 17.727], L[crank, rod]],"
+        "J[R, color[Green], P[50, 35], L[rod, block]],"
+        "J[P, A[30], color[Dark-Red], P[60, 40.774], L[ground, block]],  # the block slides at 30 degrees\n"
+        "J[R, color[Green], P[70, 30], L[block, link]],"
+        "J[R, color[Green], P[100, 40], L[link, rocker]],"
+        "J[R, color[Blue], P[95, 0], L[ground, rocker]]"
+        "]", ((0, 1),)),
+    "inverted slider-crank (P on a turning rocker)": (  # symlink's offset inverted slider-crank, 20 times
+        "M["
+        "J[R, color[Blue], P[0, 0], L[ground, crank]],"
+        "J[R, color[Blue], P[50, 0], L[ground, rocker]],"
+        "J[R, color[Green], P[6.84, 18.794], L[crank, block]],"
+        "J[P, A[146.685], color[Yellow], P[19.375, 10.555], L[rocker, block]]"
+        "]", ((0, 2),)),
+    "Scotch yoke (two P joints)": (
+        "M["
+        "J[R, color[Blue], P[0, 0], L[ground, crank]],"
+        "J[R, color[Green], P[19.151, 16.07], L[crank, block]],"
+        "J[P, A[90], color[Green], P[19.151, 24], L[yoke, block]],  # a vertical slot in the yoke\n"
+        "J[P, A[0], color[Gray], P[60, -5], L[ground, yoke]]"
+        "]", ((0, 1),)),
+    "Watt II six-bar": (  # symlink's watt2 at 20 times its example values, its crank at 70 degrees
+        "M["
+        "J[R, color[Blue], P[0, 0], L[ground, crank]],"
+        "J[R, color[Green], P[6.84, 18.794], L[crank, coupler]],"
+        "J[R, color[Green], P[63.429, 59.997], L[coupler, rocker]],"
+        "J[R, color[Blue], P[64, 0], L[ground, rocker]],"
+        "J[R, color[Green], P[41.101, 32.797], L[rocker, coupler2]],"
+        "J[R, color[Green], P[47.674, 112.527], L[coupler2, output]],"
+        "J[R, color[Blue], P[90, 70], L[ground, output]]"
+        "]", ((0, 1),)),
+    "Stephenson III six-bar": (  # symlink's stephenson3 at 20 times its example values, its crank at 80 degrees
+        "M["
+        "J[R, color[Blue], P[0, 0], L[ground, crank]],"
+        "J[R, color[Green], P[3.473, 19.696], L[crank, bce]],"
+        "J[R, color[Green], P[52.629, 57.481], L[bce, cf]],"
+        "J[R, color[Green], P[4.678, 97.687], L[bce, eh]],"
+        "J[R, color[Blue], P[90, 0], L[ground, dfh]],"
+        "J[R, color[Green], P[96.429, 61.666], L[cf, dfh]],"
+        "J[R, color[Green], P[77.919, 60.812], L[eh, dfh]]"
+        "]", ((0, 1),)),
+    "Jansen leg (eight-bar)": (  # Jansen's holy numbers (symlink.catalog.jansen), its crank at 30 degrees
+        "M["
+        "J[R, color[Blue], P[0, 0], L[ground, m]],"
+        "J[R, color[Blue], P[-38, -7.8], L[ground, bde, c]],"
+        "J[R, color[Red], P[12.99, 7.5], L[m, j, k]],"
+        "J[R, color[Green], P[-30.058, 32.933], L[j, bde]],"
+        "J[R, color[Green], P[-76.776, 2.419], L[bde, f]],"
+        "J[R, color[Green], P[-21.882, -43.643], L[k, c, ghi]],"
+        "J[R, color[Green], P[-56.457, -31.337], L[f, ghi]],"
+        "J[R, color[Dark-Orange], P[-30.806, -91.823], L[ghi]]  # the foot\n"
+        "]", ((0, 2),)),
+    "two-input arm (coaxial cranks)": (  # two cranks on one ground pin; a dyad to the ground carries the tip
+        "M["
+        "J[R, color[Blue], P[0, 0], L[ground, crank1, crank2]],"
+        "J[R, color[Green], P[5.209, 29.544], L[crank1, upper]],"
+        "J[R, color[Green], P[18.794, 6.84], L[crank2, fore]],"
+        "J[R, color[Green], P[45, 40], L[upper, fore]],"
+        "J[R, color[Green], P[58, 57], L[fore, link]],"
+        "J[R, color[Green], P[50, 80], L[link, hand]],"
+        "J[R, color[Blue], P[10, 70], L[ground, hand]],"
+        "J[R, color[Pink], P[80, 90], L[link]]"
         "]", ((0, 1), (0, 2))),
 }
 
@@ -149,8 +154,8 @@ def check_rigid(drawn, got, assembled, size):
         anchor = [j for j in drawn.chain.links[guide] if drawn.chain.sliders.get(j) != guide]
         first = anchor[0]
         angle = drawn.slider_angles[joint]
-        if guide == drawn.chain.ground:
-            direction = np.full(len(assembled), angle)
+        if guide == drawn.chain.ground or guide not in drawn.linkage.roles:  # a guide that does not turn (the
+            direction = np.full(len(assembled), angle)  # ground, or a block translating on the ground: the yoke)
         else:  # the line turns with its guide, by as much as the guide's angle (solved) has turned since the drawing
             direction = got[guide] - got[guide][0] + angle
         drawn_across = ((c[joint][1] - c[first][1]) * math.cos(angle) - (c[joint][0] - c[first][0]) * math.sin(angle))
@@ -160,9 +165,12 @@ def check_rigid(drawn, got, assembled, size):
     for joint in drawn.chain.translating:  # a block keeps its drawn angle to its guide
         guide = drawn.chain.sliders[joint]
         block = next(link for link in drawn.chain.links_of(joint) if link != guide)
-        first, second = drawn.chain.links[block][:2]
+        own = [j for j in drawn.chain.links[block] if drawn.chain.sliders.get(j) != block]  # its points, not its slots'
+        if len(own) < 2:  # one point of its own (the yoke: its slot's joint is the block's in it): its line checks it
+            continue
+        first, second = own[:2]
         turned = np.arctan2(got[second][1] - got[first][1], got[second][0] - got[first][0])
-        guide_turned = got[guide] - got[guide][0] if guide != drawn.chain.ground else 0.0
+        guide_turned = got[guide] - got[guide][0] if guide in drawn.linkage.roles else 0.0
         change = np.remainder(turned - turned[0] - guide_turned + np.pi, 2 * np.pi) - np.pi
         assert np.max(np.abs(change)[assembled]) < 1e-9, (joint, block)
 
@@ -201,13 +209,20 @@ def test_pyslvs_comments_colours_and_trailing_commas_are_its_grammar():
 
 def test_pyslvs_plans_name_the_closed_forms_and_the_newton_fallback():
     plans = {name: read_pyslvs(*PYSLVS_EXAMPLES[name]).build().linkage for name in PYSLVS_EXAMPLES}
-    assert [s.case.name for s in plans["Crank lifter"].plan] == ["2b", "3", "2c"]  # a slot on a turning link: 2c
-    assert [s.case.name for s in plans["Jansen's linkage (Single)"].plan] == ["3", "3", "3"]
-    assert not plans["Stephenson III"].has_closed_form
-    assert len(plans["Arm"].inputs) == 2
-    # Pyslvs's P joints: a block that slides on its guide without turning (the inverted slider's rod in its sleeve).
-    assert [s.case.name for s in plans["Inverted slider"].plan] == ["2c"]
-    assert [s.case.name for s in plans["Watt II (slider)"].plan] == ["2c", "2b"]
+    assert [s.case.name for s in plans["four-bar crank-rocker"].plan] == ["3"]
+    assert [s.case.name for s in plans["slider-crank (RP on the ground)"].plan] == ["2b"]
+    assert [s.case.name for s in plans["oscillating cylinder (RP: a slot in the rod)"].plan] == ["2c"]
+    # the lifter's slot on its turning lever: 2c
+    assert [s.case.name for s in plans["lifter (RP on the ground and on a lever)"].plan] == ["2b", "2c"]
+    assert [s.case.name for s in plans["Watt II six-bar"].plan] == ["3", "3"]
+    assert [s.case.name for s in plans["Jansen leg (eight-bar)"].plan] == ["3", "3", "3"]
+    assert not plans["Stephenson III six-bar"].has_closed_form
+    assert len(plans["two-input arm (coaxial cranks)"].inputs) == 2
+    # Pyslvs's P joints: a block that slides on its guide without turning (the inverted slider's block on its
+    # rocker; a block on a guide of the ground; the Scotch yoke's block in its yoke, the yoke on the ground).
+    assert [s.case.name for s in plans["inverted slider-crank (P on a turning rocker)"].plan] == ["2c"]
+    assert [s.case.name for s in plans["block on an inclined guide (P on the ground)"].plan] == ["2b", "3"]
+    assert [s.case.name for s in plans["Scotch yoke (two P joints)"].plan] == ["1"]
 
 
 @pytest.mark.parametrize("name", sorted(PYSLVS_EXAMPLES))
@@ -337,12 +352,13 @@ def test_bad_pylinkage_mechanisms_are_refused_naming_the_entry(data, message):
 
 
 def test_a_slider_on_a_moving_guide_has_no_pylinkage_form():
-    drawn = read_pyslvs(*PYSLVS_EXAMPLES["Crank lifter"]).build()
-    with pytest.raises(ValueError, match="slides on 'L5', a moving link"):
+    drawn = read_pyslvs(*PYSLVS_EXAMPLES["lifter (RP on the ground and on a lever)"]).build()
+    with pytest.raises(ValueError, match="slides on 'lever', a moving link"):
         write_pylinkage(drawn)
 
 
-@pytest.mark.parametrize("name", ["Crank rocker", "Crank lifter", "Jansen's linkage (Single)"])
+@pytest.mark.parametrize("name", ["four-bar crank-rocker", "lifter (RP on the ground and on a lever)",
+                                  "Jansen leg (eight-bar)"])
 def test_a_description_written_as_a_symlink_linkage_file_solves_the_same(name):
     drawn = read_pyslvs(*PYSLVS_EXAMPLES[name]).build()
     start = drawn.linkage.inputs[0].name
@@ -356,7 +372,10 @@ def test_a_description_written_as_a_symlink_linkage_file_solves_the_same(name):
         assert np.allclose(np.asarray(first[p]), np.asarray(second[p]), rtol=0, atol=1e-12, equal_nan=True), p
 
 
-@pytest.mark.parametrize("name", ["Crank lifter", "Inverted slider", "Watt II (slider)", "Jansen's linkage (Single)"])
+@pytest.mark.parametrize("name", ["lifter (RP on the ground and on a lever)",
+                                  "inverted slider-crank (P on a turning rocker)", "Scotch yoke (two P joints)",
+                                  "block on an inclined guide (P on the ground)",
+                                  "Jansen leg (eight-bar)"])
 def test_a_description_written_as_a_linkage_file_by_joints_reads_back_the_same(name):
     drawn = read_pyslvs(*PYSLVS_EXAMPLES[name]).build()
     again = linkage_from_text(joint_file_text(drawn), source=f"{name}.toml")
@@ -471,7 +490,7 @@ def test_bad_legacy_pylinkage_files_are_refused(change, message):
 
 def test_a_pyslvs_ui_project_gives_its_expression_and_input_pairs():
     yaml = pytest.importorskip("yaml")
-    expression, inputs = PYSLVS_EXAMPLES["Watt I"]
+    expression, inputs = PYSLVS_EXAMPLES["Watt II six-bar"]
     text = yaml.safe_dump({"pyslvs_ver": "21.12.0", "file_type": 0, "mechanism": expression,
                            "links": {"ground": "White", "L1": "Blue"}, "input": [list(p) for p in inputs],
                            "storage": {}, "collection": [], "path": {}})

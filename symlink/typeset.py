@@ -205,7 +205,9 @@ def display_latex(rows: list[tuple[sp.Expr, sp.Expr]]) -> str:
 
 
 class EquationSet(dict):
-    r"""Equations ``symbol: expression`` (positions, rates, sensitivities) that display as maths in Jupyter.
+    r"""Equations ``symbol: expression`` (positions, rates, sensitivities, forces) that display as maths in Jupyter.
+
+    Keys are symbols, or output names (joint forces, efforts), shown as symbols of that name.
 
     A plain ``dict`` in every other way, so code that reads equations is unchanged.
 
@@ -216,7 +218,7 @@ class EquationSet(dict):
     """
 
     def _repr_latex_(self) -> str:
-        return display_latex(list(self.items()))
+        return display_latex([(sp.Symbol(name) if isinstance(name, str) else name, expr) for name, expr in self.items()])
 
 
 def align_block(rows: list[tuple[sp.Expr, sp.Expr]]) -> list[str]:

@@ -20,13 +20,16 @@ driver, which an expression does not carry, is given as Pyslvs's input
 pair ``(base, drive)``: joint indices, the base a pin on the ground and
 the drive a joint on the driven link.
 
+The example below is the seed four-bar (20, 66, 56, 80) at a crank angle of
+50 degrees, with a coupler point.
+
 This module has its own tokenizer and parser (no ``eval``, no Lark): any other
 text is one ``ValueError`` naming the column and what was expected.
 
 >>> description = read_pyslvs(
-...     "M[J[R, color[Green], P[0.0, 0.0], L[ground, L1]], J[R, color[Green], P[12.92, 32.53], L[L1, L2]],"
-...     " J[R, color[Green], P[73.28, 67.97], L[L2, L3]], J[R, color[Green], P[33.3, 66.95], L[L2]],"
-...     " J[R, color[Green], P[90.0, 0.0], L[ground, L3]]]", inputs=[(0, 1)])
+...     "M[J[R, color[Green], P[0.0, 0.0], L[ground, L1]], J[R, color[Green], P[12.86, 15.32], L[L1, L2]],"
+...     " J[R, color[Green], P[66.15, 54.26], L[L2, L3]], J[R, color[Green], P[29.5, 59.79], L[L2]],"
+...     " J[R, color[Green], P[80.0, 0.0], L[ground, L3]]]", inputs=[(0, 1)])
 >>> description.links["L2"], description.drivers
 (['B', 'C', 'D'], (('A', 'L1'),))
 >>> print(write_pyslvs(description.build())[:46])

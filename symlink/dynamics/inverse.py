@@ -382,10 +382,14 @@ def _solve(matrix: sp.Matrix, rhs: sp.Matrix) -> list[sp.Expr]:
         determinant = block.det(method="berkowitz")
         if determinant == 0:
             raise ValueError("the Newton-Euler equations are structurally singular")
+        # Cramer's rule with generic right-hand sides, then the right-hand sides put in: the determinants
+        # are taken of the block's own short entries, never of the long expressions the earlier blocks left.
+        generic = [sp.Dummy(f"r{i}") for i in block_rows]
+        put_in = dict(zip(generic, (known[i] for i in block_rows)))
         for k, j in enumerate(block_columns):
             replaced = block.copy()
-            replaced[:, k] = sp.Matrix([known[i] for i in block_rows])
-            solution[j] = replaced.det(method="berkowitz") / determinant
+            replaced[:, k] = sp.Matrix(generic)
+            solution[j] = (replaced.det(method="berkowitz") / determinant).xreplace(put_in)
     for row, column, entries in reversed(steps):
         known = sum((value * solution[j] for j, value in entries.items() if j != column), sp.S.Zero)
         solution[column] = (right[row] - known) / entries[column]

@@ -11,7 +11,11 @@ reads off what a drawing and a mobility count need from the same vectors:
   into nodes: the joints, the corners inside a body, and the named points.
   This needs each loop and point written in walking order (each vector
   starting where the one before ends); where the points show that it is not,
-  ``ValueError`` says so.
+  ``ValueError`` says so.  Fixed vectors in a row are the exception: they add
+  up to one offset whatever their order, so a ground offset ``OP = OPx + OPy``
+  may be subtracted whole in a loop (``... - PQ - OP``, whose terms walk
+  ``- OPx - OPy``) or summed in another order by another point; such a run is
+  walked in the order the points already chain it.
 * **A vector's direction tells its body.**  Vectors with a constant angle lie
   on the ground; vectors whose angles share the same time-varying part
   (``phi`` and ``phi + alpha``) turn together, so they lie on one rigid body

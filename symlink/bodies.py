@@ -11,7 +11,11 @@ reads off what a drawing and a mobility count need from the same vectors:
   into nodes: the joints, the corners inside a body, and the named points.
   This needs each loop and point written in walking order (each vector
   starting where the one before ends); where the points show that it is not,
-  ``ValueError`` says so.
+  ``ValueError`` says so.  Fixed vectors in a row are the exception: they add
+  up to one offset whatever their order, so a ground offset ``OP = OPx + OPy``
+  may be subtracted whole in a loop (``... - PQ - OP``, whose terms walk
+  ``- OPx - OPy``) or summed in another order by another point; such a run is
+  walked in the order the points already chain it.
 * **A vector's direction tells its body.**  Vectors with a constant angle lie
   on the ground; vectors whose angles share the same time-varying part
   (``phi`` and ``phi + alpha``) turn together, so they lie on one rigid body
@@ -215,7 +219,7 @@ def mechanism(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | None = Non
     ('prismatic', 'AS', 1)
     """
     coordinates = set(linkage.coordinates)
-    nodes, vectors = _segments(linkage)
+    nodes, vectors, ends = _segments(linkage)
     names = [_vector_name(v) for v in vectors]
     repeated = sorted({n for n in names if names.count(n) > 1})
     if repeated:
@@ -257,12 +261,12 @@ def mechanism(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | None = Non
         nodes.join(first, second)
     point_names: dict[object, str] = {}  # names of nodes: the linkage's points
     for name, point in linkage.points.items():
-        node = nodes.find(_ORIGIN if point is None else _end(*point.as_sum().terms[-1]))
+        node = nodes.find(_ORIGIN if point is None else ends[name])
         point_names.setdefault(node, name)
 
     positions = _positions(linkage, vectors, nodes)
     for name, point in linkage.points.items():  # a named point keeps the sum it was defined by
-        node = nodes.find(_ORIGIN if point is None else _end(*point.as_sum().terms[-1]))
+        node = nodes.find(_ORIGIN if point is None else ends[name])
         positions[node] = VectorSum(()) if point is None else point.as_sum()
     joints: list[Joint] = []
     joint_names: dict[object, str] = {}
@@ -306,29 +310,31 @@ def mechanism(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | None = Non
     return Mechanism(tuple(result), tuple(joints), tuple(pairs))
 
 
-def _segments(linkage: Linkage) -> tuple[_Nodes, list[Vector]]:
-    """Every vector once (points' vectors first, then the loops'), and which of their ends are one node.
+def _segments(linkage: Linkage) -> tuple[_Nodes, list[Vector], dict[str, tuple]]:
+    """Every vector once (points' vectors first, then the loops'), which of their ends are one node, and
+    the vector end at which each named point (but the origin) lies.
 
-    A run of fixed vectors in a loop is walked in the order that the points (and the loops before)
-    chain them, whatever order the loop writes them in (:func:`_fixed_runs_in_walking_order`).
+    A run of fixed vectors in a loop or a point is walked in the order that the points and loops before
+    chain them, whatever order it is written in (:func:`_fixed_runs_in_walking_order`).
     """
     coordinates = set(linkage.coordinates)
     nodes = _Nodes()
     vectors: list[Vector] = []
-    chains: list[tuple[tuple[tuple[int, Vector], ...], bool]] = [
-        (point.as_sum().terms, False) for point in linkage.points.values() if point is not None]
-    chains += [(loop.terms, True) for loop in linkage.loops]
-    for terms, closed in chains:
+    ends: dict[str, tuple] = {}
+    chains: list[tuple[str, tuple[tuple[int, Vector], ...], bool]] = [
+        (name, point.as_sum().terms, False) for name, point in linkage.points.items() if point is not None]
+    chains += [("", loop.terms, True) for loop in linkage.loops]
+    for name, terms, closed in chains:
         for _, vector in terms:
             if vector not in vectors:
                 vectors.append(vector)
-        if closed:
-            terms = _fixed_runs_in_walking_order(terms, nodes, coordinates)
+        terms = _fixed_runs_in_walking_order(terms, nodes, coordinates, closed)
         for before, after in zip(terms, terms[1:] + (terms[:1] if closed else ())):
             nodes.join(_end(*before), _start(*after))
         if not closed:
             nodes.join(_ORIGIN, _start(*terms[0]))
-    return nodes, vectors
+            ends[name] = _end(*terms[-1])
+    return nodes, vectors, ends
 
 
 #: Longest run of fixed vectors whose walking order is searched (its orders are tried one by one).
@@ -340,19 +346,22 @@ def _fixed(vector: Vector, coordinates: set[sp.Symbol]) -> bool:
 
 
 def _fixed_runs_in_walking_order(terms: tuple[tuple[int, Vector], ...], nodes: _Nodes,
-                                 coordinates: set[sp.Symbol]) -> tuple[tuple[int, Vector], ...]:
-    """A loop's terms with each run of consecutive fixed vectors in the order the chains known so far walk them.
+                                 coordinates: set[sp.Symbol], closed: bool = True) -> tuple[tuple[int, Vector], ...]:
+    """A chain's terms with each run of consecutive fixed vectors in the order the chains known so far walk them.
 
     Fixed vectors add up to one offset whatever their order, so a loop may subtract a point's sum
     whole (``OP = OPx + OPy`` and the loop ``OM + MQ - PQ - OP``, whose terms ``- OPx - OPy`` walk
-    from P through the wrong corner): of the orders of a run, the one whose corners the points
-    already join most is walked (the written one on a tie, or where nothing joins them).
+    from P through the wrong corner), and two points may sum one offset in two orders: of the
+    orders of a run, the one whose corners the chains before already join most is walked (the
+    written one on a tie, or where nothing joins them).  ``closed``: a loop, whose last term
+    runs into its first.
     """
     moving = [k for k, (_, vector) in enumerate(terms) if not _fixed(vector, coordinates)]
-    if not moving:
+    if closed and not moving:
         return terms
     count = len(terms)
-    rotated = terms[moving[0]:] + terms[:moving[0]]  # starts with a moving term: no run wraps around
+    first = moving[0] if closed else 0
+    rotated = terms[first:] + terms[:first]  # a loop starts with a moving term: no run wraps around
     result: list[tuple[int, Vector]] = []
     run: list[tuple[int, Vector]] = []
     for term in rotated + ((0, None),):  # a sentinel closes the last run
@@ -368,7 +377,7 @@ def _fixed_runs_in_walking_order(terms: tuple[tuple[int, Vector], ...], nodes: _
         run = []
         if term[1] is not None:
             result.append(term)
-    start = count - moving[0]  # rotate back, so that the loop starts where it was written to
+    start = count - first  # rotate back, so that the loop starts where it was written to
     return tuple(result[start:] + result[:start])
 
 

@@ -328,13 +328,15 @@ def _solve(matrix: sp.Matrix, rhs: sp.Matrix) -> list[sp.Expr]:
     apart into blocks that can be solved one after the other (:func:`_diagonal_blocks`):
     a dyad of a multi-loop linkage carries its own loads and passes them on, as the solve
     plan closes its loops one after the other.  Each block is solved by Cramer's rule,
-    whose one denominator, the block's determinant (a product of the whole system's
+    whose one denominator, the block's determinant (a factor of the whole system's
     determinant over the numeric pivots), vanishes only where the linkage cannot carry
     the load (a toggle of that dyad), never at a pose where a lever arm happens to be
     zero.  An elimination that pivoted on an arm (say ``sin(theta)`` of the crank) would
     return NaN there although the forces are finite; Cramer's rule on all the moment
-    balances at once would expand products of every dyad's arms, whose terms cancel to
-    the few digits a float keeps (Watt II's forces lost 1e-11 of their size that way).
+    balances at once expands products of every dyad's arms, whose terms cancel in
+    floating point (a Watt II pose of tests/dynamics/test_multiloop_accuracy.py lost
+    3e-14 of its largest force that way, 1e-13 in the shaking moment), and takes
+    determinants of a size that grows with the number of loops.
 
     >>> a, b = sp.symbols("a b")
     >>> _solve(sp.Matrix([[a, 1], [1, 0]]), sp.Matrix([b, 2]))   # pivots on the 1s, never on a
@@ -382,10 +384,14 @@ def _solve(matrix: sp.Matrix, rhs: sp.Matrix) -> list[sp.Expr]:
         determinant = block.det(method="berkowitz")
         if determinant == 0:
             raise ValueError("the Newton-Euler equations are structurally singular")
+        # Cramer's rule with generic right-hand sides, then the right-hand sides put in: the determinants
+        # are taken of the block's own short entries, never of the long expressions the earlier blocks left.
+        generic = [sp.Dummy(f"r{i}") for i in block_rows]
+        put_in = dict(zip(generic, (known[i] for i in block_rows)))
         for k, j in enumerate(block_columns):
             replaced = block.copy()
-            replaced[:, k] = sp.Matrix([known[i] for i in block_rows])
-            solution[j] = replaced.det(method="berkowitz") / determinant
+            replaced[:, k] = sp.Matrix(generic)
+            solution[j] = (replaced.det(method="berkowitz") / determinant).xreplace(put_in)
     for row, column, entries in reversed(steps):
         known = sum((value * solution[j] for j, value in entries.items() if j != column), sp.S.Zero)
         solution[column] = (right[row] - known) / entries[column]

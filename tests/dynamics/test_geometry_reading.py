@@ -62,6 +62,18 @@ def test_a_ground_offset_summed_from_fixed_vectors_is_one_ground_body_whatever_i
     assert (float(pivot.x.subs(numbers)), float(pivot.y.subs(numbers))) == (OFFSET["px"], OFFSET["py"])
 
 
+def test_two_points_summing_one_ground_offset_in_two_orders_are_one_point():
+    base = offset_fourbar("subtracted whole")
+    vectors = {v.name: v for _, v in base.loops[0].terms}
+    both = Linkage("offset_fourbar", base.loops, base.inputs, base.unknowns, parameters=base.parameters,
+                   points={**base.points, "P2": vectors["OPy"] + vectors["OPx"]}, roles=base.roles)
+    found, alone = mechanism(both), mechanism(base)
+    # P2 is the pivot P again (one node, named by the first point there): the same bodies and joints.
+    assert found.mobility == 1 and set(found.body(GROUND).joints) == {"O", "P"}
+    assert [(b.name, b.joints) for b in found.bodies] == [(b.name, b.joints) for b in alone.bodies]
+    assert [(j.name, j.bodies) for j in found.joints] == [(j.name, j.bodies) for j in alone.joints]
+
+
 def test_a_ground_sum_subtracted_whole_in_a_watt_six_bar():
     """Watt II's second loop written from D, its ground offset AG = AGx + AGy subtracted whole."""
     base = watt2()

@@ -7,9 +7,11 @@ by circle intersection refined at 50 digits, rates and accelerations from the di
 solved by mpmath's LU at 50 digits.  symlink's generated float64 code must agree to 1e-14 of the largest
 force (the shaking moment: of the largest force times the farthest pin's distance from the origin) at
 crank angles a whole turn round, on both branches of both loops, away from the toggles (the systems there
-are well conditioned: a few units of rounding is what their conditioning explains).  Two mass models: the
-centres anywhere on their bodies, and every centre at a pin (zero lever arms, which change which pivots
-the elimination takes).
+are well conditioned: a few units of rounding is what their conditioning explains).  Three models: the
+centres anywhere on their bodies, every centre at a pin (zero lever arms, which change which pivots the
+elimination takes), and every kind of load (a spring, a damper, a force, a couple, gravity), at a pose
+where one Cramer rule on all the moment balances (before the block-wise solve) was off by 3e-14 of the
+largest force in every pin of the first loop.
 """
 from __future__ import annotations
 
@@ -23,39 +25,70 @@ from mp_closures import DPS, watt2_positions
 from mp_dynamics import CASES, Motion, derivative, random_masses
 from symlink.bodies import mechanism
 from symlink.catalog import watt2
-from symlink.dynamics import BodyTorque, DynamicModel, Gravity, MassProperties, PointForce, dynamic_linkage
+from symlink.dynamics import (BodyTorque, Damper, DynamicModel, Gravity, MassProperties, PointForce, Spring,
+                              dynamic_linkage)
 from symlink.solver import Solver
 
 #: The pins of the hand model: (name, body that exerts the force, body that takes it); "ground" is the frame.
 PINS = [("A", "ground", "crank"), ("B", "crank", "coupler"), ("C", "coupler", "rocker"), ("D", "ground", "rocker"),
         ("E", "rocker", "coupler2"), ("F", "coupler2", "output"), ("G", "ground", "output")]
-#: The loads of the two models: gravity, a couple on one body and a force at F on the output rocker.
-LOADS = {"centres anywhere": ((0.8, -9.81), ("coupler2", 2.5), (-3.0, 4.0)),
-         "centres at pins": ((0.0, -9.81), ("output", 3.0), (0.0, 0.0))}
+#: The models: mass properties (seed of random ones, centres anywhere or at pins, or given) and loads: gravity,
+#: a couple (body, value), a force (point, body, (x, y)), and a spring (first point, its body, second point, its
+#: body, stiffness, free length) and a damper (the same, coefficient), or None.
+MODELS = {
+    "centres anywhere": dict(masses=(11, False), gravity=(0.8, -9.81), couple=("coupler2", 2.5),
+                             force=("F", "output", (-3.0, 4.0)), spring=None, damper=None),
+    "centres at pins": dict(masses=(11, True), gravity=(0.0, -9.81), couple=("output", 3.0),
+                            force=("F", "output", (0.0, 0.0)), spring=None, damper=None),
+    # Every kind of load (tests/dynamics/test_inverse.py's draw 15): one Cramer rule on all moment balances
+    # lost 1.4e-13 of the largest force in the shaking moment at the first pose of SPRING_POSES.
+    "spring and damper": dict(
+        masses={"crank": (1.7860135737222873, 1.4997427278325672, -1.5617089070172683, 0.3035583179425249),
+                "coupler": (1.5622914994776915, 0.49281436018039215, -1.4201144571152358, 0.22145729401168718),
+                "rocker": (1.7867556460913288, 1.3243456475230688, 1.7856959542648845, 0.2175434055121903),
+                "coupler2": (1.8872574201966448, 0.8159179254520995, -1.6116847882949021, 0.3916526085176158),
+                "output": (1.1298129911305907, 0.21054300550780886, 0.3881495207118588, 0.31997333637980246)},
+        gravity=(2.276947608808027, -6.593246677992927), couple=("coupler2", -4.831193457920238),
+        force=("C", "coupler", (-3.4198727523525188, 4.863394516628233)),
+        spring=("G", "output", "E", "rocker", 19.339600689490336, 0.12214391820506815),
+        damper=("A", "crank", "F", "coupler2", 2.2343756974109388)),
+}
+#: Poses of the spring-and-damper model tried first: (branch, crank angle, speed, acceleration).
+SPRING_POSES = [((1, 1), 0.41769425489701817, 3.441738944889651, 1.746855001204155)]
 
 
-def masses(seed: int, at_joints: bool) -> dict:
-    """Random mass properties; ``at_joints``: every centre at its body's frame origin (a pin), as often drawn."""
+def masses(model: dict) -> dict:
+    """body -> (mass, distance, angle, inertia): given, or random (every centre at its frame's origin, a pin)."""
+    if isinstance(model["masses"], dict):
+        return model["masses"]
+    seed, at_pins = model["masses"]
     found = random_masses(CASES["watt2"](), random.Random(seed))
-    return {body: (m, 0.0, 0.0, inertia) if at_joints else (m, r, angle, inertia)
+    return {body: (m, 0.0, 0.0, inertia) if at_pins else (m, r, angle, inertia)
             for body, (m, r, angle, inertia) in found.items()}
 
 
-@pytest.fixture(scope="module", params=sorted(LOADS))
+@pytest.fixture(scope="module", params=sorted(MODELS))
 def solver(request):
-    """The generated forces of a Watt II with random masses (centres anywhere, or at pins) and loads."""
+    """The generated forces of a Watt II with the mass properties and loads of one of MODELS."""
     case = CASES["watt2"]()
-    found = masses(11, request.param == "centres at pins")
-    loads = LOADS[request.param]
+    given = MODELS[request.param]
+    found = masses(given)
+    loads = [BodyTorque(*given["couple"]), PointForce(given["force"][0], *given["force"][2], body=given["force"][1])]
+    if given["spring"] is not None:
+        first, first_body, second, second_body, stiffness, free = given["spring"]
+        loads.append(Spring(first, second, stiffness, free, first_body=first_body, second_body=second_body))
+    if given["damper"] is not None:
+        first, first_body, second, second_body, coefficient = given["damper"]
+        loads.append(Damper(first, second, coefficient, first_body=first_body, second_body=second_body))
     model = DynamicModel(watt2(), [MassProperties(body, m, r, angle, inertia, origin=case.bodies[body][0])
-                                   for body, (m, r, angle, inertia) in found.items()],
-                         [BodyTorque(*loads[1]), PointForce("F", *loads[2], body="output")], Gravity(*loads[0]))
+                                   for body, (m, r, angle, inertia) in found.items()], loads,
+                         Gravity(*given["gravity"]))
     linkage = dynamic_linkage(model)
-    return Solver(linkage, list(linkage.force_outputs)), mechanism(linkage), found, loads
+    return Solver(linkage, list(linkage.force_outputs)), mechanism(linkage), found, given
 
 
 def hand_newton_euler(branch: tuple[int, int], x0: float, xdot: float, xddot: float, found: dict,
-                      loads: tuple) -> dict:
+                      given: dict) -> dict:
     """The pins' forces (of the first body of PINS on the second), the torque and the shaking loads, 50 digits."""
     case = CASES["watt2"]()
     case.guess = lambda x, p: watt2_positions(x, p, branch)
@@ -89,17 +122,30 @@ def hand_newton_euler(branch: tuple[int, int], x0: float, xdot: float, xddot: fl
             push(2 * k, taker, point[name], 1)
             push(2 * k, giver, point[name], -1)
         matrix[row_of["crank"] + 2, size - 1] = 1  # the drive's torque on the crank
-        (gravity, load), (torque_on, load_torque) = (mp.mpc(*loads[0]), mp.mpc(*loads[2])), loads[1]
+        # The loads: (body, point, force) and (body, couple), written from the model's description.
+        forces_on = [(body, centre[body], mp.mpf(mass) * mp.mpc(*given["gravity"]))
+                     for body, (mass, _, _, _) in found.items()]
+        at, body, (fx, fy) = given["force"]
+        forces_on.append((body, point[at], mp.mpc(fx, fy)))
+        couples = [(given["couple"][0], mp.mpf(given["couple"][1]))]
+        for kind in ("spring", "damper"):
+            if given[kind] is None:
+                continue
+            first, first_body, second, second_body, coefficient = given[kind][:5]
+            gap = point[second] - point[first]
+            if kind == "spring":  # tension k (length - free length) pulls the two points together
+                tension = mp.mpf(coefficient) * (abs(gap) - mp.mpf(given[kind][5]))
+            else:  # tension c times the rate of the length
+                tension = mp.mpf(coefficient) * derivative(lambda t: abs(motion.point(case.points[second], t)
+                                                                         - motion.point(case.points[first], t)))
+            forces_on += [(first_body, point[first], tension * gap / abs(gap)),
+                          (second_body, point[second], -tension * gap / abs(gap))]
         for body, (mass, _, _, inertia) in found.items():
             row = row_of[body]
-            applied = mp.mpf(mass) * gravity
-            moment = zero
-            if body == "output":
-                applied += load
-                arm = point["F"] - centre[body]
-                moment += mp.re(arm) * mp.im(load) - mp.im(arm) * mp.re(load)
-            if body == torque_on:
-                moment += mp.mpf(load_torque)
+            applied = sum((f for b, _, f in forces_on if b == body), mp.mpc(0))
+            moment = sum((mp.re(p - centre[body]) * mp.im(f) - mp.im(p - centre[body]) * mp.re(f)
+                          for b, p, f in forces_on if b == body), zero)
+            moment += sum((c for b, c in couples if b == body), zero)
             rhs[row] = mp.mpf(mass) * mp.re(accel[body]) - mp.re(applied)
             rhs[row + 1] = mp.mpf(mass) * mp.im(accel[body]) - mp.im(applied)
             rhs[row + 2] = mp.mpf(inertia) * alpha[body] - moment
@@ -125,11 +171,12 @@ def poses(count: int, seed: int):
 
 
 def test_watt2_joint_forces_and_shaking_to_rounding_of_the_largest_force(solver):
-    generated, found_mechanism, found, loads = solver
+    generated, found_mechanism, found, given = solver
     parameters = CASES["watt2"]().parameters
     first_body = {joint.name: joint.bodies[0] for joint in found_mechanism.joints}
-    for branch, x0, xdot, xddot in poses(24, 7):
-        hand = hand_newton_euler(branch, x0, xdot, xddot, found, loads)
+    tried = (SPRING_POSES if given["spring"] is not None else []) + list(poses(24, 7))
+    for branch, x0, xdot, xddot in tried:
+        hand = hand_newton_euler(branch, x0, xdot, xddot, found, given)
         result = generated(theta=x0, thetadot=xdot, thetaddot=xddot, **parameters,
                            **dict(zip(generated.branches, branch)))
         assert bool(result["assembled"])

@@ -80,7 +80,7 @@ def test_every_catalog_entry_agrees_with_numpy(tmp_path, name):
     header, source = c_library(functions, stem, "test")
     assert "malloc" not in source and "free(" not in source
     assert [line for line in source.splitlines() if line.startswith("#include")] == [
-        "#include <math.h>", f'#include "{stem}.h"']
+        "#include <math.h>", "#include <stdint.h>", "#include <string.h>", f'#include "{stem}.h"']
     library = build(tmp_path, header, source, stem)
     module = load_numpy_module(numpy_module([(s, linkage.program(o), d) for s, o, d in sets]))
     for (set_name, outputs, _), function in zip(sets, functions):
@@ -308,4 +308,5 @@ def test_a_loop_unit_is_the_exponent_of_the_mean_length_bit_for_bit(tmp_path):
     unit = call(library, function, {"x": values})["unit"]
     assert unit.view(numpy.int64).tolist() == expected.view(numpy.int64).tolist()
     numpy_unit = load_numpy_module(numpy_module([("f", Program((x,), (), {"unit": PowerOfTwoBelow(x)}), "")]))["f"]
-    assert numpy_unit(values)[0].view(numpy.int64).tolist() == expected.view(numpy.int64).tolist()
+    lengths = (values >= 1e-305) & (values <= 1e305)  # what a generated NumPy function takes as a length
+    assert numpy_unit(values[lengths])["unit"].view(numpy.int64).tolist() == expected[lengths].view(numpy.int64).tolist()

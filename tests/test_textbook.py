@@ -149,3 +149,16 @@ def test_forms_are_named_and_checked():
     assert "e^{i \\theta}" in linkage.equations(form="complex")._repr_latex_()
     with pytest.raises(ValueError, match="no form 'tangent'"):
         linkage.equations(form="tangent")
+
+
+def test_dynamics_outputs_display_as_maths_in_the_linkages_symbols():
+    """Joint forces and the equation of motion are equations too: shown as LaTeX, no numeric plumbing."""
+    from symlink.dynamics.inverse import equation_of_motion, reactions
+    from symlink.dynamics.model import BodyTorque, DynamicModel, MassProperties
+    model = DynamicModel(fourbar(), [MassProperties("coupler", "m_3", "r_3", "delta_3", "I_3")],
+                         [BodyTorque("rocker", "T_4")])
+    for equations in (reactions(model), equation_of_motion(model)):
+        assert equations._repr_latex_().startswith("$\\displaystyle")
+        for expr in equations.values():
+            assert not expr.atoms(sp.floor) and not expr.atoms(sp.log) and not expr.atoms(sp.Float)
+            assert not {s.name for s in expr.free_symbols} & {"size_1", "rho_1_1"}

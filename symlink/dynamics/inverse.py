@@ -49,6 +49,7 @@ import sympy as sp
 from ..bodies import GROUND, PRISMATIC, _moving_part, same_point
 from ..closure import is_angle
 from ..linkage import Linkage
+from ..typeset import EquationSet
 from ..vectors import expression
 
 if TYPE_CHECKING:
@@ -161,7 +162,7 @@ class NewtonEuler:
         return rows
 
 
-def reactions(model: DynamicModel) -> dict[str, sp.Expr]:
+def reactions(model: DynamicModel) -> EquationSet:
     """Every joint's reaction, the driving efforts and the shaking force and moment (Newton-Euler, solved once).
 
     Keys are the output names of the module docstring (the efforts under their
@@ -183,7 +184,7 @@ def reactions(model: DynamicModel) -> dict[str, sp.Expr]:
         moment += point[0] * fy - point[1] * fx
     # act() stored each force and couple on the ground with the ground's sign: they are the shaking loads.
     result.update({"shaking_force_x": shaking_x, "shaking_force_y": shaking_y, "shaking_moment": moment})
-    return {name: value.xreplace(system.placeholders) for name, value in result.items()}
+    return EquationSet({name: value.xreplace(system.placeholders) for name, value in result.items()})
 
 
 def newton_euler(model: DynamicModel) -> NewtonEuler:
@@ -472,11 +473,11 @@ def dynamic_outputs(model: DynamicModel) -> dict[str, sp.Expr]:
     return outputs
 
 
-def equation_of_motion(model: DynamicModel) -> dict[str, sp.Expr]:
+def equation_of_motion(model: DynamicModel) -> EquationSet:
     """``M``, ``dM/dq`` and ``Q_applied`` of a one-input model, under the names of :data:`EQUATION_OUTPUTS`."""
     inertia, slope, applied = EQUATION_OUTPUTS
-    return {inertia: model.generalised_inertia()[0, 0], slope: model.generalised_inertia_slope(),
-            applied: model.applied_generalised_forces()[0]}
+    return EquationSet({inertia: model.generalised_inertia()[0, 0], slope: model.generalised_inertia_slope(),
+                        applied: model.applied_generalised_forces()[0]})
 
 
 def linkage_with_outputs(model: DynamicModel, outputs: Mapping[str, sp.Expr],

@@ -232,7 +232,7 @@ def stack_up(linkage: Linkage, outputs: str | Sequence[str], nominal: Mapping[st
     missing = [name for name in wanted if name not in nominal]
     if missing:
         raise ValueError(f"nominal: give the value of {', '.join(missing)}")
-    design = {name: float(nominal[name]) for name in wanted}  # type: ignore[arg-type]
+    design = {name: float(nominal[name]) for name in wanted}
     extra = {} if guess is None else {"guess": guess}
 
     def evaluate(values: Mapping[str, float]) -> tuple[dict[str, numpy.ndarray], numpy.ndarray]:

@@ -153,3 +153,34 @@ def test_bad_input_is_a_value_error_naming_it(outputs, nominal, tolerances, inpu
         stack_up(fourbar(), outputs, nominal, tolerances, inputs=inputs)
     with pytest.raises(ValueError, match="band or a sigma"):
         Tolerance()
+
+
+# --- the command line ------------------------------------------------------------------
+
+COMMAND = ["tolerance", "fourbar", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80"]
+
+
+def test_command_prints_the_stack_up_in_degrees_as_csv(capsys):
+    from symlink.cli import main
+    assert main(COMMAND + ["--tolerance", "0.05", "--output", "rocker", "--angles", "0,40", "--format", "csv"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0] == "theta,rocker,worst_case,rss,mean_shift,largest"
+    rows = [line.split(",") for line in lines[1:]]
+    result = stack_up(fourbar(), "rocker", DESIGN, dict.fromkeys(LENGTHS, 0.05), inputs={"theta": ANGLES[:2]})
+    assert float(rows[0][1]) == pytest.approx(110.74, abs=0.005)  # seed 003 at theta = 0
+    for row, k in zip(rows, range(2)):
+        assert float(row[2]) == pytest.approx(numpy.degrees(result.worst_case[0, k]), rel=1e-12)
+        assert float(row[3]) == pytest.approx(numpy.degrees(result.rss[0, k]), rel=1e-12)
+        assert row[5] == "b"
+
+
+def test_command_bands_of_chosen_dimensions_and_sigmas(capsys):
+    """--tolerances and --sigma name dimensions one by one; a slider's travel is in length units."""
+    from symlink.cli import main
+    assert main(["tolerance", "slider-crank", "--set", "a=1,b=3,offset=0", "--tolerances", "a=0.02",
+                 "--sigma", "b=0.02", "--angles", "0", "--format", "csv"]) == 0
+    row = capsys.readouterr().out.splitlines()[1].split(",")
+    assert float(row[1]) == pytest.approx(4.0, rel=1e-14)  # s = a + b at theta = 0
+    assert float(row[2]) == pytest.approx(0.02 + 0.06, rel=1e-14)  # b's band: 3 sigma
+    assert float(row[3]) == pytest.approx(3 * numpy.hypot(0.02 / 3, 0.02), rel=1e-14)
+    assert row[5] == "b"

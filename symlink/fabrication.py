@@ -24,6 +24,11 @@ SVG is plain XML, one ``<g>`` a part, labelled with its name and hole-to-hole
 dimensions; DXF needs ``ezdxf`` (``pip install symlink-kinematics[fabrication]``).
 Both are written atomically (:func:`symlink.files.write_atomic`).
 
+A design travels between programs as JSON (:func:`design_json`, :func:`read_design`): its unit, its
+links and joints (names, kinds, which links each joint joins) and the linkage itself with its
+dimensions, as the mapping of a linkage file (:func:`symlink.linkage_file.linkage_text`), which
+symlink reads back to the same linkage.
+
 >>> from symlink.catalog import fourbar
 >>> parts = link_parts(fourbar(), {"a": 20, "b": 66, "c": 56, "d": 80}, pin_diameter=4)
 >>> [(part.name, part.dimensions) for part in parts][:2]
@@ -35,8 +40,10 @@ from __future__ import annotations
 
 import io
 import itertools
+import json
 import math
 import os
+import tomllib
 from dataclasses import dataclass, field
 from typing import Mapping
 from xml.sax.saxutils import escape, quoteattr
@@ -47,7 +54,8 @@ from .bodies import GROUND, PRISMATIC, REVOLUTE, mechanism
 from .files import write_atomic
 from .linkage import Linkage
 
-__all__ = ["Part", "link_parts", "svg_text", "write_svg", "write_dxf", "UNITS_IN_MM", "TRAVEL_SAMPLES"]
+__all__ = ["Part", "link_parts", "svg_text", "write_svg", "write_dxf", "UNITS_IN_MM", "TRAVEL_SAMPLES", "Design",
+           "design_json", "read_design", "write_design", "DESIGN_FORMAT"]
 
 #: The length units a drawing can be in, and their size in millimetres.
 UNITS_IN_MM = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "in": 25.4}
@@ -380,3 +388,87 @@ def _slot_vertices(start: Point, end: Point, radius: float, dx: float, dy: float
     nx, ny = ddy / size * radius, -ddx / size * radius
     return [(start[0] + nx + dx, start[1] + ny + dy, 0.0), (end[0] + nx + dx, end[1] + ny + dy, 1.0),
             (end[0] - nx + dx, end[1] - ny + dy, 0.0), (start[0] - nx + dx, start[1] - ny + dy, 1.0)]
+
+
+#: The ``format`` of a design's JSON, and its version.
+DESIGN_FORMAT, DESIGN_VERSION = "symlink-design", 1
+
+
+@dataclass(frozen=True)
+class Design:
+    """A design read from JSON: the linkage, its values by name (lengths in ``unit``, angles in radians), its unit."""
+
+    linkage: Linkage
+    values: dict[str, float]
+    unit: str
+
+
+def design_json(linkage: Linkage, values: Mapping[str, float], unit: str = "mm") -> str:
+    """A design as JSON text: ``format``, ``version``, ``unit``, its ``links`` (name, joints) and ``joints``
+    (name, kind, the links joined), and ``linkage``, the linkage file's mapping with ``values`` as its
+    defaults (extras such as the transmission angle are Python only and left out).
+
+    >>> from symlink.catalog import fourbar
+    >>> text = design_json(fourbar(), {"a": 20, "b": 66, "c": 56, "d": 80})
+    >>> design = read_design(text)
+    >>> design.linkage.name, design.values["b"], design.unit
+    ('fourbar', 66.0, 'mm')
+    """
+    from .linkage_file import linkage_text
+    _check_unit(unit)
+    found = mechanism(linkage)
+    names = {s.name for s in linkage.parameters}
+    missing = sorted(names - set(values))
+    if missing:
+        raise ValueError(f"{linkage.name} needs a value for {', '.join(missing)}")
+    dimensions = {name: _finite(name, values[name]) for name in [s.name for s in linkage.parameters]}
+    record = {
+        "format": DESIGN_FORMAT, "version": DESIGN_VERSION, "unit": unit,
+        "links": [{"name": body.name, "joints": list(body.joints)} for body in found.bodies],
+        "joints": [{"name": joint.name, "kind": joint.kind, "links": list(joint.bodies)} for joint in found.joints],
+        "linkage": tomllib.loads(linkage_text(linkage, dimensions)),
+    }
+    return json.dumps(record, indent=1) + "\n"
+
+
+def _finite(name: str, value: object) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise ValueError(f"{name} must be a finite number, got {value!r}")
+    return float(value)
+
+
+def read_design(text: str, source: str = "<design>") -> Design:
+    """The :class:`Design` of :func:`design_json`'s text; ``ValueError`` naming what is wrong (not JSON, another
+    format or version, an unknown unit, a bad linkage, links or joints that are not the linkage's)."""
+    from .linkage_file import linkage_from_mapping
+    try:
+        record = json.loads(text)
+    except (json.JSONDecodeError, RecursionError) as error:
+        raise ValueError(f"{source}: not JSON ({error})") from None
+    if not isinstance(record, dict) or record.get("format") != DESIGN_FORMAT:
+        raise ValueError(f"{source}: not a symlink design (its format must be {DESIGN_FORMAT!r})")
+    if record.get("version") != DESIGN_VERSION:
+        raise ValueError(f"{source}: design version {record.get('version')!r}; this symlink reads {DESIGN_VERSION}")
+    unit = record.get("unit")
+    if unit not in UNITS_IN_MM:
+        raise ValueError(f"{source}: unit must be one of {', '.join(UNITS_IN_MM)}, got {unit!r}")
+    found = linkage_from_mapping(record.get("linkage") or {}, f"{source}: linkage")
+    linkage = found.linkage
+    try:
+        derived = mechanism(linkage)
+    except ValueError as error:
+        raise ValueError(f"{source}: linkage: {error}") from None
+    links = [{"name": body.name, "joints": list(body.joints)} for body in derived.bodies]
+    joints = [{"name": joint.name, "kind": joint.kind, "links": list(joint.bodies)} for joint in derived.joints]
+    if record.get("links") != links or record.get("joints") != joints:
+        raise ValueError(f"{source}: its links and joints are not those of its linkage "
+                         f"({', '.join(body.name for body in derived.bodies)})")
+    missing = [s.name for s in linkage.parameters if s.name not in found.defaults]
+    if missing:
+        raise ValueError(f"{source}: no value for {', '.join(missing)}")
+    return Design(linkage, dict(found.defaults), unit)
+
+
+def write_design(path: str | os.PathLike, linkage: Linkage, values: Mapping[str, float], unit: str = "mm") -> None:
+    """Write :func:`design_json` to ``path`` atomically."""
+    write_atomic(path, design_json(linkage, values, unit))

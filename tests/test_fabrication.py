@@ -184,3 +184,47 @@ def test_the_dxf_reopens_with_one_closed_outline_a_link_and_holes_at_the_joints(
     rocker = {p.name: p for p in parts}["rocker"]
     ce = math.sqrt(v["c"] ** 2 + v["e"] ** 2 - 2 * v["c"] * v["e"] * math.cos(v["alpha"]))
     assert rocker.dimensions["CE"] == pytest.approx(ce, abs=1e-9)
+
+
+# --- the JSON interchange of a design ----------------------------------------------------
+
+def test_a_design_round_trips_through_json_to_the_same_linkage(tmp_path):
+    import json
+
+    import numpy
+
+    from symlink.fabrication import read_design, write_design
+    from symlink.linkage_file import linkage_text
+    from symlink.solver import Solver
+    v = EXAMPLE_VALUES["watt2"]
+    path = tmp_path / "watt2.json"
+    write_design(path, watt2(), v, "cm")
+    record = json.loads(path.read_text())
+    assert record["unit"] == "cm" and [link["name"] for link in record["links"]][:2] == ["ground", "crank"]
+    assert {"name": "E", "kind": "revolute", "links": ["rocker", "coupler2"]} in record["joints"]
+    design = read_design(path.read_text(), str(path))
+    assert design.unit == "cm" and design.values == v
+    assert linkage_text(design.linkage, design.values) == linkage_text(watt2(), v)
+    theta = numpy.radians([0.0, 100.0, 250.0])
+    ours = Solver(design.linkage, ["psi", "E_x"])(theta=theta, **design.values, branch_ABCD=1, branch_DEFG=1)
+    theirs = Solver(watt2(), ["psi", "E_x"])(theta=theta, **v, branch_ABCD=1, branch_DEFG=1)
+    assert numpy.array_equal(ours["psi"], theirs["psi"]) and numpy.array_equal(ours["E_x"], theirs["E_x"])
+
+
+@pytest.mark.parametrize("change, message", [
+    (lambda r: "not json {", "not JSON"),
+    (lambda r: {**r, "format": "pyslvs"}, "not a symlink design"),
+    (lambda r: {**r, "version": 2}, "design version 2"),
+    (lambda r: {**r, "unit": "furlong"}, "unit must be one of"),
+    (lambda r: {**r, "links": r["links"][:-1]}, "links and joints are not those"),
+    (lambda r: {**r, "linkage": {**r["linkage"], "loops": {"ABCD": "AD + XY - BC - AB"}}}, "<design>: linkage"),
+    (lambda r: {**r, "linkage": {**r["linkage"], "loops": {"ABCD": "AD + DC - BC"}}}, "<design>: linkage"),
+])
+def test_a_bad_design_is_a_value_error_naming_it(change, message):
+    import json
+
+    from symlink.fabrication import design_json, read_design
+    record = json.loads(design_json(fourbar(), FOURBAR))
+    changed = change(record)
+    with pytest.raises(ValueError, match=message):
+        read_design(changed if isinstance(changed, str) else json.dumps(changed))

@@ -55,7 +55,7 @@ from .files import write_atomic
 from .linkage import Linkage
 
 __all__ = ["Part", "link_parts", "svg_text", "write_svg", "write_dxf", "UNITS_IN_MM", "TRAVEL_SAMPLES", "Design",
-           "design_json", "read_design", "write_design", "DESIGN_FORMAT"]
+           "design_json", "read_design", "write_design", "DESIGN_FORMAT", "assembly_svg_text"]
 
 #: The length units a drawing can be in, and their size in millimetres.
 UNITS_IN_MM = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "in": 25.4}
@@ -87,6 +87,14 @@ class Part:
     pin_diameter: float
     radius: float
     dimensions: dict[str, float] = field(default_factory=dict)
+    #: Where the part sits in the assembly at the pose it was read at: its frame's origin (x, y) and angle.
+    placement: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+    def placed(self, point: Point) -> Point:
+        """A point of the part's frame in the assembly's (world) coordinates."""
+        x0, y0, angle = self.placement
+        c, s = math.cos(angle), math.sin(angle)
+        return (x0 + c * point[0] - s * point[1], y0 + s * point[0] + c * point[1])
 
     def outline(self) -> list[tuple[Point, Point, Point]]:
         """The closed outline as ``(line start, line end, centre of the arc that follows)`` in order.
@@ -208,7 +216,8 @@ def link_parts(linkage: Linkage, values: Mapping[str, float], pin_diameter: floa
             holes = dict(holes)
             corners["block_back"] = (x - bar, y)
         dimensions = {a + b: math.dist(holes[a], holes[b]) for a, b in itertools.combinations(holes, 2)}
-        parts.append(Part(body.name, holes, corners, slots, pin, bar / 2, dimensions))
+        placement = (float(origin.real), float(origin.imag), float(numpy.angle(1 / turn)))
+        parts.append(Part(body.name, holes, corners, slots, pin, bar / 2, dimensions, placement))
     return parts
 
 
@@ -317,6 +326,57 @@ def svg_text(parts: list[Part], unit: str = "mm") -> str:
         lines.append("</g>")
     lines.append("</svg>")
     return "\n".join(lines) + "\n"
+
+
+def assembly_svg_text(parts: list[Part], unit: str = "mm") -> str:
+    """The assembly drawing: every part's outline, holes and slots where it sits at the pose the parts were read
+    at (:func:`link_parts` with the input's value in ``values``), one ``<g>`` a part, ground first, labelled
+    with the part names at their first hole.
+
+    >>> from symlink.catalog import fourbar
+    >>> import math
+    >>> parts = link_parts(fourbar(), {"a": 20, "b": 66, "c": 56, "d": 80, "theta": math.pi / 2}, pin_diameter=4)
+    >>> [round(v, 9) for v in parts[1].placed(parts[1].holes["B"])]  # the crank pin B straight above A
+    [0.0, 20.0]
+    """
+    _check_unit(unit)
+    if not parts:
+        raise ValueError("no parts to draw")
+    corners = [part.placed((x, y)) for part in parts for x, y in _extent_corners(part)]
+    xmin, ymin = min(x for x, _ in corners), min(y for _, y in corners)
+    xmax, ymax = max(x for x, _ in corners), max(y for _, y in corners)
+    size = UNITS_IN_MM[unit]
+    text_size = max(p.radius for p in parts)
+    lines = ['<?xml version="1.0" encoding="UTF-8"?>',
+             f'<svg xmlns="http://www.w3.org/2000/svg" width="{(xmax - xmin) * size:.6g}mm" '
+             f'height="{(ymax - ymin) * size:.6g}mm" viewBox="{_number(xmin)} {_number(-ymax)} '
+             f'{_number(xmax - xmin)} {_number(ymax - ymin)}" data-unit="{unit}">']
+    stroke = f'fill="none" stroke="black" stroke-width="{_number(text_size / 20)}"'
+    for part in parts:
+        def at(point: Point, part: Part = part) -> str:
+            x, y = part.placed(point)
+            return f"{_number(x)} {_number(-y)}"
+        lines.append(f"<g id={quoteattr(part.name)}>")
+        pieces = part.outline()
+        path = [f"M {at(pieces[0][0])}"]
+        for k, (_, end, _centre) in enumerate(pieces):
+            path += [f"L {at(end)}", f"A {_number(part.radius)} {_number(part.radius)} 0 0 0 "
+                                     f"{at(pieces[(k + 1) % len(pieces)][0])}"]
+        lines.append(f'<path class="outline" d="{" ".join(path)} Z" {stroke}/>')
+        for name, centre in part.holes.items():
+            x, y = at(centre).split()
+            lines.append(f'<circle class="hole" data-joint={quoteattr(name)} cx="{x}" cy="{y}" '
+                         f'r="{_number(part.pin_diameter / 2)}" {stroke}/>')
+        for start, end in part.slots:
+            lines.append(f'<path class="slot" d="{_slot_path(start, end, part.pin_diameter / 2, at)}" {stroke}/>')
+        lines.append("</g>")
+    lines.append("</svg>")
+    return "\n".join(lines) + "\n"
+
+
+def _extent_corners(part: Part) -> list[Point]:
+    xmin, ymin, xmax, ymax = part.extent()
+    return [(xmin, ymin), (xmin, ymax), (xmax, ymin), (xmax, ymax)]
 
 
 def _slot_path(start: Point, end: Point, radius: float, at) -> str:

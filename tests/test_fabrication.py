@@ -228,3 +228,23 @@ def test_a_bad_design_is_a_value_error_naming_it(change, message):
     changed = change(record)
     with pytest.raises(ValueError, match=message):
         read_design(changed if isinstance(changed, str) else json.dumps(changed))
+
+
+def test_the_assembly_drawing_puts_every_hole_where_its_joint_is_at_the_chosen_angle():
+    """Crank at 40 degrees: A at the origin, B = a e^{i theta}, D = (d, 0), C = D + c e^{i phi} with phi from
+    the 50-digit four-bar of tests/references.py; both links at a joint have their hole there."""
+    from symlink.fabrication import assembly_svg_text
+    from tests.references import mp_fourbar
+    theta = math.radians(40.0)
+    phi = float(mp_fourbar(20, 66, 56, 80, theta, 1)["phi"])
+    expected = {"A": (0.0, 0.0), "B": (20 * math.cos(theta), 20 * math.sin(theta)), "D": (80.0, 0.0),
+                "C": (80 + 56 * math.cos(phi), 56 * math.sin(phi))}
+    parts = link_parts(fourbar(), {**FOURBAR, "theta": theta, "branch": 1}, pin_diameter=PIN)
+    root = ET.fromstring(assembly_svg_text(parts))
+    seen = {}
+    for circle in root.iter(f"{SVG}circle"):
+        seen.setdefault(circle.get("data-joint"), []).append((float(circle.get("cx")), -float(circle.get("cy"))))
+    assert {name: len(places) for name, places in seen.items()} == {"A": 2, "B": 2, "C": 2, "D": 2}
+    for name, places in seen.items():
+        for place in places:
+            assert math.dist(place, expected[name]) < 1e-9, name

@@ -12,6 +12,10 @@ coordinates), :func:`stack_up` tells, for each output along the input range,
   bands read as 3 sigma;
 * the **contribution** of each dimension (its share of the output's variance),
   the ranking a designer acts on: tighten the first, relax the last;
+* with :func:`pin_play`, the worst case of the pins' **radial play** (joint clearance), linearised.
+
+and
+
 * the first-order **mean shift** ``1/2 sum_j d2y/dp_j^2 * sigma_j^2``: a
   curved output does not average to its nominal value.
 
@@ -42,11 +46,14 @@ from dataclasses import dataclass
 from typing import Mapping, Sequence, Union
 
 import numpy
+import sympy as sp
 
 from .design_jacobian import DesignJacobian
 from .linkage import Linkage
+from .loops import Loop
+from .vectors import Vector, VectorSum
 
-__all__ = ["Tolerance", "StackUp", "stack_up", "SIGMAS_PER_BAND"]
+__all__ = ["Tolerance", "StackUp", "stack_up", "SIGMAS_PER_BAND", "PinPlay", "pin_play", "with_pin_play"]
 
 #: A ± band without a given sigma is read as this many standard deviations.
 SIGMAS_PER_BAND = 3.0
@@ -249,3 +256,131 @@ def stack_up(linkage: Linkage, outputs: str | Sequence[str], nominal: Mapping[st
     return StackUp(tuple(chosen), tuple(dimensions), sweep, nominal_values,
                    numpy.moveaxis(slopes, 0, -1), numpy.moveaxis(curvature, 0, -1), bands, sigmas,
                    numpy.asarray(found["assembled"], dtype=bool))
+
+
+# --- pin play (joint clearance) ------------------------------------------------------------
+
+def _play_names(joint: str) -> tuple[str, str]:
+    return f"play_{joint}_x", f"play_{joint}_y"
+
+
+def with_pin_play(linkage: Linkage, joints: Sequence[str]) -> Linkage:
+    """``linkage`` with a small free vector at each pin of ``joints``: its play, ``(play_J_x, play_J_y)``.
+
+    The model: a pin of radial play r sits anywhere in its hole, so the link beyond it starts at the hole's
+    centre plus a vector of length at most r and any direction.  Each loop and point that passes the pin
+    (walking from one link's vectors to the other's) gets that vector, ``+`` walking from the first link
+    of the joint to the second, ``-`` the other way, so that every loop sees the same play.  Zero play
+    gives back the linkage's equations.  Pins only, each joining two links; ``ValueError`` otherwise.
+    """
+    from .bodies import GROUND, REVOLUTE, mechanism
+    found = mechanism(linkage)
+    body_of = {vector: body.name for body in found.bodies for vector in body.vectors}
+    pins = {}
+    for name in joints:
+        joint = found.joint(name)  # ValueError naming the joints there are
+        if joint.kind != REVOLUTE or len(joint.bodies) != 2:
+            raise ValueError(f"pin play is modelled at pins joining two links; {name} is a {joint.kind} joint "
+                             f"joining {', '.join(joint.bodies)}")
+        pins[frozenset(joint.bodies)] = joint
+    play = {}
+    for name in joints:
+        x, y = (sp.Symbol(n, real=True) for n in _play_names(name))
+        play[name] = (Vector(x, 0, f"{_play_names(name)[0]}"), Vector(y, sp.pi / 2, f"{_play_names(name)[1]}"))
+
+    def body(vector: Vector) -> str:
+        if vector.name not in body_of:
+            raise ValueError(f"{linkage.name}: vector {vector.name or vector} is on no link (a slider's travel?); "
+                             "pin play needs every vector of a loop on a link")
+        return body_of[vector.name]
+
+    def walked(terms: tuple[tuple[int, Vector], ...], bodies: list[str]) -> VectorSum:
+        total = VectorSum(terms)
+        for k in range(len(bodies) - 1):
+            joint = pins.get(frozenset((bodies[k], bodies[k + 1])))
+            if joint is not None and bodies[k] != bodies[k + 1]:
+                sign = 1 if joint.bodies[0] == bodies[k] else -1
+                x, y = play[joint.name]
+                total = total + (x + y if sign > 0 else -(x + y))
+        return total
+
+    loops = []
+    for loop in linkage.loops:
+        terms = loop.vectors.terms
+        sequence = [body(v) for _, v in terms]
+        loops.append(Loop(walked(terms, sequence + sequence[:1]), loop.name))
+    points: dict[str, Vector | VectorSum | None] = {}
+    for name, point in linkage.points.items():
+        if point is None:
+            points[name] = None
+            continue
+        terms = point.as_sum().terms
+        points[name] = walked(terms, [GROUND] + [body(v) for _, v in terms])
+    return Linkage(f"{linkage.name}_play", loops, linkage.inputs, linkage.unknowns, points=points,
+                   roles=linkage.roles, extras=linkage.extras)
+
+
+@dataclass(frozen=True)
+class PinPlay:
+    """The linearised effect of the pins' radial play on some outputs (see :func:`pin_play`).
+
+    ``gradient[i, j, :, k]`` is the gradient (x, y) of output i by the play vector of pin j at input k;
+    ``worst_case[i, k] = sum_j play_j |gradient[i, j, :, k]|``, the largest first-order deviation over all
+    play directions; ``direction[i, j, k]`` the direction (radians) of pin j's play that raises output i most.
+    """
+
+    outputs: tuple[str, ...]
+    joints: tuple[str, ...]
+    inputs: dict[str, numpy.ndarray]
+    nominal: numpy.ndarray
+    gradient: numpy.ndarray
+    play: numpy.ndarray
+
+    @property
+    def worst_case(self) -> numpy.ndarray:
+        return numpy.einsum("ijk,j->ik", numpy.hypot(self.gradient[:, :, 0], self.gradient[:, :, 1]), self.play)
+
+    @property
+    def direction(self) -> numpy.ndarray:
+        return numpy.arctan2(self.gradient[:, :, 1], self.gradient[:, :, 0])
+
+
+def pin_play(linkage: Linkage, outputs: str | Sequence[str], nominal: Mapping[str, float],
+             play: Mapping[str, float], inputs: Mapping[str, object] | None = None) -> PinPlay:
+    """The worst case of the pins' radial play (joint clearance) on some outputs, linearised, along the inputs.
+
+    ``play`` maps pin joints (their names, as :func:`symlink.bodies.mechanism` gives them) to their radial
+    play (the hole's radius less the pin's).  Each pin's play is a free vector of length at most its play
+    (:func:`with_pin_play`); to first order the output moves by ``g_j . delta_j``, the largest of which over
+    all directions is ``|g_j| play_j``, so the worst case is ``sum_j |g_j| play_j``, the plays pointing
+    along their gradients (``direction``).  The gradients are exact sensitivities at zero play.  Assumes
+    the links rigid, the play small beside the links, and every pin free to sit anywhere in its hole (no
+    load that keeps it on one side).
+
+    >>> from symlink.catalog import fourbar
+    >>> result = pin_play(fourbar(), "rocker", {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1},
+    ...                   {"B": 0.01, "C": 0.01}, inputs={"theta": [0.0]})
+    >>> result.worst_case.shape
+    (1, 1)
+    """
+    chosen = [outputs] if isinstance(outputs, str) else list(outputs)
+    if not play:
+        raise ValueError("give the radial play of at least one pin")
+    for name, value in play.items():
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value < 0:
+            raise ValueError(f"the play of pin {name} must be a finite number >= 0, got {value!r}")
+    joints = list(play)
+    playing = with_pin_play(linkage, joints)
+    names = [n for joint in joints for n in _play_names(joint)]
+    jacobian = DesignJacobian(playing, chosen, names)
+    sweep = _input_values(linkage, inputs)
+    wanted = [name for name in jacobian.arguments if name not in sweep and name not in names]
+    missing = [name for name in wanted if name not in nominal]
+    if missing:
+        raise ValueError(f"nominal: give the value of {', '.join(missing)}")
+    values = {name: float(nominal[name]) for name in wanted} | dict.fromkeys(names, 0.0)
+    found, slopes = jacobian(**sweep, **values)  # (inputs, outputs, 2 x joints)
+    gradient = numpy.moveaxis(slopes.reshape(slopes.shape[:2] + (len(joints), 2)), 0, -1)
+    nominal_values = numpy.stack([numpy.asarray(found[name], dtype=float) for name in chosen])
+    return PinPlay(tuple(chosen), tuple(joints), sweep, nominal_values, gradient,
+                   numpy.array([float(play[j]) for j in joints]))

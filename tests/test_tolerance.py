@@ -184,3 +184,68 @@ def test_command_bands_of_chosen_dimensions_and_sigmas(capsys):
     assert float(row[2]) == pytest.approx(0.02 + 0.06, rel=1e-14)  # b's band: 3 sigma
     assert float(row[3]) == pytest.approx(3 * numpy.hypot(0.02 / 3, 0.02), rel=1e-14)
     assert row[5] == "b"
+
+
+# --- pin play (joint clearance) -----------------------------------------------------------
+
+def _rocker_with_pins_moved(theta, shift_b, shift_d, branch=1):
+    """The four-bar's rocker angle when the coupler starts at B + shift_b and the rocker's pivot sits at
+    D + shift_d (complex), by intersecting the circle of radius b about B' with that of radius c about D'."""
+    a, b, c, d = (DESIGN[k] for k in LENGTHS)
+    B = a * numpy.exp(1j * theta) + shift_b
+    D = d + shift_d
+    e = D - B
+    L = numpy.abs(e)
+    along = (b * b - c * c + L * L) / (2 * L)
+    h = numpy.sqrt(b * b - along * along)
+    C = B + e / L * (along + 1j * branch * h)  # branch +1: C to the left of B -> D
+    return numpy.angle(C - D)
+
+
+def test_pin_play_worst_case_equals_an_optimisation_over_the_play_directions():
+    """Play r at each of A, B, C, D: the crank pin B moves by r e^{i psi_A} + r e^{i psi_B} and the rocker
+    pivot by r e^{i psi_C} + r e^{i psi_D} (the directions free); the largest rocker deviation over the four
+    directions, found by a grid and Nelder-Mead, equals the linear worst case to first order in r."""
+    from scipy.optimize import minimize
+
+    from symlink.tolerance import pin_play
+    r = 1e-3
+    thetas = numpy.radians([40.0, 250.0])
+    result = pin_play(fourbar(), "rocker", DESIGN, dict.fromkeys("ABCD", r), inputs={"theta": thetas})
+    assert result.joints == ("A", "B", "C", "D")
+    grid = numpy.linspace(-numpy.pi, numpy.pi, 12, endpoint=False)
+    psi = numpy.stack(numpy.meshgrid(grid, grid, grid, grid, indexing="ij"), axis=-1).reshape(-1, 4)
+    for k, theta in enumerate(thetas):
+        nominal = _rocker_with_pins_moved(theta, 0, 0)
+
+        def deviation(p):
+            p = numpy.atleast_2d(p)
+            moved = _rocker_with_pins_moved(theta, r * (numpy.exp(1j * p[:, 0]) + numpy.exp(1j * p[:, 1])),
+                                            r * (numpy.exp(1j * p[:, 2]) + numpy.exp(1j * p[:, 3])))
+            return numpy.abs(moved - nominal)
+        start = psi[numpy.argmax(deviation(psi))]
+        best = minimize(lambda p: -deviation(p)[0], start, method="Nelder-Mead",
+                        options={"xatol": 1e-10, "fatol": 1e-16, "maxiter": 20000})
+        assert -best.fun == pytest.approx(result.worst_case[0, k], rel=1e-3)  # the rest is second order in r
+        assert result.nominal[0, k] == pytest.approx(nominal, abs=1e-12)
+
+
+def test_pin_play_of_one_pin_is_its_play_times_the_gradient_of_a_moved_pivot():
+    """Play only at D: the rocker's pivot moves by delta; by finite differences of the circle intersection
+    (written above) in x and y, the gradient's length times the play is the worst case."""
+    from symlink.tolerance import pin_play
+    theta, h = numpy.radians(130.0), 1e-6
+    gx = (_rocker_with_pins_moved(theta, 0, h) - _rocker_with_pins_moved(theta, 0, -h)) / (2 * h)
+    gy = (_rocker_with_pins_moved(theta, 0, 1j * h) - _rocker_with_pins_moved(theta, 0, -1j * h)) / (2 * h)
+    result = pin_play(fourbar(), "rocker", DESIGN, {"D": 0.02}, inputs={"theta": [theta]})
+    assert result.worst_case[0, 0] == pytest.approx(0.02 * numpy.hypot(gx, gy), rel=1e-7)
+
+
+def test_pin_play_bad_input():
+    from symlink.tolerance import pin_play
+    with pytest.raises(ValueError, match="no joint 'E'"):
+        pin_play(fourbar(), "rocker", DESIGN, {"E": 0.01})
+    with pytest.raises(ValueError, match=">= 0"):
+        pin_play(fourbar(), "rocker", DESIGN, {"B": -0.01})
+    with pytest.raises(ValueError, match="at least one pin"):
+        pin_play(fourbar(), "rocker", DESIGN, {})

@@ -249,3 +249,17 @@ def test_pin_play_bad_input():
         pin_play(fourbar(), "rocker", DESIGN, {"B": -0.01})
     with pytest.raises(ValueError, match="at least one pin"):
         pin_play(fourbar(), "rocker", DESIGN, {})
+
+
+def test_command_adds_the_pins_play_as_a_column(capsys):
+    from symlink.cli import main
+    from symlink.tolerance import pin_play
+    assert main(COMMAND + ["--tolerance", "0.05", "--play", "B=0.02,C=0.03", "--angles", "130", "--format",
+                           "csv"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].endswith(",largest,play")
+    # by hand: the play's worst case is sum_j r_j |g_j|, each gradient from the library's pin_play
+    result = pin_play(fourbar(), "rocker", DESIGN, {"B": 0.02, "C": 0.03}, inputs={"theta": ANGLES[2:3]})
+    gradient = numpy.hypot(result.gradient[0, :, 0, 0], result.gradient[0, :, 1, 0])
+    assert float(lines[1].split(",")[6]) == pytest.approx(numpy.degrees(0.02 * gradient[0] + 0.03 * gradient[1]),
+                                                          rel=1e-12)

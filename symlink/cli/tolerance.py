@@ -14,7 +14,7 @@ from typing import Any
 import numpy
 
 from ..angles import from_radians, to_radians, wrap
-from .options import (add_branch_option, add_fourbar_lengths, add_format_option, add_units_option, assignments,
+from .options import (FOURBAR_LENGTHS, add_branch_option, add_format_option, add_units_option, assignments,
                       command_help, finite, fourbar_lengths, input_sweep, linkage_values, number_list)
 from .output import RowWriter, note
 
@@ -31,14 +31,15 @@ def register(commands) -> None:
         "symlink tolerance fourbar --crank 20 --coupler 66 --rocker 56 --ground 80 --tolerance 0.05 "
         "--output rocker",
         "With a catalog NAME or a linkage FILE, values from its defaults (--set to change); --tolerance applies to "
-        "every length, --tolerances NAME=BAND,... to chosen dimensions.\ncsv header: INPUT,OUTPUT,worst_case,rss,"
-        "mean_shift,largest"))
+        "every length, --tolerances NAME=BAND,... to chosen dimensions; --play B=0.02,C=0.02 adds the pins' play.\n"
+        "csv header: INPUT,OUTPUT,worst_case,rss,mean_shift,largest[,play]"))
 
 
 def _add_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("linkage", nargs="?", metavar="NAME|FILE",
                          help="a catalog linkage or a linkage file (default: the four-bar of the length options)")
-    add_fourbar_lengths(command, beside_linkage=True)
+    for option, what in FOURBAR_LENGTHS:
+        command.add_argument(f"--{option}", type=finite, help=f"four-bar length {what} (with NAME fourbar, or none)")
     command.add_argument("--set", type=assignments("NAME=VALUE"), default={}, metavar="NAME=VALUE,...",
                          help="parameter values (fixed angles in --units)")
     command.add_argument("--tolerance", type=finite, metavar="BAND", help="± band of every length")
@@ -46,6 +47,9 @@ def _add_options(command: argparse.ArgumentParser) -> None:
                          help="± bands of chosen dimensions (angles in --units); these win over --tolerance")
     command.add_argument("--sigma", type=assignments("NAME=SIGMA"), default={}, metavar="NAME=SIGMA,...",
                          help="standard deviations of chosen dimensions (default: a third of the band)")
+    command.add_argument("--play", type=assignments("PIN=PLAY"), default={}, metavar="PIN=PLAY,...",
+                         help="radial play of chosen pins (hole radius less pin radius): adds the column "
+                              "'play', the linearised worst case over all play directions")
     command.add_argument("--output", metavar="NAME", help="the output (default: the linkage's last unknown)")
     command.add_argument("--start", type=finite, help="first input value (default 0)")
     command.add_argument("--stop", type=finite, help="last input value, exclusive (default 360 deg)")
@@ -60,7 +64,7 @@ def _add_options(command: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..closure import is_angle
     from ..linkage_file import load_linkage
-    from ..tolerance import stack_up
+    from ..tolerance import pin_play, stack_up
     from ..units import output_units
     lengths = fourbar_lengths(args)
     given = [value is not None for value in lengths]
@@ -98,16 +102,18 @@ def run(args: argparse.Namespace) -> int:
         inputs[other.name] = numpy.full(len(shown), values[other.name])
     values.update({branch.name: int(args.branch) for branch in linkage.branches})
     result = stack_up(linkage, output, values, tolerances, inputs=inputs)
+    play = pin_play(linkage, output, values, args.play, inputs=inputs).worst_case[0] if args.play else None
     angular = output_units(linkage, [output]).get(output) == "rad"
     convert = (lambda x: from_radians(x, args.units)) if angular else (lambda x: numpy.asarray(x))  # noqa: E731
     nominal = convert(wrap(result.nominal[0]) if angular else result.nominal[0])
     worst, rss, shift = convert(result.worst_case[0]), convert(result.rss[0]), convert(result.mean_shift[0])
     largest = result.largest_contributor(output)
-    columns = [first.name, output, "worst_case", "rss", "mean_shift", "largest"]
+    columns = [first.name, output, "worst_case", "rss", "mean_shift", "largest"] + (["play"] if args.play else [])
+    plays = convert(play) if play is not None else numpy.zeros(len(shown))
     writer = RowWriter(columns, args.format)
     writer.write({first.name: float(x), output: float(y), "worst_case": float(w), "rss": float(r),
-                  "mean_shift": float(m), "largest": big or "-"}
-                 for x, y, w, r, m, big in zip(shown, nominal, worst, rss, shift, largest))
+                  "mean_shift": float(m), "largest": big or "-", "play": float(p)}
+                 for x, y, w, r, m, big, p in zip(shown, nominal, worst, rss, shift, largest, plays))
     writer.close()
     unit = args.units if angular else "length units"
     ranking = ", ".join(f"{dim} {float(convert(dev)):.4g}" for dim, dev in result.ranking(output))

@@ -76,6 +76,8 @@ CASES += [
     ("tolerance: no tolerance", ["tolerance"] + FOURBAR[1:], 2),
     ("tolerance: unknown dimension", ["tolerance", "fourbar", "--tolerances", "e=0.1"], 2),
     ("tolerance: unknown output", ["tolerance", "fourbar", "--tolerance", "0.1", "--output", "psi"], 2),
+    ("tolerance: play at no pin", ["tolerance", "fourbar", "--tolerance", "0.1", "--play", "E=0.02"], 2),
+    ("tolerance: negative play", ["tolerance", "fourbar", "--tolerance", "0.1", "--play", "B=-0.02"], 2),
     ("tolerance: lengths of another linkage", ["tolerance", "slider-crank", "--crank", "3", "--tolerance", "1"], 2),
     ("plan: unknown linkage", ["plan", "sixbar"], 2),
     ("plan: no linkage", ["plan"], 2),

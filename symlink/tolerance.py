@@ -12,7 +12,8 @@ coordinates), :func:`stack_up` tells, for each output along the input range,
   bands read as 3 sigma;
 * the **contribution** of each dimension (its share of the output's variance),
   the ranking a designer acts on: tighten the first, relax the last;
-* with :func:`pin_play`, the worst case of the pins' **radial play** (joint clearance), linearised.
+* with :func:`pin_play`, the worst case of the pins' **radial play** (joint clearance), linearised, and
+  with :func:`pin_play_envelope` its exact range at chosen poses (a search over the play directions).
 
 and
 
@@ -53,7 +54,8 @@ from .linkage import Linkage
 from .loops import Loop
 from .vectors import Vector, VectorSum
 
-__all__ = ["Tolerance", "StackUp", "stack_up", "SIGMAS_PER_BAND", "PinPlay", "pin_play", "with_pin_play"]
+__all__ = ["Tolerance", "StackUp", "stack_up", "SIGMAS_PER_BAND", "PinPlay", "pin_play", "with_pin_play",
+           "PlayEnvelope", "pin_play_envelope"]
 
 #: A ± band without a given sigma is read as this many standard deviations.
 SIGMAS_PER_BAND = 3.0
@@ -384,3 +386,84 @@ def pin_play(linkage: Linkage, outputs: str | Sequence[str], nominal: Mapping[st
     nominal_values = numpy.stack([numpy.asarray(found[name], dtype=float) for name in chosen])
     return PinPlay(tuple(chosen), tuple(joints), sweep, nominal_values, gradient,
                    numpy.array([float(play[j]) for j in joints]))
+
+
+#: Directions scanned per pin and round by :func:`pin_play_envelope` (a coarse turn, then a fine step about the best).
+_SCAN = 3601
+#: Rounds of the pin-by-pin search at most (it stops sooner when a round changes nothing).
+_ROUNDS = 20
+
+
+@dataclass(frozen=True)
+class PlayEnvelope:
+    """The exact range of an output over all play directions at one pose (see :func:`pin_play_envelope`).
+
+    ``lowest`` and ``highest`` bound the output; ``low_directions`` and ``high_directions`` are the pins'
+    play directions (radians, by joint) that reach them.
+    """
+
+    output: str
+    nominal: float
+    lowest: float
+    highest: float
+    low_directions: dict[str, float]
+    high_directions: dict[str, float]
+
+
+def pin_play_envelope(linkage: Linkage, output: str, nominal: Mapping[str, float], play: Mapping[str, float],
+                      at: Mapping[str, float]) -> PlayEnvelope:
+    """The exact lowest and highest ``output`` over every direction of the pins' play, at the inputs ``at``.
+
+    Not linearised: the linkage with its play vectors (:func:`with_pin_play`) is solved in closed form
+    with each pin at the edge of its hole (``|delta_j| = play_j``, where a smooth output that moves with
+    the play takes its extremes), and the directions are searched pin by pin (a scan of a full turn, then
+    a fine scan about the best, repeated until a round changes nothing), starting from the linearised
+    optimum (:func:`pin_play`).  Same assumptions as :func:`pin_play` otherwise.
+
+    >>> from symlink.catalog import fourbar
+    >>> envelope = pin_play_envelope(fourbar(), "rocker", {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1},
+    ...                              {"B": 0.05}, at={"theta": 0.0})
+    >>> bool(envelope.lowest < envelope.nominal < envelope.highest)
+    True
+    """
+    from .solver import Solver
+    joints = list(play)
+    linear = pin_play(linkage, output, nominal, play, inputs={k: [float(v)] for k, v in at.items()})
+    playing = with_pin_play(linkage, joints)
+    solver = Solver(playing, [output])
+    fixed = {name: float(nominal[name]) for name in solver.required
+             if name not in at and not name.startswith("play_")} | {k: float(v) for k, v in at.items()}
+    radii = numpy.array([float(play[j]) for j in joints])
+
+    def value(directions: numpy.ndarray) -> numpy.ndarray:
+        """The output for rows of directions (one column a pin); NaN where it cannot be assembled."""
+        arguments = dict(fixed)
+        for j, joint in enumerate(joints):
+            x, y = _play_names(joint)
+            arguments[x], arguments[y] = radii[j] * numpy.cos(directions[:, j]), radii[j] * numpy.sin(directions[:, j])
+        found = solver(**arguments)
+        return numpy.where(found["assembled"], numpy.asarray(found[output], dtype=float), numpy.nan)
+
+    def search(sign: float) -> tuple[float, numpy.ndarray]:
+        best = linear.direction[0, :, 0] + (0.0 if sign > 0 else math.pi)
+        best_value = sign * float(value(best[None, :])[0])
+        coarse = numpy.linspace(-math.pi, math.pi, _SCAN, endpoint=False)
+        step = 2 * math.pi / _SCAN
+        for _ in range(_ROUNDS):
+            before = best_value
+            for j in range(len(joints)):
+                for turn in (coarse, best[j] + numpy.linspace(-2 * step, 2 * step, _SCAN)):
+                    trial = numpy.repeat(best[None, :], len(turn), axis=0)
+                    trial[:, j] = turn
+                    scores = sign * value(trial)
+                    if numpy.isfinite(scores).any() and numpy.nanmax(scores) > best_value:
+                        k = int(numpy.nanargmax(scores))
+                        best, best_value = trial[k].copy(), float(scores[k])
+            if best_value <= before:
+                break
+        return sign * best_value, best
+
+    highest, high = search(1.0)
+    lowest, low = search(-1.0)
+    wrap_turn = lambda angles: {j: float(math.remainder(a, 2 * math.pi)) for j, a in zip(joints, angles)}  # noqa: E731
+    return PlayEnvelope(output, float(linear.nominal[0, 0]), lowest, highest, wrap_turn(low), wrap_turn(high))

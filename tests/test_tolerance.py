@@ -263,3 +263,34 @@ def test_command_adds_the_pins_play_as_a_column(capsys):
     gradient = numpy.hypot(result.gradient[0, :, 0, 0], result.gradient[0, :, 1, 0])
     assert float(lines[1].split(",")[6]) == pytest.approx(numpy.degrees(0.02 * gradient[0] + 0.03 * gradient[1]),
                                                           rel=1e-12)
+
+
+@pytest.mark.parametrize("theta_degrees", [40.0, 250.0])
+def test_the_exact_play_envelope_equals_an_optimisation_over_the_play_directions(theta_degrees):
+    """Play 0.5 at each of A, B, C, D (large: the envelope is no longer symmetric about the nominal): the
+    library's lowest and highest rocker angle equal the extremes that a grid and Nelder-Mead find over the
+    four directions of the circle-intersection model written above."""
+    from scipy.optimize import minimize
+
+    from symlink.tolerance import pin_play_envelope
+    r, theta = 0.5, numpy.radians(theta_degrees)
+    envelope = pin_play_envelope(fourbar(), "rocker", DESIGN, dict.fromkeys("ABCD", r), at={"theta": theta})
+    nominal = _rocker_with_pins_moved(theta, 0, 0)
+    assert envelope.nominal == pytest.approx(nominal, abs=1e-12)
+
+    def rocker(p):
+        p = numpy.atleast_2d(p)
+        return _rocker_with_pins_moved(theta, r * (numpy.exp(1j * p[:, 0]) + numpy.exp(1j * p[:, 1])),
+                                       r * (numpy.exp(1j * p[:, 2]) + numpy.exp(1j * p[:, 3])))
+    grid = numpy.linspace(-numpy.pi, numpy.pi, 12, endpoint=False)
+    psi = numpy.stack(numpy.meshgrid(grid, grid, grid, grid, indexing="ij"), axis=-1).reshape(-1, 4)
+    extremes = []
+    for sign in (1, -1):
+        start = psi[numpy.argmax(sign * rocker(psi))]
+        best = minimize(lambda p: -sign * rocker(p)[0], start, method="Nelder-Mead",
+                        options={"xatol": 1e-10, "fatol": 1e-16, "maxiter": 20000})
+        extremes.append(-sign * best.fun)
+    highest, lowest = extremes
+    assert envelope.highest - nominal == pytest.approx(highest - nominal, rel=1e-7)
+    assert nominal - envelope.lowest == pytest.approx(nominal - lowest, rel=1e-7)
+    assert abs((highest - nominal) - (nominal - lowest)) > 1e-4 * (highest - lowest)  # not symmetric any more

@@ -12,13 +12,12 @@ coordinates), :func:`stack_up` tells, for each output along the input range,
   bands read as 3 sigma;
 * the **contribution** of each dimension (its share of the output's variance),
   the ranking a designer acts on: tighten the first, relax the last;
-* with :func:`pin_play`, the worst case of the pins' **radial play** (joint clearance), linearised, and
-  with :func:`pin_play_envelope` its exact range at chosen poses (a search over the play directions).
-
-and
-
 * the first-order **mean shift** ``1/2 sum_j d2y/dp_j^2 * sigma_j^2``: a
-  curved output does not average to its nominal value.
+  curved output does not average to its nominal value;
+* with :func:`pin_play`, the worst case of the pins' **radial play** (joint clearance), linearised, and
+  with :func:`pin_play_envelope` its exact range at chosen poses (a search over the play directions);
+* with :func:`sample_builds`, a **Monte Carlo** check: many builds drawn from the same tolerance model and
+  solved (vectorised over the builds), their deviation's percentiles beside the linear prediction.
 
 The first derivatives are exact: generated from the closure equations by
 :class:`~symlink.design_jacobian.DesignJacobian` (for any linkage, closed form
@@ -55,7 +54,8 @@ from .loops import Loop
 from .vectors import Vector, VectorSum
 
 __all__ = ["Tolerance", "StackUp", "stack_up", "SIGMAS_PER_BAND", "PinPlay", "pin_play", "with_pin_play",
-           "PlayEnvelope", "pin_play_envelope"]
+           "PlayEnvelope", "pin_play_envelope",
+           "SampledBuilds", "sample_builds", "MAX_SAMPLED_VALUES"]
 
 #: A ± band without a given sigma is read as this many standard deviations.
 SIGMAS_PER_BAND = 3.0
@@ -467,3 +467,107 @@ def pin_play_envelope(linkage: Linkage, output: str, nominal: Mapping[str, float
     lowest, low = search(-1.0)
     wrap_turn = lambda angles: {j: float(math.remainder(a, 2 * math.pi)) for j, a in zip(joints, angles)}  # noqa: E731
     return PlayEnvelope(output, float(linear.nominal[0, 0]), lowest, highest, wrap_turn(low), wrap_turn(high))
+
+
+#: Builds x input values x outputs that :func:`sample_builds` keeps at most (8 bytes each).
+MAX_SAMPLED_VALUES = 50_000_000
+#: Builds solved at once by :func:`sample_builds`.
+_BLOCK = 10_000
+
+
+@dataclass(frozen=True)
+class SampledBuilds:
+    """Builds drawn from a tolerance model and solved (see :func:`sample_builds`).
+
+    ``deviation[i]`` is output i's deviation from its nominal value, shape (builds, input values) (angles
+    wrapped to (-pi, pi]), NaN for a build that cannot be assembled there or has a dimension drawn
+    non-positive where it must be positive; ``nominal[i, k]`` the nominal output.
+    """
+
+    outputs: tuple[str, ...]
+    inputs: dict[str, numpy.ndarray]
+    nominal: numpy.ndarray
+    deviation: numpy.ndarray
+
+    @property
+    def built(self) -> numpy.ndarray:
+        """The share of builds assembled at each input value (outputs, inputs)."""
+        return numpy.isfinite(self.deviation).mean(axis=1)
+
+    def percentile(self, q: float | Sequence[float]) -> numpy.ndarray:
+        """Percentiles ``q`` (0 to 100) of each output's deviation over the assembled builds at each input."""
+        return numpy.nanpercentile(self.deviation, q, axis=1)
+
+    @property
+    def mean(self) -> numpy.ndarray:
+        return numpy.nanmean(self.deviation, axis=1)
+
+    @property
+    def standard_deviation(self) -> numpy.ndarray:
+        return numpy.nanstd(self.deviation, axis=1)
+
+
+def sample_builds(linkage: Linkage, outputs: str | Sequence[str], nominal: Mapping[str, float],
+                  tolerances: TolerancesLike, inputs: Mapping[str, object] | None = None,
+                  builds: int = 100_000, seed: int = 0) -> SampledBuilds:
+    """``builds`` linkages with each toleranced dimension drawn from a normal distribution (its sigma, a
+    band read as 3 sigma: :class:`Tolerance`), about ``nominal``, solved at every input value.
+
+    The Monte Carlo counterpart of :func:`stack_up`: where tolerances are small its percentiles agree
+    with the linear bands, where they are large they show how far the linear model departs.  Closed
+    forms only; seeded (``seed``), so a run repeats exactly.  A dimension drawn non-positive where it must
+    be positive (a length) is a build that cannot be made: NaN.
+
+    >>> from symlink.catalog import fourbar
+    >>> sampled = sample_builds(fourbar(), "rocker", {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1},
+    ...                         {"b": 0.3}, inputs={"theta": [0.0]}, builds=1000)
+    >>> sampled.deviation.shape, bool(sampled.built.all())
+    ((1, 1000, 1), True)
+    """
+    from .angles import wrap
+    from .solver import Solver
+    from .units import output_units
+    chosen = [outputs] if isinstance(outputs, str) else list(outputs)
+    dimensions, _, sigmas = _tolerances(tolerances)
+    if isinstance(builds, bool) or not isinstance(builds, int) or builds < 1:
+        raise ValueError(f"builds must be a whole number >= 1, got {builds!r}")
+    if not linkage.has_closed_form:
+        raise ValueError(f"{linkage.name} has no closed form: sample_builds solves closed forms only")
+    sweep = _input_values(linkage, inputs)
+    count = len(next(iter(sweep.values())))
+    if builds * count * len(chosen) > MAX_SAMPLED_VALUES:
+        raise ValueError(f"{builds} builds x {count} input values x {len(chosen)} outputs are more than "
+                         f"{MAX_SAMPLED_VALUES} values: ask for fewer")
+    known = {s.name: s for s in linkage.parameters}
+    for name in dimensions:
+        if name not in known:
+            raise ValueError(f"{linkage.name} has no parameter {name!r}; it has {', '.join(known)}")
+    solver = Solver(linkage, chosen)
+    wanted = [name for name in solver.required if name not in sweep]
+    missing = [name for name in wanted if name not in nominal]
+    if missing:
+        raise ValueError(f"nominal: give the value of {', '.join(missing)}")
+    design = {name: float(nominal[name]) for name in wanted}
+    centre = solver(**sweep, **design)
+    nominal_values = numpy.stack([numpy.asarray(numpy.broadcast_to(centre[o], (count,)), dtype=float)
+                                  for o in chosen])
+    angular = [output_units(linkage, [o]).get(o) == "rad" for o in chosen]
+    deviation = numpy.empty((len(chosen), builds, count))
+    generator = numpy.random.default_rng(seed)
+    for first in range(0, builds, _BLOCK):
+        size = min(_BLOCK, builds - first)
+        drawn = {name: design[name] + sigmas[j] * generator.standard_normal((size, 1))
+                 for j, name in enumerate(dimensions)}
+        unmade = numpy.zeros((size, 1), dtype=bool)
+        for name, values in drawn.items():
+            if known[name].is_positive:
+                unmade |= values <= 0
+                values[values <= 0] = design[name]  # solved at the nominal, then thrown away
+        found = solver(**{k: v[None, :] for k, v in sweep.items()}, **{**design, **drawn})
+        good = numpy.broadcast_to(found["assembled"], (size, count)) & ~unmade
+        for i, name in enumerate(chosen):
+            change = numpy.broadcast_to(found[name], (size, count)) - nominal_values[i]
+            if angular[i]:
+                change = wrap(change)
+            deviation[i, first:first + size] = numpy.where(good, change, numpy.nan)
+    return SampledBuilds(tuple(chosen), sweep, nominal_values, deviation)

@@ -8,6 +8,7 @@ vectorised solver; and the slider-crank's hand formula s = a + b at theta = 0.
 from __future__ import annotations
 
 import itertools
+import math
 
 import mpmath as mp
 import numpy
@@ -294,3 +295,37 @@ def test_the_exact_play_envelope_equals_an_optimisation_over_the_play_directions
     assert envelope.highest - nominal == pytest.approx(highest - nominal, rel=1e-7)
     assert nominal - envelope.lowest == pytest.approx(nominal - lowest, rel=1e-7)
     assert abs((highest - nominal) - (nominal - lowest)) > 1e-4 * (highest - lowest)  # not symmetric any more
+
+
+# --- the Monte Carlo check --------------------------------------------------------------------
+
+def test_sampled_builds_agree_with_the_linear_bands_where_tolerances_are_small():
+    from symlink.tolerance import sample_builds
+    count, theta = 100_000, numpy.radians([40.0, 250.0])
+    tolerances = dict.fromkeys(LENGTHS, 0.05)
+    sampled = sample_builds(fourbar(), "rocker", DESIGN, tolerances, inputs={"theta": theta}, builds=count, seed=7)
+    linear = stack_up(fourbar(), "rocker", DESIGN, tolerances, inputs={"theta": theta})
+    assert sampled.built.min() == 1.0
+    numpy.testing.assert_allclose(sampled.standard_deviation[0], linear.standard_deviation[0],
+                                  rtol=4 / numpy.sqrt(2 * count))
+    low, high = sampled.percentile([0.135, 99.865])[:, 0]
+    numpy.testing.assert_allclose(-low, linear.rss[0], rtol=0.04)
+    numpy.testing.assert_allclose(high, linear.rss[0], rtol=0.04)
+    runs = [sample_builds(fourbar(), "rocker", DESIGN, tolerances, inputs={"theta": theta}, builds=1000, seed=seed)
+            for seed in (7, 7, 8)]
+    assert numpy.array_equal(runs[0].deviation, runs[1].deviation)  # seeded: a run repeats
+    assert not numpy.array_equal(runs[0].deviation, runs[2].deviation)
+
+
+def test_a_length_drawn_non_positive_is_a_build_that_cannot_be_made():
+    """The crank a = 20 with sigma 20: a share Phi(-1) = 0.1587 of the builds has a <= 0 (a normal CDF)."""
+    from symlink.tolerance import sample_builds
+    count = 20_000
+    sampled = sample_builds(fourbar(), "rocker", DESIGN, {"a": Tolerance(sigma=20.0)}, inputs={"theta": [1.0]},
+                            builds=count, seed=3)
+    unmade = 0.5 * math.erfc(1 / math.sqrt(2))
+    assert sampled.built[0, 0] <= 1 - unmade + 4 * math.sqrt(unmade * (1 - unmade) / count)
+    with pytest.raises(ValueError, match="builds must be a whole number"):
+        sample_builds(fourbar(), "rocker", DESIGN, {"a": 0.1}, builds=0)
+    with pytest.raises(ValueError, match="fewer"):
+        sample_builds(fourbar(), "rocker", DESIGN, {"a": 0.1}, builds=10**7)

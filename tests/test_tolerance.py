@@ -329,3 +329,13 @@ def test_a_length_drawn_non_positive_is_a_build_that_cannot_be_made():
         sample_builds(fourbar(), "rocker", DESIGN, {"a": 0.1}, builds=0)
     with pytest.raises(ValueError, match="fewer"):
         sample_builds(fourbar(), "rocker", DESIGN, {"a": 0.1}, builds=10**7)
+
+
+def test_command_samples_builds_beside_the_linear_bands(capsys):
+    from symlink.cli import main
+    assert main(COMMAND + ["--tolerance", "0.05", "--builds", "100000", "--angles", "40", "--format", "csv"]) == 0
+    header, row = capsys.readouterr().out.splitlines()
+    assert header.endswith(",largest,sampled_low,sampled_high")
+    cells = row.split(",")
+    rss, low, high = float(cells[3]), float(cells[6]), float(cells[7])
+    assert -low == pytest.approx(rss, rel=0.04) and high == pytest.approx(rss, rel=0.04)

@@ -15,7 +15,7 @@ import numpy
 
 from ..angles import from_radians, to_radians, wrap
 from .options import (FOURBAR_LENGTHS, add_branch_option, add_format_option, add_units_option, assignments,
-                      command_help, finite, fourbar_lengths, input_sweep, linkage_values, number_list)
+                      command_help, finite, fourbar_lengths, input_sweep, linkage_values, number_list, whole)
 from .output import RowWriter, note
 
 #: More input values than this make a stack-up a benchmark, not a table (each costs 1 + 2 x dimensions solves).
@@ -32,7 +32,7 @@ def register(commands) -> None:
         "--output rocker",
         "With a catalog NAME or a linkage FILE, values from its defaults (--set to change); --tolerance applies to "
         "every length, --tolerances NAME=BAND,... to chosen dimensions; --play B=0.02,C=0.02 adds the pins' play.\n"
-        "csv header: INPUT,OUTPUT,worst_case,rss,mean_shift,largest[,play]"))
+        "csv header: INPUT,OUTPUT,worst_case,rss,mean_shift,largest[,play][,sampled_low,sampled_high]"))
 
 
 def _add_options(command: argparse.ArgumentParser) -> None:
@@ -50,6 +50,10 @@ def _add_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("--play", type=assignments("PIN=PLAY"), default={}, metavar="PIN=PLAY,...",
                          help="radial play of chosen pins (hole radius less pin radius): adds the column "
                               "'play', the linearised worst case over all play directions")
+    command.add_argument("--builds", type=whole, metavar="N",
+                         help="also sample N builds (Monte Carlo, seeded by --seed): adds the columns 'sampled_low' "
+                              "and 'sampled_high', the deviation's 0.135 and 99.865 percentiles (3 sigma)")
+    command.add_argument("--seed", type=whole, default=0, help="of the sampled builds (default 0)")
     command.add_argument("--output", metavar="NAME", help="the output (default: the linkage's last unknown)")
     command.add_argument("--start", type=finite, help="first input value (default 0)")
     command.add_argument("--stop", type=finite, help="last input value, exclusive (default 360 deg)")
@@ -64,7 +68,7 @@ def _add_options(command: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..closure import is_angle
     from ..linkage_file import load_linkage
-    from ..tolerance import pin_play, stack_up
+    from ..tolerance import pin_play, sample_builds, stack_up
     from ..units import output_units
     lengths = fourbar_lengths(args)
     given = [value is not None for value in lengths]
@@ -103,17 +107,27 @@ def run(args: argparse.Namespace) -> int:
     values.update({branch.name: int(args.branch) for branch in linkage.branches})
     result = stack_up(linkage, output, values, tolerances, inputs=inputs)
     play = pin_play(linkage, output, values, args.play, inputs=inputs).worst_case[0] if args.play else None
+    sampled = None
+    if args.builds is not None:
+        if args.builds < 1:
+            raise ValueError(f"--builds must be at least 1, got {args.builds}")
+        sampled = sample_builds(linkage, output, values, tolerances, inputs=inputs, builds=args.builds,
+                                seed=args.seed).percentile([0.135, 99.865])[:, 0]
     angular = output_units(linkage, [output]).get(output) == "rad"
     convert = (lambda x: from_radians(x, args.units)) if angular else (lambda x: numpy.asarray(x))  # noqa: E731
     nominal = convert(wrap(result.nominal[0]) if angular else result.nominal[0])
     worst, rss, shift = convert(result.worst_case[0]), convert(result.rss[0]), convert(result.mean_shift[0])
     largest = result.largest_contributor(output)
-    columns = [first.name, output, "worst_case", "rss", "mean_shift", "largest"] + (["play"] if args.play else [])
+    columns = ([first.name, output, "worst_case", "rss", "mean_shift", "largest"] + (["play"] if args.play else [])
+               + (["sampled_low", "sampled_high"] if sampled is not None else []))
     plays = convert(play) if play is not None else numpy.zeros(len(shown))
+    lows, highs = (convert(sampled[0]), convert(sampled[1])) if sampled is not None else (plays, plays)
     writer = RowWriter(columns, args.format)
     writer.write({first.name: float(x), output: float(y), "worst_case": float(w), "rss": float(r),
-                  "mean_shift": float(m), "largest": big or "-", "play": float(p)}
-                 for x, y, w, r, m, big, p in zip(shown, nominal, worst, rss, shift, largest, plays))
+                  "mean_shift": float(m), "largest": big or "-", "play": float(p), "sampled_low": float(lo),
+                  "sampled_high": float(hi)}
+                 for x, y, w, r, m, big, p, lo, hi in zip(shown, nominal, worst, rss, shift, largest, plays, lows,
+                                                          highs))
     writer.close()
     unit = args.units if angular else "length units"
     ranking = ", ".join(f"{dim} {float(convert(dev)):.4g}" for dim, dev in result.ranking(output))

@@ -78,6 +78,8 @@ CASES += [
     ("tolerance: unknown output", ["tolerance", "fourbar", "--tolerance", "0.1", "--output", "psi"], 2),
     ("tolerance: play at no pin", ["tolerance", "fourbar", "--tolerance", "0.1", "--play", "E=0.02"], 2),
     ("tolerance: negative play", ["tolerance", "fourbar", "--tolerance", "0.1", "--play", "B=-0.02"], 2),
+    ("tolerance: no builds", ["tolerance", "fourbar", "--tolerance", "0.1", "--builds", "0"], 2),
+    ("tolerance: too many builds", ["tolerance", "fourbar", "--tolerance", "0.1", "--builds", "100000000"], 2),
     ("tolerance: lengths of another linkage", ["tolerance", "slider-crank", "--crank", "3", "--tolerance", "1"], 2),
     ("plan: unknown linkage", ["plan", "sixbar"], 2),
     ("plan: no linkage", ["plan"], 2),

@@ -275,7 +275,7 @@ def with_pin_play(linkage: Linkage, joints: Sequence[str]) -> Linkage:
     of the joint to the second, ``-`` the other way, so that every loop sees the same play.  Zero play
     gives back the linkage's equations.  Pins only, each joining two links; ``ValueError`` otherwise.
     """
-    from .bodies import GROUND, REVOLUTE, mechanism
+    from .bodies import GROUND, PRISMATIC, REVOLUTE, mechanism
     found = mechanism(linkage)
     body_of = {vector: body.name for body in found.bodies for vector in body.vectors}
     pins = {}
@@ -290,34 +290,36 @@ def with_pin_play(linkage: Linkage, joints: Sequence[str]) -> Linkage:
         x, y = (sp.Symbol(n, real=True) for n in _play_names(name))
         play[name] = (Vector(x, 0, f"{_play_names(name)[0]}"), Vector(y, sp.pi / 2, f"{_play_names(name)[1]}"))
 
-    def body(vector: Vector) -> str:
-        if vector.name not in body_of:
-            raise ValueError(f"{linkage.name}: vector {vector.name or vector} is on no link (a slider's travel?); "
-                             "pin play needs every vector of a loop on a link")
-        return body_of[vector.name]
+    travels = {joint.name: joint for joint in found.joints if joint.kind == PRISMATIC}
 
-    def walked(terms: tuple[tuple[int, Vector], ...], bodies: list[str]) -> VectorSum:
+    def ends(sign: int, vector: Vector) -> tuple[str, str]:
+        """The links a term is walked from and to: one link for a vector on it; guide to block for a slider's
+        travel (its tail on the guide, its head on the block), block to guide walked backwards."""
+        if vector.name in travels:
+            guide, block = travels[vector.name].bodies
+            return (guide, block) if sign > 0 else (block, guide)
+        if vector.name not in body_of:
+            raise ValueError(f"{linkage.name}: vector {vector.name or vector} is on no link; pin play needs every "
+                             "vector of a loop on a link or a slider's travel")
+        return body_of[vector.name], body_of[vector.name]
+
+    def walked(terms: tuple[tuple[int, Vector], ...], before: str | None) -> VectorSum:
+        """``terms`` with the play of every chosen pin they pass; ``before``: the link the walk starts on
+        (the ground for a point's sum from the origin), ``None`` for a loop (it starts where it ends)."""
+        links = [ends(sign, vector) for sign, vector in terms]
+        passes = [(links[k - 1][1] if k else (before if before is not None else links[-1][1]), links[k][0])
+                  for k in range(len(links))]
         total = VectorSum(terms)
-        for k in range(len(bodies) - 1):
-            joint = pins.get(frozenset((bodies[k], bodies[k + 1])))
-            if joint is not None and bodies[k] != bodies[k + 1]:
-                sign = 1 if joint.bodies[0] == bodies[k] else -1
+        for leaving, entering in passes:
+            joint = pins.get(frozenset((leaving, entering)))
+            if joint is not None and leaving != entering:
                 x, y = play[joint.name]
-                total = total + (x + y if sign > 0 else -(x + y))
+                total = total + (x + y if joint.bodies[0] == leaving else -(x + y))
         return total
 
-    loops = []
-    for loop in linkage.loops:
-        terms = loop.vectors.terms
-        sequence = [body(v) for _, v in terms]
-        loops.append(Loop(walked(terms, sequence + sequence[:1]), loop.name))
-    points: dict[str, Vector | VectorSum | None] = {}
-    for name, point in linkage.points.items():
-        if point is None:
-            points[name] = None
-            continue
-        terms = point.as_sum().terms
-        points[name] = walked(terms, [GROUND] + [body(v) for _, v in terms])
+    loops = [Loop(walked(loop.vectors.terms, None), loop.name) for loop in linkage.loops]
+    points: dict[str, Vector | VectorSum | None] = {
+        name: None if point is None else walked(point.as_sum().terms, GROUND) for name, point in linkage.points.items()}
     return Linkage(f"{linkage.name}_play", loops, linkage.inputs, linkage.unknowns, points=points,
                    roles=linkage.roles, extras=linkage.extras)
 
@@ -340,10 +342,12 @@ class PinPlay:
 
     @property
     def worst_case(self) -> numpy.ndarray:
+        """``sum_j play_j |g_j|``: the largest first-order deviation over every play direction (outputs, inputs)."""
         return numpy.einsum("ijk,j->ik", numpy.hypot(self.gradient[:, :, 0], self.gradient[:, :, 1]), self.play)
 
     @property
     def direction(self) -> numpy.ndarray:
+        """The direction (radians) of each pin's play that raises each output most (outputs, pins, inputs)."""
         return numpy.arctan2(self.gradient[:, :, 1], self.gradient[:, :, 0])
 
 
@@ -357,7 +361,7 @@ def pin_play(linkage: Linkage, outputs: str | Sequence[str], nominal: Mapping[st
     all directions is ``|g_j| play_j``, so the worst case is ``sum_j |g_j| play_j``, the plays pointing
     along their gradients (``direction``).  The gradients are exact sensitivities at zero play.  Assumes
     the links rigid, the play small beside the links, and every pin free to sit anywhere in its hole (no
-    load that keeps it on one side).
+    load that keeps it on one side).  Sliders are taken without play.
 
     >>> from symlink.catalog import fourbar
     >>> result = pin_play(fourbar(), "rocker", {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1},

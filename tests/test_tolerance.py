@@ -339,3 +339,15 @@ def test_command_samples_builds_beside_the_linear_bands(capsys):
     cells = row.split(",")
     rss, low, high = float(cells[3]), float(cells[6]), float(cells[7])
     assert -low == pytest.approx(rss, rel=0.04) and high == pytest.approx(rss, rel=0.04)
+
+
+def test_pin_play_of_a_slider_crank_by_hand():
+    """At theta = 0 the slider sits at s = B_x + sqrt(b^2 - (e - B_y)^2) (offset e): play moving the crank pin
+    B (at A or at B) or the block's pin C moves s by (1, (e - B_y) / sqrt(b^2 - (e - B_y)^2)) . delta."""
+    from symlink.tolerance import pin_play
+    a, b, e = 1.3, 4.1, 0.7
+    result = pin_play(slider_crank(), "slider", {"a": a, "b": b, "offset": e, "branch": 1},
+                      {"A": 0.01, "B": 0.02, "C": 0.03}, inputs={"theta": [0.0]})
+    slope = e / math.sqrt(b * b - e * e)
+    assert result.worst_case[0, 0] == pytest.approx(0.06 * math.hypot(1, slope), rel=1e-12)
+    numpy.testing.assert_allclose(numpy.abs(result.gradient[0, :, :, 0]), [[1, slope]] * 3, rtol=1e-12)

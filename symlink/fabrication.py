@@ -50,7 +50,7 @@ from xml.sax.saxutils import escape, quoteattr
 
 import numpy
 
-from .bodies import GROUND, PRISMATIC, REVOLUTE, mechanism
+from .bodies import PRISMATIC, REVOLUTE, mechanism
 from .files import write_atomic
 from .linkage import Linkage
 

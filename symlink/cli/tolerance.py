@@ -1,0 +1,163 @@
+"""``symlink tolerance``: the tolerance stack-up of an output along the input range, as a table.
+
+Each row: the input value, the output's nominal value, its worst-case and
+statistical (RSS, 3 sigma) deviations (±), the first-order mean shift, and the
+dimension that contributes most to its variance there (see :mod:`symlink.tolerance`).
+Angles (inputs, angular outputs and their deviations, angular tolerances) are
+in ``--units``; lengths in the linkage's own length unit.
+"""
+from __future__ import annotations
+
+import argparse
+from typing import Any
+
+import numpy
+
+from ..angles import from_radians, to_radians, wrap
+from .options import (FOURBAR_LENGTHS, add_branch_option, add_format_option, add_units_option, assignments,
+                      command_help, finite, fourbar_lengths, input_sweep, linkage_values, number_list, whole)
+from .output import RowWriter, note
+
+#: More input values than this make a stack-up a benchmark, not a table (each costs 1 + 2 x dimensions solves).
+MAX_POINTS = 100_000
+
+
+def register(commands) -> None:
+    """Register ``symlink tolerance``."""
+    commands.add_parser("tolerance", populate=_add_options, **command_help(
+        "tolerance stack-up of an output along the input range: worst case, RSS and the largest contributor",
+        "lengths and length tolerances in any one unit; angles and angular tolerances in --units (deg by default); "
+        "a ± band is read as 3 sigma unless --sigma gives one",
+        "symlink tolerance fourbar --crank 20 --coupler 66 --rocker 56 --ground 80 --tolerance 0.05 "
+        "--output rocker",
+        "With a catalog NAME or a linkage FILE, values from its defaults (--set to change); --tolerance applies to "
+        "every length, --tolerances NAME=BAND,... to chosen dimensions; --play B=0.02,C=0.02 adds the pins' play.\n"
+        "csv header: INPUT,OUTPUT,worst_case,rss,mean_shift,largest[,play][,sampled_low,sampled_high]"))
+
+
+def _add_options(command: argparse.ArgumentParser) -> None:
+    command.add_argument("linkage", nargs="?", metavar="NAME|FILE",
+                         help="a catalog linkage or a linkage file (default: the four-bar of the length options)")
+    for option, what in FOURBAR_LENGTHS:
+        command.add_argument(f"--{option}", type=finite, help=f"four-bar length {what} (with NAME fourbar, or none)")
+    command.add_argument("--set", type=assignments("NAME=VALUE"), default={}, metavar="NAME=VALUE,...",
+                         help="parameter values (fixed angles in --units)")
+    command.add_argument("--tolerance", type=finite, metavar="BAND", help="± band of every length")
+    command.add_argument("--tolerances", type=assignments("NAME=BAND"), default={}, metavar="NAME=BAND,...",
+                         help="± bands of chosen dimensions (angles in --units); these win over --tolerance")
+    command.add_argument("--sigma", type=assignments("NAME=SIGMA"), default={}, metavar="NAME=SIGMA,...",
+                         help="standard deviations of chosen dimensions (default: a third of the band)")
+    command.add_argument("--play", type=assignments("PIN=PLAY"), default={}, metavar="PIN=PLAY,...",
+                         help="radial play of chosen pins (hole radius less pin radius): adds the column "
+                              "'play', the linearised worst case over all play directions")
+    command.add_argument("--builds", type=whole, metavar="N",
+                         help="also sample N builds (Monte Carlo, seeded by --seed): adds the columns 'sampled_low' "
+                              "and 'sampled_high', the deviation's 0.135 and 99.865 percentiles (3 sigma)")
+    command.add_argument("--seed", type=whole, default=0, help="of the sampled builds (default 0)")
+    command.add_argument("--output", metavar="NAME", help="the output (default: the linkage's last unknown)")
+    command.add_argument("--start", type=finite, help="first input value (default 0)")
+    command.add_argument("--stop", type=finite, help="last input value, exclusive (default 360 deg)")
+    command.add_argument("--step", type=finite, help="input step (default 10 deg)")
+    command.add_argument("--angles", type=number_list, metavar="LIST", help="comma-separated input values")
+    add_branch_option(command, both=False, default="+1")
+    add_units_option(command, "input, printed and tolerance angles")
+    add_format_option(command)
+    command.set_defaults(run=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..closure import is_angle
+    from ..linkage_file import load_linkage
+    from ..tolerance import pin_play, sample_builds, stack_up
+    from ..units import output_units
+    lengths = fourbar_lengths(args)
+    given = [value is not None for value in lengths]
+    name = args.linkage if args.linkage is not None else "fourbar"
+    if args.linkage is None and not all(given):
+        raise ValueError("tolerance: give a catalog NAME (e.g. fourbar) or a linkage FILE, or all of --crank "
+                         "--coupler --rocker --ground")
+    found = load_linkage(name)
+    linkage = found.linkage
+    values = linkage_values(found, args.set, args.units)
+    if any(given):
+        if found.source != "catalog" or linkage.name != "fourbar":
+            raise ValueError("tolerance: --crank --coupler --rocker --ground belong to the four-bar; give the values "
+                             f"of {linkage.name} with --set NAME=VALUE,...")
+        values.update({k: v for k, v in zip("abcd", lengths) if v is not None})
+    if not linkage.has_closed_form:
+        raise ValueError(f"{linkage.name} has no closed form; take its stack-up from Python with stack_up(..., "
+                         "guess=...) (its assembly must be chosen)")
+    if not linkage.inputs:
+        raise ValueError(f"{linkage.name} has no input to sweep")
+    symbols = {s.name: s for s in linkage.parameters}
+    tolerances = _tolerances(args, symbols, linkage)
+    output = args.output or linkage.unknowns[-1].name
+    sweep = input_sweep(args)
+    if len(sweep) > MAX_POINTS:
+        raise ValueError(f"{len(sweep)} input values are too many for a stack-up (at most {MAX_POINTS}); give a "
+                         "larger --step")
+    first = linkage.inputs[0]
+    swept_angle = is_angle(linkage, first)
+    shown = sweep.array()
+    inputs: dict[str, Any] = {first.name: to_radians(shown, args.units) if swept_angle else shown}
+    for other in linkage.inputs[1:]:
+        if other.name not in values:
+            raise ValueError(f"{linkage.name} needs a value for its input {other.name} (--set {other.name}=VALUE)")
+        inputs[other.name] = numpy.full(len(shown), values[other.name])
+    values.update({branch.name: int(args.branch) for branch in linkage.branches})
+    result = stack_up(linkage, output, values, tolerances, inputs=inputs)
+    play = pin_play(linkage, output, values, args.play, inputs=inputs).worst_case[0] if args.play else None
+    sampled = None
+    if args.builds is not None:
+        if args.builds < 1:
+            raise ValueError(f"--builds must be at least 1, got {args.builds}")
+        sampled = sample_builds(linkage, output, values, tolerances, inputs=inputs, builds=args.builds,
+                                seed=args.seed).percentile([0.135, 99.865])[:, 0]
+    angular = output_units(linkage, [output]).get(output) == "rad"
+    convert = (lambda x: from_radians(x, args.units)) if angular else (lambda x: numpy.asarray(x))  # noqa: E731
+    nominal = convert(wrap(result.nominal[0]) if angular else result.nominal[0])
+    worst, rss, shift = convert(result.worst_case[0]), convert(result.rss[0]), convert(result.mean_shift[0])
+    largest = result.largest_contributor(output)
+    columns = ([first.name, output, "worst_case", "rss", "mean_shift", "largest"] + (["play"] if args.play else [])
+               + (["sampled_low", "sampled_high"] if sampled is not None else []))
+    plays = convert(play) if play is not None else numpy.zeros(len(shown))
+    lows, highs = (convert(sampled[0]), convert(sampled[1])) if sampled is not None else (plays, plays)
+    writer = RowWriter(columns, args.format)
+    writer.write({first.name: float(x), output: float(y), "worst_case": float(w), "rss": float(r),
+                  "mean_shift": float(m), "largest": big or "-", "play": float(p), "sampled_low": float(lo),
+                  "sampled_high": float(hi)}
+                 for x, y, w, r, m, big, p, lo, hi in zip(shown, nominal, worst, rss, shift, largest, plays, lows,
+                                                          highs))
+    writer.close()
+    unit = args.units if angular else "length units"
+    ranking = ", ".join(f"{dim} {float(convert(dev)):.4g}" for dim, dev in result.ranking(output))
+    note(f"largest 1-sigma deviation of {output} each dimension causes on the range ({unit}): {ranking}")
+    return 0
+
+
+def _tolerances(args: argparse.Namespace, symbols: dict, linkage: Any) -> dict[str, Any]:
+    """The dimensions' tolerances from ``--tolerance``, ``--tolerances`` and ``--sigma`` (angles to radians)."""
+    from ..closure import is_angle
+    from ..tolerance import Tolerance
+    for option, given in (("--tolerances", args.tolerances), ("--sigma", args.sigma)):
+        for name in given:
+            if name not in symbols:
+                raise ValueError(f"{option}: {linkage.name} has no dimension {name!r}; it has {', '.join(symbols)}")
+
+    def plain(name: str, value: float) -> float:
+        return float(to_radians(value, args.units)) if is_angle(linkage, symbols[name]) else value
+
+    bands: dict[str, float] = {}
+    if args.tolerance is not None:
+        bands.update({name: args.tolerance for name, s in symbols.items() if not is_angle(linkage, s)})
+    bands.update({name: plain(name, value) for name, value in args.tolerances.items()})
+    sigmas = {name: plain(name, value) for name, value in args.sigma.items()}
+    if not bands and not sigmas:
+        raise ValueError("tolerance: give --tolerance BAND, --tolerances NAME=BAND,... or --sigma NAME=SIGMA,...")
+    tolerances = {}
+    for name in [*bands, *(s for s in sigmas if s not in bands)]:
+        try:
+            tolerances[name] = Tolerance(bands.get(name), sigmas.get(name))
+        except ValueError as error:
+            raise ValueError(f"tolerance of {name}: {error}") from None
+    return tolerances

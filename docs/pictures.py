@@ -1,4 +1,4 @@
-"""Render the README's pictures into docs/images/: ``python docs/pictures.py``.
+"""Render the documentation's pictures into docs/images/: ``python docs/pictures.py``.
 
 * ``angles_seed001.png``: coupler and rocker angle over a crank turn, both branches, for the
   data of the MBsymba worksheet "Kinematic Analysis of a Four Bar Linkage" (a1 = 0.1, a2 = 0.4,
@@ -55,20 +55,51 @@ ATLAS_GRID = 121
 
 def render(folder: Path = IMAGES) -> list[Path]:
     """Write every picture into ``folder``; returns their paths."""
-    paths = [Path(folder) / name for name in PICTURES]
-    save_figure(angle_figure(*SEED001, title="MBsymba four-bar worksheet: a1 = 0.1, a2 = 0.4, a3 = 0.25, "
-                                             "a4 = 0.30 m"), paths[0])
-    save_figure(transmission_figure(*SEED002, title="Quick-return paper: L1 = 70, L2 = 16.084, "
-                                                    "L3 = 69.743, L4 = 50 mm"), paths[1])
-    save_figure(coupler_curve_figure(*SEED001, *COUPLER_POINT, branches=(1, -1), crank_angle=math.radians(60),
-                                     unit="m"), paths[2])
-    animate(*SEED001, paths[3], coupler_point=COUPLER_POINT, size_px=(400, 300), fps=10)
-    leg = jansen()
-    save_figure(draw_linkage(leg, EXAMPLE_VALUES["jansen"], trace=("H",),
-                             title="Theo Jansen's leg (holy numbers) and the path of its foot H").figure, paths[4])
-    animate_linkage(leg, EXAMPLE_VALUES["jansen"], paths[5], frames=30, trace=("H",), size_px=(360, 360), fps=10)
-    save_figure(atlas_figure(), paths[6])
+    paths = []
+    for name in PICTURES:
+        path = Path(folder) / name
+        DRAWERS[name](path)
+        paths.append(path)
     return paths
+
+
+def angles_seed001(path: Path) -> None:
+    """Coupler and rocker angle over a crank turn, both branches (the MBsymba worksheet's four-bar)."""
+    save_figure(angle_figure(*SEED001, title="MBsymba four-bar worksheet: a1 = 0.1, a2 = 0.4, a3 = 0.25, "
+                                             "a4 = 0.30 m"), path)
+
+
+def transmission_seed002(path: Path) -> None:
+    """The transmission angle over a turn of the quick-return paper's linkage, as its Fig. 9."""
+    save_figure(transmission_figure(*SEED002, title="Quick-return paper: L1 = 70, L2 = 16.084, "
+                                                    "L3 = 69.743, L4 = 50 mm"), path)
+
+
+def coupler_curve(path: Path) -> None:
+    """The curves of a coupler point of the worksheet's four-bar, both branches."""
+    save_figure(coupler_curve_figure(*SEED001, *COUPLER_POINT, branches=(1, -1), crank_angle=math.radians(60),
+                                     unit="m"), path)
+
+
+def fourbar_gif(path: Path) -> None:
+    """The worksheet's four-bar over a turn in 30 frames, with its coupler point."""
+    animate(*SEED001, path, coupler_point=COUPLER_POINT, size_px=(400, 300), fps=10)
+
+
+def jansen_png(path: Path) -> None:
+    """Theo Jansen's leg (his holy numbers) and the path of its foot H."""
+    save_figure(draw_linkage(jansen(), EXAMPLE_VALUES["jansen"], trace=("H",),
+                             title="Theo Jansen's leg (holy numbers) and the path of its foot H").figure, path)
+
+
+def jansen_gif(path: Path) -> None:
+    """Theo Jansen's leg walking, 30 frames."""
+    animate_linkage(jansen(), EXAMPLE_VALUES["jansen"], path, frames=30, trace=("H",), size_px=(360, 360), fps=10)
+
+
+def design_atlas(path: Path) -> None:
+    """The four-bar's design atlas (:func:`atlas_figure`)."""
+    save_figure(atlas_figure(), path)
 
 
 def atlas_figure():
@@ -122,6 +153,11 @@ def atlas_figure():
                     "turns fully (bottom)")
     return figure
 
+
+#: The function that draws each picture, by file name.
+DRAWERS = {"angles_seed001.png": angles_seed001, "transmission_seed002.png": transmission_seed002,
+           "coupler_curve.png": coupler_curve, "fourbar.gif": fourbar_gif, "jansen.png": jansen_png,
+           "jansen.gif": jansen_gif, "design_atlas.png": design_atlas}
 
 if __name__ == "__main__":
     for path in render():

@@ -12,8 +12,10 @@ BLOCK = 16384
 
 
 def _arguments(check, names, values, lengths=(), signs=()):
-    """The arguments as float arrays and their broadcast shape; with ``check``, ``ValueError`` naming a bad one.
+    """The arguments as float64 arrays and their broadcast shape; with ``check``, ``ValueError`` naming a bad one.
 
+    Every dtype is computed in float64 (float16, float32, ints and bools are
+    converted; float64 arrays are used as they are, without a copy).
     Checked, one vectorised test an argument: real numbers only (a complex
     value is refused rather than cut to its real part), shapes that broadcast
     together, branch signs exactly +1 or -1, lengths positive and finite
@@ -31,11 +33,11 @@ def _arguments(check, names, values, lengths=(), signs=()):
             continue
         array = numpy.asarray(value)
         kind = array.dtype.kind
-        if kind != "f":
+        if array.dtype != numpy.float64:  # float64 arrays as they are (no copy); all else computed in float64
             try:
-                if kind not in "biuO":
+                if kind not in "fbiuO":
                     raise TypeError
-                array = array.astype(float)  # an object array of Python numbers; complex ones raise TypeError
+                array = array.astype(numpy.float64)  # float16/32, ints, bools, Python numbers; complex: TypeError
             except (TypeError, ValueError, OverflowError):
                 why = " (its imaginary part would be lost)" if kind == "c" else ""
                 raise ValueError(f"{name} must be real numbers, got {array.dtype} values{why}") from None
@@ -139,20 +141,6 @@ def _sin_atan2(y, r):
     return y / numpy.where(r != 0.0, r, 1.0)
 
 
-def _power_of_two(exponent):
-    """2.0**exponent for whole-number exponents (a loop's unit), bit for bit, without calling pow() a value.
-
-    A power of two in the normal range is its exponent's bits; an exponent outside it (NaN, infinite, a
-    power that overflows or is subnormal) leaves the whole array to ``2.0**exponent``, exact there too.
-    """
-    if numpy.ndim(exponent) == 0 or not ((exponent >= -1022.0) & (exponent <= 1023.0)).all():
-        return 2.0**exponent
-    bits = exponent.astype(numpy.int64)
-    bits += 1023
-    bits <<= 52
-    return bits.view(numpy.float64)
-
-
 def positions(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD=1, branch_ABFD=1, branch_DFGE=1, *, check=True):
     """Positions: upper_rocker (rad), upper_link (rad), lower_link (rad), lower_rocker (rad), leg (rad), tie (rad).
     
@@ -170,110 +158,108 @@ def positions(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD=
 
 def _positions_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE):
     """The outputs of positions and the assembled mask, for arguments that broadcast together."""
-    cse_0 = 1/(numpy.log(2.0))
-    cse_1 = (1/5)*a + (1/5)*l + (1/5)*m
-    cse_3 = numpy.cos(theta)
-    cse_4 = numpy.sin(theta)
-    size_1 = _power_of_two_below((1/5)*b + cse_1 + (1/5)*j)
-    cse_2 = 1/(size_1)
+    cse_0 = (1/5)*a + (1/5)*l + (1/5)*m
+    cse_2 = numpy.cos(theta)
+    cse_3 = numpy.sin(theta)
+    size_1 = _power_of_two_below((1/5)*b + cse_0 + (1/5)*j)
+    cse_1 = 1/(size_1)
     del size_1
-    rho_1_1 = a*cse_2
-    rho_2_1 = cse_2*l
-    rho_3_1 = cse_2*m
-    Wx_1 = cse_3*rho_3_1 + rho_1_1
-    Wy_1 = cse_4*rho_3_1 + rho_2_1
-    rho_4_1 = b*cse_2
-    rho_5_1 = cse_2*j
-    del cse_2
-    cse_5 = rho_4_1 + rho_5_1
-    cse_7 = rho_4_1 - rho_5_1
-    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
-    cse_6 = cse_5 + w_1
-    cse_8 = numpy.square(w_1)
-    cse_9 = cse_5*cse_7 + cse_8
-    cse_13 = cse_8 - cse_5*cse_7
-    del cse_8
-    Delta_1 = _clamped_sqrt(cse_6*(cse_5 - w_1)*(cse_7 + w_1)*(rho_5_1 - rho_4_1 + w_1), 8.0*rho_4_1*rho_5_1*w_1*(cse_6 + rho_1_1 + rho_2_1 + rho_3_1))
-    del cse_5, cse_6, cse_7, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
-    cse_10 = Delta_1*branch_ABCD
-    cse_11 = Wx_1*cse_10
-    cse_12 = Wy_1*cse_10
-    del cse_10
-    phi = numpy.arctan2(Wy_1*cse_9 + cse_11, Wx_1*cse_9 - cse_12)
-    del cse_9
-    cse_25 = alpha + phi
-    beta = numpy.arctan2(cse_11 - Wy_1*cse_13, -Wx_1*cse_13 - cse_12)
-    del Wx_1, Wy_1, cse_11, cse_12, cse_13
-    size_2 = _power_of_two_below((1/5)*c + cse_1 + (1/5)*k)
+    rho_1_1 = a*cse_1
+    rho_2_1 = cse_1*l
+    rho_3_1 = cse_1*m
+    Wx_1 = cse_2*rho_3_1 + rho_1_1
+    Wy_1 = cse_3*rho_3_1 + rho_2_1
+    rho_4_1 = b*cse_1
+    rho_5_1 = cse_1*j
     del cse_1
-    cse_14 = 1/(size_2)
+    cse_4 = rho_4_1 + rho_5_1
+    cse_6 = rho_4_1 - rho_5_1
+    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
+    cse_5 = cse_4 + w_1
+    cse_7 = numpy.square(w_1)
+    cse_8 = cse_4*cse_6 + cse_7
+    cse_12 = cse_7 - cse_4*cse_6
+    del cse_7
+    Delta_1 = _clamped_sqrt(cse_5*(cse_4 - w_1)*(cse_6 + w_1)*(rho_5_1 - rho_4_1 + w_1), 8.0*rho_4_1*rho_5_1*w_1*(cse_5 + rho_1_1 + rho_2_1 + rho_3_1))
+    del cse_4, cse_5, cse_6, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
+    cse_9 = Delta_1*branch_ABCD
+    cse_10 = Wx_1*cse_9
+    cse_11 = Wy_1*cse_9
+    del cse_9
+    phi = numpy.arctan2(Wy_1*cse_8 + cse_10, Wx_1*cse_8 - cse_11)
+    del cse_8
+    cse_24 = alpha + phi
+    beta = numpy.arctan2(cse_10 - Wy_1*cse_12, -Wx_1*cse_12 - cse_11)
+    del Wx_1, Wy_1, cse_10, cse_11, cse_12
+    size_2 = _power_of_two_below((1/5)*c + cse_0 + (1/5)*k)
+    del cse_0
+    cse_13 = 1/(size_2)
     del size_2
-    rho_1_2 = cse_14*m
-    rho_2_2 = cse_14*l
-    rho_3_2 = a*cse_14
-    Wx_2 = -cse_3*rho_1_2 - rho_3_2
+    rho_1_2 = cse_13*m
+    rho_2_2 = cse_13*l
+    rho_3_2 = a*cse_13
+    Wx_2 = -cse_2*rho_1_2 - rho_3_2
+    del cse_2
+    Wy_2 = -cse_3*rho_1_2 - rho_2_2
     del cse_3
-    Wy_2 = -cse_4*rho_1_2 - rho_2_2
-    del cse_4
-    rho_4_2 = cse_14*k
-    rho_5_2 = c*cse_14
-    del cse_14
-    cse_15 = rho_4_2 + rho_5_2
-    cse_17 = rho_4_2 - rho_5_2
+    rho_4_2 = cse_13*k
+    rho_5_2 = c*cse_13
+    del cse_13
+    cse_14 = rho_4_2 + rho_5_2
+    cse_16 = rho_4_2 - rho_5_2
     w_2 = _clamped_sqrt(numpy.square(Wx_2) + numpy.square(Wy_2), -2.2250738585072e-294)
-    cse_16 = cse_15 + w_2
-    cse_18 = numpy.square(w_2)
-    cse_19 = cse_15*cse_17 + cse_18
-    cse_23 = cse_18 - cse_15*cse_17
-    del cse_18
-    Delta_2 = _clamped_sqrt(cse_16*(cse_15 - w_2)*(cse_17 + w_2)*(rho_5_2 - rho_4_2 + w_2), 8.0*rho_4_2*rho_5_2*w_2*(cse_16 + rho_1_2 + rho_2_2 + rho_3_2))
-    del cse_15, cse_16, cse_17, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2
-    cse_20 = Delta_2*branch_ABFD
-    cse_21 = Wx_2*cse_20
-    psi_y = cse_21 - Wy_2*cse_23
-    cse_22 = Wy_2*cse_20
-    del cse_20
-    psi_x = -Wx_2*cse_23 - cse_22
-    del cse_23
+    cse_15 = cse_14 + w_2
+    cse_17 = numpy.square(w_2)
+    cse_18 = cse_14*cse_16 + cse_17
+    cse_22 = cse_17 - cse_14*cse_16
+    del cse_17
+    Delta_2 = _clamped_sqrt(cse_15*(cse_14 - w_2)*(cse_16 + w_2)*(rho_5_2 - rho_4_2 + w_2), 8.0*rho_4_2*rho_5_2*w_2*(cse_15 + rho_1_2 + rho_2_2 + rho_3_2))
+    del cse_14, cse_15, cse_16, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2
+    cse_19 = Delta_2*branch_ABFD
+    cse_20 = Wx_2*cse_19
+    psi_y = cse_20 - Wy_2*cse_22
+    cse_21 = Wy_2*cse_19
+    del cse_19
+    psi_x = -Wx_2*cse_22 - cse_21
+    del cse_22
     psi_r = numpy.sqrt(numpy.square(psi_x) + numpy.square(psi_y))
     sin_psi = _sin_atan2(psi_y, psi_r)
     cos_psi = _cos_atan2(psi_x, psi_r)
     del psi_r
-    mu = numpy.arctan2(Wy_2*cse_19 + cse_21, Wx_2*cse_19 - cse_22)
-    del Wx_2, Wy_2, cse_19, cse_21, cse_22
+    mu = numpy.arctan2(Wy_2*cse_18 + cse_20, Wx_2*cse_18 - cse_21)
+    del Wx_2, Wy_2, cse_18, cse_20, cse_21
     psi = numpy.arctan2(psi_y, psi_x)
     del psi_x, psi_y
     size_3 = _power_of_two_below((1/4)*c + (1/4)*d + (1/4)*f + (1/4)*g)
-    del cse_0
-    cse_24 = 1/(size_3)
+    cse_23 = 1/(size_3)
     del size_3
-    rho_1_3 = c*cse_24
-    rho_2_3 = cse_24*d
-    Wx_3 = rho_2_3*numpy.cos(cse_25) - cos_psi*rho_1_3
+    rho_1_3 = c*cse_23
+    rho_2_3 = cse_23*d
+    Wx_3 = rho_2_3*numpy.cos(cse_24) - cos_psi*rho_1_3
     del cos_psi
-    Wy_3 = rho_2_3*numpy.sin(cse_25) - rho_1_3*sin_psi
-    del cse_25, sin_psi
-    rho_3_3 = cse_24*g
-    rho_4_3 = cse_24*f
-    del cse_24
-    cse_26 = rho_3_3 + rho_4_3
-    cse_28 = rho_3_3 - rho_4_3
+    Wy_3 = rho_2_3*numpy.sin(cse_24) - rho_1_3*sin_psi
+    del cse_24, sin_psi
+    rho_3_3 = cse_23*g
+    rho_4_3 = cse_23*f
+    del cse_23
+    cse_25 = rho_3_3 + rho_4_3
+    cse_27 = rho_3_3 - rho_4_3
     w_3 = _clamped_sqrt(numpy.square(Wx_3) + numpy.square(Wy_3), -2.2250738585072e-294)
-    cse_27 = cse_26 + w_3
-    cse_29 = numpy.square(w_3)
-    cse_30 = cse_26*cse_28 + cse_29
-    cse_34 = cse_29 - cse_26*cse_28
-    del cse_29
-    Delta_3 = _clamped_sqrt(cse_27*(cse_26 - w_3)*(cse_28 + w_3)*(rho_4_3 - rho_3_3 + w_3), 8.0*rho_3_3*rho_4_3*w_3*(cse_27 + rho_1_3 + rho_2_3))
-    del cse_26, cse_27, cse_28, rho_1_3, rho_2_3, rho_3_3, rho_4_3
-    cse_31 = Delta_3*branch_DFGE
-    cse_32 = Wx_3*cse_31
-    cse_33 = Wy_3*cse_31
-    del cse_31
-    eta = numpy.arctan2(Wy_3*cse_30 + cse_32, Wx_3*cse_30 - cse_33)
+    cse_26 = cse_25 + w_3
+    cse_28 = numpy.square(w_3)
+    cse_29 = cse_25*cse_27 + cse_28
+    cse_33 = cse_28 - cse_25*cse_27
+    del cse_28
+    Delta_3 = _clamped_sqrt(cse_26*(cse_25 - w_3)*(cse_27 + w_3)*(rho_4_3 - rho_3_3 + w_3), 8.0*rho_3_3*rho_4_3*w_3*(cse_26 + rho_1_3 + rho_2_3))
+    del cse_25, cse_26, cse_27, rho_1_3, rho_2_3, rho_3_3, rho_4_3
+    cse_30 = Delta_3*branch_DFGE
+    cse_31 = Wx_3*cse_30
+    cse_32 = Wy_3*cse_30
     del cse_30
-    kappa = numpy.arctan2(cse_32 - Wy_3*cse_34, -Wx_3*cse_34 - cse_33)
-    del Wx_3, Wy_3, cse_32, cse_33, cse_34
+    eta = numpy.arctan2(Wy_3*cse_29 + cse_31, Wx_3*cse_29 - cse_32)
+    del cse_29
+    kappa = numpy.arctan2(cse_31 - Wy_3*cse_33, -Wx_3*cse_33 - cse_32)
+    del Wx_3, Wy_3, cse_31, cse_32, cse_33
     return (
         phi,  # upper_rocker
         beta,  # upper_link
@@ -304,172 +290,170 @@ def _velocities_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, bran
     """The outputs of velocities and the assembled mask, for arguments that broadcast together."""
     sin_theta = numpy.sin(theta)
     cos_theta = numpy.cos(theta)
-    cse_0 = 1/(numpy.log(2.0))
-    cse_1 = (1/5)*a + (1/5)*l + (1/5)*m
-    cse_3 = cos_theta
-    cse_4 = sin_theta
-    cse_39 = 2.0*m*thetadot
-    size_1 = _power_of_two_below((1/5)*b + cse_1 + (1/5)*j)
-    cse_2 = 1/(size_1)
+    cse_0 = (1/5)*a + (1/5)*l + (1/5)*m
+    cse_2 = cos_theta
+    cse_3 = sin_theta
+    cse_38 = 2.0*m*thetadot
+    size_1 = _power_of_two_below((1/5)*b + cse_0 + (1/5)*j)
+    cse_1 = 1/(size_1)
     del size_1
-    rho_1_1 = a*cse_2
-    rho_2_1 = cse_2*l
-    rho_3_1 = cse_2*m
-    Wx_1 = cse_3*rho_3_1 + rho_1_1
-    Wy_1 = cse_4*rho_3_1 + rho_2_1
-    rho_4_1 = b*cse_2
-    rho_5_1 = cse_2*j
-    del cse_2
-    cse_5 = rho_4_1 + rho_5_1
-    cse_7 = rho_4_1 - rho_5_1
-    cse_8 = rho_4_1*rho_5_1
+    rho_1_1 = a*cse_1
+    rho_2_1 = cse_1*l
+    rho_3_1 = cse_1*m
+    Wx_1 = cse_2*rho_3_1 + rho_1_1
+    Wy_1 = cse_3*rho_3_1 + rho_2_1
+    rho_4_1 = b*cse_1
+    rho_5_1 = cse_1*j
+    del cse_1
+    cse_4 = rho_4_1 + rho_5_1
+    cse_6 = rho_4_1 - rho_5_1
+    cse_7 = rho_4_1*rho_5_1
     w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
-    cse_6 = cse_5 + w_1
-    cse_9 = numpy.square(w_1)
-    cse_10 = cse_5*cse_7 + cse_9
-    cse_14 = cse_9 - cse_5*cse_7
-    del cse_9
-    Delta_1 = _clamped_sqrt(cse_6*(cse_5 - w_1)*(cse_7 + w_1)*(rho_5_1 - rho_4_1 + w_1), 8.0*cse_8*w_1*(cse_6 + rho_1_1 + rho_2_1 + rho_3_1))
-    del cse_5, cse_6, cse_7, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
-    cse_11 = Delta_1*branch_ABCD
-    cse_12 = Wx_1*cse_11
-    beta_y = cse_12 - Wy_1*cse_14
-    phi_y = Wy_1*cse_10 + cse_12
-    del cse_12
-    cse_13 = Wy_1*cse_11
-    del Wy_1, cse_11
-    beta_x = -Wx_1*cse_14 - cse_13
-    del cse_14
+    cse_5 = cse_4 + w_1
+    cse_8 = numpy.square(w_1)
+    cse_9 = cse_4*cse_6 + cse_8
+    cse_13 = cse_8 - cse_4*cse_6
+    del cse_8
+    Delta_1 = _clamped_sqrt(cse_5*(cse_4 - w_1)*(cse_6 + w_1)*(rho_5_1 - rho_4_1 + w_1), 8.0*cse_7*w_1*(cse_5 + rho_1_1 + rho_2_1 + rho_3_1))
+    del cse_4, cse_5, cse_6, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
+    cse_10 = Delta_1*branch_ABCD
+    cse_11 = Wx_1*cse_10
+    beta_y = cse_11 - Wy_1*cse_13
+    phi_y = Wy_1*cse_9 + cse_11
+    del cse_11
+    cse_12 = Wy_1*cse_10
+    del Wy_1, cse_10
+    beta_x = -Wx_1*cse_13 - cse_12
+    del cse_13
     beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
     sin_beta = _sin_atan2(beta_y, beta_r)
     cos_beta = _cos_atan2(beta_x, beta_r)
     del beta_r
-    phi_x = Wx_1*cse_10 - cse_13
-    del Wx_1, cse_10, cse_13
+    phi_x = Wx_1*cse_9 - cse_12
+    del Wx_1, cse_12, cse_9
     phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
     sin_phi = _sin_atan2(phi_y, phi_r)
     cos_phi = _cos_atan2(phi_x, phi_r)
     del phi_r
-    cse_40 = cse_39*cse_8/(Delta_1*branch_ABCD)
-    del cse_8
+    cse_39 = cse_38*cse_7/(Delta_1*branch_ABCD)
+    del cse_7
     phi = numpy.arctan2(phi_y, phi_x)
     del phi_x, phi_y
-    cse_27 = alpha + phi
-    sin_cse_27 = numpy.sin(cse_27)
-    cos_cse_27 = numpy.cos(cse_27)
-    del cse_27
+    cse_26 = alpha + phi
+    sin_cse_26 = numpy.sin(cse_26)
+    cos_cse_26 = numpy.cos(cse_26)
+    del cse_26
     beta = numpy.arctan2(beta_y, beta_x)
     del beta_x, beta_y
-    size_2 = _power_of_two_below((1/5)*c + cse_1 + (1/5)*k)
-    del cse_1
-    cse_15 = 1/(size_2)
+    size_2 = _power_of_two_below((1/5)*c + cse_0 + (1/5)*k)
+    del cse_0
+    cse_14 = 1/(size_2)
     del size_2
-    rho_1_2 = cse_15*m
-    rho_2_2 = cse_15*l
-    rho_3_2 = a*cse_15
-    Wx_2 = -cse_3*rho_1_2 - rho_3_2
+    rho_1_2 = cse_14*m
+    rho_2_2 = cse_14*l
+    rho_3_2 = a*cse_14
+    Wx_2 = -cse_2*rho_1_2 - rho_3_2
+    del cse_2
+    Wy_2 = -cse_3*rho_1_2 - rho_2_2
     del cse_3
-    Wy_2 = -cse_4*rho_1_2 - rho_2_2
-    del cse_4
-    rho_4_2 = cse_15*k
-    rho_5_2 = c*cse_15
-    del cse_15
-    cse_16 = rho_4_2 + rho_5_2
-    cse_18 = rho_4_2 - rho_5_2
-    cse_19 = rho_4_2*rho_5_2
+    rho_4_2 = cse_14*k
+    rho_5_2 = c*cse_14
+    del cse_14
+    cse_15 = rho_4_2 + rho_5_2
+    cse_17 = rho_4_2 - rho_5_2
+    cse_18 = rho_4_2*rho_5_2
     w_2 = _clamped_sqrt(numpy.square(Wx_2) + numpy.square(Wy_2), -2.2250738585072e-294)
-    cse_17 = cse_16 + w_2
-    cse_20 = numpy.square(w_2)
-    cse_21 = cse_16*cse_18 + cse_20
-    cse_25 = cse_20 - cse_16*cse_18
-    del cse_20
-    Delta_2 = _clamped_sqrt(cse_17*(cse_16 - w_2)*(cse_18 + w_2)*(rho_5_2 - rho_4_2 + w_2), 8.0*cse_19*w_2*(cse_17 + rho_1_2 + rho_2_2 + rho_3_2))
-    del cse_16, cse_17, cse_18, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2
-    cse_22 = Delta_2*branch_ABFD
-    cse_23 = Wx_2*cse_22
-    psi_y = cse_23 - Wy_2*cse_25
-    mu_y = Wy_2*cse_21 + cse_23
-    del cse_23
-    cse_24 = Wy_2*cse_22
-    del Wy_2, cse_22
-    psi_x = -Wx_2*cse_25 - cse_24
-    del cse_25
+    cse_16 = cse_15 + w_2
+    cse_19 = numpy.square(w_2)
+    cse_20 = cse_15*cse_17 + cse_19
+    cse_24 = cse_19 - cse_15*cse_17
+    del cse_19
+    Delta_2 = _clamped_sqrt(cse_16*(cse_15 - w_2)*(cse_17 + w_2)*(rho_5_2 - rho_4_2 + w_2), 8.0*cse_18*w_2*(cse_16 + rho_1_2 + rho_2_2 + rho_3_2))
+    del cse_15, cse_16, cse_17, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2
+    cse_21 = Delta_2*branch_ABFD
+    cse_22 = Wx_2*cse_21
+    psi_y = cse_22 - Wy_2*cse_24
+    mu_y = Wy_2*cse_20 + cse_22
+    del cse_22
+    cse_23 = Wy_2*cse_21
+    del Wy_2, cse_21
+    psi_x = -Wx_2*cse_24 - cse_23
+    del cse_24
     psi_r = numpy.sqrt(numpy.square(psi_x) + numpy.square(psi_y))
     sin_psi = _sin_atan2(psi_y, psi_r)
     cos_psi = _cos_atan2(psi_x, psi_r)
     del psi_r
-    mu_x = Wx_2*cse_21 - cse_24
-    del Wx_2, cse_21, cse_24
+    mu_x = Wx_2*cse_20 - cse_23
+    del Wx_2, cse_20, cse_23
     mu_r = numpy.sqrt(numpy.square(mu_x) + numpy.square(mu_y))
     sin_mu = _sin_atan2(mu_y, mu_r)
     cos_mu = _cos_atan2(mu_x, mu_r)
     del mu_r
-    cse_41 = cse_19*cse_39/(Delta_2*branch_ABFD)
-    del cse_19, cse_39
+    cse_40 = cse_18*cse_38/(Delta_2*branch_ABFD)
+    del cse_18, cse_38
     mu = numpy.arctan2(mu_y, mu_x)
     del mu_x, mu_y
     psi = numpy.arctan2(psi_y, psi_x)
     del psi_x, psi_y
     size_3 = _power_of_two_below((1/4)*c + (1/4)*d + (1/4)*f + (1/4)*g)
-    del cse_0
-    cse_26 = 1/(size_3)
+    cse_25 = 1/(size_3)
     del size_3
-    rho_1_3 = c*cse_26
-    rho_2_3 = cse_26*d
-    Wx_3 = cos_cse_27*rho_2_3 - cos_psi*rho_1_3
-    Wy_3 = rho_2_3*sin_cse_27 - rho_1_3*sin_psi
-    rho_3_3 = cse_26*g
-    rho_4_3 = cse_26*f
-    del cse_26
-    cse_28 = rho_3_3 + rho_4_3
-    cse_30 = rho_3_3 - rho_4_3
-    cse_31 = rho_3_3*rho_4_3
+    rho_1_3 = c*cse_25
+    rho_2_3 = cse_25*d
+    Wx_3 = cos_cse_26*rho_2_3 - cos_psi*rho_1_3
+    Wy_3 = rho_2_3*sin_cse_26 - rho_1_3*sin_psi
+    rho_3_3 = cse_25*g
+    rho_4_3 = cse_25*f
+    del cse_25
+    cse_27 = rho_3_3 + rho_4_3
+    cse_29 = rho_3_3 - rho_4_3
+    cse_30 = rho_3_3*rho_4_3
     w_3 = _clamped_sqrt(numpy.square(Wx_3) + numpy.square(Wy_3), -2.2250738585072e-294)
-    cse_29 = cse_28 + w_3
-    cse_32 = numpy.square(w_3)
-    cse_33 = cse_28*cse_30 + cse_32
-    cse_37 = cse_32 - cse_28*cse_30
+    cse_28 = cse_27 + w_3
+    cse_31 = numpy.square(w_3)
+    cse_32 = cse_27*cse_29 + cse_31
+    cse_36 = cse_31 - cse_27*cse_29
+    del cse_31
+    Delta_3 = _clamped_sqrt(cse_28*(cse_27 - w_3)*(cse_29 + w_3)*(rho_4_3 - rho_3_3 + w_3), 8.0*cse_30*w_3*(cse_28 + rho_1_3 + rho_2_3))
+    del cse_27, cse_28, cse_29, rho_1_3, rho_2_3, rho_3_3, rho_4_3
+    cse_33 = Delta_3*branch_DFGE
+    cse_34 = Wx_3*cse_33
+    eta_y = Wy_3*cse_32 + cse_34
+    kappa_y = cse_34 - Wy_3*cse_36
+    del cse_34
+    cse_35 = Wy_3*cse_33
+    del Wy_3, cse_33
+    eta_x = Wx_3*cse_32 - cse_35
     del cse_32
-    Delta_3 = _clamped_sqrt(cse_29*(cse_28 - w_3)*(cse_30 + w_3)*(rho_4_3 - rho_3_3 + w_3), 8.0*cse_31*w_3*(cse_29 + rho_1_3 + rho_2_3))
-    del cse_28, cse_29, cse_30, rho_1_3, rho_2_3, rho_3_3, rho_4_3
-    cse_34 = Delta_3*branch_DFGE
-    cse_35 = Wx_3*cse_34
-    eta_y = Wy_3*cse_33 + cse_35
-    kappa_y = cse_35 - Wy_3*cse_37
-    del cse_35
-    cse_36 = Wy_3*cse_34
-    del Wy_3, cse_34
-    eta_x = Wx_3*cse_33 - cse_36
-    del cse_33
     eta_r = numpy.sqrt(numpy.square(eta_x) + numpy.square(eta_y))
     sin_eta = _sin_atan2(eta_y, eta_r)
     cos_eta = _cos_atan2(eta_x, eta_r)
     del eta_r
-    kappa_x = -Wx_3*cse_37 - cse_36
-    del Wx_3, cse_36, cse_37
+    kappa_x = -Wx_3*cse_36 - cse_35
+    del Wx_3, cse_35, cse_36
     kappa_r = numpy.sqrt(numpy.square(kappa_x) + numpy.square(kappa_y))
     sin_kappa = _sin_atan2(kappa_y, kappa_r)
     cos_kappa = _cos_atan2(kappa_x, kappa_r)
     del kappa_r
-    cse_45 = 2.0*cse_31/(Delta_3*branch_DFGE)
-    del cse_31
+    cse_44 = 2.0*cse_30/(Delta_3*branch_DFGE)
+    del cse_30
     eta = numpy.arctan2(eta_y, eta_x)
     del eta_x, eta_y
     kappa = numpy.arctan2(kappa_y, kappa_x)
     del kappa_x, kappa_y
-    phidot = cse_40*(cos_theta*sin_beta - cos_beta*sin_theta)/b
+    phidot = cse_39*(cos_theta*sin_beta - cos_beta*sin_theta)/b
     del cos_beta, sin_beta
-    cse_42 = d*phidot
-    betadot = cse_40*(cos_theta*sin_phi - cos_phi*sin_theta)/j
-    del cos_phi, cse_40, sin_phi
-    mudot = -cse_41*(cos_theta*sin_psi - cos_psi*sin_theta)/k
-    psidot = -cse_41*(cos_theta*sin_mu - cos_mu*sin_theta)/c
-    del cos_mu, cos_theta, cse_41, sin_mu, sin_theta
-    cse_44 = c*psidot
-    etadot = -cse_45*(cse_42*(cos_kappa*sin_cse_27 - cos_cse_27*sin_kappa) + cse_44*(cos_psi*sin_kappa - cos_kappa*sin_psi))/g
+    cse_41 = d*phidot
+    betadot = cse_39*(cos_theta*sin_phi - cos_phi*sin_theta)/j
+    del cos_phi, cse_39, sin_phi
+    mudot = -cse_40*(cos_theta*sin_psi - cos_psi*sin_theta)/k
+    psidot = -cse_40*(cos_theta*sin_mu - cos_mu*sin_theta)/c
+    del cos_mu, cos_theta, cse_40, sin_mu, sin_theta
+    cse_43 = c*psidot
+    etadot = -cse_44*(cse_41*(cos_kappa*sin_cse_26 - cos_cse_26*sin_kappa) + cse_43*(cos_psi*sin_kappa - cos_kappa*sin_psi))/g
     del cos_kappa, sin_kappa
-    kappadot = -cse_45*(cse_42*(cos_eta*sin_cse_27 - cos_cse_27*sin_eta) + cse_44*(cos_psi*sin_eta - cos_eta*sin_psi))/f
-    del cos_cse_27, cos_eta, cos_psi, cse_42, cse_44, cse_45, sin_cse_27, sin_eta, sin_psi
+    kappadot = -cse_44*(cse_41*(cos_eta*sin_cse_26 - cos_cse_26*sin_eta) + cse_43*(cos_psi*sin_eta - cos_eta*sin_psi))/f
+    del cos_cse_26, cos_eta, cos_psi, cse_41, cse_43, cse_44, sin_cse_26, sin_eta, sin_psi
     return (
         phi,  # upper_rocker
         beta,  # upper_link
@@ -506,215 +490,213 @@ def _accelerations_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, b
     """The outputs of accelerations and the assembled mask, for arguments that broadcast together."""
     sin_theta = numpy.sin(theta)
     cos_theta = numpy.cos(theta)
-    cse_0 = 1/(numpy.log(2.0))
-    cse_1 = (1/5)*a + (1/5)*l + (1/5)*m
-    cse_3 = cos_theta
-    cse_4 = sin_theta
-    cse_43 = m*thetadot
-    cse_70 = m*thetaddot
-    cse_74 = numpy.square(thetadot)
-    cse_78 = cse_74*m
-    size_1 = _power_of_two_below((1/5)*b + cse_1 + (1/5)*j)
-    cse_2 = 1/(size_1)
+    cse_0 = (1/5)*a + (1/5)*l + (1/5)*m
+    cse_2 = cos_theta
+    cse_3 = sin_theta
+    cse_42 = m*thetadot
+    cse_69 = m*thetaddot
+    cse_73 = numpy.square(thetadot)
+    cse_77 = cse_73*m
+    size_1 = _power_of_two_below((1/5)*b + cse_0 + (1/5)*j)
+    cse_1 = 1/(size_1)
     del size_1
-    rho_1_1 = a*cse_2
-    rho_2_1 = cse_2*l
-    rho_3_1 = cse_2*m
-    Wx_1 = cse_3*rho_3_1 + rho_1_1
-    Wy_1 = cse_4*rho_3_1 + rho_2_1
-    rho_4_1 = b*cse_2
-    rho_5_1 = cse_2*j
-    del cse_2
-    cse_5 = rho_4_1 + rho_5_1
-    cse_7 = rho_4_1 - rho_5_1
-    cse_8 = rho_4_1*rho_5_1
+    rho_1_1 = a*cse_1
+    rho_2_1 = cse_1*l
+    rho_3_1 = cse_1*m
+    Wx_1 = cse_2*rho_3_1 + rho_1_1
+    Wy_1 = cse_3*rho_3_1 + rho_2_1
+    rho_4_1 = b*cse_1
+    rho_5_1 = cse_1*j
+    del cse_1
+    cse_4 = rho_4_1 + rho_5_1
+    cse_6 = rho_4_1 - rho_5_1
+    cse_7 = rho_4_1*rho_5_1
     w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
-    cse_6 = cse_5 + w_1
-    cse_9 = numpy.square(w_1)
-    cse_10 = cse_5*cse_7 + cse_9
-    cse_14 = cse_9 - cse_5*cse_7
-    del cse_9
-    Delta_1 = _clamped_sqrt(cse_6*(cse_5 - w_1)*(cse_7 + w_1)*(rho_5_1 - rho_4_1 + w_1), 8.0*cse_8*w_1*(cse_6 + rho_1_1 + rho_2_1 + rho_3_1))
-    del cse_5, cse_6, cse_7, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
-    cse_11 = Delta_1*branch_ABCD
-    cse_12 = Wx_1*cse_11
-    beta_y = cse_12 - Wy_1*cse_14
-    phi_y = Wy_1*cse_10 + cse_12
-    del cse_12
-    cse_13 = Wy_1*cse_11
-    del Wy_1, cse_11
-    beta_x = -Wx_1*cse_14 - cse_13
-    del cse_14
+    cse_5 = cse_4 + w_1
+    cse_8 = numpy.square(w_1)
+    cse_9 = cse_4*cse_6 + cse_8
+    cse_13 = cse_8 - cse_4*cse_6
+    del cse_8
+    Delta_1 = _clamped_sqrt(cse_5*(cse_4 - w_1)*(cse_6 + w_1)*(rho_5_1 - rho_4_1 + w_1), 8.0*cse_7*w_1*(cse_5 + rho_1_1 + rho_2_1 + rho_3_1))
+    del cse_4, cse_5, cse_6, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
+    cse_10 = Delta_1*branch_ABCD
+    cse_11 = Wx_1*cse_10
+    beta_y = cse_11 - Wy_1*cse_13
+    phi_y = Wy_1*cse_9 + cse_11
+    del cse_11
+    cse_12 = Wy_1*cse_10
+    del Wy_1, cse_10
+    beta_x = -Wx_1*cse_13 - cse_12
+    del cse_13
     beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
     sin_beta = _sin_atan2(beta_y, beta_r)
     cos_beta = _cos_atan2(beta_x, beta_r)
     del beta_r
-    phi_x = Wx_1*cse_10 - cse_13
-    del Wx_1, cse_10, cse_13
+    phi_x = Wx_1*cse_9 - cse_12
+    del Wx_1, cse_12, cse_9
     phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
     sin_phi = _sin_atan2(phi_y, phi_r)
     cos_phi = _cos_atan2(phi_x, phi_r)
     del phi_r
-    cse_41 = 2.0*cse_8/(Delta_1*branch_ABCD)
-    del cse_8
-    cse_42 = cse_41/b
-    cse_46 = cse_41/j
-    del cse_41
+    cse_40 = 2.0*cse_7/(Delta_1*branch_ABCD)
+    del cse_7
+    cse_41 = cse_40/b
+    cse_45 = cse_40/j
+    del cse_40
     phi = numpy.arctan2(phi_y, phi_x)
     del phi_x, phi_y
-    cse_27 = alpha + phi
-    sin_cse_27 = numpy.sin(cse_27)
-    cos_cse_27 = numpy.cos(cse_27)
-    del cse_27
-    cse_45 = cos_theta*sin_phi - cos_phi*sin_theta
+    cse_26 = alpha + phi
+    sin_cse_26 = numpy.sin(cse_26)
+    cos_cse_26 = numpy.cos(cse_26)
+    del cse_26
+    cse_44 = cos_theta*sin_phi - cos_phi*sin_theta
     beta = numpy.arctan2(beta_y, beta_x)
     del beta_x, beta_y
-    cse_40 = cos_theta*sin_beta - cos_beta*sin_theta
-    cse_71 = cos_beta*cos_phi + sin_beta*sin_phi
-    size_2 = _power_of_two_below((1/5)*c + cse_1 + (1/5)*k)
-    del cse_1
-    cse_15 = 1/(size_2)
+    cse_39 = cos_theta*sin_beta - cos_beta*sin_theta
+    cse_70 = cos_beta*cos_phi + sin_beta*sin_phi
+    size_2 = _power_of_two_below((1/5)*c + cse_0 + (1/5)*k)
+    del cse_0
+    cse_14 = 1/(size_2)
     del size_2
-    rho_1_2 = cse_15*m
-    rho_2_2 = cse_15*l
-    rho_3_2 = a*cse_15
-    Wx_2 = -cse_3*rho_1_2 - rho_3_2
+    rho_1_2 = cse_14*m
+    rho_2_2 = cse_14*l
+    rho_3_2 = a*cse_14
+    Wx_2 = -cse_2*rho_1_2 - rho_3_2
+    del cse_2
+    Wy_2 = -cse_3*rho_1_2 - rho_2_2
     del cse_3
-    Wy_2 = -cse_4*rho_1_2 - rho_2_2
-    del cse_4
-    rho_4_2 = cse_15*k
-    rho_5_2 = c*cse_15
-    del cse_15
-    cse_16 = rho_4_2 + rho_5_2
-    cse_18 = rho_4_2 - rho_5_2
-    cse_19 = rho_4_2*rho_5_2
+    rho_4_2 = cse_14*k
+    rho_5_2 = c*cse_14
+    del cse_14
+    cse_15 = rho_4_2 + rho_5_2
+    cse_17 = rho_4_2 - rho_5_2
+    cse_18 = rho_4_2*rho_5_2
     w_2 = _clamped_sqrt(numpy.square(Wx_2) + numpy.square(Wy_2), -2.2250738585072e-294)
-    cse_17 = cse_16 + w_2
-    cse_20 = numpy.square(w_2)
-    cse_21 = cse_16*cse_18 + cse_20
-    cse_25 = cse_20 - cse_16*cse_18
-    del cse_20
-    Delta_2 = _clamped_sqrt(cse_17*(cse_16 - w_2)*(cse_18 + w_2)*(rho_5_2 - rho_4_2 + w_2), 8.0*cse_19*w_2*(cse_17 + rho_1_2 + rho_2_2 + rho_3_2))
-    del cse_16, cse_17, cse_18, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2
-    cse_22 = Delta_2*branch_ABFD
-    cse_23 = Wx_2*cse_22
-    psi_y = cse_23 - Wy_2*cse_25
-    mu_y = Wy_2*cse_21 + cse_23
-    del cse_23
-    cse_24 = Wy_2*cse_22
-    del Wy_2, cse_22
-    psi_x = -Wx_2*cse_25 - cse_24
-    del cse_25
+    cse_16 = cse_15 + w_2
+    cse_19 = numpy.square(w_2)
+    cse_20 = cse_15*cse_17 + cse_19
+    cse_24 = cse_19 - cse_15*cse_17
+    del cse_19
+    Delta_2 = _clamped_sqrt(cse_16*(cse_15 - w_2)*(cse_17 + w_2)*(rho_5_2 - rho_4_2 + w_2), 8.0*cse_18*w_2*(cse_16 + rho_1_2 + rho_2_2 + rho_3_2))
+    del cse_15, cse_16, cse_17, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2
+    cse_21 = Delta_2*branch_ABFD
+    cse_22 = Wx_2*cse_21
+    psi_y = cse_22 - Wy_2*cse_24
+    mu_y = Wy_2*cse_20 + cse_22
+    del cse_22
+    cse_23 = Wy_2*cse_21
+    del Wy_2, cse_21
+    psi_x = -Wx_2*cse_24 - cse_23
+    del cse_24
     psi_r = numpy.sqrt(numpy.square(psi_x) + numpy.square(psi_y))
     sin_psi = _sin_atan2(psi_y, psi_r)
     cos_psi = _cos_atan2(psi_x, psi_r)
     del psi_r
-    mu_x = Wx_2*cse_21 - cse_24
-    del Wx_2, cse_21, cse_24
+    mu_x = Wx_2*cse_20 - cse_23
+    del Wx_2, cse_20, cse_23
     mu_r = numpy.sqrt(numpy.square(mu_x) + numpy.square(mu_y))
     sin_mu = _sin_atan2(mu_y, mu_r)
     cos_mu = _cos_atan2(mu_x, mu_r)
     del mu_r
-    cse_49 = 2.0*cse_19/(Delta_2*branch_ABFD)
-    del cse_19
-    cse_50 = cse_49/k
-    cse_53 = cse_49/c
-    del cse_49
+    cse_48 = 2.0*cse_18/(Delta_2*branch_ABFD)
+    del cse_18
+    cse_49 = cse_48/k
+    cse_52 = cse_48/c
+    del cse_48
     mu = numpy.arctan2(mu_y, mu_x)
     del mu_x, mu_y
-    cse_52 = cos_theta*sin_mu - cos_mu*sin_theta
+    cse_51 = cos_theta*sin_mu - cos_mu*sin_theta
     psi = numpy.arctan2(psi_y, psi_x)
     del psi_x, psi_y
-    cse_48 = cos_theta*sin_psi - cos_psi*sin_theta
-    cse_76 = cos_mu*cos_psi + sin_mu*sin_psi
+    cse_47 = cos_theta*sin_psi - cos_psi*sin_theta
+    cse_75 = cos_mu*cos_psi + sin_mu*sin_psi
     size_3 = _power_of_two_below((1/4)*c + (1/4)*d + (1/4)*f + (1/4)*g)
-    del cse_0
-    cse_26 = 1/(size_3)
+    cse_25 = 1/(size_3)
     del size_3
-    rho_1_3 = c*cse_26
-    rho_2_3 = cse_26*d
-    Wx_3 = cos_cse_27*rho_2_3 - cos_psi*rho_1_3
-    Wy_3 = rho_2_3*sin_cse_27 - rho_1_3*sin_psi
-    rho_3_3 = cse_26*g
-    rho_4_3 = cse_26*f
-    del cse_26
-    cse_28 = rho_3_3 + rho_4_3
-    cse_30 = rho_3_3 - rho_4_3
-    cse_31 = rho_3_3*rho_4_3
+    rho_1_3 = c*cse_25
+    rho_2_3 = cse_25*d
+    Wx_3 = cos_cse_26*rho_2_3 - cos_psi*rho_1_3
+    Wy_3 = rho_2_3*sin_cse_26 - rho_1_3*sin_psi
+    rho_3_3 = cse_25*g
+    rho_4_3 = cse_25*f
+    del cse_25
+    cse_27 = rho_3_3 + rho_4_3
+    cse_29 = rho_3_3 - rho_4_3
+    cse_30 = rho_3_3*rho_4_3
     w_3 = _clamped_sqrt(numpy.square(Wx_3) + numpy.square(Wy_3), -2.2250738585072e-294)
-    cse_29 = cse_28 + w_3
-    cse_32 = numpy.square(w_3)
-    cse_33 = cse_28*cse_30 + cse_32
-    cse_37 = cse_32 - cse_28*cse_30
-    del cse_32
-    Delta_3 = _clamped_sqrt(cse_29*(cse_28 - w_3)*(cse_30 + w_3)*(rho_4_3 - rho_3_3 + w_3), 8.0*cse_31*w_3*(cse_29 + rho_1_3 + rho_2_3))
-    del cse_28, cse_29, cse_30, rho_1_3, rho_2_3, rho_3_3, rho_4_3
-    cse_34 = Delta_3*branch_DFGE
-    cse_35 = Wx_3*cse_34
-    kappa_y = cse_35 - Wy_3*cse_37
-    eta_y = Wy_3*cse_33 + cse_35
-    del cse_35
-    cse_36 = Wy_3*cse_34
-    del Wy_3, cse_34
-    kappa_x = -Wx_3*cse_37 - cse_36
-    del cse_37
+    cse_28 = cse_27 + w_3
+    cse_31 = numpy.square(w_3)
+    cse_32 = cse_27*cse_29 + cse_31
+    cse_36 = cse_31 - cse_27*cse_29
+    del cse_31
+    Delta_3 = _clamped_sqrt(cse_28*(cse_27 - w_3)*(cse_29 + w_3)*(rho_4_3 - rho_3_3 + w_3), 8.0*cse_30*w_3*(cse_28 + rho_1_3 + rho_2_3))
+    del cse_27, cse_28, cse_29, rho_1_3, rho_2_3, rho_3_3, rho_4_3
+    cse_33 = Delta_3*branch_DFGE
+    cse_34 = Wx_3*cse_33
+    kappa_y = cse_34 - Wy_3*cse_36
+    eta_y = Wy_3*cse_32 + cse_34
+    del cse_34
+    cse_35 = Wy_3*cse_33
+    del Wy_3, cse_33
+    kappa_x = -Wx_3*cse_36 - cse_35
+    del cse_36
     kappa_r = numpy.sqrt(numpy.square(kappa_x) + numpy.square(kappa_y))
     sin_kappa = _sin_atan2(kappa_y, kappa_r)
     cos_kappa = _cos_atan2(kappa_x, kappa_r)
     del kappa_r
-    eta_x = Wx_3*cse_33 - cse_36
-    del Wx_3, cse_33, cse_36
+    eta_x = Wx_3*cse_32 - cse_35
+    del Wx_3, cse_32, cse_35
     eta_r = numpy.sqrt(numpy.square(eta_x) + numpy.square(eta_y))
     sin_eta = _sin_atan2(eta_y, eta_r)
     cos_eta = _cos_atan2(eta_x, eta_r)
     del eta_r
-    cse_62 = 2.0*cse_31/(Delta_3*branch_DFGE)
-    del cse_31
-    cse_63 = cse_62/g
-    cse_68 = cse_62/f
-    del cse_62
+    cse_61 = 2.0*cse_30/(Delta_3*branch_DFGE)
+    del cse_30
+    cse_62 = cse_61/g
+    cse_67 = cse_61/f
+    del cse_61
     eta = numpy.arctan2(eta_y, eta_x)
     del eta_x, eta_y
-    cse_65 = cos_eta*sin_cse_27 - cos_cse_27*sin_eta
-    cse_67 = cos_psi*sin_eta - cos_eta*sin_psi
+    cse_64 = cos_eta*sin_cse_26 - cos_cse_26*sin_eta
+    cse_66 = cos_psi*sin_eta - cos_eta*sin_psi
     kappa = numpy.arctan2(kappa_y, kappa_x)
     del kappa_x, kappa_y
-    cse_56 = cos_kappa*sin_cse_27 - cos_cse_27*sin_kappa
-    cse_60 = cos_psi*sin_kappa - cos_kappa*sin_psi
-    cse_83 = cos_eta*cos_kappa + sin_eta*sin_kappa
-    phidot = cse_40*cse_42*cse_43
-    cse_57 = d*phidot
-    cse_72 = numpy.square(phidot)
-    cse_73 = b*cse_72
-    cse_82 = cse_72*d
-    del cse_72
-    betadot = cse_43*cse_45*cse_46
-    cse_69 = numpy.square(betadot)
-    mudot = -cse_43*cse_48*cse_50
-    cse_77 = k*numpy.square(mudot)
-    psidot = -cse_43*cse_52*cse_53
-    del cse_43
-    cse_61 = c*psidot
-    cse_75 = c*numpy.square(psidot)
-    etadot = -cse_63*(cse_56*cse_57 + cse_60*cse_61)
-    cse_84 = numpy.square(etadot)*g
-    kappadot = -cse_68*(cse_57*cse_65 + cse_61*cse_67)
-    del cse_57, cse_61
-    cse_79 = f*numpy.square(kappadot)
-    phiddot = -cse_42*(cse_69*j - cse_40*cse_70 - cse_71*cse_73 + cse_74*m*(cos_beta*cos_theta + sin_beta*sin_theta))
-    del cos_beta, cse_40, cse_42, sin_beta
-    cse_80 = d*phiddot
-    betaddot = -cse_46*(cse_69*cse_71*j - cse_45*cse_70 - cse_73 + cse_74*m*(cos_phi*cos_theta + sin_phi*sin_theta))
-    del cos_phi, cse_45, cse_46, cse_69, cse_71, cse_73, cse_74, sin_phi
-    muddot = -cse_50*(cse_48*cse_70 + cse_75 - cse_76*cse_77 - cse_78*(cos_psi*cos_theta + sin_psi*sin_theta))
-    del cse_48, cse_50
-    psiddot = -cse_53*(cse_52*cse_70 + cse_75*cse_76 - cse_77 - cse_78*(cos_mu*cos_theta + sin_mu*sin_theta))
-    del cos_mu, cos_theta, cse_52, cse_53, cse_70, cse_76, cse_77, cse_78, sin_mu, sin_theta
-    cse_81 = c*psiddot
-    etaddot = -cse_63*(cse_56*cse_80 + cse_60*cse_81 - cse_75*(cos_kappa*cos_psi + sin_kappa*sin_psi) + cse_79 + cse_82*(cos_cse_27*cos_kappa + sin_cse_27*sin_kappa) - cse_83*cse_84)
-    del cos_kappa, cse_56, cse_60, cse_63, sin_kappa
-    kappaddot = -cse_68*(cse_65*cse_80 + cse_67*cse_81 - cse_75*(cos_eta*cos_psi + sin_eta*sin_psi) + cse_79*cse_83 + cse_82*(cos_cse_27*cos_eta + sin_cse_27*sin_eta) - cse_84)
-    del cos_cse_27, cos_eta, cos_psi, cse_65, cse_67, cse_68, cse_75, cse_79, cse_80, cse_81, cse_82, cse_83, cse_84, sin_cse_27, sin_eta, sin_psi
+    cse_55 = cos_kappa*sin_cse_26 - cos_cse_26*sin_kappa
+    cse_59 = cos_psi*sin_kappa - cos_kappa*sin_psi
+    cse_82 = cos_eta*cos_kappa + sin_eta*sin_kappa
+    phidot = cse_39*cse_41*cse_42
+    cse_56 = d*phidot
+    cse_71 = numpy.square(phidot)
+    cse_72 = b*cse_71
+    cse_81 = cse_71*d
+    del cse_71
+    betadot = cse_42*cse_44*cse_45
+    cse_68 = numpy.square(betadot)
+    mudot = -cse_42*cse_47*cse_49
+    cse_76 = k*numpy.square(mudot)
+    psidot = -cse_42*cse_51*cse_52
+    del cse_42
+    cse_60 = c*psidot
+    cse_74 = c*numpy.square(psidot)
+    etadot = -cse_62*(cse_55*cse_56 + cse_59*cse_60)
+    cse_83 = numpy.square(etadot)*g
+    kappadot = -cse_67*(cse_56*cse_64 + cse_60*cse_66)
+    del cse_56, cse_60
+    cse_78 = f*numpy.square(kappadot)
+    phiddot = -cse_41*(cse_68*j - cse_39*cse_69 - cse_70*cse_72 + cse_73*m*(cos_beta*cos_theta + sin_beta*sin_theta))
+    del cos_beta, cse_39, cse_41, sin_beta
+    cse_79 = d*phiddot
+    betaddot = -cse_45*(cse_68*cse_70*j - cse_44*cse_69 - cse_72 + cse_73*m*(cos_phi*cos_theta + sin_phi*sin_theta))
+    del cos_phi, cse_44, cse_45, cse_68, cse_70, cse_72, cse_73, sin_phi
+    muddot = -cse_49*(cse_47*cse_69 + cse_74 - cse_75*cse_76 - cse_77*(cos_psi*cos_theta + sin_psi*sin_theta))
+    del cse_47, cse_49
+    psiddot = -cse_52*(cse_51*cse_69 + cse_74*cse_75 - cse_76 - cse_77*(cos_mu*cos_theta + sin_mu*sin_theta))
+    del cos_mu, cos_theta, cse_51, cse_52, cse_69, cse_75, cse_76, cse_77, sin_mu, sin_theta
+    cse_80 = c*psiddot
+    etaddot = -cse_62*(cse_55*cse_79 + cse_59*cse_80 - cse_74*(cos_kappa*cos_psi + sin_kappa*sin_psi) + cse_78 + cse_81*(cos_cse_26*cos_kappa + sin_cse_26*sin_kappa) - cse_82*cse_83)
+    del cos_kappa, cse_55, cse_59, cse_62, sin_kappa
+    kappaddot = -cse_67*(cse_64*cse_79 + cse_66*cse_80 - cse_74*(cos_eta*cos_psi + sin_eta*sin_psi) + cse_78*cse_82 + cse_81*(cos_cse_26*cos_eta + sin_cse_26*sin_eta) - cse_83)
+    del cos_cse_26, cos_eta, cos_psi, cse_64, cse_66, cse_67, cse_74, cse_78, cse_79, cse_80, cse_81, cse_82, cse_83, sin_cse_26, sin_eta, sin_psi
     return (
         phi,  # upper_rocker
         beta,  # upper_link
@@ -755,121 +737,119 @@ def joints(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD=1, 
 
 def _joints_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_ABCD, branch_ABFD, branch_DFGE):
     """The outputs of joints and the assembled mask, for arguments that broadcast together."""
-    cse_0 = 1/(numpy.log(2.0))
-    cse_1 = (1/5)*a + (1/5)*l + (1/5)*m
-    cse_3 = numpy.cos(theta)
-    cse_4 = numpy.sin(theta)
-    cse_27 = -l
-    size_1 = _power_of_two_below((1/5)*b + cse_1 + (1/5)*j)
-    cse_2 = 1/(size_1)
+    cse_0 = (1/5)*a + (1/5)*l + (1/5)*m
+    cse_2 = numpy.cos(theta)
+    cse_3 = numpy.sin(theta)
+    cse_26 = -l
+    size_1 = _power_of_two_below((1/5)*b + cse_0 + (1/5)*j)
+    cse_1 = 1/(size_1)
     del size_1
-    rho_1_1 = a*cse_2
-    rho_2_1 = cse_2*l
-    rho_3_1 = cse_2*m
-    Wx_1 = cse_3*rho_3_1 + rho_1_1
-    Wy_1 = cse_4*rho_3_1 + rho_2_1
-    rho_4_1 = b*cse_2
-    rho_5_1 = cse_2*j
-    del cse_2
-    cse_5 = rho_4_1 + rho_5_1
-    cse_7 = rho_4_1 - rho_5_1
+    rho_1_1 = a*cse_1
+    rho_2_1 = cse_1*l
+    rho_3_1 = cse_1*m
+    Wx_1 = cse_2*rho_3_1 + rho_1_1
+    Wy_1 = cse_3*rho_3_1 + rho_2_1
+    rho_4_1 = b*cse_1
+    rho_5_1 = cse_1*j
+    del cse_1
+    cse_4 = rho_4_1 + rho_5_1
+    cse_6 = rho_4_1 - rho_5_1
     w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
-    cse_6 = cse_5 + w_1
-    cse_8 = cse_5*cse_7 + numpy.square(w_1)
-    Delta_1 = _clamped_sqrt(cse_6*(cse_5 - w_1)*(cse_7 + w_1)*(rho_5_1 - rho_4_1 + w_1), 8.0*rho_4_1*rho_5_1*w_1*(cse_6 + rho_1_1 + rho_2_1 + rho_3_1))
-    del cse_5, cse_6, cse_7, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
-    cse_9 = Delta_1*branch_ABCD
-    phi_y = Wx_1*cse_9 + Wy_1*cse_8
-    phi_x = Wx_1*cse_8 - Wy_1*cse_9
-    del Wx_1, Wy_1, cse_8, cse_9
+    cse_5 = cse_4 + w_1
+    cse_7 = cse_4*cse_6 + numpy.square(w_1)
+    Delta_1 = _clamped_sqrt(cse_5*(cse_4 - w_1)*(cse_6 + w_1)*(rho_5_1 - rho_4_1 + w_1), 8.0*rho_4_1*rho_5_1*w_1*(cse_5 + rho_1_1 + rho_2_1 + rho_3_1))
+    del cse_4, cse_5, cse_6, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
+    cse_8 = Delta_1*branch_ABCD
+    phi_y = Wx_1*cse_8 + Wy_1*cse_7
+    phi_x = Wx_1*cse_7 - Wy_1*cse_8
+    del Wx_1, Wy_1, cse_7, cse_8
     phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
     sin_phi = _sin_atan2(phi_y, phi_r)
     cos_phi = _cos_atan2(phi_x, phi_r)
     del phi_r
     phi = numpy.arctan2(phi_y, phi_x)
     del phi_x, phi_y
-    cse_18 = alpha + phi
+    cse_17 = alpha + phi
     del phi
-    cse_19 = numpy.cos(cse_18)
-    cse_21 = numpy.sin(cse_18)
-    del cse_18
-    size_2 = _power_of_two_below((1/5)*c + cse_1 + (1/5)*k)
-    del cse_1
-    cse_10 = 1/(size_2)
+    cse_18 = numpy.cos(cse_17)
+    cse_20 = numpy.sin(cse_17)
+    del cse_17
+    size_2 = _power_of_two_below((1/5)*c + cse_0 + (1/5)*k)
+    del cse_0
+    cse_9 = 1/(size_2)
     del size_2
-    rho_1_2 = cse_10*m
-    rho_2_2 = cse_10*l
-    rho_3_2 = a*cse_10
-    Wx_2 = -cse_3*rho_1_2 - rho_3_2
-    Wy_2 = -cse_4*rho_1_2 - rho_2_2
-    rho_4_2 = cse_10*k
-    rho_5_2 = c*cse_10
-    del cse_10
-    cse_11 = rho_4_2 + rho_5_2
-    cse_13 = rho_4_2 - rho_5_2
+    rho_1_2 = cse_9*m
+    rho_2_2 = cse_9*l
+    rho_3_2 = a*cse_9
+    Wx_2 = -cse_2*rho_1_2 - rho_3_2
+    Wy_2 = -cse_3*rho_1_2 - rho_2_2
+    rho_4_2 = cse_9*k
+    rho_5_2 = c*cse_9
+    del cse_9
+    cse_10 = rho_4_2 + rho_5_2
+    cse_12 = rho_4_2 - rho_5_2
     w_2 = _clamped_sqrt(numpy.square(Wx_2) + numpy.square(Wy_2), -2.2250738585072e-294)
-    cse_12 = cse_11 + w_2
-    cse_14 = numpy.square(w_2) - cse_11*cse_13
-    Delta_2 = _clamped_sqrt(cse_12*(cse_11 - w_2)*(cse_13 + w_2)*(rho_5_2 - rho_4_2 + w_2), 8.0*rho_4_2*rho_5_2*w_2*(cse_12 + rho_1_2 + rho_2_2 + rho_3_2))
-    del cse_11, cse_12, cse_13, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2
-    cse_15 = Delta_2*branch_ABFD
-    psi_y = Wx_2*cse_15 - Wy_2*cse_14
-    psi_x = -Wx_2*cse_14 - Wy_2*cse_15
-    del Wx_2, Wy_2, cse_14, cse_15
+    cse_11 = cse_10 + w_2
+    cse_13 = numpy.square(w_2) - cse_10*cse_12
+    Delta_2 = _clamped_sqrt(cse_11*(cse_10 - w_2)*(cse_12 + w_2)*(rho_5_2 - rho_4_2 + w_2), 8.0*rho_4_2*rho_5_2*w_2*(cse_11 + rho_1_2 + rho_2_2 + rho_3_2))
+    del cse_10, cse_11, cse_12, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2
+    cse_14 = Delta_2*branch_ABFD
+    psi_y = Wx_2*cse_14 - Wy_2*cse_13
+    psi_x = -Wx_2*cse_13 - Wy_2*cse_14
+    del Wx_2, Wy_2, cse_13, cse_14
     psi_r = numpy.sqrt(numpy.square(psi_x) + numpy.square(psi_y))
     sin_psi = _sin_atan2(psi_y, psi_r)
     del psi_y
     cos_psi = _cos_atan2(psi_x, psi_r)
     del psi_r, psi_x
-    cse_17 = cos_psi
+    cse_16 = cos_psi
     del cos_psi
-    cse_20 = sin_psi
+    cse_19 = sin_psi
     del sin_psi
-    cse_28 = c*cse_20 + cse_27
-    cse_29 = c*cse_17 - a
+    cse_27 = c*cse_19 + cse_26
+    cse_28 = c*cse_16 - a
     size_3 = _power_of_two_below((1/4)*c + (1/4)*d + (1/4)*f + (1/4)*g)
-    del cse_0
-    cse_16 = 1/(size_3)
+    cse_15 = 1/(size_3)
     del size_3
-    rho_1_3 = c*cse_16
-    rho_2_3 = cse_16*d
-    Wx_3 = cse_19*rho_2_3 - cse_17*rho_1_3
-    Wy_3 = cse_21*rho_2_3 - cse_20*rho_1_3
-    del cse_20
-    rho_3_3 = cse_16*g
-    rho_4_3 = cse_16*f
-    del cse_16
-    cse_22 = rho_3_3 + rho_4_3
-    cse_24 = rho_3_3 - rho_4_3
+    rho_1_3 = c*cse_15
+    rho_2_3 = cse_15*d
+    Wx_3 = cse_18*rho_2_3 - cse_16*rho_1_3
+    Wy_3 = cse_20*rho_2_3 - cse_19*rho_1_3
+    del cse_19
+    rho_3_3 = cse_15*g
+    rho_4_3 = cse_15*f
+    del cse_15
+    cse_21 = rho_3_3 + rho_4_3
+    cse_23 = rho_3_3 - rho_4_3
     w_3 = _clamped_sqrt(numpy.square(Wx_3) + numpy.square(Wy_3), -2.2250738585072e-294)
-    cse_23 = cse_22 + w_3
-    cse_25 = cse_22*cse_24 + numpy.square(w_3)
-    Delta_3 = _clamped_sqrt(cse_23*(cse_22 - w_3)*(cse_24 + w_3)*(rho_4_3 - rho_3_3 + w_3), 8.0*rho_3_3*rho_4_3*w_3*(cse_23 + rho_1_3 + rho_2_3))
-    del cse_22, cse_23, cse_24, rho_1_3, rho_2_3, rho_3_3, rho_4_3
-    cse_26 = Delta_3*branch_DFGE
-    eta_y = Wx_3*cse_26 + Wy_3*cse_25
-    eta_x = Wx_3*cse_25 - Wy_3*cse_26
-    del Wx_3, Wy_3, cse_25, cse_26
+    cse_22 = cse_21 + w_3
+    cse_24 = cse_21*cse_23 + numpy.square(w_3)
+    Delta_3 = _clamped_sqrt(cse_22*(cse_21 - w_3)*(cse_23 + w_3)*(rho_4_3 - rho_3_3 + w_3), 8.0*rho_3_3*rho_4_3*w_3*(cse_22 + rho_1_3 + rho_2_3))
+    del cse_21, cse_22, cse_23, rho_1_3, rho_2_3, rho_3_3, rho_4_3
+    cse_25 = Delta_3*branch_DFGE
+    eta_y = Wx_3*cse_25 + Wy_3*cse_24
+    eta_x = Wx_3*cse_24 - Wy_3*cse_25
+    del Wx_3, Wy_3, cse_24, cse_25
     eta_r = numpy.sqrt(numpy.square(eta_x) + numpy.square(eta_y))
     sin_eta = _sin_atan2(eta_y, eta_r)
     cos_eta = _cos_atan2(eta_x, eta_r)
     del eta_r
     eta = numpy.arctan2(eta_y, eta_x)
     del eta_x, eta_y
-    cse_30 = eta + gamma
+    cse_29 = eta + gamma
     del eta
     return (
-        cse_3*m,  # B_x
-        cse_4*m,  # B_y
+        cse_2*m,  # B_x
+        cse_3*m,  # B_y
         b*cos_phi - a,  # C_x
-        b*sin_phi + cse_27,  # C_y
-        cse_19*d - a,  # E_x
-        cse_21*d + cse_27,  # E_y
-        c*cse_17 - a,  # F_x
-        cse_28,  # F_y
-        cos_eta*g + cse_29,  # G_x
-        cse_28 + g*sin_eta,  # G_y
-        cse_29 + i*numpy.cos(cse_30),  # H_x
-        cse_28 + i*numpy.sin(cse_30),  # H_y
+        b*sin_phi + cse_26,  # C_y
+        cse_18*d - a,  # E_x
+        cse_20*d + cse_26,  # E_y
+        c*cse_16 - a,  # F_x
+        cse_27,  # F_y
+        cos_eta*g + cse_28,  # G_x
+        cse_27 + g*sin_eta,  # G_y
+        cse_28 + i*numpy.cos(cse_29),  # H_x
+        cse_27 + i*numpy.sin(cse_29),  # H_y
         numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2) & numpy.isfinite(w_3) & numpy.isfinite(Delta_3),  # assembled
     )

@@ -12,8 +12,10 @@ BLOCK = 16384
 
 
 def _arguments(check, names, values, lengths=(), signs=()):
-    """The arguments as float arrays and their broadcast shape; with ``check``, ``ValueError`` naming a bad one.
+    """The arguments as float64 arrays and their broadcast shape; with ``check``, ``ValueError`` naming a bad one.
 
+    Every dtype is computed in float64 (float16, float32, ints and bools are
+    converted; float64 arrays are used as they are, without a copy).
     Checked, one vectorised test an argument: real numbers only (a complex
     value is refused rather than cut to its real part), shapes that broadcast
     together, branch signs exactly +1 or -1, lengths positive and finite
@@ -31,11 +33,11 @@ def _arguments(check, names, values, lengths=(), signs=()):
             continue
         array = numpy.asarray(value)
         kind = array.dtype.kind
-        if kind != "f":
+        if array.dtype != numpy.float64:  # float64 arrays as they are (no copy); all else computed in float64
             try:
-                if kind not in "biuO":
+                if kind not in "fbiuO":
                     raise TypeError
-                array = array.astype(float)  # an object array of Python numbers; complex ones raise TypeError
+                array = array.astype(numpy.float64)  # float16/32, ints, bools, Python numbers; complex: TypeError
             except (TypeError, ValueError, OverflowError):
                 why = " (its imaginary part would be lost)" if kind == "c" else ""
                 raise ValueError(f"{name} must be real numbers, got {array.dtype} values{why}") from None
@@ -137,20 +139,6 @@ def _cos_atan2(x, r):
 def _sin_atan2(y, r):
     """sin(atan2(y, x)) from r = sqrt(x*x + y*y): y/r, and the signed zero y where x = y = 0."""
     return y / numpy.where(r != 0.0, r, 1.0)
-
-
-def _power_of_two(exponent):
-    """2.0**exponent for whole-number exponents (a loop's unit), bit for bit, without calling pow() a value.
-
-    A power of two in the normal range is its exponent's bits; an exponent outside it (NaN, infinite, a
-    power that overflows or is subnormal) leaves the whole array to ``2.0**exponent``, exact there too.
-    """
-    if numpy.ndim(exponent) == 0 or not ((exponent >= -1022.0) & (exponent <= 1023.0)).all():
-        return 2.0**exponent
-    bits = exponent.astype(numpy.int64)
-    bits += 1023
-    bits <<= 52
-    return bits.view(numpy.float64)
 
 
 def positions(theta, a, b, offset, branch=1, *, check=True):

@@ -54,6 +54,7 @@ slider, so j2 counts only the gear pairs and cams given as ``higher_pairs``.
 """
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass
 from typing import Mapping, Sequence
 
@@ -63,7 +64,7 @@ from .display import record_html
 from .linkage import Linkage
 from .vectors import Vector, VectorSum
 
-__all__ = ["Body", "Joint", "Mechanism", "mechanism", "REVOLUTE", "PRISMATIC", "GROUND"]
+__all__ = ["Body", "Joint", "Mechanism", "mechanism", "same_point", "REVOLUTE", "PRISMATIC", "GROUND"]
 
 REVOLUTE = "revolute"
 PRISMATIC = "prismatic"
@@ -306,7 +307,12 @@ def mechanism(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | None = Non
 
 
 def _segments(linkage: Linkage) -> tuple[_Nodes, list[Vector]]:
-    """Every vector once (points' vectors first, then the loops'), and which of their ends are one node."""
+    """Every vector once (points' vectors first, then the loops'), and which of their ends are one node.
+
+    A run of fixed vectors in a loop is walked in the order that the points (and the loops before)
+    chain them, whatever order the loop writes them in (:func:`_fixed_runs_in_walking_order`).
+    """
+    coordinates = set(linkage.coordinates)
     nodes = _Nodes()
     vectors: list[Vector] = []
     chains: list[tuple[tuple[tuple[int, Vector], ...], bool]] = [
@@ -316,11 +322,54 @@ def _segments(linkage: Linkage) -> tuple[_Nodes, list[Vector]]:
         for _, vector in terms:
             if vector not in vectors:
                 vectors.append(vector)
+        if closed:
+            terms = _fixed_runs_in_walking_order(terms, nodes, coordinates)
         for before, after in zip(terms, terms[1:] + (terms[:1] if closed else ())):
             nodes.join(_end(*before), _start(*after))
         if not closed:
             nodes.join(_ORIGIN, _start(*terms[0]))
     return nodes, vectors
+
+
+#: Longest run of fixed vectors whose walking order is searched (its orders are tried one by one).
+_LONGEST_RUN = 6
+
+
+def _fixed(vector: Vector, coordinates: set[sp.Symbol]) -> bool:
+    return not ((vector.length.free_symbols | vector.angle.free_symbols) & coordinates)
+
+
+def _fixed_runs_in_walking_order(terms: tuple[tuple[int, Vector], ...], nodes: _Nodes,
+                                 coordinates: set[sp.Symbol]) -> tuple[tuple[int, Vector], ...]:
+    """A loop's terms with each run of consecutive fixed vectors in the order the chains known so far walk them.
+
+    Fixed vectors add up to one offset whatever their order, so a loop may subtract a point's sum
+    whole (``OP = OPx + OPy`` and the loop ``OM + MQ - PQ - OP``, whose terms ``- OPx - OPy`` walk
+    from P through the wrong corner): of the orders of a run, the one whose corners the points
+    already join most is walked (the written one on a tie, or where nothing joins them).
+    """
+    moving = [k for k, (_, vector) in enumerate(terms) if not _fixed(vector, coordinates)]
+    if not moving:
+        return terms
+    count = len(terms)
+    rotated = terms[moving[0]:] + terms[:moving[0]]  # starts with a moving term: no run wraps around
+    result: list[tuple[int, Vector]] = []
+    run: list[tuple[int, Vector]] = []
+    for term in rotated + ((0, None),):  # a sentinel closes the last run
+        if term[1] is not None and _fixed(term[1], coordinates):
+            run.append(term)
+            continue
+        if 1 < len(run) <= _LONGEST_RUN:
+            orders = [list(order) for order in itertools.permutations(run)]
+            corners = [sum(nodes.find(_end(*before)) == nodes.find(_start(*after))
+                           for before, after in zip(order, order[1:])) for order in orders]
+            run = orders[corners.index(max(corners))]  # the first of the best: the written order on a tie
+        result += run
+        run = []
+        if term[1] is not None:
+            result.append(term)
+    start = count - moving[0]  # rotate back, so that the loop starts where it was written to
+    return tuple(result[start:] + result[:start])
 
 
 def _bodies_of_vectors(linkage: Linkage, vectors: Sequence[Vector], travels: Sequence[Vector],
@@ -439,6 +488,24 @@ def _positions(linkage: Linkage, vectors: Sequence[Vector], nodes: _Nodes) -> di
 
 def _described(position: VectorSum) -> str:
     return str(position) if position.terms else "the origin"
+
+
+def same_point(linkage: Linkage, first: VectorSum, second: VectorSum) -> bool:
+    """Whether two sums of ``linkage``'s vectors reach one point in every pose: they differ by whole loops.
+
+    A pin may be written through either side of its loop (the slider-crank's C as ``AB + BC`` or
+    as the travel ``AC``); both are that pin.
+
+    >>> from symlink.catalog import fourbar
+    >>> four = fourbar()
+    >>> loop = four.loops[0].terms      # AD + DC - BC - AB
+    >>> AB, BC, AD, DC = (dict((v.name, v) for _, v in loop)[n] for n in ("AB", "BC", "AD", "DC"))
+    >>> same_point(four, AB + BC, AD + DC), same_point(four, AB + BC, AD.as_sum())
+    (True, False)
+    """
+    vectors = list(dict.fromkeys(v for chain in [first.terms, second.terms] + [loop.terms for loop in linkage.loops]
+                                 for _, v in chain))
+    return _coincide(linkage, vectors, first, second)
 
 
 def _coincide(linkage: Linkage, vectors: Sequence[Vector], first: VectorSum, second: VectorSum) -> bool:

@@ -38,6 +38,20 @@ def fourbar() -> Linkage:
     rocker c = DC at phi from pivot D at (d, 0):
     ``a e^{i theta} + b e^{i beta} = d + c e^{i phi}``.  Branch +1 puts C to
     the left of the line from B to D.
+
+    Returns
+    -------
+    Linkage
+        A new linkage each call (change it freely): inputs ``theta``, unknowns
+        ``beta, phi`` (roles crank, coupler, rocker), parameters ``a, b, c, d``; case 3: two angles.
+        Example values: ``EXAMPLE_VALUES["fourbar"]``.
+
+    Examples
+    --------
+    >>> from symlink.solver import Solver
+    >>> result = Solver(fourbar(), ["rocker"])(theta=0.0, a=20, b=66, c=56, d=80, branch=1)
+    >>> round(math.degrees(float(result["rocker"])), 2)  # seed 003 at theta = 0
+    110.74
     """
     theta, beta, phi = coordinates("theta beta phi")
     a, b, c, d = lengths("a b c d")
@@ -68,6 +82,15 @@ def slider_crank() -> Linkage:
     slider pin C at x = s on the line y = offset (any sign).  Branch +1 is the
     assembly with the larger s (the slider to the right of the crank pin).
 
+    Returns
+    -------
+    Linkage
+        A new linkage each call (change it freely): inputs ``theta``, unknowns
+        ``beta, s`` (roles crank, conrod, slider), parameters ``a, b, offset``; case 2b: a length and an angle of different vectors.
+        Example values: ``EXAMPLE_VALUES["slider-crank"]``.
+
+    Examples
+    --------
     >>> linkage = slider_crank()
     >>> [step.case.name for step in linkage.plan], linkage.parameters
     (['2b'], (a, b, offset))
@@ -103,6 +126,15 @@ def inverted_slider_crank() -> Linkage:
     rocker turns fully (Whitworth), with d > a it swings (crank-shaper).  One
     assembly (r >= 0); undefined where B passes over D.
 
+    Returns
+    -------
+    Linkage
+        A new linkage each call (change it freely): inputs ``theta``, unknowns
+        ``phi, r`` (roles crank, rocker, slider), parameters ``a, d``; case 2a: length and angle of one vector.
+        Example values: ``EXAMPLE_VALUES["inverted-slider-crank"]``.
+
+    Examples
+    --------
     >>> linkage = inverted_slider_crank()
     >>> [step.case.name for step in linkage.plan], linkage.branches
     (['2a'], ())
@@ -137,6 +169,15 @@ def offset_inverted_slider_crank() -> Linkage:
     vector of constant length and offset angle (case 2c).  Branch +1: the
     larger s (the guide a tangent from B to the circle of radius e about D).
 
+    Returns
+    -------
+    Linkage
+        A new linkage each call (change it freely): inputs ``theta``, unknowns
+        ``phi, s`` (roles crank, rocker, slider), parameters ``a, d, e``; case 2c: one angle turning two vectors, and a length.
+        Example values: ``EXAMPLE_VALUES["offset-inverted-slider-crank"]``.
+
+    Examples
+    --------
     >>> linkage = offset_inverted_slider_crank()
     >>> [step.case.name for step in linkage.plan], [b.name for b in linkage.branches]
     (['2c'], ['branch'])
@@ -176,6 +217,15 @@ def watt2() -> Linkage:
     each loop in turn has two unknowns: (beta, phi), then (mu, psi).  Branch
     signs as in the four-bar: C left of B->D, F left of E->G.
 
+    Returns
+    -------
+    Linkage
+        A new linkage each call (change it freely): inputs ``theta``, unknowns
+        ``beta, phi, mu, psi`` (roles crank, coupler, rocker, coupler2, output), parameters ``a, b, c, d, e, f, g, alpha, gx, gy``; two loops of case 3, in series.
+        Example values: ``EXAMPLE_VALUES["watt2"]``.
+
+    Examples
+    --------
     >>> [(step.loop.name, step.case.name) for step in watt2().plan]
     [('ABCD', '3'), ('DEFG', '3')]
     """
@@ -222,6 +272,15 @@ def stephenson3() -> Linkage:
     the linkage is solved numerically (:class:`symlink.solver.NumericSolver`); it has up to
     six assemblies, chosen by the initial guess.
 
+    Returns
+    -------
+    Linkage
+        A new linkage each call (change it freely): inputs ``theta``, unknowns
+        ``beta, mu, phi, eta`` (roles crank, coupler, rocker), parameters ``a, b, c, d, e, f, g, h, alpha, delta``; no closed form: solve it with :class:`~symlink.solver.NumericSolver`.
+        Example values: ``EXAMPLE_VALUES["stephenson3"]``.
+
+    Examples
+    --------
     >>> stephenson3().has_closed_form
     False
     """
@@ -261,6 +320,15 @@ def fivebar() -> Linkage:
     ``a e^{i theta} + b e^{i beta} = d + e e^{i psi} + c e^{i phi}``.  One
     loop with two unknowns (case 3); branch +1 puts C left of the line B->D.
 
+    Returns
+    -------
+    Linkage
+        A new linkage each call (change it freely): inputs ``theta, psi``, unknowns
+        ``beta, phi`` (roles crank, crank2, coupler, coupler2), parameters ``a, b, c, d, e``; case 3, with two inputs.
+        Example values: ``EXAMPLE_VALUES["fivebar"]``.
+
+    Examples
+    --------
     >>> linkage = fivebar()
     >>> linkage.inputs, [step.case.name for step in linkage.plan]
     ((theta, psi), ['3'])
@@ -292,6 +360,23 @@ def jansen_parameters(numbers: dict[str, float] | None = None) -> dict[str, floa
     angles opposite them (law of cosines): alpha at D between DC (b) and DE
     (d), gamma at F between FG (g) and FH (i).
 
+    Parameters
+    ----------
+    numbers : dict of str to float, optional
+        Jansen's 13 lengths by letter (``a`` to ``m``); default :data:`JANSEN_HOLY_NUMBERS`.
+
+    Returns
+    -------
+    dict of str to float
+        The values :func:`jansen` takes: the lengths less e and h, and alpha and gamma in radians.
+
+    Raises
+    ------
+    KeyError
+        A letter missing from ``numbers``.
+
+    Examples
+    --------
     >>> values = jansen_parameters()
     >>> round(math.degrees(values["alpha"]), 4), round(math.degrees(values["gamma"]), 4)
     (86.2683, 99.0963)
@@ -329,6 +414,15 @@ def jansen() -> Linkage:
 
     Every branch +1 is Jansen's leg (the foot below the crank).
 
+    Returns
+    -------
+    Linkage
+        A new linkage each call (change it freely): inputs ``theta``, unknowns
+        ``phi, beta, mu, psi, eta, kappa`` (roles upper_rocker, upper_link, lower_link, lower_rocker, leg, tie), parameters ``a, b, c, d, f, g, i, j, k, l, m, alpha, gamma``; three loops of case 3 (the holy numbers in :func:`jansen_parameters`).
+        Example values: ``EXAMPLE_VALUES["jansen"]``.
+
+    Examples
+    --------
     >>> linkage = jansen()
     >>> [(step.loop.name, step.case.name) for step in linkage.plan]
     [('ABCD', '3'), ('ABFD', '3'), ('DFGE', '3')]

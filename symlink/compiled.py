@@ -589,7 +589,7 @@ class CompiledSolver(Solver):
 
     def __init__(self, linkage: Linkage, outputs: Sequence[str]) -> None:
         self.linkage = linkage
-        self.outputs = list(outputs)
+        self.outputs = linkage.with_singular(outputs)  # a rate, force or sensitivity brings its flag
         if not self.outputs:
             raise ValueError(f"ask {linkage.name} for at least one output; it has {', '.join(linkage.output_names())}")
         facts = c_solver_source(linkage, self.outputs)

@@ -14,7 +14,10 @@ the converged closure Jacobian; they need an initial ``guess``.
 
 Where the linkage cannot be assembled ``assembled`` is False and the
 Jacobian's entries there are NaN, never a number (a derivative that is a
-constant, such as that of a placed point by its pivot, too).
+constant, such as that of a placed point by its pivot, too).  Where it is
+assembled at a toggle, ``singular`` is True: the derivatives by a parameter
+that closes a loop divide by the loop's determinant, zero there, and are
+inf or NaN (:meth:`DesignJacobian.arrays`, the hot loop, leaves the flag out).
 
 An optimiser's inner loop calls :meth:`DesignJacobian.arrays` instead: the
 generated arithmetic alone, on arguments known good, given in calling order
@@ -75,7 +78,8 @@ class DesignJacobian:
     branch signs; for a linkage without a closed form also ``guess``, the
     unknowns near the wanted assembly at the first input value, over a
     one-dimensional sweep).  It returns ``(values, jacobian)``: ``values``
-    maps each output (and ``assembled``) to its array; ``jacobian[..., i, j]``
+    maps each output (and ``assembled``, and ``singular`` where a derivative
+    divides by a loop's determinant) to its array; ``jacobian[..., i, j]``
     is d(outputs[i])/d(parameters[j]).  The generated code checks its arguments; in a hot loop whose
     arguments are known good, ``check=False`` skips that.
     """
@@ -92,8 +96,12 @@ class DesignJacobian:
         self._kernel: Callable[..., tuple] | None = None
         #: The generated function's argument names in calling order (what :meth:`arrays` takes).
         self.arguments: list[str]
+        #: Whether the generated code also returns ``singular`` (the sensitivities divide by a loop's determinant).
+        self._flagged = False
         if linkage.has_closed_form:
-            code = generated_code(linkage, self.outputs + self.names)
+            requested = linkage.with_singular(self.outputs + self.names)
+            self._flagged = len(requested) > len(self.outputs) + len(self.names)
+            code = generated_code(linkage, requested)
             self._function = code.function
             self.arguments = code.arguments
             self._kernel = code.function.__globals__[f"_{FUNCTION}_block"]
@@ -103,7 +111,8 @@ class DesignJacobian:
             self.arguments = numeric.arguments
 
     def __call__(self, **values: object) -> tuple[dict[str, numpy.ndarray], numpy.ndarray]:
-        found = self._function(**values)
+        with numpy.errstate(invalid="ignore", divide="ignore"):  # a toggle divides by zero: ``singular`` says so
+            found = self._function(**values)
         assembled = numpy.asarray(found["assembled"])
         shape = assembled.shape
         columns = [numpy.broadcast_to(found[name], shape) for name in self.names]
@@ -111,6 +120,8 @@ class DesignJacobian:
         if not numpy.all(assembled):  # constant derivatives too are no numbers where nothing is assembled
             jacobian = numpy.where(assembled[..., None, None], jacobian, numpy.nan)
         result = {name: numpy.broadcast_to(found[name], shape) for name in self.outputs}
+        if "singular" in found:
+            result["singular"] = numpy.broadcast_to(found["singular"], shape)
         result["assembled"] = assembled
         return result, jacobian
 
@@ -138,8 +149,9 @@ class DesignJacobian:
         results = self._kernel(*arguments)
         shape = (numpy.broadcast(*arguments).shape if len(arguments) <= 32  # numpy.broadcast takes at most 32
                  else numpy.broadcast_shapes(*(numpy.shape(argument) for argument in arguments)))
-        block = numpy.empty((len(results) - 1,) + shape)
-        for index, result in enumerate(results[:-1]):
+        numbers = results[:-2] if self._flagged else results[:-1]  # the flag is no derivative: left out here
+        block = numpy.empty((len(numbers),) + shape)
+        for index, result in enumerate(numbers):
             block[index] = result
         assembled = numpy.broadcast_to(results[-1], shape)
         if not assembled.all():

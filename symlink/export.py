@@ -89,9 +89,7 @@ def export_texts(linkage: Linkage | str, fmt: str, outputs: Sequence[str] | None
 def _build(linkage: Linkage, fmt: str, stem: str, sets, command: str, form: str = "atan2") -> dict[str, str]:
     doc = (CATALOG[linkage.name].__doc__ or "").strip().splitlines() if linkage.name in CATALOG else []
     title = f"{linkage.name}: {doc[0]}" if doc else f"{linkage.name} solver."
-    if form != "atan2":
-        return printer(fmt).export_files(linkage, stem, sets, title, command, form=form)
-    return printer(fmt).export_files(linkage, stem, sets, title, command)
+    return printer(fmt).export_files(linkage, stem, sets, title, command, form)
 
 
 def export(linkage: Linkage | str, fmt: str, folder: str | Path, outputs: Sequence[str] | None = None,

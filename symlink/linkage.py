@@ -111,6 +111,60 @@ class Linkage:
     ``points`` are named vector sums from the origin, ``roles`` give
     coordinates plain names (``{"rocker": phi}``) and ``extras`` are further
     named expressions of the coordinates.
+
+    Making a linkage checks it and solves nothing: its plan, closed forms and
+    rates (:attr:`plan`, :attr:`positions`, :attr:`velocities`,
+    :attr:`accelerations`) are derived on first use and kept.  In Jupyter it
+    displays as its closure equations and their solution.
+
+    Parameters
+    ----------
+    name : str
+        An identifier; it names the generated functions and files.
+    loops : sequence of Loop
+        The closure loops, each a signed sum of vectors that must vanish.
+    inputs : sequence of sympy.Symbol
+        The driven coordinates (from :func:`~symlink.vectors.coordinates`).
+    unknowns : sequence of sympy.Symbol
+        The coordinates the loops determine: two per loop.
+    parameters : sequence of sympy.Symbol, optional
+        The constants, in the order generated functions take them; default
+        every other symbol of the loops, sorted by name.
+    points : mapping of str to Vector, VectorSum or None, optional
+        Named points as vector sums from the origin (``None`` is the origin);
+        each gives the outputs ``<name>_x`` and ``<name>_y``.
+    roles : mapping of str to sympy.Symbol, optional
+        Plain names of coordinates: ``{"rocker": phi}`` gives the outputs
+        ``rocker``, ``rocker_speed`` and ``rocker_accel``.
+    extras : mapping of str to sympy.Expr, optional
+        Further named outputs, expressions of the coordinates and parameters.
+
+    Raises
+    ------
+    ValueError
+        A name that is not an identifier or is used twice (or is a reserved
+        word of a target language), a loop that is not a :class:`Loop`, an
+        input or unknown that is not a symbol or appears in no loop, or a
+        number of unknowns other than two per loop.
+
+    See Also
+    --------
+    symlink.catalog : ready-made linkages.
+    symlink.linkage_file.read_linkage : a linkage from a TOML file.
+    symlink.solver.Solver : numbers from a linkage.
+
+    Examples
+    --------
+    >>> from symlink import Loop, Vector, coordinates, lengths
+    >>> theta, beta, phi = coordinates("theta beta phi")
+    >>> a, b, c, d = lengths("a b c d")
+    >>> AB, BC, DC, AD = Vector(a, theta), Vector(b, beta), Vector(c, phi), Vector(d, 0)
+    >>> fourbar = Linkage("fourbar", [Loop(AD + DC - BC - AB)], inputs=[theta], unknowns=[beta, phi],
+    ...                   roles={"rocker": phi})
+    >>> fourbar.parameters, [step.case.name for step in fourbar.plan]
+    ((a, b, c, d), ['3'])
+    >>> fourbar.expression("rocker_speed")
+    a*thetadot*sin(beta - theta)/(c*sin(beta - phi))
     """
 
     def __init__(self, name: str, loops: Sequence[Loop], inputs: Sequence[sp.Symbol],
@@ -333,11 +387,51 @@ class Linkage:
         """Output ``"singular"``: True where a loop's square root is zero (a toggle: its two branches meet).
 
         The generated rates divide by that root, so they are inf or NaN exactly there and
-        finite elsewhere.  Loops with one assembly (no root) never set it.
+        finite elsewhere.  Loops with one assembly (no root) never set it.  Asked for with
+        other outputs, it looks at the loops those outputs depend on (:meth:`program`).
         """
+        return self._toggles(None)
+
+    def _toggles(self, keep: set[sp.Symbol] | None) -> sp.Expr:
+        """Whether a loop's root is zero, of every loop or of the loops whose roots are in ``keep``."""
         roots = [s for step in self.plan for s, e in step.in_loop_units.intermediates.items()
-                 if isinstance(e, ClampedSqrt)]
+                 if isinstance(e, ClampedSqrt) and (keep is None or s in keep)]
         return sp.Or(*(sp.Eq(root, 0) for root in roots))
+
+    def divides_by_determinant(self, name: str) -> bool:
+        """Whether output ``name`` is solved through a loop's determinant, which vanishes at a toggle.
+
+        The rates and accelerations of the unknowns, what is made of them, and the sensitivities by a
+        parameter that closes a loop divide by the determinant of a loop's linear system (the
+        derivative of its closure by its unknowns); at a toggle that determinant is zero and they are
+        not finite (or not meaningful), where the ``singular`` output says why.  Positions never are.
+
+        >>> from symlink.catalog import fourbar
+        >>> [fourbar().divides_by_determinant(n) for n in ("rocker", "rocker_speed", "rocker__d_a", "thetadot")]
+        [False, True, True, False]
+        """
+        if name == "singular":
+            return False
+        found = split_sensitivity_name(name, self.parameters)
+        if found is not None:
+            return any(found[1] in loop.symbols() for loop in self.loops)
+        moving = {rate(q) for q in self.unknowns} | {acceleration(q) for q in self.unknowns}
+        return bool(self.output(name).free_symbols & moving)
+
+    def with_singular(self, outputs: Sequence[str]) -> list[str]:
+        """``outputs``, and ``"singular"`` after them where one of them divides by a loop's determinant.
+
+        What the solvers compute, so that a result that is inf or NaN at an assembled pose says why:
+        ``singular`` is True there, beside ``assembled``.
+
+        >>> from symlink.catalog import fourbar
+        >>> fourbar().with_singular(["rocker", "rocker_speed"]), fourbar().with_singular(["rocker"])
+        (['rocker', 'rocker_speed', 'singular'], ['rocker'])
+        """
+        outputs = list(outputs)
+        if "singular" in outputs or not any(self.divides_by_determinant(n) for n in outputs):
+            return outputs
+        return outputs + ["singular"] if self.has_closed_form else outputs
 
     def point(self, name: str) -> tuple[sp.Expr, sp.Expr]:
         """A named point's x and y."""
@@ -446,18 +540,16 @@ class Linkage:
         return definitions
 
     def program(self, outputs: Sequence[str]) -> Program:
-        """Straight-line code for ``outputs``: only what they depend on is derived and kept."""
+        """Straight-line code for ``outputs``: only what they depend on is derived and kept.
+
+        ``singular`` asked for with other outputs is True where a loop they depend on is at a toggle.
+        """
         wanted = {name: self.output(name) for name in outputs}
-        needed = set().union(*(e.free_symbols for e in wanted.values())) if wanted else set()
-        definitions = self._definitions_of(needed)
-        # Walk the dependencies; definitions are in dependency order already.
-        keep: set[sp.Symbol] = set()
-        stack = [s for s in needed if s in definitions]
-        while stack:
-            symbol = stack.pop()
-            if symbol not in keep:
-                keep.add(symbol)
-                stack += [s for s in definitions[symbol].free_symbols if s in definitions]
+        others = [expr for name, expr in wanted.items() if name != "singular"]
+        if "singular" in wanted and others:
+            wanted["singular"] = self._toggles(self._kept(self._needs(others))[0])
+        needed = self._needs(wanted.values())
+        keep, definitions = self._kept(needed)
         assignments = tuple((s, e) for s, e in definitions.items() if s in keep)
         free = set(needed) - keep
         for _, expr in assignments:
@@ -473,6 +565,23 @@ class Linkage:
         defaults.update({s.name: 0.0 for q in self.inputs for s in (rate(q), acceleration(q))})
         return Program(arguments, assignments, wanted, {a.name: defaults[a.name] for a in arguments if a.name in defaults},
                        self.plan if self.has_closed_form else ())
+
+    @staticmethod
+    def _needs(expressions: Iterable[sp.Expr]) -> set[sp.Symbol]:
+        return set().union(*(sp.sympify(e).free_symbols for e in expressions))
+
+    def _kept(self, needed: set[sp.Symbol]) -> tuple[set[sp.Symbol], dict[sp.Symbol, sp.Expr]]:
+        """The definitions that ``needed`` depends on (their symbols), and the definitions code is made from."""
+        definitions = self._definitions_of(needed)
+        # Walk the dependencies; definitions are in dependency order already.
+        keep: set[sp.Symbol] = set()
+        stack = [s for s in needed if s in definitions]
+        while stack:
+            symbol = stack.pop()
+            if symbol not in keep:
+                keep.add(symbol)
+                stack += [s for s in definitions[symbol].free_symbols if s in definitions]
+        return keep, definitions
 
     def call_signature(self) -> tuple[sp.Symbol, ...]:
         """The order of a generated function's arguments: inputs, parameters, branches, input rates."""

@@ -478,6 +478,13 @@ def linkage_from_mapping(data: Mapping, source: str = "<mapping>", text: str | N
 def _from_mapping(data: Mapping, source: str) -> LinkageFile:
     if not isinstance(data, Mapping):
         raise _Problem("", "", f"a linkage file is a TOML table, got {type(data).__name__}")
+    if "links" in data or "joints" in data:  # a linkage by its joints: symlink.joint_tables derives the loops
+        from .joint_tables import TableProblem, linkage_from_tables
+        try:
+            drawn = linkage_from_tables(data, angle=lambda value: float(_expression(value, {}, units=True)))
+        except TableProblem as problem:
+            raise _Problem(problem.table, problem.key, str(problem)) from None
+        return LinkageFile(drawn.linkage, drawn.values, source)
     for key in data:
         if key not in TOP_KEYS + TABLES:
             raise _Problem("", key, f"unknown key {key!r} (a linkage file has {', '.join(TOP_KEYS + TABLES)})")
@@ -697,7 +704,8 @@ def read_linkage(path: str | Path) -> LinkageFile:
 
 
 def load_linkage(source: str | Path, folder: str | Path | None = None) -> LinkageFile:
-    """A catalog entry by name (with its example values as defaults), or a linkage file by path.
+    """A catalog entry by name (with its example values as defaults), an atlas entry (``atlas:watt-ii``), or a
+    linkage file by path.
 
     Every command that takes a linkage takes either; a relative path is
     looked for in ``folder`` when given (a scene file's own folder).
@@ -710,11 +718,15 @@ def load_linkage(source: str | Path, folder: str | Path | None = None) -> Linkag
     text = str(source)
     if text in CATALOG:
         return LinkageFile(CATALOG[text](), dict(EXAMPLE_VALUES.get(text, {})), "catalog")
+    if text.startswith("atlas:"):  # an atlas entry (symlink.atlas) at its example dimensions: atlas:watt-ii
+        from .atlas import atlas_entry
+        drawn = atlas_entry(text.removeprefix("atlas:")).joint_linkage()
+        return LinkageFile(drawn.linkage, drawn.values, "atlas")
     path = Path(folder) / text if folder is not None else Path(text)
     if text.endswith(".toml") or path.exists():
         return read_linkage(path)
     raise ValueError(f"no linkage {text!r} in the catalog ({', '.join(sorted(CATALOG))}), "
-                     "and it is not a linkage file (.toml)")
+                     "not an atlas entry (atlas:NAME) and not a linkage file (.toml)")
 
 
 # --- writing --------------------------------------------------------------------------

@@ -41,7 +41,7 @@ import sympy as sp
 
 from .loops import Loop, LoopCase, Unknown
 
-__all__ = ["ClampedSqrt", "LoopSolution", "solve_loop", "TOLERANCE"]
+__all__ = ["ClampedSqrt", "PowerOfTwoBelow", "LoopSolution", "solve_loop", "TOLERANCE"]
 
 #: Relative size below which a negative square-root argument is rounding, not
 #: a configuration that cannot be assembled: with the scales the cases give
@@ -87,6 +87,34 @@ class ClampedSqrt(sp.Function):
 
     def _latex(self, printer):
         return r"\sqrt{\left[%s\right]_{+}}" % printer._print(self.args[0])
+
+
+class PowerOfTwoBelow(sp.Function):
+    """The largest power of two not above ``x > 0``: a loop's unit in generated code, so dividing by it is exact.
+
+    Generated code takes it from the exponent bits of ``x`` (``frexp`` in NumPy,
+    a mask of the bits in C): no logarithm, and exact where a rounded ``log2``
+    near a power of two could be one off.
+
+    >>> PowerOfTwoBelow(10), PowerOfTwoBelow(sp.Rational(1, 3)), PowerOfTwoBelow(8)
+    (8, 1/4, 8)
+    """
+
+    nargs = 1
+
+    @classmethod
+    def eval(cls, x):
+        if x.is_Float and x.is_positive:  # exact: the float's own exponent
+            mantissa, exponent = sp.Float(x)._mpf_[1], sp.Float(x)._mpf_[2]
+            return sp.Integer(2) ** (exponent + int(mantissa).bit_length() - 1)
+        if x.is_Rational and x.is_positive:
+            exponent = sp.floor(sp.log(x, 2))
+            while 2**exponent > x:  # floor of an exact logarithm: SymPy evaluates it, this only guards
+                exponent -= 1
+            while 2 ** (exponent + 1) <= x:
+                exponent += 1
+            return sp.Integer(2) ** exponent
+        return None
 
 
 @dataclass(frozen=True)
@@ -208,7 +236,7 @@ def _characteristic_length(case: LoopCase) -> sp.Expr:
     mean = sp.Add(*(sp.Abs(r) for r in lengths)) / len(lengths)
     # A power of two, so that dividing by it is exact: data that meet a toggle exactly
     # (integers, say) still meet it exactly in loop units, and no length gains a rounding.
-    return 2 ** sp.floor(sp.log(mean, 2))
+    return PowerOfTwoBelow(mean)
 
 
 def _rounding_size(case: LoopCase, unit) -> sp.Expr:

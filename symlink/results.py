@@ -39,12 +39,51 @@ HTML_ROWS = 10
 class Results(dict):
     """Outputs by name (arrays broadcast to one shape, ``assembled`` a bool mask), with their units and inputs.
 
+    Two bool masks say where the numbers are not to be read as they stand:
+
+    * ``assembled``: False where the linkage cannot close (every output is NaN there);
+    * ``singular``: True where it closes at a toggle, a pose where a loop's determinant
+      vanishes (its two assemblies meet).  Rates, accelerations, joint forces, driving
+      efforts and sensitivities divide by that determinant, so they are inf, NaN or
+      meaningless there while the positions are right.  A :class:`~symlink.solver.Solver`
+      adds it to any request with such an output (the loops those outputs depend on).
+
     ``units`` maps an output to its unit (``"rad"``, ``"rad/s"``, a length
     unit, ``""`` for none or unknown); outputs not in it have no stated unit.
+    What every solver returns (:class:`~symlink.solver.Solver`,
+    :class:`~symlink.solver.NumericSolver`, the compiled solver): a plain
+    dict, so ``result["rocker"]`` works as before, that shows itself as a
+    table in a notebook and becomes a pandas DataFrame with :meth:`to_frame`.
+
     ``inputs`` are the values the solver was called with (``theta``, the
     lengths, the branch signs...), ``input_units`` their units: those that are
     arrays become columns (or index levels) of :meth:`to_frame`, the numbers
     its ``attrs["constants"]``.
+
+    Parameters
+    ----------
+    values : mapping of str to array_like, optional
+        The outputs by name.
+    units : mapping of str to str, optional
+        Each output's unit.
+    inputs : mapping of str to array_like, optional
+        The values the solver was called with.
+    input_units : mapping of str to str, optional
+        Their units.
+
+    Attributes
+    ----------
+    units : dict of str to str
+        Each output's unit, as given.
+
+    Examples
+    --------
+    >>> from symlink.catalog import fourbar
+    >>> from symlink.solver import Solver
+    >>> result = Solver(fourbar(), ["rocker", "rocker_speed"])(theta=[0.0, 0.5], a=20, b=66, c=56, d=80,
+    ...                                                       branch=1, thetadot=10.5)
+    >>> sorted(result), result.units["rocker_speed"]
+    (['assembled', 'rocker', 'rocker_speed', 'singular'], 'rad/s')
     """
 
     def __init__(self, values: Mapping[str, object] | None = None, units: Mapping[str, str] | None = None,

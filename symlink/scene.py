@@ -163,7 +163,7 @@ class Scene:
 
     @cached_property
     def solver(self) -> Solver:
-        """A checked solver of these outputs (same cached code)."""
+        """A checked solver of these outputs, with the ``singular`` flag where they divide by a loop's determinant."""
         return Solver(self.linkage, self.outputs)
 
     def program(self) -> Program:
@@ -263,7 +263,7 @@ class SceneFile:
         driven = self.scene.linkage.inputs[0]
         theta = to_radians(angles, self.units)
         values: dict[str, object] = {driven.name: theta}
-        takes = self.scene.code.arguments  # rates only where the outputs need them
+        takes = self.scene.solver.arguments  # rates only where the outputs need them
         if rate(driven).name in takes:
             first = float(to_radians(self.sweep.first, self.units))
             values[rate(driven).name] = crank_speeds(theta, self.speed, self.accel, first)

@@ -6,7 +6,10 @@ finite, branches +1 or -1, every value finite and real, shapes broadcasting
 (the check that every generated function makes,
 :func:`symlink.codegen.numpy.checked_arguments`), and the call must fit in
 the memory the machine has (:mod:`symlink.limits`).  Where the linkage cannot
-be assembled the result says so in its ``assembled`` mask.  A :class:`NumericSolver` generates and
+be assembled the result says so in its ``assembled`` mask; where it is assembled at a
+toggle (a loop's determinant is zero) a request for rates, accelerations, dynamic forces
+or sensitivities, which divide by that determinant, also gets the ``singular`` mask,
+True there (see :class:`~symlink.results.Results`).  A :class:`NumericSolver` generates and
 loads Newton's method on the closure instead, for linkages without a closed
 form (and any other).
 
@@ -59,11 +62,60 @@ def check_lengths(**lengths: float) -> None:
 
 
 class Solver:
-    """A vectorised NumPy solver for some outputs of a linkage."""
+    """A vectorised NumPy solver for some outputs of a linkage.
+
+    The NumPy code for ``outputs``, and only for what they depend on, is
+    derived, generated and loaded when the solver is made; the same request
+    later, in this process or another, takes it from the cache
+    (:mod:`symlink.cache`) and does no symbolic work.  A call checks its
+    arguments and broadcasts them, so a whole turn of the crank, or many
+    linkages at once, is one call.
+
+    Parameters
+    ----------
+    linkage : Linkage
+        A linkage with a closed-form plan: from :mod:`symlink.catalog`, a
+        linkage file (:mod:`symlink.linkage_file`) or your own loops.  For one
+        without (``linkage.has_closed_form`` False) use :class:`NumericSolver`.
+    outputs : sequence of str
+        Output names (:meth:`Linkage.output_names` lists them): unknowns
+        (``"phi"``), roles (``"rocker"``), rates and accelerations
+        (``"rocker_speed"``, ``"phidot"``, ``"rocker_accel"``), coordinates of
+        named points (``"C_x"``), extras (``"transmission"``), ``"singular"``
+        and design sensitivities (``"rocker__d_a"``).
+
+    Attributes
+    ----------
+    arguments : list of str
+        The keywords a call takes, in order: inputs, parameters, branch signs,
+        then the input rates the outputs need (``thetadot``, ``thetaddot``).
+    source : str
+        The generated NumPy module (it imports NumPy only).
+
+    Raises
+    ------
+    ValueError
+        An output the linkage does not have (the message lists those it has).
+
+    See Also
+    --------
+    NumericSolver : Newton's method, for linkages without a closed form.
+    symlink.compiled.compiled_solver : the same call, computed by generated C.
+
+    Examples
+    --------
+    >>> from symlink.catalog import fourbar
+    >>> solver = Solver(fourbar(), ["rocker", "rocker_speed"])
+    >>> solver.arguments
+    ['theta', 'a', 'b', 'c', 'd', 'branch', 'thetadot']
+    >>> result = solver(theta=numpy.radians([0.0, 40.0]), a=20, b=66, c=56, d=80, branch=1, thetadot=10.5)
+    >>> numpy.degrees(result["rocker"]).round(2), result["rocker_speed"].round(4)
+    (array([110.74, 103.82]), array([-3.5   ,  0.0733]))
+    """
 
     def __init__(self, linkage: Linkage, outputs: Sequence[str]) -> None:
         self.linkage = linkage
-        self.outputs = list(outputs)
+        self.outputs = linkage.with_singular(outputs)  # a rate, force or sensitivity brings its flag
         code = generated_code(linkage, self.outputs)  # derived once, then from the scene cache
         self.source, self.function, self.arguments = code.source, code.function, code.arguments
 
@@ -130,18 +182,45 @@ class Solver:
                 [s.name for s in self.linkage.parameters if s.is_positive], self.branches)
 
     def __call__(self, **values) -> Results:
-        """The outputs at ``values`` (keyword arguments by name: the inputs, the lengths, the branch signs and,
-        optionally, the inputs' rates and accelerations), as :class:`~symlink.results.Results`.
+        """Evaluate the outputs at ``values``: every argument by keyword, arrays broadcasting together.
 
-        ``ValueError`` naming an unknown or a missing argument
-        (:func:`symlink.call_arguments.check_argument_names`), a length that
-        is not positive, a branch that is not +1 or -1, shapes that do not
-        broadcast, or a call too large for the memory.
+        Parameters
+        ----------
+        **values : float, array_like or pint quantity
+            One value for each name in :attr:`arguments`: input angles in
+            radians, lengths (positive and finite, any one unit), fixed angles,
+            branch signs (+1 or -1, ``branch`` or ``branch_<LOOP>``) and input
+            rates in rad/s and rad/s^2.  Any of them may be an array; their
+            shapes broadcast, and the outputs take the broadcast shape.  pint
+            quantities are converted as :mod:`symlink.units` says.
 
+        Returns
+        -------
+        Results
+            A dict of arrays by output name, and ``assembled``: False where the
+            linkage cannot be assembled (its outputs are NaN there).
+            ``Results.units`` names each output's unit.
+
+        Raises
+        ------
+        ValueError
+            An argument the linkage does not take; a length that is not a
+            positive finite number; a branch sign other than +1 or -1; a value
+            that is not finite and real; shapes that do not broadcast; a call
+            needing more memory than the machine has; lengths with and
+            without units together; an unknown or a missing argument, by name
+            (:func:`symlink.call_arguments.check_argument_names`).
+
+        Examples
+        --------
         >>> from symlink.catalog import fourbar
-        >>> Solver(fourbar(), ["rocker"])(theta=0.0, a=20, b=66, c=56, branch=1)
+        >>> solver = Solver(fourbar(), ["rocker", "C_x"])
+        >>> result = solver(theta=numpy.radians([0.0, 180.0]), a=60, b=66, c=56, d=80, branch=1)
+        >>> result["assembled"]          # this triple-rocker's crank cannot reach 180 degrees
+        array([ True, False])
+        >>> solver(theta=0.0, a=-20, b=66, c=56, d=80, branch=1)
         Traceback (most recent call last):
-        ValueError: fourbar needs d (missing); it takes theta, a, b, c, d, branch
+        ValueError: a must be a positive finite length, got -20.0
         """
         accepted, required, lengths, branches = self._layout
         if not (accepted.issuperset(values) and required.issubset(values)):

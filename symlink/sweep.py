@@ -13,9 +13,13 @@ Chunks run on Dask: the local scheduler by default (``"threads"`` or
 ``"processes"``), or any ``distributed`` cluster by its address
 (``"tcp://HOST:PORT"``).  Each chunk comes back as Parquet bytes and is
 written atomically as ``chunk-NNNNNN.parquet`` in the output folder, beside
-``manifest.json`` (the settings and the columns).  A sweep started again on
-the same folder with the same settings skips the chunks already there, so an
-interrupted run continues where it stopped; different settings are refused.
+``manifest.json`` (the settings, the columns, and each chunk's rows, design
+numbers and SHA-256: :mod:`symlink.sweep_folder`).  A sweep started again on
+the same folder with the same settings skips the chunks already there and
+verified, so an interrupted run continues where it stopped; a chunk that is
+not what the manifest recorded is done again, with one warning; different
+settings are refused; a sweep that could not end (a year, or more disk than
+there is, even at optimistic rates) is refused before it starts.
 Dask, distributed and pyarrow are the optional extra ``sweep``
 (``pip install 'symlink-kinematics[sweep]'``).
 
@@ -62,34 +66,32 @@ from __future__ import annotations
 
 import hashlib
 import io
-import json
 import math
 import sys
 from dataclasses import asdict, dataclass, field
 from functools import lru_cache
 from pathlib import Path
-from typing import Any, Iterable, Iterator, Mapping, Sequence
+from typing import Any, Callable, Iterable, Mapping, Sequence
 
 import numpy
 
 from .analysis.grashof import grashof
 from .analysis.transmission import transmission_angles
 from .closure import is_angle
-from .files import write_atomic
 from .linkage import Linkage
 from .limits import require_memory
 from .linkage_file import LinkageFile, linkage_from_text, load_linkage
 from .reachability import InputMotion, crank_range, reachable_range
 from .solver import Solver
+from .sweep_folder import MANIFEST, SweepWarning, chunk_name, chunk_range, open_folder, read_manifest, verified_chunks
 from .version import __version__
 
 __all__ = ["SweepSettings", "evaluate_designs", "design_values", "columns", "run_sweep", "read_sweep",
-           "SWEEP_EXTRA", "MANIFEST", "SCHEDULERS", "missing_modules"]
+           "SWEEP_EXTRA", "MANIFEST", "SCHEDULERS", "missing_modules", "chunk_name", "chunk_table", "sweep_cost",
+           "SweepWarning"]
 
 #: What to install for sweeps.
 SWEEP_EXTRA = "pip install 'symlink-kinematics[sweep]'"
-#: The manifest's file name in a sweep's folder.
-MANIFEST = "manifest.json"
 #: Dask's local schedulers by name (any other scheduler is a distributed cluster's address).
 SCHEDULERS = ("threads", "processes", "synchronous")
 #: Values (designs times samples) a solver call evaluates at once: fast in NumPy, small in memory.
@@ -101,6 +103,13 @@ MODES = ("grid", "random")
 CHUNK_BYTES_PER_VALUE = 8 * 12
 #: Rounds of :func:`_polish`: each one takes the bracket of an extreme down by a factor of 8.
 POLISH_ROUNDS = 4
+#: Designs a worker evaluates a second, at best: about twice the best measured (a four-bar at 60 samples, 11,600
+#: designs/s on one core); a slider-crank managed 540 to 750.  Only for refusing sweeps that cannot end.
+FASTEST_DESIGNS_PER_SECOND = 20_000
+#: Bytes of Parquet a design takes, at least (measured 50 to 170 in chunks of 1000 designs).
+LEAST_BYTES_PER_DESIGN = 16
+#: A sweep that even at :data:`FASTEST_DESIGNS_PER_SECOND` would take longer than this is refused (a year).
+LONGEST_SWEEP_SECONDS = 365 * 86400
 
 
 def missing_modules(names: Sequence[str] = ("dask", "distributed", "pyarrow")) -> list[str]:
@@ -150,7 +159,7 @@ class SweepSettings:
         object.__setattr__(self, "ranges", {name: (float(low), float(high))
                                             for name, (low, high) in dict(self.ranges).items()})
         object.__setattr__(self, "values", {name: float(value) for name, value in dict(self.values).items()})
-        if self.linkage_text is None and found.source != "catalog":
+        if self.linkage_text is None and found.source not in ("catalog", "atlas"):
             object.__setattr__(self, "linkage_text", Path(self.linkage).read_text(encoding="utf-8"))
         parameters = {s.name: s for s in linkage.parameters}
         if not self.ranges:
@@ -190,7 +199,8 @@ class SweepSettings:
             raise ValueError("a grid of 1 value a parameter cannot span a range: give count 2 or more")
         _require_chunk_memory(min(self.chunk, self.designs), self.samples)
         if self.designs > MAX_DESIGNS:
-            raise ValueError(f"{self.designs:.3g} designs are too many (at most 2^62)")
+            raise ValueError(f"{self.designs:.3g} designs are too many to number (at most 2^62, and a sweep that "
+                             "can end has far fewer): ask for fewer values a parameter (--grid) or designs (--random)")
         if self.branch not in (1, -1) or isinstance(self.branch, bool):
             raise ValueError(f"branch must be +1 or -1, got {self.branch!r}")
         if not isinstance(self.seed, int) or isinstance(self.seed, bool) or self.seed < 0:
@@ -496,47 +506,91 @@ def _angle_outputs(linkage: Linkage, output: str) -> frozenset[str]:
 
 # --- chunks, Parquet and Dask ------------------------------------------------------------------
 
-def chunk_name(index: int) -> str:
-    """The file name of chunk ``index``."""
-    return f"chunk-{index:06d}.parquet"
-
-
 def chunk_table(settings: SweepSettings, index: int) -> bytes:
     """Chunk ``index`` of the sweep evaluated, as the bytes of a Parquet file (what a worker returns)."""
     import pyarrow
     import pyarrow.parquet
-    first = index * settings.chunk
-    numbers = range(first, min(first + settings.chunk, settings.designs))
-    found = evaluate_designs(settings, numbers)
+    first, last = chunk_range(index, settings.designs, settings.chunk)
+    found = evaluate_designs(settings, range(first, last + 1))
     table = pyarrow.table({name: found[name] for name in columns(settings)})
     sink = io.BytesIO()
     pyarrow.parquet.write_table(table, sink)
     return sink.getvalue()
 
 
-def _prepare(settings: SweepSettings, folder: Path) -> list[int]:
-    """Write or check the folder's manifest; the chunks still to do."""
-    manifest = {"symlink": __version__, "settings": settings.manifest(), "columns": columns(settings),
-                "designs": settings.designs, "chunks": settings.chunks}
-    path = folder / MANIFEST
-    if path.exists():
-        try:
-            old = json.loads(path.read_text(encoding="utf-8"))
-        except (OSError, ValueError) as error:
-            raise ValueError(f"{path} is not a sweep's manifest ({error}); choose another folder") from None
-        old_settings = old.get("settings") if isinstance(old, dict) else None
-        new_settings: dict[str, Any] = json.loads(json.dumps(manifest["settings"]))
-        if old_settings != new_settings:
-            old_settings = old_settings if isinstance(old_settings, dict) else {}
-            keys = sorted(k for k in set(old_settings) | set(new_settings) if old_settings.get(k) != new_settings.get(k))
-            raise ValueError(f"{folder} holds a sweep with other settings ({', '.join(keys) or 'unreadable'} "
-                             "differ); choose another folder or the same settings to continue it")
-    elif folder.exists() and any(folder.iterdir()):
-        raise ValueError(f"{folder} is not empty and holds no sweep: choose a new or empty folder")
+def sweep_cost(settings: SweepSettings, workers: int) -> tuple[float, int]:
+    """Lower bounds of a sweep's cost on ``workers`` workers: seconds, and bytes of Parquet on disk.
+
+    Both are optimistic on purpose (a sweep is refused only when even they are
+    too much): :data:`FASTEST_DESIGNS_PER_SECOND` a worker (about twice the
+    best measured, a four-bar at 60 samples) and :data:`LEAST_BYTES_PER_DESIGN`
+    (measured 50 to 170 bytes a design in a chunk of 1000).
+
+    >>> settings = SweepSettings("fourbar", {"a": (1, 2), "b": (3, 4), "c": (5, 6)}, values={"d": 5.0}, count=10**5)
+    >>> seconds, size = sweep_cost(settings, workers=2)
+    >>> f"{settings.designs:.0e} designs: {seconds / 86400 / 365:.0f} years, {size / 1e15:.0f} PB at least"
+    '1e+15 designs: 793 years, 16 PB at least'
+    """
+    return (settings.designs / (FASTEST_DESIGNS_PER_SECOND * max(1, workers)),
+            settings.designs * LEAST_BYTES_PER_DESIGN)
+
+
+def _free_bytes(folder: Path) -> int | None:
+    """Bytes the sweep may still write in ``folder``: the free space of its disk and what its chunks hold now."""
+    import shutil
+    there = folder
+    while not there.exists() and there != there.parent:
+        there = there.parent
+    try:
+        usage = shutil.disk_usage(there)
+    except OSError:
+        return None
+    if usage.total == 0:  # a pseudo file system (/proc): no size to go by
+        return None
+    free = usage.free
+    if folder.is_dir():  # continuing: the chunks done already take part of the table's room
+        for path in folder.glob("chunk-*.parquet"):
+            try:
+                free += path.lstat().st_size
+            except OSError:
+                pass
+    return free
+
+
+def _require_feasible(settings: SweepSettings, folder: Path, workers: int) -> None:
+    """``ValueError`` (one line) before anything is written, for a sweep that even at the rates of
+    :func:`sweep_cost` would not fit on the disk or not end within :data:`LONGEST_SWEEP_SECONDS`; it says the
+    estimate and how many designs would do."""
+    from .limits import format_bytes
+    seconds, size = sweep_cost(settings, workers)
+    free = _free_bytes(folder)
+    too_long, too_big = seconds > LONGEST_SWEEP_SECONDS, free is not None and size > free
+    if not (too_long or too_big):
+        return
+    most = int(LONGEST_SWEEP_SECONDS * FASTEST_DESIGNS_PER_SECOND * max(1, workers))
+    if free is not None:
+        most = min(most, free // LEAST_BYTES_PER_DESIGN)
+    if most < 1:
+        advice = "free some space on that disk, or choose a folder on another"
+    elif settings.mode == "random":
+        advice = f"ask for at most {most:,} designs: a random sample of at most {most:,} (--random)"
     else:
-        write_atomic(path, json.dumps(manifest, indent=1) + "\n")
-    done = {p.name for p in folder.glob("chunk-*.parquet")}
-    return [k for k in range(settings.chunks) if chunk_name(k) not in done]
+        dimensions = len(settings.ranges)
+        per = int(round(most ** (1 / dimensions)))
+        while per > 1 and per ** dimensions > most:
+            per -= 1
+        while (per + 1) ** dimensions <= most:
+            per += 1
+        advice = f"ask for at most {most:,} designs: " + (
+            f"a grid of at most {per:,} values a parameter (--grid) for {dimensions} parameters" if per >= 2
+            else "fewer swept parameters")
+    taken = next(f"{seconds / span:.3g} {unit}" for unit, span in (("years", 365 * 86400), ("days", 86400),
+                                                                     ("hours", 3600), ("seconds", 1))
+                 if seconds >= span or unit == "seconds")
+    room = "" if free is None else f" ({folder}'s disk has {format_bytes(free)} free)"
+    raise ValueError(f"a sweep of {settings.designs:.3g} designs needs at least {format_bytes(size)} of disk for "
+                     f"its table{room} and at least {taken} on {workers} worker{'s' if workers > 1 else ''} "
+                     f"(at {FASTEST_DESIGNS_PER_SECOND:,} designs/s each, an optimistic rate); {advice}")
 
 
 def run_sweep(settings: SweepSettings, folder: str | Path, *, scheduler: Any = "threads", workers: int | None = None,
@@ -549,7 +603,16 @@ def run_sweep(settings: SweepSettings, folder: str | Path, *, scheduler: Any = "
     ``window`` chunks (default four a worker) are under way at once, so memory
     is bounded.  Returns what was done: designs, chunks written and skipped,
     seconds and designs per second.
+
+    Before anything is written, a sweep too large to end (:func:`sweep_cost`)
+    is refused.  The folder is verified as :mod:`symlink.sweep_folder`
+    describes: continuing, a chunk that is not what the manifest recorded is
+    done again (one :class:`~symlink.sweep_folder.SweepWarning`).  Worker
+    processes (``"processes"``) ignore Ctrl-C, which the caller handles, and
+    die with the process that started them (``kill -9`` of the sweep included).
+    Interrupted or failed, the sweep keeps every chunk finished before.
     """
+    import os
     import time
     local = isinstance(scheduler, str) and scheduler in SCHEDULERS
     _require(("dask", "pyarrow") if local else ("dask", "distributed", "pyarrow"))
@@ -568,26 +631,38 @@ def run_sweep(settings: SweepSettings, folder: str | Path, *, scheduler: Any = "
                              f"or a distributed.Client; got {scheduler!r}")
     try:
         folder = Path(folder)
-        todo = _prepare(settings, folder)
-        skipped = settings.chunks - len(todo)
-        started = time.perf_counter()
-        bar = None
-        if progress:
+        count = (1 if scheduler == "synchronous" else workers or os.cpu_count() or 1) if client is None else \
+            max(1, sum(client.nthreads().values()))
+        _require_feasible(settings, folder, count)
+        header = {"symlink": __version__, "settings": settings.manifest(), "columns": columns(settings)}
+        with open_folder(folder, header, settings.designs, settings.chunk) as opened:
+            todo = opened.todo
+            skipped = settings.chunks - len(todo)
+            started = time.perf_counter()
+            bar = None
+            if progress:
+                try:
+                    from tqdm import tqdm
+                    bar = tqdm(total=settings.chunks, initial=skipped, unit="chunk", file=sys.stderr, desc="sweep")
+                except ImportError:
+                    bar = None
+            written = 0
+
+            def land(index: int, data: bytes) -> None:  # each chunk as soon as it is done
+                nonlocal written
+                opened.stage(index, data, rows=_parquet_rows(data))
+                written += 1
+                if bar is not None:
+                    bar.update(1)
+
             try:
-                from tqdm import tqdm
-                bar = tqdm(total=settings.chunks, initial=skipped, unit="chunk", file=sys.stderr, desc="sweep")
-            except ImportError:
-                bar = None
-        written = 0
-        found = (_local_chunks(settings, todo, str(scheduler), workers, window) if client is None
-                 else _cluster_chunks(settings, todo, client, window))
-        for index, data in found:
-            write_atomic(folder / chunk_name(index), data)
-            written += 1
-            if bar is not None:
-                bar.update(1)
-        if bar is not None:
-            bar.close()
+                if client is None:
+                    _local_chunks(settings, todo, str(scheduler), workers, window, land)
+                else:
+                    _cluster_chunks(settings, todo, client, window, land)
+            finally:
+                if bar is not None:
+                    bar.close()
     finally:
         if own and client is not None:
             client.close()
@@ -597,33 +672,156 @@ def run_sweep(settings: SweepSettings, folder: str | Path, *, scheduler: Any = "
             "seconds": seconds, "designs_per_second": evaluated / seconds if evaluated and seconds > 0 else math.nan}
 
 
-def _local_chunks(settings: SweepSettings, todo: list[int], scheduler: str, workers: int | None,
-                  window: int | None) -> Iterator[tuple[int, bytes]]:
-    """(index, Parquet bytes) of each chunk in ``todo`` on a local scheduler, a window of chunks at a time."""
+def _parquet_rows(data: bytes) -> int:
+    """The rows of the Parquet file ``data`` (from its footer); -1 when it is not one."""
+    import pyarrow
+    import pyarrow.parquet
+    try:
+        return int(pyarrow.parquet.read_metadata(pyarrow.BufferReader(data)).num_rows)
+    except (pyarrow.ArrowException, OSError, ValueError):
+        return -1
+
+
+# --- worker processes that leave Ctrl-C to their parent and die with it -------------------------
+
+#: prctl(2)'s option that has the kernel signal a process when its parent ends (Linux).
+PR_SET_PDEATHSIG = 1
+#: The warning filter that keeps multiprocessing's resource tracker quiet about a killed sweep's semaphores.
+QUIET_TRACKER = "ignore::UserWarning:multiprocessing.resource_tracker"
+#: How often a worker process looks for its parent, where the kernel cannot be asked to signal it (seconds).
+WATCH_SECONDS = 0.5
+
+
+def _worker_start(parent: int) -> None:
+    """Initializer of a sweep's worker process: Ctrl-C is the parent's to handle (no worker tracebacks), and the
+    worker ends when ``parent`` does, killed by the kernel (Linux) or by its own watch of ``parent``."""
     import os
-    from concurrent.futures import Executor, ProcessPoolExecutor, ThreadPoolExecutor
+    import signal
+    import threading
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    direct = os.getppid() == parent
+    if direct and sys.platform.startswith("linux"):
+        try:
+            import ctypes
+            ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, int(signal.SIGKILL), 0, 0, 0)
+        except (OSError, AttributeError):
+            pass
+    threading.Thread(target=_watch_parent, args=(parent, direct), daemon=True, name="symlink-watch-parent").start()
+
+
+def _watch_parent(parent: int, direct: bool) -> None:
+    """End this process as soon as ``parent`` is gone (its child: when this process is handed to another)."""
+    import os
+    import time
+    while True:
+        if direct:
+            gone = os.getppid() != parent
+        else:  # started by a fork server: ask for the parent by its number
+            try:
+                os.kill(parent, 0)
+                gone = False
+            except ProcessLookupError:
+                gone = True
+            except OSError:
+                gone = False
+        if gone:
+            os._exit(1)
+        time.sleep(WATCH_SECONDS)
+
+
+def _process_pool(count: int) -> Any:
+    """A pool of ``count`` worker processes (see :func:`_worker_start`), started now with Ctrl-C ignored.
+
+    A worker takes seconds to import symlink before its initializer runs; a
+    Ctrl-C meanwhile would print its traceback.  So the workers are started
+    here, while this process ignores SIGINT (a disposition they inherit from
+    their first instruction): one task each, submitted while none is idle yet.
+    Off the main thread (where signals cannot be set) only the initializer
+    ignores it.  Multiprocessing's resource tracker, started with the pool,
+    is told not to warn of the pool's semaphores when this process is killed
+    (``-W``, which spawned processes take from ``sys.warnoptions``).
+    """
+    import os
+    import signal
+    import threading
+    from concurrent.futures import ProcessPoolExecutor
+
+    import dask.multiprocessing
+    previous = signal.getsignal(signal.SIGINT)
+    ignore = previous is not None and threading.current_thread() is threading.main_thread()
+    if ignore:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+    options = list(sys.warnoptions)
+    sys.warnoptions.append(QUIET_TRACKER)
+    try:
+        pool = ProcessPoolExecutor(count, mp_context=dask.multiprocessing.get_context(), initializer=_worker_start,
+                                   initargs=(os.getpid(),))
+        for _ in range(count):
+            pool.submit(int)
+    finally:
+        sys.warnoptions[:] = options
+        if ignore:
+            signal.signal(signal.SIGINT, previous)
+    return pool
+
+
+def _stop_processes(pool: Any) -> None:
+    """End a process pool's workers now (their chunks are lost; they would be done again).
+
+    Through the executor's ``_processes``: ``concurrent.futures`` has no public way to end a pool's workers at
+    once (``shutdown`` waits for the chunks under way, or leaves them running); absent, nothing is done.
+    """
+    for process in list((getattr(pool, "_processes", None) or {}).values()):
+        try:
+            process.terminate()
+        except (OSError, ValueError, AttributeError):
+            pass
+
+
+def _local_chunks(settings: SweepSettings, todo: list[int], scheduler: str, workers: int | None,
+                  window: int | None, land: Callable[[int, bytes], None]) -> None:
+    """Each chunk in ``todo`` on a local scheduler, a window of chunks at a time: ``land(index, Parquet bytes)``
+    as soon as each is done (in this thread: a Dask callback), so that a stop keeps every chunk done.
+
+    Stopped early (an error, Ctrl-C), a process pool's workers are ended at once and a thread pool's are
+    left to finish the chunk they are on, unwaited.
+    """
+    import os
+    from concurrent.futures import Executor, ThreadPoolExecutor
 
     import dask
-    import dask.multiprocessing
+    from dask.callbacks import Callback
     count = workers or os.cpu_count() or 1
     width = window or 4 * count
     # One pool for the whole sweep: Dask would start (and import symlink in) a new one every compute.
-    pool: Executor | None = (ProcessPoolExecutor(count, mp_context=dask.multiprocessing.get_context())
-                             if scheduler == "processes" else ThreadPoolExecutor(count) if scheduler == "threads"
-                             else None)
+    pool: Executor | None = (_process_pool(count) if scheduler == "processes"
+                             else ThreadPoolExecutor(count) if scheduler == "threads" else None)
+    finished = False
+    indices: dict[Any, int] = {}
+
+    def done(key: Any, result: bytes, *rest: Any) -> None:
+        if key in indices:  # not another computation's task
+            land(indices.pop(key), result)
+
     try:
-        for start in range(0, len(todo), width):  # a window at a time: bounded memory, however many chunks
-            tasks = [dask.delayed(chunk_table, pure=False)(settings, k) for k in todo[start:start + width]]
-            found = dask.compute(*tasks, scheduler=scheduler, pool=pool, num_workers=count)
-            yield from zip(todo[start:start + width], found)
+        with Callback(posttask=done):
+            for start in range(0, len(todo), width):  # a window at a time: bounded memory, however many chunks
+                tasks = [dask.delayed(chunk_table, pure=False)(settings, k) for k in todo[start:start + width]]
+                indices.update((task.key, k) for task, k in zip(tasks, todo[start:start + width]))
+                dask.compute(*tasks, scheduler=scheduler, pool=pool, num_workers=count)
+                if indices:
+                    raise RuntimeError(f"Dask did not report chunks {sorted(indices.values())} done")
+        finished = True
     finally:
         if pool is not None:
-            pool.shutdown(cancel_futures=True)
+            if not finished:
+                _stop_processes(pool)
+            pool.shutdown(wait=finished, cancel_futures=True)
 
 
-def _cluster_chunks(settings: SweepSettings, todo: list[int], client: Any,
-                    window: int | None) -> Iterator[tuple[int, bytes]]:
-    """(index, Parquet bytes) of each chunk in ``todo`` on a distributed cluster, as they finish."""
+def _cluster_chunks(settings: SweepSettings, todo: list[int], client: Any, window: int | None,
+                    land: Callable[[int, bytes], None]) -> None:
+    """Each chunk in ``todo`` on a distributed cluster: ``land(index, Parquet bytes)`` as each finishes."""
     from distributed import as_completed
     width = window or 4 * max(1, sum(client.nthreads().values()))
     pending = iter(todo)
@@ -633,26 +831,48 @@ def _cluster_chunks(settings: SweepSettings, todo: list[int], client: Any,
         if len(futures) >= width:
             break
     running = as_completed(list(futures))
-    for future in running:
-        index = futures.pop(future)
-        yield index, future.result()
-        for k in pending:  # one more under way for each one done
-            new = client.submit(chunk_table, settings, k, pure=False)
-            futures[new] = k
-            running.add(new)
-            break
+    try:
+        for future in running:
+            index = futures.pop(future)
+            land(index, future.result())
+            for k in pending:  # one more under way for each one done
+                new = client.submit(chunk_table, settings, k, pure=False)
+                futures[new] = k
+                running.add(new)
+                break
+    finally:
+        if futures:  # stopped early: what is under way is not wanted any more
+            client.cancel(list(futures))
 
 
 def read_sweep(folder: str | Path):
-    """The table of a sweep's folder (a ``pyarrow.Table``, rows in design order), from the chunks written so far."""
+    """The table of a sweep's folder (a ``pyarrow.Table``, rows in design order), from the chunks done so far.
+
+    Every chunk is checked against the manifest's record of it (size,
+    SHA-256, rows, design numbers, columns): ``ValueError`` naming the first
+    that is not what it should be (run the sweep again to rebuild it), never a
+    table with a design twice or another sweep's rows.  The ``design`` column
+    says which designs are in a table read while a sweep is under way.
+    """
     _require(("pyarrow",))
     import pyarrow
     import pyarrow.parquet
     folder = Path(folder)
-    if not (folder / MANIFEST).exists():
-        raise ValueError(f"{folder} holds no sweep (no {MANIFEST})")
-    manifest = json.loads((folder / MANIFEST).read_text(encoding="utf-8"))
-    files = sorted(folder.glob("chunk-*.parquet"))
-    if not files:
-        return pyarrow.table({name: [] for name in manifest["columns"]})
-    return pyarrow.concat_tables([pyarrow.parquet.read_table(path) for path in files])
+    manifest, _ = read_manifest(folder)
+    names = [str(name) for name in manifest["columns"]]
+    tables = []
+    for record, data in verified_chunks(folder):
+        where = folder / record.name
+        try:
+            table = pyarrow.parquet.read_table(pyarrow.BufferReader(data))
+        except (pyarrow.ArrowException, OSError, ValueError) as error:
+            raise ValueError(f"{where} is not a Parquet file ({error}); run the sweep again to rebuild it") from None
+        designs = table.column("design").to_numpy() if "design" in table.column_names else None
+        if (table.column_names != names or table.num_rows != record.rows or designs is None
+                or not numpy.array_equal(designs, numpy.arange(record.first, record.last + 1))):
+            raise ValueError(f"{where} does not hold the rows of designs {record.first} to {record.last} in the "
+                             "manifest's columns; run the sweep again to rebuild it")
+        tables.append(table)
+    if not tables:
+        return pyarrow.table({name: [] for name in names})
+    return pyarrow.concat_tables(tables)

@@ -1,16 +1,22 @@
-"""The README's text and its fenced blocks, for the tests that keep it current."""
+"""The README's text and its fenced blocks, for the tests that keep it (and the docs pages) current."""
 import pathlib
 
-README = pathlib.Path(__file__).resolve().parent.parent / "README.md"
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+README = ROOT / "README.md"
+DOCS = ROOT / "docs"
+#: Where the README's absolute links point: images on GitHub's raw host, pages on the docs site.
+IMAGES_URL = "https://raw.githubusercontent.com/symlink-kinematics/symlink/main/docs/images/"
+DOCS_URL = "https://symlink-kinematics.github.io/symlink/"
 
 
-def readme(section: str | None = None) -> str:
-    """The README, or the part of it under the heading ``## section`` (up to the next ``## ``)."""
-    text = README.read_text(encoding="utf-8")
+def readme(section: str | None = None, path: pathlib.Path = README) -> str:
+    """The README (or another markdown file), or the part of it under ``## section`` (up to the next ``## ``)."""
+    text = path.read_text(encoding="utf-8")
     if section is None:
         return text
     start = text.index(f"## {section}")
-    return text[start:text.index("\n## ", start + 1)]
+    end = text.find("\n## ", start + 1)
+    return text[start:] if end < 0 else text[start:end]
 
 
 def fenced_blocks(text: str, language: str) -> list[str]:

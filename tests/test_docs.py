@@ -1,13 +1,27 @@
-"""The documentation: the site builds with warnings as errors, and the example notebook runs top to bottom.
+"""The documentation site: it builds with warnings as errors and teaches what the package does today.
 
-Both need the optional extras (``pip install -e '.[docs,notebook]'``, what ``.ci/run`` installs);
-without them those two tests skip and say which package is missing.  The checks of what the
-pages list need nothing but the sources.
+Without the ``docs`` extra (``pip install -e '.[docs]'``) the build test skips and says which
+package is missing; the checks of the sources need nothing but the checkout:
+
+* the gallery shows every picture of ``docs/images`` with the code that draws it;
+* the grammar pages name every key the readers accept;
+* the ``docs`` extra lists what the build and the tutorials import;
+* every ```python block of the how-to and explanation pages runs;
+* the example notebook is committed without outputs (and, with the ``notebook`` extra, runs).
+
+The built site (one build, shared by the checks that read it): tutorial pages hold executed
+outputs with images, the API has one page per public module, the command-line reference lists
+every subcommand that ``symlink --help`` lists, the most used API has numpydoc sections, and the
+benchmark page shows the benchmark's own table and plot.
 """
 from __future__ import annotations
 
+import contextlib
+import html
 import importlib.util
+import io
 import json
+import os
 import re
 import subprocess
 import sys
@@ -15,13 +29,18 @@ from pathlib import Path
 
 import pytest
 
+from readme_text import fenced_blocks
+
 ROOT = Path(__file__).resolve().parent.parent
 DOCS = ROOT / "docs"
 NOTEBOOK = DOCS / "example.ipynb"
+TUTORIALS = sorted(path for path in (DOCS / "tutorials").glob("*.md") if path.stem != "index")
 
-#: Modules the API reference leaves out: the command line (documented by ``symlink --help``),
+#: Modules the API reference leaves out: the command line (its own page, from its parsers),
 #: ``python -m symlink`` and the TOML reader kept for Python 3.10.
 NOT_IN_API = {"symlink.cli", "symlink.__main__", "symlink.minitoml"}
+#: What the site's build needs, by the module it imports.
+BUILD_NEEDS = ("sphinx", "furo", "myst_nb", "ipykernel")
 
 
 def missing(*modules: str) -> list[str]:
@@ -30,27 +49,95 @@ def missing(*modules: str) -> list[str]:
 
 
 def package_modules() -> list[str]:
-    """Every module and package of symlink, by dotted name, from the source tree."""
+    """Every public module and package of symlink, by dotted name, from the source tree."""
     names = []
     for path in sorted((ROOT / "symlink").rglob("*.py")):
         parts = path.relative_to(ROOT).with_suffix("").parts
-        names.append(".".join(parts[:-1] if parts[-1] == "__init__" else parts))
+        name = ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+        if not any(name == hidden or name.startswith(hidden + ".") for hidden in NOT_IN_API):
+            names.append(name)
     return names
 
 
-def test_api_reference_lists_every_public_module():
-    documented = set(re.findall(r"^\.\. automodule:: (\S+)$", (DOCS / "api.md").read_text(), re.MULTILINE))
-    public = {name for name in package_modules()
-              if not any(name == hidden or name.startswith(hidden + ".") for hidden in NOT_IN_API)}
-    assert public - documented == set(), "add these modules to docs/api.md"
-    assert documented - public == set(), "docs/api.md documents modules that do not exist"
+def html_text(path: Path) -> str:
+    """The text of a built page's article, tags removed."""
+    page = path.read_text(encoding="utf-8")
+    found = re.search(r"<article[^>]*>(.*?)</article>", page, re.S)
+    return re.sub(r"\s+", " ", re.sub(r"<[^>]+>", " ", found.group(1) if found else page))
 
 
-def test_gallery_shows_every_picture():
-    shown = set(re.findall(r"^```\{figure\} images/(\S+)$", (DOCS / "gallery.md").read_text(), re.MULTILINE))
+# ---- the sources -------------------------------------------------------------------------------------------
+
+def test_gallery_shows_every_picture_with_its_code():
+    gallery = (DOCS / "gallery.md").read_text()
+    shown = re.findall(r"^```\{figure\} images/(\S+)$", gallery, re.MULTILINE)
     pictures = {path.name for path in (DOCS / "images").iterdir() if path.suffix in {".png", ".gif", ".svg"}}
-    assert pictures, "docs/images holds no pictures"
-    assert shown == pictures
+    assert pictures and set(shown) == pictures
+    code = re.findall(r"^```\{literalinclude\} (\S+)\n:pyobject: (\w+)$", gallery, re.MULTILINE)
+    assert len(code) == len(shown), "every figure of the gallery is followed by the code that draws it"
+    for source, name in code:
+        text = (DOCS / source).read_text()
+        assert re.search(rf"^def {name}\(", text, re.MULTILINE), f"{source} has no function {name}"
+
+
+def test_pictures_script_draws_every_gallery_picture_but_the_benchmarks():
+    spec = importlib.util.spec_from_file_location("pictures", DOCS / "pictures.py")
+    pictures = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(pictures)
+    assert set(pictures.DRAWERS) == set(pictures.PICTURES)
+    made_elsewhere = {"bench.png"}  # `symlink bench --plot`
+    on_disk = {path.name for path in (DOCS / "images").iterdir() if path.suffix in {".png", ".gif", ".svg"}}
+    assert set(pictures.PICTURES) == on_disk - made_elsewhere
+
+
+def test_grammar_pages_name_every_key():
+    from symlink import linkage_file, scene
+
+    page = (DOCS / "reference" / "linkage_file.md").read_text()
+    keys = (*linkage_file.TOP_KEYS, *linkage_file.TABLES, *linkage_file.DYNAMICS_KEYS,
+            *(key for needs, may in linkage_file.DYNAMICS_ENTRIES.values() for key in needs + may))
+    assert [key for key in keys if f"`{key}`" not in page and f"[{key}]" not in page and f".{key}" not in page] == []
+    page = (DOCS / "reference" / "scene_file.md").read_text()
+    assert [key for key in (*scene.TOP_KEYS, *scene.INPUT_KEYS) if f"`{key}`" not in page and f"[{key}]" not in page] == []
+
+
+def test_docs_extra_brings_what_the_build_and_the_tutorials_import():
+    pyproject = (ROOT / "pyproject.toml").read_text()
+    extra = re.search(r"^docs = \[(.*?)\]", pyproject, re.MULTILINE | re.S).group(1)
+    listed = {re.split(r"[<>=!~\[; ]", item.strip().strip('"'))[0].lower() for item in extra.split(",") if item.strip()}
+    assert {"sphinx", "furo", "myst-nb", "ipykernel"} <= listed
+    # what the tutorials use beyond the core dependencies: tables (pandas), sweeps (dask, pyarrow), SciPy
+    assert {"pandas", "scipy", "dask", "distributed", "pyarrow"} <= listed
+    imported = set()
+    for path in TUTORIALS:
+        for cell in re.findall(r"```\{code-cell\} ipython3\n(.*?)```", path.read_text(), re.S):
+            imported |= set(re.findall(r"^(?:from|import) (\w+)", cell, re.MULTILINE))
+    third_party = imported - set(sys.stdlib_module_names) - {"symlink", "numpy", "sympy", "matplotlib"}
+    distribution = {"IPython": "ipykernel"}
+    assert {distribution.get(name, name).lower() for name in third_party} <= listed
+
+
+PAGES_WITH_CODE = sorted((DOCS / "howto").glob("*.md")) + sorted((DOCS / "explanation").glob("*.md"))
+PYTHON_BLOCKS = [(path, index, block) for path in PAGES_WITH_CODE
+                 for index, block in enumerate(fenced_blocks(path.read_text(), "python"))]
+
+
+@pytest.mark.parametrize("path, index, block", PYTHON_BLOCKS,
+                         ids=[f"{path.parent.name}/{path.stem}[{index}]" for path, index, _ in PYTHON_BLOCKS])
+def test_docs_python_block_runs(path, index, block, tmp_path, monkeypatch):
+    needs = [name for name in re.findall(r"^(?:from|import) (\w+)", block, re.MULTILINE) if name in ("pint", "pandas")]
+    if missing(*needs):
+        pytest.skip(f"{path.name} block {index} needs {', '.join(missing(*needs))}")
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("MPLBACKEND", "Agg")
+    printed = io.StringIO()
+    with contextlib.redirect_stdout(printed):
+        exec(compile(block, f"{path.name} block {index}", "exec"), {"__name__": "__docs__"})  # our own docs
+    # what a comment says a print shows is what it shows (where the comment quotes it whole)
+    for line in block.splitlines():
+        said = re.match(r"\s*print\(.*\)\s+# (\[.*\]|\{.*\}|\d[^:]*)$", line)
+        if said and said.group(1).startswith(("[", "{")):
+            assert said.group(1) in printed.getvalue(), f"{path.name}: {line.strip()}"
 
 
 def test_notebook_is_committed_without_outputs():
@@ -61,20 +148,89 @@ def test_notebook_is_committed_without_outputs():
         assert cell["outputs"] == [] and cell["execution_count"] is None, "clear the notebook's outputs"
 
 
-@pytest.mark.skipif(bool(missing("sphinx", "myst_parser")),
-                    reason=f"the docs extra is not installed ({', '.join(missing('sphinx', 'myst_parser'))}): "
-                           "pip install -e '.[docs]'")
-def test_docs_build_without_warnings(tmp_path):
+# ---- the built site ----------------------------------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def site(tmp_path_factory) -> Path:
+    """The site built once with ``-W`` (warnings are errors), its HTML folder."""
+    if missing(*BUILD_NEEDS):
+        pytest.skip(f"the docs extra is not installed ({', '.join(missing(*BUILD_NEEDS))}): pip install -e '.[docs]'")
+    folder = tmp_path_factory.mktemp("site")
     build = subprocess.run([sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-b", "html",
-                            "-d", str(tmp_path / "doctrees"), str(DOCS), str(tmp_path / "html")],
-                           capture_output=True, text=True, cwd=ROOT, timeout=600)
-    assert build.returncode == 0, build.stderr + build.stdout
-    api = (tmp_path / "html" / "api.html").read_text()
-    # autodoc rendered the docstrings as objects (not as text), e.g. the solver and the linkage
-    for anchor in ('id="symlink.solver.Solver"', 'id="symlink.linkage.Linkage"', 'id="symlink.export.export"'):
-        assert anchor in api
-    readme = (tmp_path / "html" / "readme.html").read_text()
-    assert "_images/jansen.png" in readme  # the README's pictures come along with it
+                            "-d", str(folder / "doctrees"), str(DOCS), str(folder / "html")],
+                           capture_output=True, text=True, cwd=ROOT, timeout=900)
+    assert build.returncode == 0, build.stderr[-5000:] + build.stdout[-2000:]
+    return folder / "html"
+
+
+def test_site_builds_with_warnings_as_errors(site):
+    assert (site / "index.html").is_file() and (site / "gallery.html").is_file()
+
+
+@pytest.mark.parametrize("tutorial", [path.stem for path in TUTORIALS])
+def test_tutorial_page_holds_executed_outputs_with_images(site, tutorial):
+    page = (site / "tutorials" / f"{tutorial}.html").read_text()
+    outputs = re.findall(r'<div class="cell_output docutils container">(.*?)</div>\s*</div>', page, re.S)
+    cells = len(re.findall(r'class="cell docutils container"', page))
+    assert cells and outputs, f"{tutorial}: no executed outputs"
+    assert re.search(r'<img [^>]*src="\.\./_images/[^"]+\.png"', page), f"{tutorial}: no figure output"
+    assert "Traceback" not in html_text(site / "tutorials" / f"{tutorial}.html")
+
+
+def test_api_has_one_page_per_public_module(site):
+    pages = {path.stem for path in (site / "reference" / "api").glob("symlink*.html")}
+    assert pages == set(package_modules())
+    for module in ("symlink.solver", "symlink.linkage", "symlink.export"):
+        page = (site / "reference" / "api" / f"{module}.html").read_text()
+        assert f'id="{module}.' in page, f"{module}: autodoc rendered no object"
+
+
+def test_most_used_api_has_numpydoc_sections(site):
+    solver = (site / "reference" / "api" / "symlink.solver.html").read_text()
+    call = solver[solver.index('id="symlink.solver.Solver.__call__"'):]
+    call = call[:call.index('id="symlink.solver.NumericSolver"')]  # up to the next class
+    for section in ("Parameters", "Returns", "Raises"):
+        assert re.search(rf">{section}<", call), f"Solver.__call__ has no rendered {section} section"
+    for module, anchor in (("symlink.linkage", "symlink.linkage.Linkage"), ("symlink.results", "symlink.results.Results"),
+                           ("symlink.catalog", "symlink.catalog.fourbar"), ("symlink.solver", "symlink.solver.Solver")):
+        page = (site / "reference" / "api" / f"{module}.html").read_text()
+        body = page[page.index(f'id="{anchor}"'):]
+        body = body[:body.find('<dt class="sig sig-object py"', 1)]  # its own docstring, not its members'
+        assert re.search(r">(Parameters|Returns)<", body) and "Examples" in body, f"{anchor}: no numpydoc sections"
+
+
+def test_cli_reference_lists_every_subcommand_of_symlink_help(site, capsys):
+    from symlink.cli import main
+
+    try:
+        assert main(["--help"]) == 0
+    except SystemExit as done:  # argparse's own way out of --help
+        assert done.code in (0, None)
+    listing = capsys.readouterr().out
+    commands = re.findall(r"^ {4}(\w[\w-]*)", listing, re.MULTILINE)
+    assert len(commands) >= 20, listing
+    page = html_text(site / "reference" / "cli.html")
+    for command in commands:
+        assert f"symlink {command} " in page or f"symlink {command}¶" in page, f"symlink {command} is not in the CLI reference"
+    assert "--crank-speed" in page and "--to" in page and "--units" in page  # options, not just commands
+
+
+def test_benchmark_page_shows_the_benchmarks_table_and_plot(site):
+    page = (site / "explanation" / "benchmark.html").read_text()
+    assert "bench.png" in page
+    text = html.unescape(html_text(site / "explanation" / "benchmark.html"))
+    rows = [line for line in (DOCS / "benchmark" / "results.md").read_text().splitlines()
+            if re.search(r"\bsymlink\b.*\d", line) and not line.startswith("#")]
+    assert rows, "docs/benchmark/results.md holds no row of symlink's numbers"
+    for row in rows[:5]:  # a table row (markdown or preformatted) reads the same on the page
+        words = " ".join(re.sub(r"[|`*]", " ", row).split())
+        assert words in text, f"the benchmark page does not show: {words}"
+
+
+def test_code_blocks_scroll_instead_of_being_cut_off(site):
+    css = (DOCS / "_static" / "wide.css").read_text()
+    assert "overflow-x: auto" in css
+    assert "wide.css" in (site / "index.html").read_text()
 
 
 @pytest.mark.skipif(bool(missing("nbclient", "nbformat", "ipykernel")),
@@ -88,6 +244,7 @@ def test_example_notebook_runs_top_to_bottom(tmp_path, monkeypatch):
     # temporary folder of the test's own for the files the notebook writes.
     monkeypatch.setenv("MPLBACKEND", "module://matplotlib_inline.backend_inline")
     monkeypatch.setenv("TMPDIR", str(tmp_path))
+    monkeypatch.setenv("PYTHONPATH", os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")])))
     notebook = nbformat.read(NOTEBOOK, as_version=4)
     NotebookClient(notebook, timeout=300, kernel_name="python3",
                    resources={"metadata": {"path": str(tmp_path)}}).execute()  # raises on any error

@@ -1,4 +1,5 @@
 """Linkage files: every catalog entry round-trips, the shipped examples are current, bad files say where."""
+from pathlib import Path
 import math
 
 import numpy as np
@@ -246,19 +247,21 @@ def test_the_writer_refuses_what_the_grammar_cannot_hold(tmp_path):
     assert not (tmp_path / "x.toml").exists()
 
 
-def test_readme_shows_the_shipped_fourbar_file():
-    from readme_text import fenced_blocks, readme
-    (shown,) = fenced_blocks(readme("New linkages and your own"), "toml")
-    assert shown == (catalog_file("fourbar")).read_text()
+GUIDE = Path(__file__).resolve().parent.parent / "docs" / "howto" / "linkage_files.md"  # the how-to guide on linkage files
+
+
+def test_guide_shows_the_shipped_fourbar_file():
+    from readme_text import fenced_blocks
+    (shown,) = fenced_blocks(GUIDE.read_text(encoding="utf-8"), "toml")
+    assert shown == catalog_file("fourbar").read_text()
     assert linkage_from_text(shown).linkage.positions == CATALOG["fourbar"]().positions
 
 
-def test_readme_error_example_is_what_the_reader_says():
-    from readme_text import readme
-    text = (catalog_file("fourbar")).read_text().replace('AB = ["a", "theta"]', 'AB = ["a", "theta * 2"]')
+def test_guide_error_example_is_what_the_reader_says():
+    text = catalog_file("fourbar").read_text().replace('AB = ["a", "theta"]', 'AB = ["a", "theta * 2"]')
     with pytest.raises(ValueError) as caught:
         linkage_from_text(text, "fourbar.toml")
-    assert f"`{caught.value}`" in readme("New linkages and your own")
+    assert f"`{caught.value}`" in GUIDE.read_text(encoding="utf-8")
 
 
 @settings(max_examples=200, deadline=None)

@@ -42,13 +42,15 @@ def fourbar_results(count=3):
 def test_results_stay_a_plain_dict():
     results = fourbar_results()
     assert isinstance(results, dict)
-    assert list(results) == ["rocker", "rocker_speed", "C_x", "assembled"]
+    # A rate divides by the loop's determinant: its request brings the singular mask, beside assembled.
+    assert list(results) == ["rocker", "rocker_speed", "C_x", "singular", "assembled"]
     assert dict(results).keys() == results.keys()
-    assert results["assembled"].all()
+    assert results["assembled"].all() and not results["singular"].any()
 
 
 def test_units_of_angles_rates_lengths():
-    assert fourbar_results().units == {"rocker": "rad", "rocker_speed": "rad/s", "C_x": "length", "assembled": ""}
+    assert fourbar_results().units == {"rocker": "rad", "rocker_speed": "rad/s", "C_x": "length", "singular": "",
+                                       "assembled": ""}
     units = output_units(slider_crank(), ["s", "sdot", "sddot", "beta", "betaddot", "B_y"], "m")
     assert units == {"s": "m", "sdot": "m/s", "sddot": "m/s^2", "beta": "rad", "betaddot": "rad/s^2", "B_y": "m"}
     inputs = argument_units(slider_crank(), ["theta", "thetaddot", "a", "b", "branch"], "mm")
@@ -61,11 +63,11 @@ def test_html_table_shows_the_first_rows_with_units():
     parser = TableParser()
     parser.feed(text)
     header, *rows = parser.rows
-    assert header == ["", "theta (rad)", "rocker (rad)", "rocker_speed (rad/s)", "C_x (length)", "assembled"]
+    assert header == ["", "theta (rad)", "rocker (rad)", "rocker_speed (rad/s)", "C_x (length)", "singular", "assembled"]
     assert len(rows) == HTML_ROWS
     assert float(rows[1][1]) == pytest.approx(1.0 / (HTML_ROWS + 4), rel=1e-5)  # linspace(0, 1, 15)[1]
     assert float(rows[0][2]) == pytest.approx(np.pi - cosine_rule_gamma(56.0), rel=1e-5)
-    assert rows[0][5] == "True"
+    assert rows[0][5:] == ["False", "True"]
     assert f"5 more rows of {HTML_ROWS + 5}" in text
 
 
@@ -96,9 +98,9 @@ def test_to_frame_names_columns_plainly_with_the_input_and_units_in_attrs():
     results = fourbar_results(4)
     frame = results.to_frame()
     assert isinstance(frame, pandas.DataFrame)
-    assert list(frame.columns) == ["theta", "rocker", "rocker_speed", "C_x", "assembled"]
+    assert list(frame.columns) == ["theta", "rocker", "rocker_speed", "C_x", "singular", "assembled"]
     assert frame.attrs["units"] == {"theta": "rad", "rocker": "rad", "rocker_speed": "rad/s", "C_x": "length",
-                                    "assembled": ""}
+                                    "singular": "", "assembled": ""}
     assert frame.attrs["constants"] == {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1, "thetadot": 2.0}
     np.testing.assert_array_equal(frame["theta"].to_numpy(), np.linspace(0.0, 1.0, 4))
     assert frame["rocker"].iloc[0] == pytest.approx(np.pi - cosine_rule_gamma(56.0), rel=1e-12)

@@ -5,27 +5,40 @@ The plain loop is written here with symlink's public per-design functions
 limit positions, and a Solver call per design for the sampled values), and a
 couple of designs are checked against hand formulas: Grashof's inequality
 and the law of cosines for the transmission angle at crank angle 0.
+
+Then the folder's integrity, table-driven: chunks damaged every way a disk,
+a kill or a hand can damage them are refused by name when read and rebuilt
+(one warning) when the sweep continues, their records checked against hashes
+computed here; temporaries, the lock, interruptions, sweeps too large to end
+(the advice checked against hand-computed cube roots); and, marked slow, a
+process-pool sweep killed with SIGKILL whose workers must be gone in 5 s.
 """
 from __future__ import annotations
 
+import hashlib
+import json
 import logging
 import math
 import os
+import shutil
 import signal
 import subprocess
 import sys
 import time
+import warnings
 from pathlib import Path
 
 import numpy
 import pytest
 
+import symlink.sweep as sweep_module
 from symlink.analysis import grashof, limit_positions, transmission_range
 from symlink.reachability import crank_range
 from symlink.scene import catalog_linkage
 from symlink.solver import Solver
 from symlink.sweep import (MANIFEST, SweepSettings, columns, design_values, evaluate_designs, missing_modules,
                            read_sweep, run_sweep)
+from symlink.sweep_folder import SweepWarning, open_folder
 
 pytestmark = pytest.mark.skipif(bool(missing_modules()), reason="the sweep extra is not installed")
 
@@ -236,6 +249,7 @@ def test_designs_are_made_from_their_numbers_alone():
     (dict(count=1, ranges={"a": (1, 2)}), "count 2 or more"),
     (dict(linkage="nonesuch"), "no linkage 'nonesuch'"),
     (dict(mode="random", count=10**9, chunk=10**9, samples=100_000), r"at most [0-9,]+ designs \(--chunk\)"),
+    (dict(count=10**7, ranges={"a": (1, 2), "b": (1, 2), "c": (1, 2)}), r"1e\+21 designs are too many .*--grid"),
 ])
 def test_bad_settings_are_refused(arguments, message):
     given = dict(linkage="fourbar", ranges={"a": (1, 2)})
@@ -306,3 +320,319 @@ def test_a_linkage_file_sweeps_as_its_catalog_entry(tmp_path, monkeypatch):
             numpy.testing.assert_allclose(numpy.asarray(found[name], dtype=float),
                                           numpy.asarray(expected[name], dtype=float), rtol=1e-13, err_msg=name)
     assert len(from_file.manifest()["linkage_sha256"]) == 64
+
+
+# --- sweep folders that verify what they resume and what they read (issue 22, item 4) ---------------------------
+
+#: Nine designs in three chunks of three: each chunk has the same size, so one can be copied over another.
+TINY = SweepSettings("fourbar", {"a": (0.2, 0.4), "b": (0.9, 1.1)}, values={"c": 1.0, "d": 1.0}, count=3, samples=16,
+                     chunk=3, harmonics=1)
+#: Another sweep chunked alike (another rocker length): its chunks are foreign to TINY's folder.
+OTHER = SweepSettings("fourbar", {"a": (0.2, 0.4), "b": (0.9, 1.1)}, values={"c": 1.2, "d": 1.0}, count=3,
+                      samples=16, chunk=3, harmonics=1)
+CHUNK = "chunk-000001.parquet"
+
+
+def _manifest(folder: Path) -> dict:
+    return json.loads((folder / MANIFEST).read_text())
+
+
+def _truncate(folder, other, size):
+    path = folder / CHUNK
+    path.write_bytes(path.read_bytes()[:size])
+
+
+def _flip_a_byte(folder, other):
+    data = bytearray((folder / CHUNK).read_bytes())
+    data[len(data) // 2] ^= 0x01
+    (folder / CHUNK).write_bytes(bytes(data))
+
+
+def _into_a_folder(folder, other):
+    (folder / CHUNK).unlink()
+    (folder / CHUNK).mkdir()
+    (folder / CHUNK / "inside.parquet").write_bytes((folder / "chunk-000000.parquet").read_bytes())
+
+
+def _into_a_link(folder, other):
+    (folder / CHUNK).unlink()
+    (folder / CHUNK).symlink_to(folder / "chunk-000000.parquet")
+
+
+def _into_a_fifo(folder, other):
+    (folder / CHUNK).unlink()
+    os.mkfifo(folder / CHUNK)  # reading it would wait forever for a writer
+
+
+def _unrecorded(folder, other):
+    manifest = _manifest(folder)
+    del manifest["done"][CHUNK]
+    (folder / MANIFEST).write_text(json.dumps(manifest))
+
+
+def _record_edited(folder, other):
+    """The record made to match a copied file: its checksum matches, its design range does not."""
+    manifest = _manifest(folder)
+    manifest["done"][CHUNK] = manifest["done"]["chunk-000000.parquet"]
+    (folder / MANIFEST).write_text(json.dumps(manifest))
+    shutil.copyfile(folder / "chunk-000000.parquet", folder / CHUNK)
+
+
+#: (what, damage(folder, other sweep's folder), chunks done again on resume).  Every damage is to chunk 1 of 3
+#: but the extra chunks beyond the sweep's last, which are removed and never counted.
+DAMAGES = [
+    ("truncated", lambda folder, other: _truncate(folder, other, 100), 1),
+    ("empty", lambda folder, other: _truncate(folder, other, 0), 1),
+    ("a flipped byte", _flip_a_byte, 1),
+    ("swapped with chunk 0", lambda folder, other: shutil.copyfile(folder / "chunk-000000.parquet", folder / CHUNK), 1),
+    ("another sweep's chunk", lambda folder, other: shutil.copyfile(other / CHUNK, folder / CHUNK), 1),
+    ("a folder", _into_a_folder, 1),
+    ("a symbolic link", _into_a_link, 1),
+    ("a FIFO", _into_a_fifo, 1),
+    ("unrecorded", _unrecorded, 1),
+    ("record edited to a copy", _record_edited, 1),
+    ("an extra chunk beyond the last",
+     lambda folder, other: shutil.copyfile(folder / "chunk-000000.parquet", folder / "chunk-000003.parquet"), 0),
+    ("a chunk-like name", lambda folder, other: (folder / "chunk-x.parquet").write_bytes(b"PAR1"), 0),
+]
+
+
+@pytest.fixture(scope="module")
+def tiny_folders(tmp_path_factory):
+    """TINY's whole folder and OTHER's, written once: each test copies them."""
+    root = tmp_path_factory.mktemp("tiny")
+    run_sweep(TINY, root / "whole", scheduler="synchronous")
+    run_sweep(OTHER, root / "other", scheduler="synchronous")
+    return root / "whole", root / "other"
+
+
+def _copy(tiny_folders, tmp_path) -> Path:
+    folder = tmp_path / "sweep"
+    shutil.copytree(tiny_folders[0], folder, symlinks=True)
+    return folder
+
+
+def _damaged_name(folder: Path, what: str) -> str:
+    return {"an extra chunk beyond the last": "chunk-000003.parquet", "a chunk-like name": "chunk-x.parquet"}.get(
+        what, CHUNK)
+
+
+@pytest.mark.parametrize("what, damage, again", DAMAGES, ids=[case[0] for case in DAMAGES])
+def test_a_bad_chunk_is_refused_by_name_when_read(tiny_folders, tmp_path, what, damage, again):
+    folder = _copy(tiny_folders, tmp_path)
+    damage(folder, tiny_folders[1])
+    with pytest.raises(ValueError, match=_damaged_name(folder, what).replace(".", r"\.") + ".*run the sweep again"):
+        read_sweep(folder)
+
+
+@pytest.mark.parametrize("what, damage, again", DAMAGES, ids=[case[0] for case in DAMAGES])
+def test_a_bad_chunk_is_rebuilt_on_resume_with_one_warning(tiny_folders, tmp_path, what, damage, again):
+    """Continued, the folder warns once naming the chunk, does it again (never counted as done), and reads as the
+    whole run: every design once, the same values bit for bit."""
+    folder = _copy(tiny_folders, tmp_path)
+    damage(folder, tiny_folders[1])
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        done = run_sweep(TINY, folder, scheduler="synchronous")
+    found = [str(w.message) for w in caught if issubclass(w.category, SweepWarning)]
+    assert len(found) == 1 and _damaged_name(folder, what) in found[0] and "\n" not in found[0], found
+    assert (done["written"], done["skipped"]) == (again, 3 - again)
+    table = read_sweep(folder)
+    assert table.column("design").to_pylist() == list(range(TINY.designs))
+    assert table.to_pandas().equals(read_sweep(tiny_folders[0]).to_pandas())
+    assert sorted(p.name for p in folder.iterdir()) == [*(f"chunk-00000{k}.parquet" for k in range(3)), MANIFEST]
+
+
+def test_the_manifest_records_each_chunks_rows_designs_and_checksum(tiny_folders):
+    """The records against the files themselves: hashed here, and read with pyarrow."""
+    import pyarrow.parquet
+    folder = tiny_folders[0]
+    manifest = _manifest(folder)
+    assert sorted(manifest["done"]) == [f"chunk-00000{k}.parquet" for k in range(3)]
+    for k in range(3):
+        name = f"chunk-00000{k}.parquet"
+        record, data = manifest["done"][name], (folder / name).read_bytes()
+        assert record["sha256"] == hashlib.sha256(data).hexdigest() and record["bytes"] == len(data)
+        designs = pyarrow.parquet.read_table(folder / name).column("design").to_pylist()
+        assert record["rows"] == len(designs) == 3 and record["designs"] == [designs[0], designs[-1]] == [3 * k,
+                                                                                                            3 * k + 2]
+
+
+def test_a_recorded_chunk_that_is_missing_is_done_again_without_a_word(tiny_folders, tmp_path):
+    """What a kill between the manifest's write and the chunk's rename leaves: a partial table, then the whole."""
+    folder = _copy(tiny_folders, tmp_path)
+    (folder / CHUNK).unlink()
+    assert read_sweep(folder).column("design").to_pylist() == [0, 1, 2, 6, 7, 8]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        done = run_sweep(TINY, folder, scheduler="synchronous")
+    assert (done["written"], done["skipped"]) == (1, 2)
+    assert read_sweep(folder).to_pandas().equals(read_sweep(tiny_folders[0]).to_pandas())
+
+
+@pytest.mark.parametrize("manifest_too", [False, True], ids=["beside a manifest", "before the first manifest"])
+def test_temporaries_of_killed_writes_are_removed_by_the_next_run(tiny_folders, tmp_path, manifest_too):
+    """Fresh temporaries (a kill a second ago) go too: the folder is locked, so no other sweep writes them."""
+    folder = _copy(tiny_folders, tmp_path)
+    if manifest_too:
+        shutil.rmtree(folder)
+        folder.mkdir()
+    (folder / CHUNK).unlink(missing_ok=True)
+    leftovers = [f".{CHUNK}.0123456789ab.tmp", f".{MANIFEST}.a1b2c3d4e5f6.tmp"]
+    for name in leftovers:
+        (folder / name).write_bytes(b"half a write")
+    if not manifest_too:
+        (folder / ".mine.tmp").write_text("not the sweep's")  # a name the sweep never writes: left alone
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        run_sweep(TINY, folder, scheduler="synchronous")
+    names = sorted(p.name for p in folder.iterdir())
+    assert not set(leftovers) & set(names)
+    assert (".mine.tmp" in names) != manifest_too
+    assert read_sweep(folder).to_pandas().equals(read_sweep(tiny_folders[0]).to_pandas())
+
+
+def test_a_folder_being_written_is_locked(tiny_folders, tmp_path):
+    folder = _copy(tiny_folders, tmp_path)
+    header = {"symlink": sweep_module.__version__, "settings": TINY.manifest(), "columns": columns(TINY)}
+    with open_folder(folder, header, TINY.designs, TINY.chunk):
+        with pytest.raises(ValueError, match="another sweep is writing into"):
+            run_sweep(TINY, folder, scheduler="synchronous")
+    assert run_sweep(TINY, folder, scheduler="synchronous")["skipped"] == 3
+
+
+def test_an_interrupted_sweep_keeps_its_finished_chunks_and_leaves_no_temporaries(tmp_path, monkeypatch):
+    """Ctrl-C (a KeyboardInterrupt) while chunk 2 is evaluated: chunks 0 and 1 are recorded and in place."""
+    evaluate = sweep_module.chunk_table
+
+    def interrupted(settings, index):
+        if index == 2:
+            raise KeyboardInterrupt
+        return evaluate(settings, index)
+
+    monkeypatch.setattr(sweep_module, "chunk_table", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        run_sweep(TINY, tmp_path / "cut", scheduler="synchronous", window=1)
+    assert sorted(p.name for p in (tmp_path / "cut").iterdir()) == ["chunk-000000.parquet", "chunk-000001.parquet",
+                                                                     MANIFEST]
+    assert sorted(_manifest(tmp_path / "cut")["done"]) == ["chunk-000000.parquet", "chunk-000001.parquet"]
+    monkeypatch.setattr(sweep_module, "chunk_table", evaluate)
+    assert run_sweep(TINY, tmp_path / "cut", scheduler="synchronous")["written"] == 1
+
+
+def test_a_manifest_of_an_older_layout_is_refused(tiny_folders, tmp_path):
+    folder = _copy(tiny_folders, tmp_path)
+    manifest = _manifest(folder)
+    del manifest["format"], manifest["done"]
+    (folder / MANIFEST).write_text(json.dumps(manifest))
+    for action in (lambda: read_sweep(folder), lambda: run_sweep(TINY, folder, scheduler="synchronous")):
+        with pytest.raises(ValueError, match="not a sweep's manifest .*older symlink"):
+            action()
+
+
+# --- sweeps too large to end are refused before anything is written -------------------------------------------
+
+class _Disk:
+    def __init__(self, free):
+        self.free, self.total, self.used = free, free + 10**12, 10**12
+
+
+@pytest.mark.parametrize("free, count, ranges, mode, words", [
+    # 1e9 bytes free at 16 bytes a design: 62,500,000 designs; 396**3 = 62,099,136 <= that < 397**3 = 62,570,773
+    (10**9, 1000, 3, "grid", ["1e+09 designs", "16 GB of disk", "1 GB free", "62,500,000 designs",
+                              "a grid of at most 396 values a parameter (--grid)"]),
+    (10**9, 10**8, 1, "random", ["1e+08 designs", "1.6 GB", "a random sample of at most 62,500,000 (--random)"]),
+    # disk enough for anything: a year at 20,000 designs/s on one worker is 630,720,000,000 designs
+    (10**30, 10**15, 1, "random", ["1e+15 designs", "1.59e+03 years on 1 worker", "630,720,000,000 designs"]),
+    # 8575**3 = 630,525,109,375 <= 630,720,000,000 < 8576**3 = 630,745,726,976
+    (10**30, 10**5, 3, "grid", ["1e+15 designs", "a grid of at most 8,575 values"]),
+    # a full disk: no design fits
+    (0, 3, 1, "grid", ["3 designs", "48 bytes of disk", "0 bytes free", "free some space on that disk"]),
+])
+def test_a_sweep_that_cannot_end_is_refused_with_its_estimate(tmp_path, monkeypatch, free, count, ranges, mode,
+                                                              words):
+    monkeypatch.setattr(shutil, "disk_usage", lambda path: _Disk(free))
+    settings = SweepSettings("fourbar", dict(list({"a": (1, 2), "b": (3, 4), "c": (5, 6)}.items())[:ranges]),
+                             values={"b": 3.5, "c": 5.5, "d": 5.0}, mode=mode, count=count)
+    with pytest.raises(ValueError) as refused:
+        run_sweep(settings, tmp_path / "never", scheduler="synchronous")
+    message = str(refused.value)
+    assert "\n" not in message and all(word in message for word in words), message
+    assert not (tmp_path / "never").exists()
+
+
+# --- a killed process-pool sweep leaves no workers behind -------------------------------------------------------
+
+def children(pid: int) -> list[int]:
+    """The processes whose parent is ``pid`` (from /proc)."""
+    found = []
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit():
+            try:
+                stat = (entry / "stat").read_text()
+            except OSError:
+                continue
+            if int(stat.rpartition(")")[2].split()[1]) == pid:
+                found.append(int(entry.name))
+    return found
+
+
+def alive(pid: int) -> bool:
+    """Running (a zombie waiting for its reaper counts as gone)."""
+    try:
+        return (Path("/proc") / str(pid) / "stat").read_text().rpartition(")")[2].split()[0] != "Z"
+    except OSError:
+        return False
+
+
+def wait_until_gone(pids: list[int], seconds: float) -> list[int]:
+    """The ``pids`` still alive after up to ``seconds``."""
+    deadline = time.monotonic() + seconds
+    while any(alive(pid) for pid in pids) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    return [pid for pid in pids if alive(pid)]
+
+
+#: A process-pool sweep of 14,400 designs in 144 chunks: seconds of work after its two workers start.
+POOL_SWEEP = ["fourbar", "--vary", "a=0.1:0.6,b=0.4:1.6", "--set", "c=1,d=1", "--grid", "120", "--chunk", "100",
+              "--samples", "120", "--scheduler", "processes", "--workers", "2", "--no-progress"]
+
+
+def start_pool_sweep(folder: Path, wait_for_chunks: int) -> tuple[subprocess.Popen, list[int]]:
+    """The sweep started in a session of its own, and its child processes once ``wait_for_chunks`` chunks landed
+    (0: once its two workers and the resource tracker run)."""
+    command = [sys.executable, "-m", "symlink", "sweep", POOL_SWEEP[0], str(folder), *POOL_SWEEP[1:]]
+    process = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                               start_new_session=True)
+    deadline = time.monotonic() + 180
+    while len(children(process.pid)) < 3 or len(list(folder.glob("chunk-*.parquet"))) < wait_for_chunks:
+        assert process.poll() is None, process.stderr.read().decode()
+        assert time.monotonic() < deadline, "the sweep did not start in three minutes"
+        time.sleep(0.02)
+    return process, children(process.pid)
+
+
+@pytest.mark.slow  # a process pool's workers import symlink: 10-20 s on a shared machine
+@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="reads processes from /proc")
+def test_a_killed_process_pool_sweep_takes_its_workers_with_it(tmp_path):
+    """kill -9 of the sweep alone (not its group): its workers end within seconds, not minutes, silently; the
+    folder continues to the whole table."""
+    folder = tmp_path / "killed"
+    process, workers = start_pool_sweep(folder, wait_for_chunks=1)
+    try:
+        os.kill(process.pid, signal.SIGKILL)
+        process.wait(timeout=60)
+        left = wait_until_gone(workers, 5.0)
+    finally:
+        for pid in workers:
+            if alive(pid):
+                os.kill(pid, signal.SIGKILL)
+    assert left == [], "workers outlived the sweep by 5 s"
+    err = process.stderr.read().decode()  # the workers held it open too
+    assert "Traceback" not in err and "leaked" not in err, err
+    again = subprocess.run([sys.executable, "-m", "symlink", "sweep", POOL_SWEEP[0], str(folder),
+                            *[word if word != "processes" else "synchronous" for word in POOL_SWEEP[1:]]],
+                           cwd=ROOT, capture_output=True, text=True, timeout=300)
+    assert again.returncode == 0, again.stderr
+    assert "warning" not in again.stderr, again.stderr
+    assert read_sweep(folder).column("design").to_pylist() == list(range(120 * 120))

@@ -40,7 +40,7 @@ __all__ = ["main", "build_parser", "COMMANDS"]
 #: The command modules (in this package), in the order ``symlink --help`` lists their commands; each has
 #: ``register(commands)``, which adds its commands to the subparsers ``commands``.
 COMMANDS = ("tables", "dynamics", "plan", "pictures", "run", "bench", "analyze", "loop", "quick_return", "synthesize",
-            "export", "cache", "sweep")
+            "export", "cache", "sweep", "atlas")
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
 

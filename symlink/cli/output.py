@@ -127,7 +127,9 @@ class TableAssembler:
     among them (``angle_columns``) are converted to ``units`` and wrapped,
     ``transmission`` converted; speeds and accelerations stay per second.
     Rows that cannot be assembled are left out and, with singular rows (a
-    toggle, where rates are not defined), named on stderr by :meth:`finish`.
+    toggle, where rates, forces and sensitivities are not defined: the results'
+    ``singular`` flag where they have one, else non-finite rates), named on
+    stderr by :meth:`finish`.
     """
 
     def __init__(self, columns: list[str], units: str, angle_columns: Collection[str]) -> None:
@@ -158,20 +160,26 @@ class TableAssembler:
                 elif column == "transmission":
                     values = from_radians(values, self.units)
                 columns[column] = numpy.broadcast_to(values, shown_angles.shape).tolist()
-            converted[sign] = (numpy.broadcast_to(result["assembled"], shown_angles.shape).tolist(), columns)
+            # The solver's flag where it has one (a toggle, not a NaN from elsewhere); else non-finite rates.
+            flags = (numpy.broadcast_to(result["singular"], shown_angles.shape).tolist() if "singular" in result
+                     else None)
+            converted[sign] = (numpy.broadcast_to(result["assembled"], shown_angles.shape).tolist(), columns, flags)
         rates = [c for c in self.columns[2:] if c not in self.angle_columns and c != "transmission"]
         first = self.seen
         self.seen += len(shown_angles)
         for i, angle in enumerate(shown_angles.tolist()):
             singular = False
-            for sign, (assembled, columns) in converted.items():
+            for sign, (assembled, columns, flags) in converted.items():
                 if not assembled[i]:
                     self.unassembled[sign].append((first + i, angle))
                     continue
                 row = {self.columns[0]: angle, "branch": sign}
                 for column in self.columns[2:]:
                     row[column] = columns[column][i]
-                singular = singular or any(not math.isfinite(row[c]) for c in rates)
+                if flags is not None:
+                    singular = singular or bool(flags[i])
+                else:
+                    singular = singular or any(not math.isfinite(row[c]) for c in rates)
                 self.rows += 1
                 yield row
             if singular:
@@ -201,4 +209,4 @@ class TableAssembler:
                      f"(reachable crank range: {known})")
         if self.singular:
             note(f"singular (toggle) position at crank angles {self._listed(self.singular)} {self.units}: "
-                 "rates and accelerations are not defined there (inf or nan)")
+                 "rates, accelerations, forces and sensitivities are not defined there (inf, nan or meaningless)")

@@ -3,6 +3,12 @@
 The columns are those of :mod:`symlink.sweep` (angles in radians there,
 whatever ``--units`` says about the command line's own angles).  Needs the
 ``sweep`` extra; without it the command says how to install it.
+
+Continuing a folder verifies it (:mod:`symlink.sweep_folder`): a chunk that
+is not what the manifest recorded is done again with one warning line.
+Ctrl-C ends the command with one line, ``symlink: interrupted``, and exit
+status 130, as every command (2 is for bad input); the chunks finished are
+kept, and the worker processes end with the command.
 """
 from __future__ import annotations
 
@@ -33,8 +39,11 @@ def register(commands) -> None:
         "stroke, time ratio, path)",
         "lengths in any one unit; fixed angles and angle ranges in --units; angles in the table in radians",
         "symlink sweep fourbar atlas/ --vary a=0.1:1,b=0.2:2,c=0.2:2 --set d=1 --grid 40",
-        "Run again with the same settings to continue an interrupted sweep.  Needs the sweep extra "
-        "(symlink-kinematics[sweep])."))
+        "Run again with the same settings to continue an interrupted sweep: every chunk there is checked against "
+        "the manifest (rows, designs, SHA-256) and a bad one is done again, with one warning.  A sweep that could "
+        "not end (a year, or more disk than there is) is refused before it starts.  Ctrl-C stops it with exit "
+        "status 130 (the command line's 'interrupted'), keeping the chunks finished; its worker processes end with "
+        "it.  Needs the sweep extra (symlink-kinematics[sweep])."))
 
 
 def _add_options(command: argparse.ArgumentParser) -> None:
@@ -97,7 +106,8 @@ def run(args: argparse.Namespace) -> int:
     done = run_sweep(settings, args.folder, scheduler=args.scheduler, workers=args.workers,
                      progress=not args.no_progress)
     rate = done["designs_per_second"]
-    note(f"{done['designs']} designs in {done['chunks']} chunks: wrote {done['written']}, found {done['skipped']} "
-         f"already there" + ("" if math.isnan(rate) else f"; {rate:.4g} designs/s"))
+    chunks = f"{done['chunks']} chunk{'s' if done['chunks'] != 1 else ''}"
+    note(f"{done['designs']} designs in {chunks}: wrote {done['written']}, found {done['skipped']} already there"
+         + ("" if math.isnan(rate) else f"; {rate:.4g} designs/s"))
     print(args.folder)
     return 0

@@ -246,7 +246,9 @@ def _closed_form(table: Table, linkage: Linkage, values: dict, args: argparse.Na
         if table.undetermined is not None:
             assembled = assembled & ~table.undetermined(values, result)
         solved = {column: result[name] for column, name in outputs.items()}
-        return {**solved, **{label(linkage, x): given[x.name] for x in linkage.inputs[1:]}, "assembled": assembled}
+        flag = {"singular": result["singular"]} if "singular" in result else {}
+        return {**solved, **{label(linkage, x): given[x.name] for x in linkage.inputs[1:]}, **flag,
+                "assembled": assembled}
 
     def solve_block(inputs: Mapping) -> dict:
         return {key: solve(branch, inputs) for key, branch in choices.items()}

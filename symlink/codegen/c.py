@@ -127,6 +127,9 @@ class _CPrinter(C99CodePrinter):
     def _print_BooleanFalse(self, expr):
         return "0"
 
+    def _print_PowerOfTwoBelow(self, expr):  # the prelude defines symlink_power_of_two_below
+        return f"symlink_power_of_two_below({self._print(expr.args[0])})"
+
     def _print_CosineOfAtan2(self, expr):  # the prelude defines symlink_cos_atan2 and symlink_sin_atan2
         return f"symlink_cos_atan2({self._print(expr.args[0])}, {self._print(expr.args[1])})"
 
@@ -427,6 +430,18 @@ SYMLINK_INLINE double symlink_clamped_sqrt(double x, double scale)
     return x >= -symlink_tolerance * scale ? sqrt(x > 0.0 ? x : 0.0) : NAN;
 }}
 
+/* The largest power of two not above x (a loop's unit), from x's exponent bits: the bits of x
+ * with its mantissa cleared. Exact, no logarithm, and vectorised as a bitwise and. For positive
+ * normal x, which a loop's mean length is (lengths are checked from 1e-305 to 1e305). */
+SYMLINK_INLINE double symlink_power_of_two_below(double x)
+{{
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    bits &= UINT64_C(0x7ff0000000000000);
+    memcpy(&x, &bits, sizeof x);
+    return x;
+}}
+
 /* cos and sin of atan2(y, x) without calling them, from r = sqrt(x*x + y*y): x/r and y/r
  * (one division for both once inlined), and atan2's values where x = y = 0: cos 1 or -1 by
  * the sign of x, sin the signed zero y. */
@@ -461,7 +476,7 @@ def c_library(functions: Sequence[CFunction], name: str, title: str = "A symlink
         own = ["#include <stddef.h>", ""] + [f.prototype for f in functions]
     else:
         own = [f'#include "{name}.h"', ""]
-    source = "\n".join([comment, "#include <math.h>", ""] + own + [_PRELUDE.format(tolerance=TOLERANCE)]
+    source = "\n".join([comment, "#include <math.h>", "#include <stdint.h>", "#include <string.h>", ""] + own + [_PRELUDE.format(tolerance=TOLERANCE)]
                        + [f.definition for f in functions])
     return header, source
 
@@ -473,8 +488,10 @@ def c_code(functions: Sequence[tuple[str, Program, str]], name: str, title: str 
 
 
 def export_files(linkage: Linkage, stem: str, functions: Sequence[tuple[str, Sequence[str], str]],
-                 title: str, regenerate: str = "") -> dict[str, str]:
-    """``{"<stem>.h": header, "<stem>.c": source}``: a loop function ``<stem>_<name>`` each ``(name, outputs, doc)``."""
+                 title: str, regenerate: str = "", form: str = "atan2") -> dict[str, str]:
+    """``{"<stem>.h": header, "<stem>.c": source}``: a loop function ``<stem>_<name>`` each ``(name, outputs, doc)``.
+    ``form`` is the LaTeX printer's (a seed paper's form of the equations): code has one form, the atan2 form.
+    """
     programs = [(f"{stem}_{name}", linkage.program(list(outputs)), doc) for name, outputs, doc in functions]
     header, source = c_code(programs, stem, title, regenerate)
     return {f"{stem}.h": header, f"{stem}.c": source}

@@ -73,19 +73,13 @@ def docstring_text(text: str) -> str:
 class NumPyCodePrinter(NumPyPrinter):
     """NumPy printer with symlink's clamped square root and plain ``numpy.`` names."""
 
-    def __init__(self, inverse_log_two: frozenset = frozenset()):
+    def __init__(self):
         super().__init__({"fully_qualified_modules": True, "inline": True, "allow_unknown_functions": False})
-        #: Temporaries that common-subexpression elimination made of 1/log(2), shared by several loop units.
-        self.inverse_log_two = inverse_log_two | {1 / sp.log(2)}
+
+    def _print_PowerOfTwoBelow(self, expr):  # a loop's unit: the module header defines it
+        return f"_power_of_two_below({self._print(expr.args[0])})"
 
     def _print_Pow(self, expr, rational=False):
-        if expr.base == 2 and isinstance(expr.exp, sp.floor):  # a loop's unit: the module header defines it
-            factors = sp.Mul.make_args(expr.exp.args[0])  # floor(log(mean)/log(2)): the unit of that mean
-            if len(factors) == 2 and any(f in self.inverse_log_two for f in factors):
-                logarithm = factors[1] if factors[0] in self.inverse_log_two else factors[0]
-                if isinstance(logarithm, sp.log) and len(logarithm.args) == 1:
-                    return f"_power_of_two_below({self._print(logarithm.args[0])})"
-            return f"_power_of_two({self._print(expr.exp)})"
         if expr.exp == -1:
             return f"1/{self.parenthesize(expr.base, 1000)}"
         if expr.exp == 2:  # x*x, correctly rounded; a NumPy scalar's x**2.0 calls pow(), which is not
@@ -131,8 +125,10 @@ class NumPyCodePrinter(NumPyPrinter):
 
 
 def _arguments(check, names, values, lengths=(), signs=()):
-    """The arguments as float arrays and their broadcast shape; with ``check``, ``ValueError`` naming a bad one.
+    """The arguments as float64 arrays and their broadcast shape; with ``check``, ``ValueError`` naming a bad one.
 
+    Every dtype is computed in float64 (float16, float32, ints and bools are
+    converted; float64 arrays are used as they are, without a copy).
     Checked, one vectorised test an argument: real numbers only (a complex
     value is refused rather than cut to its real part), shapes that broadcast
     together, branch signs exactly +1 or -1, lengths positive and finite
@@ -150,11 +146,11 @@ def _arguments(check, names, values, lengths=(), signs=()):
             continue
         array = numpy.asarray(value)
         kind = array.dtype.kind
-        if kind != "f":
+        if array.dtype != numpy.float64:  # float64 arrays as they are (no copy); all else computed in float64
             try:
-                if kind not in "biuO":
+                if kind not in "fbiuO":
                     raise TypeError
-                array = array.astype(float)  # an object array of Python numbers; complex ones raise TypeError
+                array = array.astype(numpy.float64)  # float16/32, ints, bools, Python numbers; complex: TypeError
             except (TypeError, ValueError, OverflowError):
                 why = " (its imaginary part would be lost)" if kind == "c" else ""
                 raise ValueError(f"{name} must be real numbers, got {array.dtype} values{why}") from None
@@ -279,7 +275,7 @@ def numpy_function(program: Program, name: str, doc: str = "") -> str:
     code = straight_line(program)
     arguments = [s.name for s in code.arguments]
     code = angle_sums(code, set(arguments))
-    printer = NumPyCodePrinter(frozenset(s for s, e in code.assignments if e == 1 / sp.log(2)))
+    printer = NumPyCodePrinter()
     lengths = tuple(s.name for s in code.arguments if s.is_positive)
     signs = tuple(a for a in arguments if is_branch_name(a))
     signature = ", ".join([f"{a}={format_default(code.defaults[a])}" if a in code.defaults else a
@@ -360,20 +356,6 @@ def _cos_atan2(x, r):
 def _sin_atan2(y, r):
     """sin(atan2(y, x)) from r = sqrt(x*x + y*y): y/r, and the signed zero y where x = y = 0."""
     return y / numpy.where(r != 0.0, r, 1.0)
-
-
-def _power_of_two(exponent):
-    """2.0**exponent for whole-number exponents (a loop's unit), bit for bit, without calling pow() a value.
-
-    A power of two in the normal range is its exponent's bits; an exponent outside it (NaN, infinite, a
-    power that overflows or is subnormal) leaves the whole array to ``2.0**exponent``, exact there too.
-    """
-    if numpy.ndim(exponent) == 0 or not ((exponent >= -1022.0) & (exponent <= 1023.0)).all():
-        return 2.0**exponent
-    bits = exponent.astype(numpy.int64)
-    bits += 1023
-    bits <<= 52
-    return bits.view(numpy.float64)
 '''
 
 
@@ -389,7 +371,9 @@ def numpy_module(functions: Sequence[tuple[str, Program, str]], title: str = "A 
 
 
 def export_files(linkage: Linkage, stem: str, functions: Sequence[tuple[str, Sequence[str], str]],
-                 title: str, regenerate: str = "") -> dict[str, str]:
-    """``{"<stem>.py": module}``: one function for each ``(name, outputs, docstring)``; the shape of every printer."""
+                 title: str, regenerate: str = "", form: str = "atan2") -> dict[str, str]:
+    """``{"<stem>.py": module}``: one function for each ``(name, outputs, docstring)``; the shape of every printer.
+    ``form`` is the LaTeX printer's (a seed paper's form of the equations): code has one form, the atan2 form.
+    """
     programs = [(name, linkage.program(list(outputs)), doc) for name, outputs, doc in functions]
     return {f"{stem}.py": numpy_module(programs, title, regenerate)}

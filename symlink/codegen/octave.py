@@ -83,6 +83,9 @@ class _OctavePrinter(OctaveCodePrinter):
 
     _print_Pi = _print_NumberSymbol
 
+    def _print_PowerOfTwoBelow(self, expr):  # a loop's unit; any power of two near x scales exactly
+        return f"pow2(floor(log2({self._print(expr.args[0])})))"
+
     def _print_ClampedSqrt(self, expr):  # inline: a function file holds one function
         require_loop_units(expr)
         x, scale = (self._print(a) for a in expr.args)
@@ -187,11 +190,13 @@ def octave_function(program: Program, name: str, doc: str = "") -> str:
 
 
 def export_files(linkage: Linkage, stem: str, functions: Sequence[tuple[str, Sequence[str], str]],
-                 title: str, regenerate: str = "") -> dict[str, str]:
+                 title: str, regenerate: str = "", form: str = "atan2") -> dict[str, str]:
     """``{"<stem>_<name>.m": text}``: one function file for each ``(name, outputs, doc)``.
 
     A function file has no room for a module title: ``title`` and
     ``regenerate`` are taken for the common shape of the printers and not written.
+    
+    ``form`` is the LaTeX printer's (a seed paper's form of the equations): code has one form, the atan2 form.
     """
     return {f"{stem}_{name}.m": octave_function(linkage.program(list(outputs)), f"{stem}_{name}", doc)
             for name, outputs, doc in functions}

@@ -56,6 +56,9 @@ class ScalarPrinter(PythonCodePrinter):
     def _print_Integer(self, expr):
         return f"{float(expr)!r}"
 
+    def _print_PowerOfTwoBelow(self, expr):  # a loop's unit, from the exponent of x
+        return f"math.ldexp(0.5, math.frexp({self._print(expr.args[0])})[1])"
+
     def _print_ClampedSqrt(self, expr):
         require_loop_units(expr)
         return f"_clamped_sqrt({self._print(expr.args[0])}, {self._print(expr.args[1])})"

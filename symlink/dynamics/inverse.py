@@ -46,7 +46,7 @@ from typing import TYPE_CHECKING, Mapping, TypeVar
 
 import sympy as sp
 
-from ..bodies import GROUND, PRISMATIC
+from ..bodies import GROUND, PRISMATIC, _moving_part, same_point
 from ..closure import is_angle
 from ..linkage import Linkage
 from ..vectors import expression
@@ -92,17 +92,18 @@ def _input_drives(model: DynamicModel):
     drives: list[tuple] = []
     for q in linkage.inputs:
         if is_angle(linkage, q):
-            turning = [b.name for b in model.mechanism.bodies if not b.is_ground and model.body_angle(b.name) == q]
+            turning = [b.name for b in model.mechanism.bodies
+                       if not b.is_ground and _moving_part(model.body_angle(b.name), set(linkage.coordinates)) == q]
             if not turning:
                 raise ValueError(f"input {q} of {linkage.name} is not the angle of a body; its torque has no body "
                                  "to act on")
             drives.append(("torque", turning[0]))
             continue
         travel = next((v for loop in linkage.loops for _, v in loop.terms if q in v.length.free_symbols), None)
+        # The travel's head, however the points write it (the crank side of the loop or the guide side).
         joint = next((j for j in model.mechanism.joints if j.kind == PRISMATIC and travel is not None
                       and j.position is not None and j.guide_start is not None
-                      and sp.expand(j.position.x - j.guide_start.x - travel.x) == 0
-                      and sp.expand(j.position.y - j.guide_start.y - travel.y) == 0), None)
+                      and same_point(linkage, j.position, j.guide_start + travel)), None)
         if joint is None or travel is None:
             raise ValueError(f"input {q} of {linkage.name} is neither a body's angle nor a slider's travel")
         drives.append(("force", joint, travel))
@@ -323,12 +324,17 @@ def _solve(matrix: sp.Matrix, rhs: sp.Matrix) -> list[sp.Expr]:
 
     Gaussian elimination first uses only pivots that are nonzero numbers (the unit
     coefficients of the force balances, a drive's unit couple), chosen by Markowitz's
-    rule to keep the rows short; what is left (the moment balances, a few rows) is solved
-    by Cramer's rule, whose one denominator, its determinant, is the whole system's
-    determinant over the numeric pivots: it vanishes only where the linkage cannot carry
-    the load (a toggle), never at a pose where a lever arm happens to be zero.  An
-    elimination that pivoted on an arm (say ``sin(theta)`` of the crank) would return NaN
-    there although the forces are finite.
+    rule to keep the rows short.  What is left (the moment balances, a few rows) falls
+    apart into blocks that can be solved one after the other (:func:`_diagonal_blocks`):
+    a dyad of a multi-loop linkage carries its own loads and passes them on, as the solve
+    plan closes its loops one after the other.  Each block is solved by Cramer's rule,
+    whose one denominator, the block's determinant (a product of the whole system's
+    determinant over the numeric pivots), vanishes only where the linkage cannot carry
+    the load (a toggle of that dyad), never at a pose where a lever arm happens to be
+    zero.  An elimination that pivoted on an arm (say ``sin(theta)`` of the crank) would
+    return NaN there although the forces are finite; Cramer's rule on all the moment
+    balances at once would expand products of every dyad's arms, whose terms cancel to
+    the few digits a float keeps (Watt II's forces lost 1e-11 of their size that way).
 
     >>> a, b = sp.symbols("a b")
     >>> _solve(sp.Matrix([[a, 1], [1, 0]]), sp.Matrix([b, 2]))   # pivots on the 1s, never on a
@@ -369,19 +375,82 @@ def _solve(matrix: sp.Matrix, rhs: sp.Matrix) -> list[sp.Expr]:
     rest_columns = sorted(set(range(size)) - {c for _, c, _ in steps})  # the rows left hold no other columns
     if len(rest_rows) != len(rest_columns):
         raise ValueError("the Newton-Euler equations are structurally singular")
-    if rest_rows:
-        schur = sp.Matrix([[rows[i].get(j, 0) for j in rest_columns] for i in rest_rows])
-        determinant = schur.det(method="berkowitz")
+    for block_rows, block_columns in _diagonal_blocks({i: rows[i] for i in rest_rows}, rest_columns):
+        known = {i: right[i] - sum((value * solution[j] for j, value in rows[i].items() if j in solution), sp.S.Zero)
+                 for i in block_rows}
+        block = sp.Matrix([[rows[i].get(j, 0) for j in block_columns] for i in block_rows])
+        determinant = block.det(method="berkowitz")
         if determinant == 0:
             raise ValueError("the Newton-Euler equations are structurally singular")
-        for k, j in enumerate(rest_columns):
-            replaced = schur.copy()
-            replaced[:, k] = sp.Matrix([right[i] for i in rest_rows])
+        for k, j in enumerate(block_columns):
+            replaced = block.copy()
+            replaced[:, k] = sp.Matrix([known[i] for i in block_rows])
             solution[j] = replaced.det(method="berkowitz") / determinant
     for row, column, entries in reversed(steps):
         known = sum((value * solution[j] for j, value in entries.items() if j != column), sp.S.Zero)
         solution[column] = (right[row] - known) / entries[column]
     return [solution[j] for j in range(size)]
+
+
+def _diagonal_blocks(rows: Mapping[int, Mapping[int, sp.Expr]],
+                     columns: list[int]) -> list[tuple[list[int], list[int]]]:
+    """The square system ``rows`` (row -> column -> entry) in block-triangular form: ``(rows, columns)`` of
+    each diagonal block, in the order they can be solved (each needs only the columns of the blocks before it).
+
+    A perfect matching of rows to columns (augmenting paths) pairs each unknown with an equation; the
+    blocks are the strongly connected components (Tarjan) of "the equation of column j holds column k",
+    each after those it holds.  ``ValueError`` where no perfect matching exists (structurally singular).
+
+    >>> _diagonal_blocks({0: {0: 1, 1: 2}, 1: {1: 3}}, [0, 1])   # row 1 alone fixes column 1, then row 0
+    [([1], [1]), ([0], [0])]
+    """
+    row_of: dict[int, int] = {}
+
+    def augment(row: int, seen: set[int]) -> bool:
+        for column in rows[row]:
+            if column in seen:
+                continue
+            seen.add(column)
+            if column not in row_of or augment(row_of[column], seen):
+                row_of[column] = row
+                return True
+        return False
+
+    for row in sorted(rows):
+        if not augment(row, set()):
+            raise ValueError("the Newton-Euler equations are structurally singular")
+    needs = {column: [k for k in rows[row_of[column]] if k != column] for column in columns}
+    index: dict[int, int] = {}
+    lowest: dict[int, int] = {}
+    stack: list[int] = []
+    on_stack: set[int] = set()
+    blocks: list[tuple[list[int], list[int]]] = []
+
+    def connect(column: int) -> None:  # Tarjan: a component is closed after every component it needs
+        index[column] = lowest[column] = len(index)
+        stack.append(column)
+        on_stack.add(column)
+        for other in needs[column]:
+            if other not in index:
+                connect(other)
+                lowest[column] = min(lowest[column], lowest[other])
+            elif other in on_stack:
+                lowest[column] = min(lowest[column], index[other])
+        if lowest[column] == index[column]:
+            component = []
+            while True:
+                member = stack.pop()
+                on_stack.discard(member)
+                component.append(member)
+                if member == column:
+                    break
+            component.sort()
+            blocks.append(([row_of[c] for c in component], component))
+
+    for column in columns:
+        if column not in index:
+            connect(column)
+    return blocks
 
 
 def dynamic_outputs(model: DynamicModel) -> dict[str, sp.Expr]:
@@ -419,6 +488,11 @@ class DynamicLinkage(Linkage):
 
     dynamic_outputs: tuple[str, ...] = ()
     model: DynamicModel
+
+    def divides_by_determinant(self, name: str) -> bool:
+        """Every dynamic output does: the efforts and ``M(q)`` through the rates, the reactions through the
+        Newton-Euler determinant, both zero at a toggle."""
+        return name in self.dynamic_outputs or super().divides_by_determinant(name)
 
     @property
     def force_outputs(self) -> tuple[str, ...]:

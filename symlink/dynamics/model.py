@@ -6,10 +6,12 @@ reads off a linkage's loops, and loads on its points:
 * :class:`MassProperties` of a body: its ``mass``, its centre of mass G given in the
   body's own frame, and its moment of inertia about G.  The frame has its origin at
   one of the body's joints or named points (``origin``, by default its first joint)
-  and its x axis along the body's angle (the time-varying part of the angles of its
-  vectors: ``beta`` for the four-bar's coupler, the guide's angle for a slider
-  block); G lies at ``distance`` from the origin, at ``angle`` counter-clockwise from
-  that axis.  A body without mass properties is massless.
+  and its x axis along the body's angle: for a link, the time-varying part of the
+  angles of its vectors (``beta`` for the four-bar's coupler, ``phi`` for the Watt II
+  rocker whose arm DE is at ``phi + alpha``); for a slider block, its guide's whole
+  direction, so that on a guide inclined at ``gamma`` G is measured along and across
+  the guide.  G lies at ``distance`` from the origin, at ``angle`` counter-clockwise
+  from that axis.  A body without mass properties is massless.
 * Loads: :class:`Gravity` (a vector acting on every mass), :class:`PointForce` (a
   force at a named point or joint), :class:`BodyTorque` (a couple on a body), and a
   linear :class:`Spring` or :class:`Damper` between two points.  A load at a pin acts
@@ -267,13 +269,18 @@ class DynamicModel:
         return found
 
     def body_angle(self, body: str) -> sp.Expr:
-        """The angle of a body's frame: the moving part of its vectors' angles (a block: its guide's); 0 on the ground."""
+        """The angle of a body's frame: the moving part of its vectors' angles; a block's is its guide's
+        direction (fixed part included: a block on a guide inclined at gamma has its x axis along the guide);
+        0 on the ground."""
         found = self._body(body, "body angle")
         coordinates = set(self.kinematics.coordinates)
         for name in found.vectors:
             moving = _moving_part(self._vectors[name].angle, coordinates)
             if moving != 0:
                 return moving
+        for joint in self.mechanism.joints:
+            if joint.kind == PRISMATIC and found.name == joint.bodies[-1] and joint.direction is not None:
+                return expression(joint.direction)  # the block slides along its guide: its frame is the guide's
         for joint in self.mechanism.joints:
             if joint.kind == PRISMATIC and found.name in joint.bodies and joint.direction is not None:
                 return _moving_part(joint.direction, coordinates)

@@ -2,6 +2,9 @@
 from __future__ import annotations
 
 import json
+import os
+import signal
+from pathlib import Path
 
 import pytest
 
@@ -82,3 +85,73 @@ def test_a_folder_of_another_sweep_is_refused(tmp_path, capsys):
     assert main(["sweep", SMALL[0], folder, *SMALL[1:]]) == 0
     assert main(["sweep", SMALL[0], folder, *SMALL[1:], "--samples", "40"]) == 2
     assert "other settings (samples differ)" in capsys.readouterr().err
+
+
+def test_a_bad_chunk_is_one_warning_line_and_rebuilt(tmp_path, capsys):
+    folder = tmp_path / "out"
+    assert main(["sweep", SMALL[0], str(folder), *SMALL[1:]]) == 0
+    capsys.readouterr()
+    (folder / "chunk-000001.parquet").write_bytes((folder / "chunk-000000.parquet").read_bytes())  # swapped
+    assert main(["sweep", SMALL[0], str(folder), *SMALL[1:]]) == 0
+    err = capsys.readouterr().err.splitlines()
+    warnings = [line for line in err if line.startswith("symlink: warning:")]
+    assert len(warnings) == 1 and "chunk-000001.parquet (" in warnings[0] and "did not match" in warnings[0], err
+    assert "wrote 1, found 2 already there" in err[-1]
+    assert read_sweep(folder).column("design").to_pylist() == list(range(9))
+
+
+def test_a_sweep_that_cannot_end_is_one_line_and_exit_2(tmp_path, capsys):
+    folder = tmp_path / "never"
+    assert main(["sweep", "fourbar", str(folder), "--vary", "a=1:2,b=3:4,c=5:6", "--set", "d=5",
+                 "--grid", "100000", "--scheduler", "synchronous", "--no-progress"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("symlink: error: a sweep of 1e+15 designs needs at least 16000 TB of disk") and \
+        err.count("\n") == 1, err
+    assert "ask for at most" in err and "(--grid)" in err
+    assert not folder.exists()
+
+
+def test_an_interrupted_sweep_is_one_line_and_exit_130_and_continues(tmp_path, capsys, monkeypatch):
+    """Ctrl-C as the command sees it (a KeyboardInterrupt while the second chunk is evaluated, in whatever order
+    Dask takes them), then the same command: the chunk finished before is kept."""
+    folder = tmp_path / "out"
+    evaluate = sweep_module.chunk_table
+    finished = []
+
+    def interrupted(settings, index):
+        if finished:
+            raise KeyboardInterrupt
+        finished.append(index)
+        return evaluate(settings, index)
+
+    monkeypatch.setattr(sweep_module, "chunk_table", interrupted)
+    assert main(["sweep", SMALL[0], str(folder), *SMALL[1:]]) == 130
+    assert capsys.readouterr().err == "symlink: interrupted\n"
+    monkeypatch.setattr(sweep_module, "chunk_table", evaluate)
+    assert main(["sweep", SMALL[0], str(folder), *SMALL[1:]]) == 0
+    assert "wrote 2, found 1 already there" in capsys.readouterr().err  # three chunks, one finished before
+    assert read_sweep(folder).column("design").to_pylist() == list(range(9))
+
+
+# --- Ctrl-C: one line, exit 130 (the command line's "interrupted"), no worker traceback ---------------------------
+
+@pytest.mark.slow  # a process pool's workers import symlink: 10-20 s a case on a shared machine
+@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="reads processes from /proc")
+@pytest.mark.parametrize("chunks_first", [0, 2], ids=["as its workers start", "while chunks land"])
+def test_ctrl_c_on_a_process_pool_sweep_is_one_line_and_exit_130(tmp_path, chunks_first):
+    """SIGINT to the sweep's process group, as a terminal's Ctrl-C sends it to the sweep and its workers alike."""
+    from test_sweep import alive, start_pool_sweep, wait_until_gone
+    folder = tmp_path / "cut"
+    process, workers = start_pool_sweep(folder, wait_for_chunks=chunks_first)
+    try:
+        os.killpg(process.pid, signal.SIGINT)
+        process.wait(timeout=120)
+        left = wait_until_gone(workers, 5.0)
+    finally:
+        for pid in workers:
+            if alive(pid):
+                os.kill(pid, signal.SIGKILL)
+    assert left == [], "workers outlived the sweep by 5 s"
+    assert (process.returncode, process.stderr.read().decode()) == (130, "symlink: interrupted\n")
+    assert not [path.name for path in folder.iterdir() if path.name.endswith(".tmp")]
+    assert len(read_sweep(folder).column("design")) % 100 == 0  # the chunks kept verify; whole chunks only

@@ -289,3 +289,23 @@ def test_full_kinematics_call_sin_and_cos_no_more_than_positions(name):
         return sum(kernel.count(f"{f}(") - kernel.count(f"_{f}(") for f in ("sin", "cos", "atan2"))
 
     assert calls(full) == calls(unknowns)
+
+
+def test_a_loop_unit_is_the_exponent_of_the_mean_length_bit_for_bit(tmp_path):
+    """The C unit (the bits of x with the mantissa cleared) against the exponent of each number's hexadecimal form,
+    at powers of two and next to them, and equal to the NumPy module's (``frexp``): no logarithm, no pow."""
+    import math
+    from symlink.position import PowerOfTwoBelow
+    x = sp.Symbol("x", positive=True)
+    function = c_function(Program((x,), (), {"unit": PowerOfTwoBelow(x)}), "unit", "")
+    assert "log" not in function.definition and "pow(" not in function.definition
+    library = build(tmp_path, *c_library([function], "units"), "units")
+    powers = numpy.ldexp(1.0, numpy.arange(-1020, 1023))
+    rng = numpy.random.default_rng(12)
+    values = numpy.concatenate([powers, numpy.nextafter(powers, 0.0), numpy.nextafter(powers, numpy.inf),
+                                10.0 ** rng.uniform(-300, 300, 2000)])
+    expected = numpy.array([math.ldexp(1.0, int(float(v).hex().split("p")[1])) for v in values])
+    unit = call(library, function, {"x": values})["unit"]
+    assert unit.view(numpy.int64).tolist() == expected.view(numpy.int64).tolist()
+    numpy_unit = load_numpy_module(numpy_module([("f", Program((x,), (), {"unit": PowerOfTwoBelow(x)}), "")]))["f"]
+    assert numpy_unit(values)[0].view(numpy.int64).tolist() == expected.view(numpy.int64).tolist()

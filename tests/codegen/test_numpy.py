@@ -210,10 +210,6 @@ def test_a_long_input_needs_about_one_block_beyond_its_outputs():
 
 # --- fewer NumPy calls, the same bits ---------------------------------------------------------------------
 
-def _power_of_two():
-    return load_numpy_module(numpy_module([("f", fourbar().program(["rocker"]), "")]))["_power_of_two"]
-
-
 def test_a_loop_unit_is_the_largest_power_of_two_not_above_the_mean_length():
     """Against the exponent of each number's hexadecimal form (``0x1.8p+3`` is 1.5 * 2**3), at powers of two and next to them."""
     import math
@@ -225,21 +221,6 @@ def test_a_loop_unit_is_the_largest_power_of_two_not_above_the_mean_length():
     expected = [math.ldexp(1.0, int(float(v).hex().split("p")[1])) for v in values]
     assert unit(values).tolist() == expected
     assert [unit(float(v)) for v in values[:50]] == expected[:50]  # one number, as for lengths given alone
-
-
-def test_the_power_of_two_of_a_loop_unit_is_exact_for_every_whole_exponent():
-    import math
-    power = _power_of_two()
-    exponents = numpy.arange(-1100.0, 1101.0)  # the normal range, the subnormal one and beyond both ends
-    normal = exponents[(exponents >= -1022) & (exponents <= 1023)]
-    expected = numpy.array([math.ldexp(1.0, int(k)) if k <= 1023 else math.inf for k in exponents])
-    assert power(normal).view(numpy.int64).tolist() == \
-        numpy.array([math.ldexp(1.0, int(k)) for k in normal]).view(numpy.int64).tolist()
-    with numpy.errstate(over="ignore"):
-        assert power(exponents).view(numpy.int64).tolist() == expected.view(numpy.int64).tolist()
-        assert power(numpy.array([numpy.nan, numpy.inf, -numpy.inf, 3.0])).tolist()[1:] == [math.inf, 0.0, 8.0]
-    assert numpy.isnan(power(numpy.array([numpy.nan, 3.0]))[0])
-    assert power(numpy.float64(-3.0)) == 0.125 and power(numpy.full((2, 3), 4.0)).tolist() == [[16.0] * 3] * 2
 
 
 def test_a_sum_that_starts_with_a_negative_term_is_printed_as_a_difference():

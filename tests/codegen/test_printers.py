@@ -24,7 +24,7 @@ from symlink.vectors import Vector, coordinates, lengths
 def test_every_printer_has_the_same_call_shape():
     shapes = {language: inspect.signature(printer(language).export_files) for language in PRINTERS}
     assert len({str(shape) for shape in shapes.values()}) == 1, shapes
-    assert list(next(iter(shapes.values())).parameters) == ["linkage", "stem", "functions", "title", "regenerate"]
+    assert list(next(iter(shapes.values())).parameters) == ["linkage", "stem", "functions", "title", "regenerate", "form"]
 
 
 @pytest.mark.parametrize("language, names", [

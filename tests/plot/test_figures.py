@@ -242,14 +242,13 @@ def test_curve_command(tmp_path, capsys):
     assert not (tmp_path / "x.pdf").exists()
 
 
-def test_readme_pictures_exist_and_the_gif_is_small():
+def test_gallery_pictures_exist_and_the_gif_is_small():
     root = Path(__file__).resolve().parents[2]
-    text = (root / "README.md").read_text(encoding="utf-8")
-    section = text.split("## Pictures and animation", 1)[1].split("\n## ", 1)[0]
-    pictures = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", section)
-    assert len(pictures) == 6 and "python docs/pictures.py" in section
+    text = (root / "docs" / "gallery.md").read_text(encoding="utf-8")
+    pictures = re.findall(r"^```\{figure\} (\S+)$", text, re.MULTILINE)
+    assert len(pictures) >= 6 and "python docs/pictures.py" in text
     for name in pictures:
-        with Image.open(root / name) as image:
+        with Image.open(root / "docs" / name) as image:
             assert image.size[0] >= 300
     for gif in (root / "docs/images/fourbar.gif", root / "docs/images/jansen.gif"):
         assert gif.stat().st_size < 400_000

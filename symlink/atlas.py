@@ -47,6 +47,7 @@ from dataclasses import dataclass
 from functools import cached_property, lru_cache
 from typing import TYPE_CHECKING, Iterator, Mapping, Sequence
 
+from .display import record_html
 from .topology import GROUND
 
 if TYPE_CHECKING:
@@ -65,6 +66,8 @@ Edge = tuple[int, int]
 @dataclass(frozen=True)
 class ChainGraph:
     """A chain as a graph: ``links`` vertices 0..n-1 and ``edges`` (pins) between them, in canonical order."""
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     links: int
     edges: tuple[Edge, ...]
@@ -312,6 +315,8 @@ class AtlasEntry:
     (else the first).  ``links`` and ``joints`` of :meth:`description` name the
     links ``ground``, ``link1`` ... and the pins ``A``, ``B`` ... (A drives).
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     name: str
     chain_index: int

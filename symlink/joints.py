@@ -65,6 +65,7 @@ from typing import Collection, Mapping, Sequence
 import sympy as sp
 
 from .analysis.mobility import Mobility
+from .display import record_html
 from .linkage import Linkage
 from .loops import Loop
 from .topology import GROUND, Chain, Cycle, Traversal, independent
@@ -121,6 +122,8 @@ class JointLinkage:
     from (the writers of other tools' formats need them).
     """
 
+    _repr_html_ = record_html  # a notebook shows the fields as a table
+
     linkage: Linkage
     chain: Chain
     parameters: dict[str, float]
@@ -164,6 +167,8 @@ class JointDescription:
     ...                  {"A": (0, 0), "B": (0, 1), "C": (3, 2), "D": (3, 0)}, ("A",)).build().linkage.unknowns
     (theta_BC, theta_DC)
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     links: Mapping[str, Sequence[str]]
     coordinates: Mapping[str, tuple[float, float]]

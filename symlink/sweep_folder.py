@@ -43,6 +43,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Iterator, Mapping
 
+from .display import record_html
 from .files import LEFTOVER_AGE, TEMPORARY_SUFFIX, write_atomic
 
 __all__ = ["MANIFEST", "FORMAT", "SweepWarning", "ChunkRecord", "SweepFolder", "open_folder", "read_manifest",
@@ -81,6 +82,8 @@ class SweepWarning(UserWarning):
 class ChunkRecord:
     """What the manifest knows of a chunk: its file ``name``, ``rows``, the designs ``first`` to ``last``
     (included), and its file's ``size`` in bytes and ``sha256``."""
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     name: str
     rows: int
@@ -268,6 +271,8 @@ class SweepFolder:
     records the staged chunks in the manifest and then renames them into
     place (called now and then by :meth:`stage`, and by :meth:`close`).
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     def __init__(self, path: Path, manifest: dict[str, Any], records: dict[str, ChunkRecord], designs: int,
                  chunk: int, todo: list[int], lock: int | None) -> None:

@@ -34,6 +34,7 @@ from itertools import combinations
 from typing import Iterable, Mapping, Sequence
 
 from .analysis.mobility import Mobility
+from .display import record_html
 from .names import PLAIN_NAME
 
 __all__ = ["Chain", "Traversal", "Cycle", "GROUND", "independent"]
@@ -56,6 +57,8 @@ class Traversal:
 @dataclass(frozen=True)
 class Cycle:
     """A loop of the chain: the links walked in order, each from the joint it shares with the one before."""
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     traversals: tuple[Traversal, ...]
 

@@ -67,7 +67,7 @@ Edge = tuple[int, int]
 class ChainGraph:
     """A chain as a graph: ``links`` vertices 0..n-1 and ``edges`` (pins) between them, in canonical order."""
 
-    _repr_html_ = record_html  # a notebook shows its fields as a table
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     links: int
     edges: tuple[Edge, ...]
@@ -316,7 +316,7 @@ class AtlasEntry:
     links ``ground``, ``link1`` ... and the pins ``A``, ``B`` ... (A drives).
     """
 
-    _repr_html_ = record_html  # a notebook shows its fields as a table
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     name: str
     chain_index: int

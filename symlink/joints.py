@@ -122,7 +122,7 @@ class JointLinkage:
     from (the writers of other tools' formats need them).
     """
 
-    _repr_html_ = record_html  # a notebook shows its fields as a table
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     linkage: Linkage
     chain: Chain
@@ -168,7 +168,7 @@ class JointDescription:
     (theta_BC, theta_DC)
     """
 
-    _repr_html_ = record_html  # a notebook shows its fields as a table
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     links: Mapping[str, Sequence[str]]
     coordinates: Mapping[str, tuple[float, float]]

@@ -83,7 +83,7 @@ class ChunkRecord:
     """What the manifest knows of a chunk: its file ``name``, ``rows``, the designs ``first`` to ``last``
     (included), and its file's ``size`` in bytes and ``sha256``."""
 
-    _repr_html_ = record_html  # a notebook shows its fields as a table
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     name: str
     rows: int
@@ -272,7 +272,7 @@ class SweepFolder:
     place (called now and then by :meth:`stage`, and by :meth:`close`).
     """
 
-    _repr_html_ = record_html  # a notebook shows its fields as a table
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     def __init__(self, path: Path, manifest: dict[str, Any], records: dict[str, ChunkRecord], designs: int,
                  chunk: int, todo: list[int], lock: int | None) -> None:

@@ -58,7 +58,7 @@ class Traversal:
 class Cycle:
     """A loop of the chain: the links walked in order, each from the joint it shares with the one before."""
 
-    _repr_html_ = record_html  # a notebook shows its fields as a table
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     traversals: tuple[Traversal, ...]
 

@@ -146,8 +146,7 @@ def test_the_width_estimate_tracks_tex(tmp_path):
 def test_every_form_of_the_fourbar_and_a_linkage_file_compile_without_overfull_boxes(form, tmp_path):
     """The seeds' forms (issue 20) and a linkage file's derivation compile, with no overfull line at all."""
     from symlink.export import export_texts
-    from symlink.linkage_file import load_linkage
-    files = sorted(ROOT.glob("**/linkages/fourbar.toml"))
-    linkage = load_linkage(str(files[0])).linkage if files and form == "atan2" else "fourbar"
+    from symlink.linkage_file import catalog_file, load_linkage
+    linkage = load_linkage(catalog_file("fourbar")).linkage if form == "atan2" else "fourbar"
     text, = export_texts(linkage, "latex", form=form).values()
     assert overfull_widths(text, tmp_path) == []

@@ -126,4 +126,5 @@ def test_nbconvert_html_keeps_the_animation_and_the_report(tmp_path):
     page, _ = HTMLExporter().from_notebook_node(nbformat.v4.new_notebook(cells=cells))
     assert "IPython.core.display" not in page and "Rendered(path=" not in page
     assert page.count("data:image/gif;base64,") == 1 and "<caption>LinkageReport</caption>" in page
+    assert page.count("data:image/png;base64,") >= 3 and "anim_slider" in page  # the player and its 3 frames
     assert "font-awesome" not in page and "fa fa-play" not in page

@@ -16,7 +16,7 @@ Methods (``--methods`` picks some); ``full`` ones compute positions, speeds and 
 
 ===========================  ==========  ====================================================
 ``symlink``                  full        symlink's generated NumPy module
-``hand-numpy``               full        the same atan2 formulas written by hand in NumPy, rates by hand
+``hand-numpy``               full        the generated code's formulas and shared terms written by hand in NumPy
 ``numba``                    full        the generated code's formulas and shared terms as a hand-written
                                          numba loop (cos and sin of the solved angles from their atan2
                                          arguments, as the generated code takes them)
@@ -98,7 +98,7 @@ from symlink.analysis import crank_range
 from symlink.files import write_atomic
 from symlink.position import TOLERANCE
 
-__all__ = ["benchmark", "METHODS", "main", "hand_numpy", "halfangle_numpy", "hand_rates", "reference_positions",
+__all__ = ["benchmark", "METHODS", "main", "hand_numpy", "hand_numpy_everything", "halfangle_numpy", "hand_rates", "reference_positions",
            "reference_rates", "loop_records"]
 
 METHODS = ("symlink", "hand-numpy", "numba", "symengine-llvm", "lambdify-cse", "pylinkage", "symlink-c", "hand-c",
@@ -302,18 +302,56 @@ def hand_numpy(theta, a, b, c, d, branch):
     >>> round(float(numpy.degrees(phi[0])), 4), round(float(numpy.degrees(beta[0])), 4)
     (110.7424, 52.5127)
     """
-    wx, wy = a * numpy.cos(theta) - d, a * numpy.sin(theta)
-    w2 = wx * wx + wy * wy
-    w = numpy.sqrt(w2)
+    beta_y, beta_x, phi_y, phi_x, _ = _atan2_arguments(numpy.cos(theta), numpy.sin(theta), a, b, c, d, branch)
+    return numpy.arctan2(beta_y, beta_x), numpy.arctan2(phi_y, phi_x)
+
+
+def _atan2_arguments(cos_t, sin_t, a, b, c, d, branch):
+    """The atan2 arguments of beta and phi (y, x each) and the branch-signed root (see :func:`hand_numpy`)."""
+    wx, wy = a * cos_t - d, a * sin_t
+    w = numpy.sqrt(wx * wx + wy * wy)
     s, t = b + c, b - c
     heron = (s + w) * (s - w) * (t + w) * (w - t)
     with numpy.errstate(invalid="ignore"):
-        root = numpy.where(heron >= -TOLERANCE * 8 * b * c * w * (a + s + w + d), numpy.sqrt(numpy.maximum(heron, 0.0)),
-                           numpy.nan)
-    along_b, along_c, across = s * t + w2, w2 - s * t, branch * root
-    beta = numpy.arctan2(-wy * along_b - wx * across, -wx * along_b + wy * across)
-    phi = numpy.arctan2(wy * along_c - wx * across, wx * along_c + wy * across)
-    return beta, phi
+        root = numpy.where(heron >= -TOLERANCE * 8 * b * c * w * (s + w + d + a),
+                           numpy.sqrt(numpy.maximum(heron, 0.0)), numpy.nan)
+    w_squared = w * w
+    along_b, along_c, across = s * t + w_squared, w_squared - s * t, root * branch
+    return -wy * along_b - wx * across, -wx * along_b + wy * across, wy * along_c - wx * across, \
+        wx * along_c + wy * across, across
+
+
+def hand_numpy_everything(theta, a, b, c, d, branch, speed, accel):
+    """The six outputs of full kinematics by the generated code's formulas and shared terms, written in NumPy.
+
+    cos and sin of beta and phi come from their atan2 arguments (``x / r``, ``y / r``), not from
+    further calls of cos and sin; the rates are the loop differentiated (:func:`hand_rates`) with
+    ``1 / sin(beta - phi) = 2 b c / (sigma sqrt(H))``.
+
+    >>> values = hand_numpy_everything(numpy.array([0.0]), 20.0, 66.0, 56.0, 80.0, 1, 10.5, 2.0)
+    >>> [round(float(v[0]), 4) for v in values[2:]]
+    [-3.5, -3.5, -19.2237, 36.9151]
+    """
+    cos_t, sin_t = numpy.cos(theta), numpy.sin(theta)
+    beta_y, beta_x, phi_y, phi_x, across = _atan2_arguments(cos_t, sin_t, a, b, c, d, branch)
+    with numpy.errstate(invalid="ignore", divide="ignore"):
+        beta_over, phi_over = 1.0 / numpy.sqrt(beta_x * beta_x + beta_y * beta_y), \
+            1.0 / numpy.sqrt(phi_x * phi_x + phi_y * phi_y)
+        sin_b, cos_b, sin_p, cos_p = beta_y * beta_over, beta_x * beta_over, phi_y * phi_over, phi_x * phi_over
+        scale = 2.0 * b * c / across  # 1 / sin(beta - phi)
+        over_b, over_c = scale / b, scale / c
+        s_pt = cos_t * sin_p - cos_p * sin_t  # sin(phi - theta)
+        s_bt = cos_t * sin_b - cos_b * sin_t  # sin(beta - theta)
+        c_bp = cos_b * cos_p + sin_b * sin_p  # cos(beta - phi)
+        a_speed, a_accel = a * speed, a * accel
+        beta_speed, phi_speed = -s_pt * over_b * a_speed, -a_speed * s_bt * over_c
+        beta_speed2, c_phi_speed2 = beta_speed * beta_speed, c * (phi_speed * phi_speed)
+        beta_accel = over_b * (a * (speed * speed) * (cos_p * cos_t + sin_p * sin_t) + b * beta_speed2 * c_bp
+                               - s_pt * a_accel - c_phi_speed2)
+        phi_accel = over_c * (a * (speed * speed) * (cos_b * cos_t + sin_b * sin_t) + b * beta_speed2
+                              - s_bt * a_accel - c_phi_speed2 * c_bp)
+    return (numpy.arctan2(beta_y, beta_x), numpy.arctan2(phi_y, phi_x), beta_speed, phi_speed, beta_accel,
+            phi_accel)
 
 
 def halfangle_numpy(theta, a, b, c, d, branch):
@@ -527,11 +565,10 @@ def _numba(full: bool):
 
 def _hand(full: bool):
     def solve(sweep):
-        beta, phi = hand_numpy(sweep.theta, *sweep.lengths, sweep.branch)
         if not full:
-            return _as_dict(beta, phi)
-        a, b, c, _ = sweep.lengths
-        return _as_dict(beta, phi, hand_rates(sweep.theta, a, b, c, beta, phi, CRANK_SPEED, CRANK_ACCEL))
+            return _as_dict(*hand_numpy(sweep.theta, *sweep.lengths, sweep.branch))
+        values = hand_numpy_everything(sweep.theta, *sweep.lengths, sweep.branch, CRANK_SPEED, CRANK_ACCEL)
+        return dict(zip(EVERYTHING, values))
     return solve
 
 
@@ -1169,7 +1206,7 @@ def machine() -> dict:
     The vector width is read from the CPU's flags in ``/proc/cpuinfo``: ``avx512f`` 512 bits, ``avx2``
     256, else 128 (SSE2 on x86-64, NEON on ARM).
     """
-    model, flags = platform.processor() or platform.machine(), set()
+    model, flags = platform.processor() or platform.machine(), set[str]()
     try:
         with open("/proc/cpuinfo") as info:
             for line in info:

@@ -368,14 +368,16 @@ import re  # noqa: E402
 from collections import Counter  # noqa: E402
 
 #: The calls counted: every libm function a value may call (a clamped square root is a square root).
-CALL = re.compile(r"(?<![\w.])(?:math\.)?(sin|cos|tan|asin|acos|atan|atan2|exp|log|pow|sqrt|symlink_clamped_sqrt)\(")
+CALL = re.compile(r"(?<![\w.])(?:math\.|numpy\.)?(sin|cos|tan|asin|acos|atan|atan2|arctan2|exp|log|pow|sqrt"
+                  r"|symlink_clamped_sqrt)\(")
+RENAMED = {"symlink_clamped_sqrt": "sqrt", "arctan2": "atan2"}
 
 
 def calls(text: str) -> Counter:
     """The calls in ``text`` by function (``symlink_clamped_sqrt`` counted as ``sqrt``), comments left out."""
     text = re.sub(r"/\*.*?\*/", "", text, flags=re.DOTALL)  # C comments
     text = re.sub(r"#[^\n]*", "", text)  # Python comments (and C preprocessor lines, none in a function)
-    return Counter("sqrt" if name == "symlink_clamped_sqrt" else name for name in CALL.findall(text))
+    return Counter(RENAMED.get(name, name) for name in CALL.findall(text))
 
 
 def between(text: str, start: str, end: str) -> str:
@@ -411,3 +413,22 @@ def test_each_baseline_makes_the_generated_codes_calls_a_value(full):
     shared = between(numba_source, "def solve_positions(", "\n\n\n")
     kernel = between(numba_source, "    def everything(" if full else "    def positions(", "\n\n")
     assert calls(shared) + calls(kernel) == expected, "numba"
+    from benchmarks import bench
+    bench_source = inspect.getsource(bench)
+    shared = between(bench_source, "def _atan2_arguments(", "\n\n\n")
+    body = between(bench_source, "def hand_numpy_everything(" if full else "def hand_numpy(", "\n\n\n")
+    body = body[body.index('"""', body.index('"""') + 3):]  # the code, after the docstring
+    assert calls(shared) + calls(body.replace("_atan2_arguments(", "")) == expected, "hand NumPy"
+
+
+def test_hand_numpy_full_kinematics_match_the_independent_reference():
+    from benchmarks.bench import hand_numpy_everything
+    lengths = SEED_LINKAGES["seed002"]
+    theta = numpy.linspace(-3.0, 3.0, 13)
+    for branch in (1, -1):
+        values = hand_numpy_everything(theta, *lengths, branch, 10.5, 2.0)
+        for i, angle in enumerate(theta):
+            exact = mp_fourbar(*lengths, theta=angle, branch=branch, crank_speed=10.5, crank_accel=2.0)
+            for value, key in zip((v[i] for v in values), ("beta", "phi", "beta_speed", "phi_speed", "beta_accel",
+                                                           "phi_accel")):
+                assert value == pytest.approx(float(exact[key]), rel=1e-10, abs=1e-10), (angle, key)

@@ -60,8 +60,8 @@ import subprocess
 import sys
 import tempfile
 import threading
+import time
 import warnings
-from functools import cached_property
 from pathlib import Path
 from typing import Any, Mapping, Sequence
 
@@ -71,7 +71,6 @@ from . import cache
 from .codegen.c import c_function, c_library, c_packed
 from .files import NotPrivate, read_private, write_atomic
 from .linkage import Linkage, is_branch_name
-from .results import Results
 from .solver import Solver
 
 __all__ = ["FLAGS", "FallbackWarning", "CompilerUnavailable", "CompileError", "CompiledSolver", "cache_directory",
@@ -174,12 +173,45 @@ def _identity(command: list[str]) -> dict:
             "flags": FLAGS, "vector_math": VECTOR_MATH, "machine": platform.machine(), "system": platform.system()}
 
 
+#: Compilers running now (a background build's among them), with their build folders: stopped and removed at exit.
+_running: dict[subprocess.Popen, Path] = {}
+_exiting = threading.Event()
+
+
 def _run_compiler(command: list[str], folder: Path, vector_math: bool = True) -> subprocess.CompletedProcess:
-    """Compile ``folder/symlink.c`` into ``folder/symlink.so`` (run in the folder, so the bytes do not depend on it)."""
+    """Compile ``folder/symlink.c`` into ``folder/symlink.so`` (run in the folder, so the bytes do not depend on it).
+
+    The compiler is registered while it runs, so that a process that exits during a background build
+    stops it and removes its folder (:func:`_stop_builds`) instead of leaving half a build behind.
+    """
+    if _exiting.is_set():
+        raise CompilerUnavailable("the process is exiting")
     # Without vectorised epilogues: the last few values of a loop run one at a time, and compiling is faster.
     include = ["-include", _VECTOR_MATH_FILE, "--param", "vect-epilogues-nomask=0"] if vector_math else []
-    return subprocess.run(command + list(FLAGS) + include + ["-o", "symlink.so", "symlink.c", "-lm"],
-                          cwd=folder, capture_output=True, text=True, timeout=300, check=False)
+    arguments = command + list(FLAGS) + include + ["-o", "symlink.so", "symlink.c", "-lm"]
+    process = subprocess.Popen(arguments, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    _running[process] = folder
+    try:
+        out, err = process.communicate(timeout=300)
+    except subprocess.TimeoutExpired:
+        process.kill()
+        out, err = process.communicate()
+    finally:
+        _running.pop(process, None)
+    return subprocess.CompletedProcess(arguments, process.returncode, out, err)
+
+
+@atexit.register
+def _stop_builds() -> None:
+    """At exit: stop the compilers of background builds still running and remove their build folders."""
+    _exiting.set()
+    for process, folder in list(_running.items()):
+        try:
+            process.kill()
+            process.wait(timeout=5)
+        except (OSError, subprocess.SubprocessError):
+            pass
+        shutil.rmtree(folder, ignore_errors=True)
 
 
 def _build(source: str, headers: Mapping[str, str], command: list[str], target: Path) -> None:
@@ -313,8 +345,7 @@ def compile_shared(source: str, headers: Mapping[str, str] | None = None) -> cty
     """
     headers = dict(headers or {})
     command = find_compiler()
-    key = hashlib.sha256(json.dumps({"source": source, "headers": headers, **_identity(command)},
-                                    sort_keys=True).encode()).hexdigest()
+    key = _library_key(source, command, headers)
     if key in _loaded:
         return _loaded[key]
     target = cache_directory() / f"{key}.so"
@@ -581,41 +612,26 @@ def c_solver_source(linkage: Linkage, outputs: Sequence[str]) -> dict:
 
 
 class CompiledSolver(Solver):
-    """A :class:`~symlink.solver.Solver` whose arithmetic runs in the compiled C loop.
+    """A :class:`~symlink.solver.Solver` whose arithmetic runs in the compiled C loop, built now.
 
     ``CompilerUnavailable`` where no C compiler works; :func:`compiled_solver`
-    falls back to NumPy instead.
+    (and ``Solver(..., backend="compiled")``) fall back to NumPy instead.
+    ``function`` is the compiled function (called with keywords, as the NumPy module's is)
+    and ``source`` its C source.
     """
 
     def __init__(self, linkage: Linkage, outputs: Sequence[str]) -> None:
-        self.linkage = linkage
-        self.outputs = list(outputs)
-        if not self.outputs:
+        outputs = list(outputs)
+        if not outputs:
             raise ValueError(f"ask {linkage.name} for at least one output; it has {', '.join(linkage.output_names())}")
-        facts = c_solver_source(linkage, self.outputs)
+        super().__init__(linkage, outputs, backend="numpy")
+        facts = c_solver_source(linkage, outputs)
+        self.backend_choice = "compiled"
         self.source = facts["source"]
         self.arguments = list(facts["arguments"])
         self.library = compile_shared(self.source)
-        self.function: _Entry = _Entry(self.library, "solve", facts["arguments"], facts["outputs"], facts["flags"],
-                                       facts["defaults"])
-
-    def __call__(self, **values) -> Results:
-        """The outputs at ``values``, as :class:`~symlink.solver.Solver` computes and checks them.
-
-        A small call of plain numbers and float arrays takes the compiled
-        function's fast path, whose C wrapper checks the values as the NumPy
-        module does; anything else (quantities, other shapes or types, a value
-        that check refuses, which is then named in a ``ValueError``) goes
-        through :meth:`Solver.__call__ <symlink.solver.Solver.__call__>`.
-        """
-        outputs = self.function._small_outputs(values)
-        if outputs is not None:
-            return Results(outputs.results, self._units)
-        return super().__call__(**values)
-
-    @cached_property
-    def _units(self) -> dict[str, str]:
-        return {name: self.units.get(name, "") for name in self.outputs + ["assembled"]}
+        self.function: _Entry = _entry(self.library, facts)
+        self._compiled = self.function
 
 
 def compiled_solver(linkage: Linkage, outputs: Sequence[str]) -> Solver:
@@ -632,3 +648,180 @@ def compiled_solver(linkage: Linkage, outputs: Sequence[str]) -> Solver:
     except (CompilerUnavailable, CompileError, OSError, subprocess.SubprocessError) as error:
         warnings.warn(f"symlink: no compiled backend, using NumPy instead: {error}", FallbackWarning, stacklevel=2)
         return Solver(linkage, outputs)
+
+
+# --- the backend a Solver uses ---------------------------------------------------------------------------------
+
+#: The backends a :class:`~symlink.solver.Solver` can use (``backend=`` or the ``SYMLINK_BACKEND`` variable).
+BACKENDS = ("auto", "numpy", "compiled")
+
+
+def chosen_backend(backend: str | None = None) -> str:
+    """``backend``, else ``$SYMLINK_BACKEND``, else ``"auto"``; ``ValueError`` naming any other value.
+
+    >>> chosen_backend("numpy")
+    'numpy'
+    >>> chosen_backend("fortran")
+    Traceback (most recent call last):
+    ValueError: backend must be one of auto, numpy, compiled; got 'fortran'
+    """
+    where = "backend"
+    if backend is None:
+        backend, where = os.environ.get("SYMLINK_BACKEND", "").strip() or "auto", "SYMLINK_BACKEND"
+    if backend not in BACKENDS:
+        raise ValueError(f"{where} must be one of {', '.join(BACKENDS)}; got {backend!r}")
+    return backend
+
+
+_probed: dict[tuple, bool] = {}
+
+
+def compiler_works() -> bool:
+    """Whether a C compiler builds and loads a library here: probed once a process (and compiler), then remembered.
+
+    The probe's library is cached on disk like any other, so a later process only loads it.
+    """
+    try:
+        command = find_compiler()
+    except CompilerUnavailable:
+        return False
+    identity = tuple(command)
+    if identity not in _probed:
+        try:
+            compile_shared(_PROBE)
+            _probed[identity] = True
+        except (CompilerUnavailable, CompileError, OSError, subprocess.SubprocessError):
+            _probed[identity] = False
+    return _probed[identity]
+
+
+def _library_key(source: str, command: list[str], headers: Mapping[str, str] | None = None) -> str:
+    """The cache name of the library of ``source``: a hash of it, its headers and the compiler's identity."""
+    return hashlib.sha256(json.dumps({"source": source, "headers": dict(headers or {}), **_identity(command)},
+                                     sort_keys=True).encode()).hexdigest()
+
+
+def built_library(source: str) -> ctypes.CDLL | None:
+    """The library of ``source`` if it is built already (in this process or in the disk cache), else ``None``.
+
+    Never compiles (see :func:`compile_shared`, which does).
+    """
+    try:
+        command = find_compiler()
+        key = _library_key(source, command)
+        if key not in _loaded:
+            library = _load(cache_directory() / f"{key}.so")
+            if library is None:
+                return None
+            _loaded[key] = library
+        return _loaded[key]
+    except (CompilerUnavailable, OSError):
+        return None
+
+
+def _entry(library: ctypes.CDLL, facts: Mapping[str, Any]) -> _Entry:
+    return _Entry(library, "solve", facts["arguments"], facts["outputs"], facts["flags"], facts["defaults"])
+
+
+class Build:
+    """A library compiled in the background: :meth:`done`, :meth:`wait`, and its :meth:`entry` once built.
+
+    A failed build leaves ``entry()`` ``None`` and says why in ``error`` (the NumPy module keeps answering).
+    """
+
+    def __init__(self, facts: Mapping[str, Any]):
+        self.facts = dict(facts)
+        self.error: BaseException | None = None
+        self._library: ctypes.CDLL | None = None
+        self._finished = threading.Event()
+
+    def run(self) -> None:
+        try:
+            self._library = compile_shared(self.facts["source"])
+        except (CompilerUnavailable, CompileError, OSError, subprocess.SubprocessError) as error:
+            self.error = error
+        finally:
+            self._finished.set()
+
+    def done(self) -> bool:
+        return self._finished.is_set()
+
+    def wait(self, timeout: float | None = None) -> bool:
+        """Block until the build is over (at most ``timeout`` seconds); whether it is."""
+        return self._finished.wait(timeout)
+
+    def entry(self) -> _Entry | None:
+        return None if self._library is None else _entry(self._library, self.facts)
+
+
+_builds: dict[str, Build] = {}
+_queue: list[Build] = []
+_queue_ready = threading.Condition()
+_worker: list[threading.Thread] = []
+
+
+def _work() -> None:
+    """The background builder: one build at a time, in the order asked (a daemon thread, stopped at exit)."""
+    while not _exiting.is_set():
+        with _queue_ready:
+            while not _queue:
+                _queue_ready.wait()
+            build = _queue.pop(0)
+        build.run()
+
+
+def build_in_background(facts: Mapping[str, Any]) -> Build:
+    """The background build of ``facts["source"]`` (one a source and process; started here if it is not yet)."""
+    key = hashlib.sha256(facts["source"].encode()).hexdigest()
+    with _queue_ready:
+        if key in _builds and not (_builds[key].done() and _builds[key].error is not None):
+            return _builds[key]
+        build = _builds[key] = Build(facts)
+        _queue.append(build)
+        if not _worker or not _worker[0].is_alive():
+            _worker[:] = [threading.Thread(target=_work, name="symlink-compiler", daemon=True)]
+            _worker[0].start()
+        _queue_ready.notify()
+    return build
+
+
+def wait_for_builds(timeout: float | None = None) -> bool:
+    """Block until every background build asked for so far is over (at most ``timeout`` seconds); whether they are."""
+    with _queue_ready:
+        pending = [build for build in _builds.values() if not build.done()]
+    deadline = None if timeout is None else time.monotonic() + timeout
+    for build in pending:
+        left = None if deadline is None else max(0.0, deadline - time.monotonic())
+        if not build.wait(left):
+            return False
+    return True
+
+
+def compiled_or_warning(linkage: Linkage, outputs: Sequence[str]) -> _Entry | None:
+    """What ``backend="compiled"`` gets: the compiled function of ``outputs``, built now if it is not in the cache;
+    where it cannot be built or loaded, one ``FallbackWarning`` and ``None`` (NumPy answers)."""
+    try:
+        facts = c_solver_source(linkage, outputs)
+        return _entry(compile_shared(facts["source"]), facts)
+    except (CompilerUnavailable, CompileError, OSError, subprocess.SubprocessError) as error:
+        warnings.warn(f"symlink: no compiled backend, using NumPy instead: {error}", FallbackWarning, stacklevel=3)
+        return None
+
+
+def entry_or_build(linkage: Linkage, outputs: Sequence[str]) -> tuple[_Entry | None, Build | None]:
+    """What ``backend="auto"`` gets: the compiled function if its library is built (in memory or on disk), else
+    its background build (the NumPy module answers meanwhile), or neither where no compiler works.
+
+    The C source is derived here, in the caller's thread (SymPy's evaluation settings are global: never
+    derive in a background thread); only the compiler runs in the background.
+    """
+    if not compiler_works():
+        return None, None
+    try:
+        facts = c_solver_source(linkage, outputs)
+    except (OSError, ValueError, NotImplementedError, TypeError):
+        return None, None  # a linkage the C printer cannot print: NumPy
+    library = built_library(facts["source"])
+    if library is not None:
+        return _entry(library, facts), None
+    return None, build_in_background(facts)

@@ -647,7 +647,7 @@ def compiled_solver(linkage: Linkage, outputs: Sequence[str]) -> Solver:
         return CompiledSolver(linkage, outputs)
     except (CompilerUnavailable, CompileError, OSError, subprocess.SubprocessError) as error:
         warnings.warn(f"symlink: no compiled backend, using NumPy instead: {error}", FallbackWarning, stacklevel=2)
-        return Solver(linkage, outputs)
+        return Solver(linkage, outputs, backend="numpy")
 
 
 # --- the backend a Solver uses ---------------------------------------------------------------------------------

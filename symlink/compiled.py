@@ -591,14 +591,15 @@ def c_solver_source(linkage: Linkage, outputs: Sequence[str]) -> dict:
     """The standalone C source of one function ``solve`` for ``outputs``, with its calling facts.
 
     Derived on the first request only, then read from symlink's cache
-    (:func:`symlink.cache.cached_text`): ``{"source", "arguments", "outputs",
-    "flags", "defaults"}``.
+    (:func:`symlink.cache.cached_text`, keyed by the linkage's definition and the
+    output names: a warm request does no symbolic work): ``{"source", "arguments",
+    "outputs", "flags", "defaults"}``.
     """
     outputs = list(outputs)
-    for name in outputs:
-        linkage.output(name)  # ValueError naming the outputs there are, before any work
 
     def build() -> str:
+        for name in outputs:  # an entry exists only for checked names: a warm request checks (derives) nothing
+            linkage.output(name)  # ValueError naming the outputs there are, before any work
         program = linkage.program(outputs)
         function = c_function(program, "solve", f"{linkage.name}: {', '.join(outputs)}.")
         _, source = c_library([function], "solver", standalone=True)

@@ -70,6 +70,7 @@ from .linkage import Linkage, Program
 from .closure import is_angle
 from .notation import math_text
 from .results import Results
+from .sensitivity import split_sensitivity_name
 from .solver import Solver, crank_speeds
 from .vectors import acceleration, rate
 
@@ -141,8 +142,11 @@ class Scene:
         if not self.outputs:
             raise ValueError(f"a scene needs at least one output of {self.linkage.name}; "
                              f"it has {', '.join(self.linkage.output_names())}")
+        known = set(self.linkage.output_names())
         for name in self.outputs:
-            self.linkage.output(name)  # ValueError naming the outputs there are
+            if name not in known and split_sensitivity_name(name, self.linkage.parameters) is None:
+                self.linkage.output(name)  # ValueError naming the outputs there are
+        # (a sensitivity's name is checked where its code is derived, not here: that derives it)
         if branch not in BRANCH_CHOICES or isinstance(branch, bool):
             raise ValueError(f"branch must be 1, -1 or 'both', got {branch!r}")
         self.branch = branch

@@ -88,3 +88,38 @@ def test_a_changed_table_or_output_is_another_request(disk_cache):
     assert heavier[0][0] == pytest.approx(first[0][0] + 0.03 * 2.0, rel=1e-12)  # (I + m r^2) alpha: 0.03 more
     with pytest.raises(ValueError, match="outputs: fourbar has no output 'joint_Z_x'"):
         scene_from_text(SCENE.replace('"joint_A_y"', '"joint_Z_x"'), "scene.toml")
+
+
+def forbid_derivatives(monkeypatch):
+    def forbidden(*args, **kwargs):
+        raise AssertionError("symbolic work in a warm request")
+    for name in ("diff", "cse", "simplify", "solve"):
+        monkeypatch.setattr(sympy, name, forbidden)
+    monkeypatch.setattr(sympy.Expr, "diff", forbidden)
+    monkeypatch.setattr(sympy.Derivative, "__new__", forbidden)
+
+
+@pytest.mark.parametrize("backend", ["numpy", "auto"])
+def test_a_warm_sensitivity_request_derives_nothing(disk_cache, monkeypatch, backend):
+    from symlink.catalog import fourbar
+    from symlink.scene import Scene
+    from symlink.solver import NumericSolver, Solver
+    from symlink.catalog import stephenson3
+    values = dict(theta=0.3, a=20.0, b=66.0, c=56.0, d=80.0, branch=1.0)
+    cold = Solver(fourbar(), ["rocker__d_a", "rocker"], backend=backend)(**values)
+    lengths = {k: v for k, v in values.items() if k != "branch"}
+    Scene(fourbar(), ["rocker__d_a"], lengths).evaluate()
+    NumericSolver(stephenson3())
+    cache.clear_memory()  # a new process: the disk cache only
+    forbid_derivatives(monkeypatch)
+    warm = Solver(fourbar(), ["rocker__d_a", "rocker"], backend=backend)(**values)
+    assert float(warm["rocker__d_a"]) == pytest.approx(float(cold["rocker__d_a"]), rel=1e-13)
+    scene = Scene(fourbar(), ["rocker__d_a"], lengths)
+    assert float(scene.evaluate()[1]["rocker__d_a"]) == pytest.approx(float(cold["rocker__d_a"]), rel=1e-13)
+    NumericSolver(stephenson3())  # Newton's module, from the cache too
+    monkeypatch.undo()
+    # finite differences of the rocker angle, an independent check of the derivative's value
+    step = 1e-6
+    ahead = Solver(fourbar(), ["rocker"], backend="numpy")(**{**values, "a": 20.0 + step})["rocker"]
+    behind = Solver(fourbar(), ["rocker"], backend="numpy")(**{**values, "a": 20.0 - step})["rocker"]
+    assert float(warm["rocker__d_a"]) == pytest.approx(float(ahead - behind) / (2 * step), rel=1e-6)

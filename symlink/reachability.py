@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Any, Callable, Mapping
 
 import numpy
@@ -33,7 +34,7 @@ from .vectors import rate
 
 __all__ = ["crank_range", "assembled_crank_range", "slider_crank_range", "inverted_slider_crank_range",
            "fivebar_range", "scanned_range", "describe_spans", "reachable_turn", "turn_angles", "SCAN_POINTS", "TURN_SAMPLES",
-           "BISECTIONS", "Toggle", "InputRange", "InputMotion", "reachable_range"]
+           "BISECTIONS", "Toggle", "InputRange", "InputMotion", "reachable_range", "design_spans"]
 
 #: Points a turn of the scan that finds a reachable crank range without a closed form.
 SCAN_POINTS = 3600
@@ -249,6 +250,13 @@ class InputRange:
         return self.periodic and self.spans == ((-math.pi, math.pi),)
 
 
+@lru_cache(maxsize=64)
+def _motion_solver(linkage: Linkage, outputs: tuple[str, ...]) -> Solver:
+    """The solver of an :class:`InputMotion`, made once a linkage (a sweep makes a motion a design: a solver's
+    cache key and backend are worth making once, not each time)."""
+    return Solver(linkage, list(outputs))
+
+
 class InputMotion:
     """A one-input linkage at given values, evaluated at any input values: coordinates and rates.
 
@@ -300,7 +308,7 @@ class InputMotion:
         if self.exact:
             if guess is not None:
                 raise ValueError(f"{linkage.name} is solved in closed form: give branch signs, not a guess")
-            self._solver = Solver(linkage, self.names + self.rates)
+            self._solver = _motion_solver(linkage, tuple(self.names + self.rates))
         else:
             if guess is None:
                 raise ValueError(f"{linkage.name} has no closed form: give a guess of "
@@ -456,6 +464,67 @@ def reachable_range(linkage: Linkage, values: Mapping[str, float], *, input: str
     if motion.exact:
         return _closed_form_range(motion, low, high, points)
     return _continued_range(motion, low, high, points)
+
+
+def design_spans(linkage: Linkage, values: Mapping[str, Any], count: int, *, input: str | None = None,
+                 points: int = SCAN_POINTS, block: int = 1 << 20) -> list[list[tuple[float, float]]]:
+    """The reachable spans over a turn of the input of ``count`` designs at once, each as :func:`reachable_range`
+    finds them in closed form (the same scan and bisections, to rounding), without its toggles.
+
+    ``values``: every parameter, branch sign and held input by name, a number or an array of ``count``
+    (one a design).  Every step (the scan, each bisection) is one call of the generated margins for all
+    designs and edges together, not one a design.
+
+    >>> from symlink.catalog import slider_crank
+    >>> found = design_spans(slider_crank(), dict(a=numpy.array([2.0, 0.5]), b=1.0, offset=0.0), 2)
+    >>> [[tuple(round(math.degrees(x), 9) for x in span) for span in spans] for spans in found]
+    [[(-30.0, 30.0), (150.0, 210.0)], [(-180.0, 180.0)]]
+    """
+    driven = linkage.inputs[0].name if input is None else input
+    if not linkage.has_closed_form:
+        raise ValueError(f"{linkage.name} has no closed form: find its spans one design at a time (reachable_range)")
+    margins, roots = _margin_function(linkage)
+    arrays = {name: numpy.broadcast_to(numpy.asarray(value, dtype=float), (count,)) for name, value in values.items()}
+    step = 2 * math.pi / points
+    grid = -math.pi + step * numpy.arange(points)
+    following = numpy.append(grid, grid[0] + 2 * math.pi)
+
+    def margin_values(at: numpy.ndarray, rows) -> dict[str, numpy.ndarray]:
+        with numpy.errstate(all="ignore"):
+            return margins(**{driven: at}, **{name: array[rows] for name, array in arrays.items()})
+
+    inside = numpy.zeros((count, points), dtype=bool)
+    rows_a_block = max(1, block // points)
+    for first in range(0, count, rows_a_block):
+        rows = numpy.arange(first, min(first + rows_a_block, count))
+        found = margin_values(grid[None, :], rows[:, None])
+        inside[rows] = numpy.asarray(found["assembled"], dtype=bool)
+    design, edge = numpy.nonzero(inside != numpy.roll(inside, -1, axis=1))
+    spans: list[list[tuple[float, float]]] = [[(-math.pi, math.pi)] if row.all() else [] for row in inside]
+    if not design.size:
+        return spans
+    start, end, before = grid[edge], following[edge + 1], inside[design, edge]
+    in_low, out_high = _bisect(lambda at: margin_values(at, design)["assembled"], start, end, before)
+    rising = ~before
+    beyond = margin_values(numpy.where(rising, in_low, out_high), design)
+    failing = numpy.full(design.size, -1)
+    for k, (name, _) in reversed(list(enumerate(roots))):  # the first root whose margin is negative
+        failing = numpy.where(numpy.asarray(beyond[name]) < 0, k, failing)
+    at_low, at_high = in_low.copy(), out_high.copy()
+    for k, (name, _) in enumerate(roots):
+        chosen = numpy.flatnonzero(failing == k)
+        if not chosen.size or not name.startswith("margin"):
+            continue
+        # the clamp takes rounding below zero as the toggle itself: bisect where the root's argument changes sign
+        def closes(at, name=name, chosen=chosen):
+            return margin_values(at, design[chosen])[name] - TOLERANCE >= 0
+        at_low[chosen], at_high[chosen] = _bisect(closes, start[chosen], end[chosen], before[chosen])
+    bounds = numpy.where(rising, at_high, at_low)  # the reachable side of each edge
+    for row in numpy.unique(design).tolist():
+        mine = design == row
+        marks = sorted(zip(bounds[mine].tolist(), rising[mine].tolist()))
+        spans[row] = _spans_from_marks(marks, True, float(grid[0]), float(grid[-1]))
+    return spans
 
 
 def _closed_form_range(motion: InputMotion, low: float, high: float, points: int) -> InputRange:

@@ -47,10 +47,11 @@ one per parameter       every parameter of the linkage (float64), the swept ones
 
 The reachable range comes from :mod:`symlink.reachability` (the four-bar's
 closed form; for another linkage the sampled mask where every sample
-assembles, else its bisected scan); the Grashof class from
+assembles, else its bisected scan, every design of a chunk at once:
+:func:`~symlink.reachability.design_spans`); the Grashof class from
 :func:`~symlink.analysis.grashof`; the transmission angle from the four-bar's
-``transmission`` output, or :func:`~symlink.analysis.transmission_angles`
-for another linkage.  Extremes are the samples' refined by the parabola
+``transmission`` output, or for another linkage from its solved coordinates
+(:func:`~symlink.analysis.transmission.transmission_arrays`, code generated once).  Extremes are the samples' refined by the parabola
 through each extreme and its neighbours (errors of order ``step**3``).
 
 >>> settings = SweepSettings("fourbar", {"a": (0.2, 0.4)}, values={"b": 1.0, "c": 1.0, "d": 1.0}, count=3)
@@ -73,13 +74,13 @@ from typing import Any, Iterable, Iterator, Mapping, Sequence
 import numpy
 
 from .analysis.grashof import grashof
-from .analysis.transmission import transmission_angles
+from .analysis.transmission import transmission_arrays, transmission_coordinates
 from .closure import is_angle
 from .files import write_atomic
 from .linkage import Linkage
 from .limits import require_memory
 from .linkage_file import LinkageFile, linkage_from_text, load_linkage
-from .reachability import InputMotion, crank_range, reachable_range
+from .reachability import InputMotion, crank_range, design_spans, reachable_range
 from .solver import Solver
 from .version import __version__
 
@@ -354,8 +355,11 @@ def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[st
     fourbar = _is_fourbar(linkage)
     transmission_output = "transmission" in linkage.output_names()
     outputs = [settings.output, f"{settings.point}_x", f"{settings.point}_y"]
+    joints = not transmission_output and _has_two_angle_loop(linkage)  # transmission angles from the coordinates
     if transmission_output:
         outputs.append("transmission")
+    elif joints:
+        outputs += transmission_coordinates(linkage)
     solver = _solver(linkage, tuple(dict.fromkeys(outputs)))
     input_name = linkage.inputs[0].name
     held = {q.name: fixed[q.name] for q in linkage.inputs[1:]}
@@ -376,6 +380,9 @@ def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[st
         path[rows] = solved[f"{settings.point}_x"] + 1j * solved[f"{settings.point}_y"]
         if transmission_output:
             mu[rows] = solved["transmission"]
+        elif joints:  # every design of the block at once, by code generated once (no SymPy a design)
+            with numpy.errstate(all="ignore"):
+                mu[rows] = numpy.fmin.reduce(list(transmission_arrays(linkage, arguments, solved).values()))
     output[~mask] = numpy.nan
     path[~mask] = numpy.nan
     mu[~mask] = numpy.nan
@@ -384,6 +391,13 @@ def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[st
     reach, spans, assembles, classes = numpy.zeros(count), numpy.zeros(count, dtype=numpy.int64), \
         numpy.zeros(count, dtype=bool), [""] * count
     sampled_full = numpy.asarray(mask.all(axis=1))
+    scanned: dict[int, list[tuple[float, float]]] = {}
+    partial = numpy.flatnonzero(~sampled_full)
+    if not fourbar and partial.size and linkage.has_closed_form:  # every partial design's scan at once
+        values_of = {s.name: table[s.name][partial] for s in linkage.parameters}
+        values_of.update({**held, **{s.name: float(settings.branch) for s in linkage.branches}})
+        scanned = dict(zip(partial.tolist(), design_spans(linkage, values_of, partial.size,
+                                                          input=linkage.inputs[0].name)))
     for k in range(count):
         values = {s.name: float(table[s.name][k]) for s in linkage.parameters}
         if fourbar:
@@ -391,17 +405,14 @@ def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[st
             classes[k] = grashof(values["a"], values["b"], values["c"], values["d"]).name
         elif sampled_full[k]:
             found_spans = [(-math.pi, math.pi)]
+        elif k in scanned:
+            found_spans = scanned[k]
         else:
             motion = InputMotion(linkage, {**values, **held, **{s.name: settings.branch for s in linkage.branches}})
             found_spans = list(reachable_range(linkage, motion.values, motion=motion).spans)
         spans[k] = len(found_spans)
         assembles[k] = found_spans == [(-math.pi, math.pi)]
         reach[k] = min(sum(high - low for low, high in found_spans) / (2 * math.pi), 1.0)
-        if not transmission_output and mask[k].any() and _has_two_angle_loop(linkage):
-            motion = InputMotion(linkage, {**values, **held, **{s.name: settings.branch for s in linkage.branches}})
-            angles = transmission_angles(linkage, motion.values, inputs, motion=motion)
-            with numpy.errstate(all="ignore"):
-                mu[k] = numpy.fmin.reduce(list(angles.values()))
     assembles &= sampled_full
     table.update(assembles=assembles, reach=reach, spans=spans, grashof=classes)
 

@@ -70,7 +70,7 @@ import numpy
 from . import cache
 from .codegen.c import c_function, c_library, c_packed
 from .files import NotPrivate, read_private, write_atomic
-from .linkage import Linkage, is_branch_name
+from .linkage import Linkage, Program, is_branch_name
 from .solver import Solver
 
 __all__ = ["FLAGS", "FallbackWarning", "CompilerUnavailable", "CompileError", "CompiledSolver", "cache_directory",
@@ -587,6 +587,27 @@ def _strided(array: numpy.ndarray, shape: tuple[int, ...]) -> tuple[int, int, nu
     return copy.ctypes.data, 1, copy
 
 
+def program_facts(program: Program, name: str, doc: str, lengths: Sequence[str] = ()) -> str:
+    """The C of one straight-line ``program`` as function ``solve`` (plus its checked ``solve_packed``) and its
+    calling facts, as JSON text: ``{"source", "arguments", "outputs", "flags", "defaults"}``."""
+    function = c_function(program, "solve", doc)
+    _, source = c_library([function], "solver", standalone=True)
+    source += "\n" + c_packed(function, list(lengths), [a for a in function.arguments if is_branch_name(a)])
+    return json.dumps({"source": source, "arguments": function.arguments, "outputs": function.outputs,
+                       "flags": function.flags, "defaults": dict(program.defaults)})
+
+
+def compiled_or_building(facts: Mapping[str, Any]) -> _Entry | None:
+    """The compiled function of ``facts`` (:func:`program_facts`) if its library is built (in memory or in the
+    cache); else ``None``, and its background build started where a compiler works (NumPy answers meanwhile)."""
+    library = built_library(facts["source"])
+    if library is not None:
+        return _entry(library, facts)
+    if compiler_works():
+        build_in_background(facts)
+    return None
+
+
 def c_solver_source(linkage: Linkage, outputs: Sequence[str]) -> dict:
     """The standalone C source of one function ``solve`` for ``outputs``, with its calling facts.
 
@@ -601,13 +622,8 @@ def c_solver_source(linkage: Linkage, outputs: Sequence[str]) -> dict:
         for name in outputs:  # an entry exists only for checked names: a warm request checks (derives) nothing
             linkage.output(name)  # ValueError naming the outputs there are, before any work
         program = linkage.program(outputs)
-        function = c_function(program, "solve", f"{linkage.name}: {', '.join(outputs)}.")
-        _, source = c_library([function], "solver", standalone=True)
-        lengths = [s.name for s in program.arguments if s.is_positive]
-        source += "\n" + c_packed(function, lengths, [a for a in function.arguments if is_branch_name(a)])
-        defaults = dict(program.defaults)
-        return json.dumps({"source": source, "arguments": function.arguments, "outputs": function.outputs,
-                           "flags": function.flags, "defaults": defaults})
+        return program_facts(program, "solve", f"{linkage.name}: {', '.join(outputs)}.",
+                             [s.name for s in program.arguments if s.is_positive])
 
     return json.loads(cache.cached_text(cache.cache_key(linkage, outputs, "c-solver"), build))
 

@@ -26,7 +26,7 @@ import numpy
 from .angles import wrap_angle
 from .cache import cache_key, cached_text
 from .closure import is_angle
-from .codegen.numpy import load_numpy_module, numpy_module
+from .codegen.numpy import checked_arguments, load_numpy_module, numpy_module
 from .linkage import Linkage, Program
 from .position import TOLERANCE, ClampedSqrt
 from .solver import NumericSolver, Solver, check_lengths
@@ -367,6 +367,7 @@ class InputMotion:
             return None
 
 
+@lru_cache(maxsize=64)
 def _margin_function(linkage: Linkage) -> tuple[Callable[..., dict], list[tuple[str, str]]]:
     """Generated code of every clamped root's argument over its scale (plus rounding), and their loops.
 
@@ -393,6 +394,62 @@ def _margin_function(linkage: Linkage) -> tuple[Callable[..., dict], list[tuple[
 
 
 _MARGINS: dict[str, Callable[..., dict]] = {}
+_COMPILED_MARGINS: dict[str, Any] = {}
+
+
+def _fast_margins(linkage: Linkage) -> Callable[..., dict]:
+    """The margins as :func:`_margin_function` generates them, in the compiled C loop where it is built (compiled in
+    the background the first time, the NumPy module answering meanwhile): for scans of many designs at once.
+
+    Called with keywords (``check=False`` skips the argument check, as the NumPy module's does).
+    """
+    numpy_margins, roots = _margin_function(linkage)
+    names = [name for name, _ in roots]
+    key = _compiled_margins_key(linkage, tuple(names))
+    entry = _COMPILED_MARGINS.get(key)
+    if entry is None:
+        from . import compiled  # imports solver: imported when first needed
+        if compiled.chosen_backend() == "numpy":
+            return numpy_margins
+
+        def build() -> str:
+            base = linkage.program([q.name for q in linkage.unknowns])
+            margins = {name: (expr.args[0] / expr.args[1] + TOLERANCE if name.startswith("margin")
+                              else expr.args[0] + TOLERANCE * expr.args[1])
+                       for name, (_, _, expr) in zip(names, _roots(linkage))}
+            program = Program(base.arguments, base.assignments, margins, base.defaults)
+            return compiled.program_facts(program, "solve", f"{linkage.name}: the margins of its clamped roots.",
+                                          [s.name for s in program.arguments if s.is_positive])
+        try:
+            import json
+            entry = compiled.compiled_or_building(json.loads(cached_text(key, build)))
+        except (OSError, ValueError, RuntimeError):
+            entry = None
+        if entry is None:
+            return numpy_margins
+        _COMPILED_MARGINS[key] = entry
+
+    lengths = [s.name for s in linkage.parameters if s.is_positive]
+    branches = [s.name for s in linkage.branches]
+
+    def margins(check: bool = True, **values) -> dict:
+        if check:  # the NumPy module's check of every value (ValueError naming the first bad one)
+            checked_arguments(list(values), list(values.values()), lengths, branches)
+        return entry(**values)
+    margins.compiled = True  # type: ignore[attr-defined]
+    return margins
+
+
+@lru_cache(maxsize=64)
+def _compiled_margins_key(linkage: Linkage, names: tuple[str, ...]) -> str:
+    """The cache key of the compiled margins, computed once a linkage (a sweep asks for it every chunk)."""
+    return cache_key(linkage, names, "root-margins-c")
+
+
+def _roots(linkage: Linkage) -> list:
+    """Every clamped root of the plan: (loop name, symbol, expression), in plan order."""
+    return [(step.loop.name, symbol, expr) for step in linkage.plan for symbol, expr in step.intermediates.items()
+            if isinstance(expr, ClampedSqrt)]
 
 
 def _edges(inside: numpy.ndarray, periodic: bool) -> numpy.ndarray:
@@ -404,9 +461,14 @@ def _edges(inside: numpy.ndarray, periodic: bool) -> numpy.ndarray:
 
 def _bisect(test: Callable[[numpy.ndarray], numpy.ndarray], low: numpy.ndarray, high: numpy.ndarray,
             low_value: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
-    """Bisect brackets [low, high] where ``test`` changes from ``low_value``, to rounding."""
+    """Bisect brackets [low, high] where ``test`` changes from ``low_value``, to rounding.
+
+    Stops once no bracket can shrink (its midpoint rounds to an end): later steps would change nothing.
+    """
     for _ in range(BISECTIONS):
         middle = 0.5 * (low + high)
+        if numpy.all((middle == low) | (middle == high)):
+            break
         same = numpy.asarray(test(middle), dtype=bool) == low_value
         low, high = numpy.where(same, middle, low), numpy.where(same, high, middle)
     return low, high
@@ -467,7 +529,7 @@ def reachable_range(linkage: Linkage, values: Mapping[str, float], *, input: str
 
 
 def design_spans(linkage: Linkage, values: Mapping[str, Any], count: int, *, input: str | None = None,
-                 points: int = SCAN_POINTS, block: int = 1 << 20) -> list[list[tuple[float, float]]]:
+                 points: int = SCAN_POINTS, block: int = 1 << 18) -> list[list[tuple[float, float]]]:
     """The reachable spans over a turn of the input of ``count`` designs at once, each as :func:`reachable_range`
     finds them in closed form (the same scan and bisections, to rounding), without its toggles.
 
@@ -483,22 +545,32 @@ def design_spans(linkage: Linkage, values: Mapping[str, Any], count: int, *, inp
     driven = linkage.inputs[0].name if input is None else input
     if not linkage.has_closed_form:
         raise ValueError(f"{linkage.name} has no closed form: find its spans one design at a time (reachable_range)")
-    margins, roots = _margin_function(linkage)
+    _, roots = _margin_function(linkage)
+    margins = _fast_margins(linkage)
     arrays = {name: numpy.broadcast_to(numpy.asarray(value, dtype=float), (count,)) for name, value in values.items()}
     step = 2 * math.pi / points
     grid = -math.pi + step * numpy.arange(points)
     following = numpy.append(grid, grid[0] + 2 * math.pi)
 
-    def margin_values(at: numpy.ndarray, rows) -> dict[str, numpy.ndarray]:
-        with numpy.errstate(all="ignore"):
-            return margins(**{driven: at}, **{name: array[rows] for name, array in arrays.items()})
+    def margin_values(at: numpy.ndarray, rows, check: bool = False) -> dict[str, numpy.ndarray]:
+        with numpy.errstate(all="ignore"):  # the values are checked once, on the scan
+            return margins(**{driven: at}, **{name: array[rows] for name, array in arrays.items()}, check=check)
 
     inside = numpy.zeros((count, points), dtype=bool)
-    rows_a_block = max(1, block // points)
-    for first in range(0, count, rows_a_block):
-        rows = numpy.arange(first, min(first + rows_a_block, count))
-        found = margin_values(grid[None, :], rows[:, None])
-        inside[rows] = numpy.asarray(found["assembled"], dtype=bool)
+    if getattr(margins, "compiled", False):  # a call a design: its values as numbers, no broadcast copies
+        checked_arguments(list(arrays), list(arrays.values()), [s.name for s in linkage.parameters if s.is_positive],
+                          [s.name for s in linkage.branches])
+        columns = {name: array.tolist() for name, array in arrays.items()}
+        for row in range(count):
+            found = margins(**{driven: grid}, **{name: column[row] for name, column in columns.items()},
+                            check=False)
+            inside[row] = found["assembled"]
+    else:
+        rows_a_block = max(1, block // points)
+        for first in range(0, count, rows_a_block):
+            rows = numpy.arange(first, min(first + rows_a_block, count))
+            found = margin_values(grid[None, :], rows[:, None], check=True)
+            inside[rows] = numpy.asarray(found["assembled"], dtype=bool)
     design, edge = numpy.nonzero(inside != numpy.roll(inside, -1, axis=1))
     spans: list[list[tuple[float, float]]] = [[(-math.pi, math.pi)] if row.all() else [] for row in inside]
     if not design.size:

@@ -85,7 +85,7 @@ from .solver import Solver
 from .version import __version__
 
 __all__ = ["SweepSettings", "evaluate_designs", "design_values", "columns", "run_sweep", "read_sweep",
-           "SWEEP_EXTRA", "MANIFEST", "SCHEDULERS", "missing_modules"]
+           "SWEEP_EXTRA", "MANIFEST", "SCHEDULERS", "missing_modules", "local_scheduler"]
 
 #: What to install for sweeps.
 SWEEP_EXTRA = "pip install 'symlink-kinematics[sweep]'"
@@ -550,11 +550,28 @@ def _prepare(settings: SweepSettings, folder: Path) -> list[int]:
     return [k for k in range(settings.chunks) if chunk_name(k) not in done]
 
 
-def run_sweep(settings: SweepSettings, folder: str | Path, *, scheduler: Any = "threads", workers: int | None = None,
+def local_scheduler(chunks: int, workers: int | None = None) -> str:
+    """The fastest local scheduler for ``chunks`` chunks to do (what ``scheduler="auto"`` runs on).
+
+    ``"synchronous"`` (this process, no pool) for one chunk, one worker or one core: a pool only adds its
+    start and the transfer of every table; else ``"threads"``: the solvers' work runs in NumPy or in the
+    compiled C loop, both of which release the GIL, so threads share it without starting a Python (and
+    importing symlink, and loading the solvers again) in each worker as processes do.
+
+    >>> local_scheduler(1), local_scheduler(8, workers=1), local_scheduler(8, workers=2)
+    ('synchronous', 'synchronous', 'threads')
+    """
+    import os
+    count = workers or os.cpu_count() or 1
+    return "synchronous" if chunks <= 1 or count <= 1 else "threads"
+
+
+def run_sweep(settings: SweepSettings, folder: str | Path, *, scheduler: Any = "auto", workers: int | None = None,
               progress: bool = False, window: int | None = None) -> dict[str, Any]:
     """Evaluate the sweep into ``folder`` (one Parquet file a chunk and the manifest), continuing a run there.
 
-    ``scheduler``: ``"threads"``, ``"processes"`` or ``"synchronous"`` (Dask's
+    ``scheduler``: ``"auto"`` (the fastest local one for the sweep's size,
+    :func:`local_scheduler`), ``"threads"``, ``"processes"`` or ``"synchronous"`` (Dask's
     local schedulers, ``workers`` of them), or a ``distributed`` scheduler's
     address (``"tcp://HOST:PORT"``), or a ``distributed.Client``.  At most
     ``window`` chunks (default four a worker) are under way at once, so memory
@@ -562,7 +579,7 @@ def run_sweep(settings: SweepSettings, folder: str | Path, *, scheduler: Any = "
     seconds and designs per second.
     """
     import time
-    local = isinstance(scheduler, str) and scheduler in SCHEDULERS
+    local = isinstance(scheduler, str) and (scheduler in SCHEDULERS or scheduler == "auto")
     _require(("dask", "pyarrow") if local else ("dask", "distributed", "pyarrow"))
     client, own = None, False
     if not local:
@@ -575,7 +592,7 @@ def run_sweep(settings: SweepSettings, folder: str | Path, *, scheduler: Any = "
             except OSError as error:
                 raise OSError(f"cannot reach the Dask scheduler at {scheduler}: {error}") from None
         else:
-            raise ValueError(f"scheduler must be {', '.join(SCHEDULERS)}, a cluster's address (tcp://HOST:PORT) "
+            raise ValueError(f"scheduler must be auto, {', '.join(SCHEDULERS)}, a cluster's address (tcp://HOST:PORT) "
                              f"or a distributed.Client; got {scheduler!r}")
     try:
         folder = Path(folder)
@@ -590,6 +607,8 @@ def run_sweep(settings: SweepSettings, folder: str | Path, *, scheduler: Any = "
             except ImportError:
                 bar = None
         written = 0
+        if scheduler == "auto":
+            scheduler = local_scheduler(len(todo), workers)
         found = (_local_chunks(settings, todo, str(scheduler), workers, window) if client is None
                  else _cluster_chunks(settings, todo, client, window))
         for index, data in found:

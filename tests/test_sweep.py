@@ -303,6 +303,10 @@ def test_a_linkage_file_sweeps_as_its_catalog_entry(tmp_path, monkeypatch):
     assert found["grashof"] == expected["grashof"]
     for name in expected:  # the file's transmission angle is generated from its own text: alike to rounding
         if name != "grashof":
+            # the stroke and time ratio are polished to about 1e-9 of the input: where one solver is compiled
+            # (built in the background) and the other not yet, their rounding differs there, not beyond
+            polished = name in ("stroke", "time_ratio")
             numpy.testing.assert_allclose(numpy.asarray(found[name], dtype=float),
-                                          numpy.asarray(expected[name], dtype=float), rtol=1e-13, err_msg=name)
+                                          numpy.asarray(expected[name], dtype=float), rtol=1e-9 if polished else 1e-13,
+                                          err_msg=name)
     assert len(from_file.manifest()["linkage_sha256"]) == 64

@@ -408,7 +408,7 @@ def _fast_margins(linkage: Linkage) -> Callable[..., dict]:
     key = _compiled_margins_key(linkage, tuple(names))
     entry = _COMPILED_MARGINS.get(key)
     if entry is None:
-        from . import compiled  # imports solver: imported when first needed
+        from . import compiled_library as compiled
         if compiled.chosen_backend() == "numpy":
             return numpy_margins
 

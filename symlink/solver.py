@@ -78,7 +78,7 @@ class Solver:
     """
 
     def __init__(self, linkage: Linkage, outputs: Sequence[str], backend: str | None = None) -> None:
-        from . import compiled  # it imports this module: imported when a solver is made
+        from . import compiled_library as compiled  # the C libraries (it imports no solver)
         self.linkage = linkage
         self.outputs = list(outputs)
         self.backend_choice = compiled.chosen_backend(backend)

@@ -7,7 +7,7 @@ import numpy
 import pytest
 
 from references import SEED003_LINKAGE, mp_fourbar
-from symlink import cache, compiled
+from symlink import cache, compiled, compiled_library
 from symlink.catalog import fourbar
 from symlink.compiled import FallbackWarning, chosen_backend
 from symlink.solver import Solver
@@ -56,12 +56,12 @@ def test_auto_is_the_default_and_compiles_in_the_background_while_numpy_answers(
     compiled._builds.clear()
     cache.clear_memory()
     runs = []
-    original = compiled._run_compiler
-    compiled._run_compiler = lambda *a, **k: runs.append(a) or original(*a, **k)
+    original = compiled_library._run_compiler
+    compiled_library._run_compiler = lambda *a, **k: runs.append(a) or original(*a, **k)
     try:
         assert Solver(fourbar(), OUTPUTS).backend == "compiled" and not runs
     finally:
-        compiled._run_compiler = original
+        compiled_library._run_compiler = original
 
 
 def test_compiled_results_match_the_50_digit_reference_and_numpy(compiler):

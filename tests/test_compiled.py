@@ -14,7 +14,7 @@ import pytest
 
 from export_checks import angles_of, assert_agree, closed_form_catalog, random_arguments, rounding_spread
 from references import SEED003_LINKAGE, mp_fourbar
-from symlink import cache, compiled
+from symlink import cache, compiled, compiled_library
 from symlink.compiled import (CompiledSolver, CompileError, CompilerUnavailable, compile_shared,
                               compiled_solver, find_compiler)
 from symlink.scene import catalog_linkage
@@ -65,13 +65,13 @@ def compiler(module_cache):
 def compiler_runs(monkeypatch):
     """A list that grows by one each time the compiler is run."""
     runs = []
-    original = compiled._run_compiler
+    original = compiled_library._run_compiler
 
     def counting(*args, **kwargs):
         runs.append(args)
         return original(*args, **kwargs)
 
-    monkeypatch.setattr(compiled, "_run_compiler", counting)
+    monkeypatch.setattr(compiled_library, "_run_compiler", counting)
     return runs
 
 
@@ -358,7 +358,7 @@ def test_full_kinematics_loops_are_vectorised(compiler, name, tmp_path):
     unknowns = [q.name for q in linkage.unknowns]
     outputs = unknowns + [f"{q}dot" for q in unknowns] + [f"{q}ddot" for q in unknowns] + ["singular"]
     source = compiled.c_solver_source(linkage, outputs)["source"]
-    compiled._build(source, {}, find_compiler(), tmp_path / "solver.so")
+    compiled_library._build(source, {}, find_compiler(), tmp_path / "solver.so")
     binary = (tmp_path / "solver.so").read_bytes()
     assert b"_ZGVdN4vv_atan2" in binary  # the AVX2 loop's vector atan2
 

@@ -16,13 +16,16 @@ Methods (``--methods`` picks some); ``full`` ones compute positions, speeds and 
 
 ===========================  ==========  ====================================================
 ``symlink``                  full        symlink's generated NumPy module
-``hand-numpy``               full        the same atan2 formulas written by hand in NumPy, rates by hand
-``numba``                    full        the same formulas as a hand-written numba loop
+``hand-numpy``               full        the generated code's formulas and shared terms written by hand in NumPy
+``numba``                    full        the generated code's formulas and shared terms as a hand-written
+                                         numba loop (cos and sin of the solved angles from their atan2
+                                         arguments, as the generated code takes them)
 ``symengine-llvm``           full        symlink's expressions through SymEngine's ``Lambdify``
                                          (LLVM backend, ``cse=True``)
 ``lambdify-cse``             full        symlink's expressions through ``sympy.lambdify(cse=True)``
 ``pylinkage``                full        pylinkage's numba simulation (``step_fast_with_kinematics``)
 ``symlink-c``                full        symlink's generated C, compiled (:mod:`symlink.compiled`)
+``hand-c``                   full        the same formulas as a hand-written C loop, same compiler and flags
 ``symlink-positions``        positions   symlink's generated NumPy module
 ``hand-numpy-positions``     positions   symlink's atan2 formula written by hand in NumPy
 ``halfangle-numpy``          positions   the textbook half-angle (Freudenstein) form, seed paper 003
@@ -55,6 +58,11 @@ maximum over the subsample).  The closure residual
 computed on every value, in extended precision.  The physical limit is the
 time of a C loop that does only the vector-math calls every solver of the
 positions needs (cos, sin, a square root, two atan2) and two stores a value.
+The C loops (symlink's, the hand-written ones, the limit) and the numba loops
+are also timed loop against loop (``*-loop`` records): each loop alone on the
+whole workload, writing into outputs allocated once beforehand, so that no
+call's argument handling or fresh output pages weigh in (a call of a compiled
+solver as a user makes it is the ``symlink-c`` records).
 
 >>> records = benchmark(sizes=[200], methods=["symlink-positions", "hand-numpy-positions"], reference=50,
 ...                     verbose=False)
@@ -64,10 +72,14 @@ positions needs (cos, sin, a square root, two atan2) and two stores a value.
 from __future__ import annotations
 
 import argparse
+import datetime
+import functools
 import gc
 import json
 import math
 import os
+import platform
+import shlex
 import subprocess
 import sys
 import tempfile
@@ -86,10 +98,10 @@ from symlink.analysis import crank_range
 from symlink.files import write_atomic
 from symlink.position import TOLERANCE
 
-__all__ = ["benchmark", "METHODS", "main", "hand_numpy", "halfangle_numpy", "hand_rates", "reference_positions",
-           "reference_rates", "physical_limit"]
+__all__ = ["benchmark", "METHODS", "main", "hand_numpy", "hand_numpy_everything", "halfangle_numpy", "hand_rates", "reference_positions",
+           "reference_rates", "loop_records"]
 
-METHODS = ("symlink", "hand-numpy", "numba", "symengine-llvm", "lambdify-cse", "pylinkage", "symlink-c",
+METHODS = ("symlink", "hand-numpy", "numba", "symengine-llvm", "lambdify-cse", "pylinkage", "symlink-c", "hand-c",
            "symlink-positions", "hand-numpy-positions", "halfangle-numpy", "numba-positions",
            "symengine-llvm-positions", "lambdify-cse-positions", "pylinkage-positions", "symlink-c-positions",
            "hand-c-positions", "halfangle-c", "newton", "fsolve", "sympy-evalf")
@@ -104,6 +116,7 @@ SEED_LINKAGES = {"seed001": (0.1, 0.4, 0.25, 0.30), "seed002": (16.084, 69.743, 
 FULL_SIZES = (10**3, 10**4, 10**5, 10**6)
 QUICK_SIZES = (10**3, 2 * 10**4)
 ERROR_FLOOR = 1e-17  # where a plot needs a positive error
+DOCS = Path(__file__).resolve().parent.parent / "docs"  # where --report writes the docs page and its plot
 
 
 @dataclass
@@ -289,18 +302,56 @@ def hand_numpy(theta, a, b, c, d, branch):
     >>> round(float(numpy.degrees(phi[0])), 4), round(float(numpy.degrees(beta[0])), 4)
     (110.7424, 52.5127)
     """
-    wx, wy = a * numpy.cos(theta) - d, a * numpy.sin(theta)
-    w2 = wx * wx + wy * wy
-    w = numpy.sqrt(w2)
+    beta_y, beta_x, phi_y, phi_x, _ = _atan2_arguments(numpy.cos(theta), numpy.sin(theta), a, b, c, d, branch)
+    return numpy.arctan2(beta_y, beta_x), numpy.arctan2(phi_y, phi_x)
+
+
+def _atan2_arguments(cos_t, sin_t, a, b, c, d, branch):
+    """The atan2 arguments of beta and phi (y, x each) and the branch-signed root (see :func:`hand_numpy`)."""
+    wx, wy = a * cos_t - d, a * sin_t
+    w = numpy.sqrt(wx * wx + wy * wy)
     s, t = b + c, b - c
     heron = (s + w) * (s - w) * (t + w) * (w - t)
     with numpy.errstate(invalid="ignore"):
-        root = numpy.where(heron >= -TOLERANCE * 8 * b * c * w * (a + s + w + d), numpy.sqrt(numpy.maximum(heron, 0.0)),
-                           numpy.nan)
-    along_b, along_c, across = s * t + w2, w2 - s * t, branch * root
-    beta = numpy.arctan2(-wy * along_b - wx * across, -wx * along_b + wy * across)
-    phi = numpy.arctan2(wy * along_c - wx * across, wx * along_c + wy * across)
-    return beta, phi
+        root = numpy.where(heron >= -TOLERANCE * 8 * b * c * w * (s + w + d + a),
+                           numpy.sqrt(numpy.maximum(heron, 0.0)), numpy.nan)
+    w_squared = w * w
+    along_b, along_c, across = s * t + w_squared, w_squared - s * t, root * branch
+    return -wy * along_b - wx * across, -wx * along_b + wy * across, wy * along_c - wx * across, \
+        wx * along_c + wy * across, across
+
+
+def hand_numpy_everything(theta, a, b, c, d, branch, speed, accel):
+    """The six outputs of full kinematics by the generated code's formulas and shared terms, written in NumPy.
+
+    cos and sin of beta and phi come from their atan2 arguments (``x / r``, ``y / r``), not from
+    further calls of cos and sin; the rates are the loop differentiated (:func:`hand_rates`) with
+    ``1 / sin(beta - phi) = 2 b c / (sigma sqrt(H))``.
+
+    >>> values = hand_numpy_everything(numpy.array([0.0]), 20.0, 66.0, 56.0, 80.0, 1, 10.5, 2.0)
+    >>> [round(float(v[0]), 4) for v in values[2:]]
+    [-3.5, -3.5, -19.2237, 36.9151]
+    """
+    cos_t, sin_t = numpy.cos(theta), numpy.sin(theta)
+    beta_y, beta_x, phi_y, phi_x, across = _atan2_arguments(cos_t, sin_t, a, b, c, d, branch)
+    with numpy.errstate(invalid="ignore", divide="ignore"):
+        beta_over, phi_over = 1.0 / numpy.sqrt(beta_x * beta_x + beta_y * beta_y), \
+            1.0 / numpy.sqrt(phi_x * phi_x + phi_y * phi_y)
+        sin_b, cos_b, sin_p, cos_p = beta_y * beta_over, beta_x * beta_over, phi_y * phi_over, phi_x * phi_over
+        scale = 2.0 * b * c / across  # 1 / sin(beta - phi)
+        over_b, over_c = scale / b, scale / c
+        s_pt = cos_t * sin_p - cos_p * sin_t  # sin(phi - theta)
+        s_bt = cos_t * sin_b - cos_b * sin_t  # sin(beta - theta)
+        c_bp = cos_b * cos_p + sin_b * sin_p  # cos(beta - phi)
+        a_speed, a_accel = a * speed, a * accel
+        beta_speed, phi_speed = -s_pt * over_b * a_speed, -a_speed * s_bt * over_c
+        beta_speed2, c_phi_speed2 = beta_speed * beta_speed, c * (phi_speed * phi_speed)
+        beta_accel = over_b * (a * (speed * speed) * (cos_p * cos_t + sin_p * sin_t) + b * beta_speed2 * c_bp
+                               - s_pt * a_accel - c_phi_speed2)
+        phi_accel = over_c * (a * (speed * speed) * (cos_b * cos_t + sin_b * sin_t) + b * beta_speed2
+                              - s_bt * a_accel - c_phi_speed2 * c_bp)
+    return (numpy.arctan2(beta_y, beta_x), numpy.arctan2(phi_y, phi_x), beta_speed, phi_speed, beta_accel,
+            phi_accel)
 
 
 def halfangle_numpy(theta, a, b, c, d, branch):
@@ -514,11 +565,10 @@ def _numba(full: bool):
 
 def _hand(full: bool):
     def solve(sweep):
-        beta, phi = hand_numpy(sweep.theta, *sweep.lengths, sweep.branch)
         if not full:
-            return _as_dict(beta, phi)
-        a, b, c, _ = sweep.lengths
-        return _as_dict(beta, phi, hand_rates(sweep.theta, a, b, c, beta, phi, CRANK_SPEED, CRANK_ACCEL))
+            return _as_dict(*hand_numpy(sweep.theta, *sweep.lengths, sweep.branch))
+        values = hand_numpy_everything(sweep.theta, *sweep.lengths, sweep.branch, CRANK_SPEED, CRANK_ACCEL)
+        return dict(zip(EVERYTHING, values))
     return solve
 
 
@@ -584,7 +634,7 @@ def _compiled(full: bool):
 def _hand_c(formula: str):
     try:
         from symlink.compiled import CompileError, CompilerUnavailable
-        from benchmarks.hand_c import hand_library, hand_positions
+        from benchmarks.hand_c import hand_everything, hand_library, hand_positions
     except ImportError:
         raise Unavailable("benchmarks.hand_c is not available") from None
     try:
@@ -595,6 +645,8 @@ def _hand_c(formula: str):
         raise Unavailable(f"cannot build or load the library: {error}") from None
 
     def solve(sweep):
+        if formula == "everything":
+            return hand_everything(sweep.theta, *sweep.lengths, sweep.branch, CRANK_SPEED, CRANK_ACCEL)
         return hand_positions(sweep.theta, *sweep.lengths, sweep.branch, formula)
     return solve
 
@@ -667,6 +719,7 @@ def _methods(quick: bool) -> dict[str, Callable[[], Method]]:
         "pylinkage-positions": made("pylinkage-positions", lambda: _pylinkage(False), "positions", per_linkage=True,
                                     note="its own evenly stepped crank, crank-rocker sweeps only"),
         "symlink-c-positions": made("symlink-c-positions", lambda: _compiled(False), "positions"),
+        "hand-c": made("hand-c", lambda: _hand_c("everything"), "full"),
         "hand-c-positions": made("hand-c-positions", lambda: _hand_c("atan2"), "positions"),
         "halfangle-c": made("halfangle-c", lambda: _hand_c("halfangle"), "positions",
                             note="textbook half-angle form"),
@@ -852,37 +905,152 @@ def derivation_times(scenes: list[tuple[str, list[str]]]) -> list[dict]:
     return rows
 
 
-def physical_limit(size: int, repeats: int = 7) -> dict | None:
-    """Nanoseconds a value of the vector-math floor of four-bar positions (see :func:`benchmarks.hand_c.vector_math_limit`).
+#: The loops timed loop against loop, by the method whose loop each is: (record name, kind).
+LOOPS = {"symlink-c-positions": ("symlink-c-positions-loop", "positions"), "symlink-c": ("symlink-c-loop", "full"),
+         "hand-c-positions": ("hand-c-positions-loop", "positions"), "hand-c": ("hand-c-loop", "full"),
+         "numba-positions": ("numba-positions-loop", "positions"), "numba": ("numba-loop", "full")}
+LIMIT_NOTE = "C loop of cos, sin, sqrt, 2 atan2 and 2 stores a value (symlink.compiled's flags, glibc libmvec)"
 
-    Measured at ``size`` values (best of ``repeats``); ``None`` where no C compiler works.
+
+def _symlink_c_loop(work: Sweep, full: bool) -> Callable[[], object]:
+    """The generated C loop function alone on ``work``, into outputs allocated here once."""
+    from symlink.compiled import CompiledSolver
+    from symlink.scene import catalog_linkage
+    entry = CompiledSolver(catalog_linkage("fourbar"), _outputs(full)).function
+    a, b, c, d = work.lengths
+    given = {"theta": work.theta, "a": a, "b": b, "c": c, "d": d, "branch": work.branch,
+             "thetadot": numpy.array([CRANK_SPEED]), "thetaddot": numpy.array([CRANK_ACCEL])}
+    arrays = [numpy.ascontiguousarray(given[name], dtype=numpy.float64) for name in entry.arguments]
+    slots = [value for array in arrays for value in (array.ctypes.data, 0 if array.size == 1 else 1)]
+    outputs = [numpy.empty(len(work.theta), dtype=numpy.uint8 if flag else numpy.float64) for flag in entry.flags]
+    outputs.append(numpy.empty(len(work.theta), dtype=numpy.uint8))
+    pointers = [o.ctypes.data for o in outputs]
+    kept = arrays + outputs  # alive as long as the loop uses their addresses
+
+    def loop():
+        entry.entry(len(work.theta), *slots, *pointers)
+        return kept
+    return loop
+
+
+def _hand_c_loop(work: Sweep, full: bool) -> Callable[[], object]:
+    """The hand-written C loop alone on ``work``, into outputs allocated here once."""
+    from benchmarks.hand_c import hand_library
+    library = hand_library()
+    n = len(work.theta)
+    arrays = [numpy.ascontiguousarray(x, dtype=numpy.float64) for x in (work.theta, *work.lengths, work.branch)]
+    outputs = [numpy.empty(n) for _ in range(6 if full else 2)] + [numpy.empty(n, dtype=numpy.uint8)]
+    inputs, written = [x.ctypes.data for x in arrays], [o.ctypes.data for o in outputs]
+    kept = arrays + outputs
+    if full:
+        def loop():
+            library.hand_fourbar_everything(n, *inputs, CRANK_SPEED, CRANK_ACCEL, *written)
+            return kept
+    else:
+        def loop():
+            library.hand_fourbar_positions(n, *inputs, *written)
+            return kept
+    return loop
+
+
+def _numba_loop(work: Sweep, full: bool) -> Callable[[], object]:
+    """The numba loop alone on ``work``, into outputs allocated here once."""
+    import numba
+    from benchmarks.numba_loops import numba_kernels
+    positions, everything = numba_kernels(numba, TOLERANCE)
+    arrays = [numpy.ascontiguousarray(x, dtype=numpy.float64) for x in (work.theta, *work.lengths, work.branch)]
+    outputs = [numpy.empty(len(work.theta)) for _ in range(6 if full else 2)]
+    if full:
+        return lambda: everything(*arrays, CRANK_SPEED, CRANK_ACCEL, *outputs)
+    return lambda: positions(*arrays, *outputs)
+
+
+def _limit_loop(work: Sweep) -> Callable[[], object]:
+    """The physical-limit loop (:func:`benchmarks.hand_c.vector_math_limit`) alone on ``work``'s crank angles."""
+    from benchmarks.hand_c import hand_library
+    library = hand_library()
+    theta = numpy.ascontiguousarray(work.theta, dtype=numpy.float64)
+    outputs = [numpy.empty_like(theta), numpy.empty_like(theta)]
+    kept = [theta] + outputs
+    addresses = [theta.ctypes.data] + [o.ctypes.data for o in outputs]
+
+    def loop():
+        library.vector_math_limit(len(theta), *addresses)
+        return kept
+    return loop
+
+
+def _best_of_loops(loops: dict[str, Callable[[], object]], budget: float, least: float = 0.005) -> dict[str, float]:
+    """Best seconds a call of each loop, the loops taking turns round after round (at least 3, up to 7).
+
+    A loop faster than ``least`` seconds is called back to back enough times a round and timed by their mean.
     """
+    best = {name: math.inf for name in loops}
+    repeats = {name: 1 for name in loops}
+    spent = {name: 0.0 for name in loops}
+    for loop in loops.values():
+        loop()  # pages of the outputs touched before any clock starts
+    gc.collect()
+    gc.disable()
     try:
-        from symlink.compiled import CompileError, CompilerUnavailable
-        from benchmarks.hand_c import vector_math_limit
-    except ImportError:
-        return None
-    try:
-        vector_math_limit(numpy.zeros(4))
-    except (CompilerUnavailable, CompileError, OSError):
-        return None
-    theta = numpy.random.default_rng(1).uniform(-math.pi, math.pi, size)
-    best = math.inf
-    for _ in range(repeats):
-        start = time.perf_counter()
-        vector_math_limit(theta)
-        best = min(best, time.perf_counter() - start)
-    return {"method": "physical-limit", "kind": "positions", "n": size, "us_per_value": best / size * 1e6,
-            "max_error": None, "median_error": None, "max_residual": None, "failures": 0, "reference_n": 0,
-            "max_rate_error": None,
-            "note": "C loop of cos, sin, sqrt, 2 atan2 and 2 stores a value (symlink.compiled's flags, glibc libmvec)"}
+        for round_ in range(7):
+            for name, loop in loops.items():
+                if round_ >= 3 and spent[name] + best[name] * repeats[name] > budget:
+                    continue
+                start = time.perf_counter()
+                for _ in range(repeats[name]):
+                    loop()
+                elapsed = time.perf_counter() - start
+                best[name] = min(best[name], elapsed / repeats[name])
+                spent[name] += elapsed
+                if round_ == 0 and elapsed < least:
+                    repeats[name] = min(1000, math.ceil(least / max(elapsed, 1e-7)))
+    finally:
+        gc.enable()
+    return best
+
+
+def loop_records(sweeps: list[Sweep], methods: Sequence[str], limit: bool, budget: float = 0.5) -> list[dict]:
+    """Loop against loop: the C and numba loops of ``methods`` (and the physical limit) on the whole workload.
+
+    Each loop writes into outputs allocated once beforehand, so that neither a call's argument handling
+    nor new output pages weigh in; a loop that cannot run here (no compiler, no numba) is left out.
+    """
+    work = stacked(sweeps)
+    makers: dict[str, Callable[[], Callable[[], object]]] = {}
+    for method in methods:
+        if method in LOOPS:
+            full = LOOPS[method][1] == "full"
+            maker = {"symlink-c": _symlink_c_loop, "hand-c": _hand_c_loop, "numba": _numba_loop}[
+                method.removesuffix("-positions")]
+            makers[LOOPS[method][0]] = functools.partial(maker, work, full)
+    if limit:
+        makers["physical-limit"] = functools.partial(_limit_loop, work)
+    loops = {}
+    for name, make in makers.items():
+        try:
+            if not name.startswith("numba"):
+                import symlink.compiled  # noqa: F401 - every C loop is built by it (ImportError where it is not there)
+            loops[name] = make()
+        except (ImportError, OSError, RuntimeError):  # no numba, no compiler (CompilerUnavailable, CompileError)
+            continue
+    kinds = {name: kind for name, kind in LOOPS.values()}
+    records = []
+    for name, seconds in _best_of_loops(loops, budget).items():
+        n = len(work.theta)
+        records.append({"method": name, "kind": kinds.get(name, "positions"), "n": n, "size": n,
+                        "us_per_value": seconds / n * 1e6, "max_error": None, "median_error": None,
+                        "max_residual": None, "failures": 0, "reference_n": 0, "max_rate_error": None,
+                        "note": LIMIT_NOTE if name == "physical-limit" else "the loop alone, outputs allocated once"})
+    return records
 
 
 def benchmark(sizes: Sequence[int] = FULL_SIZES, methods: Sequence[str] = METHODS, quick: bool = False,
               seed: int = 2024, reference: int = 2000, verbose: bool = True, limit: bool = False) -> list[dict]:
     """Measure ``methods`` at each size; returns the records (and prints progress if ``verbose``).
 
-    ``limit``: also measure the physical limit (:func:`physical_limit`) at each size, as a record of its own.
+    The C and numba loops of the chosen methods are also timed loop against loop (:func:`loop_records`);
+    ``limit``: also the physical limit at each size, as a record of its own.
     """
     factories = _methods(quick)
     unknown = [m for m in methods if m not in factories]
@@ -907,11 +1075,9 @@ def benchmark(sizes: Sequence[int] = FULL_SIZES, methods: Sequence[str] = METHOD
         for method in running:
             records.append({**_record(method, work[method.name], *timed[method.name]), "size": size})
             _say(verbose, f"  {method.name:>24} N={records[-1]['n']:<8} {records[-1]['us_per_value']:.4g} us/value")
-        if limit:
-            found = physical_limit(size)
-            if found is not None:
-                records.append(found)
-                _say(verbose, f"  {'physical-limit':>24} N={size:<8} {found['us_per_value']:.4g} us/value")
+        for found in loop_records(sweeps, [m.name for m in ready], limit, budget=0.5 if quick else 2.0):
+            records.append(found)
+            _say(verbose, f"  {found['method']:>24} N={size:<8} {found['us_per_value']:.4g} us/value")
     _ratios(records)
     return records
 
@@ -976,7 +1142,7 @@ def targets(records: list[dict]) -> list[str]:
         goal = "" if target is None else f" (target <= {target}x: {verdict(ratio <= target)})"
         lines.append(f"{mine} / {theirs} at N={size}: {ratio:.2f}x{goal}{what}")
 
-    ratio_line("symlink", "numba", "; full kinematics against a fused hand-written loop", 1.3)
+    ratio_line("symlink", "numba", "; full kinematics: the NumPy module against a numba loop of the same formulas")
     ratio_line("symlink-positions", "hand-numpy-positions", "; the same atan2 formula written by hand in NumPy")
     accurate = []
     for mine, theirs in (("symlink-positions", "halfangle-numpy"),):
@@ -1003,14 +1169,25 @@ def targets(records: list[dict]) -> list[str]:
             ratio = last["us_per_value"] / first["us_per_value"]
             goal = f" (target <= 1.2x: {verdict(ratio <= 1.2)})" if base == 10**5 else ""
             lines.append(f"symlink at N={full} / at N={base}, per value: {ratio:.2f}x{goal}; flat in N")
-    ratio_line("symlink-c-positions", "hand-c-positions", "; the same formula in hand-written C, same flags", 1.2)
+    ratio_line("symlink-c", "numba", "; calls: the generated C against a numba loop of the same formulas")
+    ratio_line("symlink-c-positions", "numba-positions", "; calls, positions")
+    ratio_line("symlink-c-positions", "hand-c-positions", "; calls: the same formulas in hand-written C, same flags")
+    ratio_line("symlink-c", "hand-c", "; calls, full kinematics")
     ratio_line("symlink-positions", "symlink-c-positions", "; the NumPy module over the compiled C")
-    for name in ("symlink-c-positions", "hand-c-positions", "numba-positions", "symlink-positions"):
+    ratio_line("symlink-c-positions-loop", "hand-c-positions-loop", "; loop against loop: the generated C against "
+               "the hand-written C of the same formulas, with restrict", 1.1)
+    ratio_line("symlink-c-loop", "hand-c-loop", "; loop against loop, full kinematics", 1.1)
+    ratio_line("symlink-c-positions-loop", "numba-positions-loop", "; loop against loop, positions")
+    ratio_line("symlink-c-loop", "numba-loop", "; loop against loop, full kinematics")
+    for name, target in (("symlink-c-positions-loop", 1.3), ("hand-c-positions-loop", None),
+                         ("numba-positions-loop", None)):
         size = largest(name, "physical-limit")
         mine, limit = _find(records, name, size), _find(records, "physical-limit", size)
         if limit and mine:
-            lines.append(f"{name} / physical limit at N={size}: {mine['us_per_value'] / limit['us_per_value']:.2f}x "
-                         f"(the limit: {limit['us_per_value'] * 1e3:.3g} ns a value)")
+            ratio = mine["us_per_value"] / limit["us_per_value"]
+            goal = "" if target is None else f" (target <= {target}x: {verdict(ratio <= target)})"
+            lines.append(f"{name} / physical limit at N={size}: {ratio:.2f}x{goal} (loop against loop; the limit: "
+                         f"{limit['us_per_value'] * 1e3:.3g} ns a value)")
     fsolve = _find(records, "fsolve")
     if fsolve:  # one call a value: its time per value does not depend on N; both solve positions only
         for size in sorted({min((r["n"] for r in records if r["method"] == "symlink-positions"), default=None),
@@ -1023,7 +1200,67 @@ def targets(records: list[dict]) -> list[str]:
     return lines
 
 
-def plot(records: list[dict], path: str | os.PathLike) -> None:
+def machine() -> dict:
+    """This machine as the report names it: CPU model, vector width (bits), cores, load average, date (UTC).
+
+    The vector width is read from the CPU's flags in ``/proc/cpuinfo``: ``avx512f`` 512 bits, ``avx2``
+    256, else 128 (SSE2 on x86-64, NEON on ARM).
+    """
+    model, flags = platform.processor() or platform.machine(), set[str]()
+    try:
+        with open("/proc/cpuinfo") as info:
+            for line in info:
+                key, _, value = line.partition(":")
+                key = key.strip()
+                if key in ("model name", "Hardware", "cpu model") and model in (platform.processor(),
+                                                                                platform.machine(), ""):
+                    model = value.strip()
+                elif key in ("flags", "Features") and not flags:
+                    flags = set(value.split())
+    except OSError:
+        pass
+    width = 512 if "avx512f" in flags else 256 if "avx2" in flags else 128
+    return {"cpu": model, "vector_bits": width, "cores": os.cpu_count(),
+            "load": [round(x, 2) for x in os.getloadavg()],
+            "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")}
+
+
+def markdown(records: list[dict], found: dict, command: str) -> str:
+    """The report page: the machine, the command, a table (method, N, time a value, ratio, max error), the ratios.
+
+    ``ratio`` is the time a value over symlink's NumPy module's of the same kind and N (as in :func:`table`).
+    """
+    lines = ["# Benchmark results", "",
+             f"- CPU: {found['cpu']} ({found['cores']} logical cores), vector width {found['vector_bits']} bits "
+             f"(from the flags in /proc/cpuinfo)",
+             f"- date: {found['date']}; load average at the start {found['load'][0]}, {found['load'][1]}, "
+             f"{found['load'][2]} (1, 5, 15 minutes)",
+             f"- command: `{command}`", "",
+             "Every method solves the same fixed-seed four-bars (both branches, near their toggles too) in one "
+             "call; `*-loop` rows time a loop alone into outputs allocated once (loop against loop); errors are "
+             "against 50-digit mpmath. Ratios are inside this run only (the machine is shared).", "",
+             "| method | kind | N | time a value (ns) | ratio to symlink (NumPy) | max error (rad) |",
+             "|---|---|---:|---:|---:|---:|"]
+    order = {"full": 0, "positions": 1}
+    for r in sorted(records, key=lambda r: (order.get(r["kind"], 2), r["size"], r["us_per_value"])):
+        ratio = "-" if r.get("ratio_to_symlink") is None else f"{r['ratio_to_symlink']:.3g}"
+        lines.append(f"| {r['method']} | {r['kind']} | {r['n']} | {r['us_per_value'] * 1e3:.3g} | {ratio} | "
+                     f"{_short(r['max_error'])} |")
+    lines += ["", "## Ratios", ""] + [f"- {line}" for line in targets(records)] + [""]
+    return "\n".join(lines)
+
+
+def write_report(records: list[dict], folder: str | os.PathLike, found: dict, command: str) -> tuple[Path, Path]:
+    """``folder/benchmark/results.md`` and ``folder/images/bench.png`` from this run's records (atomically)."""
+    page, picture = Path(folder) / "benchmark" / "results.md", Path(folder) / "images" / "bench.png"
+    page.parent.mkdir(parents=True, exist_ok=True)
+    picture.parent.mkdir(parents=True, exist_ok=True)
+    write_atomic(page, markdown(records, found, command))
+    plot(records, picture, found)
+    return page, picture
+
+
+def plot(records: list[dict], path: str | os.PathLike, found: dict | None = None) -> None:
     """Two panels: time per value against N (each method a line), and time against error at the largest N."""
     import io
 
@@ -1056,6 +1293,9 @@ def plot(records: list[dict], path: str | os.PathLike) -> None:
     by_size.legend(fontsize=6, loc="upper right", ncol=2)
     by_error.set_xlabel("max angle error against 50-digit mpmath (rad)")
     by_error.set_title("Time against error, at each method's largest N")
+    if found is not None:
+        figure.suptitle(f"{found['cpu']}, {found['vector_bits']}-bit vectors, load {found['load'][0]}; "
+                        f"{found['date']}", fontsize=9)
     figure.tight_layout()
     buffer = io.BytesIO()
     figure.savefig(buffer, format="png", dpi=100)
@@ -1114,13 +1354,18 @@ def build_parser(prog: str = "python -m benchmarks") -> argparse.ArgumentParser:
     parser.add_argument("--seed", type=int, default=2024, help="random four-bars (default 2024)")
     parser.add_argument("--json", metavar="FILE", help="write the records as JSON")
     parser.add_argument("--plot", metavar="FILE", help="write the run-time-against-error plot (PNG)")
+    parser.add_argument("--report", metavar="FOLDER", nargs="?", const=str(DOCS),
+                        help=f"write FOLDER/benchmark/results.md and FOLDER/images/bench.png (default folder {DOCS})")
     parser.add_argument("--no-derivation", action="store_true", help="skip the symbolic-side timings")
     parser.add_argument("--no-limit", action="store_true", help="skip measuring the physical limit")
     return parser
 
 
-def run(args: argparse.Namespace) -> int:
-    """Run the benchmark as the options say: progress on stderr; the table, targets and symbolic timings on stdout."""
+def run(args: argparse.Namespace, command: str = "python -m benchmarks") -> int:
+    """Run the benchmark as the options say: progress on stderr; the table, targets and symbolic timings on stdout.
+
+    ``command``: the command line, as the report names it.
+    """
     if args.sizes is not None:
         if not args.sizes or any(n != int(n) or n < 1 for n in args.sizes):
             raise ValueError(f"--sizes must be positive whole numbers, got {args.sizes}")
@@ -1134,7 +1379,11 @@ def run(args: argparse.Namespace) -> int:
     for path in (args.json, args.plot):
         if path is not None and not Path(path).parent.is_dir():
             raise ValueError(f"cannot write {path}: no folder {Path(path).parent}")
+    if args.report is not None and Path(args.report).exists() and not Path(args.report).is_dir():
+        raise ValueError(f"cannot write the report into {args.report}: not a folder")
+    found = machine()  # the load before this run adds its own
     reference = 400 if args.quick else 2000
+    _say(True, f"{found['cpu']}, {found['vector_bits']}-bit vectors, load {found['load'][0]}")
     _say(True, f"symlink bench: N = {', '.join(map(str, sizes))}; errors on up to {reference} values a size "
                f"(50-digit mpmath), residuals on all")
     records = benchmark(sizes, methods, quick=args.quick, seed=args.seed, reference=reference,
@@ -1154,7 +1403,10 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         write_atomic(args.json, json.dumps(records, indent=1) + "\n")
     if args.plot:
-        plot(records, args.plot)
+        plot(records, args.plot, found)
+    if args.report is not None:
+        for path in write_report(records, args.report, found, command):
+            _say(True, f"wrote {path}")
     return 0
 
 
@@ -1165,7 +1417,8 @@ def main(argv: Sequence[str] | None = None, prog: str = "python -m benchmarks") 
     one line, status 1; Ctrl-C: status 130, quietly.
     """
     try:
-        return run(build_parser(prog).parse_args(argv))
+        arguments = sys.argv[1:] if argv is None else list(argv)
+        return run(build_parser(prog).parse_args(arguments), " ".join([prog, *map(shlex.quote, arguments)]))
     except ValueError as error:
         print(f"symlink: error: {error}", file=sys.stderr)
         return 2

@@ -1,17 +1,46 @@
 """Hand-written numba loops of the four-bar: the fused loop a user writes instead of a code generator.
 
-The same formulas as :func:`benchmarks.bench.hand_numpy` (symlink's atan2 form, with its clamped
-square root) and :func:`benchmarks.bench.hand_rates`, one value at a time in a loop compiled by
-numba (``@njit``, no fastmath, so every operation rounds as NumPy's do).  numba is an optional
-extra (``pip install 'symlink-kinematics[bench]'``): it is imported by the caller and handed in.
+The same formulas as symlink's generated code, with the same shared subexpressions
+(:data:`benchmarks.hand_c.HAND_C_SOURCE` has them in C): the triangle B, C, D solved with
+atan2 and Heron's product under symlink's clamped square root, and for the rates the
+cosine and sine of each solved angle taken from its atan2 arguments (``x / r`` and
+``y / r``, one square root each), never from extra ``sin``/``cos`` calls.  So a value
+costs the same transcendental calls as in the generated code: ``cos`` and ``sin`` of the
+crank, two ``atan2`` (and square roots: two for positions, four for full kinematics);
+:func:`tests.test_bench` counts them in the source text of both.  The one difference is a
+numeric device of the generated code, its loop unit (lengths scaled by a power of two,
+so that no product overflows): a hand-written loop has none.
+
+One value at a time in a loop compiled by numba (``@njit``, no fastmath, so every
+operation rounds as NumPy's do).  numba is an optional extra
+(``pip install 'symlink-kinematics[bench]'``): it is imported by the caller and handed in.
 """
 from __future__ import annotations
 
 import math
 
-__all__ = ["numba_kernels"]
+__all__ = ["numba_kernels", "solve_positions"]
 
 _KERNELS: dict = {}
+
+
+def solve_positions(cos_t, sin_t, a, b, c, d, branch, tolerance):
+    """The atan2 arguments of beta and phi (y, x each) and the branch-signed root: symlink's atan2 form."""
+    wx, wy = a * cos_t - d, a * sin_t
+    w2 = wx * wx + wy * wy
+    w = math.sqrt(w2)
+    s, t = b + c, b - c
+    heron = (s + w) * (s - w) * (t + w) * (w - t)
+    if heron >= -tolerance * 8 * b * c * w * (s + w + d + a):
+        root = math.sqrt(heron if heron > 0.0 else 0.0)
+    else:
+        root = math.nan
+    w_squared = w * w  # of the root, as the generated code squares it
+    along_b, along_c = s * t + w_squared, w_squared - s * t
+    across = root * branch
+    beta_y, beta_x = -wy * along_b - wx * across, -wx * along_b + wy * across
+    phi_y, phi_x = wy * along_c - wx * across, wx * along_c + wy * across
+    return beta_y, beta_x, phi_y, phi_x, across
 
 
 def numba_kernels(numba, tolerance: float):
@@ -23,42 +52,42 @@ def numba_kernels(numba, tolerance: float):
     """
     if tolerance in _KERNELS:
         return _KERNELS[tolerance]
-
-    @numba.njit(cache=False, fastmath=False)
-    def solve(theta, a, b, c, d, branch):
-        wx, wy = a * math.cos(theta) - d, a * math.sin(theta)
-        w2 = wx * wx + wy * wy
-        w = math.sqrt(w2)
-        s, t = b + c, b - c
-        heron = (s + w) * (s - w) * (t + w) * (w - t)
-        if heron >= -tolerance * 8 * b * c * w * (a + s + w + d):
-            root = math.sqrt(max(heron, 0.0))
-        else:
-            root = math.nan
-        along_b, along_c, across = s * t + w2, w2 - s * t, branch * root
-        return (math.atan2(-wy * along_b - wx * across, -wx * along_b + wy * across),
-                math.atan2(wy * along_c - wx * across, wx * along_c + wy * across))
+    one_position = numba.njit(cache=False, fastmath=False, inline="always")(solve_positions)
 
     @numba.njit(cache=False, fastmath=False)
     def positions(theta, a, b, c, d, branch, beta, phi):
         for i in range(theta.size):
-            beta[i], phi[i] = solve(theta[i], a[i], b[i], c[i], d[i], branch[i])
+            beta_y, beta_x, phi_y, phi_x, _ = one_position(math.cos(theta[i]), math.sin(theta[i]), a[i], b[i], c[i],
+                                                           d[i], branch[i], tolerance)
+            beta[i], phi[i] = math.atan2(beta_y, beta_x), math.atan2(phi_y, phi_x)
 
     @numba.njit(cache=False, fastmath=False)
     def everything(theta, a, b, c, d, branch, speed, accel, beta, phi, beta_speed, phi_speed, beta_accel,
                    phi_accel):
+        speed2 = speed * speed
         for i in range(theta.size):
-            q, p = solve(theta[i], a[i], b[i], c[i], d[i], branch[i])
-            s_tp, c_tp = math.sin(theta[i] - p), math.cos(theta[i] - p)
-            s_tb, c_tb = math.sin(theta[i] - q), math.cos(theta[i] - q)
-            s_bp, c_bp = math.sin(q - p), math.cos(q - p)
-            bs = -a[i] * speed * s_tp / (b[i] * s_bp)
-            ps = -a[i] * speed * s_tb / (c[i] * s_bp)
-            beta[i], phi[i], beta_speed[i], phi_speed[i] = q, p, bs, ps
-            beta_accel[i] = -(a[i] * accel * s_tp + a[i] * speed * speed * c_tp + b[i] * bs * bs * c_bp
-                              - c[i] * ps * ps) / (b[i] * s_bp)
-            phi_accel[i] = -(a[i] * accel * s_tb + a[i] * speed * speed * c_tb + b[i] * bs * bs
-                             - c[i] * ps * ps * c_bp) / (c[i] * s_bp)
+            sin_t, cos_t = math.sin(theta[i]), math.cos(theta[i])
+            a_, b_, c_ = a[i], b[i], c[i]
+            beta_y, beta_x, phi_y, phi_x, across = one_position(cos_t, sin_t, a_, b_, c_, d[i], branch[i], tolerance)
+            # cos and sin of each angle from its atan2 arguments, as the generated code takes them
+            beta_r, phi_r = math.sqrt(beta_x * beta_x + beta_y * beta_y), math.sqrt(phi_x * phi_x + phi_y * phi_y)
+            sin_b, cos_b = beta_y * (1.0 / beta_r), beta_x * (1.0 / beta_r)
+            sin_p, cos_p = phi_y * (1.0 / phi_r), phi_x * (1.0 / phi_r)
+            beta[i], phi[i] = math.atan2(beta_y, beta_x), math.atan2(phi_y, phi_x)
+            scale = 2.0 * b_ * c_ / across  # 1 / sin(beta - phi)
+            over_b, over_c = scale / b_, scale / c_
+            s_pt = cos_t * sin_p - cos_p * sin_t  # sin(phi - theta)
+            s_bt = cos_t * sin_b - cos_b * sin_t  # sin(beta - theta)
+            c_bp = cos_b * cos_p + sin_b * sin_p  # cos(beta - phi)
+            a_speed, a_accel = a_ * speed, a_ * accel
+            bs = -s_pt * over_b * a_speed
+            ps = -a_speed * s_bt * over_c
+            bs2, c_ps2 = bs * bs, c_ * (ps * ps)
+            beta_speed[i], phi_speed[i] = bs, ps
+            beta_accel[i] = over_b * (a_ * speed2 * (cos_p * cos_t + sin_p * sin_t) + b_ * bs2 * c_bp
+                                      - s_pt * a_accel - c_ps2)
+            phi_accel[i] = over_c * (a_ * speed2 * (cos_b * cos_t + sin_b * sin_t) + b_ * bs2 - s_bt * a_accel
+                                     - c_ps2 * c_bp)
 
     import numpy
     one = numpy.ones(2)

@@ -5,7 +5,9 @@ accelerations) and its positions alone, one set of lengths, N crank angles:
 
 * ``module``: the generated NumPy function (``check=True``, as a user calls it);
 * ``module-nocheck``: the same with ``check=False`` (a hot loop);
-* ``Solver``: :class:`symlink.solver.Solver` (units, memory and argument checks, a Results table);
+* ``Solver``: :class:`symlink.solver.Solver` with ``backend="numpy"`` (units, memory and argument checks, a
+  Results table);
+* ``Solver-default``: a ``Solver`` as a user makes it (compiled where a C compiler works);
 * ``compiled-entry``: the compiled C loop through its ctypes entry (``CompiledSolver.function``);
 * ``compiled``: :class:`symlink.compiled.CompiledSolver`, called as a ``Solver`` is;
 * ``compiled-new-lengths``: the same, each call with new length objects (other values, as an
@@ -62,7 +64,9 @@ def methods(outputs: list[str]) -> dict:
     from symlink.compiled import CompiledSolver
     from symlink.solver import Solver
     linkage = fourbar()
-    solver = Solver(linkage, outputs)
+    solver = Solver(linkage, outputs, backend="numpy")
+    default = Solver(linkage, outputs)  # the default backend: compiled where a C compiler works
+    default.wait_for_backend()
     compiled = CompiledSolver(linkage, outputs)
     rates = {"thetadot": SPEED, "thetaddot": ACCEL} if len(outputs) > 2 else {}
     lengths = dict(zip("abcd", LENGTHS))
@@ -72,6 +76,7 @@ def methods(outputs: list[str]) -> dict:
         "module": lambda theta: solver.function(theta, **lengths, branch=1, **rates),
         "module-nocheck": lambda theta: solver.function(theta, **lengths, branch=1, **rates, check=False),
         "Solver": lambda theta: solver(theta=theta, **lengths, branch=1, **rates),
+        "Solver-default": lambda theta: default(theta=theta, **lengths, branch=1, **rates),
         "compiled-entry": lambda theta: compiled.function(theta=theta, **lengths, branch=1, **rates),
         "compiled": lambda theta: compiled(theta=theta, **lengths, branch=1, **rates),
         "compiled-new-lengths": lambda theta: compiled(theta=theta, **next(steps), branch=1, **rates),

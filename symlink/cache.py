@@ -484,17 +484,22 @@ class GeneratedCode:
 def generated_code(linkage: Linkage, outputs: Sequence[str]) -> GeneratedCode:
     """The NumPy solver of ``outputs``, derived (only what they need) on the first request only.
 
+    The key is made from what the request names (the linkage's definition and the output names),
+    so a request whose code is cached does no symbolic work: not even checking its names, which for a
+    sensitivity derives it (an entry exists only for names that were checked when it was derived).
     Unknown output names raise ``ValueError`` before anything is derived or cached.
     """
     from .codegen.numpy import load_numpy_module, numpy_module
     outputs = list(outputs)
     if not outputs:
         raise ValueError(f"ask {linkage.name} for at least one output; it has {', '.join(linkage.output_names())}")
-    for name in outputs:
-        linkage.output(name)
     key = cache_key(linkage, outputs)
     if key not in _LOADED:
-        doc = f"{linkage.name}: {', '.join(outputs)}."
-        source = cached_text(key, lambda: numpy_module([(FUNCTION, linkage.program(outputs), doc)]))
+        def derive() -> str:
+            for name in outputs:
+                linkage.output(name)  # ValueError naming the outputs there are, before any work
+            doc = f"{linkage.name}: {', '.join(outputs)}."
+            return numpy_module([(FUNCTION, linkage.program(outputs), doc)])
+        source = cached_text(key, derive)
         _LOADED[key] = GeneratedCode(key, source, load_numpy_module(source)[FUNCTION])
     return _LOADED[key]

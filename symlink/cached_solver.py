@@ -37,7 +37,7 @@ from .codegen.loading import load_numpy_module
 from .limits import require_memory
 from .results import Results
 
-__all__ = ["CachedSolver", "ENTRY_KIND", "DESCRIPTION"]
+__all__ = ["CachedSolver", "ENTRY_KIND", "DESCRIPTION", "entry_text"]
 
 #: The kind of cache entry (:func:`symlink.cache.catalog_key`) that holds a catalog solver (``/2``: its
 #: description has the arguments' units).
@@ -54,16 +54,23 @@ def _derived_entry(name: str, outputs: Sequence[str]) -> str:
     The generated module, followed by a dictionary of what a call needs (:data:`DESCRIPTION`).
     """
     from .catalog import CATALOG
-    from .solver import Solver
     if name not in CATALOG:
         raise ValueError(f"no linkage {name!r} in the catalog; it has {', '.join(sorted(CATALOG))}")
-    linkage = CATALOG[name]()
-    solver = Solver(linkage, outputs)
+    return entry_text(CATALOG[name](), outputs)
+
+
+def entry_text(linkage: Any, outputs: Sequence[str], **more: Any) -> str:
+    """A cache entry of ``outputs`` of ``linkage``: its generated NumPy module and what a call needs.
+
+    ``more`` adds further facts to the description (plain Python values), for the entry's user.
+    """
+    from .solver import Solver
+    solver = Solver(linkage, outputs, backend="numpy")
     described = {
         "arguments": solver.arguments, "branches": solver.branches,
         "lengths": [s.name for s in linkage.parameters if s.is_positive], "units": solver.units,
         "input_units": solver.input_units, "required": solver.required,
-        "bytes_per_value": solver.bytes_per_value,
+        "bytes_per_value": solver.bytes_per_value, **more,
     }
     return (f"{solver.source.rstrip()}\n\n\n#: What a call needs, for symlink.cached_solver (names, units, memory).\n"
             f"{DESCRIPTION} = {described!r}\n")
@@ -81,13 +88,20 @@ class CachedSolver:
     output the linkage does not have.
     """
 
-    def __init__(self, name: str, outputs: Sequence[str]) -> None:
+    def __init__(self, name: str, outputs: Sequence[str], *, key: str | None = None,
+                 derive: Callable[[], str] | None = None, full: Callable[[], Any] | None = None) -> None:
+        """``key``, ``derive`` and ``full``: an entry of another request than a catalog linkage's (a scene's
+        dynamics, keyed by what it names): its cache key, how to derive it (:func:`entry_text`) and the
+        :class:`~symlink.solver.Solver` that takes quantities."""
         self.name = name
         self.outputs = list(outputs)
-        self.source = cached_text(catalog_key(name, self.outputs, ENTRY_KIND),
-                                  lambda: _derived_entry(name, self.outputs))
+        self._full = full
+        if key is None or derive is None:
+            key, derive = catalog_key(name, self.outputs, ENTRY_KIND), lambda: _derived_entry(name, self.outputs)
+        self.source = cached_text(key, derive)
         namespace = load_numpy_module(self.source)  # from a verified entry of a private cache (never user text)
         entry = namespace[DESCRIPTION]
+        self.description: dict[str, Any] = entry
         self.arguments: list[str] = entry["arguments"]
         self.branches: list[str] = entry["branches"]
         self.lengths: list[str] = entry["lengths"]
@@ -105,6 +119,8 @@ class CachedSolver:
     @cached_property
     def full(self) -> Any:
         """The :class:`~symlink.solver.Solver` of the same outputs (builds the linkage: SymPy), for quantities."""
+        if self._full is not None:
+            return self._full()
         from .catalog import CATALOG
         from .solver import Solver
         return Solver(CATALOG[self.name](), self.outputs)

@@ -34,14 +34,29 @@ from .vectors import acceleration, rate, time_derivative
 __all__ = ["loop_rates"]
 
 
+def _own(expr, coordinates) -> list:
+    """The coordinates that ``expr`` moves with (itself or its rate appears in it), in their order.
+
+    A total derivative by the chain rule needs only these: differentiating by every coordinate of
+    the linkage made the cost of a vector grow with the linkage (a chain of k loops: k^2).
+    """
+    symbols = sp.sympify(expr).free_symbols
+    return [q for q in coordinates if q in symbols or rate(q) in symbols]
+
+
+def _derivative(expr, coordinates):
+    """The total time derivative of ``expr``, over its own coordinates only (the same expression)."""
+    return time_derivative(expr, _own(expr, coordinates))
+
+
 def _derivative_parts(length, angle, coordinates, order):
     """Real and imaginary parts, in the vector's own frame, of the derivative of ``r e^{i t}``."""
-    dr = time_derivative(length, coordinates)
-    dt = time_derivative(angle, coordinates)
+    dr = _derivative(length, coordinates)
+    dt = _derivative(angle, coordinates)
     if order == 1:
         return dr, length * dt
-    ddr = time_derivative(dr, coordinates)
-    ddt = time_derivative(dt, coordinates)
+    ddr = _derivative(dr, coordinates)
+    ddt = _derivative(dt, coordinates)
     return ddr - length * dt**2, length * ddt + 2 * dr * dt
 
 
@@ -65,7 +80,7 @@ def _by_cramer(loop: Loop, unknowns, coordinates, order, target) -> dict[sp.Symb
     """The two unknowns' derivatives from the differentiated closure, by Cramer's rule."""
     equations = [sp.expand(component) for component in loop.equations()]
     for _ in range(order):
-        equations = [time_derivative(e, coordinates) for e in equations]
+        equations = [_derivative(e, coordinates) for e in equations]
     symbols = [target(u) for u in unknowns]
     matrix = [[sp.diff(e, x) for x in symbols] for e in equations]
     rest = [-e.subs({x: 0 for x in symbols}) for e in equations]

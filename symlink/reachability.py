@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from functools import lru_cache
 from typing import Any, Callable, Mapping
 
 import numpy
@@ -25,7 +26,7 @@ import numpy
 from .angles import wrap_angle
 from .cache import cache_key, cached_text
 from .closure import is_angle
-from .codegen.numpy import load_numpy_module, numpy_module
+from .codegen.numpy import checked_arguments, load_numpy_module, numpy_module
 from .codegen.program import in_loop_units
 from .display import record_html
 from .linkage import Linkage
@@ -35,7 +36,7 @@ from .vectors import rate
 
 __all__ = ["crank_range", "assembled_crank_range", "slider_crank_range", "inverted_slider_crank_range",
            "fivebar_range", "scanned_range", "describe_spans", "reachable_turn", "turn_angles", "SCAN_POINTS", "TURN_SAMPLES",
-           "BISECTIONS", "Toggle", "InputRange", "InputMotion", "reachable_range"]
+           "BISECTIONS", "Toggle", "InputRange", "InputMotion", "reachable_range", "design_spans"]
 
 #: Points a turn of the scan that finds a reachable crank range without a closed form.
 SCAN_POINTS = 3600
@@ -255,6 +256,13 @@ class InputRange:
         return self.periodic and self.spans == ((-math.pi, math.pi),)
 
 
+@lru_cache(maxsize=64)
+def _motion_solver(linkage: Linkage, outputs: tuple[str, ...]) -> Solver:
+    """The solver of an :class:`InputMotion`, made once a linkage (a sweep makes a motion a design: a solver's
+    cache key and backend are worth making once, not each time)."""
+    return Solver(linkage, list(outputs))
+
+
 class InputMotion:
     """A one-input linkage at given values, evaluated at any input values: coordinates and rates.
 
@@ -306,7 +314,7 @@ class InputMotion:
         if self.exact:
             if guess is not None:
                 raise ValueError(f"{linkage.name} is solved in closed form: give branch signs, not a guess")
-            self._solver = Solver(linkage, self.names + self.rates)
+            self._solver = _motion_solver(linkage, tuple(self.names + self.rates))
         else:
             if guess is None:
                 raise ValueError(f"{linkage.name} has no closed form: give a guess of "
@@ -365,6 +373,7 @@ class InputMotion:
             return None
 
 
+@lru_cache(maxsize=64)
 def _margin_function(linkage: Linkage) -> tuple[Callable[..., dict], list[tuple[str, str]]]:
     """Generated code of every clamped root's argument over its scale (plus rounding), and their loops.
 
@@ -373,10 +382,7 @@ def _margin_function(linkage: Linkage) -> tuple[Callable[..., dict], list[tuple[
     vanish) is its argument less the square of TOLERANCE.  Later loops'
     margins are NaN where an earlier loop does not close.
     """
-    plan_steps = linkage.plan
-    roots = [(step.loop.name, symbol, expr) for step in plan_steps
-             for symbol, expr in step.in_loop_units.intermediates.items()
-             if isinstance(expr, ClampedSqrt)]
+    roots = _roots(linkage)
     names = [f"margin_{k}" if not expr.args[1].is_negative else f"guard_{k}" for k, (_, _, expr) in enumerate(roots)]
     key = cache_key(linkage, names, "root-margins")
     if key not in _MARGINS:
@@ -392,6 +398,63 @@ def _margin_function(linkage: Linkage) -> tuple[Callable[..., dict], list[tuple[
 
 
 _MARGINS: dict[str, Callable[..., dict]] = {}
+_COMPILED_MARGINS: dict[str, Any] = {}
+
+
+def _fast_margins(linkage: Linkage) -> Callable[..., dict]:
+    """The margins as :func:`_margin_function` generates them, in the compiled C loop where it is built (compiled in
+    the background the first time, the NumPy module answering meanwhile): for scans of many designs at once.
+
+    Called with keywords (``check=False`` skips the argument check, as the NumPy module's does).
+    """
+    numpy_margins, roots = _margin_function(linkage)
+    names = [name for name, _ in roots]
+    key = _compiled_margins_key(linkage, tuple(names))
+    entry = _COMPILED_MARGINS.get(key)
+    if entry is None:
+        from . import compiled_library as compiled
+        if compiled.chosen_backend() == "numpy":
+            return numpy_margins
+
+        def build() -> str:
+            base = linkage.program([q.name for q in linkage.unknowns])
+            margins = {name: (expr.args[0] / expr.args[1] + TOLERANCE if name.startswith("margin")
+                              else expr.args[0] + TOLERANCE * expr.args[1])
+                       for name, (_, _, expr) in zip(names, _roots(linkage))}
+            program = replace(in_loop_units(base), outputs=margins)
+            return compiled.program_facts(program, "solve", f"{linkage.name}: the margins of its clamped roots.",
+                                          [s.name for s in program.arguments if s.is_positive])
+        try:
+            import json
+            entry = compiled.compiled_or_building(json.loads(cached_text(key, build)))
+        except (OSError, ValueError, RuntimeError):
+            entry = None
+        if entry is None:
+            return numpy_margins
+        _COMPILED_MARGINS[key] = entry
+
+    lengths = [s.name for s in linkage.parameters if s.is_positive]
+    branches = [s.name for s in linkage.branches]
+
+    def margins(check: bool = True, **values) -> dict:
+        if check:  # the NumPy module's check of every value (ValueError naming the first bad one)
+            checked_arguments(list(values), list(values.values()), lengths, branches)
+        return entry(**values)
+    margins.compiled = True  # type: ignore[attr-defined]
+    return margins
+
+
+@lru_cache(maxsize=64)
+def _compiled_margins_key(linkage: Linkage, names: tuple[str, ...]) -> str:
+    """The cache key of the compiled margins, computed once a linkage (a sweep asks for it every chunk)."""
+    return cache_key(linkage, names, "root-margins-c")
+
+
+def _roots(linkage: Linkage) -> list:
+    """Every clamped root of the plan as generated code computes it (loop units, with its scale):
+    (loop name, symbol, expression), in plan order."""
+    return [(step.loop.name, symbol, expr) for step in linkage.plan
+            for symbol, expr in step.in_loop_units.intermediates.items() if isinstance(expr, ClampedSqrt)]
 
 
 def _edges(inside: numpy.ndarray, periodic: bool) -> numpy.ndarray:
@@ -403,9 +466,14 @@ def _edges(inside: numpy.ndarray, periodic: bool) -> numpy.ndarray:
 
 def _bisect(test: Callable[[numpy.ndarray], numpy.ndarray], low: numpy.ndarray, high: numpy.ndarray,
             low_value: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
-    """Bisect brackets [low, high] where ``test`` changes from ``low_value``, to rounding."""
+    """Bisect brackets [low, high] where ``test`` changes from ``low_value``, to rounding.
+
+    Stops once no bracket can shrink (its midpoint rounds to an end): later steps would change nothing.
+    """
     for _ in range(BISECTIONS):
         middle = 0.5 * (low + high)
+        if numpy.all((middle == low) | (middle == high)):
+            break
         same = numpy.asarray(test(middle), dtype=bool) == low_value
         low, high = numpy.where(same, middle, low), numpy.where(same, high, middle)
     return low, high
@@ -463,6 +531,77 @@ def reachable_range(linkage: Linkage, values: Mapping[str, float], *, input: str
     if motion.exact:
         return _closed_form_range(motion, low, high, points)
     return _continued_range(motion, low, high, points)
+
+
+def design_spans(linkage: Linkage, values: Mapping[str, Any], count: int, *, input: str | None = None,
+                 points: int = SCAN_POINTS, block: int = 1 << 18) -> list[list[tuple[float, float]]]:
+    """The reachable spans over a turn of the input of ``count`` designs at once, each as :func:`reachable_range`
+    finds them in closed form (the same scan and bisections, to rounding), without its toggles.
+
+    ``values``: every parameter, branch sign and held input by name, a number or an array of ``count``
+    (one a design).  Every step (the scan, each bisection) is one call of the generated margins for all
+    designs and edges together, not one a design.
+
+    >>> from symlink.catalog import slider_crank
+    >>> found = design_spans(slider_crank(), dict(a=numpy.array([2.0, 0.5]), b=1.0, offset=0.0), 2)
+    >>> [[tuple(round(math.degrees(x), 9) for x in span) for span in spans] for spans in found]
+    [[(-30.0, 30.0), (150.0, 210.0)], [(-180.0, 180.0)]]
+    """
+    driven = linkage.inputs[0].name if input is None else input
+    if not linkage.has_closed_form:
+        raise ValueError(f"{linkage.name} has no closed form: find its spans one design at a time (reachable_range)")
+    _, roots = _margin_function(linkage)
+    margins = _fast_margins(linkage)
+    arrays = {name: numpy.broadcast_to(numpy.asarray(value, dtype=float), (count,)) for name, value in values.items()}
+    step = 2 * math.pi / points
+    grid = -math.pi + step * numpy.arange(points)
+    following = numpy.append(grid, grid[0] + 2 * math.pi)
+
+    def margin_values(at: numpy.ndarray, rows, check: bool = False) -> dict[str, numpy.ndarray]:
+        with numpy.errstate(all="ignore"):  # the values are checked once, on the scan
+            return margins(**{driven: at}, **{name: array[rows] for name, array in arrays.items()}, check=check)
+
+    inside = numpy.zeros((count, points), dtype=bool)
+    if getattr(margins, "compiled", False):  # a call a design: its values as numbers, no broadcast copies
+        checked_arguments(list(arrays), list(arrays.values()), [s.name for s in linkage.parameters if s.is_positive],
+                          [s.name for s in linkage.branches])
+        columns = {name: array.tolist() for name, array in arrays.items()}
+        for row in range(count):
+            found = margins(**{driven: grid}, **{name: column[row] for name, column in columns.items()},
+                            check=False)
+            inside[row] = found["assembled"]
+    else:
+        rows_a_block = max(1, block // points)
+        for first in range(0, count, rows_a_block):
+            rows = numpy.arange(first, min(first + rows_a_block, count))
+            found = margin_values(grid[None, :], rows[:, None], check=True)
+            inside[rows] = numpy.asarray(found["assembled"], dtype=bool)
+    design, edge = numpy.nonzero(inside != numpy.roll(inside, -1, axis=1))
+    spans: list[list[tuple[float, float]]] = [[(-math.pi, math.pi)] if row.all() else [] for row in inside]
+    if not design.size:
+        return spans
+    start, end, before = grid[edge], following[edge + 1], inside[design, edge]
+    in_low, out_high = _bisect(lambda at: margin_values(at, design)["assembled"], start, end, before)
+    rising = ~before
+    beyond = margin_values(numpy.where(rising, in_low, out_high), design)
+    failing = numpy.full(design.size, -1)
+    for k, (name, _) in reversed(list(enumerate(roots))):  # the first root whose margin is negative
+        failing = numpy.where(numpy.asarray(beyond[name]) < 0, k, failing)
+    at_low, at_high = in_low.copy(), out_high.copy()
+    for k, (name, _) in enumerate(roots):
+        chosen = numpy.flatnonzero(failing == k)
+        if not chosen.size or not name.startswith("margin"):
+            continue
+        # the clamp takes rounding below zero as the toggle itself: bisect where the root's argument changes sign
+        def closes(at, name=name, chosen=chosen):
+            return margin_values(at, design[chosen])[name] - TOLERANCE >= 0
+        at_low[chosen], at_high[chosen] = _bisect(closes, start[chosen], end[chosen], before[chosen])
+    bounds = numpy.where(rising, at_high, at_low)  # the reachable side of each edge
+    for row in numpy.unique(design).tolist():
+        mine = design == row
+        marks = sorted(zip(bounds[mine].tolist(), rising[mine].tolist()))
+        spans[row] = _spans_from_marks(marks, True, float(grid[0]), float(grid[-1]))
+    return spans
 
 
 def _closed_form_range(motion: InputMotion, low: float, high: float, points: int) -> InputRange:

@@ -71,6 +71,7 @@ from .linkage import Linkage, Program
 from .closure import is_angle
 from .notation import math_text
 from .results import Results
+from .sensitivity import split_sensitivity_name
 from .solver import Solver, crank_speeds
 from .vectors import acceleration, rate
 
@@ -110,7 +111,10 @@ def angle_outputs(linkage: Linkage, outputs: Sequence[str]) -> set[str]:
     ['rocker', 'transmission']
     """
     found = set()
+    known = set(linkage.output_names())
     for name in outputs:
+        if name not in known:  # a torque or force of a cached dynamics request (never an angle)
+            continue
         expr = linkage.output(name)
         if isinstance(expr, sp.Symbol) and expr in linkage.coordinates:
             if is_angle(linkage, expr):
@@ -139,8 +143,11 @@ class Scene:
         if not self.outputs:
             raise ValueError(f"a scene needs at least one output of {self.linkage.name}; "
                              f"it has {', '.join(self.linkage.output_names())}")
+        known = set(self.linkage.output_names())
         for name in self.outputs:
-            self.linkage.output(name)  # ValueError naming the outputs there are
+            if name not in known and split_sensitivity_name(name, self.linkage.parameters) is None:
+                self.linkage.output(name)  # ValueError naming the outputs there are
+        # (a sensitivity's name is checked where its code is derived, not here: that derives it)
         if branch not in BRANCH_CHOICES or isinstance(branch, bool):
             raise ValueError(f"branch must be 1, -1 or 'both', got {branch!r}")
         self.branch = branch
@@ -236,6 +243,85 @@ class Scene:
         return "$\\begin{array}{ll}" + "\\\\ ".join(rows) + "\\end{array}$"
 
 
+class _Positive:
+    """A parameter of a cached request as the scene file's checks see it: its name and whether it is a length."""
+
+    def __init__(self, name: str, is_positive: bool) -> None:
+        self.name, self.is_positive = name, is_positive
+
+
+class DynamicScene:
+    """Torques or joint forces of a linkage with a scene's ``[dynamics]`` table, keyed by what the scene names.
+
+    The cache key is made from the kinematic linkage's definition, the table as given and the outputs,
+    so a warm request (the entry on disk) builds no dynamic model and derives nothing: the equation of
+    motion is derived once, when the entry is made (:func:`symlink.cached_solver.entry_text`).
+    """
+
+    def __init__(self, kinematics: Linkage, outputs: Sequence[str], table: Mapping) -> None:
+        import json
+
+        from .cache import cache_key
+        from .cached_solver import CachedSolver
+        self.kinematics, self.outputs, self.table = kinematics, list(outputs), table
+        try:
+            described = json.dumps(table, sort_keys=True, default=str)
+        except (TypeError, ValueError):
+            raise ValueError(f"dynamics must be a table of names and numbers, got {table!r}") from None
+        key = cache_key(kinematics, self.outputs, f"dynamic-scene:{described}")
+        self.solver = CachedSolver(kinematics.name, self.outputs, key=key, derive=self._derive, full=self._full)
+        facts = self.solver.description
+        self.parameters = {name: _Positive(name, positive) for name, positive in facts["parameters"]}
+        self.angles = set(facts["angles"])
+
+    def dynamic_linkage(self) -> Linkage:
+        """The linkage with its dynamic outputs (symbolic work: only where the entry is derived or quantities are given)."""
+        model = dynamic_model(self.table, self.kinematics)
+        found = LinkageFile(self.kinematics, {}, "", model).with_dynamics().linkage
+        for name in self.outputs:
+            try:
+                found.output(name)
+            except ValueError:
+                raise ValueError(f"outputs: {found.name} has no output {name!r}; "
+                                 f"it has {', '.join(found.output_names())}") from None
+        return found
+
+    def _derive(self) -> str:
+        from .cached_solver import entry_text
+        linkage = self.dynamic_linkage()
+        return entry_text(linkage, self.outputs, parameters=[[p.name, bool(p.is_positive)] for p in linkage.parameters],
+                          angles=sorted(angle_outputs(linkage, self.outputs)))
+
+    def _full(self) -> Solver:
+        return Solver(self.dynamic_linkage(), self.outputs)
+
+    def scene(self, values: Mapping[str, object], branch: int | str) -> Scene:
+        """A :class:`Scene` of the request, answered from the cache entry."""
+        return _CachedScene(self, values, branch)
+
+
+class _CachedScene(Scene):
+    """A scene whose code and solver come from a :class:`DynamicScene`'s cache entry (its linkage: the kinematic one)."""
+
+    def __init__(self, request: DynamicScene, values: Mapping[str, object], branch: int | str) -> None:
+        self.linkage, self.outputs, self.request = request.kinematics, tuple(request.outputs), request
+        if branch not in BRANCH_CHOICES or isinstance(branch, bool):
+            raise ValueError(f"branch must be 1, -1 or 'both', got {branch!r}")
+        self.branch, self.values = branch, dict(values)
+
+    @cached_property
+    def code(self) -> GeneratedCode:
+        entry = self.request.solver
+        return GeneratedCode("", entry.source, entry.function)
+
+    @cached_property
+    def solver(self) -> Any:  # the cached entry's solver: called and asked for its branches as a Solver is
+        return self.request.solver
+
+    def program(self) -> Program:
+        return self.request.dynamic_linkage().program(list(self.outputs))
+
+
 # --- scene files -----------------------------------------------------------
 
 class SceneFile:
@@ -324,15 +410,19 @@ def scene_from_mapping(data: Mapping, folder: str | Path = ".") -> SceneFile:
     if not isinstance(outputs, list) or not outputs or not all(isinstance(o, str) for o in outputs):
         raise ValueError(f"outputs must be a non-empty list of output names of {found.linkage.name} "
                          f"({', '.join(found.linkage.output_names())}), got {outputs!r}")
+    warm: DynamicScene | None = None
     if "dynamics" in data:  # mass properties and loads given in the scene, on a catalog linkage or a file's
         if found.model is not None:
             raise ValueError(f"dynamics: {data['linkage']} has a [dynamics] table of its own; give it in one place")
-        found = LinkageFile(found.linkage, found.defaults, found.source,
-                            dynamic_model(data["dynamics"], found.linkage))
-    if found.model is not None and not set(outputs) <= set(found.linkage.output_names()):
+        if not set(outputs) <= set(found.linkage.output_names()):  # torques or joint forces: a cached request
+            warm = DynamicScene(found.linkage, outputs, data["dynamics"])
+        else:
+            found = LinkageFile(found.linkage, found.defaults, found.source,
+                                dynamic_model(data["dynamics"], found.linkage))
+    if warm is None and found.model is not None and not set(outputs) <= set(found.linkage.output_names()):
         found = found.with_dynamics()  # torques or joint forces of a linkage file with a [dynamics] table
     linkage = found.linkage
-    for name in outputs:
+    for name in outputs if warm is None else ():
         try:
             linkage.output(name)
         except ValueError:
@@ -342,7 +432,7 @@ def scene_from_mapping(data: Mapping, folder: str | Path = ".") -> SceneFile:
     units = _choice(data.get("units", "deg"), "units", UNITS)
     fmt = _choice(data.get("format", "table"), "format", FORMATS)
 
-    names = {s.name: s for s in linkage.parameters}
+    names = {s.name: s for s in linkage.parameters} if warm is None else warm.parameters
     given = _table(data.get("parameters", {}), "parameters", set(names))
     given = {**{n: v for n, v in defaults.items() if n in names}, **given}
     missing = [n for n in names if n not in given]
@@ -372,7 +462,7 @@ def scene_from_mapping(data: Mapping, folder: str | Path = ".") -> SceneFile:
         raise ValueError(f"input: {error}") from None
     speed = _number(sweep_table.get("speed", 0.0), "input.speed")
     accel = _number(sweep_table.get("accel", 0.0), "input.accel")
-    scene = Scene(linkage, outputs, dict(parameters), branch)
+    scene = Scene(linkage, outputs, dict(parameters), branch) if warm is None else warm.scene(dict(parameters), branch)
     roles = [role for role, q in linkage.roles.items() if q == driven]
     scene_file = SceneFile(scene, roles[0] if roles else driven.name, sweep, units, fmt, speed, accel)
     scene.values.update(scene_file.values_at(sweep.array() if len(sweep) <= 4096 else sweep.block(0, 1)))

@@ -62,9 +62,9 @@ def check_lengths(**lengths: float) -> None:
 
 
 class Solver:
-    """A vectorised NumPy solver for some outputs of a linkage.
+    """A vectorised solver for some outputs of a linkage: the compiled C loop where a C compiler works, else NumPy.
 
-    The NumPy code for ``outputs``, and only for what they depend on, is
+    The code for ``outputs``, and only for what they depend on, is
     derived, generated and loaded when the solver is made; the same request
     later, in this process or another, takes it from the cache
     (:mod:`symlink.cache`) and does no symbolic work.  A call checks its
@@ -83,6 +83,9 @@ class Solver:
         (``"rocker_speed"``, ``"phidot"``, ``"rocker_accel"``), coordinates of
         named points (``"C_x"``), extras (``"transmission"``), ``"singular"``
         and design sensitivities (``"rocker__d_a"``).
+    backend : {"auto", "numpy", "compiled"}, optional
+        Which code answers (default: the ``SYMLINK_BACKEND`` environment
+        variable, else ``"auto"``); see the notes.
 
     Attributes
     ----------
@@ -102,6 +105,25 @@ class Solver:
     NumericSolver : Newton's method, for linkages without a closed form.
     symlink.compiled.compiled_solver : the same call, computed by generated C.
 
+    Notes
+    -----
+    The backends:
+
+    * ``"auto"``: the compiled backend (:mod:`symlink.compiled`) where a C compiler works (probed once
+      a process). Its library is built once into the cache: where it is there already it is used from
+      the first call; else it is compiled in the background while the NumPy module answers, and
+      used from the first call after it is ready (:meth:`wait_for_backend` waits for it).
+    * ``"numpy"``: the generated NumPy module only.
+    * ``"compiled"``: the compiled backend, built now; where it cannot be, one ``FallbackWarning`` and NumPy.
+
+    Both backends compute the same straight-line program and check the arguments alike; their results
+    agree to a few units in the last place (libm's and NumPy's sin, cos and atan2 may round differently).
+    :attr:`backend` says which one answers now.
+
+    >>> from symlink.catalog import fourbar
+    >>> Solver(fourbar(), ["rocker"], backend="numpy").backend
+    'numpy'
+
     Examples
     --------
     >>> from symlink.catalog import fourbar
@@ -113,11 +135,36 @@ class Solver:
     (array([110.74, 103.82]), array([-3.5   ,  0.0733]))
     """
 
-    def __init__(self, linkage: Linkage, outputs: Sequence[str]) -> None:
+    def __init__(self, linkage: Linkage, outputs: Sequence[str], backend: str | None = None) -> None:
+        from . import compiled_library as compiled  # the C libraries (it imports no solver)
         self.linkage = linkage
         self.outputs = linkage.with_singular(outputs)  # a rate, force or sensitivity brings its flag
+        self.backend_choice = compiled.chosen_backend(backend)
         code = generated_code(linkage, self.outputs)  # derived once, then from the scene cache
         self.source, self.function, self.arguments = code.source, code.function, code.arguments
+        self._compiled: Any = None  # the compiled function (symlink.compiled._Entry) once it answers
+        self._build: Any = None  # its background build, until it is over
+        if self.backend_choice == "compiled":
+            self._compiled = compiled.compiled_or_warning(linkage, self.outputs)
+        elif self.backend_choice == "auto":
+            self._compiled, self._build = compiled.entry_or_build(linkage, self.outputs)
+
+    @property
+    def backend(self) -> str:
+        """``"compiled"`` or ``"numpy"``: the backend that answers the next call."""
+        return "numpy" if self._answering() is None else "compiled"
+
+    def wait_for_backend(self, timeout: float | None = None) -> str:
+        """Wait (at most ``timeout`` seconds) for a background build of the compiled backend; the backend then."""
+        if self._build is not None:
+            self._build.wait(timeout)
+        return self.backend
+
+    def _answering(self) -> Any:
+        """The compiled function where it answers (a background build just finished is adopted here), else ``None``."""
+        if self._build is not None and self._build.done():
+            self._compiled, self._build = self._build.entry(), None
+        return self._compiled
 
     @property
     def branches(self) -> list[str]:
@@ -222,6 +269,13 @@ class Solver:
         Traceback (most recent call last):
         ValueError: a must be a positive finite length, got -20.0
         """
+        compiled = self._compiled if self._build is None else self._answering()
+        if compiled is not None:
+            # A small call of plain numbers and float arrays: the compiled function's fast path, whose C wrapper
+            # checks the values as the NumPy module does (anything else, or a value it refuses, goes on below).
+            small = compiled._small_outputs(values)
+            if small is not None:
+                return Results(small.results, self._result_units, values, self.input_units)
         accepted, required, lengths, branches = self._layout
         if not (accepted.issuperset(values) and required.issubset(values)):
             check_argument_names(self.linkage.name, self.arguments, self.required, values)
@@ -233,9 +287,15 @@ class Solver:
             _require_memory(self, values, self.bytes_per_value, "solver")
         names = list(values)
         arrays, _ = checked_arguments(names, list(values.values()), lengths, branches)
+        evaluate = self._unchecked if compiled is None else compiled
         with numpy.errstate(invalid="ignore", divide="ignore"):
-            return _results(self._unchecked(**dict(zip(names, arrays))), self.units, length_unit,
+            return _results(evaluate(**dict(zip(names, arrays))), self.units, length_unit,
                             values, self.input_units)
+
+    @cached_property
+    def _result_units(self) -> dict[str, str]:
+        """The unit of each result of a call, ``assembled`` included (the fast path's, made once)."""
+        return {name: self.units.get(name, "") for name in self.outputs + ["assembled"]}
 
 
 #: Argument types that are never quantities and whose size is known without converting them.

@@ -51,10 +51,11 @@ one per parameter       every parameter of the linkage (float64), the swept ones
 
 The reachable range comes from :mod:`symlink.reachability` (the four-bar's
 closed form; for another linkage the sampled mask where every sample
-assembles, else its bisected scan); the Grashof class from
+assembles, else its bisected scan, every design of a chunk at once:
+:func:`~symlink.reachability.design_spans`); the Grashof class from
 :func:`~symlink.analysis.grashof`; the transmission angle from the four-bar's
-``transmission`` output, or :func:`~symlink.analysis.transmission_angles`
-for another linkage.  Extremes are the samples' refined by the parabola
+``transmission`` output, or for another linkage from its solved coordinates
+(:func:`~symlink.analysis.transmission.transmission_arrays`, code generated once).  Extremes are the samples' refined by the parabola
 through each extreme and its neighbours (errors of order ``step**3``).
 
 >>> settings = SweepSettings("fourbar", {"a": (0.2, 0.4)}, values={"b": 1.0, "c": 1.0, "d": 1.0}, count=3)
@@ -76,19 +77,19 @@ from typing import Any, Callable, Iterable, Mapping, Sequence
 import numpy
 
 from .analysis.grashof import grashof
-from .analysis.transmission import transmission_angles
+from .analysis.transmission import transmission_arrays, transmission_coordinates
 from .closure import is_angle
 from .linkage import Linkage
 from .limits import require_memory
 from .linkage_file import LinkageFile, linkage_from_text, load_linkage
-from .reachability import InputMotion, crank_range, reachable_range
+from .reachability import InputMotion, crank_range, design_spans, reachable_range
 from .solver import Solver
 from .sweep_folder import MANIFEST, SweepWarning, chunk_name, chunk_range, open_folder, read_manifest, verified_chunks
 from .version import __version__
 
 __all__ = ["SweepSettings", "evaluate_designs", "design_values", "columns", "run_sweep", "read_sweep",
            "SWEEP_EXTRA", "MANIFEST", "SCHEDULERS", "missing_modules", "chunk_name", "chunk_table", "sweep_cost",
-           "SweepWarning"]
+           "SweepWarning", "local_scheduler"]
 
 #: What to install for sweeps.
 SWEEP_EXTRA = "pip install 'symlink-kinematics[sweep]'"
@@ -364,8 +365,11 @@ def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[st
     fourbar = _is_fourbar(linkage)
     transmission_output = "transmission" in linkage.output_names()
     outputs = [settings.output, f"{settings.point}_x", f"{settings.point}_y"]
+    joints = not transmission_output and _has_two_angle_loop(linkage)  # transmission angles from the coordinates
     if transmission_output:
         outputs.append("transmission")
+    elif joints:
+        outputs += transmission_coordinates(linkage)
     solver = _solver(linkage, tuple(dict.fromkeys(outputs)))
     input_name = linkage.inputs[0].name
     held = {q.name: fixed[q.name] for q in linkage.inputs[1:]}
@@ -386,6 +390,9 @@ def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[st
         path[rows] = solved[f"{settings.point}_x"] + 1j * solved[f"{settings.point}_y"]
         if transmission_output:
             mu[rows] = solved["transmission"]
+        elif joints:  # every design of the block at once, by code generated once (no SymPy a design)
+            with numpy.errstate(all="ignore"):
+                mu[rows] = numpy.fmin.reduce(list(transmission_arrays(linkage, arguments, solved).values()))
     output[~mask] = numpy.nan
     path[~mask] = numpy.nan
     mu[~mask] = numpy.nan
@@ -394,6 +401,13 @@ def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[st
     reach, spans, assembles, classes = numpy.zeros(count), numpy.zeros(count, dtype=numpy.int64), \
         numpy.zeros(count, dtype=bool), [""] * count
     sampled_full = numpy.asarray(mask.all(axis=1))
+    scanned: dict[int, list[tuple[float, float]]] = {}
+    partial = numpy.flatnonzero(~sampled_full)
+    if not fourbar and partial.size and linkage.has_closed_form:  # every partial design's scan at once
+        values_of = {s.name: table[s.name][partial] for s in linkage.parameters}
+        values_of.update({**held, **{s.name: float(settings.branch) for s in linkage.branches}})
+        scanned = dict(zip(partial.tolist(), design_spans(linkage, values_of, partial.size,
+                                                          input=linkage.inputs[0].name)))
     for k in range(count):
         values = {s.name: float(table[s.name][k]) for s in linkage.parameters}
         if fourbar:
@@ -401,17 +415,14 @@ def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[st
             classes[k] = grashof(values["a"], values["b"], values["c"], values["d"]).name
         elif sampled_full[k]:
             found_spans = [(-math.pi, math.pi)]
+        elif k in scanned:
+            found_spans = scanned[k]
         else:
             motion = InputMotion(linkage, {**values, **held, **{s.name: settings.branch for s in linkage.branches}})
             found_spans = list(reachable_range(linkage, motion.values, motion=motion).spans)
         spans[k] = len(found_spans)
         assembles[k] = found_spans == [(-math.pi, math.pi)]
         reach[k] = min(sum(high - low for low, high in found_spans) / (2 * math.pi), 1.0)
-        if not transmission_output and mask[k].any() and _has_two_angle_loop(linkage):
-            motion = InputMotion(linkage, {**values, **held, **{s.name: settings.branch for s in linkage.branches}})
-            angles = transmission_angles(linkage, motion.values, inputs, motion=motion)
-            with numpy.errstate(all="ignore"):
-                mu[k] = numpy.fmin.reduce(list(angles.values()))
     assembles &= sampled_full
     table.update(assembles=assembles, reach=reach, spans=spans, grashof=classes)
 
@@ -593,11 +604,28 @@ def _require_feasible(settings: SweepSettings, folder: Path, workers: int) -> No
                      f"(at {FASTEST_DESIGNS_PER_SECOND:,} designs/s each, an optimistic rate); {advice}")
 
 
-def run_sweep(settings: SweepSettings, folder: str | Path, *, scheduler: Any = "threads", workers: int | None = None,
+def local_scheduler(chunks: int, workers: int | None = None) -> str:
+    """The fastest local scheduler for ``chunks`` chunks to do (what ``scheduler="auto"`` runs on).
+
+    ``"synchronous"`` (this process, no pool) for one chunk, one worker or one core: a pool only adds its
+    start and the transfer of every table; else ``"threads"``: the solvers' work runs in NumPy or in the
+    compiled C loop, both of which release the GIL, so threads share it without starting a Python (and
+    importing symlink, and loading the solvers again) in each worker as processes do.
+
+    >>> local_scheduler(1), local_scheduler(8, workers=1), local_scheduler(8, workers=2)
+    ('synchronous', 'synchronous', 'threads')
+    """
+    import os
+    count = workers or os.cpu_count() or 1
+    return "synchronous" if chunks <= 1 or count <= 1 else "threads"
+
+
+def run_sweep(settings: SweepSettings, folder: str | Path, *, scheduler: Any = "auto", workers: int | None = None,
               progress: bool = False, window: int | None = None) -> dict[str, Any]:
     """Evaluate the sweep into ``folder`` (one Parquet file a chunk and the manifest), continuing a run there.
 
-    ``scheduler``: ``"threads"``, ``"processes"`` or ``"synchronous"`` (Dask's
+    ``scheduler``: ``"auto"`` (the fastest local one for the sweep's size,
+    :func:`local_scheduler`), ``"threads"``, ``"processes"`` or ``"synchronous"`` (Dask's
     local schedulers, ``workers`` of them), or a ``distributed`` scheduler's
     address (``"tcp://HOST:PORT"``), or a ``distributed.Client``.  At most
     ``window`` chunks (default four a worker) are under way at once, so memory
@@ -614,7 +642,7 @@ def run_sweep(settings: SweepSettings, folder: str | Path, *, scheduler: Any = "
     """
     import os
     import time
-    local = isinstance(scheduler, str) and scheduler in SCHEDULERS
+    local = isinstance(scheduler, str) and (scheduler in SCHEDULERS or scheduler == "auto")
     _require(("dask", "pyarrow") if local else ("dask", "distributed", "pyarrow"))
     client, own = None, False
     if not local:
@@ -627,7 +655,7 @@ def run_sweep(settings: SweepSettings, folder: str | Path, *, scheduler: Any = "
             except OSError as error:
                 raise OSError(f"cannot reach the Dask scheduler at {scheduler}: {error}") from None
         else:
-            raise ValueError(f"scheduler must be {', '.join(SCHEDULERS)}, a cluster's address (tcp://HOST:PORT) "
+            raise ValueError(f"scheduler must be auto, {', '.join(SCHEDULERS)}, a cluster's address (tcp://HOST:PORT) "
                              f"or a distributed.Client; got {scheduler!r}")
     try:
         folder = Path(folder)
@@ -656,6 +684,8 @@ def run_sweep(settings: SweepSettings, folder: str | Path, *, scheduler: Any = "
                     bar.update(1)
 
             try:
+                if scheduler == "auto":
+                    scheduler = local_scheduler(len(todo), workers)
                 if client is None:
                     _local_chunks(settings, todo, str(scheduler), workers, window, land)
                 else:

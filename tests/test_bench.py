@@ -57,6 +57,28 @@ def test_quick_run_writes_records_and_plot(tmp_path, capsys):
     assert "physical limit (this machine)" in out or "no C compiler" in err
 
 
+def test_report_names_the_machine_and_writes_the_page_and_plot(tmp_path, capsys):
+    status = main(["bench", "--quick", "--sizes", "200", "--no-derivation", "--report", str(tmp_path),
+                   "--methods", "symlink,symlink-positions,symlink-c-positions,hand-c-positions"])
+    _, err = capsys.readouterr()
+    assert status == 0, err
+    page = (tmp_path / "benchmark" / "results.md").read_text()
+    cpu = next(line.split(":", 1)[1].strip() for line in Path("/proc/cpuinfo").read_text().splitlines()
+               if line.startswith("model name")) if Path("/proc/cpuinfo").exists() else ""
+    flags = Path("/proc/cpuinfo").read_text() if Path("/proc/cpuinfo").exists() else ""
+    width = 512 if " avx512f" in flags else 256 if " avx2" in flags else 128
+    assert f"CPU: {cpu}" in page and f"vector width {width} bits" in page
+    assert "date: 20" in page and "load average at the start" in page
+    assert "command: `symlink bench --quick --sizes 200 --no-derivation --report " in page
+    assert "| method | kind | N | time a value (ns) | ratio to symlink (NumPy) | max error (rad) |" in page
+    rows = [line for line in page.splitlines() if line.startswith("| symlink-positions |")]
+    assert len(rows) == 1 and rows[0].split("|")[3].strip() == "200"
+    if "no C compiler" not in err:
+        assert "| physical-limit |" in page and "| symlink-c-positions-loop |" in page
+        assert "symlink-c-positions-loop / physical limit" in page
+    assert (tmp_path / "images" / "bench.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
 @pytest.mark.slow  # derives every scene twice in new processes, and runs sympy-evalf
 def test_symbolic_side_and_slow_methods(capsys):
     status = main(["bench", "--quick", "--sizes", "60", "--methods", "sympy-evalf,symlink", "--no-limit"])
@@ -309,18 +331,23 @@ def test_target_lines_state_the_ratios():
         record("pylinkage", 600, 0.8, "full", size=1000),
         record("symlink-positions", 1000, 0.08), record("hand-numpy-positions", 1000, 0.1),
         record("halfangle-numpy", 1000, 0.1, error=1e-13), record("physical-limit", 1000, 0.01, error=None),
+        record("symlink-c-positions-loop", 1000, 0.012, error=None),
+        record("hand-c-positions-loop", 1000, 0.01, error=None),
         record("fsolve", 100, 30.0),
     ]
     lines = "\n".join(targets(records))
-    assert "symlink / numba at N=1000: 1.25x (target <= 1.3x: held)" in lines
+    assert "symlink / numba at N=1000: 1.25x; full kinematics" in lines
     assert "symlink-positions / hand-numpy-positions at N=1000: 0.80x" in lines
     assert "halfangle-numpy (textbook half-angle form) at N=1000: 0.80x; max error 1.00e-15 vs 1.00e-13" in lines
     assert "symlink / pylinkage at N=1000: 0.25x (full kinematics; pylinkage 0.8 us a value on its 600 values)" in lines
-    assert "symlink-positions / physical limit at N=1000: 8.00x" in lines
+    assert "symlink-c-positions-loop / physical limit at N=1000: 1.20x (target <= 1.3x: held)" in lines
+    assert "symlink-c-positions-loop / hand-c-positions-loop at N=1000: 1.20x (target <= 1.1x: MISSED)" in lines
+    assert "symlink-positions / physical limit" not in lines  # a call with fresh outputs is not timed against it
     # fsolve solves positions only: compared with symlink-positions, 30 / 0.08 = 375
     assert "fsolve (100 values) / symlink-positions at N=1000, per value: 375x (target >= 100x: held)" in lines
-    records[1]["us_per_value"] = 0.1
-    assert "target <= 1.3x: MISSED" in "\n".join(targets(records))
+    next(r for r in records if r["method"] == "hand-c-positions-loop")["us_per_value"] = 0.012
+    assert "symlink-c-positions-loop / hand-c-positions-loop at N=1000: 1.00x (target <= 1.1x: held)" in \
+        "\n".join(targets(records))
 
 
 def test_stacked_call_gives_the_per_sweep_results():
@@ -332,3 +359,76 @@ def test_stacked_call_gives_the_per_sweep_results():
     for sweep, part in zip(sweeps, together):
         alone = hand_numpy(sweep.theta, *sweep.lengths, sweep.branch)
         assert numpy.array_equal(alone[0], part["coupler"]) and numpy.array_equal(alone[1], part["rocker"])
+
+
+# --- the baselines do the generated code's transcendental calls, no more and no fewer ----------------------------
+
+import inspect  # noqa: E402
+import re  # noqa: E402
+from collections import Counter  # noqa: E402
+
+#: The calls counted: every libm function a value may call (a clamped square root is a square root).
+CALL = re.compile(r"(?<![\w.])(?:math\.|numpy\.)?(sin|cos|tan|asin|acos|atan|atan2|arctan2|exp|log|pow|sqrt"
+                  r"|symlink_clamped_sqrt)\(")
+RENAMED = {"symlink_clamped_sqrt": "sqrt", "arctan2": "atan2"}
+
+
+def calls(text: str) -> Counter:
+    """The calls in ``text`` by function (``symlink_clamped_sqrt`` counted as ``sqrt``), comments left out."""
+    text = re.sub(r"/\*.*?\*/", "", text, flags=re.DOTALL)  # C comments
+    text = re.sub(r"#[^\n]*", "", text)  # Python comments (and C preprocessor lines, none in a function)
+    return Counter(RENAMED.get(name, name) for name in CALL.findall(text))
+
+
+def between(text: str, start: str, end: str) -> str:
+    begin = text.index(start)
+    return text[begin:text.index(end, begin + len(start))]
+
+
+def generated_calls(outputs) -> Counter:
+    """Calls a value makes in the generated C: the body of the per-value kernel, less its loop unit.
+
+    The loop unit (``size_`` lines: lengths scaled by a power of two so that no product overflows) is a
+    numeric device of the generated code that a hand-written loop does not have (its calls were
+    ``pow`` and ``log``; from the exponent bits it has none).
+    """
+    from symlink.compiled import c_solver_source
+    from symlink.scene import catalog_linkage
+    source = c_solver_source(catalog_linkage("fourbar"), outputs)["source"]
+    body = between(source, "symlink_solve_at(double theta", "\n}\n")
+    return calls("\n".join(line for line in body.splitlines() if not re.match(r"\s*const double size_\d+ =", line)))
+
+
+@pytest.mark.parametrize("full", [False, True], ids=["positions", "full"])
+def test_each_baseline_makes_the_generated_codes_calls_a_value(full):
+    from benchmarks import hand_c, numba_loops
+    outputs = EVERYTHING if full else ["coupler", "rocker"]
+    expected = generated_calls(outputs)
+    assert expected == Counter({"sin": 1, "cos": 1, "atan2": 2, "sqrt": 4 if full else 2})  # read off by hand
+    triangle = between(hand_c.HAND_C_SOURCE, "void hand_triangle(", "\n}\n")
+    loop = between(hand_c.HAND_C_SOURCE, "void hand_fourbar_everything(" if full else "void hand_fourbar_positions(",
+                   "\n}\n")
+    assert calls(triangle) + calls(loop.replace("hand_triangle(", "")) == expected, "hand C"
+    numba_source = inspect.getsource(numba_loops)
+    shared = between(numba_source, "def solve_positions(", "\n\n\n")
+    kernel = between(numba_source, "    def everything(" if full else "    def positions(", "\n\n")
+    assert calls(shared) + calls(kernel) == expected, "numba"
+    from benchmarks import bench
+    bench_source = inspect.getsource(bench)
+    shared = between(bench_source, "def _atan2_arguments(", "\n\n\n")
+    body = between(bench_source, "def hand_numpy_everything(" if full else "def hand_numpy(", "\n\n\n")
+    body = body[body.index('"""', body.index('"""') + 3):]  # the code, after the docstring
+    assert calls(shared) + calls(body.replace("_atan2_arguments(", "")) == expected, "hand NumPy"
+
+
+def test_hand_numpy_full_kinematics_match_the_independent_reference():
+    from benchmarks.bench import hand_numpy_everything
+    lengths = SEED_LINKAGES["seed002"]
+    theta = numpy.linspace(-3.0, 3.0, 13)
+    for branch in (1, -1):
+        values = hand_numpy_everything(theta, *lengths, branch, 10.5, 2.0)
+        for i, angle in enumerate(theta):
+            exact = mp_fourbar(*lengths, theta=angle, branch=branch, crank_speed=10.5, crank_accel=2.0)
+            for value, key in zip((v[i] for v in values), ("beta", "phi", "beta_speed", "phi_speed", "beta_accel",
+                                                           "phi_accel")):
+                assert value == pytest.approx(float(exact[key]), rel=1e-10, abs=1e-10), (angle, key)

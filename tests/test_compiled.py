@@ -14,7 +14,7 @@ import pytest
 
 from export_checks import angles_of, assert_agree, closed_form_catalog, random_arguments, rounding_spread
 from references import SEED003_LINKAGE, mp_fourbar
-from symlink import cache, compiled
+from symlink import cache, compiled, compiled_library
 from symlink.compiled import (CompiledSolver, CompileError, CompilerUnavailable, compile_shared,
                               compiled_solver, find_compiler)
 from symlink.scene import catalog_linkage
@@ -25,6 +25,9 @@ FOURBAR_OUTPUTS = ["coupler", "rocker", "coupler_speed", "rocker_speed", "couple
 
 
 def _forget() -> None:
+    compiled.wait_for_builds()  # no background build of an earlier test's solver runs on into this one
+    compiled._builds.clear()
+    compiled._probed.clear()
     cache.clear_memory()
     compiled._loaded.clear()
     compiled._private_folder.clear()  # a new process gets a new private folder
@@ -62,13 +65,13 @@ def compiler(module_cache):
 def compiler_runs(monkeypatch):
     """A list that grows by one each time the compiler is run."""
     runs = []
-    original = compiled._run_compiler
+    original = compiled_library._run_compiler
 
     def counting(*args, **kwargs):
         runs.append(args)
         return original(*args, **kwargs)
 
-    monkeypatch.setattr(compiled, "_run_compiler", counting)
+    monkeypatch.setattr(compiled_library, "_run_compiler", counting)
     return runs
 
 
@@ -76,7 +79,7 @@ def compiler_runs(monkeypatch):
 def test_compiled_agrees_with_numpy_on_every_catalog_entry(compiler, name):
     linkage = catalog_linkage(name)
     outputs = linkage.output_names()
-    fast, reference = compiled_solver(linkage, outputs), Solver(linkage, outputs)
+    fast, reference = compiled_solver(linkage, outputs), Solver(linkage, outputs, backend="numpy")
     assert isinstance(fast, CompiledSolver)
     assert fast.arguments == reference.arguments
     values = random_arguments(linkage, fast.arguments, 500, seed=7)
@@ -106,7 +109,7 @@ def test_compiled_matches_the_50_digit_reference(compiler):
 
 def test_broadcasting_views_and_scalars_like_the_numpy_solver(compiler):
     linkage = catalog_linkage("fourbar")
-    fast, reference = compiled_solver(linkage, ["rocker", "C_x"]), Solver(linkage, ["rocker", "C_x"])
+    fast, reference = compiled_solver(linkage, ["rocker", "C_x"]), Solver(linkage, ["rocker", "C_x"], backend="numpy")
     theta = numpy.linspace(-3.0, 3.0, 400)  # views longer than one block of the C loop (128)
     cases = [
         dict(theta=0.3, a=20, b=66, c=56, d=80),                                   # all scalars: 0-d
@@ -355,7 +358,7 @@ def test_full_kinematics_loops_are_vectorised(compiler, name, tmp_path):
     unknowns = [q.name for q in linkage.unknowns]
     outputs = unknowns + [f"{q}dot" for q in unknowns] + [f"{q}ddot" for q in unknowns] + ["singular"]
     source = compiled.c_solver_source(linkage, outputs)["source"]
-    compiled._build(source, {}, find_compiler(), tmp_path / "solver.so")
+    compiled_library._build(source, {}, find_compiler(), tmp_path / "solver.so")
     binary = (tmp_path / "solver.so").read_bytes()
     assert b"_ZGVdN4vv_atan2" in binary  # the AVX2 loop's vector atan2
 
@@ -388,7 +391,7 @@ BAD_SMALL_CALLS = [  # (argument, value): each refused by the C wrapper's check,
 @pytest.mark.parametrize("argument, value", BAD_SMALL_CALLS)
 def test_small_calls_refuse_what_the_numpy_solver_refuses(compiler, argument, value):
     outputs = ["rocker", "coupler_accel"]
-    compiled_, plain = CompiledSolver(catalog_linkage("fourbar"), outputs), Solver(catalog_linkage("fourbar"), outputs)
+    compiled_, plain = CompiledSolver(catalog_linkage("fourbar"), outputs), Solver(catalog_linkage("fourbar"), outputs, backend="numpy")
     values = dict(theta=numpy.linspace(0.0, 6.0, 10), a=20.0, b=66.0, c=56.0, d=80.0, branch=1.0, thetadot=10.5,
                   thetaddot=2.0)
     if isinstance(value, str):
@@ -418,7 +421,7 @@ def test_small_call_results_are_never_overwritten_while_held(compiler):
         del later
     numpy.testing.assert_array_equal(kept_row, snapshot)
     numpy.testing.assert_array_equal(kept_slice[1], kept_slice[0])
-    expected = Solver(catalog_linkage("fourbar"), ["rocker", "singular"])(
+    expected = Solver(catalog_linkage("fourbar"), ["rocker", "singular"], backend="numpy")(
         theta=numpy.linspace(0.0, 1.0, 12), **lengths)
     # The first inputs' rockers still (glibc's vector atan2 may differ from NumPy's in the last place;
     # a later call's rockers, at other crank angles, would differ by far more than the tolerance).

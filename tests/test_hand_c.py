@@ -71,3 +71,22 @@ def test_hand_c_and_the_generated_c_agree():
 def test_unknown_formula_is_refused():
     with pytest.raises(ValueError, match="formula must be"):
         hand_positions(numpy.zeros(2), 1.0, 1.0, 1.0, 1.0, 1, "newton")
+
+
+@pytest.mark.parametrize("branch", [1, -1])
+def test_hand_c_full_kinematics_match_the_50_digit_reference(branch):
+    from benchmarks.hand_c import hand_everything
+    a, b, c, d = (SEED003_LINKAGE[k] for k in "abcd")
+    theta = numpy.radians(numpy.arange(-179.0, 180.0, 11.0))
+    result = hand_everything(theta, a, b, c, d, branch, 10.5, 2.0)
+    assert result["assembled"].all()
+    keys = {"coupler": "beta", "rocker": "phi", "coupler_speed": "beta_speed", "rocker_speed": "phi_speed",
+            "coupler_accel": "beta_accel", "rocker_accel": "phi_accel"}
+    for i, angle in enumerate(theta):
+        reference = mp_fourbar(a, b, c, d, float(angle), branch, crank_speed=10.5, crank_accel=2.0)
+        for mine, theirs in keys.items():
+            exact = float(reference[theirs])
+            if "_" not in mine:
+                assert abs(numpy.angle(numpy.exp(1j * (result[mine][i] - exact)))) < 1e-12, (angle, mine)
+            else:
+                assert result[mine][i] == pytest.approx(exact, rel=1e-10, abs=1e-9), (angle, mine)

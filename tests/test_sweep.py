@@ -317,8 +317,13 @@ def test_a_linkage_file_sweeps_as_its_catalog_entry(tmp_path, monkeypatch):
     assert found["grashof"] == expected["grashof"]
     for name in expected:  # the file's transmission angle is generated from its own text: alike to rounding
         if name != "grashof":
+            # One solver may be compiled (built in the background) and the other not yet: they round alike to a
+            # few units in the last place, which the polished stroke and time ratio (to about 1e-9 of the input)
+            # can grow to 1e-11, and which leaves path coefficients that are zero at 1e-15 of the lengths (~60)
+            polished = name in ("stroke", "time_ratio")
             numpy.testing.assert_allclose(numpy.asarray(found[name], dtype=float),
-                                          numpy.asarray(expected[name], dtype=float), rtol=1e-13, err_msg=name)
+                                          numpy.asarray(expected[name], dtype=float), rtol=1e-9 if polished else 1e-13,
+                                          atol=1e-12, err_msg=name)
     assert len(from_file.manifest()["linkage_sha256"]) == 64
 
 

@@ -18,7 +18,8 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Mapping
+from functools import lru_cache
+from typing import Any, Callable, Mapping
 
 import numpy
 import sympy as sp
@@ -34,7 +35,7 @@ from ..vectors import Vector
 
 __all__ = ["triangle_angle", "TransmissionRange", "transmission_range", "transmission_curve",
            "TransmissionJoint", "transmission_joints", "transmission_angles", "LoopTransmission",
-           "loop_transmissions"]
+           "loop_transmissions", "transmission_arrays", "transmission_coordinates"]
 
 
 def triangle_angle(opposite, side1, side2):
@@ -225,6 +226,61 @@ def transmission_angles(linkage: Linkage, values: Mapping[str, float], inputs, *
     motion = InputMotion(linkage, values, input=input) if motion is None else motion
     solved = motion.at(inputs)
     return {joint.loop: _interior(joint, motion.values, solved)[0] for joint in transmission_joints(linkage)}
+
+
+def _direction_of(sign: int, vector: Vector, linkage: Linkage) -> tuple[str | None, Callable[..., Any]]:
+    """A walked direction as generated code: the coordinate it turns with (None for a fixed guide) and a
+    function of the parameters (by name, numbers or arrays) giving the rest (offset, and pi where it is walked
+    backwards or its length is negative)."""
+    angle = vector.angle
+    known = set(linkage.parameters) | set(linkage.inputs)
+    moving = [s for s in angle.free_symbols if s not in known]
+    if len(moving) > 1 or (moving and sp.diff(angle, moving[0]) != 1):
+        raise ValueError(f"the angle of {vector.name or vector} is not a coordinate plus a constant")
+    rest = angle - moving[0] if moving else angle
+    rest += 0 if sign > 0 else sp.pi
+    if vector.length.free_symbols <= known:  # pi more where the length is negative
+        rest += sp.pi * sp.Piecewise((1, vector.length < 0), (0, True))
+    arguments = sorted(rest.free_symbols, key=lambda s: s.name)
+    function = sp.lambdify(arguments, rest, modules="numpy")
+    names = [s.name for s in arguments]
+    return (moving[0].name if moving else None), (lambda values: function(*(values[n] for n in names)))
+
+
+@lru_cache(maxsize=32)
+def _joint_functions(linkage: Linkage) -> tuple:
+    """Each two-angle loop's joint as generated code: (loop, guide, into, out), each side a :func:`_direction_of`."""
+    return tuple((joint.loop, joint.guide, _direction_of(*joint.into[:2], linkage), _direction_of(*joint.out[:2], linkage))
+                 for joint in transmission_joints(linkage))
+
+
+def transmission_arrays(linkage: Linkage, values: Mapping[str, Any], solved: Mapping[str, numpy.ndarray]
+                        ) -> dict[str, numpy.ndarray]:
+    """The transmission angle of every two-angle loop, by loop name, from solved coordinates of many designs.
+
+    ``values``: the parameters (and held inputs) by name, numbers or arrays that broadcast against the
+    solved coordinates (one row a design, say); ``solved``: the unknowns by name, as a solver of them
+    returns them (NaN where not assembled).  The same angles as :func:`transmission_angles`, from code
+    generated once a linkage: no SymPy per design.
+
+    >>> from symlink.solver import Solver
+    >>> solved = Solver(fourbar(), ["beta", "phi"])(theta=numpy.array([0.0]), a=20.0, b=66.0, c=56.0, d=80.0,
+    ...                                               branch=1)
+    >>> round(math.degrees(float(transmission_arrays(fourbar(), {}, solved)["ABCD"][0])), 2)
+    58.23
+    """
+    found = {}
+    for loop, guide, (into_q, into_rest), (out_q, out_rest) in _joint_functions(linkage):
+        into = (0.0 if into_q is None else solved[into_q]) + into_rest(values)
+        out = (0.0 if out_q is None else solved[out_q]) + out_rest(values)
+        found[loop] = numpy.abs(wrap(out - (into + (math.pi / 2 if guide else math.pi))))
+    return found
+
+
+def transmission_coordinates(linkage: Linkage) -> list[str]:
+    """The coordinates :func:`transmission_arrays` needs solved, by name."""
+    return list(dict.fromkeys(q for _, _, (into_q, _), (out_q, _) in _joint_functions(linkage)
+                              for q in (into_q, out_q) if q is not None))
 
 
 @dataclass(frozen=True)

@@ -67,9 +67,10 @@ def _add_options(command: argparse.ArgumentParser) -> None:
                          help="Fourier coefficients -H..H of the path (default 3)")
     command.add_argument("--branch", choices=["+1", "1", "-1"], default="+1", help="every loop's sign (default +1)")
     command.add_argument("--chunk", type=whole, default=1000, metavar="N", help="designs a chunk (default 1000)")
-    command.add_argument("--scheduler", default="processes", metavar="WHERE",
-                         help=f"{', '.join(SCHEDULERS)} (Dask's local schedulers; default processes) or a "
-                              "distributed cluster's address tcp://HOST:PORT")
+    command.add_argument("--scheduler", default="auto", metavar="WHERE",
+                         help=f"auto, {', '.join(SCHEDULERS)} (Dask's local schedulers; default auto: this process "
+                              "for one chunk or one worker, else threads) or a distributed cluster's address "
+                              "tcp://HOST:PORT")
     command.add_argument("--workers", type=whole, metavar="N", help="local workers (default: one a core)")
     command.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     add_units_option(command, "fixed angles and angle ranges")
@@ -85,8 +86,8 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"symlink sweep needs {', '.join(missing)}: {SWEEP_EXTRA}")
     if args.workers is not None and args.workers < 1:
         raise ValueError(f"--workers must be at least 1, got {args.workers}")
-    if args.scheduler not in SCHEDULERS and not args.scheduler.startswith(("tcp://", "tls://")):
-        raise ValueError(f"--scheduler must be {', '.join(SCHEDULERS)} or a cluster's address tcp://HOST:PORT, "
+    if args.scheduler not in (*SCHEDULERS, "auto") and not args.scheduler.startswith(("tcp://", "tls://")):
+        raise ValueError(f"--scheduler must be auto, {', '.join(SCHEDULERS)} or a cluster's address tcp://HOST:PORT, "
                          f"got {args.scheduler!r}")
     found = load_linkage(args.linkage)
     linkage = found.linkage

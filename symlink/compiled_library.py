@@ -59,6 +59,7 @@ from typing import Any, Mapping, Sequence
 import numpy
 
 from . import cache
+from .display import record_html
 from .call_arguments import check_argument_names
 from .codegen.c import c_function, c_library, c_packed
 from .files import NotPrivate, read_private, write_atomic
@@ -385,6 +386,8 @@ class _Entry:
     whose arguments that check refuses, takes the general path.
     """
 
+    _repr_html_ = record_html  # a notebook shows its fields as a table
+
     def __init__(self, library: ctypes.CDLL, name: str, arguments: Sequence[str], outputs: Sequence[str],
                  flags: Sequence[bool], defaults: Mapping[str, float]):
         self.name, self.arguments, self.outputs, self.flags = name, list(arguments), list(outputs), list(flags)
@@ -698,6 +701,8 @@ class Build:
 
     A failed build leaves ``entry()`` ``None`` and says why in ``error`` (the NumPy module keeps answering).
     """
+
+    _repr_html_ = record_html  # a notebook shows its fields as a table
 
     def __init__(self, facts: Mapping[str, Any]):
         self.facts = dict(facts)

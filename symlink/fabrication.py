@@ -50,6 +50,7 @@ from xml.sax.saxutils import escape, quoteattr
 
 import numpy
 
+from .display import record_html
 from .bodies import PRISMATIC, REVOLUTE, mechanism
 from .files import write_atomic
 from .linkage import Linkage
@@ -79,6 +80,8 @@ class Part:
     link's width (the outline's distance from every hole centre, corner and slot end);
     ``dimensions`` the distance between each pair of holes (``"AB": 20.0``).
     """
+
+    _repr_html_ = record_html  # a notebook shows its fields as a table
 
     name: str
     holes: dict[str, Point]
@@ -457,6 +460,8 @@ DESIGN_FORMAT, DESIGN_VERSION = "symlink-design", 1
 @dataclass(frozen=True)
 class Design:
     """A design read from JSON: the linkage, its values by name (lengths in ``unit``, angles in radians), its unit."""
+
+    _repr_html_ = record_html  # a notebook shows its fields as a table
 
     linkage: Linkage
     values: dict[str, float]

@@ -48,6 +48,7 @@ from typing import Mapping, Sequence, Union
 import numpy
 import sympy as sp
 
+from .display import record_html
 from .design_jacobian import DesignJacobian
 from .linkage import Linkage
 from .loops import Loop
@@ -101,6 +102,8 @@ class StackUp:
     ``sensitivity[i, j, k]`` d(output i)/d(dimension j) there and ``curvature[i, j, k]``
     d2(output i)/d(dimension j)^2.  NaN where the nominal linkage cannot be assembled.
     """
+
+    _repr_html_ = record_html  # a notebook shows its fields as a table
 
     outputs: tuple[str, ...]
     dimensions: tuple[str, ...]
@@ -333,6 +336,8 @@ class PinPlay:
     play directions; ``direction[i, j, k]`` the direction (radians) of pin j's play that raises output i most.
     """
 
+    _repr_html_ = record_html  # a notebook shows its fields as a table
+
     outputs: tuple[str, ...]
     joints: tuple[str, ...]
     inputs: dict[str, numpy.ndarray]
@@ -405,6 +410,8 @@ class PlayEnvelope:
     ``lowest`` and ``highest`` bound the output; ``low_directions`` and ``high_directions`` are the pins'
     play directions (radians, by joint) that reach them.
     """
+
+    _repr_html_ = record_html  # a notebook shows its fields as a table
 
     output: str
     nominal: float
@@ -487,6 +494,8 @@ class SampledBuilds:
     wrapped to (-pi, pi]), NaN for a build that cannot be assembled there or has a dimension drawn
     non-positive where it must be positive; ``nominal[i, k]`` the nominal output.
     """
+
+    _repr_html_ = record_html  # a notebook shows its fields as a table
 
     outputs: tuple[str, ...]
     inputs: dict[str, numpy.ndarray]

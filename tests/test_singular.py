@@ -88,7 +88,8 @@ def roots_in(expr) -> set[str]:
 
 def test_the_flag_looks_at_the_loops_the_outputs_depend_on():
     linkage = watt2()
-    first, second = ({s.name for s, e in step.intermediates.items() if isinstance(e, ClampedSqrt)}
+    # the roots generated code guards (loop units: the root of each loop and the length that sets its direction)
+    first, second = ({s.name for s, e in step.in_loop_units.intermediates.items() if isinstance(e, ClampedSqrt)}
                      for step in linkage.plan)
     both = roots_in(linkage.program(["singular"]).outputs["singular"])
     assert first <= both and second <= both

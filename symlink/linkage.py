@@ -303,16 +303,25 @@ class Linkage:
 
     @cached_property
     def plan(self) -> tuple[LoopSolution, ...]:
-        """The solve plan: loops in an order where each has exactly two unknowns left."""
+        """The solve plan: loops in an order where each has exactly two unknowns left, solved in closed form."""
+        return tuple(solve_loop(loop, left, self._branch_symbol(loop), str(number))
+                     for number, (loop, left) in enumerate(self._solve_order, start=1))
+
+    @cached_property
+    def _solve_order(self) -> tuple[tuple[Loop, list[sp.Symbol]], ...]:
+        """The plan's loops and the two unknowns each solves, without solving them (cheap: a warm solver asks).
+
+        ``ValueError`` where no closed-form order exists, or a loop's two unknowns form no case.
+        """
         solved: list[sp.Symbol] = []
-        steps: list[LoopSolution] = []
+        order: list[tuple[Loop, list[sp.Symbol]]] = []
         waiting = list(self.loops)
         while waiting:
             for loop in waiting:
                 left = [u for u in loop.unknowns_among(self.unknowns) if u not in solved]
                 if len(left) == 2:
-                    label = str(len(steps) + 1)
-                    steps.append(solve_loop(loop, left, self._branch_symbol(loop), label))
+                    loop.case(left)  # ValueError for two unknowns no closed form takes
+                    order.append((loop, left))
                     solved += left
                     waiting.remove(loop)
                     break
@@ -326,7 +335,7 @@ class Linkage:
         unsolved = [u for u in self.unknowns if u not in solved]
         if unsolved:
             raise ValueError(f"the loops of {self.name!r} do not determine {', '.join(map(str, unsolved))}")
-        return tuple(steps)
+        return tuple(order)
 
     @cached_property
     def has_closed_form(self) -> bool:
@@ -337,7 +346,7 @@ class Linkage:
         other reason for having no plan is an error in its definition.
         """
         try:
-            self.plan
+            self._solve_order
         except ValueError:
             if 2 * len(self.loops) != len(self.unknowns):
                 raise

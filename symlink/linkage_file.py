@@ -135,7 +135,7 @@ from typing import TYPE_CHECKING, Mapping
 
 import sympy as sp
 
-from .files import write_atomic
+from .files import excerpt, read_input_text, write_atomic
 from .linkage import Linkage
 from .loops import Loop
 from .vectors import Vector, VectorSum
@@ -164,6 +164,8 @@ DYNAMICS_ENTRIES = {"masses": (("mass",), ("distance", "angle", "inertia", "orig
 #: The entries' keys that name a point, joint or body (the others are values).
 DYNAMICS_NAMES = frozenset({"origin", "point", "body", "first", "second", "first_body", "second_body"})
 RESERVED = {"pi", "deg", "rad"}
+#: Linkage files larger than this are refused unread (the largest catalog linkage is a few kB).
+MAX_LINKAGE_BYTES = 4 << 20
 ORIGIN = "0"
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 _TOKEN = re.compile(r"\s*(?:(?P<number>(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)"
@@ -680,13 +682,12 @@ def linkage_from_text(text: str, source: str = "<text>") -> LinkageFile:
 
 
 def read_linkage(path: str | Path) -> LinkageFile:
-    """Read a linkage file; ``ValueError`` ``"path:line: problem"`` if it cannot be read or is not valid."""
-    path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as error:
-        raise ValueError(f"{path}:1: cannot read linkage file: {getattr(error, 'strerror', None) or error}") from None
-    return linkage_from_text(text, str(path))
+    """Read a linkage file; ``ValueError`` ``"path:line: problem"`` if it cannot be read or is not valid.
+
+    Read by :func:`~symlink.files.read_input`: a regular file of at most :data:`MAX_LINKAGE_BYTES`,
+    never a FIFO or a device.
+    """
+    return linkage_from_text(read_input_text(path, MAX_LINKAGE_BYTES, "linkage file"), str(path))
 
 
 def load_linkage(source: str | Path, folder: str | Path | None = None) -> LinkageFile:

@@ -62,6 +62,7 @@ import numpy
 import sympy as sp
 
 from .cache import GeneratedCode, generated_code
+from .files import read_input_text
 from .catalog import CATALOG
 from .input_sweep import InputSweep
 from .linkage_file import LinkageFile, dynamic_model, load_linkage
@@ -405,10 +406,4 @@ def scene_from_text(text: str, source: str, folder: str | Path = ".") -> SceneFi
 def read_scene(path: str | Path) -> SceneFile:
     """Read and check a TOML scene file; ``ValueError`` starting with the file name on any problem."""
     path = Path(path)
-    try:
-        with open(path, "rb") as file:
-            data = file.read(MAX_SCENE_BYTES + 1)
-        text = data.decode("utf-8")
-    except (OSError, UnicodeDecodeError) as error:
-        raise ValueError(f"cannot read scene file {path}: {getattr(error, 'strerror', None) or error}") from None
-    return scene_from_text(text, str(path), path.parent)
+    return scene_from_text(read_input_text(path, MAX_SCENE_BYTES, "scene file"), str(path), path.parent)

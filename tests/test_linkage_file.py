@@ -228,7 +228,7 @@ def test_the_good_file_is_good(tmp_path):
 
 
 def test_unreadable_file(tmp_path):
-    with pytest.raises(ValueError, match=r"missing\.toml:1: cannot read linkage file"):
+    with pytest.raises(ValueError, match=r"^cannot read linkage file .*missing\.toml: No such file or directory$"):
         read_linkage(tmp_path / "missing.toml")
 
 

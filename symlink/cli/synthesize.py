@@ -28,6 +28,8 @@ from typing import Callable
 import numpy
 
 from ..angles import from_radians, to_radians, wrap
+from ..files import excerpt, read_input_text, read_stdin_text
+from ..input_sweep import MAX_ANGLE
 from .options import (Parser, add_format_option, add_units_option, command_help, figure_path, finite, pair,
                       whole)
 from .output import json_number, note, print_rows
@@ -36,38 +38,66 @@ from .output import json_number, note, print_rows
 FUNCTION_COLUMNS = (("theta", "phi"),)
 PATH_COLUMNS = (("x", "y"), ("theta", "x", "y"))
 MOTION_COLUMNS = (("x", "y", "angle"),)
+#: The target columns that hold angles (the others are coordinates).
+ANGLE_COLUMNS = frozenset({"theta", "phi", "angle"})
 #: Most rows a target file may have.
 MAX_ROWS = 10_000
+#: Target files larger than this are refused unread (10,000 rows of three numbers fit in under 1 MB).
+MAX_TARGET_BYTES = 4 << 20
 #: Most linkage poses drawn by --plot (evenly chosen among the precision points).
 MAX_POSES = 12
+
+
+#: Target coordinates beyond this size, or non-zero below its inverse, are refused: a design's lengths are squared
+#: and multiplied in its equations, and 1e100 ** 3 is still a float.
+MAX_COORDINATE = 1e100
+
+
+def _check_target(value: float, column: str, where: str) -> None:
+    """``ValueError`` naming ``where`` for a target value that is not finite or out of range for its column."""
+    if not math.isfinite(value):
+        raise ValueError(f"{where}: {column} must be a finite number, got {value!r}")
+    if column in ANGLE_COLUMNS:
+        if abs(value) > MAX_ANGLE:
+            raise ValueError(f"{where}: {column} must be at most {MAX_ANGLE:g} in size (larger angles have lost "
+                             f"their precision), got {value:g}")
+    elif value != 0 and not 1 / MAX_COORDINATE <= abs(value) <= MAX_COORDINATE:
+        raise ValueError(f"{where}: {column} must be 0 or between {1 / MAX_COORDINATE:g} and {MAX_COORDINATE:g} in "
+                         f"size (rescale the targets), got {value:g}")
 
 
 def read_targets(path: str, allowed: tuple[tuple[str, ...], ...]) -> dict[str, numpy.ndarray]:
     """Columns of a csv file with one of the ``allowed`` headers, as float arrays; ``ValueError`` naming a bad line."""
     if path == "-":
-        text = sys.stdin.read()
+        text = read_stdin_text(MAX_TARGET_BYTES, "csv of targets")
     else:
-        with open(path, encoding="utf-8", newline="") as file:
-            text = file.read()
-    rows = [row for row in csv.reader(io.StringIO(text)) if any(cell.strip() for cell in row)]
+        text = read_input_text(path, MAX_TARGET_BYTES, "csv of targets")
+    expected = " or ".join(repr(",".join(a)) for a in allowed)
+    rows: list[tuple[int, list[str]]] = []  # (line of the file, cells), blank lines left out
+    reader = csv.reader(io.StringIO(text, newline=""))
+    try:
+        for row in reader:
+            if any(cell.strip() for cell in row):
+                rows.append((reader.line_num, row))
+                if len(rows) - 1 > MAX_ROWS:
+                    raise ValueError(f"{path}:{reader.line_num}: more than {MAX_ROWS:,} rows of targets")
+    except csv.Error as error:  # a NUL byte, a field beyond the csv module's limit
+        raise ValueError(f"{path}:{reader.line_num}: not a csv file: {error}") from None
     if not rows:
-        raise ValueError(f"{path}: no header row; expected columns {' or '.join(','.join(a) for a in allowed)}")
-    header = tuple(cell.strip().lower() for cell in rows[0])
+        raise ValueError(f"{path}: no header row; expected columns {expected}")
+    header = tuple(cell.strip().lower() for cell in rows[0][1])
     if header not in allowed:
-        raise ValueError(f"{path}: the header is {','.join(header)!r}; expected "
-                         f"{' or '.join(repr(','.join(a)) for a in allowed)}")
-    if len(rows) - 1 > MAX_ROWS:
-        raise ValueError(f"{path}: more than {MAX_ROWS} rows of targets")
+        raise ValueError(f"{path}:{rows[0][0]}: the header is {excerpt(','.join(header))}; expected {expected}")
     values = []
-    for number, row in enumerate(rows[1:], start=2):
+    for number, row in rows[1:]:
         if len(row) != len(header):
-            raise ValueError(f"{path}, line {number}: {len(row)} values, expected {len(header)} ({','.join(header)})")
+            raise ValueError(f"{path}:{number}: {len(row)} values, expected {len(header)} ({','.join(header)})")
         try:
             parsed = [float(cell) for cell in row]
         except ValueError:
-            raise ValueError(f"{path}, line {number}: not a number among {','.join(row)!r}") from None
-        if not all(math.isfinite(x) for x in parsed):
-            raise ValueError(f"{path}, line {number}: values must be finite numbers")
+            raise ValueError(f"{path}:{number}: not a number among {excerpt(','.join(row))}") from None
+        for name, value in zip(header, parsed):
+            _check_target(value, name, f"{path}:{number}")
         values.append(parsed)
     array = numpy.array(values, dtype=float).reshape(-1, len(header))
     return {name: array[:, k] for k, name in enumerate(header)}

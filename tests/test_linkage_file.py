@@ -190,7 +190,7 @@ MALFORMED = [
     (replaced('[loops]\nABCD = "AD + DC - BC - AB"\n', ""), 1, "no loops"),
     (replaced('C = "AB + BC"', 'C = "AB + ZZ"'), 17, "'ZZ' is not a vector"),
     (replaced('crank = "theta"', 'crank = "a"'), 20, "roles.crank must name a coordinate"),
-    (replaced("a = 20", "a = -1"), 23, "defaults.a must be a positive length"),
+    (replaced("a = 20", "a = -1"), 23, "defaults.a: -1 must be a positive length"),
     (replaced("a = 20", "zz = 1"), 23, "only constants, inputs and the names of [dynamics] have defaults"),
     (replaced("a = 20", "a = nan"), 23, "must be finite"),
     (replaced('theta = "30 deg"', 'theta = "30 km"'), 24, "units are deg and rad"),

@@ -610,7 +610,7 @@ def _from_mapping(data: Mapping, source: str) -> LinkageFile:
         if not isinstance(value, list) or len(value) != 2:
             raise _Problem("vectors", key, f"vectors.{key} must be [length, angle], got {value!r}")
         try:
-            length = _expression(value[0], symbols, units=False)
+            length = _expression(value[0], symbols, units=False, kind="length")
         except ValueError as error:
             raise _Problem("vectors", key, f"vectors.{key}: length {error}") from None
         try:

@@ -94,7 +94,7 @@ CASES += [
     ("quick-return: pivot of three numbers", ["quick-return", "--time-ratio", "1.25", "--stroke", "40",
                                               "--rocker", "50", "--crank-pivot", "1,2,3"], 2),
     ("synthesize: no kind", ["synthesize"], 2),
-    ("synthesize: a file that is not there", ["synthesize", "path", "{tmp}/none.csv"], 1),
+    ("synthesize: a file that is not there", ["synthesize", "path", "{tmp}/none.csv"], 2),  # as a linkage or scene file
     ("synthesize: a plot of the wrong kind", ["synthesize", "function", "{tmp}/none.csv", "--plot", "{tmp}/f.gif"], 2),
     ("curve: no --out", ["curve", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80",
                          "--coupler-point", "40,30"], 2),

@@ -277,7 +277,8 @@ def _tokens(text: str) -> list[tuple[str, str]]:
     one): linear in the length of the text.
     """
     found: list[tuple[str, str]] = []
-    for number, name, operator, bad in _SCAN.findall(text.rstrip()):  # no trailing space: \s* would retry it at each position
+    # without trailing space: \s* would retry it at each of its positions
+    for number, name, operator, bad in _SCAN.findall(text.rstrip()):
         if bad:
             raise ValueError(f"unexpected {bad!r} (a sum of names and constants such as 'beta + 35 deg' or 'pi/2')")
         if number:

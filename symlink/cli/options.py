@@ -16,12 +16,14 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Callable, Collection, Mapping, NoReturn
 
 from ..angles import to_radians
-from ..input_sweep import InputSweep
+from ..files import excerpt
+from ..input_sweep import MAX_ANGLE, InputSweep
 
 if TYPE_CHECKING:
     from ..linkage_file import LinkageFile
 
-__all__ = ["UsageError", "Parser", "finite", "number_list", "pair", "assignments", "figure_path", "add_sweep_options",
+__all__ = ["UsageError", "Parser", "finite", "angle", "MAX_MAGNITUDE",
+           "number_list", "pair", "assignments", "figure_path", "add_sweep_options",
            "add_fourbar_lengths", "fourbar_lengths", "add_branch_option", "add_units_option", "add_format_option",
            "input_sweep", "branches", "command_help", "linkage_values", "fourbar_or_linkage"]
 
@@ -46,7 +48,8 @@ class Parser(argparse.ArgumentParser):
     def __init__(self, *args, populate: Callable[[argparse.ArgumentParser], None] | None = None, **kwargs):
         kwargs.setdefault("formatter_class", argparse.RawDescriptionHelpFormatter)
         super().__init__(*args, **kwargs)
-        self._negative_number_matcher = re.compile(rf"^-{_NUMBER}(,\s*([-+]?{_NUMBER}|both))*$")  # -1,both
+        # -1,both and -0.1:0,0.2:0 (a list of numbers or of pairs, the first negative)
+        self._negative_number_matcher = re.compile(rf"^-{_NUMBER}([,:]\s*([-+]?{_NUMBER}|both))*$")
         self._populate = populate
 
     def parse_known_args(self, args=None, namespace=None):
@@ -71,14 +74,37 @@ def command_help(summary: str, units: str, example: str, more: str = "") -> dict
     return {"help": summary, "description": description + (f"\n\n{more}" if more else "")}
 
 
+#: Numbers on the command line beyond this size, or non-zero below its inverse, are refused: lengths, masses,
+#: speeds and loads are multiplied together in the outputs, and 1e50 ** 6 is still a float.  The same bound as
+#: linkage files (``symlink.linkage_file.MAX_MAGNITUDE``).
+MAX_MAGNITUDE = 1e50
+
+
 def finite(text: str) -> float:
-    """A finite number from the command line (no expressions)."""
+    """A finite number from the command line (no expressions): 0 or between 1e-50 and 1e50 in size."""
     try:
         value = float(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+        raise argparse.ArgumentTypeError(f"not a number: {excerpt(text)}") from None
     if not math.isfinite(value):
-        raise argparse.ArgumentTypeError(f"not a finite number: {text!r}")
+        raise argparse.ArgumentTypeError(f"not a finite number: {excerpt(text)}")
+    if value != 0 and not 1 / MAX_MAGNITUDE <= abs(value) <= MAX_MAGNITUDE:
+        raise argparse.ArgumentTypeError(f"{text} is out of range: numbers must be 0 or between "
+                                         f"{1 / MAX_MAGNITUDE:g} and {MAX_MAGNITUDE:g} in size (change the units)")
+    return value
+
+
+def angle(text: str) -> float:
+    """A finite angle from the command line, at most :data:`~symlink.input_sweep.MAX_ANGLE` in size (either unit)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {excerpt(text)}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"not a finite number: {excerpt(text)}")
+    if abs(value) > MAX_ANGLE:
+        raise argparse.ArgumentTypeError(f"the angle {text} is more than {MAX_ANGLE:g} in size (larger angles have "
+                                         "lost their precision)")
     return value
 
 
@@ -199,8 +225,8 @@ def add_sweep_options(parser: argparse.ArgumentParser, branch: bool = True) -> N
     parser.add_argument("--crank-speed", type=finite, default=0.0, metavar="W", help="rad/s (default 0)")
     parser.add_argument("--crank-accel", type=finite, default=0.0, metavar="AL",
                         help="rad/s^2, uniform from the first angle (default 0)")
-    parser.add_argument("--start", type=finite, help="first crank angle (default 0)")
-    parser.add_argument("--stop", type=finite, help="last crank angle, exclusive (default 360 deg)")
+    parser.add_argument("--start", type=angle, help="first crank angle (default 0)")
+    parser.add_argument("--stop", type=angle, help="last crank angle, exclusive (default 360 deg)")
     parser.add_argument("--step", type=finite, help="crank angle step (default 10 deg)")
     parser.add_argument("--angles", type=number_list, metavar="LIST", help="comma-separated crank angles")
     if branch:

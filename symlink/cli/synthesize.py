@@ -30,7 +30,7 @@ import numpy
 from ..angles import from_radians, to_radians, wrap
 from ..files import excerpt, read_input_text, read_stdin_text
 from ..input_sweep import MAX_ANGLE
-from .options import (Parser, add_format_option, add_units_option, command_help, figure_path, finite, pair,
+from .options import (Parser, add_format_option, add_units_option, angle, command_help, figure_path, finite, pair,
                       whole)
 from .output import json_number, note, print_rows
 
@@ -190,7 +190,7 @@ def _register_path(kinds) -> None:
                          help="Grashof class (crank-turns: crank-rocker or double-crank; default any)")
     command.add_argument("--max-link-ratio", type=finite, default=20.0, metavar="R",
                          help="longest link at most R times the shortest (default 20)")
-    command.add_argument("--min-transmission", type=finite, default=0.0, metavar="ANGLE",
+    command.add_argument("--min-transmission", type=angle, default=0.0, metavar="ANGLE",
                          help="worst transmission angle over the crank's turn at least this (default 0)")
     command.add_argument("--seed", type=whole, default=0, help="seed of the atlas of starts (default 0)")
     add_units_option(command)
@@ -297,7 +297,7 @@ def _register_motion(kinds) -> None:
                          help="a moving pivot in pose 1 (give two)")
     command.add_argument("--fixed-pivot", type=pair("X,Y"), action="append", metavar="X,Y",
                          help="a fixed pivot (give two, three poses)")
-    command.add_argument("--rotation", type=finite, action="append", metavar="ANGLE",
+    command.add_argument("--rotation", type=angle, action="append", metavar="ANGLE",
                          help="a dyad's turn from pose 1 to pose 2 (give two, four poses)")
     command.add_argument("--offset", type=finite, action="append", metavar="L",
                          help="a fixed pivot's place along its bisector (give two, two poses)")

@@ -258,8 +258,11 @@ class FlywheelSizing:
         solver = Solver(linkage, ["input_torque"])
         arguments = {name: value for name, value in self.dynamics.values.items() if name in solver.arguments}
         driven = linkage.inputs[0]
-        found = solver(**{driven.name: angles, rate(driven).name: self.mean_speed,
-                          acceleration(driven).name: 0.0, **arguments})
+        motion = {driven.name: angles, rate(driven).name: self.mean_speed, acceleration(driven).name: 0.0}
+        if rate(driven).name not in solver.arguments:  # a torque that no speed changes: nothing moving has mass
+            raise ValueError(f"{linkage.name} has no mass or moment of inertia that moves: a flywheel holds the speed "
+                             "of a linkage with inertia (give its bodies masses)")
+        found = solver(**{name: value for name, value in motion.items() if name in solver.arguments}, **arguments)
         if not numpy.all(found["assembled"]):
             first = float(angles[~numpy.asarray(found["assembled"])][0])
             raise ValueError(f"{linkage.name} cannot be assembled at crank angle {math.degrees(first):.6g} deg: "

@@ -7,7 +7,7 @@ from typing import Any
 
 from ..angles import from_radians
 from .options import (add_fourbar_lengths, add_units_option, assignments, command_help, fourbar_lengths,
-                      fourbar_or_linkage, linkage_values)
+                      fourbar_or_linkage, linkage_values, require_held_inputs)
 
 #: Fields of :func:`~symlink.analysis.fourbar_report` that are angles (converted to the command's units).
 ANGLE_FIELDS = {"stroke", "transmission_min", "transmission_min_at", "transmission_max", "transmission_max_at",
@@ -94,6 +94,7 @@ def run_linkage(args: argparse.Namespace) -> int:
     from ..closure import is_angle
     from ..linkage_file import load_linkage
     found = load_linkage(args.linkage)
+    require_held_inputs(found.linkage, args.set, "analyze")
     linkage, values = found.linkage, linkage_values(found, args.set, args.units)
     known = {s.name: s for s in linkage.parameters + linkage.inputs}
     values = {name: value for name, value in values.items() if name not in {q.name for q in linkage.inputs[:1]}}

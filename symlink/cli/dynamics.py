@@ -161,7 +161,7 @@ def run_flywheel(args: argparse.Namespace) -> int:
     speed = rpm_to_rad_per_s(args.rpm) if args.rpm is not None else args.rad_per_s
     if not speed > 0:
         raise ValueError(f"the mean speed must be positive, got {args.rpm if args.rpm is not None else speed:g}")
-    if not any(args.masses) and not any(args.inertias or []):
+    if args.masses is not None and not any(args.masses) and not any(args.inertias or []):
         raise ValueError(f"--masses {','.join(f'{m:g}' for m in args.masses)} with no --inertias: the four-bar has "
                          "no mass to size a flywheel for (give the crank, coupler or rocker a mass)")
     require_budget(args.samples, FLYWHEEL_BYTES_PER_SAMPLE, FLYWHEEL_SECONDS_PER_SAMPLE,

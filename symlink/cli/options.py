@@ -25,7 +25,8 @@ if TYPE_CHECKING:
 __all__ = ["UsageError", "Parser", "finite", "angle", "MAX_MAGNITUDE",
            "number_list", "pair", "assignments", "figure_path", "add_sweep_options",
            "add_fourbar_lengths", "fourbar_lengths", "add_branch_option", "add_units_option", "add_format_option",
-           "input_sweep", "branches", "command_help", "linkage_values", "fourbar_or_linkage"]
+           "input_sweep", "branches", "command_help", "linkage_values", "fourbar_or_linkage",
+           "require_held_inputs"]
 
 FOURBAR_LENGTHS = (("crank", "AB"), ("coupler", "BC"), ("rocker", "DC"), ("ground", "AD"))
 FIGURE_SUFFIXES = (".png", ".svg")
@@ -36,6 +37,22 @@ class UsageError(ValueError):
 
 
 _NUMBER = r"(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?"
+#: The attribute of a parsed namespace that lists the options given so far (see :class:`_StoreOnce`).
+_GIVEN = "_symlink_options_given"
+
+
+class _StoreOnce(argparse._StoreAction):
+    """argparse's ``store``, refusing an option given twice: ``--vary c=1:2 --vary c=3:4`` would keep the last
+    and drop the first without a word."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        given = namespace.__dict__.setdefault(_GIVEN, set())
+        if option_string is not None and self.dest in given:
+            several = "NAME=" in str(self.metavar or "")
+            raise argparse.ArgumentError(self, "given twice; give each option once" + (
+                " (every NAME=... in one, separated by commas)" if several else ""))
+        given.add(self.dest)
+        super().__call__(parser, namespace, values, option_string)
 
 
 class Parser(argparse.ArgumentParser):
@@ -51,6 +68,8 @@ class Parser(argparse.ArgumentParser):
         # -1,both and -0.1:0,0.2:0 (a list of numbers or of pairs, the first negative)
         self._negative_number_matcher = re.compile(rf"^-{_NUMBER}([,:]\s*([-+]?{_NUMBER}|both))*$")
         self._populate = populate
+        self.register("action", None, _StoreOnce)
+        self.register("action", "store", _StoreOnce)
 
     def parse_known_args(self, args=None, namespace=None):
         if self._populate is not None:
@@ -138,7 +157,9 @@ def assignments(what: str) -> Callable[[str], dict[str, float]]:
         for item in text.split(","):
             name, equals, value = item.partition("=")
             if not equals or not name.strip():
-                raise argparse.ArgumentTypeError(f"expected {what},..., got {item.strip()!r}")
+                raise argparse.ArgumentTypeError(f"expected {what},..., got {excerpt(item.strip())}")
+            if name.strip() in values:
+                raise argparse.ArgumentTypeError(f"{excerpt(name.strip())} is given twice")
             values[name.strip()] = finite(value)
         return values
     return parse
@@ -163,6 +184,22 @@ def linkage_values(found: LinkageFile, settings: Mapping[str, float], units: str
     values.update({name: float(to_radians(value, units)) if name in known and is_angle(linkage, known[name]) else value
                    for name, value in settings.items()})
     return values
+
+
+def require_held_inputs(linkage, settings: Mapping[str, float], command: str) -> None:
+    """``ValueError`` unless every input of ``linkage`` after the first is given a value in ``settings`` (``--set``).
+
+    ``command`` turns the first input only; holding the others at the file's defaults without a word would
+    answer a question the user did not ask (a five-bar with one crank held still).
+    """
+    if len(linkage.inputs) < 2:
+        return
+    unset = [q.name for q in linkage.inputs[1:] if q.name not in settings]
+    if unset:
+        names = ", ".join(q.name for q in linkage.inputs)
+        raise ValueError(f"{linkage.name} has {len(linkage.inputs)} inputs ({names}) and {command} turns the first "
+                         f"only: to hold the others still, give their values with --set {unset[0]}=VALUE"
+                         f"{',...' if len(unset) > 1 else ''}")
 
 
 def figure_path(text: str) -> str:

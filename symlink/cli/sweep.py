@@ -10,7 +10,9 @@ import argparse
 import math
 
 from ..angles import to_radians
-from .options import add_units_option, assignments, command_help, finite, linkage_values, whole
+from ..files import excerpt
+from .options import (add_units_option, assignments, command_help, finite, linkage_values, require_held_inputs,
+                      whole)
 from .output import note
 
 
@@ -21,7 +23,9 @@ def ranges(text: str) -> dict[str, tuple[float, float]]:
         name, equals, bounds = item.partition("=")
         low, colon, high = bounds.partition(":")
         if not equals or not colon or not name.strip():
-            raise argparse.ArgumentTypeError(f"expected NAME=LOW:HIGH,..., got {item.strip()!r}")
+            raise argparse.ArgumentTypeError(f"expected NAME=LOW:HIGH,..., got {excerpt(item.strip())}")
+        if name.strip() in found:
+            raise argparse.ArgumentTypeError(f"{excerpt(name.strip())} is given twice")
         found[name.strip()] = (finite(low), finite(high))
     return found
 
@@ -81,6 +85,10 @@ def run(args: argparse.Namespace) -> int:
                          f"got {args.scheduler!r}")
     found = load_linkage(args.linkage)
     linkage = found.linkage
+    both = sorted(set(args.vary) & set(args.set))
+    if both:
+        raise ValueError(f"--vary and --set both give {', '.join(both)}: a parameter is swept or set, not both")
+    require_held_inputs(linkage, args.set, "a sweep")
     values = linkage_values(found, args.set, args.units)
     known = {s.name: s for s in linkage.parameters + linkage.inputs}
     swept: dict[str, tuple[float, float]] = {}

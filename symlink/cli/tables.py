@@ -579,6 +579,9 @@ def run_generic_table(args: argparse.Namespace) -> int:
         raise ValueError(f"{linkage.name} has no input to sweep")
     if linkage.inputs[0].name in args.set:
         raise ValueError(f"--set: {linkage.inputs[0].name} is the swept input; give --start/--stop/--step or --angles")
+    if args.guess is not None and linkage.has_closed_form:
+        raise ValueError(f"--guess: {linkage.name} is solved in closed form, where --branch chooses the assembly; "
+                         "--guess is for linkages without a closed form")
     names = {s.name: s for s in linkage.parameters} | {x.name: x for x in linkage.inputs[1:]}
     missing = [name for name in names if name not in values]
     if missing:

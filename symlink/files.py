@@ -50,9 +50,20 @@ def write_atomic(path: str | os.PathLike, data: str | bytes, mode: int | None = 
     gets the permissions ``open()`` would give it (0666 less the umask); with
     ``mode`` exactly that (e.g. 0o600), whatever the umask.  Missing parent
     folders are created.  On any failure nothing is left under ``path`` or
-    beside it, and the old file (if any) is untouched.
+    beside it, and the old file (if any) is untouched; an ``OSError`` names
+    ``path`` (never the hidden temporary) with the system's reason, such as
+    ``No space left on device``.
     """
     path = Path(path)
+    try:
+        _write_through_temporary(path, data, mode)
+    except OSError as error:
+        if error.filename is not None and str(error.filename) == str(path):
+            raise
+        raise type(error)(error.errno, error.strerror or str(error), str(path)) from None
+
+
+def _write_through_temporary(path: Path, data: str | bytes, mode: int | None) -> None:
     path.parent.mkdir(parents=True, exist_ok=True)
     payload = data.encode("utf-8") if isinstance(data, str) else bytes(data)
     temporary = path.parent / f".{path.name}.{secrets.token_hex(6)}{TEMPORARY_SUFFIX}"

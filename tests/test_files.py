@@ -230,3 +230,24 @@ def test_excerpt_cuts_hostile_text():
     assert excerpt("x" * 10_000) == repr("x" * 60) + "..."
     assert excerpt(list(range(10_000))) == "list of 10,000 items"
     assert excerpt("AB") == "'AB'"
+
+
+def test_a_failed_write_names_the_users_file_not_the_temporary(tmp_path, monkeypatch):
+    """A full disk fails os.write, which names no file: the error names the file asked for, with the reason."""
+    def full(handle, data):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+    monkeypatch.setattr(files.os, "write", full)
+    with pytest.raises(OSError) as caught:
+        write_atomic(tmp_path / "out.png", b"x")
+    assert caught.value.filename == str(tmp_path / "out.png") and caught.value.errno == errno.ENOSPC
+    assert caught.value.strerror == os.strerror(errno.ENOSPC)
+    assert os.listdir(tmp_path) == []  # and nothing left behind
+
+
+def test_a_folder_that_cannot_be_written_is_named_with_the_file(tmp_path):
+    if hasattr(os, "geteuid") and os.geteuid() == 0:
+        pytest.skip("root writes anywhere")
+    (tmp_path / "locked").mkdir(mode=0o500)
+    with pytest.raises(PermissionError) as caught:
+        write_atomic(tmp_path / "locked" / "out.txt", "x")
+    assert caught.value.filename == str(tmp_path / "locked" / "out.txt")

@@ -665,7 +665,18 @@ def _from_mapping(data: Mapping, source: str) -> LinkageFile:
             raise ValueError(f"the loops use {', '.join(sorted(map(str, missing)))}, which is not declared")
         linkage.has_closed_form  # a linkage with no solve plan at all is an error in its definition
     except ValueError as error:
-        raise _Problem("loops", "", f"{error}") from None
+        places: list[tuple[str, str]] = []
+        names: list[str] = []
+        for table, keys in (("loops", list(_table(data, "loops"))), ("points", list(points)),
+                            ("vectors", list(vectors))):
+            places += [(table, key) for key in keys]
+            names += keys
+        for listed, declared_names in (("inputs", inputs), ("unknowns", unknowns), ("lengths", positive),
+                                       ("constants", constants)):
+            places += [("", listed)] * len(declared_names)
+            names += declared_names
+        table, key = _blamed(str(error), places, names, ("loops", ""))
+        raise _Problem(table, key, f"{error}") from None
     model = _dynamics(data["dynamics"], linkage) if "dynamics" in data else None
     dynamic_names = [symbol.name for symbol in model.new_parameters] if model is not None else []
     nonnegative_names = _nonnegative_names(data.get("dynamics"))
@@ -683,6 +694,20 @@ def _from_mapping(data: Mapping, source: str) -> LinkageFile:
             raise _Problem("defaults", key, f"defaults.{key}: {error}") from None
         defaults[key] = float(number)
     return LinkageFile(linkage, defaults, source, model)
+
+
+def _blamed(message: str, places: list[tuple[str, str]], names: list[str],
+            otherwise: tuple[str, str]) -> tuple[str, str]:
+    """The place (table, key) of the first of ``names`` that ``message`` mentions as a word, else ``otherwise``.
+
+    A problem found by the linkage or the dynamics as a whole (a loop that cannot be solved, a body
+    that does not exist) is pointed at the line that names what the message names, not at a table's header.
+    """
+    words = set(re.findall(r"[A-Za-z_][A-Za-z0-9_]*", message))
+    for place, name in zip(places, names):
+        if name in words:
+            return place
+    return otherwise
 
 
 def _nonnegative_names(table) -> set[str]:
@@ -804,7 +829,18 @@ def _dynamics(data, linkage: Linkage) -> DynamicModel:
     try:
         return DynamicModel(linkage, masses, loads, gravity)
     except ValueError as error:
-        raise _Problem("dynamics", "", f"dynamics: {error}") from None
+        places, names = [], []
+        for body in bodies:
+            places.append(("dynamics.masses", body))
+            names.append(body)
+        for kind in kinds:
+            for k, item in enumerate(data.get(kind, [])):
+                for name, value in item.items():
+                    if name in DYNAMICS_NAMES and isinstance(value, str):
+                        places.append((f"dynamics.{kind}[{k}]", name))
+                        names.append(value)
+        table, key = _blamed(str(error), places, names, ("dynamics", ""))
+        raise _Problem(table, key, f"dynamics: {error}") from None
 
 
 def linkage_from_text(text: str, source: str = "<text>") -> LinkageFile:

@@ -185,8 +185,8 @@ MALFORMED = [
     (replaced('ABCD = "AD + DC - BC - AB"', 'ABCD = "AD + DC BC - AB"'), 13, "expected + or - between vectors"),
     (replaced('ABCD = "AD + DC - BC - AB"', 'ABCD = "AD + DC - BC - AB -"'), 13, "ends with '-'"),
     (replaced('ABCD = "AD + DC - BC - AB"', "ABCD = 5"), 13, "must be a string"),
-    (replaced('ABCD = "AD + DC - BC - AB"', 'ABCD = "AD + DC - BC - AB"\nBACK = "AB - AB"'), 12,
-     "no loop of 'fourbar' has exactly two unknowns left"),
+    (replaced('ABCD = "AD + DC - BC - AB"', 'ABCD = "AD + DC - BC - AB"\nBACK = "AB - AB"'), 14,
+     "no loop of 'fourbar' has exactly two unknowns left"),  # the line of the loop at fault, not [loops]
     (replaced('[loops]\nABCD = "AD + DC - BC - AB"\n', ""), 1, "no loops"),
     (replaced('C = "AB + BC"', 'C = "AB + ZZ"'), 17, "'ZZ' is not a vector"),
     (replaced('crank = "theta"', 'crank = "a"'), 20, "roles.crank must name a coordinate"),
@@ -378,3 +378,17 @@ def test_hostile_text_in_a_message_is_cut_to_an_excerpt():
     with pytest.raises(ValueError) as caught:
         linkage_from_text(replaced('AB = ["a", "theta"]', f'AB = ["a", "{hostile}"]'), "x.toml")
     assert len(str(caught.value)) < 300 and "..." in str(caught.value)
+
+
+@pytest.mark.parametrize("text, line, words", [
+    # a problem of the linkage or the dynamics as a whole: the line that names what the message names
+    (DYNAMIC.replace("[dynamics.masses.crank]", "[dynamics.masses.crank2]"), 29, "crank2"),
+    (DYNAMIC + '\n[[dynamics.forces]]\npoint = "Q"\nx = 1\n', 36, "Q"),
+    (replaced('ABCD = "AD + DC - BC - AB"', 'ABCD = "AD + DC - BC - AB"\nBACK = "AB - AB"'), 14, "BACK"),
+])
+def test_whole_linkage_problems_point_at_the_line_at_fault(text, line, words, tmp_path):
+    path = tmp_path / "bad.toml"
+    path.write_text(text)
+    with pytest.raises(ValueError) as caught:
+        read_linkage(path)
+    assert str(caught.value).startswith(f"{path}:{line}: ") and words in str(caught.value), caught.value

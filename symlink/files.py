@@ -222,7 +222,7 @@ def read_input(path: str | os.PathLike, limit: int, what: str = "input file") ->
     ValueError: cannot read csv of targets /dev/zero: it is a character device, not a regular file
     """
     flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0)
-    shown = os.fspath(path)
+    shown = os.fspath(path) if len(os.fspath(path)) <= 4 * EXCERPT_LENGTH else excerpt(os.fspath(path))
     try:
         handle = os.open(path, flags)
     except OSError as error:

@@ -667,16 +667,15 @@ def _from_mapping(data: Mapping, source: str) -> LinkageFile:
     except ValueError as error:
         places: list[tuple[str, str]] = []
         names: list[str] = []
-        for table, keys in (("loops", list(_table(data, "loops"))), ("points", list(points)),
-                            ("vectors", list(vectors))):
-            places += [(table, key) for key in keys]
+        for section, keys in (("loops", list(_table(data, "loops"))), ("points", list(points)),
+                              ("vectors", list(vectors))):
+            places += [(section, name) for name in keys]
             names += keys
-        for listed, declared_names in (("inputs", inputs), ("unknowns", unknowns), ("lengths", positive),
-                                       ("constants", constants)):
-            places += [("", listed)] * len(declared_names)
+        for list_key, declared_names in (("inputs", inputs), ("unknowns", unknowns), ("lengths", positive),
+                                         ("constants", constants)):
+            places += [("", list_key)] * len(declared_names)
             names += declared_names
-        table, key = _blamed(str(error), places, names, ("loops", ""))
-        raise _Problem(table, key, f"{error}") from None
+        raise _Problem(*_blamed(str(error), places, names, ("loops", "")), f"{error}") from None
     model = _dynamics(data["dynamics"], linkage) if "dynamics" in data else None
     dynamic_names = [symbol.name for symbol in model.new_parameters] if model is not None else []
     nonnegative_names = _nonnegative_names(data.get("dynamics"))

@@ -26,12 +26,14 @@ from __future__ import annotations
 import argparse
 import importlib
 import os
+import re
 import sys
 import warnings
 from typing import Sequence
 
 import numpy
 
+from ..files import EXCERPT_LENGTH
 from ..version import __version__
 from .options import Parser
 
@@ -73,8 +75,20 @@ def _command_word(argv: Sequence[str] | None) -> str | None:
     return words[0] if words and not words[0].startswith("-") else None
 
 
+#: A word of a message longer than this is hostile text (a 5000-character name, a megabyte expression): cut.
+_LONG_WORD = re.compile(r"\S{100,}")
+#: The most characters of one line of error or warning.
+MAX_MESSAGE = 1000
+
+
 def _one_line(message: object) -> str:
-    return " ".join(str(message).split())
+    """``message`` on one line, each overlong word cut to an excerpt and the whole to :data:`MAX_MESSAGE`.
+
+    Messages quote what the user gave; a hostile value must not come back as megabytes on stderr.
+    """
+    text = " ".join(str(message).split())
+    text = _LONG_WORD.sub(lambda word: word.group()[:EXCERPT_LENGTH] + "...", text)
+    return text if len(text) <= MAX_MESSAGE else text[:MAX_MESSAGE] + "..."
 
 
 def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:

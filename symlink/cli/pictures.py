@@ -93,8 +93,15 @@ def run_curve(args: argparse.Namespace) -> int:
     return 0
 
 
+#: Frames a second an animation may ask for: a GIF keeps its frame times in hundredths of a second (at most 100 a
+#: second), and no screen shows more than a few hundred.
+MAX_FPS = 100.0
+
+
 def run_animate(args: argparse.Namespace) -> int:
     from ..plot.animation import animate
+    if not 0 < args.fps <= MAX_FPS:
+        raise ValueError(f"--fps must be above 0 and at most {MAX_FPS:g} frames a second, got {args.fps:g}")
     in_place = sys.stderr.isatty()
     every = 1 if in_place else max(1, args.frames // 4)
 
@@ -237,7 +244,7 @@ def _add_animate_options(animation: argparse.ArgumentParser) -> None:
     _add_catalog_options(animation, "where the input starts")
     add_branch_option(animation, both=False, default="+1")
     animation.add_argument("--frames", type=whole, default=FRAMES, help=f"frames in a turn (default {FRAMES})")
-    animation.add_argument("--fps", type=finite, default=10.0, help="frames per second (default 10)")
+    animation.add_argument("--fps", type=finite, default=10.0, help=f"frames per second (default 10, at most {MAX_FPS})")
     animation.add_argument("--coupler-point", type=pair("DIST,ANGLE"), metavar="DIST,ANGLE",
                            help="also draw a coupler point: distance from B, angle from the coupler's direction B->C")
     add_units_option(animation, "coupler point's angle")

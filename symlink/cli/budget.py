@@ -28,11 +28,11 @@ TIME_BUDGET = 3600.0
 def format_duration(seconds: float) -> str:
     """A duration the way people read it.
 
-    >>> format_duration(42), format_duration(5400), format_duration(3e7), format_duration(1e30)
-    ('42 s', '1.5 hours', '347 days', '3.2e+22 years')
+    >>> format_duration(42), format_duration(3600), format_duration(9000), format_duration(3e7), format_duration(1e30)
+    ('42 s', '60 min', '2.5 hours', '347 days', '3.2e+22 years')
     """
     for unit, size in (("years", 365.25 * 86400), ("days", 86400.0), ("hours", 3600.0), ("min", 60.0)):
-        if seconds >= (size if unit != "min" else 120.0):
+        if seconds >= 2 * size:  # never "1 hours": 90 min, 36 hours
             value = seconds / size
             return f"{value:.0f} {unit}" if 10 <= value < 1e6 else f"{value:.2g} {unit}"
     return f"{seconds:.0f} s"

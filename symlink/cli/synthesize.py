@@ -30,6 +30,8 @@ import numpy
 from ..angles import from_radians, to_radians, wrap
 from ..files import excerpt, read_input_text, read_stdin_text
 from ..input_sweep import MAX_ANGLE
+from ..limits import format_bytes
+from .budget import MEMORY_BUDGET, TIME_BUDGET, format_duration
 from .options import (Parser, add_format_option, add_units_option, angle, command_help, figure_path, finite, pair,
                       whole)
 from .output import json_number, note, print_rows
@@ -204,9 +206,34 @@ PATH_FIELDS = ["rank", "error", "x0", "y0", "frame", "crank", "coupler", "rocker
                "worst_transmission"]
 
 
+#: Seconds of path synthesis a point and a start, measured with a margin (40 random points, which no four-bar
+#: reaches, 8 starts: 23 s on a shared machine, every attempt run to its end); its memory grows with the square of
+#: the points (a Jacobian of the points by their crank angles), about 1.1 GB at 9,000 points a copy.
+PATH_SECONDS_PER_POINT_START = 0.1
+PATH_BYTES_PER_POINT_SQUARED = 100
+
+
+def _check_path_work(points: int, starts: int) -> None:
+    """``ValueError`` (one line) for a path synthesis beyond the command's memory or time (see :mod:`.budget`)."""
+    if starts < 1:
+        raise ValueError(f"--starts must be at least 1, got {starts}")
+    memory = points ** 2 * PATH_BYTES_PER_POINT_SQUARED
+    if memory > MEMORY_BUDGET:
+        fits = math.isqrt(MEMORY_BUDGET // PATH_BYTES_PER_POINT_SQUARED)
+        raise ValueError(f"a path synthesis of {points:,} points would need about {format_bytes(memory)} of memory "
+                         f"(at most {format_bytes(MEMORY_BUDGET)} a command); give at most {fits:,} points")
+    seconds = points * starts * PATH_SECONDS_PER_POINT_START
+    if seconds > TIME_BUDGET:
+        fits = int(TIME_BUDGET // (points * PATH_SECONDS_PER_POINT_START))
+        remedy = f"use --starts {fits:,} or fewer" if fits >= 1 else "give fewer points"
+        raise ValueError(f"a path synthesis of {points:,} points from {starts:,} starts could take about "
+                         f"{format_duration(seconds)} (at most {format_duration(TIME_BUDGET)} a command); {remedy}")
+
+
 def _run_path(args: argparse.Namespace) -> int:
     from ..synthesis.path import synthesize_path
     columns = read_targets(args.targets, PATH_COLUMNS)
+    _check_path_work(len(columns["x"]), args.starts)
     targets = numpy.stack([columns["x"], columns["y"]], axis=1)
     theta = numpy.asarray(to_radians(columns["theta"], args.units), dtype=float) if "theta" in columns else None
     designs = synthesize_path(targets, theta, starts=args.starts, designs=args.designs, grashof_class=args.grashof,

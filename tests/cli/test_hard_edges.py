@@ -129,3 +129,33 @@ def test_the_command_line_bound_is_the_linkage_file_bound():
     from symlink.cli.options import MAX_MAGNITUDE
     from symlink.linkage_file import MAX_MAGNITUDE as FILE_MAGNITUDE
     assert MAX_MAGNITUDE == FILE_MAGNITUDE
+
+
+@pytest.mark.parametrize("rows, options, words", [
+    (9000, [], "a path synthesis of 9,000 points would need about 8.1 GB of memory"),
+    (4, ["--starts", "1000000000"], "a path synthesis of 4 points from 1,000,000,000 starts could take about"),
+    (4, ["--starts", "0"], "--starts must be at least 1"),
+])
+def test_path_synthesis_is_estimated_before_it_starts(rows, options, words, tmp_path, capsys):
+    path = tmp_path / "points.csv"
+    path.write_text("x,y\n" + "".join(f"{k},{(k * 7) % 5}\n" for k in range(rows)))
+    assert main(["synthesize", "path", str(path), *options]) == 2
+    _one_error_line(capsys.readouterr().err, words)
+
+
+@pytest.mark.parametrize("fps", ["1e49", "0", "-1", "101"])
+def test_animation_rates_beyond_a_gif(fps, tmp_path, capsys):
+    assert main(["animate", *FOURBAR[1:], "--frames", "3", "--fps", fps, "--out", str(tmp_path / "a.gif")]) == 2
+    _one_error_line(capsys.readouterr().err, "--fps must be above 0 and at most 100")
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("argv", [
+    ["analyze", "jansen", "--output", "x" * 100_000],
+    ["plan", "y" * 5000 + ".toml"],
+    ["fourbar", "--crank", "9" * 400, "--coupler", "66", "--rocker", "56", "--ground", "80"],
+])
+def test_hostile_text_is_cut_to_an_excerpt(argv, capsys):
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and len(err) < 1100 and "..." in err, err

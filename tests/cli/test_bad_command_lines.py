@@ -1,7 +1,7 @@
 """Every bad command line ends in one line on stderr and a documented exit status, never a traceback.
 
-Exit status 2 for bad input, 1 for a file that cannot be written or read; the
-error is one line starting ``symlink: error:``, and nothing is left behind in
+Exit status 2 for bad input (an input file that cannot be read among it), 1 for a file that cannot be
+written; the error is one line starting ``symlink: error:``, and nothing is left behind in
 the folder the command was asked to write into.
 """
 from __future__ import annotations

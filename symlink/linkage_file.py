@@ -298,6 +298,9 @@ MAX_ANGLE = INPUT_MAX_ANGLE
 #: / length ...), and 1e50 ** 6 is still a float.
 MAX_MAGNITUDE = 1e50
 
+#: Most entries of a table ([vectors], [loops], [points], ...), names of a list, and vectors of a loop or a point:
+#: a linkage has a few dozen; tens of thousands would take the symbolic layer minutes, not a clear refusal.
+MAX_ENTRIES = 1000
 #: Longer expressions are refused before they are read (a sum of 10,000 terms is still read in a fraction of a
 #: second: the tokenizer and the parser are linear).
 MAX_EXPRESSION_CHARACTERS = 100_000
@@ -507,9 +510,13 @@ def _signed_sum(text, vectors: Mapping[str, Vector]) -> VectorSum:
     """A loop or a point: vector names joined by + and -."""
     if not isinstance(text, str):
         raise ValueError(f"must be a string such as 'AB + BC - DC', got {text!r}")
+    if len(text) > MAX_EXPRESSION_CHARACTERS:
+        raise ValueError(f"{excerpt(text)}: a sum of {len(text):,} characters (at most {MAX_EXPRESSION_CHARACTERS:,})")
     tokens = _tokens(text)
     if not tokens:
         raise ValueError("is empty")
+    if len(tokens) > 2 * MAX_ENTRIES:
+        raise ValueError(f"{excerpt(text)}: a sum of {(len(tokens) + 1) // 2:,} vectors (at most {MAX_ENTRIES:,})")
     terms, sign, expect_name = [], 1, True
     for index, (kind, token) in enumerate(tokens):
         if expect_name:
@@ -541,7 +548,9 @@ def _names(data: Mapping, key: str, required: bool) -> list[str]:
         return []
     value = data[key]
     if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
-        raise _Problem("", key, f"{key} must be a list of names, got {value!r}")
+        raise _Problem("", key, f"{key} must be a list of names, got {excerpt(value)}")
+    if len(value) > MAX_ENTRIES:
+        raise _Problem("", key, f"{key} has {len(value):,} names (at most {MAX_ENTRIES:,})")
     for name in value:
         if not _NAME.match(name):
             raise _Problem("", key, f"{key}: {name!r} is not a name (ASCII letters, digits and _, "
@@ -554,7 +563,10 @@ def _names(data: Mapping, key: str, required: bool) -> list[str]:
 def _table(data: Mapping, name: str) -> dict:
     value = data.get(name, {})
     if not isinstance(value, dict):
-        raise _Problem("", name, f"{name} must be a table ([{name}]), got {value!r}")
+        raise _Problem("", name, f"{name} must be a table ([{name}]), got {excerpt(value)}")
+    if len(value) > MAX_ENTRIES:
+        raise _Problem("", name, f"[{name}] has {len(value):,} entries (at most {MAX_ENTRIES:,}: a linkage, not a "
+                                 "data set)")
     for key, item in value.items():
         if isinstance(item, dict):
             raise _Problem(name, key, f"{name}.{key}: nested tables are not part of linkage files")

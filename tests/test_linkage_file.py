@@ -392,3 +392,20 @@ def test_whole_linkage_problems_point_at_the_line_at_fault(text, line, words, tm
     with pytest.raises(ValueError) as caught:
         read_linkage(path)
     assert str(caught.value).startswith(f"{path}:{line}: ") and words in str(caught.value), caught.value
+
+
+@pytest.mark.parametrize("text, line, words", [
+    (replaced('ABCD = "AD + DC - BC - AB"', 'ABCD = "AD + DC - BC - AB' + " + AB - AB" * 600 + '"'), 13,
+     "a sum of 1,204 vectors (at most 1,000)"),
+    (replaced('AD = ["d", 0]', 'AD = ["d", 0]\n' + "".join(f'V{k} = ["a", "theta"]\n' for k in range(1001))), 6,
+     "[vectors] has 1,005 entries (at most 1,000"),
+    (replaced('unknowns = ["beta", "phi"]', "unknowns = [" + ", ".join(f'"u{k}"' for k in range(1001)) + "]"), 3,
+     "unknowns has 1,001 names (at most 1,000)"),
+])
+def test_a_data_set_is_not_a_linkage(text, line, words, tmp_path):
+    """Tens of thousands of vectors or terms would keep the symbolic layer busy for minutes: refused at once."""
+    path = tmp_path / "big.toml"
+    path.write_text(text)
+    with pytest.raises(ValueError) as caught:
+        read_linkage(path)
+    assert str(caught.value).startswith(f"{path}:{line}: ") and words in str(caught.value), caught.value

@@ -95,6 +95,15 @@ so ``"theta"``, ``0``, ``"pi/2"``, ``"-pi/2"``, ``"3*pi/4"``, ``"35 deg"``,
 multiplied: a vector turns with a coordinate or it does not.  A default
 value is a number or a constant (``"30 deg"``).
 
+Every value is checked where it is read, after evaluation: finite; an
+angle at most 1e9 rad in size (``"1e308*pi"`` is refused, not wrapped); any
+other value 0 or between 1e-50 and 1e50 in size (:data:`MAX_MAGNITUDE`);
+fixed lengths positive; masses and inertias not negative.  A file is read
+by :func:`~symlink.files.read_input` (a regular file of at most 4 MiB, never
+a FIFO or a device); an expression has at most 100,000 characters and a
+number 64, a table at most 1,000 entries: a hostile file is refused at
+once, and the tokenizer and parser are linear in what they read.
+
 Anything else is one line of error naming the file, the line and the
 problem, such as ``fourbar.toml:9: vectors.AB: 'gamma' is not a coordinate
 or constant of this file``.

@@ -53,7 +53,7 @@ def _add_options(command: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    if fourbar_or_linkage(args, "analyze"):
+    if fourbar_or_linkage(args, "analyze", linkage_only=("set", "output")):
         return run_linkage(args)
     from ..analysis import fourbar_report
     a, b, c, d = fourbar_lengths(args)

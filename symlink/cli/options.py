@@ -26,7 +26,7 @@ __all__ = ["UsageError", "Parser", "finite", "angle", "MAX_MAGNITUDE",
            "number_list", "pair", "assignments", "figure_path", "add_sweep_options",
            "add_fourbar_lengths", "fourbar_lengths", "add_branch_option", "add_units_option", "add_format_option",
            "input_sweep", "branches", "command_help", "linkage_values", "fourbar_or_linkage",
-           "require_held_inputs"]
+           "require_held_inputs", "given_options"]
 
 FOURBAR_LENGTHS = (("crank", "AB"), ("coupler", "BC"), ("rocker", "DC"), ("ground", "AD"))
 FIGURE_SUFFIXES = (".png", ".svg")
@@ -225,9 +225,16 @@ def add_fourbar_lengths(parser: argparse.ArgumentParser, defaults: dict[str, flo
             parser.add_argument(f"--{option}", type=finite, required=True, help=f"length {what}")
 
 
-def fourbar_or_linkage(args: argparse.Namespace, command: str, lengths_required: bool = True) -> bool:
+def given_options(args: argparse.Namespace) -> set[str]:
+    """The destinations of the options given on the command line (not left at their defaults)."""
+    return set(getattr(args, _GIVEN, ()))
+
+
+def fourbar_or_linkage(args: argparse.Namespace, command: str, lengths_required: bool = True,
+                       linkage_only: Collection[str] = (), fourbar_only: Collection[str] = ()) -> bool:
     """Whether a command was given a linkage NAME|FILE (else the four-bar's lengths); ``ValueError`` for
-    both, or (``lengths_required``) for neither."""
+    both, or (``lengths_required``) for neither, and for an option of the other form, which would do nothing
+    (``linkage_only`` and ``fourbar_only`` name options by destination: ``coupler_point``)."""
     given = [v is not None for v in fourbar_lengths(args)]
     if args.linkage is not None and any(given):
         raise ValueError(f"{command}: give a catalog NAME or a linkage FILE, or the four-bar's --crank --coupler "
@@ -235,7 +242,16 @@ def fourbar_or_linkage(args: argparse.Namespace, command: str, lengths_required:
     if args.linkage is None and lengths_required and not all(given):
         raise ValueError(f"{command}: give a catalog NAME (e.g. jansen) or a linkage FILE, or all of --crank "
                          "--coupler --rocker --ground")
-    return args.linkage is not None
+    named = args.linkage is not None
+    unused = sorted(given_options(args) & set(fourbar_only if named else linkage_only))
+    if unused:
+        option = "--" + unused[0].replace("_", "-")
+        raise ValueError(f"{command}: {option} does nothing "
+                         + (f"with a linkage NAME|FILE ({args.linkage}); it belongs to the four-bar form (--crank "
+                            "--coupler --rocker --ground)" if named else
+                            "in the four-bar form (--crank --coupler --rocker --ground); it belongs to a linkage "
+                            "NAME|FILE"))
+    return named
 
 
 def fourbar_lengths(args: argparse.Namespace) -> tuple[float, float, float, float]:

@@ -80,7 +80,8 @@ def _coupler_point(args: argparse.Namespace) -> tuple[float, float] | None:
 
 def run_curve(args: argparse.Namespace) -> int:
     from ..plot import coupler_curve_figure, save_figure
-    if fourbar_or_linkage(args, "curve"):
+    if fourbar_or_linkage(args, "curve", linkage_only=("set", "angle", "trace", "unit"),
+                          fourbar_only=("coupler_point", "crank_angle")):
         return run_draw(args)
     point = _coupler_point(args)
     if point is None:
@@ -111,7 +112,8 @@ def run_animate(args: argparse.Namespace) -> int:
             print(f"{chr(13) if in_place else ''}symlink: rendered {done}/{total} frames", end=end,
                   file=sys.stderr, flush=True)
 
-    if fourbar_or_linkage(args, "animate"):
+    if fourbar_or_linkage(args, "animate", linkage_only=("set", "angle", "trace", "unit"),
+                          fourbar_only=("coupler_point",)):
         from ..plot.animation import animate_linkage
         linkage, values = drawn_linkage(args)
         trace = _default_trace(linkage) if args.trace is None else args.trace

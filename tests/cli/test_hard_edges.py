@@ -80,6 +80,12 @@ REFUSED = [
                                       "1000000", *SWEEP], "a sweep of 1e+18 designs of 360 samples would take about"),
     ("a sweep of too many chunks", ["sweep", "fourbar", "{tmp}/s", "--vary", "a=1:2", "--random", "100000000",
                                     "--chunk", "1", *SWEEP], "a sweep of 100,000,000 chunks would need about 20 GB"),
+    ("analyze --output in the four-bar form", ["analyze", *FOURBAR[1:], "--output", "phi"],
+     "analyze: --output does nothing in the four-bar form"),
+    ("curve --coupler-point with a linkage", ["curve", "jansen", "--coupler-point", "1,2", "--out", "{tmp}/c.png"],
+     "curve: --coupler-point does nothing with a linkage NAME|FILE (jansen)"),
+    ("animate --trace in the four-bar form", ["animate", *FOURBAR[1:], "--trace", "C", "--out", "{tmp}/a.gif"],
+     "animate: --trace does nothing in the four-bar form"),
     ("a sweep of huge chunks", ["sweep", "fourbar", "{tmp}/s", "--vary", "a=1:2,b=1:2", "--grid", "1000", "--chunk",
                                 "1000000", *SWEEP], "would need about 35 GB of memory at once"),
 ]

@@ -183,7 +183,11 @@ def _run_compiler(command: list[str], folder: Path, vector_math: bool = True) ->
     # Without vectorised epilogues: the last few values of a loop run one at a time, and compiling is faster.
     include = ["-include", _VECTOR_MATH_FILE, "--param", "vect-epilogues-nomask=0"] if vector_math else []
     arguments = command + list(FLAGS) + include + ["-o", "symlink.so", "symlink.c", "-lm"]
-    process = subprocess.Popen(arguments, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    # The compiler's own temporaries (its .s and .o) in the build folder too, so that stopping a build
+    # (at exit) and removing its folder leaves nothing behind in the system's temporary folder.
+    environment = {**os.environ, "TMPDIR": str(folder)}
+    process = subprocess.Popen(arguments, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                               env=environment)
     _running[process] = folder
     try:
         out, err = process.communicate(timeout=300)

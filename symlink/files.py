@@ -26,7 +26,7 @@ from pathlib import Path
 from typing import Mapping
 
 __all__ = ["write_atomic", "write_files_atomic", "private_folder", "read_private", "NotPrivate", "TEMPORARY_SUFFIX",
-           "remove_leftovers"]
+           "remove_leftovers", "read_input", "read_input_text", "read_stdin_text", "excerpt", "EXCERPT_LENGTH"]
 
 #: The name of every temporary file of :func:`write_atomic` ends so: ``.<name>.<random>.tmp``.
 TEMPORARY_SUFFIX = ".tmp"
@@ -50,9 +50,20 @@ def write_atomic(path: str | os.PathLike, data: str | bytes, mode: int | None = 
     gets the permissions ``open()`` would give it (0666 less the umask); with
     ``mode`` exactly that (e.g. 0o600), whatever the umask.  Missing parent
     folders are created.  On any failure nothing is left under ``path`` or
-    beside it, and the old file (if any) is untouched.
+    beside it, and the old file (if any) is untouched; an ``OSError`` names
+    ``path`` (never the hidden temporary) with the system's reason, such as
+    ``No space left on device``.
     """
     path = Path(path)
+    try:
+        _write_through_temporary(path, data, mode)
+    except OSError as error:
+        if error.filename is not None and str(error.filename) == str(path):
+            raise
+        raise type(error)(error.errno, error.strerror or str(error), str(path)) from None
+
+
+def _write_through_temporary(path: Path, data: str | bytes, mode: int | None) -> None:
     path.parent.mkdir(parents=True, exist_ok=True)
     payload = data.encode("utf-8") if isinstance(data, str) else bytes(data)
     temporary = path.parent / f".{path.name}.{secrets.token_hex(6)}{TEMPORARY_SUFFIX}"
@@ -156,6 +167,126 @@ def read_private(path: str | os.PathLike, limit: int) -> bytes:
         return b"".join(chunks)
     finally:
         os.close(handle)
+
+
+#: Hostile text quoted in a message is cut to this many characters (and "...").
+EXCERPT_LENGTH = 60
+
+
+def excerpt(value: object, length: int = EXCERPT_LENGTH) -> str:
+    """``repr`` of ``value`` cut to ``length`` characters and "...", so that a message never echoes megabytes.
+
+    >>> excerpt("AB + BC")
+    "'AB + BC'"
+    >>> excerpt("x" * 1000) == repr("x" * EXCERPT_LENGTH) + "..."
+    True
+    """
+    if isinstance(value, str):
+        return repr(value) if len(value) <= length else repr(value[:length]) + "..."
+    if isinstance(value, (list, tuple, dict)) and len(value) > length:  # never repr a huge container whole
+        return f"{type(value).__name__} of {len(value):,} items"
+    shown = repr(value)
+    return shown if len(shown) <= length else shown[:length] + "..."
+
+
+def _kind_of(mode: int) -> str:
+    """What a file that is not a regular file is, in a user's words."""
+    for test, name in ((stat.S_ISDIR, "a folder"), (stat.S_ISFIFO, "a FIFO (named pipe)"),
+                       (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
+                       (stat.S_ISSOCK, "a socket")):
+        if test(mode):
+            return name
+    return "not a regular file"
+
+
+def read_input(path: str | os.PathLike, limit: int, what: str = "input file") -> bytes:
+    """The bytes of a user's input file ``path``: a regular file of at most ``limit`` bytes.
+
+    The one reader of every file a user hands to symlink (linkage files, scene
+    files, csv targets).  It never blocks and never reads without bound: the
+    file is opened non-blocking (a FIFO with no writer does not hang the
+    open), and a folder, FIFO, device (``/dev/zero``) or socket is refused
+    before a byte is read; a file that is (or grows) larger than ``limit`` is
+    refused after at most ``limit + 1`` bytes.  Symbolic links are followed
+    (the user named the file).  Every problem is a one-line ``ValueError``
+    with the path and the reason (the system's words for an OS error),
+    naming ``what`` the file was meant to be.
+
+    >>> import tempfile, pathlib
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "points.csv"
+    >>> _ = path.write_text("x,y\\n1,2\\n")
+    >>> read_input(path, 100, "csv of targets")
+    b'x,y\\n1,2\\n'
+    >>> read_input("/dev/zero", 100, "csv of targets")
+    Traceback (most recent call last):
+    ValueError: cannot read csv of targets /dev/zero: it is a character device, not a regular file
+    """
+    flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0)
+    shown = os.fspath(path) if len(os.fspath(path)) <= 4 * EXCERPT_LENGTH else excerpt(os.fspath(path))
+    try:
+        handle = os.open(path, flags)
+    except OSError as error:
+        raise ValueError(f"cannot read {what} {shown}: {error.strerror or error}") from None
+    except (TypeError, ValueError) as error:  # a NUL byte in the name
+        raise ValueError(f"cannot read {what} {excerpt(shown)}: {error}") from None
+    try:
+        status = os.fstat(handle)
+        if not stat.S_ISREG(status.st_mode):
+            raise ValueError(f"cannot read {what} {shown}: it is {_kind_of(status.st_mode)}, not a regular file")
+        too_large = (f"{what} {shown} is larger than {limit:,} bytes (the most symlink reads as a {what}); "
+                     "is it the right file?")
+        if status.st_size > limit:
+            raise ValueError(too_large)
+        chunks, size = [], 0
+        while True:
+            try:
+                chunk = os.read(handle, min(1 << 20, limit + 1 - size))
+            except OSError as error:
+                raise ValueError(f"cannot read {what} {shown}: {error.strerror or error}") from None
+            if not chunk:
+                break
+            chunks.append(chunk)
+            size += len(chunk)
+            if size > limit:
+                raise ValueError(too_large)
+        return b"".join(chunks)
+    finally:
+        os.close(handle)
+
+
+def read_input_text(path: str | os.PathLike, limit: int, what: str = "input file") -> str:
+    """:func:`read_input` decoded as UTF-8 (a leading byte-order mark dropped); ``ValueError`` for other bytes."""
+    data = read_input(path, limit, what)
+    return decode_input(data, os.fspath(path), what)
+
+
+def read_stdin_text(limit: int, what: str = "input") -> str:
+    """Standard input as UTF-8 text, at most ``limit`` bytes (``symlink run -``, a csv of targets from ``-``).
+
+    Reads at most ``limit + 1`` bytes whatever stdin is (``< /dev/zero`` included); ``ValueError`` beyond.
+    """
+    import sys
+    stream = getattr(sys.stdin, "buffer", None)
+    try:
+        data = stream.read(limit + 1) if stream is not None else sys.stdin.read(limit + 1).encode("utf-8")
+    except OSError as error:
+        raise ValueError(f"cannot read {what} from standard input: {error.strerror or error}") from None
+    if data is None:  # a non-blocking stdin with nothing in it
+        data = b""
+    if len(data) > limit:
+        raise ValueError(f"{what} on standard input is larger than {limit:,} bytes (the most symlink reads as a "
+                         f"{what})")
+    return decode_input(data, "<stdin>", what)
+
+
+def decode_input(data: bytes, shown: str, what: str = "input file") -> str:
+    """UTF-8 bytes of a user's file as text; ``ValueError`` naming the line of the first byte that is not."""
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        line = data.count(b"\n", 0, error.start) + 1
+        raise ValueError(f"{shown}:{line}: {what} is not UTF-8 text (byte {error.start})") from None
+    return text[1:] if text.startswith("\ufeff") else text
 
 
 def remove_leftovers(folder: str | os.PathLike, prefixes: tuple[str, ...], older_than: float) -> list[str]:

@@ -127,19 +127,30 @@ class InputSweep:
 def crank_speeds(angles: numpy.ndarray, speed: float, accel: float, first: float | None = None) -> numpy.ndarray:
     """Crank speed at each angle (radians) when it speeds up uniformly from ``first`` (default: the first angle).
 
-    ``omega^2 = speed^2 + 2 accel (theta - theta_first)``, as the C program of
-    the velocity and acceleration paper steps it.  ``ValueError`` where the
+    ``omega^2 = speed^2 + 2 accel turned``, as the C program of the velocity
+    and acceleration paper steps it, where ``turned`` is the angle the crank
+    has turned from ``first`` to reach the angle, in the direction it turns
+    (the sign of ``speed``, or of ``accel`` from rest): ``theta - first`` for
+    an angle ahead of ``first``; an angle behind it is reached after the
+    whole turns that bring it ahead.  So a clockwise crank (negative speed)
+    speeding up (negative acceleration) over a table of increasing angles
+    reaches 350 deg from 0 after turning -10 deg.  ``ValueError`` where the
     crank would have stopped.
 
     >>> crank_speeds(numpy.array([0.0, 1.0]), 2.0, 1.5).tolist()  # sqrt(4 + 2 * 1.5 * 1) = sqrt(7)
     [2.0, 2.6457513110645907]
+    >>> crank_speeds(numpy.array([0.0, 2 * math.pi - 1.0]), -2.0, -1.5).tolist()  # -1 rad turned: -sqrt(7)
+    [-2.0, -2.6457513110645907]
     """
     angles = numpy.asarray(angles, dtype=float)
     if angles.size == 0:
         return angles
     first = angles.flat[0] if first is None else first
+    direction = numpy.sign(speed if speed != 0 else accel) or 1.0
     with numpy.errstate(over="ignore", invalid="ignore"):
-        squared = numpy.square(numpy.float64(speed)) + 2 * numpy.float64(accel) * (angles - first)
+        ahead = direction * (angles - first)
+        turned = direction * numpy.where(ahead >= 0, ahead, numpy.mod(ahead, 2 * math.pi))
+        squared = numpy.square(numpy.float64(speed)) + 2 * numpy.float64(accel) * turned
     if not numpy.all(numpy.isfinite(squared)):
         raise ValueError(f"a crank speed of {speed:g} rad/s with an acceleration of {accel:g} rad/s^2 is too large: "
                          "its square overflows")
@@ -147,4 +158,4 @@ def crank_speeds(angles: numpy.ndarray, speed: float, accel: float, first: float
         first = angles[squared < 0].flat[0]
         raise ValueError(f"the crank stops before reaching {math.degrees(first):.6g} deg "
                          f"(speed {speed} rad/s, acceleration {accel} rad/s^2)")
-    return numpy.sign(speed if speed != 0 else accel) * numpy.sqrt(squared)
+    return direction * numpy.sqrt(squared)

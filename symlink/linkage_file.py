@@ -95,6 +95,15 @@ so ``"theta"``, ``0``, ``"pi/2"``, ``"-pi/2"``, ``"3*pi/4"``, ``"35 deg"``,
 multiplied: a vector turns with a coordinate or it does not.  A default
 value is a number or a constant (``"30 deg"``).
 
+Every value is checked where it is read, after evaluation: finite; an
+angle at most 1e9 rad in size (``"1e308*pi"`` is refused, not wrapped); any
+other value 0 or between 1e-50 and 1e50 in size (:data:`MAX_MAGNITUDE`);
+fixed lengths positive; masses and inertias not negative.  A file is read
+by :func:`~symlink.files.read_input` (a regular file of at most 4 MiB, never
+a FIFO or a device); an expression has at most 100,000 characters and a
+number 64, a table at most 1,000 entries: a hostile file is refused at
+once, and the tokenizer and parser are linear in what they read.
+
 Anything else is one line of error naming the file, the line and the
 problem, such as ``fourbar.toml:9: vectors.AB: 'gamma' is not a coordinate
 or constant of this file``.
@@ -130,13 +139,15 @@ import math
 import re
 import sys
 from dataclasses import dataclass, field
+from fractions import Fraction
 from pathlib import Path
-from typing import TYPE_CHECKING, Mapping
+from typing import TYPE_CHECKING, Mapping, Union
 
 import sympy as sp
 
 from .display import record_html
-from .files import write_atomic
+from .files import excerpt, read_input_text, write_atomic
+from .input_sweep import MAX_ANGLE as INPUT_MAX_ANGLE
 from .linkage import Linkage
 from .loops import Loop
 from .vectors import Vector, VectorSum
@@ -169,10 +180,10 @@ DYNAMICS_ENTRIES = {"masses": (("mass",), ("distance", "angle", "inertia", "orig
 #: The entries' keys that name a point, joint or body (the others are values).
 DYNAMICS_NAMES = frozenset({"origin", "point", "body", "first", "second", "first_body", "second_body"})
 RESERVED = {"pi", "deg", "rad"}
+#: Linkage files larger than this are refused unread (the largest catalog linkage is a few kB).
+MAX_LINKAGE_BYTES = 4 << 20
 ORIGIN = "0"
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
-_TOKEN = re.compile(r"\s*(?:(?P<number>(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)"
-                    r"|(?P<name>[A-Za-z_][A-Za-z0-9_]*)|(?P<operator>[-+*/]))")
 
 
 @dataclass(frozen=True)
@@ -269,25 +280,79 @@ def _line_of(problem: _Problem, text: str | None) -> int | None:
 
 # --- the expression grammar --------------------------------------------------------------
 
+_SCAN = re.compile(r"\s*(?:((?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)|([A-Za-z_][A-Za-z0-9_]*)|([-+*/])"
+                   r"|(\S))")
+#: A number longer than this is refused as it is read (a float has 17 significant digits; 10**400 is no length).
+MAX_NUMBER_CHARACTERS = 64
+
+
 def _tokens(text: str) -> list[tuple[str, str]]:
-    """``(kind, text)`` tokens of an expression: number, name, operator; ``ValueError`` for anything else."""
+    """``(kind, text)`` tokens of an expression: number, name, operator; ``ValueError`` for anything else.
+
+    One ``findall`` over the text (every character is in a token, in white space or is the first bad
+    one): linear in the length of the text.
+    """
     found: list[tuple[str, str]] = []
-    position = 0
-    while position < len(text):
-        if text[position:].strip() == "":
-            break
-        match = _TOKEN.match(text, position)
-        if not match:
-            bad = text[position:].lstrip()[0]
+    # without trailing space: \s* would retry it at each of its positions
+    for number, name, operator, bad in _SCAN.findall(text.rstrip()):
+        if bad:
             raise ValueError(f"unexpected {bad!r} (a sum of names and constants such as 'beta + 35 deg' or 'pi/2')")
-        kind = match.lastgroup or ""  # always a group's name: the pattern is all named groups
-        found.append((kind, match.group(kind)))
-        position = match.end()
+        if number:
+            if len(number) > MAX_NUMBER_CHARACTERS:
+                raise ValueError(f"a number of {len(number):,} characters (at most {MAX_NUMBER_CHARACTERS}): "
+                                 f"{excerpt(number, 20)}")
+            found.append(("number", number))
+        else:
+            found.append(("name", name) if name else ("operator", operator))
     return found
 
 
+#: Angles in a file beyond this size (radians) have lost their meaning (as on the command line).
+MAX_ANGLE = INPUT_MAX_ANGLE
+#: Lengths, masses, inertias, loads and other values of a file beyond this size are refused, and so are non-zero
+#: ones below its inverse: the dynamics multiplies up to six of them (a force's moment is mass * length^2 * speed^2
+#: / length ...), and 1e50 ** 6 is still a float.
+MAX_MAGNITUDE = 1e50
+
+#: Most entries of a table ([vectors], [loops], [points], ...), names of a list, and vectors of a loop or a point:
+#: a linkage has a few dozen; tens of thousands would take the symbolic layer minutes, not a clear refusal.
+MAX_ENTRIES = 1000
+#: Longer expressions are refused before they are read (a sum of 10,000 terms is still read in a fraction of a
+#: second: the tokenizer and the parser are linear).
+MAX_EXPRESSION_CHARACTERS = 100_000
+#: A constant as read: an exact ratio of whole numbers (numerator, denominator > 0), or a float.
+_Number = Union[tuple[int, int], float]
+#: Most different denominators among the exact constants of one expression (their sum is exact, in fractions).
+MAX_DENOMINATORS = 64
+
+
+def _number_value(text: str) -> _Number:
+    """A number token as an exact ratio (whole numbers) or a float; ``ValueError`` when out of float range."""
+    if not any(c in text for c in ".eE"):
+        return int(text), 1
+    value = float(text)
+    if math.isinf(value):
+        raise ValueError(f"{excerpt(text, 20)} is too large for a float")
+    if value == 0 and any(c in "123456789" for c in text.split("e")[0].split("E")[0]):
+        raise ValueError(f"{excerpt(text, 20)} is too small for a float (it would be 0)")
+    return value
+
+
+def _divided(value: _Number, divisor: _Number) -> _Number:
+    """``value / divisor`` (divisor not zero): exact when both are, else a float."""
+    if isinstance(value, tuple) and isinstance(divisor, tuple):
+        return value[0] * divisor[1], value[1] * divisor[0]  # both denominators positive, the divisor too
+    as_float = [v[0] / v[1] if isinstance(v, tuple) else v for v in (value, divisor)]
+    return as_float[0] / as_float[1]
+
+
 class _Parser:
-    """Recursive descent over the tokens of one expression (see the module docstring for the grammar)."""
+    """One pass over the tokens of one expression (see the module docstring for the grammar).
+
+    Linear in the length of the text: a name's count and the constants are added up in plain
+    Python numbers (ratios of whole numbers exactly, by denominator), and SymPy is called once at
+    the end, not once a term.
+    """
 
     def __init__(self, text: str, names: Mapping[str, sp.Symbol], units: bool) -> None:
         self.text, self.names, self.units = text, names, units
@@ -313,94 +378,161 @@ class _Parser:
     def parse(self) -> sp.Expr:
         if not self.tokens:
             raise ValueError("is empty")
-        terms = []
+        counts: dict[str, int] = {}
+        exact: dict[tuple[int, int], int] = {}  # (1 for a multiple of pi else 0, denominator): sum of numerators
+        inexact = [0.0, 0.0]
+        floats = [False, False]
         sign = -1 if self.accept("-") else 1
         while True:
-            terms.append(sign * self.term())
+            name, value, with_pi = self.term()
+            if name is not None:
+                counts[name] = counts.get(name, 0) + sign
+            elif isinstance(value, tuple):
+                key = (with_pi, value[1])
+                exact[key] = exact.get(key, 0) + sign * value[0]
+                if len(exact) > MAX_DENOMINATORS:
+                    raise ValueError(f"more than {MAX_DENOMINATORS} different fractions in one expression")
+            else:
+                inexact[with_pi] += sign * value
+                floats[with_pi] = True
             token = self.peek()
             if token is None:
-                return sp.Add(*terms)
+                break
             if token[0] != "operator" or token[1] not in "+-":
-                raise ValueError(f"expected + or - before {token[1]!r}")
+                raise ValueError(f"expected + or - before {excerpt(token[1], 20)}")
             sign = 1 if self.take()[1] == "+" else -1
+        if not all(math.isfinite(x) for x in inexact):
+            raise ValueError("adds up to more than a float can hold")
+        sums = [Fraction(0), Fraction(0)]
+        for (with_pi, denominator), numerator in exact.items():
+            sums[with_pi] += Fraction(numerator, denominator)
+        terms: list[sp.Expr] = [count * self.names[name] for name, count in counts.items()]
+        for with_pi, factor in ((0, sp.S.One), (1, sp.pi)):
+            if sums[with_pi]:
+                terms.append(sp.Rational(sums[with_pi].numerator, sums[with_pi].denominator) * factor)
+            if floats[with_pi]:
+                terms.append(sp.Float(inexact[with_pi]) * factor if with_pi else sp.Float(inexact[with_pi]))
+        return sp.Add(*terms)
 
-    def number(self) -> sp.Expr:
+    def number(self) -> _Number:
         kind, text = self.take()
         if kind != "number":
-            raise ValueError(f"expected a number, got {text!r}")
-        if any(c in text for c in ".eE"):
-            value = sp.Float(text)
-            if not math.isfinite(float(value)):
-                raise ValueError(f"{text} is not a finite number")
-            return value
-        return sp.Integer(text)
+            raise ValueError(f"expected a number, got {excerpt(text, 20)}")
+        return _number_value(text)
 
-    def divisor(self) -> sp.Expr:
+    def divisor(self) -> _Number:
         value = self.number()
-        if value == 0:
+        if value == 0 or value == (0, 1):
             raise ValueError("division by zero")
         return value
 
-    def term(self) -> sp.Expr:
+    def term(self) -> tuple[str | None, _Number, int]:
+        """``(name, 0, 0)`` for a name, else ``(None, value, 1 if it is a multiple of pi else 0)``."""
         kind, text = self.peek() or ("", "")
         if kind == "name" and text == "pi":
             self.take()
-            return sp.pi / self.divisor() if self.accept("/") else sp.pi
+            return None, (_divided((1, 1), self.divisor()) if self.accept("/") else (1, 1)), 1
         if kind == "name":
             self.take()
             if text in RESERVED:
                 raise ValueError(f"{text!r} must follow a number (as in '35 deg')")
             if text not in self.names:
-                raise ValueError(f"{text!r} is not a coordinate or constant of this file")
+                raise ValueError(f"{excerpt(text, 30)} is not a coordinate or constant of this file")
             if self.peek() in (("operator", "*"), ("operator", "/")):
                 raise ValueError("a name cannot be multiplied (write a sum of names and constants)")
-            return self.names[text]
+            return text, (0, 1), 0
         if kind != "number":
-            raise ValueError(f"expected a name or a number, got {text!r}" if text else "ends too early")
+            raise ValueError(f"expected a name or a number, got {excerpt(text, 20)}" if text else "ends too early")
         value = self.number()
         if self.accept("/"):
-            value = value / self.divisor()
+            value = _divided(value, self.divisor())
         if self.accept("*"):
             kind, text = self.take()
             if (kind, text) != ("name", "pi"):
                 raise ValueError("a name cannot be multiplied (write a sum of names and constants)"
-                                 if kind == "name" else f"only pi may follow '*', got {text!r}")
-            value = value * sp.pi
+                                 if kind == "name" else f"only pi may follow '*', got {excerpt(text, 20)}")
             if self.accept("/"):
-                value = value / self.divisor()
-            return value
+                value = _divided(value, self.divisor())
+            return None, value, 1
         following = self.peek()
         if following is not None and following[0] == "name":
             if following[1] not in ("deg", "rad"):
-                raise ValueError(f"unexpected {following[1]!r} after a number (units are deg and rad)")
+                raise ValueError(f"unexpected {excerpt(following[1], 20)} after a number (units are deg and rad)")
             if not self.units:
                 raise ValueError(f"a unit ({following[1]}) belongs to angles only")
             self.take()
-            return value * sp.pi / 180 if following[1] == "deg" else value
-        return value
+            return (None, _divided(value, (180, 1)), 1) if following[1] == "deg" else (None, value, 0)
+        return None, value, 0
 
 
-def _expression(value, names: Mapping[str, sp.Symbol], units: bool) -> sp.Expr:
-    """A length, an angle or a default from a TOML number or a string of the grammar."""
+def _constant_part(expr: sp.Expr) -> float:
+    """The value of ``expr`` with every name at 0 (its constant terms), as a float (inf if beyond one)."""
+    constant = sum((term for term in sp.Add.make_args(expr) if not term.free_symbols), sp.S.Zero)
+    try:
+        return float(constant)
+    except OverflowError:
+        return math.inf
+
+
+def _check_range(value: float, kind: str) -> None:
+    """``ValueError`` for a value out of range for its ``kind``: "angle", "length" (positive), "nonnegative"
+    (a mass, an inertia) or "value" (any sign); all but angles within :data:`MAX_MAGNITUDE`."""
+    if not math.isfinite(value):
+        raise ValueError("is not a finite number")
+    if kind == "angle":
+        if abs(value) > MAX_ANGLE:
+            raise ValueError(f"is {value:.3g} rad, more than {MAX_ANGLE:g} in size (larger angles have lost "
+                             "their precision)")
+        return
+    if kind == "length" and value <= 0:
+        raise ValueError(f"must be a positive length, got {value:.6g}")
+    if kind == "nonnegative" and value < 0:
+        raise ValueError(f"must not be negative, got {value:.6g}")
+    if value != 0 and not 1 / MAX_MAGNITUDE <= abs(value) <= MAX_MAGNITUDE:
+        raise ValueError(f"is {value:.3g}: values must be 0 or between {1 / MAX_MAGNITUDE:g} and "
+                         f"{MAX_MAGNITUDE:g} in size (change the units)")
+
+
+def _expression(value, names: Mapping[str, sp.Symbol], units: bool, kind: str | None = None) -> sp.Expr:
+    """A length, an angle or a default from a TOML number or a string of the grammar.
+
+    ``kind`` ("angle", "length" or "value"; default "angle" with ``units``, else "value") is the range the
+    expression's constant part (its value with every name at 0) must be in: checked here, where the value is made.
+    """
+    kind = kind or ("angle" if units else "value")
     if isinstance(value, bool) or not isinstance(value, (int, float, str)):
-        raise ValueError(f"must be a number or a string such as 'beta + 35 deg', got {value!r}")
+        raise ValueError(f"must be a number or a string such as 'beta + 35 deg', got {excerpt(value)}")
     if isinstance(value, (int, float)):
         if not math.isfinite(value):
             raise ValueError(f"must be finite, got {value!r}")
+        try:
+            _check_range(float(value), kind)
+        except ValueError as error:
+            raise ValueError(f"{value!r} {error}") from None
         return sp.Integer(value) if isinstance(value, int) else sp.Float(value)
+    if len(value) > MAX_EXPRESSION_CHARACTERS:
+        raise ValueError(f"{excerpt(value)}: an expression of {len(value):,} characters (at most "
+                         f"{MAX_EXPRESSION_CHARACTERS:,}; a linkage's lengths and angles are short sums)")
     try:
-        return _Parser(value, names, units).parse()
+        expr = _Parser(value, names, units).parse()
+        if kind != "length" or not expr.free_symbols:  # a length with names is checked when evaluated
+            _check_range(_constant_part(expr), kind)
+        return expr
     except ValueError as error:
-        raise ValueError(f"{value!r}: {error}") from None
+        raise ValueError(f"{excerpt(value)}: {error}") from None
 
 
 def _signed_sum(text, vectors: Mapping[str, Vector]) -> VectorSum:
     """A loop or a point: vector names joined by + and -."""
     if not isinstance(text, str):
         raise ValueError(f"must be a string such as 'AB + BC - DC', got {text!r}")
+    if len(text) > MAX_EXPRESSION_CHARACTERS:
+        raise ValueError(f"{excerpt(text)}: a sum of {len(text):,} characters (at most {MAX_EXPRESSION_CHARACTERS:,})")
     tokens = _tokens(text)
     if not tokens:
         raise ValueError("is empty")
+    if len(tokens) > 2 * MAX_ENTRIES:
+        raise ValueError(f"{excerpt(text)}: a sum of {(len(tokens) + 1) // 2:,} vectors (at most {MAX_ENTRIES:,})")
     terms, sign, expect_name = [], 1, True
     for index, (kind, token) in enumerate(tokens):
         if expect_name:
@@ -432,7 +564,9 @@ def _names(data: Mapping, key: str, required: bool) -> list[str]:
         return []
     value = data[key]
     if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
-        raise _Problem("", key, f"{key} must be a list of names, got {value!r}")
+        raise _Problem("", key, f"{key} must be a list of names, got {excerpt(value)}")
+    if len(value) > MAX_ENTRIES:
+        raise _Problem("", key, f"{key} has {len(value):,} names (at most {MAX_ENTRIES:,})")
     for name in value:
         if not _NAME.match(name):
             raise _Problem("", key, f"{key}: {name!r} is not a name (ASCII letters, digits and _, "
@@ -445,7 +579,10 @@ def _names(data: Mapping, key: str, required: bool) -> list[str]:
 def _table(data: Mapping, name: str) -> dict:
     value = data.get(name, {})
     if not isinstance(value, dict):
-        raise _Problem("", name, f"{name} must be a table ([{name}]), got {value!r}")
+        raise _Problem("", name, f"{name} must be a table ([{name}]), got {excerpt(value)}")
+    if len(value) > MAX_ENTRIES:
+        raise _Problem("", name, f"[{name}] has {len(value):,} entries (at most {MAX_ENTRIES:,}: a linkage, not a "
+                                 "data set)")
     for key, item in value.items():
         if isinstance(item, dict):
             raise _Problem(name, key, f"{name}.{key}: nested tables are not part of linkage files")
@@ -509,7 +646,7 @@ def _from_mapping(data: Mapping, source: str) -> LinkageFile:
         if not isinstance(value, list) or len(value) != 2:
             raise _Problem("vectors", key, f"vectors.{key} must be [length, angle], got {value!r}")
         try:
-            length = _expression(value[0], symbols, units=False)
+            length = _expression(value[0], symbols, units=False, kind="length")
         except ValueError as error:
             raise _Problem("vectors", key, f"vectors.{key}: length {error}") from None
         try:
@@ -563,22 +700,57 @@ def _from_mapping(data: Mapping, source: str) -> LinkageFile:
             raise ValueError(f"the loops use {', '.join(sorted(map(str, missing)))}, which is not declared")
         linkage.has_closed_form  # a linkage with no solve plan at all is an error in its definition
     except ValueError as error:
-        raise _Problem("loops", "", f"{error}") from None
+        places: list[tuple[str, str]] = []
+        names: list[str] = []
+        for section, keys in (("loops", list(_table(data, "loops"))), ("points", list(points)),
+                              ("vectors", list(vectors))):
+            places += [(section, name) for name in keys]
+            names += keys
+        for list_key, declared_names in (("inputs", inputs), ("unknowns", unknowns), ("lengths", positive),
+                                         ("constants", constants)):
+            places += [("", list_key)] * len(declared_names)
+            names += declared_names
+        raise _Problem(*_blamed(str(error), places, names, ("loops", "")), f"{error}") from None
     model = _dynamics(data["dynamics"], linkage) if "dynamics" in data else None
     dynamic_names = [symbol.name for symbol in model.new_parameters] if model is not None else []
+    nonnegative_names = _nonnegative_names(data.get("dynamics"))
     defaults = {}
     for key, value in _table(data, "defaults").items():
         if key not in positive + constants + inputs + dynamic_names:
             raise _Problem("defaults", key, f"defaults.{key}: only constants, inputs and the names of [dynamics] "
                                             f"have defaults ({', '.join(positive + constants + inputs + dynamic_names)})")
+        angle = key in symbols and symbols[key] in angles
+        kind = ("length" if key in positive else "angle" if angle else
+                "nonnegative" if key in nonnegative_names else "value")
         try:
-            number = _expression(value, {}, units=key in symbols and symbols[key] in angles)
+            number = _expression(value, {}, units=angle, kind=kind)
         except ValueError as error:
             raise _Problem("defaults", key, f"defaults.{key}: {error}") from None
         defaults[key] = float(number)
-        if key in positive and not defaults[key] > 0:
-            raise _Problem("defaults", key, f"defaults.{key} must be a positive length, got {value!r}")
     return LinkageFile(linkage, defaults, source, model)
+
+
+def _blamed(message: str, places: list[tuple[str, str]], names: list[str],
+            otherwise: tuple[str, str]) -> tuple[str, str]:
+    """The place (table, key) of the first of ``names`` that ``message`` mentions as a word, else ``otherwise``.
+
+    A problem found by the linkage or the dynamics as a whole (a loop that cannot be solved, a body
+    that does not exist) is pointed at the line that names what the message names, not at a table's header.
+    """
+    words = set(re.findall(r"[A-Za-z_][A-Za-z0-9_]*", message))
+    for place, name in zip(places, names):
+        if name in words:
+            return place
+    return otherwise
+
+
+def _nonnegative_names(table) -> set[str]:
+    """The names that ``[dynamics]`` gives as a mass or an inertia (their defaults must not be negative)."""
+    bodies = table.get("masses") if isinstance(table, dict) else None
+    if not isinstance(bodies, dict):
+        return set()
+    return {value.strip() for item in bodies.values() if isinstance(item, dict)
+            for key, value in item.items() if key in NONNEGATIVE_KEYS and isinstance(value, str)}
 
 
 def dynamic_model(table: Mapping, linkage: Linkage, source: str = "") -> DynamicModel:
@@ -598,22 +770,35 @@ def dynamic_model(table: Mapping, linkage: Linkage, source: str = "") -> Dynamic
         raise ValueError(f"{source}: {problem.message}" if source else problem.message) from None
 
 
+#: The ``[dynamics]`` keys whose values must not be negative.
+NONNEGATIVE_KEYS = frozenset({"mass", "inertia"})
+
+
 def _dynamic_value(value, table: str, key: str, known: Mapping[str, sp.Symbol], angle: bool = False):
-    """A value of ``[dynamics]``: a number, a constant of the grammar (``"30 deg"``), or a name, maybe negated."""
+    """A value of ``[dynamics]``: a number, a constant of the grammar (``"30 deg"``), or a name, maybe negated.
+
+    A number is checked here, where it is read: finite, in range, and not negative for a mass or an inertia
+    (a name's value is checked with ``[defaults]``, or when the outputs are evaluated).
+    """
     where = f"{table}.{key}"
+    kind = "angle" if angle else "nonnegative" if key in NONNEGATIVE_KEYS else "value"
     if isinstance(value, bool) or not isinstance(value, (int, float, str)):
-        raise _Problem(table, key, f"{where} must be a number or a name, got {value!r}")
+        raise _Problem(table, key, f"{where} must be a number or a name, got {excerpt(value)}")
     if isinstance(value, (int, float)):
-        if not math.isfinite(value):
-            raise _Problem(table, key, f"{where} must be finite, got {value!r}")
+        try:
+            _check_range(float(value), kind)
+        except ValueError as error:
+            raise _Problem(table, key, f"{where} {error}") from None
         return value
     text = value.strip()
     negated = text.startswith("-") and bool(_NAME.match(text[1:].strip()))
     name = text[1:].strip() if negated else text
     if _NAME.match(name) and name not in RESERVED:
+        if negated and kind == "nonnegative":
+            raise _Problem(table, key, f"{where} must not be negative, got {excerpt(value)}")
         return -known.get(name, sp.Symbol(name, real=True)) if negated else name
     try:
-        return float(_expression(text, {}, units=angle))
+        return float(_expression(text, {}, units=angle, kind=kind))
     except ValueError as error:
         raise _Problem(table, key, f"{where}: {error}") from None
 
@@ -678,7 +863,18 @@ def _dynamics(data, linkage: Linkage) -> DynamicModel:
     try:
         return DynamicModel(linkage, masses, loads, gravity)
     except ValueError as error:
-        raise _Problem("dynamics", "", f"dynamics: {error}") from None
+        places, names = [], []
+        for body in bodies:
+            places.append(("dynamics.masses", body))
+            names.append(body)
+        for kind in kinds:
+            for k, item in enumerate(data.get(kind, [])):
+                for name, value in item.items():
+                    if name in DYNAMICS_NAMES and isinstance(value, str):
+                        places.append((f"dynamics.{kind}[{k}]", name))
+                        names.append(value)
+        table, key = _blamed(str(error), places, names, ("dynamics", ""))
+        raise _Problem(table, key, f"dynamics: {error}") from None
 
 
 def linkage_from_text(text: str, source: str = "<text>") -> LinkageFile:
@@ -694,13 +890,12 @@ def linkage_from_text(text: str, source: str = "<text>") -> LinkageFile:
 
 
 def read_linkage(path: str | Path) -> LinkageFile:
-    """Read a linkage file; ``ValueError`` ``"path:line: problem"`` if it cannot be read or is not valid."""
-    path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as error:
-        raise ValueError(f"{path}:1: cannot read linkage file: {getattr(error, 'strerror', None) or error}") from None
-    return linkage_from_text(text, str(path))
+    """Read a linkage file; ``ValueError`` ``"path:line: problem"`` if it cannot be read or is not valid.
+
+    Read by :func:`~symlink.files.read_input`: a regular file of at most :data:`MAX_LINKAGE_BYTES`,
+    never a FIFO or a device.
+    """
+    return linkage_from_text(read_input_text(path, MAX_LINKAGE_BYTES, "linkage file"), str(path))
 
 
 def load_linkage(source: str | Path, folder: str | Path | None = None) -> LinkageFile:

@@ -62,10 +62,11 @@ import sympy as sp
 
 from .cache import GeneratedCode, generated_code
 from .call_arguments import check_argument_names
+from .files import excerpt, read_input_text
 from .catalog import CATALOG
 from .display import record_html
 from .input_sweep import InputSweep
-from .linkage_file import LinkageFile, dynamic_model, load_linkage
+from .linkage_file import MAX_ANGLE, MAX_MAGNITUDE, LinkageFile, dynamic_model, load_linkage
 from .angles import to_radians
 from .linkage import Linkage, Program
 from .closure import is_angle
@@ -358,15 +359,23 @@ class SceneFile:
         return values
 
 
-def _number(value, where: str) -> float:
+def _number(value, where: str, angle: bool = False) -> float:
+    """A number of a scene file: finite, and in range as in linkage files (an ``angle`` within 1e9, any other
+    value 0 or between 1e-50 and 1e50 in size); ``ValueError`` naming ``where``."""
     if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise ValueError(f"{where} must be a number, got {value!r}")
+        raise ValueError(f"{where} must be a number, got {excerpt(value)}")
     try:
         number = float(value)
     except OverflowError:
         number = math.inf
     if not math.isfinite(number):
         raise ValueError(f"{where} must be finite, got {value if isinstance(value, float) else 'a huge integer'}")
+    if angle and abs(number) > MAX_ANGLE:
+        raise ValueError(f"{where} must be at most {MAX_ANGLE:g} in size (larger angles have lost their precision), "
+                         f"got {number:g}")
+    if not angle and number != 0 and not 1 / MAX_MAGNITUDE <= abs(number) <= MAX_MAGNITUDE:
+        raise ValueError(f"{where} must be 0 or between {1 / MAX_MAGNITUDE:g} and {MAX_MAGNITUDE:g} in size, "
+                         f"got {number:g}")
     return number
 
 
@@ -440,7 +449,7 @@ def scene_from_mapping(data: Mapping, folder: str | Path = ".") -> SceneFile:
         raise ValueError(f"missing parameters.{missing[0]} ({linkage.name} needs {', '.join(names)})")
     parameters = {}
     for name, value in given.items():
-        parameters[name] = _number(value, f"parameters.{name}")
+        parameters[name] = _number(value, f"parameters.{name}", angle=is_angle(linkage, names[name]))
         if names[name].is_positive and parameters[name] <= 0:
             raise ValueError(f"parameters.{name} must be a positive length, got {value!r}")
 
@@ -449,13 +458,14 @@ def scene_from_mapping(data: Mapping, folder: str | Path = ".") -> SceneFile:
                          f"{', '.join(map(str, linkage.inputs))}")
     driven = linkage.inputs[0]
     sweep_table = _table(data.get("input", {}), "input", INPUT_KEYS)
-    options: dict[str, Any] = {key: (None if key not in sweep_table else _number(sweep_table[key], f"input.{key}"))
-               for key in ("start", "stop", "step")}
+    options: dict[str, Any] = {key: (None if key not in sweep_table else
+                                     _number(sweep_table[key], f"input.{key}", angle=key != "step"))
+                               for key in ("start", "stop", "step")}
     angles = sweep_table.get("angles")
     if angles is not None:
         if not isinstance(angles, list):
             raise ValueError(f"input.angles must be a list of numbers, got {angles!r}")
-        angles = [_number(v, f"input.angles[{i}]") for i, v in enumerate(angles)]
+        angles = [_number(v, f"input.angles[{i}]", angle=True) for i, v in enumerate(angles)]
     try:
         sweep = InputSweep.from_options(angles=angles, units=units, **options)
     except ValueError as error:
@@ -495,10 +505,4 @@ def scene_from_text(text: str, source: str, folder: str | Path = ".") -> SceneFi
 def read_scene(path: str | Path) -> SceneFile:
     """Read and check a TOML scene file; ``ValueError`` starting with the file name on any problem."""
     path = Path(path)
-    try:
-        with open(path, "rb") as file:
-            data = file.read(MAX_SCENE_BYTES + 1)
-        text = data.decode("utf-8")
-    except (OSError, UnicodeDecodeError) as error:
-        raise ValueError(f"cannot read scene file {path}: {getattr(error, 'strerror', None) or error}") from None
-    return scene_from_text(text, str(path), path.parent)
+    return scene_from_text(read_input_text(path, MAX_SCENE_BYTES, "scene file"), str(path), path.parent)

@@ -159,3 +159,95 @@ def test_leftovers_older_than_the_age_are_removed(tmp_path):
     assert remove_leftovers(tmp_path, (".build-",), older_than=60) == [".build-1"]
     assert sorted(p.name for p in tmp_path.iterdir()) == [".x.json.ab12.tmp", "entry.json"]
     assert files.TEMPORARY_SUFFIX == ".tmp"
+
+
+# --- read_input: the one reader of a user's input files -------------------------------------------------------------
+
+from symlink.files import excerpt, read_input, read_input_text  # noqa: E402
+
+
+def test_read_input_reads_a_regular_file_and_follows_a_link(tmp_path):
+    (tmp_path / "a.csv").write_bytes(b"x,y\n1,2\n")
+    os.symlink(tmp_path / "a.csv", tmp_path / "link.csv")
+    assert read_input(tmp_path / "a.csv", 8, "csv") == b"x,y\n1,2\n"  # exactly at the limit
+    assert read_input_text(tmp_path / "link.csv", 100, "csv") == "x,y\n1,2\n"
+
+
+@pytest.mark.parametrize("kind, make, words", [
+    ("folder", lambda p: p.mkdir(), "it is a folder, not a regular file"),
+    ("fifo", lambda p: os.mkfifo(p), "it is a FIFO (named pipe), not a regular file"),
+    ("missing", lambda p: None, "No such file or directory"),
+    ("too large", lambda p: p.write_bytes(b"1" * 101), "is larger than 100 bytes"),
+    ("unreadable", lambda p: (p.write_text("x"), p.chmod(0)), "Permission denied"),
+])
+def test_read_input_refuses_what_is_not_a_small_regular_file(kind, make, words, tmp_path):
+    if kind == "unreadable" and hasattr(os, "geteuid") and os.geteuid() == 0:
+        pytest.skip("root reads any file")
+    path = tmp_path / "input"
+    make(path)
+    with pytest.raises(ValueError) as caught:
+        read_input(path, 100, "linkage file")
+    assert words in str(caught.value) and str(path) in str(caught.value), caught.value
+
+
+def test_read_input_refuses_a_device_and_names_it():
+    with pytest.raises(ValueError, match=r"^cannot read scene file /dev/zero: it is a character device, not a "
+                                         r"regular file$"):
+        read_input("/dev/zero", 1 << 20, "scene file")
+
+
+def test_a_fifo_with_no_writer_is_refused_at_once(tmp_path):
+    """Opened non-blocking: the open returns (a blocking open would wait for a writer forever)."""
+    path = tmp_path / "pipe.toml"
+    os.mkfifo(path)
+    outcome = []
+    worker = threading.Thread(target=lambda: outcome.append(pytest.raises(ValueError, read_input, path, 10)),
+                              daemon=True)
+    worker.start()
+    worker.join(10)
+    assert not worker.is_alive() and "FIFO" in str(outcome[0].value)
+
+
+def test_read_input_stops_at_the_limit_when_the_file_grows(tmp_path, monkeypatch):
+    """A size that fstat does not show (a file still being written, /proc) is caught by counting the bytes read."""
+    path = tmp_path / "growing.csv"
+    path.write_bytes(b"1" * 50)
+    real_fstat = os.fstat
+    monkeypatch.setattr(files.os, "fstat", lambda handle: os.stat_result(
+        (*real_fstat(handle)[:6], 0, *real_fstat(handle)[7:])))  # st_size reported as 0
+    with pytest.raises(ValueError, match="larger than 20 bytes"):
+        read_input(path, 20)
+
+
+def test_non_utf8_names_the_line(tmp_path):
+    path = tmp_path / "bad.toml"
+    path.write_bytes(b"name = 'x'\n\xff\n")
+    with pytest.raises(ValueError, match=r"bad\.toml:2: linkage file is not UTF-8 text"):
+        read_input_text(path, 100, "linkage file")
+
+
+def test_excerpt_cuts_hostile_text():
+    assert excerpt("x" * 10_000) == repr("x" * 60) + "..."
+    assert excerpt(list(range(10_000))) == "list of 10,000 items"
+    assert excerpt("AB") == "'AB'"
+
+
+def test_a_failed_write_names_the_users_file_not_the_temporary(tmp_path, monkeypatch):
+    """A full disk fails os.write, which names no file: the error names the file asked for, with the reason."""
+    def full(handle, data):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+    monkeypatch.setattr(files.os, "write", full)
+    with pytest.raises(OSError) as caught:
+        write_atomic(tmp_path / "out.png", b"x")
+    assert caught.value.filename == str(tmp_path / "out.png") and caught.value.errno == errno.ENOSPC
+    assert caught.value.strerror == os.strerror(errno.ENOSPC)
+    assert os.listdir(tmp_path) == []  # and nothing left behind
+
+
+def test_a_folder_that_cannot_be_written_is_named_with_the_file(tmp_path):
+    if hasattr(os, "geteuid") and os.geteuid() == 0:
+        pytest.skip("root writes anywhere")
+    (tmp_path / "locked").mkdir(mode=0o500)
+    with pytest.raises(PermissionError) as caught:
+        write_atomic(tmp_path / "locked" / "out.txt", "x")
+    assert caught.value.filename == str(tmp_path / "locked" / "out.txt")

@@ -146,3 +146,21 @@ def test_angle_outputs():
     linkage = catalog_linkage("fourbar")
     assert angle_outputs(linkage, linkage.output_names()) == {
         "beta", "phi", "crank", "coupler", "rocker", "transmission"}
+
+
+@pytest.mark.parametrize("change, words", [
+    (("a = 20", "a = 1e300"), "parameters.a must be 0 or between 1e-50 and 1e+50"),
+    (("a = 20", "a = 1e-300"), "parameters.a must be 0 or between 1e-50 and 1e+50"),
+    (("angles = [0]", "angles = [1e300]"), "input.angles[0] must be at most 1e+09 in size"),
+    (("angles = [0]", "angles = [0]\nspeed = 1e300"), "input.speed must be 0 or between"),
+    (("angles = [0]", "start = -1e10"), "input.start must be at most 1e+09 in size"),
+])
+def test_scene_values_are_in_range(change, words, tmp_path):
+    from symlink.scene import read_scene
+    text = ('linkage = "fourbar"\noutputs = ["rocker"]\n[parameters]\na = 20\nb = 66\nc = 56\nd = 80\n'
+            '[input]\nangles = [0]\n')
+    path = tmp_path / "scene.toml"
+    path.write_text(text.replace(*change))
+    with pytest.raises(ValueError) as caught:
+        read_scene(path)
+    assert str(caught.value).startswith(f"{path}: ") and words in str(caught.value), caught.value

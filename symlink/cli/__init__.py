@@ -4,10 +4,14 @@ Every subcommand parses numbers and names only (never code), prints angles in
 degrees (``--units rad`` for radians) wrapped to (-180, 180], writes results
 to stdout and notes and progress to stderr.
 
-Exit status: 0 success; 1 a file could not be written or read, or the
-machine ran out of memory; 2 bad input (one line on stderr, ``symlink:
-error: ...``); 130 interrupted (Ctrl-C).  A closed pipe (``| head``) ends
-the command quietly.  No command shows a traceback.
+Exit status: 0 success; 1 a file could not be written, or the machine ran
+out of memory; 2 bad input (one line on stderr, ``symlink: error: ...``),
+an input file (linkage, scene, csv) that is missing, unreadable, not a
+regular file or too large among it, and a request beyond what a command
+may use (:mod:`.budget`: memory and time are estimated before any work
+starts); 130 interrupted (Ctrl-C).  A closed pipe (``| head``) ends the
+command quietly.  No command shows a traceback, and a message quotes
+hostile text as a short excerpt.
 
 One module a command or family: :mod:`.tables` (``fourbar`` and a table
 command for each catalog linkage), :mod:`.pictures` (``curve``, ``animate``,
@@ -26,12 +30,14 @@ from __future__ import annotations
 import argparse
 import importlib
 import os
+import re
 import sys
 import warnings
 from typing import Sequence
 
 import numpy
 
+from ..files import EXCERPT_LENGTH
 from ..version import __version__
 from .options import Parser
 
@@ -56,7 +62,7 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     ['fivebar', 'fourbar']
     """
     parser = Parser(prog="symlink", description="Symbolic derivation toolkit for planar linkages.",
-                    epilog="Exit status: 0 done, 1 a file could not be written or read, 2 bad input, "
+                    epilog="Exit status: 0 done, 1 a file could not be written, 2 bad input (an input file too), "
                            "130 interrupted.  'symlink COMMAND --help' describes a command.")
     parser.add_argument("--version", action="version", version=f"symlink {__version__}")
     commands = parser.add_subparsers(dest="command", required=True, parser_class=Parser, metavar="COMMAND")
@@ -73,8 +79,20 @@ def _command_word(argv: Sequence[str] | None) -> str | None:
     return words[0] if words and not words[0].startswith("-") else None
 
 
+#: A word of a message longer than this is hostile text (a 5000-character name, a megabyte expression): cut.
+_LONG_WORD = re.compile(r"\S{100,}")
+#: The most characters of one line of error or warning.
+MAX_MESSAGE = 1000
+
+
 def _one_line(message: object) -> str:
-    return " ".join(str(message).split())
+    """``message`` on one line, each overlong word cut to an excerpt and the whole to :data:`MAX_MESSAGE`.
+
+    Messages quote what the user gave; a hostile value must not come back as megabytes on stderr.
+    """
+    text = " ".join(str(message).split())
+    text = _LONG_WORD.sub(lambda word: word.group()[:EXCERPT_LENGTH] + "...", text)
+    return text if len(text) <= MAX_MESSAGE else text[:MAX_MESSAGE] + "..."
 
 
 def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:

@@ -7,7 +7,7 @@ from typing import Any
 
 from ..angles import from_radians
 from .options import (add_fourbar_lengths, add_units_option, assignments, command_help, fourbar_lengths,
-                      fourbar_or_linkage, linkage_values)
+                      fourbar_or_linkage, linkage_values, require_held_inputs)
 
 #: Fields of :func:`~symlink.analysis.fourbar_report` that are angles (converted to the command's units).
 ANGLE_FIELDS = {"stroke", "transmission_min", "transmission_min_at", "transmission_max", "transmission_max_at",
@@ -53,7 +53,7 @@ def _add_options(command: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    if fourbar_or_linkage(args, "analyze"):
+    if fourbar_or_linkage(args, "analyze", linkage_only=("set", "output")):
         return run_linkage(args)
     from ..analysis import fourbar_report
     a, b, c, d = fourbar_lengths(args)
@@ -94,6 +94,7 @@ def run_linkage(args: argparse.Namespace) -> int:
     from ..closure import is_angle
     from ..linkage_file import load_linkage
     found = load_linkage(args.linkage)
+    require_held_inputs(found.linkage, args.set, "analyze")
     linkage, values = found.linkage, linkage_values(found, args.set, args.units)
     known = {s.name: s for s in linkage.parameters + linkage.inputs}
     values = {name: value for name, value in values.items() if name not in {q.name for q in linkage.inputs[:1]}}

@@ -27,6 +27,7 @@ import math
 from typing import TYPE_CHECKING
 
 from ..angles import to_radians
+from .budget import require_budget
 from .options import (add_branch_option, add_fourbar_lengths, add_format_option, add_units_option, command_help,
                       finite, fourbar_lengths, number_list, whole)
 from .output import print_rows
@@ -42,6 +43,11 @@ ORIGINS = ("A", "B", "D")
 #: The columns ``symlink fourbar`` adds with ``--masses``.
 MASS_COLUMNS = ["input_torque", "joint_A_x", "joint_A_y", "joint_B_x", "joint_B_y", "joint_C_x", "joint_C_y",
                 "joint_D_x", "joint_D_y", "shaking_force_x", "shaking_force_y", "shaking_moment"]
+#: Memory and time of ``symlink flywheel`` a sample, and its fixed time, measured (1.0 kB and 47 us a sample, 5 s,
+#: at 20,000 and 200,000 samples on a shared machine) with a margin: see :mod:`.budget`.
+FLYWHEEL_BYTES_PER_SAMPLE = 1500
+FLYWHEEL_SECONDS_PER_SAMPLE = 1e-4
+FLYWHEEL_SECONDS = 10.0
 #: The csv header of ``symlink flywheel``.
 FLYWHEEL_COLUMNS = ["mean_speed", "coefficient", "mean_torque", "energy_fluctuation", "flywheel_inertia",
                     "speed_max", "speed_min", "achieved_coefficient", "exact_flywheel_inertia"]
@@ -155,6 +161,11 @@ def run_flywheel(args: argparse.Namespace) -> int:
     speed = rpm_to_rad_per_s(args.rpm) if args.rpm is not None else args.rad_per_s
     if not speed > 0:
         raise ValueError(f"the mean speed must be positive, got {args.rpm if args.rpm is not None else speed:g}")
+    if args.masses is not None and not any(args.masses) and not any(args.inertias or []):
+        raise ValueError(f"--masses {','.join(f'{m:g}' for m in args.masses)} with no --inertias: the four-bar has "
+                         "no mass to size a flywheel for (give the crank, coupler or rocker a mass)")
+    require_budget(args.samples, FLYWHEEL_BYTES_PER_SAMPLE, FLYWHEEL_SECONDS_PER_SAMPLE,
+                   f"a flywheel of --samples {args.samples}", "--samples", fixed_seconds=FLYWHEEL_SECONDS)
     model = fourbar_model(args, lengths)
     values = dict(zip("abcd", lengths))
     try:

@@ -5,7 +5,7 @@ import argparse
 import json
 
 from ..angles import from_radians, half_turn, to_radians, wrap
-from .options import add_units_option, command_help, figure_path, finite
+from .options import add_units_option, angle, command_help, figure_path, finite
 from .output import json_number, note, print_rows
 
 
@@ -18,7 +18,7 @@ def register(commands) -> None:
         "z_n = R_n e^(i t_n); give six of the eight values --r1..--r4, --t1..--t4."))
     for k in "1234":
         command.add_argument(f"--r{k}", type=finite, metavar="R", help=f"length of z{k}")
-        command.add_argument(f"--t{k}", type=finite, metavar="T", help=f"angle of z{k}")
+        command.add_argument(f"--t{k}", type=angle, metavar="T", help=f"angle of z{k}")
     add_units_option(command, "angles given and printed")
     command.add_argument("--format", choices=["table", "json"], default="table", help="default table")
     command.add_argument("--plot", type=figure_path, metavar="FILE", help="draw the closed loop (.png or .svg)")

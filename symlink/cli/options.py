@@ -16,14 +16,17 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Callable, Collection, Mapping, NoReturn
 
 from ..angles import to_radians
-from ..input_sweep import InputSweep
+from ..files import excerpt
+from ..input_sweep import MAX_ANGLE, InputSweep
 
 if TYPE_CHECKING:
     from ..linkage_file import LinkageFile
 
-__all__ = ["UsageError", "Parser", "finite", "number_list", "pair", "assignments", "figure_path", "add_sweep_options",
+__all__ = ["UsageError", "Parser", "finite", "angle", "MAX_MAGNITUDE",
+           "number_list", "pair", "assignments", "figure_path", "add_sweep_options",
            "add_fourbar_lengths", "fourbar_lengths", "add_branch_option", "add_units_option", "add_format_option",
-           "input_sweep", "branches", "command_help", "linkage_values", "fourbar_or_linkage"]
+           "input_sweep", "branches", "command_help", "linkage_values", "fourbar_or_linkage",
+           "require_held_inputs", "given_options"]
 
 FOURBAR_LENGTHS = (("crank", "AB"), ("coupler", "BC"), ("rocker", "DC"), ("ground", "AD"))
 FIGURE_SUFFIXES = (".png", ".svg")
@@ -34,6 +37,22 @@ class UsageError(ValueError):
 
 
 _NUMBER = r"(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?"
+#: The attribute of a parsed namespace that lists the options given so far (see :class:`_StoreOnce`).
+_GIVEN = "_symlink_options_given"
+
+
+class _StoreOnce(argparse._StoreAction):
+    """argparse's ``store``, refusing an option given twice: ``--vary c=1:2 --vary c=3:4`` would keep the last
+    and drop the first without a word."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        given = namespace.__dict__.setdefault(_GIVEN, set())
+        if option_string is not None and self.dest in given:
+            several = "NAME=" in str(self.metavar or "")
+            raise argparse.ArgumentError(self, "given twice; give each option once" + (
+                " (every NAME=... in one, separated by commas)" if several else ""))
+        given.add(self.dest)
+        super().__call__(parser, namespace, values, option_string)
 
 
 class Parser(argparse.ArgumentParser):
@@ -46,8 +65,11 @@ class Parser(argparse.ArgumentParser):
     def __init__(self, *args, populate: Callable[[argparse.ArgumentParser], None] | None = None, **kwargs):
         kwargs.setdefault("formatter_class", argparse.RawDescriptionHelpFormatter)
         super().__init__(*args, **kwargs)
-        self._negative_number_matcher = re.compile(rf"^-{_NUMBER}(,\s*([-+]?{_NUMBER}|both))*$")  # -1,both
+        # -1,both and -0.1:0,0.2:0 (a list of numbers or of pairs, the first negative)
+        self._negative_number_matcher = re.compile(rf"^-{_NUMBER}([,:]\s*([-+]?{_NUMBER}|both))*$")
         self._populate = populate
+        self.register("action", None, _StoreOnce)
+        self.register("action", "store", _StoreOnce)
 
     def parse_known_args(self, args=None, namespace=None):
         if self._populate is not None:
@@ -71,14 +93,37 @@ def command_help(summary: str, units: str, example: str, more: str = "") -> dict
     return {"help": summary, "description": description + (f"\n\n{more}" if more else "")}
 
 
+#: Numbers on the command line beyond this size, or non-zero below its inverse, are refused: lengths, masses,
+#: speeds and loads are multiplied together in the outputs, and 1e50 ** 6 is still a float.  The same bound as
+#: linkage files (``symlink.linkage_file.MAX_MAGNITUDE``).
+MAX_MAGNITUDE = 1e50
+
+
 def finite(text: str) -> float:
-    """A finite number from the command line (no expressions)."""
+    """A finite number from the command line (no expressions): 0 or between 1e-50 and 1e50 in size."""
     try:
         value = float(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+        raise argparse.ArgumentTypeError(f"not a number: {excerpt(text)}") from None
     if not math.isfinite(value):
-        raise argparse.ArgumentTypeError(f"not a finite number: {text!r}")
+        raise argparse.ArgumentTypeError(f"not a finite number: {excerpt(text)}")
+    if value != 0 and not 1 / MAX_MAGNITUDE <= abs(value) <= MAX_MAGNITUDE:
+        raise argparse.ArgumentTypeError(f"{text} is out of range: numbers must be 0 or between "
+                                         f"{1 / MAX_MAGNITUDE:g} and {MAX_MAGNITUDE:g} in size (change the units)")
+    return value
+
+
+def angle(text: str) -> float:
+    """A finite angle from the command line, at most :data:`~symlink.input_sweep.MAX_ANGLE` in size (either unit)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {excerpt(text)}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"not a finite number: {excerpt(text)}")
+    if abs(value) > MAX_ANGLE:
+        raise argparse.ArgumentTypeError(f"the angle {text} is more than {MAX_ANGLE:g} in size (larger angles have "
+                                         "lost their precision)")
     return value
 
 
@@ -112,7 +157,9 @@ def assignments(what: str) -> Callable[[str], dict[str, float]]:
         for item in text.split(","):
             name, equals, value = item.partition("=")
             if not equals or not name.strip():
-                raise argparse.ArgumentTypeError(f"expected {what},..., got {item.strip()!r}")
+                raise argparse.ArgumentTypeError(f"expected {what},..., got {excerpt(item.strip())}")
+            if name.strip() in values:
+                raise argparse.ArgumentTypeError(f"{excerpt(name.strip())} is given twice")
             values[name.strip()] = finite(value)
         return values
     return parse
@@ -139,6 +186,22 @@ def linkage_values(found: LinkageFile, settings: Mapping[str, float], units: str
     return values
 
 
+def require_held_inputs(linkage, settings: Mapping[str, float], command: str) -> None:
+    """``ValueError`` unless every input of ``linkage`` after the first is given a value in ``settings`` (``--set``).
+
+    ``command`` turns the first input only; holding the others at the file's defaults without a word would
+    answer a question the user did not ask (a five-bar with one crank held still).
+    """
+    if len(linkage.inputs) < 2:
+        return
+    unset = [q.name for q in linkage.inputs[1:] if q.name not in settings]
+    if unset:
+        names = ", ".join(q.name for q in linkage.inputs)
+        raise ValueError(f"{linkage.name} has {len(linkage.inputs)} inputs ({names}) and {command} turns the first "
+                         f"only: to hold the others still, give their values with --set {unset[0]}=VALUE"
+                         f"{',...' if len(unset) > 1 else ''}")
+
+
 def figure_path(text: str) -> str:
     """A .png or .svg file name."""
     if Path(text).suffix.lower() not in FIGURE_SUFFIXES:
@@ -162,9 +225,16 @@ def add_fourbar_lengths(parser: argparse.ArgumentParser, defaults: dict[str, flo
             parser.add_argument(f"--{option}", type=finite, required=True, help=f"length {what}")
 
 
-def fourbar_or_linkage(args: argparse.Namespace, command: str, lengths_required: bool = True) -> bool:
+def given_options(args: argparse.Namespace) -> set[str]:
+    """The destinations of the options given on the command line (not left at their defaults)."""
+    return set(getattr(args, _GIVEN, ()))
+
+
+def fourbar_or_linkage(args: argparse.Namespace, command: str, lengths_required: bool = True,
+                       linkage_only: Collection[str] = (), fourbar_only: Collection[str] = ()) -> bool:
     """Whether a command was given a linkage NAME|FILE (else the four-bar's lengths); ``ValueError`` for
-    both, or (``lengths_required``) for neither."""
+    both, or (``lengths_required``) for neither, and for an option of the other form, which would do nothing
+    (``linkage_only`` and ``fourbar_only`` name options by destination: ``coupler_point``)."""
     given = [v is not None for v in fourbar_lengths(args)]
     if args.linkage is not None and any(given):
         raise ValueError(f"{command}: give a catalog NAME or a linkage FILE, or the four-bar's --crank --coupler "
@@ -172,7 +242,16 @@ def fourbar_or_linkage(args: argparse.Namespace, command: str, lengths_required:
     if args.linkage is None and lengths_required and not all(given):
         raise ValueError(f"{command}: give a catalog NAME (e.g. jansen) or a linkage FILE, or all of --crank "
                          "--coupler --rocker --ground")
-    return args.linkage is not None
+    named = args.linkage is not None
+    unused = sorted(given_options(args) & set(fourbar_only if named else linkage_only))
+    if unused:
+        option = "--" + unused[0].replace("_", "-")
+        raise ValueError(f"{command}: {option} does nothing "
+                         + (f"with a linkage NAME|FILE ({args.linkage}); it belongs to the four-bar form (--crank "
+                            "--coupler --rocker --ground)" if named else
+                            "in the four-bar form (--crank --coupler --rocker --ground); it belongs to a linkage "
+                            "NAME|FILE"))
+    return named
 
 
 def fourbar_lengths(args: argparse.Namespace) -> tuple[float, float, float, float]:
@@ -199,8 +278,8 @@ def add_sweep_options(parser: argparse.ArgumentParser, branch: bool = True) -> N
     parser.add_argument("--crank-speed", type=finite, default=0.0, metavar="W", help="rad/s (default 0)")
     parser.add_argument("--crank-accel", type=finite, default=0.0, metavar="AL",
                         help="rad/s^2, uniform from the first angle (default 0)")
-    parser.add_argument("--start", type=finite, help="first crank angle (default 0)")
-    parser.add_argument("--stop", type=finite, help="last crank angle, exclusive (default 360 deg)")
+    parser.add_argument("--start", type=angle, help="first crank angle (default 0)")
+    parser.add_argument("--stop", type=angle, help="last crank angle, exclusive (default 360 deg)")
     parser.add_argument("--step", type=finite, help="crank angle step (default 10 deg)")
     parser.add_argument("--angles", type=number_list, metavar="LIST", help="comma-separated crank angles")
     if branch:

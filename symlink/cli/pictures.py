@@ -11,8 +11,8 @@ import sys
 from typing import Sequence
 
 from ..angles import to_radians, wrap
-from .options import (add_branch_option, add_fourbar_lengths, add_units_option, assignments, branches, command_help,
-                      figure_path, finite, fourbar_lengths, fourbar_or_linkage, linkage_values, pair, whole)
+from .options import (add_branch_option, add_fourbar_lengths, add_units_option, angle, assignments, branches,
+                      command_help, figure_path, finite, fourbar_lengths, fourbar_or_linkage, linkage_values, pair, whole)
 from .output import note
 
 __all__ = ["register", "add_fourbar_plot_options", "write_fourbar_plots", "drawn_linkage"]
@@ -36,7 +36,7 @@ def drawn_linkage(args: argparse.Namespace):
 def _add_catalog_options(parser: argparse.ArgumentParser, what: str) -> None:
     parser.add_argument("--set", type=assignments("NAME=VALUE"), metavar="NAME=VALUE,...",
                         help="change example values (fixed angles in --units), e.g. --set a=20,b=66")
-    parser.add_argument("--angle", type=finite, metavar="A", help=f"{what} (in --units, default 0)")
+    parser.add_argument("--angle", type=angle, metavar="A", help=f"{what} (in --units, default 0)")
     parser.add_argument("--trace", type=lambda text: [n.strip() for n in text.split(",") if n.strip()],
                         default=None, metavar="POINTS", help="draw the paths of these points, e.g. --trace H")
     parser.add_argument("--unit", default=None, metavar="UNIT", help="length unit for the axis labels, e.g. mm")
@@ -80,7 +80,8 @@ def _coupler_point(args: argparse.Namespace) -> tuple[float, float] | None:
 
 def run_curve(args: argparse.Namespace) -> int:
     from ..plot import coupler_curve_figure, save_figure
-    if fourbar_or_linkage(args, "curve"):
+    if fourbar_or_linkage(args, "curve", linkage_only=("set", "angle", "trace", "unit"),
+                          fourbar_only=("coupler_point", "crank_angle")):
         return run_draw(args)
     point = _coupler_point(args)
     if point is None:
@@ -93,8 +94,15 @@ def run_curve(args: argparse.Namespace) -> int:
     return 0
 
 
+#: Frames a second an animation may ask for: a GIF keeps its frame times in hundredths of a second (at most 100 a
+#: second), and no screen shows more than a few hundred.
+MAX_FPS = 100.0
+
+
 def run_animate(args: argparse.Namespace) -> int:
     from ..plot.animation import animate
+    if not 0 < args.fps <= MAX_FPS:
+        raise ValueError(f"--fps must be above 0 and at most {MAX_FPS:g} frames a second, got {args.fps:g}")
     in_place = sys.stderr.isatty()
     every = 1 if in_place else max(1, args.frames // 4)
 
@@ -104,7 +112,8 @@ def run_animate(args: argparse.Namespace) -> int:
             print(f"{chr(13) if in_place else ''}symlink: rendered {done}/{total} frames", end=end,
                   file=sys.stderr, flush=True)
 
-    if fourbar_or_linkage(args, "animate"):
+    if fourbar_or_linkage(args, "animate", linkage_only=("set", "angle", "trace", "unit"),
+                          fourbar_only=("coupler_point",)):
         from ..plot.animation import animate_linkage
         linkage, values = drawn_linkage(args)
         trace = _default_trace(linkage) if args.trace is None else args.trace
@@ -222,7 +231,7 @@ def _add_curve_options(curve: argparse.ArgumentParser) -> None:
                        help="the four-bar's coupler point: distance from B, and angle from the coupler's direction B->C")
     _add_catalog_options(curve, "where the linkage is drawn (with NAME)")
     add_branch_option(curve, default="+1")
-    curve.add_argument("--crank-angle", type=finite, metavar="ANGLE",
+    curve.add_argument("--crank-angle", type=angle, metavar="ANGLE",
                        help="where the mechanism is drawn (default: 0, or the first reachable angle)")
     add_units_option(curve, "angles given")
     curve.add_argument("--out", type=figure_path, required=True, metavar="FILE", help=".png or .svg")
@@ -237,7 +246,7 @@ def _add_animate_options(animation: argparse.ArgumentParser) -> None:
     _add_catalog_options(animation, "where the input starts")
     add_branch_option(animation, both=False, default="+1")
     animation.add_argument("--frames", type=whole, default=FRAMES, help=f"frames in a turn (default {FRAMES})")
-    animation.add_argument("--fps", type=finite, default=10.0, help="frames per second (default 10)")
+    animation.add_argument("--fps", type=finite, default=10.0, help=f"frames per second (default 10, at most {MAX_FPS})")
     animation.add_argument("--coupler-point", type=pair("DIST,ANGLE"), metavar="DIST,ANGLE",
                            help="also draw a coupler point: distance from B, angle from the coupler's direction B->C")
     add_units_option(animation, "coupler point's angle")
@@ -250,7 +259,7 @@ def _add_view_options(view: argparse.ArgumentParser) -> None:
     view.add_argument("linkage", nargs="?", metavar="NAME|FILE", help="a catalog linkage or a linkage file")
     add_fourbar_lengths(view, defaults=SEED001, beside_linkage=True)
     _add_catalog_options(view, "the first input's initial value (with NAME)")
-    view.add_argument("--crank-angle", type=finite, default=0.0, metavar="ANGLE", help="initial (default 0)")
+    view.add_argument("--crank-angle", type=angle, default=0.0, metavar="ANGLE", help="initial (default 0)")
     view.add_argument("--crank-speed", type=finite, default=1.0, metavar="W", help="rad/s (default 1)")
     add_branch_option(view, both=False, default="+1")
     add_units_option(view, "--crank-angle and --angle")

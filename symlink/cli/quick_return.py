@@ -5,7 +5,7 @@ import argparse
 import json
 import math
 
-from .options import command_help, finite, pair
+from .options import angle, command_help, finite, pair
 from .output import note
 
 
@@ -21,9 +21,9 @@ def register(commands) -> None:
 def _add_options(command: argparse.ArgumentParser) -> None:
     from ..synthesis.quick_return import MAX_LINK_RATIO
     command.add_argument("--time-ratio", type=finite, required=True, metavar="TR", help="slow over quick stroke, >= 1")
-    command.add_argument("--stroke", type=finite, required=True, metavar="DEG", help="rocker swing, degrees")
+    command.add_argument("--stroke", type=angle, required=True, metavar="DEG", help="rocker swing, degrees")
     command.add_argument("--rocker", type=finite, required=True, metavar="L", help="rocker length")
-    command.add_argument("--rocker-min-angle", type=finite, default=90.0, metavar="DEG",
+    command.add_argument("--rocker-min-angle", type=angle, default=90.0, metavar="DEG",
                          help="rocker angle at its minimum position (default 90)")
     command.add_argument("--crank-pivot", type=pair("X,Y"), metavar="X,Y",
                          help="fix the crank pivot (the paper's procedure); default: the best one")

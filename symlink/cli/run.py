@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 import argparse
-import sys
 from typing import cast
 
 from .options import command_help
@@ -27,9 +26,10 @@ def _add_options(command: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Print the scene's outputs at each input angle and branch."""
-    from ..scene import angle_outputs, read_scene, scene_from_text
+    from ..files import read_stdin_text
+    from ..scene import MAX_SCENE_BYTES, angle_outputs, read_scene, scene_from_text
     if args.scene == "-":
-        found = scene_from_text(sys.stdin.read(), "<stdin>")
+        found = scene_from_text(read_stdin_text(MAX_SCENE_BYTES, "scene file"), "<stdin>")
     else:
         found = read_scene(args.scene)
     scene = found.scene

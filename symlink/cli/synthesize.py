@@ -28,7 +28,11 @@ from typing import Callable
 import numpy
 
 from ..angles import from_radians, to_radians, wrap
-from .options import (Parser, add_format_option, add_units_option, command_help, figure_path, finite, pair,
+from ..files import excerpt, read_input_text, read_stdin_text
+from ..input_sweep import MAX_ANGLE
+from ..limits import format_bytes
+from .budget import MEMORY_BUDGET, TIME_BUDGET, format_duration
+from .options import (Parser, add_format_option, add_units_option, angle, command_help, figure_path, finite, pair,
                       whole)
 from .output import json_number, note, print_rows
 
@@ -36,38 +40,66 @@ from .output import json_number, note, print_rows
 FUNCTION_COLUMNS = (("theta", "phi"),)
 PATH_COLUMNS = (("x", "y"), ("theta", "x", "y"))
 MOTION_COLUMNS = (("x", "y", "angle"),)
+#: The target columns that hold angles (the others are coordinates).
+ANGLE_COLUMNS = frozenset({"theta", "phi", "angle"})
 #: Most rows a target file may have.
 MAX_ROWS = 10_000
+#: Target files larger than this are refused unread (10,000 rows of three numbers fit in under 1 MB).
+MAX_TARGET_BYTES = 4 << 20
 #: Most linkage poses drawn by --plot (evenly chosen among the precision points).
 MAX_POSES = 12
+
+
+#: Target coordinates beyond this size, or non-zero below its inverse, are refused: a design's lengths are squared
+#: and multiplied in its equations, and 1e100 ** 3 is still a float.
+MAX_COORDINATE = 1e100
+
+
+def _check_target(value: float, column: str, where: str) -> None:
+    """``ValueError`` naming ``where`` for a target value that is not finite or out of range for its column."""
+    if not math.isfinite(value):
+        raise ValueError(f"{where}: {column} must be a finite number, got {value!r}")
+    if column in ANGLE_COLUMNS:
+        if abs(value) > MAX_ANGLE:
+            raise ValueError(f"{where}: {column} must be at most {MAX_ANGLE:g} in size (larger angles have lost "
+                             f"their precision), got {value:g}")
+    elif value != 0 and not 1 / MAX_COORDINATE <= abs(value) <= MAX_COORDINATE:
+        raise ValueError(f"{where}: {column} must be 0 or between {1 / MAX_COORDINATE:g} and {MAX_COORDINATE:g} in "
+                         f"size (rescale the targets), got {value:g}")
 
 
 def read_targets(path: str, allowed: tuple[tuple[str, ...], ...]) -> dict[str, numpy.ndarray]:
     """Columns of a csv file with one of the ``allowed`` headers, as float arrays; ``ValueError`` naming a bad line."""
     if path == "-":
-        text = sys.stdin.read()
+        text = read_stdin_text(MAX_TARGET_BYTES, "csv of targets")
     else:
-        with open(path, encoding="utf-8", newline="") as file:
-            text = file.read()
-    rows = [row for row in csv.reader(io.StringIO(text)) if any(cell.strip() for cell in row)]
+        text = read_input_text(path, MAX_TARGET_BYTES, "csv of targets")
+    expected = " or ".join(repr(",".join(a)) for a in allowed)
+    rows: list[tuple[int, list[str]]] = []  # (line of the file, cells), blank lines left out
+    reader = csv.reader(io.StringIO(text, newline=""))
+    try:
+        for row in reader:
+            if any(cell.strip() for cell in row):
+                rows.append((reader.line_num, row))
+                if len(rows) - 1 > MAX_ROWS:
+                    raise ValueError(f"{path}:{reader.line_num}: more than {MAX_ROWS:,} rows of targets")
+    except csv.Error as error:  # a NUL byte, a field beyond the csv module's limit
+        raise ValueError(f"{path}:{reader.line_num}: not a csv file: {error}") from None
     if not rows:
-        raise ValueError(f"{path}: no header row; expected columns {' or '.join(','.join(a) for a in allowed)}")
-    header = tuple(cell.strip().lower() for cell in rows[0])
+        raise ValueError(f"{path}: no header row; expected columns {expected}")
+    header = tuple(cell.strip().lower() for cell in rows[0][1])
     if header not in allowed:
-        raise ValueError(f"{path}: the header is {','.join(header)!r}; expected "
-                         f"{' or '.join(repr(','.join(a)) for a in allowed)}")
-    if len(rows) - 1 > MAX_ROWS:
-        raise ValueError(f"{path}: more than {MAX_ROWS} rows of targets")
+        raise ValueError(f"{path}:{rows[0][0]}: the header is {excerpt(','.join(header))}; expected {expected}")
     values = []
-    for number, row in enumerate(rows[1:], start=2):
+    for number, row in rows[1:]:
         if len(row) != len(header):
-            raise ValueError(f"{path}, line {number}: {len(row)} values, expected {len(header)} ({','.join(header)})")
+            raise ValueError(f"{path}:{number}: {len(row)} values, expected {len(header)} ({','.join(header)})")
         try:
             parsed = [float(cell) for cell in row]
         except ValueError:
-            raise ValueError(f"{path}, line {number}: not a number among {','.join(row)!r}") from None
-        if not all(math.isfinite(x) for x in parsed):
-            raise ValueError(f"{path}, line {number}: values must be finite numbers")
+            raise ValueError(f"{path}:{number}: not a number among {excerpt(','.join(row))}") from None
+        for name, value in zip(header, parsed):
+            _check_target(value, name, f"{path}:{number}")
         values.append(parsed)
     array = numpy.array(values, dtype=float).reshape(-1, len(header))
     return {name: array[:, k] for k, name in enumerate(header)}
@@ -160,7 +192,7 @@ def _register_path(kinds) -> None:
                          help="Grashof class (crank-turns: crank-rocker or double-crank; default any)")
     command.add_argument("--max-link-ratio", type=finite, default=20.0, metavar="R",
                          help="longest link at most R times the shortest (default 20)")
-    command.add_argument("--min-transmission", type=finite, default=0.0, metavar="ANGLE",
+    command.add_argument("--min-transmission", type=angle, default=0.0, metavar="ANGLE",
                          help="worst transmission angle over the crank's turn at least this (default 0)")
     command.add_argument("--seed", type=whole, default=0, help="seed of the atlas of starts (default 0)")
     add_units_option(command)
@@ -174,9 +206,34 @@ PATH_FIELDS = ["rank", "error", "x0", "y0", "frame", "crank", "coupler", "rocker
                "worst_transmission"]
 
 
+#: Seconds of path synthesis a point and a start, measured with a margin (40 random points, which no four-bar
+#: reaches, 8 starts: 23 s on a shared machine, every attempt run to its end); its memory grows with the square of
+#: the points (a Jacobian of the points by their crank angles), about 1.1 GB at 9,000 points a copy.
+PATH_SECONDS_PER_POINT_START = 0.1
+PATH_BYTES_PER_POINT_SQUARED = 100
+
+
+def _check_path_work(points: int, starts: int) -> None:
+    """``ValueError`` (one line) for a path synthesis beyond the command's memory or time (see :mod:`.budget`)."""
+    if starts < 1:
+        raise ValueError(f"--starts must be at least 1, got {starts}")
+    memory = points ** 2 * PATH_BYTES_PER_POINT_SQUARED
+    if memory > MEMORY_BUDGET:
+        fits = math.isqrt(MEMORY_BUDGET // PATH_BYTES_PER_POINT_SQUARED)
+        raise ValueError(f"a path synthesis of {points:,} points would need about {format_bytes(memory)} of memory "
+                         f"(at most {format_bytes(MEMORY_BUDGET)} a command); give at most {fits:,} points")
+    seconds = points * starts * PATH_SECONDS_PER_POINT_START
+    if seconds > TIME_BUDGET:
+        fits = int(TIME_BUDGET // (points * PATH_SECONDS_PER_POINT_START))
+        remedy = f"use --starts {fits:,} or fewer" if fits >= 1 else "give fewer points"
+        raise ValueError(f"a path synthesis of {points:,} points from {starts:,} starts could take about "
+                         f"{format_duration(seconds)} (at most {format_duration(TIME_BUDGET)} a command); {remedy}")
+
+
 def _run_path(args: argparse.Namespace) -> int:
     from ..synthesis.path import synthesize_path
     columns = read_targets(args.targets, PATH_COLUMNS)
+    _check_path_work(len(columns["x"]), args.starts)
     targets = numpy.stack([columns["x"], columns["y"]], axis=1)
     theta = numpy.asarray(to_radians(columns["theta"], args.units), dtype=float) if "theta" in columns else None
     designs = synthesize_path(targets, theta, starts=args.starts, designs=args.designs, grashof_class=args.grashof,
@@ -267,7 +324,7 @@ def _register_motion(kinds) -> None:
                          help="a moving pivot in pose 1 (give two)")
     command.add_argument("--fixed-pivot", type=pair("X,Y"), action="append", metavar="X,Y",
                          help="a fixed pivot (give two, three poses)")
-    command.add_argument("--rotation", type=finite, action="append", metavar="ANGLE",
+    command.add_argument("--rotation", type=angle, action="append", metavar="ANGLE",
                          help="a dyad's turn from pose 1 to pose 2 (give two, four poses)")
     command.add_argument("--offset", type=finite, action="append", metavar="L",
                          help="a fixed pivot's place along its bisector (give two, two poses)")

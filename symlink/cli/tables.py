@@ -40,8 +40,8 @@ import numpy
 
 from ..angles import from_radians, half_turn, to_radians, wrap
 from ..input_sweep import InputSweep, crank_speeds
-from .options import (add_fourbar_lengths, add_sweep_options, assignments, branches, command_help, finite, fourbar_lengths,
-                      input_sweep, linkage_values)
+from .options import (add_fourbar_lengths, add_sweep_options, angle, assignments, branches, command_help, finite,
+                      fourbar_lengths, input_sweep, linkage_values)
 from .output import RowWriter, TableAssembler, print_rows
 
 if TYPE_CHECKING:
@@ -168,7 +168,7 @@ def _add_options(command: argparse.ArgumentParser, table: Table) -> None:
                              help=f"{option.symbol} = {option.meaning}{default}")
     for x in linkage.inputs[1:]:
         role = label(linkage, x)
-        command.add_argument(f"--{role}-angle", type=finite, required=True, metavar="DEG",
+        command.add_argument(f"--{role}-angle", type=angle, required=True, metavar="DEG",
                              help=f"{x.name} = {role} angle when the crank is at 0 (in --units)")
         command.add_argument(f"--{role}-ratio", type=finite, default=0.0, metavar="R",
                              help=f"{x.name} = {role}-angle + R * crank: {role} turns R times as fast as the "
@@ -581,6 +581,9 @@ def run_generic_table(args: argparse.Namespace) -> int:
         raise ValueError(f"{linkage.name} has no input to sweep")
     if linkage.inputs[0].name in args.set:
         raise ValueError(f"--set: {linkage.inputs[0].name} is the swept input; give --start/--stop/--step or --angles")
+    if args.guess is not None and linkage.has_closed_form:
+        raise ValueError(f"--guess: {linkage.name} is solved in closed form, where --branch chooses the assembly; "
+                         "--guess is for linkages without a closed form")
     names = {s.name: s for s in linkage.parameters} | {x.name: x for x in linkage.inputs[1:]}
     missing = [name for name in names if name not in values]
     if missing:

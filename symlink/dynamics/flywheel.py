@@ -78,8 +78,17 @@ def _finite(value: Any, name: str, positive: bool = False) -> float:
     return value
 
 
+#: Complex terms of a series evaluated at once off the grid (16 MB): its memory stays bounded however many samples.
+SERIES_CHUNK = 1 << 20
+
+
 class _Periodic:
-    """A periodic function from equally spaced samples over one period, as a Fourier series."""
+    """A periodic function from equally spaced samples over one period, as a Fourier series.
+
+    On an equally spaced grid from 0 with at least as many points as samples (the samples' own
+    angles, a finer grid) the series is summed by an inverse FFT: O(N log N) time and O(N) memory.
+    Elsewhere (Newton steps, a few points) it is summed directly, a bounded chunk of points at a time.
+    """
 
     def __init__(self, samples: numpy.ndarray, period: float) -> None:
         self.count, self.period = len(samples), period
@@ -94,22 +103,48 @@ class _Periodic:
         return float(self.coefficients[0].real)
 
     def _series(self, x, coefficients) -> numpy.ndarray:
+        """``2 Re(sum of c_k e^(i w_k x)) - Re(c_0)`` at the points ``x``, ``SERIES_CHUNK`` terms at a time."""
         x = numpy.asarray(x, dtype=float)
-        phases = numpy.exp(1j * numpy.multiply.outer(x, self.wavenumbers))
-        terms = phases @ coefficients
-        return 2 * terms.real - coefficients[0].real
+        flat = x.reshape(-1)
+        rows = max(1, SERIES_CHUNK // len(coefficients))
+        terms = numpy.empty(len(flat))
+        for start in range(0, len(flat), rows):
+            phases = numpy.exp(1j * numpy.multiply.outer(flat[start:start + rows], self.wavenumbers))
+            terms[start:start + rows] = (phases @ coefficients).real
+        return (2 * terms - coefficients[0].real).reshape(x.shape)
+
+    def _on_grid(self, points: int, coefficients) -> numpy.ndarray:
+        """The series at ``points`` equally spaced angles ``period * j / points`` (``points`` at least the count)."""
+        size = points // 2 + 1
+        padded = numpy.zeros(size, dtype=complex)
+        padded[:len(coefficients)] = coefficients
+        if points % 2 == 0 and len(coefficients) == size:  # irfft counts the Nyquist term once, the series twice
+            padded[-1] = 2 * padded[-1].real
+        return numpy.fft.irfft(padded, n=points) * points
 
     def value(self, x) -> numpy.ndarray:
         return self._series(x, self.coefficients)
 
+    def value_on_grid(self, points: int) -> numpy.ndarray:
+        """:meth:`value` at ``points`` equally spaced angles from 0 over one period."""
+        return self._on_grid(points, self.coefficients)
+
     def slope(self, x) -> numpy.ndarray:
         return self._series(x, 1j * self.wavenumbers * self.coefficients)
 
+    def _integrated(self) -> numpy.ndarray:
+        k = self.wavenumbers[1:]
+        return numpy.concatenate([[0.0], self.coefficients[1:] / (1j * k)])
+
     def integral(self, x) -> numpy.ndarray:
         """``integral from 0 to x of (f - mean)``: periodic."""
-        k = self.wavenumbers[1:]
-        integrated = numpy.concatenate([[0.0], self.coefficients[1:] / (1j * k)])
+        integrated = self._integrated()
         return self._series(x, integrated) - self._series(0.0, integrated)
+
+    def integral_on_grid(self, points: int) -> numpy.ndarray:
+        """:meth:`integral` at ``points`` equally spaced angles from 0 over one period."""
+        integrated = self._integrated()
+        return self._on_grid(points, integrated) - self._series(0.0, integrated)
 
 
 @dataclass(frozen=True)
@@ -150,7 +185,7 @@ def energy_fluctuation(torque, period: float = 2 * math.pi) -> TorqueCycle:
     period = _finite(period, "period", positive=True)
     series = _Periodic(values, period)
     angles = numpy.arange(len(values)) * period / len(values)
-    energy = series.integral(angles)
+    energy = series.integral_on_grid(len(values))
     extremes = []
     for index in (int(numpy.argmax(energy)), int(numpy.argmin(energy))):
         x = float(angles[index])
@@ -230,8 +265,11 @@ class FlywheelSizing:
         solver = Solver(linkage, ["input_torque"])
         arguments = {name: value for name, value in self.dynamics.values.items() if name in solver.arguments}
         driven = linkage.inputs[0]
-        found = solver(**{driven.name: angles, rate(driven).name: self.mean_speed,
-                          acceleration(driven).name: 0.0, **arguments})
+        motion = {driven.name: angles, rate(driven).name: self.mean_speed, acceleration(driven).name: 0.0}
+        if rate(driven).name not in solver.arguments:  # a torque that no speed changes: nothing moving has mass
+            raise ValueError(f"{linkage.name} has no mass or moment of inertia that moves: a flywheel holds the speed "
+                             "of a linkage with inertia (give its bodies masses)")
+        found = solver(**{name: value for name, value in motion.items() if name in solver.arguments}, **arguments)
         if not numpy.all(found["assembled"]):
             first = float(angles[~numpy.asarray(found["assembled"])][0])
             raise ValueError(f"{linkage.name} cannot be assembled at crank angle {math.degrees(first):.6g} deg: "
@@ -263,8 +301,8 @@ class FlywheelSizing:
         """``M`` and the work at ``fine`` times the samples (made once a ``fine``)."""
         if fine not in self._fine:
             inertia_series, work_series = self._energy_terms()
-            angles = numpy.arange(fine * self.samples) * 2 * math.pi / (fine * self.samples)
-            self._fine[fine] = (inertia_series.value(angles), work_series.integral(angles))
+            points = fine * self.samples
+            self._fine[fine] = (inertia_series.value_on_grid(points), work_series.integral_on_grid(points))
         return self._fine[fine]
 
     def _energy_band(self, flywheel: float, fine: int = 8) -> tuple[SpeedBand, float]:
@@ -330,8 +368,9 @@ class FlywheelSizing:
             raise ValueError(f"the flywheel inertia must not be negative, got {flywheel!r}")
         _, constant = self._energy_band(flywheel)
         inertia_series, work_series = self._energy_terms()
-        angles = self.cycle.angles  # the start speed, and the time of one cycle, from the energy equation
-        speeds = numpy.sqrt((constant + 2 * work_series.integral(angles)) / (flywheel + inertia_series.value(angles)))
+        points = self.samples  # the start speed, and the time of one cycle, from the energy equation, at the samples
+        speeds = numpy.sqrt((constant + 2 * work_series.integral_on_grid(points))
+                            / (flywheel + inertia_series.value_on_grid(points)))
         period = float(numpy.mean(1.0 / speeds)) * 2 * math.pi
         parameters = {s.name: self.dynamics.values[s.name] for s in self.dynamics.linkage.parameters}
         dynamics = ForwardDynamics(self.dynamics.model, parameters, _branches(self.dynamics),

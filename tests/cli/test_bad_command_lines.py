@@ -1,7 +1,7 @@
 """Every bad command line ends in one line on stderr and a documented exit status, never a traceback.
 
-Exit status 2 for bad input, 1 for a file that cannot be written or read; the
-error is one line starting ``symlink: error:``, and nothing is left behind in
+Exit status 2 for bad input (an input file that cannot be read among it), 1 for a file that cannot be
+written; the error is one line starting ``symlink: error:``, and nothing is left behind in
 the folder the command was asked to write into.
 """
 from __future__ import annotations
@@ -107,7 +107,7 @@ CASES += [
     ("quick-return: pivot of three numbers", ["quick-return", "--time-ratio", "1.25", "--stroke", "40",
                                               "--rocker", "50", "--crank-pivot", "1,2,3"], 2),
     ("synthesize: no kind", ["synthesize"], 2),
-    ("synthesize: a file that is not there", ["synthesize", "path", "{tmp}/none.csv"], 1),
+    ("synthesize: a file that is not there", ["synthesize", "path", "{tmp}/none.csv"], 2),  # as a linkage or scene file
     ("synthesize: a plot of the wrong kind", ["synthesize", "function", "{tmp}/none.csv", "--plot", "{tmp}/f.gif"], 2),
     ("curve: no --out", ["curve", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80",
                          "--coupler-point", "40,30"], 2),

@@ -92,8 +92,8 @@ def test_function_three_points_and_table(tmp_path, capsys):
 BAD_FILES = [
     ("no header", "", "no header"),
     ("wrong header", "a,b\n1,2\n", "header"),
-    ("text value", "x,y\n1,2\n3,four\n", "line 3: not a number"),
-    ("short row", "x,y\n1,2\n3\n", "line 3: 1 values"),
+    ("text value", "x,y\n1,2\n3,four\n", ":3: not a number"),
+    ("short row", "x,y\n1,2\n3\n", ":3: 1 values"),
     ("nan", "x,y\n1,2\nnan,3\n", "finite"),
     ("too few points", "x,y\n1,2\n3,4\n5,6\n", "at least 4"),
     ("one point", "theta,x,y\n0,1,1\n10,1,1\n20,1,1\n", "same point"),
@@ -137,9 +137,11 @@ def test_bad_command_lines(arguments, message, capsys):
     assert_one_error_line(capsys.readouterr().err, message)
 
 
-def test_missing_file_is_exit_1(tmp_path, capsys):
-    assert main(["synthesize", "path", str(tmp_path / "none.csv")]) == 1
-    assert capsys.readouterr().err.startswith("symlink: error: cannot write or read")
+def test_missing_file_is_bad_input_with_the_path_and_the_reason(tmp_path, capsys):
+    """An input file that is not there is the user's mistake (exit 2, as for linkage and scene files)."""
+    assert main(["synthesize", "path", str(tmp_path / "none.csv")]) == 2
+    assert capsys.readouterr().err == (f"symlink: error: cannot read csv of targets {tmp_path / 'none.csv'}: "
+                                       "No such file or directory\n")
 
 
 # --- motion generation ------------------------------------------------------------------------

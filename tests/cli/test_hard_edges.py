@@ -1,0 +1,167 @@
+"""Hard edges of the command line: negative numbers as values, requests refused rather than bent, work and memory
+estimated before a command starts.  Each bad command line is one line of error and exit status 2."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from symlink.cli import main
+from symlink.input_sweep import crank_speeds
+
+FOURBAR = ["fourbar", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80"]
+
+
+def _one_error_line(err: str, *words: str) -> None:
+    assert err.count("\n") == 1 and err.startswith("symlink: error: ") and "Traceback" not in err, err
+    for word in words:
+        assert word in err, err
+
+
+# --- a crank turning clockwise and speeding up -------------------------------------------------------------------
+
+def test_a_clockwise_crank_speeding_up_reaches_each_angle_turning_clockwise():
+    """From 0 at -10.5 rad/s, -25 rad/s^2: 350 deg is reached after turning -10 deg (hand: w^2 = w0^2 + 2 al turned)."""
+    angles = np.radians([0.0, 350.0, 180.0, 10.0])
+    turned = np.radians([0.0, -10.0, -180.0, -350.0])
+    expected = -np.sqrt(10.5 ** 2 + 2 * -25.0 * turned)
+    assert crank_speeds(angles, -10.5, -25.0) == pytest.approx(expected, rel=1e-15)
+
+
+def test_a_counter_clockwise_crank_is_as_before():
+    angles = np.radians([0.0, 40.0, 80.0])
+    assert crank_speeds(angles, 10.5, 25.0) == pytest.approx(np.sqrt(10.5 ** 2 + 50.0 * angles), rel=1e-15)
+
+
+def test_a_clockwise_crank_slowing_down_still_stops():
+    with pytest.raises(ValueError, match="the crank stops"):
+        crank_speeds(np.radians(np.arange(0.0, 360.0, 10.0)), -1.0, 25.0)
+
+
+def test_the_clockwise_table_is_printed(capsys):
+    assert main([*FOURBAR, "--crank-speed", "-10.5", "--crank-accel", "-25", "--format", "csv"]) == 0
+    rows = capsys.readouterr().out.strip().splitlines()
+    assert len(rows) == 1 + 36 * 2
+
+
+# --- requests refused rather than bent, and work estimated before it starts: one line, exit 2 ---------------------
+
+FLYWHEEL = ["flywheel", "--crank", "0.2", "--coupler", "0.66", "--rocker", "0.56", "--ground", "0.8", "--rpm", "300",
+            "--coefficient", "0.05"]
+SWEEP = ["--scheduler", "synchronous", "--no-progress"]
+
+REFUSED = [
+    # (what, command line ({tmp} is a fresh folder), words of the one error line)
+    ("an option twice", [*FOURBAR, "--crank", "30"], "argument --crank: given twice"),
+    ("--set twice", ["analyze", "jansen", "--set", "a=1", "--set", "a=2"], "argument --set: given twice"),
+    ("a name twice in --set", ["analyze", "jansen", "--set", "a=1,a=2"], "'a' is given twice"),
+    ("--vary twice", ["sweep", "fourbar", "{tmp}/s", "--vary", "c=1:2", "--vary", "c=3:4", *SWEEP],
+     "argument --vary: given twice"),
+    ("a name twice in --vary", ["sweep", "fourbar", "{tmp}/s", "--vary", "c=1:2,c=3:4", *SWEEP], "'c' is given twice"),
+    ("--vary and --set of one name", ["sweep", "fourbar", "{tmp}/s", "--vary", "c=1:2", "--set", "c=3", *SWEEP],
+     "--vary and --set both give c"),
+    ("sweep of a two-input linkage", ["sweep", "fivebar", "{tmp}/s", "--vary", "a=1:2", *SWEEP],
+     "fivebar has 2 inputs (theta, psi) and a sweep turns the first only"),
+    ("analyze of a two-input linkage", ["analyze", "fivebar"], "fivebar has 2 inputs (theta, psi) and analyze"),
+    ("--guess on a closed form", ["table", "fourbar", "--guess", "beta=10", "--angles", "0"],
+     "--guess: fourbar is solved in closed form"),
+    ("draw at an angle of 1e300", ["draw", "fourbar", "--angle", "1e300", "--out", "{tmp}/d.png"],
+     "the angle 1e300 is more than 1e+09 in size"),
+    ("analyze lengths near 1e300", ["analyze", "--crank", "1e300", "--coupler", "66", "--rocker", "56",
+                                    "--ground", "80"], "1e300 is out of range"),
+    ("a length that underflows", [*FOURBAR[:-1], "1e-300"], "1e-300 is out of range"),
+    ("flywheel --rpm 1e-300", [*FLYWHEEL[:-4], "--rpm", "1e-300", "--coefficient", "0.05", "--masses", "1,2,1.5"],
+     "1e-300 is out of range"),
+    ("flywheel of no mass", [*FLYWHEEL, "--masses", "0,0,0"], "--masses 0,0,0 with no --inertias: the four-bar has no mass"),
+    ("flywheel of 10^7 samples", [*FLYWHEEL, "--masses", "1,2,1.5", "--samples", "10000000"],
+     "a flywheel of --samples 10000000 would need about 15 GB of memory"),
+    ("a sweep that would never end", ["sweep", "fourbar", "{tmp}/s", "--vary", "a=1:2,b=1:2,c=1:2", "--grid",
+                                      "1000000", *SWEEP], "a sweep of 1e+18 designs of 360 samples would take about"),
+    ("a sweep of too many chunks", ["sweep", "fourbar", "{tmp}/s", "--vary", "a=1:2", "--random", "100000000",
+                                    "--chunk", "1", *SWEEP], "a sweep of 100,000,000 chunks would need about 20 GB"),
+    ("analyze --output in the four-bar form", ["analyze", *FOURBAR[1:], "--output", "phi"],
+     "analyze: --output does nothing in the four-bar form"),
+    ("curve --coupler-point with a linkage", ["curve", "jansen", "--coupler-point", "1,2", "--out", "{tmp}/c.png"],
+     "curve: --coupler-point does nothing with a linkage NAME|FILE (jansen)"),
+    ("animate --trace in the four-bar form", ["animate", *FOURBAR[1:], "--trace", "C", "--out", "{tmp}/a.gif"],
+     "animate: --trace does nothing in the four-bar form"),
+    ("a sweep of huge chunks", ["sweep", "fourbar", "{tmp}/s", "--vary", "a=1:2,b=1:2", "--grid", "1000", "--chunk",
+                                "1000000", *SWEEP], "would need about 35 GB of memory at once"),
+]
+
+
+@pytest.mark.parametrize("argv, words", [pytest.param(a, w, id=what) for what, a, w in REFUSED])
+def test_refused_in_one_line_with_exit_2(argv, words, tmp_path, capsys):
+    argv = [word.replace("{tmp}", str(tmp_path)) for word in argv]
+    assert main(argv) == 2
+    out, err = capsys.readouterr()
+    _one_error_line(err, words)
+    assert out == "" and list(tmp_path.iterdir()) == []  # nothing started, nothing written
+
+
+@pytest.mark.parametrize("argv", [
+    [*FOURBAR, "--masses", "1,2,1.5", "--centres", "-0.1:0,0.3:0,0.2:0", "--angles", "0"],  # a negative first pair
+    ["analyze", "fivebar", "--set", "psi=10"],  # the second input held on purpose
+])
+def test_accepted(argv, capsys):
+    assert main(argv) == 0, capsys.readouterr().err
+
+
+@pytest.mark.parametrize("scale", ["1e-45", "1e45"])
+def test_lengths_near_the_bounds_give_the_seed_angles(scale, capsys):
+    """The seed 003 four-bar scaled by 1e+-45: its angles do not change (+1 branch: rocker 110.74 deg at 0)."""
+    lengths = [f"{n}{scale[1:]}" for n in ("20", "66", "56", "80")]
+    assert main(["fourbar", "--crank", lengths[0], "--coupler", lengths[1], "--rocker", lengths[2], "--ground",
+                 lengths[3], "--angles", "0", "--branch", "+1", "--format", "csv"]) == 0
+    row = capsys.readouterr().out.splitlines()[1].split(",")
+    assert float(row[3]) == pytest.approx(110.7424, abs=1e-4)
+
+
+def test_the_largest_flywheel_that_fits_is_what_the_refusal_suggests(capsys):
+    """The suggestion of a refusal is itself accepted by the estimate (not run: it would take minutes)."""
+    from symlink.cli.budget import require_budget
+    from symlink.cli.dynamics import FLYWHEEL_BYTES_PER_SAMPLE, FLYWHEEL_SECONDS, FLYWHEEL_SECONDS_PER_SAMPLE
+    with pytest.raises(ValueError) as caught:
+        require_budget(10 ** 7, FLYWHEEL_BYTES_PER_SAMPLE, FLYWHEEL_SECONDS_PER_SAMPLE, "x", "--samples",
+                       available=8 * 10 ** 9, fixed_seconds=FLYWHEEL_SECONDS)
+    suggested = int(str(caught.value).split("--samples ")[1].split(" ")[0].replace(",", ""))
+    require_budget(suggested, FLYWHEEL_BYTES_PER_SAMPLE, FLYWHEEL_SECONDS_PER_SAMPLE, "x", "--samples",
+                   available=8 * 10 ** 9, fixed_seconds=FLYWHEEL_SECONDS)
+    assert suggested * FLYWHEEL_BYTES_PER_SAMPLE <= 1.5e9
+
+
+def test_the_command_line_bound_is_the_linkage_file_bound():
+    from symlink.cli.options import MAX_MAGNITUDE
+    from symlink.linkage_file import MAX_MAGNITUDE as FILE_MAGNITUDE
+    assert MAX_MAGNITUDE == FILE_MAGNITUDE
+
+
+@pytest.mark.parametrize("rows, options, words", [
+    (9000, [], "a path synthesis of 9,000 points would need about 8.1 GB of memory"),
+    (4, ["--starts", "1000000000"], "a path synthesis of 4 points from 1,000,000,000 starts could take about"),
+    (4, ["--starts", "0"], "--starts must be at least 1"),
+])
+def test_path_synthesis_is_estimated_before_it_starts(rows, options, words, tmp_path, capsys):
+    path = tmp_path / "points.csv"
+    path.write_text("x,y\n" + "".join(f"{k},{(k * 7) % 5}\n" for k in range(rows)))
+    assert main(["synthesize", "path", str(path), *options]) == 2
+    _one_error_line(capsys.readouterr().err, words)
+
+
+@pytest.mark.parametrize("fps", ["1e49", "0", "-1", "101"])
+def test_animation_rates_beyond_a_gif(fps, tmp_path, capsys):
+    assert main(["animate", *FOURBAR[1:], "--frames", "3", "--fps", fps, "--out", str(tmp_path / "a.gif")]) == 2
+    _one_error_line(capsys.readouterr().err, "--fps must be above 0 and at most 100")
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("argv", [
+    ["analyze", "jansen", "--output", "x" * 100_000],
+    ["plan", "y" * 5000 + ".toml"],
+    ["fourbar", "--crank", "9" * 400, "--coupler", "66", "--rocker", "56", "--ground", "80"],
+])
+def test_hostile_text_is_cut_to_an_excerpt(argv, capsys):
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and len(err) < 1100 and "..." in err, err

@@ -330,9 +330,17 @@ def _fit_placement(problem: _Problem, z: numpy.ndarray, w: numpy.ndarray) -> tup
         return {"x0": float(shift.real), "y0": float(shift.imag), "angle": float(numpy.angle(factor)),
                 "scale": float(abs(factor))}, float(rms)
     placement = dict(fixed)
-    if "x0" in problem.frame or "y0" in problem.frame:  # the free shift: the mean offset of the placed points
-        offset = numpy.mean(w - (complex(fixed["x0"], fixed["y0"]) + fixed["scale"] * numpy.exp(
-            1j * fixed["angle"]) * z))
+    shift_free = "x0" in problem.frame or "y0" in problem.frame
+    dz, dw = (z - z.mean(), w - w.mean()) if shift_free else (z, w - complex(fixed["x0"], fixed["y0"]))
+    if "angle" in problem.frame:  # the best turn (Procrustes): the argument of the cross sum
+        placement["angle"] = float(numpy.angle(numpy.sum(numpy.conj(dz) * dw)))
+    if "scale" in problem.frame:  # the best scale along that turn
+        along = numpy.sum(numpy.conj(numpy.exp(1j * placement["angle"]) * dz) * dw).real
+        weight = numpy.sum(numpy.abs(dz) ** 2)
+        placement["scale"] = float(along / weight) if weight > 0 and along > 0 else fixed["scale"]
+    if shift_free:  # the free shift: the mean offset of the placed points
+        offset = numpy.mean(w - (complex(placement["x0"], placement["y0"]) + placement["scale"] * numpy.exp(
+            1j * placement["angle"]) * z))
         placement["x0"] += offset.real if "x0" in problem.frame else 0.0
         placement["y0"] += offset.imag if "y0" in problem.frame else 0.0
     placed = complex(placement["x0"], placement["y0"]) + placement["scale"] * numpy.exp(1j * placement["angle"]) * z
@@ -368,8 +376,7 @@ def _timed_starts(problem: _Problem, rng, count: int, given, branch_choice):
         if math.isfinite(rms):
             x = numpy.concatenate([free, [placement[name] for name in problem.frame]])
             fits.append((rms, x, branches, inputs.copy()))
-    fits.sort(key=lambda item: item[0])
-    return fits[:count]
+    return _ranked(fits, count, given, problem)
 
 
 def _untimed_starts(problem: _Problem, rng, count: int, given, branch_choice):
@@ -405,8 +412,15 @@ def _untimed_starts(problem: _Problem, rng, count: int, given, branch_choice):
             placement, angles = best[1]
             x = numpy.concatenate([free, [placement[name] for name in problem.frame]])
             fits.append((best[0], x, branches, angles))
-    fits.sort(key=lambda item: item[0])
-    return fits[:count]
+    return _ranked(fits, count, given, problem)
+
+
+def _ranked(fits: list, count: int, given: Mapping[str, float], problem: _Problem) -> list:
+    """The ``count`` closest fits, the user's own design (sampled first) kept first if it is feasible."""
+    first = fits[:1] if fits and all(name in given for name in problem.free) and numpy.array_equal(
+        fits[0][1][:len(problem.free)], [given[name] for name in problem.free]) else []
+    rest = sorted(fits[len(first):], key=lambda item: item[0])
+    return (first + rest)[:count]
 
 
 def _longest_run(ok: numpy.ndarray) -> tuple[int, int] | None:

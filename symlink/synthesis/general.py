@@ -67,8 +67,8 @@ _IDENTITY = {"x0": 0.0, "y0": 0.0, "angle": 0.0, "scale": 1.0}
 _PHASE = "input_phase"     # the parameter added to the input in the Jacobian's copy of the linkage
 _SAMPLED = 400             # random designs drawn for the starts
 _SWEEP = 96                # input values over a turn, for matching untimed targets by arc length
-_PHASES = 16               # untimed: starting positions along each swept curve ...
-_SPANS = (0.95, 0.75, 0.5, 0.3)  # ... and fractions of its arc length the targets are matched along
+_PHASES = 32               # untimed: starting positions along each swept curve ...
+_SPANS = tuple(numpy.linspace(0.1, 1.0, 19))  # ... and fractions of its arc length matched to the targets
 _PATH_SAMPLES = 24         # input values checked between consecutive targets by the verification
 
 
@@ -308,44 +308,42 @@ def path_residuals(linkage: Linkage, point: str | Sequence[str], targets: ArrayL
 
 # --- starts ------------------------------------------------------------------------------------------
 
-def _similarity(z: numpy.ndarray, w: numpy.ndarray):
-    """Best ``w ~ factor z + shift`` along the last axis (complex least squares): factor, shift, rms."""
-    zm, wm = z.mean(axis=-1, keepdims=True), w.mean(axis=-1, keepdims=True)
-    dz, dw = z - zm, w - wm
-    with numpy.errstate(all="ignore"):
-        factor = numpy.sum(numpy.conj(dz) * dw, axis=-1, keepdims=True) / numpy.sum(numpy.abs(dz) ** 2, axis=-1,
-                                                                                   keepdims=True)
-    shift = wm - factor * zm
-    rms = numpy.sqrt(numpy.mean(numpy.abs(factor * z + shift - w) ** 2, axis=-1))
-    return factor[..., 0], shift[..., 0], rms
+def _fit_placements(problem: _Problem, z: numpy.ndarray, w: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
+    """The free placement bringing each row of local points ``z`` (complex, M x N) closest to ``w`` (N).
 
-
-def _fit_placement(problem: _Problem, z: numpy.ndarray, w: numpy.ndarray) -> tuple[dict[str, float], float]:
-    """The free placement that brings local points ``z`` (complex) closest to ``w``, and the rms distance left."""
+    Returns ``(placements, rms)``: rows (x0, y0, angle, scale), fixed parts as given, and the rms
+    distance left.  All four free: the complex least-squares similarity; otherwise the best turn
+    (Procrustes), then the best scale along it, then the mean shift, for the parts that are free.
+    """
     fixed = problem.placement
-    if set(problem.frame) == set(FRAME_NAMES):
-        factor, shift, rms = _similarity(z, w)
-        if not (numpy.isfinite(rms) and abs(factor) > 0):
-            return {}, math.inf
-        return {"x0": float(shift.real), "y0": float(shift.imag), "angle": float(numpy.angle(factor)),
-                "scale": float(abs(factor))}, float(rms)
-    placement = dict(fixed)
+    rows = z.shape[0]
     shift_free = "x0" in problem.frame or "y0" in problem.frame
-    dz, dw = (z - z.mean(), w - w.mean()) if shift_free else (z, w - complex(fixed["x0"], fixed["y0"]))
-    if "angle" in problem.frame:  # the best turn (Procrustes): the argument of the cross sum
-        placement["angle"] = float(numpy.angle(numpy.sum(numpy.conj(dz) * dw)))
-    if "scale" in problem.frame:  # the best scale along that turn
-        along = numpy.sum(numpy.conj(numpy.exp(1j * placement["angle"]) * dz) * dw).real
-        weight = numpy.sum(numpy.abs(dz) ** 2)
-        placement["scale"] = float(along / weight) if weight > 0 and along > 0 else fixed["scale"]
-    if shift_free:  # the free shift: the mean offset of the placed points
-        offset = numpy.mean(w - (complex(placement["x0"], placement["y0"]) + placement["scale"] * numpy.exp(
-            1j * placement["angle"]) * z))
-        placement["x0"] += offset.real if "x0" in problem.frame else 0.0
-        placement["y0"] += offset.imag if "y0" in problem.frame else 0.0
-    placed = complex(placement["x0"], placement["y0"]) + placement["scale"] * numpy.exp(1j * placement["angle"]) * z
-    rms = float(numpy.sqrt(numpy.mean(numpy.abs(placed - w) ** 2)))
-    return placement, rms if math.isfinite(rms) else math.inf
+    origin = complex(fixed["x0"], fixed["y0"])
+    if shift_free:
+        dz, dw = z - z.mean(axis=-1, keepdims=True), (w - w.mean())[None, :]
+    else:
+        dz, dw = z, (w - origin)[None, :]
+    with numpy.errstate(all="ignore"):
+        cross = numpy.sum(numpy.conj(dz) * dw, axis=-1)
+        weight = numpy.sum(numpy.abs(dz) ** 2, axis=-1)
+        angle = numpy.angle(cross) if "angle" in problem.frame else numpy.full(rows, fixed["angle"])
+        along = (numpy.exp(-1j * angle) * cross).real
+        scale = (numpy.where((weight > 0) & (along > 0), along / weight, fixed["scale"])
+                 if "scale" in problem.frame else numpy.full(rows, fixed["scale"]))
+        turn = scale * numpy.exp(1j * angle)
+        shift = numpy.full(rows, origin)
+        if shift_free:
+            offset = numpy.mean(w[None, :] - (origin + turn[:, None] * z), axis=-1)
+            shift = shift + (offset.real if "x0" in problem.frame else 0.0) + (
+                1j * offset.imag if "y0" in problem.frame else 0.0)
+        rms = numpy.sqrt(numpy.mean(numpy.abs(shift[:, None] + turn[:, None] * z - w[None, :]) ** 2, axis=-1))
+    rms = numpy.where(numpy.isfinite(rms) & (scale > 0), rms, numpy.inf)
+    return numpy.stack([shift.real, shift.imag, angle, scale], axis=1), rms
+
+
+def _free_placement(problem: _Problem, row: numpy.ndarray) -> list[float]:
+    """The free parts of a placement row (x0, y0, angle, scale), in the order of ``problem.frame``."""
+    return [float(row[FRAME_NAMES.index(name)]) for name in problem.frame]
 
 
 def _sampled_designs(problem: _Problem, rng: numpy.random.Generator, count: int,
@@ -372,24 +370,32 @@ def _timed_starts(problem: _Problem, rng, count: int, given, branch_choice):
         local, _, ok = problem.local(design, inputs, branches)
         if not numpy.all(ok):
             continue
-        placement, rms = _fit_placement(problem, local[:, 0] + 1j * local[:, 1], w)
-        if math.isfinite(rms):
-            x = numpy.concatenate([free, [placement[name] for name in problem.frame]])
-            fits.append((rms, x, branches, inputs.copy()))
+        placements, rms = _fit_placements(problem, (local[:, 0] + 1j * local[:, 1])[None, :], w)
+        if math.isfinite(rms[0]):
+            x = numpy.concatenate([free, _free_placement(problem, placements[0])])
+            fits.append((float(rms[0]), x, branches, inputs.copy()))
     return _ranked(fits, count, given, problem)
 
 
 def _untimed_starts(problem: _Problem, rng, count: int, given, branch_choice):
-    """Designs whose swept path, matched to the targets by arc length (phases, spans, both ways), fits best."""
+    """Designs whose swept path, matched to the targets by arc length (phases, spans, both ways), fits best.
+
+    The input sweeps two turns; a design assembled over a whole turn is matched anywhere along
+    it (across the seam too), any other along its longest assembled stretch.
+    """
     w = problem.targets[:, 0] + 1j * problem.targets[:, 1]
     chords = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(w)))])
     fraction = chords / chords[-1] if chords[-1] > 0 else numpy.linspace(0.0, 1.0, len(w))
-    sweep = numpy.linspace(-math.pi, math.pi, _SWEEP + 1)
+    sweep = numpy.linspace(-math.pi, 3 * math.pi, 2 * _SWEEP + 1)
+    spans = numpy.array(_SPANS)
+    phases = numpy.linspace(0.0, 1.0, _PHASES, endpoint=False)
+    shapes = numpy.concatenate([fraction[None, :], 1.0 - fraction[None, :]])  # both ways along the curve
     fits = []
     for free, branches in _sampled_designs(problem, rng, _SAMPLED, given, branch_choice):
         design = {**problem.values, **dict(zip(problem.free, map(float, free)))}
         local, _, ok = problem.local(design, sweep, branches)
-        run = _longest_run(ok)
+        turning = bool(numpy.all(ok))
+        run = (0, len(sweep)) if turning else _longest_run(ok[:_SWEEP + 1])
         if run is None:
             continue
         start, stop = run
@@ -397,21 +403,17 @@ def _untimed_starts(problem: _Problem, rng, count: int, given, branch_choice):
         arc = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(z)))])
         if not arc[-1] > 0:
             continue
-        arc /= arc[-1]
-        best = (math.inf, None)
-        for span in _SPANS:
-            for phase in numpy.linspace(0.0, 1.0 - span, max(1, int(_PHASES * (1.0 - span)) + 1)):
-                for direction in (1, -1):
-                    where = phase + span * (fraction if direction > 0 else 1.0 - fraction)
-                    angles = numpy.interp(where, arc, q)
-                    zz = numpy.interp(angles, q, z.real) + 1j * numpy.interp(angles, q, z.imag)
-                    placement, rms = _fit_placement(problem, zz, w)
-                    if rms < best[0]:
-                        best = (rms, (placement, angles))
-        if best[1] is not None:
-            placement, angles = best[1]
-            x = numpy.concatenate([free, [placement[name] for name in problem.frame]])
-            fits.append((best[0], x, branches, angles))
+        arc /= arc[-1] / 2 if turning else arc[-1]  # a whole turn is 1: the second turn lets a match cross the seam
+        usable = spans[None, :, None, None] * shapes[None, None, :, :]  # (1, spans, 2, N)
+        origin = phases[:, None, None, None] * (1.0 if turning else (1.0 - spans)[None, :, None, None])
+        where = (origin + usable).reshape(-1, len(w))
+        angles = numpy.interp(where, arc, q)
+        zz = numpy.interp(angles, q, z.real) + 1j * numpy.interp(angles, q, z.imag)
+        placements, rms = _fit_placements(problem, zz, w)
+        k = int(numpy.argmin(rms))
+        if math.isfinite(rms[k]):
+            x = numpy.concatenate([free, _free_placement(problem, placements[k])])
+            fits.append((float(rms[k]), x, branches, angles[k]))
     return _ranked(fits, count, given, problem)
 
 

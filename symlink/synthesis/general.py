@@ -175,8 +175,9 @@ def _shifted(expr: sp.Expr, input_symbol: sp.Symbol, phase: sp.Symbol) -> sp.Exp
 def _shifted_sum(vectors: Vector | VectorSum | None, input_symbol: sp.Symbol, phase: sp.Symbol):
     if vectors is None:
         return None
-    return VectorSum(tuple((sign, Vector(_shifted(v.length, input_symbol, phase), _shifted(v.angle, input_symbol, phase),
-                                         v.name)) for sign, v in vectors.as_sum().terms))
+    return VectorSum(tuple((sign, Vector(_shifted(v.length, input_symbol, phase),
+                                         _shifted(v.angle, input_symbol, phase), v.name))
+                           for sign, v in vectors.as_sum().terms))
 
 
 @lru_cache(maxsize=32)
@@ -232,7 +233,7 @@ class _Problem:
 
     def local(self, design: Mapping[str, float], inputs: numpy.ndarray, branches: Mapping[str, int]):
         """Points (N, 2) in the linkage's frame, their Jacobian (N, 2, free + 1: the input last), feasibility (N)."""
-        given = {**design, _PHASE: 0.0, self.linkage.inputs[0].name: inputs,
+        given: dict[str, float | numpy.ndarray] = {**design, _PHASE: 0.0, self.linkage.inputs[0].name: inputs,
                  **{name: float(sign) for name, sign in branches.items()}}
         with numpy.errstate(all="ignore"):
             values, slopes, assembled = self.jacobian.arrays(*(given[name] for name in self.jacobian.arguments))
@@ -557,7 +558,7 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
         raise ValueError(f"placement gives values of {', '.join(FRAME_NAMES)} (scale positive), got {placement!r}")
     inputs = None if timed is None else numpy.asarray(timed, dtype=float)
     if inputs is not None and (inputs.shape != (len(points),) or not numpy.all(numpy.isfinite(inputs))):
-        raise ValueError(f"{len(points)} targets need {len(points)} finite input values, got {numpy.shape(timed)}")
+        raise ValueError(f"{len(points)} targets need {len(points)} finite input values, got shape {inputs.shape}")
     if inputs is None and len(points) < 3:
         raise ValueError("path synthesis without timing needs at least three targets")
     for name, sign in (branches or {}).items():

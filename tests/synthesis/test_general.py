@@ -106,8 +106,7 @@ def problem(kind: str, inputs: numpy.ndarray, seed: int = 3):
         assert abs(placed - complex(*target)) < 1e-12
     rng = numpy.random.default_rng(seed)
     start = {name: value * (1 + 0.04 * rng.uniform(-1, 1)) if name in free else value for name, value in truth.items()}
-    bounds = {name: (0.5 * truth[name], 1.5 * truth[name]) if truth[name] > 0 else (1.5 * truth[name], 0.5 * truth[name])
-              for name in free}
+    bounds = {name: tuple(sorted((0.5 * truth[name], 1.5 * truth[name]))) for name in free}
     return linkage, targets, start, bounds, branches
 
 

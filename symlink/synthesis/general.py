@@ -201,6 +201,27 @@ def _jacobian(linkage: Linkage, outputs: tuple[str, str], free: tuple[str, ...])
     return DesignJacobian(_phased(linkage), list(outputs), list(free) + [_PHASE])
 
 
+def _length_parameters(linkage: Linkage) -> set[str]:
+    """The parameters that are lengths: scaled by k together they scale every point by k (empty if not so).
+
+    The symbols of the vectors' lengths (loops and points), when every length is homogeneous of
+    degree one in them and none of them turns up in an angle or in an extra.
+    """
+    vectors = [v for loop in linkage.loops for _, v in loop.terms]
+    vectors += [v for sum_ in linkage.points.values() if sum_ is not None for _, v in sum_.as_sum().terms]
+    parameters = set(linkage.parameters)
+    symbols = set().union(*(v.length.free_symbols for v in vectors)) & parameters
+    factor = sp.Dummy("k", positive=True)
+    scaled = {symbol: factor * symbol for symbol in symbols}
+    for vector in vectors:
+        if vector.angle.free_symbols & symbols or sp.expand(vector.length.xreplace(scaled)
+                                                             - factor * vector.length) != 0:
+            return set()
+    if any(expr.free_symbols & symbols for expr in linkage.extras.values()):
+        return set()
+    return {symbol.name for symbol in symbols}
+
+
 # --- the problem -------------------------------------------------------------------------------------
 
 class _Problem:
@@ -220,6 +241,12 @@ class _Problem:
         self.jacobian = _jacobian(linkage, outputs, self.free)
         positive = {p.name for p in linkage.parameters if p.is_positive}
         self.positive = numpy.array([name in positive for name in self.free], dtype=bool)
+        lengths = _length_parameters(linkage)
+        #: Which free parameters are lengths: scaled together they scale the linkage's drawing.
+        self.lengths = numpy.array([name in lengths for name in self.free], dtype=bool)
+        #: Starts are fitted with a free scale, then the scale goes into the lengths: possible when every
+        #: length of the linkage is free and the scale is not.
+        self.absorbs = bool(lengths) and lengths <= set(self.free) and "scale" not in self.frame
 
     @property
     def width(self) -> int:
@@ -248,8 +275,22 @@ class _Problem:
         inside = numpy.all((free >= self.bounds[:, 0]) & (free <= self.bounds[:, 1]))
         return bool(inside and numpy.all(free[self.positive] > 0) and numpy.all(numpy.isfinite(x)))
 
-    def evaluate(self, x: numpy.ndarray, inputs: numpy.ndarray, branches: Mapping[str, int]):
-        """Residuals (2N) and Jacobian (2N, width + N: d/d each input value last), or None where infeasible."""
+    def projected(self, x: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
+        """``x`` with its free parameters clipped to their bounds, and which of its entries were outside."""
+        low = numpy.concatenate([self.bounds[:, 0], numpy.full(len(x) - len(self.free), -numpy.inf)])
+        high = numpy.concatenate([self.bounds[:, 1], numpy.full(len(x) - len(self.free), numpy.inf)])
+        return numpy.clip(x, low, high), (x < low) | (x > high)
+
+    def evaluate(self, x: numpy.ndarray, inputs: numpy.ndarray, branches: Mapping[str, int], project: bool = False):
+        """Residuals (2N) and Jacobian (2N, width + N: d/d each input value last), or None where infeasible.
+
+        ``project``: a design outside the bounds is evaluated at its projection onto them, and the
+        columns of the parameters held at a bound are zero (the residuals do not move with them),
+        so that a refinement slides along a bound instead of stopping at it.
+        """
+        outside = numpy.zeros(len(x), dtype=bool)
+        if project:
+            x, outside = self.projected(x)
         if not self.allowed(x):
             return None
         design, placement = self.split(x)
@@ -274,6 +315,8 @@ class _Problem:
         by_input = numpy.zeros((2 * count, count))
         by_input[numpy.arange(2 * count), numpy.repeat(numpy.arange(count), 2)] = moved[:, :, -1].ravel()
         residuals = ((placed - self.targets) / self.size).ravel()
+        if numpy.any(outside):
+            dense[:, outside[:self.width]] = 0.0
         return residuals, numpy.concatenate([dense, by_input], axis=1) / self.size
 
 
@@ -318,7 +361,8 @@ def _fit_placements(problem: _Problem, z: numpy.ndarray, w: numpy.ndarray) -> tu
     """
     fixed = problem.placement
     rows = z.shape[0]
-    shift_free = "x0" in problem.frame or "y0" in problem.frame
+    frame = set(problem.frame) | ({"scale"} if problem.absorbs else set())
+    shift_free = "x0" in frame or "y0" in frame
     origin = complex(fixed["x0"], fixed["y0"])
     if shift_free:
         dz, dw = z - z.mean(axis=-1, keepdims=True), (w - w.mean())[None, :]
@@ -327,24 +371,33 @@ def _fit_placements(problem: _Problem, z: numpy.ndarray, w: numpy.ndarray) -> tu
     with numpy.errstate(all="ignore"):
         cross = numpy.sum(numpy.conj(dz) * dw, axis=-1)
         weight = numpy.sum(numpy.abs(dz) ** 2, axis=-1)
-        angle = numpy.angle(cross) if "angle" in problem.frame else numpy.full(rows, fixed["angle"])
+        angle = numpy.angle(cross) if "angle" in frame else numpy.full(rows, fixed["angle"])
         along = (numpy.exp(-1j * angle) * cross).real
         scale = (numpy.where((weight > 0) & (along > 0), along / weight, fixed["scale"])
-                 if "scale" in problem.frame else numpy.full(rows, fixed["scale"]))
+                 if "scale" in frame else numpy.full(rows, fixed["scale"]))
         turn = scale * numpy.exp(1j * angle)
         shift = numpy.full(rows, origin)
         if shift_free:
             offset = numpy.mean(w[None, :] - (origin + turn[:, None] * z), axis=-1)
-            shift = shift + (offset.real if "x0" in problem.frame else 0.0) + (
-                1j * offset.imag if "y0" in problem.frame else 0.0)
+            shift = shift + (offset.real if "x0" in frame else 0.0) + (
+                1j * offset.imag if "y0" in frame else 0.0)
         rms = numpy.sqrt(numpy.mean(numpy.abs(shift[:, None] + turn[:, None] * z - w[None, :]) ** 2, axis=-1))
     rms = numpy.where(numpy.isfinite(rms) & (scale > 0), rms, numpy.inf)
     return numpy.stack([shift.real, shift.imag, angle, scale], axis=1), rms
 
 
-def _free_placement(problem: _Problem, row: numpy.ndarray) -> list[float]:
-    """The free parts of a placement row (x0, y0, angle, scale), in the order of ``problem.frame``."""
-    return [float(row[FRAME_NAMES.index(name)]) for name in problem.frame]
+def _start(problem: _Problem, free: numpy.ndarray, row: numpy.ndarray) -> numpy.ndarray | None:
+    """The unknowns of a start: free parameters and the free parts of a placement row (x0, y0, angle, scale).
+
+    A fitted scale the problem cannot move goes into the lengths (the drawing is the same);
+    None if they then leave their bounds.
+    """
+    free = numpy.array(free, dtype=float)
+    if problem.absorbs:
+        free[problem.lengths] *= row[3] / problem.placement["scale"]
+        if not problem.allowed(numpy.concatenate([free, numpy.zeros(len(problem.frame))])):
+            return None
+    return numpy.concatenate([free, [float(row[FRAME_NAMES.index(name)]) for name in problem.frame]])
 
 
 def _sampled_designs(problem: _Problem, rng: numpy.random.Generator, count: int,
@@ -372,8 +425,8 @@ def _timed_starts(problem: _Problem, rng, count: int, given, branch_choice):
         if not numpy.all(ok):
             continue
         placements, rms = _fit_placements(problem, (local[:, 0] + 1j * local[:, 1])[None, :], w)
-        if math.isfinite(rms[0]):
-            x = numpy.concatenate([free, _free_placement(problem, placements[0])])
+        x = _start(problem, free, placements[0])
+        if math.isfinite(rms[0]) and x is not None:
             fits.append((float(rms[0]), x, branches, inputs.copy()))
     return _ranked(fits, count, given, problem)
 
@@ -411,10 +464,11 @@ def _untimed_starts(problem: _Problem, rng, count: int, given, branch_choice):
         angles = numpy.interp(where, arc, q)
         zz = numpy.interp(angles, q, z.real) + 1j * numpy.interp(angles, q, z.imag)
         placements, rms = _fit_placements(problem, zz, w)
-        k = int(numpy.argmin(rms))
-        if math.isfinite(rms[k]):
-            x = numpy.concatenate([free, _free_placement(problem, placements[k])])
-            fits.append((float(rms[k]), x, branches, angles[k]))
+        for k in numpy.argsort(rms)[:4]:  # the best match that stays within the bounds
+            x = _start(problem, free, placements[k])
+            if math.isfinite(rms[k]) and x is not None:
+                fits.append((float(rms[k]), x, branches, angles[k]))
+                break
     return _ranked(fits, count, given, problem)
 
 
@@ -448,14 +502,14 @@ def _refine(problem: _Problem, x0: numpy.ndarray, branches: Mapping[str, int], i
     width = problem.width
     if problem.timed is not None:
         def residuals(x: numpy.ndarray):
-            found = problem.evaluate(x, inputs, branches)
+            found = problem.evaluate(x, inputs, branches, project=True)
             return None if found is None else (found[0], found[1][:, :width])
 
         result = _accelerated_levenberg_marquardt(residuals, x0.copy(), evaluations, tolerance)
         if result is None:
             return None
         x, cost, used = result
-        return x, inputs, cost, used
+        return problem.projected(x)[0], inputs, cost, used
     direction = 1.0 if inputs[-1] >= inputs[0] else -1.0
 
     def angles_of(y: numpy.ndarray) -> numpy.ndarray:
@@ -465,7 +519,7 @@ def _refine(problem: _Problem, x0: numpy.ndarray, branches: Mapping[str, int], i
         angles = angles_of(y)
         if abs(angles[-1] - angles[0]) >= 2 * math.pi:
             return None
-        found = problem.evaluate(y[:width], angles, branches)
+        found = problem.evaluate(y[:width], angles, branches, project=True)
         if found is None:
             return None
         r, jac = found
@@ -478,7 +532,7 @@ def _refine(problem: _Problem, x0: numpy.ndarray, branches: Mapping[str, int], i
     if result is None:
         return None
     y, cost, used = result
-    return y[:width], angles_of(y), cost, used
+    return problem.projected(y[:width])[0], angles_of(y), cost, used
 
 
 def _verify(problem: _Problem, x: numpy.ndarray, branches: Mapping[str, int], inputs: numpy.ndarray,

@@ -65,7 +65,7 @@ __all__ = ["PathSynthesis", "synthesize_path", "traced_points", "path_residuals"
 FRAME_NAMES = ("x0", "y0", "angle", "scale")
 _IDENTITY = {"x0": 0.0, "y0": 0.0, "angle": 0.0, "scale": 1.0}
 _PHASE = "input_phase"     # the parameter added to the input in the Jacobian's copy of the linkage
-_SAMPLED = 400             # random designs drawn for the starts
+_SAMPLED = 1500            # random designs drawn for the starts
 _SWEEP = 96                # input values over a turn, for matching untimed targets by arc length
 _PHASES = 32               # untimed: starting positions along each swept curve ...
 _SPANS = tuple(numpy.linspace(0.1, 1.0, 19))  # ... and fractions of its arc length matched to the targets
@@ -229,13 +229,18 @@ class _Problem:
 
     def __init__(self, linkage: Linkage, outputs: tuple[str, str], targets: numpy.ndarray,
                  free: Mapping[str, tuple[float, float]], values: Mapping[str, float], frame: Sequence[str],
-                 placement: Mapping[str, float], timed: numpy.ndarray | None) -> None:
+                 placement: Mapping[str, float], timed: numpy.ndarray | None,
+                 frame_bounds: Mapping[str, tuple[float, float]] | None = None) -> None:
         self.linkage, self.outputs, self.targets = linkage, outputs, targets
         self.size = _size(targets)
         self.free = tuple(free)
         self.bounds = numpy.array([free[name] for name in self.free], dtype=float).reshape(len(self.free), 2)
         self.values = dict(values)
         self.frame = tuple(frame)
+        #: Bounds of the free parameters, then of the free placement (unbounded unless ``frame_bounds`` says).
+        self.limits = numpy.concatenate([self.bounds, numpy.array(
+            [(frame_bounds or {}).get(name, (-numpy.inf, numpy.inf)) for name in self.frame],
+            dtype=float).reshape(len(self.frame), 2)])
         self.placement = {**_IDENTITY, **placement}
         self.timed = timed
         self.jacobian = _jacobian(linkage, outputs, self.free)
@@ -271,14 +276,14 @@ class _Problem:
         return points, jac, ok
 
     def allowed(self, x: numpy.ndarray) -> bool:
-        free = x[:len(self.free)]
-        inside = numpy.all((free >= self.bounds[:, 0]) & (free <= self.bounds[:, 1]))
-        return bool(inside and numpy.all(free[self.positive] > 0) and numpy.all(numpy.isfinite(x)))
+        bounded = x[:self.width]
+        inside = numpy.all((bounded >= self.limits[:, 0]) & (bounded <= self.limits[:, 1]))
+        return bool(inside and numpy.all(x[:len(self.free)][self.positive] > 0) and numpy.all(numpy.isfinite(x)))
 
     def projected(self, x: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
-        """``x`` with its free parameters clipped to their bounds, and which of its entries were outside."""
-        low = numpy.concatenate([self.bounds[:, 0], numpy.full(len(x) - len(self.free), -numpy.inf)])
-        high = numpy.concatenate([self.bounds[:, 1], numpy.full(len(x) - len(self.free), numpy.inf)])
+        """``x`` with its free parameters and placement clipped to their bounds, and which entries were outside."""
+        low = numpy.concatenate([self.limits[:, 0], numpy.full(len(x) - self.width, -numpy.inf)])
+        high = numpy.concatenate([self.limits[:, 1], numpy.full(len(x) - self.width, numpy.inf)])
         return numpy.clip(x, low, high), (x < low) | (x > high)
 
     def evaluate(self, x: numpy.ndarray, inputs: numpy.ndarray, branches: Mapping[str, int], project: bool = False):
@@ -390,44 +395,67 @@ def _start(problem: _Problem, free: numpy.ndarray, row: numpy.ndarray) -> numpy.
     """The unknowns of a start: free parameters and the free parts of a placement row (x0, y0, angle, scale).
 
     A fitted scale the problem cannot move goes into the lengths (the drawing is the same);
-    None if they then leave their bounds.
+    values outside the bounds are clipped to them; None if a length is then not positive.
     """
     free = numpy.array(free, dtype=float)
     if problem.absorbs:
         free[problem.lengths] *= row[3] / problem.placement["scale"]
-        if not problem.allowed(numpy.concatenate([free, numpy.zeros(len(problem.frame))])):
-            return None
-    return numpy.concatenate([free, [float(row[FRAME_NAMES.index(name)]) for name in problem.frame]])
+    x = numpy.concatenate([free, [float(row[FRAME_NAMES.index(name)]) for name in problem.frame]])
+    x = problem.projected(x)[0]  # a start outside the bounds: its nearest point within them
+    return x if problem.allowed(x) else None
 
 
-def _sampled_designs(problem: _Problem, rng: numpy.random.Generator, count: int,
-                     given: Mapping[str, float], branch_choice: Mapping[str, int] | None):
-    """The user's design first (if all free values are given), then random ones within the bounds."""
+def _sampled_designs(problem: _Problem, rng: numpy.random.Generator, count: int, given: Mapping[str, float],
+                     branch_choice: Mapping[str, int] | None) -> tuple[numpy.ndarray, list[dict[str, int]]]:
+    """Free parameters (rows) and branch signs: the user's design first (if all its free values are given),
+    then random ones uniform within the bounds, branches random unless fixed."""
     names = [s.name for s in problem.linkage.branches]
+    chosen = dict(branch_choice or {})
+    rows, signs = [], []
     if all(name in given for name in problem.free):
-        yield numpy.array([given[name] for name in problem.free]), {n: int((branch_choice or {}).get(n, 1))
-                                                                     for n in names}
+        rows.append([given[name] for name in problem.free])
+        signs.append({n: int(chosen.get(n, 1)) for n in names})
     low, high = problem.bounds[:, 0], problem.bounds[:, 1]
     for _ in range(count):
-        branches = {n: int(branch_choice[n]) if branch_choice and n in branch_choice else int(rng.choice([-1, 1]))
-                    for n in names}
-        yield rng.uniform(low, high), branches
+        rows.append(list(rng.uniform(low, high)))
+        signs.append({n: int(chosen[n]) if n in chosen else int(rng.choice([-1, 1])) for n in names})
+    return numpy.array(rows, dtype=float).reshape(len(rows), len(problem.free)), signs
+
+
+def _traced_batch(problem: _Problem, rows: numpy.ndarray, signs: list[dict[str, int]],
+                  inputs: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
+    """The point (complex, designs x inputs) of many designs at once, and where it is assembled off a toggle."""
+    given: dict[str, float | numpy.ndarray] = {**problem.values, _PHASE: 0.0,
+                                               problem.linkage.inputs[0].name: inputs[None, :]}
+    for k, name in enumerate(problem.free):
+        given[name] = rows[:, k:k + 1]
+    for symbol in problem.linkage.branches:
+        given[symbol.name] = numpy.array([[float(sign[symbol.name])] for sign in signs])
+    shape = (len(rows), len(inputs))
+    # every argument at the full shape: the generated arithmetic gathers some intermediates into arrays
+    arguments = [numpy.broadcast_to(numpy.asarray(given[name], dtype=float), shape)
+                 for name in problem.jacobian.arguments]
+    with numpy.errstate(all="ignore"):
+        values, slopes, assembled = problem.jacobian.arrays(*arguments)
+    z = numpy.broadcast_to(values[0], shape) + 1j * numpy.broadcast_to(values[1], shape)
+    ok = (numpy.broadcast_to(assembled, shape) & numpy.isfinite(z)
+          & numpy.all(numpy.isfinite(numpy.broadcast_to(slopes, slopes.shape[:2] + shape)), axis=(0, 1)))
+    return z, ok
 
 
 def _timed_starts(problem: _Problem, rng, count: int, given, branch_choice):
     inputs = problem.timed
     assert inputs is not None
     w = problem.targets[:, 0] + 1j * problem.targets[:, 1]
+    rows, signs = _sampled_designs(problem, rng, _SAMPLED, given, branch_choice)
+    z, ok = _traced_batch(problem, rows, signs, inputs)
+    placements, rms = _fit_placements(problem, numpy.where(ok, z, 0.0), w)
+    rms = numpy.where(numpy.all(ok, axis=1), rms, numpy.inf)
     fits = []
-    for free, branches in _sampled_designs(problem, rng, _SAMPLED, given, branch_choice):
-        design = {**problem.values, **dict(zip(problem.free, map(float, free)))}
-        local, _, ok = problem.local(design, inputs, branches)
-        if not numpy.all(ok):
-            continue
-        placements, rms = _fit_placements(problem, (local[:, 0] + 1j * local[:, 1])[None, :], w)
-        x = _start(problem, free, placements[0])
-        if math.isfinite(rms[0]) and x is not None:
-            fits.append((float(rms[0]), x, branches, inputs.copy()))
+    for k in numpy.flatnonzero(numpy.isfinite(rms)):
+        x = _start(problem, rows[k], placements[k])
+        if x is not None:
+            fits.append((float(rms[k]), x, signs[k], inputs.copy()))
     return _ranked(fits, count, given, problem)
 
 
@@ -444,16 +472,17 @@ def _untimed_starts(problem: _Problem, rng, count: int, given, branch_choice):
     spans = numpy.array(_SPANS)
     phases = numpy.linspace(0.0, 1.0, _PHASES, endpoint=False)
     shapes = numpy.concatenate([fraction[None, :], 1.0 - fraction[None, :]])  # both ways along the curve
+    rows, signs = _sampled_designs(problem, rng, _SAMPLED, given, branch_choice)
+    traced, assembled = _traced_batch(problem, rows, signs, sweep)
     fits = []
-    for free, branches in _sampled_designs(problem, rng, _SAMPLED, given, branch_choice):
-        design = {**problem.values, **dict(zip(problem.free, map(float, free)))}
-        local, _, ok = problem.local(design, sweep, branches)
+    for index in range(len(rows)):
+        ok = assembled[index]
         turning = bool(numpy.all(ok))
         run = (0, len(sweep)) if turning else _longest_run(ok[:_SWEEP + 1])
         if run is None:
             continue
         start, stop = run
-        q, z = sweep[start:stop], local[start:stop, 0] + 1j * local[start:stop, 1]
+        q, z = sweep[start:stop], traced[index, start:stop]
         arc = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(z)))])
         if not arc[-1] > 0:
             continue
@@ -465,9 +494,9 @@ def _untimed_starts(problem: _Problem, rng, count: int, given, branch_choice):
         zz = numpy.interp(angles, q, z.real) + 1j * numpy.interp(angles, q, z.imag)
         placements, rms = _fit_placements(problem, zz, w)
         for k in numpy.argsort(rms)[:4]:  # the best match that stays within the bounds
-            x = _start(problem, free, placements[k])
+            x = _start(problem, rows[index], placements[k])
             if math.isfinite(rms[k]) and x is not None:
-                fits.append((float(rms[k]), x, branches, angles[k]))
+                fits.append((float(rms[k]), x, signs[index], angles[k]))
                 break
     return _ranked(fits, count, given, problem)
 
@@ -563,7 +592,8 @@ def _verify(problem: _Problem, x: numpy.ndarray, branches: Mapping[str, int], in
 def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: ArrayLike,
                     free: Mapping[str, tuple[float, float]], *, values: Mapping[str, float] | None = None,
                     frame: Sequence[str] = FRAME_NAMES, placement: Mapping[str, float] | None = None,
-                    timed: ArrayLike | None = None, branches: Mapping[str, int] | None = None, starts: int = 8,
+                    frame_bounds: Mapping[str, tuple[float, float]] | None = None, timed: ArrayLike | None = None,
+                    branches: Mapping[str, int] | None = None, starts: int = 8,
                     seed: int | None = 0, evaluations: int = 2000, tolerance: float = 1e-15) -> PathSynthesis:
     """A design of ``linkage`` whose ``point`` passes through ``targets`` (rows x, y), verified.
 
@@ -571,7 +601,8 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
     each parameter that may change to its bounds ``(low, high)``; ``values`` gives every other
     parameter (and, if it gives the free ones too, that design is the first start).  ``frame``
     names the free parts of the placement (:data:`FRAME_NAMES`; ``()`` keeps the linkage where
-    it is), ``placement`` the values of the fixed ones (default no shift, no turn, scale 1).
+    it is), ``placement`` the values of the fixed ones (default no shift, no turn, scale 1),
+    ``frame_bounds`` optional bounds ``(low, high)`` of free ones (the pivot inside a box).
     ``timed`` is the input's value at each target, or None to find them too (reached in order).
     ``branches`` fixes branch signs by name (default: tried both ways across the starts).
     The ``starts`` closest feasible designs are refined with at most ``evaluations`` residual
@@ -621,8 +652,12 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
                              f"or -1; got {name!r}: {sign!r}")
     if starts < 1 or evaluations < 1:
         raise ValueError("starts and evaluations must be at least 1")
+    for name, bound in (frame_bounds or {}).items():
+        if name not in frame or not (float(bound[0]) < float(bound[1])):
+            raise ValueError(f"frame_bounds bounds free parts of the placement ({', '.join(frame) or 'none'}) "
+                             f"with low < high; got {name!r}: {bound!r}")
     problem = _Problem(linkage, names, points, {k: (float(v[0]), float(v[1])) for k, v in free.items()}, fixed,
-                       frame, fixed_placement, inputs)
+                       frame, fixed_placement, inputs, frame_bounds)
     rng = numpy.random.default_rng(seed)
     found = (_timed_starts if inputs is not None else _untimed_starts)(problem, rng, starts, given, branches)
     if not found:

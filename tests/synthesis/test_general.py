@@ -187,7 +187,7 @@ def test_unreachable_targets_report_their_error():
     assert found.error == pytest.approx(by_hand / size, rel=1e-12)
     # the least-squares optimum: a minimises sum |a e^{iq} - t|^2, a = mean of Re(conj(e^{iq}) t)
     best = numpy.mean([(complex(math.cos(q), -math.sin(q)) * complex(*t)).real for q, t in zip(inputs, targets)])
-    assert a == pytest.approx(best, rel=1e-9)
+    assert a == pytest.approx(best, rel=1e-7)  # the cost is quadratic there: flat to rounding within ~1e-8
 
 
 @pytest.mark.parametrize("change, message", [

@@ -395,13 +395,13 @@ def _start(problem: _Problem, free: numpy.ndarray, row: numpy.ndarray) -> numpy.
     """The unknowns of a start: free parameters and the free parts of a placement row (x0, y0, angle, scale).
 
     A fitted scale the problem cannot move goes into the lengths (the drawing is the same);
-    values outside the bounds are clipped to them; None if a length is then not positive.
+    a placement outside its bounds is clipped to them; None if a parameter is outside its bounds.
     """
     free = numpy.array(free, dtype=float)
     if problem.absorbs:
         free[problem.lengths] *= row[3] / problem.placement["scale"]
     x = numpy.concatenate([free, [float(row[FRAME_NAMES.index(name)]) for name in problem.frame]])
-    x = problem.projected(x)[0]  # a start outside the bounds: its nearest point within them
+    x[len(free):] = problem.projected(x)[0][len(free):]  # a placement outside its bounds: the nearest within
     return x if problem.allowed(x) else None
 
 

@@ -14,7 +14,7 @@ import numpy
 import pytest
 import sympy as sp
 
-from symlink.catalog import fourbar, slider_crank, watt2
+from symlink.catalog import EXAMPLE_VALUES, fourbar, jansen, slider_crank, watt2
 from symlink.linkage import Linkage
 from symlink.synthesis.general import FRAME_NAMES, path_residuals, synthesize_path, traced_points
 from symlink.vectors import Vector
@@ -57,8 +57,23 @@ def circle_left(B: complex, D: complex, b: float, c: float, sign: int) -> comple
     return B + unit * (along + 1j * sign * across)
 
 
+def jansen_foot(design: dict, q: float) -> complex:
+    """Jansen's foot H at crank angle q on the branches +1, by circle intersections (catalog's description)."""
+    B = design["m"] * complex(math.cos(q), math.sin(q))
+    D = complex(-design["a"], -design["l"])
+    C = circle_left(D, B, design["b"], design["j"], 1)  # C left of D -> B
+    F = circle_left(B, D, design["k"], design["c"], 1)  # F left of B -> D
+    phi = math.atan2((C - D).imag, (C - D).real)
+    E = D + design["d"] * complex(math.cos(phi + design["alpha"]), math.sin(phi + design["alpha"]))
+    G = circle_left(F, E, design["g"], design["f"], 1)  # G left of F -> E
+    eta = math.atan2((G - F).imag, (G - F).real)
+    return F + design["i"] * complex(math.cos(eta + design["gamma"]), math.sin(eta + design["gamma"]))
+
+
 def hand_point(kind: str, design: dict, q: float, branches: dict) -> complex:
     """The point P in the linkage's frame at input q, from the hand formulas."""
+    if kind == "jansen":
+        return jansen_foot(design, q)
     u, v = design["u"], design["v"]
     B = design["a"] * complex(math.cos(q), math.sin(q))
     if kind == "slider":  # offset = a sin q + b sin beta, the slider to the right (cos beta > 0)
@@ -93,6 +108,29 @@ PROBLEMS = {
                               v=0.7), ("f", "g", "gx", "gy", "u", "v"), {"branch_ABCD": 1, "branch_DEFG": 1}),
 }
 PLACEMENT = {"x0": 0.4, "y0": -1.1, "angle": 0.7, "scale": 1.0}
+
+
+@pytest.mark.parametrize("timed", [True, False])
+def test_jansen_foot_path_recovery(timed):
+    """Jansen's leg: six of its lengths recovered from its foot's path, its ground and crank kept (no placement)."""
+    linkage = jansen()
+    truth = dict(EXAMPLE_VALUES["jansen"])
+    branches = {s.name: 1 for s in linkage.branches}
+    inputs = numpy.linspace(-2.5, 2.5, 12)
+    targets = traced_points(linkage, "H", truth, inputs, branches)
+    for q, target in zip(inputs, targets):  # the targets agree with the hand formulas
+        assert abs(jansen_foot(truth, q) - complex(*target)) < 1e-9
+    free = ("b", "c", "d", "g", "i", "k")
+    rng = numpy.random.default_rng(11)
+    start = {name: value * (1 + 0.04 * rng.uniform(-1, 1)) if name in free else value for name, value in truth.items()}
+    bounds = {name: (0.7 * truth[name], 1.3 * truth[name]) for name in free}
+    found = synthesize_path(linkage, "H", targets, bounds, values=start, frame=(), timed=inputs if timed else None,
+                            branches=branches)
+    assert found.assembled, found.why
+    assert found.error < 1e-10
+    size = math.hypot(*(targets.max(axis=0) - targets.min(axis=0)))
+    worst = max(abs(jansen_foot(found.design, q) - complex(*t)) for q, t in zip(found.inputs, targets))
+    assert worst / size < 1e-10
 
 
 def problem(kind: str, inputs: numpy.ndarray, seed: int = 3):

@@ -222,6 +222,8 @@ def test_unreachable_targets_report_their_error():
     by_hand = max(abs(a * complex(math.cos(q), math.sin(q)) - complex(*t)) for q, t in zip(inputs, targets))
     size = math.hypot(2.0, 4.0)
     assert found.error > 0.1
+    shown = found._repr_html_()  # a notebook shows the record as a table: design, error, assembled, evaluations
+    assert all(f"<th>{field}</th>" in shown for field in ("design", "error", "assembled", "evaluations"))
     assert found.error == pytest.approx(by_hand / size, rel=1e-12)
     # the least-squares optimum: a minimises sum |a e^{iq} - t|^2, a = mean of Re(conj(e^{iq}) t)
     best = numpy.mean([(complex(math.cos(q), -math.sin(q)) * complex(*t)).real for q, t in zip(inputs, targets)])

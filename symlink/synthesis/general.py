@@ -593,7 +593,7 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
                     free: Mapping[str, tuple[float, float]], *, values: Mapping[str, float] | None = None,
                     frame: Sequence[str] = FRAME_NAMES, placement: Mapping[str, float] | None = None,
                     frame_bounds: Mapping[str, tuple[float, float]] | None = None, timed: ArrayLike | None = None,
-                    branches: Mapping[str, int] | None = None, starts: int = 8,
+                    branches: Mapping[str, int] | None = None, starts: int = 16,
                     seed: int | None = 0, evaluations: int = 2000, tolerance: float = 1e-15) -> PathSynthesis:
     """A design of ``linkage`` whose ``point`` passes through ``targets`` (rows x, y), verified.
 

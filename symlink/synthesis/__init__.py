@@ -8,6 +8,10 @@
 * :mod:`symlink.synthesis.path` puts a coupler point through N points, with or without
   timing, by least squares with the exact Jacobian of the closed form (SciPy, the
   ``synthesis`` extra), with constraints enforced;
+* :mod:`symlink.synthesis.general` puts a named point of any one-input linkage with a
+  closed form (catalog entry or linkage file) through N points, with or without timing,
+  its free parameters within bounds and its placement free or fixed, by the exact
+  Jacobian of the generated sensitivities, verified by the linkage's generated solver;
 * :mod:`symlink.synthesis.motion` guides a coupler through given poses (motion
   generation by Burmester theory).
 """

@@ -1,0 +1,681 @@
+"""Path generation for any one-input linkage: a named point through given points, by exact gradients.
+
+:mod:`symlink.synthesis.path` is written around the four-bar's nine dimensions; here the
+linkage is any one with one input and a closed form (a catalog entry or a linkage file).  The
+user names the point that traces the path, the parameters that are free (each with bounds), and
+which parts of the frame placement are free: the traced point, in the linkage's own frame
+``p``, is placed in the plane as ``(x0, y0) + scale * R(angle) p``.
+
+* With timing (``timed``: the input's value at each target) the unknowns are the free
+  parameters and the free placement.
+* Without (``timed=None``) the input values are unknowns too, written as the first value and
+  squared steps to the next (``q_i = q_1 + direction * sum(s_k^2)``), so the targets are
+  reached in order, the input moving one way.
+
+The residuals are the placed point minus the targets over the targets' size.  Their exact
+Jacobian: the free parameters' columns come from the generated sensitivities
+(:class:`symlink.design_jacobian.DesignJacobian`) of a copy of the linkage whose input is
+shifted by a parameter ``input_phase``; held at zero, the derivative by that phase is the
+derivative by the input (the point's rate along its path), which the untimed unknowns need by
+the chain rule.  The placement's columns are written by hand.  The refinement is the
+Levenberg-Marquardt with geodesic acceleration of the four-bar
+(:func:`symlink.synthesis.path._accelerated_levenberg_marquardt`), which never accepts an
+infeasible trial (outside the bounds, not assembled, or at a toggle).
+
+Starts are the linkage's own feasible designs: random free parameters within their bounds and
+random branch signs, kept if assembled at every target input (timed) or over the input sweep
+the targets are matched along by arc length (untimed); the free placement of each is the best
+similarity fit of its points to the targets.  The closest are refined, and the best refined
+design is verified afresh with the generated solver of the linkage itself (not the Jacobian's
+code): assembled at every target, and between consecutive targets the input moves without
+leaving the assembly or passing a toggle, so the whole path is on one branch.
+
+>>> from symlink.catalog import slider_crank
+>>> linkage = slider_crank()
+>>> truth = {"a": 1.3, "b": 4.1, "offset": 0.7}
+>>> inputs = numpy.linspace(0.0, 2.5, 6)
+>>> targets = traced_points(linkage, "B", truth, inputs)  # the crank pin: a circle of radius a
+>>> found = synthesize_path(linkage, "B", targets, {"a": (0.5, 2.0)}, values={"b": 4.1, "offset": 0.7},
+...                         frame=(), timed=inputs)
+>>> found.error < 1e-10, round(found.design["a"], 9)
+(True, 1.3)
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import lru_cache
+from typing import Mapping, Sequence
+
+import numpy
+import sympy as sp
+from numpy.typing import ArrayLike
+
+from ..design_jacobian import DesignJacobian
+from ..display import record_html
+from ..linkage import Linkage
+from ..loops import Loop
+from ..solver import Solver
+from ..vectors import Vector, VectorSum
+from .path import _accelerated_levenberg_marquardt
+
+__all__ = ["PathSynthesis", "synthesize_path", "traced_points", "path_residuals", "FRAME_NAMES"]
+
+#: The placement of the linkage's frame in the plane: pivot shift, turn and scale.
+FRAME_NAMES = ("x0", "y0", "angle", "scale")
+_IDENTITY = {"x0": 0.0, "y0": 0.0, "angle": 0.0, "scale": 1.0}
+_PHASE = "input_phase"     # the parameter added to the input in the Jacobian's copy of the linkage
+_SAMPLED = 1500            # random designs drawn for the starts
+_SWEEP = 96                # input values over a turn, for matching untimed targets by arc length
+_PHASES = 32               # untimed: starting positions along each swept curve ...
+_SPANS = tuple(numpy.linspace(0.1, 1.0, 19))  # ... and fractions of its arc length matched to the targets
+_PATH_SAMPLES = 24         # input values checked between consecutive targets by the verification
+
+
+@dataclass(frozen=True)
+class PathSynthesis:
+    """A synthesised design: parameters, placement, branches, the input at each target, and its errors.
+
+    ``design`` holds every parameter of the linkage (free and fixed), ``placement`` the frame
+    (``x0, y0, angle, scale``), ``inputs`` the input's value at each target.  ``errors`` are the
+    distances from each target to the placed point, from the linkage's own generated solver;
+    ``error`` the largest over the targets' size (the diagonal of their bounding box);
+    ``assembled`` whether the verification passed (every target reached on one branch, no toggle
+    between them); ``evaluations`` the residual evaluations spent.
+    """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
+
+    linkage: str
+    point: tuple[str, str]
+    design: dict[str, float]
+    placement: dict[str, float]
+    branches: dict[str, int]
+    inputs: tuple[float, ...]
+    errors: tuple[float, ...] = ()
+    error: float = math.nan
+    assembled: bool = False
+    evaluations: int = 0
+    why: str = field(default="", repr=False)
+
+
+def _point_outputs(linkage: Linkage, point: str | Sequence[str]) -> tuple[str, str]:
+    names = (f"{point}_x", f"{point}_y") if isinstance(point, str) else tuple(point)
+    if len(names) != 2:
+        raise ValueError(f"the traced point is a point name or two output names (x, y), got {point!r}")
+    for name in names:
+        linkage.output(name)  # ValueError naming the outputs there are
+    return names[0], names[1]
+
+
+def _targets(targets: ArrayLike) -> numpy.ndarray:
+    array = numpy.asarray(targets, dtype=float)
+    if array.ndim != 2 or array.shape[1] != 2 or len(array) < 2:
+        raise ValueError(f"the targets must be at least two rows of (x, y), got shape {array.shape}")
+    if not numpy.all(numpy.isfinite(array)):
+        raise ValueError("the targets must be finite numbers")
+    return array
+
+
+def _size(targets: numpy.ndarray) -> float:
+    return float(numpy.hypot(*(targets.max(axis=0) - targets.min(axis=0))))
+
+
+def _placed(local: numpy.ndarray, placement: Mapping[str, float]) -> numpy.ndarray:
+    """Points (..., 2) of the linkage's frame placed in the plane: ``(x0, y0) + scale R(angle) p``."""
+    c, s = math.cos(placement["angle"]), math.sin(placement["angle"])
+    k = placement["scale"]
+    x, y = local[..., 0], local[..., 1]
+    return numpy.stack([placement["x0"] + k * (c * x - s * y), placement["y0"] + k * (s * x + c * y)], axis=-1)
+
+
+def traced_points(linkage: Linkage, point: str | Sequence[str], values: Mapping[str, float], inputs: ArrayLike,
+                  branches: Mapping[str, int] | None = None,
+                  placement: Mapping[str, float] | None = None) -> numpy.ndarray:
+    """The point at each input as rows (x, y), placed, from the linkage's generated solver; NaN where not assembled.
+
+    >>> from symlink.catalog import fourbar
+    >>> traced_points(fourbar(), "B", {"a": 2.0, "b": 6.0, "c": 5.0, "d": 7.0}, [0.0], placement={"scale": 2.0})
+    array([[4., 0.]])
+    """
+    names = _point_outputs(linkage, point)
+    solved = _solver(linkage, names)(**_arguments(linkage, values, branches), **{linkage.inputs[0].name: numpy.asarray(
+        inputs, dtype=float)})
+    ok = numpy.asarray(solved["assembled"])
+    local = numpy.stack([numpy.where(ok, solved[names[0]], numpy.nan), numpy.where(ok, solved[names[1]], numpy.nan)],
+                        axis=-1)
+    return _placed(local, {**_IDENTITY, **(placement or {})})
+
+
+def _arguments(linkage: Linkage, values: Mapping[str, float], branches: Mapping[str, int] | None) -> dict:
+    known = {p.name for p in linkage.parameters}
+    unknown = set(values) - known
+    if unknown:
+        raise ValueError(f"{linkage.name} has no parameter {sorted(unknown)[0]!r}; it has {', '.join(sorted(known))}")
+    missing = known - set(values)
+    if missing:
+        raise ValueError(f"give a value for each parameter of {linkage.name}: {', '.join(sorted(missing))} missing")
+    arguments: dict[str, object] = {name: float(value) for name, value in values.items()}
+    for symbol in linkage.branches:
+        arguments[symbol.name] = int((branches or {}).get(symbol.name, 1))
+    return arguments
+
+
+@lru_cache(maxsize=32)
+def _solver(linkage: Linkage, outputs: tuple[str, ...]) -> Solver:
+    return Solver(linkage, list(outputs))
+
+
+# --- the Jacobian's linkage: the input shifted by a parameter ---------------------------------------
+
+def _shifted(expr: sp.Expr, input_symbol: sp.Symbol, phase: sp.Symbol) -> sp.Expr:
+    return sp.sympify(expr).xreplace({input_symbol: input_symbol + phase})
+
+
+def _shifted_sum(vectors: Vector | VectorSum | None, input_symbol: sp.Symbol, phase: sp.Symbol):
+    if vectors is None:
+        return None
+    return VectorSum(tuple((sign, Vector(_shifted(v.length, input_symbol, phase),
+                                         _shifted(v.angle, input_symbol, phase), v.name))
+                           for sign, v in vectors.as_sum().terms))
+
+
+@lru_cache(maxsize=32)
+def _phased(linkage: Linkage) -> Linkage:
+    """The linkage with its input ``q`` replaced by ``q + input_phase``: d/d(input_phase) at 0 is d/dq."""
+    (input_symbol,) = linkage.inputs
+    phase = sp.Symbol(_PHASE, real=True)
+    taken = {s.name for s in linkage.parameters + linkage.coordinates}
+    if _PHASE in taken:
+        raise ValueError(f"{linkage.name} already has a symbol named {_PHASE!r}, which path synthesis needs")
+    loops = [Loop(_shifted_sum(loop.vectors, input_symbol, phase), name=loop.name) for loop in linkage.loops]
+    return Linkage(f"{linkage.name}_phased", loops, inputs=[input_symbol], unknowns=list(linkage.unknowns),
+                   parameters=list(linkage.parameters) + [phase],
+                   points={k: _shifted_sum(v, input_symbol, phase) for k, v in linkage.points.items()},
+                   roles=dict(linkage.roles),
+                   extras={k: _shifted(v, input_symbol, phase) for k, v in linkage.extras.items()})
+
+
+@lru_cache(maxsize=32)
+def _jacobian(linkage: Linkage, outputs: tuple[str, str], free: tuple[str, ...]) -> DesignJacobian:
+    return DesignJacobian(_phased(linkage), list(outputs), list(free) + [_PHASE])
+
+
+def _length_parameters(linkage: Linkage) -> set[str]:
+    """The parameters that are lengths: scaled by k together they scale every point by k (empty if not so).
+
+    The symbols of the vectors' lengths (loops and points), when every length is homogeneous of
+    degree one in them and none of them turns up in an angle or in an extra.
+    """
+    vectors = [v for loop in linkage.loops for _, v in loop.terms]
+    vectors += [v for sum_ in linkage.points.values() if sum_ is not None for _, v in sum_.as_sum().terms]
+    parameters = set(linkage.parameters)
+    symbols = set().union(*(v.length.free_symbols for v in vectors)) & parameters
+    factor = sp.Dummy("k", positive=True)
+    scaled = {symbol: factor * symbol for symbol in symbols}
+    for vector in vectors:
+        if vector.angle.free_symbols & symbols or sp.expand(vector.length.xreplace(scaled)
+                                                             - factor * vector.length) != 0:
+            return set()
+    if any(expr.free_symbols & symbols for expr in linkage.extras.values()):
+        return set()
+    return {symbol.name for symbol in symbols}
+
+
+# --- the problem -------------------------------------------------------------------------------------
+
+class _Problem:
+    """Residuals and their exact Jacobian for one linkage, point, targets and choice of free names."""
+
+    def __init__(self, linkage: Linkage, outputs: tuple[str, str], targets: numpy.ndarray,
+                 free: Mapping[str, tuple[float, float]], values: Mapping[str, float], frame: Sequence[str],
+                 placement: Mapping[str, float], timed: numpy.ndarray | None,
+                 frame_bounds: Mapping[str, tuple[float, float]] | None = None) -> None:
+        self.linkage, self.outputs, self.targets = linkage, outputs, targets
+        self.size = _size(targets)
+        self.free = tuple(free)
+        self.bounds = numpy.array([free[name] for name in self.free], dtype=float).reshape(len(self.free), 2)
+        self.values = dict(values)
+        self.frame = tuple(frame)
+        #: Bounds of the free parameters, then of the free placement (unbounded unless ``frame_bounds`` says).
+        self.limits = numpy.concatenate([self.bounds, numpy.array(
+            [(frame_bounds or {}).get(name, (-numpy.inf, numpy.inf)) for name in self.frame],
+            dtype=float).reshape(len(self.frame), 2)])
+        self.placement = {**_IDENTITY, **placement}
+        self.timed = timed
+        self.jacobian = _jacobian(linkage, outputs, self.free)
+        positive = {p.name for p in linkage.parameters if p.is_positive}
+        self.positive = numpy.array([name in positive for name in self.free], dtype=bool)
+        lengths = _length_parameters(linkage)
+        #: Which free parameters are lengths: scaled together they scale the linkage's drawing.
+        self.lengths = numpy.array([name in lengths for name in self.free], dtype=bool)
+        #: Starts are fitted with a free scale, then the scale goes into the lengths: possible when every
+        #: length of the linkage is free and the scale is not.
+        self.absorbs = bool(lengths) and lengths <= set(self.free) and "scale" not in self.frame
+
+    @property
+    def width(self) -> int:
+        """Unknowns besides the input values: free parameters, then free placement."""
+        return len(self.free) + len(self.frame)
+
+    def split(self, x: numpy.ndarray) -> tuple[dict[str, float], dict[str, float]]:
+        design = {**self.values, **{name: float(v) for name, v in zip(self.free, x[:len(self.free)])}}
+        placement = {**self.placement, **{name: float(v) for name, v in zip(self.frame, x[len(self.free):self.width])}}
+        return design, placement
+
+    def local(self, design: Mapping[str, float], inputs: numpy.ndarray, branches: Mapping[str, int]):
+        """Points (N, 2) in the linkage's frame, their Jacobian (N, 2, free + 1: the input last), feasibility (N)."""
+        given: dict[str, float | numpy.ndarray] = {**design, _PHASE: 0.0, self.linkage.inputs[0].name: inputs,
+                 **{name: float(sign) for name, sign in branches.items()}}
+        with numpy.errstate(all="ignore"):
+            values, slopes, assembled = self.jacobian.arrays(*(given[name] for name in self.jacobian.arguments))
+        points = numpy.moveaxis(values, 0, -1).reshape(len(inputs), 2)
+        jac = numpy.moveaxis(slopes, -1, 0).reshape(len(inputs), 2, len(self.free) + 1)
+        ok = (numpy.broadcast_to(assembled, inputs.shape) & numpy.all(numpy.isfinite(jac), axis=(1, 2))
+              & numpy.all(numpy.isfinite(points), axis=1))
+        return points, jac, ok
+
+    def allowed(self, x: numpy.ndarray) -> bool:
+        bounded = x[:self.width]
+        inside = numpy.all((bounded >= self.limits[:, 0]) & (bounded <= self.limits[:, 1]))
+        return bool(inside and numpy.all(x[:len(self.free)][self.positive] > 0) and numpy.all(numpy.isfinite(x)))
+
+    def projected(self, x: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
+        """``x`` with its free parameters and placement clipped to their bounds, and which entries were outside."""
+        low = numpy.concatenate([self.limits[:, 0], numpy.full(len(x) - self.width, -numpy.inf)])
+        high = numpy.concatenate([self.limits[:, 1], numpy.full(len(x) - self.width, numpy.inf)])
+        return numpy.clip(x, low, high), (x < low) | (x > high)
+
+    def evaluate(self, x: numpy.ndarray, inputs: numpy.ndarray, branches: Mapping[str, int], project: bool = False):
+        """Residuals (2N) and Jacobian (2N, width + N: d/d each input value last), or None where infeasible.
+
+        ``project``: a design outside the bounds is evaluated at its projection onto them, and the
+        columns of the parameters held at a bound are zero (the residuals do not move with them),
+        so that a refinement slides along a bound instead of stopping at it.
+        """
+        outside = numpy.zeros(len(x), dtype=bool)
+        if project:
+            x, outside = self.projected(x)
+        if not self.allowed(x):
+            return None
+        design, placement = self.split(x)
+        if "scale" in placement and not placement["scale"] > 0:
+            return None
+        local, jac, ok = self.local(design, inputs, branches)
+        if not numpy.all(ok):
+            return None
+        c, s, k = math.cos(placement["angle"]), math.sin(placement["angle"]), placement["scale"]
+        turn = numpy.array([[c, -s], [s, c]])
+        placed = _placed(local, placement)
+        count = len(inputs)
+        # d placed / d free parameters and d input: the scaled turn of the local derivatives.
+        moved = k * numpy.einsum("ij,njk->nik", turn, jac)
+        columns = [moved[:, :, :len(self.free)]]
+        by_hand = {"x0": numpy.tile([1.0, 0.0], (count, 1)), "y0": numpy.tile([0.0, 1.0], (count, 1)),
+                   "angle": numpy.stack([-(placed[:, 1] - placement["y0"]), placed[:, 0] - placement["x0"]], axis=1),
+                   "scale": local @ turn.T}
+        for name in self.frame:
+            columns.append(by_hand[name][:, :, None])
+        dense = numpy.concatenate(columns, axis=2).reshape(2 * count, self.width)
+        by_input = numpy.zeros((2 * count, count))
+        by_input[numpy.arange(2 * count), numpy.repeat(numpy.arange(count), 2)] = moved[:, :, -1].ravel()
+        residuals = ((placed - self.targets) / self.size).ravel()
+        if numpy.any(outside):
+            dense[:, outside[:self.width]] = 0.0
+        return residuals, numpy.concatenate([dense, by_input], axis=1) / self.size
+
+
+def path_residuals(linkage: Linkage, point: str | Sequence[str], targets: ArrayLike, design: Mapping[str, float],
+                   inputs: ArrayLike, free: Sequence[str], frame: Sequence[str] = FRAME_NAMES,
+                   placement: Mapping[str, float] | None = None,
+                   branches: Mapping[str, int] | None = None) -> tuple[numpy.ndarray, numpy.ndarray]:
+    """The residuals ``(placed point - target) / size`` (x, y of each target in turn) and their exact Jacobian.
+
+    The Jacobian's columns: the ``free`` parameters, the free ``frame`` names, then the input at
+    each target (what :func:`synthesize_path` refines).  ``ValueError`` where the design is not
+    assembled at an input.
+
+    >>> from symlink.catalog import slider_crank
+    >>> r, J = path_residuals(slider_crank(), "B", [[1.0, 0.0], [0.0, 2.0]], {"a": 1.0, "b": 3.0, "offset": 0.0},
+    ...                       [0.0, 1.5707963267948966], ["a"], frame=())
+    >>> J.shape, [round(float(v), 9) for v in J[:, 0]]  # dB/da = (cos q, sin q) over the size, sqrt(5)
+    ((4, 3), [0.447213595, 0.0, 0.0, 0.447213595])
+    """
+    linkage_inputs = numpy.asarray(inputs, dtype=float)
+    points = _targets(targets)
+    names = _point_outputs(linkage, point)
+    values = {name: float(v) for name, v in design.items()}
+    problem = _Problem(linkage, names, points, {name: (-math.inf, math.inf) for name in free}, values, frame,
+                       placement or {}, linkage_inputs)
+    x = numpy.array([values[name] for name in free] + [problem.placement[name] for name in frame])
+    found = problem.evaluate(x, linkage_inputs, {s.name: int((branches or {}).get(s.name, 1))
+                                                 for s in linkage.branches})
+    if found is None:
+        raise ValueError(f"{linkage.name} is not assembled (or at a toggle) at one of the inputs")
+    return found
+
+
+# --- starts ------------------------------------------------------------------------------------------
+
+def _fit_placements(problem: _Problem, z: numpy.ndarray, w: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
+    """The free placement bringing each row of local points ``z`` (complex, M x N) closest to ``w`` (N).
+
+    Returns ``(placements, rms)``: rows (x0, y0, angle, scale), fixed parts as given, and the rms
+    distance left.  All four free: the complex least-squares similarity; otherwise the best turn
+    (Procrustes), then the best scale along it, then the mean shift, for the parts that are free.
+    """
+    fixed = problem.placement
+    rows = z.shape[0]
+    frame = set(problem.frame) | ({"scale"} if problem.absorbs else set())
+    shift_free = "x0" in frame or "y0" in frame
+    origin = complex(fixed["x0"], fixed["y0"])
+    if shift_free:
+        dz, dw = z - z.mean(axis=-1, keepdims=True), (w - w.mean())[None, :]
+    else:
+        dz, dw = z, (w - origin)[None, :]
+    with numpy.errstate(all="ignore"):
+        cross = numpy.sum(numpy.conj(dz) * dw, axis=-1)
+        weight = numpy.sum(numpy.abs(dz) ** 2, axis=-1)
+        angle = numpy.angle(cross) if "angle" in frame else numpy.full(rows, fixed["angle"])
+        along = (numpy.exp(-1j * angle) * cross).real
+        scale = (numpy.where((weight > 0) & (along > 0), along / weight, fixed["scale"])
+                 if "scale" in frame else numpy.full(rows, fixed["scale"]))
+        turn = scale * numpy.exp(1j * angle)
+        shift = numpy.full(rows, origin)
+        if shift_free:
+            offset = numpy.mean(w[None, :] - (origin + turn[:, None] * z), axis=-1)
+            shift = shift + (offset.real if "x0" in frame else 0.0) + (
+                1j * offset.imag if "y0" in frame else 0.0)
+        rms = numpy.sqrt(numpy.mean(numpy.abs(shift[:, None] + turn[:, None] * z - w[None, :]) ** 2, axis=-1))
+    rms = numpy.where(numpy.isfinite(rms) & (scale > 0), rms, numpy.inf)
+    return numpy.stack([shift.real, shift.imag, angle, scale], axis=1), rms
+
+
+def _start(problem: _Problem, free: numpy.ndarray, row: numpy.ndarray) -> numpy.ndarray | None:
+    """The unknowns of a start: free parameters and the free parts of a placement row (x0, y0, angle, scale).
+
+    A fitted scale the problem cannot move goes into the lengths (the drawing is the same);
+    a placement outside its bounds is clipped to them; None if a parameter is outside its bounds.
+    """
+    free = numpy.array(free, dtype=float)
+    if problem.absorbs:
+        free[problem.lengths] *= row[3] / problem.placement["scale"]
+    x = numpy.concatenate([free, [float(row[FRAME_NAMES.index(name)]) for name in problem.frame]])
+    x[len(free):] = problem.projected(x)[0][len(free):]  # a placement outside its bounds: the nearest within
+    return x if problem.allowed(x) else None
+
+
+def _sampled_designs(problem: _Problem, rng: numpy.random.Generator, count: int, given: Mapping[str, float],
+                     branch_choice: Mapping[str, int] | None) -> tuple[numpy.ndarray, list[dict[str, int]]]:
+    """Free parameters (rows) and branch signs: the user's design first (if all its free values are given),
+    then random ones uniform within the bounds, branches random unless fixed."""
+    names = [s.name for s in problem.linkage.branches]
+    chosen = dict(branch_choice or {})
+    rows, signs = [], []
+    if all(name in given for name in problem.free):
+        rows.append([given[name] for name in problem.free])
+        signs.append({n: int(chosen.get(n, 1)) for n in names})
+    low, high = problem.bounds[:, 0], problem.bounds[:, 1]
+    for _ in range(count):
+        rows.append(list(rng.uniform(low, high)))
+        signs.append({n: int(chosen[n]) if n in chosen else int(rng.choice([-1, 1])) for n in names})
+    return numpy.array(rows, dtype=float).reshape(len(rows), len(problem.free)), signs
+
+
+def _traced_batch(problem: _Problem, rows: numpy.ndarray, signs: list[dict[str, int]],
+                  inputs: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
+    """The point (complex, designs x inputs) of many designs at once, and where it is assembled off a toggle."""
+    given: dict[str, float | numpy.ndarray] = {**problem.values, _PHASE: 0.0,
+                                               problem.linkage.inputs[0].name: inputs[None, :]}
+    for k, name in enumerate(problem.free):
+        given[name] = rows[:, k:k + 1]
+    for symbol in problem.linkage.branches:
+        given[symbol.name] = numpy.array([[float(sign[symbol.name])] for sign in signs])
+    shape = (len(rows), len(inputs))
+    # every argument at the full shape: the generated arithmetic gathers some intermediates into arrays
+    arguments = [numpy.broadcast_to(numpy.asarray(given[name], dtype=float), shape)
+                 for name in problem.jacobian.arguments]
+    with numpy.errstate(all="ignore"):
+        values, slopes, assembled = problem.jacobian.arrays(*arguments)
+    z = numpy.broadcast_to(values[0], shape) + 1j * numpy.broadcast_to(values[1], shape)
+    ok = (numpy.broadcast_to(assembled, shape) & numpy.isfinite(z)
+          & numpy.all(numpy.isfinite(numpy.broadcast_to(slopes, slopes.shape[:2] + shape)), axis=(0, 1)))
+    return z, ok
+
+
+def _timed_starts(problem: _Problem, rng, count: int, given, branch_choice):
+    inputs = problem.timed
+    assert inputs is not None
+    w = problem.targets[:, 0] + 1j * problem.targets[:, 1]
+    rows, signs = _sampled_designs(problem, rng, _SAMPLED, given, branch_choice)
+    z, ok = _traced_batch(problem, rows, signs, inputs)
+    placements, rms = _fit_placements(problem, numpy.where(ok, z, 0.0), w)
+    rms = numpy.where(numpy.all(ok, axis=1), rms, numpy.inf)
+    fits = []
+    for k in numpy.flatnonzero(numpy.isfinite(rms)):
+        x = _start(problem, rows[k], placements[k])
+        if x is not None:
+            fits.append((float(rms[k]), x, signs[k], inputs.copy()))
+    return _ranked(fits, count, given, problem)
+
+
+def _untimed_starts(problem: _Problem, rng, count: int, given, branch_choice):
+    """Designs whose swept path, matched to the targets by arc length (phases, spans, both ways), fits best.
+
+    The input sweeps two turns; a design assembled over a whole turn is matched anywhere along
+    it (across the seam too), any other along its longest assembled stretch.
+    """
+    w = problem.targets[:, 0] + 1j * problem.targets[:, 1]
+    chords = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(w)))])
+    fraction = chords / chords[-1] if chords[-1] > 0 else numpy.linspace(0.0, 1.0, len(w))
+    sweep = numpy.linspace(-math.pi, 3 * math.pi, 2 * _SWEEP + 1)
+    spans = numpy.array(_SPANS)
+    phases = numpy.linspace(0.0, 1.0, _PHASES, endpoint=False)
+    shapes = numpy.concatenate([fraction[None, :], 1.0 - fraction[None, :]])  # both ways along the curve
+    rows, signs = _sampled_designs(problem, rng, _SAMPLED, given, branch_choice)
+    traced, assembled = _traced_batch(problem, rows, signs, sweep)
+    fits = []
+    for index in range(len(rows)):
+        ok = assembled[index]
+        turning = bool(numpy.all(ok))
+        run = (0, len(sweep)) if turning else _longest_run(ok[:_SWEEP + 1])
+        if run is None:
+            continue
+        start, stop = run
+        q, z = sweep[start:stop], traced[index, start:stop]
+        arc = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(z)))])
+        if not arc[-1] > 0:
+            continue
+        arc /= arc[-1] / 2 if turning else arc[-1]  # a whole turn is 1: the second turn lets a match cross the seam
+        usable = spans[None, :, None, None] * shapes[None, None, :, :]  # (1, spans, 2, N)
+        origin = phases[:, None, None, None] * (1.0 if turning else (1.0 - spans)[None, :, None, None])
+        where = (origin + usable).reshape(-1, len(w))
+        angles = numpy.interp(where, arc, q)
+        zz = numpy.interp(angles, q, z.real) + 1j * numpy.interp(angles, q, z.imag)
+        placements, rms = _fit_placements(problem, zz, w)
+        for k in numpy.argsort(rms)[:4]:  # the best match that stays within the bounds
+            x = _start(problem, rows[index], placements[k])
+            if math.isfinite(rms[k]) and x is not None:
+                fits.append((float(rms[k]), x, signs[index], angles[k]))
+                break
+    return _ranked(fits, count, given, problem)
+
+
+def _ranked(fits: list, count: int, given: Mapping[str, float], problem: _Problem) -> list:
+    """The ``count`` closest fits, the user's own design (sampled first) kept first if it is feasible."""
+    first = fits[:1] if fits and all(name in given for name in problem.free) and numpy.array_equal(
+        fits[0][1][:len(problem.free)], [given[name] for name in problem.free]) else []
+    rest = sorted(fits[len(first):], key=lambda item: item[0])
+    return (first + rest)[:count]
+
+
+def _longest_run(ok: numpy.ndarray) -> tuple[int, int] | None:
+    """The longest stretch of True (start, stop), at least four long; None if there is none."""
+    best, start = None, None
+    for k, flag in enumerate(list(ok) + [False]):
+        if flag and start is None:
+            start = k
+        elif not flag and start is not None:
+            if k - start >= 4 and (best is None or k - start > best[1] - best[0]):
+                best = (start, k)
+            start = None
+    return best
+
+
+# --- refinement and verification ---------------------------------------------------------------------
+
+def _refine(problem: _Problem, x0: numpy.ndarray, branches: Mapping[str, int], inputs: numpy.ndarray,
+            evaluations: int, tolerance: float):
+    """One start refined: (x, input values, cost, evaluations), or None if the start is infeasible."""
+    count = len(inputs)
+    width = problem.width
+    if problem.timed is not None:
+        def residuals(x: numpy.ndarray):
+            found = problem.evaluate(x, inputs, branches, project=True)
+            return None if found is None else (found[0], found[1][:, :width])
+
+        result = _accelerated_levenberg_marquardt(residuals, x0.copy(), evaluations, tolerance)
+        if result is None:
+            return None
+        x, cost, used = result
+        return problem.projected(x)[0], inputs, cost, used
+    direction = 1.0 if inputs[-1] >= inputs[0] else -1.0
+
+    def angles_of(y: numpy.ndarray) -> numpy.ndarray:
+        return y[width] + direction * numpy.concatenate([[0.0], numpy.cumsum(y[width + 1:] ** 2)])
+
+    def untimed(y: numpy.ndarray):
+        angles = angles_of(y)
+        if abs(angles[-1] - angles[0]) >= 2 * math.pi:
+            return None
+        found = problem.evaluate(y[:width], angles, branches, project=True)
+        if found is None:
+            return None
+        r, jac = found
+        by_input = jac[:, width:]  # (2N, N): d r / d q_i, diagonal blocks
+        chain = numpy.tril(numpy.tile(numpy.concatenate([[1.0], 2 * direction * y[width + 1:]]), (count, 1)))
+        return r, numpy.concatenate([jac[:, :width], by_input @ chain], axis=1)
+
+    y0 = numpy.concatenate([x0, [inputs[0]], numpy.sqrt(numpy.abs(numpy.diff(inputs)))])
+    result = _accelerated_levenberg_marquardt(untimed, y0, evaluations, tolerance)
+    if result is None:
+        return None
+    y, cost, used = result
+    return problem.projected(y[:width])[0], angles_of(y), cost, used
+
+
+def _verify(problem: _Problem, x: numpy.ndarray, branches: Mapping[str, int], inputs: numpy.ndarray,
+            evaluations: int) -> PathSynthesis:
+    """The design checked with the linkage's own generated solver: errors at the targets, one branch between them."""
+    design, placement = problem.split(x)
+    linkage = problem.linkage
+    reached = traced_points(linkage, problem.outputs, design, inputs, branches, placement)
+    errors = numpy.hypot(*(reached - problem.targets).T)
+    why = ""
+    if not numpy.all(numpy.isfinite(errors)):
+        why = "not assembled at every target"
+    else:
+        steps = numpy.linspace(0.0, 1.0, _PATH_SAMPLES + 1)
+        moves = inputs[:-1, None] + numpy.diff(inputs)[:, None] * steps[None, :]
+        solved = _solver(linkage, ("singular",))(**_arguments(linkage, design, branches),
+                                                 **{linkage.inputs[0].name: moves})
+        ok = numpy.asarray(solved["assembled"]) & ~numpy.asarray(solved["singular"], dtype=bool)
+        if not numpy.all(ok):
+            where = numpy.argwhere(~ok)[0]
+            why = (f"the input cannot move from target {where[0] + 1} to target {where[0] + 2} on one branch "
+                   f"(no assembly or a toggle at {float(moves[tuple(where)]):.6g})")
+    return PathSynthesis(linkage.name, problem.outputs, design, placement, dict(branches),
+                         tuple(map(float, inputs)), tuple(map(float, errors)),
+                         float(numpy.max(errors) / problem.size) if not why else math.inf, not why, evaluations, why)
+
+
+def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: ArrayLike,
+                    free: Mapping[str, tuple[float, float]], *, values: Mapping[str, float] | None = None,
+                    frame: Sequence[str] = FRAME_NAMES, placement: Mapping[str, float] | None = None,
+                    frame_bounds: Mapping[str, tuple[float, float]] | None = None, timed: ArrayLike | None = None,
+                    branches: Mapping[str, int] | None = None, starts: int = 16,
+                    seed: int | None = 0, evaluations: int = 2000, tolerance: float = 1e-15) -> PathSynthesis:
+    """A design of ``linkage`` whose ``point`` passes through ``targets`` (rows x, y), verified.
+
+    ``point`` is a point name (``"C"``) or two output names (``("P_x", "P_y")``).  ``free`` maps
+    each parameter that may change to its bounds ``(low, high)``; ``values`` gives every other
+    parameter (and, if it gives the free ones too, that design is the first start).  ``frame``
+    names the free parts of the placement (:data:`FRAME_NAMES`; ``()`` keeps the linkage where
+    it is), ``placement`` the values of the fixed ones (default no shift, no turn, scale 1),
+    ``frame_bounds`` optional bounds ``(low, high)`` of free ones (the pivot inside a box).
+    ``timed`` is the input's value at each target, or None to find them too (reached in order).
+    ``branches`` fixes branch signs by name (default: tried both ways across the starts).
+    The ``starts`` closest feasible designs are refined with at most ``evaluations`` residual
+    evaluations each; the search stops at the first verified design below 1e-10 (error over the
+    targets' size).  Returns the best verified design, or the closest one with ``assembled``
+    False and its reason; ``ValueError`` for bad input or when no sampled design is feasible.
+    """
+    if len(linkage.inputs) != 1:
+        raise ValueError(f"path synthesis drives one input; {linkage.name} has {len(linkage.inputs)}")
+    if not linkage.has_closed_form:
+        raise ValueError(f"{linkage.name} has no closed form; path synthesis of Newton-solved linkages is not "
+                         "supported yet")
+    names = _point_outputs(linkage, point)
+    points = _targets(targets)
+    size = _size(points)
+    if not size > 0:
+        raise ValueError("the targets are all the same point")
+    known = [p.name for p in linkage.parameters]
+    if not free:
+        raise ValueError("name at least one free parameter with its bounds")
+    for name, bound in free.items():
+        if name not in known:
+            raise ValueError(f"{linkage.name} has no parameter {name!r}; it has {', '.join(known)}")
+        low, high = (float(b) for b in bound)
+        if not (math.isfinite(low) and math.isfinite(high) and low < high):
+            raise ValueError(f"the bounds of {name!r} must be finite with low < high, got {bound!r}")
+    given = {k: float(v) for k, v in (values or {}).items()}
+    fixed = {name: given[name] for name in known if name not in free and name in given}
+    missing = [name for name in known if name not in free and name not in given]
+    if missing:
+        raise ValueError(f"give values for the parameters that are not free: {', '.join(missing)}")
+    unknown_frame = [name for name in frame if name not in FRAME_NAMES]
+    if unknown_frame or len(set(frame)) != len(frame):
+        raise ValueError(f"frame names the free parts of the placement among {', '.join(FRAME_NAMES)}, "
+                         f"each once; got {tuple(frame)!r}")
+    fixed_placement = {k: float(v) for k, v in (placement or {}).items()}
+    if set(fixed_placement) - set(FRAME_NAMES) or not fixed_placement.get("scale", 1.0) > 0:
+        raise ValueError(f"placement gives values of {', '.join(FRAME_NAMES)} (scale positive), got {placement!r}")
+    inputs = None if timed is None else numpy.asarray(timed, dtype=float)
+    if inputs is not None and (inputs.shape != (len(points),) or not numpy.all(numpy.isfinite(inputs))):
+        raise ValueError(f"{len(points)} targets need {len(points)} finite input values, got shape {inputs.shape}")
+    if inputs is None and len(points) < 3:
+        raise ValueError("path synthesis without timing needs at least three targets")
+    for name, sign in (branches or {}).items():
+        if name not in {s.name for s in linkage.branches} or sign not in (1, -1):
+            raise ValueError(f"branches maps {', '.join(s.name for s in linkage.branches) or 'no branch'} to +1 "
+                             f"or -1; got {name!r}: {sign!r}")
+    if starts < 1 or evaluations < 1:
+        raise ValueError("starts and evaluations must be at least 1")
+    for name, bound in (frame_bounds or {}).items():
+        if name not in frame or not (float(bound[0]) < float(bound[1])):
+            raise ValueError(f"frame_bounds bounds free parts of the placement ({', '.join(frame) or 'none'}) "
+                             f"with low < high; got {name!r}: {bound!r}")
+    problem = _Problem(linkage, names, points, {k: (float(v[0]), float(v[1])) for k, v in free.items()}, fixed,
+                       frame, fixed_placement, inputs, frame_bounds)
+    rng = numpy.random.default_rng(seed)
+    found = (_timed_starts if inputs is not None else _untimed_starts)(problem, rng, starts, given, branches)
+    if not found:
+        raise ValueError(f"no design of {linkage.name} within the bounds is assembled along the targets; widen the "
+                         "bounds or change the fixed values")
+    best: PathSynthesis | None = None
+    spent = 0
+    for _, x0, signs, angles in found:
+        refined = _refine(problem, x0, signs, numpy.asarray(angles, dtype=float), evaluations, tolerance)
+        if refined is None:
+            continue
+        x, angles_found, _, used = refined
+        spent += used
+        design = _verify(problem, x, signs, angles_found, spent)
+        if best is None or (design.assembled, -design.error) > (best.assembled, -best.error):
+            best = design
+        if best.assembled and best.error < 1e-10:
+            break
+    if best is None:
+        raise ValueError("no start could be refined")
+    return best if best.evaluations == spent else PathSynthesis(**{**best.__dict__, "evaluations": spent})

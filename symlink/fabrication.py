@@ -55,7 +55,7 @@ from .bodies import PRISMATIC, REVOLUTE, mechanism
 from .files import write_atomic
 from .linkage import Linkage
 
-__all__ = ["Part", "link_parts", "svg_text", "write_svg", "write_dxf", "UNITS_IN_MM", "TRAVEL_SAMPLES", "Design",
+__all__ = ["Part", "link_parts", "svg_text", "write_svg", "write_dxf", "UNITS_IN_MM", "TRAVEL_SAMPLES", "LinkageDesign",
            "design_json", "read_design", "write_design", "DESIGN_FORMAT", "assembly_svg_text"]
 
 #: The length units a drawing can be in, and their size in millimetres.
@@ -458,7 +458,7 @@ DESIGN_FORMAT, DESIGN_VERSION = "symlink-design", 1
 
 
 @dataclass(frozen=True)
-class Design:
+class LinkageDesign:
     """A design read from JSON: the linkage, its values by name (lengths in ``unit``, angles in radians), its unit."""
 
     _repr_html_ = record_html  # a notebook shows its fields as a table
@@ -502,8 +502,8 @@ def _finite(name: str, value: object) -> float:
     return float(value)
 
 
-def read_design(text: str, source: str = "<design>") -> Design:
-    """The :class:`Design` of :func:`design_json`'s text; ``ValueError`` naming what is wrong (not JSON, another
+def read_design(text: str, source: str = "<design>") -> LinkageDesign:
+    """The :class:`LinkageDesign` of :func:`design_json`'s text; ``ValueError`` naming what is wrong (not JSON, another
     format or version, an unknown unit, a bad linkage, links or joints that are not the linkage's)."""
     from .linkage_file import linkage_from_mapping
     try:
@@ -531,7 +531,7 @@ def read_design(text: str, source: str = "<design>") -> Design:
     missing = [s.name for s in linkage.parameters if s.name not in found.defaults]
     if missing:
         raise ValueError(f"{source}: no value for {', '.join(missing)}")
-    return Design(linkage, dict(found.defaults), unit)
+    return LinkageDesign(linkage, dict(found.defaults), unit)
 
 
 def write_design(path: str | os.PathLike, linkage: Linkage, values: Mapping[str, float], unit: str = "mm") -> None:

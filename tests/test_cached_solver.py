@@ -41,7 +41,7 @@ WARM_TABLE_MODULES = {
     "symlink", "symlink.version", "symlink.angles", "symlink.input_sweep", "symlink.files", "symlink.limits",
     "symlink.results", "symlink.call_arguments", "symlink.cache", "symlink.cached_solver", "symlink.codegen", "symlink.codegen.loading",
     "symlink.cli", "symlink.cli.options", "symlink.cli.output", "symlink.cli.tables", "symlink.cli.dynamics",
-    "symlink.cli.pictures"}
+    "symlink.cli.pictures", "symlink.cli.budget"}
 
 
 def _run(arguments: list[str], cache_folder: Path) -> tuple[subprocess.CompletedProcess, dict]:

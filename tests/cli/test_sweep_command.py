@@ -106,9 +106,10 @@ def test_a_sweep_that_cannot_end_is_one_line_and_exit_2(tmp_path, capsys):
     assert main(["sweep", "fourbar", str(folder), "--vary", "a=1:2,b=3:4,c=5:6", "--set", "d=5",
                  "--grid", "100000", "--scheduler", "synchronous", "--no-progress"]) == 2
     err = capsys.readouterr().err
-    assert err.startswith("symlink: error: a sweep of 1e+15 designs needs at least 16000 TB of disk") and \
-        err.count("\n") == 1, err
-    assert "ask for at most" in err and "(--grid)" in err
+    # The command's estimate of its work refuses it first (the years it would take); run_sweep's own check of
+    # the disk it would need is tested in tests/test_sweep.py.
+    assert err.startswith("symlink: error: a sweep of 1e+15 designs") and err.count("\n") == 1, err
+    assert "years" in err and "--grid" in err
     assert not folder.exists()
 
 

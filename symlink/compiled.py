@@ -20,22 +20,8 @@ check is rebuilt.  Any failure to compile, link, write or load (no compiler,
 a full disk, a folder where the library should go) gives one warning and the
 NumPy solver.
 
-The flags are portable: no ``-march=native`` (a cache folder may be shared
-between machines); ``-O3`` so that the loops are vectorised;
-``-ffp-contract=off`` (no fused multiply-adds, so the arithmetic rounds as
-NumPy's does); ``-fno-math-errno`` (only ``errno`` is affected; ``sqrt``
-becomes one instruction); ``-fno-trapping-math`` (no program of ours traps
-on a floating-point exception, so the compiler may evaluate both sides of the
-clamped square root's test and ``floor`` in vector registers: without it no
-loop with a square root or the size normalisation's ``floor`` vectorises;
-values are unchanged).  ``-ffast-math`` is NOT used: it assumes that no
-NaN occurs, and NaN is how an unassembled configuration is reported; it would
-also let the compiler rewrite the arguments of ``atan2``.  Where GCC targets
-glibc on x86-64, :data:`VECTOR_MATH` is included first: it tells GCC that
-glibc's vector math library (libmvec) has ``sin``, ``cos``, ``atan2``, ``log`` and ``pow`` for
-whole SIMD registers, and compiles each loop for baseline x86-64, AVX2 and
-AVX-512, chosen when the library loads.  libmvec's functions are accurate to
-a few units in the last place, as NumPy's own SIMD functions are.
+The compiler flags, and glibc's vector math library that the loops call, are described in
+:mod:`symlink.compiled_library`, which builds and loads the libraries.
 
 >>> import numpy
 >>> from symlink.catalog import fourbar

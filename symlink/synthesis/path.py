@@ -329,7 +329,16 @@ def _targets(targets) -> numpy.ndarray:
         raise ValueError(f"the target points must be rows of (x, y), got shape {array.shape}")
     if not numpy.all(numpy.isfinite(array)):
         raise ValueError("the target points must be finite numbers")
+    # The lengths a design takes are the points' size: outside this range their squares over- or underflow.
+    magnitude = numpy.abs(array)
+    if magnitude.max(initial=0.0) > TARGET_MAGNITUDE or 0.0 < _size(array) < 1.0 / TARGET_MAGNITUDE:
+        raise ValueError(f"the target points must lie within {TARGET_MAGNITUDE:g} of the origin and span more than "
+                         f"{1.0 / TARGET_MAGNITUDE:g} (express them in another unit)")
     return array
+
+
+#: The largest coordinate a target point may have (and one over the smallest span of the points).
+TARGET_MAGNITUDE = 1e50
 
 
 def _size(targets: numpy.ndarray) -> float:

@@ -260,3 +260,12 @@ def test_bad_designs(kwargs, message):
     base = dict(crank_pivot=(0, 0), frame=0.0, lengths=(1, 2, 3, 4), coupler_point=(1, 1), branch=1)
     with pytest.raises(ValueError, match=message):
         fourbar_design(**{**base, **kwargs})
+
+
+@pytest.mark.parametrize("scale", [1e300, 1e-300])
+def test_targets_too_large_or_too_small_are_refused_by_name(scale):
+    """Points at 1e300 or spanning 1e-300 would over- or underflow the design's squared lengths: refused, not solved."""
+    from symlink.synthesis.path import synthesize_path
+    points = np.array([[0.0, 0.0], [1.0, 0.5], [2.0, 0.0], [1.0, -0.5], [0.5, 0.2]]) * scale
+    with pytest.raises(ValueError, match="target points must lie within"):
+        synthesize_path(points)

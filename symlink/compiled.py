@@ -7,18 +7,8 @@ the same keywords as :class:`symlink.solver.Solver` and returns the same dict
 of arrays; where no C compiler exists it says so in a warning and returns the
 NumPy solver.
 
-The library is compiled on first use with ``$CC`` (else ``cc``, ``gcc`` or
-``clang``) and :data:`FLAGS`, and cached on disk by a hash of the source, the
-flags and the compiler (in ``compiled/`` of symlink's cache folder, see
-:mod:`symlink.cache`).  Each library is built in a ``.build-*`` folder beside
-it and moved into place, 0600, with the SHA-256 of its bytes beside it.  It
-is loaded only from a private copy: copied into a new 0600 file in the
-owner-only folder, the copy's bytes checked against the digest, then the
-copy handed to the loader, so that a library that is truncated or swapped
-between the check and the load never reaches it.  A library that fails the
-check is rebuilt.  Any failure to compile, link, write or load (no compiler,
-a full disk, a folder where the library should go) gives one warning and the
-NumPy solver.
+How the library is compiled, cached, checked and loaded (and where that fails, the one warning and the
+NumPy solver) is :mod:`symlink.compiled_library`'s to say.
 
 The compiler flags, and glibc's vector math library that the loops call, are described in
 :mod:`symlink.compiled_library`, which builds and loads the libraries.

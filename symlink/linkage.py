@@ -57,6 +57,23 @@ def is_branch_name(name: str) -> bool:
     return name == BRANCH or name.startswith(BRANCH + "_")
 
 
+def depended_on(needed: Iterable[sp.Symbol], definitions: Mapping[sp.Symbol, sp.Expr]) -> set[sp.Symbol]:
+    """The defined symbols that ``needed`` depends on, directly or through other definitions.
+
+    >>> x, y, z = sp.symbols("x y z")
+    >>> sorted(depended_on({z}, {x: sp.S.One, y: x + 1, z: 2 * y}), key=str)
+    [x, y, z]
+    """
+    keep: set[sp.Symbol] = set()
+    stack = [s for s in needed if s in definitions]
+    while stack:
+        symbol = stack.pop()
+        if symbol not in keep:
+            keep.add(symbol)
+            stack += [s for s in definitions[symbol].free_symbols if s in definitions]
+    return keep
+
+
 @dataclass(frozen=True)
 class Program:
     """Straight-line code for a set of outputs: what a code printer needs.
@@ -582,15 +599,7 @@ class Linkage:
     def _kept(self, needed: set[sp.Symbol]) -> tuple[set[sp.Symbol], dict[sp.Symbol, sp.Expr]]:
         """The definitions that ``needed`` depends on (their symbols), and the definitions code is made from."""
         definitions = self._definitions_of(needed)
-        # Walk the dependencies; definitions are in dependency order already.
-        keep: set[sp.Symbol] = set()
-        stack = [s for s in needed if s in definitions]
-        while stack:
-            symbol = stack.pop()
-            if symbol not in keep:
-                keep.add(symbol)
-                stack += [s for s in definitions[symbol].free_symbols if s in definitions]
-        return keep, definitions
+        return depended_on(needed, definitions), definitions
 
     def call_signature(self) -> tuple[sp.Symbol, ...]:
         """The order of a generated function's arguments: inputs, parameters, branches, input rates."""

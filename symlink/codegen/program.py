@@ -21,6 +21,7 @@ import sympy as sp
 from sympy.core.relational import Relational
 from sympy.logic.boolalg import BooleanAtom, BooleanFunction
 
+from ..linkage import depended_on
 from ..position import ClampedSqrt
 
 if TYPE_CHECKING:
@@ -88,14 +89,7 @@ def in_loop_units(program: Program) -> Program:
     outputs = program.outputs
     assignments = loop_code + rest
     # Keep what the outputs need (a loop's code form may define helpers the outputs do not use).
-    definitions = dict(assignments)
-    keep: set[sp.Symbol] = set()
-    stack = [s for e in outputs.values() for s in e.free_symbols if s in definitions]
-    while stack:
-        symbol = stack.pop()
-        if symbol not in keep:
-            keep.add(symbol)
-            stack += [s for s in definitions[symbol].free_symbols if s in definitions]
+    keep = depended_on({s for e in outputs.values() for s in e.free_symbols}, dict(assignments))
     return replace(program, assignments=tuple((s, e) for s, e in assignments if s in keep), outputs=outputs,
                    plan=())
 

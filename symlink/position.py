@@ -143,7 +143,6 @@ class LoopSolution:
     positions: dict[sp.Symbol, sp.Expr]
     singular_factors: dict[sp.Expr, sp.Expr] = field(default_factory=dict)
     label: str = "1"
-    branch_symbol: sp.Symbol | None = None
 
     @cached_property
     def in_loop_units(self) -> "LoopSolution":
@@ -165,7 +164,7 @@ class LoopSolution:
         >>> str(step.in_loop_units.intermediates[sp.Symbol("Wx_1", real=True)])
         '-rho_1_1 + rho_2_1*cos(theta)'
         """
-        return solve_loop(self.loop, list(self.positions), self.branch_symbol, self.label, loop_units=True)
+        return solve_loop(self.loop, list(self.positions), self.branch, self.label, loop_units=True)
 
     def _repr_latex_(self) -> str:
         """The intermediates, then the unknowns, one equation a line: what a notebook shows."""
@@ -410,4 +409,4 @@ def solve_loop(loop: Loop, unknowns: Sequence[sp.Symbol], branch: sp.Symbol | No
     positions = _SOLVERS[case.name](case, wx, wy, branch, named, unit, size)
     positions = {u: positions[u] for u in unknowns}
     return LoopSolution(loop, case, branch if case.branches == 2 else None, dict(named), positions,
-                        named.singular_factors, label, branch)
+                        named.singular_factors, label)

@@ -55,8 +55,8 @@ from .bodies import PRISMATIC, REVOLUTE, mechanism
 from .files import write_atomic
 from .linkage import Linkage
 
-__all__ = ["Part", "link_parts", "svg_text", "write_svg", "write_dxf", "UNITS_IN_MM", "TRAVEL_SAMPLES", "LinkageDesign",
-           "design_json", "read_design", "write_design", "DESIGN_FORMAT", "assembly_svg_text"]
+__all__ = ["Part", "link_parts", "svg_text", "write_svg", "dxf_text", "write_dxf", "UNITS_IN_MM", "TRAVEL_SAMPLES",
+           "LinkageDesign", "design_json", "read_design", "write_design", "DESIGN_FORMAT", "assembly_svg_text"]
 
 #: The length units a drawing can be in, and their size in millimetres.
 UNITS_IN_MM = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "in": 25.4}
@@ -399,12 +399,23 @@ def write_svg(path: str | os.PathLike, parts: list[Part], unit: str = "mm") -> N
 
 
 def write_dxf(path: str | os.PathLike, parts: list[Part], unit: str = "mm") -> None:
-    """Write the parts to a DXF file (R2010) atomically: per part, on a layer named after it, one closed
-    LWPOLYLINE outline (arcs as bulges), a CIRCLE a hole, a closed LWPOLYLINE a slot and a TEXT label.
+    """Write :func:`dxf_text` of ``parts`` to ``path`` atomically (all or nothing).
+
+    Needs ``ezdxf``: ``pip install symlink-kinematics[fabrication]``.
+    """
+    write_atomic(path, dxf_text(parts, unit))
+
+
+def dxf_text(parts: list[Part], unit: str = "mm") -> str:
+    """The parts as DXF text (R2010), in a row as in :func:`svg_text`: per part, on a layer named after it, one
+    closed LWPOLYLINE outline (arcs as bulges), a CIRCLE a hole, a closed LWPOLYLINE a slot and a TEXT label;
+    ``$INSUNITS`` says the unit, so that a CAD program or laser cutter reads the parts at their real size.
 
     Needs ``ezdxf``: ``pip install symlink-kinematics[fabrication]``.
     """
     _check_unit(unit)
+    if not parts:
+        raise ValueError("no parts to draw")
     try:
         import ezdxf
     except ImportError:
@@ -432,7 +443,7 @@ def write_dxf(path: str | os.PathLike, parts: list[Part], unit: str = "mm") -> N
                        dxfattribs={**layer, "insert": (xmin + dx, ymax + dy + part.radius)})
     stream = io.StringIO()
     document.write(stream)
-    write_atomic(path, stream.getvalue())
+    return stream.getvalue()
 
 
 def _arc_angle(end: Point, centre: Point, part: Part) -> float:

@@ -15,6 +15,7 @@ import argparse
 import math
 import os
 import secrets
+import shutil
 from pathlib import Path
 from typing import Any, Mapping
 
@@ -191,27 +192,50 @@ def _rows(part, unit: str) -> list[dict[str, Any]]:
 
 
 def _write_together(texts: Mapping[Path, str]) -> None:
-    """Write every file, or (on any failure) none: each is first written in full beside its target under a
-    hidden temporary name (:func:`symlink.files.write_atomic`), then all are renamed into place.
+    """Write every file, or (on any failure) none, leaving files that were there as they were.
 
-    :func:`symlink.files.write_files_atomic` does this for files of one folder; these may be in several.
+    Each file is first written in full beside its target under a hidden temporary name
+    (:func:`symlink.files.write_atomic`); then each file already there is kept under a second name (a hard
+    link) and the new one renamed over it.  A failure takes back every rename done: the old files are
+    renamed back, new ones removed.  :func:`symlink.files.write_files_atomic` does this for the files of one
+    folder, without keeping the old ones; these may be in several folders.
     """
     from ..files import TEMPORARY_SUFFIX, write_atomic
+
+    def hidden(path: Path) -> Path:
+        return path.parent / f".{path.name}.{secrets.token_hex(6)}{TEMPORARY_SUFFIX}"
+
     for path in texts:
         if path.is_dir():
             raise IsADirectoryError(21, "it is a folder", str(path))
     staged: dict[Path, Path] = {}
+    kept: dict[Path, Path | None] = {}  # each target renamed over: its old file's second name (None: it had none)
     try:
         for path, text in texts.items():
-            temporary = path.parent / f".{path.name}.{secrets.token_hex(6)}{TEMPORARY_SUFFIX}"
+            temporary = hidden(path)
             try:
                 write_atomic(temporary, text)
             except OSError as error:
                 raise type(error)(error.errno, error.strerror or str(error), str(path)) from None
             staged[path] = temporary
         for path, temporary in list(staged.items()):
+            backup = hidden(path) if path.exists() else None
+            if backup is not None:
+                try:
+                    os.link(path, backup)
+                except OSError:  # a file system without hard links: a copy
+                    shutil.copy2(path, backup)
+            kept[path] = backup
             os.replace(temporary, path)
             del staged[path]
+    except BaseException:
+        for path, backup in kept.items():
+            if backup is not None:
+                os.replace(backup, path)
+            elif path not in staged:
+                path.unlink(missing_ok=True)
+        kept.clear()
+        raise
     finally:
-        for temporary in staged.values():
+        for temporary in [*staged.values(), *(backup for backup in kept.values() if backup is not None)]:
             temporary.unlink(missing_ok=True)

@@ -81,6 +81,9 @@ CASES += [
     ("tolerance: no builds", ["tolerance", "fourbar", "--tolerance", "0.1", "--builds", "0"], 2),
     ("tolerance: too many builds", ["tolerance", "fourbar", "--tolerance", "0.1", "--builds", "100000000"], 2),
     ("tolerance: lengths of another linkage", ["tolerance", "slider-crank", "--crank", "3", "--tolerance", "1"], 2),
+    ("parts: no pin diameter", ["parts", "fourbar", "--svg", "{tmp}/parts.svg"], 2),  # the rest: tests/cli/test_parts.py
+    ("parts: no assembly at the angle", ["parts", "fourbar", "--pin-diameter", "4", "--set", "a=30,b=10", "--angle",
+                                         "180", "--assembly", "{tmp}/assembly.svg"], 2),
     ("plan: unknown linkage", ["plan", "sixbar"], 2),
     ("plan: no linkage", ["plan"], 2),
     ("analyze: negative length", ["analyze", "--crank", "-1", "--coupler", "2", "--rocker", "2", "--ground", "2"], 2),

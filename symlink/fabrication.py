@@ -482,7 +482,8 @@ class LinkageDesign:
 def design_json(linkage: Linkage, values: Mapping[str, float], unit: str = "mm") -> str:
     """A design as JSON text: ``format``, ``version``, ``unit``, its ``links`` (name, joints) and ``joints``
     (name, kind, the links joined), and ``linkage``, the linkage file's mapping with ``values`` as its
-    defaults (extras such as the transmission angle are Python only and left out).
+    defaults: every dimension, and the inputs that ``values`` gives (the pose, such as a five-bar's second
+    crank angle; branch signs are not kept).  Extras such as the transmission angle are Python only and left out.
 
     >>> from symlink.catalog import fourbar
     >>> text = design_json(fourbar(), {"a": 20, "b": 66, "c": 56, "d": 80})
@@ -498,6 +499,7 @@ def design_json(linkage: Linkage, values: Mapping[str, float], unit: str = "mm")
     if missing:
         raise ValueError(f"{linkage.name} needs a value for {', '.join(missing)}")
     dimensions = {name: _finite(name, values[name]) for name in [s.name for s in linkage.parameters]}
+    dimensions.update({q.name: _finite(q.name, values[q.name]) for q in linkage.inputs if q.name in values})
     record = {
         "format": DESIGN_FORMAT, "version": DESIGN_VERSION, "unit": unit,
         "links": [{"name": body.name, "joints": list(body.joints)} for body in found.bodies],

@@ -12,6 +12,7 @@ import os
 import sys
 import xml.etree.ElementTree as ET
 
+import numpy
 import pytest
 
 from symlink.catalog import EXAMPLE_VALUES, fourbar, inverted_slider_crank, slider_crank, watt2
@@ -248,3 +249,204 @@ def test_the_assembly_drawing_puts_every_hole_where_its_joint_is_at_the_chosen_a
     for name, places in seen.items():
         for place in places:
             assert math.dist(place, expected[name]) < 1e-9, name
+
+
+# --- every linkage: one part a link, a hole at every joint ----------------------------------
+
+#: Each linkage's links and the pin joints each holds, by hand from its sketch (the catalog's docstrings);
+#: the slots are the guides' (a slider's pin runs in its guide's slot).
+LINKS = {
+    "fourbar": {"ground": "AD", "crank": "AB", "coupler": "BC", "rocker": "CD"},
+    "slider-crank": {"ground": "A", "crank": "AB", "slider": "C", "conrod": "BC"},
+    "inverted-slider-crank": {"ground": "AD", "crank": "AB", "rocker": "D", "slider": "B"},
+    "fivebar": {"ground": "AE", "crank": "AB", "coupler": "BC", "crank2": "DE", "coupler2": "CD"},
+    "watt2": {"ground": "ADG", "crank": "AB", "coupler": "BC", "rocker": "CDE", "coupler2": "EF", "output": "FG"},
+    "stephenson3": {"ground": "AD", "crank": "AB", "coupler": "BCE", "rocker": "DFH", "mu": "CF", "eta": "EH"},
+    "jansen": {"ground": "AD", "crank": "AB", "upper_rocker": "CDE", "lower_rocker": "DF", "leg": "FG",
+               "upper_link": "BC", "lower_link": "BF", "tie": "EG"},
+}
+SLOTS = {"slider-crank": "ground", "inverted-slider-crank": "rocker"}
+
+
+def _law_of_cosines(p, q, angle):
+    return math.sqrt(p * p + q * q - 2 * p * q * math.cos(angle))
+
+
+#: Hole-to-hole lengths by hand: the example values, Jansen's published numbers (a = 38, l = 7.8, m = 15,
+#: b = 41.5, c = 39.3, d = 40.1, e = 55.8, f = 39.4, g = 36.7, j = 50, k = 61.9), a ternary link's third side
+#: by the law of cosines (Stephenson III: coupler BCE with angle alpha at B, rocker DFH with angle delta at D).
+HAND_LENGTHS = {
+    "fivebar": {("ground", "AE"): 3.0, ("crank", "AB"): 2.0, ("coupler", "BC"): 4.0, ("crank2", "DE"): 2.0,
+                ("coupler2", "CD"): 4.0},
+    "stephenson3": {("ground", "AD"): 4.5, ("crank", "AB"): 1.0, ("coupler", "BC"): 3.1, ("coupler", "BE"): 3.9,
+                    ("coupler", "CE"): _law_of_cosines(3.1, 3.9, 0.9), ("rocker", "DF"): 3.1,
+                    ("rocker", "DH"): 3.1, ("rocker", "FH"): _law_of_cosines(3.1, 3.1, 0.3), ("mu", "CF"): 2.2,
+                    ("eta", "EH"): 4.1},
+    "jansen": {("ground", "AD"): math.hypot(38, 7.8), ("crank", "AB"): 15, ("upper_rocker", "CD"): 41.5,
+               ("upper_rocker", "DE"): 40.1, ("upper_rocker", "CE"): 55.8, ("lower_rocker", "DF"): 39.3,
+               ("leg", "FG"): 36.7, ("upper_link", "BC"): 50, ("lower_link", "BF"): 61.9, ("tie", "EG"): 39.4},
+}
+
+
+def _distance(part, pair):
+    first, second = pair
+    return math.dist(part.holes[first], part.holes[second])
+
+
+@pytest.mark.parametrize("name", list(LINKS))
+def test_every_catalog_linkage_gives_one_part_a_link_with_a_hole_at_each_of_its_joints(name):
+    from symlink.catalog import CATALOG
+    parts = {p.name: p for p in link_parts(CATALOG[name](), EXAMPLE_VALUES[name], pin_diameter=0.1)}
+    assert len(parts) == len(LINKS[name]) and set(parts) == set(LINKS[name])
+    for link, joints in LINKS[name].items():
+        part = parts[link]
+        assert sorted(part.holes) == sorted(joints), link
+        assert len(part.slots) == (1 if SLOTS.get(name) == link else 0), link
+        if len(joints) == 3:  # a ternary link: a rounded triangle through its three holes
+            assert len(part.outline()) == 3, link
+        elif len(joints) == 2 and not part.corners:  # a bar with rounded ends
+            assert len(part.outline()) == 2, link
+    for (link, pair), length in HAND_LENGTHS.get(name, {}).items():
+        assert _distance(parts[link], pair) == pytest.approx(length, rel=1e-12), (link, pair)
+    if name == "jansen":  # the foot H: a corner of the leg, h = 65.7 from G and i = 49 from F
+        leg = parts["leg"]
+        assert math.dist(leg.corners["H"], leg.holes["G"]) == pytest.approx(65.7, rel=1e-12)
+        assert math.dist(leg.corners["H"], leg.holes["F"]) == pytest.approx(49.0, rel=1e-12)
+        assert len(leg.outline()) == 3
+
+
+def test_a_from_joints_linkage_gives_its_drawn_lengths_a_slot_and_a_rounded_triangle():
+    """The hole distances are the distances between the drawn joints; the slider's slot spans the travel of a
+    crank-slider of crank |AB|, rod |BC| and offset 0.5 (the guide's line y = 0.5): from
+    sqrt((BC - AB)^2 - 0.25) to sqrt((AB + BC)^2 - 0.25) along x."""
+    from symlink.joints import Slider, from_joints
+    drawn = {"A": (0, 0), "B": (1, 1), "C": (4, 2), "D": (5, 0), "E": (3, 4), "F": (6, 4), "G": (8, 0)}
+    links = {"ground": "ADG", "crank": "AB", "coupler": "BCE", "rocker": "CD", "link": "EF", "output": "FG"}
+    sixbar = from_joints({link: list(joints) for link, joints in links.items()}, drawn, driver="A")
+    parts = {p.name: p for p in link_parts(sixbar.linkage, sixbar.defaults, pin_diameter=0.1)}
+    assert set(parts) == set(links)
+    for link, joints in links.items():
+        part = parts[link]
+        assert sorted(part.holes) == sorted(joints)
+        for k, first in enumerate(joints):
+            for second in joints[k + 1:]:
+                assert _distance(part, (first, second)) == pytest.approx(math.dist(drawn[first], drawn[second]),
+                                                                         rel=1e-12)
+    assert len(parts["coupler"].outline()) == 3
+    slider = from_joints({"ground": ["A", "C"], "crank": ["A", "B"], "rod": ["B", "C"]},
+                         {"A": (0, 0), "B": (1, 1), "C": (4, 0.5)}, driver="A", joints={"C": Slider("ground", 0.0)})
+    parts = {p.name: p for p in link_parts(slider.linkage, slider.defaults, pin_diameter=0.1)}
+    assert len(parts) == 4  # ground (pivot A and the slot), crank, rod and the slider's block
+    ab, bc = math.sqrt(2), math.hypot(3, 0.5)
+    (start, end), = parts["ground"].slots
+    assert sorted([start[0], end[0]]) == pytest.approx([math.sqrt((bc - ab) ** 2 - 0.25),
+                                                        math.sqrt((ab + bc) ** 2 - 0.25)], rel=1e-6)
+    assert start[1] == pytest.approx(0.5, abs=1e-12) and end[1] == pytest.approx(0.5, abs=1e-12)
+    assert set(parts["ground"].holes) == {"A"} and _distance(parts["rod"], ("B", "C")) == pytest.approx(bc)
+    block, = [p for p in parts.values() if p.name not in ("ground", "crank", "rod")]
+    assert set(block.holes) == {"C"}
+
+
+# --- the DXF and the SVG put every hole where the design has it --------------------------------
+
+def _expected_holes():
+    """Each part's holes in its own frame, by hand: the first hole at the origin, the second on +x.  Watt II's
+    ternary rocker: C at 0, D at c, and E = D + e e^{i(phi + alpha)} seen from C along D - C (angle phi + pi),
+    that is (c - e cos alpha, -e sin alpha); its ternary ground: A, D = (d, 0) and G = (gx, gy)."""
+    w = EXAMPLE_VALUES["watt2"]
+    c, e, alpha = w["c"], w["e"], w["alpha"]
+    s = EXAMPLE_VALUES["slider-crank"]
+    return {
+        "fourbar": (fourbar, FOURBAR, {"ground": {"A": (0, 0), "D": (80, 0)}, "crank": {"A": (0, 0), "B": (20, 0)},
+                                       "coupler": {"B": (0, 0), "C": (66, 0)}, "rocker": {"C": (0, 0), "D": (56, 0)}},
+                    {}),
+        "watt2": (watt2, w, {"ground": {"A": (0, 0), "D": (w["d"], 0), "G": (w["gx"], w["gy"])},
+                             "crank": {"A": (0, 0), "B": (w["a"], 0)}, "coupler": {"B": (0, 0), "C": (w["b"], 0)},
+                             "rocker": {"C": (0, 0), "D": (c, 0), "E": (c - e * math.cos(alpha), -e * math.sin(alpha))},
+                             "coupler2": {"E": (0, 0), "F": (w["f"], 0)}, "output": {"F": (0, 0), "G": (w["g"], 0)}},
+                  {}),
+        "slider-crank": (slider_crank, s, {"ground": {"A": (0, 0)}, "crank": {"A": (0, 0), "B": (s["a"], 0)},
+                                           "slider": {"C": (0, 0)}, "conrod": {"B": (0, 0), "C": (s["b"], 0)}},
+                         {"ground": 1}),
+    }
+
+
+def _one_shift(found, expected):
+    """The translation that takes the ``expected`` holes onto ``found`` centres (lists of points), or None."""
+    names = list(expected)
+    for candidate in found:
+        shift = (candidate[0] - expected[names[0]][0], candidate[1] - expected[names[0]][1])
+        moved = [(x + shift[0], y + shift[1]) for x, y in expected.values()]
+        if all(min(math.dist(point, centre) for centre in found) < 1e-9 for point in moved):
+            return shift
+    return None
+
+
+@pytest.mark.parametrize("name", ["fourbar", "watt2", "slider-crank"])
+def test_dxf_and_svg_holes_are_within_1e_9_of_the_design_and_each_link_has_one_closed_outline(name, tmp_path):
+    ezdxf = pytest.importorskip("ezdxf", reason="pip install symlink-kinematics[fabrication]")
+    build, values, holes, slots = _expected_holes()[name]
+    parts = link_parts(build(), values, pin_diameter=0.1)
+    path = tmp_path / "parts.dxf"
+    write_dxf(path, parts, "mm")
+    space = ezdxf.readfile(path).modelspace()
+    root = ET.fromstring(svg_text(parts, "mm"))
+    groups = {group.get("id"): group for group in root.findall(f"{SVG}g")}
+    assert set(groups) == set(holes) == {layer.dxf.name for layer in ezdxf.readfile(path).layers} - {"0", "Defpoints"}
+    for link, expected in holes.items():
+        centres = [(c.dxf.center.x, c.dxf.center.y) for c in space.query(f'CIRCLE[layer=="{link}"]')]
+        assert len(centres) == len(expected) and _one_shift(centres, expected) is not None, link
+        polylines = space.query(f'LWPOLYLINE[layer=="{link}"]')
+        assert all(p.closed for p in polylines) and len(polylines) == 1 + slots.get(link, 0), link
+        boxes = [numpy.array([(x, y) for x, y, *_ in p.get_points("xy")]) for p in polylines]
+        outer = [k for k, box in enumerate(boxes)  # the outline holds every hole and every slot
+                 if all((box.min(axis=0) <= point).all() and (point <= box.max(axis=0)).all()
+                        for point in [numpy.array(c) for c in centres] + [v for other in boxes for v in other])]
+        assert len(outer) == 1, link
+        svg_centres = {c.get("data-joint"): (float(c.get("cx")), -float(c.get("cy")))
+                       for c in groups[link].iter(f"{SVG}circle")}
+        assert set(svg_centres) == set(expected)
+        shift = _one_shift(list(svg_centres.values()), expected)
+        assert shift is not None, link
+        for joint, (x, y) in expected.items():  # by name: each hole is the joint's
+            assert math.dist(svg_centres[joint], (x + shift[0], y + shift[1])) < 1e-9, (link, joint)
+
+
+# --- the JSON interchange gives the same linkage ----------------------------------------------
+
+def _round_trip_cases():
+    from symlink.catalog import CATALOG
+    from symlink.joints import Slider, from_joints
+    cases = {name: (CATALOG[name](), EXAMPLE_VALUES[name]) for name in LINKS}
+    drawn = {"A": (0, 0), "B": (1, 1), "C": (4, 2), "D": (5, 0), "E": (3, 4), "F": (6, 4), "G": (8, 0)}
+    sixbar = from_joints({"ground": list("ADG"), "crank": list("AB"), "coupler": list("BCE"), "rocker": list("CD"),
+                          "link": list("EF"), "output": list("FG")}, drawn, driver="A")
+    slider = from_joints({"ground": ["A", "C"], "crank": ["A", "B"], "rod": ["B", "C"]},
+                         {"A": (0, 0), "B": (1, 1), "C": (4, 0.5)}, driver="A", joints={"C": Slider("ground", 0.0)})
+    cases["from_joints six-bar"] = (sixbar.linkage, sixbar.defaults)
+    cases["from_joints slider"] = (slider.linkage, slider.defaults)
+    return cases
+
+
+@pytest.mark.parametrize("name", [*LINKS, "from_joints six-bar", "from_joints slider"])
+def test_a_design_read_back_from_json_puts_every_point_where_the_original_does_at_20_inputs(name):
+    """Both linkages posed at 20 values of the first input (each branch +1; the five-bar's second crank at the
+    angle the design keeps): every joint and named point at the same place to 1e-13 of the linkage's size, and
+    assembled at the same inputs."""
+    from symlink.fabrication import design_json, read_design
+    from symlink.plot.drawing import Geometry
+    linkage, values = _round_trip_cases()[name]
+    design = read_design(design_json(linkage, values, "cm"))
+    assert design.unit == "cm" and design.linkage.name == linkage.name
+    first = linkage.inputs[0].name
+    # Stephenson III's example crank meets a dead centre at +-54.6 degrees: 20 angles inside; else a full turn.
+    span = (-0.9, 0.9) if name == "stephenson3" else (0.0, 2 * math.pi * 19 / 20)
+    turn = {first: numpy.linspace(*span, 20)}
+    ours = Geometry(design.linkage).poses(design.values, turn)
+    theirs = Geometry(linkage).poses(values, turn)
+    assert ours.assembled.sum() >= 10 and numpy.array_equal(ours.assembled, theirs.assembled)
+    size = max(abs(v) for v in values.values())
+    assert set(ours.positions) == set(theirs.positions) and len(ours.positions) >= 3
+    for point, places in theirs.positions.items():
+        ok = theirs.assembled
+        assert numpy.max(numpy.abs(ours.positions[point][ok] - places[ok])) <= 1e-13 * size, point

@@ -267,14 +267,22 @@ def _travels(geometry, values: Mapping[str, float], found) -> dict[str, tuple[co
     return slots
 
 
-def _layout(parts: list[Part]) -> list[tuple[Part, float, float]]:
-    """Each part with the shift that puts it in a row, left to right, a width apart, bottoms at y = 0."""
+def _layout(parts: list[Part], unit: str) -> list[tuple[Part, float, float]]:
+    """Each part with the shift that puts it in a row, left to right, bottoms at y = 0, a width apart and far
+    enough apart that the labels above them (text of the largest ``radius`` in size) do not overlap."""
     placed, x = [], 0.0
+    text_size = max(p.radius for p in parts)
     for part in parts:
         xmin, ymin, xmax, _ = part.extent()
         placed.append((part, x - xmin, -ymin))
-        x += xmax - xmin + 2 * part.radius
+        x += max(xmax - xmin, _label_width(part, unit, text_size)) + 2 * part.radius
     return placed
+
+
+def _label_width(part: Part, unit: str, size: float) -> float:
+    """About how wide the label of ``part`` is in text of ``size`` (a character is at most 0.6 of its size in
+    common sans-serif fonts)."""
+    return 0.6 * size * len(part.label(unit))
 
 
 def _check_unit(unit: str) -> str:
@@ -294,10 +302,11 @@ def svg_text(parts: list[Part], unit: str = "mm") -> str:
     _check_unit(unit)
     if not parts:
         raise ValueError("no parts to draw")
-    placed = _layout(parts)
-    width = max(dx + p.extent()[2] for p, dx, _ in placed) + parts[-1].radius
-    height = max(dy + p.extent()[3] for p, _, dy in placed)
+    placed = _layout(parts, unit)
     text_size = max(p.radius for p in parts)
+    width = max(max(dx + p.extent()[2], dx + p.extent()[0] + _label_width(p, unit, text_size))
+                for p, dx, _ in placed) + parts[-1].radius
+    height = max(dy + p.extent()[3] for p, _, dy in placed)
     top = -(height + 3 * text_size)
     size_mm = UNITS_IN_MM[unit]
     full_height = height + 3 * text_size
@@ -334,7 +343,7 @@ def svg_text(parts: list[Part], unit: str = "mm") -> str:
 def assembly_svg_text(parts: list[Part], unit: str = "mm") -> str:
     """The assembly drawing: every part's outline, holes and slots where it sits at the pose the parts were read
     at (:func:`link_parts` with the input's value in ``values``), one ``<g>`` a part, ground first, labelled
-    with the part names at their first hole.
+    with the part's name at the middle of its holes.
 
     >>> from symlink.catalog import fourbar
     >>> import math
@@ -372,6 +381,10 @@ def assembly_svg_text(parts: list[Part], unit: str = "mm") -> str:
                          f'r="{_number(part.pin_diameter / 2)}" {stroke}/>')
         for start, end in part.slots:
             lines.append(f'<path class="slot" d="{_slot_path(start, end, part.pin_diameter / 2, at)}" {stroke}/>')
+        points = list(part.holes.values()) + list(part.corners.values()) + [end for slot in part.slots for end in slot]
+        x, y = at((sum(p[0] for p in points) / len(points), sum(p[1] for p in points) / len(points))).split()
+        lines.append(f'<text x="{x}" y="{y}" font-size="{_number(part.radius)}" text-anchor="middle">'
+                     f'{escape(part.name)}</text>')
         lines.append("</g>")
     lines.append("</svg>")
     return "\n".join(lines) + "\n"
@@ -423,7 +436,7 @@ def dxf_text(parts: list[Part], unit: str = "mm") -> str:
     document = ezdxf.new("R2010")
     document.header["$INSUNITS"] = _DXF_UNITS[unit]
     space = document.modelspace()
-    for part, dx, dy in _layout(parts):
+    for part, dx, dy in _layout(parts, unit):
         layer = {"layer": part.name}
         if part.name not in document.layers:
             document.layers.add(part.name)

@@ -223,3 +223,27 @@ def test_a_set_whose_last_rename_fails_is_taken_back_whole(tmp_path, capsys, mon
     assert got == 1 and "No space left on device" in err and err.count("\n") == 1, err
     left = sorted(str(p.relative_to(tmp_path)) for p in tmp_path.rglob("*") if p.is_file())
     assert left == ["a.svg"] and old.read_text() == "the old drawing"
+
+
+def test_the_how_to_pictures_are_what_its_command_draws(tmp_path, monkeypatch, capsys):
+    """docs/howto/fabrication.md shows fabrication_parts.svg and fabrication_assembly.svg: its console command,
+    run again, draws them (numbers to 1e-9: the backends may differ in the last digits)."""
+    import re
+    import shlex
+    from pathlib import Path
+
+    from readme_text import fenced_blocks
+    howto = Path(__file__).resolve().parents[2] / "docs" / "howto"
+    block, = fenced_blocks((howto / "fabrication.md").read_text(), "console")
+    command = block.split("\n$")[0].removeprefix("$ ").split("\nsymlink:")[0].replace("\\\n", " ")
+    argv = shlex.split(command)
+    assert argv[:2] == ["symlink", "parts"]
+    monkeypatch.chdir(tmp_path)
+    assert main(argv[1:]) == 0, capsys.readouterr().err
+    number = re.compile(r"-?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?")
+    for drawn, shown in (("parts.svg", "fabrication_parts.svg"), ("assembly.svg", "fabrication_assembly.svg")):
+        new, old = (tmp_path / drawn).read_text(), (howto / shown).read_text()
+        assert number.sub("#", new) == number.sub("#", old), f"docs/howto/{shown} is not what the command draws"
+        assert all(math.isclose(float(a), float(b), abs_tol=1e-9)
+                   for a, b in zip(number.findall(new), number.findall(old))), shown
+    assert {p.name for p in tmp_path.iterdir()} == {"parts.svg", "parts.dxf", "assembly.svg", "design.json"}

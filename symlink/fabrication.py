@@ -21,8 +21,10 @@ and arcs, closed.  Coordinates are in the linkage's own length unit; ``unit``
 sampling error is second order).
 
 SVG is plain XML, one ``<g>`` a part, labelled with its name and hole-to-hole
-dimensions; DXF needs ``ezdxf`` (``pip install symlink-kinematics[fabrication]``).
-Both are written atomically (:func:`symlink.files.write_atomic`).
+dimensions (:func:`svg_text`); DXF (:func:`dxf_text`) needs ``ezdxf`` (``pip install
+symlink-kinematics[fabrication]``).  Both are written atomically (:func:`symlink.files.write_atomic`);
+:func:`assembly_svg_text` draws the parts assembled at the pose they were read at.  On the command
+line, ``symlink parts`` writes any set of these files together.
 
 A design travels between programs as JSON (:func:`design_json`, :func:`read_design`): its unit, its
 links and joints (names, kinds, which links each joint joins) and the linkage itself with its

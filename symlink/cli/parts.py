@@ -53,6 +53,7 @@ def register(commands) -> None:
 
 
 def _add_options(command: argparse.ArgumentParser) -> None:
+    from ..fabrication import UNITS_IN_MM
     command.add_argument("linkage", metavar="NAME|FILE",
                          help="a catalog linkage, a linkage file (.toml), atlas:NAME or a design file (.json)")
     command.add_argument("--set", type=assignments("NAME=VALUE"), default={}, metavar="NAME=VALUE,...",
@@ -60,7 +61,7 @@ def _add_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("--pin-diameter", type=finite, required=True, metavar="D",
                          help="diameter of the pin holes, in --unit")
     command.add_argument("--width", type=finite, metavar="W", help="width of a bar, more than D (default 2 D)")
-    command.add_argument("--unit", choices=["mm", "cm", "m", "in"],
+    command.add_argument("--unit", choices=list(UNITS_IN_MM),
                          help="the length unit of the linkage's dimensions (default mm, or a design file's)")
     for option, (suffix, what) in FILE_OPTIONS.items():
         command.add_argument(f"--{option}", metavar="FILE", help=f"write {what} ({suffix})")
@@ -89,7 +90,7 @@ def run(args: argparse.Namespace) -> int:
     writer = RowWriter(COLUMNS, args.format)
     writer.write(row for part in parts for row in _rows(part, unit))
     writer.close()
-    for option, path in targets.items():
+    for path in targets.values():
         note(f"wrote {path}")
     return 0
 

@@ -25,7 +25,7 @@ import time
 from pathlib import Path
 from typing import Mapping
 
-__all__ = ["write_atomic", "write_files_atomic", "private_folder", "read_private", "NotPrivate", "TEMPORARY_SUFFIX",
+__all__ = ["write_atomic", "write_files_atomic", "write_files_together", "private_folder", "read_private", "NotPrivate", "TEMPORARY_SUFFIX",
            "remove_leftovers", "read_input", "read_input_text", "read_stdin_text", "excerpt", "EXCERPT_LENGTH"]
 
 #: The name of every temporary file of :func:`write_atomic` ends so: ``.<name>.<random>.tmp``.
@@ -323,11 +323,64 @@ def remove_leftovers(folder: str | os.PathLike, prefixes: tuple[str, ...], older
 LEFTOVER_AGE = 600.0
 
 
-def write_files_atomic(folder: str | os.PathLike, texts: Mapping[str, str | bytes]) -> list[Path]:
-    """Write a set of files into ``folder``: all of them, or (on any failure) none.
+def write_files_together(texts: Mapping[Path, str | bytes]) -> list[Path]:
+    """Write every file (they may be in several folders), or on any failure none, leaving old files as they were.
 
-    Every file is written first into a hidden temporary folder beside them,
-    then each is renamed into place; a failure removes what was written.
+    Each file is first written in full beside its target under a hidden temporary name
+    (:func:`write_atomic`); then each file already there is kept under a second name (a hard
+    link) and the new one renamed over it.  A failure takes back every rename done: the old files are
+    renamed back, new ones removed.  Returns the paths written.
+
+    >>> import tempfile, pathlib
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> [p.name for p in write_files_together({folder / "a.svg": "<svg/>", folder / "sub" / "a.dxf": "0"})]
+    ['a.svg', 'a.dxf']
+    """
+    def hidden(path: Path) -> Path:
+        return path.parent / f".{path.name}.{secrets.token_hex(6)}{TEMPORARY_SUFFIX}"
+
+    paths = {Path(path): data for path, data in texts.items()}
+    for path in paths:
+        if path.is_dir():
+            raise IsADirectoryError(21, "it is a folder", str(path))
+    staged: dict[Path, Path] = {}
+    kept: dict[Path, Path | None] = {}  # each target renamed over: its old file's second name (None: it had none)
+    try:
+        for path, data in paths.items():
+            temporary = hidden(path)
+            try:
+                path.parent.mkdir(parents=True, exist_ok=True)
+                write_atomic(temporary, data)
+            except OSError as error:
+                raise type(error)(error.errno, error.strerror or str(error), str(path)) from None
+            staged[path] = temporary
+        for path, temporary in list(staged.items()):
+            backup = hidden(path) if path.exists() else None
+            if backup is not None:
+                try:
+                    os.link(path, backup)
+                except OSError:  # a file system without hard links: a copy
+                    shutil.copy2(path, backup)
+            kept[path] = backup
+            os.replace(temporary, path)
+            del staged[path]
+    except BaseException:
+        for path, backup in kept.items():
+            if backup is not None:
+                os.replace(backup, path)
+            elif path not in staged:
+                path.unlink(missing_ok=True)
+        kept.clear()
+        raise
+    finally:
+        for temporary in [*staged.values(), *(backup for backup in kept.values() if backup is not None)]:
+            temporary.unlink(missing_ok=True)
+    return list(paths)
+
+
+def write_files_atomic(folder: str | os.PathLike, texts: Mapping[str, str | bytes]) -> list[Path]:
+    """Write a set of files into ``folder``: all of them, or (on any failure) none (:func:`write_files_together`).
+
     Returns the paths written.
 
     >>> import tempfile, pathlib
@@ -337,22 +390,5 @@ def write_files_atomic(folder: str | os.PathLike, texts: Mapping[str, str | byte
     """
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
-    remove_leftovers(folder, (), older_than=LEFTOVER_AGE)  # staging folders of killed runs end in .tmp too
-    staging = folder / f".symlink-files-{secrets.token_hex(6)}{TEMPORARY_SUFFIX}"
-    staging.mkdir(mode=0o700)
-    moved: list[Path] = []
-    try:
-        for name, data in texts.items():
-            write_atomic(staging / name, data)
-        for name in texts:
-            os.replace(staging / name, folder / name)
-            moved.append(folder / name)
-    except BaseException:
-        for path in moved:
-            path.unlink(missing_ok=True)
-        raise
-    finally:
-        for leftover in staging.iterdir():
-            leftover.unlink(missing_ok=True)
-        staging.rmdir()
-    return moved
+    remove_leftovers(folder, (), older_than=LEFTOVER_AGE)  # temporaries of killed runs
+    return write_files_together({folder / name: data for name, data in texts.items()})

@@ -14,15 +14,14 @@ from __future__ import annotations
 import argparse
 import math
 import os
-import secrets
-import shutil
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 import numpy
 
 from ..angles import from_radians, to_radians
 from .options import add_branch_option, add_format_option, add_units_option, angle, assignments, command_help, finite
+from ..files import write_files_together
 from .output import RowWriter, note
 
 __all__ = ["register", "COLUMNS", "FILE_OPTIONS"]
@@ -86,7 +85,7 @@ def run(args: argparse.Namespace) -> int:
     parts = link_parts(linkage, values, pin_diameter=pin, width=width)
     makers = {"svg": lambda: svg_text(parts, unit), "dxf": lambda: _dxf(dxf_text, parts, unit),
               "assembly": lambda: assembly_svg_text(parts, unit), "json": lambda: design_json(linkage, values, unit)}
-    _write_together({path: makers[option]() for option, path in targets.items()})
+    write_files_together({path: makers[option]() for option, path in targets.items()})
     writer = RowWriter(COLUMNS, args.format)
     writer.write(row for part in parts for row in _rows(part, unit))
     writer.close()
@@ -190,53 +189,3 @@ def _rows(part, unit: str) -> list[dict[str, Any]]:
         xmin, _, xmax, _ = part.extent()
         rows.append({"part": part.name, "dimension": "block", "length": xmax - xmin, "unit": unit})
     return rows
-
-
-def _write_together(texts: Mapping[Path, str]) -> None:
-    """Write every file, or (on any failure) none, leaving files that were there as they were.
-
-    Each file is first written in full beside its target under a hidden temporary name
-    (:func:`symlink.files.write_atomic`); then each file already there is kept under a second name (a hard
-    link) and the new one renamed over it.  A failure takes back every rename done: the old files are
-    renamed back, new ones removed.  :func:`symlink.files.write_files_atomic` does this for the files of one
-    folder, without keeping the old ones; these may be in several folders.
-    """
-    from ..files import TEMPORARY_SUFFIX, write_atomic
-
-    def hidden(path: Path) -> Path:
-        return path.parent / f".{path.name}.{secrets.token_hex(6)}{TEMPORARY_SUFFIX}"
-
-    for path in texts:
-        if path.is_dir():
-            raise IsADirectoryError(21, "it is a folder", str(path))
-    staged: dict[Path, Path] = {}
-    kept: dict[Path, Path | None] = {}  # each target renamed over: its old file's second name (None: it had none)
-    try:
-        for path, text in texts.items():
-            temporary = hidden(path)
-            try:
-                write_atomic(temporary, text)
-            except OSError as error:
-                raise type(error)(error.errno, error.strerror or str(error), str(path)) from None
-            staged[path] = temporary
-        for path, temporary in list(staged.items()):
-            backup = hidden(path) if path.exists() else None
-            if backup is not None:
-                try:
-                    os.link(path, backup)
-                except OSError:  # a file system without hard links: a copy
-                    shutil.copy2(path, backup)
-            kept[path] = backup
-            os.replace(temporary, path)
-            del staged[path]
-    except BaseException:
-        for path, backup in kept.items():
-            if backup is not None:
-                os.replace(backup, path)
-            elif path not in staged:
-                path.unlink(missing_ok=True)
-        kept.clear()
-        raise
-    finally:
-        for temporary in [*staged.values(), *(backup for backup in kept.values() if backup is not None)]:
-            temporary.unlink(missing_ok=True)

@@ -261,10 +261,10 @@ def _starts(problem: _Problem, rows: numpy.ndarray, signs: list, count: int, giv
         else:
             wanted = numpy.broadcast_to((problem.poses[:, 2] - problem.placement["angle"])[None, None, :],
                                         a.shape + (len(turns),))
-        with numpy.errstate(all="ignore"):
-            gap = numpy.abs(wrap(a[:, None, None, :] - wanted[..., None]))  # (M, S, N, S)
-        gap = numpy.where(numpy.isnan(gap), numpy.inf, gap)
-        picks = numpy.argmin(gap, axis=-1)  # (M, S, N)
+        # the closest angle has the largest cosine of the difference: cos a cos w + sin a sin w, (M, S first, N, S)
+        closeness = (numpy.cos(a)[:, None, None, :] * numpy.cos(wanted)[..., None]
+                     + numpy.sin(a)[:, None, None, :] * numpy.sin(wanted)[..., None])
+        picks = numpy.argmax(numpy.where(numpy.isnan(closeness), -numpy.inf, closeness), axis=-1)  # (M, S, N)
         m_index = numpy.arange(a.shape[0])[:, None, None]
         placements, misfit = _fit(problem, z[part][m_index, picks], a[m_index, picks])
         best = numpy.argmin(misfit, axis=1)

@@ -127,7 +127,7 @@ def _register_function(kinds) -> None:
     add_format_option(command)
     command.add_argument("--plot", type=figure_path, metavar="FILE", help="draw wanted against generated (.png/.svg)")
     add_general_options(command, "function")
-    command.set_defaults(run=_routed(_run_function, "function"))
+    command.set_defaults(run=_routed(_run_function, "function", command))
 
 
 FUNCTION_FIELDS = ["crank", "coupler", "rocker", "ground", "branch", "crank_offset", "rocker_offset",
@@ -210,7 +210,7 @@ def _register_path(kinds) -> None:
     command.add_argument("--plot", type=figure_path, metavar="FILE",
                          help="draw targets, achieved curve and the linkage at each point (.png/.svg)")
     add_general_options(command, "path")
-    command.set_defaults(run=_routed(_run_path, "path"))
+    command.set_defaults(run=_routed(_run_path, "path", command))
 
 
 PATH_FIELDS = ["rank", "error", "x0", "y0", "frame", "crank", "coupler", "rocker", "ground", "u", "v", "branch",
@@ -349,7 +349,7 @@ def _register_motion(kinds) -> None:
     command.add_argument("--plot", type=figure_path, metavar="FILE",
                          help="draw the poses, Burmester curves and the first design at each pose (.png/.svg)")
     add_general_options(command, "motion")
-    command.set_defaults(run=_routed(_run_motion, "motion"))
+    command.set_defaults(run=_routed(_run_motion, "motion", command))
 
 
 #: Columns of ``symlink synthesize motion`` before the per-pose ``crank_angle_K, branch_K``; angles in --units.
@@ -494,12 +494,17 @@ def add_general_options(command: argparse.ArgumentParser, kind: str) -> None:
                        help="write the design, targets and errors (.json) or one row a target (.csv)")
 
 
-def _routed(fourbar_run: Callable[[argparse.Namespace], int], kind: str) -> Callable[[argparse.Namespace], int]:
+def _routed(fourbar_run: Callable[[argparse.Namespace], int], kind: str,
+            command: argparse.ArgumentParser) -> Callable[[argparse.Namespace], int]:
     """The run of a kind: the general route when a LINKAGE is given, else the four-bar's; options of the other
     route refused (they would do nothing)."""
     def run(args: argparse.Namespace) -> int:
         named = args.linkage is not None
-        unused = sorted(given_options(args) & set(FOURBAR_ONLY[kind] if named else GENERAL_ONLY[kind]))
+        others = set(FOURBAR_ONLY[kind] if named else GENERAL_ONLY[kind])
+        # appended and flag options are not tracked as given: they are given when they differ from their default
+        given = given_options(args) | {dest for dest in others
+                                       if getattr(args, dest, None) != command.get_default(dest)}
+        unused = sorted(given & others)
         if unused:
             option = "--" + unused[0].replace("_", "-")
             raise ValueError(f"synthesize {kind}: {option} does nothing " + (
@@ -748,9 +753,10 @@ def _plot_general(kind: str, linkage, design, placement, columns, path: str, uni
     axis.plot(x, y, "x", color="black", markersize=9, markeredgewidth=2, label="targets", zorder=7)
     if kind == "motion":
         turn = numpy.asarray(to_radians(columns["angle"], units), dtype=float)
-        size = max(float(numpy.hypot(numpy.ptp(x), numpy.ptp(y))), 1e-300) * 0.12
-        axis.quiver(x, y, size * numpy.cos(turn), size * numpy.sin(turn), angles="xy", scale_units="xy", scale=1,
-                    color="black", width=0.004, zorder=7)
+        size = max(float(numpy.hypot(numpy.ptp(x), numpy.ptp(y))), 1e-300) * 0.3
+        for k, (px, py, a) in enumerate(zip(x, y, turn)):  # each pose's angle: a short line from its point
+            axis.plot([px, px + size * math.cos(a)], [py, py + size * math.sin(a)], color="black", linewidth=2,
+                      zorder=7, label="pose angles" if k == 0 else "_nolegend_")
     axis.legend(loc="best", fontsize="small")
     axis.relim()
     axis.autoscale_view()

@@ -84,7 +84,8 @@ def placed_design(linkage: Linkage, values: Mapping[str, float],
     if clash:
         raise ValueError(f"{linkage.name} already has a symbol named {clash[0]!r}, which its placement needs")
     x0, y0, turn = sp.symbols(PLACEMENT_NAMES, real=True)
-    shift = Vector(x0, 0, "place_shift_x") + Vector(y0, sp.pi / 2, "place_shift_y")
+    shift_x, shift_y = Vector(x0, 0, "place_shift_x"), Vector(y0, sp.pi / 2, "place_shift_y")
+    shift = shift_x + shift_y
     turned_unknowns = {u: u + turn for u in linkage.unknowns}
     cache: dict[str, Vector] = {}
 
@@ -104,7 +105,7 @@ def placed_design(linkage: Linkage, values: Mapping[str, float],
             placed = placed + turned(vector) if sign > 0 else placed - turned(vector)
         return placed
 
-    loops = [Loop(walked(loop.vectors) - shift, name=loop.name) for loop in linkage.loops]
+    loops = [Loop(walked(loop.vectors) - shift_y - shift_x, name=loop.name) for loop in linkage.loops]  # walked back
     points: dict[str, Vector | VectorSum | None] = {name: walked(vectors) for name, vectors in linkage.points.items()}
     moved = Linkage(linkage.name, loops, inputs=list(linkage.inputs), unknowns=list(linkage.unknowns),
                     parameters=list(linkage.parameters) + [x0, y0, turn], points=points, roles=dict(linkage.roles))

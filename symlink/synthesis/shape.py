@@ -190,7 +190,20 @@ def _partial_distance(piece: numpy.ndarray, whole: numpy.ndarray) -> tuple[float
     windows = numpy.interp(where, arc, doubled.real) + 1j * numpy.interp(where, arc, doubled.imag)
     distance = _aligned_distance(numpy.broadcast_to(piece, windows.shape), windows)
     w, s = numpy.unravel_index(numpy.argmin(distance), distance.shape)
-    return float(distance[w, s]), float(starts[w]), float(spans[s])
+    best = (float(distance[w, s]), float(starts[w]), float(spans[s]))
+    # refine the best window between the grid's values: a shrinking 5 x 5 pattern around it
+    step_start, step_span = 1.0 / _WINDOWS, float(spans[1] - spans[0])
+    for _ in range(24):
+        trial_starts = best[1] + step_start * numpy.linspace(-1.0, 1.0, 5)
+        trial_spans = numpy.clip(best[2] + step_span * numpy.linspace(-1.0, 1.0, 5), 1e-3, 1.0)
+        where = (trial_starts[:, None, None] % 1.0 + trial_spans[None, :, None] * fractions[None, None, :])
+        windows = numpy.interp(where, arc, doubled.real) + 1j * numpy.interp(where, arc, doubled.imag)
+        trial = _aligned_distance(numpy.broadcast_to(piece, windows.shape), windows)
+        w, s = numpy.unravel_index(numpy.argmin(trial), trial.shape)
+        if trial[w, s] < best[0]:
+            best = (float(trial[w, s]), float(trial_starts[w] % 1.0), float(trial_spans[s]))
+        step_start, step_span = step_start / 2, step_span / 2
+    return best
 
 
 def shape_distance(first: ArrayLike, second: ArrayLike, kind: str = "closed", *, samples: int = SAMPLES,
@@ -205,6 +218,7 @@ def shape_distance(first: ArrayLike, second: ArrayLike, kind: str = "closed", *,
         raise ValueError(f"kind is one of {', '.join(KINDS)}, got {kind!r}")
     if samples < 8:
         raise ValueError(f"resample to at least 8 points, got {samples}")
+    _complex(first), _complex(second)  # ValueError for fewer than three points, or not finite
     if kind == "closed":
         return _closed_distance(resampled(first, samples), resampled(second, samples), harmonics)
     if kind == "open":
@@ -256,12 +270,13 @@ def shape_search(linkage: Linkage, point: str, target: ArrayLike, free: Mapping[
     if point not in linkage.points:
         raise ValueError(f"{linkage.name} has no point {point!r}; it has {', '.join(linkage.points)}")
     wanted = _complex(target)
+    target_rows = numpy.stack([wanted.real, wanted.imag], axis=1)
     bounds, fixed = free_bounds(linkage, free, {k: v for k, v in (values or {}).items() if k not in free})
     chosen = check_branches(linkage, branches)
     if designs < 0 or keep < 1:
         raise ValueError("designs must be at least 0 and keep at least 1")
     closed = kind == "closed"
-    goal = resampled(wanted, SAMPLES, closed=closed)
+    goal = resampled(target_rows, SAMPLES, closed=closed)
     outputs = DesignOutputs(linkage, (f"{point}_x", f"{point}_y"), tuple(bounds), fixed)
     first = [([float(c[name]) for name in bounds], chosen) for c in candidates]
     rows, signs = sampled_designs(linkage, bounds, numpy.random.default_rng(seed), designs, chosen, first)

@@ -156,3 +156,28 @@ def test_existing_fourbar_invocations_still_route_to_the_fourbar(targets, capsys
     (targets / "pairs.csv").write_text("theta,phi\n45,135\n75,180\n105,225\n")
     assert main(["synthesize", "function", "pairs.csv", "--ground", "1"]) == 0
     assert "three-point" in capsys.readouterr().err
+
+
+@pytest.mark.slow  # three syntheses and a table: about 12 s of CPU
+def test_the_how_to_pages_commands_run(tmp_path, monkeypatch, capsys):
+    """docs/howto/synthesis.md: its command-line section's Python block writes the files, then every ``$ symlink``
+    line runs (exit status 0) and writes what it says."""
+    import shlex
+    from pathlib import Path
+
+    from readme_text import fenced_blocks
+    page = (Path(__file__).resolve().parents[2] / "docs" / "howto" / "synthesis.md").read_text()
+    section = page[page.index("## On the command line"):]
+    monkeypatch.chdir(tmp_path)
+    for block in fenced_blocks(section, "python"):
+        exec(compile(block, "synthesis.md", "exec"), {"__name__": "__docs__"})  # our own docs
+    commands = [line[2:] for line in section.splitlines() if line.startswith("$ symlink ")]
+    assert len(commands) >= 4
+    for command in commands:
+        arguments = shlex.split(command)[1:]
+        assert main(arguments) == 0, (command, capsys.readouterr().err)
+        for option in ("--out", "--record", "--plot"):
+            if option in arguments:
+                assert (tmp_path / arguments[arguments.index(option) + 1]).stat().st_size > 0
+    found = json.loads((tmp_path / "found.json").read_text())
+    assert found["assembled"] and found["error"] < 1e-10

@@ -397,7 +397,8 @@ FOURBAR_ONLY = {"function": ("ground",),
                 "path": ("designs", "grashof", "max_link_ratio", "min_transmission"),
                 "motion": ("moving_pivot", "fixed_pivot", "rotation", "offset", "defect_free", "designs")}
 #: Options of the general route of each kind (by destination): they need a LINKAGE.
-GENERAL_ONLY = {"function": ("set", "free", "bound", "branch", "output", "out", "record", "seed", "starts"),
+GENERAL_ONLY = {"function": ("set", "free", "bound", "branch", "output", "minimax", "out", "record", "seed",
+                             "starts"),
                 "path": ("set", "free", "bound", "branch", "point", "frame", "out", "record"),
                 "motion": ("set", "free", "bound", "branch", "point", "angle", "frame", "out", "record", "seed",
                            "starts")}
@@ -483,6 +484,8 @@ def add_general_options(command: argparse.ArgumentParser, kind: str) -> None:
     if kind == "function":
         group.add_argument("--output", metavar="NAME",
                            help="the output generated (default: the csv's second column, else the last unknown)")
+        group.add_argument("--minimax", action="store_true",
+                           help="level the errors: the smallest largest error (default: least squares)")
     if kind == "motion":
         group.add_argument("--angle", metavar="NAME", help="the output that is the guided link's angle")
     if kind != "path":  # path has its own
@@ -593,7 +596,7 @@ def _run_general(args: argparse.Namespace, kind: str) -> int:
             wanted = numpy.asarray(to_radians(wanted, args.units), dtype=float)
         assert timed is not None
         design = synthesize_function(linkage, output, timed, wanted, free, values=values, branches=args.branch,
-                                     starts=args.starts, seed=args.seed)
+                                     starts=args.starts, seed=args.seed, minimax=args.minimax)
         placement: dict[str, float] = {}
         point = output
     elif kind == "path":

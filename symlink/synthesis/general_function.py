@@ -48,6 +48,8 @@ from .function import chebyshev_points
 __all__ = ["FunctionSynthesis", "synthesize_function", "function_values", "chebyshev_inputs"]
 
 _DONE = 1e-12  # a verified design whose error over the output's unit is below this ends the search
+_LAWSON_STEPS = 40      # minimax: Lawson re-weightings of the least squares ...
+_LAWSON_EVALUATIONS = 60  # ... each refined with at most this many evaluations
 
 
 @dataclass(frozen=True)
@@ -115,14 +117,14 @@ class _Problem:
         difference = generated - self.wanted
         return wrap(difference) if self.angle else difference
 
-    def residuals(self, x: numpy.ndarray, branches: Mapping[str, int]):
+    def residuals(self, x: numpy.ndarray, branches: Mapping[str, int], weights: numpy.ndarray | None = None):
         if not inside(x, self.bounds, self.positive):
             return None
         values, slopes, ok = self.outputs.at(x, self.inputs, branches)
         if not numpy.all(ok):
             return None
-        r = self.error(values[0]) / self.unit
-        return r, slopes[0, :len(self.free)].T / self.unit
+        scale = (1.0 if weights is None else numpy.sqrt(weights)) / self.unit
+        return self.error(values[0]) * scale, slopes[0, :len(self.free)].T * numpy.reshape(scale, (-1, 1))
 
     def design(self, x: numpy.ndarray) -> dict[str, float]:
         return {**self.fixed, **{name: float(v) for name, v in zip(self.free, x)}}
@@ -154,7 +156,7 @@ def _freudenstein_start(problem: _Problem, given: Mapping[str, float]):
 def synthesize_function(linkage: Linkage, output: str, inputs: ArrayLike, wanted: ArrayLike,
                         free: Mapping[str, tuple[float, float]], *, values: Mapping[str, float] | None = None,
                         branches: Mapping[str, int] | None = None, starts: int = 8, seed: int | None = 0,
-                        evaluations: int = 400, tolerance: float = 1e-15) -> FunctionSynthesis:
+                        evaluations: int = 400, tolerance: float = 1e-15, minimax: bool = False) -> FunctionSynthesis:
     """A design of ``linkage`` whose ``output`` takes the ``wanted`` values at the ``inputs``, verified.
 
     ``output`` is an output name of the linkage (an angle, such as ``"psi"`` or a role, or a
@@ -163,7 +165,10 @@ def synthesize_function(linkage: Linkage, output: str, inputs: ArrayLike, wanted
     free ones too, that design is the first start).  ``branches`` fixes branch signs by name
     (default: tried both ways across the starts).  The ``starts`` closest of the sampled feasible
     designs are refined with at most ``evaluations`` residual evaluations each; the search stops at
-    the first verified design whose error is below 1e-12 of the output's unit.  Returns the best
+    the first verified design whose error is below 1e-12 of the output's unit.  ``minimax``: the
+    best least-squares design is then re-weighted (Lawson: each point's weight times its error)
+    towards the smallest largest error, the structural error a function generator is judged by,
+    where no design meets every point (more points than free parameters).  Returns the best
     verified design, or the closest one with ``assembled`` False and its reason; ``ValueError`` for
     bad input or when no sampled design is assembled at every input.
     """
@@ -215,7 +220,32 @@ def synthesize_function(linkage: Linkage, output: str, inputs: ArrayLike, wanted
             break
     if best is None:
         raise ValueError("no start could be refined")
+    if minimax and best.assembled and best.structural_error >= _DONE * problem.unit:
+        best, spent = _minimax(problem, best, spent)
     return FunctionSynthesis(**{**best.__dict__, "evaluations": spent})
+
+
+def _minimax(problem: _Problem, best: FunctionSynthesis, spent: int) -> tuple[FunctionSynthesis, int]:
+    """Lawson's re-weighted least squares from the least-squares design: the smallest largest error found."""
+    x = numpy.array([best.design[name] for name in problem.free])
+    weights = numpy.full(len(problem.inputs), 1.0 / len(problem.inputs))
+    for _ in range(_LAWSON_STEPS):
+        found = problem.residuals(x, best.branches)
+        if found is None:
+            break
+        errors = numpy.abs(found[0])
+        if not numpy.sum(weights * errors) > 0:
+            break
+        weights = weights * errors / numpy.sum(weights * errors)
+        result = refine(lambda y: problem.residuals(y, best.branches, weights), x, _LAWSON_EVALUATIONS, 1e-15)
+        if result is None:
+            break
+        x, _, used = result
+        spent += used
+        candidate = _verified(problem, x, best.branches, spent)
+        if candidate.assembled and candidate.structural_error < best.structural_error:
+            best = candidate
+    return best, spent
 
 
 def _verified(problem: _Problem, x: numpy.ndarray, branches: Mapping[str, int], evaluations: int) -> FunctionSynthesis:

@@ -134,6 +134,7 @@ BAD = [
     (["function", "slider-crank", "fn.csv", "--free", "a", "--output", "B_x"], "B_x"),
     (["function", "slider-crank", "fn.csv", "--free", "a", "--ground", "2"], "does nothing"),
     (["function", "fn.csv", "--output", "s"], "does nothing without a LINKAGE"),
+    (["function", "fn.csv", "--minimax"], "does nothing without a LINKAGE"),
     (["motion", "fourbar", "poses.csv", "--free", "b", "--point", "B"], "--angle"),
     (["motion", "fourbar", "poses.csv", "--free", "b", "--point", "B", "--angle", "B_x"], "not an angle"),
     (["motion", "fourbar", "xy.csv", "--free", "b", "--point", "B", "--angle", "beta"], "the header is"),

@@ -113,3 +113,34 @@ def test_bad_input_is_a_value_error_naming_it(call, message):
     with pytest.raises(ValueError) as error:
         call()
     assert message in str(error.value)
+
+
+def test_minimax_levels_the_errors_of_a_log_generator():
+    """Freudenstein's classic log10 generator (x in [1, 2] on theta 45-105 deg, rocker over 90 deg; in symlink's
+    convention the rocker angle is the textbook's plus 180 deg), 21 points: no four-bar meets them all.  Minimax
+    must lower the largest error below least squares' and level it (Chebyshev: the extremes alternate with equal
+    size, four of them for three free lengths); the errors are measured here by hand."""
+    x = numpy.linspace(1.0, 2.0, 21)
+    inputs = numpy.radians(45 + 60 * (x - 1))
+    wanted = numpy.radians(135 + 90 * numpy.log10(x) / math.log10(2)) + math.pi
+    free = {"a": (0.2, 3.0), "b": (0.2, 5.0), "c": (0.2, 3.0)}
+
+    def hand_errors(found):
+        pins = [fourbar_joints(found.design["a"], found.design["b"], found.design["c"], 1.0, q,
+                               found.branches["branch"])[1] for q in inputs]
+        return numpy.array([wrapped(math.atan2(C.imag, C.real - 1.0) - w) for C, w in zip(pins, wanted)])
+
+    squares = synthesize_function(fourbar(), "phi", inputs, wanted, free, values={"d": 1.0})
+    level = synthesize_function(fourbar(), "phi", inputs, wanted, free, values={"d": 1.0}, minimax=True)
+    assert squares.assembled and level.assembled
+    worst_squares = numpy.max(numpy.abs(hand_errors(squares)))
+    errors = hand_errors(level)
+    worst = numpy.max(numpy.abs(errors))
+    assert worst < 0.8 * worst_squares
+    assert abs(worst - level.structural_error) < 1e-12
+    # the local extremes of the error curve (ends included) alternate in sign with nearly equal size
+    interior = [k for k in range(1, len(errors) - 1) if abs(errors[k]) >= abs(errors[k - 1])
+                and abs(errors[k]) >= abs(errors[k + 1])]
+    extremes = errors[[0, *interior, len(errors) - 1]]
+    assert len(extremes) >= 4 and numpy.all(numpy.sign(extremes[1:]) != numpy.sign(extremes[:-1]))
+    assert numpy.min(numpy.abs(extremes)) > 0.9 * worst  # levelled to within the 21 points' sampling

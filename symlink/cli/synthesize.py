@@ -468,7 +468,7 @@ def add_general_options(command: argparse.ArgumentParser, kind: str) -> None:
     group = command.add_argument_group("any linkage (with LINKAGE)")
     group.add_argument("--free", type=_names, action="append", metavar="NAME[,NAME...]",
                        help="parameters that may change (bounds: --bound, else half to twice a length's value, "
-                            "the value +-1 (or +-180 deg) for others)")
+                            "an angle's value +-180 deg, another's value +-max(1, |value|))")
     group.add_argument("--bound", type=_bound, action="append", metavar="NAME=LO,HI",
                        help="bounds of a free parameter (makes it free; angles in --units)")
     group.add_argument("--set", type=assignments("NAME=VALUE"), default={}, metavar="NAME=VALUE,...",

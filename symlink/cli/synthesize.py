@@ -622,8 +622,8 @@ def _run_general(args: argparse.Namespace, kind: str) -> int:
     record = _general_record(args, kind, linkage, design, placement, error, columns)
     _print_general(args, record)
     if not design.assembled:
-        note(f"no verified design: {design.why}; the closest is shown and nothing is written")
-        return 0
+        raise ValueError(f"no verified design: {design.why}; the closest is printed above, nothing is written "
+                         "(widen the bounds, free more parameters or give more --starts)")
     if args.out:
         from ..files import write_atomic
         from ..linkage_file import linkage_text

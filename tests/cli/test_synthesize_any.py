@@ -106,6 +106,20 @@ def test_motion_of_a_fourbar_coupler_timed(tmp_path, capsys):
     assert abs(wrapped(math.radians(float(row["coupler"])) - cmath.phase(C - B) - WHERE["angle"])) < 1e-5
 
 
+def test_function_with_generic_columns_and_output_named(tmp_path, capsys):
+    inputs = [0.2, 0.7, 1.2, 1.7, 2.2]  # radians
+    (tmp_path / "t.csv").write_text("input,output\n" + "".join(
+        f"{q!r},{slider_travel(1.1, 3.9, -0.2, q)!r}\n" for q in inputs))
+    status = main(["synthesize", "function", "slider-crank", str(tmp_path / "t.csv"), "--output", "s", "--units",
+                   "rad", "--set", "a=1,b=4,offset=0", "--free", "a,b,offset", "--format", "json"])
+    assert status == 0, capsys.readouterr().err
+    found = json.loads(capsys.readouterr().out)
+    v = found["design"]
+    assert found["inputs"] == inputs
+    assert max(abs(slider_travel(v["a"], v["b"], v["offset"], q) - slider_travel(1.1, 3.9, -0.2, q))
+               for q in inputs) < 1e-8
+
+
 @pytest.fixture
 def targets(tmp_path):
     (tmp_path / "xy.csv").write_text("x,y\n0,0\n1,0.5\n2,0.7\n")

@@ -664,15 +664,22 @@ def _general_record(args, kind: str, linkage, design, placement, error: float, c
     unit = lambda x: float(from_radians(x, args.units))  # noqa: E731
     as_input = unit if is_angle(linkage, linkage.inputs[0]) else float
     targets = [[float(columns[name][k]) for name in columns] for k in range(len(next(iter(columns.values()))))]
-    errors = design.errors if kind != "motion" else [
-        max(p, abs(unit(a))) for p, a in zip(design.position_errors, design.angle_errors)]
+    # per target: path, the distance; function, generated - wanted (an angle in --units); motion, the distance, and
+    # the angle's error (in --units) in "angle_errors"
+    if kind == "path":
+        errors = list(design.errors)
+    elif kind == "function":
+        errors = [unit(e) if _angle_output(linkage, design.output) else e for e in design.errors]
+    else:
+        errors = list(design.position_errors)
+    extra = {"angle_errors": [unit(a) for a in design.angle_errors]} if kind == "motion" else {}
     return {"kind": kind, "linkage": linkage.name, "assembled": design.assembled, "error": error,
             "evaluations": design.evaluations,
             "design": {name: unit(v) if name in angles else v for name, v in design.design.items()},
             "placement": {name: unit(v) if name == "angle" else v for name, v in placement.items()},
             "branches": dict(design.branches), "inputs": [as_input(q) for q in design.inputs],
-            "columns": list(columns), "targets": targets, "errors": list(map(float, errors)), "units": args.units,
-            "why": design.why}
+            "columns": list(columns), "targets": targets, "errors": list(map(float, errors)), **extra,
+            "units": args.units, "why": design.why}
 
 
 def _print_general(args: argparse.Namespace, record: dict) -> None:
@@ -699,9 +706,10 @@ def _write_record(path: str, record: dict) -> None:
     else:
         out = io.StringIO()
         writer = csv.writer(out, lineterminator="\n")
-        writer.writerow(["target", "input", *record["columns"], "error"])
+        turned = record.get("angle_errors")
+        writer.writerow(["target", "input", *record["columns"], "error", *(["angle_error"] if turned else [])])
         for k, (q, target, error) in enumerate(zip(record["inputs"], record["targets"], record["errors"]), start=1):
-            writer.writerow([k, repr(q), *map(repr, target), repr(error)])
+            writer.writerow([k, repr(q), *map(repr, target), repr(error), *([repr(turned[k - 1])] if turned else [])])
         text = out.getvalue()
     write_atomic(path, text)
 

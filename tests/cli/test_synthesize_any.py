@@ -100,7 +100,7 @@ def test_motion_of_a_fourbar_coupler_timed(tmp_path, capsys):
     assert printed["assembled"] and abs(printed["design"]["b"] - 3.0) < 1e-8 and abs(printed["design"]["c"] - 2.5) < 1e-8
     lines = list(csv.DictReader(io.StringIO(record.read_text())))
     assert numpy.allclose([float(line["input"]) for line in lines], inputs, rtol=0, atol=1e-12)
-    assert all(float(line["error"]) < 1e-10 for line in lines)
+    assert all(float(line["error"]) < 1e-10 and abs(float(line["angle_error"])) < 1e-8 for line in lines)
     row = table_row(capsys, str(out), "--angles", "60", "--branch", "+1")
     B, C = fourbar_joints(*truth, math.radians(60))
     assert abs(wrapped(math.radians(float(row["coupler"])) - cmath.phase(C - B) - WHERE["angle"])) < 1e-5

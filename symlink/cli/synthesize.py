@@ -477,7 +477,8 @@ def add_general_options(command: argparse.ArgumentParser, kind: str) -> None:
                        help="fix branch signs (default: both tried)")
     if kind in ("path", "motion"):
         group.add_argument("--point", metavar="NAME", help="the linkage's point that " + (
-            "traces the path" if kind == "path" else "is the guided link's frame point"))
+            "traces the path" if kind == "path" else "is the guided link's frame point (default: the named point "
+                                                     "where the link at --angle starts)"))
         group.add_argument("--frame", type=_frame, metavar="LIST",
                            help="free parts of the placement: some of x0,y0,angle,scale, or none (default "
                                 + ("all" if kind == "path" else "x0,y0,angle") + ")")
@@ -608,10 +609,10 @@ def _run_general(args: argparse.Namespace, kind: str) -> int:
                                  branches=args.branch, starts=args.starts, seed=args.seed)
         placement = design.placement
     else:
-        from ..synthesis.general_motion import synthesize_motion
-        point = _point_option(args, linkage)
+        from ..synthesis.general_motion import frame_point, synthesize_motion
         if args.angle is None:
             raise ValueError("name the guided link's angle: --angle NAME (an unknown or role that is an angle)")
+        point = frame_point(linkage, args.angle) if args.point is None else _point_option(args, linkage)
         poses = numpy.stack([columns["x"], columns["y"], numpy.asarray(to_radians(columns["angle"], args.units))],
                             axis=1)
         design = synthesize_motion(linkage, point, args.angle, poses, free, values=values,

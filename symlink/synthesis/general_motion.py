@@ -41,6 +41,7 @@ from dataclasses import dataclass, field
 from typing import Mapping, Sequence
 
 import numpy
+import sympy as sp
 from numpy.typing import ArrayLike
 
 from ..angles import wrap
@@ -50,7 +51,7 @@ from .design_fit import (SAMPLED, DesignOutputs, branch_break, check_branches, c
                          is_angle_output, refine, sampled_designs, solved_outputs)
 from .general import FRAME_NAMES
 
-__all__ = ["MotionSynthesis", "synthesize_motion", "link_poses", "FRAME_NAMES"]
+__all__ = ["MotionSynthesis", "synthesize_motion", "link_poses", "frame_point", "FRAME_NAMES"]
 
 _IDENTITY = {"x0": 0.0, "y0": 0.0, "angle": 0.0, "scale": 1.0}
 _SWEEP = 72      # input values over a turn, for choosing the input at each pose of a start
@@ -91,6 +92,27 @@ def _placed(local: numpy.ndarray, placement: Mapping[str, float]) -> numpy.ndarr
     c, s, k = math.cos(placement["angle"]), math.sin(placement["angle"]), placement["scale"]
     x, y = local[..., 0], local[..., 1]
     return numpy.stack([placement["x0"] + k * (c * x - s * y), placement["y0"] + k * (s * x + c * y)], axis=-1)
+
+
+def frame_point(linkage: Linkage, angle: str) -> str:
+    """The named point where the link turned by the output ``angle`` starts: its frame point, found from the points.
+
+    A point written as ``... + V`` with ``V`` at exactly that angle (the link's vector) is on the
+    link, and so is the named point that is the same sum without ``V``, where the link starts.
+    ``ValueError`` when no named point is there.
+
+    >>> from symlink.catalog import fourbar, watt2
+    >>> frame_point(fourbar(), "coupler"), frame_point(watt2(), "mu")
+    ('B', 'E')
+    """
+    symbol = linkage.output(angle)  # ValueError naming the outputs there are
+    sums = {name: tuple(v.as_sum().terms) if v is not None else () for name, v in linkage.points.items()}
+    for terms in sums.values():
+        if terms and sp.simplify(terms[-1][1].angle - symbol) == 0 and terms[-1][0] > 0:
+            for name, other in sums.items():
+                if other == terms[:-1]:
+                    return name
+    raise ValueError(f"no named point of {linkage.name} starts the link at angle {angle!r}; name the frame point")
 
 
 def _outputs(linkage: Linkage, point: str, angle: str) -> tuple[str, str, str]:
@@ -287,7 +309,7 @@ def _starts(problem: _Problem, rows: numpy.ndarray, signs: list, count: int, giv
     return chosen_fits
 
 
-def synthesize_motion(linkage: Linkage, point: str, angle: str, poses: ArrayLike,
+def synthesize_motion(linkage: Linkage, point: str | None, angle: str, poses: ArrayLike,
                       free: Mapping[str, tuple[float, float]], *, values: Mapping[str, float] | None = None,
                       frame: Sequence[str] = FRAME_NAMES, placement: Mapping[str, float] | None = None,
                       frame_bounds: Mapping[str, tuple[float, float]] | None = None, timed: ArrayLike | None = None,
@@ -295,7 +317,8 @@ def synthesize_motion(linkage: Linkage, point: str, angle: str, poses: ArrayLike
                       evaluations: int = 1000, tolerance: float = 1e-15) -> MotionSynthesis:
     """A design of ``linkage`` whose link (``point`` and its ``angle`` output) passes through ``poses``, verified.
 
-    ``poses`` are rows ``(x, y, angle)`` (radians).  ``free`` maps each parameter that may change
+    ``poses`` are rows ``(x, y, angle)`` (radians); ``point`` None is the link's
+    :func:`frame_point`.  ``free`` maps each parameter that may change
     to its bounds; ``values`` gives every other parameter (and, if it gives the free ones too,
     that design is the first start).  ``frame`` names the free parts of the placement
     (:data:`FRAME_NAMES`; ``()`` keeps the linkage where it is), ``placement`` the values of the
@@ -306,7 +329,7 @@ def synthesize_motion(linkage: Linkage, point: str, angle: str, poses: ArrayLike
     or the closest one with ``assembled`` False and its reason; ``ValueError`` for bad input.
     """
     check_linkage(linkage, "motion generation")
-    names = _outputs(linkage, point, angle)
+    names = _outputs(linkage, frame_point(linkage, angle) if point is None else point, angle)
     array = numpy.asarray(poses, dtype=float)
     if array.ndim != 2 or array.shape[1] != 3 or len(array) < 2:
         raise ValueError(f"the poses must be at least two rows of (x, y, angle), got shape {array.shape}")

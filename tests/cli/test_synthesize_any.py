@@ -92,7 +92,7 @@ def test_motion_of_a_fourbar_coupler_timed(tmp_path, capsys):
         rows.append(f"{q!r},{p.real!r},{p.imag!r},{math.degrees(cmath.phase(C - B) + WHERE['angle'])!r}\n")
     (tmp_path / "poses.csv").write_text("theta,x,y,angle\n" + "".join(rows))
     out, record = tmp_path / "m.toml", tmp_path / "m.csv"
-    status = main(["synthesize", "motion", "fourbar", str(tmp_path / "poses.csv"), "--point", "B", "--angle", "beta",
+    status = main(["synthesize", "motion", "fourbar", str(tmp_path / "poses.csv"), "--angle", "coupler",
                    "--set", "a=1,b=2.5,c=2,d=3.2", "--bound", "b=2,4", "--bound", "c=1.5,3.5", "--out", str(out),
                    "--record", str(record), "--plot", str(tmp_path / "m.png"), "--format", "json"])
     assert status == 0, capsys.readouterr().err
@@ -150,6 +150,7 @@ BAD = [
     (["function", "fn.csv", "--output", "s"], "does nothing without a LINKAGE"),
     (["function", "fn.csv", "--minimax"], "does nothing without a LINKAGE"),
     (["motion", "fourbar", "poses.csv", "--free", "b", "--point", "B"], "--angle"),
+    (["motion", "fourbar", "poses.csv", "--free", "b", "--angle", "rocker"], "no named point of fourbar starts"),
     (["motion", "fourbar", "poses.csv", "--free", "b", "--point", "B", "--angle", "B_x"], "not an angle"),
     (["motion", "fourbar", "xy.csv", "--free", "b", "--point", "B", "--angle", "beta"], "the header is"),
 ]

@@ -726,8 +726,8 @@ def _json_ready(value):
 
 
 def _plot_general(kind: str, linkage, design, placement, columns, path: str, units: str, point: str) -> None:
-    """The design over its targets: the linkage at the first target with the traced path (path, motion: the
-    poses as arrows), or wanted against generated output (function)."""
+    """The design over its targets: the linkage at the first target with the traced path (motion: each pose's
+    angle a short line from its point), or wanted against generated output (function)."""
     from matplotlib.figure import Figure
 
     from ..plot.figures import save_figure
@@ -740,15 +740,15 @@ def _plot_general(kind: str, linkage, design, placement, columns, path: str, uni
         generated = function_values(linkage, design.output, design.design, sweep, design.branches)
         wanted = numpy.asarray(design.wanted)
         angle = _angle_output(linkage, design.output)
-        shown = (lambda x: from_radians(x, units)) if angle else (lambda x: x)  # noqa: E731
+        degrees = lambda x: from_radians(x, units)  # noqa: E731
+        output_shown = degrees if angle else numpy.asarray
+        input_shown = degrees if _input_angle(linkage) else numpy.asarray
         if angle:  # the generated curve on the turn of the wanted values
             generated = numpy.unwrap(generated)
             generated += 2 * math.pi * numpy.round((wanted[0] - numpy.interp(inputs[0], sweep, generated))
                                                    / (2 * math.pi))
-        axis.plot(shown(sweep) if _input_angle(linkage) else sweep, shown(generated), color="tab:blue",
-                  label="generated")
-        axis.plot(shown(inputs) if _input_angle(linkage) else inputs, shown(wanted), "o", color="tab:red",
-                  label="wanted")
+        axis.plot(input_shown(sweep), output_shown(generated), color="tab:blue", label="generated")
+        axis.plot(input_shown(inputs), output_shown(wanted), "o", color="tab:red", label="wanted")
         axis.set_xlabel(f"{linkage.inputs[0].name}" + (f" ({units})" if _input_angle(linkage) else ""))
         axis.set_ylabel(design.output + (f" ({units})" if angle else ""))
         axis.set_title(f"Function generation, {linkage.name}: structural error {design.structural_error:.3g}",

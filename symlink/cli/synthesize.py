@@ -23,7 +23,7 @@ import io
 import json
 import math
 import sys
-from typing import Callable
+from typing import Any, Callable
 
 import numpy
 
@@ -32,8 +32,8 @@ from ..files import excerpt, read_input_text, read_stdin_text
 from ..input_sweep import MAX_ANGLE
 from ..limits import format_bytes
 from .budget import MEMORY_BUDGET, TIME_BUDGET, format_duration
-from .options import (Parser, add_format_option, add_units_option, angle, command_help, figure_path, finite, pair,
-                      whole)
+from .options import (Parser, add_format_option, add_units_option, angle, assignments, command_help, figure_path,
+                      finite, given_options, linkage_values, pair, whole)
 from .output import json_number, note, print_rows
 
 #: Columns a csv of targets may have, by kind.
@@ -55,11 +55,11 @@ MAX_POSES = 12
 MAX_COORDINATE = 1e100
 
 
-def _check_target(value: float, column: str, where: str) -> None:
+def _check_target(value: float, column: str, where: str, angles: frozenset[str] = ANGLE_COLUMNS) -> None:
     """``ValueError`` naming ``where`` for a target value that is not finite or out of range for its column."""
     if not math.isfinite(value):
         raise ValueError(f"{where}: {column} must be a finite number, got {value!r}")
-    if column in ANGLE_COLUMNS:
+    if column in angles:
         if abs(value) > MAX_ANGLE:
             raise ValueError(f"{where}: {column} must be at most {MAX_ANGLE:g} in size (larger angles have lost "
                              f"their precision), got {value:g}")
@@ -68,8 +68,12 @@ def _check_target(value: float, column: str, where: str) -> None:
                          f"size (rescale the targets), got {value:g}")
 
 
-def read_targets(path: str, allowed: tuple[tuple[str, ...], ...]) -> dict[str, numpy.ndarray]:
-    """Columns of a csv file with one of the ``allowed`` headers, as float arrays; ``ValueError`` naming a bad line."""
+def read_targets(path: str, allowed: tuple[tuple[str, ...], ...],
+                 angles: frozenset[str] = ANGLE_COLUMNS) -> dict[str, numpy.ndarray]:
+    """Columns of a csv file with one of the ``allowed`` headers, as float arrays; ``ValueError`` naming a bad line.
+
+    Values of the columns named in ``angles`` are checked as angles, the others as coordinates.
+    """
     if path == "-":
         text = read_stdin_text(MAX_TARGET_BYTES, "csv of targets")
     else:
@@ -99,7 +103,7 @@ def read_targets(path: str, allowed: tuple[tuple[str, ...], ...]) -> dict[str, n
         except ValueError:
             raise ValueError(f"{path}:{number}: not a number among {excerpt(','.join(row))}") from None
         for name, value in zip(header, parsed):
-            _check_target(value, name, f"{path}:{number}")
+            _check_target(value, name, f"{path}:{number}", angles)
         values.append(parsed)
     array = numpy.array(values, dtype=float).reshape(-1, len(header))
     return {name: array[:, k] for k, name in enumerate(header)}
@@ -115,12 +119,15 @@ def _register_function(kinds) -> None:
         "The csv has the header theta,phi.  Three rows give the exact three-point design, more rows the least-"
         "squares design (weighted to rocker-angle error, re-weighted towards the smallest largest error).  The "
         "crank pivot is at the origin and the rocker pivot at (ground, 0)."))
-    command.add_argument("targets", metavar="FILE", help="csv of theta,phi (- for stdin)")
+    command.add_argument("linkage", nargs="?", metavar="LINKAGE", help="a catalog NAME or a linkage FILE: the "
+                         "general route, for any linkage (without it: the four-bar)")
+    command.add_argument("targets", metavar="FILE", help="csv of theta,phi; with LINKAGE INPUT,OUTPUT (- for stdin)")
     command.add_argument("--ground", type=finite, default=1.0, metavar="L", help="ground length (default 1)")
     add_units_option(command)
     add_format_option(command)
     command.add_argument("--plot", type=figure_path, metavar="FILE", help="draw wanted against generated (.png/.svg)")
-    command.set_defaults(run=_run_function)
+    add_general_options(command, "function")
+    command.set_defaults(run=_routed(_run_function, "function", command))
 
 
 FUNCTION_FIELDS = ["crank", "coupler", "rocker", "ground", "branch", "crank_offset", "rocker_offset",
@@ -185,7 +192,10 @@ def _register_path(kinds) -> None:
         "theta,x,y (the crank angle at each point, from the ground line).  Needs SciPy: "
         "pip install 'symlink-kinematics[synthesis]'.  The coupler point is (u, v) in the coupler's frame "
         "(u along B->C, v to its left); frame is the direction from the crank pivot to the rocker pivot."))
-    command.add_argument("targets", metavar="FILE", help="csv of x,y or theta,x,y (- for stdin)")
+    command.add_argument("linkage", nargs="?", metavar="LINKAGE", help="a catalog NAME or a linkage FILE: the "
+                         "general route, for any linkage (without it: the four-bar)")
+    command.add_argument("targets", metavar="FILE", help="csv of x,y or theta,x,y; with LINKAGE INPUT,x,y for the "
+                         "timed form (- for stdin)")
     command.add_argument("--designs", type=whole, default=3, metavar="K", help="print up to K distinct designs (default 3)")
     command.add_argument("--starts", type=whole, default=8, metavar="N", help="refine N atlas starts (default 8)")
     command.add_argument("--grashof", choices=GRASHOF_CHOICES, default="any",
@@ -199,7 +209,8 @@ def _register_path(kinds) -> None:
     add_format_option(command)
     command.add_argument("--plot", type=figure_path, metavar="FILE",
                          help="draw targets, achieved curve and the linkage at each point (.png/.svg)")
-    command.set_defaults(run=_run_path)
+    add_general_options(command, "path")
+    command.set_defaults(run=_routed(_run_path, "path", command))
 
 
 PATH_FIELDS = ["rank", "error", "x0", "y0", "frame", "crank", "coupler", "rocker", "ground", "u", "v", "branch",
@@ -319,7 +330,10 @@ def _register_motion(kinds) -> None:
         "--moving-pivot twice (in pose 1's coupler position) or --fixed-pivot twice, two need --moving-pivot "
         "and --offset twice each (along the perpendicular bisectors).  Designs are listed defect-free first, "
         "then by their worst transmission angle at the poses."))
-    command.add_argument("targets", metavar="FILE", help="csv of x,y,angle (- for stdin)")
+    command.add_argument("linkage", nargs="?", metavar="LINKAGE", help="a catalog NAME or a linkage FILE: the "
+                         "general route, for any linkage (without it: the four-bar)")
+    command.add_argument("targets", metavar="FILE", help="csv of x,y,angle; with LINKAGE also INPUT,x,y,angle "
+                         "(- for stdin)")
     command.add_argument("--moving-pivot", type=pair("X,Y"), action="append", metavar="X,Y",
                          help="a moving pivot in pose 1 (give two)")
     command.add_argument("--fixed-pivot", type=pair("X,Y"), action="append", metavar="X,Y",
@@ -334,7 +348,8 @@ def _register_motion(kinds) -> None:
     add_format_option(command)
     command.add_argument("--plot", type=figure_path, metavar="FILE",
                          help="draw the poses, Burmester curves and the first design at each pose (.png/.svg)")
-    command.set_defaults(run=_run_motion)
+    add_general_options(command, "motion")
+    command.set_defaults(run=_routed(_run_motion, "motion", command))
 
 
 #: Columns of ``symlink synthesize motion`` before the per-pose ``crank_angle_K, branch_K``; angles in --units.
@@ -375,6 +390,396 @@ def _run_motion(args: argparse.Namespace) -> int:
     return 0
 
 
+# --- any linkage: LINKAGE|FILE given ------------------------------------------------------------
+
+#: Options of the four-bar route of each kind (by destination): they do nothing with a LINKAGE.
+FOURBAR_ONLY = {"function": ("ground",),
+                "path": ("designs", "grashof", "max_link_ratio", "min_transmission"),
+                "motion": ("moving_pivot", "fixed_pivot", "rotation", "offset", "defect_free", "designs")}
+#: Options of the general route of each kind (by destination): they need a LINKAGE.
+GENERAL_ONLY = {"function": ("set", "free", "bound", "branch", "output", "minimax", "out", "record", "seed",
+                             "starts"),
+                "path": ("set", "free", "bound", "branch", "point", "frame", "out", "record"),
+                "motion": ("set", "free", "bound", "branch", "point", "angle", "frame", "out", "record", "seed",
+                           "starts")}
+#: Suffixes of --record.
+RECORD_SUFFIXES = (".json", ".csv")
+
+
+def _bound(text: str) -> tuple[str, tuple[float, float]]:
+    """``NAME=LO,HI`` of --bound (numbers only)."""
+    name, equals, values = text.partition("=")
+    numbers = values.split(",")
+    if not equals or not name.strip() or len(numbers) != 2:
+        raise argparse.ArgumentTypeError(f"expected NAME=LO,HI, got {excerpt(text)}")
+    low, high = (finite(number) for number in numbers)
+    if not low < high:
+        raise argparse.ArgumentTypeError(f"{excerpt(name.strip())}: the low bound must be below the high one, "
+                                         f"got {low:g},{high:g}")
+    return name.strip(), (low, high)
+
+
+def _names(text: str) -> list[str]:
+    """Comma-separated names (``--free a,b``)."""
+    names = [item.strip() for item in text.split(",") if item.strip()]
+    if not names:
+        raise argparse.ArgumentTypeError(f"expected NAME[,NAME...], got {excerpt(text)}")
+    return names
+
+
+def _frame(text: str) -> tuple[str, ...]:
+    """``--frame x0,y0,angle,scale`` (the free parts of the placement) or ``none``."""
+    from ..synthesis.general import FRAME_NAMES
+    if text.strip() == "none":
+        return ()
+    names = tuple(_names(text))
+    wrong = [name for name in names if name not in FRAME_NAMES]
+    if wrong or len(set(names)) != len(names):
+        raise argparse.ArgumentTypeError(f"expected some of {','.join(FRAME_NAMES)} each once, or none; got "
+                                         f"{excerpt(text)}")
+    return names
+
+
+def _signs(text: str) -> dict[str, int]:
+    """``--branch NAME=+1,NAME=-1``."""
+    signs = {}
+    for name, value in assignments("NAME=SIGN")(text).items():
+        if value not in (1.0, -1.0):
+            raise argparse.ArgumentTypeError(f"{excerpt(name)}: a branch is +1 or -1, got {value:g}")
+        signs[name] = int(value)
+    return signs
+
+
+def _linkage_path(text: str) -> str:
+    if not text.endswith(".toml"):
+        raise argparse.ArgumentTypeError(f"the design is written as a linkage file: the name must end in .toml, got "
+                                         f"{excerpt(text)}")
+    return text
+
+
+def _record_path(text: str) -> str:
+    if not text.lower().endswith(RECORD_SUFFIXES):
+        raise argparse.ArgumentTypeError(f"the record is .json or .csv, got {excerpt(text)}")
+    return text
+
+
+def add_general_options(command: argparse.ArgumentParser, kind: str) -> None:
+    """The options of ``symlink synthesize KIND LINKAGE|FILE TARGETS``: any linkage, by exact gradients."""
+    group = command.add_argument_group("any linkage (with LINKAGE)")
+    group.add_argument("--free", type=_names, action="append", metavar="NAME[,NAME...]",
+                       help="parameters that may change (bounds: --bound, else half to twice a length's value, "
+                            "an angle's value +-180 deg, another's value +-max(1, |value|))")
+    group.add_argument("--bound", type=_bound, action="append", metavar="NAME=LO,HI",
+                       help="bounds of a free parameter (makes it free; angles in --units)")
+    group.add_argument("--set", type=assignments("NAME=VALUE"), default={}, metavar="NAME=VALUE,...",
+                       help="values of the parameters (default: the file's [defaults], a catalog entry's example)")
+    group.add_argument("--branch", type=_signs, metavar="NAME=SIGN,...",
+                       help="fix branch signs (default: both tried)")
+    if kind in ("path", "motion"):
+        group.add_argument("--point", metavar="NAME", help="the linkage's point that " + (
+            "traces the path" if kind == "path" else "is the guided link's frame point (default: the named point "
+                                                     "where the link at --angle starts)"))
+        group.add_argument("--frame", type=_frame, metavar="LIST",
+                           help="free parts of the placement: some of x0,y0,angle,scale, or none (default "
+                                + ("all" if kind == "path" else "x0,y0,angle") + ")")
+    if kind == "function":
+        group.add_argument("--output", metavar="NAME",
+                           help="the output generated (default: the csv's second column, else the last unknown)")
+        group.add_argument("--minimax", action="store_true",
+                           help="level the errors: the smallest largest error (default: least squares)")
+    if kind == "motion":
+        group.add_argument("--angle", metavar="NAME", help="the output that is the guided link's angle")
+    if kind != "path":  # path has its own
+        group.add_argument("--starts", type=whole, default=8, metavar="N", help="refine N starts (default 8)")
+        group.add_argument("--seed", type=whole, default=0, help="seed of the sampled starts (default 0)")
+    group.add_argument("--out", type=_linkage_path, metavar="FILE.toml",
+                       help="write the design as a linkage file with its [defaults] (the placement in its points)")
+    group.add_argument("--record", type=_record_path, metavar="FILE",
+                       help="write the design, targets and errors (.json) or one row a target (.csv)")
+
+
+def _routed(fourbar_run: Callable[[argparse.Namespace], int], kind: str,
+            command: argparse.ArgumentParser) -> Callable[[argparse.Namespace], int]:
+    """The run of a kind: the general route when a LINKAGE is given, else the four-bar's; options of the other
+    route refused (they would do nothing)."""
+    def run(args: argparse.Namespace) -> int:
+        named = args.linkage is not None
+        others = set(FOURBAR_ONLY[kind] if named else GENERAL_ONLY[kind])
+        # appended and flag options are not tracked as given: they are given when they differ from their default
+        given = given_options(args) | {dest for dest in others
+                                       if getattr(args, dest, None) != command.get_default(dest)}
+        unused = sorted(given & others)
+        if unused:
+            option = "--" + unused[0].replace("_", "-")
+            raise ValueError(f"synthesize {kind}: {option} does nothing " + (
+                f"with a LINKAGE ({args.linkage}); it belongs to the four-bar form (without LINKAGE)" if named else
+                "without a LINKAGE (the four-bar form); it belongs to 'synthesize "
+                f"{kind} LINKAGE FILE'"))
+        return _run_general(args, kind) if named else fourbar_run(args)
+    return run
+
+
+def _general_setup(args: argparse.Namespace):
+    """The linkage, the values of its parameters (radians) and the free parameters with their bounds."""
+    from ..closure import is_angle
+    from ..linkage_file import load_linkage
+    found = load_linkage(args.linkage)
+    linkage = found.linkage
+    if len(linkage.inputs) != 1:
+        raise ValueError(f"{linkage.name} has {len(linkage.inputs)} inputs; synthesis drives one")
+    values = linkage_values(found, args.set, args.units)
+    symbols = {p.name: p for p in linkage.parameters}
+    named = [name for names in (args.free or []) for name in names]
+    bounds = dict(args.bound or [])
+    for name in named + list(bounds):
+        if name not in symbols:
+            raise ValueError(f"{linkage.name} has no parameter {name!r}; it has {', '.join(symbols)}")
+    free = {}
+    for name in dict.fromkeys(named + list(bounds)):
+        if name in bounds:
+            low, high = bounds[name]
+            if is_angle(linkage, symbols[name]):
+                low, high = float(to_radians(low, args.units)), float(to_radians(high, args.units))
+        elif name not in values:
+            raise ValueError(f"give --bound {name}=LO,HI: {linkage.name} has no value of {name!r} to bound it by")
+        elif symbols[name].is_positive:
+            low, high = values[name] / 2, values[name] * 2
+        else:
+            half = math.pi if is_angle(linkage, symbols[name]) else max(1.0, abs(values[name]))
+            low, high = values[name] - half, values[name] + half
+        free[name] = (low, high)
+    if not free:
+        raise ValueError("name the parameters that may change: --free NAME or --bound NAME=LO,HI")
+    known = {**{name: v for name, v in values.items() if name in symbols}}
+    return found, linkage, known, free
+
+
+def _input_column(linkage, header: tuple[str, ...]) -> str | None:
+    first = header[0]
+    return first if first in ("input", linkage.inputs[0].name) else None
+
+
+def _run_general(args: argparse.Namespace, kind: str) -> int:
+    from ..closure import is_angle
+    found, linkage, values, free = _general_setup(args)
+    input_name = linkage.inputs[0].name
+    input_is_angle = is_angle(linkage, linkage.inputs[0])
+    inputs_in = ("input", input_name)
+    if kind == "function":
+        solved = [n for n in linkage.output_names() if linkage.output(n) in linkage.unknowns]
+        seconds = ("output", args.output) if args.output else ("output", *solved)
+        headers = tuple((first, second) for first in inputs_in for second in seconds)
+        generic_angle = _angle_output(linkage, args.output or linkage.unknowns[-1].name)
+        angles = frozenset([*(inputs_in if input_is_angle else ()), *(n for n in solved if _angle_output(linkage, n)),
+                            *(("output",) if generic_angle else ())])
+        columns = read_targets(args.targets, headers, angles)
+        names = list(columns)
+        output = args.output or (names[1] if names[1] != "output" else linkage.unknowns[-1].name)
+        if linkage.output(output) not in linkage.unknowns:
+            raise ValueError(f"--output: {output!r} is not an unknown of {linkage.name} (an angle or a length it "
+                             f"solves for): name one of {', '.join(solved)}")
+    else:
+        extra = ("angle",) if kind == "motion" else ()
+        headers = (("x", "y", *extra),) + tuple((first, "x", "y", *extra) for first in inputs_in)
+        columns = read_targets(args.targets, headers,
+                               frozenset(extra) | (frozenset(inputs_in) if input_is_angle else frozenset()))
+        names = list(columns)
+    count = len(next(iter(columns.values())))
+    _check_path_work(count, args.starts)
+    timed_column = _input_column(linkage, tuple(names))
+    timed = (None if timed_column is None else numpy.asarray(to_radians(columns[timed_column], args.units)
+                                                             if input_is_angle else columns[timed_column], dtype=float))
+    design: Any
+    if kind == "function":
+        from ..synthesis.general_function import synthesize_function
+        wanted = columns[names[1]]
+        if _angle_output(linkage, output):
+            wanted = numpy.asarray(to_radians(wanted, args.units), dtype=float)
+        assert timed is not None
+        design = synthesize_function(linkage, output, timed, wanted, free, values=values, branches=args.branch,
+                                     starts=args.starts, seed=args.seed, minimax=args.minimax)
+        placement: dict[str, float] = {}
+        point = output
+    elif kind == "path":
+        from ..synthesis.general import FRAME_NAMES, synthesize_path
+        point = _point_option(args, linkage)
+        targets = numpy.stack([columns["x"], columns["y"]], axis=1)
+        design = synthesize_path(linkage, point, targets, free, values=values,
+                                 frame=FRAME_NAMES if args.frame is None else args.frame, timed=timed,
+                                 branches=args.branch, starts=args.starts, seed=args.seed)
+        placement = design.placement
+    else:
+        from ..synthesis.general_motion import frame_point, synthesize_motion
+        if args.angle is None:
+            raise ValueError("name the guided link's angle: --angle NAME (an unknown or role that is an angle)")
+        point = frame_point(linkage, args.angle) if args.point is None else _point_option(args, linkage)
+        poses = numpy.stack([columns["x"], columns["y"], numpy.asarray(to_radians(columns["angle"], args.units))],
+                            axis=1)
+        design = synthesize_motion(linkage, point, args.angle, poses, free, values=values,
+                                   frame=("x0", "y0", "angle") if args.frame is None else args.frame, timed=timed,
+                                   branches=args.branch, starts=args.starts, seed=args.seed)
+        placement = design.placement
+    error = design.structural_error if kind == "function" else design.error
+    record = _general_record(args, kind, linkage, design, placement, error, columns)
+    _print_general(args, record)
+    if not design.assembled:
+        raise ValueError(f"no verified design: {design.why}; the closest is printed above, nothing is written "
+                         "(widen the bounds, free more parameters or give more --starts)")
+    if args.out:
+        from ..files import write_atomic
+        from ..linkage_file import linkage_text
+        from ..synthesis.placement import placed_design
+        placed, defaults = placed_design(linkage, design.design, placement)
+        defaults[input_name] = float(design.inputs[0])
+        head = (f"# Designed by 'symlink synthesize {kind} {found.source if found.source != 'catalog' else linkage.name}"
+                f"': error {error:.3g}; branches " + (", ".join(f"{k}={v:+d}" for k, v in design.branches.items())
+                                                     or "none") + ".\n")
+        write_atomic(args.out, head + linkage_text(placed, defaults))
+        note(f"wrote {args.out}")
+    if args.record:
+        _write_record(args.record, record)
+        note(f"wrote {args.record}")
+    if args.plot:
+        _plot_general(kind, linkage, design, placement, columns, args.plot, args.units, point)
+        note(f"wrote {args.plot}")
+    return 0
+
+
+def _angle_output(linkage, name: str) -> bool:
+    from ..synthesis.design_fit import is_angle_output
+    return is_angle_output(linkage, name)
+
+
+def _point_option(args: argparse.Namespace, linkage) -> str:
+    if args.point is None:
+        raise ValueError(f"name the point with --point NAME (one of {', '.join(linkage.points)})")
+    if args.point not in linkage.points:
+        raise ValueError(f"--point: {linkage.name} has no point {args.point!r}; it has {', '.join(linkage.points)}")
+    return args.point
+
+
+def _general_record(args, kind: str, linkage, design, placement, error: float, columns) -> dict:
+    """What a general design is: printed (one row), and written whole by --record (angles in --units)."""
+    from ..closure import is_angle
+    angles = {p.name for p in linkage.parameters if is_angle(linkage, p)}
+    unit = lambda x: float(from_radians(x, args.units))  # noqa: E731
+    as_input = unit if is_angle(linkage, linkage.inputs[0]) else float
+    targets = [[float(columns[name][k]) for name in columns] for k in range(len(next(iter(columns.values()))))]
+    # per target: path, the distance; function, generated - wanted (an angle in --units); motion, the distance, and
+    # the angle's error (in --units) in "angle_errors"
+    if kind == "path":
+        errors = list(design.errors)
+    elif kind == "function":
+        errors = [unit(e) if _angle_output(linkage, design.output) else e for e in design.errors]
+    else:
+        errors = list(design.position_errors)
+    extra = {"angle_errors": [unit(a) for a in design.angle_errors]} if kind == "motion" else {}
+    return {"kind": kind, "linkage": linkage.name, "assembled": design.assembled, "error": error,
+            "evaluations": design.evaluations,
+            "design": {name: unit(v) if name in angles else v for name, v in design.design.items()},
+            "placement": {name: unit(v) if name == "angle" else v for name, v in placement.items()},
+            "branches": dict(design.branches), "inputs": [as_input(q) for q in design.inputs],
+            "columns": list(columns), "targets": targets, "errors": list(map(float, errors)), **extra,
+            "units": args.units, "why": design.why}
+
+
+def _print_general(args: argparse.Namespace, record: dict) -> None:
+    row = {"error": record["error"], "assembled": "yes" if record["assembled"] else "no",
+           **record["design"], **record["placement"], **{k: f"{v:+d}" for k, v in record["branches"].items()}}
+    if args.format == "json":
+        print(json.dumps({k: ([json_number(x) for x in v] if isinstance(v, list) and v and not isinstance(v[0], list)
+                              else {n: json_number(x) for n, x in v.items()} if isinstance(v, dict) else
+                              json_number(v) if isinstance(v, float) else v) for k, v in record.items()}, indent=1))
+        return
+    print_rows([row], list(row), args.format)
+    note(f"{record['kind']} design of {record['linkage']} ({record['evaluations']} evaluations); inputs at the "
+         f"targets ({args.units}): " + " ".join(f"{q:.6g}" for q in record["inputs"]))
+    note("the error column: " + {"function": "the largest |generated - wanted| output (radians for an angle)",
+                                 "path": "the largest distance from a target to the point, over the targets' size",
+                                 "motion": "the largest position error over the poses' size, or angle error "
+                                           "(radians)"}[record["kind"]])
+
+
+def _write_record(path: str, record: dict) -> None:
+    from ..files import write_atomic
+    if path.lower().endswith(".json"):
+        text = json.dumps(_json_ready(record), indent=1) + "\n"
+    else:
+        out = io.StringIO()
+        writer = csv.writer(out, lineterminator="\n")
+        turned = record.get("angle_errors")
+        writer.writerow(["target", "input", *record["columns"], "error", *(["angle_error"] if turned else [])])
+        for k, (q, target, error) in enumerate(zip(record["inputs"], record["targets"], record["errors"]), start=1):
+            writer.writerow([k, repr(q), *map(repr, target), repr(error), *([repr(turned[k - 1])] if turned else [])])
+        text = out.getvalue()
+    write_atomic(path, text)
+
+
+def _json_ready(value):
+    if isinstance(value, dict):
+        return {k: _json_ready(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_json_ready(v) for v in value]
+    if isinstance(value, float):
+        return json_number(value)
+    return value
+
+
+def _plot_general(kind: str, linkage, design, placement, columns, path: str, units: str, point: str) -> None:
+    """The design over its targets: the linkage at the first target with the traced path (motion: each pose's
+    angle a short line from its point), or wanted against generated output (function)."""
+    from matplotlib.figure import Figure
+
+    from ..plot.figures import save_figure
+    figure = Figure(figsize=(6.4, 5.2), layout="constrained")
+    axis = figure.subplots()
+    inputs = numpy.asarray(design.inputs)
+    if kind == "function":
+        from ..synthesis.general_function import function_values
+        sweep = numpy.linspace(inputs.min(), inputs.max(), 401)
+        generated = function_values(linkage, design.output, design.design, sweep, design.branches)
+        wanted = numpy.asarray(design.wanted)
+        angle = _angle_output(linkage, design.output)
+        degrees = lambda x: from_radians(x, units)  # noqa: E731
+        output_shown = degrees if angle else numpy.asarray
+        input_shown = degrees if _input_angle(linkage) else numpy.asarray
+        if angle:  # the generated curve on the turn of the wanted values
+            generated = numpy.unwrap(generated)
+            generated += 2 * math.pi * numpy.round((wanted[0] - numpy.interp(inputs[0], sweep, generated))
+                                                   / (2 * math.pi))
+        axis.plot(input_shown(sweep), output_shown(generated), color="tab:blue", label="generated")
+        axis.plot(input_shown(inputs), output_shown(wanted), "o", color="tab:red", label="wanted")
+        axis.set_xlabel(f"{linkage.inputs[0].name}" + (f" ({units})" if _input_angle(linkage) else ""))
+        axis.set_ylabel(design.output + (f" ({units})" if angle else ""))
+        axis.set_title(f"Function generation, {linkage.name}: structural error {design.structural_error:.3g}",
+                       fontsize="medium")
+        axis.legend(loc="best", fontsize="small")
+        save_figure(figure, path)
+        return
+    from ..plot.drawing import draw_linkage
+    from ..synthesis.placement import placed_design
+    placed, values = placed_design(linkage, design.design, placement)
+    draw_linkage(placed, {**values, **design.branches, linkage.inputs[0].name: float(inputs[0])}, axis,
+                 trace=[point], title=f"{kind.capitalize()} generation, {linkage.name}: error {design.error:.2g}")
+    x, y = columns["x"], columns["y"]
+    axis.plot(x, y, "x", color="black", markersize=9, markeredgewidth=2, label="targets", zorder=7)
+    if kind == "motion":
+        turn = numpy.asarray(to_radians(columns["angle"], units), dtype=float)
+        size = max(float(numpy.hypot(numpy.ptp(x), numpy.ptp(y))), 1e-300) * 0.3
+        for k, (px, py, a) in enumerate(zip(x, y, turn)):  # each pose's angle: a short line from its point
+            axis.plot([px, px + size * math.cos(a)], [py, py + size * math.sin(a)], color="black", linewidth=2,
+                      zorder=7, label="pose angles" if k == 0 else "_nolegend_")
+    axis.legend(loc="best", fontsize="small")
+    axis.relim()
+    axis.autoscale_view()
+    save_figure(figure, path)
+
+
+def _input_angle(linkage) -> bool:
+    from ..closure import is_angle
+    return is_angle(linkage, linkage.inputs[0])
+
+
 #: The kinds of synthesis: name -> function registering its parser.
 KINDS: dict[str, Callable] = {"function": _register_function, "path": _register_path, "motion": _register_motion}
 
@@ -382,9 +787,12 @@ KINDS: dict[str, Callable] = {"function": _register_function, "path": _register_
 def register(commands) -> None:
     """Register ``symlink synthesize KIND`` (the kinds are added when it is used: they need the synthesis modules)."""
     commands.add_parser("synthesize", populate=_add_kinds, **command_help(
-        "synthesize four-bars from targets in a csv: " + "|".join(KINDS),
+        "synthesize four-bars, or any linkage, from targets in a csv: " + "|".join(KINDS),
         "angles in degrees (--units rad)", "symlink synthesize path points.csv",
-        "'symlink synthesize KIND --help' describes a kind."))
+        "'symlink synthesize KIND --help' describes a kind.  With a LINKAGE (a catalog NAME or a linkage FILE) "
+        "before the csv, any one-input linkage is synthesised by exact gradients: --free/--bound name the "
+        "parameters that may change, --out writes the design as a linkage file, --record the design and its "
+        "errors."))
 
 
 def _add_kinds(command: argparse.ArgumentParser) -> None:

@@ -13,5 +13,12 @@
   its free parameters within bounds and its placement free or fixed, by the exact
   Jacobian of the generated sensitivities, verified by the linkage's generated solver;
 * :mod:`symlink.synthesis.motion` guides a coupler through given poses (motion
-  generation by Burmester theory).
+  generation by Burmester theory);
+* :mod:`symlink.synthesis.general_function` and :mod:`symlink.synthesis.general_motion`
+  generate a function (an output angle or travel against the input) and guide a link
+  through poses for any one-input linkage with a closed form, by the exact gradients
+  of :mod:`symlink.synthesis.design_fit`;
+* :mod:`symlink.synthesis.shape` matches a curve's shape alone (Fourier descriptors,
+  similarity alignment); :mod:`symlink.synthesis.placement` writes a placed design
+  as a linkage of its own (what ``symlink synthesize ... --out`` saves).
 """

@@ -1,0 +1,226 @@
+"""Outputs of any linkage's design and their exact Jacobian: what function and motion generation share.
+
+Function generation (:mod:`symlink.synthesis.general_function`) and motion generation
+(:mod:`symlink.synthesis.general_motion`) for any one-input linkage with a closed form both fit
+some position outputs (an output angle, a slider's travel, a link's point and angle) at many input
+values by moving chosen parameters, with the exact Jacobian.  :class:`DesignOutputs` gives the
+outputs and their derivatives by the free parameters *and by the input* (for poses whose input
+values are unknowns too), from the generated sensitivities of the linkage with its input shifted
+by a phase (the trick of :mod:`symlink.synthesis.general`: held at zero, d/d(phase) is d/d(input)),
+for one design or a batch of sampled designs at once.  :func:`sampled_designs` draws the random
+feasible starts, :func:`free_bounds` checks what the user made free, :func:`branch_break` verifies
+with the linkage's own generated solver that the input moves between targets on one branch, and
+:func:`refine` is the accelerated Levenberg-Marquardt of path synthesis.
+
+>>> from symlink.catalog import slider_crank
+>>> outputs = DesignOutputs(slider_crank(), ("s",), ("a",), {"b": 3.0, "offset": 0.0})
+>>> values, slopes, ok = outputs.at(numpy.array([1.0]), numpy.array([0.0]), {"branch": 1})
+>>> float(values[0, 0]), float(slopes[0, 0, 0]), bool(ok[0])  # s = a + b at theta = 0; ds/da = 1
+(4.0, 1.0, True)
+"""
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+from typing import Callable, Mapping, Sequence
+
+import numpy
+import sympy as sp
+
+from ..closure import is_angle
+from ..design_jacobian import DesignJacobian
+from ..linkage import Linkage
+from ..solver import Solver
+from .general import _PHASE, _phased
+from .path import _accelerated_levenberg_marquardt
+
+__all__ = ["DesignOutputs", "free_bounds", "sampled_designs", "branch_break", "refine", "is_angle_output",
+           "solved_outputs", "SAMPLED", "BRANCH_SAMPLES"]
+
+#: Random designs drawn for the starts.
+SAMPLED = 1000
+#: Input values checked between consecutive targets by the verification.
+BRANCH_SAMPLES = 24
+
+
+@lru_cache(maxsize=32)
+def _jacobian(linkage: Linkage, outputs: tuple[str, ...], free: tuple[str, ...]) -> DesignJacobian:
+    return DesignJacobian(_phased(linkage), list(outputs), list(free) + [_PHASE])
+
+
+@lru_cache(maxsize=32)
+def _solver(linkage: Linkage, outputs: tuple[str, ...]) -> Solver:
+    return Solver(linkage, list(outputs))
+
+
+def is_angle_output(linkage: Linkage, name: str) -> bool:
+    """Whether the output ``name`` of ``linkage`` is an angle (it turns a vector), not a length or a point's coordinate.
+
+    >>> from symlink.catalog import slider_crank
+    >>> [is_angle_output(slider_crank(), name) for name in ("conrod", "slider", "B_x")]
+    [True, False, False]
+    """
+    expr = linkage.output(name)  # ValueError naming the outputs there are
+    return isinstance(expr, sp.Symbol) and expr in linkage.coordinates and is_angle(linkage, expr)
+
+
+def free_bounds(linkage: Linkage, free: Mapping[str, tuple[float, float]],
+                values: Mapping[str, float] | None) -> tuple[dict[str, tuple[float, float]], dict[str, float]]:
+    """The free parameters' bounds (checked) and the values of the fixed ones; ``ValueError`` naming a problem."""
+    known = [p.name for p in linkage.parameters]
+    if not free:
+        raise ValueError("name at least one free parameter with its bounds")
+    bounds = {}
+    for name, bound in free.items():
+        if name not in known:
+            raise ValueError(f"{linkage.name} has no parameter {name!r}; it has {', '.join(known)}")
+        try:
+            low, high = (float(b) for b in bound)
+        except (TypeError, ValueError):
+            raise ValueError(f"the bounds of {name!r} are two numbers (low, high), got {bound!r}") from None
+        if not (math.isfinite(low) and math.isfinite(high) and low < high):
+            raise ValueError(f"the bounds of {name!r} must be finite with low < high, got {bound!r}")
+        bounds[name] = (low, high)
+    given = {k: float(v) for k, v in (values or {}).items()}
+    unknown = sorted(set(given) - set(known))
+    if unknown:
+        raise ValueError(f"{linkage.name} has no parameter {unknown[0]!r}; it has {', '.join(known)}")
+    if not all(math.isfinite(v) for v in given.values()):
+        raise ValueError("the given values must be finite numbers")
+    missing = [name for name in known if name not in free and name not in given]
+    if missing:
+        raise ValueError(f"give values for the parameters that are not free: {', '.join(missing)}")
+    return bounds, {name: given[name] for name in known if name not in free}
+
+
+def check_branches(linkage: Linkage, branches: Mapping[str, int] | None) -> dict[str, int]:
+    """The branch signs a user fixed, checked: names of the linkage's branches, each +1 or -1."""
+    names = {s.name for s in linkage.branches}
+    for name, sign in (branches or {}).items():
+        if name not in names or sign not in (1, -1):
+            raise ValueError(f"branches maps {', '.join(sorted(names)) or 'no branch'} to +1 or -1; "
+                             f"got {name!r}: {sign!r}")
+    return {k: int(v) for k, v in (branches or {}).items()}
+
+
+def check_linkage(linkage: Linkage, what: str) -> None:
+    """``ValueError`` unless ``linkage`` has one input and a closed form (what the generated sensitivities need)."""
+    if len(linkage.inputs) != 1:
+        raise ValueError(f"{what} drives one input; {linkage.name} has {len(linkage.inputs)}")
+    if not linkage.has_closed_form:
+        raise ValueError(f"{linkage.name} has no closed form; {what} of Newton-solved linkages is not supported yet")
+
+
+class DesignOutputs:
+    """Outputs of ``linkage`` and their exact derivatives by the ``free`` parameters and by the input.
+
+    ``fixed`` holds the values of every other parameter.  :meth:`at` evaluates one design,
+    :meth:`batch` many at once; both give the derivative by the input as the last column.
+    """
+
+    def __init__(self, linkage: Linkage, outputs: Sequence[str], free: Sequence[str],
+                 fixed: Mapping[str, float]) -> None:
+        self.linkage = linkage
+        self.outputs = tuple(outputs)
+        self.free = tuple(free)
+        self.fixed = dict(fixed)
+        self.jacobian = _jacobian(linkage, self.outputs, self.free)
+        self.input = linkage.inputs[0].name
+        self.branch_names = [s.name for s in linkage.branches]
+
+    def _call(self, given: dict, shape: tuple[int, ...]):
+        arguments = [numpy.broadcast_to(numpy.asarray(given[name], dtype=float), shape)
+                     for name in self.jacobian.arguments]
+        with numpy.errstate(all="ignore"):
+            values, slopes, assembled = self.jacobian.arrays(*arguments)
+        values = numpy.broadcast_to(values, values.shape[:1] + shape)
+        slopes = numpy.broadcast_to(slopes, slopes.shape[:2] + shape)
+        ok = (numpy.broadcast_to(assembled, shape) & numpy.all(numpy.isfinite(values), axis=0)
+              & numpy.all(numpy.isfinite(slopes), axis=(0, 1)))
+        return values, slopes, ok
+
+    def at(self, free: numpy.ndarray, inputs: numpy.ndarray, branches: Mapping[str, int]):
+        """``(values (outputs, N), slopes (outputs, free + 1, N), ok (N))`` of one design at the ``inputs``.
+
+        ``ok`` is False where the design is not assembled or at a toggle (a derivative is no number).
+        """
+        given: dict[str, object] = {**self.fixed, _PHASE: 0.0, self.input: inputs,
+                                    **{name: float(branches.get(name, 1)) for name in self.branch_names}}
+        given.update({name: float(v) for name, v in zip(self.free, free)})
+        return self._call(given, numpy.shape(inputs))
+
+    def batch(self, rows: numpy.ndarray, signs: Sequence[Mapping[str, int]], inputs: numpy.ndarray):
+        """Many designs (rows of free values, their branch signs) at the same inputs: values (outputs, M, N), ok (M, N)."""
+        given: dict[str, object] = {**self.fixed, _PHASE: 0.0, self.input: inputs[None, :]}
+        for k, name in enumerate(self.free):
+            given[name] = rows[:, k:k + 1]
+        for name in self.branch_names:
+            given[name] = numpy.array([[float(sign[name])] for sign in signs])
+        values, _, ok = self._call(given, (len(rows), len(inputs)))
+        return values, ok
+
+
+def sampled_designs(linkage: Linkage, bounds: Mapping[str, tuple[float, float]], rng: numpy.random.Generator,
+                    count: int, branch_choice: Mapping[str, int],
+                    first: Sequence[tuple[Sequence[float], Mapping[str, int]]] = ()):
+    """Rows of free values uniform within the ``bounds`` (after the ``first`` designs given), with branch signs.
+
+    Branch signs are random unless ``branch_choice`` fixes them.
+    """
+    names = [s.name for s in linkage.branches]
+    low = numpy.array([b[0] for b in bounds.values()])
+    high = numpy.array([b[1] for b in bounds.values()])
+    rows = [list(row) for row, _ in first]
+    signs = [{n: int(branch_choice.get(n, sign.get(n, 1))) for n in names} for _, sign in first]
+    for _ in range(count):
+        rows.append(list(rng.uniform(low, high)))
+        signs.append({n: int(branch_choice[n]) if n in branch_choice else int(rng.choice([-1, 1])) for n in names})
+    return numpy.array(rows, dtype=float).reshape(len(rows), len(bounds)), signs
+
+
+def inside(x: numpy.ndarray, bounds: numpy.ndarray, positive: numpy.ndarray) -> bool:
+    """Whether the free values ``x`` lie within their ``bounds`` (rows low, high) and the positive ones above 0."""
+    return bool(numpy.all(numpy.isfinite(x)) and numpy.all((x >= bounds[:, 0]) & (x <= bounds[:, 1]))
+                and numpy.all(x[positive] > 0))
+
+
+def solved_outputs(linkage: Linkage, outputs: Sequence[str], design: Mapping[str, float],
+                   branches: Mapping[str, int], inputs: numpy.ndarray) -> dict[str, numpy.ndarray]:
+    """The outputs at the inputs from the linkage's own generated solver (not the Jacobian's code); NaN where not assembled."""
+    arguments: dict[str, object] = {**design, linkage.inputs[0].name: numpy.asarray(inputs, dtype=float)}
+    arguments.update({s.name: int(branches.get(s.name, 1)) for s in linkage.branches})
+    solved = _solver(linkage, tuple(outputs))(**arguments)
+    ok = numpy.asarray(solved["assembled"])
+    return {name: numpy.where(ok, numpy.asarray(solved[name], dtype=float), numpy.nan) for name in outputs}
+
+
+def branch_break(linkage: Linkage, design: Mapping[str, float], branches: Mapping[str, int],
+                 inputs: numpy.ndarray) -> str:
+    """Why the input cannot move from target to target on one branch ("" if it can), by the generated solver.
+
+    Between consecutive inputs the linkage must stay assembled and off a toggle (checked at
+    :data:`BRANCH_SAMPLES` values), so that all the targets are reached on one branch.
+    """
+    steps = numpy.linspace(0.0, 1.0, BRANCH_SAMPLES + 1)
+    if len(inputs) < 2:
+        moves = numpy.asarray(inputs, dtype=float)[:, None]
+    else:
+        moves = inputs[:-1, None] + numpy.diff(inputs)[:, None] * steps[None, :]
+    arguments: dict[str, object] = {**design, linkage.inputs[0].name: moves}
+    arguments.update({s.name: int(branches.get(s.name, 1)) for s in linkage.branches})
+    solved = _solver(linkage, ("singular",))(**arguments)
+    ok = numpy.asarray(solved["assembled"]) & ~numpy.asarray(solved["singular"], dtype=bool)
+    if numpy.all(ok):
+        return ""
+    where = numpy.argwhere(~ok)[0]
+    return (f"the input cannot move from target {where[0] + 1} to target {where[0] + 2} on one branch "
+            f"(no assembly or a toggle at {float(moves[tuple(where)]):.6g})")
+
+
+def refine(residuals: Callable[[numpy.ndarray], tuple[numpy.ndarray, numpy.ndarray] | None], x0: numpy.ndarray,
+           evaluations: int, tolerance: float):
+    """``(x, cost, evaluations)`` from the accelerated Levenberg-Marquardt of path synthesis, None if x0 is infeasible.
+
+    ``residuals(x)`` gives ``(r, J)``, or None for an infeasible ``x`` (never accepted).
+    """
+    return _accelerated_levenberg_marquardt(residuals, numpy.asarray(x0, dtype=float).copy(), evaluations, tolerance)

@@ -1,0 +1,363 @@
+"""Shape targets: a curve without timing, scale, rotation or position, matched by a shape distance, then placed.
+
+A designer often knows the *shape* of the path wanted (a D-shaped foot path, a straight stretch)
+but not where it sits, how large it is or how it is turned.  :func:`shape_distance` compares
+two curves given as points, blind to all of that:
+
+* **closed** curves by Fourier descriptors: each is resampled at equal arc length, centred
+  (the descriptors without the constant term), and the descriptors of one are correlated with
+  the other's over every starting point at once (a cyclic shift of the samples multiplies the
+  k-th descriptor by ``exp(-2 pi i k s / M)``, so one inverse FFT gives them all); the best
+  complex factor (scale and turn) leaves the distance
+  ``sqrt(1 - |<a, b>|^2 / (|a|^2 |b|^2))``, 0 for similar curves and at most 1; both
+  directions of travel are tried, and ``harmonics`` may keep only the low descriptors (the
+  overall shape, not the noise);
+* **open** curves by a normalised arc-length resampling of both, centred, with the same
+  similarity alignment (both directions);
+* **partial** targets (an open piece of a closed path) against every window of the closed
+  curve (its starting point and its length as a fraction of the whole).
+
+:func:`similarity_fit` gives the placement (``x0, y0, angle, scale`` as in
+:mod:`symlink.synthesis.general`) that brings corresponding points closest, and
+:func:`shape_search` ranks sampled designs of any one-input linkage by the shape distance of a
+point's path to the target, and places the best by its similarity fit.
+
+>>> t = numpy.linspace(0, 2 * math.pi, 60, endpoint=False)
+>>> ellipse = numpy.stack([2 * numpy.cos(t), numpy.sin(t)], axis=1)
+>>> moved = similarity_transform(ellipse[::-1], {"x0": 3.0, "y0": -1.0, "angle": 0.4, "scale": 0.5})
+>>> shape_distance(ellipse, moved) < 1e-3, shape_distance(ellipse, numpy.stack([numpy.cos(t), numpy.sin(t)], 1)) > 0.1
+(True, True)
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Mapping, Sequence
+
+import numpy
+from numpy.typing import ArrayLike
+
+from ..linkage import Linkage
+from .design_fit import DesignOutputs, check_branches, check_linkage, free_bounds, sampled_designs
+
+__all__ = ["shape_distance", "similarity_fit", "similarity_transform", "resampled", "shape_search", "ShapeMatch",
+           "KINDS", "SAMPLES"]
+
+#: What a target curve may be.
+KINDS = ("closed", "open", "partial")
+#: Points each curve is resampled to at equal arc length.
+SAMPLES = 256
+_WINDOWS = 48                                   # partial targets: starting points along the closed curve ...
+_SPANS = tuple(numpy.linspace(0.05, 1.0, 39))   # ... and lengths, as fractions of it
+_SWEEP = 360                                    # input values over a turn, tracing a design's path
+
+
+def _complex(points: ArrayLike, least: int = 3) -> numpy.ndarray:
+    array = numpy.asarray(points, dtype=float)
+    if array.ndim != 2 or array.shape[1] != 2 or len(array) < least:
+        raise ValueError(f"a curve is at least {least} rows of (x, y), got shape {array.shape}")
+    if not numpy.all(numpy.isfinite(array)):
+        raise ValueError("a curve's points must be finite numbers")
+    return array[:, 0] + 1j * array[:, 1]
+
+
+def resampled(points: ArrayLike, count: int = SAMPLES, closed: bool = True) -> numpy.ndarray:
+    """The curve through ``points`` (rows x, y) at ``count`` points equally spaced along its length, as complex numbers.
+
+    A closed curve's last point joins its first (the samples start at the first point and do not repeat it).
+
+    >>> resampled([[0, 0], [2, 0], [2, 2], [0, 2]], 8).round(12).tolist()
+    [0j, (1+0j), (2+0j), (2+1j), (2+2j), (1+2j), 2j, 1j]
+    """
+    z = _complex(points, 2)
+    path = numpy.concatenate([z, z[:1]]) if closed else z
+    arc = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(path)))])
+    if not arc[-1] > 0:
+        raise ValueError("the curve has no length: its points are all the same")
+    where = numpy.linspace(0.0, arc[-1], count, endpoint=not closed)
+    return numpy.interp(where, arc, path.real) + 1j * numpy.interp(where, arc, path.imag)
+
+
+def similarity_transform(points: ArrayLike, placement: Mapping[str, float]) -> numpy.ndarray:
+    """Points (rows x, y) moved by a placement: ``(x0, y0) + scale * R(angle) p`` (missing parts: no move).
+
+    >>> similarity_transform([[1.0, 0.0]], {"angle": math.pi / 2, "scale": 2.0}).round(12).tolist()
+    [[0.0, 2.0]]
+    """
+    where = {"x0": 0.0, "y0": 0.0, "angle": 0.0, "scale": 1.0, **placement}
+    z = _complex(points, 1)
+    moved = complex(where["x0"], where["y0"]) + where["scale"] * numpy.exp(1j * where["angle"]) * z
+    return numpy.stack([moved.real, moved.imag], axis=1)
+
+
+def similarity_fit(source: ArrayLike, target: ArrayLike) -> tuple[dict[str, float], float]:
+    """The placement bringing ``source`` points closest to the corresponding ``target`` points, and the rms left.
+
+    Least squares over shift, turn and scale (``x0, y0, angle, scale``): with both centred, the
+    complex factor ``scale * e^{i angle} = <s, t> / <s, s>``.
+
+    >>> fit, rms = similarity_fit([[0, 0], [1, 0], [0, 1]], [[1, 1], [1, 3], [-1, 1]])
+    >>> {k: round(v, 12) for k, v in fit.items()}, rms < 1e-12
+    ({'x0': 1.0, 'y0': 1.0, 'angle': 1.570796326795, 'scale': 2.0}, True)
+    """
+    s, t = _complex(source, 2), _complex(target, 2)
+    if s.shape != t.shape:
+        raise ValueError(f"a similarity fit pairs points: {len(s)} source and {len(t)} target points")
+    ds, dt = s - s.mean(), t - t.mean()
+    weight = float(numpy.sum(numpy.abs(ds) ** 2))
+    if not weight > 0:
+        raise ValueError("the source points are all the same: no turn or scale fits them")
+    factor = numpy.sum(numpy.conj(ds) * dt) / weight
+    shift = t.mean() - factor * s.mean()
+    rms = float(numpy.sqrt(numpy.mean(numpy.abs(shift + factor * s - t) ** 2)))
+    return {"x0": float(shift.real), "y0": float(shift.imag), "angle": float(numpy.angle(factor)),
+            "scale": float(abs(factor))}, rms
+
+
+def _aligned_distance(a: numpy.ndarray, b: numpy.ndarray) -> numpy.ndarray:
+    """``sqrt(1 - |<a, b>|^2 / (|a|^2 |b|^2))`` of centred rows (the last axis), both directions of ``b``."""
+    a = a - a.mean(axis=-1, keepdims=True)
+    b = b - b.mean(axis=-1, keepdims=True)
+    norms = numpy.sum(numpy.abs(a) ** 2, axis=-1) * numpy.sum(numpy.abs(b) ** 2, axis=-1)
+    with numpy.errstate(all="ignore"):
+        forward = numpy.abs(numpy.sum(numpy.conj(a) * b, axis=-1)) ** 2 / norms
+        backward = numpy.abs(numpy.sum(numpy.conj(a) * b[..., ::-1], axis=-1)) ** 2 / norms
+    best = numpy.maximum(forward, backward)
+    return numpy.where(norms > 0, numpy.sqrt(numpy.clip(1.0 - best, 0.0, 1.0)), 1.0)
+
+
+def _descriptors(z: numpy.ndarray, harmonics: int | None) -> numpy.ndarray:
+    """Fourier descriptors of closed curves sampled at equal arc length (rows), the constant term and, with
+    ``harmonics``, those above it set to zero."""
+    spectrum = numpy.fft.fft(z, axis=-1) / z.shape[-1]
+    spectrum[..., 0] = 0.0
+    if harmonics is not None:
+        k = numpy.fft.fftfreq(z.shape[-1], 1.0 / z.shape[-1])
+        spectrum[..., numpy.abs(k) > harmonics] = 0.0
+    return spectrum
+
+
+def _closed_distance(a: numpy.ndarray, b: numpy.ndarray, harmonics: int | None) -> float:
+    """The shape distance of two closed curves (equal-arc samples) over every starting point, both ways.
+
+    The correlation of the descriptors over the starting point ``s`` is the trigonometric sum
+    ``c(s) = sum_k conj(A_k) B_k e^{2 pi i k s / M}``: one inverse FFT gives it at whole samples,
+    and a golden-section search refines the best between its neighbours (a start between two
+    samples).
+    """
+    A = _descriptors(a, harmonics)
+    k = numpy.fft.fftfreq(len(a), 1.0 / len(a))
+    best = 0.0
+    for b_way in (b, b[::-1]):
+        B = _descriptors(b_way, harmonics)
+        norms = float(numpy.sum(numpy.abs(A) ** 2) * numpy.sum(numpy.abs(B) ** 2))
+        if not norms > 0:
+            continue
+        product = numpy.conj(A) * B
+        cross = numpy.abs(numpy.fft.ifft(product) * len(a))
+        low, high = float(numpy.argmax(cross)) - 1.0, float(numpy.argmax(cross)) + 1.0
+
+        def size(shift: float) -> float:
+            return -abs(numpy.sum(product * numpy.exp(2j * math.pi * k * shift / len(a))))
+
+        golden = (math.sqrt(5.0) - 1.0) / 2.0
+        left, right = high - golden * (high - low), low + golden * (high - low)
+        f_left, f_right = size(left), size(right)
+        for _ in range(60):
+            if f_left < f_right:
+                high, right, f_right = right, left, f_left
+                left = high - golden * (high - low)
+                f_left = size(left)
+            else:
+                low, left, f_left = left, right, f_right
+                right = low + golden * (high - low)
+                f_right = size(right)
+        peak = max(float(numpy.max(cross)), -f_left, -f_right)
+        best = max(best, peak ** 2 / norms)
+    return math.sqrt(min(max(1.0 - best, 0.0), 1.0))
+
+
+def _partial_distance(piece: numpy.ndarray, whole: numpy.ndarray) -> tuple[float, float, float]:
+    """The least distance of an open ``piece`` (equal-arc samples) to windows of a closed curve, with the window
+    (start, span) as fractions of the closed curve's length."""
+    count = len(whole)
+    arc = numpy.linspace(0.0, 2.0, 2 * count + 1)  # two turns, so that a window may cross the seam
+    doubled = numpy.concatenate([whole, whole, whole[:1]])
+    fractions = numpy.linspace(0.0, 1.0, len(piece))
+    starts = numpy.linspace(0.0, 1.0, _WINDOWS, endpoint=False)
+    spans = numpy.array(_SPANS)
+    where = starts[:, None, None] + spans[None, :, None] * fractions[None, None, :]  # (W, S, N)
+    windows = numpy.interp(where, arc, doubled.real) + 1j * numpy.interp(where, arc, doubled.imag)
+    distance = _aligned_distance(numpy.broadcast_to(piece, windows.shape), windows)
+    w, s = numpy.unravel_index(numpy.argmin(distance), distance.shape)
+    best = (float(distance[w, s]), float(starts[w]), float(spans[s]))
+    # refine the best window between the grid's values: a shrinking 5 x 5 pattern around it
+    step_start, step_span = 1.0 / _WINDOWS, float(spans[1] - spans[0])
+    for _ in range(24):
+        trial_starts = best[1] + step_start * numpy.linspace(-1.0, 1.0, 5)
+        trial_spans = numpy.clip(best[2] + step_span * numpy.linspace(-1.0, 1.0, 5), 1e-3, 1.0)
+        where = (trial_starts[:, None, None] % 1.0 + trial_spans[None, :, None] * fractions[None, None, :])
+        windows = numpy.interp(where, arc, doubled.real) + 1j * numpy.interp(where, arc, doubled.imag)
+        trial = _aligned_distance(numpy.broadcast_to(piece, windows.shape), windows)
+        w, s = numpy.unravel_index(numpy.argmin(trial), trial.shape)
+        if trial[w, s] < best[0]:
+            best = (float(trial[w, s]), float(trial_starts[w] % 1.0), float(trial_spans[s]))
+        step_start, step_span = step_start / 2, step_span / 2
+    return best
+
+
+def shape_distance(first: ArrayLike, second: ArrayLike, kind: str = "closed", *, samples: int = SAMPLES,
+                   harmonics: int | None = None) -> float:
+    """How far the shapes of two curves (rows x, y) differ, blind to position, turn, scale, start and direction.
+
+    ``kind``: ``"closed"`` (Fourier descriptors), ``"open"`` (arc-length resampling, similarity
+    aligned) or ``"partial"`` (``first`` an open piece of the closed ``second``).  0 for similar
+    curves, at most 1; ``harmonics`` keeps the descriptors up to that order (closed curves only).
+    """
+    if kind not in KINDS:
+        raise ValueError(f"kind is one of {', '.join(KINDS)}, got {kind!r}")
+    if samples < 8:
+        raise ValueError(f"resample to at least 8 points, got {samples}")
+    _complex(first), _complex(second)  # ValueError for fewer than three points, or not finite
+    if kind == "closed":
+        return _closed_distance(resampled(first, samples), resampled(second, samples), harmonics)
+    if kind == "open":
+        return float(_aligned_distance(resampled(first, samples, closed=False), resampled(second, samples,
+                                                                                            closed=False)))
+    return _partial_distance(resampled(first, samples, closed=False), resampled(second, samples))[0]
+
+
+@dataclass(frozen=True)
+class ShapeMatch:
+    """A design whose point's path has the target's shape: its distance, and the placement that fits it best.
+
+    ``design`` holds every parameter; ``placement`` (``x0, y0, angle, scale``) moves the
+    design's path onto the target (least squares over the matched points); ``rms`` is what that
+    fit leaves over the target's size; ``curve`` the placed path (rows x, y) over a turn of the
+    input (or its assembled stretch).
+    """
+
+    design: dict[str, float]
+    branches: dict[str, int]
+    distance: float
+    placement: dict[str, float]
+    rms: float
+    curve: numpy.ndarray
+
+
+def _traced(outputs: DesignOutputs, rows: numpy.ndarray, signs, sweep: numpy.ndarray):
+    values, ok = outputs.batch(rows, signs, sweep)
+    return values[0] + 1j * values[1], ok
+
+
+def shape_search(linkage: Linkage, point: str, target: ArrayLike, free: Mapping[str, tuple[float, float]], *,
+                 kind: str = "closed", values: Mapping[str, float] | None = None,
+                 branches: Mapping[str, int] | None = None, designs: int = 2000, keep: int = 5,
+                 seed: int | None = 0, harmonics: int | None = None,
+                 candidates: Sequence[Mapping[str, float]] = ()) -> list[ShapeMatch]:
+    """The ``keep`` designs of ``linkage`` whose ``point`` traces the shape of ``target`` best, each placed on it.
+
+    ``designs`` random designs (free parameters uniform within their bounds, branches random
+    unless fixed), after the ``candidates`` given (complete designs), are traced over a turn of the
+    input; a closed target needs a design assembled over the whole turn, an open or partial one
+    takes the longest assembled stretch.  They are ranked by :func:`shape_distance`; each kept
+    one is placed by the similarity fit of its path, resampled at the matched points, to the
+    target.  ``ValueError`` for bad input or when no design is assembled.
+    """
+    check_linkage(linkage, "shape matching")
+    if kind not in KINDS:
+        raise ValueError(f"kind is one of {', '.join(KINDS)}, got {kind!r}")
+    if point not in linkage.points:
+        raise ValueError(f"{linkage.name} has no point {point!r}; it has {', '.join(linkage.points)}")
+    wanted = _complex(target)
+    target_rows = numpy.stack([wanted.real, wanted.imag], axis=1)
+    bounds, fixed = free_bounds(linkage, free, {k: v for k, v in (values or {}).items() if k not in free})
+    chosen = check_branches(linkage, branches)
+    if designs < 0 or keep < 1:
+        raise ValueError("designs must be at least 0 and keep at least 1")
+    closed = kind == "closed"
+    goal = resampled(target_rows, SAMPLES, closed=closed)
+    outputs = DesignOutputs(linkage, (f"{point}_x", f"{point}_y"), tuple(bounds), fixed)
+    first = [([float(c[name]) for name in bounds], chosen) for c in candidates]
+    rows, signs = sampled_designs(linkage, bounds, numpy.random.default_rng(seed), designs, chosen, first)
+    sweep = numpy.linspace(-math.pi, math.pi, _SWEEP, endpoint=False)
+    traced, ok = _traced(outputs, rows, signs, sweep)
+    scored = []
+    for index in range(len(rows)):
+        z = _path(traced[index], ok[index], closed)
+        if z is None:
+            continue
+        curve = resampled(numpy.stack([z.real, z.imag], axis=1), SAMPLES, closed=closed or kind == "partial")
+        if kind == "closed":
+            distance = _closed_distance(goal, curve, harmonics)
+        elif kind == "open":
+            distance = float(_aligned_distance(goal, curve))
+        else:
+            distance = _partial_distance(goal, curve)[0]
+        scored.append((distance, index, z))
+    if not scored:
+        raise ValueError(f"no design of {linkage.name} within the bounds traces a " + (
+            "whole turn" if closed else "path") + "; widen the bounds or change the fixed values")
+    scored.sort(key=lambda item: item[0])
+    size = float(numpy.hypot(numpy.ptp(wanted.real), numpy.ptp(wanted.imag))) or 1.0
+    matches = []
+    for distance, index, z in scored[:keep]:
+        placement, rms = _placed_on(z, wanted, kind)
+        design = {**fixed, **{name: float(v) for name, v in zip(bounds, rows[index])}}
+        moved = similarity_transform(numpy.stack([z.real, z.imag], axis=1), placement)
+        matches.append(ShapeMatch(design, dict(signs[index]), distance, placement, rms / size, moved))
+    return matches
+
+
+def _path(z: numpy.ndarray, ok: numpy.ndarray, closed: bool) -> numpy.ndarray | None:
+    """The traced path: the whole turn (closed targets need it), else the longest assembled stretch."""
+    if numpy.all(ok):
+        return z
+    if closed:
+        return None
+    best, start = (0, 0), None
+    for k, flag in enumerate(list(ok) + [False]):
+        if flag and start is None:
+            start = k
+        elif not flag and start is not None:
+            best = max(best, (k - start, start))
+            start = None
+    return z[best[1]:best[1] + best[0]] if best[0] >= 8 else None
+
+
+def _placed_on(z: numpy.ndarray, wanted: numpy.ndarray, kind: str) -> tuple[dict[str, float], float]:
+    """The best similarity placement of a design's path ``z`` on the target ``wanted``: over the matched starting
+    point and direction (closed), direction (open) or window (partial), by the target's own points."""
+    target = numpy.stack([wanted.real, wanted.imag], axis=1)
+    if kind == "closed":
+        closed_path = numpy.concatenate([z, z[:1]])
+        arc = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(closed_path)))])
+        chords = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(wanted)))])
+        fraction = chords / (chords[-1] + abs(wanted[-1] - wanted[0]))
+        best: tuple[dict[str, float], float] | None = None
+        for way in (1.0, -1.0):
+            for start in numpy.linspace(0.0, 1.0, 4 * SAMPLES, endpoint=False):
+                where = numpy.mod(start + way * fraction, 1.0) * arc[-1]
+                sample = numpy.interp(where, arc, closed_path.real) + 1j * numpy.interp(where, arc, closed_path.imag)
+                fit = similarity_fit(numpy.stack([sample.real, sample.imag], axis=1), target)
+                if best is None or fit[1] < best[1]:
+                    best = fit
+        assert best is not None
+        return best
+    chords = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(wanted)))])
+    fraction = chords / chords[-1]
+    if kind == "partial":
+        whole = resampled(numpy.stack([z.real, z.imag], axis=1), SAMPLES)
+        _, start, span = _partial_distance(resampled(target, SAMPLES, closed=False), whole)
+        path = numpy.concatenate([z, z[:1]])
+        arc = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(path)))])
+        candidates = [numpy.mod(start + span * fraction, 1.0), numpy.mod(start + span * (1 - fraction), 1.0)]
+    else:
+        path = z
+        arc = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(path)))])
+        candidates = [fraction, 1.0 - fraction]
+    fits = []
+    for where in candidates:
+        sample = numpy.interp(where * arc[-1], arc, path.real) + 1j * numpy.interp(where * arc[-1], arc, path.imag)
+        fits.append(similarity_fit(numpy.stack([sample.real, sample.imag], axis=1), target))
+    return min(fits, key=lambda fit: fit[1])

@@ -351,3 +351,12 @@ def test_pin_play_of_a_slider_crank_by_hand():
     slope = e / math.sqrt(b * b - e * e)
     assert result.worst_case[0, 0] == pytest.approx(0.06 * math.hypot(1, slope), rel=1e-12)
     numpy.testing.assert_allclose(numpy.abs(result.gradient[0, :, :, 0]), [[1, slope]] * 3, rtol=1e-12)
+
+
+def test_command_draws_the_bands_and_the_contributions(tmp_path, capsys):
+    from symlink.cli import main
+    path = tmp_path / "bands.png"
+    assert main(COMMAND + ["--tolerance", "0.05", "--samples", "1000", "--step", "30", "--plot", str(path)]) == 0
+    assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert main(COMMAND + ["--tolerance", "0.05", "--plot", str(tmp_path / "bands.pdf")]) == 2
+    assert "must end in .png or .svg" in capsys.readouterr().err

@@ -146,3 +146,51 @@ def test_a_sigma_given_is_the_spread_drawn():
                             builds=20_000, seed=2)
     # B_x = a cos(theta) = a at theta = 0: the deviation is the drawn a less 20, sigma 0.2
     assert abs(sampled.standard_deviation[0, 0] / 0.2 - 1) < 4 / math.sqrt(2 * 20_000)
+
+
+# --- the command line --------------------------------------------------------------------------
+
+COMMAND = ["tolerance", "fourbar", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80",
+           "--tolerance", "0.05", "--angles", "40,250", "--format", "csv"]
+
+
+def test_command_samples_into_a_folder_and_continues_it(tmp_path, capsys):
+    """--samples N --folder DIR: the sampled columns are the 3-sigma points of the linear band (0.05 on every
+    length: small), the same again when the command is run again on the folder, which finds every chunk done."""
+    from symlink.cli import main
+    options = COMMAND + ["--samples", "100000", "--folder", str(tmp_path / "mc"), "--seed", "3"]
+    assert main(options) == 0
+    first = capsys.readouterr()
+    assert "0 chunks found done" in first.err
+    header, *rows = first.out.splitlines()
+    assert header.endswith(",sampled_low,sampled_high")
+    for row in rows:
+        cells = [float(c) for c in row.split(",")[:5]] + [float(c) for c in row.split(",")[6:]]
+        rss, low, high = cells[3], cells[5], cells[6]
+        assert -low == pytest.approx(rss, rel=0.04) and high == pytest.approx(rss, rel=0.04)
+    assert main(options) == 0
+    again = capsys.readouterr()
+    assert again.out == first.out and "10 chunks found done" in again.err
+
+
+@pytest.mark.parametrize("extra, message", [
+    (["--folder", "DIR"], "--folder holds sampled builds: give their number with --samples N"),
+    (["--samples", "0"], "--samples must be at least 1"),
+    (["--samples", "10", "--seed", "-1"], "--seed must be 0 or more"),
+])
+def test_command_bad_sampling_options_are_one_line_and_status_2(extra, message, tmp_path, capsys):
+    from symlink.cli import main
+    extra = [str(tmp_path / "f") if item == "DIR" else item for item in extra]
+    assert main(COMMAND + extra) == 2
+    err = capsys.readouterr().err
+    assert message in err and len(err.strip().splitlines()) == 1
+
+
+def test_command_refuses_a_folder_of_other_builds(tmp_path, capsys):
+    from symlink.cli import main
+    folder = str(tmp_path / "mc")
+    assert main(COMMAND + ["--samples", "100", "--folder", folder]) == 0
+    capsys.readouterr()
+    assert main(COMMAND + ["--samples", "100", "--folder", folder, "--seed", "1"]) == 2
+    err = capsys.readouterr().err
+    assert "other settings (seed differ)" in err and len(err.strip().splitlines()) == 1

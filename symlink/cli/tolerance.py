@@ -15,7 +15,8 @@ import numpy
 
 from ..angles import from_radians, to_radians, wrap
 from .options import (FOURBAR_LENGTHS, add_branch_option, add_format_option, add_units_option, assignments,
-                      command_help, finite, fourbar_lengths, input_sweep, linkage_values, number_list, whole)
+                      command_help, figure_path, finite, fourbar_lengths, input_sweep, linkage_values, number_list,
+                      whole)
 from .output import RowWriter, note
 
 #: More input values than this make a stack-up a benchmark, not a table (each costs 1 + 2 x dimensions solves).
@@ -32,6 +33,8 @@ def register(commands) -> None:
         "--output rocker",
         "With a catalog NAME or a linkage FILE, values from its defaults (--set to change); --tolerance applies to "
         "every length, --tolerances NAME=BAND,... to chosen dimensions; --play B=0.02,C=0.02 adds the pins' play.\n"
+        "--samples N (or --builds N) adds a Monte Carlo of N builds, --folder DIR makes it resumable (Dask, the "
+        "extra 'sweep'), --plot FILE draws the bands and the contributions.\n"
         "csv header: INPUT,OUTPUT,worst_case,rss,mean_shift,largest[,play][,sampled_low,sampled_high]"))
 
 
@@ -50,10 +53,16 @@ def _add_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("--play", type=assignments("PIN=PLAY"), default={}, metavar="PIN=PLAY,...",
                          help="radial play of chosen pins (hole radius less pin radius): adds the column "
                               "'play', the linearised worst case over all play directions")
-    command.add_argument("--builds", type=whole, metavar="N",
+    command.add_argument("--samples", "--builds", dest="builds", type=whole, metavar="N",
                          help="also sample N builds (Monte Carlo, seeded by --seed): adds the columns 'sampled_low' "
                               "and 'sampled_high', the deviation's 0.135 and 99.865 percentiles (3 sigma)")
     command.add_argument("--seed", type=whole, default=0, help="of the sampled builds (default 0)")
+    command.add_argument("--folder", metavar="DIR",
+                         help="make the sampled builds on Dask in chunks written to DIR (a sweep's folder): stopped, "
+                              "the same command again continues where it stopped (needs the extra 'sweep')")
+    command.add_argument("--plot", type=figure_path, metavar="FILE",
+                         help="draw the nominal output, its worst-case, statistical and sampled bands along the input "
+                              "and the contributions of the dimensions (.png or .svg)")
     command.add_argument("--output", metavar="NAME", help="the output (default: the linkage's last unknown)")
     command.add_argument("--start", type=finite, help="first input value (default 0)")
     command.add_argument("--stop", type=finite, help="last input value, exclusive (default 360 deg)")
@@ -107,12 +116,26 @@ def run(args: argparse.Namespace) -> int:
     values.update({branch.name: int(args.branch) for branch in linkage.branches})
     result = stack_up(linkage, output, values, tolerances, inputs=inputs)
     play = pin_play(linkage, output, values, args.play, inputs=inputs).worst_case[0] if args.play else None
-    sampled = None
+    sampled, builds = None, None
+    if args.folder is not None and args.builds is None:
+        raise ValueError("--folder holds sampled builds: give their number with --samples N")
     if args.builds is not None:
         if args.builds < 1:
-            raise ValueError(f"--builds must be at least 1, got {args.builds}")
-        sampled = sample_builds(linkage, output, values, tolerances, inputs=inputs, builds=args.builds,
-                                seed=args.seed).percentile([0.135, 99.865])[:, 0]
+            raise ValueError(f"--samples must be at least 1, got {args.builds}")
+        if args.seed < 0:
+            raise ValueError(f"--seed must be 0 or more, got {args.seed}")
+        if args.folder is not None:
+            from ..sweep import SWEEP_EXTRA, missing_modules
+            missing = missing_modules(("dask", "pyarrow"))
+            if missing:
+                raise ValueError(f"--folder needs {', '.join(missing)}: {SWEEP_EXTRA} (or leave --folder out: the "
+                                 "builds are then made in memory)")
+        builds = sample_builds(linkage, output, values, tolerances, inputs=inputs, builds=args.builds,
+                               seed=args.seed, folder=args.folder)
+        sampled = builds.percentile([0.135, 99.865])[:, 0]
+        if args.folder is not None:
+            note(f"{args.builds} builds in {args.folder}: {builds.reused} chunk{'s' if builds.reused != 1 else ''} "
+                 "found done there")
     angular = output_units(linkage, [output]).get(output) == "rad"
     convert = (lambda x: from_radians(x, args.units)) if angular else (lambda x: numpy.asarray(x))  # noqa: E731
     nominal = convert(wrap(result.nominal[0]) if angular else result.nominal[0])
@@ -132,6 +155,12 @@ def run(args: argparse.Namespace) -> int:
     unit = args.units if angular else "length units"
     ranking = ", ".join(f"{dim} {float(convert(dev)):.4g}" for dim, dev in result.ranking(output))
     note(f"largest 1-sigma deviation of {output} each dimension causes on the range ({unit}): {ranking}")
+    if args.plot is not None:
+        from ..plot import save_figure
+        from ..plot.tolerance import tolerance_figure
+        save_figure(tolerance_figure(result, output, builds, units=args.units, angular_input=swept_angle,
+                                     angular_output=angular, title=f"tolerance stack-up of {linkage.name}: {output}"),
+                    args.plot)
     return 0
 
 

@@ -2,7 +2,9 @@
 
 A link is never made exactly to its drawing.  Given a tolerance for some of a
 linkage's dimensions (its parameters: lengths, fixed angles, pivot
-coordinates), :func:`stack_up` tells, for each output along the input range,
+coordinates; masses and inertias of a :func:`~symlink.dynamics.dynamic_linkage`),
+:func:`stack_up` tells, for each output along the input range (a position, a
+rate, the driving torque),
 
 * the **worst case**: ``sum_j |dy/dp_j| * band_j``, the largest first-order
   deviation when every dimension sits at the end of its ± band that hurts most;
@@ -17,7 +19,10 @@ coordinates), :func:`stack_up` tells, for each output along the input range,
 * with :func:`pin_play`, the worst case of the pins' **radial play** (joint clearance), linearised, and
   with :func:`pin_play_envelope` its exact range at chosen poses (a search over the play directions);
 * with :func:`sample_builds`, a **Monte Carlo** check: many builds drawn from the same tolerance model and
-  solved (vectorised over the builds), their deviation's percentiles beside the linear prediction.
+  solved (vectorised over the builds), their deviation's percentiles beside the linear prediction; with
+  ``folder=`` on Dask, in chunks written to a sweep's folder, so that a long check stops and resumes.
+
+:mod:`symlink.plot.tolerance` draws the bands along the cycle and the contributions.
 
 The first derivatives are exact: generated from the closure equations by
 :class:`~symlink.design_jacobian.DesignJacobian` (for any linkage, closed form
@@ -207,6 +212,56 @@ def _input_values(linkage: Linkage, inputs: Mapping[str, object] | None) -> dict
     return {name: numpy.broadcast_to(array, shape).copy() for name, array in zip(known, arrays)}
 
 
+#: The prefix of the parameters that stand in for the inputs' rates in a rate output's stack-up.
+HELD_RATE_PREFIX = "held_"
+#: Rounds of substituting the unknowns' rates and accelerations at most (one a loop of a chain, and two).
+_SUBSTITUTIONS = 64
+
+
+def _positions_only(linkage: Linkage, outputs: Sequence[str]) -> tuple[Linkage, dict[str, str]]:
+    """``linkage`` with ``outputs`` as extras that depend on positions only; and how names map (user -> internal).
+
+    An output that moves with the rates (a rocker's speed, the driving torque of a
+    :func:`~symlink.dynamics.dynamic_linkage`) is a function of the positions, the inputs' rates and
+    accelerations and the parameters once the unknowns' rates and accelerations are replaced by their closed
+    forms (:attr:`~symlink.linkage.Linkage.velocities`, :attr:`~symlink.linkage.Linkage.accelerations`).
+    At a held input motion the inputs' rates are constants: each becomes a parameter (``held_thetadot``)
+    and the output an extra whose exact sensitivities :mod:`symlink.sensitivity` derives by the chain rule.
+    A linkage whose outputs are all positions comes back as it is.
+    """
+    from .vectors import acceleration, rate
+    moving = {rate(q) for q in linkage.coordinates} | {acceleration(q) for q in linkage.coordinates}
+    expressions = {name: linkage.output(name) for name in outputs}  # ValueError naming an unknown output
+    if not any(sp.sympify(e).free_symbols & moving for e in expressions.values()):
+        return linkage, {}
+    if not linkage.has_closed_form:
+        raise ValueError(f"{linkage.name} has no closed form: the stack-up of a rate or a force needs one")
+    definitions = {**dict(linkage.velocities), **dict(linkage.accelerations)}
+    unknown = set(definitions)
+    held = {}
+    for q in linkage.inputs:
+        for symbol in (rate(q), acceleration(q)):
+            held[symbol] = sp.Symbol(HELD_RATE_PREFIX + symbol.name, real=True)
+    extras = {name: e for name, e in linkage.extras.items() if not (sp.sympify(e).free_symbols & moving)}
+    internal = {}
+    for k, (name, expr) in enumerate(expressions.items()):
+        for _ in range(_SUBSTITUTIONS):
+            if not (expr.free_symbols & unknown):
+                break
+            expr = expr.xreplace(definitions)
+        else:  # pragma: no cover - a plan whose rates refer to one another in a circle
+            raise ValueError(f"{linkage.name}: the rates of {name} do not resolve into positions")
+        expr = expr.xreplace(held)
+        if expr.free_symbols & moving:  # pragma: no cover - a rate of a coordinate not an input nor an unknown
+            raise ValueError(f"{linkage.name}: {name} moves with rates that are not the inputs'")
+        internal[name] = f"held_output_{k}"
+        extras[internal[name]] = expr
+    appearing = set().union(*(extras[name].free_symbols for name in internal.values()))
+    parameters = list(linkage.parameters) + [s for s in held.values() if s in appearing]
+    return Linkage(f"{linkage.name}", linkage.loops, linkage.inputs, linkage.unknowns, parameters=parameters,
+                   points=linkage.points, roles=linkage.roles, extras=extras), internal
+
+
 def stack_up(linkage: Linkage, outputs: str | Sequence[str], nominal: Mapping[str, float],
              tolerances: TolerancesLike, inputs: Mapping[str, object] | None = None,
              guess: object = None) -> StackUp:
@@ -217,13 +272,17 @@ def stack_up(linkage: Linkage, outputs: str | Sequence[str], nominal: Mapping[st
     linkage : Linkage
         Any linkage (a catalog entry, a linkage file's, your own).
     outputs : str or sequence of str
-        Position outputs: a coordinate or its role (``rocker``), a point's ``C_x``, an extra output
-        (``transmission``).
+        Any outputs: a coordinate or its role (``rocker``), a point's ``C_x``, an extra output
+        (``transmission``); also a rate or an acceleration (``rocker_speed``) and, of a
+        :func:`~symlink.dynamics.dynamic_linkage`, the driving torque (``input_torque``), a reaction or
+        a shaking force: these at a held input motion, its rates (``thetadot``, ``thetaddot``) given in
+        ``nominal``.
     nominal : mapping
-        The design: every parameter's value and each branch sign (extra names are ignored).
+        The design: every parameter's value (a dynamic linkage's masses too) and each branch sign (extra
+        names are ignored).
     tolerances : mapping
-        Dimension name (a parameter) -> a ± band (a number, read as 3 sigma) or a :class:`Tolerance`.
-        Dimensions left out are exact.
+        Dimension name (a parameter: a length, a mass, an inertia, ...; or an input's rate, ``thetadot``)
+        -> a ± band (a number, read as 3 sigma) or a :class:`Tolerance`.  Dimensions left out are exact.
     inputs : mapping, optional
         Input name -> the values (one-dimensional) to evaluate at; by default a one-input linkage's
         input over a full turn every 10 degrees (in radians).
@@ -237,16 +296,28 @@ def stack_up(linkage: Linkage, outputs: str | Sequence[str], nominal: Mapping[st
         Worst case, RSS, mean shift and contributions for every output at every input value.
 
     ``ValueError`` names what is wrong: an unknown output or dimension, a bad band, a missing value.
+
+    The sensitivities of a rate or a force are exact too: the unknowns' rates and accelerations are
+    replaced by their closed forms, which leaves a function of the positions, the inputs' rates and the
+    parameters whose derivatives :mod:`symlink.sensitivity` derives by the chain rule (the torque's by the
+    masses are the terms the masses multiply).
     """
     chosen = [outputs] if isinstance(outputs, str) else list(outputs)
     dimensions, bands, sigmas = _tolerances(tolerances)
-    jacobian = DesignJacobian(linkage, chosen, dimensions)
+    source, internal = _positions_only(linkage, chosen)
+    # The inputs' rates of a rate output are parameters of ``source`` (held_thetadot): internal name -> user's.
+    held = {HELD_RATE_PREFIX + name: name for q in linkage.inputs for name in (q.name + "dot", q.name + "ddot")}
+    if internal:
+        dimensions = [HELD_RATE_PREFIX + name if HELD_RATE_PREFIX + name in held else name for name in dimensions]
+    jacobian = DesignJacobian(source, [internal.get(name, name) for name in chosen], dimensions)
     sweep = _input_values(linkage, inputs)
     wanted = [name for name in jacobian.arguments if name not in sweep]
-    missing = [name for name in wanted if name not in nominal]
+    given = {**nominal, **{name: nominal[user] for name, user in held.items() if user in nominal}}
+    missing = [held.get(name, name) for name in wanted if name not in given]
     if missing:
         raise ValueError(f"nominal: give the value of {', '.join(missing)}")
-    design = {name: float(nominal[name]) for name in wanted}
+    design = {name: float(given[name]) for name in wanted}
+    dimensions = [held.get(name, name) for name in dimensions]
     extra = {} if guess is None else {"guess": guess}
 
     def evaluate(values: Mapping[str, float]) -> tuple[dict[str, numpy.ndarray], numpy.ndarray]:
@@ -254,12 +325,12 @@ def stack_up(linkage: Linkage, outputs: str | Sequence[str], nominal: Mapping[st
 
     found, slopes = evaluate(design)  # slopes: (inputs, outputs, dimensions)
     curvature = numpy.empty_like(slopes)
-    for j, name in enumerate(dimensions):
+    for j, name in enumerate(jacobian.parameters):
         step = _STEP * max(abs(design[name]), bands[j])
         ahead = evaluate({**design, name: design[name] + step})[1][..., j]
         behind = evaluate({**design, name: design[name] - step})[1][..., j]
         curvature[..., j] = (ahead - behind) / (2 * step)
-    nominal_values = numpy.stack([numpy.asarray(found[name], dtype=float) for name in chosen])
+    nominal_values = numpy.stack([numpy.asarray(found[internal.get(name, name)], dtype=float) for name in chosen])
     return StackUp(tuple(chosen), tuple(dimensions), sweep, nominal_values,
                    numpy.moveaxis(slopes, 0, -1), numpy.moveaxis(curvature, 0, -1), bands, sigmas,
                    numpy.asarray(found["assembled"], dtype=bool))

@@ -147,7 +147,7 @@ def test_nothing_assembled_is_nan_not_a_number():
     ("rocker", {"a": 20.0, "b": 66.0, "c": 56.0}, {"a": 0.1}, None, "give the value of d"),
     ("rocker", DESIGN, {"a": 0.1}, {"psi": [0.0]}, "no input 'psi'"),
     ("rocker", DESIGN, {"a": 0.1}, {"theta": [[0.0, 1.0]]}, "one-dimensional"),
-    ("rocker_speed", DESIGN, {"a": 0.1}, None, "rocker_speed"),
+    ("rocker_speed", DESIGN, {"a": 0.1}, None, "nominal: give the value of thetadot"),  # a rate needs its input's
 ])
 def test_bad_input_is_a_value_error_naming_it(outputs, nominal, tolerances, inputs, message):
     with pytest.raises(ValueError, match=message):

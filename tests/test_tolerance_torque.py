@@ -125,3 +125,65 @@ def test_the_rocker_speed_by_hand():
     result = stack_up(fourbar(), "rocker_speed", values, {"thetadot": 0.3, "a": 0.05},
                       inputs={"theta": [0.3, 1.9]})
     numpy.testing.assert_allclose(result.sensitivity[0, 0], result.nominal[0] / 10.5, rtol=1e-13)
+
+
+# --- the command line --------------------------------------------------------------------------
+
+def _csv_rows(text: str) -> list[list[str]]:
+    return [line.split(",") for line in text.splitlines()[1:]]
+
+
+def test_command_torque_bands_equal_50_digit_differences(capsys):
+    """symlink tolerance --masses ... --output input_torque: the worst case of bands on a and b is
+    |dQ/da| 0.01 + |dQ/db| 0.02 from the 50-digit reference (its centres of mass at fixed distances along the
+    links, as the command places them)."""
+    from symlink.cli import main
+    centres = ",".join(f"{MASSES[b][1]}:{MASSES[b][2]}" for b in BODIES)
+    argv = ["tolerance", "fourbar", "--crank", "1", "--coupler", "3", "--rocker", "2.5", "--ground", "3.2",
+            "--masses", ",".join(str(MASSES[b][0]) for b in BODIES),
+            "--inertias", ",".join(str(MASSES[b][3]) for b in BODIES), "--centres", centres, "--gravity", "9.81",
+            "--crank-speed", "10.5", "--crank-accel", "-3", "--tolerances", "a=0.01,b=0.02",
+            "--output", "input_torque", "--units", "rad", "--angles", ",".join(map(str, THETA)), "--format", "csv"]
+    assert main(argv) == 0
+    rows = _csv_rows(capsys.readouterr().out)
+    for row, theta in zip(rows, THETA):
+        torque, worst = float(row[1]), float(row[2])
+        assert torque == pytest.approx(float(_mp_torque(_values(), theta)), rel=1e-9)
+        expected = abs(_mp_sensitivity("a", theta)) * 0.01 + abs(_mp_sensitivity("b", theta)) * 0.02
+        assert worst == pytest.approx(expected, rel=1e-9)
+
+
+def test_command_rocker_speed_bands_by_the_50_digit_four_bar(capsys):
+    """--output rocker_speed --crank-speed 10.5: the nominal speed and the worst case of a band on a equal the
+    50-digit four-bar's rocker speed (tests/references.py, linear solves of the differentiated loop) and its
+    central difference in a; speeds stay in rad/s whatever --units."""
+    from symlink.cli import main
+    from tests.references import mp_fourbar
+    argv = ["tolerance", "fourbar", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80",
+            "--tolerances", "a=0.05", "--output", "rocker_speed", "--crank-speed", "10.5", "--angles", "40,250",
+            "--format", "csv"]
+    assert main(argv) == 0
+    rows = _csv_rows(capsys.readouterr().out)
+    for row, degrees in zip(rows, (40, 250)):
+        with mp.workdps(DPS):
+            theta = mp.radians(degrees)
+
+            def speed(a):
+                return mp_fourbar(a, 66, 56, 80, theta, 1, crank_speed=mp.mpf("10.5"))["phi_speed"]
+            h = mp.mpf("1e-15")
+            slope = (speed(20 + h) - speed(20 - h)) / (2 * h)
+            assert float(row[1]) == pytest.approx(float(speed(mp.mpf(20))), rel=1e-12)
+            assert float(row[2]) == pytest.approx(float(abs(slope) * mp.mpf("0.05")), rel=1e-9)
+
+
+@pytest.mark.parametrize("extra, message", [
+    (["--output", "input_torque", "--masses", "1,1,1", "--play", "B=0.01"], "--play is modelled for positions"),
+    (["--inertias", "1,1,1"], "--inertias needs --masses"),
+])
+def test_command_dynamics_options_refused_where_they_do_not_apply(extra, message, capsys):
+    from symlink.cli import main
+    argv = ["tolerance", "fourbar", "--crank", "1", "--coupler", "3", "--rocker", "2.5", "--ground", "3.2",
+            "--tolerance", "0.01", "--angles", "40"] + extra
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert message in err and len(err.strip().splitlines()) == 1

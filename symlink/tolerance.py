@@ -258,7 +258,7 @@ def _positions_only(linkage: Linkage, outputs: Sequence[str]) -> tuple[Linkage, 
         extras[internal[name]] = expr
     appearing = set().union(*(extras[name].free_symbols for name in internal.values()))
     parameters = list(linkage.parameters) + [s for s in held.values() if s in appearing]
-    return Linkage(f"{linkage.name}", linkage.loops, linkage.inputs, linkage.unknowns, parameters=parameters,
+    return Linkage(linkage.name, linkage.loops, linkage.inputs, linkage.unknowns, parameters=parameters,
                    points=linkage.points, roles=linkage.roles, extras=extras), internal
 
 

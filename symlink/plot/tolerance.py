@@ -1,7 +1,7 @@
 """Pictures of a tolerance stack-up: the output's band along the cycle and the dimensions' contributions.
 
 :func:`band_figure` draws, against the input, the output's nominal value (top) and its
-deviations (bottom): the worst-case band (± sum |dy/dp| band, light), the statistical band
+deviations (bottom): the worst-case band (``± sum |dy/dp| band``, light), the statistical band
 (mean shift ± 3 sigma, darker) and, given a Monte Carlo sample
 (:func:`~symlink.tolerance.sample_builds`), the sampled 0.135 and 99.865 percentiles (the
 3-sigma points of a normal) and the sampled mean as dots, so the linear prediction and the

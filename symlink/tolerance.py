@@ -2,7 +2,7 @@
 
 A link is never made exactly to its drawing.  Given a tolerance for some of a
 linkage's dimensions (its parameters: lengths, fixed angles, pivot
-coordinates; masses and inertias of a :func:`~symlink.dynamics.dynamic_linkage`),
+coordinates; masses and inertias of a :func:`~symlink.dynamics.inverse.dynamic_linkage`),
 :func:`stack_up` tells, for each output along the input range (a position, a
 rate, the driving torque),
 
@@ -222,7 +222,7 @@ def _positions_only(linkage: Linkage, outputs: Sequence[str]) -> tuple[Linkage, 
     """``linkage`` with ``outputs`` as extras that depend on positions only; and how names map (user -> internal).
 
     An output that moves with the rates (a rocker's speed, the driving torque of a
-    :func:`~symlink.dynamics.dynamic_linkage`) is a function of the positions, the inputs' rates and
+    :func:`~symlink.dynamics.inverse.dynamic_linkage`) is a function of the positions, the inputs' rates and
     accelerations and the parameters once the unknowns' rates and accelerations are replaced by their closed
     forms (:attr:`~symlink.linkage.Linkage.velocities`, :attr:`~symlink.linkage.Linkage.accelerations`).
     At a held input motion the inputs' rates are constants: each becomes a parameter (``held_thetadot``)
@@ -274,7 +274,7 @@ def stack_up(linkage: Linkage, outputs: str | Sequence[str], nominal: Mapping[st
     outputs : str or sequence of str
         Any outputs: a coordinate or its role (``rocker``), a point's ``C_x``, an extra output
         (``transmission``); also a rate or an acceleration (``rocker_speed``) and, of a
-        :func:`~symlink.dynamics.dynamic_linkage`, the driving torque (``input_torque``), a reaction or
+        :func:`~symlink.dynamics.inverse.dynamic_linkage`, the driving torque (``input_torque``), a reaction or
         a shaking force: these at a held input motion, its rates (``thetadot``, ``thetaddot``) given in
         ``nominal``.
     nominal : mapping

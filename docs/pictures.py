@@ -194,9 +194,12 @@ def tolerance_bands_figure():
 
 def tolerance_large_figure():
     """The same four-bar with every length to ± 8 mm: the sampled percentiles leave the linear bands (the rocker
-    is no longer linear in the lengths over the band), and the mean leaves the nominal."""
+    is no longer linear in the lengths over the band), and where the band is widest the sampled distribution is
+    skewed beside the normal one that the linear model predicts."""
+    from matplotlib.figure import Figure
+
     from symlink.catalog import fourbar
-    from symlink.plot.tolerance import band_figure
+    from symlink.plot.tolerance import band_figure, distribution_figure
     from symlink.tolerance import sample_builds, stack_up
 
     design = {"a": 20.0, "b": 66.0, "c": 56.0, "d": 80.0, "branch": 1}
@@ -204,7 +207,10 @@ def tolerance_large_figure():
     theta = {"theta": numpy.radians(numpy.arange(0.0, 360.0, 10.0))}
     result = stack_up(fourbar(), "rocker", design, tolerances, inputs=theta)
     builds = sample_builds(fourbar(), "rocker", design, tolerances, inputs=theta, builds=100_000)
-    figure = band_figure(result, sampled=builds)
+    figure = Figure(figsize=(7.0, 9.0), layout="constrained")
+    top, middle, bottom = figure.subplots(3, 1, height_ratios=(1.0, 1.4, 1.2))
+    band_figure(result, sampled=builds, axes=[top, middle])
+    distribution_figure(result, builds, ax=bottom)
     figure.suptitle("The same four-bar, every length ± 8 mm: the linear bands no longer hold")
     return figure
 

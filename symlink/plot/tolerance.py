@@ -8,7 +8,9 @@ deviations (bottom): the worst-case band (``± sum |dy/dp| band``, light), the s
 sample are read side by side.  :func:`contribution_figure` is a bar chart of each dimension's
 share of the output's variance where the statistical band is widest: the dimension to
 tighten first is the longest bar.  :func:`tolerance_figure` puts the three panels on one
-figure (what ``symlink tolerance ... --plot FILE`` writes).
+figure (what ``symlink tolerance ... --plot FILE`` writes).  :func:`distribution_figure` shows
+the sampled deviation at one input value as a histogram beside the normal density that the
+linear model predicts (mean shift, first-order sigma), with its worst-case and 3-sigma ends.
 
 Angles (the input, an angular output and its deviations) are drawn in ``units`` (deg by
 default) when the flags ``angular_input`` and ``angular_output`` say they are angles;
@@ -38,7 +40,7 @@ if TYPE_CHECKING:  # Matplotlib is imported when a drawing is made
 
     from ..tolerance import SampledBuilds, StackUp
 
-__all__ = ["band_figure", "contribution_figure", "tolerance_figure", "SAMPLED_PERCENTILES"]
+__all__ = ["band_figure", "contribution_figure", "distribution_figure", "tolerance_figure", "SAMPLED_PERCENTILES"]
 
 #: The percentiles of a sample drawn beside the linear bands: -3 and +3 sigma of a normal distribution.
 SAMPLED_PERCENTILES = (0.135, 99.865)
@@ -112,10 +114,9 @@ def contribution_figure(result: "StackUp", output: str | None = None, *, ax: "Ax
     x_scale, _ = _scales(units, angular_input, False)
     figure, (axes,) = _new_figure(6.0, 3.5, given=_given(ax))
     shares = result.contributions[i]
-    width = numpy.where(numpy.isfinite(result.rss[i]), result.rss[i], -numpy.inf)
-    if not numpy.isfinite(width).any() or not numpy.isfinite(shares[:, int(numpy.argmax(width))]).all():
-        raise ValueError(f"{name} has no statistical band anywhere on the range (never assembled, or no variance)")
-    k = int(numpy.argmax(width))
+    k = _widest(result, i)
+    if not numpy.isfinite(shares[:, k]).all():
+        raise ValueError(f"{name} has no variance where its band is widest: no dimension contributes")
     order = numpy.argsort(shares[:, k])
     axes.barh([result.dimensions[j] for j in order], 100 * shares[order, k], color="tab:blue")
     for row, j in enumerate(order):
@@ -127,6 +128,67 @@ def contribution_figure(result: "StackUp", output: str | None = None, *, ax: "Ax
     axes.set_title(f"contributions to {name} at {first} = {float(values[k]) * x_scale:.4g}, where its band is widest",
                    fontsize="medium")
     axes.grid(True, axis="x", alpha=0.4)
+    return figure
+
+
+def _widest(result: "StackUp", i: int) -> int:
+    """The input index where output ``i``'s statistical band is widest (ValueError where it has none)."""
+    width = numpy.where(numpy.isfinite(result.rss[i]), result.rss[i], -numpy.inf)
+    if not numpy.isfinite(width).any():
+        raise ValueError(f"{result.outputs[i]} has no statistical band anywhere on the range (never assembled)")
+    return int(numpy.argmax(width))
+
+
+def distribution_figure(result: "StackUp", sampled: "SampledBuilds", output: str | None = None,
+                        at: int | None = None, *, bins: int = 80, units: str = "deg", angular_input: bool = True,
+                        angular_output: bool = True, ax: "Axes | None" = None) -> "Figure":
+    """The sampled deviation of ``output`` at input value number ``at`` (default: where its statistical band is
+    widest) as a histogram of density, beside the linear prediction: the normal density of mean ``mean_shift``
+    and standard deviation ``standard_deviation``, and the ends of the worst-case (dashed) and statistical
+    (dotted) bands.  Where they part, the linear model no longer describes the builds.
+
+    >>> from symlink.catalog import fourbar
+    >>> from symlink.tolerance import sample_builds, stack_up
+    >>> design, bands = {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1}, {"a": 0.1, "b": 0.1}
+    >>> result = stack_up(fourbar(), "rocker", design, bands, inputs={"theta": [0.5]})
+    >>> builds = sample_builds(fourbar(), "rocker", design, bands, inputs={"theta": [0.5]}, builds=2000)
+    >>> distribution_figure(result, builds).axes[0].get_xlabel()
+    'deviation of rocker (deg)'
+    """
+    name, i = _output(result, output)
+    x_scale, y_scale = _scales(units, angular_input, angular_output)
+    first, values = next(iter(result.inputs.items()))
+    if name not in sampled.outputs or sampled.deviation.shape[2] != len(values) or not numpy.allclose(
+            numpy.asarray(sampled.inputs[first], dtype=float), values, equal_nan=True):
+        raise ValueError(f"the sampled builds are not of {name} at the stack-up's input values")
+    k = _widest(result, i) if at is None else at
+    if isinstance(k, bool) or not isinstance(k, (int, numpy.integer)) or not 0 <= k < len(values):
+        raise ValueError(f"at must be the number of an input value, 0 to {len(values) - 1}, got {at!r}")
+    if isinstance(bins, bool) or not isinstance(bins, int) or bins < 1:
+        raise ValueError(f"bins must be a whole number >= 1, got {bins!r}")
+    deviation = sampled.deviation[sampled.outputs.index(name), :, k] * y_scale
+    built = deviation[numpy.isfinite(deviation)]
+    figure, (axes,) = _new_figure(6.0, 3.8, given=_given(ax))
+    if built.size:
+        axes.hist(built, bins=bins, density=True, color="tab:red", alpha=0.45,
+                  label=f"sampled ({built.size:,} builds)")
+    shift, sigma = result.mean_shift[i, k] * y_scale, result.standard_deviation[i, k] * y_scale
+    worst, rss = result.worst_case[i, k] * y_scale, result.rss[i, k] * y_scale
+    if numpy.isfinite(sigma) and sigma > 0:
+        x = numpy.linspace(min(-worst, shift - 4 * sigma), max(worst, shift + 4 * sigma), 400)
+        axes.plot(x, numpy.exp(-0.5 * ((x - shift) / sigma) ** 2) / (math.sqrt(2 * math.pi) * sigma),
+                  color="tab:blue", label="linear prediction (normal)")
+        for end in (-worst, worst):
+            axes.axvline(end, color="tab:blue", ls="--", lw=1)
+        for end in (shift - rss, shift + rss):
+            axes.axvline(end, color="tab:blue", ls=":", lw=1)
+    unit = units if angular_output else "length"
+    axes.set_xlabel(f"deviation of {name} ({unit})")
+    axes.set_ylabel("density")
+    axes.set_title(f"{name} at {first} = {float(values[k]) * x_scale:.4g}: worst case dashed, ± 3σ dotted",
+                   fontsize="medium")
+    axes.legend(loc="best", fontsize="small")
+    axes.grid(True, alpha=0.4)
     return figure
 
 

@@ -84,3 +84,21 @@ def test_the_figure_of_three_panels_is_written(tmp_path):
     text = path.read_text()
     assert text.startswith("<?xml") and "four-bar" in text and "share of the variance" in text
     assert math.isfinite(result.rss.max())
+
+
+def test_the_distribution_is_the_samples_histogram_beside_the_hand_normal():
+    """B_x = a at theta = 0 with a band of 0.3 on a: the linear prediction is the normal density of sigma 0.1
+    about 0 (peak 1 / (sqrt(2 pi) 0.1)), its worst-case ends at ± 0.3; the bars are the sample's histogram."""
+    from symlink.plot.tolerance import distribution_figure
+    result = stack_up(fourbar(), "B_x", DESIGN, {"a": 0.3}, inputs={"theta": [0.0]})
+    sampled = sample_builds(fourbar(), "B_x", DESIGN, {"a": 0.3}, inputs={"theta": [0.0]}, builds=5000, seed=9)
+    axes = distribution_figure(result, sampled, bins=40, angular_output=False).axes[0]
+    curve = axes.lines[0]
+    assert curve.get_ydata().max() == pytest.approx(1 / (math.sqrt(2 * math.pi) * 0.1), rel=1e-4)
+    assert curve.get_xdata()[curve.get_ydata().argmax()] == pytest.approx(0.0, abs=0.002)
+    dashed = sorted(line.get_xdata()[0] for line in axes.lines if line.get_linestyle() == "--")
+    assert dashed == pytest.approx([-0.3, 0.3], rel=1e-12)
+    heights, _ = np.histogram(sampled.deviation[0, :, 0], bins=40, density=True)
+    np.testing.assert_allclose([bar.get_height() for bar in axes.patches], heights, rtol=1e-12)
+    with pytest.raises(ValueError, match="at must be the number of an input value, 0 to 0"):
+        distribution_figure(result, sampled, at=1)

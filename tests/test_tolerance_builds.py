@@ -17,8 +17,13 @@ import pytest
 from symlink.catalog import fourbar
 from symlink.tolerance import Tolerance, sample_builds, stack_up
 
-pytest.importorskip("dask", reason="the resumable Monte Carlo runs on Dask: the optional extra 'sweep'")
-pytest.importorskip("pyarrow", reason="the resumable Monte Carlo writes Parquet chunks: the optional extra 'sweep'")
+
+
+@pytest.fixture
+def sweep_extra():
+    """The builds in a folder need the optional extra 'sweep' (the NumPy route, in memory, needs neither)."""
+    pytest.importorskip("dask", reason="the resumable Monte Carlo runs on Dask: the optional extra 'sweep'")
+    pytest.importorskip("pyarrow", reason="the resumable Monte Carlo writes Parquet chunks: the optional extra 'sweep'")
 
 DESIGN = {"a": 20.0, "b": 66.0, "c": 56.0, "d": 80.0, "branch": 1}
 LENGTHS = ("a", "b", "c", "d")
@@ -31,7 +36,7 @@ def _sample(folder=None, **options):
                          folder=folder, **arguments)
 
 
-def test_a_resumed_run_gives_the_sample_of_an_uninterrupted_one(tmp_path, monkeypatch):
+def test_a_resumed_run_gives_the_sample_of_an_uninterrupted_one(tmp_path, monkeypatch, sweep_extra):
     """The fourth chunk of five is interrupted (Ctrl-C): the three chunks done are kept; the run again makes
     only the two missing and gives the sample of an uninterrupted run, which is the in-memory sample."""
     from symlink import tolerance
@@ -66,7 +71,7 @@ def test_a_resumed_run_gives_the_sample_of_an_uninterrupted_one(tmp_path, monkey
     assert numpy.array_equal(again.deviation, whole.deviation)
 
 
-def test_a_damaged_chunk_is_made_again_and_other_settings_are_refused(tmp_path):
+def test_a_damaged_chunk_is_made_again_and_other_settings_are_refused(tmp_path, sweep_extra):
     from symlink.sweep_folder import SweepWarning
     folder = tmp_path / "builds"
     first = _sample(folder)
@@ -82,7 +87,7 @@ def test_a_damaged_chunk_is_made_again_and_other_settings_are_refused(tmp_path):
     assert settings["kind"] == "tolerance builds" and settings["sigmas"] == {name: pytest.approx(0.1, rel=1e-15) for name in LENGTHS}
 
 
-def test_the_chunks_hold_the_drawn_dimensions_and_their_deviations(tmp_path):
+def test_the_chunks_hold_the_drawn_dimensions_and_their_deviations(tmp_path, sweep_extra):
     """Each chunk's table: the build's number, the dimensions drawn (mean and spread of a normal sample) and the
     rocker's deviation, which the solver gives again from the drawn dimensions."""
     import pyarrow.parquet
@@ -101,7 +106,7 @@ def test_the_chunks_hold_the_drawn_dimensions_and_their_deviations(tmp_path):
 
 
 @pytest.mark.parametrize("band, agrees", [(0.05, True), (12.0, False)])
-def test_10_to_the_5_builds_on_dask_beside_the_linear_prediction(tmp_path, band, agrees):
+def test_10_to_the_5_builds_on_dask_beside_the_linear_prediction(tmp_path, band, agrees, sweep_extra):
     """10^5 builds in a folder.  Small tolerances (0.05 on 20 to 80): the sampled 3-sigma percentiles are the
     linear RSS band within their sampling error (a 0.135 % percentile of 10^5: about 2 %), the spread within 4
     standard errors.  Large ones (a band of 12 on a crank of 20): the tails depart from the symmetric linear
@@ -154,7 +159,7 @@ COMMAND = ["tolerance", "fourbar", "--crank", "20", "--coupler", "66", "--rocker
            "--tolerance", "0.05", "--angles", "40,250", "--format", "csv"]
 
 
-def test_command_samples_into_a_folder_and_continues_it(tmp_path, capsys):
+def test_command_samples_into_a_folder_and_continues_it(tmp_path, capsys, sweep_extra):
     """--samples N --folder DIR: the sampled columns are the 3-sigma points of the linear band (0.05 on every
     length: small), the same again when the command is run again on the folder, which finds every chunk done."""
     from symlink.cli import main
@@ -186,7 +191,7 @@ def test_command_bad_sampling_options_are_one_line_and_status_2(extra, message, 
     assert message in err and len(err.strip().splitlines()) == 1
 
 
-def test_command_refuses_a_folder_of_other_builds(tmp_path, capsys):
+def test_command_refuses_a_folder_of_other_builds(tmp_path, capsys, sweep_extra):
     from symlink.cli import main
     folder = str(tmp_path / "mc")
     assert main(COMMAND + ["--samples", "100", "--folder", folder]) == 0

@@ -10,7 +10,10 @@
 * ``fourbar.gif``: the seed 001 linkage over a turn in 30 frames, with the coupler point;
 * ``jansen.png`` and ``jansen.gif``: Theo Jansen's leg (his holy numbers) with the path of its foot H;
 * ``design_atlas.png``: the four-bar's ratio space (crank and coupler over ground, at three rocker
-  ratios) coloured by Grashof class and by worst transmission angle, computed by a design sweep.
+  ratios) coloured by Grashof class and by worst transmission angle, computed by a design sweep;
+* ``tolerance_bands.png`` and ``tolerance_large.png``: the tolerance stack-up of the rocker of the
+  C-program paper's four-bar (a = 20, b = 66, c = 56, d = 80 mm) beside 10^5 sampled builds, with
+  every length to ± 0.05 mm (the linear bands hold) and to ± 8 mm (they do not).
 
 The same pictures come from the command line::
 
@@ -21,12 +24,16 @@ The same pictures come from the command line::
     symlink draw jansen --trace H --out jansen.png
     symlink animate jansen --trace H --out jansen.gif
     symlink sweep fourbar atlas/ --vary a=0.05:3,b=0.05:3 --set c=1,d=1 --grid 121   # one slice of the atlas
+    symlink tolerance fourbar --crank 20 --coupler 66 --rocker 56 --ground 80 --tolerance 0.05 \
+        --samples 100000 --folder builds/ --plot tolerance_bands.png
 """
 from __future__ import annotations
 
 import math
 import sys
 from pathlib import Path
+
+import numpy
 
 ROOT = Path(__file__).resolve().parent.parent
 IMAGES = ROOT / "docs" / "images"
@@ -46,7 +53,7 @@ SEED002 = (16.084, 69.743, 50.0, 70.0)  # crank L2, coupler L3, rocker L4, groun
 COUPLER_POINT = (0.3, math.radians(30))
 #: File names, in the order they are written.
 PICTURES = ("angles_seed001.png", "transmission_seed002.png", "coupler_curve.png", "fourbar.gif", "jansen.png",
-            "jansen.gif", "design_atlas.png")
+            "jansen.gif", "design_atlas.png", "tolerance_bands.png", "tolerance_large.png")
 #: The atlas: crank and coupler over ground from ATLAS_RANGE, ATLAS_GRID values each, at these rocker ratios.
 ATLAS_ROCKERS = (0.5, 1.0, 2.0)
 ATLAS_RANGE = (0.05, 3.0)
@@ -154,10 +161,65 @@ def atlas_figure():
     return figure
 
 
+def tolerance_bands(path: Path) -> None:
+    """The rocker's tolerance bands with small tolerances (:func:`tolerance_bands_figure`)."""
+    save_figure(tolerance_bands_figure(), path)
+
+
+def tolerance_large(path: Path) -> None:
+    """The rocker's tolerance bands with large tolerances (:func:`tolerance_large_figure`)."""
+    save_figure(tolerance_large_figure(), path)
+
+
+def tolerance_bands_figure():
+    """The C-program paper's four-bar (mm), every length to ± 0.05 mm: the rocker's worst-case and statistical
+    bands along the crank's turn, 10^5 builds sampled on Dask (resumable, in a folder) beside them, and the
+    lengths' shares of the variance."""
+    import tempfile
+
+    from symlink.catalog import fourbar
+    from symlink.plot.tolerance import tolerance_figure
+    from symlink.tolerance import sample_builds, stack_up
+
+    design = {"a": 20.0, "b": 66.0, "c": 56.0, "d": 80.0, "branch": 1}
+    tolerances = dict.fromkeys("abcd", 0.05)
+    theta = {"theta": numpy.radians(numpy.arange(0.0, 360.0, 10.0))}
+    result = stack_up(fourbar(), "rocker", design, tolerances, inputs=theta)
+    with tempfile.TemporaryDirectory() as folder:
+        builds = sample_builds(fourbar(), "rocker", design, tolerances, inputs=theta, builds=100_000,
+                               folder=Path(folder) / "builds")
+    return tolerance_figure(result, sampled=builds, title="Four-bar a = 20, b = 66, c = 56, d = 80 mm, every "
+                                                          "length ± 0.05 mm: the rocker")
+
+
+def tolerance_large_figure():
+    """The same four-bar with every length to ± 8 mm: the sampled percentiles leave the linear bands (the rocker
+    is no longer linear in the lengths over the band), and where the band is widest the sampled distribution is
+    skewed beside the normal one that the linear model predicts."""
+    from matplotlib.figure import Figure
+
+    from symlink.catalog import fourbar
+    from symlink.plot.tolerance import band_figure, distribution_figure
+    from symlink.tolerance import sample_builds, stack_up
+
+    design = {"a": 20.0, "b": 66.0, "c": 56.0, "d": 80.0, "branch": 1}
+    tolerances = dict.fromkeys("abcd", 8.0)
+    theta = {"theta": numpy.radians(numpy.arange(0.0, 360.0, 10.0))}
+    result = stack_up(fourbar(), "rocker", design, tolerances, inputs=theta)
+    builds = sample_builds(fourbar(), "rocker", design, tolerances, inputs=theta, builds=100_000)
+    figure = Figure(figsize=(7.0, 9.0), layout="constrained")
+    top, middle, bottom = figure.subplots(3, 1, height_ratios=(1.0, 1.4, 1.2))
+    band_figure(result, sampled=builds, axes=[top, middle])
+    distribution_figure(result, builds, ax=bottom)
+    figure.suptitle("The same four-bar, every length ± 8 mm: the linear bands no longer hold")
+    return figure
+
+
 #: The function that draws each picture, by file name.
 DRAWERS = {"angles_seed001.png": angles_seed001, "transmission_seed002.png": transmission_seed002,
            "coupler_curve.png": coupler_curve, "fourbar.gif": fourbar_gif, "jansen.png": jansen_png,
-           "jansen.gif": jansen_gif, "design_atlas.png": design_atlas}
+           "jansen.gif": jansen_gif, "design_atlas.png": design_atlas, "tolerance_bands.png": tolerance_bands,
+           "tolerance_large.png": tolerance_large}
 
 if __name__ == "__main__":
     for path in render():

@@ -2,7 +2,9 @@
 
 A link is never made exactly to its drawing.  Given a tolerance for some of a
 linkage's dimensions (its parameters: lengths, fixed angles, pivot
-coordinates), :func:`stack_up` tells, for each output along the input range,
+coordinates; masses and inertias of a :func:`~symlink.dynamics.inverse.dynamic_linkage`),
+:func:`stack_up` tells, for each output along the input range (a position, a
+rate, the driving torque),
 
 * the **worst case**: ``sum_j |dy/dp_j| * band_j``, the largest first-order
   deviation when every dimension sits at the end of its ± band that hurts most;
@@ -17,7 +19,10 @@ coordinates), :func:`stack_up` tells, for each output along the input range,
 * with :func:`pin_play`, the worst case of the pins' **radial play** (joint clearance), linearised, and
   with :func:`pin_play_envelope` its exact range at chosen poses (a search over the play directions);
 * with :func:`sample_builds`, a **Monte Carlo** check: many builds drawn from the same tolerance model and
-  solved (vectorised over the builds), their deviation's percentiles beside the linear prediction.
+  solved (vectorised over the builds), their deviation's percentiles beside the linear prediction; with
+  ``folder=`` on Dask, in chunks written to a sweep's folder, so that a long check stops and resumes.
+
+:mod:`symlink.plot.tolerance` draws the bands along the cycle and the contributions.
 
 The first derivatives are exact: generated from the closure equations by
 :class:`~symlink.design_jacobian.DesignJacobian` (for any linkage, closed form
@@ -42,7 +47,9 @@ True
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Mapping, Sequence, Union
 
 import numpy
@@ -56,7 +63,7 @@ from .vectors import Vector, VectorSum
 
 __all__ = ["Tolerance", "StackUp", "stack_up", "SIGMAS_PER_BAND", "PinPlay", "pin_play", "with_pin_play",
            "PlayEnvelope", "pin_play_envelope",
-           "SampledBuilds", "sample_builds", "MAX_SAMPLED_VALUES"]
+           "SampledBuilds", "sample_builds", "MAX_SAMPLED_VALUES", "BUILDS_PER_CHUNK"]
 
 #: A ± band without a given sigma is read as this many standard deviations.
 SIGMAS_PER_BAND = 3.0
@@ -205,6 +212,56 @@ def _input_values(linkage: Linkage, inputs: Mapping[str, object] | None) -> dict
     return {name: numpy.broadcast_to(array, shape).copy() for name, array in zip(known, arrays)}
 
 
+#: The prefix of the parameters that stand in for the inputs' rates in a rate output's stack-up.
+HELD_RATE_PREFIX = "held_"
+#: Rounds of substituting the unknowns' rates and accelerations at most (one a loop of a chain, and two).
+_SUBSTITUTIONS = 64
+
+
+def _positions_only(linkage: Linkage, outputs: Sequence[str]) -> tuple[Linkage, dict[str, str]]:
+    """``linkage`` with ``outputs`` as extras that depend on positions only; and how names map (user -> internal).
+
+    An output that moves with the rates (a rocker's speed, the driving torque of a
+    :func:`~symlink.dynamics.inverse.dynamic_linkage`) is a function of the positions, the inputs' rates and
+    accelerations and the parameters once the unknowns' rates and accelerations are replaced by their closed
+    forms (:attr:`~symlink.linkage.Linkage.velocities`, :attr:`~symlink.linkage.Linkage.accelerations`).
+    At a held input motion the inputs' rates are constants: each becomes a parameter (``held_thetadot``)
+    and the output an extra whose exact sensitivities :mod:`symlink.sensitivity` derives by the chain rule.
+    A linkage whose outputs are all positions comes back as it is.
+    """
+    from .vectors import acceleration, rate
+    moving = {rate(q) for q in linkage.coordinates} | {acceleration(q) for q in linkage.coordinates}
+    expressions = {name: linkage.output(name) for name in outputs}  # ValueError naming an unknown output
+    if not any(sp.sympify(e).free_symbols & moving for e in expressions.values()):
+        return linkage, {}
+    if not linkage.has_closed_form:
+        raise ValueError(f"{linkage.name} has no closed form: the stack-up of a rate or a force needs one")
+    definitions = {**dict(linkage.velocities), **dict(linkage.accelerations)}
+    unknown = set(definitions)
+    held = {}
+    for q in linkage.inputs:
+        for symbol in (rate(q), acceleration(q)):
+            held[symbol] = sp.Symbol(HELD_RATE_PREFIX + symbol.name, real=True)
+    extras = {name: e for name, e in linkage.extras.items() if not (sp.sympify(e).free_symbols & moving)}
+    internal = {}
+    for k, (name, expr) in enumerate(expressions.items()):
+        for _ in range(_SUBSTITUTIONS):
+            if not (expr.free_symbols & unknown):
+                break
+            expr = expr.xreplace(definitions)
+        else:  # pragma: no cover - a plan whose rates refer to one another in a circle
+            raise ValueError(f"{linkage.name}: the rates of {name} do not resolve into positions")
+        expr = expr.xreplace(held)
+        if expr.free_symbols & moving:  # pragma: no cover - a rate of a coordinate not an input nor an unknown
+            raise ValueError(f"{linkage.name}: {name} moves with rates that are not the inputs'")
+        internal[name] = f"held_output_{k}"
+        extras[internal[name]] = expr
+    appearing = set().union(*(extras[name].free_symbols for name in internal.values()))
+    parameters = list(linkage.parameters) + [s for s in held.values() if s in appearing]
+    return Linkage(linkage.name, linkage.loops, linkage.inputs, linkage.unknowns, parameters=parameters,
+                   points=linkage.points, roles=linkage.roles, extras=extras), internal
+
+
 def stack_up(linkage: Linkage, outputs: str | Sequence[str], nominal: Mapping[str, float],
              tolerances: TolerancesLike, inputs: Mapping[str, object] | None = None,
              guess: object = None) -> StackUp:
@@ -215,13 +272,17 @@ def stack_up(linkage: Linkage, outputs: str | Sequence[str], nominal: Mapping[st
     linkage : Linkage
         Any linkage (a catalog entry, a linkage file's, your own).
     outputs : str or sequence of str
-        Position outputs: a coordinate or its role (``rocker``), a point's ``C_x``, an extra output
-        (``transmission``).
+        Any outputs: a coordinate or its role (``rocker``), a point's ``C_x``, an extra output
+        (``transmission``); also a rate or an acceleration (``rocker_speed``) and, of a
+        :func:`~symlink.dynamics.inverse.dynamic_linkage`, the driving torque (``input_torque``), a reaction or
+        a shaking force: these at a held input motion, its rates (``thetadot``, ``thetaddot``) given in
+        ``nominal``.
     nominal : mapping
-        The design: every parameter's value and each branch sign (extra names are ignored).
+        The design: every parameter's value (a dynamic linkage's masses too) and each branch sign (extra
+        names are ignored).
     tolerances : mapping
-        Dimension name (a parameter) -> a ± band (a number, read as 3 sigma) or a :class:`Tolerance`.
-        Dimensions left out are exact.
+        Dimension name (a parameter: a length, a mass, an inertia, ...; or an input's rate, ``thetadot``)
+        -> a ± band (a number, read as 3 sigma) or a :class:`Tolerance`.  Dimensions left out are exact.
     inputs : mapping, optional
         Input name -> the values (one-dimensional) to evaluate at; by default a one-input linkage's
         input over a full turn every 10 degrees (in radians).
@@ -235,16 +296,28 @@ def stack_up(linkage: Linkage, outputs: str | Sequence[str], nominal: Mapping[st
         Worst case, RSS, mean shift and contributions for every output at every input value.
 
     ``ValueError`` names what is wrong: an unknown output or dimension, a bad band, a missing value.
+
+    The sensitivities of a rate or a force are exact too: the unknowns' rates and accelerations are
+    replaced by their closed forms, which leaves a function of the positions, the inputs' rates and the
+    parameters whose derivatives :mod:`symlink.sensitivity` derives by the chain rule (the torque's by the
+    masses are the terms the masses multiply).
     """
     chosen = [outputs] if isinstance(outputs, str) else list(outputs)
     dimensions, bands, sigmas = _tolerances(tolerances)
-    jacobian = DesignJacobian(linkage, chosen, dimensions)
+    source, internal = _positions_only(linkage, chosen)
+    # The inputs' rates of a rate output are parameters of ``source`` (held_thetadot): internal name -> user's.
+    held = {HELD_RATE_PREFIX + name: name for q in linkage.inputs for name in (q.name + "dot", q.name + "ddot")}
+    if internal:
+        dimensions = [HELD_RATE_PREFIX + name if HELD_RATE_PREFIX + name in held else name for name in dimensions]
+    jacobian = DesignJacobian(source, [internal.get(name, name) for name in chosen], dimensions)
     sweep = _input_values(linkage, inputs)
     wanted = [name for name in jacobian.arguments if name not in sweep]
-    missing = [name for name in wanted if name not in nominal]
+    given = {**nominal, **{name: nominal[user] for name, user in held.items() if user in nominal}}
+    missing = [held.get(name, name) for name in wanted if name not in given]
     if missing:
         raise ValueError(f"nominal: give the value of {', '.join(missing)}")
-    design = {name: float(nominal[name]) for name in wanted}
+    design = {name: float(given[name]) for name in wanted}
+    dimensions = [held.get(name, name) for name in dimensions]
     extra = {} if guess is None else {"guess": guess}
 
     def evaluate(values: Mapping[str, float]) -> tuple[dict[str, numpy.ndarray], numpy.ndarray]:
@@ -252,12 +325,12 @@ def stack_up(linkage: Linkage, outputs: str | Sequence[str], nominal: Mapping[st
 
     found, slopes = evaluate(design)  # slopes: (inputs, outputs, dimensions)
     curvature = numpy.empty_like(slopes)
-    for j, name in enumerate(dimensions):
+    for j, name in enumerate(jacobian.parameters):
         step = _STEP * max(abs(design[name]), bands[j])
         ahead = evaluate({**design, name: design[name] + step})[1][..., j]
         behind = evaluate({**design, name: design[name] - step})[1][..., j]
         curvature[..., j] = (ahead - behind) / (2 * step)
-    nominal_values = numpy.stack([numpy.asarray(found[name], dtype=float) for name in chosen])
+    nominal_values = numpy.stack([numpy.asarray(found[internal.get(name, name)], dtype=float) for name in chosen])
     return StackUp(tuple(chosen), tuple(dimensions), sweep, nominal_values,
                    numpy.moveaxis(slopes, 0, -1), numpy.moveaxis(curvature, 0, -1), bands, sigmas,
                    numpy.asarray(found["assembled"], dtype=bool))
@@ -482,8 +555,12 @@ def pin_play_envelope(linkage: Linkage, output: str, nominal: Mapping[str, float
 
 #: Builds x input values x outputs that :func:`sample_builds` keeps at most (8 bytes each).
 MAX_SAMPLED_VALUES = 50_000_000
-#: Builds solved at once by :func:`sample_builds`.
-_BLOCK = 10_000
+#: Builds a chunk of :func:`sample_builds`: drawn from their own seeded generator and solved together.
+BUILDS_PER_CHUNK = 10_000
+#: Dask's local schedulers that :func:`sample_builds` runs its chunks on (``"auto"`` chooses one).
+BUILD_SCHEDULERS = ("auto", "threads", "synchronous")
+#: What the manifest of a folder of builds says it holds (a sweep's folder holds designs).
+BUILDS_KIND = "tolerance builds"
 
 
 @dataclass(frozen=True)
@@ -492,7 +569,8 @@ class SampledBuilds:
 
     ``deviation[i]`` is output i's deviation from its nominal value, shape (builds, input values) (angles
     wrapped to (-pi, pi]), NaN for a build that cannot be assembled there or has a dimension drawn
-    non-positive where it must be positive; ``nominal[i, k]`` the nominal output.
+    non-positive where it must be positive; ``nominal[i, k]`` the nominal output; ``reused``: the chunks
+    found done in the folder of a resumed run (0 in memory).
     """
 
     _repr_html_ = record_html  # a notebook shows its fields as a table
@@ -501,6 +579,7 @@ class SampledBuilds:
     inputs: dict[str, numpy.ndarray]
     nominal: numpy.ndarray
     deviation: numpy.ndarray
+    reused: int = 0
 
     @property
     def built(self) -> numpy.ndarray:
@@ -513,23 +592,123 @@ class SampledBuilds:
 
     @property
     def mean(self) -> numpy.ndarray:
+        """The mean deviation over the assembled builds (outputs, inputs): compare with the mean shift."""
         return numpy.nanmean(self.deviation, axis=1)
 
     @property
     def standard_deviation(self) -> numpy.ndarray:
+        """The deviation's standard deviation over the assembled builds (outputs, inputs)."""
         return numpy.nanstd(self.deviation, axis=1)
+
+
+@dataclass(frozen=True)
+class _BuildModel:
+    """Everything a chunk of builds needs: it draws chunk ``index`` from its own generator, seeded by
+    ``(seed, index)``, so that a chunk is the same whichever run, route or worker makes it."""
+
+    solver: object
+    outputs: tuple[str, ...]
+    dimensions: tuple[str, ...]
+    sigmas: numpy.ndarray
+    positive: tuple[bool, ...]
+    design: dict[str, float]
+    sweep: dict[str, numpy.ndarray]
+    nominal: numpy.ndarray
+    angular: tuple[bool, ...]
+    builds: int
+    chunk: int
+    seed: int
+
+    def chunk_range(self, index: int) -> tuple[int, int]:
+        first = index * self.chunk
+        return first, min(first + self.chunk, self.builds)
+
+    def draw(self, index: int) -> tuple[dict[str, numpy.ndarray], numpy.ndarray]:
+        """Chunk ``index``: the dimensions drawn (each (size,)) and the outputs' deviations (outputs, size, inputs)."""
+        from .angles import wrap
+        first, stop = self.chunk_range(index)
+        size = stop - first
+        generator = numpy.random.default_rng([self.seed, index])
+        drawn = {name: self.design[name] + self.sigmas[j] * generator.standard_normal(size)
+                 for j, name in enumerate(self.dimensions)}
+        unmade = numpy.zeros((size, 1), dtype=bool)
+        solved = {}
+        for name, positive in zip(self.dimensions, self.positive):
+            values = drawn[name][:, None].copy()
+            if positive:
+                unmade |= values <= 0
+                values[values <= 0] = self.design[name]  # solved at the nominal, then thrown away
+            solved[name] = values
+        count = self.nominal.shape[1]
+        found = self.solver(**{k: v[None, :] for k, v in self.sweep.items()},  # type: ignore[operator]
+                            **{**self.design, **solved})
+        good = numpy.broadcast_to(found["assembled"], (size, count)) & ~unmade
+        deviation = numpy.empty((len(self.outputs), size, count))
+        for i, name in enumerate(self.outputs):
+            change = numpy.broadcast_to(found[name], (size, count)) - self.nominal[i]
+            if self.angular[i]:
+                change = wrap(change)
+            deviation[i] = numpy.where(good, change, numpy.nan)
+        return drawn, deviation
+
+    def columns(self) -> list[str]:
+        """The columns of a chunk's table: the build's number, each dimension drawn, each output's deviation
+        at each input value (``rocker[3]``: at the fourth)."""
+        count = self.nominal.shape[1]
+        return ["build", *self.dimensions, *(f"{name}[{k}]" for name in self.outputs for k in range(count))]
+
+    def table(self, index: int) -> bytes:
+        """Chunk ``index`` as the bytes of a Parquet file (what a Dask task returns)."""
+        import io
+
+        import pyarrow
+        import pyarrow.parquet
+        first, stop = self.chunk_range(index)
+        drawn, deviation = self.draw(index)
+        data = {"build": numpy.arange(first, stop, dtype=numpy.int64), **drawn}
+        names = iter(self.columns()[1 + len(self.dimensions):])
+        for i in range(len(self.outputs)):
+            for k in range(deviation.shape[2]):
+                data[next(names)] = deviation[i, :, k]
+        sink = io.BytesIO()
+        pyarrow.parquet.write_table(pyarrow.table(data), sink)
+        return sink.getvalue()
+
+    def settings(self, linkage: Linkage) -> dict[str, object]:
+        """What decides the sample, as the folder's manifest keeps it (a resumed run must match it)."""
+        import hashlib
+
+        from .cache import definition
+        return {"kind": BUILDS_KIND, "linkage": linkage.name,
+                "definition": hashlib.sha256(definition(linkage).encode()).hexdigest(),
+                "outputs": list(self.outputs), "design": self.design,
+                "sigmas": {name: float(s) for name, s in zip(self.dimensions, self.sigmas)},
+                "inputs": {name: [float(v) for v in values] for name, values in self.sweep.items()},
+                "seed": self.seed}
 
 
 def sample_builds(linkage: Linkage, outputs: str | Sequence[str], nominal: Mapping[str, float],
                   tolerances: TolerancesLike, inputs: Mapping[str, object] | None = None,
-                  builds: int = 100_000, seed: int = 0) -> SampledBuilds:
+                  builds: int = 100_000, seed: int = 0, *, folder: str | os.PathLike | None = None,
+                  scheduler: str = "auto", workers: int | None = None,
+                  chunk: int = BUILDS_PER_CHUNK) -> SampledBuilds:
     """``builds`` linkages with each toleranced dimension drawn from a normal distribution (its sigma, a
     band read as 3 sigma: :class:`Tolerance`), about ``nominal``, solved at every input value.
 
     The Monte Carlo counterpart of :func:`stack_up`: where tolerances are small its percentiles agree
     with the linear bands, where they are large they show how far the linear model departs.  Closed
-    forms only; seeded (``seed``), so a run repeats exactly.  A dimension drawn non-positive where it must
-    be positive (a length) is a build that cannot be made: NaN.
+    forms only.  A dimension drawn non-positive where it must be positive (a length) is a build that
+    cannot be made: NaN.
+
+    The builds come in chunks of ``chunk``, each drawn from its own generator seeded by ``(seed, chunk
+    number)``: a run repeats exactly, and the sample does not depend on where or in which order the chunks
+    were made.  Without ``folder`` they are made here, in memory (NumPy only).  With ``folder`` they run
+    as tasks on Dask (``scheduler``: ``"auto"``, ``"threads"`` or ``"synchronous"``, ``workers`` of them)
+    and each chunk is written to the folder as it is done, as a sweep's are (Parquet chunks beside a
+    manifest, verified when read: :mod:`symlink.sweep_folder`).  A long check can be stopped (Ctrl-C, a
+    kill) and run again with the same arguments: it makes only the chunks missing and gives the same
+    sample as a run never stopped (``reused`` counts the chunks found done).  Other arguments on the same
+    folder are refused.  The folder needs the ``sweep`` extra (dask, pyarrow).
 
     >>> from symlink.catalog import fourbar
     >>> sampled = sample_builds(fourbar(), "rocker", {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1},
@@ -537,13 +716,17 @@ def sample_builds(linkage: Linkage, outputs: str | Sequence[str], nominal: Mappi
     >>> sampled.deviation.shape, bool(sampled.built.all())
     ((1, 1000, 1), True)
     """
-    from .angles import wrap
     from .solver import Solver
     from .units import output_units
     chosen = [outputs] if isinstance(outputs, str) else list(outputs)
     dimensions, _, sigmas = _tolerances(tolerances)
-    if isinstance(builds, bool) or not isinstance(builds, int) or builds < 1:
-        raise ValueError(f"builds must be a whole number >= 1, got {builds!r}")
+    for what, value in (("builds", builds), ("chunk", chunk)):
+        if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+            raise ValueError(f"{what} must be a whole number >= 1, got {value!r}")
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise ValueError(f"seed must be a whole number >= 0, got {seed!r}")
+    if scheduler not in BUILD_SCHEDULERS:
+        raise ValueError(f"scheduler must be one of {', '.join(BUILD_SCHEDULERS)}, got {scheduler!r}")
     if not linkage.has_closed_form:
         raise ValueError(f"{linkage.name} has no closed form: sample_builds solves closed forms only")
     sweep = _input_values(linkage, inputs)
@@ -555,7 +738,15 @@ def sample_builds(linkage: Linkage, outputs: str | Sequence[str], nominal: Mappi
     for name in dimensions:
         if name not in known:
             raise ValueError(f"{linkage.name} has no parameter {name!r}; it has {', '.join(known)}")
-    solver = Solver(linkage, chosen)
+    if folder is not None:
+        from .sweep import SWEEP_EXTRA, missing_modules
+        absent = missing_modules(("dask", "pyarrow"))
+        if absent:
+            raise ImportError(f"builds in a folder need {', '.join(absent)}: {SWEEP_EXTRA} (or give no folder: "
+                              "the builds are then made in memory with NumPy)")
+    # NumPy, not the compiled backend (which agrees to a few ulps): every chunk's last digits are the same in every
+    # run, on every machine, with or without a C compiler; on blocks of builds the two are as fast (measured).
+    solver = Solver(linkage, chosen, backend="numpy")
     wanted = [name for name in solver.required if name not in sweep]
     missing = [name for name in wanted if name not in nominal]
     if missing:
@@ -564,23 +755,75 @@ def sample_builds(linkage: Linkage, outputs: str | Sequence[str], nominal: Mappi
     centre = solver(**sweep, **design)
     nominal_values = numpy.stack([numpy.asarray(numpy.broadcast_to(centre[o], (count,)), dtype=float)
                                   for o in chosen])
-    angular = [output_units(linkage, [o]).get(o) == "rad" for o in chosen]
-    deviation = numpy.empty((len(chosen), builds, count))
-    generator = numpy.random.default_rng(seed)
-    for first in range(0, builds, _BLOCK):
-        size = min(_BLOCK, builds - first)
-        drawn = {name: design[name] + sigmas[j] * generator.standard_normal((size, 1))
-                 for j, name in enumerate(dimensions)}
-        unmade = numpy.zeros((size, 1), dtype=bool)
-        for name, values in drawn.items():
-            if known[name].is_positive:
-                unmade |= values <= 0
-                values[values <= 0] = design[name]  # solved at the nominal, then thrown away
-        found = solver(**{k: v[None, :] for k, v in sweep.items()}, **{**design, **drawn})
-        good = numpy.broadcast_to(found["assembled"], (size, count)) & ~unmade
-        for i, name in enumerate(chosen):
-            change = numpy.broadcast_to(found[name], (size, count)) - nominal_values[i]
-            if angular[i]:
-                change = wrap(change)
-            deviation[i, first:first + size] = numpy.where(good, change, numpy.nan)
-    return SampledBuilds(tuple(chosen), sweep, nominal_values, deviation)
+    model = _BuildModel(solver, tuple(chosen), tuple(dimensions), sigmas,
+                        tuple(bool(known[name].is_positive) for name in dimensions), design, sweep, nominal_values,
+                        tuple(output_units(linkage, [o]).get(o) == "rad" for o in chosen), builds, chunk, seed)
+    chunks = -(-builds // chunk)
+    if folder is None:
+        deviation = numpy.concatenate([model.draw(index)[1] for index in range(chunks)], axis=1)
+        return SampledBuilds(tuple(chosen), sweep, nominal_values, deviation)
+    reused = _builds_in_folder(model, linkage, Path(folder), scheduler, workers)
+    return SampledBuilds(tuple(chosen), sweep, nominal_values, _read_builds(model, Path(folder)), reused)
+
+
+def _builds_in_folder(model: _BuildModel, linkage: Linkage, folder: Path, scheduler: str,
+                      workers: int | None) -> int:
+    """Make the chunks of ``model`` that ``folder`` does not hold yet on Dask, writing each as it is done;
+    the number of chunks found done."""
+    import dask
+    from dask.callbacks import Callback
+
+    from .sweep import local_scheduler
+    from .sweep_folder import open_folder
+    from .version import __version__
+    header = {"symlink": __version__, "settings": model.settings(linkage), "columns": model.columns()}
+    with open_folder(folder, header, model.builds, model.chunk) as opened:
+        todo = list(opened.todo)
+        reused = -(-model.builds // model.chunk) - len(todo)
+        count = workers or os.cpu_count() or 1
+        chosen = local_scheduler(len(todo), workers) if scheduler == "auto" else scheduler
+        indices: dict[object, int] = {}
+
+        def done(key: object, result: bytes, *rest: object) -> None:  # in this thread, as each chunk ends
+            if key in indices:
+                index = indices.pop(key)
+                first, stop = model.chunk_range(index)
+                opened.stage(index, result, rows=stop - first)
+
+        width = 4 * count  # chunks under way at once: bounded memory however many there are
+        with Callback(posttask=done):
+            for start in range(0, len(todo), width):
+                tasks = [dask.delayed(model.table, pure=False)(index) for index in todo[start:start + width]]
+                indices.update((task.key, index) for task, index in zip(tasks, todo[start:start + width]))
+                dask.compute(*tasks, scheduler=chosen, num_workers=count)
+    return reused
+
+
+def _read_builds(model: _BuildModel, folder: Path) -> numpy.ndarray:
+    """The deviations (outputs, builds, inputs) of every chunk of ``folder``, each verified against the manifest
+    and checked to hold its builds in the model's columns; ``ValueError`` naming one that does not."""
+    import pyarrow
+    import pyarrow.parquet
+
+    from .sweep_folder import verified_chunks
+    count = model.nominal.shape[1]
+    deviation = numpy.full((len(model.outputs), model.builds, count), numpy.nan)
+    names = model.columns()
+    done = numpy.zeros(model.builds, dtype=bool)
+    for record, data in verified_chunks(folder):
+        table = pyarrow.parquet.read_table(pyarrow.BufferReader(data))
+        numbers = table.column("build").to_numpy() if "build" in table.column_names else None
+        if (table.column_names != names or numbers is None
+                or not numpy.array_equal(numbers, numpy.arange(record.first, record.last + 1))):
+            raise ValueError(f"{folder / record.name} does not hold builds {record.first} to {record.last} in the "
+                             "manifest's columns; run again with the same arguments to rebuild it")
+        column = 1 + len(model.dimensions)
+        for i in range(len(model.outputs)):
+            for k in range(count):
+                deviation[i, record.first:record.last + 1, k] = table.column(names[column]).to_numpy()
+                column += 1
+        done[record.first:record.last + 1] = True
+    if not done.all():
+        raise ValueError(f"{folder} holds {int(done.sum())} of {model.builds} builds: run again with the same "
+                         "arguments to make the rest")
+    return deviation

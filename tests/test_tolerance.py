@@ -147,7 +147,7 @@ def test_nothing_assembled_is_nan_not_a_number():
     ("rocker", {"a": 20.0, "b": 66.0, "c": 56.0}, {"a": 0.1}, None, "give the value of d"),
     ("rocker", DESIGN, {"a": 0.1}, {"psi": [0.0]}, "no input 'psi'"),
     ("rocker", DESIGN, {"a": 0.1}, {"theta": [[0.0, 1.0]]}, "one-dimensional"),
-    ("rocker_speed", DESIGN, {"a": 0.1}, None, "rocker_speed"),
+    ("rocker_speed", DESIGN, {"a": 0.1}, None, "nominal: give the value of thetadot"),  # a rate needs its input's
 ])
 def test_bad_input_is_a_value_error_naming_it(outputs, nominal, tolerances, inputs, message):
     with pytest.raises(ValueError, match=message):
@@ -351,3 +351,12 @@ def test_pin_play_of_a_slider_crank_by_hand():
     slope = e / math.sqrt(b * b - e * e)
     assert result.worst_case[0, 0] == pytest.approx(0.06 * math.hypot(1, slope), rel=1e-12)
     numpy.testing.assert_allclose(numpy.abs(result.gradient[0, :, :, 0]), [[1, slope]] * 3, rtol=1e-12)
+
+
+def test_command_draws_the_bands_and_the_contributions(tmp_path, capsys):
+    from symlink.cli import main
+    path = tmp_path / "bands.png"
+    assert main(COMMAND + ["--tolerance", "0.05", "--samples", "1000", "--step", "30", "--plot", str(path)]) == 0
+    assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert main(COMMAND + ["--tolerance", "0.05", "--plot", str(tmp_path / "bands.pdf")]) == 2
+    assert "must end in .png or .svg" in capsys.readouterr().err

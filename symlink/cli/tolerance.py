@@ -4,7 +4,14 @@ Each row: the input value, the output's nominal value, its worst-case and
 statistical (RSS, 3 sigma) deviations (±), the first-order mean shift, and the
 dimension that contributes most to its variance there (see :mod:`symlink.tolerance`).
 Angles (inputs, angular outputs and their deviations, angular tolerances) are
-in ``--units``; lengths in the linkage's own length unit.
+in ``--units``; lengths in the linkage's own length unit; speeds in rad/s.
+
+``--samples N`` adds the 3-sigma percentiles of N sampled builds, ``--folder DIR``
+makes them on Dask in a resumable folder, ``--plot FILE`` draws the bands and the
+contributions (:mod:`symlink.plot.tolerance`).  The output may be a rate
+(``rocker_speed``, at ``--crank-speed``) or, with the four-bar's ``--masses``, the
+driving torque or a reaction (``input_torque``, ``joint_B_x``; the centres of mass at
+fixed distances along the links, so the lengths' tolerances do not move them).
 """
 from __future__ import annotations
 
@@ -15,7 +22,9 @@ import numpy
 
 from ..angles import from_radians, to_radians, wrap
 from .options import (FOURBAR_LENGTHS, add_branch_option, add_format_option, add_units_option, assignments,
-                      command_help, finite, fourbar_lengths, input_sweep, linkage_values, number_list, whole)
+                      command_help, figure_path, finite, fourbar_lengths, input_sweep, linkage_values, number_list,
+                      whole)
+from .dynamics import add_mass_options, fourbar_dynamics
 from .output import RowWriter, note
 
 #: More input values than this make a stack-up a benchmark, not a table (each costs 1 + 2 x dimensions solves).
@@ -32,6 +41,8 @@ def register(commands) -> None:
         "--output rocker",
         "With a catalog NAME or a linkage FILE, values from its defaults (--set to change); --tolerance applies to "
         "every length, --tolerances NAME=BAND,... to chosen dimensions; --play B=0.02,C=0.02 adds the pins' play.\n"
+        "--samples N (or --builds N) adds a Monte Carlo of N builds, --folder DIR makes it resumable (Dask, the "
+        "extra 'sweep'), --plot FILE draws the bands and the contributions.\n"
         "csv header: INPUT,OUTPUT,worst_case,rss,mean_shift,largest[,play][,sampled_low,sampled_high]"))
 
 
@@ -50,17 +61,28 @@ def _add_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("--play", type=assignments("PIN=PLAY"), default={}, metavar="PIN=PLAY,...",
                          help="radial play of chosen pins (hole radius less pin radius): adds the column "
                               "'play', the linearised worst case over all play directions")
-    command.add_argument("--builds", type=whole, metavar="N",
+    command.add_argument("--samples", "--builds", dest="builds", type=whole, metavar="N",
                          help="also sample N builds (Monte Carlo, seeded by --seed): adds the columns 'sampled_low' "
                               "and 'sampled_high', the deviation's 0.135 and 99.865 percentiles (3 sigma)")
     command.add_argument("--seed", type=whole, default=0, help="of the sampled builds (default 0)")
+    command.add_argument("--folder", metavar="DIR",
+                         help="make the sampled builds on Dask in chunks written to DIR (a sweep's folder): stopped, "
+                              "the same command again continues where it stopped (needs the extra 'sweep')")
+    command.add_argument("--plot", type=figure_path, metavar="FILE",
+                         help="draw the nominal output, its worst-case, statistical and sampled bands along the input "
+                              "and the contributions of the dimensions (.png or .svg)")
     command.add_argument("--output", metavar="NAME", help="the output (default: the linkage's last unknown)")
     command.add_argument("--start", type=finite, help="first input value (default 0)")
     command.add_argument("--stop", type=finite, help="last input value, exclusive (default 360 deg)")
     command.add_argument("--step", type=finite, help="input step (default 10 deg)")
     command.add_argument("--angles", type=number_list, metavar="LIST", help="comma-separated input values")
+    command.add_argument("--crank-speed", type=finite, default=0.0, metavar="W",
+                         help="the input's speed, rad/s (default 0): for a rate or a force as --output")
+    command.add_argument("--crank-accel", type=finite, default=0.0, metavar="AL",
+                         help="the input's acceleration, rad/s^2 (default 0): for an acceleration or a force")
     add_branch_option(command, both=False, default="+1")
     add_units_option(command, "input, printed and tolerance angles")
+    add_mass_options(command)  # with --masses the four-bar's driving torque and reactions can be the --output
     add_format_option(command)
     command.set_defaults(run=run)
 
@@ -84,6 +106,12 @@ def run(args: argparse.Namespace) -> int:
             raise ValueError("tolerance: --crank --coupler --rocker --ground belong to the four-bar; give the values "
                              f"of {linkage.name} with --set NAME=VALUE,...")
         values.update({k: v for k, v in zip("abcd", lengths) if v is not None})
+    if args.masses is not None and (found.source != "catalog" or linkage.name != "fourbar"):
+        raise ValueError("tolerance: --masses and the other dynamics options belong to the four-bar")
+    if linkage.name == "fourbar" and found.source == "catalog":
+        dynamic = fourbar_dynamics(args, (values["a"], values["b"], values["c"], values["d"]))
+        if dynamic is not None:  # masses at fixed places on the links: the lengths' tolerances do not move them
+            linkage = dynamic[0]
     if not linkage.has_closed_form:
         raise ValueError(f"{linkage.name} has no closed form; take its stack-up from Python with stack_up(..., "
                          "guess=...) (its assembly must be chosen)")
@@ -105,14 +133,34 @@ def run(args: argparse.Namespace) -> int:
             raise ValueError(f"{linkage.name} needs a value for its input {other.name} (--set {other.name}=VALUE)")
         inputs[other.name] = numpy.full(len(shown), values[other.name])
     values.update({branch.name: int(args.branch) for branch in linkage.branches})
+    values.update({f"{first.name}dot": args.crank_speed, f"{first.name}ddot": args.crank_accel})
+    if args.play:
+        from ..vectors import acceleration, rate
+        moving = {rate(q) for q in linkage.coordinates} | {acceleration(q) for q in linkage.coordinates}
+        if linkage.output(output).free_symbols & moving:  # ValueError naming the outputs for an unknown one
+            raise ValueError(f"--play is modelled for positions; {output} moves with the rates")
     result = stack_up(linkage, output, values, tolerances, inputs=inputs)
     play = pin_play(linkage, output, values, args.play, inputs=inputs).worst_case[0] if args.play else None
-    sampled = None
+    sampled, builds = None, None
+    if args.folder is not None and args.builds is None:
+        raise ValueError("--folder holds sampled builds: give their number with --samples N")
     if args.builds is not None:
         if args.builds < 1:
-            raise ValueError(f"--builds must be at least 1, got {args.builds}")
-        sampled = sample_builds(linkage, output, values, tolerances, inputs=inputs, builds=args.builds,
-                                seed=args.seed).percentile([0.135, 99.865])[:, 0]
+            raise ValueError(f"--samples must be at least 1, got {args.builds}")
+        if args.seed < 0:
+            raise ValueError(f"--seed must be 0 or more, got {args.seed}")
+        if args.folder is not None:
+            from ..sweep import SWEEP_EXTRA, missing_modules
+            missing = missing_modules(("dask", "pyarrow"))
+            if missing:
+                raise ValueError(f"--folder needs {', '.join(missing)}: {SWEEP_EXTRA} (or leave --folder out: the "
+                                 "builds are then made in memory)")
+        builds = sample_builds(linkage, output, values, tolerances, inputs=inputs, builds=args.builds,
+                               seed=args.seed, folder=args.folder)
+        sampled = builds.percentile([0.135, 99.865])[:, 0]
+        if args.folder is not None:
+            note(f"{args.builds} builds in {args.folder}: {builds.reused} chunk{'s' if builds.reused != 1 else ''} "
+                 "found done there")
     angular = output_units(linkage, [output]).get(output) == "rad"
     convert = (lambda x: from_radians(x, args.units)) if angular else (lambda x: numpy.asarray(x))  # noqa: E731
     nominal = convert(wrap(result.nominal[0]) if angular else result.nominal[0])
@@ -129,9 +177,16 @@ def run(args: argparse.Namespace) -> int:
                  for x, y, w, r, m, big, p, lo, hi in zip(shown, nominal, worst, rss, shift, largest, plays, lows,
                                                           highs))
     writer.close()
-    unit = args.units if angular else "length units"
+    kind = output_units(linkage, [output]).get(output) or "the output's units"
+    unit = args.units if angular else {"length": "length units"}.get(kind, kind)
     ranking = ", ".join(f"{dim} {float(convert(dev)):.4g}" for dim, dev in result.ranking(output))
     note(f"largest 1-sigma deviation of {output} each dimension causes on the range ({unit}): {ranking}")
+    if args.plot is not None:
+        from ..plot import save_figure
+        from ..plot.tolerance import tolerance_figure
+        save_figure(tolerance_figure(result, output, builds, units=args.units, angular_input=swept_angle,
+                                     angular_output=angular, title=f"tolerance stack-up of {linkage.name}: {output}"),
+                    args.plot)
     return 0
 
 

@@ -82,9 +82,10 @@ def _gravity(text: str) -> tuple[float, float | None]:
     return values[0], values[1] if len(values) == 2 else None
 
 
-def add_mass_options(parser: argparse.ArgumentParser) -> None:
-    """``--masses --inertias --centres --gravity --load-torque`` (see the module docstring)."""
-    group = parser.add_argument_group("dynamics (adds the columns " + ",".join(MASS_COLUMNS) + ")")
+def add_mass_options(parser: argparse.ArgumentParser,
+                     title: str = "dynamics (adds the columns " + ",".join(MASS_COLUMNS) + ")") -> None:
+    """``--masses --inertias --centres --gravity --load-torque`` (see the module docstring), under ``title``."""
+    group = parser.add_argument_group(title)
     group.add_argument("--masses", type=_triple("masses"), metavar="M2,M3,M4", help="masses of crank, coupler, rocker")
     group.add_argument("--inertias", type=_triple("inertias"), metavar="I2,I3,I4",
                        help="moments of inertia about the centres of mass (default 0)")

@@ -82,7 +82,8 @@ def _add_options(command: argparse.ArgumentParser) -> None:
                          help="the input's acceleration, rad/s^2 (default 0): for an acceleration or a force")
     add_branch_option(command, both=False, default="+1")
     add_units_option(command, "input, printed and tolerance angles")
-    add_mass_options(command)  # with --masses the four-bar's driving torque and reactions can be the --output
+    add_mass_options(command, "the four-bar's mass properties (with --masses, --output may name input_torque "
+                              "or a joint force)")
     add_format_option(command)
     command.set_defaults(run=run)
 

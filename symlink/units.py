@@ -56,6 +56,20 @@ def _angles(linkage: Linkage) -> set[sp.Symbol]:
     return angles
 
 
+def _is_angle_function(expression: sp.Expr) -> bool:
+    """Whether an extra output is an angle by its form: an inverse trigonometric function (or its size or
+    negative), as the four-bar's transmission angle ``|atan2(sin(beta - phi), cos(beta - phi))|`` is.
+
+    >>> beta, phi = sp.symbols("beta phi")
+    >>> _is_angle_function(sp.Abs(sp.atan2(sp.sin(beta - phi), sp.cos(beta - phi)))), _is_angle_function(beta * phi)
+    (True, False)
+    """
+    while isinstance(expression, sp.Abs) or (isinstance(expression, sp.Mul) and expression.args[0] == -1
+                                             and len(expression.args) == 2):
+        expression = expression.args[-1] if isinstance(expression, sp.Mul) else expression.args[0]
+    return isinstance(expression, (sp.atan2, sp.atan, sp.asin, sp.acos))
+
+
 def _argument_kinds(linkage: Linkage) -> dict[str, tuple[str, int]]:
     """``{argument name: ("angle" or "length", order of time derivative)}`` for the linkage's arguments."""
     angles = _angles(linkage)
@@ -138,7 +152,9 @@ def output_units(linkage: Linkage, names: Sequence[str], length_unit: str | None
     """The unit of each output: ``rad``, ``rad/s``, ``rad/s^2``, the length unit (per second), or ``''``.
 
     ``''`` for what has no unit (``assembled``) or whose unit symlink cannot
-    know (extra outputs and ``singular``, defined freely by the linkage).  A
+    know (``singular``, and extra outputs defined freely by the linkage, unless
+    an extra is an inverse trigonometric function such as the four-bar's
+    ``transmission``: that one is in ``rad``).  A
     design sensitivity ``<output>__d_<parameter>`` has the output's unit over
     the parameter's (``rad/mm``; ``''`` where they are the same).
     """
@@ -157,6 +173,8 @@ def output_units(linkage: Linkage, names: Sequence[str], length_unit: str | None
             units[name] = _per_second("rad" if q in angles else length, order)
         elif point in linkage.points and axis in ("x", "y"):
             units[name] = length
+        elif name in linkage.extras and _is_angle_function(linkage.extras[name]):
+            units[name] = "rad"
         elif (split := split_sensitivity_name(name, linkage.parameters)) is not None:
             output, parameter = split
             numerator = output_units(linkage, [output], length_unit)[output]

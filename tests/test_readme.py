@@ -20,7 +20,8 @@ from readme_text import DOCS, DOCS_URL, IMAGES_URL, README, ROOT, fenced_blocks,
 from symlink.cli import main
 
 NOT_REPLAYED = {"bench", "view", "run"}
-WRITES_FILES = {"--out", "--plot", "--plot-transmission", "--save", "--json"}
+WRITES_FILES = {"--out", "--plot", "--plot-transmission", "--save", "--json", "--record", "--folder", "--svg", "--dxf",
+                "--assembly"}
 #: The markdown files whose transcripts are replayed: the README and every docs page.
 TRANSCRIBED = [README, *sorted(DOCS.rglob("*.md"))]
 #: Docs pages generated at build time (not in the source tree), by their path on the site.

@@ -94,6 +94,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--samples", type=int, default=360, help="input values a turn (default 360)")
     parser.add_argument("--no-cluster", action="store_true", help="skip the distributed LocalCluster rows")
     parser.add_argument("--linkage", default="fourbar", help="a catalog linkage (default fourbar: its ratio space)")
+    parser.add_argument("--rows", default="", help="only these rows, by name, comma-separated (e.g. 'threads 1,"
+                                                  "threads 2'): a long sweep's rows in runs of their own")
     args = parser.parse_args(argv)
     missing = missing_modules()
     if missing:
@@ -114,6 +116,13 @@ def main(argv: list[str] | None = None) -> int:
         rows += [(f"{kind} {n}", lambda kind=kind, n=n: on_scheduler(found, kind, n)) for n in (1, 2)]
     if not args.no_cluster:
         rows += [(f"cluster {n}", lambda n=n: on_cluster(found, n)) for n in (1, 2)]
+    if args.rows:
+        wanted = [name.strip() for name in args.rows.split(",")]
+        unknown = [name for name in wanted if name not in dict(rows)]
+        if unknown:
+            print(f"no row {', '.join(unknown)}; the rows are {', '.join(dict(rows))}", file=sys.stderr)
+            return 2
+        rows = [(name, dict(rows)[name]) for name in wanted]
     rates = {}
     for name, measure in rows:
         rates[name], cpu = measure()

@@ -398,12 +398,16 @@ def _margin_function(linkage: Linkage) -> tuple[Callable[..., dict], list[tuple[
 
 
 _MARGINS: dict[str, Callable[..., dict]] = {}
+#: Seconds a sweep waits for a compiled library being built before it takes the NumPy module instead.
+BUILD_WAIT = 600.0
 _COMPILED_MARGINS: dict[str, Any] = {}
 
 
 def _fast_margins(linkage: Linkage) -> Callable[..., dict]:
-    """The margins as :func:`_margin_function` generates them, in the compiled C loop where it is built (compiled in
-    the background the first time, the NumPy module answering meanwhile): for scans of many designs at once.
+    """The margins as :func:`_margin_function` generates them, in the compiled C loop where a compiler works
+    (built once into the cache; the first call waits for it, at most :data:`BUILD_WAIT` seconds, so that the
+    spans of a sweep's chunks never depend on when a build finished), else the NumPy module: for scans of many
+    designs at once (:func:`design_spans`).
 
     Called with keywords (``check=False`` skips the argument check, as the NumPy module's does).
     """
@@ -426,7 +430,12 @@ def _fast_margins(linkage: Linkage) -> Callable[..., dict]:
                                           [s.name for s in program.arguments if s.is_positive])
         try:
             import json
-            entry = compiled.compiled_or_building(json.loads(cached_text(key, build)))
+            facts = json.loads(cached_text(key, build))
+            entry = compiled.compiled_or_building(facts)
+            if entry is None and compiled.compiler_works():  # being built: wait for it, so that every scan is one code's
+                building = compiled.build_in_background(facts)
+                building.wait(BUILD_WAIT)
+                entry = building.entry()
         except (OSError, ValueError, RuntimeError):
             entry = None
         if entry is None:

@@ -82,7 +82,7 @@ from .closure import is_angle
 from .linkage import Linkage
 from .limits import require_memory
 from .linkage_file import LinkageFile, linkage_from_text, load_linkage
-from .reachability import InputMotion, crank_range, design_spans, reachable_range
+from .reachability import BUILD_WAIT, InputMotion, crank_range, design_spans, reachable_range
 from .solver import Solver
 from .sweep_folder import MANIFEST, SweepWarning, chunk_name, chunk_range, open_folder, read_manifest, verified_chunks
 from .version import __version__
@@ -325,7 +325,12 @@ def _is_fourbar(linkage: Linkage) -> bool:
 
 @lru_cache(maxsize=16)
 def _solver(linkage: Linkage, outputs: tuple[str, ...]) -> Solver:
-    return Solver(linkage, list(outputs))
+    """The sweep's solver, made once a process; where its compiled code is being built (the first request for it
+    on this machine), waited for, so that a table never depends on when a background build finished (a sweep
+    resumed computes its chunks with the code that computed the others)."""
+    solver = Solver(linkage, list(outputs))
+    solver.wait_for_backend(BUILD_WAIT)
+    return solver
 
 
 def _refined(values: numpy.ndarray, at: numpy.ndarray, step: float) -> tuple[numpy.ndarray, numpy.ndarray]:

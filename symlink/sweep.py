@@ -76,7 +76,7 @@ from typing import Any, Callable, Iterable, Mapping, Sequence
 
 import numpy
 
-from .analysis.grashof import grashof
+from .analysis.grashof import grashof_names
 from .analysis.transmission import transmission_arrays, transmission_coordinates
 from .closure import is_angle
 from .linkage import Linkage
@@ -413,16 +413,18 @@ def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[st
         values_of.update({**held, **{s.name: float(settings.branch) for s in linkage.branches}})
         scanned = dict(zip(partial.tolist(), design_spans(linkage, values_of, partial.size,
                                                           input=linkage.inputs[0].name)))
+    if fourbar:  # every design's class at once
+        classes = grashof_names(table["a"], table["b"], table["c"], table["d"])
+        lengths = list(zip(*(table[name].tolist() for name in "abcd")))
     for k in range(count):
-        values = {s.name: float(table[s.name][k]) for s in linkage.parameters}
         if fourbar:
-            found_spans = crank_range(values["a"], values["b"], values["c"], values["d"])
-            classes[k] = grashof(values["a"], values["b"], values["c"], values["d"]).name
+            found_spans = crank_range(*lengths[k])
         elif sampled_full[k]:
             found_spans = [(-math.pi, math.pi)]
         elif k in scanned:
             found_spans = scanned[k]
         else:
+            values = {s.name: float(table[s.name][k]) for s in linkage.parameters}
             motion = InputMotion(linkage, {**values, **held, **{s.name: settings.branch for s in linkage.branches}})
             found_spans = list(reachable_range(linkage, motion.values, motion=motion).spans)
         spans[k] = len(found_spans)

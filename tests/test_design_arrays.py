@@ -107,3 +107,17 @@ def test_the_coarse_scan_finds_what_the_full_scan_finds(name):
     full = design_spans(linkage, {**values, **branches}, 300, stride=1)
     assert design_spans(linkage, {**values, **branches}, 300) == full
     assert sum(spans != [(-math.pi, math.pi)] for spans in full) >= 50
+
+
+def test_grashof_names_classify_each_design_as_grashof_does():
+    """The classes of many four-bars at once, against the one-design function, ties and change points included."""
+    from symlink.analysis.grashof import grashof, grashof_names
+    rng = numpy.random.default_rng(5)
+    lengths = rng.integers(1, 6, size=(4, 400)).astype(float)  # small whole numbers: ties and change points
+    lengths = numpy.concatenate([lengths, rng.uniform(0.1, 3.0, size=(4, 400))], axis=1)
+    found = grashof_names(*lengths)
+    assert found == [grashof(*column).name for column in lengths.T.tolist()]
+    assert {"change-point", "triple-rocker", "crank-rocker", "rocker-crank", "double-crank",
+            "double-rocker"} <= set(found)
+    with pytest.raises(ValueError, match="rocker must be a positive finite length"):
+        grashof_names(1.0, 1.0, [1.0, -1.0], 1.0)

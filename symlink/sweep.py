@@ -52,11 +52,19 @@ one per parameter       every parameter of the linkage (float64), the swept ones
 The reachable range comes from :mod:`symlink.reachability` (the four-bar's
 closed form; for another linkage the sampled mask where every sample
 assembles, else its bisected scan, every design of a chunk at once:
-:func:`~symlink.reachability.design_spans`); the Grashof class from
-:func:`~symlink.analysis.grashof`; the transmission angle from the four-bar's
-``transmission`` output, or for another linkage from its solved coordinates
-(:func:`~symlink.analysis.transmission.transmission_arrays`, code generated once).  Extremes are the samples' refined by the parabola
-through each extreme and its neighbours (errors of order ``step**3``).
+:func:`~symlink.reachability.design_spans`, which scans every 20th point first
+and the points between only where a root's margin may change sign); the
+Grashof class from :func:`~symlink.analysis.grashof.grashof_names` (all designs
+at once); the transmission angle from the four-bar's ``transmission`` output,
+or for another linkage from its solved coordinates
+(:func:`~symlink.analysis.transmission.transmission_arrays`, code generated
+once).  Extremes are the samples' refined by the parabola through each extreme
+and its neighbours (errors of order ``step**3``).
+
+Every chunk is computed by the same code: where the compiled backend is being
+built (the first sweep of a linkage on a machine with a C compiler), the sweep
+waits for it (once a process) rather than answering with NumPy meanwhile, so a
+resumed sweep ends with the very table of one whole run.
 
 >>> settings = SweepSettings("fourbar", {"a": (0.2, 0.4)}, values={"b": 1.0, "c": 1.0, "d": 1.0}, count=3)
 >>> table = evaluate_designs(settings, range(3))

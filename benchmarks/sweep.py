@@ -15,11 +15,17 @@ sample), a turn of 360 input values a design, every column of
 Each row also says the CPU time a design took (this process's and its worker processes'), which other
 engineers' load disturbs less than the wall time, and the load average is printed before and after: on a
 machine whose cores are busy with other work a second worker cannot gain what it would on an idle one.
-The machine's other load shows in every number: compare the rows of one run.
+The machine's other load shows in every number: compare the rows of one run.  ``--blocked`` measures
+what a free core could not remove: it runs the chunks on 1 and 2 threads (no Dask) and splits each worker
+thread's wall time, from the kernel's scheduler statistics (``/proc/self/task/TID/schedstat``, Linux), into
+time on a CPU, time runnable but waiting for one (the machine's other load), and time blocked (the workers
+do no I/O: waiting for the GIL).  On a machine with a free core for each worker, the wall time is about the
+CPU and blocked time, so the gain of a second worker is projected from those.
 
     python benchmarks/sweep.py                      # 40 000 designs
     python benchmarks/sweep.py --designs 1e5 --chunk 2000
     python benchmarks/sweep.py --linkage jansen --designs 4000 --chunk 500 --no-cluster
+    python benchmarks/sweep.py --designs 8000 --chunk 1000 --blocked
 """
 from __future__ import annotations
 
@@ -75,6 +81,39 @@ def on_scheduler(found: SweepSettings, scheduler: str, workers: int) -> tuple[fl
         return found.designs / (time.perf_counter() - start), (cpu_seconds() - cpu) / found.designs
 
 
+def thread_times() -> tuple[float, float, float]:
+    """This thread's wall clock, seconds on a CPU and seconds runnable waiting for one (Linux schedstat)."""
+    import threading
+    with open(f"/proc/self/task/{threading.get_native_id()}/schedstat", encoding="ascii") as file:
+        on_cpu, waiting, _ = map(int, file.read().split())
+    return time.perf_counter(), on_cpu / 1e9, waiting / 1e9
+
+
+def blocked_rows(found: SweepSettings) -> None:
+    """Each chunk on 1 and 2 threads: its worker's wall time split into on a CPU, runnable and blocked."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    def chunk(index: int) -> tuple[float, float, float]:
+        wall, cpu, waiting = thread_times()
+        evaluate_designs(found, range(index * found.chunk, min((index + 1) * found.chunk, found.designs)))
+        after = thread_times()
+        return after[0] - wall, after[1] - cpu, after[2] - waiting
+
+    idle = {}
+    for workers in (1, 2):
+        with ThreadPoolExecutor(workers) as pool:
+            start = time.perf_counter()
+            parts = list(pool.map(chunk, range(found.chunks)))
+            seconds = time.perf_counter() - start
+        wall, cpu, waiting = (sum(part[k] for part in parts) for k in range(3))
+        blocked = max(0.0, wall - cpu - waiting)
+        idle[workers] = (cpu + blocked) / workers  # each worker with a core of its own
+        print(f"threads {workers} (no Dask)   {found.designs / seconds:>10,.0f} designs/s; workers' time {wall:.2f} s ="
+              f" on a CPU {cpu:.2f} + runnable {waiting:.2f} + blocked {blocked:.2f} ({100 * blocked / wall:.1f} %)",
+              flush=True)
+    print(f"projected on free cores: 2 threads / 1 thread = {idle[1] / idle[2]:.2f}")
+
+
 def on_cluster(found: SweepSettings, workers: int) -> tuple[float, float]:
     import distributed
     with distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
@@ -94,6 +133,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--samples", type=int, default=360, help="input values a turn (default 360)")
     parser.add_argument("--no-cluster", action="store_true", help="skip the distributed LocalCluster rows")
     parser.add_argument("--linkage", default="fourbar", help="a catalog linkage (default fourbar: its ratio space)")
+    parser.add_argument("--blocked", action="store_true",
+                        help="only the split of the threads' time (on a CPU, runnable, blocked by the GIL)")
     parser.add_argument("--rows", default="", help="only these rows, by name, comma-separated (e.g. 'threads 1,"
                                                   "threads 2'): a long sweep's rows in runs of their own")
     args = parser.parse_args(argv)
@@ -110,6 +151,9 @@ def main(argv: list[str] | None = None) -> int:
     evaluate_designs(warm, range(warm.designs))  # derived and loaded; compiled code built, before any clock
     wait_for_builds(300)
     evaluate_designs(warm, range(warm.designs))
+    if args.blocked:
+        blocked_rows(found)
+        return 0
     rows = [("in process (no Dask)", lambda: in_process(found)),
             ("synchronous", lambda: on_scheduler(found, "synchronous", 1))]
     for kind in ("threads", "processes", "auto"):

@@ -565,7 +565,7 @@ def design_spans(linkage: Linkage, values: Mapping[str, Any], count: int, *, inp
 
     ``values``: every parameter, branch sign and held input by name, a number or an array of ``count``
     (one a design).  The scan's mask of ``points`` input values is made at a cost that scales with what
-    it needs (:func:`_scanned_masks`): every ``stride``-th point of every design first, then the points
+    it needs (:func:`_scanned_edges`): every ``stride``-th point of every design first, then the points
     in between only in the cells where a margin changes sign or comes near enough to zero to change it
     there.  Every step (the scans, each bisection) is one call of the generated margins for all designs
     and edges together, not one a design.

@@ -625,7 +625,11 @@ def local_scheduler(chunks: int, workers: int | None = None) -> str:
     ``"synchronous"`` (this process, no pool) for one chunk, one worker or one core: a pool only adds its
     start and the transfer of every table; else ``"threads"``: the solvers' work runs in NumPy or in the
     compiled C loop, both of which release the GIL, so threads share it without starting a Python (and
-    importing symlink, and loading the solvers again) in each worker as processes do.
+    importing symlink, and loading the solvers again) in each worker as processes do.  Measured
+    (``benchmarks/sweep.py --blocked``, from the kernel's per-thread scheduler statistics): two worker
+    threads spend 1 to 2 % of their time blocked on the GIL, for the four-bar and for Jansen's leg, so
+    with a core each they would gain 1.6 to 1.9 times one; a process pool costs more CPU a design than
+    threads (its start, and each chunk's table sent back) at every size measured.
 
     >>> local_scheduler(1), local_scheduler(8, workers=1), local_scheduler(8, workers=2)
     ('synchronous', 'synchronous', 'threads')

@@ -156,6 +156,9 @@ def test_a_warm_dynamic_linkage_request_derives_nothing(disk_cache, monkeypatch,
     values = dict(theta=angles, a=0.2, b=0.66, c=0.56, d=0.8, m2=1.5, branch=1, thetadot=speeds, thetaddot=2.0)
     outputs = ["input_torque", "joint_A_y"]
     cold = Solver(dynamic_linkage(crank_model()), outputs, backend=backend)(**values)
+    from symlink.scene import Scene
+    scene_values = {k: v for k, v in values.items() if k != "branch"}
+    Scene(dynamic_linkage(crank_model()), outputs, scene_values).evaluate()
     cache.clear_memory()  # a new process: the disk cache only
     forbid_dynamics(monkeypatch)
     linkage = dynamic_linkage(crank_model())
@@ -164,6 +167,9 @@ def test_a_warm_dynamic_linkage_request_derives_nothing(disk_cache, monkeypatch,
     warm = Solver(linkage, outputs, backend=backend)(**values)
     for name in outputs:
         numpy.testing.assert_allclose(warm[name], cold[name], rtol=1e-13, atol=0)
+    if backend == "numpy":  # a scene of the same linkage answers from the cache too
+        scene = Scene(dynamic_linkage(crank_model()), outputs, scene_values)
+        numpy.testing.assert_allclose(scene.evaluate()[1]["input_torque"], cold["input_torque"], rtol=1e-13, atol=0)
     for k, theta in enumerate(angles):
         torque, force = crank_alone(float(theta), float(speeds[k]), 2.0)
         assert float(warm["input_torque"][k]) == pytest.approx(torque, rel=1e-12)

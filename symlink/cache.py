@@ -177,9 +177,18 @@ def definition(linkage: Linkage) -> str:
         "parameters": symbols(linkage.parameters),
         "points": [[name, None if v is None else _terms(v.as_sum())] for name, v in linkage.points.items()],
         "roles": [[role, sp.srepr(q)] for role, q in linkage.roles.items()],
-        "extras": [[name, sp.srepr(e)] for name, e in linkage.extras.items()],
+        "extras": _described_extras(linkage),
     }
     return json.dumps(described, separators=(",", ":"))
+
+
+def _described_extras(linkage: Linkage) -> list:
+    """The extras of ``linkage`` for its definition: each one's expression, or what the linkage says they are
+    made from where it can say so without deriving them (a dynamic linkage: its model as given)."""
+    import sympy as sp
+    described = getattr(linkage, "described_extras", None)
+    found = described() if callable(described) else None
+    return [[name, sp.srepr(e)] for name, e in linkage.extras.items()] if found is None else found
 
 
 def code_shaping_files(modules: Sequence[str] = CODE_SHAPING) -> list[Path]:

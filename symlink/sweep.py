@@ -52,11 +52,19 @@ one per parameter       every parameter of the linkage (float64), the swept ones
 The reachable range comes from :mod:`symlink.reachability` (the four-bar's
 closed form; for another linkage the sampled mask where every sample
 assembles, else its bisected scan, every design of a chunk at once:
-:func:`~symlink.reachability.design_spans`); the Grashof class from
-:func:`~symlink.analysis.grashof`; the transmission angle from the four-bar's
-``transmission`` output, or for another linkage from its solved coordinates
-(:func:`~symlink.analysis.transmission.transmission_arrays`, code generated once).  Extremes are the samples' refined by the parabola
-through each extreme and its neighbours (errors of order ``step**3``).
+:func:`~symlink.reachability.design_spans`, which scans every 20th point first
+and the points between only where a root's margin may change sign); the
+Grashof class from :func:`~symlink.analysis.grashof.grashof_names` (all designs
+at once); the transmission angle from the four-bar's ``transmission`` output,
+or for another linkage from its solved coordinates
+(:func:`~symlink.analysis.transmission.transmission_arrays`, code generated
+once).  Extremes are the samples' refined by the parabola through each extreme
+and its neighbours (errors of order ``step**3``).
+
+Every chunk is computed by the same code: where the compiled backend is being
+built (the first sweep of a linkage on a machine with a C compiler), the sweep
+waits for it (once a process) rather than answering with NumPy meanwhile, so a
+resumed sweep ends with the very table of one whole run.
 
 >>> settings = SweepSettings("fourbar", {"a": (0.2, 0.4)}, values={"b": 1.0, "c": 1.0, "d": 1.0}, count=3)
 >>> table = evaluate_designs(settings, range(3))
@@ -76,13 +84,13 @@ from typing import Any, Callable, Iterable, Mapping, Sequence
 
 import numpy
 
-from .analysis.grashof import grashof
+from .analysis.grashof import grashof_names
 from .analysis.transmission import transmission_arrays, transmission_coordinates
 from .closure import is_angle
 from .linkage import Linkage
 from .limits import require_memory
 from .linkage_file import LinkageFile, linkage_from_text, load_linkage
-from .reachability import InputMotion, crank_range, design_spans, reachable_range
+from .reachability import BUILD_WAIT, InputMotion, crank_range, design_spans, reachable_range
 from .solver import Solver
 from .sweep_folder import MANIFEST, SweepWarning, chunk_name, chunk_range, open_folder, read_manifest, verified_chunks
 from .version import __version__
@@ -325,7 +333,12 @@ def _is_fourbar(linkage: Linkage) -> bool:
 
 @lru_cache(maxsize=16)
 def _solver(linkage: Linkage, outputs: tuple[str, ...]) -> Solver:
-    return Solver(linkage, list(outputs))
+    """The sweep's solver, made once a process; where its compiled code is being built (the first request for it
+    on this machine), waited for, so that a table never depends on when a background build finished (a sweep
+    resumed computes its chunks with the code that computed the others)."""
+    solver = Solver(linkage, list(outputs))
+    solver.wait_for_backend(BUILD_WAIT)
+    return solver
 
 
 def _refined(values: numpy.ndarray, at: numpy.ndarray, step: float) -> tuple[numpy.ndarray, numpy.ndarray]:
@@ -408,16 +421,18 @@ def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[st
         values_of.update({**held, **{s.name: float(settings.branch) for s in linkage.branches}})
         scanned = dict(zip(partial.tolist(), design_spans(linkage, values_of, partial.size,
                                                           input=linkage.inputs[0].name)))
+    if fourbar:  # every design's class at once
+        classes = grashof_names(table["a"], table["b"], table["c"], table["d"])
+        lengths = list(zip(*(table[name].tolist() for name in "abcd")))
     for k in range(count):
-        values = {s.name: float(table[s.name][k]) for s in linkage.parameters}
         if fourbar:
-            found_spans = crank_range(values["a"], values["b"], values["c"], values["d"])
-            classes[k] = grashof(values["a"], values["b"], values["c"], values["d"]).name
+            found_spans = crank_range(*lengths[k])
         elif sampled_full[k]:
             found_spans = [(-math.pi, math.pi)]
         elif k in scanned:
             found_spans = scanned[k]
         else:
+            values = {s.name: float(table[s.name][k]) for s in linkage.parameters}
             motion = InputMotion(linkage, {**values, **held, **{s.name: settings.branch for s in linkage.branches}})
             found_spans = list(reachable_range(linkage, motion.values, motion=motion).spans)
         spans[k] = len(found_spans)
@@ -610,7 +625,11 @@ def local_scheduler(chunks: int, workers: int | None = None) -> str:
     ``"synchronous"`` (this process, no pool) for one chunk, one worker or one core: a pool only adds its
     start and the transfer of every table; else ``"threads"``: the solvers' work runs in NumPy or in the
     compiled C loop, both of which release the GIL, so threads share it without starting a Python (and
-    importing symlink, and loading the solvers again) in each worker as processes do.
+    importing symlink, and loading the solvers again) in each worker as processes do.  Measured
+    (``benchmarks/sweep.py --blocked``, from the kernel's per-thread scheduler statistics): two worker
+    threads spend 1 to 2 % of their time blocked on the GIL, for the four-bar and for Jansen's leg, so
+    with a core each they would gain 1.6 to 1.9 times one; a process pool costs more CPU a design than
+    threads (its start, and each chunk's table sent back) at every size measured.
 
     >>> local_scheduler(1), local_scheduler(8, workers=1), local_scheduler(8, workers=2)
     ('synchronous', 'synchronous', 'threads')

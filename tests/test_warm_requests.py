@@ -123,3 +123,80 @@ def test_a_warm_sensitivity_request_derives_nothing(disk_cache, monkeypatch, bac
     ahead = Solver(fourbar(), ["rocker"], backend="numpy")(**{**values, "a": 20.0 + step})["rocker"]
     behind = Solver(fourbar(), ["rocker"], backend="numpy")(**{**values, "a": 20.0 - step})["rocker"]
     assert float(warm["rocker__d_a"]) == pytest.approx(float(ahead - behind) / (2 * step), rel=1e-6)
+
+
+def crank_model():
+    """The scene's model by the Python route: a crank of mass m2 (a parameter), the rest massless, under gravity."""
+    from symlink.catalog import fourbar
+    from symlink.dynamics.model import DynamicModel, Gravity, MassProperties
+    return DynamicModel(fourbar(), [MassProperties("crank", "m2", distance=0.08, inertia=0.02)],
+                        gravity=Gravity(0, -9.81))
+
+
+def forbid_dynamics(monkeypatch):
+    """Every derivation of the dynamic outputs raises (the model may be built: the user does that)."""
+    from symlink.dynamics import inverse, model
+
+    def forbidden(*args, **kwargs):
+        raise AssertionError("symbolic work in a warm request")
+    forbid_derivatives(monkeypatch)
+    for name in ("dynamic_outputs", "driving_efforts", "reactions", "newton_euler", "equation_of_motion"):
+        monkeypatch.setattr(inverse, name, forbidden)
+    for name in ("generalised_inertia", "generalised_inertia_slope", "applied_generalised_forces"):
+        monkeypatch.setattr(model.DynamicModel, name, forbidden)
+
+
+@pytest.mark.parametrize("backend", ["numpy", "auto"])
+def test_a_warm_dynamic_linkage_request_derives_nothing(disk_cache, monkeypatch, backend):
+    import numpy
+    from symlink.dynamics.inverse import dynamic_linkage
+    from symlink.solver import Solver
+    angles = numpy.radians([0.0, 50.0])
+    speeds = numpy.sqrt(2 * 2.0 * angles)  # uniform acceleration 2 rad/s^2 from rest at 0
+    values = dict(theta=angles, a=0.2, b=0.66, c=0.56, d=0.8, m2=1.5, branch=1, thetadot=speeds, thetaddot=2.0)
+    outputs = ["input_torque", "joint_A_y"]
+    cold = Solver(dynamic_linkage(crank_model()), outputs, backend=backend)(**values)
+    from symlink.scene import Scene
+    scene_values = {k: v for k, v in values.items() if k != "branch"}
+    Scene(dynamic_linkage(crank_model()), outputs, scene_values).evaluate()
+    cache.clear_memory()  # a new process: the disk cache only
+    forbid_dynamics(monkeypatch)
+    linkage = dynamic_linkage(crank_model())
+    assert linkage.output_names()[-4:-1] == ["generalised_inertia", "generalised_inertia_slope",
+                                           "applied_generalised_force"]  # named without deriving them
+    warm = Solver(linkage, outputs, backend=backend)(**values)
+    for name in outputs:
+        numpy.testing.assert_allclose(warm[name], cold[name], rtol=1e-13, atol=0)
+    if backend == "numpy":  # a scene of the same linkage answers from the cache too
+        scene = Scene(dynamic_linkage(crank_model()), outputs, scene_values)
+        numpy.testing.assert_allclose(scene.evaluate()[1]["input_torque"], cold["input_torque"], rtol=1e-13, atol=0)
+    for k, theta in enumerate(angles):
+        torque, force = crank_alone(float(theta), float(speeds[k]), 2.0)
+        assert float(warm["input_torque"][k]) == pytest.approx(torque, rel=1e-12)
+        assert float(warm["joint_A_y"][k]) == pytest.approx(force, rel=1e-12)
+
+
+def test_a_changed_model_is_another_dynamic_linkage_request(disk_cache):
+    """The key of the Python route is made from the model as given: another mass is another entry."""
+    from symlink.catalog import fourbar
+    from symlink.dynamics.inverse import dynamic_linkage
+    from symlink.dynamics.model import DynamicModel, MassProperties
+    from symlink.solver import Solver
+    values = dict(theta=0.0, a=0.2, b=0.66, c=0.56, d=0.8, branch=1, thetadot=0.0, thetaddot=2.0)
+    torques = [float(Solver(dynamic_linkage(DynamicModel(fourbar(), [MassProperties("crank", 1.5, distance=0.08,
+                                                                                      inertia=inertia)])),
+                            ["input_torque"], backend="numpy")(**values)["input_torque"])
+               for inertia in (0.02, 0.05)]
+    assert torques[1] == pytest.approx(torques[0] + 0.03 * 2.0, rel=1e-12)  # (I + m r^2) alpha: 0.03 more
+
+
+def test_the_dynamic_outputs_are_named_as_derived():
+    """The names a dynamic linkage gives before deriving are those the derivation makes, in order."""
+    from symlink.catalog import CATALOG
+    from symlink.dynamics.inverse import dynamic_linkage, dynamic_outputs
+    from symlink.dynamics.model import DynamicModel, MassProperties
+    for name, body in (("fourbar", "coupler"), ("slider-crank", "conrod"), ("watt2", "crank")):
+        model = DynamicModel(CATALOG[name](), [MassProperties(body, 1.0, inertia=0.1)])
+        linkage = dynamic_linkage(model)
+        assert list(linkage.dynamic_outputs) == list(dynamic_outputs(model))
+        assert list(linkage.extras) == [*model.kinematics.extras, *dynamic_outputs(model)]

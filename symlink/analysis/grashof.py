@@ -6,11 +6,15 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
+import numpy
+
+from ..codegen.numpy import checked_arguments
 from ..display import record_html
 from ..solver import check_lengths
 
-__all__ = ["Grashof", "GRASHOF_CLASSES", "grashof"]
+__all__ = ["Grashof", "GRASHOF_CLASSES", "grashof", "grashof_names"]
 
 
 #: Grashof classes of a four-bar, by name.
@@ -75,3 +79,26 @@ def grashof(a: float, b: float, c: float, d: float, tolerance: float = 1e-12) ->
         name = {"crank": "crank-rocker", "rocker": "rocker-crank", "ground": "double-crank",
                 "coupler": "double-rocker"}[_LINK_NAMES[shortest]]
     return Grashof(name, _LINK_NAMES[shortest], _LINK_NAMES[longest], s_l, p_q)
+
+
+#: The class of a Grashof four-bar by its shortest link (crank, coupler, rocker, ground).
+_BY_SHORTEST = ("crank-rocker", "double-rocker", "rocker-crank", "double-crank")
+
+
+def grashof_names(a: Any, b: Any, c: Any, d: Any, tolerance: float = 1e-12) -> list[str]:
+    """The Grashof class names of many four-bars at once (arrays of their lengths, broadcast): :func:`grashof`'s
+    ``name`` of each, decided alike, without a Python call a four-bar (a sweep classifies every design).
+
+    >>> grashof_names([4.0, 5.0, 20.0, 1.0], [5.0, 6.0, 66.0, 2.0], [6.0, 7.0, 56.0, 2.0], [2.0, 10.0, 80.0, 1.0])
+    ['double-crank', 'triple-rocker', 'crank-rocker', 'change-point']
+    """
+    arrays = numpy.broadcast_arrays(*(numpy.asarray(x, dtype=float) for x in (a, b, c, d)))
+    checked_arguments(_LINK_NAMES, arrays, lengths=_LINK_NAMES)  # ValueError naming the first length that is not one
+    links = numpy.stack([x.ravel() for x in arrays], axis=1)
+    shortest = links.argmin(axis=1)  # the first of equal shortest links, as min() finds it
+    ordered = numpy.sort(links, axis=1)
+    s_l, p_q = ordered[:, 0] + ordered[:, 3], ordered[:, 1] + ordered[:, 2]
+    names = numpy.array(_BY_SHORTEST, dtype=object)[shortest]
+    names[s_l > p_q] = "triple-rocker"
+    names[numpy.abs(s_l - p_q) <= tolerance * ordered[:, 3]] = "change-point"
+    return names.tolist()

@@ -271,10 +271,33 @@ def transmission_arrays(linkage: Linkage, values: Mapping[str, Any], solved: Map
     """
     found = {}
     for loop, guide, (into_q, into_rest), (out_q, out_rest) in _joint_functions(linkage):
-        into = (0.0 if into_q is None else solved[into_q]) + into_rest(values)
-        out = (0.0 if out_q is None else solved[out_q]) + out_rest(values)
-        found[loop] = numpy.abs(wrap(out - (into + (math.pi / 2 if guide else math.pi))))
+        # the constant parts first (a number or a value a design), then one pass over the solved arrays
+        offset = numpy.asarray(out_rest(values) - into_rest(values) - (math.pi / 2 if guide else math.pi), dtype=float)
+        if out_q is None and into_q is None:
+            angle = offset + 0.0
+        elif into_q is None:
+            angle = solved[out_q] + offset
+        else:
+            angle = (offset - solved[into_q] if out_q is None else (solved[out_q] - solved[into_q]) + offset)
+        found[loop] = _folded(numpy.asarray(angle, dtype=float))
     return found
+
+
+def _folded(angle: numpy.ndarray) -> numpy.ndarray:
+    """``|wrap(angle)|`` in [0, pi], in place on ``angle`` (a fresh array): the angle less its nearest whole turns.
+
+    Five passes, where :func:`~symlink.angles.wrap` takes a dozen (the sweeps' transmission angles of every
+    design and sample); equal to it to rounding (a whole turn or two subtracted).
+
+    >>> _folded(numpy.array([3 * math.pi / 2, -0.25, 7.0])).round(12).tolist() == [round(math.pi / 2, 12), 0.25,
+    ...                                                                              round(7.0 - 2 * math.pi, 12)]
+    True
+    """
+    turns = angle * (1 / (2 * math.pi))
+    numpy.rint(turns, out=turns)
+    turns *= 2 * math.pi
+    angle -= turns
+    return numpy.abs(angle, out=angle)
 
 
 def transmission_coordinates(linkage: Linkage) -> list[str]:

@@ -42,7 +42,7 @@ I2*thetaddot
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Mapping, TypeVar
+from typing import TYPE_CHECKING, Callable, Iterator, Mapping, Sequence, TypeVar
 
 import sympy as sp
 
@@ -56,7 +56,8 @@ if TYPE_CHECKING:
     from .model import DynamicModel
 
 __all__ = ["EQUATION_OUTPUTS", "NewtonEuler", "driving_efforts", "newton_euler", "reactions", "equation_of_motion",
-           "linkage_with_outputs", "dynamic_outputs", "DynamicLinkage", "dynamic_linkage"]
+           "linkage_with_outputs", "dynamic_outputs", "DynamicLinkage", "dynamic_linkage", "dynamic_output_names",
+           "DerivedOutputs"]
 
 LinkageKind = TypeVar("LinkageKind", bound=Linkage)
 
@@ -496,6 +497,31 @@ class DynamicLinkage(Linkage):
     dynamic_outputs: tuple[str, ...] = ()
     model: DynamicModel
 
+    def described_extras(self) -> list | None:
+        """What the extras are, for the cache key (:func:`symlink.cache.definition`), without deriving them.
+
+        The kinematic linkage's own extras, and the model as given: each mass with its centre and inertia,
+        the applied forces and couples (gravity's among them), the bodies and joints the reactions are of,
+        and the dynamic outputs' names (the same whether they have been derived yet or not); ``None`` for a
+        linkage made with the expressions themselves (:func:`linkage_with_outputs`: the key then takes them).
+        """
+        if not isinstance(self.extras, DerivedOutputs):
+            return None
+        model = self.model
+        text = sp.srepr
+        return [[name, text(value)] for name, value in model.kinematics.extras.items()] + [["dynamics", {
+            "outputs": list(self.dynamic_outputs),
+            "masses": [[body, text(mass), text(centre[0]), text(centre[1]), text(inertia)]
+                       for body, (mass, centre, inertia) in model.masses.items()],
+            "forces": [[force.body, text(force.point[0]), text(force.point[1]), text(force.force[0]),
+                        text(force.force[1])] for force in model.forces],
+            "couples": [[body, text(value)] for body, value in model.couples],
+            "gravity": [text(value) for value in model.gravity],
+            "bodies": [[body.name, list(body.vectors), list(body.joints), list(body.points)]
+                       for body in model.mechanism.bodies],
+            "joints": [[joint.name, joint.kind, list(joint.bodies)] for joint in model.mechanism.joints],
+        }]]
+
     def divides_by_determinant(self, name: str) -> bool:
         """Every dynamic output does: the efforts and ``M(q)`` through the rates, the reactions through the
         Newton-Euler determinant, both zero at a toggle."""
@@ -546,8 +572,11 @@ def dynamic_linkage(model: DynamicModel) -> DynamicLinkage:
     """The model's kinematic linkage with the dynamic outputs as extras and the model's symbols as parameters.
 
     Scenes, exports and LaTeX take it like any linkage, and derive only what a request
-    needs (a torque: accelerations, no reactions).  Building it derives every output's
-    expression once: keep it rather than calling this again.
+    needs (a torque: accelerations, no reactions).  The outputs are named at once
+    (:func:`dynamic_output_names`) and derived together on first use of any of their
+    expressions; a cached request (a :class:`~symlink.solver.Solver` whose code is in the
+    cache) uses none, so it derives nothing: its key is made from the model as given
+    (:meth:`DynamicLinkage.described_extras`), not from the derived expressions.
 
     >>> from symlink.catalog import fourbar
     >>> from symlink.dynamics.model import DynamicModel, MassProperties
@@ -555,8 +584,72 @@ def dynamic_linkage(model: DynamicModel) -> DynamicLinkage:
     >>> linkage.dynamic_outputs[:3], linkage.extras["input_torque"]
     (('input_torque', 'joint_A_x', 'joint_A_y'), I2*thetaddot)
     """
-    outputs = dynamic_outputs(model)
-    result = linkage_with_outputs(model, outputs, DynamicLinkage)
-    result.dynamic_outputs = tuple(outputs)
+    names = dynamic_output_names(model)
+    base = model.kinematics
+    # Named with placeholders, so that the linkage checks every output name as it checks any extra's ...
+    result = DynamicLinkage(base.name, base.loops, base.inputs, base.unknowns,
+                            parameters=list(base.parameters) + list(model.new_parameters), points=base.points,
+                            roles=base.roles, extras={**base.extras, **{name: sp.S.Zero for name in names}})
+    # ... then the expressions, derived on first use.
+    result.extras = DerivedOutputs(base.extras, names, lambda: dynamic_outputs(model))  # type: ignore[assignment]
+    result.dynamic_outputs = tuple(names)
     result.model = model
     return result
+
+
+def dynamic_output_names(model: DynamicModel) -> list[str]:
+    """The names of :func:`dynamic_outputs`, in its order, without deriving anything.
+
+    >>> from symlink.catalog import fourbar
+    >>> from symlink.dynamics.model import DynamicModel
+    >>> dynamic_output_names(DynamicModel(fourbar()))[:5]
+    ['input_torque', 'joint_A_x', 'joint_A_y', 'joint_B_x', 'joint_B_y']
+    """
+    names = [model.input_effort_name(i) for i in range(len(model.kinematics.inputs))]
+    names += _names(model) + ["shaking_force_x", "shaking_force_y", "shaking_moment"]
+    if len(model.kinematics.inputs) == 1:
+        names += list(EQUATION_OUTPUTS)
+    return names
+
+
+class DerivedOutputs(Mapping[str, sp.Expr]):
+    """A dynamic linkage's extras: the kinematic linkage's own, then the dynamic outputs, named at once and derived
+    (all together, once) where an expression of one of them is first asked for.
+
+    ``derive`` returns the dynamic outputs by name; they must be ``names``, in order.
+    """
+
+    def __init__(self, own: Mapping[str, sp.Expr], names: Sequence[str], derive: Callable[[], Mapping[str, sp.Expr]]):
+        self._own, self._names, self._derive = dict(own), list(names), derive
+        self._known = set(self._own) | set(self._names)
+        self._derived: dict[str, sp.Expr] | None = None
+
+    @property
+    def derived(self) -> bool:
+        """Whether the dynamic outputs' expressions have been derived (in this process)."""
+        return self._derived is not None
+
+    def _expressions(self) -> dict[str, sp.Expr]:
+        if self._derived is None:
+            found = dict(self._derive())
+            if list(found) != self._names:
+                raise RuntimeError(f"the dynamic outputs derived ({', '.join(found)}) are not those named "
+                                   f"({', '.join(self._names)})")
+            self._derived = {**self._own, **{name: expression(value) for name, value in found.items()}}
+        return self._derived
+
+    def __getitem__(self, name: str) -> sp.Expr:
+        if name in self._own:
+            return self._own[name]
+        if name not in self._known:
+            raise KeyError(name)
+        return self._expressions()[name]
+
+    def __contains__(self, name: object) -> bool:
+        return name in self._known
+
+    def __iter__(self) -> Iterator[str]:
+        return iter([*self._own, *self._names])
+
+    def __len__(self) -> int:
+        return len(self._own) + len(self._names)

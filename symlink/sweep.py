@@ -78,7 +78,7 @@ import io
 import math
 import sys
 from dataclasses import asdict, dataclass, field
-from functools import lru_cache
+from functools import lru_cache, partial
 from pathlib import Path
 from typing import Any, Callable, Iterable, Mapping, Sequence
 
@@ -706,7 +706,7 @@ def run_sweep(settings: SweepSettings, folder: str | Path, *, scheduler: Any = "
                 if scheduler == "auto":
                     scheduler = local_scheduler(len(todo), workers)
                 if client is None:
-                    _local_chunks(settings, todo, str(scheduler), workers, window, land)
+                    local_chunks(partial(chunk_table, settings), todo, str(scheduler), workers, window, land)
                 else:
                     _cluster_chunks(settings, todo, client, window, land)
             finally:
@@ -827,10 +827,12 @@ def _stop_processes(pool: Any) -> None:
             pass
 
 
-def _local_chunks(settings: SweepSettings, todo: list[int], scheduler: str, workers: int | None,
-                  window: int | None, land: Callable[[int, bytes], None]) -> None:
-    """Each chunk in ``todo`` on a local scheduler, a window of chunks at a time: ``land(index, Parquet bytes)``
-    as soon as each is done (in this thread: a Dask callback), so that a stop keeps every chunk done.
+def local_chunks(make: Callable[[int], bytes], todo: list[int], scheduler: str, workers: int | None,
+                 window: int | None, land: Callable[[int, bytes], None]) -> None:
+    """``make(index)`` for each chunk in ``todo`` on a local Dask scheduler, a window of chunks at a time:
+    ``land(index, its bytes)`` as soon as each is done (in this thread: a Dask callback), so that a stop keeps
+    every chunk done.  ``make`` must pickle for the ``processes`` scheduler.  The sweeps' and the tolerance
+    Monte Carlo's one loop over chunks.
 
     Stopped early (an error, Ctrl-C), a process pool's workers are ended at once and a thread pool's are
     left to finish the chunk they are on, unwaited.
@@ -855,7 +857,7 @@ def _local_chunks(settings: SweepSettings, todo: list[int], scheduler: str, work
     try:
         with Callback(posttask=done):
             for start in range(0, len(todo), width):  # a window at a time: bounded memory, however many chunks
-                tasks = [dask.delayed(chunk_table, pure=False)(settings, k) for k in todo[start:start + width]]
+                tasks = [dask.delayed(make, pure=False)(k) for k in todo[start:start + width]]
                 indices.update((task.key, k) for task, k in zip(tasks, todo[start:start + width]))
                 dask.compute(*tasks, scheduler=scheduler, pool=pool, num_workers=count)
                 if indices:

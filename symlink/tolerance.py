@@ -770,32 +770,20 @@ def _builds_in_folder(model: _BuildModel, linkage: Linkage, folder: Path, schedu
                       workers: int | None) -> int:
     """Make the chunks of ``model`` that ``folder`` does not hold yet on Dask, writing each as it is done;
     the number of chunks found done."""
-    import dask
-    from dask.callbacks import Callback
-
-    from .sweep import local_scheduler
+    from .sweep import local_chunks, local_scheduler
     from .sweep_folder import open_folder
     from .version import __version__
     header = {"symlink": __version__, "settings": model.settings(linkage), "columns": model.columns()}
     with open_folder(folder, header, model.builds, model.chunk) as opened:
         todo = list(opened.todo)
         reused = -(-model.builds // model.chunk) - len(todo)
-        count = workers or os.cpu_count() or 1
         chosen = local_scheduler(len(todo), workers) if scheduler == "auto" else scheduler
-        indices: dict[object, int] = {}
 
-        def done(key: object, result: bytes, *rest: object) -> None:  # in this thread, as each chunk ends
-            if key in indices:
-                index = indices.pop(key)
-                first, stop = model.chunk_range(index)
-                opened.stage(index, result, rows=stop - first)
+        def land(index: int, result: bytes) -> None:  # in this thread, as each chunk ends
+            first, stop = model.chunk_range(index)
+            opened.stage(index, result, rows=stop - first)
 
-        width = 4 * count  # chunks under way at once: bounded memory however many there are
-        with Callback(posttask=done):
-            for start in range(0, len(todo), width):
-                tasks = [dask.delayed(model.table, pure=False)(index) for index in todo[start:start + width]]
-                indices.update((task.key, index) for task, index in zip(tasks, todo[start:start + width]))
-                dask.compute(*tasks, scheduler=chosen, num_workers=count)
+        local_chunks(model.table, todo, chosen, workers, None, land)
     return reused
 
 

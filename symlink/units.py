@@ -173,7 +173,8 @@ def output_units(linkage: Linkage, names: Sequence[str], length_unit: str | None
             units[name] = _per_second("rad" if q in angles else length, order)
         elif point in linkage.points and axis in ("x", "y"):
             units[name] = length
-        elif name in linkage.extras and _is_angle_function(linkage.extras[name]):
+        elif (name in linkage.extras and name not in getattr(linkage, "dynamic_outputs", ())  # forces: derive none
+              and _is_angle_function(linkage.extras[name])):
             units[name] = "rad"
         elif (split := split_sensitivity_name(name, linkage.parameters)) is not None:
             output, parameter = split

@@ -1,0 +1,555 @@
+"""The compiled Newton fallback: the continuation of :mod:`symlink.codegen.newton_driver`, written in C.
+
+Where a linkage has no loop-by-loop closed form, :class:`symlink.solver.NumericSolver`
+solves the closure of all loops by Newton's method.  The NumPy driver does that
+over whole blocks of the sweep with ``numpy.linalg`` (and a singular-value
+decomposition on every Newton system for its condition number); this module
+writes the same driver as one C library, which continues value by value:
+
+* the residuals, the Jacobian and the right-hand sides of the velocity and
+  acceleration systems (:mod:`symlink.closure`) as C functions, printed with
+  common subexpressions eliminated (:func:`symlink.codegen.program.straight_line`)
+  by the C printer of :mod:`symlink.codegen.c`;
+* the driver, a fixed C text: damped Newton at the first input value (the
+  assembly, fixing the branch), then for each further value a second-order
+  Taylor predictor and a Newton corrector with the NumPy driver's constants and
+  tests (a first correction of at most ``MAX_CORRECTION``, contracting
+  corrections after it, converged at ``RESIDUAL_TOLERANCE`` with a last
+  correction below ``POSITION_TOLERANCE``), a step split down to
+  ``MIN_FRACTION`` where they fail; then the rates and accelerations.  Each
+  Newton system is the Jacobian scaled as the NumPy driver scales it (by the
+  equations' scales and the unknowns' units), solved by Gaussian elimination
+  with partial pivoting written out;
+* the named points and extras as one vectorised loop function
+  (:func:`symlink.codegen.c.c_function`).
+
+The condition number that tells a dead-centre position (``SINGULAR_CONDITION``)
+is the exact 1-norm condition number of the scaled Jacobian, computed from its LU
+factors, and only where it decides something: at every step of the assembly, at
+each converged point, where a correction is refused, and at the end; a zero or
+non-finite pivot is singular at once.  (The NumPy driver uses the 2-norm condition
+number, which differs from the 1-norm one by at most the number of unknowns: both
+are far beyond the threshold at a dead centre.)  Failures come back as a status and
+the input values involved, which :mod:`symlink.solver` turns into the NumPy
+driver's messages.
+
+>>> from symlink.catalog import stephenson3
+>>> facts = newton_c_facts(stephenson3())
+>>> "int symlink_newton_sweep(" in facts["source"], facts["unknowns"]
+(True, ['beta', 'mu', 'phi', 'eta'])
+"""
+from __future__ import annotations
+
+from typing import Any, Sequence
+
+import sympy as sp
+
+from ..closure import closure_system
+from ..linkage import Linkage, Program
+from ..vectors import acceleration, rate
+from . import newton_driver
+from .c import _CPrinter, c_function, c_identifier, c_library
+from .program import straight_line
+
+__all__ = ["newton_c_source", "newton_c_facts", "STATUS"]
+
+#: What the C driver's return value means (0: solved).  The report array holds the condition number, the
+#: residual, the index of the value, then the start's and the target's input values (see the C source).
+STATUS = {0: "solved", 1: "assembly did not converge", 2: "singular at the assembly's guess",
+          3: "singular Jacobian", 4: "continuation did not converge", 5: "no converged, regular position"}
+
+
+def _c_block(name: str, arrays: Sequence[tuple[str, Sequence[sp.Symbol]]],
+             results: Sequence[tuple[str, Sequence[sp.Expr]]], doc: str) -> str:
+    """A static C function reading its symbols from arrays and writing each result array, CSE across them all.
+
+    ``arrays`` are ``(C array name, symbols read from it in order)``; ``results`` are
+    ``(C array name, expressions written to it in order)``.
+    """
+    printer = _CPrinter()
+    arguments = tuple(symbol for _, symbols in arrays for symbol in symbols)
+    flat = {f"{label}_{k}": sp.sympify(expr) for label, exprs in results for k, expr in enumerate(exprs)}
+    code = straight_line(Program(arguments, (), flat))
+    signature = ", ".join([f"const double *restrict {array}" for array, _ in arrays]
+                          + [f"double *restrict {label}" for label, _ in results])
+    lines = [f"/* {doc} */", f"static void {name}({signature})", "{"]
+    for array, symbols in arrays:
+        lines += [f"    const double {c_identifier(s.name, 'symbol')} = {array}[{k}];" for k, s in enumerate(symbols)]
+        lines += [f"    (void){s.name};" for s in symbols]
+    for symbol, expr in code.assignments:
+        lines.append(f"    const double {c_identifier(symbol.name, 'symbol')} = {printer.doprint(expr)};")
+    for label, exprs in results:
+        lines += [f"    {label}[{k}] = {printer.doprint(code.outputs[f'{label}_{k}'])};" for k in range(len(exprs))]
+    return "\n".join(lines + ["}", ""])
+
+
+def _output_names(linkage: Linkage) -> list[str]:
+    """The named points' coordinates and the extras: what the NumPy module's ``_outputs`` returns, in its order."""
+    return [f"{point}_{axis}" for point in linkage.points for axis in "xy"] + list(linkage.extras)
+
+
+#: The driver: the same algorithm as :mod:`symlink.codegen.newton_driver`, one input value at a time.
+_DRIVER = r"""
+/* The Newton driver (symlink.codegen.newton_c): the NumPy driver's algorithm and constants, value by value. */
+
+static const double symlink_epsilon = {EPSILON!r};
+static const double symlink_residual_tolerance = {RESIDUAL_TOLERANCE!r};
+static const double symlink_singular_condition = {SINGULAR_CONDITION!r};
+static const double symlink_position_tolerance = {POSITION_TOLERANCE!r};
+static const double symlink_max_prediction = {MAX_PREDICTION!r};
+static const double symlink_max_correction = {MAX_CORRECTION!r};
+static const double symlink_contraction = {CONTRACTION!r};
+static const int symlink_max_iterations = {MAX_ITERATIONS!r};
+static const int symlink_assembly_iterations = {ASSEMBLY_ITERATIONS!r};
+static const double symlink_min_fraction = {MIN_FRACTION!r};
+
+/* The closure at one point: residuals, the scaled Jacobian's LU factors, scales and units. */
+typedef struct {{
+    double F[SYMLINK_UNKNOWNS];
+    double LU[SYMLINK_UNKNOWNS * SYMLINK_UNKNOWNS];    /* J * unit[j] / scale[i], factored in place (unit lower L below the diagonal) */
+    double scale[SYMLINK_UNKNOWNS];
+    double unit[SYMLINK_UNKNOWNS];
+    int pivot[SYMLINK_UNKNOWNS];        /* row pivot[k] was swapped with row k at step k */
+    int regular;         /* 0: a zero or non-finite pivot (singular) */
+    double norm;         /* 1-norm of the scaled Jacobian (NaN propagates) */
+    double residual;     /* max |F_i| / scale_i (NaN propagates) */
+}} symlink_system;
+
+/* The larger of m and v, NaN once either is NaN (numpy.max's semantics). */
+static inline double symlink_max(double m, double v)
+{{
+    return (v > m || v != v) ? v : m;
+}}
+
+static void symlink_system_at(const double *x, const double *p, const double *q, symlink_system *s)
+{{
+    double J[SYMLINK_UNKNOWNS * SYMLINK_UNKNOWNS];
+    symlink_closure(x, p, q, s->F, J, s->scale, s->unit);
+    double residual = 0.0;
+    for (int i = 0; i < SYMLINK_UNKNOWNS; ++i) {{
+        residual = symlink_max(residual, fabs(s->F[i]) / s->scale[i]);
+    }}
+    s->residual = residual;
+    for (int i = 0; i < SYMLINK_UNKNOWNS; ++i) {{
+        for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+            s->LU[i * SYMLINK_UNKNOWNS + j] = J[i * SYMLINK_UNKNOWNS + j] * s->unit[j] / s->scale[i];
+        }}
+    }}
+    double norm = 0.0;
+    for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+        double column = 0.0;
+        for (int i = 0; i < SYMLINK_UNKNOWNS; ++i) {{
+            column += fabs(s->LU[i * SYMLINK_UNKNOWNS + j]);
+        }}
+        norm = symlink_max(norm, column);
+    }}
+    s->norm = norm;
+    s->regular = norm - norm == 0.0;  /* finite */
+    double *A = s->LU;
+    for (int k = 0; k < SYMLINK_UNKNOWNS && s->regular; ++k) {{
+        int row = k;
+        double largest = fabs(A[k * SYMLINK_UNKNOWNS + k]);
+        for (int i = k + 1; i < SYMLINK_UNKNOWNS; ++i) {{
+            if (fabs(A[i * SYMLINK_UNKNOWNS + k]) > largest) {{
+                largest = fabs(A[i * SYMLINK_UNKNOWNS + k]);
+                row = i;
+            }}
+        }}
+        s->pivot[k] = row;
+        if (!(largest > 0.0) || largest - largest != 0.0) {{
+            s->regular = 0;
+            break;
+        }}
+        if (row != k) {{
+            for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+                const double t = A[k * SYMLINK_UNKNOWNS + j];
+                A[k * SYMLINK_UNKNOWNS + j] = A[row * SYMLINK_UNKNOWNS + j];
+                A[row * SYMLINK_UNKNOWNS + j] = t;
+            }}
+        }}
+        for (int i = k + 1; i < SYMLINK_UNKNOWNS; ++i) {{
+            const double l = A[i * SYMLINK_UNKNOWNS + k] / A[k * SYMLINK_UNKNOWNS + k];
+            A[i * SYMLINK_UNKNOWNS + k] = l;
+            for (int j = k + 1; j < SYMLINK_UNKNOWNS; ++j) {{
+                A[i * SYMLINK_UNKNOWNS + j] -= l * A[k * SYMLINK_UNKNOWNS + j];
+            }}
+        }}
+    }}
+}}
+
+/* The residual alone (the assembly's line search). */
+static double symlink_residual_at(const double *x, const double *p, const double *q)
+{{
+    double F[SYMLINK_UNKNOWNS], J[SYMLINK_UNKNOWNS * SYMLINK_UNKNOWNS], scale[SYMLINK_UNKNOWNS], unit[SYMLINK_UNKNOWNS];
+    symlink_closure(x, p, q, F, J, scale, unit);
+    double residual = 0.0;
+    for (int i = 0; i < SYMLINK_UNKNOWNS; ++i) {{
+        residual = symlink_max(residual, fabs(F[i]) / scale[i]);
+    }}
+    return residual;
+}}
+
+/* z = A^-1 b with A's LU factors, in place. */
+static void symlink_lu_solve(const symlink_system *s, double *z)
+{{
+    for (int k = 0; k < SYMLINK_UNKNOWNS; ++k) {{
+        const int row = s->pivot[k];
+        if (row != k) {{
+            const double t = z[k];
+            z[k] = z[row];
+            z[row] = t;
+        }}
+    }}
+    for (int i = 1; i < SYMLINK_UNKNOWNS; ++i) {{
+        for (int j = 0; j < i; ++j) {{
+            z[i] -= s->LU[i * SYMLINK_UNKNOWNS + j] * z[j];
+        }}
+    }}
+    for (int i = SYMLINK_UNKNOWNS - 1; i >= 0; --i) {{
+        for (int j = i + 1; j < SYMLINK_UNKNOWNS; ++j) {{
+            z[i] -= s->LU[i * SYMLINK_UNKNOWNS + j] * z[j];
+        }}
+        z[i] /= s->LU[i * SYMLINK_UNKNOWNS + i];
+    }}
+}}
+
+/* The solution of J out = r with the unscaled Jacobian J: the scaled system, then the units. */
+static void symlink_solve(const symlink_system *s, const double *r, double *out)
+{{
+    double z[SYMLINK_UNKNOWNS];
+    for (int i = 0; i < SYMLINK_UNKNOWNS; ++i) {{
+        z[i] = r[i] / s->scale[i];
+    }}
+    symlink_lu_solve(s, z);
+    for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+        out[j] = z[j] * s->unit[j];
+    }}
+}}
+
+/* The 1-norm condition number of the scaled Jacobian: its norm times its inverse's (infinite where singular). */
+static double symlink_condition(const symlink_system *s)
+{{
+    if (!s->regular) {{
+        return INFINITY;
+    }}
+    double inverse = 0.0;
+    for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+        double z[SYMLINK_UNKNOWNS];
+        for (int i = 0; i < SYMLINK_UNKNOWNS; ++i) {{
+            z[i] = i == j ? 1.0 : 0.0;
+        }}
+        symlink_lu_solve(s, z);
+        double column = 0.0;
+        for (int i = 0; i < SYMLINK_UNKNOWNS; ++i) {{
+            column += fabs(z[i]);
+        }}
+        inverse = symlink_max(inverse, column);
+    }}
+    const double condition = s->norm * inverse;
+    return condition - condition == 0.0 ? condition : INFINITY;
+}}
+
+/* The largest of |v_j| / unit_j (NaN propagates). */
+static double symlink_size(const double *v, const double *unit)
+{{
+    double size = 0.0;
+    for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+        size = symlink_max(size, fabs(v[j]) / unit[j]);
+    }}
+    return size;
+}}
+
+/* Newton from q (in place) at the input values x (the NumPy driver's _correct, for one point): 1 where it
+ * converged while staying on its branch; else 0, with *singular where the Jacobian is singular. */
+static int symlink_correct(const double *x, const double *p, double *q, int *singular, double *condition)
+{{
+    symlink_system s;
+    double previous = INFINITY;
+    *singular = 0;
+    for (int iteration = 0;; ++iteration) {{
+        symlink_system_at(x, p, q, &s);
+        if (!s.regular) {{
+            *singular = 1;
+            *condition = INFINITY;
+            return 0;
+        }}
+        const int converged = s.residual <= symlink_residual_tolerance;
+        if (iteration == symlink_max_iterations) {{
+            *condition = symlink_condition(&s);
+            *singular = *condition > symlink_singular_condition;
+            return converged && !*singular;
+        }}
+        double minus[SYMLINK_UNKNOWNS], step[SYMLINK_UNKNOWNS];
+        for (int i = 0; i < SYMLINK_UNKNOWNS; ++i) {{
+            minus[i] = -s.F[i];
+        }}
+        symlink_solve(&s, minus, step);
+        const double size = symlink_size(step, s.unit);
+        const double limit = iteration == 0 ? symlink_max_correction
+                             : fmax(symlink_contraction * previous, 1e3 * symlink_epsilon);
+        if (converged) {{  /* a last, rounding-sized correction; where it is not small, a singular position */
+            for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+                q[j] += step[j];
+            }}
+            *condition = symlink_condition(&s);
+            *singular = *condition > symlink_singular_condition || !(size <= symlink_position_tolerance);
+            return !*singular;
+        }}
+        if (!(size <= limit)) {{  /* refused: it could leave the branch */
+            *condition = symlink_condition(&s);
+            *singular = *condition > symlink_singular_condition;
+            return 0;
+        }}
+        for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+            q[j] += step[j];
+        }}
+        previous = size;
+    }}
+}}
+
+/* The second-order Taylor guess at target from the solved point (here, q), whose system s is: 1 where local. */
+static int symlink_predict(const double *here, const double *p, const double *q, const symlink_system *s,
+                           const double *target, double *guess)
+{{
+    double steps[SYMLINK_INPUTS], zeros[SYMLINK_INPUTS], r[SYMLINK_UNKNOWNS], first[SYMLINK_UNKNOWNS], second[SYMLINK_UNKNOWNS], change[SYMLINK_UNKNOWNS];
+    for (int k = 0; k < SYMLINK_INPUTS; ++k) {{
+        steps[k] = target[k] - here[k];
+        zeros[k] = 0.0 * steps[k];
+    }}
+    symlink_velocity_rhs(here, p, q, steps, r);
+    symlink_solve(s, r, first);
+    symlink_acceleration_rhs(here, p, q, first, steps, zeros, r);
+    symlink_solve(s, r, second);
+    for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+        change[j] = first[j] + 0.5 * second[j];
+        guess[j] = q[j] + change[j];
+    }}
+    return symlink_size(change, s->unit) <= symlink_max_prediction;
+}}
+
+static void symlink_report(double *report, double condition, double residual, double index, const double *start,
+                           const double *target)
+{{
+    report[0] = condition;
+    report[1] = residual;
+    report[2] = index;
+    for (int k = 0; k < SYMLINK_INPUTS; ++k) {{
+        report[3 + k] = start[k];
+        report[3 + SYMLINK_INPUTS + k] = target[k];
+    }}
+}}
+
+/* Damped Newton from the guess at the first input value (the NumPy driver's _assemble): 0, or a status. */
+static int symlink_assemble(const double *x, const double *p, const double *guess, double *q, double *report)
+{{
+    symlink_system s;
+    double trial[SYMLINK_UNKNOWNS];
+    for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+        q[j] = guess[j];
+    }}
+    for (int iteration = 0; iteration < symlink_assembly_iterations; ++iteration) {{
+        symlink_system_at(x, p, q, &s);
+        const double condition = symlink_condition(&s);
+        if (condition > symlink_singular_condition) {{
+            symlink_report(report, condition, s.residual, 0.0, x, x);
+            return 2;
+        }}
+        double step[SYMLINK_UNKNOWNS], minus[SYMLINK_UNKNOWNS];
+        for (int i = 0; i < SYMLINK_UNKNOWNS; ++i) {{
+            minus[i] = -s.F[i];
+        }}
+        symlink_solve(&s, minus, step);
+        const double size = symlink_size(step, s.unit);
+        if (s.residual <= symlink_residual_tolerance) {{
+            if (size > symlink_position_tolerance) {{
+                symlink_report(report, condition, s.residual, 0.0, x, x);
+                return 3;
+            }}
+            for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+                q[j] += step[j];
+            }}
+            return 0;
+        }}
+        const double divisor = fmax(1.0, size / 0.5);  /* at most half a radian a step */
+        for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+            step[j] /= divisor;
+        }}
+        double fraction = 1.0;
+        while (fraction > 1e-3) {{
+            for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+                trial[j] = q[j] + fraction * step[j];
+            }}
+            if (symlink_residual_at(x, p, trial) < s.residual) {{
+                break;
+            }}
+            fraction /= 2;
+        }}
+        for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+            q[j] = trial[j];
+        }}
+    }}
+    symlink_report(report, INFINITY, s.residual, 0.0, x, x);
+    return 1;
+}}
+
+/* Continue from (here, q), whose system s is, to the input values there, splitting the step as often as it
+ * takes (the NumPy driver's _substeps): 0 with q there, or a status. */
+static int symlink_substeps(const double *here, const double *p, double *q, const symlink_system *s,
+                            const double *there, double *report, double index)
+{{
+    double done = 0.0, fraction = 1.0, start[SYMLINK_INPUTS], target[SYMLINK_INPUTS], guess[SYMLINK_UNKNOWNS];
+    symlink_system moved;
+    for (;;) {{
+        const double end = done + fraction < 1.0 ? done + fraction : 1.0;
+        for (int k = 0; k < SYMLINK_INPUTS; ++k) {{
+            start[k] = here[k] + done * (there[k] - here[k]);
+            target[k] = here[k] + end * (there[k] - here[k]);
+        }}
+        const int local = symlink_predict(start, p, q, s, target, guess);
+        int singular;
+        double condition;
+        const int good = symlink_correct(target, p, guess, &singular, &condition);
+        if (good && local && condition <= symlink_singular_condition) {{
+            done = end;
+            for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+                q[j] = guess[j];
+            }}
+            if (done >= 1.0) {{
+                return 0;
+            }}
+            fraction *= 2;
+            symlink_system_at(target, p, q, &moved);
+            s = &moved;
+            continue;
+        }}
+        fraction /= 2;
+        if (fraction < symlink_min_fraction) {{
+            if (singular || condition > symlink_singular_condition) {{
+                symlink_report(report, condition, NAN, index, target, target);
+                return 3;
+            }}
+            symlink_report(report, condition, NAN, index, start, there);
+            return 4;
+        }}
+    }}
+}}
+
+/* Newton's method over a sweep of count input values (the NumPy driver's _sweep, after its checks).
+ *
+ * inputs: SYMLINK_INPUTS rows of count values; parameters: one number each; guess: SYMLINK_UNKNOWNS numbers (the unknowns near the wanted
+ * assembly at the first value). Writes q (count rows of SYMLINK_UNKNOWNS), residual (count), and where rates is not 0 the
+ * unknowns' rates and accelerations qdot, qddot (count rows of SYMLINK_UNKNOWNS) from input_rates and input_accels (SYMLINK_INPUTS rows of
+ * count values each). Returns 0, or a status (1 to 5) with report: the condition number, the residual, the index
+ * of the value, the start's and the target's input values. */
+int symlink_newton_sweep(size_t count, const double *inputs, const double *parameters, const double *guess,
+                         int rates, const double *input_rates, const double *input_accels,
+                         double *q, double *qdot, double *qddot, double *residual, double *report)
+{{
+    double x[SYMLINK_INPUTS], next[SYMLINK_INPUTS], xdot[SYMLINK_INPUTS], xddot[SYMLINK_INPUTS], r[SYMLINK_UNKNOWNS];
+    symlink_system s;
+    for (int k = 0; k < SYMLINK_INPUTS; ++k) {{
+        x[k] = inputs[(size_t)k * count];
+    }}
+    int status = symlink_assemble(x, parameters, guess, q, report);
+    if (status) {{
+        return status;
+    }}
+    size_t worst = 0;
+    double worst_score = -1.0;
+    int bad = 0;
+    for (size_t i = 0; i < count; ++i) {{
+        double *qi = q + i * SYMLINK_UNKNOWNS;
+        for (int k = 0; k < SYMLINK_INPUTS; ++k) {{
+            x[k] = inputs[(size_t)k * count + i];
+        }}
+        symlink_system_at(x, parameters, qi, &s);
+        residual[i] = s.residual;
+        const double condition = symlink_condition(&s);
+        if (!(s.residual <= symlink_residual_tolerance) || condition > symlink_singular_condition) {{
+            const double score = s.residual / symlink_residual_tolerance + condition / symlink_singular_condition;
+            if (!bad || score > worst_score || (score != score && worst_score == worst_score)) {{
+                worst = i;
+                worst_score = score;
+            }}
+            bad = 1;
+        }}
+        if (rates) {{
+            for (int k = 0; k < SYMLINK_INPUTS; ++k) {{
+                xdot[k] = input_rates[(size_t)k * count + i];
+                xddot[k] = input_accels[(size_t)k * count + i];
+            }}
+            symlink_velocity_rhs(x, parameters, qi, xdot, r);
+            symlink_solve(&s, r, qdot + i * SYMLINK_UNKNOWNS);
+            symlink_acceleration_rhs(x, parameters, qi, qdot + i * SYMLINK_UNKNOWNS, xdot, xddot, r);
+            symlink_solve(&s, r, qddot + i * SYMLINK_UNKNOWNS);
+        }}
+        if (i + 1 < count) {{
+            for (int k = 0; k < SYMLINK_INPUTS; ++k) {{
+                next[k] = inputs[(size_t)k * count + i + 1];
+            }}
+            for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+                qi[SYMLINK_UNKNOWNS + j] = qi[j];
+            }}
+            status = symlink_substeps(x, parameters, qi + SYMLINK_UNKNOWNS, &s, next, report, (double)(i + 1));
+            if (status) {{
+                return status;
+            }}
+        }}
+    }}
+    if (bad) {{
+        for (int k = 0; k < SYMLINK_INPUTS; ++k) {{
+            x[k] = inputs[(size_t)k * count + worst];
+        }}
+        symlink_report(report, NAN, residual[worst], (double)worst, x, x);
+        return 5;
+    }}
+    return 0;
+}}
+"""
+
+
+def newton_c_source(linkage: Linkage) -> str:
+    """The C library of ``linkage``'s compiled Newton fallback: ``symlink_newton_sweep`` and ``newton_outputs``.
+
+    Plain C99 with ``math.h``; see the module docstring for what it computes and
+    :data:`STATUS` for what it returns.
+    """
+    return newton_c_facts(linkage)["source"]
+
+
+def newton_c_facts(linkage: Linkage) -> dict[str, Any]:
+    """The compiled Newton fallback's source and calling facts: ``{"source", "inputs", "parameters", "unknowns",
+    "outputs", "output_arguments"}`` (``outputs`` empty where the linkage names no points or extras)."""
+    system = closure_system(linkage)
+    inputs, parameters, unknowns = linkage.inputs, linkage.parameters, linkage.unknowns
+    input_rates = tuple(rate(x) for x in inputs)
+    input_accels = tuple(acceleration(x) for x in inputs)
+    unknown_rates = tuple(rate(u) for u in unknowns)
+    jacobian = [system.jacobian[i, j] for i in range(system.jacobian.rows) for j in range(system.jacobian.cols)]
+    base = [("symlink_x", inputs), ("symlink_p", parameters), ("symlink_q", unknowns)]
+    blocks = [
+        _c_block("symlink_closure", base, [("symlink_F", system.residuals), ("symlink_J", jacobian), ("symlink_scale", system.scales),
+                                           ("symlink_unit", system.units)],
+                 "Closure residuals F, Jacobian J = dF/dq (row by row), each equation's scale and each unknown's unit."),
+        _c_block("symlink_velocity_rhs", base + [("symlink_xdot", input_rates)], [("symlink_r", system.velocity_rhs)],
+                 "Right-hand side of J qdot = r."),
+        _c_block("symlink_acceleration_rhs", base + [("symlink_qdot", unknown_rates), ("symlink_xdot", input_rates),
+                                                    ("symlink_xddot", input_accels)],
+                 [("symlink_r", system.acceleration_rhs)], "Right-hand side of J qddot = r."),
+    ]
+    names = _output_names(linkage)
+    arguments = tuple(inputs + parameters + unknowns)
+    functions = [c_function(Program(arguments, (), {name: linkage.output(name) for name in names}),
+                            "newton_outputs", "Named points and extras from the solved coordinates.")] if names else []
+    _, library = c_library(functions, "newton", f"{linkage.name}: Newton's method on the closure equations.",
+                           standalone=True)
+    constants = {name: getattr(newton_driver, name) for name in (
+        "EPSILON", "RESIDUAL_TOLERANCE", "SINGULAR_CONDITION", "POSITION_TOLERANCE", "MAX_PREDICTION",
+        "MAX_CORRECTION", "CONTRACTION", "MAX_ITERATIONS", "ASSEMBLY_ITERATIONS", "MIN_FRACTION")}
+    source = "\n".join([library, f"#define SYMLINK_UNKNOWNS {len(unknowns)}", f"#define SYMLINK_INPUTS {len(inputs)}",
+                        ""] + blocks + [_DRIVER.format(**constants)])
+    return {"source": source, "inputs": [s.name for s in inputs], "parameters": [s.name for s in parameters],
+            "unknowns": [s.name for s in unknowns],
+            "outputs": list(functions[0].outputs) if functions else [],
+            "output_flags": list(functions[0].flags) if functions else [],
+            "output_arguments": list(functions[0].arguments) if functions else []}

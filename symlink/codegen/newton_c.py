@@ -48,8 +48,8 @@ from ..closure import closure_system
 from ..linkage import Linkage, Program
 from ..vectors import acceleration, rate
 from . import newton_driver
-from .c import _CPrinter, c_function, c_identifier, c_library
-from .program import straight_line
+from .c import C_KEYWORDS, _CPrinter, c_function, c_identifier, c_library
+from .program import FreshNames, straight_line
 
 __all__ = ["newton_c_source", "newton_c_facts", "STATUS"]
 
@@ -91,7 +91,6 @@ def _output_names(linkage: Linkage) -> list[str]:
 #: The driver: the same algorithm as :mod:`symlink.codegen.newton_driver`, one input value at a time.
 _DRIVER = r"""
 /* The Newton driver (symlink.codegen.newton_c): the NumPy driver's algorithm and constants, value by value. */
-
 static const double symlink_epsilon = {EPSILON!r};
 static const double symlink_residual_tolerance = {RESIDUAL_TOLERANCE!r};
 static const double symlink_singular_condition = {SINGULAR_CONDITION!r};
@@ -102,17 +101,26 @@ static const double symlink_contraction = {CONTRACTION!r};
 static const int symlink_max_iterations = {MAX_ITERATIONS!r};
 static const int symlink_assembly_iterations = {ASSEMBLY_ITERATIONS!r};
 static const double symlink_min_fraction = {MIN_FRACTION!r};
+/* An angle that moves by at most this much gets its sine and cosine from the ones before, to second order:
+ * the remainder, |d|^3 / 6 < 1e-17, is below a tenth of a unit in the last place of 1. */
+static const double symlink_small_turn = 0x1p-18;
 
-/* The closure at one point: residuals, the scaled Jacobian's LU factors, scales and units. */
+/* The closure at one point (x, q): its angles' sines and cosines, the residuals, the scaled Jacobian's LU
+ * factors, the scales and units, and its 1-norm condition number once computed. */
 typedef struct {{
-    double F[SYMLINK_UNKNOWNS];
-    double LU[SYMLINK_UNKNOWNS * SYMLINK_UNKNOWNS];    /* J * unit[j] / scale[i], factored in place (unit lower L below the diagonal) */
-    double scale[SYMLINK_UNKNOWNS];
-    double unit[SYMLINK_UNKNOWNS];
-    int pivot[SYMLINK_UNKNOWNS];        /* row pivot[k] was swapped with row k at step k */
-    int regular;         /* 0: a zero or non-finite pivot (singular) */
-    double norm;         /* 1-norm of the scaled Jacobian (NaN propagates) */
-    double residual;     /* max |F_i| / scale_i (NaN propagates) */
+    double angle[SYMLINK_NA];
+    double trig[2 * SYMLINK_NA];   /* sin, cos of each angle */
+    double F[SYMLINK_N];
+    double LU[SYMLINK_N * SYMLINK_N];  /* J * unit[j] / scale[i], factored in place (unit lower L below the diagonal) */
+    double scale[SYMLINK_N];
+    double unit[SYMLINK_N];
+    double inverse_scale[SYMLINK_N];   /* 1 / scale: a solve multiplies */
+    double inverse_pivot[SYMLINK_N];   /* 1 / U[k][k] */
+    int row[SYMLINK_N];            /* row i of LU is row row[i] of the scaled Jacobian (partial pivoting) */
+    int regular;                   /* 0: a zero or non-finite pivot, or a non-finite entry (singular) */
+    double norm;                   /* 1-norm of the scaled Jacobian (NaN propagates) */
+    double residual;               /* max |F_i| / scale_i (NaN propagates) */
+    double condition;              /* the 1-norm condition number; negative until computed */
 }} symlink_system;
 
 /* The larger of m and v, NaN once either is NaN (numpy.max's semantics). */
@@ -121,57 +129,95 @@ static inline double symlink_max(double m, double v)
     return (v > m || v != v) ? v : m;
 }}
 
-static void symlink_system_at(const double *x, const double *p, const double *q, symlink_system *s)
+/* sin and cos of x: glibc's sincos (the same values, about the time of one of them), else each. */
+#if defined(__GLIBC__)
+extern void sincos(double x, double *sine, double *cosine);
+#define symlink_sincos sincos
+#else
+static inline void symlink_sincos(double x, double *sine, double *cosine)
 {{
-    double J[SYMLINK_UNKNOWNS * SYMLINK_UNKNOWNS];
-    symlink_closure(x, p, q, s->F, J, s->scale, s->unit);
+    *sine = sin(x);
+    *cosine = cos(x);
+}}
+#endif
+
+/* Each angle's sine and cosine: called, or, where the angle moved by a small turn from the point before (from),
+ * from that point's by the addition theorems to second order (exact where it did not move). */
+static void symlink_trig(double *trig, const double *angle, const symlink_system *from)
+{{
+    for (int k = 0; k < SYMLINK_NA; ++k) {{
+        const double d = from ? angle[k] - from->angle[k] : INFINITY;
+        if (fabs(d) <= symlink_small_turn) {{
+            const double s = from->trig[2 * k], c = from->trig[2 * k + 1];
+            trig[2 * k] = s + (d * c - 0.5 * d * d * s);
+            trig[2 * k + 1] = c - (d * s + 0.5 * d * d * c);
+        }} else {{
+            symlink_sincos(angle[k], &trig[2 * k], &trig[2 * k + 1]);
+        }}
+    }}
+}}
+
+/* The system at (x, q), its sines and cosines moved from the point before where there is one (from). */
+static void symlink_system_at(const double *x, const double *p, const double *q, const symlink_system *from,
+                              symlink_system *s)
+{{
+    double J[SYMLINK_N * SYMLINK_N];
+    symlink_angles(x, p, q, s->angle);
+    symlink_trig(s->trig, s->angle, from);
+    symlink_closure(x, p, q, s->trig, s->F, J, s->scale, s->unit);
+    s->condition = -1.0;
     double residual = 0.0;
-    for (int i = 0; i < SYMLINK_UNKNOWNS; ++i) {{
+    for (int i = 0; i < SYMLINK_N; ++i) {{
         residual = symlink_max(residual, fabs(s->F[i]) / s->scale[i]);
     }}
     s->residual = residual;
-    for (int i = 0; i < SYMLINK_UNKNOWNS; ++i) {{
-        for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
-            s->LU[i * SYMLINK_UNKNOWNS + j] = J[i * SYMLINK_UNKNOWNS + j] * s->unit[j] / s->scale[i];
+    for (int i = 0; i < SYMLINK_N; ++i) {{
+        s->inverse_scale[i] = 1.0 / s->scale[i];
+        s->row[i] = i;
+        for (int j = 0; j < SYMLINK_N; ++j) {{
+            s->LU[i * SYMLINK_N + j] = J[i * SYMLINK_N + j] * s->unit[j] * s->inverse_scale[i];
         }}
     }}
     double norm = 0.0;
-    for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+    for (int j = 0; j < SYMLINK_N; ++j) {{
         double column = 0.0;
-        for (int i = 0; i < SYMLINK_UNKNOWNS; ++i) {{
-            column += fabs(s->LU[i * SYMLINK_UNKNOWNS + j]);
+        for (int i = 0; i < SYMLINK_N; ++i) {{
+            column += fabs(s->LU[i * SYMLINK_N + j]);
         }}
         norm = symlink_max(norm, column);
     }}
     s->norm = norm;
     s->regular = norm - norm == 0.0;  /* finite */
     double *A = s->LU;
-    for (int k = 0; k < SYMLINK_UNKNOWNS && s->regular; ++k) {{
+    for (int k = 0; k < SYMLINK_N && s->regular; ++k) {{
         int row = k;
-        double largest = fabs(A[k * SYMLINK_UNKNOWNS + k]);
-        for (int i = k + 1; i < SYMLINK_UNKNOWNS; ++i) {{
-            if (fabs(A[i * SYMLINK_UNKNOWNS + k]) > largest) {{
-                largest = fabs(A[i * SYMLINK_UNKNOWNS + k]);
+        double largest = fabs(A[k * SYMLINK_N + k]);
+        for (int i = k + 1; i < SYMLINK_N; ++i) {{
+            if (fabs(A[i * SYMLINK_N + k]) > largest) {{
+                largest = fabs(A[i * SYMLINK_N + k]);
                 row = i;
             }}
         }}
-        s->pivot[k] = row;
         if (!(largest > 0.0) || largest - largest != 0.0) {{
             s->regular = 0;
             break;
         }}
         if (row != k) {{
-            for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
-                const double t = A[k * SYMLINK_UNKNOWNS + j];
-                A[k * SYMLINK_UNKNOWNS + j] = A[row * SYMLINK_UNKNOWNS + j];
-                A[row * SYMLINK_UNKNOWNS + j] = t;
+            for (int j = 0; j < SYMLINK_N; ++j) {{
+                const double t = A[k * SYMLINK_N + j];
+                A[k * SYMLINK_N + j] = A[row * SYMLINK_N + j];
+                A[row * SYMLINK_N + j] = t;
             }}
+            const int t = s->row[k];
+            s->row[k] = s->row[row];
+            s->row[row] = t;
         }}
-        for (int i = k + 1; i < SYMLINK_UNKNOWNS; ++i) {{
-            const double l = A[i * SYMLINK_UNKNOWNS + k] / A[k * SYMLINK_UNKNOWNS + k];
-            A[i * SYMLINK_UNKNOWNS + k] = l;
-            for (int j = k + 1; j < SYMLINK_UNKNOWNS; ++j) {{
-                A[i * SYMLINK_UNKNOWNS + j] -= l * A[k * SYMLINK_UNKNOWNS + j];
+        s->inverse_pivot[k] = 1.0 / A[k * SYMLINK_N + k];
+        for (int i = k + 1; i < SYMLINK_N; ++i) {{
+            const double l = A[i * SYMLINK_N + k] * s->inverse_pivot[k];
+            A[i * SYMLINK_N + k] = l;
+            for (int j = k + 1; j < SYMLINK_N; ++j) {{
+                A[i * SYMLINK_N + j] -= l * A[k * SYMLINK_N + j];
             }}
         }}
     }}
@@ -180,128 +226,137 @@ static void symlink_system_at(const double *x, const double *p, const double *q,
 /* The residual alone (the assembly's line search). */
 static double symlink_residual_at(const double *x, const double *p, const double *q)
 {{
-    double F[SYMLINK_UNKNOWNS], J[SYMLINK_UNKNOWNS * SYMLINK_UNKNOWNS], scale[SYMLINK_UNKNOWNS], unit[SYMLINK_UNKNOWNS];
-    symlink_closure(x, p, q, F, J, scale, unit);
+    double angle[SYMLINK_NA], trig[2 * SYMLINK_NA], F[SYMLINK_N], J[SYMLINK_N * SYMLINK_N], scale[SYMLINK_N],
+        unit[SYMLINK_N];
+    symlink_angles(x, p, q, angle);
+    symlink_trig(trig, angle, 0);
+    symlink_closure(x, p, q, trig, F, J, scale, unit);
     double residual = 0.0;
-    for (int i = 0; i < SYMLINK_UNKNOWNS; ++i) {{
+    for (int i = 0; i < SYMLINK_N; ++i) {{
         residual = symlink_max(residual, fabs(F[i]) / scale[i]);
     }}
     return residual;
 }}
 
-/* z = A^-1 b with A's LU factors, in place. */
-static void symlink_lu_solve(const symlink_system *s, double *z)
+/* z = A^-1 b with A's LU factors (b in the scaled Jacobian's row order). */
+static void symlink_lu_solve(const symlink_system *s, const double *b, double *z)
 {{
-    for (int k = 0; k < SYMLINK_UNKNOWNS; ++k) {{
-        const int row = s->pivot[k];
-        if (row != k) {{
-            const double t = z[k];
-            z[k] = z[row];
-            z[row] = t;
-        }}
+    for (int i = 0; i < SYMLINK_N; ++i) {{
+        z[i] = b[s->row[i]];
     }}
-    for (int i = 1; i < SYMLINK_UNKNOWNS; ++i) {{
+    for (int i = 1; i < SYMLINK_N; ++i) {{
         for (int j = 0; j < i; ++j) {{
-            z[i] -= s->LU[i * SYMLINK_UNKNOWNS + j] * z[j];
+            z[i] -= s->LU[i * SYMLINK_N + j] * z[j];
         }}
     }}
-    for (int i = SYMLINK_UNKNOWNS - 1; i >= 0; --i) {{
-        for (int j = i + 1; j < SYMLINK_UNKNOWNS; ++j) {{
-            z[i] -= s->LU[i * SYMLINK_UNKNOWNS + j] * z[j];
+    for (int i = SYMLINK_N - 1; i >= 0; --i) {{
+        for (int j = i + 1; j < SYMLINK_N; ++j) {{
+            z[i] -= s->LU[i * SYMLINK_N + j] * z[j];
         }}
-        z[i] /= s->LU[i * SYMLINK_UNKNOWNS + i];
+        z[i] *= s->inverse_pivot[i];
     }}
 }}
 
 /* The solution of J out = r with the unscaled Jacobian J: the scaled system, then the units. */
 static void symlink_solve(const symlink_system *s, const double *r, double *out)
 {{
-    double z[SYMLINK_UNKNOWNS];
-    for (int i = 0; i < SYMLINK_UNKNOWNS; ++i) {{
-        z[i] = r[i] / s->scale[i];
+    double b[SYMLINK_N], z[SYMLINK_N];
+    for (int i = 0; i < SYMLINK_N; ++i) {{
+        b[i] = r[i] * s->inverse_scale[i];
     }}
-    symlink_lu_solve(s, z);
-    for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+    symlink_lu_solve(s, b, z);
+    for (int j = 0; j < SYMLINK_N; ++j) {{
         out[j] = z[j] * s->unit[j];
     }}
 }}
 
-/* The 1-norm condition number of the scaled Jacobian: its norm times its inverse's (infinite where singular). */
-static double symlink_condition(const symlink_system *s)
+/* The 1-norm condition number of the scaled Jacobian, its norm times its inverse's (infinite where singular):
+ * computed once a point, where it decides something. */
+static double symlink_condition(symlink_system *s)
 {{
-    if (!s->regular) {{
-        return INFINITY;
+    if (s->condition >= 0.0) {{
+        return s->condition;
     }}
     double inverse = 0.0;
-    for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
-        double z[SYMLINK_UNKNOWNS];
-        for (int i = 0; i < SYMLINK_UNKNOWNS; ++i) {{
-            z[i] = i == j ? 1.0 : 0.0;
+    for (int j = 0; j < SYMLINK_N && s->regular; ++j) {{
+        double e[SYMLINK_N], z[SYMLINK_N];
+        for (int i = 0; i < SYMLINK_N; ++i) {{
+            e[i] = i == j ? 1.0 : 0.0;
         }}
-        symlink_lu_solve(s, z);
+        symlink_lu_solve(s, e, z);
         double column = 0.0;
-        for (int i = 0; i < SYMLINK_UNKNOWNS; ++i) {{
+        for (int i = 0; i < SYMLINK_N; ++i) {{
             column += fabs(z[i]);
         }}
         inverse = symlink_max(inverse, column);
     }}
     const double condition = s->norm * inverse;
-    return condition - condition == 0.0 ? condition : INFINITY;
+    s->condition = s->regular && condition - condition == 0.0 ? condition : INFINITY;
+    return s->condition;
 }}
 
 /* The largest of |v_j| / unit_j (NaN propagates). */
 static double symlink_size(const double *v, const double *unit)
 {{
     double size = 0.0;
-    for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+    for (int j = 0; j < SYMLINK_N; ++j) {{
         size = symlink_max(size, fabs(v[j]) / unit[j]);
     }}
     return size;
 }}
 
 /* Newton from q (in place) at the input values x (the NumPy driver's _correct, for one point): 1 where it
- * converged while staying on its branch; else 0, with *singular where the Jacobian is singular. */
-static int symlink_correct(const double *x, const double *p, double *q, int *singular, double *condition)
+ * converged while staying on its branch, with s the system at the converged q; else 0, with *singular where the
+ * Jacobian is singular. */
+static int symlink_correct(const double *x, const double *p, double *q, symlink_system *s, int *singular,
+                           double *condition)
 {{
-    symlink_system s;
+    symlink_system other, *now = s, *next = &other;
     double previous = INFINITY;
+    symlink_system_at(x, p, q, 0, now);
     *singular = 0;
     for (int iteration = 0;; ++iteration) {{
-        symlink_system_at(x, p, q, &s);
-        if (!s.regular) {{
+        if (!now->regular) {{
             *singular = 1;
             *condition = INFINITY;
             return 0;
         }}
-        const int converged = s.residual <= symlink_residual_tolerance;
+        const int converged = now->residual <= symlink_residual_tolerance;
         if (iteration == symlink_max_iterations) {{
-            *condition = symlink_condition(&s);
+            *condition = symlink_condition(now);
             *singular = *condition > symlink_singular_condition;
+            if (now != s) {{
+                *s = *now;
+            }}
             return converged && !*singular;
         }}
-        double minus[SYMLINK_UNKNOWNS], step[SYMLINK_UNKNOWNS];
-        for (int i = 0; i < SYMLINK_UNKNOWNS; ++i) {{
-            minus[i] = -s.F[i];
+        double minus[SYMLINK_N], step[SYMLINK_N];
+        for (int i = 0; i < SYMLINK_N; ++i) {{
+            minus[i] = -now->F[i];
         }}
-        symlink_solve(&s, minus, step);
-        const double size = symlink_size(step, s.unit);
+        symlink_solve(now, minus, step);
+        const double size = symlink_size(step, now->unit);
         const double limit = iteration == 0 ? symlink_max_correction
                              : fmax(symlink_contraction * previous, 1e3 * symlink_epsilon);
-        if (converged) {{  /* a last, rounding-sized correction; where it is not small, a singular position */
-            for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
-                q[j] += step[j];
-            }}
-            *condition = symlink_condition(&s);
-            *singular = *condition > symlink_singular_condition || !(size <= symlink_position_tolerance);
-            return !*singular;
-        }}
-        if (!(size <= limit)) {{  /* refused: it could leave the branch */
-            *condition = symlink_condition(&s);
+        if (!converged && !(size <= limit)) {{  /* refused: it could leave the branch */
+            *condition = symlink_condition(now);
             *singular = *condition > symlink_singular_condition;
             return 0;
         }}
-        for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+        for (int j = 0; j < SYMLINK_N; ++j) {{
             q[j] += step[j];
+        }}
+        symlink_system_at(x, p, q, now, next);
+        symlink_system *t = now;
+        now = next;
+        next = t;
+        if (converged) {{  /* that was a last, rounding-sized correction; where it is not small, a singular position */
+            *condition = symlink_condition(now);
+            *singular = *condition > symlink_singular_condition || !(size <= symlink_position_tolerance);
+            if (now != s) {{
+                *s = *now;
+            }}
+            return !*singular;
         }}
         previous = size;
     }}
@@ -311,16 +366,16 @@ static int symlink_correct(const double *x, const double *p, double *q, int *sin
 static int symlink_predict(const double *here, const double *p, const double *q, const symlink_system *s,
                            const double *target, double *guess)
 {{
-    double steps[SYMLINK_INPUTS], zeros[SYMLINK_INPUTS], r[SYMLINK_UNKNOWNS], first[SYMLINK_UNKNOWNS], second[SYMLINK_UNKNOWNS], change[SYMLINK_UNKNOWNS];
-    for (int k = 0; k < SYMLINK_INPUTS; ++k) {{
+    double steps[SYMLINK_NI], zeros[SYMLINK_NI], r[SYMLINK_N], first[SYMLINK_N], second[SYMLINK_N], change[SYMLINK_N];
+    for (int k = 0; k < SYMLINK_NI; ++k) {{
         steps[k] = target[k] - here[k];
         zeros[k] = 0.0 * steps[k];
     }}
-    symlink_velocity_rhs(here, p, q, steps, r);
+    symlink_velocity_rhs(here, p, q, s->trig, steps, r);
     symlink_solve(s, r, first);
-    symlink_acceleration_rhs(here, p, q, first, steps, zeros, r);
+    symlink_acceleration_rhs(here, p, q, s->trig, first, steps, zeros, r);
     symlink_solve(s, r, second);
-    for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+    for (int j = 0; j < SYMLINK_N; ++j) {{
         change[j] = first[j] + 0.5 * second[j];
         guess[j] = q[j] + change[j];
     }}
@@ -333,93 +388,94 @@ static void symlink_report(double *report, double condition, double residual, do
     report[0] = condition;
     report[1] = residual;
     report[2] = index;
-    for (int k = 0; k < SYMLINK_INPUTS; ++k) {{
+    for (int k = 0; k < SYMLINK_NI; ++k) {{
         report[3 + k] = start[k];
-        report[3 + SYMLINK_INPUTS + k] = target[k];
+        report[3 + SYMLINK_NI + k] = target[k];
     }}
 }}
 
-/* Damped Newton from the guess at the first input value (the NumPy driver's _assemble): 0, or a status. */
-static int symlink_assemble(const double *x, const double *p, const double *guess, double *q, double *report)
+/* Damped Newton from the guess at the first input value (the NumPy driver's _assemble): 0 with s the system at
+ * the assembly q, or a status. */
+static int symlink_assemble(const double *x, const double *p, const double *guess, double *q, symlink_system *s,
+                            double *report)
 {{
-    symlink_system s;
-    double trial[SYMLINK_UNKNOWNS];
-    for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+    double trial[SYMLINK_N];
+    for (int j = 0; j < SYMLINK_N; ++j) {{
         q[j] = guess[j];
     }}
     for (int iteration = 0; iteration < symlink_assembly_iterations; ++iteration) {{
-        symlink_system_at(x, p, q, &s);
-        const double condition = symlink_condition(&s);
+        symlink_system_at(x, p, q, 0, s);
+        const double condition = symlink_condition(s);
         if (condition > symlink_singular_condition) {{
-            symlink_report(report, condition, s.residual, 0.0, x, x);
+            symlink_report(report, condition, s->residual, 0.0, x, x);
             return 2;
         }}
-        double step[SYMLINK_UNKNOWNS], minus[SYMLINK_UNKNOWNS];
-        for (int i = 0; i < SYMLINK_UNKNOWNS; ++i) {{
-            minus[i] = -s.F[i];
+        double step[SYMLINK_N], minus[SYMLINK_N];
+        for (int i = 0; i < SYMLINK_N; ++i) {{
+            minus[i] = -s->F[i];
         }}
-        symlink_solve(&s, minus, step);
-        const double size = symlink_size(step, s.unit);
-        if (s.residual <= symlink_residual_tolerance) {{
+        symlink_solve(s, minus, step);
+        const double size = symlink_size(step, s->unit);
+        if (s->residual <= symlink_residual_tolerance) {{
             if (size > symlink_position_tolerance) {{
-                symlink_report(report, condition, s.residual, 0.0, x, x);
+                symlink_report(report, condition, s->residual, 0.0, x, x);
                 return 3;
             }}
-            for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+            for (int j = 0; j < SYMLINK_N; ++j) {{
                 q[j] += step[j];
             }}
+            symlink_system_at(x, p, q, 0, s);
             return 0;
         }}
         const double divisor = fmax(1.0, size / 0.5);  /* at most half a radian a step */
-        for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+        for (int j = 0; j < SYMLINK_N; ++j) {{
             step[j] /= divisor;
         }}
         double fraction = 1.0;
         while (fraction > 1e-3) {{
-            for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+            for (int j = 0; j < SYMLINK_N; ++j) {{
                 trial[j] = q[j] + fraction * step[j];
             }}
-            if (symlink_residual_at(x, p, trial) < s.residual) {{
+            if (symlink_residual_at(x, p, trial) < s->residual) {{
                 break;
             }}
             fraction /= 2;
         }}
-        for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+        for (int j = 0; j < SYMLINK_N; ++j) {{
             q[j] = trial[j];
         }}
     }}
-    symlink_report(report, INFINITY, s.residual, 0.0, x, x);
+    symlink_report(report, INFINITY, s->residual, 0.0, x, x);
     return 1;
 }}
 
 /* Continue from (here, q), whose system s is, to the input values there, splitting the step as often as it
- * takes (the NumPy driver's _substeps): 0 with q there, or a status. */
-static int symlink_substeps(const double *here, const double *p, double *q, const symlink_system *s,
+ * takes (the NumPy driver's _substeps): 0 with q and s there, or a status. */
+static int symlink_substeps(const double *here, const double *p, double *q, symlink_system *s,
                             const double *there, double *report, double index)
 {{
-    double done = 0.0, fraction = 1.0, start[SYMLINK_INPUTS], target[SYMLINK_INPUTS], guess[SYMLINK_UNKNOWNS];
-    symlink_system moved;
+    double done = 0.0, fraction = 1.0, start[SYMLINK_NI], target[SYMLINK_NI], guess[SYMLINK_N];
+    symlink_system solved;
     for (;;) {{
         const double end = done + fraction < 1.0 ? done + fraction : 1.0;
-        for (int k = 0; k < SYMLINK_INPUTS; ++k) {{
+        for (int k = 0; k < SYMLINK_NI; ++k) {{
             start[k] = here[k] + done * (there[k] - here[k]);
             target[k] = here[k] + end * (there[k] - here[k]);
         }}
         const int local = symlink_predict(start, p, q, s, target, guess);
         int singular;
         double condition;
-        const int good = symlink_correct(target, p, guess, &singular, &condition);
+        const int good = symlink_correct(target, p, guess, &solved, &singular, &condition);
         if (good && local && condition <= symlink_singular_condition) {{
             done = end;
-            for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
+            for (int j = 0; j < SYMLINK_N; ++j) {{
                 q[j] = guess[j];
             }}
+            *s = solved;
             if (done >= 1.0) {{
                 return 0;
             }}
             fraction *= 2;
-            symlink_system_at(target, p, q, &moved);
-            s = &moved;
             continue;
         }}
         fraction /= 2;
@@ -436,21 +492,21 @@ static int symlink_substeps(const double *here, const double *p, double *q, cons
 
 /* Newton's method over a sweep of count input values (the NumPy driver's _sweep, after its checks).
  *
- * inputs: SYMLINK_INPUTS rows of count values; parameters: one number each; guess: SYMLINK_UNKNOWNS numbers (the unknowns near the wanted
- * assembly at the first value). Writes q (count rows of SYMLINK_UNKNOWNS), residual (count), and where rates is not 0 the
- * unknowns' rates and accelerations qdot, qddot (count rows of SYMLINK_UNKNOWNS) from input_rates and input_accels (SYMLINK_INPUTS rows of
- * count values each). Returns 0, or a status (1 to 5) with report: the condition number, the residual, the index
- * of the value, the start's and the target's input values. */
+ * inputs: SYMLINK_NI rows of count values; parameters: one number each; guess: the SYMLINK_N unknowns near the
+ * wanted assembly at the first value. Writes q (count rows of SYMLINK_N), residual (count), and where rates is
+ * not 0 the unknowns' rates and accelerations qdot, qddot (count rows of SYMLINK_N) from input_rates and
+ * input_accels (SYMLINK_NI rows of count values each). Returns 0, or a status (1 to 5) with report: the
+ * condition number, the residual, the index of the value, the start's and the target's input values. */
 int symlink_newton_sweep(size_t count, const double *inputs, const double *parameters, const double *guess,
                          int rates, const double *input_rates, const double *input_accels,
                          double *q, double *qdot, double *qddot, double *residual, double *report)
 {{
-    double x[SYMLINK_INPUTS], next[SYMLINK_INPUTS], xdot[SYMLINK_INPUTS], xddot[SYMLINK_INPUTS], r[SYMLINK_UNKNOWNS];
+    double x[SYMLINK_NI], next[SYMLINK_NI], xdot[SYMLINK_NI], xddot[SYMLINK_NI], r[SYMLINK_N];
     symlink_system s;
-    for (int k = 0; k < SYMLINK_INPUTS; ++k) {{
+    for (int k = 0; k < SYMLINK_NI; ++k) {{
         x[k] = inputs[(size_t)k * count];
     }}
-    int status = symlink_assemble(x, parameters, guess, q, report);
+    int status = symlink_assemble(x, parameters, guess, q, &s, report);
     if (status) {{
         return status;
     }}
@@ -458,11 +514,11 @@ int symlink_newton_sweep(size_t count, const double *inputs, const double *param
     double worst_score = -1.0;
     int bad = 0;
     for (size_t i = 0; i < count; ++i) {{
-        double *qi = q + i * SYMLINK_UNKNOWNS;
-        for (int k = 0; k < SYMLINK_INPUTS; ++k) {{
+        double *qi = q + i * SYMLINK_N;
+        for (int k = 0; k < SYMLINK_NI; ++k) {{
             x[k] = inputs[(size_t)k * count + i];
         }}
-        symlink_system_at(x, parameters, qi, &s);
+        /* s is the system at (x, qi): the final check (NumPy's, after the sweep: the worst point is reported) */
         residual[i] = s.residual;
         const double condition = symlink_condition(&s);
         if (!(s.residual <= symlink_residual_tolerance) || condition > symlink_singular_condition) {{
@@ -474,30 +530,30 @@ int symlink_newton_sweep(size_t count, const double *inputs, const double *param
             bad = 1;
         }}
         if (rates) {{
-            for (int k = 0; k < SYMLINK_INPUTS; ++k) {{
+            for (int k = 0; k < SYMLINK_NI; ++k) {{
                 xdot[k] = input_rates[(size_t)k * count + i];
                 xddot[k] = input_accels[(size_t)k * count + i];
             }}
-            symlink_velocity_rhs(x, parameters, qi, xdot, r);
-            symlink_solve(&s, r, qdot + i * SYMLINK_UNKNOWNS);
-            symlink_acceleration_rhs(x, parameters, qi, qdot + i * SYMLINK_UNKNOWNS, xdot, xddot, r);
-            symlink_solve(&s, r, qddot + i * SYMLINK_UNKNOWNS);
+            symlink_velocity_rhs(x, parameters, qi, s.trig, xdot, r);
+            symlink_solve(&s, r, qdot + i * SYMLINK_N);
+            symlink_acceleration_rhs(x, parameters, qi, s.trig, qdot + i * SYMLINK_N, xdot, xddot, r);
+            symlink_solve(&s, r, qddot + i * SYMLINK_N);
         }}
         if (i + 1 < count) {{
-            for (int k = 0; k < SYMLINK_INPUTS; ++k) {{
+            for (int k = 0; k < SYMLINK_NI; ++k) {{
                 next[k] = inputs[(size_t)k * count + i + 1];
             }}
-            for (int j = 0; j < SYMLINK_UNKNOWNS; ++j) {{
-                qi[SYMLINK_UNKNOWNS + j] = qi[j];
+            for (int j = 0; j < SYMLINK_N; ++j) {{
+                qi[SYMLINK_N + j] = qi[j];
             }}
-            status = symlink_substeps(x, parameters, qi + SYMLINK_UNKNOWNS, &s, next, report, (double)(i + 1));
+            status = symlink_substeps(x, parameters, qi + SYMLINK_N, &s, next, report, (double)(i + 1));
             if (status) {{
                 return status;
             }}
         }}
     }}
     if (bad) {{
-        for (int k = 0; k < SYMLINK_INPUTS; ++k) {{
+        for (int k = 0; k < SYMLINK_NI; ++k) {{
             x[k] = inputs[(size_t)k * count + worst];
         }}
         symlink_report(report, NAN, residual[worst], (double)worst, x, x);
@@ -517,28 +573,54 @@ def newton_c_source(linkage: Linkage) -> str:
     return newton_c_facts(linkage)["source"]
 
 
+def _angles(expressions: Sequence[sp.Expr], known: set[sp.Symbol]) -> list[sp.Expr]:
+    """The arguments of every sine and cosine in ``expressions`` that depend on ``known`` symbols only, in a fixed
+    order: the closure's angles, whose sines and cosines the driver computes once a point."""
+    found: set[sp.Expr] = set()
+    for expr in expressions:
+        found |= {f.args[0] for f in sp.sympify(expr).atoms(sp.sin, sp.cos) if f.args[0].free_symbols <= known}
+    return sorted(found, key=sp.default_sort_key)
+
+
 def newton_c_facts(linkage: Linkage) -> dict[str, Any]:
     """The compiled Newton fallback's source and calling facts: ``{"source", "inputs", "parameters", "unknowns",
-    "outputs", "output_arguments"}`` (``outputs`` empty where the linkage names no points or extras)."""
+    "outputs", "output_flags", "output_arguments"}`` (``outputs`` empty where the linkage names no points or
+    extras; ``output_arguments`` the arguments of ``newton_outputs``)."""
     system = closure_system(linkage)
     inputs, parameters, unknowns = linkage.inputs, linkage.parameters, linkage.unknowns
     input_rates = tuple(rate(x) for x in inputs)
     input_accels = tuple(acceleration(x) for x in inputs)
     unknown_rates = tuple(rate(u) for u in unknowns)
     jacobian = [system.jacobian[i, j] for i in range(system.jacobian.rows) for j in range(system.jacobian.cols)]
+    arguments = tuple(inputs + parameters + unknowns)
+    every = list(system.residuals) + jacobian + list(system.velocity_rhs) + list(system.acceleration_rhs)
+    angles = _angles(every, set(arguments))
+    # The sines and cosines as symbols read from the point's trig array (names no linkage symbol takes).
+    fresh = FreshNames({s.name for e in every for s in sp.sympify(e).free_symbols} | {s.name for s in arguments},
+                       C_KEYWORDS)
+    sines = [sp.Symbol(fresh(f"sin_{k}"), real=True) for k in range(len(angles))]
+    cosines = [sp.Symbol(fresh(f"cos_{k}"), real=True) for k in range(len(angles))]
+    trig = {sp.sin(a): s for a, s in zip(angles, sines)}
+    trig.update({sp.cos(a): c for a, c in zip(angles, cosines)})
+    own = lambda exprs: [sp.sympify(e).xreplace(trig) for e in exprs]  # noqa: E731
+    table = [symbol for pair in zip(sines, cosines) for symbol in pair]
     base = [("symlink_x", inputs), ("symlink_p", parameters), ("symlink_q", unknowns)]
+    point = base + [("symlink_trig", table)]
     blocks = [
-        _c_block("symlink_closure", base, [("symlink_F", system.residuals), ("symlink_J", jacobian), ("symlink_scale", system.scales),
-                                           ("symlink_unit", system.units)],
-                 "Closure residuals F, Jacobian J = dF/dq (row by row), each equation's scale and each unknown's unit."),
-        _c_block("symlink_velocity_rhs", base + [("symlink_xdot", input_rates)], [("symlink_r", system.velocity_rhs)],
-                 "Right-hand side of J qdot = r."),
-        _c_block("symlink_acceleration_rhs", base + [("symlink_qdot", unknown_rates), ("symlink_xdot", input_rates),
-                                                    ("symlink_xddot", input_accels)],
-                 [("symlink_r", system.acceleration_rhs)], "Right-hand side of J qddot = r."),
+        _c_block("symlink_angles", base, [("symlink_angle", angles or [sp.S.Zero])],
+                 "The closure's angles, whose sines and cosines the driver computes once a point."),
+        _c_block("symlink_closure", point,
+                 [("symlink_F", own(system.residuals)), ("symlink_J", own(jacobian)),
+                  ("symlink_scale", system.scales), ("symlink_unit", system.units)],
+                 "Closure residuals F, Jacobian J = dF/dq (row by row), each equation's scale and each unknown's "
+                 "unit."),
+        _c_block("symlink_velocity_rhs", point + [("symlink_xdot", input_rates)],
+                 [("symlink_r", own(system.velocity_rhs))], "Right-hand side of J qdot = r."),
+        _c_block("symlink_acceleration_rhs", point + [("symlink_qdot", unknown_rates), ("symlink_xdot", input_rates),
+                                                     ("symlink_xddot", input_accels)],
+                 [("symlink_r", own(system.acceleration_rhs))], "Right-hand side of J qddot = r."),
     ]
     names = _output_names(linkage)
-    arguments = tuple(inputs + parameters + unknowns)
     functions = [c_function(Program(arguments, (), {name: linkage.output(name) for name in names}),
                             "newton_outputs", "Named points and extras from the solved coordinates.")] if names else []
     _, library = c_library(functions, "newton", f"{linkage.name}: Newton's method on the closure equations.",
@@ -546,8 +628,9 @@ def newton_c_facts(linkage: Linkage) -> dict[str, Any]:
     constants = {name: getattr(newton_driver, name) for name in (
         "EPSILON", "RESIDUAL_TOLERANCE", "SINGULAR_CONDITION", "POSITION_TOLERANCE", "MAX_PREDICTION",
         "MAX_CORRECTION", "CONTRACTION", "MAX_ITERATIONS", "ASSEMBLY_ITERATIONS", "MIN_FRACTION")}
-    source = "\n".join([library, f"#define SYMLINK_UNKNOWNS {len(unknowns)}", f"#define SYMLINK_INPUTS {len(inputs)}",
-                        ""] + blocks + [_DRIVER.format(**constants)])
+    sizes = [f"#define SYMLINK_N {len(unknowns)}", f"#define SYMLINK_NI {len(inputs)}",
+             f"#define SYMLINK_NA {max(1, len(angles))}", ""]
+    source = "\n".join([library] + sizes + blocks + [_DRIVER.format(**constants)])
     return {"source": source, "inputs": [s.name for s in inputs], "parameters": [s.name for s in parameters],
             "unknowns": [s.name for s in unknowns],
             "outputs": list(functions[0].outputs) if functions else [],

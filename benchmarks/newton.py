@@ -47,7 +47,7 @@ def _sweep_alone(solver, values: dict, guess: dict):
     rates = numpy.full((len(facts["inputs"]), count), 10.5)
     accels = numpy.full((len(facts["inputs"]), count), 2.0)
     n = len(facts["unknowns"])
-    q, qdot, qddot = (numpy.empty((count, n)) for _ in range(3))
+    q, qdot, qddot = (numpy.empty((n, count)) for _ in range(3))
     residual, report = numpy.empty(count), numpy.zeros(3 + 2 * len(facts["inputs"]))
     pointers = [a.ctypes.data for a in (x, p, start)] + [1] + [a.ctypes.data for a in (
         rates, accels, q, qdot, qddot, residual, report)]

@@ -423,11 +423,19 @@ class NumericSolver:
         check_argument_names(self.linkage.name, self.arguments, required,
                              list(values) + (["guess"] if guess is not None else []))
         values, length_unit = plain_values(self.linkage, values)
-        _require_memory(self, values, self.bytes_per_value, "numeric solver")
+        if not _surely_small(values, self.bytes_per_value):
+            _require_memory(self, values, self.bytes_per_value, "numeric solver")
         compiled = self._answering()
         found = (self.functions["accelerations"](guess=guess, **values) if compiled is None
                  else self._compiled_sweep(compiled, guess, values))
-        return _results(found, self.units, length_unit, values, argument_units(self.linkage, list(values)))
+        return _results(found, self.units, length_unit, values, self._argument_units(tuple(values)))
+
+    def _argument_units(self, names: tuple[str, ...]) -> dict[str, str]:
+        """The unit of each argument of a call (:func:`symlink.units.argument_units`), found once a set of names."""
+        known = self.__dict__.setdefault("_units_of_arguments", {})
+        if names not in known:
+            known[names] = argument_units(self.linkage, list(names))
+        return known[names]
 
     def _compiled_sweep(self, compiled: _CompiledNewton, guess: Any, values: Mapping[str, Any]) -> dict:
         """What the NumPy module's ``accelerations`` returns, from the compiled driver: the same checks (the
@@ -485,8 +493,8 @@ class _CompiledNewton:
         xdot = numpy.ascontiguousarray(numpy.stack(input_rates) if input_rates is not None else x, dtype=numpy.float64)
         xddot = numpy.ascontiguousarray(numpy.stack(input_accels) if input_accels is not None else x,
                                         dtype=numpy.float64)
-        q = numpy.empty((count, unknowns))
-        qdot, qddot = (numpy.empty((count, unknowns)), numpy.empty((count, unknowns))) if rates else (q, q)
+        q = numpy.empty((unknowns, count))  # unknown by unknown: each a contiguous array
+        qdot, qddot = (numpy.empty((unknowns, count)), numpy.empty((unknowns, count))) if rates else (q, q)
         residual = numpy.empty(count)
         report = numpy.zeros(3 + 2 * len(inputs))
         status = self.sweep_entry(count, x.ctypes.data, p.ctypes.data, start.ctypes.data, int(rates),
@@ -494,7 +502,7 @@ class _CompiledNewton:
                                   qddot.ctypes.data, residual.ctypes.data, report.ctypes.data)
         if status:
             raise failure(status, report)
-        return q, (qdot if rates else None), (qddot if rates else None), residual
+        return q.T, (qdot.T if rates else None), (qddot.T if rates else None), residual
 
     def outputs(self, inputs: Sequence[numpy.ndarray], parameters: Sequence[numpy.ndarray],
                 q: numpy.ndarray) -> dict[str, numpy.ndarray]:

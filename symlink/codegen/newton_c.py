@@ -59,23 +59,28 @@ STATUS = {0: "solved", 1: "assembly did not converge", 2: "singular at the assem
           3: "singular Jacobian", 4: "continuation did not converge", 5: "no converged, regular position"}
 
 
-def _c_block(name: str, arrays: Sequence[tuple[str, Sequence[sp.Symbol]]],
+#: The angles' sines and cosines are called for a multiple of this many angles at once (AVX-512's doubles).
+VECTOR = 8
+
+
+def _c_block(name: str, arrays: Sequence[tuple[str, Sequence[sp.Symbol | None]]],
              results: Sequence[tuple[str, Sequence[sp.Expr]]], doc: str) -> str:
     """A static C function reading its symbols from arrays and writing each result array, CSE across them all.
 
-    ``arrays`` are ``(C array name, symbols read from it in order)``; ``results`` are
-    ``(C array name, expressions written to it in order)``.
+    ``arrays`` are ``(C array name, symbols read from it in order)`` (``None``: an entry not read); ``results``
+    are ``(C array name, expressions written to it in order)``.
     """
     printer = _CPrinter()
-    arguments = tuple(symbol for _, symbols in arrays for symbol in symbols)
+    arguments = tuple(symbol for _, symbols in arrays for symbol in symbols if symbol is not None)
     flat = {f"{label}_{k}": sp.sympify(expr) for label, exprs in results for k, expr in enumerate(exprs)}
     code = straight_line(Program(arguments, (), flat))
     signature = ", ".join([f"const double *restrict {array}" for array, _ in arrays]
                           + [f"double *restrict {label}" for label, _ in results])
     lines = [f"/* {doc} */", f"static void {name}({signature})", "{"]
     for array, symbols in arrays:
-        lines += [f"    const double {c_identifier(s.name, 'symbol')} = {array}[{k}];" for k, s in enumerate(symbols)]
-        lines += [f"    (void){s.name};" for s in symbols]
+        lines += [f"    const double {c_identifier(s.name, 'symbol')} = {array}[{k}];"
+                  for k, s in enumerate(symbols) if s is not None]
+        lines += [f"    (void){s.name};" for s in symbols if s is not None]
     for symbol, expr in code.assignments:
         lines.append(f"    const double {c_identifier(symbol.name, 'symbol')} = {printer.doprint(expr)};")
     for label, exprs in results:
@@ -108,8 +113,8 @@ static const double symlink_small_turn = 0x1p-18;
 /* The closure at one point (x, q): its angles' sines and cosines, the residuals, the scaled Jacobian's LU
  * factors, the scales and units, and its 1-norm condition number once computed. */
 typedef struct {{
-    double angle[SYMLINK_NA];
-    double trig[2 * SYMLINK_NA];   /* sin, cos of each angle */
+    double angle[SYMLINK_NV];      /* the angles, then zeros up to a whole number of vector registers */
+    double trig[2 * SYMLINK_NV];   /* the sines of the angles, then their cosines */
     double F[SYMLINK_N];
     double LU[SYMLINK_N * SYMLINK_N];  /* J * unit[j] / scale[i], factored in place (unit lower L below the diagonal) */
     double scale[SYMLINK_N];
@@ -129,31 +134,42 @@ static inline double symlink_max(double m, double v)
     return (v > m || v != v) ? v : m;
 }}
 
-/* sin and cos of x: glibc's sincos (the same values, about the time of one of them), else each. */
-#if defined(__GLIBC__)
-extern void sincos(double x, double *sine, double *cosine);
-#define symlink_sincos sincos
-#else
-static inline void symlink_sincos(double x, double *sine, double *cosine)
+/* Every angle's sine and cosine, called: one loop over a whole number of vector registers, which the compiled
+ * backend's vector math (SYMLINK_LOOP) turns into calls of glibc's vector sin and cos. */
+SYMLINK_LOOP static void symlink_trig_called(double *restrict trig, const double *restrict angle)
 {{
-    *sine = sin(x);
-    *cosine = cos(x);
+    for (int k = 0; k < SYMLINK_NV; ++k) {{
+        trig[k] = sin(angle[k]);
+        trig[SYMLINK_NV + k] = cos(angle[k]);
+    }}
 }}
-#endif
 
-/* Each angle's sine and cosine: called, or, where the angle moved by a small turn from the point before (from),
- * from that point's by the addition theorems to second order (exact where it did not move). */
+/* Each angle's sine and cosine: called; or, where every angle moved by at most a small turn from the point before
+ * (from), from that point's by the addition theorems to second order (exact where an angle did not move). */
 static void symlink_trig(double *trig, const double *angle, const symlink_system *from)
 {{
-    for (int k = 0; k < SYMLINK_NA; ++k) {{
-        const double d = from ? angle[k] - from->angle[k] : INFINITY;
-        if (fabs(d) <= symlink_small_turn) {{
-            const double s = from->trig[2 * k], c = from->trig[2 * k + 1];
-            trig[2 * k] = s + (d * c - 0.5 * d * d * s);
-            trig[2 * k + 1] = c - (d * s + 0.5 * d * d * c);
-        }} else {{
-            symlink_sincos(angle[k], &trig[2 * k], &trig[2 * k + 1]);
-        }}
+    int near = from != 0;
+    for (int k = 0; k < SYMLINK_NA && near; ++k) {{
+        near = fabs(angle[k] - from->angle[k]) <= symlink_small_turn;
+    }}
+    if (!near) {{
+        symlink_trig_called(trig, angle);
+        return;
+    }}
+    for (int k = 0; k < SYMLINK_NV; ++k) {{
+        const double d = angle[k] - from->angle[k];
+        const double s = from->trig[k], c = from->trig[SYMLINK_NV + k];
+        trig[k] = s + (d * c - 0.5 * d * d * s);
+        trig[SYMLINK_NV + k] = c - (d * s + 0.5 * d * d * c);
+    }}
+}}
+
+/* The angles at (x, q), the padding after them zero. */
+static void symlink_angles_at(const double *x, const double *p, const double *q, double *angle)
+{{
+    symlink_angles(x, p, q, angle);
+    for (int k = SYMLINK_NA; k < SYMLINK_NV; ++k) {{
+        angle[k] = 0.0;
     }}
 }}
 
@@ -162,7 +178,7 @@ static void symlink_system_at(const double *x, const double *p, const double *q,
                               symlink_system *s)
 {{
     double J[SYMLINK_N * SYMLINK_N];
-    symlink_angles(x, p, q, s->angle);
+    symlink_angles_at(x, p, q, s->angle);
     symlink_trig(s->trig, s->angle, from);
     symlink_closure(x, p, q, s->trig, s->F, J, s->scale, s->unit);
     s->condition = -1.0;
@@ -223,14 +239,14 @@ static void symlink_system_at(const double *x, const double *p, const double *q,
     }}
 }}
 
-/* The residual alone (the assembly's line search). */
-static double symlink_residual_at(const double *x, const double *p, const double *q)
+/* The residual alone at (x, q) (the largest |F_i| / scale_i), the sines and cosines moved from those of a point
+ * nearby where there is one (from). */
+static double symlink_residual_at(const double *x, const double *p, const double *q, const symlink_system *from)
 {{
-    double angle[SYMLINK_NA], trig[2 * SYMLINK_NA], F[SYMLINK_N], J[SYMLINK_N * SYMLINK_N], scale[SYMLINK_N],
-        unit[SYMLINK_N];
-    symlink_angles(x, p, q, angle);
-    symlink_trig(trig, angle, 0);
-    symlink_closure(x, p, q, trig, F, J, scale, unit);
+    double angle[SYMLINK_NV], trig[2 * SYMLINK_NV], F[SYMLINK_N], scale[SYMLINK_N];
+    symlink_angles_at(x, p, q, angle);
+    symlink_trig(trig, angle, from);
+    symlink_residuals(x, p, q, trig, F, scale);
     double residual = 0.0;
     for (int i = 0; i < SYMLINK_N; ++i) {{
         residual = symlink_max(residual, fabs(F[i]) / scale[i]);
@@ -338,7 +354,22 @@ static int symlink_correct(const double *x, const double *p, double *q, symlink_
         const double size = symlink_size(step, now->unit);
         const double limit = iteration == 0 ? symlink_max_correction
                              : fmax(symlink_contraction * previous, 1e3 * symlink_epsilon);
-        if (!converged && !(size <= limit)) {{  /* refused: it could leave the branch */
+        if (converged) {{
+            /* A last, rounding-sized correction; where it is not small, a singular position. s keeps the system
+             * of the point before it (its Jacobian and sines for the rates and the next prediction: they differ
+             * by rounding) and takes the residual at the corrected point. */
+            for (int j = 0; j < SYMLINK_N; ++j) {{
+                q[j] += step[j];
+            }}
+            *condition = symlink_condition(now);
+            *singular = *condition > symlink_singular_condition || !(size <= symlink_position_tolerance);
+            now->residual = symlink_residual_at(x, p, q, now);
+            if (now != s) {{
+                *s = *now;
+            }}
+            return !*singular;
+        }}
+        if (!(size <= limit)) {{  /* refused: it could leave the branch */
             *condition = symlink_condition(now);
             *singular = *condition > symlink_singular_condition;
             return 0;
@@ -350,14 +381,6 @@ static int symlink_correct(const double *x, const double *p, double *q, symlink_
         symlink_system *t = now;
         now = next;
         next = t;
-        if (converged) {{  /* that was a last, rounding-sized correction; where it is not small, a singular position */
-            *condition = symlink_condition(now);
-            *singular = *condition > symlink_singular_condition || !(size <= symlink_position_tolerance);
-            if (now != s) {{
-                *s = *now;
-            }}
-            return !*singular;
-        }}
         previous = size;
     }}
 }}
@@ -424,7 +447,7 @@ static int symlink_assemble(const double *x, const double *p, const double *gues
             for (int j = 0; j < SYMLINK_N; ++j) {{
                 q[j] += step[j];
             }}
-            symlink_system_at(x, p, q, 0, s);
+            s->residual = symlink_residual_at(x, p, q, s);  /* as in symlink_correct */
             return 0;
         }}
         const double divisor = fmax(1.0, size / 0.5);  /* at most half a radian a step */
@@ -436,7 +459,7 @@ static int symlink_assemble(const double *x, const double *p, const double *gues
             for (int j = 0; j < SYMLINK_N; ++j) {{
                 trial[j] = q[j] + fraction * step[j];
             }}
-            if (symlink_residual_at(x, p, trial) < s->residual) {{
+            if (symlink_residual_at(x, p, trial, 0) < s->residual) {{
                 break;
             }}
             fraction /= 2;
@@ -493,20 +516,21 @@ static int symlink_substeps(const double *here, const double *p, double *q, syml
 /* Newton's method over a sweep of count input values (the NumPy driver's _sweep, after its checks).
  *
  * inputs: SYMLINK_NI rows of count values; parameters: one number each; guess: the SYMLINK_N unknowns near the
- * wanted assembly at the first value. Writes q (count rows of SYMLINK_N), residual (count), and where rates is
- * not 0 the unknowns' rates and accelerations qdot, qddot (count rows of SYMLINK_N) from input_rates and
- * input_accels (SYMLINK_NI rows of count values each). Returns 0, or a status (1 to 5) with report: the
+ * wanted assembly at the first value. Writes q (SYMLINK_N rows of count values: unknown by unknown), residual
+ * (count), and where rates is not 0 the unknowns' rates and accelerations qdot, qddot (SYMLINK_N rows of count)
+ * from input_rates and input_accels (SYMLINK_NI rows of count values each). Returns 0, or a status (1 to 5) with report: the
  * condition number, the residual, the index of the value, the start's and the target's input values. */
 int symlink_newton_sweep(size_t count, const double *inputs, const double *parameters, const double *guess,
                          int rates, const double *input_rates, const double *input_accels,
                          double *q, double *qdot, double *qddot, double *residual, double *report)
 {{
-    double x[SYMLINK_NI], next[SYMLINK_NI], xdot[SYMLINK_NI], xddot[SYMLINK_NI], r[SYMLINK_N];
+    double x[SYMLINK_NI], next[SYMLINK_NI], xdot[SYMLINK_NI], xddot[SYMLINK_NI], r[SYMLINK_N], qi[SYMLINK_N],
+        rate[SYMLINK_N], accel[SYMLINK_N];
     symlink_system s;
     for (int k = 0; k < SYMLINK_NI; ++k) {{
         x[k] = inputs[(size_t)k * count];
     }}
-    int status = symlink_assemble(x, parameters, guess, q, &s, report);
+    int status = symlink_assemble(x, parameters, guess, qi, &s, report);
     if (status) {{
         return status;
     }}
@@ -514,7 +538,9 @@ int symlink_newton_sweep(size_t count, const double *inputs, const double *param
     double worst_score = -1.0;
     int bad = 0;
     for (size_t i = 0; i < count; ++i) {{
-        double *qi = q + i * SYMLINK_N;
+        for (int j = 0; j < SYMLINK_N; ++j) {{
+            q[(size_t)j * count + i] = qi[j];
+        }}
         for (int k = 0; k < SYMLINK_NI; ++k) {{
             x[k] = inputs[(size_t)k * count + i];
         }}
@@ -535,18 +561,19 @@ int symlink_newton_sweep(size_t count, const double *inputs, const double *param
                 xddot[k] = input_accels[(size_t)k * count + i];
             }}
             symlink_velocity_rhs(x, parameters, qi, s.trig, xdot, r);
-            symlink_solve(&s, r, qdot + i * SYMLINK_N);
-            symlink_acceleration_rhs(x, parameters, qi, s.trig, qdot + i * SYMLINK_N, xdot, xddot, r);
-            symlink_solve(&s, r, qddot + i * SYMLINK_N);
+            symlink_solve(&s, r, rate);
+            symlink_acceleration_rhs(x, parameters, qi, s.trig, rate, xdot, xddot, r);
+            symlink_solve(&s, r, accel);
+            for (int j = 0; j < SYMLINK_N; ++j) {{
+                qdot[(size_t)j * count + i] = rate[j];
+                qddot[(size_t)j * count + i] = accel[j];
+            }}
         }}
         if (i + 1 < count) {{
             for (int k = 0; k < SYMLINK_NI; ++k) {{
                 next[k] = inputs[(size_t)k * count + i + 1];
             }}
-            for (int j = 0; j < SYMLINK_N; ++j) {{
-                qi[SYMLINK_N + j] = qi[j];
-            }}
-            status = symlink_substeps(x, parameters, qi + SYMLINK_N, &s, next, report, (double)(i + 1));
+            status = symlink_substeps(x, parameters, qi, &s, next, report, (double)(i + 1));
             if (status) {{
                 return status;
             }}
@@ -603,7 +630,8 @@ def newton_c_facts(linkage: Linkage) -> dict[str, Any]:
     trig = {sp.sin(a): s for a, s in zip(angles, sines)}
     trig.update({sp.cos(a): c for a, c in zip(angles, cosines)})
     own = lambda exprs: [sp.sympify(e).xreplace(trig) for e in exprs]  # noqa: E731
-    table = [symbol for pair in zip(sines, cosines) for symbol in pair]
+    padded = -(-max(1, len(angles)) // VECTOR) * VECTOR
+    table: list[sp.Symbol | None] = [*sines, *[None] * (padded - len(angles)), *cosines]
     base = [("symlink_x", inputs), ("symlink_p", parameters), ("symlink_q", unknowns)]
     point = base + [("symlink_trig", table)]
     blocks = [
@@ -614,6 +642,8 @@ def newton_c_facts(linkage: Linkage) -> dict[str, Any]:
                   ("symlink_scale", system.scales), ("symlink_unit", system.units)],
                  "Closure residuals F, Jacobian J = dF/dq (row by row), each equation's scale and each unknown's "
                  "unit."),
+        _c_block("symlink_residuals", point, [("symlink_F", own(system.residuals)), ("symlink_scale", system.scales)],
+                 "Closure residuals F and each equation's scale."),
         _c_block("symlink_velocity_rhs", point + [("symlink_xdot", input_rates)],
                  [("symlink_r", own(system.velocity_rhs))], "Right-hand side of J qdot = r."),
         _c_block("symlink_acceleration_rhs", point + [("symlink_qdot", unknown_rates), ("symlink_xdot", input_rates),
@@ -629,7 +659,7 @@ def newton_c_facts(linkage: Linkage) -> dict[str, Any]:
         "EPSILON", "RESIDUAL_TOLERANCE", "SINGULAR_CONDITION", "POSITION_TOLERANCE", "MAX_PREDICTION",
         "MAX_CORRECTION", "CONTRACTION", "MAX_ITERATIONS", "ASSEMBLY_ITERATIONS", "MIN_FRACTION")}
     sizes = [f"#define SYMLINK_N {len(unknowns)}", f"#define SYMLINK_NI {len(inputs)}",
-             f"#define SYMLINK_NA {max(1, len(angles))}", ""]
+             f"#define SYMLINK_NA {max(1, len(angles))}", f"#define SYMLINK_NV {padded}", ""]
     source = "\n".join([library] + sizes + blocks + [_DRIVER.format(**constants)])
     return {"source": source, "inputs": [s.name for s in inputs], "parameters": [s.name for s in parameters],
             "unknowns": [s.name for s in unknowns],

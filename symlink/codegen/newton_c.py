@@ -126,6 +126,9 @@ typedef struct {{
     double norm;                   /* 1-norm of the scaled Jacobian (NaN propagates) */
     double residual;               /* max |F_i| / scale_i (NaN propagates) */
     double condition;              /* the 1-norm condition number; negative until computed */
+    int derived;                   /* whether slope and curvature are computed (one input) */
+    double slope[SYMLINK_N];       /* dq/dx: J slope = r(xdot = 1) */
+    double curvature[SYMLINK_N];   /* d2q/dx2: J curvature = r(qdot = slope, xdot = 1, xddot = 0) */
 }} symlink_system;
 
 /* The larger of m and v, NaN once either is NaN (numpy.max's semantics). */
@@ -182,6 +185,7 @@ static void symlink_system_at(const double *x, const double *p, const double *q,
     symlink_trig(s->trig, s->angle, from);
     symlink_closure(x, p, q, s->trig, s->F, J, s->scale, s->unit);
     s->condition = -1.0;
+    s->derived = 0;
     double residual = 0.0;
     for (int i = 0; i < SYMLINK_N; ++i) {{
         residual = symlink_max(residual, fabs(s->F[i]) / s->scale[i]);
@@ -386,10 +390,39 @@ static int symlink_correct(const double *x, const double *p, double *q, symlink_
 }}
 
 /* The second-order Taylor guess at target from the solved point (here, q), whose system s is: 1 where local. */
-static int symlink_predict(const double *here, const double *p, const double *q, const symlink_system *s,
+#if SYMLINK_NI == 1
+/* One input: the point's dq/dx and d2q/dx2, once. The rates are then qdot = slope xdot and qddot = curvature
+ * xdot^2 + slope xddot, and the Taylor step h is slope h + curvature h^2 / 2: the velocity system's right-hand
+ * side is linear in xdot and the acceleration system's is quadratic in (xdot, qdot) plus the velocity system's
+ * in xddot (the closure's second time derivative), so that one solve of each serves every rate and step. */
+static void symlink_derive(symlink_system *s, const double *x, const double *p, const double *q)
+{{
+    if (s->derived) {{
+        return;
+    }}
+    const double one[1] = {{1.0}}, zero[1] = {{0.0}};
+    double r[SYMLINK_N];
+    symlink_velocity_rhs(x, p, q, s->trig, one, r);
+    symlink_solve(s, r, s->slope);
+    symlink_acceleration_rhs(x, p, q, s->trig, s->slope, one, zero, r);
+    symlink_solve(s, r, s->curvature);
+    s->derived = 1;
+}}
+#endif
+
+static int symlink_predict(const double *here, const double *p, const double *q, symlink_system *s,
                            const double *target, double *guess)
 {{
-    double steps[SYMLINK_NI], zeros[SYMLINK_NI], r[SYMLINK_N], first[SYMLINK_N], second[SYMLINK_N], change[SYMLINK_N];
+    double first[SYMLINK_N], second[SYMLINK_N], change[SYMLINK_N];
+#if SYMLINK_NI == 1
+    const double h = target[0] - here[0];
+    symlink_derive(s, here, p, q);
+    for (int j = 0; j < SYMLINK_N; ++j) {{
+        first[j] = s->slope[j] * h;
+        second[j] = s->curvature[j] * (h * h);
+    }}
+#else
+    double steps[SYMLINK_NI], zeros[SYMLINK_NI], r[SYMLINK_N];
     for (int k = 0; k < SYMLINK_NI; ++k) {{
         steps[k] = target[k] - here[k];
         zeros[k] = 0.0 * steps[k];
@@ -398,6 +431,7 @@ static int symlink_predict(const double *here, const double *p, const double *q,
     symlink_solve(s, r, first);
     symlink_acceleration_rhs(here, p, q, s->trig, first, steps, zeros, r);
     symlink_solve(s, r, second);
+#endif
     for (int j = 0; j < SYMLINK_N; ++j) {{
         change[j] = first[j] + 0.5 * second[j];
         guess[j] = q[j] + change[j];
@@ -560,10 +594,19 @@ int symlink_newton_sweep(size_t count, const double *inputs, const double *param
                 xdot[k] = input_rates[(size_t)k * count + i];
                 xddot[k] = input_accels[(size_t)k * count + i];
             }}
+#if SYMLINK_NI == 1
+            symlink_derive(&s, x, parameters, qi);
+            for (int j = 0; j < SYMLINK_N; ++j) {{
+                rate[j] = s.slope[j] * xdot[0];
+                accel[j] = s.curvature[j] * (xdot[0] * xdot[0]) + s.slope[j] * xddot[0];
+            }}
+            (void)r;
+#else
             symlink_velocity_rhs(x, parameters, qi, s.trig, xdot, r);
             symlink_solve(&s, r, rate);
             symlink_acceleration_rhs(x, parameters, qi, s.trig, rate, xdot, xddot, r);
             symlink_solve(&s, r, accel);
+#endif
             for (int j = 0; j < SYMLINK_N; ++j) {{
                 qdot[(size_t)j * count + i] = rate[j];
                 qddot[(size_t)j * count + i] = accel[j];

@@ -359,15 +359,16 @@ static int symlink_correct(const double *x, const double *p, double *q, symlink_
         const double limit = iteration == 0 ? symlink_max_correction
                              : fmax(symlink_contraction * previous, 1e3 * symlink_epsilon);
         if (converged) {{
-            /* A last, rounding-sized correction; where it is not small, a singular position. s keeps the system
-             * of the point before it (its Jacobian and sines for the rates and the next prediction: they differ
-             * by rounding) and takes the residual at the corrected point. */
+            /* A last, rounding-sized correction; where it is not small, a singular position. s is the system at
+             * the corrected point: the residual the final check tests, the Jacobian the rates are solved with
+             * (the one before it may be off by the condition number times the residual tolerance). */
             for (int j = 0; j < SYMLINK_N; ++j) {{
                 q[j] += step[j];
             }}
+            symlink_system_at(x, p, q, now, next);
+            now = next;
             *condition = symlink_condition(now);
             *singular = *condition > symlink_singular_condition || !(size <= symlink_position_tolerance);
-            now->residual = symlink_residual_at(x, p, q, now);
             if (now != s) {{
                 *s = *now;
             }}
@@ -481,7 +482,8 @@ static int symlink_assemble(const double *x, const double *p, const double *gues
             for (int j = 0; j < SYMLINK_N; ++j) {{
                 q[j] += step[j];
             }}
-            s->residual = symlink_residual_at(x, p, q, s);  /* as in symlink_correct */
+            const symlink_system before = *s;
+            symlink_system_at(x, p, q, &before, s);  /* the system at the assembly, as in symlink_correct */
             return 0;
         }}
         const double divisor = fmax(1.0, size / 0.5);  /* at most half a radian a step */

@@ -209,3 +209,26 @@ def test_the_c_driver_has_the_numpy_drivers_constants_and_no_svd():
     for name in ("MAX_ITERATIONS", "ASSEMBLY_ITERATIONS"):
         assert f"symlink_{name.lower()} = {getattr(newton_driver, name)};" in source
     assert "malloc" not in source and "svd" not in source.lower()
+
+
+def test_two_inputs_swept_together_agree_with_the_closed_form():
+    # The five-bar has a closed form (symlink.solver.Solver), which the compiled Newton must reproduce on its
+    # path for more than one input (the general velocity and acceleration systems).
+    from symlink.catalog import fivebar
+    from symlink.solver import Solver
+    linkage = fivebar()
+    dimensions = dict(a=2.0, b=4.0, c=4.0, d=3.0, e=2.0)
+    t = np.linspace(0.0, 1.0, 41)
+    theta, psi = 1.0 + 0.8 * np.sin(2 * np.pi * t), 2.0 + 0.6 * np.cos(2 * np.pi * t)
+    rates = dict(thetadot=1.1, psidot=-0.3, thetaddot=0.2, psiddot=0.5)
+    names = ["beta", "phi", "betadot", "phidot", "betaddot", "phiddot"]
+    closed = Solver(linkage, names, backend="numpy")(theta=theta, psi=psi, branch=1, **dimensions, **rates)
+    start = {name: float(closed[name][0]) + 0.05 for name in ("beta", "phi")}
+    solver = NumericSolver(linkage, backend="compiled")
+    assert solver.backend == "compiled"
+    got = solver(theta=theta, psi=psi, guess=start, **dimensions, **rates)
+    for name in names:
+        gap = np.abs(got[name] - closed[name])
+        if name in ("beta", "phi"):
+            gap = np.abs(np.remainder(gap + np.pi, 2 * np.pi) - np.pi)
+        assert np.max(gap) < 1e-12 * max(1.0, float(np.max(np.abs(closed[name])))), name

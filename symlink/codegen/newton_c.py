@@ -109,6 +109,8 @@ static const double symlink_min_fraction = {MIN_FRACTION!r};
 /* An angle that moves by at most this much gets its sine and cosine from the ones before, to second order:
  * the remainder, |d|^3 / 6 < 1e-17, is below a tenth of a unit in the last place of 1. */
 static const double symlink_small_turn = 0x1p-18;
+/* A last correction at most this large (in units) leaves the Jacobian as it was, to rounding. */
+static const double symlink_same_jacobian = 0x1p-50;
 
 /* The closure at one point (x, q): its angles' sines and cosines, the residuals, the scaled Jacobian's LU
  * factors, the scales and units, and its 1-norm condition number once computed. */
@@ -360,13 +362,20 @@ static int symlink_correct(const double *x, const double *p, double *q, symlink_
                              : fmax(symlink_contraction * previous, 1e3 * symlink_epsilon);
         if (converged) {{
             /* A last, rounding-sized correction; where it is not small, a singular position. s is the system at
-             * the corrected point: the residual the final check tests, the Jacobian the rates are solved with
-             * (the one before it may be off by the condition number times the residual tolerance). */
+             * the corrected point: the residual the final check tests, the Jacobian the rates are solved with.
+             * Where the correction is a few units in the last place (most points), the Jacobian and the sines
+             * before it are those of the corrected point to rounding, and only the residual is evaluated again;
+             * else (an ill-conditioned point, where the correction can reach the condition number times the
+             * residual tolerance) the whole system. */
             for (int j = 0; j < SYMLINK_N; ++j) {{
                 q[j] += step[j];
             }}
-            symlink_system_at(x, p, q, now, next);
-            now = next;
+            if (size <= symlink_same_jacobian) {{
+                now->residual = symlink_residual_at(x, p, q, now);
+            }} else {{
+                symlink_system_at(x, p, q, now, next);
+                now = next;
+            }}
             *condition = symlink_condition(now);
             *singular = *condition > symlink_singular_condition || !(size <= symlink_position_tolerance);
             if (now != s) {{

@@ -363,7 +363,8 @@ class NumericSolver:
 
     ``backend`` chooses as for :class:`Solver` (default: ``SYMLINK_BACKEND``, else
     ``"auto"``): ``"auto"`` uses the compiled driver where its library is built (in
-    the cache), else builds it in the background while the NumPy module answers;
+    the cache), else builds it in the background while the NumPy module answers
+    (looked for on the first call, or the first look at :attr:`backend`);
     ``"compiled"`` builds it now (one ``FallbackWarning`` and NumPy where it cannot);
     ``"numpy"`` the NumPy module only.  Both agree to about 1e-13; the same inputs
     fail on both, with the same messages.
@@ -384,7 +385,10 @@ class NumericSolver:
         self.backend_choice = compiled.chosen_backend(backend)
         self._compiled: _CompiledNewton | None = None  # the compiled driver once it answers
         self._build: Any = None  # its background build, until it is over
-        if self.backend_choice != "numpy":
+        # "auto" looks for (or starts building) the compiled driver on first use, so that a solver made for its
+        # NumPy functions alone (design sensitivities) derives no C; "compiled" builds it now.
+        self._looked = self.backend_choice != "auto"
+        if self.backend_choice == "compiled":
             self._compiled, self._build = _compiled_newton(linkage, self.backend_choice)
 
     @property
@@ -394,12 +398,16 @@ class NumericSolver:
 
     def wait_for_backend(self, timeout: float | None = None) -> str:
         """Wait (at most ``timeout`` seconds) for a background build of the compiled driver; the backend then."""
+        self._answering()  # looks for it (or starts its build) if no call has yet
         if self._build is not None:
             self._build.wait(timeout)
         return self.backend
 
     def _answering(self) -> _CompiledNewton | None:
         """The compiled driver where it answers (a background build just finished is adopted here), else ``None``."""
+        if not self._looked:
+            self._looked = True
+            self._compiled, self._build = _compiled_newton(self.linkage, self.backend_choice)
         if self._build is not None and self._build.done():
             from . import compiled_library as compiled
             library = None if self._build.error is not None else compiled.built_library(self._build.facts["source"])

@@ -191,6 +191,7 @@ def test_the_backend_switch(monkeypatch):
     assert NumericSolver(fourbar()).backend_choice == "numpy"
     monkeypatch.setenv("SYMLINK_BACKEND", "auto")
     automatic = NumericSolver(fourbar())
+    assert automatic._build is None and automatic._compiled is None  # nothing derived or built before it is used
     values = dict(a=20, b=66, c=56, d=80, theta=np.radians(np.arange(0.0, 360.0, 10.0)), thetadot=10.5)
     first = automatic(guess=dict(beta=0.3, phi=1.9), **values)  # answered now, whichever backend is ready
     assert automatic.wait_for_backend(timeout=600) == "compiled"

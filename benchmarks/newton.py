@@ -14,7 +14,8 @@ repeated calls, nanoseconds per value:
   full kinematics, of the Watt II six-bar (four unknowns, like Stephenson III) and of the four-bar.
 
 Also the four-bar by Newton (``NumericSolver`` works on any linkage): the same linkage both ways.
-Printed: each time and the ratios newton-c / closed-form C (target <= 20x) and numpy / newton-c.
+Printed: each time and the ratios newton-c / closed-form C (target <= 20x) and numpy / newton-c, and
+the Stephenson III's loop against the four-bar's closed-form loop (a six-bar against a four-bar).
 
     python -m benchmarks.newton [-n 36000]
 """
@@ -109,6 +110,11 @@ def report(rows: list[dict]) -> str:
                      f"{r['numpy_ns']:>10.0f} | {r['closed']:>15} {r['closed_ns']:>8.1f} | "
                      f"{r['loop_ns'] / r['closed_ns']:>10.1f}x {r['call_ns'] / r['closed_ns']:>10.1f}x "
                      f"{r['numpy_ns'] / r['call_ns']:>9.1f}x | {r['agreement']:>15.2g}")
+    by_name = {r["linkage"]: r for r in rows}
+    if "stephenson3" in by_name and "fourbar" in by_name:
+        six, four = by_name["stephenson3"], by_name["fourbar"]
+        lines.append(f"Stephenson III newton-c loop / four-bar closed-form C loop: "
+                     f"{six['loop_ns'] / four['closed_ns']:.1f}x (a six-bar against a four-bar)")
     lines.append(f"ns per value, full kinematics (CPU time, best of repeats; NumPy on {rows[0]['numpy_n']} values); "
                  f"target: newton-c within 20x the closed-form C; load {os.getloadavg()[0]:.2f}")
     return "\n".join(lines)

@@ -525,7 +525,7 @@ class _CompiledNewton:
         return found
 
 
-def newton_c_facts(linkage: Linkage) -> dict[str, Any]:
+def _cached_newton_c_facts(linkage: Linkage) -> dict[str, Any]:
     """The compiled Newton driver's source and calling facts (:func:`symlink.codegen.newton_c.newton_c_facts`),
     derived once, then read from symlink's cache."""
     from .codegen.newton_c import newton_c_facts as derive
@@ -541,7 +541,7 @@ def _compiled_newton(linkage: Linkage, choice: str) -> tuple[_CompiledNewton | N
     if choice == "auto" and not compiled.compiler_works():
         return None, None
     try:
-        facts = newton_c_facts(linkage)
+        facts = _cached_newton_c_facts(linkage)
         if choice == "compiled":
             return _CompiledNewton(compiled.compile_shared(facts["source"]), facts), None
     except (compiled.CompilerUnavailable, compiled.CompileError, OSError, subprocess.SubprocessError,

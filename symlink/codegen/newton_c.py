@@ -577,8 +577,9 @@ static int symlink_substeps(const double *here, const double *p, double *q, syml
  * inputs: SYMLINK_NI rows of count values; parameters: one number each; guess: the SYMLINK_N unknowns near the
  * wanted assembly at the first value. Writes q (SYMLINK_N rows of count values: unknown by unknown), residual
  * (count), and where rates is not 0 the unknowns' rates and accelerations qdot, qddot (SYMLINK_N rows of count)
- * from input_rates and input_accels (SYMLINK_NI rows of count values each). Returns 0, or a status (1 to 5) with report: the
- * condition number, the residual, the index of the value, the start's and the target's input values. */
+ * from input_rates and input_accels (SYMLINK_NI rows of count values each). Returns 0, or a status (1 to 5)
+ * with report: the condition number, the residual, the index of the value, the start's and the target's input
+ * values. */
 int symlink_newton_sweep(size_t count, const double *inputs, const double *parameters, const double *guess,
                          int rates, const double *input_rates, const double *input_accels,
                          double *q, double *qdot, double *qddot, double *residual, double *report)

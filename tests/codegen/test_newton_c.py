@@ -71,8 +71,10 @@ def reference(thetas, guess, substeps=4):
             crank_x = p["a"] * (ct * w ** 2 + st * wdot)
             crank_y = p["a"] * (st * w ** 2 - ct * wdot)
             qddot = mp.lu_solve(J, mp.matrix([
-                crank_x + p["b"] * mp.cos(beta) * bd ** 2 + p["c"] * mp.cos(mu) * md ** 2 - p["f"] * mp.cos(phi) * fd ** 2,
-                crank_y + p["b"] * mp.sin(beta) * bd ** 2 + p["c"] * mp.sin(mu) * md ** 2 - p["f"] * mp.sin(phi) * fd ** 2,
+                crank_x + p["b"] * mp.cos(beta) * bd ** 2 + p["c"] * mp.cos(mu) * md ** 2
+                - p["f"] * mp.cos(phi) * fd ** 2,
+                crank_y + p["b"] * mp.sin(beta) * bd ** 2 + p["c"] * mp.sin(mu) * md ** 2
+                - p["f"] * mp.sin(phi) * fd ** 2,
                 crank_x + p["e"] * mp.cos(beta + p["alpha"]) * bd ** 2 + p["g"] * mp.cos(eta) * ed ** 2
                 - p["h"] * mp.cos(phi + p["delta"]) * fd ** 2,
                 crank_y + p["e"] * mp.sin(beta + p["alpha"]) * bd ** 2 + p["g"] * mp.sin(eta) * ed ** 2

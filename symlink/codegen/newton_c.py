@@ -275,7 +275,7 @@ static double symlink_residual_at(const double *x, const double *p, const double
 }}
 
 /* z = A^-1 b with A's LU factors (b in the scaled Jacobian's row order). */
-static void symlink_lu_solve(const symlink_system *s, const double *b, double *z)
+static void symlink_lu_solve(const symlink_system *restrict s, const double *restrict b, double *restrict z)
 {{
     for (int i = 0; i < SYMLINK_N; ++i) {{
         z[i] = b[s->row[i]];

@@ -30,6 +30,7 @@ from __future__ import annotations
 import functools
 import html
 import inspect
+import json
 import math
 import re
 from functools import cached_property, lru_cache
@@ -350,14 +351,23 @@ def _require_memory(solver: Any, values: Mapping[str, Any], bytes_per_value: int
 
 
 class NumericSolver:
-    """Newton's method on a linkage's closure, generated as NumPy code and loaded.
+    """Newton's method on a linkage's closure, compiled as C where a C compiler works, else generated NumPy code.
 
     Call it with the inputs (a one-dimensional sweep), the parameters (one
     number each), ``guess`` (the unknowns near the wanted assembly at the first
     input value) and optionally the inputs' rates and accelerations; it
     returns positions, rates and accelerations like the closed-form solvers.
     It works with or without a closed form; see :mod:`symlink.codegen.newton`
-    for how the generated module solves.
+    for how the generated module solves, and :mod:`symlink.codegen.newton_c` for the
+    compiled driver (the same algorithm, constants and checks, one value at a time).
+
+    ``backend`` chooses as for :class:`Solver` (default: ``SYMLINK_BACKEND``, else
+    ``"auto"``): ``"auto"`` uses the compiled driver where its library is built (in
+    the cache), else builds it in the background while the NumPy module answers
+    (looked for on the first call, or the first look at :attr:`backend`);
+    ``"compiled"`` builds it now (one ``FallbackWarning`` and NumPy where it cannot);
+    ``"numpy"`` the NumPy module only.  Both agree to about 1e-13; the same inputs
+    fail on both, with the same messages.
 
     >>> from symlink.catalog import fourbar
     >>> solver = NumericSolver(fourbar())
@@ -366,11 +376,44 @@ class NumericSolver:
     [110.74, 108.94]
     """
 
-    def __init__(self, linkage: Linkage) -> None:
+    def __init__(self, linkage: Linkage, backend: str | None = None) -> None:
+        from . import compiled_library as compiled  # the C libraries (it imports no solver)
         self.linkage = linkage
         # Derived once, then from the scene cache, as every other generated solver.
         self.source = cached_text(cache_key(linkage, [], "numeric"), lambda: newton.numeric_module(linkage))
         self.functions = load_numpy_module(self.source)
+        self.backend_choice = compiled.chosen_backend(backend)
+        self._compiled: _CompiledNewton | None = None  # the compiled driver once it answers
+        self._build: Any = None  # its background build, until it is over
+        # "auto" looks for (or starts building) the compiled driver on first use, so that a solver made for its
+        # NumPy functions alone (design sensitivities) derives no C; "compiled" builds it now.
+        self._looked = self.backend_choice != "auto"
+        if self.backend_choice == "compiled":
+            self._compiled, self._build = _compiled_newton(linkage, self.backend_choice)
+
+    @property
+    def backend(self) -> str:
+        """``"compiled"`` or ``"numpy"``: the backend that answers the next call."""
+        return "numpy" if self._answering() is None else "compiled"
+
+    def wait_for_backend(self, timeout: float | None = None) -> str:
+        """Wait (at most ``timeout`` seconds) for a background build of the compiled driver; the backend then."""
+        self._answering()  # looks for it (or starts its build) if no call has yet
+        if self._build is not None:
+            self._build.wait(timeout)
+        return self.backend
+
+    def _answering(self) -> _CompiledNewton | None:
+        """The compiled driver where it answers (a background build just finished is adopted here), else ``None``."""
+        if not self._looked:
+            self._looked = True
+            self._compiled, self._build = _compiled_newton(self.linkage, self.backend_choice)
+        if self._build is not None and self._build.done():
+            from . import compiled_library as compiled
+            library = None if self._build.error is not None else compiled.built_library(self._build.facts["source"])
+            self._compiled = None if library is None else _CompiledNewton(library, self._build.facts)
+            self._build = None
+        return self._compiled
 
     @property
     def arguments(self) -> list[str]:
@@ -388,9 +431,39 @@ class NumericSolver:
         check_argument_names(self.linkage.name, self.arguments, required,
                              list(values) + (["guess"] if guess is not None else []))
         values, length_unit = plain_values(self.linkage, values)
-        _require_memory(self, values, self.bytes_per_value, "numeric solver")
-        return _results(self.functions["accelerations"](guess=guess, **values), self.units, length_unit,
-                        values, argument_units(self.linkage, list(values)))
+        if not _surely_small(values, self.bytes_per_value):
+            _require_memory(self, values, self.bytes_per_value, "numeric solver")
+        compiled = self._answering()
+        found = (self.functions["accelerations"](guess=guess, **values) if compiled is None
+                 else self._compiled_sweep(compiled, guess, values))
+        return _results(found, self.units, length_unit, values, self._argument_units(tuple(values)))
+
+    def _argument_units(self, names: tuple[str, ...]) -> dict[str, str]:
+        """The unit of each argument of a call (:func:`symlink.units.argument_units`), found once a set of names."""
+        known = self.__dict__.setdefault("_units_of_arguments", {})
+        if names not in known:
+            known[names] = argument_units(self.linkage, list(names))
+        return known[names]
+
+    def _compiled_sweep(self, compiled: _CompiledNewton, guess: Any, values: Mapping[str, Any]) -> dict:
+        """What the NumPy module's ``accelerations`` returns, from the compiled driver: the same checks (the
+        module's own), the sweep in C, the same results."""
+        functions, linkage = self.functions, self.linkage
+        names = [s.name for s in linkage.inputs + linkage.parameters]
+        rate_names = [rate(x).name for x in linkage.inputs]
+        accel_names = [acceleration(x).name for x in linkage.inputs]
+        checked = names + rate_names + accel_names
+        functions["_arguments"](True, tuple(checked), tuple(values.get(n, 0.0) for n in checked),
+                                tuple(s.name for s in linkage.parameters if s.is_positive))
+        count = len(linkage.inputs)
+        arguments = [values[n] for n in names]
+        shape, inputs, parameters, guess, input_rates, input_accels = functions["_prepared"](
+            arguments[:count], arguments[count:], guess, [values.get(n, 0.0) for n in rate_names],
+            [values.get(n, 0.0) for n in accel_names])
+        q, qdot, qddot, residual = compiled.sweep(inputs, parameters, guess, input_rates, input_accels,
+                                                  functions["_failure"])
+        return functions["_results"](shape, inputs, parameters, q, qdot, qddot, residual, 2,
+                                     compiled.outputs(inputs, parameters, q))
 
     @cached_property
     def bytes_per_value(self) -> int:
@@ -398,6 +471,89 @@ class NumericSolver:
         unknowns = len(self.linkage.unknowns)
         outputs = 2 * len(self.linkage.points) + len(self.linkage.extras) + 3 * (unknowns + len(self.linkage.roles))
         return 8 * (6 * unknowns * unknowns + 12 * unknowns + _assignments(self.source) + outputs + 2 + _TEMPORARIES)
+
+
+class _CompiledNewton:
+    """The compiled Newton driver of one linkage (:mod:`symlink.codegen.newton_c`), called through ctypes."""
+
+    def __init__(self, library: Any, facts: Mapping[str, Any]) -> None:
+        from . import compiled_library as compiled
+        import ctypes
+        self.facts = facts
+        self.sweep_entry = library.symlink_newton_sweep
+        pointer = ctypes.c_void_p
+        self.sweep_entry.restype = ctypes.c_int
+        self.sweep_entry.argtypes = [ctypes.c_size_t, pointer, pointer, pointer, ctypes.c_int, pointer, pointer,
+                                     pointer, pointer, pointer, pointer, pointer]
+        self.output_entry = (compiled._Entry(library, "newton_outputs", facts["output_arguments"], facts["outputs"],
+                                             facts["output_flags"], {}) if facts["outputs"] else None)
+
+    def sweep(self, inputs: Sequence[numpy.ndarray], parameters: Sequence[numpy.ndarray], guess: numpy.ndarray,
+              input_rates: Sequence[numpy.ndarray] | None, input_accels: Sequence[numpy.ndarray] | None,
+              failure: Callable[[int, numpy.ndarray], Exception]) -> tuple:
+        """Positions, rates, accelerations and residuals (the NumPy driver's ``_sweep``'s) of checked arguments;
+        ``failure(status, report)`` the error raised where the sweep fails."""
+        count, unknowns = len(inputs[0]), len(self.facts["unknowns"])
+        x = numpy.ascontiguousarray(numpy.stack(inputs), dtype=numpy.float64)
+        p = numpy.ascontiguousarray([float(v) for v in parameters], dtype=numpy.float64)
+        start = numpy.ascontiguousarray(guess, dtype=numpy.float64)
+        rates = input_rates is not None and input_accels is not None
+        xdot = numpy.ascontiguousarray(numpy.stack(input_rates) if input_rates is not None else x, dtype=numpy.float64)
+        xddot = numpy.ascontiguousarray(numpy.stack(input_accels) if input_accels is not None else x,
+                                        dtype=numpy.float64)
+        q = numpy.empty((unknowns, count))  # unknown by unknown: each a contiguous array
+        qdot, qddot = (numpy.empty((unknowns, count)), numpy.empty((unknowns, count))) if rates else (q, q)
+        residual = numpy.empty(count)
+        report = numpy.zeros(3 + 2 * len(inputs))
+        status = self.sweep_entry(count, x.ctypes.data, p.ctypes.data, start.ctypes.data, int(rates),
+                                  xdot.ctypes.data, xddot.ctypes.data, q.ctypes.data, qdot.ctypes.data,
+                                  qddot.ctypes.data, residual.ctypes.data, report.ctypes.data)
+        if status:
+            raise failure(status, report)
+        return q.T, (qdot.T if rates else None), (qddot.T if rates else None), residual
+
+    def outputs(self, inputs: Sequence[numpy.ndarray], parameters: Sequence[numpy.ndarray],
+                q: numpy.ndarray) -> dict[str, numpy.ndarray]:
+        """The named points and extras at the solved positions (the NumPy module's ``_outputs``)."""
+        if self.output_entry is None:
+            return {}
+        values = dict(zip(self.facts["inputs"], inputs))
+        values.update(zip(self.facts["parameters"], parameters))
+        values.update((name, q[:, k]) for k, name in enumerate(self.facts["unknowns"]))
+        found = self.output_entry(**values)
+        found.pop("assembled")
+        return found
+
+
+def _cached_newton_c_facts(linkage: Linkage) -> dict[str, Any]:
+    """The compiled Newton driver's source and calling facts (:func:`symlink.codegen.newton_c.newton_c_facts`),
+    derived once, then read from symlink's cache."""
+    from .codegen.newton_c import newton_c_facts as derive
+    return json.loads(cached_text(cache_key(linkage, [], "newton-c"), lambda: json.dumps(derive(linkage))))
+
+
+def _compiled_newton(linkage: Linkage, choice: str) -> tuple[_CompiledNewton | None, Any]:
+    """The compiled driver for ``backend=choice`` ("auto" or "compiled"), or its background build ("auto"), or
+    neither (NumPy answers; "compiled" warns once)."""
+    from . import compiled_library as compiled
+    import subprocess
+    import warnings
+    if choice == "auto" and not compiled.compiler_works():
+        return None, None
+    try:
+        facts = _cached_newton_c_facts(linkage)
+        if choice == "compiled":
+            return _CompiledNewton(compiled.compile_shared(facts["source"]), facts), None
+    except (compiled.CompilerUnavailable, compiled.CompileError, OSError, subprocess.SubprocessError,
+            ValueError, NotImplementedError, TypeError) as error:
+        if choice == "compiled":
+            warnings.warn(f"symlink: no compiled Newton driver, using NumPy instead: {error}",
+                          compiled.FallbackWarning, stacklevel=3)
+        return None, None
+    library = compiled.built_library(facts["source"])
+    if library is not None:
+        return _CompiledNewton(library, facts), None
+    return None, compiled.build_in_background(facts)
 
 
 @lru_cache(maxsize=None)

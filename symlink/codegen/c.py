@@ -194,11 +194,13 @@ def c_comment(text: str, indent: str = "") -> str:
 
 
 #: A straight-line program whose assignments print to more than this many characters of C is cut into pieces
-#: of about this size, each its own loop function (:func:`c_function`): a compiler's time grows faster than
-#: the length of one function (register allocation, CSE after reload), and pieces can be compiled apart, in
-#: parallel (:func:`translation_units`).  The catalog's linkages (Jansen's leg's full kinematics, the largest,
-#: print about 9,000) stay one loop.
-PIECE_SIZE = 12000
+#: of at most about this size, each its own loop function (:func:`c_function`): a compiler's time grows faster
+#: than the length of one function (register allocation, CSE after reload), and pieces can be compiled apart,
+#: in parallel (:func:`translation_units`).  Measured with GCC 12 (``-O3``, three target clones) on chains of
+#: k four-bars (about 2,300 characters each): one loop of k = 4 took 6.7 CPU seconds to compile, two pieces
+#: 1.5; pieces of 3,000 to 12,000 characters cost about the same in all, 24,000 a third more.  The catalog's
+#: linkages (Jansen's leg's full kinematics, the largest, print 7,342) stay one loop, as fast as before.
+PIECE_SIZE = 8000
 
 #: The line between translation units in a source of pieces: what precedes the first is common to all.
 UNIT_MARK = "/* symlink: translation unit */"
@@ -223,17 +225,18 @@ def _piece_bounds(costs: Sequence[int], size: int) -> list[tuple[int, int]]:
     return bounds
 
 
-def _clustered(code: StraightLine) -> tuple[tuple[sp.Symbol, sp.Expr], ...]:
+def _clustered(code: StraightLine, uses: dict[sp.Symbol, frozenset]) -> tuple[tuple[sp.Symbol, sp.Expr], ...]:
     """The assignments in an order that computes each output's values together, so that few values are live
     from piece to piece: next always the output that needs the fewest values not computed yet (in a chain of
-    loops: one loop's position, rate and acceleration, then the next loop's).  Each value after those it uses.
+    loops: one loop's position, rate and acceleration, then the next loop's).  Each value after those it uses
+    (``uses``: each assignment's free symbols).
     """
     expression = dict(code.assignments)
-    needs = {symbol: [s for s in sp.ordered(expr.free_symbols) if s in expression] for symbol, expr in code.assignments}
+    needs = {symbol: sorted((s for s in uses[symbol] if s in expression), key=str) for symbol, _ in code.assignments}
     closure: dict[sp.Symbol, frozenset] = {}
     for symbol, _ in code.assignments:  # in order: every value's needs come before it
         closure[symbol] = frozenset([symbol]).union(*(closure[s] for s in needs[symbol]))
-    wanted = [[s for s in sp.ordered(e.free_symbols) if s in expression] for e in code.outputs.values()]
+    wanted = [sorted((s for s in e.free_symbols if s in expression), key=str) for e in code.outputs.values()]
     wanted.append(list(code.roots))
     missing = [set().union(*(closure[s] for s in group)) for group in wanted]
     waiting: dict[sp.Symbol, list[int]] = {}  # each value: the outputs that still miss it
@@ -301,10 +304,12 @@ def c_function(program: Program, name: str, doc: str = "", piece_size: int = PIE
 
     printed = [(symbol.name, printer.doprint(expr)) for symbol, expr in code.assignments]
     bounds = _piece_bounds([len(text) + 20 for _, text in printed], piece_size)
+    uses = {symbol: frozenset(expr.free_symbols) for symbol, expr in code.assignments}
     if len(bounds) > 1:  # pieces: each output's values computed together, so that few cross from piece to piece
-        code = replace(code, assignments=_clustered(code))
+        text_of = dict(printed)
+        code = replace(code, assignments=_clustered(code, uses))
         locals_ = [s.name for s, _ in code.assignments]
-        printed = [(symbol.name, printer.doprint(expr)) for symbol, expr in code.assignments]
+        printed = [(name_, text_of[name_]) for name_ in locals_]
         bounds = _piece_bounds([len(text) + 20 for _, text in printed], piece_size)
     last = len(bounds) - 1
     defined_in = {symbol.name: p for p, (low, high) in enumerate(bounds) for symbol, _ in code.assignments[low:high]}
@@ -315,7 +320,7 @@ def c_function(program: Program, name: str, doc: str = "", piece_size: int = PIE
     written = [[k for k in written_in if written_in[k] == p] for p in range(len(bounds))]
     at_end = [k for k in range(len(outputs)) if k not in written_in]
     # Which names each piece reads; the last piece also reads its outputs' names and the roots.
-    reads = [set().union(set(), *(e.free_symbols for _, e in code.assignments[low:high])) for low, high in bounds]
+    reads = [set().union(set(), *(uses[s] for s, _ in code.assignments[low:high])) for low, high in bounds]
     reads[last] |= set().union(*(expressions[k].free_symbols for k in at_end), code.roots)
     read_names = [{s.name for s in piece} for piece in reads]
     order = {name_: k for k, name_ in enumerate(arguments + locals_)}
@@ -368,7 +373,7 @@ def c_function(program: Program, name: str, doc: str = "", piece_size: int = PIE
     if len(bounds) == 1:
         lines = [f"SYMLINK_INLINE double {kernel}(" + ", ".join([f"double {a}" for a in arguments]
                                                                 + [f"double *restrict {out}"]) + ")", "{"]
-        used = set().union(*(e.free_symbols for _, e in code.assignments),
+        used = set().union(*uses.values(),
                            *(e.free_symbols for e in code.outputs.values()))
         lines += [f"    (void){s.name};  /* not needed by these outputs */" for s in code.arguments if s not in used]
         lines += [f"    const double {symbol} = {text};" for symbol, text in printed]

@@ -508,15 +508,21 @@ class _Entry:
             if not values.keys() <= index_of.keys() or not self.defaults.keys() >= index_of.keys() - values.keys():
                 return None  # an unknown or a missing argument: the general path says so
             values = {**{name: self.defaults[name] for name in index_of.keys() - values.keys()}, **values}
-        with self._lock:  # the slots, and the arrays held with their pointers, belong to one call at a time
-            length = 0
+        # The slots, and the arrays held with their pointers, belong to one call at a time: a call while
+        # another thread's small call runs takes the general path (no waiting, and no lock's context manager).
+        lock = self._lock
+        if not lock.acquire(False):
+            return None
+        try:
             held, not_number = self._held, self._not_number
+            length = 0
+            numbers, array, double, largest = _NUMBER_TYPES, numpy.ndarray, _FLOAT, SMALL_CALL  # local: read fast
             for name, value in values.items():
                 index = index_of.get(name)
                 if index is None:
                     return None
                 kind = type(value)
-                if kind is float or kind is numpy.float64 or kind is int:
+                if kind in numbers:
                     if value is held[index]:  # the number of the call before, in the buffer already
                         continue
                     try:
@@ -528,8 +534,8 @@ class _Entry:
                         not_number[index] = False
                         self._pointers[index] = self._numbers_at + 8 * index
                         self._steps[index] = 0
-                elif kind is numpy.ndarray and value.dtype is _FLOAT and value.ndim == 1 \
-                        and value.flags.c_contiguous and 0 < value.shape[0] <= SMALL_CALL \
+                elif kind is array and value.dtype is double and value.ndim == 1 \
+                        and value.flags.c_contiguous and 0 < value.shape[0] <= largest \
                         and (length == 0 or value.shape[0] == length):
                     length = value.shape[0]
                     if value is not held[index]:
@@ -545,6 +551,8 @@ class _Entry:
             if packed(outputs.call):
                 return None  # an argument the NumPy module would refuse: the general path
             return outputs
+        finally:
+            lock.release()
 
     def _free_outputs(self, length: int) -> _Outputs:
         """Output blocks of ``length`` values no caller holds any more (nothing of them referenced), else new ones.
@@ -555,14 +563,20 @@ class _Entry:
         rows, still referenced anywhere (a kept result, a view, a slice) is
         never written again.
         """
-        kept = self._kept
-        for outputs in kept:
-            if outputs.length == length and outputs.free():
+        kept, count = self._kept, sys.getrefcount
+        for position, outputs in enumerate(kept):
+            # outputs.free(), inline (a method call costs as much as the test)
+            if outputs.length == length and sum(map(count, outputs._objects)) == outputs._references:
+                if position != len(kept) - 1:
+                    # Last in the list, looked at last: in that loop the caller holds it during the next call,
+                    # and the block it held before (now first) is free, found with one look.
+                    del kept[position]
+                    kept.append(outputs)
                 return outputs
         outputs = _Outputs(len(self._float_names), len(self._flag_names), length, self._result_rows,
                            self._result_names, (self._pointers_at, self._steps_at))
-        kept.insert(0, outputs)
-        del kept[KEPT_OUTPUTS:]
+        kept.append(outputs)
+        del kept[:-KEPT_OUTPUTS]
         return outputs
 
 
@@ -619,6 +633,9 @@ def _data_address(array: numpy.ndarray) -> int:
 
 
 _FLOAT = numpy.dtype(numpy.float64)
+
+#: The number types a small call takes as they are (each read at a step of 0).
+_NUMBER_TYPES = frozenset({float, numpy.float64, int})
 
 
 def _strided(array: numpy.ndarray, shape: tuple[int, ...]) -> tuple[int, int, numpy.ndarray]:

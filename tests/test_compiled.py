@@ -407,7 +407,7 @@ def test_small_calls_refuse_what_the_numpy_solver_refuses(compiler, argument, va
     assert str(refused.value) == str(expected.value)
 
 
-def test_small_call_results_are_never_overwritten_while_held(compiler):
+def test_small_call_results_are_never_overwritten_while_held(compiler, monkeypatch):
     solver = CompiledSolver(catalog_linkage("fourbar"), ["rocker", "singular"])
     lengths = dict(a=20.0, b=66.0, c=56.0, d=80.0, branch=1.0)
     first = solver(theta=numpy.linspace(0.0, 1.0, 12), **lengths)
@@ -426,11 +426,18 @@ def test_small_call_results_are_never_overwritten_while_held(compiler):
     # The first inputs' rockers still (glibc's vector atan2 may differ from NumPy's in the last place;
     # a later call's rockers, at other crank angles, would differ by far more than the tolerance).
     numpy.testing.assert_allclose(first["rocker"], expected["rocker"], rtol=0, atol=1e-12)
-    # A result dropped before the next call: its block is written again (no allocation).
+    # Results dropped, or held only until the next call returns: kept blocks are written again (no allocation).
     del first, kept_row, kept_slice
-    address = solver(theta=numpy.linspace(0.0, 1.0, 12), **lengths)["rocker"].__array_interface__["data"][0]
-    again = solver(theta=numpy.linspace(2.0, 3.0, 12), **lengths)["rocker"].__array_interface__["data"][0]
-    assert again == address
+    made = []
+    original = compiled_library._Outputs.__init__
+    monkeypatch.setattr(compiled_library._Outputs, "__init__", lambda self, *args: made.append(args) or
+                        original(self, *args))
+    for start in range(6):
+        assert solver(theta=numpy.linspace(start, start + 1.0, 12), **lengths)["rocker"].size == 12
+    result = None
+    for start in range(6):  # as a loop `result = solver(...)` does
+        result = solver(theta=numpy.linspace(start, start + 1.0, 12), **lengths)
+    assert result["rocker"].size == 12 and not made
 
 
 @pytest.mark.parametrize("count", [1, 3, 10, 16, 17, 31, 100])

@@ -677,22 +677,17 @@ static const double symlink_tolerance = {tolerance!r};
 #define SYMLINK_BLOCK 128
 #define SYMLINK_LANES 32
 
-/* The copies of symlink_block: not inlined, as one inlined copy for each argument, vectorised
- * for each target, made GCC take 2-3 times as long over a six-bar; called for the first block of
- * a number and for arrays that are strided or end in a short block, where a call costs nothing
- * measurable beside the copy. */
+/* The copies of arrays for symlink_block (strided, or ending in a short block): not inlined, as a
+ * copy inlined for each argument, vectorised for each target, made GCC take 2-3 times as long over a
+ * six-bar; one call an array a block costs nothing measurable beside the copy.  Compiled for each
+ * target as the loops are (SYMLINK_LOOP): a copy for baseline x86-64 alone, called from an AVX-512
+ * loop, made a call of 10 values half a microsecond slower. */
 #if defined(__GNUC__)
 __attribute__((noinline))
 #endif
-static const double *symlink_copy_block(double *block, const double *x, ptrdiff_t step, size_t start,
-                                        size_t m, size_t w)
+SYMLINK_LOOP static const double *symlink_copy_block(double *restrict block, const double *restrict x,
+                                                     ptrdiff_t step, size_t start, size_t m, size_t w)
 {{
-    if (step == 0) {{
-        for (size_t j = 0; j < w; ++j) {{
-            block[j] = *x;
-        }}
-        return block;
-    }}
     for (size_t j = 0; j < m; ++j) {{
         block[j] = x[(ptrdiff_t)(start + j) * step];
     }}
@@ -712,7 +707,12 @@ static inline const double *symlink_block(double *block, const double *x, ptrdif
     if (step == 1 && w == m) {{
         return x + start;
     }}
-    if (step == 0 && start != 0) {{
+    if (step == 0) {{
+        if (start == 0) {{
+            for (size_t j = 0; j < w; ++j) {{
+                block[j] = *x;
+            }}
+        }}
         return block;
     }}
     return symlink_copy_block(block, x, step, start, m, w);

@@ -61,7 +61,7 @@ import numpy
 from . import cache
 from .display import record_html
 from .call_arguments import check_argument_names
-from .codegen.c import c_function, c_library, c_packed
+from .codegen.c import PIECE_SIZE, c_function, c_library, c_packed, translation_units
 from .files import NotPrivate, read_private, write_atomic
 from .linkage import Linkage, Program, is_branch_name
 
@@ -172,31 +172,75 @@ _running: dict[subprocess.Popen, Path] = {}
 _exiting = threading.Event()
 
 
-def _run_compiler(command: list[str], folder: Path, vector_math: bool = True) -> subprocess.CompletedProcess:
+def _compiler_jobs() -> int:
+    """How many compilers a build runs at once: the processors this process may use."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except (AttributeError, OSError):
+        return max(1, os.cpu_count() or 1)
+
+
+def _run_compiler(command: list[str], folder: Path, vector_math: bool = True,
+                  units: int = 1) -> subprocess.CompletedProcess:
     """Compile ``folder/symlink.c`` into ``folder/symlink.so`` (run in the folder, so the bytes do not depend on it).
 
-    The compiler is registered while it runs, so that a process that exits during a background build
+    A source of several translation units (``units`` > 1: ``symlink_0.c``, ``symlink_1.c``, ...,
+    :func:`symlink.codegen.c.translation_units`) is compiled unit by unit into object files, as many
+    compilers at once as there are processors (:func:`_compiler_jobs`), then linked into the library.
+    Each compiler is registered while it runs, so that a process that exits during a background build
     stops it and removes its folder (:func:`_stop_builds`) instead of leaving half a build behind.
+    """
+    # Without vectorised epilogues: the last few values of a loop run one at a time, and compiling is faster.
+    include = ["-include", _VECTOR_MATH_FILE, "--param", "vect-epilogues-nomask=0"] if vector_math else []
+    if units <= 1:
+        return _run_all([command + list(FLAGS) + include + ["-o", "symlink.so", "symlink.c", "-lm"]], folder)[0]
+    objects = [f"symlink_{k}.o" for k in range(units)]
+    compiled = _run_all([command + list(FLAGS) + include + ["-c", "-o", o, o[:-2] + ".c"] for o in objects], folder)
+    failed = next((result for result in compiled if result.returncode != 0), None)
+    if failed is not None:
+        return failed
+    return _run_all([command + list(FLAGS) + ["-o", "symlink.so"] + objects + ["-lm"]], folder)[0]
+
+
+def _run_all(commands: list[list[str]], folder: Path) -> list[subprocess.CompletedProcess]:
+    """Run the compiler commands in ``folder``, as many at once as :func:`_compiler_jobs`; their results in order.
+
+    After the first failure, the commands not started are not run (their results are that failure).
     """
     if _exiting.is_set():
         raise CompilerUnavailable("the process is exiting")
-    # Without vectorised epilogues: the last few values of a loop run one at a time, and compiling is faster.
-    include = ["-include", _VECTOR_MATH_FILE, "--param", "vect-epilogues-nomask=0"] if vector_math else []
-    arguments = command + list(FLAGS) + include + ["-o", "symlink.so", "symlink.c", "-lm"]
     # The compiler's own temporaries (its .s and .o) in the build folder too, so that stopping a build
     # (at exit) and removing its folder leaves nothing behind in the system's temporary folder.
     environment = {**os.environ, "TMPDIR": str(folder)}
-    process = subprocess.Popen(arguments, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                               env=environment)
-    _running[process] = folder
+    results: list[subprocess.CompletedProcess] = []
+    running: list[tuple[list[str], subprocess.Popen]] = []
+    pending = list(commands)
     try:
-        out, err = process.communicate(timeout=300)
-    except subprocess.TimeoutExpired:
-        process.kill()
-        out, err = process.communicate()
+        while pending or running:
+            while pending and len(running) < _compiler_jobs() and not any(r.returncode for r in results):
+                arguments = pending.pop(0)
+                process = subprocess.Popen(arguments, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                           text=True, env=environment)
+                _running[process] = folder
+                running.append((arguments, process))
+            if not running:
+                break
+            arguments, process = running.pop(0)
+            try:
+                out, err = process.communicate(timeout=300)
+            except subprocess.TimeoutExpired:
+                process.kill()
+                out, err = process.communicate()
+            finally:
+                _running.pop(process, None)
+            results.append(subprocess.CompletedProcess(arguments, process.returncode, out, err))
     finally:
-        _running.pop(process, None)
-    return subprocess.CompletedProcess(arguments, process.returncode, out, err)
+        for _, process in running:  # a failure to start one (OSError): stop the others
+            process.kill()
+            process.wait()
+            _running.pop(process, None)
+    failed = next((r for r in results if r.returncode != 0), None)
+    return results + [failed] * (len(commands) - len(results))  # type: ignore[list-item]
 
 
 @atexit.register
@@ -220,13 +264,17 @@ def _build(source: str, headers: Mapping[str, str], command: list[str], target: 
     """
     target.parent.mkdir(parents=True, exist_ok=True)
     folder = Path(tempfile.mkdtemp(prefix=".build-", dir=target.parent))
+    units = translation_units(source)  # a large program's pieces, compiled apart (symlink.codegen.c)
     try:
-        for name, text in {**headers, _VECTOR_MATH_FILE: VECTOR_MATH, "symlink.c": source}.items():
+        files = {**headers, _VECTOR_MATH_FILE: VECTOR_MATH, "symlink.c": source}
+        if len(units) > 1:
+            files.update({f"symlink_{k}.c": unit for k, unit in enumerate(units)})
+        for name, text in files.items():
             write_atomic(folder / name, text, mode=0o600)
         try:
-            result = _run_compiler(command, folder)
+            result = _run_compiler(command, folder, units=len(units))
             if result.returncode != 0:
-                result = _run_compiler(command, folder, vector_math=False)
+                result = _run_compiler(command, folder, vector_math=False, units=len(units))
         except OSError as error:
             raise CompilerUnavailable(f"{command[0]} cannot be run: {error}") from None
         if result.returncode != 0:
@@ -460,15 +508,21 @@ class _Entry:
             if not values.keys() <= index_of.keys() or not self.defaults.keys() >= index_of.keys() - values.keys():
                 return None  # an unknown or a missing argument: the general path says so
             values = {**{name: self.defaults[name] for name in index_of.keys() - values.keys()}, **values}
-        with self._lock:  # the slots, and the arrays held with their pointers, belong to one call at a time
-            length = 0
+        # The slots, and the arrays held with their pointers, belong to one call at a time: a call while
+        # another thread's small call runs takes the general path (no waiting, and no lock's context manager).
+        lock = self._lock
+        if not lock.acquire(False):
+            return None
+        try:
             held, not_number = self._held, self._not_number
+            length = 0
+            numbers, array, double, largest = _NUMBER_TYPES, numpy.ndarray, _FLOAT, SMALL_CALL  # local: read fast
             for name, value in values.items():
                 index = index_of.get(name)
                 if index is None:
                     return None
                 kind = type(value)
-                if kind is float or kind is numpy.float64 or kind is int:
+                if kind in numbers:
                     if value is held[index]:  # the number of the call before, in the buffer already
                         continue
                     try:
@@ -480,8 +534,8 @@ class _Entry:
                         not_number[index] = False
                         self._pointers[index] = self._numbers_at + 8 * index
                         self._steps[index] = 0
-                elif kind is numpy.ndarray and value.dtype is _FLOAT and value.ndim == 1 \
-                        and value.flags.c_contiguous and 0 < value.shape[0] <= SMALL_CALL \
+                elif kind is array and value.dtype is double and value.ndim == 1 \
+                        and value.flags.c_contiguous and 0 < value.shape[0] <= largest \
                         and (length == 0 or value.shape[0] == length):
                     length = value.shape[0]
                     if value is not held[index]:
@@ -497,6 +551,8 @@ class _Entry:
             if packed(outputs.call):
                 return None  # an argument the NumPy module would refuse: the general path
             return outputs
+        finally:
+            lock.release()
 
     def _free_outputs(self, length: int) -> _Outputs:
         """Output blocks of ``length`` values no caller holds any more (nothing of them referenced), else new ones.
@@ -507,14 +563,20 @@ class _Entry:
         rows, still referenced anywhere (a kept result, a view, a slice) is
         never written again.
         """
-        kept = self._kept
-        for outputs in kept:
-            if outputs.length == length and outputs.free():
+        kept, count = self._kept, sys.getrefcount
+        for position, outputs in enumerate(kept):
+            # outputs.free(), inline (a method call costs as much as the test)
+            if outputs.length == length and sum(map(count, outputs._objects)) == outputs._references:
+                if position != len(kept) - 1:
+                    # Last in the list, looked at last: in that loop the caller holds it during the next call,
+                    # and the block it held before (now first) is free, found with one look.
+                    del kept[position]
+                    kept.append(outputs)
                 return outputs
         outputs = _Outputs(len(self._float_names), len(self._flag_names), length, self._result_rows,
                            self._result_names, (self._pointers_at, self._steps_at))
-        kept.insert(0, outputs)
-        del kept[KEPT_OUTPUTS:]
+        kept.append(outputs)
+        del kept[:-KEPT_OUTPUTS]
         return outputs
 
 
@@ -572,6 +634,9 @@ def _data_address(array: numpy.ndarray) -> int:
 
 _FLOAT = numpy.dtype(numpy.float64)
 
+#: The number types a small call takes as they are (each read at a step of 0).
+_NUMBER_TYPES = frozenset({float, numpy.float64, int})
+
 
 def _strided(array: numpy.ndarray, shape: tuple[int, ...]) -> tuple[int, int, numpy.ndarray]:
     """(data pointer, step in elements, the array): no copy for a scalar, a contiguous or a strided 1-d array."""
@@ -586,10 +651,15 @@ def _strided(array: numpy.ndarray, shape: tuple[int, ...]) -> tuple[int, int, nu
     return copy.ctypes.data, 1, copy
 
 
-def program_facts(program: Program, name: str, doc: str, lengths: Sequence[str] = ()) -> str:
+def program_facts(program: Program, name: str, doc: str, lengths: Sequence[str] = (),
+                  piece_size: int = PIECE_SIZE) -> str:
     """The C of one straight-line ``program`` as function ``solve`` (plus its checked ``solve_packed``) and its
-    calling facts, as JSON text: ``{"source", "arguments", "outputs", "flags", "defaults"}``."""
-    function = c_function(program, "solve", doc)
+    calling facts, as JSON text: ``{"source", "arguments", "outputs", "flags", "defaults"}``.
+
+    A large program comes in pieces (``piece_size``, :data:`symlink.codegen.c.PIECE_SIZE`), which
+    :func:`compile_shared` compiles apart, in parallel.
+    """
+    function = c_function(program, "solve", doc, piece_size)
     _, source = c_library([function], "solver", standalone=True)
     source += "\n" + c_packed(function, list(lengths), [a for a in function.arguments if is_branch_name(a)])
     return json.dumps({"source": source, "arguments": function.arguments, "outputs": function.outputs,

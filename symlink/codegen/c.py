@@ -39,7 +39,7 @@ True
 from __future__ import annotations
 
 import textwrap
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Sequence
 
 import sympy as sp
@@ -49,16 +49,20 @@ from ..version import __version__
 from ..names import C_KEYWORDS as RESERVED_IN_C, PLAIN_NAME
 from ..position import TOLERANCE
 from .numpy import ARGUMENT_CONTRACT
-from .program import require_loop_units, FreshNames, is_flag, named_straight_line
+from .program import require_loop_units, FreshNames, StraightLine, is_flag, named_straight_line
 from .trigonometry import angle_sums
 
 if TYPE_CHECKING:
     from ..linkage import Linkage, Program
 
-__all__ = ["CFunction", "c_function", "c_library", "c_code", "c_identifier", "c_comment", "c_packed", "PACKED_CALL", "export_files"]
+__all__ = ["CFunction", "c_function", "c_library", "c_code", "c_identifier", "c_comment", "c_packed", "PACKED_CALL", "export_files",
+           "translation_units", "PIECE_SIZE", "UNIT_MARK"]
 
 #: The C type of true/false values inside a loop (1 and 0), before they are written out as bytes.
 FLAG_LANE = "unsigned short"
+
+#: The same in a program of pieces (:data:`PIECE_SIZE`), where every loop is of doubles.
+PIECE_FLAG_LANE = "double"
 
 #: Integer powers up to this size are written as multiplications.
 LARGEST_MULTIPLIED_POWER = 4
@@ -153,7 +157,11 @@ class CFunction:
     names of the output arrays (an output named like an argument gets
     ``_out``); ``flags`` tells the true/false outputs (``unsigned char``
     arrays of 0 and 1) from the numbers (``double`` arrays).  ``prototype``
-    goes into the header, ``definition`` into the source.
+    goes into the header, ``definition`` into the source.  ``pieces`` are
+    the loop functions of a large program's pieces (:data:`PIECE_SIZE`), each
+    its own text that ``definition`` calls in order; ``piece_prototypes``
+    declare them.  A small program has none: its one kernel is inlined into
+    ``definition``.
     """
 
     name: str
@@ -163,6 +171,8 @@ class CFunction:
     flags: tuple[bool, ...]
     prototype: str
     definition: str
+    pieces: tuple[str, ...] = ()
+    piece_prototypes: tuple[str, ...] = ()
 
 
 def c_comment(text: str, indent: str = "") -> str:
@@ -183,8 +193,92 @@ def c_comment(text: str, indent: str = "") -> str:
                      ) + (" */" if len(lines) == 1 else f"\n{indent} */")
 
 
-def c_function(program: Program, name: str, doc: str = "") -> CFunction:
-    """The C loop function (and its inline kernel) that computes the program's outputs."""
+#: A straight-line program whose assignments print to more than this many characters of C is cut into pieces
+#: of at most about this size, each its own loop function (:func:`c_function`): a compiler's time grows faster
+#: than the length of one function (register allocation, CSE after reload), and pieces can be compiled apart,
+#: in parallel (:func:`translation_units`).  Measured with GCC 12 (``-O3``, three target clones) on chains of
+#: k four-bars (about 2,300 characters each): one loop of k = 4 takes 2.8 CPU seconds to compile, two pieces
+#: 0.7 (a piece's loop is of doubles alone: no 16-bit lanes, which GCC vectorises four times as wide); at
+#: k = 16, pieces of 3,000 to 12,000 characters cost 3.3-4.3 s in all, 24,000 a bit more.  The catalog's
+#: linkages (Jansen's leg's full kinematics, the largest, print 7,342) stay one loop, as fast as before.
+PIECE_SIZE = 8000
+
+#: The line between translation units in a source of pieces: what precedes the first is common to all.
+UNIT_MARK = "/* symlink: translation unit */"
+
+
+def _piece_bounds(costs: Sequence[int], size: int) -> list[tuple[int, int]]:
+    """Consecutive ranges of assignments, of about equal total cost, each at most about ``size`` (one if all fit).
+
+    >>> _piece_bounds([5, 5, 5, 5], 12), _piece_bounds([5, 5, 5, 5], 20)
+    ([(0, 2), (2, 4)], [(0, 4)])
+    """
+    total = sum(costs)
+    count = max(1, -(-total // size))
+    bounds: list[tuple[int, int]] = []
+    start = running = 0
+    for index, cost in enumerate(costs):
+        running += cost
+        if running * count >= total * (len(bounds) + 1) and len(bounds) < count - 1:
+            bounds.append((start, index + 1))
+            start = index + 1
+    bounds.append((start, len(costs)))
+    return bounds
+
+
+def _clustered(code: StraightLine, uses: dict[sp.Symbol, frozenset]) -> tuple[tuple[sp.Symbol, sp.Expr], ...]:
+    """The assignments in an order that computes each output's values together, so that few values are live
+    from piece to piece: next always the output that needs the fewest values not computed yet (in a chain of
+    loops: one loop's position, rate and acceleration, then the next loop's).  Each value after those it uses
+    (``uses``: each assignment's free symbols).
+    """
+    expression = dict(code.assignments)
+    needs = {symbol: sorted((s for s in uses[symbol] if s in expression), key=str) for symbol, _ in code.assignments}
+    closure: dict[sp.Symbol, frozenset] = {}
+    for symbol, _ in code.assignments:  # in order: every value's needs come before it
+        closure[symbol] = frozenset([symbol]).union(*(closure[s] for s in needs[symbol]))
+    wanted = [sorted((s for s in e.free_symbols if s in expression), key=str) for e in code.outputs.values()]
+    wanted.append(list(code.roots))
+    missing = [set().union(*(closure[s] for s in group)) for group in wanted]
+    waiting: dict[sp.Symbol, list[int]] = {}  # each value: the outputs that still miss it
+    for k, group in enumerate(missing):
+        for symbol in group:
+            waiting.setdefault(symbol, []).append(k)
+    done: set = set()
+    order: list[sp.Symbol] = []
+    left = set(range(len(wanted)))
+    while left:
+        k = min(left, key=lambda j: (len(missing[j]), j))
+        left.discard(k)
+        for first in wanted[k]:
+            stack = [(first, iter(needs[first]))]
+            while stack:  # depth first, each value after what it needs
+                symbol, pending = stack[-1]
+                following = next((s for s in pending if s not in done), None)
+                if following is not None:
+                    stack.append((following, iter(needs[following])))
+                    continue
+                stack.pop()
+                if symbol not in done:
+                    done.add(symbol)
+                    order.append(symbol)
+                    for j in waiting.get(symbol, ()):
+                        missing[j].discard(symbol)
+    order += [symbol for symbol, _ in code.assignments if symbol not in done]
+    return tuple((symbol, expression[symbol]) for symbol in order)
+
+
+def c_function(program: Program, name: str, doc: str = "", piece_size: int = PIECE_SIZE) -> CFunction:
+    """The C loop function (and its inline kernel, or its pieces) that computes the program's outputs.
+
+    A program whose C is longer than ``piece_size`` characters is cut into
+    pieces (:data:`PIECE_SIZE`): each a loop function over a block of
+    configurations that reads the values it needs from the block's arrays
+    and writes those that later pieces need into block arrays on the stack;
+    the function calls them in order, block by block.  Every value is the
+    same operation on the same operands as in one loop (no contraction, no
+    reassociation), so the results are bit-identical.
+    """
     code, arguments = named_straight_line(program, name, c_identifier, "C")
     code = angle_sums(code, set(arguments))
     printer = _CPrinter()
@@ -209,41 +303,131 @@ def c_function(program: Program, name: str, doc: str = "") -> CFunction:
         f"{assembled}[i] is 1 where the linkage closes, 0 where it cannot be assembled (outputs NaN).")
     prototype = c_comment(summary) + "\n" + signature + ";\n"
 
-    lines = [f"SYMLINK_INLINE double {kernel}(" + ", ".join([f"double {a}" for a in arguments]
-                                                            + [f"double *restrict {out}"]) + ")", "{"]
-    used = set().union(*(e.free_symbols for _, e in code.assignments), *(e.free_symbols for e in code.outputs.values()))
-    lines += [f"    (void){s.name};  /* not needed by these outputs */" for s in code.arguments if s not in used]
-    for symbol, expr in code.assignments:
-        lines.append(f"    const double {symbol.name} = {printer.doprint(expr)};")
-    for k, ((output, expr), flag) in enumerate(zip(code.outputs.items(), flags)):
-        # A true/false output as 1.0 or 0.0: no int or char lane in the loop, which would make GCC
-        # vectorise it by 16 or 32 configurations at a time (and run calls of fewer one at a time).
-        value = f"({printer.doprint(expr)}) ? 1.0 : 0.0" if flag else printer.doprint(expr)
-        lines.append(f"    {out}[{k}] = {value};  /* {output} */")
-    # All roots finite: 0*x is 0 for a finite x and NaN for an infinite or NaN one, so the sum is 0
-    # exactly where every root is finite. One test, no short-circuit branches, so that the loop stays
-    # vectorisable however many loops the linkage has.
-    finite = f"{' + '.join(f'0.0 * {r.name}' for r in code.roots)} == 0.0 ? 1.0 : 0.0" if code.roots else "1.0"
-    lines += [f"    return {finite};", "}", ""]
-    # The kernel over m configurations whose arguments are contiguous; true/false outputs as 16-bit
-    # 1 and 0. GCC vectorises the loop by its narrowest lane: byte outputs made it take 32
-    # configurations at a time with AVX2 (64 with AVX-512), so that a call of fewer ran one at a
-    # time, about 5x slower; 16-bit lanes take 16 (32), which measured fastest (floats, 8 at a
-    # time, ran positions 5-10 % slower; doubles alone, 4 at a time, 20 % slower).
-    numbers_out = [o for o, flag in zip(output_parameters, flags) if not flag]
-    flags_out = [o for o, flag in zip(output_parameters, flags) if flag] + [assembled]
+    printed = [(symbol.name, printer.doprint(expr)) for symbol, expr in code.assignments]
+    bounds = _piece_bounds([len(text) + 20 for _, text in printed], piece_size)
+    uses = {symbol: frozenset(expr.free_symbols) for symbol, expr in code.assignments}
+    if len(bounds) > 1:  # pieces: each output's values computed together, so that few cross from piece to piece
+        text_of = dict(printed)
+        code = replace(code, assignments=_clustered(code, uses))
+        locals_ = [s.name for s, _ in code.assignments]
+        printed = [(name_, text_of[name_]) for name_ in locals_]
+        bounds = _piece_bounds([len(text) + 20 for _, text in printed], piece_size)
+    last = len(bounds) - 1
+    defined_in = {symbol.name: p for p, (low, high) in enumerate(bounds) for symbol, _ in code.assignments[low:high]}
+    # A number output that is a value of an earlier piece is written by that piece; the last writes the others.
+    expressions = list(code.outputs.values())
+    written_in = {k: defined_in[e.name] for k, e in enumerate(expressions)
+                  if not flags[k] and isinstance(e, sp.Symbol) and defined_in.get(e.name, last) != last}
+    written = [[k for k in written_in if written_in[k] == p] for p in range(len(bounds))]
+    at_end = [k for k in range(len(outputs)) if k not in written_in]
+    # Which names each piece reads; the last piece also reads its outputs' names and the roots.
+    reads = [set().union(set(), *(uses[s] for s, _ in code.assignments[low:high])) for low, high in bounds]
+    reads[last] |= set().union(*(expressions[k].free_symbols for k in at_end), code.roots)
+    read_names = [{s.name for s in piece} for piece in reads]
+    order = {name_: k for k, name_ in enumerate(arguments + locals_)}
+    piece_inputs = [sorted((v for v in read_names[p] if defined_in.get(v, -1) != p), key=order.__getitem__)
+                    for p in range(len(bounds))]
+    last_read = {v: p for p in range(len(bounds)) for v in read_names[p]}
+    piece_outputs = [[v for v in locals_[low:high] if last_read.get(v, p) > p] for p, (low, high) in enumerate(bounds)]
+
+    def kernel_lines(function: str, given: Sequence[str], low: int, high: int, returns: bool) -> list[str]:
+        """One configuration of a piece (or of the whole program): its assignments, then what it hands on."""
+        kind = "double" if returns else "void"
+        lines = [f"SYMLINK_INLINE {kind} {function}(" + ", ".join([f"double {a}" for a in given]
+                                                                 + [f"double *restrict {out}"]) + ")", "{"]
+        for symbol, text in printed[low:high]:
+            lines.append(f"    const double {symbol} = {text};")
+        return lines
+
+    def final_lines(lines: list[str]) -> list[str]:
+        """The kernel's outputs and its return: whether every root is finite."""
+        for k, (output, expr, flag) in enumerate((outputs[j], expressions[j], flags[j]) for j in at_end):
+            # A true/false output as 1.0 or 0.0: no int or char lane in the loop, which would make GCC
+            # vectorise it by 16 or 32 configurations at a time (and run calls of fewer one at a time).
+            value = f"({printer.doprint(expr)}) ? 1.0 : 0.0" if flag else printer.doprint(expr)
+            lines.append(f"    {out}[{k}] = {value};  /* {output} */")
+        # All roots finite: 0*x is 0 for a finite x and NaN for an infinite or NaN one, so the sum is 0
+        # exactly where every root is finite. One test, no short-circuit branches, so that the loop stays
+        # vectorisable however many loops the linkage has.
+        finite = f"{' + '.join(f'0.0 * {r.name}' for r in code.roots)} == 0.0 ? 1.0 : 0.0" if code.roots else "1.0"
+        return lines + [f"    return {finite};", "}", ""]
+
+    def run_lines(head: str, run: str, given: Sequence[str], function: str, lane: str = FLAG_LANE) -> list[str]:
+        """The loop of the last piece (or of the whole program) over m configurations whose arguments are
+        contiguous; true/false outputs as 1 and 0 in ``lane``."""
+        return [f"{head} void {run}(size_t {size}, " + ", ".join(
+            [f"const double *restrict {a}" for a in given]
+            + [f"{lane if flags[k] else 'double'} *restrict {output_parameters[k]}" for k in at_end]
+            + [f"{lane} *restrict {assembled}"]) + ")", "{",
+            f"    for (size_t {index} = 0; {index} < {size}; ++{index}) {{",
+            f"        double {out}[{len(at_end)}];",
+            f"        {assembled}[{index}] = ({lane}){function}(" + ", ".join(
+                [f"{a}[{index}]" for a in given] + [out]) + ");"] + [
+            f"        {output_parameters[j]}[{index}] = " + (f"({lane}){out}[{k}];" if flags[j] else f"{out}[{k}];")
+            for k, j in enumerate(at_end)] + ["    }", "}", ""]
+
+    pieces: list[str] = []
+    piece_prototypes: list[str] = []
+    # Each loop function the function calls: its name, what it reads, what it hands on (None: the last) and writes.
+    calls: list[tuple[str, list[str], list[str] | None, list[int]]] = []
     run = f"symlink_{name}_run"
-    lines += [f"SYMLINK_INLINE void {run}(size_t {size}, " + ", ".join(
-        [f"const double *restrict {a}" for a in arguments]
-        + [f"{FLAG_LANE if flag else 'double'} *restrict {o}" for o, flag in zip(output_parameters, flags)]
-        + [f"{FLAG_LANE} *restrict {assembled}"]) + ")", "{",
-        f"    for (size_t {index} = 0; {index} < {size}; ++{index}) {{",
-        f"        double {out}[{len(outputs)}];",
-        f"        {assembled}[{index}] = ({FLAG_LANE}){kernel}(" + ", ".join([f"{a}[{index}]" for a in arguments] + [out])
-        + ");"]
-    lines += [f"        {o}[{index}] = " + (f"({FLAG_LANE}){out}[{k}];" if flag else f"{out}[{k}];")
-              for k, (o, flag) in enumerate(zip(output_parameters, flags))]
-    lines += ["    }", "}", ""]
+    if len(bounds) == 1:
+        lines = [f"SYMLINK_INLINE double {kernel}(" + ", ".join([f"double {a}" for a in arguments]
+                                                                + [f"double *restrict {out}"]) + ")", "{"]
+        used = set().union(*uses.values(),
+                           *(e.free_symbols for e in code.outputs.values()))
+        lines += [f"    (void){s.name};  /* not needed by these outputs */" for s in code.arguments if s not in used]
+        lines += [f"    const double {symbol} = {text};" for symbol, text in printed]
+        lines = final_lines(lines)
+        # The kernel over m configurations whose arguments are contiguous; true/false outputs as 16-bit
+        # 1 and 0. GCC vectorises the loop by its narrowest lane: byte outputs made it take 32
+        # configurations at a time with AVX2 (64 with AVX-512), so that a call of fewer ran one at a
+        # time, about 5x slower; 16-bit lanes take 16 (32), which measured fastest (floats, 8 at a
+        # time, ran positions 5-10 % slower; doubles alone, 4 at a time, 20 % slower).
+        lines += run_lines("SYMLINK_INLINE", run, arguments, kernel)
+        calls.append((run, list(arguments), None, at_end))
+    else:
+        lines = []
+        for p, (low, high) in enumerate(bounds):
+            function, loop = f"symlink_{name}_piece{p}_at", f"symlink_{name}_piece{p}"
+            text = kernel_lines(function, piece_inputs[p], low, high, p == last)
+            if p == last:
+                # True/false values as doubles: one lane width in every piece, so that each is vectorised
+                # by as many doubles as a register holds (16-bit lanes make GCC take 4x as many at a time,
+                # and take 4x as long to compile the loop).
+                text = final_lines(text) + run_lines("SYMLINK_PIECE SYMLINK_LOOP", loop, piece_inputs[p], function,
+                                                     PIECE_FLAG_LANE)
+                head = run_lines("SYMLINK_PIECE", loop, piece_inputs[p], function, PIECE_FLAG_LANE)[0]
+            else:
+                # What later pieces read (into block arrays), then the outputs this piece writes.
+                handed = piece_outputs[p] + [expressions[k].name for k in written[p]]
+                targets_ = piece_outputs[p] + [output_parameters[k] for k in written[p]]
+                text += [f"    {out}[{k}] = {v};" for k, v in enumerate(handed)] + ["}", ""]
+                head = f"SYMLINK_PIECE void {loop}(size_t {size}, " + ", ".join(
+                    [f"const double *restrict {a}" for a in piece_inputs[p]]
+                    + [f"double *restrict {v}" for v in targets_]) + ")"
+                text += [head.replace("SYMLINK_PIECE", "SYMLINK_PIECE SYMLINK_LOOP", 1), "{",
+                         f"    for (size_t {index} = 0; {index} < {size}; ++{index}) {{",
+                         f"        double {out}[{len(handed)}];",
+                         f"        {function}(" + ", ".join([f"{a}[{index}]" for a in piece_inputs[p]] + [out]) + ");"]
+                text += [f"        {v}[{index}] = {out}[{k}];" for k, v in enumerate(targets_)] + ["    }", "}", ""]
+            pieces.append("\n".join(text))
+            piece_prototypes.append(head + ";")
+            calls.append((loop, piece_inputs[p], piece_outputs[p] if p != last else None,
+                          written[p] if p != last else at_end))
+
+    # Block arrays for the values that one piece hands to later ones, each reused once its last reader is done.
+    slot_of: dict[str, str] = {}
+    free_slots: list[str] = []
+    slots: list[str] = []
+    for p, (_, _, hands, _) in enumerate(calls):
+        for v in hands or ():
+            if not free_slots:
+                slots.append(names(f"{v}_block"))
+                free_slots.append(slots[-1])
+            slot_of[v] = free_slots.pop(0)
+        free_slots += [slot_of[v] for v in slot_of if last_read.get(v) == p and defined_in[v] < p]
+    needed = set(arguments) if len(bounds) == 1 else {a for _, given, _, _ in calls for a in given if a in arguments}
     restricted = "SYMLINK_LOOP " + signature.replace("double *", "double *restrict ").replace(
         "unsigned char *", "unsigned char *restrict ")
     # Blocks of configurations: each argument's values of a block are contiguous (the array itself
@@ -252,13 +436,24 @@ def c_function(program: Program, name: str, doc: str = "") -> CFunction:
     # outputs written to tails, then copied), so that every value, of a call of 10 as of 10^6, is
     # evaluated by the vectorised loop, none by a scalar remainder (which would also call libm's
     # scalar functions, not always equal to the vector ones in the last place).
+    numbers_out = [o for o, flag in zip(output_parameters, flags) if not flag]
+    flags_out = [o for o, flag in zip(output_parameters, flags) if flag] + [assembled]
     width = names("w")
     tails = [names(f"{o}_tail") for o in numbers_out]
     targets = [names(f"{o}_to") for o in numbers_out]
     flag_blocks = [names(f"{o}_block") for o in flags_out]
+    if len(bounds) > 1:
+        lines = _driver_of_pieces(restricted.replace("SYMLINK_LOOP ", "", 1), arguments, steps, [a for a in arguments if a in needed], slots, slot_of,
+                                  numbers_out, flags_out, output_parameters, calls, assembled, (count, start, size,
+                                                                                                width, index))
+        return CFunction(name, tuple(arguments), tuple(outputs), tuple(output_parameters), tuple(flags),
+                         prototype, "\n".join(lines) + "\n", tuple(pieces), tuple(piece_prototypes))
     lines += [restricted, "{"]
-    if arguments:
-        lines.append("    double " + ", ".join(f"{b}[SYMLINK_BLOCK]" for b in blocks) + ";")
+    if needed:
+        lines.append("    double " + ", ".join(f"{b}[SYMLINK_BLOCK]" for a, b in zip(arguments, blocks) if a in needed)
+                     + ";")
+    if slots:
+        lines.append("    double " + ", ".join(f"{b}[SYMLINK_BLOCK]" for b in slots) + ";")
     if tails:
         lines.append("    double " + ", ".join(f"{t}[SYMLINK_BLOCK]" for t in tails) + ";")
     lines.append(f"    {FLAG_LANE} " + ", ".join(f"{b}[SYMLINK_BLOCK]" for b in flag_blocks) + ";")
@@ -266,12 +461,20 @@ def c_function(program: Program, name: str, doc: str = "") -> CFunction:
               f"        const size_t {size} = {count} - {start} < SYMLINK_BLOCK ? {count} - {start} : SYMLINK_BLOCK;",
               f"        const size_t {width} = ({size} + SYMLINK_LANES - 1) / SYMLINK_LANES * SYMLINK_LANES;"]
     lines += [f"        const double *{v} = symlink_block({b}, {a}, {s}, {start}, {size}, {width});"
-              for a, s, b, v in zip(arguments, steps, blocks, views)]
+              for a, s, b, v in zip(arguments, steps, blocks, views) if a in needed]
     lines += [f"        double *{t} = {width} == {size} ? {o} + {start} : {tail};"
               for o, t, tail in zip(numbers_out, targets, tails)]
     destination = {**dict(zip(numbers_out, targets)), **dict(zip(flags_out, flag_blocks))}
-    lines.append(f"        {run}({width}, " + ", ".join(
-        views + [destination[o] for o in output_parameters] + [destination[assembled]]) + ");")
+    source_of = {**dict(zip(arguments, views)), **slot_of}
+    for function, given, hands, writes in calls:
+        if hands is not None:
+            lines.append(f"        {function}({width}, " + ", ".join(
+                [source_of[v] for v in given] + [slot_of[v] for v in hands]
+                + [destination[output_parameters[k]] for k in writes]) + ");")
+    final, given, _, writes = calls[-1]
+    lines.append(f"        {final}({width}, " + ", ".join(
+        [source_of[v] for v in given] + [destination[output_parameters[k]] for k in writes]
+        + [destination[assembled]]) + ");")
     lines += [f"        for (size_t {index} = 0; {index} < {size}; ++{index}) {{"]
     lines += [f"            {o}[{start} + {index}] = (unsigned char)({b}[{index}] != 0);"
               for o, b in zip(flags_out, flag_blocks)]
@@ -283,7 +486,80 @@ def c_function(program: Program, name: str, doc: str = "") -> CFunction:
         lines += ["            }", "        }"]
     lines += ["    }", "}"]
     return CFunction(name, tuple(arguments), tuple(outputs), tuple(output_parameters), tuple(flags),
-                     prototype, "\n".join(lines) + "\n")
+                     prototype, "\n".join(lines) + "\n", tuple(pieces), tuple(piece_prototypes))
+
+
+def _driver_of_pieces(signature: str, arguments: Sequence[str], steps: Sequence[str], needed: Sequence[str],
+                      slots: Sequence[str], slot_of: dict[str, str], numbers_out: Sequence[str],
+                      flags_out: Sequence[str], output_parameters: Sequence[str],
+                      calls: Sequence[tuple[str, list[str], list[str] | None, list[int]]], assembled: str,
+                      locals_: tuple[str, str, str, str, str]) -> list[str]:
+    """The loop function of a program in pieces: block by block, its arguments' values made contiguous, each
+    piece called in order, the true/false outputs and a last short block's outputs copied out.
+
+    As the one-piece function does, but with its arguments, handed values and outputs in arrays walked by
+    loops, so that its text (and its compile time) stays small however many arguments and outputs it has.
+    Every local name starts with ``symlink_``, which no name of a program may (:func:`c_identifier`).
+    """
+    count, start, size, width, index = locals_
+    kept = {a: k for k, a in enumerate(needed)}
+    slot = {s: k for k, s in enumerate(slots)}
+    number = {o: k for k, o in enumerate(numbers_out)}
+    flag = {o: k for k, o in enumerate(flags_out)}
+
+    def read(value: str) -> str:
+        return f"symlink_at[{kept[value]}]" if value in kept else f"symlink_handed[{slot[slot_of[value]]}]"
+
+    def write(output: str) -> str:
+        return f"symlink_to[{number[output]}]" if output in number else f"symlink_flags[{flag[output]}]"
+
+    lines = [signature, "{"]
+    lines += [f"    (void){a}; (void){s};  /* not needed by these outputs */"
+              for a, s in zip(arguments, steps) if a not in kept]
+    step_of = dict(zip(arguments, steps))
+    if needed:
+        lines += [f"    const double *const symlink_arguments[{len(needed)}] = {{{', '.join(needed)}}};",
+                  f"    const ptrdiff_t symlink_steps[{len(needed)}] = {{{', '.join(step_of[a] for a in needed)}}};",
+                  f"    double symlink_blocks[{len(needed)}][SYMLINK_BLOCK];",
+                  f"    const double *symlink_at[{len(needed)}];"]
+    if slots:
+        lines.append(f"    double symlink_handed[{len(slots)}][SYMLINK_BLOCK];")
+    if numbers_out:
+        lines += [f"    double *const symlink_numbers[{len(numbers_out)}] = {{{', '.join(numbers_out)}}};",
+                  f"    double symlink_tails[{len(numbers_out)}][SYMLINK_BLOCK];",
+                  f"    double *symlink_to[{len(numbers_out)}];"]
+    lines += [f"    unsigned char *const symlink_flag_outputs[{len(flags_out)}] = {{{', '.join(flags_out)}}};",
+              f"    {PIECE_FLAG_LANE} symlink_flags[{len(flags_out)}][SYMLINK_BLOCK];",
+              f"    for (size_t {start} = 0; {start} < {count}; {start} += SYMLINK_BLOCK) {{",
+              f"        const size_t {size} = {count} - {start} < SYMLINK_BLOCK ? {count} - {start} : SYMLINK_BLOCK;",
+              f"        const size_t {width} = ({size} + SYMLINK_LANES - 1) / SYMLINK_LANES * SYMLINK_LANES;"]
+    if needed:
+        lines += [f"        for (size_t symlink_k = 0; symlink_k < {len(needed)}; ++symlink_k) {{",
+                  "            symlink_at[symlink_k] = symlink_block(symlink_blocks[symlink_k], "
+                  f"symlink_arguments[symlink_k], symlink_steps[symlink_k], {start}, {size}, {width});",
+                  "        }"]
+    if numbers_out:
+        lines += [f"        for (size_t symlink_k = 0; symlink_k < {len(numbers_out)}; ++symlink_k) {{",
+                  f"            symlink_to[symlink_k] = {width} == {size} ? symlink_numbers[symlink_k] + {start} "
+                  ": symlink_tails[symlink_k];", "        }"]
+    for function, given, hands, writes in calls:
+        lines.append(f"        {function}({width}, " + ", ".join(
+            [read(v) for v in given] + [f"symlink_handed[{slot[slot_of[v]]}]" for v in hands or ()]
+            + [write(output_parameters[k]) for k in writes] + ([] if hands is not None else [write(assembled)]))
+            + ");")
+    lines += [f"        for (size_t symlink_k = 0; symlink_k < {len(flags_out)}; ++symlink_k) {{",
+              f"            for (size_t {index} = 0; {index} < {size}; ++{index}) {{",
+              f"                symlink_flag_outputs[symlink_k][{start} + {index}] = "
+              f"(unsigned char)(symlink_flags[symlink_k][{index}] != 0);",
+              "            }", "        }"]
+    if numbers_out:
+        lines += [f"        if ({width} != {size}) {{",
+                  f"            for (size_t symlink_k = 0; symlink_k < {len(numbers_out)}; ++symlink_k) {{",
+                  f"                for (size_t {index} = 0; {index} < {size}; ++{index}) {{",
+                  f"                    symlink_numbers[symlink_k][{start} + {index}] = "
+                  f"symlink_tails[symlink_k][{index}];",
+                  "                }", "            }", "        }"]
+    return lines + ["    }", "}"]
 
 
 #: The one argument of every ``<name>_packed`` wrapper (:func:`c_packed`), defined once a source.
@@ -326,8 +602,13 @@ def c_packed(function: CFunction, lengths: Sequence[str] = (), signs: Sequence[s
     """
     checker = f"symlink_{function.name}_valid"
     tests = []
-    for k, argument in enumerate(function.arguments):
-        kind = 1 if argument in signs else 2 if argument in lengths else 0
+    kinds = [1 if argument in signs else 2 if argument in lengths else 0 for argument in function.arguments]
+    if function.pieces and kinds:  # many arguments: one loop over them, not one inlined check each (short to compile)
+        tests.append(f"    static const int kinds[{len(kinds)}] = {{{', '.join(map(str, kinds))}}};\n"
+                     f"    for (size_t k = 0; k < {len(kinds)}; ++k) {{\n"
+                     f"        if (!{checker}((const double *)pointers[k], steps[k], n, kinds[k])) {{\n"
+                     f"            return (int)k + 1;\n        }}\n    }}\n")
+    for k, kind in enumerate(kinds if not function.pieces else []):
         tests.append(f"    if (!{checker}((const double *)pointers[{k}], steps[{k}], n, {kind})) {{\n"
                      f"        return {k + 1};\n    }}\n")
     arguments = [f"(const double *)pointers[{k}], steps[{k}]" for k in range(len(function.arguments))]
@@ -396,6 +677,26 @@ static const double symlink_tolerance = {tolerance!r};
 #define SYMLINK_BLOCK 128
 #define SYMLINK_LANES 32
 
+/* The copies of arrays for symlink_block (strided, or ending in a short block): not inlined, as a
+ * copy inlined for each argument, vectorised for each target, made GCC take 2-3 times as long over a
+ * six-bar; one call an array a block costs nothing measurable beside the copy.  Compiled for each
+ * target as the loops are (SYMLINK_LOOP): a copy for baseline x86-64 alone, called from an AVX-512
+ * loop, made a call of 10 values half a microsecond slower. */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+SYMLINK_LOOP static const double *symlink_copy_block(double *restrict block, const double *restrict x,
+                                                     ptrdiff_t step, size_t start, size_t m, size_t w)
+{{
+    for (size_t j = 0; j < m; ++j) {{
+        block[j] = x[(ptrdiff_t)(start + j) * step];
+    }}
+    for (size_t j = m; j < w; ++j) {{
+        block[j] = block[m - 1];
+    }}
+    return block;
+}}
+
 /* The values of one argument for configurations start to start + m - 1, contiguous, and
  * up to start + w - 1 (w >= m) repeating the last one: the array itself where its step is 1
  * and w = m, else copied into block. A step of 0 repeats one value, copied on the first block
@@ -414,13 +715,7 @@ static inline const double *symlink_block(double *block, const double *x, ptrdif
         }}
         return block;
     }}
-    for (size_t j = 0; j < m; ++j) {{
-        block[j] = x[(ptrdiff_t)(start + j) * step];
-    }}
-    for (size_t j = m; j < w; ++j) {{
-        block[j] = block[m - 1];
-    }}
-    return block;
+    return symlink_copy_block(block, x, step, start, m, w);
 }}
 
 /* sqrt(x), taking x >= -tolerance*scale as rounding at a toggle (0) and anything lower,
@@ -457,6 +752,18 @@ SYMLINK_INLINE double symlink_sin_atan2(double y, double r)
 """
 
 
+_PIECES_PRELUDE = """\
+/* The loop functions of a large program's pieces, which the functions below call in order. External,
+ * so that each piece can be compiled apart (see symlink.codegen.c.translation_units), but not exported
+ * from a shared library. */
+#if defined(__GNUC__)
+#define SYMLINK_PIECE __attribute__((visibility("hidden")))
+#else
+#define SYMLINK_PIECE
+#endif
+"""
+
+
 def c_library(functions: Sequence[CFunction], name: str, title: str = "A symlink solver.",
               regenerate: str = "", standalone: bool = False) -> tuple[str, str]:
     """``(header, source)`` of the functions; the source includes ``"<name>.h"``, or repeats its prototypes if ``standalone``."""
@@ -476,9 +783,27 @@ def c_library(functions: Sequence[CFunction], name: str, title: str = "A symlink
         own = ["#include <stddef.h>", ""] + [f.prototype for f in functions]
     else:
         own = [f'#include "{name}.h"', ""]
-    source = "\n".join([comment, "#include <math.h>", "#include <stdint.h>", "#include <string.h>", ""] + own + [_PRELUDE.format(tolerance=TOLERANCE)]
-                       + [f.definition for f in functions])
-    return header, source
+    common = [comment, "#include <math.h>", "#include <stdint.h>", "#include <string.h>", ""] + own + [
+        _PRELUDE.format(tolerance=TOLERANCE)]
+    if not any(f.pieces for f in functions):
+        return header, "\n".join(common + [f.definition for f in functions])
+    # A large program's pieces: after the common part, each piece and each function its own translation unit.
+    common += [_PIECES_PRELUDE] + [prototype for f in functions for prototype in f.piece_prototypes] + [""]
+    units = [text for f in functions for text in (*f.pieces, f.definition)]
+    return header, "\n".join(common + [f"{UNIT_MARK}\n{text}" for text in units])
+
+
+def translation_units(source: str) -> list[str]:
+    r"""The C source cut where :func:`c_library` marks it (:data:`UNIT_MARK`): each unit the common part and one
+    piece or function, to be compiled apart (in parallel) and linked into one library; ``[source]`` if unmarked.
+
+    >>> translation_units("common\n" + UNIT_MARK + "\nf\n" + UNIT_MARK + "\ng\n")
+    ['common\n\nf\n', 'common\n\ng\n']
+    >>> translation_units("int f(void);\n")
+    ['int f(void);\n']
+    """
+    common, *units = source.split(UNIT_MARK + "\n")
+    return [common + "\n" + unit for unit in units] if units else [source]
 
 
 def c_code(functions: Sequence[tuple[str, Program, str]], name: str, title: str = "A symlink solver.",

@@ -310,3 +310,30 @@ def test_a_loop_unit_is_the_exponent_of_the_mean_length_bit_for_bit(tmp_path):
     numpy_unit = load_numpy_module(numpy_module([("f", Program((x,), (), {"unit": PowerOfTwoBelow(x)}), "")]))["f"]
     lengths = (values >= 1e-305) & (values <= 1e305)  # what a generated NumPy function takes as a length
     assert numpy_unit(values[lengths])["unit"].view(numpy.int64).tolist() == expected[lengths].view(numpy.int64).tolist()
+
+
+@pytest.mark.parametrize("name", ["watt2", "jansen"])
+def test_a_program_in_pieces_computes_what_one_loop_does_bit_for_bit(tmp_path, name):
+    """Cut into pieces (each its own loop, values handed on in block arrays), a program exports as one strict
+    C file whose function agrees with the NumPy module and, bit for bit, with the program as one loop."""
+    linkage = catalog_linkage(name)
+    unknowns = [q.name for q in linkage.unknowns]
+    outputs = unknowns + [f"{q}dot" for q in unknowns] + [f"{q}ddot" for q in unknowns] + ["singular"]
+    program = linkage.program(outputs)
+    whole, cut = c_function(program, "whole", ""), c_function(program, "cut", "", piece_size=700)
+    assert not whole.pieces and len(cut.pieces) >= 3
+    header, source = c_library([whole, cut], "pieces", "test")
+    assert [line for line in source.splitlines() if line.startswith("#include")] == [
+        "#include <math.h>", "#include <stdint.h>", "#include <string.h>", '#include "pieces.h"']
+    library = build(tmp_path, header, source, "pieces")
+    values = random_arguments(linkage, whole.arguments, 300, seed=7)
+    values["thetadot"] = numpy.array(1.5)  # one value for all, at a step of 0
+    with numpy.errstate(all="ignore"):
+        expected, actual = call(library, whole, values, count=300), call(library, cut, values, count=300)
+    assert 30 < expected["assembled"].sum() < 270
+    for key in expected:
+        numpy.testing.assert_array_equal(actual[key], expected[key], err_msg=key)
+    module = load_numpy_module(numpy_module([("f", program, "")]))["f"]
+    reference = module(**values)
+    assert_agree(actual, {k: numpy.asarray(v) for k, v in reference.items()}, angles_of(name, outputs), 1e-12,
+                 name, rounding_spread(module, values))

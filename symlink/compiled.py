@@ -29,7 +29,7 @@ from functools import cached_property
 from typing import Sequence
 
 from .compiled_library import *  # noqa: F401,F403 - this module's public names, kept where callers import them
-from .compiled_library import (CompileError, CompilerUnavailable, FallbackWarning, _Entry, _builds,  # noqa: F401
+from .compiled_library import (CompileError, CompilerUnavailable, FallbackWarning, CompiledFunction, _builds,  # noqa: F401
                                _entry, _intact, _loaded, _private_folder, _probed, c_solver_source, compile_shared)
 from .compiled_library import __all__ as _library_names
 from .linkage import Linkage
@@ -57,7 +57,7 @@ class CompiledSolver(Solver):
         self.source = facts["source"]
         self.arguments = list(facts["arguments"])
         self.library = compile_shared(self.source)
-        self.function: _Entry = _entry(self.library, facts)
+        self.function: CompiledFunction = _entry(self.library, facts)
         self._compiled = self.function
 
     @cached_property

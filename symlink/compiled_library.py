@@ -405,7 +405,7 @@ def compile_shared(source: str, headers: Mapping[str, str] | None = None) -> cty
     return library
 
 
-#: Calls of at most this many values take the fast path of :class:`_Entry` (larger ones gain nothing from it).
+#: Calls of at most this many values take the fast path of :class:`CompiledFunction` (larger ones gain nothing from it).
 SMALL_CALL = 4096
 
 #: A ctypes type whose ``from_buffer`` hands a NumPy array's address to a C function (faster than ``.ctypes.data``).
@@ -419,7 +419,7 @@ class _PackedCall(ctypes.Structure):
                 ("numbers", ctypes.c_void_p), ("flags", ctypes.c_void_p)]
 
 
-class _Entry:
+class CompiledFunction:
     """Calls one generated C loop function on NumPy arrays, broadcasting like the NumPy module.
 
     A small call (at most :data:`SMALL_CALL` values) whose arguments are
@@ -580,7 +580,7 @@ class _Entry:
         return outputs
 
 
-#: Output blocks of small calls kept for reuse by each compiled function (see :meth:`_Entry._free_outputs`).
+#: Output blocks of small calls kept for reuse by each compiled function (see :meth:`CompiledFunction._free_outputs`).
 KEPT_OUTPUTS = 3
 
 
@@ -666,7 +666,7 @@ def program_facts(program: Program, name: str, doc: str, lengths: Sequence[str] 
                        "flags": function.flags, "defaults": dict(program.defaults)})
 
 
-def compiled_or_building(facts: Mapping[str, Any]) -> _Entry | None:
+def compiled_or_building(facts: Mapping[str, Any]) -> CompiledFunction | None:
     """The compiled function of ``facts`` (:func:`program_facts`) if its library is built (in memory or in the
     cache); else ``None``, and its background build started where a compiler works (NumPy answers meanwhile)."""
     library = built_library(facts["source"])
@@ -766,8 +766,8 @@ def built_library(source: str) -> ctypes.CDLL | None:
         return None
 
 
-def _entry(library: ctypes.CDLL, facts: Mapping[str, Any]) -> _Entry:
-    return _Entry(library, "solve", facts["arguments"], facts["outputs"], facts["flags"], facts["defaults"])
+def _entry(library: ctypes.CDLL, facts: Mapping[str, Any]) -> CompiledFunction:
+    return CompiledFunction(library, "solve", facts["arguments"], facts["outputs"], facts["flags"], facts["defaults"])
 
 
 class Build:
@@ -799,7 +799,7 @@ class Build:
         """Block until the build is over (at most ``timeout`` seconds); whether it is."""
         return self._finished.wait(timeout)
 
-    def entry(self) -> _Entry | None:
+    def entry(self) -> CompiledFunction | None:
         return None if self._library is None else _entry(self._library, self.facts)
 
 
@@ -846,7 +846,7 @@ def wait_for_builds(timeout: float | None = None) -> bool:
     return True
 
 
-def compiled_or_warning(linkage: Linkage, outputs: Sequence[str]) -> _Entry | None:
+def compiled_or_warning(linkage: Linkage, outputs: Sequence[str]) -> CompiledFunction | None:
     """What ``backend="compiled"`` gets: the compiled function of ``outputs``, built now if it is not in the cache;
     where it cannot be built or loaded, one ``FallbackWarning`` and ``None`` (NumPy answers)."""
     try:
@@ -857,7 +857,7 @@ def compiled_or_warning(linkage: Linkage, outputs: Sequence[str]) -> _Entry | No
         return None
 
 
-def entry_or_build(linkage: Linkage, outputs: Sequence[str]) -> tuple[_Entry | None, Build | None]:
+def entry_or_build(linkage: Linkage, outputs: Sequence[str]) -> tuple[CompiledFunction | None, Build | None]:
     """What ``backend="auto"`` gets: the compiled function if its library is built (in memory or on disk), else
     its background build (the NumPy module answers meanwhile), or neither where no compiler works.
 

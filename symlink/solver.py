@@ -143,7 +143,7 @@ class Solver:
         self.backend_choice = compiled.chosen_backend(backend)
         code = generated_code(linkage, self.outputs)  # derived once, then from the scene cache
         self.source, self.function, self.arguments = code.source, code.function, code.arguments
-        self._compiled: Any = None  # the compiled function (symlink.compiled._Entry) once it answers
+        self._compiled: Any = None  # the compiled function (symlink.compiled.CompiledFunction) once it answers
         self._build: Any = None  # its background build, until it is over
         if self.backend_choice == "compiled":
             self._compiled = compiled.compiled_or_warning(linkage, self.outputs)
@@ -485,7 +485,7 @@ class _CompiledNewton:
         self.sweep_entry.restype = ctypes.c_int
         self.sweep_entry.argtypes = [ctypes.c_size_t, pointer, pointer, pointer, ctypes.c_int, pointer, pointer,
                                      pointer, pointer, pointer, pointer, pointer]
-        self.output_entry = (compiled._Entry(library, "newton_outputs", facts["output_arguments"], facts["outputs"],
+        self.output_entry = (compiled.CompiledFunction(library, "newton_outputs", facts["output_arguments"], facts["outputs"],
                                              facts["output_flags"], {}) if facts["outputs"] else None)
 
     def sweep(self, inputs: Sequence[numpy.ndarray], parameters: Sequence[numpy.ndarray], guess: numpy.ndarray,

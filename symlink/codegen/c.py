@@ -84,7 +84,7 @@ def c_identifier(name: str, what: str = "name") -> str:
     return name
 
 
-class _CPrinter(C99CodePrinter):
+class CPrinter(C99CodePrinter):
     """C99 printer with symlink's clamped square root, exact double literals and multiplied powers."""
 
     def __init__(self):
@@ -281,7 +281,7 @@ def c_function(program: Program, name: str, doc: str = "", piece_size: int = PIE
     """
     code, arguments = named_straight_line(program, name, c_identifier, "C")
     code = angle_sums(code, set(arguments))
-    printer = _CPrinter()
+    printer = CPrinter()
     locals_ = [c_identifier(s.name, "symbol") for s, _ in code.assignments]
     names = FreshNames(arguments + locals_, C_KEYWORDS)
     steps = [names(f"{a}_step") for a in arguments]

@@ -62,7 +62,7 @@ from ..closure import closure_system
 from ..linkage import Linkage, Program
 from ..vectors import acceleration, rate
 from . import newton_driver
-from .c import C_KEYWORDS, _CPrinter, c_function, c_identifier, c_library
+from .c import C_KEYWORDS, CPrinter, c_function, c_identifier, c_library
 from .program import FreshNames, straight_line
 
 __all__ = ["newton_c_source", "newton_c_facts", "STATUS"]
@@ -84,7 +84,7 @@ def _c_block(name: str, arrays: Sequence[tuple[str, Sequence[sp.Symbol | None]]]
     ``arrays`` are ``(C array name, symbols read from it in order)`` (``None``: an entry not read); ``results``
     are ``(C array name, expressions written to it in order)``.
     """
-    printer = _CPrinter()
+    printer = CPrinter()
     arguments = tuple(symbol for _, symbols in arrays for symbol in symbols if symbol is not None)
     flat = {f"{label}_{k}": sp.sympify(expr) for label, exprs in results for k, expr in enumerate(exprs)}
     code = straight_line(Program(arguments, (), flat))

@@ -21,7 +21,7 @@ import sympy as sp
 from export_checks import (angles_of, assert_agree, assert_atan2_angles, atan2_angle_case, closed_form_catalog, export_sets,
                            random_arguments, rounding_spread)
 from references import SEED003_LINKAGE, mp_fourbar, seed003_positions
-from symlink.codegen.c import c_code, c_comment, c_function, c_identifier, c_library, _CPrinter
+from symlink.codegen.c import c_code, c_comment, c_function, c_identifier, c_library, CPrinter
 from symlink.codegen.numpy import load_numpy_module, numpy_module
 from symlink.linkage import Program
 from symlink.position import TOLERANCE, ClampedSqrt
@@ -189,7 +189,7 @@ def test_true_false_outputs_are_unsigned_char_arrays(tmp_path):
 
 def test_printer_writes_small_powers_as_products_and_exact_literals():
     x, y = sp.symbols("x y", real=True)
-    printer = _CPrinter()
+    printer = CPrinter()
     assert printer.doprint(x**2) == "(x*x)"
     assert printer.doprint(1 / x) == "1.0/x"
     assert printer.doprint(x**-2) == "1.0/(x*x)"

@@ -92,6 +92,7 @@ _WIDER = 2               # ... the batches after the first this many times as ma
 _POLISHED = 2            # designs of a call (in all) that get a long second refinement ...
 _POLISH_BELOW = 1e-3     # ... if their error is below this
 _POLISH_EVALUATIONS = 6000
+_PHASE_STARTS = 24       # timed with a free phase: offsets over a turn at which each atlas four-bar is fitted
 
 
 @dataclass(frozen=True)
@@ -386,18 +387,31 @@ def _placed(row: numpy.ndarray, factor: complex, shift: complex) -> numpy.ndarra
     return numpy.array([shift.real, shift.imag, turn, a, b, c, d, u, v])
 
 
-def _timed_starts(w: numpy.ndarray, theta: numpy.ndarray, rng, count: int, constraints: _Constraints):
+def _timed_starts(w: numpy.ndarray, theta: numpy.ndarray, rng, count: int, constraints: _Constraints,
+                  branch: int | None = None, free_phase: bool = False):
+    """The atlas four-bars whose coupler points at the crank angles fit the targets best, placed on them.
+
+    ``branch``: only that assembly branch.  ``free_phase``: the angles are known up to a common
+    offset; each atlas four-bar is tried at :data:`_PHASE_STARTS` offsets over a turn and the
+    start's angles are the offset ones.
+    """
     rows = _atlas(rng, _ATLAS)
-    z, ok = _local_points(rows, theta[None, :])
+    if branch is not None:
+        rows[:, 6] = branch
+    offsets = numpy.linspace(0.0, 2 * math.pi, _PHASE_STARTS, endpoint=False) if free_phase else numpy.zeros(1)
+    shifted = theta[None, None, :] + offsets[None, :, None]  # (1, offsets, count)
+    z, ok = _local_points(rows[:, None, :].repeat(len(offsets), axis=1).reshape(-1, 7),
+                          shifted.repeat(len(rows), axis=0).reshape(-1, len(theta)))
     factor, shift, rms = _similarity(z, w[None, :])
     rms = numpy.where(numpy.all(ok, axis=1) & numpy.isfinite(rms), rms, numpy.inf)
     starts: list[tuple[numpy.ndarray, int, numpy.ndarray]] = []
     for k in numpy.argsort(rms):
         if not numpy.isfinite(rms[k]) or len(starts) >= count:
             break
-        vector = _placed(rows[k], factor[k], shift[k])
+        row, offset = divmod(int(k), len(offsets))
+        vector = _placed(rows[row], factor[k], shift[k])
         if constraints.allow(vector[3:7]):
-            starts.append((vector, int(rows[k, 6]), theta.copy()))
+            starts.append((vector, int(rows[row, 6]), theta + offsets[offset]))
     return starts
 
 
@@ -431,7 +445,8 @@ def _curves(rows: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray, numpy.nd
     return rows, z, table
 
 
-def _untimed_starts(w: numpy.ndarray, rng, count: int, constraints: _Constraints, first: bool):
+def _untimed_starts(w: numpy.ndarray, rng, count: int, constraints: _Constraints, first: bool,
+                    branch: int | None = None, direction: int | None = None):
     """Atlas curves matched to the targets by arc length: several phases, spans and both directions; the best fits.
 
     The crank angles where a curve's arc length has the targets' chord-length fractions give a
@@ -441,6 +456,9 @@ def _untimed_starts(w: numpy.ndarray, rng, count: int, constraints: _Constraints
     were tried and found no more solutions on twenty test problems.)
     """
     rows, z, table = _curve_atlas() if first else _curves(_atlas(rng, _CURVE_ATLAS))
+    if branch is not None:
+        on_branch = rows[:, 6] == branch
+        rows, z, table = rows[on_branch], z[on_branch], table[on_branch]
     samples = len(z[0])
     grid = numpy.linspace(-math.pi, math.pi, samples + 1)[:-1]
     closed = numpy.concatenate([z, z[:, :1]], axis=1)
@@ -449,8 +467,10 @@ def _untimed_starts(w: numpy.ndarray, rng, count: int, constraints: _Constraints
     fits = []  # (rms, row, sample positions)
     for span in _SPANS:
         for phase in numpy.linspace(0, 1, _PHASES, endpoint=False):
-            for direction in (1, -1):
-                where = (phase + direction * span * fraction) % 1.0
+            for way in (1, -1):
+                if direction is not None and way != direction:
+                    continue  # (the curve's samples run with the crank angle: a way is a crank direction)
+                where = (phase + way * span * fraction) % 1.0
                 position = _arc_position(table, where)  # fractional sample index, rows x targets
                 zz = _sampled(closed, position)
                 _, _, rms = _similarity(zz, w[None, :])
@@ -473,6 +493,8 @@ def _untimed_starts(w: numpy.ndarray, rng, count: int, constraints: _Constraints
         steps = forward if numpy.sum(forward) < samples else -((-numpy.diff(position[m])) % samples)
         theta = grid[0] + (position[m][0] + numpy.concatenate([[0.0], numpy.cumsum(steps)])) * (2 * math.pi / samples)
         if chosen[m] in used or abs(theta[-1] - theta[0]) >= 2 * math.pi:
+            continue
+        if direction is not None and (theta[-1] - theta[0]) * direction < 0:
             continue
         vector = _placed(rows[chosen[m]], factor[m], shift[m])
         if constraints.allow(vector[3:7]):
@@ -505,13 +527,14 @@ def _arc_position(table: numpy.ndarray, where: numpy.ndarray) -> numpy.ndarray:
 # --- the refinement -----------------------------------------------------------------------------
 
 def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: numpy.ndarray, timed: bool,
-            constraints: _Constraints, size: float, tolerance: float, evaluations: int):
+            constraints: _Constraints, size: float, tolerance: float, evaluations: int, free_phase: bool = False):
     """One start refined: (design vector, crank angles, evaluations, cost), or None if the start is infeasible.
 
     With timing: Levenberg-Marquardt (``least_squares(method="lm")``; trust-region reflective
     for fewer than five points) over the nine dimensions.  Without: :func:`_refine_untimed`.
     No bounds are needed for the lengths: a length at or below zero breaks a constraint and is
-    never accepted.
+    never accepted.  ``free_phase`` (with timing): a common offset added to the crank angles is
+    a tenth unknown (its Jacobian column is the point's derivative by its crank angle).
     """
     if not timed:
         return _refine_untimed(start, branch, theta, targets, constraints, size, tolerance, evaluations)
@@ -520,11 +543,14 @@ def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: nu
     count = len(targets)
     last: dict[str, numpy.ndarray] = {}  # the generated code gives points and Jacobian in one call: keep it
 
+    def angles_of(x: numpy.ndarray) -> numpy.ndarray:
+        return theta + x[9] if free_phase else theta
+
     def residuals(x: numpy.ndarray) -> numpy.ndarray:
         if not constraints.allow(x[3:7]):
             return numpy.full(2 * count, _INFEASIBLE)
         with numpy.errstate(all="ignore"):
-            points, jac, ok = _evaluate(x, theta, branch)
+            points, jac, ok = _evaluate(x[:9], angles_of(x), branch)
         if not numpy.all(ok):
             return numpy.full(2 * count, _INFEASIBLE)
         last.update(x=x.copy(), jac=jac)
@@ -535,10 +561,13 @@ def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: nu
             jac = last["jac"]
         else:
             with numpy.errstate(all="ignore"):
-                _, jac, _ = _evaluate(x, theta, branch)
-        return jac[:, :, 1:].reshape(2 * count, 9) / size
+                _, jac, _ = _evaluate(x[:9], angles_of(x), branch)
+        columns = jac[:, :, 1:].reshape(2 * count, 9)
+        if free_phase:
+            columns = numpy.concatenate([columns, jac[:, :, 0].reshape(2 * count, 1)], axis=1)
+        return columns / size
 
-    x0 = start.copy()
+    x0 = numpy.concatenate([start, [0.0]]) if free_phase else start.copy()
     if residuals(x0)[0] == _INFEASIBLE:
         return None
     # Levenberg-Marquardt needs at least as many residuals as unknowns; fewer points (three or four) go to the
@@ -546,7 +575,7 @@ def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: nu
     method = "lm" if 2 * count >= len(x0) else "trf"
     fit = least_squares(residuals, x0, jac=jacobian, method=method, x_scale="jac", xtol=tolerance, ftol=tolerance,
                         gtol=tolerance, max_nfev=evaluations)
-    return fit.x, theta, fit.nfev + (fit.njev or 0), fit.cost
+    return fit.x[:9], angles_of(fit.x), fit.nfev + (fit.njev or 0), fit.cost
 
 
 def _refine_untimed(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: numpy.ndarray,
@@ -690,7 +719,8 @@ def _successive_halving(candidates: list, targets: numpy.ndarray, constraints: _
 
 def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, starts: int = 8, designs: int = 3,
                     grashof_class: str = "any", max_link_ratio: float = 20.0, min_transmission: float = 0.0,
-                    seed: int | None = 0, tolerance: float = 1e-15) -> list[PathDesign]:
+                    seed: int | None = 0, tolerance: float = 1e-15, branch: int | None = None,
+                    direction: int | None = None, free_phase: bool = False) -> list[PathDesign]:
     """Four-bars whose coupler point passes through ``targets`` (rows x, y), best first, up to ``designs``.
 
     ``theta``: the crank angles at the targets (timing), or None to find them too (the
@@ -699,7 +729,11 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
     the batches after the first); ``grashof_class`` is one of :data:`GRASHOF_CHOICES` ("crank-turns":
     crank-rocker or double-crank); ``max_link_ratio`` bounds the longest link over the
     shortest; ``min_transmission`` (radians) bounds the worst transmission angle over the
-    crank's turn.  Needs SciPy (``pip install 'symlink-kinematics[synthesis]'``).
+    crank's turn.  ``branch`` (+1 or -1) keeps to that assembly branch; ``direction`` (without
+    timing; +1 or -1) makes the crank angle grow (+1, counter-clockwise) or shrink from point to
+    point; ``free_phase`` (with timing) takes ``theta`` as known up to a common offset (equal
+    steps from an unknown first angle, say), which is found too.  Needs SciPy
+    (``pip install 'symlink-kinematics[synthesis]'``).
     ``ValueError`` for bad input or when no start satisfies the constraints.
     """
     try:
@@ -728,34 +762,41 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
                          f"{math.degrees(min_transmission):g} deg")
     if starts < 1 or designs < 1:
         raise ValueError("starts and designs must be at least 1")
+    for name, sign in (("branch", branch), ("direction", direction)):
+        if sign not in (None, 1, -1):
+            raise ValueError(f"{name} must be +1, -1 or None, not {sign!r}")
+    if direction is not None and timed:
+        raise ValueError("direction is for targets without timing (with timing the crank angles fix it)")
+    if free_phase and not timed:
+        raise ValueError("free_phase needs the crank angles (timing) it offsets")
     constraints = _Constraints(grashof_class, max_link_ratio, min_transmission)
     rng = numpy.random.default_rng(seed)
     w = points[:, 0] + 1j * points[:, 1]
     found: list[PathDesign] = []
 
-    def refined(vector, branch, angles, evaluations) -> PathDesign | None:
+    def refined(vector, on_branch, angles, evaluations) -> PathDesign | None:
         """A start refined and verified (None if it fails the constraints or the check)."""
-        result = _refine(vector, branch, numpy.asarray(angles, dtype=float), points, timed, constraints, size,
-                         tolerance, evaluations)
+        result = _refine(vector, on_branch, numpy.asarray(angles, dtype=float), points, timed, constraints, size,
+                         tolerance, evaluations, free_phase and timed)
         if result is None:
             return None
         design_vector, design_theta, used, _ = result
-        return verified(design_vector, branch, design_theta, used)
+        return verified(design_vector, on_branch, design_theta, used)
 
-    def verified(design_vector, branch, design_theta, used) -> PathDesign | None:
+    def verified(design_vector, on_branch, design_theta, used) -> PathDesign | None:
         """A design checked by :func:`check_design` (None if it fails)."""
         a, b, c, d = (float(x) for x in design_vector[3:7])
         design = PathDesign((float(design_vector[0]), float(design_vector[1])), float(design_vector[2]),
-                            a, b, c, d, (float(design_vector[7]), float(design_vector[8])), branch,
+                            a, b, c, d, (float(design_vector[7]), float(design_vector[8])), on_branch,
                             evaluations=used)
         try:
             return check_design(design, points, design_theta, grashof_class, max_link_ratio, min_transmission)
         except ValueError:
             return None
 
-    def kept(vector, branch, angles, used) -> PathDesign | None:
+    def kept(vector, on_branch, angles, used) -> PathDesign | None:
         """An untimed design verified (None if it fails the check) and kept."""
-        design = verified(vector, branch, angles, used)
+        design = verified(vector, on_branch, angles, used)
         if design is not None:
             found.append(design)
         return design
@@ -763,14 +804,15 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
     polished = 0
     for attempt in range(_ATTEMPTS):
         if timed:
-            for vector, branch, angles in _timed_starts(w, crank_angles, rng, starts, constraints):
-                design = refined(vector, branch, angles, _MAX_EVALUATIONS)
+            for vector, on_branch, angles in _timed_starts(w, crank_angles, rng, starts, constraints, branch,
+                                                           free_phase):
+                design = refined(vector, on_branch, angles, _MAX_EVALUATIONS)
                 if design is not None:
                     found.append(design)
                     if design.error < 1e-10:
                         break
         elif _successive_halving(_untimed_starts(w, rng, _SCREENED * starts * (1 if attempt == 0 else _WIDER),
-                                                 constraints, attempt == 0),
+                                                 constraints, attempt == 0, branch, direction),
                                  points, constraints, size, tolerance, kept):
             break
         if found and min(d.error for d in found) < 1e-8:

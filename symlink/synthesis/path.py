@@ -50,7 +50,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 from functools import lru_cache
-from typing import Sequence
+from typing import Mapping, Sequence
 
 import numpy
 import sympy as sp
@@ -249,6 +249,11 @@ class _Constraints:
     grashof: str = "any"
     max_link_ratio: float = math.inf
     min_transmission: float = 0.0
+    box: tuple[tuple[int, float, float], ...] = ()  # (index in the design vector, low, high)
+
+    def allow_design(self, vector: numpy.ndarray) -> bool:
+        """:meth:`allow` for the design vector's lengths, and every bounded dimension within its bounds."""
+        return self.allow(vector[3:7]) and all(low <= vector[k] <= high for k, low, high in self.box)
 
     def allow(self, lengths: Sequence[float] | numpy.ndarray) -> bool:
         a, b, c, d = lengths
@@ -286,7 +291,7 @@ def _reached_in_order(design: PathDesign, crank_angles: ArrayLike) -> str | None
 
 def check_design(design: PathDesign, targets: ArrayLike, crank_angles: ArrayLike,
                  grashof_class: str = "any", max_link_ratio: float = math.inf,
-                 min_transmission: float = 0.0) -> PathDesign:
+                 min_transmission: float = 0.0, bounds: Mapping[str, tuple[float, float]] | None = None) -> PathDesign:
     """Verify a design with symlink's four-bar solver and return it with its errors; ``ValueError`` if it fails.
 
     Every target is reached on the design's branch, in order (the crank moves from each
@@ -297,11 +302,14 @@ def check_design(design: PathDesign, targets: ArrayLike, crank_angles: ArrayLike
     theta = numpy.asarray(crank_angles, dtype=float)
     if theta.shape != (len(points),):
         raise ValueError(f"{len(points)} targets need {len(points)} crank angles, got {theta.size}")
-    constraints = _Constraints(grashof_class, max_link_ratio, min_transmission)
+    constraints = _Constraints(grashof_class, max_link_ratio, min_transmission, _box(bounds))
     if not constraints.allow(design.lengths):
         raise ValueError(f"the design {tuple(round(x, 6) for x in design.lengths)} breaks a constraint "
                          f"(Grashof class {grashof_class}, link ratio <= {max_link_ratio:g}, transmission >= "
                          f"{math.degrees(min_transmission):g} deg)")
+    if not constraints.allow_design(design.vector):
+        outside = [DESIGN_NAMES[k] for k, low, high in constraints.box if not low <= design.vector[k] <= high]
+        raise ValueError(f"the design's {', '.join(outside)} lie outside their bounds")
     if abs(theta[-1] - theta[0]) >= 2 * math.pi or (len(theta) > 2 and not (
             numpy.all(numpy.diff(theta) >= 0) or numpy.all(numpy.diff(theta) <= 0))):
         raise ValueError("the crank angles must turn one way, less than a full turn from the first to the last point")
@@ -316,6 +324,23 @@ def check_design(design: PathDesign, targets: ArrayLike, crank_angles: ArrayLike
     return replace(design, theta=tuple(map(float, theta)), errors=tuple(map(float, errors)),
                    error=float(errors.max() / _size(points)), grashof=grashof(a, b, c, d).name,
                    worst_transmission=float(worst))
+
+
+def _box(bounds: Mapping[str, tuple[float, float]] | None) -> tuple[tuple[int, float, float], ...]:
+    """Bounds by dimension name (``x0, y0, a, b, c, d, u, v``) as (index, low, high); ValueError if malformed."""
+    box = []
+    for name, bound in (bounds or {}).items():
+        if name not in DESIGN_NAMES or name == "frame":
+            raise ValueError(f"bounds name dimensions among {', '.join(n for n in DESIGN_NAMES if n != 'frame')}, "
+                             f"not {name!r}")
+        try:
+            low, high = (float(b) for b in bound)
+        except (TypeError, ValueError):
+            raise ValueError(f"the bounds of {name!r} must be two numbers (low, high), got {bound!r}") from None
+        if not (low < high) or math.isnan(low) or math.isnan(high):
+            raise ValueError(f"the bounds of {name!r} must have low < high, got {bound!r}")
+        box.append((DESIGN_NAMES.index(name), low, high))
+    return tuple(box)
 
 
 def path_error(design: PathDesign, targets: ArrayLike) -> float:
@@ -410,7 +435,7 @@ def _timed_starts(w: numpy.ndarray, theta: numpy.ndarray, rng, count: int, const
             break
         row, offset = divmod(int(k), len(offsets))
         vector = _placed(rows[row], factor[k], shift[k])
-        if constraints.allow(vector[3:7]):
+        if constraints.allow_design(vector):
             starts.append((vector, int(rows[row, 6]), theta + offsets[offset]))
     return starts
 
@@ -497,7 +522,7 @@ def _untimed_starts(w: numpy.ndarray, rng, count: int, constraints: _Constraints
         if direction is not None and (theta[-1] - theta[0]) * direction < 0:
             continue
         vector = _placed(rows[chosen[m]], factor[m], shift[m])
-        if constraints.allow(vector[3:7]):
+        if constraints.allow_design(vector):
             used.add(chosen[m])
             starts.append((vector, int(rows[chosen[m], 6]), theta))
     return starts
@@ -547,7 +572,7 @@ def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: nu
         return theta + x[9] if free_phase else theta
 
     def residuals(x: numpy.ndarray) -> numpy.ndarray:
-        if not constraints.allow(x[3:7]):
+        if not constraints.allow_design(x[:9]):
             return numpy.full(2 * count, _INFEASIBLE)
         with numpy.errstate(all="ignore"):
             points, jac, ok = _evaluate(x[:9], angles_of(x), branch)
@@ -595,7 +620,7 @@ def _refine_untimed(start: numpy.ndarray, branch: int, theta: numpy.ndarray, tar
 
     def residuals(x: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray] | None:
         design, angles = x[:9], angles_of(x)
-        if not constraints.allow(design[3:7]) or abs(angles[-1] - angles[0]) >= 2 * math.pi:
+        if not constraints.allow_design(design) or abs(angles[-1] - angles[0]) >= 2 * math.pi:
             return None
         with numpy.errstate(all="ignore"):
             points, jac, ok = _evaluate(design, angles, branch)
@@ -720,7 +745,8 @@ def _successive_halving(candidates: list, targets: numpy.ndarray, constraints: _
 def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, starts: int = 8, designs: int = 3,
                     grashof_class: str = "any", max_link_ratio: float = 20.0, min_transmission: float = 0.0,
                     seed: int | None = 0, tolerance: float = 1e-15, branch: int | None = None,
-                    direction: int | None = None, free_phase: bool = False) -> list[PathDesign]:
+                    direction: int | None = None, free_phase: bool = False,
+                    bounds: Mapping[str, tuple[float, float]] | None = None) -> list[PathDesign]:
     """Four-bars whose coupler point passes through ``targets`` (rows x, y), best first, up to ``designs``.
 
     ``theta``: the crank angles at the targets (timing), or None to find them too (the
@@ -732,7 +758,9 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
     crank's turn.  ``branch`` (+1 or -1) keeps to that assembly branch; ``direction`` (without
     timing; +1 or -1) makes the crank angle grow (+1, counter-clockwise) or shrink from point to
     point; ``free_phase`` (with timing) takes ``theta`` as known up to a common offset (equal
-    steps from an unknown first angle, say), which is found too.  Needs SciPy
+    steps from an unknown first angle, say), which is found too.  ``bounds`` maps dimensions
+    (``x0, y0, a, b, c, d, u, v``: the crank pivot in a box, link lengths, the coupler point) to
+    ``(low, high)``; trials outside are refused like any infeasible one.  Needs SciPy
     (``pip install 'symlink-kinematics[synthesis]'``).
     ``ValueError`` for bad input or when no start satisfies the constraints.
     """
@@ -769,7 +797,7 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
         raise ValueError("direction is for targets without timing (with timing the crank angles fix it)")
     if free_phase and not timed:
         raise ValueError("free_phase needs the crank angles (timing) it offsets")
-    constraints = _Constraints(grashof_class, max_link_ratio, min_transmission)
+    constraints = _Constraints(grashof_class, max_link_ratio, min_transmission, _box(bounds))
     rng = numpy.random.default_rng(seed)
     w = points[:, 0] + 1j * points[:, 1]
     found: list[PathDesign] = []
@@ -790,7 +818,8 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
                             a, b, c, d, (float(design_vector[7]), float(design_vector[8])), on_branch,
                             evaluations=used)
         try:
-            return check_design(design, points, design_theta, grashof_class, max_link_ratio, min_transmission)
+            return check_design(design, points, design_theta, grashof_class, max_link_ratio, min_transmission,
+                                bounds)
         except ValueError:
             return None
 

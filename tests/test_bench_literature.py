@@ -141,7 +141,7 @@ def test_violations_by_hand():
     assert violations(case1, np.concatenate([[3.0, 2.8, 3.0, 2.5], good[4:]])) == ["crank shortest"]
     assert violations(case1, np.concatenate([[3.0, 1.0, 1.5, 1.2], good[4:]])) == ["Grashof"]  # 3 + 1 > 1.5 + 1.2
     assert violations(case1, np.concatenate([good[:6], [61.0], good[7:]])) == ["bounds"]
-    assert rounding_floor(case1) == 6 * np.spacing(45.0) ** 2
+    assert rounding_floor(case1) == pytest.approx(2 * 6 * (4 * 7.105427357601002e-15) ** 2)  # ulp(45) = 2^-47
 
 
 def test_table_says_yes_only_at_or_below_the_published_best():

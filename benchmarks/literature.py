@@ -279,6 +279,36 @@ def _paper_vector(problem: Problem, lengths, coupler_point, pivot, frame: float,
     return numpy.array(vector, dtype=float)
 
 
+def solve_general(problem: Problem, seed: int) -> numpy.ndarray:
+    """:func:`symlink.synthesis.general.synthesize_path` on the placed four-bar for any problem, as the paper's vector.
+
+    The four-bar's own placement (``x0, y0, frame``) is held at zero and the general placement
+    (``x0, y0, angle``) is free where the paper's is; a free first crank angle (case 3) is the
+    linkage's ``crank_phase``, free in [0, 2 pi].  The paper's bounds bound the free
+    parameters and the pivot; the input turns fully (the paper's Grashof condition, as for
+    path.py) and, without timing, grows from target to target.
+    """
+    from symlink.synthesis.general import synthesize_path as synthesize_any
+    from symlink.synthesis.path import path_fourbar
+    length, offset = problem.length_bound, problem.offset_bound
+    free = {**{name: (1e-3 * length, length) for name in "abcd"}, "u": (-offset, offset), "v": (-offset, offset)}
+    values = {"crank_phase": 0.0, "x0": 0.0, "y0": 0.0, "frame": 0.0}
+    if problem.first_angle_free:
+        free["crank_phase"] = (0.0, 2 * math.pi)
+    timed = None if problem.crank_angles is None else numpy.array(problem.crank_angles)
+    found = synthesize_any(path_fourbar(), ("P_x", "P_y"), problem.points, free, values=values,
+                           frame=("x0", "y0", "angle") if problem.frame_free else (),
+                           frame_bounds={"x0": (-offset, offset), "y0": (-offset, offset)} if problem.frame_free
+                           else None, timed=timed, branches={"branch": 1}, seed=seed,
+                           full_rotation=problem.frame_free, direction=None if timed is not None else 1)
+    if not found.assembled:
+        raise ValueError(found.why)
+    d, where = found.design, found.placement
+    angles = numpy.array(found.inputs) + d["crank_phase"]
+    return _paper_vector(problem, (d["a"], d["b"], d["c"], d["d"]), (d["u"], d["v"]), (where["x0"], where["y0"]),
+                         where["angle"], angles)
+
+
 def solve(problem: Problem, seed: int) -> numpy.ndarray:
     """symlink's design for the problem, as the paper's vector (ValueError if none is found)."""
     targets = problem.points
@@ -318,11 +348,15 @@ class Run:
     broken: list[str]
 
 
-def run(problem: Problem, seed: int) -> Run:
-    """One seed: the design's objective by the paper's definition (inf if none is found or it breaks a constraint)."""
+def run(problem: Problem, seed: int, method: str = "path") -> Run:
+    """One seed: the design's objective by the paper's definition (inf if none is found or it breaks a constraint).
+
+    ``method``: "path" (:func:`solve`: the four-bar's own synthesis where the frame is free) or
+    "general" (:func:`solve_general`: the synthesis of any linkage, on the four-bar).
+    """
     began = time.perf_counter()
     try:
-        x = solve(problem, seed)
+        x = (solve_general if method == "general" else solve)(problem, seed)
     except ValueError as why:
         return Run(problem.key, seed, math.inf, time.perf_counter() - began, [f"none found: {why}"])
     seconds = time.perf_counter() - began
@@ -361,6 +395,8 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", type=int, default=20, help="seeds a problem (default 20)")
     parser.add_argument("--problems", default=",".join(BY_KEY), help="which problems, e.g. case1,case3")
+    parser.add_argument("--method", choices=("path", "general"), default="path",
+                        help="symlink.synthesis.path (the four-bar's; default) or symlink.synthesis.general")
     args = parser.parse_args(argv)
     chosen = [BY_KEY[k] for k in args.problems.split(",") if k in BY_KEY]
     if not chosen or args.seeds < 1:
@@ -370,10 +406,11 @@ def main(argv=None) -> int:
     began = time.perf_counter()
     for problem in chosen:
         for seed in range(args.seeds):
-            runs.append(run(problem, seed))
+            runs.append(run(problem, seed, args.method))
             if runs[-1].broken:
                 print(f"{problem.key} seed {seed}: {'; '.join(runs[-1].broken)}", file=sys.stderr)
         print(f"{problem.key} done", file=sys.stderr, flush=True)
+    print(f"method: symlink.synthesis.{args.method}")
     print(table(runs))
     print(f"\nwhole run {time.perf_counter() - began:.1f} s")
     return 0

@@ -76,6 +76,8 @@ _SHAPE_RATIO = 16.0        # shape-normalised starts: link lengths within this r
 _SHAPED = 0.5              # ... this fraction of the sampled designs (the rest uniform within the bounds)
 _OFFSET_SPAN = 2.0         # ... and signed lengths (a point's offsets) within this many times the median link
 _ROTATION_SAMPLES = 48     # input values over a turn checked for full rotation
+_SCREENED = 4              # untimed: this many times ``starts`` starts screened by successive halving ...
+_SCREEN_EVALUATIONS = 40   # ... this many evaluations each in the first round, twice as many each round after
 _PARTIAL_RANK = 4.0        # untimed starts: a design whose input cannot turn fully ranks as if this much farther
 _ACTIVE = 1e-6             # a constraint within this (relative) of its limit is reported active
 
@@ -247,6 +249,7 @@ class _Problem:
                  min_transmission: float = 0.0, full_rotation: bool = False) -> None:
         self.linkage, self.outputs, self.targets = linkage, outputs, targets
         self.max_link_ratio, self.min_transmission, self.full_rotation = max_link_ratio, min_transmission, full_rotation
+        self.direction: int | None = None  # untimed: the input grows (+1) or shrinks (-1) from target to target
         self.size = _size(targets)
         self.free = tuple(free)
         self.bounds = numpy.array([free[name] for name in self.free], dtype=float).reshape(len(self.free), 2)
@@ -547,7 +550,8 @@ def _untimed_starts(problem: _Problem, rng, count: int, given, branch_choice):
     # targets (collinear ones exactly) and starts the refinement on a huge, flat linkage: long stretches only.
     spans = numpy.array(_SCALED_SPANS if problem.absorbs or "scale" in problem.frame else _SPANS)
     phases = numpy.linspace(0.0, 1.0, _PHASES, endpoint=False)
-    shapes = numpy.concatenate([fraction[None, :], 1.0 - fraction[None, :]])  # both ways along the curve
+    ways = {None: [fraction, 1.0 - fraction], 1: [fraction], -1: [1.0 - fraction]}[problem.direction]
+    shapes = numpy.stack(ways)  # along the curve with the input growing, shrinking, or both
     rows, signs = _sampled_designs(problem, rng, _SAMPLED, given, branch_choice)
     traced, assembled = _traced_batch(problem, rows, signs, sweep)
     fits = []
@@ -563,7 +567,7 @@ def _untimed_starts(problem: _Problem, rng, count: int, given, branch_choice):
         if not arc[-1] > 0:
             continue
         arc /= arc[-1] / 2 if turning else arc[-1]  # a whole turn is 1: the second turn lets a match cross the seam
-        usable = spans[None, :, None, None] * shapes[None, None, :, :]  # (1, spans, 2, N)
+        usable = spans[None, :, None, None] * shapes[None, None, :, :]  # (1, spans, ways, N)
         origin = phases[:, None, None, None] * (1.0 if turning else (1.0 - spans)[None, :, None, None])
         where = (origin + usable).reshape(-1, len(w))
         angles = numpy.interp(where, arc, q)
@@ -722,7 +726,7 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
                     branches: Mapping[str, int] | None = None, starts: int = 16,
                     seed: int | None = 0, evaluations: int = 2000, tolerance: float = 1e-15,
                     max_link_ratio: float | None = None, min_transmission: float = 0.0,
-                    full_rotation: bool = False) -> PathSynthesis:
+                    full_rotation: bool = False, direction: int | None = None) -> PathSynthesis:
     """A design of ``linkage`` whose ``point`` passes through ``targets`` (rows x, y), verified.
 
     ``point`` is a point name (``"C"``) or two output names (``("P_x", "P_y")``).  ``free`` maps
@@ -745,7 +749,8 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
     ``min_transmission`` (radians) bounds the transmission angle of every two-angle loop at
     every target from 0 and from pi (:func:`symlink.analysis.transmission.transmission_arrays`);
     ``full_rotation`` asks that the input turn a whole turn without leaving the assembly or
-    passing a toggle.  Infeasible trials are refused, never penalised; the design reports each
+    passing a toggle; ``direction`` (without timing: +1 or -1) that the input grow (+1) or shrink
+    from target to target (default: either).  Infeasible trials are refused, never penalised; the design reports each
     constraint with its value (``constraints``) and those at their limit (``active``).
     When every length is free (and the scale is not), half the sampled starts are
     shape-normalised (:func:`_shaped_design`) and scaled to the targets by the placement fit.
@@ -801,27 +806,79 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
         raise ValueError(f"max_link_ratio must be at least 1 (or None), got {max_link_ratio!r}")
     if not 0 <= min_transmission < math.pi / 2:
         raise ValueError(f"min_transmission must lie in [0, pi/2) radians, got {min_transmission!r}")
+    if direction not in (None, 1, -1) or (direction is not None and inputs is not None):
+        raise ValueError(f"direction is +1, -1 or None, for targets without timing; got {direction!r}")
     problem = _Problem(linkage, names, points, {k: (float(v[0]), float(v[1])) for k, v in free.items()}, fixed,
                        frame, fixed_placement, inputs, frame_bounds, ratio, float(min_transmission),
                        bool(full_rotation))
+    problem.direction = direction
     rng = numpy.random.default_rng(seed)
-    found = (_timed_starts if inputs is not None else _untimed_starts)(problem, rng, starts, given, branches)
+    untimed = inputs is None
+    found = (_untimed_starts if untimed else _timed_starts)(problem, rng, _SCREENED * starts if untimed else starts,
+                                                             given, branches)
     if not found:
         raise ValueError(f"no design of {linkage.name} within the bounds is assembled along the targets; widen the "
                          "bounds or change the fixed values")
     best: PathSynthesis | None = None
     spent = 0
-    for _, x0, signs, angles in found:
-        refined = _refine(problem, x0, signs, numpy.asarray(angles, dtype=float), evaluations, tolerance)
-        if refined is None:
-            continue
-        x, angles_found, _, used = refined
-        spent += used
+
+    def verified(x, signs, angles_found) -> bool:
+        """Verify a refined design, keep the best: True when it reaches the targets (1e-10 of their size)."""
+        nonlocal best
         design = _verify(problem, x, signs, angles_found, spent)
         if best is None or (design.assembled, -design.error) > (best.assembled, -best.error):
             best = design
-        if best.assembled and best.error < 1e-10:
+        return best.assembled and best.error < 1e-10
+
+    if untimed and all(name in given for name in problem.free) and found:
+        # the user's own design (the first start) is refined in full first, as with timing
+        _, x0, signs, angles = found[0]
+        refined = _refine(problem, x0, signs, numpy.asarray(angles, dtype=float), evaluations, tolerance)
+        found = found[1:]
+        if refined is not None:
+            x, angles_found, _, used = refined
+            spent += used
+            if verified(x, signs, angles_found):
+                found = []
+    if untimed:
+        # Successive halving (as symlink.synthesis.path does): every start a short refinement, then the closer half
+        # twice as long from where it stopped, and so on; most untimed starts lead nowhere, a few dozen
+        # evaluations tell which.
+        alive = [(math.inf, x0, signs, numpy.asarray(angles, dtype=float), False) for _, x0, signs, angles in found]
+        budget, closest = _SCREEN_EVALUATIONS, math.inf
+        while alive:
+            results = []
+            for cost, x, signs, angles, stopped in alive:
+                if not stopped:
+                    refined = _refine(problem, x, signs, angles, min(budget, evaluations), tolerance)
+                    if refined is None:
+                        continue
+                    x, angles, cost, used = refined
+                    spent += used
+                    stopped = used < min(budget, evaluations)
+                    if cost < closest:
+                        closest = cost
+                        if verified(x, signs, angles):
+                            alive = []
+                            break
+                results.append((cost, x, signs, angles, stopped))
+            else:
+                results.sort(key=lambda item: item[0])
+                if len(results) <= 1 or budget >= evaluations:
+                    break
+                alive = results[:max(1, len(results) // 2)]
+                budget *= 2
+                continue
             break
+    else:
+        for _, x0, signs, angles in found:
+            refined = _refine(problem, x0, signs, numpy.asarray(angles, dtype=float), evaluations, tolerance)
+            if refined is None:
+                continue
+            x, angles_found, _, used = refined
+            spent += used
+            if verified(x, signs, angles_found):
+                break
     if best is None:
         raise ValueError("no start could be refined")
     return best if best.evaluations == spent else PathSynthesis(**{**best.__dict__, "evaluations": spent})

@@ -92,6 +92,7 @@ _WIDER = 2               # ... the batches after the first this many times as ma
 _POLISHED = 2            # designs of a call (in all) that get a long second refinement ...
 _POLISH_BELOW = 1e-3     # ... if their error is below this
 _POLISH_EVALUATIONS = 6000
+_FULL_TURN = (2 * math.pi) * (1 - 1e-12)  # untimed: the most the crank turns from the first point to the last
 _PHASE_STARTS = 24       # timed with a free phase: offsets over a turn at which each atlas four-bar is fitted
 
 
@@ -609,8 +610,14 @@ def _refine_untimed(start: numpy.ndarray, branch: int, theta: numpy.ndarray, tar
 
     The angles are the first one and squared steps to the next (``theta_i = theta_1 +
     direction * sum(s_k^2)``), so they turn one way with no bounds, and two points at one
-    angle are no wall; a trial turning a full turn or more is infeasible.  (One free angle per
-    point, with trials out of order infeasible, solved fewer problems.)
+    angle are no wall.  Two walls are slid along instead of stopping the solver: a trial that
+    turns a full turn or more is evaluated at its projection onto just under a full turn (the
+    steps scaled down together), and a bounded dimension (``bounds``) beyond its bound at the
+    bound; the Jacobian is the chain rule through the projection (a clipped dimension's column
+    zero), so the refinement moves along the wall.  Designs the optimum presses against a full
+    turn (a closed curve through its first point again) or against a bound end there, instead of
+    wherever the first refused trial left them.  (One free angle per point, with trials out of
+    order infeasible, solved fewer problems.)
     """
     count = len(targets)
     direction = 1.0 if len(theta) < 2 or theta[-1] >= theta[0] else -1.0
@@ -618,8 +625,26 @@ def _refine_untimed(start: numpy.ndarray, branch: int, theta: numpy.ndarray, tar
     def angles_of(x: numpy.ndarray) -> numpy.ndarray:
         return x[9] + direction * numpy.concatenate([[0.0], numpy.cumsum(x[10:] ** 2)])
 
+    def projected(x: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray, numpy.ndarray]:
+        """x on the walls (bounds, under a full turn), which dimensions were clipped, d(projected steps)/d(steps)."""
+        y = x.copy()
+        clipped = numpy.zeros(len(x), dtype=bool)
+        for k, low, high in constraints.box:
+            if not low <= y[k] <= high:
+                y[k], clipped[k] = min(max(y[k], low), high), True
+        steps = y[10:]
+        turn = float(steps @ steps)
+        chain = numpy.eye(len(steps))
+        if turn >= _FULL_TURN:
+            length = math.sqrt(turn)
+            unit = steps / length
+            y[10:] = unit * math.sqrt(_FULL_TURN)
+            chain = math.sqrt(_FULL_TURN) / length * (chain - numpy.outer(unit, unit))
+        return y, clipped, chain
+
     def residuals(x: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray] | None:
-        design, angles = x[:9], angles_of(x)
+        y, clipped, step_chain = projected(x)
+        design, angles = y[:9], angles_of(y)
         if not constraints.allow_design(design) or abs(angles[-1] - angles[0]) >= 2 * math.pi:
             return None
         with numpy.errstate(all="ignore"):
@@ -628,9 +653,11 @@ def _refine_untimed(start: numpy.ndarray, branch: int, theta: numpy.ndarray, tar
             return None
         by_theta = jac[:, :, 0]  # (count, 2): d point_i / d theta_i
         # d theta_i / d theta_1 = 1 and d theta_i / d s_k = 2 direction s_k for k < i: a lower triangle
-        chain = numpy.tril(numpy.concatenate([[1.0], 2 * direction * x[10:]])[None, :].repeat(count, axis=0))
+        chain = numpy.tril(numpy.concatenate([[1.0], 2 * direction * y[10:]])[None, :].repeat(count, axis=0))
         angle_columns = (by_theta[:, :, None] * chain[:, None, :]).reshape(2 * count, count)
+        angle_columns[:, 1:] = angle_columns[:, 1:] @ step_chain
         jacobian = numpy.concatenate([jac[:, :, 1:].reshape(2 * count, 9), angle_columns], axis=1)
+        jacobian[:, clipped] = 0.0
         return ((points - targets) / size).ravel(), jacobian / size
 
     x0 = numpy.concatenate([start, [theta[0]], numpy.sqrt(numpy.abs(numpy.diff(theta)))])
@@ -638,7 +665,8 @@ def _refine_untimed(start: numpy.ndarray, branch: int, theta: numpy.ndarray, tar
     if result is None:
         return None
     x, cost, used = result
-    return x[:9], angles_of(x), used, cost
+    y = projected(x)[0]
+    return y[:9], angles_of(y), used, cost
 
 
 def _accelerated_levenberg_marquardt(residuals, x0: numpy.ndarray, evaluations: int, tolerance: float):

@@ -4,6 +4,9 @@ Run from the repository root (SciPy needed)::
 
     python -m benchmarks.synthesis --literature            # 20 seeds a problem, the table
     python -m benchmarks.literature --seeds 5 --problems case2,case4
+    python -m benchmarks.literature --method general       # symlink.synthesis.general on every problem
+
+The records, from an actual run, are in ``docs/explanation/synthesis_benchmark.md``.
 
 **Source.** The five problems, their target points, prescribed crank angles, variable bounds,
 objective and constraints are those of the MATLAB code of S. Nguyen-Van, Q. X. Lieu, N.
@@ -373,8 +376,8 @@ def _value(v: float, floor: float) -> str:
 def table(runs: list[Run]) -> str:
     """The records: per problem symlink's best, median and worst objective, time, and the published best beside it."""
     lines = ["| problem | seeds | symlink best | symlink median | symlink worst | median s/seed | "
-             "published best (method, 50 runs) | median <= published best |",
-             "|---|---|---|---|---|---|---|---|"]
+             "published best (method, runs; its median) | source | median <= published best |",
+             "|---|---|---|---|---|---|---|---|---|"]
     for problem in PROBLEMS:
         mine = [r for r in runs if r.problem == problem.key]
         if not mine:
@@ -386,8 +389,8 @@ def table(runs: list[Run]) -> str:
         met = median <= published.best or median < floor
         lines.append(f"| {problem.key}: {problem.title} | {len(mine)} | {_value(values[0], floor)} | "
                      f"{_value(median, floor)} | {_value(values[-1], floor)} | "
-                     f"{statistics.median(r.seconds for r in mine):.2f} | {published.best:.4g} ({published.method}; "
-                     f"{REPOSITORY} {published.file}) | {'yes' if met else 'no'} |")
+                     f"{statistics.median(r.seconds for r in mine):.2f} | {published.best:.4g} ({published.method}, "
+                     f"{published.runs}; {published.median:.3g}) | {published.file} | {'yes' if met else 'no'} |")
     return "\n".join(lines)
 
 
@@ -410,7 +413,7 @@ def main(argv=None) -> int:
             if runs[-1].broken:
                 print(f"{problem.key} seed {seed}: {'; '.join(runs[-1].broken)}", file=sys.stderr)
         print(f"{problem.key} done", file=sys.stderr, flush=True)
-    print(f"method: symlink.synthesis.{args.method}")
+    print(f"method: symlink.synthesis.{args.method}; published values from {REPOSITORY} ({PAPER})")
     print(table(runs))
     print(f"\nwhole run {time.perf_counter() - began:.1f} s")
     return 0

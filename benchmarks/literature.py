@@ -370,7 +370,7 @@ def run(problem: Problem, seed: int, method: str = "path") -> Run:
 def _value(v: float, floor: float) -> str:
     if not math.isfinite(v):
         return "infeasible"
-    return f"{v:.3g} (< rounding {floor:.0e})" if v < floor else f"{v:.3g}"
+    return f"{v:.3g} (< rounding {floor:.0e})" if v < floor else f"{v:.5g}"
 
 
 def table(runs: list[Run]) -> str:
@@ -389,7 +389,7 @@ def table(runs: list[Run]) -> str:
         met = median <= published.best or median < floor
         lines.append(f"| {problem.key}: {problem.title} | {len(mine)} | {_value(values[0], floor)} | "
                      f"{_value(median, floor)} | {_value(values[-1], floor)} | "
-                     f"{statistics.median(r.seconds for r in mine):.2f} | {published.best:.4g} ({published.method}, "
+                     f"{statistics.median(r.seconds for r in mine):.2f} | {published.best:.7g} ({published.method}, "
                      f"{published.runs}; {published.median:.3g}) | {published.file} | {'yes' if met else 'no'} |")
     return "\n".join(lines)
 

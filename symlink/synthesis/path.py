@@ -93,6 +93,7 @@ _POLISHED = 2            # designs of a call (in all) that get a long second ref
 _POLISH_BELOW = 1e-3     # ... if their error is below this
 _POLISH_EVALUATIONS = 6000
 _FULL_TURN = (2 * math.pi) * (1 - 1e-12)  # untimed: the most the crank turns from the first point to the last
+_GRASHOF_MARGIN = 1e-9    # a timed trial past the crank-rocker boundary is moved this far (relative) inside
 _PHASE_STARTS = 24       # timed with a free phase: offsets over a turn at which each atlas four-bar is fitted
 
 
@@ -573,22 +574,24 @@ def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: nu
         return theta + x[9] if free_phase else theta
 
     def residuals(x: numpy.ndarray) -> numpy.ndarray:
-        if not constraints.allow_design(x[:9]):
+        design, chain = _slid(x[:9], constraints)
+        if not constraints.allow_design(design):
             return numpy.full(2 * count, _INFEASIBLE)
         with numpy.errstate(all="ignore"):
-            points, jac, ok = _evaluate(x[:9], angles_of(x), branch)
+            points, jac, ok = _evaluate(design, angles_of(x), branch)
         if not numpy.all(ok):
             return numpy.full(2 * count, _INFEASIBLE)
-        last.update(x=x.copy(), jac=jac)
+        last.update(x=x.copy(), jac=jac, chain=chain)
         return ((points - targets) / size).ravel()
 
     def jacobian(x: numpy.ndarray) -> numpy.ndarray:
         if "x" in last and numpy.array_equal(last["x"], x):
-            jac = last["jac"]
+            jac, chain = last["jac"], last["chain"]
         else:
+            design, chain = _slid(x[:9], constraints)
             with numpy.errstate(all="ignore"):
-                _, jac, _ = _evaluate(x[:9], angles_of(x), branch)
-        columns = jac[:, :, 1:].reshape(2 * count, 9)
+                _, jac, _ = _evaluate(design, angles_of(x), branch)
+        columns = jac[:, :, 1:].reshape(2 * count, 9) @ chain
         if free_phase:
             columns = numpy.concatenate([columns, jac[:, :, 0].reshape(2 * count, 1)], axis=1)
         return columns / size
@@ -601,7 +604,38 @@ def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: nu
     method = "lm" if 2 * count >= len(x0) else "trf"
     fit = least_squares(residuals, x0, jac=jacobian, method=method, x_scale="jac", xtol=tolerance, ftol=tolerance,
                         gtol=tolerance, max_nfev=evaluations)
-    return fit.x[:9], angles_of(fit.x), fit.nfev + (fit.njev or 0), fit.cost
+    return _slid(fit.x[:9], constraints)[0], angles_of(fit.x), fit.nfev + (fit.njev or 0), fit.cost
+
+
+def _slid(design: numpy.ndarray, constraints: _Constraints) -> tuple[numpy.ndarray, numpy.ndarray]:
+    """A timed trial design moved onto the walls it crosses, and d(moved)/d(design) (9 x 9).
+
+    Bounded dimensions beyond a bound go to the bound (their column zero).  With
+    ``grashof_class="crank-rocker"``, a design whose crank is the shortest link but which breaks
+    Grashof's inequality ``a + longest <= the other two`` is projected onto it (just inside, a
+    relative 1e-9, so it stays a crank-rocker): the lengths move along the inequality's normal.
+    The refinement then slides along these walls instead of stopping at the first trial past them
+    (the optimum of a problem can lie on them: a change-point linkage at a length bound).
+    """
+    moved = design.copy()
+    chain = numpy.eye(9)
+    for k, low, high in constraints.box:
+        if not low <= moved[k] <= high:
+            moved[k] = min(max(moved[k], low), high)
+            chain[k, :] = 0.0
+    if constraints.grashof == "crank-rocker":
+        lengths = moved[3:7]
+        longest = 1 + int(numpy.argmax(lengths[1:]))
+        if lengths[0] < lengths[1:].min() and longest >= 1:
+            normal = -numpy.ones(4)
+            normal[[0, longest]] = 1.0
+            excess = float(normal @ lengths) + _GRASHOF_MARGIN * float(lengths.sum())
+            if excess > 0:
+                moved[3:7] = lengths - excess / 4 * normal
+                block = numpy.eye(9)
+                block[3:7, 3:7] -= numpy.outer(normal, normal) / 4
+                chain = block @ chain
+    return moved, chain
 
 
 def _refine_untimed(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: numpy.ndarray,

@@ -43,8 +43,9 @@ def test_collinear_points_reached_to_rounding_within_the_bounds():
     """The search no longer drifts to huge flat linkages (it stopped at 5e-6 with every length at a bound)."""
     bounds = {**{name: (0.6, 60.0) for name in LINKS}, "u": (-60.0, 60.0), "v": (-60.0, 60.0)}
     found = synthesize_path(fourbar_point(), "P", COLLINEAR, bounds, frame=("x0", "y0", "angle"),
-                            branches={"branch": 1}, seed=0)
+                            branches={"branch": 1}, seed=0, direction=1)
     assert found.assembled, found.why
+    assert numpy.all(numpy.diff(found.inputs) > 0)  # the input grows from target to target, as asked
     assert hand_error("fourbar", found, COLLINEAR) < 1e-10
     for name, (low, high) in bounds.items():
         assert low <= found.design[name] <= high
@@ -83,6 +84,8 @@ def test_link_ratio_bound_holds_and_is_reported():
     assert found.error > 1e-6  # the true design is excluded, so the targets are not reached exactly
     with pytest.raises(ValueError, match="max_link_ratio"):
         synthesize_path(fourbar_point(), "P", targets, bounds, frame=(), timed=inputs, max_link_ratio=0.5)
+    with pytest.raises(ValueError, match="direction"):  # with timing the inputs fix it
+        synthesize_path(fourbar_point(), "P", targets, bounds, frame=(), timed=inputs, direction=1)
 
 
 def test_minimum_transmission_angle_holds_at_every_target():

@@ -133,7 +133,8 @@ PROBLEMS = (
     # shortest, sequence)
     Problem("case1", "six collinear points, no timing",
             ((20.0, 20.0), (20.0, 25.0), (20.0, 30.0), (20.0, 35.0), (20.0, 40.0), (20.0, 45.0)),
-            None, False, True, 60.0, 60.0, True, True, "Case1/Objf1.m, Case1/Cons1.m, Additional-functions/Mechanisms.m",
+            None, False, True, 60.0, 60.0, True, True,
+            "Case1/Objf1.m, Case1/Cons1.m, Additional-functions/Mechanisms.m",
             (_records(1, "HCDJ", 50, 8.8352421e-29, 2.8596392e+00, 6.2500000e+01, 1.0249e-03),
              _records(1, "DE", 50, 8.7979826e-04, 7.1198401e-01, 1.3522592e+01, 3.0337e-02),
              _records(1, "Jaya", 50, 8.5738795e-03, 3.0609603e+01, 4.3750007e+02, 1.2407e+01))),
@@ -172,7 +173,8 @@ PROBLEMS = (
     Problem("case5", "ten points on an ellipse (the last the first again), no timing",
             ((20.0, 10.0), (17.66, 15.142), (11.736, 17.878), (5.0, 16.928), (0.60307, 12.736), (0.60307, 7.2638),
              (5.0, 3.0718), (11.736, 2.1215), (17.66, 4.8577), (20.0, 10.0)),
-            None, False, True, 80.0, 80.0, False, True, "Case5/Objf5.m, Case5/Cons5.m, Additional-functions/Mechanisms.m",
+            None, False, True, 80.0, 80.0, False, True,
+            "Case5/Objf5.m, Case5/Cons5.m, Additional-functions/Mechanisms.m",
             (_records(5, "HCDJ", 50, 4.2014375e-04, 2.3324925e+00, 9.9259430e+01, 5.9405e-03),
              _records(5, "DE", 50, 2.3369647e-03, 7.3045251e-01, 1.2529242e+01, 4.6388e-02),
              _records(5, "Jaya", 50, 4.8257144e-01, 1.3847894e+02, 8.2819476e+02, 5.7427e+01))),
@@ -319,7 +321,8 @@ def solve(problem: Problem, seed: int) -> numpy.ndarray:
         from symlink.synthesis.path import synthesize_path
         timed = problem.crank_angles is not None
         length, offset = problem.length_bound, problem.offset_bound
-        box = {**{name: (0.0, length) for name in "abcd"}, **{name: (-offset, offset) for name in ("u", "v", "x0", "y0")}}
+        box = {**{name: (0.0, length) for name in "abcd"},
+               **{name: (-offset, offset) for name in ("u", "v", "x0", "y0")}}
         found = synthesize_path(targets, numpy.array(problem.crank_angles) if timed else None, designs=1, seed=seed,
                                 grashof_class="crank-rocker" if problem.crank_shortest else "crank-turns",
                                 branch=1, direction=None if timed else 1, free_phase=problem.first_angle_free,

@@ -58,7 +58,7 @@ from ..linkage import Linkage
 from ..loops import Loop
 from ..solver import Solver
 from ..vectors import Vector, VectorSum
-from .path import _accelerated_levenberg_marquardt
+from .path import _FULL_TURN, _accelerated_levenberg_marquardt
 
 __all__ = ["PathSynthesis", "synthesize_path", "traced_points", "path_residuals", "FRAME_NAMES"]
 
@@ -629,7 +629,24 @@ def _refine(problem: _Problem, x0: numpy.ndarray, branches: Mapping[str, int], i
     def angles_of(y: numpy.ndarray) -> numpy.ndarray:
         return y[width] + direction * numpy.concatenate([[0.0], numpy.cumsum(y[width + 1:] ** 2)])
 
+    def under_a_turn(y: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
+        """y with its steps scaled down onto just under a full turn if they make one, and d(steps)/d(steps).
+
+        A trial past a full turn is evaluated there, so that the refinement slides along that wall
+        (a closed curve through its first target again) instead of stopping at it.
+        """
+        steps = y[width + 1:]
+        turn = float(steps @ steps)
+        if turn < _FULL_TURN:
+            return y, numpy.eye(len(steps))
+        length = math.sqrt(turn)
+        unit = steps / length
+        moved = y.copy()
+        moved[width + 1:] = unit * math.sqrt(_FULL_TURN)
+        return moved, math.sqrt(_FULL_TURN) / length * (numpy.eye(len(steps)) - numpy.outer(unit, unit))
+
     def untimed(y: numpy.ndarray):
+        y, step_chain = under_a_turn(y)
         angles = angles_of(y)
         if abs(angles[-1] - angles[0]) >= 2 * math.pi:
             return None
@@ -639,6 +656,7 @@ def _refine(problem: _Problem, x0: numpy.ndarray, branches: Mapping[str, int], i
         r, jac = found
         by_input = jac[:, width:]  # (2N, N): d r / d q_i, diagonal blocks
         chain = numpy.tril(numpy.tile(numpy.concatenate([[1.0], 2 * direction * y[width + 1:]]), (count, 1)))
+        chain[:, 1:] = chain[:, 1:] @ step_chain
         return r, numpy.concatenate([jac[:, :width], by_input @ chain], axis=1)
 
     y0 = numpy.concatenate([x0, [inputs[0]], numpy.sqrt(numpy.abs(numpy.diff(inputs)))])
@@ -646,6 +664,7 @@ def _refine(problem: _Problem, x0: numpy.ndarray, branches: Mapping[str, int], i
     if result is None:
         return None
     y, cost, used = result
+    y = under_a_turn(y)[0]
     return problem.projected(y[:width])[0], angles_of(y), cost, used
 
 

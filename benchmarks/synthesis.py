@@ -27,6 +27,10 @@ or the wall clock reaches ``--until`` (HH:MM, UTC), with at least ``--de-minimum
 Run from the repository root (not a test; SciPy needed)::
 
     python benchmarks/synthesis.py --problems 100 --de-problems 10 --log /tmp/synthesis.jsonl
+
+``python -m benchmarks.synthesis --literature [--seeds N] [--problems case1,...]`` runs the
+literature's classical problems instead, each with its published objective, bounds and best
+values (:mod:`benchmarks.literature`).
 """
 from __future__ import annotations
 
@@ -215,6 +219,10 @@ def summary(records: list[dict]) -> str:
 
 
 def main(argv=None) -> int:
+    arguments = sys.argv[1:] if argv is None else list(argv)
+    if "--literature" in arguments:  # the literature's classical problems: benchmarks/literature.py
+        from benchmarks import literature
+        return literature.main([a for a in arguments if a != "--literature"])
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--problems", type=int, default=100, help="problems per case for symlink (default 100)")
     parser.add_argument("--de-problems", type=int, default=10, help="most problems per case for differential "
@@ -228,6 +236,8 @@ def main(argv=None) -> int:
                         help="which cases, e.g. timed5,untimed10")
     parser.add_argument("--log", default=None, help="append one JSON line per problem to this file")
     parser.add_argument("--summarize", default=None, help="print the table of a log and stop")
+    parser.add_argument("--literature", action="store_true", help="run benchmarks/literature.py instead (its "
+                                                                 "options: --seeds, --problems case1,...)")
     parser.add_argument("--part", choices=("both", "symlink", "de"), default="both",
                         help="run one method only (two processes side by side share one --log)")
     args = parser.parse_args(argv)

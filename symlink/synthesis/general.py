@@ -52,12 +52,13 @@ import sympy as sp
 from numpy.typing import ArrayLike
 
 from ..design_jacobian import DesignJacobian
+from ..analysis.transmission import transmission_arrays, transmission_coordinates
 from ..display import record_html
 from ..linkage import Linkage
 from ..loops import Loop
 from ..solver import Solver
 from ..vectors import Vector, VectorSum
-from .path import _accelerated_levenberg_marquardt
+from .path import _FULL_TURN, _accelerated_levenberg_marquardt
 
 __all__ = ["PathSynthesis", "synthesize_path", "traced_points", "path_residuals", "FRAME_NAMES"]
 
@@ -69,7 +70,16 @@ _SAMPLED = 1500            # random designs drawn for the starts
 _SWEEP = 96                # input values over a turn, for matching untimed targets by arc length
 _PHASES = 32               # untimed: starting positions along each swept curve ...
 _SPANS = tuple(numpy.linspace(0.1, 1.0, 19))  # ... and fractions of its arc length matched to the targets
+_SCALED_SPANS = (0.95, 0.8, 0.6, 0.4)  # ... those fractions where the fit scales the design (path.py's)
 _PATH_SAMPLES = 24         # input values checked between consecutive targets by the verification
+_SHAPE_RATIO = 16.0        # shape-normalised starts: link lengths within this ratio of each other ...
+_SHAPED = 0.5              # ... this fraction of the sampled designs (the rest uniform within the bounds)
+_OFFSET_SPAN = 2.0         # ... and signed lengths (a point's offsets) within this many times the median link
+_ROTATION_SAMPLES = 48     # input values over a turn checked for full rotation
+_SCREENED = 4              # untimed: this many times ``starts`` starts screened by successive halving ...
+_SCREEN_EVALUATIONS = 40   # ... this many evaluations each in the first round, twice as many each round after
+_PARTIAL_RANK = 4.0        # untimed starts: a design whose input cannot turn fully ranks as if this much farther
+_ACTIVE = 1e-6             # a constraint within this (relative) of its limit is reported active
 
 
 @dataclass(frozen=True)
@@ -81,7 +91,10 @@ class PathSynthesis:
     distances from each target to the placed point, from the linkage's own generated solver;
     ``error`` the largest over the targets' size (the diagonal of their bounding box);
     ``assembled`` whether the verification passed (every target reached on one branch, no toggle
-    between them); ``evaluations`` the residual evaluations spent.
+    between them); ``evaluations`` the residual evaluations spent.  ``constraints`` states every
+    constraint the design was held to with its value at the design (bounds of the free
+    parameters and placement, link ratio, transmission angle, full rotation), ``active`` those
+    at their limit (within 1e-6 relative): the ones that stop the design from coming closer.
     """
 
     _repr_html_ = record_html  # a notebook shows the fields as a table
@@ -97,6 +110,8 @@ class PathSynthesis:
     assembled: bool = False
     evaluations: int = 0
     why: str = field(default="", repr=False)
+    constraints: tuple[str, ...] = ()
+    active: tuple[str, ...] = ()
 
 
 def _point_outputs(linkage: Linkage, point: str | Sequence[str]) -> tuple[str, str]:
@@ -230,8 +245,11 @@ class _Problem:
     def __init__(self, linkage: Linkage, outputs: tuple[str, str], targets: numpy.ndarray,
                  free: Mapping[str, tuple[float, float]], values: Mapping[str, float], frame: Sequence[str],
                  placement: Mapping[str, float], timed: numpy.ndarray | None,
-                 frame_bounds: Mapping[str, tuple[float, float]] | None = None) -> None:
+                 frame_bounds: Mapping[str, tuple[float, float]] | None = None, max_link_ratio: float = math.inf,
+                 min_transmission: float = 0.0, full_rotation: bool = False) -> None:
         self.linkage, self.outputs, self.targets = linkage, outputs, targets
+        self.max_link_ratio, self.min_transmission, self.full_rotation = max_link_ratio, min_transmission, full_rotation
+        self.direction: int | None = None  # untimed: the input grows (+1) or shrinks (-1) from target to target
         self.size = _size(targets)
         self.free = tuple(free)
         self.bounds = numpy.array([free[name] for name in self.free], dtype=float).reshape(len(self.free), 2)
@@ -252,6 +270,12 @@ class _Problem:
         #: Starts are fitted with a free scale, then the scale goes into the lengths: possible when every
         #: length of the linkage is free and the scale is not.
         self.absorbs = bool(lengths) and lengths <= set(self.free) and "scale" not in self.frame
+        #: The link lengths (positive parameters), free ones by index, fixed ones by value: the link ratio's.
+        self.links = numpy.array([name in positive for name in self.free], dtype=bool)
+        self.fixed_links = [abs(float(values[p.name])) for p in linkage.parameters
+                            if p.is_positive and p.name not in self.free and p.name in values]
+        self.transmission = ((transmission_coordinates(linkage), min_transmission) if min_transmission > 0
+                             else None)
 
     @property
     def width(self) -> int:
@@ -278,7 +302,36 @@ class _Problem:
     def allowed(self, x: numpy.ndarray) -> bool:
         bounded = x[:self.width]
         inside = numpy.all((bounded >= self.limits[:, 0]) & (bounded <= self.limits[:, 1]))
-        return bool(inside and numpy.all(x[:len(self.free)][self.positive] > 0) and numpy.all(numpy.isfinite(x)))
+        ok = bool(inside and numpy.all(x[:len(self.free)][self.positive] > 0) and numpy.all(numpy.isfinite(x)))
+        return ok and (not math.isfinite(self.max_link_ratio) or self.link_ratio(x) <= self.max_link_ratio)
+
+    def link_ratio(self, x: numpy.ndarray) -> float:
+        """The longest link over the shortest (positive length parameters, free and fixed); 1 with none."""
+        links = numpy.concatenate([numpy.abs(x[:len(self.free)][self.links]), self.fixed_links])
+        return float(links.max() / links.min()) if len(links) and links.min() > 0 else (
+            math.inf if len(links) else 1.0)
+
+    def feasible_motion(self, design: Mapping[str, float], inputs: numpy.ndarray,
+                        branches: Mapping[str, int]) -> str:
+        """Why the design breaks the transmission or rotation constraint at these inputs ('' if it does not)."""
+        if self.transmission is None and not self.full_rotation:
+            return ""
+        linkage = self.linkage
+        arguments = _arguments(linkage, design, branches)
+        if self.transmission is not None:
+            names, least = self.transmission
+            solved = _solver(linkage, tuple(names))(**arguments, **{linkage.inputs[0].name: inputs})
+            for loop, mu in transmission_arrays(linkage, {**design, **arguments}, solved).items():
+                worst = float(numpy.min(numpy.minimum(mu, math.pi - mu)))
+                if not worst >= least:
+                    return f"the transmission angle at {loop} falls to {math.degrees(worst):.6g} deg"
+        if self.full_rotation:
+            turn = numpy.linspace(0.0, 2 * math.pi, _ROTATION_SAMPLES, endpoint=False)
+            solved = _solver(linkage, ("singular",))(**arguments, **{linkage.inputs[0].name: turn})
+            ok = numpy.asarray(solved["assembled"]) & ~numpy.asarray(solved["singular"], dtype=bool)
+            if not numpy.all(ok):
+                return "the input cannot turn fully (no assembly or a toggle over the turn)"
+        return ""
 
     def projected(self, x: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
         """``x`` with its free parameters and placement clipped to their bounds, and which entries were outside."""
@@ -303,6 +356,8 @@ class _Problem:
             return None
         local, jac, ok = self.local(design, inputs, branches)
         if not numpy.all(ok):
+            return None
+        if self.feasible_motion(design, inputs, branches):
             return None
         c, s, k = math.cos(placement["angle"]), math.sin(placement["angle"]), placement["scale"]
         turn = numpy.array([[c, -s], [s, c]])
@@ -416,10 +471,32 @@ def _sampled_designs(problem: _Problem, rng: numpy.random.Generator, count: int,
         rows.append([given[name] for name in problem.free])
         signs.append({n: int(chosen.get(n, 1)) for n in names})
     low, high = problem.bounds[:, 0], problem.bounds[:, 1]
-    for _ in range(count):
-        rows.append(list(rng.uniform(low, high)))
+    shaped = int(round(_SHAPED * count)) if problem.absorbs else 0
+    for k in range(count):
+        rows.append(list(_shaped_design(problem, rng) if k < shaped else rng.uniform(low, high)))
         signs.append({n: int(chosen[n]) if n in chosen else int(rng.choice([-1, 1])) for n in names})
     return numpy.array(rows, dtype=float).reshape(len(rows), len(problem.free)), signs
+
+
+def _shaped_design(problem: _Problem, rng: numpy.random.Generator) -> numpy.ndarray:
+    """Free parameters of a shape-normalised design (the four-bar atlas's way, for any linkage).
+
+    Used when every length is free, so the placement fit scales the whole design to the
+    targets' size (:func:`_start`): only the shape is drawn.  The links (positive lengths) are
+    log-uniform within :data:`_SHAPE_RATIO` (and the link-ratio bound) of each other, about 1;
+    signed lengths (a point's offsets, pivot coordinates) uniform within :data:`_OFFSET_SPAN`
+    times the median link; the other free parameters (angles) uniform within their bounds.
+    Uniform draws within wide bounds give flat, huge linkages (link ratios of 100), from which
+    the refinement drifts further along flat valleys instead of closing on the targets.
+    """
+    ratio = min(_SHAPE_RATIO, problem.max_link_ratio)
+    x = rng.uniform(problem.bounds[:, 0], problem.bounds[:, 1])
+    links = problem.links & problem.lengths
+    x[links] = numpy.exp(rng.uniform(-0.5, 0.5, int(links.sum())) * math.log(ratio))
+    signed = problem.lengths & ~problem.links
+    middle = float(numpy.median(x[links])) if links.any() else 1.0
+    x[signed] = rng.uniform(-_OFFSET_SPAN, _OFFSET_SPAN, int(signed.sum())) * middle
+    return x
 
 
 def _traced_batch(problem: _Problem, rows: numpy.ndarray, signs: list[dict[str, int]],
@@ -469,9 +546,12 @@ def _untimed_starts(problem: _Problem, rng, count: int, given, branch_choice):
     chords = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(w)))])
     fraction = chords / chords[-1] if chords[-1] > 0 else numpy.linspace(0.0, 1.0, len(w))
     sweep = numpy.linspace(-math.pi, 3 * math.pi, 2 * _SWEEP + 1)
-    spans = numpy.array(_SPANS)
+    # Where the fit scales the design, a short, nearly straight stretch of any curve, magnified, fits any smooth
+    # targets (collinear ones exactly) and starts the refinement on a huge, flat linkage: long stretches only.
+    spans = numpy.array(_SCALED_SPANS if problem.absorbs or "scale" in problem.frame else _SPANS)
     phases = numpy.linspace(0.0, 1.0, _PHASES, endpoint=False)
-    shapes = numpy.concatenate([fraction[None, :], 1.0 - fraction[None, :]])  # both ways along the curve
+    ways = {None: [fraction, 1.0 - fraction], 1: [fraction], -1: [1.0 - fraction]}[problem.direction]
+    shapes = numpy.stack(ways)  # along the curve with the input growing, shrinking, or both
     rows, signs = _sampled_designs(problem, rng, _SAMPLED, given, branch_choice)
     traced, assembled = _traced_batch(problem, rows, signs, sweep)
     fits = []
@@ -487,16 +567,21 @@ def _untimed_starts(problem: _Problem, rng, count: int, given, branch_choice):
         if not arc[-1] > 0:
             continue
         arc /= arc[-1] / 2 if turning else arc[-1]  # a whole turn is 1: the second turn lets a match cross the seam
-        usable = spans[None, :, None, None] * shapes[None, None, :, :]  # (1, spans, 2, N)
+        usable = spans[None, :, None, None] * shapes[None, None, :, :]  # (1, spans, ways, N)
         origin = phases[:, None, None, None] * (1.0 if turning else (1.0 - spans)[None, :, None, None])
         where = (origin + usable).reshape(-1, len(w))
         angles = numpy.interp(where, arc, q)
         zz = numpy.interp(angles, q, z.real) + 1j * numpy.interp(angles, q, z.imag)
         placements, rms = _fit_placements(problem, zz, w)
+        # Targets matched within one or two sweep intervals are matched to a straight chord of the interpolation
+        # (exactly, for collinear targets), not to the curve: such fits are no starts.
+        cells = numpy.sort(numpy.floor((angles - q[0]) / (q[1] - q[0])), axis=1)
+        distinct = 1 + numpy.sum(numpy.diff(cells, axis=1) > 0, axis=1)
+        rms = numpy.where(distinct >= min(len(w), 4), rms, numpy.inf)
         for k in numpy.argsort(rms)[:4]:  # the best match that stays within the bounds
             x = _start(problem, rows[index], placements[k])
             if math.isfinite(rms[k]) and x is not None:
-                fits.append((float(rms[k]), x, signs[index], angles[k]))
+                fits.append((float(rms[k]) * (1.0 if turning else _PARTIAL_RANK), x, signs[index], angles[k]))
                 break
     return _ranked(fits, count, given, problem)
 
@@ -544,7 +629,24 @@ def _refine(problem: _Problem, x0: numpy.ndarray, branches: Mapping[str, int], i
     def angles_of(y: numpy.ndarray) -> numpy.ndarray:
         return y[width] + direction * numpy.concatenate([[0.0], numpy.cumsum(y[width + 1:] ** 2)])
 
+    def under_a_turn(y: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
+        """y with its steps scaled down onto just under a full turn if they make one, and d(steps)/d(steps).
+
+        A trial past a full turn is evaluated there, so that the refinement slides along that wall
+        (a closed curve through its first target again) instead of stopping at it.
+        """
+        steps = y[width + 1:]
+        turn = float(steps @ steps)
+        if turn < _FULL_TURN:
+            return y, numpy.eye(len(steps))
+        length = math.sqrt(turn)
+        unit = steps / length
+        moved = y.copy()
+        moved[width + 1:] = unit * math.sqrt(_FULL_TURN)
+        return moved, math.sqrt(_FULL_TURN) / length * (numpy.eye(len(steps)) - numpy.outer(unit, unit))
+
     def untimed(y: numpy.ndarray):
+        y, step_chain = under_a_turn(y)
         angles = angles_of(y)
         if abs(angles[-1] - angles[0]) >= 2 * math.pi:
             return None
@@ -554,6 +656,7 @@ def _refine(problem: _Problem, x0: numpy.ndarray, branches: Mapping[str, int], i
         r, jac = found
         by_input = jac[:, width:]  # (2N, N): d r / d q_i, diagonal blocks
         chain = numpy.tril(numpy.tile(numpy.concatenate([[1.0], 2 * direction * y[width + 1:]]), (count, 1)))
+        chain[:, 1:] = chain[:, 1:] @ step_chain
         return r, numpy.concatenate([jac[:, :width], by_input @ chain], axis=1)
 
     y0 = numpy.concatenate([x0, [inputs[0]], numpy.sqrt(numpy.abs(numpy.diff(inputs)))])
@@ -561,6 +664,7 @@ def _refine(problem: _Problem, x0: numpy.ndarray, branches: Mapping[str, int], i
     if result is None:
         return None
     y, cost, used = result
+    y = under_a_turn(y)[0]
     return problem.projected(y[:width])[0], angles_of(y), cost, used
 
 
@@ -584,9 +688,54 @@ def _verify(problem: _Problem, x: numpy.ndarray, branches: Mapping[str, int], in
             where = numpy.argwhere(~ok)[0]
             why = (f"the input cannot move from target {where[0] + 1} to target {where[0] + 2} on one branch "
                    f"(no assembly or a toggle at {float(moves[tuple(where)]):.6g})")
+        else:
+            why = problem.feasible_motion(design, moves.ravel(), branches)
+    if not why and not problem.allowed(x):
+        why = "outside the bounds or the link ratio"
+    stated, active = _constraint_report(problem, x, design, branches, inputs)
     return PathSynthesis(linkage.name, problem.outputs, design, placement, dict(branches),
                          tuple(map(float, inputs)), tuple(map(float, errors)),
-                         float(numpy.max(errors) / problem.size) if not why else math.inf, not why, evaluations, why)
+                         float(numpy.max(errors) / problem.size) if not why else math.inf, not why, evaluations, why,
+                         stated, active)
+
+
+def _constraint_report(problem: _Problem, x: numpy.ndarray, design: Mapping[str, float], branches: Mapping[str, int],
+                       inputs: numpy.ndarray) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """Every constraint the design was held to, with its value, and those at their limit (relative ``_ACTIVE``)."""
+    stated: list[str] = []
+    active: list[str] = []
+    names = list(problem.free) + list(problem.frame)
+
+    def near(value: float, limit: float) -> bool:
+        return abs(value - limit) <= _ACTIVE * max(abs(limit), problem.size, 1e-300)
+
+    for name, value, (low, high) in zip(names, x[:problem.width], problem.limits):
+        if math.isfinite(low) or math.isfinite(high):
+            stated.append(f"{low:.6g} <= {name} = {value:.9g} <= {high:.6g}")
+            if near(value, low):
+                active.append(f"{name} at its lower bound {low:.6g}")
+            if near(value, high):
+                active.append(f"{name} at its upper bound {high:.6g}")
+    if math.isfinite(problem.max_link_ratio):
+        ratio = problem.link_ratio(x)
+        stated.append(f"link ratio {ratio:.6g} <= {problem.max_link_ratio:.6g}")
+        if abs(ratio - problem.max_link_ratio) <= _ACTIVE * problem.max_link_ratio:
+            active.append(f"link ratio at {problem.max_link_ratio:.6g}")
+    if problem.transmission is not None:
+        names_needed, least = problem.transmission
+        arguments = _arguments(problem.linkage, design, branches)
+        solved = _solver(problem.linkage, tuple(names_needed))(**arguments,
+                                                                **{problem.linkage.inputs[0].name: inputs})
+        for loop, mu in transmission_arrays(problem.linkage, {**design, **arguments}, solved).items():
+            worst = float(numpy.min(numpy.minimum(mu, math.pi - mu)))
+            stated.append(f"transmission angle at {loop} >= {math.degrees(least):.6g} deg: "
+                          f"{math.degrees(worst):.6g} deg at the targets")
+            if abs(worst - least) <= 1e-6:
+                active.append(f"transmission angle at {loop} at {math.degrees(least):.6g} deg")
+    if problem.full_rotation:
+        stated.append("the input turns fully")
+    stated.append("targets in order on one assembly branch, no toggle between them")
+    return tuple(stated), tuple(active)
 
 
 def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: ArrayLike,
@@ -594,7 +743,9 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
                     frame: Sequence[str] = FRAME_NAMES, placement: Mapping[str, float] | None = None,
                     frame_bounds: Mapping[str, tuple[float, float]] | None = None, timed: ArrayLike | None = None,
                     branches: Mapping[str, int] | None = None, starts: int = 16,
-                    seed: int | None = 0, evaluations: int = 2000, tolerance: float = 1e-15) -> PathSynthesis:
+                    seed: int | None = 0, evaluations: int = 2000, tolerance: float = 1e-15,
+                    max_link_ratio: float | None = None, min_transmission: float = 0.0,
+                    full_rotation: bool = False, direction: int | None = None) -> PathSynthesis:
     """A design of ``linkage`` whose ``point`` passes through ``targets`` (rows x, y), verified.
 
     ``point`` is a point name (``"C"``) or two output names (``("P_x", "P_y")``).  ``free`` maps
@@ -609,6 +760,19 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
     evaluations each; the search stops at the first verified design below 1e-10 (error over the
     targets' size).  Returns the best verified design, or the closest one with ``assembled``
     False and its reason; ``ValueError`` for bad input or when no sampled design is feasible.
+
+    Constraints a designer states, besides the bounds (link lengths, and with ``frame_bounds``
+    the pivot inside a box) and what every design meets (the targets reached in order on one
+    assembly branch, no toggle between them): ``max_link_ratio`` bounds the longest link over
+    the shortest (positive length parameters, free and fixed; None: no bound);
+    ``min_transmission`` (radians) bounds the transmission angle of every two-angle loop at
+    every target from 0 and from pi (:func:`symlink.analysis.transmission.transmission_arrays`);
+    ``full_rotation`` asks that the input turn a whole turn without leaving the assembly or
+    passing a toggle; ``direction`` (without timing: +1 or -1) that the input grow (+1) or shrink
+    from target to target (default: either).  Infeasible trials are refused, never penalised; the design reports each
+    constraint with its value (``constraints``) and those at their limit (``active``).
+    When every length is free (and the scale is not), half the sampled starts are
+    shape-normalised (:func:`_shaped_design`) and scaled to the targets by the placement fit.
     """
     if len(linkage.inputs) != 1:
         raise ValueError(f"path synthesis drives one input; {linkage.name} has {len(linkage.inputs)}")
@@ -656,26 +820,84 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
         if name not in frame or not (float(bound[0]) < float(bound[1])):
             raise ValueError(f"frame_bounds bounds free parts of the placement ({', '.join(frame) or 'none'}) "
                              f"with low < high; got {name!r}: {bound!r}")
+    ratio = math.inf if max_link_ratio is None else float(max_link_ratio)
+    if not ratio >= 1:
+        raise ValueError(f"max_link_ratio must be at least 1 (or None), got {max_link_ratio!r}")
+    if not 0 <= min_transmission < math.pi / 2:
+        raise ValueError(f"min_transmission must lie in [0, pi/2) radians, got {min_transmission!r}")
+    if direction not in (None, 1, -1) or (direction is not None and inputs is not None):
+        raise ValueError(f"direction is +1, -1 or None, for targets without timing; got {direction!r}")
     problem = _Problem(linkage, names, points, {k: (float(v[0]), float(v[1])) for k, v in free.items()}, fixed,
-                       frame, fixed_placement, inputs, frame_bounds)
+                       frame, fixed_placement, inputs, frame_bounds, ratio, float(min_transmission),
+                       bool(full_rotation))
+    problem.direction = direction
     rng = numpy.random.default_rng(seed)
-    found = (_timed_starts if inputs is not None else _untimed_starts)(problem, rng, starts, given, branches)
+    untimed = inputs is None
+    found = (_untimed_starts if untimed else _timed_starts)(problem, rng, _SCREENED * starts if untimed else starts,
+                                                             given, branches)
     if not found:
         raise ValueError(f"no design of {linkage.name} within the bounds is assembled along the targets; widen the "
                          "bounds or change the fixed values")
     best: PathSynthesis | None = None
     spent = 0
-    for _, x0, signs, angles in found:
-        refined = _refine(problem, x0, signs, numpy.asarray(angles, dtype=float), evaluations, tolerance)
-        if refined is None:
-            continue
-        x, angles_found, _, used = refined
-        spent += used
+
+    def verified(x, signs, angles_found) -> bool:
+        """Verify a refined design, keep the best: True when it reaches the targets (1e-10 of their size)."""
+        nonlocal best
         design = _verify(problem, x, signs, angles_found, spent)
         if best is None or (design.assembled, -design.error) > (best.assembled, -best.error):
             best = design
-        if best.assembled and best.error < 1e-10:
+        return best.assembled and best.error < 1e-10
+
+    if untimed and all(name in given for name in problem.free) and found:
+        # the user's own design (the first start) is refined in full first, as with timing
+        _, x0, signs, angles = found[0]
+        refined = _refine(problem, x0, signs, numpy.asarray(angles, dtype=float), evaluations, tolerance)
+        found = found[1:]
+        if refined is not None:
+            x, angles_found, _, used = refined
+            spent += used
+            if verified(x, signs, angles_found):
+                found = []
+    if untimed:
+        # Successive halving (as symlink.synthesis.path does): every start a short refinement, then the closer half
+        # twice as long from where it stopped, and so on; most untimed starts lead nowhere, a few dozen
+        # evaluations tell which.
+        alive = [(math.inf, x0, signs, numpy.asarray(angles, dtype=float), False) for _, x0, signs, angles in found]
+        budget, closest = _SCREEN_EVALUATIONS, math.inf
+        while alive:
+            results = []
+            for cost, x, signs, angles, stopped in alive:
+                if not stopped:
+                    refined = _refine(problem, x, signs, angles, min(budget, evaluations), tolerance)
+                    if refined is None:
+                        continue
+                    x, angles, cost, used = refined
+                    spent += used
+                    stopped = used < min(budget, evaluations)
+                    if cost < closest:
+                        closest = cost
+                        if verified(x, signs, angles):
+                            alive = []
+                            break
+                results.append((cost, x, signs, angles, stopped))
+            else:
+                results.sort(key=lambda item: item[0])
+                if len(results) <= 1 or budget >= evaluations:
+                    break
+                alive = results[:max(1, len(results) // 2)]
+                budget *= 2
+                continue
             break
+    else:
+        for _, x0, signs, angles in found:
+            refined = _refine(problem, x0, signs, numpy.asarray(angles, dtype=float), evaluations, tolerance)
+            if refined is None:
+                continue
+            x, angles_found, _, used = refined
+            spent += used
+            if verified(x, signs, angles_found):
+                break
     if best is None:
         raise ValueError("no start could be refined")
     return best if best.evaluations == spent else PathSynthesis(**{**best.__dict__, "evaluations": spent})

@@ -50,7 +50,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 from functools import lru_cache
-from typing import Sequence
+from typing import Mapping, Sequence
 
 import numpy
 import sympy as sp
@@ -92,6 +92,9 @@ _WIDER = 2               # ... the batches after the first this many times as ma
 _POLISHED = 2            # designs of a call (in all) that get a long second refinement ...
 _POLISH_BELOW = 1e-3     # ... if their error is below this
 _POLISH_EVALUATIONS = 6000
+_FULL_TURN = (2 * math.pi) * (1 - 1e-12)  # untimed: the most the crank turns from the first point to the last
+_GRASHOF_MARGIN = 1e-9    # a timed trial past the crank-rocker boundary is moved this far (relative) inside
+_PHASE_STARTS = 24       # timed with a free phase: offsets over a turn at which each atlas four-bar is fitted
 
 
 @dataclass(frozen=True)
@@ -248,6 +251,11 @@ class _Constraints:
     grashof: str = "any"
     max_link_ratio: float = math.inf
     min_transmission: float = 0.0
+    box: tuple[tuple[int, float, float], ...] = ()  # (index in the design vector, low, high)
+
+    def allow_design(self, vector: numpy.ndarray) -> bool:
+        """:meth:`allow` for the design vector's lengths, and every bounded dimension within its bounds."""
+        return self.allow(vector[3:7]) and all(low <= vector[k] <= high for k, low, high in self.box)
 
     def allow(self, lengths: Sequence[float] | numpy.ndarray) -> bool:
         a, b, c, d = lengths
@@ -285,7 +293,7 @@ def _reached_in_order(design: PathDesign, crank_angles: ArrayLike) -> str | None
 
 def check_design(design: PathDesign, targets: ArrayLike, crank_angles: ArrayLike,
                  grashof_class: str = "any", max_link_ratio: float = math.inf,
-                 min_transmission: float = 0.0) -> PathDesign:
+                 min_transmission: float = 0.0, bounds: Mapping[str, tuple[float, float]] | None = None) -> PathDesign:
     """Verify a design with symlink's four-bar solver and return it with its errors; ``ValueError`` if it fails.
 
     Every target is reached on the design's branch, in order (the crank moves from each
@@ -296,11 +304,14 @@ def check_design(design: PathDesign, targets: ArrayLike, crank_angles: ArrayLike
     theta = numpy.asarray(crank_angles, dtype=float)
     if theta.shape != (len(points),):
         raise ValueError(f"{len(points)} targets need {len(points)} crank angles, got {theta.size}")
-    constraints = _Constraints(grashof_class, max_link_ratio, min_transmission)
+    constraints = _Constraints(grashof_class, max_link_ratio, min_transmission, _box(bounds))
     if not constraints.allow(design.lengths):
         raise ValueError(f"the design {tuple(round(x, 6) for x in design.lengths)} breaks a constraint "
                          f"(Grashof class {grashof_class}, link ratio <= {max_link_ratio:g}, transmission >= "
                          f"{math.degrees(min_transmission):g} deg)")
+    if not constraints.allow_design(design.vector):
+        outside = [DESIGN_NAMES[k] for k, low, high in constraints.box if not low <= design.vector[k] <= high]
+        raise ValueError(f"the design's {', '.join(outside)} lie outside their bounds")
     if abs(theta[-1] - theta[0]) >= 2 * math.pi or (len(theta) > 2 and not (
             numpy.all(numpy.diff(theta) >= 0) or numpy.all(numpy.diff(theta) <= 0))):
         raise ValueError("the crank angles must turn one way, less than a full turn from the first to the last point")
@@ -315,6 +326,23 @@ def check_design(design: PathDesign, targets: ArrayLike, crank_angles: ArrayLike
     return replace(design, theta=tuple(map(float, theta)), errors=tuple(map(float, errors)),
                    error=float(errors.max() / _size(points)), grashof=grashof(a, b, c, d).name,
                    worst_transmission=float(worst))
+
+
+def _box(bounds: Mapping[str, tuple[float, float]] | None) -> tuple[tuple[int, float, float], ...]:
+    """Bounds by dimension name (``x0, y0, a, b, c, d, u, v``) as (index, low, high); ValueError if malformed."""
+    box = []
+    for name, bound in (bounds or {}).items():
+        if name not in DESIGN_NAMES or name == "frame":
+            raise ValueError(f"bounds name dimensions among {', '.join(n for n in DESIGN_NAMES if n != 'frame')}, "
+                             f"not {name!r}")
+        try:
+            low, high = (float(b) for b in bound)
+        except (TypeError, ValueError):
+            raise ValueError(f"the bounds of {name!r} must be two numbers (low, high), got {bound!r}") from None
+        if not (low < high) or math.isnan(low) or math.isnan(high):
+            raise ValueError(f"the bounds of {name!r} must have low < high, got {bound!r}")
+        box.append((DESIGN_NAMES.index(name), low, high))
+    return tuple(box)
 
 
 def path_error(design: PathDesign, targets: ArrayLike) -> float:
@@ -386,18 +414,31 @@ def _placed(row: numpy.ndarray, factor: complex, shift: complex) -> numpy.ndarra
     return numpy.array([shift.real, shift.imag, turn, a, b, c, d, u, v])
 
 
-def _timed_starts(w: numpy.ndarray, theta: numpy.ndarray, rng, count: int, constraints: _Constraints):
+def _timed_starts(w: numpy.ndarray, theta: numpy.ndarray, rng, count: int, constraints: _Constraints,
+                  branch: int | None = None, free_phase: bool = False):
+    """The atlas four-bars whose coupler points at the crank angles fit the targets best, placed on them.
+
+    ``branch``: only that assembly branch.  ``free_phase``: the angles are known up to a common
+    offset; each atlas four-bar is tried at :data:`_PHASE_STARTS` offsets over a turn and the
+    start's angles are the offset ones.
+    """
     rows = _atlas(rng, _ATLAS)
-    z, ok = _local_points(rows, theta[None, :])
+    if branch is not None:
+        rows[:, 6] = branch
+    offsets = numpy.linspace(0.0, 2 * math.pi, _PHASE_STARTS, endpoint=False) if free_phase else numpy.zeros(1)
+    shifted = theta[None, None, :] + offsets[None, :, None]  # (1, offsets, count)
+    z, ok = _local_points(rows[:, None, :].repeat(len(offsets), axis=1).reshape(-1, 7),
+                          shifted.repeat(len(rows), axis=0).reshape(-1, len(theta)))
     factor, shift, rms = _similarity(z, w[None, :])
     rms = numpy.where(numpy.all(ok, axis=1) & numpy.isfinite(rms), rms, numpy.inf)
     starts: list[tuple[numpy.ndarray, int, numpy.ndarray]] = []
     for k in numpy.argsort(rms):
         if not numpy.isfinite(rms[k]) or len(starts) >= count:
             break
-        vector = _placed(rows[k], factor[k], shift[k])
-        if constraints.allow(vector[3:7]):
-            starts.append((vector, int(rows[k, 6]), theta.copy()))
+        row, offset = divmod(int(k), len(offsets))
+        vector = _placed(rows[row], factor[k], shift[k])
+        if constraints.allow_design(vector):
+            starts.append((vector, int(rows[row, 6]), theta + offsets[offset]))
     return starts
 
 
@@ -431,7 +472,8 @@ def _curves(rows: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray, numpy.nd
     return rows, z, table
 
 
-def _untimed_starts(w: numpy.ndarray, rng, count: int, constraints: _Constraints, first: bool):
+def _untimed_starts(w: numpy.ndarray, rng, count: int, constraints: _Constraints, first: bool,
+                    branch: int | None = None, direction: int | None = None):
     """Atlas curves matched to the targets by arc length: several phases, spans and both directions; the best fits.
 
     The crank angles where a curve's arc length has the targets' chord-length fractions give a
@@ -441,6 +483,9 @@ def _untimed_starts(w: numpy.ndarray, rng, count: int, constraints: _Constraints
     were tried and found no more solutions on twenty test problems.)
     """
     rows, z, table = _curve_atlas() if first else _curves(_atlas(rng, _CURVE_ATLAS))
+    if branch is not None:
+        on_branch = rows[:, 6] == branch
+        rows, z, table = rows[on_branch], z[on_branch], table[on_branch]
     samples = len(z[0])
     grid = numpy.linspace(-math.pi, math.pi, samples + 1)[:-1]
     closed = numpy.concatenate([z, z[:, :1]], axis=1)
@@ -449,8 +494,10 @@ def _untimed_starts(w: numpy.ndarray, rng, count: int, constraints: _Constraints
     fits = []  # (rms, row, sample positions)
     for span in _SPANS:
         for phase in numpy.linspace(0, 1, _PHASES, endpoint=False):
-            for direction in (1, -1):
-                where = (phase + direction * span * fraction) % 1.0
+            for way in (1, -1):
+                if direction is not None and way != direction:
+                    continue  # (the curve's samples run with the crank angle: a way is a crank direction)
+                where = (phase + way * span * fraction) % 1.0
                 position = _arc_position(table, where)  # fractional sample index, rows x targets
                 zz = _sampled(closed, position)
                 _, _, rms = _similarity(zz, w[None, :])
@@ -474,8 +521,10 @@ def _untimed_starts(w: numpy.ndarray, rng, count: int, constraints: _Constraints
         theta = grid[0] + (position[m][0] + numpy.concatenate([[0.0], numpy.cumsum(steps)])) * (2 * math.pi / samples)
         if chosen[m] in used or abs(theta[-1] - theta[0]) >= 2 * math.pi:
             continue
+        if direction is not None and (theta[-1] - theta[0]) * direction < 0:
+            continue
         vector = _placed(rows[chosen[m]], factor[m], shift[m])
-        if constraints.allow(vector[3:7]):
+        if constraints.allow_design(vector):
             used.add(chosen[m])
             starts.append((vector, int(rows[chosen[m], 6]), theta))
     return starts
@@ -505,13 +554,14 @@ def _arc_position(table: numpy.ndarray, where: numpy.ndarray) -> numpy.ndarray:
 # --- the refinement -----------------------------------------------------------------------------
 
 def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: numpy.ndarray, timed: bool,
-            constraints: _Constraints, size: float, tolerance: float, evaluations: int):
+            constraints: _Constraints, size: float, tolerance: float, evaluations: int, free_phase: bool = False):
     """One start refined: (design vector, crank angles, evaluations, cost), or None if the start is infeasible.
 
     With timing: Levenberg-Marquardt (``least_squares(method="lm")``; trust-region reflective
     for fewer than five points) over the nine dimensions.  Without: :func:`_refine_untimed`.
     No bounds are needed for the lengths: a length at or below zero breaks a constraint and is
-    never accepted.
+    never accepted.  ``free_phase`` (with timing): a common offset added to the crank angles is
+    a tenth unknown (its Jacobian column is the point's derivative by its crank angle).
     """
     if not timed:
         return _refine_untimed(start, branch, theta, targets, constraints, size, tolerance, evaluations)
@@ -520,25 +570,33 @@ def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: nu
     count = len(targets)
     last: dict[str, numpy.ndarray] = {}  # the generated code gives points and Jacobian in one call: keep it
 
+    def angles_of(x: numpy.ndarray) -> numpy.ndarray:
+        return theta + x[9] if free_phase else theta
+
     def residuals(x: numpy.ndarray) -> numpy.ndarray:
-        if not constraints.allow(x[3:7]):
+        design, chain = _slid(x[:9], constraints)
+        if not constraints.allow_design(design):
             return numpy.full(2 * count, _INFEASIBLE)
         with numpy.errstate(all="ignore"):
-            points, jac, ok = _evaluate(x, theta, branch)
+            points, jac, ok = _evaluate(design, angles_of(x), branch)
         if not numpy.all(ok):
             return numpy.full(2 * count, _INFEASIBLE)
-        last.update(x=x.copy(), jac=jac)
+        last.update(x=x.copy(), jac=jac, chain=chain)
         return ((points - targets) / size).ravel()
 
     def jacobian(x: numpy.ndarray) -> numpy.ndarray:
         if "x" in last and numpy.array_equal(last["x"], x):
-            jac = last["jac"]
+            jac, chain = last["jac"], last["chain"]
         else:
+            design, chain = _slid(x[:9], constraints)
             with numpy.errstate(all="ignore"):
-                _, jac, _ = _evaluate(x, theta, branch)
-        return jac[:, :, 1:].reshape(2 * count, 9) / size
+                _, jac, _ = _evaluate(design, angles_of(x), branch)
+        columns = jac[:, :, 1:].reshape(2 * count, 9) @ chain
+        if free_phase:
+            columns = numpy.concatenate([columns, jac[:, :, 0].reshape(2 * count, 1)], axis=1)
+        return columns / size
 
-    x0 = start.copy()
+    x0 = numpy.concatenate([start, [0.0]]) if free_phase else start.copy()
     if residuals(x0)[0] == _INFEASIBLE:
         return None
     # Levenberg-Marquardt needs at least as many residuals as unknowns; fewer points (three or four) go to the
@@ -546,7 +604,38 @@ def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: nu
     method = "lm" if 2 * count >= len(x0) else "trf"
     fit = least_squares(residuals, x0, jac=jacobian, method=method, x_scale="jac", xtol=tolerance, ftol=tolerance,
                         gtol=tolerance, max_nfev=evaluations)
-    return fit.x, theta, fit.nfev + (fit.njev or 0), fit.cost
+    return _slid(fit.x[:9], constraints)[0], angles_of(fit.x), fit.nfev + (fit.njev or 0), fit.cost
+
+
+def _slid(design: numpy.ndarray, constraints: _Constraints) -> tuple[numpy.ndarray, numpy.ndarray]:
+    """A timed trial design moved onto the walls it crosses, and d(moved)/d(design) (9 x 9).
+
+    Bounded dimensions beyond a bound go to the bound (their column zero).  With
+    ``grashof_class="crank-rocker"``, a design whose crank is the shortest link but which breaks
+    Grashof's inequality ``a + longest <= the other two`` is projected onto it (just inside, a
+    relative 1e-9, so it stays a crank-rocker): the lengths move along the inequality's normal.
+    The refinement then slides along these walls instead of stopping at the first trial past them
+    (the optimum of a problem can lie on them: a change-point linkage at a length bound).
+    """
+    moved = design.copy()
+    chain = numpy.eye(9)
+    for k, low, high in constraints.box:
+        if not low <= moved[k] <= high:
+            moved[k] = min(max(moved[k], low), high)
+            chain[k, :] = 0.0
+    if constraints.grashof == "crank-rocker":
+        lengths = moved[3:7]
+        longest = 1 + int(numpy.argmax(lengths[1:]))
+        if lengths[0] < lengths[1:].min() and longest >= 1:
+            normal = -numpy.ones(4)
+            normal[[0, longest]] = 1.0
+            excess = float(normal @ lengths) + _GRASHOF_MARGIN * float(lengths.sum())
+            if excess > 0:
+                moved[3:7] = lengths - excess / 4 * normal
+                block = numpy.eye(9)
+                block[3:7, 3:7] -= numpy.outer(normal, normal) / 4
+                chain = block @ chain
+    return moved, chain
 
 
 def _refine_untimed(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: numpy.ndarray,
@@ -555,8 +644,14 @@ def _refine_untimed(start: numpy.ndarray, branch: int, theta: numpy.ndarray, tar
 
     The angles are the first one and squared steps to the next (``theta_i = theta_1 +
     direction * sum(s_k^2)``), so they turn one way with no bounds, and two points at one
-    angle are no wall; a trial turning a full turn or more is infeasible.  (One free angle per
-    point, with trials out of order infeasible, solved fewer problems.)
+    angle are no wall.  Two walls are slid along instead of stopping the solver: a trial that
+    turns a full turn or more is evaluated at its projection onto just under a full turn (the
+    steps scaled down together), and a bounded dimension (``bounds``) beyond its bound at the
+    bound; the Jacobian is the chain rule through the projection (a clipped dimension's column
+    zero), so the refinement moves along the wall.  Designs the optimum presses against a full
+    turn (a closed curve through its first point again) or against a bound end there, instead of
+    wherever the first refused trial left them.  (One free angle per point, with trials out of
+    order infeasible, solved fewer problems.)
     """
     count = len(targets)
     direction = 1.0 if len(theta) < 2 or theta[-1] >= theta[0] else -1.0
@@ -564,9 +659,27 @@ def _refine_untimed(start: numpy.ndarray, branch: int, theta: numpy.ndarray, tar
     def angles_of(x: numpy.ndarray) -> numpy.ndarray:
         return x[9] + direction * numpy.concatenate([[0.0], numpy.cumsum(x[10:] ** 2)])
 
+    def projected(x: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray, numpy.ndarray]:
+        """x on the walls (bounds, under a full turn), which dimensions were clipped, d(projected steps)/d(steps)."""
+        y = x.copy()
+        clipped = numpy.zeros(len(x), dtype=bool)
+        for k, low, high in constraints.box:
+            if not low <= y[k] <= high:
+                y[k], clipped[k] = min(max(y[k], low), high), True
+        steps = y[10:]
+        turn = float(steps @ steps)
+        chain = numpy.eye(len(steps))
+        if turn >= _FULL_TURN:
+            length = math.sqrt(turn)
+            unit = steps / length
+            y[10:] = unit * math.sqrt(_FULL_TURN)
+            chain = math.sqrt(_FULL_TURN) / length * (chain - numpy.outer(unit, unit))
+        return y, clipped, chain
+
     def residuals(x: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray] | None:
-        design, angles = x[:9], angles_of(x)
-        if not constraints.allow(design[3:7]) or abs(angles[-1] - angles[0]) >= 2 * math.pi:
+        y, clipped, step_chain = projected(x)
+        design, angles = y[:9], angles_of(y)
+        if not constraints.allow_design(design) or abs(angles[-1] - angles[0]) >= 2 * math.pi:
             return None
         with numpy.errstate(all="ignore"):
             points, jac, ok = _evaluate(design, angles, branch)
@@ -574,9 +687,11 @@ def _refine_untimed(start: numpy.ndarray, branch: int, theta: numpy.ndarray, tar
             return None
         by_theta = jac[:, :, 0]  # (count, 2): d point_i / d theta_i
         # d theta_i / d theta_1 = 1 and d theta_i / d s_k = 2 direction s_k for k < i: a lower triangle
-        chain = numpy.tril(numpy.concatenate([[1.0], 2 * direction * x[10:]])[None, :].repeat(count, axis=0))
+        chain = numpy.tril(numpy.concatenate([[1.0], 2 * direction * y[10:]])[None, :].repeat(count, axis=0))
         angle_columns = (by_theta[:, :, None] * chain[:, None, :]).reshape(2 * count, count)
+        angle_columns[:, 1:] = angle_columns[:, 1:] @ step_chain
         jacobian = numpy.concatenate([jac[:, :, 1:].reshape(2 * count, 9), angle_columns], axis=1)
+        jacobian[:, clipped] = 0.0
         return ((points - targets) / size).ravel(), jacobian / size
 
     x0 = numpy.concatenate([start, [theta[0]], numpy.sqrt(numpy.abs(numpy.diff(theta)))])
@@ -584,7 +699,8 @@ def _refine_untimed(start: numpy.ndarray, branch: int, theta: numpy.ndarray, tar
     if result is None:
         return None
     x, cost, used = result
-    return x[:9], angles_of(x), used, cost
+    y = projected(x)[0]
+    return y[:9], angles_of(y), used, cost
 
 
 def _accelerated_levenberg_marquardt(residuals, x0: numpy.ndarray, evaluations: int, tolerance: float):
@@ -690,7 +806,9 @@ def _successive_halving(candidates: list, targets: numpy.ndarray, constraints: _
 
 def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, starts: int = 8, designs: int = 3,
                     grashof_class: str = "any", max_link_ratio: float = 20.0, min_transmission: float = 0.0,
-                    seed: int | None = 0, tolerance: float = 1e-15) -> list[PathDesign]:
+                    seed: int | None = 0, tolerance: float = 1e-15, branch: int | None = None,
+                    direction: int | None = None, free_phase: bool = False,
+                    bounds: Mapping[str, tuple[float, float]] | None = None) -> list[PathDesign]:
     """Four-bars whose coupler point passes through ``targets`` (rows x, y), best first, up to ``designs``.
 
     ``theta``: the crank angles at the targets (timing), or None to find them too (the
@@ -699,7 +817,13 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
     the batches after the first); ``grashof_class`` is one of :data:`GRASHOF_CHOICES` ("crank-turns":
     crank-rocker or double-crank); ``max_link_ratio`` bounds the longest link over the
     shortest; ``min_transmission`` (radians) bounds the worst transmission angle over the
-    crank's turn.  Needs SciPy (``pip install 'symlink-kinematics[synthesis]'``).
+    crank's turn.  ``branch`` (+1 or -1) keeps to that assembly branch; ``direction`` (without
+    timing; +1 or -1) makes the crank angle grow (+1, counter-clockwise) or shrink from point to
+    point; ``free_phase`` (with timing) takes ``theta`` as known up to a common offset (equal
+    steps from an unknown first angle, say), which is found too.  ``bounds`` maps dimensions
+    (``x0, y0, a, b, c, d, u, v``: the crank pivot in a box, link lengths, the coupler point) to
+    ``(low, high)``; trials outside are refused like any infeasible one.  Needs SciPy
+    (``pip install 'symlink-kinematics[synthesis]'``).
     ``ValueError`` for bad input or when no start satisfies the constraints.
     """
     try:
@@ -728,34 +852,42 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
                          f"{math.degrees(min_transmission):g} deg")
     if starts < 1 or designs < 1:
         raise ValueError("starts and designs must be at least 1")
-    constraints = _Constraints(grashof_class, max_link_ratio, min_transmission)
+    for name, sign in (("branch", branch), ("direction", direction)):
+        if sign not in (None, 1, -1):
+            raise ValueError(f"{name} must be +1, -1 or None, not {sign!r}")
+    if direction is not None and timed:
+        raise ValueError("direction is for targets without timing (with timing the crank angles fix it)")
+    if free_phase and not timed:
+        raise ValueError("free_phase needs the crank angles (timing) it offsets")
+    constraints = _Constraints(grashof_class, max_link_ratio, min_transmission, _box(bounds))
     rng = numpy.random.default_rng(seed)
     w = points[:, 0] + 1j * points[:, 1]
     found: list[PathDesign] = []
 
-    def refined(vector, branch, angles, evaluations) -> PathDesign | None:
+    def refined(vector, on_branch, angles, evaluations) -> PathDesign | None:
         """A start refined and verified (None if it fails the constraints or the check)."""
-        result = _refine(vector, branch, numpy.asarray(angles, dtype=float), points, timed, constraints, size,
-                         tolerance, evaluations)
+        result = _refine(vector, on_branch, numpy.asarray(angles, dtype=float), points, timed, constraints, size,
+                         tolerance, evaluations, free_phase and timed)
         if result is None:
             return None
         design_vector, design_theta, used, _ = result
-        return verified(design_vector, branch, design_theta, used)
+        return verified(design_vector, on_branch, design_theta, used)
 
-    def verified(design_vector, branch, design_theta, used) -> PathDesign | None:
+    def verified(design_vector, on_branch, design_theta, used) -> PathDesign | None:
         """A design checked by :func:`check_design` (None if it fails)."""
         a, b, c, d = (float(x) for x in design_vector[3:7])
         design = PathDesign((float(design_vector[0]), float(design_vector[1])), float(design_vector[2]),
-                            a, b, c, d, (float(design_vector[7]), float(design_vector[8])), branch,
+                            a, b, c, d, (float(design_vector[7]), float(design_vector[8])), on_branch,
                             evaluations=used)
         try:
-            return check_design(design, points, design_theta, grashof_class, max_link_ratio, min_transmission)
+            return check_design(design, points, design_theta, grashof_class, max_link_ratio, min_transmission,
+                                bounds)
         except ValueError:
             return None
 
-    def kept(vector, branch, angles, used) -> PathDesign | None:
+    def kept(vector, on_branch, angles, used) -> PathDesign | None:
         """An untimed design verified (None if it fails the check) and kept."""
-        design = verified(vector, branch, angles, used)
+        design = verified(vector, on_branch, angles, used)
         if design is not None:
             found.append(design)
         return design
@@ -763,14 +895,15 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
     polished = 0
     for attempt in range(_ATTEMPTS):
         if timed:
-            for vector, branch, angles in _timed_starts(w, crank_angles, rng, starts, constraints):
-                design = refined(vector, branch, angles, _MAX_EVALUATIONS)
+            for vector, on_branch, angles in _timed_starts(w, crank_angles, rng, starts, constraints, branch,
+                                                           free_phase):
+                design = refined(vector, on_branch, angles, _MAX_EVALUATIONS)
                 if design is not None:
                     found.append(design)
                     if design.error < 1e-10:
                         break
         elif _successive_halving(_untimed_starts(w, rng, _SCREENED * starts * (1 if attempt == 0 else _WIDER),
-                                                 constraints, attempt == 0),
+                                                 constraints, attempt == 0, branch, direction),
                                  points, constraints, size, tolerance, kept):
             break
         if found and min(d.error for d in found) < 1e-8:

@@ -194,6 +194,38 @@ def _singular(inputs, condition, why=""):
                       f"position{why}, where the positions do not follow from the input")
 
 
+def _not_assembled(inputs, residual):
+    return ValueError(f"Newton's method did not converge at {_where(inputs)} from the initial guess "
+                      f"(residual {residual:.3g} of the loop size): the linkage may not be assembled there, "
+                      "or the guess is too far from an assembly")
+
+
+def _not_continued(start, there):
+    return ValueError(f"Newton's method did not converge beyond {_where(start)} on the way to "
+                      f"{_where(there)}: the linkage cannot be assembled past there, "
+                      "or it passes a dead-centre position")
+
+
+def _irregular(inputs):
+    return ValueError(f"no converged, regular position at {_where(inputs)}")
+
+
+def _failure(status, report):
+    """The error of a compiled sweep's status (1 to 5) and report (condition, residual, index, start, target)."""
+    count = len(INPUTS)
+    start = tuple(float(v) for v in report[3:3 + count])
+    target = tuple(float(v) for v in report[3 + count:3 + 2 * count])
+    if status == 1:
+        return _not_assembled(start, float(report[1]))
+    if status == 2:
+        return _singular(start, float(report[0]), " (or an initial guess where links line up)")
+    if status == 3:
+        return _singular(start, float(report[0]))
+    if status == 4:
+        return _not_continued(start, target)
+    return _irregular(start)
+
+
 def _system(inputs, parameters, q):
     """Residuals, Jacobian, condition numbers and scales at points q (m, n)."""
     F, J, scale, unit = _closure(*inputs, *parameters, *numpy.moveaxis(q, -1, 0))
@@ -281,9 +313,7 @@ def _assemble(inputs, parameters, guess):
                 break
             fraction /= 2
         q = trial
-    raise ValueError(f"Newton's method did not converge at {_where(inputs)} from the initial guess "
-                     f"(residual {residual[0]:.3g} of the loop size): the linkage may not be assembled there, "
-                     "or the guess is too far from an assembly")
+    raise _not_assembled(inputs, residual[0])
 
 
 def _substeps(here, parameters, q, there):
@@ -305,9 +335,7 @@ def _substeps(here, parameters, q, there):
         if fraction < MIN_FRACTION:
             if singular[0] or condition[0] > SINGULAR_CONDITION:
                 raise _singular(target, condition[0])
-            raise ValueError(f"Newton's method did not converge beyond {_where(start)} on the way to "
-                             f"{_where(there)}: the linkage cannot be assembled past there, "
-                             "or it passes a dead-centre position")
+            raise _not_continued(start, there)
 
 
 def _continue(inputs, parameters, q0):
@@ -334,8 +362,9 @@ def _continue(inputs, parameters, q0):
     return q
 
 
-def _sweep(inputs, parameters, guess, input_rates=None, input_accels=None):
-    """Solve the sweep; returns (shape, inputs, positions, rates, accelerations, residuals)."""
+def _prepared(inputs, parameters, guess, input_rates=None, input_accels=None):
+    """The sweep's arguments checked (ValueError naming a bad one) and flattened:
+    (shape, inputs, parameters, guess, input rates, input accelerations), the rates None where not asked for."""
     inputs = numpy.broadcast_arrays(*(numpy.asarray(x, dtype=float) for x in inputs))
     shape = inputs[0].shape
     if len(shape) > 1:
@@ -360,25 +389,34 @@ def _sweep(inputs, parameters, guess, input_rates=None, input_accels=None):
     guess = numpy.asarray(guess, dtype=float)
     if guess.shape != (len(UNKNOWNS),) or not numpy.all(numpy.isfinite(guess)):
         raise ValueError(f"the initial guess must be {len(UNKNOWNS)} finite numbers ({', '.join(UNKNOWNS)})")
-    first = _assemble(tuple(x[:1] for x in inputs), parameters, guess)
-    q = _continue(inputs, parameters, first)
-    F, J, residual, condition, unit = _system(inputs, parameters, q)
-    if not numpy.all(residual <= RESIDUAL_TOLERANCE) or numpy.any(condition > SINGULAR_CONDITION):
-        worst = int(numpy.argmax(residual / RESIDUAL_TOLERANCE + condition / SINGULAR_CONDITION))
-        raise ValueError(f"no converged, regular position at {_where(tuple(x[worst] for x in inputs))}")
-    qdot = qddot = None
     if input_rates is not None:
         input_rates = tuple(numpy.broadcast_to(numpy.asarray(r, dtype=float), shape).ravel() for r in input_rates)
         input_accels = tuple(numpy.broadcast_to(numpy.asarray(r, dtype=float), shape).ravel() for r in input_accels)
         for name, value in zip(INPUTS, input_rates + input_accels):
             if not numpy.all(numpy.isfinite(value)):
                 raise ValueError(f"the rates and accelerations of {name} must be finite")
+    return shape, inputs, parameters, guess, input_rates, input_accels
+
+
+def _sweep(inputs, parameters, guess, input_rates=None, input_accels=None):
+    """Solve the sweep; returns (shape, inputs, positions, rates, accelerations, residuals)."""
+    shape, inputs, parameters, guess, input_rates, input_accels = _prepared(
+        inputs, parameters, guess, input_rates, input_accels)
+    first = _assemble(tuple(x[:1] for x in inputs), parameters, guess)
+    q = _continue(inputs, parameters, first)
+    F, J, residual, condition, unit = _system(inputs, parameters, q)
+    if not numpy.all(residual <= RESIDUAL_TOLERANCE) or numpy.any(condition > SINGULAR_CONDITION):
+        worst = int(numpy.argmax(residual / RESIDUAL_TOLERANCE + condition / SINGULAR_CONDITION))
+        raise _irregular(tuple(x[worst] for x in inputs))
+    qdot = qddot = None
+    if input_rates is not None:
         qdot, qddot = _rates(inputs, parameters, q, J, input_rates, input_accels)
     return shape, inputs, q, qdot, qddot, residual
 
 
-def _results(shape, inputs, parameters, q, qdot, qddot, residual, order):
-    """The output dict, reshaped to the sweep's shape."""
+def _results(shape, inputs, parameters, q, qdot, qddot, residual, order, outputs=None):
+    """The output dict, reshaped to the sweep's shape; ``outputs`` the named points and extras where they are
+    computed already (by the compiled driver), else from ``_outputs``."""
     columns = numpy.moveaxis(q, -1, 0)
     result = {name: q[:, k] for k, name in enumerate(UNKNOWNS)}
     if order >= 1:
@@ -394,7 +432,7 @@ def _results(shape, inputs, parameters, q, qdot, qddot, residual, order):
             result[role + "_speed"] = values[name + "dot"]
         if order >= 2 and name + "ddot" in values:
             result[role + "_accel"] = values[name + "ddot"]
-    result.update(_outputs(*inputs, *parameters, *columns))
+    result.update(_outputs(*inputs, *parameters, *columns) if outputs is None else outputs)
     result["residual"] = residual
     result["assembled"] = numpy.ones(len(residual), dtype=bool)
     return {name: numpy.reshape(numpy.broadcast_to(value, residual.shape), shape) for name, value in result.items()}

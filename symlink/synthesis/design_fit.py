@@ -31,7 +31,7 @@ from ..closure import is_angle
 from ..design_jacobian import DesignJacobian
 from ..linkage import Linkage
 from ..solver import Solver
-from .general import _PHASE, _phased
+from .general import INPUT_PHASE, with_input_phase
 from .path import _accelerated_levenberg_marquardt
 
 __all__ = ["DesignOutputs", "free_bounds", "sampled_designs", "branch_break", "refine", "is_angle_output",
@@ -45,7 +45,7 @@ BRANCH_SAMPLES = 24
 
 @lru_cache(maxsize=32)
 def _jacobian(linkage: Linkage, outputs: tuple[str, ...], free: tuple[str, ...]) -> DesignJacobian:
-    return DesignJacobian(_phased(linkage), list(outputs), list(free) + [_PHASE])
+    return DesignJacobian(with_input_phase(linkage), list(outputs), list(free) + [INPUT_PHASE])
 
 
 @lru_cache(maxsize=32)
@@ -144,14 +144,14 @@ class DesignOutputs:
 
         ``ok`` is False where the design is not assembled or at a toggle (a derivative is no number).
         """
-        given: dict[str, object] = {**self.fixed, _PHASE: 0.0, self.input: inputs,
+        given: dict[str, object] = {**self.fixed, INPUT_PHASE: 0.0, self.input: inputs,
                                     **{name: float(branches.get(name, 1)) for name in self.branch_names}}
         given.update({name: float(v) for name, v in zip(self.free, free)})
         return self._call(given, numpy.shape(inputs))
 
     def batch(self, rows: numpy.ndarray, signs: Sequence[Mapping[str, int]], inputs: numpy.ndarray):
         """Many designs (rows of free values, their branch signs) at the same inputs: values (outputs, M, N), ok (M, N)."""
-        given: dict[str, object] = {**self.fixed, _PHASE: 0.0, self.input: inputs[None, :]}
+        given: dict[str, object] = {**self.fixed, INPUT_PHASE: 0.0, self.input: inputs[None, :]}
         for k, name in enumerate(self.free):
             given[name] = rows[:, k:k + 1]
         for name in self.branch_names:

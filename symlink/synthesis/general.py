@@ -65,7 +65,8 @@ __all__ = ["PathSynthesis", "synthesize_path", "traced_points", "path_residuals"
 #: The placement of the linkage's frame in the plane: pivot shift, turn and scale.
 FRAME_NAMES = ("x0", "y0", "angle", "scale")
 _IDENTITY = {"x0": 0.0, "y0": 0.0, "angle": 0.0, "scale": 1.0}
-_PHASE = "input_phase"     # the parameter added to the input in the Jacobian's copy of the linkage
+#: The parameter added to the input in the Jacobian's copy of the linkage (:func:`with_input_phase`).
+INPUT_PHASE = "input_phase"
 _SAMPLED = 1500            # random designs drawn for the starts
 _SWEEP = 96                # input values over a turn, for matching untimed targets by arc length
 _PHASES = 32               # untimed: starting positions along each swept curve ...
@@ -196,15 +197,15 @@ def _shifted_sum(vectors: Vector | VectorSum | None, input_symbol: sp.Symbol, ph
 
 
 @lru_cache(maxsize=32)
-def _phased(linkage: Linkage) -> Linkage:
+def with_input_phase(linkage: Linkage) -> Linkage:
     """The linkage with its input ``q`` replaced by ``q + input_phase``: d/d(input_phase) at 0 is d/dq."""
     (input_symbol,) = linkage.inputs
-    phase = sp.Symbol(_PHASE, real=True)
+    phase = sp.Symbol(INPUT_PHASE, real=True)
     taken = {s.name for s in linkage.parameters + linkage.coordinates}
-    if _PHASE in taken:
-        raise ValueError(f"{linkage.name} already has a symbol named {_PHASE!r}, which path synthesis needs")
+    if INPUT_PHASE in taken:
+        raise ValueError(f"{linkage.name} already has a symbol named {INPUT_PHASE!r}, which path synthesis needs")
     loops = [Loop(_shifted_sum(loop.vectors, input_symbol, phase), name=loop.name) for loop in linkage.loops]
-    return Linkage(f"{linkage.name}_phased", loops, inputs=[input_symbol], unknowns=list(linkage.unknowns),
+    return Linkage(f"{linkage.name}with_input_phase", loops, inputs=[input_symbol], unknowns=list(linkage.unknowns),
                    parameters=list(linkage.parameters) + [phase],
                    points={k: _shifted_sum(v, input_symbol, phase) for k, v in linkage.points.items()},
                    roles=dict(linkage.roles),
@@ -213,7 +214,7 @@ def _phased(linkage: Linkage) -> Linkage:
 
 @lru_cache(maxsize=32)
 def _jacobian(linkage: Linkage, outputs: tuple[str, str], free: tuple[str, ...]) -> DesignJacobian:
-    return DesignJacobian(_phased(linkage), list(outputs), list(free) + [_PHASE])
+    return DesignJacobian(with_input_phase(linkage), list(outputs), list(free) + [INPUT_PHASE])
 
 
 def _length_parameters(linkage: Linkage) -> set[str]:
@@ -289,7 +290,7 @@ class _Problem:
 
     def local(self, design: Mapping[str, float], inputs: numpy.ndarray, branches: Mapping[str, int]):
         """Points (N, 2) in the linkage's frame, their Jacobian (N, 2, free + 1: the input last), feasibility (N)."""
-        given: dict[str, float | numpy.ndarray] = {**design, _PHASE: 0.0, self.linkage.inputs[0].name: inputs,
+        given: dict[str, float | numpy.ndarray] = {**design, INPUT_PHASE: 0.0, self.linkage.inputs[0].name: inputs,
                  **{name: float(sign) for name, sign in branches.items()}}
         with numpy.errstate(all="ignore"):
             values, slopes, assembled = self.jacobian.arrays(*(given[name] for name in self.jacobian.arguments))
@@ -502,7 +503,7 @@ def _shaped_design(problem: _Problem, rng: numpy.random.Generator) -> numpy.ndar
 def _traced_batch(problem: _Problem, rows: numpy.ndarray, signs: list[dict[str, int]],
                   inputs: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
     """The point (complex, designs x inputs) of many designs at once, and where it is assembled off a toggle."""
-    given: dict[str, float | numpy.ndarray] = {**problem.values, _PHASE: 0.0,
+    given: dict[str, float | numpy.ndarray] = {**problem.values, INPUT_PHASE: 0.0,
                                                problem.linkage.inputs[0].name: inputs[None, :]}
     for k, name in enumerate(problem.free):
         given[name] = rows[:, k:k + 1]

@@ -37,6 +37,7 @@ from typing import Mapping, Sequence
 import numpy
 from numpy.typing import ArrayLike
 
+from ..display import record_html
 from ..linkage import Linkage
 from .design_fit import DesignOutputs, check_branches, check_linkage, free_bounds, sampled_designs
 
@@ -243,6 +244,8 @@ class ShapeMatch:
     placement: dict[str, float]
     rms: float
     curve: numpy.ndarray
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
 
 def _traced(outputs: DesignOutputs, rows: numpy.ndarray, signs, sweep: numpy.ndarray):

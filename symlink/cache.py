@@ -142,17 +142,22 @@ def trusted_directory(folder: Path | None = None) -> Path | None:
     if folder is None:
         return None
     name = str(folder)
-    if name not in _FOLDERS:
-        try:
-            _FOLDERS[name] = private_folder(folder)
-            remove_leftovers(folder, (".build-", ".load-"), LEFTOVER_AGE)
-        except NotPrivate as why:
-            warn_once(f"symlink: not using the cache folder: {why}; only you may be able to write it "
-                      f"(chmod go-w, or set {ENVIRONMENT_VARIABLE} to a folder of your own)")
-            _FOLDERS[name] = None
-        except OSError:
-            _FOLDERS[name] = None  # read-only, or a file in the way: the memory cache still works
-    return _FOLDERS[name]
+    try:
+        return _FOLDERS[name]
+    except KeyError:  # not decided yet in this process
+        pass
+    decided: Path | None
+    try:
+        decided = private_folder(folder)
+        remove_leftovers(folder, (".build-", ".load-"), LEFTOVER_AGE)
+    except NotPrivate as why:
+        warn_once(f"symlink: not using the cache folder: {why}; only you may be able to write it "
+                  f"(chmod go-w, or set {ENVIRONMENT_VARIABLE} to a folder of your own)")
+        decided = None
+    except OSError:
+        decided = None  # read-only, or a file in the way: the memory cache still works
+    _FOLDERS[name] = decided
+    return decided  # not read back: another thread may clear the memory (tests) meanwhile
 
 
 def _terms(vectors) -> list:

@@ -213,7 +213,7 @@ class EquationSet(dict):
 
     >>> theta, a = sp.symbols("theta a")
     >>> shown = EquationSet({sp.Symbol("x"): a * sp.cos(theta)})._repr_latex_()
-    >>> shown.startswith("$\displaystyle") and "x &= a \cos" in shown
+    >>> shown.startswith(r"$\displaystyle") and r"x &= a \cos" in shown
     True
     """
 

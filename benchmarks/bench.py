@@ -497,7 +497,7 @@ def _symbolic(full: bool):
     from symlink.scene import catalog_linkage
     program = catalog_linkage("fourbar").program(_outputs(full))
     whole = _inlined(program.assignments)
-    expressions = [program.outputs[name].xreplace(whole).replace(ClampedSqrt, lambda x, _: sp.sqrt(x))
+    expressions = [program.outputs[name].xreplace(whole).replace(ClampedSqrt, lambda x, *scale: sp.sqrt(x))
                    for name in _outputs(full)]
     return list(program.arguments), expressions
 

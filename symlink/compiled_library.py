@@ -430,7 +430,7 @@ def call_extension(build: bool = True) -> Any:
             module = _load_call_extension(build)
         except (CompilerUnavailable, CompileError, OSError, subprocess.SubprocessError, AttributeError,
                 ImportError, SystemError) as error:
-            cache.warn_once(f"symlink: small compiled calls without the C extension: {error}")
+            cache.warn_once(f"symlink: small compiled calls without the C extension: {error}", FallbackWarning)
             module = None
         if module is None and not build:
             return None
@@ -576,7 +576,7 @@ class CompiledFunction:
     def _small_outputs(self, values: dict) -> _Outputs | None:
         """The outputs the fast path wrote, or ``None`` where the call does not qualify."""
         packed, index_of = self.packed, self._index
-        if packed is None:
+        if packed is None or self._plan is not None:  # the extension's slots: never written from here too
             return None
         if len(values) != len(index_of):  # arguments left to their defaults
             if not values.keys() <= index_of.keys() or not self.defaults.keys() >= index_of.keys() - values.keys():

@@ -10,6 +10,8 @@ accelerations) and its positions alone, one set of lengths, N crank angles:
 * ``Solver-default``: a ``Solver`` as a user makes it (compiled where a C compiler works);
 * ``compiled-entry``: the compiled C loop through its ctypes entry (``CompiledSolver.function``);
 * ``compiled``: :class:`symlink.compiled.CompiledSolver`, called as a ``Solver`` is;
+* ``compiled-python``: the same with the small-call extension turned off (the Python fast
+  path of :class:`symlink.compiled_library.CompiledFunction`, as where the extension cannot be built);
 * ``compiled-new-lengths``: the same, each call with new length objects (other values, as an
   optimiser's steps: an argument that is the very object of the call before is not read again);
 * ``compiled-kept``: the same, each result kept until four calls later (so that its
@@ -79,6 +81,8 @@ def methods(outputs: list[str]) -> dict:
     default = Solver(linkage, outputs)  # the default backend: compiled where a C compiler works
     default.wait_for_backend()
     compiled = CompiledSolver(linkage, outputs)
+    python_path = CompiledSolver(linkage, outputs)
+    python_path.function._plan = None  # the small-call extension off: the Python fast path
     rates = {"thetadot": SPEED, "thetaddot": ACCEL} if len(outputs) > 2 else {}
     lengths = dict(zip("abcd", LENGTHS))
     kept: collections.deque = collections.deque(maxlen=4)
@@ -90,6 +94,7 @@ def methods(outputs: list[str]) -> dict:
         "Solver-default": lambda theta: default(theta=theta, **lengths, branch=1, **rates),
         "compiled-entry": lambda theta: compiled.function(theta=theta, **lengths, branch=1, **rates),
         "compiled": lambda theta: compiled(theta=theta, **lengths, branch=1, **rates),
+        "compiled-python": lambda theta: python_path(theta=theta, **lengths, branch=1, **rates),
         "compiled-new-lengths": lambda theta: compiled(theta=theta, **next(steps), branch=1, **rates),
         "compiled-kept": lambda theta: kept.append(compiled(theta=theta, **lengths, branch=1, **rates)),
     }
@@ -129,7 +134,8 @@ def report(table) -> str:
                  f"(target <= 10); Solver at N=20: {both('Solver', 20)}, compiled at N=20: {both('compiled', 20)} "
                  "(target <= 20)")
     ratios = [f"{name} {full[name][n][0] / full['numba'][n][0]:.2f}x at N={n}"
-              for name in ("Solver-default", "compiled-entry") for n in (10, 1000) if n in full[name]]
+              for name in ("Solver-default", "compiled-entry", "compiled-python") for n in (10, 1000)
+              if n in full[name]]
     lines.append("full kinematics against the numba call (best batches): " + ", ".join(ratios)
                  + " (target: Solver-default <= 2 at N=10)")
     return "\n".join(lines)

@@ -485,6 +485,15 @@ class CompiledFunction:
     (:func:`symlink.codegen.c.c_packed`), which checks the arguments as the
     NumPy module does before it evaluates.  A call that does not qualify, or
     whose arguments that check refuses, takes the general path.
+
+    Where the small-call extension is there (:func:`call_extension`,
+    :mod:`symlink.codegen.call_extension`: built once into the cache with the
+    running Python's headers), that fast path runs in C instead, from a plan
+    made here once (``_plan``): the keywords looked up by their interned names,
+    the slots filled, a free output block found and the loop entered without a
+    Python instruction between (a ten-value call then costs about half as much).
+    Otherwise the Python fast path described above answers, with the same
+    results bit for bit.  The two never serve one function (they share its slots).
     """
 
     _repr_html_ = record_html  # a notebook shows its fields as a table

@@ -125,22 +125,32 @@ static PyObject *free_entry(PyObject *kept, Py_ssize_t length)
     Py_ssize_t count = PyList_GET_SIZE(kept);
     for (Py_ssize_t p = 0; p < count; ++p) {
         PyObject *entry = PyList_GET_ITEM(kept, p);
-        if (!PyTuple_CheckExact(entry) || PyTuple_GET_SIZE(entry) != ENTRY_SIZE) {
+        if (!PyTuple_CheckExact(entry) || PyTuple_GET_SIZE(entry) != ENTRY_SIZE
+                || !PyLong_CheckExact(PyTuple_GET_ITEM(entry, ENTRY_LENGTH))
+                || !PyLong_CheckExact(PyTuple_GET_ITEM(entry, ENTRY_REFERENCES))
+                || !PyTuple_CheckExact(PyTuple_GET_ITEM(entry, ENTRY_OBJECTS))) {
+            continue;  /* not an entry of ours: never used */
+        }
+        Py_ssize_t size = PyLong_AsSsize_t(PyTuple_GET_ITEM(entry, ENTRY_LENGTH));
+        if (size == -1 && PyErr_Occurred()) {
+            PyErr_Clear();
             continue;
         }
-        if (PyLong_AsSsize_t(PyTuple_GET_ITEM(entry, ENTRY_LENGTH)) != length) {
+        if (size != length) {
             continue;
         }
         PyObject *objects = PyTuple_GET_ITEM(entry, ENTRY_OBJECTS);
-        if (!PyTuple_CheckExact(objects)) {
-            continue;
-        }
         Py_ssize_t sum = 0;
         for (Py_ssize_t k = 0; k < PyTuple_GET_SIZE(objects); ++k) {
             sum += Py_REFCNT(PyTuple_GET_ITEM(objects, k));
         }
-        if (sum != PyLong_AsSsize_t(PyTuple_GET_ITEM(entry, ENTRY_REFERENCES))) {
+        Py_ssize_t free_sum = PyLong_AsSsize_t(PyTuple_GET_ITEM(entry, ENTRY_REFERENCES));
+        if (free_sum == -1 && PyErr_Occurred()) {
+            PyErr_Clear();
             continue;
+        }
+        if (sum != free_sum) {
+            continue;  /* a caller holds a row, or a view of one: never written again while it does */
         }
         if (p != count - 1) {  /* the caller of a loop holds the last one during the next call */
             Py_INCREF(entry);
@@ -152,9 +162,6 @@ static PyObject *free_entry(PyObject *kept, Py_ssize_t length)
             Py_DECREF(entry);  /* the list holds it */
         }
         return entry;
-    }
-    if (PyErr_Occurred()) {
-        PyErr_Clear();
     }
     return NULL;
 }

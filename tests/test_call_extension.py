@@ -97,6 +97,10 @@ def test_defaults_left_out_are_filled_in(solvers):
     assert_agree(small, {k: v for k, v in expected.items()}, angles_of("fourbar", OUTPUTS), 1e-12)
 
 
+class Name(str):
+    """A keyword name that is not exactly a str (its comparisons could run Python code)."""
+
+
 REFUSED = {  # keyword values the extension leaves to the general path
     "a list": dict(theta=[0.0, 1.0]),
     "numbers only": dict(theta=0.5),
@@ -116,6 +120,7 @@ REFUSED = {  # keyword values the extension leaves to the general path
     "a complex number": dict(theta=numpy.linspace(0.0, 1.0, 5), a=20.0 + 0j),
     "a string": dict(theta=numpy.linspace(0.0, 1.0, 5), a="20"),
     "a subclass of ndarray": dict(theta=numpy.ma.masked_array(numpy.linspace(0.0, 1.0, 5))),
+    "a name that is a str subclass": {Name("theta"): numpy.linspace(0.0, 1.0, 5)},
     "a negative length": dict(theta=numpy.linspace(0.0, 1.0, 5), a=-20.0),  # refused by the packed C check
 }
 

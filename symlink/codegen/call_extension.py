@@ -192,8 +192,18 @@ static PyObject *run(PyObject *plan, PyObject *values)
         PyErr_SetString(PyExc_TypeError, "symlink_call: a plan address is null");
         return NULL;
     }
-    Py_ssize_t count = PyTuple_GET_SIZE(names), found = 0, length = 0;
+    Py_ssize_t count = PyTuple_GET_SIZE(names), found, length;
+    PyObject *made = NULL, *entry = NULL, *key, *item;
     busy[0] = 1;
+    /* Keys other than exact str could run Python code when compared (and change `values` meanwhile). */
+    for (Py_ssize_t position = 0; PyDict_Next(values, &position, &key, &item);) {
+        if (!PyUnicode_CheckExact(key)) {
+            goto refuse;
+        }
+    }
+walk:
+    found = 0;
+    length = 0;
     for (Py_ssize_t i = 0; i < count; ++i) {
         PyObject *value = PyDict_GetItemWithError(values, PyTuple_GET_ITEM(names, i));  /* borrowed */
         if (value == NULL) {
@@ -246,32 +256,36 @@ static PyObject *run(PyObject *plan, PyObject *values)
     if (found != PyDict_GET_SIZE(values) || length == 0) {
         goto refuse;  /* an unknown argument, or numbers only (shape-() results): the general path */
     }
-    PyObject *entry = free_entry(PyTuple_GET_ITEM(plan, PLAN_KEPT), length), *made = NULL;
-    if (entry == NULL) {
-        PyObject *size = PyLong_FromSsize_t(length);
-        if (size == NULL) {
-            goto fail;
-        }
-        made = PyObject_CallOneArg(PyTuple_GET_ITEM(plan, PLAN_MAKE), size);
-        Py_DECREF(size);
-        if (made == NULL) {
-            goto fail;
-        }
-        if (!entry_is_one(made) || PyLong_AsSsize_t(PyTuple_GET_ITEM(made, ENTRY_LENGTH)) != length) {
-            if (!PyErr_Occurred()) {
-                PyErr_SetString(PyExc_TypeError, "symlink_call: make() returned an entry of another length");
-            }
-            Py_DECREF(made);
-            goto fail;
+    if (made != NULL) {  /* the walk after make(): its block, if the arguments are still of its length */
+        if (PyLong_AsSsize_t(PyTuple_GET_ITEM(made, ENTRY_LENGTH)) != length) {
+            PyErr_Clear();
+            goto refuse;
         }
         entry = made;
+    } else {
+        entry = free_entry(PyTuple_GET_ITEM(plan, PLAN_KEPT), length);
+        if (entry == NULL) {
+            PyObject *size = PyLong_FromSsize_t(length);
+            if (size == NULL) {
+                goto fail;
+            }
+            made = PyObject_CallOneArg(PyTuple_GET_ITEM(plan, PLAN_MAKE), size);
+            Py_DECREF(size);
+            if (made == NULL) {
+                goto fail;
+            }
+            if (!entry_is_one(made)) {
+                goto fail;
+            }
+            /* make() ran Python code: whatever it did, the pointers are taken again, from live arrays. */
+            goto walk;
+        }
     }
     void *call = PyLong_AsVoidPtr(PyTuple_GET_ITEM(entry, ENTRY_CALL));
     if (call == NULL) {
         if (!PyErr_Occurred()) {
             PyErr_SetString(PyExc_TypeError, "symlink_call: an output entry has no call");
         }
-        Py_XDECREF(made);
         goto fail;
     }
     int status = packed(call);
@@ -285,9 +299,11 @@ static PyObject *run(PyObject *plan, PyObject *values)
     }
     return rows;
 refuse:
+    Py_XDECREF(made);
     busy[0] = 0;
     Py_RETURN_NONE;
 fail:
+    Py_XDECREF(made);
     busy[0] = 0;
     return NULL;
 }

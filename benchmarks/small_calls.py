@@ -21,7 +21,9 @@ accelerations) and its positions alone, one set of lengths, N crank angles:
 Targets: a compiled call with 10 values at most 10 us; a generated solver
 called with 20 values at most 20 us; the default ``Solver`` (compiled) within 2x
 the numba call at 10 values (issue 23).  Printed last: the ratios to numba of the
-default ``Solver`` and of the compiled entry at 10 and 1000 values.
+default ``Solver``, of the compiled entry and of the compiled solver without the small-call
+extension at 10 and 1000 values, from the table, then timed back to back with numba
+(:func:`interleaved_ratios`, steadier on a busy machine).
 
 Times are CPU seconds of this thread (``time.thread_time``), so that a shared,
 busy machine (other processes taking the processor between two calls) does not
@@ -141,12 +143,31 @@ def report(table) -> str:
     return "\n".join(lines)
 
 
+def interleaved_ratios(sizes=(10, 1000), rounds: int = 5) -> str:
+    """Full kinematics against numba, each ratio's median over ``rounds`` rounds that time numba and then the
+    method back to back (a busy machine slows both alike): the default ``Solver``, the compiled entry, and the
+    compiled solver without the small-call extension (``compiled-python``)."""
+    found = methods(OUTPUTS)
+    parts = []
+    for n in sizes:
+        theta = numpy.linspace(0.0, 2 * math.pi, n)
+        ratios: dict[str, list[float]] = {"Solver-default": [], "compiled-entry": [], "compiled-python": []}
+        for _ in range(rounds):
+            for name, found_ratios in ratios.items():
+                base = per_call(lambda: found["numba"](theta), 0.1)[0]
+                found_ratios.append(per_call(lambda: found[name](theta), 0.1)[0] / base)
+        parts += [f"{name} {statistics.median(values):.2f}x at N={n} ({min(values):.2f}-{max(values):.2f})"
+                  for name, values in ratios.items()]
+    return "full kinematics against numba, timed back to back (median of rounds, range): " + ", ".join(parts)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--wall", action="store_true", help="wall-clock time instead of this thread's CPU time")
     if parser.parse_args().wall:
         CLOCK[0] = time.perf_counter
     print(report(measure()))
+    print(interleaved_ratios())
 
 
 if __name__ == "__main__":

@@ -64,7 +64,7 @@ def per_call(call, budget: float = 0.3) -> tuple[float, float]:
         if clock() - start > 1e-3:
             break
         batch *= 2
-    means = []
+    means: list[float] = []
     end = time.perf_counter() + budget
     while time.perf_counter() < end or len(means) < 5:
         start = clock()

@@ -252,3 +252,13 @@ def test_quantities_take_the_general_path_with_their_units(solvers):
     got, expected = compiled(theta=theta, **values), plain(theta=theta, **values)
     assert got.units == expected.units and got.input_units == expected.input_units
     assert_agree(got, expected, angles_of("fourbar", OUTPUTS), 1e-12)
+
+
+def test_a_background_build_brings_the_extension_with_the_library(fourbar, monkeypatch, solvers):
+    """So that the thread adopting a finished build (backend="auto") finds the extension built, not builds it."""
+    monkeypatch.setattr(compiled_library, "_call_extension", [])
+    build = compiled_library.Build(compiled_library.c_solver_source(fourbar, ["rocker"]))
+    build.run()  # what the background builder runs
+    assert build.error is None and compiled_library._call_extension[0] is not None
+    entry = build.entry()
+    assert entry is not None and entry._plan is not None

@@ -10,6 +10,8 @@ accelerations) and its positions alone, one set of lengths, N crank angles:
 * ``Solver-default``: a ``Solver`` as a user makes it (compiled where a C compiler works);
 * ``compiled-entry``: the compiled C loop through its ctypes entry (``CompiledSolver.function``);
 * ``compiled``: :class:`symlink.compiled.CompiledSolver`, called as a ``Solver`` is;
+* ``compiled-python``: the same with the small-call extension turned off (the Python fast
+  path of :class:`symlink.compiled_library.CompiledFunction`, as where the extension cannot be built);
 * ``compiled-new-lengths``: the same, each call with new length objects (other values, as an
   optimiser's steps: an argument that is the very object of the call before is not read again);
 * ``compiled-kept``: the same, each result kept until four calls later (so that its
@@ -19,7 +21,9 @@ accelerations) and its positions alone, one set of lengths, N crank angles:
 Targets: a compiled call with 10 values at most 10 us; a generated solver
 called with 20 values at most 20 us; the default ``Solver`` (compiled) within 2x
 the numba call at 10 values (issue 23).  Printed last: the ratios to numba of the
-default ``Solver`` and of the compiled entry at 10 and 1000 values.
+default ``Solver``, of the compiled entry and of the compiled solver without the small-call
+extension at 10 and 1000 values, from the table, then timed back to back with numba
+(:func:`interleaved_ratios`, steadier on a busy machine).
 
 Times are CPU seconds of this thread (``time.thread_time``), so that a shared,
 busy machine (other processes taking the processor between two calls) does not
@@ -60,7 +64,7 @@ def per_call(call, budget: float = 0.3) -> tuple[float, float]:
         if clock() - start > 1e-3:
             break
         batch *= 2
-    means = []
+    means: list[float] = []
     end = time.perf_counter() + budget
     while time.perf_counter() < end or len(means) < 5:
         start = clock()
@@ -79,6 +83,8 @@ def methods(outputs: list[str]) -> dict:
     default = Solver(linkage, outputs)  # the default backend: compiled where a C compiler works
     default.wait_for_backend()
     compiled = CompiledSolver(linkage, outputs)
+    python_path = CompiledSolver(linkage, outputs)
+    python_path.function._plan = None  # the small-call extension off: the Python fast path
     rates = {"thetadot": SPEED, "thetaddot": ACCEL} if len(outputs) > 2 else {}
     lengths = dict(zip("abcd", LENGTHS))
     kept: collections.deque = collections.deque(maxlen=4)
@@ -90,6 +96,7 @@ def methods(outputs: list[str]) -> dict:
         "Solver-default": lambda theta: default(theta=theta, **lengths, branch=1, **rates),
         "compiled-entry": lambda theta: compiled.function(theta=theta, **lengths, branch=1, **rates),
         "compiled": lambda theta: compiled(theta=theta, **lengths, branch=1, **rates),
+        "compiled-python": lambda theta: python_path(theta=theta, **lengths, branch=1, **rates),
         "compiled-new-lengths": lambda theta: compiled(theta=theta, **next(steps), branch=1, **rates),
         "compiled-kept": lambda theta: kept.append(compiled(theta=theta, **lengths, branch=1, **rates)),
     }
@@ -129,10 +136,29 @@ def report(table) -> str:
                  f"(target <= 10); Solver at N=20: {both('Solver', 20)}, compiled at N=20: {both('compiled', 20)} "
                  "(target <= 20)")
     ratios = [f"{name} {full[name][n][0] / full['numba'][n][0]:.2f}x at N={n}"
-              for name in ("Solver-default", "compiled-entry") for n in (10, 1000) if n in full[name]]
+              for name in ("Solver-default", "compiled-entry", "compiled-python") for n in (10, 1000)
+              if n in full[name]]
     lines.append("full kinematics against the numba call (best batches): " + ", ".join(ratios)
                  + " (target: Solver-default <= 2 at N=10)")
     return "\n".join(lines)
+
+
+def interleaved_ratios(sizes=(10, 1000), rounds: int = 5) -> str:
+    """Full kinematics against numba, each ratio's median over ``rounds`` rounds that time numba and then the
+    method back to back (a busy machine slows both alike): the default ``Solver``, the compiled entry, and the
+    compiled solver without the small-call extension (``compiled-python``)."""
+    found = methods(OUTPUTS)
+    parts = []
+    for n in sizes:
+        theta = numpy.linspace(0.0, 2 * math.pi, n)
+        ratios: dict[str, list[float]] = {"Solver-default": [], "compiled-entry": [], "compiled-python": []}
+        for _ in range(rounds):
+            for name, found_ratios in ratios.items():
+                base = per_call(lambda: found["numba"](theta), 0.1)[0]
+                found_ratios.append(per_call(lambda: found[name](theta), 0.1)[0] / base)
+        parts += [f"{name} {statistics.median(values):.2f}x at N={n} ({min(values):.2f}-{max(values):.2f})"
+                  for name, values in ratios.items()]
+    return "full kinematics against numba, timed back to back (median of rounds, range): " + ", ".join(parts)
 
 
 def main() -> None:
@@ -141,6 +167,7 @@ def main() -> None:
     if parser.parse_args().wall:
         CLOCK[0] = time.perf_counter
     print(report(measure()))
+    print(interleaved_ratios())
 
 
 if __name__ == "__main__":

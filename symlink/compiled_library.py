@@ -68,7 +68,7 @@ from .linkage import Linkage, Program, is_branch_name
 __all__ = ["FLAGS", "FallbackWarning", "CompilerUnavailable", "CompileError", "cache_directory", "find_compiler",
            "compile_shared", "c_solver_source", "BACKENDS", "chosen_backend", "compiler_works", "built_library",
            "Build", "build_in_background", "wait_for_builds", "compiled_or_warning", "entry_or_build",
-           "program_facts", "compiled_or_building"]
+           "program_facts", "compiled_or_building", "call_extension", "NO_EXTENSION_VARIABLE"]
 
 #: Compiler flags of every library symlink builds (see the module docstring for why these).
 #: ``-fno-builtin-sin/cos`` keep GCC from fusing sin and cos into a scalar-only sincos.
@@ -376,10 +376,12 @@ def _load(target: Path) -> ctypes.CDLL | None:
             pass
 
 
-def compile_shared(source: str, headers: Mapping[str, str] | None = None) -> ctypes.CDLL:
+def compile_shared(source: str, headers: Mapping[str, str] | None = None,
+                   options: Sequence[str] = ()) -> ctypes.CDLL:
     """A C source string compiled with :data:`FLAGS` into a shared library, cached, and loaded.
 
-    ``headers`` are further files (name -> text) that the source includes.
+    ``headers`` are further files (name -> text) that the source includes;
+    ``options`` further compiler arguments (``-I`` folders), part of the cache key.
     ``CompilerUnavailable`` where no compiler can build it, ``CompileError``
     where the source is at fault, ``OSError`` where it cannot be written or
     loaded.
@@ -390,7 +392,7 @@ def compile_shared(source: str, headers: Mapping[str, str] | None = None) -> cty
     3.0
     """
     headers = dict(headers or {})
-    command = find_compiler()
+    command = find_compiler() + list(options)
     key = _library_key(source, command, headers)
     if key in _loaded:
         return _loaded[key]
@@ -403,6 +405,53 @@ def compile_shared(source: str, headers: Mapping[str, str] | None = None) -> cty
             raise OSError(f"the library just built at {target} cannot be loaded")
     _loaded[key] = library
     return library
+
+
+#: Set (to anything but empty) to turn the small-call extension off: small compiled calls take the Python path.
+NO_EXTENSION_VARIABLE = "SYMLINK_NO_CALL_EXTENSION"
+
+#: The small-call extension once looked for: ``[module]``, or ``[None]`` where it cannot be built or loaded.
+_call_extension: list = []
+
+
+def call_extension(build: bool = True) -> Any:
+    """The small-call extension module (:mod:`symlink.codegen.call_extension`), or ``None`` where it is not there.
+
+    Built once into the cache like the solver libraries (``build``; else only looked for, and looked for
+    again on the next use where it is not built yet), with the running Python's headers; ``None`` where
+    they are not installed, no compiler works, the build or the load fails, the Python has no GIL, or
+    :data:`NO_EXTENSION_VARIABLE` is set.  Without it every compiled call works as before, in Python.
+    """
+    if _call_extension:
+        return _call_extension[0]
+    module = None
+    if not os.environ.get(NO_EXTENSION_VARIABLE, "").strip():
+        try:
+            module = _load_call_extension(build)
+        except (CompilerUnavailable, CompileError, OSError, subprocess.SubprocessError, AttributeError,
+                ImportError, SystemError) as error:
+            cache.warn_once(f"symlink: small compiled calls without the C extension: {error}", FallbackWarning)
+            module = None
+        if module is None and not build:
+            return None
+    _call_extension[:] = [module]
+    return module
+
+
+def _load_call_extension(build: bool) -> Any:
+    """The extension module, built (``build``) or loaded from the cache; ``None`` where it cannot be."""
+    import sysconfig
+    from .codegen.call_extension import MODULE, extension_source, python_include
+    include = python_include()
+    if include is None or sysconfig.get_config_var("Py_GIL_DISABLED") or not hasattr(sys, "getrefcount"):
+        return None
+    source, options = extension_source(), ["-I", include]
+    library = compile_shared(source, options=options) if build else built_library(source, options)
+    if library is None:
+        return None
+    # Its init function called with the GIL held (a PYFUNCTYPE, not ctypes' default, which releases it).
+    address = ctypes.cast(getattr(library, f"PyInit_{MODULE}"), ctypes.c_void_p).value
+    return None if address is None else ctypes.PYFUNCTYPE(ctypes.py_object)(address)()
 
 
 #: Calls of at most this many values take the fast path of :class:`CompiledFunction` (larger ones gain nothing from it).
@@ -436,6 +485,15 @@ class CompiledFunction:
     (:func:`symlink.codegen.c.c_packed`), which checks the arguments as the
     NumPy module does before it evaluates.  A call that does not qualify, or
     whose arguments that check refuses, takes the general path.
+
+    Where the small-call extension is there (:func:`call_extension`,
+    :mod:`symlink.codegen.call_extension`: built once into the cache with the
+    running Python's headers), that fast path runs in C instead, from a plan
+    made here once (``_plan``): the keywords looked up by their interned names,
+    the slots filled, a free output block found and the loop entered without a
+    Python instruction between (a ten-value call then costs about half as much).
+    Otherwise the Python fast path described above answers, with the same
+    results bit for bit.  The two never serve one function (they share its slots).
     """
 
     _repr_html_ = record_html  # a notebook shows its fields as a table
@@ -473,6 +531,17 @@ class CompiledFunction:
         self._result_rows = rows
         self._kept: list[_Outputs] = []
         self._lock = threading.Lock()  # the slots are shared: one small call at a time
+        # The small-call extension's plan of this function (symlink.codegen.call_extension.PLAN_FIELDS), or None
+        # where the extension is not there (the Python fast path then answers).
+        self._extension: Any = call_extension() if self.packed is not None else None
+        self._entries: list[tuple] = []  # the extension's kept output blocks (ENTRY_FIELDS)
+        self._plan: tuple | None = None
+        if self._extension is not None and self.packed is not None:
+            self._plan = (tuple(sys.intern(a) for a in self.arguments),
+                          tuple(float(self.defaults[a]) if a in self.defaults else None for a in self.arguments),
+                          self._numbers_at, self._pointers_at, self._steps_at,
+                          ctypes.cast(self.packed, ctypes.c_void_p).value, self._entries, self._new_entry,
+                          SMALL_CALL, numpy.ndarray, numpy.float64, bytearray(1))
 
     def __call__(self, **values) -> dict[str, numpy.ndarray]:
         if self.packed is not None:
@@ -494,15 +563,29 @@ class CompiledFunction:
             self.entry(count, *pointers, *(o.ctypes.data for o in outputs.values()), assembled.ctypes.data)
         return {**outputs, "assembled": assembled}
 
+    def _new_entry(self, length: int) -> tuple:
+        """A new output block of ``length`` values as the extension keeps it (``ENTRY_FIELDS``), kept."""
+        outputs = _Outputs(len(self._float_names), len(self._flag_names), length, self._result_rows,
+                           self._result_names, (self._pointers_at, self._steps_at))
+        references = self._extension.references(outputs._objects)
+        entry = (length, outputs._objects, references, ctypes.addressof(outputs._call), outputs.results, outputs)
+        entries = self._entries
+        entries.append(entry)
+        del entries[:-KEPT_OUTPUTS]
+        return entry
+
     def _small(self, values: dict) -> dict[str, numpy.ndarray] | None:
         """The fast path's result, or ``None`` where the call does not qualify (the general path then runs)."""
+        plan = self._plan
+        if plan is not None:
+            return self._extension.call(plan, values)
         outputs = self._small_outputs(values)
         return None if outputs is None else outputs.results.copy()
 
     def _small_outputs(self, values: dict) -> _Outputs | None:
         """The outputs the fast path wrote, or ``None`` where the call does not qualify."""
         packed, index_of = self.packed, self._index
-        if packed is None:
+        if packed is None or self._plan is not None:  # the extension's slots: never written from here too
             return None
         if len(values) != len(index_of):  # arguments left to their defaults
             if not values.keys() <= index_of.keys() or not self.defaults.keys() >= index_of.keys() - values.keys():
@@ -608,7 +691,7 @@ class _Outputs:
         self.results = dict(zip(names, self.rows))
         self._call = _PackedCall(length, slots[0], slots[1], address, address + 8 * size)
         self.call = ctypes.c_void_p(ctypes.addressof(self._call))
-        self._objects = self.rows + [number_block, flag_block]  # a held result shows first in its rows
+        self._objects = tuple(self.rows + [number_block, flag_block])  # a held result shows first in its rows
         del number_block, flag_block
         # References now, all of them ours, summed as free() sums them. No count can fall below its
         # own (ours stay), so the sum is the same exactly where every count is.
@@ -748,13 +831,13 @@ def _library_key(source: str, command: list[str], headers: Mapping[str, str] | N
                                      sort_keys=True).encode()).hexdigest()
 
 
-def built_library(source: str) -> ctypes.CDLL | None:
+def built_library(source: str, options: Sequence[str] = ()) -> ctypes.CDLL | None:
     """The library of ``source`` if it is built already (in this process or in the disk cache), else ``None``.
 
-    Never compiles (see :func:`compile_shared`, which does).
+    Never compiles (see :func:`compile_shared`, which does; ``options`` as there).
     """
     try:
-        command = find_compiler()
+        command = find_compiler() + list(options)
         key = _library_key(source, command)
         if key not in _loaded:
             library = _load(cache_directory() / f"{key}.so")
@@ -787,6 +870,7 @@ class Build:
     def run(self) -> None:
         try:
             self._library = compile_shared(self.facts["source"])
+            call_extension()  # built here too, so that the thread adopting the entry finds it in the cache
         except (CompilerUnavailable, CompileError, OSError, subprocess.SubprocessError) as error:
             self.error = error
         finally:

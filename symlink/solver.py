@@ -274,9 +274,17 @@ class Solver:
         if compiled is not None:
             # A small call of plain numbers and float arrays: the compiled function's fast path, whose C wrapper
             # checks the values as the NumPy module does (anything else, or a value it refuses, goes on below).
-            small = compiled._small_outputs(values)
-            if small is not None:
-                return Results(small.results, self._result_units, values, self.input_units)
+            # With the small-call extension, the Results too are made in C (no __init__: a template's copies).
+            # (Never both: the two write the same argument slots, each guarded against its own kind only.)
+            plan = compiled._plan
+            if plan is not None:
+                made = compiled._extension.results(plan, values, Results, self._result_units, self.input_units)
+                if made is not None:
+                    return made
+            else:
+                small = compiled._small_outputs(values)
+                if small is not None:
+                    return Results(small.results, self._result_units, values, self.input_units)
         accepted, required, lengths, branches = self._layout
         if not (accepted.issuperset(values) and required.issubset(values)):
             check_argument_names(self.linkage.name, self.arguments, self.required, values)

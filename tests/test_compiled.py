@@ -368,7 +368,7 @@ def test_small_calls_take_the_fast_path_and_agree_with_the_general_one(compiler)
     lengths = dict(a=20.0, b=66.0, c=56.0, d=80.0, branch=1.0, thetadot=10.5, thetaddot=2.0)
     theta = numpy.linspace(0.0, 6.0, 25)
     first = fast(theta=theta, **lengths)
-    assert fast._held[0] is theta  # the fast path ran and holds the array whose pointer it keeps
+    assert first["rocker"].base is not None  # the fast path ran: its rows are views of a kept block
     theta *= 0.5  # the same array, changed in place: read again, not remembered values
     second = fast(theta=theta, **lengths)
     general = fast(theta=list(theta), **lengths)  # a list: the general path
@@ -468,7 +468,7 @@ def test_small_calls_read_a_new_number_object_and_read_only_arrays(compiler):
     for a in (20.0, 21.0, 20.0, 20):  # a new object each time, then an int: each written into its slot
         small = fast(theta=theta, a=a, **lengths)
         general = fast(theta=list(theta), a=a, **lengths)  # a list: the general path
-        assert fast._held[0] is theta
+        assert fast._plan is not None or fast._held[0] is theta  # the Python path holds it
         assert numpy.array_equal(small["rocker"], general["rocker"]), a
         if first is None:
             first = small["rocker"].copy()

@@ -29,7 +29,7 @@ from ..linkage import Linkage
 from ..loops import Loop
 from ..vectors import Vector, VectorSum
 
-__all__ = ["placed_design", "length_parameters", "PLACEMENT_NAMES"]
+__all__ = ["placed_design", "placed_assembly", "length_parameters", "PLACEMENT_NAMES"]
 
 #: The parameters a placed linkage adds: the shift and the turn of its points.
 PLACEMENT_NAMES = ("place_x", "place_y", "place_angle")
@@ -112,3 +112,22 @@ def placed_design(linkage: Linkage, values: Mapping[str, float],
     result.update(place_x=float(where["x0"]), place_y=float(where["y0"]), place_angle=float(where["angle"]))
     return moved, result
 
+
+
+def placed_assembly(linkage: Linkage, assembly: Mapping[str, float],
+                    placement: Mapping[str, float]) -> dict[str, float]:
+    """The unknowns of an assembly of ``linkage`` as they are in its :func:`placed_design`: the guess that picks it there.
+
+    A linkage without a closed form has no branch sign: its assembly is the unknowns' values
+    (the initial guess of Newton's method).  Placed, every unknown angle turns by the
+    placement's angle and every unknown length scales by its scale.
+
+    >>> from symlink.catalog import slider_crank
+    >>> placed_assembly(slider_crank(), {"beta": 0.5, "s": 2.0}, {"angle": 1.0, "scale": 3.0})
+    {'beta': 1.5, 's': 6.0}
+    """
+    from ..closure import is_angle
+    where = {"angle": 0.0, "scale": 1.0, **placement}
+    symbols = {q.name: q for q in linkage.unknowns}
+    return {name: float(value) + float(where["angle"]) if is_angle(linkage, symbols[name])
+            else float(value) * float(where["scale"]) for name, value in assembly.items()}

@@ -628,12 +628,18 @@ def _run_general(args: argparse.Namespace, kind: str) -> int:
     if args.out:
         from ..files import write_atomic
         from ..linkage_file import linkage_text
-        from ..synthesis.placement import placed_assembly, placed_design
-        placed, defaults = placed_design(linkage, design.design, placement)
+        from ..synthesis.placement import placed_assembly, placed_design, with_default_branches
+        # the found assembly is every branch's +1 in the file (two-angle loops' unknowns reordered), where it can be
+        ordered, left = with_default_branches(linkage, design.branches)
+        placed, defaults = placed_design(ordered, design.design, placement)
         defaults[input_name] = float(design.inputs[0])
         head = (f"# Designed by 'symlink synthesize {kind} {found.source if found.source != 'catalog' else linkage.name}"
-                f"': error {error:.3g}; branches " + (", ".join(f"{k}={v:+d}" for k, v in design.branches.items())
-                                                     or "none") + ".\n")
+                f"': error {error:.3g}; " + ("found with branches " + ", ".join(
+                    f"{k}={v:+d}" for k, v in design.branches.items()) + ", written so that " if design.branches
+                    else "") + ("no branch signs" if not linkage.branches else
+                                "the default branch signs (+1) give the found assembly" if not left else
+                                "the found assembly is at " + ", ".join(f"{k}={v:+d}" for k, v in left.items())
+                                + " (a slider's loop keeps its sign), +1 elsewhere") + ".\n")
         if getattr(design, "assembly", None):  # no closed form: the assembly is the guess that finds it
             head += ("# Assembly at the first target (the initial guess of Newton's method, radians): "
                      + ", ".join(f"{k}={v!r}" for k, v in placed_assembly(linkage, design.assembly,

@@ -1,7 +1,8 @@
 """Path generation for any one-input linkage: a named point through given points, by exact gradients.
 
 :mod:`symlink.synthesis.path` is written around the four-bar's nine dimensions; here the
-linkage is any one with one input and a closed form (a catalog entry or a linkage file).  The
+linkage is any one with one input (a catalog entry or a linkage file), with a closed form or
+solved by Newton's method (see below).  The
 user names the point that traces the path, the parameters that are free (each with bounds), and
 which parts of the frame placement are free: the traced point, in the linkage's own frame
 ``p``, is placed in the plane as ``(x0, y0) + scale * R(angle) p``.
@@ -29,6 +30,16 @@ similarity fit of its points to the targets.  The closest are refined, and the b
 design is verified afresh with the generated solver of the linkage itself (not the Jacobian's
 code): assembled at every target, and between consecutive targets the input moves without
 leaving the assembly or passing a toggle, so the whole path is on one branch.
+
+A linkage without a closed form (the Stephenson III six-bar) has no branch sign: its assembly is
+the one Newton's method continues from an initial guess.  There the Jacobian's code is the
+generated Newton module (sensitivities from the converged closure Jacobian), continued along the
+input from the unknowns found at the first target by the previous evaluation, so that a
+refinement carries its start's assembly along as the design moves; starts are sampled designs
+on an assembly found by Newton's method from random guesses (:func:`find_assembly`), the
+user's own from ``guess``; the verification continues the assembly with the linkage's
+:class:`~symlink.solver.NumericSolver` through every target in order, and the design reports it
+as ``assembly`` (the unknowns at the first target).
 
 >>> from symlink.catalog import slider_crank
 >>> linkage = slider_crank()
@@ -998,6 +1009,12 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
     constraint with its value (``constraints``) and those at their limit (``active``).
     When every length is free (and the scale is not), half the sampled starts are
     shape-normalised (:func:`_shaped_design`) and scaled to the targets by the placement fit.
+
+    A linkage without a closed form (solved by Newton's method) has no branches; ``guess``
+    gives its unknowns near an assembly at the first target's input for the design in
+    ``values`` (default: one found by :func:`find_assembly`), and the design found reports its
+    assembly as ``assembly``.  ``min_transmission`` and ``full_rotation`` are not supported
+    there yet (``ValueError``).
     """
     if len(linkage.inputs) != 1:
         raise ValueError(f"path synthesis drives one input; {linkage.name} has {len(linkage.inputs)}")

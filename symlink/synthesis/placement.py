@@ -29,7 +29,7 @@ from ..linkage import Linkage
 from ..loops import Loop
 from ..vectors import Vector, VectorSum
 
-__all__ = ["placed_design", "placed_assembly", "length_parameters", "PLACEMENT_NAMES"]
+__all__ = ["placed_design", "placed_assembly", "with_default_branches", "length_parameters", "PLACEMENT_NAMES"]
 
 #: The parameters a placed linkage adds: the shift and the turn of its points.
 PLACEMENT_NAMES = ("place_x", "place_y", "place_angle")
@@ -131,3 +131,37 @@ def placed_assembly(linkage: Linkage, assembly: Mapping[str, float],
     symbols = {q.name: q for q in linkage.unknowns}
     return {name: float(value) + float(where["angle"]) if is_angle(linkage, symbols[name])
             else float(value) * float(where["scale"]) for name, value in assembly.items()}
+
+
+def with_default_branches(linkage: Linkage, branches: Mapping[str, int]) -> tuple[Linkage, dict[str, int]]:
+    """``linkage`` rewritten so that its assembly at ``branches`` is every branch's +1, and the signs it could not.
+
+    A linkage file holds no branch signs, and every command takes +1 by default.  A two-angle
+    loop (case 3) whose sign is -1 gets its two unknowns in the other order (they name the
+    "first" unknown vector, which +1 turns counter-clockwise: :mod:`symlink.loopcase`), so that
+    its +1 is the assembly that was -1, as :func:`symlink.joints.from_joints` orders them for its
+    drawing.  A loop of another case whose sign is -1 (a slider's length and an angle, case 2b:
+    +1 is the larger travel) cannot be turned so: it is returned in the dict, to be given as
+    ``--branch``.  The loops, points and every name are unchanged.
+
+    >>> from symlink.catalog import fourbar
+    >>> turned, left = with_default_branches(fourbar(), {"branch": -1})
+    >>> turned.unknowns, left
+    ((phi, beta), {})
+    """
+    unknowns = list(linkage.unknowns)
+    left: dict[str, int] = {}
+    for step in linkage.plan if linkage.has_closed_form else ():
+        if step.branch is None or int(branches.get(step.branch.name, 1)) == 1:
+            continue
+        if step.case.name != "3":
+            left[step.branch.name] = -1
+            continue
+        first, second = unknowns.index(step.case.first.symbol), unknowns.index(step.case.second.symbol)
+        unknowns[first], unknowns[second] = unknowns[second], unknowns[first]
+    if unknowns == list(linkage.unknowns):
+        return linkage, left
+    turned = Linkage(linkage.name, list(linkage.loops), inputs=list(linkage.inputs), unknowns=unknowns,
+                     parameters=list(linkage.parameters), points=dict(linkage.points), roles=dict(linkage.roles),
+                     extras=dict(linkage.extras))
+    return turned, left

@@ -343,7 +343,7 @@ class _Problem:
         self.newton = not linkage.has_closed_form
         self.unknown_names = tuple(q.name for q in linkage.unknowns) if self.newton else ()
         self.assembly: dict[str, float] | None = None
-        self.jacobian = _jacobian(linkage, outputs + self.unknown_names, self.free)
+        self.jacobian = _jacobian(linkage, outputs + tuple(n for n in self.unknown_names if n not in outputs), self.free)
         positive = {p.name for p in linkage.parameters if p.is_positive}
         self.positive = numpy.array([name in positive for name in self.free], dtype=bool)
         lengths = _length_parameters(linkage)

@@ -135,3 +135,34 @@ def test_bad_input_names_the_problem(keywords, message):
     with pytest.raises(ValueError, match=message):
         synthesize_path(stephenson3(), "E", targets, {"b": (2.5, 3.7)}, values=TRUTH, frame=(),
                         timed=[0.0, 0.3, 0.6], **keywords)
+
+
+def rocker_angles(design, thetas, guess, substeps=8):
+    """phi (the rocker DF's angle) at each theta from the same 30-digit continuation as :func:`coupler_points`."""
+    with mp.workdps(30):
+        p = {k: mp.mpf(v) for k, v in design.items()}
+        q = list(mp.findroot(lambda *x: _closure(mp.mpf(thetas[0]), x, p), [mp.mpf(guess[n]) for n in UNKNOWNS]))
+        previous, found = mp.mpf(thetas[0]), []
+        for theta in map(mp.mpf, thetas):
+            for k in range(1, substeps + 1):
+                t = previous + (theta - previous) * k / substeps
+                q = list(mp.findroot(lambda *x: _closure(t, x, p), q))
+            previous = theta
+            found.append(float(q[2]))
+    return np.array(found)
+
+
+@pytest.mark.slow
+def test_function_generation_of_the_stephenson3_rocker():
+    """The rocker angle of another design at six inputs, found again from the catalog's dimensions."""
+    from symlink.synthesis.general_function import synthesize_function
+    truth = {**TRUTH, "b": 3.3, "g": 4.0}
+    inputs = np.linspace(0.0, 1.2, 6)
+    wanted = rocker_angles(truth, inputs, ASSEMBLY)
+    found = synthesize_function(stephenson3(), "phi", inputs, wanted, {"b": (2.5, 3.7), "g": (3.5, 4.7)},
+                                values=TRUTH)
+    assert found.assembled, found.why
+    assert found.branches == {} and set(found.assembly) == set(UNKNOWNS)
+    assert found.structural_error < 1e-10
+    reached = rocker_angles(found.design, inputs, found.assembly)
+    assert np.max(np.abs(np.angle(np.exp(1j * (reached - wanted))))) < 1e-10

@@ -749,8 +749,10 @@ def _plot_general(kind: str, linkage, design, placement, columns, path: str, uni
     inputs = numpy.asarray(design.inputs)
     if kind == "function":
         from ..synthesis.general_function import function_values
-        sweep = numpy.linspace(inputs.min(), inputs.max(), 401)
-        generated = function_values(linkage, design.output, design.design, sweep, design.branches)
+        assembly = getattr(design, "assembly", None)  # no closed form: continued from the first input, in order
+        sweep = numpy.linspace(inputs[0], inputs[-1], 401) if assembly else numpy.linspace(inputs.min(), inputs.max(),
+                                                                                           401)
+        generated = function_values(linkage, design.output, design.design, sweep, assembly or design.branches)
         wanted = numpy.asarray(design.wanted)
         angle = _angle_output(linkage, design.output)
         degrees = lambda x: from_radians(x, units)  # noqa: E731

@@ -166,3 +166,44 @@ def test_function_generation_of_the_stephenson3_rocker():
     assert found.structural_error < 1e-10
     reached = rocker_angles(found.design, inputs, found.assembly)
     assert np.max(np.abs(np.angle(np.exp(1j * (reached - wanted))))) < 1e-10
+
+
+def coupler_poses(design, thetas, guess, placement):
+    """The coupler's pose (B placed, beta + the placement's angle) at each theta, by the 30-digit continuation."""
+    where = {"x0": 0.0, "y0": 0.0, "angle": 0.0, **placement}
+    with mp.workdps(30):
+        p = {k: mp.mpf(v) for k, v in design.items()}
+        q = list(mp.findroot(lambda *x: _closure(mp.mpf(thetas[0]), x, p), [mp.mpf(guess[n]) for n in UNKNOWNS]))
+        previous, rows = mp.mpf(thetas[0]), []
+        for theta in map(mp.mpf, thetas):
+            for k in range(1, 9):
+                t = previous + (theta - previous) * k / 8
+                q = list(mp.findroot(lambda *x: _closure(t, x, p), q))
+            previous = theta
+            B = mp.mpc(where["x0"], where["y0"]) + mp.expj(where["angle"]) * p["a"] * mp.expj(theta)
+            rows.append((float(B.real), float(B.imag), float(q[0] + where["angle"])))
+    return np.array(rows)
+
+
+@pytest.mark.slow
+def test_timed_motion_generation_of_the_stephenson3_coupler():
+    from symlink.synthesis.general_motion import synthesize_motion
+    truth = {**TRUTH, "b": 3.3, "g": 4.0}
+    inputs = np.linspace(0.0, 1.2, 5)
+    placement = {"x0": 0.5, "y0": 0.2, "angle": 0.3}
+    poses = coupler_poses(truth, inputs, ASSEMBLY, placement)
+    found = synthesize_motion(stephenson3(), "B", "beta", poses, {"b": (2.5, 3.7), "g": (3.5, 4.7)}, values=TRUTH,
+                              timed=inputs)
+    assert found.assembled and found.error < 1e-10, found.why
+    assert found.branches == {} and set(found.assembly) == set(UNKNOWNS)
+    reached = coupler_poses(found.design, inputs, found.assembly, found.placement)
+    size = float(np.hypot(*np.ptp(poses[:, :2], axis=0)))
+    assert np.max(np.hypot(*(reached[:, :2] - poses[:, :2]).T)) < 1e-8 * size
+    assert np.max(np.abs(np.angle(np.exp(1j * (reached[:, 2] - poses[:, 2]))))) < 1e-10
+
+
+def test_untimed_motion_of_a_newton_linkage_is_refused():
+    from symlink.synthesis.general_motion import synthesize_motion
+    with pytest.raises(ValueError, match="needs the input at each pose"):
+        synthesize_motion(stephenson3(), "B", "beta", [[1.0, 0.0, 1.0], [0.9, 0.4, 0.9]], {"b": (2.5, 3.7)},
+                          values=TRUTH)

@@ -756,14 +756,17 @@ def _newton_traced(problem: _Problem, rows: numpy.ndarray, sweep: numpy.ndarray,
         design = _newton_design(problem, row)
         start = (dict(guess) if index == 0 and users and guess is not None
                  else find_assembly(linkage, design, float(sweep[0]), rng, _NEWTON_GUESSES))
-        done = 0
+        done, step = 0, len(sweep) - 1  # the whole sweep in one go first; where that stops, chunk by chunk
         while start is not None and done < len(sweep) - 1:
-            stop = min(len(sweep), done + chunk + 1)
+            stop = min(len(sweep), done + step + 1)
             try:
                 with numpy.errstate(all="ignore"):
                     solved = solver(guess=start, **design, **{linkage.inputs[0].name: sweep[done:stop]})
             except ValueError:
-                break
+                if step == chunk:
+                    break
+                step = chunk
+                continue
             traced[index, done:stop] = numpy.asarray(solved[problem.outputs[0]]) + 1j * numpy.asarray(
                 solved[problem.outputs[1]])
             for k, name in enumerate(problem.unknown_names):

@@ -72,7 +72,7 @@ from ..solver import NumericSolver, Solver
 from ..vectors import Vector, VectorSum
 from .path import _FULL_TURN, _accelerated_levenberg_marquardt
 
-__all__ = ["PathSynthesis", "synthesize_path", "traced_points", "path_residuals", "FRAME_NAMES"]
+__all__ = ["PathSynthesis", "synthesize_path", "traced_points", "find_assembly", "path_residuals", "FRAME_NAMES"]
 
 #: The placement of the linkage's frame in the plane: pivot shift, turn and scale.
 FRAME_NAMES = ("x0", "y0", "angle", "scale")

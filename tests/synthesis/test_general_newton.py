@@ -207,3 +207,30 @@ def test_untimed_motion_of_a_newton_linkage_is_refused():
     with pytest.raises(ValueError, match="needs the input at each pose"):
         synthesize_motion(stephenson3(), "B", "beta", [[1.0, 0.0, 1.0], [0.9, 0.4, 0.9]], {"b": (2.5, 3.7)},
                           values=TRUTH)
+
+
+@pytest.mark.slow
+def test_a_from_joints_linkage_that_needs_newton_recovers_its_lengths():
+    """The Stephenson III drawn by its joints and driven at D (no loop has two unknowns: Newton); two link lengths
+    changed by 7 % are found again from the drawing's, through the coupler point E's path.  The targets come from
+    the numeric solver (the mpmath tests above check that); what this checks is that a ``from_joints`` linkage
+    without a closed form goes through: the known lengths are recovered."""
+    from symlink.joints import from_joints
+    from symlink.synthesis.general import traced_points
+    drawing = {"A": (0.0, 0.0), "D": (4.5, 0.0), "B": (0.3, 0.95), "C": (3.2, 2.0), "E": (1.5, 4.2),
+               "F": (5.3, 2.8), "H": (4.8, 4.6)}
+    links = {"ground": ["A", "D"], "crank": ["A", "B"], "coupler": ["B", "C", "E"], "rocker": ["D", "F", "H"],
+             "cf": ["C", "F"], "eh": ["E", "H"]}
+    drawn = from_joints(links, drawing, driver="D")
+    linkage = drawn.linkage
+    assert not linkage.has_closed_form
+    values = dict(drawn.parameters)
+    truth = {**values, "EH": values["EH"] * 1.07, "CF": values["CF"] * 1.07}
+    inputs = drawn.pose[linkage.inputs[0].name] + np.linspace(0.0, 0.5, 6)
+    targets = traced_points(linkage, "E", truth, inputs, guess=drawn.guess)
+    assert np.all(np.isfinite(targets))
+    free = {name: (values[name] * 0.8, values[name] * 1.3) for name in ("EH", "CF")}
+    found = synthesize_path(linkage, "E", targets, free, values=values, frame=(), timed=inputs, guess=drawn.guess)
+    assert found.assembled and found.error < 1e-10, found.why
+    for name in free:
+        assert found.design[name] == pytest.approx(truth[name], rel=1e-8)

@@ -628,12 +628,22 @@ def _run_general(args: argparse.Namespace, kind: str) -> int:
     if args.out:
         from ..files import write_atomic
         from ..linkage_file import linkage_text
-        from ..synthesis.placement import placed_design
-        placed, defaults = placed_design(linkage, design.design, placement)
+        from ..synthesis.placement import placed_assembly, placed_design, with_default_branches
+        # the found assembly is every branch's +1 in the file (two-angle loops' unknowns reordered), where it can be
+        ordered, left = with_default_branches(linkage, design.branches)
+        placed, defaults = placed_design(ordered, design.design, placement)
         defaults[input_name] = float(design.inputs[0])
         head = (f"# Designed by 'symlink synthesize {kind} {found.source if found.source != 'catalog' else linkage.name}"
-                f"': error {error:.3g}; branches " + (", ".join(f"{k}={v:+d}" for k, v in design.branches.items())
-                                                     or "none") + ".\n")
+                f"': error {error:.3g}; " + ("found with branches " + ", ".join(
+                    f"{k}={v:+d}" for k, v in design.branches.items()) + ", written so that " if design.branches
+                    else "") + ("no branch signs" if not linkage.branches else
+                                "the default branch signs (+1) give the found assembly" if not left else
+                                "the found assembly is at " + ", ".join(f"{k}={v:+d}" for k, v in left.items())
+                                + " (a slider's loop keeps its sign), +1 elsewhere") + ".\n")
+        if getattr(design, "assembly", None):  # no closed form: the assembly is the guess that finds it
+            head += ("# Assembly at the first target (the initial guess of Newton's method, radians): "
+                     + ", ".join(f"{k}={v!r}" for k, v in placed_assembly(linkage, design.assembly,
+                                                                          placement).items()) + ".\n")
         write_atomic(args.out, head + linkage_text(placed, defaults))
         note(f"wrote {args.out}")
     if args.record:
@@ -679,6 +689,9 @@ def _general_record(args, kind: str, linkage, design, placement, error: float, c
             "design": {name: unit(v) if name in angles else v for name, v in design.design.items()},
             "placement": {name: unit(v) if name == "angle" else v for name, v in placement.items()},
             "branches": dict(design.branches), "inputs": [as_input(q) for q in design.inputs],
+            **({"assembly": {name: unit(v) if is_angle(linkage, q) else v
+                             for q in linkage.unknowns for name, v in design.assembly.items() if name == q.name}}
+               if getattr(design, "assembly", None) else {}),
             "columns": list(columns), "targets": targets, "errors": list(map(float, errors)), **extra,
             "units": args.units, "why": design.why}
 
@@ -736,8 +749,10 @@ def _plot_general(kind: str, linkage, design, placement, columns, path: str, uni
     inputs = numpy.asarray(design.inputs)
     if kind == "function":
         from ..synthesis.general_function import function_values
-        sweep = numpy.linspace(inputs.min(), inputs.max(), 401)
-        generated = function_values(linkage, design.output, design.design, sweep, design.branches)
+        assembly = getattr(design, "assembly", None)  # no closed form: continued from the first input, in order
+        sweep = numpy.linspace(inputs[0], inputs[-1], 401) if assembly else numpy.linspace(inputs.min(), inputs.max(),
+                                                                                           401)
+        generated = function_values(linkage, design.output, design.design, sweep, assembly or design.branches)
         wanted = numpy.asarray(design.wanted)
         angle = _angle_output(linkage, design.output)
         degrees = lambda x: from_radians(x, units)  # noqa: E731
@@ -758,8 +773,11 @@ def _plot_general(kind: str, linkage, design, placement, columns, path: str, uni
         return
     from ..plot.drawing import draw_linkage
     from ..synthesis.placement import placed_design
+    from ..synthesis.placement import placed_assembly
     placed, values = placed_design(linkage, design.design, placement)
+    assembly = getattr(design, "assembly", None)  # no closed form: the assembly found, as the drawing's guess
     draw_linkage(placed, {**values, **design.branches, linkage.inputs[0].name: float(inputs[0])}, axis,
+                 guess=placed_assembly(linkage, assembly, placement) if assembly else None,
                  trace=[point], title=f"{kind.capitalize()} generation, {linkage.name}: error {design.error:.2g}")
     x, y = columns["x"], columns["y"]
     axis.plot(x, y, "x", color="black", markersize=9, markeredgewidth=2, label="targets", zorder=7)

@@ -30,17 +30,26 @@ import sympy as sp
 from ..closure import is_angle
 from ..design_jacobian import DesignJacobian
 from ..linkage import Linkage
-from ..solver import Solver
-from .general import INPUT_PHASE, with_input_phase
+from ..solver import NumericSolver, Solver
+from .general import INPUT_PHASE, find_assembly, with_input_phase
 from .path import _accelerated_levenberg_marquardt
 
 __all__ = ["DesignOutputs", "free_bounds", "sampled_designs", "branch_break", "refine", "is_angle_output",
-           "solved_outputs", "SAMPLED", "BRANCH_SAMPLES"]
+           "solved_outputs", "sample_count", "SAMPLED", "BRANCH_SAMPLES"]
 
 #: Random designs drawn for the starts.
 SAMPLED = 1000
 #: Input values checked between consecutive targets by the verification.
 BRANCH_SAMPLES = 24
+#: Without a closed form: random initial guesses tried for the assembly of each sampled design ...
+NEWTON_GUESSES = 4
+#: ... and the designs sampled (each solved by Newton's method, not by one vectorised call).
+NEWTON_SAMPLED = 120
+
+
+def sample_count(linkage: Linkage) -> int:
+    """How many random designs to draw for the starts: :data:`SAMPLED`, or :data:`NEWTON_SAMPLED` without a closed form."""
+    return SAMPLED if linkage.has_closed_form else NEWTON_SAMPLED
 
 
 @lru_cache(maxsize=32)
@@ -51,6 +60,11 @@ def _jacobian(linkage: Linkage, outputs: tuple[str, ...], free: tuple[str, ...])
 @lru_cache(maxsize=32)
 def _solver(linkage: Linkage, outputs: tuple[str, ...]) -> Solver:
     return Solver(linkage, list(outputs))
+
+
+@lru_cache(maxsize=32)
+def _newton_solver(linkage: Linkage) -> NumericSolver:
+    return NumericSolver(linkage)
 
 
 def is_angle_output(linkage: Linkage, name: str) -> bool:
@@ -103,11 +117,11 @@ def check_branches(linkage: Linkage, branches: Mapping[str, int] | None) -> dict
     return {k: int(v) for k, v in (branches or {}).items()}
 
 
-def check_linkage(linkage: Linkage, what: str) -> None:
-    """``ValueError`` unless ``linkage`` has one input and a closed form (what the generated sensitivities need)."""
+def check_linkage(linkage: Linkage, what: str, newton: bool = False) -> None:
+    """``ValueError`` unless ``linkage`` has one input and a closed form (or ``newton``: may be solved by Newton)."""
     if len(linkage.inputs) != 1:
         raise ValueError(f"{what} drives one input; {linkage.name} has {len(linkage.inputs)}")
-    if not linkage.has_closed_form:
+    if not linkage.has_closed_form and not newton:
         raise ValueError(f"{linkage.name} has no closed form; {what} of Newton-solved linkages is not supported yet")
 
 
@@ -116,6 +130,13 @@ class DesignOutputs:
 
     ``fixed`` holds the values of every other parameter.  :meth:`at` evaluates one design,
     :meth:`batch` many at once; both give the derivative by the input as the last column.
+
+    A linkage without a closed form has no branch signs: where the others take ``branches``,
+    it takes its assembly (the unknowns near it at the first input, Newton's initial guess).
+    :meth:`at` continues :attr:`assembly` (the unknowns at the first input of its last
+    converged call) when it is set, so that a refinement carries its start's assembly along;
+    :meth:`batch` finds each design's assembly by :func:`symlink.synthesis.general.find_assembly`
+    and writes it into that design's entry of ``signs``.
     """
 
     def __init__(self, linkage: Linkage, outputs: Sequence[str], free: Sequence[str],
@@ -124,9 +145,34 @@ class DesignOutputs:
         self.outputs = tuple(outputs)
         self.free = tuple(free)
         self.fixed = dict(fixed)
-        self.jacobian = _jacobian(linkage, self.outputs, self.free)
+        self.newton = not linkage.has_closed_form
+        self.unknown_names = tuple(q.name for q in linkage.unknowns) if self.newton else ()
+        #: Without a closed form: the unknowns at the first input of the last converged :meth:`at`, or None.
+        self.assembly: dict[str, float] | None = None
+        self.jacobian = _jacobian(linkage, self.outputs + tuple(n for n in self.unknown_names if n not in self.outputs),
+                                  self.free)
         self.input = linkage.inputs[0].name
         self.branch_names = [s.name for s in linkage.branches]
+
+    def _newton_at(self, free: numpy.ndarray, inputs: numpy.ndarray, start: Mapping[str, float]):
+        inputs = numpy.atleast_1d(numpy.asarray(inputs, dtype=float))
+        count, width = len(inputs), len(self.free) + 1
+        given = {**self.fixed, **{name: float(v) for name, v in zip(self.free, free)}, INPUT_PHASE: 0.0,
+                 self.input: inputs}
+        try:
+            with numpy.errstate(all="ignore"):
+                found, slopes = self.jacobian(guess=dict(self.assembly if self.assembly is not None else start),
+                                              **given)
+        except ValueError:
+            return (numpy.full((len(self.outputs), count), numpy.nan),
+                    numpy.full((len(self.outputs), width, count), numpy.nan), numpy.zeros(count, dtype=bool))
+        values = numpy.stack([numpy.asarray(found[name], dtype=float) for name in self.outputs])
+        jac = numpy.moveaxis(numpy.asarray(slopes[:, :len(self.outputs), :], dtype=float), 0, -1)
+        ok = (numpy.asarray(found["assembled"], dtype=bool) & numpy.all(numpy.isfinite(values), axis=0)
+              & numpy.all(numpy.isfinite(jac), axis=(0, 1)))
+        if numpy.all(ok):
+            self.assembly = {name: float(numpy.asarray(found[name])[0]) for name in self.unknown_names}
+        return values, jac, ok
 
     def _call(self, given: dict, shape: tuple[int, ...]):
         arguments = [numpy.broadcast_to(numpy.asarray(given[name], dtype=float), shape)
@@ -139,11 +185,13 @@ class DesignOutputs:
               & numpy.all(numpy.isfinite(slopes), axis=(0, 1)))
         return values, slopes, ok
 
-    def at(self, free: numpy.ndarray, inputs: numpy.ndarray, branches: Mapping[str, int]):
+    def at(self, free: numpy.ndarray, inputs: numpy.ndarray, branches: Mapping[str, float]):
         """``(values (outputs, N), slopes (outputs, free + 1, N), ok (N))`` of one design at the ``inputs``.
 
         ``ok`` is False where the design is not assembled or at a toggle (a derivative is no number).
         """
+        if self.newton:
+            return self._newton_at(free, inputs, branches)
         given: dict[str, object] = {**self.fixed, INPUT_PHASE: 0.0, self.input: inputs,
                                     **{name: float(branches.get(name, 1)) for name in self.branch_names}}
         given.update({name: float(v) for name, v in zip(self.free, free)})
@@ -151,6 +199,23 @@ class DesignOutputs:
 
     def batch(self, rows: numpy.ndarray, signs: Sequence[Mapping[str, int]], inputs: numpy.ndarray):
         """Many designs (rows of free values, their branch signs) at the same inputs: values (outputs, M, N), ok (M, N)."""
+        if self.newton:
+            rng = numpy.random.default_rng(len(rows))
+            values = numpy.full((len(self.outputs), len(rows), len(inputs)), numpy.nan)
+            ok = numpy.zeros((len(rows), len(inputs)), dtype=bool)
+            for k, row in enumerate(rows):
+                design = {**self.fixed, **{name: float(v) for name, v in zip(self.free, row)}}
+                start = (dict(signs[k]) if set(signs[k]) == set(self.unknown_names)
+                         else find_assembly(self.linkage, design, float(inputs[0]), rng, NEWTON_GUESSES))
+                if start is None:
+                    continue
+                self.assembly = None
+                values[:, k], _, ok[k] = self._newton_at(row, inputs, start)
+                if numpy.all(ok[k]) and self.assembly is not None:
+                    signs[k].clear()
+                    signs[k].update(self.assembly)
+            self.assembly = None
+            return values, ok
         given: dict[str, object] = {**self.fixed, INPUT_PHASE: 0.0, self.input: inputs[None, :]}
         for k, name in enumerate(self.free):
             given[name] = rows[:, k:k + 1]
@@ -185,8 +250,16 @@ def inside(x: numpy.ndarray, bounds: numpy.ndarray, positive: numpy.ndarray) -> 
 
 
 def solved_outputs(linkage: Linkage, outputs: Sequence[str], design: Mapping[str, float],
-                   branches: Mapping[str, int], inputs: numpy.ndarray) -> dict[str, numpy.ndarray]:
+                   branches: Mapping[str, float], inputs: numpy.ndarray) -> dict[str, numpy.ndarray]:
     """The outputs at the inputs from the linkage's own generated solver (not the Jacobian's code); NaN where not assembled."""
+    if not linkage.has_closed_form:  # Newton's method continued along the inputs from the assembly ``branches``
+        swept = numpy.atleast_1d(numpy.asarray(inputs, dtype=float))
+        try:
+            with numpy.errstate(all="ignore"):
+                found = _newton_solver(linkage)(guess=dict(branches), **design, **{linkage.inputs[0].name: swept})
+        except ValueError:
+            return {name: numpy.full(swept.shape, numpy.nan) for name in outputs}
+        return {name: numpy.asarray(found[name], dtype=float) for name in outputs}
     arguments: dict[str, object] = {**design, linkage.inputs[0].name: numpy.asarray(inputs, dtype=float)}
     arguments.update({s.name: int(branches.get(s.name, 1)) for s in linkage.branches})
     solved = _solver(linkage, tuple(outputs))(**arguments)
@@ -194,7 +267,7 @@ def solved_outputs(linkage: Linkage, outputs: Sequence[str], design: Mapping[str
     return {name: numpy.where(ok, numpy.asarray(solved[name], dtype=float), numpy.nan) for name in outputs}
 
 
-def branch_break(linkage: Linkage, design: Mapping[str, float], branches: Mapping[str, int],
+def branch_break(linkage: Linkage, design: Mapping[str, float], branches: Mapping[str, float],
                  inputs: numpy.ndarray) -> str:
     """Why the input cannot move from target to target on one branch ("" if it can), by the generated solver.
 
@@ -206,6 +279,13 @@ def branch_break(linkage: Linkage, design: Mapping[str, float], branches: Mappin
         moves = numpy.asarray(inputs, dtype=float)[:, None]
     else:
         moves = inputs[:-1, None] + numpy.diff(inputs)[:, None] * steps[None, :]
+    if not linkage.has_closed_form:  # Newton's method continued from the assembly ``branches`` at inputs[0]
+        try:
+            with numpy.errstate(all="ignore"):
+                _newton_solver(linkage)(guess=dict(branches), **design, **{linkage.inputs[0].name: moves.ravel()})
+        except ValueError as error:
+            return f"the input cannot move along the targets on one assembly: {error}"
+        return ""
     arguments: dict[str, object] = {**design, linkage.inputs[0].name: moves}
     arguments.update({s.name: int(branches.get(s.name, 1)) for s in linkage.branches})
     solved = _solver(linkage, ("singular",))(**arguments)

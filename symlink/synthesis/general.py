@@ -1,7 +1,8 @@
 """Path generation for any one-input linkage: a named point through given points, by exact gradients.
 
 :mod:`symlink.synthesis.path` is written around the four-bar's nine dimensions; here the
-linkage is any one with one input and a closed form (a catalog entry or a linkage file).  The
+linkage is any one with one input (a catalog entry or a linkage file), with a closed form or
+solved by Newton's method (see below).  The
 user names the point that traces the path, the parameters that are free (each with bounds), and
 which parts of the frame placement are free: the traced point, in the linkage's own frame
 ``p``, is placed in the plane as ``(x0, y0) + scale * R(angle) p``.
@@ -30,6 +31,16 @@ design is verified afresh with the generated solver of the linkage itself (not t
 code): assembled at every target, and between consecutive targets the input moves without
 leaving the assembly or passing a toggle, so the whole path is on one branch.
 
+A linkage without a closed form (the Stephenson III six-bar) has no branch sign: its assembly is
+the one Newton's method continues from an initial guess.  There the Jacobian's code is the
+generated Newton module (sensitivities from the converged closure Jacobian), continued along the
+input from the unknowns found at the first target by the previous evaluation, so that a
+refinement carries its start's assembly along as the design moves; starts are sampled designs
+on an assembly found by Newton's method from random guesses (:func:`find_assembly`), the
+user's own from ``guess``; the verification continues the assembly with the linkage's
+:class:`~symlink.solver.NumericSolver` through every target in order, and the design reports it
+as ``assembly`` (the unknowns at the first target).
+
 >>> from symlink.catalog import slider_crank
 >>> linkage = slider_crank()
 >>> truth = {"a": 1.3, "b": 4.1, "offset": 0.7}
@@ -56,11 +67,12 @@ from ..analysis.transmission import transmission_arrays, transmission_coordinate
 from ..display import record_html
 from ..linkage import Linkage
 from ..loops import Loop
-from ..solver import Solver
+from ..closure import is_angle
+from ..solver import NumericSolver, Solver
 from ..vectors import Vector, VectorSum
 from .path import _FULL_TURN, _accelerated_levenberg_marquardt
 
-__all__ = ["PathSynthesis", "synthesize_path", "traced_points", "path_residuals", "FRAME_NAMES"]
+__all__ = ["PathSynthesis", "synthesize_path", "traced_points", "find_assembly", "path_residuals", "FRAME_NAMES"]
 
 #: The placement of the linkage's frame in the plane: pivot shift, turn and scale.
 FRAME_NAMES = ("x0", "y0", "angle", "scale")
@@ -81,6 +93,8 @@ _SCREENED = 4              # untimed: this many times ``starts`` starts screened
 _SCREEN_EVALUATIONS = 40   # ... this many evaluations each in the first round, twice as many each round after
 _PARTIAL_RANK = 4.0        # untimed starts: a design whose input cannot turn fully ranks as if this much farther
 _ACTIVE = 1e-6             # a constraint within this (relative) of its limit is reported active
+_NEWTON_SAMPLED = 160      # without a closed form: random designs drawn for the starts (each solved by Newton) ...
+_NEWTON_GUESSES = 4        # ... and random initial guesses tried for an assembly of each
 
 
 @dataclass(frozen=True)
@@ -113,6 +127,9 @@ class PathSynthesis:
     why: str = field(default="", repr=False)
     constraints: tuple[str, ...] = ()
     active: tuple[str, ...] = ()
+    #: Linkages without a closed form: the unknowns at the first target's input, the assembly the design is on
+    #: (the ``guess`` of :class:`symlink.solver.NumericSolver` that reproduces it); empty for closed forms.
+    assembly: dict[str, float] = field(default_factory=dict)
 
 
 def _point_outputs(linkage: Linkage, point: str | Sequence[str]) -> tuple[str, str]:
@@ -147,20 +164,78 @@ def _placed(local: numpy.ndarray, placement: Mapping[str, float]) -> numpy.ndarr
 
 def traced_points(linkage: Linkage, point: str | Sequence[str], values: Mapping[str, float], inputs: ArrayLike,
                   branches: Mapping[str, int] | None = None,
-                  placement: Mapping[str, float] | None = None) -> numpy.ndarray:
+                  placement: Mapping[str, float] | None = None,
+                  guess: Mapping[str, float] | None = None) -> numpy.ndarray:
     """The point at each input as rows (x, y), placed, from the linkage's generated solver; NaN where not assembled.
+
+    A linkage without a closed form is solved by Newton's method continued along the inputs in
+    their order from ``guess`` (its unknowns near an assembly at the first input; default: the
+    first assembly :func:`find_assembly` finds there); every row is NaN if it cannot be continued.
 
     >>> from symlink.catalog import fourbar
     >>> traced_points(fourbar(), "B", {"a": 2.0, "b": 6.0, "c": 5.0, "d": 7.0}, [0.0], placement={"scale": 2.0})
     array([[4., 0.]])
     """
     names = _point_outputs(linkage, point)
+    where = {**_IDENTITY, **(placement or {})}
+    if not linkage.has_closed_form:
+        swept = numpy.atleast_1d(numpy.asarray(inputs, dtype=float))
+        arguments = _arguments(linkage, values, None)
+        if guess is None:
+            guess = find_assembly(linkage, arguments, float(swept[0]), numpy.random.default_rng(0))
+        local = numpy.full((len(swept), 2), numpy.nan)
+        if guess is not None:
+            try:
+                with numpy.errstate(all="ignore"):
+                    solved = _newton_solver(linkage)(guess=dict(guess), **arguments,
+                                                     **{linkage.inputs[0].name: swept})
+                local = numpy.stack([numpy.asarray(solved[names[0]]), numpy.asarray(solved[names[1]])], axis=-1)
+            except ValueError:
+                pass
+        return _placed(local, where)
     solved = _solver(linkage, names)(**_arguments(linkage, values, branches), **{linkage.inputs[0].name: numpy.asarray(
         inputs, dtype=float)})
     ok = numpy.asarray(solved["assembled"])
     local = numpy.stack([numpy.where(ok, solved[names[0]], numpy.nan), numpy.where(ok, solved[names[1]], numpy.nan)],
                         axis=-1)
-    return _placed(local, {**_IDENTITY, **(placement or {})})
+    return _placed(local, where)
+
+
+#: Random initial guesses tried by :func:`find_assembly` before it gives up.
+_ASSEMBLY_GUESSES = 12
+
+
+def find_assembly(linkage: Linkage, values: Mapping[str, float], at: float, rng: numpy.random.Generator,
+                  tries: int = _ASSEMBLY_GUESSES) -> dict[str, float] | None:
+    """An assembly of a linkage without a closed form at input ``at``: its unknowns, or None if none is found.
+
+    Newton's method of the linkage's numeric solver from random initial guesses (angles over a
+    turn, lengths within the sum of the parameters), the first that closes; which assembly
+    that is depends on ``rng``.  (The same search as the drawing's, which synthesis may not import.)
+
+    >>> from symlink.catalog import stephenson3, EXAMPLE_VALUES
+    >>> found = find_assembly(stephenson3(), EXAMPLE_VALUES["stephenson3"], 0.0, numpy.random.default_rng(0))
+    >>> sorted(found)
+    ['beta', 'eta', 'mu', 'phi']
+    """
+    solver = _newton_solver(linkage)
+    parameters = {p.name: float(values[p.name]) for p in linkage.parameters}
+    scale = sum(abs(v) for v in parameters.values()) or 1.0
+    for _ in range(tries):
+        guess = {q.name: float(rng.uniform(-math.pi, math.pi)) if is_angle(linkage, q)
+                 else float(rng.uniform(-scale, scale)) for q in linkage.unknowns}
+        try:
+            with numpy.errstate(all="ignore"):
+                solved = solver(guess=guess, **parameters, **{linkage.inputs[0].name: numpy.array([float(at)])})
+        except ValueError:
+            continue
+        return {q.name: float(numpy.asarray(solved[q.name])[0]) for q in linkage.unknowns}
+    return None
+
+
+@lru_cache(maxsize=32)
+def _newton_solver(linkage: Linkage) -> NumericSolver:
+    return NumericSolver(linkage)
 
 
 def _arguments(linkage: Linkage, values: Mapping[str, float], branches: Mapping[str, int] | None) -> dict:
@@ -213,7 +288,7 @@ def with_input_phase(linkage: Linkage) -> Linkage:
 
 
 @lru_cache(maxsize=32)
-def _jacobian(linkage: Linkage, outputs: tuple[str, str], free: tuple[str, ...]) -> DesignJacobian:
+def _jacobian(linkage: Linkage, outputs: tuple[str, ...], free: tuple[str, ...]) -> DesignJacobian:
     return DesignJacobian(with_input_phase(linkage), list(outputs), list(free) + [INPUT_PHASE])
 
 
@@ -262,7 +337,13 @@ class _Problem:
             dtype=float).reshape(len(self.frame), 2)])
         self.placement = {**_IDENTITY, **placement}
         self.timed = timed
-        self.jacobian = _jacobian(linkage, outputs, self.free)
+        #: Without a closed form the Jacobian's code is Newton's method: it also gives the unknowns, whose values
+        #: at the first input (``assembly``) are the next evaluation's initial guess, so that a refinement
+        #: continues the start's assembly as the design moves (there is no branch sign to hold).
+        self.newton = not linkage.has_closed_form
+        self.unknown_names = tuple(q.name for q in linkage.unknowns) if self.newton else ()
+        self.assembly: dict[str, float] | None = None
+        self.jacobian = _jacobian(linkage, outputs + tuple(n for n in self.unknown_names if n not in outputs), self.free)
         positive = {p.name for p in linkage.parameters if p.is_positive}
         self.positive = numpy.array([name in positive for name in self.free], dtype=bool)
         lengths = _length_parameters(linkage)
@@ -288,8 +369,10 @@ class _Problem:
         placement = {**self.placement, **{name: float(v) for name, v in zip(self.frame, x[len(self.free):self.width])}}
         return design, placement
 
-    def local(self, design: Mapping[str, float], inputs: numpy.ndarray, branches: Mapping[str, int]):
+    def local(self, design: Mapping[str, float], inputs: numpy.ndarray, branches: Mapping[str, float]):
         """Points (N, 2) in the linkage's frame, their Jacobian (N, 2, free + 1: the input last), feasibility (N)."""
+        if self.newton:
+            return self._newton_local(design, inputs, branches)
         given: dict[str, float | numpy.ndarray] = {**design, INPUT_PHASE: 0.0, self.linkage.inputs[0].name: inputs,
                  **{name: float(sign) for name, sign in branches.items()}}
         with numpy.errstate(all="ignore"):
@@ -298,6 +381,29 @@ class _Problem:
         jac = numpy.moveaxis(slopes, -1, 0).reshape(len(inputs), 2, len(self.free) + 1)
         ok = (numpy.broadcast_to(assembled, inputs.shape) & numpy.all(numpy.isfinite(jac), axis=(1, 2))
               & numpy.all(numpy.isfinite(points), axis=1))
+        return points, jac, ok
+
+    def _newton_local(self, design: Mapping[str, float], inputs: numpy.ndarray, start: Mapping[str, float]):
+        """:meth:`local` by Newton's method, continued along ``inputs`` from :attr:`assembly` (else ``start``).
+
+        Where it converges at every input, :attr:`assembly` becomes the unknowns found at the first
+        one; anywhere it does not (no assembly, a dead centre), nothing is feasible.
+        """
+        guess = dict(self.assembly if self.assembly is not None else start)
+        count = len(inputs)
+        try:
+            with numpy.errstate(all="ignore"):
+                values, slopes = self.jacobian(guess=guess, **design, **{INPUT_PHASE: 0.0,
+                                                                         self.linkage.inputs[0].name: inputs})
+        except ValueError:
+            return (numpy.full((count, 2), numpy.nan), numpy.full((count, 2, len(self.free) + 1), numpy.nan),
+                    numpy.zeros(count, dtype=bool))
+        points = numpy.stack([numpy.asarray(values[name], dtype=float) for name in self.outputs], axis=-1)
+        jac = numpy.asarray(slopes[:, :2, :], dtype=float)
+        ok = (numpy.asarray(values["assembled"], dtype=bool) & numpy.all(numpy.isfinite(jac), axis=(1, 2))
+              & numpy.all(numpy.isfinite(points), axis=1))
+        if numpy.all(ok):
+            self.assembly = {name: float(numpy.asarray(values[name])[0]) for name in self.unknown_names}
         return points, jac, ok
 
     def allowed(self, x: numpy.ndarray) -> bool:
@@ -537,7 +643,7 @@ def _timed_starts(problem: _Problem, rng, count: int, given, branch_choice):
     return _ranked(fits, count, given, problem)
 
 
-def _untimed_starts(problem: _Problem, rng, count: int, given, branch_choice):
+def _untimed_starts(problem: _Problem, rng, count: int, given, branch_choice, guess=None):
     """Designs whose swept path, matched to the targets by arc length (phases, spans, both ways), fits best.
 
     The input sweeps two turns; a design assembled over a whole turn is matched anywhere along
@@ -553,8 +659,13 @@ def _untimed_starts(problem: _Problem, rng, count: int, given, branch_choice):
     phases = numpy.linspace(0.0, 1.0, _PHASES, endpoint=False)
     ways = {None: [fraction, 1.0 - fraction], 1: [fraction], -1: [1.0 - fraction]}[problem.direction]
     shapes = numpy.stack(ways)  # along the curve with the input growing, shrinking, or both
-    rows, signs = _sampled_designs(problem, rng, _SAMPLED, given, branch_choice)
-    traced, assembled = _traced_batch(problem, rows, signs, sweep)
+    if problem.newton:
+        rows, signs = _sampled_designs(problem, rng, _NEWTON_SAMPLED, given, None)
+        traced, assembled, unknowns = _newton_traced(problem, rows, sweep, rng, guess,
+                                                     all(name in given for name in problem.free))
+    else:
+        rows, signs = _sampled_designs(problem, rng, _SAMPLED, given, branch_choice)
+        traced, assembled = _traced_batch(problem, rows, signs, sweep)
     fits = []
     for index in range(len(rows)):
         ok = assembled[index]
@@ -582,9 +693,88 @@ def _untimed_starts(problem: _Problem, rng, count: int, given, branch_choice):
         for k in numpy.argsort(rms)[:4]:  # the best match that stays within the bounds
             x = _start(problem, rows[index], placements[k])
             if math.isfinite(rms[k]) and x is not None:
-                fits.append((float(rms[k]) * (1.0 if turning else _PARTIAL_RANK), x, signs[index], angles[k]))
+                # without a closed form the start's "branches" are its unknowns at the first target's input
+                assembly: Mapping[str, float] = signs[index] if not problem.newton else {
+                    name: float(numpy.interp(angles[k][0], q, unknowns[index, start:stop, j]))
+                    for j, name in enumerate(problem.unknown_names)}
+                fits.append((float(rms[k]) * (1.0 if turning else _PARTIAL_RANK), x, assembly, angles[k]))
                 break
     return _ranked(fits, count, given, problem)
+
+
+def _newton_design(problem: _Problem, row: numpy.ndarray) -> dict[str, float]:
+    return {**problem.values, **{name: float(v) for name, v in zip(problem.free, row)}}
+
+
+def _newton_timed_starts(problem: _Problem, rng, count: int, given, guess: Mapping[str, float] | None):
+    """Timed starts of a linkage without a closed form: sampled designs on an assembly the solver's search finds.
+
+    Each sampled design's assembly at the first target's input is found by
+    :func:`find_assembly` (the user's own design, sampled first, from ``guess`` when given),
+    continued along the target inputs by Newton's method; the start's "branches" are that
+    assembly (the unknowns at the first input), which the refinement then continues.
+    """
+    inputs = problem.timed
+    assert inputs is not None
+    w = problem.targets[:, 0] + 1j * problem.targets[:, 1]
+    rows, _ = _sampled_designs(problem, rng, _NEWTON_SAMPLED, given, None)
+    users = all(name in given for name in problem.free)
+    fits = []
+    for index, row in enumerate(rows):
+        design = _newton_design(problem, row)
+        start = (dict(guess) if index == 0 and users and guess is not None
+                 else find_assembly(problem.linkage, design, float(inputs[0]), rng, _NEWTON_GUESSES))
+        if start is None:
+            continue
+        problem.assembly = start
+        points, _, ok = problem.local(design, inputs, start)
+        if not numpy.all(ok):
+            continue
+        placements, rms = _fit_placements(problem, (points[:, 0] + 1j * points[:, 1])[None, :], w)
+        x = _start(problem, row, placements[0])
+        if x is not None and math.isfinite(rms[0]):
+            fits.append((float(rms[0]), x, dict(problem.assembly), inputs.copy()))
+    problem.assembly = None
+    return _ranked(fits, count, given, problem)
+
+
+def _newton_traced(problem: _Problem, rows: numpy.ndarray, sweep: numpy.ndarray, rng,
+                   guess: Mapping[str, float] | None, users: bool):
+    """Untimed starts' sweeps without a closed form: the point (complex) and the unknowns along ``sweep``.
+
+    Each design is assembled at the sweep's first input (:func:`find_assembly`) and continued
+    chunk by chunk (an eighth of a turn each) until Newton's method stops: what follows is not
+    assembled.  Returns ``(traced (M, N), assembled (M, N), unknowns (M, N, unknowns))``.
+    """
+    linkage = problem.linkage
+    traced = numpy.full((len(rows), len(sweep)), numpy.nan + 0j)
+    assembled = numpy.zeros((len(rows), len(sweep)), dtype=bool)
+    unknowns = numpy.full((len(rows), len(sweep), len(problem.unknown_names)), numpy.nan)
+    solver = _newton_solver(linkage)
+    chunk = max(2, _SWEEP // 8)
+    for index, row in enumerate(rows):
+        design = _newton_design(problem, row)
+        start = (dict(guess) if index == 0 and users and guess is not None
+                 else find_assembly(linkage, design, float(sweep[0]), rng, _NEWTON_GUESSES))
+        done, step = 0, len(sweep) - 1  # the whole sweep in one go first; where that stops, chunk by chunk
+        while start is not None and done < len(sweep) - 1:
+            stop = min(len(sweep), done + step + 1)
+            try:
+                with numpy.errstate(all="ignore"):
+                    solved = solver(guess=start, **design, **{linkage.inputs[0].name: sweep[done:stop]})
+            except ValueError:
+                if step == chunk:
+                    break
+                step = chunk
+                continue
+            traced[index, done:stop] = numpy.asarray(solved[problem.outputs[0]]) + 1j * numpy.asarray(
+                solved[problem.outputs[1]])
+            for k, name in enumerate(problem.unknown_names):
+                unknowns[index, done:stop, k] = numpy.asarray(solved[name])
+            assembled[index, done:stop] = True
+            start = {name: float(unknowns[index, stop - 1, k]) for k, name in enumerate(problem.unknown_names)}
+            done = stop - 1
+    return traced, assembled, unknowns
 
 
 def _ranked(fits: list, count: int, given: Mapping[str, float], problem: _Problem) -> list:
@@ -615,6 +805,7 @@ def _refine(problem: _Problem, x0: numpy.ndarray, branches: Mapping[str, int], i
     """One start refined: (x, input values, cost, evaluations), or None if the start is infeasible."""
     count = len(inputs)
     width = problem.width
+    problem.assembly = dict(branches) if problem.newton else None  # the start's assembly, continued from here
     if problem.timed is not None:
         def residuals(x: numpy.ndarray):
             found = problem.evaluate(x, inputs, branches, project=True)
@@ -672,6 +863,8 @@ def _refine(problem: _Problem, x0: numpy.ndarray, branches: Mapping[str, int], i
 def _verify(problem: _Problem, x: numpy.ndarray, branches: Mapping[str, int], inputs: numpy.ndarray,
             evaluations: int) -> PathSynthesis:
     """The design checked with the linkage's own generated solver: errors at the targets, one branch between them."""
+    if problem.newton:
+        return _verify_newton(problem, x, branches, inputs, evaluations)
     design, placement = problem.split(x)
     linkage = problem.linkage
     reached = traced_points(linkage, problem.outputs, design, inputs, branches, placement)
@@ -698,6 +891,50 @@ def _verify(problem: _Problem, x: numpy.ndarray, branches: Mapping[str, int], in
                          tuple(map(float, inputs)), tuple(map(float, errors)),
                          float(numpy.max(errors) / problem.size) if not why else math.inf, not why, evaluations, why,
                          stated, active)
+
+
+def _verify_newton(problem: _Problem, x: numpy.ndarray, start: Mapping[str, float], inputs: numpy.ndarray,
+                   evaluations: int) -> PathSynthesis:
+    """:func:`_verify` without a closed form: the linkage's own numeric solver continued along the targets.
+
+    The assembly the refinement continued is found again at the design (Newton's method from
+    the last one), then the linkage's :class:`~symlink.solver.NumericSolver` (not the
+    Jacobian's code) follows it from the first target through every other, in order, with
+    :data:`_PATH_SAMPLES` input values between consecutive targets: it stops at a point not
+    assembled or at a dead centre, so a design it passes keeps one assembly along the targets.
+    """
+    design, placement = problem.split(x)
+    linkage = problem.linkage
+    if problem.assembly is None:
+        problem.assembly = dict(start)
+    _, _, ok = problem.local(design, inputs, start)
+    assembly = dict(problem.assembly)
+    errors = numpy.full(len(inputs), numpy.inf)
+    why = ""
+    if not numpy.all(ok):
+        why = "not assembled at every target (Newton's method from the refined assembly)"
+    else:
+        steps = numpy.linspace(0.0, 1.0, _PATH_SAMPLES + 1)
+        moves = inputs[:-1, None] + numpy.diff(inputs)[:, None] * steps[None, :]
+        try:
+            with numpy.errstate(all="ignore"):
+                solved = _newton_solver(linkage)(guess=assembly, **_arguments(linkage, design, None),
+                                                 **{linkage.inputs[0].name: moves.ravel()})
+        except ValueError as error:
+            why = f"the input cannot move along the targets on one assembly: {error}"
+        else:
+            local = numpy.stack([numpy.asarray(solved[name], dtype=float) for name in problem.outputs],
+                                axis=-1).reshape(moves.shape + (2,))
+            reached = _placed(numpy.concatenate([local[:, 0], local[-1:, -1]]), placement)
+            errors = numpy.hypot(*(reached - problem.targets).T)
+            assembly = {name: float(numpy.asarray(solved[name])[0]) for name in problem.unknown_names}
+    if not why and not problem.allowed(x):
+        why = "outside the bounds or the link ratio"
+    stated, active = _constraint_report(problem, x, design, {}, inputs)
+    return PathSynthesis(linkage.name, problem.outputs, design, placement, {}, tuple(map(float, inputs)),
+                         tuple(map(float, errors)),
+                         float(numpy.max(errors) / problem.size) if not why else math.inf, not why, evaluations, why,
+                         stated, active, assembly)
 
 
 def _constraint_report(problem: _Problem, x: numpy.ndarray, design: Mapping[str, float], branches: Mapping[str, int],
@@ -746,7 +983,8 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
                     branches: Mapping[str, int] | None = None, starts: int = 16,
                     seed: int | None = 0, evaluations: int = 2000, tolerance: float = 1e-15,
                     max_link_ratio: float | None = None, min_transmission: float = 0.0,
-                    full_rotation: bool = False, direction: int | None = None) -> PathSynthesis:
+                    full_rotation: bool = False, direction: int | None = None,
+                    guess: Mapping[str, float] | None = None) -> PathSynthesis:
     """A design of ``linkage`` whose ``point`` passes through ``targets`` (rows x, y), verified.
 
     ``point`` is a point name (``"C"``) or two output names (``("P_x", "P_y")``).  ``free`` maps
@@ -774,12 +1012,24 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
     constraint with its value (``constraints``) and those at their limit (``active``).
     When every length is free (and the scale is not), half the sampled starts are
     shape-normalised (:func:`_shaped_design`) and scaled to the targets by the placement fit.
+
+    A linkage without a closed form (solved by Newton's method) has no branches; ``guess``
+    gives its unknowns near an assembly at the first target's input for the design in
+    ``values`` (default: one found by :func:`find_assembly`), and the design found reports its
+    assembly as ``assembly``.  ``min_transmission`` and ``full_rotation`` are not supported
+    there yet (``ValueError``).
     """
     if len(linkage.inputs) != 1:
         raise ValueError(f"path synthesis drives one input; {linkage.name} has {len(linkage.inputs)}")
-    if not linkage.has_closed_form:
-        raise ValueError(f"{linkage.name} has no closed form; path synthesis of Newton-solved linkages is not "
-                         "supported yet")
+    newton = not linkage.has_closed_form
+    if newton and (min_transmission > 0 or full_rotation):
+        raise ValueError(f"{linkage.name} has no closed form: min_transmission and full_rotation are not "
+                         "supported for Newton-solved linkages yet")
+    if guess is not None and (not newton or set(guess) != {q.name for q in linkage.unknowns}
+                              or not all(math.isfinite(float(v)) for v in guess.values())):
+        raise ValueError(f"guess gives the unknowns of a linkage without a closed form near an assembly at the "
+                         f"first target ({', '.join(q.name for q in linkage.unknowns)}), finite numbers; "
+                         f"got {guess!r}")
     names = _point_outputs(linkage, point)
     points = _targets(targets)
     size = _size(points)
@@ -834,8 +1084,12 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
     problem.direction = direction
     rng = numpy.random.default_rng(seed)
     untimed = inputs is None
-    found = (_untimed_starts if untimed else _timed_starts)(problem, rng, _SCREENED * starts if untimed else starts,
-                                                             given, branches)
+    if untimed:
+        found = _untimed_starts(problem, rng, _SCREENED * starts, given, branches, guess)
+    elif newton:
+        found = _newton_timed_starts(problem, rng, starts, given, guess)
+    else:
+        found = _timed_starts(problem, rng, starts, given, branches)
     if not found:
         raise ValueError(f"no design of {linkage.name} within the bounds is assembled along the targets; widen the "
                          "bounds or change the fixed values")
@@ -875,6 +1129,8 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
                         continue
                     x, angles, cost, used = refined
                     spent += used
+                    if problem.newton and problem.assembly is not None:
+                        signs = dict(problem.assembly)  # the assembly continued so far: the next round's start
                     stopped = used < min(budget, evaluations)
                     if cost < closest:
                         closest = cost

@@ -41,8 +41,8 @@ from numpy.typing import ArrayLike
 from ..angles import wrap
 from ..display import record_html
 from ..linkage import Linkage
-from .design_fit import (SAMPLED, DesignOutputs, branch_break, check_branches, check_linkage, free_bounds, inside,
-                         is_angle_output, refine, sampled_designs, solved_outputs)
+from .design_fit import (DesignOutputs, branch_break, check_branches, check_linkage, free_bounds, inside,
+                         is_angle_output, refine, sample_count, sampled_designs, solved_outputs)
 from .function import chebyshev_points
 
 __all__ = ["FunctionSynthesis", "synthesize_function", "function_values", "chebyshev_inputs"]
@@ -77,6 +77,9 @@ class FunctionSynthesis:
     assembled: bool = False
     evaluations: int = 0
     why: str = field(default="", repr=False)
+    #: Linkages without a closed form: the unknowns at the first input, the assembly the design is on (the
+    #: ``guess`` of :class:`symlink.solver.NumericSolver`, continued along the inputs in their order); else empty.
+    assembly: dict[str, float] = field(default_factory=dict)
 
 
 def chebyshev_inputs(start: float, end: float, count: int) -> numpy.ndarray:
@@ -89,7 +92,7 @@ def chebyshev_inputs(start: float, end: float, count: int) -> numpy.ndarray:
 
 
 def function_values(linkage: Linkage, output: str, values: Mapping[str, float], inputs: ArrayLike,
-                    branches: Mapping[str, int] | None = None) -> numpy.ndarray:
+                    branches: Mapping[str, float] | None = None) -> numpy.ndarray:
     """The ``output`` of a design at each input, from the linkage's generated solver; NaN where not assembled.
 
     >>> from symlink.catalog import slider_crank
@@ -117,7 +120,7 @@ class _Problem:
         difference = generated - self.wanted
         return wrap(difference) if self.angle else difference
 
-    def residuals(self, x: numpy.ndarray, branches: Mapping[str, int], weights: numpy.ndarray | None = None):
+    def residuals(self, x: numpy.ndarray, branches: Mapping[str, float], weights: numpy.ndarray | None = None):
         if not inside(x, self.bounds, self.positive):
             return None
         values, slopes, ok = self.outputs.at(x, self.inputs, branches)
@@ -172,7 +175,7 @@ def synthesize_function(linkage: Linkage, output: str, inputs: ArrayLike, wanted
     verified design, or the closest one with ``assembled`` False and its reason; ``ValueError`` for
     bad input or when no sampled design is assembled at every input.
     """
-    check_linkage(linkage, "function generation")
+    check_linkage(linkage, "function generation", newton=True)
     is_angle_output(linkage, output)  # ValueError naming the outputs there are
     if linkage.output(output) == linkage.inputs[0]:
         raise ValueError(f"the output {output!r} is the input itself; name an output the linkage moves")
@@ -193,7 +196,7 @@ def synthesize_function(linkage: Linkage, output: str, inputs: ArrayLike, wanted
     if all(name in given for name in problem.free):
         first.insert(0, ([given[name] for name in problem.free], chosen))
     rng = numpy.random.default_rng(seed)
-    rows, signs = sampled_designs(linkage, bounds, rng, SAMPLED, chosen, first)
+    rows, signs = sampled_designs(linkage, bounds, rng, sample_count(linkage), chosen, first)
     found, ok = problem.outputs.batch(rows, signs, q)
     with numpy.errstate(all="ignore"):
         rms = numpy.sqrt(numpy.mean((problem.error(found[0]) / problem.unit) ** 2, axis=1))
@@ -207,6 +210,7 @@ def synthesize_function(linkage: Linkage, output: str, inputs: ArrayLike, wanted
     spent = 0
     for k in order:
         sign = signs[k]
+        problem.outputs.assembly = dict(sign) if problem.outputs.newton else None  # continued by the refinement
         result = refine(lambda x: problem.residuals(x, sign), rows[k], evaluations, tolerance)
         if result is None:
             continue
@@ -228,35 +232,45 @@ def synthesize_function(linkage: Linkage, output: str, inputs: ArrayLike, wanted
 def _minimax(problem: _Problem, best: FunctionSynthesis, spent: int) -> tuple[FunctionSynthesis, int]:
     """Lawson's re-weighted least squares from the least-squares design: the smallest largest error found."""
     x = numpy.array([best.design[name] for name in problem.free])
+    start = best.assembly or best.branches
+    problem.outputs.assembly = dict(best.assembly) if problem.outputs.newton else None
     weights = numpy.full(len(problem.inputs), 1.0 / len(problem.inputs))
     for _ in range(_LAWSON_STEPS):
-        found = problem.residuals(x, best.branches)
+        found = problem.residuals(x, start)
         if found is None:
             break
         errors = numpy.abs(found[0])
         if not numpy.sum(weights * errors) > 0:
             break
         weights = weights * errors / numpy.sum(weights * errors)
-        result = refine(lambda y: problem.residuals(y, best.branches, weights), x, _LAWSON_EVALUATIONS, 1e-15)
+        result = refine(lambda y: problem.residuals(y, start, weights), x, _LAWSON_EVALUATIONS, 1e-15)
         if result is None:
             break
         x, _, used = result
         spent += used
-        candidate = _verified(problem, x, best.branches, spent)
+        candidate = _verified(problem, x, start, spent)
         if candidate.assembled and candidate.structural_error < best.structural_error:
             best = candidate
     return best, spent
 
 
-def _verified(problem: _Problem, x: numpy.ndarray, branches: Mapping[str, int], evaluations: int) -> FunctionSynthesis:
+def _verified(problem: _Problem, x: numpy.ndarray, branches: Mapping[str, float], evaluations: int) -> FunctionSynthesis:
     design = problem.design(x)
+    newton = problem.outputs.newton
+    assembly: dict[str, float] = {}
+    if newton:  # the assembly the refinement continued, found again at x: its unknowns at the first input
+        problem.outputs.at(x, problem.inputs, branches)
+        assembly = dict(problem.outputs.assembly or branches)
+        branches = assembly
     generated = function_values(problem.linkage, problem.output, design, problem.inputs, branches)
     errors = problem.error(generated)
     why = "not assembled at every input" if not numpy.all(numpy.isfinite(errors)) else ""
     if not why:
-        order = numpy.argsort(problem.inputs, kind="stable")
+        # without a closed form the assembly is continued along the inputs in their order, from the first
+        order = numpy.arange(len(problem.inputs)) if newton else numpy.argsort(problem.inputs, kind="stable")
         why = branch_break(problem.linkage, design, branches, problem.inputs[order])
-    return FunctionSynthesis(problem.linkage.name, problem.output, design, dict(branches),
+    return FunctionSynthesis(problem.linkage.name, problem.output, design, {} if newton else {k: int(v) for k, v in branches.items()},
                              tuple(map(float, problem.inputs)), tuple(map(float, problem.wanted)),
                              tuple(map(float, generated)), tuple(map(float, errors)),
-                             float(numpy.max(numpy.abs(errors))) if not why else math.inf, not why, evaluations, why)
+                             float(numpy.max(numpy.abs(errors))) if not why else math.inf, not why, evaluations, why,
+                             assembly)

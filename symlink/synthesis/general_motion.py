@@ -47,8 +47,8 @@ from numpy.typing import ArrayLike
 from ..angles import wrap
 from ..display import record_html
 from ..linkage import Linkage
-from .design_fit import (SAMPLED, DesignOutputs, branch_break, check_branches, check_linkage, free_bounds, inside,
-                         is_angle_output, refine, sampled_designs, solved_outputs)
+from .design_fit import (DesignOutputs, branch_break, check_branches, check_linkage, free_bounds, inside,
+                         is_angle_output, refine, sample_count, sampled_designs, solved_outputs)
 from .general import FRAME_NAMES
 
 __all__ = ["MotionSynthesis", "synthesize_motion", "link_poses", "frame_point", "FRAME_NAMES"]
@@ -86,6 +86,9 @@ class MotionSynthesis:
     assembled: bool = False
     evaluations: int = 0
     why: str = field(default="", repr=False)
+    #: Linkages without a closed form: the unknowns at the first pose's input, the assembly the design is on (the
+    #: ``guess`` of :class:`symlink.solver.NumericSolver`, continued along the inputs in their order); else empty.
+    assembly: dict[str, float] = field(default_factory=dict)
 
 
 def _placed(local: numpy.ndarray, placement: Mapping[str, float]) -> numpy.ndarray:
@@ -125,7 +128,7 @@ def _outputs(linkage: Linkage, point: str, angle: str) -> tuple[str, str, str]:
 
 
 def link_poses(linkage: Linkage, point: str, angle: str, values: Mapping[str, float], inputs: ArrayLike,
-               branches: Mapping[str, int] | None = None,
+               branches: Mapping[str, float] | None = None,
                placement: Mapping[str, float] | None = None) -> numpy.ndarray:
     """The link's pose (x, y, angle) at each input as rows, placed, from the generated solver; NaN where not assembled.
 
@@ -191,7 +194,7 @@ class _Problem:
             dangle = slopes[2].T
         return point, angle, dpoint, dangle
 
-    def residuals(self, y: numpy.ndarray, branches: Mapping[str, int]):
+    def residuals(self, y: numpy.ndarray, branches: Mapping[str, float]):
         """Residuals (3N: x, y, angle of each pose) and their Jacobian by the unknowns; None where infeasible."""
         x = y[:self.width]
         if not inside(x, self.bounds, self.positive):
@@ -328,7 +331,10 @@ def synthesize_motion(linkage: Linkage, point: str | None, angle: str, poses: Ar
     the search stops at the first verified design below 1e-12.  Returns the best verified design,
     or the closest one with ``assembled`` False and its reason; ``ValueError`` for bad input.
     """
-    check_linkage(linkage, "motion generation")
+    check_linkage(linkage, "motion generation", newton=True)
+    if not linkage.has_closed_form and timed is None:
+        raise ValueError(f"{linkage.name} has no closed form: motion generation of a Newton-solved linkage needs "
+                         "the input at each pose (timed); without timing it is not supported yet")
     names = _outputs(linkage, frame_point(linkage, angle) if point is None else point, angle)
     array = numpy.asarray(poses, dtype=float)
     if array.ndim != 2 or array.shape[1] != 3 or len(array) < 2:
@@ -358,7 +364,7 @@ def synthesize_motion(linkage: Linkage, point: str | None, angle: str, poses: Ar
     given = {k: float(v) for k, v in (values or {}).items()}
     first = [([given[name] for name in problem.free], chosen)] if all(name in given for name in problem.free) else []
     rng = numpy.random.default_rng(seed)
-    rows, signs = sampled_designs(linkage, bounds, rng, SAMPLED, chosen, first)
+    rows, signs = sampled_designs(linkage, bounds, rng, sample_count(linkage), chosen, first)
     found = _starts(problem, rows, signs, starts, len(first))
     if not found:
         raise ValueError(f"no design of {linkage.name} within the bounds is assembled at the poses; widen the bounds "
@@ -366,6 +372,7 @@ def synthesize_motion(linkage: Linkage, point: str | None, angle: str, poses: Ar
     best: MotionSynthesis | None = None
     spent = 0
     for _, y0, sign in found:
+        problem.outputs.assembly = dict(sign) if problem.outputs.newton else None  # continued by the refinement
         result = refine(lambda y: problem.residuals(y, sign), y0, evaluations, tolerance)
         if result is None:
             continue
@@ -381,9 +388,16 @@ def synthesize_motion(linkage: Linkage, point: str | None, angle: str, poses: Ar
     return MotionSynthesis(**{**best.__dict__, "evaluations": spent})
 
 
-def _verified(problem: _Problem, y: numpy.ndarray, branches: Mapping[str, int], evaluations: int) -> MotionSynthesis:
+def _verified(problem: _Problem, y: numpy.ndarray, branches: Mapping[str, float],
+              evaluations: int) -> MotionSynthesis:
     design, placement = problem.split(y)
     inputs = problem.timed if problem.timed is not None else y[problem.width:]
+    newton = problem.outputs.newton
+    assembly: dict[str, float] = {}
+    if newton:  # the assembly the refinement continued, found again at y: its unknowns at the first input
+        problem.outputs.at(y[:len(problem.free)], numpy.asarray(inputs, dtype=float), branches)
+        assembly = dict(problem.outputs.assembly or branches)
+        branches = assembly
     reached = link_poses(problem.linkage, problem.names[0][:-2], problem.names[2], design, inputs, branches, placement)
     position = numpy.hypot(*(reached[:, :2] - problem.poses[:, :2]).T)
     turned = wrap(reached[:, 2] - problem.poses[:, 2])
@@ -392,5 +406,6 @@ def _verified(problem: _Problem, y: numpy.ndarray, branches: Mapping[str, int], 
         why = branch_break(problem.linkage, design, branches, numpy.asarray(inputs, dtype=float))
     error = max(float(numpy.max(position)) / problem.size, float(numpy.max(numpy.abs(turned))))
     return MotionSynthesis(problem.linkage.name, problem.names[0][:-2], problem.names[2], design, placement,
-                           dict(branches), tuple(map(float, inputs)), tuple(map(float, position)),
-                           tuple(map(float, turned)), error if not why else math.inf, not why, evaluations, why)
+                           {} if newton else {k: int(v) for k, v in branches.items()}, tuple(map(float, inputs)),
+                           tuple(map(float, position)), tuple(map(float, turned)), error if not why else math.inf,
+                           not why, evaluations, why, assembly)

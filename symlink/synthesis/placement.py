@@ -29,7 +29,7 @@ from ..linkage import Linkage
 from ..loops import Loop
 from ..vectors import Vector, VectorSum
 
-__all__ = ["placed_design", "length_parameters", "PLACEMENT_NAMES"]
+__all__ = ["placed_design", "placed_assembly", "with_default_branches", "length_parameters", "PLACEMENT_NAMES"]
 
 #: The parameters a placed linkage adds: the shift and the turn of its points.
 PLACEMENT_NAMES = ("place_x", "place_y", "place_angle")
@@ -112,3 +112,56 @@ def placed_design(linkage: Linkage, values: Mapping[str, float],
     result.update(place_x=float(where["x0"]), place_y=float(where["y0"]), place_angle=float(where["angle"]))
     return moved, result
 
+
+
+def placed_assembly(linkage: Linkage, assembly: Mapping[str, float],
+                    placement: Mapping[str, float]) -> dict[str, float]:
+    """The unknowns of an assembly of ``linkage`` as they are in its :func:`placed_design`: the guess that picks it there.
+
+    A linkage without a closed form has no branch sign: its assembly is the unknowns' values
+    (the initial guess of Newton's method).  Placed, every unknown angle turns by the
+    placement's angle and every unknown length scales by its scale.
+
+    >>> from symlink.catalog import slider_crank
+    >>> placed_assembly(slider_crank(), {"beta": 0.5, "s": 2.0}, {"angle": 1.0, "scale": 3.0})
+    {'beta': 1.5, 's': 6.0}
+    """
+    from ..closure import is_angle
+    where = {"angle": 0.0, "scale": 1.0, **placement}
+    symbols = {q.name: q for q in linkage.unknowns}
+    return {name: float(value) + float(where["angle"]) if is_angle(linkage, symbols[name])
+            else float(value) * float(where["scale"]) for name, value in assembly.items()}
+
+
+def with_default_branches(linkage: Linkage, branches: Mapping[str, int]) -> tuple[Linkage, dict[str, int]]:
+    """``linkage`` rewritten so that its assembly at ``branches`` is every branch's +1, and the signs it could not.
+
+    A linkage file holds no branch signs, and every command takes +1 by default.  A two-angle
+    loop (case 3) whose sign is -1 gets its two unknowns in the other order (they name the
+    "first" unknown vector, which +1 turns counter-clockwise: :mod:`symlink.loopcase`), so that
+    its +1 is the assembly that was -1, as :func:`symlink.joints.from_joints` orders them for its
+    drawing.  A loop of another case whose sign is -1 (a slider's length and an angle, case 2b:
+    +1 is the larger travel) cannot be turned so: it is returned in the dict, to be given as
+    ``--branch``.  The loops, points and every name are unchanged.
+
+    >>> from symlink.catalog import fourbar
+    >>> turned, left = with_default_branches(fourbar(), {"branch": -1})
+    >>> turned.unknowns, left
+    ((phi, beta), {})
+    """
+    unknowns = list(linkage.unknowns)
+    left: dict[str, int] = {}
+    for step in linkage.plan if linkage.has_closed_form else ():
+        if step.branch is None or int(branches.get(step.branch.name, 1)) == 1:
+            continue
+        if step.case.name != "3":
+            left[step.branch.name] = -1
+            continue
+        first, second = unknowns.index(step.case.first.symbol), unknowns.index(step.case.second.symbol)
+        unknowns[first], unknowns[second] = unknowns[second], unknowns[first]
+    if unknowns == list(linkage.unknowns):
+        return linkage, left
+    turned = Linkage(linkage.name, list(linkage.loops), inputs=list(linkage.inputs), unknowns=unknowns,
+                     parameters=list(linkage.parameters), points=dict(linkage.points), roles=dict(linkage.roles),
+                     extras=dict(linkage.extras))
+    return turned, left

@@ -1,0 +1,236 @@
+"""Path synthesis of a linkage without a closed form: the Stephenson III six-bar, solved by Newton's method.
+
+Targets are the true design's coupler point E from a 30-digit mpmath reference written here (the
+closure of the catalog's Stephenson III, continued along the crank by ``mpmath.findroot`` in small
+steps from a hand-found assembly, as ``tests/codegen/test_newton_c.py`` does); the found design is
+checked with the same reference: continued from the assembly synthesis reports, through its inputs,
+placed, it must pass through the targets to 1e-8 of their size.  Nothing of symlink's derivation
+is used by the reference.
+"""
+import math
+
+import mpmath as mp
+import numpy as np
+import pytest
+
+from symlink.catalog import stephenson3
+from symlink.synthesis.general import synthesize_path
+
+TRUTH = dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.9, delta=0.3)
+#: An assembly of TRUTH at theta = 0 whose crank turns fully (tests/codegen/test_newton_c.py).
+ASSEMBLY = dict(beta=0.96, mu=0.27, phi=1.43, eta=-0.16)
+UNKNOWNS = ("beta", "mu", "phi", "eta")
+
+
+def _closure(theta, q, p):
+    beta, mu, phi, eta = q
+    return [p["a"] * mp.cos(theta) + p["b"] * mp.cos(beta) + p["c"] * mp.cos(mu) - p["d"] - p["f"] * mp.cos(phi),
+            p["a"] * mp.sin(theta) + p["b"] * mp.sin(beta) + p["c"] * mp.sin(mu) - p["f"] * mp.sin(phi),
+            p["a"] * mp.cos(theta) + p["e"] * mp.cos(beta + p["alpha"]) + p["g"] * mp.cos(eta) - p["d"]
+            - p["h"] * mp.cos(phi + p["delta"]),
+            p["a"] * mp.sin(theta) + p["e"] * mp.sin(beta + p["alpha"]) + p["g"] * mp.sin(eta)
+            - p["h"] * mp.sin(phi + p["delta"])]
+
+
+def coupler_points(design, thetas, guess, placement=None, substeps=8):
+    """E = a e^{i theta} + e e^{i (beta + alpha)} at each theta (30 digits), continued in small steps from the
+    assembly nearest ``guess`` at thetas[0]; placed by (x0, y0) + scale R(angle) E.  Rows (x, y) as floats."""
+    where = {"x0": 0.0, "y0": 0.0, "angle": 0.0, "scale": 1.0, **(placement or {})}
+    with mp.workdps(30):
+        p = {k: mp.mpf(v) for k, v in design.items()}
+
+        def solve(theta, start):
+            return list(mp.findroot(lambda *q: _closure(theta, q, p), start))
+
+        q = solve(mp.mpf(thetas[0]), [mp.mpf(guess[n]) for n in UNKNOWNS])
+        previous, rows = mp.mpf(thetas[0]), []
+        for theta in map(mp.mpf, thetas):
+            for k in range(1, substeps + 1):
+                q = solve(previous + (theta - previous) * k / substeps, q)
+            previous = theta
+            point = p["a"] * mp.expj(theta) + p["e"] * mp.expj(q[0] + p["alpha"])
+            placed = (mp.mpc(where["x0"], where["y0"])
+                      + mp.mpf(where["scale"]) * mp.expj(mp.mpf(where["angle"])) * point)
+            rows.append((float(placed.real), float(placed.imag)))
+    return np.array(rows)
+
+
+def _size(targets):
+    return float(np.hypot(*(targets.max(axis=0) - targets.min(axis=0))))
+
+
+def _check_recovered(found, targets, free):
+    assert found.assembled, found.why
+    assert found.error < 1e-8
+    assert found.branches == {} and set(found.assembly) == set(UNKNOWNS)
+    reached = coupler_points(found.design, found.inputs, found.assembly, found.placement)
+    assert np.max(np.hypot(*(reached - targets).T)) < 1e-8 * _size(targets)
+
+
+@pytest.mark.slow
+def test_timed_recovery_of_the_stephenson3_coupler_curve():
+    inputs = np.linspace(0.3, 1.5, 7)
+    targets = coupler_points(TRUTH, inputs, ASSEMBLY)
+    free = {"b": (2.5, 3.7), "e": (3.3, 4.5), "g": (3.5, 4.7)}
+    values = {k: v for k, v in TRUTH.items() if k not in free}
+    found = synthesize_path(stephenson3(), "E", targets, free, values=values, frame=(), timed=inputs, starts=8,
+                            seed=1)
+    _check_recovered(found, targets, free)
+
+
+@pytest.mark.slow
+def test_timed_recovery_with_a_free_placement():
+    inputs = np.linspace(-0.4, 1.2, 8)
+    placement = {"x0": 1.5, "y0": -0.7, "angle": 0.4}
+    targets = coupler_points(TRUTH, inputs, ASSEMBLY, placement)
+    free = {"b": (2.6, 3.6), "g": (3.6, 4.6), "alpha": (0.6, 1.2)}
+    values = {k: v for k, v in TRUTH.items() if k not in free}
+    found = synthesize_path(stephenson3(), "E", targets, free, values=values, frame=("x0", "y0", "angle"),
+                            timed=inputs, starts=12, seed=2)
+    _check_recovered(found, targets, free)
+
+
+@pytest.mark.slow
+def test_untimed_recovery_of_the_stephenson3_coupler_curve():
+    inputs = np.linspace(0.3, 1.5, 7)
+    targets = coupler_points(TRUTH, inputs, ASSEMBLY)
+    free = {"b": (2.5, 3.7), "e": (3.3, 4.5), "g": (3.5, 4.7)}
+    values = {k: v for k, v in TRUTH.items() if k not in free}
+    found = synthesize_path(stephenson3(), "E", targets, free, values=values, frame=(), starts=8, seed=1)
+    _check_recovered(found, targets, free)
+    steps = np.diff(found.inputs)
+    assert np.all(steps > 0) or np.all(steps < 0)  # the targets in order, the input moving one way
+
+
+def test_the_users_design_and_assembly_start_the_search():
+    """Given the true design and its assembly, the first start is already on the targets."""
+    inputs = np.linspace(0.3, 1.5, 5)
+    targets = coupler_points(TRUTH, inputs, ASSEMBLY)
+    found = synthesize_path(stephenson3(), "E", targets, {"b": (2.5, 3.7)}, values=TRUTH, frame=(),
+                            timed=inputs, starts=1, guess=ASSEMBLY)
+    _check_recovered(found, targets, {"b": (2.5, 3.7)})
+    assert found.design["b"] == pytest.approx(3.1, abs=1e-9)
+    assert found.assembly["beta"] == pytest.approx(float(coupler_beta(inputs[0])), abs=1e-9)
+
+
+def coupler_beta(theta):
+    """beta of the ASSEMBLY continued to ``theta`` by the reference (for the reported assembly)."""
+    with mp.workdps(30):
+        p = {k: mp.mpf(v) for k, v in TRUTH.items()}
+        q = list(mp.findroot(lambda *q: _closure(mp.mpf(0), q, p), [mp.mpf(ASSEMBLY[n]) for n in UNKNOWNS]))
+        for k in range(1, 9):
+            t = mp.mpf(theta) * k / 8
+            q = list(mp.findroot(lambda *x: _closure(t, x, p), q))
+        return q[0]
+
+
+@pytest.mark.parametrize("keywords, message", [
+    ({"min_transmission": 0.3}, "not supported for Newton"),
+    ({"full_rotation": True}, "not supported for Newton"),
+    ({"guess": {"beta": 1.0}}, "guess gives the unknowns"),
+    ({"guess": {"beta": 1.0, "mu": 0.2, "phi": 1.4, "eta": math.nan}}, "guess gives the unknowns"),
+])
+def test_bad_input_names_the_problem(keywords, message):
+    targets = [[0.0, 4.0], [0.3, 4.4], [0.4, 4.6]]
+    with pytest.raises(ValueError, match=message):
+        synthesize_path(stephenson3(), "E", targets, {"b": (2.5, 3.7)}, values=TRUTH, frame=(),
+                        timed=[0.0, 0.3, 0.6], **keywords)
+
+
+def rocker_angles(design, thetas, guess, substeps=8):
+    """phi (the rocker DF's angle) at each theta from the same 30-digit continuation as :func:`coupler_points`."""
+    with mp.workdps(30):
+        p = {k: mp.mpf(v) for k, v in design.items()}
+        q = list(mp.findroot(lambda *x: _closure(mp.mpf(thetas[0]), x, p), [mp.mpf(guess[n]) for n in UNKNOWNS]))
+        previous, found = mp.mpf(thetas[0]), []
+        for theta in map(mp.mpf, thetas):
+            for k in range(1, substeps + 1):
+                t = previous + (theta - previous) * k / substeps
+                q = list(mp.findroot(lambda *x: _closure(t, x, p), q))
+            previous = theta
+            found.append(float(q[2]))
+    return np.array(found)
+
+
+@pytest.mark.slow
+def test_function_generation_of_the_stephenson3_rocker():
+    """The rocker angle of another design at six inputs, found again from the catalog's dimensions."""
+    from symlink.synthesis.general_function import synthesize_function
+    truth = {**TRUTH, "b": 3.3, "g": 4.0}
+    inputs = np.linspace(0.0, 1.2, 6)
+    wanted = rocker_angles(truth, inputs, ASSEMBLY)
+    found = synthesize_function(stephenson3(), "phi", inputs, wanted, {"b": (2.5, 3.7), "g": (3.5, 4.7)},
+                                values=TRUTH)
+    assert found.assembled, found.why
+    assert found.branches == {} and set(found.assembly) == set(UNKNOWNS)
+    assert found.structural_error < 1e-10
+    reached = rocker_angles(found.design, inputs, found.assembly)
+    assert np.max(np.abs(np.angle(np.exp(1j * (reached - wanted))))) < 1e-10
+
+
+def coupler_poses(design, thetas, guess, placement):
+    """The coupler's pose (B placed, beta + the placement's angle) at each theta, by the 30-digit continuation."""
+    where = {"x0": 0.0, "y0": 0.0, "angle": 0.0, **placement}
+    with mp.workdps(30):
+        p = {k: mp.mpf(v) for k, v in design.items()}
+        q = list(mp.findroot(lambda *x: _closure(mp.mpf(thetas[0]), x, p), [mp.mpf(guess[n]) for n in UNKNOWNS]))
+        previous, rows = mp.mpf(thetas[0]), []
+        for theta in map(mp.mpf, thetas):
+            for k in range(1, 9):
+                t = previous + (theta - previous) * k / 8
+                q = list(mp.findroot(lambda *x: _closure(t, x, p), q))
+            previous = theta
+            B = mp.mpc(where["x0"], where["y0"]) + mp.expj(where["angle"]) * p["a"] * mp.expj(theta)
+            rows.append((float(B.real), float(B.imag), float(q[0] + where["angle"])))
+    return np.array(rows)
+
+
+@pytest.mark.slow
+def test_timed_motion_generation_of_the_stephenson3_coupler():
+    from symlink.synthesis.general_motion import synthesize_motion
+    truth = {**TRUTH, "b": 3.3, "g": 4.0}
+    inputs = np.linspace(0.0, 1.2, 5)
+    placement = {"x0": 0.5, "y0": 0.2, "angle": 0.3}
+    poses = coupler_poses(truth, inputs, ASSEMBLY, placement)
+    found = synthesize_motion(stephenson3(), "B", "beta", poses, {"b": (2.5, 3.7), "g": (3.5, 4.7)}, values=TRUTH,
+                              timed=inputs)
+    assert found.assembled and found.error < 1e-10, found.why
+    assert found.branches == {} and set(found.assembly) == set(UNKNOWNS)
+    reached = coupler_poses(found.design, inputs, found.assembly, found.placement)
+    size = float(np.hypot(*np.ptp(poses[:, :2], axis=0)))
+    assert np.max(np.hypot(*(reached[:, :2] - poses[:, :2]).T)) < 1e-8 * size
+    assert np.max(np.abs(np.angle(np.exp(1j * (reached[:, 2] - poses[:, 2]))))) < 1e-10
+
+
+def test_untimed_motion_of_a_newton_linkage_is_refused():
+    from symlink.synthesis.general_motion import synthesize_motion
+    with pytest.raises(ValueError, match="needs the input at each pose"):
+        synthesize_motion(stephenson3(), "B", "beta", [[1.0, 0.0, 1.0], [0.9, 0.4, 0.9]], {"b": (2.5, 3.7)},
+                          values=TRUTH)
+
+
+@pytest.mark.slow
+def test_a_from_joints_linkage_that_needs_newton_recovers_its_lengths():
+    """The Stephenson III drawn by its joints and driven at D (no loop has two unknowns: Newton); two link lengths
+    changed by 7 % are found again from the drawing's, through the coupler point E's path.  The targets come from
+    the numeric solver (the mpmath tests above check that); what this checks is that a ``from_joints`` linkage
+    without a closed form goes through: the known lengths are recovered."""
+    from symlink.joints import from_joints
+    from symlink.synthesis.general import traced_points
+    drawing = {"A": (0.0, 0.0), "D": (4.5, 0.0), "B": (0.3, 0.95), "C": (3.2, 2.0), "E": (1.5, 4.2),
+               "F": (5.3, 2.8), "H": (4.8, 4.6)}
+    links = {"ground": ["A", "D"], "crank": ["A", "B"], "coupler": ["B", "C", "E"], "rocker": ["D", "F", "H"],
+             "cf": ["C", "F"], "eh": ["E", "H"]}
+    drawn = from_joints(links, drawing, driver="D")
+    linkage = drawn.linkage
+    assert not linkage.has_closed_form
+    values = dict(drawn.parameters)
+    truth = {**values, "EH": values["EH"] * 1.07, "CF": values["CF"] * 1.07}
+    inputs = drawn.pose[linkage.inputs[0].name] + np.linspace(0.0, 0.5, 6)
+    targets = traced_points(linkage, "E", truth, inputs, guess=drawn.guess)
+    assert np.all(np.isfinite(targets))
+    free = {name: (values[name] * 0.8, values[name] * 1.3) for name in ("EH", "CF")}
+    found = synthesize_path(linkage, "E", targets, free, values=values, frame=(), timed=inputs, guess=drawn.guess)
+    assert found.assembled and found.error < 1e-10, found.why
+    for name in free:
+        assert found.design[name] == pytest.approx(truth[name], rel=1e-8)

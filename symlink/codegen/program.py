@@ -14,6 +14,8 @@ thing in the same order.
 """
 from __future__ import annotations
 
+import heapq
+
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Callable
 
@@ -122,20 +124,37 @@ def straight_line(program: Program) -> StraightLine:
 
 
 def _dependency_order(nodes: list[tuple[sp.Symbol, sp.Expr]]) -> tuple[tuple[sp.Symbol, sp.Expr], ...]:
-    """Order assignments so that each one's symbols are defined before it (stable)."""
-    defined_by = {s for s, _ in nodes}
-    done: set[sp.Symbol] = set()
+    """Order assignments so that each one's symbols are defined before it (stable: of the assignments whose
+    symbols are all defined, the first in ``nodes`` comes next).
+
+    Each assignment's free symbols are found once and the ready ones kept in a heap by position, so the
+    order costs n log n, not the n^2 of scanning from the start for each (a chain of 16 four-bars has
+    thousands of assignments).
+
+    >>> x, y, z = sp.symbols("x y z")
+    >>> _dependency_order([(z, x + y), (y, 2 * x), (x, sp.Integer(1))])
+    ((x, 1), (y, 2*x), (z, x + y))
+    """
+    position = {symbol: index for index, (symbol, _) in enumerate(nodes)}
+    waiting_for = [0] * len(nodes)
+    needed_by: dict[int, list[int]] = {}
+    for index, (_, expr) in enumerate(nodes):
+        for symbol in expr.free_symbols:
+            if symbol in position:
+                waiting_for[index] += 1
+                needed_by.setdefault(position[symbol], []).append(index)
+    ready = [index for index, count in enumerate(waiting_for) if count == 0]
+    heapq.heapify(ready)
     ordered = []
-    pending = list(nodes)
-    while pending:
-        for index, (symbol, expr) in enumerate(pending):
-            if (expr.free_symbols & defined_by) <= done:
-                ordered.append((symbol, expr))
-                done.add(symbol)
-                del pending[index]
-                break
-        else:
-            raise ValueError("circular definitions in generated code")
+    while ready:
+        index = heapq.heappop(ready)
+        ordered.append(nodes[index])
+        for dependent in needed_by.get(index, ()):
+            waiting_for[dependent] -= 1
+            if waiting_for[dependent] == 0:
+                heapq.heappush(ready, dependent)
+    if len(ordered) != len(nodes):
+        raise ValueError("circular definitions in generated code")
     return tuple(ordered)
 
 

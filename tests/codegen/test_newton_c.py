@@ -12,6 +12,7 @@ import re
 import mpmath as mp
 import numpy as np
 import pytest
+from mp_closures import stephenson3_closure
 
 from symlink import compiled_library
 from symlink.catalog import fourbar, stephenson3
@@ -33,13 +34,8 @@ THETADOT, THETADDOT = 3.0, 1.5
 
 
 def _closure(theta, q, p):
-    beta, mu, phi, eta = q
-    return [p["a"] * mp.cos(theta) + p["b"] * mp.cos(beta) + p["c"] * mp.cos(mu) - p["d"] - p["f"] * mp.cos(phi),
-            p["a"] * mp.sin(theta) + p["b"] * mp.sin(beta) + p["c"] * mp.sin(mu) - p["f"] * mp.sin(phi),
-            p["a"] * mp.cos(theta) + p["e"] * mp.cos(beta + p["alpha"]) + p["g"] * mp.cos(eta) - p["d"]
-            - p["h"] * mp.cos(phi + p["delta"]),
-            p["a"] * mp.sin(theta) + p["e"] * mp.sin(beta + p["alpha"]) + p["g"] * mp.sin(eta)
-            - p["h"] * mp.sin(phi + p["delta"])]
+    """Stephenson III's closure at one crank angle (the hand-typed reference of tests/mp_closures.py)."""
+    return stephenson3_closure((theta,), q, p)
 
 
 def _jacobian(q, p):

@@ -221,6 +221,10 @@ def link_parts(linkage: Linkage, values: Mapping[str, float], pin_diameter: floa
             holes = dict(holes)
             corners["block_back"] = (x - bar, y)
         dimensions = {a + b: math.dist(holes[a], holes[b]) for a, b in itertools.combinations(holes, 2)}
+        for (a, b), apart in zip(itertools.combinations(holes, 2), dimensions.values()):
+            if apart < pin:
+                raise ValueError(f"the holes {a} and {b} of {body.name} are {apart:g} apart, less than the pin "
+                                 f"diameter {pin:g}: they would run into each other (take smaller pins)")
         placement = (float(origin.real), float(origin.imag), float(numpy.angle(1 / turn)))
         parts.append(Part(body.name, holes, corners, slots, pin, bar / 2, dimensions, placement))
     return parts

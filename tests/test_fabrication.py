@@ -154,6 +154,10 @@ def test_the_svg_is_written_atomically_and_bad_sizes_are_refused(tmp_path):
         link_parts(fourbar(), FOURBAR, pin_diameter=4, width=3)
     with pytest.raises(ValueError, match="cannot be assembled"):
         link_parts(fourbar(), {"a": 1, "b": 1, "c": 1, "d": 10}, pin_diameter=0.1)
+    # holes that run into each other: the crank's two pins are a = 20 apart, so pins of 21 cannot both be drilled
+    with pytest.raises(ValueError, match=r"holes A and B of crank are 20 apart, less than the pin diameter 21"):
+        link_parts(fourbar(), {"a": 20, "b": 66, "c": 56, "d": 80}, pin_diameter=21)
+    assert len(link_parts(fourbar(), {"a": 20, "b": 66, "c": 56, "d": 80}, pin_diameter=19.9)) == 4
 
 
 def test_dxf_without_ezdxf_names_the_extra(tmp_path, monkeypatch):

@@ -102,6 +102,8 @@ _PROBE = "#include <math.h>\ndouble symlink_probe(double x) { return sqrt(x); }\
 LIBRARY_LIMIT = 256 << 20
 _loaded: dict[str, ctypes.CDLL] = {}
 _private_folder: list[Path] = []
+#: The folder a background build writes into: the one of the moment it was asked (set in its thread only).
+_build_folder = threading.local()
 
 
 class FallbackWarning(RuntimeWarning):
@@ -133,7 +135,13 @@ def cache_directory() -> Path:
 
     >>> cache_directory().name
     'compiled'
+
+    A background build uses the folder of the moment it was asked, even where
+    ``SYMLINK_CACHE`` changed since (:func:`build_in_background`).
     """
+    asked = getattr(_build_folder, "path", None)
+    if asked is not None:
+        return asked
     root = cache.trusted_directory()
     folder = None if root is None else cache.trusted_directory(root / "compiled")
     if folder is not None and os.access(folder, os.W_OK):
@@ -866,14 +874,23 @@ class Build:
         self.error: BaseException | None = None
         self._library: ctypes.CDLL | None = None
         self._finished = threading.Event()
+        try:
+            self.folder: Path | None = cache_directory()  # where it was asked: the cache may change before it runs
+        except OSError as error:
+            self.folder, self.error = None, error
 
     def run(self) -> None:
+        if self.folder is None:
+            self._finished.set()
+            return
+        _build_folder.path = self.folder
         try:
             self._library = compile_shared(self.facts["source"])
             call_extension()  # built here too, so that the thread adopting the entry finds it in the cache
         except (CompilerUnavailable, CompileError, OSError, subprocess.SubprocessError) as error:
             self.error = error
         finally:
+            _build_folder.path = None
             self._finished.set()
 
     def done(self) -> bool:

@@ -2,12 +2,18 @@
 import pytest
 
 from symlink.cache import clear_memory
+from symlink.compiled_library import wait_for_builds
 
 
 @pytest.fixture
 def empty_cache(tmp_path, monkeypatch):
-    """An empty cache folder and an empty memory cache: a first run; yields the folder."""
+    """An empty cache folder and an empty memory cache: a first run; yields the folder.
+
+    Background builds of earlier tests finish first, and this test's before the next: none runs across two tests.
+    """
+    wait_for_builds()
     monkeypatch.setenv("SYMLINK_CACHE", str(tmp_path / "cache"))
     clear_memory()
     yield tmp_path / "cache"
+    wait_for_builds()
     clear_memory()

@@ -120,3 +120,14 @@ def test_without_a_compiler_auto_is_numpy_quietly_and_compiled_warns_once(fresh,
     assert [w.category for w in caught] == [FallbackWarning]
     result = quiet(theta=0.0, a=20.0, b=66.0, c=56.0, d=80.0, branch=1.0)
     assert round(float(numpy.degrees(result["rocker"])), 2) == 110.74
+
+
+def test_a_background_build_writes_where_it_was_asked_even_after_the_cache_moved(compiler, tmp_path, monkeypatch):
+    # a build asked under one cache and run after SYMLINK_CACHE changed (a test's fixture, a user's script) used to
+    # land in the new folder: it keeps the folder it was asked in
+    facts = {"source": f"double symlink_moved(double x) {{ return x + {len(str(tmp_path))}.25; }}\n"}
+    build = compiled.build_in_background(facts)
+    monkeypatch.setenv("SYMLINK_CACHE", str(tmp_path / "elsewhere"))
+    assert build.wait(timeout=600) and build.error is None
+    assert list((compiler / "compiled").glob("*.so"))
+    assert not (tmp_path / "elsewhere").exists()

@@ -403,7 +403,7 @@ def table(runs: list[Run]) -> str:
         met = median <= published.best or median < floor
         lines.append(f"| {problem.key}: {problem.title} | {len(mine)} | {_value(values[0], floor)} | "
                      f"{_value(median, floor)} | {_value(values[-1], floor)} | "
-                     f"{statistics.median(r.seconds for r in mine):.2f} | {published.best:.7g} ({published.method}, "
+                     f"{statistics.median(r.seconds for r in mine):.2f} | {published.best:.8g} ({published.method}, "
                      f"{published.runs}; {published.median:.3g}) | {published.file} | {'yes' if met else 'no'} |")
     for problem in PROBLEMS:
         mine = [r.objective for r in runs if r.problem == problem.key]

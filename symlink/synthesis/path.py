@@ -34,7 +34,12 @@ Constraints are enforced, not only penalised.  A trial design that breaks one (c
 assembled at a point, passes a toggle, breaks the Grashof class asked for, the link-ratio
 bound or the minimum transmission angle) gets a residual far above any feasible one (with
 timing) or is refused as a trial step (without), so the solvers never accept it, and every
-start is feasible.  Each design is then verified afresh with symlink's generated four-bar
+start is feasible.  The walls that are linear in the dimensions (``bounds``, and a Grashof
+class with its shortest link named: ``s + l <= p + q``) are slid along instead; with timing, a
+design that ends on one is refined on those walls exactly by an active set
+(:func:`_active_set_levenberg_marquardt`), which lets go of a wall the cost falls away from, so
+an optimum on a corner of walls (a change-point linkage with a link at its bound) is reached,
+not approached.  Each design is then verified afresh with symlink's generated four-bar
 solver, independently of the Jacobian's code: every point is reached on the one branch, and
 between consecutive points the crank moves without leaving the assembly or passing a toggle
 (:func:`check_design`).
@@ -562,7 +567,9 @@ def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: nu
     """One start refined: (design vector, crank angles, evaluations, cost), or None if the start is infeasible.
 
     With timing: Levenberg-Marquardt (``least_squares(method="lm")``; trust-region reflective
-    for fewer than five points) over the nine dimensions.  Without: :func:`_refine_untimed`.
+    for fewer than five points) over the nine dimensions, sliding along the walls (:func:`_slid`);
+    a design that ends on a wall is refined again on the walls (:func:`_linear_walls`) by
+    :func:`_active_set_levenberg_marquardt`, kept if closer.  Without: :func:`_refine_untimed`.
     No bounds are needed for the lengths: a length at or below zero breaks a constraint and is
     never accepted.  ``free_phase`` (with timing): a common offset added to the crank angles is
     a tenth unknown (its Jacobian column is the point's derivative by its crank angle).

@@ -216,8 +216,9 @@ def test_the_published_case4_best_breaks_grashof_and_the_feasible_least_value_is
         return [50.0 - gap, r2, r2 + gap, 50.0, *z[2:]]
 
     start = np.array([HCDJ_CASE4[1], 50 - HCDJ_CASE4[0], *HCDJ_CASE4[4:]])
-    fit = least_squares(lambda z: case4_misses_by_hand(design(z)), start, bounds=([0.1, 0.0] + [-50] * 4 + [0.0], [25, 25] + [50] * 4 + [7.0]),
-                        xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=20000)
+    box = ([0.1, 0.0] + [-50] * 4 + [0.0], [25, 25] + [50] * 4 + [7.0])
+    fit = least_squares(lambda z: case4_misses_by_hand(design(z)), start, bounds=box, xtol=1e-15, ftol=1e-15,
+                        gtol=1e-15, max_nfev=20000)
     least = case4_objective_by_hand(design(fit.x))
     assert grashof_excess(design(fit.x)) == pytest.approx(0.0, abs=1e-12) and 0 < fit.x[1] < 1e-3
     assert least == pytest.approx(problem.feasible_best, rel=1e-9)

@@ -70,7 +70,7 @@ from ..loops import Loop
 from ..closure import is_angle
 from ..solver import NumericSolver, Solver
 from ..vectors import Vector, VectorSum
-from .path import _FULL_TURN, _accelerated_levenberg_marquardt, _active_set_levenberg_marquardt, _active_walls
+from .path import _FULL_TURN, _accelerated_levenberg_marquardt
 
 __all__ = ["PathSynthesis", "synthesize_path", "traced_points", "find_assembly", "path_residuals", "FRAME_NAMES"]
 
@@ -815,23 +815,7 @@ def _refine(problem: _Problem, x0: numpy.ndarray, branches: Mapping[str, int], i
         if result is None:
             return None
         x, cost, used = result
-        x = problem.projected(x)[0]
-        if not problem.newton:
-            # A parameter the refinement left at a bound has no column there and never comes back: refined again
-            # on the bounds by an active set, which lets go of a bound the cost falls away from.
-            lower, upper = problem.limits[:, 0], problem.limits[:, 1]
-            walls = numpy.zeros((0, len(x))), numpy.zeros(0)
-            if _active_walls(x, lower, upper, *walls):
-                def exact(x: numpy.ndarray):
-                    found = problem.evaluate(x, inputs, branches)
-                    return None if found is None else (found[0], found[1][:, :width])
-
-                walled = _active_set_levenberg_marquardt(exact, x, lower, upper, *walls, evaluations, tolerance)
-                if walled is not None:
-                    used += walled[2]
-                    if walled[1] < cost:
-                        x, cost = walled[0], walled[1]
-        return x, inputs, cost, used
+        return problem.projected(x)[0], inputs, cost, used
     direction = 1.0 if inputs[-1] >= inputs[0] else -1.0
 
     def angles_of(y: numpy.ndarray) -> numpy.ndarray:

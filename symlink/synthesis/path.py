@@ -34,7 +34,12 @@ Constraints are enforced, not only penalised.  A trial design that breaks one (c
 assembled at a point, passes a toggle, breaks the Grashof class asked for, the link-ratio
 bound or the minimum transmission angle) gets a residual far above any feasible one (with
 timing) or is refused as a trial step (without), so the solvers never accept it, and every
-start is feasible.  Each design is then verified afresh with symlink's generated four-bar
+start is feasible.  The walls that are linear in the dimensions (``bounds``, and a Grashof
+class with its shortest link named: ``s + l <= p + q``) are slid along instead; with timing, a
+design that ends on one is refined on those walls exactly by an active set
+(:func:`_active_set_levenberg_marquardt`), which lets go of a wall the cost falls away from, so
+an optimum on a corner of walls (a change-point linkage with a link at its bound) is reached,
+not approached.  Each design is then verified afresh with symlink's generated four-bar
 solver, independently of the Jacobian's code: every point is reached on the one branch, and
 between consecutive points the crank moves without leaving the assembly or passing a toggle
 (:func:`check_design`).
@@ -93,7 +98,11 @@ _POLISHED = 2            # designs of a call (in all) that get a long second ref
 _POLISH_BELOW = 1e-3     # ... if their error is below this
 _POLISH_EVALUATIONS = 6000
 _FULL_TURN = (2 * math.pi) * (1 - 1e-12)  # untimed: the most the crank turns from the first point to the last
-_GRASHOF_MARGIN = 1e-9    # a timed trial past the crank-rocker boundary is moved this far (relative) inside
+_GRASHOF_MARGIN = 1e-11   # a timed trial past a Grashof boundary is moved this far (relative to the links' sum) inside
+_ACTIVE = 1e-9           # a wall is active where its slack is below this, relative to the size of its terms
+_RELEASES = 8            # walls a refinement on the walls may let go (the cost falls inward) before it stops
+#: The Grashof classes that are convex sets of lengths (the shortest link named), as the index of that link.
+_SHORTEST_LINK = {"crank-rocker": 0, "double-rocker": 1, "rocker-crank": 2, "double-crank": 3}
 _PHASE_STARTS = 24       # timed with a free phase: offsets over a turn at which each atlas four-bar is fitted
 
 
@@ -558,7 +567,9 @@ def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: nu
     """One start refined: (design vector, crank angles, evaluations, cost), or None if the start is infeasible.
 
     With timing: Levenberg-Marquardt (``least_squares(method="lm")``; trust-region reflective
-    for fewer than five points) over the nine dimensions.  Without: :func:`_refine_untimed`.
+    for fewer than five points) over the nine dimensions, sliding along the walls (:func:`_slid`);
+    a design that ends on a wall is refined again on the walls (:func:`_linear_walls`) by
+    :func:`_active_set_levenberg_marquardt`, kept if closer.  Without: :func:`_refine_untimed`.
     No bounds are needed for the lengths: a length at or below zero breaks a constraint and is
     never accepted.  ``free_phase`` (with timing): a common offset added to the crank angles is
     a tenth unknown (its Jacobian column is the point's derivative by its crank angle).
@@ -604,7 +615,183 @@ def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: nu
     method = "lm" if 2 * count >= len(x0) else "trf"
     fit = least_squares(residuals, x0, jac=jacobian, method=method, x_scale="jac", xtol=tolerance, ftol=tolerance,
                         gtol=tolerance, max_nfev=evaluations)
-    return _slid(fit.x[:9], constraints)[0], angles_of(fit.x), fit.nfev + (fit.njev or 0), fit.cost
+    x, used, cost = fit.x.copy(), fit.nfev + (fit.njev or 0), float(fit.cost)
+    x[:9] = _slid(fit.x[:9], constraints)[0]
+
+    def exact(x: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray] | None:
+        """Residuals and Jacobian of a design as it is (no sliding), None where it is infeasible."""
+        if not constraints.allow_design(x[:9]):
+            return None
+        with numpy.errstate(all="ignore"):
+            points, jac, ok = _evaluate(x[:9], angles_of(x), branch)
+        if not numpy.all(ok):
+            return None
+        columns = jac[:, :, 1:].reshape(2 * count, 9)
+        if free_phase:
+            columns = numpy.concatenate([columns, jac[:, :, 0].reshape(2 * count, 1)], axis=1)
+        return ((points - targets) / size).ravel(), columns / size
+
+    # Sliding moves a trial onto the walls it crosses, but the solver cannot see a wall's corner (a length clipped
+    # at its bound has no column, so it never comes back) nor follow a narrow valley along a wall: where the design
+    # ends on a wall, it is refined on the walls exactly (:func:`_active_set_levenberg_marquardt`).
+    lower, upper, normals, offsets = _linear_walls(constraints, x)
+    if _active_walls(x, lower, upper, normals, offsets):
+        walled = _active_set_levenberg_marquardt(exact, x, lower, upper, normals, offsets, evaluations, tolerance)
+        if walled is not None:
+            used += walled[2]
+            if walled[1] < cost:
+                x, cost = walled[0], walled[1]
+    return x[:9], angles_of(x), used, cost
+
+
+def _linear_walls(constraints: _Constraints, x: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray, numpy.ndarray,
+                                                                          numpy.ndarray]:
+    """The constraints on the unknowns ``x`` (a design vector, then any angles) that are linear: their walls.
+
+    ``(lower, upper, normals, offsets)``: the bounds (``bounds=``; infinite where none) and the
+    inequalities ``normals @ x <= offsets``.  A Grashof class with its shortest link named
+    (``crank-rocker``: the crank) is the three inequalities ``s + l <= p + q``, one for each
+    other link as ``l`` (together they make ``s`` the shortest and the four-bar Grashof), each
+    kept :data:`_GRASHOF_MARGIN` of the links' sum inside, so that the class is strict;
+    ``crank-turns`` holds to the class of the design ``x`` (crank-rocker or double-crank: a union
+    of two such sets, whose walls are those of the one ``x`` lies in).
+    """
+    count = len(x)
+    lower, upper = numpy.full(count, -math.inf), numpy.full(count, math.inf)
+    for k, low, high in constraints.box:
+        lower[k], upper[k] = low, high
+    name = constraints.grashof
+    if name == "crank-turns":
+        name = grashof(*(float(v) for v in x[3:7])).name
+    normals = []
+    if name in _SHORTEST_LINK:
+        shortest = _SHORTEST_LINK[name]
+        for longest in range(4):
+            if longest != shortest:
+                row = numpy.zeros(count)
+                row[3:7] = _GRASHOF_MARGIN - 1.0
+                row[[3 + shortest, 3 + longest]] = _GRASHOF_MARGIN + 1.0
+                normals.append(row)
+    return lower, upper, numpy.array(normals).reshape(-1, count), numpy.zeros(len(normals))
+
+
+def _wall_rows(lower: numpy.ndarray, upper: numpy.ndarray, normals: numpy.ndarray,
+               offsets: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
+    """All walls as ``rows @ x <= right``: the finite upper bounds, the finite lower bounds, then the inequalities."""
+    unit = numpy.eye(len(lower))
+    high, low = numpy.isfinite(upper), numpy.isfinite(lower)
+    rows = numpy.concatenate([unit[high], -unit[low], normals])
+    return rows, numpy.concatenate([upper[high], -lower[low], offsets])
+
+
+def _active_walls(x: numpy.ndarray, lower: numpy.ndarray, upper: numpy.ndarray, normals: numpy.ndarray,
+                  offsets: numpy.ndarray) -> list[int]:
+    """The walls (indices into :func:`_wall_rows`) ``x`` lies on: slack within :data:`_ACTIVE` of its terms' size."""
+    rows, right = _wall_rows(lower, upper, normals, offsets)
+    slack = right - rows @ x
+    return [int(i) for i in numpy.flatnonzero(slack <= _ACTIVE * (numpy.abs(rows) @ numpy.abs(x) + numpy.abs(right)))]
+
+
+def _null_space(rows: numpy.ndarray, count: int) -> numpy.ndarray:
+    """An orthonormal basis (columns) of the directions along every wall of ``rows`` (all of them if none)."""
+    if len(rows) == 0:
+        return numpy.eye(count)
+    _, singular, turned = numpy.linalg.svd(rows)
+    rank = int(numpy.sum(singular > 1e-12 * singular[0]))
+    return turned[rank:].T
+
+
+def _active_set_levenberg_marquardt(residuals, x0: numpy.ndarray, lower: numpy.ndarray, upper: numpy.ndarray,
+                                    normals: numpy.ndarray, offsets: numpy.ndarray, evaluations: int,
+                                    tolerance: float):
+    """Levenberg-Marquardt held to linear walls by an active set: (x, cost = |r|^2 / 2, evaluations), None if x0 fails.
+
+    The walls are ``lower <= x <= upper`` and ``normals @ x <= offsets``; ``x0`` satisfies them and
+    ``residuals(x)`` gives ``(r, J)``, or None where x is infeasible for another reason (never
+    accepted).  The walls ``x0`` lies on are held: each step is the damped Gauss-Newton step
+    along them (in an orthonormal basis of the directions that keep every held wall), so a
+    design on a wall stays exactly on it, however narrow the valley along it.  A step that
+    would cross another wall is cut short at it, and that wall is held from then on.  When the
+    refinement stops on its walls, the multipliers of the held walls (``J^T r + rows^T mu = 0``,
+    least squares) say which of them holds the design back (``mu >= 0``); one with a negative
+    multiplier (the cost falls inward, away from it) is let go and the refinement goes on, at most
+    :data:`_RELEASES` times.  This is the active-set method for linearly constrained least
+    squares (Nocedal and Wright, *Numerical Optimization*, 2nd ed., ch. 16.5 and 18), with the
+    damping of :func:`_accelerated_levenberg_marquardt` (Marquardt's scaling, Nielsen's update).
+    Stops when the cost's decrease (relative) or the step (relative to x) is below ``tolerance``
+    and no wall is to be let go, or the damping grows hopeless.
+    """
+    rows, right = _wall_rows(lower, upper, normals, offsets)
+    x = numpy.clip(x0, lower, upper)
+    first = residuals(x)
+    if first is None:
+        return None
+    r, J = first
+    cost, used = 0.5 * float(r @ r), 1
+    held = set(_active_walls(x, lower, upper, normals, offsets))
+    basis, scale = None, None
+    damping, growth, released = 1e-3, 2.0, 0
+    while used < evaluations and cost > 0:
+        if basis is None:
+            basis = _null_space(rows[sorted(held)], len(x))
+            scale = None
+        converged = basis.shape[1] == 0
+        if not converged:
+            along = J @ basis
+            gradient, normal = along.T @ r, along.T @ along
+            scale = numpy.maximum(scale if scale is not None else 1e-300, numpy.sum(along * along, axis=0))
+            try:
+                velocity = -numpy.linalg.solve(normal + damping * numpy.diag(scale), gradient)
+            except numpy.linalg.LinAlgError:
+                damping *= 10
+                if damping > 1e16:
+                    break
+                continue
+            step = basis @ velocity
+            toward, room = rows @ step, right - rows @ x
+            cut, blocking = 1.0, None
+            for i in numpy.flatnonzero(toward > 0):
+                if int(i) not in held and max(room[i], 0.0) < cut * toward[i]:
+                    cut, blocking = max(room[i], 0.0) / toward[i], int(i)
+            if blocking is not None and cut <= 0.0:
+                held.add(blocking)  # already on that wall: hold it and take the step along it
+                basis = None
+                continue
+            trial_x = numpy.clip(x + cut * step, lower, upper)
+            trial = residuals(trial_x)
+            used += 1
+            if trial is not None and 0.5 * float(trial[0] @ trial[0]) < cost:
+                new_cost = 0.5 * float(trial[0] @ trial[0])
+                predicted = -cut * float(gradient @ velocity) - 0.5 * cut ** 2 * float(velocity @ (normal @ velocity))
+                gain = (cost - new_cost) / predicted if predicted > 0 else 0.0
+                damping = max(damping * max(1 / 3, 1 - (2 * min(gain, 1.0) - 1) ** 3), 1e-15)
+                growth = 2.0
+                stalled = cost - new_cost <= tolerance * cost
+                small = numpy.max(numpy.abs(trial_x - x) / (numpy.abs(trial_x) + 1e-300)) < tolerance
+                x, (r, J), cost = trial_x, trial, new_cost
+                if blocking is not None:
+                    held.add(blocking)
+                    basis = None
+                    continue
+                converged = stalled or small
+            else:
+                damping *= growth
+                growth *= 2
+                converged = damping > 1e16
+        if not converged:
+            continue
+        if not held or released >= _RELEASES:
+            break
+        order = sorted(held)
+        gradient = J.T @ r
+        multipliers = numpy.linalg.lstsq(rows[order].T, -gradient, rcond=None)[0]
+        pull = multipliers * numpy.linalg.norm(rows[order], axis=1)
+        weakest = int(numpy.argmin(pull))
+        if not pull[weakest] < -1e-6 * numpy.linalg.norm(gradient):
+            break
+        held.discard(order[weakest])  # the cost falls inward from this wall: let it go
+        basis, damping, growth, released = None, 1e-3, 2.0, released + 1
+    return x, cost, used
 
 
 def _slid(design: numpy.ndarray, constraints: _Constraints) -> tuple[numpy.ndarray, numpy.ndarray]:
@@ -612,10 +799,11 @@ def _slid(design: numpy.ndarray, constraints: _Constraints) -> tuple[numpy.ndarr
 
     Bounded dimensions beyond a bound go to the bound (their column zero).  With
     ``grashof_class="crank-rocker"``, a design whose crank is the shortest link but which breaks
-    Grashof's inequality ``a + longest <= the other two`` is projected onto it (just inside, a
-    relative 1e-9, so it stays a crank-rocker): the lengths move along the inequality's normal.
-    The refinement then slides along these walls instead of stopping at the first trial past them
-    (the optimum of a problem can lie on them: a change-point linkage at a length bound).
+    Grashof's inequality ``a + longest <= the other two`` is projected onto it (just inside, by
+    :data:`_GRASHOF_MARGIN` of the links' sum, so it stays a crank-rocker): the lengths move along
+    the inequality's normal.  The refinement then slides along these walls instead of stopping at
+    the first trial past them (the optimum of a problem can lie on them: a change-point linkage at
+    a length bound); where it ends on one, :func:`_refine` refines on the walls exactly.
     """
     moved = design.copy()
     chain = numpy.eye(9)

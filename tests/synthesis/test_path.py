@@ -7,7 +7,8 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from symlink.synthesis.path import (DESIGN_NAMES, _accelerated_levenberg_marquardt, _arc_position, _distinct,
+from symlink.synthesis.path import (DESIGN_NAMES, _Constraints, _accelerated_levenberg_marquardt,
+                                    _active_set_levenberg_marquardt, _arc_position, _distinct, _linear_walls,
                                     check_design, fourbar_design, path_jacobian, synthesize_path)
 
 
@@ -159,6 +160,79 @@ def test_accelerated_levenberg_marquardt_never_accepts_an_infeasible_trial():
     x, cost, _ = _accelerated_levenberg_marquardt(residuals, np.array([-1.2, 1.0]), 500, 1e-15)
     assert x[0] <= 0.5 and 0.125 <= cost < 0.14
     assert _accelerated_levenberg_marquardt(residuals, np.array([0.6, 0.0]), 500, 1e-15) is None
+
+
+def rosenbrock(x):
+    return np.array([10 * (x[1] - x[0] ** 2), 1 - x[0]]), np.array([[-20 * x[0], 10.0], [-1.0, 0.0]])
+
+
+NO_WALLS = np.zeros((0, 2)), np.zeros(0)
+
+
+def test_active_set_levenberg_marquardt_ends_on_the_wall_exactly():
+    # The same valley with the wall x <= 0.5 (a bound): the least cost on the wall is at y = x^2 = 0.25, where
+    # (1 - 0.5)^2 / 2 = 0.125, and it is the constrained minimum, as the cost's slope by x there,
+    # d/dx [50 (y - x^2)^2 + (1 - x)^2 / 2] = -(1 - x) = -0.5, pushes into the wall (all by hand).
+    x, cost, used = _active_set_levenberg_marquardt(rosenbrock, np.array([-1.2, 1.0]), np.array([-np.inf, -np.inf]),
+                                                    np.array([0.5, np.inf]), *NO_WALLS, 500, 1e-15)
+    assert x[0] == 0.5 and x[1] == pytest.approx(0.25, abs=1e-10) and cost == pytest.approx(0.125, rel=1e-12)
+    assert used <= 500
+    # The same wall as an inequality row (x <= 0.5 written 2 x <= 1)
+    x, cost, _ = _active_set_levenberg_marquardt(rosenbrock, np.array([-1.2, 1.0]), np.full(2, -np.inf),
+                                                 np.full(2, np.inf), np.array([[2.0, 0.0]]), np.array([1.0]), 500,
+                                                 1e-15)
+    assert x[0] <= 0.5 and x == pytest.approx([0.5, 0.25], abs=1e-10) and cost == pytest.approx(0.125, rel=1e-12)
+
+
+def distance_to(target):
+    return lambda x: (x - target, np.eye(2))
+
+
+@pytest.mark.parametrize("start, target, expected", [
+    # from the wall x >= 0 to the point (2, -5), inside both walls: the wall is let go, the point reached
+    ((0.0, 0.0), (2.0, -5.0), (2.0, -5.0)),
+    # from the wall x >= 0 to the wall x + y <= 1: the nearest point to (2, 2) on the line x + y = 1 is (0.5, 0.5)
+    ((0.0, 0.3), (2.0, 2.0), (0.5, 0.5)),
+])
+def test_active_set_levenberg_marquardt_lets_go_of_a_wall_the_cost_falls_away_from(start, target, expected):
+    x, cost, _ = _active_set_levenberg_marquardt(distance_to(np.array(target)), np.array(start),
+                                                 np.array([0.0, -np.inf]), np.full(2, np.inf),
+                                                 np.array([[1.0, 1.0]]), np.array([1.0]), 200, 1e-15)
+    assert x == pytest.approx(expected, abs=1e-9)  # (the cost, 2.25 in the second, stalls to rounding first)
+    assert x[0] >= 0 and x[0] + x[1] <= 1 + 1e-15
+
+
+def test_active_set_levenberg_marquardt_never_accepts_an_infeasible_trial():
+    def residuals(x):
+        return None if x[1] > 0.2 else rosenbrock(x)  # a wall it cannot see, refused like a toggle
+
+    x, cost, _ = _active_set_levenberg_marquardt(residuals, np.array([-1.2, 0.1]), np.full(2, -np.inf),
+                                                 np.array([0.5, np.inf]), *NO_WALLS, 500, 1e-15)
+    assert x[1] <= 0.2 and x[0] <= 0.5 and cost < rosenbrock(np.array([-1.2, 0.1]))[0] @ rosenbrock(
+        np.array([-1.2, 0.1]))[0] / 2
+    assert _active_set_levenberg_marquardt(residuals, np.array([0.0, 0.5]), np.full(2, -np.inf),
+                                           np.full(2, np.inf), *NO_WALLS, 500, 1e-15) is None
+
+
+@pytest.mark.parametrize("name, shortest", [("crank-rocker", 0), ("double-rocker", 1), ("rocker-crank", 2),
+                                            ("double-crank", 3)])
+def test_grashof_walls_are_the_class_by_the_hand_rule(name, shortest):
+    # s + l < p + q with the named link the shortest (the hand rule), against the rows' normals @ x <= 0
+    rng = np.random.default_rng(shortest)
+    lower, upper, normals, offsets = _linear_walls(_Constraints(name), np.zeros(9))
+    assert normals.shape == (3, 9) and np.all(offsets == 0) and np.all(np.isinf(lower)) and np.all(np.isinf(upper))
+    agree = 0
+    for _ in range(400):
+        lengths = rng.uniform(0.1, 3.0, 4)
+        s, l = lengths.min(), lengths.max()
+        margin = abs(s + l - (lengths.sum() - s - l))
+        if margin < 1e-6 or np.sum(lengths == s) > 1:
+            continue
+        by_hand = s + l < lengths.sum() - s - l and lengths[shortest] == s
+        x = np.concatenate([[0.0, 0.0, 0.0], lengths, [0.0, 0.0]])
+        assert bool(np.all(normals @ x <= offsets)) == by_hand
+        agree += by_hand
+    assert agree > 20  # both outcomes were met
 
 
 def test_arc_positions_of_a_uniform_circle_are_proportional():

@@ -292,8 +292,9 @@ def hand_numpy(theta, a, b, c, d, branch):
     """(beta, phi) by the atan2 formula that symlink derives (the triangle B, C, D), vectorised by hand.
 
     W = B - D = (a cos theta - d, a sin theta), w = |W|; Heron's product
-    H = (b+c+w)(b+c-w)(w+b-c)(w-b+c) = 4 b^2 c^2 sin^2(phi - beta), clamped as symlink clamps it (rounding
-    tolerated in proportion to 8 b c w (a + b + c + w + d), NaN beyond); then
+    H = (b+c+w)(b+c-w)(w+b-c)(w-b+c) = ((b+c)^2 - w^2)(w^2 - (b-c)^2) = 4 b^2 c^2 sin^2(phi - beta), from w^2
+    alone (no square root for w), clamped as symlink clamps it (rounding tolerated in proportion to
+    8 b c v (a + b + c + v + d), v = |Wx| + |Wy| standing in for w, NaN beyond); then
     ``beta = atan2(-Wy L - Wx sigma sqrt(H), -Wx L + Wy sigma sqrt(H))`` with L = b^2 - c^2 + w^2 and
     ``phi = atan2(Wy M - Wx sigma sqrt(H), Wx M + Wy sigma sqrt(H))`` with M = w^2 - b^2 + c^2.
     All arguments broadcast (arrays of lengths and branches: many linkages at once).
@@ -309,13 +310,13 @@ def hand_numpy(theta, a, b, c, d, branch):
 def _atan2_arguments(cos_t, sin_t, a, b, c, d, branch):
     """The atan2 arguments of beta and phi (y, x each) and the branch-signed root (see :func:`hand_numpy`)."""
     wx, wy = a * cos_t - d, a * sin_t
-    w = numpy.sqrt(wx * wx + wy * wy)
+    w_squared = wx * wx + wy * wy  # w only squared, as in the generated code: no square root for it
     s, t = b + c, b - c
-    heron = (s + w) * (s - w) * (t + w) * (w - t)
+    heron = (s * s - w_squared) * (w_squared - t * t)
+    bound = numpy.abs(wx) + numpy.abs(wy)  # from w to sqrt(2) w: the clamp's stand-in for w
     with numpy.errstate(invalid="ignore"):
-        root = numpy.where(heron >= -TOLERANCE * 8 * b * c * w * (s + w + d + a),
+        root = numpy.where(heron >= -TOLERANCE * 8 * b * c * bound * (s + bound + d + a),
                            numpy.sqrt(numpy.maximum(heron, 0.0)), numpy.nan)
-    w_squared = w * w
     along_b, along_c, across = s * t + w_squared, w_squared - s * t, root * branch
     return -wy * along_b - wx * across, -wx * along_b + wy * across, wy * along_c - wx * across, \
         wx * along_c + wy * across, across

@@ -8,17 +8,20 @@ of the benchmark gets them: many linkages in one call):
 * ``hand_fourbar_positions`` (``hand-c-positions`` in the benchmark): the triangle B, C,
   D solved with atan2 and Heron's product, derived on paper from the geometry,
   with the same clamped square root as symlink: rounding tolerated at a toggle
-  in proportion to 8 b c w (a + b + c + w + d), NaN where it cannot close.
+  in proportion to 8 b c v (a + b + c + v + d) with v = |Wx| + |Wy| (at least w,
+  at most sqrt(2) w), NaN where it cannot close.
   Let W = B - D (length w).  C lies at the distance (b^2 - c^2 + w^2)/(2w)
   from B along D - B and sqrt(Heron)/(2w) to its left (branch +1), so
   ``b e^{i beta}`` is parallel to ``-(b^2 - c^2 + w^2) W + branch sqrt(H) n``
   and ``c e^{i phi}`` to ``(w^2 - b^2 + c^2) W + branch sqrt(H) n``, with
   ``n = (Wy, -Wx)`` (W turned clockwise) and
-  ``H = (b+c+w)(b+c-w)(w+b-c)(w-b+c)``.
+  ``H = (b+c+w)(b+c-w)(w+b-c)(w-b+c) = ((b+c)^2 - w^2)(w^2 - (b-c)^2)``: every
+  term needs w only squared, so, as in the generated code, w itself is never
+  computed and a value takes one square root (of H).
 * ``hand_fourbar_everything`` (``hand-c`` in the benchmark): the same, with
   speeds and accelerations by the formulas and shared terms of the generated
   code: cos and sin of beta and phi from their atan2 arguments (``x / r``,
-  ``y / r``), so a value calls cos, sin, two atan2 and four square roots, as
+  ``y / r``), so a value calls cos, sin, two atan2 and three square roots, as
   the generated code does (a test counts them in both sources).
 * ``vector_math_limit``: not a solver, the floor under every solver of the
   four-bar's positions: per value cos and sin of the crank, a square root,
@@ -61,10 +64,11 @@ static inline __attribute__((always_inline)) void hand_triangle(double cos_t, do
     double c, double d, double branch, double *beta_y, double *beta_x, double *phi_y, double *phi_x, double *across)
 {
     const double wx = a * cos_t - d, wy = a * sin_t;   /* W = B - D */
-    const double w = sqrt(wx * wx + wy * wy);
-    const double s = b + c, t = b - c, w_squared = w * w;
-    const double heron = (s + w) * (s - w) * (t + w) * (w - t);
-    const double scale = 8 * b * c * w * (s + w + d + a);   /* a flat triangle's rounding */
+    const double w_squared = wx * wx + wy * wy;   /* w only squared: no square root for it */
+    const double s = b + c, t = b - c;
+    const double heron = (s * s - w_squared) * (w_squared - t * t);
+    const double bound = fabs(wx) + fabs(wy);   /* from w to sqrt(2) w */
+    const double scale = 8 * b * c * bound * (s + bound + d + a);   /* a flat triangle's rounding */
     const double root = heron >= -TOLERANCE * scale ? sqrt(heron > 0.0 ? heron : 0.0) : NAN;
     const double along_b = s * t + w_squared, along_c = w_squared - s * t;
     *across = root * branch;

@@ -6,7 +6,7 @@ atan2 and Heron's product under symlink's clamped square root, and for the rates
 cosine and sine of each solved angle taken from its atan2 arguments (``x / r`` and
 ``y / r``, one square root each), never from extra ``sin``/``cos`` calls.  So a value
 costs the same transcendental calls as in the generated code: ``cos`` and ``sin`` of the
-crank, two ``atan2`` (and square roots: two for positions, four for full kinematics);
+crank, two ``atan2`` (and square roots: one for positions, three for full kinematics);
 :func:`tests.test_bench` counts them in the source text of both.  The one difference is a
 numeric device of the generated code, its loop unit (lengths scaled by a power of two,
 so that no product overflows): a hand-written loop has none.
@@ -27,15 +27,14 @@ _KERNELS: dict = {}
 def solve_positions(cos_t, sin_t, a, b, c, d, branch, tolerance):
     """The atan2 arguments of beta and phi (y, x each) and the branch-signed root: symlink's atan2 form."""
     wx, wy = a * cos_t - d, a * sin_t
-    w2 = wx * wx + wy * wy
-    w = math.sqrt(w2)
+    w_squared = wx * wx + wy * wy  # w only squared, as in the generated code: no square root for it
     s, t = b + c, b - c
-    heron = (s + w) * (s - w) * (t + w) * (w - t)
-    if heron >= -tolerance * 8 * b * c * w * (s + w + d + a):
+    heron = (s * s - w_squared) * (w_squared - t * t)
+    bound = abs(wx) + abs(wy)  # from w to sqrt(2) w: the clamp's stand-in for w
+    if heron >= -tolerance * 8 * b * c * bound * (s + bound + d + a):
         root = math.sqrt(heron if heron > 0.0 else 0.0)
     else:
         root = math.nan
-    w_squared = w * w  # of the root, as the generated code squares it
     along_b, along_c = s * t + w_squared, w_squared - s * t
     across = root * branch
     beta_y, beta_x = -wy * along_b - wx * across, -wx * along_b + wy * across

@@ -10,7 +10,7 @@ thing in the same order.
 >>> from symlink.catalog import fourbar
 >>> code = straight_line(fourbar().program(["rocker"]))
 >>> [s.name for s in code.arguments], list(code.outputs), [r.name for r in code.roots]
-(['theta', 'a', 'b', 'c', 'd', 'branch'], ['rocker'], ['w_1', 'Delta_1'])
+(['theta', 'a', 'b', 'c', 'd', 'branch'], ['rocker'], ['wsq_1', 'Delta_1'])
 """
 from __future__ import annotations
 
@@ -24,7 +24,7 @@ from sympy.core.relational import Relational
 from sympy.logic.boolalg import BooleanAtom, BooleanFunction
 
 from ..linkage import depended_on
-from ..position import ClampedSqrt
+from ..position import ClampedSqrt, NonzeroSquare
 
 if TYPE_CHECKING:
     from ..linkage import Program
@@ -42,7 +42,8 @@ class StraightLine:
     ``assignments`` define temporaries and the program's own symbols in an
     order where every right-hand side uses only arguments and earlier names;
     ``outputs`` map output names to expressions of those; ``roots`` are the
-    square roots whose finiteness says that the linkage is assembled;
+    guarded values (clamped square roots, squared lengths that must not
+    vanish) whose finiteness says that the linkage is assembled;
     ``defaults`` are the program's argument defaults.
     """
 
@@ -119,7 +120,7 @@ def straight_line(program: Program) -> StraightLine:
     replacements, reduced = sp.cse(expressions, symbols=temporaries, order="none")
     nodes = list(replacements) + list(zip(names, reduced[:len(names)]))
     outputs = dict(zip(output_names, reduced[len(names):]))
-    roots = tuple(s for s, e in program.assignments if isinstance(e, ClampedSqrt))
+    roots = tuple(s for s, e in program.assignments if isinstance(e, (ClampedSqrt, NonzeroSquare)))
     return StraightLine(program.arguments, _dependency_order(nodes), outputs, roots, dict(program.defaults))
 
 

@@ -303,12 +303,12 @@ def hand_numpy(theta, a, b, c, d, branch):
     >>> round(float(numpy.degrees(phi[0])), 4), round(float(numpy.degrees(beta[0])), 4)
     (110.7424, 52.5127)
     """
-    beta_y, beta_x, phi_y, phi_x, _ = _atan2_arguments(numpy.cos(theta), numpy.sin(theta), a, b, c, d, branch)
+    beta_y, beta_x, phi_y, phi_x, _, _ = _atan2_arguments(numpy.cos(theta), numpy.sin(theta), a, b, c, d, branch)
     return numpy.arctan2(beta_y, beta_x), numpy.arctan2(phi_y, phi_x)
 
 
 def _atan2_arguments(cos_t, sin_t, a, b, c, d, branch):
-    """The atan2 arguments of beta and phi (y, x each) and the branch-signed root (see :func:`hand_numpy`)."""
+    """The atan2 arguments of beta and phi (y, x each), the branch-signed root and w^2 (see :func:`hand_numpy`)."""
     wx, wy = a * cos_t - d, a * sin_t
     w_squared = wx * wx + wy * wy  # w only squared, as in the generated code: no square root for it
     s, t = b + c, b - c
@@ -319,14 +319,14 @@ def _atan2_arguments(cos_t, sin_t, a, b, c, d, branch):
                            numpy.sqrt(numpy.maximum(heron, 0.0)), numpy.nan)
     along_b, along_c, across = s * t + w_squared, w_squared - s * t, root * branch
     return -wy * along_b - wx * across, -wx * along_b + wy * across, wy * along_c - wx * across, \
-        wx * along_c + wy * across, across
+        wx * along_c + wy * across, across, w_squared
 
 
 def hand_numpy_everything(theta, a, b, c, d, branch, speed, accel):
     """The six outputs of full kinematics by the generated code's formulas and shared terms, written in NumPy.
 
-    cos and sin of beta and phi come from their atan2 arguments (``x / r``, ``y / r``), not from
-    further calls of cos and sin; the rates are the loop differentiated (:func:`hand_rates`) with
+    cos and sin of beta and phi come from their atan2 arguments (``x / r``, ``y / r``, with
+    ``r = 2 b w^2`` and ``2 c w^2``), not from further calls of cos and sin; the rates are the loop differentiated (:func:`hand_rates`) with
     ``1 / sin(beta - phi) = 2 b c / (sigma sqrt(H))``.
 
     >>> values = hand_numpy_everything(numpy.array([0.0]), 20.0, 66.0, 56.0, 80.0, 1, 10.5, 2.0)
@@ -334,10 +334,10 @@ def hand_numpy_everything(theta, a, b, c, d, branch, speed, accel):
     [-3.5, -3.5, -19.2237, 36.9151]
     """
     cos_t, sin_t = numpy.cos(theta), numpy.sin(theta)
-    beta_y, beta_x, phi_y, phi_x, across = _atan2_arguments(cos_t, sin_t, a, b, c, d, branch)
+    beta_y, beta_x, phi_y, phi_x, across, w_squared = _atan2_arguments(cos_t, sin_t, a, b, c, d, branch)
     with numpy.errstate(invalid="ignore", divide="ignore"):
-        beta_over, phi_over = 1.0 / numpy.sqrt(beta_x * beta_x + beta_y * beta_y), \
-            1.0 / numpy.sqrt(phi_x * phi_x + phi_y * phi_y)
+        # the atan2 arguments' lengths, 2 b w^2 and 2 c w^2 (Heron), as the generated code knows them
+        beta_over, phi_over = 1.0 / (2.0 * b * w_squared), 1.0 / (2.0 * c * w_squared)
         sin_b, cos_b, sin_p, cos_p = beta_y * beta_over, beta_x * beta_over, phi_y * phi_over, phi_x * phi_over
         scale = 2.0 * b * c / across  # 1 / sin(beta - phi)
         over_b, over_c = scale / b, scale / c

@@ -21,8 +21,9 @@ of the benchmark gets them: many linkages in one call):
 * ``hand_fourbar_everything`` (``hand-c`` in the benchmark): the same, with
   speeds and accelerations by the formulas and shared terms of the generated
   code: cos and sin of beta and phi from their atan2 arguments (``x / r``,
-  ``y / r``), so a value calls cos, sin, two atan2 and three square roots, as
-  the generated code does (a test counts them in both sources).
+  ``y / r``), whose lengths r are known without a square root (``2 b w^2`` and
+  ``2 c w^2``, by Heron's formula), so a value calls cos, sin, two atan2 and one
+  square root, as the generated code does (a test counts them in both sources).
 * ``vector_math_limit``: not a solver, the floor under every solver of the
   four-bar's positions: per value cos and sin of the crank, a square root,
   two atan2 and two stores (the benchmark prints its time as the physical limit).
@@ -61,7 +62,8 @@ HAND_C_SOURCE = r"""
 /* The atan2 arguments of beta and phi and the branch-signed root, from cos and sin of the crank: symlink's
    atan2 form with its shared terms (W = B - D, Heron's product under the clamped square root). */
 static inline __attribute__((always_inline)) void hand_triangle(double cos_t, double sin_t, double a, double b,
-    double c, double d, double branch, double *beta_y, double *beta_x, double *phi_y, double *phi_x, double *across)
+    double c, double d, double branch, double *beta_y, double *beta_x, double *phi_y, double *phi_x, double *across,
+    double *w_squared_out)
 {
     const double wx = a * cos_t - d, wy = a * sin_t;   /* W = B - D */
     const double w_squared = wx * wx + wy * wy;   /* w only squared: no square root for it */
@@ -76,6 +78,7 @@ static inline __attribute__((always_inline)) void hand_triangle(double cos_t, do
     *beta_x = -wx * along_b + wy * *across;
     *phi_y = wy * along_c - wx * *across;
     *phi_x = wx * along_c + wy * *across;
+    *w_squared_out = w_squared;
 }
 
 SYMLINK_LOOP void hand_fourbar_positions(size_t n, const double *restrict theta, const double *restrict a,
@@ -83,9 +86,9 @@ SYMLINK_LOOP void hand_fourbar_positions(size_t n, const double *restrict theta,
     double *restrict beta, double *restrict phi, unsigned char *restrict assembled)
 {
     for (size_t i = 0; i < n; ++i) {
-        double beta_y, beta_x, phi_y, phi_x, across;
+        double beta_y, beta_x, phi_y, phi_x, across, w_squared;
         hand_triangle(cos(theta[i]), sin(theta[i]), a[i], b[i], c[i], d[i], branch[i], &beta_y, &beta_x, &phi_y,
-                      &phi_x, &across);
+                      &phi_x, &across, &w_squared);
         beta[i] = atan2(beta_y, beta_x);
         phi[i] = atan2(phi_y, phi_x);
         assembled[i] = across == across;
@@ -93,7 +96,7 @@ SYMLINK_LOOP void hand_fourbar_positions(size_t n, const double *restrict theta,
 }
 
 /* Positions, speeds and accelerations: cos and sin of beta and phi from their atan2 arguments (x / r, y / r),
-   as the generated code takes them, not from further calls of cos and sin. */
+   as the generated code takes them, not from further calls of cos and sin; r = 2 b w^2 and 2 c w^2 (Heron). */
 SYMLINK_LOOP void hand_fourbar_everything(size_t n, const double *restrict theta, const double *restrict a,
     const double *restrict b, const double *restrict c, const double *restrict d, const double *restrict branch,
     double speed, double accel, double *restrict beta, double *restrict phi, double *restrict beta_speed,
@@ -103,9 +106,10 @@ SYMLINK_LOOP void hand_fourbar_everything(size_t n, const double *restrict theta
     const double speed2 = speed * speed;
     for (size_t i = 0; i < n; ++i) {
         const double sin_t = sin(theta[i]), cos_t = cos(theta[i]), a_ = a[i], b_ = b[i], c_ = c[i];
-        double beta_y, beta_x, phi_y, phi_x, across;
-        hand_triangle(cos_t, sin_t, a_, b_, c_, d[i], branch[i], &beta_y, &beta_x, &phi_y, &phi_x, &across);
-        const double beta_r = sqrt(beta_x * beta_x + beta_y * beta_y), phi_r = sqrt(phi_x * phi_x + phi_y * phi_y);
+        double beta_y, beta_x, phi_y, phi_x, across, w_squared;
+        hand_triangle(cos_t, sin_t, a_, b_, c_, d[i], branch[i], &beta_y, &beta_x, &phi_y, &phi_x, &across,
+                      &w_squared);
+        const double beta_r = 2.0 * b_ * w_squared, phi_r = 2.0 * c_ * w_squared;   /* |(x, y)| without sqrt */
         const double sin_b = beta_y * (1.0 / beta_r), cos_b = beta_x * (1.0 / beta_r);
         const double sin_p = phi_y * (1.0 / phi_r), cos_p = phi_x * (1.0 / phi_r);
         beta[i] = atan2(beta_y, beta_x);

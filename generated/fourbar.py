@@ -229,8 +229,11 @@ def _velocities_block(theta, a, b, c, d, branch, thetadot):
     cse_1 = rho_3_1 - rho_4_1
     cse_2 = rho_3_1 + rho_4_1
     cse_4 = rho_3_1*rho_4_1
-    del rho_3_1, rho_4_1
     wsq_1 = _nonzero_square(numpy.square(Wx_1) + numpy.square(Wy_1), 2.2250738585072e-308)
+    beta_r = 2.0*rho_3_1*wsq_1
+    del rho_3_1
+    phi_r = 2.0*rho_4_1*wsq_1
+    del rho_4_1
     cse_5 = cse_1*cse_2 + wsq_1
     cse_9 = wsq_1 - cse_1*cse_2
     Delta_1 = _clamped_sqrt((wsq_1 - numpy.square(cse_1))*(numpy.square(cse_2) - wsq_1), 8.0*cse_3*cse_4*(cse_2 + cse_3 + rho_1_1 + rho_2_1))
@@ -238,20 +241,18 @@ def _velocities_block(theta, a, b, c, d, branch, thetadot):
     cse_6 = Delta_1*branch
     cse_7 = Wx_1*cse_6
     beta_y = -Wy_1*cse_5 - cse_7
+    sin_beta = _sin_atan2(beta_y, beta_r)
     phi_y = Wy_1*cse_9 - cse_7
     del cse_7
+    sin_phi = _sin_atan2(phi_y, phi_r)
     cse_8 = Wy_1*cse_6
     del Wy_1, cse_6
     beta_x = cse_8 - Wx_1*cse_5
     del cse_5
-    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
-    sin_beta = _sin_atan2(beta_y, beta_r)
     cos_beta = _cos_atan2(beta_x, beta_r)
     del beta_r
     phi_x = Wx_1*cse_9 + cse_8
     del Wx_1, cse_8, cse_9
-    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
-    sin_phi = _sin_atan2(phi_y, phi_r)
     cos_phi = _cos_atan2(phi_x, phi_r)
     del phi_r
     cse_11 = 2.0*a*cse_4*thetadot/(Delta_1*branch)
@@ -310,8 +311,11 @@ def _accelerations_block(theta, a, b, c, d, branch, thetadot, thetaddot):
     cse_1 = rho_3_1 - rho_4_1
     cse_2 = rho_3_1 + rho_4_1
     cse_4 = rho_3_1*rho_4_1
-    del rho_3_1, rho_4_1
     wsq_1 = _nonzero_square(numpy.square(Wx_1) + numpy.square(Wy_1), 2.2250738585072e-308)
+    phi_r = 2.0*rho_4_1*wsq_1
+    del rho_4_1
+    beta_r = 2.0*rho_3_1*wsq_1
+    del rho_3_1
     cse_5 = cse_1*cse_2 + wsq_1
     cse_9 = wsq_1 - cse_1*cse_2
     Delta_1 = _clamped_sqrt((wsq_1 - numpy.square(cse_1))*(numpy.square(cse_2) - wsq_1), 8.0*cse_3*cse_4*(cse_2 + cse_3 + rho_1_1 + rho_2_1))
@@ -319,20 +323,18 @@ def _accelerations_block(theta, a, b, c, d, branch, thetadot, thetaddot):
     cse_6 = Delta_1*branch
     cse_7 = Wx_1*cse_6
     phi_y = Wy_1*cse_9 - cse_7
+    sin_phi = _sin_atan2(phi_y, phi_r)
     beta_y = -Wy_1*cse_5 - cse_7
     del cse_7
+    sin_beta = _sin_atan2(beta_y, beta_r)
     cse_8 = Wy_1*cse_6
     del Wy_1, cse_6
     phi_x = Wx_1*cse_9 + cse_8
     del cse_9
-    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
-    sin_phi = _sin_atan2(phi_y, phi_r)
     cos_phi = _cos_atan2(phi_x, phi_r)
     del phi_r
     beta_x = cse_8 - Wx_1*cse_5
     del Wx_1, cse_5, cse_8
-    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
-    sin_beta = _sin_atan2(beta_y, beta_r)
     cos_beta = _cos_atan2(beta_x, beta_r)
     del beta_r
     cse_13 = 2.0*cse_4/(Delta_1*branch)
@@ -406,6 +408,7 @@ def _joints_block(theta, a, b, c, d, branch):
     cse_3 = rho_3_1 - rho_4_1
     cse_4 = rho_3_1 + rho_4_1
     wsq_1 = _nonzero_square(numpy.square(Wx_1) + numpy.square(Wy_1), 2.2250738585072e-308)
+    beta_r = 2.0*rho_3_1*wsq_1
     cse_6 = cse_3*cse_4 + wsq_1
     Delta_1 = _clamped_sqrt((wsq_1 - numpy.square(cse_3))*(numpy.square(cse_4) - wsq_1), 8.0*cse_5*rho_3_1*rho_4_1*(cse_4 + cse_5 + rho_1_1 + rho_2_1))
     del cse_3, cse_4, cse_5, rho_1_1, rho_2_1, rho_3_1, rho_4_1
@@ -413,7 +416,6 @@ def _joints_block(theta, a, b, c, d, branch):
     beta_y = -Wx_1*cse_7 - Wy_1*cse_6
     beta_x = Wy_1*cse_7 - Wx_1*cse_6
     del Wx_1, Wy_1, cse_6, cse_7
-    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
     sin_beta = _sin_atan2(beta_y, beta_r)
     del beta_y
     cos_beta = _cos_atan2(beta_x, beta_r)

@@ -212,6 +212,7 @@ def _positions_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branc
     cse_13 = rho_4_2 - rho_5_2
     cse_14 = rho_4_2 + rho_5_2
     wsq_2 = _nonzero_square(numpy.square(Wx_2) + numpy.square(Wy_2), 2.2250738585072e-308)
+    psi_r = 2.0*rho_5_2*wsq_2
     cse_16 = cse_13*cse_14 + wsq_2
     cse_20 = wsq_2 - cse_13*cse_14
     Delta_2 = _clamped_sqrt((wsq_2 - numpy.square(cse_13))*(numpy.square(cse_14) - wsq_2), 8.0*cse_15*rho_4_2*rho_5_2*(cse_14 + cse_15 + rho_1_2 + rho_2_2 + rho_3_2))
@@ -219,12 +220,11 @@ def _positions_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branc
     cse_17 = Delta_2*branch_ABFD
     cse_18 = Wx_2*cse_17
     psi_y = cse_18 - Wy_2*cse_20
+    sin_psi = _sin_atan2(psi_y, psi_r)
     cse_19 = Wy_2*cse_17
     del cse_17
     psi_x = -Wx_2*cse_20 - cse_19
     del cse_20
-    psi_r = numpy.sqrt(numpy.square(psi_x) + numpy.square(psi_y))
-    sin_psi = _sin_atan2(psi_y, psi_r)
     cos_psi = _cos_atan2(psi_x, psi_r)
     del psi_r
     mu = numpy.arctan2(Wy_2*cse_16 + cse_18, Wx_2*cse_16 - cse_19)
@@ -308,8 +308,11 @@ def _velocities_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, bran
     cse_4 = rho_4_1 - rho_5_1
     cse_5 = rho_4_1 + rho_5_1
     cse_7 = rho_4_1*rho_5_1
-    del rho_4_1, rho_5_1
     wsq_1 = _nonzero_square(numpy.square(Wx_1) + numpy.square(Wy_1), 2.2250738585072e-308)
+    beta_r = 2.0*rho_5_1*wsq_1
+    del rho_5_1
+    phi_r = 2.0*rho_4_1*wsq_1
+    del rho_4_1
     cse_8 = cse_4*cse_5 + wsq_1
     cse_12 = wsq_1 - cse_4*cse_5
     Delta_1 = _clamped_sqrt((wsq_1 - numpy.square(cse_4))*(numpy.square(cse_5) - wsq_1), 8.0*cse_6*cse_7*(cse_5 + cse_6 + rho_1_1 + rho_2_1 + rho_3_1))
@@ -317,20 +320,18 @@ def _velocities_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, bran
     cse_9 = Delta_1*branch_ABCD
     cse_10 = Wx_1*cse_9
     beta_y = cse_10 - Wy_1*cse_12
+    sin_beta = _sin_atan2(beta_y, beta_r)
     phi_y = Wy_1*cse_8 + cse_10
     del cse_10
+    sin_phi = _sin_atan2(phi_y, phi_r)
     cse_11 = Wy_1*cse_9
     del Wy_1, cse_9
     beta_x = -Wx_1*cse_12 - cse_11
     del cse_12
-    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
-    sin_beta = _sin_atan2(beta_y, beta_r)
     cos_beta = _cos_atan2(beta_x, beta_r)
     del beta_r
     phi_x = Wx_1*cse_8 - cse_11
     del Wx_1, cse_11, cse_8
-    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
-    sin_phi = _sin_atan2(phi_y, phi_r)
     cos_phi = _cos_atan2(phi_x, phi_r)
     del phi_r
     cse_36 = cse_35*cse_7/(Delta_1*branch_ABCD)
@@ -361,8 +362,11 @@ def _velocities_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, bran
     cse_14 = rho_4_2 - rho_5_2
     cse_15 = rho_4_2 + rho_5_2
     cse_17 = rho_4_2*rho_5_2
-    del rho_4_2, rho_5_2
     wsq_2 = _nonzero_square(numpy.square(Wx_2) + numpy.square(Wy_2), 2.2250738585072e-308)
+    psi_r = 2.0*rho_5_2*wsq_2
+    del rho_5_2
+    mu_r = 2.0*rho_4_2*wsq_2
+    del rho_4_2
     cse_18 = cse_14*cse_15 + wsq_2
     cse_22 = wsq_2 - cse_14*cse_15
     Delta_2 = _clamped_sqrt((wsq_2 - numpy.square(cse_14))*(numpy.square(cse_15) - wsq_2), 8.0*cse_16*cse_17*(cse_15 + cse_16 + rho_1_2 + rho_2_2 + rho_3_2))
@@ -370,20 +374,18 @@ def _velocities_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, bran
     cse_19 = Delta_2*branch_ABFD
     cse_20 = Wx_2*cse_19
     psi_y = cse_20 - Wy_2*cse_22
+    sin_psi = _sin_atan2(psi_y, psi_r)
     mu_y = Wy_2*cse_18 + cse_20
     del cse_20
+    sin_mu = _sin_atan2(mu_y, mu_r)
     cse_21 = Wy_2*cse_19
     del Wy_2, cse_19
     psi_x = -Wx_2*cse_22 - cse_21
     del cse_22
-    psi_r = numpy.sqrt(numpy.square(psi_x) + numpy.square(psi_y))
-    sin_psi = _sin_atan2(psi_y, psi_r)
     cos_psi = _cos_atan2(psi_x, psi_r)
     del psi_r
     mu_x = Wx_2*cse_18 - cse_21
     del Wx_2, cse_18, cse_21
-    mu_r = numpy.sqrt(numpy.square(mu_x) + numpy.square(mu_y))
-    sin_mu = _sin_atan2(mu_y, mu_r)
     cos_mu = _cos_atan2(mu_x, mu_r)
     del mu_r
     cse_37 = cse_17*cse_35/(Delta_2*branch_ABFD)
@@ -406,8 +408,11 @@ def _velocities_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, bran
     cse_25 = rho_3_3 - rho_4_3
     cse_26 = rho_3_3 + rho_4_3
     cse_28 = rho_3_3*rho_4_3
-    del rho_3_3, rho_4_3
     wsq_3 = _nonzero_square(numpy.square(Wx_3) + numpy.square(Wy_3), 2.2250738585072e-308)
+    eta_r = 2.0*rho_3_3*wsq_3
+    del rho_3_3
+    kappa_r = 2.0*rho_4_3*wsq_3
+    del rho_4_3
     cse_29 = cse_25*cse_26 + wsq_3
     cse_33 = wsq_3 - cse_25*cse_26
     Delta_3 = _clamped_sqrt((wsq_3 - numpy.square(cse_25))*(numpy.square(cse_26) - wsq_3), 8.0*cse_27*cse_28*(cse_26 + cse_27 + rho_1_3 + rho_2_3))
@@ -415,20 +420,18 @@ def _velocities_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, bran
     cse_30 = Delta_3*branch_DFGE
     cse_31 = Wx_3*cse_30
     eta_y = Wy_3*cse_29 + cse_31
+    sin_eta = _sin_atan2(eta_y, eta_r)
     kappa_y = cse_31 - Wy_3*cse_33
     del cse_31
+    sin_kappa = _sin_atan2(kappa_y, kappa_r)
     cse_32 = Wy_3*cse_30
     del Wy_3, cse_30
     eta_x = Wx_3*cse_29 - cse_32
     del cse_29
-    eta_r = numpy.sqrt(numpy.square(eta_x) + numpy.square(eta_y))
-    sin_eta = _sin_atan2(eta_y, eta_r)
     cos_eta = _cos_atan2(eta_x, eta_r)
     del eta_r
     kappa_x = -Wx_3*cse_33 - cse_32
     del Wx_3, cse_32, cse_33
-    kappa_r = numpy.sqrt(numpy.square(kappa_x) + numpy.square(kappa_y))
-    sin_kappa = _sin_atan2(kappa_y, kappa_r)
     cos_kappa = _cos_atan2(kappa_x, kappa_r)
     del kappa_r
     cse_41 = 2.0*cse_28/(Delta_3*branch_DFGE)
@@ -508,8 +511,11 @@ def _accelerations_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, b
     cse_4 = rho_4_1 - rho_5_1
     cse_5 = rho_4_1 + rho_5_1
     cse_7 = rho_4_1*rho_5_1
-    del rho_4_1, rho_5_1
     wsq_1 = _nonzero_square(numpy.square(Wx_1) + numpy.square(Wy_1), 2.2250738585072e-308)
+    beta_r = 2.0*rho_5_1*wsq_1
+    del rho_5_1
+    phi_r = 2.0*rho_4_1*wsq_1
+    del rho_4_1
     cse_8 = cse_4*cse_5 + wsq_1
     cse_12 = wsq_1 - cse_4*cse_5
     Delta_1 = _clamped_sqrt((wsq_1 - numpy.square(cse_4))*(numpy.square(cse_5) - wsq_1), 8.0*cse_6*cse_7*(cse_5 + cse_6 + rho_1_1 + rho_2_1 + rho_3_1))
@@ -517,20 +523,18 @@ def _accelerations_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, b
     cse_9 = Delta_1*branch_ABCD
     cse_10 = Wx_1*cse_9
     beta_y = cse_10 - Wy_1*cse_12
+    sin_beta = _sin_atan2(beta_y, beta_r)
     phi_y = Wy_1*cse_8 + cse_10
     del cse_10
+    sin_phi = _sin_atan2(phi_y, phi_r)
     cse_11 = Wy_1*cse_9
     del Wy_1, cse_9
     beta_x = -Wx_1*cse_12 - cse_11
     del cse_12
-    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
-    sin_beta = _sin_atan2(beta_y, beta_r)
     cos_beta = _cos_atan2(beta_x, beta_r)
     del beta_r
     phi_x = Wx_1*cse_8 - cse_11
     del Wx_1, cse_11, cse_8
-    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
-    sin_phi = _sin_atan2(phi_y, phi_r)
     cos_phi = _cos_atan2(phi_x, phi_r)
     del phi_r
     cse_37 = 2.0*cse_7/(Delta_1*branch_ABCD)
@@ -567,8 +571,11 @@ def _accelerations_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, b
     cse_14 = rho_4_2 - rho_5_2
     cse_15 = rho_4_2 + rho_5_2
     cse_17 = rho_4_2*rho_5_2
-    del rho_4_2, rho_5_2
     wsq_2 = _nonzero_square(numpy.square(Wx_2) + numpy.square(Wy_2), 2.2250738585072e-308)
+    psi_r = 2.0*rho_5_2*wsq_2
+    del rho_5_2
+    mu_r = 2.0*rho_4_2*wsq_2
+    del rho_4_2
     cse_18 = cse_14*cse_15 + wsq_2
     cse_22 = wsq_2 - cse_14*cse_15
     Delta_2 = _clamped_sqrt((wsq_2 - numpy.square(cse_14))*(numpy.square(cse_15) - wsq_2), 8.0*cse_16*cse_17*(cse_15 + cse_16 + rho_1_2 + rho_2_2 + rho_3_2))
@@ -576,20 +583,18 @@ def _accelerations_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, b
     cse_19 = Delta_2*branch_ABFD
     cse_20 = Wx_2*cse_19
     psi_y = cse_20 - Wy_2*cse_22
+    sin_psi = _sin_atan2(psi_y, psi_r)
     mu_y = Wy_2*cse_18 + cse_20
     del cse_20
+    sin_mu = _sin_atan2(mu_y, mu_r)
     cse_21 = Wy_2*cse_19
     del Wy_2, cse_19
     psi_x = -Wx_2*cse_22 - cse_21
     del cse_22
-    psi_r = numpy.sqrt(numpy.square(psi_x) + numpy.square(psi_y))
-    sin_psi = _sin_atan2(psi_y, psi_r)
     cos_psi = _cos_atan2(psi_x, psi_r)
     del psi_r
     mu_x = Wx_2*cse_18 - cse_21
     del Wx_2, cse_18, cse_21
-    mu_r = numpy.sqrt(numpy.square(mu_x) + numpy.square(mu_y))
-    sin_mu = _sin_atan2(mu_y, mu_r)
     cos_mu = _cos_atan2(mu_x, mu_r)
     del mu_r
     cse_45 = 2.0*cse_17/(Delta_2*branch_ABFD)
@@ -618,8 +623,11 @@ def _accelerations_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, b
     cse_25 = rho_3_3 - rho_4_3
     cse_26 = rho_3_3 + rho_4_3
     cse_28 = rho_3_3*rho_4_3
-    del rho_3_3, rho_4_3
     wsq_3 = _nonzero_square(numpy.square(Wx_3) + numpy.square(Wy_3), 2.2250738585072e-308)
+    kappa_r = 2.0*rho_4_3*wsq_3
+    del rho_4_3
+    eta_r = 2.0*rho_3_3*wsq_3
+    del rho_3_3
     cse_29 = cse_25*cse_26 + wsq_3
     cse_33 = wsq_3 - cse_25*cse_26
     Delta_3 = _clamped_sqrt((wsq_3 - numpy.square(cse_25))*(numpy.square(cse_26) - wsq_3), 8.0*cse_27*cse_28*(cse_26 + cse_27 + rho_1_3 + rho_2_3))
@@ -627,20 +635,18 @@ def _accelerations_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, b
     cse_30 = Delta_3*branch_DFGE
     cse_31 = Wx_3*cse_30
     kappa_y = cse_31 - Wy_3*cse_33
+    sin_kappa = _sin_atan2(kappa_y, kappa_r)
     eta_y = Wy_3*cse_29 + cse_31
     del cse_31
+    sin_eta = _sin_atan2(eta_y, eta_r)
     cse_32 = Wy_3*cse_30
     del Wy_3, cse_30
     kappa_x = -Wx_3*cse_33 - cse_32
     del cse_33
-    kappa_r = numpy.sqrt(numpy.square(kappa_x) + numpy.square(kappa_y))
-    sin_kappa = _sin_atan2(kappa_y, kappa_r)
     cos_kappa = _cos_atan2(kappa_x, kappa_r)
     del kappa_r
     eta_x = Wx_3*cse_29 - cse_32
     del Wx_3, cse_29, cse_32
-    eta_r = numpy.sqrt(numpy.square(eta_x) + numpy.square(eta_y))
-    sin_eta = _sin_atan2(eta_y, eta_r)
     cos_eta = _cos_atan2(eta_x, eta_r)
     del eta_r
     cse_58 = 2.0*cse_28/(Delta_3*branch_DFGE)
@@ -749,6 +755,7 @@ def _joints_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_A
     cse_4 = rho_4_1 - rho_5_1
     cse_5 = rho_4_1 + rho_5_1
     wsq_1 = _nonzero_square(numpy.square(Wx_1) + numpy.square(Wy_1), 2.2250738585072e-308)
+    phi_r = 2.0*rho_4_1*wsq_1
     cse_7 = cse_4*cse_5 + wsq_1
     Delta_1 = _clamped_sqrt((wsq_1 - numpy.square(cse_4))*(numpy.square(cse_5) - wsq_1), 8.0*cse_6*rho_4_1*rho_5_1*(cse_5 + cse_6 + rho_1_1 + rho_2_1 + rho_3_1))
     del cse_4, cse_5, cse_6, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
@@ -756,7 +763,6 @@ def _joints_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_A
     phi_y = Wx_1*cse_8 + Wy_1*cse_7
     phi_x = Wx_1*cse_7 - Wy_1*cse_8
     del Wx_1, Wy_1, cse_7, cse_8
-    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
     sin_phi = _sin_atan2(phi_y, phi_r)
     cos_phi = _cos_atan2(phi_x, phi_r)
     del phi_r
@@ -783,6 +789,7 @@ def _joints_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_A
     cse_10 = rho_4_2 - rho_5_2
     cse_11 = rho_4_2 + rho_5_2
     wsq_2 = _nonzero_square(numpy.square(Wx_2) + numpy.square(Wy_2), 2.2250738585072e-308)
+    psi_r = 2.0*rho_5_2*wsq_2
     cse_13 = wsq_2 - cse_10*cse_11
     Delta_2 = _clamped_sqrt((wsq_2 - numpy.square(cse_10))*(numpy.square(cse_11) - wsq_2), 8.0*cse_12*rho_4_2*rho_5_2*(cse_11 + cse_12 + rho_1_2 + rho_2_2 + rho_3_2))
     del cse_10, cse_11, cse_12, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2
@@ -790,7 +797,6 @@ def _joints_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_A
     psi_y = Wx_2*cse_14 - Wy_2*cse_13
     psi_x = -Wx_2*cse_13 - Wy_2*cse_14
     del Wx_2, Wy_2, cse_13, cse_14
-    psi_r = numpy.sqrt(numpy.square(psi_x) + numpy.square(psi_y))
     sin_psi = _sin_atan2(psi_y, psi_r)
     del psi_y
     cos_psi = _cos_atan2(psi_x, psi_r)
@@ -816,6 +822,7 @@ def _joints_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_A
     cse_21 = rho_3_3 - rho_4_3
     cse_22 = rho_3_3 + rho_4_3
     wsq_3 = _nonzero_square(numpy.square(Wx_3) + numpy.square(Wy_3), 2.2250738585072e-308)
+    eta_r = 2.0*rho_3_3*wsq_3
     cse_24 = cse_21*cse_22 + wsq_3
     Delta_3 = _clamped_sqrt((wsq_3 - numpy.square(cse_21))*(numpy.square(cse_22) - wsq_3), 8.0*cse_23*rho_3_3*rho_4_3*(cse_22 + cse_23 + rho_1_3 + rho_2_3))
     del cse_21, cse_22, cse_23, rho_1_3, rho_2_3, rho_3_3, rho_4_3
@@ -823,7 +830,6 @@ def _joints_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_A
     eta_y = Wx_3*cse_25 + Wy_3*cse_24
     eta_x = Wx_3*cse_24 - Wy_3*cse_25
     del Wx_3, Wy_3, cse_24, cse_25
-    eta_r = numpy.sqrt(numpy.square(eta_x) + numpy.square(eta_y))
     sin_eta = _sin_atan2(eta_y, eta_r)
     cos_eta = _cos_atan2(eta_x, eta_r)
     del eta_r

@@ -261,8 +261,11 @@ def _velocities_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, br
     cse_1 = rho_3_1 - rho_4_1
     cse_2 = rho_3_1 + rho_4_1
     cse_4 = rho_3_1*rho_4_1
-    del rho_3_1, rho_4_1
     wsq_1 = _nonzero_square(numpy.square(Wx_1) + numpy.square(Wy_1), 2.2250738585072e-308)
+    beta_r = 2.0*rho_3_1*wsq_1
+    del rho_3_1
+    phi_r = 2.0*rho_4_1*wsq_1
+    del rho_4_1
     cse_5 = cse_1*cse_2 + wsq_1
     cse_9 = wsq_1 - cse_1*cse_2
     Delta_1 = _clamped_sqrt((wsq_1 - numpy.square(cse_1))*(numpy.square(cse_2) - wsq_1), 8.0*cse_3*cse_4*(cse_2 + cse_3 + rho_1_1 + rho_2_1))
@@ -270,20 +273,18 @@ def _velocities_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, br
     cse_6 = Delta_1*branch_ABCD
     cse_7 = Wx_1*cse_6
     beta_y = -Wy_1*cse_5 - cse_7
+    sin_beta = _sin_atan2(beta_y, beta_r)
     phi_y = Wy_1*cse_9 - cse_7
     del cse_7
+    sin_phi = _sin_atan2(phi_y, phi_r)
     cse_8 = Wy_1*cse_6
     del Wy_1, cse_6
     beta_x = cse_8 - Wx_1*cse_5
     del cse_5
-    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
-    sin_beta = _sin_atan2(beta_y, beta_r)
     cos_beta = _cos_atan2(beta_x, beta_r)
     del beta_r
     phi_x = Wx_1*cse_9 + cse_8
     del Wx_1, cse_8, cse_9
-    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
-    sin_phi = _sin_atan2(phi_y, phi_r)
     cos_phi = _cos_atan2(phi_x, phi_r)
     del phi_r
     cse_22 = 2.0*a*cse_4*thetadot/(Delta_1*branch_ABCD)
@@ -312,8 +313,11 @@ def _velocities_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, br
     cse_12 = rho_5_2 - rho_6_2
     cse_13 = rho_5_2 + rho_6_2
     cse_15 = rho_5_2*rho_6_2
-    del rho_5_2, rho_6_2
     wsq_2 = _nonzero_square(numpy.square(Wx_2) + numpy.square(Wy_2), 2.2250738585072e-308)
+    mu_r = 2.0*rho_5_2*wsq_2
+    del rho_5_2
+    psi_r = 2.0*rho_6_2*wsq_2
+    del rho_6_2
     cse_16 = cse_12*cse_13 + wsq_2
     cse_20 = wsq_2 - cse_12*cse_13
     Delta_2 = _clamped_sqrt((wsq_2 - numpy.square(cse_12))*(numpy.square(cse_13) - wsq_2), 8.0*cse_14*cse_15*(cse_13 + cse_14 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
@@ -321,20 +325,18 @@ def _velocities_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, br
     cse_17 = Delta_2*branch_DEFG
     cse_18 = Wx_2*cse_17
     mu_y = -Wy_2*cse_16 - cse_18
+    sin_mu = _sin_atan2(mu_y, mu_r)
     psi_y = Wy_2*cse_20 - cse_18
     del cse_18
+    sin_psi = _sin_atan2(psi_y, psi_r)
     cse_19 = Wy_2*cse_17
     del Wy_2, cse_17
     mu_x = cse_19 - Wx_2*cse_16
     del cse_16
-    mu_r = numpy.sqrt(numpy.square(mu_x) + numpy.square(mu_y))
-    sin_mu = _sin_atan2(mu_y, mu_r)
     cos_mu = _cos_atan2(mu_x, mu_r)
     del mu_r
     psi_x = Wx_2*cse_20 + cse_19
     del Wx_2, cse_19, cse_20
-    psi_r = numpy.sqrt(numpy.square(psi_x) + numpy.square(psi_y))
-    sin_psi = _sin_atan2(psi_y, psi_r)
     cos_psi = _cos_atan2(psi_x, psi_r)
     del psi_r
     mu = numpy.arctan2(mu_y, mu_x)
@@ -400,8 +402,11 @@ def _accelerations_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD,
     cse_1 = rho_3_1 - rho_4_1
     cse_2 = rho_3_1 + rho_4_1
     cse_4 = rho_3_1*rho_4_1
-    del rho_3_1, rho_4_1
     wsq_1 = _nonzero_square(numpy.square(Wx_1) + numpy.square(Wy_1), 2.2250738585072e-308)
+    phi_r = 2.0*rho_4_1*wsq_1
+    del rho_4_1
+    beta_r = 2.0*rho_3_1*wsq_1
+    del rho_3_1
     cse_5 = cse_1*cse_2 + wsq_1
     cse_9 = wsq_1 - cse_1*cse_2
     Delta_1 = _clamped_sqrt((wsq_1 - numpy.square(cse_1))*(numpy.square(cse_2) - wsq_1), 8.0*cse_3*cse_4*(cse_2 + cse_3 + rho_1_1 + rho_2_1))
@@ -409,20 +414,18 @@ def _accelerations_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD,
     cse_6 = Delta_1*branch_ABCD
     cse_7 = Wx_1*cse_6
     phi_y = Wy_1*cse_9 - cse_7
+    sin_phi = _sin_atan2(phi_y, phi_r)
     beta_y = -Wy_1*cse_5 - cse_7
     del cse_7
+    sin_beta = _sin_atan2(beta_y, beta_r)
     cse_8 = Wy_1*cse_6
     del Wy_1, cse_6
     phi_x = Wx_1*cse_9 + cse_8
     del cse_9
-    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
-    sin_phi = _sin_atan2(phi_y, phi_r)
     cos_phi = _cos_atan2(phi_x, phi_r)
     del phi_r
     beta_x = cse_8 - Wx_1*cse_5
     del Wx_1, cse_5, cse_8
-    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
-    sin_beta = _sin_atan2(beta_y, beta_r)
     cos_beta = _cos_atan2(beta_x, beta_r)
     del beta_r
     cse_24 = 2.0*cse_4/(Delta_1*branch_ABCD)
@@ -457,8 +460,11 @@ def _accelerations_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD,
     cse_12 = rho_5_2 - rho_6_2
     cse_13 = rho_5_2 + rho_6_2
     cse_15 = rho_5_2*rho_6_2
-    del rho_5_2, rho_6_2
     wsq_2 = _nonzero_square(numpy.square(Wx_2) + numpy.square(Wy_2), 2.2250738585072e-308)
+    psi_r = 2.0*rho_6_2*wsq_2
+    del rho_6_2
+    mu_r = 2.0*rho_5_2*wsq_2
+    del rho_5_2
     cse_16 = cse_12*cse_13 + wsq_2
     cse_20 = wsq_2 - cse_12*cse_13
     Delta_2 = _clamped_sqrt((wsq_2 - numpy.square(cse_12))*(numpy.square(cse_13) - wsq_2), 8.0*cse_14*cse_15*(cse_13 + cse_14 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
@@ -466,20 +472,18 @@ def _accelerations_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD,
     cse_17 = Delta_2*branch_DEFG
     cse_18 = Wx_2*cse_17
     psi_y = Wy_2*cse_20 - cse_18
+    sin_psi = _sin_atan2(psi_y, psi_r)
     mu_y = -Wy_2*cse_16 - cse_18
     del cse_18
+    sin_mu = _sin_atan2(mu_y, mu_r)
     cse_19 = Wy_2*cse_17
     del Wy_2, cse_17
     psi_x = Wx_2*cse_20 + cse_19
     del cse_20
-    psi_r = numpy.sqrt(numpy.square(psi_x) + numpy.square(psi_y))
-    sin_psi = _sin_atan2(psi_y, psi_r)
     cos_psi = _cos_atan2(psi_x, psi_r)
     del psi_r
     mu_x = cse_19 - Wx_2*cse_16
     del Wx_2, cse_16, cse_19
-    mu_r = numpy.sqrt(numpy.square(mu_x) + numpy.square(mu_y))
-    sin_mu = _sin_atan2(mu_y, mu_r)
     cos_mu = _cos_atan2(mu_x, mu_r)
     del mu_r
     cse_33 = 2.0*cse_15/(Delta_2*branch_DEFG)
@@ -571,6 +575,7 @@ def _joints_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch
     cse_3 = rho_3_1 - rho_4_1
     cse_4 = rho_3_1 + rho_4_1
     wsq_1 = _nonzero_square(numpy.square(Wx_1) + numpy.square(Wy_1), 2.2250738585072e-308)
+    beta_r = 2.0*rho_3_1*wsq_1
     cse_6 = cse_3*cse_4 + wsq_1
     cse_10 = wsq_1 - cse_3*cse_4
     Delta_1 = _clamped_sqrt((wsq_1 - numpy.square(cse_3))*(numpy.square(cse_4) - wsq_1), 8.0*cse_5*rho_3_1*rho_4_1*(cse_4 + cse_5 + rho_1_1 + rho_2_1))
@@ -578,13 +583,12 @@ def _joints_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch
     cse_7 = Delta_1*branch_ABCD
     cse_8 = Wx_1*cse_7
     beta_y = -Wy_1*cse_6 - cse_8
+    sin_beta = _sin_atan2(beta_y, beta_r)
+    del beta_y
     cse_9 = Wy_1*cse_7
     del cse_7
     beta_x = cse_9 - Wx_1*cse_6
     del cse_6
-    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
-    sin_beta = _sin_atan2(beta_y, beta_r)
-    del beta_y
     cos_beta = _cos_atan2(beta_x, beta_r)
     del beta_r, beta_x
     phi = numpy.arctan2(Wy_1*cse_10 - cse_8, Wx_1*cse_10 + cse_9)
@@ -614,6 +618,7 @@ def _joints_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch
     cse_15 = rho_5_2 - rho_6_2
     cse_16 = rho_5_2 + rho_6_2
     wsq_2 = _nonzero_square(numpy.square(Wx_2) + numpy.square(Wy_2), 2.2250738585072e-308)
+    mu_r = 2.0*rho_5_2*wsq_2
     cse_18 = cse_15*cse_16 + wsq_2
     Delta_2 = _clamped_sqrt((wsq_2 - numpy.square(cse_15))*(numpy.square(cse_16) - wsq_2), 8.0*cse_17*rho_5_2*rho_6_2*(cse_16 + cse_17 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
     del cse_15, cse_16, cse_17, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2, rho_6_2
@@ -621,7 +626,6 @@ def _joints_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch
     mu_y = -Wx_2*cse_19 - Wy_2*cse_18
     mu_x = Wy_2*cse_19 - Wx_2*cse_18
     del Wx_2, Wy_2, cse_18, cse_19
-    mu_r = numpy.sqrt(numpy.square(mu_x) + numpy.square(mu_y))
     sin_mu = _sin_atan2(mu_y, mu_r)
     del mu_y
     cos_mu = _cos_atan2(mu_x, mu_r)

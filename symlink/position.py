@@ -159,6 +159,11 @@ class LoopSolution:
     four-bar is ``-branch Delta_1 / (2 b c)``.  With it the rates divide by
     exactly zero where the root is zero, and are not finite there.
 
+    ``radii`` (generated code only, :attr:`in_loop_units`) holds, for an unknown
+    angle solved as ``atan2(y, x)``, the length ``sqrt(x^2 + y^2)`` where the closed
+    form knows it without a square root: the rates take the angle's cosine and
+    sine as ``x / r`` and ``y / r`` (:func:`symlink.codegen.trigonometry.angle_sums`).
+
     These are the textbook forms, in the linkage's own lengths and angles.
     :attr:`in_loop_units` is the same solution as generated code computes it.
     """
@@ -170,6 +175,7 @@ class LoopSolution:
     positions: dict[sp.Symbol, sp.Expr]
     singular_factors: dict[sp.Expr, sp.Expr] = field(default_factory=dict)
     label: str = "1"
+    radii: dict[sp.Symbol, sp.Expr] = field(default_factory=dict)
 
     @cached_property
     def in_loop_units(self) -> "LoopSolution":
@@ -221,6 +227,7 @@ class _Intermediates(dict):
         self.label = label
         self.loop_units = loop_units
         self.singular_factors: dict[sp.Expr, sp.Expr] = {}
+        self.radii: dict[sp.Symbol, sp.Expr] = {}
 
     def clamped(self, x: sp.Expr, scale: sp.Expr) -> sp.Expr:
         """``[x]_+`` under a square root; in loop units with the scale that tells rounding from no assembly."""
@@ -381,6 +388,12 @@ def _two_angles(case: LoopCase, wx, wy, branch, named, unit, size):
     # product P x Q = rp rq sign_q sin(tq - tp) is -y (xp + xq) / (4 w^2) = -y/2.
     if p.vector.length.is_positive and q.vector.length.is_positive:
         named.identity(sp.sin, q.vector.angle - p.vector.angle, -sign_q * y / (2 * rp * rq), odd=True)
+    if named.loop_units:
+        # The atan2 arguments are (xp + i y) W and (xq - i y) W turned, of lengths |xp + i y| w = 2 rp w^2 and
+        # 2 rq w^2 (Heron: xp^2 + y^2 = 4 rp^2 w^2): the rates' cosines and sines need no square root either.
+        # Equal to the arguments' own length to a few ulps where the root is not clamped; where it is (within
+        # rounding of a toggle, where the rates are not finite anyway) to TOLERANCE times the loop's size.
+        named.radii.update({p.symbol: 2 * sp.Abs(rp) * w_squared, q.symbol: 2 * sp.Abs(rq) * w_squared})
     return {p.symbol: _absolute(p, tp), q.symbol: _absolute(q, tq)}
 
 
@@ -455,4 +468,4 @@ def solve_loop(loop: Loop, unknowns: Sequence[sp.Symbol], branch: sp.Symbol | No
     positions = _SOLVERS[case.name](case, wx, wy, branch, named, unit, size)
     positions = {u: positions[u] for u in unknowns}
     return LoopSolution(loop, case, branch if case.branches == 2 else None, dict(named), positions,
-                        named.singular_factors, label)
+                        named.singular_factors, label, named.radii)

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import heapq
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Callable
 
 import sympy as sp
@@ -44,7 +44,9 @@ class StraightLine:
     ``outputs`` map output names to expressions of those; ``roots`` are the
     guarded values (clamped square roots, squared lengths that must not
     vanish) whose finiteness says that the linkage is assembled;
-    ``defaults`` are the program's argument defaults.
+    ``defaults`` are the program's argument defaults; ``radii`` map a solved
+    angle ``atan2(y, x)`` to ``sqrt(x^2 + y^2)`` where its loop knows that
+    length without a square root (:attr:`symlink.position.LoopSolution.radii`).
     """
 
     arguments: tuple[sp.Symbol, ...]
@@ -52,6 +54,7 @@ class StraightLine:
     outputs: dict[str, sp.Expr]
     roots: tuple[sp.Symbol, ...]
     defaults: dict[str, float]
+    radii: dict[sp.Symbol, sp.Expr] = field(default_factory=dict)
 
 
 def in_loop_units(program: Program) -> Program:
@@ -110,6 +113,7 @@ def require_loop_units(root: ClampedSqrt) -> None:
 
 def straight_line(program: Program) -> StraightLine:
     """Eliminate common subexpressions across the program's assignments and outputs (in loop units)."""
+    radii = {angle: radius for step in program.plan for angle, radius in step.in_loop_units.radii.items()}
     program = in_loop_units(program)
     names = [s for s, _ in program.assignments]
     output_names = list(program.outputs)
@@ -121,7 +125,10 @@ def straight_line(program: Program) -> StraightLine:
     nodes = list(replacements) + list(zip(names, reduced[:len(names)]))
     outputs = dict(zip(output_names, reduced[len(names):]))
     roots = tuple(s for s, e in program.assignments if isinstance(e, (ClampedSqrt, NonzeroSquare)))
-    return StraightLine(program.arguments, _dependency_order(nodes), outputs, roots, dict(program.defaults))
+    # The radii of the angles the program computes, in the names it defines (a loop's rho and wsq).
+    defined = set(names) | set(program.arguments)
+    radii = {angle: radius for angle, radius in radii.items() if angle in defined and radius.free_symbols <= defined}
+    return StraightLine(program.arguments, _dependency_order(nodes), outputs, roots, dict(program.defaults), radii)
 
 
 def _dependency_order(nodes: list[tuple[sp.Symbol, sp.Expr]]) -> tuple[tuple[sp.Symbol, sp.Expr], ...]:

@@ -186,7 +186,11 @@ class LoopSolution:
         unknown lengths are scaled back, and each square root carries the clamping
         scale that tells rounding at a toggle from a loop that cannot close.  The
         intermediates keep their names (``Wx_k``, ``w_k``, ``Delta_k``) and hold the
-        same quantities in loop units, so the rates can use either form.  Code
+        same quantities in loop units, so the rates can use either form; where a
+        case needs ``w_k`` only squared (two angles, and a length on a turning
+        body) it keeps ``wsq_k = Wx_k^2 + Wy_k^2`` instead and takes no square root
+        for it (one square root a loop: ``Delta_k``), and the two-angle case gives
+        the length of each angle's atan2 arguments (:attr:`radii`).  Code
         generation swaps this in (:func:`symlink.codegen.program.in_loop_units`);
         nothing a user reads shows it.
 

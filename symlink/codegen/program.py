@@ -66,7 +66,8 @@ def in_loop_units(program: Program) -> Program:
     two, so the division is exact), which keeps the angles exact from lengths of
     1e-300 to 1e300, and every square root carries the scale that tells
     rounding at a toggle from a loop that cannot close.  This swaps each loop's
-    textbook assignments for that form (:attr:`symlink.position.LoopSolution.in_loop_units`),
+    textbook assignments for that form (:attr:`symlink.position.LoopSolution.in_loop_units`:
+    one square root a loop, ``w`` kept squared where only its square is needed),
     and writes the sines and cosines that vanish at the toggles through the
     loops' roots, so that rates divide by exactly zero there.  Every printer
     (NumPy, C, Octave, scalar Python) prints the result; nothing a user reads shows it.

@@ -292,8 +292,9 @@ def hand_numpy(theta, a, b, c, d, branch):
     """(beta, phi) by the atan2 formula that symlink derives (the triangle B, C, D), vectorised by hand.
 
     W = B - D = (a cos theta - d, a sin theta), w = |W|; Heron's product
-    H = (b+c+w)(b+c-w)(w+b-c)(w-b+c) = 4 b^2 c^2 sin^2(phi - beta), clamped as symlink clamps it (rounding
-    tolerated in proportion to 8 b c w (a + b + c + w + d), NaN beyond); then
+    H = (b+c+w)(b+c-w)(w+b-c)(w-b+c) = ((b+c)^2 - w^2)(w^2 - (b-c)^2) = 4 b^2 c^2 sin^2(phi - beta), from w^2
+    alone (no square root for w), clamped as symlink clamps it (rounding tolerated in proportion to
+    8 b c v (a + b + c + v + d), v = |Wx| + |Wy| standing in for w, NaN beyond); then
     ``beta = atan2(-Wy L - Wx sigma sqrt(H), -Wx L + Wy sigma sqrt(H))`` with L = b^2 - c^2 + w^2 and
     ``phi = atan2(Wy M - Wx sigma sqrt(H), Wx M + Wy sigma sqrt(H))`` with M = w^2 - b^2 + c^2.
     All arguments broadcast (arrays of lengths and branches: many linkages at once).
@@ -302,30 +303,30 @@ def hand_numpy(theta, a, b, c, d, branch):
     >>> round(float(numpy.degrees(phi[0])), 4), round(float(numpy.degrees(beta[0])), 4)
     (110.7424, 52.5127)
     """
-    beta_y, beta_x, phi_y, phi_x, _ = _atan2_arguments(numpy.cos(theta), numpy.sin(theta), a, b, c, d, branch)
+    beta_y, beta_x, phi_y, phi_x, _, _ = _atan2_arguments(numpy.cos(theta), numpy.sin(theta), a, b, c, d, branch)
     return numpy.arctan2(beta_y, beta_x), numpy.arctan2(phi_y, phi_x)
 
 
 def _atan2_arguments(cos_t, sin_t, a, b, c, d, branch):
-    """The atan2 arguments of beta and phi (y, x each) and the branch-signed root (see :func:`hand_numpy`)."""
+    """The atan2 arguments of beta and phi (y, x each), the branch-signed root and w^2 (see :func:`hand_numpy`)."""
     wx, wy = a * cos_t - d, a * sin_t
-    w = numpy.sqrt(wx * wx + wy * wy)
+    w_squared = wx * wx + wy * wy  # w only squared, as in the generated code: no square root for it
     s, t = b + c, b - c
-    heron = (s + w) * (s - w) * (t + w) * (w - t)
+    heron = (s * s - w_squared) * (w_squared - t * t)
+    bound = numpy.abs(wx) + numpy.abs(wy)  # from w to sqrt(2) w: the clamp's stand-in for w
     with numpy.errstate(invalid="ignore"):
-        root = numpy.where(heron >= -TOLERANCE * 8 * b * c * w * (s + w + d + a),
+        root = numpy.where(heron >= -TOLERANCE * 8 * b * c * bound * (s + bound + d + a),
                            numpy.sqrt(numpy.maximum(heron, 0.0)), numpy.nan)
-    w_squared = w * w
     along_b, along_c, across = s * t + w_squared, w_squared - s * t, root * branch
     return -wy * along_b - wx * across, -wx * along_b + wy * across, wy * along_c - wx * across, \
-        wx * along_c + wy * across, across
+        wx * along_c + wy * across, across, w_squared
 
 
 def hand_numpy_everything(theta, a, b, c, d, branch, speed, accel):
     """The six outputs of full kinematics by the generated code's formulas and shared terms, written in NumPy.
 
-    cos and sin of beta and phi come from their atan2 arguments (``x / r``, ``y / r``), not from
-    further calls of cos and sin; the rates are the loop differentiated (:func:`hand_rates`) with
+    cos and sin of beta and phi come from their atan2 arguments (``x / r``, ``y / r``, with
+    ``r = 2 b w^2`` and ``2 c w^2``), not from further calls of cos and sin; the rates are the loop differentiated (:func:`hand_rates`) with
     ``1 / sin(beta - phi) = 2 b c / (sigma sqrt(H))``.
 
     >>> values = hand_numpy_everything(numpy.array([0.0]), 20.0, 66.0, 56.0, 80.0, 1, 10.5, 2.0)
@@ -333,10 +334,10 @@ def hand_numpy_everything(theta, a, b, c, d, branch, speed, accel):
     [-3.5, -3.5, -19.2237, 36.9151]
     """
     cos_t, sin_t = numpy.cos(theta), numpy.sin(theta)
-    beta_y, beta_x, phi_y, phi_x, across = _atan2_arguments(cos_t, sin_t, a, b, c, d, branch)
+    beta_y, beta_x, phi_y, phi_x, across, w_squared = _atan2_arguments(cos_t, sin_t, a, b, c, d, branch)
     with numpy.errstate(invalid="ignore", divide="ignore"):
-        beta_over, phi_over = 1.0 / numpy.sqrt(beta_x * beta_x + beta_y * beta_y), \
-            1.0 / numpy.sqrt(phi_x * phi_x + phi_y * phi_y)
+        # the atan2 arguments' lengths, 2 b w^2 and 2 c w^2 (Heron), as the generated code knows them
+        beta_over, phi_over = 1.0 / (2.0 * b * w_squared), 1.0 / (2.0 * c * w_squared)
         sin_b, cos_b, sin_p, cos_p = beta_y * beta_over, beta_x * beta_over, phi_y * phi_over, phi_x * phi_over
         scale = 2.0 * b * c / across  # 1 / sin(beta - phi)
         over_b, over_c = scale / b, scale / c

@@ -8,18 +8,22 @@ of the benchmark gets them: many linkages in one call):
 * ``hand_fourbar_positions`` (``hand-c-positions`` in the benchmark): the triangle B, C,
   D solved with atan2 and Heron's product, derived on paper from the geometry,
   with the same clamped square root as symlink: rounding tolerated at a toggle
-  in proportion to 8 b c w (a + b + c + w + d), NaN where it cannot close.
+  in proportion to 8 b c v (a + b + c + v + d) with v = |Wx| + |Wy| (at least w,
+  at most sqrt(2) w), NaN where it cannot close.
   Let W = B - D (length w).  C lies at the distance (b^2 - c^2 + w^2)/(2w)
   from B along D - B and sqrt(Heron)/(2w) to its left (branch +1), so
   ``b e^{i beta}`` is parallel to ``-(b^2 - c^2 + w^2) W + branch sqrt(H) n``
   and ``c e^{i phi}`` to ``(w^2 - b^2 + c^2) W + branch sqrt(H) n``, with
   ``n = (Wy, -Wx)`` (W turned clockwise) and
-  ``H = (b+c+w)(b+c-w)(w+b-c)(w-b+c)``.
+  ``H = (b+c+w)(b+c-w)(w+b-c)(w-b+c) = ((b+c)^2 - w^2)(w^2 - (b-c)^2)``: every
+  term needs w only squared, so, as in the generated code, w itself is never
+  computed and a value takes one square root (of H).
 * ``hand_fourbar_everything`` (``hand-c`` in the benchmark): the same, with
   speeds and accelerations by the formulas and shared terms of the generated
   code: cos and sin of beta and phi from their atan2 arguments (``x / r``,
-  ``y / r``), so a value calls cos, sin, two atan2 and four square roots, as
-  the generated code does (a test counts them in both sources).
+  ``y / r``), whose lengths r are known without a square root (``2 b w^2`` and
+  ``2 c w^2``, by Heron's formula), so a value calls cos, sin, two atan2 and one
+  square root, as the generated code does (a test counts them in both sources).
 * ``vector_math_limit``: not a solver, the floor under every solver of the
   four-bar's positions: per value cos and sin of the crank, a square root,
   two atan2 and two stores (the benchmark prints its time as the physical limit).
@@ -58,13 +62,15 @@ HAND_C_SOURCE = r"""
 /* The atan2 arguments of beta and phi and the branch-signed root, from cos and sin of the crank: symlink's
    atan2 form with its shared terms (W = B - D, Heron's product under the clamped square root). */
 static inline __attribute__((always_inline)) void hand_triangle(double cos_t, double sin_t, double a, double b,
-    double c, double d, double branch, double *beta_y, double *beta_x, double *phi_y, double *phi_x, double *across)
+    double c, double d, double branch, double *beta_y, double *beta_x, double *phi_y, double *phi_x, double *across,
+    double *w_squared_out)
 {
     const double wx = a * cos_t - d, wy = a * sin_t;   /* W = B - D */
-    const double w = sqrt(wx * wx + wy * wy);
-    const double s = b + c, t = b - c, w_squared = w * w;
-    const double heron = (s + w) * (s - w) * (t + w) * (w - t);
-    const double scale = 8 * b * c * w * (s + w + d + a);   /* a flat triangle's rounding */
+    const double w_squared = wx * wx + wy * wy;   /* w only squared: no square root for it */
+    const double s = b + c, t = b - c;
+    const double heron = (s * s - w_squared) * (w_squared - t * t);
+    const double bound = fabs(wx) + fabs(wy);   /* from w to sqrt(2) w */
+    const double scale = 8 * b * c * bound * (s + bound + d + a);   /* a flat triangle's rounding */
     const double root = heron >= -TOLERANCE * scale ? sqrt(heron > 0.0 ? heron : 0.0) : NAN;
     const double along_b = s * t + w_squared, along_c = w_squared - s * t;
     *across = root * branch;
@@ -72,6 +78,7 @@ static inline __attribute__((always_inline)) void hand_triangle(double cos_t, do
     *beta_x = -wx * along_b + wy * *across;
     *phi_y = wy * along_c - wx * *across;
     *phi_x = wx * along_c + wy * *across;
+    *w_squared_out = w_squared;
 }
 
 SYMLINK_LOOP void hand_fourbar_positions(size_t n, const double *restrict theta, const double *restrict a,
@@ -79,9 +86,9 @@ SYMLINK_LOOP void hand_fourbar_positions(size_t n, const double *restrict theta,
     double *restrict beta, double *restrict phi, unsigned char *restrict assembled)
 {
     for (size_t i = 0; i < n; ++i) {
-        double beta_y, beta_x, phi_y, phi_x, across;
+        double beta_y, beta_x, phi_y, phi_x, across, w_squared;
         hand_triangle(cos(theta[i]), sin(theta[i]), a[i], b[i], c[i], d[i], branch[i], &beta_y, &beta_x, &phi_y,
-                      &phi_x, &across);
+                      &phi_x, &across, &w_squared);
         beta[i] = atan2(beta_y, beta_x);
         phi[i] = atan2(phi_y, phi_x);
         assembled[i] = across == across;
@@ -89,7 +96,7 @@ SYMLINK_LOOP void hand_fourbar_positions(size_t n, const double *restrict theta,
 }
 
 /* Positions, speeds and accelerations: cos and sin of beta and phi from their atan2 arguments (x / r, y / r),
-   as the generated code takes them, not from further calls of cos and sin. */
+   as the generated code takes them, not from further calls of cos and sin; r = 2 b w^2 and 2 c w^2 (Heron). */
 SYMLINK_LOOP void hand_fourbar_everything(size_t n, const double *restrict theta, const double *restrict a,
     const double *restrict b, const double *restrict c, const double *restrict d, const double *restrict branch,
     double speed, double accel, double *restrict beta, double *restrict phi, double *restrict beta_speed,
@@ -99,9 +106,10 @@ SYMLINK_LOOP void hand_fourbar_everything(size_t n, const double *restrict theta
     const double speed2 = speed * speed;
     for (size_t i = 0; i < n; ++i) {
         const double sin_t = sin(theta[i]), cos_t = cos(theta[i]), a_ = a[i], b_ = b[i], c_ = c[i];
-        double beta_y, beta_x, phi_y, phi_x, across;
-        hand_triangle(cos_t, sin_t, a_, b_, c_, d[i], branch[i], &beta_y, &beta_x, &phi_y, &phi_x, &across);
-        const double beta_r = sqrt(beta_x * beta_x + beta_y * beta_y), phi_r = sqrt(phi_x * phi_x + phi_y * phi_y);
+        double beta_y, beta_x, phi_y, phi_x, across, w_squared;
+        hand_triangle(cos_t, sin_t, a_, b_, c_, d[i], branch[i], &beta_y, &beta_x, &phi_y, &phi_x, &across,
+                      &w_squared);
+        const double beta_r = 2.0 * b_ * w_squared, phi_r = 2.0 * c_ * w_squared;   /* |(x, y)| without sqrt */
         const double sin_b = beta_y * (1.0 / beta_r), cos_b = beta_x * (1.0 / beta_r);
         const double sin_p = phi_y * (1.0 / phi_r), cos_p = phi_x * (1.0 / phi_r);
         beta[i] = atan2(beta_y, beta_x);

@@ -4,9 +4,10 @@ The same formulas as symlink's generated code, with the same shared subexpressio
 (:data:`benchmarks.hand_c.HAND_C_SOURCE` has them in C): the triangle B, C, D solved with
 atan2 and Heron's product under symlink's clamped square root, and for the rates the
 cosine and sine of each solved angle taken from its atan2 arguments (``x / r`` and
-``y / r``, one square root each), never from extra ``sin``/``cos`` calls.  So a value
+``y / r``, with r known without a square root: ``2 b w^2`` and ``2 c w^2``), never from
+extra ``sin``/``cos`` calls.  So a value
 costs the same transcendental calls as in the generated code: ``cos`` and ``sin`` of the
-crank, two ``atan2`` (and square roots: two for positions, four for full kinematics);
+crank, two ``atan2`` and one square root, for positions and full kinematics alike;
 :func:`tests.test_bench` counts them in the source text of both.  The one difference is a
 numeric device of the generated code, its loop unit (lengths scaled by a power of two,
 so that no product overflows): a hand-written loop has none.
@@ -25,22 +26,21 @@ _KERNELS: dict = {}
 
 
 def solve_positions(cos_t, sin_t, a, b, c, d, branch, tolerance):
-    """The atan2 arguments of beta and phi (y, x each) and the branch-signed root: symlink's atan2 form."""
+    """The atan2 arguments of beta and phi (y, x each), the branch-signed root and w^2: symlink's atan2 form."""
     wx, wy = a * cos_t - d, a * sin_t
-    w2 = wx * wx + wy * wy
-    w = math.sqrt(w2)
+    w_squared = wx * wx + wy * wy  # w only squared, as in the generated code: no square root for it
     s, t = b + c, b - c
-    heron = (s + w) * (s - w) * (t + w) * (w - t)
-    if heron >= -tolerance * 8 * b * c * w * (s + w + d + a):
+    heron = (s * s - w_squared) * (w_squared - t * t)
+    bound = abs(wx) + abs(wy)  # from w to sqrt(2) w: the clamp's stand-in for w
+    if heron >= -tolerance * 8 * b * c * bound * (s + bound + d + a):
         root = math.sqrt(heron if heron > 0.0 else 0.0)
     else:
         root = math.nan
-    w_squared = w * w  # of the root, as the generated code squares it
     along_b, along_c = s * t + w_squared, w_squared - s * t
     across = root * branch
     beta_y, beta_x = -wy * along_b - wx * across, -wx * along_b + wy * across
     phi_y, phi_x = wy * along_c - wx * across, wx * along_c + wy * across
-    return beta_y, beta_x, phi_y, phi_x, across
+    return beta_y, beta_x, phi_y, phi_x, across, w_squared
 
 
 def numba_kernels(numba, tolerance: float):
@@ -57,7 +57,7 @@ def numba_kernels(numba, tolerance: float):
     @numba.njit(cache=False, fastmath=False)
     def positions(theta, a, b, c, d, branch, beta, phi):
         for i in range(theta.size):
-            beta_y, beta_x, phi_y, phi_x, _ = one_position(math.cos(theta[i]), math.sin(theta[i]), a[i], b[i], c[i],
+            beta_y, beta_x, phi_y, phi_x, _, _ = one_position(math.cos(theta[i]), math.sin(theta[i]), a[i], b[i], c[i],
                                                            d[i], branch[i], tolerance)
             beta[i], phi[i] = math.atan2(beta_y, beta_x), math.atan2(phi_y, phi_x)
 
@@ -68,9 +68,11 @@ def numba_kernels(numba, tolerance: float):
         for i in range(theta.size):
             sin_t, cos_t = math.sin(theta[i]), math.cos(theta[i])
             a_, b_, c_ = a[i], b[i], c[i]
-            beta_y, beta_x, phi_y, phi_x, across = one_position(cos_t, sin_t, a_, b_, c_, d[i], branch[i], tolerance)
-            # cos and sin of each angle from its atan2 arguments, as the generated code takes them
-            beta_r, phi_r = math.sqrt(beta_x * beta_x + beta_y * beta_y), math.sqrt(phi_x * phi_x + phi_y * phi_y)
+            beta_y, beta_x, phi_y, phi_x, across, w_squared = one_position(cos_t, sin_t, a_, b_, c_, d[i], branch[i],
+                                                                           tolerance)
+            # cos and sin of each angle from its atan2 arguments, as the generated code takes them; the arguments'
+            # lengths 2 b w^2 and 2 c w^2 (Heron), without a square root
+            beta_r, phi_r = 2.0 * b_ * w_squared, 2.0 * c_ * w_squared
             sin_b, cos_b = beta_y * (1.0 / beta_r), beta_x * (1.0 / beta_r)
             sin_p, cos_p = phi_y * (1.0 / phi_r), phi_x * (1.0 / phi_r)
             beta[i], phi[i] = math.atan2(beta_y, beta_x), math.atan2(phi_y, phi_x)

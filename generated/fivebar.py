@@ -121,6 +121,11 @@ def _clamped_sqrt(x, scale):
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
 
 
+def _nonzero_square(x, smallest):
+    """A squared length that must not vanish: x where x >= smallest, NaN below it (an undefined direction)."""
+    return numpy.where(x >= smallest, x, numpy.nan)
+
+
 def _power_of_two_below(x):
     """2.0**floor(log2(x)) for positive x (a loop's unit): the largest power of two not above x, from x's exponent.
 
@@ -166,31 +171,29 @@ def _positions_block(theta, psi, a, b, c, d, e, branch):
     rho_3_1 = a*cse_0
     Wx_1 = -rho_1_1 - rho_2_1*numpy.cos(psi) + rho_3_1*numpy.cos(theta)
     Wy_1 = rho_3_1*numpy.sin(theta) - rho_2_1*numpy.sin(psi)
+    cse_3 = abs(Wx_1) + abs(Wy_1)
     rho_4_1 = b*cse_0
     rho_5_1 = c*cse_0
     del cse_0
-    cse_1 = rho_4_1 + rho_5_1
-    cse_3 = rho_4_1 - rho_5_1
-    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
-    cse_2 = cse_1 + w_1
-    cse_4 = numpy.square(w_1)
-    cse_5 = cse_1*cse_3 + cse_4
-    cse_9 = cse_4 - cse_1*cse_3
-    del cse_4
-    Delta_1 = _clamped_sqrt(cse_2*(cse_1 - w_1)*(cse_3 + w_1)*(rho_5_1 - rho_4_1 + w_1), 8.0*rho_4_1*rho_5_1*w_1*(cse_2 + rho_1_1 + rho_2_1 + rho_3_1))
+    cse_1 = rho_4_1 - rho_5_1
+    cse_2 = rho_4_1 + rho_5_1
+    wsq_1 = _nonzero_square(numpy.square(Wx_1) + numpy.square(Wy_1), 2.2250738585072e-308)
+    cse_4 = cse_1*cse_2 + wsq_1
+    cse_8 = wsq_1 - cse_1*cse_2
+    Delta_1 = _clamped_sqrt((wsq_1 - numpy.square(cse_1))*(numpy.square(cse_2) - wsq_1), 8.0*cse_3*rho_4_1*rho_5_1*(cse_2 + cse_3 + rho_1_1 + rho_2_1 + rho_3_1))
     del cse_1, cse_2, cse_3, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
-    cse_6 = Delta_1*branch
-    cse_7 = Wx_1*cse_6
-    cse_8 = Wy_1*cse_6
-    del cse_6
-    beta = numpy.arctan2(-Wy_1*cse_5 - cse_7, cse_8 - Wx_1*cse_5)
+    cse_5 = Delta_1*branch
+    cse_6 = Wx_1*cse_5
+    cse_7 = Wy_1*cse_5
     del cse_5
-    phi = numpy.arctan2(Wy_1*cse_9 - cse_7, Wx_1*cse_9 + cse_8)
-    del Wx_1, Wy_1, cse_7, cse_8, cse_9
+    beta = numpy.arctan2(-Wy_1*cse_4 - cse_6, cse_7 - Wx_1*cse_4)
+    del cse_4
+    phi = numpy.arctan2(Wy_1*cse_8 - cse_6, Wx_1*cse_8 + cse_7)
+    del Wx_1, Wy_1, cse_6, cse_7, cse_8
     return (
         beta,  # coupler
         phi,  # coupler2
-        numpy.isfinite(w_1) & numpy.isfinite(Delta_1),  # assembled
+        numpy.isfinite(wsq_1) & numpy.isfinite(Delta_1),  # assembled
     )
 
 
@@ -215,7 +218,7 @@ def _velocities_block(theta, psi, a, b, c, d, e, branch, thetadot, psidot):
     cos_theta = numpy.cos(theta)
     sin_psi = numpy.sin(psi)
     cos_psi = numpy.cos(psi)
-    cse_12 = a*thetadot
+    cse_11 = a*thetadot
     size_1 = _power_of_two_below((1/5)*a + (1/5)*b + (1/5)*c + (1/5)*d + (1/5)*e)
     cse_0 = 1/(size_1)
     del size_1
@@ -224,55 +227,55 @@ def _velocities_block(theta, psi, a, b, c, d, e, branch, thetadot, psidot):
     rho_3_1 = a*cse_0
     Wx_1 = cos_theta*rho_3_1 - cos_psi*rho_2_1 - rho_1_1
     Wy_1 = rho_3_1*sin_theta - rho_2_1*sin_psi
+    cse_3 = abs(Wx_1) + abs(Wy_1)
     rho_4_1 = b*cse_0
     rho_5_1 = c*cse_0
     del cse_0
-    cse_1 = rho_4_1 + rho_5_1
-    cse_3 = rho_4_1 - rho_5_1
+    cse_1 = rho_4_1 - rho_5_1
+    cse_2 = rho_4_1 + rho_5_1
     cse_4 = rho_4_1*rho_5_1
-    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
-    cse_2 = cse_1 + w_1
-    cse_5 = numpy.square(w_1)
-    cse_6 = cse_1*cse_3 + cse_5
-    cse_10 = cse_5 - cse_1*cse_3
-    del cse_5
-    Delta_1 = _clamped_sqrt(cse_2*(cse_1 - w_1)*(cse_3 + w_1)*(rho_5_1 - rho_4_1 + w_1), 8.0*cse_4*w_1*(cse_2 + rho_1_1 + rho_2_1 + rho_3_1))
-    del cse_1, cse_2, cse_3, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
-    cse_7 = Delta_1*branch
-    cse_8 = Wx_1*cse_7
-    beta_y = -Wy_1*cse_6 - cse_8
-    phi_y = Wy_1*cse_10 - cse_8
-    del cse_8
-    cse_9 = Wy_1*cse_7
-    del Wy_1, cse_7
-    beta_x = cse_9 - Wx_1*cse_6
-    del cse_6
-    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
+    wsq_1 = _nonzero_square(numpy.square(Wx_1) + numpy.square(Wy_1), 2.2250738585072e-308)
+    beta_r = 2.0*rho_4_1*wsq_1
+    del rho_4_1
+    phi_r = 2.0*rho_5_1*wsq_1
+    del rho_5_1
+    cse_5 = cse_1*cse_2 + wsq_1
+    cse_9 = wsq_1 - cse_1*cse_2
+    Delta_1 = _clamped_sqrt((wsq_1 - numpy.square(cse_1))*(numpy.square(cse_2) - wsq_1), 8.0*cse_3*cse_4*(cse_2 + cse_3 + rho_1_1 + rho_2_1 + rho_3_1))
+    del cse_1, cse_2, cse_3, rho_1_1, rho_2_1, rho_3_1
+    cse_6 = Delta_1*branch
+    cse_7 = Wx_1*cse_6
+    beta_y = -Wy_1*cse_5 - cse_7
     sin_beta = _sin_atan2(beta_y, beta_r)
+    phi_y = Wy_1*cse_9 - cse_7
+    del cse_7
+    sin_phi = _sin_atan2(phi_y, phi_r)
+    cse_8 = Wy_1*cse_6
+    del Wy_1, cse_6
+    beta_x = cse_8 - Wx_1*cse_5
+    del cse_5
     cos_beta = _cos_atan2(beta_x, beta_r)
     del beta_r
-    phi_x = Wx_1*cse_10 + cse_9
-    del Wx_1, cse_10, cse_9
-    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
-    sin_phi = _sin_atan2(phi_y, phi_r)
+    phi_x = Wx_1*cse_9 + cse_8
+    del Wx_1, cse_8, cse_9
     cos_phi = _cos_atan2(phi_x, phi_r)
     del phi_r
-    cse_14 = 2.0*cse_4/(Delta_1*branch)
+    cse_13 = 2.0*cse_4/(Delta_1*branch)
     del cse_4
     beta = numpy.arctan2(beta_y, beta_x)
     del beta_x, beta_y
     phi = numpy.arctan2(phi_y, phi_x)
     del phi_x, phi_y
-    betadot = cse_14*(e*psidot*(cos_psi*sin_phi - cos_phi*sin_psi) - cse_12*(cos_theta*sin_phi - cos_phi*sin_theta))/b
+    betadot = cse_13*(e*psidot*(cos_psi*sin_phi - cos_phi*sin_psi) - cse_11*(cos_theta*sin_phi - cos_phi*sin_theta))/b
     del cos_phi, sin_phi
-    phidot = cse_14*(e*psidot*(cos_psi*sin_beta - cos_beta*sin_psi) - cse_12*(cos_theta*sin_beta - cos_beta*sin_theta))/c
-    del cos_beta, cos_psi, cos_theta, cse_12, cse_14, sin_beta, sin_psi, sin_theta
+    phidot = cse_13*(e*psidot*(cos_psi*sin_beta - cos_beta*sin_psi) - cse_11*(cos_theta*sin_beta - cos_beta*sin_theta))/c
+    del cos_beta, cos_psi, cos_theta, cse_11, cse_13, sin_beta, sin_psi, sin_theta
     return (
         beta,  # coupler
         phi,  # coupler2
         betadot,  # coupler_speed
         phidot,  # coupler2_speed
-        numpy.isfinite(w_1) & numpy.isfinite(Delta_1),  # assembled
+        numpy.isfinite(wsq_1) & numpy.isfinite(Delta_1),  # assembled
     )
 
 
@@ -297,10 +300,10 @@ def _accelerations_block(theta, psi, a, b, c, d, e, branch, thetadot, psidot, th
     cos_theta = numpy.cos(theta)
     sin_psi = numpy.sin(psi)
     cos_psi = numpy.cos(psi)
-    cse_14 = a*thetadot
-    cse_26 = a*thetaddot
-    cse_27 = e*numpy.square(psidot)
-    cse_28 = numpy.square(thetadot)
+    cse_13 = a*thetadot
+    cse_25 = a*thetaddot
+    cse_26 = e*numpy.square(psidot)
+    cse_27 = numpy.square(thetadot)
     size_1 = _power_of_two_below((1/5)*a + (1/5)*b + (1/5)*c + (1/5)*d + (1/5)*e)
     cse_0 = 1/(size_1)
     del size_1
@@ -309,62 +312,62 @@ def _accelerations_block(theta, psi, a, b, c, d, e, branch, thetadot, psidot, th
     rho_3_1 = a*cse_0
     Wx_1 = cos_theta*rho_3_1 - cos_psi*rho_2_1 - rho_1_1
     Wy_1 = rho_3_1*sin_theta - rho_2_1*sin_psi
+    cse_3 = abs(Wx_1) + abs(Wy_1)
     rho_4_1 = b*cse_0
     rho_5_1 = c*cse_0
     del cse_0
-    cse_1 = rho_4_1 + rho_5_1
-    cse_3 = rho_4_1 - rho_5_1
+    cse_1 = rho_4_1 - rho_5_1
+    cse_2 = rho_4_1 + rho_5_1
     cse_4 = rho_4_1*rho_5_1
-    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
-    cse_2 = cse_1 + w_1
-    cse_5 = numpy.square(w_1)
-    cse_6 = cse_1*cse_3 + cse_5
-    cse_10 = cse_5 - cse_1*cse_3
-    del cse_5
-    Delta_1 = _clamped_sqrt(cse_2*(cse_1 - w_1)*(cse_3 + w_1)*(rho_5_1 - rho_4_1 + w_1), 8.0*cse_4*w_1*(cse_2 + rho_1_1 + rho_2_1 + rho_3_1))
-    del cse_1, cse_2, cse_3, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
-    cse_7 = Delta_1*branch
-    cse_8 = Wx_1*cse_7
-    phi_y = Wy_1*cse_10 - cse_8
-    beta_y = -Wy_1*cse_6 - cse_8
-    del cse_8
-    cse_9 = Wy_1*cse_7
-    del Wy_1, cse_7
-    phi_x = Wx_1*cse_10 + cse_9
-    del cse_10
-    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
+    wsq_1 = _nonzero_square(numpy.square(Wx_1) + numpy.square(Wy_1), 2.2250738585072e-308)
+    phi_r = 2.0*rho_5_1*wsq_1
+    del rho_5_1
+    beta_r = 2.0*rho_4_1*wsq_1
+    del rho_4_1
+    cse_5 = cse_1*cse_2 + wsq_1
+    cse_9 = wsq_1 - cse_1*cse_2
+    Delta_1 = _clamped_sqrt((wsq_1 - numpy.square(cse_1))*(numpy.square(cse_2) - wsq_1), 8.0*cse_3*cse_4*(cse_2 + cse_3 + rho_1_1 + rho_2_1 + rho_3_1))
+    del cse_1, cse_2, cse_3, rho_1_1, rho_2_1, rho_3_1
+    cse_6 = Delta_1*branch
+    cse_7 = Wx_1*cse_6
+    phi_y = Wy_1*cse_9 - cse_7
     sin_phi = _sin_atan2(phi_y, phi_r)
+    beta_y = -Wy_1*cse_5 - cse_7
+    del cse_7
+    sin_beta = _sin_atan2(beta_y, beta_r)
+    cse_8 = Wy_1*cse_6
+    del Wy_1, cse_6
+    phi_x = Wx_1*cse_9 + cse_8
+    del cse_9
     cos_phi = _cos_atan2(phi_x, phi_r)
     del phi_r
-    beta_x = cse_9 - Wx_1*cse_6
-    del Wx_1, cse_6, cse_9
-    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
-    sin_beta = _sin_atan2(beta_y, beta_r)
+    beta_x = cse_8 - Wx_1*cse_5
+    del Wx_1, cse_5, cse_8
     cos_beta = _cos_atan2(beta_x, beta_r)
     del beta_r
-    cse_18 = 2.0*cse_4/(Delta_1*branch)
+    cse_17 = 2.0*cse_4/(Delta_1*branch)
     del cse_4
-    cse_19 = cse_18/b
-    cse_24 = cse_18/c
-    del cse_18
+    cse_18 = cse_17/b
+    cse_23 = cse_17/c
+    del cse_17
     beta = numpy.arctan2(beta_y, beta_x)
     del beta_x, beta_y
-    cse_21 = cos_theta*sin_beta - cos_beta*sin_theta
-    cse_23 = cos_psi*sin_beta - cos_beta*sin_psi
+    cse_20 = cos_theta*sin_beta - cos_beta*sin_theta
+    cse_22 = cos_psi*sin_beta - cos_beta*sin_psi
     phi = numpy.arctan2(phi_y, phi_x)
     del phi_x, phi_y
-    cse_13 = cos_theta*sin_phi - cos_phi*sin_theta
-    cse_17 = cos_psi*sin_phi - cos_phi*sin_psi
-    cse_30 = cos_beta*cos_phi + sin_beta*sin_phi
-    betadot = cse_19*(cse_17*e*psidot - cse_13*cse_14)
-    cse_29 = numpy.square(betadot)
-    phidot = cse_24*(cse_23*e*psidot - cse_14*cse_21)
-    del cse_14
-    cse_25 = c*numpy.square(phidot)
-    betaddot = cse_19*(a*cse_28*(cos_phi*cos_theta + sin_phi*sin_theta) + b*cse_29*cse_30 - cse_13*cse_26 + cse_17*e*psiddot - cse_25 - cse_27*(cos_phi*cos_psi + sin_phi*sin_psi))
-    del cos_phi, cse_13, cse_17, cse_19, sin_phi
-    phiddot = cse_24*(a*cse_28*(cos_beta*cos_theta + sin_beta*sin_theta) + b*cse_29 - cse_21*cse_26 + cse_23*e*psiddot - cse_25*cse_30 - cse_27*(cos_beta*cos_psi + sin_beta*sin_psi))
-    del cos_beta, cos_psi, cos_theta, cse_21, cse_23, cse_24, cse_25, cse_26, cse_27, cse_28, cse_29, cse_30, sin_beta, sin_psi, sin_theta
+    cse_12 = cos_theta*sin_phi - cos_phi*sin_theta
+    cse_16 = cos_psi*sin_phi - cos_phi*sin_psi
+    cse_29 = cos_beta*cos_phi + sin_beta*sin_phi
+    betadot = cse_18*(cse_16*e*psidot - cse_12*cse_13)
+    cse_28 = numpy.square(betadot)
+    phidot = cse_23*(cse_22*e*psidot - cse_13*cse_20)
+    del cse_13
+    cse_24 = c*numpy.square(phidot)
+    betaddot = cse_18*(a*cse_27*(cos_phi*cos_theta + sin_phi*sin_theta) + b*cse_28*cse_29 - cse_12*cse_25 + cse_16*e*psiddot - cse_24 - cse_26*(cos_phi*cos_psi + sin_phi*sin_psi))
+    del cos_phi, cse_12, cse_16, cse_18, sin_phi
+    phiddot = cse_23*(a*cse_27*(cos_beta*cos_theta + sin_beta*sin_theta) + b*cse_28 - cse_20*cse_25 + cse_22*e*psiddot - cse_24*cse_29 - cse_26*(cos_beta*cos_psi + sin_beta*sin_psi))
+    del cos_beta, cos_psi, cos_theta, cse_20, cse_22, cse_23, cse_24, cse_25, cse_26, cse_27, cse_28, cse_29, sin_beta, sin_psi, sin_theta
     return (
         beta,  # coupler
         phi,  # coupler2
@@ -372,7 +375,7 @@ def _accelerations_block(theta, psi, a, b, c, d, e, branch, thetadot, psidot, th
         phidot,  # coupler2_speed
         betaddot,  # coupler_accel
         phiddot,  # coupler2_accel
-        numpy.isfinite(w_1) & numpy.isfinite(Delta_1),  # assembled
+        numpy.isfinite(wsq_1) & numpy.isfinite(Delta_1),  # assembled
     )
 
 
@@ -409,21 +412,21 @@ def _joints_block(theta, psi, a, b, c, d, e, branch):
     del cse_2
     Wy_1 = cse_4*rho_3_1 - cse_3*rho_2_1
     del cse_4
+    cse_7 = abs(Wx_1) + abs(Wy_1)
     rho_4_1 = b*cse_0
     rho_5_1 = c*cse_0
     del cse_0
-    cse_5 = rho_4_1 + rho_5_1
-    cse_7 = rho_4_1 - rho_5_1
-    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
-    cse_6 = cse_5 + w_1
-    cse_8 = cse_5*cse_7 + numpy.square(w_1)
-    Delta_1 = _clamped_sqrt(cse_6*(cse_5 - w_1)*(cse_7 + w_1)*(rho_5_1 - rho_4_1 + w_1), 8.0*rho_4_1*rho_5_1*w_1*(cse_6 + rho_1_1 + rho_2_1 + rho_3_1))
+    cse_5 = rho_4_1 - rho_5_1
+    cse_6 = rho_4_1 + rho_5_1
+    wsq_1 = _nonzero_square(numpy.square(Wx_1) + numpy.square(Wy_1), 2.2250738585072e-308)
+    beta_r = 2.0*rho_4_1*wsq_1
+    cse_8 = cse_5*cse_6 + wsq_1
+    Delta_1 = _clamped_sqrt((wsq_1 - numpy.square(cse_5))*(numpy.square(cse_6) - wsq_1), 8.0*cse_7*rho_4_1*rho_5_1*(cse_6 + cse_7 + rho_1_1 + rho_2_1 + rho_3_1))
     del cse_5, cse_6, cse_7, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
     cse_9 = Delta_1*branch
     beta_y = -Wx_1*cse_9 - Wy_1*cse_8
     beta_x = Wy_1*cse_9 - Wx_1*cse_8
     del Wx_1, Wy_1, cse_8, cse_9
-    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
     sin_beta = _sin_atan2(beta_y, beta_r)
     del beta_y
     cos_beta = _cos_atan2(beta_x, beta_r)
@@ -435,5 +438,5 @@ def _joints_block(theta, psi, a, b, c, d, e, branch):
         b*sin_beta + cse_11,  # C_y
         cse_1*e + d,  # D_x
         cse_3*e,  # D_y
-        numpy.isfinite(w_1) & numpy.isfinite(Delta_1),  # assembled
+        numpy.isfinite(wsq_1) & numpy.isfinite(Delta_1),  # assembled
     )

@@ -121,6 +121,11 @@ def _clamped_sqrt(x, scale):
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
 
 
+def _nonzero_square(x, smallest):
+    """A squared length that must not vanish: x where x >= smallest, NaN below it (an undefined direction)."""
+    return numpy.where(x >= smallest, x, numpy.nan)
+
+
 def _power_of_two_below(x):
     """2.0**floor(log2(x)) for positive x (a loop's unit): the largest power of two not above x, from x's exponent.
 
@@ -165,31 +170,29 @@ def _positions_block(theta, a, b, c, d, branch):
     rho_2_1 = a*cse_0
     Wx_1 = rho_2_1*numpy.cos(theta) - rho_1_1
     Wy_1 = rho_2_1*numpy.sin(theta)
+    cse_3 = abs(Wx_1) + abs(Wy_1)
     rho_3_1 = b*cse_0
     rho_4_1 = c*cse_0
     del cse_0
-    cse_1 = rho_3_1 + rho_4_1
-    cse_3 = rho_3_1 - rho_4_1
-    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
-    cse_2 = cse_1 + w_1
-    cse_4 = numpy.square(w_1)
-    cse_5 = cse_1*cse_3 + cse_4
-    cse_9 = cse_4 - cse_1*cse_3
-    del cse_4
-    Delta_1 = _clamped_sqrt(cse_2*(cse_1 - w_1)*(cse_3 + w_1)*(rho_4_1 - rho_3_1 + w_1), 8.0*rho_3_1*rho_4_1*w_1*(cse_2 + rho_1_1 + rho_2_1))
+    cse_1 = rho_3_1 - rho_4_1
+    cse_2 = rho_3_1 + rho_4_1
+    wsq_1 = _nonzero_square(numpy.square(Wx_1) + numpy.square(Wy_1), 2.2250738585072e-308)
+    cse_4 = cse_1*cse_2 + wsq_1
+    cse_8 = wsq_1 - cse_1*cse_2
+    Delta_1 = _clamped_sqrt((wsq_1 - numpy.square(cse_1))*(numpy.square(cse_2) - wsq_1), 8.0*cse_3*rho_3_1*rho_4_1*(cse_2 + cse_3 + rho_1_1 + rho_2_1))
     del cse_1, cse_2, cse_3, rho_1_1, rho_2_1, rho_3_1, rho_4_1
-    cse_6 = Delta_1*branch
-    cse_7 = Wx_1*cse_6
-    cse_8 = Wy_1*cse_6
-    del cse_6
-    beta = numpy.arctan2(-Wy_1*cse_5 - cse_7, cse_8 - Wx_1*cse_5)
+    cse_5 = Delta_1*branch
+    cse_6 = Wx_1*cse_5
+    cse_7 = Wy_1*cse_5
     del cse_5
-    phi = numpy.arctan2(Wy_1*cse_9 - cse_7, Wx_1*cse_9 + cse_8)
-    del Wx_1, Wy_1, cse_7, cse_8, cse_9
+    beta = numpy.arctan2(-Wy_1*cse_4 - cse_6, cse_7 - Wx_1*cse_4)
+    del cse_4
+    phi = numpy.arctan2(Wy_1*cse_8 - cse_6, Wx_1*cse_8 + cse_7)
+    del Wx_1, Wy_1, cse_6, cse_7, cse_8
     return (
         beta,  # coupler
         phi,  # rocker
-        numpy.isfinite(w_1) & numpy.isfinite(Delta_1),  # assembled
+        numpy.isfinite(wsq_1) & numpy.isfinite(Delta_1),  # assembled
     )
 
 
@@ -219,56 +222,56 @@ def _velocities_block(theta, a, b, c, d, branch, thetadot):
     rho_2_1 = a*cse_0
     Wx_1 = cos_theta*rho_2_1 - rho_1_1
     Wy_1 = rho_2_1*sin_theta
+    cse_3 = abs(Wx_1) + abs(Wy_1)
     rho_3_1 = b*cse_0
     rho_4_1 = c*cse_0
     del cse_0
-    cse_1 = rho_3_1 + rho_4_1
-    cse_3 = rho_3_1 - rho_4_1
+    cse_1 = rho_3_1 - rho_4_1
+    cse_2 = rho_3_1 + rho_4_1
     cse_4 = rho_3_1*rho_4_1
-    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
-    cse_2 = cse_1 + w_1
-    cse_5 = numpy.square(w_1)
-    cse_6 = cse_1*cse_3 + cse_5
-    cse_10 = cse_5 - cse_1*cse_3
-    del cse_5
-    Delta_1 = _clamped_sqrt(cse_2*(cse_1 - w_1)*(cse_3 + w_1)*(rho_4_1 - rho_3_1 + w_1), 8.0*cse_4*w_1*(cse_2 + rho_1_1 + rho_2_1))
-    del cse_1, cse_2, cse_3, rho_1_1, rho_2_1, rho_3_1, rho_4_1
-    cse_7 = Delta_1*branch
-    cse_8 = Wx_1*cse_7
-    beta_y = -Wy_1*cse_6 - cse_8
-    phi_y = Wy_1*cse_10 - cse_8
-    del cse_8
-    cse_9 = Wy_1*cse_7
-    del Wy_1, cse_7
-    beta_x = cse_9 - Wx_1*cse_6
-    del cse_6
-    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
+    wsq_1 = _nonzero_square(numpy.square(Wx_1) + numpy.square(Wy_1), 2.2250738585072e-308)
+    beta_r = 2.0*rho_3_1*wsq_1
+    del rho_3_1
+    phi_r = 2.0*rho_4_1*wsq_1
+    del rho_4_1
+    cse_5 = cse_1*cse_2 + wsq_1
+    cse_9 = wsq_1 - cse_1*cse_2
+    Delta_1 = _clamped_sqrt((wsq_1 - numpy.square(cse_1))*(numpy.square(cse_2) - wsq_1), 8.0*cse_3*cse_4*(cse_2 + cse_3 + rho_1_1 + rho_2_1))
+    del cse_1, cse_2, cse_3, rho_1_1, rho_2_1
+    cse_6 = Delta_1*branch
+    cse_7 = Wx_1*cse_6
+    beta_y = -Wy_1*cse_5 - cse_7
     sin_beta = _sin_atan2(beta_y, beta_r)
+    phi_y = Wy_1*cse_9 - cse_7
+    del cse_7
+    sin_phi = _sin_atan2(phi_y, phi_r)
+    cse_8 = Wy_1*cse_6
+    del Wy_1, cse_6
+    beta_x = cse_8 - Wx_1*cse_5
+    del cse_5
     cos_beta = _cos_atan2(beta_x, beta_r)
     del beta_r
-    phi_x = Wx_1*cse_10 + cse_9
-    del Wx_1, cse_10, cse_9
-    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
-    sin_phi = _sin_atan2(phi_y, phi_r)
+    phi_x = Wx_1*cse_9 + cse_8
+    del Wx_1, cse_8, cse_9
     cos_phi = _cos_atan2(phi_x, phi_r)
     del phi_r
-    cse_12 = 2.0*a*cse_4*thetadot/(Delta_1*branch)
+    cse_11 = 2.0*a*cse_4*thetadot/(Delta_1*branch)
     del cse_4
     beta = numpy.arctan2(beta_y, beta_x)
     del beta_x, beta_y
     phi = numpy.arctan2(phi_y, phi_x)
     del phi_x, phi_y
-    betadot = -cse_12*(cos_theta*sin_phi - cos_phi*sin_theta)/b
+    betadot = -cse_11*(cos_theta*sin_phi - cos_phi*sin_theta)/b
     del cos_phi, sin_phi
-    phidot = -cse_12*(cos_theta*sin_beta - cos_beta*sin_theta)/c
-    del cos_beta, cos_theta, cse_12, sin_beta, sin_theta
+    phidot = -cse_11*(cos_theta*sin_beta - cos_beta*sin_theta)/c
+    del cos_beta, cos_theta, cse_11, sin_beta, sin_theta
     return (
         beta,  # coupler
         phi,  # rocker
         betadot,  # coupler_speed
         phidot,  # rocker_speed
-        numpy.logical_or.reduce((numpy.equal(Delta_1, 0.0),numpy.equal(w_1, 0.0))),  # singular
-        numpy.isfinite(w_1) & numpy.isfinite(Delta_1),  # assembled
+        numpy.equal(Delta_1, 0.0),  # singular
+        numpy.isfinite(wsq_1) & numpy.isfinite(Delta_1),  # assembled
     )
 
 
@@ -291,9 +294,9 @@ def _accelerations_block(theta, a, b, c, d, branch, thetadot, thetaddot):
     """The outputs of accelerations and the assembled mask, for arguments that broadcast together."""
     sin_theta = numpy.sin(theta)
     cos_theta = numpy.cos(theta)
-    cse_16 = a*thetadot
-    cse_21 = a*thetaddot
-    cse_22 = numpy.square(thetadot)
+    cse_15 = a*thetadot
+    cse_20 = a*thetaddot
+    cse_21 = numpy.square(thetadot)
     size_1 = _power_of_two_below((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d)
     cse_0 = 1/(size_1)
     del size_1
@@ -301,60 +304,60 @@ def _accelerations_block(theta, a, b, c, d, branch, thetadot, thetaddot):
     rho_2_1 = a*cse_0
     Wx_1 = cos_theta*rho_2_1 - rho_1_1
     Wy_1 = rho_2_1*sin_theta
+    cse_3 = abs(Wx_1) + abs(Wy_1)
     rho_3_1 = b*cse_0
     rho_4_1 = c*cse_0
     del cse_0
-    cse_1 = rho_3_1 + rho_4_1
-    cse_3 = rho_3_1 - rho_4_1
+    cse_1 = rho_3_1 - rho_4_1
+    cse_2 = rho_3_1 + rho_4_1
     cse_4 = rho_3_1*rho_4_1
-    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
-    cse_2 = cse_1 + w_1
-    cse_5 = numpy.square(w_1)
-    cse_6 = cse_1*cse_3 + cse_5
-    cse_10 = cse_5 - cse_1*cse_3
-    del cse_5
-    Delta_1 = _clamped_sqrt(cse_2*(cse_1 - w_1)*(cse_3 + w_1)*(rho_4_1 - rho_3_1 + w_1), 8.0*cse_4*w_1*(cse_2 + rho_1_1 + rho_2_1))
-    del cse_1, cse_2, cse_3, rho_1_1, rho_2_1, rho_3_1, rho_4_1
-    cse_7 = Delta_1*branch
-    cse_8 = Wx_1*cse_7
-    phi_y = Wy_1*cse_10 - cse_8
-    beta_y = -Wy_1*cse_6 - cse_8
-    del cse_8
-    cse_9 = Wy_1*cse_7
-    del Wy_1, cse_7
-    phi_x = Wx_1*cse_10 + cse_9
-    del cse_10
-    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
+    wsq_1 = _nonzero_square(numpy.square(Wx_1) + numpy.square(Wy_1), 2.2250738585072e-308)
+    phi_r = 2.0*rho_4_1*wsq_1
+    del rho_4_1
+    beta_r = 2.0*rho_3_1*wsq_1
+    del rho_3_1
+    cse_5 = cse_1*cse_2 + wsq_1
+    cse_9 = wsq_1 - cse_1*cse_2
+    Delta_1 = _clamped_sqrt((wsq_1 - numpy.square(cse_1))*(numpy.square(cse_2) - wsq_1), 8.0*cse_3*cse_4*(cse_2 + cse_3 + rho_1_1 + rho_2_1))
+    del cse_1, cse_2, cse_3, rho_1_1, rho_2_1
+    cse_6 = Delta_1*branch
+    cse_7 = Wx_1*cse_6
+    phi_y = Wy_1*cse_9 - cse_7
     sin_phi = _sin_atan2(phi_y, phi_r)
+    beta_y = -Wy_1*cse_5 - cse_7
+    del cse_7
+    sin_beta = _sin_atan2(beta_y, beta_r)
+    cse_8 = Wy_1*cse_6
+    del Wy_1, cse_6
+    phi_x = Wx_1*cse_9 + cse_8
+    del cse_9
     cos_phi = _cos_atan2(phi_x, phi_r)
     del phi_r
-    beta_x = cse_9 - Wx_1*cse_6
-    del Wx_1, cse_6, cse_9
-    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
-    sin_beta = _sin_atan2(beta_y, beta_r)
+    beta_x = cse_8 - Wx_1*cse_5
+    del Wx_1, cse_5, cse_8
     cos_beta = _cos_atan2(beta_x, beta_r)
     del beta_r
-    cse_14 = 2.0*cse_4/(Delta_1*branch)
+    cse_13 = 2.0*cse_4/(Delta_1*branch)
     del cse_4
-    cse_15 = cse_14/b
-    cse_19 = cse_14/c
-    del cse_14
+    cse_14 = cse_13/b
+    cse_18 = cse_13/c
+    del cse_13
     beta = numpy.arctan2(beta_y, beta_x)
     del beta_x, beta_y
-    cse_18 = cos_theta*sin_beta - cos_beta*sin_theta
+    cse_17 = cos_theta*sin_beta - cos_beta*sin_theta
     phi = numpy.arctan2(phi_y, phi_x)
     del phi_x, phi_y
-    cse_13 = cos_theta*sin_phi - cos_phi*sin_theta
-    cse_25 = cos_beta*cos_phi + sin_beta*sin_phi
-    betadot = -cse_13*cse_15*cse_16
-    cse_23 = numpy.square(betadot)
-    phidot = -cse_16*cse_18*cse_19
-    del cse_16
-    cse_20 = c*numpy.square(phidot)
-    betaddot = cse_15*(a*cse_22*(cos_phi*cos_theta + sin_phi*sin_theta) + b*cse_23*cse_25 - cse_13*cse_21 - cse_20)
-    del cse_13, cse_15
-    phiddot = cse_19*(a*cse_22*(cos_beta*cos_theta + sin_beta*sin_theta) + b*cse_23 - cse_18*cse_21 - cse_20*cse_25)
-    del cos_theta, cse_18, cse_19, cse_20, cse_21, cse_22, cse_23, sin_theta
+    cse_12 = cos_theta*sin_phi - cos_phi*sin_theta
+    cse_24 = cos_beta*cos_phi + sin_beta*sin_phi
+    betadot = -cse_12*cse_14*cse_15
+    cse_22 = numpy.square(betadot)
+    phidot = -cse_15*cse_17*cse_18
+    del cse_15
+    cse_19 = c*numpy.square(phidot)
+    betaddot = cse_14*(a*cse_21*(cos_phi*cos_theta + sin_phi*sin_theta) + b*cse_22*cse_24 - cse_12*cse_20 - cse_19)
+    del cse_12, cse_14
+    phiddot = cse_18*(a*cse_21*(cos_beta*cos_theta + sin_beta*sin_theta) + b*cse_22 - cse_17*cse_20 - cse_19*cse_24)
+    del cos_theta, cse_17, cse_18, cse_19, cse_20, cse_21, cse_22, sin_theta
     return (
         beta,  # coupler
         phi,  # rocker
@@ -362,9 +365,9 @@ def _accelerations_block(theta, a, b, c, d, branch, thetadot, thetaddot):
         phidot,  # rocker_speed
         betaddot,  # coupler_accel
         phiddot,  # rocker_accel
-        abs(numpy.arctan2(cos_phi*sin_beta - cos_beta*sin_phi, cse_25)),  # transmission
-        numpy.logical_or.reduce((numpy.equal(Delta_1, 0.0),numpy.equal(w_1, 0.0))),  # singular
-        numpy.isfinite(w_1) & numpy.isfinite(Delta_1),  # assembled
+        abs(numpy.arctan2(cos_phi*sin_beta - cos_beta*sin_phi, cse_24)),  # transmission
+        numpy.equal(Delta_1, 0.0),  # singular
+        numpy.isfinite(wsq_1) & numpy.isfinite(Delta_1),  # assembled
     )
 
 
@@ -398,21 +401,21 @@ def _joints_block(theta, a, b, c, d, branch):
     del cse_1
     Wy_1 = cse_2*rho_2_1
     del cse_2
+    cse_5 = abs(Wx_1) + abs(Wy_1)
     rho_3_1 = b*cse_0
     rho_4_1 = c*cse_0
     del cse_0
-    cse_3 = rho_3_1 + rho_4_1
-    cse_5 = rho_3_1 - rho_4_1
-    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
-    cse_4 = cse_3 + w_1
-    cse_6 = cse_3*cse_5 + numpy.square(w_1)
-    Delta_1 = _clamped_sqrt(cse_4*(cse_3 - w_1)*(cse_5 + w_1)*(rho_4_1 - rho_3_1 + w_1), 8.0*rho_3_1*rho_4_1*w_1*(cse_4 + rho_1_1 + rho_2_1))
+    cse_3 = rho_3_1 - rho_4_1
+    cse_4 = rho_3_1 + rho_4_1
+    wsq_1 = _nonzero_square(numpy.square(Wx_1) + numpy.square(Wy_1), 2.2250738585072e-308)
+    beta_r = 2.0*rho_3_1*wsq_1
+    cse_6 = cse_3*cse_4 + wsq_1
+    Delta_1 = _clamped_sqrt((wsq_1 - numpy.square(cse_3))*(numpy.square(cse_4) - wsq_1), 8.0*cse_5*rho_3_1*rho_4_1*(cse_4 + cse_5 + rho_1_1 + rho_2_1))
     del cse_3, cse_4, cse_5, rho_1_1, rho_2_1, rho_3_1, rho_4_1
     cse_7 = Delta_1*branch
     beta_y = -Wx_1*cse_7 - Wy_1*cse_6
     beta_x = Wy_1*cse_7 - Wx_1*cse_6
     del Wx_1, Wy_1, cse_6, cse_7
-    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
     sin_beta = _sin_atan2(beta_y, beta_r)
     del beta_y
     cos_beta = _cos_atan2(beta_x, beta_r)
@@ -422,5 +425,5 @@ def _joints_block(theta, a, b, c, d, branch):
         cse_9,  # B_y
         b*cos_beta + cse_8,  # C_x
         b*sin_beta + cse_9,  # C_y
-        numpy.isfinite(w_1) & numpy.isfinite(Delta_1),  # assembled
+        numpy.isfinite(wsq_1) & numpy.isfinite(Delta_1),  # assembled
     )

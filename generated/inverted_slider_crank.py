@@ -121,6 +121,11 @@ def _clamped_sqrt(x, scale):
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
 
 
+def _nonzero_square(x, smallest):
+    """A squared length that must not vanish: x where x >= smallest, NaN below it (an undefined direction)."""
+    return numpy.where(x >= smallest, x, numpy.nan)
+
+
 def _power_of_two_below(x):
     """2.0**floor(log2(x)) for positive x (a loop's unit): the largest power of two not above x, from x's exponent.
 

@@ -121,6 +121,11 @@ def _clamped_sqrt(x, scale):
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
 
 
+def _nonzero_square(x, smallest):
+    """A squared length that must not vanish: x where x >= smallest, NaN below it (an undefined direction)."""
+    return numpy.where(x >= smallest, x, numpy.nan)
+
+
 def _power_of_two_below(x):
     """2.0**floor(log2(x)) for positive x (a loop's unit): the largest power of two not above x, from x's exponent.
 
@@ -169,97 +174,91 @@ def _positions_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branc
     rho_3_1 = cse_1*m
     Wx_1 = cse_2*rho_3_1 + rho_1_1
     Wy_1 = cse_3*rho_3_1 + rho_2_1
+    cse_6 = abs(Wx_1) + abs(Wy_1)
     rho_4_1 = b*cse_1
     rho_5_1 = cse_1*j
     del cse_1
-    cse_4 = rho_4_1 + rho_5_1
-    cse_6 = rho_4_1 - rho_5_1
-    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
-    cse_5 = cse_4 + w_1
-    cse_7 = numpy.square(w_1)
-    cse_8 = cse_4*cse_6 + cse_7
-    cse_12 = cse_7 - cse_4*cse_6
-    del cse_7
-    Delta_1 = _clamped_sqrt(cse_5*(cse_4 - w_1)*(cse_6 + w_1)*(rho_5_1 - rho_4_1 + w_1), 8.0*rho_4_1*rho_5_1*w_1*(cse_5 + rho_1_1 + rho_2_1 + rho_3_1))
+    cse_4 = rho_4_1 - rho_5_1
+    cse_5 = rho_4_1 + rho_5_1
+    wsq_1 = _nonzero_square(numpy.square(Wx_1) + numpy.square(Wy_1), 2.2250738585072e-308)
+    cse_7 = cse_4*cse_5 + wsq_1
+    cse_11 = wsq_1 - cse_4*cse_5
+    Delta_1 = _clamped_sqrt((wsq_1 - numpy.square(cse_4))*(numpy.square(cse_5) - wsq_1), 8.0*cse_6*rho_4_1*rho_5_1*(cse_5 + cse_6 + rho_1_1 + rho_2_1 + rho_3_1))
     del cse_4, cse_5, cse_6, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
-    cse_9 = Delta_1*branch_ABCD
-    cse_10 = Wx_1*cse_9
-    cse_11 = Wy_1*cse_9
-    del cse_9
-    phi = numpy.arctan2(Wy_1*cse_8 + cse_10, Wx_1*cse_8 - cse_11)
+    cse_8 = Delta_1*branch_ABCD
+    cse_9 = Wx_1*cse_8
+    cse_10 = Wy_1*cse_8
     del cse_8
-    cse_24 = alpha + phi
-    beta = numpy.arctan2(cse_10 - Wy_1*cse_12, -Wx_1*cse_12 - cse_11)
-    del Wx_1, Wy_1, cse_10, cse_11, cse_12
+    phi = numpy.arctan2(Wy_1*cse_7 + cse_9, Wx_1*cse_7 - cse_10)
+    del cse_7
+    cse_22 = alpha + phi
+    beta = numpy.arctan2(cse_9 - Wy_1*cse_11, -Wx_1*cse_11 - cse_10)
+    del Wx_1, Wy_1, cse_10, cse_11, cse_9
     size_2 = _power_of_two_below((1/5)*c + cse_0 + (1/5)*k)
     del cse_0
-    cse_13 = 1/(size_2)
+    cse_12 = 1/(size_2)
     del size_2
-    rho_1_2 = cse_13*m
-    rho_2_2 = cse_13*l
-    rho_3_2 = a*cse_13
+    rho_1_2 = cse_12*m
+    rho_2_2 = cse_12*l
+    rho_3_2 = a*cse_12
     Wx_2 = -cse_2*rho_1_2 - rho_3_2
     del cse_2
     Wy_2 = -cse_3*rho_1_2 - rho_2_2
     del cse_3
-    rho_4_2 = cse_13*k
-    rho_5_2 = c*cse_13
-    del cse_13
+    cse_15 = abs(Wx_2) + abs(Wy_2)
+    rho_4_2 = cse_12*k
+    rho_5_2 = c*cse_12
+    del cse_12
+    cse_13 = rho_4_2 - rho_5_2
     cse_14 = rho_4_2 + rho_5_2
-    cse_16 = rho_4_2 - rho_5_2
-    w_2 = _clamped_sqrt(numpy.square(Wx_2) + numpy.square(Wy_2), -2.2250738585072e-294)
-    cse_15 = cse_14 + w_2
-    cse_17 = numpy.square(w_2)
-    cse_18 = cse_14*cse_16 + cse_17
-    cse_22 = cse_17 - cse_14*cse_16
-    del cse_17
-    Delta_2 = _clamped_sqrt(cse_15*(cse_14 - w_2)*(cse_16 + w_2)*(rho_5_2 - rho_4_2 + w_2), 8.0*rho_4_2*rho_5_2*w_2*(cse_15 + rho_1_2 + rho_2_2 + rho_3_2))
-    del cse_14, cse_15, cse_16, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2
-    cse_19 = Delta_2*branch_ABFD
-    cse_20 = Wx_2*cse_19
-    psi_y = cse_20 - Wy_2*cse_22
-    cse_21 = Wy_2*cse_19
-    del cse_19
-    psi_x = -Wx_2*cse_22 - cse_21
-    del cse_22
-    psi_r = numpy.sqrt(numpy.square(psi_x) + numpy.square(psi_y))
+    wsq_2 = _nonzero_square(numpy.square(Wx_2) + numpy.square(Wy_2), 2.2250738585072e-308)
+    psi_r = 2.0*rho_5_2*wsq_2
+    cse_16 = cse_13*cse_14 + wsq_2
+    cse_20 = wsq_2 - cse_13*cse_14
+    Delta_2 = _clamped_sqrt((wsq_2 - numpy.square(cse_13))*(numpy.square(cse_14) - wsq_2), 8.0*cse_15*rho_4_2*rho_5_2*(cse_14 + cse_15 + rho_1_2 + rho_2_2 + rho_3_2))
+    del cse_13, cse_14, cse_15, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2
+    cse_17 = Delta_2*branch_ABFD
+    cse_18 = Wx_2*cse_17
+    psi_y = cse_18 - Wy_2*cse_20
     sin_psi = _sin_atan2(psi_y, psi_r)
+    cse_19 = Wy_2*cse_17
+    del cse_17
+    psi_x = -Wx_2*cse_20 - cse_19
+    del cse_20
     cos_psi = _cos_atan2(psi_x, psi_r)
     del psi_r
-    mu = numpy.arctan2(Wy_2*cse_18 + cse_20, Wx_2*cse_18 - cse_21)
-    del Wx_2, Wy_2, cse_18, cse_20, cse_21
+    mu = numpy.arctan2(Wy_2*cse_16 + cse_18, Wx_2*cse_16 - cse_19)
+    del Wx_2, Wy_2, cse_16, cse_18, cse_19
     psi = numpy.arctan2(psi_y, psi_x)
     del psi_x, psi_y
     size_3 = _power_of_two_below((1/4)*c + (1/4)*d + (1/4)*f + (1/4)*g)
-    cse_23 = 1/(size_3)
+    cse_21 = 1/(size_3)
     del size_3
-    rho_1_3 = c*cse_23
-    rho_2_3 = cse_23*d
-    Wx_3 = rho_2_3*numpy.cos(cse_24) - cos_psi*rho_1_3
+    rho_1_3 = c*cse_21
+    rho_2_3 = cse_21*d
+    Wx_3 = rho_2_3*numpy.cos(cse_22) - cos_psi*rho_1_3
     del cos_psi
-    Wy_3 = rho_2_3*numpy.sin(cse_24) - rho_1_3*sin_psi
-    del cse_24, sin_psi
-    rho_3_3 = cse_23*g
-    rho_4_3 = cse_23*f
-    del cse_23
-    cse_25 = rho_3_3 + rho_4_3
-    cse_27 = rho_3_3 - rho_4_3
-    w_3 = _clamped_sqrt(numpy.square(Wx_3) + numpy.square(Wy_3), -2.2250738585072e-294)
-    cse_26 = cse_25 + w_3
-    cse_28 = numpy.square(w_3)
-    cse_29 = cse_25*cse_27 + cse_28
-    cse_33 = cse_28 - cse_25*cse_27
-    del cse_28
-    Delta_3 = _clamped_sqrt(cse_26*(cse_25 - w_3)*(cse_27 + w_3)*(rho_4_3 - rho_3_3 + w_3), 8.0*rho_3_3*rho_4_3*w_3*(cse_26 + rho_1_3 + rho_2_3))
-    del cse_25, cse_26, cse_27, rho_1_3, rho_2_3, rho_3_3, rho_4_3
-    cse_30 = Delta_3*branch_DFGE
-    cse_31 = Wx_3*cse_30
-    cse_32 = Wy_3*cse_30
-    del cse_30
-    eta = numpy.arctan2(Wy_3*cse_29 + cse_31, Wx_3*cse_29 - cse_32)
-    del cse_29
-    kappa = numpy.arctan2(cse_31 - Wy_3*cse_33, -Wx_3*cse_33 - cse_32)
-    del Wx_3, Wy_3, cse_31, cse_32, cse_33
+    Wy_3 = rho_2_3*numpy.sin(cse_22) - rho_1_3*sin_psi
+    del cse_22, sin_psi
+    cse_25 = abs(Wx_3) + abs(Wy_3)
+    rho_3_3 = cse_21*g
+    rho_4_3 = cse_21*f
+    del cse_21
+    cse_23 = rho_3_3 - rho_4_3
+    cse_24 = rho_3_3 + rho_4_3
+    wsq_3 = _nonzero_square(numpy.square(Wx_3) + numpy.square(Wy_3), 2.2250738585072e-308)
+    cse_26 = cse_23*cse_24 + wsq_3
+    cse_30 = wsq_3 - cse_23*cse_24
+    Delta_3 = _clamped_sqrt((wsq_3 - numpy.square(cse_23))*(numpy.square(cse_24) - wsq_3), 8.0*cse_25*rho_3_3*rho_4_3*(cse_24 + cse_25 + rho_1_3 + rho_2_3))
+    del cse_23, cse_24, cse_25, rho_1_3, rho_2_3, rho_3_3, rho_4_3
+    cse_27 = Delta_3*branch_DFGE
+    cse_28 = Wx_3*cse_27
+    cse_29 = Wy_3*cse_27
+    del cse_27
+    eta = numpy.arctan2(Wy_3*cse_26 + cse_28, Wx_3*cse_26 - cse_29)
+    del cse_26
+    kappa = numpy.arctan2(cse_28 - Wy_3*cse_30, -Wx_3*cse_30 - cse_29)
+    del Wx_3, Wy_3, cse_28, cse_29, cse_30
     return (
         phi,  # upper_rocker
         beta,  # upper_link
@@ -267,7 +266,7 @@ def _positions_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branc
         psi,  # lower_rocker
         eta,  # leg
         kappa,  # tie
-        numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2) & numpy.isfinite(w_3) & numpy.isfinite(Delta_3),  # assembled
+        numpy.isfinite(wsq_1) & numpy.isfinite(Delta_1) & numpy.isfinite(wsq_2) & numpy.isfinite(Delta_2) & numpy.isfinite(wsq_3) & numpy.isfinite(Delta_3),  # assembled
     )
 
 
@@ -293,7 +292,7 @@ def _velocities_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, bran
     cse_0 = (1/5)*a + (1/5)*l + (1/5)*m
     cse_2 = cos_theta
     cse_3 = sin_theta
-    cse_38 = 2.0*m*thetadot
+    cse_35 = 2.0*m*thetadot
     size_1 = _power_of_two_below((1/5)*b + cse_0 + (1/5)*j)
     cse_1 = 1/(size_1)
     del size_1
@@ -302,158 +301,158 @@ def _velocities_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, bran
     rho_3_1 = cse_1*m
     Wx_1 = cse_2*rho_3_1 + rho_1_1
     Wy_1 = cse_3*rho_3_1 + rho_2_1
+    cse_6 = abs(Wx_1) + abs(Wy_1)
     rho_4_1 = b*cse_1
     rho_5_1 = cse_1*j
     del cse_1
-    cse_4 = rho_4_1 + rho_5_1
-    cse_6 = rho_4_1 - rho_5_1
+    cse_4 = rho_4_1 - rho_5_1
+    cse_5 = rho_4_1 + rho_5_1
     cse_7 = rho_4_1*rho_5_1
-    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
-    cse_5 = cse_4 + w_1
-    cse_8 = numpy.square(w_1)
-    cse_9 = cse_4*cse_6 + cse_8
-    cse_13 = cse_8 - cse_4*cse_6
-    del cse_8
-    Delta_1 = _clamped_sqrt(cse_5*(cse_4 - w_1)*(cse_6 + w_1)*(rho_5_1 - rho_4_1 + w_1), 8.0*cse_7*w_1*(cse_5 + rho_1_1 + rho_2_1 + rho_3_1))
-    del cse_4, cse_5, cse_6, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
-    cse_10 = Delta_1*branch_ABCD
-    cse_11 = Wx_1*cse_10
-    beta_y = cse_11 - Wy_1*cse_13
-    phi_y = Wy_1*cse_9 + cse_11
-    del cse_11
-    cse_12 = Wy_1*cse_10
-    del Wy_1, cse_10
-    beta_x = -Wx_1*cse_13 - cse_12
-    del cse_13
-    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
+    wsq_1 = _nonzero_square(numpy.square(Wx_1) + numpy.square(Wy_1), 2.2250738585072e-308)
+    beta_r = 2.0*rho_5_1*wsq_1
+    del rho_5_1
+    phi_r = 2.0*rho_4_1*wsq_1
+    del rho_4_1
+    cse_8 = cse_4*cse_5 + wsq_1
+    cse_12 = wsq_1 - cse_4*cse_5
+    Delta_1 = _clamped_sqrt((wsq_1 - numpy.square(cse_4))*(numpy.square(cse_5) - wsq_1), 8.0*cse_6*cse_7*(cse_5 + cse_6 + rho_1_1 + rho_2_1 + rho_3_1))
+    del cse_4, cse_5, cse_6, rho_1_1, rho_2_1, rho_3_1
+    cse_9 = Delta_1*branch_ABCD
+    cse_10 = Wx_1*cse_9
+    beta_y = cse_10 - Wy_1*cse_12
     sin_beta = _sin_atan2(beta_y, beta_r)
+    phi_y = Wy_1*cse_8 + cse_10
+    del cse_10
+    sin_phi = _sin_atan2(phi_y, phi_r)
+    cse_11 = Wy_1*cse_9
+    del Wy_1, cse_9
+    beta_x = -Wx_1*cse_12 - cse_11
+    del cse_12
     cos_beta = _cos_atan2(beta_x, beta_r)
     del beta_r
-    phi_x = Wx_1*cse_9 - cse_12
-    del Wx_1, cse_12, cse_9
-    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
-    sin_phi = _sin_atan2(phi_y, phi_r)
+    phi_x = Wx_1*cse_8 - cse_11
+    del Wx_1, cse_11, cse_8
     cos_phi = _cos_atan2(phi_x, phi_r)
     del phi_r
-    cse_39 = cse_38*cse_7/(Delta_1*branch_ABCD)
+    cse_36 = cse_35*cse_7/(Delta_1*branch_ABCD)
     del cse_7
     phi = numpy.arctan2(phi_y, phi_x)
     del phi_x, phi_y
-    cse_26 = alpha + phi
-    sin_cse_26 = numpy.sin(cse_26)
-    cos_cse_26 = numpy.cos(cse_26)
-    del cse_26
+    cse_24 = alpha + phi
+    sin_cse_24 = numpy.sin(cse_24)
+    cos_cse_24 = numpy.cos(cse_24)
+    del cse_24
     beta = numpy.arctan2(beta_y, beta_x)
     del beta_x, beta_y
     size_2 = _power_of_two_below((1/5)*c + cse_0 + (1/5)*k)
     del cse_0
-    cse_14 = 1/(size_2)
+    cse_13 = 1/(size_2)
     del size_2
-    rho_1_2 = cse_14*m
-    rho_2_2 = cse_14*l
-    rho_3_2 = a*cse_14
+    rho_1_2 = cse_13*m
+    rho_2_2 = cse_13*l
+    rho_3_2 = a*cse_13
     Wx_2 = -cse_2*rho_1_2 - rho_3_2
     del cse_2
     Wy_2 = -cse_3*rho_1_2 - rho_2_2
     del cse_3
-    rho_4_2 = cse_14*k
-    rho_5_2 = c*cse_14
-    del cse_14
+    cse_16 = abs(Wx_2) + abs(Wy_2)
+    rho_4_2 = cse_13*k
+    rho_5_2 = c*cse_13
+    del cse_13
+    cse_14 = rho_4_2 - rho_5_2
     cse_15 = rho_4_2 + rho_5_2
-    cse_17 = rho_4_2 - rho_5_2
-    cse_18 = rho_4_2*rho_5_2
-    w_2 = _clamped_sqrt(numpy.square(Wx_2) + numpy.square(Wy_2), -2.2250738585072e-294)
-    cse_16 = cse_15 + w_2
-    cse_19 = numpy.square(w_2)
-    cse_20 = cse_15*cse_17 + cse_19
-    cse_24 = cse_19 - cse_15*cse_17
-    del cse_19
-    Delta_2 = _clamped_sqrt(cse_16*(cse_15 - w_2)*(cse_17 + w_2)*(rho_5_2 - rho_4_2 + w_2), 8.0*cse_18*w_2*(cse_16 + rho_1_2 + rho_2_2 + rho_3_2))
-    del cse_15, cse_16, cse_17, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2
-    cse_21 = Delta_2*branch_ABFD
-    cse_22 = Wx_2*cse_21
-    psi_y = cse_22 - Wy_2*cse_24
-    mu_y = Wy_2*cse_20 + cse_22
-    del cse_22
-    cse_23 = Wy_2*cse_21
-    del Wy_2, cse_21
-    psi_x = -Wx_2*cse_24 - cse_23
-    del cse_24
-    psi_r = numpy.sqrt(numpy.square(psi_x) + numpy.square(psi_y))
+    cse_17 = rho_4_2*rho_5_2
+    wsq_2 = _nonzero_square(numpy.square(Wx_2) + numpy.square(Wy_2), 2.2250738585072e-308)
+    psi_r = 2.0*rho_5_2*wsq_2
+    del rho_5_2
+    mu_r = 2.0*rho_4_2*wsq_2
+    del rho_4_2
+    cse_18 = cse_14*cse_15 + wsq_2
+    cse_22 = wsq_2 - cse_14*cse_15
+    Delta_2 = _clamped_sqrt((wsq_2 - numpy.square(cse_14))*(numpy.square(cse_15) - wsq_2), 8.0*cse_16*cse_17*(cse_15 + cse_16 + rho_1_2 + rho_2_2 + rho_3_2))
+    del cse_14, cse_15, cse_16, rho_1_2, rho_2_2, rho_3_2
+    cse_19 = Delta_2*branch_ABFD
+    cse_20 = Wx_2*cse_19
+    psi_y = cse_20 - Wy_2*cse_22
     sin_psi = _sin_atan2(psi_y, psi_r)
+    mu_y = Wy_2*cse_18 + cse_20
+    del cse_20
+    sin_mu = _sin_atan2(mu_y, mu_r)
+    cse_21 = Wy_2*cse_19
+    del Wy_2, cse_19
+    psi_x = -Wx_2*cse_22 - cse_21
+    del cse_22
     cos_psi = _cos_atan2(psi_x, psi_r)
     del psi_r
-    mu_x = Wx_2*cse_20 - cse_23
-    del Wx_2, cse_20, cse_23
-    mu_r = numpy.sqrt(numpy.square(mu_x) + numpy.square(mu_y))
-    sin_mu = _sin_atan2(mu_y, mu_r)
+    mu_x = Wx_2*cse_18 - cse_21
+    del Wx_2, cse_18, cse_21
     cos_mu = _cos_atan2(mu_x, mu_r)
     del mu_r
-    cse_40 = cse_18*cse_38/(Delta_2*branch_ABFD)
-    del cse_18, cse_38
+    cse_37 = cse_17*cse_35/(Delta_2*branch_ABFD)
+    del cse_17, cse_35
     mu = numpy.arctan2(mu_y, mu_x)
     del mu_x, mu_y
     psi = numpy.arctan2(psi_y, psi_x)
     del psi_x, psi_y
     size_3 = _power_of_two_below((1/4)*c + (1/4)*d + (1/4)*f + (1/4)*g)
-    cse_25 = 1/(size_3)
+    cse_23 = 1/(size_3)
     del size_3
-    rho_1_3 = c*cse_25
-    rho_2_3 = cse_25*d
-    Wx_3 = cos_cse_26*rho_2_3 - cos_psi*rho_1_3
-    Wy_3 = rho_2_3*sin_cse_26 - rho_1_3*sin_psi
-    rho_3_3 = cse_25*g
-    rho_4_3 = cse_25*f
-    del cse_25
-    cse_27 = rho_3_3 + rho_4_3
-    cse_29 = rho_3_3 - rho_4_3
-    cse_30 = rho_3_3*rho_4_3
-    w_3 = _clamped_sqrt(numpy.square(Wx_3) + numpy.square(Wy_3), -2.2250738585072e-294)
-    cse_28 = cse_27 + w_3
-    cse_31 = numpy.square(w_3)
-    cse_32 = cse_27*cse_29 + cse_31
-    cse_36 = cse_31 - cse_27*cse_29
-    del cse_31
-    Delta_3 = _clamped_sqrt(cse_28*(cse_27 - w_3)*(cse_29 + w_3)*(rho_4_3 - rho_3_3 + w_3), 8.0*cse_30*w_3*(cse_28 + rho_1_3 + rho_2_3))
-    del cse_27, cse_28, cse_29, rho_1_3, rho_2_3, rho_3_3, rho_4_3
-    cse_33 = Delta_3*branch_DFGE
-    cse_34 = Wx_3*cse_33
-    eta_y = Wy_3*cse_32 + cse_34
-    kappa_y = cse_34 - Wy_3*cse_36
-    del cse_34
-    cse_35 = Wy_3*cse_33
-    del Wy_3, cse_33
-    eta_x = Wx_3*cse_32 - cse_35
-    del cse_32
-    eta_r = numpy.sqrt(numpy.square(eta_x) + numpy.square(eta_y))
+    rho_1_3 = c*cse_23
+    rho_2_3 = cse_23*d
+    Wx_3 = cos_cse_24*rho_2_3 - cos_psi*rho_1_3
+    Wy_3 = rho_2_3*sin_cse_24 - rho_1_3*sin_psi
+    cse_27 = abs(Wx_3) + abs(Wy_3)
+    rho_3_3 = cse_23*g
+    rho_4_3 = cse_23*f
+    del cse_23
+    cse_25 = rho_3_3 - rho_4_3
+    cse_26 = rho_3_3 + rho_4_3
+    cse_28 = rho_3_3*rho_4_3
+    wsq_3 = _nonzero_square(numpy.square(Wx_3) + numpy.square(Wy_3), 2.2250738585072e-308)
+    eta_r = 2.0*rho_3_3*wsq_3
+    del rho_3_3
+    kappa_r = 2.0*rho_4_3*wsq_3
+    del rho_4_3
+    cse_29 = cse_25*cse_26 + wsq_3
+    cse_33 = wsq_3 - cse_25*cse_26
+    Delta_3 = _clamped_sqrt((wsq_3 - numpy.square(cse_25))*(numpy.square(cse_26) - wsq_3), 8.0*cse_27*cse_28*(cse_26 + cse_27 + rho_1_3 + rho_2_3))
+    del cse_25, cse_26, cse_27, rho_1_3, rho_2_3
+    cse_30 = Delta_3*branch_DFGE
+    cse_31 = Wx_3*cse_30
+    eta_y = Wy_3*cse_29 + cse_31
     sin_eta = _sin_atan2(eta_y, eta_r)
+    kappa_y = cse_31 - Wy_3*cse_33
+    del cse_31
+    sin_kappa = _sin_atan2(kappa_y, kappa_r)
+    cse_32 = Wy_3*cse_30
+    del Wy_3, cse_30
+    eta_x = Wx_3*cse_29 - cse_32
+    del cse_29
     cos_eta = _cos_atan2(eta_x, eta_r)
     del eta_r
-    kappa_x = -Wx_3*cse_36 - cse_35
-    del Wx_3, cse_35, cse_36
-    kappa_r = numpy.sqrt(numpy.square(kappa_x) + numpy.square(kappa_y))
-    sin_kappa = _sin_atan2(kappa_y, kappa_r)
+    kappa_x = -Wx_3*cse_33 - cse_32
+    del Wx_3, cse_32, cse_33
     cos_kappa = _cos_atan2(kappa_x, kappa_r)
     del kappa_r
-    cse_44 = 2.0*cse_30/(Delta_3*branch_DFGE)
-    del cse_30
+    cse_41 = 2.0*cse_28/(Delta_3*branch_DFGE)
+    del cse_28
     eta = numpy.arctan2(eta_y, eta_x)
     del eta_x, eta_y
     kappa = numpy.arctan2(kappa_y, kappa_x)
     del kappa_x, kappa_y
-    phidot = cse_39*(cos_theta*sin_beta - cos_beta*sin_theta)/b
+    phidot = cse_36*(cos_theta*sin_beta - cos_beta*sin_theta)/b
     del cos_beta, sin_beta
-    cse_41 = d*phidot
-    betadot = cse_39*(cos_theta*sin_phi - cos_phi*sin_theta)/j
-    del cos_phi, cse_39, sin_phi
-    mudot = -cse_40*(cos_theta*sin_psi - cos_psi*sin_theta)/k
-    psidot = -cse_40*(cos_theta*sin_mu - cos_mu*sin_theta)/c
-    del cos_mu, cos_theta, cse_40, sin_mu, sin_theta
-    cse_43 = c*psidot
-    etadot = -cse_44*(cse_41*(cos_kappa*sin_cse_26 - cos_cse_26*sin_kappa) + cse_43*(cos_psi*sin_kappa - cos_kappa*sin_psi))/g
+    cse_38 = d*phidot
+    betadot = cse_36*(cos_theta*sin_phi - cos_phi*sin_theta)/j
+    del cos_phi, cse_36, sin_phi
+    mudot = -cse_37*(cos_theta*sin_psi - cos_psi*sin_theta)/k
+    psidot = -cse_37*(cos_theta*sin_mu - cos_mu*sin_theta)/c
+    del cos_mu, cos_theta, cse_37, sin_mu, sin_theta
+    cse_40 = c*psidot
+    etadot = -cse_41*(cse_38*(cos_kappa*sin_cse_24 - cos_cse_24*sin_kappa) + cse_40*(cos_psi*sin_kappa - cos_kappa*sin_psi))/g
     del cos_kappa, sin_kappa
-    kappadot = -cse_44*(cse_41*(cos_eta*sin_cse_26 - cos_cse_26*sin_eta) + cse_43*(cos_psi*sin_eta - cos_eta*sin_psi))/f
-    del cos_cse_26, cos_eta, cos_psi, cse_41, cse_43, cse_44, sin_cse_26, sin_eta, sin_psi
+    kappadot = -cse_41*(cse_38*(cos_eta*sin_cse_24 - cos_cse_24*sin_eta) + cse_40*(cos_psi*sin_eta - cos_eta*sin_psi))/f
+    del cos_cse_24, cos_eta, cos_psi, cse_38, cse_40, cse_41, sin_cse_24, sin_eta, sin_psi
     return (
         phi,  # upper_rocker
         beta,  # upper_link
@@ -467,7 +466,7 @@ def _velocities_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, bran
         psidot,  # lower_rocker_speed
         etadot,  # leg_speed
         kappadot,  # tie_speed
-        numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2) & numpy.isfinite(w_3) & numpy.isfinite(Delta_3),  # assembled
+        numpy.isfinite(wsq_1) & numpy.isfinite(Delta_1) & numpy.isfinite(wsq_2) & numpy.isfinite(Delta_2) & numpy.isfinite(wsq_3) & numpy.isfinite(Delta_3),  # assembled
     )
 
 
@@ -493,10 +492,10 @@ def _accelerations_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, b
     cse_0 = (1/5)*a + (1/5)*l + (1/5)*m
     cse_2 = cos_theta
     cse_3 = sin_theta
-    cse_42 = m*thetadot
-    cse_69 = m*thetaddot
-    cse_73 = numpy.square(thetadot)
-    cse_77 = cse_73*m
+    cse_39 = m*thetadot
+    cse_66 = m*thetaddot
+    cse_70 = numpy.square(thetadot)
+    cse_74 = cse_70*m
     size_1 = _power_of_two_below((1/5)*b + cse_0 + (1/5)*j)
     cse_1 = 1/(size_1)
     del size_1
@@ -505,198 +504,198 @@ def _accelerations_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, b
     rho_3_1 = cse_1*m
     Wx_1 = cse_2*rho_3_1 + rho_1_1
     Wy_1 = cse_3*rho_3_1 + rho_2_1
+    cse_6 = abs(Wx_1) + abs(Wy_1)
     rho_4_1 = b*cse_1
     rho_5_1 = cse_1*j
     del cse_1
-    cse_4 = rho_4_1 + rho_5_1
-    cse_6 = rho_4_1 - rho_5_1
+    cse_4 = rho_4_1 - rho_5_1
+    cse_5 = rho_4_1 + rho_5_1
     cse_7 = rho_4_1*rho_5_1
-    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
-    cse_5 = cse_4 + w_1
-    cse_8 = numpy.square(w_1)
-    cse_9 = cse_4*cse_6 + cse_8
-    cse_13 = cse_8 - cse_4*cse_6
-    del cse_8
-    Delta_1 = _clamped_sqrt(cse_5*(cse_4 - w_1)*(cse_6 + w_1)*(rho_5_1 - rho_4_1 + w_1), 8.0*cse_7*w_1*(cse_5 + rho_1_1 + rho_2_1 + rho_3_1))
-    del cse_4, cse_5, cse_6, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
-    cse_10 = Delta_1*branch_ABCD
-    cse_11 = Wx_1*cse_10
-    beta_y = cse_11 - Wy_1*cse_13
-    phi_y = Wy_1*cse_9 + cse_11
-    del cse_11
-    cse_12 = Wy_1*cse_10
-    del Wy_1, cse_10
-    beta_x = -Wx_1*cse_13 - cse_12
-    del cse_13
-    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
+    wsq_1 = _nonzero_square(numpy.square(Wx_1) + numpy.square(Wy_1), 2.2250738585072e-308)
+    beta_r = 2.0*rho_5_1*wsq_1
+    del rho_5_1
+    phi_r = 2.0*rho_4_1*wsq_1
+    del rho_4_1
+    cse_8 = cse_4*cse_5 + wsq_1
+    cse_12 = wsq_1 - cse_4*cse_5
+    Delta_1 = _clamped_sqrt((wsq_1 - numpy.square(cse_4))*(numpy.square(cse_5) - wsq_1), 8.0*cse_6*cse_7*(cse_5 + cse_6 + rho_1_1 + rho_2_1 + rho_3_1))
+    del cse_4, cse_5, cse_6, rho_1_1, rho_2_1, rho_3_1
+    cse_9 = Delta_1*branch_ABCD
+    cse_10 = Wx_1*cse_9
+    beta_y = cse_10 - Wy_1*cse_12
     sin_beta = _sin_atan2(beta_y, beta_r)
+    phi_y = Wy_1*cse_8 + cse_10
+    del cse_10
+    sin_phi = _sin_atan2(phi_y, phi_r)
+    cse_11 = Wy_1*cse_9
+    del Wy_1, cse_9
+    beta_x = -Wx_1*cse_12 - cse_11
+    del cse_12
     cos_beta = _cos_atan2(beta_x, beta_r)
     del beta_r
-    phi_x = Wx_1*cse_9 - cse_12
-    del Wx_1, cse_12, cse_9
-    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
-    sin_phi = _sin_atan2(phi_y, phi_r)
+    phi_x = Wx_1*cse_8 - cse_11
+    del Wx_1, cse_11, cse_8
     cos_phi = _cos_atan2(phi_x, phi_r)
     del phi_r
-    cse_40 = 2.0*cse_7/(Delta_1*branch_ABCD)
+    cse_37 = 2.0*cse_7/(Delta_1*branch_ABCD)
     del cse_7
-    cse_41 = cse_40/b
-    cse_45 = cse_40/j
-    del cse_40
+    cse_38 = cse_37/b
+    cse_42 = cse_37/j
+    del cse_37
     phi = numpy.arctan2(phi_y, phi_x)
     del phi_x, phi_y
-    cse_26 = alpha + phi
-    sin_cse_26 = numpy.sin(cse_26)
-    cos_cse_26 = numpy.cos(cse_26)
-    del cse_26
-    cse_44 = cos_theta*sin_phi - cos_phi*sin_theta
+    cse_24 = alpha + phi
+    sin_cse_24 = numpy.sin(cse_24)
+    cos_cse_24 = numpy.cos(cse_24)
+    del cse_24
+    cse_41 = cos_theta*sin_phi - cos_phi*sin_theta
     beta = numpy.arctan2(beta_y, beta_x)
     del beta_x, beta_y
-    cse_39 = cos_theta*sin_beta - cos_beta*sin_theta
-    cse_70 = cos_beta*cos_phi + sin_beta*sin_phi
+    cse_36 = cos_theta*sin_beta - cos_beta*sin_theta
+    cse_67 = cos_beta*cos_phi + sin_beta*sin_phi
     size_2 = _power_of_two_below((1/5)*c + cse_0 + (1/5)*k)
     del cse_0
-    cse_14 = 1/(size_2)
+    cse_13 = 1/(size_2)
     del size_2
-    rho_1_2 = cse_14*m
-    rho_2_2 = cse_14*l
-    rho_3_2 = a*cse_14
+    rho_1_2 = cse_13*m
+    rho_2_2 = cse_13*l
+    rho_3_2 = a*cse_13
     Wx_2 = -cse_2*rho_1_2 - rho_3_2
     del cse_2
     Wy_2 = -cse_3*rho_1_2 - rho_2_2
     del cse_3
-    rho_4_2 = cse_14*k
-    rho_5_2 = c*cse_14
-    del cse_14
+    cse_16 = abs(Wx_2) + abs(Wy_2)
+    rho_4_2 = cse_13*k
+    rho_5_2 = c*cse_13
+    del cse_13
+    cse_14 = rho_4_2 - rho_5_2
     cse_15 = rho_4_2 + rho_5_2
-    cse_17 = rho_4_2 - rho_5_2
-    cse_18 = rho_4_2*rho_5_2
-    w_2 = _clamped_sqrt(numpy.square(Wx_2) + numpy.square(Wy_2), -2.2250738585072e-294)
-    cse_16 = cse_15 + w_2
-    cse_19 = numpy.square(w_2)
-    cse_20 = cse_15*cse_17 + cse_19
-    cse_24 = cse_19 - cse_15*cse_17
-    del cse_19
-    Delta_2 = _clamped_sqrt(cse_16*(cse_15 - w_2)*(cse_17 + w_2)*(rho_5_2 - rho_4_2 + w_2), 8.0*cse_18*w_2*(cse_16 + rho_1_2 + rho_2_2 + rho_3_2))
-    del cse_15, cse_16, cse_17, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2
-    cse_21 = Delta_2*branch_ABFD
-    cse_22 = Wx_2*cse_21
-    psi_y = cse_22 - Wy_2*cse_24
-    mu_y = Wy_2*cse_20 + cse_22
-    del cse_22
-    cse_23 = Wy_2*cse_21
-    del Wy_2, cse_21
-    psi_x = -Wx_2*cse_24 - cse_23
-    del cse_24
-    psi_r = numpy.sqrt(numpy.square(psi_x) + numpy.square(psi_y))
+    cse_17 = rho_4_2*rho_5_2
+    wsq_2 = _nonzero_square(numpy.square(Wx_2) + numpy.square(Wy_2), 2.2250738585072e-308)
+    psi_r = 2.0*rho_5_2*wsq_2
+    del rho_5_2
+    mu_r = 2.0*rho_4_2*wsq_2
+    del rho_4_2
+    cse_18 = cse_14*cse_15 + wsq_2
+    cse_22 = wsq_2 - cse_14*cse_15
+    Delta_2 = _clamped_sqrt((wsq_2 - numpy.square(cse_14))*(numpy.square(cse_15) - wsq_2), 8.0*cse_16*cse_17*(cse_15 + cse_16 + rho_1_2 + rho_2_2 + rho_3_2))
+    del cse_14, cse_15, cse_16, rho_1_2, rho_2_2, rho_3_2
+    cse_19 = Delta_2*branch_ABFD
+    cse_20 = Wx_2*cse_19
+    psi_y = cse_20 - Wy_2*cse_22
     sin_psi = _sin_atan2(psi_y, psi_r)
+    mu_y = Wy_2*cse_18 + cse_20
+    del cse_20
+    sin_mu = _sin_atan2(mu_y, mu_r)
+    cse_21 = Wy_2*cse_19
+    del Wy_2, cse_19
+    psi_x = -Wx_2*cse_22 - cse_21
+    del cse_22
     cos_psi = _cos_atan2(psi_x, psi_r)
     del psi_r
-    mu_x = Wx_2*cse_20 - cse_23
-    del Wx_2, cse_20, cse_23
-    mu_r = numpy.sqrt(numpy.square(mu_x) + numpy.square(mu_y))
-    sin_mu = _sin_atan2(mu_y, mu_r)
+    mu_x = Wx_2*cse_18 - cse_21
+    del Wx_2, cse_18, cse_21
     cos_mu = _cos_atan2(mu_x, mu_r)
     del mu_r
-    cse_48 = 2.0*cse_18/(Delta_2*branch_ABFD)
-    del cse_18
-    cse_49 = cse_48/k
-    cse_52 = cse_48/c
-    del cse_48
+    cse_45 = 2.0*cse_17/(Delta_2*branch_ABFD)
+    del cse_17
+    cse_46 = cse_45/k
+    cse_49 = cse_45/c
+    del cse_45
     mu = numpy.arctan2(mu_y, mu_x)
     del mu_x, mu_y
-    cse_51 = cos_theta*sin_mu - cos_mu*sin_theta
+    cse_48 = cos_theta*sin_mu - cos_mu*sin_theta
     psi = numpy.arctan2(psi_y, psi_x)
     del psi_x, psi_y
-    cse_47 = cos_theta*sin_psi - cos_psi*sin_theta
-    cse_75 = cos_mu*cos_psi + sin_mu*sin_psi
+    cse_44 = cos_theta*sin_psi - cos_psi*sin_theta
+    cse_72 = cos_mu*cos_psi + sin_mu*sin_psi
     size_3 = _power_of_two_below((1/4)*c + (1/4)*d + (1/4)*f + (1/4)*g)
-    cse_25 = 1/(size_3)
+    cse_23 = 1/(size_3)
     del size_3
-    rho_1_3 = c*cse_25
-    rho_2_3 = cse_25*d
-    Wx_3 = cos_cse_26*rho_2_3 - cos_psi*rho_1_3
-    Wy_3 = rho_2_3*sin_cse_26 - rho_1_3*sin_psi
-    rho_3_3 = cse_25*g
-    rho_4_3 = cse_25*f
-    del cse_25
-    cse_27 = rho_3_3 + rho_4_3
-    cse_29 = rho_3_3 - rho_4_3
-    cse_30 = rho_3_3*rho_4_3
-    w_3 = _clamped_sqrt(numpy.square(Wx_3) + numpy.square(Wy_3), -2.2250738585072e-294)
-    cse_28 = cse_27 + w_3
-    cse_31 = numpy.square(w_3)
-    cse_32 = cse_27*cse_29 + cse_31
-    cse_36 = cse_31 - cse_27*cse_29
-    del cse_31
-    Delta_3 = _clamped_sqrt(cse_28*(cse_27 - w_3)*(cse_29 + w_3)*(rho_4_3 - rho_3_3 + w_3), 8.0*cse_30*w_3*(cse_28 + rho_1_3 + rho_2_3))
-    del cse_27, cse_28, cse_29, rho_1_3, rho_2_3, rho_3_3, rho_4_3
-    cse_33 = Delta_3*branch_DFGE
-    cse_34 = Wx_3*cse_33
-    kappa_y = cse_34 - Wy_3*cse_36
-    eta_y = Wy_3*cse_32 + cse_34
-    del cse_34
-    cse_35 = Wy_3*cse_33
-    del Wy_3, cse_33
-    kappa_x = -Wx_3*cse_36 - cse_35
-    del cse_36
-    kappa_r = numpy.sqrt(numpy.square(kappa_x) + numpy.square(kappa_y))
+    rho_1_3 = c*cse_23
+    rho_2_3 = cse_23*d
+    Wx_3 = cos_cse_24*rho_2_3 - cos_psi*rho_1_3
+    Wy_3 = rho_2_3*sin_cse_24 - rho_1_3*sin_psi
+    cse_27 = abs(Wx_3) + abs(Wy_3)
+    rho_3_3 = cse_23*g
+    rho_4_3 = cse_23*f
+    del cse_23
+    cse_25 = rho_3_3 - rho_4_3
+    cse_26 = rho_3_3 + rho_4_3
+    cse_28 = rho_3_3*rho_4_3
+    wsq_3 = _nonzero_square(numpy.square(Wx_3) + numpy.square(Wy_3), 2.2250738585072e-308)
+    kappa_r = 2.0*rho_4_3*wsq_3
+    del rho_4_3
+    eta_r = 2.0*rho_3_3*wsq_3
+    del rho_3_3
+    cse_29 = cse_25*cse_26 + wsq_3
+    cse_33 = wsq_3 - cse_25*cse_26
+    Delta_3 = _clamped_sqrt((wsq_3 - numpy.square(cse_25))*(numpy.square(cse_26) - wsq_3), 8.0*cse_27*cse_28*(cse_26 + cse_27 + rho_1_3 + rho_2_3))
+    del cse_25, cse_26, cse_27, rho_1_3, rho_2_3
+    cse_30 = Delta_3*branch_DFGE
+    cse_31 = Wx_3*cse_30
+    kappa_y = cse_31 - Wy_3*cse_33
     sin_kappa = _sin_atan2(kappa_y, kappa_r)
+    eta_y = Wy_3*cse_29 + cse_31
+    del cse_31
+    sin_eta = _sin_atan2(eta_y, eta_r)
+    cse_32 = Wy_3*cse_30
+    del Wy_3, cse_30
+    kappa_x = -Wx_3*cse_33 - cse_32
+    del cse_33
     cos_kappa = _cos_atan2(kappa_x, kappa_r)
     del kappa_r
-    eta_x = Wx_3*cse_32 - cse_35
-    del Wx_3, cse_32, cse_35
-    eta_r = numpy.sqrt(numpy.square(eta_x) + numpy.square(eta_y))
-    sin_eta = _sin_atan2(eta_y, eta_r)
+    eta_x = Wx_3*cse_29 - cse_32
+    del Wx_3, cse_29, cse_32
     cos_eta = _cos_atan2(eta_x, eta_r)
     del eta_r
-    cse_61 = 2.0*cse_30/(Delta_3*branch_DFGE)
-    del cse_30
-    cse_62 = cse_61/g
-    cse_67 = cse_61/f
-    del cse_61
+    cse_58 = 2.0*cse_28/(Delta_3*branch_DFGE)
+    del cse_28
+    cse_59 = cse_58/g
+    cse_64 = cse_58/f
+    del cse_58
     eta = numpy.arctan2(eta_y, eta_x)
     del eta_x, eta_y
-    cse_64 = cos_eta*sin_cse_26 - cos_cse_26*sin_eta
-    cse_66 = cos_psi*sin_eta - cos_eta*sin_psi
+    cse_61 = cos_eta*sin_cse_24 - cos_cse_24*sin_eta
+    cse_63 = cos_psi*sin_eta - cos_eta*sin_psi
     kappa = numpy.arctan2(kappa_y, kappa_x)
     del kappa_x, kappa_y
-    cse_55 = cos_kappa*sin_cse_26 - cos_cse_26*sin_kappa
-    cse_59 = cos_psi*sin_kappa - cos_kappa*sin_psi
-    cse_82 = cos_eta*cos_kappa + sin_eta*sin_kappa
-    phidot = cse_39*cse_41*cse_42
-    cse_56 = d*phidot
-    cse_71 = numpy.square(phidot)
-    cse_72 = b*cse_71
-    cse_81 = cse_71*d
-    del cse_71
-    betadot = cse_42*cse_44*cse_45
-    cse_68 = numpy.square(betadot)
-    mudot = -cse_42*cse_47*cse_49
-    cse_76 = k*numpy.square(mudot)
-    psidot = -cse_42*cse_51*cse_52
-    del cse_42
-    cse_60 = c*psidot
-    cse_74 = c*numpy.square(psidot)
-    etadot = -cse_62*(cse_55*cse_56 + cse_59*cse_60)
-    cse_83 = numpy.square(etadot)*g
-    kappadot = -cse_67*(cse_56*cse_64 + cse_60*cse_66)
-    del cse_56, cse_60
-    cse_78 = f*numpy.square(kappadot)
-    phiddot = -cse_41*(cse_68*j - cse_39*cse_69 - cse_70*cse_72 + cse_73*m*(cos_beta*cos_theta + sin_beta*sin_theta))
-    del cos_beta, cse_39, cse_41, sin_beta
-    cse_79 = d*phiddot
-    betaddot = -cse_45*(cse_68*cse_70*j - cse_44*cse_69 - cse_72 + cse_73*m*(cos_phi*cos_theta + sin_phi*sin_theta))
-    del cos_phi, cse_44, cse_45, cse_68, cse_70, cse_72, cse_73, sin_phi
-    muddot = -cse_49*(cse_47*cse_69 + cse_74 - cse_75*cse_76 - cse_77*(cos_psi*cos_theta + sin_psi*sin_theta))
-    del cse_47, cse_49
-    psiddot = -cse_52*(cse_51*cse_69 + cse_74*cse_75 - cse_76 - cse_77*(cos_mu*cos_theta + sin_mu*sin_theta))
-    del cos_mu, cos_theta, cse_51, cse_52, cse_69, cse_75, cse_76, cse_77, sin_mu, sin_theta
-    cse_80 = c*psiddot
-    etaddot = -cse_62*(cse_55*cse_79 + cse_59*cse_80 - cse_74*(cos_kappa*cos_psi + sin_kappa*sin_psi) + cse_78 + cse_81*(cos_cse_26*cos_kappa + sin_cse_26*sin_kappa) - cse_82*cse_83)
-    del cos_kappa, cse_55, cse_59, cse_62, sin_kappa
-    kappaddot = -cse_67*(cse_64*cse_79 + cse_66*cse_80 - cse_74*(cos_eta*cos_psi + sin_eta*sin_psi) + cse_78*cse_82 + cse_81*(cos_cse_26*cos_eta + sin_cse_26*sin_eta) - cse_83)
-    del cos_cse_26, cos_eta, cos_psi, cse_64, cse_66, cse_67, cse_74, cse_78, cse_79, cse_80, cse_81, cse_82, cse_83, sin_cse_26, sin_eta, sin_psi
+    cse_52 = cos_kappa*sin_cse_24 - cos_cse_24*sin_kappa
+    cse_56 = cos_psi*sin_kappa - cos_kappa*sin_psi
+    cse_79 = cos_eta*cos_kappa + sin_eta*sin_kappa
+    phidot = cse_36*cse_38*cse_39
+    cse_53 = d*phidot
+    cse_68 = numpy.square(phidot)
+    cse_69 = b*cse_68
+    cse_78 = cse_68*d
+    del cse_68
+    betadot = cse_39*cse_41*cse_42
+    cse_65 = numpy.square(betadot)
+    mudot = -cse_39*cse_44*cse_46
+    cse_73 = k*numpy.square(mudot)
+    psidot = -cse_39*cse_48*cse_49
+    del cse_39
+    cse_57 = c*psidot
+    cse_71 = c*numpy.square(psidot)
+    etadot = -cse_59*(cse_52*cse_53 + cse_56*cse_57)
+    cse_80 = numpy.square(etadot)*g
+    kappadot = -cse_64*(cse_53*cse_61 + cse_57*cse_63)
+    del cse_53, cse_57
+    cse_75 = f*numpy.square(kappadot)
+    phiddot = -cse_38*(cse_65*j - cse_36*cse_66 - cse_67*cse_69 + cse_70*m*(cos_beta*cos_theta + sin_beta*sin_theta))
+    del cos_beta, cse_36, cse_38, sin_beta
+    cse_76 = d*phiddot
+    betaddot = -cse_42*(cse_65*cse_67*j - cse_41*cse_66 - cse_69 + cse_70*m*(cos_phi*cos_theta + sin_phi*sin_theta))
+    del cos_phi, cse_41, cse_42, cse_65, cse_67, cse_69, cse_70, sin_phi
+    muddot = -cse_46*(cse_44*cse_66 + cse_71 - cse_72*cse_73 - cse_74*(cos_psi*cos_theta + sin_psi*sin_theta))
+    del cse_44, cse_46
+    psiddot = -cse_49*(cse_48*cse_66 + cse_71*cse_72 - cse_73 - cse_74*(cos_mu*cos_theta + sin_mu*sin_theta))
+    del cos_mu, cos_theta, cse_48, cse_49, cse_66, cse_72, cse_73, cse_74, sin_mu, sin_theta
+    cse_77 = c*psiddot
+    etaddot = -cse_59*(cse_52*cse_76 + cse_56*cse_77 - cse_71*(cos_kappa*cos_psi + sin_kappa*sin_psi) + cse_75 + cse_78*(cos_cse_24*cos_kappa + sin_cse_24*sin_kappa) - cse_79*cse_80)
+    del cos_kappa, cse_52, cse_56, cse_59, sin_kappa
+    kappaddot = -cse_64*(cse_61*cse_76 + cse_63*cse_77 - cse_71*(cos_eta*cos_psi + sin_eta*sin_psi) + cse_75*cse_79 + cse_78*(cos_cse_24*cos_eta + sin_cse_24*sin_eta) - cse_80)
+    del cos_cse_24, cos_eta, cos_psi, cse_61, cse_63, cse_64, cse_71, cse_75, cse_76, cse_77, cse_78, cse_79, cse_80, sin_cse_24, sin_eta, sin_psi
     return (
         phi,  # upper_rocker
         beta,  # upper_link
@@ -716,7 +715,7 @@ def _accelerations_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, b
         psiddot,  # lower_rocker_accel
         etaddot,  # leg_accel
         kappaddot,  # tie_accel
-        numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2) & numpy.isfinite(w_3) & numpy.isfinite(Delta_3),  # assembled
+        numpy.isfinite(wsq_1) & numpy.isfinite(Delta_1) & numpy.isfinite(wsq_2) & numpy.isfinite(Delta_2) & numpy.isfinite(wsq_3) & numpy.isfinite(Delta_3),  # assembled
     )
 
 
@@ -749,21 +748,21 @@ def _joints_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_A
     rho_3_1 = cse_1*m
     Wx_1 = cse_2*rho_3_1 + rho_1_1
     Wy_1 = cse_3*rho_3_1 + rho_2_1
+    cse_6 = abs(Wx_1) + abs(Wy_1)
     rho_4_1 = b*cse_1
     rho_5_1 = cse_1*j
     del cse_1
-    cse_4 = rho_4_1 + rho_5_1
-    cse_6 = rho_4_1 - rho_5_1
-    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
-    cse_5 = cse_4 + w_1
-    cse_7 = cse_4*cse_6 + numpy.square(w_1)
-    Delta_1 = _clamped_sqrt(cse_5*(cse_4 - w_1)*(cse_6 + w_1)*(rho_5_1 - rho_4_1 + w_1), 8.0*rho_4_1*rho_5_1*w_1*(cse_5 + rho_1_1 + rho_2_1 + rho_3_1))
+    cse_4 = rho_4_1 - rho_5_1
+    cse_5 = rho_4_1 + rho_5_1
+    wsq_1 = _nonzero_square(numpy.square(Wx_1) + numpy.square(Wy_1), 2.2250738585072e-308)
+    phi_r = 2.0*rho_4_1*wsq_1
+    cse_7 = cse_4*cse_5 + wsq_1
+    Delta_1 = _clamped_sqrt((wsq_1 - numpy.square(cse_4))*(numpy.square(cse_5) - wsq_1), 8.0*cse_6*rho_4_1*rho_5_1*(cse_5 + cse_6 + rho_1_1 + rho_2_1 + rho_3_1))
     del cse_4, cse_5, cse_6, rho_1_1, rho_2_1, rho_3_1, rho_4_1, rho_5_1
     cse_8 = Delta_1*branch_ABCD
     phi_y = Wx_1*cse_8 + Wy_1*cse_7
     phi_x = Wx_1*cse_7 - Wy_1*cse_8
     del Wx_1, Wy_1, cse_7, cse_8
-    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
     sin_phi = _sin_atan2(phi_y, phi_r)
     cos_phi = _cos_atan2(phi_x, phi_r)
     del phi_r
@@ -783,21 +782,21 @@ def _joints_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_A
     rho_3_2 = a*cse_9
     Wx_2 = -cse_2*rho_1_2 - rho_3_2
     Wy_2 = -cse_3*rho_1_2 - rho_2_2
+    cse_12 = abs(Wx_2) + abs(Wy_2)
     rho_4_2 = cse_9*k
     rho_5_2 = c*cse_9
     del cse_9
-    cse_10 = rho_4_2 + rho_5_2
-    cse_12 = rho_4_2 - rho_5_2
-    w_2 = _clamped_sqrt(numpy.square(Wx_2) + numpy.square(Wy_2), -2.2250738585072e-294)
-    cse_11 = cse_10 + w_2
-    cse_13 = numpy.square(w_2) - cse_10*cse_12
-    Delta_2 = _clamped_sqrt(cse_11*(cse_10 - w_2)*(cse_12 + w_2)*(rho_5_2 - rho_4_2 + w_2), 8.0*rho_4_2*rho_5_2*w_2*(cse_11 + rho_1_2 + rho_2_2 + rho_3_2))
+    cse_10 = rho_4_2 - rho_5_2
+    cse_11 = rho_4_2 + rho_5_2
+    wsq_2 = _nonzero_square(numpy.square(Wx_2) + numpy.square(Wy_2), 2.2250738585072e-308)
+    psi_r = 2.0*rho_5_2*wsq_2
+    cse_13 = wsq_2 - cse_10*cse_11
+    Delta_2 = _clamped_sqrt((wsq_2 - numpy.square(cse_10))*(numpy.square(cse_11) - wsq_2), 8.0*cse_12*rho_4_2*rho_5_2*(cse_11 + cse_12 + rho_1_2 + rho_2_2 + rho_3_2))
     del cse_10, cse_11, cse_12, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2
     cse_14 = Delta_2*branch_ABFD
     psi_y = Wx_2*cse_14 - Wy_2*cse_13
     psi_x = -Wx_2*cse_13 - Wy_2*cse_14
     del Wx_2, Wy_2, cse_13, cse_14
-    psi_r = numpy.sqrt(numpy.square(psi_x) + numpy.square(psi_y))
     sin_psi = _sin_atan2(psi_y, psi_r)
     del psi_y
     cos_psi = _cos_atan2(psi_x, psi_r)
@@ -816,21 +815,21 @@ def _joints_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_A
     Wx_3 = cse_18*rho_2_3 - cse_16*rho_1_3
     Wy_3 = cse_20*rho_2_3 - cse_19*rho_1_3
     del cse_19
+    cse_23 = abs(Wx_3) + abs(Wy_3)
     rho_3_3 = cse_15*g
     rho_4_3 = cse_15*f
     del cse_15
-    cse_21 = rho_3_3 + rho_4_3
-    cse_23 = rho_3_3 - rho_4_3
-    w_3 = _clamped_sqrt(numpy.square(Wx_3) + numpy.square(Wy_3), -2.2250738585072e-294)
-    cse_22 = cse_21 + w_3
-    cse_24 = cse_21*cse_23 + numpy.square(w_3)
-    Delta_3 = _clamped_sqrt(cse_22*(cse_21 - w_3)*(cse_23 + w_3)*(rho_4_3 - rho_3_3 + w_3), 8.0*rho_3_3*rho_4_3*w_3*(cse_22 + rho_1_3 + rho_2_3))
+    cse_21 = rho_3_3 - rho_4_3
+    cse_22 = rho_3_3 + rho_4_3
+    wsq_3 = _nonzero_square(numpy.square(Wx_3) + numpy.square(Wy_3), 2.2250738585072e-308)
+    eta_r = 2.0*rho_3_3*wsq_3
+    cse_24 = cse_21*cse_22 + wsq_3
+    Delta_3 = _clamped_sqrt((wsq_3 - numpy.square(cse_21))*(numpy.square(cse_22) - wsq_3), 8.0*cse_23*rho_3_3*rho_4_3*(cse_22 + cse_23 + rho_1_3 + rho_2_3))
     del cse_21, cse_22, cse_23, rho_1_3, rho_2_3, rho_3_3, rho_4_3
     cse_25 = Delta_3*branch_DFGE
     eta_y = Wx_3*cse_25 + Wy_3*cse_24
     eta_x = Wx_3*cse_24 - Wy_3*cse_25
     del Wx_3, Wy_3, cse_24, cse_25
-    eta_r = numpy.sqrt(numpy.square(eta_x) + numpy.square(eta_y))
     sin_eta = _sin_atan2(eta_y, eta_r)
     cos_eta = _cos_atan2(eta_x, eta_r)
     del eta_r
@@ -851,5 +850,5 @@ def _joints_block(theta, a, b, c, d, f, g, i, j, k, l, m, alpha, gamma, branch_A
         cse_27 + g*sin_eta,  # G_y
         cse_28 + i*numpy.cos(cse_29),  # H_x
         cse_27 + i*numpy.sin(cse_29),  # H_y
-        numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2) & numpy.isfinite(w_3) & numpy.isfinite(Delta_3),  # assembled
+        numpy.isfinite(wsq_1) & numpy.isfinite(Delta_1) & numpy.isfinite(wsq_2) & numpy.isfinite(Delta_2) & numpy.isfinite(wsq_3) & numpy.isfinite(Delta_3),  # assembled
     )

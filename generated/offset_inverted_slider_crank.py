@@ -121,6 +121,11 @@ def _clamped_sqrt(x, scale):
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
 
 
+def _nonzero_square(x, smallest):
+    """A squared length that must not vanish: x where x >= smallest, NaN below it (an undefined direction)."""
+    return numpy.where(x >= smallest, x, numpy.nan)
+
+
 def _power_of_two_below(x):
     """2.0**floor(log2(x)) for positive x (a loop's unit): the largest power of two not above x, from x's exponent.
 
@@ -166,15 +171,14 @@ def _positions_block(theta, a, d, e, branch):
     Wy_1 = -rho_1_1*numpy.sin(theta)
     rho_3_1 = cse_0*e
     del cse_0
-    w_1 = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
-    cse_1 = rho_3_1 + w_1
-    Delta_1 = _clamped_sqrt(cse_1*(w_1 - rho_3_1), 2.0*rho_3_1*(cse_1 + rho_1_1 + rho_2_1))
-    del cse_1, rho_1_1, rho_2_1, w_1
-    cse_2 = Delta_1*branch
-    phi = numpy.arctan2(Wx_1*rho_3_1 - Wy_1*cse_2, -Wx_1*cse_2 - Wy_1*rho_3_1)
+    wsq_1 = numpy.square(Wx_1) + numpy.square(Wy_1)
+    Delta_1 = _clamped_sqrt(wsq_1 - numpy.square(rho_3_1), 2.0*rho_3_1*(rho_1_1 + rho_2_1 + rho_3_1 + abs(Wx_1) + abs(Wy_1)))
+    del rho_1_1, rho_2_1, wsq_1
+    cse_1 = Delta_1*branch
+    phi = numpy.arctan2(Wx_1*rho_3_1 - Wy_1*cse_1, -Wx_1*cse_1 - Wy_1*rho_3_1)
     del Wx_1, Wy_1, rho_3_1
-    s = cse_2*size_1
-    del cse_2, size_1
+    s = cse_1*size_1
+    del cse_1, size_1
     return (
         phi,  # rocker
         s,  # slider
@@ -201,10 +205,10 @@ def _velocities_block(theta, a, d, e, branch, thetadot):
     """The outputs of velocities and the assembled mask, for arguments that broadcast together."""
     cse_1 = numpy.cos(theta)
     cse_2 = numpy.sin(theta)
-    cse_7 = a*thetadot
-    cse_8 = cse_1*cse_7
-    cse_10 = cse_2*cse_7
-    del cse_7
+    cse_6 = a*thetadot
+    cse_7 = cse_1*cse_6
+    cse_9 = cse_2*cse_6
+    del cse_6
     size_1 = _power_of_two_below((1/3)*a + (1/3)*d + (1/3)*e)
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
@@ -215,13 +219,12 @@ def _velocities_block(theta, a, d, e, branch, thetadot):
     del cse_2
     rho_3_1 = cse_0*e
     del cse_0
-    w_1 = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
-    cse_3 = rho_3_1 + w_1
-    Delta_1 = _clamped_sqrt(cse_3*(w_1 - rho_3_1), 2.0*rho_3_1*(cse_3 + rho_1_1 + rho_2_1))
-    del cse_3, rho_1_1, rho_2_1, w_1
-    cse_4 = Delta_1*branch
-    phi_y = Wx_1*rho_3_1 - Wy_1*cse_4
-    phi_x = -Wx_1*cse_4 - Wy_1*rho_3_1
+    wsq_1 = numpy.square(Wx_1) + numpy.square(Wy_1)
+    Delta_1 = _clamped_sqrt(wsq_1 - numpy.square(rho_3_1), 2.0*rho_3_1*(rho_1_1 + rho_2_1 + rho_3_1 + abs(Wx_1) + abs(Wy_1)))
+    del rho_1_1, rho_2_1, wsq_1
+    cse_3 = Delta_1*branch
+    phi_y = Wx_1*rho_3_1 - Wy_1*cse_3
+    phi_x = -Wx_1*cse_3 - Wy_1*rho_3_1
     del Wx_1, Wy_1, rho_3_1
     phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
     sin_phi = _sin_atan2(phi_y, phi_r)
@@ -229,16 +232,16 @@ def _velocities_block(theta, a, d, e, branch, thetadot):
     del phi_r
     phi = numpy.arctan2(phi_y, phi_x)
     del phi_x, phi_y
-    cse_6 = cos_phi
+    cse_5 = cos_phi
     del cos_phi
-    cse_9 = sin_phi
+    cse_8 = sin_phi
     del sin_phi
-    s = cse_4*size_1
-    del cse_4, size_1
-    cse_5 = 1/(s)
-    phidot = -cse_5*(-cse_10*cse_9 - cse_6*cse_8)
-    sdot = -cse_5*(-cse_10*(cse_9*e - cse_6*s) - cse_8*(cse_6*e + cse_9*s))
-    del cse_10, cse_5, cse_6, cse_8, cse_9
+    s = cse_3*size_1
+    del cse_3, size_1
+    cse_4 = 1/(s)
+    phidot = -cse_4*(-cse_5*cse_7 - cse_8*cse_9)
+    sdot = -cse_4*(-cse_7*(cse_5*e + cse_8*s) - cse_9*(cse_8*e - cse_5*s))
+    del cse_4, cse_5, cse_7, cse_8, cse_9
     return (
         phi,  # rocker
         s,  # slider
@@ -267,11 +270,11 @@ def _accelerations_block(theta, a, d, e, branch, thetadot, thetaddot):
     """The outputs of accelerations and the assembled mask, for arguments that broadcast together."""
     cse_1 = numpy.cos(theta)
     cse_2 = numpy.sin(theta)
-    cse_7 = a*cse_1
-    cse_8 = cse_7*thetadot
-    cse_10 = a*cse_2
-    cse_11 = cse_10*thetadot
-    cse_15 = numpy.square(thetadot)
+    cse_6 = a*cse_1
+    cse_7 = cse_6*thetadot
+    cse_9 = a*cse_2
+    cse_10 = cse_9*thetadot
+    cse_14 = numpy.square(thetadot)
     size_1 = _power_of_two_below((1/3)*a + (1/3)*d + (1/3)*e)
     cse_0 = 1/(size_1)
     rho_1_1 = a*cse_0
@@ -281,13 +284,12 @@ def _accelerations_block(theta, a, d, e, branch, thetadot, thetaddot):
     Wy_1 = -cse_2*rho_1_1
     rho_3_1 = cse_0*e
     del cse_0
-    w_1 = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
-    cse_3 = rho_3_1 + w_1
-    Delta_1 = _clamped_sqrt(cse_3*(w_1 - rho_3_1), 2.0*rho_3_1*(cse_3 + rho_1_1 + rho_2_1))
-    del cse_3, rho_1_1, rho_2_1, w_1
-    cse_4 = Delta_1*branch
-    phi_y = Wx_1*rho_3_1 - Wy_1*cse_4
-    phi_x = -Wx_1*cse_4 - Wy_1*rho_3_1
+    wsq_1 = numpy.square(Wx_1) + numpy.square(Wy_1)
+    Delta_1 = _clamped_sqrt(wsq_1 - numpy.square(rho_3_1), 2.0*rho_3_1*(rho_1_1 + rho_2_1 + rho_3_1 + abs(Wx_1) + abs(Wy_1)))
+    del rho_1_1, rho_2_1, wsq_1
+    cse_3 = Delta_1*branch
+    phi_y = Wx_1*rho_3_1 - Wy_1*cse_3
+    phi_x = -Wx_1*cse_3 - Wy_1*rho_3_1
     del Wx_1, Wy_1, rho_3_1
     phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
     sin_phi = _sin_atan2(phi_y, phi_r)
@@ -295,27 +297,27 @@ def _accelerations_block(theta, a, d, e, branch, thetadot, thetaddot):
     del phi_r
     phi = numpy.arctan2(phi_y, phi_x)
     del phi_x, phi_y
-    cse_6 = cos_phi
+    cse_5 = cos_phi
     del cos_phi
-    cse_9 = sin_phi
+    cse_8 = sin_phi
     del sin_phi
-    s = cse_4*size_1
-    del cse_4, size_1
-    cse_5 = 1/(s)
-    cse_12 = cse_6*e + cse_9*s
-    cse_13 = cse_9*e - cse_6*s
-    phidot = -cse_5*(-cse_11*cse_9 - cse_6*cse_8)
-    sdot = -cse_5*(-cse_11*cse_13 - cse_12*cse_8)
-    del cse_11, cse_8
-    cse_14 = cse_9*sdot
-    cse_16 = cse_10*thetaddot - cse_14*phidot + cse_15*cse_7 - phidot*(cse_14 - cse_13*phidot)
-    del cse_10, cse_14
-    cse_17 = a*cse_15*cse_2 + cse_6*phidot*sdot - cse_7*thetaddot - phidot*(cse_12*phidot - cse_6*sdot)
-    del cse_15, cse_2, cse_7
-    phiddot = -cse_5*(cse_17*cse_6 - cse_16*cse_9)
-    del cse_6, cse_9
-    sddot = -cse_5*(cse_12*cse_17 - cse_13*cse_16)
-    del cse_12, cse_13, cse_16, cse_17, cse_5
+    s = cse_3*size_1
+    del cse_3, size_1
+    cse_4 = 1/(s)
+    cse_11 = cse_5*e + cse_8*s
+    cse_12 = cse_8*e - cse_5*s
+    phidot = -cse_4*(-cse_10*cse_8 - cse_5*cse_7)
+    sdot = -cse_4*(-cse_10*cse_12 - cse_11*cse_7)
+    del cse_10, cse_7
+    cse_13 = cse_8*sdot
+    cse_15 = cse_14*cse_6 - cse_13*phidot + cse_9*thetaddot - phidot*(cse_13 - cse_12*phidot)
+    del cse_13, cse_9
+    cse_16 = a*cse_14*cse_2 + cse_5*phidot*sdot - cse_6*thetaddot - phidot*(cse_11*phidot - cse_5*sdot)
+    del cse_14, cse_2, cse_6
+    phiddot = -cse_4*(cse_16*cse_5 - cse_15*cse_8)
+    del cse_5, cse_8
+    sddot = -cse_4*(cse_11*cse_16 - cse_12*cse_15)
+    del cse_11, cse_12, cse_15, cse_16, cse_4
     return (
         phi,  # rocker
         s,  # slider
@@ -353,14 +355,13 @@ def _joints_block(theta, a, d, e, branch):
     Wy_1 = -rho_1_1*numpy.sin(theta)
     rho_3_1 = cse_0*e
     del cse_0
-    w_1 = numpy.sqrt(numpy.square(Wx_1) + numpy.square(Wy_1))
-    cse_1 = rho_3_1 + w_1
-    Delta_1 = _clamped_sqrt(cse_1*(w_1 - rho_3_1), 2.0*rho_3_1*(cse_1 + rho_1_1 + rho_2_1))
-    del cse_1, rho_1_1, rho_2_1, w_1
-    cse_2 = Delta_1*branch
-    phi_y = Wx_1*rho_3_1 - Wy_1*cse_2
-    phi_x = -Wx_1*cse_2 - Wy_1*rho_3_1
-    del Wx_1, Wy_1, cse_2, rho_3_1
+    wsq_1 = numpy.square(Wx_1) + numpy.square(Wy_1)
+    Delta_1 = _clamped_sqrt(wsq_1 - numpy.square(rho_3_1), 2.0*rho_3_1*(rho_1_1 + rho_2_1 + rho_3_1 + abs(Wx_1) + abs(Wy_1)))
+    del rho_1_1, rho_2_1, wsq_1
+    cse_1 = Delta_1*branch
+    phi_y = Wx_1*rho_3_1 - Wy_1*cse_1
+    phi_x = -Wx_1*cse_1 - Wy_1*rho_3_1
+    del Wx_1, Wy_1, cse_1, rho_3_1
     phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
     sin_phi = _sin_atan2(phi_y, phi_r)
     del phi_y

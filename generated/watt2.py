@@ -121,6 +121,11 @@ def _clamped_sqrt(x, scale):
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
 
 
+def _nonzero_square(x, smallest):
+    """A squared length that must not vanish: x where x >= smallest, NaN below it (an undefined direction)."""
+    return numpy.where(x >= smallest, x, numpy.nan)
+
+
 def _power_of_two_below(x):
     """2.0**floor(log2(x)) for positive x (a loop's unit): the largest power of two not above x, from x's exponent.
 
@@ -165,65 +170,61 @@ def _positions_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, bra
     rho_2_1 = a*cse_0
     Wx_1 = rho_2_1*numpy.cos(theta) - rho_1_1
     Wy_1 = rho_2_1*numpy.sin(theta)
+    cse_3 = abs(Wx_1) + abs(Wy_1)
     rho_3_1 = b*cse_0
     rho_4_1 = c*cse_0
     del cse_0
-    cse_1 = rho_3_1 + rho_4_1
-    cse_3 = rho_3_1 - rho_4_1
-    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
-    cse_2 = cse_1 + w_1
-    cse_4 = numpy.square(w_1)
-    cse_5 = cse_1*cse_3 + cse_4
-    cse_9 = cse_4 - cse_1*cse_3
-    del cse_4
-    Delta_1 = _clamped_sqrt(cse_2*(cse_1 - w_1)*(cse_3 + w_1)*(rho_4_1 - rho_3_1 + w_1), 8.0*rho_3_1*rho_4_1*w_1*(cse_2 + rho_1_1 + rho_2_1))
+    cse_1 = rho_3_1 - rho_4_1
+    cse_2 = rho_3_1 + rho_4_1
+    wsq_1 = _nonzero_square(numpy.square(Wx_1) + numpy.square(Wy_1), 2.2250738585072e-308)
+    cse_4 = cse_1*cse_2 + wsq_1
+    cse_8 = wsq_1 - cse_1*cse_2
+    Delta_1 = _clamped_sqrt((wsq_1 - numpy.square(cse_1))*(numpy.square(cse_2) - wsq_1), 8.0*cse_3*rho_3_1*rho_4_1*(cse_2 + cse_3 + rho_1_1 + rho_2_1))
     del cse_1, cse_2, cse_3, rho_1_1, rho_2_1, rho_3_1, rho_4_1
-    cse_6 = Delta_1*branch_ABCD
-    cse_7 = Wx_1*cse_6
-    cse_8 = Wy_1*cse_6
-    del cse_6
-    beta = numpy.arctan2(-Wy_1*cse_5 - cse_7, cse_8 - Wx_1*cse_5)
+    cse_5 = Delta_1*branch_ABCD
+    cse_6 = Wx_1*cse_5
+    cse_7 = Wy_1*cse_5
     del cse_5
-    phi = numpy.arctan2(Wy_1*cse_9 - cse_7, Wx_1*cse_9 + cse_8)
-    del Wx_1, Wy_1, cse_7, cse_8, cse_9
-    cse_11 = alpha + phi
+    beta = numpy.arctan2(-Wy_1*cse_4 - cse_6, cse_7 - Wx_1*cse_4)
+    del cse_4
+    phi = numpy.arctan2(Wy_1*cse_8 - cse_6, Wx_1*cse_8 + cse_7)
+    del Wx_1, Wy_1, cse_6, cse_7, cse_8
+    cse_10 = alpha + phi
     size_2 = _power_of_two_below((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy))
-    cse_10 = 1/(size_2)
+    cse_9 = 1/(size_2)
     del size_2
-    rho_1_2 = cse_10*gx
-    rho_2_2 = cse_10*gy
-    rho_3_2 = cse_10*e
-    rho_4_2 = cse_10*d
-    Wx_2 = rho_3_2*numpy.cos(cse_11) - rho_1_2 + rho_4_2
-    Wy_2 = rho_3_2*numpy.sin(cse_11) - rho_2_2
-    del cse_11
-    rho_5_2 = cse_10*f
-    rho_6_2 = cse_10*g
+    rho_1_2 = cse_9*gx
+    rho_2_2 = cse_9*gy
+    rho_3_2 = cse_9*e
+    rho_4_2 = cse_9*d
+    Wx_2 = rho_3_2*numpy.cos(cse_10) - rho_1_2 + rho_4_2
+    Wy_2 = rho_3_2*numpy.sin(cse_10) - rho_2_2
     del cse_10
+    cse_13 = abs(Wx_2) + abs(Wy_2)
+    rho_5_2 = cse_9*f
+    rho_6_2 = cse_9*g
+    del cse_9
+    cse_11 = rho_5_2 - rho_6_2
     cse_12 = rho_5_2 + rho_6_2
-    cse_14 = rho_5_2 - rho_6_2
-    w_2 = _clamped_sqrt(numpy.square(Wx_2) + numpy.square(Wy_2), -2.2250738585072e-294)
-    cse_13 = cse_12 + w_2
-    cse_15 = numpy.square(w_2)
-    cse_16 = cse_12*cse_14 + cse_15
-    cse_20 = cse_15 - cse_12*cse_14
+    wsq_2 = _nonzero_square(numpy.square(Wx_2) + numpy.square(Wy_2), 2.2250738585072e-308)
+    cse_14 = cse_11*cse_12 + wsq_2
+    cse_18 = wsq_2 - cse_11*cse_12
+    Delta_2 = _clamped_sqrt((wsq_2 - numpy.square(cse_11))*(numpy.square(cse_12) - wsq_2), 8.0*cse_13*rho_5_2*rho_6_2*(cse_12 + cse_13 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
+    del cse_11, cse_12, cse_13, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2, rho_6_2
+    cse_15 = Delta_2*branch_DEFG
+    cse_16 = Wx_2*cse_15
+    cse_17 = Wy_2*cse_15
     del cse_15
-    Delta_2 = _clamped_sqrt(cse_13*(cse_12 - w_2)*(cse_14 + w_2)*(rho_6_2 - rho_5_2 + w_2), 8.0*rho_5_2*rho_6_2*w_2*(cse_13 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
-    del cse_12, cse_13, cse_14, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2, rho_6_2
-    cse_17 = Delta_2*branch_DEFG
-    cse_18 = Wx_2*cse_17
-    cse_19 = Wy_2*cse_17
-    del cse_17
-    mu = numpy.arctan2(-Wy_2*cse_16 - cse_18, cse_19 - Wx_2*cse_16)
-    del cse_16
-    psi = numpy.arctan2(Wy_2*cse_20 - cse_18, Wx_2*cse_20 + cse_19)
-    del Wx_2, Wy_2, cse_18, cse_19, cse_20
+    mu = numpy.arctan2(-Wy_2*cse_14 - cse_16, cse_17 - Wx_2*cse_14)
+    del cse_14
+    psi = numpy.arctan2(Wy_2*cse_18 - cse_16, Wx_2*cse_18 + cse_17)
+    del Wx_2, Wy_2, cse_16, cse_17, cse_18
     return (
         beta,  # coupler
         phi,  # rocker
         mu,  # coupler2
         psi,  # output
-        numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2),  # assembled
+        numpy.isfinite(wsq_1) & numpy.isfinite(Delta_1) & numpy.isfinite(wsq_2) & numpy.isfinite(Delta_2),  # assembled
     )
 
 
@@ -253,105 +254,105 @@ def _velocities_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, br
     rho_2_1 = a*cse_0
     Wx_1 = cos_theta*rho_2_1 - rho_1_1
     Wy_1 = rho_2_1*sin_theta
+    cse_3 = abs(Wx_1) + abs(Wy_1)
     rho_3_1 = b*cse_0
     rho_4_1 = c*cse_0
     del cse_0
-    cse_1 = rho_3_1 + rho_4_1
-    cse_3 = rho_3_1 - rho_4_1
+    cse_1 = rho_3_1 - rho_4_1
+    cse_2 = rho_3_1 + rho_4_1
     cse_4 = rho_3_1*rho_4_1
-    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
-    cse_2 = cse_1 + w_1
-    cse_5 = numpy.square(w_1)
-    cse_6 = cse_1*cse_3 + cse_5
-    cse_10 = cse_5 - cse_1*cse_3
-    del cse_5
-    Delta_1 = _clamped_sqrt(cse_2*(cse_1 - w_1)*(cse_3 + w_1)*(rho_4_1 - rho_3_1 + w_1), 8.0*cse_4*w_1*(cse_2 + rho_1_1 + rho_2_1))
-    del cse_1, cse_2, cse_3, rho_1_1, rho_2_1, rho_3_1, rho_4_1
-    cse_7 = Delta_1*branch_ABCD
-    cse_8 = Wx_1*cse_7
-    beta_y = -Wy_1*cse_6 - cse_8
-    phi_y = Wy_1*cse_10 - cse_8
-    del cse_8
-    cse_9 = Wy_1*cse_7
-    del Wy_1, cse_7
-    beta_x = cse_9 - Wx_1*cse_6
-    del cse_6
-    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
+    wsq_1 = _nonzero_square(numpy.square(Wx_1) + numpy.square(Wy_1), 2.2250738585072e-308)
+    beta_r = 2.0*rho_3_1*wsq_1
+    del rho_3_1
+    phi_r = 2.0*rho_4_1*wsq_1
+    del rho_4_1
+    cse_5 = cse_1*cse_2 + wsq_1
+    cse_9 = wsq_1 - cse_1*cse_2
+    Delta_1 = _clamped_sqrt((wsq_1 - numpy.square(cse_1))*(numpy.square(cse_2) - wsq_1), 8.0*cse_3*cse_4*(cse_2 + cse_3 + rho_1_1 + rho_2_1))
+    del cse_1, cse_2, cse_3, rho_1_1, rho_2_1
+    cse_6 = Delta_1*branch_ABCD
+    cse_7 = Wx_1*cse_6
+    beta_y = -Wy_1*cse_5 - cse_7
     sin_beta = _sin_atan2(beta_y, beta_r)
+    phi_y = Wy_1*cse_9 - cse_7
+    del cse_7
+    sin_phi = _sin_atan2(phi_y, phi_r)
+    cse_8 = Wy_1*cse_6
+    del Wy_1, cse_6
+    beta_x = cse_8 - Wx_1*cse_5
+    del cse_5
     cos_beta = _cos_atan2(beta_x, beta_r)
     del beta_r
-    phi_x = Wx_1*cse_10 + cse_9
-    del Wx_1, cse_10, cse_9
-    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
-    sin_phi = _sin_atan2(phi_y, phi_r)
+    phi_x = Wx_1*cse_9 + cse_8
+    del Wx_1, cse_8, cse_9
     cos_phi = _cos_atan2(phi_x, phi_r)
     del phi_r
-    cse_24 = 2.0*a*cse_4*thetadot/(Delta_1*branch_ABCD)
+    cse_22 = 2.0*a*cse_4*thetadot/(Delta_1*branch_ABCD)
     del cse_4
     beta = numpy.arctan2(beta_y, beta_x)
     del beta_x, beta_y
     phi = numpy.arctan2(phi_y, phi_x)
     del phi_x, phi_y
-    cse_12 = alpha + phi
-    sin_cse_12 = numpy.sin(cse_12)
-    cos_cse_12 = numpy.cos(cse_12)
-    del cse_12
-    size_2 = _power_of_two_below((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy))
-    cse_11 = 1/(size_2)
-    del size_2
-    rho_1_2 = cse_11*gx
-    rho_2_2 = cse_11*gy
-    rho_3_2 = cse_11*e
-    rho_4_2 = cse_11*d
-    Wx_2 = cos_cse_12*rho_3_2 - rho_1_2 + rho_4_2
-    Wy_2 = rho_3_2*sin_cse_12 - rho_2_2
-    rho_5_2 = cse_11*f
-    rho_6_2 = cse_11*g
+    cse_11 = alpha + phi
+    sin_cse_11 = numpy.sin(cse_11)
+    cos_cse_11 = numpy.cos(cse_11)
     del cse_11
+    size_2 = _power_of_two_below((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy))
+    cse_10 = 1/(size_2)
+    del size_2
+    rho_1_2 = cse_10*gx
+    rho_2_2 = cse_10*gy
+    rho_3_2 = cse_10*e
+    rho_4_2 = cse_10*d
+    Wx_2 = cos_cse_11*rho_3_2 - rho_1_2 + rho_4_2
+    Wy_2 = rho_3_2*sin_cse_11 - rho_2_2
+    cse_14 = abs(Wx_2) + abs(Wy_2)
+    rho_5_2 = cse_10*f
+    rho_6_2 = cse_10*g
+    del cse_10
+    cse_12 = rho_5_2 - rho_6_2
     cse_13 = rho_5_2 + rho_6_2
-    cse_15 = rho_5_2 - rho_6_2
-    cse_16 = rho_5_2*rho_6_2
-    w_2 = _clamped_sqrt(numpy.square(Wx_2) + numpy.square(Wy_2), -2.2250738585072e-294)
-    cse_14 = cse_13 + w_2
-    cse_17 = numpy.square(w_2)
-    cse_18 = cse_13*cse_15 + cse_17
-    cse_22 = cse_17 - cse_13*cse_15
-    del cse_17
-    Delta_2 = _clamped_sqrt(cse_14*(cse_13 - w_2)*(cse_15 + w_2)*(rho_6_2 - rho_5_2 + w_2), 8.0*cse_16*w_2*(cse_14 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
-    del cse_13, cse_14, cse_15, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2, rho_6_2
-    cse_19 = Delta_2*branch_DEFG
-    cse_20 = Wx_2*cse_19
-    mu_y = -Wy_2*cse_18 - cse_20
-    psi_y = Wy_2*cse_22 - cse_20
-    del cse_20
-    cse_21 = Wy_2*cse_19
-    del Wy_2, cse_19
-    mu_x = cse_21 - Wx_2*cse_18
-    del cse_18
-    mu_r = numpy.sqrt(numpy.square(mu_x) + numpy.square(mu_y))
+    cse_15 = rho_5_2*rho_6_2
+    wsq_2 = _nonzero_square(numpy.square(Wx_2) + numpy.square(Wy_2), 2.2250738585072e-308)
+    mu_r = 2.0*rho_5_2*wsq_2
+    del rho_5_2
+    psi_r = 2.0*rho_6_2*wsq_2
+    del rho_6_2
+    cse_16 = cse_12*cse_13 + wsq_2
+    cse_20 = wsq_2 - cse_12*cse_13
+    Delta_2 = _clamped_sqrt((wsq_2 - numpy.square(cse_12))*(numpy.square(cse_13) - wsq_2), 8.0*cse_14*cse_15*(cse_13 + cse_14 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
+    del cse_12, cse_13, cse_14, rho_1_2, rho_2_2, rho_3_2, rho_4_2
+    cse_17 = Delta_2*branch_DEFG
+    cse_18 = Wx_2*cse_17
+    mu_y = -Wy_2*cse_16 - cse_18
     sin_mu = _sin_atan2(mu_y, mu_r)
+    psi_y = Wy_2*cse_20 - cse_18
+    del cse_18
+    sin_psi = _sin_atan2(psi_y, psi_r)
+    cse_19 = Wy_2*cse_17
+    del Wy_2, cse_17
+    mu_x = cse_19 - Wx_2*cse_16
+    del cse_16
     cos_mu = _cos_atan2(mu_x, mu_r)
     del mu_r
-    psi_x = Wx_2*cse_22 + cse_21
-    del Wx_2, cse_21, cse_22
-    psi_r = numpy.sqrt(numpy.square(psi_x) + numpy.square(psi_y))
-    sin_psi = _sin_atan2(psi_y, psi_r)
+    psi_x = Wx_2*cse_20 + cse_19
+    del Wx_2, cse_19, cse_20
     cos_psi = _cos_atan2(psi_x, psi_r)
     del psi_r
     mu = numpy.arctan2(mu_y, mu_x)
     del mu_x, mu_y
     psi = numpy.arctan2(psi_y, psi_x)
     del psi_x, psi_y
-    betadot = -cse_24*(cos_theta*sin_phi - cos_phi*sin_theta)/b
+    betadot = -cse_22*(cos_theta*sin_phi - cos_phi*sin_theta)/b
     del cos_phi, sin_phi
-    phidot = -cse_24*(cos_theta*sin_beta - cos_beta*sin_theta)/c
-    del cos_beta, cos_theta, cse_24, sin_beta, sin_theta
-    cse_25 = 2.0*cse_16*e*phidot/(Delta_2*branch_DEFG)
-    del cse_16
-    mudot = cse_25*(cos_psi*sin_cse_12 - cos_cse_12*sin_psi)/f
+    phidot = -cse_22*(cos_theta*sin_beta - cos_beta*sin_theta)/c
+    del cos_beta, cos_theta, cse_22, sin_beta, sin_theta
+    cse_23 = 2.0*cse_15*e*phidot/(Delta_2*branch_DEFG)
+    del cse_15
+    mudot = cse_23*(cos_psi*sin_cse_11 - cos_cse_11*sin_psi)/f
     del cos_psi, sin_psi
-    psidot = cse_25*(cos_mu*sin_cse_12 - cos_cse_12*sin_mu)/g
-    del cos_cse_12, cos_mu, cse_25, sin_cse_12, sin_mu
+    psidot = cse_23*(cos_mu*sin_cse_11 - cos_cse_11*sin_mu)/g
+    del cos_cse_11, cos_mu, cse_23, sin_cse_11, sin_mu
     return (
         beta,  # coupler
         phi,  # rocker
@@ -361,7 +362,7 @@ def _velocities_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, br
         phidot,  # rocker_speed
         mudot,  # coupler2_speed
         psidot,  # output_speed
-        numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2),  # assembled
+        numpy.isfinite(wsq_1) & numpy.isfinite(Delta_1) & numpy.isfinite(wsq_2) & numpy.isfinite(Delta_2),  # assembled
     )
 
 
@@ -384,9 +385,9 @@ def _accelerations_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD,
     """The outputs of accelerations and the assembled mask, for arguments that broadcast together."""
     sin_theta = numpy.sin(theta)
     cos_theta = numpy.cos(theta)
-    cse_28 = a*thetadot
-    cse_43 = a*thetaddot
-    cse_44 = numpy.square(thetadot)
+    cse_26 = a*thetadot
+    cse_41 = a*thetaddot
+    cse_42 = numpy.square(thetadot)
     size_1 = _power_of_two_below((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d)
     cse_0 = 1/(size_1)
     del size_1
@@ -394,132 +395,132 @@ def _accelerations_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD,
     rho_2_1 = a*cse_0
     Wx_1 = cos_theta*rho_2_1 - rho_1_1
     Wy_1 = rho_2_1*sin_theta
+    cse_3 = abs(Wx_1) + abs(Wy_1)
     rho_3_1 = b*cse_0
     rho_4_1 = c*cse_0
     del cse_0
-    cse_1 = rho_3_1 + rho_4_1
-    cse_3 = rho_3_1 - rho_4_1
+    cse_1 = rho_3_1 - rho_4_1
+    cse_2 = rho_3_1 + rho_4_1
     cse_4 = rho_3_1*rho_4_1
-    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
-    cse_2 = cse_1 + w_1
-    cse_5 = numpy.square(w_1)
-    cse_6 = cse_1*cse_3 + cse_5
-    cse_10 = cse_5 - cse_1*cse_3
-    del cse_5
-    Delta_1 = _clamped_sqrt(cse_2*(cse_1 - w_1)*(cse_3 + w_1)*(rho_4_1 - rho_3_1 + w_1), 8.0*cse_4*w_1*(cse_2 + rho_1_1 + rho_2_1))
-    del cse_1, cse_2, cse_3, rho_1_1, rho_2_1, rho_3_1, rho_4_1
-    cse_7 = Delta_1*branch_ABCD
-    cse_8 = Wx_1*cse_7
-    phi_y = Wy_1*cse_10 - cse_8
-    beta_y = -Wy_1*cse_6 - cse_8
-    del cse_8
-    cse_9 = Wy_1*cse_7
-    del Wy_1, cse_7
-    phi_x = Wx_1*cse_10 + cse_9
-    del cse_10
-    phi_r = numpy.sqrt(numpy.square(phi_x) + numpy.square(phi_y))
+    wsq_1 = _nonzero_square(numpy.square(Wx_1) + numpy.square(Wy_1), 2.2250738585072e-308)
+    phi_r = 2.0*rho_4_1*wsq_1
+    del rho_4_1
+    beta_r = 2.0*rho_3_1*wsq_1
+    del rho_3_1
+    cse_5 = cse_1*cse_2 + wsq_1
+    cse_9 = wsq_1 - cse_1*cse_2
+    Delta_1 = _clamped_sqrt((wsq_1 - numpy.square(cse_1))*(numpy.square(cse_2) - wsq_1), 8.0*cse_3*cse_4*(cse_2 + cse_3 + rho_1_1 + rho_2_1))
+    del cse_1, cse_2, cse_3, rho_1_1, rho_2_1
+    cse_6 = Delta_1*branch_ABCD
+    cse_7 = Wx_1*cse_6
+    phi_y = Wy_1*cse_9 - cse_7
     sin_phi = _sin_atan2(phi_y, phi_r)
+    beta_y = -Wy_1*cse_5 - cse_7
+    del cse_7
+    sin_beta = _sin_atan2(beta_y, beta_r)
+    cse_8 = Wy_1*cse_6
+    del Wy_1, cse_6
+    phi_x = Wx_1*cse_9 + cse_8
+    del cse_9
     cos_phi = _cos_atan2(phi_x, phi_r)
     del phi_r
-    beta_x = cse_9 - Wx_1*cse_6
-    del Wx_1, cse_6, cse_9
-    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
-    sin_beta = _sin_atan2(beta_y, beta_r)
+    beta_x = cse_8 - Wx_1*cse_5
+    del Wx_1, cse_5, cse_8
     cos_beta = _cos_atan2(beta_x, beta_r)
     del beta_r
-    cse_26 = 2.0*cse_4/(Delta_1*branch_ABCD)
+    cse_24 = 2.0*cse_4/(Delta_1*branch_ABCD)
     del cse_4
-    cse_27 = cse_26/b
-    cse_31 = cse_26/c
-    del cse_26
+    cse_25 = cse_24/b
+    cse_29 = cse_24/c
+    del cse_24
     beta = numpy.arctan2(beta_y, beta_x)
     del beta_x, beta_y
-    cse_30 = cos_theta*sin_beta - cos_beta*sin_theta
+    cse_28 = cos_theta*sin_beta - cos_beta*sin_theta
     phi = numpy.arctan2(phi_y, phi_x)
     del phi_x, phi_y
-    cse_12 = alpha + phi
-    sin_cse_12 = numpy.sin(cse_12)
-    cos_cse_12 = numpy.cos(cse_12)
-    del cse_12
-    cse_25 = cos_theta*sin_phi - cos_phi*sin_theta
-    cse_46 = cos_beta*cos_phi + sin_beta*sin_phi
-    size_2 = _power_of_two_below((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy))
-    cse_11 = 1/(size_2)
-    del size_2
-    rho_1_2 = cse_11*gx
-    rho_2_2 = cse_11*gy
-    rho_3_2 = cse_11*e
-    rho_4_2 = cse_11*d
-    Wx_2 = cos_cse_12*rho_3_2 - rho_1_2 + rho_4_2
-    Wy_2 = rho_3_2*sin_cse_12 - rho_2_2
-    rho_5_2 = cse_11*f
-    rho_6_2 = cse_11*g
+    cse_11 = alpha + phi
+    sin_cse_11 = numpy.sin(cse_11)
+    cos_cse_11 = numpy.cos(cse_11)
     del cse_11
+    cse_23 = cos_theta*sin_phi - cos_phi*sin_theta
+    cse_44 = cos_beta*cos_phi + sin_beta*sin_phi
+    size_2 = _power_of_two_below((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy))
+    cse_10 = 1/(size_2)
+    del size_2
+    rho_1_2 = cse_10*gx
+    rho_2_2 = cse_10*gy
+    rho_3_2 = cse_10*e
+    rho_4_2 = cse_10*d
+    Wx_2 = cos_cse_11*rho_3_2 - rho_1_2 + rho_4_2
+    Wy_2 = rho_3_2*sin_cse_11 - rho_2_2
+    cse_14 = abs(Wx_2) + abs(Wy_2)
+    rho_5_2 = cse_10*f
+    rho_6_2 = cse_10*g
+    del cse_10
+    cse_12 = rho_5_2 - rho_6_2
     cse_13 = rho_5_2 + rho_6_2
-    cse_15 = rho_5_2 - rho_6_2
-    cse_16 = rho_5_2*rho_6_2
-    w_2 = _clamped_sqrt(numpy.square(Wx_2) + numpy.square(Wy_2), -2.2250738585072e-294)
-    cse_14 = cse_13 + w_2
-    cse_17 = numpy.square(w_2)
-    cse_18 = cse_13*cse_15 + cse_17
-    cse_22 = cse_17 - cse_13*cse_15
-    del cse_17
-    Delta_2 = _clamped_sqrt(cse_14*(cse_13 - w_2)*(cse_15 + w_2)*(rho_6_2 - rho_5_2 + w_2), 8.0*cse_16*w_2*(cse_14 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
-    del cse_13, cse_14, cse_15, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2, rho_6_2
-    cse_19 = Delta_2*branch_DEFG
-    cse_20 = Wx_2*cse_19
-    psi_y = Wy_2*cse_22 - cse_20
-    mu_y = -Wy_2*cse_18 - cse_20
-    del cse_20
-    cse_21 = Wy_2*cse_19
-    del Wy_2, cse_19
-    psi_x = Wx_2*cse_22 + cse_21
-    del cse_22
-    psi_r = numpy.sqrt(numpy.square(psi_x) + numpy.square(psi_y))
+    cse_15 = rho_5_2*rho_6_2
+    wsq_2 = _nonzero_square(numpy.square(Wx_2) + numpy.square(Wy_2), 2.2250738585072e-308)
+    psi_r = 2.0*rho_6_2*wsq_2
+    del rho_6_2
+    mu_r = 2.0*rho_5_2*wsq_2
+    del rho_5_2
+    cse_16 = cse_12*cse_13 + wsq_2
+    cse_20 = wsq_2 - cse_12*cse_13
+    Delta_2 = _clamped_sqrt((wsq_2 - numpy.square(cse_12))*(numpy.square(cse_13) - wsq_2), 8.0*cse_14*cse_15*(cse_13 + cse_14 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
+    del cse_12, cse_13, cse_14, rho_1_2, rho_2_2, rho_3_2, rho_4_2
+    cse_17 = Delta_2*branch_DEFG
+    cse_18 = Wx_2*cse_17
+    psi_y = Wy_2*cse_20 - cse_18
     sin_psi = _sin_atan2(psi_y, psi_r)
+    mu_y = -Wy_2*cse_16 - cse_18
+    del cse_18
+    sin_mu = _sin_atan2(mu_y, mu_r)
+    cse_19 = Wy_2*cse_17
+    del Wy_2, cse_17
+    psi_x = Wx_2*cse_20 + cse_19
+    del cse_20
     cos_psi = _cos_atan2(psi_x, psi_r)
     del psi_r
-    mu_x = cse_21 - Wx_2*cse_18
-    del Wx_2, cse_18, cse_21
-    mu_r = numpy.sqrt(numpy.square(mu_x) + numpy.square(mu_y))
-    sin_mu = _sin_atan2(mu_y, mu_r)
+    mu_x = cse_19 - Wx_2*cse_16
+    del Wx_2, cse_16, cse_19
     cos_mu = _cos_atan2(mu_x, mu_r)
     del mu_r
-    cse_35 = 2.0*cse_16/(Delta_2*branch_DEFG)
-    del cse_16
-    cse_36 = cse_35/f
-    cse_40 = cse_35/g
-    del cse_35
+    cse_33 = 2.0*cse_15/(Delta_2*branch_DEFG)
+    del cse_15
+    cse_34 = cse_33/f
+    cse_38 = cse_33/g
+    del cse_33
     mu = numpy.arctan2(mu_y, mu_x)
     del mu_x, mu_y
-    cse_39 = cos_mu*sin_cse_12 - cos_cse_12*sin_mu
+    cse_37 = cos_mu*sin_cse_11 - cos_cse_11*sin_mu
     psi = numpy.arctan2(psi_y, psi_x)
     del psi_x, psi_y
-    cse_34 = cos_psi*sin_cse_12 - cos_cse_12*sin_psi
-    cse_50 = cos_mu*cos_psi + sin_mu*sin_psi
-    betadot = -cse_25*cse_27*cse_28
-    cse_45 = numpy.square(betadot)
-    phidot = -cse_28*cse_30*cse_31
-    del cse_28
-    cse_37 = e*phidot
-    cse_41 = numpy.square(phidot)
-    cse_42 = c*cse_41
-    cse_49 = cse_41*e
-    del cse_41
-    mudot = cse_34*cse_36*cse_37
-    cse_51 = f*numpy.square(mudot)
-    psidot = cse_37*cse_39*cse_40
-    del cse_37
-    cse_47 = g*numpy.square(psidot)
-    betaddot = cse_27*(a*cse_44*(cos_phi*cos_theta + sin_phi*sin_theta) + b*cse_45*cse_46 - cse_25*cse_43 - cse_42)
-    del cos_phi, cse_25, cse_27, sin_phi
-    phiddot = cse_31*(a*cse_44*(cos_beta*cos_theta + sin_beta*sin_theta) + b*cse_45 - cse_30*cse_43 - cse_42*cse_46)
-    del cos_beta, cos_theta, cse_30, cse_31, cse_42, cse_43, cse_44, cse_45, cse_46, sin_beta, sin_theta
-    cse_48 = e*phiddot
-    muddot = cse_36*(cse_34*cse_48 - cse_47 + cse_49*(cos_cse_12*cos_psi + sin_cse_12*sin_psi) + cse_50*cse_51)
-    del cos_psi, cse_34, cse_36, sin_psi
-    psiddot = cse_40*(cse_39*cse_48 - cse_47*cse_50 + cse_49*(cos_cse_12*cos_mu + sin_cse_12*sin_mu) + cse_51)
-    del cos_cse_12, cos_mu, cse_39, cse_40, cse_47, cse_48, cse_49, cse_50, cse_51, sin_cse_12, sin_mu
+    cse_32 = cos_psi*sin_cse_11 - cos_cse_11*sin_psi
+    cse_48 = cos_mu*cos_psi + sin_mu*sin_psi
+    betadot = -cse_23*cse_25*cse_26
+    cse_43 = numpy.square(betadot)
+    phidot = -cse_26*cse_28*cse_29
+    del cse_26
+    cse_35 = e*phidot
+    cse_39 = numpy.square(phidot)
+    cse_40 = c*cse_39
+    cse_47 = cse_39*e
+    del cse_39
+    mudot = cse_32*cse_34*cse_35
+    cse_49 = f*numpy.square(mudot)
+    psidot = cse_35*cse_37*cse_38
+    del cse_35
+    cse_45 = g*numpy.square(psidot)
+    betaddot = cse_25*(a*cse_42*(cos_phi*cos_theta + sin_phi*sin_theta) + b*cse_43*cse_44 - cse_23*cse_41 - cse_40)
+    del cos_phi, cse_23, cse_25, sin_phi
+    phiddot = cse_29*(a*cse_42*(cos_beta*cos_theta + sin_beta*sin_theta) + b*cse_43 - cse_28*cse_41 - cse_40*cse_44)
+    del cos_beta, cos_theta, cse_28, cse_29, cse_40, cse_41, cse_42, cse_43, cse_44, sin_beta, sin_theta
+    cse_46 = e*phiddot
+    muddot = cse_34*(cse_32*cse_46 - cse_45 + cse_47*(cos_cse_11*cos_psi + sin_cse_11*sin_psi) + cse_48*cse_49)
+    del cos_psi, cse_32, cse_34, sin_psi
+    psiddot = cse_38*(cse_37*cse_46 - cse_45*cse_48 + cse_47*(cos_cse_11*cos_mu + sin_cse_11*sin_mu) + cse_49)
+    del cos_cse_11, cos_mu, cse_37, cse_38, cse_45, cse_46, cse_47, cse_48, cse_49, sin_cse_11, sin_mu
     return (
         beta,  # coupler
         phi,  # rocker
@@ -533,7 +534,7 @@ def _accelerations_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD,
         phiddot,  # rocker_accel
         muddot,  # coupler2_accel
         psiddot,  # output_accel
-        numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2),  # assembled
+        numpy.isfinite(wsq_1) & numpy.isfinite(Delta_1) & numpy.isfinite(wsq_2) & numpy.isfinite(Delta_2),  # assembled
     )
 
 
@@ -556,8 +557,8 @@ def _joints_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch
     """The outputs of joints and the assembled mask, for arguments that broadcast together."""
     cse_1 = numpy.cos(theta)
     cse_2 = numpy.sin(theta)
-    cse_21 = a*cse_1
-    cse_22 = a*cse_2
+    cse_20 = a*cse_1
+    cse_21 = a*cse_2
     size_1 = _power_of_two_below((1/4)*a + (1/4)*b + (1/4)*c + (1/4)*d)
     cse_0 = 1/(size_1)
     del size_1
@@ -567,78 +568,76 @@ def _joints_block(theta, a, b, c, d, e, f, g, alpha, gx, gy, branch_ABCD, branch
     del cse_1
     Wy_1 = cse_2*rho_2_1
     del cse_2
+    cse_5 = abs(Wx_1) + abs(Wy_1)
     rho_3_1 = b*cse_0
     rho_4_1 = c*cse_0
     del cse_0
-    cse_3 = rho_3_1 + rho_4_1
-    cse_5 = rho_3_1 - rho_4_1
-    w_1 = _clamped_sqrt(numpy.square(Wx_1) + numpy.square(Wy_1), -2.2250738585072e-294)
-    cse_4 = cse_3 + w_1
-    cse_6 = numpy.square(w_1)
-    cse_7 = cse_3*cse_5 + cse_6
-    cse_11 = cse_6 - cse_3*cse_5
-    del cse_6
-    Delta_1 = _clamped_sqrt(cse_4*(cse_3 - w_1)*(cse_5 + w_1)*(rho_4_1 - rho_3_1 + w_1), 8.0*rho_3_1*rho_4_1*w_1*(cse_4 + rho_1_1 + rho_2_1))
+    cse_3 = rho_3_1 - rho_4_1
+    cse_4 = rho_3_1 + rho_4_1
+    wsq_1 = _nonzero_square(numpy.square(Wx_1) + numpy.square(Wy_1), 2.2250738585072e-308)
+    beta_r = 2.0*rho_3_1*wsq_1
+    cse_6 = cse_3*cse_4 + wsq_1
+    cse_10 = wsq_1 - cse_3*cse_4
+    Delta_1 = _clamped_sqrt((wsq_1 - numpy.square(cse_3))*(numpy.square(cse_4) - wsq_1), 8.0*cse_5*rho_3_1*rho_4_1*(cse_4 + cse_5 + rho_1_1 + rho_2_1))
     del cse_3, cse_4, cse_5, rho_1_1, rho_2_1, rho_3_1, rho_4_1
-    cse_8 = Delta_1*branch_ABCD
-    cse_9 = Wx_1*cse_8
-    beta_y = -Wy_1*cse_7 - cse_9
-    cse_10 = Wy_1*cse_8
-    del cse_8
-    beta_x = cse_10 - Wx_1*cse_7
-    del cse_7
-    beta_r = numpy.sqrt(numpy.square(beta_x) + numpy.square(beta_y))
+    cse_7 = Delta_1*branch_ABCD
+    cse_8 = Wx_1*cse_7
+    beta_y = -Wy_1*cse_6 - cse_8
     sin_beta = _sin_atan2(beta_y, beta_r)
     del beta_y
+    cse_9 = Wy_1*cse_7
+    del cse_7
+    beta_x = cse_9 - Wx_1*cse_6
+    del cse_6
     cos_beta = _cos_atan2(beta_x, beta_r)
     del beta_r, beta_x
-    phi = numpy.arctan2(Wy_1*cse_11 - cse_9, Wx_1*cse_11 + cse_10)
-    del Wx_1, Wy_1, cse_10, cse_11, cse_9
-    cse_13 = alpha + phi
+    phi = numpy.arctan2(Wy_1*cse_10 - cse_8, Wx_1*cse_10 + cse_9)
+    del Wx_1, Wy_1, cse_10, cse_8, cse_9
+    cse_12 = alpha + phi
     del phi
-    cse_14 = numpy.cos(cse_13)
-    cse_15 = numpy.sin(cse_13)
-    del cse_13
-    cse_23 = cse_14*e + d
-    cse_24 = cse_15*e
-    size_2 = _power_of_two_below((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy))
-    cse_12 = 1/(size_2)
-    del size_2
-    rho_1_2 = cse_12*gx
-    rho_2_2 = cse_12*gy
-    rho_3_2 = cse_12*e
-    rho_4_2 = cse_12*d
-    Wx_2 = cse_14*rho_3_2 - rho_1_2 + rho_4_2
-    del cse_14
-    Wy_2 = cse_15*rho_3_2 - rho_2_2
-    del cse_15
-    rho_5_2 = cse_12*f
-    rho_6_2 = cse_12*g
+    cse_13 = numpy.cos(cse_12)
+    cse_14 = numpy.sin(cse_12)
     del cse_12
+    cse_22 = cse_13*e + d
+    cse_23 = cse_14*e
+    size_2 = _power_of_two_below((1/6)*d + (1/6)*e + (1/6)*f + (1/6)*g + (1/6)*abs(gx) + (1/6)*abs(gy))
+    cse_11 = 1/(size_2)
+    del size_2
+    rho_1_2 = cse_11*gx
+    rho_2_2 = cse_11*gy
+    rho_3_2 = cse_11*e
+    rho_4_2 = cse_11*d
+    Wx_2 = cse_13*rho_3_2 - rho_1_2 + rho_4_2
+    del cse_13
+    Wy_2 = cse_14*rho_3_2 - rho_2_2
+    del cse_14
+    cse_17 = abs(Wx_2) + abs(Wy_2)
+    rho_5_2 = cse_11*f
+    rho_6_2 = cse_11*g
+    del cse_11
+    cse_15 = rho_5_2 - rho_6_2
     cse_16 = rho_5_2 + rho_6_2
-    cse_18 = rho_5_2 - rho_6_2
-    w_2 = _clamped_sqrt(numpy.square(Wx_2) + numpy.square(Wy_2), -2.2250738585072e-294)
-    cse_17 = cse_16 + w_2
-    cse_19 = cse_16*cse_18 + numpy.square(w_2)
-    Delta_2 = _clamped_sqrt(cse_17*(cse_16 - w_2)*(cse_18 + w_2)*(rho_6_2 - rho_5_2 + w_2), 8.0*rho_5_2*rho_6_2*w_2*(cse_17 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
-    del cse_16, cse_17, cse_18, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2, rho_6_2
-    cse_20 = Delta_2*branch_DEFG
-    mu_y = -Wx_2*cse_20 - Wy_2*cse_19
-    mu_x = Wy_2*cse_20 - Wx_2*cse_19
-    del Wx_2, Wy_2, cse_19, cse_20
-    mu_r = numpy.sqrt(numpy.square(mu_x) + numpy.square(mu_y))
+    wsq_2 = _nonzero_square(numpy.square(Wx_2) + numpy.square(Wy_2), 2.2250738585072e-308)
+    mu_r = 2.0*rho_5_2*wsq_2
+    cse_18 = cse_15*cse_16 + wsq_2
+    Delta_2 = _clamped_sqrt((wsq_2 - numpy.square(cse_15))*(numpy.square(cse_16) - wsq_2), 8.0*cse_17*rho_5_2*rho_6_2*(cse_16 + cse_17 + rho_3_2 + rho_4_2 + abs(rho_1_2) + abs(rho_2_2)))
+    del cse_15, cse_16, cse_17, rho_1_2, rho_2_2, rho_3_2, rho_4_2, rho_5_2, rho_6_2
+    cse_19 = Delta_2*branch_DEFG
+    mu_y = -Wx_2*cse_19 - Wy_2*cse_18
+    mu_x = Wy_2*cse_19 - Wx_2*cse_18
+    del Wx_2, Wy_2, cse_18, cse_19
     sin_mu = _sin_atan2(mu_y, mu_r)
     del mu_y
     cos_mu = _cos_atan2(mu_x, mu_r)
     del mu_r, mu_x
     return (
-        cse_21,  # B_x
-        cse_22,  # B_y
-        b*cos_beta + cse_21,  # C_x
-        b*sin_beta + cse_22,  # C_y
-        cse_23,  # E_x
-        cse_24,  # E_y
-        cos_mu*f + cse_23,  # F_x
-        cse_24 + f*sin_mu,  # F_y
-        numpy.isfinite(w_1) & numpy.isfinite(Delta_1) & numpy.isfinite(w_2) & numpy.isfinite(Delta_2),  # assembled
+        cse_20,  # B_x
+        cse_21,  # B_y
+        b*cos_beta + cse_20,  # C_x
+        b*sin_beta + cse_21,  # C_y
+        cse_22,  # E_x
+        cse_23,  # E_y
+        cos_mu*f + cse_22,  # F_x
+        cse_23 + f*sin_mu,  # F_y
+        numpy.isfinite(wsq_1) & numpy.isfinite(Delta_1) & numpy.isfinite(wsq_2) & numpy.isfinite(Delta_2),  # assembled
     )

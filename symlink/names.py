@@ -42,7 +42,7 @@ PLAIN_NAME = re.compile(r"[A-Za-z][A-Za-z0-9_]*\Z", re.ASCII)
 _LABEL = re.compile(r"[A-Za-z][A-Za-z0-9_]*(?:[ -][A-Za-z0-9_]+)*\Z", re.ASCII)
 
 #: Names of the closed forms' intermediates, each followed by ``_<loop number>`` (see symlink.position).
-INTERMEDIATE_FAMILIES = ("Wx", "Wy", "w", "Delta", "size", "rho")
+INTERMEDIATE_FAMILIES = ("Wx", "Wy", "w", "wsq", "Delta", "size", "rho")
 _INTERMEDIATE = re.compile(r"(?:%s)(?:_[0-9]+)+\Z" % "|".join(INTERMEDIATE_FAMILIES))
 
 C_KEYWORDS = frozenset("""

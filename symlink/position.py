@@ -41,7 +41,7 @@ import sympy as sp
 
 from .loops import Loop, LoopCase, Unknown
 
-__all__ = ["ClampedSqrt", "PowerOfTwoBelow", "LoopSolution", "solve_loop", "TOLERANCE"]
+__all__ = ["ClampedSqrt", "NonzeroSquare", "PowerOfTwoBelow", "LoopSolution", "solve_loop", "TOLERANCE"]
 
 #: Relative size below which a negative square-root argument is rounding, not
 #: a configuration that cannot be assembled: with the scales the cases give
@@ -89,6 +89,33 @@ class ClampedSqrt(sp.Function):
         return r"\sqrt{\left[%s\right]_{+}}" % printer._print(self.args[0])
 
 
+class NonzeroSquare(sp.Function):
+    """A squared length that must not vanish: ``x`` where ``x >= smallest``, NaN below (or for NaN).
+
+    Generated code only (loop units): the two-angle case needs the closing
+    vector's length ``w`` only squared (Heron's product and the ``atan2``
+    arguments are even in ``w``), so it keeps ``w^2`` and takes no square root
+    for it; this guard is what the square root's guard was, ``ClampedSqrt(x,
+    -smallest/TOLERANCE)`` (NaN where the two known points coincide, so that
+    the pose, whose direction is then undefined, is reported not assembled),
+    without the square root.  Printed as a comparison and a select in every
+    language; nothing a user reads shows it.
+
+    >>> NonzeroSquare(4, 1), NonzeroSquare(0, 1)
+    (4, nan)
+    """
+
+    nargs = 2
+
+    @classmethod
+    def eval(cls, x, smallest):
+        if x is sp.nan:
+            return sp.nan
+        if x.is_Number and smallest.is_Number:
+            return x if x >= smallest else sp.nan
+        return None
+
+
 class PowerOfTwoBelow(sp.Function):
     """The largest power of two not above ``x > 0``: a loop's unit in generated code, so dividing by it is exact.
 
@@ -132,6 +159,11 @@ class LoopSolution:
     four-bar is ``-branch Delta_1 / (2 b c)``.  With it the rates divide by
     exactly zero where the root is zero, and are not finite there.
 
+    ``radii`` (generated code only, :attr:`in_loop_units`) holds, for an unknown
+    angle solved as ``atan2(y, x)``, the length ``sqrt(x^2 + y^2)`` where the closed
+    form knows it without a square root: the rates take the angle's cosine and
+    sine as ``x / r`` and ``y / r`` (:func:`symlink.codegen.trigonometry.angle_sums`).
+
     These are the textbook forms, in the linkage's own lengths and angles.
     :attr:`in_loop_units` is the same solution as generated code computes it.
     """
@@ -143,6 +175,7 @@ class LoopSolution:
     positions: dict[sp.Symbol, sp.Expr]
     singular_factors: dict[sp.Expr, sp.Expr] = field(default_factory=dict)
     label: str = "1"
+    radii: dict[sp.Symbol, sp.Expr] = field(default_factory=dict)
 
     @cached_property
     def in_loop_units(self) -> "LoopSolution":
@@ -153,7 +186,11 @@ class LoopSolution:
         unknown lengths are scaled back, and each square root carries the clamping
         scale that tells rounding at a toggle from a loop that cannot close.  The
         intermediates keep their names (``Wx_k``, ``w_k``, ``Delta_k``) and hold the
-        same quantities in loop units, so the rates can use either form.  Code
+        same quantities in loop units, so the rates can use either form; where a
+        case needs ``w_k`` only squared (two angles, and a length on a turning
+        body) it keeps ``wsq_k = Wx_k^2 + Wy_k^2`` instead and takes no square root
+        for it (one square root a loop: ``Delta_k``), and the two-angle case gives
+        the length of each angle's atan2 arguments (:attr:`radii`).  Code
         generation swaps this in (:func:`symlink.codegen.program.in_loop_units`);
         nothing a user reads shows it.
 
@@ -194,6 +231,7 @@ class _Intermediates(dict):
         self.label = label
         self.loop_units = loop_units
         self.singular_factors: dict[sp.Expr, sp.Expr] = {}
+        self.radii: dict[sp.Symbol, sp.Expr] = {}
 
     def clamped(self, x: sp.Expr, scale: sp.Expr) -> sp.Expr:
         """``[x]_+`` under a square root; in loop units with the scale that tells rounding from no assembly."""
@@ -322,26 +360,44 @@ def _two_angles(case: LoopCase, wx, wy, branch, named, unit, size):
     if p.sign < 0:  # walk the loop the other way so that the first vector is added
         wx, wy = -wx, -wy
     rp, rq = unit(p.vector.length), unit(q.vector.length)
-    # Where the two known points coincide (W = 0) the direction of W, and so the pose, is undefined.
-    # Only there: however short W is, if it is not zero the triangle is flat but well defined (a
-    # toggle with rp = rq, or just inside one), its pose closes the loop and the root is Heron's.
-    w = named("w", named.nonzero(wx**2 + wy**2, _SMALLEST_SQUARE))
     # Triangle P + Q = W with |P| = rp, |Q| = rq: 2w times the components of P
     # along and across W are xp and y; Heron's product keeps y accurate near
     # the toggles, where the triangle is flat.
-    xp = (rp - rq) * (rp + rq) + w**2
-    xq = (rq - rp) * (rq + rp) + w**2
-    # At a toggle (w = rp + rq or |rp - rq|) one factor vanishes, off by a few
-    # ulps of the loop's size, and the other three multiply to 8 rp rq w.
-    scale = sp.Abs(rp) + sp.Abs(rq) + w + _rounding_size(case, unit)
-    y = branch * named("Delta", named.clamped((rp + rq + w) * (rp + rq - w) * (w + rq - rp) * (w + rp - rq),
-                                              8 * sp.Abs(rp * rq) * w * scale))
+    if named.loop_units:
+        # Generated code needs w only squared (Heron's product and xp, xq are even in w): no square root for it.
+        # NaN where the two known points coincide (W = 0): the direction of W, and so the pose, is undefined.
+        # Only there: however short W is, if it is not zero the triangle is flat but well defined (a
+        # toggle with rp = rq, or just inside one), its pose closes the loop and the root is Heron's.
+        w_squared = named("wsq", NonzeroSquare(wx**2 + wy**2, _SMALLEST_SQUARE))
+        # Heron's product as ((rp + rq)^2 - w^2) (w^2 - (rp - rq)^2): at a toggle one factor vanishes, off by
+        # a few ulps of w times the loop's size (W's components carry a few ulps of the known lengths' sum,
+        # and w^2 moves by 2 w times that), and the other is 4 rp rq, so the product's rounding is a few ulps
+        # of 8 rp rq w (size).  |Wx| + |Wy| stands in for w there: it is at least w and at most sqrt(2) w,
+        # so the clamp tolerates at most sqrt(2) times the rounding the factored form's w tolerated, at
+        # any w, and needs no square root.
+        heron = ((rp + rq) ** 2 - w_squared) * (w_squared - (rp - rq) ** 2)
+        bound = sp.Abs(wx) + sp.Abs(wy)
+        scale = 8 * sp.Abs(rp * rq) * bound * (sp.Abs(rp) + sp.Abs(rq) + bound + _rounding_size(case, unit))
+    else:
+        w = named("w", named.nonzero(wx**2 + wy**2, _SMALLEST_SQUARE))
+        w_squared = w**2
+        heron = (rp + rq + w) * (rp + rq - w) * (w + rq - rp) * (w + rp - rq)
+        scale = sp.S.One
+    xp = (rp - rq) * (rp + rq) + w_squared
+    xq = (rq - rp) * (rq + rp) + w_squared
+    y = branch * named("Delta", named.clamped(heron, scale))
     tp = sp.atan2(xp * wy + y * wx, xp * wx - y * wy)
     tq = sp.atan2(sign_q * (xq * wy - y * wx), sign_q * (xq * wx + y * wy))
     # P = (xp + i y) W / (2 w^2) and Q = (xq - i y) W / (2 w^2), so the cross
     # product P x Q = rp rq sign_q sin(tq - tp) is -y (xp + xq) / (4 w^2) = -y/2.
     if p.vector.length.is_positive and q.vector.length.is_positive:
         named.identity(sp.sin, q.vector.angle - p.vector.angle, -sign_q * y / (2 * rp * rq), odd=True)
+    if named.loop_units:
+        # The atan2 arguments are (xp + i y) W and (xq - i y) W turned, of lengths |xp + i y| w = 2 rp w^2 and
+        # 2 rq w^2 (Heron: xp^2 + y^2 = 4 rp^2 w^2): the rates' cosines and sines need no square root either.
+        # Equal to the arguments' own length to a few ulps where the root is not clamped; where it is (within
+        # rounding of a toggle, where the rates are not finite anyway) to TOLERANCE times the loop's size.
+        named.radii.update({p.symbol: 2 * sp.Abs(rp) * w_squared, q.symbol: 2 * sp.Abs(rq) * w_squared})
     return {p.symbol: _absolute(p, tp), q.symbol: _absolute(q, tq)}
 
 
@@ -358,9 +414,16 @@ def _length_on_a_turning_body(case: LoopCase, wx, wy, branch, named, unit, size)
     c_p = p.vector.angle - q.symbol
     along = sp.Add(*(sign * unit(v.length) * sp.cos(v.angle - q.symbol - c_p) for sign, v in case.turning))
     across = sp.Add(*(sign * unit(v.length) * sp.sin(v.angle - q.symbol - c_p) for sign, v in case.turning))
-    w = named("w", sp.sqrt(wx**2 + wy**2))
-    root = named("Delta", named.clamped((w - across) * (w + across),
-                                        2 * sp.Abs(across) * (w + sp.Abs(across) + _rounding_size(case, unit))))
+    if named.loop_units:
+        # Generated code needs w only squared: no square root for it.  At the toggle (w = |A|) w^2 - A^2
+        # rounds to a few ulps of w^2, as the factored form does; |Wx| + |Wy| (from w to sqrt(2) w) stands
+        # in for w in the clamp's scale.
+        bound = sp.Abs(wx) + sp.Abs(wy)
+        root = named("Delta", named.clamped(named("wsq", wx**2 + wy**2) - across**2,
+                                            2 * sp.Abs(across) * (bound + sp.Abs(across) + _rounding_size(case, unit))))
+    else:
+        w = named("w", sp.sqrt(wx**2 + wy**2))
+        root = named("Delta", named.clamped((w - across) * (w + across), sp.S.One))
     x = p.sign * branch * root              # s_p r + A; branch +1 gives the larger r, as in case 2b
     rp = size * p.sign * (x - along)
     angle = sp.atan2(wy * x - wx * across, wx * x + wy * across) - c_p
@@ -409,4 +472,4 @@ def solve_loop(loop: Loop, unknowns: Sequence[sp.Symbol], branch: sp.Symbol | No
     positions = _SOLVERS[case.name](case, wx, wy, branch, named, unit, size)
     positions = {u: positions[u] for u in unknowns}
     return LoopSolution(loop, case, branch if case.branches == 2 else None, dict(named), positions,
-                        named.singular_factors, label)
+                        named.singular_factors, label, named.radii)

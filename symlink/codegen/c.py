@@ -144,6 +144,9 @@ class CPrinter(C99CodePrinter):
         require_loop_units(expr)
         return f"symlink_clamped_sqrt({self._print(expr.args[0])}, {self._print(expr.args[1])})"
 
+    def _print_NonzeroSquare(self, expr):  # the source's prelude defines symlink_nonzero_square
+        return f"symlink_nonzero_square({self._print(expr.args[0])}, {self._print(expr.args[1])})"
+
     def _print_Piecewise(self, expr):  # pragma: no cover - a guard, never reached by symlink's own forms
         raise ValueError("symlink never writes Piecewise into generated code")
 
@@ -723,6 +726,14 @@ static inline const double *symlink_block(double *block, const double *x, ptrdif
 SYMLINK_INLINE double symlink_clamped_sqrt(double x, double scale)
 {{
     return x >= -symlink_tolerance * scale ? sqrt(x > 0.0 ? x : 0.0) : NAN;
+}}
+
+/* A squared length that must not vanish: x where x >= smallest, NaN below it or for NaN (a
+ * direction that is undefined: not assembled). The guard of symlink_clamped_sqrt with a
+ * negative scale, for a length that is only ever used squared. */
+SYMLINK_INLINE double symlink_nonzero_square(double x, double smallest)
+{{
+    return x >= smallest ? x : NAN;
 }}
 
 /* The largest power of two not above x (a loop's unit), from x's exponent bits: the bits of x

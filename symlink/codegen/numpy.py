@@ -120,6 +120,9 @@ class NumPyCodePrinter(NumPyPrinter):
         require_loop_units(expr)
         return f"_clamped_sqrt({self._print(expr.args[0])}, {self._print(expr.args[1])})"
 
+    def _print_NonzeroSquare(self, expr):  # the module header defines _nonzero_square
+        return f"_nonzero_square({self._print(expr.args[0])}, {self._print(expr.args[1])})"
+
     def _print_Piecewise(self, expr):  # pragma: no cover - a guard, never reached by symlink's own forms
         raise ValueError("symlink never writes Piecewise into NumPy code")
 
@@ -336,6 +339,11 @@ BLOCK = {block!r}
 def _clamped_sqrt(x, scale):
     """sqrt(x), taking x >= -TOLERANCE*scale as rounding at a toggle (0) and anything lower as no assembly (NaN)."""
     return numpy.sqrt(numpy.where(x >= -TOLERANCE * scale, numpy.maximum(x, 0.0), numpy.nan))
+
+
+def _nonzero_square(x, smallest):
+    """A squared length that must not vanish: x where x >= smallest, NaN below it (an undefined direction)."""
+    return numpy.where(x >= smallest, x, numpy.nan)
 
 
 def _power_of_two_below(x):

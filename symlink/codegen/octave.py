@@ -92,6 +92,10 @@ class _OctavePrinter(OctaveCodePrinter):
         # + 0/flag, not ./flag: a guard (negative scale) fails for a positive x, and sqrt(x)/0 is Inf, not NaN
         return f"(sqrt(max({x}, 0)) + 0 ./ (({x}) >= {-TOLERANCE!r} .* ({scale})))"
 
+    def _print_NonzeroSquare(self, expr):  # x, and NaN (0/0) where x is below smallest
+        x, smallest = (self._print(a) for a in expr.args)
+        return f"(({x}) + 0 ./ (({x}) >= {smallest}))"
+
     def _print_Piecewise(self, expr):  # pragma: no cover - a guard, never reached by symlink's own forms
         raise ValueError("symlink never writes Piecewise into generated code")
 

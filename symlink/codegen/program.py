@@ -10,13 +10,13 @@ thing in the same order.
 >>> from symlink.catalog import fourbar
 >>> code = straight_line(fourbar().program(["rocker"]))
 >>> [s.name for s in code.arguments], list(code.outputs), [r.name for r in code.roots]
-(['theta', 'a', 'b', 'c', 'd', 'branch'], ['rocker'], ['w_1', 'Delta_1'])
+(['theta', 'a', 'b', 'c', 'd', 'branch'], ['rocker'], ['wsq_1', 'Delta_1'])
 """
 from __future__ import annotations
 
 import heapq
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Callable
 
 import sympy as sp
@@ -24,7 +24,7 @@ from sympy.core.relational import Relational
 from sympy.logic.boolalg import BooleanAtom, BooleanFunction
 
 from ..linkage import depended_on
-from ..position import ClampedSqrt
+from ..position import ClampedSqrt, NonzeroSquare
 
 if TYPE_CHECKING:
     from ..linkage import Program
@@ -42,8 +42,11 @@ class StraightLine:
     ``assignments`` define temporaries and the program's own symbols in an
     order where every right-hand side uses only arguments and earlier names;
     ``outputs`` map output names to expressions of those; ``roots`` are the
-    square roots whose finiteness says that the linkage is assembled;
-    ``defaults`` are the program's argument defaults.
+    guarded values (clamped square roots, squared lengths that must not
+    vanish) whose finiteness says that the linkage is assembled;
+    ``defaults`` are the program's argument defaults; ``radii`` map a solved
+    angle ``atan2(y, x)`` to ``sqrt(x^2 + y^2)`` where its loop knows that
+    length without a square root (:attr:`symlink.position.LoopSolution.radii`).
     """
 
     arguments: tuple[sp.Symbol, ...]
@@ -51,6 +54,7 @@ class StraightLine:
     outputs: dict[str, sp.Expr]
     roots: tuple[sp.Symbol, ...]
     defaults: dict[str, float]
+    radii: dict[sp.Symbol, sp.Expr] = field(default_factory=dict)
 
 
 def in_loop_units(program: Program) -> Program:
@@ -62,7 +66,8 @@ def in_loop_units(program: Program) -> Program:
     two, so the division is exact), which keeps the angles exact from lengths of
     1e-300 to 1e300, and every square root carries the scale that tells
     rounding at a toggle from a loop that cannot close.  This swaps each loop's
-    textbook assignments for that form (:attr:`symlink.position.LoopSolution.in_loop_units`),
+    textbook assignments for that form (:attr:`symlink.position.LoopSolution.in_loop_units`:
+    one square root a loop, ``w`` kept squared where only its square is needed),
     and writes the sines and cosines that vanish at the toggles through the
     loops' roots, so that rates divide by exactly zero there.  Every printer
     (NumPy, C, Octave, scalar Python) prints the result; nothing a user reads shows it.
@@ -109,6 +114,7 @@ def require_loop_units(root: ClampedSqrt) -> None:
 
 def straight_line(program: Program) -> StraightLine:
     """Eliminate common subexpressions across the program's assignments and outputs (in loop units)."""
+    radii = {angle: radius for step in program.plan for angle, radius in step.in_loop_units.radii.items()}
     program = in_loop_units(program)
     names = [s for s, _ in program.assignments]
     output_names = list(program.outputs)
@@ -119,8 +125,11 @@ def straight_line(program: Program) -> StraightLine:
     replacements, reduced = sp.cse(expressions, symbols=temporaries, order="none")
     nodes = list(replacements) + list(zip(names, reduced[:len(names)]))
     outputs = dict(zip(output_names, reduced[len(names):]))
-    roots = tuple(s for s, e in program.assignments if isinstance(e, ClampedSqrt))
-    return StraightLine(program.arguments, _dependency_order(nodes), outputs, roots, dict(program.defaults))
+    roots = tuple(s for s, e in program.assignments if isinstance(e, (ClampedSqrt, NonzeroSquare)))
+    # The radii of the angles the program computes, in the names it defines (a loop's rho and wsq).
+    defined = set(names) | set(program.arguments)
+    radii = {angle: radius for angle, radius in radii.items() if angle in defined and radius.free_symbols <= defined}
+    return StraightLine(program.arguments, _dependency_order(nodes), outputs, roots, dict(program.defaults), radii)
 
 
 def _dependency_order(nodes: list[tuple[sp.Symbol, sp.Expr]]) -> tuple[tuple[sp.Symbol, sp.Expr], ...]:

@@ -38,6 +38,11 @@ TOLERANCE = {tolerance!r}
 def _clamped_sqrt(x, scale):
     """sqrt(x), taking x >= -TOLERANCE*scale as rounding at a toggle (0) and anything lower as no assembly (NaN)."""
     return math.sqrt(max(x, 0.0)) if x >= -TOLERANCE * scale else math.nan
+
+
+def _nonzero_square(x, smallest):
+    """A squared length that must not vanish: x where x >= smallest, NaN below it (an undefined direction)."""
+    return x if x >= smallest else math.nan
 '''
 
 
@@ -62,6 +67,9 @@ class ScalarPrinter(PythonCodePrinter):
     def _print_ClampedSqrt(self, expr):
         require_loop_units(expr)
         return f"_clamped_sqrt({self._print(expr.args[0])}, {self._print(expr.args[1])})"
+
+    def _print_NonzeroSquare(self, expr):
+        return f"_nonzero_square({self._print(expr.args[0])}, {self._print(expr.args[1])})"
 
     def _print_Piecewise(self, expr):  # pragma: no cover - a guard, never reached by symlink's own forms
         raise ValueError("symlink never writes Piecewise into generated code")

@@ -125,7 +125,8 @@ def angle_sums(code: StraightLine, taken: set[str]) -> StraightLine:
                 y, x = parts_
                 definitions[element] = sp.atan2(y, x)
                 radius = sp.Symbol(names(f"{stem}_r"), real=True)
-                added.append((radius, sp.sqrt(x**2 + y**2)))
+                # The length of (x, y): known to its loop without a square root where it says so.
+                added.append((radius, code.radii.get(element, sp.sqrt(x**2 + y**2))))
                 values = (SineOfAtan2(y, radius), CosineOfAtan2(x, radius))
             else:
                 values = (sp.sin(element), sp.cos(element))
@@ -179,4 +180,4 @@ def angle_sums(code: StraightLine, taken: set[str]) -> StraightLine:
         if symbol in needed:
             kept.append((symbol, expr))
             needed |= expr.free_symbols
-    return StraightLine(code.arguments, tuple(reversed(kept)), outputs, code.roots, code.defaults)
+    return StraightLine(code.arguments, tuple(reversed(kept)), outputs, code.roots, code.defaults, code.radii)

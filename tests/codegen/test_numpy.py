@@ -47,7 +47,7 @@ def test_titles_and_docstrings_cannot_break_out_of_the_module():
     source = numpy_module([("f", fourbar().program(["rocker"]), hostile)], title=hostile, regenerate=hostile)
     tree = ast.parse(source)  # still a docstring, the import, TOLERANCE, BLOCK and functions: nothing else would run
     assert ast.get_docstring(tree).startswith(hostile)
-    assert [type(n).__name__ for n in tree.body] == ["Expr", "Import", "Assign", "Assign"] + ["FunctionDef"] * 8
+    assert [type(n).__name__ for n in tree.body] == ["Expr", "Import", "Assign", "Assign"] + ["FunctionDef"] * 9
     function = next(n for n in tree.body if isinstance(n, ast.FunctionDef) and n.name == "f")
     assert ast.get_docstring(function).startswith(hostile)
     assert [type(n).__name__ for n in function.body[:2]] == ["Expr", "Assign"]

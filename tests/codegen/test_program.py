@@ -31,7 +31,10 @@ def test_the_program_is_unchanged_in_value():
         return {name: complex(expr.subs(known).evalf(30)) for name, expr in outputs.items()}
     assert evaluate(code.assignments, code.outputs) == pytest.approx(evaluate(program.assignments, program.outputs),
                                                                     rel=1e-25)
-    assert code.roots == tuple(s for s, e in in_loop_units(program).assignments if type(e).__name__ == "ClampedSqrt")
+    # The guarded values: the clamped root, and the squared length of W that must not vanish (no square root for it).
+    assert code.roots == tuple(s for s, e in in_loop_units(program).assignments
+                               if type(e).__name__ in ("ClampedSqrt", "NonzeroSquare"))
+    assert [s.name for s in code.roots] == ["wsq_1", "Delta_1"]
 
 
 def test_temporaries_avoid_names_the_program_uses():

@@ -716,8 +716,9 @@ def _active_set_levenberg_marquardt(residuals, x0: numpy.ndarray, lower: numpy.n
     least squares) say which of them holds the design back (``mu >= 0``); one with a negative
     multiplier (the cost falls inward, away from it) is let go and the refinement goes on, at most
     :data:`_RELEASES` times.  This is the active-set method for linearly constrained least
-    squares (Nocedal and Wright, *Numerical Optimization*, 2nd ed., ch. 16.5 and 18), with the
-    damping of :func:`_accelerated_levenberg_marquardt` (Marquardt's scaling, Nielsen's update).
+    squares (Nocedal and Wright, *Numerical Optimization*, 2nd ed., ch. 16: active-set methods),
+    with the damping of :func:`_accelerated_levenberg_marquardt` (Marquardt's scaling, Nielsen's
+    update).
     Stops when the cost's decrease (relative) or the step (relative to x) is below ``tolerance``
     and no wall is to be let go, or the damping grows hopeless.
     """

@@ -40,8 +40,10 @@ from numpy.typing import ArrayLike
 from ..display import record_html
 from ..linkage import Linkage
 from .design_fit import DesignOutputs, check_branches, check_linkage, free_bounds, sampled_designs
+from .general import FRAME_NAMES, PathSynthesis, synthesize_path, traced_points
 
 __all__ = ["shape_distance", "similarity_fit", "similarity_transform", "resampled", "shape_search", "ShapeMatch",
+           "synthesize_shape", "ShapeSynthesis", "REACHED",
            "KINDS", "SAMPLES"]
 
 #: What a target curve may be.
@@ -51,6 +53,7 @@ SAMPLES = 256
 _WINDOWS = 48                                   # partial targets: starting points along the closed curve ...
 _SPANS = tuple(numpy.linspace(0.05, 1.0, 39))   # ... and lengths, as fractions of it
 _SWEEP = 360                                    # input values over a turn, tracing a design's path
+_REFINED = 4                                    # closed targets: this many times ``keep`` designs get the fine start
 
 
 def _complex(points: ArrayLike, least: int = 3) -> numpy.ndarray:
@@ -178,6 +181,18 @@ def _closed_distance(a: numpy.ndarray, b: numpy.ndarray, harmonics: int | None) 
     return math.sqrt(min(max(1.0 - best, 0.0), 1.0))
 
 
+def _coarse_closed_distance(a: numpy.ndarray, b: numpy.ndarray, harmonics: int | None) -> float:
+    """:func:`_closed_distance` with the start at whole samples only (one inverse FFT a direction): for ranking."""
+    A = _descriptors(a, harmonics)
+    best = 0.0
+    for b_way in (b, b[::-1]):
+        B = _descriptors(b_way, harmonics)
+        norms = float(numpy.sum(numpy.abs(A) ** 2) * numpy.sum(numpy.abs(B) ** 2))
+        if norms > 0:
+            best = max(best, float(numpy.max(numpy.abs(numpy.fft.ifft(numpy.conj(A) * B)) * len(a))) ** 2 / norms)
+    return math.sqrt(min(max(1.0 - best, 0.0), 1.0))
+
+
 def _partial_distance(piece: numpy.ndarray, whole: numpy.ndarray) -> tuple[float, float, float]:
     """The least distance of an open ``piece`` (equal-arc samples) to windows of a closed curve, with the window
     (start, span) as fractions of the closed curve's length."""
@@ -292,12 +307,16 @@ def shape_search(linkage: Linkage, point: str, target: ArrayLike, free: Mapping[
             continue
         curve = resampled(numpy.stack([z.real, z.imag], axis=1), SAMPLES, closed=closed or kind == "partial")
         if kind == "closed":
-            distance = _closed_distance(goal, curve, harmonics)
+            distance = _coarse_closed_distance(goal, curve, harmonics)
         elif kind == "open":
             distance = float(_aligned_distance(goal, curve))
         else:
             distance = _partial_distance(goal, curve)[0]
         scored.append((distance, index, z))
+    if kind == "closed":  # the coarse distances rank; the best are refined between samples
+        scored.sort(key=lambda item: item[0])
+        scored[:_REFINED * keep] = [(_closed_distance(goal, resampled(numpy.stack([z.real, z.imag], axis=1), SAMPLES),
+                                                      harmonics), index, z) for _, index, z in scored[:_REFINED * keep]]
     if not scored:
         raise ValueError(f"no design of {linkage.name} within the bounds traces a " + (
             "whole turn" if closed else "path") + "; widen the bounds or change the fixed values")
@@ -318,6 +337,8 @@ def _path(z: numpy.ndarray, ok: numpy.ndarray, closed: bool) -> numpy.ndarray | 
         return z
     if closed:
         return None
+    shift = int(numpy.argmin(ok))  # start the sweep where it is not assembled: a stretch across the seam is whole
+    z, ok = numpy.roll(z, -shift), numpy.roll(ok, -shift)
     best, start = (0, 0), None
     for k, flag in enumerate(list(ok) + [False]):
         if flag and start is None:
@@ -364,3 +385,128 @@ def _placed_on(z: numpy.ndarray, wanted: numpy.ndarray, kind: str) -> tuple[dict
         sample = numpy.interp(where * arc[-1], arc, path.real) + 1j * numpy.interp(where * arc[-1], arc, path.imag)
         fits.append(similarity_fit(numpy.stack([sample.real, sample.imag], axis=1), target))
     return min(fits, key=lambda fit: fit[1])
+
+
+#: A refined design that reaches the target points within this (over their size) ends the refinement.
+REACHED = 1e-10
+_TRACE = 720  # input values over a turn, tracing a refined design's path for its shape distance
+
+
+@dataclass(frozen=True)
+class ShapeSynthesis:
+    """A design whose point traces a target shape: the sampled match, and its exact-gradient refinement.
+
+    ``path`` is the refined, verified design (a :class:`~symlink.synthesis.general.PathSynthesis`:
+    ``design``, ``placement``, ``branches``, the input at each target point, the distance of
+    each from the placed point and ``error``, the largest over the target's size);
+    ``match`` the sampled design it started from.  ``sampled_distance`` and ``distance`` are the
+    shape distances (:func:`shape_distance`) of the target to the sampled design's path and to
+    the refined one's (``curve``, placed; for an open target the stretch from the first target's
+    input to the last one's): refinement brings a shape the linkage can trace from the sampling's
+    resolution down to rounding.
+    """
+
+    kind: str
+    path: PathSynthesis
+    match: ShapeMatch
+    sampled_distance: float
+    distance: float
+    curve: numpy.ndarray
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
+
+    @property
+    def design(self) -> dict[str, float]:
+        """Every parameter of the refined design."""
+        return self.path.design
+
+    @property
+    def placement(self) -> dict[str, float]:
+        """Where the refined design sits: ``x0, y0, angle, scale``."""
+        return self.path.placement
+
+    @property
+    def error(self) -> float:
+        """The largest distance of a target point from the placed point, over the target's size."""
+        return self.path.error
+
+
+def _refined_curve(linkage: Linkage, point: str, found: PathSynthesis, kind: str) -> numpy.ndarray:
+    """The refined design's placed path: a turn of the input (closed, partial), else the stretch the targets span."""
+    first, last = found.inputs[0], found.inputs[-1]
+    sweep = (numpy.linspace(first, last, _TRACE) if kind == "open"
+             else first + numpy.linspace(0.0, 2 * math.pi, _TRACE, endpoint=False))
+    return traced_points(linkage, point, found.design, sweep, found.branches, found.placement)
+
+
+def _shape_after(target: numpy.ndarray, curve: numpy.ndarray, kind: str, harmonics: int | None) -> float:
+    if not numpy.all(numpy.isfinite(curve)):
+        return math.nan  # a closed or partial target on a design whose input no longer turns fully
+    if kind == "partial":
+        return shape_distance(target, curve, "partial")
+    return shape_distance(target, curve, kind, harmonics=harmonics if kind == "closed" else None)
+
+
+def synthesize_shape(linkage: Linkage, point: str, target: ArrayLike, free: Mapping[str, tuple[float, float]], *,
+                     kind: str = "closed", values: Mapping[str, float] | None = None,
+                     branches: Mapping[str, int] | None = None, designs: int = 2000, refine: int = 3,
+                     seed: int | None = 0, harmonics: int | None = None, starts: int = 1, evaluations: int = 2000,
+                     candidates: Sequence[Mapping[str, float]] = ()) -> ShapeSynthesis:
+    """A design of ``linkage`` whose ``point`` traces the shape of ``target``, placed on it and refined to it.
+
+    :func:`shape_search` ranks ``designs`` sampled designs by their shape distance to the target
+    (points in order along the curve, without timing, position, turn or scale) and places the
+    best by its similarity fit; then each of the ``refine`` best in turn is the first start of an
+    untimed path fit (:func:`symlink.synthesis.general.synthesize_path`, the placement free:
+    shift, turn and scale), which moves the free parameters, the placement and the input at each
+    target point by exact gradients until the point passes through the target points, and
+    verifies the design with the linkage's own solver (every target point on one branch, in
+    order, no toggle between them).  It stops at the first design within :data:`REACHED` of the
+    target's size, else returns the verified design of the least shape distance.
+    ``starts`` and ``evaluations`` are the path fit's (its own sampled starts besides the match).
+
+    ``kind``: ``"closed"`` (the target is a whole closed path: the design's input must turn
+    fully), ``"open"`` (the whole path of a design whose input rocks between its limits) or
+    ``"partial"`` (a piece of a closed path).  ``ValueError`` for bad input, or when no sampled
+    design traces such a path.
+
+    >>> from symlink.catalog import fourbar
+    >>> turn = numpy.linspace(0.0, 2 * math.pi, 24, endpoint=False)
+    >>> circle = numpy.stack([3 + 2 * numpy.cos(turn), 1 + 2 * numpy.sin(turn)], axis=1)  # the crank pin's shape
+    >>> found = synthesize_shape(fourbar(), "B", circle, {"b": (2.5, 3.5)}, values={"a": 1.0, "c": 2.5, "d": 3.2},
+    ...                          designs=50, refine=1)
+    >>> found.error < 1e-10, round(found.placement["scale"], 9)  # a crank of 1 placed at twice its size
+    (True, 2.0)
+    """
+    if refine < 1 or starts < 1 or evaluations < 1:
+        raise ValueError("refine, starts and evaluations must be at least 1")
+    matches = shape_search(linkage, point, target, free, kind=kind, values=values, branches=branches,
+                           designs=designs, keep=refine, seed=seed, harmonics=harmonics, candidates=candidates)
+    points = numpy.asarray(target, dtype=float)
+    best: ShapeSynthesis | None = None
+    for match in matches:
+        try:
+            found = synthesize_path(linkage, point, points, free, values=match.design, frame=FRAME_NAMES,
+                                    timed=None, branches=match.branches or None, starts=starts, seed=seed,
+                                    evaluations=evaluations)
+        except ValueError:
+            continue  # no start of this match is assembled along the targets: the next match
+        if not found.assembled:
+            continue
+        curve = _refined_curve(linkage, point, found, kind)
+        result = ShapeSynthesis(kind, found, match, match.distance, _shape_after(points, curve, kind, harmonics),
+                                curve)
+        if best is None or (found.error < REACHED, -_ordered(result.distance)) > (
+                best.error < REACHED, -_ordered(best.distance)):
+            best = result
+        if found.error < REACHED:
+            break
+    if best is None:
+        raise ValueError(f"no refinement of the {len(matches)} best sampled design(s) of {linkage.name} is verified "
+                         "along the target (every point on one branch, in order); widen the bounds or sample more "
+                         "designs")
+    return best
+
+
+def _ordered(distance: float) -> float:
+    return distance if math.isfinite(distance) else math.inf

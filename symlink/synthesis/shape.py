@@ -39,8 +39,8 @@ from numpy.typing import ArrayLike
 
 from ..display import record_html
 from ..linkage import Linkage
-from .design_fit import DesignOutputs, check_branches, check_linkage, free_bounds, sampled_designs
-from .general import FRAME_NAMES, PathSynthesis, synthesize_path, traced_points
+from .design_fit import DesignOutputs, check_branches, check_linkage, free_bounds, refine, sampled_designs
+from .general import FRAME_NAMES, PathSynthesis, path_residuals, synthesize_path, traced_points
 
 __all__ = ["shape_distance", "similarity_fit", "similarity_transform", "resampled", "shape_search", "ShapeMatch",
            "synthesize_shape", "ShapeSynthesis", "REACHED",
@@ -250,7 +250,8 @@ class ShapeMatch:
     ``design`` holds every parameter; ``placement`` (``x0, y0, angle, scale``) moves the
     design's path onto the target (least squares over the matched points); ``rms`` is what that
     fit leaves over the target's size; ``curve`` the placed path (rows x, y) over a turn of the
-    input (or its assembled stretch).
+    input (or its assembled stretch); ``inputs`` the input's value where each target point is
+    matched on it (by arc length), the start of :func:`synthesize_shape`'s refinement.
     """
 
     design: dict[str, float]
@@ -259,6 +260,7 @@ class ShapeMatch:
     placement: dict[str, float]
     rms: float
     curve: numpy.ndarray
+    inputs: tuple[float, ...] = ()
 
     _repr_html_ = record_html  # a notebook shows the fields as a table
 
@@ -302,9 +304,10 @@ def shape_search(linkage: Linkage, point: str, target: ArrayLike, free: Mapping[
     traced, ok = _traced(outputs, rows, signs, sweep)
     scored = []
     for index in range(len(rows)):
-        z = _path(traced[index], ok[index], closed)
-        if z is None:
+        found = _path(traced[index], ok[index], closed, sweep)
+        if found is None:
             continue
+        z, q = found
         curve = resampled(numpy.stack([z.real, z.imag], axis=1), SAMPLES, closed=closed or kind == "partial")
         if kind == "closed":
             distance = _coarse_closed_distance(goal, curve, harmonics)
@@ -312,33 +315,37 @@ def shape_search(linkage: Linkage, point: str, target: ArrayLike, free: Mapping[
             distance = float(_aligned_distance(goal, curve))
         else:
             distance = _partial_distance(goal, curve)[0]
-        scored.append((distance, index, z))
+        scored.append((distance, index, z, q))
     if kind == "closed":  # the coarse distances rank; the best are refined between samples
         scored.sort(key=lambda item: item[0])
         scored[:_REFINED * keep] = [(_closed_distance(goal, resampled(numpy.stack([z.real, z.imag], axis=1), SAMPLES),
-                                                      harmonics), index, z) for _, index, z in scored[:_REFINED * keep]]
+                                                      harmonics), index, z, q)
+                                    for _, index, z, q in scored[:_REFINED * keep]]
     if not scored:
         raise ValueError(f"no design of {linkage.name} within the bounds traces a " + (
             "whole turn" if closed else "path") + "; widen the bounds or change the fixed values")
     scored.sort(key=lambda item: item[0])
     size = float(numpy.hypot(numpy.ptp(wanted.real), numpy.ptp(wanted.imag))) or 1.0
     matches = []
-    for distance, index, z in scored[:keep]:
-        placement, rms = _placed_on(z, wanted, kind)
+    for distance, index, z, q in scored[:keep]:
+        placement, rms, inputs = _placed_on(z, q, wanted, kind)
         design = {**fixed, **{name: float(v) for name, v in zip(bounds, rows[index])}}
         moved = similarity_transform(numpy.stack([z.real, z.imag], axis=1), placement)
-        matches.append(ShapeMatch(design, dict(signs[index]), distance, placement, rms / size, moved))
+        matches.append(ShapeMatch(design, dict(signs[index]), distance, placement, rms / size, moved,
+                                  tuple(map(float, inputs))))
     return matches
 
 
-def _path(z: numpy.ndarray, ok: numpy.ndarray, closed: bool) -> numpy.ndarray | None:
-    """The traced path: the whole turn (closed targets need it), else the longest assembled stretch."""
+def _path(z: numpy.ndarray, ok: numpy.ndarray, closed: bool,
+          sweep: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray] | None:
+    """The traced path and its inputs: the whole turn (closed targets need it), else the longest assembled stretch."""
     if numpy.all(ok):
-        return z
+        return z, sweep
     if closed:
         return None
     shift = int(numpy.argmin(ok))  # start the sweep where it is not assembled: a stretch across the seam is whole
     z, ok = numpy.roll(z, -shift), numpy.roll(ok, -shift)
+    sweep = numpy.concatenate([sweep[shift:], sweep[:shift] + 2 * math.pi])
     best, start = (0, 0), None
     for k, flag in enumerate(list(ok) + [False]):
         if flag and start is None:
@@ -346,45 +353,42 @@ def _path(z: numpy.ndarray, ok: numpy.ndarray, closed: bool) -> numpy.ndarray | 
         elif not flag and start is not None:
             best = max(best, (k - start, start))
             start = None
-    return z[best[1]:best[1] + best[0]] if best[0] >= 8 else None
+    return (z[best[1]:best[1] + best[0]], sweep[best[1]:best[1] + best[0]]) if best[0] >= 8 else None
 
 
-def _placed_on(z: numpy.ndarray, wanted: numpy.ndarray, kind: str) -> tuple[dict[str, float], float]:
-    """The best similarity placement of a design's path ``z`` on the target ``wanted``: over the matched starting
-    point and direction (closed), direction (open) or window (partial), by the target's own points."""
+def _placed_on(z: numpy.ndarray, q: numpy.ndarray, wanted: numpy.ndarray,
+               kind: str) -> tuple[dict[str, float], float, numpy.ndarray]:
+    """The best similarity placement of a design's path ``z`` (at inputs ``q``) on the target ``wanted``: over the
+    matched starting point and direction (closed), direction (open) or window (partial), by the target's own points;
+    with the input where each target point is matched (unwrapped: a closed path's seam crossed smoothly)."""
     target = numpy.stack([wanted.real, wanted.imag], axis=1)
+    path, inputs = numpy.concatenate([z, z[:1]]), numpy.concatenate([q, q[:1] + 2 * math.pi])
     if kind == "closed":
-        closed_path = numpy.concatenate([z, z[:1]])
-        arc = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(closed_path)))])
+        arc = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(path)))])
         chords = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(wanted)))])
         fraction = chords / (chords[-1] + abs(wanted[-1] - wanted[0]))
-        best: tuple[dict[str, float], float] | None = None
-        for way in (1.0, -1.0):
-            for start in numpy.linspace(0.0, 1.0, 4 * SAMPLES, endpoint=False):
-                where = numpy.mod(start + way * fraction, 1.0) * arc[-1]
-                sample = numpy.interp(where, arc, closed_path.real) + 1j * numpy.interp(where, arc, closed_path.imag)
-                fit = similarity_fit(numpy.stack([sample.real, sample.imag], axis=1), target)
-                if best is None or fit[1] < best[1]:
-                    best = fit
-        assert best is not None
-        return best
-    chords = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(wanted)))])
-    fraction = chords / chords[-1]
-    if kind == "partial":
-        whole = resampled(numpy.stack([z.real, z.imag], axis=1), SAMPLES)
-        _, start, span = _partial_distance(resampled(target, SAMPLES, closed=False), whole)
-        path = numpy.concatenate([z, z[:1]])
-        arc = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(path)))])
-        candidates = [numpy.mod(start + span * fraction, 1.0), numpy.mod(start + span * (1 - fraction), 1.0)]
+        candidates = [numpy.mod(start + way * fraction, 1.0) for way in (1.0, -1.0)
+                      for start in numpy.linspace(0.0, 1.0, 4 * SAMPLES, endpoint=False)]
     else:
-        path = z
+        chords = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(wanted)))])
+        fraction = chords / chords[-1]
+        if kind == "partial":
+            whole = resampled(numpy.stack([z.real, z.imag], axis=1), SAMPLES)
+            _, start, span = _partial_distance(resampled(target, SAMPLES, closed=False), whole)
+            candidates = [numpy.mod(start + span * fraction, 1.0), numpy.mod(start + span * (1 - fraction), 1.0)]
+        else:
+            path, inputs = z, q
+            candidates = [fraction, 1.0 - fraction]
         arc = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(path)))])
-        candidates = [fraction, 1.0 - fraction]
-    fits = []
+    best: tuple[dict[str, float], float, numpy.ndarray] | None = None
     for where in candidates:
-        sample = numpy.interp(where * arc[-1], arc, path.real) + 1j * numpy.interp(where * arc[-1], arc, path.imag)
-        fits.append(similarity_fit(numpy.stack([sample.real, sample.imag], axis=1), target))
-    return min(fits, key=lambda fit: fit[1])
+        at = where * arc[-1]
+        sample = numpy.interp(at, arc, path.real) + 1j * numpy.interp(at, arc, path.imag)
+        placement, rms = similarity_fit(numpy.stack([sample.real, sample.imag], axis=1), target)
+        if best is None or rms < best[1]:
+            best = (placement, rms, at)
+    assert best is not None
+    return best[0], best[1], numpy.unwrap(numpy.interp(best[2], arc, inputs))
 
 
 #: A refined design that reaches the target points within this (over their size) ends the refinement.
@@ -447,6 +451,52 @@ def _shape_after(target: numpy.ndarray, curve: numpy.ndarray, kind: str, harmoni
     return shape_distance(target, curve, kind, harmonics=harmonics if kind == "closed" else None)
 
 
+def _refined_match(linkage: Linkage, point: str, target: numpy.ndarray, match: ShapeMatch,
+                   free: Mapping[str, tuple[float, float]], evaluations: int):
+    """The match's design, placement and inputs moved until the placed point passes through the target points.
+
+    The untimed path fit of :mod:`symlink.synthesis.general`'s residuals
+    (:func:`~symlink.synthesis.general.path_residuals`: the free parameters, the placement and the
+    input at each target point, with their exact Jacobian), by the accelerated Levenberg-Marquardt
+    of path synthesis, from where the shape match put every target point on the design's path.
+    The inputs are unknowns as the first one and squared steps to the next (``q_i = q_1 +
+    direction * sum(s_k^2)``, as the untimed path fit writes them), so that they stay in order; a
+    trial outside the bounds, off the assembly, at a toggle or over a turn is refused.  Returns
+    ``(design, placement, inputs)``, or None if nothing is feasible.
+    """
+    names = list(free)
+    low, high = (numpy.array([float(free[name][k]) for name in names]) for k in (0, 1))
+    positive = numpy.array([name in {p.name for p in linkage.parameters if p.is_positive} for name in names])
+    width = len(names) + len(FRAME_NAMES)
+    start = numpy.asarray(match.inputs, dtype=float)
+    direction = 1.0 if start[-1] >= start[0] else -1.0
+
+    def split(x: numpy.ndarray):
+        design = {**match.design, **{name: float(v) for name, v in zip(names, x[:len(names)])}}
+        inputs = x[width] + direction * numpy.concatenate([[0.0], numpy.cumsum(x[width + 1:] ** 2)])
+        return design, dict(zip(FRAME_NAMES, map(float, x[len(names):width]))), inputs
+
+    def residuals(x: numpy.ndarray):
+        design, placement, inputs = split(x)
+        if (numpy.any(x[:len(names)] < low) or numpy.any(x[:len(names)] > high)
+                or numpy.any(x[:len(names)][positive] <= 0) or not placement["scale"] > 0
+                or abs(inputs[-1] - inputs[0]) >= 2 * math.pi or not numpy.all(numpy.isfinite(x))):
+            return None
+        try:
+            r, jacobian = path_residuals(linkage, point, target, design, inputs, names, FRAME_NAMES, placement,
+                                         match.branches)
+        except ValueError:  # not assembled at an input
+            return None
+        # d inputs / d (q_1, s_1 ... s_{N-1}): ones, then 2 direction s_k below the diagonal
+        chain = numpy.tril(numpy.tile(numpy.concatenate([[1.0], 2 * direction * x[width + 1:]]), (len(inputs), 1)))
+        return r, numpy.concatenate([jacobian[:, :width], jacobian[:, width:] @ chain], axis=1)
+
+    x0 = numpy.concatenate([[match.design[name] for name in names], [match.placement[k] for k in FRAME_NAMES],
+                            [start[0]], numpy.sqrt(numpy.abs(numpy.diff(start)))])
+    found = refine(residuals, x0, evaluations, 1e-15)
+    return None if found is None else split(found[0])
+
+
 def synthesize_shape(linkage: Linkage, point: str, target: ArrayLike, free: Mapping[str, tuple[float, float]], *,
                      kind: str = "closed", values: Mapping[str, float] | None = None,
                      branches: Mapping[str, int] | None = None, designs: int = 2000, refine: int = 3,
@@ -485,12 +535,16 @@ def synthesize_shape(linkage: Linkage, point: str, target: ArrayLike, free: Mapp
     points = numpy.asarray(target, dtype=float)
     best: ShapeSynthesis | None = None
     for match in matches:
-        try:
-            found = synthesize_path(linkage, point, points, free, values=match.design, frame=FRAME_NAMES,
-                                    timed=None, branches=match.branches or None, starts=starts, seed=seed,
+        refined = _refined_match(linkage, point, points, match, free, evaluations)
+        if refined is None:
+            continue  # the match is not assembled at the inputs it put the targets at: the next match
+        design, placement, inputs = refined
+        try:  # verified by the linkage's own solver along the inputs found (its timed path fit starts at the design)
+            found = synthesize_path(linkage, point, points, free, values=design, frame=FRAME_NAMES,
+                                    timed=inputs, branches=match.branches or None, starts=starts, seed=seed,
                                     evaluations=evaluations)
         except ValueError:
-            continue  # no start of this match is assembled along the targets: the next match
+            continue
         if not found.assembled:
             continue
         curve = _refined_curve(linkage, point, found, kind)

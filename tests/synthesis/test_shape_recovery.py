@@ -87,8 +87,7 @@ def check_fourbar(found, target: numpy.ndarray) -> None:
     assert numpy.max(distances) < 1e-8 * size(target), numpy.max(distances) / size(target)
 
 
-@pytest.mark.slow  # a 150-point untimed fit: about 10 s on a shared machine
-def test_fourbar_closed_curve_is_recovered():
+def test_fourbar_closed_curve_is_recovered():  # a 150-point untimed fit: 3 to 7 s on a shared machine
     truth = {"a": 1.0, "b": 3.0, "c": 2.5, "d": 3.2, "u": 1.5, "v": 0.8}  # a crank-rocker: the input turns fully
     inputs = 1.1 - uneven(0.0, 2 * math.pi * (1 - 1 / 150), 150, 1)  # another start, the other way round
     target = moved(numpy.array([fourbar_point(truth, q) for q in inputs]))
@@ -142,7 +141,7 @@ WATT_TRUTH = {**EXAMPLE_VALUES["watt2"], "b": 3.7, "f": 4.2, "p": 2.4, "gamma": 
 WATT_FREE = {"b": (3.0, 4.5), "f": (3.5, 5.0), "p": (1.0, 3.0), "gamma": (-1.0, 1.0)}
 
 
-@pytest.mark.slow  # sampling and a 100-point untimed fit of a six-bar: about 20 s on a shared machine
+@pytest.mark.slow  # sampling and a 100-point untimed fit of a six-bar: 12 to 16 s on a shared machine
 def test_watt2_closed_curve_is_recovered():
     inputs = 2.0 + uneven(0.0, 2 * math.pi * (1 - 1 / 100), 100, 3)  # the input turns fully (checked by the fit)
     target = moved(numpy.array([watt2_point_mp(WATT_TRUTH, q, (1, 1)) for q in inputs]))

@@ -53,7 +53,8 @@ SAMPLES = 256
 _WINDOWS = 48                                   # partial targets: starting points along the closed curve ...
 _SPANS = tuple(numpy.linspace(0.05, 1.0, 39))   # ... and lengths, as fractions of it
 _SWEEP = 360                                    # input values over a turn, tracing a design's path
-_REFINED = 4                                    # closed targets: this many times ``keep`` designs get the fine start
+_COARSE = 64                                    # partial targets: samples of a path when ranking windows
+_REFINED = 4                                    # closed, partial: this many times ``keep`` designs refined
 
 
 def _complex(points: ArrayLike, least: int = 3) -> numpy.ndarray:
@@ -193,9 +194,9 @@ def _coarse_closed_distance(a: numpy.ndarray, b: numpy.ndarray, harmonics: int |
     return math.sqrt(min(max(1.0 - best, 0.0), 1.0))
 
 
-def _partial_distance(piece: numpy.ndarray, whole: numpy.ndarray) -> tuple[float, float, float]:
+def _partial_distance(piece: numpy.ndarray, whole: numpy.ndarray, fine: bool = True) -> tuple[float, float, float]:
     """The least distance of an open ``piece`` (equal-arc samples) to windows of a closed curve, with the window
-    (start, span) as fractions of the closed curve's length."""
+    (start, span) as fractions of the closed curve's length (``fine``: refined between the grid's values)."""
     count = len(whole)
     arc = numpy.linspace(0.0, 2.0, 2 * count + 1)  # two turns, so that a window may cross the seam
     doubled = numpy.concatenate([whole, whole, whole[:1]])
@@ -207,6 +208,8 @@ def _partial_distance(piece: numpy.ndarray, whole: numpy.ndarray) -> tuple[float
     distance = _aligned_distance(numpy.broadcast_to(piece, windows.shape), windows)
     w, s = numpy.unravel_index(numpy.argmin(distance), distance.shape)
     best = (float(distance[w, s]), float(starts[w]), float(spans[s]))
+    if not fine:
+        return best
     # refine the best window between the grid's values: a shrinking 5 x 5 pattern around it
     step_start, step_span = 1.0 / _WINDOWS, float(spans[1] - spans[0])
     for _ in range(24):
@@ -297,6 +300,7 @@ def shape_search(linkage: Linkage, point: str, target: ArrayLike, free: Mapping[
         raise ValueError("designs must be at least 0 and keep at least 1")
     closed = kind == "closed"
     goal = resampled(target_rows, SAMPLES, closed=closed)
+    coarse_goal = resampled(target_rows, _COARSE // 2, closed=False)  # partial: windows ranked at fewer samples
     outputs = DesignOutputs(linkage, (f"{point}_x", f"{point}_y"), tuple(bounds), fixed)
     first = [([float(c[name]) for name in bounds], chosen) for c in candidates]
     rows, signs = sampled_designs(linkage, bounds, numpy.random.default_rng(seed), designs, chosen, first)
@@ -314,12 +318,11 @@ def shape_search(linkage: Linkage, point: str, target: ArrayLike, free: Mapping[
         elif kind == "open":
             distance = float(_aligned_distance(goal, curve))
         else:
-            distance = _partial_distance(goal, curve)[0]
+            distance = _partial_distance(coarse_goal, curve[::SAMPLES // _COARSE], fine=False)[0]
         scored.append((distance, index, z, q))
-    if kind == "closed":  # the coarse distances rank; the best are refined between samples
+    if kind != "open":  # the coarse distances rank; the best are refined between samples (start, window)
         scored.sort(key=lambda item: item[0])
-        scored[:_REFINED * keep] = [(_closed_distance(goal, resampled(numpy.stack([z.real, z.imag], axis=1), SAMPLES),
-                                                      harmonics), index, z, q)
+        scored[:_REFINED * keep] = [(_fine_distance(goal, z, kind, harmonics), index, z, q)
                                     for _, index, z, q in scored[:_REFINED * keep]]
     if not scored:
         raise ValueError(f"no design of {linkage.name} within the bounds traces a " + (
@@ -334,6 +337,12 @@ def shape_search(linkage: Linkage, point: str, target: ArrayLike, free: Mapping[
         matches.append(ShapeMatch(design, dict(signs[index]), distance, placement, rms / size, moved,
                                   tuple(map(float, inputs))))
     return matches
+
+
+def _fine_distance(goal: numpy.ndarray, z: numpy.ndarray, kind: str, harmonics: int | None) -> float:
+    """The shape distance of a target (equal-arc samples) to a traced path, its start or window between samples."""
+    curve = resampled(numpy.stack([z.real, z.imag], axis=1), SAMPLES)
+    return _closed_distance(goal, curve, harmonics) if kind == "closed" else _partial_distance(goal, curve)[0]
 
 
 def _path(z: numpy.ndarray, ok: numpy.ndarray, closed: bool,

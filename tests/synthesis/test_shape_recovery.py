@@ -113,6 +113,19 @@ def test_fourbar_open_curve_is_recovered():
         inputs[0], inputs[-1], 720)]))
 
 
+@pytest.mark.slow  # the windows of 600 sampled paths ranked: about 10 s on a shared machine
+def test_fourbar_partial_curve_is_recovered():
+    # a piece (a third) of the crank-rocker's closed coupler curve, moved, turned, scaled
+    truth = {"a": 1.0, "b": 3.0, "c": 2.5, "d": 3.2, "u": 1.5, "v": 0.8}
+    inputs = uneven(0.4, 3.4, 30, 5)
+    target = moved(numpy.array([fourbar_point(truth, q) for q in inputs]))
+    fixed = {k: truth[k] for k in "acd"}
+    found = synthesize_shape(coupler_point_fourbar(), "P", target, FOURBAR_FREE, kind="partial", values=fixed,
+                             designs=600)
+    check_fourbar(found, target)
+    same_shape_as_truth(found, target, numpy.array([fourbar_point(truth, q) for q in inputs[0] + TURN]))
+
+
 # --- the Watt II six-bar with a point P on its second coupler EF --------------------------------------
 
 def watt2_with_point() -> Linkage:

@@ -19,8 +19,12 @@ two curves given as points, blind to all of that:
 
 :func:`similarity_fit` gives the placement (``x0, y0, angle, scale`` as in
 :mod:`symlink.synthesis.general`) that brings corresponding points closest, and
-:func:`shape_search` ranks sampled designs of any one-input linkage by the shape distance of a
-point's path to the target, and places the best by its similarity fit.
+:func:`shape_search` ranks sampled designs of any one-input linkage (with a closed form) by the
+shape distance of a point's path to the target, and places the best by its similarity fit.
+:func:`synthesize_shape` then refines the best by exact gradients (the untimed path fit's
+residuals, the placement free) until the point passes through the target points, and verifies
+the design with the linkage's own solver: a shape the linkage can trace is matched to rounding,
+not to the sampling's resolution.
 
 >>> t = numpy.linspace(0, 2 * math.pi, 60, endpoint=False)
 >>> ellipse = numpy.stack([2 * numpy.cos(t), numpy.sin(t)], axis=1)
@@ -285,7 +289,8 @@ def shape_search(linkage: Linkage, point: str, target: ArrayLike, free: Mapping[
     input; a closed target needs a design assembled over the whole turn, an open or partial one
     takes the longest assembled stretch.  They are ranked by :func:`shape_distance`; each kept
     one is placed by the similarity fit of its path, resampled at the matched points, to the
-    target.  ``ValueError`` for bad input or when no design is assembled.
+    target, with the input where each target point is matched on its path (``inputs``).
+    ``ValueError`` for bad input or when no design is assembled.
     """
     check_linkage(linkage, "shape matching")
     if kind not in KINDS:
@@ -515,14 +520,17 @@ def synthesize_shape(linkage: Linkage, point: str, target: ArrayLike, free: Mapp
 
     :func:`shape_search` ranks ``designs`` sampled designs by their shape distance to the target
     (points in order along the curve, without timing, position, turn or scale) and places the
-    best by its similarity fit; then each of the ``refine`` best in turn is the first start of an
-    untimed path fit (:func:`symlink.synthesis.general.synthesize_path`, the placement free:
-    shift, turn and scale), which moves the free parameters, the placement and the input at each
-    target point by exact gradients until the point passes through the target points, and
-    verifies the design with the linkage's own solver (every target point on one branch, in
-    order, no toggle between them).  It stops at the first design within :data:`REACHED` of the
+    best by its similarity fit.  Each of the ``refine`` best in turn is then refined by exact
+    gradients from where the match put every target point on its path: the free parameters, the
+    placement (shift, turn and scale) and the input at each target point move until the point
+    passes through the target points (the untimed path fit's residuals,
+    :func:`symlink.synthesis.general.path_residuals`, by the accelerated Levenberg-Marquardt of
+    path synthesis, at most ``evaluations`` evaluations; the inputs kept in order, within a turn).
+    The refined design is verified by the linkage's own solver through the timed path fit at the
+    inputs found (:func:`symlink.synthesis.general.synthesize_path` with ``timed``, the design its
+    first start, ``starts`` its own sampled starts besides): every target point on one branch, in
+    order, no toggle between them.  It stops at the first design within :data:`REACHED` of the
     target's size, else returns the verified design of the least shape distance.
-    ``starts`` and ``evaluations`` are the path fit's (its own sampled starts besides the match).
 
     ``kind``: ``"closed"`` (the target is a whole closed path: the design's input must turn
     fully), ``"open"`` (the whole path of a design whose input rocks between its limits) or

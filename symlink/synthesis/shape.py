@@ -475,7 +475,8 @@ def _refined_match(linkage: Linkage, point: str, target: numpy.ndarray, match: S
     of path synthesis, from where the shape match put every target point on the design's path.
     The inputs are unknowns as the first one and squared steps to the next (``q_i = q_1 +
     direction * sum(s_k^2)``, as the untimed path fit writes them), so that they stay in order; a
-    trial outside the bounds, off the assembly, at a toggle or over a turn is refused.  Returns
+    trial outside the bounds is evaluated at its projection onto them (it slides along a bound),
+    one off the assembly, at a toggle or over a turn is refused.  Returns
     ``(design, placement, inputs)``, or None if nothing is feasible.
     """
     names = list(free)
@@ -490,10 +491,18 @@ def _refined_match(linkage: Linkage, point: str, target: numpy.ndarray, match: S
         inputs = x[width] + direction * numpy.concatenate([[0.0], numpy.cumsum(x[width + 1:] ** 2)])
         return design, dict(zip(FRAME_NAMES, map(float, x[len(names):width]))), inputs
 
+    def projected(x: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
+        """``x`` with its free parameters clipped to their bounds, and which were outside."""
+        inside = x.copy()
+        inside[:len(names)] = numpy.clip(x[:len(names)], low, high)
+        return inside, inside != x
+
     def residuals(x: numpy.ndarray):
+        # a trial outside the bounds is evaluated at its projection onto them, the columns of the parameters held
+        # at a bound zero: the refinement slides along a bound instead of stopping at it (as the path fit does)
+        x, outside = projected(x)
         design, placement, inputs = split(x)
-        if (numpy.any(x[:len(names)] < low) or numpy.any(x[:len(names)] > high)
-                or numpy.any(x[:len(names)][positive] <= 0) or not placement["scale"] > 0
+        if (numpy.any(x[:len(names)][positive] <= 0) or not placement["scale"] > 0
                 or abs(inputs[-1] - inputs[0]) >= 2 * math.pi or not numpy.all(numpy.isfinite(x))):
             return None
         try:
@@ -503,12 +512,14 @@ def _refined_match(linkage: Linkage, point: str, target: numpy.ndarray, match: S
             return None
         # d inputs / d (q_1, s_1 ... s_{N-1}): ones, then 2 direction s_k below the diagonal
         chain = numpy.tril(numpy.tile(numpy.concatenate([[1.0], 2 * direction * x[width + 1:]]), (len(inputs), 1)))
-        return r, numpy.concatenate([jacobian[:, :width], jacobian[:, width:] @ chain], axis=1)
+        jacobian = numpy.concatenate([jacobian[:, :width], jacobian[:, width:] @ chain], axis=1)
+        jacobian[:, outside] = 0.0
+        return r, jacobian
 
     x0 = numpy.concatenate([[match.design[name] for name in names], [match.placement[k] for k in FRAME_NAMES],
                             [start[0]], numpy.sqrt(numpy.abs(numpy.diff(start)))])
     found = refine(residuals, x0, evaluations, 1e-15)
-    return None if found is None else split(found[0])
+    return None if found is None else split(projected(found[0])[0])
 
 
 def synthesize_shape(linkage: Linkage, point: str, target: ArrayLike, free: Mapping[str, tuple[float, float]], *,

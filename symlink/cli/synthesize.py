@@ -399,9 +399,12 @@ FOURBAR_ONLY = {"function": ("ground",),
 #: Options of the general route of each kind (by destination): they need a LINKAGE.
 GENERAL_ONLY = {"function": ("set", "free", "bound", "branch", "output", "minimax", "out", "record", "seed",
                              "starts"),
-                "path": ("set", "free", "bound", "branch", "point", "frame", "out", "record"),
+                "path": ("set", "free", "bound", "branch", "point", "frame", "out", "record", "shape", "shape_kind",
+                         "samples"),
                 "motion": ("set", "free", "bound", "branch", "point", "angle", "frame", "out", "record", "seed",
                            "starts")}
+#: Designs sampled for a shape match (``--shape``) unless --samples says.
+SHAPE_SAMPLES = 2000
 #: Suffixes of --record.
 RECORD_SUFFIXES = (".json", ".csv")
 
@@ -482,6 +485,19 @@ def add_general_options(command: argparse.ArgumentParser, kind: str) -> None:
         group.add_argument("--frame", type=_frame, metavar="LIST",
                            help="free parts of the placement: some of x0,y0,angle,scale, or none (default "
                                 + ("all" if kind == "path" else "x0,y0,angle") + ")")
+    if kind == "path":
+        group.add_argument("--shape", action="store_true",
+                           help="match the points' shape only (x,y in order along the curve, without timing, "
+                                "position, turn or scale): sampled designs ranked by shape distance, the best "
+                                "placed on the points and refined through them")
+        kinds = group.add_mutually_exclusive_group()
+        for name, what in (("closed", "the points go round a whole closed path: the input turns fully (default)"),
+                           ("open", "the points are the whole path of an input that rocks between its limits"),
+                           ("partial", "the points are a piece of a closed path")):
+            kinds.add_argument(f"--{name}", dest="shape_kind", action="store_const", const=name,
+                               help=f"with --shape: {what}")
+        group.add_argument("--samples", type=whole, default=SHAPE_SAMPLES, metavar="N",
+                           help=f"with --shape: designs sampled for the shape match (default {SHAPE_SAMPLES})")
     if kind == "function":
         group.add_argument("--output", metavar="NAME",
                            help="the output generated (default: the csv's second column, else the last unknown)")
@@ -590,6 +606,7 @@ def _run_general(args: argparse.Namespace, kind: str) -> int:
     timed = (None if timed_column is None else numpy.asarray(to_radians(columns[timed_column], args.units)
                                                              if input_is_angle else columns[timed_column], dtype=float))
     design: Any
+    shape: dict[str, Any] = {}  # a shape match: its kind and the shape distances before and after refinement
     if kind == "function":
         from ..synthesis.general_function import synthesize_function
         wanted = columns[names[1]]
@@ -600,8 +617,21 @@ def _run_general(args: argparse.Namespace, kind: str) -> int:
                                      starts=args.starts, seed=args.seed, minimax=args.minimax)
         placement: dict[str, float] = {}
         point = output
+    elif kind == "path" and args.shape:
+        from ..synthesis.shape import synthesize_shape
+        _check_shape_options(args, timed_column)
+        point = _point_option(args, linkage)
+        matched = synthesize_shape(linkage, point, numpy.stack([columns["x"], columns["y"]], axis=1), free,
+                                   kind=args.shape_kind or "closed", values=values, branches=args.branch,
+                                   designs=args.samples, refine=args.starts, seed=args.seed)
+        design, placement = matched.path, matched.path.placement
+        shape = {"shape": matched.kind, "sampled_distance": matched.sampled_distance,
+                 "shape_distance": matched.distance}
     elif kind == "path":
         from ..synthesis.general import FRAME_NAMES, synthesize_path
+        if args.shape_kind or args.samples != SHAPE_SAMPLES:
+            option = f"--{args.shape_kind}" if args.shape_kind else "--samples"
+            raise ValueError(f"{option} belongs to a shape match: add --shape")
         point = _point_option(args, linkage)
         targets = numpy.stack([columns["x"], columns["y"]], axis=1)
         design = synthesize_path(linkage, point, targets, free, values=values,
@@ -620,7 +650,7 @@ def _run_general(args: argparse.Namespace, kind: str) -> int:
                                    branches=args.branch, starts=args.starts, seed=args.seed)
         placement = design.placement
     error = design.structural_error if kind == "function" else design.error
-    record = _general_record(args, kind, linkage, design, placement, error, columns)
+    record = {**_general_record(args, kind, linkage, design, placement, error, columns), **shape}
     _print_general(args, record)
     if not design.assembled:
         raise ValueError(f"no verified design: {design.why}; the closest is printed above, nothing is written "
@@ -653,6 +683,15 @@ def _run_general(args: argparse.Namespace, kind: str) -> int:
         _plot_general(kind, linkage, design, placement, columns, args.plot, args.units, point)
         note(f"wrote {args.plot}")
     return 0
+
+
+def _check_shape_options(args: argparse.Namespace, timed_column: str | None) -> None:
+    """``ValueError`` for what a shape match cannot take: timing, or a placement that is not free."""
+    if timed_column is not None:
+        raise ValueError(f"--shape matches points without timing: the csv's columns are x,y, not "
+                         f"{timed_column},x,y")
+    if args.frame is not None:
+        raise ValueError("--frame does nothing with --shape: a shape's placement is free (shift, turn and scale)")
 
 
 def _angle_output(linkage, name: str) -> bool:
@@ -707,6 +746,9 @@ def _print_general(args: argparse.Namespace, record: dict) -> None:
     print_rows([row], list(row), args.format)
     note(f"{record['kind']} design of {record['linkage']} ({record['evaluations']} evaluations); inputs at the "
          f"targets ({args.units}): " + " ".join(f"{q:.6g}" for q in record["inputs"]))
+    if "shape" in record:
+        note(f"{record['shape']} shape matched: shape distance {record['sampled_distance']:.3g} sampled, "
+             f"{record['shape_distance']:.3g} refined (0: similar curves, at most 1)")
     note("the error column: " + {"function": "the largest |generated - wanted| output (radians for an angle)",
                                  "path": "the largest distance from a target to the point, over the targets' size",
                                  "motion": "the largest position error over the poses' size, or angle error "

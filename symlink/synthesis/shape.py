@@ -19,8 +19,12 @@ two curves given as points, blind to all of that:
 
 :func:`similarity_fit` gives the placement (``x0, y0, angle, scale`` as in
 :mod:`symlink.synthesis.general`) that brings corresponding points closest, and
-:func:`shape_search` ranks sampled designs of any one-input linkage by the shape distance of a
-point's path to the target, and places the best by its similarity fit.
+:func:`shape_search` ranks sampled designs of any one-input linkage (with a closed form) by the
+shape distance of a point's path to the target, and places the best by its similarity fit.
+:func:`synthesize_shape` then refines the best by exact gradients (the untimed path fit's
+residuals, the placement free) until the point passes through the target points, and verifies
+the design with the linkage's own solver: a shape the linkage can trace is matched to rounding,
+not to the sampling's resolution.
 
 >>> t = numpy.linspace(0, 2 * math.pi, 60, endpoint=False)
 >>> ellipse = numpy.stack([2 * numpy.cos(t), numpy.sin(t)], axis=1)
@@ -39,9 +43,11 @@ from numpy.typing import ArrayLike
 
 from ..display import record_html
 from ..linkage import Linkage
-from .design_fit import DesignOutputs, check_branches, check_linkage, free_bounds, sampled_designs
+from .design_fit import DesignOutputs, check_branches, check_linkage, free_bounds, refine, sampled_designs
+from .general import FRAME_NAMES, PathSynthesis, path_residuals, synthesize_path, traced_points
 
 __all__ = ["shape_distance", "similarity_fit", "similarity_transform", "resampled", "shape_search", "ShapeMatch",
+           "synthesize_shape", "ShapeSynthesis", "REACHED",
            "KINDS", "SAMPLES"]
 
 #: What a target curve may be.
@@ -51,6 +57,8 @@ SAMPLES = 256
 _WINDOWS = 48                                   # partial targets: starting points along the closed curve ...
 _SPANS = tuple(numpy.linspace(0.05, 1.0, 39))   # ... and lengths, as fractions of it
 _SWEEP = 360                                    # input values over a turn, tracing a design's path
+_COARSE = 64                                    # partial targets: samples of a path when ranking windows
+_REFINED = 4                                    # closed, partial: this many times ``keep`` designs refined
 
 
 def _complex(points: ArrayLike, least: int = 3) -> numpy.ndarray:
@@ -178,9 +186,21 @@ def _closed_distance(a: numpy.ndarray, b: numpy.ndarray, harmonics: int | None) 
     return math.sqrt(min(max(1.0 - best, 0.0), 1.0))
 
 
-def _partial_distance(piece: numpy.ndarray, whole: numpy.ndarray) -> tuple[float, float, float]:
+def _coarse_closed_distance(a: numpy.ndarray, b: numpy.ndarray, harmonics: int | None) -> float:
+    """:func:`_closed_distance` with the start at whole samples only (one inverse FFT a direction): for ranking."""
+    A = _descriptors(a, harmonics)
+    best = 0.0
+    for b_way in (b, b[::-1]):
+        B = _descriptors(b_way, harmonics)
+        norms = float(numpy.sum(numpy.abs(A) ** 2) * numpy.sum(numpy.abs(B) ** 2))
+        if norms > 0:
+            best = max(best, float(numpy.max(numpy.abs(numpy.fft.ifft(numpy.conj(A) * B)) * len(a))) ** 2 / norms)
+    return math.sqrt(min(max(1.0 - best, 0.0), 1.0))
+
+
+def _partial_distance(piece: numpy.ndarray, whole: numpy.ndarray, fine: bool = True) -> tuple[float, float, float]:
     """The least distance of an open ``piece`` (equal-arc samples) to windows of a closed curve, with the window
-    (start, span) as fractions of the closed curve's length."""
+    (start, span) as fractions of the closed curve's length (``fine``: refined between the grid's values)."""
     count = len(whole)
     arc = numpy.linspace(0.0, 2.0, 2 * count + 1)  # two turns, so that a window may cross the seam
     doubled = numpy.concatenate([whole, whole, whole[:1]])
@@ -192,6 +212,8 @@ def _partial_distance(piece: numpy.ndarray, whole: numpy.ndarray) -> tuple[float
     distance = _aligned_distance(numpy.broadcast_to(piece, windows.shape), windows)
     w, s = numpy.unravel_index(numpy.argmin(distance), distance.shape)
     best = (float(distance[w, s]), float(starts[w]), float(spans[s]))
+    if not fine:
+        return best
     # refine the best window between the grid's values: a shrinking 5 x 5 pattern around it
     step_start, step_span = 1.0 / _WINDOWS, float(spans[1] - spans[0])
     for _ in range(24):
@@ -235,7 +257,8 @@ class ShapeMatch:
     ``design`` holds every parameter; ``placement`` (``x0, y0, angle, scale``) moves the
     design's path onto the target (least squares over the matched points); ``rms`` is what that
     fit leaves over the target's size; ``curve`` the placed path (rows x, y) over a turn of the
-    input (or its assembled stretch).
+    input (or its assembled stretch); ``inputs`` the input's value where each target point is
+    matched on it (by arc length), the start of :func:`synthesize_shape`'s refinement.
     """
 
     design: dict[str, float]
@@ -244,6 +267,7 @@ class ShapeMatch:
     placement: dict[str, float]
     rms: float
     curve: numpy.ndarray
+    inputs: tuple[float, ...] = ()
 
     _repr_html_ = record_html  # a notebook shows the fields as a table
 
@@ -265,7 +289,8 @@ def shape_search(linkage: Linkage, point: str, target: ArrayLike, free: Mapping[
     input; a closed target needs a design assembled over the whole turn, an open or partial one
     takes the longest assembled stretch.  They are ranked by :func:`shape_distance`; each kept
     one is placed by the similarity fit of its path, resampled at the matched points, to the
-    target.  ``ValueError`` for bad input or when no design is assembled.
+    target, with the input where each target point is matched on its path (``inputs``).
+    ``ValueError`` for bad input or when no design is assembled.
     """
     check_linkage(linkage, "shape matching")
     if kind not in KINDS:
@@ -280,6 +305,7 @@ def shape_search(linkage: Linkage, point: str, target: ArrayLike, free: Mapping[
         raise ValueError("designs must be at least 0 and keep at least 1")
     closed = kind == "closed"
     goal = resampled(target_rows, SAMPLES, closed=closed)
+    coarse_goal = resampled(target_rows, _COARSE // 2, closed=False)  # partial: windows ranked at fewer samples
     outputs = DesignOutputs(linkage, (f"{point}_x", f"{point}_y"), tuple(bounds), fixed)
     first = [([float(c[name]) for name in bounds], chosen) for c in candidates]
     rows, signs = sampled_designs(linkage, bounds, numpy.random.default_rng(seed), designs, chosen, first)
@@ -287,37 +313,53 @@ def shape_search(linkage: Linkage, point: str, target: ArrayLike, free: Mapping[
     traced, ok = _traced(outputs, rows, signs, sweep)
     scored = []
     for index in range(len(rows)):
-        z = _path(traced[index], ok[index], closed)
-        if z is None:
+        found = _path(traced[index], ok[index], closed, sweep)
+        if found is None:
             continue
+        z, q = found
         curve = resampled(numpy.stack([z.real, z.imag], axis=1), SAMPLES, closed=closed or kind == "partial")
         if kind == "closed":
-            distance = _closed_distance(goal, curve, harmonics)
+            distance = _coarse_closed_distance(goal, curve, harmonics)
         elif kind == "open":
             distance = float(_aligned_distance(goal, curve))
         else:
-            distance = _partial_distance(goal, curve)[0]
-        scored.append((distance, index, z))
+            distance = _partial_distance(coarse_goal, curve[::SAMPLES // _COARSE], fine=False)[0]
+        scored.append((distance, index, z, q))
+    if kind != "open":  # the coarse distances rank; the best are refined between samples (start, window)
+        scored.sort(key=lambda item: item[0])
+        scored[:_REFINED * keep] = [(_fine_distance(goal, z, kind, harmonics), index, z, q)
+                                    for _, index, z, q in scored[:_REFINED * keep]]
     if not scored:
         raise ValueError(f"no design of {linkage.name} within the bounds traces a " + (
             "whole turn" if closed else "path") + "; widen the bounds or change the fixed values")
     scored.sort(key=lambda item: item[0])
     size = float(numpy.hypot(numpy.ptp(wanted.real), numpy.ptp(wanted.imag))) or 1.0
     matches = []
-    for distance, index, z in scored[:keep]:
-        placement, rms = _placed_on(z, wanted, kind)
+    for distance, index, z, q in scored[:keep]:
+        placement, rms, inputs = _placed_on(z, q, wanted, kind)
         design = {**fixed, **{name: float(v) for name, v in zip(bounds, rows[index])}}
         moved = similarity_transform(numpy.stack([z.real, z.imag], axis=1), placement)
-        matches.append(ShapeMatch(design, dict(signs[index]), distance, placement, rms / size, moved))
+        matches.append(ShapeMatch(design, dict(signs[index]), distance, placement, rms / size, moved,
+                                  tuple(map(float, inputs))))
     return matches
 
 
-def _path(z: numpy.ndarray, ok: numpy.ndarray, closed: bool) -> numpy.ndarray | None:
-    """The traced path: the whole turn (closed targets need it), else the longest assembled stretch."""
+def _fine_distance(goal: numpy.ndarray, z: numpy.ndarray, kind: str, harmonics: int | None) -> float:
+    """The shape distance of a target (equal-arc samples) to a traced path, its start or window between samples."""
+    curve = resampled(numpy.stack([z.real, z.imag], axis=1), SAMPLES)
+    return _closed_distance(goal, curve, harmonics) if kind == "closed" else _partial_distance(goal, curve)[0]
+
+
+def _path(z: numpy.ndarray, ok: numpy.ndarray, closed: bool,
+          sweep: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray] | None:
+    """The traced path and its inputs: the whole turn (closed targets need it), else the longest assembled stretch."""
     if numpy.all(ok):
-        return z
+        return z, sweep
     if closed:
         return None
+    shift = int(numpy.argmin(ok))  # start the sweep where it is not assembled: a stretch across the seam is whole
+    z, ok = numpy.roll(z, -shift), numpy.roll(ok, -shift)
+    sweep = numpy.concatenate([sweep[shift:], sweep[:shift] + 2 * math.pi])
     best, start = (0, 0), None
     for k, flag in enumerate(list(ok) + [False]):
         if flag and start is None:
@@ -325,42 +367,228 @@ def _path(z: numpy.ndarray, ok: numpy.ndarray, closed: bool) -> numpy.ndarray | 
         elif not flag and start is not None:
             best = max(best, (k - start, start))
             start = None
-    return z[best[1]:best[1] + best[0]] if best[0] >= 8 else None
+    return (z[best[1]:best[1] + best[0]], sweep[best[1]:best[1] + best[0]]) if best[0] >= 8 else None
 
 
-def _placed_on(z: numpy.ndarray, wanted: numpy.ndarray, kind: str) -> tuple[dict[str, float], float]:
-    """The best similarity placement of a design's path ``z`` on the target ``wanted``: over the matched starting
-    point and direction (closed), direction (open) or window (partial), by the target's own points."""
+def _placed_on(z: numpy.ndarray, q: numpy.ndarray, wanted: numpy.ndarray,
+               kind: str) -> tuple[dict[str, float], float, numpy.ndarray]:
+    """The best similarity placement of a design's path ``z`` (at inputs ``q``) on the target ``wanted``: over the
+    matched starting point and direction (closed), direction (open) or window (partial), by the target's own points;
+    with the input where each target point is matched (unwrapped: a closed path's seam crossed smoothly)."""
     target = numpy.stack([wanted.real, wanted.imag], axis=1)
+    path, inputs = numpy.concatenate([z, z[:1]]), numpy.concatenate([q, q[:1] + 2 * math.pi])
     if kind == "closed":
-        closed_path = numpy.concatenate([z, z[:1]])
-        arc = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(closed_path)))])
+        arc = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(path)))])
         chords = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(wanted)))])
         fraction = chords / (chords[-1] + abs(wanted[-1] - wanted[0]))
-        best: tuple[dict[str, float], float] | None = None
-        for way in (1.0, -1.0):
-            for start in numpy.linspace(0.0, 1.0, 4 * SAMPLES, endpoint=False):
-                where = numpy.mod(start + way * fraction, 1.0) * arc[-1]
-                sample = numpy.interp(where, arc, closed_path.real) + 1j * numpy.interp(where, arc, closed_path.imag)
-                fit = similarity_fit(numpy.stack([sample.real, sample.imag], axis=1), target)
-                if best is None or fit[1] < best[1]:
-                    best = fit
-        assert best is not None
-        return best
-    chords = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(wanted)))])
-    fraction = chords / chords[-1]
-    if kind == "partial":
-        whole = resampled(numpy.stack([z.real, z.imag], axis=1), SAMPLES)
-        _, start, span = _partial_distance(resampled(target, SAMPLES, closed=False), whole)
-        path = numpy.concatenate([z, z[:1]])
-        arc = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(path)))])
-        candidates = [numpy.mod(start + span * fraction, 1.0), numpy.mod(start + span * (1 - fraction), 1.0)]
+        candidates = [numpy.mod(start + way * fraction, 1.0) for way in (1.0, -1.0)
+                      for start in numpy.linspace(0.0, 1.0, 4 * SAMPLES, endpoint=False)]
     else:
-        path = z
+        chords = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(wanted)))])
+        fraction = chords / chords[-1]
+        if kind == "partial":
+            whole = resampled(numpy.stack([z.real, z.imag], axis=1), SAMPLES)
+            _, start, span = _partial_distance(resampled(target, SAMPLES, closed=False), whole)
+            candidates = [numpy.mod(start + span * fraction, 1.0), numpy.mod(start + span * (1 - fraction), 1.0)]
+        else:
+            path, inputs = z, q
+            candidates = [fraction, 1.0 - fraction]
         arc = numpy.concatenate([[0.0], numpy.cumsum(numpy.abs(numpy.diff(path)))])
-        candidates = [fraction, 1.0 - fraction]
-    fits = []
+    best: tuple[dict[str, float], float, numpy.ndarray] | None = None
     for where in candidates:
-        sample = numpy.interp(where * arc[-1], arc, path.real) + 1j * numpy.interp(where * arc[-1], arc, path.imag)
-        fits.append(similarity_fit(numpy.stack([sample.real, sample.imag], axis=1), target))
-    return min(fits, key=lambda fit: fit[1])
+        at = where * arc[-1]
+        sample = numpy.interp(at, arc, path.real) + 1j * numpy.interp(at, arc, path.imag)
+        placement, rms = similarity_fit(numpy.stack([sample.real, sample.imag], axis=1), target)
+        if best is None or rms < best[1]:
+            best = (placement, rms, at)
+    assert best is not None
+    return best[0], best[1], numpy.unwrap(numpy.interp(best[2], arc, inputs))
+
+
+#: A refined design that reaches the target points within this (over their size) ends the refinement.
+REACHED = 1e-10
+_TRACE = 720  # input values over a turn, tracing a refined design's path for its shape distance
+
+
+@dataclass(frozen=True)
+class ShapeSynthesis:
+    """A design whose point traces a target shape: the sampled match, and its exact-gradient refinement.
+
+    ``path`` is the refined, verified design (a :class:`~symlink.synthesis.general.PathSynthesis`:
+    ``design``, ``placement``, ``branches``, the input at each target point, the distance of
+    each from the placed point and ``error``, the largest over the target's size);
+    ``match`` the sampled design it started from.  ``sampled_distance`` and ``distance`` are the
+    shape distances (:func:`shape_distance`) of the target to the sampled design's path and to
+    the refined one's (``curve``, placed; for an open target the stretch from the first target's
+    input to the last one's): refinement brings a shape the linkage can trace from the sampling's
+    resolution down to rounding.
+    """
+
+    kind: str
+    path: PathSynthesis
+    match: ShapeMatch
+    sampled_distance: float
+    distance: float
+    curve: numpy.ndarray
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
+
+    @property
+    def design(self) -> dict[str, float]:
+        """Every parameter of the refined design."""
+        return self.path.design
+
+    @property
+    def placement(self) -> dict[str, float]:
+        """Where the refined design sits: ``x0, y0, angle, scale``."""
+        return self.path.placement
+
+    @property
+    def error(self) -> float:
+        """The largest distance of a target point from the placed point, over the target's size."""
+        return self.path.error
+
+
+def _refined_curve(linkage: Linkage, point: str, found: PathSynthesis, kind: str) -> numpy.ndarray:
+    """The refined design's placed path: a turn of the input (closed, partial), else the stretch the targets span."""
+    first, last = found.inputs[0], found.inputs[-1]
+    sweep = (numpy.linspace(first, last, _TRACE) if kind == "open"
+             else first + numpy.linspace(0.0, 2 * math.pi, _TRACE, endpoint=False))
+    return traced_points(linkage, point, found.design, sweep, found.branches, found.placement)
+
+
+def _shape_after(target: numpy.ndarray, curve: numpy.ndarray, kind: str, harmonics: int | None) -> float:
+    if not numpy.all(numpy.isfinite(curve)):
+        return math.nan  # a closed or partial target on a design whose input no longer turns fully
+    if kind == "partial":
+        return shape_distance(target, curve, "partial")
+    return shape_distance(target, curve, kind, harmonics=harmonics if kind == "closed" else None)
+
+
+def _refined_match(linkage: Linkage, point: str, target: numpy.ndarray, match: ShapeMatch,
+                   free: Mapping[str, tuple[float, float]], evaluations: int):
+    """The match's design, placement and inputs moved until the placed point passes through the target points.
+
+    The untimed path fit of :mod:`symlink.synthesis.general`'s residuals
+    (:func:`~symlink.synthesis.general.path_residuals`: the free parameters, the placement and the
+    input at each target point, with their exact Jacobian), by the accelerated Levenberg-Marquardt
+    of path synthesis, from where the shape match put every target point on the design's path.
+    The inputs are unknowns as the first one and squared steps to the next (``q_i = q_1 +
+    direction * sum(s_k^2)``, as the untimed path fit writes them), so that they stay in order; a
+    trial outside the bounds is evaluated at its projection onto them (it slides along a bound),
+    one off the assembly, at a toggle or over a turn is refused.  Returns
+    ``(design, placement, inputs)``, or None if nothing is feasible.
+    """
+    names = list(free)
+    low, high = (numpy.array([float(free[name][k]) for name in names]) for k in (0, 1))
+    positive = numpy.array([name in {p.name for p in linkage.parameters if p.is_positive} for name in names])
+    width = len(names) + len(FRAME_NAMES)
+    start = numpy.asarray(match.inputs, dtype=float)
+    direction = 1.0 if start[-1] >= start[0] else -1.0
+
+    def split(x: numpy.ndarray):
+        design = {**match.design, **{name: float(v) for name, v in zip(names, x[:len(names)])}}
+        inputs = x[width] + direction * numpy.concatenate([[0.0], numpy.cumsum(x[width + 1:] ** 2)])
+        return design, dict(zip(FRAME_NAMES, map(float, x[len(names):width]))), inputs
+
+    def projected(x: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
+        """``x`` with its free parameters clipped to their bounds, and which were outside."""
+        inside = x.copy()
+        inside[:len(names)] = numpy.clip(x[:len(names)], low, high)
+        return inside, inside != x
+
+    def residuals(x: numpy.ndarray):
+        # a trial outside the bounds is evaluated at its projection onto them, the columns of the parameters held
+        # at a bound zero: the refinement slides along a bound instead of stopping at it (as the path fit does)
+        x, outside = projected(x)
+        design, placement, inputs = split(x)
+        if (numpy.any(x[:len(names)][positive] <= 0) or not placement["scale"] > 0
+                or abs(inputs[-1] - inputs[0]) >= 2 * math.pi or not numpy.all(numpy.isfinite(x))):
+            return None
+        try:
+            r, jacobian = path_residuals(linkage, point, target, design, inputs, names, FRAME_NAMES, placement,
+                                         match.branches)
+        except ValueError:  # not assembled at an input
+            return None
+        # d inputs / d (q_1, s_1 ... s_{N-1}): ones, then 2 direction s_k below the diagonal
+        chain = numpy.tril(numpy.tile(numpy.concatenate([[1.0], 2 * direction * x[width + 1:]]), (len(inputs), 1)))
+        jacobian = numpy.concatenate([jacobian[:, :width], jacobian[:, width:] @ chain], axis=1)
+        jacobian[:, outside] = 0.0
+        return r, jacobian
+
+    x0 = numpy.concatenate([[match.design[name] for name in names], [match.placement[k] for k in FRAME_NAMES],
+                            [start[0]], numpy.sqrt(numpy.abs(numpy.diff(start)))])
+    found = refine(residuals, x0, evaluations, 1e-15)
+    return None if found is None else split(projected(found[0])[0])
+
+
+def synthesize_shape(linkage: Linkage, point: str, target: ArrayLike, free: Mapping[str, tuple[float, float]], *,
+                     kind: str = "closed", values: Mapping[str, float] | None = None,
+                     branches: Mapping[str, int] | None = None, designs: int = 2000, refine: int = 3,
+                     seed: int | None = 0, harmonics: int | None = None, starts: int = 1, evaluations: int = 2000,
+                     candidates: Sequence[Mapping[str, float]] = ()) -> ShapeSynthesis:
+    """A design of ``linkage`` whose ``point`` traces the shape of ``target``, placed on it and refined to it.
+
+    :func:`shape_search` ranks ``designs`` sampled designs by their shape distance to the target
+    (points in order along the curve, without timing, position, turn or scale) and places the
+    best by its similarity fit.  Each of the ``refine`` best in turn is then refined by exact
+    gradients from where the match put every target point on its path: the free parameters, the
+    placement (shift, turn and scale) and the input at each target point move until the point
+    passes through the target points (the untimed path fit's residuals,
+    :func:`symlink.synthesis.general.path_residuals`, by the accelerated Levenberg-Marquardt of
+    path synthesis, at most ``evaluations`` evaluations; the inputs kept in order, within a turn).
+    The refined design is verified by the linkage's own solver through the timed path fit at the
+    inputs found (:func:`symlink.synthesis.general.synthesize_path` with ``timed``, the design its
+    first start, ``starts`` its own sampled starts besides): every target point on one branch, in
+    order, no toggle between them.  It stops at the first design within :data:`REACHED` of the
+    target's size, else returns the verified design of the least shape distance.
+
+    ``kind``: ``"closed"`` (the target is a whole closed path: the design's input must turn
+    fully), ``"open"`` (the whole path of a design whose input rocks between its limits) or
+    ``"partial"`` (a piece of a closed path).  ``ValueError`` for bad input, or when no sampled
+    design traces such a path.
+
+    >>> from symlink.catalog import fourbar
+    >>> turn = numpy.linspace(0.0, 2 * math.pi, 24, endpoint=False)
+    >>> circle = numpy.stack([3 + 2 * numpy.cos(turn), 1 + 2 * numpy.sin(turn)], axis=1)  # the crank pin's shape
+    >>> found = synthesize_shape(fourbar(), "B", circle, {"b": (2.5, 3.5)}, values={"a": 1.0, "c": 2.5, "d": 3.2},
+    ...                          designs=50, refine=1)
+    >>> found.error < 1e-10, round(found.placement["scale"], 9)  # a crank of 1 placed at twice its size
+    (True, 2.0)
+    """
+    if refine < 1 or starts < 1 or evaluations < 1:
+        raise ValueError("refine, starts and evaluations must be at least 1")
+    matches = shape_search(linkage, point, target, free, kind=kind, values=values, branches=branches,
+                           designs=designs, keep=refine, seed=seed, harmonics=harmonics, candidates=candidates)
+    points = numpy.asarray(target, dtype=float)
+    best: ShapeSynthesis | None = None
+    for match in matches:
+        refined = _refined_match(linkage, point, points, match, free, evaluations)
+        if refined is None:
+            continue  # the match is not assembled at the inputs it put the targets at: the next match
+        design, placement, inputs = refined
+        try:  # verified by the linkage's own solver along the inputs found (its timed path fit starts at the design)
+            found = synthesize_path(linkage, point, points, free, values=design, frame=FRAME_NAMES,
+                                    timed=inputs, branches=match.branches or None, starts=starts, seed=seed,
+                                    evaluations=evaluations)
+        except ValueError:
+            continue
+        if not found.assembled:
+            continue
+        curve = _refined_curve(linkage, point, found, kind)
+        result = ShapeSynthesis(kind, found, match, match.distance, _shape_after(points, curve, kind, harmonics),
+                                curve)
+        if best is None or (found.error < REACHED, -_ordered(result.distance)) > (
+                best.error < REACHED, -_ordered(best.distance)):
+            best = result
+        if found.error < REACHED:
+            break
+    if best is None:
+        raise ValueError(f"no refinement of the {len(matches)} best sampled design(s) of {linkage.name} is verified "
+                         "along the target (every point on one branch, in order); widen the bounds or sample more "
+                         "designs")
+    return best
+
+
+def _ordered(distance: float) -> float:
+    return distance if math.isfinite(distance) else math.inf

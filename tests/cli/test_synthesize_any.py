@@ -174,7 +174,7 @@ def test_existing_fourbar_invocations_still_route_to_the_fourbar(targets, capsys
     assert "three-point" in capsys.readouterr().err
 
 
-@pytest.mark.slow  # three syntheses and a table: about 12 s of CPU
+@pytest.mark.slow  # four syntheses (one a shape match) and a table: about 30 s of CPU
 def test_the_how_to_pages_commands_run(tmp_path, monkeypatch, capsys):
     """docs/howto/synthesis.md: its command-line section's Python block writes the files, then every ``$ symlink``
     line runs (exit status 0) and writes what it says."""

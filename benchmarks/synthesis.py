@@ -30,7 +30,8 @@ Run from the repository root (not a test; SciPy needed)::
 
 ``python -m benchmarks.synthesis --literature [--seeds N] [--problems case1,...]`` runs the
 literature's classical problems instead, each with its published objective, bounds and best
-values (:mod:`benchmarks.literature`).
+values (:mod:`benchmarks.literature`); ``--literature --shapes [--seeds N] [--targets ...]`` its
+shape targets (:mod:`benchmarks.literature_shapes`).
 """
 from __future__ import annotations
 
@@ -220,6 +221,9 @@ def summary(records: list[dict]) -> str:
 
 def main(argv=None) -> int:
     arguments = sys.argv[1:] if argv is None else list(argv)
+    if "--literature" in arguments and "--shapes" in arguments:  # shape targets: benchmarks/literature_shapes.py
+        from benchmarks import literature_shapes
+        return literature_shapes.main([a for a in arguments if a != "--literature"])
     if "--literature" in arguments:  # the literature's classical problems: benchmarks/literature.py
         from benchmarks import literature
         return literature.main([a for a in arguments if a != "--literature"])
@@ -237,7 +241,8 @@ def main(argv=None) -> int:
     parser.add_argument("--log", default=None, help="append one JSON line per problem to this file")
     parser.add_argument("--summarize", default=None, help="print the table of a log and stop")
     parser.add_argument("--literature", action="store_true", help="run benchmarks/literature.py instead (its "
-                                                                 "options: --seeds, --problems case1,...)")
+                                                                 "options: --seeds, --problems case1,...; with "
+                                                                 "--shapes, benchmarks/literature_shapes.py)")
     parser.add_argument("--part", choices=("both", "symlink", "de"), default="both",
                         help="run one method only (two processes side by side share one --log)")
     args = parser.parse_args(argv)

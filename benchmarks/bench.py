@@ -940,7 +940,9 @@ def _hand_c_loop(work: Sweep, full: bool) -> Callable[[], object]:
     library = hand_library()
     n = len(work.theta)
     arrays = [numpy.ascontiguousarray(x, dtype=numpy.float64) for x in (work.theta, *work.lengths, work.branch)]
-    outputs = [numpy.empty(n) for _ in range(6 if full else 2)] + [numpy.empty(n, dtype=numpy.uint8)]
+    # the flags the generated loop writes too: assembled, and with the rates singular
+    outputs = [numpy.empty(n) for _ in range(6 if full else 2)] + [numpy.empty(n, dtype=numpy.uint8)
+                                                                   for _ in range(2 if full else 1)]
     inputs, written = [x.ctypes.data for x in arrays], [o.ctypes.data for o in outputs]
     kept = arrays + outputs
     if full:

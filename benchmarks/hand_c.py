@@ -101,7 +101,7 @@ SYMLINK_LOOP void hand_fourbar_everything(size_t n, const double *restrict theta
     const double *restrict b, const double *restrict c, const double *restrict d, const double *restrict branch,
     double speed, double accel, double *restrict beta, double *restrict phi, double *restrict beta_speed,
     double *restrict phi_speed, double *restrict beta_accel, double *restrict phi_accel,
-    unsigned char *restrict assembled)
+    unsigned char *restrict assembled, unsigned char *restrict singular)
 {
     const double speed2 = speed * speed;
     for (size_t i = 0; i < n; ++i) {
@@ -129,6 +129,7 @@ SYMLINK_LOOP void hand_fourbar_everything(size_t n, const double *restrict theta
         phi_accel[i] = over_c * (a_ * speed2 * (cos_b * cos_t + sin_b * sin_t) + b_ * bs2 - s_bt * a_accel
                                  - c_ps2 * c_bp);
         assembled[i] = across == across;
+        singular[i] = across == 0.0;   /* the rates' flag, as the generated code gives it with them */
     }
 }
 
@@ -182,7 +183,7 @@ def hand_library() -> ctypes.CDLL:
         function.argtypes = [ctypes.c_size_t] + [ctypes.c_void_p] * 9
     library.hand_fourbar_everything.restype = None
     library.hand_fourbar_everything.argtypes = ([ctypes.c_size_t] + [ctypes.c_void_p] * 6 + [ctypes.c_double] * 2
-                                                + [ctypes.c_void_p] * 7)
+                                                + [ctypes.c_void_p] * 8)
     library.vector_math_limit.restype = None
     library.vector_math_limit.argtypes = [ctypes.c_size_t] + [ctypes.c_void_p] * 3
     return library
@@ -220,14 +221,15 @@ def hand_everything(theta, a, b, c, d, branch, speed: float, accel: float) -> di
 
     ``theta``, the lengths and the branch broadcast against each other; the crank's speed and
     acceleration are numbers.  Keys: coupler, rocker, coupler_speed, rocker_speed, coupler_accel,
-    rocker_accel, assembled.
+    rocker_accel, assembled, singular (the flag a compiled solver gives with rates: the root is zero).
     """
     arrays = _full_arrays(theta, a, b, c, d, branch)
     shape = arrays[0].shape
-    outputs = [numpy.empty(shape) for _ in range(6)] + [numpy.empty(shape, dtype=bool)]
+    outputs = [numpy.empty(shape) for _ in range(6)] + [numpy.empty(shape, dtype=bool) for _ in range(2)]
     hand_library().hand_fourbar_everything(arrays[0].size, *(x.ctypes.data for x in arrays), float(speed),
                                            float(accel), *(o.ctypes.data for o in outputs))
-    names = ("coupler", "rocker", "coupler_speed", "rocker_speed", "coupler_accel", "rocker_accel", "assembled")
+    names = ("coupler", "rocker", "coupler_speed", "rocker_speed", "coupler_accel", "rocker_accel", "assembled",
+             "singular")
     return dict(zip(names, outputs))
 
 

@@ -79,7 +79,7 @@ def test_hand_c_full_kinematics_match_the_50_digit_reference(branch):
     a, b, c, d = (SEED003_LINKAGE[k] for k in "abcd")
     theta = numpy.radians(numpy.arange(-179.0, 180.0, 11.0))
     result = hand_everything(theta, a, b, c, d, branch, 10.5, 2.0)
-    assert result["assembled"].all()
+    assert result["assembled"].all() and not result["singular"].any()  # a crank-rocker: never at a toggle
     keys = {"coupler": "beta", "rocker": "phi", "coupler_speed": "beta_speed", "rocker_speed": "phi_speed",
             "coupler_accel": "beta_accel", "rocker_accel": "phi_accel"}
     for i, angle in enumerate(theta):
@@ -90,3 +90,12 @@ def test_hand_c_full_kinematics_match_the_50_digit_reference(branch):
                 assert abs(numpy.angle(numpy.exp(1j * (result[mine][i] - exact)))) < 1e-12, (angle, mine)
             else:
                 assert result[mine][i] == pytest.approx(exact, rel=1e-10, abs=1e-9), (angle, mine)
+
+
+def test_hand_c_flags_a_toggle_singular_as_the_generated_code_does():
+    # a = 1, b = 2, c = 1, d = 2 at theta = 0: W = a - d = -1, so w = 1 = b - c: a toggle, where Heron's
+    # product ((b + c)^2 - w^2)(w^2 - (b - c)^2) = 8 * 0 is exactly zero (by hand): assembled, rates singular
+    from benchmarks.hand_c import hand_everything
+    result = hand_everything(numpy.array([0.0, 1.0]), 1.0, 2.0, 1.0, 2.0, 1, 1.0, 0.0)
+    assert result["assembled"].tolist() == [True, True]
+    assert result["singular"].tolist() == [True, False]

@@ -30,8 +30,9 @@ import sympy as sp
 from ..closure import is_angle
 from ..design_jacobian import DesignJacobian
 from ..linkage import Linkage
+from ..loops import Loop
 from ..solver import NumericSolver, Solver
-from .general import INPUT_PHASE, find_assembly, with_input_phase
+from ..vectors import Vector, VectorSum
 from .path import _accelerated_levenberg_marquardt
 
 __all__ = ["DesignOutputs", "free_bounds", "sampled_designs", "branch_break", "refine", "is_angle_output",
@@ -52,6 +53,38 @@ def sample_count(linkage: Linkage) -> int:
     return SAMPLED if linkage.has_closed_form else NEWTON_SAMPLED
 
 
+#: The parameter added to the input in the Jacobian's copy of the linkage (:func:`with_input_phase`).
+INPUT_PHASE = "input_phase"
+
+
+def _shifted(expr: sp.Expr, input_symbol: sp.Symbol, phase: sp.Symbol) -> sp.Expr:
+    return sp.sympify(expr).xreplace({input_symbol: input_symbol + phase})
+
+
+def _shifted_sum(vectors: Vector | VectorSum | None, input_symbol: sp.Symbol, phase: sp.Symbol):
+    if vectors is None:
+        return None
+    return VectorSum(tuple((sign, Vector(_shifted(v.length, input_symbol, phase),
+                                         _shifted(v.angle, input_symbol, phase), v.name))
+                           for sign, v in vectors.as_sum().terms))
+
+
+@lru_cache(maxsize=32)
+def with_input_phase(linkage: Linkage) -> Linkage:
+    """The linkage with its input ``q`` replaced by ``q + input_phase``: d/d(input_phase) at 0 is d/dq."""
+    (input_symbol,) = linkage.inputs
+    phase = sp.Symbol(INPUT_PHASE, real=True)
+    taken = {s.name for s in linkage.parameters + linkage.coordinates}
+    if INPUT_PHASE in taken:
+        raise ValueError(f"{linkage.name} already has a symbol named {INPUT_PHASE!r}, which path synthesis needs")
+    loops = [Loop(_shifted_sum(loop.vectors, input_symbol, phase), name=loop.name) for loop in linkage.loops]
+    return Linkage(f"{linkage.name}with_input_phase", loops, inputs=[input_symbol], unknowns=list(linkage.unknowns),
+                   parameters=list(linkage.parameters) + [phase],
+                   points={k: _shifted_sum(v, input_symbol, phase) for k, v in linkage.points.items()},
+                   roles=dict(linkage.roles),
+                   extras={k: _shifted(v, input_symbol, phase) for k, v in linkage.extras.items()})
+
+
 @lru_cache(maxsize=32)
 def _jacobian(linkage: Linkage, outputs: tuple[str, ...], free: tuple[str, ...]) -> DesignJacobian:
     return DesignJacobian(with_input_phase(linkage), list(outputs), list(free) + [INPUT_PHASE])
@@ -60,6 +93,38 @@ def _jacobian(linkage: Linkage, outputs: tuple[str, ...], free: tuple[str, ...])
 @lru_cache(maxsize=32)
 def _solver(linkage: Linkage, outputs: tuple[str, ...]) -> Solver:
     return Solver(linkage, list(outputs))
+
+
+#: Random initial guesses tried by :func:`find_assembly` before it gives up.
+_ASSEMBLY_GUESSES = 12
+
+
+def find_assembly(linkage: Linkage, values: Mapping[str, float], at: float, rng: numpy.random.Generator,
+                  tries: int = _ASSEMBLY_GUESSES) -> dict[str, float] | None:
+    """An assembly of a linkage without a closed form at input ``at``: its unknowns, or None if none is found.
+
+    Newton's method of the linkage's numeric solver from random initial guesses (angles over a
+    turn, lengths within the sum of the parameters), the first that closes; which assembly
+    that is depends on ``rng``.  (The same search as the drawing's, which synthesis may not import.)
+
+    >>> from symlink.catalog import stephenson3, EXAMPLE_VALUES
+    >>> found = find_assembly(stephenson3(), EXAMPLE_VALUES["stephenson3"], 0.0, numpy.random.default_rng(0))
+    >>> sorted(found)
+    ['beta', 'eta', 'mu', 'phi']
+    """
+    solver = _newton_solver(linkage)
+    parameters = {p.name: float(values[p.name]) for p in linkage.parameters}
+    scale = sum(abs(v) for v in parameters.values()) or 1.0
+    for _ in range(tries):
+        guess = {q.name: float(rng.uniform(-math.pi, math.pi)) if is_angle(linkage, q)
+                 else float(rng.uniform(-scale, scale)) for q in linkage.unknowns}
+        try:
+            with numpy.errstate(all="ignore"):
+                solved = solver(guess=guess, **parameters, **{linkage.inputs[0].name: numpy.array([float(at)])})
+        except ValueError:
+            continue
+        return {q.name: float(numpy.asarray(solved[q.name])[0]) for q in linkage.unknowns}
+    return None
 
 
 @lru_cache(maxsize=32)
@@ -135,7 +200,7 @@ class DesignOutputs:
     it takes its assembly (the unknowns near it at the first input, Newton's initial guess).
     :meth:`at` continues :attr:`assembly` (the unknowns at the first input of its last
     converged call) when it is set, so that a refinement carries its start's assembly along;
-    :meth:`batch` finds each design's assembly by :func:`symlink.synthesis.general.find_assembly`
+    :meth:`batch` finds each design's assembly by :func:`find_assembly`
     and writes it into that design's entry of ``signs``.
     """
 

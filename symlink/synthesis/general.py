@@ -55,21 +55,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from functools import lru_cache
 from typing import Mapping, Sequence
 
 import numpy
 import sympy as sp
 from numpy.typing import ArrayLike
 
-from ..design_jacobian import DesignJacobian
 from ..analysis.transmission import transmission_arrays, transmission_coordinates
 from ..display import record_html
 from ..linkage import Linkage
-from ..loops import Loop
-from ..closure import is_angle
-from ..solver import NumericSolver, Solver
-from ..vectors import Vector, VectorSum
+from .design_fit import (BRANCH_SAMPLES, INPUT_PHASE, _jacobian, _newton_solver, _solver, branch_break, check_branches,
+                         find_assembly, free_bounds)
 from .path import _FULL_TURN, _accelerated_levenberg_marquardt
 
 __all__ = ["PathSynthesis", "synthesize_path", "traced_points", "find_assembly", "path_residuals", "FRAME_NAMES"]
@@ -77,14 +73,12 @@ __all__ = ["PathSynthesis", "synthesize_path", "traced_points", "find_assembly",
 #: The placement of the linkage's frame in the plane: pivot shift, turn and scale.
 FRAME_NAMES = ("x0", "y0", "angle", "scale")
 _IDENTITY = {"x0": 0.0, "y0": 0.0, "angle": 0.0, "scale": 1.0}
-#: The parameter added to the input in the Jacobian's copy of the linkage (:func:`with_input_phase`).
-INPUT_PHASE = "input_phase"
 _SAMPLED = 1500            # random designs drawn for the starts
 _SWEEP = 96                # input values over a turn, for matching untimed targets by arc length
 _PHASES = 32               # untimed: starting positions along each swept curve ...
 _SPANS = tuple(numpy.linspace(0.1, 1.0, 19))  # ... and fractions of its arc length matched to the targets
 _SCALED_SPANS = (0.95, 0.8, 0.6, 0.4)  # ... those fractions where the fit scales the design (path.py's)
-_PATH_SAMPLES = 24         # input values checked between consecutive targets by the verification
+_PATH_SAMPLES = BRANCH_SAMPLES  # input values checked between consecutive targets by the verification
 _SHAPE_RATIO = 16.0        # shape-normalised starts: link lengths within this ratio of each other ...
 _SHAPED = 0.5              # ... this fraction of the sampled designs (the rest uniform within the bounds)
 _OFFSET_SPAN = 2.0         # ... and signed lengths (a point's offsets) within this many times the median link
@@ -201,43 +195,6 @@ def traced_points(linkage: Linkage, point: str | Sequence[str], values: Mapping[
     return _placed(local, where)
 
 
-#: Random initial guesses tried by :func:`find_assembly` before it gives up.
-_ASSEMBLY_GUESSES = 12
-
-
-def find_assembly(linkage: Linkage, values: Mapping[str, float], at: float, rng: numpy.random.Generator,
-                  tries: int = _ASSEMBLY_GUESSES) -> dict[str, float] | None:
-    """An assembly of a linkage without a closed form at input ``at``: its unknowns, or None if none is found.
-
-    Newton's method of the linkage's numeric solver from random initial guesses (angles over a
-    turn, lengths within the sum of the parameters), the first that closes; which assembly
-    that is depends on ``rng``.  (The same search as the drawing's, which synthesis may not import.)
-
-    >>> from symlink.catalog import stephenson3, EXAMPLE_VALUES
-    >>> found = find_assembly(stephenson3(), EXAMPLE_VALUES["stephenson3"], 0.0, numpy.random.default_rng(0))
-    >>> sorted(found)
-    ['beta', 'eta', 'mu', 'phi']
-    """
-    solver = _newton_solver(linkage)
-    parameters = {p.name: float(values[p.name]) for p in linkage.parameters}
-    scale = sum(abs(v) for v in parameters.values()) or 1.0
-    for _ in range(tries):
-        guess = {q.name: float(rng.uniform(-math.pi, math.pi)) if is_angle(linkage, q)
-                 else float(rng.uniform(-scale, scale)) for q in linkage.unknowns}
-        try:
-            with numpy.errstate(all="ignore"):
-                solved = solver(guess=guess, **parameters, **{linkage.inputs[0].name: numpy.array([float(at)])})
-        except ValueError:
-            continue
-        return {q.name: float(numpy.asarray(solved[q.name])[0]) for q in linkage.unknowns}
-    return None
-
-
-@lru_cache(maxsize=32)
-def _newton_solver(linkage: Linkage) -> NumericSolver:
-    return NumericSolver(linkage)
-
-
 def _arguments(linkage: Linkage, values: Mapping[str, float], branches: Mapping[str, int] | None) -> dict:
     known = {p.name for p in linkage.parameters}
     unknown = set(values) - known
@@ -250,46 +207,6 @@ def _arguments(linkage: Linkage, values: Mapping[str, float], branches: Mapping[
     for symbol in linkage.branches:
         arguments[symbol.name] = int((branches or {}).get(symbol.name, 1))
     return arguments
-
-
-@lru_cache(maxsize=32)
-def _solver(linkage: Linkage, outputs: tuple[str, ...]) -> Solver:
-    return Solver(linkage, list(outputs))
-
-
-# --- the Jacobian's linkage: the input shifted by a parameter ---------------------------------------
-
-def _shifted(expr: sp.Expr, input_symbol: sp.Symbol, phase: sp.Symbol) -> sp.Expr:
-    return sp.sympify(expr).xreplace({input_symbol: input_symbol + phase})
-
-
-def _shifted_sum(vectors: Vector | VectorSum | None, input_symbol: sp.Symbol, phase: sp.Symbol):
-    if vectors is None:
-        return None
-    return VectorSum(tuple((sign, Vector(_shifted(v.length, input_symbol, phase),
-                                         _shifted(v.angle, input_symbol, phase), v.name))
-                           for sign, v in vectors.as_sum().terms))
-
-
-@lru_cache(maxsize=32)
-def with_input_phase(linkage: Linkage) -> Linkage:
-    """The linkage with its input ``q`` replaced by ``q + input_phase``: d/d(input_phase) at 0 is d/dq."""
-    (input_symbol,) = linkage.inputs
-    phase = sp.Symbol(INPUT_PHASE, real=True)
-    taken = {s.name for s in linkage.parameters + linkage.coordinates}
-    if INPUT_PHASE in taken:
-        raise ValueError(f"{linkage.name} already has a symbol named {INPUT_PHASE!r}, which path synthesis needs")
-    loops = [Loop(_shifted_sum(loop.vectors, input_symbol, phase), name=loop.name) for loop in linkage.loops]
-    return Linkage(f"{linkage.name}with_input_phase", loops, inputs=[input_symbol], unknowns=list(linkage.unknowns),
-                   parameters=list(linkage.parameters) + [phase],
-                   points={k: _shifted_sum(v, input_symbol, phase) for k, v in linkage.points.items()},
-                   roles=dict(linkage.roles),
-                   extras={k: _shifted(v, input_symbol, phase) for k, v in linkage.extras.items()})
-
-
-@lru_cache(maxsize=32)
-def _jacobian(linkage: Linkage, outputs: tuple[str, ...], free: tuple[str, ...]) -> DesignJacobian:
-    return DesignJacobian(with_input_phase(linkage), list(outputs), list(free) + [INPUT_PHASE])
 
 
 def _length_parameters(linkage: Linkage) -> set[str]:
@@ -570,7 +487,13 @@ def _start(problem: _Problem, free: numpy.ndarray, row: numpy.ndarray) -> numpy.
 def _sampled_designs(problem: _Problem, rng: numpy.random.Generator, count: int, given: Mapping[str, float],
                      branch_choice: Mapping[str, int] | None) -> tuple[numpy.ndarray, list[dict[str, int]]]:
     """Free parameters (rows) and branch signs: the user's design first (if all its free values are given),
-    then random ones uniform within the bounds, branches random unless fixed."""
+    then random ones uniform within the bounds, branches random unless fixed.
+
+    Not :func:`symlink.synthesis.design_fit.sampled_designs`, on purpose: path synthesis places
+    the linkage by a similarity fit that may scale it, so when every length is free
+    (:attr:`_Problem.absorbs`) half the rows are shape-normalised (:func:`_shaped_design`);
+    function and motion generation have no scale to fit, so they draw uniformly within the bounds.
+    """
     names = [s.name for s in problem.linkage.branches]
     chosen = dict(branch_choice or {})
     rows, signs = [], []
@@ -873,16 +796,10 @@ def _verify(problem: _Problem, x: numpy.ndarray, branches: Mapping[str, int], in
     if not numpy.all(numpy.isfinite(errors)):
         why = "not assembled at every target"
     else:
-        steps = numpy.linspace(0.0, 1.0, _PATH_SAMPLES + 1)
-        moves = inputs[:-1, None] + numpy.diff(inputs)[:, None] * steps[None, :]
-        solved = _solver(linkage, ("singular",))(**_arguments(linkage, design, branches),
-                                                 **{linkage.inputs[0].name: moves})
-        ok = numpy.asarray(solved["assembled"]) & ~numpy.asarray(solved["singular"], dtype=bool)
-        if not numpy.all(ok):
-            where = numpy.argwhere(~ok)[0]
-            why = (f"the input cannot move from target {where[0] + 1} to target {where[0] + 2} on one branch "
-                   f"(no assembly or a toggle at {float(moves[tuple(where)]):.6g})")
-        else:
+        why = branch_break(linkage, design, branches, inputs)
+        if not why:
+            steps = numpy.linspace(0.0, 1.0, _PATH_SAMPLES + 1)
+            moves = inputs[:-1, None] + numpy.diff(inputs)[:, None] * steps[None, :]
             why = problem.feasible_motion(design, moves.ravel(), branches)
     if not why and not problem.allowed(x):
         why = "outside the bounds or the link ratio"
@@ -1035,20 +952,8 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
     size = _size(points)
     if not size > 0:
         raise ValueError("the targets are all the same point")
-    known = [p.name for p in linkage.parameters]
-    if not free:
-        raise ValueError("name at least one free parameter with its bounds")
-    for name, bound in free.items():
-        if name not in known:
-            raise ValueError(f"{linkage.name} has no parameter {name!r}; it has {', '.join(known)}")
-        low, high = (float(b) for b in bound)
-        if not (math.isfinite(low) and math.isfinite(high) and low < high):
-            raise ValueError(f"the bounds of {name!r} must be finite with low < high, got {bound!r}")
+    bounds, fixed = free_bounds(linkage, free, values)
     given = {k: float(v) for k, v in (values or {}).items()}
-    fixed = {name: given[name] for name in known if name not in free and name in given}
-    missing = [name for name in known if name not in free and name not in given]
-    if missing:
-        raise ValueError(f"give values for the parameters that are not free: {', '.join(missing)}")
     unknown_frame = [name for name in frame if name not in FRAME_NAMES]
     if unknown_frame or len(set(frame)) != len(frame):
         raise ValueError(f"frame names the free parts of the placement among {', '.join(FRAME_NAMES)}, "
@@ -1061,10 +966,7 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
         raise ValueError(f"{len(points)} targets need {len(points)} finite input values, got shape {inputs.shape}")
     if inputs is None and len(points) < 3:
         raise ValueError("path synthesis without timing needs at least three targets")
-    for name, sign in (branches or {}).items():
-        if name not in {s.name for s in linkage.branches} or sign not in (1, -1):
-            raise ValueError(f"branches maps {', '.join(s.name for s in linkage.branches) or 'no branch'} to +1 "
-                             f"or -1; got {name!r}: {sign!r}")
+    check_branches(linkage, branches)
     if starts < 1 or evaluations < 1:
         raise ValueError("starts and evaluations must be at least 1")
     for name, bound in (frame_bounds or {}).items():
@@ -1078,7 +980,7 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
         raise ValueError(f"min_transmission must lie in [0, pi/2) radians, got {min_transmission!r}")
     if direction not in (None, 1, -1) or (direction is not None and inputs is not None):
         raise ValueError(f"direction is +1, -1 or None, for targets without timing; got {direction!r}")
-    problem = _Problem(linkage, names, points, {k: (float(v[0]), float(v[1])) for k, v in free.items()}, fixed,
+    problem = _Problem(linkage, names, points, bounds, fixed,
                        frame, fixed_placement, inputs, frame_bounds, ratio, float(min_transmission),
                        bool(full_rotation))
     problem.direction = direction

@@ -2,7 +2,8 @@
 
 Targets are the true design's coupler point E from a 30-digit mpmath reference written here (the
 closure of the catalog's Stephenson III, continued along the crank by ``mpmath.findroot`` in small
-steps from a hand-found assembly, as ``tests/codegen/test_newton_c.py`` does); the found design is
+steps from a hand-found assembly: ``tests/mp_closures.py``'s ``stephenson3_continued``, which
+``tests/codegen/test_newton_c.py`` uses too); the found design is
 checked with the same reference: continued from the assembly synthesis reports, through its inputs,
 placed, it must pass through the targets to 1e-8 of their size.  Nothing of symlink's derivation
 is used by the reference.
@@ -12,7 +13,8 @@ import math
 import mpmath as mp
 import numpy as np
 import pytest
-from mp_closures import stephenson3_closure
+from mp_closures import STEPHENSON3_UNKNOWNS as UNKNOWNS
+from mp_closures import stephenson3_continued
 
 from symlink.catalog import stephenson3
 from symlink.synthesis.general import synthesize_path
@@ -20,30 +22,17 @@ from symlink.synthesis.general import synthesize_path
 TRUTH = dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.9, delta=0.3)
 #: An assembly of TRUTH at theta = 0 whose crank turns fully (tests/codegen/test_newton_c.py).
 ASSEMBLY = dict(beta=0.96, mu=0.27, phi=1.43, eta=-0.16)
-UNKNOWNS = ("beta", "mu", "phi", "eta")
-
-
-def _closure(theta, q, p):
-    """Stephenson III's closure at one crank angle (the hand-typed reference of tests/mp_closures.py)."""
-    return stephenson3_closure((theta,), q, p)
 
 
 def coupler_points(design, thetas, guess, placement=None, substeps=8):
     """E = a e^{i theta} + e e^{i (beta + alpha)} at each theta (30 digits), continued in small steps from the
     assembly nearest ``guess`` at thetas[0]; placed by (x0, y0) + scale R(angle) E.  Rows (x, y) as floats."""
     where = {"x0": 0.0, "y0": 0.0, "angle": 0.0, "scale": 1.0, **(placement or {})}
+    positions = stephenson3_continued(design, thetas, guess, substeps=substeps)
     with mp.workdps(30):
         p = {k: mp.mpf(v) for k, v in design.items()}
-
-        def solve(theta, start):
-            return list(mp.findroot(lambda *q: _closure(theta, q, p), start))
-
-        q = solve(mp.mpf(thetas[0]), [mp.mpf(guess[n]) for n in UNKNOWNS])
-        previous, rows = mp.mpf(thetas[0]), []
-        for theta in map(mp.mpf, thetas):
-            for k in range(1, substeps + 1):
-                q = solve(previous + (theta - previous) * k / substeps, q)
-            previous = theta
+        rows = []
+        for theta, q in zip(map(mp.mpf, thetas), positions):
             point = p["a"] * mp.expj(theta) + p["e"] * mp.expj(q[0] + p["alpha"])
             placed = (mp.mpc(where["x0"], where["y0"])
                       + mp.mpf(where["scale"]) * mp.expj(mp.mpf(where["angle"])) * point)
@@ -111,13 +100,7 @@ def test_the_users_design_and_assembly_start_the_search():
 
 def coupler_beta(theta):
     """beta of the ASSEMBLY continued to ``theta`` by the reference (for the reported assembly)."""
-    with mp.workdps(30):
-        p = {k: mp.mpf(v) for k, v in TRUTH.items()}
-        q = list(mp.findroot(lambda *q: _closure(mp.mpf(0), q, p), [mp.mpf(ASSEMBLY[n]) for n in UNKNOWNS]))
-        for k in range(1, 9):
-            t = mp.mpf(theta) * k / 8
-            q = list(mp.findroot(lambda *x: _closure(t, x, p), q))
-        return q[0]
+    return stephenson3_continued(TRUTH, [0.0, theta], ASSEMBLY)[-1][0]
 
 
 @pytest.mark.parametrize("keywords, message", [
@@ -135,17 +118,7 @@ def test_bad_input_names_the_problem(keywords, message):
 
 def rocker_angles(design, thetas, guess, substeps=8):
     """phi (the rocker DF's angle) at each theta from the same 30-digit continuation as :func:`coupler_points`."""
-    with mp.workdps(30):
-        p = {k: mp.mpf(v) for k, v in design.items()}
-        q = list(mp.findroot(lambda *x: _closure(mp.mpf(thetas[0]), x, p), [mp.mpf(guess[n]) for n in UNKNOWNS]))
-        previous, found = mp.mpf(thetas[0]), []
-        for theta in map(mp.mpf, thetas):
-            for k in range(1, substeps + 1):
-                t = previous + (theta - previous) * k / substeps
-                q = list(mp.findroot(lambda *x: _closure(t, x, p), q))
-            previous = theta
-            found.append(float(q[2]))
-    return np.array(found)
+    return np.array([float(q[2]) for q in stephenson3_continued(design, thetas, guess, substeps=substeps)])
 
 
 @pytest.mark.slow
@@ -167,15 +140,11 @@ def test_function_generation_of_the_stephenson3_rocker():
 def coupler_poses(design, thetas, guess, placement):
     """The coupler's pose (B placed, beta + the placement's angle) at each theta, by the 30-digit continuation."""
     where = {"x0": 0.0, "y0": 0.0, "angle": 0.0, **placement}
+    positions = stephenson3_continued(design, thetas, guess)
     with mp.workdps(30):
         p = {k: mp.mpf(v) for k, v in design.items()}
-        q = list(mp.findroot(lambda *x: _closure(mp.mpf(thetas[0]), x, p), [mp.mpf(guess[n]) for n in UNKNOWNS]))
-        previous, rows = mp.mpf(thetas[0]), []
-        for theta in map(mp.mpf, thetas):
-            for k in range(1, 9):
-                t = previous + (theta - previous) * k / 8
-                q = list(mp.findroot(lambda *x: _closure(t, x, p), q))
-            previous = theta
+        rows = []
+        for theta, q in zip(map(mp.mpf, thetas), positions):
             B = mp.mpc(where["x0"], where["y0"]) + mp.expj(where["angle"]) * p["a"] * mp.expj(theta)
             rows.append((float(B.real), float(B.imag), float(q[0] + where["angle"])))
     return np.array(rows)

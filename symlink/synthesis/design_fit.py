@@ -369,3 +369,135 @@ def refine(residuals: Callable[[numpy.ndarray], tuple[numpy.ndarray, numpy.ndarr
     ``residuals(x)`` gives ``(r, J)``, or None for an infeasible ``x`` (never accepted).
     """
     return _accelerated_levenberg_marquardt(residuals, numpy.asarray(x0, dtype=float).copy(), evaluations, tolerance)
+
+
+#: Batched assembly search: Newton iterations from each random guess, and the residual (over the loop size) that
+#: counts as closed ...
+_BATCH_ASSEMBLY_ITERATIONS = 40
+_BATCH_RESIDUAL = 1e-10
+#: ... and along the sweep: Newton iterations a step, the largest first correction after the predictor (rad, or
+#: link lengths) and the condition number past which a position is a dead centre (the Newton driver's).
+_BATCH_STEP_ITERATIONS = 8
+_BATCH_MAX_CORRECTION = 0.1
+_BATCH_SINGULAR = 1e10
+
+
+def _batch_closure(functions, theta, parameters: Sequence[numpy.ndarray], q: numpy.ndarray, checked: bool = False):
+    """Residuals over the loop size (M), Newton step (M, n), regular (M) and Jacobian (M, n, n) at ``q`` (M, n).
+
+    ``checked``: regular means a (scaled) condition number under :data:`_BATCH_SINGULAR` (an SVD a
+    design); else only a finite step.  Where not regular the step is NaN.
+    """
+    F, J, scale, unit = functions["_closure"](theta, *parameters, *numpy.moveaxis(q, -1, 0))
+    F, J = numpy.broadcast_to(F, q.shape), numpy.broadcast_to(J, q.shape + (q.shape[-1],))
+    scale = numpy.broadcast_to(scale, q.shape)
+    unit = numpy.broadcast_to(unit, q.shape)
+    with numpy.errstate(all="ignore"):
+        residual = numpy.max(numpy.abs(F) / scale, axis=-1)
+        regular = numpy.all(numpy.isfinite(J), axis=(1, 2)) & numpy.all(numpy.isfinite(F), axis=1)
+        if checked:
+            condition = numpy.linalg.cond(numpy.where(regular[:, None, None], J, 1.0)
+                                          * unit[..., None, :] / scale[..., :, None])
+            regular &= numpy.isfinite(condition) & (condition < _BATCH_SINGULAR)
+        safe = numpy.where(regular[:, None, None], J, numpy.eye(q.shape[-1]))
+        try:
+            step = -numpy.linalg.solve(safe, numpy.where(regular[:, None], F, 0.0)[..., None])[..., 0]
+        except numpy.linalg.LinAlgError:  # an exactly singular matrix among them: one at a time
+            step = numpy.full(q.shape, numpy.nan)
+            for k in numpy.flatnonzero(regular):
+                try:
+                    step[k] = -numpy.linalg.solve(safe[k], F[k])
+                except numpy.linalg.LinAlgError:
+                    regular[k] = False
+    step = numpy.where(regular[:, None], step, numpy.nan)
+    return residual, step, regular & numpy.all(numpy.isfinite(step), axis=1), safe
+
+
+def newton_traced_batch(linkage: Linkage, designs: Mapping[str, float | numpy.ndarray], sweep: numpy.ndarray,
+                        rng: numpy.random.Generator, guesses: int = 8,
+                        starts: numpy.ndarray | None = None) -> tuple[numpy.ndarray, numpy.ndarray]:
+    """Many designs of a linkage without a closed form continued along one input ``sweep`` at once.
+
+    ``designs`` maps every parameter to a number or an array (M,), one entry a design.  Each
+    design is assembled at ``sweep[0]`` from ``starts`` (M, unknowns; NaN rows: none) or else
+    the first of ``guesses`` random initial guesses (angles over a turn, lengths within the sum of
+    the parameters) from which Newton's method closes, then continued value by value: a
+    first-order predictor along the unknowns' rates (the closure's velocity system), then at most
+    a few Newton corrections, the first no larger than a tenth of a radian (so that a step does not
+    jump to another assembly) and each further one smaller, all designs in one vectorised
+    evaluation of the generated closure.  A design stops where a step does not converge or meets a
+    dead centre (condition number over 1e10): nothing after is assembled.  The same method as
+    :class:`~symlink.solver.NumericSolver`'s continuation, but over the designs, not along one.
+
+    Returns ``(unknowns (M, N, n), assembled (M, N))``: the unknowns in the linkage's order, NaN where
+    not assembled.
+
+    >>> from symlink.catalog import stephenson3, EXAMPLE_VALUES
+    >>> values = dict(EXAMPLE_VALUES["stephenson3"])
+    >>> values["d"] = numpy.array([values["d"], 100.0])  # the second's ground is longer than its other links
+    >>> near = numpy.array([[0.96, 0.27, 1.43, -0.16]] * 2)  # beta, mu, phi, eta near the assembly whose crank turns
+    >>> unknowns, assembled = newton_traced_batch(stephenson3(), values, numpy.linspace(0.0, 2 * numpy.pi, 97),
+    ...                                           numpy.random.default_rng(0), starts=near)
+    >>> assembled.all(axis=1).tolist(), round(float(unknowns[0, -1, 0] - unknowns[0, 0, 0]), 9)  # beta back after a turn
+    ([True, False], 0.0)
+    """
+    functions = _newton_solver(linkage).functions
+    # the generated module's order of the parameters and unknowns (the linkage's, checked here)
+    assert tuple(functions["UNKNOWNS"]) == tuple(u.name for u in linkage.unknowns)
+    arrays = [numpy.atleast_1d(numpy.asarray(designs[name], dtype=float)) for name in functions["PARAMETERS"]]
+    count = max(len(a) for a in arrays)
+    parameters = [numpy.broadcast_to(a, (count,)) for a in arrays]
+    n = len(linkage.unknowns)
+    sweep = numpy.asarray(sweep, dtype=float)
+    q = numpy.full((count, n), numpy.nan)
+    if starts is not None:
+        q[:] = starts
+    angles = numpy.array([is_angle(linkage, u) for u in linkage.unknowns])
+    reach = numpy.sum(numpy.abs(numpy.stack(parameters)), axis=0)
+    # assembly at the first input: the given starts, then random guesses for the designs still without one
+    for attempt in range(guesses + 1):
+        todo = ~numpy.all(numpy.isfinite(q), axis=1) if attempt else numpy.all(numpy.isfinite(q), axis=1)
+        if not todo.any():
+            continue
+        here = q[todo] if attempt == 0 else numpy.where(
+            angles, rng.uniform(-math.pi, math.pi, (int(todo.sum()), n)),
+            rng.uniform(-1.0, 1.0, (int(todo.sum()), n)) * reach[todo, None])
+        sub = [p[todo] for p in parameters]
+        for _ in range(_BATCH_ASSEMBLY_ITERATIONS):
+            _, step, regular, _ = _batch_closure(functions, sweep[0], sub, here)
+            here = here + numpy.where(regular[:, None], step, 0.0)
+        residual, _, regular, _ = _batch_closure(functions, sweep[0], sub, here, checked=True)
+        closed = (residual < _BATCH_RESIDUAL) & regular
+        q[numpy.flatnonzero(todo)[~closed]] = numpy.nan
+        q[numpy.flatnonzero(todo)[closed]] = here[closed]
+    unknowns = numpy.full((count, len(sweep), n), numpy.nan)
+    alive = numpy.all(numpy.isfinite(q), axis=1)
+    unknowns[alive, 0] = q[alive]
+    rhs = functions["_velocity_rhs"]
+    for k in range(1, len(sweep)):
+        index = numpy.flatnonzero(alive)
+        if not len(index):
+            break
+        sub = [p[index] for p in parameters]
+        current = q[index]
+        _, _, _, J = _batch_closure(functions, sweep[k - 1], sub, current)
+        with numpy.errstate(all="ignore"):
+            rate = numpy.linalg.solve(J, numpy.broadcast_to(
+                rhs(sweep[k - 1], *sub, *numpy.moveaxis(current, -1, 0), 1.0), current.shape)[..., None])[..., 0]
+        here = current + rate * (sweep[k] - sweep[k - 1])
+        ok = numpy.all(numpy.isfinite(here), axis=1)
+        limit = numpy.full(len(index), _BATCH_MAX_CORRECTION)
+        for _ in range(_BATCH_STEP_ITERATIONS):
+            residual, step, regular, _ = _batch_closure(functions, sweep[k], sub, here)
+            size = numpy.max(numpy.abs(numpy.where(regular[:, None], step, numpy.inf)), axis=1)
+            ok &= (residual < _BATCH_RESIDUAL) | (regular & (size <= limit))
+            here = here + numpy.where((ok & regular)[:, None], step, 0.0)
+            limit = numpy.maximum(size * 0.5, 1e-12)
+            if numpy.all(~ok | (size < 1e-12)):
+                break
+        residual, _, regular, _ = _batch_closure(functions, sweep[k], sub, here, checked=True)
+        ok &= (residual < _BATCH_RESIDUAL) & regular
+        alive[index[~ok]] = False
+        q[index[ok]] = here[ok]
+        unknowns[index[ok], k] = here[ok]
+    return unknowns, numpy.all(numpy.isfinite(unknowns), axis=2)

@@ -65,7 +65,7 @@ from ..analysis.transmission import transmission_arrays, transmission_coordinate
 from ..display import record_html
 from ..linkage import Linkage
 from .design_fit import (BRANCH_SAMPLES, INPUT_PHASE, _jacobian, _newton_solver, _solver, branch_break, check_branches,
-                         find_assembly, free_bounds)
+                         find_assembly, free_bounds, newton_traced_batch)
 from .path import _FULL_TURN, _accelerated_levenberg_marquardt
 
 __all__ = ["PathSynthesis", "synthesize_path", "traced_points", "find_assembly", "path_residuals", "FRAME_NAMES"]
@@ -87,7 +87,10 @@ _SCREENED = 4              # untimed: this many times ``starts`` starts screened
 _SCREEN_EVALUATIONS = 40   # ... this many evaluations each in the first round, twice as many each round after
 _PARTIAL_RANK = 4.0        # untimed starts: a design whose input cannot turn fully ranks as if this much farther
 _ACTIVE = 1e-6             # a constraint within this (relative) of its limit is reported active
-_NEWTON_SAMPLED = 160      # without a closed form: random designs drawn for the starts (each solved by Newton) ...
+_PROMISING = 1e-11         # without a closed form: a screened start this close (cost: rms 4e-6 of the size) goes on
+_PROMOTED_EVALUATIONS = 400  # ... at once, for at most this many more evaluations
+_NEWTON_SAMPLED = 160      # without a closed form: random designs drawn for the timed starts (each solved by Newton) ...
+_NEWTON_TRACED = 1500      # ... and for the untimed starts (traced all at once: newton_traced_batch)
 _NEWTON_GUESSES = 4        # ... and random initial guesses tried for an assembly of each
 
 
@@ -583,7 +586,7 @@ def _untimed_starts(problem: _Problem, rng, count: int, given, branch_choice, gu
     ways = {None: [fraction, 1.0 - fraction], 1: [fraction], -1: [1.0 - fraction]}[problem.direction]
     shapes = numpy.stack(ways)  # along the curve with the input growing, shrinking, or both
     if problem.newton:
-        rows, signs = _sampled_designs(problem, rng, _NEWTON_SAMPLED, given, None)
+        rows, signs = _sampled_designs(problem, rng, _NEWTON_TRACED, given, None)
         traced, assembled, unknowns = _newton_traced(problem, rows, sweep, rng, guess,
                                                      all(name in given for name in problem.free))
     else:
@@ -665,39 +668,30 @@ def _newton_traced(problem: _Problem, rows: numpy.ndarray, sweep: numpy.ndarray,
                    guess: Mapping[str, float] | None, users: bool):
     """Untimed starts' sweeps without a closed form: the point (complex) and the unknowns along ``sweep``.
 
-    Each design is assembled at the sweep's first input (:func:`find_assembly`) and continued
-    chunk by chunk (an eighth of a turn each) until Newton's method stops: what follows is not
-    assembled.  Returns ``(traced (M, N), assembled (M, N), unknowns (M, N, unknowns))``.
+    All designs at once (:func:`symlink.synthesis.design_fit.newton_traced_batch`): each is
+    assembled at the sweep's first input (the user's design, first, from ``guess`` when given;
+    the others from random guesses) and continued value by value until Newton's method stops or
+    meets a dead centre: what follows is not assembled.  Returns ``(traced (M, N), assembled (M, N),
+    unknowns (M, N, unknowns))``.
     """
     linkage = problem.linkage
-    traced = numpy.full((len(rows), len(sweep)), numpy.nan + 0j)
-    assembled = numpy.zeros((len(rows), len(sweep)), dtype=bool)
-    unknowns = numpy.full((len(rows), len(sweep), len(problem.unknown_names)), numpy.nan)
-    solver = _newton_solver(linkage)
-    chunk = max(2, _SWEEP // 8)
-    for index, row in enumerate(rows):
-        design = _newton_design(problem, row)
-        start = (dict(guess) if index == 0 and users and guess is not None
-                 else find_assembly(linkage, design, float(sweep[0]), rng, _NEWTON_GUESSES))
-        done, step = 0, len(sweep) - 1  # the whole sweep in one go first; where that stops, chunk by chunk
-        while start is not None and done < len(sweep) - 1:
-            stop = min(len(sweep), done + step + 1)
-            try:
-                with numpy.errstate(all="ignore"):
-                    solved = solver(guess=start, **design, **{linkage.inputs[0].name: sweep[done:stop]})
-            except ValueError:
-                if step == chunk:
-                    break
-                step = chunk
-                continue
-            traced[index, done:stop] = numpy.asarray(solved[problem.outputs[0]]) + 1j * numpy.asarray(
-                solved[problem.outputs[1]])
-            for k, name in enumerate(problem.unknown_names):
-                unknowns[index, done:stop, k] = numpy.asarray(solved[name])
-            assembled[index, done:stop] = True
-            start = {name: float(unknowns[index, stop - 1, k]) for k, name in enumerate(problem.unknown_names)}
-            done = stop - 1
-    return traced, assembled, unknowns
+    designs: dict[str, float | numpy.ndarray] = dict(problem.values)
+    for k, name in enumerate(problem.free):
+        designs[name] = rows[:, k]
+    starts = None
+    if users and guess is not None:
+        starts = numpy.full((len(rows), len(problem.unknown_names)), numpy.nan)
+        starts[0] = [float(guess[name]) for name in problem.unknown_names]
+    unknowns, assembled = newton_traced_batch(linkage, designs, sweep, rng, _NEWTON_GUESSES, starts)
+    functions = _newton_solver(linkage).functions
+    parameters = [numpy.broadcast_to(numpy.asarray(designs[name], dtype=float)[..., None], assembled.shape)
+                  if numpy.ndim(designs[name]) else float(designs[name]) for name in functions["PARAMETERS"]]
+    with numpy.errstate(all="ignore"):
+        named = functions["_outputs"](sweep[None, :], *parameters, *numpy.moveaxis(unknowns, -1, 0))
+    named.update({name: unknowns[..., k] for k, name in enumerate(problem.unknown_names)})
+    x, y = (numpy.broadcast_to(numpy.asarray(named[name], dtype=float), assembled.shape) for name in problem.outputs)
+    traced = numpy.where(assembled, x + 1j * y, numpy.nan)
+    return traced, assembled & numpy.isfinite(traced), unknowns
 
 
 def _ranked(fits: list, count: int, given: Mapping[str, float], problem: _Problem) -> list:
@@ -1034,6 +1028,17 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
                     if problem.newton and problem.assembly is not None:
                         signs = dict(problem.assembly)  # the assembly continued so far: the next round's start
                     stopped = used < min(budget, evaluations)
+                    if problem.newton and not stopped and cost < _PROMISING:
+                        # Without a closed form an evaluation is a Newton continuation, dear: a start already this
+                        # close is refined to the end now, not after a round of every other start.
+                        allowed = min(evaluations - min(budget, evaluations), _PROMOTED_EVALUATIONS)
+                        further = _refine(problem, x, signs, angles, allowed, tolerance) if allowed else None
+                        if further is not None:
+                            x, angles, cost, used = further
+                            spent += used
+                            stopped = used < allowed
+                            if problem.assembly is not None:
+                                signs = dict(problem.assembly)
                     if cost < closest:
                         closest = cost
                         if verified(x, signs, angles):

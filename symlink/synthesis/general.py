@@ -338,21 +338,51 @@ class _Problem:
         return float(links.max() / links.min()) if len(links) and links.min() > 0 else (
             math.inf if len(links) else 1.0)
 
+    def solved(self, names: Sequence[str], design: Mapping[str, float], inputs: numpy.ndarray,
+               branches: Mapping[str, float]) -> dict[str, numpy.ndarray]:
+        """The coordinates ``names`` at ``inputs`` from the linkage's own generated solver.
+
+        Closed form: the branch signs ``branches``.  Without: Newton's method continued along the
+        inputs in order from :attr:`assembly` (the unknowns at the first target), else from
+        ``branches`` (the start's assembly), ``ValueError`` where it cannot be continued.
+        """
+        linkage = self.linkage
+        if not self.newton:
+            signs = {name: int(sign) for name, sign in branches.items()}
+            return _solver(linkage, tuple(names))(**_arguments(linkage, design, signs),
+                                                  **{linkage.inputs[0].name: inputs})
+        guess = dict(self.assembly if self.assembly is not None else branches)
+        with numpy.errstate(all="ignore"):
+            found = _newton_solver(linkage)(guess=guess, **_arguments(linkage, design, None),
+                                            **{linkage.inputs[0].name: numpy.asarray(inputs, dtype=float)})
+        return {name: numpy.asarray(found[name], dtype=float) for name in names}
+
     def feasible_motion(self, design: Mapping[str, float], inputs: numpy.ndarray,
-                        branches: Mapping[str, int]) -> str:
+                        branches: Mapping[str, float]) -> str:
         """Why the design breaks the transmission or rotation constraint at these inputs ('' if it does not)."""
         if self.transmission is None and not self.full_rotation:
             return ""
         linkage = self.linkage
-        arguments = _arguments(linkage, design, branches)
+        arguments = _arguments(linkage, design, None if self.newton else {k: int(v) for k, v in branches.items()})
         if self.transmission is not None:
             names, least = self.transmission
-            solved = _solver(linkage, tuple(names))(**arguments, **{linkage.inputs[0].name: inputs})
+            try:
+                solved = self.solved(tuple(names), design, inputs, branches)
+            except ValueError as error:
+                return f"the input cannot move along the targets on one assembly: {error}"
             for loop, mu in transmission_arrays(linkage, {**design, **arguments}, solved).items():
                 worst = float(numpy.min(numpy.minimum(mu, math.pi - mu)))
                 if not worst >= least:
                     return f"the transmission angle at {loop} falls to {math.degrees(worst):.6g} deg"
-        if self.full_rotation:
+        if self.full_rotation and self.newton:
+            # Newton's method continued a whole turn from the assembly at the first input: it stops (ValueError)
+            # where the assembly ends or at a dead centre.
+            turn = float(inputs[0]) + numpy.linspace(0.0, 2 * math.pi, _ROTATION_SAMPLES + 1)
+            try:
+                self.solved(self.unknown_names, design, turn, branches)
+            except ValueError:
+                return "the input cannot turn fully (the assembly ends or meets a dead centre over the turn)"
+        elif self.full_rotation:
             turn = numpy.linspace(0.0, 2 * math.pi, _ROTATION_SAMPLES, endpoint=False)
             solved = _solver(linkage, ("singular",))(**arguments, **{linkage.inputs[0].name: turn})
             ok = numpy.asarray(solved["assembled"]) & ~numpy.asarray(solved["singular"], dtype=bool)
@@ -839,6 +869,8 @@ def _verify_newton(problem: _Problem, x: numpy.ndarray, start: Mapping[str, floa
             reached = _placed(numpy.concatenate([local[:, 0], local[-1:, -1]]), placement)
             errors = numpy.hypot(*(reached - problem.targets).T)
             assembly = {name: float(numpy.asarray(solved[name])[0]) for name in problem.unknown_names}
+            problem.assembly = assembly
+            why = problem.feasible_motion(design, moves.ravel(), assembly)
     if not why and not problem.allowed(x):
         why = "outside the bounds or the link ratio"
     stated, active = _constraint_report(problem, x, design, {}, inputs)
@@ -872,9 +904,11 @@ def _constraint_report(problem: _Problem, x: numpy.ndarray, design: Mapping[str,
             active.append(f"link ratio at {problem.max_link_ratio:.6g}")
     if problem.transmission is not None:
         names_needed, least = problem.transmission
-        arguments = _arguments(problem.linkage, design, branches)
-        solved = _solver(problem.linkage, tuple(names_needed))(**arguments,
-                                                                **{problem.linkage.inputs[0].name: inputs})
+        arguments = _arguments(problem.linkage, design, None if problem.newton else branches)
+        try:
+            solved = problem.solved(tuple(names_needed), design, inputs, branches)
+        except ValueError:  # a Newton linkage not continued along its targets: reported as such by the verification
+            solved = {name: numpy.full(len(inputs), numpy.nan) for name in names_needed}
         for loop, mu in transmission_arrays(problem.linkage, {**design, **arguments}, solved).items():
             worst = float(numpy.min(numpy.minimum(mu, math.pi - mu)))
             stated.append(f"transmission angle at {loop} >= {math.degrees(least):.6g} deg: "
@@ -927,15 +961,18 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
     A linkage without a closed form (solved by Newton's method) has no branches; ``guess``
     gives its unknowns near an assembly at the first target's input for the design in
     ``values`` (default: one found by :func:`find_assembly`), and the design found reports its
-    assembly as ``assembly``.  ``min_transmission`` and ``full_rotation`` are not supported
-    there yet (``ValueError``).
+    assembly as ``assembly``.  There ``full_rotation`` asks that Newton's method continue that
+    assembly a whole turn of the input from the first target (it stops where the assembly ends
+    or at a dead centre), and ``min_transmission`` is measured on the assembly continued along
+    the targets; a linkage none of whose loops has two unknown angles (the Stephenson III) has
+    no transmission angle in symlink's sense, and ``min_transmission`` there is a ``ValueError``.
     """
     if len(linkage.inputs) != 1:
         raise ValueError(f"path synthesis drives one input; {linkage.name} has {len(linkage.inputs)}")
     newton = not linkage.has_closed_form
-    if newton and (min_transmission > 0 or full_rotation):
-        raise ValueError(f"{linkage.name} has no closed form: min_transmission and full_rotation are not "
-                         "supported for Newton-solved linkages yet")
+    if newton and min_transmission > 0 and not transmission_coordinates(linkage):
+        raise ValueError(f"min_transmission cannot be held on {linkage.name}: no loop of it has exactly two unknown "
+                         "angles, the joint where symlink measures a transmission angle")
     if guess is not None and (not newton or set(guess) != {q.name for q in linkage.unknowns}
                               or not all(math.isfinite(float(v)) for v in guess.values())):
         raise ValueError(f"guess gives the unknowns of a linkage without a closed form near an assembly at the "

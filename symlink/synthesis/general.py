@@ -1057,6 +1057,7 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
             results = []
             for cost, x, signs, angles, stopped in alive:
                 if not stopped:
+                    origin = (x, signs, angles)
                     refined = _refine(problem, x, signs, angles, min(budget, evaluations), tolerance)
                     if refined is None:
                         continue
@@ -1067,12 +1068,16 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
                     stopped = used < min(budget, evaluations)
                     if problem.newton and not stopped and cost < _PROMISING:
                         # Without a closed form an evaluation is a Newton continuation, dear: a start already this
-                        # close is refined to the end now, not after a round of every other start.
-                        allowed = min(evaluations - min(budget, evaluations), _PROMOTED_EVALUATIONS)
-                        further = _refine(problem, x, signs, angles, allowed, tolerance) if allowed else None
+                        # close is refined to the end now, not after a round of every other start.  Again from
+                        # where this round began, in one run: a refinement restarted where one stopped begins
+                        # with the damping reset, and near such a point (an ill-conditioned valley, residuals
+                        # with the continuation's rounding) its steps' gains are below that rounding, so it stops.
+                        allowed = min(evaluations, min(budget, evaluations) + _PROMOTED_EVALUATIONS)
+                        further = _refine(problem, *origin, allowed, tolerance)
                         if further is not None:
+                            spent += further[3]
+                        if further is not None and further[2] < cost:
                             x, angles, cost, used = further
-                            spent += used
                             stopped = used < allowed
                             if problem.assembly is not None:
                                 signs = dict(problem.assembly)

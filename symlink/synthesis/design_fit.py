@@ -376,7 +376,7 @@ def refine(residuals: Callable[[numpy.ndarray], tuple[numpy.ndarray, numpy.ndarr
 _BATCH_ASSEMBLY_ITERATIONS = 40
 _BATCH_RESIDUAL = 1e-10
 #: ... and along the sweep: Newton iterations a step, the largest first correction after the predictor (rad, or
-#: link lengths) and the condition number past which a position is a dead centre (the Newton driver's).
+#: link lengths) and the singularity past which a position is a dead centre (Hadamard's ratio below its inverse).
 _BATCH_STEP_ITERATIONS = 8
 _BATCH_MAX_CORRECTION = 0.1
 _BATCH_SINGULAR = 1e10
@@ -385,8 +385,9 @@ _BATCH_SINGULAR = 1e10
 def _batch_closure(functions, theta, parameters: Sequence[numpy.ndarray], q: numpy.ndarray, checked: bool = False):
     """Residuals over the loop size (M), Newton step (M, n), regular (M) and Jacobian (M, n, n) at ``q`` (M, n).
 
-    ``checked``: regular means a (scaled) condition number under :data:`_BATCH_SINGULAR` (an SVD a
-    design); else only a finite step.  Where not regular the step is NaN.
+    ``checked``: regular means the (scaled) Jacobian's Hadamard ratio (|det| over the product of its
+    column norms: 1 for orthogonal columns, 0 at a dead centre) above 1 / :data:`_BATCH_SINGULAR`;
+    else only a finite step.  Where not regular the step is NaN.
     """
     F, J, scale, unit = functions["_closure"](theta, *parameters, *numpy.moveaxis(q, -1, 0))
     F, J = numpy.broadcast_to(F, q.shape), numpy.broadcast_to(J, q.shape + (q.shape[-1],))
@@ -395,10 +396,10 @@ def _batch_closure(functions, theta, parameters: Sequence[numpy.ndarray], q: num
     with numpy.errstate(all="ignore"):
         residual = numpy.max(numpy.abs(F) / scale, axis=-1)
         regular = numpy.all(numpy.isfinite(J), axis=(1, 2)) & numpy.all(numpy.isfinite(F), axis=1)
-        if checked:
-            condition = numpy.linalg.cond(numpy.where(regular[:, None, None], J, 1.0)
-                                          * unit[..., None, :] / scale[..., :, None])
-            regular &= numpy.isfinite(condition) & (condition < _BATCH_SINGULAR)
+        if checked:  # Hadamard's ratio |det| / product of the column norms (an LU, not an SVD, a design)
+            scaled = numpy.where(regular[:, None, None], J, 1.0) * unit[..., None, :] / scale[..., :, None]
+            ratio = numpy.abs(numpy.linalg.det(scaled)) / numpy.prod(numpy.linalg.norm(scaled, axis=-2), axis=-1)
+            regular &= numpy.isfinite(ratio) & (ratio > 1.0 / _BATCH_SINGULAR)
         safe = numpy.where(regular[:, None, None], J, numpy.eye(q.shape[-1]))
         try:
             step = -numpy.linalg.solve(safe, numpy.where(regular[:, None], F, 0.0)[..., None])[..., 0]
@@ -426,7 +427,7 @@ def newton_traced_batch(linkage: Linkage, designs: Mapping[str, float | numpy.nd
     a few Newton corrections, the first no larger than a tenth of a radian (so that a step does not
     jump to another assembly) and each further one smaller, all designs in one vectorised
     evaluation of the generated closure.  A design stops where a step does not converge or meets a
-    dead centre (condition number over 1e10): nothing after is assembled.  The same method as
+    dead centre (the scaled Jacobian's Hadamard ratio under 1e-10): nothing after is assembled.  The same method as
     :class:`~symlink.solver.NumericSolver`'s continuation, but over the designs, not along one.
 
     Returns ``(unknowns (M, N, n), assembled (M, N))``: the unknowns in the linkage's order, NaN where

@@ -262,3 +262,21 @@ def test_untimed_recovery_of_generated_problems_reaches_the_bar():
             ok = bool(np.max(np.hypot(*(reached - targets).T)) < 1e-8 * _size(targets))
         recovered.append(ok)
     assert sum(recovered) >= RECOVERY_NEEDED, [seed for seed, ok in enumerate(recovered) if not ok]
+
+
+def test_designs_traced_at_once_follow_the_30_digit_reference():
+    """newton_traced_batch continues three designs together: two from ASSEMBLY (their cranks turn) match the
+    reference continued from the same assembly, the third (on the folding circuit) stops before its fold."""
+    from symlink.synthesis.design_fit import newton_traced_batch
+    thetas = np.linspace(0.0, 1.5, 31)
+    designs = [TRUTH, {**TRUTH, "b": 3.3, "g": 4.0}, TRUTH]
+    starts = np.array([[ASSEMBLY[n] for n in UNKNOWNS]] * 2 + [[FOLDING[n] for n in UNKNOWNS]])
+    values = {name: np.array([design[name] for design in designs]) for name in TRUTH}
+    unknowns, assembled = newton_traced_batch(stephenson3(), values, thetas, np.random.default_rng(0), starts=starts)
+    assert assembled[:2].all()
+    for k in range(2):
+        reference = stephenson3_continued(designs[k], thetas[::5], ASSEMBLY)
+        got = unknowns[k, ::5]
+        assert np.max(np.abs(got - np.array([[float(v) for v in q] for q in reference]))) < 1e-10
+    fold = np.radians(54.65)  # the fold of this circuit (tests/test_solver.py)
+    assert assembled[2, thetas < fold - 0.05].all() and not assembled[2, thetas > fold + 0.05].any()

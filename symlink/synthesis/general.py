@@ -89,9 +89,9 @@ _PARTIAL_RANK = 4.0        # untimed starts: a design whose input cannot turn fu
 _ACTIVE = 1e-6             # a constraint within this (relative) of its limit is reported active
 _PROMISING = 1e-9          # without a closed form: a screened start this close (cost: rms 4e-5 of the size) goes on
 _PROMOTED_EVALUATIONS = 400  # ... at once, for at most this many more evaluations
-_NEWTON_SAMPLED = 160      # without a closed form: random designs drawn for the timed starts (each solved by Newton) ...
-_NEWTON_TRACED = 1500      # ... and for the untimed starts (traced all at once: newton_traced_batch)
-_NEWTON_GUESSES = 4        # ... and random initial guesses tried for an assembly of each
+_NEWTON_TRACED = 1500      # without a closed form: designs drawn for the starts (traced at once: newton_traced_batch) ...
+_TIMED_SUBSTEPS = 8        # ... timed: continued in this many steps from target to target
+_NEWTON_GUESSES = 4        # ... random initial guesses tried for an assembly of each
 
 
 @dataclass(frozen=True)
@@ -658,39 +658,34 @@ def _untimed_starts(problem: _Problem, rng, count: int, given, branch_choice, gu
     return _ranked(fits, count, given, problem)
 
 
-def _newton_design(problem: _Problem, row: numpy.ndarray) -> dict[str, float]:
-    return {**problem.values, **{name: float(v) for name, v in zip(problem.free, row)}}
-
-
 def _newton_timed_starts(problem: _Problem, rng, count: int, given, guess: Mapping[str, float] | None):
-    """Timed starts of a linkage without a closed form: sampled designs on an assembly the solver's search finds.
+    """Timed starts of a linkage without a closed form: sampled designs continued along the target inputs at once.
 
-    Each sampled design's assembly at the first target's input is found by
-    :func:`find_assembly` (the user's own design, sampled first, from ``guess`` when given),
-    continued along the target inputs by Newton's method; the start's "branches" are that
-    assembly (the unknowns at the first input), which the refinement then continues.
+    :data:`_NEWTON_TRACED` sampled designs (the user's own first, from ``guess`` when given) are
+    assembled at the first target's input and continued through every target in order, with
+    :data:`_TIMED_SUBSTEPS` steps between consecutive targets, all together
+    (:func:`symlink.synthesis.design_fit.newton_traced_batch`); those assembled through all of
+    them are placed by the similarity fit and ranked.  The start's "branches" are its assembly
+    (the unknowns at the first input), which the refinement then continues.
     """
     inputs = problem.timed
     assert inputs is not None
     w = problem.targets[:, 0] + 1j * problem.targets[:, 1]
-    rows, _ = _sampled_designs(problem, rng, _NEWTON_SAMPLED, given, None)
+    rows, _ = _sampled_designs(problem, rng, _NEWTON_TRACED, given, None)
     users = all(name in given for name in problem.free)
+    steps = numpy.linspace(0.0, 1.0, _TIMED_SUBSTEPS + 1)[:-1]
+    sweep = numpy.concatenate([(inputs[:-1, None] + numpy.diff(inputs)[:, None] * steps[None, :]).ravel(),
+                               inputs[-1:]])
+    traced, assembled, unknowns = _newton_traced(problem, rows, sweep, rng, guess, users)
+    at = numpy.arange(len(inputs)) * _TIMED_SUBSTEPS
+    through = numpy.all(assembled[:, at], axis=1) & numpy.all(assembled, axis=1)
+    placements, rms = _fit_placements(problem, numpy.where(through[:, None], traced[:, at], 0.0), w)
     fits = []
-    for index, row in enumerate(rows):
-        design = _newton_design(problem, row)
-        start = (dict(guess) if index == 0 and users and guess is not None
-                 else find_assembly(problem.linkage, design, float(inputs[0]), rng, _NEWTON_GUESSES))
-        if start is None:
-            continue
-        problem.assembly = start
-        points, _, ok = problem.local(design, inputs, start)
-        if not numpy.all(ok):
-            continue
-        placements, rms = _fit_placements(problem, (points[:, 0] + 1j * points[:, 1])[None, :], w)
-        x = _start(problem, row, placements[0])
-        if x is not None and math.isfinite(rms[0]):
-            fits.append((float(rms[0]), x, dict(problem.assembly), inputs.copy()))
-    problem.assembly = None
+    for index in numpy.flatnonzero(through & numpy.isfinite(rms)):
+        x = _start(problem, rows[index], placements[index])
+        if x is not None:
+            assembly = {name: float(unknowns[index, 0, j]) for j, name in enumerate(problem.unknown_names)}
+            fits.append((float(rms[index]), x, assembly, inputs.copy()))
     return _ranked(fits, count, given, problem)
 
 

@@ -36,10 +36,13 @@ the one Newton's method continues from an initial guess.  There the Jacobian's c
 generated Newton module (sensitivities from the converged closure Jacobian), continued along the
 input from the unknowns found at the first target by the previous evaluation, so that a
 refinement carries its start's assembly along as the design moves; starts are sampled designs
-on an assembly found by Newton's method from random guesses (:func:`find_assembly`), the
-user's own from ``guess``; the verification continues the assembly with the linkage's
-:class:`~symlink.solver.NumericSolver` through every target in order, and the design reports it
-as ``assembly`` (the unknowns at the first target).
+on an assembly found by Newton's method from random guesses, the user's own from ``guess``, all
+continued together along the input (:func:`symlink.synthesis.design_fit.newton_traced_batch`:
+through the target inputs with timing, over two turns without); the verification continues the
+assembly with the linkage's :class:`~symlink.solver.NumericSolver` through every target in order,
+and the design reports it as ``assembly`` (the unknowns at the first target).  There each
+evaluation is a Newton continuation (tens of milliseconds), so an untimed start that the
+screening already brought close is refined to the end at once (:data:`_PROMISING`).
 
 >>> from symlink.catalog import slider_crank
 >>> linkage = slider_crank()

@@ -64,6 +64,34 @@ def stephenson3_closure(x, q, p):
             a * mp.sin(theta) + e * mp.sin(beta + p["alpha"]) + g * mp.sin(eta) - h * mp.sin(phi + p["delta"])]
 
 
+STEPHENSON3_UNKNOWNS = ("beta", "mu", "phi", "eta")
+
+
+def stephenson3_continued(p, thetas, guess, substeps=8, dps=30, jacobian=None):
+    """Stephenson III's unknowns (beta, mu, phi, eta) as mpf lists at each crank angle in ``thetas``, in order.
+
+    The assembly nearest ``guess`` (a mapping by name) is found by ``mpmath.findroot`` at thetas[0], then
+    continued from each angle to the next in ``substeps`` equal steps (at thetas[0] itself too, steps of
+    zero), at ``dps`` digits; ``jacobian(q, p)``, if given, is findroot's Jacobian (else its own differences).
+    """
+    with mp.workdps(dps):
+        p = {k: _m(v) for k, v in p.items()}
+        extra = {} if jacobian is None else {"J": lambda *q: jacobian(q, p)}
+
+        def solve(theta, start):
+            found = mp.findroot(lambda *q: stephenson3_closure((theta,), q, p), start, **extra)
+            return [found[i] for i in range(len(start))]
+
+        q = solve(_m(thetas[0]), [_m(guess[n]) for n in STEPHENSON3_UNKNOWNS])
+        previous, solved = _m(thetas[0]), []
+        for theta in map(_m, thetas):
+            for k in range(1, substeps + 1):
+                q = solve(previous + (theta - previous) * k / substeps, q)
+            previous = theta
+            solved.append(q)
+        return solved
+
+
 def circle_point(P, r, Q, s, side):
     """The point X (complex) with |X - P| = r and |X - Q| = s, left (+1) or right (-1) of the line P -> Q."""
     length = abs(Q - P)

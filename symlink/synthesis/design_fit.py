@@ -30,8 +30,9 @@ import sympy as sp
 from ..closure import is_angle
 from ..design_jacobian import DesignJacobian
 from ..linkage import Linkage
+from ..loops import Loop
 from ..solver import NumericSolver, Solver
-from .general import INPUT_PHASE, find_assembly, with_input_phase
+from ..vectors import Vector, VectorSum
 from .path import _accelerated_levenberg_marquardt
 
 __all__ = ["DesignOutputs", "free_bounds", "sampled_designs", "branch_break", "refine", "is_angle_output",
@@ -52,6 +53,38 @@ def sample_count(linkage: Linkage) -> int:
     return SAMPLED if linkage.has_closed_form else NEWTON_SAMPLED
 
 
+#: The parameter added to the input in the Jacobian's copy of the linkage (:func:`with_input_phase`).
+INPUT_PHASE = "input_phase"
+
+
+def _shifted(expr: sp.Expr, input_symbol: sp.Symbol, phase: sp.Symbol) -> sp.Expr:
+    return sp.sympify(expr).xreplace({input_symbol: input_symbol + phase})
+
+
+def _shifted_sum(vectors: Vector | VectorSum | None, input_symbol: sp.Symbol, phase: sp.Symbol):
+    if vectors is None:
+        return None
+    return VectorSum(tuple((sign, Vector(_shifted(v.length, input_symbol, phase),
+                                         _shifted(v.angle, input_symbol, phase), v.name))
+                           for sign, v in vectors.as_sum().terms))
+
+
+@lru_cache(maxsize=32)
+def with_input_phase(linkage: Linkage) -> Linkage:
+    """The linkage with its input ``q`` replaced by ``q + input_phase``: d/d(input_phase) at 0 is d/dq."""
+    (input_symbol,) = linkage.inputs
+    phase = sp.Symbol(INPUT_PHASE, real=True)
+    taken = {s.name for s in linkage.parameters + linkage.coordinates}
+    if INPUT_PHASE in taken:
+        raise ValueError(f"{linkage.name} already has a symbol named {INPUT_PHASE!r}, which path synthesis needs")
+    loops = [Loop(_shifted_sum(loop.vectors, input_symbol, phase), name=loop.name) for loop in linkage.loops]
+    return Linkage(f"{linkage.name}with_input_phase", loops, inputs=[input_symbol], unknowns=list(linkage.unknowns),
+                   parameters=list(linkage.parameters) + [phase],
+                   points={k: _shifted_sum(v, input_symbol, phase) for k, v in linkage.points.items()},
+                   roles=dict(linkage.roles),
+                   extras={k: _shifted(v, input_symbol, phase) for k, v in linkage.extras.items()})
+
+
 @lru_cache(maxsize=32)
 def _jacobian(linkage: Linkage, outputs: tuple[str, ...], free: tuple[str, ...]) -> DesignJacobian:
     return DesignJacobian(with_input_phase(linkage), list(outputs), list(free) + [INPUT_PHASE])
@@ -60,6 +93,38 @@ def _jacobian(linkage: Linkage, outputs: tuple[str, ...], free: tuple[str, ...])
 @lru_cache(maxsize=32)
 def _solver(linkage: Linkage, outputs: tuple[str, ...]) -> Solver:
     return Solver(linkage, list(outputs))
+
+
+#: Random initial guesses tried by :func:`find_assembly` before it gives up.
+_ASSEMBLY_GUESSES = 12
+
+
+def find_assembly(linkage: Linkage, values: Mapping[str, float], at: float, rng: numpy.random.Generator,
+                  tries: int = _ASSEMBLY_GUESSES) -> dict[str, float] | None:
+    """An assembly of a linkage without a closed form at input ``at``: its unknowns, or None if none is found.
+
+    Newton's method of the linkage's numeric solver from random initial guesses (angles over a
+    turn, lengths within the sum of the parameters), the first that closes; which assembly
+    that is depends on ``rng``.  (The same search as the drawing's, which synthesis may not import.)
+
+    >>> from symlink.catalog import stephenson3, EXAMPLE_VALUES
+    >>> found = find_assembly(stephenson3(), EXAMPLE_VALUES["stephenson3"], 0.0, numpy.random.default_rng(0))
+    >>> sorted(found)
+    ['beta', 'eta', 'mu', 'phi']
+    """
+    solver = _newton_solver(linkage)
+    parameters = {p.name: float(values[p.name]) for p in linkage.parameters}
+    scale = sum(abs(v) for v in parameters.values()) or 1.0
+    for _ in range(tries):
+        guess = {q.name: float(rng.uniform(-math.pi, math.pi)) if is_angle(linkage, q)
+                 else float(rng.uniform(-scale, scale)) for q in linkage.unknowns}
+        try:
+            with numpy.errstate(all="ignore"):
+                solved = solver(guess=guess, **parameters, **{linkage.inputs[0].name: numpy.array([float(at)])})
+        except ValueError:
+            continue
+        return {q.name: float(numpy.asarray(solved[q.name])[0]) for q in linkage.unknowns}
+    return None
 
 
 @lru_cache(maxsize=32)
@@ -135,7 +200,7 @@ class DesignOutputs:
     it takes its assembly (the unknowns near it at the first input, Newton's initial guess).
     :meth:`at` continues :attr:`assembly` (the unknowns at the first input of its last
     converged call) when it is set, so that a refinement carries its start's assembly along;
-    :meth:`batch` finds each design's assembly by :func:`symlink.synthesis.general.find_assembly`
+    :meth:`batch` finds each design's assembly by :func:`find_assembly`
     and writes it into that design's entry of ``signs``.
     """
 
@@ -304,3 +369,136 @@ def refine(residuals: Callable[[numpy.ndarray], tuple[numpy.ndarray, numpy.ndarr
     ``residuals(x)`` gives ``(r, J)``, or None for an infeasible ``x`` (never accepted).
     """
     return _accelerated_levenberg_marquardt(residuals, numpy.asarray(x0, dtype=float).copy(), evaluations, tolerance)
+
+
+#: Batched assembly search: Newton iterations from each random guess, and the residual (over the loop size) that
+#: counts as closed ...
+_BATCH_ASSEMBLY_ITERATIONS = 40
+_BATCH_RESIDUAL = 1e-10
+#: ... and along the sweep: Newton iterations a step, the largest first correction after the predictor (rad, or
+#: link lengths) and the singularity past which a position is a dead centre (Hadamard's ratio below its inverse).
+_BATCH_STEP_ITERATIONS = 8
+_BATCH_MAX_CORRECTION = 0.1
+_BATCH_SINGULAR = 1e10
+
+
+def _batch_closure(functions, theta, parameters: Sequence[numpy.ndarray], q: numpy.ndarray, checked: bool = False):
+    """Residuals over the loop size (M), Newton step (M, n), regular (M) and Jacobian (M, n, n) at ``q`` (M, n).
+
+    ``checked``: regular means the (scaled) Jacobian's Hadamard ratio (|det| over the product of its
+    column norms: 1 for orthogonal columns, 0 at a dead centre) above 1 / :data:`_BATCH_SINGULAR`;
+    else only a finite step.  Where not regular the step is NaN.
+    """
+    F, J, scale, unit = functions["_closure"](theta, *parameters, *numpy.moveaxis(q, -1, 0))
+    F, J = numpy.broadcast_to(F, q.shape), numpy.broadcast_to(J, q.shape + (q.shape[-1],))
+    scale = numpy.broadcast_to(scale, q.shape)
+    unit = numpy.broadcast_to(unit, q.shape)
+    with numpy.errstate(all="ignore"):
+        residual = numpy.max(numpy.abs(F) / scale, axis=-1)
+        regular = numpy.all(numpy.isfinite(J), axis=(1, 2)) & numpy.all(numpy.isfinite(F), axis=1)
+        if checked:  # Hadamard's ratio |det| / product of the column norms (an LU, not an SVD, a design)
+            scaled = numpy.where(regular[:, None, None], J, 1.0) * unit[..., None, :] / scale[..., :, None]
+            ratio = numpy.abs(numpy.linalg.det(scaled)) / numpy.prod(numpy.linalg.norm(scaled, axis=-2), axis=-1)
+            regular &= numpy.isfinite(ratio) & (ratio > 1.0 / _BATCH_SINGULAR)
+        safe = numpy.where(regular[:, None, None], J, numpy.eye(q.shape[-1]))
+        try:
+            step = -numpy.linalg.solve(safe, numpy.where(regular[:, None], F, 0.0)[..., None])[..., 0]
+        except numpy.linalg.LinAlgError:  # an exactly singular matrix among them: one at a time
+            step = numpy.full(q.shape, numpy.nan)
+            for k in numpy.flatnonzero(regular):
+                try:
+                    step[k] = -numpy.linalg.solve(safe[k], F[k])
+                except numpy.linalg.LinAlgError:
+                    regular[k] = False
+    step = numpy.where(regular[:, None], step, numpy.nan)
+    return residual, step, regular & numpy.all(numpy.isfinite(step), axis=1), safe
+
+
+def newton_traced_batch(linkage: Linkage, designs: Mapping[str, float | numpy.ndarray], sweep: numpy.ndarray,
+                        rng: numpy.random.Generator, guesses: int = 8,
+                        starts: numpy.ndarray | None = None) -> tuple[numpy.ndarray, numpy.ndarray]:
+    """Many designs of a linkage without a closed form continued along one input ``sweep`` at once.
+
+    ``designs`` maps every parameter to a number or an array (M,), one entry a design.  Each
+    design is assembled at ``sweep[0]`` from ``starts`` (M, unknowns; NaN rows: none) or else
+    the first of ``guesses`` random initial guesses (angles over a turn, lengths within the sum of
+    the parameters) from which Newton's method closes, then continued value by value: a
+    first-order predictor along the unknowns' rates (the closure's velocity system), then at most
+    a few Newton corrections, the first no larger than a tenth of a radian (so that a step does not
+    jump to another assembly) and each further one smaller, all designs in one vectorised
+    evaluation of the generated closure.  A design stops where a step does not converge or meets a
+    dead centre (the scaled Jacobian's Hadamard ratio under 1e-10): nothing after is assembled.  The same method as
+    :class:`~symlink.solver.NumericSolver`'s continuation, but over the designs, not along one.
+
+    Returns ``(unknowns (M, N, n), assembled (M, N))``: the unknowns in the linkage's order, NaN where
+    not assembled.
+
+    >>> from symlink.catalog import stephenson3, EXAMPLE_VALUES
+    >>> values = dict(EXAMPLE_VALUES["stephenson3"])
+    >>> values["d"] = numpy.array([values["d"], 100.0])  # the second's ground is longer than its other links
+    >>> near = numpy.array([[0.96, 0.27, 1.43, -0.16]] * 2)  # beta, mu, phi, eta near the assembly whose crank turns
+    >>> unknowns, assembled = newton_traced_batch(stephenson3(), values, numpy.linspace(0.0, 2 * numpy.pi, 97),
+    ...                                           numpy.random.default_rng(0), starts=near)
+    >>> assembled.all(axis=1).tolist(), round(float(unknowns[0, -1, 0] - unknowns[0, 0, 0]), 9)  # beta back after a turn
+    ([True, False], 0.0)
+    """
+    functions = _newton_solver(linkage).functions
+    # the generated module's order of the parameters and unknowns (the linkage's, checked here)
+    assert tuple(functions["UNKNOWNS"]) == tuple(u.name for u in linkage.unknowns)
+    arrays = [numpy.atleast_1d(numpy.asarray(designs[name], dtype=float)) for name in functions["PARAMETERS"]]
+    count = max(len(a) for a in arrays)
+    parameters = [numpy.broadcast_to(a, (count,)) for a in arrays]
+    n = len(linkage.unknowns)
+    sweep = numpy.asarray(sweep, dtype=float)
+    q = numpy.full((count, n), numpy.nan)
+    if starts is not None:
+        q[:] = starts
+    angles = numpy.array([is_angle(linkage, u) for u in linkage.unknowns])
+    reach = numpy.sum(numpy.abs(numpy.stack(parameters)), axis=0)
+    # assembly at the first input: the given starts, then random guesses for the designs still without one
+    for attempt in range(guesses + 1):
+        todo = ~numpy.all(numpy.isfinite(q), axis=1) if attempt else numpy.all(numpy.isfinite(q), axis=1)
+        if not todo.any():
+            continue
+        here = q[todo] if attempt == 0 else numpy.where(
+            angles, rng.uniform(-math.pi, math.pi, (int(todo.sum()), n)),
+            rng.uniform(-1.0, 1.0, (int(todo.sum()), n)) * reach[todo, None])
+        sub = [p[todo] for p in parameters]
+        for _ in range(_BATCH_ASSEMBLY_ITERATIONS):
+            _, step, regular, _ = _batch_closure(functions, sweep[0], sub, here)
+            here = here + numpy.where(regular[:, None], step, 0.0)
+        residual, _, regular, _ = _batch_closure(functions, sweep[0], sub, here, checked=True)
+        closed = (residual < _BATCH_RESIDUAL) & regular
+        q[numpy.flatnonzero(todo)[~closed]] = numpy.nan
+        q[numpy.flatnonzero(todo)[closed]] = here[closed]
+    unknowns = numpy.full((count, len(sweep), n), numpy.nan)
+    alive = numpy.all(numpy.isfinite(q), axis=1)
+    unknowns[alive, 0] = q[alive]
+    rhs = functions["_velocity_rhs"]
+    for k in range(1, len(sweep)):
+        index = numpy.flatnonzero(alive)
+        if not len(index):
+            break
+        sub = [p[index] for p in parameters]
+        current = q[index]
+        _, _, _, J = _batch_closure(functions, sweep[k - 1], sub, current)
+        with numpy.errstate(all="ignore"):
+            rate = numpy.linalg.solve(J, numpy.broadcast_to(
+                rhs(sweep[k - 1], *sub, *numpy.moveaxis(current, -1, 0), 1.0), current.shape)[..., None])[..., 0]
+        here = current + rate * (sweep[k] - sweep[k - 1])
+        ok = numpy.all(numpy.isfinite(here), axis=1)
+        limit = numpy.full(len(index), _BATCH_MAX_CORRECTION)
+        for _ in range(_BATCH_STEP_ITERATIONS):
+            residual, step, regular, _ = _batch_closure(functions, sweep[k], sub, here)
+            size = numpy.max(numpy.abs(numpy.where(regular[:, None], step, numpy.inf)), axis=1)
+            ok &= (residual < _BATCH_RESIDUAL) | (regular & (size <= limit))
+            here = here + numpy.where((ok & regular)[:, None], step, 0.0)
+            limit = numpy.maximum(size * 0.5, 1e-12)
+            if numpy.all(~ok | (size < 1e-12)):
+                break
+        residual, _, regular, _ = _batch_closure(functions, sweep[k], sub, here, checked=True)
+        ok &= (residual < _BATCH_RESIDUAL) & regular
+        alive[index[~ok]] = False
+        q[index[ok]] = here[ok]
+        unknowns[index[ok], k] = here[ok]
+    return unknowns, numpy.all(numpy.isfinite(unknowns), axis=2)

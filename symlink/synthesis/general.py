@@ -36,10 +36,13 @@ the one Newton's method continues from an initial guess.  There the Jacobian's c
 generated Newton module (sensitivities from the converged closure Jacobian), continued along the
 input from the unknowns found at the first target by the previous evaluation, so that a
 refinement carries its start's assembly along as the design moves; starts are sampled designs
-on an assembly found by Newton's method from random guesses (:func:`find_assembly`), the
-user's own from ``guess``; the verification continues the assembly with the linkage's
-:class:`~symlink.solver.NumericSolver` through every target in order, and the design reports it
-as ``assembly`` (the unknowns at the first target).
+on an assembly found by Newton's method from random guesses, the user's own from ``guess``, all
+continued together along the input (:func:`symlink.synthesis.design_fit.newton_traced_batch`:
+through the target inputs with timing, over two turns without); the verification continues the
+assembly with the linkage's :class:`~symlink.solver.NumericSolver` through every target in order,
+and the design reports it as ``assembly`` (the unknowns at the first target).  There each
+evaluation is a Newton continuation (tens of milliseconds), so an untimed start that the
+screening already brought close is refined to the end at once (:data:`_PROMISING`).
 
 >>> from symlink.catalog import slider_crank
 >>> linkage = slider_crank()
@@ -55,21 +58,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from functools import lru_cache
 from typing import Mapping, Sequence
 
 import numpy
 import sympy as sp
 from numpy.typing import ArrayLike
 
-from ..design_jacobian import DesignJacobian
 from ..analysis.transmission import transmission_arrays, transmission_coordinates
 from ..display import record_html
 from ..linkage import Linkage
-from ..loops import Loop
-from ..closure import is_angle
-from ..solver import NumericSolver, Solver
-from ..vectors import Vector, VectorSum
+from .design_fit import (BRANCH_SAMPLES, INPUT_PHASE, _jacobian, _newton_solver, _solver, branch_break, check_branches,
+                         find_assembly, free_bounds, newton_traced_batch)
 from .path import _FULL_TURN, _accelerated_levenberg_marquardt
 
 __all__ = ["PathSynthesis", "synthesize_path", "traced_points", "find_assembly", "path_residuals", "FRAME_NAMES"]
@@ -77,14 +76,12 @@ __all__ = ["PathSynthesis", "synthesize_path", "traced_points", "find_assembly",
 #: The placement of the linkage's frame in the plane: pivot shift, turn and scale.
 FRAME_NAMES = ("x0", "y0", "angle", "scale")
 _IDENTITY = {"x0": 0.0, "y0": 0.0, "angle": 0.0, "scale": 1.0}
-#: The parameter added to the input in the Jacobian's copy of the linkage (:func:`with_input_phase`).
-INPUT_PHASE = "input_phase"
 _SAMPLED = 1500            # random designs drawn for the starts
 _SWEEP = 96                # input values over a turn, for matching untimed targets by arc length
 _PHASES = 32               # untimed: starting positions along each swept curve ...
 _SPANS = tuple(numpy.linspace(0.1, 1.0, 19))  # ... and fractions of its arc length matched to the targets
 _SCALED_SPANS = (0.95, 0.8, 0.6, 0.4)  # ... those fractions where the fit scales the design (path.py's)
-_PATH_SAMPLES = 24         # input values checked between consecutive targets by the verification
+_PATH_SAMPLES = BRANCH_SAMPLES  # input values checked between consecutive targets by the verification
 _SHAPE_RATIO = 16.0        # shape-normalised starts: link lengths within this ratio of each other ...
 _SHAPED = 0.5              # ... this fraction of the sampled designs (the rest uniform within the bounds)
 _OFFSET_SPAN = 2.0         # ... and signed lengths (a point's offsets) within this many times the median link
@@ -93,8 +90,11 @@ _SCREENED = 4              # untimed: this many times ``starts`` starts screened
 _SCREEN_EVALUATIONS = 40   # ... this many evaluations each in the first round, twice as many each round after
 _PARTIAL_RANK = 4.0        # untimed starts: a design whose input cannot turn fully ranks as if this much farther
 _ACTIVE = 1e-6             # a constraint within this (relative) of its limit is reported active
-_NEWTON_SAMPLED = 160      # without a closed form: random designs drawn for the starts (each solved by Newton) ...
-_NEWTON_GUESSES = 4        # ... and random initial guesses tried for an assembly of each
+_PROMISING = 1e-9          # without a closed form: a screened start this close (cost: rms 4e-5 of the size) goes on
+_PROMOTED_EVALUATIONS = 400  # ... at once, for at most this many more evaluations
+_NEWTON_TRACED = 1500      # without a closed form: designs drawn for the starts (traced at once: newton_traced_batch) ...
+_TIMED_SUBSTEPS = 8        # ... timed: continued in this many steps from target to target
+_NEWTON_GUESSES = 4        # ... random initial guesses tried for an assembly of each
 
 
 @dataclass(frozen=True)
@@ -201,43 +201,6 @@ def traced_points(linkage: Linkage, point: str | Sequence[str], values: Mapping[
     return _placed(local, where)
 
 
-#: Random initial guesses tried by :func:`find_assembly` before it gives up.
-_ASSEMBLY_GUESSES = 12
-
-
-def find_assembly(linkage: Linkage, values: Mapping[str, float], at: float, rng: numpy.random.Generator,
-                  tries: int = _ASSEMBLY_GUESSES) -> dict[str, float] | None:
-    """An assembly of a linkage without a closed form at input ``at``: its unknowns, or None if none is found.
-
-    Newton's method of the linkage's numeric solver from random initial guesses (angles over a
-    turn, lengths within the sum of the parameters), the first that closes; which assembly
-    that is depends on ``rng``.  (The same search as the drawing's, which synthesis may not import.)
-
-    >>> from symlink.catalog import stephenson3, EXAMPLE_VALUES
-    >>> found = find_assembly(stephenson3(), EXAMPLE_VALUES["stephenson3"], 0.0, numpy.random.default_rng(0))
-    >>> sorted(found)
-    ['beta', 'eta', 'mu', 'phi']
-    """
-    solver = _newton_solver(linkage)
-    parameters = {p.name: float(values[p.name]) for p in linkage.parameters}
-    scale = sum(abs(v) for v in parameters.values()) or 1.0
-    for _ in range(tries):
-        guess = {q.name: float(rng.uniform(-math.pi, math.pi)) if is_angle(linkage, q)
-                 else float(rng.uniform(-scale, scale)) for q in linkage.unknowns}
-        try:
-            with numpy.errstate(all="ignore"):
-                solved = solver(guess=guess, **parameters, **{linkage.inputs[0].name: numpy.array([float(at)])})
-        except ValueError:
-            continue
-        return {q.name: float(numpy.asarray(solved[q.name])[0]) for q in linkage.unknowns}
-    return None
-
-
-@lru_cache(maxsize=32)
-def _newton_solver(linkage: Linkage) -> NumericSolver:
-    return NumericSolver(linkage)
-
-
 def _arguments(linkage: Linkage, values: Mapping[str, float], branches: Mapping[str, int] | None) -> dict:
     known = {p.name for p in linkage.parameters}
     unknown = set(values) - known
@@ -250,46 +213,6 @@ def _arguments(linkage: Linkage, values: Mapping[str, float], branches: Mapping[
     for symbol in linkage.branches:
         arguments[symbol.name] = int((branches or {}).get(symbol.name, 1))
     return arguments
-
-
-@lru_cache(maxsize=32)
-def _solver(linkage: Linkage, outputs: tuple[str, ...]) -> Solver:
-    return Solver(linkage, list(outputs))
-
-
-# --- the Jacobian's linkage: the input shifted by a parameter ---------------------------------------
-
-def _shifted(expr: sp.Expr, input_symbol: sp.Symbol, phase: sp.Symbol) -> sp.Expr:
-    return sp.sympify(expr).xreplace({input_symbol: input_symbol + phase})
-
-
-def _shifted_sum(vectors: Vector | VectorSum | None, input_symbol: sp.Symbol, phase: sp.Symbol):
-    if vectors is None:
-        return None
-    return VectorSum(tuple((sign, Vector(_shifted(v.length, input_symbol, phase),
-                                         _shifted(v.angle, input_symbol, phase), v.name))
-                           for sign, v in vectors.as_sum().terms))
-
-
-@lru_cache(maxsize=32)
-def with_input_phase(linkage: Linkage) -> Linkage:
-    """The linkage with its input ``q`` replaced by ``q + input_phase``: d/d(input_phase) at 0 is d/dq."""
-    (input_symbol,) = linkage.inputs
-    phase = sp.Symbol(INPUT_PHASE, real=True)
-    taken = {s.name for s in linkage.parameters + linkage.coordinates}
-    if INPUT_PHASE in taken:
-        raise ValueError(f"{linkage.name} already has a symbol named {INPUT_PHASE!r}, which path synthesis needs")
-    loops = [Loop(_shifted_sum(loop.vectors, input_symbol, phase), name=loop.name) for loop in linkage.loops]
-    return Linkage(f"{linkage.name}with_input_phase", loops, inputs=[input_symbol], unknowns=list(linkage.unknowns),
-                   parameters=list(linkage.parameters) + [phase],
-                   points={k: _shifted_sum(v, input_symbol, phase) for k, v in linkage.points.items()},
-                   roles=dict(linkage.roles),
-                   extras={k: _shifted(v, input_symbol, phase) for k, v in linkage.extras.items()})
-
-
-@lru_cache(maxsize=32)
-def _jacobian(linkage: Linkage, outputs: tuple[str, ...], free: tuple[str, ...]) -> DesignJacobian:
-    return DesignJacobian(with_input_phase(linkage), list(outputs), list(free) + [INPUT_PHASE])
 
 
 def _length_parameters(linkage: Linkage) -> set[str]:
@@ -418,21 +341,51 @@ class _Problem:
         return float(links.max() / links.min()) if len(links) and links.min() > 0 else (
             math.inf if len(links) else 1.0)
 
+    def solved(self, names: Sequence[str], design: Mapping[str, float], inputs: numpy.ndarray,
+               branches: Mapping[str, float]) -> dict[str, numpy.ndarray]:
+        """The coordinates ``names`` at ``inputs`` from the linkage's own generated solver.
+
+        Closed form: the branch signs ``branches``.  Without: Newton's method continued along the
+        inputs in order from :attr:`assembly` (the unknowns at the first target), else from
+        ``branches`` (the start's assembly), ``ValueError`` where it cannot be continued.
+        """
+        linkage = self.linkage
+        if not self.newton:
+            signs = {name: int(sign) for name, sign in branches.items()}
+            return _solver(linkage, tuple(names))(**_arguments(linkage, design, signs),
+                                                  **{linkage.inputs[0].name: inputs})
+        guess = dict(self.assembly if self.assembly is not None else branches)
+        with numpy.errstate(all="ignore"):
+            found = _newton_solver(linkage)(guess=guess, **_arguments(linkage, design, None),
+                                            **{linkage.inputs[0].name: numpy.asarray(inputs, dtype=float)})
+        return {name: numpy.asarray(found[name], dtype=float) for name in names}
+
     def feasible_motion(self, design: Mapping[str, float], inputs: numpy.ndarray,
-                        branches: Mapping[str, int]) -> str:
+                        branches: Mapping[str, float]) -> str:
         """Why the design breaks the transmission or rotation constraint at these inputs ('' if it does not)."""
         if self.transmission is None and not self.full_rotation:
             return ""
         linkage = self.linkage
-        arguments = _arguments(linkage, design, branches)
+        arguments = _arguments(linkage, design, None if self.newton else {k: int(v) for k, v in branches.items()})
         if self.transmission is not None:
             names, least = self.transmission
-            solved = _solver(linkage, tuple(names))(**arguments, **{linkage.inputs[0].name: inputs})
+            try:
+                solved = self.solved(tuple(names), design, inputs, branches)
+            except ValueError as error:
+                return f"the input cannot move along the targets on one assembly: {error}"
             for loop, mu in transmission_arrays(linkage, {**design, **arguments}, solved).items():
                 worst = float(numpy.min(numpy.minimum(mu, math.pi - mu)))
                 if not worst >= least:
                     return f"the transmission angle at {loop} falls to {math.degrees(worst):.6g} deg"
-        if self.full_rotation:
+        if self.full_rotation and self.newton:
+            # Newton's method continued a whole turn from the assembly at the first input: it stops (ValueError)
+            # where the assembly ends or at a dead centre.
+            turn = float(inputs[0]) + numpy.linspace(0.0, 2 * math.pi, _ROTATION_SAMPLES + 1)
+            try:
+                self.solved(self.unknown_names, design, turn, branches)
+            except ValueError:
+                return "the input cannot turn fully (the assembly ends or meets a dead centre over the turn)"
+        elif self.full_rotation:
             turn = numpy.linspace(0.0, 2 * math.pi, _ROTATION_SAMPLES, endpoint=False)
             solved = _solver(linkage, ("singular",))(**arguments, **{linkage.inputs[0].name: turn})
             ok = numpy.asarray(solved["assembled"]) & ~numpy.asarray(solved["singular"], dtype=bool)
@@ -570,7 +523,13 @@ def _start(problem: _Problem, free: numpy.ndarray, row: numpy.ndarray) -> numpy.
 def _sampled_designs(problem: _Problem, rng: numpy.random.Generator, count: int, given: Mapping[str, float],
                      branch_choice: Mapping[str, int] | None) -> tuple[numpy.ndarray, list[dict[str, int]]]:
     """Free parameters (rows) and branch signs: the user's design first (if all its free values are given),
-    then random ones uniform within the bounds, branches random unless fixed."""
+    then random ones uniform within the bounds, branches random unless fixed.
+
+    Not :func:`symlink.synthesis.design_fit.sampled_designs`, on purpose: path synthesis places
+    the linkage by a similarity fit that may scale it, so when every length is free
+    (:attr:`_Problem.absorbs`) half the rows are shape-normalised (:func:`_shaped_design`);
+    function and motion generation have no scale to fit, so they draw uniformly within the bounds.
+    """
     names = [s.name for s in problem.linkage.branches]
     chosen = dict(branch_choice or {})
     rows, signs = [], []
@@ -660,7 +619,7 @@ def _untimed_starts(problem: _Problem, rng, count: int, given, branch_choice, gu
     ways = {None: [fraction, 1.0 - fraction], 1: [fraction], -1: [1.0 - fraction]}[problem.direction]
     shapes = numpy.stack(ways)  # along the curve with the input growing, shrinking, or both
     if problem.newton:
-        rows, signs = _sampled_designs(problem, rng, _NEWTON_SAMPLED, given, None)
+        rows, signs = _sampled_designs(problem, rng, _NEWTON_TRACED, given, None)
         traced, assembled, unknowns = _newton_traced(problem, rows, sweep, rng, guess,
                                                      all(name in given for name in problem.free))
     else:
@@ -702,39 +661,34 @@ def _untimed_starts(problem: _Problem, rng, count: int, given, branch_choice, gu
     return _ranked(fits, count, given, problem)
 
 
-def _newton_design(problem: _Problem, row: numpy.ndarray) -> dict[str, float]:
-    return {**problem.values, **{name: float(v) for name, v in zip(problem.free, row)}}
-
-
 def _newton_timed_starts(problem: _Problem, rng, count: int, given, guess: Mapping[str, float] | None):
-    """Timed starts of a linkage without a closed form: sampled designs on an assembly the solver's search finds.
+    """Timed starts of a linkage without a closed form: sampled designs continued along the target inputs at once.
 
-    Each sampled design's assembly at the first target's input is found by
-    :func:`find_assembly` (the user's own design, sampled first, from ``guess`` when given),
-    continued along the target inputs by Newton's method; the start's "branches" are that
-    assembly (the unknowns at the first input), which the refinement then continues.
+    :data:`_NEWTON_TRACED` sampled designs (the user's own first, from ``guess`` when given) are
+    assembled at the first target's input and continued through every target in order, with
+    :data:`_TIMED_SUBSTEPS` steps between consecutive targets, all together
+    (:func:`symlink.synthesis.design_fit.newton_traced_batch`); those assembled through all of
+    them are placed by the similarity fit and ranked.  The start's "branches" are its assembly
+    (the unknowns at the first input), which the refinement then continues.
     """
     inputs = problem.timed
     assert inputs is not None
     w = problem.targets[:, 0] + 1j * problem.targets[:, 1]
-    rows, _ = _sampled_designs(problem, rng, _NEWTON_SAMPLED, given, None)
+    rows, _ = _sampled_designs(problem, rng, _NEWTON_TRACED, given, None)
     users = all(name in given for name in problem.free)
+    steps = numpy.linspace(0.0, 1.0, _TIMED_SUBSTEPS + 1)[:-1]
+    sweep = numpy.concatenate([(inputs[:-1, None] + numpy.diff(inputs)[:, None] * steps[None, :]).ravel(),
+                               inputs[-1:]])
+    traced, assembled, unknowns = _newton_traced(problem, rows, sweep, rng, guess, users)
+    at = numpy.arange(len(inputs)) * _TIMED_SUBSTEPS
+    through = numpy.all(assembled[:, at], axis=1) & numpy.all(assembled, axis=1)
+    placements, rms = _fit_placements(problem, numpy.where(through[:, None], traced[:, at], 0.0), w)
     fits = []
-    for index, row in enumerate(rows):
-        design = _newton_design(problem, row)
-        start = (dict(guess) if index == 0 and users and guess is not None
-                 else find_assembly(problem.linkage, design, float(inputs[0]), rng, _NEWTON_GUESSES))
-        if start is None:
-            continue
-        problem.assembly = start
-        points, _, ok = problem.local(design, inputs, start)
-        if not numpy.all(ok):
-            continue
-        placements, rms = _fit_placements(problem, (points[:, 0] + 1j * points[:, 1])[None, :], w)
-        x = _start(problem, row, placements[0])
-        if x is not None and math.isfinite(rms[0]):
-            fits.append((float(rms[0]), x, dict(problem.assembly), inputs.copy()))
-    problem.assembly = None
+    for index in numpy.flatnonzero(through & numpy.isfinite(rms)):
+        x = _start(problem, rows[index], placements[index])
+        if x is not None:
+            assembly = {name: float(unknowns[index, 0, j]) for j, name in enumerate(problem.unknown_names)}
+            fits.append((float(rms[index]), x, assembly, inputs.copy()))
     return _ranked(fits, count, given, problem)
 
 
@@ -742,39 +696,30 @@ def _newton_traced(problem: _Problem, rows: numpy.ndarray, sweep: numpy.ndarray,
                    guess: Mapping[str, float] | None, users: bool):
     """Untimed starts' sweeps without a closed form: the point (complex) and the unknowns along ``sweep``.
 
-    Each design is assembled at the sweep's first input (:func:`find_assembly`) and continued
-    chunk by chunk (an eighth of a turn each) until Newton's method stops: what follows is not
-    assembled.  Returns ``(traced (M, N), assembled (M, N), unknowns (M, N, unknowns))``.
+    All designs at once (:func:`symlink.synthesis.design_fit.newton_traced_batch`): each is
+    assembled at the sweep's first input (the user's design, first, from ``guess`` when given;
+    the others from random guesses) and continued value by value until Newton's method stops or
+    meets a dead centre: what follows is not assembled.  Returns ``(traced (M, N), assembled (M, N),
+    unknowns (M, N, unknowns))``.
     """
     linkage = problem.linkage
-    traced = numpy.full((len(rows), len(sweep)), numpy.nan + 0j)
-    assembled = numpy.zeros((len(rows), len(sweep)), dtype=bool)
-    unknowns = numpy.full((len(rows), len(sweep), len(problem.unknown_names)), numpy.nan)
-    solver = _newton_solver(linkage)
-    chunk = max(2, _SWEEP // 8)
-    for index, row in enumerate(rows):
-        design = _newton_design(problem, row)
-        start = (dict(guess) if index == 0 and users and guess is not None
-                 else find_assembly(linkage, design, float(sweep[0]), rng, _NEWTON_GUESSES))
-        done, step = 0, len(sweep) - 1  # the whole sweep in one go first; where that stops, chunk by chunk
-        while start is not None and done < len(sweep) - 1:
-            stop = min(len(sweep), done + step + 1)
-            try:
-                with numpy.errstate(all="ignore"):
-                    solved = solver(guess=start, **design, **{linkage.inputs[0].name: sweep[done:stop]})
-            except ValueError:
-                if step == chunk:
-                    break
-                step = chunk
-                continue
-            traced[index, done:stop] = numpy.asarray(solved[problem.outputs[0]]) + 1j * numpy.asarray(
-                solved[problem.outputs[1]])
-            for k, name in enumerate(problem.unknown_names):
-                unknowns[index, done:stop, k] = numpy.asarray(solved[name])
-            assembled[index, done:stop] = True
-            start = {name: float(unknowns[index, stop - 1, k]) for k, name in enumerate(problem.unknown_names)}
-            done = stop - 1
-    return traced, assembled, unknowns
+    designs: dict[str, float | numpy.ndarray] = dict(problem.values)
+    for k, name in enumerate(problem.free):
+        designs[name] = rows[:, k]
+    starts = None
+    if users and guess is not None:
+        starts = numpy.full((len(rows), len(problem.unknown_names)), numpy.nan)
+        starts[0] = [float(guess[name]) for name in problem.unknown_names]
+    unknowns, assembled = newton_traced_batch(linkage, designs, sweep, rng, _NEWTON_GUESSES, starts)
+    functions = _newton_solver(linkage).functions
+    parameters = [numpy.broadcast_to(numpy.asarray(designs[name], dtype=float)[..., None], assembled.shape)
+                  if numpy.ndim(designs[name]) else float(designs[name]) for name in functions["PARAMETERS"]]
+    with numpy.errstate(all="ignore"):
+        named = functions["_outputs"](sweep[None, :], *parameters, *numpy.moveaxis(unknowns, -1, 0))
+    named.update({name: unknowns[..., k] for k, name in enumerate(problem.unknown_names)})
+    x, y = (numpy.broadcast_to(numpy.asarray(named[name], dtype=float), assembled.shape) for name in problem.outputs)
+    traced = numpy.where(assembled, x + 1j * y, numpy.nan)
+    return traced, assembled & numpy.isfinite(traced), unknowns
 
 
 def _ranked(fits: list, count: int, given: Mapping[str, float], problem: _Problem) -> list:
@@ -873,16 +818,10 @@ def _verify(problem: _Problem, x: numpy.ndarray, branches: Mapping[str, int], in
     if not numpy.all(numpy.isfinite(errors)):
         why = "not assembled at every target"
     else:
-        steps = numpy.linspace(0.0, 1.0, _PATH_SAMPLES + 1)
-        moves = inputs[:-1, None] + numpy.diff(inputs)[:, None] * steps[None, :]
-        solved = _solver(linkage, ("singular",))(**_arguments(linkage, design, branches),
-                                                 **{linkage.inputs[0].name: moves})
-        ok = numpy.asarray(solved["assembled"]) & ~numpy.asarray(solved["singular"], dtype=bool)
-        if not numpy.all(ok):
-            where = numpy.argwhere(~ok)[0]
-            why = (f"the input cannot move from target {where[0] + 1} to target {where[0] + 2} on one branch "
-                   f"(no assembly or a toggle at {float(moves[tuple(where)]):.6g})")
-        else:
+        why = branch_break(linkage, design, branches, inputs)
+        if not why:
+            steps = numpy.linspace(0.0, 1.0, _PATH_SAMPLES + 1)
+            moves = inputs[:-1, None] + numpy.diff(inputs)[:, None] * steps[None, :]
             why = problem.feasible_motion(design, moves.ravel(), branches)
     if not why and not problem.allowed(x):
         why = "outside the bounds or the link ratio"
@@ -928,6 +867,8 @@ def _verify_newton(problem: _Problem, x: numpy.ndarray, start: Mapping[str, floa
             reached = _placed(numpy.concatenate([local[:, 0], local[-1:, -1]]), placement)
             errors = numpy.hypot(*(reached - problem.targets).T)
             assembly = {name: float(numpy.asarray(solved[name])[0]) for name in problem.unknown_names}
+            problem.assembly = assembly
+            why = problem.feasible_motion(design, moves.ravel(), assembly)
     if not why and not problem.allowed(x):
         why = "outside the bounds or the link ratio"
     stated, active = _constraint_report(problem, x, design, {}, inputs)
@@ -961,9 +902,11 @@ def _constraint_report(problem: _Problem, x: numpy.ndarray, design: Mapping[str,
             active.append(f"link ratio at {problem.max_link_ratio:.6g}")
     if problem.transmission is not None:
         names_needed, least = problem.transmission
-        arguments = _arguments(problem.linkage, design, branches)
-        solved = _solver(problem.linkage, tuple(names_needed))(**arguments,
-                                                                **{problem.linkage.inputs[0].name: inputs})
+        arguments = _arguments(problem.linkage, design, None if problem.newton else branches)
+        try:
+            solved = problem.solved(tuple(names_needed), design, inputs, branches)
+        except ValueError:  # a Newton linkage not continued along its targets: reported as such by the verification
+            solved = {name: numpy.full(len(inputs), numpy.nan) for name in names_needed}
         for loop, mu in transmission_arrays(problem.linkage, {**design, **arguments}, solved).items():
             worst = float(numpy.min(numpy.minimum(mu, math.pi - mu)))
             stated.append(f"transmission angle at {loop} >= {math.degrees(least):.6g} deg: "
@@ -1016,15 +959,18 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
     A linkage without a closed form (solved by Newton's method) has no branches; ``guess``
     gives its unknowns near an assembly at the first target's input for the design in
     ``values`` (default: one found by :func:`find_assembly`), and the design found reports its
-    assembly as ``assembly``.  ``min_transmission`` and ``full_rotation`` are not supported
-    there yet (``ValueError``).
+    assembly as ``assembly``.  There ``full_rotation`` asks that Newton's method continue that
+    assembly a whole turn of the input from the first target (it stops where the assembly ends
+    or at a dead centre), and ``min_transmission`` is measured on the assembly continued along
+    the targets; a linkage none of whose loops has two unknown angles (the Stephenson III) has
+    no transmission angle in symlink's sense, and ``min_transmission`` there is a ``ValueError``.
     """
     if len(linkage.inputs) != 1:
         raise ValueError(f"path synthesis drives one input; {linkage.name} has {len(linkage.inputs)}")
     newton = not linkage.has_closed_form
-    if newton and (min_transmission > 0 or full_rotation):
-        raise ValueError(f"{linkage.name} has no closed form: min_transmission and full_rotation are not "
-                         "supported for Newton-solved linkages yet")
+    if newton and min_transmission > 0 and not transmission_coordinates(linkage):
+        raise ValueError(f"min_transmission cannot be held on {linkage.name}: no loop of it has exactly two unknown "
+                         "angles, the joint where symlink measures a transmission angle")
     if guess is not None and (not newton or set(guess) != {q.name for q in linkage.unknowns}
                               or not all(math.isfinite(float(v)) for v in guess.values())):
         raise ValueError(f"guess gives the unknowns of a linkage without a closed form near an assembly at the "
@@ -1035,20 +981,8 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
     size = _size(points)
     if not size > 0:
         raise ValueError("the targets are all the same point")
-    known = [p.name for p in linkage.parameters]
-    if not free:
-        raise ValueError("name at least one free parameter with its bounds")
-    for name, bound in free.items():
-        if name not in known:
-            raise ValueError(f"{linkage.name} has no parameter {name!r}; it has {', '.join(known)}")
-        low, high = (float(b) for b in bound)
-        if not (math.isfinite(low) and math.isfinite(high) and low < high):
-            raise ValueError(f"the bounds of {name!r} must be finite with low < high, got {bound!r}")
+    bounds, fixed = free_bounds(linkage, free, values)
     given = {k: float(v) for k, v in (values or {}).items()}
-    fixed = {name: given[name] for name in known if name not in free and name in given}
-    missing = [name for name in known if name not in free and name not in given]
-    if missing:
-        raise ValueError(f"give values for the parameters that are not free: {', '.join(missing)}")
     unknown_frame = [name for name in frame if name not in FRAME_NAMES]
     if unknown_frame or len(set(frame)) != len(frame):
         raise ValueError(f"frame names the free parts of the placement among {', '.join(FRAME_NAMES)}, "
@@ -1061,10 +995,7 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
         raise ValueError(f"{len(points)} targets need {len(points)} finite input values, got shape {inputs.shape}")
     if inputs is None and len(points) < 3:
         raise ValueError("path synthesis without timing needs at least three targets")
-    for name, sign in (branches or {}).items():
-        if name not in {s.name for s in linkage.branches} or sign not in (1, -1):
-            raise ValueError(f"branches maps {', '.join(s.name for s in linkage.branches) or 'no branch'} to +1 "
-                             f"or -1; got {name!r}: {sign!r}")
+    check_branches(linkage, branches)
     if starts < 1 or evaluations < 1:
         raise ValueError("starts and evaluations must be at least 1")
     for name, bound in (frame_bounds or {}).items():
@@ -1078,7 +1009,7 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
         raise ValueError(f"min_transmission must lie in [0, pi/2) radians, got {min_transmission!r}")
     if direction not in (None, 1, -1) or (direction is not None and inputs is not None):
         raise ValueError(f"direction is +1, -1 or None, for targets without timing; got {direction!r}")
-    problem = _Problem(linkage, names, points, {k: (float(v[0]), float(v[1])) for k, v in free.items()}, fixed,
+    problem = _Problem(linkage, names, points, bounds, fixed,
                        frame, fixed_placement, inputs, frame_bounds, ratio, float(min_transmission),
                        bool(full_rotation))
     problem.direction = direction
@@ -1124,6 +1055,7 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
             results = []
             for cost, x, signs, angles, stopped in alive:
                 if not stopped:
+                    origin = (x, signs, angles)
                     refined = _refine(problem, x, signs, angles, min(budget, evaluations), tolerance)
                     if refined is None:
                         continue
@@ -1132,6 +1064,21 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
                     if problem.newton and problem.assembly is not None:
                         signs = dict(problem.assembly)  # the assembly continued so far: the next round's start
                     stopped = used < min(budget, evaluations)
+                    if problem.newton and not stopped and cost < _PROMISING:
+                        # Without a closed form an evaluation is a Newton continuation, dear: a start already this
+                        # close is refined to the end now, not after a round of every other start.  Again from
+                        # where this round began, in one run: a refinement restarted where one stopped begins
+                        # with the damping reset, and near such a point (an ill-conditioned valley, residuals
+                        # with the continuation's rounding) its steps' gains are below that rounding, so it stops.
+                        allowed = min(evaluations, min(budget, evaluations) + _PROMOTED_EVALUATIONS)
+                        further = _refine(problem, *origin, allowed, tolerance)
+                        if further is not None:
+                            spent += further[3]
+                        if further is not None and further[2] < cost:
+                            x, angles, cost, used = further
+                            stopped = used < allowed
+                            if problem.assembly is not None:
+                                signs = dict(problem.assembly)
                     if cost < closest:
                         closest = cost
                         if verified(x, signs, angles):

@@ -4,7 +4,8 @@ against the NumPy driver: the same positions, rates and accelerations, the same 
 The reference types the Stephenson III closure out by hand (``a e^{i theta} + b e^{i beta} + c e^{i mu} - d
 - f e^{i phi} = 0`` and ``a e^{i theta} + e e^{i (beta + alpha)} + g e^{i eta} - d - h e^{i (phi + delta)} = 0``,
 the catalog's loops), with its Jacobian and its velocity and acceleration systems differentiated by hand; the
-positions are continued along the crank's turn by ``mpmath.findroot`` in small steps, the rates solved by
+positions are continued along the crank's turn by ``mpmath.findroot`` in small steps
+(``tests/mp_closures.py``'s ``stephenson3_continued``), the rates solved by
 ``mpmath.lu_solve``.  Nothing of symlink's derivation is used.
 """
 import re
@@ -12,7 +13,7 @@ import re
 import mpmath as mp
 import numpy as np
 import pytest
-from mp_closures import stephenson3_closure
+from mp_closures import stephenson3_continued
 
 from symlink import compiled_library
 from symlink.catalog import fourbar, stephenson3
@@ -33,11 +34,6 @@ UNKNOWNS = ("beta", "mu", "phi", "eta")
 THETADOT, THETADDOT = 3.0, 1.5
 
 
-def _closure(theta, q, p):
-    """Stephenson III's closure at one crank angle (the hand-typed reference of tests/mp_closures.py)."""
-    return stephenson3_closure((theta,), q, p)
-
-
 def _jacobian(q, p):
     beta, mu, phi, eta = q
     first, second = beta + p["alpha"], phi + p["delta"]
@@ -49,16 +45,11 @@ def _jacobian(q, p):
 
 def reference(thetas, guess, substeps=4):
     """(q, qdot, qddot) at each crank angle at 30 digits, continued from the assembly nearest ``guess``."""
+    positions = stephenson3_continued(DIMENSIONS, thetas, guess, substeps=substeps, dps=30, jacobian=_jacobian)
     with mp.workdps(30):
         p = {k: mp.mpf(v) for k, v in DIMENSIONS.items()}
-        solve = lambda theta, start: list(mp.findroot(  # noqa: E731
-            lambda *q: _closure(theta, q, p), start, J=lambda *q: _jacobian(q, p)))
-        q = solve(mp.mpf(thetas[0]), [mp.mpf(guess[n]) for n in UNKNOWNS])
-        previous, found = mp.mpf(thetas[0]), []
-        for theta in map(mp.mpf, thetas):
-            for k in range(1, substeps + 1):
-                q = solve(previous + (theta - previous) * k / substeps, q)
-            previous = theta
+        found = []
+        for theta, q in zip(map(mp.mpf, thetas), positions):
             J, w, wdot = _jacobian(q, p), mp.mpf(THETADOT), mp.mpf(THETADDOT)
             st, ct = mp.sin(theta), mp.cos(theta)
             qdot = mp.lu_solve(J, mp.matrix([p["a"] * st * w, -p["a"] * ct * w] * 2))

@@ -37,12 +37,10 @@ import statistics
 import time
 
 import numpy
-import sympy as sp
 
-from symlink.catalog import fourbar
+from symlink.catalog import fourbar, with_point
 from symlink.linkage import Linkage
 from symlink.synthesis.shape import shape_distance, synthesize_shape
-from symlink.vectors import Vector
 
 #: McGarva, J. R. (1994). Rapid search and selection of path generating mechanisms from a library. Mechanism and
 #: Machine Theory, 29(2), 223-235, https://doi.org/10.1016/0094-114X(94)90032-9 (read in four-bar-rs
@@ -130,11 +128,7 @@ FREE = {"b": (0.3, 8.0), "c": (0.3, 8.0), "d": (0.3, 8.0), "u": (-5.0, 5.0), "v"
 def coupler_point_fourbar() -> Linkage:
     """The catalog four-bar with a coupler point P = B + u along B -> C + v to its left."""
     base = fourbar()
-    u, v = sp.symbols("u v", real=True)
-    beta = base.roles["coupler"]
-    P = base.points["B"] + Vector(u, beta, "BU") + Vector(v, beta + sp.pi / 2, "UP")
-    return Linkage("fourbar_point", base.loops, base.inputs, base.unknowns, parameters=list(base.parameters) + [u, v],
-                   points={**base.points, "P": P}, roles=base.roles)
+    return with_point(base, "B", base.roles["coupler"])
 
 
 def run_target(name: str, seed: int, linkage: Linkage | None = None) -> dict:

@@ -22,13 +22,33 @@ from .loops import Loop
 from .vectors import Vector, coordinates, lengths
 
 __all__ = ["fourbar", "slider_crank", "inverted_slider_crank", "offset_inverted_slider_crank", "watt2", "stephenson3", "fivebar", "jansen",
-           "JANSEN_HOLY_NUMBERS", "jansen_parameters", "CATALOG", "EXAMPLE_VALUES"]
+           "JANSEN_HOLY_NUMBERS", "jansen_parameters", "CATALOG", "EXAMPLE_VALUES", "with_point"]
 
 
 def transmission_angle(coupler_angle: sp.Expr, rocker_angle: sp.Expr) -> sp.Expr:
     """Interior angle at the coupler-rocker joint, in [0, pi], accurate near 0 and pi (atan2, not acos)."""
     difference = coupler_angle - rocker_angle
     return sp.Abs(sp.atan2(sp.sin(difference), sp.cos(difference)))
+
+
+def with_point(linkage: Linkage, through: str, angle: sp.Expr, name: str | None = None) -> Linkage:
+    """``linkage`` with a point ``P = through + (u + i v) e^{i angle}``: a point on the link of angle ``angle``.
+
+    ``u`` runs along the link from the point ``through``, ``v`` to its left; both become
+    parameters (a coupler point for synthesis, a foot, a pen).  ``name`` defaults to the
+    linkage's name with ``_point``.
+
+    >>> linkage = fourbar()
+    >>> with_coupler = with_point(linkage, "B", linkage.roles["coupler"])
+    >>> with_coupler.name, [str(p) for p in with_coupler.parameters][-2:]
+    ('fourbar_point', ['u', 'v'])
+    """
+    u, v = sp.symbols("u v", real=True)
+    point = (linkage.points[through] + Vector(u, angle, f"{through}U")
+             + Vector(v, angle + sp.pi / 2, "UP"))
+    return Linkage(name or f"{linkage.name}_point", linkage.loops, linkage.inputs, linkage.unknowns,
+                   parameters=list(linkage.parameters) + [u, v], points={**linkage.points, "P": point},
+                   roles=linkage.roles, extras=linkage.extras)
 
 
 def fourbar() -> Linkage:

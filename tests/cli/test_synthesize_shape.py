@@ -13,13 +13,10 @@ import math
 
 import numpy
 import pytest
-import sympy as sp
 
-from symlink.catalog import fourbar
+from symlink.catalog import fourbar, with_point
 from symlink.cli import main
-from symlink.linkage import Linkage
 from symlink.linkage_file import write_linkage
-from symlink.vectors import Vector
 from synthesis.hand_linkages import fourbar_joints
 
 TRUTH = {"a": 1.0, "b": 3.0, "c": 2.5, "d": 3.2, "u": 1.5, "v": 0.8}
@@ -33,11 +30,7 @@ def coupler_point(values, theta: float, branch: int = 1) -> complex:
 def write_coupler_point_fourbar(path) -> None:
     """The catalog four-bar with a point P = B + u along the coupler + v to its left, as a linkage file."""
     base = fourbar()
-    u, v = sp.symbols("u v", real=True)
-    beta = base.roles["coupler"]
-    P = base.points["B"] + Vector(u, beta, "BU") + Vector(v, beta + sp.pi / 2, "UP")
-    linkage = Linkage("fourbar_point", base.loops, base.inputs, base.unknowns,
-                      parameters=list(base.parameters) + [u, v], points={**base.points, "P": P}, roles=base.roles)
+    linkage = with_point(base, "B", base.roles["coupler"])
     write_linkage(linkage, path, {**TRUTH, "b": 2.8, "u": 1.0, "v": 0.0})
 
 

@@ -12,23 +12,13 @@ import math
 
 import numpy
 import pytest
-import sympy as sp
 
-from symlink.catalog import EXAMPLE_VALUES, fourbar, jansen, slider_crank, watt2
+from symlink.catalog import EXAMPLE_VALUES, fourbar, jansen, slider_crank, watt2, with_point
 from symlink.linkage import Linkage
 from symlink.synthesis.general import FRAME_NAMES, path_residuals, synthesize_path, traced_points
-from symlink.vectors import Vector
 
 
 # --- linkages with a point on a moving link ------------------------------------------------------------
-
-def with_point(linkage: Linkage, base: str, angle: sp.Symbol, name: str) -> Linkage:
-    """``linkage`` with a point P = base + (u + i v) e^{i angle}: a point on the link at ``angle`` through ``base``."""
-    u, v = sp.symbols("u v", real=True)
-    P = linkage.points[base] + Vector(u, angle) + Vector(v, angle + sp.pi / 2)
-    return Linkage(name, linkage.loops, linkage.inputs, linkage.unknowns, parameters=list(linkage.parameters) + [u, v],
-                   points={**linkage.points, "P": P}, roles=linkage.roles, extras=linkage.extras)
-
 
 def slider_point() -> Linkage:
     base = slider_crank()

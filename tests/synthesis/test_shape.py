@@ -12,13 +12,11 @@ import math
 import numpy
 import pytest
 
-import sympy as sp
 
 from hand_linkages import fourbar_joints
-from symlink.catalog import fourbar
+from symlink.catalog import fourbar, with_point
 from symlink.linkage import Linkage
 from symlink.synthesis.shape import resampled, shape_distance, shape_search, similarity_fit
-from symlink.vectors import Vector
 
 TRUTH = {"a": 1.0, "b": 3.0, "c": 2.5, "d": 3.2, "u": 1.5, "v": 0.8}
 OTHER = {**TRUTH, "b": 3.4, "v": 0.3}
@@ -27,11 +25,7 @@ OTHER = {**TRUTH, "b": 3.4, "v": 0.3}
 def coupler_point_fourbar() -> Linkage:
     """The catalog four-bar with a point P = B + u along the coupler + v to its left."""
     base = fourbar()
-    u, v = sp.symbols("u v", real=True)
-    beta = base.roles["coupler"]
-    P = base.points["B"] + Vector(u, beta, "BU") + Vector(v, beta + sp.pi / 2, "UP")
-    return Linkage("fourbar_point", base.loops, base.inputs, base.unknowns, parameters=list(base.parameters) + [u, v],
-                   points={**base.points, "P": P}, roles=base.roles)
+    return with_point(base, "B", base.roles["coupler"])
 MOVE = (complex(2.5, -1.25), 0.8, 1.7)  # shift, turn (rad), scale
 
 

@@ -22,7 +22,7 @@ import sympy as sp
 
 from hand_linkages import fourbar_joints, watt2_joints
 from mp_closures import watt2_closure, watt2_positions
-from symlink.catalog import EXAMPLE_VALUES, fourbar, watt2
+from symlink.catalog import EXAMPLE_VALUES, fourbar, watt2, with_point
 from symlink.linkage import Linkage
 from symlink.synthesis.shape import shape_distance, synthesize_shape
 from symlink.vectors import Vector, lengths
@@ -57,11 +57,7 @@ def placed(found, z: complex) -> complex:
 
 def coupler_point_fourbar() -> Linkage:
     base = fourbar()
-    u, v = sp.symbols("u v", real=True)
-    beta = base.roles["coupler"]
-    P = base.points["B"] + Vector(u, beta, "BU") + Vector(v, beta + sp.pi / 2, "UP")
-    return Linkage("fourbar_point", base.loops, base.inputs, base.unknowns, parameters=list(base.parameters) + [u, v],
-                   points={**base.points, "P": P}, roles=base.roles)
+    return with_point(base, "B", base.roles["coupler"])
 
 
 def fourbar_point(values, theta: float, branch: int = 1) -> complex:

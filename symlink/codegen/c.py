@@ -47,7 +47,7 @@ from sympy.printing.c import C99CodePrinter
 
 from ..version import __version__
 from ..names import C_KEYWORDS as RESERVED_IN_C, PLAIN_NAME
-from ..position import TOLERANCE
+from ..position import TOLERANCE, PowerOfTwoBelow
 from .numpy import ARGUMENT_CONTRACT
 from .program import require_loop_units, FreshNames, StraightLine, is_flag, named_straight_line
 from .trigonometry import angle_sums
@@ -306,7 +306,15 @@ def c_function(program: Program, name: str, doc: str = "", piece_size: int = PIE
         f"{assembled}[i] is 1 where the linkage closes, 0 where it cannot be assembled (outputs NaN).")
     prototype = c_comment(summary) + "\n" + signature + ";\n"
 
-    printed = [(symbol.name, printer.doprint(expr)) for symbol, expr in code.assignments]
+    # A loop's unit's reciprocal from its exponent bits (exact, no division), where the unit is a value.
+    units = {symbol for symbol, expr in code.assignments if isinstance(expr, PowerOfTwoBelow)}
+
+    def text_of_value(expr: sp.Expr) -> str:
+        if expr.is_Pow and expr.exp == -1 and expr.base in units:
+            return f"symlink_reciprocal_power_of_two({printer.doprint(expr.base)})"
+        return printer.doprint(expr)
+
+    printed = [(symbol.name, text_of_value(expr)) for symbol, expr in code.assignments]
     bounds = _piece_bounds([len(text) + 20 for _, text in printed], piece_size)
     uses = {symbol: frozenset(expr.free_symbols) for symbol, expr in code.assignments}
     if len(bounds) > 1:  # pieces: each output's values computed together, so that few cross from piece to piece
@@ -347,7 +355,7 @@ def c_function(program: Program, name: str, doc: str = "", piece_size: int = PIE
         for k, (output, expr, flag) in enumerate((outputs[j], expressions[j], flags[j]) for j in at_end):
             # A true/false output as 1.0 or 0.0: no int or char lane in the loop, which would make GCC
             # vectorise it by 16 or 32 configurations at a time (and run calls of fewer one at a time).
-            value = f"({printer.doprint(expr)}) ? 1.0 : 0.0" if flag else printer.doprint(expr)
+            value = f"({printer.doprint(expr)}) ? 1.0 : 0.0" if flag else text_of_value(expr)
             lines.append(f"    {out}[{k}] = {value};  /* {output} */")
         # All roots finite: 0*x is 0 for a finite x and NaN for an infinite or NaN one, so the sum is 0
         # exactly where every root is finite. One test, no short-circuit branches, so that the loop stays
@@ -746,6 +754,23 @@ SYMLINK_INLINE double symlink_power_of_two_below(double x)
     bits &= UINT64_C(0x7ff0000000000000);
     memcpy(&x, &bits, sizeof x);
     return x;
+}}
+
+/* 1/x for what symlink_power_of_two_below returns (a loop's unit), as the division gives it and
+ * without a division: for a power of two from 2^-1022 to 2^1022 the exponent 2046 - e, for 2^1023 the
+ * subnormal 2^-1023, for 0 (a mean length below 2^-1022) infinity. Dividing by the unit once a value
+ * was 3-5 % of a loop of full kinematics. Infinity (an infinite or NaN mean length, whose outputs are
+ * NaN either way) gives -infinity where the division gives 0. (Which selects and in which domain was
+ * measured: this form, an integer select and a double one, was the fastest of those tried.) */
+SYMLINK_INLINE double symlink_reciprocal_power_of_two(double x)
+{{
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    uint64_t inverse = UINT64_C(0x7fe0000000000000) - bits;
+    inverse = bits == UINT64_C(0x7fe0000000000000) ? UINT64_C(0x0008000000000000) : inverse;
+    double reciprocal;
+    memcpy(&reciprocal, &inverse, sizeof reciprocal);
+    return x == 0.0 ? INFINITY : reciprocal;
 }}
 
 /* cos and sin of atan2(y, x) without calling them, from r = sqrt(x*x + y*y): x/r and y/r

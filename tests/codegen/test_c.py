@@ -312,6 +312,33 @@ def test_a_loop_unit_is_the_exponent_of_the_mean_length_bit_for_bit(tmp_path):
     assert numpy_unit(values[lengths])["unit"].view(numpy.int64).tolist() == expected[lengths].view(numpy.int64).tolist()
 
 
+def test_a_loop_units_reciprocal_is_the_division_bit_for_bit(tmp_path):
+    """1/unit from the exponent bits (no division) equals 2.0**-k (exact: a power of two's reciprocal) for every
+    unit 2**k a positive normal mean length has, k from -1022 to 1023, the subnormal 2**-1023 included, and
+    infinity (1/0) for a unit of 0; the four-bar's loop uses it instead of a division."""
+    import math
+    from symlink.position import PowerOfTwoBelow
+    x = sp.Symbol("x", positive=True)
+    unit = sp.Symbol("size_1", positive=True)
+    program = Program((x,), ((unit, PowerOfTwoBelow(x)),), {"inverse": 1 / unit, "unit": unit})
+    function = c_function(program, "inverse", "")
+    assert "symlink_reciprocal_power_of_two(size_1)" in function.definition
+    library = build(tmp_path, *c_library([function], "inverses"), "inverses")
+    exponents = numpy.arange(-1022, 1024)
+    values = numpy.array([math.ldexp(1.0, int(k)) for k in exponents])
+    values = numpy.concatenate([values, numpy.nextafter(values[:-1], numpy.inf) * 1.5])  # inside an octave too
+    expected = numpy.array([math.ldexp(1.0, -int(k)) for k in numpy.concatenate([exponents, exponents[:-1]])])
+    result = call(library, function, {"x": values})
+    assert result["unit"].view(numpy.int64).tolist() == numpy.concatenate([values[:2046], values[:2045]]).view(
+        numpy.int64).tolist()
+    assert result["inverse"].view(numpy.int64).tolist() == expected.view(numpy.int64).tolist()
+    assert expected[2045] == 2.0 ** -1023 and 0 < expected[2045] < numpy.finfo(float).tiny  # the subnormal end
+    below = call(library, function, {"x": numpy.array([0.0, 1e-310, 2.0 ** -1022 * 0.75])})  # a unit of 0: 1/0
+    assert below["unit"].tolist() == [0.0, 0.0, 0.0] and below["inverse"].tolist() == [numpy.inf] * 3
+    kernel = c_function(catalog_linkage("fourbar").program(["coupler", "rocker"]), "f", "").definition
+    assert "symlink_reciprocal_power_of_two(" in kernel and "1.0/size" not in kernel
+
+
 @pytest.mark.parametrize("name", ["watt2", "jansen"])
 def test_a_program_in_pieces_computes_what_one_loop_does_bit_for_bit(tmp_path, name):
     """Cut into pieces (each its own loop, values handed on in block arrays), a program exports as one strict

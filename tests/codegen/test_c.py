@@ -339,6 +339,29 @@ def test_a_loop_units_reciprocal_is_the_division_bit_for_bit(tmp_path):
     assert "symlink_reciprocal_power_of_two(" in kernel and "1.0/size" not in kernel
 
 
+@pytest.mark.parametrize("name", ["fourbar", "watt2", "jansen"])
+def test_a_loop_of_rates_carries_its_flags_in_32_bit_lanes_and_computes_the_same(tmp_path, name):
+    """Positions keep 16-bit flag lanes, a loop with rates takes 32-bit ones (RATE_FLAG_LANE, measured faster);
+    the lane is only how 1 and 0 are carried: the loop's outputs are bit for bit those of 16-bit lanes."""
+    linkage = catalog_linkage(name)
+    unknowns = [q.name for q in linkage.unknowns]
+    full = unknowns + [f"{q}dot" for q in unknowns] + [f"{q}ddot" for q in unknowns] + ["singular"]
+    positions = c_function(linkage.program(unknowns), "positions", "").definition
+    rates = c_function(linkage.program(full), "rates", "")
+    assert "unsigned short *restrict assembled" in positions and "unsigned int" not in positions
+    assert "unsigned int *restrict assembled" in rates.definition and "unsigned short" not in rates.definition
+    header, source = c_library([rates], "lanes", "test")
+    values = random_arguments(linkage, rates.arguments, 500, seed=3)
+    (tmp_path / "wide").mkdir()
+    (tmp_path / "narrow").mkdir()
+    wide = call(build(tmp_path / "wide", header, source, "lanes"), rates, values)
+    narrow_ = call(build(tmp_path / "narrow", header, source.replace("unsigned int", "unsigned short"), "lanes"),
+                   rates, values)
+    assert wide["assembled"].any() and (~wide["assembled"].astype(bool)).any()  # both kinds of configuration
+    for key in wide:
+        assert numpy.array_equal(wide[key], narrow_[key], equal_nan=True), key
+
+
 @pytest.mark.parametrize("name", ["watt2", "jansen"])
 def test_a_program_in_pieces_computes_what_one_loop_does_bit_for_bit(tmp_path, name):
     """Cut into pieces (each its own loop, values handed on in block arrays), a program exports as one strict

@@ -11,6 +11,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 import ctypes
+import re
 import shutil
 import subprocess
 
@@ -350,6 +351,14 @@ def test_a_loop_of_rates_carries_its_flags_in_32_bit_lanes_and_computes_the_same
     rates = c_function(linkage.program(full), "rates", "")
     assert "unsigned short *restrict assembled" in positions and "unsigned int" not in positions
     assert "unsigned int *restrict assembled" in rates.definition and "unsigned short" not in rates.definition
+    # the angles that only outputs read are computed last, after every rate (fewer values across atan2 calls)
+    body = rates.definition.split("    out[0] =")[0].split("\n")
+    values = [line for line in body if line.startswith("    const double ")]
+    names = [line.split()[2] for line in values]
+    read_later = {k for k, name in enumerate(names)
+                  if any(re.search(r"\b" + name + r"\b", line.split(" = ", 1)[1]) for line in values[k + 1:])}
+    last = [k for k, line in enumerate(values) if " = atan2(" in line and k not in read_later]
+    assert last and last == list(range(len(values) - len(last), len(values)))
     header, source = c_library([rates], "lanes", "test")
     values = random_arguments(linkage, rates.arguments, 500, seed=3)
     (tmp_path / "wide").mkdir()

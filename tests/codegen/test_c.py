@@ -11,6 +11,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 import ctypes
+import re
 import shutil
 import subprocess
 
@@ -310,6 +311,64 @@ def test_a_loop_unit_is_the_exponent_of_the_mean_length_bit_for_bit(tmp_path):
     numpy_unit = load_numpy_module(numpy_module([("f", Program((x,), (), {"unit": PowerOfTwoBelow(x)}), "")]))["f"]
     lengths = (values >= 1e-305) & (values <= 1e305)  # what a generated NumPy function takes as a length
     assert numpy_unit(values[lengths])["unit"].view(numpy.int64).tolist() == expected[lengths].view(numpy.int64).tolist()
+
+
+def test_a_loop_units_reciprocal_is_the_division_bit_for_bit(tmp_path):
+    """1/unit from the exponent bits (no division) equals 2.0**-k (exact: a power of two's reciprocal) for every
+    unit 2**k a positive normal mean length has, k from -1022 to 1023, the subnormal 2**-1023 included, and
+    infinity (1/0) for a unit of 0; the four-bar's loop uses it instead of a division."""
+    import math
+    from symlink.position import PowerOfTwoBelow
+    x = sp.Symbol("x", positive=True)
+    unit = sp.Symbol("size_1", positive=True)
+    program = Program((x,), ((unit, PowerOfTwoBelow(x)),), {"inverse": 1 / unit, "unit": unit})
+    function = c_function(program, "inverse", "")
+    assert "symlink_reciprocal_power_of_two(size_1)" in function.definition
+    library = build(tmp_path, *c_library([function], "inverses"), "inverses")
+    exponents = numpy.arange(-1022, 1024)
+    values = numpy.array([math.ldexp(1.0, int(k)) for k in exponents])
+    values = numpy.concatenate([values, numpy.nextafter(values[:-1], numpy.inf) * 1.5])  # inside an octave too
+    expected = numpy.array([math.ldexp(1.0, -int(k)) for k in numpy.concatenate([exponents, exponents[:-1]])])
+    result = call(library, function, {"x": values})
+    assert result["unit"].view(numpy.int64).tolist() == numpy.concatenate([values[:2046], values[:2045]]).view(
+        numpy.int64).tolist()
+    assert result["inverse"].view(numpy.int64).tolist() == expected.view(numpy.int64).tolist()
+    assert expected[2045] == 2.0 ** -1023 and 0 < expected[2045] < numpy.finfo(float).tiny  # the subnormal end
+    below = call(library, function, {"x": numpy.array([0.0, 1e-310, 2.0 ** -1022 * 0.75])})  # a unit of 0: 1/0
+    assert below["unit"].tolist() == [0.0, 0.0, 0.0] and below["inverse"].tolist() == [numpy.inf] * 3
+    kernel = c_function(catalog_linkage("fourbar").program(["coupler", "rocker"]), "f", "").definition
+    assert "symlink_reciprocal_power_of_two(" in kernel and "1.0/size" not in kernel
+
+
+@pytest.mark.parametrize("name", ["fourbar", "watt2", "jansen"])
+def test_a_loop_of_rates_carries_its_flags_in_32_bit_lanes_and_computes_the_same(tmp_path, name):
+    """Positions keep 16-bit flag lanes, a loop with rates takes 32-bit ones (RATE_FLAG_LANE, measured faster);
+    the lane is only how 1 and 0 are carried: the loop's outputs are bit for bit those of 16-bit lanes."""
+    linkage = catalog_linkage(name)
+    unknowns = [q.name for q in linkage.unknowns]
+    full = unknowns + [f"{q}dot" for q in unknowns] + [f"{q}ddot" for q in unknowns] + ["singular"]
+    positions = c_function(linkage.program(unknowns), "positions", "").definition
+    rates = c_function(linkage.program(full), "rates", "")
+    assert "unsigned short *restrict assembled" in positions and "unsigned int" not in positions
+    assert "unsigned int *restrict assembled" in rates.definition and "unsigned short" not in rates.definition
+    # the angles that only outputs read are computed last, after every rate (fewer values across atan2 calls)
+    body = rates.definition.split("    out[0] =")[0].split("\n")
+    values = [line for line in body if line.startswith("    const double ")]
+    names = [line.split()[2] for line in values]
+    read_later = {k for k, name in enumerate(names)
+                  if any(re.search(r"\b" + name + r"\b", line.split(" = ", 1)[1]) for line in values[k + 1:])}
+    last = [k for k, line in enumerate(values) if " = atan2(" in line and k not in read_later]
+    assert last and last == list(range(len(values) - len(last), len(values)))
+    header, source = c_library([rates], "lanes", "test")
+    values = random_arguments(linkage, rates.arguments, 500, seed=3)
+    (tmp_path / "wide").mkdir()
+    (tmp_path / "narrow").mkdir()
+    wide = call(build(tmp_path / "wide", header, source, "lanes"), rates, values)
+    narrow_ = call(build(tmp_path / "narrow", header, source.replace("unsigned int", "unsigned short"), "lanes"),
+                   rates, values)
+    assert wide["assembled"].any() and (~wide["assembled"].astype(bool)).any()  # both kinds of configuration
+    for key in wide:
+        assert numpy.array_equal(wide[key], narrow_[key], equal_nan=True), key
 
 
 @pytest.mark.parametrize("name", ["watt2", "jansen"])

@@ -340,14 +340,10 @@ def test_catalog_entries_are_fresh_linkages_with_documented_names():
 
 def mp_circles(centre0, radius0, centre1, radius1, left):
     """The intersection of two circles left (or right) of the line from centre0 to centre1; None if they miss."""
-    span = centre1 - centre0
-    distance = abs(span)
-    along = (radius0 ** 2 - radius1 ** 2 + distance ** 2) / (2 * distance)
-    square = radius0 ** 2 - along ** 2
-    if square < 0:
+    try:
+        return ref.circle_point(centre0, radius0, centre1, radius1, 1 if left else -1)
+    except ValueError:
         return None
-    across = mp.sqrt(square) * (1 if left else -1)
-    return centre0 + span / distance * mp.mpc(along, across)
 
 
 def mp_jansen_joints(theta, n, signs):

@@ -43,6 +43,7 @@ import mpmath as mp
 import numpy
 import pytest
 
+from mp_closures import circle_point
 from symlink import catalog
 from symlink.position import TOLERANCE
 from symlink.solver import Solver
@@ -63,14 +64,10 @@ def mp_triangle(start, end, first: float, second: float, branch: int):
 
     ``start`` and ``end`` are complex mpmath numbers; returns J, or None where the circles do not meet.
     """
-    along = end - start
-    distance = abs(along)
-    foot = (first**2 - second**2 + distance**2) / (2 * distance)
-    height_squared = first**2 - foot**2
-    if height_squared < 0:
+    try:
+        return circle_point(start, first, end, second, branch)
+    except ValueError:  # the circles do not meet
         return None
-    unit = along / distance
-    return start + unit * (foot + branch * 1j * mp.sqrt(height_squared))
 
 
 def mp_angle(z) -> mp.mpf:

@@ -201,9 +201,11 @@ def _register_path(kinds) -> None:
     command.add_argument("--grashof", choices=GRASHOF_CHOICES, default="any",
                          help="Grashof class (crank-turns: crank-rocker or double-crank; default any)")
     command.add_argument("--max-link-ratio", type=finite, default=20.0, metavar="R",
-                         help="longest link at most R times the shortest (default 20)")
+                         help="longest link at most R times the shortest (default 20; with LINKAGE: no bound "
+                              "unless given)")
     command.add_argument("--min-transmission", type=angle, default=0.0, metavar="ANGLE",
-                         help="worst transmission angle over the crank's turn at least this (default 0)")
+                         help="worst transmission angle over the crank's turn at least this (default 0; with "
+                              "LINKAGE: at every target, at every loop with two unknown angles)")
     command.add_argument("--seed", type=whole, default=0, help="seed of the atlas of starts (default 0)")
     add_units_option(command)
     add_format_option(command)
@@ -394,13 +396,13 @@ def _run_motion(args: argparse.Namespace) -> int:
 
 #: Options of the four-bar route of each kind (by destination): they do nothing with a LINKAGE.
 FOURBAR_ONLY = {"function": ("ground",),
-                "path": ("designs", "grashof", "max_link_ratio", "min_transmission"),
+                "path": ("designs", "grashof"),
                 "motion": ("moving_pivot", "fixed_pivot", "rotation", "offset", "defect_free", "designs")}
 #: Options of the general route of each kind (by destination): they need a LINKAGE.
 GENERAL_ONLY = {"function": ("set", "free", "bound", "branch", "output", "minimax", "out", "record", "seed",
                              "starts"),
                 "path": ("set", "free", "bound", "branch", "point", "frame", "out", "record", "shape", "shape_kind",
-                         "samples"),
+                         "samples", "full_rotation"),
                 "motion": ("set", "free", "bound", "branch", "point", "angle", "frame", "out", "record", "seed",
                            "starts")}
 #: Designs sampled for a shape match (``--shape``) unless --samples says.
@@ -486,6 +488,8 @@ def add_general_options(command: argparse.ArgumentParser, kind: str) -> None:
                            help="free parts of the placement: some of x0,y0,angle,scale, or none (default "
                                 + ("all" if kind == "path" else "x0,y0,angle") + ")")
     if kind == "path":
+        group.add_argument("--full-rotation", action="store_true",
+                           help="the input turns a whole turn without leaving the assembly or passing a toggle")
         group.add_argument("--shape", action="store_true",
                            help="match the points' shape only (x,y in order along the curve, without timing, "
                                 "position, turn or scale): sampled designs ranked by shape distance, the best "
@@ -634,9 +638,14 @@ def _run_general(args: argparse.Namespace, kind: str) -> int:
             raise ValueError(f"{option} belongs to a shape match: add --shape")
         point = _point_option(args, linkage)
         targets = numpy.stack([columns["x"], columns["y"]], axis=1)
+        ratio = args.max_link_ratio if "max_link_ratio" in given_options(args) else None  # no bound unless asked
+        if ratio is not None and not ratio >= 1.0:
+            raise ValueError(f"--max-link-ratio must be at least 1, got {args.max_link_ratio:g}")
         design = synthesize_path(linkage, point, targets, free, values=values,
                                  frame=FRAME_NAMES if args.frame is None else args.frame, timed=timed,
-                                 branches=args.branch, starts=args.starts, seed=args.seed)
+                                 branches=args.branch, starts=args.starts, seed=args.seed, max_link_ratio=ratio,
+                                 min_transmission=float(to_radians(args.min_transmission, args.units)),
+                                 full_rotation=args.full_rotation)
         placement = design.placement
     else:
         from ..synthesis.general_motion import frame_point, synthesize_motion
@@ -692,6 +701,11 @@ def _check_shape_options(args: argparse.Namespace, timed_column: str | None) -> 
                          f"{timed_column},x,y")
     if args.frame is not None:
         raise ValueError("--frame does nothing with --shape: a shape's placement is free (shift, turn and scale)")
+    for option, given in (("--max-link-ratio", "max_link_ratio" in given_options(args)),
+                          ("--min-transmission", "min_transmission" in given_options(args)),
+                          ("--full-rotation", args.full_rotation)):
+        if given:
+            raise ValueError(f"{option} does nothing with --shape (a path fit without --shape takes it)")
 
 
 def _angle_output(linkage, name: str) -> bool:
@@ -732,6 +746,8 @@ def _general_record(args, kind: str, linkage, design, placement, error: float, c
                              for q in linkage.unknowns for name, v in design.assembly.items() if name == q.name}}
                if getattr(design, "assembly", None) else {}),
             "columns": list(columns), "targets": targets, "errors": list(map(float, errors)), **extra,
+            **({"constraints": list(design.constraints), "active": list(design.active)}
+               if getattr(design, "constraints", ()) else {}),
             "units": args.units, "why": design.why}
 
 

@@ -1103,5 +1103,11 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
             if verified(x, signs, angles_found):
                 break
     if best is None:
-        raise ValueError("no start could be refined")
+        stated = ([f"max_link_ratio={max_link_ratio:g}"] if max_link_ratio is not None else []) + (
+            [f"min_transmission={min_transmission:.6g} rad"] if min_transmission > 0 else []) + (
+            ["full_rotation"] if full_rotation else []) + ([f"direction={direction:+d}"] if direction is not None
+                                                           else [])
+        raise ValueError("no start could be refined: every trial left the bounds" + (
+            " or broke " + ", ".join(stated) if stated else "") + " (widen the bounds, free more parameters"
+            + (" or ease the constraints)" if stated else ")"))
     return best if best.evaluations == spent else PathSynthesis(**{**best.__dict__, "evaluations": spent})

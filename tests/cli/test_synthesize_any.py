@@ -197,3 +197,35 @@ def test_the_how_to_pages_commands_run(tmp_path, monkeypatch, capsys):
                 assert (tmp_path / arguments[arguments.index(option) + 1]).stat().st_size > 0
     found = json.loads((tmp_path / "found.json").read_text())
     assert found["assembled"] and found["error"] < 1e-10
+
+
+def test_path_of_a_watt_two_with_the_designers_constraints(tmp_path, capsys):
+    # the Watt II problem above, held to a transmission angle of 25 deg at every target, a full turn of the crank and
+    # a link ratio of 8: the design still reaches every target (hand formulas), and says what it was held to;
+    # 89.9 deg cannot be met by any design: refused in one line, nothing written
+    truth = {**WATT, "b": 3.7, "f": 4.2}
+    inputs = [float(q) for q in numpy.linspace(20.0, 250.0, 7)]
+    points = [placed(watt2_joints(truth, math.radians(q))["F"]) for q in inputs]
+    (tmp_path / "t.csv").write_text("theta,x,y\n" + "".join(f"{q!r},{p.real!r},{p.imag!r}\n"
+                                                            for q, p in zip(inputs, points)))
+    common = ["synthesize", "path", "watt2", str(tmp_path / "t.csv"), "--point", "F", "--bound", "b=3,4.5",
+              "--bound", "f=3.5,5", "--frame", "x0,y0,angle"]
+    record = tmp_path / "path.json"
+    status = main([*common, "--min-transmission", "25", "--full-rotation", "--max-link-ratio", "8",
+                   "--record", str(record)])
+    assert status == 0, capsys.readouterr().err
+    found = json.loads(record.read_text())
+    assert found["assembled"] and found["constraints"]
+    assert "the input turns fully" in found["constraints"] and any("transmission" in c for c in found["constraints"])
+    where = {**found["placement"], "angle": math.radians(found["placement"]["angle"])}
+    design = {**found["design"], "alpha": math.radians(found["design"]["alpha"])}
+    signs = (found["branches"]["branch_ABCD"], found["branches"]["branch_DEFG"])
+    size = math.hypot(*numpy.ptp([[p.real, p.imag] for p in points], axis=0))
+    for q, p in zip(inputs, points):
+        F = watt2_joints(design, math.radians(q), signs)["F"]
+        assert abs(complex(where["x0"], where["y0"]) + cmath.exp(1j * where["angle"]) * F - p) < 1e-8 * size
+    capsys.readouterr()
+    out = tmp_path / "never.toml"
+    assert main([*common, "--min-transmission", "89.9", "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and "min_transmission" in err and not out.exists()

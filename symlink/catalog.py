@@ -44,8 +44,9 @@ def with_point(linkage: Linkage, through: str, angle: sp.Expr, name: str | None 
     ('fourbar_point', ['u', 'v'])
     """
     u, v = sp.symbols("u v", real=True)
-    point = (linkage.points[through] + Vector(u, angle, f"{through}U")
-             + Vector(v, angle + sp.pi / 2, "UP"))
+    start = linkage.points[through]  # None: the frame's origin
+    along = Vector(u, angle, f"{through}U")
+    point = (along if start is None else start + along) + Vector(v, angle + sp.pi / 2, "UP")
     return Linkage(name or f"{linkage.name}_point", linkage.loops, linkage.inputs, linkage.unknowns,
                    parameters=list(linkage.parameters) + [u, v], points={**linkage.points, "P": point},
                    roles=linkage.roles, extras=linkage.extras)

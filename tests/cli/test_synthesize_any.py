@@ -56,26 +56,39 @@ def test_function_of_a_slider_crank(tmp_path, capsys):
     assert abs(float(row["slider"]) - slider_travel(*truth, math.radians(40))) < 1e-6  # printed to 6 digits
 
 
-def test_path_of_a_watt_two_point_timed(tmp_path, capsys):
-    truth = {**WATT, "b": 3.7, "f": 4.2}
-    inputs = [float(q) for q in numpy.linspace(20.0, 250.0, 7)]
-    points = [placed(watt2_joints(truth, math.radians(q))["F"]) for q in inputs]
+WATT_TRUTH = {**WATT, "b": 3.7, "f": 4.2}
+WATT_INPUTS = [float(q) for q in numpy.linspace(20.0, 250.0, 7)]  # degrees
+
+
+def watt_path_command(tmp_path) -> list[str]:
+    """``symlink synthesize path watt2`` on the placed point F of WATT_TRUTH at WATT_INPUTS (hand formulas)."""
+    points = [placed(watt2_joints(WATT_TRUTH, math.radians(q))["F"]) for q in WATT_INPUTS]
     (tmp_path / "t.csv").write_text("theta,x,y\n" + "".join(f"{q!r},{p.real!r},{p.imag!r}\n"
-                                                            for q, p in zip(inputs, points)))
-    out, record = tmp_path / "path.toml", tmp_path / "path.json"
-    status = main(["synthesize", "path", "watt2", str(tmp_path / "t.csv"), "--point", "F", "--bound", "b=3,4.5",
-                   "--bound", "f=3.5,5", "--frame", "x0,y0,angle", "--out", str(out), "--record", str(record)])
-    assert status == 0, capsys.readouterr().err
-    found = json.loads(record.read_text())
-    assert found["assembled"]
+                                                            for q, p in zip(WATT_INPUTS, points)))
+    return ["synthesize", "path", "watt2", str(tmp_path / "t.csv"), "--point", "F", "--bound", "b=3,4.5",
+            "--bound", "f=3.5,5", "--frame", "x0,y0,angle"]
+
+
+def check_watt_path_reached(found: dict) -> None:
+    """The recorded design, placed, puts F on every target to 1e-8 of their size (hand formulas)."""
+    points = [placed(watt2_joints(WATT_TRUTH, math.radians(q))["F"]) for q in WATT_INPUTS]
     where = {**found["placement"], "angle": math.radians(found["placement"]["angle"])}
     design = {**found["design"], "alpha": math.radians(found["design"]["alpha"])}
     signs = (found["branches"]["branch_ABCD"], found["branches"]["branch_DEFG"])
     size = math.hypot(*numpy.ptp([[p.real, p.imag] for p in points], axis=0))
-    for q, p in zip(inputs, points):
+    for q, p in zip(WATT_INPUTS, points):
         F = watt2_joints(design, math.radians(q), signs)["F"]
-        reached = complex(where["x0"], where["y0"]) + cmath.exp(1j * where["angle"]) * F
-        assert abs(reached - p) < 1e-8 * size
+        assert abs(complex(where["x0"], where["y0"]) + cmath.exp(1j * where["angle"]) * F - p) < 1e-8 * size
+
+
+def test_path_of_a_watt_two_point_timed(tmp_path, capsys):
+    truth, inputs = WATT_TRUTH, WATT_INPUTS
+    out, record = tmp_path / "path.toml", tmp_path / "path.json"
+    status = main([*watt_path_command(tmp_path), "--out", str(out), "--record", str(record)])
+    assert status == 0, capsys.readouterr().err
+    found = json.loads(record.read_text())
+    assert found["assembled"]
+    check_watt_path_reached(found)
     # the file holds the placement: its output angle is the placed one (turned by the frame's angle)
     row = table_row(capsys, str(out), "--angles", f"{inputs[2]!r}", "--branch", "+1,+1")
     psi = watt2_joints(truth, math.radians(inputs[2]))["psi"] + WHERE["angle"]
@@ -203,13 +216,7 @@ def test_path_of_a_watt_two_with_the_designers_constraints(tmp_path, capsys):
     # the Watt II problem above, held to a transmission angle of 25 deg at every target, a full turn of the crank and
     # a link ratio of 8: the design still reaches every target (hand formulas), and says what it was held to;
     # 89.9 deg cannot be met by any design: refused in one line, nothing written
-    truth = {**WATT, "b": 3.7, "f": 4.2}
-    inputs = [float(q) for q in numpy.linspace(20.0, 250.0, 7)]
-    points = [placed(watt2_joints(truth, math.radians(q))["F"]) for q in inputs]
-    (tmp_path / "t.csv").write_text("theta,x,y\n" + "".join(f"{q!r},{p.real!r},{p.imag!r}\n"
-                                                            for q, p in zip(inputs, points)))
-    common = ["synthesize", "path", "watt2", str(tmp_path / "t.csv"), "--point", "F", "--bound", "b=3,4.5",
-              "--bound", "f=3.5,5", "--frame", "x0,y0,angle"]
+    common = watt_path_command(tmp_path)
     record = tmp_path / "path.json"
     status = main([*common, "--min-transmission", "25", "--full-rotation", "--max-link-ratio", "8",
                    "--record", str(record)])
@@ -217,13 +224,7 @@ def test_path_of_a_watt_two_with_the_designers_constraints(tmp_path, capsys):
     found = json.loads(record.read_text())
     assert found["assembled"] and found["constraints"]
     assert "the input turns fully" in found["constraints"] and any("transmission" in c for c in found["constraints"])
-    where = {**found["placement"], "angle": math.radians(found["placement"]["angle"])}
-    design = {**found["design"], "alpha": math.radians(found["design"]["alpha"])}
-    signs = (found["branches"]["branch_ABCD"], found["branches"]["branch_DEFG"])
-    size = math.hypot(*numpy.ptp([[p.real, p.imag] for p in points], axis=0))
-    for q, p in zip(inputs, points):
-        F = watt2_joints(design, math.radians(q), signs)["F"]
-        assert abs(complex(where["x0"], where["y0"]) + cmath.exp(1j * where["angle"]) * F - p) < 1e-8 * size
+    check_watt_path_reached(found)
     capsys.readouterr()
     out = tmp_path / "never.toml"
     assert main([*common, "--min-transmission", "89.9", "--out", str(out)]) == 2

@@ -69,7 +69,7 @@ from ..display import record_html
 from ..linkage import Linkage
 from .design_fit import (BRANCH_SAMPLES, INPUT_PHASE, _jacobian, _newton_solver, _solver, branch_break, check_branches,
                          find_assembly, free_bounds, newton_traced_batch)
-from .path import _FULL_TURN, _accelerated_levenberg_marquardt
+from .path import _accelerated_levenberg_marquardt, ordered_inputs, ordered_inputs_jacobian, steps_under_a_turn
 
 __all__ = ["PathSynthesis", "synthesize_path", "traced_points", "find_assembly", "path_residuals", "FRAME_NAMES"]
 
@@ -748,7 +748,6 @@ def _longest_run(ok: numpy.ndarray) -> tuple[int, int] | None:
 def _refine(problem: _Problem, x0: numpy.ndarray, branches: Mapping[str, int], inputs: numpy.ndarray,
             evaluations: int, tolerance: float):
     """One start refined: (x, input values, cost, evaluations), or None if the start is infeasible."""
-    count = len(inputs)
     width = problem.width
     problem.assembly = dict(branches) if problem.newton else None  # the start's assembly, continued from here
     if problem.timed is not None:
@@ -764,23 +763,13 @@ def _refine(problem: _Problem, x0: numpy.ndarray, branches: Mapping[str, int], i
     direction = 1.0 if inputs[-1] >= inputs[0] else -1.0
 
     def angles_of(y: numpy.ndarray) -> numpy.ndarray:
-        return y[width] + direction * numpy.concatenate([[0.0], numpy.cumsum(y[width + 1:] ** 2)])
+        return ordered_inputs(y[width], y[width + 1:], direction)
 
     def under_a_turn(y: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
-        """y with its steps scaled down onto just under a full turn if they make one, and d(steps)/d(steps).
-
-        A trial past a full turn is evaluated there, so that the refinement slides along that wall
-        (a closed curve through its first target again) instead of stopping at it.
-        """
-        steps = y[width + 1:]
-        turn = float(steps @ steps)
-        if turn < _FULL_TURN:
-            return y, numpy.eye(len(steps))
-        length = math.sqrt(turn)
-        unit = steps / length
+        """y with its steps on just under a full turn if they make one (it slides along that wall), and the chain."""
         moved = y.copy()
-        moved[width + 1:] = unit * math.sqrt(_FULL_TURN)
-        return moved, math.sqrt(_FULL_TURN) / length * (numpy.eye(len(steps)) - numpy.outer(unit, unit))
+        moved[width + 1:], chain = steps_under_a_turn(y[width + 1:])
+        return moved, chain
 
     def untimed(y: numpy.ndarray):
         y, step_chain = under_a_turn(y)
@@ -792,7 +781,7 @@ def _refine(problem: _Problem, x0: numpy.ndarray, branches: Mapping[str, int], i
             return None
         r, jac = found
         by_input = jac[:, width:]  # (2N, N): d r / d q_i, diagonal blocks
-        chain = numpy.tril(numpy.tile(numpy.concatenate([[1.0], 2 * direction * y[width + 1:]]), (count, 1)))
+        chain = ordered_inputs_jacobian(y[width + 1:], direction)
         chain[:, 1:] = chain[:, 1:] @ step_chain
         return r, numpy.concatenate([jac[:, :width], by_input @ chain], axis=1)
 

@@ -106,6 +106,44 @@ _SHORTEST_LINK = {"crank-rocker": 0, "double-rocker": 1, "rocker-crank": 2, "dou
 _PHASE_STARTS = 24       # timed with a free phase: offsets over a turn at which each atlas four-bar is fitted
 
 
+def ordered_inputs(first: float, steps: numpy.ndarray, direction: float) -> numpy.ndarray:
+    """Input values kept in order through a refinement: the first, then steps of ``s_k^2`` in ``direction`` (+-1).
+
+    Untimed fits refine ``(first, s_1 ... s_{N-1})`` instead of the inputs themselves, so that no
+    trial puts the targets out of order (:func:`ordered_inputs_jacobian` is its derivative).
+
+    >>> ordered_inputs(0.5, numpy.array([1.0, 2.0]), -1.0)
+    array([ 0.5, -0.5, -4.5])
+    """
+    return first + direction * numpy.concatenate([[0.0], numpy.cumsum(steps ** 2)])
+
+
+def ordered_inputs_jacobian(steps: numpy.ndarray, direction: float) -> numpy.ndarray:
+    """d inputs / d (first, s_1 ... s_{N-1}) of :func:`ordered_inputs`: ones, then ``2 direction s_k`` below the diagonal.
+
+    >>> ordered_inputs_jacobian(numpy.array([1.0, 2.0]), -1.0)
+    array([[ 1.,  0.,  0.],
+           [ 1., -2.,  0.],
+           [ 1., -2., -4.]])
+    """
+    return numpy.tril(numpy.tile(numpy.concatenate([[1.0], 2 * direction * steps]), (len(steps) + 1, 1)))
+
+
+def steps_under_a_turn(steps: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
+    """``steps`` scaled onto just under a full turn if their squares make one, and d(scaled)/d(steps).
+
+    A trial past a full turn is evaluated there, so that a refinement slides along that wall (a
+    closed curve through its first target again) instead of stopping at it.
+    """
+    turn = float(steps @ steps)
+    if turn < _FULL_TURN:
+        return steps, numpy.eye(len(steps))
+    length = math.sqrt(turn)
+    unit = steps / length
+    return unit * math.sqrt(_FULL_TURN), math.sqrt(_FULL_TURN) / length * (numpy.eye(len(steps))
+                                                                           - numpy.outer(unit, unit))
+
+
 @dataclass(frozen=True)
 class PathDesign:
     """A path-generating four-bar: dimensions, branch, the crank angle at each target point, and its errors.
@@ -846,7 +884,7 @@ def _refine_untimed(start: numpy.ndarray, branch: int, theta: numpy.ndarray, tar
     direction = 1.0 if len(theta) < 2 or theta[-1] >= theta[0] else -1.0
 
     def angles_of(x: numpy.ndarray) -> numpy.ndarray:
-        return x[9] + direction * numpy.concatenate([[0.0], numpy.cumsum(x[10:] ** 2)])
+        return ordered_inputs(x[9], x[10:], direction)
 
     def projected(x: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray, numpy.ndarray]:
         """x on the walls (bounds, under a full turn), which dimensions were clipped, d(projected steps)/d(steps)."""
@@ -855,14 +893,7 @@ def _refine_untimed(start: numpy.ndarray, branch: int, theta: numpy.ndarray, tar
         for k, low, high in constraints.box:
             if not low <= y[k] <= high:
                 y[k], clipped[k] = min(max(y[k], low), high), True
-        steps = y[10:]
-        turn = float(steps @ steps)
-        chain = numpy.eye(len(steps))
-        if turn >= _FULL_TURN:
-            length = math.sqrt(turn)
-            unit = steps / length
-            y[10:] = unit * math.sqrt(_FULL_TURN)
-            chain = math.sqrt(_FULL_TURN) / length * (chain - numpy.outer(unit, unit))
+        y[10:], chain = steps_under_a_turn(y[10:])
         return y, clipped, chain
 
     def residuals(x: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray] | None:
@@ -876,7 +907,7 @@ def _refine_untimed(start: numpy.ndarray, branch: int, theta: numpy.ndarray, tar
             return None
         by_theta = jac[:, :, 0]  # (count, 2): d point_i / d theta_i
         # d theta_i / d theta_1 = 1 and d theta_i / d s_k = 2 direction s_k for k < i: a lower triangle
-        chain = numpy.tril(numpy.concatenate([[1.0], 2 * direction * y[10:]])[None, :].repeat(count, axis=0))
+        chain = ordered_inputs_jacobian(y[10:], direction)
         angle_columns = (by_theta[:, :, None] * chain[:, None, :]).reshape(2 * count, count)
         angle_columns[:, 1:] = angle_columns[:, 1:] @ step_chain
         jacobian = numpy.concatenate([jac[:, :, 1:].reshape(2 * count, 9), angle_columns], axis=1)

@@ -45,6 +45,7 @@ from ..display import record_html
 from ..linkage import Linkage
 from .design_fit import DesignOutputs, check_branches, check_linkage, free_bounds, refine, sampled_designs
 from .general import FRAME_NAMES, PathSynthesis, path_residuals, synthesize_path, traced_points
+from .path import ordered_inputs, ordered_inputs_jacobian
 
 __all__ = ["shape_distance", "similarity_fit", "similarity_transform", "resampled", "shape_search", "ShapeMatch",
            "synthesize_shape", "ShapeSynthesis", "REACHED",
@@ -488,7 +489,7 @@ def _refined_match(linkage: Linkage, point: str, target: numpy.ndarray, match: S
 
     def split(x: numpy.ndarray):
         design = {**match.design, **{name: float(v) for name, v in zip(names, x[:len(names)])}}
-        inputs = x[width] + direction * numpy.concatenate([[0.0], numpy.cumsum(x[width + 1:] ** 2)])
+        inputs = ordered_inputs(x[width], x[width + 1:], direction)
         return design, dict(zip(FRAME_NAMES, map(float, x[len(names):width]))), inputs
 
     def projected(x: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
@@ -510,8 +511,7 @@ def _refined_match(linkage: Linkage, point: str, target: numpy.ndarray, match: S
                                          match.branches)
         except ValueError:  # not assembled at an input
             return None
-        # d inputs / d (q_1, s_1 ... s_{N-1}): ones, then 2 direction s_k below the diagonal
-        chain = numpy.tril(numpy.tile(numpy.concatenate([[1.0], 2 * direction * x[width + 1:]]), (len(inputs), 1)))
+        chain = ordered_inputs_jacobian(x[width + 1:], direction)  # d inputs / d (q_1, s_1 ... s_{N-1})
         jacobian = numpy.concatenate([jacobian[:, :width], jacobian[:, width:] @ chain], axis=1)
         jacobian[:, outside] = 0.0
         return r, jacobian

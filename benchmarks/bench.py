@@ -24,7 +24,7 @@ Methods (``--methods`` picks some); ``full`` ones compute positions, speeds and 
                                          (LLVM backend, ``cse=True``)
 ``lambdify-cse``             full        symlink's expressions through ``sympy.lambdify(cse=True)``
 ``pylinkage``                full        pylinkage's numba simulation (``step_fast_with_kinematics``)
-``symlink-c``                full        symlink's generated C, compiled (:mod:`symlink.compiled`)
+``symlink-c``                full        symlink's generated C, compiled (:mod:`symlink.numeric.compiled`)
 ``hand-c``                   full        the same formulas as a hand-written C loop, same compiler and flags
 ``symlink-positions``        positions   symlink's generated NumPy module
 ``hand-numpy-positions``     positions   symlink's atan2 formula written by hand in NumPy
@@ -95,8 +95,8 @@ if __package__ in (None, ""):  # run as a script, python benchmarks/bench.py: im
     sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from symlink.analysis import crank_range
-from symlink.files import write_atomic
-from symlink.position import TOLERANCE
+from symlink.common.files import write_atomic
+from symlink.symbolic.position import TOLERANCE
 
 __all__ = ["benchmark", "METHODS", "main", "hand_numpy", "hand_numpy_everything", "halfangle_numpy", "hand_rates", "reference_positions",
            "reference_rates", "loop_records"]
@@ -486,16 +486,16 @@ def _outputs(full: bool) -> list[str]:
 
 
 def _symlink(full: bool):
-    from symlink.cache import generated_code
-    from symlink.scene import catalog_linkage
+    from symlink.numeric.cache import generated_code
+    from symlink.io.scene import catalog_linkage
     return _keywords(generated_code(catalog_linkage("fourbar"), _outputs(full)).function, full)
 
 
 def _symbolic(full: bool):
     """symlink's closed forms as plain SymPy expressions (clamped roots as square roots) and their arguments."""
     import sympy as sp
-    from symlink.position import ClampedSqrt
-    from symlink.scene import catalog_linkage
+    from symlink.symbolic.position import ClampedSqrt
+    from symlink.io.scene import catalog_linkage
     program = catalog_linkage("fourbar").program(_outputs(full))
     whole = _inlined(program.assignments)
     expressions = [program.outputs[name].xreplace(whole).replace(ClampedSqrt, lambda x, *scale: sp.sqrt(x))
@@ -602,7 +602,7 @@ def _newton():
 
 def _evalf():
     import sympy as sp
-    from symlink.scene import catalog_linkage
+    from symlink.io.scene import catalog_linkage
     linkage = catalog_linkage("fourbar")
     whole = _inlined(linkage.positions.items())
     beta, phi = (whole[q] for q in linkage.unknowns)
@@ -620,10 +620,10 @@ def _evalf():
 
 def _compiled(full: bool):
     try:
-        from symlink.compiled import CompiledSolver, CompileError, CompilerUnavailable
+        from symlink.numeric.compiled import CompiledSolver, CompileError, CompilerUnavailable
     except ImportError:
-        raise Unavailable("symlink.compiled is not available") from None
-    from symlink.scene import catalog_linkage
+        raise Unavailable("symlink.numeric.compiled is not available") from None
+    from symlink.io.scene import catalog_linkage
     try:
         return _keywords(CompiledSolver(catalog_linkage("fourbar"), _outputs(full)).function, full)
     except CompilerUnavailable as error:
@@ -634,7 +634,7 @@ def _compiled(full: bool):
 
 def _hand_c(formula: str):
     try:
-        from symlink.compiled import CompileError, CompilerUnavailable
+        from symlink.numeric.compiled import CompileError, CompilerUnavailable
         from benchmarks.hand_c import hand_everything, hand_library, hand_positions
     except ImportError:
         raise Unavailable("benchmarks.hand_c is not available") from None
@@ -848,8 +848,8 @@ def _ratios(records: list[dict]) -> None:
 _DERIVATION_SCRIPT = r"""
 import json, sys, time
 started = time.perf_counter()
-from symlink import cache
-from symlink.scene import catalog_linkage
+from symlink.numeric import cache
+from symlink.io.scene import catalog_linkage
 imported = time.perf_counter()
 result = {"import_symlink": imported - started, "scenes": []}
 for name, outputs in json.loads(sys.argv[1]):
@@ -869,9 +869,9 @@ print(json.dumps(result))
 
 def derivation_scenes(quick: bool) -> list[tuple[str, list[str]]]:
     """The four-bar's positions and its full scene; unless quick, every closed-form catalog linkage's full scene."""
-    from symlink.catalog import CATALOG
-    from symlink.scene import catalog_linkage
-    from symlink.vectors import acceleration, rate
+    from symlink.mechanism.catalog import CATALOG
+    from symlink.io.scene import catalog_linkage
+    from symlink.symbolic.vectors import acceleration, rate
     scenes = [("fourbar", POSITIONS), ("fourbar", EVERYTHING)]
     for name in ([] if quick else CATALOG):
         linkage = catalog_linkage(name)
@@ -910,13 +910,13 @@ def derivation_times(scenes: list[tuple[str, list[str]]]) -> list[dict]:
 LOOPS = {"symlink-c-positions": ("symlink-c-positions-loop", "positions"), "symlink-c": ("symlink-c-loop", "full"),
          "hand-c-positions": ("hand-c-positions-loop", "positions"), "hand-c": ("hand-c-loop", "full"),
          "numba-positions": ("numba-positions-loop", "positions"), "numba": ("numba-loop", "full")}
-LIMIT_NOTE = "C loop of cos, sin, sqrt, 2 atan2 and 2 stores a value (symlink.compiled's flags, glibc libmvec)"
+LIMIT_NOTE = "C loop of cos, sin, sqrt, 2 atan2 and 2 stores a value (symlink.numeric.compiled's flags, glibc libmvec)"
 
 
 def _symlink_c_loop(work: Sweep, full: bool) -> Callable[[], object]:
     """The generated C loop function alone on ``work``, into outputs allocated here once."""
-    from symlink.compiled import CompiledSolver
-    from symlink.scene import catalog_linkage
+    from symlink.numeric.compiled import CompiledSolver
+    from symlink.io.scene import catalog_linkage
     entry = CompiledSolver(catalog_linkage("fourbar"), _outputs(full)).function
     a, b, c, d = work.lengths
     given = {"theta": work.theta, "a": a, "b": b, "c": c, "d": d, "branch": work.branch,
@@ -1033,7 +1033,7 @@ def loop_records(sweeps: list[Sweep], methods: Sequence[str], limit: bool, budge
     for name, make in makers.items():
         try:
             if not name.startswith("numba"):
-                import symlink.compiled  # noqa: F401 - every C loop is built by it (ImportError where it is not there)
+                import symlink.numeric.compiled  # noqa: F401 - every C loop is built by it (ImportError where it is not there)
             loops[name] = make()
         except (ImportError, OSError, RuntimeError):  # no numba, no compiler (CompilerUnavailable, CompileError)
             continue

@@ -31,8 +31,8 @@ SPEED, ACCEL = 10.5, 2.0
 
 
 def symlink_function():
-    from symlink.cache import generated_code
-    from symlink.catalog import fourbar
+    from symlink.numeric.cache import generated_code
+    from symlink.mechanism.catalog import fourbar
     return generated_code(fourbar(), OUTPUTS).function
 
 

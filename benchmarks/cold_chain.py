@@ -7,7 +7,7 @@ its acceleration (what a full-kinematics solver derives), timed, with the number
 ``sympy.diff`` calls made.  Printed: seconds, calls, and the growth exponent between the
 smallest and largest k (seconds ~ k^p; target p <= 1.15).
 
-With ``--compiled``: the compiled solver of those outputs made cold (:class:`symlink.compiled.CompiledSolver`:
+With ``--compiled``: the compiled solver of those outputs made cold (:class:`symlink.numeric.compiled.CompiledSolver`:
 derivation, the NumPy module, the C source, compiling it with the system compiler and loading it), timed
 as a user waits for it (wall seconds), with the CPU seconds of this process and of the compilers it ran
 (the machine may be shared: CPU seconds do not count the waiting), and the growth exponents of both
@@ -26,9 +26,9 @@ import time
 
 def chain(k: int):
     """A chain of ``k`` four-bars, each driven by the rocker of the one before."""
-    from symlink.linkage import Linkage
-    from symlink.loops import Loop
-    from symlink.vectors import Vector, coordinates, lengths
+    from symlink.symbolic.linkage import Linkage
+    from symlink.symbolic.loops import Loop
+    from symlink.symbolic.vectors import Vector, coordinates, lengths
     theta, = coordinates("theta")
     loops, unknowns, driver = [], [], theta
     for j in range(1, k + 1):
@@ -43,7 +43,7 @@ def chain(k: int):
 
 def measure(k: int) -> dict[str, float]:
     import sympy
-    from symlink.vectors import acceleration, rate
+    from symlink.symbolic.vectors import acceleration, rate
     calls = [0]
     original = sympy.diff
 
@@ -65,7 +65,7 @@ def measure(k: int) -> dict[str, float]:
 
 def full_kinematics(linkage) -> list[str]:
     """The names of the unknowns, their rates and their accelerations."""
-    from symlink.vectors import acceleration, rate
+    from symlink.symbolic.vectors import acceleration, rate
     return [q.name for q in linkage.unknowns] + [rate(q).name for q in linkage.unknowns] \
         + [acceleration(q).name for q in linkage.unknowns]
 
@@ -74,7 +74,7 @@ def measure_compiled(k: int) -> dict[str, float]:
     """Wall and CPU seconds (this process, and the compilers it ran) until the cold compiled solver of chain k
     answers, and how many translation units its C was compiled in."""
     from symlink.codegen.c import translation_units
-    from symlink.compiled import CompiledSolver
+    from symlink.numeric.compiled import CompiledSolver
     linkage = chain(k)
     before, start = os.times(), time.perf_counter()
     solver = CompiledSolver(linkage, full_kinematics(linkage))
@@ -97,7 +97,7 @@ def main() -> None:
     options = parser.parse_args()
     os.environ["SYMLINK_CACHE"] = ""
     if options.compiled:
-        from symlink.compiled import CompiledSolver
+        from symlink.numeric.compiled import CompiledSolver
         CompiledSolver(chain(1), ["phi1"])  # SymPy's first derivation and the compiler probe: not counted
         rows = [measure_compiled(k) for k in options.k]
         for row in rows:

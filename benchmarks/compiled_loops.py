@@ -1,7 +1,7 @@
 """Whether the compiled loops stay vectorised as linkages grow: full kinematics against positions, in C.
 
-For the four-bar, the Watt II six-bar and Jansen's leg (:mod:`symlink.catalog`),
-the compiled solver (:class:`symlink.compiled.CompiledSolver`) of the
+For the four-bar, the Watt II six-bar and Jansen's leg (:mod:`symlink.mechanism.catalog`),
+the compiled solver (:class:`symlink.numeric.compiled.CompiledSolver`) of the
 unknowns' angles (positions) and of the angles, their rates and their
 accelerations (full kinematics), on N = 10^4 and 10^5 crank angles (the
 outputs of the larger N no longer fit in the cache), one set of parameters,
@@ -42,7 +42,7 @@ PARAMETERS = {
 
 def parameters(name: str) -> dict[str, float]:
     if name == "jansen":
-        from symlink.catalog import jansen_parameters
+        from symlink.mechanism.catalog import jansen_parameters
         return jansen_parameters()
     return PARAMETERS[name]
 
@@ -96,8 +96,8 @@ def stores_alone(entry, arguments: dict, n: int):
 
 
 def measure(n: int = 10**5) -> list[dict]:
-    from symlink.catalog import fourbar, jansen, watt2
-    from symlink.compiled import CompiledSolver
+    from symlink.mechanism.catalog import fourbar, jansen, watt2
+    from symlink.numeric.compiled import CompiledSolver
     rows = []
     theta = numpy.linspace(0.0, 2 * math.pi, n)
     for build in (fourbar, watt2, jansen):

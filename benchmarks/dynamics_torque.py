@@ -3,8 +3,8 @@
 The four-bar with all three links massive (centres off the link lines, gravity), at N crank
 angles: the full kinematics (angles, their rates and accelerations), the driving torque
 alone, and every dynamic force output (torque, the four pins' reactions, shaking force and
-moment), each evaluated by the generated NumPy module (a :class:`symlink.solver.Solver`) and
-by the compiled C loop (:class:`symlink.compiled.CompiledSolver`).  Printed: CPU nanoseconds a
+moment), each evaluated by the generated NumPy module (a :class:`symlink.numeric.solver.Solver`) and
+by the compiled C loop (:class:`symlink.numeric.compiled.CompiledSolver`).  Printed: CPU nanoseconds a
 value and the ratios within this one run (targets: torque at most 3x the full kinematics in
 NumPy; compiled keeps its ratio to NumPy).
 
@@ -24,10 +24,10 @@ VALUES = dict(a=20.0, b=66.0, c=56.0, d=80.0, m2=1.0, r2=10.0, I2=5.0, m3=2.0, r
 
 
 def measure(n: int) -> dict[str, dict[str, float]]:
-    from symlink.catalog import fourbar
-    from symlink.compiled import CompiledSolver
+    from symlink.mechanism.catalog import fourbar
+    from symlink.numeric.compiled import CompiledSolver
     from symlink.dynamics import DynamicModel, Gravity, MassProperties, dynamic_linkage
-    from symlink.solver import Solver
+    from symlink.numeric.solver import Solver
     model = DynamicModel(fourbar(), [MassProperties("crank", "m2", "r2", 0, "I2"),
                                      MassProperties("coupler", "m3", "r3", "d3", "I3"),
                                      MassProperties("rocker", "m4", "r4", 0, "I4")], gravity=Gravity(0, -9.81))

@@ -31,7 +31,7 @@ of the benchmark gets them: many linkages in one call):
   seed paper 003 (K, A, B, C; phi = 2 atan((-B - branch sqrt(B^2 - 4AC))/(2A)),
   its "-" root being branch +1), beta from the loop's x and y components.
 
-All are compiled with :func:`symlink.compiled.compile_shared`, so with the
+All are compiled with :func:`symlink.numeric.compiled.compile_shared`, so with the
 same flags as the generated C, marked ``SYMLINK_LOOP`` as its loops are, and
 their arrays declared ``restrict`` (without it GCC cannot rule out that an
 output overlaps an input, and does not vectorise the loop).
@@ -48,7 +48,7 @@ import functools
 
 import numpy
 
-from symlink.position import TOLERANCE
+from symlink.symbolic.position import TOLERANCE
 
 __all__ = ["HAND_C_SOURCE", "hand_library", "hand_positions"]
 
@@ -175,7 +175,7 @@ def hand_library() -> ctypes.CDLL:
 
     Loaded once a process, as a caller of a C library would.
     """
-    from symlink.compiled import compile_shared
+    from symlink.numeric.compiled import compile_shared
     library = compile_shared(HAND_C_SOURCE)
     for name in _FUNCTIONS:
         function = getattr(library, name)

@@ -38,8 +38,8 @@ import time
 
 import numpy
 
-from symlink.catalog import fourbar, with_point
-from symlink.linkage import Linkage
+from symlink.mechanism.catalog import fourbar, with_point
+from symlink.symbolic.linkage import Linkage
 from symlink.synthesis.shape import shape_distance, synthesize_shape
 
 #: McGarva, J. R. (1994). Rapid search and selection of path generating mechanisms from a library. Mechanism and

@@ -1,7 +1,7 @@
 """The compiled Newton fallback against the closed-form C and the NumPy Newton, per value, in one run.
 
 Linkages without a loop-by-loop closed form (the Stephenson III six-bar) are solved by Newton's
-method on the closure (:class:`symlink.solver.NumericSolver`): the compiled driver
+method on the closure (:class:`symlink.numeric.solver.NumericSolver`): the compiled driver
 (:mod:`symlink.codegen.newton_c`, ``backend="compiled"``) or the generated NumPy module
 (``backend="numpy"``).  Each computes full kinematics (positions, rates, accelerations, points)
 over one turn of the crank, continued value by value.  Timed, CPU time of this thread, best of
@@ -63,7 +63,7 @@ def _sweep_alone(solver, values: dict, guess: dict):
 
 def _closed_form_loop(build, n: int) -> float:
     """ns a value of the closed-form compiled solver's C loop, full kinematics, over one turn."""
-    from symlink.compiled import CompiledSolver
+    from symlink.numeric.compiled import CompiledSolver
     linkage = build()
     unknowns = [q.name for q in linkage.unknowns]
     full = unknowns + [f"{q}dot" for q in unknowns] + [f"{q}ddot" for q in unknowns]
@@ -76,8 +76,8 @@ def _closed_form_loop(build, n: int) -> float:
 
 def measure(n: int = 36000, numpy_n: int = 3600) -> list[dict]:
     """One row a linkage: ns a value of each way, and the closed-form C loop it is compared with."""
-    from symlink.catalog import fourbar, stephenson3, watt2
-    from symlink.solver import NumericSolver
+    from symlink.mechanism.catalog import fourbar, stephenson3, watt2
+    from symlink.numeric.solver import NumericSolver
     rows = []
     for build, dimensions, guess, closed in ((stephenson3, STEPHENSON3, STEPHENSON3_GUESS, watt2),
                                              (fourbar, FOURBAR, FOURBAR_GUESS, fourbar)):

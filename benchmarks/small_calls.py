@@ -5,13 +5,13 @@ accelerations) and its positions alone, one set of lengths, N crank angles:
 
 * ``module``: the generated NumPy function (``check=True``, as a user calls it);
 * ``module-nocheck``: the same with ``check=False`` (a hot loop);
-* ``Solver``: :class:`symlink.solver.Solver` with ``backend="numpy"`` (units, memory and argument checks, a
+* ``Solver``: :class:`symlink.numeric.solver.Solver` with ``backend="numpy"`` (units, memory and argument checks, a
   Results table);
 * ``Solver-default``: a ``Solver`` as a user makes it (compiled where a C compiler works);
 * ``compiled-entry``: the compiled C loop through its ctypes entry (``CompiledSolver.function``);
-* ``compiled``: :class:`symlink.compiled.CompiledSolver`, called as a ``Solver`` is;
+* ``compiled``: :class:`symlink.numeric.compiled.CompiledSolver`, called as a ``Solver`` is;
 * ``compiled-python``: the same with the small-call extension turned off (the Python fast
-  path of :class:`symlink.compiled_library.CompiledFunction`, as where the extension cannot be built);
+  path of :class:`symlink.numeric.compiled_library.CompiledFunction`, as where the extension cannot be built);
 * ``compiled-new-lengths``: the same, each call with new length objects (other values, as an
   optimiser's steps: an argument that is the very object of the call before is not read again);
 * ``compiled-kept``: the same, each result kept until four calls later (so that its
@@ -75,9 +75,9 @@ def per_call(call, budget: float = 0.3) -> tuple[float, float]:
 
 
 def methods(outputs: list[str]) -> dict:
-    from symlink.catalog import fourbar
-    from symlink.compiled import CompiledSolver
-    from symlink.solver import Solver
+    from symlink.mechanism.catalog import fourbar
+    from symlink.numeric.compiled import CompiledSolver
+    from symlink.numeric.solver import Solver
     linkage = fourbar()
     solver = Solver(linkage, outputs, backend="numpy")
     default = Solver(linkage, outputs)  # the default backend: compiled where a C compiler works

@@ -2,11 +2,11 @@
 
 The four-bar's ratio space (crank, coupler and rocker over ground, a random
 sample), a turn of 360 input values a design, every column of
-:mod:`symlink.sweep`.  Rows:
+:mod:`symlink.workshop.sweep`.  Rows:
 
-* ``in process``: :func:`symlink.sweep.evaluate_designs` on one chunk, no Dask, no Parquet;
+* ``in process``: :func:`symlink.workshop.sweep.evaluate_designs` on one chunk, no Dask, no Parquet;
 * ``synchronous``, ``threads N``, ``auto N``: ``run_sweep`` on those schedulers (``auto``: what a user
-  gets, :func:`symlink.sweep.local_scheduler`) with N workers, into a fresh folder;
+  gets, :func:`symlink.workshop.sweep.local_scheduler`) with N workers, into a fresh folder;
 * ``processes N``: ``run_sweep(scheduler="processes", workers=N)`` into a fresh folder, the
   pool's start (a Python with symlink imported in each worker) included;
 * ``cluster N``: a ``distributed.LocalCluster`` of N single-threaded worker processes, started
@@ -40,8 +40,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from symlink.compiled_library import wait_for_builds  # noqa: E402
-from symlink.sweep import SweepSettings, evaluate_designs, missing_modules, run_sweep  # noqa: E402
+from symlink.numeric.compiled_library import wait_for_builds  # noqa: E402
+from symlink.workshop.sweep import SweepSettings, evaluate_designs, missing_modules, run_sweep  # noqa: E402
 
 RATIOS = {"a": (0.1, 1.5), "b": (0.1, 3.0), "c": (0.1, 3.0)}
 
@@ -51,7 +51,7 @@ def settings(designs: int, chunk: int, samples: int, linkage: str = "fourbar") -
     if linkage == "fourbar":
         return SweepSettings("fourbar", RATIOS, values={"d": 1.0}, mode="random", count=designs, seed=1,
                              chunk=chunk, samples=samples)
-    from symlink.catalog import CATALOG, EXAMPLE_VALUES
+    from symlink.mechanism.catalog import CATALOG, EXAMPLE_VALUES
     example = EXAMPLE_VALUES[linkage]
     ranges = {s.name: (0.8 * example[s.name], 1.2 * example[s.name]) for s in CATALOG[linkage]().parameters
               if s.is_positive}

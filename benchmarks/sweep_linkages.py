@@ -1,6 +1,6 @@
 """Sweeps of any linkage: designs a second of the Watt II six-bar and Jansen's leg against the four-bar's.
 
-In one process (:func:`symlink.sweep.evaluate_designs`, every column of the sweep table, no Dask),
+In one process (:func:`symlink.workshop.sweep.evaluate_designs`, every column of the sweep table, no Dask),
 random designs around each catalog linkage's example (every length within 0.8 to 1.2 times its
 example value), a turn of ``--samples`` input values a design.  Printed: designs a second and
 microseconds per value evaluated (design times samples) of each, and the ratios to the four-bar's
@@ -17,11 +17,11 @@ import math
 import os
 import time
 
-from symlink.catalog import CATALOG, EXAMPLE_VALUES
+from symlink.mechanism.catalog import CATALOG, EXAMPLE_VALUES
 
 
 def settings(name: str, designs: int, samples: int):
-    from symlink.sweep import SweepSettings
+    from symlink.workshop.sweep import SweepSettings
     linkage = CATALOG[name]()
     example = EXAMPLE_VALUES[name]
     lengths = [s.name for s in linkage.parameters if s.is_positive]
@@ -32,7 +32,7 @@ def settings(name: str, designs: int, samples: int):
 def measure(designs: int, samples: int, names=("fourbar", "watt2", "jansen"),
             rounds: int = 3) -> dict[str, tuple[float, float]]:
     """Each linkage's best (wall, CPU) seconds for ``designs`` designs over ``rounds`` rounds taken in turn."""
-    from symlink.sweep import evaluate_designs
+    from symlink.workshop.sweep import evaluate_designs
     chosen = {name: settings(name, designs, samples) for name in names}
     for found in chosen.values():  # derived, generated and loaded before the clock (every design: the margins too)
         evaluate_designs(found, range(designs))
@@ -49,8 +49,8 @@ def measure(designs: int, samples: int, names=("fourbar", "watt2", "jansen"),
 
 def _wait_for_compiled(sweeps, timeout: float = 300.0) -> None:
     """Wait for the background builds of the compiled solvers and margins that the ``sweeps`` use, and adopt them."""
-    from symlink.compiled_library import wait_for_builds
-    from symlink.sweep import evaluate_designs
+    from symlink.numeric.compiled_library import wait_for_builds
+    from symlink.workshop.sweep import evaluate_designs
     wait_for_builds(timeout)
     for found in sweeps:
         evaluate_designs(found, range(found.designs))

@@ -50,7 +50,7 @@ import numpy
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from symlink.analysis import grashof  # noqa: E402
-from symlink.cache import generated_code  # noqa: E402
+from symlink.numeric.cache import generated_code  # noqa: E402
 from symlink.synthesis import path as path_synthesis  # noqa: E402
 from symlink.synthesis.path import fourbar_design, path_fourbar, synthesize_path  # noqa: E402
 

@@ -25,7 +25,7 @@ PARAMETERS = dict(a=20.0, b=66.0, c=56.0, d=80.0, e=50.0, f=60.0, g=70.0, alpha=
 _RUN = r"""
 import sys, time
 start = time.perf_counter()
-from symlink.scene import read_scene
+from symlink.io.scene import read_scene
 found = read_scene(sys.argv[1])
 result = found.scene.evaluate()
 print(time.perf_counter() - start)

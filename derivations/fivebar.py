@@ -11,10 +11,8 @@ from pathlib import Path
 
 import sympy as sp
 
-from symlink import Linkage, Loop, Vector, coordinates, lengths
-from symlink.catalog import fivebar
-from symlink.codegen.latex import latex_document
-from symlink.derivation import kinematics_module, write_generated
+from symlink import (coordinates, fivebar, kinematics_module, latex_document, lengths, Linkage, Loop, Vector,
+                     write_generated)
 
 GENERATED = Path(__file__).resolve().parent.parent / "generated"
 REGENERATE = "python derivations/fivebar.py"

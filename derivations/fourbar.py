@@ -11,11 +11,8 @@ from pathlib import Path
 
 import sympy as sp
 
-from symlink import Linkage, Loop, Vector, coordinates, lengths
-from symlink.catalog import fourbar
-from symlink.codegen.latex import latex_document
-from symlink.codegen.numpy import numpy_module
-from symlink.derivation import write_generated
+from symlink import (coordinates, fourbar, latex_document, lengths, Linkage, Loop, numpy_module, Vector,
+                     write_generated)
 
 GENERATED = Path(__file__).resolve().parent.parent / "generated"
 REGENERATE = "python derivations/fourbar.py"

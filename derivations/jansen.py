@@ -5,7 +5,7 @@ NumPy-only solver) and ``generated/jansen.tex`` (the equations).  The output is
 byte for byte reproducible; ``tests/test_generated.py`` checks it.
 
 The lengths are Jansen's "holy numbers" (strandbeest.com; the Wikipedia
-article "Jansen's linkage"): see ``symlink.catalog.JANSEN_HOLY_NUMBERS``.
+article "Jansen's linkage"): see ``symlink.mechanism.catalog.JANSEN_HOLY_NUMBERS``.
 """
 from __future__ import annotations
 
@@ -14,10 +14,8 @@ from pathlib import Path
 
 import sympy as sp
 
-from symlink import Linkage, Loop, Vector, coordinates, lengths
-from symlink.catalog import jansen
-from symlink.derivation import kinematics_module, write_generated
-from symlink.codegen.latex import latex_document
+from symlink import (coordinates, jansen, kinematics_module, latex_document, lengths, Linkage, Loop, Vector,
+                     write_generated)
 
 GENERATED = Path(__file__).resolve().parent.parent / "generated"
 REGENERATE = "python derivations/jansen.py"

@@ -12,13 +12,8 @@ from pathlib import Path
 
 import sympy as sp
 
-from symlink import Linkage, Loop, Vector, coordinates, lengths
-from symlink.catalog import stephenson3
-from symlink.closure import closure_system
-from symlink.codegen.latex import newton_document
-from symlink.codegen.newton import numeric_module
-from symlink.derivation import write_generated
-from symlink.plan import solve_plan
+from symlink import (Linkage, Loop, Vector, closure_system, coordinates, lengths, newton_document, numeric_module,
+                     solve_plan, stephenson3, write_generated)
 
 GENERATED = Path(__file__).resolve().parent.parent / "generated"
 REGENERATE = "python derivations/stephenson3.py"

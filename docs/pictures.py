@@ -43,10 +43,8 @@ import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 
-from symlink.catalog import EXAMPLE_VALUES, jansen  # noqa: E402
-from symlink.plot import angle_figure, coupler_curve_figure, save_figure, transmission_figure  # noqa: E402
-from symlink.plot.animation import animate, animate_linkage  # noqa: E402
-from symlink.plot.drawing import draw_linkage  # noqa: E402
+from symlink import (EXAMPLE_VALUES, angle_figure, animate, animate_linkage, coupler_curve_figure,  # noqa: E402
+                     draw_linkage, jansen, save_figure, transmission_figure)
 
 SEED001 = (0.1, 0.4, 0.25, 0.30)
 SEED002 = (16.084, 69.743, 50.0, 70.0)  # crank L2, coupler L3, rocker L4, ground L1
@@ -113,7 +111,7 @@ def atlas_figure():
     """The four-bar's design atlas: Grashof class and worst transmission angle over its ratio space.
 
     Three slices (rocker over ground 0.5, 1 and 2), each a grid sweep of crank
-    and coupler over ground (:mod:`symlink.sweep`, run through Dask's local
+    and coupler over ground (:mod:`symlink.workshop.sweep`, run through Dask's local
     scheduler into Parquet chunks); white where the linkage does not turn its
     crank fully (no worst transmission angle over a turn).
     """
@@ -123,8 +121,8 @@ def atlas_figure():
     from matplotlib.colors import ListedColormap
     from matplotlib.figure import Figure
 
-    from symlink.analysis.grashof import GRASHOF_CLASSES
-    from symlink.sweep import SweepSettings, read_sweep, run_sweep
+    from symlink import GRASHOF_CLASSES
+    from symlink import SweepSettings, read_sweep, run_sweep
 
     classes = list(GRASHOF_CLASSES)
     colours = ListedColormap(["#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#222222", "#e6ab02"])
@@ -177,9 +175,9 @@ def tolerance_bands_figure():
     lengths' shares of the variance."""
     import tempfile
 
-    from symlink.catalog import fourbar
-    from symlink.plot.tolerance import tolerance_figure
-    from symlink.tolerance import sample_builds, stack_up
+    from symlink import fourbar
+    from symlink import tolerance_figure
+    from symlink import sample_builds, stack_up
 
     design = {"a": 20.0, "b": 66.0, "c": 56.0, "d": 80.0, "branch": 1}
     tolerances = dict.fromkeys("abcd", 0.05)
@@ -198,9 +196,9 @@ def tolerance_large_figure():
     skewed beside the normal one that the linear model predicts."""
     from matplotlib.figure import Figure
 
-    from symlink.catalog import fourbar
-    from symlink.plot.tolerance import band_figure, distribution_figure
-    from symlink.tolerance import sample_builds, stack_up
+    from symlink import fourbar
+    from symlink import band_figure, distribution_figure
+    from symlink import sample_builds, stack_up
 
     design = {"a": 20.0, "b": 66.0, "c": 56.0, "d": 80.0, "branch": 1}
     tolerances = dict.fromkeys("abcd", 8.0)

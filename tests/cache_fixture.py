@@ -1,8 +1,8 @@
 """A private, empty scene cache (memory and disk) for the tests that use it."""
 import pytest
 
-from symlink.cache import clear_memory
-from symlink.compiled_library import wait_for_builds
+from symlink.numeric.cache import clear_memory
+from symlink.numeric.compiled_library import wait_for_builds
 
 
 @pytest.fixture

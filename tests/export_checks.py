@@ -3,9 +3,9 @@ from __future__ import annotations
 
 import numpy
 
-from symlink.catalog import CATALOG
-from symlink.export import output_sets
-from symlink.scene import angle_outputs, catalog_linkage
+from symlink.mechanism.catalog import CATALOG
+from symlink.io.export import output_sets
+from symlink.io.scene import angle_outputs, catalog_linkage
 
 
 def closed_form_catalog() -> list[str]:
@@ -116,7 +116,7 @@ def atan2_angle_case():
     values are NumPy's own calls.  For the printers' sines and cosines of solved angles (``angle_sums``).
     """
     import sympy as sp
-    from symlink.linkage import Program
+    from symlink.symbolic.linkage import Program
     x, y, t, q = sp.symbols("x y t q", real=True)
     program = Program((x, y, t), ((q, sp.atan2(y, x)),),
                       {"q": q, "cos_q": sp.cos(q), "sin_q": sp.sin(q), "sin_t": sp.sin(t), "cos_t": sp.cos(t),

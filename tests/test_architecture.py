@@ -96,9 +96,9 @@ def find_cycle(graph: dict[str, set[str]]) -> list[str] | None:
 
 def test_the_graph_is_read_from_the_source():
     graph = import_graph()
-    assert "symlink.cli" in graph and "symlink.linkage" in graph
-    assert "symlink.loops" in graph["symlink.linkage"]  # a top-level import
-    assert "symlink.linkage" in graph["symlink.cli.tables"]
+    assert "symlink.cli" in graph and "symlink.symbolic.linkage" in graph
+    assert "symlink.symbolic.loops" in graph["symlink.symbolic.linkage"]  # a top-level import
+    assert "symlink.symbolic.linkage" in graph["symlink.cli.tables"]
 
 
 def test_a_name_imported_from_a_parent_package_is_an_edge(tmp_path):
@@ -126,3 +126,70 @@ def test_the_command_line_is_a_leaf(forbidden):
                        if not (name == "symlink.cli" or name.startswith("symlink.cli.") or name == "symlink.__main__")
                        and any(e == forbidden or e.startswith(forbidden + ".") for e in edges))
     assert offenders == [], f"{forbidden} imported by {', '.join(offenders)}"
+
+
+#: The layers, in the order the data flows through them: each imports only itself and the layers before it.
+LAYERS = ("common", "symbolic", "mechanism", "codegen", "numeric", "dynamics", "io", "analysis", "synthesis",
+          "workshop", "plot", "studio", "cli")
+#: What may sit at the top of the package beside the layer folders.
+TOP = {"symlink", "symlink.version", "symlink.__main__"}
+
+
+def layer_of(module: str) -> int | None:
+    parts = module.split(".")
+    return LAYERS.index(parts[1]) if len(parts) > 1 and parts[1] in LAYERS else None
+
+
+def test_the_top_of_the_package_holds_only_the_front_door_and_the_layers():
+    graph = import_graph()
+    loose = sorted(name for name in graph if name not in TOP and layer_of(name) is None)
+    assert loose == [], f"modules outside the layer folders: {', '.join(loose)}"
+    folders = sorted(p.name for p in PACKAGE.iterdir() if p.is_dir() and (p / "__init__.py").is_file())
+    assert set(folders) <= set(LAYERS), f"folders that are no layer: {set(folders) - set(LAYERS)}"
+
+
+def test_each_layer_imports_only_the_layers_before_it():
+    offenders = []
+    for name, edges in import_graph().items():
+        own = layer_of(name)
+        if own is None:
+            continue
+        for target in edges:
+            if not target.startswith("symlink"):
+                continue
+            theirs = layer_of(target)
+            if target == "symlink" or (theirs is not None and theirs > own):
+                offenders.append(f"{name} -> {target}")
+    assert offenders == [], "imports against the flow:\n" + "\n".join(sorted(offenders))
+
+
+def test_the_studio_is_a_leaf_too():
+    offenders = sorted(name for name, edges in import_graph().items()
+                       if layer_of(name) != LAYERS.index("studio")
+                       and not name.startswith("symlink.cli")
+                       and any(e.startswith("symlink.studio") for e in edges))
+    assert offenders == [], f"symlink.studio imported by {', '.join(offenders)}"
+
+
+def test_the_layer_check_sees_a_backward_import():
+    assert layer_of("symlink.numeric.solver") > layer_of("symlink.symbolic.linkage")
+    assert layer_of("symlink.version") is None
+
+
+def test_the_architecture_page_lists_every_module():
+    page = (PACKAGE.parent / "docs" / "explanation" / "architecture.md").read_text(encoding="utf-8")
+    missing = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        relative = path.relative_to(PACKAGE)
+        if len(relative.parts) == 1 or path.name == "__init__.py":
+            continue
+        if f"### `symlink/{relative.parts[0]}/`" not in page or f"| `{path.name}` |" not in page:
+            missing.append(str(relative))
+    assert missing == [], f"docs/explanation/architecture.md does not list: {', '.join(missing)}"
+
+
+def test_the_tests_mirror_the_layers():
+    tests = PACKAGE.parent / "tests"
+    for layer in LAYERS:
+        if (PACKAGE / layer).is_dir() and any((PACKAGE / layer).glob("[!_]*.py")):
+            assert (tests / layer).is_dir(), f"no tests/{layer}/ for symlink/{layer}/"

@@ -10,7 +10,7 @@ import pytest
 
 from cache_fixture import empty_cache  # noqa: F401 - a fixture
 from references import mp_fourbar, seed003_positions
-from symlink.reachability import crank_range
+from symlink.numeric.reachability import crank_range
 from benchmarks.bench import (EVERYTHING, METHODS, SEED_LINKAGES, Method, benchmark, halfangle_numpy, hand_numpy,
                                hand_rates, is_grashof, newton, pylinkage_sweeps, reference_positions, reference_rates,
                                targets, workload)
@@ -136,7 +136,7 @@ def test_bad_options_one_line_exit_2(capsys, argv, message):
 
 
 def test_missing_optional_methods_are_skipped_with_a_note(monkeypatch, capsys):
-    for module in ("scipy.optimize", "symlink.compiled", "numba", "symengine", "pylinkage"):
+    for module in ("scipy.optimize", "symlink.numeric.compiled", "numba", "symengine", "pylinkage"):
         monkeypatch.setitem(sys.modules, module, None)
     status = main(["bench", "--sizes", "40", "--no-derivation", "--methods",
                    "fsolve,symlink-c,hand-c-positions,numba,symengine-llvm,pylinkage,hand-numpy"])
@@ -392,8 +392,8 @@ def generated_calls(outputs) -> Counter:
     numeric device of the generated code that a hand-written loop does not have (its calls were
     ``pow`` and ``log``; from the exponent bits it has none).
     """
-    from symlink.compiled import c_solver_source
-    from symlink.scene import catalog_linkage
+    from symlink.numeric.compiled import c_solver_source
+    from symlink.io.scene import catalog_linkage
     source = c_solver_source(catalog_linkage("fourbar"), outputs)["source"]
     body = between(source, "symlink_solve_at(double theta", "\n}\n")
     return calls("\n".join(line for line in body.splitlines() if not re.match(r"\s*const double size_\d+ =", line)))

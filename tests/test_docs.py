@@ -68,6 +68,42 @@ def html_text(path: Path) -> str:
 
 # ---- the sources -------------------------------------------------------------------------------------------
 
+#: Where users read examples: each must run with ``import symlink`` (or ``from symlink import ...``) alone.
+EXAMPLE_PAGES = [ROOT / "README.md", *sorted((DOCS / "tutorials").glob("*.md")), *sorted((DOCS / "howto").glob("*.md")),
+                 *sorted((DOCS / "explanation").glob("*.md")), NOTEBOOK, DOCS / "pictures.py"]
+SUBMODULE_IMPORT = re.compile(r"^\s*(?:from\s+symlink\.[\w.]+\s+import|import\s+symlink\.[\w.]+)", re.M)
+
+
+def example_code(path: Path) -> str:
+    """The code a user would copy from ``path``: fenced and cell blocks of a page, every cell of the notebook."""
+    if path.suffix == ".ipynb":
+        return "\n".join("".join(cell["source"]) for cell in json.loads(path.read_text(encoding="utf-8"))["cells"]
+                         if cell["cell_type"] == "code")
+    if path.suffix == ".py":
+        return path.read_text(encoding="utf-8")
+    text = path.read_text(encoding="utf-8")
+    return "\n".join(block for language in ("python", "{code-cell} ipython3", "{code-cell}")
+                     for block in fenced_blocks(text, language))
+
+
+@pytest.mark.parametrize("path", EXAMPLE_PAGES, ids=lambda p: str(p.relative_to(ROOT)))
+def test_examples_use_the_front_door_only(path):
+    found = [line.strip() for line in SUBMODULE_IMPORT.findall(example_code(path))]
+    assert found == [], f"{path.relative_to(ROOT)} imports a submodule; use `import symlink`: {found}"
+
+
+def test_the_front_door_check_sees_a_submodule_import(tmp_path):
+    page = tmp_path / "page.md"
+    page.write_text("```python\nfrom symlink.numeric.solver import Solver\n```\n", encoding="utf-8")
+    assert SUBMODULE_IMPORT.findall(example_code(page))
+
+
+def test_every_front_door_name_loads():
+    import symlink
+    for name in symlink.__all__:
+        assert getattr(symlink, name) is not None, name
+    assert len(set(symlink.__all__)) == len(symlink.__all__)
+
 def test_gallery_shows_every_picture_with_its_code():
     gallery = (DOCS / "gallery.md").read_text()
     shown = re.findall(r"^```\{figure\} images/(\S+)$", gallery, re.MULTILINE)
@@ -91,7 +127,7 @@ def test_pictures_script_draws_every_gallery_picture_but_the_benchmarks():
 
 
 def test_grammar_pages_name_every_key():
-    from symlink import linkage_file, scene
+    from symlink.io import linkage_file, scene
 
     page = (DOCS / "reference" / "linkage_file.md").read_text()
     keys = (*linkage_file.TOP_KEYS, *linkage_file.TABLES, *linkage_file.DYNAMICS_KEYS,
@@ -180,19 +216,19 @@ def test_tutorial_page_holds_executed_outputs_with_images(site, tutorial):
 def test_api_has_one_page_per_public_module(site):
     pages = {path.stem for path in (site / "reference" / "api").glob("symlink*.html")}
     assert pages == set(package_modules())
-    for module in ("symlink.solver", "symlink.linkage", "symlink.export"):
+    for module in ("symlink.numeric.solver", "symlink.symbolic.linkage", "symlink.io.export"):
         page = (site / "reference" / "api" / f"{module}.html").read_text()
         assert f'id="{module}.' in page, f"{module}: autodoc rendered no object"
 
 
 def test_most_used_api_has_numpydoc_sections(site):
-    solver = (site / "reference" / "api" / "symlink.solver.html").read_text()
-    call = solver[solver.index('id="symlink.solver.Solver.__call__"'):]
-    call = call[:call.index('id="symlink.solver.NumericSolver"')]  # up to the next class
+    solver = (site / "reference" / "api" / "symlink.numeric.solver.html").read_text()
+    call = solver[solver.index('id="symlink.numeric.solver.Solver.__call__"'):]
+    call = call[:call.index('id="symlink.numeric.solver.NumericSolver"')]  # up to the next class
     for section in ("Parameters", "Returns", "Raises"):
         assert re.search(rf">{section}<", call), f"Solver.__call__ has no rendered {section} section"
-    for module, anchor in (("symlink.linkage", "symlink.linkage.Linkage"), ("symlink.results", "symlink.results.Results"),
-                           ("symlink.catalog", "symlink.catalog.fourbar"), ("symlink.solver", "symlink.solver.Solver")):
+    for module, anchor in (("symlink.symbolic.linkage", "symlink.symbolic.linkage.Linkage"), ("symlink.numeric.results", "symlink.numeric.results.Results"),
+                           ("symlink.mechanism.catalog", "symlink.mechanism.catalog.fourbar"), ("symlink.numeric.solver", "symlink.numeric.solver.Solver")):
         page = (site / "reference" / "api" / f"{module}.html").read_text()
         body = page[page.index(f'id="{anchor}"'):]
         body = body[:body.find('<dt class="sig sig-object py"', 1)]  # its own docstring, not its members'

@@ -5,10 +5,10 @@ import numpy
 import pytest
 
 from references import SEED003_LINKAGE, mp_fourbar, seed003_positions
-from symlink import cache, compiled
-from symlink.compiled import CompilerUnavailable, compiled_solver
+from symlink.numeric import cache, compiled
+from symlink.numeric.compiled import CompilerUnavailable, compiled_solver
 from benchmarks.hand_c import hand_positions
-from symlink.scene import catalog_linkage
+from symlink.io.scene import catalog_linkage
 
 
 @pytest.fixture(scope="module", autouse=True)

@@ -55,7 +55,7 @@ PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text())
 PROJECT = PYPROJECT["project"]["name"]
 
 #: Method calls that import a package the call's name does not show: ``Table.to_pandas()`` (pyarrow) and
-#: :meth:`symlink.results.Results.to_frame` need pandas.
+#: :meth:`symlink.numeric.results.Results.to_frame` need pandas.
 HIDDEN_IMPORTS = {"to_pandas": "pandas", "to_frame": "pandas"}
 #: Import names whose distribution is named otherwise, for packages not installed here (their import fails
 #: anyway; the message then names the distribution to add).

@@ -50,7 +50,7 @@ def test_the_press_prints_its_plan_and_its_slider_speed(tmp_path, monkeypatch):
 
 @pytest.mark.parametrize("theta", [0.0, 0.7, 2.0, 4.0])
 def test_the_press_solves_to_the_geometry(tmp_path, monkeypatch, theta):
-    from symlink.solver import Solver
+    from symlink.numeric.solver import Solver
 
     _, namespace = run_example(tmp_path, monkeypatch)
     lengths = dict(a=1.0, b=3.5, c=3.0, d=3.2, e=4.0, h=4.0)
@@ -60,7 +60,7 @@ def test_the_press_solves_to_the_geometry(tmp_path, monkeypatch, theta):
 
 def test_the_press_slider_speed_is_the_slope_of_its_position(tmp_path, monkeypatch):
     """ds/dt at unit crank speed against a central difference of the geometric position."""
-    from symlink.solver import Solver
+    from symlink.numeric.solver import Solver
 
     _, namespace = run_example(tmp_path, monkeypatch)
     lengths = dict(a=1.0, b=3.5, c=3.0, d=3.2, e=4.0, h=4.0)

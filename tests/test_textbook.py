@@ -13,10 +13,10 @@ import numpy
 import pytest
 import sympy as sp
 
-from symlink.catalog import CATALOG, fourbar, jansen, watt2
+from symlink.mechanism.catalog import CATALOG, fourbar, jansen, watt2
 from symlink.codegen.latex import latex_document
-from symlink.position import ClampedSqrt
-from symlink.seed_forms import half_angle_solution, seed_form_rows
+from symlink.symbolic.position import ClampedSqrt
+from symlink.symbolic.seed_forms import half_angle_solution, seed_form_rows
 
 CLOSED_FORM = [name for name in CATALOG if CATALOG[name]().has_closed_form]
 
@@ -78,8 +78,8 @@ def test_latex_has_no_units_of_scale(make):
 
 
 def test_a_linkage_file_derives_textbook_latex(tmp_path):
-    from symlink.linkage_file import load_linkage
-    from symlink.export import export_texts
+    from symlink.io.linkage_file import load_linkage
+    from symlink.io.export import export_texts
     files = sorted(p for p in __import__("pathlib").Path(__file__).resolve().parents[1].glob("**/fourbar.toml")
                    if ".ci" not in p.parts)
     if not files:

@@ -2,7 +2,7 @@
 
 One concept a module:
 
-* :mod:`~symlink.analysis.mobility`: Gruebler/Kutzbach mobility of any linkage;
+* :mod:`~symlink.mechanism.mobility`: Gruebler/Kutzbach mobility of any linkage;
 * :mod:`~symlink.analysis.grashof`: the Grashof class of a four-bar;
 * :mod:`~symlink.analysis.transmission`: the transmission angle of a four-bar and of every
   two-angle loop of any linkage;
@@ -10,7 +10,7 @@ One concept a module:
 * :mod:`~symlink.analysis.report`: :func:`analyze_linkage` (any one-input linkage) and
   :func:`fourbar_report`, its special case.
 
-Reachable input ranges and toggles live in :mod:`symlink.reachability` (their one home).
+Reachable input ranges and toggles live in :mod:`symlink.numeric.reachability` (their one home).
 
 >>> report = analyze_linkage(fourbar(), dict(a=20, b=66, c=56, d=80), output="rocker")
 >>> round(math.degrees(report.transmission[0].minimum), 2), grashof(20, 66, 56, 80).name
@@ -20,12 +20,12 @@ from __future__ import annotations
 
 import math  # noqa: F401 - the doctests' namespace
 
-from ..angles import wrap_angle
-from ..catalog import fourbar  # noqa: F401 - the doctests' namespace
-from ..reachability import InputRange, Toggle, crank_range, reachable_range
+from ..common.angles import wrap_angle
+from ..mechanism.catalog import fourbar  # noqa: F401 - the doctests' namespace
+from ..numeric.reachability import InputRange, Toggle, crank_range, reachable_range
 from .grashof import GRASHOF_CLASSES, Grashof, grashof
 from .limits import LimitPosition, LimitPositions, OutputLimits, limit_positions, output_limits
-from .mobility import Mobility, degrees_of_freedom
+from ..mechanism.mobility import Mobility, degrees_of_freedom
 from .report import LinkageReport, analyze_linkage, fourbar_report
 from .transmission import (LoopTransmission, TransmissionJoint, TransmissionRange, loop_transmissions,
                            transmission_angles, transmission_curve, transmission_joints, transmission_range,

@@ -11,8 +11,8 @@ from typing import Any
 import numpy
 
 from ..codegen.numpy import checked_arguments
-from ..display import record_html
-from ..solver import check_lengths
+from ..common.display import record_html
+from ..numeric.solver import check_lengths
 
 __all__ = ["Grashof", "GRASHOF_CLASSES", "grashof", "grashof_names"]
 

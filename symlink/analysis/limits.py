@@ -20,16 +20,16 @@ from typing import Any, Callable, Mapping
 import numpy
 import sympy as sp
 
-from ..angles import wrap_angle
-from ..catalog import fourbar
-from ..cache import cache_key, cached_text
+from ..common.angles import wrap_angle
+from ..mechanism.catalog import fourbar
+from ..numeric.cache import cache_key, cached_text
 from ..codegen.numpy import load_numpy_module, numpy_module
-from ..display import record_html
-from ..linkage import Linkage, Program
-from ..reachability import BISECTIONS, InputMotion, InputRange, reachable_range
-from ..scene import angle_outputs
-from ..solver import check_lengths, shared_solver
-from ..vectors import rate, time_derivative
+from ..common.display import record_html
+from ..symbolic.linkage import Linkage, Program
+from ..numeric.reachability import BISECTIONS, InputMotion, InputRange, reachable_range
+from ..io.scene import angle_outputs
+from ..numeric.solver import check_lengths, shared_solver
+from ..symbolic.vectors import rate, time_derivative
 from .transmission import triangle_angle
 
 __all__ = ["LimitPositions", "limit_positions", "LimitPosition", "OutputLimits", "output_limits"]
@@ -160,9 +160,9 @@ def output_limits(linkage: Linkage, values: Mapping[str, float], output: str, *,
     The output's rate with respect to the input (its time derivative at unit
     input speed, by the chain rule through the solved rates) changes sign
     there; each change on a scan of ``points`` over a turn is bisected to
-    rounding.  ``values`` as for :func:`~symlink.reachability.reachable_range`.
+    rounding.  ``values`` as for :func:`~symlink.numeric.reachability.reachable_range`.
 
-    >>> from symlink.catalog import slider_crank
+    >>> from symlink.mechanism.catalog import slider_crank
     >>> found = output_limits(slider_crank(), dict(a=1.0, b=3.0, offset=0.0), "slider")
     >>> [(round(p.at, 12) + 0.0, round(p.value, 12), p.kind) for p in found.positions], round(found.stroke, 12)
     ([(0.0, 4.0, 'maximum'), (3.14159265359, 2.0, 'minimum')], 2.0)

@@ -16,15 +16,15 @@ import math  # noqa: F401 - the doctests' namespace
 from dataclasses import dataclass
 from typing import Mapping
 
-from ..angles import wrap_angle
-from ..catalog import fourbar
-from ..display import record_html
-from ..linkage import Linkage
-from ..reachability import SCAN_POINTS, InputMotion, InputRange, assembled_crank_range, reachable_range
-from ..solver import shared_solver
+from ..common.angles import wrap_angle
+from ..mechanism.catalog import fourbar
+from ..common.display import record_html
+from ..symbolic.linkage import Linkage
+from ..numeric.reachability import SCAN_POINTS, InputMotion, InputRange, assembled_crank_range, reachable_range
+from ..numeric.solver import shared_solver
 from .grashof import grashof
 from .limits import OutputLimits, output_limits
-from .mobility import Mobility, degrees_of_freedom
+from ..mechanism.mobility import Mobility, degrees_of_freedom
 from .transmission import LoopTransmission, loop_transmissions, transmission_range
 
 __all__ = ["LinkageReport", "analyze_linkage", "fourbar_report"]

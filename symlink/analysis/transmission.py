@@ -24,14 +24,14 @@ from typing import Any, Callable, Mapping
 import numpy
 import sympy as sp
 
-from ..angles import wrap, wrap_angle
-from ..catalog import fourbar
-from ..display import record_html
-from ..linkage import Linkage
-from ..position import TOLERANCE
-from ..reachability import BISECTIONS, InputMotion, InputRange, assembled_crank_range, reachable_range
-from ..solver import check_lengths, shared_solver
-from ..vectors import Vector
+from ..common.angles import wrap, wrap_angle
+from ..mechanism.catalog import fourbar
+from ..common.display import record_html
+from ..symbolic.linkage import Linkage
+from ..symbolic.position import TOLERANCE
+from ..numeric.reachability import BISECTIONS, InputMotion, InputRange, assembled_crank_range, reachable_range
+from ..numeric.solver import check_lengths, shared_solver
+from ..symbolic.vectors import Vector
 
 __all__ = ["triangle_angle", "TransmissionRange", "transmission_range", "transmission_curve",
            "TransmissionJoint", "transmission_joints", "transmission_angles", "LoopTransmission",
@@ -217,7 +217,7 @@ def transmission_angles(linkage: Linkage, values: Mapping[str, float], inputs, *
     """The transmission angle (radians, [0, pi]) of every two-angle loop at ``inputs``, by loop name.
 
     NaN where the linkage cannot be assembled.  ``values`` as for
-    :func:`~symlink.reachability.reachable_range`.
+    :func:`~symlink.numeric.reachability.reachable_range`.
 
     >>> angles = transmission_angles(fourbar(), dict(a=20, b=66, c=56, d=80), [0.0])
     >>> round(math.degrees(float(angles["ABCD"][0])), 2)
@@ -263,7 +263,7 @@ def transmission_arrays(linkage: Linkage, values: Mapping[str, Any], solved: Map
     returns them (NaN where not assembled).  The same angles as :func:`transmission_angles`, from code
     generated once a linkage: no SymPy per design.
 
-    >>> from symlink.solver import Solver
+    >>> from symlink.numeric.solver import Solver
     >>> solved = Solver(fourbar(), ["beta", "phi"])(theta=numpy.array([0.0]), a=20.0, b=66.0, c=56.0, d=80.0,
     ...                                               branch=1)
     >>> round(math.degrees(float(transmission_arrays(fourbar(), {}, solved)["ABCD"][0])), 2)
@@ -286,7 +286,7 @@ def transmission_arrays(linkage: Linkage, values: Mapping[str, Any], solved: Map
 def _folded(angle: numpy.ndarray) -> numpy.ndarray:
     """``|wrap(angle)|`` in [0, pi], in place on ``angle`` (a fresh array): the angle less its nearest whole turns.
 
-    Five passes, where :func:`~symlink.angles.wrap` takes a dozen (the sweeps' transmission angles of every
+    Five passes, where :func:`~symlink.common.angles.wrap` takes a dozen (the sweeps' transmission angles of every
     design and sample); equal to it to rounding (a whole turn or two subtracted).
 
     >>> _folded(numpy.array([3 * math.pi / 2, -0.25, 7.0])).round(12).tolist() == [round(math.pi / 2, 12), 0.25,

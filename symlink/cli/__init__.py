@@ -37,7 +37,7 @@ from typing import Sequence
 
 import numpy
 
-from ..files import EXCERPT_LENGTH
+from ..common.files import EXCERPT_LENGTH
 from ..version import __version__
 from .options import Parser
 

@@ -5,7 +5,7 @@ import argparse
 import json
 from typing import Any
 
-from ..angles import from_radians
+from ..common.angles import from_radians
 from .options import (add_fourbar_lengths, add_units_option, assignments, command_help, fourbar_lengths,
                       fourbar_or_linkage, linkage_values, require_held_inputs)
 
@@ -91,8 +91,8 @@ def run(args: argparse.Namespace) -> int:
 def run_linkage(args: argparse.Namespace) -> int:
     """``symlink analyze NAME|FILE``: the general analysis of any one-input linkage."""
     from ..analysis import analyze_linkage
-    from ..closure import is_angle
-    from ..linkage_file import load_linkage
+    from ..symbolic.closure import is_angle
+    from ..io.linkage_file import load_linkage
     found = load_linkage(args.linkage)
     require_held_inputs(found.linkage, args.set, "analyze")
     linkage, values = found.linkage, linkage_values(found, args.set, args.units)

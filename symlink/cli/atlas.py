@@ -23,7 +23,7 @@ def _add_options(command: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..atlas import ATLAS, LITERATURE_COUNTS, atlas_entry, chains
+    from ..mechanism.atlas import ATLAS, LITERATURE_COUNTS, atlas_entry, chains
     if args.name is None:
         if args.draw:
             raise ValueError("--draw needs an atlas entry NAME to draw")
@@ -45,7 +45,7 @@ def run(args: argparse.Namespace) -> int:
     print(entry.summary())
     print("links: " + "; ".join(f"{name} {' '.join(joints)}" for name, joints in description.items()))
     print("joints: " + ", ".join(f"{pin} ({x:.6g}, {y:.6g})" for pin, (x, y) in entry.coordinates().items()))
-    from ..plan import solve_plan
+    from ..symbolic.plan import solve_plan
     print(solve_plan(drawn.linkage))
     if args.draw:
         from ..plot import save_figure

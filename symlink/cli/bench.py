@@ -20,8 +20,7 @@ def register(commands) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """The benchmark of the source checkout (``benchmarks/``, beside ``symlink/``), imported now."""
-    import symlink
-    checkout = os.path.dirname(os.path.dirname(os.path.abspath(symlink.__file__)))
+    checkout = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # symlink/cli/..
     if checkout not in sys.path:
         sys.path.append(checkout)  # an editable install maps only symlink/
     try:

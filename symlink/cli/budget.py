@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 
-from ..limits import available_memory, format_bytes
+from ..common.limits import available_memory, format_bytes
 
 __all__ = ["MEMORY_BUDGET", "TIME_BUDGET", "require_budget", "format_duration"]
 

@@ -1,6 +1,6 @@
 """``symlink cache info`` and ``symlink cache clear``: what symlink keeps in its cache folder, and removing it.
 
-The folder is :func:`symlink.cache.cache_directory` (``$SYMLINK_CACHE``, else
+The folder is :func:`symlink.numeric.cache.cache_directory` (``$SYMLINK_CACHE``, else
 ``$XDG_CACHE_HOME/symlink``, else ``~/.cache/symlink``) unless ``--folder``
 names another.  ``clear`` removes only the files and build folders symlink
 writes there, never anything else, and refuses a folder that another user
@@ -11,7 +11,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ..cache import ENVIRONMENT_VARIABLE, CacheContents, cache_contents, cache_directory, clear_cache
+from ..numeric.cache import ENVIRONMENT_VARIABLE, CacheContents, cache_contents, cache_directory, clear_cache
 from .options import Parser, command_help
 
 UNITS = "sizes in bytes"

@@ -26,7 +26,7 @@ import argparse
 import math
 from typing import TYPE_CHECKING
 
-from ..angles import to_radians
+from ..common.angles import to_radians
 from .budget import require_budget
 from .options import (add_branch_option, add_fourbar_lengths, add_format_option, add_units_option, command_help,
                       finite, fourbar_lengths, number_list, whole)
@@ -34,7 +34,7 @@ from .output import print_rows
 
 if TYPE_CHECKING:  # the symbolic side is imported when the options ask for dynamics (a plain table needs no SymPy)
     from ..dynamics.model import DynamicModel
-    from ..linkage import Linkage
+    from ..symbolic.linkage import Linkage
 
 __all__ = ["MASS_COLUMNS", "FLYWHEEL_COLUMNS", "add_mass_options", "fourbar_dynamics", "register"]
 
@@ -113,7 +113,7 @@ def fourbar_dynamics(args: argparse.Namespace,
 
 def fourbar_model(args: argparse.Namespace, lengths: tuple[float, float, float, float]) -> DynamicModel:
     """The dynamic model of the four-bar of ``lengths`` from the dynamics options of ``args`` (numbers only)."""
-    from ..catalog import fourbar
+    from ..mechanism.catalog import fourbar
     from ..dynamics.model import BodyTorque, DynamicModel, Gravity, MassProperties
     if args.masses is None:
         raise ValueError("give the masses of crank, coupler and rocker: --masses M2,M3,M4")
@@ -156,7 +156,7 @@ def _add_flywheel_options(command: argparse.ArgumentParser) -> None:
 def run_flywheel(args: argparse.Namespace) -> int:
     """``symlink flywheel``: the flywheel of a four-bar with mass properties, as one record."""
     from ..dynamics.flywheel import FlywheelSizing, rpm_to_rad_per_s
-    from ..solver import check_lengths
+    from ..numeric.solver import check_lengths
     lengths = fourbar_lengths(args)
     check_lengths(crank=lengths[0], coupler=lengths[1], rocker=lengths[2], ground=lengths[3])
     speed = rpm_to_rad_per_s(args.rpm) if args.rpm is not None else args.rad_per_s

@@ -7,8 +7,8 @@ from .options import command_help
 
 
 def _add_options(command: argparse.ArgumentParser) -> None:
-    from ..export import FORMATS
-    from ..seed_forms import FORMS
+    from ..io.export import FORMATS
+    from ..symbolic.seed_forms import FORMS
     command.add_argument("--to", required=True, choices=list(FORMATS), help="the format")
     command.add_argument("--out", required=True, metavar="DIR", help="the folder to write into")
     command.add_argument("--form", default="atan2", choices=list(FORMS),
@@ -32,7 +32,7 @@ def register(commands) -> None:
 
 
 def _add_export_options(command: argparse.ArgumentParser) -> None:
-    from ..catalog import CATALOG
+    from ..mechanism.catalog import CATALOG
     command.add_argument("name", metavar="NAME|FILE",
                          help=f"a catalog linkage ({', '.join(sorted(CATALOG))}) or a linkage file (.toml)")
     _add_options(command)
@@ -45,8 +45,8 @@ def _add_derive_options(command: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Write the files (all or none) and name them."""
-    from ..export import export
-    from ..linkage_file import load_linkage
+    from ..io.export import export
+    from ..io.linkage_file import load_linkage
     outputs = None if args.outputs is None else [o.strip() for o in args.outputs.split(",") if o.strip()]
     for path in export(load_linkage(args.name).with_dynamics().linkage, args.to, args.out, outputs, args.form):
         print(f"wrote {path}")

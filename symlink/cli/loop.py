@@ -4,7 +4,7 @@ from __future__ import annotations
 import argparse
 import json
 
-from ..angles import from_radians, half_turn, to_radians, wrap
+from ..common.angles import from_radians, half_turn, to_radians, wrap
 from .options import add_units_option, angle, command_help, figure_path, finite
 from .output import json_number, note, print_rows
 
@@ -26,7 +26,7 @@ def register(commands) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..loopcase import NAMES, solve_case
+    from ..analysis.loopcase import NAMES, solve_case
     values = {n: getattr(args, n) for n in NAMES}
     values = {n: (float(to_radians(v, args.units)) if n.startswith("t") and v is not None else v)
               for n, v in values.items()}

@@ -15,12 +15,12 @@ import re
 from pathlib import Path
 from typing import TYPE_CHECKING, Callable, Collection, Mapping, NoReturn
 
-from ..angles import to_radians
-from ..files import excerpt
-from ..input_sweep import MAX_ANGLE, InputSweep
+from ..common.angles import to_radians
+from ..common.files import excerpt
+from ..numeric.input_sweep import MAX_ANGLE, InputSweep
 
 if TYPE_CHECKING:
-    from ..linkage_file import LinkageFile
+    from ..io.linkage_file import LinkageFile
 
 __all__ = ["UsageError", "Parser", "finite", "angle", "MAX_MAGNITUDE",
            "number_list", "pair", "assignments", "figure_path", "add_sweep_options",
@@ -95,7 +95,7 @@ def command_help(summary: str, units: str, example: str, more: str = "") -> dict
 
 #: Numbers on the command line beyond this size, or non-zero below its inverse, are refused: lengths, masses,
 #: speeds and loads are multiplied together in the outputs, and 1e50 ** 6 is still a float.  The same bound as
-#: linkage files (``symlink.linkage_file.MAX_MAGNITUDE``).
+#: linkage files (``symlink.io.linkage_file.MAX_MAGNITUDE``).
 MAX_MAGNITUDE = 1e50
 
 
@@ -114,7 +114,7 @@ def finite(text: str) -> float:
 
 
 def angle(text: str) -> float:
-    """A finite angle from the command line, at most :data:`~symlink.input_sweep.MAX_ANGLE` in size (either unit)."""
+    """A finite angle from the command line, at most :data:`~symlink.numeric.input_sweep.MAX_ANGLE` in size (either unit)."""
     try:
         value = float(text)
     except ValueError:
@@ -168,13 +168,13 @@ def assignments(what: str) -> Callable[[str], dict[str, float]]:
 def linkage_values(found: LinkageFile, settings: Mapping[str, float], units: str,
                    extra: Collection[str] = ()) -> dict[str, float]:
     """A linkage's values by symbol name: its defaults (a catalog entry's example values, see
-    :func:`~symlink.linkage_file.load_linkage`) updated by ``--set`` (fixed angles and inputs in
+    :func:`~symlink.io.linkage_file.load_linkage`) updated by ``--set`` (fixed angles and inputs in
     ``units``, stored in radians).
 
     Names other than the linkage's parameters, inputs and ``extra`` (a
     command's own settings, such as a geared input's ``psi_ratio``) are refused.
     """
-    from ..closure import is_angle
+    from ..symbolic.closure import is_angle
     linkage = found.linkage
     known = {s.name: s for s in linkage.parameters + linkage.inputs}
     for name in settings:

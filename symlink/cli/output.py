@@ -22,7 +22,7 @@ from typing import Callable, Collection, Iterable, Iterator, Mapping, TextIO
 
 import numpy
 
-from ..angles import from_radians, half_turn, wrap
+from ..common.angles import from_radians, half_turn, wrap
 
 __all__ = ["format_number", "json_number", "RowWriter", "print_rows", "TableAssembler", "note"]
 

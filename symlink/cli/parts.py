@@ -1,7 +1,7 @@
 """``symlink parts``: every link of a linkage as a part to cut (SVG, DXF), an assembly drawing and a design's JSON.
 
 The linkage is a catalog NAME, a linkage FILE (.toml), an atlas entry
-(``atlas:NAME``) or a design FILE (.json, :func:`symlink.fabrication.design_json`,
+(``atlas:NAME``) or a design FILE (.json, :func:`symlink.workshop.fabrication.design_json`,
 whose unit it keeps).  Stdout lists one row a dimension of each part: the
 distance between each pair of its holes, each slot's length (the slider's
 travel), a slider block's length.  The files asked for are made in memory
@@ -19,9 +19,9 @@ from typing import Any
 
 import numpy
 
-from ..angles import from_radians, to_radians
+from ..common.angles import from_radians, to_radians
 from .options import add_branch_option, add_format_option, add_units_option, angle, assignments, command_help, finite
-from ..files import write_files_together
+from ..common.files import write_files_together
 from .output import RowWriter, note
 
 __all__ = ["register", "COLUMNS", "FILE_OPTIONS"]
@@ -52,7 +52,7 @@ def register(commands) -> None:
 
 
 def _add_options(command: argparse.ArgumentParser) -> None:
-    from ..fabrication import UNITS_IN_MM
+    from ..workshop.fabrication import UNITS_IN_MM
     command.add_argument("linkage", metavar="NAME|FILE",
                          help="a catalog linkage, a linkage file (.toml), atlas:NAME or a design file (.json)")
     command.add_argument("--set", type=assignments("NAME=VALUE"), default={}, metavar="NAME=VALUE,...",
@@ -74,7 +74,7 @@ def _add_options(command: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..fabrication import assembly_svg_text, design_json, dxf_text, link_parts, svg_text
+    from ..workshop.fabrication import assembly_svg_text, design_json, dxf_text, link_parts, svg_text
     targets = _targets(args)
     linkage, values, unit = _linkage(args)
     pin = _positive("--pin-diameter", args.pin_diameter)
@@ -119,12 +119,12 @@ def _positive(option: str, value: float) -> float:
 
 def _linkage(args: argparse.Namespace) -> tuple[Any, dict[str, float], str]:
     """The linkage, its values (``--set``, ``--angle``, ``--branch`` applied) and the length unit."""
-    from ..closure import is_angle
-    from ..linkage_file import LinkageFile, load_linkage
+    from ..symbolic.closure import is_angle
+    from ..io.linkage_file import LinkageFile, load_linkage
     from .options import linkage_values
     if str(args.linkage).lower().endswith(".json"):
-        from ..fabrication import read_design
-        from ..files import read_input_text
+        from ..workshop.fabrication import read_design
+        from ..common.files import read_input_text
         design = read_design(read_input_text(args.linkage, MAX_DESIGN_BYTES, "design file"), str(args.linkage))
         if args.unit is not None and args.unit != design.unit:
             raise ValueError(f"--unit {args.unit}: the design {args.linkage} is in {design.unit} (its lengths are "
@@ -148,8 +148,8 @@ def _pose(args: argparse.Namespace, linkage: Any, values: dict[str, float]) -> N
     """Check that the linkage assembles at the pose asked for; without ``--angle``, where it does not at the
     first input's value, move that input to the nearest value where it does (the parts are the same at every
     pose; only the assembly drawing shows the pose) and say so."""
-    from ..closure import is_angle
-    from ..plot.drawing import Geometry
+    from ..symbolic.closure import is_angle
+    from ..numeric.poses import Geometry
     geometry = Geometry(linkage)
     first = linkage.inputs[0]
     turning = is_angle(linkage, first)

@@ -10,7 +10,7 @@ import math
 import sys
 from typing import Sequence
 
-from ..angles import to_radians, wrap
+from ..common.angles import to_radians, wrap
 from .options import (add_branch_option, add_fourbar_lengths, add_units_option, angle, assignments, branches,
                       command_help, figure_path, finite, fourbar_lengths, fourbar_or_linkage, linkage_values, pair, whole)
 from .output import note
@@ -21,8 +21,8 @@ __all__ = ["register", "add_fourbar_plot_options", "write_fourbar_plots", "drawn
 def drawn_linkage(args: argparse.Namespace):
     """The linkage NAME|FILE and its values (``--set``), ``--angle`` (the first input, in --units) and
     ``--branch`` for every branch."""
-    from ..closure import is_angle
-    from ..linkage_file import load_linkage
+    from ..symbolic.closure import is_angle
+    from ..io.linkage_file import load_linkage
     found = load_linkage(args.linkage)
     linkage, values = found.linkage, linkage_values(found, args.set or {}, args.units)
     if args.angle is not None:
@@ -184,7 +184,7 @@ def run_view(args: argparse.Namespace) -> int:
 
 
 def _catalog_names() -> str:
-    from ..catalog import CATALOG
+    from ..mechanism.catalog import CATALOG
     return ", ".join(sorted(CATALOG))
 
 

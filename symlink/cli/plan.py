@@ -14,7 +14,7 @@ def register(commands) -> None:
 
 
 def _add_options(command: argparse.ArgumentParser) -> None:
-    from ..catalog import CATALOG
+    from ..mechanism.catalog import CATALOG
     command.add_argument("name", metavar="NAME|FILE",
                          help=f"a catalog linkage ({', '.join(sorted(CATALOG))}) or a linkage file (.toml)")
     command.set_defaults(run=run)
@@ -22,8 +22,8 @@ def _add_options(command: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from ..analysis import degrees_of_freedom
-    from ..linkage_file import load_linkage
-    from ..plan import solve_plan
+    from ..io.linkage_file import load_linkage
+    from ..symbolic.plan import solve_plan
     linkage = load_linkage(args.name).linkage
     mobility = degrees_of_freedom(linkage)
     print(solve_plan(linkage))

@@ -18,7 +18,7 @@ def register(commands) -> None:
 
 
 def _add_options(command: argparse.ArgumentParser) -> None:
-    from ..scene import FORMATS
+    from ..io.scene import FORMATS
     command.add_argument("scene", help="a TOML scene file, or - for standard input")
     command.add_argument("--format", choices=list(FORMATS), help="override the file's format")
     command.set_defaults(run=run)
@@ -26,8 +26,8 @@ def _add_options(command: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Print the scene's outputs at each input angle and branch."""
-    from ..files import read_stdin_text
-    from ..scene import MAX_SCENE_BYTES, angle_outputs, read_scene, scene_from_text
+    from ..common.files import read_stdin_text
+    from ..io.scene import MAX_SCENE_BYTES, angle_outputs, read_scene, scene_from_text
     if args.scene == "-":
         found = scene_from_text(read_stdin_text(MAX_SCENE_BYTES, "scene file"), "<stdin>")
     else:
@@ -37,7 +37,7 @@ def run(args: argparse.Namespace) -> int:
 
     def spans() -> str:
         if scene.linkage.name == "fourbar":
-            from ..reachability import crank_range, describe_spans
+            from ..numeric.reachability import crank_range, describe_spans
             return describe_spans(crank_range(*(cast(float, scene.values[n]) for n in "abcd")), found.units)
         return f"not computed for {scene.linkage.name}"
 

@@ -1,10 +1,10 @@
 """``symlink sweep``: properties of many designs of a linkage, on Dask, into a folder of Parquet files.
 
-The columns are those of :mod:`symlink.sweep` (angles in radians there,
+The columns are those of :mod:`symlink.workshop.sweep` (angles in radians there,
 whatever ``--units`` says about the command line's own angles).  Needs the
 ``sweep`` extra; without it the command says how to install it.
 
-Continuing a folder verifies it (:mod:`symlink.sweep_folder`): a chunk that
+Continuing a folder verifies it (:mod:`symlink.io.sweep_folder`): a chunk that
 is not what the manifest recorded is done again with one warning line.
 Ctrl-C ends the command with one line, ``symlink: interrupted``, and exit
 status 130, as every command (2 is for bad input); the chunks finished are
@@ -16,9 +16,9 @@ import argparse
 import math
 import os
 
-from ..angles import to_radians
-from ..files import excerpt
-from ..limits import format_bytes
+from ..common.angles import to_radians
+from ..common.files import excerpt
+from ..common.limits import format_bytes
 from .budget import MEMORY_BUDGET, format_duration
 from .options import (add_units_option, assignments, command_help, finite, linkage_values, require_held_inputs,
                       whole)
@@ -57,7 +57,7 @@ def estimate_sweep(designs: int, samples: int, chunk: int, scheduler: str, worke
     that keeps track of the chunks, and the memory of the chunks the local workers evaluate at once (within
     the command budget of :mod:`.budget`).  A note on stderr gives the estimate of a sweep of more than a minute.
     """
-    from ..sweep import CHUNK_BYTES_PER_VALUE
+    from ..workshop.sweep import CHUNK_BYTES_PER_VALUE
     cluster = scheduler.startswith(("tcp://", "tls://"))
     count = CLUSTER_WORKERS if cluster else (1 if scheduler == "synchronous" else workers or os.cpu_count() or 1)
     seconds = designs * samples / (SWEEP_VALUES_PER_SECOND * count)
@@ -98,7 +98,7 @@ def register(commands) -> None:
 
 
 def _add_options(command: argparse.ArgumentParser) -> None:
-    from ..sweep import SCHEDULERS
+    from ..workshop.sweep import SCHEDULERS
     command.add_argument("linkage", metavar="NAME|FILE", help="a catalog linkage or a linkage file")
     command.add_argument("folder", metavar="FOLDER", help="where the chunks (chunk-NNNNNN.parquet) and manifest go")
     command.add_argument("--vary", type=ranges, required=True, metavar="NAME=LOW:HIGH,...",
@@ -129,9 +129,9 @@ def _add_options(command: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..closure import is_angle
-    from ..linkage_file import load_linkage
-    from ..sweep import SCHEDULERS, SWEEP_EXTRA, SweepSettings, missing_modules, run_sweep
+    from ..symbolic.closure import is_angle
+    from ..io.linkage_file import load_linkage
+    from ..workshop.sweep import SCHEDULERS, SWEEP_EXTRA, SweepSettings, missing_modules, run_sweep
     missing = missing_modules()
     if missing:
         raise ValueError(f"symlink sweep needs {', '.join(missing)}: {SWEEP_EXTRA}")

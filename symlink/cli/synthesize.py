@@ -27,10 +27,10 @@ from typing import Any, Callable
 
 import numpy
 
-from ..angles import from_radians, to_radians, wrap
-from ..files import excerpt, read_input_text, read_stdin_text
-from ..input_sweep import MAX_ANGLE
-from ..limits import format_bytes
+from ..common.angles import from_radians, to_radians, wrap
+from ..common.files import excerpt, read_input_text, read_stdin_text
+from ..numeric.input_sweep import MAX_ANGLE
+from ..common.limits import format_bytes
 from .budget import MEMORY_BUDGET, TIME_BUDGET, format_duration
 from .options import (Parser, add_format_option, add_units_option, angle, assignments, command_help, figure_path,
                       finite, given_options, linkage_values, pair, whole)
@@ -541,8 +541,8 @@ def _routed(fourbar_run: Callable[[argparse.Namespace], int], kind: str,
 
 def _general_setup(args: argparse.Namespace):
     """The linkage, the values of its parameters (radians) and the free parameters with their bounds."""
-    from ..closure import is_angle
-    from ..linkage_file import load_linkage
+    from ..symbolic.closure import is_angle
+    from ..io.linkage_file import load_linkage
     found = load_linkage(args.linkage)
     linkage = found.linkage
     if len(linkage.inputs) != 1:
@@ -580,7 +580,7 @@ def _input_column(linkage, header: tuple[str, ...]) -> str | None:
 
 
 def _run_general(args: argparse.Namespace, kind: str) -> int:
-    from ..closure import is_angle
+    from ..symbolic.closure import is_angle
     found, linkage, values, free = _general_setup(args)
     input_name = linkage.inputs[0].name
     input_is_angle = is_angle(linkage, linkage.inputs[0])
@@ -665,8 +665,8 @@ def _run_general(args: argparse.Namespace, kind: str) -> int:
         raise ValueError(f"no verified design: {design.why}; the closest is printed above, nothing is written "
                          "(widen the bounds, free more parameters or give more --starts)")
     if args.out:
-        from ..files import write_atomic
-        from ..linkage_file import linkage_text
+        from ..common.files import write_atomic
+        from ..io.linkage_file import linkage_text
         from ..synthesis.placement import placed_assembly, placed_design, with_default_branches
         # the found assembly is every branch's +1 in the file (two-angle loops' unknowns reordered), where it can be
         ordered, left = with_default_branches(linkage, design.branches)
@@ -723,7 +723,7 @@ def _point_option(args: argparse.Namespace, linkage) -> str:
 
 def _general_record(args, kind: str, linkage, design, placement, error: float, columns) -> dict:
     """What a general design is: printed (one row), and written whole by --record (angles in --units)."""
-    from ..closure import is_angle
+    from ..symbolic.closure import is_angle
     angles = {p.name for p in linkage.parameters if is_angle(linkage, p)}
     unit = lambda x: float(from_radians(x, args.units))  # noqa: E731
     as_input = unit if is_angle(linkage, linkage.inputs[0]) else float
@@ -772,7 +772,7 @@ def _print_general(args: argparse.Namespace, record: dict) -> None:
 
 
 def _write_record(path: str, record: dict) -> None:
-    from ..files import write_atomic
+    from ..common.files import write_atomic
     if path.lower().endswith(".json"):
         text = json.dumps(_json_ready(record), indent=1) + "\n"
     else:
@@ -852,7 +852,7 @@ def _plot_general(kind: str, linkage, design, placement, columns, path: str, uni
 
 
 def _input_angle(linkage) -> bool:
-    from ..closure import is_angle
+    from ..symbolic.closure import is_angle
     return is_angle(linkage, linkage.inputs[0])
 
 

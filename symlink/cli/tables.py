@@ -18,12 +18,12 @@ range is known in closed form.  Everything else follows from the linkage:
   when the crank is at 0 and ``--ROLE-ratio`` turns them with the crank,
   ``angle + ratio * crank`` (default 0: held still);
 * a linkage without a closed form is solved by the generated Newton solver
-  (:class:`symlink.solver.NumericSolver`), continued along the sweep from an assembly at the
+  (:class:`symlink.numeric.solver.NumericSolver`), continued along the sweep from an assembly at the
   first crank angle: the one nearest ``--guess``, or by default the first (in
   the order the entry lists them: Stephenson III by coupler angle) that
   continues over the whole sweep.
 
->>> from symlink.scene import catalog_linkage
+>>> from symlink.io.scene import catalog_linkage
 >>> print(", ".join(table_columns(catalog_linkage("watt2"))))
 crank, branch, coupler, rocker, coupler2, output, coupler_speed, rocker_speed, coupler2_speed, output_speed, coupler_accel, rocker_accel, coupler2_accel, output_accel
 >>> loop_branches(2)("+1,both")
@@ -38,19 +38,19 @@ from typing import TYPE_CHECKING, Any, Callable, Collection, Iterable, Mapping
 
 import numpy
 
-from ..angles import from_radians, half_turn, to_radians, wrap
-from ..input_sweep import InputSweep, crank_speeds
+from ..common.angles import from_radians, half_turn, to_radians, wrap
+from ..numeric.input_sweep import InputSweep, crank_speeds
 from .options import (add_fourbar_lengths, add_sweep_options, angle, assignments, branches, command_help, finite,
                       fourbar_lengths, input_sweep, linkage_values)
 from .output import RowWriter, TableAssembler, print_rows
 
 if TYPE_CHECKING:
-    from ..cached_solver import CachedSolver
-    from ..linkage import Linkage
-    from ..solver import Solver
+    from ..numeric.cached_solver import CachedSolver
+    from ..symbolic.linkage import Linkage
+    from ..numeric.solver import Solver
 
 # The symbolic side (linkages, their labels, Solver: SymPy) is imported inside the functions that need it, so
-# that ``symlink fourbar`` with its code in the disk cache never imports SymPy (symlink.cached_solver).
+# that ``symlink fourbar`` with its code in the disk cache never imports SymPy (symlink.numeric.cached_solver).
 
 __all__ = ["Option", "Table", "TABLES", "table_columns", "loop_branches", "write_table", "register"]
 
@@ -103,7 +103,7 @@ class Table:
 
 def table_columns(linkage: Linkage) -> list[str]:
     """The csv header of a linkage's table command."""
-    from ..outputs import label, table_outputs
+    from ..symbolic.outputs import label, table_outputs
     first, *further = linkage.inputs
     return [label(linkage, first), "branch"] + [label(linkage, x) for x in further] + list(table_outputs(linkage))
 
@@ -130,7 +130,7 @@ _guess = assignments("NAME=ANGLE")
 
 def _spans_text(spans: list[tuple[float, float]] | str, units: str) -> str:
     """A reachable crank range for messages: intervals in ``units``, or a sentence as it is."""
-    from ..reachability import describe_spans
+    from ..numeric.reachability import describe_spans
     return spans if isinstance(spans, str) else describe_spans(spans, units)
 
 
@@ -157,8 +157,8 @@ def add_table_command(commands: argparse._SubParsersAction, table: Table) -> arg
 
 def _add_options(command: argparse.ArgumentParser, table: Table) -> None:
     """The options of ``table``'s command, from its catalog linkage."""
-    from ..outputs import label
-    from ..scene import catalog_linkage
+    from ..symbolic.outputs import label
+    from ..io.scene import catalog_linkage
     linkage = catalog_linkage(table.linkage)
     command.description = _description(table, linkage)
     for option in table.options:
@@ -192,8 +192,8 @@ def _add_options(command: argparse.ArgumentParser, table: Table) -> None:
 
 def _values(table: Table, linkage: Linkage, args: argparse.Namespace) -> dict[str, float]:
     """The parameter values by symbol name (angles in radians), lengths checked, by option name."""
-    from ..outputs import label
-    from ..solver import check_lengths
+    from ..symbolic.outputs import label
+    from ..numeric.solver import check_lengths
     lengths = {option.name: getattr(args, option.name.replace("-", "_"))
                for option in table.options if option.kind == LENGTH}
     check_lengths(**lengths)
@@ -210,7 +210,7 @@ def _values(table: Table, linkage: Linkage, args: argparse.Namespace) -> dict[st
 
 def _input_values(linkage: Linkage, values: Mapping[str, float], theta, speeds, accel) -> dict:
     """The inputs, their rates and accelerations along the sweep (further inputs geared to the crank)."""
-    from ..vectors import acceleration, rate
+    from ..symbolic.vectors import acceleration, rate
     first, *further = linkage.inputs
     inputs = {first.name: theta, rate(first).name: speeds, acceleration(first).name: accel}
     for x in further:
@@ -232,9 +232,9 @@ def _branch_signs(linkage: Linkage, args: argparse.Namespace) -> dict[object, di
 
 def _closed_form(table: Table, linkage: Linkage, values: dict, args: argparse.Namespace):
     """A solver of one block of inputs for each branch asked for, and the reachable crank range of each."""
-    from ..outputs import label, table_outputs
-    from ..reachability import scanned_range
-    from ..solver import Solver
+    from ..symbolic.outputs import label, table_outputs
+    from ..numeric.reachability import scanned_range
+    from ..numeric.solver import Solver
     outputs = table_outputs(linkage)
     solver = Solver(linkage, list(outputs.values()))
     parameters = {s.name: values[s.name] for s in linkage.parameters}
@@ -270,7 +270,7 @@ def _closed_form(table: Table, linkage: Linkage, values: dict, args: argparse.Na
 
 def _start(table: Table, linkage: Linkage, values: dict, theta: float, args: argparse.Namespace):
     """The assemblies to continue from at the first crank angle, in the order they are tried."""
-    from ..outputs import label
+    from ..symbolic.outputs import label
     labels = {label(linkage, u): u.name for u in linkage.unknowns}
     found = table.assemblies(theta, values) if table.assemblies is not None else []
     if args.guess is None:
@@ -286,8 +286,8 @@ def _start(table: Table, linkage: Linkage, values: dict, theta: float, args: arg
 
 def _numeric(table: Table, linkage: Linkage, values: dict, inputs: dict, angles, args: argparse.Namespace):
     """Results of the Newton solver, continued from the first assembly (of those chosen) that gets through."""
-    from ..outputs import label, table_outputs
-    from ..solver import NumericSolver
+    from ..symbolic.outputs import label, table_outputs
+    from ..numeric.solver import NumericSolver
     theta = inputs[linkage.inputs[0].name]
     candidates = _start(table, linkage, values, float(theta[0]), args)
     if not candidates:
@@ -314,7 +314,7 @@ def _numeric(table: Table, linkage: Linkage, values: dict, inputs: dict, angles,
 
 def _print_assemblies(table: Table, linkage: Linkage, values: dict, first: float, args: argparse.Namespace) -> None:
     """``--list-assemblies``: the assemblies at the first crank angle, angles wrapped, in the table's format."""
-    from ..outputs import label
+    from ..symbolic.outputs import label
     theta = float(to_radians(first, args.units))
     shown = (linkage.inputs[0],) + linkage.unknowns
     columns = [label(linkage, q) for q in shown]
@@ -365,15 +365,15 @@ def _speeds_at(sweep: InputSweep, args: argparse.Namespace) -> Callable[[numpy.n
 
 def run_table(table: Table, args: argparse.Namespace) -> int:
     """Print the table of ``table``'s linkage for the parsed ``args``."""
-    from ..scene import catalog_linkage
+    from ..io.scene import catalog_linkage
     linkage = catalog_linkage(table.linkage)
     return _print_table(table, linkage, _values(table, linkage, args), args)
 
 
 def _print_table(table: Table, linkage: Linkage, values: dict[str, float], args: argparse.Namespace) -> int:
     """The table of ``linkage`` at parameter ``values`` (by symbol name, angles in radians)."""
-    from ..closure import is_angle
-    from ..outputs import label
+    from ..symbolic.closure import is_angle
+    from ..symbolic.outputs import label
     sweep = input_sweep(args)
     if getattr(args, "list_assemblies", False):
         _print_assemblies(table, linkage, values, sweep.first, args)
@@ -402,14 +402,14 @@ def _print_table(table: Table, linkage: Linkage, values: dict[str, float], args:
 # --- the catalog's entries ----------------------------------------------------------
 
 def _reachability():
-    """:mod:`symlink.reachability`, imported when a table needs a reachable range (it imports SymPy)."""
-    from .. import reachability
+    """:mod:`symlink.numeric.reachability`, imported when a table needs a reachable range (it imports SymPy)."""
+    from ..numeric import reachability
     return reachability
 
 
 def _stephenson3_assemblies(theta: float, values: Mapping[str, float]) -> Any:
-    """The Stephenson III's assemblies at crank angle ``theta`` (:mod:`symlink.assemblies`, imported when asked)."""
-    from ..assemblies import stephenson3_assemblies
+    """The Stephenson III's assemblies at crank angle ``theta`` (:mod:`symlink.numeric.assemblies`, imported when asked)."""
+    from ..numeric.assemblies import stephenson3_assemblies
     return stephenson3_assemblies(theta, **{k: values[k] for k in "abcdefgh"}, alpha=values["alpha"],
                                   delta=values["delta"])
 
@@ -514,11 +514,11 @@ def run_fourbar(args: argparse.Namespace) -> int:
     a, b, c, d = fourbar_lengths(args)
     solver: CachedSolver | Solver
     if args.masses is None:  # the plain table: from the disk cache without SymPy, once derived
-        from ..cached_solver import CachedSolver
+        from ..numeric.cached_solver import CachedSolver
         solver = CachedSolver("fourbar", FOURBAR_COLUMNS[2:])
         solver.check_lengths(crank=a, coupler=b, rocker=c, ground=d)
     else:  # with mass properties the dynamic linkage is derived below: no plain solver is needed
-        from ..solver import check_lengths
+        from ..numeric.solver import check_lengths
         check_lengths(crank=a, coupler=b, rocker=c, ground=d)
     sweep = input_sweep(args)
     _check_crank_speeds(sweep, args.units, args.crank_speed, args.crank_accel)
@@ -527,7 +527,7 @@ def run_fourbar(args: argparse.Namespace) -> int:
     dynamic = fourbar_dynamics(args, (a, b, c, d))  # torque and reactions with --masses (derived, with SymPy)
     columns = FOURBAR_COLUMNS
     if dynamic is not None:
-        from ..solver import Solver
+        from ..numeric.solver import Solver
         linkage, mass_columns = dynamic
         columns = FOURBAR_COLUMNS + mass_columns
         solver = Solver(linkage, columns[2:])
@@ -540,7 +540,7 @@ def run_fourbar(args: argparse.Namespace) -> int:
                                         thetaddot=args.crank_accel) for sign in signs}
 
     def spans() -> str:
-        from ..reachability import crank_range, describe_spans
+        from ..numeric.reachability import crank_range, describe_spans
         return describe_spans(crank_range(a, b, c, d), args.units)
 
     write_table(blocks(), columns, args.units, args.format, ANGLE_COLUMNS, spans)
@@ -571,8 +571,8 @@ def _add_generic_options(command: argparse.ArgumentParser) -> None:
 
 def run_generic_table(args: argparse.Namespace) -> int:
     """``symlink table``: the table of any linkage, from the catalog or a file."""
-    from ..linkage_file import load_linkage
-    from ..solver import check_lengths
+    from ..io.linkage_file import load_linkage
+    from ..numeric.solver import check_lengths
     found = load_linkage(args.linkage).with_dynamics()  # a [dynamics] table adds the torque and force columns
     linkage = found.linkage
     ratios = {f"{x.name}_ratio" for x in linkage.inputs[1:]}

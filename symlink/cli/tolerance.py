@@ -2,7 +2,7 @@
 
 Each row: the input value, the output's nominal value, its worst-case and
 statistical (RSS, 3 sigma) deviations (±), the first-order mean shift, and the
-dimension that contributes most to its variance there (see :mod:`symlink.tolerance`).
+dimension that contributes most to its variance there (see :mod:`symlink.workshop.tolerance`).
 Angles (inputs, angular outputs and their deviations, angular tolerances) are
 in ``--units``; lengths in the linkage's own length unit; speeds in rad/s.
 
@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy
 
-from ..angles import from_radians, to_radians, wrap
+from ..common.angles import from_radians, to_radians, wrap
 from .options import (FOURBAR_LENGTHS, add_branch_option, add_format_option, add_units_option, assignments,
                       command_help, figure_path, finite, fourbar_lengths, input_sweep, linkage_values, number_list,
                       whole)
@@ -89,10 +89,10 @@ def _add_options(command: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..closure import is_angle
-    from ..linkage_file import load_linkage
-    from ..tolerance import pin_play, sample_builds, stack_up
-    from ..units import output_units
+    from ..symbolic.closure import is_angle
+    from ..io.linkage_file import load_linkage
+    from ..workshop.tolerance import pin_play, sample_builds, stack_up
+    from ..numeric.units import output_units
     lengths = fourbar_lengths(args)
     given = [value is not None for value in lengths]
     name = args.linkage if args.linkage is not None else "fourbar"
@@ -136,7 +136,7 @@ def run(args: argparse.Namespace) -> int:
     values.update({branch.name: int(args.branch) for branch in linkage.branches})
     values.update({f"{first.name}dot": args.crank_speed, f"{first.name}ddot": args.crank_accel})
     if args.play:
-        from ..vectors import acceleration, rate
+        from ..symbolic.vectors import acceleration, rate
         moving = {rate(q) for q in linkage.coordinates} | {acceleration(q) for q in linkage.coordinates}
         if linkage.output(output).free_symbols & moving:  # ValueError naming the outputs for an unknown one
             raise ValueError(f"--play is modelled for positions; {output} moves with the rates")
@@ -151,7 +151,7 @@ def run(args: argparse.Namespace) -> int:
         if args.seed < 0:
             raise ValueError(f"--seed must be 0 or more, got {args.seed}")
         if args.folder is not None:
-            from ..sweep import SWEEP_EXTRA, missing_modules
+            from ..workshop.sweep import SWEEP_EXTRA, missing_modules
             missing = missing_modules(("dask", "pyarrow"))
             if missing:
                 raise ValueError(f"--folder needs {', '.join(missing)}: {SWEEP_EXTRA} (or leave --folder out: the "
@@ -193,8 +193,8 @@ def run(args: argparse.Namespace) -> int:
 
 def _tolerances(args: argparse.Namespace, symbols: dict, linkage: Any) -> dict[str, Any]:
     """The dimensions' tolerances from ``--tolerance``, ``--tolerances`` and ``--sigma`` (angles to radians)."""
-    from ..closure import is_angle
-    from ..tolerance import Tolerance
+    from ..symbolic.closure import is_angle
+    from ..workshop.tolerance import Tolerance
     for option, given in (("--tolerances", args.tolerances), ("--sigma", args.sigma)):
         for name in given:
             if name not in symbols:

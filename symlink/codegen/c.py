@@ -22,7 +22,7 @@ arguments of the ``atan2`` that gave each angle and the addition theorems
 (:func:`~symlink.codegen.trigonometry.angle_sums`), not called again, so that
 full kinematics call the vector math library no more often than positions do.
 
->>> from symlink.catalog import fourbar
+>>> from symlink.mechanism.catalog import fourbar
 >>> header, source = c_code([("fourbar_positions", fourbar().program(["rocker"]), "Rocker angle.")], "fourbar")
 >>> print(header.split("void ")[1].split(";")[0])
 fourbar_positions(size_t n,
@@ -46,14 +46,14 @@ import sympy as sp
 from sympy.printing.c import C99CodePrinter
 
 from ..version import __version__
-from ..names import C_KEYWORDS as RESERVED_IN_C, PLAIN_NAME
-from ..position import TOLERANCE, PowerOfTwoBelow
+from ..common.names import C_KEYWORDS as RESERVED_IN_C, PLAIN_NAME
+from ..symbolic.position import TOLERANCE, PowerOfTwoBelow
 from .numpy import ARGUMENT_CONTRACT
 from .program import require_loop_units, FreshNames, StraightLine, is_flag, named_straight_line
 from .trigonometry import angle_sums
 
 if TYPE_CHECKING:
-    from ..linkage import Linkage, Program
+    from ..symbolic.linkage import Linkage, Program
 
 __all__ = ["CFunction", "c_function", "c_library", "c_code", "c_identifier", "c_comment", "c_packed", "PACKED_CALL", "export_files",
            "translation_units", "PIECE_SIZE", "UNIT_MARK"]
@@ -79,7 +79,7 @@ C_KEYWORDS = frozenset(C99CodePrinter.reserved_words) | RESERVED_IN_C
 
 
 def c_identifier(name: str, what: str = "name") -> str:
-    """``name`` if it is a plain name (:data:`symlink.names.PLAIN_NAME`) that is not a C keyword; ``ValueError`` otherwise.
+    """``name`` if it is a plain name (:data:`symlink.common.names.PLAIN_NAME`) that is not a C keyword; ``ValueError`` otherwise.
 
     >>> c_identifier("phi_1")
     'phi_1'
@@ -622,7 +622,7 @@ def c_packed(function: CFunction, lengths: Sequence[str] = (), signs: Sequence[s
     passes one pointer a call, to a struct it fills once for many calls, and
     checks nothing itself.
 
-    >>> from symlink.catalog import fourbar
+    >>> from symlink.mechanism.catalog import fourbar
     >>> print(next(line for line in c_packed(c_function(fourbar().program(["rocker"]), "rocker")).splitlines()
     ...            if line.startswith("int ")))
     int rocker_packed(const struct symlink_packed_call *call)

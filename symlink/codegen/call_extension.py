@@ -1,6 +1,6 @@
 """The C of symlink's small-call extension: a CPython module that hands a call's keywords to a compiled loop.
 
-A compiled call of a few values (:class:`symlink.compiled_library.CompiledFunction`)
+A compiled call of a few values (:class:`symlink.numeric.compiled_library.CompiledFunction`)
 costs far more in Python, walking its keyword arguments and filling the
 loop's argument slots, than in the loop itself.  This module writes the C of
 one small CPython extension, ``symlink_call``, that does that walk in C,
@@ -21,7 +21,7 @@ for every compiled function alike: each function describes itself once in a
   ``<name>_packed`` wrapper once, which checks the values as the NumPy module
   does;
 * returns a new dict of the output rows (``call``), or a
-  :class:`symlink.results.Results` made without ``__init__`` (``results``),
+  :class:`symlink.numeric.results.Results` made without ``__init__`` (``results``),
   or ``None`` where the call is refused: the caller's general path then
   answers, with its errors and broadcasting.
 
@@ -29,7 +29,7 @@ The plan's ``busy`` byte makes one call at a time use the shared slots: a
 call while another thread's small call is inside (only possible while
 ``make`` runs Python code) is refused, and answered by the general path.
 
-It is compiled like the solver libraries (:func:`symlink.compiled_library.compile_shared`) with the
+It is compiled like the solver libraries (:func:`symlink.numeric.compiled_library.compile_shared`) with the
 headers of the running Python; the source names the Python it is for, so that the cached library of
 one Python is never loaded by another.
 

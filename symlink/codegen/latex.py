@@ -8,10 +8,10 @@ mathematics (titles, loop names) is escaped (:func:`latex_text`).
 
 Equations fit a letter or A4 page: the positions print as the named
 intermediates of the closed forms, one row each, and a right-hand side still
-wider than the page breaks across lines (:mod:`symlink.typeset`, which
+wider than the page breaks across lines (:mod:`symlink.symbolic.typeset`, which
 ``Linkage._repr_latex_`` uses too).
 
->>> from symlink.catalog import fourbar
+>>> from symlink.mechanism.catalog import fourbar
 >>> text = latex_document(fourbar(), "Four-bar")
 >>> r"\dot{\phi}" in text and r"\begin{document}" in text
 True
@@ -22,16 +22,16 @@ from typing import TYPE_CHECKING, Sequence
 
 import sympy as sp
 
-from ..closure import closure_system
-from ..loops import CASE_NAMES
-from ..notation import branch_latex
-from ..seed_forms import SEED_FORM_TITLES, seed_form_rows
-from ..sensitivity import sensitivity_symbol
-from ..typeset import align_block, closure_rows
-from ..vectors import acceleration, rate
+from ..symbolic.closure import closure_system
+from ..symbolic.loops import CASE_NAMES
+from ..common.notation import branch_latex
+from ..symbolic.seed_forms import SEED_FORM_TITLES, seed_form_rows
+from ..symbolic.sensitivity import sensitivity_symbol
+from ..symbolic.typeset import align_block, closure_rows
+from ..symbolic.vectors import acceleration, rate
 
 if TYPE_CHECKING:
-    from ..linkage import Linkage
+    from ..symbolic.linkage import Linkage
 
 __all__ = ["latex_text", "document", "latex_document", "newton_document", "export_files"]
 
@@ -63,10 +63,10 @@ def latex_document(linkage: Linkage, title: str, *, velocities: bool = True, acc
     """A standalone LaTeX document with the linkage's closed-form derivation, section by section.
 
     ``sensitivities`` names parameters whose design sensitivities (the unknowns' derivatives by them,
-    :mod:`symlink.sensitivity`) get a section of their own; ``dynamics`` adds the sections of a linkage
+    :mod:`symlink.symbolic.sensitivity`) get a section of their own; ``dynamics`` adds the sections of a linkage
     with mass properties (its ``derivation_sections``: see :mod:`symlink.dynamics.inverse`).
     ``form`` other than ``"atan2"`` adds the positions in that seed paper's form
-    (:data:`symlink.seed_forms.FORMS`) after symlink's own, which generated code computes.
+    (:data:`symlink.symbolic.seed_forms.FORMS`) after symlink's own, which generated code computes.
     """
     parts = [
         "Angles are measured counter-clockwise from $+x$. "
@@ -100,7 +100,7 @@ def latex_document(linkage: Linkage, title: str, *, velocities: bool = True, acc
 
 def newton_document(linkage: Linkage, title: str) -> str:
     """A standalone LaTeX document: closure, why there is no closed form, Newton's iteration and the rate systems."""
-    from ..plan import solve_plan
+    from ..symbolic.plan import solve_plan
 
     system = closure_system(linkage)
     q = sp.Matrix(linkage.unknowns)
@@ -131,7 +131,7 @@ def export_files(linkage: Linkage, stem: str, functions: Sequence[tuple[str, Seq
     The velocities are written if any output depends on a rate, the
     accelerations if any depends on an acceleration, the sensitivities to a
     parameter if any output is a derivative by it; ``regenerate`` is not written.
-    ``form`` writes the positions in a seed paper's form (:mod:`symlink.seed_forms`).
+    ``form`` writes the positions in a seed paper's form (:mod:`symlink.symbolic.seed_forms`).
     """
     asked = set().union(*(linkage.output(o).free_symbols for _, outputs, _ in functions for o in outputs))
     accelerations = any(acceleration(q) in asked for q in linkage.unknowns)

@@ -1,7 +1,7 @@
 """Loading a generated NumPy module: its source run into a fresh namespace, without SymPy.
 
 The printers (:mod:`symlink.codegen.numpy`) need SymPy; running what they wrote does not, so
-that a solver read from the disk cache (:mod:`symlink.cached_solver`) loads in a process that
+that a solver read from the disk cache (:mod:`symlink.numeric.cached_solver`) loads in a process that
 never imports SymPy.
 
 >>> load_numpy_module("def solve(x):\\n    return 2 * x\\n")["solve"](3)

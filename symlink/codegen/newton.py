@@ -3,14 +3,14 @@
 Where no loop-by-loop closed form exists (the Stephenson III six-bar), the
 closure equations of all loops are solved together.  The residuals, their
 Jacobian with respect to the unknowns and the right-hand sides of the
-velocity and acceleration systems (:mod:`symlink.closure`) are printed as
+velocity and acceleration systems (:mod:`symlink.symbolic.closure`) are printed as
 NumPy code (:func:`symlink.codegen.program.straight_line`, common
 subexpressions eliminated), and the Newton driver
 (:mod:`symlink.codegen.newton_driver`) is copied in from its source, so the
-generated module imports NumPy only.  :class:`symlink.solver.NumericSolver`
+generated module imports NumPy only.  :class:`symlink.numeric.solver.NumericSolver`
 loads it at run time.
 
->>> from symlink.catalog import fourbar
+>>> from symlink.mechanism.catalog import fourbar
 >>> source = numeric_module(fourbar())
 >>> "import sympy" in source, "def accelerations(theta, a, b, c, d, guess, thetadot=0.0, thetaddot=0.0, *, check=True):" in source
 (False, True)
@@ -23,10 +23,10 @@ from typing import Any, Sequence
 
 import sympy as sp
 
-from ..closure import closure_system, is_angle
-from ..linkage import Linkage, Program
-from ..sensitivity import closure_parameter_rhs, sensitivity_name, sensitivity_symbol
-from ..vectors import acceleration, rate
+from ..symbolic.closure import closure_system, is_angle
+from ..symbolic.linkage import Linkage, Program
+from ..symbolic.sensitivity import closure_parameter_rhs, sensitivity_name, sensitivity_symbol
+from ..symbolic.vectors import acceleration, rate
 from . import newton_driver
 from .numpy import ARGUMENT_CONTRACT, NumPyCodePrinter, numpy_module
 from .program import straight_line

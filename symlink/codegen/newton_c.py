@@ -1,13 +1,13 @@
 """The compiled Newton fallback: the continuation of :mod:`symlink.codegen.newton_driver`, written in C.
 
-Where a linkage has no loop-by-loop closed form, :class:`symlink.solver.NumericSolver`
+Where a linkage has no loop-by-loop closed form, :class:`symlink.numeric.solver.NumericSolver`
 solves the closure of all loops by Newton's method.  The NumPy driver does that
 over whole blocks of the sweep with ``numpy.linalg`` (and a singular-value
 decomposition on every Newton system for its condition number); this module
 writes the same driver as one C library, which continues value by value:
 
 * the residuals, the Jacobian and the right-hand sides of the velocity and
-  acceleration systems (:mod:`symlink.closure`) as C functions, printed with
+  acceleration systems (:mod:`symlink.symbolic.closure`) as C functions, printed with
   common subexpressions eliminated (:func:`symlink.codegen.program.straight_line`)
   by the C printer of :mod:`symlink.codegen.c`;
 * the driver, a fixed C text: damped Newton at the first input value (the
@@ -44,10 +44,10 @@ at each converged point (which the final check reuses), and where a correction i
 refused; a zero or non-finite pivot is singular at once.  (The NumPy driver uses the 2-norm condition
 number, which differs from the 1-norm one by at most the number of unknowns: both
 are far beyond the threshold at a dead centre.)  Failures come back as a status and
-the input values involved, which :mod:`symlink.solver` turns into the NumPy
+the input values involved, which :mod:`symlink.numeric.solver` turns into the NumPy
 driver's messages.
 
->>> from symlink.catalog import stephenson3
+>>> from symlink.mechanism.catalog import stephenson3
 >>> facts = newton_c_facts(stephenson3())
 >>> "int symlink_newton_sweep(" in facts["source"], facts["unknowns"]
 (True, ['beta', 'mu', 'phi', 'eta'])
@@ -58,9 +58,9 @@ from typing import Any, Sequence
 
 import sympy as sp
 
-from ..closure import closure_system
-from ..linkage import Linkage, Program
-from ..vectors import acceleration, rate
+from ..symbolic.closure import closure_system
+from ..symbolic.linkage import Linkage, Program
+from ..symbolic.vectors import acceleration, rate
 from . import newton_driver
 from .c import C_KEYWORDS, CPrinter, c_function, c_identifier, c_library
 from .program import FreshNames, straight_line

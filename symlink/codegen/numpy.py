@@ -12,7 +12,7 @@ need come from the solved angles' ``atan2`` arguments
 (:func:`~symlink.codegen.trigonometry.angle_sums`): full kinematics call the
 transcendental functions no more often than positions do.
 
->>> from symlink.catalog import fourbar
+>>> from symlink.mechanism.catalog import fourbar
 >>> source = numpy_module([("rocker_angle", fourbar().program(["phi"]), "Rocker angle.")])
 >>> "import sympy" in source, "numpy.arctan2" in source
 (False, True)
@@ -33,14 +33,14 @@ from sympy.printing.numpy import NumPyPrinter
 from sympy.printing.precedence import precedence
 
 from ..version import __version__
-from ..linkage import is_branch_name
-from ..position import TOLERANCE
+from ..symbolic.linkage import is_branch_name
+from ..symbolic.position import TOLERANCE
 from .loading import load_numpy_module
 from .program import require_loop_units, format_default, is_flag, straight_line
 from .trigonometry import angle_sums
 
 if TYPE_CHECKING:
-    from ..linkage import Linkage, Program
+    from ..symbolic.linkage import Linkage, Program
 
 __all__ = ["NumPyCodePrinter", "numpy_function", "numpy_module", "load_numpy_module", "docstring_text",
            "export_files", "checked_arguments", "ARGUMENT_CONTRACT"]

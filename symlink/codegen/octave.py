@@ -14,7 +14,7 @@ and 0/0 = NaN below the threshold (or where x is NaN), exactly as the NumPy
 module's ``_clamped_sqrt``; also for a guard (negative scale), whose threshold
 is positive.
 
->>> from symlink.catalog import fourbar
+>>> from symlink.mechanism.catalog import fourbar
 >>> text = octave_function(fourbar().program(["rocker"]), "fourbar_rocker", "Rocker angle (rad).")
 >>> print(text.splitlines()[0])
 function [rocker, assembled] = fourbar_rocker(theta, a, b, c, d, branch)
@@ -30,14 +30,14 @@ import sympy as sp
 from sympy.printing.octave import OctaveCodePrinter
 
 from ..version import __version__
-from ..linkage import is_branch_name
-from ..names import OCTAVE_KEYWORDS, PLAIN_NAME
-from ..position import TOLERANCE
+from ..symbolic.linkage import is_branch_name
+from ..common.names import OCTAVE_KEYWORDS, PLAIN_NAME
+from ..symbolic.position import TOLERANCE
 from .numpy import ARGUMENT_CONTRACT
 from .program import require_loop_units, format_default, is_flag, named_straight_line
 
 if TYPE_CHECKING:
-    from ..linkage import Linkage, Program
+    from ..symbolic.linkage import Linkage, Program
 
 __all__ = ["octave_function", "octave_identifier", "comment_lines", "export_files"]
 

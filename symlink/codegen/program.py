@@ -1,13 +1,13 @@
 """The one intermediate form of code generation: a straight-line program with common subexpressions eliminated.
 
-A :class:`~symlink.linkage.Program` (the assignments a linkage derives for
+A :class:`~symlink.symbolic.linkage.Program` (the assignments a linkage derives for
 some outputs) becomes a :class:`StraightLine`: common subexpressions are
 eliminated across everything requested, and the assignments are ordered so
 that each uses only arguments and earlier names.  Every printer (NumPy, C,
 MATLAB/Octave) prints this same form, so the languages compute the same
 thing in the same order.
 
->>> from symlink.catalog import fourbar
+>>> from symlink.mechanism.catalog import fourbar
 >>> code = straight_line(fourbar().program(["rocker"]))
 >>> [s.name for s in code.arguments], list(code.outputs), [r.name for r in code.roots]
 (['theta', 'a', 'b', 'c', 'd', 'branch'], ['rocker'], ['wsq_1', 'Delta_1'])
@@ -23,11 +23,11 @@ import sympy as sp
 from sympy.core.relational import Relational
 from sympy.logic.boolalg import BooleanAtom, BooleanFunction
 
-from ..linkage import depended_on
-from ..position import ClampedSqrt, NonzeroSquare
+from ..symbolic.linkage import depended_on
+from ..symbolic.position import ClampedSqrt, NonzeroSquare
 
 if TYPE_CHECKING:
-    from ..linkage import Program
+    from ..symbolic.linkage import Program
 
 __all__ = ["StraightLine", "in_loop_units", "require_loop_units", "straight_line", "named_straight_line", "format_default", "is_flag", "FreshNames", "CSE_PREFIX"]
 
@@ -46,7 +46,7 @@ class StraightLine:
     vanish) whose finiteness says that the linkage is assembled;
     ``defaults`` are the program's argument defaults; ``radii`` map a solved
     angle ``atan2(y, x)`` to ``sqrt(x^2 + y^2)`` where its loop knows that
-    length without a square root (:attr:`symlink.position.LoopSolution.radii`).
+    length without a square root (:attr:`symlink.symbolic.position.LoopSolution.radii`).
     """
 
     arguments: tuple[sp.Symbol, ...]
@@ -61,18 +61,18 @@ def in_loop_units(program: Program) -> Program:
     """The program as generated code computes it: each closed-form loop in its own units, its roots guarded.
 
     A linkage's equations are written as a textbook writes them, in its own
-    lengths (:attr:`symlink.linkage.Linkage.positions`).  Floating point needs
+    lengths (:attr:`symlink.symbolic.linkage.Linkage.positions`).  Floating point needs
     more: every loop is computed in units of its mean known length (a power of
     two, so the division is exact), which keeps the angles exact from lengths of
     1e-300 to 1e300, and every square root carries the scale that tells
     rounding at a toggle from a loop that cannot close.  This swaps each loop's
-    textbook assignments for that form (:attr:`symlink.position.LoopSolution.in_loop_units`:
+    textbook assignments for that form (:attr:`symlink.symbolic.position.LoopSolution.in_loop_units`:
     one square root a loop, ``w`` kept squared where only its square is needed),
     and writes the sines and cosines that vanish at the toggles through the
     loops' roots, so that rates divide by exactly zero there.  Every printer
     (NumPy, C, Octave, scalar Python) prints the result; nothing a user reads shows it.
 
-    >>> from symlink.catalog import fourbar
+    >>> from symlink.mechanism.catalog import fourbar
     >>> program = fourbar().program(["rocker"])
     >>> [s.name for s, _ in program.assignments][:3]
     ['Wx_1', 'Wy_1', 'w_1']
@@ -104,7 +104,7 @@ def in_loop_units(program: Program) -> Program:
 def require_loop_units(root: ClampedSqrt) -> None:
     """``ValueError`` for a textbook square root in a printer: its program lost the plan that scales it.
 
-    A :class:`~symlink.linkage.Program` copied field by field loses its ``plan``;
+    A :class:`~symlink.symbolic.linkage.Program` copied field by field loses its ``plan``;
     ``dataclasses.replace(program, outputs=...)`` keeps it.
     """
     if len(root.args) != 2:

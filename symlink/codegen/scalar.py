@@ -8,7 +8,7 @@ that rounds past a toggle gives 0 and one that cannot be assembled gives NaN, as
 NumPy modules.
 
 >>> import sympy as sp
->>> from symlink.linkage import Program
+>>> from symlink.symbolic.linkage import Program
 >>> x = sp.Symbol("x", real=True)
 >>> source = scalar_module(Program((x,), [], {"y": sp.cos(x) ** 2 + 1}), ["y"])
 >>> namespace = {}
@@ -22,8 +22,8 @@ from typing import Sequence
 
 from sympy.printing.pycode import PythonCodePrinter
 
-from ..linkage import Program
-from ..position import TOLERANCE
+from ..symbolic.linkage import Program
+from ..symbolic.position import TOLERANCE
 from .program import require_loop_units, straight_line
 
 __all__ = ["ScalarPrinter", "scalar_module"]

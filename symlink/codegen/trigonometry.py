@@ -11,7 +11,7 @@ angles it already knows, so that full kinematics call ``sin``, ``cos`` and
 the rewritten program (``CosineOfAtan2`` and ``SineOfAtan2`` are their two new
 functions); the values agree with the calls to a few units in the last place.
 
->>> from symlink.catalog import fourbar
+>>> from symlink.mechanism.catalog import fourbar
 >>> from symlink.codegen.program import straight_line
 >>> code = straight_line(fourbar().program(["coupler_speed"]))
 >>> calls = lambda code: sorted({str(f.func) for _, e in code.assignments for f in e.atoms(sp.sin, sp.cos, sp.atan2)})

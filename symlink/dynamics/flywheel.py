@@ -50,9 +50,9 @@ from typing import Any, Mapping
 
 import numpy
 
-from ..display import record_html
-from ..solver import Solver
-from ..vectors import acceleration, rate
+from ..common.display import record_html
+from ..numeric.solver import Solver
+from ..symbolic.vectors import acceleration, rate
 from .forward import ConstantTorque, ForwardDynamics, Motion, equation_linkage, require_scipy
 from .model import DynamicModel
 

@@ -24,7 +24,7 @@ taken through a position where the generated code gives NaN.
 
 For a slider input ``angle`` reads "travel" and torque "force" throughout.
 
->>> from symlink.catalog import fourbar
+>>> from symlink.mechanism.catalog import fourbar
 >>> from symlink.dynamics.model import DynamicModel, MassProperties
 >>> model = DynamicModel(fourbar(), [MassProperties("crank", 2.0, distance=10.0, inertia=50.0)])
 >>> crank = ForwardDynamics(model, dict(a=20, b=66, c=56, d=80))
@@ -41,14 +41,14 @@ from typing import Any, Callable, Mapping
 
 import numpy
 
-from ..cache import cache_key, cached_text, generated_code
+from ..numeric.cache import cache_key, cached_text, generated_code
 from ..codegen.numpy import checked_arguments, load_numpy_module
 from ..codegen.program import in_loop_units
 from ..codegen.scalar import scalar_module
-from ..display import record_html
-from ..linkage import Linkage
-from ..position import ClampedSqrt
-from ..vectors import rate
+from ..common.display import record_html
+from ..symbolic.linkage import Linkage
+from ..symbolic.position import ClampedSqrt
+from ..symbolic.vectors import rate
 from .inverse import EQUATION_OUTPUTS, driving_efforts, equation_of_motion, linkage_with_outputs
 from .model import DynamicModel
 

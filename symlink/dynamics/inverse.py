@@ -33,7 +33,7 @@ Output names (see :func:`dynamic_outputs`):
 * for one input, ``generalised_inertia``, ``generalised_inertia_slope`` (dM/dq) and
   ``applied_generalised_force``, for forward dynamics.
 
->>> from symlink.catalog import fourbar
+>>> from symlink.mechanism.catalog import fourbar
 >>> from symlink.dynamics.model import DynamicModel, MassProperties
 >>> model = DynamicModel(fourbar(), [MassProperties("crank", "m2", inertia="I2")])
 >>> driving_efforts(model)[0]
@@ -46,11 +46,11 @@ from typing import TYPE_CHECKING, Callable, Iterator, Mapping, Sequence, TypeVar
 
 import sympy as sp
 
-from ..bodies import GROUND, PRISMATIC, _moving_part, same_point
-from ..closure import is_angle
-from ..linkage import Linkage
-from ..typeset import EquationSet
-from ..vectors import expression
+from ..mechanism.bodies import GROUND, PRISMATIC, _moving_part, same_point
+from ..symbolic.closure import is_angle
+from ..symbolic.linkage import Linkage
+from ..symbolic.typeset import EquationSet
+from ..symbolic.vectors import expression
 
 if TYPE_CHECKING:
     from .model import DynamicModel
@@ -498,7 +498,7 @@ class DynamicLinkage(Linkage):
     model: DynamicModel
 
     def described_extras(self) -> list | None:
-        """What the extras are, for the cache key (:func:`symlink.cache.definition`), without deriving them.
+        """What the extras are, for the cache key (:func:`symlink.numeric.cache.definition`), without deriving them.
 
         The kinematic linkage's own extras, and the model as given: each mass with its centre and inertia,
         the applied forces and couples (gravity's among them), the bodies and joints the reactions are of,
@@ -574,11 +574,11 @@ def dynamic_linkage(model: DynamicModel) -> DynamicLinkage:
     Scenes, exports and LaTeX take it like any linkage, and derive only what a request
     needs (a torque: accelerations, no reactions).  The outputs are named at once
     (:func:`dynamic_output_names`) and derived together on first use of any of their
-    expressions; a cached request (a :class:`~symlink.solver.Solver` whose code is in the
+    expressions; a cached request (a :class:`~symlink.numeric.solver.Solver` whose code is in the
     cache) uses none, so it derives nothing: its key is made from the model as given
     (:meth:`DynamicLinkage.described_extras`), not from the derived expressions.
 
-    >>> from symlink.catalog import fourbar
+    >>> from symlink.mechanism.catalog import fourbar
     >>> from symlink.dynamics.model import DynamicModel, MassProperties
     >>> linkage = dynamic_linkage(DynamicModel(fourbar(), [MassProperties("crank", "m2", inertia="I2")]))
     >>> linkage.dynamic_outputs[:3], linkage.extras["input_torque"]
@@ -600,7 +600,7 @@ def dynamic_linkage(model: DynamicModel) -> DynamicLinkage:
 def dynamic_output_names(model: DynamicModel) -> list[str]:
     """The names of :func:`dynamic_outputs`, in its order, without deriving anything.
 
-    >>> from symlink.catalog import fourbar
+    >>> from symlink.mechanism.catalog import fourbar
     >>> from symlink.dynamics.model import DynamicModel
     >>> dynamic_output_names(DynamicModel(fourbar()))[:5]
     ['input_torque', 'joint_A_x', 'joint_A_y', 'joint_B_x', 'joint_B_y']

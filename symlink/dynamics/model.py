@@ -1,6 +1,6 @@
 """Mass properties and loads of a one-input (or several-input) linkage: the dynamic model.
 
-A :class:`DynamicModel` puts masses on the bodies that :func:`symlink.bodies.mechanism`
+A :class:`DynamicModel` puts masses on the bodies that :func:`symlink.mechanism.bodies.mechanism`
 reads off a linkage's loops, and loads on its points:
 
 * :class:`MassProperties` of a body: its ``mass``, its centre of mass G given in the
@@ -19,7 +19,7 @@ reads off a linkage's loops, and loads on its points:
   moves the force between the two reactions of that pin.
 
 Every value is a number, a SymPy expression, or a name: names become real symbols
-(checked by :func:`symlink.names.identifier`, never parsed), and a name the linkage
+(checked by :func:`symlink.common.names.identifier`, never parsed), and a name the linkage
 already uses is that same symbol.
 
 The model's kinematic building blocks are SymPy expressions of the positions (no
@@ -34,10 +34,10 @@ for each input ``q`` (velocities are linear in the input rates), from which
 
 so that a one-input linkage moves by ``M q'' + M'(q) q'^2 / 2 = Q_applied + Q_drive``.
 :mod:`symlink.dynamics.inverse` adds the driving effort and the joint reactions, and
-:func:`symlink.dynamics.inverse.dynamic_linkage` gives a :class:`~symlink.linkage.Linkage` whose extra outputs
+:func:`symlink.dynamics.inverse.dynamic_linkage` gives a :class:`~symlink.symbolic.linkage.Linkage` whose extra outputs
 are all of them, so scenes, exports and LaTeX take them like any other output.
 
->>> from symlink.catalog import fourbar
+>>> from symlink.mechanism.catalog import fourbar
 >>> model = DynamicModel(fourbar(), [MassProperties("crank", "m2", inertia="I2", distance="r2")],
 ...                      gravity=Gravity(0, "g_y"))
 >>> import sympy
@@ -54,11 +54,11 @@ from typing import Mapping, Sequence, Union
 
 import sympy as sp
 
-from ..bodies import GROUND, PRISMATIC, Body, Mechanism, _moving_part, mechanism
-from ..closure import is_angle
-from ..linkage import Linkage
-from ..names import identifier
-from ..vectors import Vector, expression, rate, time_derivative
+from ..mechanism.bodies import GROUND, PRISMATIC, Body, Mechanism, _moving_part, mechanism
+from ..symbolic.closure import is_angle
+from ..symbolic.linkage import Linkage
+from ..common.names import identifier
+from ..symbolic.vectors import Vector, expression, rate, time_derivative
 
 __all__ = ["Value", "MassProperties", "Gravity", "PointForce", "BodyTorque", "Spring", "Damper", "Load",
            "DynamicModel"]
@@ -143,7 +143,7 @@ class AppliedForce:
 class DynamicModel:
     """Mass properties and loads on the bodies of ``linkage`` (see the module docstring).
 
-    ``bodies`` is passed to :func:`symlink.bodies.mechanism` where the vectors alone
+    ``bodies`` is passed to :func:`symlink.mechanism.bodies.mechanism` where the vectors alone
     do not say which body a vector lies on.
     """
 

@@ -10,7 +10,7 @@ and evaluated: an animation never differentiates anything.
 
 An input that cannot turn fully (a rocker, a non-Grashof four-bar) is swept
 over its reachable range forward and back
-(:func:`~symlink.plot.drawing.sweep_inputs`), so no frame shows a pose that
+(:func:`~symlink.numeric.poses.sweep_inputs`), so no frame shows a pose that
 cannot be assembled.  Frames are written into a hidden file in the output
 folder (``.symlink-animation-*.tmp``, removed by the next run if a run is
 killed) and renamed into place when complete; an animation is capped by
@@ -45,12 +45,13 @@ from typing import TYPE_CHECKING, Callable, Mapping, Sequence
 
 import numpy
 
-from ..catalog import fourbar
-from ..closure import is_angle
-from ..files import LEFTOVER_AGE, TEMPORARY_SUFFIX, remove_leftovers
-from ..linkage import Linkage
-from ..reachability import TURN_SAMPLES, assembled_crank_range, crank_range, turn_angles
-from .drawing import Geometry, LinkageDrawing, input_range, sweep_inputs, traced_paths
+from ..mechanism.catalog import fourbar
+from ..symbolic.closure import is_angle
+from ..common.files import LEFTOVER_AGE, TEMPORARY_SUFFIX, remove_leftovers
+from ..symbolic.linkage import Linkage
+from ..numeric.reachability import TURN_SAMPLES, assembled_crank_range, crank_range, turn_angles
+from ..numeric.poses import Geometry, input_range, sweep_inputs, traced_paths
+from .drawing import LinkageDrawing
 from .figures import (MechanismDrawing, check_coupler_point, coupler_point_linkage, fourbar_positions,
                       frame_plane)
 
@@ -137,7 +138,7 @@ def frame_positions(a: float, b: float, c: float, d: float, *, branch: int = 1, 
 
     A crank that turns fully is at ``2 pi k / frames``; one that cannot is
     swept over its reachable range from 0 (or its first arc), forward and
-    back (:func:`~symlink.plot.drawing.sweep_inputs`).  ``coupler_point`` is (distance from B, angle from B->C in radians).  A
+    back (:func:`~symlink.numeric.poses.sweep_inputs`).  ``coupler_point`` is (distance from B, angle from B->C in radians).  A
     fresh linkage is derived unless ``linkage`` is given (the four-bar, or
     :func:`~symlink.plot.coupler_point_linkage` for a coupler point).
     """
@@ -375,7 +376,7 @@ def animate_linkage(linkage: Linkage, values: Mapping[str, float], path, *, fram
     form follow Newton's method from ``guess`` (default: one found).
 
     >>> import tempfile, pathlib
-    >>> from symlink.catalog import fourbar
+    >>> from symlink.mechanism.catalog import fourbar
     >>> path = pathlib.Path(tempfile.mkdtemp()) / "rocker.gif"
     >>> rendered = animate_linkage(fourbar(), dict(a=0.3, b=0.1, c=0.25, d=0.3), path, frames=4, size_px=(160, 120))
     >>> rendered.frames, rendered.unassembled, rendered.full_turn
@@ -397,7 +398,7 @@ def inline_animation(linkage: Linkage, values: Mapping[str, float], *, frames: i
     The last expression of a notebook cell shows it as a player; ``.html``
     is the HTML itself (for ``IPython.display.HTML`` or a page).
 
-    >>> from symlink.catalog import fourbar
+    >>> from symlink.mechanism.catalog import fourbar
     >>> shown = inline_animation(fourbar(), dict(a=0.1, b=0.4, c=0.25, d=0.3), frames=4, size_px=(160, 120))
     >>> shown.frames, shown.full_turn, shown._repr_html_().count("data:image/png;base64,")
     (4, True, 4)

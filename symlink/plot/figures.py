@@ -38,13 +38,13 @@ from typing import TYPE_CHECKING, Sequence
 import numpy
 
 from ..analysis import transmission_curve, transmission_range
-from ..catalog import fourbar
-from ..angles import half_turn, wrap
-from ..reachability import TURN_SAMPLES, assembled_crank_range, reachable_turn, turn_angles
-from ..files import write_atomic
-from ..linkage import Linkage
-from ..solver import Solver, check_lengths, shared_solver
-from ..vectors import Vector, coordinates, lengths
+from ..mechanism.catalog import fourbar
+from ..common.angles import half_turn, wrap
+from ..numeric.reachability import TURN_SAMPLES, assembled_crank_range, reachable_turn, turn_angles
+from ..common.files import write_atomic
+from ..symbolic.linkage import Linkage
+from ..numeric.solver import Solver, check_lengths, shared_solver
+from ..symbolic.vectors import Vector, coordinates, lengths
 
 if TYPE_CHECKING:  # Matplotlib is imported when a drawing is made
     from matplotlib.axes import Axes
@@ -67,7 +67,7 @@ LINK_COLORS = {"crank": "tab:red", "coupler": "tab:blue", "rocker": "tab:green"}
 
 # --- evaluation --------------------------------------------------------------
 def coupler_point_linkage() -> Linkage:
-    """The four-bar of :func:`symlink.catalog.fourbar` with a coupler point ``P``.
+    """The four-bar of :func:`symlink.mechanism.catalog.fourbar` with a coupler point ``P``.
 
     ``P = B + p e^{i (beta + gamma)}``: the distance ``p`` from B, at the
     angle ``gamma`` from the coupler's direction B->C (counter-clockwise).

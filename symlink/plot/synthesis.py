@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING
 
 import numpy
 
-from ..reachability import turn_angles
+from ..numeric.reachability import turn_angles
 from ..synthesis.motion import Design, burmester_curves, burmester_points, check_poses
 from .figures import LINK_COLORS, _given, _new_figure, fourbar_positions, frame_plane
 

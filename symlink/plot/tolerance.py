@@ -3,7 +3,7 @@
 :func:`band_figure` draws, against the input, the output's nominal value (top) and its
 deviations (bottom): the worst-case band (``± sum |dy/dp| band``, light), the statistical band
 (mean shift ± 3 sigma, darker) and, given a Monte Carlo sample
-(:func:`~symlink.tolerance.sample_builds`), the sampled 0.135 and 99.865 percentiles (the
+(:func:`~symlink.workshop.tolerance.sample_builds`), the sampled 0.135 and 99.865 percentiles (the
 3-sigma points of a normal) and the sampled mean as dots, so the linear prediction and the
 sample are read side by side.  :func:`contribution_figure` is a bar chart of each dimension's
 share of the output's variance where the statistical band is widest: the dimension to
@@ -16,8 +16,8 @@ Angles (the input, an angular output and its deviations) are drawn in ``units`` 
 default) when the flags ``angular_input`` and ``angular_output`` say they are angles;
 lengths in the linkage's own unit.  Matplotlib is imported only when a drawing is made.
 
->>> from symlink.catalog import fourbar
->>> from symlink.tolerance import stack_up
+>>> from symlink.mechanism.catalog import fourbar
+>>> from symlink.workshop.tolerance import stack_up
 >>> result = stack_up(fourbar(), "rocker", {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1},
 ...                   {"a": 0.05, "b": 0.05, "c": 0.05, "d": 0.05})
 >>> figure = tolerance_figure(result)
@@ -31,14 +31,14 @@ from typing import TYPE_CHECKING, Sequence
 
 import numpy
 
-from ..angles import wrap
+from ..common.angles import wrap
 from .figures import _given, _new_figure
 
 if TYPE_CHECKING:  # Matplotlib is imported when a drawing is made
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-    from ..tolerance import SampledBuilds, StackUp
+    from ..workshop.tolerance import SampledBuilds, StackUp
 
 __all__ = ["band_figure", "contribution_figure", "distribution_figure", "tolerance_figure", "SAMPLED_PERCENTILES"]
 
@@ -64,7 +64,7 @@ def band_figure(result: "StackUp", output: str | None = None, sampled: "SampledB
                 axes: "Sequence[Axes] | None" = None) -> "Figure":
     """The output's nominal value and its worst-case, statistical and sampled bands along the input.
 
-    ``result``: a :class:`~symlink.tolerance.StackUp` (its first input is the x axis); ``output``: which of
+    ``result``: a :class:`~symlink.workshop.tolerance.StackUp` (its first input is the x axis); ``output``: which of
     its outputs (default: the first); ``sampled``: builds of the same output at the same input values, whose
     percentiles :data:`SAMPLED_PERCENTILES` and mean are drawn as dots.  ``axes``: two Matplotlib Axes (the
     nominal value, the deviations); default a new figure.  ``ValueError`` for an output the stack-up does not
@@ -147,8 +147,8 @@ def distribution_figure(result: "StackUp", sampled: "SampledBuilds", output: str
     and standard deviation ``standard_deviation``, and the ends of the worst-case (dashed) and statistical
     (dotted) bands.  Where they part, the linear model no longer describes the builds.
 
-    >>> from symlink.catalog import fourbar
-    >>> from symlink.tolerance import sample_builds, stack_up
+    >>> from symlink.mechanism.catalog import fourbar
+    >>> from symlink.workshop.tolerance import sample_builds, stack_up
     >>> design, bands = {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1}, {"a": 0.1, "b": 0.1}
     >>> result = stack_up(fourbar(), "rocker", design, bands, inputs={"theta": [0.5]})
     >>> builds = sample_builds(fourbar(), "rocker", design, bands, inputs={"theta": [0.5]}, builds=2000)

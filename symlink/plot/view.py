@@ -31,11 +31,11 @@ from typing import TYPE_CHECKING
 import numpy
 
 from ..analysis import grashof
-from ..catalog import fourbar
-from ..angles import wrap
+from ..mechanism.catalog import fourbar
+from ..common.angles import wrap
 from .figures import MechanismDrawing, TRANSMISSION_LIMITS, extent
-from ..reachability import crank_range, describe_spans
-from ..solver import Solver, check_lengths
+from ..numeric.reachability import crank_range, describe_spans
+from ..numeric.solver import Solver, check_lengths
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -217,8 +217,8 @@ class LinkageView:
     def __init__(self, linkage, values, *, trace=(), figure: "Figure | None" = None) -> None:
         from matplotlib.widgets import RadioButtons, Slider
 
-        from ..closure import is_angle
-        from .drawing import Geometry
+        from ..symbolic.closure import is_angle
+        from ..numeric.poses import Geometry
         self.linkage, self.trace = linkage, tuple(trace)
         self.geometry = Geometry(linkage)
         self.fixed = self.geometry.check_values(values)  # every value, checked (lengths positive and finite)

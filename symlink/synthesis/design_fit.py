@@ -12,7 +12,7 @@ feasible starts, :func:`free_bounds` checks what the user made free, :func:`bran
 with the linkage's own generated solver that the input moves between targets on one branch, and
 :func:`refine` is the accelerated Levenberg-Marquardt of path synthesis.
 
->>> from symlink.catalog import slider_crank
+>>> from symlink.mechanism.catalog import slider_crank
 >>> outputs = DesignOutputs(slider_crank(), ("s",), ("a",), {"b": 3.0, "offset": 0.0})
 >>> values, slopes, ok = outputs.at(numpy.array([1.0]), numpy.array([0.0]), {"branch": 1})
 >>> float(values[0, 0]), float(slopes[0, 0, 0]), bool(ok[0])  # s = a + b at theta = 0; ds/da = 1
@@ -27,12 +27,12 @@ from typing import Callable, Mapping, Sequence
 import numpy
 import sympy as sp
 
-from ..closure import is_angle
-from ..design_jacobian import DesignJacobian
-from ..linkage import Linkage
-from ..loops import Loop
-from ..solver import NumericSolver, Solver
-from ..vectors import Vector, VectorSum
+from ..symbolic.closure import is_angle
+from ..numeric.design_jacobian import DesignJacobian
+from ..symbolic.linkage import Linkage
+from ..symbolic.loops import Loop
+from ..numeric.solver import NumericSolver, Solver
+from ..symbolic.vectors import Vector, VectorSum
 from .path import _accelerated_levenberg_marquardt
 
 __all__ = ["DesignOutputs", "free_bounds", "sampled_designs", "branch_break", "refine", "is_angle_output",
@@ -107,7 +107,7 @@ def find_assembly(linkage: Linkage, values: Mapping[str, float], at: float, rng:
     turn, lengths within the sum of the parameters), the first that closes; which assembly
     that is depends on ``rng``.  (The same search as the drawing's, which synthesis may not import.)
 
-    >>> from symlink.catalog import stephenson3, EXAMPLE_VALUES
+    >>> from symlink.mechanism.catalog import stephenson3, EXAMPLE_VALUES
     >>> found = find_assembly(stephenson3(), EXAMPLE_VALUES["stephenson3"], 0.0, numpy.random.default_rng(0))
     >>> sorted(found)
     ['beta', 'eta', 'mu', 'phi']
@@ -135,7 +135,7 @@ def _newton_solver(linkage: Linkage) -> NumericSolver:
 def is_angle_output(linkage: Linkage, name: str) -> bool:
     """Whether the output ``name`` of ``linkage`` is an angle (it turns a vector), not a length or a point's coordinate.
 
-    >>> from symlink.catalog import slider_crank
+    >>> from symlink.mechanism.catalog import slider_crank
     >>> [is_angle_output(slider_crank(), name) for name in ("conrod", "slider", "B_x")]
     [True, False, False]
     """
@@ -428,12 +428,12 @@ def newton_traced_batch(linkage: Linkage, designs: Mapping[str, float | numpy.nd
     jump to another assembly) and each further one smaller, all designs in one vectorised
     evaluation of the generated closure.  A design stops where a step does not converge or meets a
     dead centre (the scaled Jacobian's Hadamard ratio under 1e-10): nothing after is assembled.  The same method as
-    :class:`~symlink.solver.NumericSolver`'s continuation, but over the designs, not along one.
+    :class:`~symlink.numeric.solver.NumericSolver`'s continuation, but over the designs, not along one.
 
     Returns ``(unknowns (M, N, n), assembled (M, N))``: the unknowns in the linkage's order, NaN where
     not assembled.
 
-    >>> from symlink.catalog import stephenson3, EXAMPLE_VALUES
+    >>> from symlink.mechanism.catalog import stephenson3, EXAMPLE_VALUES
     >>> values = dict(EXAMPLE_VALUES["stephenson3"])
     >>> values["d"] = numpy.array([values["d"], 100.0])  # the second's ground is longer than its other links
     >>> near = numpy.array([[0.96, 0.27, 1.43, -0.16]] * 2)  # beta, mu, phi, eta near the assembly whose crank turns

@@ -38,9 +38,9 @@ import numpy
 from numpy.typing import ArrayLike
 
 from ..analysis import grashof, wrap_angle
-from ..catalog import fourbar
-from ..display import record_html
-from ..solver import check_lengths, shared_solver
+from ..mechanism.catalog import fourbar
+from ..common.display import record_html
+from ..numeric.solver import check_lengths, shared_solver
 
 __all__ = ["FunctionDesign", "freudenstein_coefficients", "lengths_from_coefficients", "chebyshev_points",
            "three_point_design", "least_squares_design", "function_generator", "structural_error",

@@ -15,7 +15,7 @@ which parts of the frame placement are free: the traced point, in the linkage's 
 
 The residuals are the placed point minus the targets over the targets' size.  Their exact
 Jacobian: the free parameters' columns come from the generated sensitivities
-(:class:`symlink.design_jacobian.DesignJacobian`) of a copy of the linkage whose input is
+(:class:`symlink.numeric.design_jacobian.DesignJacobian`) of a copy of the linkage whose input is
 shifted by a parameter ``input_phase``; held at zero, the derivative by that phase is the
 derivative by the input (the point's rate along its path), which the untimed unknowns need by
 the chain rule.  The placement's columns are written by hand.  The refinement is the
@@ -39,12 +39,12 @@ refinement carries its start's assembly along as the design moves; starts are sa
 on an assembly found by Newton's method from random guesses, the user's own from ``guess``, all
 continued together along the input (:func:`symlink.synthesis.design_fit.newton_traced_batch`:
 through the target inputs with timing, over two turns without); the verification continues the
-assembly with the linkage's :class:`~symlink.solver.NumericSolver` through every target in order,
+assembly with the linkage's :class:`~symlink.numeric.solver.NumericSolver` through every target in order,
 and the design reports it as ``assembly`` (the unknowns at the first target).  There each
 evaluation is a Newton continuation (tens of milliseconds), so an untimed start that the
 screening already brought close is refined to the end at once (:data:`_PROMISING`).
 
->>> from symlink.catalog import slider_crank
+>>> from symlink.mechanism.catalog import slider_crank
 >>> linkage = slider_crank()
 >>> truth = {"a": 1.3, "b": 4.1, "offset": 0.7}
 >>> inputs = numpy.linspace(0.0, 2.5, 6)
@@ -65,8 +65,8 @@ import sympy as sp
 from numpy.typing import ArrayLike
 
 from ..analysis.transmission import transmission_arrays, transmission_coordinates
-from ..display import record_html
-from ..linkage import Linkage
+from ..common.display import record_html
+from ..symbolic.linkage import Linkage
 from .design_fit import (BRANCH_SAMPLES, INPUT_PHASE, _jacobian, _newton_solver, _solver, branch_break, check_branches,
                          find_assembly, free_bounds, newton_traced_batch)
 from .path import _accelerated_levenberg_marquardt, ordered_inputs, ordered_inputs_jacobian, steps_under_a_turn
@@ -128,7 +128,7 @@ class PathSynthesis:
     constraints: tuple[str, ...] = ()
     active: tuple[str, ...] = ()
     #: Linkages without a closed form: the unknowns at the first target's input, the assembly the design is on
-    #: (the ``guess`` of :class:`symlink.solver.NumericSolver` that reproduces it); empty for closed forms.
+    #: (the ``guess`` of :class:`symlink.numeric.solver.NumericSolver` that reproduces it); empty for closed forms.
     assembly: dict[str, float] = field(default_factory=dict)
 
 
@@ -172,7 +172,7 @@ def traced_points(linkage: Linkage, point: str | Sequence[str], values: Mapping[
     their order from ``guess`` (its unknowns near an assembly at the first input; default: the
     first assembly :func:`find_assembly` finds there); every row is NaN if it cannot be continued.
 
-    >>> from symlink.catalog import fourbar
+    >>> from symlink.mechanism.catalog import fourbar
     >>> traced_points(fourbar(), "B", {"a": 2.0, "b": 6.0, "c": 5.0, "d": 7.0}, [0.0], placement={"scale": 2.0})
     array([[4., 0.]])
     """
@@ -450,7 +450,7 @@ def path_residuals(linkage: Linkage, point: str | Sequence[str], targets: ArrayL
     each target (what :func:`synthesize_path` refines).  ``ValueError`` where the design is not
     assembled at an input.
 
-    >>> from symlink.catalog import slider_crank
+    >>> from symlink.mechanism.catalog import slider_crank
     >>> r, J = path_residuals(slider_crank(), "B", [[1.0, 0.0], [0.0, 2.0]], {"a": 1.0, "b": 3.0, "offset": 0.0},
     ...                       [0.0, 1.5707963267948966], ["a"], frame=())
     >>> J.shape, [round(float(v), 9) for v in J[:, 0]]  # dB/da = (cos q, sin q) over the size, sqrt(5)
@@ -826,7 +826,7 @@ def _verify_newton(problem: _Problem, x: numpy.ndarray, start: Mapping[str, floa
     """:func:`_verify` without a closed form: the linkage's own numeric solver continued along the targets.
 
     The assembly the refinement continued is found again at the design (Newton's method from
-    the last one), then the linkage's :class:`~symlink.solver.NumericSolver` (not the
+    the last one), then the linkage's :class:`~symlink.numeric.solver.NumericSolver` (not the
     Jacobian's code) follows it from the first target through every other, in order, with
     :data:`_PATH_SAMPLES` input values between consecutive targets: it stops at a point not
     assembled or at a dead centre, so a design it passes keeps one assembly along the targets.

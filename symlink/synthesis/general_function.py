@@ -21,7 +21,7 @@ is the first start.  The best design is verified afresh with the linkage's own g
 solver: the output at each input, and between consecutive inputs one branch without a toggle.
 ``structural_error`` is the largest error at the given inputs (radians or the output's unit).
 
->>> from symlink.catalog import slider_crank
+>>> from symlink.mechanism.catalog import slider_crank
 >>> inputs = chebyshev_inputs(0.2, 2.8, 6)
 >>> wanted = function_values(slider_crank(), "s", {"a": 1.3, "b": 4.1, "offset": 0.7}, inputs)
 >>> found = synthesize_function(slider_crank(), "s", inputs, wanted, {"a": (0.5, 2.0), "b": (3.0, 5.0)},
@@ -38,9 +38,9 @@ from typing import Mapping
 import numpy
 from numpy.typing import ArrayLike
 
-from ..angles import wrap
-from ..display import record_html
-from ..linkage import Linkage
+from ..common.angles import wrap
+from ..common.display import record_html
+from ..symbolic.linkage import Linkage
 from .design_fit import (DesignOutputs, branch_break, check_branches, check_linkage, free_bounds, inside,
                          is_angle_output, refine, sample_count, sampled_designs, solved_outputs)
 from .function import chebyshev_points
@@ -78,7 +78,7 @@ class FunctionSynthesis:
     evaluations: int = 0
     why: str = field(default="", repr=False)
     #: Linkages without a closed form: the unknowns at the first input, the assembly the design is on (the
-    #: ``guess`` of :class:`symlink.solver.NumericSolver`, continued along the inputs in their order); else empty.
+    #: ``guess`` of :class:`symlink.numeric.solver.NumericSolver`, continued along the inputs in their order); else empty.
     assembly: dict[str, float] = field(default_factory=dict)
 
 
@@ -95,7 +95,7 @@ def function_values(linkage: Linkage, output: str, values: Mapping[str, float], 
                     branches: Mapping[str, float] | None = None) -> numpy.ndarray:
     """The ``output`` of a design at each input, from the linkage's generated solver; NaN where not assembled.
 
-    >>> from symlink.catalog import slider_crank
+    >>> from symlink.mechanism.catalog import slider_crank
     >>> [round(float(s), 12) for s in function_values(slider_crank(), "s", {"a": 1.0, "b": 3.0, "offset": 0.0},
     ...                                                [0.0, math.pi])]
     [4.0, 2.0]

@@ -26,7 +26,7 @@ least squares), and the closest designs are refined.  The best refined design is
 with the linkage's own generated solver: the pose errors, and one branch without a toggle
 between consecutive poses.
 
->>> from symlink.catalog import fourbar
+>>> from symlink.mechanism.catalog import fourbar
 >>> truth = {"a": 1.0, "b": 3.0, "c": 2.5, "d": 3.2}
 >>> poses = link_poses(fourbar(), "B", "beta", truth, [0.3, 0.9, 1.5, 2.1])
 >>> found = synthesize_motion(fourbar(), "B", "beta", poses, {"a": (0.5, 2.0), "b": (2.0, 4.0), "c": (1.5, 3.5)},
@@ -44,9 +44,9 @@ import numpy
 import sympy as sp
 from numpy.typing import ArrayLike
 
-from ..angles import wrap
-from ..display import record_html
-from ..linkage import Linkage
+from ..common.angles import wrap
+from ..common.display import record_html
+from ..symbolic.linkage import Linkage
 from .design_fit import (DesignOutputs, branch_break, check_branches, check_linkage, free_bounds, inside,
                          is_angle_output, refine, sample_count, sampled_designs, solved_outputs)
 from .general import FRAME_NAMES
@@ -87,7 +87,7 @@ class MotionSynthesis:
     evaluations: int = 0
     why: str = field(default="", repr=False)
     #: Linkages without a closed form: the unknowns at the first pose's input, the assembly the design is on (the
-    #: ``guess`` of :class:`symlink.solver.NumericSolver`, continued along the inputs in their order); else empty.
+    #: ``guess`` of :class:`symlink.numeric.solver.NumericSolver`, continued along the inputs in their order); else empty.
     assembly: dict[str, float] = field(default_factory=dict)
 
 
@@ -104,7 +104,7 @@ def frame_point(linkage: Linkage, angle: str) -> str:
     link, and so is the named point that is the same sum without ``V``, where the link starts.
     ``ValueError`` when no named point is there.
 
-    >>> from symlink.catalog import fourbar, watt2
+    >>> from symlink.mechanism.catalog import fourbar, watt2
     >>> frame_point(fourbar(), "coupler"), frame_point(watt2(), "mu")
     ('B', 'E')
     """
@@ -132,7 +132,7 @@ def link_poses(linkage: Linkage, point: str, angle: str, values: Mapping[str, fl
                placement: Mapping[str, float] | None = None) -> numpy.ndarray:
     """The link's pose (x, y, angle) at each input as rows, placed, from the generated solver; NaN where not assembled.
 
-    >>> from symlink.catalog import fourbar
+    >>> from symlink.mechanism.catalog import fourbar
     >>> link_poses(fourbar(), "B", "theta", {"a": 2.0, "b": 6.0, "c": 5.0, "d": 7.0}, [0.0],
     ...            placement={"angle": math.pi / 2}).round(12).tolist()
     [[0.0, 2.0, 1.570796326795]]

@@ -56,11 +56,11 @@ from typing import Sequence
 import numpy
 
 from ..analysis import grashof
-from ..angles import wrap_angle
-from ..catalog import fourbar
-from ..display import record_html
-from ..reachability import crank_range
-from ..solver import shared_solver
+from ..common.angles import wrap_angle
+from ..mechanism.catalog import fourbar
+from ..common.display import record_html
+from ..numeric.reachability import crank_range
+from ..numeric.solver import shared_solver
 
 __all__ = ["Dyad", "Design", "check_poses", "pole", "pole_triangle", "two_pose_centre", "centre_point",
            "circle_point", "four_pose_dyads", "BurmesterCurves", "burmester_curves", "burmester_points",

@@ -3,7 +3,7 @@
 The design space is the four-bar's whole: crank pivot ``(x0, y0)``, frame angle (the
 direction of the ground line from the crank pivot to the rocker pivot), crank a, coupler
 b, rocker c, ground d, and the coupler point ``(u, v)`` in the coupler's frame (u along
-B->C, v to its left), so that in the four-bar's own frame (:func:`symlink.catalog.fourbar`)
+B->C, v to its left), so that in the four-bar's own frame (:func:`symlink.mechanism.catalog.fourbar`)
 ``P = a e^{i theta} + (u + i v) e^{i beta}`` and in the plane ``(x0, y0) + e^{i frame} P``.
 
 * With timing (:func:`synthesize_path` with ``theta``) the crank angles of the points are
@@ -15,7 +15,7 @@ B->C, v to its left), so that in the four-bar's own frame (:func:`symlink.catalo
 With timing each start is refined by ``scipy.optimize.least_squares`` (Levenberg-Marquardt;
 SciPy is the ``synthesis`` extra) with the exact Jacobian: the design sensitivities of the
 placed four-bar's coupler point (:func:`path_fourbar`), generated and cached like every solver
-and called through :class:`symlink.design_jacobian.DesignJacobian` (:func:`path_jacobian`).
+and called through :class:`symlink.numeric.design_jacobian.DesignJacobian` (:func:`path_jacobian`).
 Without timing ten points barely fix the four-bar (twenty residuals, nineteen unknowns) and
 leave long curved valleys, along which plain Levenberg-Marquardt crawls: there the same
 Jacobian drives Levenberg-Marquardt with geodesic acceleration
@@ -62,13 +62,13 @@ import sympy as sp
 from numpy.typing import ArrayLike
 
 from ..analysis import grashof, transmission_range
-from ..catalog import fourbar
-from ..design_jacobian import DesignJacobian
-from ..display import record_html
-from ..linkage import Linkage
-from ..loops import Loop
-from ..solver import check_lengths, shared_solver
-from ..vectors import Vector, coordinates, lengths as length_symbols
+from ..mechanism.catalog import fourbar
+from ..numeric.design_jacobian import DesignJacobian
+from ..common.display import record_html
+from ..symbolic.linkage import Linkage
+from ..symbolic.loops import Loop
+from ..numeric.solver import check_lengths, shared_solver
+from ..symbolic.vectors import Vector, coordinates, lengths as length_symbols
 
 __all__ = ["PathDesign", "fourbar_design", "synthesize_path", "path_fourbar", "path_jacobian", "check_design",
            "DESIGN_NAMES", "GRASHOF_CHOICES", "path_error"]
@@ -239,7 +239,7 @@ _PARAMETERS = ("crank_phase",) + DESIGN_NAMES
 
 
 def path_fourbar() -> Linkage:
-    """The four-bar of :func:`symlink.catalog.fourbar` placed in the plane, with its coupler point ``P``.
+    """The four-bar of :func:`symlink.mechanism.catalog.fourbar` placed in the plane, with its coupler point ``P``.
 
     The loop is the catalog four-bar's, in its own frame (crank pivot at the origin, ground
     along x); the extras ``P_x`` and ``P_y`` place the coupler point ``(u, v)`` (coupler frame)
@@ -267,8 +267,8 @@ def path_fourbar() -> Linkage:
 def path_jacobian() -> DesignJacobian:
     """The coupler point of :func:`path_fourbar` and its Jacobian by the crank angle and the nine dimensions.
 
-    A :class:`symlink.design_jacobian.DesignJacobian` (generated once, then loaded from the
-    scene cache); synthesis calls its unchecked :meth:`~symlink.design_jacobian.DesignJacobian.arrays`.
+    A :class:`symlink.numeric.design_jacobian.DesignJacobian` (generated once, then loaded from the
+    scene cache); synthesis calls its unchecked :meth:`~symlink.numeric.design_jacobian.DesignJacobian.arrays`.
 
     >>> values, slopes, assembled = path_jacobian().arrays(0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 3.0, 2.5, 3.2, 1.0, 0.0,
     ...                                                  1.0)

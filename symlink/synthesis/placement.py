@@ -12,7 +12,7 @@ place_y``), walked at the start and the end of every loop and at the start of ev
 input keeps its meaning (measured from the turned frame); the points, the joints drawn and the
 unknown angles (a coupler's ``beta``) are where the design put them.
 
->>> from symlink.catalog import slider_crank
+>>> from symlink.mechanism.catalog import slider_crank
 >>> linkage, values = placed_design(slider_crank(), {"a": 1.0, "b": 3.0, "offset": 0.0},
 ...                                 {"x0": 1.0, "y0": 2.0, "angle": math.pi / 2, "scale": 2.0})
 >>> values["a"], values["place_x"], [str(v.angle) for _, v in linkage.loops[0].terms][2:4]
@@ -25,9 +25,9 @@ from typing import Mapping
 
 import sympy as sp
 
-from ..linkage import Linkage
-from ..loops import Loop
-from ..vectors import Vector, VectorSum
+from ..symbolic.linkage import Linkage
+from ..symbolic.loops import Loop
+from ..symbolic.vectors import Vector, VectorSum
 
 __all__ = ["placed_design", "placed_assembly", "with_default_branches", "length_parameters", "PLACEMENT_NAMES"]
 
@@ -42,7 +42,7 @@ def length_parameters(linkage: Linkage) -> set[str]:
     degree one in them and in the coordinates that are lengths (a slider's travel, solved, scales
     with them), and none of them turns up in an angle.
 
-    >>> from symlink.catalog import slider_crank
+    >>> from symlink.mechanism.catalog import slider_crank
     >>> sorted(length_parameters(slider_crank()))
     ['a', 'b', 'offset']
     """
@@ -122,11 +122,11 @@ def placed_assembly(linkage: Linkage, assembly: Mapping[str, float],
     (the initial guess of Newton's method).  Placed, every unknown angle turns by the
     placement's angle and every unknown length scales by its scale.
 
-    >>> from symlink.catalog import slider_crank
+    >>> from symlink.mechanism.catalog import slider_crank
     >>> placed_assembly(slider_crank(), {"beta": 0.5, "s": 2.0}, {"angle": 1.0, "scale": 3.0})
     {'beta': 1.5, 's': 6.0}
     """
-    from ..closure import is_angle
+    from ..symbolic.closure import is_angle
     where = {"angle": 0.0, "scale": 1.0, **placement}
     symbols = {q.name: q for q in linkage.unknowns}
     return {name: float(value) + float(where["angle"]) if is_angle(linkage, symbols[name])
@@ -138,13 +138,13 @@ def with_default_branches(linkage: Linkage, branches: Mapping[str, int]) -> tupl
 
     A linkage file holds no branch signs, and every command takes +1 by default.  A two-angle
     loop (case 3) whose sign is -1 gets its two unknowns in the other order (they name the
-    "first" unknown vector, which +1 turns counter-clockwise: :mod:`symlink.loopcase`), so that
-    its +1 is the assembly that was -1, as :func:`symlink.joints.from_joints` orders them for its
+    "first" unknown vector, which +1 turns counter-clockwise: :mod:`symlink.analysis.loopcase`), so that
+    its +1 is the assembly that was -1, as :func:`symlink.mechanism.joints.from_joints` orders them for its
     drawing.  A loop of another case whose sign is -1 (a slider's length and an angle, case 2b:
     +1 is the larger travel) cannot be turned so: it is returned in the dict, to be given as
     ``--branch``.  The loops, points and every name are unchanged.
 
-    >>> from symlink.catalog import fourbar
+    >>> from symlink.mechanism.catalog import fourbar
     >>> turned, left = with_default_branches(fourbar(), {"branch": -1})
     >>> turned.unknowns, left
     ((phi, beta), {})

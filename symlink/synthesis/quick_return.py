@@ -39,8 +39,8 @@ import numpy
 
 from ..analysis import (LimitPositions, TransmissionRange, grashof, limit_positions, transmission_range,
                        triangle_angle, wrap_angle)
-from ..display import record_html
-from ..solver import check_lengths
+from ..common.display import record_html
+from ..numeric.solver import check_lengths
 
 __all__ = ["QuickReturn", "quick_return", "delta_for_time_ratio", "GOOD_TRANSMISSION", "MAX_LINK_RATIO",
            "as_record"]

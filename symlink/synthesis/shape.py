@@ -41,8 +41,8 @@ from typing import Mapping, Sequence
 import numpy
 from numpy.typing import ArrayLike
 
-from ..display import record_html
-from ..linkage import Linkage
+from ..common.display import record_html
+from ..symbolic.linkage import Linkage
 from .design_fit import DesignOutputs, check_branches, check_linkage, free_bounds, refine, sampled_designs
 from .general import FRAME_NAMES, PathSynthesis, path_residuals, synthesize_path, traced_points
 from .path import ordered_inputs, ordered_inputs_jacobian
@@ -548,7 +548,7 @@ def synthesize_shape(linkage: Linkage, point: str, target: ArrayLike, free: Mapp
     ``"partial"`` (a piece of a closed path).  ``ValueError`` for bad input, or when no sampled
     design traces such a path.
 
-    >>> from symlink.catalog import fourbar
+    >>> from symlink.mechanism.catalog import fourbar
     >>> turn = numpy.linspace(0.0, 2 * math.pi, 24, endpoint=False)
     >>> circle = numpy.stack([3 + 2 * numpy.cos(turn), 1 + 2 * numpy.sin(turn)], axis=1)  # the crank pin's shape
     >>> found = synthesize_shape(fourbar(), "B", circle, {"b": (2.5, 3.5)}, values={"a": 1.0, "c": 2.5, "d": 3.2},

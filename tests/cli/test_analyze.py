@@ -89,7 +89,7 @@ def test_any_linkage_by_name_against_the_slider_cranks_hand_stroke(capsys):
 
 
 def test_a_file_and_its_transmission_in_text(capsys):
-    from symlink.linkage_file import catalog_file
+    from symlink.io.linkage_file import catalog_file
     shipped = catalog_file("fourbar")
     assert main(["analyze", str(shipped), "--output", "phi"]) == 0
     out = capsys.readouterr().out

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from symlink.cli import main
-from symlink.input_sweep import crank_speeds
+from symlink.numeric.input_sweep import crank_speeds
 
 FOURBAR = ["fourbar", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80"]
 
@@ -133,7 +133,7 @@ def test_the_largest_flywheel_that_fits_is_what_the_refusal_suggests(capsys):
 
 def test_the_command_line_bound_is_the_linkage_file_bound():
     from symlink.cli.options import MAX_MAGNITUDE
-    from symlink.linkage_file import MAX_MAGNITUDE as FILE_MAGNITUDE
+    from symlink.io.linkage_file import MAX_MAGNITUDE as FILE_MAGNITUDE
     assert MAX_MAGNITUDE == FILE_MAGNITUDE
 
 

@@ -119,6 +119,6 @@ def test_a_long_but_allowed_expression_is_read_exactly(tmp_path, capsys):
     body = "1 deg + " * 10_000 + "1 deg"
     path = tmp_path / "long.toml"
     path.write_text(GOOD_LINKAGE + f'theta = "{body}"\n')
-    from symlink.linkage_file import read_linkage
+    from symlink.io.linkage_file import read_linkage
     found = read_linkage(path)
     assert found.defaults["theta"] == pytest.approx(10_001 * 3.141592653589793 / 180, rel=1e-15)

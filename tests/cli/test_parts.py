@@ -159,8 +159,8 @@ DESIGNS = {"not json": "{ not json"}
 
 
 def _expand(argv: list[str], tmp_path) -> list[str]:
-    from symlink.fabrication import design_json
-    from symlink.catalog import fourbar
+    from symlink.workshop.fabrication import design_json
+    from symlink.mechanism.catalog import fourbar
     expanded = []
     for item in argv:
         if item.startswith("{design:"):

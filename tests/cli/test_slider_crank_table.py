@@ -10,7 +10,7 @@ import pytest
 from references import mp_slider_crank
 from test_fourbar_table import run, wrapped_degrees
 from symlink.cli import main
-from symlink.reachability import slider_crank_range
+from symlink.numeric.reachability import slider_crank_range
 
 HEADER = "crank,branch,conrod,slider,conrod_speed,slider_speed,conrod_accel,slider_accel"
 BASE = ["slider-crank", "--crank", "20", "--conrod", "66", "--offset", "-5"]

@@ -8,9 +8,9 @@ from pathlib import Path
 
 import pytest
 
-import symlink.sweep as sweep_module
+import symlink.workshop.sweep as sweep_module
 from symlink.cli import main
-from symlink.sweep import MANIFEST, missing_modules, read_sweep
+from symlink.workshop.sweep import MANIFEST, missing_modules, read_sweep
 
 pytestmark = pytest.mark.skipif(bool(missing_modules()), reason="the sweep extra is not installed")
 

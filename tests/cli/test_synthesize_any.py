@@ -15,7 +15,7 @@ import math
 import numpy
 import pytest
 
-from symlink.catalog import EXAMPLE_VALUES
+from symlink.mechanism.catalog import EXAMPLE_VALUES
 from symlink.cli import main
 from synthesis.hand_linkages import fourbar_joints, slider_travel, watt2_joints, wrapped
 

@@ -14,7 +14,7 @@ import math
 
 import numpy
 
-from symlink.catalog import fourbar, slider_crank
+from symlink.mechanism.catalog import fourbar, slider_crank
 from symlink.cli import main
 from symlink.synthesis.placement import with_default_branches
 from synthesis.hand_linkages import fourbar_joints, wrapped

@@ -14,9 +14,9 @@ import math
 import numpy
 import pytest
 
-from symlink.catalog import fourbar, with_point
+from symlink.mechanism.catalog import fourbar, with_point
 from symlink.cli import main
-from symlink.linkage_file import write_linkage
+from symlink.io.linkage_file import write_linkage
 from synthesis.hand_linkages import fourbar_joints
 
 TRUTH = {"a": 1.0, "b": 3.0, "c": 2.5, "d": 3.2, "u": 1.5, "v": 0.8}

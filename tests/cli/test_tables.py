@@ -24,7 +24,7 @@ from scipy.optimize import fsolve
 import mp_closures as ref
 from test_fourbar_table import run, wrapped_degrees
 from symlink.cli.tables import loop_branches
-from symlink.reachability import scanned_range
+from symlink.numeric.reachability import scanned_range
 
 INVERTED = ["inverted-slider-crank", "--crank", "2", "--ground", "1.2"]
 WATT2_P = dict(a=1.0, b=3.5, c=3.0, d=3.2, e=2.0, f=4.0, g=3.0, alpha=0.6, gx=4.5, gy=3.5)
@@ -430,7 +430,7 @@ def test_bad_input_one_line_exit_2(capsys, argv):
 
 
 def test_commands_build_their_linkage_only_when_used(monkeypatch, capsys):
-    import symlink.scene as scene  # the table commands import catalog_linkage from it when they run
+    import symlink.io.scene as scene  # the table commands import catalog_linkage from it when they run
     from symlink.cli import build_parser
 
     def refuse(name):

@@ -24,9 +24,9 @@ from export_checks import (angles_of, assert_agree, assert_atan2_angles, atan2_a
 from references import SEED003_LINKAGE, mp_fourbar, seed003_positions
 from symlink.codegen.c import c_code, c_comment, c_function, c_identifier, c_library, CPrinter
 from symlink.codegen.numpy import load_numpy_module, numpy_module
-from symlink.linkage import Program
-from symlink.position import TOLERANCE, ClampedSqrt
-from symlink.scene import catalog_linkage
+from symlink.symbolic.linkage import Program
+from symlink.symbolic.position import TOLERANCE, ClampedSqrt
+from symlink.io.scene import catalog_linkage
 
 STRICT = ["-std=c99", "-pedantic", "-Wall", "-Wextra", "-Werror", "-O2", "-fPIC", "-shared"]
 
@@ -52,7 +52,7 @@ def build(tmp_path, header: str, source: str, name: str) -> ctypes.CDLL:
 
 def call(library: ctypes.CDLL, function, values: dict, steps: dict | None = None,
          count: int | None = None) -> dict[str, numpy.ndarray]:
-    """Call a generated loop on 1-d arrays (step 1) or scalars (step 0) written independently of symlink.compiled."""
+    """Call a generated loop on 1-d arrays (step 1) or scalars (step 0) written independently of symlink.numeric.compiled."""
     arrays = [numpy.ascontiguousarray(values[a], dtype=numpy.float64) for a in function.arguments]
     count = max(a.size for a in arrays) if count is None else count
     outputs = [numpy.full(count, 7, dtype=numpy.uint8) if flag else numpy.full(count, 12345.0)
@@ -296,7 +296,7 @@ def test_a_loop_unit_is_the_exponent_of_the_mean_length_bit_for_bit(tmp_path):
     """The C unit (the bits of x with the mantissa cleared) against the exponent of each number's hexadecimal form,
     at powers of two and next to them, and equal to the NumPy module's (``frexp``): no logarithm, no pow."""
     import math
-    from symlink.position import PowerOfTwoBelow
+    from symlink.symbolic.position import PowerOfTwoBelow
     x = sp.Symbol("x", positive=True)
     function = c_function(Program((x,), (), {"unit": PowerOfTwoBelow(x)}), "unit", "")
     assert "log" not in function.definition and "pow(" not in function.definition
@@ -318,7 +318,7 @@ def test_a_loop_units_reciprocal_is_the_division_bit_for_bit(tmp_path):
     unit 2**k a positive normal mean length has, k from -1022 to 1023, the subnormal 2**-1023 included, and
     infinity (1/0) for a unit of 0; the four-bar's loop uses it instead of a division."""
     import math
-    from symlink.position import PowerOfTwoBelow
+    from symlink.symbolic.position import PowerOfTwoBelow
     x = sp.Symbol("x", positive=True)
     unit = sp.Symbol("size_1", positive=True)
     program = Program((x,), ((unit, PowerOfTwoBelow(x)),), {"inverse": 1 / unit, "unit": unit})

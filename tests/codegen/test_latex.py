@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 import sympy as sp
 
-from symlink.catalog import fourbar, stephenson3
+from symlink.mechanism.catalog import fourbar, stephenson3
 from symlink.codegen.latex import latex_document, latex_text, newton_document
 
 
@@ -59,7 +59,7 @@ def test_the_printer_does_not_import_linkage_at_run_time():
 
 def test_a_linkage_without_a_closed_form_displays_its_closure():
     """Jupyter shows the closure of a linkage the Newton fallback solves (it used to raise ValueError)."""
-    from symlink.catalog import stephenson3
+    from symlink.mechanism.catalog import stephenson3
     shown = stephenson3()._repr_latex_()
     assert shown.startswith("$\\displaystyle \\begin{aligned}") and shown.count("= 0") == 4
 
@@ -94,8 +94,8 @@ def test_every_generated_document_fits_the_page(path, tmp_path):
 @needs_tex
 def test_long_sums_products_fractions_roots_and_atan2_break_across_lines(tmp_path):
     """Each breakable form, far wider than the page, is broken to fit; the row count shows it was broken."""
-    from symlink.typeset import align_block as _align
-    from symlink.position import ClampedSqrt
+    from symlink.symbolic.typeset import align_block as _align
+    from symlink.symbolic.position import ClampedSqrt
 
     angles = sp.symbols("theta_1:25", real=True)
     lengths = sp.symbols("a_1:25", positive=True)
@@ -118,14 +118,14 @@ def test_long_sums_products_fractions_roots_and_atan2_break_across_lines(tmp_pat
 
 
 def test_a_short_row_stays_on_one_line():
-    from symlink.typeset import aligned_rows as _aligned
+    from symlink.symbolic.typeset import aligned_rows as _aligned
     a, theta = sp.symbols("a theta")
     assert _aligned([(sp.Symbol("x"), a * sp.cos(theta))]) == "x &= a \\cos{\\left(\\theta \\right)}"
 
 
 def test_the_width_estimate_tracks_tex(tmp_path):
     """The estimate that decides the breaks is within 25% of TeX's own measure, checked where TeX is installed."""
-    from symlink.typeset import latex_width
+    from symlink.symbolic.typeset import latex_width
     samples = [r"\frac{m \dot{\theta} \sin{\left(\beta - \theta \right)}}{b \sin{\left(\beta - \phi \right)}}",
                r"\Delta_{1} W_{x,1} \sigma_{\mathrm{ABCD}} + W_{y,1} \left(w_{1}^{2} + \left(\rho_{4,1} - \rho_{5,1}\right)\right)",
                r"c \ddot{\psi} \sin{\left(\kappa - \psi \right)} - c \dot{\psi}^{2} \cos{\left(\kappa - \psi \right)}",
@@ -145,8 +145,8 @@ def test_the_width_estimate_tracks_tex(tmp_path):
 @pytest.mark.parametrize("form", ["atan2", "complex", "freudenstein", "half-angle"])
 def test_every_form_of_the_fourbar_and_a_linkage_file_compile_without_overfull_boxes(form, tmp_path):
     """The seeds' forms (issue 20) and a linkage file's derivation compile, with no overfull line at all."""
-    from symlink.export import export_texts
-    from symlink.linkage_file import catalog_file, load_linkage
+    from symlink.io.export import export_texts
+    from symlink.io.linkage_file import catalog_file, load_linkage
     linkage = load_linkage(catalog_file("fourbar")).linkage if form == "atan2" else "fourbar"
     text, = export_texts(linkage, "latex", form=form).values()
     assert overfull_widths(text, tmp_path) == []

@@ -2,7 +2,7 @@
 import ast
 from pathlib import Path
 
-from symlink.catalog import stephenson3
+from symlink.mechanism.catalog import stephenson3
 from symlink.codegen import newton_driver
 from symlink.codegen.newton import driver_source, numeric_module
 

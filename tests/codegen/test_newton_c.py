@@ -15,12 +15,12 @@ import numpy as np
 import pytest
 from mp_closures import stephenson3_continued
 
-from symlink import compiled_library
-from symlink.catalog import fourbar, stephenson3
+from symlink.numeric import compiled_library
+from symlink.mechanism.catalog import fourbar, stephenson3
 from symlink.codegen import newton_driver
 from symlink.codegen.newton_c import newton_c_facts
-from symlink.joints import from_joints
-from symlink.solver import NumericSolver
+from symlink.mechanism.joints import from_joints
+from symlink.numeric.solver import NumericSolver
 
 pytestmark = pytest.mark.skipif(not compiled_library.compiler_works(), reason="no working C compiler")
 
@@ -202,10 +202,10 @@ def test_the_c_driver_has_the_numpy_drivers_constants_and_no_svd():
 
 
 def test_two_inputs_swept_together_agree_with_the_closed_form():
-    # The five-bar has a closed form (symlink.solver.Solver), which the compiled Newton must reproduce on its
+    # The five-bar has a closed form (symlink.numeric.solver.Solver), which the compiled Newton must reproduce on its
     # path for more than one input (the general velocity and acceleration systems).
-    from symlink.catalog import fivebar
-    from symlink.solver import Solver
+    from symlink.mechanism.catalog import fivebar
+    from symlink.numeric.solver import Solver
     linkage = fivebar()
     dimensions = dict(a=2.0, b=4.0, c=4.0, d=3.0, e=2.0)
     t = np.linspace(0.0, 1.0, 41)

@@ -10,7 +10,7 @@ import numpy
 import pytest
 import sympy as sp
 
-from symlink.catalog import fourbar
+from symlink.mechanism.catalog import fourbar
 from symlink.codegen.numpy import _arguments, docstring_text, export_files, load_numpy_module, numpy_module
 
 

@@ -17,7 +17,7 @@ from export_checks import angles_of, assert_agree, closed_form_catalog, export_s
 from references import SEED003_LINKAGE, mp_fourbar
 from symlink.codegen.numpy import load_numpy_module, numpy_module
 from symlink.codegen.octave import comment_lines, octave_function, octave_identifier
-from symlink.scene import catalog_linkage
+from symlink.io.scene import catalog_linkage
 
 SAMPLES = 300
 
@@ -198,7 +198,7 @@ def test_output_names_that_collide_are_renamed_and_documented():
     text = octave_function(linkage.program(["rocker", "crank"]), "fb")
     assert text.splitlines()[0] == "function [rocker, crank, assembled] = fb(theta, a, b, c, d, branch)"
     program = linkage.program(["rocker"])
-    from symlink.linkage import Program
+    from symlink.symbolic.linkage import Program
     renamed = replace(program, outputs={"theta": program.arguments[0], "Wx_1": program.outputs["rocker"]})
     text = octave_function(renamed, "fb")
     assert text.splitlines()[0].startswith("function [theta_out, Wx_1_out, assembled] = fb(")

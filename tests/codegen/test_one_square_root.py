@@ -2,7 +2,7 @@
 
 Generated code no longer takes ``w = sqrt(Wx^2 + Wy^2)``: Heron's product is
 ``((b + c)^2 - w^2) (w^2 - (b - c)^2)`` and the atan2 arguments use ``w^2``
-alone (:func:`symlink.position._two_angles`, loop units).  Near a toggle
+alone (:func:`symlink.symbolic.position._two_angles`, loop units).  Near a toggle
 (``b + c = w`` or ``|b - c| = w``) one factor of Heron's product vanishes, so
 that is where the two forms could differ.  Here both are measured against a
 50-digit mpmath solution written in this file (the circle intersection of the
@@ -44,9 +44,9 @@ import numpy
 import pytest
 
 from mp_closures import circle_point
-from symlink import catalog
-from symlink.position import TOLERANCE
-from symlink.solver import Solver
+from symlink.mechanism import catalog
+from symlink.symbolic.position import TOLERANCE
+from symlink.numeric.solver import Solver
 
 DIGITS = 50
 EPS = float(numpy.finfo(float).eps)
@@ -153,7 +153,7 @@ SYMLINK_LOOP void factored_second_loop(size_t n, const double *restrict phi, con
 
 @functools.lru_cache(maxsize=1)
 def factored_library() -> ctypes.CDLL:
-    from symlink.compiled import compile_shared
+    from symlink.numeric.compiled import compile_shared
     library = compile_shared(FACTORED_C)
     library.factored_fourbar.argtypes = [ctypes.c_size_t, ctypes.c_void_p] + [ctypes.c_double] * 5 + [ctypes.c_void_p] * 2
     library.factored_second_loop.argtypes = ([ctypes.c_size_t] + [ctypes.c_void_p] * 2 + [ctypes.c_double] * 7

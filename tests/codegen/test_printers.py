@@ -15,10 +15,10 @@ import sympy as sp
 import symlink.codegen as codegen
 from symlink.codegen import PRINTERS, printer
 from symlink.codegen.numpy import load_numpy_module
-from symlink.linkage import Linkage
-from symlink.loops import Loop
-from symlink.scene import catalog_linkage
-from symlink.vectors import Vector, coordinates, lengths
+from symlink.symbolic.linkage import Linkage
+from symlink.symbolic.loops import Loop
+from symlink.io.scene import catalog_linkage
+from symlink.symbolic.vectors import Vector, coordinates, lengths
 
 
 def test_every_printer_has_the_same_call_shape():

@@ -2,10 +2,10 @@
 import pytest
 import sympy as sp
 
-from symlink.catalog import fourbar
+from symlink.mechanism.catalog import fourbar
 from symlink.codegen.program import (CSE_PREFIX, _dependency_order, in_loop_units, format_default, is_flag, named_straight_line,
                                      straight_line)
-from symlink.linkage import Program
+from symlink.symbolic.linkage import Program
 
 
 def test_straight_line_defines_before_use():

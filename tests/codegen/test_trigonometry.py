@@ -12,12 +12,12 @@ import pytest
 import sympy as sp
 
 from export_checks import assert_atan2_angles, atan2_angle_case
-from symlink.catalog import EXAMPLE_VALUES
+from symlink.mechanism.catalog import EXAMPLE_VALUES
 from symlink.codegen.numpy import load_numpy_module, numpy_module
 from symlink.codegen.program import straight_line
 from symlink.codegen.trigonometry import angle_sums
-from symlink.linkage import Program
-from symlink.scene import catalog_linkage
+from symlink.symbolic.linkage import Program
+from symlink.io.scene import catalog_linkage
 
 
 def test_numpy_module_takes_sines_and_cosines_of_a_solved_angle_from_its_atan2():

@@ -24,10 +24,10 @@ from symlink.codegen.c import c_code, c_function
 from symlink.codegen.octave import octave_function
 from symlink.dynamics.inverse import dynamic_linkage
 from symlink.dynamics.model import BodyTorque, Damper, DynamicModel, Gravity, MassProperties, PointForce, Spring
-from symlink.export import export_texts
-from symlink.catalog import fourbar
-from symlink.linkage_file import linkage_from_text, linkage_text
-from symlink.scene import Scene
+from symlink.io.export import export_texts
+from symlink.mechanism.catalog import fourbar
+from symlink.io.linkage_file import linkage_from_text, linkage_text
+from symlink.io.scene import Scene
 
 FOURBAR = linkage_text(fourbar())  # the catalog four-bar as a linkage file, without defaults
 
@@ -151,7 +151,7 @@ def test_the_latex_derivation_writes_the_dynamics():
 
 
 def test_the_default_export_sets_add_a_dynamics_set():
-    from symlink.export import output_sets
+    from symlink.io.export import output_sets
     linkage = crank_only().dynamic_linkage()
     sets = {name: outputs for name, outputs, _ in output_sets(linkage)}
     assert "input_torque" in sets["dynamics"] and "input_torque" not in sets["accelerations"]

@@ -9,7 +9,7 @@ import pytest
 
 pytest.importorskip("scipy")
 
-from symlink.catalog import fourbar  # noqa: E402
+from symlink.mechanism.catalog import fourbar  # noqa: E402
 from symlink.dynamics.flywheel import (FlywheelSizing, energy_fluctuation, flywheel_inertia,  # noqa: E402
                                        rpm_to_rad_per_s)
 from symlink.dynamics.model import BodyTorque, Damper, DynamicModel, Gravity, MassProperties  # noqa: E402

@@ -17,11 +17,11 @@ import pytest
 
 pytest.importorskip("scipy")
 
-from symlink.catalog import fourbar  # noqa: E402
+from symlink.mechanism.catalog import fourbar  # noqa: E402
 from symlink.dynamics.forward import (ConstantTorque, ForwardDynamics, LinearMotor, equation_linkage,  # noqa: E402
                                       require_scipy, scalar_source)
 from symlink.dynamics.model import Damper, DynamicModel, Gravity, MassProperties, Spring  # noqa: E402
-from symlink.solver import Solver  # noqa: E402
+from symlink.numeric.solver import Solver  # noqa: E402
 
 GRASHOF = dict(a=20.0, b=66.0, c=56.0, d=80.0)  # the crank-rocker of the velocity paper (seed 003)
 BODIES = dict(m2=1.0, r2=10.0, I2=30.0, m3=2.0, r3=33.0, g3=0.3, I3=700.0, m4=1.5, r4=28.0, g4=-0.2, I4=400.0)

@@ -19,10 +19,10 @@ import pytest
 import sympy as sp
 
 from symlink import Linkage, Loop, Vector, coordinates, lengths
-from symlink.bodies import GROUND, mechanism
-from symlink.catalog import watt2
+from symlink.mechanism.bodies import GROUND, mechanism
+from symlink.mechanism.catalog import watt2
 from symlink.dynamics import BodyTorque, DynamicModel, Gravity, MassProperties, dynamic_linkage
-from symlink.solver import Solver
+from symlink.numeric.solver import Solver
 
 DPS = 50
 

@@ -20,11 +20,11 @@ import sympy as sp
 
 from mp_closures import DPS
 from mp_dynamics import CASES, Motion, derivative, random_masses
-from symlink.catalog import CATALOG
+from symlink.mechanism.catalog import CATALOG
 from symlink.dynamics import BodyTorque, Damper, DynamicModel, Gravity, MassProperties, PointForce, Spring
 from symlink.dynamics.inverse import driving_efforts, dynamic_linkage, reactions
-from symlink.scene import Scene
-from symlink.vectors import acceleration, rate
+from symlink.io.scene import Scene
+from symlink.symbolic.vectors import acceleration, rate
 
 #: Loads per case: a spring from a ground point, a damper and a force on moving points, a torque on a body.
 LOADS = {"fourbar": ("D", "B", "A", "C", "C", "rocker"),

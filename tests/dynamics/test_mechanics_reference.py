@@ -25,9 +25,9 @@ import pytest
 import sympy as sp
 from sympy.physics import mechanics as me
 
-from symlink.catalog import fourbar, slider_crank
+from symlink.mechanism.catalog import fourbar, slider_crank
 from symlink.dynamics import DynamicModel, Gravity, MassProperties, dynamic_linkage
-from symlink.scene import Scene
+from symlink.io.scene import Scene
 
 LENGTHS = dict(a=0.8, b=2.6, c=2.0, d=2.4)
 #: body: (mass, distance of the centre from the origin joint, its angle from the body's axis, inertia, origin)

@@ -23,11 +23,11 @@ import pytest
 
 from mp_closures import DPS, watt2_positions
 from mp_dynamics import CASES, Motion, derivative, random_masses
-from symlink.bodies import mechanism
-from symlink.catalog import watt2
+from symlink.mechanism.bodies import mechanism
+from symlink.mechanism.catalog import watt2
 from symlink.dynamics import (BodyTorque, Damper, DynamicModel, Gravity, MassProperties, PointForce, Spring,
                               dynamic_linkage)
-from symlink.solver import Solver
+from symlink.numeric.solver import Solver
 
 #: The pins of the hand model: (name, body that exerts the force, body that takes it); "ground" is the frame.
 PINS = [("A", "ground", "crank"), ("B", "crank", "coupler"), ("C", "coupler", "rocker"), ("D", "ground", "rocker"),

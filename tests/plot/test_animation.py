@@ -13,9 +13,9 @@ import pytest  # noqa: E402
 from PIL import Image  # noqa: E402
 
 from references import mp_fourbar  # noqa: E402
-from symlink import cache  # noqa: E402
+from symlink.numeric import cache  # noqa: E402
 from symlink.plot.animation import FRAMES, animate, frame_positions  # noqa: E402
-from symlink.catalog import fourbar  # noqa: E402
+from symlink.mechanism.catalog import fourbar  # noqa: E402
 from symlink.cli import main  # noqa: E402
 from symlink.plot import coupler_point_linkage  # noqa: E402
 

@@ -10,11 +10,12 @@ import pytest  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 from PIL import Image  # noqa: E402
 
-from symlink.catalog import CATALOG, EXAMPLE_VALUES, JANSEN_HOLY_NUMBERS, fourbar, jansen  # noqa: E402
+from symlink.mechanism.catalog import CATALOG, EXAMPLE_VALUES, JANSEN_HOLY_NUMBERS, fourbar, jansen  # noqa: E402
 from symlink.cli import main  # noqa: E402
 from symlink.plot import save_figure  # noqa: E402
 from symlink.plot.animation import animate_linkage  # noqa: E402
-from symlink.plot.drawing import Geometry, draw_linkage, sweep_inputs  # noqa: E402
+from symlink.numeric.poses import Geometry, sweep_inputs  # noqa: E402
+from symlink.plot.drawing import draw_linkage  # noqa: E402
 
 SMALL = (160, 120)
 #: Links drawn per entry, counted by hand from each catalog sketch: (bars, polygons, slider blocks).

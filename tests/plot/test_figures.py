@@ -16,7 +16,7 @@ from references import mp_fourbar  # noqa: E402
 from symlink.cli import main  # noqa: E402
 from symlink.plot import (angle_figure, coupler_curve_figure, coupler_point_linkage, draw_loop,  # noqa: E402
                           fourbar_positions, save_figure, transmission_figure)
-from symlink.reachability import turn_angles  # noqa: E402
+from symlink.numeric.reachability import turn_angles  # noqa: E402
 
 SEED001 = (0.1, 0.4, 0.25, 0.30)          # crank-rocker of the worksheet (m)
 SEED002 = (16.084, 69.743, 50.0, 70.0)    # crank L2, coupler L3, rocker L4, ground L1 (mm), seed 002 case 4.3

@@ -20,8 +20,8 @@ import numpy  # noqa: E402
 import pytest  # noqa: E402
 
 from symlink.analysis.report import analyze_linkage  # noqa: E402
-from symlink.catalog import fourbar  # noqa: E402
-from symlink.display import record_html  # noqa: E402
+from symlink.mechanism.catalog import fourbar  # noqa: E402
+from symlink.common.display import record_html  # noqa: E402
 from symlink.plot.animation import (PLAYER_SYMBOLS, animate_linkage, inline_animation,  # noqa: E402
                                     self_contained_player)
 

@@ -127,7 +127,7 @@ def test_view_command(tmp_path, capsys):
 def test_any_linkage_gets_a_slider_for_each_parameter_and_input():
     from matplotlib.figure import Figure
 
-    from symlink.catalog import EXAMPLE_VALUES, jansen
+    from symlink.mechanism.catalog import EXAMPLE_VALUES, jansen
     from symlink.plot.view import LinkageView
     linkage = jansen()
     view = LinkageView(linkage, EXAMPLE_VALUES["jansen"], trace=["H"], figure=Figure())
@@ -142,7 +142,7 @@ def test_any_linkage_gets_a_slider_for_each_parameter_and_input():
 def test_views_build_on_a_given_figure_and_never_show_it(monkeypatch):
     """In a notebook (ipympl) the figure is shown by Jupyter: a view must not call pyplot.show itself."""
     import matplotlib.pyplot as pyplot
-    from symlink.catalog import slider_crank
+    from symlink.mechanism.catalog import slider_crank
     from symlink.plot.view import LinkageView
 
     def no_show(*arguments, **keywords):

@@ -13,8 +13,8 @@ import math
 import numpy
 import pytest
 
-from symlink.catalog import EXAMPLE_VALUES, fourbar, jansen, slider_crank, watt2, with_point
-from symlink.linkage import Linkage
+from symlink.mechanism.catalog import EXAMPLE_VALUES, fourbar, jansen, slider_crank, watt2, with_point
+from symlink.symbolic.linkage import Linkage
 from symlink.synthesis.general import FRAME_NAMES, path_residuals, synthesize_path, traced_points
 
 

@@ -11,7 +11,7 @@ import numpy
 import pytest
 
 from hand_linkages import fourbar_joints, slider_travel, watt2_joints, wrapped
-from symlink.catalog import EXAMPLE_VALUES, fourbar, slider_crank, watt2
+from symlink.mechanism.catalog import EXAMPLE_VALUES, fourbar, slider_crank, watt2
 from symlink.synthesis.general_function import chebyshev_inputs, function_values, synthesize_function
 
 WATT = EXAMPLE_VALUES["watt2"]

@@ -13,7 +13,7 @@ import numpy
 import pytest
 
 from hand_linkages import fourbar_joints, watt2_joints, wrapped
-from symlink.catalog import EXAMPLE_VALUES, fourbar, watt2
+from symlink.mechanism.catalog import EXAMPLE_VALUES, fourbar, watt2
 from symlink.synthesis.general_motion import link_poses, synthesize_motion
 
 WATT = EXAMPLE_VALUES["watt2"]

@@ -16,7 +16,7 @@ import pytest
 from mp_closures import STEPHENSON3_UNKNOWNS as UNKNOWNS
 from mp_closures import stephenson3_continued
 
-from symlink.catalog import stephenson3
+from symlink.mechanism.catalog import stephenson3
 from symlink.synthesis.general import synthesize_path
 
 TRUTH = dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.9, delta=0.3)
@@ -202,7 +202,7 @@ def test_a_from_joints_linkage_that_needs_newton_recovers_its_lengths():
     changed by 7 % are found again from the drawing's, through the coupler point E's path.  The targets come from
     the numeric solver (the mpmath tests above check that); what this checks is that a ``from_joints`` linkage
     without a closed form goes through: the known lengths are recovered."""
-    from symlink.joints import from_joints
+    from symlink.mechanism.joints import from_joints
     from symlink.synthesis.general import traced_points
     drawing = {"A": (0.0, 0.0), "D": (4.5, 0.0), "B": (0.3, 0.95), "C": (3.2, 2.0), "E": (1.5, 4.2),
                "F": (5.3, 2.8), "H": (4.8, 4.6)}

@@ -8,9 +8,9 @@ import math
 import pytest
 
 from hand_linkages import watt2_joints, wrapped
-from symlink.catalog import EXAMPLE_VALUES, slider_crank, watt2
-from symlink.linkage_file import linkage_from_text, linkage_text
-from symlink.solver import Solver
+from symlink.mechanism.catalog import EXAMPLE_VALUES, slider_crank, watt2
+from symlink.io.linkage_file import linkage_from_text, linkage_text
+from symlink.numeric.solver import Solver
 from symlink.synthesis.placement import length_parameters, placed_design
 
 WATT = EXAMPLE_VALUES["watt2"]

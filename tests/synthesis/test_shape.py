@@ -14,8 +14,8 @@ import pytest
 
 
 from hand_linkages import fourbar_joints
-from symlink.catalog import fourbar, with_point
-from symlink.linkage import Linkage
+from symlink.mechanism.catalog import fourbar, with_point
+from symlink.symbolic.linkage import Linkage
 from symlink.synthesis.shape import resampled, shape_distance, shape_search, similarity_fit
 
 TRUTH = {"a": 1.0, "b": 3.0, "c": 2.5, "d": 3.2, "u": 1.5, "v": 0.8}

@@ -22,10 +22,10 @@ import sympy as sp
 
 from hand_linkages import fourbar_joints, watt2_joints
 from mp_closures import watt2_closure, watt2_positions
-from symlink.catalog import EXAMPLE_VALUES, fourbar, watt2, with_point
-from symlink.linkage import Linkage
+from symlink.mechanism.catalog import EXAMPLE_VALUES, fourbar, watt2, with_point
+from symlink.symbolic.linkage import Linkage
 from symlink.synthesis.shape import shape_distance, synthesize_shape
-from symlink.vectors import Vector, lengths
+from symlink.symbolic.vectors import Vector, lengths
 
 TURN = numpy.linspace(0.0, 2 * math.pi, 720, endpoint=False)
 MOVE = (complex(-1.5, 2.25), -2.1, 0.45)  # shift, turn (rad), scale

@@ -1,0 +1,135 @@
+"""The names a user gives a linkage, and the rule that keeps them out of generated code's way.
+
+Every name a user writes (symbols of lengths, angles and coordinates, loop and
+point names, roles, extra outputs) becomes an identifier in generated Python,
+C and MATLAB/Octave code and a key of its results.  So each one must be an
+ASCII identifier (a letter, then letters, digits and underscores; no unicode
+lookalikes), must not be a keyword of any of those languages, and must not be
+a name the generated code uses itself: the module ``numpy``, the math
+functions C and Octave call, the local ``shape``, the intermediates of the
+closed forms (``Wx_1``, ``w_1``, ``Delta_1``, ...), the common subexpressions
+(``cse_0``), the branch signs (``branch``, ``branch_<loop>``) and the
+``symlink_`` prefix of C helpers.  A linkage's own name is free text in
+messages and docstrings only, so it may also have single spaces and hyphens
+between its words.
+
+Checking at definition time means a bad name is refused with a sentence
+saying which name and why, rather than ending in a SyntaxError or a wrong
+value in code generated later.
+
+>>> identifier("theta", "coordinate")
+'theta'
+>>> identifier("w_1", "parameter")
+Traceback (most recent call last):
+ValueError: parameter 'w_1' clashes with a generated intermediate (closed-form helpers are named Wx_1, w_1, Delta_1, size_1, ...); rename it
+>>> label("inverted slider-crank")
+'inverted slider-crank'
+"""
+from __future__ import annotations
+
+import keyword
+import re
+
+__all__ = ["identifier", "label", "reason_reserved", "INTERMEDIATE_FAMILIES", "MAX_LENGTH", "RESERVED", "PLAIN_NAME",
+           "C_KEYWORDS", "OCTAVE_KEYWORDS"]
+
+#: Longest user name: derived names (``<name>ddot``, ``<role>_accel``, ``branch_<loop>``) must fit
+#: MATLAB's 63 characters.
+MAX_LENGTH = 56
+
+#: The shape of every name in generated code: an ASCII letter, then ASCII letters, digits or underscores.
+PLAIN_NAME = re.compile(r"[A-Za-z][A-Za-z0-9_]*\Z", re.ASCII)
+_LABEL = re.compile(r"[A-Za-z][A-Za-z0-9_]*(?:[ -][A-Za-z0-9_]+)*\Z", re.ASCII)
+
+#: Names of the closed forms' intermediates, each followed by ``_<loop number>`` (see symlink.symbolic.position).
+INTERMEDIATE_FAMILIES = ("Wx", "Wy", "w", "wsq", "Delta", "size", "rho")
+_INTERMEDIATE = re.compile(r"(?:%s)(?:_[0-9]+)+\Z" % "|".join(INTERMEDIATE_FAMILIES))
+
+C_KEYWORDS = frozenset("""
+auto break case char const continue default do double else enum extern float for goto if inline int long
+register restrict return short signed sizeof static struct switch typedef union unsigned void volatile while
+_Bool _Complex _Imaginary size_t ptrdiff_t NAN INFINITY""".split())
+OCTAVE_KEYWORDS = frozenset("""
+break case catch classdef continue do else elseif end end_try_catch end_unwind_protect endclassdef
+endenumeration endevents endfor endfunction endif endmethods endparfor endproperties endspmd endswitch
+endwhile enumeration events for function global if methods otherwise parfor persistent properties
+return spmd switch try until unwind_protect unwind_protect_cleanup while nargin nargout varargin
+varargout ans""".split())
+#: Functions and constants the generated code calls by their bare name (C's math.h, Octave's builtins).
+_FUNCTIONS = frozenset("""
+sin cos tan asin acos atan atan2 sinh cosh tanh asinh acosh atanh exp log log10 log2 sqrt cbrt pow hypot
+abs fabs floor ceil round fmod fmax fmin max min sign copysign isfinite isnan isinf size true false ones all
+isnumeric isreal error
+zeros nan NaN Inf inf pi""".split())
+#: Names the generated modules use themselves: modules, locals, outputs and the Newton driver's globals.
+_GENERATED = frozenset("""
+numpy math sympy shape check solve singular assembled residual guess inputs parameters unknowns positions
+velocities accelerations sensitivities TOLERANCE EPSILON RESIDUAL_TOLERANCE SINGULAR_CONDITION POSITION_TOLERANCE
+MAX_PREDICTION MAX_CORRECTION CONTRACTION MAX_ITERATIONS ASSEMBLY_ITERATIONS MIN_FRACTION LARGEST_BLOCK
+INPUTS PARAMETERS UNKNOWNS ANGLE_INPUTS ROLES""".split())
+
+#: Every whole name a user may not take (prefixes and intermediate families are checked apart).
+RESERVED = frozenset(keyword.kwlist) | C_KEYWORDS | OCTAVE_KEYWORDS | _FUNCTIONS | _GENERATED
+
+
+def reason_reserved(name: str) -> str | None:
+    """Why generated code cannot take ``name`` (a clause), or None if it can.
+
+    >>> reason_reserved("lambda")
+    'is a keyword of Python, C or MATLAB/Octave'
+    >>> reason_reserved("beta") is None
+    True
+    """
+    if name in keyword.kwlist or name in C_KEYWORDS or name in OCTAVE_KEYWORDS:
+        return "is a keyword of Python, C or MATLAB/Octave"
+    if name in _FUNCTIONS:
+        return "is a function or constant that the generated C or MATLAB/Octave code calls"
+    if name in _GENERATED:
+        return "is a name the generated code uses itself"
+    if _INTERMEDIATE.match(name):
+        return ("clashes with a generated intermediate (closed-form helpers are named "
+                "Wx_1, w_1, Delta_1, size_1, ...)")
+    if name == "branch" or name.startswith("branch_"):
+        return "clashes with the branch signs (branch, branch_<loop>) that the linkage adds"
+    if name.startswith("cse_"):
+        return "starts with 'cse_', the prefix of generated common subexpressions"
+    if name.startswith("symlink_"):
+        return "starts with 'symlink_', the prefix of generated helpers"
+    return None
+
+
+def identifier(name: object, what: str) -> str:
+    """``name`` if generated code can take it as an identifier; ``ValueError`` naming ``what`` and why otherwise."""
+    if not isinstance(name, str):
+        raise ValueError(f"{what} name must be text, got {name!r}")
+    if not PLAIN_NAME.match(name):
+        raise ValueError(f"{what} {name!r} is not a plain name: use an ASCII letter, then ASCII letters, "
+                         "digits or underscores")
+    if len(name) > MAX_LENGTH:
+        raise ValueError(f"{what} {name!r} is longer than {MAX_LENGTH} characters")
+    why = reason_reserved(name)
+    if why:
+        raise ValueError(f"{what} {name!r} {why}; rename it")
+    return name
+
+
+def label(name: object, what: str = "linkage name") -> str:
+    """A linkage's display name: words of ASCII letters, digits and underscores, single spaces or hyphens between.
+
+    It reaches docstrings, comments and messages only, but never as raw text: no quotes, backslashes,
+    newlines, comment markers or percent signs can get in.
+
+    >>> label("x*/")
+    Traceback (most recent call last):
+    ValueError: linkage name 'x*/' may hold only ASCII letters, digits and underscores, with single spaces or hyphens between words
+    """
+    if not isinstance(name, str):
+        raise ValueError(f"{what} must be text, got {name!r}")
+    if not _LABEL.match(name):
+        raise ValueError(f"{what} {name!r} may hold only ASCII letters, digits and underscores, "
+                         "with single spaces or hyphens between words")
+    if len(name) > 2 * MAX_LENGTH:
+        raise ValueError(f"{what} {name!r} is longer than {2 * MAX_LENGTH} characters")
+    if name in keyword.kwlist or name in C_KEYWORDS or name in OCTAVE_KEYWORDS:
+        raise ValueError(f"{what} {name!r} is a keyword of Python, C or MATLAB/Octave; rename it")
+    return name

@@ -1,0 +1,508 @@
+"""Scenes: a request for some outputs of a linkage, and only what those outputs need.
+
+A :class:`Scene` names a linkage (a :class:`~symlink.symbolic.linkage.Linkage` or a
+catalog name), the outputs it needs, the values to evaluate them at (input
+angles, link lengths, input rates) and the branch.  symlink derives,
+generates and loads code for exactly those outputs and what they depend on:
+a positions-only scene never differentiates, a rocker-only scene never
+computes the coupler angle, and common subexpressions are shared among the
+requested outputs only.  The code is cached in memory and on disk
+(:mod:`symlink.numeric.cache`), so the second run of a scene does no symbolic work.
+:class:`~symlink.numeric.solver.Solver`, which every command of the command line
+uses, goes through the same cache.
+
+>>> from symlink.mechanism.catalog import fourbar
+>>> scene = Scene(fourbar(), ["rocker"], dict(theta=0.0, a=20, b=66, c=56, d=80), branch="both")
+>>> {sign: round(float(numpy.degrees(result["rocker"])), 2) for sign, result in scene.evaluate().items()}
+{1: 110.74, -1: -110.74}
+>>> "beta =" in scene.source, "velocities" in scene.linkage.__dict__
+(False, False)
+
+Scene files (``symlink run scene.toml``) hold numbers and names only, never
+code::
+
+    linkage = "fourbar"                 # a catalog name, or a linkage file ("legs/jansen.toml", beside this one)
+    outputs = ["rocker", "rocker_speed"]  # any of the linkage's output names
+    branch = "both"                     # 1, -1 or "both" (default 1)
+    units = "deg"                       # "deg" (default) or "rad": input and printed angles
+    format = "table"                    # "table" (default), "csv" or "json"
+
+    [parameters]                        # every link length of the linkage, by name
+    a = 20
+    b = 66
+    c = 56
+    d = 80
+
+    [input]                             # the crank: start/stop/step (default 0, 360, 10 deg) or angles
+    start = 0
+    stop = 360
+    step = 40
+    # angles = [0, 40, 80]
+    speed = 10.5                        # rad/s at the first angle (default 0)
+    accel = 0                           # rad/s^2, uniform from the first angle (default 0)
+
+    [dynamics.masses.crank]             # optional: masses and loads as in a linkage file's [dynamics]
+    mass = "m2"                         # (a name's value under [parameters]); outputs may then name
+    distance = 10                       # input_torque, joint_A_x, shaking_moment, ...
+
+They are read with ``tomllib`` (Python 3.11 and later) or, on Python 3.10,
+with ``tomli`` (the same reader, published separately).  Every key and value
+is checked; anything unknown or out of range is one line of error.
+"""
+from __future__ import annotations
+
+import math
+import sys
+from functools import cached_property, lru_cache
+from pathlib import Path
+from typing import Any, Mapping, Sequence
+
+import numpy
+import sympy as sp
+
+from ..numeric.cache import GeneratedCode, generated_code
+from ..numeric.call_arguments import check_argument_names
+from ..common.files import excerpt, read_input_text
+from ..mechanism.catalog import CATALOG
+from ..common.display import record_html
+from ..numeric.input_sweep import InputSweep
+from .linkage_file import MAX_ANGLE, MAX_MAGNITUDE, LinkageFile, dynamic_model, load_linkage
+from ..common.angles import to_radians
+from ..symbolic.linkage import Linkage, Program
+from ..symbolic.closure import is_angle
+from ..common.notation import math_text
+from ..numeric.results import Results
+from ..symbolic.sensitivity import split_sensitivity_name
+from ..numeric.solver import Solver, crank_speeds
+from ..symbolic.vectors import acceleration, rate
+
+if sys.version_info >= (3, 11):
+    from tomllib import loads as toml_loads
+else:  # Python 3.10: tomli is tomllib before it joined the standard library
+    from tomli import loads as toml_loads
+
+__all__ = ["Scene", "SceneFile", "catalog_linkage", "angle_outputs", "read_scene", "scene_from_mapping",
+           "scene_from_text"]
+
+BRANCH_CHOICES = (1, -1, "both")
+UNITS = ("deg", "rad")
+FORMATS = ("table", "csv", "json")
+TOP_KEYS = {"linkage", "outputs", "branch", "units", "format", "parameters", "input", "dynamics"}
+INPUT_KEYS = {"start", "stop", "step", "angles", "speed", "accel"}
+
+
+@lru_cache(maxsize=None)
+def catalog_linkage(name: str) -> Linkage:
+    """A fresh instance of the catalog's linkage ``name`` (cheap: its derivations happen on first use).
+
+    >>> catalog_linkage("fourbar").unknowns
+    (beta, phi)
+    """
+    if name not in CATALOG:
+        raise ValueError(f"no linkage {name!r} in the catalog; it has {', '.join(sorted(CATALOG))}")
+    return CATALOG[name]()
+
+
+def angle_outputs(linkage: Linkage, outputs: Sequence[str]) -> set[str]:
+    """The outputs that are angles: coordinates that turn a vector, and extras made by an inverse trig function.
+
+    Rates and accelerations are not angles (they are per second); points are lengths.
+
+    >>> sorted(angle_outputs(catalog_linkage("fourbar"), ["rocker", "rocker_speed", "C_x", "transmission"]))
+    ['rocker', 'transmission']
+    """
+    found = set()
+    known = set(linkage.output_names())
+    for name in outputs:
+        if name not in known:  # a torque or force of a cached dynamics request (never an angle)
+            continue
+        expr = linkage.output(name)
+        if isinstance(expr, sp.Symbol) and expr in linkage.coordinates:
+            if is_angle(linkage, expr):
+                found.add(name)
+        elif name in linkage.extras:
+            while isinstance(expr, sp.Abs):
+                expr = expr.args[0]
+            if isinstance(expr, (sp.atan2, sp.atan, sp.asin, sp.acos)):
+                found.add(name)
+    return found
+
+
+class Scene:
+    """A linkage, the outputs it needs, the values to evaluate them at, and the branch.
+
+    ``values`` are the generated function's arguments by name (inputs in
+    radians, link lengths, input rates); they broadcast against each other.
+    ``branch`` is +1, -1 or ``"both"``; it is given to every branch sign of
+    the linkage.
+    """
+
+    def __init__(self, linkage: Linkage | str, outputs: Sequence[str],
+                 values: Mapping[str, object] | None = None, branch: int | str = 1) -> None:
+        self.linkage = catalog_linkage(linkage) if isinstance(linkage, str) else linkage
+        self.outputs = tuple(outputs)
+        if not self.outputs:
+            raise ValueError(f"a scene needs at least one output of {self.linkage.name}; "
+                             f"it has {', '.join(self.linkage.output_names())}")
+        known = set(self.linkage.output_names())
+        for name in self.outputs:
+            if name not in known and split_sensitivity_name(name, self.linkage.parameters) is None:
+                self.linkage.output(name)  # ValueError naming the outputs there are
+        # (a sensitivity's name is checked where its code is derived, not here: that derives it)
+        if branch not in BRANCH_CHOICES or isinstance(branch, bool):
+            raise ValueError(f"branch must be 1, -1 or 'both', got {branch!r}")
+        self.branch = branch
+        self.values = dict(values or {})
+
+    @property
+    def signs(self) -> tuple[int, ...]:
+        """The branch signs the scene is evaluated on."""
+        return (1, -1) if self.branch == "both" else (int(self.branch),)
+
+    @cached_property
+    def code(self) -> GeneratedCode:
+        """The generated and loaded code of exactly these outputs (cached)."""
+        return generated_code(self.linkage, self.outputs)
+
+    @property
+    def source(self) -> str:
+        """The generated NumPy module."""
+        return self.code.source
+
+    @cached_property
+    def solver(self) -> Solver:
+        """A checked solver of these outputs, with the ``singular`` flag where they divide by a loop's determinant."""
+        return Solver(self.linkage, self.outputs)
+
+    def program(self) -> Program:
+        """The straight-line program behind the code: symbolic work, for inspection only."""
+        return self.linkage.program(self.outputs)
+
+    def evaluate(self, **values) -> dict[int, Results]:
+        """The outputs on each branch sign, at the scene's values updated by ``values``.
+
+        Each is a :class:`~symlink.numeric.results.Results` (a dict that shows as a
+        table and has ``to_frame()``); ``values`` may be pint quantities, as
+        for :class:`~symlink.numeric.solver.Solver`, but not mixed with the scene's
+        plain lengths.
+        """
+        merged = {**self.values, **values}
+        branches = self.solver.branches
+        # the scene gives the branch signs: a value missing or unknown is named as the solver names it
+        check_argument_names(self.linkage.name, self.solver.arguments, self.solver.required, [*merged, *branches])
+        return {sign: self.solver(**merged, **{name: sign for name in branches}) for sign in self.signs}
+
+    def __repr__(self) -> str:
+        return f"Scene({self.linkage.name!r}, {list(self.outputs)}, branch={self.branch!r})"
+
+    def derivation(self) -> tuple[tuple[sp.Symbol, ...], tuple[sp.Symbol, ...]]:
+        """What the scene's code computes and what it skips: unknowns, their rates and accelerations.
+
+        Symbolic work (the positions, and the rates only if an output needs them),
+        done once per linkage; ``ValueError`` for a linkage without a closed form.
+        """
+        kept = {symbol for symbol, _ in self.program().assignments}
+        unknowns = self.linkage.unknowns
+        every = unknowns + tuple(rate(q) for q in unknowns) + tuple(acceleration(q) for q in unknowns)
+        return tuple(s for s in every if s in kept), tuple(s for s in every if s not in kept)
+
+    def _branch_words(self) -> str:
+        return "both branches" if self.branch == "both" else f"branch {self.branch:+d}"
+
+    def __str__(self) -> str:
+        """What the scene asks for, and what its code will compute and skip.
+
+        >>> from symlink.mechanism.catalog import fourbar
+        >>> print(Scene(fourbar(), ["rocker"]))
+        scene of fourbar: rocker (branch +1)
+          computes phi
+          skips beta, betadot, phidot, betaddot, phiddot
+        """
+        head = f"scene of {self.linkage.name}: {', '.join(self.outputs)} ({self._branch_words()})"
+        if not self.linkage.has_closed_form:
+            return head + "\n  no closed form: solved numerically, all loops at once (see symlink plan)"
+        computed, skipped = self.derivation()
+        return "\n".join([head, f"  computes {', '.join(map(str, computed)) or 'nothing'}",
+                          f"  skips {', '.join(map(str, skipped)) or 'nothing'}"])
+
+    def _repr_latex_(self) -> str:
+        r"""Jupyter's display: the outputs, the branch sign, and the coordinates computed and skipped.
+
+        >>> from symlink.mechanism.catalog import fourbar
+        >>> print(Scene(fourbar(), ["rocker"], branch="both")._repr_latex_())
+        $\begin{array}{ll}\text{scene of fourbar} & \text{rocker},\ \sigma = \pm 1\\ \text{computes} & \phi\\ \text{skips} & \beta, \dot{\beta}, \dot{\phi}, \ddot{\beta}, \ddot{\phi}\end{array}$
+        """
+        sign = r"\pm 1" if self.branch == "both" else f"{self.branch:+d}"
+        rows = [f"{math_text('scene of ' + self.linkage.name)} & "
+                f"{', '.join(math_text(o) for o in self.outputs)},\\ \\sigma = {sign}"]
+        if not self.linkage.has_closed_form:
+            rows.append(r"\text{no closed form} & \text{solved numerically, all loops at once}")
+        else:
+            computed, skipped = self.derivation()
+            for word, symbols in (("computes", computed), ("skips", skipped)):
+                rows.append(f"\\text{{{word}}} & " + (", ".join(sp.latex(s) for s in symbols) or r"\text{nothing}"))
+        return "$\\begin{array}{ll}" + "\\\\ ".join(rows) + "\\end{array}$"
+
+
+class _Positive:
+    """A parameter of a cached request as the scene file's checks see it: its name and whether it is a length."""
+
+    def __init__(self, name: str, is_positive: bool) -> None:
+        self.name, self.is_positive = name, is_positive
+
+
+class DynamicScene:
+    """Torques or joint forces of a linkage with a scene's ``[dynamics]`` table, keyed by what the scene names.
+
+    The cache key is made from the kinematic linkage's definition, the table as given and the outputs,
+    so a warm request (the entry on disk) builds no dynamic model and derives nothing: the equation of
+    motion is derived once, when the entry is made (:func:`symlink.numeric.cached_solver.entry_text`).
+    """
+
+    def __init__(self, kinematics: Linkage, outputs: Sequence[str], table: Mapping) -> None:
+        import json
+
+        from ..numeric.cache import cache_key
+        from ..numeric.cached_solver import CachedSolver
+        self.kinematics, self.outputs, self.table = kinematics, list(outputs), table
+        try:
+            described = json.dumps(table, sort_keys=True, default=str)
+        except (TypeError, ValueError):
+            raise ValueError(f"dynamics must be a table of names and numbers, got {table!r}") from None
+        key = cache_key(kinematics, self.outputs, f"dynamic-scene:{described}")
+        self.solver = CachedSolver(kinematics.name, self.outputs, key=key, derive=self._derive, full=self._full)
+        facts = self.solver.description
+        self.parameters = {name: _Positive(name, positive) for name, positive in facts["parameters"]}
+        self.angles = set(facts["angles"])
+
+    def dynamic_linkage(self) -> Linkage:
+        """The linkage with its dynamic outputs (symbolic work: only where the entry is derived or quantities are given)."""
+        model = dynamic_model(self.table, self.kinematics)
+        found = LinkageFile(self.kinematics, {}, "", model).with_dynamics().linkage
+        for name in self.outputs:
+            try:
+                found.output(name)
+            except ValueError:
+                raise ValueError(f"outputs: {found.name} has no output {name!r}; "
+                                 f"it has {', '.join(found.output_names())}") from None
+        return found
+
+    def _derive(self) -> str:
+        from ..numeric.cached_solver import entry_text
+        linkage = self.dynamic_linkage()
+        return entry_text(linkage, self.outputs, parameters=[[p.name, bool(p.is_positive)] for p in linkage.parameters],
+                          angles=sorted(angle_outputs(linkage, self.outputs)))
+
+    def _full(self) -> Solver:
+        return Solver(self.dynamic_linkage(), self.outputs)
+
+    def scene(self, values: Mapping[str, object], branch: int | str) -> Scene:
+        """A :class:`Scene` of the request, answered from the cache entry."""
+        return _CachedScene(self, values, branch)
+
+
+class _CachedScene(Scene):
+    """A scene whose code and solver come from a :class:`DynamicScene`'s cache entry (its linkage: the kinematic one)."""
+
+    def __init__(self, request: DynamicScene, values: Mapping[str, object], branch: int | str) -> None:
+        self.linkage, self.outputs, self.request = request.kinematics, tuple(request.outputs), request
+        if branch not in BRANCH_CHOICES or isinstance(branch, bool):
+            raise ValueError(f"branch must be 1, -1 or 'both', got {branch!r}")
+        self.branch, self.values = branch, dict(values)
+
+    @cached_property
+    def code(self) -> GeneratedCode:
+        entry = self.request.solver
+        return GeneratedCode("", entry.source, entry.function)
+
+    @cached_property
+    def solver(self) -> Any:  # the cached entry's solver: called and asked for its branches as a Solver is
+        return self.request.solver
+
+    def program(self) -> Program:
+        return self.request.dynamic_linkage().program(list(self.outputs))
+
+
+# --- scene files -----------------------------------------------------------
+
+class SceneFile:
+    """A scene read from a file, with how to drive and print it.
+
+    ``sweep`` holds the input angles in ``units``; :meth:`values_at` gives the
+    scene's input values (radians, and the rates the outputs need) at a block
+    of them, so that a long sweep is evaluated a block at a time.
+    """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
+
+    def __init__(self, scene: Scene, input_column: str, sweep: InputSweep, units: str, fmt: str,
+                 speed: float = 0.0, accel: float = 0.0) -> None:
+        self.scene, self.input_column, self.sweep, self.units, self.format = scene, input_column, sweep, units, fmt
+        self.speed, self.accel = speed, accel
+
+    @property
+    def angles(self) -> numpy.ndarray:
+        """Every input angle, in ``units``."""
+        return self.sweep.array()
+
+    def values_at(self, angles: numpy.ndarray) -> dict[str, object]:
+        """The driven input's values at ``angles`` (in ``units``): its angle in radians, rate and acceleration."""
+        driven = self.scene.linkage.inputs[0]
+        theta = to_radians(angles, self.units)
+        values: dict[str, object] = {driven.name: theta}
+        takes = self.scene.solver.arguments  # rates only where the outputs need them
+        if rate(driven).name in takes:
+            first = float(to_radians(self.sweep.first, self.units))
+            values[rate(driven).name] = crank_speeds(theta, self.speed, self.accel, first)
+        if acceleration(driven).name in takes:
+            values[acceleration(driven).name] = self.accel
+        return values
+
+
+def _number(value, where: str, angle: bool = False) -> float:
+    """A number of a scene file: finite, and in range as in linkage files (an ``angle`` within 1e9, any other
+    value 0 or between 1e-50 and 1e50 in size); ``ValueError`` naming ``where``."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise ValueError(f"{where} must be a number, got {excerpt(value)}")
+    try:
+        number = float(value)
+    except OverflowError:
+        number = math.inf
+    if not math.isfinite(number):
+        raise ValueError(f"{where} must be finite, got {value if isinstance(value, float) else 'a huge integer'}")
+    if angle and abs(number) > MAX_ANGLE:
+        raise ValueError(f"{where} must be at most {MAX_ANGLE:g} in size (larger angles have lost their precision), "
+                         f"got {number:g}")
+    if not angle and number != 0 and not 1 / MAX_MAGNITUDE <= abs(number) <= MAX_MAGNITUDE:
+        raise ValueError(f"{where} must be 0 or between {1 / MAX_MAGNITUDE:g} and {MAX_MAGNITUDE:g} in size, "
+                         f"got {number:g}")
+    return number
+
+
+def _choice(value, where: str, choices: Sequence) -> Any:
+    if isinstance(value, (bool, float)) or value not in choices:
+        raise ValueError(f"{where} must be one of {', '.join(map(repr, choices))}, got {value!r}")
+    return value
+
+
+def _table(data, where: str, allowed: set[str] | None) -> dict:
+    if not isinstance(data, dict):
+        raise ValueError(f"{where} must be a table ([{where}]), got {data!r}")
+    if allowed is not None:
+        unknown = sorted(set(data) - allowed)
+        if unknown:
+            raise ValueError(f"unknown key {where + '.' if where else ''}{unknown[0]} "
+                             f"(allowed: {', '.join(sorted(allowed))})")
+    return data
+
+
+def scene_from_mapping(data: Mapping, folder: str | Path = ".") -> SceneFile:
+    """A :class:`SceneFile` from a parsed scene file; ``ValueError`` naming the first bad key or value.
+
+    ``linkage`` is a catalog name or the path of a linkage file (relative to
+    ``folder``, the scene file's folder); a linkage file's defaults stand in
+    for parameters the scene leaves out.
+
+    >>> found = scene_from_mapping({"linkage": "fourbar", "outputs": ["rocker"],
+    ...                             "parameters": dict(a=20, b=66, c=56, d=80), "input": {"angles": [0]}})
+    >>> round(float(numpy.degrees(found.scene.evaluate()[1]["rocker"][0])), 2)
+    110.74
+    """
+    data = _table(dict(data), "", TOP_KEYS)
+    if "linkage" not in data:
+        raise ValueError(f"missing key linkage (one of {', '.join(sorted(CATALOG))})")
+    if not isinstance(data["linkage"], str):
+        raise ValueError(f"linkage must be a catalog name or a linkage file, got {data['linkage']!r}")
+    found = load_linkage(data["linkage"], folder)
+    defaults = {} if found.source == "catalog" else found.defaults  # a catalog scene names every parameter
+    outputs = data.get("outputs")
+    if not isinstance(outputs, list) or not outputs or not all(isinstance(o, str) for o in outputs):
+        raise ValueError(f"outputs must be a non-empty list of output names of {found.linkage.name} "
+                         f"({', '.join(found.linkage.output_names())}), got {outputs!r}")
+    warm: DynamicScene | None = None
+    if "dynamics" in data:  # mass properties and loads given in the scene, on a catalog linkage or a file's
+        if found.model is not None:
+            raise ValueError(f"dynamics: {data['linkage']} has a [dynamics] table of its own; give it in one place")
+        if not set(outputs) <= set(found.linkage.output_names()):  # torques or joint forces: a cached request
+            warm = DynamicScene(found.linkage, outputs, data["dynamics"])
+        else:
+            found = LinkageFile(found.linkage, found.defaults, found.source,
+                                dynamic_model(data["dynamics"], found.linkage))
+    if warm is None and found.model is not None and not set(outputs) <= set(found.linkage.output_names()):
+        found = found.with_dynamics()  # torques or joint forces of a linkage file with a [dynamics] table
+    linkage = found.linkage
+    for name in outputs if warm is None else ():
+        try:
+            linkage.output(name)
+        except ValueError:
+            raise ValueError(f"outputs: {linkage.name} has no output {name!r}; "
+                             f"it has {', '.join(linkage.output_names())}") from None
+    branch = _choice(data.get("branch", 1), "branch", BRANCH_CHOICES)
+    units = _choice(data.get("units", "deg"), "units", UNITS)
+    fmt = _choice(data.get("format", "table"), "format", FORMATS)
+
+    names = {s.name: s for s in linkage.parameters} if warm is None else warm.parameters
+    given = _table(data.get("parameters", {}), "parameters", set(names))
+    given = {**{n: v for n, v in defaults.items() if n in names}, **given}
+    missing = [n for n in names if n not in given]
+    if missing:
+        raise ValueError(f"missing parameters.{missing[0]} ({linkage.name} needs {', '.join(names)})")
+    parameters = {}
+    for name, value in given.items():
+        parameters[name] = _number(value, f"parameters.{name}", angle=is_angle(linkage, names[name]))
+        if names[name].is_positive and parameters[name] <= 0:
+            raise ValueError(f"parameters.{name} must be a positive length, got {value!r}")
+
+    if len(linkage.inputs) != 1 or not is_angle(linkage, linkage.inputs[0]):
+        raise ValueError(f"scene files drive linkages with one input angle; {linkage.name} has "
+                         f"{', '.join(map(str, linkage.inputs))}")
+    driven = linkage.inputs[0]
+    sweep_table = _table(data.get("input", {}), "input", INPUT_KEYS)
+    options: dict[str, Any] = {key: (None if key not in sweep_table else
+                                     _number(sweep_table[key], f"input.{key}", angle=key != "step"))
+                               for key in ("start", "stop", "step")}
+    angles = sweep_table.get("angles")
+    if angles is not None:
+        if not isinstance(angles, list):
+            raise ValueError(f"input.angles must be a list of numbers, got {angles!r}")
+        angles = [_number(v, f"input.angles[{i}]", angle=True) for i, v in enumerate(angles)]
+    try:
+        sweep = InputSweep.from_options(angles=angles, units=units, **options)
+    except ValueError as error:
+        raise ValueError(f"input: {error}") from None
+    speed = _number(sweep_table.get("speed", 0.0), "input.speed")
+    accel = _number(sweep_table.get("accel", 0.0), "input.accel")
+    scene = Scene(linkage, outputs, dict(parameters), branch) if warm is None else warm.scene(dict(parameters), branch)
+    roles = [role for role, q in linkage.roles.items() if q == driven]
+    scene_file = SceneFile(scene, roles[0] if roles else driven.name, sweep, units, fmt, speed, accel)
+    scene.values.update(scene_file.values_at(sweep.array() if len(sweep) <= 4096 else sweep.block(0, 1)))
+    return scene_file
+
+
+#: Scene files larger than this are refused unread (a scene is a few lines).
+MAX_SCENE_BYTES = 1 << 20
+
+
+def scene_from_text(text: str, source: str, folder: str | Path = ".") -> SceneFile:
+    """A :class:`SceneFile` from TOML text; ``ValueError`` starting with ``source`` on any problem.
+
+    ``folder`` is where a linkage file named in the scene is looked for.
+    """
+    try:
+        if len(text) > MAX_SCENE_BYTES:
+            raise ValueError(f"larger than {MAX_SCENE_BYTES} bytes: not a scene file")
+        try:
+            data = toml_loads(text)
+        except ValueError as error:  # tomllib.TOMLDecodeError is a ValueError
+            raise ValueError(f"not valid TOML: {error}") from None
+        except RecursionError:
+            raise ValueError("not valid TOML: nested too deeply") from None
+        return scene_from_mapping(data, folder)
+    except ValueError as error:
+        raise ValueError(f"{source}: {error}") from None
+
+
+def read_scene(path: str | Path) -> SceneFile:
+    """Read and check a TOML scene file; ``ValueError`` starting with the file name on any problem."""
+    path = Path(path)
+    return scene_from_text(read_input_text(path, MAX_SCENE_BYTES, "scene file"), str(path), path.parent)

@@ -1,0 +1,54 @@
+"""Gruebler/Kutzbach mobility of any linkage, from the bodies and joints its loops and points make.
+
+>>> from symlink.mechanism.catalog import jansen
+>>> degrees_of_freedom(jansen()).dof
+1
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .bodies import PRISMATIC, mechanism
+from .catalog import fourbar  # noqa: F401 - the doctests' namespace
+from ..common.display import record_html
+from ..symbolic.linkage import Linkage
+
+__all__ = ["Mobility", "degrees_of_freedom"]
+
+
+@dataclass(frozen=True)
+class Mobility:
+    """Links and joints of a planar linkage, and its Gruebler/Kutzbach mobility.
+
+    ``links`` counts the ground; every joint is a one-freedom pair (revolute or
+    prismatic), so ``dof = 3 (links - 1) - 2 (revolute + prismatic)``.
+    """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
+
+    links: int
+    revolute: int
+    prismatic: int
+
+    @property
+    def joints(self) -> int:
+        return self.revolute + self.prismatic
+
+    @property
+    def dof(self) -> int:
+        return 3 * (self.links - 1) - 2 * self.joints
+
+
+def degrees_of_freedom(linkage: Linkage) -> Mobility:
+    """Gruebler/Kutzbach mobility of ``linkage``: ``3 (n - 1) - 2 j1 - j2`` over its bodies and joints.
+
+    The bodies and joints are those :func:`symlink.mechanism.bodies.mechanism` derives
+    from the loops and points (a pin joining k bodies counts as k - 1 joints;
+    a slider on its guide is one prismatic joint).
+
+    >>> degrees_of_freedom(fourbar()).dof
+    1
+    """
+    found = mechanism(linkage)
+    prismatic = sum(joint.kind == PRISMATIC for joint in found.joints)
+    return Mobility(len(found.bodies), found.one_freedom_joints - prismatic, prismatic)

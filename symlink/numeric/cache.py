@@ -1,0 +1,519 @@
+"""Derived code, cached in memory and on disk, so that the second run of a scene derives nothing.
+
+The key of an entry is a SHA-256 over a canonical description of the linkage
+(its loops, inputs, unknowns, parameters, points, roles and extras, written
+with :func:`sympy.srepr`), the outputs asked for, the kind of code, the
+versions of symlink and SymPy and a digest of the modules that shape
+generated code (:data:`CODE_SHAPING`: a change to a derivation or a printer
+is a new key; a change to a plot or the command line is not).
+
+Entries live in ``$SYMLINK_CACHE``, else ``$XDG_CACHE_HOME/symlink``, else
+``~/.cache/symlink`` (an empty ``SYMLINK_CACHE`` turns the disk cache off),
+one JSON file a key, written atomically.  Each entry carries its key and a
+checksum of key and content: an entry that cannot be read, belongs to
+another key or fails its checksum is rebuilt and rewritten, never used.
+
+The cache holds code that symlink runs, so only its owner may write it: the
+folder is created 0700 and entries 0600 whatever the umask, and nothing is
+loaded from a folder or an entry that another user owns or that group or
+others can write (a :class:`CacheWarning` says so once, and the code is
+derived again in memory).  Entries are opened without blocking and only if
+they are regular files; anything unreadable is rebuilt.  A cache folder that
+cannot be created or written is skipped silently (the memory cache still
+works).
+
+>>> import os, tempfile
+>>> previous = os.environ.get("SYMLINK_CACHE")
+>>> os.environ["SYMLINK_CACHE"] = tempfile.mkdtemp()
+>>> clear_memory()  # as in a new process
+>>> from symlink.mechanism.catalog import fourbar
+>>> code = generated_code(fourbar(), ["rocker"])
+>>> sorted(code.function(theta=0.0, a=20, b=66, c=56, d=80))
+['assembled', 'rocker']
+>>> (cache_directory() / f"{code.key}.json").is_file()
+True
+>>> contents = cache_contents(cache_directory())
+>>> contents.trusted, contents.entries
+(True, 1)
+>>> clear_cache(cache_directory()).entries, cache_contents(cache_directory()).entries
+(1, 0)
+>>> _ = os.environ.pop("SYMLINK_CACHE") if previous is None else os.environ.update(SYMLINK_CACHE=previous)
+"""
+from __future__ import annotations
+
+import hashlib
+import importlib.util
+import inspect
+import json
+import os
+import re
+import shutil
+import stat
+import warnings
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+from typing import TYPE_CHECKING, Callable, Sequence
+
+from ..version import __version__
+from ..common.files import LEFTOVER_AGE, NotPrivate, private_folder, read_private, remove_leftovers, write_atomic
+
+if TYPE_CHECKING:
+    from ..symbolic.linkage import Linkage
+
+__all__ = ["GeneratedCode", "generated_code", "cache_directory", "trusted_directory", "definition", "cache_key",
+           "cached_text", "clear_memory", "warn_once", "CacheWarning", "CODE_SHAPING", "code_shaping_files",
+           "ENVIRONMENT_VARIABLE", "CacheContents", "cache_contents", "clear_cache", "COMPILED_FOLDER",
+           "CATALOG_SHAPING", "catalog_key", "sympy_version"]
+
+ENVIRONMENT_VARIABLE = "SYMLINK_CACHE"
+#: Bumped whenever the layout of an entry changes.
+FORMAT = 1
+#: The name of the function in every cached solver module.
+FUNCTION = "solve"
+
+#: What builds and prints a catalog linkage (:mod:`symlink.mechanism.catalog` and every symlink module it imports,
+#: directly or not, and the printers), relative to the package, without ``.py``; a name may be a module or a
+#: package folder (then every module in it counts).  Its digest stands in for the linkage's definition in
+#: :func:`catalog_key`, so that a cached catalog scene is found without building the linkage (or importing
+#: SymPy); it is hashed at every warm start, so it holds nothing a catalog linkage does not use.
+CATALOG_SHAPING = ("common/names", "common/notation", "symbolic", "mechanism/catalog", "codegen", "io/export",
+                   "numeric/compiled")
+#: The modules whose text shapes generated code: their digest is part of every key.  Add a module here
+#: when it starts to shape generated text; benchmarks, plots and the command line stay out, so that editing
+#: them keeps the cache.  Beyond the catalog's: what builds a linkage with masses and its derivation text.
+CODE_SHAPING = CATALOG_SHAPING + ("mechanism/bodies", "dynamics")
+#: Largest entry read back (a generated module is some kilobytes; anything far larger is not ours).
+ENTRY_LIMIT = 64 << 20
+
+#: The sub-folder of the cache folder where :mod:`symlink.numeric.compiled` keeps its libraries.
+COMPILED_FOLDER = "compiled"
+_HEX64 = "[0-9a-f]{64}"
+#: The names symlink writes, and nothing else: what :func:`clear_cache` removes and :func:`cache_contents` counts.
+#: In the cache folder: entries and the temporary files of their atomic writes (``.<name>.<12 hex>.tmp``).
+_OWN_NAMES = re.compile(rf"(?:{_HEX64}\.json|\.{_HEX64}\.json\.[0-9a-f]{{12}}\.tmp)\Z")
+#: In ``compiled/``: libraries, their digests, the temporary files of the digests' writes, the private copies
+#: made to load a library and the folders libraries are built in (:func:`tempfile.mkdtemp` names).
+_OWN_COMPILED_NAMES = re.compile(rf"(?:{_HEX64}\.(?:so|sha256)|\.{_HEX64}\.sha256\.[0-9a-f]{{12}}\.tmp"
+                                 rf"|\.load-[0-9a-f]{{16}}\.so|\.build-[a-z0-9_]{{8}})\Z")
+
+_TEXTS: dict[str, str] = {}
+_LOADED: dict[str, "GeneratedCode"] = {}
+_FOLDERS: dict[str, Path | None] = {}  # folder -> itself when trusted and usable, else None (decided once)
+_WARNED: set[str] = set()
+
+
+class CacheWarning(RuntimeWarning):
+    """Something in the disk cache was not used (not private to this user, or unreadable); it was rebuilt."""
+
+
+def warn_once(message: str, category: type[Warning] = CacheWarning) -> None:
+    """Warn with ``message`` the first time this process meets it (``clear_memory`` forgets)."""
+    if message not in _WARNED:
+        _WARNED.add(message)
+        warnings.warn(message, category, stacklevel=3)
+
+
+def cache_directory() -> Path | None:
+    """Where entries live: ``$SYMLINK_CACHE``, else ``$XDG_CACHE_HOME/symlink``, else ``~/.cache/symlink``.
+
+    ``None`` when ``SYMLINK_CACHE`` is set empty (no disk cache).  A relative
+    ``XDG_CACHE_HOME`` is ignored, as the XDG specification says.
+    """
+    configured = os.environ.get(ENVIRONMENT_VARIABLE)
+    if configured is not None:
+        return Path(configured).expanduser() if configured.strip() else None
+    xdg = os.environ.get("XDG_CACHE_HOME", "")
+    if xdg and Path(xdg).is_absolute():
+        return Path(xdg) / "symlink"
+    return Path.home() / ".cache" / "symlink"
+
+
+def trusted_directory(folder: Path | None = None) -> Path | None:
+    """``folder`` (default :func:`cache_directory`) if it is usable: private to this user, created 0700.
+
+    ``None`` when the disk cache is off, when the folder cannot be created
+    (silently), or when another user owns it or group or others can write it
+    (with a :class:`CacheWarning`: nothing is loaded from it or written to it).
+    Decided once a process; the first time, leftovers of killed runs in it
+    are removed.
+    """
+    folder = cache_directory() if folder is None else folder
+    if folder is None:
+        return None
+    name = str(folder)
+    try:
+        return _FOLDERS[name]
+    except KeyError:  # not decided yet in this process
+        pass
+    decided: Path | None
+    try:
+        decided = private_folder(folder)
+        remove_leftovers(folder, (".build-", ".load-"), LEFTOVER_AGE)
+    except NotPrivate as why:
+        warn_once(f"symlink: not using the cache folder: {why}; only you may be able to write it "
+                  f"(chmod go-w, or set {ENVIRONMENT_VARIABLE} to a folder of your own)")
+        decided = None
+    except OSError:
+        decided = None  # read-only, or a file in the way: the memory cache still works
+    _FOLDERS[name] = decided
+    return decided  # not read back: another thread may clear the memory (tests) meanwhile
+
+
+def _terms(vectors) -> list:
+    import sympy as sp
+    return [[sign, sp.srepr(v.length), sp.srepr(v.angle), v.name] for sign, v in vectors.terms]
+
+
+def definition(linkage: Linkage) -> str:
+    """A canonical text of everything that the derived code of ``linkage`` depends on.
+
+    >>> from symlink.mechanism.catalog import fourbar
+    >>> definition(fourbar()) == definition(fourbar())
+    True
+    """
+    import sympy as sp
+    symbols = lambda items: [sp.srepr(s) for s in items]  # noqa: E731
+    described = {
+        "name": linkage.name,
+        "loops": [[loop.name, _terms(loop.vectors)] for loop in linkage.loops],
+        "inputs": symbols(linkage.inputs),
+        "unknowns": symbols(linkage.unknowns),
+        "parameters": symbols(linkage.parameters),
+        "points": [[name, None if v is None else _terms(v.as_sum())] for name, v in linkage.points.items()],
+        "roles": [[role, sp.srepr(q)] for role, q in linkage.roles.items()],
+        "extras": _described_extras(linkage),
+    }
+    return json.dumps(described, separators=(",", ":"))
+
+
+def _described_extras(linkage: Linkage) -> list:
+    """The extras of ``linkage`` for its definition: each one's expression, or what the linkage says they are
+    made from where it can say so without deriving them (a dynamic linkage: its model as given)."""
+    import sympy as sp
+    described = getattr(linkage, "described_extras", None)
+    found = described() if callable(described) else None
+    return [[name, sp.srepr(e)] for name, e in linkage.extras.items()] if found is None else found
+
+
+def code_shaping_files(modules: Sequence[str] = CODE_SHAPING) -> list[Path]:
+    """The files of the :data:`CODE_SHAPING` modules (or of ``modules``), in a fixed order.
+
+    >>> names = {path.stem for path in code_shaping_files()}
+    >>> "position" in names, "plot" in names
+    (True, False)
+    """
+    package = Path(__file__).parent.parent
+    files = []
+    for name in modules:
+        module, folder = package / f"{name}.py", package / name
+        if module.is_file():
+            files.append(module)
+        if folder.is_dir():
+            files.extend(sorted(folder.rglob("*.py")))
+    return files
+
+
+def _module_bytes(path: Path) -> bytes:
+    return path.read_bytes()
+
+
+@lru_cache(maxsize=2)
+def _source_digest(modules: Sequence[str] = CODE_SHAPING) -> str:
+    """SHA-256 of the modules that shape generated code: a change to any of them is a new key."""
+    digest = hashlib.sha256()
+    package = Path(__file__).parent.parent
+    for path in code_shaping_files(modules):
+        digest.update(path.relative_to(package).as_posix().encode() + b"\0" + _module_bytes(path) + b"\0")
+    return digest.hexdigest()
+
+
+def cache_key(linkage: Linkage, outputs: Sequence[str], kind: str = "numpy") -> str:
+    """The key of the ``kind`` code of ``outputs`` of ``linkage``: 64 hex digits."""
+    import sympy as sp
+    described = json.dumps({
+        "format": FORMAT, "kind": kind, "outputs": list(outputs), "linkage": definition(linkage),
+        "symlink": __version__, "sympy": sp.__version__, "source": _source_digest(),
+    }, separators=(",", ":"))
+    return hashlib.sha256(described.encode()).hexdigest()
+
+
+@lru_cache(maxsize=1)
+def sympy_version() -> str:
+    """The installed SymPy's version, read from its ``release.py`` without importing SymPy (which takes 0.5 s).
+
+    Where that file cannot be read, its location and modification time stand in: still a new key whenever
+    SymPy is replaced.
+
+    >>> import sympy
+    >>> sympy_version() == sympy.__version__
+    True
+    """
+    spec = importlib.util.find_spec("sympy")
+    if spec is None or spec.origin is None:
+        return "none"
+    release = Path(spec.origin).parent / "release.py"
+    try:
+        found = re.search(r"""^__version__\s*=\s*["']([^"']+)["']""", release.read_text(encoding="utf-8"), re.MULTILINE)
+        if found:
+            return found.group(1)
+        return f"{release}@{release.stat().st_mtime_ns}"
+    except (OSError, UnicodeDecodeError):
+        return f"{spec.origin}@unreadable"
+
+
+def catalog_key(name: str, outputs: Sequence[str], kind: str) -> str:
+    """The key of the ``kind`` entry of ``outputs`` of the catalog linkage ``name``, without building it.
+
+    A catalog linkage takes no arguments: it is a function of the catalog's code, the modules that code
+    uses (:data:`CATALOG_SHAPING`, hashed) and SymPy's version, so those stand in for its definition.
+    Computed in about a millisecond, with no SymPy import.
+
+    >>> key = catalog_key("fourbar", ["rocker"], "scene")
+    >>> len(key), key == catalog_key("fourbar", ["coupler"], "scene")
+    (64, False)
+    """
+    described = json.dumps({
+        "format": FORMAT, "kind": kind, "outputs": list(outputs), "catalog": name,
+        "symlink": __version__, "sympy": sympy_version(), "source": _source_digest(CATALOG_SHAPING),
+    }, separators=(",", ":"))
+    return hashlib.sha256(described.encode()).hexdigest()
+
+
+def _checksum(key: str, text: str) -> str:
+    return hashlib.sha256(key.encode() + b"\0" + text.encode()).hexdigest()
+
+
+def _read(path: Path, key: str) -> str | None:
+    """The entry's text if it is private to this user, whole and belongs to ``key``; ``None`` otherwise.
+
+    A missing entry is ``None`` silently; anything else that is not used says
+    why in one :class:`CacheWarning`.
+    """
+    try:
+        entry = json.loads(read_private(path, ENTRY_LIMIT).decode("utf-8"))
+        if not isinstance(entry, dict):
+            raise ValueError("not a JSON object")
+        text = entry["text"]
+        if entry["format"] != FORMAT or entry["key"] != key or not isinstance(text, str):
+            raise ValueError("written for another key or format")
+        if entry["sha256"] != _checksum(key, text):
+            raise ValueError("its checksum does not match")
+        return text
+    except FileNotFoundError:
+        return None
+    except NotPrivate as why:
+        warn_once(f"symlink: not loading a cache entry: {why}; rebuilt")
+    except RecursionError:
+        warn_once(f"symlink: cache entry {path} is nested too deeply to be ours; rebuilt")
+    except (OSError, ValueError, KeyError, TypeError, MemoryError) as why:
+        warn_once(f"symlink: cache entry {path} is unreadable ({why}); rebuilt")
+    return None
+
+
+def cached_text(key: str, build: Callable[[], str]) -> str:
+    """The text stored under ``key``: from memory, else from a verified disk entry, else ``build()``.
+
+    A built text is kept in memory and written to disk; an entry that fails
+    verification is rebuilt and overwritten.
+    """
+    if key in _TEXTS:
+        return _TEXTS[key]
+    folder = trusted_directory()
+    path = None if folder is None else folder / f"{key}.json"
+    text = None if path is None else _read(path, key)
+    if text is None:
+        text = build()
+        if path is not None:
+            entry = {"format": FORMAT, "key": key, "sha256": _checksum(key, text), "text": text}
+            try:
+                write_atomic(path, json.dumps(entry, indent=0) + "\n", mode=0o600)
+            except OSError:
+                pass  # a full disk, a read-only folder, a folder in the way: keep the text in memory only
+    _TEXTS[key] = text
+    return text
+
+
+def clear_memory() -> None:
+    """Forget what is cached in memory (the disk cache stays): the state of a new process."""
+    _TEXTS.clear()
+    _LOADED.clear()
+    _FOLDERS.clear()
+    _WARNED.clear()
+
+
+@dataclass(frozen=True)
+class CacheContents:
+    """What symlink keeps in a cache ``folder``: ``entries`` (files and build folders) of ``size`` bytes in all.
+
+    ``trusted`` is False (and ``problem`` says why) when another user owns the
+    folder or group or others can write it: symlink neither loads from it nor
+    clears it.  ``others`` counts the names in it that symlink did not write
+    (left alone).  A folder that does not exist is trusted and empty.
+    """
+
+    folder: Path
+    exists: bool
+    trusted: bool
+    problem: str
+    entries: int
+    size: int
+    others: int
+
+
+def _is_own(path: Path, names: re.Pattern[str]) -> bool:
+    """True when ``path`` has one of ``names`` and the kind symlink writes there: a regular file, or a folder
+    for a build folder (``.build-*``); never a symbolic link."""
+    if not names.match(path.name):
+        return False
+    kind = stat.S_IFMT(os.lstat(path).st_mode)
+    return kind == (stat.S_IFDIR if path.name.startswith(".build-") else stat.S_IFREG)
+
+
+def _own_paths(folder: Path) -> tuple[list[Path], int]:
+    """The paths symlink wrote in ``folder`` and its ``compiled/`` (that one only if private), and how many
+    other names there are.  Nothing is followed through a symbolic link."""
+    own: list[Path] = []
+    others = 0
+    for name in sorted(os.listdir(folder)):
+        path = folder / name
+        if name == COMPILED_FOLDER and stat.S_ISDIR(os.lstat(path).st_mode) and not _trust(path):
+            inside = [path / item for item in sorted(os.listdir(path))]
+            ours = [item for item in inside if _is_own(item, _OWN_COMPILED_NAMES)]
+            own.extend(ours)
+            others += len(inside) - len(ours)
+        elif _is_own(path, _OWN_NAMES):
+            own.append(path)
+        else:
+            others += 1  # anything else, a compiled/ that is a link or not private among them: left alone
+    return own, others
+
+
+def _size(path: Path) -> int:
+    """Bytes of a regular file, or of the regular files in a folder (no symbolic link followed)."""
+    status = os.lstat(path)
+    if stat.S_ISREG(status.st_mode):
+        return status.st_size
+    if not stat.S_ISDIR(status.st_mode):
+        return 0
+    total = 0
+    for root, _, names in os.walk(path):
+        for name in names:
+            inner = os.lstat(os.path.join(root, name))
+            total += inner.st_size if stat.S_ISREG(inner.st_mode) else 0
+    return total
+
+
+def _trust(folder: Path) -> str:
+    """Why ``folder`` is not to be trusted ('' when it is private to this user); never creates it."""
+    try:
+        private_folder(folder)
+    except OSError as why:  # NotPrivate, or not a folder
+        return str(why)
+    return ""
+
+
+def cache_contents(folder: str | os.PathLike) -> CacheContents:
+    """What symlink keeps in the cache ``folder`` (e.g. :func:`cache_directory`), without changing anything.
+
+    >>> import tempfile
+    >>> contents = cache_contents(Path(tempfile.mkdtemp()) / "none")
+    >>> contents.exists, contents.trusted, contents.entries
+    (False, True, 0)
+    """
+    folder = Path(folder)
+    if not os.path.lexists(folder):
+        return CacheContents(folder, False, True, "", 0, 0, 0)
+    problem = _trust(folder)
+    if problem:
+        return CacheContents(folder, True, False, problem, 0, 0, 0)
+    own, others = _own_paths(folder)
+    size = 0
+    for path in own:
+        try:
+            size += _size(path)
+        except OSError:  # removed meanwhile by another process
+            pass
+    return CacheContents(folder, True, True, "", len(own), size, others)
+
+
+def clear_cache(folder: str | os.PathLike) -> CacheContents:
+    """Remove what symlink wrote in the cache ``folder``; returns what was removed (``entries``, ``size``).
+
+    Only symlink's own names are removed (derived modules, compiled libraries
+    and their digests, temporary files and build folders); anything else in
+    the folder stays, and so does the folder.  ``ValueError`` for a folder
+    that another user owns or that group or others can write: symlink does
+    not touch it.  The memory cache of this process is cleared too.
+
+    >>> import tempfile
+    >>> folder = Path(tempfile.mkdtemp())
+    >>> _ = (folder / "notes.txt").write_text("mine"), (folder / f"{'0' * 64}.json").write_text("{}")
+    >>> removed = clear_cache(folder)
+    >>> removed.entries, removed.size, sorted(path.name for path in folder.iterdir())
+    (1, 2, ['notes.txt'])
+    """
+    contents = cache_contents(folder)
+    if not contents.trusted:
+        raise ValueError(f"not clearing the cache folder: {contents.problem}; only you may be able to write it")
+    if not contents.exists:
+        return contents
+    own, others = _own_paths(contents.folder)
+    removed = size = 0
+    for path in own:
+        try:
+            bytes_ = _size(path)
+            if stat.S_ISDIR(os.lstat(path).st_mode):
+                shutil.rmtree(path)
+            else:
+                os.unlink(path)
+        except FileNotFoundError:  # removed meanwhile by another process
+            continue
+        removed, size = removed + 1, size + bytes_
+    compiled = contents.folder / COMPILED_FOLDER
+    try:
+        if stat.S_ISDIR(os.lstat(compiled).st_mode):
+            os.rmdir(compiled)  # only if empty: symlink made it
+    except OSError:
+        pass
+    clear_memory()
+    return CacheContents(contents.folder, True, True, "", removed, size, others)
+
+
+@dataclass(frozen=True)
+class GeneratedCode:
+    """A loaded solver module for some outputs: its ``key``, ``source`` and function."""
+
+    key: str
+    source: str
+    function: Callable[..., dict]
+
+    @property
+    def arguments(self) -> list[str]:
+        """The function's argument names, in calling order (not the keyword-only ``check``)."""
+        return [name for name, parameter in inspect.signature(self.function).parameters.items()
+                if parameter.kind is not parameter.KEYWORD_ONLY]
+
+
+def generated_code(linkage: Linkage, outputs: Sequence[str]) -> GeneratedCode:
+    """The NumPy solver of ``outputs``, derived (only what they need) on the first request only.
+
+    The key is made from what the request names (the linkage's definition and the output names),
+    so a request whose code is cached does no symbolic work: not even checking its names, which for a
+    sensitivity derives it (an entry exists only for names that were checked when it was derived).
+    Unknown output names raise ``ValueError`` before anything is derived or cached.
+    """
+    from ..codegen.numpy import load_numpy_module, numpy_module
+    outputs = list(outputs)
+    if not outputs:
+        raise ValueError(f"ask {linkage.name} for at least one output; it has {', '.join(linkage.output_names())}")
+    key = cache_key(linkage, outputs)
+    if key not in _LOADED:
+        def derive() -> str:
+            for name in outputs:
+                linkage.output(name)  # ValueError naming the outputs there are, before any work
+            doc = f"{linkage.name}: {', '.join(outputs)}."
+            return numpy_module([(FUNCTION, linkage.program(outputs), doc)])
+        source = cached_text(key, derive)
+        _LOADED[key] = GeneratedCode(key, source, load_numpy_module(source)[FUNCTION])
+    return _LOADED[key]

@@ -1,0 +1,149 @@
+"""A catalog linkage's solver from the disk cache alone: a warm process never imports SymPy.
+
+Deriving a linkage needs SymPy, whose import alone takes half a second; a
+catalog linkage whose code is already cached needs none of it.  The first
+request for some outputs of a catalog linkage derives them as
+:class:`~symlink.numeric.solver.Solver` does and stores, beside the generated module,
+what a call needs: the argument names, which of them are lengths and branch
+signs, each output's unit and the memory a value takes.  That entry's key
+(:func:`symlink.numeric.cache.catalog_key`) is computed from the catalog name, the
+outputs and the digest of the code that builds and prints the linkage, so a
+later process finds it without building the linkage, and runs the generated
+module (NumPy only).
+
+:class:`CachedSolver` checks and returns what :class:`~symlink.numeric.solver.Solver`
+does (the generated function checks its arguments, as ``Solver`` does with
+the same check); pint quantities are handed to a ``Solver``, built then.
+
+>>> solver = CachedSolver("fourbar", ["rocker"])
+>>> round(float(numpy.degrees(solver(theta=0.0, a=20, b=66, c=56, d=80, branch=1)["rocker"])), 2)
+110.74
+>>> solver.check_lengths(crank=20.0, rocker=-1.0)
+Traceback (most recent call last):
+ValueError: rocker must be a positive finite length, got -1.0
+"""
+from __future__ import annotations
+
+import math
+import numbers
+from functools import cached_property
+from typing import Any, Callable, Sequence
+
+import numpy
+
+from .cache import cached_text, catalog_key
+from .call_arguments import check_argument_names
+from ..codegen.loading import load_numpy_module
+from ..common.limits import require_memory
+from .results import Results
+
+__all__ = ["CachedSolver", "ENTRY_KIND", "DESCRIPTION", "entry_text"]
+
+#: The kind of cache entry (:func:`symlink.numeric.cache.catalog_key`) that holds a catalog solver (``/2``: its
+#: description has the arguments' units).
+ENTRY_KIND = "catalog-solver/2"
+#: The name of the function in the generated module, and of its argument check.
+FUNCTION, CHECK = "solve", "_arguments"
+#: The name of the dictionary that the entry adds to the module: arguments, lengths, branches, units, memory.
+DESCRIPTION = "SOLVER_DESCRIPTION"
+
+
+def _derived_entry(name: str, outputs: Sequence[str]) -> str:
+    """The cache entry of ``outputs`` of the catalog linkage ``name``: symbolic work (SymPy), done once.
+
+    The generated module, followed by a dictionary of what a call needs (:data:`DESCRIPTION`).
+    """
+    from ..mechanism.catalog import CATALOG
+    if name not in CATALOG:
+        raise ValueError(f"no linkage {name!r} in the catalog; it has {', '.join(sorted(CATALOG))}")
+    return entry_text(CATALOG[name](), outputs)
+
+
+def entry_text(linkage: Any, outputs: Sequence[str], **more: Any) -> str:
+    """A cache entry of ``outputs`` of ``linkage``: its generated NumPy module and what a call needs.
+
+    ``more`` adds further facts to the description (plain Python values), for the entry's user.
+    """
+    from .solver import Solver
+    solver = Solver(linkage, outputs, backend="numpy")
+    described = {
+        "arguments": solver.arguments, "branches": solver.branches,
+        "lengths": [s.name for s in linkage.parameters if s.is_positive], "units": solver.units,
+        "input_units": solver.input_units, "required": solver.required,
+        "bytes_per_value": solver.bytes_per_value, **more,
+    }
+    return (f"{solver.source.rstrip()}\n\n\n#: What a call needs, for symlink.numeric.cached_solver (names, units, memory).\n"
+            f"{DESCRIPTION} = {described!r}\n")
+
+
+def _plain(value: object) -> bool:
+    """A number, an array or a list of numbers: what the generated code takes as it is (not a pint quantity)."""
+    return isinstance(value, (numbers.Number, numpy.ndarray, numpy.generic, list, tuple))
+
+
+class CachedSolver:
+    """The solver of ``outputs`` of the catalog linkage ``name``, run from its cache entry (see the module).
+
+    The entry is derived the first time (SymPy); ``ValueError`` for a name that is not in the catalog, or an
+    output the linkage does not have.
+    """
+
+    def __init__(self, name: str, outputs: Sequence[str], *, key: str | None = None,
+                 derive: Callable[[], str] | None = None, full: Callable[[], Any] | None = None) -> None:
+        """``key``, ``derive`` and ``full``: an entry of another request than a catalog linkage's (a scene's
+        dynamics, keyed by what it names): its cache key, how to derive it (:func:`entry_text`) and the
+        :class:`~symlink.numeric.solver.Solver` that takes quantities."""
+        self.name = name
+        self.outputs = list(outputs)
+        self._full = full
+        if key is None or derive is None:
+            key, derive = catalog_key(name, self.outputs, ENTRY_KIND), lambda: _derived_entry(name, self.outputs)
+        self.source = cached_text(key, derive)
+        namespace = load_numpy_module(self.source)  # from a verified entry of a private cache (never user text)
+        entry = namespace[DESCRIPTION]
+        self.description: dict[str, Any] = entry
+        self.arguments: list[str] = entry["arguments"]
+        self.branches: list[str] = entry["branches"]
+        self.lengths: list[str] = entry["lengths"]
+        self.units: dict[str, str] = entry["units"]
+        self.input_units: dict[str, str] = entry["input_units"]
+        self.required: list[str] = entry["required"]
+        self.bytes_per_value: int = entry["bytes_per_value"]
+        self.function: Callable[..., dict] = namespace[FUNCTION]
+        self._check: Callable[..., Any] = namespace[CHECK]
+
+    def check_lengths(self, **lengths: float) -> None:
+        """``ValueError`` naming the first length that is not a positive finite number (the generated check)."""
+        self._check(True, tuple(lengths), tuple(lengths.values()), tuple(lengths))
+
+    @cached_property
+    def full(self) -> Any:
+        """The :class:`~symlink.numeric.solver.Solver` of the same outputs (builds the linkage: SymPy), for quantities."""
+        if self._full is not None:
+            return self._full()
+        from ..mechanism.catalog import CATALOG
+        from .solver import Solver
+        return Solver(CATALOG[self.name](), self.outputs)
+
+    def __call__(self, **values) -> Results:
+        """The outputs at ``values``, checked and returned as :class:`~symlink.numeric.solver.Solver` does it.
+
+        >>> CachedSolver("fourbar", ["rocker"])(theta=0.0, a=20, b=66, d=80)
+        Traceback (most recent call last):
+        ValueError: fourbar needs c (missing); it takes theta, a, b, c, d, branch
+        """
+        check_argument_names(self.name, self.arguments, self.required, values)
+        if not all(_plain(value) for value in values.values()):
+            return self.full(**values)
+        try:
+            count = math.prod(numpy.broadcast_shapes(*(numpy.shape(value) for value in values.values())))
+        except ValueError:
+            count = 0  # the argument check says which shapes do not broadcast
+        if count:
+            require_memory(count, self.bytes_per_value, f"solving {count:.3g} input values with the {self.name} solver")
+        with numpy.errstate(invalid="ignore", divide="ignore"):
+            result = self.function(**values)
+        return Results(result, {name: self.units.get(name, "") for name in result}, values, self.input_units)
+
+    def __repr__(self) -> str:
+        return f"CachedSolver({self.name!r}, {self.outputs})"

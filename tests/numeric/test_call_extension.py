@@ -1,0 +1,264 @@
+"""The small-call extension (symlink.codegen.call_extension): the compiled path's keywords handled in C.
+
+Checked: results equal to the NumPy module's on random inputs and bit for bit equal to the Python fast
+path (the extension turned off); every call it refuses answered by the general path as before (errors,
+broadcasting, shape-() results, coercion); no reference leaked or lost over many calls, with arrays
+freed between them; correct results from two threads at once; and, without the extension, everything
+as before.
+"""
+from __future__ import annotations
+
+import sys
+import threading
+
+import numpy
+import pytest
+
+from export_checks import angles_of, assert_agree, random_arguments
+from symlink.numeric import compiled_library
+from symlink.codegen.call_extension import PLAN_FIELDS
+from symlink.numeric.compiled import CompiledSolver, CompilerUnavailable, find_compiler
+from symlink.numeric.results import Results
+from symlink.io.scene import catalog_linkage
+from symlink.numeric.solver import Solver
+
+OUTPUTS = ["coupler", "rocker", "coupler_speed", "rocker_speed", "coupler_accel", "rocker_accel", "transmission",
+           "C_x", "C_y", "singular"]
+LENGTHS = dict(a=20.0, b=66.0, c=56.0, d=80.0, branch=1.0, thetadot=10.5, thetaddot=2.0)
+
+
+@pytest.fixture(scope="module")
+def fourbar():
+    return catalog_linkage("fourbar")
+
+
+@pytest.fixture(scope="module")
+def solvers(fourbar):
+    """A compiled solver with the extension, and the NumPy solver, of OUTPUTS."""
+    try:
+        find_compiler()
+        compiled = CompiledSolver(fourbar, OUTPUTS)
+    except CompilerUnavailable as error:
+        pytest.skip(f"no working C compiler: {error}")
+    if compiled.function._plan is None:
+        pytest.skip("the small-call extension cannot be built here (no Python headers?)")
+    return compiled, Solver(fourbar, OUTPUTS, backend="numpy")
+
+
+def without_extension(fourbar) -> CompiledSolver:
+    """A compiled solver of OUTPUTS whose small calls take the Python fast path."""
+    solver = CompiledSolver(fourbar, OUTPUTS)
+    solver.function._plan = None
+    return solver
+
+
+def test_the_extension_agrees_with_numpy_and_bit_for_bit_with_the_python_path(solvers, fourbar):
+    compiled, plain = solvers
+    python_path = without_extension(fourbar)
+    linkage = fourbar
+    for seed, count in enumerate((1, 2, 10, 17, 300)):
+        values = random_arguments(linkage, compiled.arguments, count, seed)
+        theta = values.pop("theta")
+        numbers = {name: float(array[0]) for name, array in values.items()}  # lengths as numbers, angles an array
+        fast = compiled(theta=theta, **numbers)
+        assert type(fast) is Results and fast["rocker"].base is not None  # made in C, rows of a kept block
+        reference = plain(theta=theta, **numbers)
+        assert_agree(fast, reference, angles_of("fourbar", OUTPUTS), 1e-12, f"seed {seed}")
+        slow = python_path(theta=theta, **numbers)
+        for name in reference:
+            assert numpy.array_equal(fast[name], slow[name], equal_nan=True), (seed, name)
+            assert fast[name].dtype == reference[name].dtype and fast[name].shape == (count,)
+        assert fast.units == reference.units and fast.input_units == reference.input_units
+        assert fast.inputs.keys() == reference.inputs.keys()
+        # Arrays for every argument (one length) go through the extension too.
+        arrays = compiled(theta=theta, **values)
+        assert arrays["rocker"].base is not None
+        assert_agree(arrays, plain(theta=theta, **values), angles_of("fourbar", OUTPUTS), 1e-12, f"arrays {seed}")
+
+
+def test_a_results_own_units_and_inputs_are_copies(solvers):
+    compiled, _ = solvers
+    first = compiled(theta=numpy.linspace(0.0, 1.0, 10), **LENGTHS)
+    first.units["rocker"] = "changed"
+    first.inputs["a"] = -1.0
+    first.input_units.clear()
+    second = compiled(theta=numpy.linspace(0.0, 1.0, 10), **LENGTHS)
+    assert second.units["rocker"] == "rad" and second.inputs["a"] == 20.0 and second.input_units["theta"] == "rad"
+    assert second.varying_inputs() == ["theta"] and second.to_frame().shape == (10, 1 + len(second))
+
+
+def test_defaults_left_out_are_filled_in(solvers):
+    compiled, plain = solvers
+    theta = numpy.linspace(-1.0, 1.0, 10)
+    lengths = dict(a=20.0, b=66.0, c=56.0, d=80.0)  # branch, thetadot and thetaddot left to their defaults
+    small = compiled.function._extension.call(compiled.function._plan, dict(theta=theta, **lengths))
+    assert small is not None
+    expected = plain(theta=theta, **lengths)
+    assert_agree(small, {k: v for k, v in expected.items()}, angles_of("fourbar", OUTPUTS), 1e-12)
+
+
+class Name(str):
+    """A keyword name that is not exactly a str (its comparisons could run Python code)."""
+
+
+REFUSED = {  # keyword values the extension leaves to the general path
+    "a list": dict(theta=[0.0, 1.0]),
+    "numbers only": dict(theta=0.5),
+    "a bool": dict(theta=numpy.linspace(0.0, 1.0, 5), branch=True),
+    "an int too large for a double": dict(theta=numpy.linspace(0.0, 1.0, 5), a=10 ** 400),
+    "a 2-d array": dict(theta=numpy.linspace(0.0, 1.0, 6).reshape(2, 3)),
+    "a 0-d array": dict(theta=numpy.array(0.5)),
+    "a strided array": dict(theta=numpy.linspace(0.0, 1.0, 10)[::2]),
+    "an int array": dict(theta=numpy.arange(5)),
+    "a float32 array": dict(theta=numpy.linspace(0.0, 1.0, 5, dtype=numpy.float32)),
+    "a big-endian array": dict(theta=numpy.linspace(0.0, 1.0, 5).astype(">f8")),
+    "an empty array": dict(theta=numpy.empty(0)),
+    "arrays of two lengths": dict(theta=numpy.linspace(0.0, 1.0, 5), a=numpy.full(4, 20.0)),
+    "too many values": dict(theta=numpy.linspace(0.0, 1.0, compiled_library.SMALL_CALL + 1)),
+    "an unknown name": dict(theta=numpy.linspace(0.0, 1.0, 5), alpha=1.0),
+    "a missing name": dict(theta=numpy.linspace(0.0, 1.0, 5), a=None),
+    "a complex number": dict(theta=numpy.linspace(0.0, 1.0, 5), a=20.0 + 0j),
+    "a string": dict(theta=numpy.linspace(0.0, 1.0, 5), a="20"),
+    "a subclass of ndarray": dict(theta=numpy.ma.masked_array(numpy.linspace(0.0, 1.0, 5))),
+    "a name that is a str subclass": {Name("theta"): numpy.linspace(0.0, 1.0, 5)},
+    "a negative length": dict(theta=numpy.linspace(0.0, 1.0, 5), a=-20.0),  # refused by the packed C check
+}
+
+
+@pytest.mark.parametrize("case", sorted(REFUSED))
+def test_what_the_extension_refuses_the_general_path_answers_as_before(solvers, fourbar, case):
+    compiled, _ = solvers
+    python_path = without_extension(fourbar)
+    values = {**LENGTHS, **REFUSED[case]}
+    values = {name: value for name, value in values.items() if value is not None}
+    function = compiled.function
+    assert function._extension.call(function._plan, dict(values)) is None
+    assert function._extension.results(function._plan, dict(values), Results, {}, {}) is None
+    try:
+        expected = python_path(**values)
+    except ValueError as error:
+        with pytest.raises(ValueError) as raised:
+            compiled(**values)
+        assert str(raised.value) == str(error)
+        return
+    got = compiled(**values)
+    assert sorted(got) == sorted(expected)
+    for name in expected:
+        assert numpy.array_equal(got[name], expected[name], equal_nan=True), name
+        assert got[name].shape == expected[name].shape and got[name].dtype == expected[name].dtype
+
+
+def test_many_calls_leak_no_reference_and_survive_freed_arrays(solvers):
+    compiled, _ = solvers
+    theta = numpy.linspace(0.0, 1.0, 10)
+    a = 20.5
+    before = sys.getrefcount(theta), sys.getrefcount(a)
+    for _ in range(2000):
+        compiled(theta=theta, a=a, b=66.0, c=56.0, d=80.0, branch=1)
+    assert (sys.getrefcount(theta), sys.getrefcount(a)) == before
+    held = []
+    for k in range(2000):  # a new array each call, freed at once or kept a while (blocks busy, then freed)
+        result = compiled(theta=numpy.full(7, 0.001 * k), **LENGTHS)
+        if k % 97 == 0:
+            held.append((k, result))
+        if len(held) > 5:
+            held.pop(0)
+    assert len(compiled.function._entries) <= compiled_library.KEPT_OUTPUTS
+    for k, result in held:  # results held across later calls were never written again
+        expected = compiled.function(theta=numpy.full(7, 0.001 * k), **LENGTHS)
+        assert numpy.array_equal(result["rocker"], expected["rocker"])
+
+
+def test_a_call_while_another_is_inside_takes_the_general_path(solvers):
+    compiled, plain = solvers
+    busy = compiled.function._plan[PLAN_FIELDS.index("busy")]
+    theta = numpy.linspace(0.0, 1.0, 10)
+    busy[0] = 1  # as while another thread's call is making an output block
+    try:
+        assert compiled.function._extension.call(compiled.function._plan, dict(theta=theta, **LENGTHS)) is None
+        result = compiled(theta=theta, **LENGTHS)
+        assert result["rocker"].base is None  # the general path's own arrays
+    finally:
+        busy[0] = 0
+    assert_agree(result, plain(theta=theta, **LENGTHS), angles_of("fourbar", OUTPUTS), 1e-12)
+
+
+def test_two_threads_calling_at_once_get_their_own_results(solvers):
+    compiled, _ = solvers
+    inputs = [numpy.linspace(0.1 * k, 0.1 * k + 1.0, 10) for k in range(8)]
+    expected = [compiled.function(theta=theta.copy(), **LENGTHS) for theta in inputs]  # each call's own answer
+    failures: list[str] = []
+
+    def work(offset: int) -> None:
+        held: list = []  # results held a few calls: new output blocks made in Python, where threads switch
+        for step in range(3000):
+            k = (step + offset) % len(inputs)
+            result = compiled(theta=inputs[k].copy() if step % 2 else inputs[k], **LENGTHS)
+            held = (held + [(k, result)])[-4 if step % 3 else 0:]
+            for j, old in held:
+                if not numpy.array_equal(old["rocker"], expected[j]["rocker"]):
+                    failures.append(f"thread {offset} step {step}")
+                    return
+
+    previous = sys.getswitchinterval()
+    sys.setswitchinterval(1e-6)  # switch threads as often as possible
+    try:
+        threads = [threading.Thread(target=work, args=(offset,)) for offset in (0, 3)]
+        for thread in threads:
+            thread.start()
+        for thread in threads:
+            thread.join()
+    finally:
+        sys.setswitchinterval(previous)
+    assert not failures
+
+
+def test_without_the_extension_everything_works_as_before(fourbar, monkeypatch, solvers):
+    compiled, plain = solvers
+    monkeypatch.setattr(compiled_library, "_call_extension", [])
+    monkeypatch.setenv(compiled_library.NO_EXTENSION_VARIABLE, "1")
+    assert compiled_library.call_extension() is None
+    solver = CompiledSolver(fourbar, OUTPUTS)
+    assert solver.function._plan is None
+    theta = numpy.linspace(0.0, 1.0, 10)
+    result = solver(theta=theta, **LENGTHS)
+    assert result["rocker"].base is not None  # the Python fast path
+    with_extension = compiled(theta=theta, **LENGTHS)
+    for name in result:
+        assert numpy.array_equal(result[name], with_extension[name], equal_nan=True), name
+    with pytest.raises(ValueError, match="a must be a positive finite length"):
+        solver(theta=theta, **{**LENGTHS, "a": -1.0})
+
+
+def test_a_failed_build_falls_back_with_one_warning(monkeypatch):
+    monkeypatch.setattr(compiled_library, "_call_extension", [])
+
+    def broken(build: bool) -> None:
+        raise compiled_library.CompileError("rejected")
+
+    monkeypatch.setattr(compiled_library, "_load_call_extension", broken)
+    with pytest.warns(compiled_library.FallbackWarning, match="without the C extension"):
+        assert compiled_library.call_extension() is None
+    assert compiled_library._call_extension == [None]
+
+
+def test_quantities_take_the_general_path_with_their_units(solvers):
+    pint = pytest.importorskip("pint")
+    compiled, plain = solvers
+    millimetre = pint.UnitRegistry().millimetre
+    values = {**LENGTHS, "a": 20.0 * millimetre, "b": 66.0 * millimetre, "c": 56.0 * millimetre,
+              "d": 80.0 * millimetre}
+    theta = numpy.linspace(0.0, 1.0, 10)
+    got, expected = compiled(theta=theta, **values), plain(theta=theta, **values)
+    assert got.units == expected.units and got.input_units == expected.input_units
+    assert_agree(got, expected, angles_of("fourbar", OUTPUTS), 1e-12)
+
+
+def test_a_background_build_brings_the_extension_with_the_library(fourbar, monkeypatch, solvers):
+    """So that the thread adopting a finished build (backend="auto") finds the extension built, not builds it."""
+    monkeypatch.setattr(compiled_library, "_call_extension", [])
+    build = compiled_library.Build(compiled_library.c_solver_source(fourbar, ["rocker"]))
+    build.run()  # what the background builder runs
+    assert build.error is None and compiled_library._call_extension[0] is not None
+    entry = build.entry()
+    assert entry is not None and entry._plan is not None

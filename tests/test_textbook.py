@@ -137,10 +137,10 @@ def test_the_freudenstein_rows_are_seed_002s_constants():
     linkage = fourbar()
     a, b, c, d = linkage.parameters
     rows = dict(seed_form_rows(linkage, "freudenstein"))
-    constants = {str(k): v for k, v in rows.items() if str(k).startswith("K_{phi")}
-    assert sp.simplify(constants["K_{phi,1}"] - d / a) == 0
-    assert sp.simplify(constants["K_{phi,2}"] + d / c) == 0
-    assert sp.simplify(constants["K_{phi,3}"] - (a**2 - b**2 + c**2 + d**2) / (2 * a * c)) == 0
+    constants = {str(k): v for k, v in rows.items() if str(k).startswith("K_{\\phi")}
+    assert sp.simplify(constants["K_{\\phi,1}"] - d / a) == 0
+    assert sp.simplify(constants["K_{\\phi,2}"] + d / c) == 0
+    assert sp.simplify(constants["K_{\\phi,3}"] - (a**2 - b**2 + c**2 + d**2) / (2 * a * c)) == 0
 
 
 def test_forms_are_named_and_checked():

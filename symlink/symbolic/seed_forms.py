@@ -37,6 +37,7 @@ import sympy as sp
 
 from .loops import Loop, LoopCase, Unknown
 from .position import LoopSolution
+from .typeset import written_in_order
 
 
 class Linkage(Protocol):
@@ -60,8 +61,8 @@ __all__ = ["FORMS", "SEED_FORM_TITLES", "seed_form_rows", "half_angle_solution",
 FORMS = ("atan2", "complex", "freudenstein", "half-angle")
 
 #: What each form is called in a document's heading.
-SEED_FORM_TITLES = {"atan2": "atan2 form", "complex": "complex-number form (seed 000)",
-                    "freudenstein": "Freudenstein form (seed 002)", "half-angle": "half-angle form (seed 003)"}
+SEED_FORM_TITLES = {"atan2": "atan2 form", "complex": "complex-number form",
+                    "freudenstein": "Freudenstein form", "half-angle": "tangent half-angle form"}
 
 
 def _named(step: LoopSolution, prefix: str) -> sp.Symbol:
@@ -95,7 +96,7 @@ def half_angle_solution(step: LoopSolution) -> tuple[list[tuple[sp.Expr, sp.Expr
         big_a, big_b, big_c = (sp.Symbol(f"{letter}_{name}", real=True) for letter in "ABC")
         angle = unknown.vector.angle
         half = sp.tan(angle / 2)
-        root = sp.sqrt(big_b**2 - 4 * big_a * big_c)
+        root = sp.sqrt(written_in_order(sp.Add(big_b**2, -4 * big_a * big_c, evaluate=False)))  # B^2 - 4AC
         value = 2 * sp.atan2(-big_b + sign * branch * root, 2 * big_a) - unknown.offset
         rows += [(big_a, c - a), (big_b, 2 * b), (big_c, c + a),
                  (big_a * half**2 + big_b * half + big_c, sp.S.Zero), (unknown.symbol, value)]
@@ -132,7 +133,8 @@ def freudenstein_equation(step: LoopSolution, linkage: Linkage) -> list[tuple[sp
         # Freudenstein's order: the unknown's own cosines, then the others, then the constant.
         ordered = sorted(cosines.items(), key=lambda item: unknown.symbol not in item[0].free_symbols)
         for number, (difference, coefficient) in enumerate(ordered + [(None, relation)], start=1):
-            constant = sp.Symbol(f"K_{{{unknown.symbol.name},{number}}}", real=True)
+            # K_{\phi,1}: the unknown's own LaTeX (a Greek letter as Greek), as a textbook prints it
+            constant = sp.Symbol(f"K_{{{sp.latex(unknown.symbol)},{number}}}", real=True)
             rows.append((constant, sp.factor_terms(coefficient / scale)))
             left += constant * (sp.cos(difference) if difference is not None else 1)
         rows.append((left, sp.cos(key)))
@@ -149,10 +151,10 @@ def seed_form_rows(linkage: Linkage, form: str) -> list[tuple[sp.Expr, sp.Expr]]
     >>> rows = seed_form_rows(fourbar(), "freudenstein")
     >>> for lhs, rhs in rows[-4:]:
     ...     print(lhs, "=", rhs)
-    K_{phi,1} = d/a
-    K_{phi,2} = -d/c
-    K_{phi,3} = (a**2 - b**2 + c**2 + d**2)/(2*a*c)
-    K_{phi,1}*cos(phi) + K_{phi,2}*cos(theta) + K_{phi,3} = cos(phi - theta)
+    K_{\\phi,1} = d/a
+    K_{\\phi,2} = -d/c
+    K_{\\phi,3} = (a**2 - b**2 + c**2 + d**2)/(2*a*c)
+    K_{\\phi,1}*cos(phi) + K_{\\phi,2}*cos(theta) + K_{\\phi,3} = cos(phi - theta)
     """
     if form not in FORMS:
         raise ValueError(f"no form {form!r}; the forms are {', '.join(FORMS)}")

@@ -23,7 +23,7 @@ if TYPE_CHECKING:
     from ..io.linkage_file import LinkageFile
 
 __all__ = ["UsageError", "Parser", "finite", "angle", "MAX_MAGNITUDE",
-           "number_list", "pair", "assignments", "figure_path", "add_sweep_options",
+           "number_list", "distinct_number_list", "pair", "assignments", "figure_path", "add_sweep_options",
            "add_fourbar_lengths", "fourbar_lengths", "add_branch_option", "add_units_option", "add_format_option",
            "input_sweep", "branches", "command_help", "linkage_values", "fourbar_or_linkage",
            "require_held_inputs", "given_options"]
@@ -138,6 +138,24 @@ def whole(text: str) -> int:
 def number_list(text: str) -> list[float]:
     """Comma-separated finite numbers."""
     return [finite(item) for item in text.split(",") if item.strip()]
+
+
+def distinct_number_list(text: str) -> list[float]:
+    """Comma-separated finite numbers, each once: a list that repeats a value asks for the same row twice.
+
+    >>> distinct_number_list("0, 90")
+    [0.0, 90.0]
+    >>> distinct_number_list("10,10")
+    Traceback (most recent call last):
+    argparse.ArgumentTypeError: 10 appears more than once; list each value once
+    """
+    values = number_list(text)
+    seen: set[float] = set()
+    for value in values:
+        if value in seen:
+            raise argparse.ArgumentTypeError(f"{value:g} appears more than once; list each value once")
+        seen.add(value)
+    return values
 
 
 def pair(what: str) -> Callable[[str], tuple[float, float]]:
@@ -281,7 +299,7 @@ def add_sweep_options(parser: argparse.ArgumentParser, branch: bool = True) -> N
     parser.add_argument("--start", type=angle, help="first crank angle (default 0)")
     parser.add_argument("--stop", type=angle, help="last crank angle, exclusive (default 360 deg)")
     parser.add_argument("--step", type=finite, help="crank angle step (default 10 deg)")
-    parser.add_argument("--angles", type=number_list, metavar="LIST", help="comma-separated crank angles")
+    parser.add_argument("--angles", type=distinct_number_list, metavar="LIST", help="comma-separated crank angles")
     if branch:
         add_branch_option(parser)
     add_units_option(parser)

@@ -22,7 +22,7 @@ import numpy
 
 from ..common.angles import from_radians, to_radians, wrap
 from .options import (FOURBAR_LENGTHS, add_branch_option, add_format_option, add_units_option, assignments,
-                      command_help, figure_path, finite, fourbar_lengths, input_sweep, linkage_values, number_list,
+                      command_help, figure_path, finite, fourbar_lengths, input_sweep, linkage_values, distinct_number_list,
                       whole)
 from .dynamics import add_mass_options, fourbar_dynamics
 from .output import RowWriter, note
@@ -75,7 +75,7 @@ def _add_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("--start", type=finite, help="first input value (default 0)")
     command.add_argument("--stop", type=finite, help="last input value, exclusive (default 360 deg)")
     command.add_argument("--step", type=finite, help="input step (default 10 deg)")
-    command.add_argument("--angles", type=number_list, metavar="LIST", help="comma-separated input values")
+    command.add_argument("--angles", type=distinct_number_list, metavar="LIST", help="comma-separated input values")
     command.add_argument("--crank-speed", type=finite, default=0.0, metavar="W",
                          help="the input's speed, rad/s (default 0): for a rate or a force as --output")
     command.add_argument("--crank-accel", type=finite, default=0.0, metavar="AL",

@@ -118,6 +118,15 @@ class Equations:
         return display_latex(rows)
 
 
+
+def _output_name(output: object) -> str:
+    """An output as its name: a name as it is, a symbol (``beta``) by its name; anything else is refused."""
+    if isinstance(output, str):
+        return output
+    if isinstance(output, sp.Symbol):
+        return output.name
+    raise ValueError(f"an output is named by a string (such as 'rocker'), not by a {type(output).__name__}")
+
 class Linkage:
     """A planar linkage described by vector loops.
 
@@ -453,8 +462,14 @@ class Linkage:
         >>> from symlink.mechanism.catalog import fourbar
         >>> fourbar().with_singular(["rocker", "rocker_speed"]), fourbar().with_singular(["rocker"])
         (['rocker', 'rocker_speed', 'singular'], ['rocker'])
+
+        A request that repeats itself is collapsed (each output once, in the order first asked), and an
+        unknown's symbol stands for its name:
+
+        >>> fourbar().with_singular(["rocker", "rocker", fourbar().unknowns[0]])
+        ['rocker', 'beta']
         """
-        outputs = list(outputs)
+        outputs = list(dict.fromkeys(_output_name(output) for output in outputs))
         if "singular" in outputs or not any(self.divides_by_determinant(n) for n in outputs):
             return outputs
         return outputs + ["singular"] if self.has_closed_form else outputs

@@ -88,6 +88,11 @@ REFUSED = [
      "animate: --trace does nothing in the four-bar form"),
     ("a sweep of huge chunks", ["sweep", "fourbar", "{tmp}/s", "--vary", "a=1:2,b=1:2", "--grid", "1000", "--chunk",
                                 "1000000", *SWEEP], "would need about 35 GB of memory at once"),
+    ("a table that repeats an angle", ["table", "fourbar", "--angles", "10,20,10"],
+     "argument --angles: 10 appears more than once"),
+    ("the four-bar table repeating an angle", [*FOURBAR, "--angles", "0,0"], "0 appears more than once"),
+    ("a tolerance that repeats an angle", ["tolerance", "fourbar", "--tolerance", "0.1", "--angles", "5,5"],
+     "5 appears more than once"),
 ]
 
 
@@ -165,3 +170,20 @@ def test_hostile_text_is_cut_to_an_excerpt(argv, capsys):
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and len(err) < 1100 and "..." in err, err
+
+
+# --- a request that repeats itself is collapsed in Python, never computed twice ----------------------------------
+
+def test_a_solver_asked_for_an_output_twice_computes_it_once():
+    from symlink import Solver, fourbar
+    solver = Solver(fourbar(), ["rocker", "rocker_speed", "rocker"] * 1000)
+    assert solver.outputs == ["rocker", "rocker_speed", "singular"]
+    result = solver(theta=0.0, a=20, b=66, c=56, d=80, thetadot=10.5)
+    assert math.degrees(float(result["rocker"])) == pytest.approx(110.74, abs=0.005)  # seed 003's table
+
+
+@pytest.mark.parametrize("output, words", [(3.5, "not by a float"), (None, "not by a NoneType")])
+def test_an_output_that_is_no_name_is_refused_in_one_line(output, words):
+    from symlink import Solver, fourbar
+    with pytest.raises(ValueError, match=words):
+        Solver(fourbar(), [output])

@@ -386,8 +386,10 @@ def _two_angles(case: LoopCase, wx, wy, branch, named, unit, size):
     xp = (rp - rq) * (rp + rq) + w_squared
     xq = (rq - rp) * (rq + rp) + w_squared
     y = branch * named("Delta", named.clamped(heron, scale))
-    tp = sp.atan2(xp * wy + y * wx, xp * wx - y * wy)
-    tq = sp.atan2(sign_q * (xq * wy - y * wx), sign_q * (xq * wx + y * wy))
+    # Unevaluated: atan2 of symbolic polynomials never simplifies, and asking SymPy whether their signs are
+    # known costs assumption queries that grew with the linkage (most of a long chain's derivation).
+    tp = sp.atan2(xp * wy + y * wx, xp * wx - y * wy, evaluate=False)
+    tq = sp.atan2(sign_q * (xq * wy - y * wx), sign_q * (xq * wx + y * wy), evaluate=False)
     # P = (xp + i y) W / (2 w^2) and Q = (xq - i y) W / (2 w^2), so the cross
     # product P x Q = rp rq sign_q sin(tq - tp) is -y (xp + xq) / (4 w^2) = -y/2.
     if p.vector.length.is_positive and q.vector.length.is_positive:

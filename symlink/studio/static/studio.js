@@ -10,7 +10,7 @@
 
   var SVGNS = "http://www.w3.org/2000/svg";
   var STORE = "symlink-studio-design";
-  var GRID = 0.1;              // joints snap to this grid (drawing units)
+  var SNAP = 10;               // joints snap to a grid of 1/SNAP drawing units (k / 10 exactly, as typed)
   var SAMPLES = 360;           // samples of the input's range for the reach strip and traces
   var embedded = window.SYMLINK_EMBEDDED || null;
 
@@ -76,7 +76,7 @@
   // ---- the view: drawing units <-> SVG pixels (y up) --------------------------------------------
   function toScreen(x, y) { return [state.view.ox + x * state.view.scale, state.view.oy - y * state.view.scale]; }
   function toWorld(px, py) { return [(px - state.view.ox) / state.view.scale, (state.view.oy - py) / state.view.scale]; }
-  function snap(v) { return Math.round(v / GRID) * GRID; }
+  function snap(v) { return Math.round(v * SNAP) / SNAP; }
   function clientToSvg(event) {
     var box = svg.getBoundingClientRect();
     return [event.clientX - box.left, event.clientY - box.top];
@@ -210,8 +210,7 @@
   var timer = null;
   function schedule() {
     if (embedded) return;
-    if (timer) clearTimeout(timer);
-    state.pending += 1;
+    if (timer) clearTimeout(timer); else state.pending += 1;
     timer = setTimeout(function () { timer = null; state.pending -= 1; analyse(); }, 200);
   }
   function analyse() {

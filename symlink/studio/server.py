@@ -216,16 +216,23 @@ def serve(port: int | None = None, initial: Mapping[str, Any] | None = None, ope
           announce: Callable[[str], None] = print) -> None:
     """Run the studio until Ctrl-C: announce its URL (with the token) and open it in the browser."""
     import uvicorn
-    import webbrowser
     port = port or free_port()
     token = secrets.token_urlsafe(24)
     app = create_app(port, token, initial)
     config = uvicorn.Config(app, host="127.0.0.1", port=port, log_level="warning", access_log=False,
                             lifespan="off")
-    server = uvicorn.Server(config)
     url = f"http://127.0.0.1:{port}/?token={token}"
-    announce(f"symlink studio: {url}")
-    if open_browser:
-        import threading
-        threading.Timer(0.5, lambda: webbrowser.open(url)).start()
-    server.run()
+
+    class Server(uvicorn.Server):
+        """uvicorn's server, which says its URL (and opens the browser) once it listens."""
+
+        async def startup(self, sockets: Any = None) -> None:
+            await super().startup(sockets)
+            if self.started:
+                announce(f"symlink studio: {url}")
+                if open_browser:
+                    import threading
+                    import webbrowser
+                    threading.Thread(target=webbrowser.open, args=(url,), daemon=True).start()
+
+    Server(config).run()

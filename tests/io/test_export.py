@@ -1,4 +1,4 @@
-"""`symlink export NAME --to numpy|c|octave|latex --out DIR [--outputs LIST]`."""
+"""`symlink export NAME --to numpy|c|octave|javascript|latex --out DIR [--outputs LIST]`."""
 from __future__ import annotations
 
 import ctypes

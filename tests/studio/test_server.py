@@ -163,7 +163,7 @@ def _files(answer) -> dict[str, bytes]:
     return {name: answer.content}
 
 
-@pytest.mark.parametrize("fmt", ["numpy", "c", "latex"])
+@pytest.mark.parametrize("fmt", ["numpy", "c", "latex", "octave", "javascript"])
 def test_export_gives_the_bytes_the_command_line_writes(client, hoeken, tmp_path, fmt, capsys):
     answer = client.post(f"/api/export?format={fmt}", json=hoeken, headers=AUTH)
     assert answer.status_code == 200

@@ -240,19 +240,8 @@
 
   // ---- the generated solver ----------------------------------------------------------------------
   function evaluateUmd(source) {
-    // The solver is UMD text: run it with a CommonJS-like module object and take its export.
-    var module = { exports: {} };
-    var run = new Function("module", "exports", "define", "self", source);  // the server's generated code
-    var holder = {};
-    run(module, module.exports, undefined, holder);
-    var found = module.exports;
-    if (!found || typeof found.solve !== "function") {
-      var keys = Object.keys(holder);
-      for (var i = 0; i < keys.length; i++) if (holder[keys[i]] && typeof holder[keys[i]].solve === "function") found = holder[keys[i]];
-      if (found && typeof found.solve !== "function") {
-        for (var name in found) if (found[name] && typeof found[name].solve === "function") { found = found[name]; break; }
-      }
-    }
+    // The generated solver is one UMD expression: "return " + text gives the solver object itself.
+    var found = new Function("return " + source)();  // the server's generated code, not the user's text
     if (!found || typeof found.solve !== "function") throw new Error("the generated solver defines no solve()");
     return found;
   }
@@ -277,14 +266,16 @@
     return [d - span, d + span];
   }
   function solveAt(value) {
-    var values = Object.assign({}, state.solverInfo.defaults, state.branches);
+    // every argument the solver takes: its own defaults (rates 0), the drawing's values, the branch signs
+    var values = Object.assign({}, state.solver.defaults || {}, state.solverInfo.defaults, state.branches);
     values[inputName()] = value;
     var out = state.solver.solve(values, {});
     var pose = {}, ok = !!out.assembled;
-    state.solverInfo.joints.forEach(function (j) {
-      var x = out["x_" + j], y = out["y_" + j];
+    (state.solver.points || []).forEach(function (p) {
+      if (p.kind === "guide") return;
+      var x = out[p.x], y = out[p.y];
       if (!(isFinite(x) && isFinite(y))) ok = false;
-      pose[j] = [x, y];
+      pose[p.name] = [x, y];
     });
     return { pose: pose, assembled: ok };
   }

@@ -446,8 +446,7 @@ def _linkage_drawing(linkage: Any, values: Mapping[str, float]) -> dict[str, Any
                 guide, angle = blocks[body]
                 links.setdefault(guide, []).append(joint.name)
                 sliders.append({"joint": joint.name, "guide": guide, "angle": angle})
-                if guide == GROUND:
-                    joints[joint.name]["ground"] = True
+                joints[joint.name]["ground"] = False  # it slides: on the ground link, not fixed to it
             else:
                 links[body].append(joint.name)
     for body in mech.bodies:

@@ -352,22 +352,25 @@
       if (d) node("path", { d: d, "class": "trace" }, svg);
     });
     var design = state.design;
-    var grounded = design.joints.filter(function (j) { return j.ground; }).map(function (j) { return j.name; });
+    var sliding = design.sliders.map(function (s) { return s.joint; });
+    var grounded = design.joints.filter(function (j) { return j.ground && sliding.indexOf(j.name) < 0; })
+      .map(function (j) { return j.name; });
     if (grounded.length >= 2) drawLink(grounded, true);
     if (!hidden) design.links.forEach(function (l) { drawLink(l, false); });
     design.sliders.forEach(function (sl) {
       var at = position(sl.joint);
       if (!at || sl.guide !== "ground") return;
-      var c = Math.cos(sl.angle), sn = Math.sin(sl.angle), a = toScreen(at[0] - c, at[1] - sn), b = toScreen(at[0] + c, at[1] + sn);
-      var j = joint(sl.joint);
-      a = toScreen(j.x - 2 * c, j.y - 2 * sn); b = toScreen(j.x + 2 * c, j.y + 2 * sn);
+      // the slot: along the slider's line through its drawn position, as long as the drawing is wide
+      var c = Math.cos(sl.angle), sn = Math.sin(sl.angle), j = joint(sl.joint);
+      var reach = 2 * Math.max.apply(null, design.joints.map(function (k) { return Math.hypot(k.x - j.x, k.y - j.y); }).concat([1]));
+      var a = toScreen(j.x - reach * c, j.y - reach * sn), b = toScreen(j.x + reach * c, j.y + reach * sn);
       node("line", { x1: a[0], y1: a[1], x2: b[0], y2: b[1], "class": "slot" }, svg);
     });
     design.joints.forEach(function (j) {
       if (hidden && !j.ground) return;
       var at = position(j.name); if (!at) return;
       var sp = toScreen(at[0], at[1]);
-      var cls = "joint" + (j.ground ? " ground" : "") + (design.driver && design.driver.joint === j.name ? " driver" : "")
+      var cls = "joint" + (j.ground && sliding.indexOf(j.name) < 0 ? " ground" : "") + (sliding.indexOf(j.name) >= 0 ? " slider" : "") + (design.driver && design.driver.joint === j.name ? " driver" : "")
         + (state.selected.indexOf(j.name) >= 0 ? " selected" : "");
       var c = node("circle", { cx: sp[0], cy: sp[1], r: 7, "class": cls, "data-joint": j.name }, svg);
       c.addEventListener("mousedown", function (event) { startDrag(event, j.name); });

@@ -432,7 +432,7 @@ def _linkage_drawing(linkage: Any, values: Mapping[str, float]) -> dict[str, Any
             blocks[block] = (guide, float(poses.directions[joint.name][0]))
     joints: dict[str, dict[str, Any]] = {}
     links: dict[str, list[str]] = {b: [] for b in bodies if b not in blocks}
-    sliders = []
+    sliders: list[dict[str, Any]] = []
     for joint in mech.joints:
         if joint.kind != REVOLUTE:
             continue
@@ -441,14 +441,14 @@ def _linkage_drawing(linkage: Any, values: Mapping[str, float]) -> dict[str, Any
             raise ValueError(f"{linkage.name}: joint {joint.name} is not placed by the linkage's points")
         joints[joint.name] = {"name": joint.name, "x": place.real, "y": place.imag,
                               "ground": GROUND in joint.bodies}
-        for body in joint.bodies:
-            if body in blocks:
-                guide, angle = blocks[body]
+        for holder in joint.bodies:
+            if holder in blocks:
+                guide, angle = blocks[holder]
                 links.setdefault(guide, []).append(joint.name)
                 sliders.append({"joint": joint.name, "guide": guide, "angle": angle})
                 joints[joint.name]["ground"] = False  # it slides: on the ground link, not fixed to it
             else:
-                links[body].append(joint.name)
+                links[holder].append(joint.name)
     for body in mech.bodies:
         for point in body.points:
             if point not in joints and point in position and body.name in links:
@@ -463,7 +463,7 @@ def _linkage_drawing(linkage: Any, values: Mapping[str, float]) -> dict[str, Any
         str(v.angle) == linkage.inputs[0].name for loop in linkage.loops for _, v in loop.vectors.terms
         if v.name in b.vectors)), None)
     pivot = next((j for j in links.get(driven, []) if joints.get(j, {}).get("ground")), None) if driven else None
-    if pivot is None:
+    if pivot is None or driven is None:
         raise ValueError(f"{linkage.name}: its input {linkage.inputs[0].name} turns no link about a ground pivot; "
                          "the studio drives a crank")
     for slider in sliders:
@@ -515,12 +515,9 @@ def open_source(source: Any, kind: str = "auto") -> dict[str, Any]:
 def _file_drawing(text: str) -> dict[str, Any]:
     """A linkage file's text as a drawing: by its ``[links]`` and ``[joints]`` tables, else by its vectors."""
     from ..io.linkage_file import linkage_from_text
+    from ..io.linkage_file import toml_loads
     try:
-        import tomllib
-    except ImportError:  # Python 3.10
-        import tomli as tomllib  # type: ignore[no-redef]
-    try:
-        data = tomllib.loads(text)
+        data = toml_loads(text)
     except ValueError as error:
         raise ValueError(f"not a name, pylinkage JSON, a Pyslvs expression or a linkage file's TOML: {error}") from None
     found = linkage_from_text(text)  # the file's own checks, with line numbers

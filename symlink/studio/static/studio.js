@@ -198,6 +198,8 @@
       method: "POST", credentials: "same-origin",
       headers: { "Content-Type": "application/json", "X-Symlink-Token": token },
       body: JSON.stringify(body)
+    }).catch(function () {
+      throw new Error("the studio's server does not answer (was 'symlink studio' stopped?)");
     }).then(function (response) {
       return response.text().then(function (text) {
         var data;

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import io
 import json
+import math
 import zipfile
 
 import pytest
@@ -181,9 +182,22 @@ def test_export_of_a_linkage_file_reads_back_to_the_same_drawing(client, hoeken)
     assert drawing["links"] == hoeken["links"]
     assert {j["name"]: (j["x"], j["y"]) for j in drawing["joints"]} == {"A": (0, 0), "B": (0, 1), "C": (2, 2.5),
                                                                         "D": (2, 0), "P": (4, 4)}
-    pylinkage = client.post("/api/export?format=pylinkage", json=hoeken, headers=AUTH).json()
-    assert {j["id"]: j["type"] for j in pylinkage["joints"]} == {
+    pylinkage = client.post("/api/export?format=pylinkage", json=hoeken, headers=AUTH)
+    assert {j["id"]: j["type"] for j in pylinkage.json()["joints"]} == {
         "A": "ground", "B": "revolute", "C": "revolute", "D": "ground", "P": "tracker"}
+    reopened = client.post("/api/open", json={"source": pylinkage.text}, headers=AUTH).json()
+    assert sorted(map(sorted, reopened["links"])) == [["A", "B"], ["B", "C", "P"], ["C", "D"]]
+    assert {j["name"]: (j["x"], j["y"]) for j in reopened["joints"]} == {
+        "A": (0, 0), "B": (0, 1), "C": (2, 2.5), "D": (2, 0), "P": (4, 4)}
+
+
+def test_export_of_the_vector_linkage_file_reads_back_as_a_linkage(client, hoeken):
+    from symlink import linkage_from_text
+    text = client.post("/api/export?format=linkage", json=hoeken, headers=AUTH).text
+    found = linkage_from_text(text)
+    assert [q.name for q in found.linkage.inputs] == ["theta_AB"]
+    assert [q.name for q in found.linkage.unknowns] == ["theta_BC", "theta_DC"]
+    assert found.defaults["BP"] == pytest.approx(5.0) and found.defaults["theta_AB"] == pytest.approx(math.pi / 2)
 
 
 def test_an_unknown_export_format_is_a_message(client, hoeken):

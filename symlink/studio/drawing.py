@@ -235,6 +235,20 @@ def _check(found: Description) -> tuple[Chain, dict[str, int]]:
                          mobility)
 
 
+def _loose(chain: Chain, mobility: Mapping[str, int], drivers: int) -> str:
+    """Where an under-constrained drawing is free: the moving links on no loop (they swing on one joint)."""
+    if mobility["dof"] <= drivers:
+        return ""
+    looped = {t.link for cycle in chain.cycles() for t in cycle.traversals}
+    loose = [link for link in chain.links if link != chain.ground and link not in looped]
+    if not loose:
+        return "; every link is on a loop: drive another joint, or add a link that closes a loop"
+    named = [f"{link} ({'-'.join(chain.links[link])})" for link in loose]
+    if len(loose) == 1:
+        return f"; link {named[0]} is on no loop and swings freely: join it to another link"
+    return f"; links {', '.join(named)} are on no loop and swing freely: join them to other links"
+
+
 class _Cache:
     """The last few drawings' linkages and derivations, by their canonical text; one derivation at a time.
 
@@ -269,7 +283,7 @@ def drawn_linkage(found: Description) -> JointLinkage:
             return from_joints(found.links, found.coordinates, driver=found.drivers, joints=found.sliders or None,
                                name=found.name)
         except ValueError as error:
-            return StructureError(str(error), mobility)
+            return StructureError(str(error) + _loose(chain, mobility, len(found.drivers)), mobility)
     made = CACHE.get("linkage", found.key, make)
     if isinstance(made, StructureError):
         raise made

@@ -97,6 +97,15 @@ def test_a_five_bar_with_one_driver_says_it_is_under_constrained(client):
     assert "under-constrained" in found["error"] and "mobility 2" in found["error"]
 
 
+def test_a_link_that_hangs_by_one_joint_is_named(client, hoeken):
+    hoeken["joints"].append({"name": "F", "x": 5, "y": 3})
+    hoeken["links"].append(["P", "F"])
+    found = client.post("/api/structure", json=hoeken, headers=AUTH).json()
+    # 5 links, 5 pins: mobility 2 with one driver; the fourth link (P-F) is on no loop.
+    assert found["mobility"]["dof"] == 2
+    assert "link link4 (P-F) is on no loop" in found["error"]
+
+
 def test_a_drawing_without_a_driver_or_ground_says_what_to_do(client, hoeken):
     found = client.post("/api/structure", json={**hoeken, "driver": None}, headers=AUTH).json()
     assert "no driver" in found["error"] and found["mobility"]["dof"] == 1

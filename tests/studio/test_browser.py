@@ -272,3 +272,45 @@ def test_the_self_contained_page_animates_offline(server, page, tmp_path):
     assert page.evaluate("window.studio.positions()")["E"] != shown["E"]  # it moves
     if SCREENSHOTS:
         page.screenshot(path=str(IMAGES / "studio_offline.png"))
+
+
+def test_an_over_constrained_drawing_is_said_so_in_the_page(server, page):
+    page.goto(server)
+    page.evaluate("window.studio.started")
+    triangle = {"name": "triangle", "joints": [{"name": "A", "x": 0, "y": 0, "ground": True},
+                                               {"name": "B", "x": 1, "y": 1},
+                                               {"name": "C", "x": 2, "y": 0, "ground": True}],
+                "links": [["A", "B"], ["B", "C"]], "driver": {"joint": "A"}, "sliders": []}
+    page.evaluate("design => window.studio.setDesign(design)", triangle)
+    settle(page)
+    message = page.locator("#structure-message")
+    assert "over-constrained" in message.text_content()
+    assert "error" in message.get_attribute("class")
+    assert not page.evaluate("window.studio.solverReady()")
+    assert page.is_disabled("#play")
+
+
+@needs_solver
+def test_a_slider_crank_opened_by_name_moves_as_the_library_says(server, page):
+    page.goto(server)
+    page.evaluate("window.studio.started")
+    page.fill("#open-source", "slider-crank")
+    page.click("#tool-open")
+    page.wait_for_function("window.studio.design().name === 'slider-crank'")
+    settle(page, solver=True)
+    design = page.evaluate("window.studio.design()")
+    (slider,) = design["sliders"]
+    from symlink import Slider, from_joints
+    from symlink.numeric.poses import Geometry
+    ground = [j["name"] for j in design["joints"] if j["ground"]] + [slider["joint"]]
+    links = {"ground": ground, **{f"link{k + 1}": held for k, held in enumerate(design["links"])}}
+    drawn = from_joints(links, {j["name"]: (j["x"], j["y"]) for j in design["joints"]},
+                        driver=[(design["driver"]["joint"], f"link{design['driver']['link'] + 1}")],
+                        joints={slider["joint"]: Slider("ground", slider["angle"])}, name="slider-crank")
+    angles = numpy.radians([0.0, 45.0, 100.0, 200.0, 300.0])
+    expected = Geometry(drawn.linkage).poses(drawn.defaults, {drawn.linkage.inputs[0].name: angles})
+    for k, angle in enumerate(angles):
+        shown = page.evaluate(f"window.studio.setInput({float(angle)!r})")
+        for joint in (j["name"] for j in design["joints"]):
+            place = expected.positions[joint][k]
+            assert shown[joint] == pytest.approx([place.real, place.imag], abs=1e-12), (joint, angle)

@@ -36,7 +36,7 @@ from starlette.concurrency import run_in_threadpool
 
 from . import drawing
 
-__all__ = ["create_app", "free_port", "serve", "TOKEN_COOKIE", "TOKEN_HEADER", "STATIC", "MAX_BODY"]
+__all__ = ["create_app", "free_port", "PREFERRED_PORTS", "serve", "TOKEN_COOKIE", "TOKEN_HEADER", "STATIC", "MAX_BODY"]
 
 STATIC = Path(__file__).resolve().parent / "static"
 TOKEN_COOKIE = "symlink_studio_token"
@@ -50,8 +50,26 @@ _MEDIA = {".tex": "text/x-tex", ".py": "text/x-python", ".c": "text/x-c", ".h": 
           ".html": "text/html; charset=utf-8"}
 
 
-def free_port() -> int:
-    """A port on 127.0.0.1 that nothing listens on now."""
+#: The ports tried first, in order: the page's local storage belongs to its origin (host and port), so a
+#: studio started again on the same port finds the last drawing there.
+PREFERRED_PORTS = range(8765, 8775)
+
+
+def _bindable(port: int) -> bool:
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as probe:
+        try:
+            probe.bind(("127.0.0.1", port))
+        except OSError:
+            return False
+        return True
+
+
+def free_port(preferred: bool = False) -> int:
+    """A port on 127.0.0.1 that nothing listens on now: with ``preferred``, the first free one of
+    :data:`PREFERRED_PORTS` if any, else one the system picks."""
+    for port in PREFERRED_PORTS if preferred else ():
+        if _bindable(port):
+            return port
     with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as probe:
         probe.bind(("127.0.0.1", 0))
         return int(probe.getsockname()[1])
@@ -216,7 +234,7 @@ def serve(port: int | None = None, initial: Mapping[str, Any] | None = None, ope
           announce: Callable[[str], None] = print) -> None:
     """Run the studio until Ctrl-C: announce its URL (with the token) and open it in the browser."""
     import uvicorn
-    port = port or free_port()
+    port = port or free_port(preferred=True)
     token = secrets.token_urlsafe(24)
     app = create_app(port, token, initial)
     config = uvicorn.Config(app, host="127.0.0.1", port=port, log_level="warning", access_log=False,

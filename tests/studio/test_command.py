@@ -76,3 +76,19 @@ def test_html_writes_one_self_contained_page(tmp_path, capsys):
     assert page.startswith("<!DOCTYPE html>") and "window.SYMLINK_EMBEDDED" in page
     assert 'src="static/' not in page and 'href="static/' not in page
     assert f"wrote {out}" in capsys.readouterr().out
+
+
+def test_the_default_port_is_the_first_free_preferred_one():
+    """The page's local storage belongs to its port: a studio started again should find the same one."""
+    import socket
+    pytest.importorskip("starlette", reason="the studio's server needs the studio extra (starlette)")
+    from symlink.studio.server import PREFERRED_PORTS, free_port
+    first = free_port(preferred=True)
+    if first not in PREFERRED_PORTS:
+        pytest.skip("every preferred port is taken on this machine")
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as held:
+        held.bind(("127.0.0.1", first))
+        held.listen()
+        second = free_port(preferred=True)
+    assert second != first
+    assert second in PREFERRED_PORTS[PREFERRED_PORTS.index(first) + 1:] or second not in PREFERRED_PORTS

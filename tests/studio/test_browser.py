@@ -314,3 +314,20 @@ def test_a_slider_crank_opened_by_name_moves_as_the_library_says(server, page):
         for joint in (j["name"] for j in design["joints"]):
             place = expected.positions[joint][k]
             assert shown[joint] == pytest.approx([place.real, place.imag], abs=1e-12), (joint, angle)
+
+
+def test_dragging_a_joint_moves_it_on_the_grid_in_one_undo_step(server, page):
+    draw_hoeken(page, server)
+    start = page.evaluate("window.studio.toScreen(0, 1)")
+    end = page.evaluate("window.studio.toScreen(-0.5, 1.5)")
+    page.mouse.move(*start)
+    page.mouse.down()
+    page.mouse.move(*end, steps=5)
+    page.mouse.up()
+    moved = {j["name"]: (j["x"], j["y"]) for j in page.evaluate("window.studio.design()")["joints"]}
+    assert moved["B"] == (-0.5, 1.5) and moved["C"] == (2, 2.5)
+    settle(page)
+    assert "mobility 1" in page.text_content("#structure-message")
+    page.keyboard.press("Control+z")
+    back = {j["name"]: (j["x"], j["y"]) for j in page.evaluate("window.studio.design()")["joints"]}
+    assert back["B"] == (0, 1)

@@ -28,7 +28,7 @@ import re
 import threading
 from collections import OrderedDict
 from dataclasses import dataclass
-from typing import Any, Callable, Mapping, Sequence
+from typing import Any, Callable, Mapping
 
 from ..common.names import PLAIN_NAME, label
 from ..mechanism.joints import JointLinkage, Slider, from_joints
@@ -541,7 +541,3 @@ def _file_drawing(text: str) -> dict[str, Any]:
         return drawing_of(linkage_from_tables(data, lambda value: float(_expression(value, {}, units=True))))
     return _linkage_drawing(found.linkage, found.defaults)
 
-
-def drawing_json(drawing: Mapping[str, Any]) -> str:
-    """A drawing as compact JSON (what the page's URL hash and local storage hold)."""
-    return json.dumps(drawing, separators=(",", ":"))

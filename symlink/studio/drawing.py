@@ -35,10 +35,13 @@ from ..mechanism.joints import JointLinkage, Slider, from_joints
 from ..mechanism.topology import GROUND, Chain
 
 __all__ = ["Description", "description", "drawn_linkage", "structure", "derivation", "solver", "export_bytes",
-           "EXPORT_FORMATS", "open_source", "drawing_of", "MAX_JOINTS", "StructureError"]
+           "EXPORT_FORMATS", "open_source", "drawing_of", "MAX_JOINTS", "MAX_LINKS", "StructureError"]
 
 #: The most joints (and links) a drawing may have: a studio drawing is a sketch, not a data set.
 MAX_JOINTS = 200
+#: The most links a drawing may have: its loops are searched among the joint graph's simple cycles, whose
+#: number grows fast with the links (the atlas stops at eight; Jansen's leg has eight).
+MAX_LINKS = 24
 #: The name a drawing's linkage gets when it gives none.
 DEFAULT_NAME = "drawing"
 #: Largest coordinate accepted (a drawing's units are anything, but not astronomical).
@@ -133,7 +136,10 @@ def description(data: Any) -> Description:
             grounded.append(joint_name)
     links: dict[str, list[str]] = {}
     indexed: list[str | None] = []  # the name of link k, None where it is part of the ground
-    for k, held in enumerate(_list(data.get("links", []), "links")):
+    listed = _list(data.get("links", []), "links")
+    if len(listed) > MAX_LINKS:
+        raise ValueError(f"the drawing has {len(listed)} links; the studio takes at most {MAX_LINKS}")
+    for k, held in enumerate(listed):
         held = _list(held, f"links[{k}]")
         for joint in held:
             if _name(joint, f"links[{k}]: a joint") not in coordinates:

@@ -122,6 +122,8 @@ def test_a_drawing_without_a_driver_or_ground_says_what_to_do(client, hoeken):
     (json.dumps({"joints": [{"name": "A", "x": "1e3", "y": 0}], "links": []}).encode(), "number"),
     (json.dumps({"joints": [{"name": "A", "x": 0, "y": 0}], "links": [["A", "Z"]]}).encode(), "no joint"),
     (json.dumps({"joints": [], "links": [], "shell": 1}).encode(), "no entry"),
+    (json.dumps({"joints": [{"name": f"J{k}", "x": k, "y": 0} for k in range(30)],
+                 "links": [[f"J{k}", f"J{k + 1}"] for k in range(29)]}).encode(), "at most 24"),
 ])
 def test_bad_requests_get_a_clean_message(client, body, words):
     answer = client.post("/api/structure", content=body, headers={**AUTH, "Content-Type": "application/json"})

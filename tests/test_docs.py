@@ -104,10 +104,16 @@ def test_every_front_door_name_loads():
         assert getattr(symlink, name) is not None, name
     assert len(set(symlink.__all__)) == len(symlink.__all__)
 
+#: Screenshots of the studio (docs/tutorials/draw_it.md): taken by tests/studio/test_browser.py with
+#: SYMLINK_SCREENSHOTS=1, pictures of a web page rather than of the gallery's code.
+STUDIO_SCREENSHOTS = "studio_"
+
+
 def test_gallery_shows_every_picture_with_its_code():
     gallery = (DOCS / "gallery.md").read_text()
     shown = re.findall(r"^```\{figure\} images/(\S+)$", gallery, re.MULTILINE)
-    pictures = {path.name for path in (DOCS / "images").iterdir() if path.suffix in {".png", ".gif", ".svg"}}
+    pictures = {path.name for path in (DOCS / "images").iterdir() if path.suffix in {".png", ".gif", ".svg"}
+                and not path.name.startswith(STUDIO_SCREENSHOTS)}
     assert pictures and set(shown) == pictures
     code = re.findall(r"^```\{literalinclude\} (\S+)\n:pyobject: (\w+)$", gallery, re.MULTILINE)
     assert len(code) == len(shown), "every figure of the gallery is followed by the code that draws it"
@@ -122,7 +128,8 @@ def test_pictures_script_draws_every_gallery_picture_but_the_benchmarks():
     spec.loader.exec_module(pictures)
     assert set(pictures.DRAWERS) == set(pictures.PICTURES)
     made_elsewhere = {"bench.png"}  # `symlink bench --plot`
-    on_disk = {path.name for path in (DOCS / "images").iterdir() if path.suffix in {".png", ".gif", ".svg"}}
+    on_disk = {path.name for path in (DOCS / "images").iterdir() if path.suffix in {".png", ".gif", ".svg"}
+               and not path.name.startswith(STUDIO_SCREENSHOTS)}
     assert set(pictures.PICTURES) == on_disk - made_elsewhere
 
 

@@ -301,7 +301,8 @@ def test_the_wheel_ships_every_catalog_linkage_file():
 
 def test_the_extras_all_and_dev_name_existing_extras():
     extras = PYPROJECT["project"]["optional-dependencies"]
-    for name, wanted in (("all", {"notebook", "pandas", "units", "dynamics", "sweep", "synthesis", "fabrication"}),
+    for name, wanted in (("all", {"notebook", "pandas", "units", "dynamics", "sweep", "synthesis", "fabrication",
+                                  "studio"}),
                          ("dev", {"test", "docs", "bench", "typecheck"})):
         (requirement,) = [Requirement(text) for text in extras[name]]
         assert normalized(requirement.name) == normalized(PROJECT)

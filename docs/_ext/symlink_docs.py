@@ -40,7 +40,8 @@ GROUPS = (
     ("Analysis, synthesis and sweeps", ("symlink.analysis", "symlink.numeric.reachability", "symlink.synthesis",
                                         "symlink.workshop.sweep")),
     ("Dynamics", ("symlink.dynamics",)),
-    ("Pictures", ("symlink.plot",)),
+    ("The studio", ("symlink.studio",)),
+    ("Pictures", ("symlink.plot",)),  # last: it takes the modules no group names
 )
 #: autodoc options of modules that need other than ``:members:``: packages that re-export what
 #: their modules document (so each object is described once) and one name shadowed by a method.

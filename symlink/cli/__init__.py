@@ -17,7 +17,8 @@ One module a command or family: :mod:`.tables` (``fourbar`` and a table
 command for each catalog linkage), :mod:`.pictures` (``curve``, ``animate``,
 ``view``), :mod:`.plan`, :mod:`.run` (scene files), :mod:`.bench`,
 :mod:`.analyze`, :mod:`.loop`, :mod:`.quick_return`, :mod:`.synthesize`, :mod:`.export`, :mod:`.cache`, :mod:`.sweep`,
-:mod:`.dynamics` (``flywheel``, and the four-bar's mass columns), :mod:`.tolerance`, :mod:`.parts`; shared
+:mod:`.dynamics` (``flywheel``, and the four-bar's mass columns), :mod:`.tolerance`, :mod:`.parts`,
+:mod:`.studio` (the browser app); shared
 options in :mod:`.options`, writers in :mod:`.output`.
 
 A command module is imported when the command line needs it: ``symlink
@@ -46,7 +47,7 @@ __all__ = ["main", "build_parser", "COMMANDS"]
 #: The command modules (in this package), in the order ``symlink --help`` lists their commands; each has
 #: ``register(commands)``, which adds its commands to the subparsers ``commands``.
 COMMANDS = ("tables", "dynamics", "plan", "pictures", "run", "bench", "analyze", "loop", "quick_return", "synthesize",
-            "export", "cache", "sweep", "atlas", "tolerance", "parts")
+            "export", "cache", "sweep", "atlas", "tolerance", "parts", "studio")
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
 

@@ -1,4 +1,4 @@
-"""``symlink export NAME|FILE`` and ``symlink derive FILE``: a linkage's solvers as NumPy, C, Octave or LaTeX."""
+"""``symlink export NAME|FILE`` and ``symlink derive FILE``: a linkage's solvers as NumPy, C, Octave, JavaScript or LaTeX."""
 from __future__ import annotations
 
 import argparse
@@ -24,10 +24,10 @@ def register(commands) -> None:
     """Register ``symlink export`` and ``symlink derive``."""
     units = "the generated functions take angles in rad, speeds in rad/s, lengths in any one unit"
     commands.add_parser("export", populate=_add_export_options, **command_help(
-        "write a linkage's solvers as NumPy, C, Octave or LaTeX", units,
+        "write a linkage's solvers as NumPy, C, Octave, JavaScript or LaTeX", units,
         "symlink export fourbar --to c --out build/"))
     commands.add_parser("derive", populate=_add_derive_options, **command_help(
-        "derive a linkage file's closed forms and write them as NumPy, C, Octave or LaTeX", units,
+        "derive a linkage file's closed forms and write them as NumPy, C, Octave, JavaScript or LaTeX", units,
         "symlink derive fourbar --to numpy --out build/"))
 
 

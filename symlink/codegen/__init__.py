@@ -3,7 +3,8 @@
 * :mod:`symlink.codegen.program`: the straight-line program with common
   subexpressions eliminated, which every printer prints;
 * :mod:`symlink.codegen.numpy`, :mod:`symlink.codegen.c`,
-  :mod:`symlink.codegen.octave`, :mod:`symlink.codegen.latex`: the printers;
+  :mod:`symlink.codegen.octave`, :mod:`symlink.codegen.javascript`,
+  :mod:`symlink.codegen.latex`: the printers;
 * :mod:`symlink.codegen.scalar`: one state on single floats (for an integrator);
 * :mod:`symlink.codegen.newton` and :mod:`symlink.codegen.newton_driver`: the
   numeric fallback's NumPy module and the Newton driver it embeds.
@@ -15,7 +16,7 @@ docstring)``; :func:`printer` picks the module of a language from
 this package costs nothing (and imports no linkage).
 
 >>> sorted(PRINTERS)
-['c', 'latex', 'numpy', 'octave']
+['c', 'javascript', 'latex', 'numpy', 'octave']
 >>> printer("octave").__name__
 'symlink.codegen.octave'
 """
@@ -27,7 +28,7 @@ from types import ModuleType
 __all__ = ["PRINTERS", "printer"]
 
 #: Language -> the printer module (in this package) that writes it.
-PRINTERS = {"numpy": "numpy", "c": "c", "octave": "octave", "latex": "latex"}
+PRINTERS = {"numpy": "numpy", "c": "c", "octave": "octave", "javascript": "javascript", "latex": "latex"}
 
 
 def printer(language: str) -> ModuleType:

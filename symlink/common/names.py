@@ -2,7 +2,7 @@
 
 Every name a user writes (symbols of lengths, angles and coordinates, loop and
 point names, roles, extra outputs) becomes an identifier in generated Python,
-C and MATLAB/Octave code and a key of its results.  So each one must be an
+C, MATLAB/Octave and JavaScript code and a key of its results.  So each one must be an
 ASCII identifier (a letter, then letters, digits and underscores; no unicode
 lookalikes), must not be a keyword of any of those languages, and must not be
 a name the generated code uses itself: the module ``numpy``, the math
@@ -12,6 +12,12 @@ closed forms (``Wx_1``, ``w_1``, ``Delta_1``, ...), the common subexpressions
 ``symlink_`` prefix of C helpers.  A linkage's own name is free text in
 messages and docstrings only, so it may also have single spaces and hyphens
 between its words.
+
+JavaScript is the exception: its reserved words and the globals its generated
+code reads (:data:`JAVASCRIPT_KEYWORDS`: ``delete``, ``this``, ``Math``, ...)
+are not refused, since the JavaScript printer renames such a local
+(``delete_``) while the keys of its arguments and results keep the user's
+name; a name refused for it would break linkage files written before it.
 
 Checking at definition time means a bad name is refused with a sentence
 saying which name and why, rather than ending in a SyntaxError or a wrong
@@ -31,7 +37,7 @@ import keyword
 import re
 
 __all__ = ["identifier", "label", "reason_reserved", "INTERMEDIATE_FAMILIES", "MAX_LENGTH", "RESERVED", "PLAIN_NAME",
-           "C_KEYWORDS", "OCTAVE_KEYWORDS"]
+           "C_KEYWORDS", "OCTAVE_KEYWORDS", "JAVASCRIPT_KEYWORDS"]
 
 #: Longest user name: derived names (``<name>ddot``, ``<role>_accel``, ``branch_<loop>``) must fit
 #: MATLAB's 63 characters.
@@ -55,6 +61,15 @@ endenumeration endevents endfor endfunction endif endmethods endparfor endproper
 endwhile enumeration events for function global if methods otherwise parfor persistent properties
 return spmd switch try until unwind_protect unwind_protect_cleanup while nargin nargout varargin
 varargout ans""".split())
+#: JavaScript's reserved words (ECMAScript 2015, strict mode and the future reserved ones), the literals
+#: and the globals that generated JavaScript reads, which a local of it must not shadow: the JavaScript
+#: printer renames a symbol so named (``delete`` -> ``delete_``) instead of refusing it (see above).
+JAVASCRIPT_KEYWORDS = frozenset("""
+break case catch class const continue debugger default delete do else enum export extends finally for
+function if implements import in instanceof interface let new package private protected public return
+static super switch this throw try typeof var void while with yield await null true false eval arguments
+undefined NaN Infinity Math Object Number Array String Error RangeError TypeError Float64Array Uint8Array
+Uint32Array JSON globalThis self window module exports require root factory""".split())
 #: Functions and constants the generated code calls by their bare name (C's math.h, Octave's builtins).
 _FUNCTIONS = frozenset("""
 sin cos tan asin acos atan atan2 sinh cosh tanh asinh acosh atanh exp log log10 log2 sqrt cbrt pow hypot

@@ -1,4 +1,4 @@
-"""Exports: a linkage's solvers as NumPy, C, MATLAB/Octave or LaTeX files (``symlink export``, ``symlink derive``).
+"""Exports: a linkage's solvers as NumPy, C, MATLAB/Octave, JavaScript or LaTeX files (``symlink export``, ``symlink derive``).
 
 By default each format gets the output sets an engineer reaches for: the
 positions of the unknowns, then with velocities, then with accelerations and

@@ -68,7 +68,7 @@ from ..common.display import record_html
 from ..symbolic.linkage import Linkage
 from ..symbolic.vectors import Vector, VectorSum
 
-__all__ = ["Body", "Joint", "Mechanism", "mechanism", "same_point", "REVOLUTE", "PRISMATIC", "GROUND"]
+__all__ = ["Body", "Joint", "Mechanism", "mechanism", "drawn_points", "same_point", "REVOLUTE", "PRISMATIC", "GROUND"]
 
 REVOLUTE = "revolute"
 PRISMATIC = "prismatic"
@@ -164,6 +164,27 @@ class Mechanism:
             if joint.name == name:
                 return joint
         raise ValueError(f"no joint {name!r}; the joints are {', '.join(j.name for j in self.joints)}")
+
+
+def drawn_points(linkage: Linkage, mechanism: Mechanism) -> dict[str, VectorSum]:
+    """Every place a drawing marks, as a sum of vectors from the origin, in this order: each joint that has
+    a position, right after it a slider's guide start (``"<joint> guide"``), then each named point (an
+    empty sum at the origin).  What :class:`symlink.numeric.poses.Geometry` places and the JavaScript
+    printer's drawing solver computes (:func:`symlink.codegen.javascript.javascript_geometry`).
+
+    >>> from symlink.mechanism.catalog import slider_crank
+    >>> list(drawn_points(slider_crank(), mechanism(slider_crank())))
+    ['A', 'B', 'C', 'AS', 'AS guide']
+    """
+    sums: dict[str, VectorSum] = {}
+    for joint in mechanism.joints:
+        if joint.position is not None:
+            sums[joint.name] = joint.position
+        if joint.kind == PRISMATIC and joint.guide_start is not None:
+            sums[f"{joint.name} guide"] = joint.guide_start
+    for name, point in linkage.points.items():
+        sums[name] = VectorSum(()) if point is None else point.as_sum()
+    return sums
 
 
 class _Nodes:

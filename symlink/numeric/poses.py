@@ -23,13 +23,13 @@ from typing import TYPE_CHECKING, Mapping, Sequence
 import numpy
 import sympy as sp
 
-from ..mechanism.bodies import PRISMATIC, Mechanism, mechanism
+from ..mechanism.bodies import PRISMATIC, Mechanism, drawn_points, mechanism
 from ..symbolic.closure import is_angle
 from ..codegen.numpy import load_numpy_module, numpy_module
 from ..symbolic.linkage import Linkage, Program
 from .reachability import scanned_range
 from .solver import NumericSolver, Solver
-from ..symbolic.vectors import Vector, VectorSum
+from ..symbolic.vectors import Vector
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -71,14 +71,7 @@ class Geometry:
     def __init__(self, linkage: Linkage, bodies: Mapping[str, Sequence[str]] | None = None) -> None:
         self.linkage = linkage
         self.mechanism: Mechanism = mechanism(linkage, bodies)
-        sums: dict[str, VectorSum] = {}
-        for joint in self.mechanism.joints:
-            if joint.position is not None:
-                sums[joint.name] = joint.position
-            if joint.kind == PRISMATIC and joint.guide_start is not None:
-                sums[f"{joint.name} guide"] = joint.guide_start
-        for name, point in linkage.points.items():
-            sums[name] = VectorSum(()) if point is None else point.as_sum()
+        sums = drawn_points(linkage, self.mechanism)
         self.sums = sums
         vectors: list[Vector] = []
         for total in sums.values():

@@ -84,6 +84,10 @@ CASES += [
     ("parts: no pin diameter", ["parts", "fourbar", "--svg", "{tmp}/parts.svg"], 2),  # the rest: tests/cli/test_parts.py
     ("parts: no assembly at the angle", ["parts", "fourbar", "--pin-diameter", "4", "--set", "a=30,b=10", "--angle",
                                          "180", "--assembly", "{tmp}/assembly.svg"], 2),
+    ("studio: unknown linkage", ["studio", "sixbar", "--no-browser"], 2),  # the rest: tests/studio/test_command.py
+    ("studio: --html without a linkage", ["studio", "--html", "{tmp}/page.html"], 2),
+    ("studio: no such port", ["studio", "--port", "0", "--no-browser"], 2),
+    ("studio: --html of a linkage that cannot be drawn", ["studio", "--html", "{tmp}/page.html", "fivebar"], 2),
     ("plan: unknown linkage", ["plan", "sixbar"], 2),
     ("plan: no linkage", ["plan"], 2),
     ("analyze: negative length", ["analyze", "--crank", "-1", "--coupler", "2", "--rocker", "2", "--ground", "2"], 2),

@@ -14,6 +14,7 @@ import sympy as sp
 
 import symlink.codegen as codegen
 from symlink.codegen import PRINTERS, printer
+from symlink.codegen.javascript import js_string
 from symlink.codegen.numpy import load_numpy_module
 from symlink.symbolic.linkage import Linkage
 from symlink.symbolic.loops import Loop
@@ -28,7 +29,8 @@ def test_every_printer_has_the_same_call_shape():
 
 
 @pytest.mark.parametrize("language, names", [
-    ("numpy", ["fb.py"]), ("c", ["fb.h", "fb.c"]), ("octave", ["fb_positions.m", "fb_speeds.m"]), ("latex", ["fb.tex"]),
+    ("numpy", ["fb.py"]), ("c", ["fb.h", "fb.c"]), ("octave", ["fb_positions.m", "fb_speeds.m"]),
+    ("javascript", ["fb.js"]), ("latex", ["fb.tex"]),
 ])
 def test_every_printer_writes_its_files(language, names):
     functions = [("positions", ["rocker"], "Rocker angle."), ("speeds", ["rocker", "rocker_speed"], "Its speed.")]
@@ -37,7 +39,7 @@ def test_every_printer_writes_its_files(language, names):
 
 
 def test_an_unknown_language_is_refused_with_the_choices():
-    with pytest.raises(ValueError, match="unknown export format 'fortran'; choose one of numpy, c, octave, latex"):
+    with pytest.raises(ValueError, match="unknown export format 'fortran'; choose one of numpy, c, octave, javascript, latex"):
         printer("fortran")
 
 
@@ -111,6 +113,16 @@ def _octave_is_safe(files):
         assert help_block and all(line.startswith("%") for line in help_block), file
 
 
+def _javascript_is_safe(linkage, files):
+    """One expression statement (the UMD wrapper) registering the solver under the name as a JSON string;
+    every comment closed; names only in strings or as plain identifiers (run under Node in test_javascript)."""
+    text = files["h.js"]
+    assert text.startswith("(function (root, factory) {\n") and text.endswith("\n});\n")
+    assert f"{{[{js_string(linkage.name)}]: solver}}" in text
+    assert text.count("/*") == text.count("*/") and "</" not in text and "<!" not in text
+    assert all(line.isprintable() for line in text.splitlines())
+
+
 def _latex_is_safe(files):
     text = files["h.tex"]
     assert text.isprintable() or all(line.isprintable() for line in text.splitlines())
@@ -134,4 +146,5 @@ def test_a_name_is_refused_where_it_is_defined_or_harmless_in_every_printer(plac
     _numpy_module_is_safe(linkage, named, files["numpy"])
     _c_is_safe(files["c"], tmp_path)
     _octave_is_safe(files["octave"])
+    _javascript_is_safe(linkage, files["javascript"])
     _latex_is_safe(files["latex"])

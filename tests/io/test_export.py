@@ -1,4 +1,4 @@
-"""`symlink export NAME --to numpy|c|octave|latex --out DIR [--outputs LIST]`."""
+"""`symlink export NAME --to numpy|c|octave|javascript|latex --out DIR [--outputs LIST]`."""
 from __future__ import annotations
 
 import ctypes
@@ -70,6 +70,32 @@ def test_octave_export_writes_one_file_per_function(tmp_path, capsys):
     assert first == "function [coupler, rocker, assembled] = fourbar_positions(theta, a, b, c, d, branch)"
 
 
+def test_javascript_export_is_one_solver_of_every_set(tmp_path, capsys):
+    status, out, _ = run(capsys, "export", "fourbar", "--to", "javascript", "--out", tmp_path)
+    assert status == 0 and out == f"wrote {tmp_path / 'fourbar.js'}\n"
+    text = (tmp_path / "fourbar.js").read_text()
+    assert text.startswith("(function (root, factory) {") and "Regenerate with: symlink export fourbar --to javascript" in text
+    import symlink
+    written = symlink.export(catalog_linkage("slider-crank"), "javascript", tmp_path / "api")
+    assert [p.name for p in written] == ["slider_crank.js"]
+    node = shutil.which("node")
+    if node is None:
+        pytest.skip("Node.js is not installed (no node on PATH): the exported JavaScript is not run")
+    script = ("const s = require(process.argv[1]);\n"
+              "const r = s.solve({theta: 0.3, a: 20, b: 66, c: 56, d: 80, branch: -1, thetadot: 10.5, thetaddot: 0});\n"
+              "process.stdout.write(JSON.stringify({sets: s.sets, rocker: r.rocker, speed: r.rocker_speed, "
+              "C_x: r.C_x, assembled: r.assembled}));\n")
+    result = subprocess.run([node, "-e", script, str(tmp_path / "fourbar.js")], capture_output=True, text=True,
+                            check=False)
+    assert result.returncode == 0, result.stderr
+    found = __import__("json").loads(result.stdout)
+    assert list(found["sets"]) == ["positions", "velocities", "accelerations", "joints"]
+    assert found["sets"]["joints"] == ["B_x", "B_y", "C_x", "C_y"] and found["assembled"] is True
+    reference = mp_fourbar(20.0, 66.0, 56.0, 80.0, 0.3, -1, 10.5)
+    assert abs(found["rocker"] - float(reference["phi"])) < 1e-13
+    assert abs(found["speed"] - float(reference["phi_speed"])) < 1e-12
+
+
 def test_outputs_make_one_function_and_latex_follows_them(tmp_path, capsys):
     status, _, _ = run(capsys, "export", "fourbar", "--to", "c", "--out", tmp_path, "--outputs", "rocker, C_x")
     assert status == 0
@@ -106,8 +132,9 @@ def test_a_linkage_without_closed_form_is_refused(tmp_path, capsys):
     names = [n for n in CATALOG if not getattr(catalog_linkage(n), "has_closed_form", True)]
     if not names:
         pytest.skip("every catalog entry has a closed form")
-    status, _, err = run(capsys, "export", names[0], "--to", "c", "--out", tmp_path / "out")
-    assert status == 2 and "no closed-form solve plan" in err and not (tmp_path / "out").exists()
+    for fmt in ("c", "javascript"):
+        status, _, err = run(capsys, "export", names[0], "--to", fmt, "--out", tmp_path / "out")
+        assert status == 2 and "no closed-form solve plan" in err and not (tmp_path / "out").exists()
 
 
 def test_out_must_be_a_folder(tmp_path, capsys):

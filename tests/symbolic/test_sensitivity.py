@@ -406,7 +406,7 @@ def test_scaling_every_length_turns_nothing(name, theta, scale):
 def test_exports_take_sensitivities_and_latex_shows_them_as_partial_derivatives():
     from symlink.io.export import export_texts
     outputs = ["rocker", "rocker__d_a", "C_x__d_d"]
-    for fmt in ("numpy", "c", "octave"):
+    for fmt in ("numpy", "c", "octave", "javascript"):
         text = "\n".join(export_texts("fourbar", fmt, outputs).values())
         assert "rocker__d_a" in text and "C_x__d_d" in text and "phidot" not in text, fmt
     document = "\n".join(export_texts("fourbar", "latex", outputs).values())

@@ -95,8 +95,27 @@ INPUT_KEYS = {"start", "stop", "step", "angles", "speed", "accel"}
 def catalog_linkage(name: str) -> Linkage:
     """A fresh instance of the catalog's linkage ``name`` (cheap: its derivations happen on first use).
 
-    >>> catalog_linkage("fourbar").unknowns
-    (beta, phi)
+    Parameters
+    ----------
+    name : str
+        A catalog name: ``"fourbar"``, ``"slider-crank"``, ``"watt2"`` ... (the keys of :data:`CATALOG`).
+
+    Returns
+    -------
+    Linkage
+        The linkage, the same instance for the same name in a process.
+
+    Raises
+    ------
+    ValueError
+        For a name not in the catalog, listing those there are.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> linkage = symlink.catalog_linkage("slider-crank")
+    >>> linkage.name, linkage.unknowns, linkage is symlink.catalog_linkage("slider-crank")
+    ('slider-crank', (beta, s), True)
     """
     if name not in CATALOG:
         raise ValueError(f"no linkage {name!r} in the catalog; it has {', '.join(sorted(CATALOG))}")

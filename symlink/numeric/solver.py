@@ -582,8 +582,27 @@ def shared_solver(build: Callable[..., Linkage], outputs: tuple[str, ...], *argu
     cases of a vector loop): building a linkage and computing its cache key
     costs about half a millisecond, a call of the solver far less.
 
-    >>> from symlink.mechanism.catalog import fourbar
-    >>> shared_solver(fourbar, ("rocker",)) is shared_solver(fourbar, ("rocker",))
+    Parameters
+    ----------
+    build : callable
+        A function that makes the linkage (a catalog entry such as :func:`fourbar`); hashable.
+    outputs : tuple of str
+        The outputs, as for :class:`Solver`.
+    *arguments
+        Arguments of ``build``, hashable.
+
+    Returns
+    -------
+    Solver
+        The same solver for the same request, every time in a process.
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> solver = symlink.shared_solver(symlink.fourbar, ("rocker",))
+    >>> solver is symlink.shared_solver(symlink.fourbar, ("rocker",))
     True
+    >>> round(math.degrees(float(solver(theta=0.0, a=20, b=66, c=56, d=80)["rocker"])), 2)  # seed 003
+    110.74
     """
     return Solver(build(*arguments), list(outputs))

@@ -55,7 +55,7 @@ class CompiledSolver(Solver):
 
     Raises
     ------
-    CompilerUnavailable
+    symlink.numeric.compiled_library.CompilerUnavailable
         Where no C compiler works.
 
     Examples

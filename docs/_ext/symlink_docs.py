@@ -1,7 +1,7 @@
 """Sphinx extension of the symlink site: pages generated from the package itself, so they cannot drift.
 
 * ``reference/api/public.md``: the front door, every name of ``symlink.__all__`` (autodoc of
-  ``symlink.<name>``), grouped by layer in the order of :data:`symlink.PUBLIC`;
+  ``symlink.<name>``), grouped by layer (in the order data flows), each in the order of :data:`symlink.PUBLIC`;
 * ``reference/api/<module>.md``: one page per module of :mod:`symlink` (autodoc), the internals, and
   ``reference/api/internals.md``, their table of contents grouped by layer folder;
 * ``reference/cli.md``: the command line, from the ``symlink`` argparse parsers themselves
@@ -133,7 +133,8 @@ def public_entry(name: str, module: str, attribute: str) -> list[str]:
 
 
 def public_page() -> str:
-    """The page of ``import symlink``: every name of ``symlink.__all__``, grouped by layer in ``PUBLIC``'s order."""
+    """The page of ``import symlink``: every name of ``symlink.__all__``, by layer in the order data flows
+    through them, each layer's names in ``PUBLIC``'s order."""
     import symlink
 
     lines = ["# The public API: `import symlink`", "",
@@ -146,7 +147,8 @@ def public_page() -> str:
     layers: dict[str, list[tuple[str, str, str]]] = {}
     for name, (module, attribute) in symlink.PUBLIC.items():
         layers.setdefault(layer_of(module), []).append((name, module, attribute))
-    for layer, entries in layers.items():
+    order = [package for package, _ in LAYERS]
+    for layer, entries in sorted(layers.items(), key=lambda item: order.index(item[0]) if item[0] in order else 99):
         lines += [f"## {titles.get(layer, layer)}", "", "```{eval-rst}"]
         for name, module, attribute in entries:
             lines += public_entry(name, module, attribute)

@@ -7,10 +7,13 @@ package is missing; the checks of the sources need nothing but the checkout:
 * the grammar pages name every key the readers accept;
 * the ``docs`` extra lists what the build and the tutorials import;
 * every ```python block of the how-to and explanation pages runs;
-* the example notebook is committed without outputs (and, with the ``notebook`` extra, runs).
+* the example notebook is committed without outputs (and, with the ``notebook`` extra, runs);
+* every function and class of ``symlink.__all__`` has numpydoc Parameters, Returns and Examples
+  sections, its examples through the front door.
 
 The built site (one build, shared by the checks that read it): tutorial pages hold executed
-outputs with images, the API has one page per public module, the command-line reference lists
+outputs with images, the API has one page per public module and a public page of exactly
+``symlink.__all__``, the command-line reference lists
 every subcommand that ``symlink --help`` lists, the most used API has numpydoc sections, and the
 benchmark page shows the benchmark's own table and plot.
 """
@@ -103,6 +106,93 @@ def test_every_front_door_name_loads():
     for name in symlink.__all__:
         assert getattr(symlink, name) is not None, name
     assert len(set(symlink.__all__)) == len(symlink.__all__)
+
+
+# ---- numpydoc sections of the public API -------------------------------------------------------------------
+
+def _section(docstring: str, title: str) -> bool:
+    """Whether ``docstring`` has the numpydoc section ``title`` (its title, underlined by dashes)."""
+    return re.search(rf"^\s*{title}\n\s*-{{3,}}\s*$", docstring, re.M) is not None
+
+
+def public_callables() -> list[tuple[str, object]]:
+    """(name, object) of every function and class of ``symlink.__all__`` (the data constants left out)."""
+    import inspect
+
+    import symlink
+    found = []
+    for name in symlink.__all__:
+        value = getattr(symlink, name)
+        if inspect.isclass(value) or inspect.isroutine(inspect.unwrap(value)) and callable(value):
+            found.append((name, value))
+    return found
+
+
+def numpydoc_gaps(name: str, value: object) -> list[str]:
+    """The numpydoc sections that the docstring of the public ``value`` lacks."""
+    import inspect
+
+    is_class = inspect.isclass(value)
+    docstring = inspect.getdoc(value) or ""
+    if is_class and value.__dict__.get("__init__") is not None and value.__dict__["__init__"].__doc__:
+        docstring += "\n" + inspect.cleandoc(value.__dict__["__init__"].__doc__)
+    try:
+        takes = [p for p in inspect.signature(value).parameters if p not in ("self", "cls")]
+    except (TypeError, ValueError):
+        takes = []
+    gaps = []
+    if takes and not _section(docstring, "Parameters"):
+        gaps.append("Parameters")
+    if not is_class and not _section(docstring, "Returns"):
+        gaps.append("Returns")
+    if not _section(docstring, "Examples") or ">>>" not in docstring.split("Examples", 1)[-1]:
+        gaps.append("Examples")
+    return gaps
+
+
+def test_every_public_function_and_class_has_numpydoc_sections():
+    names = public_callables()
+    assert len(names) > 100, "the front door lists its functions and classes"
+    gaps = {name: numpydoc_gaps(name, value) for name, value in names}
+    gaps = {name: missing for name, missing in gaps.items() if missing}
+    assert gaps == {}, f"{len(gaps)} of {len(names)} public names lack numpydoc sections: {gaps}"
+
+
+def test_public_examples_go_through_the_front_door():
+    import inspect
+
+    for name, value in public_callables():
+        examples = (inspect.getdoc(value) or "").split("Examples", 1)[-1]
+        assert not SUBMODULE_IMPORT.search(examples.replace(">>> ", "")), f"{name}: its example imports a submodule"
+
+
+def test_the_numpydoc_check_sees_a_missing_section():
+    def documented(x):
+        """Twice x.
+
+        Parameters
+        ----------
+        x : float
+            A number.
+
+        Returns
+        -------
+        float
+            Twice it.
+
+        Examples
+        --------
+        >>> documented(2)
+        4
+        """
+        return 2 * x
+
+    def bare(x):
+        """Twice x."""
+        return 2 * x
+
+    assert numpydoc_gaps("documented", documented) == []
+    assert numpydoc_gaps("bare", bare) == ["Parameters", "Returns", "Examples"]
 
 #: Screenshots of the studio (docs/tutorials/draw_it.md): taken by tests/studio/test_browser.py with
 #: SYMLINK_SCREENSHOTS=1, pictures of a web page rather than of the gallery's code.
@@ -221,11 +311,29 @@ def test_tutorial_page_holds_executed_outputs_with_images(site, tutorial):
 
 
 def test_api_has_one_page_per_public_module(site):
-    pages = {path.stem for path in (site / "reference" / "api").glob("symlink*.html")}
+    api = site / "reference" / "api"
+    pages = {path.stem for path in api.glob("symlink*.html")}
     assert pages == set(package_modules())
     for module in ("symlink.numeric.solver", "symlink.symbolic.linkage", "symlink.io.export"):
-        page = (site / "reference" / "api" / f"{module}.html").read_text()
+        page = (api / f"{module}.html").read_text()
         assert f'id="{module}.' in page, f"{module}: autodoc rendered no object"
+    internals = (api / "internals.html").read_text()
+    assert [module for module in package_modules() if f'href="{module}.html"' not in internals] == []
+
+
+def test_public_page_documents_exactly_the_front_door(site):
+    import symlink
+
+    page = (site / "reference" / "api" / "public.html").read_text()
+    documented = set(re.findall(r'<dt class="sig sig-object py" id="symlink\.(\w+)"', page))
+    assert documented == set(symlink.__all__)
+    order = [name for name in re.findall(r'<dt class="sig sig-object py" id="symlink\.(\w+)"', page) if name != "__version__"]
+    layers = ["symlink.common", "symlink.symbolic", "symlink.mechanism", "symlink.codegen", "symlink.numeric",
+              "symlink.dynamics", "symlink.io", "symlink.analysis", "symlink.synthesis", "symlink.workshop",
+              "symlink.plot"]
+    layer = {name: layers.index(".".join(module.split(".")[:2])) for name, (module, _) in symlink.PUBLIC.items()}
+    expected = sorted(symlink.PUBLIC, key=lambda name: layer[name])  # stable: PUBLIC's order within a layer
+    assert order == expected, "the public page lists the names by layer, each in PUBLIC's order"
 
 
 def test_most_used_api_has_numpydoc_sections(site):
@@ -235,7 +343,8 @@ def test_most_used_api_has_numpydoc_sections(site):
     for section in ("Parameters", "Returns", "Raises"):
         assert re.search(rf">{section}<", call), f"Solver.__call__ has no rendered {section} section"
     for module, anchor in (("symlink.symbolic.linkage", "symlink.symbolic.linkage.Linkage"), ("symlink.numeric.results", "symlink.numeric.results.Results"),
-                           ("symlink.mechanism.catalog", "symlink.mechanism.catalog.fourbar"), ("symlink.numeric.solver", "symlink.numeric.solver.Solver")):
+                           ("symlink.mechanism.catalog", "symlink.mechanism.catalog.fourbar"), ("symlink.numeric.solver", "symlink.numeric.solver.Solver"),
+                           ("public", "symlink.Linkage"), ("public", "symlink.fourbar"), ("public", "symlink.Solver")):
         page = (site / "reference" / "api" / f"{module}.html").read_text()
         body = page[page.index(f'id="{anchor}"'):]
         body = body[:body.find('<dt class="sig sig-object py"', 1)]  # its own docstring, not its members'

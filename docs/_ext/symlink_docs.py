@@ -1,7 +1,9 @@
 """Sphinx extension of the symlink site: pages generated from the package itself, so they cannot drift.
 
-* ``reference/api/<module>.md``: one page per public module of :mod:`symlink` (autodoc), and
-  ``reference/api/index.md``, their table of contents grouped the way data flows;
+* ``reference/api/public.md``: the front door, every name of ``symlink.__all__`` (autodoc of
+  ``symlink.<name>``), grouped by layer (in the order data flows), each in the order of :data:`symlink.PUBLIC`;
+* ``reference/api/<module>.md``: one page per module of :mod:`symlink` (autodoc), the internals, and
+  ``reference/api/internals.md``, their table of contents grouped by layer folder;
 * ``reference/cli.md``: the command line, from the ``symlink`` argparse parsers themselves
   (every subcommand, its summary, units and example, its usage and every option).
 
@@ -24,25 +26,26 @@ CLI = DOCS / "reference" / "cli.md"
 #: Modules the API reference leaves out: the command line (its own reference page, from its parsers),
 #: ``python -m symlink`` and the TOML reader kept for Python 3.10.
 NOT_IN_API = ("symlink.cli", "symlink.__main__", "symlink.minitoml")
-#: The API's groups, in the order data flows through symlink; a module goes to the first group whose
-#: prefixes it matches (the last group takes the rest).
-GROUPS = (
-    ("The package", ("symlink",)),
-    ("Definition", ("symlink.common.names", "symlink.symbolic.vectors", "symlink.symbolic.loops", "symlink.symbolic.linkage", "symlink.mechanism.bodies",
-                    "symlink.mechanism.catalog", "symlink.io.linkage_file")),
-    ("Closed forms and rates", ("symlink.symbolic.position", "symlink.symbolic.motion", "symlink.symbolic.sensitivity", "symlink.symbolic.closure",
-                                "symlink.symbolic.plan", "symlink.common.notation", "symlink.symbolic.outputs", "symlink.common.angles",
-                                "symlink.symbolic.typeset", "symlink.analysis.loopcase", "symlink.numeric.assemblies")),
-    ("Code generation and exports", ("symlink.codegen", "symlink.io.derivation", "symlink.io.export", "symlink.version")),
-    ("Evaluation", ("symlink.numeric.solver", "symlink.numeric.results", "symlink.numeric.units", "symlink.numeric.compiled", "symlink.io.scene",
-                    "symlink.numeric.cache", "symlink.numeric.cached_solver", "symlink.numeric.design_jacobian", "symlink.numeric.input_sweep",
-                    "symlink.common.limits", "symlink.common.files")),
-    ("Analysis, synthesis and sweeps", ("symlink.analysis", "symlink.numeric.reachability", "symlink.synthesis",
-                                        "symlink.workshop.sweep")),
-    ("Dynamics", ("symlink.dynamics",)),
-    ("The studio", ("symlink.studio",)),
-    ("Pictures", ("symlink.plot",)),  # last: it takes the modules no group names
+#: The layers of symlink, in the order data flows through them: (package, title). The public API is grouped
+#: by them, and so are the internals (one group per layer folder, the package itself first).
+LAYERS = (
+    ("symlink.common", "Shared by every layer: names, notation, angles, displays, files, memory budgets"),
+    ("symlink.symbolic", "The blackboard: vectors, loops, a linkage and its derivation"),
+    ("symlink.mechanism", "The mechanism: bodies, joints, structure, the atlas and the catalog"),
+    ("symlink.codegen", "Code generation: one straight-line program, one printer per language"),
+    ("symlink.numeric", "Evaluation: solvers, the compiled backend, the cache, results, poses, reachability"),
+    ("symlink.dynamics", "Dynamics: masses and loads, driving torque and reactions, forward dynamics, flywheels"),
+    ("symlink.io", "Files and formats: linkage, joint-table and scene files, exports, interchange, sweep folders"),
+    ("symlink.analysis", "Analysis: Grashof, transmission angles, limit positions, reports"),
+    ("symlink.synthesis", "Synthesis: quick-return, function, path, motion and shape, of the four-bar and any linkage"),
+    ("symlink.workshop", "The workshop: tolerances, parts, design sweeps"),
+    ("symlink.plot", "Pictures: drawings, figures, animations, interactive views"),
+    ("symlink.studio", "The studio: the browser app (a leaf)"),
 )
+#: The internals' groups: the package's own modules, then one group per layer folder; a module goes to the
+#: first group whose prefixes it matches (the last group takes the rest).
+GROUPS = (("The package", ("symlink", "symlink.version")),
+          *((f"`{package.replace('.', '/')}/`: {title}", (package,)) for package, title in LAYERS))
 #: autodoc options of modules that need other than ``:members:``: packages that re-export what
 #: their modules document (so each object is described once) and one name shadowed by a method.
 AUTOMODULE_OPTIONS = {
@@ -94,21 +97,103 @@ def module_page(module: str) -> str:
     return "\n".join(lines)
 
 
+def layer_of(module: str) -> str:
+    """The layer package of ``module`` (``symlink.io.scene`` -> ``symlink.io``)."""
+    return ".".join(module.split(".")[:2])
+
+
+def data_comment(name: str, module: str) -> str:
+    """The ``#:`` comment of the constant ``name``, from ``module`` or, for a package re-exporting it, its modules."""
+    from sphinx.pycode import ModuleAnalyzer
+
+    candidates = [module] + [other for other in public_modules() if other.startswith(module + ".")]
+    for candidate in candidates:
+        try:
+            comments = ModuleAnalyzer.for_module(candidate).find_attr_docs()
+        except Exception:  # noqa: BLE001 - a module without source: try the next
+            continue
+        if ("", name) in comments:
+            return "\n".join(line for line in comments[("", name)] if line.strip())
+    return ""
+
+
+def public_entry(name: str, module: str, attribute: str) -> list[str]:
+    """The reStructuredText of one public name: autodoc of ``symlink.<name>``, or a constant's own comment."""
+    import inspect
+
+    value = getattr(importlib.import_module(module), attribute)
+    home = f"``{module}.{attribute}``"
+    if inspect.isclass(value):
+        return [f".. autoclass:: symlink.{name}", "", f"   Defined in {home}; its members are in the internals.", ""]
+    if callable(value):
+        return [f".. autofunction:: symlink.{name}", ""]
+    comment = data_comment(attribute, module) or f"A constant of {home}."
+    return [f".. py:data:: {name}", "", *(f"   {line}" for line in comment.splitlines()), "",
+            f"   Defined in {home}.", ""]
+
+
+def public_page() -> str:
+    """The page of ``import symlink``: every name of ``symlink.__all__``, by layer in the order data flows
+    through them, each layer's names in ``PUBLIC``'s order."""
+    import symlink
+
+    lines = ["# The public API: `import symlink`", "",
+             "Every name of `symlink.__all__`, an attribute of the package (`symlink.fourbar()`,",
+             "`symlink.Solver`), loaded from its layer's module on first use. Grouped by layer, in the order",
+             "data flows through symlink. Each module, with the members of each class and what the front",
+             "door leaves out, has its own page in {doc}`internals`.", "",
+             "```{eval-rst}", ".. currentmodule:: symlink", "```", ""]
+    titles = dict(LAYERS)
+    layers: dict[str, list[tuple[str, str, str]]] = {}
+    for name, (module, attribute) in symlink.PUBLIC.items():
+        layers.setdefault(layer_of(module), []).append((name, module, attribute))
+    order = [package for package, _ in LAYERS]
+    for layer, entries in sorted(layers.items(), key=lambda item: order.index(item[0]) if item[0] in order else 99):
+        lines += [f"## {titles.get(layer, layer)}", "", "```{eval-rst}"]
+        for name, module, attribute in entries:
+            lines += public_entry(name, module, attribute)
+        lines += ["```", ""]
+    lines += ["## The version", "", "```{eval-rst}", ".. py:data:: __version__", "",
+              "   The version of symlink, a string (``symlink.version``).", "```", ""]
+    return "\n".join(lines)
+
+
+def public_names_as_aliases(app, env) -> None:
+    """Let a short cross-reference (``Linkage`` in a type) resolve to the module's own object, not the front door's.
+
+    The public page and the internals describe the same objects under two names (``symlink.Linkage``
+    and ``symlink.symbolic.linkage.Linkage``); the front door's names count as aliases, which Sphinx
+    sets aside when a search by the last part finds both, so that no reference is ambiguous. A
+    reference to ``symlink.Linkage`` in full still goes to the public page.
+    """
+    import symlink
+
+    domain = env.get_domain("py")
+    for name in symlink.PUBLIC:
+        entry = domain.objects.get(f"symlink.{name}")
+        if entry is not None and not entry.aliased:
+            domain.objects[f"symlink.{name}"] = entry._replace(aliased=True)
+
+
 def write_api_pages() -> None:
     modules = public_modules()
+    written = {"public", "internals"}
     for module in modules:
         write_if_changed(API / f"{module}.md", module_page(module))
-    for stale in API.glob("symlink*.md"):
-        if stale.stem not in modules:
+        written.add(module)
+    for stale in API.glob("*.md"):
+        if stale.stem not in written:
             stale.unlink()
-    index = ["# Python API", "",
-             "One page per public module, from its docstrings; grouped the way data flows through symlink:",
-             "definition, equations, solution, code, evaluation, tables and pictures. The command line has",
-             "its own page, {doc}`../cli`.", ""]
+    write_if_changed(API / "public.md", public_page())
+    index = ["# Internals: every module", "",
+             "One page per module of symlink, from its docstrings, grouped by layer the way data flows:",
+             "definition, equations, solution, code, evaluation, tables and pictures. What a user needs is",
+             "on {doc}`public` (`import symlink`); the command line has its own page, {doc}`../cli`.", ""]
     for title, _ in GROUPS:
         members = [module for module in modules if group_of(module) == title]
-        index += [f"## {title}", "", "```{toctree}", ":maxdepth: 1", "", *members, "```", ""]
-    write_if_changed(API / "index.md", "\n".join(index))
+        if members:
+            index += [f"## {title}", "", "```{toctree}", ":maxdepth: 1", "", *members, "```", ""]
+    write_if_changed(API / "internals.md", "\n".join(index))
 
 
 def _options_of(parser: argparse.ArgumentParser) -> list[argparse.Action]:
@@ -207,4 +292,5 @@ def generate(app) -> None:
 
 def setup(app) -> dict:
     app.connect("builder-inited", generate)
+    app.connect("env-check-consistency", public_names_as_aliases)
     return {"parallel_read_safe": True, "parallel_write_safe": True}

@@ -62,7 +62,24 @@ def grashof(a: float, b: float, c: float, d: float, tolerance: float = 1e-12) ->
     ``s + l = p + q`` (within ``tolerance`` times l) is a change point and
     ``s + l > p + q`` a non-Grashof triple rocker.
 
-    >>> grashof(4, 5, 6, 2).name, grashof(5, 6, 7, 10).name
+    Parameters
+    ----------
+    a, b, c, d : float
+        Crank, coupler, rocker and ground lengths.
+    tolerance : float, optional
+        Relative to the longest link, how near ``s + l = p + q`` is a change point (default 1e-12).
+
+    Returns
+    -------
+    Grashof
+        The class's name, the shortest and longest links, ``s + l`` and ``p + q``.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> symlink.grashof(20, 66, 56, 80)  # 20 + 80 < 66 + 56, shortest the crank
+    Grashof(name='crank-rocker', shortest='crank', longest='ground', shortest_plus_longest=100.0, other_two=122.0)
+    >>> symlink.grashof(4, 5, 6, 2).name, symlink.grashof(5, 6, 7, 10).name
     ('double-crank', 'triple-rocker')
     """
     check_lengths(crank=a, coupler=b, rocker=c, ground=d)

@@ -77,6 +77,30 @@ def limit_positions(a: float, b: float, c: float, d: float, branch: int = 1) -> 
     +1, C lies above the ground line when b > a) and the generated solver gives the rocker
     angle there.  ``ValueError`` if either limit position cannot be assembled (the rocker
     of such a linkage stops at toggles instead: see :func:`crank_range`).
+
+    Parameters
+    ----------
+    a, b, c, d : float
+        Crank, coupler, rocker and ground lengths.
+    branch : int, optional
+        The assembly, +1 (default) or -1.
+
+    Returns
+    -------
+    LimitPositions
+        The crank and rocker angles (radians) with crank and coupler extended and folded.
+
+    Raises
+    ------
+    ValueError
+        If either limit position cannot be assembled.
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> found = symlink.limit_positions(20, 66, 56, 80)  # |AC| = 86 and 46 in the triangle A, D, C
+    >>> [round(math.degrees(x), 2) for x in (found.extended_crank, found.extended_rocker, found.folded_rocker)]
+    [39.22, 103.82, 145.91]
     """
     check_lengths(crank=a, coupler=b, rocker=c, ground=d)
     if branch not in (1, -1):
@@ -162,8 +186,32 @@ def output_limits(linkage: Linkage, values: Mapping[str, float], output: str, *,
     there; each change on a scan of ``points`` over a turn is bisected to
     rounding.  ``values`` as for :func:`~symlink.numeric.reachability.reachable_range`.
 
-    >>> from symlink.mechanism.catalog import slider_crank
-    >>> found = output_limits(slider_crank(), dict(a=1.0, b=3.0, offset=0.0), "slider")
+    Parameters
+    ----------
+    linkage : Linkage
+        A linkage with one moving input.
+    values : mapping of str to float
+        As for :func:`reachable_range`.
+    output : str
+        The output whose extremes to find.
+    input : str, optional
+        The moving input (default: the only one).
+    reach : InputRange, optional
+        Its reachable range, if found already.
+    motion : InputMotion, optional
+        A motion of the same linkage and values to reuse.
+    points : int, optional
+        The scan's number of input values (default 3600).
+
+    Returns
+    -------
+    OutputLimits
+        The limit positions (input value, output value, maximum or minimum), the stroke and the time ratio.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> found = symlink.output_limits(symlink.slider_crank(), dict(a=1.0, b=3.0, offset=0.0), "slider")
     >>> [(round(p.at, 12) + 0.0, round(p.value, 12), p.kind) for p in found.positions], round(found.stroke, 12)
     ([(0.0, 4.0, 'maximum'), (3.14159265359, 2.0, 'minimum')], 2.0)
     """

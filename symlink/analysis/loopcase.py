@@ -145,6 +145,28 @@ def solve_case(values: Mapping[str, float | None]) -> LoopCaseResult:
     ``values`` maps names of :data:`NAMES` to numbers; leave the two unknowns out (or
     give them as None).  Lengths must be positive.  ``ValueError`` for any other count of
     missing values, and for a loop that cannot close, saying why.
+
+    Parameters
+    ----------
+    values : mapping of str to float or None
+        Six of ``r1..r4, t1..t4`` (radians) by name; the two unknowns left out or None.
+
+    Returns
+    -------
+    LoopCaseResult
+        The case's name and its solutions, one a branch (a dict of all eight values each).
+
+    Raises
+    ------
+    ValueError
+        For other than two missing values, a length that is not positive, or a loop that cannot close.
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> result = symlink.solve_case(dict(r1=20, t1=0.0, r2=66, r3=56, r4=80, t4=math.pi))  # seed 003
+    >>> result.case, [round(math.degrees(s["t3"]) + 180, 2) for s in result.solutions]  # the rocker: t3 + 180
+    ('3', [110.74, 249.26])
     """
     given, missing = _check(values)
     solver = shared_solver(loop_linkage, missing, missing)

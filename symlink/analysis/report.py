@@ -63,6 +63,46 @@ def analyze_linkage(linkage: Linkage, values: Mapping[str, float], output: str |
     search; ``numeric=True`` solves by Newton's method even where a closed
     form exists.  ``ValueError`` for missing or unknown names, and where the
     linkage cannot be assembled at any input.
+
+    Parameters
+    ----------
+    linkage : Linkage
+        A linkage with one moving input.
+    values : mapping of str to float
+        Every parameter, branch signs (default +1) and the inputs other than the moving one.
+    output : str, optional
+        The output whose limit positions to find (none by default).
+    input : str, optional
+        The moving input (default: the first).
+    guess : mapping of str to float, optional
+        For a linkage without a closed form: its unknowns near the wanted assembly at ``start``.
+    start : float, optional
+        The input value of ``guess`` (default 0).
+    interval : (float, float), optional
+        The span to search for a length input.
+    points : int, optional
+        The scan's number of input values (default 3600).
+    numeric : bool, optional
+        Solve by Newton's method even where a closed form exists.
+
+    Returns
+    -------
+    LinkageReport
+        Its mobility, reachable range and toggles, transmission angles and the output's limits (radians).
+
+    Raises
+    ------
+    ValueError
+        For missing or unknown names, and where the linkage cannot be assembled at any input.
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> report = symlink.analyze_linkage(symlink.fourbar(), dict(a=20, b=66, c=56, d=80), output="rocker")
+    >>> report.mobility.dof, round(math.degrees(report.transmission[0].minimum), 2)  # acos(3892 / 7392)
+    (1, 58.23)
+    >>> round(math.degrees(report.limits.stroke), 2), round(report.limits.time_ratio, 4)
+    (42.09, 1.0433)
     """
     motion = InputMotion(linkage, values, input=input, guess=guess, start=start, numeric=numeric)
     reach = reachable_range(linkage, values, interval=interval, points=points, motion=motion)
@@ -82,7 +122,23 @@ def fourbar_report(a: float, b: float, c: float, d: float, branch: int = 1) -> d
     crank-rocker (otherwise the output does not swing between two limits as the crank
     turns); ``toggles`` are the ends of the crank's range (empty for a full turn).
 
-    >>> report = fourbar_report(20, 66, 56, 80)
+    Parameters
+    ----------
+    a, b, c, d : float
+        Crank, coupler, rocker and ground lengths.
+    branch : int, optional
+        The assembly, +1 (default) or -1.
+
+    Returns
+    -------
+    dict
+        A flat record: ``grashof``, ``dof``, the crank's range and toggles, the transmission extremes,
+        and for a crank-rocker ``limit_positions``, ``stroke`` and ``time_ratio`` (radians).
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> report = symlink.fourbar_report(20, 66, 56, 80)  # seed 003
     >>> report["grashof"], report["dof"], round(math.degrees(report["transmission_min"]), 2)
     ('crank-rocker', 1, 58.23)
     """

@@ -82,6 +82,23 @@ def transmission_range(a: float, b: float, c: float, d: float) -> TransmissionRa
     theta = pi when the crank gets there, and otherwise at the ends of the crank's range
     (the toggles, where mu is 0 or pi).  It is the same on both branches; the generated
     solver evaluates it at those crank angles.
+
+    Parameters
+    ----------
+    a, b, c, d : float
+        Crank, coupler, rocker and ground lengths.
+
+    Returns
+    -------
+    TransmissionRange
+        The smallest and largest transmission angle (radians) and the crank angles where they are.
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> found = symlink.transmission_range(20, 66, 56, 80)  # |BD| = 60 at theta = 0, 100 at pi
+    >>> round(math.degrees(found.minimum), 2), round(math.degrees(found.maximum), 2), found.maximum_at
+    (58.23, 109.83, 3.141592653589793)
     """
     spans = assembled_crank_range(a, b, c, d)
     candidates: dict[float, float] = {}
@@ -219,8 +236,29 @@ def transmission_angles(linkage: Linkage, values: Mapping[str, float], inputs, *
     NaN where the linkage cannot be assembled.  ``values`` as for
     :func:`~symlink.numeric.reachability.reachable_range`.
 
-    >>> angles = transmission_angles(fourbar(), dict(a=20, b=66, c=56, d=80), [0.0])
-    >>> round(math.degrees(float(angles["ABCD"][0])), 2)
+    Parameters
+    ----------
+    linkage : Linkage
+        A linkage with one moving input.
+    values : mapping of str to float
+        As for :func:`reachable_range`.
+    inputs : array_like
+        The input values (radians for an angle).
+    input : str, optional
+        The moving input (default: the only one).
+    motion : InputMotion, optional
+        A motion of the same linkage and values to reuse.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        Each two-angle loop's transmission angle (radians, in [0, pi]) at ``inputs``.
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> angles = symlink.transmission_angles(symlink.fourbar(), dict(a=20, b=66, c=56, d=80), [0.0])
+    >>> round(math.degrees(float(angles["ABCD"][0])), 2)  # acos((66^2 + 56^2 - 60^2) / (2 * 66 * 56))
     58.23
     """
     motion = InputMotion(linkage, values, input=input) if motion is None else motion
@@ -326,7 +364,30 @@ def loop_transmissions(linkage: Linkage, values: Mapping[str, float], *, input: 
     pi: the triangle is flat), and the input values where its derivative
     changes sign, found on a scan of ``points`` and bisected to rounding.
 
-    >>> (found,) = loop_transmissions(fourbar(), dict(a=20, b=66, c=56, d=80))
+    Parameters
+    ----------
+    linkage : Linkage
+        A linkage with one moving input.
+    values : mapping of str to float
+        As for :func:`reachable_range`.
+    input : str, optional
+        The moving input (default: the only one).
+    reach : InputRange, optional
+        Its reachable range, if found already.
+    motion : InputMotion, optional
+        A motion of the same linkage and values to reuse.
+    points : int, optional
+        The scan's number of input values (default 3600).
+
+    Returns
+    -------
+    tuple of LoopTransmission
+        For each two-angle loop: its smallest and largest transmission angle and where they are.
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> (found,) = symlink.loop_transmissions(symlink.fourbar(), dict(a=20, b=66, c=56, d=80))
     >>> found.loop, round(math.degrees(found.minimum), 2), round(math.degrees(found.maximum), 2)
     ('ABCD', 58.23, 109.83)
     """

@@ -32,7 +32,29 @@ PRINTERS = {"numpy": "numpy", "c": "c", "octave": "octave", "javascript": "javas
 
 
 def printer(language: str) -> ModuleType:
-    """The printer module of ``language``; ``ValueError`` naming the languages there are."""
+    """The printer module of ``language``; ``ValueError`` naming the languages there are.
+
+    Parameters
+    ----------
+    language : str
+        One of :data:`PRINTERS`: ``"numpy"``, ``"c"``, ``"octave"`` or ``"latex"``.
+
+    Returns
+    -------
+    module
+        The printer module (``symlink.codegen.c`` for ``"c"``).
+
+    Raises
+    ------
+    ValueError
+        For any other language, naming those there are.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> symlink.printer("c").__name__, sorted(symlink.PRINTERS)
+    ('symlink.codegen.c', ['c', 'latex', 'numpy', 'octave'])
+    """
     if language not in PRINTERS:
         raise ValueError(f"unknown export format {language!r}; choose one of {', '.join(PRINTERS)}")
     return importlib.import_module(f"{__name__}.{PRINTERS[language]}")

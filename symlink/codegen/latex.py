@@ -60,13 +60,40 @@ def document(title: str, body: Sequence[str]) -> str:
 
 def latex_document(linkage: Linkage, title: str, *, velocities: bool = True, accelerations: bool = True,
                    sensitivities: Sequence[sp.Symbol] = (), dynamics: bool = False, form: str = "atan2") -> str:
-    """A standalone LaTeX document with the linkage's closed-form derivation, section by section.
+    r"""A standalone LaTeX document with the linkage's closed-form derivation, section by section.
 
     ``sensitivities`` names parameters whose design sensitivities (the unknowns' derivatives by them,
     :mod:`symlink.symbolic.sensitivity`) get a section of their own; ``dynamics`` adds the sections of a linkage
     with mass properties (its ``derivation_sections``: see :mod:`symlink.dynamics.inverse`).
     ``form`` other than ``"atan2"`` adds the positions in that seed paper's form
     (:data:`symlink.symbolic.seed_forms.FORMS`) after symlink's own, which generated code computes.
+
+    Parameters
+    ----------
+    linkage : Linkage
+        The linkage, with a closed-form plan.
+    title : str
+        The document's title.
+    velocities, accelerations : bool, optional
+        Whether to derive the rates and accelerations (default True).
+    sensitivities : sequence of sympy.Symbol, optional
+        Parameters whose design sensitivities get a section.
+    dynamics : bool, optional
+        Add the dynamics sections of a linkage with mass properties (default False).
+    form : str, optional
+        ``"atan2"`` (default, symlink's own) or a seed paper's form to add after it.
+
+    Returns
+    -------
+    str
+        The LaTeX source of a complete document (``\documentclass`` to ``\end{document}``).
+
+    Examples
+    --------
+    >>> import symlink
+    >>> text = symlink.latex_document(symlink.fourbar(), "The four-bar")
+    >>> text.startswith("\\documentclass"), "The four-bar" in text, text.rstrip().endswith("\\end{document}")
+    (True, True, True)
     """
     parts = [
         "Angles are measured counter-clockwise from $+x$. "
@@ -99,7 +126,27 @@ def latex_document(linkage: Linkage, title: str, *, velocities: bool = True, acc
 
 
 def newton_document(linkage: Linkage, title: str) -> str:
-    """A standalone LaTeX document: closure, why there is no closed form, Newton's iteration and the rate systems."""
+    r"""A standalone LaTeX document: closure, why there is no closed form, Newton's iteration and the rate systems.
+
+    Parameters
+    ----------
+    linkage : Linkage
+        Any linkage (usually one without a closed form).
+    title : str
+        The document's title.
+
+    Returns
+    -------
+    str
+        The LaTeX source of a complete document.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> text = symlink.newton_document(symlink.stephenson3(), "Stephenson III")
+    >>> "Newton" in text, text.rstrip().endswith("\\end{document}")
+    (True, True)
+    """
     from ..symbolic.plan import solve_plan
 
     system = closure_system(linkage)

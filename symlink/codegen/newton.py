@@ -167,6 +167,29 @@ def numeric_module(linkage: Linkage, title: str = "", regenerate: str = "") -> s
     ``sensitivities`` (positions and their derivatives by the parameters) with the
     arguments ``inputs..., parameters..., guess, input rates..., input
     accelerations...`` (see their docstrings).
+
+    Parameters
+    ----------
+    linkage : Linkage
+        Any linkage.
+    title : str, optional
+        The module's docstring (default: one naming the linkage).
+    regenerate : str, optional
+        The command that regenerates it, written in its header.
+
+    Returns
+    -------
+    str
+        The module's Python source; it imports NumPy only.
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> namespace = {}
+    >>> exec(symlink.numeric_module(symlink.fourbar()), namespace)  # our own generated code
+    >>> result = namespace["positions"](theta=[0.0], a=20, b=66, c=56, d=80, guess={"beta": 1.0, "phi": 2.0})
+    >>> round(math.degrees(float(result["phi"][0])), 2)
+    110.74
     """
     system = closure_system(linkage)
     inputs, parameters, unknowns = linkage.inputs, linkage.parameters, linkage.unknowns

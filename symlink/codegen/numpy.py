@@ -369,7 +369,32 @@ def _sin_atan2(y, r):
 
 def numpy_module(functions: Sequence[tuple[str, Program, str]], title: str = "A symlink solver.",
                  regenerate: str = "") -> str:
-    """A standalone module of vectorised functions, each ``(name, program, docstring)``."""
+    """A standalone module of vectorised functions, each ``(name, program, docstring)``.
+
+    Parameters
+    ----------
+    functions : sequence of (str, Program, str)
+        Each function's name, its straight-line program (``linkage.program(outputs)``) and docstring.
+    title : str, optional
+        The module's docstring.
+    regenerate : str, optional
+        The command that regenerates it, written in its header.
+
+    Returns
+    -------
+    str
+        The module's Python source; it imports NumPy only.
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> linkage = symlink.fourbar()
+    >>> source = symlink.numpy_module([("rocker_angle", linkage.program(["phi"]), "Rocker angle.")])
+    >>> namespace = {}
+    >>> exec(source, namespace)  # our own generated code
+    >>> round(math.degrees(float(namespace["rocker_angle"](theta=0.0, a=20, b=66, c=56, d=80)["phi"])), 2)
+    110.74
+    """
     again = f"\nRegenerate with: {docstring_text(regenerate)}" if regenerate else ""
     header = _HEADER.format(title=docstring_text(title), version=__version__, sympy=sp.__version__,
                             tolerance=TOLERANCE, regenerate=again,

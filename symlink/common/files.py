@@ -44,15 +44,41 @@ def _write_all(handle: int, data: bytes) -> None:
 
 
 def write_atomic(path: str | os.PathLike, data: str | bytes, mode: int | None = None) -> None:
-    """Write ``data`` to ``path`` through a temporary file in the same folder and a rename.
+    r"""Write ``data`` to ``path`` through a temporary file in the same folder and a rename.
 
-    Text is written as UTF-8 with ``\\n`` line ends.  Without ``mode`` the file
+    Text is written as UTF-8 with ``\n`` line ends.  Without ``mode`` the file
     gets the permissions ``open()`` would give it (0666 less the umask); with
     ``mode`` exactly that (e.g. 0o600), whatever the umask.  Missing parent
     folders are created.  On any failure nothing is left under ``path`` or
     beside it, and the old file (if any) is untouched; an ``OSError`` names
     ``path`` (never the hidden temporary) with the system's reason, such as
     ``No space left on device``.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file to write.
+    data : str or bytes
+        What to write; text as UTF-8.
+    mode : int, optional
+        Exact permissions (``0o600``); default those ``open()`` would give.
+
+    Returns
+    -------
+    None
+
+    Raises
+    ------
+    OSError
+        Naming ``path``, with the system's reason; nothing is left behind.
+
+    Examples
+    --------
+    >>> import symlink, tempfile, pathlib
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "deeper" / "note.txt"
+    >>> symlink.write_atomic(path, "hello\n")
+    >>> path.read_text(), sorted(p.name for p in path.parent.iterdir())  # no temporary left beside it
+    ('hello\n', ['note.txt'])
     """
     path = Path(path)
     try:

@@ -175,6 +175,31 @@ def energy_fluctuation(torque, period: float = 2 * math.pi) -> TorqueCycle:
     The samples start at angle 0 and leave out the end of the period (which repeats the
     start); a four-stroke engine's cycle is ``period = 4 pi``.  ``ValueError`` for fewer than
     four samples or values that are not finite.
+
+    Parameters
+    ----------
+    torque : array_like
+        The torque at equally spaced angles over one period, the end left out.
+    period : float, optional
+        The cycle's length in radians (default ``2 pi``; ``4 pi`` for a four-stroke engine).
+
+    Returns
+    -------
+    TorqueCycle
+        The angles, the torque, its mean, the energy ``E(theta)`` and its fluctuation ``dE``.
+
+    Raises
+    ------
+    ValueError
+        For fewer than four samples or values that are not finite.
+
+    Examples
+    --------
+    >>> import numpy, symlink
+    >>> angles = numpy.linspace(0, 2 * numpy.pi, 64, endpoint=False)
+    >>> cycle = symlink.energy_fluctuation(3.0 + 2.0 * numpy.sin(2 * angles))  # E = -cos(2 theta): dE = 2
+    >>> round(cycle.mean_torque, 12), round(cycle.energy_fluctuation, 12)
+    (3.0, 2.0)
     """
     values = numpy.asarray(torque, dtype=float)
     if values.ndim != 1 or len(values) < 4:
@@ -209,7 +234,28 @@ def energy_fluctuation(torque, period: float = 2 * math.pi) -> TorqueCycle:
 
 
 def flywheel_inertia(energy: float, mean_speed: float, coefficient: float) -> float:
-    """``dE / (Cs w^2)``: the inertia that keeps the speed within ``Cs`` of the mean ``w`` (rad/s)."""
+    """``dE / (Cs w^2)``: the inertia that keeps the speed within ``Cs`` of the mean ``w`` (rad/s).
+
+    Parameters
+    ----------
+    energy : float
+        The energy fluctuation ``dE`` over a cycle.
+    mean_speed : float
+        The mean speed ``w``, rad/s.
+    coefficient : float
+        The coefficient of speed fluctuation ``Cs``.
+
+    Returns
+    -------
+    float
+        The inertia ``dE / (Cs w^2)``.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> symlink.flywheel_inertia(2.0, 10.0, 0.02)  # 2 / (0.02 * 10^2)
+    1.0
+    """
     energy = _finite(energy, "energy fluctuation")
     if energy < 0:
         raise ValueError(f"the energy fluctuation must not be negative, got {energy!r}")
@@ -242,6 +288,31 @@ class FlywheelSizing:
 
     ``cycle`` is the :class:`TorqueCycle` of the driving torque at constant speed;
     ``inertia`` the textbook flywheel ``dE / (Cs w^2)`` (the whole inertia on the input shaft).
+
+    Parameters
+    ----------
+    model : DynamicModel
+        A one-input model.
+    values : mapping of str to float
+        Every parameter of its dynamic linkage by name.
+    mean_speed : float
+        The input's mean speed, rad/s.
+    coefficient : float
+        The coefficient of speed fluctuation ``Cs = (w_max - w_min) / w_mean``.
+    branch : int or mapping of str to int, optional
+        The assembly, as for :class:`ForwardDynamics` (default +1).
+    samples : int, optional
+        Torque samples over the cycle (default 720).
+
+    Examples
+    --------
+    >>> import symlink
+    >>> model = symlink.DynamicModel(symlink.fourbar(), [symlink.MassProperties("crank", "m", distance="r")],
+    ...                              gravity=symlink.Gravity(0, -9.81))
+    >>> sizing = symlink.FlywheelSizing(model, dict(a=20, b=66, c=56, d=80, m=1.0, r=0.1), mean_speed=10.0,
+    ...                                 coefficient=0.02)
+    >>> round(sizing.cycle.energy_fluctuation, 9), round(sizing.inertia, 9)  # dE = 2 m g r, I = dE / (Cs w^2)
+    (1.962, 0.981)
     """
 
     _repr_html_ = record_html  # a notebook shows the fields as a table

@@ -120,7 +120,15 @@ def scalar_source(linkage: Linkage, outputs: tuple[str, ...] = EQUATION_OUTPUTS)
 class ConstantTorque:
     """A motor giving the same torque at every angle and speed.
 
-    >>> ConstantTorque(3.0)(1.0, 20.0)
+    Parameters
+    ----------
+    torque : float
+        The torque on the input.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> symlink.ConstantTorque(3.0)(1.0, 20.0)  # (angle, speed) -> torque
     3.0
     """
 
@@ -136,7 +144,17 @@ class LinearMotor:
 
     ``torque = stall_torque (1 - speed / no_load_speed)``; above the no-load speed it brakes.
 
-    >>> LinearMotor(10.0, 100.0)(0.0, 25.0)
+    Parameters
+    ----------
+    stall_torque : float
+        The torque at rest.
+    no_load_speed : float
+        The speed (rad/s) at which the torque is zero.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> symlink.LinearMotor(10.0, 100.0)(0.0, 25.0)  # 10 (1 - 25 / 100)
     7.5
     """
 
@@ -206,6 +224,25 @@ class ForwardDynamics:
     gravity, load values); ``branch`` is +1 or -1 for every loop, or a mapping of the
     branch argument names (``branch_<loop>``) to signs.  ``input_inertia`` is a
     constant inertia added on the input (a flywheel on the crank shaft).
+
+    Parameters
+    ----------
+    model : DynamicModel
+        A one-input model.
+    values : mapping of str to float
+        Every parameter of its dynamic linkage by name (lengths, masses, inertias, loads).
+    branch : int or mapping of str to int, optional
+        +1 or -1 for every loop, or a sign a branch argument (default +1).
+    input_inertia : float, optional
+        A constant inertia added on the input (a flywheel), default 0.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> model = symlink.DynamicModel(symlink.fourbar(), [symlink.MassProperties("crank", "m2", inertia="I2")])
+    >>> motion = symlink.ForwardDynamics(model, dict(a=20, b=66, c=56, d=80, m2=1.0, I2=0.5))
+    >>> float(motion.acceleration(0.3, 1.0, 2.0))  # theta'' = T / I2 = 2.0 / 0.5
+    4.0
     """
 
     def __init__(self, model: DynamicModel, values: Mapping[str, float], branch: int | Mapping[str, int] = 1,

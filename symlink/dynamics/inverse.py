@@ -492,7 +492,21 @@ def linkage_with_outputs(model: DynamicModel, outputs: Mapping[str, sp.Expr],
 
 
 class DynamicLinkage(Linkage):
-    """A linkage whose extra outputs include the dynamic ones; :attr:`dynamic_outputs` names them."""
+    """A linkage whose extra outputs include the dynamic ones; :attr:`dynamic_outputs` names them.
+
+    Parameters
+    ----------
+    name, loops, inputs, unknowns, parameters, points, roles, extras
+        As for :class:`Linkage`; made by :func:`dynamic_linkage`, not by hand.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> model = symlink.DynamicModel(symlink.fourbar(), [symlink.MassProperties("crank", "m2", inertia="I2")])
+    >>> linkage = symlink.dynamic_linkage(model)
+    >>> isinstance(linkage, symlink.Linkage), "input_torque" in linkage.dynamic_outputs
+    (True, True)
+    """
 
     dynamic_outputs: tuple[str, ...] = ()
     model: DynamicModel
@@ -578,9 +592,21 @@ def dynamic_linkage(model: DynamicModel) -> DynamicLinkage:
     cache) uses none, so it derives nothing: its key is made from the model as given
     (:meth:`DynamicLinkage.described_extras`), not from the derived expressions.
 
-    >>> from symlink.mechanism.catalog import fourbar
-    >>> from symlink.dynamics.model import DynamicModel, MassProperties
-    >>> linkage = dynamic_linkage(DynamicModel(fourbar(), [MassProperties("crank", "m2", inertia="I2")]))
+    Parameters
+    ----------
+    model : DynamicModel
+        The linkage with its masses and loads.
+
+    Returns
+    -------
+    DynamicLinkage
+        The linkage with the dynamic outputs (``input_torque``, ``joint_<J>_x`` ...) as extras.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> model = symlink.DynamicModel(symlink.fourbar(), [symlink.MassProperties("crank", "m2", inertia="I2")])
+    >>> linkage = symlink.dynamic_linkage(model)
     >>> linkage.dynamic_outputs[:3], linkage.extras["input_torque"]
     (('input_torque', 'joint_A_x', 'joint_A_y'), I2*thetaddot)
     """

@@ -69,7 +69,28 @@ Value = Union[int, float, str, sp.Expr]
 
 @dataclass(frozen=True)
 class MassProperties:
-    """A body's mass, centre of mass (``distance`` and ``angle`` from ``origin`` in the body's frame), inertia about it."""
+    """A body's mass, centre of mass (``distance`` and ``angle`` from ``origin`` in the body's frame), inertia about it.
+
+    Parameters
+    ----------
+    body : str
+        The body's name (``"crank"``, a role, or a link of the bodies).
+    mass : float or str or sympy.Expr
+        Its mass: a number, or a symbol's name that becomes a parameter.
+    distance, angle : float or str or sympy.Expr, optional
+        The centre of mass from ``origin`` in the body's frame (default 0, 0: at the origin).
+    inertia : float or str or sympy.Expr, optional
+        The moment of inertia about the centre of mass (default 0).
+    origin : str, optional
+        The joint the centre of mass is measured from (default: the body's first joint).
+
+    Examples
+    --------
+    >>> import symlink
+    >>> model = symlink.DynamicModel(symlink.fourbar(), [symlink.MassProperties("crank", "m2", inertia="I2")])
+    >>> symlink.dynamic_linkage(model).extras["input_torque"]  # a crank alone: I2 theta''
+    I2*thetaddot
+    """
 
     body: str
     mass: Value
@@ -81,7 +102,23 @@ class MassProperties:
 
 @dataclass(frozen=True)
 class Gravity:
-    """The acceleration of gravity as a vector (``Gravity(0, -9.81)``): a force ``m g`` at every centre of mass."""
+    """The acceleration of gravity as a vector (``Gravity(0, -9.81)``): a force ``m g`` at every centre of mass.
+
+    Parameters
+    ----------
+    x, y : float or str or sympy.Expr
+        The components of the acceleration of gravity in the frame.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> model = symlink.DynamicModel(symlink.fourbar(), [symlink.MassProperties("crank", "m", distance="r")],
+    ...                              gravity=symlink.Gravity(0, -9.81))
+    >>> torque = symlink.dynamic_linkage(model).extras["input_torque"]
+    >>> at_rest = {s: 0 for s in torque.free_symbols if s.name in ("thetadot", "thetaddot")}
+    >>> torque.subs(at_rest)  # holding the crank's weight: m g r cos(theta)
+    9.81*m*r*cos(theta)
+    """
 
     x: Value
     y: Value
@@ -89,7 +126,25 @@ class Gravity:
 
 @dataclass(frozen=True)
 class PointForce:
-    """A force ``(x, y)`` (frame components) at a named point or joint, on ``body`` (default: the first moving one there)."""
+    """A force ``(x, y)`` (frame components) at a named point or joint, on ``body`` (default: the first moving one there).
+
+    Parameters
+    ----------
+    point : str
+        The named point or joint it acts at.
+    x, y : float or str or sympy.Expr
+        The force's components in the frame.
+    body : str, optional
+        The body it acts on (default: the first moving one at the point).
+
+    Examples
+    --------
+    >>> import symlink
+    >>> force = symlink.PointForce("B", 0, "F")
+    >>> model = symlink.DynamicModel(symlink.fourbar(), loads=[force])
+    >>> symlink.dynamic_linkage(model).extras["input_torque"]  # a force F up at the crank pin: -F a cos(theta)
+    -F*a*cos(theta)
+    """
 
     point: str
     x: Value
@@ -99,7 +154,22 @@ class PointForce:
 
 @dataclass(frozen=True)
 class BodyTorque:
-    """A couple on a body, counter-clockwise positive."""
+    """A couple on a body, counter-clockwise positive.
+
+    Parameters
+    ----------
+    body : str
+        The body it acts on.
+    torque : float or str or sympy.Expr
+        The couple, counter-clockwise positive.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> model = symlink.DynamicModel(symlink.fourbar(), loads=[symlink.BodyTorque("rocker", "T")])
+    >>> symlink.dynamic_linkage(model).extras["input_torque"]  # virtual power: -T phi' / theta'
+    -T*a*sin(beta - theta)/(c*sin(beta - phi))
+    """
 
     body: str
     torque: Value
@@ -107,7 +177,27 @@ class BodyTorque:
 
 @dataclass(frozen=True)
 class Spring:
-    """A linear spring between two points: tension ``stiffness (length - free_length)`` pulls them together."""
+    """A linear spring between two points: tension ``stiffness (length - free_length)`` pulls them together.
+
+    Parameters
+    ----------
+    first, second : str
+        The two points (named points or joints) it joins.
+    stiffness : float or str or sympy.Expr
+        Its rate: tension per unit of stretch.
+    free_length : float or str or sympy.Expr, optional
+        Its length without tension (default 0).
+    first_body, second_body : str, optional
+        The bodies it is fixed to at each end (default: the first moving one at the point).
+
+    Examples
+    --------
+    >>> import symlink
+    >>> spring = symlink.Spring("B", "D", "k", free_length="L")
+    >>> model = symlink.DynamicModel(symlink.fourbar(), loads=[spring])
+    >>> "k" in map(str, symlink.dynamic_linkage(model).parameters), spring.free_length
+    (True, 'L')
+    """
 
     first: str
     second: str
@@ -119,7 +209,25 @@ class Spring:
 
 @dataclass(frozen=True)
 class Damper:
-    """A linear damper between two points: tension ``coefficient * (rate of their distance)``."""
+    """A linear damper between two points: tension ``coefficient * (rate of their distance)``.
+
+    Parameters
+    ----------
+    first, second : str
+        The two points (named points or joints) it joins.
+    coefficient : float or str or sympy.Expr
+        Tension per unit rate of their distance.
+    first_body, second_body : str, optional
+        The bodies it is fixed to at each end (default: the first moving one at the point).
+
+    Examples
+    --------
+    >>> import symlink
+    >>> damper = symlink.Damper("B", "D", "cd")
+    >>> torque = symlink.dynamic_linkage(symlink.DynamicModel(symlink.fourbar(), loads=[damper])).extras["input_torque"]
+    >>> torque.subs({s: 0 for s in torque.free_symbols if s.name == "thetadot"})  # it resists motion only
+    0
+    """
 
     first: str
     second: str
@@ -145,6 +253,29 @@ class DynamicModel:
 
     ``bodies`` is passed to :func:`symlink.mechanism.bodies.mechanism` where the vectors alone
     do not say which body a vector lies on.
+
+    Parameters
+    ----------
+    linkage : Linkage
+        The kinematic linkage.
+    masses : sequence of MassProperties, optional
+        The bodies' masses, centres of mass and inertias.
+    loads : sequence of PointForce, BodyTorque, Spring or Damper, optional
+        The applied loads.
+    gravity : Gravity, optional
+        The acceleration of gravity (none by default).
+    bodies : mapping of str to sequence of str, optional
+        Which vectors lie on which body, where the vectors alone do not say.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> model = symlink.DynamicModel(symlink.fourbar(), [symlink.MassProperties("crank", "m", distance="r")],
+    ...                              gravity=symlink.Gravity(0, -9.81))
+    >>> torque = symlink.dynamic_linkage(model).extras["input_torque"]
+    >>> at_rest = {s: 0 for s in torque.free_symbols if s.name in ("thetadot", "thetaddot")}
+    >>> torque.subs(at_rest)  # holding the crank's weight: m g r cos(theta)
+    9.81*m*r*cos(theta)
     """
 
     def __init__(self, linkage: Linkage, masses: Sequence[MassProperties] = (), loads: Sequence[Load] = (),

@@ -29,7 +29,37 @@ __all__ = ["kinematics_module", "write_generated"]
 
 def kinematics_module(linkage: Linkage, roles: Sequence[str], joints: Sequence[str], title: str,
                       regenerate: str = "", joints_doc: str = "Joint positions.") -> str:
-    """A NumPy module: positions, velocities and accelerations of the ``roles``, and the ``joints``' x and y."""
+    """A NumPy module: positions, velocities and accelerations of the ``roles``, and the ``joints``' x and y.
+
+    Parameters
+    ----------
+    linkage : Linkage
+        A linkage with a closed-form plan.
+    roles : sequence of str
+        The roles whose positions, speeds and accelerations the module computes.
+    joints : sequence of str
+        The outputs of the ``joints`` function (``"C_x"``, ``"C_y"``).
+    title : str
+        The module's docstring.
+    regenerate : str, optional
+        The command that regenerates it.
+    joints_doc : str, optional
+        The docstring of its ``joints`` function.
+
+    Returns
+    -------
+    str
+        The module's source, with the functions ``positions``, ``velocities``, ``accelerations`` and ``joints``.
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> namespace = {}
+    >>> exec(symlink.kinematics_module(symlink.fourbar(), ["rocker"], ["C_x", "C_y"], "Four-bar."), namespace)
+    >>> result = namespace["positions"](theta=0.0, a=20, b=66, c=56, d=80)
+    >>> round(math.degrees(float(result["rocker"])), 2)  # seed 003
+    110.74
+    """
     speeds, accels = derivative_outputs(linkage, roles)
 
     def described(names, units):
@@ -46,7 +76,30 @@ def kinematics_module(linkage: Linkage, roles: Sequence[str], joints: Sequence[s
 
 
 def write_generated(files: Mapping[str, str], folder: str | Path) -> int:
-    """Write each ``{name: text}`` into ``folder`` atomically, saying so; the exit status of a script (0)."""
+    r"""Write each ``{name: text}`` into ``folder`` atomically, saying so; the exit status of a script (0).
+
+    Parameters
+    ----------
+    files : mapping of str to str
+        Each file's name and text.
+    folder : str or pathlib.Path
+        The folder to write them into.
+
+    Returns
+    -------
+    int
+        0, the exit status of a derivation script.
+
+    Examples
+    --------
+    >>> import symlink, tempfile, pathlib
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> symlink.write_generated({"note.txt": "hello\n"}, folder) == 0  # doctest: +ELLIPSIS
+    wrote .../note.txt
+    True
+    >>> (folder / "note.txt").read_text()
+    'hello\n'
+    """
     for name, text in files.items():
         write_atomic(Path(folder) / name, text)
         print(f"wrote {Path(folder).name}/{name}")

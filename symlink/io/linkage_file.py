@@ -878,7 +878,32 @@ def _dynamics(data, linkage: Linkage) -> DynamicModel:
 
 
 def linkage_from_text(text: str, source: str = "<text>") -> LinkageFile:
-    """A :class:`LinkageFile` from the TOML text of a linkage file (see the module docstring)."""
+    """A :class:`LinkageFile` from the TOML text of a linkage file (see the module docstring).
+
+    Parameters
+    ----------
+    text : str
+        The TOML text of a linkage file.
+    source : str, optional
+        What to call it in error messages (default ``"<text>"``).
+
+    Returns
+    -------
+    LinkageFile
+        The linkage, its default values and the source.
+
+    Raises
+    ------
+    ValueError
+        ``"source:line: problem"`` for text that is not a valid linkage file.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> found = symlink.linkage_from_text(symlink.linkage_text(symlink.slider_crank()))
+    >>> found.linkage.unknowns, [step.case.name for step in found.linkage.plan]
+    ((beta, s), ['2b'])
+    """
     try:
         data = toml_loads(text)
     except ValueError as error:  # tomllib.TOMLDecodeError: its message ends "(at line L, column C)"
@@ -894,6 +919,30 @@ def read_linkage(path: str | Path) -> LinkageFile:
 
     Read by :func:`~symlink.common.files.read_input`: a regular file of at most :data:`MAX_LINKAGE_BYTES`,
     never a FIFO or a device.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The linkage file (TOML).
+
+    Returns
+    -------
+    LinkageFile
+        The linkage, its default values and where it came from.
+
+    Raises
+    ------
+    ValueError
+        ``"path:line: problem"`` for a file that cannot be read or is not a valid linkage file.
+
+    Examples
+    --------
+    >>> import symlink, tempfile, pathlib
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "fourbar.toml"
+    >>> symlink.write_linkage(symlink.fourbar(), path, symlink.EXAMPLE_VALUES["fourbar"])
+    >>> found = symlink.read_linkage(path)
+    >>> found.linkage.name, found.linkage.unknowns, found.defaults["a"]
+    ('fourbar', (beta, phi), 20.0)
     """
     return linkage_from_text(read_input_text(path, MAX_LINKAGE_BYTES, "linkage file"), str(path))
 
@@ -905,7 +954,27 @@ def load_linkage(source: str | Path, folder: str | Path | None = None) -> Linkag
     Every command that takes a linkage takes either; a relative path is
     looked for in ``folder`` when given (a scene file's own folder).
 
-    >>> found = load_linkage("fourbar")
+    Parameters
+    ----------
+    source : str or pathlib.Path
+        A catalog name (``"fourbar"``), an atlas name (``"atlas:watt-ii"``) or a linkage file's path.
+    folder : str or pathlib.Path, optional
+        Where a relative path is looked for (a scene file's own folder).
+
+    Returns
+    -------
+    LinkageFile
+        The linkage, its default values (a catalog entry's example values) and its source.
+
+    Raises
+    ------
+    ValueError
+        For a name that is neither a catalog nor an atlas entry nor a readable linkage file.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> found = symlink.load_linkage("fourbar")
     >>> found.linkage.name, found.defaults["a"], found.source
     ('fourbar', 20.0, 'catalog')
     """
@@ -994,8 +1063,22 @@ def linkage_text(linkage: Linkage, defaults: Mapping[str, float] | None = None) 
     Extras (named expressions such as the four-bar's transmission angle) are
     Python only and left out.
 
-    >>> from symlink.mechanism.catalog import slider_crank
-    >>> print(linkage_text(slider_crank()).split("[vectors]")[0].strip())
+    Parameters
+    ----------
+    linkage : Linkage
+        The linkage.
+    defaults : mapping of str to float, optional
+        Default values of its parameters, written in ``[defaults]``.
+
+    Returns
+    -------
+    str
+        The TOML text.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> print(symlink.linkage_text(symlink.slider_crank()).split("[vectors]")[0].strip())
     # A symlink linkage file: vectors, loops and points (see symlink.io.linkage_file).
     name = "slider-crank"
     inputs = ["theta"]
@@ -1036,7 +1119,30 @@ def linkage_text(linkage: Linkage, defaults: Mapping[str, float] | None = None) 
 
 
 def write_linkage(linkage: Linkage, path: str | Path, defaults: Mapping[str, float] | None = None) -> None:
-    """Write ``linkage`` (and optional ``defaults``) as a linkage file, atomically."""
+    """Write ``linkage`` (and optional ``defaults``) as a linkage file, atomically.
+
+    Parameters
+    ----------
+    linkage : Linkage
+        The linkage (its extras, Python only, are left out).
+    path : str or pathlib.Path
+        Where to write; the file appears whole or not at all.
+    defaults : mapping of str to float, optional
+        Default values of its parameters, written in ``[defaults]``.
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> import symlink, tempfile, pathlib
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "fourbar.toml"
+    >>> symlink.write_linkage(symlink.fourbar(), path, symlink.EXAMPLE_VALUES["fourbar"])
+    >>> found = symlink.read_linkage(path)
+    >>> found.linkage.name, found.linkage.unknowns, found.defaults["a"]
+    ('fourbar', (beta, phi), 20.0)
+    """
     write_atomic(path, linkage_text(linkage, defaults))
 
 

@@ -86,6 +86,31 @@ def read_pylinkage(data: Mapping[str, Any] | str) -> JointDescription:
     Both of pylinkage's JSON formats are read: the mechanism format (joints and links, above) and the
     legacy format of ``Linkage.to_dict`` (pylinkage before 1.0: ``Static``, ``Crank``, ``Revolute``,
     ``Fixed`` and ``Prismatic``/``Linear`` joints, see :func:`_read_legacy`).
+
+    Parameters
+    ----------
+    data : mapping or str
+        A pylinkage mechanism: the dict, or its JSON text (either of pylinkage's formats).
+
+    Returns
+    -------
+    JointDescription
+        Its links, joints, drivers and drawn pose; ``.build()`` makes the linkage.
+
+    Raises
+    ------
+    ValueError
+        For data that is not a pylinkage mechanism symlink can read.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> drawn = symlink.from_joints({"ground": ["A", "D"], "crank": ["A", "B"], "coupler": ["B", "C"],
+    ...                              "rocker": ["D", "C"]},
+    ...                             {"A": (0, 0), "B": (0, 1), "C": (3, 2), "D": (3, 0)}, driver="A")
+    >>> described = symlink.read_pylinkage(symlink.write_pylinkage(drawn))
+    >>> described.drivers, described.build().linkage.unknowns
+    ((('A', 'crank'),), (theta_BC, theta_DC))
     """
     if isinstance(data, str):
         try:
@@ -194,6 +219,31 @@ def write_pylinkage(drawn: JointLinkage) -> dict[str, Any]:
     Pins on the ground are ``ground`` joints, sliders ``prismatic`` joints on a fixed axis (a slider on a
     moving guide has no pylinkage form: ``ValueError``), points held by one link ``tracker`` joints on its
     first two joints; the links driven at the ground are ``driver`` links.
+
+    Parameters
+    ----------
+    drawn : JointLinkage
+        A linkage from its joints (:func:`from_joints`).
+
+    Returns
+    -------
+    dict
+        The pylinkage mechanism; ``json.dumps`` it.
+
+    Raises
+    ------
+    ValueError
+        For a slider on a moving guide, which pylinkage cannot write.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> drawn = symlink.from_joints({"ground": ["A", "D"], "crank": ["A", "B"], "coupler": ["B", "C"],
+    ...                              "rocker": ["D", "C"]},
+    ...                             {"A": (0, 0), "B": (0, 1), "C": (3, 2), "D": (3, 0)}, driver="A")
+    >>> mechanism = symlink.write_pylinkage(drawn)
+    >>> [(joint["id"], joint["type"]) for joint in mechanism["joints"]]
+    [('A', 'ground'), ('D', 'ground'), ('B', 'revolute'), ('C', 'revolute')]
     """
     chain = drawn.chain
     joints: list[dict[str, Any]] = []

@@ -191,6 +191,34 @@ def read_pyslvs(text: str, inputs: Iterable[Sequence[int]] = ((0, 1),), name: st
 
     ``ValueError`` for text outside the grammar, a ``P`` joint, a link name that is
     not a symlink name, or an input pair whose base is not a pin on the ground.
+
+    Parameters
+    ----------
+    text : str
+        A Pyslvs expression, ``M[J[R, P[0, 0], L[ground, L1]], ...]``.
+    inputs : iterable of (int, int), optional
+        Pyslvs's input pairs (base joint, driven joint), default ``((0, 1),)``.
+    name : str, optional
+        The linkage's name (default ``"pyslvs"``).
+
+    Returns
+    -------
+    JointDescription
+        Its links, joints, drivers and drawn pose; ``.build()`` makes the linkage.
+
+    Raises
+    ------
+    ValueError
+        For text outside the grammar, a ``P`` joint, a link name that is not a symlink name, or an input
+        pair whose base is not a pin on the ground.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> described = symlink.read_pyslvs("M[J[R, P[0, 0], L[ground, L1]], J[R, P[0, 1], L[L1, L2]],"
+    ...                                 " J[R, P[3, 2], L[L2, L3]], J[R, P[3, 0], L[ground, L3]]]")
+    >>> described.drivers, described.coordinates["C"], described.build().mobility.dof
+    ((('A', 'L1'),), (3.0, 2.0), 1)
     """
     joints = _Parser(text).mechanism()
     if not joints:
@@ -242,6 +270,25 @@ def write_pyslvs(drawn: JointLinkage) -> str:
 
     Pyslvs names no joints: they are written in the order of the drawn coordinates
     (a Pyslvs expression read here keeps its order, and so its input pairs).
+
+    Parameters
+    ----------
+    drawn : JointLinkage
+        A linkage from its joints (:func:`from_joints`).
+
+    Returns
+    -------
+    str
+        The Pyslvs expression.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> drawn = symlink.from_joints({"ground": ["A", "D"], "crank": ["A", "B"], "coupler": ["B", "C"],
+    ...                              "rocker": ["D", "C"]},
+    ...                             {"A": (0, 0), "B": (0, 1), "C": (3, 2), "D": (3, 0)}, driver="A")
+    >>> symlink.write_pyslvs(drawn)
+    'M[J[R, color[Green], P[0, 0], L[ground, crank]], J[R, color[Green], P[0, 1], L[crank, coupler]], J[R, color[Green], P[3, 2], L[coupler, rocker]], J[R, color[Green], P[3, 0], L[ground, rocker]]]'
     """
     chain = drawn.chain
     points = drawn.coordinates
@@ -289,8 +336,24 @@ def read_pyslvs_project(data: Mapping[str, Any] | str, name: str = "pyslvs") -> 
 
     YAML text is read with PyYAML's ``safe_load`` (data only, no objects), which must be installed.
 
-    >>> read_pyslvs_project({"mechanism": "M[J[R, P[0, 0], L[ground, L1]], J[R, P[0, 1], L[L1, L2]],"
-    ...                      " J[R, P[3, 2], L[L2, L3]], J[R, P[3, 0], L[ground, L3]]]", "input": [[0, 1]]}).drivers
+    Parameters
+    ----------
+    data : mapping or str
+        A Pyslvs-UI project: its YAML text (needs PyYAML) or the mapping it loads to.
+    name : str, optional
+        The linkage's name (default ``"pyslvs"``).
+
+    Returns
+    -------
+    JointDescription
+        The ``mechanism`` expression's joints, driven at the project's ``input`` pairs.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> symlink.read_pyslvs_project({"mechanism": "M[J[R, P[0, 0], L[ground, L1]], J[R, P[0, 1], L[L1, L2]],"
+    ...                              " J[R, P[3, 2], L[L2, L3]], J[R, P[3, 0], L[ground, L3]]]",
+    ...                              "input": [[0, 1]]}).drivers
     (('A', 'L1'),)
     """
     if isinstance(data, str):

@@ -95,8 +95,27 @@ INPUT_KEYS = {"start", "stop", "step", "angles", "speed", "accel"}
 def catalog_linkage(name: str) -> Linkage:
     """A fresh instance of the catalog's linkage ``name`` (cheap: its derivations happen on first use).
 
-    >>> catalog_linkage("fourbar").unknowns
-    (beta, phi)
+    Parameters
+    ----------
+    name : str
+        A catalog name: ``"fourbar"``, ``"slider-crank"``, ``"watt2"`` ... (the keys of :data:`CATALOG`).
+
+    Returns
+    -------
+    Linkage
+        The linkage, the same instance for the same name in a process.
+
+    Raises
+    ------
+    ValueError
+        For a name not in the catalog, listing those there are.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> linkage = symlink.catalog_linkage("slider-crank")
+    >>> linkage.name, linkage.unknowns, linkage is symlink.catalog_linkage("slider-crank")
+    ('slider-crank', (beta, s), True)
     """
     if name not in CATALOG:
         raise ValueError(f"no linkage {name!r} in the catalog; it has {', '.join(sorted(CATALOG))}")
@@ -135,6 +154,25 @@ class Scene:
     radians, link lengths, input rates); they broadcast against each other.
     ``branch`` is +1, -1 or ``"both"``; it is given to every branch sign of
     the linkage.
+
+    Parameters
+    ----------
+    linkage : Linkage or str
+        The linkage, or a catalog name.
+    outputs : sequence of str
+        The outputs wanted (only what they need is derived).
+    values : mapping of str to object, optional
+        The generated function's arguments by name (inputs in radians, lengths, input rates).
+    branch : {1, -1, "both"}, optional
+        The assembly for every branch sign (default 1).
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> scene = symlink.Scene("fourbar", ["rocker"], dict(theta=0.0, a=20, b=66, c=56, d=80))
+    >>> results = scene.evaluate()  # by branch
+    >>> list(results), round(math.degrees(float(results[1]["rocker"])), 2)  # seed 003
+    ([1], 110.74)
     """
 
     def __init__(self, linkage: Linkage | str, outputs: Sequence[str],
@@ -503,6 +541,32 @@ def scene_from_text(text: str, source: str, folder: str | Path = ".") -> SceneFi
 
 
 def read_scene(path: str | Path) -> SceneFile:
-    """Read and check a TOML scene file; ``ValueError`` starting with the file name on any problem."""
+    r"""Read and check a TOML scene file; ``ValueError`` starting with the file name on any problem.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The scene file (TOML; see the scene file reference).
+
+    Returns
+    -------
+    SceneFile
+        The scene, its input sweep, units and output format.
+
+    Raises
+    ------
+    ValueError
+        Starting with the file's name, for any problem.
+
+    Examples
+    --------
+    >>> import symlink, tempfile, pathlib
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "scene.toml"
+    >>> _ = path.write_text('linkage = "fourbar"\noutputs = ["rocker"]\n[parameters]\na = 20\nb = 66\nc = 56\n'
+    ...                     'd = 80\n[input]\nangles = [0, 90]\n')
+    >>> found = symlink.read_scene(path)
+    >>> found.scene.outputs, found.angles.tolist(), found.units
+    (('rocker',), [0.0, 90.0], 'deg')
+    """
     path = Path(path)
     return scene_from_text(read_input_text(path, MAX_SCENE_BYTES, "scene file"), str(path), path.parent)

@@ -438,8 +438,27 @@ ATLAS: Mapping[str, AtlasEntry] = _Atlas()
 def atlas_entry(name: str) -> AtlasEntry:
     """The atlas entry ``name``; ``ValueError`` listing the names for any other.
 
-    >>> atlas_entry("watt-ii").ground_kind
-    'ternary'
+    Parameters
+    ----------
+    name : str
+        An atlas name: ``fourbar``, ``watt-i``, ``watt-ii``, ``stephenson-i`` ... or ``eightbar-NNx``.
+
+    Returns
+    -------
+    AtlasEntry
+        The chain, its ground and driver, and example dimensions.
+
+    Raises
+    ------
+    ValueError
+        For a name not in :data:`ATLAS`, listing the names.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> entry = symlink.atlas_entry("watt-ii")
+    >>> entry.ground_kind, entry.links, entry.closed_form
+    ('ternary', 6, True)
     """
     if name not in ATLAS:
         six = [n for n in ATLAS if not n.startswith("eightbar")]

@@ -38,8 +38,27 @@ def with_point(linkage: Linkage, through: str, angle: sp.Expr, name: str | None 
     parameters (a coupler point for synthesis, a foot, a pen).  ``name`` defaults to the
     linkage's name with ``_point``.
 
-    >>> linkage = fourbar()
-    >>> with_coupler = with_point(linkage, "B", linkage.roles["coupler"])
+    Parameters
+    ----------
+    linkage : Linkage
+        The linkage to add the point to (left unchanged).
+    through : str
+        The named point (``"B"``) or joint the link passes through; ``u`` and ``v`` are measured from it.
+    angle : sympy.Expr
+        The angle of the link that carries the point (``linkage.roles["coupler"]``).
+    name : str, optional
+        The new linkage's name; default the linkage's name with ``_point``.
+
+    Returns
+    -------
+    Linkage
+        A new linkage with the point ``P`` (outputs ``P_x``, ``P_y``) and the parameters ``u`` and ``v`` last.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> linkage = symlink.fourbar()
+    >>> with_coupler = symlink.with_point(linkage, "B", linkage.roles["coupler"])
     >>> with_coupler.name, [str(p) for p in with_coupler.parameters][-2:]
     ('fourbar_point', ['u', 'v'])
     """
@@ -69,8 +88,8 @@ def fourbar() -> Linkage:
 
     Examples
     --------
-    >>> from symlink.numeric.solver import Solver
-    >>> result = Solver(fourbar(), ["rocker"])(theta=0.0, a=20, b=66, c=56, d=80, branch=1)
+    >>> import math, symlink
+    >>> result = symlink.Solver(symlink.fourbar(), ["rocker"])(theta=0.0, a=20, b=66, c=56, d=80, branch=1)
     >>> round(math.degrees(float(result["rocker"])), 2)  # seed 003 at theta = 0
     110.74
     """

@@ -91,7 +91,19 @@ class Slider:
     With ``turns=False`` the joint is a prismatic joint proper: the one other link
     that holds it is a block that slides on the guide without turning on it.
 
-    >>> Slider("ground", 0.0)
+    Parameters
+    ----------
+    guide : str
+        The link the pin slides on.
+    angle : float
+        The direction of the sliding line in the drawing, in radians.
+    turns : bool, optional
+        True (default): a pin in a slot, free to turn; False: a prismatic block that does not turn on the guide.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> symlink.Slider("ground", 0.0)
     Slider(guide='ground', angle=0.0, turns=True)
     """
 
@@ -120,6 +132,36 @@ class JointLinkage:
     links and loop, then (if any) the rest that Newton's method solves together.
     ``coordinates``, ``sliders`` and ``drivers`` are the description it was made
     from (the writers of other tools' formats need them).
+
+    Parameters
+    ----------
+    linkage : Linkage
+        The linkage the joints make.
+    chain : Chain
+        Its links and joints as a graph.
+    parameters : dict of str to float
+        Lengths, fixed angles and offsets read from the drawing.
+    pose : dict of str to float
+        Every coordinate in the drawing.
+    branches : dict of str to int
+        Each loop's assembly sign in the drawing.
+    mobility : Mobility
+        Its Gruebler/Kutzbach count.
+    structure : tuple of (str, tuple of str)
+        The groups it is solved in, in order.
+    coordinates, sliders, drivers : optional
+        The description it was made from.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> made = symlink.from_joints({"ground": ["A", "D"], "crank": ["A", "B"], "coupler": ["B", "C"],
+    ...                             "rocker": ["D", "C"]},
+    ...                            {"A": (0, 0), "B": (0, 1), "C": (3, 2), "D": (3, 0)}, driver="A")
+    >>> made.parameters["AB"], made.parameters["AD"], round(made.parameters["BC"] ** 2, 9)  # |BC|^2 = 3^2 + 1^2
+    (1.0, 3.0, 10.0)
+    >>> made.mobility.dof, made.branches
+    (1, {'branch': 1})
     """
 
     _repr_html_ = record_html  # a notebook shows the fields as a table
@@ -163,8 +205,30 @@ class JointDescription:
 
     ``names`` maps the names the source used (a tool's joint ids) to the joint names here.
 
-    >>> JointDescription({"ground": ["A", "D"], "crank": ["A", "B"], "coupler": ["B", "C"], "rocker": ["D", "C"]},
-    ...                  {"A": (0, 0), "B": (0, 1), "C": (3, 2), "D": (3, 0)}, ("A",)).build().linkage.unknowns
+    Parameters
+    ----------
+    links : mapping of str to sequence of str
+        Each link and the joints it holds, as for :func:`from_joints`.
+    coordinates : mapping of str to (float, float)
+        Every joint's drawn position.
+    drivers : tuple of str or (str, str)
+        The driven joints.
+    joints : mapping of str to Slider, optional
+        The joints that are not revolute pins.
+    ground : str, optional
+        The ground link's name.
+    name : str, optional
+        The linkage's name.
+    names : mapping of str to str, optional
+        The source's names of the joints (a tool's ids) to the names here.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> description = symlink.JointDescription(
+    ...     {"ground": ["A", "D"], "crank": ["A", "B"], "coupler": ["B", "C"], "rocker": ["D", "C"]},
+    ...     {"A": (0, 0), "B": (0, 1), "C": (3, 2), "D": (3, 0)}, ("A",))
+    >>> description.build().linkage.unknowns
     (theta_BC, theta_DC)
     """
 
@@ -612,9 +676,37 @@ def from_joints(links: Mapping[str, Sequence[str]], coordinates: Mapping[str, Se
     The result's :attr:`~JointLinkage.linkage` is an ordinary linkage; its
     :attr:`~JointLinkage.defaults` reproduce the drawing.
 
-    >>> slider = from_joints({"ground": ["A", "C"], "crank": ["A", "B"], "rod": ["B", "C"]},
-    ...                      {"A": (0, 0), "B": (1, 1), "C": (4, 0.5)}, driver="A",
-    ...                      joints={"C": Slider("ground", 0.0)})
+    Parameters
+    ----------
+    links : mapping of str to sequence of str
+        Each link (the ground among them) and the joints it holds; the first two give the link's angle.
+    coordinates : mapping of str to (float, float)
+        Every joint's (x, y) in one assembled pose.
+    driver : str or sequence of str or (str, str)
+        The driven joint, or one a degree of freedom; ``("A", "crank")`` where a ground pin holds several links.
+    joints : mapping of str to Slider, optional
+        The kind of each joint that is not a revolute pin.
+    ground : str, optional
+        The name of the ground link (default ``"ground"``).
+    name : str, optional
+        The linkage's name (default ``"linkage"``).
+
+    Returns
+    -------
+    JointLinkage
+        The linkage, with the parameters, pose and branches that reproduce the drawing.
+
+    Raises
+    ------
+    ValueError
+        A structure that is not a linkage of the given mobility, or a joint without coordinates.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> slider = symlink.from_joints({"ground": ["A", "C"], "crank": ["A", "B"], "rod": ["B", "C"]},
+    ...                              {"A": (0, 0), "B": (1, 1), "C": (4, 0.5)}, driver="A",
+    ...                              joints={"C": symlink.Slider("ground", 0.0)})
     >>> slider.linkage.unknowns, [s.case.name for s in slider.linkage.plan], slider.pose["s_C"]
     ((theta_BC, s_C), ['2b'], 4.0)
     """

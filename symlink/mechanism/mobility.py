@@ -22,6 +22,21 @@ class Mobility:
 
     ``links`` counts the ground; every joint is a one-freedom pair (revolute or
     prismatic), so ``dof = 3 (links - 1) - 2 (revolute + prismatic)``.
+
+    Parameters
+    ----------
+    links : int
+        The links, the ground counted.
+    revolute : int
+        The revolute joints (a pin joining k links counts k - 1).
+    prismatic : int
+        The prismatic joints.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> symlink.Mobility(links=4, revolute=4, prismatic=0).dof  # the four-bar: 3 * 3 - 2 * 4
+    1
     """
 
     _repr_html_ = record_html  # a notebook shows the fields as a table
@@ -46,8 +61,23 @@ def degrees_of_freedom(linkage: Linkage) -> Mobility:
     from the loops and points (a pin joining k bodies counts as k - 1 joints;
     a slider on its guide is one prismatic joint).
 
-    >>> degrees_of_freedom(fourbar()).dof
+    Parameters
+    ----------
+    linkage : Linkage
+        Any linkage.
+
+    Returns
+    -------
+    Mobility
+        Its links (the ground counted), revolute and prismatic joints, and ``dof``.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> symlink.degrees_of_freedom(symlink.fourbar()).dof
     1
+    >>> symlink.degrees_of_freedom(symlink.watt2())  # 3 (6 - 1) - 2 * 7 = 1
+    Mobility(links=6, revolute=7, prismatic=0)
     """
     found = mechanism(linkage)
     prismatic = sum(joint.kind == PRISMATIC for joint in found.joints)

@@ -45,6 +45,26 @@ class CompiledSolver(Solver):
     (and ``Solver(..., backend="compiled")``) fall back to NumPy instead.
     ``function`` is the compiled function (called with keywords, as the NumPy module's is)
     and ``source`` its C source.
+
+    Parameters
+    ----------
+    linkage : Linkage
+        A linkage with a closed-form plan.
+    outputs : sequence of str
+        The outputs, as for :class:`Solver`.
+
+    Raises
+    ------
+    symlink.numeric.compiled_library.CompilerUnavailable
+        Where no C compiler works.
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> solver = symlink.CompiledSolver(symlink.fourbar(), ["rocker"])  # doctest: +SKIP
+    >>> # skipped: it builds a C library with the system's compiler (seconds, and a compiler is optional)
+    >>> solver.backend, round(math.degrees(float(solver(theta=0.0, a=20, b=66, c=56, d=80)["rocker"])), 2)  # doctest: +SKIP
+    ('compiled', 110.74)
     """
 
     def __init__(self, linkage: Linkage, outputs: Sequence[str]) -> None:
@@ -72,6 +92,26 @@ def compiled_solver(linkage: Linkage, outputs: Sequence[str]) -> Solver:
     Any failure to compile, link, write or load (no compiler, a full disk, a
     folder at the library's name) falls back; bad ``outputs`` still raise
     ``ValueError``.
+
+    Parameters
+    ----------
+    linkage : Linkage
+        A linkage with a closed-form plan.
+    outputs : sequence of str
+        The outputs, as for :class:`Solver`.
+
+    Returns
+    -------
+    Solver
+        A :class:`CompiledSolver`, or where compiling fails the NumPy :class:`Solver` (one ``FallbackWarning``).
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> solver = symlink.compiled_solver(symlink.fourbar(), ["rocker"])  # doctest: +SKIP
+    >>> # skipped: it builds a C library with the system's compiler (seconds, and a compiler is optional)
+    >>> round(math.degrees(float(solver(theta=0.0, a=20, b=66, c=56, d=80)["rocker"])), 2)  # doctest: +SKIP
+    110.74
     """
     for name in outputs:
         linkage.output(name)  # ValueError naming the outputs there are, whatever the backend

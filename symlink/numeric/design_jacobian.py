@@ -172,9 +172,29 @@ def design_jacobian(linkage: Linkage, outputs: Sequence[str], parameters: Sequen
                     **values: object) -> tuple[dict[str, numpy.ndarray], numpy.ndarray]:
     """One call of a :class:`DesignJacobian` of ``linkage`` (made once a process for each linkage and request).
 
-    >>> from symlink.mechanism.catalog import slider_crank
-    >>> values, slopes = design_jacobian(slider_crank(), ["slider"], ["a", "b"], theta=0.0, a=1.0, b=3.0,
-    ...                                  offset=0.0)
+    Parameters
+    ----------
+    linkage : Linkage
+        The linkage.
+    outputs : sequence of str
+        The outputs to differentiate.
+    parameters : sequence of str, optional
+        The design parameters to differentiate by (default: all of them).
+    **values
+        The inputs, parameters and branch signs, as for a :class:`Solver` call.
+
+    Returns
+    -------
+    values : dict of str to numpy.ndarray
+        The outputs.
+    jacobian : numpy.ndarray
+        Their derivatives by the parameters: one row an output, one column a parameter (more axes for arrays).
+
+    Examples
+    --------
+    >>> import symlink
+    >>> values, slopes = symlink.design_jacobian(symlink.slider_crank(), ["slider"], ["a", "b"], theta=0.0,
+    ...                                          a=1.0, b=3.0, offset=0.0)
     >>> [round(float(v), 12) for v in slopes[0]]  # s = a + b at theta = 0, offset 0
     [1.0, 1.0]
     """

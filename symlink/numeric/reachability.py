@@ -61,6 +61,24 @@ def crank_range(a: float, b: float, c: float, d: float) -> list[tuple[float, flo
     ``|b - c| <= |BD| <= b + c``, with ``|BD|^2 = a^2 + d^2 - 2 a d cos(theta)``;
     that bounds ``cos(theta)``.  A full turn is ``[(-pi, pi)]``; an empty list
     means the linkage cannot be assembled at all.
+
+    Parameters
+    ----------
+    a, b, c, d : float
+        Crank, coupler, rocker and ground lengths.
+
+    Returns
+    -------
+    list of (float, float)
+        The intervals of the crank angle (radians) where it assembles; ``[(-pi, pi)]`` for a full turn.
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> symlink.crank_range(20, 66, 56, 80) == [(-math.pi, math.pi)]  # seed 003: a Grashof crank-rocker
+    True
+    >>> [round(math.degrees(x), 4) for x in symlink.crank_range(60, 30, 50, 40)[0]]  # acos(-1/4)
+    [-104.4775, 104.4775]
     """
     lowest = (a * a + d * d - (b + c) ** 2) / (2 * a * d)   # cos(theta) at the extended toggle
     highest = (a * a + d * d - (b - c) ** 2) / (2 * a * d)  # cos(theta) at the folded toggle
@@ -222,6 +240,25 @@ class Toggle:
     of a span), else the linkage passes through it (a change point).
     ``degenerate``: not a toggle of two assemblies but a direction the pose does not
     fix (two points that coincide, parallel guides).
+
+    Parameters
+    ----------
+    at : float
+        The input value.
+    loop : str or None
+        The loop whose assemblies meet there (None when found by Newton's method).
+    ends_range : bool, optional
+        True (default) at an end of a span; False at a change point inside one.
+    degenerate : bool, optional
+        True for a direction the pose does not fix rather than a toggle of two assemblies.
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> found = symlink.reachable_range(symlink.fourbar(), dict(a=60, b=30, c=50, d=40))
+    >>> toggle = found.toggles[0]
+    >>> round(abs(math.degrees(toggle.at)), 4), toggle.loop, toggle.ends_range
+    (104.4775, 'ABCD', True)
     """
 
     _repr_html_ = record_html  # a notebook shows the fields as a table
@@ -241,6 +278,26 @@ class InputRange:
     Newton's method (from ``guess``), ends bisected the same way.  Spans of an
     angle input lie in ``[-pi, pi)`` at their start and may end past ``pi``;
     ``[(-pi, pi)]`` is a full turn.
+
+    Parameters
+    ----------
+    input : str
+        The input's name.
+    spans : tuple of (float, float)
+        The closed intervals where the linkage assembles.
+    toggles : tuple of Toggle
+        The toggles at their ends and inside them.
+    exact : bool
+        True when each end was bisected on a closed form's root.
+    periodic : bool
+        True for an angle input.
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> found = symlink.reachable_range(symlink.fourbar(), dict(a=60, b=30, c=50, d=40))
+    >>> found.input, found.exact, [tuple(round(math.degrees(x), 4) for x in span) for span in found.spans]
+    ('theta', True, [(-104.4775, 104.4775)])
     """
 
     _repr_html_ = record_html  # a notebook shows the fields as a table
@@ -518,9 +575,37 @@ def reachable_range(linkage: Linkage, values: Mapping[str, float], *, input: str
     continues by Newton's method even where a closed form exists; ``motion``
     reuses an :class:`InputMotion` of the same linkage and values.
 
-    >>> from symlink.mechanism.catalog import slider_crank
-    >>> found = reachable_range(slider_crank(), dict(a=2.0, b=1.0, offset=0.0))
-    >>> [tuple(round(math.degrees(x), 9) for x in span) for span in found.spans]
+    Parameters
+    ----------
+    linkage : Linkage
+        A linkage with one moving input.
+    values : mapping of str to float
+        Every parameter, any branch sign (+1 default) and the other inputs.
+    input : str, optional
+        The moving input (default: the linkage's only input).
+    guess : mapping of str to float, optional
+        The unknowns at ``start`` on the wanted assembly (for Newton's continuation).
+    start : float, optional
+        The input value the continuation starts from (default 0).
+    interval : (float, float), optional
+        The span a length input is scanned over (required for one).
+    points : int, optional
+        The scan's number of input values (default 3600).
+    motion : InputMotion, optional
+        A motion of the same linkage and values to reuse.
+    numeric : bool, optional
+        Continue by Newton's method even where a closed form exists.
+
+    Returns
+    -------
+    InputRange
+        The spans of the input where it assembles (radians for an angle), and the toggles at their ends.
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> found = symlink.reachable_range(symlink.slider_crank(), dict(a=2.0, b=1.0, offset=0.0))
+    >>> [tuple(round(math.degrees(x), 9) for x in span) for span in found.spans]  # sin(theta) <= b / a
     [(-30.0, 30.0), (150.0, 210.0)]
     >>> [t.loop for t in found.toggles]
     ['ABC', 'ABC', 'ABC', 'ABC']

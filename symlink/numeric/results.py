@@ -78,10 +78,9 @@ class Results(dict):
 
     Examples
     --------
-    >>> from symlink.mechanism.catalog import fourbar
-    >>> from symlink.numeric.solver import Solver
-    >>> result = Solver(fourbar(), ["rocker", "rocker_speed"])(theta=[0.0, 0.5], a=20, b=66, c=56, d=80,
-    ...                                                       branch=1, thetadot=10.5)
+    >>> import symlink
+    >>> result = symlink.Solver(symlink.fourbar(), ["rocker", "rocker_speed"])(
+    ...     theta=[0.0, 0.5], a=20, b=66, c=56, d=80, branch=1, thetadot=10.5)
     >>> sorted(result), result.units["rocker_speed"]
     (['assembled', 'rocker', 'rocker_speed', 'singular'], 'rad/s')
     """

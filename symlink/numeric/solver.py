@@ -121,14 +121,14 @@ class Solver:
     agree to a few units in the last place (libm's and NumPy's sin, cos and atan2 may round differently).
     :attr:`backend` says which one answers now.
 
-    >>> from symlink.mechanism.catalog import fourbar
-    >>> Solver(fourbar(), ["rocker"], backend="numpy").backend
+    >>> import symlink
+    >>> symlink.Solver(symlink.fourbar(), ["rocker"], backend="numpy").backend
     'numpy'
 
     Examples
     --------
-    >>> from symlink.mechanism.catalog import fourbar
-    >>> solver = Solver(fourbar(), ["rocker", "rocker_speed"])
+    >>> import numpy, symlink
+    >>> solver = symlink.Solver(symlink.fourbar(), ["rocker", "rocker_speed"])
     >>> solver.arguments
     ['theta', 'a', 'b', 'c', 'd', 'branch', 'thetadot']
     >>> result = solver(theta=numpy.radians([0.0, 40.0]), a=20, b=66, c=56, d=80, branch=1, thetadot=10.5)
@@ -377,10 +377,19 @@ class NumericSolver:
     ``"numpy"`` the NumPy module only.  Both agree to about 1e-13; the same inputs
     fail on both, with the same messages.
 
-    >>> from symlink.mechanism.catalog import fourbar
-    >>> solver = NumericSolver(fourbar())
+    Parameters
+    ----------
+    linkage : Linkage
+        Any linkage, with or without a closed form.
+    backend : {"auto", "numpy", "compiled"}, optional
+        Which code answers, as for :class:`Solver` (default: ``SYMLINK_BACKEND``, else ``"auto"``).
+
+    Examples
+    --------
+    >>> import numpy, symlink
+    >>> solver = symlink.NumericSolver(symlink.fourbar())
     >>> result = solver(theta=[0.0, 0.1], a=20, b=66, c=56, d=80, guess={"beta": 1.0, "phi": 2.0})
-    >>> [round(float(v), 2) for v in numpy.degrees(result["rocker"])]
+    >>> [round(float(v), 2) for v in numpy.degrees(result["rocker"])]  # seed 003: 110.74 at theta = 0
     [110.74, 108.94]
     """
 
@@ -573,8 +582,27 @@ def shared_solver(build: Callable[..., Linkage], outputs: tuple[str, ...], *argu
     cases of a vector loop): building a linkage and computing its cache key
     costs about half a millisecond, a call of the solver far less.
 
-    >>> from symlink.mechanism.catalog import fourbar
-    >>> shared_solver(fourbar, ("rocker",)) is shared_solver(fourbar, ("rocker",))
+    Parameters
+    ----------
+    build : callable
+        A function that makes the linkage (a catalog entry such as :func:`fourbar`); hashable.
+    outputs : tuple of str
+        The outputs, as for :class:`Solver`.
+    *arguments
+        Arguments of ``build``, hashable.
+
+    Returns
+    -------
+    Solver
+        The same solver for the same request, every time in a process.
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> solver = symlink.shared_solver(symlink.fourbar, ("rocker",))
+    >>> solver is symlink.shared_solver(symlink.fourbar, ("rocker",))
     True
+    >>> round(math.degrees(float(solver(theta=0.0, a=20, b=66, c=56, d=80)["rocker"])), 2)  # seed 003
+    110.74
     """
     return Solver(build(*arguments), list(outputs))

@@ -300,6 +300,40 @@ def animate(a: float, b: float, c: float, d: float, path, *, branch: int = 1, fr
     A crank that cannot turn fully is swept over its reachable arc (the one
     holding 0, else the first) forward and back.  ``progress(done, total)``
     is called after each frame.  The file appears whole or not at all.
+
+    Parameters
+    ----------
+    a, b, c, d : float
+        Crank, coupler, rocker and ground lengths.
+    path : str or os.PathLike
+        Where to write: ``.gif``, or ``.mp4`` where ffmpeg is present.
+    branch : int, optional
+        The assembly, +1 (default) or -1.
+    frames : int, optional
+        Frames over the turn (default 30).
+    coupler_point : (float, float), optional
+        A coupler point (distance from B, angle from B -> C) whose path is drawn.
+    fps : float, optional
+        Frames a second (default 10).
+    size_px : (int, int), optional
+        The frame's size in pixels (default 480 by 360).
+    progress : callable, optional
+        ``progress(done, total)``, called after each frame.
+    linkage : Linkage, optional
+        The four-bar to draw (default :func:`fourbar`).
+
+    Returns
+    -------
+    Rendered
+        The path written, the number of frames, and the input's spans.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib, symlink
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "fourbar.gif"
+    >>> rendered = symlink.animate(20, 66, 56, 80, path, frames=2, size_px=(80, 60))
+    >>> rendered.frames, rendered.full_turn, path.read_bytes()[:3]  # seed 003 is a crank-rocker
+    (2, True, b'GIF')
     """
     path, writer, width, height = _checked_request(path, fps, frames, size_px)
     drawn = _fourbar_frames(a, b, c, d, branch, frames, coupler_point, linkage, width, height)
@@ -375,11 +409,43 @@ def animate_linkage(linkage: Linkage, values: Mapping[str, float], path, *, fram
     ``trace`` names points whose paths are drawn.  Linkages without a closed
     form follow Newton's method from ``guess`` (default: one found).
 
-    >>> import tempfile, pathlib
-    >>> from symlink.mechanism.catalog import fourbar
+    Parameters
+    ----------
+    linkage : Linkage
+        Any linkage.
+    values : mapping of str to float
+        Every parameter by name, as for :func:`draw_linkage`; the first input starts at its value there.
+    path : str or os.PathLike
+        Where to write: ``.gif``, or ``.mp4`` where ffmpeg is present.
+    frames : int, optional
+        How many frames (default 30).
+    trace : sequence of str, optional
+        Points whose paths are drawn.
+    fps : float, optional
+        Frames a second (default 10).
+    size_px : (int, int), optional
+        The frame's size in pixels (default 480 by 360).
+    unit : str, optional
+        The lengths' unit, for the axes' labels.
+    guess : mapping of str to float, optional
+        For a linkage without a closed form: its unknowns near an assembly.
+    progress : callable, optional
+        ``progress(done, total)``, called after each frame.
+    geometry : Geometry, optional
+        The linkage's geometry, if made already.
+
+    Returns
+    -------
+    Rendered
+        The path written, the number of frames, unassembled inputs and the input's spans.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib, symlink
     >>> path = pathlib.Path(tempfile.mkdtemp()) / "rocker.gif"
-    >>> rendered = animate_linkage(fourbar(), dict(a=0.3, b=0.1, c=0.25, d=0.3), path, frames=4, size_px=(160, 120))
-    >>> rendered.frames, rendered.unassembled, rendered.full_turn
+    >>> rendered = symlink.animate_linkage(symlink.fourbar(), dict(a=0.3, b=0.1, c=0.25, d=0.3), path, frames=4,
+    ...                                    size_px=(160, 120))
+    >>> rendered.frames, rendered.unassembled, rendered.full_turn  # a + d > b + c: the crank rocks
     (4, (), False)
     """
     path, writer, width, height = _checked_request(path, fps, frames, size_px)
@@ -398,8 +464,39 @@ def inline_animation(linkage: Linkage, values: Mapping[str, float], *, frames: i
     The last expression of a notebook cell shows it as a player; ``.html``
     is the HTML itself (for ``IPython.display.HTML`` or a page).
 
-    >>> from symlink.mechanism.catalog import fourbar
-    >>> shown = inline_animation(fourbar(), dict(a=0.1, b=0.4, c=0.25, d=0.3), frames=4, size_px=(160, 120))
+    Parameters
+    ----------
+    linkage : Linkage
+        Any linkage.
+    values : mapping of str to float
+        Every parameter by name, as for :func:`draw_linkage`; the first input starts at its value there.
+    frames : int, optional
+        How many frames (default 30).
+    trace : sequence of str, optional
+        Points whose paths are drawn.
+    fps : float, optional
+        Frames a second (default 10).
+    size_px : (int, int), optional
+        The frame's size in pixels (default 480 by 360).
+    unit : str, optional
+        The lengths' unit, for the axes' labels.
+    guess : mapping of str to float, optional
+        For a linkage without a closed form: its unknowns near an assembly.
+    progress : callable, optional
+        ``progress(done, total)``, called after each frame.
+    geometry : Geometry, optional
+        The linkage's geometry, if made already.
+
+    Returns
+    -------
+    InlineAnimation
+        The frames, shown as a player by a notebook; ``.html`` is the HTML.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> shown = symlink.inline_animation(symlink.fourbar(), dict(a=0.1, b=0.4, c=0.25, d=0.3), frames=4,
+    ...                                  size_px=(160, 120))
     >>> shown.frames, shown.full_turn, shown._repr_html_().count("data:image/png;base64,")
     (4, True, 4)
     """

@@ -246,6 +246,44 @@ def draw_linkage(linkage: Linkage, values: Mapping[str, float], ax: "Axes | None
     ``bodies`` says which vectors share a body where the vectors alone are
     ambiguous (:func:`symlink.mechanism.bodies.mechanism`).  ``ValueError`` where the
     linkage cannot be assembled at these values.
+
+    Parameters
+    ----------
+    linkage : Linkage
+        Any linkage.
+    values : mapping of str to float
+        Every parameter by name; inputs default to 0, branches to +1.
+    ax : Matplotlib Axes, optional
+        Where to draw (default: a new figure's).
+    trace : sequence of str, optional
+        Points whose paths over the input's range are drawn.
+    unit : str, optional
+        The lengths' unit, for the axes' labels.
+    guess : mapping of str to float, optional
+        For a linkage without a closed form: its unknowns near the wanted assembly.
+    title : str, optional
+        The axes' title.
+    bodies : mapping of str to sequence of str, optional
+        Which vectors share a body, where the vectors alone are ambiguous.
+    geometry : Geometry, optional
+        The linkage's geometry, if made already.
+
+    Returns
+    -------
+    LinkageDrawing
+        The artists (``bars``, ``pins``, ``traces``, ...) and the figure, movable to another pose.
+
+    Raises
+    ------
+    ValueError
+        Where the linkage cannot be assembled at these values.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> drawing = symlink.draw_linkage(symlink.fourbar(), dict(theta=0.0, a=20, b=66, c=56, d=80), trace=["C"])
+    >>> len(drawing.bars), sorted(drawing.traces)  # crank, coupler, rocker
+    (3, ['C'])
     """
     geometry = geometry or Geometry(linkage, bodies)
     completed = geometry.check_values(values)

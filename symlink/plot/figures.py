@@ -183,6 +183,34 @@ def angle_figure(a: float, b: float, c: float, d: float, branches: Sequence[int]
     deg or (-pi, pi] rad; unreachable crank angles are shaded.  ``axes``:
     two Matplotlib Axes to draw the coupler and the rocker on (default: a new
     figure); the title then goes on the first.
+
+    Parameters
+    ----------
+    a, b, c, d : float
+        Crank, coupler, rocker and ground lengths.
+    branches : sequence of int, optional
+        The branches drawn (default both: +1 solid, -1 dashed).
+    units : {"deg", "rad"}, optional
+        The angles' unit (default degrees).
+    title : str, optional
+        The figure's title.
+    samples : int, optional
+        Crank angles over the turn (default 721).
+    axes : two Matplotlib Axes, optional
+        Where to draw the coupler and the rocker (default: a new figure).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> figure = symlink.angle_figure(20, 66, 56, 80, samples=9)
+    >>> rocker = figure.axes[1].lines[0]  # branch +1
+    >>> figure.axes[1].get_ylabel(), float(rocker.get_xdata()[0]), round(float(rocker.get_ydata()[0]), 2)  # seed 003
+    ('rocker angle φ (deg)', 0.0, 110.74)
     """
     assembled_crank_range(a, b, c, d)
     half = half_turn(units)
@@ -226,6 +254,32 @@ def transmission_figure(a: float, b: float, c: float, d: float, units: str = "de
     (:func:`~symlink.analysis.transmission_range`), and the usual design
     range 45 to 135 deg shaded.  ``ax``: the Matplotlib Axes to draw on
     (default: a new figure's).
+
+    Parameters
+    ----------
+    a, b, c, d : float
+        Crank, coupler, rocker and ground lengths.
+    units : {"deg", "rad"}, optional
+        The angles' unit (default degrees).
+    title : str, optional
+        The figure's title.
+    samples : int, optional
+        Crank angles over the turn (default 721).
+    ax : Matplotlib Axes, optional
+        Where to draw (default: a new figure's).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> figure = symlink.transmission_figure(20, 66, 56, 80, samples=9)
+    >>> curve = figure.axes[0].lines[0]
+    >>> round(float(curve.get_ydata()[0]), 2)  # at theta = 0, |BD| = 60: acos(3892 / 7392)
+    58.23
     """
     assembled_crank_range(a, b, c, d)
     half = half_turn(units)
@@ -348,6 +402,40 @@ def coupler_curve_figure(a: float, b: float, c: float, d: float, distance: float
     direction B->C.  The mechanism is drawn at ``crank_angle`` (radians) on
     the first branch, by default at the first reachable crank angle from 0.
     ``ax``: the Matplotlib Axes to draw on (default: a new figure's).
+
+    Parameters
+    ----------
+    a, b, c, d : float
+        Crank, coupler, rocker and ground lengths.
+    distance : float
+        The coupler point's distance from B.
+    angle : float
+        Its angle (radians) from the coupler's direction B -> C.
+    branches : sequence of int, optional
+        The branches drawn (default +1).
+    crank_angle : float, optional
+        The crank angle (radians) the mechanism is drawn at (default: the first reachable from 0).
+    title : str, optional
+        The figure's title.
+    unit : str, optional
+        The lengths' unit, for the axes' labels.
+    samples : int, optional
+        Crank angles over the turn (default 721).
+    ax : Matplotlib Axes, optional
+        Where to draw (default: a new figure's).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> figure = symlink.coupler_curve_figure(20, 66, 56, 80, 30.0, 0.0, samples=9)
+    >>> x, y = figure.axes[0].lines[0].get_xydata()[0]  # at theta = 0: B = (20, 0), 30 along BC at 52.51 deg
+    >>> round(float(x), 2), round(float(y), 2)
+    (38.26, 23.8)
     """
     assembled_crank_range(a, b, c, d)
     point = (distance, angle)
@@ -393,10 +481,35 @@ def draw_loop(lengths: Sequence[float], angles_rad: Sequence[float], path=None, 
     Matplotlib Axes to draw on (default: a new figure's, with the legend
     below the axes; on given axes the legend is inside them).
 
-    >>> import tempfile, pathlib
+    Parameters
+    ----------
+    lengths : sequence of float
+        The four lengths ``R_k``.
+    angles_rad : sequence of float
+        The four angles ``t_k`` (radians).
+    path : str or os.PathLike, optional
+        Where to save the figure (PNG or SVG); not saved by default.
+    title : str, optional
+        The figure's title.
+    ax : Matplotlib Axes, optional
+        Where to draw (default: a new figure's).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure.
+
+    Raises
+    ------
+    ValueError
+        If the loop does not close (to 1e-6 of its total length).
+
+    Examples
+    --------
+    >>> import math, tempfile, pathlib, symlink
     >>> path = pathlib.Path(tempfile.mkdtemp()) / "loop.png"
     >>> angles = [math.radians(t) for t in (270, 308.663, 180, 63.435)]
-    >>> figure = draw_loop([300, 640.3124, 800.0158, 894.4019], angles, path)
+    >>> figure = symlink.draw_loop([300, 640.3124, 800.0158, 894.4019], angles, path)
     >>> path.stat().st_size > 0
     True
     """
@@ -456,7 +569,31 @@ def figure_suffix(path) -> str:
 
 
 def save_figure(figure: "Figure", path, dpi: float = 100) -> None:
-    """Write a figure atomically as PNG or SVG (by suffix), without timestamps, so reruns give the same bytes."""
+    """Write a figure atomically as PNG or SVG (by suffix), without timestamps, so reruns give the same bytes.
+
+    Parameters
+    ----------
+    figure : matplotlib.figure.Figure
+        The figure.
+    path : str or os.PathLike
+        Where to write; ``.png`` or ``.svg``.
+    dpi : float, optional
+        Resolution of a PNG (default 100).
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> import tempfile, pathlib, symlink
+    >>> figure = symlink.transmission_figure(20, 66, 56, 80, samples=9)
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> symlink.save_figure(figure, folder / "one.png", dpi=20)
+    >>> symlink.save_figure(figure, folder / "two.png", dpi=20)
+    >>> (folder / "one.png").read_bytes() == (folder / "two.png").read_bytes()  # no timestamps
+    True
+    """
     import matplotlib
     fmt = figure_suffix(path)
     buffer = io.BytesIO()

@@ -81,6 +81,34 @@ def motion_figure(poses, design: Design | None = None, *, curves: bool = True, t
     ``curves``: draw the centre-point (solid) and circle-point (dotted) curves of the
     first four poses (four or five poses), and for five poses the Burmester points.
     ``ax``: the Matplotlib Axes to draw on (default: a new figure's).
+
+    Parameters
+    ----------
+    poses : array_like
+        The poses, rows (x, y, angle in radians).
+    design : Design, optional
+        A design of :func:`motion_generation`, drawn at each pose.
+    curves : bool, optional
+        Draw the Burmester curves (four or five poses) and points (five), default True.
+    title : str, optional
+        The axes' title.
+    unit : str, optional
+        The lengths' unit, for the axes' labels.
+    ax : Matplotlib Axes, optional
+        Where to draw (default: a new figure's).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> poses = [(0, 0, 0), (1, 0.2, 0.3), (1.8, 0.9, 0.8), (2.2, 2.0, 1.4)]
+    >>> figure = symlink.motion_figure(poses, symlink.motion_generation(poses, rotations=[0.5, -0.5])[0], curves=False)
+    >>> figure.axes[0].get_title().startswith("motion generation through 4 poses")
+    True
     """
     poses = check_poses(poses, 2, 5)
     figure, (axes,) = _new_figure(6.4, 5.6, given=_given(ax))

@@ -69,6 +69,42 @@ def band_figure(result: "StackUp", output: str | None = None, sampled: "SampledB
     percentiles :data:`SAMPLED_PERCENTILES` and mean are drawn as dots.  ``axes``: two Matplotlib Axes (the
     nominal value, the deviations); default a new figure.  ``ValueError`` for an output the stack-up does not
     have or a sample taken elsewhere.
+
+    Parameters
+    ----------
+    result : StackUp
+        A tolerance stack-up (:func:`stack_up`); its first input is the x axis.
+    output : str, optional
+        Which of its outputs (default: the first).
+    sampled : SampledBuilds, optional
+        Builds of the same output at the same inputs (:func:`sample_builds`), drawn as percentiles.
+    units : {"deg", "rad"}, optional
+        The angles' unit (default degrees).
+    angular_input, angular_output : bool, optional
+        Whether the input and the output are angles (default True).
+    axes : two Matplotlib Axes, optional
+        Where to draw the nominal value and the deviations (default: a new figure).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure.
+
+    Raises
+    ------
+    ValueError
+        For an output the stack-up does not have, or a sample taken elsewhere.
+
+    Examples
+    --------
+    >>> import numpy, symlink
+    >>> design, bands = {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1}, {"a": 0.1, "b": 0.1}
+    >>> result = symlink.stack_up(symlink.fourbar(), "rocker", design, bands, inputs={"theta": numpy.radians([0, 90])})
+    >>> figure = symlink.band_figure(result)
+    >>> [axes.get_ylabel() for axes in figure.axes]
+    ['rocker (deg)', 'deviation of rocker (deg)']
+    >>> round(float(figure.axes[0].lines[0].get_ydata()[0]), 2)  # the nominal rocker at theta = 0, seed 003
+    110.74
     """
     name, i = _output(result, output)
     x_scale, y_scale = _scales(units, angular_input, angular_output)
@@ -147,12 +183,38 @@ def distribution_figure(result: "StackUp", sampled: "SampledBuilds", output: str
     and standard deviation ``standard_deviation``, and the ends of the worst-case (dashed) and statistical
     (dotted) bands.  Where they part, the linear model no longer describes the builds.
 
-    >>> from symlink.mechanism.catalog import fourbar
-    >>> from symlink.workshop.tolerance import sample_builds, stack_up
+    Parameters
+    ----------
+    result : StackUp
+        A tolerance stack-up (:func:`stack_up`).
+    sampled : SampledBuilds
+        Builds of the same output at the same inputs (:func:`sample_builds`).
+    output : str, optional
+        Which output (default: the first).
+    at : int, optional
+        The input value's number (default: where the statistical band is widest).
+    bins : int, optional
+        The histogram's bins (default 80).
+    units : {"deg", "rad"}, optional
+        The angles' unit (default degrees).
+    angular_input, angular_output : bool, optional
+        Whether the input and the output are angles (default True).
+    ax : Matplotlib Axes, optional
+        Where to draw (default: a new figure's).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure.
+
+    Examples
+    --------
+    >>> import symlink
     >>> design, bands = {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1}, {"a": 0.1, "b": 0.1}
-    >>> result = stack_up(fourbar(), "rocker", design, bands, inputs={"theta": [0.5]})
-    >>> builds = sample_builds(fourbar(), "rocker", design, bands, inputs={"theta": [0.5]}, builds=2000)
-    >>> distribution_figure(result, builds).axes[0].get_xlabel()
+    >>> result = symlink.stack_up(symlink.fourbar(), "rocker", design, bands, inputs={"theta": [0.5]})
+    >>> builds = symlink.sample_builds(symlink.fourbar(), "rocker", design, bands, inputs={"theta": [0.5]},
+    ...                                builds=2000)
+    >>> symlink.distribution_figure(result, builds).axes[0].get_xlabel()
     'deviation of rocker (deg)'
     """
     name, i = _output(result, output)
@@ -195,7 +257,36 @@ def distribution_figure(result: "StackUp", sampled: "SampledBuilds", output: str
 def tolerance_figure(result: "StackUp", output: str | None = None, sampled: "SampledBuilds | None" = None, *,
                      units: str = "deg", angular_input: bool = True, angular_output: bool = True,
                      title: str | None = None) -> "Figure":
-    """:func:`band_figure` and :func:`contribution_figure` on one new figure (three panels)."""
+    """:func:`band_figure` and :func:`contribution_figure` on one new figure (three panels).
+
+    Parameters
+    ----------
+    result : StackUp
+        A tolerance stack-up (:func:`stack_up`); its first input is the x axis.
+    output : str, optional
+        Which of its outputs (default: the first).
+    sampled : SampledBuilds, optional
+        Builds of the same output at the same inputs (:func:`sample_builds`), drawn as percentiles.
+    units : {"deg", "rad"}, optional
+        The angles' unit (default degrees).
+    angular_input, angular_output : bool, optional
+        Whether the input and the output are angles (default True).
+    title : str, optional
+        The figure's title.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Three panels: the nominal value, the bands, the contributions.
+
+    Examples
+    --------
+    >>> import numpy, symlink
+    >>> design, bands = {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1}, {"a": 0.1, "b": 0.1}
+    >>> result = symlink.stack_up(symlink.fourbar(), "rocker", design, bands, inputs={"theta": numpy.radians([0, 90])})
+    >>> len(symlink.tolerance_figure(result).axes)
+    3
+    """
     from .inline import NotebookFigure
     name, _ = _output(result, output)
     figure = NotebookFigure(figsize=(7.0, 9.0), layout="constrained")

@@ -94,6 +94,27 @@ class FourbarView:
     ``sliders`` (``crank``, ``coupler``, ``rocker``, ``ground``, ``angle`` in
     degrees, ``speed``), ``branch_buttons`` and ``text`` are the widgets and
     the readout; :meth:`state` is what is shown, as numbers.
+
+    Parameters
+    ----------
+    crank, coupler, rocker, ground : float, optional
+        The lengths, in any one unit.
+    crank_angle : float, optional
+        The crank angle, radians (default 0).
+    branch : int, optional
+        The assembly, +1 (default) or -1.
+    crank_speed : float, optional
+        The crank's speed, rad/s (default 1).
+    figure : matplotlib.figure.Figure, optional
+        Where to draw (default: a new pyplot figure).
+
+    Examples
+    --------
+    >>> import symlink
+    >>> view = symlink.FourbarView(20, 66, 56, 80)
+    >>> state = view.state()
+    >>> round(state["rocker"], 6), round(state["C_x"], 3)  # seed 003 at theta = 0: C_x = 80 + 56 cos(110.74 deg)
+    (1.932819, 60.167)
     """
 
     def __init__(self, crank: float = SEED001["crank"], coupler: float = SEED001["coupler"],
@@ -212,6 +233,24 @@ class LinkageView:
     (:func:`~symlink.plot.drawing.draw_linkage`); a pose that cannot be
     assembled is said in the title, and the last drawing stays.  ``figure``
     defaults to a new pyplot figure; :meth:`values` is what is set.
+
+    Parameters
+    ----------
+    linkage : Linkage
+        Any linkage.
+    values : mapping of str to float
+        Every parameter and input by name (angles in radians).
+    trace : sequence of str, optional
+        Points whose paths are drawn.
+    figure : matplotlib.figure.Figure, optional
+        Where to draw (default: a new pyplot figure).
+
+    Examples
+    --------
+    >>> import symlink
+    >>> view = symlink.LinkageView(symlink.fourbar(), dict(a=20, b=66, c=56, d=80, theta=0.0))
+    >>> view.values()
+    {'theta': 0.0, 'branch': 1, 'a': 20.0, 'b': 66.0, 'c': 56.0, 'd': 80.0}
     """
 
     def __init__(self, linkage, values, *, trace=(), figure: "Figure | None" = None) -> None:

@@ -46,8 +46,25 @@ class ClosureSystem:
 def closure_system(linkage: Linkage) -> ClosureSystem:
     """Derive the closure system of ``linkage``; ``ValueError`` unless it has as many equations as unknowns.
 
-    >>> from symlink.mechanism.catalog import slider_crank
-    >>> system = closure_system(slider_crank())
+    Parameters
+    ----------
+    linkage : Linkage
+        Any linkage, with two equations a loop and two unknowns a loop.
+
+    Returns
+    -------
+    ClosureSystem
+        Its residuals, their Jacobian by the unknowns, the right-hand sides of the rate systems and the scales.
+
+    Raises
+    ------
+    ValueError
+        When the number of equations differs from the number of unknowns.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> system = symlink.closure_system(symlink.slider_crank())
     >>> system.jacobian
     Matrix([
     [-b*sin(beta), -1],

@@ -83,7 +83,32 @@ class LoopCase:
 
 
 class Loop:
-    """A closed vector loop ``sum of signed vectors = 0``."""
+    """A closed vector loop ``sum of signed vectors = 0``.
+
+    Parameters
+    ----------
+    vectors : VectorSum or Vector
+        The signed sum of vectors that closes the loop; at least two vectors.
+    name : str, optional
+        An identifier for plans and errors (default ``"loop"``).
+
+    Raises
+    ------
+    ValueError
+        A name that is not an identifier, fewer than two vectors, or a loop that cannot close for any values.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> theta, beta, phi = symlink.coordinates("theta beta phi")
+    >>> a, b, c, d = symlink.lengths("a b c d")
+    >>> loop = symlink.Loop(symlink.Vector(d, 0) + symlink.Vector(c, phi) - symlink.Vector(b, beta)
+    ...                     - symlink.Vector(a, theta), "ABCD")
+    >>> loop.case([beta, phi]).name  # two angles unknown: the four-bar's case
+    '3'
+    >>> loop.equations()[1]
+    -a*sin(theta) - b*sin(beta) + c*sin(phi)
+    """
 
     def __init__(self, vectors: VectorSum | Vector, name: str = "loop") -> None:
         self.name = identifier(name, "loop name")

@@ -59,7 +59,28 @@ class PlanStep:
 
 @dataclass(frozen=True)
 class SolvePlan:
-    """The steps of a linkage's solution; ``closed_form`` is False for the numeric fallback, ``note`` says why."""
+    """The steps of a linkage's solution; ``closed_form`` is False for the numeric fallback, ``note`` says why.
+
+    Parameters
+    ----------
+    linkage : str
+        The linkage's name.
+    inputs : tuple of str
+        Its inputs' names.
+    closed_form : bool
+        True when every step is a closed form, False for the numeric fallback.
+    steps : tuple of PlanStep
+        The steps in order.
+    note : str
+        One line on how it is solved (and, for the fallback, why).
+
+    Examples
+    --------
+    >>> import symlink
+    >>> plan = symlink.solve_plan(symlink.watt2())
+    >>> plan.linkage, plan.inputs, plan.closed_form, len(plan.steps)
+    ('watt2', ('theta',), True, 2)
+    """
 
     linkage: str
     inputs: tuple[str, ...]
@@ -99,10 +120,25 @@ class SolvePlan:
 def solve_plan(linkage: Linkage) -> SolvePlan:
     """Describe how ``linkage`` is solved: loop by loop in closed form, or all loops at once numerically.
 
-    >>> from symlink.mechanism.catalog import stephenson3
-    >>> plan = solve_plan(stephenson3())
+    Parameters
+    ----------
+    linkage : Linkage
+        The linkage to describe.
+
+    Returns
+    -------
+    SolvePlan
+        Its steps in order: the loops each solves, their case, the unknowns and what they use.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> plan = symlink.solve_plan(symlink.stephenson3())
     >>> plan.closed_form, plan.steps[0].case, plan.steps[0].unknowns
     (False, 'numeric', ('beta', 'mu', 'phi', 'eta'))
+    >>> plan = symlink.solve_plan(symlink.fourbar())
+    >>> plan.closed_form, [step.case for step in plan.steps]
+    (True, ['3'])
     """
     inputs = tuple(x.name for x in linkage.inputs)
     if not linkage.has_closed_form:

@@ -53,23 +53,95 @@ def expression(value) -> sp.Expr:
 
 
 def coordinates(names: str) -> tuple[sp.Symbol, ...]:
-    """Real symbols for time-varying coordinates (joint angles, slider travels)."""
+    """Real symbols for time-varying coordinates (joint angles, slider travels).
+
+    Parameters
+    ----------
+    names : str
+        Their names, separated by spaces (``"theta beta phi"``).
+
+    Returns
+    -------
+    tuple of sympy.Symbol
+        One real symbol a name, in order.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> theta, beta = symlink.coordinates("theta beta")
+    >>> theta, theta.is_real
+    (theta, True)
+    """
     found = sp.symbols(names, real=True, seq=True)
     return tuple(found)
 
 
 def lengths(names: str) -> tuple[sp.Symbol, ...]:
-    """Positive symbols for link lengths and other constant dimensions."""
+    """Positive symbols for link lengths and other constant dimensions.
+
+    Parameters
+    ----------
+    names : str
+        Their names, separated by spaces (``"a b c d"``).
+
+    Returns
+    -------
+    tuple of sympy.Symbol
+        One positive real symbol a name, in order.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> a, b = symlink.lengths("a b")
+    >>> a.is_positive, (a + b).is_positive
+    (True, True)
+    """
     return tuple(sp.symbols(names, positive=True, seq=True))
 
 
 def rate(coordinate: sp.Symbol) -> sp.Symbol:
-    """The symbol of a coordinate's first time derivative (``thetadot``)."""
+    """The symbol of a coordinate's first time derivative (``thetadot``).
+
+    Parameters
+    ----------
+    coordinate : sympy.Symbol
+        A coordinate made by :func:`coordinates`.
+
+    Returns
+    -------
+    sympy.Symbol
+        The real symbol named after it with ``dot`` appended.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> theta, = symlink.coordinates("theta")
+    >>> symlink.rate(theta)
+    thetadot
+    """
     return sp.Symbol(coordinate.name + "dot", real=True)
 
 
 def acceleration(coordinate: sp.Symbol) -> sp.Symbol:
-    """The symbol of a coordinate's second time derivative (``thetaddot``)."""
+    """The symbol of a coordinate's second time derivative (``thetaddot``).
+
+    Parameters
+    ----------
+    coordinate : sympy.Symbol
+        A coordinate made by :func:`coordinates`.
+
+    Returns
+    -------
+    sympy.Symbol
+        The real symbol named after it with ``ddot`` appended.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> theta, = symlink.coordinates("theta")
+    >>> symlink.acceleration(theta)
+    thetaddot
+    """
     return sp.Symbol(coordinate.name + "ddot", real=True)
 
 
@@ -79,6 +151,28 @@ def time_derivative(expr: sp.Expr, coordinates: Iterable[sp.Symbol]) -> sp.Expr:
     ``coordinates`` change with time; every other symbol is constant.  A
     coordinate's rate symbol differentiates to its acceleration symbol, so
     applying this twice gives second derivatives.
+
+    Parameters
+    ----------
+    expr : sympy.Expr
+        An expression of coordinates, their rates and constants.
+    coordinates : iterable of sympy.Symbol
+        The symbols that change with time.
+
+    Returns
+    -------
+    sympy.Expr
+        ``d(expr)/dt``, in the rate (and acceleration) symbols.
+
+    Examples
+    --------
+    >>> import sympy, symlink
+    >>> theta, = symlink.coordinates("theta")
+    >>> a, = symlink.lengths("a")
+    >>> symlink.time_derivative(a * sympy.cos(theta), [theta])
+    -a*thetadot*sin(theta)
+    >>> symlink.time_derivative(symlink.rate(theta), [theta])
+    thetaddot
     """
     expr = expression(expr)
     chain = {}
@@ -100,6 +194,26 @@ class Vector:
     ``name`` labels it in plans and drawings (``"AB"``).  A negative sign in a
     sum means the vector is walked backwards; it is not folded into the angle,
     so a loop still knows which of its vectors owns each unknown.
+
+    Parameters
+    ----------
+    length : sympy.Expr
+        The vector's length: a symbol of :func:`lengths`, a coordinate (a slider's travel) or an expression.
+    angle : sympy.Expr
+        Its angle from the x axis, counter-clockwise: a coordinate, a constant or an expression.
+    name : str, optional
+        A label for plans and drawings (``"AB"``); empty by default.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> theta, = symlink.coordinates("theta")
+    >>> a, = symlink.lengths("a")
+    >>> AB = symlink.Vector(a, theta, "AB")
+    >>> AB.x, AB.y
+    (a*cos(theta), a*sin(theta))
+    >>> (AB - AB).terms[1][0]  # walked backwards: the sign, not the angle
+    -1
     """
 
     length: sp.Expr
@@ -168,7 +282,24 @@ class Vector:
 
 @dataclass(frozen=True)
 class VectorSum:
-    """A signed sum of vectors: ``terms`` are ``(sign, vector)`` with sign +1 or -1."""
+    """A signed sum of vectors: ``terms`` are ``(sign, vector)`` with sign +1 or -1.
+
+    Parameters
+    ----------
+    terms : tuple of (int, Vector)
+        The signed vectors: ``(+1, v)`` walks ``v`` forwards, ``(-1, v)`` backwards.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> theta, phi = symlink.coordinates("theta phi")
+    >>> a, c = symlink.lengths("a c")
+    >>> loop = symlink.Vector(a, theta) - symlink.Vector(c, phi)
+    >>> type(loop).__name__, [sign for sign, _ in loop.terms]
+    ('VectorSum', [1, -1])
+    >>> loop.x
+    a*cos(theta) - c*cos(phi)
+    """
 
     terms: tuple[tuple[int, Vector], ...]
 

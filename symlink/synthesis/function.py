@@ -289,6 +289,36 @@ def function_generator(function: Callable[[float], float], x_range: tuple[float,
     ``function(end)``).  ``method="three-point"`` puts three precision points at the
     Chebyshev spacing; ``"least-squares"`` fits ``points`` Chebyshev-spaced points.  The
     structural error is measured against the function itself over the whole x range.
+
+    Parameters
+    ----------
+    function : callable
+        ``y = function(x)``.
+    x_range : (float, float)
+        The interval of x.
+    theta_range : (float, float)
+        The crank angles (radians) at its start and end.
+    phi_range : (float, float)
+        The rocker angles (radians) at ``function(start)`` and ``function(end)``.
+    method : {"three-point", "least-squares"}, optional
+        Three Chebyshev precision points (default), or a fit of ``points`` of them.
+    points : int, optional
+        Precision points of the least-squares fit (default 3).
+    ground : float, optional
+        The ground length (the design's scale), default 1.
+
+    Returns
+    -------
+    FunctionDesign
+        The four-bar, its branch and its structural error over the x range.
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> design = symlink.function_generator(math.log10, (1.0, 2.0), (math.radians(45), math.radians(105)),
+    ...                                     (math.radians(135), math.radians(225)))
+    >>> design.method, design.branch, design.structural_error < math.radians(0.5)
+    ('three-point', 1, True)
     """
     x_start, x_end = (float(x) for x in x_range)
     theta_start, theta_end = (float(x) for x in theta_range)

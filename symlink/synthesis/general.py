@@ -172,8 +172,33 @@ def traced_points(linkage: Linkage, point: str | Sequence[str], values: Mapping[
     their order from ``guess`` (its unknowns near an assembly at the first input; default: the
     first assembly :func:`find_assembly` finds there); every row is NaN if it cannot be continued.
 
-    >>> from symlink.mechanism.catalog import fourbar
-    >>> traced_points(fourbar(), "B", {"a": 2.0, "b": 6.0, "c": 5.0, "d": 7.0}, [0.0], placement={"scale": 2.0})
+    Parameters
+    ----------
+    linkage : Linkage
+        Any linkage with one input.
+    point : str or (str, str)
+        A point's name or two output names.
+    values : mapping of str to float
+        Every parameter.
+    inputs : array_like
+        The input values.
+    branches : mapping of str to int, optional
+        Branch signs (default +1).
+    placement : mapping of str to float, optional
+        ``x0, y0, angle, scale`` that place the linkage (default: where it is).
+    guess : mapping of str to float, optional
+        For a linkage without a closed form: its unknowns near an assembly at the first input.
+
+    Returns
+    -------
+    numpy.ndarray
+        One row (x, y) an input; NaN where it is not assembled.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> symlink.traced_points(symlink.fourbar(), "B", {"a": 2.0, "b": 6.0, "c": 5.0, "d": 7.0}, [0.0],
+    ...                       placement={"scale": 2.0})  # the crank pin at (a, 0), scaled by 2
     array([[4., 0.]])
     """
     names = _point_outputs(linkage, point)
@@ -953,6 +978,73 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
     or at a dead centre), and ``min_transmission`` is measured on the assembly continued along
     the targets; a linkage none of whose loops has two unknown angles (the Stephenson III) has
     no transmission angle in symlink's sense, and ``min_transmission`` there is a ``ValueError``.
+
+    Parameters
+    ----------
+    linkage : Linkage
+        Any linkage with one input.
+    point : str or (str, str)
+        A point's name (``"C"``) or two output names (``("P_x", "P_y")``).
+    targets : array_like
+        The target points, rows (x, y).
+    free : mapping of str to (float, float)
+        Each parameter that may change, and its bounds.
+    values : mapping of str to float, optional
+        Every other parameter (and free ones too: that design is the first start).
+    frame : sequence of str, optional
+        The free parts of the placement, of ``x0, y0, angle, scale`` (default all; ``()`` keeps it fixed).
+    placement : mapping of str to float, optional
+        The values of the fixed parts of the placement.
+    frame_bounds : mapping of str to (float, float), optional
+        Bounds of free parts of the placement.
+    timed : array_like, optional
+        The input's value at each target, or None (default) to find them too.
+    branches : mapping of str to int, optional
+        Branch signs to keep (default: tried both ways).
+    starts : int, optional
+        How many of the closest sampled designs are refined (default 16).
+    seed : int or None, optional
+        The sampling's seed (default 0).
+    evaluations : int, optional
+        Residual evaluations a refinement may take (default 2000).
+    tolerance : float, optional
+        The refinement's step tolerance (default 1e-15).
+    max_link_ratio : float, optional
+        A bound on the longest link over the shortest (default none).
+    min_transmission : float, optional
+        A bound (radians) on every two-angle loop's transmission angle from 0 and pi at every target.
+    full_rotation : bool, optional
+        Ask that the input turn fully without a toggle.
+    direction : {1, -1}, optional
+        Without timing: the input grows (+1) or shrinks from target to target (default either).
+    guess : mapping of str to float, optional
+        For a linkage without a closed form: its unknowns near an assembly at the first target.
+
+    Returns
+    -------
+    PathSynthesis
+        The best verified design (``design``, ``placement``, ``inputs``, ``error``, ``constraints``), or the closest
+        with ``assembled`` False and its reason.
+
+    Raises
+    ------
+    ValueError
+        For bad input, or when no sampled design is feasible.
+
+    See Also
+    --------
+    synthesize_fourbar_path : the four-bar's own route, from an atlas of four-bars.
+
+    Examples
+    --------
+    >>> import numpy, symlink
+    >>> linkage = symlink.slider_crank()
+    >>> inputs = numpy.linspace(0.0, 2.5, 6)
+    >>> targets = symlink.traced_points(linkage, "B", {"a": 1.3, "b": 4.1, "offset": 0.7}, inputs)  # a circle, radius a
+    >>> found = symlink.synthesize_path(linkage, "B", targets, {"a": (0.5, 2.0)}, values={"b": 4.1, "offset": 0.7},
+    ...                                 frame=(), timed=inputs)
+    >>> found.error < 1e-10, round(found.design["a"], 9)
+    (True, 1.3)
     """
     if len(linkage.inputs) != 1:
         raise ValueError(f"path synthesis drives one input; {linkage.name} has {len(linkage.inputs)}")

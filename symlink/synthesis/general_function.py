@@ -85,7 +85,22 @@ class FunctionSynthesis:
 def chebyshev_inputs(start: float, end: float, count: int) -> numpy.ndarray:
     """Chebyshev spacing of ``count`` input values in [start, end] (the precision points that keep the error small).
 
-    >>> [round(float(q), 6) for q in chebyshev_inputs(0.0, 1.0, 3)]
+    Parameters
+    ----------
+    start, end : float
+        The interval.
+    count : int
+        How many values.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(start + end) / 2 - (end - start) / 2 cos((2k - 1) pi / (2 count))`` for k = 1 .. count.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> [round(float(q), 6) for q in symlink.chebyshev_inputs(0.0, 1.0, 3)]  # (1 - cos 30 deg) / 2, 1/2, ...
     [0.066987, 0.5, 0.933013]
     """
     return chebyshev_points(float(start), float(end), int(count))
@@ -95,9 +110,29 @@ def function_values(linkage: Linkage, output: str, values: Mapping[str, float], 
                     branches: Mapping[str, float] | None = None) -> numpy.ndarray:
     """The ``output`` of a design at each input, from the linkage's generated solver; NaN where not assembled.
 
-    >>> from symlink.mechanism.catalog import slider_crank
-    >>> [round(float(s), 12) for s in function_values(slider_crank(), "s", {"a": 1.0, "b": 3.0, "offset": 0.0},
-    ...                                                [0.0, math.pi])]
+    Parameters
+    ----------
+    linkage : Linkage
+        Any linkage with one input.
+    output : str
+        The output's name.
+    values : mapping of str to float
+        Every parameter.
+    inputs : array_like
+        The input values.
+    branches : mapping of str to int, optional
+        Branch signs (default +1).
+
+    Returns
+    -------
+    numpy.ndarray
+        The output at each input; NaN where not assembled.
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> values = symlink.function_values(symlink.slider_crank(), "s", {"a": 1.0, "b": 3.0, "offset": 0.0}, [0.0, math.pi])
+    >>> [round(float(s), 12) for s in values]  # b + a and b - a
     [4.0, 2.0]
     """
     return solved_outputs(linkage, (output,), values, branches or {}, numpy.asarray(inputs, dtype=float))[output]
@@ -174,6 +209,53 @@ def synthesize_function(linkage: Linkage, output: str, inputs: ArrayLike, wanted
     where no design meets every point (more points than free parameters).  Returns the best
     verified design, or the closest one with ``assembled`` False and its reason; ``ValueError`` for
     bad input or when no sampled design is assembled at every input.
+
+    Parameters
+    ----------
+    linkage : Linkage
+        Any linkage with one input.
+    output : str
+        The output to shape: an angle (radians) or a length.
+    inputs : array_like
+        The input values (the precision points).
+    wanted : array_like
+        The output's values wanted there.
+    free : mapping of str to (float, float)
+        Each parameter that may change, and its bounds.
+    values : mapping of str to float, optional
+        Every other parameter.
+    branches : mapping of str to int, optional
+        Branch signs to keep (default: tried both ways).
+    starts : int, optional
+        How many sampled designs are refined (default 8).
+    seed : int or None, optional
+        The sampling's seed (default 0).
+    evaluations : int, optional
+        Residual evaluations a refinement may take (default 400).
+    tolerance : float, optional
+        The refinement's step tolerance.
+    minimax : bool, optional
+        Re-weight the least-squares design towards the smallest largest error (default False).
+
+    Returns
+    -------
+    FunctionSynthesis
+        The best verified design (``design``, ``structural_error``, ...), or the closest with ``assembled`` False.
+
+    Raises
+    ------
+    ValueError
+        For bad input, or when no sampled design is assembled at every input.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> inputs = symlink.chebyshev_inputs(0.2, 2.8, 6)
+    >>> wanted = symlink.function_values(symlink.slider_crank(), "s", {"a": 1.3, "b": 4.1, "offset": 0.7}, inputs)
+    >>> found = symlink.synthesize_function(symlink.slider_crank(), "s", inputs, wanted,
+    ...                                     {"a": (0.5, 2.0), "b": (3.0, 5.0)}, values={"offset": 0.7})
+    >>> found.assembled, found.structural_error < 1e-12, round(found.design["a"], 9), round(found.design["b"], 9)
+    (True, True, 1.3, 4.1)
     """
     check_linkage(linkage, "function generation", newton=True)
     is_angle_output(linkage, output)  # ValueError naming the outputs there are

@@ -132,9 +132,33 @@ def link_poses(linkage: Linkage, point: str, angle: str, values: Mapping[str, fl
                placement: Mapping[str, float] | None = None) -> numpy.ndarray:
     """The link's pose (x, y, angle) at each input as rows, placed, from the generated solver; NaN where not assembled.
 
-    >>> from symlink.mechanism.catalog import fourbar
-    >>> link_poses(fourbar(), "B", "theta", {"a": 2.0, "b": 6.0, "c": 5.0, "d": 7.0}, [0.0],
-    ...            placement={"angle": math.pi / 2}).round(12).tolist()
+    Parameters
+    ----------
+    linkage : Linkage
+        Any linkage with one input.
+    point : str
+        A point on the link.
+    angle : str
+        The output that is the link's angle.
+    values : mapping of str to float
+        Every parameter.
+    inputs : array_like
+        The input values.
+    branches : mapping of str to int, optional
+        Branch signs (default +1).
+    placement : mapping of str to float, optional
+        ``x0, y0, angle, scale`` that place the linkage.
+
+    Returns
+    -------
+    numpy.ndarray
+        One row (x, y, angle) an input; NaN where not assembled.
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> symlink.link_poses(symlink.fourbar(), "B", "theta", {"a": 2.0, "b": 6.0, "c": 5.0, "d": 7.0}, [0.0],
+    ...                    placement={"angle": math.pi / 2}).round(12).tolist()  # B = (a, 0) turned a quarter
     [[0.0, 2.0, 1.570796326795]]
     """
     names = _outputs(linkage, point, angle)
@@ -330,6 +354,54 @@ def synthesize_motion(linkage: Linkage, point: str | None, angle: str, poses: Ar
     closest feasible designs are refined with at most ``evaluations`` residual evaluations each;
     the search stops at the first verified design below 1e-12.  Returns the best verified design,
     or the closest one with ``assembled`` False and its reason; ``ValueError`` for bad input.
+
+    Parameters
+    ----------
+    linkage : Linkage
+        Any linkage with one input.
+    point : str or None
+        A point on the guided link (None: the link's frame point).
+    angle : str
+        The output that is the guided link's angle.
+    poses : array_like
+        The poses, rows (x, y, angle) in radians.
+    free : mapping of str to (float, float)
+        Each parameter that may change, and its bounds.
+    values : mapping of str to float, optional
+        Every other parameter.
+    frame : sequence of str, optional
+        The free parts of the placement (default all; ``()`` keeps it fixed).
+    placement : mapping of str to float, optional
+        The values of its fixed parts.
+    frame_bounds : mapping of str to (float, float), optional
+        Bounds of its free parts.
+    timed : array_like, optional
+        The input's value at each pose, or None (default) to find them too.
+    branches : mapping of str to int, optional
+        Branch signs to keep.
+    starts, seed, evaluations, tolerance : optional
+        The search, as for :func:`synthesize_path` (defaults 12, 0, 1000, 1e-15).
+
+    Returns
+    -------
+    MotionSynthesis
+        The best verified design, or the closest with ``assembled`` False and its reason.
+
+    Raises
+    ------
+    ValueError
+        For bad input.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> truth = {"a": 1.0, "b": 3.0, "c": 2.5, "d": 3.2}
+    >>> poses = symlink.link_poses(symlink.fourbar(), "B", "beta", truth, [0.3, 0.9, 1.5, 2.1])
+    >>> found = symlink.synthesize_motion(symlink.fourbar(), "B", "beta", poses,
+    ...                                   {"a": (0.5, 2.0), "b": (2.0, 4.0), "c": (1.5, 3.5)},
+    ...                                   values={"d": 3.2}, frame=(), timed=[0.3, 0.9, 1.5, 2.1])
+    >>> found.assembled, found.error < 1e-12, round(found.design["c"], 9)
+    (True, True, 2.5)
     """
     check_linkage(linkage, "motion generation", newton=True)
     if not linkage.has_closed_form and timed is None:

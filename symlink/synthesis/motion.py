@@ -379,7 +379,23 @@ class BurmesterCurves:
 def burmester_curves(poses, samples: int = 721) -> BurmesterCurves:
     """The centre-point and circle-point curves of four poses, sampled over the crank rotation beta_2.
 
-    >>> curves = burmester_curves([(0, 0, 0), (1, 0.2, 0.3), (1.8, 0.9, 0.8), (2.2, 2.0, 1.4)], samples=13)
+    Parameters
+    ----------
+    poses : array_like
+        Four poses, rows (x, y, angle in radians).
+    samples : int, optional
+        Samples of the crank rotation (default 721).
+
+    Returns
+    -------
+    BurmesterCurves
+        The centre-point and circle-point curves, each (branches, samples, 2).
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> poses = [(0, 0, 0), (1, 0.2, 0.3), (1.8, 0.9, 0.8), (2.2, 2.0, 1.4), (2.0, 3.0, 2.0)]
+    >>> curves = symlink.burmester_curves(poses[:4], samples=13)
     >>> curves.centre_points.shape
     (2, 13, 2)
     """
@@ -462,9 +478,24 @@ def burmester_points(poses, max_length: float = MAX_LENGTH) -> list[Dyad]:
     than ``max_length`` times the poses' spread away are left out: they are sliders in
     all but name, and their pivots are not determined to working precision.
 
+    Parameters
+    ----------
+    poses : array_like
+        Five poses, rows (x, y, angle in radians).
+    max_length : float, optional
+        Leave out dyads whose crank or pivot lie further than this times the poses' spread (default 1000).
+
+    Returns
+    -------
+    list of Dyad
+        Up to four dyads, sorted by fixed pivot.
+
+    Examples
+    --------
+    >>> import math, symlink
     >>> poses = [(0, 0, 0), (1, 0.2, 0.3), (1.8, 0.9, 0.8), (2.2, 2.0, 1.4), (2.0, 3.0, 2.0)]
-    >>> dyads = burmester_points(poses)
-    >>> len(dyads), max(d.radius_spread(poses) for d in dyads) < 1e-12
+    >>> dyads = symlink.burmester_points(poses)
+    >>> len(dyads), max(d.radius_spread(poses) for d in dyads) < 1e-12  # each moving pivot on a circle
     (4, True)
     """
     poses = check_poses(poses, 5, 5)
@@ -677,13 +708,38 @@ def motion_generation(poses, *, moving_pivots: Sequence[tuple[float, float]] | N
     Designs come sorted: defect-free first, then by the worst transmission angle at the
     poses, best first.  ``ValueError`` for bad poses or choices.
 
+    Parameters
+    ----------
+    poses : array_like
+        Two to five poses, rows (x, y, angle in radians).
+    moving_pivots : sequence of (float, float), optional
+        Two moving pivots in pose 1 (two or three poses).
+    fixed_pivots : sequence of (float, float), optional
+        Two fixed pivots (three poses).
+    rotations : sequence of float, optional
+        The crank's rotation from pose 1 to pose 2 of each dyad (four poses).
+    offsets : sequence of float, optional
+        The fixed pivots' offsets along the bisectors (two poses).
+    defect_free : bool, optional
+        Return only designs without a branch or order defect.
+
+    Returns
+    -------
+    list of Design
+        Defect-free first, then by the worst transmission angle at the poses.
+
+    Raises
+    ------
+    ValueError
+        For bad poses or choices.
+
+    Examples
+    --------
+    >>> import math, symlink
     >>> poses = [(0, 0, 0), (1, 0.2, 0.3), (1.8, 0.9, 0.8), (2.2, 2.0, 1.4), (2.0, 3.0, 2.0)]
-    >>> designs = motion_generation(poses)
+    >>> designs = symlink.motion_generation(poses)  # five poses: pairs of the Burmester points
     >>> len(designs), sum(design.defect_free for design in designs)
     (12, 3)
-    >>> best = designs[0]
-    >>> best.grashof, best.branches, best.order_direction, round(math.degrees(best.transmission_worst), 2)
-    ('triple-rocker', (-1, -1, -1, -1, -1), -1, 42.22)
     """
     poses = check_poses(poses, 2, 5)
     count = len(poses)

@@ -151,6 +151,40 @@ class PathDesign:
     Lengths in the targets' unit, angles in radians.  ``errors`` are the distances from each
     target to the coupler point at its crank angle; ``error`` is the largest over the size of
     the targets (the diagonal of their bounding box).
+
+    Parameters
+    ----------
+    crank_pivot : (float, float)
+        The crank's fixed pivot.
+    frame : float
+        The ground line's angle (radians).
+    crank, coupler, rocker, ground : float
+        The link lengths.
+    coupler_point : (float, float)
+        The coupler point (u, v) in the coupler's frame.
+    branch : int
+        The assembly, +1 or -1.
+    theta : tuple of float, optional
+        The crank angle at each target.
+    errors : tuple of float, optional
+        The distance from each target to the coupler point.
+    error : float, optional
+        The largest error over the targets' size.
+    grashof : str, optional
+        Its Grashof class.
+    worst_transmission : float, optional
+        Its worst transmission angle.
+    evaluations : int, optional
+        The residual evaluations its refinement took.
+
+    Examples
+    --------
+    >>> import numpy, symlink
+    >>> design = symlink.fourbar_design((0.0, 0.0), 0.0, (1.0, 3.0, 2.5, 3.2), (1.5, 0.8), branch=1)
+    >>> theta = numpy.linspace(0.0, 5.0, 6)
+    >>> targets = design.points(theta)  # its own coupler curve
+    >>> [round(float(x), 6) for x in targets[0]]  # B = (1, 0), cos(beta) = 1.725 / 3: B + (u, v) turned by beta
+    [1.207977, 1.68723]
     """
 
     _repr_html_ = record_html  # a notebook shows the fields as a table
@@ -218,7 +252,34 @@ def fourbar_design(crank_pivot: tuple[float, float], frame: float, lengths: Sequ
                    coupler_point: tuple[float, float], branch: int = 1) -> PathDesign:
     """A :class:`PathDesign` from its dimensions (no errors yet), checked: positive lengths, finite numbers.
 
-    >>> fourbar_design((0, 0), 0, (1, 3, 2.5, 3.2), (1.5, 0.8)).rocker_pivot
+    Parameters
+    ----------
+    crank_pivot : (float, float)
+        The crank's fixed pivot.
+    frame : float
+        The ground line's angle (radians).
+    lengths : sequence of float
+        Crank, coupler, rocker and ground lengths.
+    coupler_point : (float, float)
+        The coupler point (u, v) in the coupler's frame.
+    branch : int, optional
+        The assembly, +1 (default) or -1.
+
+    Returns
+    -------
+    PathDesign
+        The design, without errors.
+
+    Raises
+    ------
+    ValueError
+        For a length that is not positive or a number that is not finite.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> design = symlink.fourbar_design((0, 0), 0, (1, 3, 2.5, 3.2), (1.5, 0.8))
+    >>> design.rocker_pivot  # the ground d along the frame from the crank pivot
     (3.2, 0.0)
     """
     a, b, c, d = (float(x) for x in lengths)
@@ -247,7 +308,15 @@ def path_fourbar() -> Linkage:
     crank_phase``: the sensitivities are derivatives by parameters, and held at zero the
     phase's is the derivative by the crank angle, which synthesis without timing needs.
 
-    >>> [p.name for p in path_fourbar().parameters]
+    Returns
+    -------
+    Linkage
+        The placed four-bar, parameters ``crank_phase, x0, y0, frame, a, b, c, d, u, v``, extras ``P_x``, ``P_y``.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> [p.name for p in symlink.path_fourbar().parameters]
     ['crank_phase', 'x0', 'y0', 'frame', 'a', 'b', 'c', 'd', 'u', 'v']
     """
     theta, beta, phi = coordinates("theta beta phi")
@@ -346,6 +415,43 @@ def check_design(design: PathDesign, targets: ArrayLike, crank_angles: ArrayLike
     Every target is reached on the design's branch, in order (the crank moves from each
     point's angle to the next without leaving the assembly or passing a toggle), the turn
     from first to last point is less than a full turn, and the constraints hold.
+
+    Parameters
+    ----------
+    design : PathDesign
+        The design.
+    targets : array_like
+        The target points, rows (x, y).
+    crank_angles : array_like
+        The crank angle at each target.
+    grashof_class : str, optional
+        The Grashof class required (default ``"any"``).
+    max_link_ratio : float, optional
+        A bound on the longest link over the shortest (default none).
+    min_transmission : float, optional
+        A bound (radians) on the worst transmission angle (default 0).
+    bounds : mapping of str to (float, float), optional
+        Bounds of the dimensions.
+
+    Returns
+    -------
+    PathDesign
+        The design with its errors, Grashof class and worst transmission angle.
+
+    Raises
+    ------
+    ValueError
+        If a target is not reached on the branch and in order, or a constraint fails.
+
+    Examples
+    --------
+    >>> import numpy, symlink
+    >>> design = symlink.fourbar_design((0.0, 0.0), 0.0, (1.0, 3.0, 2.5, 3.2), (1.5, 0.8), branch=1)
+    >>> theta = numpy.linspace(0.0, 5.0, 6)
+    >>> targets = design.points(theta)  # its own coupler curve
+    >>> checked = symlink.check_design(design, targets, theta)
+    >>> checked.error, checked.grashof
+    (0.0, 'crank-rocker')
     """
     points = _targets(targets)
     theta = numpy.asarray(crank_angles, dtype=float)
@@ -1045,6 +1151,59 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
     ``(low, high)``; trials outside are refused like any infeasible one.  Needs SciPy
     (``pip install 'symlink-kinematics[synthesis]'``).
     ``ValueError`` for bad input or when no start satisfies the constraints.
+
+    Parameters
+    ----------
+    targets : array_like
+        The target points, rows (x, y).
+    theta : array_like, optional
+        The crank angles at the targets (timing), or None (default) to find them too.
+    starts : int, optional
+        Atlas fits refined (default 8).
+    designs : int, optional
+        How many designs to return at most (default 3).
+    grashof_class : str, optional
+        One of ``GRASHOF_CHOICES`` (default ``"any"``; ``"crank-turns"``: crank-rocker or double-crank).
+    max_link_ratio : float, optional
+        A bound on the longest link over the shortest (default 20).
+    min_transmission : float, optional
+        A bound (radians) on the worst transmission angle over the crank's turn (default 0).
+    seed : int or None, optional
+        The sampling's seed (default 0).
+    tolerance : float, optional
+        The refinement's step tolerance.
+    branch : {1, -1}, optional
+        Keep to that assembly branch (default either).
+    direction : {1, -1}, optional
+        Without timing: the crank angle grows (+1) or shrinks from point to point.
+    free_phase : bool, optional
+        With timing: ``theta`` known up to a common offset, found too.
+    bounds : mapping of str to (float, float), optional
+        Bounds of ``x0, y0, a, b, c, d, u, v``.
+
+    Returns
+    -------
+    list of PathDesign
+        The designs found, best first.
+
+    Raises
+    ------
+    ValueError
+        For bad input, or when no start satisfies the constraints.
+
+    See Also
+    --------
+    symlink.synthesize_path : path synthesis of any linkage.
+
+    Examples
+    --------
+    >>> import numpy, symlink
+    >>> design = symlink.fourbar_design((0.0, 0.0), 0.0, (1.0, 3.0, 2.5, 3.2), (1.5, 0.8), branch=1)
+    >>> theta = numpy.linspace(0.0, 5.0, 6)
+    >>> targets = design.points(theta)  # its own coupler curve
+    >>> found = symlink.synthesize_fourbar_path(targets, theta=theta, starts=1, designs=1)  # needs SciPy
+    >>> len(found), found[0].error < 1e-8
+    (1, True)
     """
     try:
         import scipy.optimize  # noqa: F401

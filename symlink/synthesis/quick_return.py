@@ -227,6 +227,38 @@ def quick_return(time_ratio: float, stroke: float, rocker: float, rocker_min_ang
     ``ValueError`` for impossible requests (time ratio below 1, stroke not strictly
     between 0 and 180 deg, a rocker that is not positive) and pivots that give no
     crank-rocker.  See the module's docstring for the construction.
+
+    Parameters
+    ----------
+    time_ratio : float
+        The time of the slow stroke over the quick one (above 1).
+    stroke : float
+        The rocker's swing (radians, strictly between 0 and pi).
+    rocker : float
+        The rocker's length.
+    rocker_min_angle : float, optional
+        The rocker's angle at its first limit (default pi / 2).
+    crank_pivot : (float, float), optional
+        Fix the crank pivot, as the paper does (default: the best one).
+    max_link_ratio : float, optional
+        The longest link over the crank, at most (default 10).
+
+    Returns
+    -------
+    QuickReturn
+        The crank-rocker, its time ratio, stroke and transmission angles.
+
+    Raises
+    ------
+    ValueError
+        For impossible requests and pivots that give no crank-rocker.
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> design = symlink.quick_return(1.25, math.radians(40), 50)
+    >>> round(design.time_ratio, 9), round(math.degrees(design.stroke), 9)
+    (1.25, 40.0)
     """
     _check_request(time_ratio, stroke, rocker)
     rocker = float(rocker)

@@ -91,7 +91,22 @@ def resampled(points: ArrayLike, count: int = SAMPLES, closed: bool = True) -> n
 def similarity_transform(points: ArrayLike, placement: Mapping[str, float]) -> numpy.ndarray:
     """Points (rows x, y) moved by a placement: ``(x0, y0) + scale * R(angle) p`` (missing parts: no move).
 
-    >>> similarity_transform([[1.0, 0.0]], {"angle": math.pi / 2, "scale": 2.0}).round(12).tolist()
+    Parameters
+    ----------
+    points : array_like
+        Rows (x, y).
+    placement : mapping of str to float
+        ``x0``, ``y0``, ``angle`` and ``scale``; missing parts do not move.
+
+    Returns
+    -------
+    numpy.ndarray
+        The moved points, rows (x, y).
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> symlink.similarity_transform([[1.0, 0.0]], {"angle": math.pi / 2, "scale": 2.0}).round(12).tolist()
     [[0.0, 2.0]]
     """
     where = {"x0": 0.0, "y0": 0.0, "angle": 0.0, "scale": 1.0, **placement}
@@ -237,6 +252,32 @@ def shape_distance(first: ArrayLike, second: ArrayLike, kind: str = "closed", *,
     ``kind``: ``"closed"`` (Fourier descriptors), ``"open"`` (arc-length resampling, similarity
     aligned) or ``"partial"`` (``first`` an open piece of the closed ``second``).  0 for similar
     curves, at most 1; ``harmonics`` keeps the descriptors up to that order (closed curves only).
+
+    Parameters
+    ----------
+    first, second : array_like
+        The two curves, rows (x, y).
+    kind : {"closed", "open", "partial"}, optional
+        Closed curves (default), open ones, or ``first`` a piece of the closed ``second``.
+    samples : int, optional
+        Resampling points (default 256).
+    harmonics : int, optional
+        Fourier descriptors kept (closed curves only).
+
+    Returns
+    -------
+    float
+        0 for similar curves, at most 1.
+
+    Examples
+    --------
+    >>> import math, numpy, symlink
+    >>> turn = numpy.linspace(0.0, 2 * math.pi, 64, endpoint=False)
+    >>> circle = numpy.stack([numpy.cos(turn), numpy.sin(turn)], axis=1)
+    >>> round(symlink.shape_distance(circle, 3 * circle[::-1] + 1), 12)  # moved, scaled, reversed: the same shape
+    0.0
+    >>> symlink.shape_distance(circle, circle * [2.0, 1.0]) > 0.1  # an ellipse is not a circle
+    True
     """
     if kind not in KINDS:
         raise ValueError(f"kind is one of {', '.join(KINDS)}, got {kind!r}")
@@ -548,11 +589,52 @@ def synthesize_shape(linkage: Linkage, point: str, target: ArrayLike, free: Mapp
     ``"partial"`` (a piece of a closed path).  ``ValueError`` for bad input, or when no sampled
     design traces such a path.
 
-    >>> from symlink.mechanism.catalog import fourbar
+    Parameters
+    ----------
+    linkage : Linkage
+        Any linkage with one input.
+    point : str
+        The tracing point's name.
+    target : array_like
+        The target curve, rows (x, y) in order along it.
+    free : mapping of str to (float, float)
+        Each parameter that may change, and its bounds.
+    kind : {"closed", "open", "partial"}, optional
+        The target is a whole closed path (default), a rocking input's whole path, or a piece of a closed one.
+    values : mapping of str to float, optional
+        Every other parameter.
+    branches : mapping of str to int, optional
+        Branch signs to keep.
+    designs : int, optional
+        How many designs are sampled and ranked by shape (default 2000).
+    refine : int, optional
+        How many of the best are refined (default 3).
+    seed : int or None, optional
+        The sampling's seed (default 0).
+    harmonics : int, optional
+        Fourier descriptors kept (closed curves).
+    starts, evaluations : int, optional
+        The refinement's own starts and evaluations.
+    candidates : sequence of mapping, optional
+        Designs to rank besides the sampled ones.
+
+    Returns
+    -------
+    ShapeSynthesis
+        The design, its placement on the target, its shape distance and error.
+
+    Raises
+    ------
+    ValueError
+        For bad input, or when no sampled design traces such a path.
+
+    Examples
+    --------
+    >>> import math, numpy, symlink
     >>> turn = numpy.linspace(0.0, 2 * math.pi, 24, endpoint=False)
     >>> circle = numpy.stack([3 + 2 * numpy.cos(turn), 1 + 2 * numpy.sin(turn)], axis=1)  # the crank pin's shape
-    >>> found = synthesize_shape(fourbar(), "B", circle, {"b": (2.5, 3.5)}, values={"a": 1.0, "c": 2.5, "d": 3.2},
-    ...                          designs=50, refine=1)
+    >>> found = symlink.synthesize_shape(symlink.fourbar(), "B", circle, {"b": (2.5, 3.5)},
+    ...                                  values={"a": 1.0, "c": 2.5, "d": 3.2}, designs=50, refine=1)
     >>> found.error < 1e-10, round(found.placement["scale"], 9)  # a crank of 1 placed at twice its size
     (True, 2.0)
     """

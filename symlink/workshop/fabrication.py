@@ -170,6 +170,34 @@ def link_parts(linkage: Linkage, values: Mapping[str, float], pin_diameter: floa
     inputs (the pose the parts are read at; 0 by default) and branch signs (+1 by default).  ``width``:
     the width of a bar (default ``2 * pin_diameter``), more than the pin diameter.  ``ValueError`` for a
     bad size, a missing value, or a pose where the linkage cannot be assembled.
+
+    Parameters
+    ----------
+    linkage : Linkage
+        Any linkage.
+    values : mapping of str to float
+        Every parameter, optionally the inputs (the pose, 0 by default) and branch signs.
+    pin_diameter : float
+        The pins' diameter.
+    width : float, optional
+        The bars' width (default twice the pin diameter).
+
+    Returns
+    -------
+    list of Part
+        Every link, ground first: its holes, outline, slots and dimensions.
+
+    Raises
+    ------
+    ValueError
+        For a bad size, a missing value, or a pose where the linkage cannot be assembled.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> parts = symlink.link_parts(symlink.fourbar(), {"a": 20, "b": 66, "c": 56, "d": 80}, pin_diameter=4)
+    >>> [(part.name, part.dimensions) for part in parts][:2]
+    [('ground', {'AD': 80.0}), ('crank', {'AB': 20.0})]
     """
     from ..numeric.poses import Geometry  # the drawing's placement of every joint: its twin, reused
     pin = _check_size("pin_diameter", pin_diameter)
@@ -304,7 +332,28 @@ def _number(value: float) -> str:
 def svg_text(parts: list[Part], unit: str = "mm") -> str:
     """The parts as an SVG document, in a row, one ``<g>`` a part (``id`` its name) with its outline (a
     ``<path>``), its holes (``<circle>`` with ``data-joint``), its slots and its label; y points up in the
-    design and down in SVG, so every y is negated.  Its width and height are the real size in ``unit``."""
+    design and down in SVG, so every y is negated.  Its width and height are the real size in ``unit``.
+
+    Parameters
+    ----------
+    parts : list of Part
+        The parts (:func:`link_parts`).
+    unit : str, optional
+        The drawing's unit (default ``"mm"``).
+
+    Returns
+    -------
+    str
+        The SVG document.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> parts = symlink.link_parts(symlink.fourbar(), {"a": 20, "b": 66, "c": 56, "d": 80}, pin_diameter=4)
+    >>> text = symlink.svg_text(parts)
+    >>> text.count("<g id="), 'data-unit="mm"' in text  # one group a part
+    (4, True)
+    """
     _check_unit(unit)
     if not parts:
         raise ValueError("no parts to draw")
@@ -351,11 +400,27 @@ def assembly_svg_text(parts: list[Part], unit: str = "mm") -> str:
     at (:func:`link_parts` with the input's value in ``values``), one ``<g>`` a part, ground first, labelled
     with the part's name at the middle of its holes.
 
-    >>> from symlink.mechanism.catalog import fourbar
-    >>> import math
-    >>> parts = link_parts(fourbar(), {"a": 20, "b": 66, "c": 56, "d": 80, "theta": math.pi / 2}, pin_diameter=4)
+    Parameters
+    ----------
+    parts : list of Part
+        The parts (:func:`link_parts`), read at a pose.
+    unit : str, optional
+        The drawing's unit (default ``"mm"``).
+
+    Returns
+    -------
+    str
+        The SVG document of the assembly.
+
+    Examples
+    --------
+    >>> import math, symlink
+    >>> parts = symlink.link_parts(symlink.fourbar(), {"a": 20, "b": 66, "c": 56, "d": 80, "theta": math.pi / 2},
+    ...                            pin_diameter=4)
     >>> [round(v, 9) for v in parts[1].placed(parts[1].holes["B"])]  # the crank pin B straight above A
     [0.0, 20.0]
+    >>> symlink.assembly_svg_text(parts).count("<g ")
+    4
     """
     _check_unit(unit)
     if not parts:
@@ -413,7 +478,31 @@ def _slot_path(start: Point, end: Point, radius: float, at) -> str:
 
 
 def write_svg(path: str | os.PathLike, parts: list[Part], unit: str = "mm") -> None:
-    """Write :func:`svg_text` of ``parts`` to ``path`` atomically (all or nothing)."""
+    """Write :func:`svg_text` of ``parts`` to ``path`` atomically (all or nothing).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        Where to write.
+    parts : list of Part
+        The parts (:func:`link_parts`).
+    unit : str, optional
+        The drawing's unit (default ``"mm"``).
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> import symlink
+    >>> parts = symlink.link_parts(symlink.fourbar(), {"a": 20, "b": 66, "c": 56, "d": 80}, pin_diameter=4)
+    >>> import tempfile, pathlib
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "parts.svg"
+    >>> symlink.write_svg(path, parts)
+    >>> path.read_text() == symlink.svg_text(parts)
+    True
+    """
     write_atomic(path, svg_text(parts, unit))
 
 
@@ -421,6 +510,29 @@ def write_dxf(path: str | os.PathLike, parts: list[Part], unit: str = "mm") -> N
     """Write :func:`dxf_text` of ``parts`` to ``path`` atomically (all or nothing).
 
     Needs ``ezdxf``: ``pip install symlink-kinematics[fabrication]``.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        Where to write.
+    parts : list of Part
+        The parts (:func:`link_parts`).
+    unit : str, optional
+        The drawing's unit (default ``"mm"``).
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> import symlink
+    >>> parts = symlink.link_parts(symlink.fourbar(), {"a": 20, "b": 66, "c": 56, "d": 80}, pin_diameter=4)
+    >>> import tempfile, pathlib
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "parts.dxf"
+    >>> symlink.write_dxf(path, parts)  # needs ezdxf (the fabrication extra)
+    >>> "LWPOLYLINE" in path.read_text()
+    True
     """
     write_atomic(path, dxf_text(parts, unit))
 
@@ -431,6 +543,26 @@ def dxf_text(parts: list[Part], unit: str = "mm") -> str:
     ``$INSUNITS`` says the unit, so that a CAD program or laser cutter reads the parts at their real size.
 
     Needs ``ezdxf``: ``pip install symlink-kinematics[fabrication]``.
+
+    Parameters
+    ----------
+    parts : list of Part
+        The parts (:func:`link_parts`).
+    unit : str, optional
+        The drawing's unit (default ``"mm"``).
+
+    Returns
+    -------
+    str
+        The DXF document (R2010).
+
+    Examples
+    --------
+    >>> import symlink
+    >>> parts = symlink.link_parts(symlink.fourbar(), {"a": 20, "b": 66, "c": 56, "d": 80}, pin_diameter=4)
+    >>> text = symlink.dxf_text(parts)  # needs ezdxf (the fabrication extra)
+    >>> "AC1024" in text, "LWPOLYLINE" in text  # R2010, the outlines
+    (True, True)
     """
     _check_unit(unit)
     if not parts:
@@ -536,7 +668,34 @@ def _finite(name: str, value: object) -> float:
 
 def read_design(text: str, source: str = "<design>") -> LinkageDesign:
     """The :class:`LinkageDesign` of :func:`design_json`'s text; ``ValueError`` naming what is wrong (not JSON, another
-    format or version, an unknown unit, a bad linkage, links or joints that are not the linkage's)."""
+    format or version, an unknown unit, a bad linkage, links or joints that are not the linkage's).
+
+    Parameters
+    ----------
+    text : str
+        The JSON text of a design.
+    source : str, optional
+        What to call it in error messages.
+
+    Returns
+    -------
+    LinkageDesign
+        The linkage, its values and unit.
+
+    Raises
+    ------
+    ValueError
+        Naming what is wrong: not JSON, another format or version, an unknown unit, a bad linkage.
+
+    Examples
+    --------
+    >>> import symlink, tempfile, pathlib
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "design.json"
+    >>> symlink.write_design(path, symlink.fourbar(), {"a": 20, "b": 66, "c": 56, "d": 80})
+    >>> design = symlink.read_design(path.read_text())
+    >>> design.linkage.name, design.values["b"], design.unit
+    ('fourbar', 66.0, 'mm')
+    """
     from ..io.linkage_file import linkage_from_mapping
     try:
         record = json.loads(text)
@@ -567,5 +726,30 @@ def read_design(text: str, source: str = "<design>") -> LinkageDesign:
 
 
 def write_design(path: str | os.PathLike, linkage: Linkage, values: Mapping[str, float], unit: str = "mm") -> None:
-    """Write :func:`design_json` to ``path`` atomically."""
+    """Write :func:`design_json` to ``path`` atomically.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        Where to write.
+    linkage : Linkage
+        The linkage.
+    values : mapping of str to float
+        Its parameters' values.
+    unit : str, optional
+        The lengths' unit (default ``"mm"``).
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> import symlink, tempfile, pathlib
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "design.json"
+    >>> symlink.write_design(path, symlink.fourbar(), {"a": 20, "b": 66, "c": 56, "d": 80})
+    >>> design = symlink.read_design(path.read_text())
+    >>> design.linkage.name, design.values["b"], design.unit
+    ('fourbar', 66.0, 'mm')
+    """
     write_atomic(path, design_json(linkage, values, unit))

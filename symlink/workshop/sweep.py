@@ -146,6 +146,42 @@ class SweepSettings:
     last role, a four-bar's rocker); ``point``: the point whose path is
     described (default: the last point with a path); ``harmonics``: H;
     ``branch``: every branch sign; ``chunk``: designs a chunk.
+
+    Parameters
+    ----------
+    linkage : str
+        A catalog name or a linkage file's path.
+    ranges : mapping of str to (float, float)
+        The swept parameters' ranges.
+    values : mapping of str to float, optional
+        The other parameters and held inputs.
+    mode : {"grid", "random"}, optional
+        ``count`` values a parameter, or ``count`` random designs.
+    count : int, optional
+        See ``mode`` (default 10).
+    seed : int, optional
+        The random designs' seed.
+    samples : int, optional
+        Input values over the turn (default 360).
+    output : str, optional
+        The output whose stroke and time ratio are found.
+    point : str, optional
+        The point whose path is described.
+    harmonics : int, optional
+        The path descriptors' order (default 3).
+    branch : int, optional
+        Every branch sign (default 1).
+    chunk : int, optional
+        Designs a chunk (default 1000).
+    linkage_text : str, optional
+        The linkage file's text, kept in the manifest.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> settings = symlink.SweepSettings("fourbar", {"a": (0.2, 0.4)}, values={"b": 1.0, "c": 1.0, "d": 1.0}, count=3)
+    >>> settings.designs, settings.mode
+    (3, 'grid')
     """
 
     linkage: str
@@ -359,7 +395,28 @@ def _refined(values: numpy.ndarray, at: numpy.ndarray, step: float) -> tuple[num
 
 
 def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[str, Any]:
-    """The table's rows for the numbered designs: a dict of columns (lists or arrays) by name."""
+    """The table's rows for the numbered designs: a dict of columns (lists or arrays) by name.
+
+    Parameters
+    ----------
+    settings : SweepSettings
+        What to evaluate.
+    designs : iterable of int
+        The designs' numbers.
+
+    Returns
+    -------
+    dict of str to list or numpy.ndarray
+        The table's columns: the design numbers, parameters, Grashof class, transmission, stroke, path descriptors.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> settings = symlink.SweepSettings("fourbar", {"a": (0.2, 0.4)}, values={"b": 1.0, "c": 1.0, "d": 1.0}, count=3)
+    >>> table = symlink.evaluate_designs(settings, range(3))
+    >>> table["a"].round(12).tolist(), table["grashof"]  # a + 1 < 1 + 1: crank-rockers
+    ([0.2, 0.3, 0.4], ['crank-rocker', 'crank-rocker', 'crank-rocker'])
+    """
     found = settings.found()
     linkage = found.linkage
     if hasattr(designs, "__len__"):  # refused before anything is allocated
@@ -658,6 +715,36 @@ def run_sweep(settings: SweepSettings, folder: str | Path, *, scheduler: Any = "
     processes (``"processes"``) ignore Ctrl-C, which the caller handles, and
     die with the process that started them (``kill -9`` of the sweep included).
     Interrupted or failed, the sweep keeps every chunk finished before.
+
+    Parameters
+    ----------
+    settings : SweepSettings
+        What to evaluate.
+    folder : str or pathlib.Path
+        The sweep's folder (made, or continued).
+    scheduler : str or distributed.Client, optional
+        ``"auto"``, ``"threads"``, ``"processes"``, ``"synchronous"``, a scheduler's address or a client.
+    workers : int, optional
+        How many local workers.
+    progress : bool, optional
+        Show a progress bar.
+    window : int, optional
+        Chunks under way at once (default four a worker).
+
+    Returns
+    -------
+    dict
+        ``designs``, ``chunks``, ``written``, ``skipped``, ``seconds`` and ``designs_per_second``.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> settings = symlink.SweepSettings("fourbar", {"a": (0.2, 0.4)}, values={"b": 1.0, "c": 1.0, "d": 1.0}, count=3)
+    >>> import tempfile
+    >>> folder = tempfile.mkdtemp()
+    >>> symlink.run_sweep(settings, folder, scheduler="synchronous")["written"]  # doctest: +SKIP
+    1
+    >>> # skipped: it needs Dask and pyarrow (the sweep extra) and takes seconds
     """
     import os
     import time
@@ -904,6 +991,32 @@ def read_sweep(folder: str | Path):
     that is not what it should be (run the sweep again to rebuild it), never a
     table with a design twice or another sweep's rows.  The ``design`` column
     says which designs are in a table read while a sweep is under way.
+
+    Parameters
+    ----------
+    folder : str or pathlib.Path
+        A sweep's folder.
+
+    Returns
+    -------
+    pyarrow.Table
+        The rows of the chunks done so far, in design order.
+
+    Raises
+    ------
+    ValueError
+        Naming the first chunk that is not what the manifest recorded.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> settings = symlink.SweepSettings("fourbar", {"a": (0.2, 0.4)}, values={"b": 1.0, "c": 1.0, "d": 1.0}, count=3)
+    >>> import tempfile
+    >>> folder = tempfile.mkdtemp()
+    >>> _ = symlink.run_sweep(settings, folder, scheduler="synchronous")  # doctest: +SKIP
+    >>> symlink.read_sweep(folder).column("a").to_pylist()  # doctest: +SKIP
+    [0.2, 0.3, 0.4]
+    >>> # skipped: it needs Dask and pyarrow (the sweep extra) and takes seconds
     """
     _require(("pyarrow",))
     import pyarrow

@@ -78,7 +78,17 @@ class Tolerance:
 
     Give either or both: a band alone has ``sigma = band / 3``; a sigma alone has ``band = 3 sigma``.
 
-    >>> Tolerance(0.06).sigma, Tolerance(sigma=0.01).band
+    Parameters
+    ----------
+    band : float, optional
+        The +- band (worst case).
+    sigma : float, optional
+        The standard deviation (statistics).
+
+    Examples
+    --------
+    >>> import symlink
+    >>> symlink.Tolerance(0.06).sigma, symlink.Tolerance(sigma=0.01).band  # a band is 3 sigma
     (0.02, 0.03)
     """
 
@@ -301,6 +311,17 @@ def stack_up(linkage: Linkage, outputs: str | Sequence[str], nominal: Mapping[st
     replaced by their closed forms, which leaves a function of the positions, the inputs' rates and the
     parameters whose derivatives :mod:`symlink.symbolic.sensitivity` derives by the chain rule (the torque's by the
     masses are the terms the masses multiply).
+
+    Examples
+    --------
+    >>> import symlink
+    >>> result = symlink.stack_up(symlink.fourbar(), "rocker", {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1}, {"b": 0.3},
+    ...                           inputs={"theta": [0.0]})
+    >>> solver = symlink.Solver(symlink.fourbar(), ["rocker"])  # the slope by central differences, independently
+    >>> rocker = lambda b: float(solver(theta=0.0, a=20, b=b, c=56, d=80)["rocker"])
+    >>> slope = (rocker(66 + 1e-6) - rocker(66 - 1e-6)) / 2e-6
+    >>> round(float(result.worst_case[0, 0]), 7), round(abs(slope) * 0.3, 7)  # radians for b = 66 +- 0.3
+    (0.0063013, 0.0063013)
     """
     chosen = [outputs] if isinstance(outputs, str) else list(outputs)
     dimensions, bands, sigmas = _tolerances(tolerances)
@@ -441,11 +462,33 @@ def pin_play(linkage: Linkage, outputs: str | Sequence[str], nominal: Mapping[st
     the links rigid, the play small beside the links, and every pin free to sit anywhere in its hole (no
     load that keeps it on one side).  Sliders are taken without play.
 
-    >>> from symlink.mechanism.catalog import fourbar
-    >>> result = pin_play(fourbar(), "rocker", {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1},
-    ...                   {"B": 0.01, "C": 0.01}, inputs={"theta": [0.0]})
-    >>> result.worst_case.shape
-    (1, 1)
+    Parameters
+    ----------
+    linkage : Linkage
+        Any linkage.
+    outputs : str or sequence of str
+        The outputs.
+    nominal : mapping
+        Every parameter's value and each branch sign.
+    play : mapping of str to float
+        Pin joint -> its radial play (the hole's radius less the pin's).
+    inputs : mapping, optional
+        Input name -> the values to evaluate at (default: a full turn every 10 degrees).
+
+    Returns
+    -------
+    PinPlay
+        The worst case of each output at each input, and the plays' directions that give it.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> result = symlink.pin_play(symlink.fourbar(), "rocker", {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1},
+    ...                           {"B": 0.01, "C": 0.01}, inputs={"theta": [0.0]})
+    >>> envelope = symlink.pin_play_envelope(symlink.fourbar(), "rocker", {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1},
+    ...                                      {"B": 0.01, "C": 0.01}, at={"theta": 0.0})
+    >>> result.worst_case.shape, bool(abs(envelope.highest - envelope.nominal - result.worst_case[0, 0]) < 1e-5)
+    ((1, 1), True)
     """
     chosen = [outputs] if isinstance(outputs, str) else list(outputs)
     if not play:
@@ -504,11 +547,31 @@ def pin_play_envelope(linkage: Linkage, output: str, nominal: Mapping[str, float
     a fine scan about the best, repeated until a round changes nothing), starting from the linearised
     optimum (:func:`pin_play`).  Same assumptions as :func:`pin_play` otherwise.
 
-    >>> from symlink.mechanism.catalog import fourbar
-    >>> envelope = pin_play_envelope(fourbar(), "rocker", {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1},
-    ...                              {"B": 0.05}, at={"theta": 0.0})
-    >>> bool(envelope.lowest < envelope.nominal < envelope.highest)
-    True
+    Parameters
+    ----------
+    linkage : Linkage
+        A linkage with a closed-form plan.
+    output : str
+        The output.
+    nominal : mapping
+        Every parameter's value and each branch sign.
+    play : mapping of str to float
+        Pin joint -> its radial play.
+    at : mapping of str to float
+        The inputs' values.
+
+    Returns
+    -------
+    PlayEnvelope
+        The nominal output, its lowest and highest values, and the directions of the plays there.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> envelope = symlink.pin_play_envelope(symlink.fourbar(), "rocker", {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1},
+    ...                                      {"B": 0.05}, at={"theta": 0.0})
+    >>> bool(envelope.lowest < envelope.nominal < envelope.highest), round(envelope.nominal, 6)  # seed 003: 110.74 deg
+    (True, 1.932819)
     """
     from ..numeric.solver import Solver
     joints = list(play)
@@ -710,9 +773,41 @@ def sample_builds(linkage: Linkage, outputs: str | Sequence[str], nominal: Mappi
     sample as a run never stopped (``reused`` counts the chunks found done).  Other arguments on the same
     folder are refused.  The folder needs the ``sweep`` extra (dask, pyarrow).
 
-    >>> from symlink.mechanism.catalog import fourbar
-    >>> sampled = sample_builds(fourbar(), "rocker", {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1},
-    ...                         {"b": 0.3}, inputs={"theta": [0.0]}, builds=1000)
+    Parameters
+    ----------
+    linkage : Linkage
+        A linkage with a closed-form plan.
+    outputs : str or sequence of str
+        The outputs, as for :func:`stack_up`.
+    nominal : mapping
+        Every parameter's value and each branch sign.
+    tolerances : mapping
+        Dimension name -> a band (read as 3 sigma) or a :class:`Tolerance`.
+    inputs : mapping, optional
+        Input name -> the values to evaluate at (default: a full turn every 10 degrees).
+    builds : int, optional
+        How many builds (default 100000).
+    seed : int, optional
+        The seed of the chunks' generators (default 0).
+    folder : str or os.PathLike, optional
+        Run on Dask and keep each chunk in this folder (needs the ``sweep`` extra).
+    scheduler : str, optional
+        Dask's local scheduler with ``folder``: ``"auto"``, ``"threads"`` or ``"synchronous"``.
+    workers : int, optional
+        How many with ``folder``.
+    chunk : int, optional
+        Builds a chunk (default 10000).
+
+    Returns
+    -------
+    SampledBuilds
+        The deviations of every build from nominal, which builds could be made, and their percentiles.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> sampled = symlink.sample_builds(symlink.fourbar(), "rocker", {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1},
+    ...                                 {"b": 0.3}, inputs={"theta": [0.0]}, builds=1000)
     >>> sampled.deviation.shape, bool(sampled.built.all())
     ((1, 1000, 1), True)
     """

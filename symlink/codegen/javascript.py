@@ -547,7 +547,8 @@ of solver.outputs), assembled[i] is 1 or 0. True/false outputs (solver.flags) ar
 assembled)."""
 
 
-def geometry_program(linkage: Linkage, outputs: Sequence[str] = ()) -> tuple[Program, dict[str, object]]:
+def geometry_program(linkage: Linkage, outputs: Sequence[str] = (),
+                     bodies: Mapping[str, Sequence[str]] | None = None) -> tuple[Program, dict[str, object]]:
     """The program of a drawing's solver and the fields that say what its outputs are.
 
     Its outputs are ``outputs`` (the linkage's, by name) and then, for every joint, slider guide and named
@@ -556,11 +557,13 @@ def geometry_program(linkage: Linkage, outputs: Sequence[str] = ()) -> tuple[Pro
     and ``direction_<joint>`` for every slider (its guide's angle).  The fields are ``points`` (each
     ``{name, x, y, kind}``: kind ``joint``, ``guide`` or ``point``), ``bodies`` (each ``{name, joints,
     points}``, the names of the points on it that are placed) and ``sliders`` (each ``{name, guide,
-    direction}``).  ``ValueError`` (:data:`NO_CLOSED_FORM`) without a closed form.
+    direction}``).  ``bodies`` places vectors on bodies where their directions alone are ambiguous, as
+    :func:`~symlink.mechanism.bodies.mechanism` takes it.  ``ValueError`` (:data:`NO_CLOSED_FORM`) without a
+    closed form.
     """
     if not linkage.has_closed_form:
         raise ValueError(f"{linkage.name}: {NO_CLOSED_FORM}")
-    drawing = mechanism(linkage)
+    drawing = mechanism(linkage, bodies)
     sums = drawn_points(linkage, drawing)
     outputs = list(dict.fromkeys(outputs))
     program = linkage.program([q.name for q in linkage.unknowns] + [o for o in outputs
@@ -597,19 +600,22 @@ def geometry_program(linkage: Linkage, outputs: Sequence[str] = ()) -> tuple[Pro
     return replace(program, outputs=wanted), {"points": points, "bodies": bodies, "sliders": sliders}
 
 
-def javascript_geometry(linkage: Linkage, outputs: Sequence[str] = (), title: str = "", regenerate: str = "") -> str:
+def javascript_geometry(linkage: Linkage, outputs: Sequence[str] = (), title: str = "", regenerate: str = "",
+                        bodies: Mapping[str, Sequence[str]] | None = None) -> str:
     """The text of a solver that places every joint and point of ``linkage`` (and computes ``outputs``, by name).
 
     Its outputs and fields are :func:`geometry_program`'s: ``x_B``, ``y_B`` for a point ``B``, listed in
     ``solver.points`` as ``{name: "B", x: "x_B", y: "y_B", kind: "joint"}``, so that a page can draw any
-    linkage from this solver alone; as :meth:`symlink.numeric.poses.Geometry.poses` places them, NaN where
+    linkage from this solver alone (``solver.sets``: ``requested``, the ``outputs`` asked for, and
+    ``geometry``, the rest); as :meth:`symlink.numeric.poses.Geometry.poses` places them, NaN where
     the linkage cannot be assembled.  ``ValueError`` (:data:`NO_CLOSED_FORM`) without a closed form.
     """
-    program, fields = geometry_program(linkage, outputs)
+    program, fields = geometry_program(linkage, outputs, bodies)
     placed = [p["name"] for p in fields["points"]]  # type: ignore[union-attr]
+    requested = list(dict.fromkeys(outputs))
+    sets = ({"requested": requested} if requested else {}) | {"geometry": list(program.outputs)[len(requested):]}
     return javascript_solver(program, linkage.name, linkage, title or f"{linkage.name}: every joint and point placed.",
-                             f"Points: {', '.join(placed)}.", regenerate,
-                             {"geometry": list(program.outputs)}, fields)
+                             f"Points: {', '.join(placed)}.", regenerate, sets, fields)
 
 
 def export_files(linkage: Linkage, stem: str, functions: Sequence[tuple[str, Sequence[str], str]],

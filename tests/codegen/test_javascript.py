@@ -434,6 +434,9 @@ def test_the_drawing_solver_names_its_points_bodies_and_sliders():
     program, fields = geometry_program(catalog_linkage("fourbar"), ["rocker", "rocker_speed"])
     assert list(program.outputs)[:3] == ["rocker", "rocker_speed", "x_A"]
     assert [a.name for a in program.arguments][-1] == "thetadot"
+    text = javascript_geometry(catalog_linkage("fourbar"), ["rocker", "rocker_speed"])
+    assert 'sets: Object.freeze({"requested": Object.freeze(["rocker", "rocker_speed"]), "geometry": ' \
+           'Object.freeze(["x_A", ' in text
 
 
 def test_a_linkage_without_a_closed_form_is_refused_with_the_reason():

@@ -135,7 +135,7 @@ class LinkageWidget(anywidget.AnyWidget):
     branch = _Table().tag(sync=True)
     _solver = traitlets.Unicode("").tag(sync=True)
     _ranges = traitlets.Dict().tag(sync=True)
-    _lengths = traitlets.List().tag(sync=True)
+    _lengths = traitlets.List(traitlets.Unicode()).tag(sync=True)
     _equations = traitlets.Unicode("").tag(sync=True)
 
     def __init__(self, linkage: Any, values: Mapping[str, float] | None = None, *,
@@ -201,7 +201,7 @@ class LinkageWidget(anywidget.AnyWidget):
                                  + (f"; it has {', '.join(self._branch_names)}" if self._branch_names else ""))
             if isinstance(sign, bool) or not isinstance(sign, numbers.Real) or float(sign) not in (1.0, -1.0):
                 raise ValueError(f"branch {name} is +1 or -1, not {sign!r}")
-            merged[name] = int(sign)
+            merged[name] = int(float(sign))
         return {name: merged[name] for name in self._branch_names if name in merged}
 
     @traitlets.validate("values")

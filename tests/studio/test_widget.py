@@ -202,9 +202,11 @@ def drawn(page) -> dict[str, tuple[float, float]]:
 
 
 def expected(linkage, values) -> dict[str, tuple[float, float]]:
+    """Every joint and point that Geometry places, less the points that only give a guide's direction."""
     poses = Geometry(linkage).poses(values)
     assert bool(poses.assembled[0])
-    return {name: (float(place[0].real), float(place[0].imag)) for name, place in poses.positions.items()}
+    return {name: (float(place[0].real), float(place[0].imag)) for name, place in poses.positions.items()
+            if not name.endswith(" guide")}
 
 
 def assert_same_pose(found, wanted) -> None:
@@ -259,3 +261,19 @@ def test_python_moves_the_drawing_and_the_branch_switch_flips_it(widget_page):
     assert page.locator("svg.symlink-drawing").get_attribute("data-assembled") == "false"
     assert drawn(page) == {}
     assert page.locator(".symlink-message").text_content() == "cannot be assembled here"
+
+
+@pytest.mark.parametrize("name", ["fourbar", "slider-crank", "inverted-slider-crank", "jansen", "watt2"])
+def test_catalog_linkages_move_as_geometry_places_them(widget_page, name):
+    from symlink.io.linkage_file import load_linkage
+    found = load_linkage(name)
+    widget = LinkageWidget(found.linkage, found.defaults)
+    load(widget_page, widget)
+    wanted = expected(widget.linkage, widget.linkage_values())
+    assert_same_pose(drawn(widget_page), wanted)
+    slider = widget_page.locator(f"input[data-name={widget.linkage.inputs[0].name}]")
+    slider.focus()
+    for _ in range(25):
+        widget_page.keyboard.press("ArrowRight")
+    widget.values = widget_page.evaluate("() => window.fakeModel.get('values')")
+    assert_same_pose(drawn(widget_page), expected(widget.linkage, widget.linkage_values()))

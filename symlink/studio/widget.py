@@ -11,7 +11,9 @@ The widget shows the linkage drawn by its joints, animated by the generated Java
 a slider for the input and for each parameter, a switch for each branch, and the linkage's equations typeset
 by the vendored KaTeX.  Two traitlets sync both ways: ``values`` (inputs and parameters, name -> number) and
 ``branch`` (branch name -> +1 or -1).  Moving a slider in the page updates ``widget.values``; setting
-``widget.values`` (all names or some of them) moves the drawing.  :meth:`LinkageWidget.linkage_values` gives
+``widget.values`` (all names or some of them) moves the drawing.  A name the linkage does not have, or a value
+that is no finite number (or not positive, for a length), is refused with :class:`RefusedValue` (a
+``ValueError``), whether Python or the page sent it.  :meth:`LinkageWidget.linkage_values` gives
 the present values as keyword arguments of :class:`symlink.Solver`.
 
 Needs ``anywidget`` (``pip install 'symlink-kinematics[notebook]'``).
@@ -33,7 +35,7 @@ except ImportError as error:  # pragma: no cover - the message is the point
 
 from ..mechanism.joints import JointLinkage
 
-__all__ = ["LinkageWidget", "widget_esm", "widget_css"]
+__all__ = ["LinkageWidget", "RefusedValue", "widget_esm", "widget_css"]
 
 STATIC = Path(__file__).resolve().parent / "static"
 
@@ -100,12 +102,21 @@ def _latex(linkage: Any) -> str:
     return text
 
 
+class RefusedValue(traitlets.TraitError, ValueError):
+    """A value the widget refuses: a ``ValueError``, and a ``TraitError`` so that traitlets undoes what the page
+    sent with it (``set_state`` rolls back on a ``TraitError`` only).
+
+    >>> issubclass(RefusedValue, ValueError)
+    True
+    """
+
+
 class _Table(traitlets.Dict):
     """A dict traitlet that refuses anything else with a ``ValueError`` (traitlets' own error is a TraitError)."""
 
     def validate(self, obj: Any, value: Any) -> Any:
         if not isinstance(value, Mapping):
-            raise ValueError(f"{self.name} must be a dict of name -> number, not {type(value).__name__}")
+            raise RefusedValue(f"{self.name} must be a dict of name -> number, not {type(value).__name__}")
         return super().validate(obj, dict(value))
 
 
@@ -206,11 +217,19 @@ class LinkageWidget(anywidget.AnyWidget):
 
     @traitlets.validate("values")
     def _validate_values(self, proposal: Any) -> dict[str, float]:
-        return self._checked_values(proposal["value"], self.values)
+        try:
+            return self._checked_values(proposal["value"], self.values)
+        except RefusedValue:
+            raise
+        except ValueError as error:
+            raise RefusedValue(str(error)) from None
 
     @traitlets.validate("branch")
     def _validate_branch(self, proposal: Any) -> dict[str, int]:
-        return self._checked_branch(proposal["value"], self.branch)
+        try:
+            return self._checked_branch(proposal["value"], self.branch)
+        except ValueError as error:
+            raise RefusedValue(str(error)) from None
 
     def _slider_ranges(self, start: Mapping[str, float],
                        given: Mapping[str, tuple[float, float]]) -> dict[str, list[float]]:

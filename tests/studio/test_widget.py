@@ -55,6 +55,23 @@ def test_values_merge_and_come_back_as_solver_arguments():
     assert round(math.degrees(float(result["rocker"])), 2) == 110.74   # the front door's doctest
 
 
+def test_what_the_page_sends_is_checked_as_python_assignments_are():
+    # ipywidgets hands a message from the page to set_state: the same checks apply
+    widget = LinkageWidget(symlink.fourbar(), FOURBAR)
+    widget.set_state({"values": {"theta": 0.25, "a": 20.0, "b": 66.0, "c": 56.0, "d": 81.5}})
+    assert widget.values == {"theta": 0.25, "a": 20.0, "b": 66.0, "c": 56.0, "d": 81.5}
+    widget.set_state({"branch": {"branch": -1}})
+    assert widget.linkage_values()["branch"] == -1
+    with pytest.raises(ValueError, match="no input or parameter '__proto__'"):
+        widget.set_state({"values": {"__proto__": 1.0}})
+    with pytest.raises(ValueError, match="positive"):
+        widget.set_state({"values": {"d": -80.0}})
+    with pytest.raises(ValueError, match="finite"):
+        widget.set_state({"values": {"a": 1.0, "d": float("nan")}, "branch": {"branch": 1}})
+    assert widget.values == {"theta": 0.25, "a": 20.0, "b": 66.0, "c": 56.0, "d": 81.5}   # all undone
+    assert widget.branch == {"branch": -1}
+
+
 def test_branches_may_come_with_the_values():
     widget = LinkageWidget(symlink.fourbar(), {**FOURBAR, "theta": 1.0, "branch": -1})
     assert widget.branch == {"branch": -1}

@@ -47,6 +47,8 @@ _WIDGET_CSS = """
 .symlink-widget polyline.symlink-link { fill: none; }
 .symlink-widget .symlink-ground { fill: none; stroke: #999; stroke-width: 2; stroke-dasharray: 6 4; }
 .symlink-widget .symlink-pivot { fill: #bbb; stroke: #666; }
+.symlink-widget .symlink-guide { stroke: #999; stroke-width: 1.5; stroke-dasharray: 2 3; }
+.symlink-widget .symlink-block { fill: rgba(70, 110, 200, 0.25); stroke: #3a5fb0; stroke-width: 1.5; }
 .symlink-widget .symlink-joint { fill: #fff; stroke: #222; stroke-width: 1.5; }
 .symlink-widget .symlink-label { font-size: 12px; fill: #333; }
 .symlink-widget .symlink-message.symlink-error { color: #b00; }

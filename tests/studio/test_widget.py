@@ -294,3 +294,11 @@ def test_catalog_linkages_move_as_geometry_places_them(widget_page, name):
         widget_page.keyboard.press("ArrowRight")
     widget.values = widget_page.evaluate("() => window.fakeModel.get('values')")
     assert_same_pose(drawn(widget_page), expected(widget.linkage, widget.linkage_values()))
+    # each slider's guide is drawn at the angle Geometry gives its line
+    poses = Geometry(widget.linkage).poses(widget.linkage_values())
+    slots = {line.get_attribute("data-slider"): float(line.get_attribute("data-angle"))
+             for line in widget_page.locator("line.symlink-guide").all()}
+    assert sorted(slots) == sorted(poses.directions)
+    for joint, angle in slots.items():
+        turn = math.remainder(angle - float(poses.directions[joint][0]), 2 * math.pi)
+        assert abs(turn) < 1e-9, joint

@@ -58,14 +58,19 @@ function render(context) {
   function solveAt(values) {
     var out;
     try { out = solver.solve(values, {}); } catch (e) { return { assembled: false, pose: {}, error: e.message }; }
-    var pose = {}, ok = !!out.assembled;
+    var pose = {}, guides = {}, ok = !!out.assembled;
     solver.points.forEach(function (p) {
-      if (p.kind === "guide") return;
       var x = out[p.x], y = out[p.y];
       if (!(isFinite(x) && isFinite(y))) ok = false;
-      pose[p.name] = [x, y];
+      (p.kind === "guide" ? guides : pose)[p.name] = [x, y];
     });
-    return { assembled: ok, pose: pose, error: null };
+    // each slider's guide: a point on its line (the solver's guide point) and the line's angle
+    var slots = (solver.sliders || []).map(function (s) {
+      var at = pose[s.name], through = guides[s.guide], angle = out[s.direction];
+      if (typeof angle !== "number" && at && through) angle = Math.atan2(at[1] - through[1], at[0] - through[0]);
+      return { name: s.name, at: at, through: through, angle: angle };
+    }).filter(function (s) { return s.at && s.through && isFinite(s.angle); });
+    return { assembled: ok, pose: pose, slots: slots, error: null };
   }
 
   function frameView() {
@@ -86,7 +91,7 @@ function render(context) {
     var x0 = Math.min.apply(null, xs), x1 = Math.max.apply(null, xs);
     var y0 = Math.min.apply(null, ys), y1 = Math.max.apply(null, ys);
     var span = Math.max(x1 - x0, y1 - y0, 1e-9);
-    var scale = Math.min(440 / Math.max(x1 - x0, span * 0.1), 320 / Math.max(y1 - y0, span * 0.1));
+    var scale = Math.min(400 / Math.max(x1 - x0, span * 0.1), 290 / Math.max(y1 - y0, span * 0.1));
     view = { x0: (x0 + x1) / 2, y0: (y0 + y1) / 2, scale: scale };
   }
 
@@ -107,9 +112,27 @@ function render(context) {
     message.textContent = "";
     message.className = "symlink-message";
     var grounded = {};
+    r.slots.forEach(function (slot) {
+      // the guide's line from its point past the slider, and the block on it
+      var u = [Math.cos(slot.angle), Math.sin(slot.angle)];
+      var t = (slot.at[0] - slot.through[0]) * u[0] + (slot.at[1] - slot.through[1]) * u[1];
+      var margin = 0.25 * Math.abs(t) + 24 / view.scale;
+      var from = screen([slot.through[0] + (Math.min(0, t) - margin) * u[0], slot.through[1] + (Math.min(0, t) - margin) * u[1]]);
+      var to = screen([slot.through[0] + (Math.max(0, t) + margin) * u[0], slot.through[1] + (Math.max(0, t) + margin) * u[1]]);
+      var line = node("line", { x1: from[0], y1: from[1], x2: to[0], y2: to[1], "class": "symlink-guide" }, svg);
+      line.setAttribute("data-slider", slot.name);
+      line.setAttribute("data-angle", String(slot.angle));
+      var c = screen(slot.at), degrees = -slot.angle * 180 / Math.PI;
+      node("rect", { x: c[0] - 11, y: c[1] - 7, width: 22, height: 14, "class": "symlink-block",
+        transform: "rotate(" + degrees + " " + c[0] + " " + c[1] + ")" }, svg);
+    });
     solver.bodies.forEach(function (body) {
       var ground = body.name === "ground";
-      var places = body.points.filter(function (p) { return p in r.pose; }).map(function (p) {
+      // a moving body joins its joints and points (a slider's block to its pin); the ground, its fixed points
+      var held = ground ? body.points : body.joints.concat(body.points.filter(function (p) {
+        return body.joints.indexOf(p) < 0;
+      }));
+      var places = held.filter(function (p) { return p in r.pose; }).map(function (p) {
         if (ground) grounded[p] = true;
         return screen(r.pose[p]);
       });

@@ -302,3 +302,18 @@ def test_catalog_linkages_move_as_geometry_places_them(widget_page, name):
     for joint, angle in slots.items():
         turn = math.remainder(angle - float(poses.directions[joint][0]), 2 * math.pi)
         assert abs(turn) < 1e-9, joint
+
+
+def test_play_turns_the_input_and_stop_tells_python(widget_page):
+    page = widget_page
+    widget = LinkageWidget(symlink.fourbar(), FOURBAR)
+    load(page, widget)
+    page.click("button.symlink-play")
+    page.wait_for_function("() => window.fakeModel.get('values').theta > 0.1")   # it turns (no timing asserted)
+    assert page.evaluate("() => window.saved.length") == 0     # while it plays, the page keeps the motion
+    page.click("button.symlink-play")
+    values = page.evaluate("() => window.fakeModel.get('values')")
+    assert page.evaluate("() => window.saved[window.saved.length - 1].values") == values
+    assert values["theta"] > 0.1 and {k: values[k] for k in FOURBAR} == FOURBAR
+    widget.values = values
+    assert_same_pose(drawn(page), expected(widget.linkage, widget.linkage_values()))

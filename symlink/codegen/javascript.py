@@ -71,13 +71,13 @@ from typing import TYPE_CHECKING, Iterable, Mapping, Sequence
 
 import sympy as sp
 from sympy.printing.jscode import JavascriptCodePrinter
-from sympy.printing.precedence import precedence
 
 from ..version import __version__
 from ..common.names import JAVASCRIPT_KEYWORDS, PLAIN_NAME
 from ..mechanism.bodies import PRISMATIC, drawn_points, mechanism
 from ..symbolic.linkage import is_branch_name
 from ..symbolic.position import TOLERANCE
+from .numpy import sum_text
 from .program import FreshNames, is_flag, require_loop_units, straight_line
 from .trigonometry import angle_sums
 
@@ -196,20 +196,7 @@ class JavaScriptPrinter(JavascriptCodePrinter):
 
     def _print_Add(self, expr, order=None):
         """As the NumPy printer writes a sum (``y - x`` for ``-x + y``), so the terms are added in the same order."""
-        terms = self._as_ordered_terms(expr, order=order)
-        printed = [self._print(term) for term in terms]
-        if len(terms) > 1 and printed[0].startswith("-") and not terms[0].is_Add and not printed[1].startswith("-"):
-            terms[0], terms[1] = terms[1], terms[0]
-            printed[0], printed[1] = printed[1], printed[0]
-        prec = precedence(expr)
-        parts = []
-        for term, text in zip(terms, printed):
-            sign = "+"
-            if text.startswith("-") and not term.is_Add:
-                sign, text = "-", text[1:]
-            parts += [sign, f"({text})" if precedence(term) < prec or term.is_Add else text]
-        sign = parts.pop(0)
-        return ("" if sign == "+" else sign) + " ".join(parts)
+        return sum_text(self, expr, order)
 
     def _print_Abs(self, expr):
         return f"Math.abs({self._print(expr.args[0])})"

@@ -70,6 +70,29 @@ def docstring_text(text: str) -> str:
                    else character.encode("unicode_escape").decode("ascii") for character in text)
 
 
+
+def sum_text(printer, expr: sp.Expr, order: str | None = None) -> str:
+    """A sum as ``printer`` writes its terms, but ``y - x`` for ``-x + y``: the NumPy and JavaScript printers' one rule.
+
+    Only the first two terms trade places (``(-x) + y`` is ``y - x`` exactly), so every later term is added
+    in the same order as SymPy's, and the generated languages compute the same bits.
+    """
+    terms = printer._as_ordered_terms(expr, order=order)
+    printed = [printer._print(term) for term in terms]
+    if len(terms) > 1 and printed[0].startswith("-") and not terms[0].is_Add and not printed[1].startswith("-"):
+        terms[0], terms[1] = terms[1], terms[0]
+        printed[0], printed[1] = printed[1], printed[0]
+    prec = precedence(expr)
+    parts = []
+    for term, text in zip(terms, printed):
+        sign = "+"
+        if text.startswith("-") and not term.is_Add:
+            sign, text = "-", text[1:]
+        parts += [sign, f"({text})" if precedence(term) < prec or term.is_Add else text]
+    sign = parts.pop(0)
+    return ("" if sign == "+" else sign) + " ".join(parts)
+
+
 class NumPyCodePrinter(NumPyPrinter):
     """NumPy printer with symlink's clamped square root and plain ``numpy.`` names."""
 
@@ -92,20 +115,7 @@ class NumPyCodePrinter(NumPyPrinter):
         Only the first two terms trade places (``(-x) + y`` is ``y - x`` exactly, and ``(-a)*b`` is
         ``-(a*b)``), so every later term is added in the same order as before.
         """
-        terms = self._as_ordered_terms(expr, order=order)
-        printed = [self._print(term) for term in terms]
-        if len(terms) > 1 and printed[0].startswith("-") and not terms[0].is_Add and not printed[1].startswith("-"):
-            terms[0], terms[1] = terms[1], terms[0]
-            printed[0], printed[1] = printed[1], printed[0]
-        prec = precedence(expr)
-        parts = []
-        for term, text in zip(terms, printed):
-            sign = "+"
-            if text.startswith("-") and not term.is_Add:
-                sign, text = "-", text[1:]
-            parts += [sign, f"({text})" if precedence(term) < prec or term.is_Add else text]
-        sign = parts.pop(0)
-        return ("" if sign == "+" else sign) + " ".join(parts)
+        return sum_text(self, expr, order)
 
     def _print_Integer(self, expr):
         return f"{float(expr)!r}"

@@ -11,7 +11,7 @@ Guarded as Jupyter guards its server, because a page on any web site can send re
   ``Origin`` is another site's: 403;
 * a path outside the app: 404.
 
-The API answers JSON to POSTs (``/api/structure``, ``/api/derive``, ``/api/solver``, ``/api/open``) and
+The API answers JSON to POSTs (``/api/structure``, ``/api/derive``, ``/api/solver``, ``/api/analyze``, ``/api/open``) and
 files to ``/api/export?format=...``; every ``ValueError`` of the library is a JSON ``{"error": ...}`` with
 status 400 (a request that is no drawing) or 422 (a drawing that is no linkage), never a traceback.
 The work is :mod:`symlink.studio.drawing`'s; this module only routes and guards.
@@ -34,7 +34,7 @@ from starlette.responses import FileResponse, JSONResponse, Response
 from starlette.routing import Route
 from starlette.concurrency import run_in_threadpool
 
-from . import drawing
+from . import design, drawing
 
 __all__ = ["create_app", "free_port", "PREFERRED_PORTS", "serve", "TOKEN_COOKIE", "TOKEN_HEADER", "STATIC", "MAX_BODY"]
 
@@ -222,6 +222,7 @@ def create_app(port: int, token: str, initial: Mapping[str, Any] | None = None) 
         Route("/api/structure", _api(lambda data, request: drawing.structure(data)), methods=["POST"]),
         Route("/api/derive", _api(lambda data, request: drawing.derivation(data)), methods=["POST"]),
         Route("/api/solver", _api(lambda data, request: drawing.solver(data)), methods=["POST"]),
+        Route("/api/analyze", _api(lambda data, request: design.analysis(data)), methods=["POST"]),
         Route("/api/open", _api(_open), methods=["POST"]),
         Route("/api/export", _api(_export), methods=["POST"]),
     ]

@@ -32,6 +32,7 @@
     pose: null,        // joint -> [x, y] from the solver, or null
     assembled: true,
     reach: null, traces: {},
+    analysis: null, analysisError: null, analysing: 0,
     pending: 0, generation: 0, playing: false
   };
 
@@ -220,12 +221,14 @@
     var design = clone(state.design);
     state.structure = null; state.derivation = null; state.solverInfo = null; state.solver = null;
     state.error = null; state.motionError = null; state.reach = null; state.traces = {};
+    state.analysis = null; state.analysisError = null;
     if (!design.joints.length) { renderPanel(); return Promise.resolve(); }
     state.pending += 1;
     return post("api/structure", design).then(function (structure) {
       if (generation !== state.generation) return;
       state.structure = structure;
       renderPanel();
+      requestAnalysis(design, generation);
       return Promise.all([
         post("api/derive", design).then(function (d) { if (generation === state.generation) state.derivation = d; })
           .catch(function (e) { if (generation === state.generation) state.error = e.message; }),
@@ -238,6 +241,15 @@
       state.pending -= 1;
       if (generation === state.generation) { renderPanel(); render(); }
     });
+  }
+
+  function requestAnalysis(design, generation) {
+    // the analysis takes seconds the first time (generated code): it does not hold up the rest of the page
+    state.analysing += 1;
+    renderAnalysis();
+    return post("api/analyze", design).then(function (a) { if (generation === state.generation) state.analysis = a; })
+      .catch(function (e) { if (generation === state.generation) state.analysisError = e.message; })
+      .then(function () { state.analysing -= 1; if (generation === state.generation) renderAnalysis(); });
   }
 
   // ---- the generated solver ----------------------------------------------------------------------
@@ -416,8 +428,46 @@
     typeset("velocities", d ? d.velocities : null);
     typeset("accelerations", d ? d.accelerations : null);
     renderMotion();
+    renderAnalysis();
   }
   function degrees(v) { return v * 180 / Math.PI; }
+  function deg(v) { return degrees(v).toFixed(2) + "°"; }
+  function renderAnalysis() {
+    var box = el("analysis");
+    if (!box) return;
+    box.textContent = "";
+    var line = function (label, text, key) {
+      var p = document.createElement("p");
+      p.className = "analysis-line";
+      if (key) p.setAttribute("data-key", key);
+      var b = document.createElement("b"); b.textContent = label + ": "; p.appendChild(b);
+      p.appendChild(document.createTextNode(text));
+      box.appendChild(p);
+      return p;
+    };
+    if (state.analysisError) { var m = line("cannot analyse", state.analysisError, "error"); m.className += " error"; return; }
+    var a = state.analysis;
+    if (!a) { if (state.analysing > 0 && state.structure) line("analysing", "…", "busy"); return; }
+    var value = function (v) { return a.angle ? deg(v) : v.toFixed(4); };
+    if (a.grashof) {
+      var f = a.fourbar;
+      line("Grashof", a.grashof.name + " (a " + f.a.toFixed(3) + ", b " + f.b.toFixed(3) + ", c " + f.c.toFixed(3) + ", d " + f.d.toFixed(3)
+        + "; s + l = " + a.grashof.shortest_plus_longest.toFixed(3) + (a.grashof.name === "triple-rocker" ? " > " : " ≤ ") + "p + q = " + a.grashof.other_two.toFixed(3) + ")", "grashof");
+    }
+    line("Input " + a.input, a.reach.full_turn ? "turns fully" : "reaches " + a.reach.spans.map(function (s) { return value(s[0]) + " to " + value(s[1]); }).join(", "), "reach");
+    if (a.reach.toggles.length) line("Toggles", a.reach.toggles.map(function (t) { return value(t.at) + (t.loop ? " (" + t.loop + ")" : ""); }).join(", "), "toggles");
+    a.transmission.forEach(function (t) {
+      line("Transmission " + t.loop + " at " + t.joint, deg(t.minimum) + " to " + deg(t.maximum) + " (at " + a.input + " = " + value(t.minimum_at) + ", " + value(t.maximum_at) + ")", "transmission-" + t.loop);
+    });
+    if (!a.transmission.length) line("Transmission", "no loop with two unknown angles", "transmission");
+    a.limits.forEach(function (l) {
+      var shown = function (v) { return l.angle ? deg(v) : v.toFixed(4); };
+      var text = l.positions.map(function (p) { return p.kind + " " + shown(p.value) + " at " + a.input + " = " + value(p.at); }).join("; ");
+      if (l.stroke !== null) text += "; stroke " + shown(l.stroke);
+      if (l.time_ratio !== null) text += ", time ratio " + l.time_ratio.toFixed(4);
+      line("Limits of " + l.output, text || "none", "limits-" + l.output);
+    });
+  }
   function renderMotion() {
     var ready = !!state.solver, slider = el("input"), play = el("play");
     slider.disabled = !ready; play.disabled = !ready;
@@ -598,6 +648,8 @@
     setView: function (scale, ox, oy) { state.view = { scale: scale, ox: ox, oy: oy }; render(); },
     idle: function () { return state.pending === 0 && timer === null; },
     solverReady: function () { return !!state.solver; },
+    analysisDone: function () { return state.analysing === 0 && (state.analysis !== null || state.analysisError !== null); },
+    analysis: function () { return state.analysis ? clone(state.analysis) : null; },
     setInput: setInput,
     setBranch: setBranch,
     positions: function () { return state.pose ? clone(state.pose) : null; },

@@ -137,3 +137,148 @@ def analysis(data: Any) -> dict[str, Any]:
                                                           "maximum": closed.maximum, "maximum_at": closed.maximum_at}}
         return result
     return CACHE.get("analysis", found.key, make)
+
+
+# --- path synthesis ---------------------------------------------------------------------------------
+
+def _integer(value: Any, what: str, low: int, high: int, default: int) -> int:
+    if value is None:
+        return default
+    if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
+        raise ValueError(f"{what} is a whole number from {low} to {high}, not {str(value)[:40]!r}")
+    return value
+
+
+def synthesis_request(data: Any) -> dict[str, Any]:
+    """A checked synthesis request: ``{"drawing", "point", "targets": [[x, y], ...], "starts", "evaluations",
+    "seed"}``; ``ValueError`` saying what is wrong (before any work is started)."""
+    if not isinstance(data, dict):
+        raise ValueError('a synthesis request is {"drawing": ..., "point": a joint, "targets": [[x, y], ...]}')
+    unknown = sorted(set(data) - {"drawing", "point", "targets", "starts", "evaluations", "seed"})
+    if unknown:
+        raise ValueError(f"a synthesis request has no entry {unknown[0][:40]!r}")
+    found = description(data.get("drawing"))
+    drawn = drawn_linkage(found)
+    _input_values(drawn)
+    point = data.get("point")
+    if not isinstance(point, str) or point not in found.coordinates:
+        raise ValueError(f"point must name a joint of the drawing ({', '.join(found.coordinates)}), not "
+                         f"{str(point)[:40]!r}")
+    if point in found.links.get(GROUND, []) and point not in found.sliders:
+        raise ValueError(f"{point} is on the ground and traces no path: choose a moving joint")
+    targets = data.get("targets")
+    if not isinstance(targets, list) or not MIN_TARGETS <= len(targets) <= MAX_TARGETS:
+        count = len(targets) if isinstance(targets, list) else "no"
+        raise ValueError(f"give {MIN_TARGETS} to {MAX_TARGETS} target points (click them with the Targets tool); "
+                         f"there are {count}")
+    rows = []
+    for k, row in enumerate(targets):
+        if not isinstance(row, list) or len(row) != 2 or any(
+                isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or abs(v) > 1e9
+                for v in row):
+            raise ValueError(f"targets[{k}] must be [x, y], two finite numbers")
+        rows.append([float(row[0]), float(row[1])])
+    span = max(max(r[0] for r in rows) - min(r[0] for r in rows), max(r[1] for r in rows) - min(r[1] for r in rows))
+    if span <= 0:
+        raise ValueError("the targets are all one point: click points apart")
+    if any(math.dist(p, q) <= 1e-9 * span for p, q in zip(rows, rows[1:])):
+        raise ValueError("two consecutive targets are the same point")
+    return {"drawing": data["drawing"], "point": point, "targets": rows,
+            "starts": _integer(data.get("starts"), "starts", 1, MAX_STARTS, 8),
+            "evaluations": _integer(data.get("evaluations"), "evaluations", 10, MAX_EVALUATIONS, 2000),
+            "seed": _integer(data.get("seed"), "seed", 0, 2 ** 31 - 1, 0)}
+
+
+def _free(found: Description, drawn: JointLinkage, targets: list[list[float]]) -> tuple[dict, dict]:
+    """Bounds of the free parameters and the fixed values: every length and angle of the drawing is free
+    except what the placement's shift and turn stand for (the first ground pivot's position, the first ground
+    direction) and the direction of a slider's guide (turned with the placement)."""
+    _, values = _input_values(drawn)
+    values = {k: v for k, v in values.items() if k not in {b.name for b in drawn.linkage.branches}}
+    ground = set(found.links.get(GROUND, []))
+    xs = [xy[0] for xy in found.coordinates.values()] + [t[0] for t in targets]
+    ys = [xy[1] for xy in found.coordinates.values()] + [t[1] for t in targets]
+    size = max(max(xs) - min(xs), max(ys) - min(ys))
+    lengths = {p.name for p in drawn.linkage.parameters if p.is_positive}
+    free: dict[str, tuple[float, float]] = {}
+    ground_angle_fixed = False
+    for name, value in values.items():
+        if name.startswith(("x_", "y_")):
+            continue
+        if name in lengths:
+            free[name] = (min(0.01 * size, 0.5 * value), max(10 * size, 2 * value))
+        elif name.startswith("alpha_"):
+            joints = [j for j in found.coordinates if name[6:].startswith(j) or name[6:].endswith(j)]
+            if any(j in found.sliders for j in joints):
+                continue
+            if all(j in ground for j in joints) and not ground_angle_fixed:
+                ground_angle_fixed = True
+                continue
+            free[name] = (value - math.pi, value + math.pi)
+    return free, values
+
+
+def synthesis(request: Mapping[str, Any]) -> dict[str, Any]:
+    """The drawn linkage designed so that ``point`` passes through ``targets`` in their order
+    (:func:`symlink.synthesis.general.synthesize_path`, placement shifted and turned, not scaled), as a drawing.
+
+    ``drawing``: the joints where the design puts them at the first target (sliders' guides turned with the
+    placement); ``inputs``: the drawing's input at each target; ``path``: the point's path from the first
+    target to the last, from the new drawing's own linkage (:func:`symlink.mechanism.joints.from_joints`),
+    and ``distances`` from each target to that linkage's point at its input (the check that the drawing is the
+    design).  When no verified design is found, ``assembled`` is False with ``why`` and no drawing.
+    """
+    import numpy
+
+    from ..numeric.poses import Geometry
+    from ..synthesis.general import synthesize_path
+    request = synthesis_request(dict(request))
+    found = description(request["drawing"])
+    drawn = drawn_linkage(found)
+    linkage = drawn.linkage
+    name, _ = _input_values(drawn)
+    targets = request["targets"]
+    free, values = _free(found, drawn, targets)
+    design = synthesize_path(linkage, request["point"], numpy.asarray(targets), free, values=values,
+                             frame=("x0", "y0", "angle"), starts=request["starts"], seed=request["seed"],
+                             evaluations=request["evaluations"])
+    result: dict[str, Any] = {"point": request["point"], "targets": targets, "error": float(design.error),
+                              "errors": [float(e) for e in design.errors], "assembled": bool(design.assembled),
+                              "why": design.why, "evaluations": int(design.evaluations),
+                              "design": {k: float(v) for k, v in design.design.items()},
+                              "placement": {k: float(v) for k, v in design.placement.items()},
+                              "branches": {k: int(v) for k, v in (design.branches or {}).items()},
+                              "drawing": None, "inputs": None, "path": None, "distances": None}
+    if not design.assembled:
+        return result
+    # the joints at the first target, placed: (x0, y0) + R(angle) p
+    turn, x0, y0 = design.placement["angle"], design.placement["x0"], design.placement["y0"]
+    placed = lambda z: complex(x0, y0) + complex(math.cos(turn), math.sin(turn)) * z  # noqa: E731
+    arguments = {**design.design, **{k: float(v) for k, v in (design.branches or {}).items()}}
+    poses = Geometry(linkage).poses(arguments, {name: numpy.asarray([design.inputs[0]])},
+                                    guess=getattr(design, "assembly", None) or None)
+    if not bool(poses.assembled[0]):
+        raise ValueError("the design found cannot be assembled at its first target (please report it)")
+    drawing = {**request["drawing"], "joints": [], "sliders": []}
+    for joint in request["drawing"]["joints"]:
+        where = placed(complex(poses.positions[joint["name"]][0])) if joint["name"] in poses.positions else None
+        if where is None:
+            drawing["joints"].append(dict(joint))  # a joint on no link yet: where it was drawn
+        else:
+            drawing["joints"].append({**joint, "x": where.real, "y": where.imag})
+    for slider in request["drawing"].get("sliders") or []:
+        drawing["sliders"].append({**slider, "angle": float(slider.get("angle", 0.0)) + turn})
+    shift = turn if not name.startswith("s_") else 0.0
+    inputs = [float(q) + shift for q in design.inputs]
+    # the check: the new drawing's own linkage, at those inputs
+    made = drawn_linkage(description(drawing))
+    check = {k: v for k, v in made.defaults.items() if k != name}
+    sweep = numpy.linspace(inputs[0], inputs[-1], 241)
+    traced = Geometry(made.linkage).poses(check, {name: numpy.asarray(inputs + list(sweep))}, guess=made.guess or None)
+    along = traced.positions[request["point"]]
+    ok = numpy.asarray(traced.assembled)
+    distances = [float(abs(complex(along[k]) - complex(*targets[k]))) if ok[k] else None for k in range(len(inputs))]
+    path = [[float(z.real), float(z.imag)] if good else None
+            for z, good in zip(along[len(inputs):], ok[len(inputs):])]
+    result.update(drawing=drawing, inputs=inputs, path=path, distances=distances)
+    return result

@@ -75,3 +75,107 @@ def test_analysis_of_a_drawing_that_is_no_linkage_says_so(client):
     answer = client.post("/api/analyze", json={"joints": [], "links": []}, headers=AUTH)
     assert answer.status_code == 422 and "ground" in answer.json()["error"]
     assert client.post("/api/analyze", json=[1, 2], headers=AUTH).status_code == 400
+
+
+# --- path synthesis -----------------------------------------------------------------------------------
+
+#: The drawing the synthesis starts from: Hoeken's four-bar with its coupler point E (a ternary coupler).
+START = {"name": "hoeken", "joints": [{"name": "A", "x": 0, "y": 0, "ground": True}, {"name": "B", "x": 0, "y": 1},
+                                      {"name": "C", "x": 2, "y": 2.5}, {"name": "D", "x": 2, "y": 0, "ground": True},
+                                      {"name": "E", "x": 4, "y": 4}],
+         "links": [["A", "B"], ["B", "C", "E"], ["D", "C"]], "driver": {"joint": "A"}, "sliders": []}
+
+
+def hand_targets(angles_deg=(60, 100, 140, 180, 220)) -> list[list[float]]:
+    """The coupler point of a hand four-bar (crank 1.1 from (0.5, -0.3), coupler 2.4, rocker 2.6, ground 2.1 at
+    0.2 rad; E at 4.7 from B, 0.3 rad off BC) at five crank angles: circle intersections by hand."""
+    A = (0.5, -0.3)
+    D = (A[0] + 2.1 * math.cos(0.2), A[1] + 2.1 * math.sin(0.2))
+    points = []
+    for angle in angles_deg:
+        t = math.radians(angle)
+        B = (A[0] + 1.1 * math.cos(t), A[1] + 1.1 * math.sin(t))
+        C = circles(B, 2.4, D, 2.6, upper=False)
+        heading = math.atan2(C[1] - B[1], C[0] - B[0]) + 0.3
+        points.append([B[0] + 4.7 * math.cos(heading), B[1] + 4.7 * math.sin(heading)])
+    return points
+
+
+def path_distances(drawing: dict, point: str, inputs: list[float], targets: list[list[float]]) -> list[float]:
+    """Distances from each target to the point of the drawing's own linkage (from_joints, Geometry) at its input."""
+    import numpy
+
+    from symlink.mechanism.joints import from_joints
+    from symlink.numeric.poses import Geometry
+    ground = [j["name"] for j in drawing["joints"] if j.get("ground")]
+    links = {"ground": ground, **{f"link{k + 1}": held for k, held in enumerate(drawing["links"])}}
+    made = from_joints(links, {j["name"]: (j["x"], j["y"]) for j in drawing["joints"]}, driver=drawing["driver"]["joint"])
+    name = made.linkage.inputs[0].name
+    values = {k: v for k, v in made.defaults.items() if k != name}
+    poses = Geometry(made.linkage).poses(values, {name: numpy.asarray(inputs)})
+    assert poses.assembled.all()
+    return [abs(complex(poses.positions[point][k]) - complex(*target)) for k, target in enumerate(targets)]
+
+
+def wait(client, key: str, limit: float = 300.0) -> dict:
+    import time
+    deadline = time.monotonic() + limit
+    while True:
+        found = client.get(f"/api/synthesize/{key}", headers=AUTH).json()
+        if found["status"] not in ("starting", "deriving", "searching"):
+            return found
+        assert time.monotonic() < deadline, f"the synthesis did not end: {found}"
+        time.sleep(0.25)
+
+
+def test_a_synthesis_puts_the_coupler_point_through_the_targets(client):
+    targets = hand_targets()
+    size = max(max(t[0] for t in targets) - min(t[0] for t in targets),
+               max(t[1] for t in targets) - min(t[1] for t in targets))
+    answer = client.post("/api/synthesize", json={"drawing": START, "point": "E", "targets": targets, "starts": 4},
+                         headers=AUTH)
+    assert answer.status_code == 202, answer.text
+    found = wait(client, answer.json()["id"])
+    assert found["status"] == "done", found
+    result = found["result"]
+    assert result["assembled"] is True
+    distances = path_distances(result["drawing"], "E", result["inputs"], targets)
+    assert max(distances) < 1e-6 * size
+    # the drawing is the design at the first target: E drawn there
+    (E,) = [j for j in result["drawing"]["joints"] if j["name"] == "E"]
+    assert math.dist((E["x"], E["y"]), targets[0]) < 1e-6 * size
+
+
+def test_a_synthesis_can_be_cancelled(client):
+    answer = client.post("/api/synthesize", json={"drawing": START, "point": "E", "targets": hand_targets(),
+                                                  "starts": 64, "evaluations": 5000}, headers=AUTH)
+    key = answer.json()["id"]
+    again = client.post("/api/synthesize", json={"drawing": START, "point": "E", "targets": hand_targets()},
+                        headers=AUTH)
+    assert again.status_code == 409 and "already running" in again.json()["error"]
+    stopped = client.delete(f"/api/synthesize/{key}", headers=AUTH)
+    assert stopped.status_code == 200 and stopped.json()["status"] == "cancelled"
+    assert client.get(f"/api/synthesize/{key}", headers=AUTH).json()["status"] == "cancelled"
+    job = client.app.state.jobs.jobs[key]
+    job["process"].join(10)
+    assert not job["process"].is_alive()
+    assert client.get("/api/synthesize/nothing", headers=AUTH).status_code == 404
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"targets": [[0, 0], [1, 1]]}, "3 to 40 target points"),
+    ({"targets": [[0, 0]] * 41}, "3 to 40 target points"),
+    ({"targets": [[0, 0], [1, "x"], [2, 2]]}, "targets[1] must be [x, y]"),
+    ({"targets": [[1, 1], [1, 1], [1, 1]]}, "all one point"),
+    ({"starts": 100000}, "starts is a whole number from 1 to 64"),
+    ({"evaluations": 10 ** 9}, "evaluations is a whole number from 10 to 5000"),
+    ({"point": "A"}, "on the ground"),
+    ({"point": "Z"}, "point must name a joint"),
+    ({"point": "__import__('os')"}, "point must name a joint"),
+])
+def test_a_synthesis_request_out_of_bounds_is_refused_with_a_message(client, change, message):
+    request = {"drawing": START, "point": "E", "targets": [[0, 0], [1, 0.5], [2, 0.7]], **change}
+    answer = client.post("/api/synthesize", json=request, headers=AUTH)
+    assert answer.status_code == 422
+    assert message in answer.json()["error"]
+    assert client.app.state.jobs.jobs == {}  # no process was started

@@ -95,7 +95,7 @@ def hand_targets(angles_deg=(60, 100, 140, 180, 220)) -> list[list[float]]:
     for angle in angles_deg:
         t = math.radians(angle)
         B = (A[0] + 1.1 * math.cos(t), A[1] + 1.1 * math.sin(t))
-        C = circles(B, 2.4, D, 2.6, upper=False)
+        C = circles(B, 2.4, D, 2.6)
         heading = math.atan2(C[1] - B[1], C[0] - B[0]) + 0.3
         points.append([B[0] + 4.7 * math.cos(heading), B[1] + 4.7 * math.sin(heading)])
     return points

@@ -33,6 +33,9 @@
     assembled: true,
     reach: null, traces: {},
     analysis: null, analysisError: null, analysing: 0,
+    targets: [], targeting: false,     // clicked target points (drawing units), and whether clicks add them
+    synthesis: null, job: null,        // the applied synthesis result; the running job {id, status, elapsed}
+    synthMessage: "", synthError: false, synthSeconds: null, synthPoint: null,
     pending: 0, generation: 0, playing: false
   };
 
@@ -90,6 +93,7 @@
       return;
     }
     var xs = joints.map(function (j) { return j.x; }), ys = joints.map(function (j) { return j.y; });
+    state.targets.forEach(function (t) { xs.push(t[0]); ys.push(t[1]); });
     Object.keys(state.traces).forEach(function (k) {
       state.traces[k].forEach(function (p) { xs.push(p[0]); ys.push(p[1]); });
     });
@@ -106,6 +110,7 @@
     if (state.undo.length > 200) state.undo.shift();
     state.redo = [];
     change(state.design);
+    state.synthesis = null; state.synthMessage = ""; state.synthError = false;
     changed();
   }
   function changed() {
@@ -365,6 +370,22 @@
       });
       if (d) node("path", { d: d, "class": "trace" }, svg);
     });
+    if (state.synthesis && state.synthesis.path) {
+      var sd = "", spen = false;
+      state.synthesis.path.forEach(function (pt) {
+        if (pt === null) { spen = false; return; }
+        var sp = toScreen(pt[0], pt[1]);
+        sd += (spen ? "L" : "M") + sp[0].toFixed(1) + " " + sp[1].toFixed(1);
+        spen = true;
+      });
+      if (sd) node("path", { d: sd, "class": "synth-path" }, svg);
+    }
+    state.targets.forEach(function (t, k) {
+      var tp = toScreen(t[0], t[1]);
+      node("path", { d: "M" + (tp[0] - 6) + " " + tp[1] + "h12M" + tp[0] + " " + (tp[1] - 6) + "v12", "class": "target", "data-target": k }, svg);
+      var tl = node("text", { x: tp[0] + 6, y: tp[1] + 15, "class": "target-label" }, svg);
+      tl.textContent = String(k + 1);
+    });
     var design = state.design;
     var sliding = design.sliders.map(function (s) { return s.joint; });
     var grounded = design.joints.filter(function (j) { return j.ground && sliding.indexOf(j.name) < 0; })
@@ -429,6 +450,7 @@
     typeset("accelerations", d ? d.accelerations : null);
     renderMotion();
     renderAnalysis();
+    renderDesign();
   }
   function degrees(v) { return v * 180 / Math.PI; }
   function deg(v) { return degrees(v).toFixed(2) + "°"; }
@@ -509,6 +531,112 @@
     }
   }
 
+  // ---- design: a path through clicked targets ------------------------------------------------------
+  function setTargeting(on) {
+    state.targeting = !!on;
+    el("tool-targets").classList.toggle("active", state.targeting);
+    svg.classList.toggle("targeting", state.targeting);
+    if (state.targeting) state.selected = [];
+    render();
+    renderDesign();
+  }
+  function addTarget(x, y) {
+    if (state.targets.length >= 40) { synthSay("at most 40 targets", true); return; }
+    state.targets.push([x, y]);
+    render();
+    renderDesign();
+  }
+  function synthSay(text, error) { state.synthMessage = text; state.synthError = !!error; renderDesign(); }
+  function movingJoints() {
+    var ground = {};
+    state.design.joints.forEach(function (j) { if (j.ground) ground[j.name] = true; });
+    (state.design.sliders || []).forEach(function (s) { delete ground[s.joint]; });
+    var held = {};
+    state.design.links.forEach(function (l) { l.forEach(function (n) { held[n] = true; }); });
+    return state.design.joints.filter(function (j) { return !ground[j.name] && held[j.name]; }).map(function (j) { return j.name; });
+  }
+  function renderDesign() {
+    var select = el("synth-point");
+    if (!select) return;
+    var names = movingJoints();
+    var points = pointJoints();
+    if (Array.prototype.map.call(select.options, function (o) { return o.value; }).join() !== names.join()) {
+      select.textContent = "";
+      names.forEach(function (n) { var o = document.createElement("option"); o.value = n; o.textContent = n; select.appendChild(o); });
+      // the user's choice if still there, else a coupler point (a joint on one link only), else the first
+      select.value = state.synthPoint && names.indexOf(state.synthPoint) >= 0 ? state.synthPoint
+        : (points.length ? points[points.length - 1] : (names[0] || ""));
+    }
+    var running = !!state.job;
+    el("synthesize").disabled = running || state.targets.length < 3 || !state.structure;
+    el("synth-cancel").disabled = !running;
+    el("targets-clear").disabled = !state.targets.length || running;
+    var message = el("synth-message");
+    var text = state.synthMessage;
+    if (!text) text = state.targets.length < 3 ? "Click Targets, then " + (3 - state.targets.length) + " or more points on the drawing (" + state.targets.length + " so far)." : state.targets.length + " targets: choose the joint and Synthesize.";
+    message.textContent = text;
+    message.className = "message" + (state.synthError ? " error" : "");
+  }
+  function request(method, path) {
+    return fetch(path, { method: method, credentials: "same-origin", headers: { "X-Symlink-Token": token } })
+      .catch(function () { throw new Error("the studio's server does not answer"); })
+      .then(function (response) {
+        return response.json().catch(function () { return { error: "the server answered " + response.status }; }).then(function (data) {
+          if (!response.ok) throw new Error(data.error || ("the server answered " + response.status));
+          return data;
+        });
+      });
+  }
+  function synthesize() {
+    if (state.job) return Promise.resolve();
+    var point = el("synth-point").value;
+    var starts = Number(el("synth-starts").value);
+    if (state.targets.length < 3) { synthSay("click at least 3 targets first", true); return Promise.resolve(); }
+    if (!point) { synthSay("the drawing has no moving joint to trace the path", true); return Promise.resolve(); }
+    if (!(starts >= 1 && starts <= 64 && Math.floor(starts) === starts)) { synthSay("starts is a whole number from 1 to 64", true); return Promise.resolve(); }
+    var began = performance.now();
+    var body = { drawing: clone(state.design), point: point, targets: clone(state.targets), starts: starts };
+    state.job = { id: null, status: "starting", elapsed: 0 };
+    state.synthSeconds = null;
+    synthSay("starting…");
+    return post("api/synthesize", body).then(function (job) {
+      state.job = job;
+      return new Promise(function (resolve) {
+        function poll() {
+          if (!state.job || state.job.id !== job.id) { resolve(); return; }
+          request("GET", "api/synthesize/" + job.id).then(function (now) {
+            if (!state.job || state.job.id !== job.id) { resolve(); return; }
+            state.job = now;
+            if (now.status === "done") { state.job = null; applySynthesis(now.result, body, (performance.now() - began) / 1000, now.elapsed); resolve(); }
+            else if (now.status === "failed" || now.status === "cancelled") { state.job = null; synthSay(now.status === "cancelled" ? "cancelled" : now.error, now.status !== "cancelled"); resolve(); }
+            else { synthSay(now.status + "… " + now.elapsed.toFixed(1) + " s"); setTimeout(poll, 300); }
+          }).catch(function (e) { state.job = null; synthSay(e.message, true); resolve(); });
+        }
+        poll();
+      });
+    }).catch(function (e) { state.job = null; synthSay(e.message, true); });
+  }
+  function cancelSynthesis() {
+    var job = state.job;
+    if (!job || !job.id) return Promise.resolve();
+    state.job = null;
+    return request("DELETE", "api/synthesize/" + job.id).then(function () { synthSay("cancelled"); })
+      .catch(function (e) { synthSay(e.message, true); });
+  }
+  function applySynthesis(result, body, seconds, elapsed) {
+    state.synthSeconds = seconds;
+    if (!result.assembled || !result.drawing) {
+      synthSay("no design through the targets was found: " + (result.why || "error " + result.error.toExponential(2) + " of their size") + ". Try more starts, or targets a linkage can reach.", true);
+      return;
+    }
+    commit(function (design) { Object.keys(result.drawing).forEach(function (k) { design[k] = clone(result.drawing[k]); }); });
+    state.synthesis = result;
+    fitView(); render();
+    var worst = Math.max.apply(null, result.distances.map(function (d) { return d === null ? Infinity : d; }));
+    synthSay(result.point + " passes through the " + result.targets.length + " targets (largest distance " + worst.toExponential(1)
+      + ") in " + seconds.toFixed(1) + " s; Undo restores the drawing.");
+  }
+
   // ---- mouse and keys ----------------------------------------------------------------------------
   var drag = null;
   function startDrag(event, name) {
@@ -538,6 +666,7 @@
   svg.addEventListener("click", function (event) {
     if (embedded || event.target.getAttribute("data-joint")) return;
     var at = clientToSvg(event), w = toWorld(at[0], at[1]);
+    if (state.targeting) { addTarget(w[0], w[1]); return; }
     if (state.selected.length) { state.selected = []; render(); return; }
     addJoint(w[0], w[1]);
   });
@@ -552,11 +681,17 @@
     else if (key === "m") driveSelected();
     else if (key === "s") sliderSelected();
     else if (key === "delete" || key === "backspace") deleteSelected();
-    else if (key === "escape") { state.selected = []; render(); }
+    else if (key === "t") setTargeting(!state.targeting);
+    else if (key === "escape") { state.selected = []; setTargeting(false); }
   });
   function showError(text) { var m = el("structure-message"); m.textContent = text; m.className = "message error"; }
 
   el("tool-link").onclick = joinSelected;
+  el("tool-targets").onclick = function () { setTargeting(!state.targeting); };
+  el("targets-clear").onclick = function () { state.targets = []; state.synthesis = null; state.synthMessage = ""; render(); renderDesign(); };
+  el("synthesize").onclick = function () { synthesize(); };
+  el("synth-point").addEventListener("change", function () { state.synthPoint = el("synth-point").value; });
+  el("synth-cancel").onclick = function () { cancelSynthesis(); };
   el("tool-ground").onclick = groundSelected;
   el("tool-driver").onclick = driveSelected;
   el("tool-slider").onclick = sliderSelected;
@@ -648,6 +783,11 @@
     setView: function (scale, ox, oy) { state.view = { scale: scale, ox: ox, oy: oy }; render(); },
     idle: function () { return state.pending === 0 && timer === null; },
     solverReady: function () { return !!state.solver; },
+    targets: function () { return clone(state.targets); },
+    synthesis: function () { return state.synthesis ? clone(state.synthesis) : null; },
+    synthesizing: function () { return !!state.job; },
+    synthesisSeconds: function () { return state.synthSeconds; },
+    synthesize: synthesize,
     analysisDone: function () { return state.analysing === 0 && (state.analysis !== null || state.analysisError !== null); },
     analysis: function () { return state.analysis ? clone(state.analysis) : null; },
     setInput: setInput,

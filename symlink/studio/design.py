@@ -23,7 +23,7 @@ from ..mechanism.joints import JointLinkage
 from ..mechanism.topology import GROUND
 from .drawing import CACHE, Description, description, drawn_linkage
 
-__all__ = ["analysis", "fourbar_lengths", "synthesis_request", "synthesis", "MAX_TARGETS", "MIN_TARGETS",
+__all__ = ["analysis", "fourbar_lengths", "synthesis_request", "synthesis", "tolerance_band", "BAND_SAMPLES", "MAX_TARGETS", "MIN_TARGETS",
            "MAX_STARTS", "MAX_EVALUATIONS"]
 
 #: Bounds of a synthesis request: a drawing's few clicked points, a search that ends in minutes at most.
@@ -282,3 +282,89 @@ def synthesis(request: Mapping[str, Any]) -> dict[str, Any]:
             for z, good in zip(along[len(inputs):], ok[len(inputs):])]
     result.update(drawing=drawing, inputs=inputs, path=path, distances=distances)
     return result
+
+
+# --- a tolerance band on a joint's path ---------------------------------------------------------------
+
+#: Input values a tolerance band is computed at (a full turn of an angle input: every degree).
+BAND_SAMPLES = 361
+
+
+def complex_points(poses: Any, point: str) -> Any:
+    """A joint's positions in :class:`~symlink.numeric.poses.Poses` as complex numbers, NaN where not assembled."""
+    import numpy
+    where = numpy.asarray(poses.positions[point], dtype=complex)
+    return numpy.where(numpy.asarray(poses.assembled, dtype=bool), where, numpy.nan)
+
+
+def tolerance_band(data: Any) -> dict[str, Any]:
+    """The worst-case band of a joint's path when every length of the drawing is made to ``± band``:
+    ``{"drawing", "point", "band"}`` -> the nominal path and, at each input value, ``width``: the largest
+    first-order deviation across the path (:func:`symlink.workshop.tolerance.stack_up`'s sensitivities of the
+    point's x and y, projected on the path's normal (its direction from the point 1e-5 of the range either way): ``sum_j |n . dP/dp_j| band_j``), and the band's edges
+    ``inner`` and ``outer`` (``P -/+ width n``); None where the linkage cannot be assembled."""
+    import numpy
+
+    from ..workshop.tolerance import stack_up
+    if not isinstance(data, dict) or set(data) - {"drawing", "point", "band"}:
+        raise ValueError('a tolerance request is {"drawing": ..., "point": a joint, "band": ± on every length}')
+    found = description(data.get("drawing"))
+    drawn = drawn_linkage(found)
+    name, values = _input_values(drawn)
+    point = data.get("point")
+    if not isinstance(point, str) or point not in found.coordinates:
+        raise ValueError(f"point must name a joint of the drawing ({', '.join(found.coordinates)})")
+    band = data.get("band")
+    xs = [xy[0] for xy in found.coordinates.values()]
+    ys = [xy[1] for xy in found.coordinates.values()]
+    size = max(max(xs) - min(xs), max(ys) - min(ys))
+    if isinstance(band, bool) or not isinstance(band, (int, float)) or not 0 < band <= 0.1 * size:
+        raise ValueError(f"band is a number above 0 and at most a tenth of the drawing's size ({0.1 * size:.4g}): "
+                         f"the first-order band of small tolerances, not {str(band)[:40]!r}")
+    lengths = [p.name for p in drawn.linkage.parameters if p.is_positive]
+    if name.startswith("s_"):
+        at = float(drawn.defaults[name])
+        span = 2 * max(1.0, abs(at))
+        inputs = numpy.linspace(at - span, at + span, BAND_SAMPLES)
+    else:
+        inputs = numpy.linspace(-math.pi, math.pi, BAND_SAMPLES)
+    found_band = stack_up(drawn.linkage, [f"{point}_x", f"{point}_y"], drawn.defaults,
+                          {length: float(band) for length in lengths}, inputs={name: inputs},
+                          guess=drawn.guess if not drawn.linkage.has_closed_form else None)
+    where = found_band.nominal[0] + 1j * found_band.nominal[1]
+    ok = numpy.asarray(found_band.assembled, dtype=bool) & numpy.isfinite(where)
+    moved = found_band.sensitivity[0] + 1j * found_band.sensitivity[1]  # [dimension, input]
+    # the path's direction: from the point a small step of the input either way (the mean of the two
+    # directions, both turned forward: where the point stops and turns back, both follow the path)
+    from ..numeric.poses import Geometry
+    step = 1e-5 * float(inputs[-1] - inputs[0])
+    geometry = Geometry(drawn.linkage)
+    guess = drawn.guess if not drawn.linkage.has_closed_form else None
+    ahead, behind = (complex_points(geometry.poses(values, {name: inputs + sign * step}, guess=guess), point)
+                     for sign in (1, -1))
+    nominal, inner, outer, widths = [], [], [], []
+    for k in range(len(inputs)):
+        if not ok[k]:
+            nominal.append(None); inner.append(None); outer.append(None); widths.append(None)  # noqa: E702
+            continue
+        forward, backward = ahead[k] - where[k], where[k] - behind[k]
+        forward, backward = forward / abs(forward), backward / abs(backward)
+        if (forward * backward.conjugate()).real < 0:  # the point stops and turns back here (a limit position)
+            backward = -backward
+        tangent = forward + backward
+        if not numpy.isfinite(tangent) or abs(tangent) == 0:
+            nominal.append([float(where[k].real), float(where[k].imag)]); inner.append(None); outer.append(None)
+            widths.append(None)
+            continue
+        normal = 1j * tangent / abs(tangent)
+        width = float(sum(abs((moved[j, k] * normal.conjugate()).real) * found_band.band[j]
+                          for j in range(len(lengths))))
+        nominal.append([float(where[k].real), float(where[k].imag)])
+        inner.append([float((where[k] - width * normal).real), float((where[k] - width * normal).imag)])
+        outer.append([float((where[k] + width * normal).real), float((where[k] + width * normal).imag)])
+        widths.append(width)
+    known = [(w, float(inputs[k])) for k, w in enumerate(widths) if w is not None]
+    worst = max(known) if known else (None, None)
+    return {"point": point, "band": float(band), "dimensions": lengths, "input": name,
+            "inputs": [float(v) for v in inputs], "nominal": nominal, "inner": inner, "outer": outer,
+            "widths": widths, "worst": worst[0], "worst_at": worst[1]}

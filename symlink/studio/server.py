@@ -244,6 +244,7 @@ def create_app(port: int, token: str, initial: Mapping[str, Any] | None = None) 
         Route("/api/derive", _api(lambda data, request: drawing.derivation(data)), methods=["POST"]),
         Route("/api/solver", _api(lambda data, request: drawing.solver(data)), methods=["POST"]),
         Route("/api/analyze", _api(lambda data, request: design.analysis(data)), methods=["POST"]),
+        Route("/api/tolerance", _api(lambda data, request: design.tolerance_band(data)), methods=["POST"]),
         Route("/api/synthesize", _api(synthesize), methods=["POST"]),
         Route("/api/synthesize/{key:str}", synthesis_status, methods=["GET"]),
         Route("/api/synthesize/{key:str}", synthesis_cancel, methods=["DELETE"]),

@@ -179,3 +179,28 @@ def test_a_synthesis_request_out_of_bounds_is_refused_with_a_message(client, cha
     assert answer.status_code == 422
     assert message in answer.json()["error"]
     assert client.app.state.jobs.jobs == {}  # no process was started
+
+
+# --- a tolerance band ---------------------------------------------------------------------------------
+
+def test_the_tolerance_band_of_the_crank_pin_and_the_rocker_pin(client):
+    """Every length ± 0.01: the crank pin B moves across its circle by AB's band alone (A is exact); the rocker
+    pin C across its circle about D by DC's band plus AD's, which moves D along x: 0.01 (1 + |cos phi|), phi
+    the direction of DC (circle intersections by hand)."""
+    band = 0.01
+    found_b = client.post("/api/tolerance", json={"drawing": START, "point": "B", "band": band}, headers=AUTH).json()
+    assert found_b["dimensions"] == ["AB", "BC", "DC", "AD", "BE"]
+    assert len(found_b["widths"]) == 361 and all(w == pytest.approx(band, rel=1e-6) for w in found_b["widths"])
+    found_c = client.post("/api/tolerance", json={"drawing": START, "point": "C", "band": band}, headers=AUTH).json()
+    for theta, width, inner, outer in zip(found_c["inputs"], found_c["widths"], found_c["inner"], found_c["outer"]):
+        B = (math.cos(theta), math.sin(theta))
+        C = circles(B, 2.5, (2.0, 0.0), 2.5)  # the drawn assembly: C left of B -> D (a crank-rocker keeps it)
+        phi = math.atan2(C[1], C[0] - 2.0)
+        assert width == pytest.approx(band * (1 + abs(math.cos(phi))), rel=1e-6), theta
+        assert math.dist(inner, outer) == pytest.approx(2 * width, rel=1e-9)
+
+
+def test_a_tolerance_band_out_of_bounds_is_refused(client):
+    for band, message in ((0, "above 0"), (5.0, "a tenth of the drawing"), ("0.1", "above 0")):
+        answer = client.post("/api/tolerance", json={"drawing": START, "point": "E", "band": band}, headers=AUTH)
+        assert answer.status_code == 422 and message in answer.json()["error"]

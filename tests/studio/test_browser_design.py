@@ -78,3 +78,19 @@ def test_a_synthesis_with_too_few_targets_says_so_and_can_be_cancelled(server, p
     page.click("#synthesize")
     page.wait_for_function("document.querySelector('#synth-message').classList.contains('error')")
     assert "starts is a whole number from 1 to 64" in page.text_content("#synth-message")
+
+
+def test_the_tolerance_band_of_the_coupler_point_is_drawn(server, page):  # noqa: F811
+    draw_hoeken(page, server)
+    page.fill("#tol-band", "0.01")
+    assert page.input_value("#tol-point") == "E"
+    page.click("#tolerance")
+    page.wait_for_function("window.studio.band() !== null", timeout=120_000)
+    band = page.evaluate("window.studio.band()")
+    # the crank pin's band is AB's alone (A is exact): E's, moved by every length, is wider than that somewhere
+    assert band["point"] == "E" and len(band["widths"]) == 361 and band["worst"] > 0.01
+    assert page.locator("path.tol-band").count() == 1
+    assert "strays at most" in page.text_content("#tol-message")
+    page.fill("#tol-band", "-1")
+    page.click("#tolerance")
+    assert "above 0" in page.text_content("#tol-message")

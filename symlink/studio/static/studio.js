@@ -35,6 +35,7 @@
     analysis: null, analysisError: null, analysing: 0,
     targets: [], targeting: false,     // clicked target points (drawing units), and whether clicks add them
     synthesis: null, job: null,        // the applied synthesis result; the running job {id, status, elapsed}
+    band: null, bandMessage: "", bandError: false, bandPoint: null,
     synthMessage: "", synthError: false, synthSeconds: null, synthPoint: null,
     pending: 0, generation: 0, playing: false
   };
@@ -111,6 +112,7 @@
     state.redo = [];
     change(state.design);
     state.synthesis = null; state.synthMessage = ""; state.synthError = false;
+    state.band = null; state.bandMessage = ""; state.bandError = false;
     changed();
   }
   function changed() {
@@ -370,6 +372,22 @@
       });
       if (d) node("path", { d: d, "class": "trace" }, svg);
     });
+    if (state.band) {
+      // each run of assembled samples: the outer edge forward, the inner edge back
+      var runs = [], run = [];
+      state.band.outer.forEach(function (o, k) {
+        var i = state.band.inner[k];
+        if (o && i) run.push([o, i]); else if (run.length) { runs.push(run); run = []; }
+      });
+      if (run.length) runs.push(run);
+      var bd = "";
+      runs.forEach(function (r) {
+        if (r.length < 2) return;
+        var pts = r.map(function (p) { return p[0]; }).concat(r.slice().reverse().map(function (p) { return p[1]; }));
+        bd += "M" + pts.map(function (p) { var q = toScreen(p[0], p[1]); return q[0].toFixed(1) + " " + q[1].toFixed(1); }).join("L") + "Z";
+      });
+      if (bd) node("path", { d: bd, "class": "tol-band", "fill-rule": "nonzero" }, svg);
+    }
     if (state.synthesis && state.synthesis.path) {
       var sd = "", spen = false;
       state.synthesis.path.forEach(function (pt) {
@@ -451,6 +469,7 @@
     renderMotion();
     renderAnalysis();
     renderDesign();
+    renderBand();
   }
   function degrees(v) { return v * 180 / Math.PI; }
   function deg(v) { return degrees(v).toFixed(2) + "°"; }
@@ -577,6 +596,37 @@
     message.textContent = text;
     message.className = "message" + (state.synthError ? " error" : "");
   }
+  function renderBand() {
+    var select = el("tol-point");
+    if (!select) return;
+    var names = movingJoints(), points = pointJoints();
+    if (Array.prototype.map.call(select.options, function (o) { return o.value; }).join() !== names.join()) {
+      select.textContent = "";
+      names.forEach(function (n) { var o = document.createElement("option"); o.value = n; o.textContent = n; select.appendChild(o); });
+      select.value = state.bandPoint && names.indexOf(state.bandPoint) >= 0 ? state.bandPoint
+        : (points.length ? points[points.length - 1] : (names[0] || ""));
+    }
+    el("tolerance").disabled = !state.structure || !names.length;
+    var message = el("tol-message");
+    message.textContent = state.bandMessage;
+    message.className = "message" + (state.bandError ? " error" : "");
+  }
+  function toleranceBand() {
+    var band = Number(el("tol-band").value), point = el("tol-point").value;
+    if (!(band > 0)) { state.bandMessage = "the tolerance is a number above 0"; state.bandError = true; renderBand(); return Promise.resolve(); }
+    var generation = state.generation;
+    state.bandMessage = "…"; state.bandError = false; renderBand();
+    state.pending += 1;
+    return post("api/tolerance", { drawing: clone(state.design), point: point, band: band }).then(function (b) {
+      if (generation !== state.generation) return;
+      state.band = b;
+      var name = b.input, angle = !/^s_/.test(name);
+      state.bandMessage = "every length ± " + band + ": " + point + " strays at most " + (b.worst === null ? "?" : b.worst.toPrecision(3))
+        + " across its path (worst case, first order), at " + name + " = " + (b.worst_at === null ? "?" : angle ? degrees(b.worst_at).toFixed(1) + "°" : b.worst_at.toFixed(3));
+      render();
+    }).catch(function (e) { if (generation === state.generation) { state.bandMessage = e.message; state.bandError = true; } })
+      .then(function () { state.pending -= 1; renderBand(); });
+  }
   function request(method, path) {
     return fetch(path, { method: method, credentials: "same-origin", headers: { "X-Symlink-Token": token } })
       .catch(function () { throw new Error("the studio's server does not answer"); })
@@ -690,6 +740,8 @@
   el("tool-targets").onclick = function () { setTargeting(!state.targeting); };
   el("targets-clear").onclick = function () { state.targets = []; state.synthesis = null; state.synthMessage = ""; render(); renderDesign(); };
   el("synthesize").onclick = function () { synthesize(); };
+  el("tolerance").onclick = function () { toleranceBand(); };
+  el("tol-point").addEventListener("change", function () { state.bandPoint = el("tol-point").value; });
   el("synth-point").addEventListener("change", function () { state.synthPoint = el("synth-point").value; });
   el("synth-cancel").onclick = function () { cancelSynthesis(); };
   el("tool-ground").onclick = groundSelected;
@@ -788,6 +840,7 @@
     synthesizing: function () { return !!state.job; },
     synthesisSeconds: function () { return state.synthSeconds; },
     synthesize: synthesize,
+    band: function () { return state.band ? clone(state.band) : null; },
     analysisDone: function () { return state.analysing === 0 && (state.analysis !== null || state.analysisError !== null); },
     analysis: function () { return state.analysis ? clone(state.analysis) : null; },
     setInput: setInput,

@@ -12,7 +12,7 @@ import math
 
 import pytest
 
-from test_browser import browser, draw_hoeken, needs_solver, page, server, settle  # noqa: F401 - fixtures
+from test_browser import IMAGES, SCREENSHOTS, browser, draw_hoeken, needs_solver, page, server, settle  # noqa: F401
 from test_design import hand_targets, path_distances
 
 
@@ -56,6 +56,10 @@ def test_targets_clicked_and_synthesised_are_on_the_designed_path(server, page):
     assert "passes through the 5 targets" in page.text_content("#synth-message")
     print(f"synthesis from the page: {page.evaluate('window.studio.synthesisSeconds()'):.1f} s")
     settle(page, solver=True)  # the new drawing is a linkage the page animates
+    if SCREENSHOTS:
+        page.click("#tolerance")
+        page.wait_for_function("window.studio.band() !== null && window.studio.analysisDone()", timeout=120_000)
+        page.screenshot(path=str(IMAGES / "studio_design.png"))
     page.keyboard.press("Control+z")
     assert page.evaluate("window.studio.design()")["joints"][1] == {"name": "B", "x": 0, "y": 1}
 

@@ -23,8 +23,8 @@ from ..mechanism.joints import JointLinkage
 from ..mechanism.topology import GROUND
 from .drawing import CACHE, Description, description, drawn_linkage
 
-__all__ = ["analysis", "fourbar_lengths", "synthesis_request", "synthesis", "tolerance_band", "BAND_SAMPLES", "MAX_TARGETS", "MIN_TARGETS",
-           "MAX_STARTS", "MAX_EVALUATIONS"]
+__all__ = ["BAND_SAMPLES", "MAX_EVALUATIONS", "MAX_STARTS", "MAX_TARGETS", "MIN_TARGETS", "analysis",
+           "complex_points", "fourbar_lengths", "synthesis", "synthesis_request", "tolerance_band"]
 
 #: Bounds of a synthesis request: a drawing's few clicked points, a search that ends in minutes at most.
 MIN_TARGETS = 3
@@ -58,7 +58,13 @@ def fourbar_lengths(found: Description) -> dict[str, Any] | None:
     if len(cranks) != 1:
         return None
     crank = cranks[0]
-    shared = lambda one, two: [j for j in links[one] if j in links[two]]  # noqa: E731
+    xy = found.coordinates
+
+    def shared(one: str, two: str) -> list[str]:
+        return [j for j in links[one] if j in links[two]]
+
+    def length(p: str, q: str) -> float:
+        return math.hypot(xy[p][0] - xy[q][0], xy[p][1] - xy[q][1])
     for coupler in moving:
         for rocker in moving:
             if len({crank, coupler, rocker}) != 3:
@@ -67,8 +73,6 @@ def fourbar_lengths(found: Description) -> dict[str, Any] | None:
             d_joints = [j for j in links[rocker] if j in ground and j != pivot]
             if len(b_joints) == 1 and len(c_joints) == 1 and len(d_joints) == 1 and not shared(crank, rocker):
                 A, B, C, D = pivot, b_joints[0], c_joints[0], d_joints[0]
-                xy = found.coordinates
-                length = lambda p, q: math.hypot(xy[p][0] - xy[q][0], xy[p][1] - xy[q][1])  # noqa: E731
                 return {"joints": [A, B, C, D], "a": length(A, B), "b": length(B, C), "c": length(C, D),
                         "d": length(A, D)}
     return None
@@ -118,7 +122,8 @@ def analysis(data: Any) -> dict[str, Any]:
             "input": report.input, "angle": not name.startswith("s_"),
             "reach": {"spans": [list(span) for span in report.reach.spans], "full_turn": report.reach.full_turn,
                       "exact": report.reach.exact,
-                      "toggles": [{"at": t.at, "loop": t.loop, "ends_range": t.ends_range} for t in report.reach.toggles]},
+                      "toggles": [{"at": t.at, "loop": t.loop, "ends_range": t.ends_range}
+                                  for t in report.reach.toggles]},
             "transmission": [{"loop": t.loop, "joint": t.joint, "minimum": t.minimum, "minimum_at": t.minimum_at,
                               "maximum": t.maximum, "maximum_at": t.maximum_at} for t in report.transmission],
             "limits": [{"output": found_limits.output, "angle": found_limits.angle,
@@ -253,7 +258,8 @@ def synthesis(request: Mapping[str, Any]) -> dict[str, Any]:
         return result
     # the joints at the first target, placed: (x0, y0) + R(angle) p
     turn, x0, y0 = design.placement["angle"], design.placement["x0"], design.placement["y0"]
-    placed = lambda z: complex(x0, y0) + complex(math.cos(turn), math.sin(turn)) * z  # noqa: E731
+    def placed(z: complex) -> complex:
+        return complex(x0, y0) + complex(math.cos(turn), math.sin(turn)) * z
     arguments = {**design.design, **{k: float(v) for k, v in (design.branches or {}).items()}}
     poses = Geometry(linkage).poses(arguments, {name: numpy.asarray([design.inputs[0]])},
                                     guess=getattr(design, "assembly", None) or None)
@@ -274,7 +280,8 @@ def synthesis(request: Mapping[str, Any]) -> dict[str, Any]:
     made = drawn_linkage(description(drawing))
     check = {k: v for k, v in made.defaults.items() if k != name}
     sweep = numpy.linspace(inputs[0], inputs[-1], 241)
-    traced = Geometry(made.linkage).poses(check, {name: numpy.asarray(inputs + list(sweep))}, guess=made.guess or None)
+    traced = Geometry(made.linkage).poses(check, {name: numpy.asarray(inputs + list(sweep))},
+                                          guess=made.guess or None)
     along = traced.positions[request["point"]]
     ok = numpy.asarray(traced.assembled)
     distances = [float(abs(complex(along[k]) - complex(*targets[k]))) if ok[k] else None for k in range(len(inputs))]
@@ -301,8 +308,9 @@ def tolerance_band(data: Any) -> dict[str, Any]:
     """The worst-case band of a joint's path when every length of the drawing is made to ``± band``:
     ``{"drawing", "point", "band"}`` -> the nominal path and, at each input value, ``width``: the largest
     first-order deviation across the path (:func:`symlink.workshop.tolerance.stack_up`'s sensitivities of the
-    point's x and y, projected on the path's normal (its direction from the point 1e-5 of the range either way): ``sum_j |n . dP/dp_j| band_j``), and the band's edges
-    ``inner`` and ``outer`` (``P -/+ width n``); None where the linkage cannot be assembled."""
+    point's x and y, projected on the path's normal, its direction from the point 1e-5 of the range either
+    way: ``sum_j |n . dP/dp_j| band_j``), and the band's edges ``inner`` and ``outer`` (``P -/+ width n``);
+    None where the linkage cannot be assembled."""
     import numpy
 
     from ..workshop.tolerance import stack_up
@@ -345,7 +353,8 @@ def tolerance_band(data: Any) -> dict[str, Any]:
     nominal, inner, outer, widths = [], [], [], []
     for k in range(len(inputs)):
         if not ok[k]:
-            nominal.append(None); inner.append(None); outer.append(None); widths.append(None)  # noqa: E702
+            for column in (nominal, inner, outer, widths):
+                column.append(None)
             continue
         forward, backward = ahead[k] - where[k], where[k] - behind[k]
         forward, backward = forward / abs(forward), backward / abs(backward)

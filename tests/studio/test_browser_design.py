@@ -10,8 +10,6 @@ from __future__ import annotations
 
 import math
 
-import pytest
-
 from test_browser import IMAGES, SCREENSHOTS, browser, draw_hoeken, needs_solver, page, server, settle  # noqa: F401
 from test_design import hand_targets, path_distances
 

@@ -5,7 +5,7 @@ import math
 
 import pytest
 
-from conftest import TOKEN  # noqa: F401 - tests/ is on the path; this is tests/studio/conftest.py
+from conftest import TOKEN  # tests/studio is on the path: its conftest
 
 AUTH = {"X-Symlink-Token": TOKEN}
 
@@ -109,7 +109,8 @@ def path_distances(drawing: dict, point: str, inputs: list[float], targets: list
     from symlink.numeric.poses import Geometry
     ground = [j["name"] for j in drawing["joints"] if j.get("ground")]
     links = {"ground": ground, **{f"link{k + 1}": held for k, held in enumerate(drawing["links"])}}
-    made = from_joints(links, {j["name"]: (j["x"], j["y"]) for j in drawing["joints"]}, driver=drawing["driver"]["joint"])
+    made = from_joints(links, {j["name"]: (j["x"], j["y"]) for j in drawing["joints"]},
+                       driver=drawing["driver"]["joint"])
     name = made.linkage.inputs[0].name
     values = {k: v for k, v in made.defaults.items() if k != name}
     poses = Geometry(made.linkage).poses(values, {name: numpy.asarray(inputs)})
@@ -204,3 +205,17 @@ def test_a_tolerance_band_out_of_bounds_is_refused(client):
     for band, message in ((0, "above 0"), (5.0, "a tenth of the drawing"), ("0.1", "above 0")):
         answer = client.post("/api/tolerance", json={"drawing": START, "point": "E", "band": band}, headers=AUTH)
         assert answer.status_code == 422 and message in answer.json()["error"]
+
+
+def test_a_job_that_runs_past_its_time_limit_is_stopped_with_a_message():
+    from symlink.studio.jobs import Jobs
+    jobs = Jobs(time_limit=0.5)  # far less than a fresh interpreter needs to import symlink and derive
+    key = jobs.start("synthesis", {"drawing": START, "point": "E", "targets": hand_targets(), "starts": 64})
+    job = jobs.jobs[key]
+    job["process"].join(60)  # the watcher terminates it
+    found = jobs.status(key)
+    while found["status"] in ("starting", "deriving", "searching"):
+        job["process"].join(0.2)
+        found = jobs.status(key)
+    assert found["status"] == "failed" and "stopped after 0.5 s" in found["error"]
+    assert not job["process"].is_alive()

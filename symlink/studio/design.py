@@ -23,7 +23,7 @@ from ..mechanism.joints import JointLinkage
 from ..mechanism.topology import GROUND
 from .drawing import CACHE, Description, description, drawn_linkage
 
-__all__ = ["BAND_SAMPLES", "MAX_EVALUATIONS", "MAX_STARTS", "MAX_TARGETS", "MIN_TARGETS", "analysis",
+__all__ = ["BAND_SAMPLES", "EXACT", "MAX_EVALUATIONS", "MAX_STARTS", "MAX_TARGETS", "MIN_TARGETS", "analysis",
            "complex_points", "fourbar_lengths", "synthesis", "synthesis_request", "tolerance_band"]
 
 #: Bounds of a synthesis request: a drawing's few clicked points, a search that ends in minutes at most.
@@ -31,6 +31,9 @@ MIN_TARGETS = 3
 MAX_TARGETS = 40
 MAX_STARTS = 64
 MAX_EVALUATIONS = 5000
+#: A design passes through the targets when its largest distance to them is below this, over their size (the
+#: search stops at 1e-10); above it the design is the closest found, and said so.
+EXACT = 1e-9
 
 
 def _input_values(drawn: JointLinkage) -> tuple[str, dict[str, float]]:
@@ -248,6 +251,7 @@ def synthesis(request: Mapping[str, Any]) -> dict[str, Any]:
                              frame=("x0", "y0", "angle"), starts=request["starts"], seed=request["seed"],
                              evaluations=request["evaluations"])
     result: dict[str, Any] = {"point": request["point"], "targets": targets, "error": float(design.error),
+                              "exact": bool(design.assembled) and float(design.error) < EXACT,
                               "errors": [float(e) for e in design.errors], "assembled": bool(design.assembled),
                               "why": design.why, "evaluations": int(design.evaluations),
                               "design": {k: float(v) for k, v in design.design.items()},

@@ -105,12 +105,13 @@ def path_distances(drawing: dict, point: str, inputs: list[float], targets: list
     """Distances from each target to the point of the drawing's own linkage (from_joints, Geometry) at its input."""
     import numpy
 
-    from symlink.mechanism.joints import from_joints
+    from symlink.mechanism.joints import Slider, from_joints
     from symlink.numeric.poses import Geometry
-    ground = [j["name"] for j in drawing["joints"] if j.get("ground")]
+    sliders = {s["joint"]: Slider("ground", s["angle"]) for s in drawing.get("sliders", [])}
+    ground = [j["name"] for j in drawing["joints"] if j.get("ground")] + list(sliders)
     links = {"ground": ground, **{f"link{k + 1}": held for k, held in enumerate(drawing["links"])}}
     made = from_joints(links, {j["name"]: (j["x"], j["y"]) for j in drawing["joints"]},
-                       driver=drawing["driver"]["joint"])
+                       driver=drawing["driver"]["joint"], joints=sliders or None)
     name = made.linkage.inputs[0].name
     values = {k: v for k, v in made.defaults.items() if k != name}
     poses = Geometry(made.linkage).poses(values, {name: numpy.asarray(inputs)})
@@ -139,12 +140,36 @@ def test_a_synthesis_puts_the_coupler_point_through_the_targets(client):
     found = wait(client, answer.json()["id"])
     assert found["status"] == "done", found
     result = found["result"]
-    assert result["assembled"] is True
+    assert result["assembled"] is True and result["exact"] is True
     distances = path_distances(result["drawing"], "E", result["inputs"], targets)
     assert max(distances) < 1e-6 * size
     # the drawing is the design at the first target: E drawn there
     (E,) = [j for j in result["drawing"]["joints"] if j["name"] == "E"]
     assert math.dist((E["x"], E["y"]), targets[0]) < 1e-6 * size
+
+
+def test_a_slider_crank_with_a_coupler_point_is_designed_through_points_too(client):
+    """Any drawn linkage: a slider-crank's coupler point E through five points of a hand slider-crank (crank 1.2
+    about (0.3, 0.2), coupler 3.5 to a slider on the line y = 0.6, E at 2 from B turned 0.5 rad from BC; the
+    new drawing's slider guide turned with the placement, and its own linkage through the points)."""
+    drawing = {"name": "sc", "joints": [{"name": "A", "x": 0, "y": 0, "ground": True}, {"name": "B", "x": 0.5, "y": 1},
+                                        {"name": "C", "x": 3, "y": 0}, {"name": "E", "x": 2, "y": 1.5}],
+               "links": [["A", "B"], ["B", "C", "E"]], "driver": {"joint": "A"},
+               "sliders": [{"joint": "C", "guide": "ground", "angle": 0.0}]}
+    targets = []
+    for t in (0.3, 0.6, 0.9, 1.2, 1.5):
+        B = (0.3 + 1.2 * math.cos(t), 0.2 + 1.2 * math.sin(t))
+        C = (B[0] + math.sqrt(3.5 ** 2 - (0.6 - B[1]) ** 2), 0.6)
+        heading = math.atan2(C[1] - B[1], C[0] - B[0]) + 0.5
+        targets.append([B[0] + 2 * math.cos(heading), B[1] + 2 * math.sin(heading)])
+    answer = client.post("/api/synthesize", json={"drawing": drawing, "point": "E", "targets": targets, "starts": 4},
+                         headers=AUTH)
+    found = wait(client, answer.json()["id"])
+    assert found["status"] == "done" and found["result"]["exact"] is True, found
+    result = found["result"]
+    size = max(max(p[0] for p in targets) - min(p[0] for p in targets),
+               max(p[1] for p in targets) - min(p[1] for p in targets))
+    assert max(path_distances(result["drawing"], "E", result["inputs"], targets)) < 1e-6 * size
 
 
 def test_a_synthesis_can_be_cancelled(client):

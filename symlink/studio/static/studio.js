@@ -683,8 +683,10 @@
     state.synthesis = result;
     fitView(); render();
     var worst = Math.max.apply(null, result.distances.map(function (d) { return d === null ? Infinity : d; }));
-    synthSay(result.point + " passes through the " + result.targets.length + " targets (largest distance " + worst.toExponential(1)
+    if (result.exact) synthSay(result.point + " passes through the " + result.targets.length + " targets (largest distance " + worst.toExponential(1)
       + ") in " + seconds.toFixed(1) + " s; Undo restores the drawing.");
+    else synthSay("no design through the targets was found: the closest one, drawn, misses them by up to " + worst.toPrecision(3)
+      + " (" + result.error.toExponential(1) + " of their size) in " + seconds.toFixed(1) + " s. Try more starts, other targets, or Undo.", true);
   }
 
   // ---- mouse and keys ----------------------------------------------------------------------------

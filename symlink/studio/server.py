@@ -11,8 +11,10 @@ Guarded as Jupyter guards its server, because a page on any web site can send re
   ``Origin`` is another site's: 403;
 * a path outside the app: 404.
 
-The API answers JSON to POSTs (``/api/structure``, ``/api/derive``, ``/api/solver``, ``/api/open``) and
-files to ``/api/export?format=...``; every ``ValueError`` of the library is a JSON ``{"error": ...}`` with
+The API answers JSON to POSTs (``/api/structure``, ``/api/derive``, ``/api/solver``, ``/api/analyze``, ``/api/open``) and
+files to ``/api/export?format=...``; ``/api/synthesize`` starts a path synthesis in a worker process
+(:mod:`symlink.studio.jobs`), ``GET /api/synthesize/<id>`` says how it goes and gives its result,
+``DELETE /api/synthesize/<id>`` cancels it; every ``ValueError`` of the library is a JSON ``{"error": ...}`` with
 status 400 (a request that is no drawing) or 422 (a drawing that is no linkage), never a traceback.
 The work is :mod:`symlink.studio.drawing`'s; this module only routes and guards.
 """
@@ -34,7 +36,8 @@ from starlette.responses import FileResponse, JSONResponse, Response
 from starlette.routing import Route
 from starlette.concurrency import run_in_threadpool
 
-from . import drawing
+from . import design, drawing
+from .jobs import Jobs
 
 __all__ = ["create_app", "free_port", "PREFERRED_PORTS", "serve", "TOKEN_COOKIE", "TOKEN_HEADER", "STATIC", "MAX_BODY"]
 
@@ -209,6 +212,24 @@ def create_app(port: int, token: str, initial: Mapping[str, Any] | None = None) 
     async def initial_drawing(request: Request) -> Response:
         return JSONResponse({"drawing": start})
 
+    jobs = Jobs()
+
+    def synthesize(data: Any, request: Request) -> Response:
+        checked = design.synthesis_request(data)  # bad input answered at once, before a process starts
+        try:
+            key = jobs.start("synthesis", checked)
+        except ValueError as error:
+            return _error(str(error), 409)
+        return JSONResponse(jobs.status(key), status_code=202)
+
+    async def synthesis_status(request: Request) -> Response:
+        found = jobs.status(request.path_params["key"])
+        return _error("no such synthesis", 404) if found is None else JSONResponse(found)
+
+    async def synthesis_cancel(request: Request) -> Response:
+        found = await run_in_threadpool(jobs.cancel, request.path_params["key"])
+        return _error("no such synthesis", 404) if found is None else JSONResponse(found)
+
     async def not_found(request: Request, exc: Exception) -> Response:
         return _error("not found", 404)
 
@@ -222,10 +243,16 @@ def create_app(port: int, token: str, initial: Mapping[str, Any] | None = None) 
         Route("/api/structure", _api(lambda data, request: drawing.structure(data)), methods=["POST"]),
         Route("/api/derive", _api(lambda data, request: drawing.derivation(data)), methods=["POST"]),
         Route("/api/solver", _api(lambda data, request: drawing.solver(data)), methods=["POST"]),
+        Route("/api/analyze", _api(lambda data, request: design.analysis(data)), methods=["POST"]),
+        Route("/api/tolerance", _api(lambda data, request: design.tolerance_band(data)), methods=["POST"]),
+        Route("/api/synthesize", _api(synthesize), methods=["POST"]),
+        Route("/api/synthesize/{key:str}", synthesis_status, methods=["GET"]),
+        Route("/api/synthesize/{key:str}", synthesis_cancel, methods=["DELETE"]),
         Route("/api/open", _api(_open), methods=["POST"]),
         Route("/api/export", _api(_export), methods=["POST"]),
     ]
     app = Starlette(routes=routes, exception_handlers={404: not_found, 405: not_allowed})
+    app.state.jobs = jobs
     app.add_middleware(_Guard, port=port, token=token)
     return app
 

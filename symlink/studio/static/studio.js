@@ -32,6 +32,11 @@
     pose: null,        // joint -> [x, y] from the solver, or null
     assembled: true,
     reach: null, traces: {},
+    analysis: null, analysisError: null, analysing: 0,
+    targets: [], targeting: false,     // clicked target points (drawing units), and whether clicks add them
+    synthesis: null, job: null,        // the applied synthesis result; the running job {id, status, elapsed}
+    band: null, bandMessage: "", bandError: false, bandPoint: null,
+    synthMessage: "", synthError: false, synthSeconds: null, synthPoint: null,
     pending: 0, generation: 0, playing: false
   };
 
@@ -89,6 +94,7 @@
       return;
     }
     var xs = joints.map(function (j) { return j.x; }), ys = joints.map(function (j) { return j.y; });
+    state.targets.forEach(function (t) { xs.push(t[0]); ys.push(t[1]); });
     Object.keys(state.traces).forEach(function (k) {
       state.traces[k].forEach(function (p) { xs.push(p[0]); ys.push(p[1]); });
     });
@@ -105,6 +111,8 @@
     if (state.undo.length > 200) state.undo.shift();
     state.redo = [];
     change(state.design);
+    state.synthesis = null; state.synthMessage = ""; state.synthError = false;
+    state.band = null; state.bandMessage = ""; state.bandError = false;
     changed();
   }
   function changed() {
@@ -220,12 +228,14 @@
     var design = clone(state.design);
     state.structure = null; state.derivation = null; state.solverInfo = null; state.solver = null;
     state.error = null; state.motionError = null; state.reach = null; state.traces = {};
+    state.analysis = null; state.analysisError = null;
     if (!design.joints.length) { renderPanel(); return Promise.resolve(); }
     state.pending += 1;
     return post("api/structure", design).then(function (structure) {
       if (generation !== state.generation) return;
       state.structure = structure;
       renderPanel();
+      requestAnalysis(design, generation);
       return Promise.all([
         post("api/derive", design).then(function (d) { if (generation === state.generation) state.derivation = d; })
           .catch(function (e) { if (generation === state.generation) state.error = e.message; }),
@@ -238,6 +248,15 @@
       state.pending -= 1;
       if (generation === state.generation) { renderPanel(); render(); }
     });
+  }
+
+  function requestAnalysis(design, generation) {
+    // the analysis takes seconds the first time (generated code): it does not hold up the rest of the page
+    state.analysing += 1;
+    renderAnalysis();
+    return post("api/analyze", design).then(function (a) { if (generation === state.generation) state.analysis = a; })
+      .catch(function (e) { if (generation === state.generation) state.analysisError = e.message; })
+      .then(function () { state.analysing -= 1; if (generation === state.generation) renderAnalysis(); });
   }
 
   // ---- the generated solver ----------------------------------------------------------------------
@@ -353,6 +372,38 @@
       });
       if (d) node("path", { d: d, "class": "trace" }, svg);
     });
+    if (state.band) {
+      // each run of assembled samples: the outer edge forward, the inner edge back
+      var runs = [], run = [];
+      state.band.outer.forEach(function (o, k) {
+        var i = state.band.inner[k];
+        if (o && i) run.push([o, i]); else if (run.length) { runs.push(run); run = []; }
+      });
+      if (run.length) runs.push(run);
+      var bd = "";
+      runs.forEach(function (r) {
+        if (r.length < 2) return;
+        var pts = r.map(function (p) { return p[0]; }).concat(r.slice().reverse().map(function (p) { return p[1]; }));
+        bd += "M" + pts.map(function (p) { var q = toScreen(p[0], p[1]); return q[0].toFixed(1) + " " + q[1].toFixed(1); }).join("L") + "Z";
+      });
+      if (bd) node("path", { d: bd, "class": "tol-band", "fill-rule": "nonzero" }, svg);
+    }
+    if (state.synthesis && state.synthesis.path) {
+      var sd = "", spen = false;
+      state.synthesis.path.forEach(function (pt) {
+        if (pt === null) { spen = false; return; }
+        var sp = toScreen(pt[0], pt[1]);
+        sd += (spen ? "L" : "M") + sp[0].toFixed(1) + " " + sp[1].toFixed(1);
+        spen = true;
+      });
+      if (sd) node("path", { d: sd, "class": "synth-path" }, svg);
+    }
+    state.targets.forEach(function (t, k) {
+      var tp = toScreen(t[0], t[1]);
+      node("path", { d: "M" + (tp[0] - 6) + " " + tp[1] + "h12M" + tp[0] + " " + (tp[1] - 6) + "v12", "class": "target", "data-target": k }, svg);
+      var tl = node("text", { x: tp[0] + 6, y: tp[1] + 15, "class": "target-label" }, svg);
+      tl.textContent = String(k + 1);
+    });
     var design = state.design;
     var sliding = design.sliders.map(function (s) { return s.joint; });
     var grounded = design.joints.filter(function (j) { return j.ground && sliding.indexOf(j.name) < 0; })
@@ -416,8 +467,48 @@
     typeset("velocities", d ? d.velocities : null);
     typeset("accelerations", d ? d.accelerations : null);
     renderMotion();
+    renderAnalysis();
+    renderDesign();
+    renderBand();
   }
   function degrees(v) { return v * 180 / Math.PI; }
+  function deg(v) { return degrees(v).toFixed(2) + "°"; }
+  function renderAnalysis() {
+    var box = el("analysis");
+    if (!box) return;
+    box.textContent = "";
+    var line = function (label, text, key) {
+      var p = document.createElement("p");
+      p.className = "analysis-line";
+      if (key) p.setAttribute("data-key", key);
+      var b = document.createElement("b"); b.textContent = label + ": "; p.appendChild(b);
+      p.appendChild(document.createTextNode(text));
+      box.appendChild(p);
+      return p;
+    };
+    if (state.analysisError) { var m = line("cannot analyse", state.analysisError, "error"); m.className += " error"; return; }
+    var a = state.analysis;
+    if (!a) { if (state.analysing > 0 && state.structure) line("analysing", "…", "busy"); return; }
+    var value = function (v) { return a.angle ? deg(v) : v.toFixed(4); };
+    if (a.grashof) {
+      var f = a.fourbar;
+      line("Grashof", a.grashof.name + " (a " + f.a.toFixed(3) + ", b " + f.b.toFixed(3) + ", c " + f.c.toFixed(3) + ", d " + f.d.toFixed(3)
+        + "; s + l = " + a.grashof.shortest_plus_longest.toFixed(3) + (a.grashof.name === "triple-rocker" ? " > " : " ≤ ") + "p + q = " + a.grashof.other_two.toFixed(3) + ")", "grashof");
+    }
+    line("Input " + a.input, a.reach.full_turn ? "turns fully" : "reaches " + a.reach.spans.map(function (s) { return value(s[0]) + " to " + value(s[1]); }).join(", "), "reach");
+    if (a.reach.toggles.length) line("Toggles", a.reach.toggles.map(function (t) { return value(t.at) + (t.loop ? " (" + t.loop + ")" : ""); }).join(", "), "toggles");
+    a.transmission.forEach(function (t) {
+      line("Transmission " + t.loop + " at " + t.joint, deg(t.minimum) + " to " + deg(t.maximum) + " (at " + a.input + " = " + value(t.minimum_at) + ", " + value(t.maximum_at) + ")", "transmission-" + t.loop);
+    });
+    if (!a.transmission.length) line("Transmission", "no loop with two unknown angles", "transmission");
+    a.limits.forEach(function (l) {
+      var shown = function (v) { return l.angle ? deg(v) : v.toFixed(4); };
+      var text = l.positions.map(function (p) { return p.kind + " " + shown(p.value) + " at " + a.input + " = " + value(p.at); }).join("; ");
+      if (l.stroke !== null) text += "; stroke " + shown(l.stroke);
+      if (l.time_ratio !== null) text += ", time ratio " + l.time_ratio.toFixed(4);
+      line("Limits of " + l.output, text || "none", "limits-" + l.output);
+    });
+  }
   function renderMotion() {
     var ready = !!state.solver, slider = el("input"), play = el("play");
     slider.disabled = !ready; play.disabled = !ready;
@@ -459,6 +550,145 @@
     }
   }
 
+  // ---- design: a path through clicked targets ------------------------------------------------------
+  function setTargeting(on) {
+    state.targeting = !!on;
+    el("tool-targets").classList.toggle("active", state.targeting);
+    svg.classList.toggle("targeting", state.targeting);
+    if (state.targeting) state.selected = [];
+    render();
+    renderDesign();
+  }
+  function addTarget(x, y) {
+    if (state.targets.length >= 40) { synthSay("at most 40 targets", true); return; }
+    state.targets.push([x, y]);
+    render();
+    renderDesign();
+  }
+  function synthSay(text, error) { state.synthMessage = text; state.synthError = !!error; renderDesign(); }
+  function movingJoints() {
+    var ground = {};
+    state.design.joints.forEach(function (j) { if (j.ground) ground[j.name] = true; });
+    (state.design.sliders || []).forEach(function (s) { delete ground[s.joint]; });
+    var held = {};
+    state.design.links.forEach(function (l) { l.forEach(function (n) { held[n] = true; }); });
+    return state.design.joints.filter(function (j) { return !ground[j.name] && held[j.name]; }).map(function (j) { return j.name; });
+  }
+  function renderDesign() {
+    var select = el("synth-point");
+    if (!select) return;
+    var names = movingJoints();
+    var points = pointJoints();
+    if (Array.prototype.map.call(select.options, function (o) { return o.value; }).join() !== names.join()) {
+      select.textContent = "";
+      names.forEach(function (n) { var o = document.createElement("option"); o.value = n; o.textContent = n; select.appendChild(o); });
+      // the user's choice if still there, else a coupler point (a joint on one link only), else the first
+      select.value = state.synthPoint && names.indexOf(state.synthPoint) >= 0 ? state.synthPoint
+        : (points.length ? points[points.length - 1] : (names[0] || ""));
+    }
+    var running = !!state.job;
+    el("synthesize").disabled = running || state.targets.length < 3 || !state.structure;
+    el("synth-cancel").disabled = !running;
+    el("targets-clear").disabled = !state.targets.length || running;
+    var message = el("synth-message");
+    var text = state.synthMessage;
+    if (!text) text = state.targets.length < 3 ? "Click Targets, then " + (3 - state.targets.length) + " or more points on the drawing (" + state.targets.length + " so far)." : state.targets.length + " targets: choose the joint and Synthesize.";
+    message.textContent = text;
+    message.className = "message" + (state.synthError ? " error" : "");
+  }
+  function renderBand() {
+    var select = el("tol-point");
+    if (!select) return;
+    var names = movingJoints(), points = pointJoints();
+    if (Array.prototype.map.call(select.options, function (o) { return o.value; }).join() !== names.join()) {
+      select.textContent = "";
+      names.forEach(function (n) { var o = document.createElement("option"); o.value = n; o.textContent = n; select.appendChild(o); });
+      select.value = state.bandPoint && names.indexOf(state.bandPoint) >= 0 ? state.bandPoint
+        : (points.length ? points[points.length - 1] : (names[0] || ""));
+    }
+    el("tolerance").disabled = !state.structure || !names.length;
+    var message = el("tol-message");
+    message.textContent = state.bandMessage;
+    message.className = "message" + (state.bandError ? " error" : "");
+  }
+  function toleranceBand() {
+    var band = Number(el("tol-band").value), point = el("tol-point").value;
+    if (!(band > 0)) { state.bandMessage = "the tolerance is a number above 0"; state.bandError = true; renderBand(); return Promise.resolve(); }
+    var generation = state.generation;
+    state.bandMessage = "…"; state.bandError = false; renderBand();
+    state.pending += 1;
+    return post("api/tolerance", { drawing: clone(state.design), point: point, band: band }).then(function (b) {
+      if (generation !== state.generation) return;
+      state.band = b;
+      var name = b.input, angle = !/^s_/.test(name);
+      state.bandMessage = "every length ± " + band + ": " + point + " strays at most " + (b.worst === null ? "?" : b.worst.toPrecision(3))
+        + " across its path (worst case, first order), at " + name + " = " + (b.worst_at === null ? "?" : angle ? degrees(b.worst_at).toFixed(1) + "°" : b.worst_at.toFixed(3));
+      render();
+    }).catch(function (e) { if (generation === state.generation) { state.bandMessage = e.message; state.bandError = true; } })
+      .then(function () { state.pending -= 1; renderBand(); });
+  }
+  function request(method, path) {
+    return fetch(path, { method: method, credentials: "same-origin", headers: { "X-Symlink-Token": token } })
+      .catch(function () { throw new Error("the studio's server does not answer"); })
+      .then(function (response) {
+        return response.json().catch(function () { return { error: "the server answered " + response.status }; }).then(function (data) {
+          if (!response.ok) throw new Error(data.error || ("the server answered " + response.status));
+          return data;
+        });
+      });
+  }
+  function synthesize() {
+    if (state.job) return Promise.resolve();
+    var point = el("synth-point").value;
+    var starts = Number(el("synth-starts").value);
+    if (state.targets.length < 3) { synthSay("click at least 3 targets first", true); return Promise.resolve(); }
+    if (!point) { synthSay("the drawing has no moving joint to trace the path", true); return Promise.resolve(); }
+    if (!(starts >= 1 && starts <= 64 && Math.floor(starts) === starts)) { synthSay("starts is a whole number from 1 to 64", true); return Promise.resolve(); }
+    var began = performance.now();
+    var body = { drawing: clone(state.design), point: point, targets: clone(state.targets), starts: starts };
+    state.job = { id: null, status: "starting", elapsed: 0 };
+    state.synthSeconds = null;
+    synthSay("starting…");
+    return post("api/synthesize", body).then(function (job) {
+      state.job = job;
+      return new Promise(function (resolve) {
+        function poll() {
+          if (!state.job || state.job.id !== job.id) { resolve(); return; }
+          request("GET", "api/synthesize/" + job.id).then(function (now) {
+            if (!state.job || state.job.id !== job.id) { resolve(); return; }
+            state.job = now;
+            if (now.status === "done") { state.job = null; applySynthesis(now.result, body, (performance.now() - began) / 1000, now.elapsed); resolve(); }
+            else if (now.status === "failed" || now.status === "cancelled") { state.job = null; synthSay(now.status === "cancelled" ? "cancelled" : now.error, now.status !== "cancelled"); resolve(); }
+            else { synthSay(now.status + "… " + now.elapsed.toFixed(1) + " s"); setTimeout(poll, 300); }
+          }).catch(function (e) { state.job = null; synthSay(e.message, true); resolve(); });
+        }
+        poll();
+      });
+    }).catch(function (e) { state.job = null; synthSay(e.message, true); });
+  }
+  function cancelSynthesis() {
+    var job = state.job;
+    if (!job || !job.id) return Promise.resolve();
+    state.job = null;
+    return request("DELETE", "api/synthesize/" + job.id).then(function () { synthSay("cancelled"); })
+      .catch(function (e) { synthSay(e.message, true); });
+  }
+  function applySynthesis(result, body, seconds, elapsed) {
+    state.synthSeconds = seconds;
+    if (!result.assembled || !result.drawing) {
+      synthSay("no design through the targets was found: " + (result.why || "error " + result.error.toExponential(2) + " of their size") + ". Try more starts, or targets a linkage can reach.", true);
+      return;
+    }
+    commit(function (design) { Object.keys(result.drawing).forEach(function (k) { design[k] = clone(result.drawing[k]); }); });
+    state.synthesis = result;
+    fitView(); render();
+    var worst = Math.max.apply(null, result.distances.map(function (d) { return d === null ? Infinity : d; }));
+    if (result.exact) synthSay(result.point + " passes through the " + result.targets.length + " targets (largest distance " + worst.toExponential(1)
+      + ") in " + seconds.toFixed(1) + " s; Undo restores the drawing.");
+    else synthSay("no design through the targets was found: the closest one, drawn, misses them by up to " + worst.toPrecision(3)
+      + " (" + result.error.toExponential(1) + " of their size) in " + seconds.toFixed(1) + " s. Try more starts, other targets, or Undo.", true);
+  }
+
   // ---- mouse and keys ----------------------------------------------------------------------------
   var drag = null;
   function startDrag(event, name) {
@@ -488,6 +718,7 @@
   svg.addEventListener("click", function (event) {
     if (embedded || event.target.getAttribute("data-joint")) return;
     var at = clientToSvg(event), w = toWorld(at[0], at[1]);
+    if (state.targeting) { addTarget(w[0], w[1]); return; }
     if (state.selected.length) { state.selected = []; render(); return; }
     addJoint(w[0], w[1]);
   });
@@ -502,11 +733,19 @@
     else if (key === "m") driveSelected();
     else if (key === "s") sliderSelected();
     else if (key === "delete" || key === "backspace") deleteSelected();
-    else if (key === "escape") { state.selected = []; render(); }
+    else if (key === "t") setTargeting(!state.targeting);
+    else if (key === "escape") { state.selected = []; setTargeting(false); }
   });
   function showError(text) { var m = el("structure-message"); m.textContent = text; m.className = "message error"; }
 
   el("tool-link").onclick = joinSelected;
+  el("tool-targets").onclick = function () { setTargeting(!state.targeting); };
+  el("targets-clear").onclick = function () { state.targets = []; state.synthesis = null; state.synthMessage = ""; render(); renderDesign(); };
+  el("synthesize").onclick = function () { synthesize(); };
+  el("tolerance").onclick = function () { toleranceBand(); };
+  el("tol-point").addEventListener("change", function () { state.bandPoint = el("tol-point").value; });
+  el("synth-point").addEventListener("change", function () { state.synthPoint = el("synth-point").value; });
+  el("synth-cancel").onclick = function () { cancelSynthesis(); };
   el("tool-ground").onclick = groundSelected;
   el("tool-driver").onclick = driveSelected;
   el("tool-slider").onclick = sliderSelected;
@@ -598,6 +837,14 @@
     setView: function (scale, ox, oy) { state.view = { scale: scale, ox: ox, oy: oy }; render(); },
     idle: function () { return state.pending === 0 && timer === null; },
     solverReady: function () { return !!state.solver; },
+    targets: function () { return clone(state.targets); },
+    synthesis: function () { return state.synthesis ? clone(state.synthesis) : null; },
+    synthesizing: function () { return !!state.job; },
+    synthesisSeconds: function () { return state.synthSeconds; },
+    synthesize: synthesize,
+    band: function () { return state.band ? clone(state.band) : null; },
+    analysisDone: function () { return state.analysing === 0 && (state.analysis !== null || state.analysisError !== null); },
+    analysis: function () { return state.analysis ? clone(state.analysis) : null; },
     setInput: setInput,
     setBranch: setBranch,
     positions: function () { return state.pose ? clone(state.pose) : null; },

@@ -17,6 +17,9 @@ limit (a container's, cgroup v2 or v1, :func:`cgroup_room`).
 
 >>> format_bytes(3.5e9)
 '3.5 GB'
+>>> require_time(10**9, 0.01, "a shape search of 1,000,000,000 designs", "designs")
+Traceback (most recent call last):
+ValueError: a shape search of 1,000,000,000 designs would take about 116 days (at most 24 hours a call); use designs 8,640,000 or fewer
 >>> require_memory(10**8, 240, "solving 1e+08 input values", available=2 * 10**9)
 Traceback (most recent call last):
 ValueError: solving 1e+08 input values needs about 24 GB of memory, more than the 2 GB available; call it with at most 4,166,666 values at a time and join the results (InputSweep.blocks() yields a long sweep block by block)
@@ -27,7 +30,11 @@ import os
 from typing import Callable
 
 __all__ = ["available_memory", "machine_memory", "address_space_room", "cgroup_room", "format_bytes",
-           "require_memory"]
+           "format_duration", "require_memory", "require_time", "WORK_SECONDS"]
+
+#: Seconds of work one call may plan for: a search or sampling estimated to take longer is taken for a mistake
+#: (a day; a command line allows less, :data:`symlink.cli.budget.TIME_BUDGET`).
+WORK_SECONDS = 86400.0
 
 _MEMINFO = "/proc/meminfo"
 #: The process's own status: ``VmSize``, the address space it already uses.
@@ -180,6 +187,34 @@ def format_bytes(count: float) -> str:
         if count >= size:
             return f"{count / size:{'.0f' if count >= 100 * size else '.2g'}} {unit}"
     return f"{count:.0f} bytes"
+
+
+def format_duration(seconds: float) -> str:
+    """A duration the way people read it.
+
+    >>> format_duration(42), format_duration(3600), format_duration(9000), format_duration(3e7), format_duration(1e30)
+    ('42 s', '60 min', '2.5 hours', '347 days', '3.2e+22 years')
+    """
+    for unit, size in (("years", 365.25 * 86400), ("days", 86400.0), ("hours", 3600.0), ("min", 60.0)):
+        if seconds >= 2 * size:  # never "1 hours": 90 min, 36 hours
+            value = seconds / size
+            return f"{value:.0f} {unit}" if 10 <= value < 1e6 else f"{value:.2g} {unit}"
+    return f"{seconds:.0f} s"
+
+
+def require_time(count: float, seconds_each: float, what: str, option: str, budget: float = WORK_SECONDS,
+                 fixed_seconds: float = 0.0) -> None:
+    """``ValueError`` (one line) if ``count`` units of work at ``seconds_each`` would take longer than ``budget``.
+
+    ``what`` names the request; the message gives the estimate and ends with the largest ``option`` value that
+    fits (``fixed_seconds``: work the request does whatever its size).
+    """
+    seconds = fixed_seconds + count * seconds_each
+    if seconds <= budget:
+        return
+    fits = max(1, int(max(budget - fixed_seconds, 0.0) / seconds_each)) if seconds_each > 0 else 1
+    raise ValueError(f"{what} would take about {format_duration(seconds)} (at most {format_duration(budget)} a "
+                     f"call); use {option} {fits:,} or fewer")
 
 
 def require_memory(values: int, bytes_per_value: int, what: str, available: int | None = None,

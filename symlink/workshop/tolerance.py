@@ -660,10 +660,7 @@ class _BuildModel:
 
     def table(self, index: int) -> bytes:
         """Chunk ``index`` as the bytes of a Parquet file (what a Dask task returns)."""
-        import io
-
-        import pyarrow
-        import pyarrow.parquet
+        from ..io.sweep_folder import parquet_bytes
         first, stop = self.chunk_range(index)
         drawn, deviation = self.draw(index)
         data = {"build": numpy.arange(first, stop, dtype=numpy.int64), **drawn}
@@ -671,9 +668,7 @@ class _BuildModel:
         for i in range(len(self.outputs)):
             for k in range(deviation.shape[2]):
                 data[next(names)] = deviation[i, :, k]
-        sink = io.BytesIO()
-        pyarrow.parquet.write_table(pyarrow.table(data), sink)
-        return sink.getvalue()
+        return parquet_bytes(data)
 
     def settings(self, linkage: Linkage) -> dict[str, object]:
         """What decides the sample, as the folder's manifest keeps it (a resumed run must match it)."""

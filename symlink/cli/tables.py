@@ -41,13 +41,11 @@ import numpy
 from ..common.angles import from_radians, half_turn, to_radians, wrap
 from ..numeric.input_sweep import InputSweep, crank_speeds
 from .options import (add_fourbar_lengths, add_sweep_options, angle, assignments, branches, command_help, finite,
-                      fourbar_lengths, input_sweep, linkage_values)
+                      fourbar_lengths, input_sweep)
 from .output import RowWriter, TableAssembler, print_rows
 
 if TYPE_CHECKING:
-    from ..numeric.cached_solver import CachedSolver
     from ..symbolic.linkage import Linkage
-    from ..numeric.solver import Solver
 
 # The symbolic side (linkages, their labels, Solver: SymPy) is imported inside the functions that need it, so
 # that ``symlink fourbar`` with its code in the disk cache never imports SymPy (symlink.numeric.cached_solver).

@@ -189,7 +189,7 @@ except ValueError as refused:
 """
 
 
-def _under_ulimit(command: str, tmp_path) -> "subprocess.CompletedProcess[str]":
+def _under_ulimit(command: str, tmp_path):
     import shutil
     import subprocess
     import sys

@@ -321,6 +321,11 @@ def _numeric(table: Table, linkage: Linkage, values: dict, inputs: dict, angles,
         raise ValueError(f"{linkage.name} cannot be assembled at the first crank angle, {first} "
                          "(its scan for assemblies finds none)")
     solver = NumericSolver(linkage)
+    from ..common.limits import require_memory
+    count = len(theta)  # Newton continues along the whole sweep at once: refused here, in the command's terms
+    require_memory(count, solver.bytes_per_value, f"a table of {count:,} crank angles of {linkage.name} (solved by "
+                   "Newton's method all at once)",
+                   advice=lambda fits: f"use at most {fits:,} crank angles (a larger --step or fewer --angles)")
     parameters = {s.name: values[s.name] for s in linkage.parameters}
     failure: ValueError | None = None
     for start in candidates:

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 
-from ..common.limits import available_memory, format_bytes
+from ..common.limits import available_memory, format_bytes, format_duration
 
 __all__ = ["MEMORY_BUDGET", "TIME_BUDGET", "require_budget", "format_duration"]
 
@@ -23,19 +23,6 @@ __all__ = ["MEMORY_BUDGET", "TIME_BUDGET", "require_budget", "format_duration"]
 MEMORY_BUDGET = 1_500_000_000
 #: Seconds of work a command may plan for (one command line, not a sweep on a cluster).
 TIME_BUDGET = 3600.0
-
-
-def format_duration(seconds: float) -> str:
-    """A duration the way people read it.
-
-    >>> format_duration(42), format_duration(3600), format_duration(9000), format_duration(3e7), format_duration(1e30)
-    ('42 s', '60 min', '2.5 hours', '347 days', '3.2e+22 years')
-    """
-    for unit, size in (("years", 365.25 * 86400), ("days", 86400.0), ("hours", 3600.0), ("min", 60.0)):
-        if seconds >= 2 * size:  # never "1 hours": 90 min, 36 hours
-            value = seconds / size
-            return f"{value:.0f} {unit}" if 10 <= value < 1e6 else f"{value:.2g} {unit}"
-    return f"{seconds:.0f} s"
 
 
 def require_budget(count: float, bytes_each: float, seconds_each: float, what: str, option: str,

@@ -34,9 +34,11 @@ from .output import print_rows
 
 if TYPE_CHECKING:  # the symbolic side is imported when the options ask for dynamics (a plain table needs no SymPy)
     from ..dynamics.model import DynamicModel
+    from ..numeric.cached_solver import CachedSolver
     from ..symbolic.linkage import Linkage
 
-__all__ = ["MASS_COLUMNS", "FLYWHEEL_COLUMNS", "add_mass_options", "fourbar_dynamics", "register"]
+__all__ = ["MASS_COLUMNS", "FLYWHEEL_COLUMNS", "add_mass_options", "fourbar_dynamics", "fourbar_dynamics_solver",
+           "register"]
 
 LINKS = ("crank", "coupler", "rocker")
 ORIGINS = ("A", "B", "D")
@@ -102,19 +104,26 @@ def fourbar_dynamics(args: argparse.Namespace,
     """The four-bar with the mass properties of ``args`` (its dynamic linkage) and the added columns; without
     ``--masses``, None (the plain table, from the disk cache without SymPy).  ``ValueError`` for dynamics
     options without ``--masses``."""
-    if args.masses is None:
-        given = [name for name in ("inertias", "centres", "gravity", "load_torque") if getattr(args, name) is not None]
-        if given:
-            raise ValueError(f"--{given[0].replace('_', '-')} needs --masses (the masses of crank, coupler, rocker)")
+    if not _dynamics_asked(args):
         return None
     from ..dynamics.inverse import dynamic_linkage
     return dynamic_linkage(fourbar_model(args, lengths)), list(MASS_COLUMNS)
 
 
-def fourbar_model(args: argparse.Namespace, lengths: tuple[float, float, float, float]) -> DynamicModel:
-    """The dynamic model of the four-bar of ``lengths`` from the dynamics options of ``args`` (numbers only)."""
-    from ..mechanism.catalog import fourbar
-    from ..dynamics.model import BodyTorque, DynamicModel, Gravity, MassProperties
+def _dynamics_asked(args: argparse.Namespace) -> bool:
+    """Whether ``args`` ask for the four-bar's dynamics (``--masses``); ``ValueError`` for dynamics options
+    without it."""
+    if args.masses is None:
+        given = [name for name in ("inertias", "centres", "gravity", "load_torque") if getattr(args, name) is not None]
+        if given:
+            raise ValueError(f"--{given[0].replace('_', '-')} needs --masses (the masses of crank, coupler, rocker)")
+        return False
+    return True
+
+
+def _mass_options(args: argparse.Namespace, lengths: tuple[float, float, float, float]) -> dict:
+    """The dynamics options of ``args`` as plain numbers (angles in radians, defaults filled in), checked: what
+    the dynamic model is made of, and the key of its cached table (no SymPy)."""
     if args.masses is None:
         raise ValueError("give the masses of crank, coupler and rocker: --masses M2,M3,M4")
     a, b, c, _ = lengths
@@ -123,16 +132,61 @@ def fourbar_model(args: argparse.Namespace, lengths: tuple[float, float, float, 
     for what, values in (("--masses", args.masses), ("--inertias", inertias)):
         if any(value < 0 for value in values):
             raise ValueError(f"{what} must not be negative, got {','.join(f'{v:g}' for v in values)}")
-    masses = [MassProperties(link, mass, distance=distance, angle=float(to_radians(angle, args.units)),
-                             inertia=inertia, origin=origin)
-              for link, mass, inertia, (distance, angle), origin in zip(LINKS, args.masses, inertias, centres, ORIGINS)]
     gravity = None
     if args.gravity is not None:
         size, angle = args.gravity
         direction = -math.pi / 2 if angle is None else float(to_radians(angle, args.units))
-        gravity = Gravity(size * math.cos(direction), size * math.sin(direction))
-    loads = [] if args.load_torque is None else [BodyTorque("crank", args.load_torque)]
+        gravity = [size * math.cos(direction), size * math.sin(direction)]
+    return {"masses": [float(m) for m in args.masses], "inertias": [float(i) for i in inertias],
+            "centres": [[float(distance), float(to_radians(angle, args.units))] for distance, angle in centres],
+            "gravity": gravity, "load_torque": None if args.load_torque is None else float(args.load_torque)}
+
+
+def fourbar_model(args: argparse.Namespace, lengths: tuple[float, float, float, float]) -> DynamicModel:
+    """The dynamic model of the four-bar of ``lengths`` from the dynamics options of ``args`` (numbers only)."""
+    from ..mechanism.catalog import fourbar
+    from ..dynamics.model import BodyTorque, DynamicModel, Gravity, MassProperties
+    options = _mass_options(args, lengths)
+    masses = [MassProperties(link, mass, distance=distance, angle=angle, inertia=inertia, origin=origin)
+              for link, mass, inertia, (distance, angle), origin in zip(LINKS, options["masses"], options["inertias"],
+                                                                      options["centres"], ORIGINS)]
+    gravity = None if options["gravity"] is None else Gravity(*options["gravity"])
+    loads = [] if options["load_torque"] is None else [BodyTorque("crank", options["load_torque"])]
     return DynamicModel(fourbar(), masses, loads, gravity)
+
+
+#: The kind of cache entry of ``symlink fourbar --masses``' table (:func:`fourbar_dynamics_solver`).
+DYNAMICS_ENTRY_KIND = "fourbar-dynamics-table/1"
+
+
+def fourbar_dynamics_solver(args: argparse.Namespace, lengths: tuple[float, float, float, float],
+                            columns: list[str]) -> CachedSolver | None:
+    """The solver of ``columns`` of the four-bar with the mass properties of ``args``, from the disk cache: keyed by
+    the options' numbers, so that a warm request builds no model and imports no SymPy (derived on a miss).  None
+    without ``--masses``; the lengths are checked first (by the generated check once cached)."""
+    if not _dynamics_asked(args):
+        return None
+    from ..numeric.cache import catalog_key
+    from ..numeric.cached_solver import CachedSolver
+    options = _mass_options(args, lengths)
+    named = dict(zip(("crank", "coupler", "rocker", "ground"), lengths))
+
+    def derive() -> str:
+        from ..dynamics.inverse import dynamic_linkage
+        from ..numeric.cached_solver import entry_text
+        from ..numeric.solver import check_lengths
+        check_lengths(**named)  # before any model is made of them
+        return entry_text(dynamic_linkage(fourbar_model(args, lengths)), columns)
+
+    def full():
+        from ..dynamics.inverse import dynamic_linkage
+        from ..numeric.solver import Solver
+        return Solver(dynamic_linkage(fourbar_model(args, lengths)), columns)
+
+    key = catalog_key("fourbar", columns, DYNAMICS_ENTRY_KIND, {"lengths": [float(v) for v in lengths[:3]], **options})
+    solver = CachedSolver("fourbar", columns, key=key, derive=derive, full=full)
+    solver.check_lengths(**named)
+    return solver
 
 
 # --- symlink flywheel ---------------------------------------------------------------------

@@ -31,7 +31,7 @@ from ..common.angles import from_radians, to_radians, wrap
 from ..common.files import excerpt, read_input_text, read_stdin_text
 from ..numeric.input_sweep import MAX_ANGLE
 from ..common.limits import format_bytes
-from .budget import MEMORY_BUDGET, TIME_BUDGET, format_duration
+from .budget import MEMORY_BUDGET, TIME_BUDGET, format_duration, require_budget
 from .options import (Parser, add_format_option, add_units_option, angle, assignments, command_help, figure_path,
                       finite, given_options, linkage_values, pair, whole)
 from .output import json_number, note, print_rows
@@ -226,20 +226,20 @@ PATH_SECONDS_PER_POINT_START = 0.1
 PATH_BYTES_PER_POINT_SQUARED = 100
 
 
-def _check_path_work(points: int, starts: int) -> None:
-    """``ValueError`` (one line) for a path synthesis beyond the command's memory or time (see :mod:`.budget`)."""
+def _check_path_work(points: int, starts: int, kind: str = "path") -> None:
+    """``ValueError`` (one line) for a ``kind`` synthesis beyond the command's memory or time (see :mod:`.budget`)."""
     if starts < 1:
         raise ValueError(f"--starts must be at least 1, got {starts}")
     memory = points ** 2 * PATH_BYTES_PER_POINT_SQUARED
     if memory > MEMORY_BUDGET:
         fits = math.isqrt(MEMORY_BUDGET // PATH_BYTES_PER_POINT_SQUARED)
-        raise ValueError(f"a path synthesis of {points:,} points would need about {format_bytes(memory)} of memory "
+        raise ValueError(f"a {kind} synthesis of {points:,} points would need about {format_bytes(memory)} of memory "
                          f"(at most {format_bytes(MEMORY_BUDGET)} a command); give at most {fits:,} points")
     seconds = points * starts * PATH_SECONDS_PER_POINT_START
     if seconds > TIME_BUDGET:
-        fits = int(TIME_BUDGET // (points * PATH_SECONDS_PER_POINT_START))
+        fits = int(TIME_BUDGET / (points * PATH_SECONDS_PER_POINT_START) + 1e-9)  # 3600 / 0.6 is 6000, not 5999
         remedy = f"use --starts {fits:,} or fewer" if fits >= 1 else "give fewer points"
-        raise ValueError(f"a path synthesis of {points:,} points from {starts:,} starts could take about "
+        raise ValueError(f"a {kind} synthesis of {points:,} points from {starts:,} starts could take about "
                          f"{format_duration(seconds)} (at most {format_duration(TIME_BUDGET)} a command); {remedy}")
 
 
@@ -605,7 +605,7 @@ def _run_general(args: argparse.Namespace, kind: str) -> int:
                                frozenset(extra) | (frozenset(inputs_in) if input_is_angle else frozenset()))
         names = list(columns)
     count = len(next(iter(columns.values())))
-    _check_path_work(count, args.starts)
+    _check_path_work(count, args.starts, kind)
     timed_column = _input_column(linkage, tuple(names))
     timed = (None if timed_column is None else numpy.asarray(to_radians(columns[timed_column], args.units)
                                                              if input_is_angle else columns[timed_column], dtype=float))
@@ -695,7 +695,10 @@ def _run_general(args: argparse.Namespace, kind: str) -> int:
 
 
 def _check_shape_options(args: argparse.Namespace, timed_column: str | None) -> None:
-    """``ValueError`` for what a shape match cannot take: timing, or a placement that is not free."""
+    """``ValueError`` for what a shape match cannot take: timing, a placement that is not free, or more --samples
+    than a command may trace (its designs are traced a chunk at a time: the memory stays bounded, the time not)."""
+    from ..synthesis.shape import SECONDS_PER_DESIGN
+    require_budget(args.samples, 0, SECONDS_PER_DESIGN, f"a shape match of --samples {args.samples:,}", "--samples")
     if timed_column is not None:
         raise ValueError(f"--shape matches points without timing: the csv's columns are x,y, not "
                          f"{timed_column},x,y")

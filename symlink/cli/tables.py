@@ -41,13 +41,11 @@ import numpy
 from ..common.angles import from_radians, half_turn, to_radians, wrap
 from ..numeric.input_sweep import InputSweep, crank_speeds
 from .options import (add_fourbar_lengths, add_sweep_options, angle, assignments, branches, command_help, finite,
-                      fourbar_lengths, input_sweep, linkage_values)
+                      fourbar_lengths, input_sweep)
 from .output import RowWriter, TableAssembler, print_rows
 
 if TYPE_CHECKING:
-    from ..numeric.cached_solver import CachedSolver
     from ..symbolic.linkage import Linkage
-    from ..numeric.solver import Solver
 
 # The symbolic side (linkages, their labels, Solver: SymPy) is imported inside the functions that need it, so
 # that ``symlink fourbar`` with its code in the disk cache never imports SymPy (symlink.numeric.cached_solver).
@@ -208,21 +206,20 @@ def _values(table: Table, linkage: Linkage, args: argparse.Namespace) -> dict[st
     return values
 
 
-def _input_values(linkage: Linkage, values: Mapping[str, float], theta, speeds, accel) -> dict:
+def _input_values(facts: Mapping[str, Any], values: Mapping[str, float], theta, speeds, accel) -> dict:
     """The inputs, their rates and accelerations along the sweep (further inputs geared to the crank)."""
-    from ..symbolic.vectors import acceleration, rate
-    first, *further = linkage.inputs
-    inputs = {first.name: theta, rate(first).name: speeds, acceleration(first).name: accel}
-    for x in further:
-        ratio = values[f"{x.name}_ratio"]
-        inputs.update({x.name: values[x.name] + ratio * numpy.asarray(theta), rate(x).name: ratio * speeds,
-                       acceleration(x).name: ratio * accel})
+    names, rates, accelerations = facts["inputs"], facts["rates"], facts["accelerations"]
+    inputs = {names[0]: theta, rates[0]: speeds, accelerations[0]: accel}
+    for name, speed, acceleration in zip(names[1:], rates[1:], accelerations[1:]):
+        ratio = values[f"{name}_ratio"]
+        inputs.update({name: values[name] + ratio * numpy.asarray(theta), speed: ratio * speeds,
+                       acceleration: ratio * accel})
     return inputs
 
 
-def _branch_signs(linkage: Linkage, args: argparse.Namespace) -> dict[object, dict[str, int]]:
+def _branch_signs(facts: Mapping[str, Any], args: argparse.Namespace) -> dict[object, dict[str, int]]:
     """The branch column's value and the branch arguments, for each branch asked for."""
-    names = [b.name for b in linkage.branches]
+    names = facts["branches"]
     if not names:
         return {1: {}}
     if len(names) == 1:
@@ -230,15 +227,41 @@ def _branch_signs(linkage: Linkage, args: argparse.Namespace) -> dict[object, di
     return {"/".join(f"{s:+d}" for s in signs): dict(zip(names, signs)) for signs in itertools.product(*args.branch)}
 
 
-def _closed_form(table: Table, linkage: Linkage, values: dict, args: argparse.Namespace):
-    """A solver of one block of inputs for each branch asked for, and the reachable crank range of each."""
+def table_facts(linkage: Linkage, defaults: Mapping[str, float] | None = None) -> dict[str, Any]:
+    """What a table needs of ``linkage``, as plain data (JSON): names, labels, units, columns, the solved outputs.
+
+    Kept in the disk cache beside the solver of ``symlink table NAME|FILE``, so that a warm table builds no
+    linkage and imports no SymPy.
+    """
+    from ..symbolic.closure import is_angle
     from ..symbolic.outputs import label, table_outputs
-    from ..numeric.reachability import scanned_range
-    from ..numeric.solver import Solver
-    outputs = table_outputs(linkage)
-    solver = Solver(linkage, list(outputs.values()))
-    parameters = {s.name: values[s.name] for s in linkage.parameters}
-    choices = _branch_signs(linkage, args)
+    from ..symbolic.vectors import acceleration, rate
+    named = linkage.parameters + linkage.inputs
+    return {
+        "name": linkage.name, "closed_form": bool(linkage.has_closed_form),
+        "inputs": [x.name for x in linkage.inputs], "rates": [rate(x).name for x in linkage.inputs],
+        "accelerations": [acceleration(x).name for x in linkage.inputs],
+        "labels": {x.name: label(linkage, x) for x in linkage.inputs},
+        "parameters": [s.name for s in linkage.parameters],
+        "positive": [s.name for s in linkage.parameters + linkage.inputs[1:] if s.is_positive],
+        "angles": [s.name for s in named if is_angle(linkage, s)],
+        "branches": [b.name for b in linkage.branches],
+        "outputs": dict(table_outputs(linkage)) if linkage.has_closed_form else {},
+        "columns": table_columns(linkage),
+        "angle_columns": sorted({label(linkage, q) for q in linkage.coordinates if is_angle(linkage, q)}),
+        "defaults": {name: float(value) for name, value in (defaults or {}).items()},
+    }
+
+
+def _closed_form(table: Table, facts: Mapping[str, Any], solver: Any, values: dict, args: argparse.Namespace):
+    """A solver of one block of inputs for each branch asked for, and the reachable crank range of each.
+
+    ``solver`` solves ``facts["outputs"]`` (a :class:`~symlink.numeric.solver.Solver` or a cached one).
+    """
+    outputs = facts["outputs"]
+    parameters = {name: values[name] for name in facts["parameters"]}
+    choices = _branch_signs(facts, args)
+    further = [(name, facts["labels"][name]) for name in facts["inputs"][1:]]
 
     def solve(branch: Mapping[str, int], given: Mapping) -> dict:
         result = solver(**given, **parameters, **branch)
@@ -247,8 +270,7 @@ def _closed_form(table: Table, linkage: Linkage, values: dict, args: argparse.Na
             assembled = assembled & ~table.undetermined(values, result)
         solved = {column: result[name] for column, name in outputs.items()}
         flag = {"singular": result["singular"]} if "singular" in result else {}
-        return {**solved, **{label(linkage, x): given[x.name] for x in linkage.inputs[1:]}, **flag,
-                "assembled": assembled}
+        return {**solved, **{column: given[name] for name, column in further}, **flag, "assembled": assembled}
 
     def solve_block(inputs: Mapping) -> dict:
         return {key: solve(branch, inputs) for key, branch in choices.items()}
@@ -257,9 +279,10 @@ def _closed_form(table: Table, linkage: Linkage, values: dict, args: argparse.Na
         known = table.reachable(values) if table.reachable is not None else None
         if known is not None:
             return _spans_text(known, args.units)
+        from ..numeric.reachability import scanned_range
 
         def assembled(branch, theta):
-            return solve(branch, _input_values(linkage, values, theta, 0.0, 0.0))["assembled"]
+            return solve(branch, _input_values(facts, values, theta, 0.0, 0.0))["assembled"]
 
         texts = {key: _spans_text(scanned_range(lambda t, b=branch: assembled(b, t)), args.units)
                  for key, branch in choices.items()}
@@ -298,6 +321,11 @@ def _numeric(table: Table, linkage: Linkage, values: dict, inputs: dict, angles,
         raise ValueError(f"{linkage.name} cannot be assembled at the first crank angle, {first} "
                          "(its scan for assemblies finds none)")
     solver = NumericSolver(linkage)
+    from ..common.limits import require_memory
+    count = len(theta)  # Newton continues along the whole sweep at once: refused here, in the command's terms
+    require_memory(count, solver.bytes_per_value, f"a table of {count:,} crank angles of {linkage.name} (solved by "
+                   "Newton's method all at once)",
+                   advice=lambda fits: f"use at most {fits:,} crank angles (a larger --step or fewer --angles)")
     parameters = {s.name: values[s.name] for s in linkage.parameters}
     failure: ValueError | None = None
     for start in candidates:
@@ -370,12 +398,19 @@ def run_table(table: Table, args: argparse.Namespace) -> int:
     return _print_table(table, linkage, _values(table, linkage, args), args)
 
 
-def _print_table(table: Table, linkage: Linkage, values: dict[str, float], args: argparse.Namespace) -> int:
-    """The table of ``linkage`` at parameter ``values`` (by symbol name, angles in radians)."""
-    from ..symbolic.closure import is_angle
-    from ..symbolic.outputs import label
+def _print_table(table: Table, linkage: Linkage | None, values: dict[str, float], args: argparse.Namespace,
+                 facts: Mapping[str, Any] | None = None, solver: Any = None) -> int:
+    """The table of ``linkage`` at parameter ``values`` (by symbol name, angles in radians).
+
+    ``facts`` (:func:`table_facts`) and ``solver`` (of their outputs), where the caller has them: then a linkage
+    with a closed form is not needed (None: a warm ``symlink table``, from the disk cache without SymPy).
+    """
+    if facts is None:
+        assert linkage is not None
+        facts = table_facts(linkage)
     sweep = input_sweep(args)
     if getattr(args, "list_assemblies", False):
+        assert linkage is not None
         _print_assemblies(table, linkage, values, sweep.first, args)
         return 0
     _check_crank_speeds(sweep, args.units, args.crank_speed, args.crank_accel)
@@ -383,19 +418,22 @@ def _print_table(table: Table, linkage: Linkage, values: dict[str, float], args:
 
     def inputs_at(angles):
         theta, speeds = speeds_at(angles)
-        return _input_values(linkage, values, theta, speeds, args.crank_accel)
+        return _input_values(facts, values, theta, speeds, args.crank_accel)
 
-    if linkage.has_closed_form:
-        solve_block, reachable = _closed_form(table, linkage, values, args)
+    if facts["closed_form"]:
+        if solver is None:
+            from ..numeric.solver import Solver
+            assert linkage is not None
+            solver = Solver(linkage, list(facts["outputs"].values()))
+        solve_block, reachable = _closed_form(table, facts, solver, values, args)
         blocks: Iterable[tuple[numpy.ndarray, Any]] = ((angles, solve_block(inputs_at(angles)))
                                                        for angles in sweep.blocks())
     else:  # Newton continues along the whole sweep: one block
+        assert linkage is not None
         angles = sweep.array()
         blocks = [(angles, _numeric(table, linkage, values, inputs_at(angles), angles, args))]
         reachable = lambda: ""  # noqa: E731 - the numeric solver stops with a message instead
-    columns = table_columns(linkage)
-    angle_columns = {label(linkage, q) for q in linkage.coordinates if is_angle(linkage, q)}
-    write_table(blocks, columns, args.units, args.format, angle_columns, reachable)
+    write_table(blocks, facts["columns"], args.units, args.format, set(facts["angle_columns"]), reachable)
     return 0
 
 
@@ -512,25 +550,19 @@ def _add_fourbar_options(command: argparse.ArgumentParser) -> None:
 def run_fourbar(args: argparse.Namespace) -> int:
     """``symlink fourbar``: the table of seed 003, and optionally its plots."""
     a, b, c, d = fourbar_lengths(args)
-    solver: CachedSolver | Solver
-    if args.masses is None:  # the plain table: from the disk cache without SymPy, once derived
-        from ..numeric.cached_solver import CachedSolver
-        solver = CachedSolver("fourbar", FOURBAR_COLUMNS[2:])
-        solver.check_lengths(crank=a, coupler=b, rocker=c, ground=d)
-    else:  # with mass properties the dynamic linkage is derived below: no plain solver is needed
-        from ..numeric.solver import check_lengths
-        check_lengths(crank=a, coupler=b, rocker=c, ground=d)
+    from ..numeric.cached_solver import CachedSolver
+    from .dynamics import MASS_COLUMNS, fourbar_dynamics_solver
+    # the plain table: from the disk cache without SymPy, once derived (its generated check checks the lengths)
+    solver = CachedSolver("fourbar", FOURBAR_COLUMNS[2:])
+    solver.check_lengths(crank=a, coupler=b, rocker=c, ground=d)
     sweep = input_sweep(args)
     _check_crank_speeds(sweep, args.units, args.crank_speed, args.crank_accel)
     speeds_at = _speeds_at(sweep, args)
-    from .dynamics import fourbar_dynamics
-    dynamic = fourbar_dynamics(args, (a, b, c, d))  # torque and reactions with --masses (derived, with SymPy)
     columns = FOURBAR_COLUMNS
+    # with --masses: the torque and reactions, from the disk cache too (derived once, with SymPy)
+    dynamic = fourbar_dynamics_solver(args, (a, b, c, d), FOURBAR_COLUMNS[2:] + MASS_COLUMNS)
     if dynamic is not None:
-        from ..numeric.solver import Solver
-        linkage, mass_columns = dynamic
-        columns = FOURBAR_COLUMNS + mass_columns
-        solver = Solver(linkage, columns[2:])
+        solver, columns = dynamic, FOURBAR_COLUMNS + MASS_COLUMNS
     signs = branches(args)
 
     def blocks():
@@ -569,36 +601,112 @@ def _add_generic_options(command: argparse.ArgumentParser) -> None:
     command.set_defaults(run=run_generic_table)
 
 
+#: The kind of cache entry of ``symlink table NAME|FILE`` (its facts, and its solver: :func:`run_generic_table`).
+GENERIC_ENTRY_KIND = "generic-table/1"
+#: Besides the code that shapes generated code: what reads a linkage file and what takes a table's facts from it.
+GENERIC_SHAPING = ("io/linkage_file", "cli/tables")
+#: A linkage file larger than this is not keyed (the reader refuses it: :data:`symlink.io.linkage_file.MAX_LINKAGE_BYTES`).
+_KEYED_FILE_BYTES = 4 << 20
+
+
+def _linkage_request(source: str) -> dict[str, str] | None:
+    """What names the linkage of ``symlink table SOURCE`` in its cache key, found without building it (no SymPy):
+    a catalog or atlas name, or the digest of a linkage file's bytes; None where it is none of these (the linkage
+    reader then says what is wrong)."""
+    import hashlib
+    from pathlib import Path
+    shipped = Path(__file__).resolve().parent.parent / "linkages"  # the catalog's files, one a catalog linkage
+    if source and all(c.isalnum() or c in "-_" for c in source) and (shipped / f"{source}.toml").is_file():
+        return {"catalog": source}
+    if source.startswith("atlas:"):
+        return {"atlas": source}
+    try:
+        path = Path(source)
+        if not path.is_file() or path.stat().st_size > _KEYED_FILE_BYTES:
+            return None
+        return {"file_sha256": hashlib.sha256(path.read_bytes()).hexdigest()}
+    except (OSError, ValueError):
+        return None
+
+
+def _facts_values(facts: Mapping[str, Any], settings: Mapping[str, float], units: str,
+                  extra: Collection[str] = ()) -> dict[str, float]:
+    """:func:`~symlink.cli.options.linkage_values` from a table's facts: the defaults updated by ``--set``."""
+    known = facts["parameters"] + facts["inputs"]
+    for name in settings:
+        if name not in known and name not in extra:
+            raise ValueError(f"--set: {facts['name']} has no value {name!r}; it takes {', '.join([*known, *extra])}")
+    values = dict(facts["defaults"])
+    values.update({name: float(to_radians(value, units)) if name in facts["angles"] else value
+                   for name, value in settings.items()})
+    return values
+
+
 def run_generic_table(args: argparse.Namespace) -> int:
-    """``symlink table``: the table of any linkage, from the catalog or a file."""
-    from ..io.linkage_file import load_linkage
-    from ..numeric.solver import check_lengths
-    found = load_linkage(args.linkage).with_dynamics()  # a [dynamics] table adds the torque and force columns
-    linkage = found.linkage
-    ratios = {f"{x.name}_ratio" for x in linkage.inputs[1:]}
-    values = linkage_values(found, args.set, args.units, extra=sorted(ratios))
-    if not linkage.inputs:
-        raise ValueError(f"{linkage.name} has no input to sweep")
-    if linkage.inputs[0].name in args.set:
-        raise ValueError(f"--set: {linkage.inputs[0].name} is the swept input; give --start/--stop/--step or --angles")
-    if args.guess is not None and linkage.has_closed_form:
-        raise ValueError(f"--guess: {linkage.name} is solved in closed form, where --branch chooses the assembly; "
+    """``symlink table``: the table of any linkage, from the catalog or a file.
+
+    A linkage with a closed form is tabulated from the disk cache: its facts (:func:`table_facts`) and its solver
+    are keyed by the catalog name or the file's bytes, so that a warm table builds no linkage and imports no SymPy.
+    """
+    import json
+    from ..numeric.cache import catalog_key, cached_text
+    loaded: dict[str, Any] = {}
+
+    def found():
+        if not loaded:
+            from ..io.linkage_file import load_linkage
+            loaded["found"] = load_linkage(args.linkage).with_dynamics()  # [dynamics] adds torques and forces
+        return loaded["found"]
+
+    def facts_now() -> dict[str, Any]:
+        return table_facts(found().linkage, found().defaults)
+
+    request = _linkage_request(args.linkage)
+
+    def key(outputs: list[str]) -> str:
+        return catalog_key("table", outputs, GENERIC_ENTRY_KIND, request, GENERIC_SHAPING)
+
+    facts = facts_now() if request is None else json.loads(cached_text(key([]), lambda: json.dumps(facts_now())))
+    name, inputs = facts["name"], facts["inputs"]
+    ratios = {f"{x}_ratio" for x in inputs[1:]}
+    values = _facts_values(facts, args.set, args.units, extra=sorted(ratios))
+    if not inputs:
+        raise ValueError(f"{name} has no input to sweep")
+    if inputs[0] in args.set:
+        raise ValueError(f"--set: {inputs[0]} is the swept input; give --start/--stop/--step or --angles")
+    if args.guess is not None and facts["closed_form"]:
+        raise ValueError(f"--guess: {name} is solved in closed form, where --branch chooses the assembly; "
                          "--guess is for linkages without a closed form")
-    names = {s.name: s for s in linkage.parameters} | {x.name: x for x in linkage.inputs[1:]}
-    missing = [name for name in names if name not in values]
+    missing = [n for n in facts["parameters"] + inputs[1:] if n not in values]
     if missing:
-        raise ValueError(f"{linkage.name} needs values for {', '.join(missing)} (--set NAME=VALUE,...)")
+        raise ValueError(f"{name} needs values for {', '.join(missing)} (--set NAME=VALUE,...)")
     values.update({ratio: values.get(ratio, 0.0) for ratio in ratios})
-    check_lengths(**{name: values[name] for name, symbol in names.items() if symbol.is_positive})
-    if len(linkage.branches) > 1:
+    lengths = {n: values[n] for n in facts["positive"]}
+    solver = None
+    if facts["closed_form"] and request is not None:  # from the disk cache (derived once, with SymPy)
+        from ..numeric.cached_solver import CachedSolver, entry_text
+        outputs = list(facts["outputs"].values())
+
+        def full():
+            from ..numeric.solver import Solver
+            return Solver(found().linkage, outputs)
+
+        solver = CachedSolver(name, outputs, key=key(outputs), derive=lambda: entry_text(found().linkage, outputs),
+                              full=full)
+        solver.check_lengths(**lengths)
+    else:
+        from ..numeric.solver import check_lengths
+        check_lengths(**lengths)
+    if len(facts["branches"]) > 1:
         try:
-            args.branch = loop_branches(len(linkage.branches))(args.branch)
+            args.branch = loop_branches(len(facts["branches"]))(args.branch)
         except argparse.ArgumentTypeError as error:
             raise ValueError(f"--branch: {error}") from None
     elif args.branch not in ("+1", "1", "-1", "both"):
-        raise ValueError(f"--branch must be +1, -1 or both for {linkage.name}, got {args.branch!r}")
-    table = Table(linkage.name, f"the table of {linkage.name}", (), "")
-    return _print_table(table, linkage, values, args)
+        raise ValueError(f"--branch must be +1, -1 or both for {name}, got {args.branch!r}")
+    table = Table(name, f"the table of {name}", (), "")
+    linkage = None if solver is not None else found().linkage
+    return _print_table(table, linkage, values, args, facts, solver)
 
 
 def register(commands: argparse._SubParsersAction) -> None:

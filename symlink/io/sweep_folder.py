@@ -47,7 +47,7 @@ from ..common.display import record_html
 from ..common.files import LEFTOVER_AGE, TEMPORARY_SUFFIX, write_atomic
 
 __all__ = ["MANIFEST", "FORMAT", "SweepWarning", "ChunkRecord", "SweepFolder", "open_folder", "read_manifest",
-           "verified_chunks", "chunk_name", "chunk_range"]
+           "verified_chunks", "chunk_name", "chunk_range", "parquet_bytes"]
 
 #: The manifest's file name in a sweep's folder.
 MANIFEST = "manifest.json"
@@ -109,6 +109,47 @@ class ChunkRecord:
             return None
         rows, size, first, last = (int(value) for value in whole)
         return cls(name, rows, first, last, size, digest)
+
+
+def _arrow_column(values: Any) -> Any:
+    """One column as a ``pyarrow.Array`` made from its buffers: int64, float64 (NaN kept as a value) or bool
+    arrays, or a list of strings (None for a missing one)."""
+    import numpy
+    import pyarrow
+    if isinstance(values, numpy.ndarray):
+        values = numpy.ascontiguousarray(values)
+        if values.dtype == bool:
+            bits = numpy.packbits(values, bitorder="little")
+            return pyarrow.Array.from_buffers(pyarrow.bool_(), len(values), [None, pyarrow.py_buffer(bits)])
+        kinds = {numpy.dtype(numpy.int64): pyarrow.int64(), numpy.dtype(numpy.float64): pyarrow.float64()}
+        if values.dtype not in kinds:
+            raise TypeError(f"a Parquet column holds int64, float64 or bool arrays or strings, not {values.dtype}")
+        return pyarrow.Array.from_buffers(kinds[values.dtype], len(values), [None, pyarrow.py_buffer(values)])
+    texts = list(values)
+    encoded = [b"" if text is None else str(text).encode("utf-8") for text in texts]
+    offsets = numpy.concatenate([[0], numpy.cumsum([len(e) for e in encoded])]).astype(numpy.int32)
+    missing = [text is None for text in texts]
+    valid = (None if not any(missing) else
+             pyarrow.py_buffer(numpy.packbits(~numpy.array(missing, dtype=bool), bitorder="little")))
+    return pyarrow.Array.from_buffers(pyarrow.string(), len(texts),
+                                      [valid, pyarrow.py_buffer(offsets), pyarrow.py_buffer(b"".join(encoded))],
+                                      null_count=sum(missing))
+
+
+def parquet_bytes(columns: Mapping[str, Any]) -> bytes:
+    """Columns by name (NumPy int64, float64 or bool arrays, or lists of strings) as the bytes of a Parquet file.
+
+    Made from the columns' buffers: ``pyarrow.table`` and ``pyarrow.array`` import pandas wherever it is
+    installed (a second's start-up of every sweep and every worker, for nothing).
+    """
+    import io
+
+    import pyarrow
+    import pyarrow.parquet
+    table = pyarrow.Table.from_arrays([_arrow_column(values) for values in columns.values()], names=list(columns))
+    sink = io.BytesIO()
+    pyarrow.parquet.write_table(table, sink)
+    return sink.getvalue()
 
 
 def chunk_name(index: int) -> str:

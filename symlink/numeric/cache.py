@@ -53,7 +53,7 @@ import warnings
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
-from typing import TYPE_CHECKING, Callable, Sequence
+from typing import TYPE_CHECKING, Any, Callable, Mapping, Sequence
 
 from ..version import __version__
 from ..common.files import LEFTOVER_AGE, NotPrivate, private_folder, read_private, remove_leftovers, write_atomic
@@ -262,21 +262,27 @@ def sympy_version() -> str:
         return f"{spec.origin}@unreadable"
 
 
-def catalog_key(name: str, outputs: Sequence[str], kind: str) -> str:
+def catalog_key(name: str, outputs: Sequence[str], kind: str, extras: Mapping[str, Any] | None = None,
+                shaping: Sequence[str] = ()) -> str:
     """The key of the ``kind`` entry of ``outputs`` of the catalog linkage ``name``, without building it.
 
     A catalog linkage takes no arguments: it is a function of the catalog's code, the modules that code
     uses (:data:`CATALOG_SHAPING`, hashed) and SymPy's version, so those stand in for its definition.
-    Computed in about a millisecond, with no SymPy import.
+    Computed in about a millisecond, with no SymPy import.  ``extras``: plain values (JSON) that shape the entry
+    besides, such as the mass properties of a catalog linkage's dynamics; the modules of :data:`CODE_SHAPING`
+    (and ``shaping``, more modules in its form: those that read a linkage file, say) then stand in for the code.
 
     >>> key = catalog_key("fourbar", ["rocker"], "scene")
     >>> len(key), key == catalog_key("fourbar", ["coupler"], "scene")
     (64, False)
     """
-    described = json.dumps({
+    facts: dict[str, Any] = {
         "format": FORMAT, "kind": kind, "outputs": list(outputs), "catalog": name,
         "symlink": __version__, "sympy": sympy_version(), "source": _source_digest(CATALOG_SHAPING),
-    }, separators=(",", ":"))
+    }
+    if extras is not None:  # plain values that shape the entry beyond the catalog (masses, loads): so do dynamics
+        facts.update(extras=extras, source=_source_digest(CODE_SHAPING + tuple(shaping)))
+    described = json.dumps(facts, separators=(",", ":"), sort_keys=extras is not None)
     return hashlib.sha256(described.encode()).hexdigest()
 
 

@@ -44,6 +44,7 @@ from ..symbolic.linkage import Linkage
 from .design_fit import (DesignOutputs, branch_break, check_branches, check_linkage, free_bounds, inside,
                          is_angle_output, refine, sample_count, sampled_designs, solved_outputs)
 from .function import chebyshev_points
+from .path import check_starts
 
 __all__ = ["FunctionSynthesis", "synthesize_function", "function_values", "chebyshev_inputs"]
 
@@ -270,8 +271,7 @@ def synthesize_function(linkage: Linkage, output: str, inputs: ArrayLike, wanted
         raise ValueError("the inputs and the wanted values must be finite numbers")
     bounds, fixed = free_bounds(linkage, free, {k: v for k, v in (values or {}).items() if k not in free})
     chosen = check_branches(linkage, branches)
-    if starts < 1 or evaluations < 1:
-        raise ValueError("starts and evaluations must be at least 1")
+    check_starts(starts, evaluations, sample_count(linkage) + 2)  # the user's design and a closed form's besides
     problem = _Problem(linkage, output, q, y, bounds, fixed)
     given = {k: float(v) for k, v in (values or {}).items()}
     first = _freudenstein_start(problem, given)

@@ -50,6 +50,7 @@ from ..symbolic.linkage import Linkage
 from .design_fit import (DesignOutputs, branch_break, check_branches, check_linkage, free_bounds, inside,
                          is_angle_output, refine, sample_count, sampled_designs, solved_outputs)
 from .general import FRAME_NAMES
+from .path import check_starts
 
 __all__ = ["MotionSynthesis", "synthesize_motion", "link_poses", "frame_point", "FRAME_NAMES"]
 
@@ -429,8 +430,7 @@ def synthesize_motion(linkage: Linkage, point: str | None, angle: str, poses: Ar
     if inputs is not None and (inputs.shape != (len(array),) or not numpy.all(numpy.isfinite(inputs))):
         raise ValueError(f"{len(array)} poses need {len(array)} finite input values, got shape {inputs.shape}")
     chosen = check_branches(linkage, branches)
-    if starts < 1 or evaluations < 1:
-        raise ValueError("starts and evaluations must be at least 1")
+    check_starts(starts, evaluations, sample_count(linkage) + 1)  # the user's design besides
     problem = _Problem(linkage, names, array, bounds, fixed, frame, fixed_placement, inputs,
                        {k: (float(v[0]), float(v[1])) for k, v in (frame_bounds or {}).items()})
     given = {k: float(v) for k, v in (values or {}).items()}

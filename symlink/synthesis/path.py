@@ -106,6 +106,24 @@ _SHORTEST_LINK = {"crank-rocker": 0, "double-rocker": 1, "rocker-crank": 2, "dou
 _PHASE_STARTS = 24       # timed with a free phase: offsets over a turn at which each atlas four-bar is fitted
 
 
+def check_starts(starts: int, evaluations: int, pool: int, what: str = "designs sampled for the starts",
+                 name: str = "starts") -> None:
+    """``ValueError`` (one line) unless ``starts`` and ``evaluations`` are at least 1 and ``starts`` at most
+    ``pool``: the designs a synthesis samples for its starts, of which it can refine no more (``starts=10**9`` is a
+    mistake, not a long run: it would refine every one of the pool, each up to ``evaluations`` evaluations).
+    ``name``: the argument's name in the message.
+
+    >>> check_starts(10**9, 2000, 1500)
+    Traceback (most recent call last):
+    ValueError: starts=1,000,000,000 is more than the 1,500 designs sampled for the starts (at most 1,500 refinements of up to 2,000 evaluations each); give starts=1,500 or fewer
+    """
+    if starts < 1 or evaluations < 1:
+        raise ValueError(f"{name} and evaluations must be at least 1")
+    if starts > pool:
+        raise ValueError(f"{name}={starts:,} is more than the {pool:,} {what} (at most {pool:,} refinements of up "
+                         f"to {evaluations:,} evaluations each); give {name}={pool:,} or fewer")
+
+
 def ordered_inputs(first: float, steps: numpy.ndarray, direction: float) -> numpy.ndarray:
     """Input values kept in order through a refinement: the first, then steps of ``s_k^2`` in ``direction`` (+-1).
 
@@ -1229,8 +1247,10 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
     if not (0 <= min_transmission < math.pi / 2):
         raise ValueError(f"the minimum transmission angle must lie in [0, 90) deg, got "
                          f"{math.degrees(min_transmission):g} deg")
-    if starts < 1 or designs < 1:
+    if designs < 1:
         raise ValueError("starts and designs must be at least 1")
+    # the largest atlas a call fits (timed with a free phase: each four-bar at every offset)
+    check_starts(starts, _MAX_EVALUATIONS, _ATLAS * _PHASE_STARTS, "atlas four-bars a call fits")
     for name, sign in (("branch", branch), ("direction", direction)):
         if sign not in (None, 1, -1):
             raise ValueError(f"{name} must be +1, -1 or None, not {sign!r}")

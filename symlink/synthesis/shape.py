@@ -34,6 +34,7 @@ not to the sampling's resolution.
 """
 from __future__ import annotations
 
+import heapq
 import math
 from dataclasses import dataclass
 from typing import Mapping, Sequence
@@ -42,10 +43,11 @@ import numpy
 from numpy.typing import ArrayLike
 
 from ..common.display import record_html
+from ..common.limits import available_memory, require_memory, require_time
 from ..symbolic.linkage import Linkage
 from .design_fit import DesignOutputs, check_branches, check_linkage, free_bounds, refine, sampled_designs
 from .general import FRAME_NAMES, PathSynthesis, path_residuals, synthesize_path, traced_points
-from .path import ordered_inputs, ordered_inputs_jacobian
+from .path import check_starts, ordered_inputs, ordered_inputs_jacobian
 
 __all__ = ["shape_distance", "similarity_fit", "similarity_transform", "resampled", "shape_search", "ShapeMatch",
            "synthesize_shape", "ShapeSynthesis", "REACHED",
@@ -60,6 +62,27 @@ _SPANS = tuple(numpy.linspace(0.05, 1.0, 39))   # ... and lengths, as fractions 
 _SWEEP = 360                                    # input values over a turn, tracing a design's path
 _COARSE = 64                                    # partial targets: samples of a path when ranking windows
 _REFINED = 4                                    # closed, partial: this many times ``keep`` designs refined
+#: Seconds a sampled design takes to trace and rank, at most (measured 1 ms closed, 1 ms open, 10 ms partial on a
+#: shared machine, a four-bar): a shape search is estimated before it starts.
+SECONDS_PER_DESIGN = 0.01
+#: Bytes of the arrays a chunk of designs is traced into, at most: designs are traced this much at a time.
+CHUNK_BYTES = 64 * 10**6
+
+
+def bytes_per_design(free: int) -> int:
+    """Bytes a design needs while its chunk is traced, with ``free`` free parameters: at each of the input values,
+    the point's two coordinates with their slopes by the free parameters and by the input, the path, the mask and
+    NumPy's temporaries (measured 72 to 163 bytes a value from one to seven free parameters; counted as 8 bytes
+    times ``2 (free + 2) + 8``)."""
+    return _SWEEP * 8 * (2 * (free + 2) + 8)
+
+
+def design_chunk(free: int, available: int | None = None) -> int:
+    """Designs traced at once with ``free`` free parameters: :data:`CHUNK_BYTES` of arrays, or a quarter of the
+    memory available (:func:`symlink.common.limits.available_memory`) where that is less."""
+    room = available_memory() if available is None else available
+    budget = CHUNK_BYTES if room is None else min(CHUNK_BYTES, room // 4)
+    return max(1, budget // bytes_per_design(free))
 
 
 def _complex(points: ArrayLike, least: int = 3) -> numpy.ndarray:
@@ -349,39 +372,51 @@ def shape_search(linkage: Linkage, point: str, target: ArrayLike, free: Mapping[
     goal = resampled(target_rows, SAMPLES, closed=closed)
     coarse_goal = resampled(target_rows, _COARSE // 2, closed=False)  # partial: windows ranked at fewer samples
     outputs = DesignOutputs(linkage, (f"{point}_x", f"{point}_y"), tuple(bounds), fixed)
+    require_time(designs, SECONDS_PER_DESIGN, f"a shape search of {designs:,} designs", "designs")
+    chunk = design_chunk(len(bounds))
+    require_memory(chunk, bytes_per_design(len(bounds)), f"tracing {chunk:,} designs at once (a chunk)")
     first = [([float(c[name]) for name in bounds], chosen) for c in candidates]
-    rows, signs = sampled_designs(linkage, bounds, numpy.random.default_rng(seed), designs, chosen, first)
+    rng = numpy.random.default_rng(seed)
     sweep = numpy.linspace(-math.pi, math.pi, _SWEEP, endpoint=False)
-    traced, ok = _traced(outputs, rows, signs, sweep)
-    scored = []
-    for index in range(len(rows)):
-        found = _path(traced[index], ok[index], closed, sweep)
-        if found is None:
-            continue
-        z, q = found
-        curve = resampled(numpy.stack([z.real, z.imag], axis=1), SAMPLES, closed=closed or kind == "partial")
-        if kind == "closed":
-            distance = _coarse_closed_distance(goal, curve, harmonics)
-        elif kind == "open":
-            distance = float(_aligned_distance(goal, curve))
-        else:
-            distance = _partial_distance(coarse_goal, curve[::SAMPLES // _COARSE], fine=False)[0]
-        scored.append((distance, index, z, q))
+    # the best kept whatever the number of designs: those refined, and as many again as can still be chosen
+    kept = _REFINED * keep + keep if kind != "open" else keep
+    scored: list = []  # (distance, index, z, q, row, signs) of the best so far
+    offset = 0
+    for begin in range(0, len(first) + designs, chunk):  # the same random numbers in the same order, chunk by chunk
+        given = first[begin:begin + chunk]
+        drawn = min(chunk - len(given), len(first) + designs - begin - len(given))
+        rows, signs = sampled_designs(linkage, bounds, rng, drawn, chosen, given)
+        traced, ok = _traced(outputs, rows, signs, sweep)
+        for index in range(len(rows)):
+            found = _path(traced[index], ok[index], closed, sweep)
+            if found is None:
+                continue
+            z, q = found
+            curve = resampled(numpy.stack([z.real, z.imag], axis=1), SAMPLES, closed=closed or kind == "partial")
+            if kind == "closed":
+                distance = _coarse_closed_distance(goal, curve, harmonics)
+            elif kind == "open":
+                distance = float(_aligned_distance(goal, curve))
+            else:
+                distance = _partial_distance(coarse_goal, curve[::SAMPLES // _COARSE], fine=False)[0]
+            scored.append((distance, offset + index, z, q, rows[index].copy(), signs[index]))
+        del traced, ok
+        scored = heapq.nsmallest(kept, scored, key=lambda item: (item[0], item[1]))
+        offset += len(rows)
     if kind != "open":  # the coarse distances rank; the best are refined between samples (start, window)
-        scored.sort(key=lambda item: item[0])
-        scored[:_REFINED * keep] = [(_fine_distance(goal, z, kind, harmonics), index, z, q)
-                                    for _, index, z, q in scored[:_REFINED * keep]]
+        scored[:_REFINED * keep] = [(_fine_distance(goal, z, kind, harmonics), index, z, q, row, sign)
+                                    for _, index, z, q, row, sign in scored[:_REFINED * keep]]
     if not scored:
         raise ValueError(f"no design of {linkage.name} within the bounds traces a " + (
             "whole turn" if closed else "path") + "; widen the bounds or change the fixed values")
-    scored.sort(key=lambda item: item[0])
+    scored.sort(key=lambda item: (item[0], item[1]))
     size = float(numpy.hypot(numpy.ptp(wanted.real), numpy.ptp(wanted.imag))) or 1.0
     matches = []
-    for distance, index, z, q in scored[:keep]:
+    for distance, index, z, q, row, sign in scored[:keep]:
         placement, rms, inputs = _placed_on(z, q, wanted, kind)
-        design = {**fixed, **{name: float(v) for name, v in zip(bounds, rows[index])}}
+        design = {**fixed, **{name: float(v) for name, v in zip(bounds, row)}}
         moved = similarity_transform(numpy.stack([z.real, z.imag], axis=1), placement)
-        matches.append(ShapeMatch(design, dict(signs[index]), distance, placement, rms / size, moved,
+        matches.append(ShapeMatch(design, dict(sign), distance, placement, rms / size, moved,
                                   tuple(map(float, inputs))))
     return matches
 
@@ -640,6 +675,8 @@ def synthesize_shape(linkage: Linkage, point: str, target: ArrayLike, free: Mapp
     """
     if refine < 1 or starts < 1 or evaluations < 1:
         raise ValueError("refine, starts and evaluations must be at least 1")
+    check_starts(refine, evaluations, max(1, designs + len(candidates)), "designs sampled for the shape match",
+                 "refine")
     matches = shape_search(linkage, point, target, free, kind=kind, values=values, branches=branches,
                            designs=designs, keep=refine, seed=seed, harmonics=harmonics, candidates=candidates)
     points = numpy.asarray(target, dtype=float)

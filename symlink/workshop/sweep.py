@@ -74,7 +74,6 @@ resumed sweep ends with the very table of one whole run.
 from __future__ import annotations
 
 import hashlib
-import io
 import math
 import sys
 from dataclasses import asdict, dataclass, field
@@ -92,7 +91,8 @@ from ..common.limits import require_memory
 from ..io.linkage_file import LinkageFile, linkage_from_text, load_linkage
 from ..numeric.reachability import BUILD_WAIT, InputMotion, crank_range, design_spans, reachable_range
 from ..numeric.solver import Solver
-from ..io.sweep_folder import MANIFEST, SweepWarning, chunk_name, chunk_range, open_folder, read_manifest, verified_chunks
+from ..io.sweep_folder import (MANIFEST, SweepWarning, chunk_name, chunk_range, open_folder, parquet_bytes, read_manifest,
+                               verified_chunks)
 from ..version import __version__
 
 __all__ = ["SweepSettings", "evaluate_designs", "design_values", "columns", "run_sweep", "read_sweep",
@@ -591,14 +591,9 @@ def _angle_outputs(linkage: Linkage, output: str) -> frozenset[str]:
 
 def chunk_table(settings: SweepSettings, index: int) -> bytes:
     """Chunk ``index`` of the sweep evaluated, as the bytes of a Parquet file (what a worker returns)."""
-    import pyarrow
-    import pyarrow.parquet
     first, last = chunk_range(index, settings.designs, settings.chunk)
     found = evaluate_designs(settings, range(first, last + 1))
-    table = pyarrow.table({name: found[name] for name in columns(settings)})
-    sink = io.BytesIO()
-    pyarrow.parquet.write_table(table, sink)
-    return sink.getvalue()
+    return parquet_bytes({name: found[name] for name in columns(settings)})
 
 
 def sweep_cost(settings: SweepSettings, workers: int) -> tuple[float, int]:
@@ -914,6 +909,20 @@ def _stop_processes(pool: Any) -> None:
             pass
 
 
+def _local_get(scheduler: str) -> Callable[..., Any]:
+    """Dask's scheduler function of a local scheduler's name (:data:`SCHEDULERS`)."""
+    if scheduler == "synchronous":
+        from dask.local import get_sync
+        return get_sync
+    if scheduler == "threads":
+        from dask.threaded import get
+        return get
+    if scheduler == "processes":
+        from dask.multiprocessing import get as get_processes
+        return get_processes
+    raise ValueError(f"scheduler must be one of {', '.join(SCHEDULERS)}, got {scheduler!r}")
+
+
 def local_chunks(make: Callable[[int], bytes], todo: list[int], scheduler: str, workers: int | None,
                  window: int | None, land: Callable[[int, bytes], None]) -> None:
     """``make(index)`` for each chunk in ``todo`` on a local Dask scheduler, a window of chunks at a time:
@@ -929,6 +938,9 @@ def local_chunks(make: Callable[[int], bytes], todo: list[int], scheduler: str, 
 
     import dask
     from dask.callbacks import Callback
+    # Dask's scheduler function itself, not its name: given a name, Dask imports distributed (a second) to look
+    # for a client first.
+    get = _local_get(scheduler)
     count = workers or os.cpu_count() or 1
     width = window or 4 * count
     # One pool for the whole sweep: Dask would start (and import symlink in) a new one every compute.
@@ -946,7 +958,7 @@ def local_chunks(make: Callable[[int], bytes], todo: list[int], scheduler: str, 
             for start in range(0, len(todo), width):  # a window at a time: bounded memory, however many chunks
                 tasks = [dask.delayed(make, pure=False)(k) for k in todo[start:start + width]]
                 indices.update((task.key, k) for task, k in zip(tasks, todo[start:start + width]))
-                dask.compute(*tasks, scheduler=scheduler, pool=pool, num_workers=count)
+                dask.compute(*tasks, scheduler=get, pool=pool, num_workers=count)
                 if indices:
                     raise RuntimeError(f"Dask did not report chunks {sorted(indices.values())} done")
         finished = True

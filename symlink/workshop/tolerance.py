@@ -56,6 +56,7 @@ import numpy
 import sympy as sp
 
 from ..common.display import record_html
+from ..common.limits import format_bytes, require_memory
 from ..numeric.design_jacobian import DesignJacobian
 from ..symbolic.linkage import Linkage
 from ..symbolic.loops import Loop
@@ -722,10 +723,7 @@ class _BuildModel:
 
     def table(self, index: int) -> bytes:
         """Chunk ``index`` as the bytes of a Parquet file (what a Dask task returns)."""
-        import io
-
-        import pyarrow
-        import pyarrow.parquet
+        from ..io.sweep_folder import parquet_bytes
         first, stop = self.chunk_range(index)
         drawn, deviation = self.draw(index)
         data = {"build": numpy.arange(first, stop, dtype=numpy.int64), **drawn}
@@ -733,9 +731,7 @@ class _BuildModel:
         for i in range(len(self.outputs)):
             for k in range(deviation.shape[2]):
                 data[next(names)] = deviation[i, :, k]
-        sink = io.BytesIO()
-        pyarrow.parquet.write_table(pyarrow.table(data), sink)
-        return sink.getvalue()
+        return parquet_bytes(data)
 
     def settings(self, linkage: Linkage) -> dict[str, object]:
         """What decides the sample, as the folder's manifest keeps it (a resumed run must match it)."""
@@ -748,6 +744,19 @@ class _BuildModel:
                 "sigmas": {name: float(s) for name, s in zip(self.dimensions, self.sigmas)},
                 "inputs": {name: [float(v) for v in values] for name, values in self.sweep.items()},
                 "seed": self.seed}
+
+
+def _require_builds(builds: int, per_build: int, what: str) -> None:
+    """``ValueError`` (one line, with the estimate and the most builds that would do) for builds of ``per_build``
+    values each beyond :data:`MAX_SAMPLED_VALUES` or beyond the memory available: the deviations are kept, and
+    joined from their chunks (twice their size for a moment)."""
+    values = builds * per_build
+    if values > MAX_SAMPLED_VALUES:
+        raise ValueError(f"{what} are {values:,} values (about {format_bytes(16 * values)} of memory), more than the "
+                         f"{MAX_SAMPLED_VALUES:,} sample_builds keeps; ask for at most "
+                         f"{max(1, MAX_SAMPLED_VALUES // per_build):,} builds")
+    require_memory(builds, 16 * per_build, f"keeping {what}",
+                   advice=lambda fits: f"ask for at most {fits:,} builds")
 
 
 def sample_builds(linkage: Linkage, outputs: str | Sequence[str], nominal: Mapping[str, float],
@@ -826,9 +835,8 @@ def sample_builds(linkage: Linkage, outputs: str | Sequence[str], nominal: Mappi
         raise ValueError(f"{linkage.name} has no closed form: sample_builds solves closed forms only")
     sweep = _input_values(linkage, inputs)
     count = len(next(iter(sweep.values())))
-    if builds * count * len(chosen) > MAX_SAMPLED_VALUES:
-        raise ValueError(f"{builds} builds x {count} input values x {len(chosen)} outputs are more than "
-                         f"{MAX_SAMPLED_VALUES} values: ask for fewer")
+    _require_builds(builds, count * len(chosen), f"{builds:,} builds x {count:,} input value{'s' if count != 1 else ''} x {len(chosen)} "
+                    f"output{'s' if len(chosen) != 1 else ''}")
     known = {s.name: s for s in linkage.parameters}
     for name in dimensions:
         if name not in known:

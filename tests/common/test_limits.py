@@ -1,6 +1,7 @@
 """Size limits: a request's memory is estimated before anything is allocated, and one too large is refused
 in one line that says how much it needs and how to split it."""
 import os
+import re
 
 import numpy as np
 import pytest
@@ -13,19 +14,92 @@ from symlink.numeric.solver import NumericSolver, Solver
 GIGABYTE = 10**9
 
 
-def test_available_memory_reads_memavailable(tmp_path, monkeypatch):
+def test_machine_memory_reads_memavailable(tmp_path, monkeypatch):
     meminfo = tmp_path / "meminfo"
     meminfo.write_text("MemTotal:       16384000 kB\nMemFree:         1000000 kB\nMemAvailable:    8000000 kB\n")
     monkeypatch.setattr(limits, "_MEMINFO", str(meminfo))
-    assert available_memory() == 8_000_000 * 1024
+    assert limits.machine_memory() == 8_000_000 * 1024
 
 
-def test_available_memory_falls_back_to_sysconf(tmp_path, monkeypatch):
+def test_machine_memory_falls_back_to_sysconf(tmp_path, monkeypatch):
     monkeypatch.setattr(limits, "_MEMINFO", str(tmp_path / "absent"))
     if not hasattr(os, "sysconf") or "SC_AVPHYS_PAGES" not in os.sysconf_names:
-        assert available_memory() is None
+        assert limits.machine_memory() is None
     else:
-        assert available_memory() == os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+        assert limits.machine_memory() == os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+
+
+KB, MB, GB = 1024, 2**20, 2**30
+V1_UNLIMITED = "9223372036854771712"
+
+
+def _status(vmsize_kb):
+    return f"Name:\tpython\nVmPeak:\t  999999 kB\nVmSize:\t {vmsize_kb} kB\nVmRSS:\t 1000 kB\n"
+
+
+# Each case: the files the process would see (relative to a fake root), the RLIMIT_AS (None: unlimited),
+# and the bytes available (None: nothing known).  The memory of the machine is 8 GB throughout unless absent.
+LIMIT_CASES = {
+    "the machine alone": ({}, None, 8 * GB),
+    "nothing readable": ({"proc/meminfo": None}, None, None),
+    "ulimit -v below the machine": ({"proc/self/status": _status(500 * 1024)}, 2 * GB, 2 * GB - 500 * MB),
+    "ulimit -v above the machine": ({"proc/self/status": _status(500 * 1024)}, 64 * GB, 8 * GB),
+    "ulimit -v already used up": ({"proc/self/status": _status(3 * 1024 * 1024)}, 2 * GB, 0),
+    "ulimit -v without a status file": ({}, 2 * GB, 2 * GB),
+    "a status without VmSize": ({"proc/self/status": "Name:\tpython\n"}, 2 * GB, 2 * GB),
+    "cgroup v2 at the root": ({"proc/self/cgroup": "0::/\n", "cg/memory.max": f"{3 * GB}\n",
+                               "cg/memory.current": f"{GB}\n"}, None, 2 * GB),
+    "cgroup v2 max": ({"proc/self/cgroup": "0::/\n", "cg/memory.max": "max\n", "cg/memory.current": "5\n"},
+                      None, 8 * GB),
+    "cgroup v2 in the process's own group": (
+        {"proc/self/cgroup": "0::/box/job\n", "cg/box/job/memory.max": f"{GB}\n",
+         "cg/box/job/memory.current": f"{256 * MB}\n", "cg/memory.max": "max\n"}, None, 768 * MB),
+    "cgroup v2 limited by a parent": (
+        {"proc/self/cgroup": "0::/box/job\n", "cg/box/job/memory.max": "max\n",
+         "cg/box/memory.max": f"{GB}\n", "cg/box/memory.current": f"{512 * MB}\n"}, None, 512 * MB),
+    "cgroup v2 without memory.current": ({"proc/self/cgroup": "0::/\n", "cg/memory.max": f"{GB}\n"}, None, GB),
+    "cgroup v2 garbage": ({"proc/self/cgroup": "0::/\n", "cg/memory.max": "lots\n"}, None, 8 * GB),
+    "cgroup v1": ({"proc/self/cgroup": "4:memory:/docker/abc\n0::/\n",
+                   "cg/memory/memory.limit_in_bytes": f"{4 * GB}\n",
+                   "cg/memory/memory.usage_in_bytes": f"{GB}\n"}, None, 3 * GB),
+    "cgroup v1 unlimited": ({"proc/self/cgroup": "4:memory:/\n", "cg/memory/memory.limit_in_bytes": V1_UNLIMITED,
+                             "cg/memory/memory.usage_in_bytes": f"{GB}\n"}, None, 8 * GB),
+    "cgroup v1 with controllers joined": ({"proc/self/cgroup": "3:cpu,memory:/a\n",
+                                           "cg/memory/a/memory.limit_in_bytes": f"{GB}\n",
+                                           "cg/memory/a/memory.usage_in_bytes": "0\n"}, None, GB),
+    "cgroup over its limit": ({"proc/self/cgroup": "0::/\n", "cg/memory.max": f"{GB}\n",
+                               "cg/memory.current": f"{2 * GB}\n"}, None, 0),
+    "the least of all three": ({"proc/self/status": _status(100 * 1024), "proc/self/cgroup": "0::/\n",
+                                "cg/memory.max": f"{2 * GB}\n", "cg/memory.current": f"{GB}\n"},
+                               GB + 100 * MB + 1, GB),
+}
+
+
+@pytest.mark.parametrize("files, rlimit, expected", LIMIT_CASES.values(), ids=LIMIT_CASES.keys())
+def test_available_memory_is_the_least_of_the_machine_the_address_space_and_the_cgroup(
+        tmp_path, monkeypatch, files, rlimit, expected):
+    files = {"proc/meminfo": f"MemTotal: 16777216 kB\nMemAvailable: {8 * GB // KB} kB\n", **files}
+    for name, text in files.items():
+        if text is not None:
+            (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+            (tmp_path / name).write_text(text)
+    monkeypatch.setattr(limits, "_MEMINFO", str(tmp_path / "proc/meminfo"))
+    monkeypatch.setattr(limits, "_STATUS", str(tmp_path / "proc/self/status"))
+    monkeypatch.setattr(limits, "_CGROUPS", str(tmp_path / "proc/self/cgroup"))
+    monkeypatch.setattr(limits, "_CGROUP_V2", str(tmp_path / "cg"))
+    monkeypatch.setattr(limits, "_CGROUP_V1", str(tmp_path / "cg/memory"))
+    monkeypatch.setattr(limits, "_address_space_limit", lambda: rlimit)
+    if files["proc/meminfo"] is None:
+        monkeypatch.setattr(os, "sysconf", lambda name: (_ for _ in ()).throw(ValueError(name)))
+    assert available_memory() == expected
+
+
+def test_the_real_address_space_limit_is_read():
+    resource = pytest.importorskip("resource")
+    soft = resource.getrlimit(resource.RLIMIT_AS)[0]
+    assert limits._address_space_limit() == (None if soft == resource.RLIM_INFINITY else soft)
+    used = limits._address_space_used()
+    assert used is None or used > 10 * MB  # an interpreter with NumPy and SymPy loaded
 
 
 def test_the_machine_reports_some_memory():
@@ -97,3 +171,63 @@ def test_the_numeric_solver_refuses_too_large_sweeps(two_gigabytes):
                                          r"with at most [0-9,]+ values at a time"):
         solver(theta=np.broadcast_to(0.0, (10**8,)), a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1,
                alpha=0.9, delta=0.3, guess=dict(beta=0.96, mu=0.27, phi=1.43, eta=-0.16))
+
+
+# A process under ``ulimit -v 1500000`` (1.5 GB of address space, less what the interpreter, NumPy and SymPy take)
+# on a machine that may well have far more memory available.
+ULIMIT_KB = 1_500_000
+PROJECT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+TOO_LARGE_FOR_THE_LIMIT = """
+import numpy as np
+from symlink.mechanism.catalog import fourbar
+from symlink.numeric.solver import Solver
+solver = Solver(fourbar(), ["rocker"])
+try:  # 1e4 crank angles x 1e4 coupler lengths: 1e8 configurations, 763 MiB an output array
+    solver(theta=np.linspace(0, 6, 10**4)[:, None], a=20, b=np.linspace(60, 70, 10**4)[None, :], c=56, d=80)
+except ValueError as refused:
+    print("refused:", refused)
+"""
+
+
+def _under_ulimit(command: str, tmp_path):
+    import shutil
+    import subprocess
+    import sys
+    if sys.platform != "linux" or shutil.which("bash") is None:
+        pytest.skip("ulimit -v needs Linux and bash")
+    env = {**os.environ, "PYTHONPATH": PROJECT, "MPLBACKEND": "Agg", "SYMLINK_CACHE": str(tmp_path / "cache"),
+           "OPENBLAS_NUM_THREADS": "1"}
+    return subprocess.run(["bash", "-c", f"ulimit -v {ULIMIT_KB} && {command}"], capture_output=True, text=True,
+                          env=env, cwd=str(tmp_path), timeout=600)
+
+
+def test_a_call_too_large_for_ulimit_is_refused_in_one_line_before_allocating(tmp_path):
+    import shlex
+    import sys
+    run = _under_ulimit(f"{shlex.quote(sys.executable)} -c {shlex.quote(TOO_LARGE_FOR_THE_LIMIT)}", tmp_path)
+    assert "MemoryError" not in run.stderr, run.stderr
+    assert run.returncode == 0, run.stderr
+    lines = run.stdout.splitlines()
+    assert len(lines) == 1 and lines[0].startswith(
+        "refused: solving 1e+08 input values with the fourbar solver needs about "), run.stdout
+    available = lines[0].split("more than the ")[1].split(" available")[0]
+    amount, unit = available.split()
+    # what is left of 1.5 GB of address space, not the machine's memory
+    assert float(amount) * {"MB": 1e6, "GB": 1e9}[unit] <= ULIMIT_KB * 1024
+
+
+def test_the_command_line_refuses_a_table_too_large_for_ulimit_in_one_line(tmp_path):
+    import shlex
+    import sys
+    stephenson3 = ("stephenson3 --crank 1 --coupler 3.1 --link-cf 2.2 --ground 4.5 --coupler-arm 3.9 --rocker 3.1 "
+                   "--link-eh 4.1 --rocker-arm 3.1 --coupler-arm-angle 51.57 --rocker-arm-angle 17.19")
+    # 9e6 crank angles solved by Newton's method at once (a table without a closed form)
+    run = _under_ulimit(f"{shlex.quote(sys.executable)} -m symlink {stephenson3} --step 0.00004", tmp_path)
+    assert run.returncode == 2, run.stderr
+    assert run.stdout == ""
+    assert run.stderr.count("\n") == 1 and "MemoryError" not in run.stderr, run.stderr
+    assert run.stderr.startswith("symlink: error: a table of 9,000,000 crank angles of stephenson3 (solved by "
+                                 "Newton's method all at once) needs about "), run.stderr
+    assert re.search(r" available; use at most [0-9,]+ crank angles \(a larger --step or fewer --angles\)\n\Z",
+                     run.stderr), run.stderr

@@ -200,3 +200,89 @@ def test_the_dynamic_outputs_are_named_as_derived():
         linkage = dynamic_linkage(model)
         assert list(linkage.dynamic_outputs) == list(dynamic_outputs(model))
         assert list(linkage.extras) == [*model.kinematics.extras, *dynamic_outputs(model)]
+
+
+# --- warm from the command line: a second run in a new process imports no SymPy ------------------------------
+
+def _imported(stderr: str) -> set[str]:
+    """The top-level packages that ``python -X importtime`` reports imported."""
+    return {line.rsplit("|", 1)[1].strip().split(".")[0] for line in stderr.splitlines()
+            if line.startswith("import time:") and "|" in line}
+
+
+def _run_twice(tmp_path, arguments: list[str]) -> tuple[str, str, set[str]]:
+    """``symlink ARGUMENTS`` in a fresh cache folder twice, each in a new process, the second with ``-X importtime``:
+    the two outputs and what the second imported."""
+    import os
+    import subprocess
+    import sys
+    project = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    env = {**os.environ, "PYTHONPATH": project, "MPLBACKEND": "Agg", "SYMLINK_CACHE": str(tmp_path / "cache")}
+    runs = []
+    for flags in ([], ["-X", "importtime"]):
+        run = subprocess.run([sys.executable, *flags, "-m", "symlink", *arguments], capture_output=True, text=True,
+                             env=env, cwd=str(tmp_path), timeout=600)
+        assert run.returncode == 0, run.stderr[-2000:]
+        runs.append(run)
+    return runs[0].stdout, runs[1].stdout, _imported(runs[1].stderr)
+
+
+WARM_COMMANDS = {
+    "catalog table": ["table", "watt2", "--angles", "0,50", "--format", "csv", "--branch", "+1"],
+    "linkage file table": ["table", "mywatt.toml", "--angles", "0,50", "--format", "csv", "--branch", "+1"],
+    "atlas table": ["table", "atlas:watt-ii", "--angles", "0,30", "--format", "csv", "--branch", "+1"],
+    "four-bar with masses": ["fourbar", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80",
+                             "--masses", "1,2,3", "--gravity", "9.81", "--angles", "0,50", "--format", "csv", "--branch", "1"],
+}
+
+
+@pytest.mark.parametrize("name", WARM_COMMANDS)
+def test_a_warm_command_imports_no_sympy(name, tmp_path):
+    from symlink.io.linkage_file import catalog_file
+    (tmp_path / "mywatt.toml").write_text(catalog_file("watt2").read_text())
+    cold, warm, imported = _run_twice(tmp_path, WARM_COMMANDS[name])
+    assert "symlink" in imported and "numpy" in imported  # the import list was read
+    assert "sympy" not in imported
+    assert warm == cold and len(warm.splitlines()) == 3  # a header and two rows, the same from the cache
+
+
+def test_a_warm_table_is_the_table_of_the_linkage(tmp_path):
+    """The cached table's numbers are the linkage's own solver's (an independent evaluation, in this process)."""
+    import numpy
+    from symlink.mechanism.catalog import EXAMPLE_VALUES, watt2
+    from symlink.numeric.solver import Solver
+    _, warm, _ = _run_twice(tmp_path, ["table", "watt2", "--angles", "0,50", "--format", "csv", "--branch", "+1"])
+    header, *rows = warm.splitlines()
+    columns = header.split(",")
+    linkage = watt2()
+    values = {k: v for k, v in EXAMPLE_VALUES["watt2"].items() if k != "theta"}
+    branches = {b.name: 1 for b in linkage.branches}
+    solved = Solver(linkage, ["rocker", "output"], backend="numpy")(theta=numpy.radians([0.0, 50.0]), **values,
+                                                                      **branches)
+    for k, row in enumerate(rows):
+        cells = dict(zip(columns, row.split(",")))
+        for name in ("rocker", "output"):
+            expected = (math.degrees(float(solved[name][k])) + 180.0) % 360.0 - 180.0
+            assert float(cells[name]) == pytest.approx(expected, abs=1e-9)
+
+
+def test_a_sweep_starts_without_distributed_or_pandas(tmp_path):
+    pytest.importorskip("dask")
+    pytest.importorskip("pyarrow")
+    arguments = ["sweep", "fourbar", "{folder}", "--vary", "a=10:20", "--set", "b=66,c=56,d=80", "--grid", "5",
+                 "--scheduler", "synchronous", "--no-progress"]
+    import os
+    import subprocess
+    import sys
+    project = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    env = {**os.environ, "PYTHONPATH": project, "MPLBACKEND": "Agg", "SYMLINK_CACHE": str(tmp_path / "cache")}
+    for number, flags in enumerate(([], ["-X", "importtime"])):
+        run = subprocess.run([sys.executable, *flags, "-m", "symlink",
+                              *(a.format(folder=tmp_path / f"sweep{number}") for a in arguments)],
+                             capture_output=True, text=True, env=env, cwd=str(tmp_path), timeout=600)
+        assert run.returncode == 0, run.stderr[-2000:]
+    imported = _imported(run.stderr)
+    assert {"dask", "pyarrow"} <= imported  # the sweep ran on Dask and wrote Parquet
+    assert not imported & {"distributed", "pandas"}
+    chunks = [(tmp_path / f"sweep{n}" / "chunk-000000.parquet").read_bytes() for n in (0, 1)]
+    assert chunks[0] == chunks[1]  # the same table, byte for byte

@@ -172,7 +172,10 @@ def run(args: argparse.Namespace) -> int:
                + (["sampled_low", "sampled_high"] if sampled is not None else []))
     plays = convert(play) if play is not None else numpy.zeros(len(shown))
     lows, highs = (convert(sampled[0]), convert(sampled[1])) if sampled is not None else (plays, plays)
-    writer = RowWriter(columns, args.format)
+    output_unit = args.units if angular else ""
+    writer = RowWriter(columns, args.format, units={
+        first.name: args.units if swept_angle else "", **{c: output_unit for c in (
+            output, "worst_case", "rss", "mean_shift", "play", "sampled_low", "sampled_high")}})
     writer.write({first.name: float(x), output: float(y), "worst_case": float(w), "rss": float(r),
                   "mean_shift": float(m), "largest": big or "-", "play": float(p), "sampled_low": float(lo),
                   "sampled_high": float(hi)}

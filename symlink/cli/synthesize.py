@@ -160,7 +160,8 @@ def _run_function(args: argparse.Namespace) -> int:
     if args.out:
         write_design(args.out, placed, defaults, (
             f"# Designed by 'symlink synthesize function' ({design.method}): structural error "
-            f"{angle(design.structural_error):.6g} {args.units}; {_branch_words(linkage, {'branch': design.branch}, left)}.\n"
+            f"{angle(design.structural_error):.6g} {args.units}; "
+            f"{_branch_words(linkage, {'branch': design.branch}, left)}.\n"
             f"# The crank angle theta here is the targets' theta + crank_offset ({angle(design.crank_offset):.6g} "
             f"{args.units}), the rocker angle phi the targets' phi + rocker_offset "
             f"({angle(design.rocker_offset):.6g} {args.units}); theta is at the first target.\n"))
@@ -420,9 +421,9 @@ def _run_motion(args: argparse.Namespace) -> int:
         print(json.dumps([{k: json_number(v) if isinstance(v, float) else v for k, v in row.items()}
                           for row in rows], indent=1))
     else:
-        angles = ("ground_angle", "coupler_point_angle", "pose_angle_offset", "transmission_worst", "pose_error",
-                  "worst_transmission", *(f"crank_angle_{k}" for k in range(1, len(poses) + 1)))
-        print_rows(rows, MOTION_FIELDS + per_pose, args.format, units=dict.fromkeys(angles, args.units))
+        angle_columns = ("ground_angle", "coupler_point_angle", "pose_angle_offset", "transmission_worst",
+                         "pose_error", "worst_transmission", *(f"crank_angle_{k}" for k in range(1, len(poses) + 1)))
+        print_rows(rows, MOTION_FIELDS + per_pose, args.format, units=dict.fromkeys(angle_columns, args.units))
         note(f"{len(designs)} design(s), {sum(d.defect_free for d in designs)} without a branch or order defect; "
              f"angles in {args.units}; transmission_worst at the poses, worst_transmission over the motion run")
     for rank, run in enumerate(runs, start=1):
@@ -726,12 +727,13 @@ def _run_general(args: argparse.Namespace, kind: str) -> int:
                          "(widen the bounds, free more parameters or give more --starts)")
     report_transmission(run, args.units)
     if args.out:
-        head = (f"# Designed by 'symlink synthesize {kind} {found.source if found.source != 'catalog' else linkage.name}"
-                f"': error {record['error']:.3g}; {_branch_words(linkage, design.branches, left)}.\n")
+        source = found.source if found.source != "catalog" else linkage.name
+        head = (f"# Designed by 'symlink synthesize {kind} {source}': error {record['error']:.3g}; "
+                f"{_branch_words(linkage, design.branches, left)}.\n")
         if assembly:  # no closed form: the assembly is the guess that finds it
             head += (f"# Assembly at the first target (the initial guess of Newton's method, angles in {args.units}): "
                      + ", ".join(f"{k}={float(from_radians(v, args.units)) if is_angle(linkage, symbols[k]) else v!r}"
-                                 for k, v in guess.items()) + ".\n")
+                                 for k, v in (guess or {}).items()) + ".\n")
         write_design(args.out, placed, defaults, head)
     if args.record:
         _write_record(args.record, record)

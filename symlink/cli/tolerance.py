@@ -40,7 +40,8 @@ def register(commands) -> None:
         "symlink tolerance fourbar --crank 20 --coupler 66 --rocker 56 --ground 80 --tolerance 0.05 "
         "--output rocker",
         "With a catalog NAME or a linkage FILE, values from its defaults (--set to change); --tolerance applies to "
-        "every length (never a fixed angle nor the placement), --tolerances NAME=BAND,... to chosen dimensions; --play B=0.02,C=0.02 adds the pins' play.\n"
+        "every length (never a fixed angle nor the placement), --tolerances NAME=BAND,... to chosen dimensions; "
+        "--play B=0.02,C=0.02 adds the pins' play.\n"
         "--samples N (or --builds N) adds a Monte Carlo of N builds, --folder DIR makes it resumable (Dask, the "
         "extra 'sweep'), --plot FILE draws the bands and the contributions.\n"
         "csv header: INPUT,OUTPUT,worst_case,rss,mean_shift,largest[,play][,sampled_low,sampled_high]"))
@@ -53,7 +54,8 @@ def _add_options(command: argparse.ArgumentParser) -> None:
         command.add_argument(f"--{option}", type=finite, help=f"four-bar length {what} (with NAME fourbar, or none)")
     command.add_argument("--set", type=assignments("NAME=VALUE"), default={}, metavar="NAME=VALUE,...",
                          help="parameter values (fixed angles in --units)")
-    command.add_argument("--tolerance", type=finite, metavar="BAND", help="± band of every length (of every part: not the fixed angles, nor where the linkage "
+    command.add_argument("--tolerance", type=finite, metavar="BAND",
+                         help="± band of every length (of every part: not the fixed angles, nor where the linkage "
                               "stands, such as a drawing's x_A; give those by name in --tolerances)")
     command.add_argument("--tolerances", type=assignments("NAME=BAND"), default={}, metavar="NAME=BAND,...",
                          help="± bands of chosen dimensions (angles in --units); these win over --tolerance")

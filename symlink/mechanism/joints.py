@@ -290,7 +290,8 @@ class _Builder:
     def _driven_coordinate(self, driver: tuple[str, str | None]) -> sp.Symbol:
         joint, link = driver
         if joint not in self.points:
-            raise ValueError(f"driver {joint!r} is not a joint of the linkage (its joints are {', '.join(self.points)})")
+            raise ValueError(f"driver {joint!r} is not a joint of the linkage (its joints are "
+                             f"{', '.join(self.points)})")
         if link is not None and link not in self.chain.links:
             raise ValueError(f"driver ({joint!r}, {link!r}): no link {link!r} (the links are "
                              f"{', '.join(self.chain.links)})")
@@ -484,7 +485,7 @@ def _pins_on_slides(links: Mapping[str, Sequence[str]], sliders: dict[str, Slide
             continue
         pin = others[0]
         try:
-            (x0, y0), (x1, y1) = ((float(v) for v in points[j]) for j in (joint, pin))  # type: ignore[misc]
+            (x0, y0), (x1, y1) = ((float(v) for v in points[j]) for j in (joint, pin))
         except (KeyError, TypeError, ValueError):
             continue
         if math.hypot(x1 - x0, y1 - y0) > _COINCIDENT * max(1.0, abs(x0), abs(y0)):

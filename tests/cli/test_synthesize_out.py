@@ -93,6 +93,20 @@ def test_fourbar_path_route_writes_the_design_that_table_and_analyze_read(tmp_pa
     (loop,) = json.loads(text)["transmission"]
     assert math.radians(min(loop["minimum"], 180 - loop["maximum"])) == pytest.approx(worst, abs=1e-9)
     assert ("warning: design 1 transmits badly" in err) == (worst < math.radians(30))
+    # tolerance of the written file: its six lengths banded (a..d, u, v), never where it stands (place_*)
+    theta = math.radians(crank_angles[0])
+
+    def point_x(**change):
+        values = {**dict(a=a, b=b, c=c, d=d, u=u, v=v), **change}
+        B, _, beta, _ = hand_fourbar(theta, *(values[k] for k in "abcd"), branch, complex(x0, y0), frame)
+        return (B + complex(values["u"], values["v"]) * cmath.exp(1j * beta)).real
+
+    slopes = [(point_x(**{k: value + 1e-6}) - point_x(**{k: value - 1e-6})) / 2e-6
+              for k, value in dict(a=a, b=b, c=c, d=d, u=u, v=v).items()]
+    code, text, err = run(capsys, "tolerance", str(out), "--tolerance", "0.01", "--output", "P_x",
+                          "--angles", repr(crank_angles[0]), "--format", "csv")
+    assert code == 0 and "place" not in err
+    assert float(csv_rows(text)[0]["worst_case"]) == pytest.approx(0.01 * sum(map(abs, slopes)), rel=1e-6)
 
 
 def test_general_route_prints_the_scaled_lengths_it_writes(tmp_path, points, capsys):

@@ -105,6 +105,25 @@ def test_derive_latex_example_writes_the_closed_forms(tmp_path, monkeypatch, cap
     assert "Closure" in tex and r"\dot{\phi}" in tex and r"\ddot{\phi}" in tex  # positions, rates, accelerations
 
 
+def test_readme_first_command_installs_from_a_checkout_and_prints_the_seed_table(capsys):
+    """The README's first command is an install from the checkout (``pip install -e .``, which works on a fresh
+    machine: this folder is an installable project with the ``symlink`` command) followed by the main job; the
+    package index's install is named as what it is, not given as the way in."""
+    first = fenced_blocks(readme(), "sh")[0].strip().splitlines()[0]
+    assert readme().index("```") == readme().index("```sh\n" + first)  # the README's first block of all
+    install, _, job = first.partition(" && ")
+    assert install == "pip install -e ."
+    assert readme().index(first) < readme().index("pip install symlink-kinematics")
+    pyproject = (ROOT / "pyproject.toml").read_text()
+    assert 'name = "symlink-kinematics"' in pyproject and 'symlink = "symlink.cli:main"' in pyproject
+    assert job.startswith("symlink fourbar ")
+    assert main(shlex.split(job)[1:]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].split()[:2] == ["crank", "(deg)"]
+    assert lines[1].split()[:4] == ["0.0000", "+1", "52.5127", "110.7424"]  # seed 003 at theta = 0
+    assert "published" in readme().split("pip install symlink-kinematics")[1].split("\n\n")[0]
+
+
 def test_readme_is_a_front_page():
     text = readme()
     assert len(text.encode("utf-8")) <= 15 * 1024

@@ -35,7 +35,12 @@ from ..symbolic.vectors import Vector
 
 __all__ = ["triangle_angle", "TransmissionRange", "transmission_range", "transmission_curve",
            "TransmissionJoint", "transmission_joints", "transmission_angles", "LoopTransmission",
-           "loop_transmissions", "transmission_arrays", "transmission_coordinates"]
+           "loop_transmissions", "transmission_arrays", "transmission_coordinates", "RunTransmission",
+           "run_transmission", "SANE_TRANSMISSION"]
+
+#: A transmission angle (its worst, ``min(mu, pi - mu)``) below this is flagged: the linkage drives badly near it
+#: (30 degrees, the usual rule of thumb of the textbooks).
+SANE_TRANSMISSION = math.radians(30.0)
 
 
 def triangle_angle(opposite, side1, side2):
@@ -439,3 +444,70 @@ def _bisect_sign(test, low, high, low_value):
         same = numpy.asarray(test(middle), dtype=bool) == low_value
         low, high = numpy.where(same, middle, low), numpy.where(same, high, middle)
     return low, high
+
+
+@dataclass(frozen=True)
+class RunTransmission:
+    """The worst transmission angle over the motion a design runs: ``worst`` (``min(mu, pi - mu)``, radians) at
+    input ``at`` in loop ``loop``; ``over`` says over what (``full turn`` for a crank, else the rocking range
+    ``low`` to ``high`` of the input, between its values at the targets)."""
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
+
+    worst: float
+    at: float
+    loop: str
+    over: str
+    low: float
+    high: float
+
+    @property
+    def sane(self) -> bool:
+        """Whether the worst is at least :data:`SANE_TRANSMISSION`."""
+        return self.worst >= SANE_TRANSMISSION
+
+
+def run_transmission(linkage: Linkage, values: Mapping[str, float], inputs, *,
+                     guess: Mapping[str, float] | None = None) -> RunTransmission | None:
+    """The worst transmission angle of every two-angle (or rod-and-slider) loop over the motion the linkage runs.
+
+    A linkage whose input turns fully runs the full turn; otherwise it rocks, between the smallest and the
+    largest of ``inputs`` (its input at the targets of a synthesis), within the span that holds the first.
+    None where no loop has a transmission angle, or where the linkage cannot be assembled at ``inputs[0]``.
+
+    >>> run = run_transmission(fourbar(), dict(a=20, b=66, c=56, d=80), [0.0])
+    >>> run.over, round(math.degrees(run.worst), 2)
+    ('full turn', 58.23)
+    """
+    given = numpy.atleast_1d(numpy.asarray(inputs, dtype=float))
+    name = linkage.inputs[0].name
+    start = float(given[0])
+    motion = InputMotion(linkage, values, guess=guess, start=start)
+    reach = reachable_range(linkage, values, motion=motion, guess=guess, start=start)
+    if not reach.spans or not transmission_joints(linkage):
+        return None
+    if reach.full_turn:
+        run, over, low, high = reach, "full turn", -math.pi, math.pi
+    else:
+        if reach.periodic:  # the targets' inputs on the turn of the span that holds the first
+            given = numpy.unwrap(given)
+            span = next(((lo, hi) for lo, hi in reach.spans
+                         for shift in (0.0, 2 * math.pi, -2 * math.pi) if lo <= start + shift <= hi), None)
+            if span is None:
+                return None
+            shift = next(k * 2 * math.pi for k in (0, 1, -1) if span[0] <= start + k * 2 * math.pi <= span[1])
+            given = given + shift
+        low, high = float(given.min()), float(given.max())
+        if high <= low:
+            high = low + 1e-9 * max(1.0, abs(low))
+        toggles = tuple(t for t in reach.toggles if low <= t.at <= high)
+        run = InputRange(name, ((low, high),), toggles, reach.exact, reach.periodic)
+        over = "rocking range"
+    found = loop_transmissions(linkage, values, reach=run, motion=motion)
+    if not found:
+        return None
+    worst_of = lambda t: (t.minimum, t.minimum_at) if t.minimum <= math.pi - t.maximum else (  # noqa: E731
+        math.pi - t.maximum, t.maximum_at)
+    loop = min(found, key=lambda t: worst_of(t)[0])
+    worst, at = worst_of(loop)
+    return RunTransmission(float(worst), float(at), loop.loop, over, low, high)

@@ -14,6 +14,12 @@ ANGLE_FIELDS = {"stroke", "transmission_min", "transmission_min_at", "transmissi
                 "worst_transmission", "extended_crank", "extended_rocker", "folded_crank", "folded_rocker"}
 
 
+
+def _cell(value: float) -> str:
+    """A number of the report to four decimals, never ``-0.0000`` (:func:`~symlink.cli.output.table_cell`)."""
+    from .output import table_cell
+    return table_cell(float(value))
+
 def in_units(report: dict, units: str) -> dict:
     """The report with its angles in ``units``."""
     convert = lambda x: float(from_radians(x, units))  # noqa: E731
@@ -63,7 +69,7 @@ def run(args: argparse.Namespace) -> int:
         return 0
     unit = args.units
     spans = ("full turn" if not report["toggles"] else
-             ", ".join(f"[{lo:.4f}, {hi:.4f}] {unit}" for lo, hi in report["crank_range"]))
+             ", ".join(f"[{_cell(lo)}, {_cell(hi)}] {unit}" for lo, hi in report["crank_range"]))
     lines = [
         f"four-bar: crank {a:g}, coupler {b:g}, rocker {c:g}, ground {d:g}",
         f"degrees of freedom   {report['dof']}",
@@ -72,18 +78,19 @@ def run(args: argparse.Namespace) -> int:
         f"crank range          {spans}",
     ]
     if report["toggles"]:
-        lines.append("toggle positions     crank at " + ", ".join(f"{x:.4f}" for x in report["toggles"]) + f" {unit}")
+        lines.append("toggle positions     crank at " + ", ".join(_cell(x) for x in report["toggles"]) + f" {unit}")
     if report["limit_positions"] is not None:
         limits = report["limit_positions"]
         lines += [
-            f"limit positions      extended: crank {limits['extended_crank']:.4f}, rocker "
-            f"{limits['extended_rocker']:.4f} {unit}; folded: crank {limits['folded_crank']:.4f}, "
-            f"rocker {limits['folded_rocker']:.4f} {unit} (branch {int(args.branch):+d})",
-            f"stroke               {report['stroke']:.4f} {unit}",
-            f"time ratio           {report['time_ratio']:.4f}",
+            f"limit positions      extended: crank {_cell(limits['extended_crank'])}, rocker "
+            f"{_cell(limits['extended_rocker'])} {unit}; folded: crank {_cell(limits['folded_crank'])}, "
+            f"rocker {_cell(limits['folded_rocker'])} {unit} (branch {int(args.branch):+d})",
+            f"stroke               {_cell(report['stroke'])} {unit}",
+            f"time ratio           {_cell(report['time_ratio'])}",
         ]
-    lines.append(f"transmission angle   {report['transmission_min']:.4f} at crank {report['transmission_min_at']:.4f} "
-                 f"to {report['transmission_max']:.4f} at crank {report['transmission_max_at']:.4f} {unit}")
+    lines.append(f"transmission angle   {_cell(report['transmission_min'])} at crank "
+                 f"{_cell(report['transmission_min_at'])} "
+                 f"to {_cell(report['transmission_max'])} at crank {_cell(report['transmission_max_at'])} {unit}")
     print("\n".join(lines))
     return 0
 
@@ -127,22 +134,25 @@ def run_linkage(args: argparse.Namespace) -> int:
     if args.format == "json":
         print(json.dumps(record, indent=1))
         return 0
-    spans = "full turn" if reach.full_turn else ", ".join(f"[{lo:.4f}, {hi:.4f}]" for lo, hi in record["reachable"])
+    spans = "full turn" if reach.full_turn else ", ".join(f"[{_cell(lo)}, {_cell(hi)}]"
+                                                          for lo, hi in record["reachable"])
     lines = [f"{linkage.name}: input {report.input}",
              f"degrees of freedom   {report.mobility.dof}",
              f"reachable range      {spans}{'' if reach.full_turn else ' ' + unit} "
              f"({'exact' if reach.exact else 'scanned'})"]
     for toggle in record["toggles"]:
         what = "degenerate" if toggle["degenerate"] else "toggle" if toggle["ends_range"] else "change point"
-        lines.append(f"{what:<21}{report.input} = {toggle['at']:.4f} (loop {toggle['loop']})")
+        lines.append(f"{what:<21}{report.input} = {_cell(toggle['at'])} (loop {toggle['loop']})")
     for t in record["transmission"]:
-        lines.append(f"transmission {t['loop']:<8}at {t['joint']}: {t['minimum']:.4f} at {t['minimum_at']:.4f} to "
-                     f"{t['maximum']:.4f} at {t['maximum_at']:.4f} {unit}")
+        lines.append(f"transmission {t['loop']:<8}at {t['joint']}: {_cell(t['minimum'])} at "
+                     f"{_cell(t['minimum_at'])} to "
+                     f"{_cell(t['maximum'])} at {_cell(t['maximum_at'])} {unit}")
     if record["limits"] is not None:
         limits = record["limits"]
         for p in limits["positions"]:
-            lines.append(f"limit of {limits['output']:<12}{p['kind']} {p['value']:.6g} at {report.input} = {p['at']:.4f}")
+            lines.append(f"limit of {limits['output']:<12}{p['kind']} {p['value']:.6g} at {report.input} = "
+                         f"{_cell(p['at'])}")
         if limits["stroke"] is not None:
-            lines.append(f"stroke               {limits['stroke']:.6g}; time ratio {limits['time_ratio']:.4f}")
+            lines.append(f"stroke               {limits['stroke']:.6g}; time ratio {_cell(limits['time_ratio'])}")
     print("\n".join(lines))
     return 0

@@ -1,4 +1,4 @@
-"""``symlink export NAME|FILE`` and ``symlink derive FILE``: a linkage's solvers as NumPy, C, Octave, JavaScript or LaTeX."""
+"""``symlink export NAME|FILE`` (alias ``symlink derive``): a linkage's solvers as NumPy, C, Octave, JavaScript or LaTeX."""
 from __future__ import annotations
 
 import argparse
@@ -21,25 +21,17 @@ def _add_options(command: argparse.ArgumentParser) -> None:
 
 
 def register(commands) -> None:
-    """Register ``symlink export`` and ``symlink derive``."""
+    """Register ``symlink export`` and its alias ``symlink derive``: one command, two names."""
     units = "the generated functions take angles in rad, speeds in rad/s, lengths in any one unit"
-    commands.add_parser("export", populate=_add_export_options, **command_help(
-        "write a linkage's solvers as NumPy, C, Octave, JavaScript or LaTeX", units,
+    commands.add_parser("export", aliases=["derive"], populate=_add_export_options, **command_help(
+        "derive a linkage's closed forms and write its solvers as NumPy, C, Octave, JavaScript or LaTeX (alias: derive)", units,
         "symlink export fourbar --to c --out build/"))
-    commands.add_parser("derive", populate=_add_derive_options, **command_help(
-        "derive a linkage file's closed forms and write them as NumPy, C, Octave, JavaScript or LaTeX", units,
-        "symlink derive fourbar --to numpy --out build/"))
 
 
 def _add_export_options(command: argparse.ArgumentParser) -> None:
     from ..mechanism.catalog import CATALOG
     command.add_argument("name", metavar="NAME|FILE",
                          help=f"a catalog linkage ({', '.join(sorted(CATALOG))}) or a linkage file (.toml)")
-    _add_options(command)
-
-
-def _add_derive_options(command: argparse.ArgumentParser) -> None:
-    command.add_argument("name", metavar="FILE|NAME", help="a linkage file (.toml) or a catalog linkage")
     _add_options(command)
 
 

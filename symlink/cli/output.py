@@ -24,7 +24,8 @@ import numpy
 
 from ..common.angles import from_radians, half_turn, wrap
 
-__all__ = ["format_number", "json_number", "RowWriter", "print_rows", "TableAssembler", "note"]
+__all__ = ["format_number", "table_cell", "header_label", "json_number", "RowWriter", "print_rows", "TableAssembler",
+           "note"]
 
 #: Angles named one by one in a note before the rest are counted.
 LISTED_ANGLES = 50
@@ -38,10 +39,33 @@ def note(text: str) -> None:
 
 
 def format_number(value: float) -> str:
-    """Full double precision for machine-readable output (a whole number, such as a rank, as it is)."""
+    """Full double precision for machine-readable output (a whole number, such as a rank, as it is; never -0.0).
+
+    >>> format_number(3), format_number(-0.0), format_number(0.1)
+    ('3', '0.0', '0.1')
+    """
     if isinstance(value, (int, numpy.integer)) and not isinstance(value, bool):
         return str(int(value))
-    return repr(float(value))
+    value = float(value)
+    return repr(value + 0.0 if value == 0 else value)  # -0.0 + 0.0 is 0.0
+
+
+def table_cell(value: float) -> str:
+    """A number as a table prints it, as a textbook would: a whole number (a rank, a count) as it is, others
+    to four decimals, never ``-0.0000`` (a negative that rounds to zero is zero).
+
+    >>> table_cell(2), table_cell(-0.00004), table_cell(110.7432), table_cell(float("nan"))
+    ('2', '0.0000', '110.7432', 'nan')
+    """
+    if isinstance(value, (int, numpy.integer)) and not isinstance(value, bool):
+        return str(int(value))
+    text = f"{float(value):.4f}"
+    return text[1:] if text.startswith("-") and not text.strip("-0.") else text
+
+
+def header_label(column: str, unit: str | None) -> str:
+    """A table's header cell: the column and its unit, ``rocker (deg)`` (the column alone without one)."""
+    return f"{column} ({unit})" if unit else column
 
 
 def json_number(value):
@@ -62,22 +86,26 @@ class RowWriter:
     """Rows as an aligned table, csv with the exact header, or JSON records, written as they come.
 
     The header (and JSON's opening bracket) is written with the first rows,
-    so a command that fails before any row has printed nothing.
+    so a command that fails before any row has printed nothing.  ``units``
+    (by column) are shown in the table's header, ``rocker (deg)``; csv and JSON
+    keep their exact column names.
     """
 
-    def __init__(self, columns: list[str], fmt: str, out: TextIO | None = None) -> None:
+    def __init__(self, columns: list[str], fmt: str, out: TextIO | None = None,
+                 units: Mapping[str, str] | None = None) -> None:
         if fmt not in ("table", "csv", "json"):
             raise ValueError(f"format must be table, csv or json, got {fmt!r}")
         self.columns, self.format, self.out = list(columns), fmt, out or sys.stdout
         self.rows = 0
-        self._width = max(10, *(len(c) + 1 for c in self.columns))
+        self.labels = [header_label(c, (units or {}).get(c)) for c in self.columns]
+        self._widths = [max(10, len(label) + 1) for label in self.labels]
 
     def _header(self) -> str:
         if self.format == "csv":
             return ",".join(self.columns) + "\n"
         if self.format == "json":
             return "["
-        return "".join(f"{c:>{self._width}}" for c in self.columns) + "\n"
+        return "".join(f"{c:>{width}}" for c, width in zip(self.labels, self._widths)) + "\n"
 
     def _line(self, row: Mapping) -> str:
         if self.format == "csv":
@@ -86,8 +114,8 @@ class RowWriter:
         if self.format == "json":
             record = json.dumps([{c: json_number(row[c]) for c in self.columns}], indent=1)[1:-2]
             return ("," if self.rows else "") + record
-        cells = [_text(row[c]) or (f"{row[c]:+d}" if c == "branch" else f"{row[c]:.4f}") for c in self.columns]
-        return "".join(f"{cell:>{self._width}}" for cell in cells) + "\n"
+        cells = [_text(row[c]) or (f"{row[c]:+d}" if c == "branch" else table_cell(row[c])) for c in self.columns]
+        return "".join(f"{cell:>{width}}" for cell, width in zip(cells, self._widths)) + "\n"
 
     def write(self, rows: Iterable[Mapping]) -> None:
         """Write these rows (the header first, with the first row), a few thousand lines at a time."""
@@ -113,9 +141,10 @@ class RowWriter:
         self.out.flush()
 
 
-def print_rows(rows: list[dict], columns: list[str], fmt: str, out: TextIO | None = None) -> None:
-    """Rows as an aligned table, csv with the exact header, or JSON records."""
-    writer = RowWriter(columns, fmt, out)
+def print_rows(rows: list[dict], columns: list[str], fmt: str, out: TextIO | None = None,
+               units: Mapping[str, str] | None = None) -> None:
+    """Rows as an aligned table (``units`` in its header), csv with the exact header, or JSON records."""
+    writer = RowWriter(columns, fmt, out, units)
     writer.write(rows)
     writer.close()
 

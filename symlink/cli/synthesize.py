@@ -131,7 +131,7 @@ def _register_function(kinds) -> None:
 
 
 FUNCTION_FIELDS = ["crank", "coupler", "rocker", "ground", "branch", "crank_offset", "rocker_offset",
-                   "K1", "K2", "K3", "structural_error"]
+                   "K1", "K2", "K3", "structural_error", "worst_transmission"]
 
 
 def _run_function(args: argparse.Namespace) -> int:
@@ -140,16 +140,31 @@ def _run_function(args: argparse.Namespace) -> int:
     theta, phi = (numpy.asarray(to_radians(columns[name], args.units), dtype=float) for name in ("theta", "phi"))
     design = (three_point_design if len(theta) == 3 else least_squares_design)(theta, phi, ground=args.ground)
     angle = lambda x: float(from_radians(x, args.units))  # noqa: E731
+    crank_angles = numpy.asarray(design.theta) + design.crank_offset  # the linkage's own crank angle
+    linkage, (placed, defaults, left, signs) = fourbar_design_file("function", design.lengths, design.branch,
+                                                                   crank_angles)
+    run = design_transmission(placed, defaults, signs, crank_angles)
     row = {"method": design.method, "crank": design.crank, "coupler": design.coupler, "rocker": design.rocker,
            "ground": design.ground, "branch": design.branch, "crank_offset": angle(design.crank_offset),
            "rocker_offset": angle(design.rocker_offset), "K1": design.coefficients[0],
            "K2": design.coefficients[1], "K3": design.coefficients[2], "grashof": design.grashof,
-           "structural_error": angle(design.structural_error)}
+           "structural_error": angle(design.structural_error),
+           "worst_transmission": angle(run.worst) if run is not None else math.nan}
     if args.format == "json":
         print(json.dumps([{k: json_number(v) for k, v in row.items()}], indent=1))
     else:
-        print_rows([row], FUNCTION_FIELDS, args.format)
+        print_rows([row], FUNCTION_FIELDS, args.format, units=dict.fromkeys(
+            ("crank_offset", "rocker_offset", "structural_error", "worst_transmission"), args.units))
         note(f"{design.method} design, {design.grashof}; structural error in {args.units} over the given crank angles")
+    report_transmission(run, args.units)
+    if args.out:
+        write_design(args.out, placed, defaults, (
+            f"# Designed by 'symlink synthesize function' ({design.method}): structural error "
+            f"{angle(design.structural_error):.6g} {args.units}; "
+            f"{_branch_words(linkage, {'branch': design.branch}, left)}.\n"
+            f"# The crank angle theta here is the targets' theta + crank_offset ({angle(design.crank_offset):.6g} "
+            f"{args.units}), the rocker angle phi the targets' phi + rocker_offset "
+            f"({angle(design.rocker_offset):.6g} {args.units}); theta is at the first target.\n"))
     if args.plot:
         _plot_function(design, args.plot, args.units)
         note(f"wrote {args.plot}")
@@ -253,26 +268,39 @@ def _run_path(args: argparse.Namespace) -> int:
                               max_link_ratio=args.max_link_ratio,
                               min_transmission=float(to_radians(args.min_transmission, args.units)), seed=args.seed)
     angle = lambda x: float(wrap(from_radians(x, args.units), 180.0 if args.units == "deg" else math.pi))  # noqa: E731
-    rows = []
+    rows, files = [], []
     for rank, design in enumerate(designs, start=1):
+        files.append(fourbar_design_file("path", design.lengths, design.branch, design.theta,
+                                         point=design.coupler_point, pivot=design.crank_pivot, frame=design.frame))
+        placed, defaults, _, signs = files[-1][1]
+        run = design_transmission(placed, defaults, signs, design.theta)
         rows.append({"rank": rank, "error": design.error, "x0": design.crank_pivot[0], "y0": design.crank_pivot[1],
                      "frame": angle(design.frame), "crank": design.crank, "coupler": design.coupler,
                      "rocker": design.rocker, "ground": design.ground, "u": design.coupler_point[0],
                      "v": design.coupler_point[1], "branch": design.branch, "grashof": design.grashof,
-                     "worst_transmission": (float(from_radians(design.worst_transmission, args.units))
-                                            if math.isfinite(design.worst_transmission) else math.nan)})
+                     "worst_transmission": float(from_radians(run.worst, args.units)) if run is not None
+                     else math.nan, "run": run})
+    runs = [row.pop("run") for row in rows]
     if args.format == "json":
         for row, design in zip(rows, designs):
             row.update(grashof=design.grashof, theta=[angle(t) for t in design.theta], errors=list(design.errors))
         print(json.dumps([{k: [json_number(x) for x in v] if isinstance(v, list) else json_number(v)
                            for k, v in row.items()} for row in rows], indent=1))
     else:
-        print_rows(rows, PATH_FIELDS, args.format)
+        print_rows(rows, PATH_FIELDS, args.format, units=dict.fromkeys(("frame", "worst_transmission"), args.units))
         for rank, design in enumerate(designs, start=1):
             note(f"design {rank}: {design.grashof}; crank angles at the points ({args.units}): "
                  + " ".join(f"{angle(t):.6g}" for t in design.theta))
     note("the error column: the largest distance from a target to the coupler point, over the targets' size "
          "(their bounding-box diagonal)")
+    for rank, run in enumerate(runs, start=1):
+        report_transmission(run, args.units, f"design {rank}")
+    if args.out:
+        linkage, (placed, defaults, left, _) = files[0]
+        write_design(args.out, placed, defaults, (
+            f"# Designed by 'symlink synthesize path' (design 1 of {len(designs)}): error {designs[0].error:.3g}; "
+            f"{_branch_words(linkage, {'branch': designs[0].branch}, left)}.\n"
+            "# P is the traced coupler point; theta (from the ground line A->D) is at the first target.\n"))
     if args.plot:
         plot_path(designs[0], targets, args.plot)
         note(f"wrote {args.plot}")
@@ -358,7 +386,8 @@ def _register_motion(kinds) -> None:
 MOTION_FIELDS = ["rank", "crank", "coupler", "rocker", "ground", "crank_pivot_x", "crank_pivot_y", "rocker_pivot_x",
                  "rocker_pivot_y", "crank_moving_x", "crank_moving_y", "rocker_moving_x", "rocker_moving_y",
                  "ground_angle", "coupler_point_distance", "coupler_point_angle", "pose_angle_offset", "grashof",
-                 "branch_defect", "order_defect", "order_direction", "transmission_worst", "pose_error"]
+                 "branch_defect", "order_defect", "order_direction", "transmission_worst", "pose_error",
+                 "worst_transmission"]
 
 
 def _run_motion(args: argparse.Namespace) -> int:
@@ -376,14 +405,35 @@ def _run_motion(args: argparse.Namespace) -> int:
                          + (" without a defect" if args.defect_free else ""))
     shown = designs[:args.designs]
     per_pose = [f"{name}_{k}" for k in range(1, len(poses) + 1) for name in ("crank_angle", "branch")]
-    rows = [{"rank": rank, **as_record(design, args.units)} for rank, design in enumerate(shown, start=1)]
+    rows, files, runs = [], [], []
+    for rank, design in enumerate(shown, start=1):
+        distance, turn = design.coupler_point_distance, design.coupler_point_angle
+        files.append(fourbar_design_file("motion", (design.crank, design.coupler, design.rocker, design.ground),
+                                         design.branches[0], design.crank_angles,
+                                         point=(distance * math.cos(turn), distance * math.sin(turn)),
+                                         pivot=design.crank_pivot, frame=design.ground_angle))
+        placed, defaults, _, signs = files[-1][1]
+        runs.append(design_transmission(placed, defaults, signs, design.crank_angles))
+        rows.append({"rank": rank, **as_record(design, args.units),
+                     "worst_transmission": float(from_radians(runs[-1].worst, args.units)) if runs[-1] is not None
+                     else math.nan})
     if args.format == "json":
         print(json.dumps([{k: json_number(v) if isinstance(v, float) else v for k, v in row.items()}
                           for row in rows], indent=1))
     else:
-        print_rows(rows, MOTION_FIELDS + per_pose, args.format)
+        angle_columns = ("ground_angle", "coupler_point_angle", "pose_angle_offset", "transmission_worst",
+                         "pose_error", "worst_transmission", *(f"crank_angle_{k}" for k in range(1, len(poses) + 1)))
+        print_rows(rows, MOTION_FIELDS + per_pose, args.format, units=dict.fromkeys(angle_columns, args.units))
         note(f"{len(designs)} design(s), {sum(d.defect_free for d in designs)} without a branch or order defect; "
-             f"angles in {args.units}")
+             f"angles in {args.units}; transmission_worst at the poses, worst_transmission over the motion run")
+    for rank, run in enumerate(runs, start=1):
+        report_transmission(run, args.units, f"design {rank}")
+    if args.out:
+        linkage, (placed, defaults, left, _) = files[0]
+        write_design(args.out, placed, defaults, (
+            f"# Designed by 'symlink synthesize motion' (design 1 of {len(designs)}); "
+            f"{_branch_words(linkage, {'branch': shown[0].branches[0]}, left)} at the first pose.\n"
+            "# P is the guided point (the poses' origin); theta (from the ground line A->D) is at the first pose.\n"))
     if args.plot:
         from ..plot.figures import save_figure
         from ..plot.synthesis import motion_figure
@@ -399,11 +449,11 @@ FOURBAR_ONLY = {"function": ("ground",),
                 "path": ("designs", "grashof"),
                 "motion": ("moving_pivot", "fixed_pivot", "rotation", "offset", "defect_free", "designs")}
 #: Options of the general route of each kind (by destination): they need a LINKAGE.
-GENERAL_ONLY = {"function": ("set", "free", "bound", "branch", "output", "minimax", "out", "record", "seed",
+GENERAL_ONLY = {"function": ("set", "free", "bound", "branch", "output", "minimax", "record", "seed",
                              "starts"),
-                "path": ("set", "free", "bound", "branch", "point", "frame", "out", "record", "shape", "shape_kind",
+                "path": ("set", "free", "bound", "branch", "point", "frame", "record", "shape", "shape_kind",
                          "samples", "full_rotation"),
-                "motion": ("set", "free", "bound", "branch", "point", "angle", "frame", "out", "record", "seed",
+                "motion": ("set", "free", "bound", "branch", "point", "angle", "frame", "record", "seed",
                            "starts")}
 #: Designs sampled for a shape match (``--shape``) unless --samples says.
 SHAPE_SAMPLES = 2000
@@ -512,8 +562,11 @@ def add_general_options(command: argparse.ArgumentParser, kind: str) -> None:
     if kind != "path":  # path has its own
         group.add_argument("--starts", type=whole, default=8, metavar="N", help="refine N starts (default 8)")
         group.add_argument("--seed", type=whole, default=0, help="seed of the sampled starts (default 0)")
-    group.add_argument("--out", type=_linkage_path, metavar="FILE.toml",
-                       help="write the design as a linkage file with its [defaults] (the placement in its points)")
+    command.add_argument("--out", type=_linkage_path, metavar="FILE.toml",
+                         help="write the design (the first listed) as a linkage file with its [defaults], the "
+                              "placement in its points" + ("" if kind == "function" else
+                                                           ", the traced point P (the four-bar) or --point")
+                              + ": every command reads it")
     group.add_argument("--record", type=_record_path, metavar="FILE",
                        help="write the design, targets and errors (.json) or one row a target (.csv)")
 
@@ -659,32 +712,29 @@ def _run_general(args: argparse.Namespace, kind: str) -> int:
                                    branches=args.branch, starts=args.starts, seed=args.seed)
         placement = design.placement
     error = design.structural_error if kind == "function" else design.error
-    record = {**_general_record(args, kind, linkage, design, placement, error, columns), **shape}
+    from ..synthesis.placement import placed_assembly
+    placed, defaults, left, signs = design_linkage(linkage, design.design, design.branches, placement,
+                                                   float(design.inputs[0]))
+    assembly = getattr(design, "assembly", None)  # no closed form: the assembly found, as Newton's guess
+    guess = placed_assembly(linkage, assembly, placement) if assembly else None
+    symbols = {q.name: q for q in linkage.unknowns}
+    run = design_transmission(placed, defaults, signs, design.inputs, guess) if design.assembled else None
+    record = {**_general_record(args, kind, linkage, design, placement, error, columns,
+                                {name: defaults[name] for name in design.design}, run), **shape}
     _print_general(args, record)
     if not design.assembled:
         raise ValueError(f"no verified design: {design.why}; the closest is printed above, nothing is written "
                          "(widen the bounds, free more parameters or give more --starts)")
+    report_transmission(run, args.units)
     if args.out:
-        from ..common.files import write_atomic
-        from ..io.linkage_file import linkage_text
-        from ..synthesis.placement import placed_assembly, placed_design, with_default_branches
-        # the found assembly is every branch's +1 in the file (two-angle loops' unknowns reordered), where it can be
-        ordered, left = with_default_branches(linkage, design.branches)
-        placed, defaults = placed_design(ordered, design.design, placement)
-        defaults[input_name] = float(design.inputs[0])
-        head = (f"# Designed by 'symlink synthesize {kind} {found.source if found.source != 'catalog' else linkage.name}"
-                f"': error {error:.3g}; " + ("found with branches " + ", ".join(
-                    f"{k}={v:+d}" for k, v in design.branches.items()) + ", written so that " if design.branches
-                    else "") + ("no branch signs" if not linkage.branches else
-                                "the default branch signs (+1) give the found assembly" if not left else
-                                "the found assembly is at " + ", ".join(f"{k}={v:+d}" for k, v in left.items())
-                                + " (a slider's loop keeps its sign), +1 elsewhere") + ".\n")
-        if getattr(design, "assembly", None):  # no closed form: the assembly is the guess that finds it
-            head += ("# Assembly at the first target (the initial guess of Newton's method, radians): "
-                     + ", ".join(f"{k}={v!r}" for k, v in placed_assembly(linkage, design.assembly,
-                                                                          placement).items()) + ".\n")
-        write_atomic(args.out, head + linkage_text(placed, defaults))
-        note(f"wrote {args.out}")
+        source = found.source if found.source != "catalog" else linkage.name
+        head = (f"# Designed by 'symlink synthesize {kind} {source}': error {record['error']:.3g}; "
+                f"{_branch_words(linkage, design.branches, left)}.\n")
+        if assembly:  # no closed form: the assembly is the guess that finds it
+            head += (f"# Assembly at the first target (the initial guess of Newton's method, angles in {args.units}): "
+                     + ", ".join(f"{k}={float(from_radians(v, args.units)) if is_angle(linkage, symbols[k]) else v!r}"
+                                 for k, v in (guess or {}).items()) + ".\n")
+        write_design(args.out, placed, defaults, head)
     if args.record:
         _write_record(args.record, record)
         note(f"wrote {args.record}")
@@ -724,8 +774,12 @@ def _point_option(args: argparse.Namespace, linkage) -> str:
     return args.point
 
 
-def _general_record(args, kind: str, linkage, design, placement, error: float, columns) -> dict:
-    """What a general design is: printed (one row), and written whole by --record (angles in --units)."""
+def _general_record(args, kind: str, linkage, design, placement, error: float, columns,
+                    written: dict | None = None, run=None) -> dict:
+    """What a general design is: printed (one row), and written whole by --record (angles in --units).
+
+    ``written``: the design's parameters as the linkage file holds them (lengths times the placement's scale),
+    printed in their place; ``run``: the worst transmission over the motion it runs."""
     from ..symbolic.closure import is_angle
     angles = {p.name for p in linkage.parameters if is_angle(linkage, p)}
     unit = lambda x: float(from_radians(x, args.units))  # noqa: E731
@@ -740,9 +794,11 @@ def _general_record(args, kind: str, linkage, design, placement, error: float, c
     else:
         errors = list(design.position_errors)
     extra = {"angle_errors": [unit(a) for a in design.angle_errors]} if kind == "motion" else {}
+    if kind == "function" and _angle_output(linkage, design.output):
+        error = unit(error)  # an angle's error in the targets' unit, beside them
     return {"kind": kind, "linkage": linkage.name, "assembled": design.assembled, "error": error,
             "evaluations": design.evaluations,
-            "design": {name: unit(v) if name in angles else v for name, v in design.design.items()},
+            "design": {name: unit(v) if name in angles else v for name, v in (written or design.design).items()},
             "placement": {name: unit(v) if name == "angle" else v for name, v in placement.items()},
             "branches": dict(design.branches), "inputs": [as_input(q) for q in design.inputs],
             **({"assembly": {name: unit(v) if is_angle(linkage, q) else v
@@ -751,12 +807,15 @@ def _general_record(args, kind: str, linkage, design, placement, error: float, c
             "columns": list(columns), "targets": targets, "errors": list(map(float, errors)), **extra,
             **({"constraints": list(design.constraints), "active": list(design.active)}
                if getattr(design, "constraints", ()) else {}),
+            **({"worst_transmission": unit(run.worst), "transmission_over": run.over if run.over == "full turn"
+                else f"rocking range {as_input(run.low):.6g} to {as_input(run.high):.6g}"} if run is not None else {}),
             "units": args.units, "why": design.why}
 
 
 def _print_general(args: argparse.Namespace, record: dict) -> None:
     row = {"error": record["error"], "assembled": "yes" if record["assembled"] else "no",
-           **record["design"], **record["placement"], **{k: f"{v:+d}" for k, v in record["branches"].items()}}
+           **record["design"], **record["placement"], **{k: f"{v:+d}" for k, v in record["branches"].items()},
+           **({"worst_transmission": record["worst_transmission"]} if "worst_transmission" in record else {})}
     if args.format == "json":
         print(json.dumps({k: ([json_number(x) for x in v] if isinstance(v, list) and v and not isinstance(v[0], list)
                               else {n: json_number(x) for n, x in v.items()} if isinstance(v, dict) else
@@ -768,7 +827,9 @@ def _print_general(args: argparse.Namespace, record: dict) -> None:
     if "shape" in record:
         note(f"{record['shape']} shape matched: shape distance {record['sampled_distance']:.3g} sampled, "
              f"{record['shape_distance']:.3g} refined (0: similar curves, at most 1)")
-    note("the error column: " + {"function": "the largest |generated - wanted| output (radians for an angle)",
+    if record["placement"].get("scale", 1.0) != 1.0:
+        note(f"lengths as written (the linkage's own scaled by {record['placement']['scale']:.6g})")
+    note("the error column: " + {"function": f"the largest |generated - wanted| output ({args.units} for an angle)",
                                  "path": "the largest distance from a target to the point, over the targets' size",
                                  "motion": "the largest position error over the poses' size, or angle error "
                                            "(radians)"}[record["kind"]])
@@ -858,6 +919,91 @@ def _input_angle(linkage) -> bool:
     from ..symbolic.closure import is_angle
     return is_angle(linkage, linkage.inputs[0])
 
+
+
+# --- a design you can use: written as a linkage file, its transmission over the motion it runs ---------------
+
+def design_linkage(linkage, values: dict, branches: dict, placement: dict, input_value: float):
+    """The design as a linkage of its own, as a linkage file holds it: the placement written into it
+    (:func:`~symlink.synthesis.placement.placed_design`: lengths scaled, points shifted and turned), the found
+    assembly every branch's +1 where it can be (:func:`~symlink.synthesis.placement.with_default_branches`).
+
+    Returns the linkage, its defaults (every parameter and the input at the first target), the branch signs
+    that are not +1 (a slider's loop keeps its sign) and every branch sign as a command takes it.
+    """
+    from ..synthesis.placement import placed_design, with_default_branches
+    ordered, left = with_default_branches(linkage, branches)
+    placed, defaults = placed_design(ordered, values, placement)
+    defaults[linkage.inputs[0].name] = float(input_value)
+    signs = {b.name: int(left.get(b.name, 1)) for b in placed.branches}
+    return placed, defaults, left, signs
+
+
+def write_design(path: str, placed, defaults: dict, head: str) -> None:
+    """Write a designed linkage as a linkage file (``head``: comment lines saying where it came from)."""
+    from ..common.files import write_atomic
+    from ..io.linkage_file import linkage_text
+    write_atomic(path, head + linkage_text(placed, defaults))
+    note(f"wrote {path}")
+
+
+def _branch_words(linkage, branches: dict, left: dict) -> str:
+    return (("found with branches " + ", ".join(f"{k}={v:+d}" for k, v in branches.items()) + ", written so that "
+             if branches else "") + ("no branch signs" if not linkage.branches else
+                                     "the default branch signs (+1) give the found assembly" if not left else
+                                     "the found assembly is at " + ", ".join(f"{k}={v:+d}" for k, v in left.items())
+                                     + " (a slider's loop keeps its sign), +1 elsewhere"))
+
+
+def design_transmission(placed, defaults: dict, signs: dict, inputs, guess: dict | None = None):
+    """The worst transmission angle over the motion the design runs (:func:`~symlink.analysis.transmission.
+    run_transmission`: the full turn for a crank, the rocking range between the targets otherwise), or None."""
+    from ..analysis.transmission import run_transmission
+    values = {name: v for name, v in defaults.items() if name != placed.inputs[0].name}
+    try:
+        return run_transmission(placed, {**values, **signs}, inputs, guess=guess)
+    except ValueError:
+        return None
+
+
+def transmission_text(run, units: str) -> str:
+    """``12.3 deg over the full turn`` (or the rocking range), in ``units``."""
+    if run is None:
+        return "none (no loop with a transmission angle, or not assembled at the first target)"
+    show = lambda x: f"{float(from_radians(x, units)):.4g}"  # noqa: E731
+    over = ("the full turn" if run.over == "full turn" else
+            f"the rocking range {show(run.low)} to {show(run.high)} {units}")
+    return f"{show(run.worst)} {units} over {over} (loop {run.loop})"
+
+
+def report_transmission(run, units: str, what: str = "the design") -> None:
+    """A note of the worst transmission angle over the motion; a warning line below the sane default."""
+    from ..analysis.transmission import SANE_TRANSMISSION
+    note(f"{what}: worst transmission angle {transmission_text(run, units)}")
+    if run is not None and not run.sane:
+        note(f"warning: {what} transmits badly: its worst transmission angle "
+             f"{float(from_radians(run.worst, units)):.4g} {units} is below "
+             f"{float(from_radians(SANE_TRANSMISSION, units)):.4g} {units} (it may lock or need large forces)")
+
+
+def _fourbar_for(point: tuple[float, float] | None):
+    """The catalog four-bar, with the coupler point ``P`` at (u, v) in the coupler's frame when ``point`` is given."""
+    from ..mechanism.catalog import fourbar, with_point
+    base = fourbar()
+    return with_point(base, "B", base.roles["coupler"]) if point is not None else base
+
+
+def fourbar_design_file(kind: str, lengths, branch: int, inputs, *, point: tuple[float, float] | None = None,
+                        pivot: tuple[float, float] = (0.0, 0.0), frame: float = 0.0):
+    """A four-bar route's design as a linkage (placed, defaults, left, signs): crank a, coupler b, rocker c,
+    ground d, the coupler point P at (u, v) (path, motion), its crank pivot at ``pivot`` and ground line at
+    ``frame``; the input at the first of ``inputs``."""
+    linkage = _fourbar_for(point)
+    values = dict(zip("abcd", map(float, lengths)))
+    if point is not None:
+        values.update(u=float(point[0]), v=float(point[1]))
+    placement = {"x0": float(pivot[0]), "y0": float(pivot[1]), "angle": float(frame)}
+    return linkage, design_linkage(linkage, values, {"branch": int(branch)}, placement, float(inputs[0]))
 
 #: The kinds of synthesis: name -> function registering its parser.
 KINDS: dict[str, Callable] = {"function": _register_function, "path": _register_path, "motion": _register_motion}

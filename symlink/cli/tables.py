@@ -248,6 +248,7 @@ def table_facts(linkage: Linkage, defaults: Mapping[str, float] | None = None) -
         "branches": [b.name for b in linkage.branches],
         "outputs": dict(table_outputs(linkage)) if linkage.has_closed_form else {},
         "columns": table_columns(linkage),
+        "column_units": units_of_columns(linkage, table_columns(linkage)),
         "angle_columns": sorted({label(linkage, q) for q in linkage.coordinates if is_angle(linkage, q)}),
         "defaults": {name: float(value) for name, value in (defaults or {}).items()},
     }
@@ -355,17 +356,40 @@ def _print_assemblies(table: Table, linkage: Linkage, values: dict, first: float
     print_rows(rows, columns, args.format)
 
 
+def units_of_columns(linkage: Linkage, columns: Collection[str]) -> dict[str, str]:
+    """The unit of each column of ``linkage``'s table in radians (``rad``, ``rad/s``); none for a length (its
+    unit is the user's, unknown here) or a column without one.  Plain data, kept in a table's facts.
+
+    >>> from symlink.mechanism.catalog import slider_crank
+    >>> units_of_columns(slider_crank(), ["crank", "branch", "conrod", "slider", "conrod_speed", "slider_speed"])
+    {'crank': 'rad', 'conrod': 'rad', 'conrod_speed': 'rad/s'}
+    """
+    from ..numeric.units import output_units
+    found = output_units(linkage, list(columns))
+    return {name: unit for name, unit in found.items() if unit and "length" not in unit}
+
+
+def shown_units(units_in_radians: Mapping[str, str], units: str) -> dict[str, str]:
+    """The unit of each column as a table's header shows it: angles in ``units`` (deg or rad), rates per second.
+
+    >>> shown_units({"crank": "rad", "conrod_speed": "rad/s"}, "deg")
+    {'crank': 'deg', 'conrod_speed': 'rad/s'}
+    """
+    return {name: units if unit == "rad" else unit for name, unit in units_in_radians.items()}
+
+
 def write_table(blocks: Iterable[tuple[numpy.ndarray, Mapping[object, Mapping[str, numpy.ndarray]]]],
                 columns: list[str], units: str, fmt: str, angle_columns: Collection[str],
-                spans: Callable[[], str | Mapping[object, str]]) -> None:
+                spans: Callable[[], str | Mapping[object, str]],
+                column_units: Mapping[str, str] | None = None) -> None:
     """Print a table block by block: ``blocks`` yields input angles (in ``units``) and each branch's results.
 
     Rows that cannot be assembled are left out and named on stderr, with the
     reachable range ``spans()``; nothing at all assembled is a ``ValueError``
-    (and nothing is printed).
+    (and nothing is printed).  ``column_units`` are shown in a table's header.
     """
     assembler = TableAssembler(columns, units, angle_columns)
-    writer = RowWriter(columns, fmt)
+    writer = RowWriter(columns, fmt, units=column_units)
     for angles, results in blocks:
         writer.write(assembler.rows_of(angles, results))
     assembler.finish(spans)
@@ -433,7 +457,8 @@ def _print_table(table: Table, linkage: Linkage | None, values: dict[str, float]
         angles = sweep.array()
         blocks = [(angles, _numeric(table, linkage, values, inputs_at(angles), angles, args))]
         reachable = lambda: ""  # noqa: E731 - the numeric solver stops with a message instead
-    write_table(blocks, facts["columns"], args.units, args.format, set(facts["angle_columns"]), reachable)
+    write_table(blocks, facts["columns"], args.units, args.format, set(facts["angle_columns"]), reachable,
+                shown_units(facts["column_units"], args.units))
     return 0
 
 
@@ -575,7 +600,10 @@ def run_fourbar(args: argparse.Namespace) -> int:
         from ..numeric.reachability import crank_range, describe_spans
         return describe_spans(crank_range(a, b, c, d), args.units)
 
-    write_table(blocks(), columns, args.units, args.format, ANGLE_COLUMNS, spans)
+    write_table(blocks(), columns, args.units, args.format, ANGLE_COLUMNS, spans,
+                {name: args.units if name in ANGLE_COLUMNS or name == "transmission" else
+                 "rad/s" if name.endswith("_speed") else "rad/s^2" if name.endswith("_accel") else ""
+                 for name in columns})
     if args.plot or args.plot_transmission:
         from .pictures import write_fourbar_plots
         write_fourbar_plots(a, b, c, d, signs, args.units, args.plot, args.plot_transmission)

@@ -40,7 +40,8 @@ def register(commands) -> None:
         "symlink tolerance fourbar --crank 20 --coupler 66 --rocker 56 --ground 80 --tolerance 0.05 "
         "--output rocker",
         "With a catalog NAME or a linkage FILE, values from its defaults (--set to change); --tolerance applies to "
-        "every length, --tolerances NAME=BAND,... to chosen dimensions; --play B=0.02,C=0.02 adds the pins' play.\n"
+        "every length (never a fixed angle nor the placement), --tolerances NAME=BAND,... to chosen dimensions; "
+        "--play B=0.02,C=0.02 adds the pins' play.\n"
         "--samples N (or --builds N) adds a Monte Carlo of N builds, --folder DIR makes it resumable (Dask, the "
         "extra 'sweep'), --plot FILE draws the bands and the contributions.\n"
         "csv header: INPUT,OUTPUT,worst_case,rss,mean_shift,largest[,play][,sampled_low,sampled_high]"))
@@ -53,7 +54,9 @@ def _add_options(command: argparse.ArgumentParser) -> None:
         command.add_argument(f"--{option}", type=finite, help=f"four-bar length {what} (with NAME fourbar, or none)")
     command.add_argument("--set", type=assignments("NAME=VALUE"), default={}, metavar="NAME=VALUE,...",
                          help="parameter values (fixed angles in --units)")
-    command.add_argument("--tolerance", type=finite, metavar="BAND", help="± band of every length")
+    command.add_argument("--tolerance", type=finite, metavar="BAND",
+                         help="± band of every length (of every part: not the fixed angles, nor where the linkage "
+                              "stands, such as a drawing's x_A; give those by name in --tolerances)")
     command.add_argument("--tolerances", type=assignments("NAME=BAND"), default={}, metavar="NAME=BAND,...",
                          help="± bands of chosen dimensions (angles in --units); these win over --tolerance")
     command.add_argument("--sigma", type=assignments("NAME=SIGMA"), default={}, metavar="NAME=SIGMA,...",
@@ -171,7 +174,10 @@ def run(args: argparse.Namespace) -> int:
                + (["sampled_low", "sampled_high"] if sampled is not None else []))
     plays = convert(play) if play is not None else numpy.zeros(len(shown))
     lows, highs = (convert(sampled[0]), convert(sampled[1])) if sampled is not None else (plays, plays)
-    writer = RowWriter(columns, args.format)
+    output_unit = args.units if angular else ""
+    writer = RowWriter(columns, args.format, units={
+        first.name: args.units if swept_angle else "", **{c: output_unit for c in (
+            output, "worst_case", "rss", "mean_shift", "play", "sampled_low", "sampled_high")}})
     writer.write({first.name: float(x), output: float(y), "worst_case": float(w), "rss": float(r),
                   "mean_shift": float(m), "largest": big or "-", "play": float(p), "sampled_low": float(lo),
                   "sampled_high": float(hi)}
@@ -192,20 +198,29 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _tolerances(args: argparse.Namespace, symbols: dict, linkage: Any) -> dict[str, Any]:
-    """The dimensions' tolerances from ``--tolerance``, ``--tolerances`` and ``--sigma`` (angles to radians)."""
+    """The dimensions' tolerances from ``--tolerance``, ``--tolerances`` and ``--sigma`` (angles to radians).
+
+    One rule for every linkage, by the kind of each parameter (:func:`symlink.numeric.units.parameter_kinds`):
+    ``--tolerance`` bands the lengths only (never a fixed angle, a placement or a mass); a band or a sigma of an
+    angle is read in ``--units``; a placement (where the linkage stands: a drawing's ``x_A``) is toleranced only
+    when named.
+    """
+    from ..numeric.units import parameter_kinds
     from ..symbolic.closure import is_angle
     from ..workshop.tolerance import Tolerance
     for option, given in (("--tolerances", args.tolerances), ("--sigma", args.sigma)):
         for name in given:
             if name not in symbols:
                 raise ValueError(f"{option}: {linkage.name} has no dimension {name!r}; it has {', '.join(symbols)}")
+    kinds = parameter_kinds(linkage)
 
     def plain(name: str, value: float) -> float:
-        return float(to_radians(value, args.units)) if is_angle(linkage, symbols[name]) else value
+        return float(to_radians(value, args.units)) if kinds.get(name) == "angle" or (
+            kinds.get(name) == "placement" and is_angle(linkage, symbols[name])) else value
 
     bands: dict[str, float] = {}
     if args.tolerance is not None:
-        bands.update({name: args.tolerance for name, s in symbols.items() if not is_angle(linkage, s)})
+        bands.update({name: args.tolerance for name in symbols if kinds.get(name) == "length"})
     bands.update({name: plain(name, value) for name, value in args.tolerances.items()})
     sigmas = {name: plain(name, value) for name, value in args.sigma.items()}
     if not bands and not sigmas:

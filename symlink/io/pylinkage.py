@@ -139,6 +139,7 @@ def read_pylinkage(data: Mapping[str, Any] | str) -> JointDescription:
     link_joints: dict[str, list[str]] = {}
     ground_name = None
     drivers: list[str | tuple[str, str]] = []
+    speeds: dict[str, float] = {}
     for k, link in enumerate(links):
         entry = _entry(link, f"links[{k}]", ("id", "joints"))
         kind = entry.get("type", "link")
@@ -164,6 +165,9 @@ def read_pylinkage(data: Mapping[str, Any] | str) -> JointDescription:
                 raise ValueError(f"pylinkage links[{k}] ({entry['id']}): its motor joint {motor!r} is not one of "
                                  "its joints")
             drivers.append((names[motor], name))
+            if "angular_velocity" in entry:
+                speeds[names[motor]] = _speed(entry["angular_velocity"],
+                                              f"links[{k}] ({entry['id']}) angular_velocity")
     if ground_name is None:
         link_joints = {GROUND: [], **link_joints}
     if not drivers:
@@ -206,7 +210,14 @@ def read_pylinkage(data: Mapping[str, Any] | str) -> JointDescription:
         if name not in link_joints[holder]:
             link_joints[holder].append(name)
     return JointDescription(link_joints, coordinates, tuple(drivers), kinds or None, GROUND,
-                            str(top.get("name") or "pylinkage"), names)
+                            str(top.get("name") or "pylinkage"), names, speeds or None)
+
+
+def _speed(value: Any, what: str) -> float:
+    """A driver's speed: a finite number."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise ValueError(f"pylinkage {what}: a driver's speed must be a finite number, got {value!r}")
+    return float(value)
 
 
 def _joint_type(joints: list, ids: list[str], identifier: str) -> str:
@@ -218,7 +229,9 @@ def write_pylinkage(drawn: JointLinkage) -> dict[str, Any]:
 
     Pins on the ground are ``ground`` joints, sliders ``prismatic`` joints on a fixed axis (a slider on a
     moving guide has no pylinkage form: ``ValueError``), points held by one link ``tracker`` joints on its
-    first two joints; the links driven at the ground are ``driver`` links.
+    first two joints; the links driven at the ground are ``driver`` links, with the ``angular_velocity``
+    their drivers had when read (:attr:`~symlink.mechanism.joints.JointLinkage.speeds`; none: pylinkage's
+    default).
 
     Parameters
     ----------
@@ -285,6 +298,8 @@ def write_pylinkage(drawn: JointLinkage) -> dict[str, Any]:
             tip = next(j for j in held if j != motor)
             (x0, y0), (x1, y1) = drawn.coordinates[motor], drawn.coordinates[tip]
             entry.update(type="driver", initial_angle=math.atan2(y1 - y0, x1 - x0), motor_joint=motor)
+            if motor in drawn.speeds:  # the driver's speed as it was read (rad a step)
+                entry["angular_velocity"] = float(drawn.speeds[motor])
         links.append(entry)
     return {"name": drawn.linkage.name, "joints": joints, "links": links, "ground": chain.ground}
 
@@ -414,6 +429,7 @@ def _read_legacy(data: Mapping[str, Any]) -> JointDescription:
     links: dict[str, list[str]] = {GROUND: [names[e["name"]] for e in entries if e["type"] == "Static"]}
     kinds: dict[str, object] = {}
     drivers: list[str | tuple[str, str]] = []
+    speeds: dict[str, float] = {}
 
     def new_link(*members: str) -> str:
         link = f"L{len(links)}"
@@ -428,6 +444,8 @@ def _read_legacy(data: Mapping[str, Any]) -> JointDescription:
             if kind[r[0]] != "Static":
                 raise ValueError(f"pylinkage crank {name!r} turns about {r[0]!r}, which is not a Static joint")
             drivers.append((names[r[0]], new_link(r[0], name)))
+            if entry.get("angle") is not None:  # a Crank turns by its angle each step
+                speeds[names[r[0]]] = _speed(entry["angle"], f"crank {name!r} angle")
         elif entry["type"] == "Revolute":
             new_link(r[0], name)
             new_link(r[1], name)
@@ -453,7 +471,7 @@ def _read_legacy(data: Mapping[str, Any]) -> JointDescription:
         raise ValueError("pylinkage legacy linkage: no Crank joint to drive it")
     coordinates = {names[n]: placed[n] for n in ids}
     return JointDescription(links, coordinates, tuple(drivers), kinds or None, GROUND,
-                            str(data.get("name") or "pylinkage"), names)
+                            str(data.get("name") or "pylinkage"), names, speeds or None)
 
 
 def _required(ref: str | None, name: str, key: str) -> str:

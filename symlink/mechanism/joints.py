@@ -77,6 +77,9 @@ REVOLUTE = "R"
 
 #: Relative size (of the drawing) below which two joints coincide or a slider's line passes through its guide's pin.
 _COINCIDENT = 1e-12
+#: Coordinates beyond this size, or non-zero below its inverse, are out of range: lengths are squared and
+#: multiplied in the closed forms (the bound of synthesis targets).
+MAX_COORDINATE = 1e100
 
 
 class DrawnPoseError(ValueError):
@@ -131,7 +134,9 @@ class JointLinkage:
     ``structure`` lists the groups the linkage is solved in, in order: each dyad's
     links and loop, then (if any) the rest that Newton's method solves together.
     ``coordinates``, ``sliders`` and ``drivers`` are the description it was made
-    from (the writers of other tools' formats need them).
+    from (the writers of other tools' formats need them); ``speeds`` each driver
+    joint's speed as another tool's file gave it (pylinkage's ``angular_velocity``,
+    rad a step), kept for writing it back.
 
     Parameters
     ----------
@@ -151,6 +156,8 @@ class JointLinkage:
         The groups it is solved in, in order.
     coordinates, sliders, drivers : optional
         The description it was made from.
+    speeds : dict of str to float, optional
+        Each driver joint's speed as another tool's file gave it.
 
     Examples
     --------
@@ -176,6 +183,7 @@ class JointLinkage:
     coordinates: Mapping[str, tuple[float, float]] = field(default_factory=dict)
     sliders: Mapping[str, Slider] = field(default_factory=dict)
     drivers: tuple[tuple[str, str | None], ...] = ()
+    speeds: Mapping[str, float] = field(default_factory=dict)
 
     @property
     def slider_angles(self) -> dict[str, float]:
@@ -241,11 +249,13 @@ class JointDescription:
     ground: str = GROUND
     name: str = "linkage"
     names: Mapping[str, str] | None = None
+    speeds: Mapping[str, float] | None = None
 
     def build(self) -> "JointLinkage":
-        """The linkage (:func:`from_joints`)."""
-        return from_joints(self.links, self.coordinates, driver=list(self.drivers), joints=self.joints,
-                           ground=self.ground, name=self.name)
+        """The linkage (:func:`from_joints`), with the drivers' ``speeds`` kept."""
+        built = from_joints(self.links, self.coordinates, driver=list(self.drivers), joints=self.joints,
+                            ground=self.ground, name=self.name)
+        return replace(built, speeds=dict(self.speeds)) if self.speeds else built
 
 
 def _number(value: object, what: str) -> float:
@@ -309,9 +319,14 @@ class _Builder:
 
     def _direction(self, first: str, second: str) -> float:
         (x0, y0), (x1, y1) = self.points[first], self.points[second]
-        if math.hypot(x1 - x0, y1 - y0) <= _COINCIDENT * self.scale:
+        apart = math.hypot(x1 - x0, y1 - y0)
+        if apart == 0:
             raise ValueError(f"joints {first!r} and {second!r} are drawn at the same point, so the side "
                              f"{_side_name(first, second)} has no direction; draw them apart")
+        if apart <= _COINCIDENT * self.scale:
+            raise ValueError(f"joints {first!r} and {second!r} are {apart:.3g} apart in a drawing {self.scale:.3g} "
+                             f"across: closer than {_COINCIDENT:g} of its size, too close to tell the side "
+                             f"{_side_name(first, second)}'s direction; draw them apart")
         return math.atan2(y1 - y0, x1 - x0)
 
     def frame(self, link: str) -> str | None:
@@ -341,7 +356,11 @@ class _Builder:
     def _driven_coordinate(self, driver: tuple[str, str | None]) -> sp.Symbol:
         joint, link = driver
         if joint not in self.points:
-            raise ValueError(f"driver {joint!r} is not a joint of the linkage")
+            raise ValueError(f"driver {joint!r} is not a joint of the linkage (its joints are "
+                             f"{', '.join(self.points)})")
+        if link is not None and link not in self.chain.links:
+            raise ValueError(f"driver ({joint!r}, {link!r}): no link {link!r} (the links are "
+                             f"{', '.join(self.chain.links)})")
         if joint in self.chain.sliders:
             if link is not None:
                 raise ValueError(f"driver {joint!r} is a slider: it drives its travel, not link {link!r}")
@@ -505,6 +524,47 @@ def _joint_kinds(joints: Mapping[str, object] | None, chain_joints: Sequence[str
     return sliders
 
 
+def _pins_on_slides(links: Mapping[str, Sequence[str]], sliders: dict[str, Slider],
+                    coordinates: Mapping[str, Sequence[float]], drivers: list[tuple[str, str | None]]) -> tuple:
+    """The links, sliders, coordinates and drivers with every block whose pin lies on its slide taken as the pin
+    sliding on the guide.
+
+    The textbook slider-crank's block: a link holding a pin C (to the rod) and a prismatic joint S (on its guide,
+    ``turns=False``), both drawn at one point, and nothing else.  It moves as the pin C sliding along the line
+    on the guide (the block only carries it, without turning on the guide): the block and S are taken out, C
+    becomes ``Slider(guide, angle)`` (the pin turns in the rod), the guide holds C where it held S, and a driver
+    of S drives C's travel.  Mobility is unchanged (a link, a pin and a prismatic joint: -1; a pin in a slot:
+    -1).  Anything malformed is left as it is, for the checks that name it.
+    """
+    merged = {name: list(joints) for name, joints in links.items()}
+    kinds = dict(sliders)
+    points = dict(coordinates)
+    for joint, slider in sliders.items():
+        if slider.turns or slider.guide not in merged:
+            continue
+        holders = [name for name, joints in merged.items() if joint in joints and name != slider.guide]
+        if len(holders) != 1:
+            continue
+        block = holders[0]
+        others = [j for j in merged[block] if j != joint]
+        if len(others) != 1 or others[0] in kinds or others[0] in merged[slider.guide]:
+            continue
+        pin = others[0]
+        try:
+            (x0, y0), (x1, y1) = ((float(v) for v in points[j]) for j in (joint, pin))
+        except (KeyError, TypeError, ValueError):
+            continue
+        if math.hypot(x1 - x0, y1 - y0) > _COINCIDENT * max(1.0, abs(x0), abs(y0)):
+            continue
+        del merged[block]
+        merged[slider.guide] = [pin if j == joint else j for j in merged[slider.guide]]
+        del kinds[joint]
+        kinds[pin] = Slider(slider.guide, slider.angle)
+        del points[joint]
+        drivers = [(pin, None) if j == joint else (j, link) for j, link in drivers]
+    return merged, kinds, points, drivers
+
+
 def _drawn(coordinates: Mapping[str, Sequence[float]], joints: Sequence[str]) -> dict[str, tuple[float, float]]:
     missing = [j for j in joints if j not in coordinates]
     if missing:
@@ -518,6 +578,11 @@ def _drawn(coordinates: Mapping[str, Sequence[float]], joints: Sequence[str]) ->
         if isinstance(xy, str) or not hasattr(xy, "__len__") or len(xy) != 2:
             raise ValueError(f"coordinates: joint {joint!r} needs two numbers (x, y), not {xy!r}")
         points[joint] = (_number(xy[0], f"coordinates: {joint}.x"), _number(xy[1], f"coordinates: {joint}.y"))
+        for axis, value in zip("xy", points[joint]):
+            if value != 0 and not 1 / MAX_COORDINATE <= abs(value) <= MAX_COORDINATE:
+                raise ValueError(f"coordinates: {joint}.{axis} = {value:g} is out of range (a coordinate is 0 or "
+                                 f"between {1 / MAX_COORDINATE:g} and {MAX_COORDINATE:g} in size; rescale the "
+                                 "drawing)")
     return points
 
 
@@ -716,6 +781,8 @@ def from_joints(links: Mapping[str, Sequence[str]], coordinates: Mapping[str, Se
     else:
         raise ValueError("links: give a mapping of link names to the joints each link holds")
     sliders = _joint_kinds(joints, listed)
+    if isinstance(coordinates, Mapping) and all(isinstance(js, (list, tuple)) for js in links.values()):
+        links, sliders, coordinates, drivers = _pins_on_slides(links, sliders, coordinates, drivers)
     chain = Chain(links, {j: s.guide for j, s in sliders.items()}, ground,
                   frozenset(j for j, s in sliders.items() if not s.turns))
     points = _drawn(coordinates, chain.joints)

@@ -120,12 +120,12 @@ class Chain:
         if self.ground not in links:
             raise ValueError(f"no ground link {self.ground!r} among the links ({', '.join(links)})")
         for joint, guide in self.sliders.items():
+            if guide not in links:
+                raise ValueError(f"slider {joint!r}: no link {guide!r} (its guide; the links are {', '.join(links)})")
             if joint not in self.joints:
                 raise ValueError(f"slider {joint!r} is on no link")
             if len(self.links_of(joint)) < 2:
                 raise ValueError(f"slider {joint!r} is on link {guide!r} only; it joins its guide to another link")
-            if guide not in links:
-                raise ValueError(f"slider {joint!r}: its guide {guide!r} is not a link")
             if joint not in links[guide]:
                 raise ValueError(f"slider {joint!r}: its guide {guide!r} does not list it among its joints")
         object.__setattr__(self, "translating", frozenset(self.translating))

@@ -35,10 +35,67 @@ from ..symbolic.linkage import ACCEL_SUFFIX, SPEED_SUFFIX, Linkage, is_branch_na
 from ..symbolic.sensitivity import split_sensitivity_name
 from ..symbolic.vectors import acceleration, rate
 
-__all__ = ["is_quantity", "plain_values", "output_units", "argument_units", "ANY_LENGTH"]
+__all__ = ["is_quantity", "plain_values", "output_units", "argument_units", "ANY_LENGTH", "parameter_kinds",
+           "PARAMETER_KINDS", "PLACEMENT_NAMES"]
 
 #: The name of the length unit where lengths were given as plain numbers.
 ANY_LENGTH = "length"
+
+
+#: The kinds of a linkage's parameter (:func:`parameter_kinds`): a part's length, a fixed angle, where the whole
+#: linkage stands (not a part's dimension), and anything else (a mass, an inertia, a held speed).
+PARAMETER_KINDS = ("length", "angle", "placement", "other")
+#: The parameters that place a synthesised design in the plane (:func:`symlink.synthesis.placement.placed_design`):
+#: the shift and the turn of all its points.
+PLACEMENT_NAMES = ("place_x", "place_y", "place_angle")
+
+
+def _shifts_everything(linkage: Linkage, symbol: sp.Symbol, equations: Sequence[sp.Expr]) -> bool:
+    """Whether ``symbol`` moves the whole linkage without changing it: it is in no loop's closure and every
+    point moves by the same constant step with it (the drawing's ``x_A``, a design's ``place_x``)."""
+    if len(linkage.points) < 2 or any(symbol in e.free_symbols for e in equations):
+        return False
+    steps = set()
+    for name in linkage.points:
+        x, y = linkage.point(name)
+        step = (sp.simplify(sp.diff(x, symbol)), sp.simplify(sp.diff(y, symbol)))
+        if step[0].free_symbols or step[1].free_symbols:
+            return False
+        steps.add(step)
+    return len(steps) == 1 and steps != {(0, 0)}
+
+
+def parameter_kinds(linkage: Linkage) -> dict[str, str]:
+    """Each parameter's kind (:data:`PARAMETER_KINDS`): ``"angle"`` if it turns a vector (of a loop or of a point),
+    ``"placement"`` if it only says where the linkage stands (it moves every point alike and closes every loop
+    alike: a drawing's first ground pivot ``x_A, y_A``, a placed design's :data:`PLACEMENT_NAMES`), ``"length"``
+    if it is in a vector's length, ``"other"`` if in none (a mass).
+
+    One rule for every command: a tolerance given to every length (``--tolerance``) goes to the lengths only,
+    angles are read in the chosen unit, placements are toleranced only when named.
+
+    >>> from symlink.mechanism.joints import from_joints
+    >>> drawn = from_joints({"ground": ["A", "D"], "crank": ["A", "B"], "coupler": ["B", "C", "P"],
+    ...                      "rocker": ["D", "C"]}, {"A": (1, 2), "B": (1, 4), "C": (6, 5), "D": (8, 2),
+    ...                      "P": (4, 8)}, driver="A")
+    >>> parameter_kinds(drawn.linkage)
+    {'AB': 'length', 'BC': 'length', 'DC': 'length', 'AD': 'length', 'BP': 'length', 'alpha_AD': 'angle', \
+'alpha_BP': 'angle', 'x_A': 'placement', 'y_A': 'placement'}
+    """
+    equations = [e for loop in linkage.loops for e in loop.equations()]
+    vectors = [v for loop in linkage.loops for _, v in loop.terms]
+    vectors += [v for sum_ in linkage.points.values() if sum_ is not None for _, v in sum_.as_sum().terms]
+    in_lengths = set().union(*(v.length.free_symbols for v in vectors)) if vectors else set()
+    kinds = {}
+    for symbol in linkage.parameters:
+        if is_angle(linkage, symbol):
+            kinds[symbol.name] = "placement" if symbol.name in PLACEMENT_NAMES else "angle"
+        elif symbol in in_lengths:
+            kinds[symbol.name] = ("placement" if symbol.name in PLACEMENT_NAMES
+                                  or _shifts_everything(linkage, symbol, equations) else "length")
+        else:
+            kinds[symbol.name] = "other"
+    return kinds
 
 
 def is_quantity(value: object) -> bool:

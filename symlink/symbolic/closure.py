@@ -97,11 +97,18 @@ def closure_system(linkage: Linkage) -> ClosureSystem:
 
 
 def is_angle(linkage: Linkage, symbol: sp.Symbol) -> bool:
-    """Whether a coordinate is an angle (it turns a vector) rather than a length (a slider's travel).
+    """Whether a coordinate or a parameter is an angle (it turns a vector of a loop or of a point) rather than a
+    length (a slider's travel, a side).
+
+    A fixed angle that only a point's vectors turn (the angle of a coupler point on a ternary link, off every
+    loop) is an angle too: the same rule for every symbol, wherever it appears.
 
     >>> from symlink.mechanism.catalog import slider_crank
     >>> linkage = slider_crank()
     >>> [(q.name, is_angle(linkage, q)) for q in linkage.unknowns]
     [('beta', True), ('s', False)]
     """
-    return any(symbol in vector.angle.free_symbols for loop in linkage.loops for _, vector in loop.terms)
+    if any(symbol in vector.angle.free_symbols for loop in linkage.loops for _, vector in loop.terms):
+        return True
+    return any(symbol in vector.angle.free_symbols for vectors in linkage.points.values() if vectors is not None
+               for _, vector in vectors.as_sum().terms)

@@ -25,14 +25,13 @@ from typing import Mapping
 
 import sympy as sp
 
+from ..numeric.units import PLACEMENT_NAMES  # the shift and the turn a placed linkage adds (kinds of parameter)
 from ..symbolic.linkage import Linkage
 from ..symbolic.loops import Loop
 from ..symbolic.vectors import Vector, VectorSum
 
 __all__ = ["placed_design", "placed_assembly", "with_default_branches", "length_parameters", "PLACEMENT_NAMES"]
 
-#: The parameters a placed linkage adds: the shift and the turn of its points.
-PLACEMENT_NAMES = ("place_x", "place_y", "place_angle")
 
 
 def length_parameters(linkage: Linkage) -> set[str]:

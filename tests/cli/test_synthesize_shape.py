@@ -58,7 +58,8 @@ def test_a_closed_shape_is_matched_and_refined(folder, capsys):
     assert found["assembled"] and found["shape"] == "closed" and found["error"] < 1e-10
     assert found["shape_distance"] < found["sampled_distance"]
     where = found["placement"]
-    turn = complex(where["x0"], where["y0"]), where["scale"] * cmath.exp(1j * math.radians(where["angle"]))
+    # the design's lengths are recorded as written, scaled (issue 32): the placement's scale is in them
+    turn = complex(where["x0"], where["y0"]), cmath.exp(1j * math.radians(where["angle"]))
     targets = [complex(x, y) for x, y in found["targets"]]
     size = math.hypot(*numpy.ptp([[z.real, z.imag] for z in targets], axis=0))
     for q, target in zip(found["inputs"], targets):

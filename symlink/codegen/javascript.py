@@ -582,9 +582,9 @@ def geometry_program(linkage: Linkage, outputs: Sequence[str] = (),
             sliders.append({"name": joint.name, "guide": f"{joint.name} guide" if f"{joint.name} guide" in sums
                             else None, "direction": direction})
     placed = set(sums)
-    bodies = [{"name": body.name, "joints": [j for j in body.joints if j in placed],
-               "points": [p for p in body.points if p in placed]} for body in drawing.bodies]
-    return replace(program, outputs=wanted), {"points": points, "bodies": bodies, "sliders": sliders}
+    drawn_bodies = [{"name": body.name, "joints": [j for j in body.joints if j in placed],
+                     "points": [p for p in body.points if p in placed]} for body in drawing.bodies]
+    return replace(program, outputs=wanted), {"points": points, "bodies": drawn_bodies, "sliders": sliders}
 
 
 def javascript_geometry(linkage: Linkage, outputs: Sequence[str] = (), title: str = "", regenerate: str = "",
@@ -598,7 +598,7 @@ def javascript_geometry(linkage: Linkage, outputs: Sequence[str] = (), title: st
     the linkage cannot be assembled.  ``ValueError`` (:data:`NO_CLOSED_FORM`) without a closed form.
     """
     program, fields = geometry_program(linkage, outputs, bodies)
-    placed = [p["name"] for p in fields["points"]]  # type: ignore[union-attr]
+    placed = [p["name"] for p in fields["points"]]  # type: ignore[attr-defined]
     requested = list(dict.fromkeys(outputs))
     sets = ({"requested": requested} if requested else {}) | {"geometry": list(program.outputs)[len(requested):]}
     return javascript_solver(program, linkage.name, linkage, title or f"{linkage.name}: every joint and point placed.",

@@ -354,7 +354,10 @@ def tolerance_band(data: Any) -> dict[str, Any]:
     guess = drawn.guess if not drawn.linkage.has_closed_form else None
     ahead, behind = (complex_points(geometry.poses(values, {name: inputs + sign * step}, guess=guess), point)
                      for sign in (1, -1))
-    nominal, inner, outer, widths = [], [], [], []
+    nominal: list[Any] = []
+    inner: list[Any] = []
+    outer: list[Any] = []
+    widths: list[Any] = []  # None where the point cannot be placed (JSON null)
     for k in range(len(inputs)):
         if not ok[k]:
             for column in (nominal, inner, outer, widths):

@@ -144,6 +144,9 @@ def run(args: argparse.Namespace) -> int:
         if linkage.output(output).free_symbols & moving:  # ValueError naming the outputs for an unknown one
             raise ValueError(f"--play is modelled for positions; {output} moves with the rates")
     result = stack_up(linkage, output, values, tolerances, inputs=inputs)
+    if not result.assembled.any():  # every row would be NaN: refused, as every table command refuses it
+        raise ValueError(f"{linkage.name} cannot be assembled at any of the input values asked for with these "
+                         "dimensions: there is no stack-up to print")
     play = pin_play(linkage, output, values, args.play, inputs=inputs).worst_case[0] if args.play else None
     sampled, builds = None, None
     if args.folder is not None and args.builds is None:

@@ -91,6 +91,8 @@ REFUSED = [
     ("a table that repeats an angle", ["table", "fourbar", "--angles", "10,20,10"],
      "argument --angles: 10 appears more than once"),
     ("the four-bar table repeating an angle", [*FOURBAR, "--angles", "0,0"], "0 appears more than once"),
+    ("a tolerance of a linkage that never assembles", ["tolerance", "fourbar", "--set", "a=100,b=1,c=1,d=1",
+                                                      "--tolerance", "0.1"], "cannot be assembled at any of the input"),
     ("a tolerance that repeats an angle", ["tolerance", "fourbar", "--tolerance", "0.1", "--angles", "5,5"],
      "5 appears more than once"),
 ]

@@ -330,7 +330,8 @@ def _inner(latex: str) -> str:
 
 def derivation(data: Any) -> dict[str, Any]:
     """The derivation of a drawing as LaTeX: ``equations`` (the linkage's own display: closure and closed forms,
-    exactly :func:`from_joints`' LaTeX), ``closure``, ``velocities`` and ``accelerations`` (closed form only), the
+    exactly :func:`from_joints`' LaTeX), ``closure``, ``velocities``, ``accelerations`` and ``forms`` (the seed
+    papers' forms of the positions: complex-number, Freudenstein, tangent half-angle; closed form only), the
     loops and the plan."""
     found = description(data)
     drawn = drawn_linkage(found)
@@ -345,8 +346,13 @@ def derivation(data: Any) -> dict[str, Any]:
                   "closure": _inner(display_latex(closure_rows(linkage.loops))),
                   "velocities": None, "accelerations": None}
         if linkage.has_closed_form:
+            from ..symbolic.seed_forms import FORMS, SEED_FORM_TITLES, seed_form_rows
             result["velocities"] = _inner(display_latex(list(linkage.velocities.items())))
             result["accelerations"] = _inner(display_latex(list(linkage.accelerations.items())))
+            # The seed papers' forms of the positions, shown on request (a closed <details> in the page).
+            result["forms"] = [{"form": form, "title": SEED_FORM_TITLES[form],
+                                "latex": _inner(display_latex(seed_form_rows(linkage, form)))}
+                               for form in FORMS if form != "atan2"]
         return result
     return CACHE.get("derivation", found.key, make)
 

@@ -147,6 +147,23 @@ def test_the_derivation_is_the_linkages_own_latex(client, hoeken):
     assert found["loops"] == ["ABCD"]
 
 
+def test_the_seed_papers_forms_are_there_on_request(client, hoeken):
+    """Freudenstein's constants and the half-angle quadratic, in the linkage's own (Greek) symbols."""
+    import sympy as sp
+
+    from symlink.mechanism.joints import from_joints
+    from symlink.symbolic.seed_forms import seed_form_rows
+    from conftest import HOEKEN_COORDINATES, HOEKEN_LINKS
+    found = client.post("/api/derive", json=hoeken, headers=AUTH).json()
+    forms = {entry["form"]: entry for entry in found["forms"]}
+    assert set(forms) == {"complex", "freudenstein", "half-angle"}
+    linkage = from_joints(HOEKEN_LINKS, HOEKEN_COORDINATES, driver="A", name="hoeken").linkage
+    unknown = sp.latex(linkage.unknowns[0])  # \theta_{BC}: a Greek letter as Greek
+    assert f"K_{{{unknown},1}}" in forms["freudenstein"]["latex"]
+    assert "\\tan" in forms["half-angle"]["latex"] and "- 4 A_" in forms["half-angle"]["latex"]  # B^2 - 4AC
+    assert len(seed_form_rows(linkage, "freudenstein")) >= 4
+
+
 @pytest.mark.parametrize("source", ["fourbar", "atlas:watt-ii", "slider-crank"])
 def test_open_a_catalog_or_atlas_linkage_gives_a_drawing_that_moves(client, source):
     drawing = client.post("/api/open", json={"source": source}, headers=AUTH)

@@ -466,10 +466,26 @@
     typeset("equations", d ? d.equations : null);
     typeset("velocities", d ? d.velocities : null);
     typeset("accelerations", d ? d.accelerations : null);
+    renderForms(d ? d.forms : null);
     renderMotion();
     renderAnalysis();
     renderDesign();
     renderBand();
+  }
+  function renderForms(forms) {
+    var box = el("forms");
+    if (!box) return;
+    box.textContent = "";
+    (forms || []).forEach(function (entry) {
+      var title = document.createElement("h4");
+      title.textContent = "Positions in the " + entry.title;  // text, never markup
+      box.appendChild(title);
+      var maths = document.createElement("div");
+      maths.id = "form-" + entry.form;
+      maths.className = "maths";
+      box.appendChild(maths);
+      typeset(maths.id, entry.latex);
+    });
   }
   function degrees(v) { return v * 180 / Math.PI; }
   function deg(v) { return degrees(v).toFixed(2) + "°"; }

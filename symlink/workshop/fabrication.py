@@ -80,7 +80,8 @@ class Part:
     the link that are no joints (outline corners without a hole), ``slots`` the
     centre lines (start, end) of slots a pin slides in.  ``radius`` is half the
     link's width (the outline's distance from every hole centre, corner and slot end);
-    ``dimensions`` the distance between each pair of holes (``"AB": 20.0``).
+    ``dimensions`` the distance between each pair of holes (``"AB": 20.0``) and from each hole to each
+    mark (``"BP"``), ``marks`` the points the design traces, ``paths`` their paths in the assembly.
     """
 
     _repr_html_ = record_html  # a notebook shows its fields as a table
@@ -94,6 +95,11 @@ class Part:
     dimensions: dict[str, float] = field(default_factory=dict)
     #: Where the part sits in the assembly at the pose it was read at: its frame's origin (x, y) and angle.
     placement: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    #: The named points on the link that are no joints (a coupler point the design traces), in the part's frame:
+    #: each is marked on the part (a centre-punch mark), dimensioned from every hole.
+    marks: dict[str, Point] = field(default_factory=dict)
+    #: Each mark's path over the input's reachable range, in the assembly's (world) coordinates.
+    paths: dict[str, tuple[Point, ...]] = field(default_factory=dict)
 
     def placed(self, point: Point) -> Point:
         """A point of the part's frame in the assembly's (world) coordinates."""
@@ -249,12 +255,21 @@ def link_parts(linkage: Linkage, values: Mapping[str, float], pin_diameter: floa
             holes = dict(holes)
             corners["block_back"] = (x - bar, y)
         dimensions = {a + b: math.dist(holes[a], holes[b]) for a, b in itertools.combinations(holes, 2)}
+        marks = {name: corner for name, corner in corners.items() if name in linkage.points}
+        dimensions.update({hole + mark: math.dist(holes[hole], at) for mark, at in marks.items() for hole in holes})
         for (a, b), apart in zip(itertools.combinations(holes, 2), dimensions.values()):
             if apart < pin:
                 raise ValueError(f"the holes {a} and {b} of {body.name} are {apart:g} apart, less than the pin "
                                  f"diameter {pin:g}: they would run into each other (take smaller pins)")
         placement = (float(origin.real), float(origin.imag), float(numpy.angle(1 / turn)))
-        parts.append(Part(body.name, holes, corners, slots, pin, bar / 2, dimensions, placement))
+        parts.append(Part(body.name, holes, corners, slots, pin, bar / 2, dimensions, placement, marks))
+    traced = [name for part in parts for name in part.marks]
+    if traced:  # what the design is for: the marks' paths, drawn on the assembly
+        from ..numeric.poses import traced_paths
+        found_paths = traced_paths(geometry, values, traced)
+        for part in parts:
+            part.paths.update({name: tuple((float(z.real), float(z.imag)) for z in found_paths[name]
+                                           if numpy.isfinite(z)) for name in part.marks})
     return parts
 
 
@@ -387,6 +402,7 @@ def svg_text(parts: list[Part], unit: str = "mm") -> str:
                          f'r="{_number(part.pin_diameter / 2)}" {stroke}/>')
         for start, end in part.slots:
             lines.append(f'<path class="slot" d="{_slot_path(start, end, part.pin_diameter / 2, at)}" {stroke}/>')
+        lines += _mark_svg(part, at, stroke)
         xmin, ymin, _, ymax = part.extent()
         lines.append(f'<text x="{_number(xmin + dx)}" y="{_number(-(ymax + dy) - text_size)}" '
                      f'font-size="{_number(text_size)}">{escape(part.label(unit))}</text>')
@@ -452,6 +468,13 @@ def assembly_svg_text(parts: list[Part], unit: str = "mm") -> str:
                          f'r="{_number(part.pin_diameter / 2)}" {stroke}/>')
         for start, end in part.slots:
             lines.append(f'<path class="slot" d="{_slot_path(start, end, part.pin_diameter / 2, at)}" {stroke}/>')
+        lines += _mark_svg(part, at, stroke)
+        for name, path in part.paths.items():
+            if len(path) > 1:
+                drawn = " ".join(f"{_number(x)},{_number(-y)}" for x, y in path)
+                lines.append(f'<polyline class="traced-path" data-point={quoteattr(name)} points="{drawn}" '
+                             f'fill="none" stroke="black" stroke-dasharray="{_number(part.radius / 2)}" '
+                             f'stroke-width="{_number(text_size / 30)}"/>')
         points = list(part.holes.values()) + list(part.corners.values()) + [end for slot in part.slots for end in slot]
         x, y = at((sum(p[0] for p in points) / len(points), sum(p[1] for p in points) / len(points))).split()
         lines.append(f'<text x="{x}" y="{y}" font-size="{_number(part.radius)}" text-anchor="middle">'
@@ -459,6 +482,19 @@ def assembly_svg_text(parts: list[Part], unit: str = "mm") -> str:
         lines.append("</g>")
     lines.append("</svg>")
     return "\n".join(lines) + "\n"
+
+
+def _mark_svg(part: Part, at, stroke: str) -> list[str]:
+    """Each mark of ``part`` (a point the design traces) as SVG: a cross of a pin's diameter and a centre dot."""
+    lines = []
+    arm = part.pin_diameter / 2
+    for name, (x, y) in part.marks.items():
+        cross = f"M {at((x - arm, y))} L {at((x + arm, y))} M {at((x, y - arm))} L {at((x, y + arm))}"
+        cx, cy = at((x, y)).split()
+        lines += [f'<path class="mark" data-point={quoteattr(name)} d="{cross}" {stroke}/>',
+                  f'<circle class="mark-centre" data-point={quoteattr(name)} cx="{cx}" cy="{cy}" '
+                  f'r="{_number(part.pin_diameter / 8)}" {stroke}/>']
+    return lines
 
 
 def _extent_corners(part: Part) -> list[Point]:
@@ -589,6 +625,11 @@ def dxf_text(parts: list[Part], unit: str = "mm") -> str:
         for start, end in part.slots:
             space.add_lwpolyline(_slot_vertices(start, end, part.pin_diameter / 2, dx, dy), format="xyb",
                                  close=True, dxfattribs=layer)
+        for (x, y) in part.marks.values():  # a centre-punch mark: a point and a cross
+            arm = part.pin_diameter / 2
+            space.add_point((x + dx, y + dy), dxfattribs=layer)
+            space.add_line((x + dx - arm, y + dy), (x + dx + arm, y + dy), dxfattribs=layer)
+            space.add_line((x + dx, y + dy - arm), (x + dx, y + dy + arm), dxfattribs=layer)
         xmin, _, _, ymax = part.extent()
         space.add_text(part.label(unit), height=part.radius,
                        dxfattribs={**layer, "insert": (xmin + dx, ymax + dy + part.radius)})

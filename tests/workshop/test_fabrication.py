@@ -7,6 +7,7 @@ specification's own endpoint-to-centre conversion (SVG 1.1, appendix F.6.5), wri
 """
 from __future__ import annotations
 
+import importlib.util
 import math
 import os
 import sys
@@ -454,3 +455,36 @@ def test_a_design_read_back_from_json_puts_every_point_where_the_original_does_a
     for point, places in theirs.positions.items():
         ok = theirs.assembled
         assert numpy.max(numpy.abs(ours.positions[point][ok] - places[ok])) <= 1e-13 * size, point
+
+
+# --- parts carry what the design is for: the traced point ---------------------------------------------------------
+
+def test_a_traced_point_is_marked_on_its_link_with_its_dimensions_and_its_path_on_the_assembly():
+    """Seed 003's four-bar with a coupler point P = B + (u + i v) e^{i beta}, u = 30, v = 20: by hand |BP| =
+    sqrt(30^2 + 20^2) and |CP| = sqrt((66 - 30)^2 + 20^2); P's path passes through the pose's P."""
+    import symlink
+    linkage = symlink.with_point(symlink.fourbar(), "B", symlink.fourbar().roles["coupler"])
+    values = {"a": 20, "b": 66, "c": 56, "d": 80, "u": 30, "v": 20}
+    parts = {part.name: part for part in symlink.link_parts(linkage, values, pin_diameter=4)}
+    coupler = next(part for part in parts.values() if "P" in part.marks)
+    assert set(coupler.holes) == {"B", "C"} and coupler.marks["P"] == pytest.approx((30.0, 20.0), abs=1e-12)
+    assert coupler.dimensions["BP"] == pytest.approx(math.hypot(30, 20), rel=1e-14)
+    assert coupler.dimensions["CP"] == pytest.approx(math.hypot(66 - 30, 20), rel=1e-14)
+    assert all(not part.marks for part in parts.values() if part is not coupler)
+    svg = symlink.svg_text(list(parts.values()))
+    assert 'class="mark" data-point="P"' in svg and "BP = 36.0555 mm" in svg
+    assembly = symlink.assembly_svg_text(list(parts.values()))
+    assert 'class="traced-path" data-point="P"' in assembly
+    # the pose's P (theta = 0: B = (20, 0), beta from the triangle B C D) lies on the drawn path
+    here = complex(*coupler.placed(coupler.marks["P"]))
+    path = numpy.array([complex(x, y) for x, y in coupler.paths["P"]])
+    assert len(path) > 100 and numpy.min(numpy.abs(path - here)) < 1e-9 * 80
+    if importlib.util.find_spec("ezdxf"):
+        assert "POINT" in symlink.dxf_text(list(parts.values()))
+
+
+def test_a_linkage_without_a_traced_point_has_no_marks():
+    import symlink
+    parts = symlink.link_parts(symlink.fourbar(), {"a": 20, "b": 66, "c": 56, "d": 80}, pin_diameter=4)
+    assert all(not part.marks and not part.paths for part in parts)
+    assert 'class="mark"' not in symlink.svg_text(parts)

@@ -42,8 +42,13 @@ import math
 import re
 from typing import Any, Mapping
 
+from ..common.files import excerpt
 from ..mechanism.joints import JointDescription, JointLinkage, Slider
 from ..mechanism.topology import GROUND
+from .linkage_file import MAX_LINKAGE_BYTES
+
+#: The largest coordinate or length a mechanism file may hold (the bound of the joints' coordinates).
+MAX_COORDINATE = 1e100
 
 __all__ = ["read_pylinkage", "write_pylinkage"]
 
@@ -80,6 +85,32 @@ def _link_name(identifier: Any, what: str) -> str:
     return name if name[0].isalpha() else f"L_{name}"
 
 
+def _json_number(text: str) -> float:
+    """A JSON number, of any digits, as a finite float in the range every symlink reader takes (else one line)."""
+    value = float(text)  # never int(text): a 5000-digit integer is refused here, not by Python's digit limit
+    if not math.isfinite(value) or abs(value) > MAX_COORDINATE:
+        raise ValueError(f"pylinkage JSON: the number {excerpt(text)} is out of range (at most {MAX_COORDINATE:g})")
+    return value
+
+
+def _json_constant(text: str) -> float:
+    raise ValueError(f"pylinkage JSON: {text} is not a number a mechanism can hold")
+
+
+def _json_data(text: str) -> Any:
+    """The JSON text of a pylinkage mechanism, parsed strictly: size capped, every number range-checked,
+    ``NaN``/``Infinity`` refused, deep nesting refused; every problem one ``ValueError``."""
+    if len(text) > MAX_LINKAGE_BYTES:
+        raise ValueError(f"pylinkage JSON: {len(text):,} characters, more than a mechanism needs "
+                         f"(at most {MAX_LINKAGE_BYTES:,})")
+    try:
+        return json.loads(text, parse_int=_json_number, parse_float=_json_number, parse_constant=_json_constant)
+    except json.JSONDecodeError as error:
+        raise ValueError(f"pylinkage JSON: {error.msg} at line {error.lineno}, column {error.colno}") from None
+    except RecursionError:
+        raise ValueError("pylinkage JSON: nested too deeply for a mechanism") from None
+
+
 def read_pylinkage(data: Mapping[str, Any] | str) -> JointDescription:
     """A pylinkage mechanism (a dict, or its JSON text) as joints, links, drivers and the drawn pose.
 
@@ -113,10 +144,7 @@ def read_pylinkage(data: Mapping[str, Any] | str) -> JointDescription:
     ((('A', 'crank'),), (theta_BC, theta_DC))
     """
     if isinstance(data, str):
-        try:
-            data = json.loads(data)
-        except json.JSONDecodeError as error:
-            raise ValueError(f"pylinkage JSON: {error.msg} at line {error.lineno}, column {error.colno}") from None
+        data = _json_data(data)
     if isinstance(data, Mapping) and _is_legacy(data):
         return _read_legacy(data)
     top = _entry(data, "mechanism", ("joints", "links"))

@@ -41,8 +41,11 @@ import math
 import re
 from typing import Any, Iterable, Mapping, Sequence
 
+from ..common.files import excerpt
 from ..mechanism.joints import JointDescription, JointLinkage, Slider
 from ..mechanism.topology import GROUND
+from .linkage_file import MAX_LINKAGE_BYTES
+from .pylinkage import MAX_COORDINATE
 
 __all__ = ["read_pyslvs", "read_pyslvs_project", "write_pyslvs", "pyslvs_inputs", "pyslvs_joint_name"]
 
@@ -71,12 +74,15 @@ class _Parser:
     def __init__(self, text: str) -> None:
         if not isinstance(text, str):
             raise ValueError(f"a Pyslvs expression is text, not {type(text).__name__}")
+        if len(text) > MAX_LINKAGE_BYTES:
+            raise ValueError(f"a Pyslvs expression of {len(text):,} characters is more than a mechanism needs "
+                             f"(at most {MAX_LINKAGE_BYTES:,})")
         self.tokens: list[tuple[str, str, int]] = []
         position = 0
         while position < len(text):
             match = _TOKEN.match(text, position)
             if match is None:
-                raise ValueError(f"Pyslvs expression, column {position + 1}: unexpected {text[position]!r}")
+                raise ValueError(f"Pyslvs expression, column {position + 1}: unexpected {excerpt(text[position])}")
             kind = match.lastgroup
             assert kind is not None
             if kind != "space":
@@ -90,7 +96,7 @@ class _Parser:
         return f"Pyslvs expression, column {column}"
 
     def _found(self) -> str:
-        return repr(self.tokens[self.index][1]) if self.index < len(self.tokens) else "the end"
+        return excerpt(self.tokens[self.index][1]) if self.index < len(self.tokens) else "the end"
 
     def peek(self) -> str | None:
         return self.tokens[self.index][1] if self.index < len(self.tokens) else None
@@ -110,9 +116,9 @@ class _Parser:
     def number(self) -> float:
         if self.index >= len(self.tokens) or self.tokens[self.index][0] != "number":
             raise ValueError(f"{self._where()}: expected a number, found {self._found()}")
-        value = float(self.tokens[self.index][1])
-        if not math.isfinite(value):
-            raise ValueError(f"{self._where()}: {self._found()} is not a finite number")
+        value = float(self.tokens[self.index][1])  # any digits: a float, range-checked, never int()
+        if not math.isfinite(value) or abs(value) > MAX_COORDINATE:
+            raise ValueError(f"{self._where()}: {self._found()} is out of range (at most {MAX_COORDINATE:g})")
         self.index += 1
         return value
 

@@ -506,3 +506,44 @@ def test_a_pyslvs_ui_project_gives_its_expression_and_input_pairs():
         read_pyslvs_project({"mechanism": expression, "input": [[0, "1"]]})
     with pytest.raises(ValueError, match="not YAML"):
         read_pyslvs_project("mechanism: [unclosed")
+
+
+# --- readers as strict as the linkage file: one ValueError, short, for any bad input ------------------------------
+
+_MECHANISM = ('{"joints": [{"id": "A", "type": "ground", "position": [0, 0]}, '
+              '{"id": "D", "type": "ground", "position": [3, 0]}, '
+              '{"id": "B", "type": "revolute", "position": [0, 1]}, {"id": "C", "type": "revolute", "position": [3, 2]}], '
+              '"links": [{"id": "ground", "type": "ground", "joints": ["A", "D"]}, '
+              '{"id": "crank", "type": "driver", "joints": ["A", "B"], "motor_joint": "A"}, '
+              '{"id": "coupler", "type": "link", "joints": ["B", "C"]}, {"id": "rocker", "type": "link", "joints": ["D", "C"]}]}')
+
+
+@pytest.mark.parametrize("text, words", [
+    ("[" * 100_000 + "]" * 100_000, "nested too deeply"),
+    ('{"a":' * 50_000 + "1" + "}" * 50_000, "nested too deeply"),
+    (_MECHANISM.replace('"position": [0, 1]', '"position": [0, 1' + "0" * 5000 + "]"), "out of range"),
+    (_MECHANISM.replace('"position": [0, 1]', '"position": [0, 1e400]'), "out of range"),
+    (_MECHANISM.replace('"position": [0, 1]', '"position": [0, NaN]'), "NaN is not a number"),
+    (_MECHANISM.replace('"position": [0, 1]', '"position": [0, -Infinity]'), "-Infinity is not a number"),
+    (" " * (5 << 20) + _MECHANISM, "more than a mechanism needs"),
+], ids=["deep list", "deep object", "5000 digits", "1e400", "NaN", "-Infinity", "too large"])
+def test_pylinkage_bad_input_is_one_short_value_error(text, words):
+    with pytest.raises(ValueError, match=words) as refused:
+        read_pylinkage(text)
+    assert len(str(refused.value)) < 300 and "\n" not in str(refused.value)
+
+
+def test_the_strict_pylinkage_reader_still_reads_the_mechanism():
+    assert read_pylinkage(_MECHANISM).build().linkage.unknowns  # the four-bar closes
+
+
+@pytest.mark.parametrize("text, words", [
+    ("M[J[R, color[Green], P[1" + "0" * 5000 + ", 0], L[ground, L1]]]", "out of range"),
+    ("M[J[R, color[Green], P[1e400, 0], L[ground, L1]]]", "out of range"),
+    ("M[J[R, color[Green], P[0, 0], L[" + "9" * 10_000 + "]]]", "expected a link name"),
+    ("M[" + " " * (5 << 20) + "]", "more than a mechanism needs"),
+], ids=["5000 digits", "1e400", "a long word", "too large"])
+def test_pyslvs_bad_input_is_one_short_value_error(text, words):
+    with pytest.raises(ValueError, match=words) as refused:
+        read_pyslvs(text)
+    assert len(str(refused.value)) < 300 and "\n" not in str(refused.value)

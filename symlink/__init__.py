@@ -57,7 +57,7 @@ _public("symlink.mechanism.mobility", "degrees_of_freedom Mobility")
 # code generation
 _public("symlink.codegen.latex", "latex_document newton_document")
 _public("symlink.codegen.numpy", "numpy_module")
-_public("symlink.codegen.javascript", "javascript_geometry javascript_solver")
+_public("symlink.codegen.javascript", "javascript_geometry")
 _public("symlink.codegen.newton", "numeric_module")
 _public("symlink.codegen", "printer PRINTERS")
 # numeric evaluation

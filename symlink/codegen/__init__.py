@@ -53,7 +53,7 @@ def printer(language: str) -> ModuleType:
     --------
     >>> import symlink
     >>> symlink.printer("c").__name__, sorted(symlink.PRINTERS)
-    ('symlink.codegen.c', ['c', 'latex', 'numpy', 'octave'])
+    ('symlink.codegen.c', ['c', 'javascript', 'latex', 'numpy', 'octave'])
     """
     if language not in PRINTERS:
         raise ValueError(f"unknown export format {language!r}; choose one of {', '.join(PRINTERS)}")

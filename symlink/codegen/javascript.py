@@ -596,6 +596,29 @@ def javascript_geometry(linkage: Linkage, outputs: Sequence[str] = (), title: st
     linkage from this solver alone (``solver.sets``: ``requested``, the ``outputs`` asked for, and
     ``geometry``, the rest); as :meth:`symlink.numeric.poses.Geometry.poses` places them, NaN where
     the linkage cannot be assembled.  ``ValueError`` (:data:`NO_CLOSED_FORM`) without a closed form.
+
+    Parameters
+    ----------
+    linkage : Linkage
+        A linkage with a closed form.
+    outputs : sequence of str, optional
+        More outputs to compute beside the joints' places, by name.
+    title, regenerate : str, optional
+        The solver's title and the command that regenerates it, written in its header comment.
+    bodies : mapping of str to sequence of str, optional
+        The links by name and their joints, where the linkage's own bodies are not wanted.
+
+    Returns
+    -------
+    str
+        The JavaScript text (ES2015, no imports): ``require`` it, load it as a script, or ``new Function``.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> text = symlink.javascript_geometry(symlink.fourbar())
+    >>> text.startswith("(function"), '"x_C"' in text, "Math.sqrt" in text
+    (True, True, True)
     """
     program, fields = geometry_program(linkage, outputs, bodies)
     placed = [p["name"] for p in fields["points"]]  # type: ignore[attr-defined]

@@ -30,6 +30,7 @@ from collections import OrderedDict
 from dataclasses import dataclass
 from typing import Any, Callable, Mapping
 
+from ..common.display import record_html
 from ..common.names import PLAIN_NAME, label
 from ..mechanism.joints import JointLinkage, Slider, from_joints
 from ..mechanism.topology import GROUND, Chain
@@ -59,6 +60,8 @@ class StructureError(ValueError):
 @dataclass(frozen=True)
 class Description:
     """The arguments of :func:`~symlink.mechanism.joints.from_joints` that a drawing gives, and what it left out."""
+
+    _repr_html_ = record_html  # a notebook shows its fields as a table
 
     name: str
     links: dict[str, list[str]]

@@ -30,7 +30,7 @@ from ..common.display import record_html
 from ..symbolic.linkage import Linkage
 from ..symbolic.position import TOLERANCE
 from ..numeric.reachability import BISECTIONS, InputMotion, InputRange, assembled_crank_range, reachable_range
-from ..numeric.solver import check_lengths, shared_solver
+from ..numeric.solver import Solver, check_lengths, shared_solver
 from ..symbolic.vectors import Vector
 
 __all__ = ["triangle_angle", "TransmissionRange", "transmission_range", "transmission_curve",
@@ -79,6 +79,13 @@ class TransmissionRange:
         return min(self.minimum, math.pi - self.maximum)
 
 
+def fourbar_transmission_solver() -> Solver:
+    """The four-bar's transmission-angle solver, shared in a process: the one home of that request, so that a
+    caller who needs its answers bit for bit the same over a search can settle its backend first
+    (:func:`symlink.numeric.solver.settled`)."""
+    return shared_solver(fourbar, ("transmission",))
+
+
 def transmission_range(a: float, b: float, c: float, d: float) -> TransmissionRange:
     """Extremes of the transmission angle mu over every crank angle the four-bar reaches.
 
@@ -110,7 +117,7 @@ def transmission_range(a: float, b: float, c: float, d: float) -> TransmissionRa
     reachable = [x for x in (0.0, math.pi) if any(lo <= x <= hi or lo <= x - 2 * math.pi <= hi
                                                   for lo, hi in spans)]
     if reachable:
-        solved = shared_solver(fourbar, ("transmission",))(theta=numpy.array(reachable), a=a, b=b, c=c, d=d, branch=1)
+        solved = fourbar_transmission_solver()(theta=numpy.array(reachable), a=a, b=b, c=c, d=d, branch=1)
         candidates.update(zip(reachable, (float(mu) for mu in solved["transmission"])))
     if spans != [(-math.pi, math.pi)]:
         far = math.acos(max((a * a + d * d - (b + c) ** 2) / (2 * a * d), -1.0))
@@ -129,7 +136,7 @@ def transmission_curve(a: float, b: float, c: float, d: float, theta) -> numpy.n
     [58.23, 109.83]
     """
     check_lengths(crank=a, coupler=b, rocker=c, ground=d)
-    solved = shared_solver(fourbar, ("transmission",))(theta=numpy.asarray(theta, dtype=float), a=a, b=b, c=c, d=d,
+    solved = fourbar_transmission_solver()(theta=numpy.asarray(theta, dtype=float), a=a, b=b, c=c, d=d,
                                                 branch=1)
     return numpy.where(solved["assembled"], solved["transmission"], numpy.nan)
 

@@ -34,7 +34,7 @@ import json
 import math
 import re
 from functools import cached_property, lru_cache
-from typing import Any, Callable, Mapping, Sequence
+from typing import Any, Callable, Mapping, Sequence, TypeVar
 
 import numpy
 
@@ -49,7 +49,9 @@ from .results import Results
 from .units import ANY_LENGTH, argument_units, output_units, plain_values
 from ..symbolic.vectors import acceleration, rate
 
-__all__ = ["Solver", "NumericSolver", "shared_solver", "check_lengths", "crank_speeds"]
+SolverOrNumeric = TypeVar("SolverOrNumeric", "Solver", "NumericSolver")
+
+__all__ = ["Solver", "NumericSolver", "shared_solver", "settled", "check_lengths", "crank_speeds"]
 
 
 def check_lengths(**lengths: float) -> None:
@@ -606,3 +608,20 @@ def shared_solver(build: Callable[..., Linkage], outputs: tuple[str, ...], *argu
     110.74
     """
     return Solver(build(*arguments), list(outputs))
+
+
+def settled(solver: SolverOrNumeric) -> SolverOrNumeric:
+    """``solver`` once its background build is over: from then on one backend answers every call.
+
+    The default ``auto`` backend answers with NumPy while the compiled library builds, then with
+    the library; the two agree to rounding, not bit for bit.  A seeded search that called a solver
+    across that switch would follow other rounding from the switch on, so its result would depend
+    on how long the build took.  Synthesis waits here before it starts: seeded runs are then
+    reproducible bit for bit (compiled where a compiler works, NumPy throughout where none does).
+
+    >>> import symlink
+    >>> settled(symlink.shared_solver(symlink.fourbar, ("rocker",))).backend in ("compiled", "numpy")
+    True
+    """
+    solver.wait_for_backend()
+    return solver

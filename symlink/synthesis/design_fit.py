@@ -31,7 +31,7 @@ from ..symbolic.closure import is_angle
 from ..numeric.design_jacobian import DesignJacobian
 from ..symbolic.linkage import Linkage
 from ..symbolic.loops import Loop
-from ..numeric.solver import NumericSolver, Solver
+from ..numeric.solver import NumericSolver, Solver, settled
 from ..symbolic.vectors import Vector, VectorSum
 from .path import _accelerated_levenberg_marquardt
 
@@ -92,7 +92,7 @@ def _jacobian(linkage: Linkage, outputs: tuple[str, ...], free: tuple[str, ...])
 
 @lru_cache(maxsize=32)
 def _solver(linkage: Linkage, outputs: tuple[str, ...]) -> Solver:
-    return Solver(linkage, list(outputs))
+    return settled(Solver(linkage, list(outputs)))  # one backend for a whole search: seeded runs repeat exactly
 
 
 #: Random initial guesses tried by :func:`find_assembly` before it gives up.
@@ -129,7 +129,7 @@ def find_assembly(linkage: Linkage, values: Mapping[str, float], at: float, rng:
 
 @lru_cache(maxsize=32)
 def _newton_solver(linkage: Linkage) -> NumericSolver:
-    return NumericSolver(linkage)
+    return settled(NumericSolver(linkage))
 
 
 def is_angle_output(linkage: Linkage, name: str) -> bool:

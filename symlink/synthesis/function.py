@@ -40,7 +40,7 @@ from numpy.typing import ArrayLike
 from ..analysis import grashof, wrap_angle
 from ..mechanism.catalog import fourbar
 from ..common.display import record_html
-from ..numeric.solver import check_lengths, shared_solver
+from ..numeric.solver import check_lengths, settled, shared_solver
 
 __all__ = ["FunctionDesign", "freudenstein_coefficients", "lengths_from_coefficients", "chebyshev_points",
            "three_point_design", "least_squares_design", "function_generator", "structural_error",
@@ -222,7 +222,7 @@ def _solve_rocker(lengths: tuple[float, float, float, float], theta: numpy.ndarr
                   offsets: tuple[float, float] = (0.0, 0.0)):
     """The rocker angle (less ``offsets[1]``) at crank angles ``theta`` (plus ``offsets[0]``) on ``branch``."""
     a, b, c, d = lengths
-    solved = dict(shared_solver(fourbar, ("rocker", "singular"))(theta=theta + offsets[0], a=a, b=b, c=c, d=d,
+    solved = dict(settled(shared_solver(fourbar, ("rocker", "singular")))(theta=theta + offsets[0], a=a, b=b, c=c, d=d,
                                                                  branch=branch))
     solved["rocker"] = solved["rocker"] - offsets[1]
     return solved

@@ -60,7 +60,7 @@ from ..common.angles import wrap_angle
 from ..mechanism.catalog import fourbar
 from ..common.display import record_html
 from ..numeric.reachability import crank_range
-from ..numeric.solver import shared_solver
+from ..numeric.solver import settled, shared_solver
 
 __all__ = ["Dyad", "Design", "check_poses", "pole", "pole_triangle", "two_pose_centre", "centre_point",
            "circle_point", "four_pose_dyads", "BurmesterCurves", "burmester_curves", "burmester_points",
@@ -645,7 +645,7 @@ def fourbar_from_dyads(poses, crank_dyad: Dyad, rocker_dyad: Dyad) -> Design:
     frame = numpy.exp(-1j * ground_angle)
     theta = numpy.angle((b_places - a_pivot) * frame)
     phi = numpy.angle((c_places - d_pivot) * frame)
-    solver = shared_solver(fourbar, ("coupler", "rocker"))
+    solver = settled(shared_solver(fourbar, ("coupler", "rocker")))
     branches, error = [], 0.0
     for j in range(len(poses)):
         solved = solver(theta=numpy.array([theta[j], theta[j]]), a=crank, b=coupler, c=rocker, d=ground,

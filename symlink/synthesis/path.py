@@ -62,12 +62,13 @@ import sympy as sp
 from numpy.typing import ArrayLike
 
 from ..analysis import grashof, transmission_range
+from ..analysis.transmission import fourbar_transmission_solver
 from ..mechanism.catalog import fourbar
 from ..numeric.design_jacobian import DesignJacobian
 from ..common.display import record_html
 from ..symbolic.linkage import Linkage
 from ..symbolic.loops import Loop
-from ..numeric.solver import check_lengths, shared_solver
+from ..numeric.solver import check_lengths, settled, shared_solver
 from ..symbolic.vectors import Vector, coordinates, lengths as length_symbols
 
 __all__ = ["PathDesign", "fourbar_design", "synthesize_path", "path_fourbar", "path_jacobian", "check_design",
@@ -249,7 +250,7 @@ class PathDesign:
         """
         angles = numpy.asarray(theta, dtype=float)
         a, b, c, d = self.lengths
-        solved = shared_solver(fourbar, ("B_x", "B_y", "C_x", "C_y", "coupler"))(
+        solved = settled(shared_solver(fourbar, ("B_x", "B_y", "C_x", "C_y", "coupler")))(
             theta=angles, a=a, b=b, c=c, d=d, branch=self.branch)
         origin, turn = complex(*self.crank_pivot), complex(math.cos(self.frame), math.sin(self.frame))
         ok = numpy.asarray(solved["assembled"])
@@ -412,7 +413,7 @@ def _reached_in_order(design: PathDesign, crank_angles: ArrayLike) -> str | None
     """Why the crank cannot move from point to point on one branch (None if it can)."""
     theta = numpy.asarray(crank_angles, dtype=float)
     a, b, c, d = design.lengths
-    solver = shared_solver(fourbar, ("singular",))
+    solver = settled(shared_solver(fourbar, ("singular",)))
     steps = numpy.linspace(0.0, 1.0, _PATH_SAMPLES + 1)
     moves = theta[:-1, None] + (theta[1:] - theta[:-1])[:, None] * steps[None, :] if len(theta) > 1 \
         else theta[:, None]
@@ -1227,6 +1228,7 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
         import scipy.optimize  # noqa: F401
     except ImportError as missing:  # pragma: no cover - the extra is installed in the tests
         raise ImportError("path synthesis needs SciPy: pip install 'symlink-kinematics[synthesis]'") from missing
+    settled(fourbar_transmission_solver())  # its filter and record repeat bit for bit, whenever its build ends
     points = _targets(targets)
     count = len(points)
     timed = theta is not None

@@ -469,9 +469,9 @@ def assembly_svg_text(parts: list[Part], unit: str = "mm") -> str:
         for start, end in part.slots:
             lines.append(f'<path class="slot" d="{_slot_path(start, end, part.pin_diameter / 2, at)}" {stroke}/>')
         lines += _mark_svg(part, at, stroke)
-        for name, path in part.paths.items():
-            if len(path) > 1:
-                drawn = " ".join(f"{_number(x)},{_number(-y)}" for x, y in path)
+        for name, traced in part.paths.items():
+            if len(traced) > 1:
+                drawn = " ".join(f"{_number(x)},{_number(-y)}" for x, y in traced)
                 lines.append(f'<polyline class="traced-path" data-point={quoteattr(name)} points="{drawn}" '
                              f'fill="none" stroke="black" stroke-dasharray="{_number(part.radius / 2)}" '
                              f'stroke-width="{_number(text_size / 30)}"/>')

@@ -115,7 +115,7 @@ def test_readme_first_command_installs_from_a_checkout_and_prints_the_seed_table
     assert install == "pip install -e ."
     assert readme().index(first) < readme().index("pip install symlink-kinematics")
     pyproject = (ROOT / "pyproject.toml").read_text()
-    assert 'name = "symlink-kinematics"' in pyproject and 'symlink = "symlink.cli:main"' in pyproject
+    assert 'name = "symlink-kinematics"' in pyproject and 'symlink = "symlink.__main__:entry"' in pyproject
     assert job.startswith("symlink fourbar ")
     assert main(shlex.split(job)[1:]) == 0
     lines = capsys.readouterr().out.splitlines()

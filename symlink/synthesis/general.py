@@ -69,8 +69,8 @@ from ..common.display import record_html
 from ..symbolic.linkage import Linkage
 from .design_fit import (BRANCH_SAMPLES, INPUT_PHASE, _jacobian, _newton_solver, _solver, branch_break, check_branches,
                          find_assembly, free_bounds, newton_traced_batch)
-from .path import (_accelerated_levenberg_marquardt, check_starts, ordered_inputs, ordered_inputs_jacobian,
-                   steps_under_a_turn)
+from .path import (_accelerated_levenberg_marquardt, check_distinct_targets, check_starts, ordered_inputs,
+                   ordered_inputs_jacobian, steps_under_a_turn)
 
 __all__ = ["PathSynthesis", "synthesize_path", "traced_points", "find_assembly", "path_residuals", "FRAME_NAMES"]
 
@@ -1077,6 +1077,7 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
         raise ValueError(f"{len(points)} targets need {len(points)} finite input values, got shape {inputs.shape}")
     if inputs is None and len(points) < 3:
         raise ValueError("path synthesis without timing needs at least three targets")
+    check_distinct_targets(points, inputs)
     check_branches(linkage, branches)
     check_starts(starts, evaluations, (_NEWTON_TRACED if newton else _SAMPLED) + 1)  # the user's design besides
     for name, bound in (frame_bounds or {}).items():

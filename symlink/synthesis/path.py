@@ -71,7 +71,7 @@ from ..symbolic.loops import Loop
 from ..numeric.solver import check_lengths, settled, shared_solver
 from ..symbolic.vectors import Vector, coordinates, lengths as length_symbols
 
-__all__ = ["PathDesign", "fourbar_design", "synthesize_path", "path_fourbar", "path_jacobian", "check_design",
+__all__ = ["check_distinct_targets", "PathDesign", "fourbar_design", "synthesize_path", "path_fourbar", "path_jacobian", "check_design",
            "DESIGN_NAMES", "GRASHOF_CHOICES", "path_error"]
 
 #: The nine dimensions of a path-generating four-bar, in the order of the design vector.
@@ -535,6 +535,28 @@ def _targets(targets) -> numpy.ndarray:
         raise ValueError(f"the target points must lie within {TARGET_MAGNITUDE:g} of the origin and span more than "
                          f"{1.0 / TARGET_MAGNITUDE:g} (express them in another unit)")
     return array
+
+
+def check_distinct_targets(points: numpy.ndarray, times: numpy.ndarray | None = None) -> None:
+    """``ValueError`` naming the first target given twice (the same point, and the same input where timed).
+
+    A request that repeats a target asks the same thing twice: untimed, a path passes a point once; timed,
+    the same point at the same input is one target.  (A point at two inputs, a closed path's start and end,
+    is two targets.)
+
+    >>> check_distinct_targets(numpy.array([[0.0, 0.0], [1.0, 0.0], [0.0, 0.0]]))
+    Traceback (most recent call last):
+    ValueError: target points 1 and 3 are the same point (0, 0): give each target once
+    >>> check_distinct_targets(numpy.array([[0.0, 0.0], [0.0, 0.0]]), numpy.array([0.0, 3.0]))  # two inputs
+    """
+    rows = points if times is None else numpy.column_stack([points, times])
+    seen: dict[tuple[float, ...], int] = {}
+    for number, row in enumerate(map(tuple, rows.tolist()), start=1):
+        if row in seen:
+            x, y = row[0], row[1]
+            raise ValueError(f"target points {seen[row]} and {number} are the same point ({x:g}, {y:g})"
+                             + (" at the same input" if times is not None else "") + ": give each target once")
+        seen[row] = number
 
 
 #: The largest coordinate a target point may have (and one over the smallest span of the points).
@@ -1242,6 +1264,7 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
         raise ValueError(f"{count} target points need {count} crank angles, got {crank_angles.size}")
     if not numpy.all(numpy.isfinite(crank_angles)):
         raise ValueError("the crank angles must be finite numbers")
+    check_distinct_targets(points, crank_angles if timed else None)
     if grashof_class not in GRASHOF_CHOICES:
         raise ValueError(f"grashof_class must be one of {', '.join(GRASHOF_CHOICES)}, not {grashof_class!r}")
     if not (max_link_ratio >= 1):

@@ -189,3 +189,27 @@ def test_an_output_that_is_no_name_is_refused_in_one_line(output, words):
     from symlink import Solver, fourbar
     with pytest.raises(ValueError, match=words):
         Solver(fourbar(), [output])
+
+
+@pytest.mark.parametrize("rows, extra, words", [
+    ("x,y\n1,2\n1,2\n3,4\n5,7\n", [], "target points 1 and 2 are the same point (1, 2)"),
+    ("x,y\n1,2\n3,4\n5,7\n9,1\n3,4\n", [], "target points 2 and 5 are the same point (3, 4)"),
+], ids=["adjacent", "apart"])
+def test_path_targets_given_twice_are_refused_in_one_line(rows, extra, words, tmp_path, capsys):
+    targets = tmp_path / "targets.csv"
+    targets.write_text(rows)
+    assert main(["synthesize", "path", str(targets), *extra]) == 2
+    _one_error_line(capsys.readouterr().err, words)
+
+
+def test_path_targets_given_twice_are_refused_by_both_python_routes():
+    import symlink
+    points = [[1.0, 2.0], [3.0, 4.0], [1.0, 2.0], [5.0, 7.0]]
+    with pytest.raises(ValueError, match="target points 1 and 3 are the same point"):
+        symlink.synthesize_fourbar_path(points)
+    linkage = symlink.with_point(symlink.fourbar(), "B", symlink.fourbar().roles["coupler"])
+    with pytest.raises(ValueError, match="target points 1 and 3 are the same point"):
+        symlink.synthesize_path(linkage, "P", points, {"a": (1.0, 10.0)},
+                                values={"b": 66.0, "c": 56.0, "d": 80.0, "u": 30.0, "v": 20.0})
+    # timed: the same point at two inputs (a closed path's start and end) is two targets, not a repeat
+    symlink.synthesis.path.check_distinct_targets(np.array(points), np.array([0.0, 1.0, 2.0, 3.0]))

@@ -104,6 +104,8 @@ _public("symlink.plot.animation", "animate animate_linkage inline_animation")
 _public("symlink.plot.view", "FourbarView LinkageView")
 _public("symlink.plot.tolerance", "tolerance_figure band_figure distribution_figure")
 _public("symlink.plot.synthesis", "motion_figure")
+# the studio in a notebook (loaded by name only, on first use: nothing in the library imports the studio)
+_public("symlink.studio.widget", "LinkageWidget")
 
 __all__ = sorted(PUBLIC) + ["__version__"]
 

@@ -339,7 +339,7 @@ def test_public_page_documents_exactly_the_front_door(site):
     order = [name for name in re.findall(r'<dt class="sig sig-object py" id="symlink\.(\w+)"', page) if name != "__version__"]
     layers = ["symlink.common", "symlink.symbolic", "symlink.mechanism", "symlink.codegen", "symlink.numeric",
               "symlink.dynamics", "symlink.io", "symlink.analysis", "symlink.synthesis", "symlink.workshop",
-              "symlink.plot"]
+              "symlink.plot", "symlink.studio"]
     layer = {name: layers.index(".".join(module.split(".")[:2])) for name, (module, _) in symlink.PUBLIC.items()}
     expected = sorted(symlink.PUBLIC, key=lambda name: layer[name])  # stable: PUBLIC's order within a layer
     assert order == expected, "the public page lists the names by layer, each in PUBLIC's order"

@@ -129,11 +129,22 @@ class LinkageWidget(anywidget.AnyWidget):
     or what :func:`symlink.from_joints` returns (its drawn values are the defaults; ``values`` overrides
     some).  ``values`` may name branches too (``branch=-1``); they go to the ``branch`` traitlet.  ``ranges``
     gives a slider's (min, max) where the default (a tenth to three times a length, a full turn for an angle)
-    does not suit.  Import it from its module: the front door ``symlink`` does not import the studio.
+    does not suit.  The front door gives it (``symlink.LinkageWidget``), loaded by name on first use:
+    nothing in the library imports the studio.
 
+    Parameters
+    ----------
+    linkage : Linkage or JointLinkage
+        The linkage, or a linkage drawn by its joints (its drawn values are the defaults).
+    values : mapping of str to float, optional
+        Parameters, inputs and branch signs by name.
+    ranges : mapping of str to (float, float), optional
+        A slider's (min, max) by name.
+
+    Examples
+    --------
     >>> import symlink
-    >>> from symlink.studio.widget import LinkageWidget
-    >>> widget = LinkageWidget(symlink.fourbar(), dict(a=20, b=66, c=56, d=80))
+    >>> widget = symlink.LinkageWidget(symlink.fourbar(), dict(a=20, b=66, c=56, d=80))
     >>> widget.values = {"a": 25}              # what a slider in the page does, from Python
     >>> widget.values["a"], widget.branch
     (25.0, {'branch': 1})

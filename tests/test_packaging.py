@@ -1,4 +1,4 @@
-"""The package's metadata keeps its promises: ``pip install -e '.[test]' && pytest`` has every package it imports.
+"""The package's metadata keeps its promises: ``pip install -e '.[test]' && pytest -n auto`` has every package it imports.
 
 The default test run imports the tests, the ``conftest.py`` files and, for
 their doctests (``--doctest-modules`` over ``testpaths``), every module of

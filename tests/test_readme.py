@@ -127,7 +127,16 @@ def test_readme_first_command_installs_from_a_checkout_and_prints_the_seed_table
 def test_readme_is_a_front_page():
     text = readme()
     assert len(text.encode("utf-8")) <= 15 * 1024
-    assert "pip install -e '.[test]' && pytest\n" in text  # the test command, exactly
+    assert "pip install -e '.[test]' && pytest -n auto\n" in text  # the test command, exactly
+
+
+def test_ci_runs_the_readme_test_command_as_written():
+    """.ci/run takes the README's line that installs the test extra and runs it, so the two cannot drift."""
+    script = (ROOT / ".ci" / "run").read_text()
+    rule = "grep -m 1 \"^pip install -e '.\\[test\\]'\" README.md"
+    assert rule in script and 'bash -c "$tests"' in script
+    lines = [line for line in readme().splitlines() if re.match(r"^pip install -e '\.\[test\]'", line)]
+    assert lines[0] == "pip install -e '.[test]' && pytest -n auto"
 
 
 def test_readme_images_are_absolute_and_exist():

@@ -92,6 +92,9 @@ _SCREENED = 4              # untimed: this many times ``starts`` starts screened
 _SCREEN_EVALUATIONS = 40   # ... this many evaluations each in the first round, twice as many each round after
 _PARTIAL_RANK = 4.0        # untimed starts: a design whose input cannot turn fully ranks as if this much farther
 _ACTIVE = 1e-6             # a constraint within this (relative) of its limit is reported active
+_FLAT = 1e-6               # a transmission angle below this (radians) is a toggle: the input does not turn through it
+_GAP = 1e-5                # a gap in the assembly narrower than this (radians of the input) is a change point
+_MOTION_CHECKED = 300      # starts: the closest fits looked at for one that meets the constraints over the motion
 _PROMISING = 1e-9          # without a closed form: a screened start this close (cost: rms 4e-5 of the size) goes on
 _PROMOTED_EVALUATIONS = 400  # ... at once, for at most this many more evaluations
 _NEWTON_TRACED = 1500      # without a closed form: designs drawn for the starts (traced at once: newton_traced_batch) ...
@@ -409,8 +412,8 @@ class _Problem:
                 return "the input cannot turn fully (the assembly ends or meets a dead centre over the turn)"
             return ""
         arguments = _arguments(linkage, design, {k: int(v) for k, v in branches.items()})
-        turns, low, high, over_turn = self.motion_run(design, arguments, inputs)
-        if self.full_rotation and not turns:
+        turns, low, high, over_turn, toggles = self.motion_run(design, arguments, inputs)
+        if self.full_rotation and not (turns and not toggles):
             return "the input cannot turn fully (no assembly or a toggle over the turn)"
         if self.transmission is None:
             return ""
@@ -435,30 +438,49 @@ class _Problem:
         return f"{math.degrees(wrap_angle(value)):.6g} deg" if self._input_is_angle else f"{value:.6g}"
 
     def motion_run(self, design: Mapping[str, float], arguments: Mapping[str, object], inputs: numpy.ndarray
-                   ) -> tuple[bool, float, float, tuple[float, float, str] | None]:
-        """The motion a closed-form design runs: ``(turns, low, high, over_turn)``.
+                   ) -> tuple[bool, float, float, tuple[float, float, str] | None, bool]:
+        """The motion a closed-form design runs: ``(turns, low, high, over_turn, toggles)``.
 
-        ``turns``: its input turns fully (assembled off a toggle at :data:`~symlink.analysis.transmission.
-        RUN_SAMPLES` values over a turn from the first target, and where it has two-angle loops, their least
-        transmission angle over the turn, refined between the samples, above zero: a gap in the assembly
-        narrower than a sample is found there, where the triangle goes flat), and then it runs the full turn
-        from there; otherwise it rocks between the least and the greatest of ``inputs`` (the targets' inputs,
-        which the verification walks in order on one branch).  ``over_turn``: that least transmission angle,
-        where, and its loop (None where it was not needed or the input does not turn).
+        ``turns``: its input reaches the whole turn (assembled at :data:`~symlink.analysis.transmission.
+        RUN_SAMPLES` values over a turn from the first target and, where it has two-angle loops, at every value
+        the refinement of their least transmission angle tries: a gap in the assembly narrower than a sample is
+        found there, where the triangle goes flat); it then runs the full turn from there, as
+        :func:`symlink.analysis.transmission.run_transmission` reports it.  A gap narrower than :data:`_GAP` is
+        a change point (the design is within rounding of one: its input passes it, through a flat triangle,
+        transmission angle zero), not an end of its motion.  Otherwise it rocks between the least and the
+        greatest of ``inputs`` (the targets' inputs, which the verification walks in order on one branch).
+        ``over_turn``: the least transmission angle over the turn, where, and its loop (None where it was not
+        found).  ``toggles``: a toggle or change point on the turn (a sample at one, or a least transmission
+        angle below :data:`_FLAT`).
         """
         linkage = self.linkage
         turn = float(inputs[0]) + numpy.linspace(0.0, 2 * math.pi, RUN_SAMPLES, endpoint=False)
-        solved = _solver(linkage, ("singular",))(**arguments, **{linkage.inputs[0].name: turn})
-        rocking = (False, float(numpy.min(inputs)), float(numpy.max(inputs)), None)
-        if not bool(numpy.all(numpy.asarray(solved["assembled"]) & ~numpy.asarray(solved["singular"], dtype=bool))):
-            return rocking
+        solver = _solver(linkage, ("singular",))
+        solved = solver(**arguments, **{linkage.inputs[0].name: turn})
+        rocking = (False, float(numpy.min(inputs)), float(numpy.max(inputs)), None, True)
+        assembled = numpy.asarray(solved["assembled"], dtype=bool)
+        toggles = bool(numpy.any(numpy.asarray(solved["singular"], dtype=bool)))
         low, high = float(turn[0]), float(turn[0] + 2 * math.pi)
+        gaps = turn[~assembled]
+        if len(gaps):
+            if len(gaps) > 2 or not self._narrow_gaps(arguments, gaps):
+                return rocking
+            loops = list(self._transmission_worsts(design, arguments, numpy.array([low]))) if self.joints else []
+            return True, low, high, ((0.0, float(gaps[0]), loops[0]) if loops else None), True
         if not self.joints:
-            return True, low, high, None
+            return True, low, high, None, toggles
         over_turn = self._least_transmission(design, arguments, low, high, True)
-        if not over_turn[0] > 0:
-            return rocking
-        return True, low, high, over_turn
+        if math.isnan(over_turn[0]):  # a gap narrower than a sample
+            if not self._narrow_gaps(arguments, numpy.array([over_turn[1]])):
+                return rocking
+            return True, low, high, (0.0, over_turn[1], over_turn[2]), True
+        return True, low, high, over_turn, toggles or not over_turn[0] > _FLAT
+
+    def _narrow_gaps(self, arguments: Mapping[str, object], gaps: numpy.ndarray) -> bool:
+        """Whether the design is assembled :data:`_GAP` before and after each input of ``gaps`` (where it is not)."""
+        around = (gaps[:, None] + numpy.array([-_GAP, _GAP])[None, :]).ravel()
+        solved = _solver(self.linkage, ("singular",))(**arguments, **{self.linkage.inputs[0].name: around})
+        return bool(numpy.all(numpy.asarray(solved["assembled"], dtype=bool)))
 
     def _transmission_worsts(self, design: Mapping[str, float], arguments: Mapping[str, object],
                              values: numpy.ndarray) -> dict[str, numpy.ndarray]:
@@ -485,7 +507,7 @@ class _Problem:
         """Each two-angle loop's worst transmission angle over the motion the design runs (:meth:`motion_run`)."""
         assert self.transmission is not None and not self.newton
         arguments = _arguments(self.linkage, design, {k: int(v) for k, v in branches.items()})
-        turns, low, high, _ = self.motion_run(design, arguments, inputs)
+        turns, low, high, _, _ = self.motion_run(design, arguments, inputs)
         held = {}
         for loop in self._transmission_worsts(design, arguments, numpy.array([float(inputs[0])])):
             def worst_at(values: numpy.ndarray, loop: str = loop) -> numpy.ndarray:
@@ -825,11 +847,27 @@ def _newton_traced(problem: _Problem, rows: numpy.ndarray, sweep: numpy.ndarray,
 
 
 def _ranked(fits: list, count: int, given: Mapping[str, float], problem: _Problem) -> list:
-    """The ``count`` closest fits, the user's own design (sampled first) kept first if it is feasible."""
+    """The ``count`` closest fits, the user's own design (sampled first) kept first if it is feasible.
+
+    With a constraint over the motion (transmission angle, full rotation) on a closed-form linkage, only fits
+    that meet it are kept (the closest :data:`_MOTION_CHECKED` are looked at): a refinement never leaves
+    an infeasible start, so the closest fits, which break it when the targets come from a design that does,
+    would all be lost.
+    """
     first = fits[:1] if fits and all(name in given for name in problem.free) and numpy.array_equal(
         fits[0][1][:len(problem.free)], [given[name] for name in problem.free]) else []
     rest = sorted(fits[len(first):], key=lambda item: item[0])
-    return (first + rest)[:count]
+    ordered = first + rest
+    if problem.newton or (problem.transmission is None and not problem.full_rotation):
+        return ordered[:count]
+    kept = []
+    for fit in ordered[:_MOTION_CHECKED]:
+        design, _ = problem.split(fit[1])
+        if not problem.feasible_motion(design, numpy.asarray(fit[3], dtype=float), fit[2]):
+            kept.append(fit)
+            if len(kept) >= count:
+                break
+    return kept
 
 
 def _longest_run(ok: numpy.ndarray) -> tuple[int, int] | None:
@@ -1176,7 +1214,12 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
         found = _newton_timed_starts(problem, rng, starts, given, guess)
     else:
         found = _timed_starts(problem, rng, starts, given, branches)
+    held = ([f"min_transmission={min_transmission:.6g} rad (held over the motion each design runs)"]
+            if min_transmission > 0 else []) + (["full_rotation"] if full_rotation else [])
     if not found:
+        if held and not newton:
+            raise ValueError(f"no sampled design of {linkage.name} within the bounds is assembled along the targets "
+                             f"and meets {' and '.join(held)}; widen the bounds or ease the constraints")
         raise ValueError(f"no design of {linkage.name} within the bounds is assembled along the targets; widen the "
                          "bounds or change the fixed values")
     best: PathSynthesis | None = None
@@ -1258,11 +1301,8 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
             if verified(x, signs, angles_found):
                 break
     if best is None:
-        stated = ([f"max_link_ratio={max_link_ratio:g}"] if max_link_ratio is not None else []) + (
-            [f"min_transmission={min_transmission:.6g} rad (held over the motion each design runs)"]
-            if min_transmission > 0 else []) + (
-            ["full_rotation"] if full_rotation else []) + ([f"direction={direction:+d}"] if direction is not None
-                                                           else [])
+        stated = ([f"max_link_ratio={max_link_ratio:g}"] if max_link_ratio is not None else []) + held + (
+            [f"direction={direction:+d}"] if direction is not None else [])
         raise ValueError("no start could be refined: every trial left the bounds" + (
             " or broke " + ", ".join(stated) if stated else "") + " (widen the bounds, free more parameters"
             + (" or ease the constraints)" if stated else ")"))

@@ -631,7 +631,9 @@ def held_over_text(over: str, low: float, high: float, angle: bool = True) -> st
 def fourbar_held_transmission(a: float, b: float, c: float, d: float, theta) -> HeldTransmission:
     """The four-bar's worst transmission angle over the motion it runs, in closed form.
 
-    A crank that turns fully (Grashof crank-rocker or double-crank) runs the full turn; any other rocks between
+    A crank that turns fully (Grashof crank-rocker or double-crank, or a change point with the crank or the ground
+    the shortest link, which turns through its flat pose, transmission angle zero, as
+    :func:`~symlink.numeric.reachability.reachable_range` has it) runs the full turn; any other rocks between
     the smallest and the largest crank angle ``theta`` of its targets.  ``|BD|^2 = a^2 + d^2 - 2 a d cos(theta)``
     and mu grows with ``|BD|``, so over a range of crank angles mu is extreme at its ends and at theta = 0 and pi
     (and their turns) inside it; ``min(mu, pi - mu)`` is least at an extreme of mu.
@@ -659,7 +661,9 @@ def fourbar_held_transmission(a: float, b: float, c: float, d: float, theta) -> 
     """
     from .grashof import grashof
     angles = numpy.atleast_1d(numpy.asarray(theta, dtype=float))
-    if grashof(a, b, c, d).name in ("crank-rocker", "double-crank"):
+    kind = grashof(a, b, c, d)
+    if kind.name in ("crank-rocker", "double-crank") or (kind.name == "change-point"
+                                                         and kind.shortest in ("crank", "ground")):
         over, low, high = "full turn", -math.pi, math.pi
         candidates = numpy.array([0.0, math.pi])
     else:

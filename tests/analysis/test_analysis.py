@@ -278,6 +278,7 @@ def _hand_worst(a, b, c, d, low, high, samples=2_000_001):
 @pytest.mark.parametrize("links, theta, over", [
     (SEED003, [0.5, 1.0], "full turn"),                         # a crank-rocker runs the full turn
     ((4.0, 5.0, 6.0, 2.0), [0.5], "full turn"),                 # a double-crank too
+    ((1.0, 3.0, 2.0, 2.0), [0.5, 1.0], "full turn"),            # a change point, the crank the shortest: flat at 0
     ((2.6, 3.0, 2.5, 3.2), [0.9, 1.4, 2.2], "rocking range"),   # a triple rocker rocks between its targets
     ((2.6, 3.0, 2.5, 3.2), [-0.4, 0.3, 1.0], "rocking range"),  # through theta = 0, where mu is least
     ((2.0, 1.0, 2.5, 3.0), [1.2, 0.6], "rocking range"),        # targets in either order

@@ -258,3 +258,11 @@ def test_a_joints_file_synthesized_with_a_transmission_angle_then_every_command_
                         "--angles", repr(record["inputs"][0]), "--format", "csv")
     assert code == 0
     assert float(csv_rows(text)[0]["worst_case"]) == pytest.approx(0.01 * sum(map(abs, slopes)), rel=1e-6)
+
+
+def test_fourbar_path_route_refuses_a_transmission_angle_no_design_holds_in_one_line(tmp_path, points, capsys):
+    out = tmp_path / "never.toml"
+    code, _, err = run(capsys, "synthesize", "path", str(points), "--starts", "2", "--min-transmission", "89.5",
+                       "--out", str(out))
+    assert code == 2 and len(err.strip().splitlines()) == 1 and not out.exists()
+    assert "89.5 deg held over the motion each design runs" in err

@@ -433,9 +433,9 @@ class _Problem:
         return bool(is_angle(self.linkage, self.linkage.inputs[0]))
 
     def _show_input(self, value: float) -> str:
-        """An input value as the constraints' report shows it: degrees in (-180, 180] for an angle."""
+        """An input value as the constraints' report shows it: degrees in (-180, 180] for an angle (to 1e-4 deg)."""
         from ..common.angles import wrap_angle
-        return f"{math.degrees(wrap_angle(value)):.6g} deg" if self._input_is_angle else f"{value:.6g}"
+        return f"{round(math.degrees(wrap_angle(value)), 4) + 0.0:.6g} deg" if self._input_is_angle else f"{value:.6g}"
 
     def motion_run(self, design: Mapping[str, float], arguments: Mapping[str, object], inputs: numpy.ndarray
                    ) -> tuple[bool, float, float, tuple[float, float, str] | None, bool]:

@@ -36,7 +36,8 @@ from ..symbolic.vectors import Vector
 __all__ = ["triangle_angle", "TransmissionRange", "transmission_range", "transmission_curve",
            "TransmissionJoint", "transmission_joints", "transmission_angles", "LoopTransmission",
            "loop_transmissions", "transmission_arrays", "transmission_coordinates", "RunTransmission",
-           "run_transmission", "SANE_TRANSMISSION"]
+           "run_transmission", "SANE_TRANSMISSION", "RUN_SAMPLES", "least_over_inputs", "HeldTransmission",
+           "fourbar_held_transmission", "held_over_text"]
 
 #: A transmission angle (its worst, ``min(mu, pi - mu)``) below this is flagged: the linkage drives badly near it
 #: (30 degrees, the usual rule of thumb of the textbooks).
@@ -518,3 +519,162 @@ def run_transmission(linkage: Linkage, values: Mapping[str, float], inputs, *,
     loop = min(found, key=lambda t: worst_of(t)[0])
     worst, at = worst_of(loop)
     return RunTransmission(float(worst), float(at), loop.loop, over, low, high)
+
+
+# --- held over the motion: what a synthesis checks each trial design against ------------------------------------
+
+#: Input values a turn at which a synthesis samples a trial design's transmission angle over the motion it runs
+#: (one a degree); the least of them is then refined (:func:`least_over_inputs`).
+RUN_SAMPLES = 360
+_REFINEMENTS = 8      # bracket refinements of the sampled least, each a quarter as wide ...
+_BRACKET_POINTS = 9   # ... from this many input values across the bracket
+_BASINS = 3           # the smallest sampled local minima refined (a deeper basin between two samples is found too)
+
+
+def least_over_inputs(worst_at: Callable[[numpy.ndarray], numpy.ndarray], low: float, high: float, *,
+                      periodic: bool = False, samples: int = RUN_SAMPLES) -> tuple[float, float]:
+    """The least of ``worst_at`` over the inputs ``low`` to ``high`` and where: sampled, then refined.
+
+    ``worst_at(inputs)`` gives a value at each input (an array), NaN where the design is not assembled.
+    A grid of ``samples`` a turn (at least 16 over any range) finds the least sample; the bracket around each of
+    the :data:`_BASINS` smallest local minima of the grid is then shrunk :data:`_REFINEMENTS` times (nine values
+    across it, the bracket around their least kept: a quarter as wide each time), a derivative-free search that
+    places a smooth minimum within ~1e-5 of a grid step, so the least returned is the function's to rounding,
+    not a grid's. ``periodic``: the range is a whole turn (the brackets wrap). Returns ``(least, at)``; NaN
+    (and where) if any value is NaN.
+
+    Parameters
+    ----------
+    worst_at : callable
+        Values at an array of inputs (NaN where not assembled).
+    low, high : float
+        The range of the input.
+    periodic : bool, optional
+        The range is a whole turn (default False).
+    samples : int, optional
+        Grid values a turn (default :data:`RUN_SAMPLES`).
+
+    Returns
+    -------
+    (float, float)
+        The least value found and the input where it is.
+
+    Examples
+    --------
+    >>> least, at = least_over_inputs(lambda q: (q - 0.1234567) ** 2 + 1.0, -1.0, 1.0)
+    >>> round(least, 12), round(at, 6)
+    (1.0, 0.123457)
+    """
+    span = high - low
+    count = max(16, int(math.ceil(samples * span / (2 * math.pi))))
+    grid = numpy.linspace(low, high, count, endpoint=not periodic) if span > 0 else numpy.array([low])
+    values = numpy.asarray(worst_at(grid), dtype=float)
+    if not numpy.all(numpy.isfinite(values)):
+        where = int(numpy.flatnonzero(~numpy.isfinite(values))[0])
+        return math.nan, float(grid[where])
+    least_index = int(numpy.argmin(values))
+    least, at = float(values[least_index]), float(grid[least_index])
+    if len(grid) < 3:
+        return least, at
+    step = grid[1] - grid[0]
+    before = numpy.roll(values, 1) if periodic else numpy.concatenate([[numpy.inf], values[:-1]])
+    after = numpy.roll(values, -1) if periodic else numpy.concatenate([values[1:], [numpy.inf]])
+    minima = numpy.flatnonzero((values <= before) & (values <= after))
+    minima = minima[numpy.argsort(values[minima], kind="stable")][:_BASINS]
+    centres, half = grid[minima].astype(float), step
+    across = numpy.linspace(-1.0, 1.0, _BRACKET_POINTS)
+    for _ in range(_REFINEMENTS):
+        trial = centres[:, None] + half * across[None, :]
+        if not periodic:
+            trial = numpy.clip(trial, low, high)
+        found = numpy.asarray(worst_at(trial.ravel()), dtype=float).reshape(trial.shape)
+        found = numpy.where(numpy.isfinite(found), found, -numpy.inf)  # not assembled inside: that is the least
+        best = numpy.argmin(found, axis=1)
+        rows = numpy.arange(len(centres))
+        centres, values_now = trial[rows, best], found[rows, best]
+        k = int(numpy.argmin(values_now))
+        if values_now[k] < least:
+            least, at = float(values_now[k]), float(centres[k])
+        half *= 2.0 / (_BRACKET_POINTS - 1)
+    if not math.isfinite(least):
+        return math.nan, at
+    return least, at
+
+
+@dataclass(frozen=True)
+class HeldTransmission:
+    """The worst transmission angle (``min(mu, pi - mu)``, radians) of a design over the motion it runs: ``over``
+    is ``full turn`` (the input turns fully) or ``rocking range`` (between the inputs ``low`` and ``high`` of
+    its targets); ``at`` the input where it is worst."""
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
+
+    worst: float
+    at: float
+    over: str
+    low: float
+    high: float
+
+
+def held_over_text(over: str, low: float, high: float, angle: bool = True) -> str:
+    """``the full turn`` or ``input 12-87.5 deg``: what a constraint was held over, in words (degrees for an angle).
+
+    >>> held_over_text("rocking range", math.radians(12.0), math.radians(87.5))
+    'input 12-87.5 deg'
+    """
+    if over == "full turn":
+        return "the full turn"
+    show = (lambda x: f"{math.degrees(x):.6g}") if angle else (lambda x: f"{x:.6g}")  # noqa: E731
+    return f"input {show(low)}-{show(high)}" + (" deg" if angle else "")
+
+
+def fourbar_held_transmission(a: float, b: float, c: float, d: float, theta) -> HeldTransmission:
+    """The four-bar's worst transmission angle over the motion it runs, in closed form.
+
+    A crank that turns fully (Grashof crank-rocker or double-crank, or a change point with the crank or the ground
+    the shortest link, which turns through its flat pose, transmission angle zero, as
+    :func:`~symlink.numeric.reachability.reachable_range` has it) runs the full turn; any other rocks between
+    the smallest and the largest crank angle ``theta`` of its targets.  ``|BD|^2 = a^2 + d^2 - 2 a d cos(theta)``
+    and mu grows with ``|BD|``, so over a range of crank angles mu is extreme at its ends and at theta = 0 and pi
+    (and their turns) inside it; ``min(mu, pi - mu)`` is least at an extreme of mu.
+
+    Parameters
+    ----------
+    a, b, c, d : float
+        Crank, coupler, rocker and ground lengths.
+    theta : array_like
+        The crank angles at the targets (radians), in the order they are reached.
+
+    Returns
+    -------
+    HeldTransmission
+        The worst, where, and over what.
+
+    Examples
+    --------
+    >>> held = fourbar_held_transmission(20, 66, 56, 80, [0.0])  # a crank-rocker: |BD| = 60 at theta = 0
+    >>> held.over, round(math.degrees(held.worst), 2)
+    ('full turn', 58.23)
+    >>> held = fourbar_held_transmission(2.0, 1.0, 2.5, 3.0, [0.6, 1.0])  # a triple rocker, between its targets
+    >>> held.over, round(math.degrees(held.worst), 2)  # cos mu = (1 + 6.25 - 13 + 12 cos 0.6) / 5 at the near end
+    ('rocking range', 33.82)
+    """
+    from .grashof import grashof
+    angles = numpy.atleast_1d(numpy.asarray(theta, dtype=float))
+    kind = grashof(a, b, c, d)
+    if kind.name in ("crank-rocker", "double-crank") or (kind.name == "change-point"
+                                                         and kind.shortest in ("crank", "ground")):
+        over, low, high = "full turn", -math.pi, math.pi
+        candidates = numpy.array([0.0, math.pi])
+    else:
+        over, low, high = "rocking range", float(angles.min()), float(angles.max())
+        inside = numpy.arange(math.ceil(low / math.pi), math.floor(high / math.pi) + 1) * math.pi
+        candidates = numpy.concatenate([[low, high], inside])
+    diagonal = numpy.sqrt(numpy.maximum(a * a + d * d - 2 * a * d * numpy.cos(candidates), 0.0))
+    mu = triangle_angle(diagonal, b, c)
+    worst = numpy.minimum(mu, math.pi - mu)
+    if not numpy.all(numpy.isfinite(worst)):
+        k = int(numpy.flatnonzero(~numpy.isfinite(worst))[0])
+        return HeldTransmission(math.nan, float(candidates[k]), over, low, high)
+    k = int(numpy.argmin(worst))
+    return HeldTransmission(float(worst[k]), float(candidates[k]), over, low, high)

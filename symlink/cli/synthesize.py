@@ -219,8 +219,9 @@ def _register_path(kinds) -> None:
                          help="longest link at most R times the shortest (default 20; with LINKAGE: no bound "
                               "unless given)")
     command.add_argument("--min-transmission", type=angle, default=0.0, metavar="ANGLE",
-                         help="worst transmission angle over the crank's turn at least this (default 0; with "
-                              "LINKAGE: at every target, at every loop with two unknown angles)")
+                         help="worst transmission angle at least this over the motion each design runs: the "
+                              "full turn for a crank that turns fully, else between its first and last target "
+                              "(default 0; with LINKAGE: at every loop with two unknown angles)")
     command.add_argument("--seed", type=whole, default=0, help="seed of the atlas of starts (default 0)")
     add_units_option(command)
     add_format_option(command)
@@ -282,8 +283,9 @@ def _run_path(args: argparse.Namespace) -> int:
                      else math.nan, "run": run})
     runs = [row.pop("run") for row in rows]
     if args.format == "json":
-        for row, design in zip(rows, designs):
-            row.update(grashof=design.grashof, theta=[angle(t) for t in design.theta], errors=list(design.errors))
+        for row, design, run in zip(rows, designs, runs):
+            row.update(grashof=design.grashof, theta=[angle(t) for t in design.theta], errors=list(design.errors),
+                       **({"transmission_over": transmission_over(run, args.units)} if run is not None else {}))
         print(json.dumps([{k: [json_number(x) for x in v] if isinstance(v, list) else json_number(v)
                            for k, v in row.items()} for row in rows], indent=1))
     else:
@@ -295,6 +297,10 @@ def _run_path(args: argparse.Namespace) -> int:
          "(their bounding-box diagonal)")
     for rank, run in enumerate(runs, start=1):
         report_transmission(run, args.units, f"design {rank}")
+    if args.min_transmission > 0:
+        note(f"--min-transmission {args.min_transmission:g} {args.units} held over the motion each design runs "
+             "(the full turn for a crank that turns fully, else between its first and last target), in every "
+             "trial of the search")
     if args.out:
         linkage, (placed, defaults, left, _) = files[0]
         write_design(args.out, placed, defaults, (
@@ -807,8 +813,8 @@ def _general_record(args, kind: str, linkage, design, placement, error: float, c
             "columns": list(columns), "targets": targets, "errors": list(map(float, errors)), **extra,
             **({"constraints": list(design.constraints), "active": list(design.active)}
                if getattr(design, "constraints", ()) else {}),
-            **({"worst_transmission": unit(run.worst), "transmission_over": run.over if run.over == "full turn"
-                else f"rocking range {as_input(run.low):.6g} to {as_input(run.high):.6g}"} if run is not None else {}),
+            **({"worst_transmission": unit(run.worst), "transmission_over": transmission_over(run, args.units, as_input)}
+               if run is not None else {}),
             "units": args.units, "why": design.why}
 
 
@@ -827,6 +833,9 @@ def _print_general(args: argparse.Namespace, record: dict) -> None:
     if "shape" in record:
         note(f"{record['shape']} shape matched: shape distance {record['sampled_distance']:.3g} sampled, "
              f"{record['shape_distance']:.3g} refined (0: similar curves, at most 1)")
+    for held in record.get("constraints", ()):
+        if held.startswith("transmission angle"):
+            note(f"held in every trial of the search: {held}")
     if record["placement"].get("scale", 1.0) != 1.0:
         note(f"lengths as written (the linkage's own scaled by {record['placement']['scale']:.6g})")
     note("the error column: " + {"function": f"the largest |generated - wanted| output ({args.units} for an angle)",
@@ -964,6 +973,15 @@ def design_transmission(placed, defaults: dict, signs: dict, inputs, guess: dict
         return run_transmission(placed, {**values, **signs}, inputs, guess=guess)
     except ValueError:
         return None
+
+
+def transmission_over(run, units: str, as_input: Callable[[float], float] | None = None) -> str:
+    """What a record says the worst transmission is over: ``full turn``, or ``rocking range LOW to HIGH`` of the
+    input (in ``units`` for an angle: ``as_input`` converts, default an angle)."""
+    if run.over == "full turn":
+        return "full turn"
+    shown = as_input or (lambda x: float(from_radians(x, units)))
+    return f"rocking range {shown(run.low):.6g} to {shown(run.high):.6g}"
 
 
 def transmission_text(run, units: str) -> str:

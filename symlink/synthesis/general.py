@@ -64,7 +64,8 @@ import numpy
 import sympy as sp
 from numpy.typing import ArrayLike
 
-from ..analysis.transmission import transmission_arrays, transmission_coordinates
+from ..analysis.transmission import (RUN_SAMPLES, HeldTransmission, held_over_text, least_over_inputs,
+                                     transmission_arrays, transmission_coordinates)
 from ..common.display import record_html
 from ..symbolic.linkage import Linkage
 from .design_fit import (BRANCH_SAMPLES, INPUT_PHASE, _jacobian, _newton_solver, _solver, branch_break, check_branches,
@@ -91,6 +92,9 @@ _SCREENED = 4              # untimed: this many times ``starts`` starts screened
 _SCREEN_EVALUATIONS = 40   # ... this many evaluations each in the first round, twice as many each round after
 _PARTIAL_RANK = 4.0        # untimed starts: a design whose input cannot turn fully ranks as if this much farther
 _ACTIVE = 1e-6             # a constraint within this (relative) of its limit is reported active
+_FLAT = 1e-6               # a transmission angle below this (radians) is a toggle: the input does not turn through it
+_GAP = 1e-5                # a gap in the assembly narrower than this (radians of the input) is a change point
+_MOTION_CHECKED = 300      # starts: the closest fits looked at for one that meets the constraints over the motion
 _PROMISING = 1e-9          # without a closed form: a screened start this close (cost: rms 4e-5 of the size) goes on
 _PROMOTED_EVALUATIONS = 400  # ... at once, for at most this many more evaluations
 _NEWTON_TRACED = 1500      # without a closed form: designs drawn for the starts (traced at once: newton_traced_batch) ...
@@ -305,8 +309,9 @@ class _Problem:
         self.links = numpy.array([name in positive for name in self.free], dtype=bool)
         self.fixed_links = [abs(float(values[p.name])) for p in linkage.parameters
                             if p.is_positive and p.name not in self.free and p.name in values]
-        self.transmission = ((transmission_coordinates(linkage), min_transmission) if min_transmission > 0
-                             else None)
+        #: The coordinates the transmission angles of its two-angle loops need (none without a closed form).
+        self.joints = transmission_coordinates(linkage) if not self.newton else []
+        self.transmission = ((self.joints, min_transmission) if min_transmission > 0 else None)
 
     @property
     def width(self) -> int:
@@ -388,22 +393,16 @@ class _Problem:
 
     def feasible_motion(self, design: Mapping[str, float], inputs: numpy.ndarray,
                         branches: Mapping[str, float]) -> str:
-        """Why the design breaks the transmission or rotation constraint at these inputs ('' if it does not)."""
+        """Why the design breaks the transmission or rotation constraint over the motion it runs ('' if it does not).
+
+        ``inputs``: the input at each target.  The motion (:meth:`motion_run`) is the full turn where the input
+        turns fully, else the range of ``inputs``; the transmission angle is held over all of it
+        (:meth:`held_transmissions`), not only at the targets.
+        """
         if self.transmission is None and not self.full_rotation:
             return ""
         linkage = self.linkage
-        arguments = _arguments(linkage, design, None if self.newton else {k: int(v) for k, v in branches.items()})
-        if self.transmission is not None:
-            names, least = self.transmission
-            try:
-                solved = self.solved(tuple(names), design, inputs, branches)
-            except ValueError as error:
-                return f"the input cannot move along the targets on one assembly: {error}"
-            for loop, mu in transmission_arrays(linkage, {**design, **arguments}, solved).items():
-                worst = float(numpy.min(numpy.minimum(mu, math.pi - mu)))
-                if not worst >= least:
-                    return f"the transmission angle at {loop} falls to {math.degrees(worst):.6g} deg"
-        if self.full_rotation and self.newton:
+        if self.newton:  # no transmission angle without a closed form (refused up front): full rotation only
             # Newton's method continued a whole turn from the assembly at the first input: it stops (ValueError)
             # where the assembly ends or at a dead centre.
             turn = float(inputs[0]) + numpy.linspace(0.0, 2 * math.pi, _ROTATION_SAMPLES + 1)
@@ -411,13 +410,112 @@ class _Problem:
                 self.solved(self.unknown_names, design, turn, branches)
             except ValueError:
                 return "the input cannot turn fully (the assembly ends or meets a dead centre over the turn)"
-        elif self.full_rotation:
-            turn = numpy.linspace(0.0, 2 * math.pi, _ROTATION_SAMPLES, endpoint=False)
-            solved = _solver(linkage, ("singular",))(**arguments, **{linkage.inputs[0].name: turn})
-            ok = numpy.asarray(solved["assembled"]) & ~numpy.asarray(solved["singular"], dtype=bool)
-            if not numpy.all(ok):
-                return "the input cannot turn fully (no assembly or a toggle over the turn)"
+            return ""
+        arguments = _arguments(linkage, design, {k: int(v) for k, v in branches.items()})
+        turns, low, high, over_turn, toggles = self.motion_run(design, arguments, inputs)
+        if self.full_rotation and not (turns and not toggles):
+            return "the input cannot turn fully (no assembly or a toggle over the turn)"
+        if self.transmission is None:
+            return ""
+        least = self.transmission[1]
+        worst, at, loop = over_turn if over_turn is not None else self._least_transmission(
+            design, arguments, low, high, turns)
+        if not worst >= least:
+            over = held_over_text("full turn" if turns else "rocking range", low, high, self._input_is_angle)
+            shown = "not assembled" if math.isnan(worst) else f"falls to {math.degrees(worst):.6g} deg"
+            return (f"the transmission angle at {loop} {shown} at input {self._show_input(at)} (held >= "
+                    f"{math.degrees(least):.6g} deg over {over})")
         return ""
+
+    @property
+    def _input_is_angle(self) -> bool:
+        from ..symbolic.closure import is_angle
+        return bool(is_angle(self.linkage, self.linkage.inputs[0]))
+
+    def _show_input(self, value: float) -> str:
+        """An input value as the constraints' report shows it: degrees in (-180, 180] for an angle (to 1e-4 deg)."""
+        from ..common.angles import wrap_angle
+        return f"{round(math.degrees(wrap_angle(value)), 4) + 0.0:.6g} deg" if self._input_is_angle else f"{value:.6g}"
+
+    def motion_run(self, design: Mapping[str, float], arguments: Mapping[str, object], inputs: numpy.ndarray
+                   ) -> tuple[bool, float, float, tuple[float, float, str] | None, bool]:
+        """The motion a closed-form design runs: ``(turns, low, high, over_turn, toggles)``.
+
+        ``turns``: its input reaches the whole turn (assembled at :data:`~symlink.analysis.transmission.
+        RUN_SAMPLES` values over a turn from the first target and, where it has two-angle loops, at every value
+        the refinement of their least transmission angle tries: a gap in the assembly narrower than a sample is
+        found there, where the triangle goes flat); it then runs the full turn from there, as
+        :func:`symlink.analysis.transmission.run_transmission` reports it.  A gap narrower than :data:`_GAP` is
+        a change point (the design is within rounding of one: its input passes it, through a flat triangle,
+        transmission angle zero), not an end of its motion.  Otherwise it rocks between the least and the
+        greatest of ``inputs`` (the targets' inputs, which the verification walks in order on one branch).
+        ``over_turn``: the least transmission angle over the turn, where, and its loop (None where it was not
+        found).  ``toggles``: a toggle or change point on the turn (a sample at one, or a least transmission
+        angle below :data:`_FLAT`).
+        """
+        linkage = self.linkage
+        turn = float(inputs[0]) + numpy.linspace(0.0, 2 * math.pi, RUN_SAMPLES, endpoint=False)
+        solver = _solver(linkage, ("singular",))
+        solved = solver(**arguments, **{linkage.inputs[0].name: turn})
+        rocking = (False, float(numpy.min(inputs)), float(numpy.max(inputs)), None, True)
+        assembled = numpy.asarray(solved["assembled"], dtype=bool)
+        toggles = bool(numpy.any(numpy.asarray(solved["singular"], dtype=bool)))
+        low, high = float(turn[0]), float(turn[0] + 2 * math.pi)
+        gaps = turn[~assembled]
+        if len(gaps):
+            if len(gaps) > 2 or not self._narrow_gaps(arguments, gaps):
+                return rocking
+            loops = list(self._transmission_worsts(design, arguments, numpy.array([low]))) if self.joints else []
+            return True, low, high, ((0.0, float(gaps[0]), loops[0]) if loops else None), True
+        if not self.joints:
+            return True, low, high, None, toggles
+        over_turn = self._least_transmission(design, arguments, low, high, True)
+        if math.isnan(over_turn[0]):  # a gap narrower than a sample
+            if not self._narrow_gaps(arguments, numpy.array([over_turn[1]])):
+                return rocking
+            return True, low, high, (0.0, over_turn[1], over_turn[2]), True
+        return True, low, high, over_turn, toggles or not over_turn[0] > _FLAT
+
+    def _narrow_gaps(self, arguments: Mapping[str, object], gaps: numpy.ndarray) -> bool:
+        """Whether the design is assembled :data:`_GAP` before and after each input of ``gaps`` (where it is not)."""
+        around = (gaps[:, None] + numpy.array([-_GAP, _GAP])[None, :]).ravel()
+        solved = _solver(self.linkage, ("singular",))(**arguments, **{self.linkage.inputs[0].name: around})
+        return bool(numpy.all(numpy.asarray(solved["assembled"], dtype=bool)))
+
+    def _transmission_worsts(self, design: Mapping[str, float], arguments: Mapping[str, object],
+                             values: numpy.ndarray) -> dict[str, numpy.ndarray]:
+        """``min(mu, pi - mu)`` of every two-angle loop at the inputs ``values``; NaN where not assembled."""
+        names = tuple(self.joints)
+        solved = _solver(self.linkage, names)(**arguments, **{self.linkage.inputs[0].name: values})
+        ok = numpy.asarray(solved["assembled"], dtype=bool)
+        return {loop: numpy.where(ok, numpy.minimum(mu, math.pi - mu), numpy.nan)
+                for loop, mu in transmission_arrays(self.linkage, {**design, **arguments}, solved).items()}
+
+    def _least_transmission(self, design: Mapping[str, float], arguments: Mapping[str, object], low: float,
+                            high: float, turns: bool) -> tuple[float, float, str]:
+        """The least ``min(mu, pi - mu)`` of every two-angle loop over ``low`` to ``high``, where, and which loop."""
+        def worst_at(values: numpy.ndarray) -> numpy.ndarray:
+            return numpy.min(numpy.stack(list(self._transmission_worsts(design, arguments, values).values())), axis=0)
+
+        worst, at = least_over_inputs(worst_at, low, high, periodic=turns)
+        by_loop = self._transmission_worsts(design, arguments, numpy.array([at]))
+        loop = min(by_loop, key=lambda name: (numpy.nan_to_num(by_loop[name][0], nan=-1.0), name))
+        return worst, at, loop
+
+    def held_transmissions(self, design: Mapping[str, float], inputs: numpy.ndarray,
+                           branches: Mapping[str, float]) -> dict[str, HeldTransmission]:
+        """Each two-angle loop's worst transmission angle over the motion the design runs (:meth:`motion_run`)."""
+        assert self.transmission is not None and not self.newton
+        arguments = _arguments(self.linkage, design, {k: int(v) for k, v in branches.items()})
+        turns, low, high, _, _ = self.motion_run(design, arguments, inputs)
+        held = {}
+        for loop in self._transmission_worsts(design, arguments, numpy.array([float(inputs[0])])):
+            def worst_at(values: numpy.ndarray, loop: str = loop) -> numpy.ndarray:
+                return self._transmission_worsts(design, arguments, values)[loop]
+
+            worst, at = least_over_inputs(worst_at, low, high, periodic=turns)
+            held[loop] = HeldTransmission(worst, at, "full turn" if turns else "rocking range", low, high)
+        return held
 
     def projected(self, x: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
         """``x`` with its free parameters and placement clipped to their bounds, and which entries were outside."""
@@ -749,11 +847,27 @@ def _newton_traced(problem: _Problem, rows: numpy.ndarray, sweep: numpy.ndarray,
 
 
 def _ranked(fits: list, count: int, given: Mapping[str, float], problem: _Problem) -> list:
-    """The ``count`` closest fits, the user's own design (sampled first) kept first if it is feasible."""
+    """The ``count`` closest fits, the user's own design (sampled first) kept first if it is feasible.
+
+    With a constraint over the motion (transmission angle, full rotation) on a closed-form linkage, only fits
+    that meet it are kept (the closest :data:`_MOTION_CHECKED` are looked at): a refinement never leaves
+    an infeasible start, so the closest fits, which break it when the targets come from a design that does,
+    would all be lost.
+    """
     first = fits[:1] if fits and all(name in given for name in problem.free) and numpy.array_equal(
         fits[0][1][:len(problem.free)], [given[name] for name in problem.free]) else []
     rest = sorted(fits[len(first):], key=lambda item: item[0])
-    return (first + rest)[:count]
+    ordered = first + rest
+    if problem.newton or (problem.transmission is None and not problem.full_rotation):
+        return ordered[:count]
+    kept = []
+    for fit in ordered[:_MOTION_CHECKED]:
+        design, _ = problem.split(fit[1])
+        if not problem.feasible_motion(design, numpy.asarray(fit[3], dtype=float), fit[2]):
+            kept.append(fit)
+            if len(kept) >= count:
+                break
+    return kept
 
 
 def _longest_run(ok: numpy.ndarray) -> tuple[int, int] | None:
@@ -835,9 +949,7 @@ def _verify(problem: _Problem, x: numpy.ndarray, branches: Mapping[str, int], in
     else:
         why = branch_break(linkage, design, branches, inputs)
         if not why:
-            steps = numpy.linspace(0.0, 1.0, _PATH_SAMPLES + 1)
-            moves = inputs[:-1, None] + numpy.diff(inputs)[:, None] * steps[None, :]
-            why = problem.feasible_motion(design, moves.ravel(), branches)
+            why = problem.feasible_motion(design, inputs, branches)
     if not why and not problem.allowed(x):
         why = "outside the bounds or the link ratio"
     stated, active = _constraint_report(problem, x, design, branches, inputs)
@@ -883,7 +995,7 @@ def _verify_newton(problem: _Problem, x: numpy.ndarray, start: Mapping[str, floa
             errors = numpy.hypot(*(reached - problem.targets).T)
             assembly = {name: float(numpy.asarray(solved[name])[0]) for name in problem.unknown_names}
             problem.assembly = assembly
-            why = problem.feasible_motion(design, moves.ravel(), assembly)
+            why = problem.feasible_motion(design, inputs, assembly)
     if not why and not problem.allowed(x):
         why = "outside the bounds or the link ratio"
     stated, active = _constraint_report(problem, x, design, {}, inputs)
@@ -915,18 +1027,13 @@ def _constraint_report(problem: _Problem, x: numpy.ndarray, design: Mapping[str,
         stated.append(f"link ratio {ratio:.6g} <= {problem.max_link_ratio:.6g}")
         if abs(ratio - problem.max_link_ratio) <= _ACTIVE * problem.max_link_ratio:
             active.append(f"link ratio at {problem.max_link_ratio:.6g}")
-    if problem.transmission is not None:
-        names_needed, least = problem.transmission
-        arguments = _arguments(problem.linkage, design, None if problem.newton else branches)
-        try:
-            solved = problem.solved(tuple(names_needed), design, inputs, branches)
-        except ValueError:  # a Newton linkage not continued along its targets: reported as such by the verification
-            solved = {name: numpy.full(len(inputs), numpy.nan) for name in names_needed}
-        for loop, mu in transmission_arrays(problem.linkage, {**design, **arguments}, solved).items():
-            worst = float(numpy.min(numpy.minimum(mu, math.pi - mu)))
-            stated.append(f"transmission angle at {loop} >= {math.degrees(least):.6g} deg: "
-                          f"{math.degrees(worst):.6g} deg at the targets")
-            if abs(worst - least) <= 1e-6:
+    if problem.transmission is not None and not problem.newton:
+        least = problem.transmission[1]
+        for loop, held in problem.held_transmissions(design, inputs, branches).items():
+            over = held_over_text(held.over, held.low, held.high, problem._input_is_angle)
+            stated.append(f"transmission angle at {loop} >= {math.degrees(least):.6g} deg over {over}: "
+                          f"{math.degrees(held.worst):.6g} deg at input {problem._show_input(held.at)}")
+            if abs(held.worst - least) <= 1e-6:
                 active.append(f"transmission angle at {loop} at {math.degrees(least):.6g} deg")
     if problem.full_rotation:
         stated.append("the input turns fully")
@@ -962,8 +1069,11 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
     the pivot inside a box) and what every design meets (the targets reached in order on one
     assembly branch, no toggle between them): ``max_link_ratio`` bounds the longest link over
     the shortest (positive length parameters, free and fixed; None: no bound);
-    ``min_transmission`` (radians) bounds the transmission angle of every two-angle loop at
-    every target from 0 and from pi (:func:`symlink.analysis.transmission.transmission_arrays`);
+    ``min_transmission`` (radians) bounds the transmission angle of every two-angle loop from 0 and
+    from pi (:func:`symlink.analysis.transmission.transmission_arrays`) over the motion the design
+    runs, in every trial: the full turn where its input turns fully, else the range of the inputs at
+    the targets (sampled at one a degree, the least refined:
+    :func:`symlink.analysis.transmission.least_over_inputs`; ``constraints`` says over what);
     ``full_rotation`` asks that the input turn a whole turn without leaving the assembly or
     passing a toggle; ``direction`` (without timing: +1 or -1) that the input grow (+1) or shrink
     from target to target (default: either).  Infeasible trials are refused, never penalised; the design reports each
@@ -1013,7 +1123,8 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
     max_link_ratio : float, optional
         A bound on the longest link over the shortest (default none).
     min_transmission : float, optional
-        A bound (radians) on every two-angle loop's transmission angle from 0 and pi at every target.
+        A bound (radians) on every two-angle loop's transmission angle from 0 and pi over the motion the design
+        runs (the full turn where its input turns fully, else the range of the inputs at the targets).
     full_rotation : bool, optional
         Ask that the input turn fully without a toggle.
     direction : {1, -1}, optional
@@ -1103,7 +1214,12 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
         found = _newton_timed_starts(problem, rng, starts, given, guess)
     else:
         found = _timed_starts(problem, rng, starts, given, branches)
+    held = ([f"min_transmission={min_transmission:.6g} rad (held over the motion each design runs)"]
+            if min_transmission > 0 else []) + (["full_rotation"] if full_rotation else [])
     if not found:
+        if held and not newton:
+            raise ValueError(f"no sampled design of {linkage.name} within the bounds is assembled along the targets "
+                             f"and meets {' and '.join(held)}; widen the bounds or ease the constraints")
         raise ValueError(f"no design of {linkage.name} within the bounds is assembled along the targets; widen the "
                          "bounds or change the fixed values")
     best: PathSynthesis | None = None
@@ -1185,10 +1301,8 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
             if verified(x, signs, angles_found):
                 break
     if best is None:
-        stated = ([f"max_link_ratio={max_link_ratio:g}"] if max_link_ratio is not None else []) + (
-            [f"min_transmission={min_transmission:.6g} rad"] if min_transmission > 0 else []) + (
-            ["full_rotation"] if full_rotation else []) + ([f"direction={direction:+d}"] if direction is not None
-                                                           else [])
+        stated = ([f"max_link_ratio={max_link_ratio:g}"] if max_link_ratio is not None else []) + held + (
+            [f"direction={direction:+d}"] if direction is not None else [])
         raise ValueError("no start could be refined: every trial left the bounds" + (
             " or broke " + ", ".join(stated) if stated else "") + " (widen the bounds, free more parameters"
             + (" or ease the constraints)" if stated else ")"))

@@ -32,7 +32,7 @@ refinement (at most two a call).
 
 Constraints are enforced, not only penalised.  A trial design that breaks one (cannot be
 assembled at a point, passes a toggle, breaks the Grashof class asked for, the link-ratio
-bound or the minimum transmission angle) gets a residual far above any feasible one (with
+bound or the minimum transmission angle over the motion it runs) gets a residual far above any feasible one (with
 timing) or is refused as a trial step (without), so the solvers never accept it, and every
 start is feasible.  The walls that are linear in the dimensions (``bounds``, and a Grashof
 class with its shortest link named: ``s + l <= p + q``) are slid along instead; with timing, a
@@ -61,8 +61,8 @@ import numpy
 import sympy as sp
 from numpy.typing import ArrayLike
 
-from ..analysis import grashof, transmission_range
-from ..analysis.transmission import fourbar_transmission_solver
+from ..analysis import grashof
+from ..analysis.transmission import fourbar_held_transmission, fourbar_transmission_solver, held_over_text
 from ..mechanism.catalog import fourbar
 from ..numeric.design_jacobian import DesignJacobian
 from ..common.display import record_html
@@ -192,7 +192,10 @@ class PathDesign:
     grashof : str, optional
         Its Grashof class.
     worst_transmission : float, optional
-        Its worst transmission angle.
+        Its worst transmission angle (``min(mu, pi - mu)``) over the motion it runs.
+    transmission_over : str, optional
+        Over what that is: ``the full turn`` (a crank that turns fully) or ``input 12-87.5 deg`` (it rocks
+        between the crank angles of its first and last target).
     evaluations : int, optional
         The residual evaluations its refinement took.
 
@@ -222,6 +225,7 @@ class PathDesign:
     grashof: str = ""
     worst_transmission: float = math.nan
     evaluations: int = 0
+    transmission_over: str = ""
 
     @property
     def lengths(self) -> tuple[float, float, float, float]:
@@ -388,11 +392,15 @@ class _Constraints:
     min_transmission: float = 0.0
     box: tuple[tuple[int, float, float], ...] = ()  # (index in the design vector, low, high)
 
-    def allow_design(self, vector: numpy.ndarray) -> bool:
+    def allow_design(self, vector: numpy.ndarray, theta: ArrayLike) -> bool:
         """:meth:`allow` for the design vector's lengths, and every bounded dimension within its bounds."""
-        return self.allow(vector[3:7]) and all(low <= vector[k] <= high for k, low, high in self.box)
+        return self.allow(vector[3:7], theta) and all(low <= vector[k] <= high for k, low, high in self.box)
 
-    def allow(self, lengths: Sequence[float] | numpy.ndarray) -> bool:
+    def allow(self, lengths: Sequence[float] | numpy.ndarray, theta: ArrayLike) -> bool:
+        """Whether lengths, Grashof class, link ratio and transmission angle are within the constraints, the
+        transmission angle over the motion the design runs with its crank at ``theta`` at the targets (the full turn
+        for a crank that turns fully, else the range ``theta`` spans: :func:`~symlink.analysis.transmission.
+        fourbar_held_transmission`)."""
         a, b, c, d = lengths
         if min(lengths) <= 0 or not all(math.isfinite(x) for x in lengths):
             return False
@@ -404,7 +412,7 @@ class _Constraints:
             if name not in wanted:
                 return False
         if self.min_transmission > 0:
-            if transmission_range(a, b, c, d).worst < self.min_transmission:
+            if not fourbar_held_transmission(a, b, c, d, theta).worst >= self.min_transmission:
                 return False
         return True
 
@@ -448,14 +456,15 @@ def check_design(design: PathDesign, targets: ArrayLike, crank_angles: ArrayLike
     max_link_ratio : float, optional
         A bound on the longest link over the shortest (default none).
     min_transmission : float, optional
-        A bound (radians) on the worst transmission angle (default 0).
+        A bound (radians) on the worst transmission angle over the motion the design runs: the full turn for a
+        crank that turns fully, else the crank angles from the first target's to the last's (default 0).
     bounds : mapping of str to (float, float), optional
         Bounds of the dimensions.
 
     Returns
     -------
     PathDesign
-        The design with its errors, Grashof class and worst transmission angle.
+        The design with its errors, Grashof class and worst transmission angle over the motion it runs.
 
     Raises
     ------
@@ -477,11 +486,11 @@ def check_design(design: PathDesign, targets: ArrayLike, crank_angles: ArrayLike
     if theta.shape != (len(points),):
         raise ValueError(f"{len(points)} targets need {len(points)} crank angles, got {theta.size}")
     constraints = _Constraints(grashof_class, max_link_ratio, min_transmission, _box(bounds))
-    if not constraints.allow(design.lengths):
+    if not constraints.allow(design.lengths, theta):
         raise ValueError(f"the design {tuple(round(x, 6) for x in design.lengths)} breaks a constraint "
                          f"(Grashof class {grashof_class}, link ratio <= {max_link_ratio:g}, transmission >= "
-                         f"{math.degrees(min_transmission):g} deg)")
-    if not constraints.allow_design(design.vector):
+                         f"{math.degrees(min_transmission):g} deg over the motion it runs)")
+    if not constraints.allow_design(design.vector, theta):
         outside = [DESIGN_NAMES[k] for k, low, high in constraints.box if not low <= design.vector[k] <= high]
         raise ValueError(f"the design's {', '.join(outside)} lie outside their bounds")
     if abs(theta[-1] - theta[0]) >= 2 * math.pi or (len(theta) > 2 and not (
@@ -493,11 +502,10 @@ def check_design(design: PathDesign, targets: ArrayLike, crank_angles: ArrayLike
     reached = design.points(theta)
     errors = numpy.hypot(*(reached - points).T)
     a, b, c, d = design.lengths
-    worst = transmission_range(a, b, c, d).worst if grashof(a, b, c, d).name in ("crank-rocker", "double-crank") \
-        else math.nan
+    held = fourbar_held_transmission(a, b, c, d, theta)
     return replace(design, theta=tuple(map(float, theta)), errors=tuple(map(float, errors)),
                    error=float(errors.max() / _size(points)), grashof=grashof(a, b, c, d).name,
-                   worst_transmission=float(worst))
+                   worst_transmission=held.worst, transmission_over=held_over_text(held.over, held.low, held.high))
 
 
 def _box(bounds: Mapping[str, tuple[float, float]] | None) -> tuple[tuple[int, float, float], ...]:
@@ -631,7 +639,7 @@ def _timed_starts(w: numpy.ndarray, theta: numpy.ndarray, rng, count: int, const
             break
         row, offset = divmod(int(k), len(offsets))
         vector = _placed(rows[row], factor[k], shift[k])
-        if constraints.allow_design(vector):
+        if constraints.allow_design(vector, theta + offsets[offset]):
             starts.append((vector, int(rows[row, 6]), theta + offsets[offset]))
     return starts
 
@@ -718,7 +726,7 @@ def _untimed_starts(w: numpy.ndarray, rng, count: int, constraints: _Constraints
         if direction is not None and (theta[-1] - theta[0]) * direction < 0:
             continue
         vector = _placed(rows[chosen[m]], factor[m], shift[m])
-        if constraints.allow_design(vector):
+        if constraints.allow_design(vector, theta):
             used.add(chosen[m])
             starts.append((vector, int(rows[chosen[m], 6]), theta))
     return starts
@@ -771,7 +779,7 @@ def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: nu
 
     def residuals(x: numpy.ndarray) -> numpy.ndarray:
         design, chain = _slid(x[:9], constraints)
-        if not constraints.allow_design(design):
+        if not constraints.allow_design(design, angles_of(x)):
             return numpy.full(2 * count, _INFEASIBLE)
         with numpy.errstate(all="ignore"):
             points, jac, ok = _evaluate(design, angles_of(x), branch)
@@ -805,7 +813,7 @@ def _refine(start: numpy.ndarray, branch: int, theta: numpy.ndarray, targets: nu
 
     def exact(x: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray] | None:
         """Residuals and Jacobian of a design as it is (no sliding), None where it is infeasible."""
-        if not constraints.allow_design(x[:9]):
+        if not constraints.allow_design(x[:9], angles_of(x)):
             return None
         with numpy.errstate(all="ignore"):
             points, jac, ok = _evaluate(x[:9], angles_of(x), branch)
@@ -1046,7 +1054,7 @@ def _refine_untimed(start: numpy.ndarray, branch: int, theta: numpy.ndarray, tar
     def residuals(x: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray] | None:
         y, clipped, step_chain = projected(x)
         design, angles = y[:9], angles_of(y)
-        if not constraints.allow_design(design) or abs(angles[-1] - angles[0]) >= 2 * math.pi:
+        if not constraints.allow_design(design, angles) or abs(angles[-1] - angles[0]) >= 2 * math.pi:
             return None
         with numpy.errstate(all="ignore"):
             points, jac, ok = _evaluate(design, angles, branch)
@@ -1184,7 +1192,9 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
     the batches after the first); ``grashof_class`` is one of :data:`GRASHOF_CHOICES` ("crank-turns":
     crank-rocker or double-crank); ``max_link_ratio`` bounds the longest link over the
     shortest; ``min_transmission`` (radians) bounds the worst transmission angle over the
-    crank's turn.  ``branch`` (+1 or -1) keeps to that assembly branch; ``direction`` (without
+    motion the design runs, in every trial of the search: the full turn for a crank that turns fully (Grashof
+    crank-rocker or double-crank), else the crank angles from the first target's to the last's (the design's
+    ``transmission_over`` says which).  ``branch`` (+1 or -1) keeps to that assembly branch; ``direction`` (without
     timing; +1 or -1) makes the crank angle grow (+1, counter-clockwise) or shrink from point to
     point; ``free_phase`` (with timing) takes ``theta`` as known up to a common offset (equal
     steps from an unknown first angle, say), which is found too.  ``bounds`` maps dimensions
@@ -1208,7 +1218,7 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
     max_link_ratio : float, optional
         A bound on the longest link over the shortest (default 20).
     min_transmission : float, optional
-        A bound (radians) on the worst transmission angle over the crank's turn (default 0).
+        A bound (radians) on the worst transmission angle over the motion the design runs (default 0).
     seed : int or None, optional
         The sampling's seed (default 0).
     tolerance : float, optional
@@ -1345,8 +1355,11 @@ def synthesize_path(targets: ArrayLike, theta: ArrayLike | None = None, *, start
         if found and min(d.error for d in found) < 1e-8:
             break
     if not found:
-        raise ValueError("no four-bar satisfying the constraints was found from the starts; relax the constraints "
-                         "or allow more starts")
+        held = (f" (a transmission angle of at least {math.degrees(min_transmission):g} deg held over the motion "
+                "each design runs: the full turn for a crank, else between its first and last target)"
+                if min_transmission > 0 else "")
+        raise ValueError(f"no four-bar satisfying the constraints{held} was found from the starts; relax the "
+                         "constraints or allow more starts")
     return _distinct(sorted(found, key=lambda d: d.error), designs, size)
 
 

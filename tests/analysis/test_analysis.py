@@ -249,3 +249,43 @@ def test_triangle_angle_matches_law_of_cosines(x, y, z):
     angle = float(triangle_angle(x, y, z))
     assert math.cos(angle) == pytest.approx((y * y + z * z - x * x) / (2 * y * z), abs=1e-12)
     assert math.isnan(float(triangle_angle(x + y + z, y, z)))
+
+
+# --- held over the motion: what synthesis checks each trial against (issue 32, item 2) ------------------------
+
+def test_least_over_inputs_finds_a_minimum_between_grid_values():
+    from symlink.analysis.transmission import least_over_inputs
+    centre = 0.123456789  # not on a grid of 360 a turn: the grid alone is 2e-5 above the least
+    least, at = least_over_inputs(lambda q: 1.0 - np.cos(q - centre), -math.pi, math.pi, periodic=True)
+    assert least == pytest.approx(0.0, abs=1e-12) and at == pytest.approx(centre, abs=1e-6)
+    # not periodic: the least at an end of the range, and a second, shallower basin ignored
+    least, at = least_over_inputs(lambda q: np.cos(3 * q) + 0.1 * q, 0.5, 2.5)
+    dense = np.linspace(0.5, 2.5, 2_000_001)
+    assert least == pytest.approx(float(np.min(np.cos(3 * dense) + 0.1 * dense)), abs=1e-12)
+    # NaN (not assembled) anywhere on the grid: NaN, and where
+    least, at = least_over_inputs(lambda q: np.where(q > 1.0, np.nan, q), 0.0, 2.0)
+    assert math.isnan(least) and at > 1.0
+
+
+def _hand_worst(a, b, c, d, low, high, samples=2_000_001):
+    """min(mu, pi - mu) over crank angles low..high: the law of cosines over the diagonal BD, written here."""
+    theta = np.linspace(low, high, samples)
+    bd2 = a * a + d * d - 2 * a * d * np.cos(theta)
+    mu = np.arccos(np.clip((b * b + c * c - bd2) / (2 * b * c), -1, 1))
+    return float(np.min(np.minimum(mu, math.pi - mu)))
+
+
+@pytest.mark.parametrize("links, theta, over", [
+    (SEED003, [0.5, 1.0], "full turn"),                         # a crank-rocker runs the full turn
+    ((4.0, 5.0, 6.0, 2.0), [0.5], "full turn"),                 # a double-crank too
+    ((1.0, 3.0, 2.0, 2.0), [0.5, 1.0], "full turn"),            # a change point, the crank the shortest: flat at 0
+    ((2.6, 3.0, 2.5, 3.2), [0.9, 1.4, 2.2], "rocking range"),   # a triple rocker rocks between its targets
+    ((2.6, 3.0, 2.5, 3.2), [-0.4, 0.3, 1.0], "rocking range"),  # through theta = 0, where mu is least
+    ((2.0, 1.0, 2.5, 3.0), [1.2, 0.6], "rocking range"),        # targets in either order
+])
+def test_fourbar_held_transmission_against_a_dense_sweep(links, theta, over):
+    from symlink.analysis.transmission import fourbar_held_transmission
+    held = fourbar_held_transmission(*links, theta)
+    low, high = (-math.pi, math.pi) if over == "full turn" else (min(theta), max(theta))
+    assert (held.over, held.low, held.high) == (over, low, high)
+    assert held.worst == pytest.approx(_hand_worst(*links, low, high), abs=1e-9)

@@ -88,7 +88,7 @@ def test_fourbar_path_route_writes_the_design_that_table_and_analyze_read(tmp_pa
     # the worst transmission over the full turn (a crank): printed = analyze's = a dense scan here
     worst = math.radians(float(row["worst_transmission"]))
     assert worst == pytest.approx(hand_worst_transmission(a, b, c, d, -math.pi, math.pi), abs=1e-6)
-    assert "over the full turn" in err
+    assert "over the full turn" in err and row["transmission_over"] == "full turn"
     code, text, _ = run(capsys, "analyze", str(out), "--format", "json")
     (loop,) = json.loads(text)["transmission"]
     assert math.radians(min(loop["minimum"], 180 - loop["maximum"])) == pytest.approx(worst, abs=1e-9)
@@ -159,3 +159,110 @@ def test_fourbar_function_route_writes_its_design(tmp_path, capsys):
     hand = hand_worst_transmission(a, b, c, d, -math.pi, math.pi) if "over the full turn" in err else \
         hand_worst_transmission(a, b, c, d, min(theta), max(theta))
     assert math.radians(float(row["worst_transmission"])) == pytest.approx(hand, abs=1e-6)
+
+
+HOEKEN_JOINTS = """name = "hoeken"
+driver = "A"
+
+[links]
+ground = ["A", "D"]
+crank = ["A", "B"]
+coupler = ["B", "C", "P"]
+rocker = ["D", "C"]
+
+[joints]
+A = [0, 0]
+B = [0, 1]
+C = [2, 2.5]
+D = [2, 0]
+P = [4, 4]
+"""
+
+
+@pytest.mark.slow
+def test_a_joints_file_synthesized_with_a_transmission_angle_then_every_command_reads_the_design(tmp_path, capsys):
+    """Joints file -> synthesize path (--min-transmission 35 --full-rotation) -> --out -> analyze, table, parts and
+    tolerance on the written file: the same numbers everywhere, the units asked for, the traced point P in the
+    parts, and the transmission angle held over the full turn the crank runs (Hoeken's own linkage falls to
+    23.1 deg at theta = 0, so the targets traced from it cannot be reached exactly)."""
+    linkage = tmp_path / "hoeken.toml"
+    linkage.write_text(HOEKEN_JOINTS)
+    # Hoeken's P (on the coupler line B->C, |BP| = 5) at six crank angles, by hand
+    inputs = [60.0, 90.0, 120.0, 150.0, 180.0, 210.0]
+    rows = ["input,x,y"]
+    for q in inputs:
+        B, C, _, _ = hand_fourbar(math.radians(q), 1.0, 2.5, 2.5, 2.0, 1)
+        P = B + 5.0 * (C - B) / abs(C - B)
+        rows.append(f"{q!r},{P.real!r},{P.imag!r}")
+    targets = tmp_path / "targets.csv"
+    targets.write_text("\n".join(rows) + "\n")
+    assert hand_worst_transmission(1.0, 2.5, 2.5, 2.0, -math.pi, math.pi) < math.radians(35)
+    out = tmp_path / "design.toml"
+    code, text, err = run(capsys, "synthesize", "path", str(linkage), str(targets), "--point", "P", "--free",
+                          "AB,BC,DC,AD,BP", "--min-transmission", "35", "--full-rotation", "--starts", "2",
+                          "--format", "json", "--out", str(out))
+    assert code == 0, err
+    record = json.loads(text)
+    written = read_linkage(out).defaults
+    design = record["design"]
+    assert {k: written[k] for k in ("AB", "BC", "DC", "AD", "BP")} == {k: design[k] for k in ("AB", "BC", "DC", "AD",
+                                                                                               "BP")}
+    a, b, c, d, bp = (design[k] for k in ("AB", "BC", "DC", "AD", "BP"))
+    shortest, longest = min(a, b, c, d), max(a, b, c, d)
+    assert shortest in (a, d) and shortest + longest < a + b + c + d - shortest - longest  # the crank turns
+    # held over the full turn, in the search and in what is printed: a dense scan here agrees
+    worst = hand_worst_transmission(a, b, c, d, -math.pi, math.pi)
+    assert worst >= math.radians(35) - math.radians(1e-6)
+    assert record["transmission_over"] == "full turn"
+    assert math.radians(record["worst_transmission"]) == pytest.approx(worst, abs=1e-6)
+    assert any(text.startswith("transmission angle at ABCD >= 35 deg over the full turn")
+               for text in record["constraints"])
+    assert "warning" not in err
+    # analyze, in radians as asked: the same worst over the full turn
+    code, text, _ = run(capsys, "analyze", str(out), "--format", "json", "--units", "rad")
+    analysis = json.loads(text)
+    (loop,) = analysis["transmission"]
+    assert analysis["full_turn"] and min(loop["minimum"], math.pi - loop["maximum"]) == pytest.approx(worst, abs=1e-6)
+    # table at the design's inputs: coupler and rocker angles by hand, and P within the printed error of its target
+    placement = record["placement"]
+    pivot, frame = complex(placement["x0"], placement["y0"]), math.radians(placement["angle"])
+    branch = record["branches"]["branch"]
+    code, text, _ = run(capsys, "table", str(out), "--angles", ",".join(map(repr, record["inputs"])), "--branch",
+                        "+1", "--format", "csv")
+    assert code == 0
+    for theta_deg, row, target, error in zip(record["inputs"], csv_rows(text), record["targets"], record["errors"]):
+        B, _, beta, phi = hand_fourbar(math.radians(theta_deg), a, b, c, d, branch, pivot, frame)
+        assert math.radians(float(row["coupler"])) == pytest.approx(beta, abs=1e-6)
+        assert math.radians(float(row["rocker"])) == pytest.approx(phi, abs=1e-6)
+        P = B + bp * cmath.exp(1j * beta)
+        assert abs(P - complex(*target[1:])) == pytest.approx(error, abs=1e-6)
+    # parts: the coupler carries the traced point P, |BP| as written and |CP| = |BP - BC| (P on the line B->C)
+    code, text, _ = run(capsys, "parts", str(out), "--pin-diameter", "0.1", "--format", "csv")
+    assert code == 0
+    parts = {(row["part"], row["dimension"]): float(row["length"]) for row in csv_rows(text)}
+    assert [parts[key] for key in (("coupler", "BP"), ("coupler", "BC"), ("crank", "AB"), ("rocker", "DC"),
+                                   ("ground", "AD"), ("coupler", "CP"))] == pytest.approx([bp, b, a, c, d, abs(bp - b)],
+                                                                                         rel=1e-12)
+    # tolerance of P_x at the first target: the worst case is the band times the sum of |slopes|, by hand
+    theta = math.radians(record["inputs"][0])
+
+    def point_x(**change):
+        values = {**dict(AB=a, BC=b, DC=c, AD=d, BP=bp), **change}
+        B, _, beta, _ = hand_fourbar(theta, values["AB"], values["BC"], values["DC"], values["AD"], branch, pivot,
+                                     frame)
+        return (B + values["BP"] * cmath.exp(1j * beta)).real
+
+    slopes = [(point_x(**{k: v + 1e-6}) - point_x(**{k: v - 1e-6})) / 2e-6
+              for k, v in dict(AB=a, BC=b, DC=c, AD=d, BP=bp).items()]
+    code, text, _ = run(capsys, "tolerance", str(out), "--tolerance", "0.01", "--output", "P_x",
+                        "--angles", repr(record["inputs"][0]), "--format", "csv")
+    assert code == 0
+    assert float(csv_rows(text)[0]["worst_case"]) == pytest.approx(0.01 * sum(map(abs, slopes)), rel=1e-6)
+
+
+def test_fourbar_path_route_refuses_a_transmission_angle_no_design_holds_in_one_line(tmp_path, points, capsys):
+    out = tmp_path / "never.toml"
+    code, _, err = run(capsys, "synthesize", "path", str(points), "--starts", "2", "--min-transmission", "89.5",
+                       "--out", str(out))
+    assert code == 2 and len(err.strip().splitlines()) == 1 and not out.exists()
+    assert "89.5 deg held over the motion each design runs" in err

@@ -118,3 +118,36 @@ def test_full_rotation_gives_a_crank_that_turns():
     assert shortest + longest <= a + b + c + d - shortest - longest
     assert shortest in (a, d)
     assert "the input turns fully" in found.constraints
+
+
+def hand_worst_over(design: dict, low: float, high: float, samples: int = 3600) -> float:
+    """min(mu, pi - mu) over inputs low..high: the law of cosines over the diagonal BD, written here (radians)."""
+    a, b, c, d = (design[name] for name in LINKS)
+    theta = numpy.linspace(low, high, samples)
+    bd2 = a * a + d * d - 2 * a * d * numpy.cos(theta)
+    mu = numpy.arccos(numpy.clip((b * b + c * c - bd2) / (2 * b * c), -1, 1))
+    return float(numpy.min(numpy.minimum(mu, math.pi - mu)))
+
+
+def test_minimum_transmission_angle_holds_over_the_full_turn_the_crank_runs():
+    # A crank-rocker (1.5 + 3.2 < 3.0 + 2.5) whose transmission angle is 44.6 deg and more at its targets but 34.5
+    # deg at theta = 0: held at the targets alone, 35 deg let it through exactly (error 4e-16), and it runs the
+    # full turn below it.  Held over the full turn, the design found keeps 35 deg everywhere on it.
+    truth = dict(a=1.5, b=3.0, c=2.5, d=3.2, u=1.5, v=0.8)
+    inputs = numpy.linspace(0.6, 2.6, 7)
+    assert hand_worst_over(truth, -math.pi, math.pi) < math.radians(35) < hand_worst_over(truth, 0.6, 2.6)
+    targets = traced_points(fourbar_point(), "P", truth, inputs, {"branch": 1})
+    bounds = {name: (0.5 * value, 1.5 * value) for name, value in truth.items()}
+    found = synthesize_path(fourbar_point(), "P", targets, bounds, frame=(), timed=inputs, branches={"branch": 1},
+                            min_transmission=math.radians(35), starts=2)
+    assert found.assembled, found.why
+    a, b, c, d = (found.design[name] for name in LINKS)
+    shortest, longest = min(a, b, c, d), max(a, b, c, d)
+    assert shortest == a and shortest + longest < a + b + c + d - shortest - longest  # a crank-rocker by hand
+    assert hand_worst_over(found.design, -math.pi, math.pi) >= math.radians(35) - math.radians(1e-6)
+    (held,) = [text for text in found.constraints if text.startswith("transmission angle at ABCD")]
+    assert held.startswith("transmission angle at ABCD >= 35 deg over the full turn: ")
+    # no design holds 89.5 deg over its motion: refused, naming the constraint
+    with pytest.raises(ValueError, match="min_transmission"):
+        synthesize_path(fourbar_point(), "P", targets, bounds, frame=(), timed=inputs, branches={"branch": 1},
+                        min_transmission=math.radians(89.5), starts=2)

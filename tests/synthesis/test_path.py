@@ -343,3 +343,59 @@ def test_targets_too_large_or_too_small_are_refused_by_name(scale):
     points = np.array([[0.0, 0.0], [1.0, 0.5], [2.0, 0.0], [1.0, -0.5], [0.5, 0.2]]) * scale
     with pytest.raises(ValueError, match="target points must lie within"):
         synthesize_path(points)
+
+
+# --- the transmission angle held over the motion the design runs (issue 32, item 2) ---------------------------
+
+def hand_worst_over(a, b, c, d, low, high, samples=3600):
+    """min(mu, pi - mu) over crank angles low..high, the law of cosines over the diagonal BD, in degrees."""
+    theta = np.linspace(low, high, samples)
+    bd2 = a * a + d * d - 2 * a * d * np.cos(theta)
+    mu = np.arccos(np.clip((b * b + c * c - bd2) / (2 * b * c), -1, 1))
+    return math.degrees(float(np.min(np.minimum(mu, math.pi - mu))))
+
+
+def crank_turns_by_hand(a, b, c, d):
+    """Grashof (s + l < p + q) with the crank or the ground the shortest: the crank turns fully."""
+    s, p, q, l = sorted((a, b, c, d))
+    return s + l < p + q and min(a, b, c, d) in (a, d)
+
+
+def test_min_transmission_holds_over_the_rocking_range_of_a_rocker():
+    # A triple rocker (2.6 + 3.2 > 3.0 + 2.5) through seven timed points: between its first and last target its
+    # worst transmission angle is 39.7 deg (by hand, below), though it reaches 0 at its toggles.  The search
+    # held 35 deg over every crank angle it could reach, refused every rocker, and returned a crank-rocker
+    # 2.4e-3 of the targets' size off; held over the rocking range it runs, the exact design is found.
+    truth = fourbar_design((0.0, 0.0), 0.0, (2.6, 3.0, 2.5, 3.2), (1.5, 0.8), branch=1)
+    theta = np.linspace(0.9, 2.2, 7)
+    assert hand_worst_over(2.6, 3.0, 2.5, 3.2, 0.9, 2.2) == pytest.approx(39.69, abs=0.01)
+    (found,) = synthesize_path(truth.points(theta), theta, min_transmission=math.radians(35), starts=3,
+                               designs=1)
+    assert found.error < 1e-8
+    a, b, c, d = found.lengths
+    assert not crank_turns_by_hand(a, b, c, d)
+    assert hand_worst_over(a, b, c, d, min(found.theta), max(found.theta)) >= 35 - 1e-6
+    assert found.transmission_over == f"input {math.degrees(min(theta)):.6g}-{math.degrees(max(theta)):.6g} deg"
+    assert math.degrees(found.worst_transmission) == pytest.approx(hand_worst_over(a, b, c, d, 0.9, 2.2), abs=1e-6)
+
+
+def test_min_transmission_holds_over_the_full_turn_of_a_crank():
+    # A crank-rocker whose transmission angle is 44.6 deg and more at its targets but 34.5 deg at theta = 0: held at
+    # 35 deg over the full turn it runs, not at the targets alone.
+    truth = fourbar_design((0.0, 0.0), 0.0, (1.5, 3.0, 2.5, 3.2), (1.5, 0.8), branch=1)
+    theta = np.linspace(0.6, 2.6, 7)
+    assert hand_worst_over(1.5, 3.0, 2.5, 3.2, -math.pi, math.pi) < 35 < hand_worst_over(1.5, 3.0, 2.5, 3.2, 0.6, 2.6)
+    designs = synthesize_path(truth.points(theta), theta, grashof_class="crank-rocker",
+                              min_transmission=math.radians(35), starts=3, designs=2)
+    for found in designs:
+        a, b, c, d = found.lengths
+        assert crank_turns_by_hand(a, b, c, d)
+        assert hand_worst_over(a, b, c, d, -math.pi, math.pi) >= 35 - 1e-6
+        assert found.transmission_over == "the full turn"
+
+
+def test_a_transmission_angle_no_design_can_hold_is_refused():
+    truth = fourbar_design((0.0, 0.0), 0.0, (1.5, 3.0, 2.5, 3.2), (1.5, 0.8), branch=1)
+    theta = np.linspace(0.6, 2.6, 5)
+    with pytest.raises(ValueError, match="no four-bar satisfying the constraints .*89.5 deg held over the motion"):
+        synthesize_path(truth.points(theta), theta, min_transmission=math.radians(89.5), starts=2, designs=1)

@@ -227,10 +227,15 @@ def _run_twice(tmp_path, arguments: list[str]) -> tuple[str, str, set[str]]:
     return runs[0].stdout, runs[1].stdout, _imported(runs[1].stderr)
 
 
+#: The Stephenson III's assembly near which its table starts (coupler, mu, rocker, eta at crank angle 0, degrees).
+NEWTON_GUESS = "coupler=-33,mu=-35,rocker=-73,eta=-68"
 WARM_COMMANDS = {
     "catalog table": ["table", "watt2", "--angles", "0,50", "--format", "csv", "--branch", "+1"],
     "linkage file table": ["table", "mywatt.toml", "--angles", "0,50", "--format", "csv", "--branch", "+1"],
     "atlas table": ["table", "atlas:watt-ii", "--angles", "0,30", "--format", "csv", "--branch", "+1"],
+    "Newton table": ["table", "stephenson3", "--angles", "0,50", "--format", "csv", "--guess", NEWTON_GUESS],
+    "Newton linkage file table": ["table", "mystephenson.toml", "--angles", "0,50", "--format", "csv", "--guess",
+                                  NEWTON_GUESS],
     "four-bar with masses": ["fourbar", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80",
                              "--masses", "1,2,3", "--gravity", "9.81", "--angles", "0,50", "--format", "csv", "--branch", "1"],
 }
@@ -240,6 +245,7 @@ WARM_COMMANDS = {
 def test_a_warm_command_imports_no_sympy(name, tmp_path):
     from symlink.io.linkage_file import catalog_file
     (tmp_path / "mywatt.toml").write_text(catalog_file("watt2").read_text())
+    (tmp_path / "mystephenson.toml").write_text(catalog_file("stephenson3").read_text())
     cold, warm, imported = _run_twice(tmp_path, WARM_COMMANDS[name])
     assert "symlink" in imported and "numpy" in imported  # the import list was read
     assert "sympy" not in imported
@@ -264,6 +270,27 @@ def test_a_warm_table_is_the_table_of_the_linkage(tmp_path):
         for name in ("rocker", "output"):
             expected = (math.degrees(float(solved[name][k])) + 180.0) % 360.0 - 180.0
             assert float(cells[name]) == pytest.approx(expected, abs=1e-9)
+
+
+def test_a_warm_newton_table_closes_both_loops(tmp_path):
+    """The Stephenson III's cached table (Newton's method, no closed form) closes its two loops at every row:
+    AB + BC + CF = AD + DF and AB + BE + EH = AD + DH, with the catalog's lengths, by hand in complex numbers."""
+    import cmath
+    _, warm, _ = _run_twice(tmp_path, WARM_COMMANDS["Newton table"])
+    header, *rows = warm.splitlines()
+    p = dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.9, delta=0.3)  # stephenson3.toml
+
+    def vector(length: float, angle: float) -> complex:
+        return cmath.rect(length, angle)
+    assert len(rows) == 2
+    for row in rows:
+        cells = {k: math.radians(float(v)) for k, v in zip(header.split(","), row.split(",")) if k != "branch"}
+        theta, beta, mu, phi, eta = (cells[k] for k in ("crank", "coupler", "mu", "rocker", "eta"))
+        first = vector(p["a"], theta) + vector(p["b"], beta) + vector(p["c"], mu) - vector(p["f"], phi) - p["d"]
+        second = (vector(p["a"], theta) + vector(p["e"], p["alpha"] + beta) + vector(p["g"], eta)
+                  - vector(p["h"], p["delta"] + phi) - p["d"])
+        assert abs(first) < 1e-10 and abs(second) < 1e-10
+    assert abs(math.degrees(cells["rocker"]) - (-94.16)) < 0.01  # the assembly near the guess, carried to 50 deg
 
 
 def test_a_sweep_starts_without_distributed_or_pandas(tmp_path):

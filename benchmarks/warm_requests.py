@@ -8,7 +8,8 @@ within 2x).  Timed inside the process, from before ``import symlink`` to the eva
 
 Then the command line (wall time of ``python -m symlink ...`` in a new process, best of five warm runs
 after one cold run with the same ``SYMLINK_CACHE``): warm tables of a closed-form linkage, a Newton linkage
-(no closed form) and a linkage file, the four-bar with mass columns, and the start of a sweep (five designs
+(no closed form) and a linkage file, the four-bar with mass columns, a scene file of the Watt II's driving
+torque (``symlink run``), and the start of a sweep (five designs
 on the synchronous scheduler: its start-up, Dask and Parquet, is most of it), each over the wall time of
 ``python -c "import numpy"`` measured in the same run (target for a warm table: within 1.2x).  The time of
 ``python -c "import sympy"`` is printed beside them: what a warm command that imported SymPy would pay.
@@ -82,6 +83,7 @@ COMMANDS = {
                                  "--branch", "+1"],
     "fourbar --masses": ["fourbar", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80",
                          "--masses", "1,2,3", "--angles", "0,50", "--format", "csv", "--branch", "1"],
+    "run torque scene (watt2)": ["run", "{folder}/torque.toml"],
     "sweep start (5 designs)": ["sweep", "fourbar", "{folder}/sweep-{run}", "--vary", "a=10:20", "--set",
                                 "b=66,c=56,d=80", "--grid", "5", "--scheduler", "synchronous", "--no-progress"],
 }
@@ -102,6 +104,7 @@ def measure_commands(repeats: int = 5) -> dict[str, float]:
                    PYTHONPYCACHEPREFIX=str(Path(folder) / "pycache"))  # compiled once, as an installed package is
         env.pop("PYTHONDONTWRITEBYTECODE", None)
         (Path(folder) / "jansen.toml").write_text((ROOT / "symlink" / "linkages" / "jansen.toml").read_text())
+        (Path(folder) / "torque.toml").write_text(scene_text(["input_torque"], True))
         for library in ("numpy", "sympy"):
             found[f"import {library}"] = min(wall(["-c", f"import {library}"], env) for _ in range(repeats))
         for label, arguments in COMMANDS.items():

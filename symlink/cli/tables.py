@@ -660,28 +660,6 @@ def _add_generic_options(command: argparse.ArgumentParser) -> None:
 GENERIC_ENTRY_KIND = "generic-table/2"
 #: Besides the code that shapes generated code: what reads a linkage file and what takes a table's facts from it.
 GENERIC_SHAPING = ("io/linkage_file", "cli/tables")
-#: A linkage file larger than this is not keyed (the reader refuses it: :data:`symlink.io.linkage_file.MAX_LINKAGE_BYTES`).
-_KEYED_FILE_BYTES = 4 << 20
-
-
-def _linkage_request(source: str) -> dict[str, str] | None:
-    """What names the linkage of ``symlink table SOURCE`` in its cache key, found without building it (no SymPy):
-    a catalog or atlas name, or the digest of a linkage file's bytes; None where it is none of these (the linkage
-    reader then says what is wrong)."""
-    import hashlib
-    from pathlib import Path
-    shipped = Path(__file__).resolve().parent.parent / "linkages"  # the catalog's files, one a catalog linkage
-    if source and all(c.isalnum() or c in "-_" for c in source) and (shipped / f"{source}.toml").is_file():
-        return {"catalog": source}
-    if source.startswith("atlas:"):
-        return {"atlas": source}
-    try:
-        path = Path(source)
-        if not path.is_file() or path.stat().st_size > _KEYED_FILE_BYTES:
-            return None
-        return {"file_sha256": hashlib.sha256(path.read_bytes()).hexdigest()}
-    except (OSError, ValueError):
-        return None
 
 
 def _facts_values(facts: Mapping[str, Any], settings: Mapping[str, float], units: str,
@@ -716,7 +694,8 @@ def run_generic_table(args: argparse.Namespace) -> int:
     def facts_now() -> dict[str, Any]:
         return table_facts(found().linkage, found().defaults)
 
-    request = _linkage_request(args.linkage)
+    from ..io.scene_text import linkage_request
+    request = linkage_request(args.linkage)
 
     def key(outputs: list[str]) -> str:
         return catalog_key("table", outputs, GENERIC_ENTRY_KIND, request, GENERIC_SHAPING)

@@ -272,6 +272,80 @@ def test_a_warm_table_is_the_table_of_the_linkage(tmp_path):
             assert float(cells[name]) == pytest.approx(expected, abs=1e-9)
 
 
+# --- warm scene files: symlink run, a second time in a new process, imports no SymPy ----------------------------
+
+KINEMATIC_SCENE = textwrap.dedent("""\
+    linkage = "LINKAGE"
+    outputs = OUTPUTS
+    format = "csv"
+    [parameters]
+    a = 20
+    b = 66
+    c = 56
+    d = 80
+    [input]
+    angles = ANGLES
+    speed = 10.5
+    """)
+WARM_SCENES = {
+    "kinematics": KINEMATIC_SCENE.replace("OUTPUTS", '["rocker", "rocker_speed"]'),
+    "sensitivities": KINEMATIC_SCENE.replace("OUTPUTS", '["rocker__d_a"]'),
+    "linkage file": KINEMATIC_SCENE.replace("OUTPUTS", '["rocker"]').replace('"LINKAGE"', '"legs/four.toml"'),
+    "dynamics": 'format = "csv"\n' + SCENE.replace("angles = [0, 50]", "angles = ANGLES"),
+}
+
+
+def _scene_text(name: str, angles: str = "[0, 50]") -> str:
+    return WARM_SCENES[name].replace('"LINKAGE"', '"fourbar"').replace("ANGLES", angles)
+
+
+@pytest.mark.parametrize("name", WARM_SCENES)
+def test_a_warm_scene_imports_no_sympy(name, tmp_path):
+    from symlink.io.linkage_file import catalog_file
+    (tmp_path / "legs").mkdir()
+    (tmp_path / "legs" / "four.toml").write_text(catalog_file("fourbar").read_text())
+    (tmp_path / "scene.toml").write_text(_scene_text(name))
+    cold, warm, imported = _run_twice(tmp_path, ["run", "scene.toml"])
+    assert "symlink" in imported and "numpy" in imported
+    assert "sympy" not in imported
+    assert warm == cold and len(warm.splitlines()) == 3
+
+
+def test_a_warm_scene_with_other_numbers_is_warm_and_right(tmp_path):
+    """The cache keys a scene by its linkage, outputs and dynamics: other input angles are still warm, and the
+    torques are the crank's by hand (:func:`crank_alone`)."""
+    (tmp_path / "scene.toml").write_text(_scene_text("dynamics"))
+    _run_twice(tmp_path, ["run", "scene.toml"])
+    (tmp_path / "scene.toml").write_text(_scene_text("dynamics", "[10, 60, 120]"))
+    _, warm, imported = _run_twice(tmp_path, ["run", "scene.toml"])
+    assert "sympy" not in imported
+    header, *rows = warm.splitlines()
+    assert header == "crank,branch,input_torque,joint_A_y" and len(rows) == 3
+    for row in rows:
+        theta = math.radians(float(row.split(",")[0]))
+        speed = math.sqrt(2 * 2.0 * (theta - math.radians(10)))  # 2 rad/s^2 from rest at the first angle
+        torque, force = crank_alone(theta, speed, 2.0)
+        assert [float(v) for v in row.split(",")[2:]] == pytest.approx([torque, force], rel=1e-12)
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ("a = 20", "a = -20", "parameters.a must be a positive length, got -20"),
+    ("b = 66", 'b = "66"', "parameters.b must be a number, got"),
+    ("[input]", "[input]\nstep = 0", "input: give either angles or start/stop/step, not both"),
+    ('format = "csv"', 'format = "xml"', "format must be one of 'table', 'csv', 'json', got 'xml'"),
+    ("[parameters]", "colour = 1\n[parameters]", "unknown key colour"),
+])
+def test_a_bad_warm_scene_gets_the_full_readers_message(old, new, message, tmp_path, disk_cache, capsys):
+    from symlink.cli import main
+    (tmp_path / "scene.toml").write_text(_scene_text("kinematics"))
+    assert main(["run", str(tmp_path / "scene.toml")]) == 0  # cold: the facts are cached
+    capsys.readouterr()
+    (tmp_path / "scene.toml").write_text(_scene_text("kinematics").replace(old, new))
+    assert main(["run", str(tmp_path / "scene.toml")]) == 2
+    lines = capsys.readouterr().err.splitlines()
+    assert len(lines) == 1 and message in lines[0], lines
+
+
 def test_a_warm_newton_table_closes_both_loops(tmp_path):
     """The Stephenson III's cached table (Newton's method, no closed form) closes its two loops at every row:
     AB + BC + CF = AD + DF and AB + BE + EH = AD + DH, with the catalog's lengths, by hand in complex numbers."""

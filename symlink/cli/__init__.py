@@ -40,6 +40,7 @@ import numpy
 
 from ..common.files import EXCERPT_LENGTH
 from ..version import __version__
+from .budget import use_time_budget
 from .options import Parser
 
 __all__ = ["main", "build_parser", "COMMANDS"]
@@ -139,6 +140,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                 args.arguments = rest
             elif rest:
                 parser.error(f"unrecognized arguments: {' '.join(rest)}")
+            use_time_budget(getattr(args, "time_budget", None))  # this command's, or the default (.budget)
             return args.run(args)
         except SystemExit as done:  # --help and --version
             return done.code if isinstance(done.code, int) else EXIT_OK

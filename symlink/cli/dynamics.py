@@ -27,7 +27,7 @@ import math
 from typing import TYPE_CHECKING
 
 from ..common.angles import to_radians
-from .budget import require_budget
+from .budget import add_time_budget_option, require_budget
 from .options import (add_branch_option, add_fourbar_lengths, add_format_option, add_units_option, command_help,
                       finite, fourbar_lengths, number_list, whole)
 from .output import print_rows
@@ -201,6 +201,7 @@ def _add_flywheel_options(command: argparse.ArgumentParser) -> None:
                          help="coefficient of speed fluctuation (w_max - w_min) / w_mean, e.g. 0.02")
     command.add_argument("--samples", type=whole, default=720, metavar="N",
                          help="crank angles over the cycle (default 720)")
+    add_time_budget_option(command)
     add_branch_option(command, both=False, default="+1")
     add_units_option(command, "angles of --centres and --gravity")
     add_format_option(command)

@@ -18,20 +18,58 @@ def register(commands) -> None:
 
 
 def _add_options(command: argparse.ArgumentParser) -> None:
-    from ..io.scene import FORMATS
+    from ..io.scene_text import FORMATS
     command.add_argument("scene", help="a TOML scene file, or - for standard input")
     command.add_argument("--format", choices=list(FORMATS), help="override the file's format")
     command.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    """Print the scene's outputs at each input angle and branch."""
-    from ..common.files import read_stdin_text
-    from ..io.scene import MAX_SCENE_BYTES, angle_outputs, read_scene, scene_from_text
+    """Print the scene's outputs at each input angle and branch.
+
+    A scene whose facts are in the disk cache (the same linkage, outputs and dynamics as a scene run before,
+    whatever its numbers) is evaluated from there, without SymPy (:mod:`symlink.io.scene_text`); the first run
+    reads it in full and keeps them.
+    """
+    from pathlib import Path
+    from ..common.files import read_input_text, read_stdin_text
+    from ..io.scene_text import MAX_SCENE_BYTES, cache_scene, warm_scene
     if args.scene == "-":
-        found = scene_from_text(read_stdin_text(MAX_SCENE_BYTES, "scene file"), "<stdin>")
+        text, source, folder = read_stdin_text(MAX_SCENE_BYTES, "scene file"), "<stdin>", Path(".")
     else:
-        found = read_scene(args.scene)
+        path = Path(args.scene)
+        text, source, folder = read_input_text(path, MAX_SCENE_BYTES, "scene file"), str(path), path.parent
+    warm = warm_scene(text, folder)
+    if warm is None:
+        from ..io.scene import scene_from_text
+        found = scene_from_text(text, source, folder)  # the full reader: SymPy, and the messages of bad input
+        warm = cache_scene(text, folder, found)
+        if warm is None:
+            return _run_scene(found, args)
+    return _run_warm(warm, args)
+
+
+def _run_warm(warm, args: argparse.Namespace) -> int:
+    """Print a scene evaluated from the cache (:class:`symlink.io.scene_text.WarmScene`)."""
+    columns = [warm.input_column, "branch", *warm.outputs]
+
+    def spans() -> str:
+        if warm.name == "fourbar":
+            from ..numeric.reachability import crank_range, describe_spans
+            return describe_spans(crank_range(*(warm.parameters[n] for n in "abcd")), warm.units)
+        return f"not computed for {warm.name}"
+
+    def blocks():
+        for angles in warm.sweep.blocks():
+            yield angles, warm.evaluate(angles)
+
+    write_table(blocks(), columns, warm.units, args.format or warm.format, warm.angle_columns, spans)
+    return 0
+
+
+def _run_scene(found, args: argparse.Namespace) -> int:
+    """Print a scene read in full (:class:`symlink.io.scene.SceneFile`): one the cache cannot key."""
+    from ..io.scene import angle_outputs
     scene = found.scene
     columns = [found.input_column, "branch", *scene.outputs]
 

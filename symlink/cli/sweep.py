@@ -19,7 +19,7 @@ import os
 from ..common.angles import to_radians
 from ..common.files import excerpt
 from ..common.limits import format_bytes
-from .budget import MEMORY_BUDGET, format_duration
+from .budget import MEMORY_BUDGET, add_time_budget_option, budget_text, format_duration, time_budget
 from .options import (add_units_option, assignments, command_help, finite, linkage_values, require_held_inputs,
                       whole)
 from .output import note
@@ -44,28 +44,45 @@ def ranges(text: str) -> dict[str, tuple[float, float]]:
 SWEEP_VALUES_PER_SECOND = 6e5
 #: Workers a cluster (``--scheduler tcp://...``) is taken to have when estimating a sweep's time on it.
 CLUSTER_WORKERS = 1000
-#: Longest sweep a command line starts (it can be interrupted and resumed, but one that would never end is refused).
-SWEEP_TIME_LIMIT = 30 * 86400.0
 #: Bytes a sweep holds for each chunk while it runs (its place in the to-do list and in the manifest).
 SWEEP_BYTES_PER_CHUNK = 200
 
 
-def estimate_sweep(designs: int, samples: int, chunk: int, scheduler: str, workers: int | None) -> float:
+def _fewer_designs(most: int, dimensions: int, mode: str) -> str:
+    """The largest request of at most ``most`` designs, as the option that asks for it: ``--random N`` or, for a
+    grid of ``dimensions`` swept parameters, ``--grid N``."""
+    if mode == "random":
+        return f"use --random {most:,} or fewer"
+    per = max(1, int(round(most ** (1 / dimensions))))
+    while per > 1 and per ** dimensions > most:
+        per -= 1
+    while (per + 1) ** dimensions <= most:
+        per += 1
+    return f"use --grid {per:,} or fewer" if per >= 2 else "sweep fewer parameters (--vary)"
+
+
+def estimate_sweep(designs: int, samples: int, chunk: int, scheduler: str, workers: int | None,
+                   dimensions: int = 1, mode: str = "grid") -> float:
     """The seconds a sweep would take; ``ValueError`` (one line) for one that would not finish or fit in memory.
 
-    Checked before anything starts: the time on the workers (at most :data:`SWEEP_TIME_LIMIT`), the memory
-    that keeps track of the chunks, and the memory of the chunks the local workers evaluate at once (within
-    the command budget of :mod:`.budget`).  A note on stderr gives the estimate of a sweep of more than a minute.
+    Checked before anything starts: the time on the workers (at most the command's time budget,
+    :func:`.budget.time_budget`: an hour unless ``--time-budget`` raises it), the memory that keeps track of the
+    chunks, and the memory of the chunks the local workers evaluate at once (within the command budget of
+    :mod:`.budget`).  A refusal ends with the largest request that fits (``--grid`` for a grid of ``dimensions``
+    parameters, ``--random`` for ``mode`` random).  A note on stderr gives the estimate of a sweep of more than a
+    minute.
     """
     from ..workshop.sweep import CHUNK_BYTES_PER_VALUE
     cluster = scheduler.startswith(("tcp://", "tls://"))
     count = CLUSTER_WORKERS if cluster else (1 if scheduler == "synchronous" else workers or os.cpu_count() or 1)
     seconds = designs * samples / (SWEEP_VALUES_PER_SECOND * count)
-    where = f"{count} worker{'s' if count > 1 else ''}{' (taken for a cluster)' if cluster else ''}"
-    if seconds > SWEEP_TIME_LIMIT:
+    where = f"{count:,} worker{'s' if count > 1 else ''}{' (taken for a cluster)' if cluster else ''}"
+    budget = time_budget()
+    if seconds > budget:
+        most = int(budget * SWEEP_VALUES_PER_SECOND * count / samples)
+        remedy = _fewer_designs(most, dimensions, mode) if most >= 1 else "use fewer --samples"
         raise ValueError(f"a sweep of {designs:.3g} designs of {samples} samples would take about "
-                         f"{format_duration(seconds)} on {where} (at most {format_duration(SWEEP_TIME_LIMIT)}); sweep "
-                         "fewer designs (a smaller --grid or --random, fewer --vary) or use fewer --samples")
+                         f"{format_duration(seconds)} on {where} ({budget_text()}); {remedy}")
     chunks = -(-designs // chunk)
     if chunks * SWEEP_BYTES_PER_CHUNK > MEMORY_BUDGET:
         raise ValueError(f"a sweep of {chunks:,} chunks would need about {format_bytes(chunks * SWEEP_BYTES_PER_CHUNK)} "
@@ -74,7 +91,12 @@ def estimate_sweep(designs: int, samples: int, chunk: int, scheduler: str, worke
     at_once = 1 if cluster else count  # a cluster's workers hold their chunks in their own memory
     chunk_bytes = min(chunk, designs) * samples * CHUNK_BYTES_PER_VALUE
     if chunk_bytes * at_once > MEMORY_BUDGET:
-        fits = max(1, MEMORY_BUDGET // (at_once * samples * CHUNK_BYTES_PER_VALUE))
+        fits = MEMORY_BUDGET // (at_once * samples * CHUNK_BYTES_PER_VALUE)
+        if fits < 1:  # even chunks of one design: too many workers at once
+            most = max(1, MEMORY_BUDGET // (samples * CHUNK_BYTES_PER_VALUE))
+            raise ValueError(f"{count:,} workers evaluating chunks of {samples} samples at once would need about "
+                             f"{format_bytes(samples * CHUNK_BYTES_PER_VALUE * at_once)} of memory even with "
+                             f"--chunk 1 (at most {format_bytes(MEMORY_BUDGET)}); use --workers {most:,} or fewer")
         raise ValueError(f"chunks of {min(chunk, designs):,} designs of {samples} samples on {where} would need about "
                          f"{format_bytes(chunk_bytes * at_once)} of memory at once (at most "
                          f"{format_bytes(MEMORY_BUDGET)}); use --chunk {fits:,} or fewer")
@@ -91,8 +113,9 @@ def register(commands) -> None:
         "lengths in any one unit; fixed angles and angle ranges in --units; angles in the table in radians",
         "symlink sweep fourbar atlas/ --vary a=0.1:1,b=0.2:2,c=0.2:2 --set d=1 --grid 40",
         "Run again with the same settings to continue an interrupted sweep: every chunk there is checked against "
-        "the manifest (rows, designs, SHA-256) and a bad one is done again, with one warning.  A sweep that could "
-        "not end (a year, or more disk than there is) is refused before it starts.  Ctrl-C stops it with exit "
+        "the manifest (rows, designs, SHA-256) and a bad one is done again, with one warning.  A sweep estimated to "
+        "take longer than --time-budget (default an hour), or to need more disk than there is, is refused before "
+        "it starts, with the largest --grid or --random that fits.  Ctrl-C stops it with exit "
         "status 130 (the command line's 'interrupted'), keeping the chunks finished; its worker processes end with "
         "it.  Needs the sweep extra (symlink-kinematics[sweep])."))
 
@@ -124,6 +147,7 @@ def _add_options(command: argparse.ArgumentParser) -> None:
                               "tcp://HOST:PORT")
     command.add_argument("--workers", type=whole, metavar="N", help="local workers (default: one a core)")
     command.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
+    add_time_budget_option(command)
     add_units_option(command, "fixed angles and angle ranges")
     command.set_defaults(run=run)
 
@@ -158,7 +182,7 @@ def run(args: argparse.Namespace) -> int:
     mode, count = ("random", args.random) if args.random is not None else ("grid", 10 if args.grid is None else args.grid)
     if min(count, args.samples, args.chunk) >= 1:  # else SweepSettings says what is wrong
         designs = count ** len(swept) if mode == "grid" else count
-        estimate_sweep(designs, args.samples, args.chunk, args.scheduler, args.workers)
+        estimate_sweep(designs, args.samples, args.chunk, args.scheduler, args.workers, len(swept), mode)
     settings = SweepSettings(args.linkage, swept, values=values, mode=mode, count=count, seed=args.seed,
                              samples=args.samples, output=args.output, point=args.point, harmonics=args.harmonics,
                              branch=int(args.branch), chunk=args.chunk)

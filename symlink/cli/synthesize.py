@@ -31,7 +31,7 @@ from ..common.angles import from_radians, to_radians, wrap
 from ..common.files import excerpt, read_input_text, read_stdin_text
 from ..numeric.input_sweep import MAX_ANGLE
 from ..common.limits import format_bytes
-from .budget import MEMORY_BUDGET, TIME_BUDGET, format_duration, require_budget
+from .budget import MEMORY_BUDGET, add_time_budget_option, budget_text, format_duration, require_budget, time_budget
 from .options import (Parser, add_format_option, add_units_option, angle, assignments, command_help, figure_path,
                       finite, given_options, linkage_values, pair, whole)
 from .output import json_number, note, print_rows
@@ -252,11 +252,12 @@ def _check_path_work(points: int, starts: int, kind: str = "path") -> None:
         raise ValueError(f"a {kind} synthesis of {points:,} points would need about {format_bytes(memory)} of memory "
                          f"(at most {format_bytes(MEMORY_BUDGET)} a command); give at most {fits:,} points")
     seconds = points * starts * PATH_SECONDS_PER_POINT_START
-    if seconds > TIME_BUDGET:
-        fits = int(TIME_BUDGET / (points * PATH_SECONDS_PER_POINT_START) + 1e-9)  # 3600 / 0.6 is 6000, not 5999
+    budget = time_budget()
+    if seconds > budget:
+        fits = int(budget / (points * PATH_SECONDS_PER_POINT_START) + 1e-9)  # 3600 / 0.6 is 6000, not 5999
         remedy = f"use --starts {fits:,} or fewer" if fits >= 1 else "give fewer points"
         raise ValueError(f"a {kind} synthesis of {points:,} points from {starts:,} starts could take about "
-                         f"{format_duration(seconds)} (at most {format_duration(TIME_BUDGET)} a command); {remedy}")
+                         f"{format_duration(seconds)} ({budget_text()}); {remedy}")
 
 
 def _run_path(args: argparse.Namespace) -> int:
@@ -575,6 +576,7 @@ def add_general_options(command: argparse.ArgumentParser, kind: str) -> None:
                               + ": every command reads it")
     group.add_argument("--record", type=_record_path, metavar="FILE",
                        help="write the design, targets and errors (.json) or one row a target (.csv)")
+    add_time_budget_option(command)
 
 
 def _routed(fourbar_run: Callable[[argparse.Namespace], int], kind: str,

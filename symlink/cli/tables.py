@@ -247,6 +247,7 @@ def table_facts(linkage: Linkage, defaults: Mapping[str, float] | None = None) -
         "angles": [s.name for s in named if is_angle(linkage, s)],
         "branches": [b.name for b in linkage.branches],
         "outputs": dict(table_outputs(linkage)) if linkage.has_closed_form else {},
+        "newton": None if linkage.has_closed_form else newton_facts(linkage),
         "columns": table_columns(linkage),
         "column_units": units_of_columns(linkage, table_columns(linkage)),
         "angle_columns": sorted({label(linkage, q) for q in linkage.coordinates if is_angle(linkage, q)}),
@@ -292,50 +293,75 @@ def _closed_form(table: Table, facts: Mapping[str, Any], solver: Any, values: di
     return solve_block, reachable
 
 
-def _start(table: Table, linkage: Linkage, values: dict, theta: float, args: argparse.Namespace):
-    """The assemblies to continue from at the first crank angle, in the order they are tried."""
-    from ..symbolic.outputs import label
-    labels = {label(linkage, u): u.name for u in linkage.unknowns}
+def _start(table: Table, name: str, labels: Mapping[str, str], values: dict, theta: float,
+           args: argparse.Namespace):
+    """The assemblies to continue from at the first crank angle, in the order they are tried (``labels``: the
+    column label of each unknown, and its name)."""
     found = table.assemblies(theta, values) if table.assemblies is not None else []
     if args.guess is None:
         return found
     wrong = sorted(set(args.guess) - set(labels))
     if wrong:
-        raise ValueError(f"--guess names {', '.join(wrong)}; {linkage.name} has {', '.join(labels)}")
-    guess = {labels[name]: float(to_radians(value, args.units)) for name, value in args.guess.items()}
+        raise ValueError(f"--guess names {', '.join(wrong)}; {name} has {', '.join(labels)}")
+    guess = {labels[label]: float(to_radians(value, args.units)) for label, value in args.guess.items()}
     if found:  # the nearest: the largest wrapped difference of the angles named
         return [min(found, key=lambda q: max(abs(float(wrap(q[n] - v))) for n, v in guess.items()))]
     return [guess] if len(guess) == len(labels) else []
 
 
-def _numeric(table: Table, linkage: Linkage, values: dict, inputs: dict, angles, args: argparse.Namespace):
-    """Results of the Newton solver, continued from the first assembly (of those chosen) that gets through."""
+def newton_facts(linkage: Linkage) -> dict[str, Any]:
+    """What a table solved by Newton's method needs of ``linkage``, as plain data (kept in a table's facts):
+    the label of each unknown and its name, and the symbol each column shows."""
     from ..symbolic.outputs import label, table_outputs
-    from ..numeric.solver import NumericSolver
-    theta = inputs[linkage.inputs[0].name]
-    candidates = _start(table, linkage, values, float(theta[0]), args)
+    return {"unknowns": {label(linkage, u): u.name for u in linkage.unknowns},
+            "outputs": dict(table_outputs(linkage))}
+
+
+def _newton_solver(linkage: Linkage | None, solver: Any) -> Callable[[], Any]:
+    """What makes the Newton solver of a table: ``solver`` where the caller has one (a cached one), else a
+    :class:`~symlink.numeric.solver.NumericSolver` of ``linkage``, made when called."""
+    if solver is not None:
+        return lambda: solver
+
+    def made() -> Any:
+        from ..numeric.solver import NumericSolver
+        assert linkage is not None
+        return NumericSolver(linkage)
+    return made
+
+
+def _numeric(table: Table, facts: Mapping[str, Any], solver: Callable[[], Any], values: dict, inputs: dict, angles,
+             args: argparse.Namespace):
+    """Results of the Newton solver, continued from the first assembly (of those chosen) that gets through.
+
+    ``facts``: :func:`table_facts` (its ``newton`` entry, :func:`newton_facts`); ``solver`` makes the solver (a
+    :class:`~symlink.numeric.solver.NumericSolver` or a cached one), once a start is known.
+    """
+    name, newton = facts["name"], facts["newton"]
+    theta = inputs[facts["inputs"][0]]
+    candidates = _start(table, name, newton["unknowns"], values, float(theta[0]), args)
     if not candidates:
         first = f"{float(wrap(angles[0], half_turn(args.units))):.6g} {args.units}"
         if table.assemblies is None:
-            raise ValueError(f"{linkage.name} needs a --guess of every unknown "
-                             f"({', '.join(label(linkage, u) for u in linkage.unknowns)}) at crank angle {first}")
-        raise ValueError(f"{linkage.name} cannot be assembled at the first crank angle, {first} "
+            raise ValueError(f"{name} needs a --guess of every unknown ({', '.join(newton['unknowns'])}) at crank "
+                             f"angle {first}")
+        raise ValueError(f"{name} cannot be assembled at the first crank angle, {first} "
                          "(its scan for assemblies finds none)")
-    solver = NumericSolver(linkage)
+    newton_solver = solver()
     from ..common.limits import require_memory
     count = len(theta)  # Newton continues along the whole sweep at once: refused here, in the command's terms
-    require_memory(count, solver.bytes_per_value, f"a table of {count:,} crank angles of {linkage.name} (solved by "
+    require_memory(count, newton_solver.bytes_per_value, f"a table of {count:,} crank angles of {name} (solved by "
                    "Newton's method all at once)",
                    advice=lambda fits: f"use at most {fits:,} crank angles (a larger --step or fewer --angles)")
-    parameters = {s.name: values[s.name] for s in linkage.parameters}
+    parameters = {p: values[p] for p in facts["parameters"]}
     failure: ValueError | None = None
     for start in candidates:
         try:
-            result = solver(guess=start, **inputs, **parameters)
+            result = newton_solver(guess=start, **inputs, **parameters)
         except ValueError as error:
             failure = failure or error
             continue
-        columns = {column: result[name] for column, name in table_outputs(linkage).items()}
+        columns = {column: result[output] for column, output in newton["outputs"].items()}
         return {1: {**columns, "assembled": result["assembled"]}}
     assert failure is not None  # there was a candidate, and each one failed
     raise failure
@@ -432,6 +458,7 @@ def _print_table(table: Table, linkage: Linkage | None, values: dict[str, float]
     if facts is None:
         assert linkage is not None
         facts = table_facts(linkage)
+
     sweep = input_sweep(args)
     if getattr(args, "list_assemblies", False):
         assert linkage is not None
@@ -453,9 +480,9 @@ def _print_table(table: Table, linkage: Linkage | None, values: dict[str, float]
         blocks: Iterable[tuple[numpy.ndarray, Any]] = ((angles, solve_block(inputs_at(angles)))
                                                        for angles in sweep.blocks())
     else:  # Newton continues along the whole sweep: one block
-        assert linkage is not None
         angles = sweep.array()
-        blocks = [(angles, _numeric(table, linkage, values, inputs_at(angles), angles, args))]
+        blocks = [(angles, _numeric(table, facts, _newton_solver(linkage, solver), values, inputs_at(angles), angles,
+                                    args))]
         reachable = lambda: ""  # noqa: E731 - the numeric solver stops with a message instead
     write_table(blocks, facts["columns"], args.units, args.format, set(facts["angle_columns"]), reachable,
                 shown_units(facts["column_units"], args.units))
@@ -630,31 +657,9 @@ def _add_generic_options(command: argparse.ArgumentParser) -> None:
 
 
 #: The kind of cache entry of ``symlink table NAME|FILE`` (its facts, and its solver: :func:`run_generic_table`).
-GENERIC_ENTRY_KIND = "generic-table/1"
+GENERIC_ENTRY_KIND = "generic-table/2"
 #: Besides the code that shapes generated code: what reads a linkage file and what takes a table's facts from it.
 GENERIC_SHAPING = ("io/linkage_file", "cli/tables")
-#: A linkage file larger than this is not keyed (the reader refuses it: :data:`symlink.io.linkage_file.MAX_LINKAGE_BYTES`).
-_KEYED_FILE_BYTES = 4 << 20
-
-
-def _linkage_request(source: str) -> dict[str, str] | None:
-    """What names the linkage of ``symlink table SOURCE`` in its cache key, found without building it (no SymPy):
-    a catalog or atlas name, or the digest of a linkage file's bytes; None where it is none of these (the linkage
-    reader then says what is wrong)."""
-    import hashlib
-    from pathlib import Path
-    shipped = Path(__file__).resolve().parent.parent / "linkages"  # the catalog's files, one a catalog linkage
-    if source and all(c.isalnum() or c in "-_" for c in source) and (shipped / f"{source}.toml").is_file():
-        return {"catalog": source}
-    if source.startswith("atlas:"):
-        return {"atlas": source}
-    try:
-        path = Path(source)
-        if not path.is_file() or path.stat().st_size > _KEYED_FILE_BYTES:
-            return None
-        return {"file_sha256": hashlib.sha256(path.read_bytes()).hexdigest()}
-    except (OSError, ValueError):
-        return None
 
 
 def _facts_values(facts: Mapping[str, Any], settings: Mapping[str, float], units: str,
@@ -689,7 +694,8 @@ def run_generic_table(args: argparse.Namespace) -> int:
     def facts_now() -> dict[str, Any]:
         return table_facts(found().linkage, found().defaults)
 
-    request = _linkage_request(args.linkage)
+    from ..io.scene_text import linkage_request
+    request = linkage_request(args.linkage)
 
     def key(outputs: list[str]) -> str:
         return catalog_key("table", outputs, GENERIC_ENTRY_KIND, request, GENERIC_SHAPING)
@@ -710,7 +716,7 @@ def run_generic_table(args: argparse.Namespace) -> int:
         raise ValueError(f"{name} needs values for {', '.join(missing)} (--set NAME=VALUE,...)")
     values.update({ratio: values.get(ratio, 0.0) for ratio in ratios})
     lengths = {n: values[n] for n in facts["positive"]}
-    solver = None
+    solver: Any = None
     if facts["closed_form"] and request is not None:  # from the disk cache (derived once, with SymPy)
         from ..numeric.cached_solver import CachedSolver, entry_text
         outputs = list(facts["outputs"].values())
@@ -721,6 +727,10 @@ def run_generic_table(args: argparse.Namespace) -> int:
 
         solver = CachedSolver(name, outputs, key=key(outputs), derive=lambda: entry_text(found().linkage, outputs),
                               full=full)
+        solver.check_lengths(**lengths)
+    elif request is not None:  # Newton's method, from the disk cache too (its NumPy module: no SymPy when warm)
+        from ..numeric.cached_solver import CachedNewtonSolver, newton_entry_text
+        solver = CachedNewtonSolver(name, key(["newton"]), lambda: newton_entry_text(found().linkage))
         solver.check_lengths(**lengths)
     else:
         from ..numeric.solver import check_lengths

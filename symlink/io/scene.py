@@ -51,8 +51,6 @@ is checked; anything unknown or out of range is one line of error.
 """
 from __future__ import annotations
 
-import math
-import sys
 from functools import cached_property, lru_cache
 from pathlib import Path
 from typing import Any, Mapping, Sequence
@@ -66,7 +64,9 @@ from ..common.files import excerpt, read_input_text
 from ..mechanism.catalog import CATALOG
 from ..common.display import record_html
 from ..numeric.input_sweep import InputSweep
-from .linkage_file import MAX_ANGLE, MAX_MAGNITUDE, LinkageFile, dynamic_model, load_linkage
+from .linkage_file import LinkageFile, dynamic_model, load_linkage
+from .scene_text import (BRANCH_CHOICES, FORMATS, INPUT_KEYS, MAX_SCENE_BYTES, TOP_KEYS, UNITS,  # noqa: F401
+                         choice as _choice, number as _number, table as _table, toml_loads)
 from ..common.angles import to_radians
 from ..symbolic.linkage import Linkage, Program
 from ..symbolic.closure import is_angle
@@ -76,19 +76,10 @@ from ..symbolic.sensitivity import split_sensitivity_name
 from ..numeric.solver import Solver, crank_speeds
 from ..symbolic.vectors import acceleration, rate
 
-if sys.version_info >= (3, 11):
-    from tomllib import loads as toml_loads
-else:  # Python 3.10: tomli is tomllib before it joined the standard library
-    from tomli import loads as toml_loads
 
 __all__ = ["Scene", "SceneFile", "catalog_linkage", "angle_outputs", "read_scene", "scene_from_mapping",
            "scene_from_text"]
 
-BRANCH_CHOICES = (1, -1, "both")
-UNITS = ("deg", "rad")
-FORMATS = ("table", "csv", "json")
-TOP_KEYS = {"linkage", "outputs", "branch", "units", "format", "parameters", "input", "dynamics"}
-INPUT_KEYS = {"start", "stop", "step", "angles", "speed", "accel"}
 
 
 @lru_cache(maxsize=None)
@@ -307,8 +298,10 @@ class DynamicScene:
             described = json.dumps(table, sort_keys=True, default=str)
         except (TypeError, ValueError):
             raise ValueError(f"dynamics must be a table of names and numbers, got {table!r}") from None
-        key = cache_key(kinematics, self.outputs, f"dynamic-scene:{described}")
-        self.solver = CachedSolver(kinematics.name, self.outputs, key=key, derive=self._derive, full=self._full)
+        self.key = cache_key(kinematics, self.outputs, f"dynamic-scene:{described}")
+        self.derive = self._derive  # the entry, the first time (SymPy): also what a warm scene file keeps the key of
+        self.solver = CachedSolver(kinematics.name, self.outputs, key=self.key, derive=self._derive,
+                                   full=self._full)
         facts = self.solver.description
         self.parameters = {name: _Positive(name, positive) for name, positive in facts["parameters"]}
         self.angles = set(facts["angles"])
@@ -377,6 +370,13 @@ class SceneFile:
                  speed: float = 0.0, accel: float = 0.0) -> None:
         self.scene, self.input_column, self.sweep, self.units, self.format = scene, input_column, sweep, units, fmt
         self.speed, self.accel = speed, accel
+        self.source: str = "catalog"  # where the linkage came from, and the defaults that stood in for parameters
+        self.defaults: dict[str, float] = {}
+
+    @property
+    def angle_columns(self) -> set[str]:
+        """The outputs printed as angles (:func:`angle_outputs`): wrapped, and in ``units``."""
+        return angle_outputs(self.scene.linkage, self.scene.outputs)
 
     @property
     def angles(self) -> numpy.ndarray:
@@ -395,43 +395,6 @@ class SceneFile:
         if acceleration(driven).name in takes:
             values[acceleration(driven).name] = self.accel
         return values
-
-
-def _number(value, where: str, angle: bool = False) -> float:
-    """A number of a scene file: finite, and in range as in linkage files (an ``angle`` within 1e9, any other
-    value 0 or between 1e-50 and 1e50 in size); ``ValueError`` naming ``where``."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise ValueError(f"{where} must be a number, got {excerpt(value)}")
-    try:
-        number = float(value)
-    except OverflowError:
-        number = math.inf
-    if not math.isfinite(number):
-        raise ValueError(f"{where} must be finite, got {value if isinstance(value, float) else 'a huge integer'}")
-    if angle and abs(number) > MAX_ANGLE:
-        raise ValueError(f"{where} must be at most {MAX_ANGLE:g} in size (larger angles have lost their precision), "
-                         f"got {number:g}")
-    if not angle and number != 0 and not 1 / MAX_MAGNITUDE <= abs(number) <= MAX_MAGNITUDE:
-        raise ValueError(f"{where} must be 0 or between {1 / MAX_MAGNITUDE:g} and {MAX_MAGNITUDE:g} in size, "
-                         f"got {number:g}")
-    return number
-
-
-def _choice(value, where: str, choices: Sequence) -> Any:
-    if isinstance(value, (bool, float)) or value not in choices:
-        raise ValueError(f"{where} must be one of {', '.join(map(repr, choices))}, got {value!r}")
-    return value
-
-
-def _table(data, where: str, allowed: set[str] | None) -> dict:
-    if not isinstance(data, dict):
-        raise ValueError(f"{where} must be a table ([{where}]), got {data!r}")
-    if allowed is not None:
-        unknown = sorted(set(data) - allowed)
-        if unknown:
-            raise ValueError(f"unknown key {where + '.' if where else ''}{unknown[0]} "
-                             f"(allowed: {', '.join(sorted(allowed))})")
-    return data
 
 
 def scene_from_mapping(data: Mapping, folder: str | Path = ".") -> SceneFile:
@@ -513,12 +476,9 @@ def scene_from_mapping(data: Mapping, folder: str | Path = ".") -> SceneFile:
     scene = Scene(linkage, outputs, dict(parameters), branch) if warm is None else warm.scene(dict(parameters), branch)
     roles = [role for role, q in linkage.roles.items() if q == driven]
     scene_file = SceneFile(scene, roles[0] if roles else driven.name, sweep, units, fmt, speed, accel)
+    scene_file.source, scene_file.defaults = found.source, defaults  # what a warm scene keeps (io.scene_text)
     scene.values.update(scene_file.values_at(sweep.array() if len(sweep) <= 4096 else sweep.block(0, 1)))
     return scene_file
-
-
-#: Scene files larger than this are refused unread (a scene is a few lines).
-MAX_SCENE_BYTES = 1 << 20
 
 
 def scene_from_text(text: str, source: str, folder: str | Path = ".") -> SceneFile:

@@ -37,7 +37,7 @@ from ..codegen.loading import load_numpy_module
 from ..common.limits import require_memory
 from .results import Results
 
-__all__ = ["CachedSolver", "ENTRY_KIND", "DESCRIPTION", "entry_text"]
+__all__ = ["CachedSolver", "CachedNewtonSolver", "ENTRY_KIND", "DESCRIPTION", "entry_text", "newton_entry_text"]
 
 #: The kind of cache entry (:func:`symlink.numeric.cache.catalog_key`) that holds a catalog solver (``/2``: its
 #: description has the arguments' units).
@@ -71,6 +71,22 @@ def entry_text(linkage: Any, outputs: Sequence[str], **more: Any) -> str:
         "lengths": [s.name for s in linkage.parameters if s.is_positive], "units": solver.units,
         "input_units": solver.input_units, "required": solver.required,
         "bytes_per_value": solver.bytes_per_value, **more,
+    }
+    return (f"{solver.source.rstrip()}\n\n\n#: What a call needs, for symlink.numeric.cached_solver (names, units, memory).\n"
+            f"{DESCRIPTION} = {described!r}\n")
+
+
+def newton_entry_text(linkage: Any, **more: Any) -> str:
+    """A cache entry of Newton's method on ``linkage``'s closure (:mod:`symlink.codegen.newton`): its generated NumPy
+    module and what a call needs, for :class:`CachedNewtonSolver`; ``more`` as for :func:`entry_text`."""
+    from .solver import NumericSolver
+    from .units import argument_units
+    solver = NumericSolver(linkage, backend="numpy")
+    arguments = [name for name in solver.arguments if name != "guess"]
+    described = {
+        "arguments": solver.arguments, "lengths": [s.name for s in linkage.parameters if s.is_positive],
+        "required": [s.name for s in linkage.inputs + linkage.parameters] + ["guess"], "units": solver.units,
+        "input_units": argument_units(linkage, arguments), "bytes_per_value": solver.bytes_per_value, **more,
     }
     return (f"{solver.source.rstrip()}\n\n\n#: What a call needs, for symlink.numeric.cached_solver (names, units, memory).\n"
             f"{DESCRIPTION} = {described!r}\n")
@@ -147,3 +163,71 @@ class CachedSolver:
 
     def __repr__(self) -> str:
         return f"CachedSolver({self.name!r}, {self.outputs})"
+
+
+class CachedNewtonSolver:
+    """Newton's method on a linkage's closure, run from a cache entry (:func:`newton_entry_text`) without the linkage.
+
+    The twin of :class:`CachedSolver` for a linkage without a closed form: a warm process loads the generated
+    NumPy module (the driver of :mod:`symlink.codegen.newton_driver` and the closure system) and imports no
+    SymPy.  It answers as :class:`~symlink.numeric.solver.NumericSolver` with ``backend="numpy"`` does, with the
+    same checks; plain numbers only (no pint quantities).
+
+    Parameters
+    ----------
+    name : str
+        The linkage's name, for messages.
+    key : str
+        The entry's cache key (:func:`symlink.numeric.cache.catalog_key`: made without building the linkage).
+    derive : callable
+        Makes the entry the first time (:func:`newton_entry_text`: builds the linkage, SymPy).
+
+    Examples
+    --------
+    >>> from symlink.mechanism.catalog import fourbar
+    >>> from symlink.numeric.cache import catalog_key
+    >>> solver = CachedNewtonSolver("fourbar", catalog_key("fourbar", ["newton"], "newton-example/1"),
+    ...                             lambda: newton_entry_text(fourbar()))
+    >>> result = solver(theta=[0.0, 0.1], a=20, b=66, c=56, d=80, guess={"beta": 1.0, "phi": 2.0})
+    >>> [round(float(v), 2) for v in numpy.degrees(result["rocker"])]  # seed 003: 110.74 at theta = 0
+    [110.74, 108.94]
+    """
+
+    def __init__(self, name: str, key: str, derive: Callable[[], str]) -> None:
+        self.name = name
+        self.source = cached_text(key, derive)
+        namespace = load_numpy_module(self.source)  # from a verified entry of a private cache (never user text)
+        entry = namespace[DESCRIPTION]
+        self.description: dict[str, Any] = entry
+        self.arguments: list[str] = entry["arguments"]
+        self.lengths: list[str] = entry["lengths"]
+        self.required: list[str] = entry["required"]
+        self.units: dict[str, str] = entry["units"]
+        self.input_units: dict[str, str] = entry["input_units"]
+        self.bytes_per_value: int = entry["bytes_per_value"]
+        self.function: Callable[..., dict] = namespace["accelerations"]
+        self._check: Callable[..., Any] = namespace[CHECK]
+
+    def check_lengths(self, **lengths: float) -> None:
+        """``ValueError`` naming the first length that is not a positive finite number (the generated check)."""
+        self._check(True, tuple(lengths), tuple(lengths.values()), tuple(lengths))
+
+    def __call__(self, guess: Any = None, **values: Any) -> Results:
+        """Positions, rates and accelerations along the sweep, from ``guess`` at its first input value."""
+        check_argument_names(self.name, self.arguments, self.required,
+                             list(values) + (["guess"] if guess is not None else []))
+        if not all(_plain(value) for value in values.values()):
+            raise ValueError(f"the cached {self.name} solver takes plain numbers; give quantities to NumericSolver")
+        try:
+            count = math.prod(numpy.broadcast_shapes(*(numpy.shape(value) for value in values.values())))
+        except ValueError:
+            count = 0  # the argument check says which shapes do not broadcast
+        if count:
+            require_memory(count, self.bytes_per_value,
+                           f"solving {count:.3g} input values with the {self.name} numeric solver")
+        with numpy.errstate(invalid="ignore", divide="ignore"):
+            result = self.function(guess=guess, **values)
+        return Results(result, {name: self.units.get(name, "") for name in result}, values, self.input_units)
+
+    def __repr__(self) -> str:
+        return f"CachedNewtonSolver({self.name!r})"

@@ -73,8 +73,10 @@ class InputSweep:
             raise ValueError(f"{prefix}stop ({stop:g}) must be greater than {prefix}start ({start:g})")
         count = (stop - start) / step
         if count > MAX_VALUES:
-            raise ValueError(f"{count:.4g} input values is too many (at most {MAX_VALUES:,}); "
-                             f"use a larger {prefix}step")
+            least = (stop - start) / MAX_VALUES
+            scale = 10.0 ** (math.floor(math.log10(least)) - 2)
+            raise ValueError(f"about {count:.4g} input values is too many (at most {MAX_VALUES:,} a sweep); use "
+                             f"{prefix}step {math.ceil(least / scale) * scale:.3g} or larger")
         count = math.ceil(count - 1e-9)
         if count > 1 and start + step * (count - 1) == start + step * (count - 2):
             raise ValueError(f"{prefix}step {step:g} is too small to change an angle of {start:g}")
@@ -97,7 +99,7 @@ class InputSweep:
         if not values:
             raise ValueError(f"{prefix}angles needs at least one angle")
         if len(values) > MAX_VALUES:
-            raise ValueError(f"{len(values)} input values is too many (at most {MAX_VALUES:,})")
+            raise ValueError(f"{len(values):,} input values is too many (at most {MAX_VALUES:,} a sweep)")
         return cls(values[0], 0.0, len(values), values)
 
     def __len__(self) -> int:

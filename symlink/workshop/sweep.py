@@ -239,7 +239,8 @@ class SweepSettings:
         if self.samples > 100_000:
             raise ValueError(f"samples must be at most 100000 a turn, got {self.samples}")
         if 2 * self.harmonics + 1 > self.samples:
-            raise ValueError(f"{self.harmonics} harmonics need at least {2 * self.harmonics + 1} samples")
+            raise ValueError(f"{self.harmonics:,} harmonics need at least {2 * self.harmonics + 1:,} samples a turn; "
+                             f"with {self.samples:,} samples use at most {(self.samples - 1) // 2:,} harmonics")
         if self.mode == "grid" and self.count == 1 and any(low != high for low, high in self.ranges.values()):
             raise ValueError("a grid of 1 value a parameter cannot span a range: give count 2 or more")
         _require_chunk_memory(min(self.chunk, self.designs), self.samples)

@@ -227,10 +227,15 @@ def _run_twice(tmp_path, arguments: list[str]) -> tuple[str, str, set[str]]:
     return runs[0].stdout, runs[1].stdout, _imported(runs[1].stderr)
 
 
+#: The Stephenson III's assembly near which its table starts (coupler, mu, rocker, eta at crank angle 0, degrees).
+NEWTON_GUESS = "coupler=-33,mu=-35,rocker=-73,eta=-68"
 WARM_COMMANDS = {
     "catalog table": ["table", "watt2", "--angles", "0,50", "--format", "csv", "--branch", "+1"],
     "linkage file table": ["table", "mywatt.toml", "--angles", "0,50", "--format", "csv", "--branch", "+1"],
     "atlas table": ["table", "atlas:watt-ii", "--angles", "0,30", "--format", "csv", "--branch", "+1"],
+    "Newton table": ["table", "stephenson3", "--angles", "0,50", "--format", "csv", "--guess", NEWTON_GUESS],
+    "Newton linkage file table": ["table", "mystephenson.toml", "--angles", "0,50", "--format", "csv", "--guess",
+                                  NEWTON_GUESS],
     "four-bar with masses": ["fourbar", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80",
                              "--masses", "1,2,3", "--gravity", "9.81", "--angles", "0,50", "--format", "csv", "--branch", "1"],
 }
@@ -240,6 +245,7 @@ WARM_COMMANDS = {
 def test_a_warm_command_imports_no_sympy(name, tmp_path):
     from symlink.io.linkage_file import catalog_file
     (tmp_path / "mywatt.toml").write_text(catalog_file("watt2").read_text())
+    (tmp_path / "mystephenson.toml").write_text(catalog_file("stephenson3").read_text())
     cold, warm, imported = _run_twice(tmp_path, WARM_COMMANDS[name])
     assert "symlink" in imported and "numpy" in imported  # the import list was read
     assert "sympy" not in imported
@@ -264,6 +270,101 @@ def test_a_warm_table_is_the_table_of_the_linkage(tmp_path):
         for name in ("rocker", "output"):
             expected = (math.degrees(float(solved[name][k])) + 180.0) % 360.0 - 180.0
             assert float(cells[name]) == pytest.approx(expected, abs=1e-9)
+
+
+# --- warm scene files: symlink run, a second time in a new process, imports no SymPy ----------------------------
+
+KINEMATIC_SCENE = textwrap.dedent("""\
+    linkage = "LINKAGE"
+    outputs = OUTPUTS
+    format = "csv"
+    [parameters]
+    a = 20
+    b = 66
+    c = 56
+    d = 80
+    [input]
+    angles = ANGLES
+    speed = 10.5
+    """)
+WARM_SCENES = {
+    "kinematics": KINEMATIC_SCENE.replace("OUTPUTS", '["rocker", "rocker_speed"]'),
+    "sensitivities": KINEMATIC_SCENE.replace("OUTPUTS", '["rocker__d_a"]'),
+    "linkage file": KINEMATIC_SCENE.replace("OUTPUTS", '["rocker"]').replace('"LINKAGE"', '"legs/four.toml"'),
+    "dynamics": 'format = "csv"\n' + SCENE.replace("angles = [0, 50]", "angles = ANGLES"),
+}
+
+
+def _scene_text(name: str, angles: str = "[0, 50]") -> str:
+    return WARM_SCENES[name].replace('"LINKAGE"', '"fourbar"').replace("ANGLES", angles)
+
+
+@pytest.mark.parametrize("name", WARM_SCENES)
+def test_a_warm_scene_imports_no_sympy(name, tmp_path):
+    from symlink.io.linkage_file import catalog_file
+    (tmp_path / "legs").mkdir()
+    (tmp_path / "legs" / "four.toml").write_text(catalog_file("fourbar").read_text())
+    (tmp_path / "scene.toml").write_text(_scene_text(name))
+    cold, warm, imported = _run_twice(tmp_path, ["run", "scene.toml"])
+    assert "symlink" in imported and "numpy" in imported
+    assert "sympy" not in imported
+    assert warm == cold and len(warm.splitlines()) == 3
+
+
+def test_a_warm_scene_with_other_numbers_is_warm_and_right(tmp_path):
+    """The cache keys a scene by its linkage, outputs and dynamics: other input angles are still warm, and the
+    torques are the crank's by hand (:func:`crank_alone`)."""
+    (tmp_path / "scene.toml").write_text(_scene_text("dynamics"))
+    _run_twice(tmp_path, ["run", "scene.toml"])
+    (tmp_path / "scene.toml").write_text(_scene_text("dynamics", "[10, 60, 120]"))
+    _, warm, imported = _run_twice(tmp_path, ["run", "scene.toml"])
+    assert "sympy" not in imported
+    header, *rows = warm.splitlines()
+    assert header == "crank,branch,input_torque,joint_A_y" and len(rows) == 3
+    for row in rows:
+        theta = math.radians(float(row.split(",")[0]))
+        speed = math.sqrt(2 * 2.0 * (theta - math.radians(10)))  # 2 rad/s^2 from rest at the first angle
+        torque, force = crank_alone(theta, speed, 2.0)
+        assert [float(v) for v in row.split(",")[2:]] == pytest.approx([torque, force], rel=1e-12)
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ("a = 20", "a = -20", "parameters.a must be a positive length, got -20"),
+    ("b = 66", 'b = "66"', "parameters.b must be a number, got"),
+    ("[input]", "[input]\nstep = 0", "input: give either angles or start/stop/step, not both"),
+    ('format = "csv"', 'format = "xml"', "format must be one of 'table', 'csv', 'json', got 'xml'"),
+    ("[parameters]", "colour = 1\n[parameters]", "unknown key colour"),
+])
+def test_a_bad_warm_scene_gets_the_full_readers_message(old, new, message, tmp_path, disk_cache, capsys):
+    from symlink.cli import main
+    (tmp_path / "scene.toml").write_text(_scene_text("kinematics"))
+    assert main(["run", str(tmp_path / "scene.toml")]) == 0  # cold: the facts are cached
+    capsys.readouterr()
+    (tmp_path / "scene.toml").write_text(_scene_text("kinematics").replace(old, new))
+    assert main(["run", str(tmp_path / "scene.toml")]) == 2
+    lines = capsys.readouterr().err.splitlines()
+    assert len(lines) == 1 and message in lines[0], lines
+
+
+def test_a_warm_newton_table_closes_both_loops(tmp_path):
+    """The Stephenson III's cached table (Newton's method, no closed form) closes its two loops at every row:
+    AB + BC + CF = AD + DF and AB + BE + EH = AD + DH, with the catalog's lengths, by hand in complex numbers."""
+    import cmath
+    _, warm, _ = _run_twice(tmp_path, WARM_COMMANDS["Newton table"])
+    header, *rows = warm.splitlines()
+    p = dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.9, delta=0.3)  # stephenson3.toml
+
+    def vector(length: float, angle: float) -> complex:
+        return cmath.rect(length, angle)
+    assert len(rows) == 2
+    for row in rows:
+        cells = {k: math.radians(float(v)) for k, v in zip(header.split(","), row.split(",")) if k != "branch"}
+        theta, beta, mu, phi, eta = (cells[k] for k in ("crank", "coupler", "mu", "rocker", "eta"))
+        first = vector(p["a"], theta) + vector(p["b"], beta) + vector(p["c"], mu) - vector(p["f"], phi) - p["d"]
+        second = (vector(p["a"], theta) + vector(p["e"], p["alpha"] + beta) + vector(p["g"], eta)
+                  - vector(p["h"], p["delta"] + phi) - p["d"])
+        assert abs(first) < 1e-10 and abs(second) < 1e-10
+    assert abs(math.degrees(cells["rocker"]) - (-94.16)) < 0.01  # the assembly near the guess, carried to 50 deg
 
 
 def test_a_sweep_starts_without_distributed_or_pandas(tmp_path):

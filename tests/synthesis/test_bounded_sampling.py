@@ -212,11 +212,11 @@ def files(tmp_path, monkeypatch):
 CLI = {
     "shape --samples": (["synthesize", "path", "fp.toml", "shape.csv", "--shape", "--free", "b", "--point", "P",
                          "--samples", "{n}"],
-                        r"a shape match of --samples {n:,} would take about .+ \(at most 60 min a command\); use "
-                        r"--samples 360,000 or fewer"),
+                        r"a shape match of --samples {n:,} would take about .+ \(at most 60 min a command, "
+                        r"--time-budget\); use --samples 360,000 or fewer"),
     "four-bar path --starts": (["synthesize", "path", "points.csv", "--starts", "{n}"],
                                r"a path synthesis of 6 points from {n:,} starts could take about .+ \(at most 60 min "
-                               r"a command\); use --starts 6,000 or fewer"),
+                               r"a command, --time-budget\); use --starts 6,000 or fewer"),
     "general path --starts": (["synthesize", "path", "fp.toml", "points.csv", "--free", "b", "--point", "P",
                                "--starts", "{n}"],
                               r"a path synthesis of 6 points from {n:,} starts could take about .+; use --starts "
@@ -234,7 +234,8 @@ CLI = {
                             r"{n:,} builds x 2 input values x 1 output are .+ values \(about .+ of memory\), more "
                             r"than the 50,000,000 sample_builds keeps; ask for at most 25,000,000 builds"),
     "table --step": (["table", "fourbar", "--step", "{tiny}"],
-                     r"1e\+(09|12) input values is too many \(at most 10,000,000\); use a larger --step"),
+                     r"about 1e\+(09|12) input values is too many \(at most 10,000,000 a sweep\); use --step 3.6e-05 "
+                     r"or larger"),
 }
 
 

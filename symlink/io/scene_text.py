@@ -1,0 +1,274 @@
+"""Scene files as plain data, and a warm scene from the disk cache: no SymPy.
+
+A scene file (:mod:`symlink.io.scene`) is numbers and names; what it needs of
+its linkage (which names are parameters, lengths or angles, the driven input,
+the angle columns) is plain data too.  The first run of a scene
+(:func:`cache_scene`) keeps those facts in the disk cache, keyed by what shapes
+them: the linkage (a catalog or atlas name, or the bytes of a linkage file),
+the outputs and the ``[dynamics]`` table.  A later run of a scene with the same
+key (:func:`warm_scene`, other numbers welcome) checks its numbers against the
+facts, and evaluates the cached NumPy module
+(:class:`~symlink.numeric.cached_solver.CachedSolver`): it builds no linkage
+and imports no SymPy.  Anything the warm checks do not accept as it is goes
+to the full reader, which says what is wrong.
+
+>>> number(20, "parameters.a"), choice("csv", "format", FORMATS)
+(20.0, 'csv')
+>>> number(True, "parameters.a")
+Traceback (most recent call last):
+ValueError: parameters.a must be a number, got True
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import sys
+from pathlib import Path
+from typing import Any, Mapping, Sequence
+
+import numpy
+
+from ..common.angles import to_radians
+from ..common.files import excerpt
+from ..numeric.input_sweep import MAX_ANGLE, InputSweep, crank_speeds
+
+if sys.version_info >= (3, 11):
+    from tomllib import loads as toml_loads
+else:  # Python 3.10: tomli is tomllib before it joined the standard library
+    from tomli import loads as toml_loads
+
+__all__ = ["BRANCH_CHOICES", "UNITS", "FORMATS", "TOP_KEYS", "INPUT_KEYS", "MAX_SCENE_BYTES", "MAX_ANGLE",
+           "MAX_MAGNITUDE", "toml_loads", "number", "choice", "table", "linkage_request", "WarmScene",
+           "warm_scene", "cache_scene", "SCENE_ENTRY_KIND"]
+
+BRANCH_CHOICES = (1, -1, "both")
+UNITS = ("deg", "rad")
+FORMATS = ("table", "csv", "json")
+TOP_KEYS = {"linkage", "outputs", "branch", "units", "format", "parameters", "input", "dynamics"}
+INPUT_KEYS = {"start", "stop", "step", "angles", "speed", "accel"}
+#: Scene files larger than this are refused unread (a scene is a few lines).
+MAX_SCENE_BYTES = 1 << 20
+#: Numbers of a scene file other than angles: 0 or between its inverse and it in size (the bound of linkage files,
+#: :data:`symlink.io.linkage_file.MAX_MAGNITUDE`, and of the command line's numbers).
+MAX_MAGNITUDE = 1e50
+#: The kind of cache entry of a scene's facts (:func:`symlink.numeric.cache.catalog_key`).
+SCENE_ENTRY_KIND = "scene-facts/1"
+#: Besides the code that shapes generated code: what reads scenes and linkage files.
+SCENE_SHAPING = ("io/scene", "io/scene_text", "io/linkage_file")
+#: A linkage file larger than this is not keyed (its reader refuses it anyway).
+_KEYED_FILE_BYTES = 4 << 20
+
+
+def number(value: Any, where: str, angle: bool = False) -> float:
+    """A number of a scene file: finite, and in range as in linkage files (an ``angle`` within 1e9, any other
+    value 0 or between 1e-50 and 1e50 in size); ``ValueError`` naming ``where``."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise ValueError(f"{where} must be a number, got {excerpt(value)}")
+    try:
+        found = float(value)
+    except OverflowError:
+        found = math.inf
+    if not math.isfinite(found):
+        raise ValueError(f"{where} must be finite, got {value if isinstance(value, float) else 'a huge integer'}")
+    if angle and abs(found) > MAX_ANGLE:
+        raise ValueError(f"{where} must be at most {MAX_ANGLE:g} in size (larger angles have lost their precision), "
+                         f"got {found:g}")
+    if not angle and found != 0 and not 1 / MAX_MAGNITUDE <= abs(found) <= MAX_MAGNITUDE:
+        raise ValueError(f"{where} must be 0 or between {1 / MAX_MAGNITUDE:g} and {MAX_MAGNITUDE:g} in size, "
+                         f"got {found:g}")
+    return found
+
+
+def choice(value: Any, where: str, choices: Sequence) -> Any:
+    """``value`` if it is one of ``choices`` (a bool or a float never is); ``ValueError`` naming ``where``."""
+    if isinstance(value, (bool, float)) or value not in choices:
+        raise ValueError(f"{where} must be one of {', '.join(map(repr, choices))}, got {value!r}")
+    return value
+
+
+def table(data: Any, where: str, allowed: set[str] | None) -> dict:
+    """``data`` if it is a TOML table whose keys are all ``allowed``; ``ValueError`` naming the first other."""
+    if not isinstance(data, dict):
+        raise ValueError(f"{where} must be a table ([{where}]), got {data!r}")
+    if allowed is not None:
+        unknown = sorted(set(data) - allowed)
+        if unknown:
+            raise ValueError(f"unknown key {where + '.' if where else ''}{unknown[0]} "
+                             f"(allowed: {', '.join(sorted(allowed))})")
+    return data
+
+
+def linkage_request(source: str, folder: str | Path | None = None) -> dict[str, str] | None:
+    """What names a linkage in a cache key, found without building it (no SymPy): a catalog or atlas name, or
+    the digest of a linkage file's bytes (a relative path looked for in ``folder``, as
+    :func:`symlink.io.linkage_file.load_linkage` does); None where it is none of these (the reader then says
+    what is wrong).
+
+    >>> linkage_request("fourbar"), linkage_request("atlas:watt-ii"), linkage_request("no/such/file.toml")
+    ({'catalog': 'fourbar'}, {'atlas': 'atlas:watt-ii'}, None)
+    """
+    shipped = Path(__file__).resolve().parent.parent / "linkages"  # the catalog's files, one a catalog linkage
+    if source and all(c.isalnum() or c in "-_" for c in source) and (shipped / f"{source}.toml").is_file():
+        return {"catalog": source}
+    if source.startswith("atlas:"):
+        return {"atlas": source}
+    try:
+        path = Path(folder) / source if folder is not None else Path(source)
+        if not path.is_file() or path.stat().st_size > _KEYED_FILE_BYTES:
+            return None
+        return {"file_sha256": hashlib.sha256(path.read_bytes()).hexdigest()}
+    except (OSError, ValueError):
+        return None
+
+
+def _key(data: Mapping[str, Any], folder: str | Path) -> str | None:
+    """The cache key of a parsed scene's facts; None where its linkage or its outputs cannot be keyed."""
+    from ..numeric.cache import catalog_key
+    source, outputs = data.get("linkage"), data.get("outputs")
+    if not isinstance(source, str) or not isinstance(outputs, list) or not all(isinstance(o, str) for o in outputs):
+        return None
+    request = linkage_request(source, folder)
+    if request is None:
+        return None
+    try:
+        dynamics = json.loads(json.dumps(data.get("dynamics"), sort_keys=True))
+    except (TypeError, ValueError):  # a date or a time in the table: not plain data
+        return None
+    return catalog_key("scene", outputs, SCENE_ENTRY_KIND, {"linkage": request, "dynamics": dynamics}, SCENE_SHAPING)
+
+
+class WarmScene:
+    """A scene file evaluated from the cache: its facts (plain data), its numbers, and the cached solver.
+
+    Evaluated as :class:`symlink.io.scene.SceneFile` is: a block of input angles at a time, each branch sign.
+    """
+
+    def __init__(self, facts: Mapping[str, Any], solver: Any, parameters: Mapping[str, float], sweep: InputSweep,
+                 units: str, fmt: str, branch: int | str, speed: float, accel: float) -> None:
+        self.facts, self.solver, self.parameters, self.sweep = facts, solver, dict(parameters), sweep
+        self.units, self.format, self.branch, self.speed, self.accel = units, fmt, branch, speed, accel
+        self.outputs: list[str] = list(facts["outputs"])
+        self.input_column: str = facts["input_column"]
+        self.angle_columns: set[str] = {self.input_column, *facts["angle_columns"]}
+        self.name: str = facts["name"]
+
+    def values_at(self, angles: numpy.ndarray) -> dict[str, object]:
+        """The driven input at ``angles`` (in ``units``): its angle in radians, and the rate and acceleration where
+        the outputs need them."""
+        theta = to_radians(angles, self.units)
+        values: dict[str, object] = {self.facts["input"]: theta}
+        if self.facts["rate"] in self.solver.arguments:
+            first = float(to_radians(self.sweep.first, self.units))
+            values[self.facts["rate"]] = crank_speeds(theta, self.speed, self.accel, first)
+        if self.facts["accel"] in self.solver.arguments:
+            values[self.facts["accel"]] = self.accel
+        return values
+
+    def evaluate(self, angles: numpy.ndarray) -> dict[int, Any]:
+        """The outputs on each branch sign at ``angles``."""
+        signs = (1, -1) if self.branch == "both" else (int(self.branch),)
+        merged = {**self.parameters, **self.values_at(angles)}
+        return {sign: self.solver(**merged, **{name: sign for name in self.solver.branches}) for sign in signs}
+
+
+class _Cold(Exception):
+    """The cache lacks an entry the warm scene needs: the full reader takes over."""
+
+
+def _cold() -> str:
+    raise _Cold
+
+
+def _plain_scene(data: Mapping[str, Any], facts: Mapping[str, Any], solver: Any) -> WarmScene:
+    """A :class:`WarmScene` of the parsed scene ``data`` with its ``facts``; ``ValueError`` for anything the full
+    reader (:func:`symlink.io.scene.scene_from_mapping`) might see otherwise."""
+    table(dict(data), "", TOP_KEYS)
+    names = facts["parameters"]
+    given = {**{n: v for n, v in facts["defaults"].items() if n in names},
+             **table(data.get("parameters", {}), "parameters", set(names))}
+    if any(n not in given for n in names):
+        raise ValueError("missing parameters")
+    parameters = {}
+    for name, value in given.items():
+        parameters[name] = number(value, f"parameters.{name}", angle=name in facts["angles"])
+        if name in facts["positive"] and parameters[name] <= 0:
+            raise ValueError("a length that is not positive")
+    sweep_table = table(data.get("input", {}), "input", INPUT_KEYS)
+    options: dict[str, Any] = {key: (None if key not in sweep_table else
+                                     number(sweep_table[key], f"input.{key}", angle=key != "step"))
+                               for key in ("start", "stop", "step")}
+    angles = sweep_table.get("angles")
+    if angles is not None:
+        if not isinstance(angles, list):
+            raise ValueError("input.angles is not a list")
+        angles = [number(v, f"input.angles[{i}]", angle=True) for i, v in enumerate(angles)]
+    units = choice(data.get("units", "deg"), "units", UNITS)
+    sweep = InputSweep.from_options(angles=angles, units=units, **options)
+    return WarmScene(facts, solver, parameters, sweep, units, choice(data.get("format", "table"), "format", FORMATS),
+                     choice(data.get("branch", 1), "branch", BRANCH_CHOICES),
+                     number(sweep_table.get("speed", 0.0), "input.speed"),
+                     number(sweep_table.get("accel", 0.0), "input.accel"))
+
+
+def _solver(facts: Mapping[str, Any], derive: Any) -> Any:
+    from ..numeric.cached_solver import CachedSolver
+    return CachedSolver(facts["name"], facts["outputs"], key=facts["solver_key"], derive=derive)
+
+
+def warm_scene(text: str, folder: str | Path = ".") -> WarmScene | None:
+    """The scene of TOML ``text`` from the disk cache alone (no SymPy); None where the cache does not hold what it
+    needs, or anything in the text is not plainly right (then :func:`symlink.io.scene.scene_from_text` reads it
+    and says what is wrong)."""
+    from ..numeric.cache import cached_text
+    if len(text) > MAX_SCENE_BYTES:
+        return None
+    try:
+        data = toml_loads(text)
+        key = _key(data, folder)
+        if key is None:
+            return None
+        facts = json.loads(cached_text(key, _cold))
+        return _plain_scene(data, facts, _solver(facts, _cold))
+    except (_Cold, ValueError, TypeError, KeyError, RecursionError):
+        return None
+
+
+def cache_scene(text: str, folder: str | Path, found: Any) -> WarmScene | None:
+    """Keep the facts of the scene file ``found`` (:class:`symlink.io.scene.SceneFile`, read from TOML ``text``)
+    in the disk cache and return it as a :class:`WarmScene`, so that the next run of a scene like it is warm;
+    None where it cannot be keyed (its linkage named by a path that is not a file, say)."""
+    from ..numeric.cache import cached_text, catalog_key
+    data = toml_loads(text)
+    key = _key(data, folder)
+    if key is None:
+        return None
+    scene = found.scene
+    linkage, outputs = scene.linkage, list(scene.outputs)
+    request = getattr(scene, "request", None)  # a dynamics request (symlink.io.scene.DynamicScene) has its own entry
+    if request is not None:
+        solver_key, derive = request.key, request.derive
+        parameters = list(request.parameters.values())
+    else:
+        from ..numeric.cached_solver import entry_text
+        solver_key = catalog_key("scene-solver", outputs, SCENE_ENTRY_KIND, {"scene": key})
+
+        def derive() -> str:
+            return entry_text(linkage, outputs)
+        parameters = list(linkage.parameters)
+    from ..symbolic.closure import is_angle
+    from ..symbolic.vectors import acceleration, rate
+    driven = linkage.inputs[0]
+    names = [p.name for p in parameters]
+    known = {s.name: s for s in linkage.parameters}
+    defaults = {} if found.source == "catalog" else {n: v for n, v in found.defaults.items() if n in names}
+    facts = {
+        "name": linkage.name, "outputs": outputs, "parameters": names,
+        "positive": [p.name for p in parameters if p.is_positive],
+        "angles": [n for n in names if n in known and is_angle(linkage, known[n])],
+        "defaults": defaults, "input": driven.name, "rate": rate(driven).name, "accel": acceleration(driven).name,
+        "input_column": found.input_column, "angle_columns": sorted(found.angle_columns),
+        "solver_key": solver_key,
+    }
+    stored = json.loads(cached_text(key, lambda: json.dumps(facts)))
+    return _plain_scene(data, stored, _solver(stored, derive))

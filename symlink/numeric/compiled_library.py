@@ -41,6 +41,7 @@ import atexit
 import ctypes
 import hashlib
 import json
+import math
 import os
 import platform
 import secrets
@@ -63,6 +64,7 @@ from ..common.display import record_html
 from .call_arguments import check_argument_names
 from ..codegen.c import PIECE_SIZE, c_function, c_library, c_packed, translation_units
 from ..common.files import NotPrivate, read_private, write_atomic
+from .results import checked_out
 from ..symbolic.linkage import Linkage, Program, is_branch_name
 
 __all__ = ["FLAGS", "FallbackWarning", "CompilerUnavailable", "CompileError", "cache_directory", "find_compiler",
@@ -537,6 +539,10 @@ class CompiledFunction:
         rows = [(True, next(flags_)) if flag else (False, next(floats)) for flag in self.flags] + [(True, next(flags_))]
         self._result_names = self.outputs + ["assembled"]
         self._result_rows = rows
+        self._result_dtypes = {name: numpy.dtype(bool if flag else numpy.float64)
+                               for name, flag in zip(self._result_names, self.flags + [True])}
+        self._blocks: list[numpy.ndarray] = []  # the output blocks of larger calls, kept for reuse
+        self._free_references = 3  # a kept block's reference count where no caller holds it (set when kept)
         self._kept: list[_Outputs] = []
         self._lock = threading.Lock()  # the slots are shared: one small call at a time
         # The small-call extension's plan of this function (symlink.codegen.call_extension.PLAN_FIELDS), or None
@@ -551,8 +557,15 @@ class CompiledFunction:
                           ctypes.cast(self.packed, ctypes.c_void_p).value, self._entries, self._new_entry,
                           SMALL_CALL, numpy.ndarray, numpy.float64, bytearray(1))
 
-    def __call__(self, **values) -> dict[str, numpy.ndarray]:
-        if self.packed is not None:
+    def __call__(self, *, out: Any = None, **values) -> dict[str, numpy.ndarray]:
+        """The outputs (and ``assembled``) at ``values``, by keyword: new arrays, or the caller's ``out``.
+
+        New arrays are views of one block a call (:meth:`_output_block`); ``out``, a dict of
+        arrays by output name (:func:`symlink.numeric.results.checked_out` says which it takes), is
+        written in place and returned as it is, so that a large call writes no page the caller
+        did not fault in before.
+        """
+        if self.packed is not None and out is None:
             result = self._small(values)
             if result is not None:
                 return result
@@ -561,15 +574,49 @@ class CompiledFunction:
         arrays = [numpy.asarray(values[a] if a in values else self.defaults[a], dtype=numpy.float64)
                   for a in self.arguments]
         shape = numpy.broadcast_shapes(*(a.shape for a in arrays))
-        count = int(numpy.prod(shape, dtype=numpy.int64))
-        outputs = {name: numpy.empty(shape, dtype=bool if flag else numpy.float64)
-                   for name, flag in zip(self.outputs, self.flags)}
-        assembled = numpy.empty(shape, dtype=bool)
+        count = math.prod(shape)
+        if out is None:
+            outputs = self._output_block(shape, count)
+        else:
+            outputs = checked_out(out, self._result_dtypes, shape, list(zip(self.arguments, arrays)))
         if count:
             strided = [_strided(array, shape) for array in arrays]  # keeps any copy alive during the call
             pointers = [value for pointer, step, _ in strided for value in (pointer, step)]
-            self.entry(count, *pointers, *(o.ctypes.data for o in outputs.values()), assembled.ctypes.data)
-        return {**outputs, "assembled": assembled}
+            self.entry(count, *pointers, *(outputs[name].ctypes.data for name in self._result_names))
+        return outputs
+
+    def _output_block(self, shape: tuple[int, ...], count: int) -> dict[str, numpy.ndarray]:
+        """The outputs of a call of ``count`` values: views of one block, the number rows then the true/false rows.
+
+        The block is one allocation: a block of the same size that no caller holds any more (no view of it
+        is referenced anywhere, :meth:`_free_block`) is written again instead, so that a caller who drops
+        each result (or keeps it until the next call returns) faults in no new page.
+        """
+        numbers = 8 * len(self._float_names) * count
+        block = self._free_block(numbers + len(self._flag_names) * count)
+        number_rows = block[:numbers].view(numpy.float64).reshape((len(self._float_names),) + shape)
+        flag_rows = block[numbers:].view(numpy.bool_).reshape((len(self._flag_names),) + shape)
+        return {name: (flag_rows if flag else number_rows)[row, ...]  # an array even of shape ()
+                for name, (flag, row) in zip(self._result_names, self._result_rows)}
+
+    def _free_block(self, size: int) -> numpy.ndarray:
+        """A block of ``size`` bytes: a kept one nothing else references (no result, row or view of it), else new.
+
+        The last :data:`KEPT_BLOCKS` blocks of at most :data:`KEPT_BLOCK_BYTES` are kept.  Every view
+        of a block (a result's row, a slice of it, a view of that) has the block as its base, so a
+        block whose reference count is the one it had when it was kept (the list's, a name's and
+        ``getrefcount``'s argument) is held by no caller, and is never written while one holds it.
+        """
+        kept, count = self._blocks, sys.getrefcount
+        for block in kept:
+            if block.nbytes == size and count(block) == self._free_references:
+                return block
+        block = numpy.empty(size, dtype=numpy.uint8)
+        if size <= KEPT_BLOCK_BYTES:
+            kept.append(block)
+            del kept[:-KEPT_BLOCKS]
+            self._free_references = count(block)  # as counted in the loop above: the list, a name, the argument
+        return block
 
     def _new_entry(self, length: int) -> tuple:
         """A new output block of ``length`` values as the extension keeps it (``ENTRY_FIELDS``), kept."""
@@ -673,6 +720,13 @@ class CompiledFunction:
 
 #: Output blocks of small calls kept for reuse by each compiled function (see :meth:`CompiledFunction._free_outputs`).
 KEPT_OUTPUTS = 3
+
+#: Output blocks of larger calls kept for reuse by each compiled function (:meth:`CompiledFunction._free_block`):
+#: two, so that ``result = solver(...)`` in a loop (the result before held until the call returns) reuses them.
+KEPT_BLOCKS = 2
+
+#: The largest output block kept for reuse (a larger one is the caller's alone, returned to the system when dropped).
+KEPT_BLOCK_BYTES = 1 << 28
 
 
 class _Outputs:

@@ -23,14 +23,14 @@ outputs by their plain names (``df["phi"]``), units in
 from __future__ import annotations
 
 import html
-from typing import TYPE_CHECKING, Any, Mapping
+from typing import TYPE_CHECKING, Any, Mapping, Sequence
 
 import numpy
 
 if TYPE_CHECKING:
     import pandas
 
-__all__ = ["Results", "HTML_ROWS"]
+__all__ = ["Results", "HTML_ROWS", "checked_out"]
 
 #: Rows a notebook shows of a result (the first ones, then how many more there are).
 HTML_ROWS = 10
@@ -197,6 +197,55 @@ class Results(dict):
         more = f"<p>{rows - HTML_ROWS} more rows of {rows}{grid}</p>" if rows > HTML_ROWS else (
             f"<p>{rows} rows{grid}</p>" if grid else "")
         return f"<table><thead><tr><th></th>{head}</tr></thead><tbody>{''.join(body)}</tbody></table>{more}"
+
+
+def checked_out(out: object, dtypes: Mapping[str, numpy.dtype], shape: tuple[int, ...],
+                arguments: Sequence[tuple[str, object]] = ()) -> dict[str, numpy.ndarray]:
+    """The caller's output arrays ``out`` by name, checked: one for each output, each one a writable
+    C-contiguous array of its dtype and of the call's ``shape``, overlapping no other and no argument.
+
+    ``dtypes`` names the call's outputs (``assembled`` among them) and their dtypes;
+    ``arguments`` are ``(name, array)`` pairs of the call.  ``ValueError`` naming the output
+    otherwise, before anything is written.
+
+    >>> rocker, assembled = numpy.empty(2), numpy.empty(2, dtype=bool)
+    >>> kinds = {"rocker": numpy.dtype(float), "assembled": numpy.dtype(bool)}
+    >>> checked_out({"rocker": rocker, "assembled": assembled}, kinds, (2,))["rocker"] is rocker
+    True
+    >>> checked_out({"rocker": rocker}, kinds, (2,))
+    Traceback (most recent call last):
+    ValueError: out has no array for the output 'assembled' (a call writes rocker, assembled)
+    >>> checked_out({"rocker": numpy.empty(4)[::2], "assembled": assembled}, kinds, (2,))
+    Traceback (most recent call last):
+    ValueError: out['rocker'] must be C-contiguous (a call writes its values in order)
+    """
+    names = ", ".join(dtypes)
+    if not isinstance(out, Mapping):
+        raise ValueError(f"out must be a dict of NumPy arrays by output name ({names}), got {type(out).__name__}")
+    for name in out:
+        if name not in dtypes:
+            raise ValueError(f"out[{name!r}]: the call has no output {name!r}; it writes {names}")
+    checked: dict[str, numpy.ndarray] = {}
+    for name, dtype in dtypes.items():
+        if name not in out:
+            raise ValueError(f"out has no array for the output {name!r} (a call writes {names})")
+        array = out[name]
+        if type(array) is not numpy.ndarray:
+            raise ValueError(f"out[{name!r}] must be a NumPy array, got {type(array).__name__}")
+        if array.dtype != dtype:
+            raise ValueError(f"out[{name!r}] must have dtype {dtype}, got {array.dtype}")
+        if array.shape != tuple(shape):
+            raise ValueError(f"out[{name!r}] must have the call's shape {tuple(shape)}, got {array.shape}")
+        if not array.flags.c_contiguous:
+            raise ValueError(f"out[{name!r}] must be C-contiguous (a call writes its values in order)")
+        if not array.flags.writeable:
+            raise ValueError(f"out[{name!r}] must be writable")
+        others = [(f"out[{other!r}]", value) for other, value in checked.items()]
+        for where, value in others + [(f"the argument {other}", value) for other, value in arguments]:
+            if isinstance(value, numpy.ndarray) and numpy.may_share_memory(array, value):
+                raise ValueError(f"out[{name!r}] overlaps {where}; give each output its own memory")
+        checked[name] = array
+    return checked
 
 
 def _cell(value: object) -> str:

@@ -520,6 +520,10 @@ class CompiledFunction:
         if self.packed is not None:
             self.packed.restype = ctypes.c_int
             self.packed.argtypes = [ctypes.c_void_p]
+        self.check = getattr(library, f"{name}_check", None)  # the packed call's check alone (a library of before: none)
+        if self.check is not None:
+            self.check.restype = ctypes.c_int
+            self.check.argtypes = [ctypes.c_void_p]
         count = len(self.arguments)
         self._index = {name: index for index, name in enumerate(self.arguments)}
         self._numbers: Any = (ctypes.c_double * max(count, 1))()  # the numbers of a call, each read at a step of 0
@@ -582,8 +586,76 @@ class CompiledFunction:
         if count:
             strided = [_strided(array, shape) for array in arrays]  # keeps any copy alive during the call
             pointers = [value for pointer, step, _ in strided for value in (pointer, step)]
-            self.entry(count, *pointers, *(outputs[name].ctypes.data for name in self._result_names))
+            self.entry(count, *pointers, *(_address(outputs[name]) for name in self._result_names))
         return outputs
+
+    def checked_call(self, values: Mapping[str, Any], out: Any = None,
+                     before_allocating: Any = None) -> dict[str, numpy.ndarray] | None:
+        """The outputs at ``values`` checked in C (``<name>_check``, one pass, no temporaries), else ``None``.
+
+        Takes a call whose arguments are numbers and float64 arrays of one dimension and one length
+        (each read at its own step, none copied), as :meth:`__call__` does with ``out``; anything else,
+        or arguments the check refuses, gives ``None``: the caller then checks them in NumPy (which
+        says what is wrong) and calls :meth:`__call__`.  ``before_allocating()`` is called before a new
+        output block is allocated (a memory check).
+        """
+        if self.check is None:
+            return None
+        index_of, count = self._index, len(self.arguments)
+        if not values.keys() <= index_of.keys():
+            return None
+        numbers: Any = (ctypes.c_double * max(count, 1))()
+        pointers: Any = (ctypes.c_void_p * max(count, 1))()
+        steps: Any = (ctypes.c_ssize_t * max(count, 1))()
+        start, length, kept = ctypes.addressof(numbers), 0, []
+        for index, name in enumerate(self.arguments):
+            value: Any = values[name] if name in values else self.defaults.get(name)
+            kind = type(value)
+            if kind in _NUMBER_TYPES:
+                try:
+                    numbers[index] = value
+                except OverflowError:
+                    return None
+                pointers[index], steps[index] = start + 8 * index, 0
+            elif kind is numpy.ndarray and value.dtype == _FLOAT and value.ndim == 1 \
+                    and value.strides[0] % 8 == 0 and (length == 0 or value.shape[0] in (1, length)):
+                if value.shape[0] != 1:
+                    length = value.shape[0]
+                pointers[index], steps[index] = _data_address(value) if value.flags.c_contiguous \
+                    else value.ctypes.data, value.strides[0] // 8 if value.shape[0] != 1 else 0
+                kept.append(value)
+            else:
+                return None  # a missing argument, another type or shape: checked in NumPy
+        if length == 0 or any(v.shape[0] not in (1, length) for v in kept):
+            return None
+        call = _PackedCall(length, ctypes.addressof(pointers), ctypes.addressof(steps), 0, 0)
+        if self.check(ctypes.addressof(call)):
+            return None  # the NumPy check says which argument, and why
+        shape = (length,)
+        if out is not None:
+            outputs = checked_out(out, self._result_dtypes, shape, [(a, v) for a, v in zip(self.arguments, (
+                values.get(a) for a in self.arguments)) if type(v) is numpy.ndarray])
+        else:
+            if before_allocating is not None and not self.allocates_nothing([], shape, None):
+                before_allocating()
+            outputs = self._output_block(shape, length)
+        arguments = [value for k in range(count) for value in (pointers[k], steps[k])]
+        self.entry(length, *arguments, *(_address(outputs[name]) for name in self._result_names))
+        return outputs
+
+    def allocates_nothing(self, arrays: Sequence[numpy.ndarray], shape: tuple[int, ...], out: Any) -> bool:
+        """Whether a general call of these checked ``arrays`` (of broadcast ``shape``) allocates no memory that
+        grows with it: it writes into ``out`` or into a kept block nobody holds, and copies no argument."""
+        if any(array.size > 1 and not (array.shape == shape and (array.flags.c_contiguous or array.ndim == 1))
+               for array in arrays):
+            return False  # an argument broadcast or strided in more than one dimension: copied
+        if out is not None:
+            return True
+        count = math.prod(shape)
+        size = 8 * len(self._float_names) * count + len(self._flag_names) * count
+        references = sys.getrefcount
+        # (each kept block's references counted as in _free_block: the list's, the loop's name and the argument)
+        return any(block.nbytes == size and references(block) == self._free_references for block in self._blocks)
 
     def _output_block(self, shape: tuple[int, ...], count: int) -> dict[str, numpy.ndarray]:
         """The outputs of a call of ``count`` values: views of one block, the number rows then the true/false rows.
@@ -787,9 +859,9 @@ def _strided(array: numpy.ndarray, shape: tuple[int, ...]) -> tuple[int, int, nu
     """(data pointer, step in elements, the array): no copy for a scalar, a contiguous or a strided 1-d array."""
     item = array.itemsize
     if array.size == 1:
-        return array.ctypes.data, 0, array
+        return _data_address(array), 0, array
     if array.shape == shape and array.flags.c_contiguous:
-        return array.ctypes.data, 1, array
+        return _data_address(array), 1, array
     if array.shape == shape and array.ndim == 1 and array.strides[0] % item == 0:
         return array.ctypes.data, array.strides[0] // item, array
     copy = numpy.ascontiguousarray(numpy.broadcast_to(array, shape))

@@ -240,12 +240,28 @@ def checked_out(out: object, dtypes: Mapping[str, numpy.dtype], shape: tuple[int
             raise ValueError(f"out[{name!r}] must be C-contiguous (a call writes its values in order)")
         if not array.flags.writeable:
             raise ValueError(f"out[{name!r}] must be writable")
-        others = [(f"out[{other!r}]", value) for other, value in checked.items()]
-        for where, value in others + [(f"the argument {other}", value) for other, value in arguments]:
-            if isinstance(value, numpy.ndarray) and numpy.may_share_memory(array, value):
-                raise ValueError(f"out[{name!r}] overlaps {where}; give each output its own memory")
         checked[name] = array
+    spans = [(f"out[{name!r}]", _byte_span(array)) for name, array in checked.items()]
+    given = [(f"the argument {name}", _byte_span(value)) for name, value in arguments
+             if isinstance(value, numpy.ndarray) and value.size]
+    for k, (name, (start, end)) in enumerate(spans):
+        for where, (low, high) in spans[:k] + given:
+            if start < high and low < end:  # (numpy.may_share_memory's test, on bounds found once)
+                raise ValueError(f"{name} overlaps {where}; give each output its own memory")
     return checked
+
+
+def _byte_span(array: numpy.ndarray) -> tuple[int, int]:
+    """The first byte an array reaches and the one past its last (its extent in memory, whatever its strides)."""
+    start = end = array.__array_interface__["data"][0]
+    for extent, stride in zip(array.shape, array.strides):
+        if extent == 0:
+            return start, start
+        if stride < 0:
+            start += stride * (extent - 1)
+        else:
+            end += stride * (extent - 1)
+    return start, end + array.itemsize
 
 
 def _cell(value: object) -> str:

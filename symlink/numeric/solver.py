@@ -318,10 +318,22 @@ class Solver:
             length_unit = None
         else:
             values, length_unit = plain_values(self.linkage, values)
-        if not _surely_small(values, self.bytes_per_value):
+        small = _surely_small(values, self.bytes_per_value)
+        if compiled is not None and length_unit is None:
+            # Numbers and one-dimensional float arrays: checked in C, in one pass (else below, in NumPy, which
+            # says what is wrong with a value the C check refuses).
+            with numpy.errstate(invalid="ignore", divide="ignore"):
+                found = compiled.checked_call(values, out, None if small else functools.partial(
+                    _require_memory, self, values, self.bytes_per_value, "solver"))
+            if found is not None:
+                return Results(found, self._result_units, values, self.input_units)
+        if not small and compiled is None:
             _require_memory(self, values, self.bytes_per_value, "solver")
         names = list(values)
         arrays, shape = checked_arguments(names, list(values.values()), lengths, branches)
+        if not small and compiled is not None and not compiled.allocates_nothing(arrays, shape, out):
+            # (a compiled call writing into the caller's arrays or a kept block allocates nothing: not checked)
+            _require_memory(self, values, self.bytes_per_value, "solver")
         with numpy.errstate(invalid="ignore", divide="ignore"):
             if compiled is not None:
                 found = compiled(out=out, **dict(zip(names, arrays)))
@@ -345,12 +357,15 @@ _SMALL_CALL_BYTES = 1 << 26
 
 
 def _surely_small(values: Mapping[str, Any], bytes_per_value: int) -> bool:
-    """Whether a call surely needs less than :data:`_SMALL_CALL_BYTES`: its broadcast size is at most the product of its arrays' sizes."""
-    bound = bytes_per_value
+    """Whether a call surely needs less than :data:`_SMALL_CALL_BYTES`: its broadcast size is at most the product
+    of the sizes of its arrays' distinct shapes (arrays of one shape broadcast to that shape)."""
+    bound, shapes = bytes_per_value, set()
     for value in values.values():
         kind = type(value)
         if kind is numpy.ndarray:
-            bound *= value.size
+            if value.shape not in shapes:
+                shapes.add(value.shape)
+                bound *= value.size
         elif kind not in _PLAIN_TYPES:
             return False
         if bound > _SMALL_CALL_BYTES:

@@ -769,7 +769,9 @@ class CompiledFunction:
 
         The last :data:`KEPT_OUTPUTS` blocks are kept: a caller that drops
         each result before the next call but one (``result = solver(...)`` in
-        a loop) is then answered without allocating.  A block, or any of its
+        a loop), or keeps each for fewer calls than that (the last few of a
+        sweep, a comparison with the call before), is then answered without
+        allocating: a kept result costs what a dropped one does.  A block, or any of its
         rows, still referenced anywhere (a kept result, a view, a slice) is
         never written again.
         """
@@ -790,8 +792,10 @@ class CompiledFunction:
         return outputs
 
 
-#: Output blocks of small calls kept for reuse by each compiled function (see :meth:`CompiledFunction._free_outputs`).
-KEPT_OUTPUTS = 3
+#: Output blocks of small calls kept for reuse by each compiled function (see :meth:`CompiledFunction._free_outputs`):
+#: eight, so that results held for up to seven calls are answered from blocks already made (a new block, its rows
+#: and its record cost about three dropped calls); at most eight blocks of SMALL_CALL values a function.
+KEPT_OUTPUTS = 8
 
 #: Output blocks of larger calls kept for reuse by each compiled function (:meth:`CompiledFunction._free_block`):
 #: two, so that ``result = solver(...)`` in a loop (the result before held until the call returns) reuses them.

@@ -167,3 +167,23 @@ def test_a_bad_out_is_refused_naming_the_output_and_nothing_is_written(solvers, 
         assert numpy.array_equal(values["theta"], theta)
     with pytest.raises(ValueError, match="out must be a dict of NumPy arrays"):
         call(solver, values, out=[numpy.empty(n)])
+
+
+def test_small_results_kept_a_few_calls_are_never_overwritten_and_cost_no_new_block(solvers, backend):
+    if backend != "compiled":
+        pytest.skip("the compiled small-call path's blocks")
+    solver = solvers["full"]
+    function = solver._compiled
+    kept_blocks = function._entries if function._plan is not None else function._kept
+    held: list = []
+    made: dict[int, object] = {}  # every block this function has kept, held here so that no id is reused
+    for step in range(40):
+        values = arguments(10, shift=0.01 * step)
+        result = call(solver, values)
+        held = (held + [(result, {name: value.copy() for name, value in result.items()})])[-4:]
+        for kept, copy in held:  # the four results held so far are untouched by the calls since
+            for name, value in copy.items():
+                assert numpy.array_equal(bits(kept[name]), bits(value)), (step, name)
+        made.update((id(block), block) for block in kept_blocks)
+    # four results held at a time: answered from the blocks kept before, not one new block a call
+    assert len(made) <= compiled_library.KEPT_OUTPUTS

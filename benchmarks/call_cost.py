@@ -100,8 +100,10 @@ def calls_of(kind: str, n: int) -> dict:
     values = dict(theta=theta, **dict(zip("abcd", lengths)), branch=branch)
     if full:
         values.update(thetadot=SPEED, thetaddot=ACCEL)
-    solver = Solver(fourbar(), outputs)
-    if solver.wait_for_backend() != "compiled":
+    # One solver for each way of calling (each keeps its own output blocks: one's held results do not
+    # take another's).
+    solver, fresh, keeping = (Solver(fourbar(), outputs) for _ in range(3))
+    if any(made.wait_for_backend() != "compiled" for made in (solver, fresh, keeping)):
         raise RuntimeError("the compiled backend does not answer here (no C compiler?)")
     library = hand_library()
     limit_outputs = [numpy.empty(n), numpy.empty(n)]
@@ -112,8 +114,8 @@ def calls_of(kind: str, n: int) -> dict:
     out = {name: numpy.empty_like(value) for name, value in solver(**values).items()}
     kept: collections.deque = collections.deque(maxlen=3)
     found = {"limit": limit, "loop": loop_alone(solver._compiled, values, n),
-             "call out=": lambda: solver(**values, out=out), "call": lambda: solver(**values),
-             "call kept": lambda: kept.append(solver(**values))}
+             "call out=": lambda: solver(**values, out=out), "call": lambda: fresh(**values),
+             "call kept": lambda: kept.append(keeping(**values))}
     try:
         import numba
     except ImportError:

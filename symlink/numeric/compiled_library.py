@@ -64,7 +64,7 @@ from ..common.display import record_html
 from .call_arguments import check_argument_names
 from ..codegen.c import PIECE_SIZE, c_function, c_library, c_packed, translation_units
 from ..common.files import NotPrivate, read_private, write_atomic
-from .results import checked_out
+from .results import checked_out, refuse_overlaps
 from ..symbolic.linkage import Linkage, Program, is_branch_name
 
 __all__ = ["FLAGS", "FallbackWarning", "CompilerUnavailable", "CompileError", "cache_directory", "find_compiler",
@@ -633,14 +633,22 @@ class CompiledFunction:
             return None  # the NumPy check says which argument, and why
         shape = (length,)
         if out is not None:
-            outputs = checked_out(out, self._result_dtypes, shape, [(a, v) for a, v in zip(self.arguments, (
-                values.get(a) for a in self.arguments)) if type(v) is numpy.ndarray])
+            outputs = checked_out(out, self._result_dtypes, shape, overlaps=False)
         else:
             if before_allocating is not None and not self.allocates_nothing([], shape, None):
                 before_allocating()
             outputs = self._output_block(shape, length)
+        addresses = [_address(outputs[name]) for name in self._result_names]
         arguments = [value for k in range(count) for value in (pointers[k], steps[k])]
-        self.entry(length, *arguments, *(_address(outputs[name]) for name in self._result_names))
+        if out is not None:  # the extents in memory from the addresses at hand (asking NumPy costs more)
+            spans = []
+            for k in range(count):
+                if steps[k] or pointers[k] != start + 8 * k:  # an array (a number is in our own buffer)
+                    reach = 8 * steps[k] * (length - 1)
+                    spans.append((self.arguments[k], (pointers[k] + min(reach, 0), pointers[k] + max(reach, 0) + 8)))
+            refuse_overlaps([(name, (address, address + outputs[name].nbytes))
+                             for name, address in zip(self._result_names, addresses)], spans)
+        self.entry(length, *arguments, *addresses)
         return outputs
 
     def allocates_nothing(self, arrays: Sequence[numpy.ndarray], shape: tuple[int, ...], out: Any) -> bool:

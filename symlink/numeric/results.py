@@ -30,7 +30,7 @@ import numpy
 if TYPE_CHECKING:
     import pandas
 
-__all__ = ["Results", "HTML_ROWS", "checked_out"]
+__all__ = ["Results", "HTML_ROWS", "checked_out", "refuse_overlaps"]
 
 #: Rows a notebook shows of a result (the first ones, then how many more there are).
 HTML_ROWS = 10
@@ -200,13 +200,14 @@ class Results(dict):
 
 
 def checked_out(out: object, dtypes: Mapping[str, numpy.dtype], shape: tuple[int, ...],
-                arguments: Sequence[tuple[str, object]] = ()) -> dict[str, numpy.ndarray]:
+                arguments: Sequence[tuple[str, object]] = (), overlaps: bool = True) -> dict[str, numpy.ndarray]:
     """The caller's output arrays ``out`` by name, checked: one for each output, each one a writable
     C-contiguous array of its dtype and of the call's ``shape``, overlapping no other and no argument.
 
     ``dtypes`` names the call's outputs (``assembled`` among them) and their dtypes;
     ``arguments`` are ``(name, array)`` pairs of the call.  ``ValueError`` naming the output
-    otherwise, before anything is written.
+    otherwise, before anything is written.  ``overlaps=False`` leaves the overlaps to the
+    caller, who knows the addresses already (:func:`refuse_overlaps`).
 
     >>> rocker, assembled = numpy.empty(2), numpy.empty(2, dtype=bool)
     >>> kinds = {"rocker": numpy.dtype(float), "assembled": numpy.dtype(bool)}
@@ -241,14 +242,30 @@ def checked_out(out: object, dtypes: Mapping[str, numpy.dtype], shape: tuple[int
         if not array.flags.writeable:
             raise ValueError(f"out[{name!r}] must be writable")
         checked[name] = array
-    spans = [(f"out[{name!r}]", _byte_span(array)) for name, array in checked.items()]
-    given = [(f"the argument {name}", _byte_span(value)) for name, value in arguments
-             if isinstance(value, numpy.ndarray) and value.size]
-    for k, (name, (start, end)) in enumerate(spans):
-        for where, (low, high) in spans[:k] + given:
-            if start < high and low < end:  # (numpy.may_share_memory's test, on bounds found once)
-                raise ValueError(f"{name} overlaps {where}; give each output its own memory")
+    if overlaps:
+        refuse_overlaps([(name, _byte_span(array)) for name, array in checked.items()],
+                        [(name, _byte_span(value)) for name, value in arguments
+                         if isinstance(value, numpy.ndarray) and value.size])
     return checked
+
+
+def refuse_overlaps(outputs: Sequence[tuple[str, tuple[int, int]]],
+                    arguments: Sequence[tuple[str, tuple[int, int]]] = ()) -> None:
+    """``ValueError`` naming the first output whose bytes overlap an earlier output's or an argument's.
+
+    Each output and argument is a name and its extent in memory: the first byte and the one past the
+    last (numpy.may_share_memory's test, on bounds found once).
+
+    >>> refuse_overlaps([("rocker", (0, 80)), ("assembled", (80, 90))], [("theta", (100, 180))])
+    >>> refuse_overlaps([("rocker", (0, 80))], [("theta", (40, 120))])
+    Traceback (most recent call last):
+    ValueError: out['rocker'] overlaps the argument theta; give each output its own memory
+    """
+    given = [(f"the argument {name}", span) for name, span in arguments]
+    for k, (name, (start, end)) in enumerate(outputs):
+        for where, (low, high) in [(f"out[{other!r}]", span) for other, span in outputs[:k]] + given:
+            if start < high and low < end:
+                raise ValueError(f"out[{name!r}] overlaps {where}; give each output its own memory")
 
 
 def _byte_span(array: numpy.ndarray) -> tuple[int, int]:

@@ -1182,6 +1182,17 @@ def targets(records: list[dict]) -> list[str]:
     ratio_line("symlink-c-loop", "hand-c-loop", "; loop against loop, full kinematics", 1.1)
     ratio_line("symlink-c-positions-loop", "numba-positions-loop", "; loop against loop, positions")
     ratio_line("symlink-c-loop", "numba-loop", "; loop against loop, full kinematics")
+    # The headline: the user's call (new outputs, arguments checked, a Results record) against the physical
+    # limit, beside its loop alone (benchmarks.call_cost has the call into out= and the page faults).
+    for call, loop in (("symlink-c-positions", "symlink-c-positions-loop"), ("symlink-c", "symlink-c-loop"),
+                       ("numba-positions", "numba-positions-loop"), ("numba", "numba-loop")):
+        size = largest(call, "physical-limit")
+        mine, alone, limit = (_find(records, name, size) for name in (call, loop, "physical-limit"))
+        if limit and mine:
+            beside = (f"; its loop alone {alone['us_per_value'] / limit['us_per_value']:.2f}x, the call "
+                      f"{mine['us_per_value'] / alone['us_per_value']:.2f}x its loop") if alone else ""
+            lines.append(f"{call} (a call) / physical limit at N={size}: "
+                         f"{mine['us_per_value'] / limit['us_per_value']:.2f}x{beside}")
     for name, target in (("symlink-c-positions-loop", 1.3), ("hand-c-positions-loop", None),
                          ("numba-positions-loop", None)):
         size = largest(name, "physical-limit")

@@ -14,13 +14,24 @@ accelerations) and its positions alone, one set of lengths, N crank angles:
   path of :class:`symlink.numeric.compiled_library.CompiledFunction`, as where the extension cannot be built);
 * ``compiled-new-lengths``: the same, each call with new length objects (other values, as an
   optimiser's steps: an argument that is the very object of the call before is not read again);
-* ``compiled-kept``: the same, each result kept until four calls later (so that its
-  output block cannot be reused: every call allocates, as when a caller keeps results);
-* ``numba``: a hand-written numba loop of the same formulas (the floor of a Python call).
+* ``compiled-kept``: the same, each result kept until four calls later (a caller comparing a
+  call with the ones before): its output block is not reused while it is held, but one of the
+  blocks kept before is (:data:`symlink.numeric.compiled_library.KEPT_OUTPUTS`);
+* ``Solver-kept``: the default ``Solver``, each result kept until four calls later;
+* ``Solver-kept-all``: the default ``Solver``, every result kept for 64 calls (more than the
+  blocks kept for reuse: a new block each call, the cost of new memory);
+* ``numba``: the hand-written numba loop of :mod:`benchmarks.numba_loops` (the same formulas
+  and exactly the generated code's transcendental calls a value: cos and sin of the crank, two
+  atan2, one square root; :mod:`tests.test_bench` counts them), called as a user's numba
+  function is: the lengths and branch as arrays made once, a new (6, N) output array a call.
+  (Before issue 33 this baseline was :func:`benchmarks.blocks.numba_function`, which also
+  calls sin and cos of the solved angles, five more transcendental calls a value than
+  symlink's code makes.)
 
 Targets: a compiled call with 10 values at most 10 us; a generated solver
 called with 20 values at most 20 us; the default ``Solver`` (compiled) within 2x
-the numba call at 10 values (issue 23).  Printed last: the ratios to numba of the
+the numba call at 10 values (issue 23); a result kept four calls as cheap as a dropped
+one (issue 33).  Printed last: the ratios to numba of the
 default ``Solver``, of the compiled entry and of the compiled solver without the small-call
 extension at 10 and 1000 values, from the table, then timed back to back with numba
 (:func:`interleaved_ratios`, steadier on a busy machine).
@@ -42,7 +53,7 @@ import time
 
 import numpy
 
-from benchmarks.blocks import LENGTHS, OUTPUTS, SPEED, ACCEL, numba_function
+from benchmarks.blocks import LENGTHS, OUTPUTS, SPEED, ACCEL
 
 POSITIONS = ["coupler", "rocker"]
 SIZES = (1, 10, 20, 100, 1000)
@@ -74,6 +85,33 @@ def per_call(call, budget: float = 0.3) -> tuple[float, float]:
     return 1e6 * min(means), 1e6 * statistics.median(means)
 
 
+def numba_baseline():
+    """The numba call of full kinematics (:mod:`benchmarks.numba_loops`' ``everything``, exactly symlink's
+    transcendental calls), as a function of the crank angles: lengths and branch as arrays made once for
+    each N, a new (6, N) output array a call, its rows handed to the loop inside numba."""
+    import numba
+    from benchmarks.numba_loops import numba_kernels
+    from symlink.symbolic.position import TOLERANCE
+    _, everything = numba_kernels(numba, TOLERANCE)
+
+    @numba.njit(cache=False, fastmath=False)
+    def into(theta, a, b, c, d, branch, speed, accel, out):
+        everything(theta, a, b, c, d, branch, speed, accel, out[0], out[1], out[2], out[3], out[4], out[5])
+
+    arrays: dict[int, list] = {}
+
+    def call(theta):
+        n = theta.shape[0]
+        if n not in arrays:
+            arrays[n] = [numpy.full(n, value) for value in LENGTHS] + [numpy.ones(n)]
+        a, b, c, d, branch = arrays[n]
+        out = numpy.empty((6, n))
+        into(theta, a, b, c, d, branch, SPEED, ACCEL, out)
+        return out
+    call(numpy.linspace(0.0, 1.0, 8))  # compiled here, not while timed
+    return call
+
+
 def methods(outputs: list[str]) -> dict:
     from symlink.mechanism.catalog import fourbar
     from symlink.numeric.compiled import CompiledSolver
@@ -88,6 +126,8 @@ def methods(outputs: list[str]) -> dict:
     rates = {"thetadot": SPEED, "thetaddot": ACCEL} if len(outputs) > 2 else {}
     lengths = dict(zip("abcd", LENGTHS))
     kept: collections.deque = collections.deque(maxlen=4)
+    solver_kept: collections.deque = collections.deque(maxlen=4)
+    kept_all: collections.deque = collections.deque(maxlen=64)  # more than are kept for reuse: a new block a call
     steps = itertools.cycle([{k: v * (1.0 + 1e-9 * step) for k, v in lengths.items()} for step in range(1000)])
     found = {
         "module": lambda theta: solver.function(theta, **lengths, branch=1, **rates),
@@ -99,10 +139,14 @@ def methods(outputs: list[str]) -> dict:
         "compiled-python": lambda theta: python_path(theta=theta, **lengths, branch=1, **rates),
         "compiled-new-lengths": lambda theta: compiled(theta=theta, **next(steps), branch=1, **rates),
         "compiled-kept": lambda theta: kept.append(compiled(theta=theta, **lengths, branch=1, **rates)),
+        "Solver-kept": lambda theta: solver_kept.append(default(theta=theta, **lengths, branch=1, **rates)),
+        "Solver-kept-all": lambda theta: kept_all.append(default(theta=theta, **lengths, branch=1, **rates)),
     }
     if len(outputs) > 2:
-        hand = numba_function()
-        found["numba"] = hand
+        try:
+            found["numba"] = numba_baseline()
+        except ImportError:  # numba is optional (the bench extra): no ratios then
+            pass
     return found
 
 
@@ -135,11 +179,17 @@ def report(table) -> str:
                  f"compiled at N=10: {both('compiled', 10)}, with new lengths: {both('compiled-new-lengths', 10)} "
                  f"(target <= 10); Solver at N=20: {both('Solver', 20)}, compiled at N=20: {both('compiled', 20)} "
                  "(target <= 20)")
-    ratios = [f"{name} {full[name][n][0] / full['numba'][n][0]:.2f}x at N={n}"
-              for name in ("Solver-default", "compiled-entry", "compiled-python") for n in (10, 1000)
-              if n in full[name]]
-    lines.append("full kinematics against the numba call (best batches): " + ", ".join(ratios)
-                 + " (target: Solver-default <= 2 at N=10)")
+    kept = [f"N={n}: kept {full['Solver-kept'][n][0] / full['Solver-default'][n][0]:.2f}x, "
+            f"all kept {full['Solver-kept-all'][n][0] / full['Solver-default'][n][0]:.2f}x"
+            for n in (10, 1000) if n in full["Solver-default"]]
+    lines.append("full kinematics, the default Solver's result kept four calls (and every result kept) against "
+                 "dropped: " + "; ".join(kept) + " (target: kept <= 1.1x)")
+    if "numba" in full:
+        ratios = [f"{name} {full[name][n][0] / full['numba'][n][0]:.2f}x at N={n}"
+                  for name in ("Solver-default", "Solver-kept", "compiled-entry", "compiled-python") for n in (10, 1000)
+                  if n in full[name]]
+        lines.append("full kinematics against the numba call (best batches): " + ", ".join(ratios)
+                     + " (target: Solver-default <= 2 at N=10)")
     return "\n".join(lines)
 
 
@@ -148,6 +198,8 @@ def interleaved_ratios(sizes=(10, 1000), rounds: int = 5) -> str:
     method back to back (a busy machine slows both alike): the default ``Solver``, the compiled entry, and the
     compiled solver without the small-call extension (``compiled-python``)."""
     found = methods(OUTPUTS)
+    if "numba" not in found:
+        return "numba is not installed (pip install 'symlink-kinematics[bench]'): no ratios to it"
     parts = []
     for n in sizes:
         theta = numpy.linspace(0.0, 2 * math.pi, n)

@@ -333,9 +333,13 @@ def test_target_lines_state_the_ratios():
         record("halfangle-numpy", 1000, 0.1, error=1e-13), record("physical-limit", 1000, 0.01, error=None),
         record("symlink-c-positions-loop", 1000, 0.012, error=None),
         record("hand-c-positions-loop", 1000, 0.01, error=None),
+        record("symlink-c-positions", 1000, 0.015),
         record("fsolve", 100, 30.0),
     ]
     lines = "\n".join(targets(records))
+    # the headline: the user's call against the limit, beside its loop (0.015 / 0.01, 0.012 / 0.01, 0.015 / 0.012)
+    assert ("symlink-c-positions (a call) / physical limit at N=1000: 1.50x; its loop alone 1.20x, the call 1.25x "
+            "its loop") in lines
     assert "symlink / numba at N=1000: 1.25x; full kinematics" in lines
     assert "symlink-positions / hand-numpy-positions at N=1000: 0.80x" in lines
     assert "halfangle-numpy (textbook half-angle form) at N=1000: 0.80x; max error 1.00e-15 vs 1.00e-13" in lines
@@ -432,3 +436,18 @@ def test_hand_numpy_full_kinematics_match_the_independent_reference():
             for value, key in zip((v[i] for v in values), ("beta", "phi", "beta_speed", "phi_speed", "beta_accel",
                                                            "phi_accel")):
                 assert value == pytest.approx(float(exact[key]), rel=1e-10, abs=1e-10), (angle, key)
+
+
+def test_the_small_call_numba_baseline_is_the_counted_kernel():
+    """benchmarks.small_calls times the numba loop whose transcendental calls the test above counts (exactly
+    the generated code's), not a loop that also calls sin and cos of the solved angles."""
+    from benchmarks import small_calls
+    assert "numba_kernels" in inspect.getsource(small_calls.numba_baseline)
+    assert "numba_function(" not in inspect.getsource(small_calls)  # (its docstring names the one before)
+    pytest.importorskip("numba")
+    theta = numpy.linspace(0.0, 6.0, 7)
+    found = small_calls.numba_baseline()(theta)
+    for row, key in enumerate(("beta", "phi", "beta_speed", "phi_speed", "beta_accel", "phi_accel")):
+        for i, angle in enumerate(theta):
+            exact = mp_fourbar(20.0, 66.0, 56.0, 80.0, theta=angle, branch=1, crank_speed=10.5, crank_accel=2.0)
+            assert found[row, i] == pytest.approx(float(exact[key]), rel=1e-10, abs=1e-10), (angle, key)

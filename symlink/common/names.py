@@ -84,7 +84,10 @@ MAX_PREDICTION MAX_CORRECTION CONTRACTION MAX_ITERATIONS ASSEMBLY_ITERATIONS MIN
 INPUTS PARAMETERS UNKNOWNS ANGLE_INPUTS ROLES""".split())
 
 #: Every whole name a user may not take (prefixes and intermediate families are checked apart).
-RESERVED = frozenset(keyword.kwlist) | C_KEYWORDS | OCTAVE_KEYWORDS | _FUNCTIONS | _GENERATED
+#: The keyword of a solver call that takes the caller's output arrays (``solver(..., out=arrays)``).
+_CALL_KEYWORDS = frozenset({"out"})
+
+RESERVED = frozenset(keyword.kwlist) | C_KEYWORDS | OCTAVE_KEYWORDS | _FUNCTIONS | _GENERATED | _CALL_KEYWORDS
 
 
 def reason_reserved(name: str) -> str | None:
@@ -101,6 +104,8 @@ def reason_reserved(name: str) -> str | None:
         return "is a function or constant that the generated C or MATLAB/Octave code calls"
     if name in _GENERATED:
         return "is a name the generated code uses itself"
+    if name in _CALL_KEYWORDS:
+        return "is the keyword a solver call takes for the caller's output arrays (out=)"
     if _INTERMEDIATE.match(name):
         return ("clashes with a generated intermediate (closed-form helpers are named "
                 "Wx_1, w_1, Delta_1, size_1, ...)")

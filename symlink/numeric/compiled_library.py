@@ -41,6 +41,7 @@ import atexit
 import ctypes
 import hashlib
 import json
+import math
 import os
 import platform
 import secrets
@@ -63,6 +64,7 @@ from ..common.display import record_html
 from .call_arguments import check_argument_names
 from ..codegen.c import PIECE_SIZE, c_function, c_library, c_packed, translation_units
 from ..common.files import NotPrivate, read_private, write_atomic
+from .results import checked_out, refuse_overlaps
 from ..symbolic.linkage import Linkage, Program, is_branch_name
 
 __all__ = ["FLAGS", "FallbackWarning", "CompilerUnavailable", "CompileError", "cache_directory", "find_compiler",
@@ -518,6 +520,10 @@ class CompiledFunction:
         if self.packed is not None:
             self.packed.restype = ctypes.c_int
             self.packed.argtypes = [ctypes.c_void_p]
+        self.check = getattr(library, f"{name}_check", None)  # the packed call's check alone (a library of before: none)
+        if self.check is not None:
+            self.check.restype = ctypes.c_int
+            self.check.argtypes = [ctypes.c_void_p]
         count = len(self.arguments)
         self._index = {name: index for index, name in enumerate(self.arguments)}
         self._numbers: Any = (ctypes.c_double * max(count, 1))()  # the numbers of a call, each read at a step of 0
@@ -537,6 +543,10 @@ class CompiledFunction:
         rows = [(True, next(flags_)) if flag else (False, next(floats)) for flag in self.flags] + [(True, next(flags_))]
         self._result_names = self.outputs + ["assembled"]
         self._result_rows = rows
+        self._result_dtypes = {name: numpy.dtype(bool if flag else numpy.float64)
+                               for name, flag in zip(self._result_names, self.flags + [True])}
+        self._blocks: list[numpy.ndarray] = []  # the output blocks of larger calls, kept for reuse
+        self._free_references = 3  # a kept block's reference count where no caller holds it (set when kept)
         self._kept: list[_Outputs] = []
         self._lock = threading.Lock()  # the slots are shared: one small call at a time
         # The small-call extension's plan of this function (symlink.codegen.call_extension.PLAN_FIELDS), or None
@@ -551,8 +561,15 @@ class CompiledFunction:
                           ctypes.cast(self.packed, ctypes.c_void_p).value, self._entries, self._new_entry,
                           SMALL_CALL, numpy.ndarray, numpy.float64, bytearray(1))
 
-    def __call__(self, **values) -> dict[str, numpy.ndarray]:
-        if self.packed is not None:
+    def __call__(self, *, out: Any = None, **values) -> dict[str, numpy.ndarray]:
+        """The outputs (and ``assembled``) at ``values``, by keyword: new arrays, or the caller's ``out``.
+
+        New arrays are views of one block a call (:meth:`_output_block`); ``out``, a dict of
+        arrays by output name (:func:`symlink.numeric.results.checked_out` says which it takes), is
+        written in place and returned as it is, so that a large call writes no page the caller
+        did not fault in before.
+        """
+        if self.packed is not None and out is None:
             result = self._small(values)
             if result is not None:
                 return result
@@ -561,15 +578,125 @@ class CompiledFunction:
         arrays = [numpy.asarray(values[a] if a in values else self.defaults[a], dtype=numpy.float64)
                   for a in self.arguments]
         shape = numpy.broadcast_shapes(*(a.shape for a in arrays))
-        count = int(numpy.prod(shape, dtype=numpy.int64))
-        outputs = {name: numpy.empty(shape, dtype=bool if flag else numpy.float64)
-                   for name, flag in zip(self.outputs, self.flags)}
-        assembled = numpy.empty(shape, dtype=bool)
+        count = math.prod(shape)
+        if out is None:
+            outputs = self._output_block(shape, count)
+        else:
+            outputs = checked_out(out, self._result_dtypes, shape, list(zip(self.arguments, arrays)))
         if count:
             strided = [_strided(array, shape) for array in arrays]  # keeps any copy alive during the call
             pointers = [value for pointer, step, _ in strided for value in (pointer, step)]
-            self.entry(count, *pointers, *(o.ctypes.data for o in outputs.values()), assembled.ctypes.data)
-        return {**outputs, "assembled": assembled}
+            self.entry(count, *pointers, *(_address(outputs[name]) for name in self._result_names))
+        return outputs
+
+    def checked_call(self, values: Mapping[str, Any], out: Any = None,
+                     before_allocating: Any = None) -> dict[str, numpy.ndarray] | None:
+        """The outputs at ``values`` checked in C (``<name>_check``, one pass, no temporaries), else ``None``.
+
+        Takes a call whose arguments are numbers and float64 arrays of one dimension and one length
+        (each read at its own step, none copied), as :meth:`__call__` does with ``out``; anything else,
+        or arguments the check refuses, gives ``None``: the caller then checks them in NumPy (which
+        says what is wrong) and calls :meth:`__call__`.  ``before_allocating()`` is called before a new
+        output block is allocated (a memory check).
+        """
+        if self.check is None:
+            return None
+        index_of, count = self._index, len(self.arguments)
+        if not values.keys() <= index_of.keys():
+            return None
+        numbers: Any = (ctypes.c_double * max(count, 1))()
+        pointers: Any = (ctypes.c_void_p * max(count, 1))()
+        steps: Any = (ctypes.c_ssize_t * max(count, 1))()
+        start, length, kept = ctypes.addressof(numbers), 0, []
+        for index, name in enumerate(self.arguments):
+            value: Any = values[name] if name in values else self.defaults.get(name)
+            kind = type(value)
+            if kind in _NUMBER_TYPES:
+                try:
+                    numbers[index] = value
+                except OverflowError:
+                    return None
+                pointers[index], steps[index] = start + 8 * index, 0
+            elif kind is numpy.ndarray and value.dtype == _FLOAT and value.ndim == 1 \
+                    and value.strides[0] % 8 == 0 and (length == 0 or value.shape[0] in (1, length)):
+                if value.shape[0] != 1:
+                    length = value.shape[0]
+                pointers[index], steps[index] = _data_address(value) if value.flags.c_contiguous \
+                    else value.ctypes.data, value.strides[0] // 8 if value.shape[0] != 1 else 0
+                kept.append(value)
+            else:
+                return None  # a missing argument, another type or shape: checked in NumPy
+        if length == 0 or any(v.shape[0] not in (1, length) for v in kept):
+            return None
+        call = _PackedCall(length, ctypes.addressof(pointers), ctypes.addressof(steps), 0, 0)
+        if self.check(ctypes.addressof(call)):
+            return None  # the NumPy check says which argument, and why
+        shape = (length,)
+        if out is not None:
+            outputs = checked_out(out, self._result_dtypes, shape, overlaps=False)
+        else:
+            if before_allocating is not None and not self.allocates_nothing([], shape, None):
+                before_allocating()
+            outputs = self._output_block(shape, length)
+        addresses = [_address(outputs[name]) for name in self._result_names]
+        arguments = [value for k in range(count) for value in (pointers[k], steps[k])]
+        if out is not None:  # the extents in memory from the addresses at hand (asking NumPy costs more)
+            spans = []
+            for k in range(count):
+                if steps[k] or pointers[k] != start + 8 * k:  # an array (a number is in our own buffer)
+                    reach = 8 * steps[k] * (length - 1)
+                    spans.append((self.arguments[k], (pointers[k] + min(reach, 0), pointers[k] + max(reach, 0) + 8)))
+            refuse_overlaps([(name, (address, address + outputs[name].nbytes))
+                             for name, address in zip(self._result_names, addresses)], spans)
+        self.entry(length, *arguments, *addresses)
+        return outputs
+
+    def allocates_nothing(self, arrays: Sequence[numpy.ndarray], shape: tuple[int, ...], out: Any) -> bool:
+        """Whether a general call of these checked ``arrays`` (of broadcast ``shape``) allocates no memory that
+        grows with it: it writes into ``out`` or into a kept block nobody holds, and copies no argument."""
+        if any(array.size > 1 and not (array.shape == shape and (array.flags.c_contiguous or array.ndim == 1))
+               for array in arrays):
+            return False  # an argument broadcast or strided in more than one dimension: copied
+        if out is not None:
+            return True
+        count = math.prod(shape)
+        size = 8 * len(self._float_names) * count + len(self._flag_names) * count
+        references = sys.getrefcount
+        # (each kept block's references counted as in _free_block: the list's, the loop's name and the argument)
+        return any(block.nbytes == size and references(block) == self._free_references for block in self._blocks)
+
+    def _output_block(self, shape: tuple[int, ...], count: int) -> dict[str, numpy.ndarray]:
+        """The outputs of a call of ``count`` values: views of one block, the number rows then the true/false rows.
+
+        The block is one allocation: a block of the same size that no caller holds any more (no view of it
+        is referenced anywhere, :meth:`_free_block`) is written again instead, so that a caller who drops
+        each result (or keeps it until the next call returns) faults in no new page.
+        """
+        numbers = 8 * len(self._float_names) * count
+        block = self._free_block(numbers + len(self._flag_names) * count)
+        number_rows = block[:numbers].view(numpy.float64).reshape((len(self._float_names),) + shape)
+        flag_rows = block[numbers:].view(numpy.bool_).reshape((len(self._flag_names),) + shape)
+        return {name: (flag_rows if flag else number_rows)[row, ...]  # an array even of shape ()
+                for name, (flag, row) in zip(self._result_names, self._result_rows)}
+
+    def _free_block(self, size: int) -> numpy.ndarray:
+        """A block of ``size`` bytes: a kept one nothing else references (no result, row or view of it), else new.
+
+        The last :data:`KEPT_BLOCKS` blocks of at most :data:`KEPT_BLOCK_BYTES` are kept.  Every view
+        of a block (a result's row, a slice of it, a view of that) has the block as its base, so a
+        block whose reference count is the one it had when it was kept (the list's, a name's and
+        ``getrefcount``'s argument) is held by no caller, and is never written while one holds it.
+        """
+        kept, count = self._blocks, sys.getrefcount
+        for block in kept:
+            if block.nbytes == size and count(block) == self._free_references:
+                return block
+        block = numpy.empty(size, dtype=numpy.uint8)
+        if size <= KEPT_BLOCK_BYTES:
+            kept.append(block)
+            del kept[:-KEPT_BLOCKS]
+            self._free_references = count(block)  # as counted in the loop above: the list, a name, the argument
+        return block
 
     def _new_entry(self, length: int) -> tuple:
         """A new output block of ``length`` values as the extension keeps it (``ENTRY_FIELDS``), kept."""
@@ -650,7 +777,9 @@ class CompiledFunction:
 
         The last :data:`KEPT_OUTPUTS` blocks are kept: a caller that drops
         each result before the next call but one (``result = solver(...)`` in
-        a loop) is then answered without allocating.  A block, or any of its
+        a loop), or keeps each for fewer calls than that (the last few of a
+        sweep, a comparison with the call before), is then answered without
+        allocating: a kept result costs what a dropped one does.  A block, or any of its
         rows, still referenced anywhere (a kept result, a view, a slice) is
         never written again.
         """
@@ -671,8 +800,17 @@ class CompiledFunction:
         return outputs
 
 
-#: Output blocks of small calls kept for reuse by each compiled function (see :meth:`CompiledFunction._free_outputs`).
-KEPT_OUTPUTS = 3
+#: Output blocks of small calls kept for reuse by each compiled function (see :meth:`CompiledFunction._free_outputs`):
+#: eight, so that results held for up to seven calls are answered from blocks already made (a new block, its rows
+#: and its record cost about three dropped calls); at most eight blocks of SMALL_CALL values a function.
+KEPT_OUTPUTS = 8
+
+#: Output blocks of larger calls kept for reuse by each compiled function (:meth:`CompiledFunction._free_block`):
+#: two, so that ``result = solver(...)`` in a loop (the result before held until the call returns) reuses them.
+KEPT_BLOCKS = 2
+
+#: The largest output block kept for reuse (a larger one is the caller's alone, returned to the system when dropped).
+KEPT_BLOCK_BYTES = 1 << 28
 
 
 class _Outputs:
@@ -733,9 +871,9 @@ def _strided(array: numpy.ndarray, shape: tuple[int, ...]) -> tuple[int, int, nu
     """(data pointer, step in elements, the array): no copy for a scalar, a contiguous or a strided 1-d array."""
     item = array.itemsize
     if array.size == 1:
-        return array.ctypes.data, 0, array
+        return _data_address(array), 0, array
     if array.shape == shape and array.flags.c_contiguous:
-        return array.ctypes.data, 1, array
+        return _data_address(array), 1, array
     if array.shape == shape and array.ndim == 1 and array.strides[0] % item == 0:
         return array.ctypes.data, array.strides[0] // item, array
     copy = numpy.ascontiguousarray(numpy.broadcast_to(array, shape))

@@ -23,14 +23,14 @@ outputs by their plain names (``df["phi"]``), units in
 from __future__ import annotations
 
 import html
-from typing import TYPE_CHECKING, Any, Mapping
+from typing import TYPE_CHECKING, Any, Mapping, Sequence
 
 import numpy
 
 if TYPE_CHECKING:
     import pandas
 
-__all__ = ["Results", "HTML_ROWS"]
+__all__ = ["Results", "HTML_ROWS", "checked_out", "refuse_overlaps"]
 
 #: Rows a notebook shows of a result (the first ones, then how many more there are).
 HTML_ROWS = 10
@@ -197,6 +197,88 @@ class Results(dict):
         more = f"<p>{rows - HTML_ROWS} more rows of {rows}{grid}</p>" if rows > HTML_ROWS else (
             f"<p>{rows} rows{grid}</p>" if grid else "")
         return f"<table><thead><tr><th></th>{head}</tr></thead><tbody>{''.join(body)}</tbody></table>{more}"
+
+
+def checked_out(out: object, dtypes: Mapping[str, numpy.dtype], shape: tuple[int, ...],
+                arguments: Sequence[tuple[str, object]] = (), overlaps: bool = True) -> dict[str, numpy.ndarray]:
+    """The caller's output arrays ``out`` by name, checked: one for each output, each one a writable
+    C-contiguous array of its dtype and of the call's ``shape``, overlapping no other and no argument.
+
+    ``dtypes`` names the call's outputs (``assembled`` among them) and their dtypes;
+    ``arguments`` are ``(name, array)`` pairs of the call.  ``ValueError`` naming the output
+    otherwise, before anything is written.  ``overlaps=False`` leaves the overlaps to the
+    caller, who knows the addresses already (:func:`refuse_overlaps`).
+
+    >>> rocker, assembled = numpy.empty(2), numpy.empty(2, dtype=bool)
+    >>> kinds = {"rocker": numpy.dtype(float), "assembled": numpy.dtype(bool)}
+    >>> checked_out({"rocker": rocker, "assembled": assembled}, kinds, (2,))["rocker"] is rocker
+    True
+    >>> checked_out({"rocker": rocker}, kinds, (2,))
+    Traceback (most recent call last):
+    ValueError: out has no array for the output 'assembled' (a call writes rocker, assembled)
+    >>> checked_out({"rocker": numpy.empty(4)[::2], "assembled": assembled}, kinds, (2,))
+    Traceback (most recent call last):
+    ValueError: out['rocker'] must be C-contiguous (a call writes its values in order)
+    """
+    names = ", ".join(dtypes)
+    if not isinstance(out, Mapping):
+        raise ValueError(f"out must be a dict of NumPy arrays by output name ({names}), got {type(out).__name__}")
+    for name in out:
+        if name not in dtypes:
+            raise ValueError(f"out[{name!r}]: the call has no output {name!r}; it writes {names}")
+    checked: dict[str, numpy.ndarray] = {}
+    for name, dtype in dtypes.items():
+        if name not in out:
+            raise ValueError(f"out has no array for the output {name!r} (a call writes {names})")
+        array = out[name]
+        if type(array) is not numpy.ndarray:
+            raise ValueError(f"out[{name!r}] must be a NumPy array, got {type(array).__name__}")
+        if array.dtype != dtype:
+            raise ValueError(f"out[{name!r}] must have dtype {dtype}, got {array.dtype}")
+        if array.shape != tuple(shape):
+            raise ValueError(f"out[{name!r}] must have the call's shape {tuple(shape)}, got {array.shape}")
+        if not array.flags.c_contiguous:
+            raise ValueError(f"out[{name!r}] must be C-contiguous (a call writes its values in order)")
+        if not array.flags.writeable:
+            raise ValueError(f"out[{name!r}] must be writable")
+        checked[name] = array
+    if overlaps:
+        refuse_overlaps([(name, _byte_span(array)) for name, array in checked.items()],
+                        [(name, _byte_span(value)) for name, value in arguments
+                         if isinstance(value, numpy.ndarray) and value.size])
+    return checked
+
+
+def refuse_overlaps(outputs: Sequence[tuple[str, tuple[int, int]]],
+                    arguments: Sequence[tuple[str, tuple[int, int]]] = ()) -> None:
+    """``ValueError`` naming the first output whose bytes overlap an earlier output's or an argument's.
+
+    Each output and argument is a name and its extent in memory: the first byte and the one past the
+    last (numpy.may_share_memory's test, on bounds found once).
+
+    >>> refuse_overlaps([("rocker", (0, 80)), ("assembled", (80, 90))], [("theta", (100, 180))])
+    >>> refuse_overlaps([("rocker", (0, 80))], [("theta", (40, 120))])
+    Traceback (most recent call last):
+    ValueError: out['rocker'] overlaps the argument theta; give each output its own memory
+    """
+    given = [(f"the argument {name}", span) for name, span in arguments]
+    for k, (name, (start, end)) in enumerate(outputs):
+        for where, (low, high) in [(f"out[{other!r}]", span) for other, span in outputs[:k]] + given:
+            if start < high and low < end:
+                raise ValueError(f"out[{name!r}] overlaps {where}; give each output its own memory")
+
+
+def _byte_span(array: numpy.ndarray) -> tuple[int, int]:
+    """The first byte an array reaches and the one past its last (its extent in memory, whatever its strides)."""
+    start = end = array.__array_interface__["data"][0]
+    for extent, stride in zip(array.shape, array.strides):
+        if extent == 0:
+            return start, start
+        if stride < 0:
+            start += stride * (extent - 1)
+        else:
+            end += stride * (extent - 1)
+    return start, end + array.itemsize
 
 
 def _cell(value: object) -> str:

@@ -45,7 +45,7 @@ from ..codegen.numpy import checked_arguments, load_numpy_module
 from .input_sweep import crank_speeds  # noqa: F401 - its home is input_sweep (no SymPy); kept here for callers
 from ..common.limits import require_memory
 from ..symbolic.linkage import Linkage, Program, is_branch_name
-from .results import Results
+from .results import Results, checked_out
 from .units import ANY_LENGTH, argument_units, output_units, plain_values
 from ..symbolic.vectors import acceleration, rate
 
@@ -231,11 +231,23 @@ class Solver:
         return (frozenset(self.arguments), frozenset(self.required),
                 [s.name for s in self.linkage.parameters if s.is_positive], self.branches)
 
-    def __call__(self, **values) -> Results:
+    def __call__(self, *, out: Any = None, **values) -> Results:
         """Evaluate the outputs at ``values``: every argument by keyword, arrays broadcasting together.
 
         Parameters
         ----------
+        out : dict of str to numpy.ndarray, optional
+            Arrays to write the results into, one for each output of the call
+            (the outputs, ``singular`` where the solver added it, and
+            ``assembled``): each of the call's broadcast shape, C-contiguous,
+            writable, float64 (bool for ``assembled`` and ``singular``), none
+            overlapping another or an argument.  A result of an earlier call
+            of the same shape is one (``out=result``).  The compiled backend
+            writes into them directly; the NumPy backend computes, then copies.
+            Without ``out`` the outputs are new arrays, views of one block a
+            call; a block that no caller holds any more (no result, row or
+            view of it referenced anywhere) is written again instead of a new
+            one, and a block a caller holds is never written again.
         **values : float, array_like or pint quantity
             One value for each name in :attr:`arguments`: input angles in
             radians, lengths (positive and finite, any one unit), fixed angles,
@@ -249,7 +261,8 @@ class Solver:
         Results
             A dict of arrays by output name, and ``assembled``: False where the
             linkage cannot be assembled (its outputs are NaN there).
-            ``Results.units`` names each output's unit.
+            ``Results.units`` names each output's unit.  With ``out``, its
+            arrays are the caller's, written in place.
 
         Raises
         ------
@@ -271,9 +284,20 @@ class Solver:
         >>> solver(theta=0.0, a=-20, b=66, c=56, d=80, branch=1)
         Traceback (most recent call last):
         ValueError: a must be a positive finite length, got -20.0
+
+        A loop over many calls of one shape writes into the arrays of its first result:
+
+        >>> theta = numpy.linspace(0.0, 2 * numpy.pi, 1000)
+        >>> result = solver(theta=theta, a=20, b=66, c=56, d=80, branch=1)
+        >>> again = solver(theta=theta, a=20, b=66, c=57, d=80, branch=1, out=result)
+        >>> again["rocker"] is result["rocker"], bool(again["assembled"].all())
+        (True, True)
+        >>> solver(theta=theta[:10], a=20, b=66, c=56, d=80, branch=1, out=result)
+        Traceback (most recent call last):
+        ValueError: out['rocker'] must have the call's shape (10,), got (1000,)
         """
         compiled = self._compiled if self._build is None else self._answering()
-        if compiled is not None:
+        if compiled is not None and out is None:
             # A small call of plain numbers and float arrays: the compiled function's fast path, whose C wrapper
             # checks the values as the NumPy module does (anything else, or a value it refuses, goes on below).
             # With the small-call extension, the Results too are made in C (no __init__: a template's copies).
@@ -294,14 +318,30 @@ class Solver:
             length_unit = None
         else:
             values, length_unit = plain_values(self.linkage, values)
-        if not _surely_small(values, self.bytes_per_value):
+        small = _surely_small(values, self.bytes_per_value)
+        if compiled is not None and length_unit is None:
+            # Numbers and one-dimensional float arrays: checked in C, in one pass (else below, in NumPy, which
+            # says what is wrong with a value the C check refuses).
+            with numpy.errstate(invalid="ignore", divide="ignore"):
+                found = compiled.checked_call(values, out, None if small else functools.partial(
+                    _require_memory, self, values, self.bytes_per_value, "solver"))
+            if found is not None:
+                return Results(found, self._result_units, values, self.input_units)
+        if not small and compiled is None:
             _require_memory(self, values, self.bytes_per_value, "solver")
         names = list(values)
-        arrays, _ = checked_arguments(names, list(values.values()), lengths, branches)
-        evaluate = self._unchecked if compiled is None else compiled
+        arrays, shape = checked_arguments(names, list(values.values()), lengths, branches)
+        if not small and compiled is not None and not compiled.allocates_nothing(arrays, shape, out):
+            # (a compiled call writing into the caller's arrays or a kept block allocates nothing: not checked)
+            _require_memory(self, values, self.bytes_per_value, "solver")
         with numpy.errstate(invalid="ignore", divide="ignore"):
-            return _results(evaluate(**dict(zip(names, arrays))), self.units, length_unit,
-                            values, self.input_units)
+            if compiled is not None:
+                found = compiled(out=out, **dict(zip(names, arrays)))
+            else:
+                found = self._unchecked(**dict(zip(names, arrays)))
+                if out is not None:
+                    found = _copied(found, out, shape, list(zip(names, arrays)))
+        return _results(found, self.units, length_unit, values, self.input_units)
 
     @cached_property
     def _result_units(self) -> dict[str, str]:
@@ -317,12 +357,15 @@ _SMALL_CALL_BYTES = 1 << 26
 
 
 def _surely_small(values: Mapping[str, Any], bytes_per_value: int) -> bool:
-    """Whether a call surely needs less than :data:`_SMALL_CALL_BYTES`: its broadcast size is at most the product of its arrays' sizes."""
-    bound = bytes_per_value
+    """Whether a call surely needs less than :data:`_SMALL_CALL_BYTES`: its broadcast size is at most the product
+    of the sizes of its arrays' distinct shapes (arrays of one shape broadcast to that shape)."""
+    bound, shapes = bytes_per_value, set()
     for value in values.values():
         kind = type(value)
         if kind is numpy.ndarray:
-            bound *= value.size
+            if value.shape not in shapes:
+                shapes.add(value.shape)
+                bound *= value.size
         elif kind not in _PLAIN_TYPES:
             return False
         if bound > _SMALL_CALL_BYTES:
@@ -342,6 +385,16 @@ def _results(values: Mapping[str, numpy.ndarray], units: Mapping[str, str], leng
         units = {name: unit.replace(ANY_LENGTH, length_unit) for name, unit in units.items()}
         input_units = {name: unit.replace(ANY_LENGTH, length_unit) for name, unit in input_units.items()}
     return Results(values, {name: units.get(name, "") for name in values}, inputs, input_units)
+
+
+def _copied(found: Mapping[str, numpy.ndarray], out: Mapping[str, numpy.ndarray], shape: tuple[int, ...],
+            arguments: list[tuple[str, numpy.ndarray]]) -> dict[str, numpy.ndarray]:
+    """The NumPy module's results ``found`` copied into the caller's arrays ``out``, checked first
+    (:func:`symlink.numeric.results.checked_out`): nothing is written where one is refused."""
+    checked = checked_out(out, {name: value.dtype for name, value in found.items()}, shape, arguments)
+    for name, value in found.items():
+        numpy.copyto(checked[name], value)
+    return checked
 
 
 def _assignments(source: str) -> int:

@@ -37,6 +37,7 @@ BAD = [
     ("d", "thetadot", "thetadot"), ("d", "phiddot", "phiddot"), ("c", "shape", "shape"),
     ("c", "numpy", "numpy"), ("c", "math", "math"), ("c", "TOLERANCE", "TOLERANCE"),
     ("a", "guess", "guess"), ("a", "assembled", "assembled"), ("a", "singular", "singular"),
+    ("a", "out", "out"), ("theta", "out", "out"),  # a solver call's keyword for the caller's arrays
     ("a", "for", "for"), ("a", "class", "class"), ("a", "None", "None"), ("a", "int", "int"),
     ("a", "double", "double"), ("a", "restrict", "restrict"), ("a", "end", "end"), ("a", "function", "function"),
     ("a", "sin", "sin"), ("a", "atan2", "atan2"), ("a", "sqrt", "sqrt"), ("a", "isfinite", "isfinite"),
@@ -83,6 +84,8 @@ def test_reported_messages_say_why():
         fourbar(a="lambda")
     with pytest.raises(ValueError, match=r"'shape' is a name the generated code uses"):
         fourbar(c="shape")
+    with pytest.raises(ValueError, match=r"'out' is the keyword a solver call takes for the caller's output arrays"):
+        fourbar(d="out")
 
 
 def test_two_loops_with_one_name_are_refused():

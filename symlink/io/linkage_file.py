@@ -957,7 +957,8 @@ def load_linkage(source: str | Path, folder: str | Path | None = None) -> Linkag
     Parameters
     ----------
     source : str or pathlib.Path
-        A catalog name (``"fourbar"``), an atlas name (``"atlas:watt-ii"``) or a linkage file's path.
+        A catalog name (``"fourbar"``; a six-bar's in any spelling, ``"Watt II"``), an atlas name
+        (``"atlas:watt-ii"``, ``"atlas:Stephenson III"``) or a linkage file's path.
     folder : str or pathlib.Path, optional
         Where a relative path is looked for (a scene file's own folder).
 
@@ -978,7 +979,7 @@ def load_linkage(source: str | Path, folder: str | Path | None = None) -> Linkag
     >>> found.linkage.name, found.defaults["a"], found.source
     ('fourbar', 20.0, 'catalog')
     """
-    from ..mechanism.catalog import CATALOG, EXAMPLE_VALUES
+    from ..mechanism.catalog import CATALOG, EXAMPLE_VALUES, catalog_name
     text = str(source)
     if text in CATALOG:
         return LinkageFile(CATALOG[text](), dict(EXAMPLE_VALUES.get(text, {})), "catalog")
@@ -989,8 +990,11 @@ def load_linkage(source: str | Path, folder: str | Path | None = None) -> Linkag
     path = Path(folder) / text if folder is not None else Path(text)
     if text.endswith(".toml") or path.exists():
         return read_linkage(path)
-    raise ValueError(f"no linkage {text!r} in the catalog ({', '.join(sorted(CATALOG))}), "
-                     "not an atlas entry (atlas:NAME) and not a linkage file (.toml)")
+    try:
+        name = catalog_name(text)  # a catalog name, or a six-bar's in any spelling (Watt II, stephenson-2 ...)
+    except ValueError as error:
+        raise ValueError(f"{error} (an atlas entry is atlas:NAME, a linkage file ends in .toml)") from None
+    return LinkageFile(CATALOG[name](), dict(EXAMPLE_VALUES.get(name, {})), "catalog")
 
 
 # --- writing --------------------------------------------------------------------------
@@ -1157,10 +1161,8 @@ def catalog_file(name: str) -> Path:
     >>> path.name, read_linkage(path).defaults["a"]
     ('fourbar.toml', 20.0)
     """
-    from ..mechanism.catalog import CATALOG
-    if name not in CATALOG:
-        raise ValueError(f"no linkage {name!r} in the catalog ({', '.join(sorted(CATALOG))})")
-    return CATALOG_FOLDER / f"{name}.toml"
+    from ..mechanism.catalog import catalog_name
+    return CATALOG_FOLDER / f"{catalog_name(name)}.toml"
 
 
 def write_catalog_files(folder: str | Path = CATALOG_FOLDER) -> list[Path]:

@@ -63,7 +63,7 @@ import sympy as sp
 from ..numeric.cache import GeneratedCode, generated_code
 from ..numeric.call_arguments import check_argument_names
 from ..common.files import excerpt, read_input_text
-from ..mechanism.catalog import CATALOG
+from ..mechanism.catalog import CATALOG, catalog_name
 from ..common.display import record_html
 from ..numeric.input_sweep import InputSweep
 from .linkage_file import MAX_ANGLE, MAX_MAGNITUDE, LinkageFile, dynamic_model, load_linkage
@@ -91,14 +91,14 @@ TOP_KEYS = {"linkage", "outputs", "branch", "units", "format", "parameters", "in
 INPUT_KEYS = {"start", "stop", "step", "angles", "speed", "accel"}
 
 
-@lru_cache(maxsize=None)
 def catalog_linkage(name: str) -> Linkage:
     """A fresh instance of the catalog's linkage ``name`` (cheap: its derivations happen on first use).
 
     Parameters
     ----------
     name : str
-        A catalog name: ``"fourbar"``, ``"slider-crank"``, ``"watt2"`` ... (the keys of :data:`CATALOG`).
+        A catalog name: ``"fourbar"``, ``"slider-crank"``, ``"watt2"`` ... (the keys of :data:`CATALOG`), or a
+        six-bar's name in any spelling (``"Watt II"``: :func:`symlink.mechanism.catalog.catalog_name`).
 
     Returns
     -------
@@ -117,8 +117,11 @@ def catalog_linkage(name: str) -> Linkage:
     >>> linkage.name, linkage.unknowns, linkage is symlink.catalog_linkage("slider-crank")
     ('slider-crank', (beta, s), True)
     """
-    if name not in CATALOG:
-        raise ValueError(f"no linkage {name!r} in the catalog; it has {', '.join(sorted(CATALOG))}")
+    return _catalog_linkage(catalog_name(name))
+
+
+@lru_cache(maxsize=None)
+def _catalog_linkage(name: str) -> Linkage:
     return CATALOG[name]()
 
 

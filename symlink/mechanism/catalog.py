@@ -8,7 +8,7 @@ Every entry is built the way a user builds a linkage: vectors, loops, a
 >>> linkage.unknowns
 (beta, phi)
 >>> sorted(CATALOG)  # doctest: +NORMALIZE_WHITESPACE
-['fivebar', 'fourbar', 'inverted-slider-crank', 'jansen', 'offset-inverted-slider-crank', 'slider-crank', 'stephenson3',
+['fivebar', 'fourbar', 'inverted-slider-crank', 'jansen', 'offset-inverted-slider-crank', 'slider-crank', 'stephenson2',
  'watt2']
 """
 from __future__ import annotations
@@ -18,11 +18,13 @@ import math
 import sympy as sp
 
 from ..symbolic.linkage import Linkage
+from ..common.files import excerpt
 from ..symbolic.loops import Loop
 from ..symbolic.vectors import Vector, coordinates, lengths
 
-__all__ = ["fourbar", "slider_crank", "inverted_slider_crank", "offset_inverted_slider_crank", "watt2", "stephenson3", "fivebar", "jansen",
-           "JANSEN_HOLY_NUMBERS", "jansen_parameters", "CATALOG", "EXAMPLE_VALUES", "with_point"]
+__all__ = ["fourbar", "slider_crank", "inverted_slider_crank", "offset_inverted_slider_crank", "watt2", "stephenson2", "fivebar", "jansen",
+           "JANSEN_HOLY_NUMBERS", "jansen_parameters", "CATALOG", "EXAMPLE_VALUES", "with_point", "SIX_BAR_ENTRIES",
+           "catalog_name"]
 
 
 def transmission_angle(coupler_angle: sp.Expr, rocker_angle: sp.Expr) -> sp.Expr:
@@ -286,8 +288,8 @@ def watt2() -> Linkage:
     )
 
 
-def stephenson3() -> Linkage:
-    """Stephenson III six-bar: the ground is a binary link between the crank and a ternary link.
+def stephenson2() -> Linkage:
+    """Stephenson II six-bar: the ground is a binary link between the crank and a ternary link.
 
     ::
 
@@ -317,11 +319,11 @@ def stephenson3() -> Linkage:
     Linkage
         A new linkage each call (change it freely): inputs ``theta``, unknowns
         ``beta, mu, phi, eta`` (roles crank, coupler, rocker), parameters ``a, b, c, d, e, f, g, h, alpha, delta``; no closed form: solve it with :class:`~symlink.numeric.solver.NumericSolver`.
-        Example values: ``EXAMPLE_VALUES["stephenson3"]``.
+        Example values: ``EXAMPLE_VALUES["stephenson2"]``.
 
     Examples
     --------
-    >>> stephenson3().has_closed_form
+    >>> stephenson2().has_closed_form
     False
     """
     theta, beta, mu, phi, eta = coordinates("theta beta mu phi eta")
@@ -333,7 +335,7 @@ def stephenson3() -> Linkage:
     outer = Loop(AB + BC + CF - DF - AD, name="ABCFD")
     inner = Loop(AB + BE + EH - DH - AD, name="ABEHD")
     return Linkage(
-        "stephenson3", [outer, inner], inputs=[theta], unknowns=[beta, mu, phi, eta],
+        "stephenson2", [outer, inner], inputs=[theta], unknowns=[beta, mu, phi, eta],
         parameters=[a, b, c, d, e, f, g, h, alpha, delta],
         points={"A": None, "B": AB.as_sum(), "C": AB + BC, "E": AB + BE, "D": AD.as_sum(),
                 "F": AD + DF, "H": AD + DH},
@@ -495,10 +497,55 @@ CATALOG = {
     "inverted-slider-crank": inverted_slider_crank,
     "offset-inverted-slider-crank": offset_inverted_slider_crank,
     "watt2": watt2,
-    "stephenson3": stephenson3,
+    "stephenson2": stephenson2,
     "fivebar": fivebar,
     "jansen": jansen,
 }
+
+#: The catalog's six-bars by their names in the atlas (:data:`symlink.mechanism.atlas.SIX_BAR_DEFINITIONS`).
+SIX_BAR_ENTRIES = {"watt-ii": "watt2", "stephenson-ii": "stephenson2"}
+
+
+def catalog_name(text: str) -> str:
+    """The catalog's name of the linkage ``text`` names: a catalog name, or a six-bar's name in any spelling.
+
+    Six-bar names are read by :func:`symlink.mechanism.atlas.six_bar_name` (``Watt II``, ``stephenson-2``, the
+    former ``stephenson3``, with a one-line note where an alias is read).
+
+    Parameters
+    ----------
+    text : str
+        ``"fourbar"``, ``"watt2"``, ``"Watt II"``, ``"stephenson2"`` ... (the keys of :data:`CATALOG`).
+
+    Returns
+    -------
+    str
+        A key of :data:`CATALOG`.
+
+    Raises
+    ------
+    ValueError
+        For a text naming no catalog linkage, listing those there are (and, for a six-bar the catalog has not,
+        its atlas entry).
+
+    Examples
+    --------
+    >>> from symlink.mechanism.catalog import catalog_name
+    >>> catalog_name("fourbar"), catalog_name("Watt II"), catalog_name("stephenson-ii")
+    ('fourbar', 'watt2', 'stephenson2')
+    """
+    from .atlas import SIX_BAR_DEFINITIONS, six_bar_name  # the atlas imports this module's layer: when called
+    if isinstance(text, str) and text in CATALOG:
+        return text
+    six = six_bar_name(text)
+    if six in SIX_BAR_ENTRIES:
+        return SIX_BAR_ENTRIES[six]
+    names = ", ".join(sorted(CATALOG))
+    if six is not None:
+        raise ValueError(f"the catalog has no {six} ({SIX_BAR_DEFINITIONS[six]}); the atlas has it: atlas:{six}. "
+                         f"The catalog has {names}")
+    raise ValueError(f"no linkage {excerpt(str(text), 40)} in the catalog; it has {names}")
+
 
 #: Example dimensions of each entry (the defaults of its shipped linkage file, ``symlink/linkages/``): the four-bar
 #: of the C-program paper (20, 66, 56, 80), Jansen's holy numbers, and for the others dimensions whose input turns fully.
@@ -508,7 +555,7 @@ EXAMPLE_VALUES = {
     "inverted-slider-crank": dict(a=2.0, d=1.2),
     "offset-inverted-slider-crank": dict(a=1.0, d=2.5, e=0.4),
     "watt2": dict(a=1.0, b=3.5, c=3.0, d=3.2, e=2.0, f=4.0, g=3.0, alpha=0.6, gx=4.5, gy=3.5),
-    "stephenson3": dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.9, delta=0.3),
+    "stephenson2": dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.9, delta=0.3),
     "fivebar": dict(a=2.0, b=4.0, c=4.0, d=3.0, e=2.0, psi=2.2),
     "jansen": jansen_parameters(),
 }

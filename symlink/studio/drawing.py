@@ -522,15 +522,12 @@ def open_source(source: Any, kind: str = "auto") -> dict[str, Any]:
                 else "name" if re.fullmatch(r"[A-Za-z0-9:_-]+", text) else "linkage")
     if kind == "name":
         from ..mechanism.atlas import ATLAS, atlas_entry
-        from ..mechanism.catalog import CATALOG
+        from ..mechanism.catalog import CATALOG, catalog_name
         from ..io.linkage_file import load_linkage
         name = text.removeprefix("atlas:")
         if text.startswith("atlas:") or (name in ATLAS and name not in CATALOG):
             return drawing_of(atlas_entry(name).joint_linkage())
-        if text not in CATALOG:
-            raise ValueError(f"no linkage {text[:40]!r} in the catalog ({', '.join(sorted(CATALOG))}) or the atlas "
-                             "(symlink atlas lists it)")
-        found = load_linkage(text)
+        found = load_linkage(catalog_name(text))  # a catalog name, or a six-bar's in any spelling
         return _linkage_drawing(found.linkage, found.defaults)
     if kind == "pylinkage":
         from ..io.pylinkage import read_pylinkage

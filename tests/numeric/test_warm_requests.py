@@ -104,19 +104,19 @@ def test_a_warm_sensitivity_request_derives_nothing(disk_cache, monkeypatch, bac
     from symlink.mechanism.catalog import fourbar
     from symlink.io.scene import Scene
     from symlink.numeric.solver import NumericSolver, Solver
-    from symlink.mechanism.catalog import stephenson3
+    from symlink.mechanism.catalog import stephenson2
     values = dict(theta=0.3, a=20.0, b=66.0, c=56.0, d=80.0, branch=1.0)
     cold = Solver(fourbar(), ["rocker__d_a", "rocker"], backend=backend)(**values)
     lengths = {k: v for k, v in values.items() if k != "branch"}
     Scene(fourbar(), ["rocker__d_a"], lengths).evaluate()
-    NumericSolver(stephenson3())
+    NumericSolver(stephenson2())
     cache.clear_memory()  # a new process: the disk cache only
     forbid_derivatives(monkeypatch)
     warm = Solver(fourbar(), ["rocker__d_a", "rocker"], backend=backend)(**values)
     assert float(warm["rocker__d_a"]) == pytest.approx(float(cold["rocker__d_a"]), rel=1e-13)
     scene = Scene(fourbar(), ["rocker__d_a"], lengths)
     assert float(scene.evaluate()[1]["rocker__d_a"]) == pytest.approx(float(cold["rocker__d_a"]), rel=1e-13)
-    NumericSolver(stephenson3())  # Newton's module, from the cache too
+    NumericSolver(stephenson2())  # Newton's module, from the cache too
     monkeypatch.undo()
     # finite differences of the rocker angle, an independent check of the derivative's value
     step = 1e-6

@@ -52,7 +52,7 @@ _public("symlink.symbolic.closure", "closure_system")
 _public("symlink.mechanism.catalog", "fourbar slider_crank inverted_slider_crank offset_inverted_slider_crank watt2 "
         "stephenson2 fivebar jansen with_point CATALOG EXAMPLE_VALUES")
 _public("symlink.mechanism.joints", "from_joints Slider JointLinkage JointDescription")
-_public("symlink.mechanism.atlas", "atlas_entry ATLAS")
+_public("symlink.mechanism.atlas", "atlas_entry ATLAS six_bar_name")
 _public("symlink.mechanism.mobility", "degrees_of_freedom Mobility")
 # code generation
 _public("symlink.codegen.latex", "latex_document newton_document")

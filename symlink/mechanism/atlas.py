@@ -472,13 +472,13 @@ def six_bar_name(text: str, convention: str = "ternary-iii") -> str | None:
 
     Examples
     --------
-    >>> from symlink.mechanism.atlas import six_bar_name
-    >>> six_bar_name("Watt I"), six_bar_name("stephenson_3"), six_bar_name("fourbar")
+    >>> import symlink
+    >>> symlink.six_bar_name("Watt I"), symlink.six_bar_name("stephenson_3"), symlink.six_bar_name("fourbar")
     ('watt-i', 'stephenson-iii', None)
     >>> import warnings
     >>> with warnings.catch_warnings(record=True) as caught:
     ...     warnings.simplefilter("always")
-    ...     six_bar_name("Stephenson II", convention="ternary-ii")
+    ...     symlink.six_bar_name("Stephenson II", convention="ternary-ii")
     'stephenson-iii'
     >>> print(caught[0].message)  # doctest: +ELLIPSIS
     'Stephenson II' in the ternary-ii numbering is stephenson-iii here: Stephenson chain ..., the ground a ternary link

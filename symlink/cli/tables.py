@@ -758,7 +758,7 @@ def register(commands: argparse._SubParsersAction) -> None:
 
 
 #: Table commands by a former name of their catalog linkage (symlink.mechanism.atlas.FORMER_SIX_BAR_NAMES), kept
-#: working: the name is read by symlink.mechanism.catalog.catalog_name, which says what it names now.
+#: working: the name is read by symlink.io.linkage_file.catalog_name, which says what it names now.
 FORMER_TABLE_COMMANDS = {"stephenson3": "stephenson2"}
 
 
@@ -768,7 +768,7 @@ def _add_former(command: argparse.ArgumentParser, table: Table, former: str) -> 
 
 
 def _run_former(table: Table, former: str, args: argparse.Namespace) -> int:
-    from ..mechanism.catalog import catalog_name
+    from ..io.linkage_file import catalog_name
     if catalog_name(former) != table.linkage:  # the note: what the former name names now
         raise ValueError(f"{former} no longer names {table.linkage}")
     return run_table(table, args)

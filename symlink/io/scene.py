@@ -63,10 +63,10 @@ import sympy as sp
 from ..numeric.cache import GeneratedCode, generated_code
 from ..numeric.call_arguments import check_argument_names
 from ..common.files import excerpt, read_input_text
-from ..mechanism.catalog import CATALOG, catalog_name
+from ..mechanism.catalog import CATALOG
 from ..common.display import record_html
 from ..numeric.input_sweep import InputSweep
-from .linkage_file import MAX_ANGLE, MAX_MAGNITUDE, LinkageFile, dynamic_model, load_linkage
+from .linkage_file import MAX_ANGLE, MAX_MAGNITUDE, LinkageFile, catalog_name, dynamic_model, load_linkage
 from ..common.angles import to_radians
 from ..symbolic.linkage import Linkage, Program
 from ..symbolic.closure import is_angle
@@ -98,7 +98,7 @@ def catalog_linkage(name: str) -> Linkage:
     ----------
     name : str
         A catalog name: ``"fourbar"``, ``"slider-crank"``, ``"watt2"`` ... (the keys of :data:`CATALOG`), or a
-        six-bar's name in any spelling (``"Watt II"``: :func:`symlink.mechanism.catalog.catalog_name`).
+        six-bar's name in any spelling (``"Watt II"``: :func:`symlink.io.linkage_file.catalog_name`).
 
     Returns
     -------

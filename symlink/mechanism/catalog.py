@@ -18,13 +18,11 @@ import math
 import sympy as sp
 
 from ..symbolic.linkage import Linkage
-from ..common.files import excerpt
 from ..symbolic.loops import Loop
 from ..symbolic.vectors import Vector, coordinates, lengths
 
 __all__ = ["fourbar", "slider_crank", "inverted_slider_crank", "offset_inverted_slider_crank", "watt2", "stephenson2", "fivebar", "jansen",
-           "JANSEN_HOLY_NUMBERS", "jansen_parameters", "CATALOG", "EXAMPLE_VALUES", "with_point", "SIX_BAR_ENTRIES",
-           "catalog_name"]
+           "JANSEN_HOLY_NUMBERS", "jansen_parameters", "CATALOG", "EXAMPLE_VALUES", "with_point"]
 
 
 def transmission_angle(coupler_angle: sp.Expr, rocker_angle: sp.Expr) -> sp.Expr:
@@ -501,51 +499,6 @@ CATALOG = {
     "fivebar": fivebar,
     "jansen": jansen,
 }
-
-#: The catalog's six-bars by their names in the atlas (:data:`symlink.mechanism.atlas.SIX_BAR_DEFINITIONS`).
-SIX_BAR_ENTRIES = {"watt-ii": "watt2", "stephenson-ii": "stephenson2"}
-
-
-def catalog_name(text: str) -> str:
-    """The catalog's name of the linkage ``text`` names: a catalog name, or a six-bar's name in any spelling.
-
-    Six-bar names are read by :func:`symlink.mechanism.atlas.six_bar_name` (``Watt II``, ``stephenson-2``, the
-    former ``stephenson3``, with a one-line note where an alias is read).
-
-    Parameters
-    ----------
-    text : str
-        ``"fourbar"``, ``"watt2"``, ``"Watt II"``, ``"stephenson2"`` ... (the keys of :data:`CATALOG`).
-
-    Returns
-    -------
-    str
-        A key of :data:`CATALOG`.
-
-    Raises
-    ------
-    ValueError
-        For a text naming no catalog linkage, listing those there are (and, for a six-bar the catalog has not,
-        its atlas entry).
-
-    Examples
-    --------
-    >>> from symlink.mechanism.catalog import catalog_name
-    >>> catalog_name("fourbar"), catalog_name("Watt II"), catalog_name("stephenson-ii")
-    ('fourbar', 'watt2', 'stephenson2')
-    """
-    from .atlas import SIX_BAR_DEFINITIONS, six_bar_name  # the atlas imports this module's layer: when called
-    if isinstance(text, str) and text in CATALOG:
-        return text
-    six = six_bar_name(text)
-    if six in SIX_BAR_ENTRIES:
-        return SIX_BAR_ENTRIES[six]
-    names = ", ".join(sorted(CATALOG))
-    if six is not None:
-        raise ValueError(f"the catalog has no {six} ({SIX_BAR_DEFINITIONS[six]}); the atlas has it: atlas:{six}. "
-                         f"The catalog has {names}")
-    raise ValueError(f"no linkage {excerpt(str(text), 40)} in the catalog; it has {names}")
-
 
 #: Example dimensions of each entry (the defaults of its shipped linkage file, ``symlink/linkages/``): the four-bar
 #: of the C-program paper (20, 66, 56, 80), Jansen's holy numbers, and for the others dimensions whose input turns fully.

@@ -522,8 +522,8 @@ def open_source(source: Any, kind: str = "auto") -> dict[str, Any]:
                 else "name" if re.fullmatch(r"[A-Za-z0-9:_-]+", text) else "linkage")
     if kind == "name":
         from ..mechanism.atlas import ATLAS, atlas_entry
-        from ..mechanism.catalog import CATALOG, catalog_name
-        from ..io.linkage_file import load_linkage
+        from ..mechanism.catalog import CATALOG
+        from ..io.linkage_file import catalog_name, load_linkage
         name = text.removeprefix("atlas:")
         if text.startswith("atlas:") or (name in ATLAS and name not in CATALOG):
             return drawing_of(atlas_entry(name).joint_linkage())

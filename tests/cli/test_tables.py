@@ -453,5 +453,5 @@ def test_the_former_command_name_prints_the_same_table_with_a_note(capsys):
     assert note.count("\n") == 1 and "symlink: warning: 'stephenson3' is symlink's former name of stephenson-ii" in note
     from symlink.cli.tables import FORMER_TABLE_COMMANDS
     from symlink.mechanism.atlas import FORMER_SIX_BAR_NAMES
-    from symlink.mechanism.catalog import SIX_BAR_ENTRIES
+    from symlink.io.linkage_file import SIX_BAR_ENTRIES
     assert FORMER_TABLE_COMMANDS == {name: SIX_BAR_ENTRIES[six] for name, six in FORMER_SIX_BAR_NAMES.items()}

@@ -18,7 +18,7 @@ import pytest
 
 from symlink.mechanism.atlas import (ATLAS, LITERATURE_COUNTS, SIX_BAR_CONVENTIONS, SIX_BAR_DEFINITIONS, ChainGraph,
                                     SixBarNameNote, atlas_entry, chains, dyads, mechanisms, six_bar_name, turns_fully)
-from symlink.mechanism.catalog import SIX_BAR_ENTRIES, catalog_name
+from symlink.io.linkage_file import SIX_BAR_ENTRIES, catalog_name
 from symlink.cli import main
 from symlink.numeric.solver import NumericSolver, Solver
 

@@ -1,6 +1,6 @@
 """The compiled Newton fallback against the closed-form C and the NumPy Newton, per value, in one run.
 
-Linkages without a loop-by-loop closed form (the Stephenson III six-bar) are solved by Newton's
+Linkages without a loop-by-loop closed form (the Stephenson II six-bar) are solved by Newton's
 method on the closure (:class:`symlink.numeric.solver.NumericSolver`): the compiled driver
 (:mod:`symlink.codegen.newton_c`, ``backend="compiled"``) or the generated NumPy module
 (``backend="numpy"``).  Each computes full kinematics (positions, rates, accelerations, points)
@@ -11,11 +11,11 @@ repeated calls, nanoseconds per value:
 * ``newton-c call``: a ``NumericSolver`` call as a user makes it (checks, sweep, points, results);
 * ``numpy call``: the same call on the NumPy backend (on fewer values: it is slow);
 * ``closed-form C loop``: the compiled closed-form solver's C loop (:mod:`benchmarks.compiled_loops`),
-  full kinematics, of the Watt II six-bar (four unknowns, like Stephenson III) and of the four-bar.
+  full kinematics, of the Watt II six-bar (four unknowns, like Stephenson II) and of the four-bar.
 
 Also the four-bar by Newton (``NumericSolver`` works on any linkage): the same linkage both ways.
 Printed: each time and the ratios newton-c / closed-form C (target <= 20x) and numpy / newton-c, and
-the Stephenson III's loop against the four-bar's closed-form loop (a six-bar against a four-bar).
+the Stephenson II's loop against the four-bar's closed-form loop (a six-bar against a four-bar).
 
     python -m benchmarks.newton [-n 36000]
 """
@@ -30,9 +30,9 @@ import numpy
 
 from benchmarks.compiled_loops import cpu_time, loop_alone, parameters
 
-#: The Stephenson III example of the tests and docs (a crank that turns fully) and its assembly guess.
-STEPHENSON3 = dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.9, delta=0.3)
-STEPHENSON3_GUESS = dict(beta=0.96, mu=0.27, phi=1.43, eta=-0.16)
+#: The Stephenson II example of the tests and docs (a crank that turns fully) and its assembly guess.
+STEPHENSON2 = dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.9, delta=0.3)
+STEPHENSON2_GUESS = dict(beta=0.96, mu=0.27, phi=1.43, eta=-0.16)
 FOURBAR = dict(a=20.0, b=66.0, c=56.0, d=80.0)
 FOURBAR_GUESS = dict(beta=0.3, phi=1.9)
 
@@ -76,10 +76,10 @@ def _closed_form_loop(build, n: int) -> float:
 
 def measure(n: int = 36000, numpy_n: int = 3600) -> list[dict]:
     """One row a linkage: ns a value of each way, and the closed-form C loop it is compared with."""
-    from symlink.mechanism.catalog import fourbar, stephenson3, watt2
+    from symlink.mechanism.catalog import fourbar, stephenson2, watt2
     from symlink.numeric.solver import NumericSolver
     rows = []
-    for build, dimensions, guess, closed in ((stephenson3, STEPHENSON3, STEPHENSON3_GUESS, watt2),
+    for build, dimensions, guess, closed in ((stephenson2, STEPHENSON2, STEPHENSON2_GUESS, watt2),
                                              (fourbar, FOURBAR, FOURBAR_GUESS, fourbar)):
         linkage = build()
         compiled = NumericSolver(linkage, backend="compiled")
@@ -111,9 +111,9 @@ def report(rows: list[dict]) -> str:
                      f"{r['loop_ns'] / r['closed_ns']:>10.1f}x {r['call_ns'] / r['closed_ns']:>10.1f}x "
                      f"{r['numpy_ns'] / r['call_ns']:>9.1f}x | {r['agreement']:>15.2g}")
     by_name = {r["linkage"]: r for r in rows}
-    if "stephenson3" in by_name and "fourbar" in by_name:
-        six, four = by_name["stephenson3"], by_name["fourbar"]
-        lines.append(f"Stephenson III newton-c loop / four-bar closed-form C loop: "
+    if "stephenson2" in by_name and "fourbar" in by_name:
+        six, four = by_name["stephenson2"], by_name["fourbar"]
+        lines.append(f"Stephenson II newton-c loop / four-bar closed-form C loop: "
                      f"{six['loop_ns'] / four['closed_ns']:.1f}x (a six-bar against a four-bar)")
     lines.append(f"ns per value, full kinematics (CPU time, best of repeats; NumPy on {rows[0]['numpy_n']} values); "
                  f"target: newton-c within 20x the closed-form C; load {os.getloadavg()[0]:.2f}")

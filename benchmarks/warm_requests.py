@@ -77,7 +77,7 @@ def measure(repeats: int = 3) -> dict[str, dict[str, float]]:
 #: Warm command lines (arguments of ``python -m symlink``); ``{folder}`` is a fresh folder of the run.
 COMMANDS = {
     "table watt2 (closed form)": ["table", "watt2", "--angles", "0,50", "--format", "csv", "--branch", "+1"],
-    "table stephenson3 (Newton)": ["table", "stephenson3", "--angles", "0,50", "--format", "csv", "--guess",
+    "table stephenson2 (Newton)": ["table", "stephenson2", "--angles", "0,50", "--format", "csv", "--guess",
                                    "coupler=-33,mu=-35,rocker=-73,eta=-68"],
     "table FILE (jansen.toml)": ["table", "{folder}/jansen.toml", "--angles", "0,50", "--format", "csv",
                                  "--branch", "+1"],

@@ -50,9 +50,9 @@ _public("symlink.symbolic.plan", "solve_plan SolvePlan")
 _public("symlink.symbolic.closure", "closure_system")
 # the mechanism: joints, structure, the atlas and the catalog
 _public("symlink.mechanism.catalog", "fourbar slider_crank inverted_slider_crank offset_inverted_slider_crank watt2 "
-        "stephenson3 fivebar jansen with_point CATALOG EXAMPLE_VALUES")
+        "stephenson2 stephenson3 fivebar jansen with_point CATALOG EXAMPLE_VALUES")
 _public("symlink.mechanism.joints", "from_joints Slider JointLinkage JointDescription")
-_public("symlink.mechanism.atlas", "atlas_entry ATLAS")
+_public("symlink.mechanism.atlas", "atlas_entry ATLAS six_bar_name")
 _public("symlink.mechanism.mobility", "degrees_of_freedom Mobility")
 # code generation
 _public("symlink.codegen.latex", "latex_document newton_document")

@@ -55,7 +55,7 @@ def fivebar_closure(x, q, p):
             a * mp.sin(theta) + b * mp.sin(beta) - e * mp.sin(psi) - c * mp.sin(phi)]
 
 
-def stephenson3_closure(x, q, p):
+def stephenson2_closure(x, q, p):
     (theta,), (beta, mu, phi, eta) = x, q
     a, b, c, d, e, f, g, h = (p[k] for k in "abcdefgh")
     return [a * mp.cos(theta) + b * mp.cos(beta) + c * mp.cos(mu) - d - f * mp.cos(phi),
@@ -64,11 +64,11 @@ def stephenson3_closure(x, q, p):
             a * mp.sin(theta) + e * mp.sin(beta + p["alpha"]) + g * mp.sin(eta) - h * mp.sin(phi + p["delta"])]
 
 
-STEPHENSON3_UNKNOWNS = ("beta", "mu", "phi", "eta")
+STEPHENSON2_UNKNOWNS = ("beta", "mu", "phi", "eta")
 
 
-def stephenson3_continued(p, thetas, guess, substeps=8, dps=30, jacobian=None):
-    """Stephenson III's unknowns (beta, mu, phi, eta) as mpf lists at each crank angle in ``thetas``, in order.
+def stephenson2_continued(p, thetas, guess, substeps=8, dps=30, jacobian=None):
+    """Stephenson II's unknowns (beta, mu, phi, eta) as mpf lists at each crank angle in ``thetas``, in order.
 
     The assembly nearest ``guess`` (a mapping by name) is found by ``mpmath.findroot`` at thetas[0], then
     continued from each angle to the next in ``substeps`` equal steps (at thetas[0] itself too, steps of
@@ -79,10 +79,10 @@ def stephenson3_continued(p, thetas, guess, substeps=8, dps=30, jacobian=None):
         extra = {} if jacobian is None else {"J": lambda *q: jacobian(q, p)}
 
         def solve(theta, start):
-            found = mp.findroot(lambda *q: stephenson3_closure((theta,), q, p), start, **extra)
+            found = mp.findroot(lambda *q: stephenson2_closure((theta,), q, p), start, **extra)
             return [found[i] for i in range(len(start))]
 
-        q = solve(_m(thetas[0]), [_m(guess[n]) for n in STEPHENSON3_UNKNOWNS])
+        q = solve(_m(thetas[0]), [_m(guess[n]) for n in STEPHENSON2_UNKNOWNS])
         previous, solved = _m(thetas[0]), []
         for theta in map(_m, thetas):
             for k in range(1, substeps + 1):

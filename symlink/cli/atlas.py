@@ -16,7 +16,11 @@ def register(commands) -> None:
 
 
 def _add_options(command: argparse.ArgumentParser) -> None:
-    command.add_argument("name", metavar="NAME", nargs="?", help="an atlas entry (fourbar, watt-i, ..., eightbar-16b)")
+    command.add_argument("name", metavar="NAME", nargs="?",
+                         help="an atlas entry (fourbar, watt-i, ..., eightbar-16b); a six-bar in any spelling (Watt I)")
+    command.add_argument("--convention", choices=("ternary-iii", "ternary-ii"), default="ternary-iii",
+                         help="the numbering a six-bar's NAME is read in: ternary-iii (symlink's, default: Stephenson "
+                              "III grounds a ternary link) or ternary-ii (Stephenson II and III swapped)")
     command.add_argument("--links", type=int, choices=(4, 6, 8), help="list only the mechanisms with this many links")
     command.add_argument("--draw", type=figure_path, metavar="FILE", help="draw NAME at its example pose (.png, .svg)")
     command.set_defaults(run=run)
@@ -39,7 +43,7 @@ def run(args: argparse.Namespace) -> int:
             for entry in entries:
                 print(f"  {entry.summary()}")
         return 0
-    entry = atlas_entry(args.name)
+    entry = atlas_entry(args.name, args.convention)
     drawn = entry.joint_linkage()
     description, _ = entry.description()
     print(entry.summary())

@@ -736,7 +736,9 @@ def _run_general(args: argparse.Namespace, kind: str) -> int:
     report_transmission(run, args.units)
     if args.out:
         source = found.source if found.source != "catalog" else linkage.name
-        head = (f"# Designed by 'symlink synthesize {kind} {source}': error {record['error']:.3g}; "
+        measured = (f"position error {record['position_error']:.3g}, angle error {record['angle_error']:.3g} "
+                    f"{args.units}" if kind == "motion" else f"error {record['error']:.3g}")
+        head = (f"# Designed by 'symlink synthesize {kind} {source}': {measured}; "
                 f"{_branch_words(linkage, design.branches, left)}.\n")
         if assembly:  # no closed form: the assembly is the guess that finds it
             head += (f"# Assembly at the first target (the initial guess of Newton's method, angles in {args.units}): "
@@ -793,18 +795,19 @@ def _general_record(args, kind: str, linkage, design, placement, error: float, c
     unit = lambda x: float(from_radians(x, args.units))  # noqa: E731
     as_input = unit if is_angle(linkage, linkage.inputs[0]) else float
     targets = [[float(columns[name][k]) for name in columns] for k in range(len(next(iter(columns.values()))))]
-    # per target: path, the distance; function, generated - wanted (an angle in --units); motion, the distance, and
-    # the angle's error (in --units) in "angle_errors"
-    if kind == "path":
-        errors = list(design.errors)
-    elif kind == "function":
-        errors = [unit(e) if _angle_output(linkage, design.output) else e for e in design.errors]
+    # per target: path, the distance; function, generated - wanted (an angle in --units); motion, the distance (the
+    # poses' length unit) and the angle's error (--units), each in its own field: one number would mix the units
+    if kind == "motion":
+        measured = {"position_error": float(design.position_error), "angle_error": unit(design.angle_error),
+                    "poses_size": float(design.size)}
+        per_target = {"position_errors": list(map(float, design.position_errors)),
+                      "angle_errors": [unit(a) for a in design.angle_errors]}
     else:
-        errors = list(design.position_errors)
-    extra = {"angle_errors": [unit(a) for a in design.angle_errors]} if kind == "motion" else {}
-    if kind == "function" and _angle_output(linkage, design.output):
-        error = unit(error)  # an angle's error in the targets' unit, beside them
-    return {"kind": kind, "linkage": linkage.name, "assembled": design.assembled, "error": error,
+        errors = design.errors
+        if kind == "function" and _angle_output(linkage, design.output):
+            error, errors = unit(error), [unit(e) for e in errors]  # an angle's error in the targets' unit
+        measured, per_target = {"error": error}, {"errors": list(map(float, errors))}
+    return {"kind": kind, "linkage": linkage.name, "assembled": design.assembled, **measured,
             "evaluations": design.evaluations,
             "design": {name: unit(v) if name in angles else v for name, v in (written or design.design).items()},
             "placement": {name: unit(v) if name == "angle" else v for name, v in placement.items()},
@@ -812,7 +815,7 @@ def _general_record(args, kind: str, linkage, design, placement, error: float, c
             **({"assembly": {name: unit(v) if is_angle(linkage, q) else v
                              for q in linkage.unknowns for name, v in design.assembly.items() if name == q.name}}
                if getattr(design, "assembly", None) else {}),
-            "columns": list(columns), "targets": targets, "errors": list(map(float, errors)), **extra,
+            "columns": list(columns), "targets": targets, **per_target,
             **({"constraints": list(design.constraints), "active": list(design.active)}
                if getattr(design, "constraints", ()) else {}),
             **({"worst_transmission": unit(run.worst), "transmission_over": transmission_over(run, args.units, as_input)}
@@ -821,7 +824,8 @@ def _general_record(args, kind: str, linkage, design, placement, error: float, c
 
 
 def _print_general(args: argparse.Namespace, record: dict) -> None:
-    row = {"error": record["error"], "assembled": "yes" if record["assembled"] else "no",
+    measured = ("position_error", "angle_error") if record["kind"] == "motion" else ("error",)
+    row = {**{name: record[name] for name in measured}, "assembled": "yes" if record["assembled"] else "no",
            **record["design"], **record["placement"], **{k: f"{v:+d}" for k, v in record["branches"].items()},
            **({"worst_transmission": record["worst_transmission"]} if "worst_transmission" in record else {})}
     if args.format == "json":
@@ -840,10 +844,14 @@ def _print_general(args: argparse.Namespace, record: dict) -> None:
             note(f"held in every trial of the search: {held}")
     if record["placement"].get("scale", 1.0) != 1.0:
         note(f"lengths as written (the linkage's own scaled by {record['placement']['scale']:.6g})")
+    if record["kind"] == "motion":
+        note("the error columns: position_error, the largest distance from a pose to the link's point (the poses' "
+             f"length unit); angle_error, the largest |link angle - pose angle| ({args.units}); the fit weighs one "
+             f"radian as the poses' size, {record['poses_size']:.6g} (the diagonal of their bounding box)")
+        return
     note("the error column: " + {"function": f"the largest |generated - wanted| output ({args.units} for an angle)",
-                                 "path": "the largest distance from a target to the point, over the targets' size",
-                                 "motion": "the largest position error over the poses' size, or angle error "
-                                           "(radians)"}[record["kind"]])
+                                 "path": "the largest distance from a target to the point, over the targets' size"
+                                 }[record["kind"]])
 
 
 def _write_record(path: str, record: dict) -> None:
@@ -853,10 +861,11 @@ def _write_record(path: str, record: dict) -> None:
     else:
         out = io.StringIO()
         writer = csv.writer(out, lineterminator="\n")
-        turned = record.get("angle_errors")
-        writer.writerow(["target", "input", *record["columns"], "error", *(["angle_error"] if turned else [])])
-        for k, (q, target, error) in enumerate(zip(record["inputs"], record["targets"], record["errors"]), start=1):
-            writer.writerow([k, repr(q), *map(repr, target), repr(error), *([repr(turned[k - 1])] if turned else [])])
+        # one column an error, named as the printed row names it: motion, position_error and angle_error
+        fields = (("position_errors", "angle_errors") if record["kind"] == "motion" else ("errors",))
+        writer.writerow(["target", "input", *record["columns"], *(name.removesuffix("s") for name in fields)])
+        for k, (q, target) in enumerate(zip(record["inputs"], record["targets"])):
+            writer.writerow([k + 1, repr(q), *map(repr, target), *(repr(record[name][k]) for name in fields)])
         text = out.getvalue()
     write_atomic(path, text)
 

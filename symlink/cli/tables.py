@@ -20,7 +20,7 @@ range is known in closed form.  Everything else follows from the linkage:
 * a linkage without a closed form is solved by the generated Newton solver
   (:class:`symlink.numeric.solver.NumericSolver`), continued along the sweep from an assembly at the
   first crank angle: the one nearest ``--guess``, or by default the first (in
-  the order the entry lists them: Stephenson III by coupler angle) that
+  the order the entry lists them: Stephenson II by coupler angle) that
   continues over the whole sweep.
 
 >>> from symlink.io.scene import catalog_linkage
@@ -39,6 +39,7 @@ from typing import TYPE_CHECKING, Any, Callable, Collection, Iterable, Mapping
 import numpy
 
 from ..common.angles import from_radians, half_turn, to_radians, wrap
+from ..io.scene_text import FORMER_CATALOG_NAMES
 from ..numeric.input_sweep import InputSweep, crank_speeds
 from .options import (add_fourbar_lengths, add_sweep_options, angle, assignments, branches, command_help, finite,
                       fourbar_lengths, input_sweep)
@@ -497,10 +498,10 @@ def _reachability():
     return reachability
 
 
-def _stephenson3_assemblies(theta: float, values: Mapping[str, float]) -> Any:
-    """The Stephenson III's assemblies at crank angle ``theta`` (:mod:`symlink.numeric.assemblies`, imported when asked)."""
-    from ..numeric.assemblies import stephenson3_assemblies
-    return stephenson3_assemblies(theta, **{k: values[k] for k in "abcdefgh"}, alpha=values["alpha"],
+def _stephenson2_assemblies(theta: float, values: Mapping[str, float]) -> Any:
+    """The Stephenson II's assemblies at crank angle ``theta`` (:mod:`symlink.numeric.assemblies`, imported when asked)."""
+    from ..numeric.assemblies import stephenson2_assemblies
+    return stephenson2_assemblies(theta, **{k: values[k] for k in "abcdefgh"}, alpha=values["alpha"],
                                   delta=values["delta"])
 
 
@@ -538,8 +539,8 @@ WATT2 = Table(
     notes="Branch: one sign a loop, ABCD then DEFG, as in the four-bar: +1 puts C left of B->D and F left "
           "of E->G.\nThe reachable crank range of a branch is found by a scan (0.1 deg, edges bisected).")
 
-STEPHENSON3 = Table(
-    "stephenson3", "positions, speeds and accelerations of a Stephenson III six-bar (numeric)",
+STEPHENSON2 = Table(
+    "stephenson2", "positions, speeds and accelerations of a Stephenson II six-bar (numeric)",
     (Option("crank", "a", "A", "crank length AB"),
      Option("coupler", "b", "B", "side BC of the ternary coupler BCE"),
      Option("coupler-arm", "e", "E", "side BE of the ternary coupler"),
@@ -560,7 +561,7 @@ STEPHENSON3 = Table(
           "default the first in order of the coupler angle that continues over the whole sweep is used.\n"
           "Where Newton's method does not converge (the linkage cannot be assembled, or a dead centre) the "
           "command stops with one line naming the crank angle.",
-    assemblies=lambda theta, values: _stephenson3_assemblies(theta, values))
+    assemblies=lambda theta, values: _stephenson2_assemblies(theta, values))
 
 FIVEBAR = Table(
     "fivebar", "positions, speeds and accelerations of a five-bar with two driven cranks",
@@ -585,7 +586,7 @@ SLIDER = Table(
     reachable=lambda values: _reachability().slider_crank_range(values["a"], values["b"], values["offset"]))
 
 #: The table commands made from catalog entries, in the order ``symlink --help`` lists them.
-TABLES = (SLIDER, INVERTED, WATT2, STEPHENSON3, FIVEBAR)
+TABLES = (SLIDER, INVERTED, WATT2, STEPHENSON2, FIVEBAR)
 
 
 # --- symlink fourbar ------------------------------------------------------------------
@@ -658,8 +659,9 @@ def _add_generic_options(command: argparse.ArgumentParser) -> None:
 
 #: The kind of cache entry of ``symlink table NAME|FILE`` (its facts, and its solver: :func:`run_generic_table`).
 GENERIC_ENTRY_KIND = "generic-table/2"
-#: Besides the code that shapes generated code: what reads a linkage file and what takes a table's facts from it.
-GENERIC_SHAPING = ("io/linkage_file", "cli/tables")
+#: Besides the code that shapes generated code: what reads a linkage file and what takes a table's facts from it,
+#: and what an atlas name (atlas:NAME) stands for: the atlas's names and example drawings, and the joints reader.
+GENERIC_SHAPING = ("io/linkage_file", "cli/tables", "mechanism/atlas", "mechanism/joints")
 
 
 def _facts_values(facts: Mapping[str, Any], settings: Mapping[str, float], units: str,
@@ -760,3 +762,24 @@ def register(commands: argparse._SubParsersAction) -> None:
         "symlink table jansen --step 90 --branch +1")).set_defaults(run=run_generic_table)
     for table in TABLES:
         add_table_command(commands, table)
+    for former, current in FORMER_TABLE_COMMANDS.items():
+        table = next(t for t in TABLES if t.linkage == current)
+        commands.add_parser(former, help=f"{table.linkage}'s table, by its former name (a note says so)",
+                            populate=lambda command, table=table, former=former: _add_former(command, table, former))
+
+
+#: Table commands by a former name of their catalog linkage (symlink.mechanism.atlas.FORMER_SIX_BAR_NAMES), kept
+#: working: the name is read by symlink.io.linkage_file.catalog_name, which says what it names now.
+FORMER_TABLE_COMMANDS = FORMER_CATALOG_NAMES
+
+
+def _add_former(command: argparse.ArgumentParser, table: Table, former: str) -> None:
+    _add_options(command, table)
+    command.set_defaults(run=lambda args: _run_former(table, former, args))
+
+
+def _run_former(table: Table, former: str, args: argparse.Namespace) -> int:
+    from ..io.linkage_file import catalog_name
+    if catalog_name(former) != table.linkage:  # the note: what the former name names now
+        raise ValueError(f"{former} no longer names {table.linkage}")
+    return run_table(table, args)

@@ -143,7 +143,7 @@ def newton_document(linkage: Linkage, title: str) -> str:
     Examples
     --------
     >>> import symlink
-    >>> text = symlink.newton_document(symlink.stephenson3(), "Stephenson III")
+    >>> text = symlink.newton_document(symlink.stephenson2(), "Stephenson II")
     >>> "Newton" in text, text.rstrip().endswith("\\end{document}")
     (True, True)
     """

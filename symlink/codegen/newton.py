@@ -1,6 +1,6 @@
 """The generator of the numeric fallback: a standalone NumPy module solving a linkage by Newton's method.
 
-Where no loop-by-loop closed form exists (the Stephenson III six-bar), the
+Where no loop-by-loop closed form exists (the Stephenson II six-bar), the
 closure equations of all loops are solved together.  The residuals, their
 Jacobian with respect to the unknowns and the right-hand sides of the
 velocity and acceleration systems (:mod:`symlink.symbolic.closure`) are printed as

@@ -47,8 +47,8 @@ are far beyond the threshold at a dead centre.)  Failures come back as a status 
 the input values involved, which :mod:`symlink.numeric.solver` turns into the NumPy
 driver's messages.
 
->>> from symlink.mechanism.catalog import stephenson3
->>> facts = newton_c_facts(stephenson3())
+>>> from symlink.mechanism.catalog import stephenson2
+>>> facts = newton_c_facts(stephenson2())
 >>> "int symlink_newton_sweep(" in facts["source"], facts["unknowns"]
 (True, ['beta', 'mu', 'phi', 'eta'])
 """

@@ -162,7 +162,8 @@ else:  # Python 3.10: tomli is tomllib before it joined the standard library
     from tomli import loads as toml_loads
 
 __all__ = ["LinkageFile", "load_linkage", "read_linkage", "linkage_from_text", "linkage_from_mapping", "linkage_text",
-           "write_linkage", "write_catalog_files", "catalog_file", "CATALOG_FOLDER", "dynamic_model"]
+           "write_linkage", "write_catalog_files", "catalog_file", "CATALOG_FOLDER", "dynamic_model",
+           "catalog_name", "SIX_BAR_ENTRIES"]
 
 #: Where the catalog's linkage files ship: package data of symlink (``symlink/linkages/<name>.toml``),
 #: installed with it, so that they are found from any folder (:func:`catalog_file`).
@@ -947,6 +948,52 @@ def read_linkage(path: str | Path) -> LinkageFile:
     return linkage_from_text(read_input_text(path, MAX_LINKAGE_BYTES, "linkage file"), str(path))
 
 
+#: The catalog's six-bars by their names in the atlas (:data:`symlink.mechanism.atlas.SIX_BAR_DEFINITIONS`).
+SIX_BAR_ENTRIES = {"watt-ii": "watt2", "stephenson-ii": "stephenson2"}
+
+
+def catalog_name(text: str) -> str:
+    """The catalog's name of the linkage ``text`` names: a catalog name, or a six-bar's name in any spelling.
+
+    Six-bar names are read by :func:`symlink.mechanism.atlas.six_bar_name` (``Watt II``, ``stephenson-2``, the
+    former ``stephenson3``, with a one-line note where an alias is read).
+
+    Parameters
+    ----------
+    text : str
+        ``"fourbar"``, ``"watt2"``, ``"Watt II"``, ``"stephenson2"`` ... (the keys of :data:`symlink.mechanism.catalog.CATALOG`).
+
+    Returns
+    -------
+    str
+        A key of :data:`symlink.mechanism.catalog.CATALOG`.
+
+    Raises
+    ------
+    ValueError
+        For a text naming no catalog linkage, listing those there are (and, for a six-bar the catalog has not,
+        its atlas entry).
+
+    Examples
+    --------
+    >>> from symlink.io.linkage_file import catalog_name
+    >>> catalog_name("fourbar"), catalog_name("Watt II"), catalog_name("stephenson-ii")
+    ('fourbar', 'watt2', 'stephenson2')
+    """
+    from ..mechanism.atlas import SIX_BAR_DEFINITIONS, six_bar_name
+    from ..mechanism.catalog import CATALOG
+    if isinstance(text, str) and text in CATALOG:
+        return text
+    six = six_bar_name(text)
+    if six in SIX_BAR_ENTRIES:
+        return SIX_BAR_ENTRIES[six]
+    names = ", ".join(sorted(CATALOG))
+    if six is not None:
+        raise ValueError(f"the catalog has no {six} ({SIX_BAR_DEFINITIONS[six]}); the atlas has it: atlas:{six}. "
+                         f"The catalog has {names}")
+    raise ValueError(f"no linkage {excerpt(str(text), 40)} in the catalog; it has {names}")
+
+
 def load_linkage(source: str | Path, folder: str | Path | None = None) -> LinkageFile:
     """A catalog entry by name (with its example values as defaults), an atlas entry (``atlas:watt-ii``), or a
     linkage file by path.
@@ -957,7 +1004,8 @@ def load_linkage(source: str | Path, folder: str | Path | None = None) -> Linkag
     Parameters
     ----------
     source : str or pathlib.Path
-        A catalog name (``"fourbar"``), an atlas name (``"atlas:watt-ii"``) or a linkage file's path.
+        A catalog name (``"fourbar"``; a six-bar's in any spelling, ``"Watt II"``), an atlas name
+        (``"atlas:watt-ii"``, ``"atlas:Stephenson III"``) or a linkage file's path.
     folder : str or pathlib.Path, optional
         Where a relative path is looked for (a scene file's own folder).
 
@@ -989,8 +1037,11 @@ def load_linkage(source: str | Path, folder: str | Path | None = None) -> Linkag
     path = Path(folder) / text if folder is not None else Path(text)
     if text.endswith(".toml") or path.exists():
         return read_linkage(path)
-    raise ValueError(f"no linkage {text!r} in the catalog ({', '.join(sorted(CATALOG))}), "
-                     "not an atlas entry (atlas:NAME) and not a linkage file (.toml)")
+    try:
+        name = catalog_name(text)  # a catalog name, or a six-bar's in any spelling (Watt II, stephenson-2 ...)
+    except ValueError as error:
+        raise ValueError(f"{error} (an atlas entry is atlas:NAME, a linkage file ends in .toml)") from None
+    return LinkageFile(CATALOG[name](), dict(EXAMPLE_VALUES.get(name, {})), "catalog")
 
 
 # --- writing --------------------------------------------------------------------------
@@ -1157,10 +1208,7 @@ def catalog_file(name: str) -> Path:
     >>> path.name, read_linkage(path).defaults["a"]
     ('fourbar.toml', 20.0)
     """
-    from ..mechanism.catalog import CATALOG
-    if name not in CATALOG:
-        raise ValueError(f"no linkage {name!r} in the catalog ({', '.join(sorted(CATALOG))})")
-    return CATALOG_FOLDER / f"{name}.toml"
+    return CATALOG_FOLDER / f"{catalog_name(name)}.toml"
 
 
 def write_catalog_files(folder: str | Path = CATALOG_FOLDER) -> list[Path]:

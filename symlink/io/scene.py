@@ -64,7 +64,7 @@ from ..common.files import excerpt, read_input_text
 from ..mechanism.catalog import CATALOG
 from ..common.display import record_html
 from ..numeric.input_sweep import InputSweep
-from .linkage_file import LinkageFile, dynamic_model, load_linkage
+from .linkage_file import LinkageFile, catalog_name, dynamic_model, load_linkage
 from .scene_text import (BRANCH_CHOICES, FORMATS, INPUT_KEYS, MAX_SCENE_BYTES, TOP_KEYS, UNITS,  # noqa: F401
                          choice as _choice, number as _number, table as _table, toml_loads)
 from ..common.angles import to_radians
@@ -82,14 +82,14 @@ __all__ = ["Scene", "SceneFile", "catalog_linkage", "angle_outputs", "read_scene
 
 
 
-@lru_cache(maxsize=None)
 def catalog_linkage(name: str) -> Linkage:
     """A fresh instance of the catalog's linkage ``name`` (cheap: its derivations happen on first use).
 
     Parameters
     ----------
     name : str
-        A catalog name: ``"fourbar"``, ``"slider-crank"``, ``"watt2"`` ... (the keys of :data:`CATALOG`).
+        A catalog name: ``"fourbar"``, ``"slider-crank"``, ``"watt2"`` ... (the keys of :data:`CATALOG`), or a
+        six-bar's name in any spelling (``"Watt II"``: :func:`symlink.io.linkage_file.catalog_name`).
 
     Returns
     -------
@@ -108,8 +108,11 @@ def catalog_linkage(name: str) -> Linkage:
     >>> linkage.name, linkage.unknowns, linkage is symlink.catalog_linkage("slider-crank")
     ('slider-crank', (beta, s), True)
     """
-    if name not in CATALOG:
-        raise ValueError(f"no linkage {name!r} in the catalog; it has {', '.join(sorted(CATALOG))}")
+    return _catalog_linkage(catalog_name(name))
+
+
+@lru_cache(maxsize=None)
+def _catalog_linkage(name: str) -> Linkage:
     return CATALOG[name]()
 
 

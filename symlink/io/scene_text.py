@@ -99,6 +99,12 @@ def table(data: Any, where: str, allowed: set[str] | None) -> dict:
     return data
 
 
+#: Catalog linkages by a former name (the catalog's Stephenson six-bar was ``stephenson3`` before the six-bars were
+#: numbered as :mod:`symlink.mechanism.atlas` cites): the one table of them, SymPy-free, so that a warm command by
+#: the former name is as warm as by the current one.
+FORMER_CATALOG_NAMES = {"stephenson3": "stephenson2"}
+
+
 def linkage_request(source: str, folder: str | Path | None = None) -> dict[str, str] | None:
     """What names a linkage in a cache key, found without building it (no SymPy): a catalog or atlas name, or
     the digest of a linkage file's bytes (a relative path looked for in ``folder``, as
@@ -109,6 +115,7 @@ def linkage_request(source: str, folder: str | Path | None = None) -> dict[str, 
     ({'catalog': 'fourbar'}, {'atlas': 'atlas:watt-ii'}, None)
     """
     shipped = Path(__file__).resolve().parent.parent / "linkages"  # the catalog's files, one a catalog linkage
+    source = FORMER_CATALOG_NAMES.get(source, source)
     if source and all(c.isalnum() or c in "-_" for c in source) and (shipped / f"{source}.toml").is_file():
         return {"catalog": source}
     if source.startswith("atlas:"):

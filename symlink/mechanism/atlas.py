@@ -37,12 +37,41 @@ their plans, and example dimensions by a constructive recipe: place the joints
 [1, 2, 16]
 >>> [name for name in ATLAS if not name.startswith("eightbar")]
 ['fourbar', 'watt-i', 'watt-ii', 'stephenson-i', 'stephenson-ii', 'stephenson-iii']
->>> ATLAS["stephenson-iii"].closed_form
+>>> ATLAS["stephenson-ii"].closed_form
 False
+
+The six-bars' names
+-------------------
+A six-bar chain is a Watt chain when its two ternary links share a pin, a
+Stephenson chain when binary links keep them apart; its mechanisms are named
+by the link held as the ground (:data:`SIX_BAR_DEFINITIONS`):
+
+============== ============================================================
+watt-i         Watt chain, the ground a binary link
+watt-ii        Watt chain, the ground a ternary link (two four-bars in series)
+stephenson-i   Stephenson chain, the ground a binary link pinned to both ternary links
+stephenson-ii  Stephenson chain, the ground a binary link pinned to one ternary link
+stephenson-iii Stephenson chain, the ground a ternary link (a four-bar, and a dyad from its coupler to the ground)
+============== ============================================================
+
+This is the numbering of the linkage templates of PMKS+, the Planar Mechanism Kinematic Simulator (web app,
+``templates-popup.component.ts``: Watt I grounds a binary link, Watt II a ternary one, Stephenson I a binary
+link pinned to both ternary links, Stephenson III a ternary link), and of the Wikipedia article "Klann linkage"
+(Klann's frame, a ternary link, makes it "a modified Stephenson type III kinematic chain").  Other texts swap
+Stephenson II and III (the ternary ground is then Stephenson II: e.g. FIRGELLI's engineering library, "Stephenson
+Topology Six-bar Linkage"), and so did symlink before this release.  :func:`six_bar_name` reads a name in either
+numbering (``convention="ternary-ii"`` for the other), in any spelling (``Watt I``, ``watt-1``,
+``stephenson_iii``), and the catalog's former name ``stephenson3`` (now ``stephenson2``), with a one-line note
+(:class:`SixBarNameNote`) wherever a name does not mean what it reads in this numbering.
+
+>>> six_bar_name("Stephenson III"), six_bar_name("watt 2"), ATLAS["stephenson-iii"].ground_kind
+('stephenson-iii', 'watt-ii', 'ternary')
 """
 from __future__ import annotations
 
 import math
+import re
+import warnings
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
 from typing import TYPE_CHECKING, Iterator, Mapping, Sequence
@@ -55,7 +84,8 @@ if TYPE_CHECKING:
     from .joints import JointLinkage
 
 __all__ = ["ChainGraph", "AtlasEntry", "chains", "mechanisms", "ATLAS", "atlas_entry", "example_coordinates",
-           "LITERATURE_COUNTS"]
+           "LITERATURE_COUNTS", "SIX_BAR_DEFINITIONS", "SIX_BAR_CONVENTIONS", "FORMER_SIX_BAR_NAMES", "SixBarNameNote",
+           "six_bar_name"]
 
 #: Chains and mechanisms (grounds) of one-DOF planar chains with revolute joints, from the literature (Tsai 2001;
 #: Mruthyunjaya 2003): links -> (chains, mechanisms).
@@ -383,14 +413,111 @@ def _pin_name(k: int) -> str:
     return chr(ord("A") + k) if k < 26 else f"J{k}"
 
 
+#: The five six-bars, each by its definition (the rule :func:`_six_bar_name` applies; the numbering of PMKS+).
+SIX_BAR_DEFINITIONS = {
+    "watt-i": "Watt chain (the ternary links share a pin), the ground a binary link",
+    "watt-ii": "Watt chain (the ternary links share a pin), the ground a ternary link",
+    "stephenson-i": "Stephenson chain (binary links keep the ternary links apart), the ground a binary link pinned "
+                    "to both ternary links",
+    "stephenson-ii": "Stephenson chain (binary links keep the ternary links apart), the ground a binary link pinned "
+                     "to one ternary link",
+    "stephenson-iii": "Stephenson chain (binary links keep the ternary links apart), the ground a ternary link",
+}
+
+#: The numberings :func:`six_bar_name` reads: ``"ternary-iii"`` (symlink's, PMKS+'s: the Stephenson with a ternary
+#: ground is Stephenson III) and ``"ternary-ii"`` (the other: it is Stephenson II, and Stephenson III grounds the
+#: binary link pinned to one ternary link).  Watt I, Watt II and Stephenson I are the same in both.
+SIX_BAR_CONVENTIONS = {"ternary-iii": {}, "ternary-ii": {"stephenson-ii": "stephenson-iii",
+                                                         "stephenson-iii": "stephenson-ii"}}
+
+#: Names symlink gave before its numbering was fixed, and what they name now: the catalog's Stephenson six-bar
+#: (its ground a binary link pinned to one ternary link) was ``stephenson3``.
+FORMER_SIX_BAR_NAMES = {"stephenson3": "stephenson-ii"}
+
+_SIX_BAR_SPELLING = re.compile(r"(watt|stephenson)(?:'s)?[\s_-]*(iii|ii|i|[123])", re.IGNORECASE)
+_NUMERALS = {"1": "i", "2": "ii", "3": "iii", "i": "i", "ii": "ii", "iii": "iii"}
+
+
+class SixBarNameNote(UserWarning):
+    """A six-bar name read as an alias (the other numbering, or a former name): the one-line note says what it names."""
+
+
+def six_bar_name(text: str, convention: str = "ternary-iii") -> str | None:
+    """The atlas name of the six-bar that ``text`` names, in any spelling; ``None`` for a text naming no six-bar.
+
+    The one home of the six-bars' names: the atlas, the catalog, linkage files and every command read a six-bar
+    name through it.  ``Watt I``, ``watt-1``, ``watt_i``, ``WATT 1`` are all ``watt-i``; the numeral is read in
+    ``convention`` (:data:`SIX_BAR_CONVENTIONS`).  A name whose meaning differs from its plain reading in
+    symlink's numbering (the other convention's Stephenson II or III, a former name of
+    :data:`FORMER_SIX_BAR_NAMES`) gives a one-line :class:`SixBarNameNote` saying what it names.
+
+    Parameters
+    ----------
+    text : str
+        A six-bar's name: ``watt-i``, ``Watt II``, ``stephenson 3``, ``stephenson-iii`` ..., or any other text.
+    convention : str
+        ``"ternary-iii"`` (default: Stephenson III grounds a ternary link) or ``"ternary-ii"`` (Stephenson II and
+        III swapped).
+
+    Returns
+    -------
+    str or None
+        One of the keys of :data:`SIX_BAR_DEFINITIONS`, or ``None`` when ``text`` does not name a six-bar.
+
+    Raises
+    ------
+    ValueError
+        For an unknown convention, or a six-bar spelling with no such mechanism (``watt-iii``, ``stephenson-4``),
+        listing the names.
+
+    Examples
+    --------
+    >>> import symlink
+    >>> symlink.six_bar_name("Watt I"), symlink.six_bar_name("stephenson_3"), symlink.six_bar_name("fourbar")
+    ('watt-i', 'stephenson-iii', None)
+    >>> import warnings
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     symlink.six_bar_name("Stephenson II", convention="ternary-ii")
+    'stephenson-iii'
+    >>> print(caught[0].message)  # doctest: +ELLIPSIS
+    'Stephenson II' in the ternary-ii numbering is stephenson-iii here: Stephenson chain ..., the ground a ternary link
+    """
+    if convention not in SIX_BAR_CONVENTIONS:
+        raise ValueError(f"no six-bar naming convention {convention!r}; the conventions are "
+                         f"{', '.join(SIX_BAR_CONVENTIONS)}")
+    if not isinstance(text, str):
+        return None
+    plain = text.strip()
+    if plain.lower() in FORMER_SIX_BAR_NAMES:
+        name = FORMER_SIX_BAR_NAMES[plain.lower()]
+        _note(f"{plain!r} is symlink's former name of {name}: {SIX_BAR_DEFINITIONS[name]} (symlink numbered "
+              "Stephenson II and III the other way before)")
+        return name
+    match = _SIX_BAR_SPELLING.fullmatch(plain)
+    if match is None:
+        return None
+    read = f"{match.group(1).lower()}-{_NUMERALS[match.group(2).lower()]}"
+    if read not in SIX_BAR_DEFINITIONS:
+        raise ValueError(f"no six-bar {plain!r}; the six-bars are {', '.join(SIX_BAR_DEFINITIONS)}")
+    name = SIX_BAR_CONVENTIONS[convention].get(read, read)
+    if name != read:
+        _note(f"{plain!r} in the {convention} numbering is {name} here: {SIX_BAR_DEFINITIONS[name]}")
+    return name
+
+
+def _note(text: str) -> None:
+    warnings.warn(text, SixBarNameNote, stacklevel=3)
+
+
 def _six_bar_name(chain: ChainGraph, ground: int) -> str:
+    """The six-bar's name by the rule of :data:`SIX_BAR_DEFINITIONS` (the ternary links' adjacency, the ground's place)."""
     ternary = [v for v in range(6) if chain.degrees[v] == 3]
-    watt = ternary[1] in chain.neighbours[ternary[0]]
+    if ternary[1] in chain.neighbours[ternary[0]]:  # the two ternary links share a pin: a Watt chain
+        return "watt-ii" if chain.degrees[ground] == 3 else "watt-i"
     if chain.degrees[ground] == 3:
-        return "watt-ii" if watt else "stephenson-ii"
-    if watt:
-        return "watt-i"
-    return "stephenson-i" if all(t in chain.neighbours[ground] for t in ternary) else "stephenson-iii"
+        return "stephenson-iii"
+    return "stephenson-i" if all(t in chain.neighbours[ground] for t in ternary) else "stephenson-ii"
 
 
 def _entries() -> dict[str, AtlasEntry]:
@@ -410,7 +537,7 @@ def _entries() -> dict[str, AtlasEntry]:
                     name = f"eightbar-{index + 1:02d}{chr(ord('a') + number)}"
                 found[name] = AtlasEntry(name, index, chain, ground, driver, drivers)
     six = [name for name in found if found[name].links == 6]
-    ordered = sorted(six, key=["watt-i", "watt-ii", "stephenson-i", "stephenson-ii", "stephenson-iii"].index)
+    ordered = sorted(six, key=list(SIX_BAR_DEFINITIONS).index)
     return {"fourbar": found["fourbar"], **{n: found[n] for n in ordered},
             **{n: e for n, e in found.items() if e.links == 8}}
 
@@ -436,13 +563,17 @@ class _Atlas(Mapping[str, AtlasEntry]):
 ATLAS: Mapping[str, AtlasEntry] = _Atlas()
 
 
-def atlas_entry(name: str) -> AtlasEntry:
+def atlas_entry(name: str, convention: str = "ternary-iii") -> AtlasEntry:
     """The atlas entry ``name``; ``ValueError`` listing the names for any other.
 
     Parameters
     ----------
     name : str
-        An atlas name: ``fourbar``, ``watt-i``, ``watt-ii``, ``stephenson-i`` ... or ``eightbar-NNx``.
+        An atlas name: ``fourbar``, ``watt-i``, ``watt-ii``, ``stephenson-i`` ... or ``eightbar-NNx``; a six-bar in
+        any spelling (``Watt I``, ``stephenson 3``: :func:`six_bar_name`).
+    convention : str
+        The numbering a six-bar's name is read in: ``"ternary-iii"`` (default, symlink's) or ``"ternary-ii"``
+        (Stephenson II and III swapped; :data:`SIX_BAR_CONVENTIONS`).
 
     Returns
     -------
@@ -460,8 +591,11 @@ def atlas_entry(name: str) -> AtlasEntry:
     >>> entry = symlink.atlas_entry("watt-ii")
     >>> entry.ground_kind, entry.links, entry.closed_form
     ('ternary', 6, True)
+    >>> symlink.atlas_entry("Stephenson III").ground_kind
+    'ternary'
     """
-    if name not in ATLAS:
+    name = six_bar_name(name, convention) or name
+    if not isinstance(name, str) or name not in ATLAS:
         six = [n for n in ATLAS if not n.startswith("eightbar")]
         raise ValueError(f"no atlas entry {name!r}; the entries are {', '.join(six)} and eightbar-01a ... "
                          f"{list(ATLAS)[-1]} (symlink atlas lists them)")

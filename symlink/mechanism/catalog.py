@@ -8,7 +8,7 @@ Every entry is built the way a user builds a linkage: vectors, loops, a
 >>> linkage.unknowns
 (beta, phi)
 >>> sorted(CATALOG)  # doctest: +NORMALIZE_WHITESPACE
-['fivebar', 'fourbar', 'inverted-slider-crank', 'jansen', 'offset-inverted-slider-crank', 'slider-crank', 'stephenson3',
+['fivebar', 'fourbar', 'inverted-slider-crank', 'jansen', 'offset-inverted-slider-crank', 'slider-crank', 'stephenson2',
  'watt2']
 """
 from __future__ import annotations
@@ -21,7 +21,7 @@ from ..symbolic.linkage import Linkage
 from ..symbolic.loops import Loop
 from ..symbolic.vectors import Vector, coordinates, lengths
 
-__all__ = ["fourbar", "slider_crank", "inverted_slider_crank", "offset_inverted_slider_crank", "watt2", "stephenson3", "fivebar", "jansen",
+__all__ = ["fourbar", "slider_crank", "inverted_slider_crank", "offset_inverted_slider_crank", "watt2", "stephenson2", "stephenson3", "fivebar", "jansen",
            "JANSEN_HOLY_NUMBERS", "jansen_parameters", "CATALOG", "EXAMPLE_VALUES", "with_point"]
 
 
@@ -286,8 +286,8 @@ def watt2() -> Linkage:
     )
 
 
-def stephenson3() -> Linkage:
-    """Stephenson III six-bar: the ground is a binary link between the crank and a ternary link.
+def stephenson2() -> Linkage:
+    """Stephenson II six-bar: the ground is a binary link between the crank and a ternary link.
 
     ::
 
@@ -317,11 +317,11 @@ def stephenson3() -> Linkage:
     Linkage
         A new linkage each call (change it freely): inputs ``theta``, unknowns
         ``beta, mu, phi, eta`` (roles crank, coupler, rocker), parameters ``a, b, c, d, e, f, g, h, alpha, delta``; no closed form: solve it with :class:`~symlink.numeric.solver.NumericSolver`.
-        Example values: ``EXAMPLE_VALUES["stephenson3"]``.
+        Example values: ``EXAMPLE_VALUES["stephenson2"]``.
 
     Examples
     --------
-    >>> stephenson3().has_closed_form
+    >>> stephenson2().has_closed_form
     False
     """
     theta, beta, mu, phi, eta = coordinates("theta beta mu phi eta")
@@ -333,12 +333,37 @@ def stephenson3() -> Linkage:
     outer = Loop(AB + BC + CF - DF - AD, name="ABCFD")
     inner = Loop(AB + BE + EH - DH - AD, name="ABEHD")
     return Linkage(
-        "stephenson3", [outer, inner], inputs=[theta], unknowns=[beta, mu, phi, eta],
+        "stephenson2", [outer, inner], inputs=[theta], unknowns=[beta, mu, phi, eta],
         parameters=[a, b, c, d, e, f, g, h, alpha, delta],
         points={"A": None, "B": AB.as_sum(), "C": AB + BC, "E": AB + BE, "D": AD.as_sum(),
                 "F": AD + DF, "H": AD + DH},
         roles={"crank": theta, "coupler": beta, "rocker": phi},
     )
+
+
+def stephenson3() -> Linkage:
+    """:func:`stephenson2` by its former name, with a one-line note (``DeprecationWarning``) saying so.
+
+    symlink numbered the Stephenson six-bars II and III the other way before it followed the numbering its atlas
+    cites (:mod:`symlink.mechanism.atlas`); code written for the old name keeps working.
+
+    Returns
+    -------
+    Linkage
+        The catalog's Stephenson six-bar (its ground a binary link pinned to one ternary link).
+
+    Examples
+    --------
+    >>> import warnings, symlink
+    >>> with warnings.catch_warnings():
+    ...     warnings.simplefilter("ignore")
+    ...     symlink.stephenson3().name
+    'stephenson2'
+    """
+    import warnings
+    warnings.warn("symlink.stephenson3 is the former name of symlink.stephenson2 (the Stephenson six-bar whose ground "
+                  "is a binary link pinned to one ternary link)", DeprecationWarning, stacklevel=2)
+    return stephenson2()
 
 
 def fivebar() -> Linkage:
@@ -495,7 +520,7 @@ CATALOG = {
     "inverted-slider-crank": inverted_slider_crank,
     "offset-inverted-slider-crank": offset_inverted_slider_crank,
     "watt2": watt2,
-    "stephenson3": stephenson3,
+    "stephenson2": stephenson2,
     "fivebar": fivebar,
     "jansen": jansen,
 }
@@ -508,7 +533,7 @@ EXAMPLE_VALUES = {
     "inverted-slider-crank": dict(a=2.0, d=1.2),
     "offset-inverted-slider-crank": dict(a=1.0, d=2.5, e=0.4),
     "watt2": dict(a=1.0, b=3.5, c=3.0, d=3.2, e=2.0, f=4.0, g=3.0, alpha=0.6, gx=4.5, gy=3.5),
-    "stephenson3": dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.9, delta=0.3),
+    "stephenson2": dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.9, delta=0.3),
     "fivebar": dict(a=2.0, b=4.0, c=4.0, d=3.0, e=2.0, psi=2.2),
     "jansen": jansen_parameters(),
 }

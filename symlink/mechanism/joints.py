@@ -28,7 +28,7 @@ drawing:
   graph, chosen one after another so that each has exactly two unknowns that
   earlier loops have not solved (a dyad, in closed form by the four cases of
   :mod:`symlink.symbolic.loops`).  Where no such loop is left (an Assur group of a
-  higher class, such as the triad of the Stephenson III six-bar driven from
+  higher class, such as the triad of the Stephenson II six-bar driven from
   either ground pivot), the rest are completed to an independent set of loops and the linkage is
   solved by Newton's method (:class:`symlink.numeric.solver.NumericSolver`) as any
   linkage without a closed form.

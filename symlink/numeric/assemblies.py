@@ -1,6 +1,6 @@
-"""Every assembly of the Stephenson III six-bar at one crank angle, found by a scan.
+"""Every assembly of the Stephenson II six-bar at one crank angle, found by a scan.
 
-The catalog's :func:`~symlink.mechanism.catalog.stephenson3` has no loop-by-loop closed
+The catalog's :func:`~symlink.mechanism.catalog.stephenson2` has no loop-by-loop closed
 form; its numeric solver continues one assembly along the crank sweep from a
 starting assembly.  This module finds the starting assemblies: with the crank
 angle fixed, a trial coupler angle beta places C and E; F is where the circle
@@ -12,7 +12,7 @@ of beta on both sides and each change of sign is bisected to rounding.
 Assemblies whose coupler angle lies within one scan step of a position where
 C, F and D line up (a toggle of the first loop) can be missed.
 
->>> found = stephenson3_assemblies(0.0, a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1,
+>>> found = stephenson2_assemblies(0.0, a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1,
 ...                                alpha=0.9, delta=0.3)
 >>> len(found), [round(x, 4) for x in found[-1].values()]  # beta, mu, phi, eta
 (4, [0.9239, 0.2704, 1.4126, -0.1733])
@@ -25,7 +25,7 @@ import numpy
 
 from ..common.angles import wrap
 
-__all__ = ["stephenson3_assemblies"]
+__all__ = ["stephenson2_assemblies"]
 
 #: Points of the scan of the coupler angle over a full turn.
 SCAN_POINTS = 7200
@@ -53,13 +53,13 @@ def _closing(theta, beta, side, p):
     return residual, exists, {"beta": beta, "mu": numpy.angle(F - C), "phi": phi, "eta": numpy.angle(H - E)}
 
 
-def stephenson3_assemblies(theta: float, *, a: float, b: float, c: float, d: float, e: float, f: float,
+def stephenson2_assemblies(theta: float, *, a: float, b: float, c: float, d: float, e: float, f: float,
                            g: float, h: float, alpha: float, delta: float) -> list[dict[str, float]]:
     """The assemblies at crank angle ``theta`` (radians), as ``{"beta", "mu", "phi", "eta"}`` in radians.
 
     Sorted by the coupler angle beta in (-pi, pi]; an empty list where the
     linkage cannot be assembled.  Parameters as in
-    :func:`~symlink.mechanism.catalog.stephenson3`.
+    :func:`~symlink.mechanism.catalog.stephenson2`.
     """
     p = dict(a=a, b=b, c=c, d=d, e=e, f=f, g=g, h=h, alpha=alpha, delta=delta)
     step = 2 * math.pi / SCAN_POINTS

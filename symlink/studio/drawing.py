@@ -523,14 +523,11 @@ def open_source(source: Any, kind: str = "auto") -> dict[str, Any]:
     if kind == "name":
         from ..mechanism.atlas import ATLAS, atlas_entry
         from ..mechanism.catalog import CATALOG
-        from ..io.linkage_file import load_linkage
+        from ..io.linkage_file import catalog_name, load_linkage
         name = text.removeprefix("atlas:")
         if text.startswith("atlas:") or (name in ATLAS and name not in CATALOG):
             return drawing_of(atlas_entry(name).joint_linkage())
-        if text not in CATALOG:
-            raise ValueError(f"no linkage {text[:40]!r} in the catalog ({', '.join(sorted(CATALOG))}) or the atlas "
-                             "(symlink atlas lists it)")
-        found = load_linkage(text)
+        found = load_linkage(catalog_name(text))  # a catalog name, or a six-bar's in any spelling
         return _linkage_drawing(found.linkage, found.defaults)
     if kind == "pylinkage":
         from ..io.pylinkage import read_pylinkage

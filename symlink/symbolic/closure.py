@@ -1,6 +1,6 @@
 """The closure of all loops at once, as one symbolic system: residuals, Jacobian, rate systems.
 
-Where no loop-by-loop closed form exists (the Stephenson III six-bar), the
+Where no loop-by-loop closed form exists (the Stephenson II six-bar), the
 closure equations of all loops are solved together, numerically.  This module
 derives what that needs symbolically: the residuals (two a loop), their
 Jacobian with respect to the unknowns, and the right-hand sides of the linear

@@ -368,7 +368,7 @@ class Linkage:
         """Whether a loop-by-loop closed-form :attr:`plan` exists; if not, use :class:`symlink.numeric.solver.NumericSolver`.
 
         A linkage whose loops give as many equations as it has unknowns but no
-        closed-form order (the Stephenson III six-bar) is still a linkage; any
+        closed-form order (the Stephenson II six-bar) is still a linkage; any
         other reason for having no plan is an error in its definition.
         """
         try:

@@ -133,7 +133,7 @@ def solve_plan(linkage: Linkage) -> SolvePlan:
     Examples
     --------
     >>> import symlink
-    >>> plan = symlink.solve_plan(symlink.stephenson3())
+    >>> plan = symlink.solve_plan(symlink.stephenson2())
     >>> plan.closed_form, plan.steps[0].case, plan.steps[0].unknowns
     (False, 'numeric', ('beta', 'mu', 'phi', 'eta'))
     >>> plan = symlink.solve_plan(symlink.fourbar())

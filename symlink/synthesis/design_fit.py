@@ -107,8 +107,8 @@ def find_assembly(linkage: Linkage, values: Mapping[str, float], at: float, rng:
     turn, lengths within the sum of the parameters), the first that closes; which assembly
     that is depends on ``rng``.  (The same search as the drawing's, which synthesis may not import.)
 
-    >>> from symlink.mechanism.catalog import stephenson3, EXAMPLE_VALUES
-    >>> found = find_assembly(stephenson3(), EXAMPLE_VALUES["stephenson3"], 0.0, numpy.random.default_rng(0))
+    >>> from symlink.mechanism.catalog import stephenson2, EXAMPLE_VALUES
+    >>> found = find_assembly(stephenson2(), EXAMPLE_VALUES["stephenson2"], 0.0, numpy.random.default_rng(0))
     >>> sorted(found)
     ['beta', 'eta', 'mu', 'phi']
     """
@@ -433,11 +433,11 @@ def newton_traced_batch(linkage: Linkage, designs: Mapping[str, float | numpy.nd
     Returns ``(unknowns (M, N, n), assembled (M, N))``: the unknowns in the linkage's order, NaN where
     not assembled.
 
-    >>> from symlink.mechanism.catalog import stephenson3, EXAMPLE_VALUES
-    >>> values = dict(EXAMPLE_VALUES["stephenson3"])
+    >>> from symlink.mechanism.catalog import stephenson2, EXAMPLE_VALUES
+    >>> values = dict(EXAMPLE_VALUES["stephenson2"])
     >>> values["d"] = numpy.array([values["d"], 100.0])  # the second's ground is longer than its other links
     >>> near = numpy.array([[0.96, 0.27, 1.43, -0.16]] * 2)  # beta, mu, phi, eta near the assembly whose crank turns
-    >>> unknowns, assembled = newton_traced_batch(stephenson3(), values, numpy.linspace(0.0, 2 * numpy.pi, 97),
+    >>> unknowns, assembled = newton_traced_batch(stephenson2(), values, numpy.linspace(0.0, 2 * numpy.pi, 97),
     ...                                           numpy.random.default_rng(0), starts=near)
     >>> assembled.all(axis=1).tolist(), round(float(unknowns[0, -1, 0] - unknowns[0, 0, 0]), 9)  # beta back after a turn
     ([True, False], 0.0)

@@ -31,7 +31,7 @@ design is verified afresh with the generated solver of the linkage itself (not t
 code): assembled at every target, and between consecutive targets the input moves without
 leaving the assembly or passing a toggle, so the whole path is on one branch.
 
-A linkage without a closed form (the Stephenson III six-bar) has no branch sign: its assembly is
+A linkage without a closed form (the Stephenson II six-bar) has no branch sign: its assembly is
 the one Newton's method continues from an initial guess.  There the Jacobian's code is the
 generated Newton module (sensitivities from the converged closure Jacobian), continued along the
 input from the unknowns found at the first target by the previous evaluation, so that a
@@ -1087,7 +1087,7 @@ def synthesize_path(linkage: Linkage, point: str | Sequence[str], targets: Array
     assembly as ``assembly``.  There ``full_rotation`` asks that Newton's method continue that
     assembly a whole turn of the input from the first target (it stops where the assembly ends
     or at a dead centre), and ``min_transmission`` is measured on the assembly continued along
-    the targets; a linkage none of whose loops has two unknown angles (the Stephenson III) has
+    the targets; a linkage none of whose loops has two unknown angles (the Stephenson II) has
     no transmission angle in symlink's sense, and ``min_transmission`` there is a ``ValueError``.
 
     Parameters

@@ -66,10 +66,21 @@ class MotionSynthesis:
 
     ``design`` holds every parameter (free and fixed), ``placement`` the frame (``x0, y0, angle,
     scale``), ``inputs`` the input's value at each pose.  ``position_errors`` are the distances
-    from each target to the placed point, ``angle_errors`` the placed link angle minus the target
-    (wrapped, radians), both from the linkage's own generated solver; ``error`` the largest of the
-    position errors over the poses' size and the angle errors' sizes; ``assembled`` whether the
-    verification passed (every pose on one branch, no toggle between them), ``why`` what failed.
+    from each target to the placed point (in the poses' length unit), ``angle_errors`` the placed
+    link angle minus the target (wrapped, radians), both from the linkage's own generated solver;
+    :attr:`position_error` and :attr:`angle_error` are their largest sizes, each in its own unit.
+    ``error`` is the fit's measure, a pure number: the largest of the position errors over ``size``
+    (the poses' size, the diagonal of their bounding box) and the angle errors in radians, the weights
+    of the least squares objective (one radian of the link's angle weighs as much as ``size`` of its
+    point's position).  ``assembled`` whether the verification passed (every pose on one branch, no
+    toggle between them), ``why`` what failed.
+
+    Examples
+    --------
+    >>> found = MotionSynthesis("fourbar", "B", "beta", {}, {}, {}, (0.0, 1.0), position_errors=(0.002, 0.001),
+    ...                         angle_errors=(-0.003, 0.001), error=0.003, size=2.0)
+    >>> found.position_error, found.angle_error
+    (0.002, 0.003)
     """
 
     _repr_html_ = record_html  # a notebook shows the fields as a table
@@ -90,6 +101,19 @@ class MotionSynthesis:
     #: Linkages without a closed form: the unknowns at the first pose's input, the assembly the design is on (the
     #: ``guess`` of :class:`symlink.numeric.solver.NumericSolver`, continued along the inputs in their order); else empty.
     assembly: dict[str, float] = field(default_factory=dict)
+    #: The poses' size (the diagonal of their bounding box, 1 for poses at one point): the length that weighs as
+    #: much as one radian in the objective and in ``error``.
+    size: float = math.nan
+
+    @property
+    def position_error(self) -> float:
+        """The largest distance from a pose's point to the link's point, in the poses' length unit (NaN: none)."""
+        return max(self.position_errors, default=math.nan)
+
+    @property
+    def angle_error(self) -> float:
+        """The largest size of a pose's angle error, in radians (NaN: none)."""
+        return max(map(abs, self.angle_errors), default=math.nan)
 
 
 def _placed(local: numpy.ndarray, placement: Mapping[str, float]) -> numpy.ndarray:
@@ -480,4 +504,4 @@ def _verified(problem: _Problem, y: numpy.ndarray, branches: Mapping[str, float]
     return MotionSynthesis(problem.linkage.name, problem.names[0][:-2], problem.names[2], design, placement,
                            {} if newton else {k: int(v) for k, v in branches.items()}, tuple(map(float, inputs)),
                            tuple(map(float, position)), tuple(map(float, turned)), error if not why else math.inf,
-                           not why, evaluations, why, assembly)
+                           not why, evaluations, why, assembly, problem.size)

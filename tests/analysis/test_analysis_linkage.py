@@ -7,7 +7,7 @@ import pytest
 
 from symlink.analysis import (analyze_linkage, fourbar_report, limit_positions, loop_transmissions, output_limits,
                               transmission_angles, transmission_joints, transmission_range)
-from symlink.mechanism.catalog import EXAMPLE_VALUES, fourbar, inverted_slider_crank, jansen, slider_crank, stephenson3, watt2
+from symlink.mechanism.catalog import EXAMPLE_VALUES, fourbar, inverted_slider_crank, jansen, slider_crank, stephenson2, watt2
 
 
 def law_of_cosines(opposite, side1, side2):
@@ -190,14 +190,14 @@ def test_watt2_output_limits_against_a_dense_sweep():
     assert found.stroke == pytest.approx(top - bottom, abs=1e-15)
 
 
-def test_stephenson3_by_continuation_against_a_dense_sweep():
+def test_stephenson2_by_continuation_against_a_dense_sweep():
     from symlink.numeric.solver import NumericSolver
     guess = dict(beta=0.5, mu=0.2, phi=1.5, eta=0.3)
-    values = EXAMPLE_VALUES["stephenson3"]
-    report = analyze_linkage(stephenson3(), values, "rocker", guess=guess, points=720)
+    values = EXAMPLE_VALUES["stephenson2"]
+    report = analyze_linkage(stephenson2(), values, "rocker", guess=guess, points=720)
     assert report.transmission == () and report.reach.full_turn and not report.reach.exact
     theta = np.linspace(0.0, 2 * math.pi, 4001)
-    sweep = NumericSolver(stephenson3())(theta=theta, guess=guess, **values)["rocker"]
+    sweep = NumericSolver(stephenson2())(theta=theta, guess=guess, **values)["rocker"]
     top = max(p.value for p in report.limits.positions)
     assert top >= sweep.max() - 1e-10 and top - sweep.max() < 1e-6
 

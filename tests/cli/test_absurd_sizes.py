@@ -16,7 +16,7 @@ from symlink.cli import main
 
 SIZES = [10**9, 10**12, 10**18, 2**63]
 FOURBAR = ["--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80"]
-STEPHENSON3 = ["--crank", "1", "--coupler", "3.1", "--link-cf", "2.2", "--ground", "4.5", "--coupler-arm", "3.9",
+STEPHENSON2 = ["--crank", "1", "--coupler", "3.1", "--link-cf", "2.2", "--ground", "4.5", "--coupler-arm", "3.9",
                "--rocker", "3.1", "--link-eh", "4.1", "--rocker-arm", "3.1", "--coupler-arm-angle", "51.5",
                "--rocker-arm-angle", "17.2"]
 SWEEP = ["sweep", "fourbar", "out", "--vary", "a=10:20", "--set", "b=66,c=56,d=80", "--no-progress"]
@@ -30,10 +30,10 @@ CASES = {
     "fourbar --step": (["fourbar", *FOURBAR, "--step", "{tiny}"], STEPS),
     "fourbar --masses --step": (["fourbar", *FOURBAR, "--masses", "1,2,3", "--step", "{tiny}"], STEPS),
     "table (closed form) --step": (["table", "watt2", "--branch", "+1", "--step", "{tiny}"], STEPS),
-    "table (no closed form) --step": (["table", "stephenson3", "--guess", "coupler=-33,mu=-35,rocker=-73,eta=-68",
+    "table (no closed form) --step": (["table", "stephenson2", "--guess", "coupler=-33,mu=-35,rocker=-73,eta=-68",
                                        "--step", "{tiny}"], STEPS),
     "table (atlas) --step": (["table", "atlas:watt-ii", "--branch", "+1", "--step", "{tiny}"], STEPS),
-    "stephenson3 --step": (["stephenson3", *STEPHENSON3, "--step", "{tiny}"], STEPS),
+    "stephenson2 --step": (["stephenson2", *STEPHENSON2, "--step", "{tiny}"], STEPS),
     "scene file step": (["run", "scene.toml"], "scene.toml: input: " + STEPS.replace("--step", "step")),
     "tolerance --samples": (["tolerance", "fourbar", *FOURBAR, "--tolerance", "0.1", "--angles", "0,30",
                              "--samples", "{n}"],

@@ -19,11 +19,11 @@ WATT2 = ["watt2", "--crank", "1", "--coupler", "3.5", "--rocker", "3", "--ground
          "--rocker-arm-angle", "35", "--coupler2", "4", "--output", "3", "--output-x", "4.5", "--output-y", "3.5"]
 FIVEBAR = ["fivebar", "--crank", "2", "--coupler", "3", "--coupler2", "3", "--crank2", "2", "--ground", "5",
            "--crank2-angle", "90"]
-STEPHENSON3 = ["stephenson3", "--crank", "1", "--coupler", "3.1", "--link-cf", "2.2", "--ground", "4.5",
+STEPHENSON2 = ["stephenson2", "--crank", "1", "--coupler", "3.1", "--link-cf", "2.2", "--ground", "4.5",
                "--coupler-arm", "3.9", "--rocker", "3.1", "--link-eh", "4.1", "--rocker-arm", "3.1",
                "--coupler-arm-angle", "51.57", "--rocker-arm-angle", "17.19"]
 TABLES = {"fourbar": FOURBAR, "slider-crank": SLIDER, "inverted-slider-crank": INVERTED, "watt2": WATT2,
-          "fivebar": FIVEBAR, "stephenson3": STEPHENSON3}
+          "fivebar": FIVEBAR, "stephenson2": STEPHENSON2}
 
 #: (what, extra arguments) that every table command must refuse with exit status 2.
 TABLE_MISTAKES = [
@@ -66,8 +66,8 @@ CASES += [
     ("slider-crank: conrod text", SLIDER[:-1] + ["long"], 2),
     ("watt2: a branch for three loops", WATT2 + ["--branch", "+1,-1,+1"], 2),
     ("fivebar: a missing crank-2 angle", FIVEBAR[:-2], 2),
-    ("stephenson3: guess of an unknown name", STEPHENSON3 + ["--guess", "psi=10"], 2),
-    ("stephenson3: guess that is not NAME=ANGLE", STEPHENSON3 + ["--guess", "coupler"], 2),
+    ("stephenson2: guess of an unknown name", STEPHENSON2 + ["--guess", "psi=10"], 2),
+    ("stephenson2: guess that is not NAME=ANGLE", STEPHENSON2 + ["--guess", "coupler"], 2),
     ("atlas: unknown entry", ["atlas", "watt-iii"], 2),
     ("atlas: --draw without an entry", ["atlas", "--draw", "{tmp}/atlas.png"], 2),
     ("atlas: a drawing of the wrong kind", ["atlas", "watt-ii", "--draw", "{tmp}/atlas.pdf"], 2),
@@ -98,7 +98,7 @@ CASES += [
     ("analyze: neither a name nor lengths", ["analyze", "--crank", "1"], 2),
     ("analyze: an unknown --set name", ["analyze", "jansen", "--set", "zz=1"], 2),
     ("analyze: an unknown output", ["analyze", "jansen", "--output", "Q_x"], 2),
-    ("analyze: no closed form", ["analyze", "stephenson3"], 2),
+    ("analyze: no closed form", ["analyze", "stephenson2"], 2),
     ("loop: three values missing", ["loop", "--r1", "3", "--t1", "0", "--r2", "4", "--t2", "90", "--r3", "5"], 2),
     ("loop: nothing missing", ["loop"] + [f"--{k}" for k in ("r1", "1", "r2", "1", "r3", "1", "r4", "1", "t1", "0",
                                                               "t2", "90", "t3", "180", "t4", "270")], 2),
@@ -155,7 +155,7 @@ CASES += [
     ("export: unknown format", ["export", "fourbar", "--to", "fortran", "--out", "{tmp}/out"], 2),
     ("export: unknown output", ["export", "fourbar", "--to", "c", "--out", "{tmp}/out", "--outputs", "piston"], 2),
     ("export: --out is a file", ["export", "fourbar", "--to", "c", "--out", "{file}"], 2),
-    ("export: no closed form", ["export", "stephenson3", "--to", "numpy", "--out", "{tmp}/out"], 2),
+    ("export: no closed form", ["export", "stephenson2", "--to", "numpy", "--out", "{tmp}/out"], 2),
     ("derive: no such file", ["derive", "{tmp}/missing.toml", "--to", "c", "--out", "{tmp}/out"], 2),
     ("derive: not a linkage file", ["derive", "{scene:not toml}", "--to", "c", "--out", "{tmp}/out"], 2),
     ("derive: a scene, not a linkage", ["derive", "{scene:good}", "--to", "numpy", "--out", "{tmp}/out"], 2),
@@ -164,7 +164,7 @@ CASES += [
     ("table: negative length", ["table", "fourbar", "--set", "a=-1"], 2),
     ("table: --set not NAME=VALUE", ["table", "fourbar", "--set", "a"], 2),
     ("table: a branch for two loops", ["table", "jansen", "--branch", "+1,-1"], 2),
-    ("table: no guess without a closed form", ["table", "stephenson3", "--angles", "0"], 2),
+    ("table: no guess without a closed form", ["table", "stephenson2", "--angles", "0"], 2),
     ("plan: a file that is not a linkage", ["plan", "{scene:not toml}"], 2),
     ("bench: unknown method", ["bench", "--methods", "abacus", "--no-derivation"], 2),
     ("cache: no action", ["cache"], 2),

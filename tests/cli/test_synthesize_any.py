@@ -113,7 +113,7 @@ def test_motion_of_a_fourbar_coupler_timed(tmp_path, capsys):
     assert printed["assembled"] and abs(printed["design"]["b"] - 3.0) < 1e-8 and abs(printed["design"]["c"] - 2.5) < 1e-8
     lines = list(csv.DictReader(io.StringIO(record.read_text())))
     assert numpy.allclose([float(line["input"]) for line in lines], inputs, rtol=0, atol=1e-12)
-    assert all(float(line["error"]) < 1e-10 and abs(float(line["angle_error"])) < 1e-8 for line in lines)
+    assert all(float(line["position_error"]) < 1e-10 and abs(float(line["angle_error"])) < 1e-8 for line in lines)
     row = table_row(capsys, str(out), "--angles", "60", "--branch", "+1")
     B, C = fourbar_joints(*truth, math.radians(60))
     assert abs(wrapped(math.radians(float(row["coupler"])) - cmath.phase(C - B) - WHERE["angle"])) < 1e-5
@@ -230,3 +230,54 @@ def test_path_of_a_watt_two_with_the_designers_constraints(tmp_path, capsys):
     assert main([*common, "--min-transmission", "89.9", "--out", str(out)]) == 2
     err = capsys.readouterr().err
     assert len(err.strip().splitlines()) == 1 and "min_transmission" in err and not out.exists()
+
+
+#: Offsets of each pose from the Watt II's coupler (B and the coupler angle) at the inputs: the errors by hand.
+MOTION_OFFSETS = [(0.01, 0.0, 0.5), (-0.02, 0.01, -1.5), (0.0, -0.005, 0.25), (0.015, 0.0, 1.0)]  # dx, dy, degrees
+
+
+@pytest.mark.parametrize("units", ["deg", "rad"])
+def test_motion_reports_position_and_angle_errors_each_in_its_own_unit(tmp_path, capsys, units):
+    # The coupler's motion does not depend on the second loop's f (the only free parameter): the design keeps the
+    # coupler where the poses were offset from, so the errors are the offsets, computed here by hand.
+    inputs = [20.0, 60.0, 100.0, 140.0]
+    rows = []
+    for q, (dx, dy, turn) in zip(inputs, MOTION_OFFSETS):
+        joints = watt2_joints(WATT, math.radians(q))
+        B, C = joints["B"], joints["C"]
+        angle = math.degrees(cmath.phase(C - B)) + turn
+        row = [q, B.real + dx, B.imag + dy, angle] if units == "deg" else \
+            [math.radians(q), B.real + dx, B.imag + dy, math.radians(angle)]  # the input in --units too
+        rows.append(",".join(map(repr, row)) + "\n")
+    (tmp_path / "poses.csv").write_text("theta,x,y,angle\n" + "".join(rows))
+    scale = 1.0 if units == "deg" else math.pi / 180
+    position = [math.hypot(dx, dy) for dx, dy, _ in MOTION_OFFSETS]
+    turned = [-turn * scale for _, _, turn in MOTION_OFFSETS]  # the link's angle minus the pose's
+    command = ["synthesize", "motion", "watt2", str(tmp_path / "poses.csv"), "--angle", "coupler", "--frame", "none",
+               "--bound", "f=3.5,4.5", "--units", units, "--starts", "2"]
+    record = tmp_path / "m.csv"
+    assert main([*command, "--format", "json", "--record", str(record)]) == 0
+    printed = json.loads(capsys.readouterr().out)
+    assert "error" not in printed and printed["assembled"]
+    assert abs(printed["position_error"] - max(position)) < 1e-9
+    assert abs(printed["angle_error"] - max(map(abs, turned))) < 1e-9 * scale
+    assert numpy.allclose(printed["position_errors"], position, rtol=0, atol=1e-9)
+    assert numpy.allclose(printed["angle_errors"], turned, rtol=0, atol=1e-9 * scale)
+    size = math.hypot(*(max(watt2_joints(WATT, math.radians(q))["B"].real + o[0] for q, o in zip(inputs, MOTION_OFFSETS))
+                        - min(watt2_joints(WATT, math.radians(q))["B"].real + o[0] for q, o in zip(inputs, MOTION_OFFSETS)),
+                        max(watt2_joints(WATT, math.radians(q))["B"].imag + o[1] for q, o in zip(inputs, MOTION_OFFSETS))
+                        - min(watt2_joints(WATT, math.radians(q))["B"].imag + o[1] for q, o in zip(inputs, MOTION_OFFSETS))))
+    assert abs(printed["poses_size"] - size) < 1e-12
+    lines = list(csv.DictReader(io.StringIO(record.read_text())))  # written as printed: one column each
+    assert [float(line["position_error"]) for line in lines] == printed["position_errors"]
+    assert [float(line["angle_error"]) for line in lines] == printed["angle_errors"]
+    assert "error" not in lines[0]
+    # The table and the csv print the same two columns, and the note says which unit each is in.
+    assert main([*command, "--format", "csv"]) == 0
+    captured = capsys.readouterr()
+    table = next(csv.DictReader(io.StringIO(captured.out)))
+    assert float(table["position_error"]) == printed["position_error"]
+    assert float(table["angle_error"]) == printed["angle_error"]
+    assert "error" not in table
+    assert f"angle_error, the largest |link angle - pose angle| ({units})" in captured.err
+    assert "the fit weighs one radian as the poses' size" in captured.err

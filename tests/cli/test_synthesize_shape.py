@@ -85,7 +85,7 @@ BAD = [
     (["fp.toml", "shape.csv", "--shape", "--free", "b", "--point", "P", "--samples", "many"], "--samples"),
     (["fp.toml", "shape.csv", "--shape", "--free", "b"], "--point"),
     (["fp.toml", "two.csv", "--shape", "--free", "b", "--point", "P"], "at least 3 rows"),
-    (["stephenson3", "shape.csv", "--shape", "--free", "b", "--point", "E"], "no closed form"),
+    (["stephenson2", "shape.csv", "--shape", "--free", "b", "--point", "E"], "no closed form"),
     (["fp.toml", "shape.csv", "--shape", "--bound", "b=10,11", "--point", "P", "--samples", "20"],
      "no design of fourbar_point within the bounds"),
 ]

@@ -1,4 +1,4 @@
-"""Table commands built from catalog entries: inverted-slider-crank, watt2, stephenson3, fivebar.
+"""Table commands built from catalog entries: inverted-slider-crank, watt2, stephenson2, fivebar.
 
 Every csv row is compared with a 50-digit reference computed here from the
 closure equations typed out by hand (``mp_closures``: circle intersections or
@@ -6,7 +6,7 @@ closure equations typed out by hand (``mp_closures``: circle intersections or
 uniformly accelerating crank is recomputed here from ``omega^2 = W^2 + 2 AL
 (theta - theta_first)``.  Also: angles that cannot be assembled, reachable
 ranges checked against the same references just inside and outside their
-ends, the Stephenson III assemblies against an independent multi-start root
+ends, the Stephenson II assemblies against an independent multi-start root
 search, and bad input (one line, exit 2).
 """
 import csv
@@ -33,8 +33,8 @@ WATT2 = ["watt2", "--crank", "1", "--coupler", "3.5", "--rocker", "3", "--ground
          "--output-x", "4.5", "--output-y", "3.5"]
 FIVEBAR_P = dict(a=2.0, b=3.0, c=3.0, d=5.0, e=2.0)
 FIVEBAR = ["fivebar", "--crank", "2", "--coupler", "3", "--coupler2", "3", "--crank2", "2", "--ground", "5"]
-STEPHENSON3_P = dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.9, delta=0.3)
-STEPHENSON3 = ["stephenson3", "--crank", "1", "--coupler", "3.1", "--link-cf", "2.2", "--ground", "4.5",
+STEPHENSON2_P = dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.9, delta=0.3)
+STEPHENSON2 = ["stephenson2", "--crank", "1", "--coupler", "3.1", "--link-cf", "2.2", "--ground", "4.5",
                "--coupler-arm", "3.9", "--rocker", "3.1", "--link-eh", "4.1", "--rocker-arm", "3.1",
                "--coupler-arm-angle", str(math.degrees(0.9)), "--rocker-arm-angle", str(math.degrees(0.3))]
 
@@ -42,7 +42,7 @@ HEADERS = {
     "inverted-slider-crank": "crank,branch,rocker,slider,rocker_speed,slider_speed,rocker_accel,slider_accel",
     "watt2": "crank,branch,coupler,rocker,coupler2,output,coupler_speed,rocker_speed,coupler2_speed,output_speed,"
              "coupler_accel,rocker_accel,coupler2_accel,output_accel",
-    "stephenson3": "crank,branch,coupler,mu,rocker,eta,coupler_speed,mu_speed,rocker_speed,eta_speed,"
+    "stephenson2": "crank,branch,coupler,mu,rocker,eta,coupler_speed,mu_speed,rocker_speed,eta_speed,"
                    "coupler_accel,mu_accel,rocker_accel,eta_accel",
     "fivebar": "crank,branch,crank2,coupler,coupler2,coupler_speed,coupler2_speed,coupler_accel,coupler2_accel",
 }
@@ -267,15 +267,15 @@ def test_fivebar_never_assembled_exits_2(capsys):
     assert "none: the links cannot close at any crank angle" in err
 
 
-# --- Stephenson III ------------------------------------------------------------------------------------
+# --- Stephenson II ------------------------------------------------------------------------------------
 
-def stephenson3_reference(thetas, start, w, al):
-    solved = ref.continue_sweep(ref.stephenson3_closure, [(t,) for t in thetas], start, STEPHENSON3_P, substeps=6)
-    return [ref.kinematics(ref.stephenson3_closure, [t], q, STEPHENSON3_P, [crank_speed(t, thetas[0], w, al)], [al],
+def stephenson2_reference(thetas, start, w, al):
+    solved = ref.continue_sweep(ref.stephenson2_closure, [(t,) for t in thetas], start, STEPHENSON2_P, substeps=6)
+    return [ref.kinematics(ref.stephenson2_closure, [t], q, STEPHENSON2_P, [crank_speed(t, thetas[0], w, al)], [al],
                            refine=False)[:3] for t, q in zip(thetas, solved)]
 
 
-def independent_assemblies(theta, p=STEPHENSON3_P):
+def independent_assemblies(theta, p=STEPHENSON2_P):
     """(beta, phi) of every assembly at theta: multi-start fsolve on |C - F| = c, |E - H| = g."""
 
     def equations(x):
@@ -296,8 +296,8 @@ def independent_assemblies(theta, p=STEPHENSON3_P):
     return sorted(found)
 
 
-def test_stephenson3_lists_every_assembly_at_the_first_angle(capsys):
-    status, out, _ = run(capsys, *STEPHENSON3, "--list-assemblies", "--start", "20", "--format", "csv")
+def test_stephenson2_lists_every_assembly_at_the_first_angle(capsys):
+    status, out, _ = run(capsys, *STEPHENSON2, "--list-assemblies", "--start", "20", "--format", "csv")
     assert status == 0 and out.splitlines()[0] == "crank,coupler,mu,rocker,eta"
     rows = csv_rows(out)
     expected = independent_assemblies(math.radians(20))
@@ -308,35 +308,35 @@ def test_stephenson3_lists_every_assembly_at_the_first_angle(capsys):
         assert abs(float(row["rocker"]) - wrapped_degrees(phi)) < 1e-8
         q = [math.radians(float(row[n])) for n in ("coupler", "mu", "rocker", "eta")]
         with mp.workdps(ref.DPS):
-            residual = ref.stephenson3_closure([mp.radians(20)], [mp.mpf(v) for v in q], mp_params(STEPHENSON3_P))
+            residual = ref.stephenson2_closure([mp.radians(20)], [mp.mpf(v) for v in q], mp_params(STEPHENSON2_P))
         assert max(abs(float(v)) for v in residual) < 1e-12
 
 
-def test_stephenson3_default_assembly_rows_match_a_50_digit_continuation(capsys):
+def test_stephenson2_default_assembly_rows_match_a_50_digit_continuation(capsys):
     # The default: the assemblies at the first angle in order of the coupler angle; the first one
     # (coupler -33.17 deg) continues over the whole turn.
-    status, out, err = run(capsys, *STEPHENSON3, "--step", "60", "--crank-speed", "2", "--crank-accel", "0.5",
+    status, out, err = run(capsys, *STEPHENSON2, "--step", "60", "--crank-speed", "2", "--crank-accel", "0.5",
                            "--format", "csv")
-    assert status == 0 and err == "" and out.splitlines()[0] == HEADERS["stephenson3"]
+    assert status == 0 and err == "" and out.splitlines()[0] == HEADERS["stephenson2"]
     rows = csv_rows(out)
     first = independent_assemblies(0.0)[0]
     assert abs(math.radians(float(rows[0]["coupler"])) - first[0]) < 1e-9
     start = [math.radians(float(rows[0][n])) for n in ("coupler", "mu", "rocker", "eta")]
     thetas = [math.radians(60 * k) for k in range(6)]
     columns = [("coupler", True), ("mu", True), ("rocker", True), ("eta", True)]
-    for row, (q, qdot, qddot) in zip(rows, stephenson3_reference(thetas, start, 2, 0.5)):
+    for row, (q, qdot, qddot) in zip(rows, stephenson2_reference(thetas, start, 2, 0.5)):
         assert row["branch"] == "1"
         assert_row(row, columns, q, qdot, qddot, 20)
 
 
 # Six assemblies at crank angle 0; the two of smallest coupler angle meet a dead centre within a turn.
 AWKWARD_P = dict(a=1.0, b=2.6, c=2.8, d=4.5, e=2.8, f=4.3, g=3.6, h=2.8, alpha=1.5, delta=1.5)
-AWKWARD = ["stephenson3", "--crank", "1", "--coupler", "2.6", "--link-cf", "2.8", "--ground", "4.5",
+AWKWARD = ["stephenson2", "--crank", "1", "--coupler", "2.6", "--link-cf", "2.8", "--ground", "4.5",
            "--coupler-arm", "2.8", "--rocker", "4.3", "--link-eh", "3.6", "--rocker-arm", "2.8",
            "--coupler-arm-angle", "1.5", "--rocker-arm-angle", "1.5", "--units", "rad", "--step", "0.5"]
 
 
-def test_stephenson3_default_skips_assemblies_that_do_not_get_through(capsys):
+def test_stephenson2_default_skips_assemblies_that_do_not_get_through(capsys):
     _, out, _ = run(capsys, *AWKWARD, "--list-assemblies", "--format", "json")
     listed = json.loads(out)
     expected = independent_assemblies(0.0, AWKWARD_P)
@@ -353,33 +353,33 @@ def test_stephenson3_default_skips_assemblies_that_do_not_get_through(capsys):
     assert abs(rows[0]["coupler"] - listed[2]["coupler"]) < 1e-12 and abs(rows[0]["eta"] - listed[2]["eta"]) < 1e-12
 
 
-def test_stephenson3_guess_picks_the_nearest_assembly(capsys):
-    status, out, _ = run(capsys, *STEPHENSON3, "--angles", "0,30,90", "--guess", "rocker=75,mu=20", "--format", "csv")
+def test_stephenson2_guess_picks_the_nearest_assembly(capsys):
+    status, out, _ = run(capsys, *STEPHENSON2, "--angles", "0,30,90", "--guess", "rocker=75,mu=20", "--format", "csv")
     assert status == 0
     rows = csv_rows(out)
     beta, phi = independent_assemblies(0.0)[-1]   # the assembly with rocker 80.93 deg
     assert abs(math.radians(float(rows[0]["rocker"])) - phi) < 1e-9
     start = [math.radians(float(rows[0][n])) for n in ("coupler", "mu", "rocker", "eta")]
-    reference = stephenson3_reference([0.0, math.radians(30), math.radians(90)], start, 0, 0)
+    reference = stephenson2_reference([0.0, math.radians(30), math.radians(90)], start, 0, 0)
     for row, (q, qdot, qddot) in zip(rows, reference):
         assert_row(row, [("coupler", True), ("mu", True), ("rocker", True), ("eta", True)], q, qdot, qddot, 20)
 
 
-def test_stephenson3_guess_in_radians(capsys):
-    _, out, _ = run(capsys, *STEPHENSON3[:-4], "--coupler-arm-angle", "0.9", "--rocker-arm-angle", "0.3",
+def test_stephenson2_guess_in_radians(capsys):
+    _, out, _ = run(capsys, *STEPHENSON2[:-4], "--coupler-arm-angle", "0.9", "--rocker-arm-angle", "0.3",
                     "--units", "rad", "--angles", "0", "--guess", "rocker=1.4", "--format", "csv")
     assert abs(float(csv_rows(out)[0]["rocker"]) - independent_assemblies(0.0)[-1][1]) < 1e-9
 
 
-def test_stephenson3_that_cannot_continue_is_one_line_exit_2(capsys):
+def test_stephenson2_that_cannot_continue_is_one_line_exit_2(capsys):
     # The folded assembly (rocker 165 deg at crank 0) meets a dead centre near 54.65 deg.
-    status, out, err = run(capsys, *STEPHENSON3, "--step", "10", "--guess", "rocker=165")
+    status, out, err = run(capsys, *STEPHENSON2, "--step", "10", "--guess", "rocker=165")
     assert status == 2 and out == "" and err.count("\n") == 1
     assert err.startswith("symlink: error: ") and "54.6" in err
 
 
-def test_stephenson3_not_assembled_at_the_first_angle_exits_2(capsys):
-    status, out, err = run(capsys, *with_options(STEPHENSON3, ground="45"))
+def test_stephenson2_not_assembled_at_the_first_angle_exits_2(capsys):
+    status, out, err = run(capsys, *with_options(STEPHENSON2, ground="45"))
     assert status == 2 and out == "" and err.count("\n") == 1
     assert "cannot be assembled at the first crank angle, 0 deg" in err
 
@@ -418,12 +418,12 @@ def test_loop_branches_parses_one_item_or_one_a_loop():
     [*FIVEBAR, "--crank2-angle", "10", "--crank2-ratio", "x"],
     [*FIVEBAR, "--crank2-angle", "10", "--branch", "+1,-1"],
     [*FIVEBAR, "--crank2-angle", "10", "--crank2", "0"],
-    [*STEPHENSON3, "--guess", "rocker"],
-    [*STEPHENSON3, "--guess", "rocker=abc"],
-    [*STEPHENSON3, "--guess", "phi=80"],
-    [*STEPHENSON3, "--branch", "+1"],
-    [*STEPHENSON3, "--link-eh", "0"],
-    [*STEPHENSON3, "--angles", "10", "--step", "5"],
+    [*STEPHENSON2, "--guess", "rocker"],
+    [*STEPHENSON2, "--guess", "rocker=abc"],
+    [*STEPHENSON2, "--guess", "phi=80"],
+    [*STEPHENSON2, "--branch", "+1"],
+    [*STEPHENSON2, "--link-eh", "0"],
+    [*STEPHENSON2, "--angles", "10", "--step", "5"],
 ])
 def test_bad_input_one_line_exit_2(capsys, argv):
     status, out, err = run(capsys, *argv)
@@ -442,3 +442,16 @@ def test_commands_build_their_linkage_only_when_used(monkeypatch, capsys):
     assert parser.parse_args(["plan", "fourbar"]).command == "plan"
     with pytest.raises(AssertionError, match="watt2 built"):
         parser.parse_args(["watt2", "--help"])
+
+
+def test_the_former_command_name_prints_the_same_table_with_a_note(capsys):
+    # symlink stephenson3 was this table's command when symlink numbered Stephenson II and III the other way.
+    status, out, err = run(capsys, *STEPHENSON2, "--step", "90", "--format", "csv")
+    assert status == 0 and err == ""
+    status, former, note = run(capsys, "stephenson3", *STEPHENSON2[1:], "--step", "90", "--format", "csv")
+    assert status == 0 and former == out
+    assert note.count("\n") == 1 and "symlink: warning: 'stephenson3' is symlink's former name of stephenson-ii" in note
+    from symlink.cli.tables import FORMER_TABLE_COMMANDS
+    from symlink.mechanism.atlas import FORMER_SIX_BAR_NAMES
+    from symlink.io.linkage_file import SIX_BAR_ENTRIES
+    assert FORMER_TABLE_COMMANDS == {name: SIX_BAR_ENTRIES[six] for name, six in FORMER_SIX_BAR_NAMES.items()}

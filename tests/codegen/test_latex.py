@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 import sympy as sp
 
-from symlink.mechanism.catalog import fourbar, stephenson3
+from symlink.mechanism.catalog import fourbar, stephenson2
 from symlink.codegen.latex import latex_document, latex_text, newton_document
 
 
@@ -38,7 +38,7 @@ def test_text_is_escaped_and_one_preamble_is_shared():
 
 
 def test_newton_document_has_the_jacobian_and_the_rate_systems():
-    text = newton_document(stephenson3(), "Stephenson III")
+    text = newton_document(stephenson2(), "Stephenson II")
     for part in ("\\subsection*{Closure}", "\\subsection*{Solve plan}", "\\subsection*{Jacobian}",
                  "\\subsection*{Velocities: $J", "\\subsection*{Accelerations: $J", "no closed form"):
         assert part in text
@@ -60,8 +60,8 @@ def test_the_printer_does_not_import_linkage_at_run_time():
 
 def test_a_linkage_without_a_closed_form_displays_its_closure():
     """Jupyter shows the closure of a linkage the Newton fallback solves (it used to raise ValueError)."""
-    from symlink.mechanism.catalog import stephenson3
-    shown = stephenson3()._repr_latex_()
+    from symlink.mechanism.catalog import stephenson2
+    shown = stephenson2()._repr_latex_()
     assert shown.startswith("$\\displaystyle \\begin{aligned}") and shown.count("= 0") == 4
 
 

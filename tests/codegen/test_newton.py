@@ -2,7 +2,7 @@
 import ast
 from pathlib import Path
 
-from symlink.mechanism.catalog import stephenson3
+from symlink.mechanism.catalog import stephenson2
 from symlink.codegen import newton_driver
 from symlink.codegen.newton import driver_source, numeric_module
 
@@ -10,7 +10,7 @@ ROOT = Path(__file__).resolve().parent.parent.parent
 
 
 def test_generated_module_imports_numpy_only():
-    source = numeric_module(stephenson3())
+    source = numeric_module(stephenson2())
     assert "import numpy" in source and "sympy" not in source.split('"""', 2)[2]
     imports = [node for node in ast.walk(ast.parse(source)) if isinstance(node, (ast.Import, ast.ImportFrom))]
     assert [alias.name for node in imports for alias in node.names] == ["numpy"]
@@ -20,7 +20,7 @@ def test_the_driver_is_embedded_from_its_module_whole():
     text = (ROOT / "symlink" / "codegen" / "newton_driver.py").read_text(encoding="utf-8")
     head, marker, tail = text.partition("\n" + newton_driver.DRIVER_BEGINS + "\n")
     assert marker and driver_source() == tail and tail.count("\ndef ") >= 10
-    source = numeric_module(stephenson3())
+    source = numeric_module(stephenson2())
     assert source.count(driver_source()) == 1
     # Every function of the driver is in the generated module, with its body.
     defined = {node.name: ast.dump(node) for node in ast.parse(source).body if isinstance(node, ast.FunctionDef)}
@@ -30,7 +30,7 @@ def test_the_driver_is_embedded_from_its_module_whole():
 
 
 def test_the_placeholders_are_defined_by_every_generated_module():
-    source = numeric_module(stephenson3())
+    source = numeric_module(stephenson2())
     defined = {target.id for node in ast.parse(source).body if isinstance(node, ast.Assign)
                for target in node.targets if isinstance(target, ast.Name)}
     defined |= {node.name for node in ast.parse(source).body if isinstance(node, ast.FunctionDef)}

@@ -1,11 +1,11 @@
 """The compiled Newton fallback (symlink.codegen.newton_c) against a 30-digit mpmath reference written here and
 against the NumPy driver: the same positions, rates and accelerations, the same failures with the same messages.
 
-The reference types the Stephenson III closure out by hand (``a e^{i theta} + b e^{i beta} + c e^{i mu} - d
+The reference types the Stephenson II closure out by hand (``a e^{i theta} + b e^{i beta} + c e^{i mu} - d
 - f e^{i phi} = 0`` and ``a e^{i theta} + e e^{i (beta + alpha)} + g e^{i eta} - d - h e^{i (phi + delta)} = 0``,
 the catalog's loops), with its Jacobian and its velocity and acceleration systems differentiated by hand; the
 positions are continued along the crank's turn by ``mpmath.findroot`` in small steps
-(``tests/mp_closures.py``'s ``stephenson3_continued``), the rates solved by
+(``tests/mp_closures.py``'s ``stephenson2_continued``), the rates solved by
 ``mpmath.lu_solve``.  Nothing of symlink's derivation is used.
 """
 import re
@@ -13,10 +13,10 @@ import re
 import mpmath as mp
 import numpy as np
 import pytest
-from mp_closures import stephenson3_continued
+from mp_closures import stephenson2_continued
 
 from symlink.numeric import compiled_library
-from symlink.mechanism.catalog import fourbar, stephenson3
+from symlink.mechanism.catalog import fourbar, stephenson2
 from symlink.codegen import newton_driver
 from symlink.codegen.newton_c import newton_c_facts
 from symlink.mechanism.joints import from_joints
@@ -45,7 +45,7 @@ def _jacobian(q, p):
 
 def reference(thetas, guess, substeps=4):
     """(q, qdot, qddot) at each crank angle at 30 digits, continued from the assembly nearest ``guess``."""
-    positions = stephenson3_continued(DIMENSIONS, thetas, guess, substeps=substeps, dps=30, jacobian=_jacobian)
+    positions = stephenson2_continued(DIMENSIONS, thetas, guess, substeps=substeps, dps=30, jacobian=_jacobian)
     with mp.workdps(30):
         p = {k: mp.mpf(v) for k, v in DIMENSIONS.items()}
         found = []
@@ -73,8 +73,8 @@ def reference(thetas, guess, substeps=4):
 
 @pytest.fixture(scope="module")
 def solvers():
-    """The Stephenson III by the compiled driver and by the NumPy module."""
-    compiled, plain = NumericSolver(stephenson3(), backend="compiled"), NumericSolver(stephenson3(), backend="numpy")
+    """The Stephenson II by the compiled driver and by the NumPy module."""
+    compiled, plain = NumericSolver(stephenson2(), backend="compiled"), NumericSolver(stephenson2(), backend="numpy")
     assert (compiled.backend, plain.backend) == ("compiled", "numpy")
     return compiled, plain
 
@@ -117,7 +117,7 @@ def _message(error):
 
 FAILURES = [
     # A circuit that folds back: continuation stops at 54.6 deg (the 50-digit check is in tests/test_solver.py).
-    ("stephenson3", dict(DIMENSIONS, theta=np.radians(np.arange(0.0, 60.0, 5.0))), FOLDING,
+    ("stephenson2", dict(DIMENSIONS, theta=np.radians(np.arange(0.0, 60.0, 5.0))), FOLDING,
      r"did not converge beyond theta = .*\(54\.6.* deg\) on the way to theta = .*\(55 deg\)"),
     # A four-bar whose crank reaches |theta| <= 93.82 deg only.
     ("fourbar", dict(a=50, b=20, c=40, d=30, theta=np.radians([30.0, 60.0, 90.0, 100.0, 110.0])),
@@ -137,7 +137,7 @@ FAILURES = [
 
 @pytest.mark.parametrize("name, values, guess, message", FAILURES)
 def test_failures_are_flagged_the_same_with_the_same_message(solvers, name, values, guess, message):
-    compiled, plain = solvers if name == "stephenson3" else (NumericSolver(fourbar(), backend="compiled"),
+    compiled, plain = solvers if name == "stephenson2" else (NumericSolver(fourbar(), backend="compiled"),
                                                              NumericSolver(fourbar(), backend="numpy"))
     with pytest.raises(ValueError, match=message) as from_c:
         compiled(guess=guess, **values)
@@ -147,7 +147,7 @@ def test_failures_are_flagged_the_same_with_the_same_message(solvers, name, valu
 
 
 def test_a_linkage_from_its_joints_that_needs_newton():
-    # The Stephenson III drawn by its joints and driven at A: no loop-by-loop closed form (tests/test_joints.py).
+    # The Stephenson II drawn by its joints and driven at A: no loop-by-loop closed form (tests/test_joints.py).
     drawing = {"A": (0.0, 0.0), "D": (4.5, 0.0), "B": (0.3, 0.95), "C": (3.2, 2.0), "E": (1.5, 4.2),
                "F": (5.3, 2.8), "H": (4.8, 4.6)}
     links = {"ground": ["A", "D"], "crank": ["A", "B"], "coupler": ["B", "C", "E"], "rocker": ["D", "F", "H"],
@@ -191,7 +191,7 @@ def test_the_backend_switch(monkeypatch):
 
 
 def test_the_c_driver_has_the_numpy_drivers_constants_and_no_svd():
-    source = newton_c_facts(stephenson3())["source"]
+    source = newton_c_facts(stephenson2())["source"]
     for name in ("RESIDUAL_TOLERANCE", "SINGULAR_CONDITION", "POSITION_TOLERANCE", "MAX_PREDICTION",
                  "MAX_CORRECTION", "CONTRACTION", "MIN_FRACTION"):
         found = re.search(rf"symlink_{name.lower()} = ([^;]+);", source)

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from symlink.common import limits
-from symlink.mechanism.catalog import fourbar, stephenson3
+from symlink.mechanism.catalog import fourbar, stephenson2
 from symlink.common.limits import available_memory, format_bytes, require_memory
 from symlink.numeric.solver import NumericSolver, Solver
 
@@ -165,8 +165,8 @@ def test_broadcast_arguments_count_as_their_broadcast_size(two_gigabytes):
 
 
 def test_the_numeric_solver_refuses_too_large_sweeps(two_gigabytes):
-    solver = NumericSolver(stephenson3())
-    with pytest.raises(ValueError, match=r"^solving 1e\+08 input values with the stephenson3 numeric solver needs "
+    solver = NumericSolver(stephenson2())
+    with pytest.raises(ValueError, match=r"^solving 1e\+08 input values with the stephenson2 numeric solver needs "
                                          r"about [0-9.]+ [GT]B of memory, more than the 2 GB available; call it "
                                          r"with at most [0-9,]+ values at a time"):
         solver(theta=np.broadcast_to(0.0, (10**8,)), a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1,
@@ -220,14 +220,14 @@ def test_a_call_too_large_for_ulimit_is_refused_in_one_line_before_allocating(tm
 def test_the_command_line_refuses_a_table_too_large_for_ulimit_in_one_line(tmp_path):
     import shlex
     import sys
-    stephenson3 = ("stephenson3 --crank 1 --coupler 3.1 --link-cf 2.2 --ground 4.5 --coupler-arm 3.9 --rocker 3.1 "
+    stephenson2 = ("stephenson2 --crank 1 --coupler 3.1 --link-cf 2.2 --ground 4.5 --coupler-arm 3.9 --rocker 3.1 "
                    "--link-eh 4.1 --rocker-arm 3.1 --coupler-arm-angle 51.57 --rocker-arm-angle 17.19")
     # 9e6 crank angles solved by Newton's method at once (a table without a closed form)
-    run = _under_ulimit(f"{shlex.quote(sys.executable)} -m symlink {stephenson3} --step 0.00004", tmp_path)
+    run = _under_ulimit(f"{shlex.quote(sys.executable)} -m symlink {stephenson2} --step 0.00004", tmp_path)
     assert run.returncode == 2, run.stderr
     assert run.stdout == ""
     assert run.stderr.count("\n") == 1 and "MemoryError" not in run.stderr, run.stderr
-    assert run.stderr.startswith("symlink: error: a table of 9,000,000 crank angles of stephenson3 (solved by "
+    assert run.stderr.startswith("symlink: error: a table of 9,000,000 crank angles of stephenson2 (solved by "
                                  "Newton's method all at once) needs about "), run.stderr
     assert re.search(r" available; use at most [0-9,]+ crank angles \(a larger --step or fewer --angles\)\n\Z",
                      run.stderr), run.stderr

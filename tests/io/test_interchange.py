@@ -2,7 +2,7 @@
 
 * Pyslvs: mechanism expressions written for this test in Pyslvs's grammar (R, RP and P joints; a four-bar,
   slider-cranks, a slotted lever, a translating block, an inverted slider-crank, a Scotch yoke, Watt II and
-  Stephenson III six-bars, Jansen's eight-bar leg and a two-input arm; at symlink's catalog values or at
+  Stephenson II six-bars, Jansen's eight-bar leg and a two-input arm; at symlink's catalog values or at
   coordinates chosen here) read, build and move along a turn of their input with every link keeping the
   lengths of its drawing and every slot its line (a check by geometry, independent of the solver); written back
   and read again to the same joints; bad text refused with a column.
@@ -91,7 +91,7 @@ PYSLVS_EXAMPLES = {
         "J[R, color[Green], P[47.674, 112.527], L[coupler2, output]],"
         "J[R, color[Blue], P[90, 70], L[ground, output]]"
         "]", ((0, 1),)),
-    "Stephenson III six-bar": (  # symlink's stephenson3 at 20 times its example values, its crank at 80 degrees
+    "Stephenson II six-bar": (  # symlink's stephenson2 at 20 times its example values, its crank at 80 degrees
         "M["
         "J[R, color[Blue], P[0, 0], L[ground, crank]],"
         "J[R, color[Green], P[3.473, 19.696], L[crank, bce]],"
@@ -216,7 +216,7 @@ def test_pyslvs_plans_name_the_closed_forms_and_the_newton_fallback():
     assert [s.case.name for s in plans["lifter (RP on the ground and on a lever)"].plan] == ["2b", "2c"]
     assert [s.case.name for s in plans["Watt II six-bar"].plan] == ["3", "3"]
     assert [s.case.name for s in plans["Jansen leg (eight-bar)"].plan] == ["3", "3", "3"]
-    assert not plans["Stephenson III six-bar"].has_closed_form
+    assert not plans["Stephenson II six-bar"].has_closed_form
     assert len(plans["two-input arm (coaxial cranks)"].inputs) == 2
     # Pyslvs's P joints: a block that slides on its guide without turning (the inverted slider's block on its
     # rocker; a block on a guide of the ground; the Scotch yoke's block in its yoke, the yoke on the ground).

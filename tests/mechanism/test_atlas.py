@@ -10,12 +10,15 @@
 """
 import math
 import random
+import warnings
 from itertools import combinations, permutations
 
 import numpy as np
 import pytest
 
-from symlink.mechanism.atlas import ATLAS, LITERATURE_COUNTS, ChainGraph, atlas_entry, chains, dyads, mechanisms, turns_fully
+from symlink.mechanism.atlas import (ATLAS, LITERATURE_COUNTS, SIX_BAR_CONVENTIONS, SIX_BAR_DEFINITIONS, ChainGraph,
+                                    SixBarNameNote, atlas_entry, chains, dyads, mechanisms, six_bar_name, turns_fully)
+from symlink.io.linkage_file import SIX_BAR_ENTRIES, catalog_name
 from symlink.cli import main
 from symlink.numeric.solver import NumericSolver, Solver
 
@@ -106,18 +109,147 @@ def test_every_eight_link_chain_is_proper_and_they_differ():
     assert assortments.count(((2, 6), (4, 2))) == 2
 
 
-def test_the_six_bars_are_named_by_their_ground():
-    for name in ("watt-i", "watt-ii", "stephenson-i", "stephenson-ii", "stephenson-iii"):
-        entry = ATLAS[name]
-        ternary = [v for v in range(6) if entry.chain.degrees[v] == 3]
-        adjacent = ternary[1] in entry.chain.neighbours[ternary[0]]
-        assert adjacent == name.startswith("watt")
-        assert (entry.chain.degrees[entry.ground] == 3) == name.endswith("-ii")
-    stephenson_one = ATLAS["stephenson-i"]
-    assert all(stephenson_one.chain.degrees[v] == 3 for v in stephenson_one.chain.neighbours[stephenson_one.ground])
-    # The catalog's Stephenson III has no closed form whichever ground pivot drives; the Watt II always has one.
-    assert [ok for _, ok in ATLAS["stephenson-iii"].drivers] == [False, False]
+def _six_bar_by_definition(edges, ground):
+    """The six-bar's name by the cited definitions, from its pins alone (symlink.mechanism.atlas's docstring):
+    Watt when the two ternary links share a pin, else Stephenson; then by the ground: Watt I binary, Watt II
+    ternary; Stephenson I binary pinned to both ternary links, II binary pinned to one, III ternary."""
+    degree = {}
+    for a, b in edges:
+        degree[a] = degree.get(a, 0) + 1
+        degree[b] = degree.get(b, 0) + 1
+    ternary = sorted(v for v, d in degree.items() if d == 3)
+    assert len(ternary) == 2 and sorted(degree.values()) == [2, 2, 2, 2, 3, 3]
+    pinned = lambda u, v: (u, v) in edges or (v, u) in edges  # noqa: E731
+    if pinned(*ternary):
+        return "watt-ii" if degree[ground] == 3 else "watt-i"
+    if degree[ground] == 3:
+        return "stephenson-iii"
+    return {2: "stephenson-i", 1: "stephenson-ii"}[sum(pinned(ground, t) for t in ternary)]
+
+
+def _edges(links, joints):
+    """Link pairs of each joint, from a table of link -> its joints (a joint on two links)."""
+    names = sorted(links)
+    on = {j: [names.index(name) for name in names if j in links[name]] for j in joints}
+    assert all(len(pair) == 2 for pair in on.values()), on
+    return [tuple(pair) for pair in on.values()], names.index("ground")
+
+
+#: PMKS+'s six-bar templates (the Planar Mechanism Kinematic Simulator web app, templates-popup.component.ts),
+#: each as its links and their joints, the ground pins gathered on "ground": the cited numbering's own examples.
+PMKS_TEMPLATES = {
+    "watt-i": {"ground": "AG", "AB": "AB", "CBD": "BCD", "DE": "DE", "FE": "EF", "CFG": "CFG"},
+    "watt-ii": {"ground": "AFG", "AB": "AB", "CB": "BC", "DCG": "CDG", "ED": "DE", "FE": "EF"},
+    "stephenson-i": {"ground": "AD", "ABE": "ABE", "CB": "BC", "GCD": "CDG", "EF": "EF", "GF": "FG"},
+    "stephenson-iii": {"ground": "ADG", "AB": "AB", "BCE": "BCE", "DC": "CD", "EF": "EF", "GF": "FG"},
+}
+
+
+@pytest.mark.parametrize("name", ["watt-i", "watt-ii", "stephenson-i", "stephenson-ii", "stephenson-iii"])
+def test_each_six_bar_is_named_by_the_cited_definition(name):
+    entry = ATLAS[name]
+    assert _six_bar_by_definition(entry.chain.edges, entry.ground) == name
+
+
+@pytest.mark.parametrize("name", sorted(PMKS_TEMPLATES))
+def test_the_cited_examples_are_the_atlas_entries_of_their_names(name):
+    links = {k: set(v) for k, v in PMKS_TEMPLATES[name].items()}
+    edges, ground = _edges(links, "ABCDEFG")
+    assert _six_bar_by_definition(edges, ground) == name
+    entry = ATLAS[name]  # the same mechanism: the same chain with the same ground, up to relabelling
+    assert _brute_code(6, edges, root=ground) == _brute_code(6, entry.chain.edges, root=entry.ground)
+
+
+def test_the_six_bars_differ_and_the_stephenson_ii_alone_needs_newton():
+    six = [e for e in ATLAS.values() if e.links == 6]
+    assert sorted(e.name for e in six) == sorted(SIX_BAR_DEFINITIONS)
+    codes = {_brute_code(6, e.chain.edges, root=e.ground) for e in six}
+    assert len(codes) == 5
+    # Grounding the binary link beside one ternary leaves a triad whichever ground-pinned link drives.
+    assert [ok for _, ok in ATLAS["stephenson-ii"].drivers] == [False, False]
     assert all(ok for _, ok in ATLAS["watt-ii"].drivers)
+
+
+#: The catalog's six-bars by their joints, as their docstrings draw them (symlink.mechanism.catalog).
+CATALOG_SIX_BARS = {
+    "watt2": {"ground": "ADG", "AB": "AB", "BC": "BC", "DCE": "CDE", "EF": "EF", "GF": "FG"},
+    "stephenson2": {"ground": "AD", "AB": "AB", "BCE": "BCE", "CF": "CF", "EH": "EH", "DFH": "DFH"},
+}
+
+
+@pytest.mark.parametrize("catalog, name", [("watt2", "watt-ii"), ("stephenson2", "stephenson-ii")])
+def test_the_catalog_s_six_bars_carry_their_names(catalog, name):
+    links = {k: set(v) for k, v in CATALOG_SIX_BARS[catalog].items()}
+    edges, ground = _edges(links, sorted(set("".join(CATALOG_SIX_BARS[catalog].values()))))
+    assert _six_bar_by_definition(edges, ground) == name
+    assert SIX_BAR_ENTRIES[name] == catalog and catalog_name(name) == catalog
+
+
+@pytest.mark.parametrize("text, name", [
+    ("watt-i", "watt-i"), ("Watt I", "watt-i"), ("watt-1", "watt-i"), ("watt_i", "watt-i"), ("WATT 1", "watt-i"),
+    ("Watt's I", "watt-i"), ("watt2", "watt-ii"), ("Watt II", "watt-ii"), (" watt - 2 ", "watt-ii"),
+    ("stephenson-i", "stephenson-i"), ("Stephenson 1", "stephenson-i"), ("stephenson2", "stephenson-ii"),
+    ("Stephenson II", "stephenson-ii"), ("stephenson-3", "stephenson-iii"), ("Stephenson III", "stephenson-iii"),
+    ("stephenson_iii", "stephenson-iii"),
+])
+def test_every_spelling_of_a_six_bar_resolves_without_a_note(text, name):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert six_bar_name(text) == name
+        assert atlas_entry(text) is ATLAS[name]
+
+
+@pytest.mark.parametrize("text, name", [
+    ("Stephenson II", "stephenson-iii"), ("stephenson-2", "stephenson-iii"), ("stephenson-iii", "stephenson-ii"),
+    ("Stephenson 3", "stephenson-ii"),
+])
+def test_the_other_numbering_is_read_on_request_with_a_note(text, name):
+    with pytest.warns(SixBarNameNote, match=f"in the ternary-ii numbering is {name} here"):
+        assert six_bar_name(text, convention="ternary-ii") == name
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # the names both numberings share need no note
+        assert six_bar_name("Watt I", convention="ternary-ii") == "watt-i"
+        assert six_bar_name("stephenson-i", convention="ternary-ii") == "stephenson-i"
+
+
+def test_the_former_catalog_name_still_names_the_same_linkage_with_a_note(capsys):
+    from symlink.io.linkage_file import load_linkage
+    with pytest.warns(SixBarNameNote, match="'stephenson3' is symlink's former name of stephenson-ii"):
+        assert catalog_name("stephenson3") == "stephenson2"
+    with pytest.warns(SixBarNameNote):
+        assert load_linkage("stephenson3").linkage.name == "stephenson2"
+    with pytest.warns(SixBarNameNote):
+        assert atlas_entry("stephenson3") is ATLAS["stephenson-ii"]
+    assert load_linkage("Watt II").linkage.name == "watt2"
+    assert main(["plan", "stephenson3"]) == 0
+    captured = capsys.readouterr()
+    assert captured.out.startswith("stephenson2: no closed form")
+    assert captured.err.count("\n") == 1 and "symlink: warning: 'stephenson3' is symlink's former name" in captured.err
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: six_bar_name("watt-iii"), "no six-bar 'watt-iii'; the six-bars are watt-i, watt-ii, stephenson-i, "
+                                       "stephenson-ii, stephenson-iii"),
+    (lambda: atlas_entry("Watt III"), "no six-bar 'Watt III'; the six-bars are watt-i"),
+    (lambda: atlas_entry("stephenson-4"), "no atlas entry 'stephenson-4'; the entries are fourbar, watt-i"),
+    (lambda: six_bar_name("watt-i", convention="norton"), "no six-bar naming convention 'norton'; the conventions "
+                                                          "are ternary-iii, ternary-ii"),
+    (lambda: catalog_name("Stephenson III"), "the catalog has no stephenson-iii .*atlas:stephenson-iii.*stephenson2"),
+    (lambda: catalog_name("watt-i"), "the catalog has no watt-i"),
+    (lambda: catalog_name("nope"), "no linkage 'nope' in the catalog; it has fivebar, fourbar"),
+])
+def test_a_name_naming_nothing_is_refused_with_the_list(call, message):
+    with pytest.raises(ValueError, match=message):
+        call()
+
+
+def test_the_command_line_s_conventions_are_the_atlas_s():
+    from symlink.cli.atlas import _add_options
+    import argparse
+    parser = argparse.ArgumentParser()
+    _add_options(parser)
+    choices = next(a.choices for a in parser._actions if a.dest == "convention")
+    assert tuple(choices) == tuple(SIX_BAR_CONVENTIONS)
 
 
 @pytest.mark.parametrize("name", list(ATLAS))
@@ -159,8 +291,8 @@ def test_the_generated_solver_agrees_with_newton_on_the_closure_along_a_turn(nam
 
 
 def test_an_unknown_entry_is_refused_naming_the_entries():
-    with pytest.raises(ValueError, match="no atlas entry 'watt-iii'; the entries are fourbar, watt-i"):
-        atlas_entry("watt-iii")
+    with pytest.raises(ValueError, match="no atlas entry 'nope'; the entries are fourbar, watt-i"):
+        atlas_entry("nope")
     with pytest.raises(ValueError, match="4, 6 or 8 links"):
         chains(10)
 
@@ -171,7 +303,7 @@ def test_the_command_lists_the_atlas_with_its_counts(capsys):
     assert "4 links: 1 chains, 1 mechanisms by choice of ground (literature: 1 and 1)" in out
     assert "6 links: 2 chains, 5 mechanisms by choice of ground (literature: 2 and 5)" in out
     # Watt I and II, Stephenson II and III each have two drivers up to symmetry, Stephenson I one; the
-    # Stephenson II at one of its two and the Stephenson III at both need Newton's method (a triad is left).
+    # Stephenson III at one of its two and the Stephenson II at both need Newton's method (a triad is left).
     assert "9 by ground and driven link, 6 of them in closed form" in out
     assert "8 links: 16 chains, 71 mechanisms by choice of ground (literature: 16 and 71)" in out
     assert out.count("\n  ") == 77
@@ -187,6 +319,8 @@ def test_the_command_shows_and_draws_an_entry(tmp_path, capsys):
 
 @pytest.mark.parametrize("argv, message", [
     (["atlas", "nope"], "no atlas entry 'nope'"),
+    (["atlas", "Watt III"], "no six-bar 'Watt III'; the six-bars are watt-i, watt-ii"),
+    (["atlas", "watt-i", "--convention", "norton"], "--convention"),
     (["atlas", "--draw", "x.png"], "--draw needs an atlas entry NAME"),
     (["atlas", "watt-ii", "--draw", "x.pdf"], "must end in .png or .svg"),
 ])
@@ -235,6 +369,6 @@ def test_an_atlas_entry_by_name_is_a_linkage_for_every_command(capsys):
     got = Solver(found.linkage, points)(**found.defaults)  # branches by default +1: the example's assembly
     for p, (x, y) in ATLAS["watt-ii"].coordinates().items():
         assert abs(float(got[p + "_x"]) - x) < 1e-12 and abs(float(got[p + "_y"]) - y) < 1e-12, p
-    assert main(["plan", "atlas:stephenson-iii"]) == 0
+    assert main(["plan", "atlas:stephenson-ii"]) == 0
     assert "solved numerically" in capsys.readouterr().out
     assert main(["plan", "atlas:watt-iii"]) == 2

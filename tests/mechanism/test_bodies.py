@@ -20,7 +20,7 @@ HAND_COUNTS = {
     # ground, crank, rocker (with its offset arm DT and guide), block; the block slides on the guide
     "offset-inverted-slider-crank": (4, {"A": 2, "B": 2, "D": 2}, 1, 1),
     "watt2": (6, {"A": 2, "B": 2, "C": 2, "D": 2, "E": 2, "F": 2, "G": 2}, 0, 1),
-    "stephenson3": (6, {"A": 2, "B": 2, "C": 2, "D": 2, "E": 2, "F": 2, "H": 2}, 0, 1),
+    "stephenson2": (6, {"A": 2, "B": 2, "C": 2, "D": 2, "E": 2, "F": 2, "H": 2}, 0, 1),
     "fivebar": (5, {"A": 2, "B": 2, "C": 2, "D": 2, "E": 2}, 0, 2),
     "jansen": (8, {"A": 2, "B": 3, "C": 2, "D": 3, "E": 2, "F": 3, "G": 2}, 0, 1),
 }

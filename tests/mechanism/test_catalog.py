@@ -18,7 +18,7 @@ from hypothesis import given, settings, strategies as st
 import mp_closures as ref
 from references import mp_fourbar, mp_slider_crank
 from symlink.mechanism.catalog import (CATALOG, JANSEN_HOLY_NUMBERS, fivebar, inverted_slider_crank, jansen, jansen_parameters,
-                             slider_crank, stephenson3, watt2)
+                             slider_crank, stephenson2, watt2)
 from symlink.numeric.solver import NumericSolver, Solver
 
 RNG_SEED = 20240601
@@ -224,10 +224,10 @@ def test_fivebar_against_50_digits(branch):
         checked += 1
 
 
-# --- Stephenson III (numeric) -------------------------------------------------------------------------
+# --- Stephenson II (numeric) -------------------------------------------------------------------------
 
-def stephenson3_assembled_at(rng):
-    """Random Stephenson III dimensions, built around a random configuration at theta = 0 (so it assembles)."""
+def stephenson2_assembled_at(rng):
+    """Random Stephenson II dimensions, built around a random configuration at theta = 0 (so it assembles)."""
     a, b, e, f, h, d = 1.0, *rng.uniform(2, 5, 4), rng.uniform(3, 6)
     alpha, delta = rng.uniform(0.3, 1.5, 2)
     beta, phi = rng.uniform(-0.5, 1.0), rng.uniform(1.0, 2.5)
@@ -239,24 +239,24 @@ def stephenson3_assembled_at(rng):
     return p, guess
 
 
-def test_stephenson3_random_dimensions_against_50_digits():
-    linkage = stephenson3()
+def test_stephenson2_random_dimensions_against_50_digits():
+    linkage = stephenson2()
     solver = NumericSolver(linkage)
     rng = np.random.default_rng(RNG_SEED)
     theta = np.radians(np.arange(0.0, 41.0, 10.0))
     checked = 0
     while checked < 3:
-        p, guess = stephenson3_assembled_at(rng)
+        p, guess = stephenson2_assembled_at(rng)
         if min(p["c"], p["g"]) < 1.0:
             continue
         try:
-            mp_positions = ref.continue_sweep(ref.stephenson3_closure, [(t,) for t in theta],
+            mp_positions = ref.continue_sweep(ref.stephenson2_closure, [(t,) for t in theta],
                                               [guess[u.name] for u in linkage.unknowns], p, substeps=8)
         except (ValueError, ZeroDivisionError):
             continue
         result = solver(theta=theta, guess=guess, thetadot=1.7, thetaddot=-0.4, **p)
         for i, t in enumerate(theta):
-            q, qdot, qddot, jacobian = ref.kinematics(ref.stephenson3_closure, [t], mp_positions[i], p,
+            q, qdot, qddot, jacobian = ref.kinematics(ref.stephenson2_closure, [t], mp_positions[i], p,
                                                       [1.7], [-0.4], refine=False)
             assert_matches(linkage, result, q, qdot, qddot, sum(p.values()), index=i)
         checked += 1
@@ -300,16 +300,16 @@ def test_closure_residual_and_finite_differences(name):
         assert np.allclose(second, at[0.0][u.name + "ddot"], rtol=1e-6, atol=1e-6)
 
 
-def test_stephenson3_closure_residual_and_finite_differences():
-    p, guess = STEPHENSON3
-    solver = NumericSolver(stephenson3())
+def test_stephenson2_closure_residual_and_finite_differences():
+    p, guess = STEPHENSON2
+    solver = NumericSolver(stephenson2())
     theta = np.radians(np.arange(0.0, 360.0, 10.0))
     h = 1e-5
     at = {shift: solver(theta=theta + shift, guess=guess, thetadot=1.0, **p) for shift in (-h, 0.0, h)}
     with mp.workdps(20):
         for i, t in enumerate(theta):
             q = [at[0.0][n][i] for n in ("beta", "mu", "phi", "eta")]
-            residual = ref.stephenson3_closure([t], [mp.mpf(v) for v in q], {k: mp.mpf(v) for k, v in p.items()})
+            residual = ref.stephenson2_closure([t], [mp.mpf(v) for v in q], {k: mp.mpf(v) for k, v in p.items()})
             assert max(abs(r) for r in residual) < 1e-14 * sum(p.values())
     for name in ("beta", "mu", "phi", "eta"):
         difference = (at[h][name] - at[-h][name]) / (2 * h)
@@ -318,21 +318,21 @@ def test_stephenson3_closure_residual_and_finite_differences():
         assert np.allclose(second, at[0.0][name + "ddot"], rtol=1e-6, atol=1e-6)
 
 
-#: The Stephenson III of derivations/stephenson3.py's example: its crank turns fully.
-STEPHENSON3 = (dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.9, delta=0.3),
+#: The Stephenson II of derivations/stephenson2.py's example: its crank turns fully.
+STEPHENSON2 = (dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.9, delta=0.3),
                dict(beta=0.96, mu=0.27, phi=1.43, eta=-0.16))
 
 
 def test_catalog_entries_are_fresh_linkages_with_documented_names():
     assert set(CATALOG) == {"fourbar", "slider-crank", "inverted-slider-crank", "offset-inverted-slider-crank",
-                            "watt2", "stephenson3", "fivebar", "jansen"}
+                            "watt2", "stephenson2", "fivebar", "jansen"}
     for name, build in CATALOG.items():
         first, second = build(), build()
         assert first is not second and first.name == name
         assert all(point in first.points for point in ("A", "B"))
     theta, beta, s = sp.symbols("theta beta s", real=True)
     assert slider_crank().roles == {"crank": theta, "conrod": beta, "slider": s}
-    assert not stephenson3().has_closed_form and all(CATALOG[n]().has_closed_form for n in CLOSED_FORM_CASES)
+    assert not stephenson2().has_closed_form and all(CATALOG[n]().has_closed_form for n in CLOSED_FORM_CASES)
 
 
 

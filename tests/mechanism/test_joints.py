@@ -320,7 +320,7 @@ def test_a_slider_can_be_the_driver():
 # --- Newton where no dyad is left --------------------------------------------------------------------------------
 
 def test_a_stephenson_iii_driven_at_the_wrong_link_falls_back_to_newton_and_reproduces_its_drawing():
-    # The catalog's Stephenson III: ground A-D binary; crank AB; ternary coupler BCE; ternary rocker DFH; CF and EH.
+    # The catalog's Stephenson II: ground A-D binary; crank AB; ternary coupler BCE; ternary rocker DFH; CF and EH.
     drawing = {"A": (0.0, 0.0), "D": (4.5, 0.0), "B": (0.3, 0.95), "C": (3.2, 2.0), "E": (1.5, 4.2),
                "F": (5.3, 2.8), "H": (4.8, 4.6)}
     links = {"ground": ["A", "D"], "crank": ["A", "B"], "coupler": ["B", "C", "E"], "rocker": ["D", "F", "H"],

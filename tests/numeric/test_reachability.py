@@ -5,7 +5,7 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from symlink.mechanism.catalog import EXAMPLE_VALUES, fivebar, fourbar, inverted_slider_crank, slider_crank, stephenson3, watt2
+from symlink.mechanism.catalog import EXAMPLE_VALUES, fivebar, fourbar, inverted_slider_crank, slider_crank, stephenson2, watt2
 from symlink.numeric.reachability import InputMotion, reachable_range
 from symlink.numeric.solver import Solver
 
@@ -175,8 +175,8 @@ def test_continuation_finds_the_closed_form_range(links, start):
     assert all(t.loop is None for t in found.toggles)
 
 
-def test_stephenson3_turns_fully_by_continuation():
-    found = reachable_range(stephenson3(), EXAMPLE_VALUES["stephenson3"],
+def test_stephenson2_turns_fully_by_continuation():
+    found = reachable_range(stephenson2(), EXAMPLE_VALUES["stephenson2"],
                             guess=dict(beta=0.5, mu=0.2, phi=1.5, eta=0.3), points=360)
     assert found.full_turn and not found.exact
 
@@ -214,7 +214,7 @@ def test_a_slider_driven_slider_crank_over_an_interval():
     (fourbar, dict(a=1.0, b=2.0, c=2.0, d=2.0, e=3.0), {}, "not e"),
     (fourbar, dict(a=1.0, b=2.0, c=2.0, d=2.0), dict(input="phi"), "has the inputs theta"),
     (fourbar, dict(a=1.0, b=2.0, c=2.0, d=2.0), dict(guess={"beta": 0.0, "phi": 1.0}), "closed form"),
-    (stephenson3, EXAMPLE_VALUES["stephenson3"], {}, "give a guess"),
+    (stephenson2, EXAMPLE_VALUES["stephenson2"], {}, "give a guess"),
     (fivebar, dict(a=2.0, b=4.0, c=4.0, d=3.0, e=2.0), {}, "give a value for psi"),
     (fourbar, dict(a=1.0, b=2.0, c=2.0, d=2.0), dict(points=2), "at least 4"),
     (fourbar, dict(a=1.0, b=2.0, c=2.0, d=2.0), dict(interval=(1.0, 0.0)), "low < high"),
@@ -238,6 +238,6 @@ def test_a_length_input_needs_an_interval():
 
 
 def test_motion_without_a_scan_says_so():
-    motion = InputMotion(stephenson3(), EXAMPLE_VALUES["stephenson3"], guess=dict(beta=0.5, mu=0.2, phi=1.5, eta=0.3))
+    motion = InputMotion(stephenson2(), EXAMPLE_VALUES["stephenson2"], guess=dict(beta=0.5, mu=0.2, phi=1.5, eta=0.3))
     with pytest.raises(ValueError, match="scan the linkage first"):
         motion.at([0.0])

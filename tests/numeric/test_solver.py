@@ -1,5 +1,5 @@
 """Runtime solvers: the generated Newton fallback (NumericSolver) against the closed forms, against 50 digits
-on Stephenson III, and its errors."""
+on Stephenson II, and its errors."""
 import itertools
 import math
 
@@ -7,14 +7,14 @@ import numpy as np
 import pytest
 
 import mp_closures as ref
-from symlink.mechanism.catalog import CATALOG, fivebar, fourbar, stephenson3
+from symlink.mechanism.catalog import CATALOG, fivebar, fourbar, stephenson2
 from symlink.symbolic.linkage import Linkage
 from symlink.symbolic.loops import Loop
 from symlink.numeric.solver import NumericSolver, Solver
 from symlink.symbolic.vectors import Vector, coordinates, lengths
 
-STEPHENSON3 = dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.9, delta=0.3)
-STEPHENSON3_GUESS = dict(beta=0.96, mu=0.27, phi=1.43, eta=-0.16)
+STEPHENSON2 = dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.9, delta=0.3)
+STEPHENSON2_GUESS = dict(beta=0.96, mu=0.27, phi=1.43, eta=-0.16)
 
 #: Closed-form linkages, their dimensions, and a start near branch +1 (or the one assembly).
 CLOSED_FORMS = {
@@ -79,15 +79,15 @@ def test_numeric_fivebar_sweeps_both_inputs_together():
         assert np.max(gap(numeric[name], closed[name])) < 1e-11, name
 
 
-def test_stephenson3_full_turn_against_a_50_digit_continuation():
-    solver = NumericSolver(stephenson3())
+def test_stephenson2_full_turn_against_a_50_digit_continuation():
+    solver = NumericSolver(stephenson2())
     theta = np.radians(np.arange(0.0, 361.0, 15.0))
-    result = solver(theta=theta, guess=STEPHENSON3_GUESS, thetadot=3.0, thetaddot=1.5, **STEPHENSON3)
+    result = solver(theta=theta, guess=STEPHENSON2_GUESS, thetadot=3.0, thetaddot=1.5, **STEPHENSON2)
     unknowns = ["beta", "mu", "phi", "eta"]
-    reference = ref.continue_sweep(ref.stephenson3_closure, [(t,) for t in theta],
-                                   [STEPHENSON3_GUESS[n] for n in unknowns], STEPHENSON3, substeps=6)
+    reference = ref.continue_sweep(ref.stephenson2_closure, [(t,) for t in theta],
+                                   [STEPHENSON2_GUESS[n] for n in unknowns], STEPHENSON2, substeps=6)
     for i, t in enumerate(theta):
-        q, qdot, qddot, _ = ref.kinematics(ref.stephenson3_closure, [t], reference[i], STEPHENSON3,
+        q, qdot, qddot, _ = ref.kinematics(ref.stephenson2_closure, [t], reference[i], STEPHENSON2,
                                            [3.0], [1.5], refine=False)
         for k, name in enumerate(unknowns):
             assert abs(result[name][i] - float(q[k])) < 1e-13, (name, i)   # continued, not wrapped
@@ -98,9 +98,9 @@ def test_stephenson3_full_turn_against_a_50_digit_continuation():
 
 
 def test_coarse_and_fine_sweeps_follow_the_same_branch():
-    solver = NumericSolver(stephenson3())
-    fine = solver(theta=np.radians(np.arange(0.0, 360.0, 1.0)), guess=STEPHENSON3_GUESS, **STEPHENSON3)
-    coarse = solver(theta=np.radians(np.arange(0.0, 360.0, 60.0)), guess=STEPHENSON3_GUESS, **STEPHENSON3)
+    solver = NumericSolver(stephenson2())
+    fine = solver(theta=np.radians(np.arange(0.0, 360.0, 1.0)), guess=STEPHENSON2_GUESS, **STEPHENSON2)
+    coarse = solver(theta=np.radians(np.arange(0.0, 360.0, 60.0)), guess=STEPHENSON2_GUESS, **STEPHENSON2)
     for name in ("beta", "mu", "phi", "eta", "E_x", "H_y"):
         assert np.max(np.abs(coarse[name] - fine[name][::60])) < 1e-12
 
@@ -112,41 +112,41 @@ FOLDING = dict(beta=0.785649, mu=-2.447163, phi=2.88568, eta=-1.361976)
 
 
 def test_each_assembly_is_kept_from_its_guess():
-    solver = NumericSolver(stephenson3())
+    solver = NumericSolver(stephenson2())
     theta = np.radians(np.arange(0.0, 360.0, 5.0))
-    first = solver(theta=theta, guess=STEPHENSON3_GUESS, **STEPHENSON3)
-    second = solver(theta=theta, guess=OTHER_FULL_TURN, **STEPHENSON3)
+    first = solver(theta=theta, guess=STEPHENSON2_GUESS, **STEPHENSON2)
+    second = solver(theta=theta, guess=OTHER_FULL_TURN, **STEPHENSON2)
     assert np.min(angle_gap(second["phi"], first["phi"])) > 0.5
-    reference = ref.continue_sweep(ref.stephenson3_closure, [(t,) for t in theta[::9]],
-                                   list(OTHER_FULL_TURN.values()), STEPHENSON3, substeps=8)
+    reference = ref.continue_sweep(ref.stephenson2_closure, [(t,) for t in theta[::9]],
+                                   list(OTHER_FULL_TURN.values()), STEPHENSON2, substeps=8)
     for i, q in enumerate(reference):
         for k, name in enumerate(OTHER_FULL_TURN):
             assert abs(second[name][9 * i] - float(q[k])) < 1e-13
 
 
 def test_a_circuit_that_folds_back_stops_with_the_input_value():
-    solver = NumericSolver(stephenson3())
-    reached = solver(theta=np.radians(np.arange(0.0, 54.6, 1.0)), guess=FOLDING, **STEPHENSON3)
+    solver = NumericSolver(stephenson2())
+    reached = solver(theta=np.radians(np.arange(0.0, 54.6, 1.0)), guess=FOLDING, **STEPHENSON2)
     assert np.all(reached["residual"] <= 64 * np.finfo(float).eps)
     with pytest.raises(ValueError, match=r"did not converge beyond theta = .*\(54\.6.* deg\) on the way to "
                                          r"theta = .*\(55 deg\)"):
-        solver(theta=np.radians(np.arange(0.0, 60.0, 5.0)), guess=FOLDING, **STEPHENSON3)
+        solver(theta=np.radians(np.arange(0.0, 60.0, 5.0)), guess=FOLDING, **STEPHENSON2)
     # Independently: 50-digit Newton continues to 54.6 deg but finds no real position at 54.7 deg.
     steps = [(math.radians(t),) for t in np.arange(0.0, 54.61, 0.5)]
-    last = ref.continue_sweep(ref.stephenson3_closure, steps, list(FOLDING.values()), STEPHENSON3, substeps=2)[-1]
+    last = ref.continue_sweep(ref.stephenson2_closure, steps, list(FOLDING.values()), STEPHENSON2, substeps=2)[-1]
     with pytest.raises((ValueError, ZeroDivisionError)):
-        ref.continue_sweep(ref.stephenson3_closure, [(math.radians(54.6),), (math.radians(54.7),)],
-                           [float(v) for v in last], STEPHENSON3, substeps=4)
+        ref.continue_sweep(ref.stephenson2_closure, [(math.radians(54.6),), (math.radians(54.7),)],
+                           [float(v) for v in last], STEPHENSON2, substeps=4)
 
 
 def test_points_roles_and_scalar_inputs():
-    solver = NumericSolver(stephenson3())
-    result = solver(theta=0.0, guess=STEPHENSON3_GUESS, **STEPHENSON3)
+    solver = NumericSolver(stephenson2())
+    result = solver(theta=0.0, guess=STEPHENSON2_GUESS, **STEPHENSON2)
     assert result["phi"].shape == () and result["rocker"] == result["phi"]
-    F = STEPHENSON3["d"] + STEPHENSON3["f"] * np.exp(1j * result["phi"])
+    F = STEPHENSON2["d"] + STEPHENSON2["f"] * np.exp(1j * result["phi"])
     assert abs(complex(result["F_x"], result["F_y"]) - F) < 1e-14
     B = complex(result["B_x"], result["B_y"])
-    assert abs(B - STEPHENSON3["a"]) < 1e-15
+    assert abs(B - STEPHENSON2["a"]) < 1e-15
 
 
 def test_sweep_beyond_the_reachable_range_names_the_input_value():
@@ -214,13 +214,13 @@ def test_second_solver_comes_from_the_cache(tmp_path, monkeypatch):
     from symlink.codegen import newton
     monkeypatch.setenv("SYMLINK_CACHE", str(tmp_path))
     cache.clear_memory()
-    first = NumericSolver(stephenson3())
+    first = NumericSolver(stephenson2())
     cache.clear_memory()  # a new process: only the disk entry is left
 
     def fail(linkage):
         raise AssertionError("derived again")
     monkeypatch.setattr(newton, "numeric_module", fail)
-    second = NumericSolver(stephenson3())
+    second = NumericSolver(stephenson2())
     assert second.source == first.source
     cache.clear_memory()
 

@@ -104,19 +104,19 @@ def test_a_warm_sensitivity_request_derives_nothing(disk_cache, monkeypatch, bac
     from symlink.mechanism.catalog import fourbar
     from symlink.io.scene import Scene
     from symlink.numeric.solver import NumericSolver, Solver
-    from symlink.mechanism.catalog import stephenson3
+    from symlink.mechanism.catalog import stephenson2
     values = dict(theta=0.3, a=20.0, b=66.0, c=56.0, d=80.0, branch=1.0)
     cold = Solver(fourbar(), ["rocker__d_a", "rocker"], backend=backend)(**values)
     lengths = {k: v for k, v in values.items() if k != "branch"}
     Scene(fourbar(), ["rocker__d_a"], lengths).evaluate()
-    NumericSolver(stephenson3())
+    NumericSolver(stephenson2())
     cache.clear_memory()  # a new process: the disk cache only
     forbid_derivatives(monkeypatch)
     warm = Solver(fourbar(), ["rocker__d_a", "rocker"], backend=backend)(**values)
     assert float(warm["rocker__d_a"]) == pytest.approx(float(cold["rocker__d_a"]), rel=1e-13)
     scene = Scene(fourbar(), ["rocker__d_a"], lengths)
     assert float(scene.evaluate()[1]["rocker__d_a"]) == pytest.approx(float(cold["rocker__d_a"]), rel=1e-13)
-    NumericSolver(stephenson3())  # Newton's module, from the cache too
+    NumericSolver(stephenson2())  # Newton's module, from the cache too
     monkeypatch.undo()
     # finite differences of the rocker angle, an independent check of the derivative's value
     step = 1e-6
@@ -227,13 +227,15 @@ def _run_twice(tmp_path, arguments: list[str]) -> tuple[str, str, set[str]]:
     return runs[0].stdout, runs[1].stdout, _imported(runs[1].stderr)
 
 
-#: The Stephenson III's assembly near which its table starts (coupler, mu, rocker, eta at crank angle 0, degrees).
+#: The Stephenson six-bar's (stephenson2, formerly stephenson3) assembly near which its table starts (coupler, mu, rocker, eta at crank angle 0, degrees).
 NEWTON_GUESS = "coupler=-33,mu=-35,rocker=-73,eta=-68"
 WARM_COMMANDS = {
     "catalog table": ["table", "watt2", "--angles", "0,50", "--format", "csv", "--branch", "+1"],
     "linkage file table": ["table", "mywatt.toml", "--angles", "0,50", "--format", "csv", "--branch", "+1"],
     "atlas table": ["table", "atlas:watt-ii", "--angles", "0,30", "--format", "csv", "--branch", "+1"],
-    "Newton table": ["table", "stephenson3", "--angles", "0,50", "--format", "csv", "--guess", NEWTON_GUESS],
+    "Newton table": ["table", "stephenson2", "--angles", "0,50", "--format", "csv", "--guess", NEWTON_GUESS],
+    "Newton table by its former name": ["table", "stephenson3", "--angles", "0,50", "--format", "csv", "--guess",
+                                        NEWTON_GUESS],
     "Newton linkage file table": ["table", "mystephenson.toml", "--angles", "0,50", "--format", "csv", "--guess",
                                   NEWTON_GUESS],
     "four-bar with masses": ["fourbar", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80",
@@ -245,7 +247,7 @@ WARM_COMMANDS = {
 def test_a_warm_command_imports_no_sympy(name, tmp_path):
     from symlink.io.linkage_file import catalog_file
     (tmp_path / "mywatt.toml").write_text(catalog_file("watt2").read_text())
-    (tmp_path / "mystephenson.toml").write_text(catalog_file("stephenson3").read_text())
+    (tmp_path / "mystephenson.toml").write_text(catalog_file("stephenson2").read_text())
     cold, warm, imported = _run_twice(tmp_path, WARM_COMMANDS[name])
     assert "symlink" in imported and "numpy" in imported  # the import list was read
     assert "sympy" not in imported
@@ -352,7 +354,7 @@ def test_a_warm_newton_table_closes_both_loops(tmp_path):
     import cmath
     _, warm, _ = _run_twice(tmp_path, WARM_COMMANDS["Newton table"])
     header, *rows = warm.splitlines()
-    p = dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.9, delta=0.3)  # stephenson3.toml
+    p = dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.9, delta=0.3)  # stephenson2.toml
 
     def vector(length: float, angle: float) -> complex:
         return cmath.rect(length, angle)

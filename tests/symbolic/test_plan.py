@@ -2,7 +2,7 @@
 import pytest
 import sympy as sp
 
-from symlink.mechanism.catalog import CATALOG, fivebar, fourbar, inverted_slider_crank, slider_crank, stephenson3, watt2
+from symlink.mechanism.catalog import CATALOG, fivebar, fourbar, inverted_slider_crank, slider_crank, stephenson2, watt2
 from symlink.cli import main
 from symlink.symbolic.linkage import Linkage
 from symlink.symbolic.loops import Loop
@@ -54,8 +54,8 @@ def test_loops_given_out_of_order_are_planned_in_order():
     assert plan.steps[1].uses == {"phi": 1}
 
 
-def test_stephenson3_has_no_closed_form_and_says_why():
-    linkage = stephenson3()
+def test_stephenson2_has_no_closed_form_and_says_why():
+    linkage = stephenson2()
     plan = solve_plan(linkage)
     assert not plan.closed_form
     (step,) = plan.steps
@@ -74,10 +74,10 @@ def test_every_catalog_entry_has_a_plan():
 
 
 def test_symlink_plan_prints_the_plan(capsys):
-    assert main(["plan", "stephenson3"]) == 0
+    assert main(["plan", "stephenson2"]) == 0
     out, err = capsys.readouterr()
     # the plan, then its mobility: 6 links, 7 revolute joints -> 3 * 5 - 2 * 7 = 1
-    assert err == "" and out == str(solve_plan(stephenson3())) + "\n" + (
+    assert err == "" and out == str(solve_plan(stephenson2())) + "\n" + (
         "degrees of freedom: 1 (Gruebler: 6 links with the ground, 7 revolute and 0 prismatic joints)\n")
     assert "Newton's method on all 4 closure equations" in out
 

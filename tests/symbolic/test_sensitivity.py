@@ -75,7 +75,7 @@ CLOSURES = {
     "inverted-slider-crank": ref.inverted_closure,
     "offset-inverted-slider-crank": offset_inverted_closure,
     "watt2": ref.watt2_closure,
-    "stephenson3": ref.stephenson3_closure,
+    "stephenson2": ref.stephenson2_closure,
     "fivebar": ref.fivebar_closure,
     "jansen": jansen_closure,
 }
@@ -161,7 +161,7 @@ def worst_error(got: dict, expected: dict, linkage, outputs) -> tuple[float, str
 
 # --- every closed-form catalog entry against 50 digits ------------------------------------------------------
 
-CLOSED_FORM = sorted(name for name in CATALOG if name != "stephenson3")
+CLOSED_FORM = sorted(name for name in CATALOG if name != "stephenson2")
 
 
 def check_samples(name: str, samples: int, seed: int) -> None:
@@ -206,8 +206,8 @@ def test_many_random_samples_against_50_digits(name):
 
 # --- the Newton fallback ---------------------------------------------------------------------------------
 
-def stephenson3_around(rng):
-    """Random Stephenson III dimensions built around a random configuration at theta = 0, so that it assembles."""
+def stephenson2_around(rng):
+    """Random Stephenson II dimensions built around a random configuration at theta = 0, so that it assembles."""
     a, b, e, f, h, d = 1.0, *rng.uniform(2, 5, 4), rng.uniform(3, 6)
     alpha, delta = rng.uniform(0.3, 1.5, 2)
     beta, phi = rng.uniform(-0.5, 1.0), rng.uniform(1.0, 2.5)
@@ -218,9 +218,9 @@ def stephenson3_around(rng):
     return p, dict(beta=beta, mu=np.angle(F - C), phi=phi, eta=np.angle(H - E))
 
 
-def test_stephenson3_newton_sensitivities_against_50_digits():
+def test_stephenson2_newton_sensitivities_against_50_digits():
     """No closed form: dq/dp solves J dq/dp = -dF/dp with the converged Jacobian, over a continued sweep."""
-    linkage = CATALOG["stephenson3"]()
+    linkage = CATALOG["stephenson2"]()
     outputs = position_outputs(linkage)
     jacobian = DesignJacobian(linkage, outputs)
     rng = np.random.default_rng(RNG_SEED)
@@ -229,7 +229,7 @@ def test_stephenson3_newton_sensitivities_against_50_digits():
     while checked < 2:
         tries += 1
         assert tries < 50
-        p, guess = stephenson3_around(rng)
+        p, guess = stephenson2_around(rng)
         if min(p["c"], p["g"]) < 1.0:
             continue
         try:
@@ -238,17 +238,17 @@ def test_stephenson3_newton_sensitivities_against_50_digits():
             continue
         with mp.workdps(DPS):
             mp_p = {k: mp.mpf(v) for k, v in p.items()}
-            roots = [mp_root(ref.stephenson3_closure, [mp.mpf(t)], mp_p,
+            roots = [mp_root(ref.stephenson2_closure, [mp.mpf(t)], mp_p,
                              [mp.mpf(float(values[u.name][i])) for u in linkage.unknowns]) for i, t in enumerate(theta)]
-        if min(unit_column_determinant(ref.stephenson3_closure, [mp.mpf(t)], mp_p, q)
+        if min(unit_column_determinant(ref.stephenson2_closure, [mp.mpf(t)], mp_p, q)
                for t, q in zip(theta, roots)) < TOGGLE_GUARD:
             continue
         for i, t in enumerate(theta):
-            expected = mp_sensitivities(linkage, ref.stephenson3_closure, outputs, [t], mp_p, roots[i])
+            expected = mp_sensitivities(linkage, ref.stephenson2_closure, outputs, [t], mp_p, roots[i])
             got = {sensitivity_name(o, s.name): slopes[i, k, j]
                    for k, o in enumerate(outputs) for j, s in enumerate(linkage.parameters)}
             error, where = worst_error(got, expected, linkage, outputs)
-            assert error <= TOLERANCE, f"stephenson3 at theta = {t}, {p}: {where}"
+            assert error <= TOLERANCE, f"stephenson2 at theta = {t}, {p}: {where}"
         checked += 1
 
 

@@ -1,8 +1,8 @@
-"""Path synthesis of a linkage without a closed form: the Stephenson III six-bar, solved by Newton's method.
+"""Path synthesis of a linkage without a closed form: the Stephenson II six-bar, solved by Newton's method.
 
 Targets are the true design's coupler point E from a 30-digit mpmath reference written here (the
-closure of the catalog's Stephenson III, continued along the crank by ``mpmath.findroot`` in small
-steps from a hand-found assembly: ``tests/mp_closures.py``'s ``stephenson3_continued``, which
+closure of the catalog's Stephenson II, continued along the crank by ``mpmath.findroot`` in small
+steps from a hand-found assembly: ``tests/mp_closures.py``'s ``stephenson2_continued``, which
 ``tests/codegen/test_newton_c.py`` uses too); the found design is
 checked with the same reference: continued from the assembly synthesis reports, through its inputs,
 placed, it must pass through the targets to 1e-8 of their size.  Nothing of symlink's derivation
@@ -13,10 +13,10 @@ import math
 import mpmath as mp
 import numpy as np
 import pytest
-from mp_closures import STEPHENSON3_UNKNOWNS as UNKNOWNS
-from mp_closures import stephenson3_continued
+from mp_closures import STEPHENSON2_UNKNOWNS as UNKNOWNS
+from mp_closures import stephenson2_continued
 
-from symlink.mechanism.catalog import stephenson3
+from symlink.mechanism.catalog import stephenson2
 from symlink.synthesis.general import synthesize_path
 
 TRUTH = dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.9, delta=0.3)
@@ -28,7 +28,7 @@ def coupler_points(design, thetas, guess, placement=None, substeps=8):
     """E = a e^{i theta} + e e^{i (beta + alpha)} at each theta (30 digits), continued in small steps from the
     assembly nearest ``guess`` at thetas[0]; placed by (x0, y0) + scale R(angle) E.  Rows (x, y) as floats."""
     where = {"x0": 0.0, "y0": 0.0, "angle": 0.0, "scale": 1.0, **(placement or {})}
-    positions = stephenson3_continued(design, thetas, guess, substeps=substeps)
+    positions = stephenson2_continued(design, thetas, guess, substeps=substeps)
     with mp.workdps(30):
         p = {k: mp.mpf(v) for k, v in design.items()}
         rows = []
@@ -53,12 +53,12 @@ def _check_recovered(found, targets, free):
 
 
 @pytest.mark.slow
-def test_timed_recovery_of_the_stephenson3_coupler_curve():
+def test_timed_recovery_of_the_stephenson2_coupler_curve():
     inputs = np.linspace(0.3, 1.5, 7)
     targets = coupler_points(TRUTH, inputs, ASSEMBLY)
     free = {"b": (2.5, 3.7), "e": (3.3, 4.5), "g": (3.5, 4.7)}
     values = {k: v for k, v in TRUTH.items() if k not in free}
-    found = synthesize_path(stephenson3(), "E", targets, free, values=values, frame=(), timed=inputs, starts=8,
+    found = synthesize_path(stephenson2(), "E", targets, free, values=values, frame=(), timed=inputs, starts=8,
                             seed=1)
     _check_recovered(found, targets, free)
 
@@ -70,18 +70,18 @@ def test_timed_recovery_with_a_free_placement():
     targets = coupler_points(TRUTH, inputs, ASSEMBLY, placement)
     free = {"b": (2.6, 3.6), "g": (3.6, 4.6), "alpha": (0.6, 1.2)}
     values = {k: v for k, v in TRUTH.items() if k not in free}
-    found = synthesize_path(stephenson3(), "E", targets, free, values=values, frame=("x0", "y0", "angle"),
+    found = synthesize_path(stephenson2(), "E", targets, free, values=values, frame=("x0", "y0", "angle"),
                             timed=inputs, starts=12, seed=2)
     _check_recovered(found, targets, free)
 
 
 @pytest.mark.slow
-def test_untimed_recovery_of_the_stephenson3_coupler_curve():
+def test_untimed_recovery_of_the_stephenson2_coupler_curve():
     inputs = np.linspace(0.3, 1.5, 7)
     targets = coupler_points(TRUTH, inputs, ASSEMBLY)
     free = {"b": (2.5, 3.7), "e": (3.3, 4.5), "g": (3.5, 4.7)}
     values = {k: v for k, v in TRUTH.items() if k not in free}
-    found = synthesize_path(stephenson3(), "E", targets, free, values=values, frame=(), starts=8, seed=1)
+    found = synthesize_path(stephenson2(), "E", targets, free, values=values, frame=(), starts=8, seed=1)
     _check_recovered(found, targets, free)
     steps = np.diff(found.inputs)
     assert np.all(steps > 0) or np.all(steps < 0)  # the targets in order, the input moving one way
@@ -91,7 +91,7 @@ def test_the_users_design_and_assembly_start_the_search():
     """Given the true design and its assembly, the first start is already on the targets."""
     inputs = np.linspace(0.3, 1.5, 5)
     targets = coupler_points(TRUTH, inputs, ASSEMBLY)
-    found = synthesize_path(stephenson3(), "E", targets, {"b": (2.5, 3.7)}, values=TRUTH, frame=(),
+    found = synthesize_path(stephenson2(), "E", targets, {"b": (2.5, 3.7)}, values=TRUTH, frame=(),
                             timed=inputs, starts=1, guess=ASSEMBLY)
     _check_recovered(found, targets, {"b": (2.5, 3.7)})
     assert found.design["b"] == pytest.approx(3.1, abs=1e-9)
@@ -100,7 +100,7 @@ def test_the_users_design_and_assembly_start_the_search():
 
 def coupler_beta(theta):
     """beta of the ASSEMBLY continued to ``theta`` by the reference (for the reported assembly)."""
-    return stephenson3_continued(TRUTH, [0.0, theta], ASSEMBLY)[-1][0]
+    return stephenson2_continued(TRUTH, [0.0, theta], ASSEMBLY)[-1][0]
 
 
 @pytest.mark.parametrize("keywords, message", [
@@ -111,7 +111,7 @@ def coupler_beta(theta):
 def test_bad_input_names_the_problem(keywords, message):
     targets = [[0.0, 4.0], [0.3, 4.4], [0.4, 4.6]]
     with pytest.raises(ValueError, match=message):
-        synthesize_path(stephenson3(), "E", targets, {"b": (2.5, 3.7)}, values=TRUTH, frame=(),
+        synthesize_path(stephenson2(), "E", targets, {"b": (2.5, 3.7)}, values=TRUTH, frame=(),
                         timed=[0.0, 0.3, 0.6], **keywords)
 
 
@@ -126,13 +126,13 @@ def test_full_rotation_holds_newton_linkages_to_a_circuit_whose_crank_turns():
     inputs = np.linspace(0.0, 0.8, 5)
     targets = coupler_points(TRUTH, inputs, FOLDING)
     keywords = dict(values=TRUTH, frame=(), timed=inputs, starts=1, evaluations=200)
-    folding = synthesize_path(stephenson3(), "E", targets, {"b": (3.0, 3.2)}, guess=FOLDING, **keywords)
+    folding = synthesize_path(stephenson2(), "E", targets, {"b": (3.0, 3.2)}, guess=FOLDING, **keywords)
     _check_recovered(folding, targets, {"b": (3.0, 3.2)})
     with pytest.raises(ValueError, match="no start could be refined"):
-        synthesize_path(stephenson3(), "E", targets, {"b": (3.0, 3.2)}, guess=FOLDING, full_rotation=True,
+        synthesize_path(stephenson2(), "E", targets, {"b": (3.0, 3.2)}, guess=FOLDING, full_rotation=True,
                         **keywords)
     targets = coupler_points(TRUTH, inputs, ASSEMBLY)
-    turning = synthesize_path(stephenson3(), "E", targets, {"b": (3.0, 3.2)}, guess=ASSEMBLY, full_rotation=True,
+    turning = synthesize_path(stephenson2(), "E", targets, {"b": (3.0, 3.2)}, guess=ASSEMBLY, full_rotation=True,
                               **keywords)
     _check_recovered(turning, targets, {"b": (3.0, 3.2)})
     assert "the input turns fully" in turning.constraints
@@ -140,17 +140,17 @@ def test_full_rotation_holds_newton_linkages_to_a_circuit_whose_crank_turns():
 
 def rocker_angles(design, thetas, guess, substeps=8):
     """phi (the rocker DF's angle) at each theta from the same 30-digit continuation as :func:`coupler_points`."""
-    return np.array([float(q[2]) for q in stephenson3_continued(design, thetas, guess, substeps=substeps)])
+    return np.array([float(q[2]) for q in stephenson2_continued(design, thetas, guess, substeps=substeps)])
 
 
 @pytest.mark.slow
-def test_function_generation_of_the_stephenson3_rocker():
+def test_function_generation_of_the_stephenson2_rocker():
     """The rocker angle of another design at six inputs, found again from the catalog's dimensions."""
     from symlink.synthesis.general_function import synthesize_function
     truth = {**TRUTH, "b": 3.3, "g": 4.0}
     inputs = np.linspace(0.0, 1.2, 6)
     wanted = rocker_angles(truth, inputs, ASSEMBLY)
-    found = synthesize_function(stephenson3(), "phi", inputs, wanted, {"b": (2.5, 3.7), "g": (3.5, 4.7)},
+    found = synthesize_function(stephenson2(), "phi", inputs, wanted, {"b": (2.5, 3.7), "g": (3.5, 4.7)},
                                 values=TRUTH)
     assert found.assembled, found.why
     assert found.branches == {} and set(found.assembly) == set(UNKNOWNS)
@@ -162,7 +162,7 @@ def test_function_generation_of_the_stephenson3_rocker():
 def coupler_poses(design, thetas, guess, placement):
     """The coupler's pose (B placed, beta + the placement's angle) at each theta, by the 30-digit continuation."""
     where = {"x0": 0.0, "y0": 0.0, "angle": 0.0, **placement}
-    positions = stephenson3_continued(design, thetas, guess)
+    positions = stephenson2_continued(design, thetas, guess)
     with mp.workdps(30):
         p = {k: mp.mpf(v) for k, v in design.items()}
         rows = []
@@ -173,13 +173,13 @@ def coupler_poses(design, thetas, guess, placement):
 
 
 @pytest.mark.slow
-def test_timed_motion_generation_of_the_stephenson3_coupler():
+def test_timed_motion_generation_of_the_stephenson2_coupler():
     from symlink.synthesis.general_motion import synthesize_motion
     truth = {**TRUTH, "b": 3.3, "g": 4.0}
     inputs = np.linspace(0.0, 1.2, 5)
     placement = {"x0": 0.5, "y0": 0.2, "angle": 0.3}
     poses = coupler_poses(truth, inputs, ASSEMBLY, placement)
-    found = synthesize_motion(stephenson3(), "B", "beta", poses, {"b": (2.5, 3.7), "g": (3.5, 4.7)}, values=TRUTH,
+    found = synthesize_motion(stephenson2(), "B", "beta", poses, {"b": (2.5, 3.7), "g": (3.5, 4.7)}, values=TRUTH,
                               timed=inputs)
     assert found.assembled and found.error < 1e-10, found.why
     assert found.branches == {} and set(found.assembly) == set(UNKNOWNS)
@@ -192,13 +192,13 @@ def test_timed_motion_generation_of_the_stephenson3_coupler():
 def test_untimed_motion_of_a_newton_linkage_is_refused():
     from symlink.synthesis.general_motion import synthesize_motion
     with pytest.raises(ValueError, match="needs the input at each pose"):
-        synthesize_motion(stephenson3(), "B", "beta", [[1.0, 0.0, 1.0], [0.9, 0.4, 0.9]], {"b": (2.5, 3.7)},
+        synthesize_motion(stephenson2(), "B", "beta", [[1.0, 0.0, 1.0], [0.9, 0.4, 0.9]], {"b": (2.5, 3.7)},
                           values=TRUTH)
 
 
 @pytest.mark.slow
 def test_a_from_joints_linkage_that_needs_newton_recovers_its_lengths():
-    """The Stephenson III drawn by its joints and driven at D (no loop has two unknowns: Newton); two link lengths
+    """The Stephenson II drawn by its joints and driven at D (no loop has two unknowns: Newton); two link lengths
     changed by 7 % are found again from the drawing's, through the coupler point E's path.  The targets come from
     the numeric solver (the mpmath tests above check that); what this checks is that a ``from_joints`` linkage
     without a closed form goes through: the known lengths are recovered."""
@@ -229,7 +229,7 @@ RECOVERY_FREE = {"b": (2.5, 3.7), "e": (3.3, 4.5), "g": (3.5, 4.7), "alpha": (0.
 
 
 def untimed_problem(seed):
-    """A random Stephenson III (b, e, g, alpha within the free bounds), 5-10 targets over 1-3 rad of the crank,
+    """A random Stephenson II (b, e, g, alpha within the free bounds), 5-10 targets over 1-3 rad of the crank,
     placed at random: (design, inputs, placement, targets), the targets from the 30-digit reference.  Designs
     whose assembly (ASSEMBLY's, continued from theta = 0) cannot be continued there are drawn again."""
     rng = np.random.default_rng(2000 + seed)
@@ -240,7 +240,7 @@ def untimed_problem(seed):
         inputs = np.concatenate([[start], start + np.sort(rng.uniform(0.0, span, count - 2)), [start + span]])
         placement = {"x0": rng.uniform(-2, 2), "y0": rng.uniform(-2, 2), "angle": rng.uniform(-math.pi, math.pi)}
         try:
-            there = stephenson3_continued(truth, [0.0, start], ASSEMBLY, substeps=32)[-1]
+            there = stephenson2_continued(truth, [0.0, start], ASSEMBLY, substeps=32)[-1]
             targets = coupler_points(truth, inputs, dict(zip(UNKNOWNS, map(float, there))), placement)
         except (ValueError, ZeroDivisionError):  # findroot found no position: not assembled along the way
             continue
@@ -254,7 +254,7 @@ def test_untimed_recovery_of_generated_problems_reaches_the_bar():
     for seed in range(RECOVERY_PROBLEMS):
         truth, inputs, placement, targets = untimed_problem(seed)
         values = {k: v for k, v in truth.items() if k not in RECOVERY_FREE}
-        found = synthesize_path(stephenson3(), "E", targets, RECOVERY_FREE, values=values,
+        found = synthesize_path(stephenson2(), "E", targets, RECOVERY_FREE, values=values,
                                 frame=("x0", "y0", "angle"), seed=seed)
         ok = found.assembled and set(found.assembly) == set(UNKNOWNS)
         if ok:
@@ -272,10 +272,10 @@ def test_designs_traced_at_once_follow_the_30_digit_reference():
     designs = [TRUTH, {**TRUTH, "b": 3.3, "g": 4.0}, TRUTH]
     starts = np.array([[ASSEMBLY[n] for n in UNKNOWNS]] * 2 + [[FOLDING[n] for n in UNKNOWNS]])
     values = {name: np.array([design[name] for design in designs]) for name in TRUTH}
-    unknowns, assembled = newton_traced_batch(stephenson3(), values, thetas, np.random.default_rng(0), starts=starts)
+    unknowns, assembled = newton_traced_batch(stephenson2(), values, thetas, np.random.default_rng(0), starts=starts)
     assert assembled[:2].all()
     for k in range(2):
-        reference = stephenson3_continued(designs[k], thetas[::5], ASSEMBLY)
+        reference = stephenson2_continued(designs[k], thetas[::5], ASSEMBLY)
         got = unknowns[k, ::5]
         assert np.max(np.abs(got - np.array([[float(v) for v in q] for q in reference]))) < 1e-10
     fold = np.radians(54.65)  # the fold of this circuit (tests/test_solver.py)

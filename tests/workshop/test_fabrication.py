@@ -266,7 +266,7 @@ LINKS = {
     "inverted-slider-crank": {"ground": "AD", "crank": "AB", "rocker": "D", "slider": "B"},
     "fivebar": {"ground": "AE", "crank": "AB", "coupler": "BC", "crank2": "DE", "coupler2": "CD"},
     "watt2": {"ground": "ADG", "crank": "AB", "coupler": "BC", "rocker": "CDE", "coupler2": "EF", "output": "FG"},
-    "stephenson3": {"ground": "AD", "crank": "AB", "coupler": "BCE", "rocker": "DFH", "mu": "CF", "eta": "EH"},
+    "stephenson2": {"ground": "AD", "crank": "AB", "coupler": "BCE", "rocker": "DFH", "mu": "CF", "eta": "EH"},
     "jansen": {"ground": "AD", "crank": "AB", "upper_rocker": "CDE", "lower_rocker": "DF", "leg": "FG",
                "upper_link": "BC", "lower_link": "BF", "tie": "EG"},
 }
@@ -279,11 +279,11 @@ def _law_of_cosines(p, q, angle):
 
 #: Hole-to-hole lengths by hand: the example values, Jansen's published numbers (a = 38, l = 7.8, m = 15,
 #: b = 41.5, c = 39.3, d = 40.1, e = 55.8, f = 39.4, g = 36.7, j = 50, k = 61.9), a ternary link's third side
-#: by the law of cosines (Stephenson III: coupler BCE with angle alpha at B, rocker DFH with angle delta at D).
+#: by the law of cosines (Stephenson II: coupler BCE with angle alpha at B, rocker DFH with angle delta at D).
 HAND_LENGTHS = {
     "fivebar": {("ground", "AE"): 3.0, ("crank", "AB"): 2.0, ("coupler", "BC"): 4.0, ("crank2", "DE"): 2.0,
                 ("coupler2", "CD"): 4.0},
-    "stephenson3": {("ground", "AD"): 4.5, ("crank", "AB"): 1.0, ("coupler", "BC"): 3.1, ("coupler", "BE"): 3.9,
+    "stephenson2": {("ground", "AD"): 4.5, ("crank", "AB"): 1.0, ("coupler", "BC"): 3.1, ("coupler", "BE"): 3.9,
                     ("coupler", "CE"): _law_of_cosines(3.1, 3.9, 0.9), ("rocker", "DF"): 3.1,
                     ("rocker", "DH"): 3.1, ("rocker", "FH"): _law_of_cosines(3.1, 3.1, 0.3), ("mu", "CF"): 2.2,
                     ("eta", "EH"): 4.1},
@@ -444,8 +444,8 @@ def test_a_design_read_back_from_json_puts_every_point_where_the_original_does_a
     design = read_design(design_json(linkage, values, "cm"))
     assert design.unit == "cm" and design.linkage.name == linkage.name
     first = linkage.inputs[0].name
-    # Stephenson III's example crank meets a dead centre at +-54.6 degrees: 20 angles inside; else a full turn.
-    span = (-0.9, 0.9) if name == "stephenson3" else (0.0, 2 * math.pi * 19 / 20)
+    # Stephenson II's example crank meets a dead centre at +-54.6 degrees: 20 angles inside; else a full turn.
+    span = (-0.9, 0.9) if name == "stephenson2" else (0.0, 2 * math.pi * 19 / 20)
     turn = {first: numpy.linspace(*span, 20)}
     ours = Geometry(design.linkage).poses(design.values, turn)
     theirs = Geometry(linkage).poses(values, turn)

@@ -158,3 +158,15 @@ def test_the_generated_program_grows_linearly_with_the_number_of_dyads(kind):
     for n in (8, 16):
         assignments, source = (big / small for big, small in zip(sizes[2 * n], sizes[n]))
         assert assignments < 2.3 and source < 2.3, (n, sizes)
+
+
+def test_loops_of_hundreds_of_links_are_found_without_a_recursion_limit():
+    """A depth-first search by recursion stopped at Python's limit (1000 frames) on a loop of 600 links, and a
+    file of 2000 dyads was refused as "nested too deeply"; a chain of 600 dyads keeps its shortest loops."""
+    from symlink.mechanism.topology import Chain
+    ring = {"ground": ["J0", "J599"], **{f"l{k}": [f"J{k - 1}", f"J{k}"] for k in range(1, 600)}}
+    loops = Chain(ring).cycles()
+    assert len(loops) == 1 and len(loops[0].traversals) == 600
+    links, _ = truss_chain(600)
+    triangles = Chain(links).cycles(longest=3)
+    assert [set(c.joints) for c in triangles] == [{f"P{j - 2}", f"P{j - 1}", f"P{j}"} for j in range(2, 601)]

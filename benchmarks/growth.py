@@ -232,8 +232,8 @@ def plot(results: dict, path: str) -> None:
                                label=f"peak memory ~ n^{fitted_exponent(rows, 'memory'):.2f}")
         axes[1, column].loglog(ns, [row["source_kb"] for row in rows], "s--",
                                label=f"generated source ~ n^{fitted_exponent(rows, 'source_kb'):.2f}")
-        axes[0, column].set_title(f"chain of n dyads by {kind}: CPU seconds")
-        axes[1, column].set_title(f"chain of n dyads by {kind}: MB (memory) and kB (source)")
+        axes[0, column].set_title(f"dyads by {kind}: CPU seconds")
+        axes[1, column].set_title(f"dyads by {kind}: peak MB, source kB")
         axes[1, column].set_xlabel("dyads n")
     shapes = results["shape"]
     axes[0, 2].loglog([r["n"] for r in shapes], [r["search"] for r in shapes], "o-",

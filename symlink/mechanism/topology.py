@@ -327,6 +327,55 @@ class Chain:
                                                         [link_order[name] for name in c.links]))
         return tuple(ordered)
 
+    def looped_links(self) -> frozenset[str]:
+        """The links that lie on some loop, found in a time linear in the chain's size (no loop is listed).
+
+        A link lies on a loop where one of its joints' links-to-joint edges is no bridge of the link-joint
+        graph (bridges by Tarjan's depth-first search, with a stack of its own).
+
+        Returns
+        -------
+        frozenset of str
+            The links on a loop; the others hang on the chain by a single path (they swing freely).
+
+        Examples
+        --------
+        >>> sorted(Chain({"ground": ("A", "D", "E"), "crank": ("A", "B"), "coupler": ("B", "C"),
+        ...               "rocker": ("D", "C"), "arm": ("E", "F")}).looped_links())
+        ['coupler', 'crank', 'ground', 'rocker']
+        """
+        neighbours: dict[tuple[str, str], list[tuple[str, str]]] = {}
+        for name, joints in self.links.items():
+            for joint in joints:
+                neighbours.setdefault(("L", name), []).append(("J", joint))
+                neighbours.setdefault(("J", joint), []).append(("L", name))
+        found: dict[tuple[str, str], int] = {}
+        low: dict[tuple[str, str], int] = {}
+        bridges: set[frozenset] = set()
+        for root in neighbours:
+            if root in found:
+                continue
+            found[root] = low[root] = len(found)
+            stack = [(root, None, iter(neighbours[root]))]
+            while stack:
+                node, parent, rest = stack[-1]
+                nxt = next(rest, None)
+                if nxt is None:
+                    stack.pop()
+                    if parent is not None:
+                        low[parent] = min(low[parent], low[node])
+                        if low[node] > found[parent]:
+                            bridges.add(frozenset((parent, node)))
+                elif nxt == parent:
+                    continue
+                elif nxt in found:
+                    low[node] = min(low[node], found[nxt])
+                else:
+                    found[nxt] = low[nxt] = len(found)
+                    stack.append((nxt, node, iter(neighbours[nxt])))
+        return frozenset(name for name, joints in self.links.items()
+                         if any(frozenset((("L", name), ("J", joint))) not in bridges for joint in joints))
+
     @staticmethod
     def _record(path: list[tuple[str, str]], found: dict, joint_order: Mapping[str, int]) -> None:
         """Store the closed walk ``path`` (joint, link, joint, link, ...) once: from its first joint by name,

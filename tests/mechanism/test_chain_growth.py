@@ -170,3 +170,18 @@ def test_loops_of_hundreds_of_links_are_found_without_a_recursion_limit():
     links, _ = truss_chain(600)
     triangles = Chain(links).cycles(longest=3)
     assert [set(c.joints) for c in triangles] == [{f"P{j - 2}", f"P{j - 1}", f"P{j}"} for j in range(2, 601)]
+
+
+@pytest.mark.parametrize("links", [
+    {"ground": ["A", "D", "E"], "crank": ["A", "B"], "coupler": ["B", "C"], "rocker": ["D", "C"], "arm": ["E", "F"]},
+    {"ground": ["A", "D", "G"], "crank": ["A", "B"], "coupler": ["B", "C"], "rocker": ["D", "C", "E"],
+     "link5": ["E", "F"], "link6": ["F", "G"], "tail": ["F", "H"], "tip": ["H", "K"]},
+    {"ground": ["A", "D"], "crank": ["A", "B"], "coupler": ["B", "C", "E"], "rocker": ["D", "C"],
+     "a": ["E", "F"], "b": ["F", "G"], "c": ["G", "E2"], "d": ["E2", "F"]},
+    {"ground": ["A", "B"], "one": ["A", "C"], "two": ["C", "D"]},
+])
+def test_the_links_on_a_loop_are_the_links_that_some_simple_loop_walks(links):
+    """Linear (bridges) against the enumeration of every simple loop, which is fine for small chains."""
+    from symlink.mechanism.topology import Chain
+    chain = Chain(links)
+    assert chain.looped_links() == {t.link for cycle in chain.cycles() for t in cycle.traversals}

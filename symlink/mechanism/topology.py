@@ -31,7 +31,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from itertools import combinations
-from typing import Iterable, Mapping, Sequence
+from typing import Iterable, Iterator, Mapping, Sequence
 
 from .mobility import Mobility
 from ..common.display import record_html
@@ -356,7 +356,8 @@ class Chain:
             if root in found:
                 continue
             found[root] = low[root] = len(found)
-            stack = [(root, None, iter(neighbours[root]))]
+            stack: list[tuple[tuple[str, str], tuple[str, str] | None, Iterator[tuple[str, str]]]] = [
+                (root, None, iter(neighbours[root]))]
             while stack:
                 node, parent, rest = stack[-1]
                 nxt = next(rest, None)

@@ -59,6 +59,7 @@ slider, so j2 counts only the gear pairs and cams given as ``higher_pairs``.
 from __future__ import annotations
 
 import itertools
+from fractions import Fraction
 from dataclasses import dataclass
 from typing import Mapping, Sequence
 
@@ -493,25 +494,27 @@ def _positions(linkage: Linkage, vectors: Sequence[Vector], nodes: _Nodes) -> di
     order, and the joints read off them would be wrong: ``ValueError``.
     """
     positions: dict[object, VectorSum] = {nodes.find(_ORIGIN): VectorSum(())}
+    leaving: dict[object, list[tuple[int, Vector, object]]] = {}  # each node's vectors, in the vectors' order
+    for vector in vectors:
+        for sign in (1, -1):
+            start = nodes.find(_start(sign, vector))
+            leaving.setdefault(start, []).append((sign, vector, nodes.find(_end(sign, vector))))
+    loops = _LoopSpace(linkage)
     frontier = [nodes.find(_ORIGIN)]
     while frontier:
         following = []
         for node in frontier:
-            for vector in vectors:
-                for sign in (1, -1):
-                    start, end = nodes.find(_start(sign, vector)), nodes.find(_end(sign, vector))
-                    if start != node:
-                        continue
-                    reached = positions[node] + VectorSum(((sign, vector),))
-                    if end not in positions:
-                        positions[end] = reached
-                        following.append(end)
-                        continue
-                    if not _coincide(linkage, vectors, reached, positions[end]):
-                        raise ValueError(
-                            f"{linkage.name}: {_described(reached)} and {_described(positions[end])} end at one "
-                            "joint but are not the same point; write each loop's and each point's vectors in "
-                            "walking order (every vector starting where the one before it ends)")
+            for sign, vector, end in leaving.get(node, ()):
+                reached = positions[node] + VectorSum(((sign, vector),))
+                if end not in positions:
+                    positions[end] = reached
+                    following.append(end)
+                    continue
+                if not loops.holds(reached, positions[end]):
+                    raise ValueError(
+                        f"{linkage.name}: {_described(reached)} and {_described(positions[end])} end at one "
+                        "joint but are not the same point; write each loop's and each point's vectors in "
+                        "walking order (every vector starting where the one before it ends)")
         frontier = following
     return positions
 
@@ -540,16 +543,49 @@ def same_point(linkage: Linkage, first: VectorSum, second: VectorSum) -> bool:
 
 def _coincide(linkage: Linkage, vectors: Sequence[Vector], first: VectorSum, second: VectorSum) -> bool:
     """Whether two walks from the origin end at one point for every pose: they differ by whole loops."""
-    index = {vector: k for k, vector in enumerate(vectors)}
+    return _LoopSpace(linkage).holds(first, second)
 
-    def formal(terms) -> list[int]:
-        row = [0] * len(vectors)
+
+class _LoopSpace:
+    """The sums of whole loops (integer combinations of the loops' vectors, as rows over the vectors), reduced once
+    to rows in echelon form with exact fractions, so that each question "do these two walks differ by whole loops"
+    costs a reduction of one sparse row, not the rank of a matrix as large as the linkage."""
+
+    def __init__(self, linkage: Linkage) -> None:
+        self.basis: dict[int, dict[int, Fraction]] = {}  # pivot column -> row (pivot entry 1)
+        self.column: dict[Vector, int] = {}
+        for loop in linkage.loops:
+            self._add(self._row(loop.terms))
+
+    def _row(self, terms) -> dict[int, Fraction]:
+        row: dict[int, Fraction] = {}
         for sign, vector in terms:
-            row[index[vector]] += sign
+            k = self.column.setdefault(vector, len(self.column))
+            row[k] = row.get(k, Fraction(0)) + sign
+        return {k: v for k, v in row.items() if v}
+
+    def _reduced(self, row: dict[int, Fraction]) -> dict[int, Fraction]:
+        row = dict(row)
+        while row:
+            pivot = min(row)
+            if pivot not in self.basis:
+                return row
+            factor = row[pivot]
+            for k, v in self.basis[pivot].items():
+                value = row.get(k, Fraction(0)) - factor * v
+                if value:
+                    row[k] = value
+                else:
+                    row.pop(k, None)
         return row
 
-    difference = [x - y for x, y in zip(formal(first.terms), formal(second.terms))]
-    if not any(difference):
-        return True
-    closures = [formal(loop.terms) for loop in linkage.loops]
-    return sp.Matrix(closures + [difference]).rank() == sp.Matrix(closures).rank()
+    def _add(self, row: dict[int, Fraction]) -> None:
+        row = self._reduced(row)
+        if row:
+            pivot = min(row)
+            self.basis[pivot] = {k: v / row[pivot] for k, v in row.items()}
+
+    def holds(self, first: VectorSum, second: VectorSum) -> bool:
+        """Whether ``first`` and ``second`` differ by whole loops (or not at all)."""
+        difference = self._row(tuple(first.terms) + tuple((-sign, vector) for sign, vector in second.terms))
+        return not self._reduced(difference)

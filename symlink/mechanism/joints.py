@@ -609,15 +609,25 @@ def _check_structure(chain: Chain, drivers: Sequence[tuple[str, str | None]]) ->
 
 def _plan(builder: _Builder, cycles: Sequence[Cycle], unknowns: Sequence[sp.Symbol],
           swapped: Collection[str] = frozenset()) -> list[tuple[Cycle, Loop, list]]:
-    """Loops that each solve two new unknowns (dyads), in order, with the unknowns each solves."""
-    left = list(unknowns)
+    """Loops that each solve two new unknowns (dyads), in order, with the unknowns each solves.
+
+    Each step takes the first loop of ``cycles`` that has exactly two unknowns left and a closed form for them.
+    A loop with fewer than two unknowns left, or with two but no closed form, never becomes one that fits (the
+    unknowns left only shrink): it is dropped, so that planning n dyads scans each loop about once.
+    """
+    left = dict.fromkeys(unknowns)
     chosen: list[tuple[Cycle, Loop, list]] = []
+    candidates = [(cycle, [q for t in cycle.traversals for q in builder.coordinates_in(t)]) for cycle in cycles]
     progress = True
     while left and progress:
         progress = False
-        for cycle in cycles:
-            found = [q for t in cycle.traversals for q in builder.coordinates_in(t) if q in left]
-            if len(found) != 2 or any(cycle is c for c, _, _ in chosen):
+        alive = []
+        for at, (cycle, coordinates) in enumerate(candidates):
+            found = [q for q in coordinates if q in left]
+            if len(found) < 2:
+                continue
+            if len(found) > 2:
+                alive.append((cycle, coordinates))
                 continue
             loop = builder.loop(cycle)
             try:
@@ -625,7 +635,9 @@ def _plan(builder: _Builder, cycles: Sequence[Cycle], unknowns: Sequence[sp.Symb
             except ValueError:
                 continue
             chosen.append((cycle, loop, found[::-1] if cycle.name in swapped else found))
-            left = [q for q in left if q not in found]
+            for q in found:
+                left.pop(q, None)
+            candidates = alive + candidates[at + 1:]
             progress = True
             break
     return chosen
@@ -640,6 +652,27 @@ def _complete(builder: _Builder, chosen: Sequence[Cycle], cycles: Sequence[Cycle
         if all(cycle is not c for c in loops) and independent(loops + [cycle]):
             loops.append(cycle)
     return loops[len(chosen):]
+
+
+def _planned(builder: _Builder, chain: Chain, unknowns: Sequence[sp.Symbol],
+             swapped: Collection[str]) -> tuple[list[tuple[Cycle, Loop, list]], list[Cycle]]:
+    """The dyad plan (:func:`_plan`) and, for unknowns it leaves, the loops that close them (:func:`_complete`).
+
+    The dyads are looked for among the chain's shortest loops first: the loops of up to 4 joints, then 8, ...
+    (the first loops of the full list, in its order), until the plan solves every unknown, so the plan is the one
+    the full list gives; a chain of dyads is planned in a time that grows with its size, not with the number of
+    its loops.  A plan that leaves unknowns (a numeric fallback) searches every loop, as before."""
+    longest, everything = 4, len(chain.joints)
+    while True:
+        cycles = chain.cycles(longest=min(longest, everything))
+        steps = _plan(builder, cycles, unknowns, swapped)
+        planned = {q for _, _, found in steps for q in found}
+        if len(planned) < len(unknowns) and longest < everything:
+            longest *= 2  # a longer loop may solve the next dyad: the plan is the full list's only when it is done
+            continue
+        more = _complete(builder, [cycle for cycle, _, _ in steps], cycles, len(unknowns)) \
+            if len(planned) < len(unknowns) else []
+        return steps, more
 
 
 def _value(expr: sp.Expr, values: Mapping[sp.Symbol, float]) -> float:
@@ -682,8 +715,7 @@ def _derive(chain: Chain, points: Mapping[str, tuple[float, float]], sliders: Ma
     unknowns = [q for link in chain.links if link in builder.angle_of for q in [builder.angle_of[link]]
                 if isinstance(q, sp.Symbol) and q not in builder.driven]
     unknowns += [s for s in builder.travel.values() if s not in builder.driven]
-    cycles = chain.cycles()
-    steps = _plan(builder, cycles, unknowns, swapped)
+    steps, more = _planned(builder, chain, unknowns, swapped)
     loops = [loop for _, loop, _ in steps]
     order = [q for _, _, found in steps for q in found]
     link_of = {q: link for link, q in builder.angle_of.items() if isinstance(q, sp.Symbol)}
@@ -691,7 +723,6 @@ def _derive(chain: Chain, points: Mapping[str, tuple[float, float]], sliders: Ma
         (loop.name, tuple(link_of[q] for q in found if q in link_of)) for _, loop, found in steps]
     rest = [q for q in unknowns if q not in order]
     if rest:
-        more = _complete(builder, [cycle for cycle, _, _ in steps], cycles, len(unknowns))
         loops += [builder.loop(cycle) for cycle in more]
         structure.append(("+".join(c.name for c in more), tuple(link_of[q] for q in rest if q in link_of)))
         order += rest

@@ -31,7 +31,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from itertools import combinations
-from typing import Iterable, Mapping, Sequence
+from typing import Iterable, Iterator, Mapping, Sequence
 
 from .mobility import Mobility
 from ..common.display import record_html
@@ -151,13 +151,22 @@ class Chain:
     @property
     def joints(self) -> tuple[str, ...]:
         """Every joint, in the order the links first list them."""
-        seen: dict[str, None] = {}
-        for joints in self.links.values():
-            seen.update(dict.fromkeys(joints))
-        return tuple(seen)
+        return tuple(self._holders())
 
     def links_of(self, joint: str) -> tuple[str, ...]:
-        return tuple(name for name, joints in self.links.items() if joint in joints)
+        return self._holders().get(joint, ())
+
+    def _holders(self) -> dict[str, tuple[str, ...]]:
+        """Each joint (in the order the links first list them) and the links that hold it, made once."""
+        found = self.__dict__.get("_holders_made")
+        if found is None:
+            lists: dict[str, list[str]] = {}
+            for name, joints in self.links.items():
+                for joint in joints:
+                    lists.setdefault(joint, []).append(name)
+            found = {joint: tuple(names) for joint, names in lists.items()}
+            object.__setattr__(self, "_holders_made", found)
+        return found
 
     def block_guide(self, link: str) -> str | None:
         """The guide that ``link`` slides on without turning (through a translating joint), if any."""
@@ -260,11 +269,31 @@ class Chain:
         return reached == members
 
     # --- loops --------------------------------------------------------------
-    def cycles(self) -> tuple[Cycle, ...]:
+    def cycles(self, longest: int | None = None) -> tuple[Cycle, ...]:
         """Every simple loop of the chain, shortest first (ties in a fixed order), each once.
 
         A loop visits a link and a joint at most once; it is rotated to start at
         its first joint by name and walked towards the neighbour whose name comes first.
+        ``longest`` keeps the loops of at most that many joints: the same loops, in the same
+        order, as the first ones of the full list (a chain of n dyads has of the order of n^2
+        loops, and searching them all takes a time that grows faster than any power of n).
+
+        Parameters
+        ----------
+        longest : int, optional
+            The most joints a loop may have (default: no limit).
+
+        Returns
+        -------
+        tuple of Cycle
+            The loops, by number of joints, then by their joints' and links' order.
+
+        Examples
+        --------
+        >>> watt = Chain({"ground": ("A", "D", "G"), "crank": ("A", "B"), "coupler": ("B", "C"),
+        ...               "rocker": ("D", "C", "E"), "link5": ("E", "F"), "link6": ("F", "G")})
+        >>> [c.name for c in watt.cycles()], [c.name for c in watt.cycles(longest=4)]
+        (['ABCD', 'DEFG', 'ABCEFG'], ['ABCD', 'DEFG'])
         """
         joint_order = {j: k for k, j in enumerate(self.joints)}
         link_order = {name: k for k, name in enumerate(self.links)}
@@ -275,27 +304,78 @@ class Chain:
             for joint in joints:
                 neighbours[("L", name)].append(("J", joint))
                 neighbours[("J", joint)].append(("L", name))
+        deepest = len(nodes) if longest is None else 2 * longest  # a loop of k joints walks 2 k nodes
         found: dict[tuple, Cycle] = {}
         for start in nodes[:len(self.joints)]:
             lowest = index[start]
+            # A depth-first walk with a stack of its own (a chain of thousands of links is no recursion limit).
             path = [start]
             on_path = {start}
-
-            def walk(node: tuple[str, str]) -> None:
-                for nxt in neighbours[node]:
-                    if nxt == start and len(path) >= 4:
-                        self._record(path, found, joint_order)
-                    elif nxt not in on_path and index[nxt] > lowest:
-                        path.append(nxt)
-                        on_path.add(nxt)
-                        walk(nxt)
-                        path.pop()
-                        on_path.discard(nxt)
-
-            walk(start)
+            pending = [iter(neighbours[start])]
+            while pending:
+                nxt = next(pending[-1], None)
+                if nxt is None:
+                    pending.pop()
+                    on_path.discard(path.pop())
+                elif nxt == start and len(path) >= 4:
+                    self._record(path, found, joint_order)
+                elif nxt not in on_path and index[nxt] > lowest and len(path) < deepest:
+                    path.append(nxt)
+                    on_path.add(nxt)
+                    pending.append(iter(neighbours[nxt]))
         ordered = sorted(found.values(), key=lambda c: (len(c.traversals), [joint_order[j] for j in c.joints],
                                                         [link_order[name] for name in c.links]))
         return tuple(ordered)
+
+    def looped_links(self) -> frozenset[str]:
+        """The links that lie on some loop, found in a time linear in the chain's size (no loop is listed).
+
+        A link lies on a loop where one of its joints' links-to-joint edges is no bridge of the link-joint
+        graph (bridges by Tarjan's depth-first search, with a stack of its own).
+
+        Returns
+        -------
+        frozenset of str
+            The links on a loop; the others hang on the chain by a single path (they swing freely).
+
+        Examples
+        --------
+        >>> sorted(Chain({"ground": ("A", "D", "E"), "crank": ("A", "B"), "coupler": ("B", "C"),
+        ...               "rocker": ("D", "C"), "arm": ("E", "F")}).looped_links())
+        ['coupler', 'crank', 'ground', 'rocker']
+        """
+        neighbours: dict[tuple[str, str], list[tuple[str, str]]] = {}
+        for name, joints in self.links.items():
+            for joint in joints:
+                neighbours.setdefault(("L", name), []).append(("J", joint))
+                neighbours.setdefault(("J", joint), []).append(("L", name))
+        found: dict[tuple[str, str], int] = {}
+        low: dict[tuple[str, str], int] = {}
+        bridges: set[frozenset] = set()
+        for root in neighbours:
+            if root in found:
+                continue
+            found[root] = low[root] = len(found)
+            stack: list[tuple[tuple[str, str], tuple[str, str] | None, Iterator[tuple[str, str]]]] = [
+                (root, None, iter(neighbours[root]))]
+            while stack:
+                node, parent, rest = stack[-1]
+                nxt = next(rest, None)
+                if nxt is None:
+                    stack.pop()
+                    if parent is not None:
+                        low[parent] = min(low[parent], low[node])
+                        if low[node] > found[parent]:
+                            bridges.add(frozenset((parent, node)))
+                elif nxt == parent:
+                    continue
+                elif nxt in found:
+                    low[node] = min(low[node], found[nxt])
+                else:
+                    found[nxt] = low[nxt] = len(found)
+                    stack.append((nxt, node, iter(neighbours[nxt])))
+        return frozenset(name for name, joints in self.links.items()
+                         if any(frozenset((("L", name), ("J", joint))) not in bridges for joint in joints))
 
     @staticmethod
     def _record(path: list[tuple[str, str]], found: dict, joint_order: Mapping[str, int]) -> None:

@@ -248,7 +248,7 @@ def _loose(chain: Chain, mobility: Mapping[str, int], drivers: int) -> str:
     """Where an under-constrained drawing is free: the moving links on no loop (they swing on one joint)."""
     if mobility["dof"] <= drivers:
         return ""
-    looped = {t.link for cycle in chain.cycles() for t in cycle.traversals}
+    looped = chain.looped_links()
     loose = [link for link in chain.links if link != chain.ground and link not in looped]
     if not loose:
         return "; every link is on a loop: drive another joint, or add a link that closes a loop"

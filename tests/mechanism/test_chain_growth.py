@@ -1,0 +1,187 @@
+"""Chains of dyads described by their joints: derived in memory and a program that grow with the chain (issue #33).
+
+Two legitimate one-freedom chains, each hung on a driven crank A-P0:
+
+* ``ground``: dyad j is a rocker from the ground pivot G_j and a coupler from the joint before, P_(j-1), meeting
+  at P_j (the issue's "each dyad hung on the joint before");
+* ``truss``: a four-bar A-P0-P1-D, then dyad j hung on the two most recent moving joints P_(j-2) and P_(j-1): the
+  chain whose loops a search of every simple loop took a time exponential in n to find (34 s for 20 dyads).
+
+The reference pose is an independent Newton solve of the joint distances written here (NumPy only), continued
+from the drawing in small steps of the crank angle.
+"""
+from __future__ import annotations
+
+import json
+import math
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+
+def ground_chain(n: int) -> tuple[dict, dict]:
+    links = {"ground": ["A"] + [f"G{j}" for j in range(1, n + 1)], "crank": ["A", "P0"]}
+    coordinates = {"A": (0.0, 0.0), "P0": (0.3, 1.0)}
+    for j in range(1, n + 1):
+        links[f"r{j}"] = [f"G{j}", f"P{j}"]
+        links[f"c{j}"] = [f"P{j - 1}", f"P{j}"]
+        coordinates[f"G{j}"] = (2.0 * j + 0.5, -0.5)
+        coordinates[f"P{j}"] = (2.0 * j + 0.7, 1.3 + 0.3 * (j % 2))
+    return links, coordinates
+
+
+def truss_chain(n: int) -> tuple[dict, dict]:
+    links = {"ground": ["A", "D"], "crank": ["A", "P0"], "r1": ["D", "P1"], "c1": ["P0", "P1"]}
+    coordinates = {"A": (0.0, 0.0), "P0": (0.3, 1.0), "D": (2.5, 0.0), "P1": (2.2, 1.6)}
+    for j in range(2, n + 1):
+        links[f"r{j}"] = [f"P{j - 2}", f"P{j}"]
+        links[f"c{j}"] = [f"P{j - 1}", f"P{j}"]
+        coordinates[f"P{j}"] = (2.0 * j + 0.3 * (j % 3), 1.0 + 1.1 * (j % 2) + 0.1 * j)
+    return links, coordinates
+
+
+CHAINS = {"ground": ground_chain, "truss": truss_chain}
+
+# Run in a child process under a 1 GB address space (and a CPU-time guard, no timing assertion: the exponential
+# loop search of before would never finish): derive the chain by its joints, solve its points with the NumPy
+# solver at the drawing and at a turned crank, print them as JSON.
+CHILD = """
+import json, resource, sys
+resource.setrlimit(resource.RLIMIT_AS, (1 << 30, 1 << 30))
+resource.setrlimit(resource.RLIMIT_CPU, (300, 300))
+sys.path.insert(0, sys.argv[1])
+from test_chain_growth import CHAINS
+from symlink.mechanism.joints import from_joints
+from symlink.numeric.solver import Solver
+kind, n, turned = sys.argv[2], int(sys.argv[3]), float(sys.argv[4])
+links, coordinates = CHAINS[kind](n)
+drawn = from_joints(links, coordinates, driver="A", name=f"{kind}{n}")
+moving = [f"P{j}" for j in range(n + 1)]
+solver = Solver(drawn.linkage, [f"{p}_{axis}" for p in moving for axis in "xy"], backend="numpy")
+answers = {}
+for label, angle in (("drawn", drawn.defaults["theta_A_P0"]), ("turned", turned)):
+    got = solver(**{**drawn.defaults, "theta_A_P0": angle})
+    answers[label] = {p: [float(got[p + "_x"]), float(got[p + "_y"])] for p in moving}
+print(json.dumps({"cases": [step.case.name for step in drawn.linkage.plan], "points": answers}))
+"""
+
+
+def distances(links: dict, coordinates: dict) -> list[tuple[str, str, float]]:
+    """Every pair of joints on one link, with its drawn distance (each link here is binary or the ground)."""
+    pairs = []
+    for name, joints in links.items():
+        if name == "ground":
+            continue
+        first, second = joints
+        (x0, y0), (x1, y1) = coordinates[first], coordinates[second]
+        pairs.append((first, second, math.hypot(x1 - x0, y1 - y0)))
+    return pairs
+
+
+def newton_pose(links: dict, coordinates: dict, angle: float, steps: int = 40) -> dict[str, np.ndarray]:
+    """The moving joints at crank angle ``angle``: Newton on every link's distance equation, the crank turned
+    from the drawing in ``steps`` small steps (so each solve starts next to the assembly it continues)."""
+    fixed = {j: np.array(xy) for j, xy in coordinates.items() if j in links["ground"]}
+    moving = [j for j in coordinates if j not in fixed and j != "P0"]
+    pairs = [p for p in distances(links, coordinates) if {p[0], p[1]} != {"A", "P0"}]
+    crank = math.hypot(*coordinates["P0"])
+    start = math.atan2(coordinates["P0"][1], coordinates["P0"][0])
+    x = np.array([c for j in moving for c in coordinates[j]], dtype=float)
+    where = {j: k for k, j in enumerate(moving)}
+    for t in np.linspace(start, angle, steps + 1)[1:]:
+        known = dict(fixed, P0=crank * np.array([math.cos(t), math.sin(t)]))
+        for _ in range(30):
+            residual, jacobian = np.zeros(len(pairs)), np.zeros((len(pairs), len(x)))
+            for row, (first, second, length) in enumerate(pairs):
+                p = known[first] if first in known else x[2 * where[first]:2 * where[first] + 2]
+                q = known[second] if second in known else x[2 * where[second]:2 * where[second] + 2]
+                residual[row] = (p - q) @ (p - q) - length ** 2
+                if first in where:
+                    jacobian[row, 2 * where[first]:2 * where[first] + 2] = 2 * (p - q)
+                if second in where:
+                    jacobian[row, 2 * where[second]:2 * where[second] + 2] = -2 * (p - q)
+            step = np.linalg.solve(jacobian, residual)
+            x -= step
+            if np.max(np.abs(step)) < 1e-14:
+                break
+    result = {"P0": crank * np.array([math.cos(angle), math.sin(angle)])}
+    result.update({j: x[2 * k:2 * k + 2] for j, k in where.items()})
+    return result
+
+
+def solved_in_child(kind: str, n: int, turned: float, tmp_path) -> dict:
+    here = os.path.dirname(os.path.abspath(__file__))
+    env = {**os.environ, "SYMLINK_CACHE": str(tmp_path / "cache"), "MPLBACKEND": "Agg"}
+    done = subprocess.run([sys.executable, "-c", CHILD, here, kind, str(n), repr(turned)],
+                          capture_output=True, text=True, env=env)
+    assert done.returncode == 0, done.stderr[-2000:]
+    return json.loads(done.stdout)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("kind", ["ground", "truss"])
+def test_a_chain_of_24_dyads_by_joints_derives_and_solves_in_1_gb(kind, tmp_path):
+    n, turned = 24, 1.45  # the drawing's crank is at atan2(1, 0.3) = 1.28 rad
+    links, coordinates = CHAINS[kind](n)
+    found = solved_in_child(kind, n, turned, tmp_path)
+    assert found["cases"] == ["3"] * n  # every dyad a closed form (two angles), one after another
+    for joint, xy in found["points"]["drawn"].items():  # the drawing reproduced
+        assert np.allclose(xy, coordinates[joint], rtol=0, atol=1e-9), joint
+    reference = newton_pose(links, coordinates, turned)
+    for first, second, length in distances(links, coordinates):  # the reference closes every link
+        p, q = (reference[j] if j in reference else np.array(coordinates[j]) for j in (first, second))
+        assert abs(math.hypot(*(p - q)) - length) < 1e-10
+    for joint, xy in found["points"]["turned"].items():
+        assert np.allclose(xy, reference[joint], rtol=0, atol=1e-8), joint
+
+
+def program_size(kind: str, n: int) -> tuple[int, int]:
+    """The straight-line program of every unknown and every point: assignments after CSE, NumPy source length."""
+    from symlink.codegen.numpy import numpy_function
+    from symlink.codegen.program import straight_line
+    from symlink.mechanism.joints import from_joints
+    links, coordinates = CHAINS[kind](n)
+    linkage = from_joints(links, coordinates, driver="A").linkage
+    outputs = [q.name for q in linkage.unknowns] + [f"{p}_{axis}" for p in linkage.points for axis in "xy"]
+    program = linkage.program(outputs)
+    return len(straight_line(program).assignments), len(numpy_function(program, "solve"))
+
+
+@pytest.mark.parametrize("kind", ["ground", "truss"])
+def test_the_generated_program_grows_linearly_with_the_number_of_dyads(kind):
+    """Each dyad's angles and points are named intermediates: 2 n dyads make at most 2.3 times n's program (a
+    program that substituted each loop's closed form into the next would grow much faster)."""
+    sizes = {n: program_size(kind, n) for n in (8, 16, 32)}
+    for n in (8, 16):
+        assignments, source = (big / small for big, small in zip(sizes[2 * n], sizes[n]))
+        assert assignments < 2.3 and source < 2.3, (n, sizes)
+
+
+def test_loops_of_hundreds_of_links_are_found_without_a_recursion_limit():
+    """A depth-first search by recursion stopped at Python's limit (1000 frames) on a loop of 600 links, and a
+    file of 2000 dyads was refused as "nested too deeply"; a chain of 600 dyads keeps its shortest loops."""
+    from symlink.mechanism.topology import Chain
+    ring = {"ground": ["J0", "J599"], **{f"l{k}": [f"J{k - 1}", f"J{k}"] for k in range(1, 600)}}
+    loops = Chain(ring).cycles()
+    assert len(loops) == 1 and len(loops[0].traversals) == 600
+    links, _ = truss_chain(600)
+    triangles = Chain(links).cycles(longest=3)
+    assert [set(c.joints) for c in triangles] == [{f"P{j - 2}", f"P{j - 1}", f"P{j}"} for j in range(2, 601)]
+
+
+@pytest.mark.parametrize("links", [
+    {"ground": ["A", "D", "E"], "crank": ["A", "B"], "coupler": ["B", "C"], "rocker": ["D", "C"], "arm": ["E", "F"]},
+    {"ground": ["A", "D", "G"], "crank": ["A", "B"], "coupler": ["B", "C"], "rocker": ["D", "C", "E"],
+     "link5": ["E", "F"], "link6": ["F", "G"], "tail": ["F", "H"], "tip": ["H", "K"]},
+    {"ground": ["A", "D"], "crank": ["A", "B"], "coupler": ["B", "C", "E"], "rocker": ["D", "C"],
+     "a": ["E", "F"], "b": ["F", "G"], "c": ["G", "E2"], "d": ["E2", "F"]},
+    {"ground": ["A", "B"], "one": ["A", "C"], "two": ["C", "D"]},
+])
+def test_the_links_on_a_loop_are_the_links_that_some_simple_loop_walks(links):
+    """Linear (bridges) against the enumeration of every simple loop, which is fine for small chains."""
+    from symlink.mechanism.topology import Chain
+    chain = Chain(links)
+    assert chain.looped_links() == {t.link for cycle in chain.cycles() for t in cycle.traversals}

@@ -17,13 +17,14 @@ from typing import TYPE_CHECKING, Callable, Collection, Mapping, NoReturn
 
 from ..common.angles import to_radians
 from ..common.files import excerpt
+from ..common.numbers import number_from_text
 from ..numeric.input_sweep import MAX_ANGLE, InputSweep
 
 if TYPE_CHECKING:
     from ..io.linkage_file import LinkageFile
 
 __all__ = ["UsageError", "Parser", "finite", "angle", "MAX_MAGNITUDE",
-           "number_list", "distinct_number_list", "pair", "assignments", "figure_path", "add_sweep_options",
+           "whole", "seed", "MAX_WHOLE", "number_list", "distinct_number_list", "pair", "assignments", "figure_path", "add_sweep_options",
            "add_fourbar_lengths", "fourbar_lengths", "add_branch_option", "add_units_option", "add_format_option",
            "input_sweep", "branches", "command_help", "linkage_values", "fourbar_or_linkage",
            "require_held_inputs", "given_options"]
@@ -99,12 +100,18 @@ def command_help(summary: str, units: str, example: str, more: str = "") -> dict
 MAX_MAGNITUDE = 1e50
 
 
+def _number(text: str) -> float:
+    """:func:`~symlink.common.numbers.number_from_text` as an argparse type error (any digits, never rounded to
+    0 or to infinity without a word)."""
+    try:
+        return number_from_text(text)
+    except ValueError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
+
+
 def finite(text: str) -> float:
     """A finite number from the command line (no expressions): 0 or between 1e-50 and 1e50 in size."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {excerpt(text)}") from None
+    value = _number(text)
     if not math.isfinite(value):
         raise argparse.ArgumentTypeError(f"not a finite number: {excerpt(text)}")
     if value != 0 and not 1 / MAX_MAGNITUDE <= abs(value) <= MAX_MAGNITUDE:
@@ -115,10 +122,7 @@ def finite(text: str) -> float:
 
 def angle(text: str) -> float:
     """A finite angle from the command line, at most :data:`~symlink.numeric.input_sweep.MAX_ANGLE` in size (either unit)."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {excerpt(text)}") from None
+    value = _number(text)
     if not math.isfinite(value):
         raise argparse.ArgumentTypeError(f"not a finite number: {excerpt(text)}")
     if abs(value) > MAX_ANGLE:
@@ -127,12 +131,34 @@ def angle(text: str) -> float:
     return value
 
 
+#: The largest whole number the command line takes (a count, a seed): the largest int64, what NumPy can count to.
+MAX_WHOLE = 2 ** 63 - 1
+
+
 def whole(text: str) -> int:
-    """A whole number from the command line."""
-    try:
-        return int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
+    """A whole number from the command line, at most :data:`MAX_WHOLE` in size (any digits: range-checked)."""
+    stripped = text.strip()
+    if not re.fullmatch(r"[-+]?\d+", stripped):
+        raise argparse.ArgumentTypeError(f"not a whole number: {excerpt(text)}")
+    if len(stripped.lstrip("+-").lstrip("0")) > 19 or abs(int(stripped)) > MAX_WHOLE:
+        raise argparse.ArgumentTypeError(f"{excerpt(stripped)} is out of range: whole numbers are at most "
+                                         f"{MAX_WHOLE:,} in size")
+    return int(stripped)
+
+
+def seed(text: str) -> int:
+    """A random seed from the command line: a whole number from 0 to :data:`MAX_WHOLE`.
+
+    >>> seed("7")
+    7
+    >>> seed("-1")
+    Traceback (most recent call last):
+    argparse.ArgumentTypeError: a seed is a whole number from 0 up, got -1
+    """
+    value = whole(text)
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"a seed is a whole number from 0 up, got {value}")
+    return value
 
 
 def number_list(text: str) -> list[float]:

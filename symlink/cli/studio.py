@@ -10,7 +10,7 @@ import argparse
 import socket
 import sys
 
-from .options import command_help
+from .options import command_help, whole
 
 #: The one line said when the server's packages are missing.
 MISSING = "symlink studio needs the studio extra: pip install 'symlink-kinematics[studio]'"
@@ -27,7 +27,7 @@ def _add_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("name", metavar="NAME|FILE", nargs="?",
                          help="open a catalog linkage, an atlas entry (atlas:NAME), a linkage file (.toml), "
                               "pylinkage JSON (.json) or a Pyslvs expression (.txt, .pmks)")
-    command.add_argument("--port", type=int, metavar="P", help="the port on 127.0.0.1 (default: the first free one from 8765, where the browser keeps the "
+    command.add_argument("--port", type=whole, metavar="P", help="the port on 127.0.0.1 (default: the first free one from 8765, where the browser keeps the "
                               "last drawing, else any free one)")
     command.add_argument("--no-browser", action="store_true", help="print the URL, do not open a browser")
     command.add_argument("--html", metavar="OUT.html",

@@ -21,7 +21,7 @@ from ..common.files import excerpt
 from ..common.limits import format_bytes
 from .budget import MEMORY_BUDGET, format_duration
 from .options import (add_units_option, assignments, command_help, finite, linkage_values, require_held_inputs,
-                      whole)
+                      seed, whole)
 from .output import note
 
 
@@ -108,7 +108,7 @@ def _add_options(command: argparse.ArgumentParser) -> None:
     how = command.add_mutually_exclusive_group()
     how.add_argument("--grid", type=whole, metavar="N", help="N values of each swept parameter (default 10)")
     how.add_argument("--random", type=whole, metavar="N", help="N designs uniform in the ranges (seeded)")
-    command.add_argument("--seed", type=whole, default=0, help="of --random (default 0)")
+    command.add_argument("--seed", type=seed, default=0, help="of --random (default 0)")
     command.add_argument("--samples", type=whole, default=360, metavar="N", help="input values a turn (default 360)")
     command.add_argument("--output", metavar="NAME", help="the output whose stroke and time ratio are found "
                                                           "(default: the last role)")

@@ -23,7 +23,7 @@ import numpy
 from ..common.angles import from_radians, to_radians, wrap
 from .options import (FOURBAR_LENGTHS, add_branch_option, add_format_option, add_units_option, assignments,
                       command_help, figure_path, finite, fourbar_lengths, input_sweep, linkage_values, distinct_number_list,
-                      whole)
+                      seed, whole)
 from .dynamics import add_mass_options, fourbar_dynamics
 from .output import RowWriter, note
 
@@ -67,7 +67,7 @@ def _add_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("--samples", "--builds", dest="builds", type=whole, metavar="N",
                          help="also sample N builds (Monte Carlo, seeded by --seed): adds the columns 'sampled_low' "
                               "and 'sampled_high', the deviation's 0.135 and 99.865 percentiles (3 sigma)")
-    command.add_argument("--seed", type=whole, default=0, help="of the sampled builds (default 0)")
+    command.add_argument("--seed", type=seed, default=0, help="of the sampled builds (default 0)")
     command.add_argument("--folder", metavar="DIR",
                          help="make the sampled builds on Dask in chunks written to DIR (a sweep's folder): stopped, "
                               "the same command again continues where it stopped (needs the extra 'sweep')")

@@ -52,7 +52,6 @@ is checked; anything unknown or out of range is one line of error.
 from __future__ import annotations
 
 import math
-import sys
 from functools import cached_property, lru_cache
 from pathlib import Path
 from typing import Any, Mapping, Sequence
@@ -66,7 +65,7 @@ from ..common.files import excerpt, read_input_text
 from ..mechanism.catalog import CATALOG
 from ..common.display import record_html
 from ..numeric.input_sweep import InputSweep
-from .linkage_file import MAX_ANGLE, MAX_MAGNITUDE, LinkageFile, dynamic_model, load_linkage
+from .linkage_file import MAX_ANGLE, MAX_MAGNITUDE, LinkageFile, dynamic_model, load_linkage, toml_data
 from ..common.angles import to_radians
 from ..symbolic.linkage import Linkage, Program
 from ..symbolic.closure import is_angle
@@ -76,10 +75,6 @@ from ..symbolic.sensitivity import split_sensitivity_name
 from ..numeric.solver import Solver, crank_speeds
 from ..symbolic.vectors import acceleration, rate
 
-if sys.version_info >= (3, 11):
-    from tomllib import loads as toml_loads
-else:  # Python 3.10: tomli is tomllib before it joined the standard library
-    from tomli import loads as toml_loads
 
 __all__ = ["Scene", "SceneFile", "catalog_linkage", "angle_outputs", "read_scene", "scene_from_mapping",
            "scene_from_text"]
@@ -529,12 +524,7 @@ def scene_from_text(text: str, source: str, folder: str | Path = ".") -> SceneFi
     try:
         if len(text) > MAX_SCENE_BYTES:
             raise ValueError(f"larger than {MAX_SCENE_BYTES} bytes: not a scene file")
-        try:
-            data = toml_loads(text)
-        except ValueError as error:  # tomllib.TOMLDecodeError is a ValueError
-            raise ValueError(f"not valid TOML: {error}") from None
-        except RecursionError:
-            raise ValueError("not valid TOML: nested too deeply") from None
+        data = toml_data(text)
         return scene_from_mapping(data, folder)
     except ValueError as error:
         raise ValueError(f"{source}: {error}") from None

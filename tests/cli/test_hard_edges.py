@@ -213,3 +213,117 @@ def test_path_targets_given_twice_are_refused_by_both_python_routes():
                                 values={"b": 66.0, "c": 56.0, "d": 80.0, "u": 30.0, "v": 20.0})
     # timed: the same point at two inputs (a closed path's start and end) is two targets, not a repeat
     symlink.synthesis.path.check_distinct_targets(np.array(points), np.array([0.0, 1.0, 2.0, 3.0]))
+
+
+# --- numbers of any digits, in every file format and numeric option: range-checked in one line, exit 2 -----------
+# float() rounds without a word: 1e-400 to 0 (a speed or a target given becomes none), 400 digits to inf or, as an
+# int, to an OverflowError.  Every reader goes through symlink.common.numbers.
+
+_ROOT = __import__("pathlib").Path(__file__).resolve().parents[2]
+_FOURBAR_FILE = (_ROOT / "linkages" / "fourbar.toml").read_text()
+_HUGE = "1" + "0" * 400
+_MECHANISM = ('{"joints": [{"id": "O1", "type": "ground", "position": [0, 0]}, {"id": "O2", "type": "ground", '
+              '"position": [100, 0]}, {"id": "B", "type": "revolute", "position": [0, 25]}, {"id": "C", "type": '
+              '"revolute", "position": [60, 50]}], "links": [{"id": "ground", "type": "ground", "joints": ["O1", '
+              '"O2"]}, {"id": "crank", "type": "driver", "joints": ["O1", "B"], "motor_joint": "O1"}, {"id": '
+              '"coupler", "type": "link", "joints": ["B", "C"]}, {"id": "rocker", "type": "link", "joints": ["C", '
+              '"O2"]}], "ground": "ground"}')
+_PYSLVS = ("M[J[R, color[Green], P[0, 0], L[ground, L1]], J[R, color[Green], P[0, 25], L[L1, L2]], "
+           "J[R, color[Green], P[60, 50], L[L2, L3]], J[R, color[Green], P[100, 0], L[ground, L3]]]")
+_SCENE = 'linkage = "fourbar"\noutputs = ["rocker"]\n[parameters]\na = 20\nb = 66\nc = 56\nd = 80\n[input]\nstep = 40\n'
+
+#: name -> (file name, text) of the files the NUMBERS table writes; {file:NAME} in a command line is its path.
+_NUMBER_FILES = {
+    "linkage 400 digits": ("l.toml", _FOURBAR_FILE.replace("a = 20.0", f"a = {_HUGE}")),
+    "linkage 1e-400": ("l.toml", _FOURBAR_FILE.replace("a = 20.0", "a = 1e-400")),
+    "linkage angle 1e-400": ("l.toml", _FOURBAR_FILE.replace('AD = ["d", 0]', 'AD = ["d", 1e-400]')),
+    "scene 1e-400": ("s.toml", _SCENE.replace("step = 40", "step = 1e-400")),
+    "scene 1e999": ("s.toml", _SCENE.replace("a = 20", "a = 1e999")),
+    "path 1e-400": ("p.csv", "x,y\n1,2\n3,4\n5,7\n1e-400,1\n"),
+    "path 400 digits": ("p.csv", f"x,y\n1,2\n3,4\n5,7\n{_HUGE},1\n"),
+    "function 1e-400": ("f.csv", "theta,phi\n0,10\n30,40\n60,1e-400\n"),
+    "pylinkage 1e-400": ("m.json", _MECHANISM.replace('"position": [0, 25]', '"position": [1e-400, 25]')),
+    "pyslvs 1e-400": ("m.pmks", _PYSLVS.replace("P[0, 25]", "P[1e-400, 25]")),
+}
+
+NUMBERS = [
+    # (what, command line, words of the one error line)
+    ("an option of 1e-400", [*FOURBAR, "--crank-speed", "1e-400", "--angles", "0"],
+     "argument --crank-speed: 1e-400 is too small for a float"),
+    ("an angle of 1e-400", [*FOURBAR, "--angles", "10,1e-400"], "argument --angles: 1e-400 is too small"),
+    ("a --set of -1e-400", ["table", "fourbar", "--set", "a=20,psi=-1e-400"], "-1e-400 is too small"),
+    ("a count of 400 digits", [*FLYWHEEL, "--masses", "1,2,1.5", "--samples", _HUGE],
+     "argument --samples: '100000000000000000000000000000000000000000000000000000000000'... is out of range"),
+    ("a grid of 30 digits", ["sweep", "fourbar", "{tmp}/s", "--vary", "a=1:2", "--grid", "9" * 30, *SWEEP],
+     "argument --grid:", "is out of range"),
+    ("builds of 35 digits", ["tolerance", "fourbar", "--tolerance", "0.1", "--builds", "1" + "0" * 34],
+     "is out of range"),
+    ("a seed below 0", ["synthesize", "path", "{file:path 1e-400}", "--seed", "-1"],
+     "argument --seed: a seed is a whole number from 0 up, got -1"),
+    ("a linkage default of 400 digits", ["table", "{file:linkage 400 digits}", "--angles", "0"],
+     "l.toml:28: defaults.a:", "is too large for a float"),
+    ("a linkage default of 1e-400", ["table", "{file:linkage 1e-400}", "--angles", "0"],
+     "l.toml:28: 1e-400 is too small for a float"),
+    ("a linkage angle of 1e-400", ["plan", "{file:linkage angle 1e-400}"], "l.toml:10: 1e-400 is too small"),
+    ("a scene step of 1e-400", ["run", "{file:scene 1e-400}"], "s.toml: line 9: 1e-400 is too small"),
+    ("a scene length of 1e999", ["run", "{file:scene 1e999}"], "s.toml: line 4: 1e999 is too large for a float"),
+    ("a path target of 1e-400", ["synthesize", "path", "{file:path 1e-400}"], "p.csv:5: x: 1e-400 is too small"),
+    ("a path target of 400 digits", ["synthesize", "path", "{file:path 400 digits}"], "p.csv:5: x:",
+     "is too large for a float"),
+    ("a function target of 1e-400", ["synthesize", "function", "fourbar", "{file:function 1e-400}", "--free", "a,b,c"],
+     "f.csv:4: phi: 1e-400 is too small"),
+    ("a pylinkage position of 1e-400", ["studio", "{file:pylinkage 1e-400}", "--html", "{tmp}/o.html"],
+     "pylinkage JSON: the number is out of range: 1e-400 is too small"),
+    ("a Pyslvs position of 1e-400", ["studio", "{file:pyslvs 1e-400}", "--html", "{tmp}/o.html"],
+     "the number is out of range: 1e-400 is too small"),
+]
+
+
+@pytest.mark.parametrize("argv, words", [pytest.param(a, w, id=what) for what, a, *w in NUMBERS])
+def test_numbers_of_any_digits_are_range_checked_in_one_line(argv, words, tmp_path, capsys):
+    inputs = tmp_path / "inputs"
+    inputs.mkdir()
+    expanded = []
+    for word in argv:
+        if word.startswith("{file:"):
+            name, text = _NUMBER_FILES[word[len("{file:"):-1]]
+            (inputs / name).write_text(text)
+            word = str(inputs / name)
+        expanded.append(word.replace("{tmp}", str(tmp_path)))
+    assert main(expanded) == 2
+    out, err = capsys.readouterr()
+    _one_error_line(err, *words)
+    assert out == "" and [p.name for p in tmp_path.iterdir()] == ["inputs"]
+
+
+@pytest.mark.parametrize("text", ["0", "-0", "0.000e-999", "+0.0"])
+def test_zeros_of_any_digits_are_zero(text):
+    from symlink.common.numbers import number_from_text
+    assert number_from_text(text) == 0.0
+
+
+# --- input that defines nothing new: a function's targets at one input, by both routes ---------------------------
+
+@pytest.mark.parametrize("rows, route, words", [
+    ("theta,phi\n10,20\n10,20\n10,20\n", [], "targets 1 and 2 are the same target"),
+    ("theta,phi\n10,20\n10,20\n10,20\n", ["fourbar"], "targets 1 and 2 are the same target"),
+    ("theta,phi\n10,20\n30,40\n10,30\n60,50\n", ["fourbar"], "targets 1 and 3 are at the same input"),
+    ("theta,phi\n10,20\n30,40\n10,30\n60,50\n", [], "targets 1 and 3 are at the same input"),
+], ids=["one row thrice, four-bar route", "one row thrice, any linkage", "one input two values, any linkage",
+        "one input two values, four-bar route"])
+def test_function_targets_at_one_input_are_refused_in_one_line(rows, route, words, tmp_path, capsys):
+    targets = tmp_path / "pairs.csv"
+    targets.write_text(rows)
+    free = ["--free", "a,b,c"] if route else []
+    assert main(["synthesize", "function", *route, str(targets), *free]) == 2
+    _one_error_line(capsys.readouterr().err, words)
+
+
+def test_function_targets_at_one_input_are_refused_by_both_python_routes():
+    import symlink
+    with pytest.raises(ValueError, match="targets 1 and 2 are the same target"):
+        symlink.synthesis.function.least_squares_design([0.1, 0.1, 0.5, 0.9], [0.2, 0.2, 0.6, 1.0])
+    with pytest.raises(ValueError, match="targets 2 and 3 are at the same input"):
+        symlink.synthesis.general_function.synthesize_function(
+            symlink.fourbar(), "rocker", [0.1, 0.5, 0.5], [0.2, 0.6, 0.7], {"a": (1.0, 30.0)},
+            values={"b": 66.0, "c": 56.0, "d": 80.0})

@@ -40,7 +40,7 @@ import numpy
 
 from ..common.files import EXCERPT_LENGTH
 from ..version import __version__
-from .options import Parser
+from .options import Parser, check_outputs
 
 __all__ = ["main", "build_parser", "COMMANDS"]
 
@@ -139,6 +139,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                 args.arguments = rest
             elif rest:
                 parser.error(f"unrecognized arguments: {' '.join(rest)}")
+            check_outputs(args)
             return args.run(args)
         except SystemExit as done:  # --help and --version
             return done.code if isinstance(done.code, int) else EXIT_OK

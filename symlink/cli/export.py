@@ -3,14 +3,14 @@ from __future__ import annotations
 
 import argparse
 
-from .options import command_help
+from .options import command_help, output_folder
 
 
 def _add_options(command: argparse.ArgumentParser) -> None:
     from ..io.export import FORMATS
     from ..symbolic.seed_forms import FORMS
     command.add_argument("--to", required=True, choices=list(FORMATS), help="the format")
-    command.add_argument("--out", required=True, metavar="DIR", help="the folder to write into")
+    command.add_argument("--out", type=output_folder, required=True, metavar="DIR", help="the folder to write into")
     command.add_argument("--form", default="atan2", choices=list(FORMS),
                          help="with --to latex: also write the positions in a seed paper's form (complex: seed 000, "
                               "freudenstein: seed 002, half-angle: seed 003); generated code always computes atan2")

@@ -24,7 +24,7 @@ if TYPE_CHECKING:
     from ..io.linkage_file import LinkageFile
 
 __all__ = ["UsageError", "Parser", "finite", "angle", "MAX_MAGNITUDE",
-           "whole", "seed", "MAX_WHOLE", "number_list", "distinct_number_list", "pair", "assignments", "figure_path", "add_sweep_options",
+           "whole", "seed", "MAX_WHOLE", "number_list", "distinct_number_list", "pair", "OutputPath", "OutputFolder", "output_file", "output_folder", "check_outputs", "refuse_together", "assignments", "figure_path", "add_sweep_options",
            "add_fourbar_lengths", "fourbar_lengths", "add_branch_option", "add_units_option", "add_format_option",
            "input_sweep", "branches", "command_help", "linkage_values", "fourbar_or_linkage",
            "require_held_inputs", "given_options"]
@@ -246,12 +246,65 @@ def require_held_inputs(linkage, settings: Mapping[str, float], command: str) ->
                          f"{',...' if len(unset) > 1 else ''}")
 
 
-def figure_path(text: str) -> str:
+class OutputPath(str):
+    """A file (``folder`` False) or folder a command writes, as given: every one on a command line is checked
+    before the command starts (:func:`check_outputs`), so a bad output fails before any work or output."""
+
+    folder = False
+    #: How a message names the option (None: ``--`` and the destination).
+    label: str | None = None
+
+
+class OutputFolder(OutputPath):
+    """A folder a command writes into (created if missing)."""
+
+    folder = True
+
+
+def output_file(text: str) -> OutputPath:
+    """The name of a file a command writes (checked by :func:`check_outputs`)."""
+    return OutputPath(text)
+
+
+def output_folder(text: str) -> OutputFolder:
+    """The name of a folder a command writes into (checked by :func:`check_outputs`)."""
+    return OutputFolder(text)
+
+
+def _option_name(dest: str, value: OutputPath) -> str:
+    return value.label or "--" + dest.replace("_", "-")
+
+
+def check_outputs(args: argparse.Namespace) -> None:
+    """Before a command starts: refuse two options that write one file (``UsageError`` naming both), and an
+    output that cannot be written (``OSError`` naming it with the real reason: a folder or a file in the way,
+    a read-only folder), so that a command fails before any work, output or file, never half way.
+
+    >>> check_outputs(argparse.Namespace(plot=OutputPath("a.png"), plot_transmission=OutputPath("./a.png")))
+    Traceback (most recent call last):
+    symlink.cli.options.UsageError: --plot and --plot-transmission both write ./a.png: give each output its own file
+    """
+    import os
+
+    from ..common.files import check_writable
+    outputs = {dest: value for dest, value in vars(args).items() if isinstance(value, OutputPath) and value != "-"}
+    seen: dict[str, str] = {}
+    for dest, value in outputs.items():
+        key = os.path.realpath(value)
+        if key in seen:
+            raise UsageError(f"{_option_name(seen[key], outputs[seen[key]])} and {_option_name(dest, value)} both write {excerpt(str(value))[1:-1]}:"
+                             " give each output its own file")
+        seen[key] = dest
+    for value in outputs.values():
+        check_writable(value, folder=value.folder)
+
+
+def figure_path(text: str) -> OutputPath:
     """A .png or .svg file name."""
     if Path(text).suffix.lower() not in FIGURE_SUFFIXES:
         raise argparse.ArgumentTypeError(f"cannot draw into {text!r}: the file must end in "
                                          f"{' or '.join(FIGURE_SUFFIXES)}")
-    return text
+    return OutputPath(text)
 
 
 def add_fourbar_lengths(parser: argparse.ArgumentParser, defaults: dict[str, float] | None = None,
@@ -296,6 +349,22 @@ def fourbar_or_linkage(args: argparse.Namespace, command: str, lengths_required:
                             "in the four-bar form (--crank --coupler --rocker --ground); it belongs to a linkage "
                             "NAME|FILE"))
     return named
+
+
+def refuse_together(args: argparse.Namespace, *conflicts: tuple[str, str, bool, str]) -> None:
+    """``UsageError`` naming both options of the first conflict that holds: each is ``(destination, how it
+    conflicts, naming the other option, whether that is in force, why)``, the first option counting when it
+    was given on the command line (not left at its default).
+
+    >>> args = argparse.Namespace(**{"workers": 2, _GIVEN: {"workers"}})
+    >>> refuse_together(args, ("workers", "conflicts with --scheduler synchronous", True, "it runs in this process"))
+    Traceback (most recent call last):
+    symlink.cli.options.UsageError: --workers conflicts with --scheduler synchronous: it runs in this process
+    """
+    given = given_options(args)
+    for dest, conflict, in_force, why in conflicts:
+        if dest in given and in_force:
+            raise UsageError(f"--{dest.replace('_', '-')} {conflict}: {why}")
 
 
 def fourbar_lengths(args: argparse.Namespace) -> tuple[float, float, float, float]:

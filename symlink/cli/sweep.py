@@ -20,7 +20,7 @@ from ..common.angles import to_radians
 from ..common.files import excerpt
 from ..common.limits import format_bytes
 from .budget import MEMORY_BUDGET, format_duration
-from .options import (add_units_option, assignments, command_help, finite, linkage_values, require_held_inputs,
+from .options import (OutputFolder, refuse_together, add_units_option, assignments, command_help, finite, linkage_values, require_held_inputs,
                       seed, whole)
 from .output import note
 
@@ -83,6 +83,12 @@ def estimate_sweep(designs: int, samples: int, chunk: int, scheduler: str, worke
     return seconds
 
 
+def _sweep_folder(text: str) -> OutputFolder:
+    folder = OutputFolder(text)
+    folder.label = "FOLDER"
+    return folder
+
+
 def register(commands) -> None:
     """Register ``symlink sweep`` (its options are added when it is used: they need the sweep module)."""
     commands.add_parser("sweep", populate=_add_options, **command_help(
@@ -100,7 +106,7 @@ def register(commands) -> None:
 def _add_options(command: argparse.ArgumentParser) -> None:
     from ..workshop.sweep import SCHEDULERS
     command.add_argument("linkage", metavar="NAME|FILE", help="a catalog linkage or a linkage file")
-    command.add_argument("folder", metavar="FOLDER", help="where the chunks (chunk-NNNNNN.parquet) and manifest go")
+    command.add_argument("folder", type=_sweep_folder, metavar="FOLDER", help="where the chunks (chunk-NNNNNN.parquet) and manifest go")
     command.add_argument("--vary", type=ranges, required=True, metavar="NAME=LOW:HIGH,...",
                          help="the parameters swept and their ranges")
     command.add_argument("--set", type=assignments("NAME=VALUE"), default={}, metavar="NAME=VALUE,...",
@@ -137,6 +143,12 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"symlink sweep needs {', '.join(missing)}: {SWEEP_EXTRA}")
     if args.workers is not None and args.workers < 1:
         raise ValueError(f"--workers must be at least 1, got {args.workers}")
+    refuse_together(args, ("workers", "conflicts with --scheduler synchronous", args.scheduler == "synchronous",
+                           "it evaluates every chunk in this process, one at a time"),
+                    ("workers", f"conflicts with --scheduler {args.scheduler}",
+                     args.scheduler.startswith(("tcp://", "tls://")), "a cluster's workers are its own"),
+                    ("seed", "does nothing with --grid", args.random is None,
+                     "a grid is not sampled; --seed belongs to --random N"))
     if args.scheduler not in (*SCHEDULERS, "auto") and not args.scheduler.startswith(("tcp://", "tls://")):
         raise ValueError(f"--scheduler must be auto, {', '.join(SCHEDULERS)} or a cluster's address tcp://HOST:PORT, "
                          f"got {args.scheduler!r}")

@@ -34,7 +34,7 @@ from ..numeric.input_sweep import MAX_ANGLE
 from ..common.limits import format_bytes
 from .budget import MEMORY_BUDGET, TIME_BUDGET, format_duration, require_budget
 from .options import (Parser, add_format_option, add_units_option, angle, assignments, command_help, figure_path,
-                      finite, given_options, linkage_values, pair, seed, whole)
+                      finite, given_options, linkage_values, output_file, pair, seed, whole)
 from .output import json_number, note, print_rows
 
 #: Columns a csv of targets may have, by kind.
@@ -512,13 +512,13 @@ def _linkage_path(text: str) -> str:
     if not text.endswith(".toml"):
         raise argparse.ArgumentTypeError(f"the design is written as a linkage file: the name must end in .toml, got "
                                          f"{excerpt(text)}")
-    return text
+    return output_file(text)
 
 
 def _record_path(text: str) -> str:
     if not text.lower().endswith(RECORD_SUFFIXES):
         raise argparse.ArgumentTypeError(f"the record is .json or .csv, got {excerpt(text)}")
-    return text
+    return output_file(text)
 
 
 def add_general_options(command: argparse.ArgumentParser, kind: str) -> None:

@@ -327,3 +327,133 @@ def test_function_targets_at_one_input_are_refused_by_both_python_routes():
         symlink.synthesis.general_function.synthesize_function(
             symlink.fourbar(), "rocker", [0.1, 0.5, 0.5], [0.2, 0.6, 0.7], {"a": (1.0, 30.0)},
             values={"b": 66.0, "c": 56.0, "d": 80.0})
+
+
+# --- outputs that cannot be written: one line naming the user's file and the real reason, exit 1, checked before
+# any work (no table printed first, no other file of the command written, nothing left behind) -------------------
+
+UNWRITABLE = [
+    # (what, command line: {tmp} a fresh folder holding a regular file "afile" and a folder "taken.gif")
+    ("a figure under a file", [*FOURBAR, "--angles", "0", "--plot", "{tmp}/afile/x.png"]),
+    ("the second figure under a file", [*FOURBAR, "--angles", "0", "--plot", "{tmp}/a.png", "--plot-transmission",
+                                        "{tmp}/afile/x.png"]),
+    ("a drawing under a file", ["draw", "fourbar", "--out", "{tmp}/afile/d.svg"]),
+    ("an animation under a file", ["animate", "fourbar", "--frames", "2", "--out", "{tmp}/afile/a.gif"]),
+    ("an atlas drawing under a file", ["atlas", "fourbar", "--draw", "{tmp}/afile/a.png"]),
+    ("parts, the dxf under a file", ["parts", "fourbar", "--pin-diameter", "1", "--svg", "{tmp}/p.svg", "--dxf",
+                                     "{tmp}/afile/p.dxf"]),
+    ("generated code under a file", ["export", "fourbar", "--to", "c", "--out", "{tmp}/afile/code"]),
+    ("a studio page under a file", ["studio", "fourbar", "--html", "{tmp}/afile/s.html"]),
+    ("a synthesis plot under a file", ["synthesize", "path", "{tmp}/pts.csv", "--starts", "2", "--plot",
+                                       "{tmp}/afile/x.png"]),
+    ("a sweep under a file", ["sweep", "fourbar", "{tmp}/afile/s", "--vary", "a=1:2", "--grid", "2", *SWEEP]),
+    ("sampled builds under a file", ["tolerance", "fourbar", "--tolerance", "0.1", "--samples", "10", "--folder",
+                                     "{tmp}/afile/t"]),
+]
+
+
+def _unwritable_folder(tmp_path):
+    (tmp_path / "afile").write_text("")
+    (tmp_path / "taken.gif").mkdir()
+    (tmp_path / "pts.csv").write_text("x,y\n1,2\n3,4\n5,7\n9,1\n")
+    return {p.name for p in tmp_path.iterdir()}
+
+
+@pytest.mark.parametrize("argv", [pytest.param(a, id=what) for what, a in UNWRITABLE])
+def test_an_output_under_a_file_is_refused_before_any_work(argv, tmp_path, capsys):
+    before = _unwritable_folder(tmp_path)
+    argv = [word.replace("{tmp}", str(tmp_path)) for word in argv]
+    assert main(argv) == 1
+    out, err = capsys.readouterr()
+    target = next(word for word in argv if "/afile/" in word)
+    _one_error_line(err, target, f"{tmp_path / 'afile'} is a file, not a folder")
+    assert out == "" and {p.name for p in tmp_path.iterdir()} == before  # no table, no other file, no temporary
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["animate", "fourbar", "--frames", "2", "--out", "{tmp}/taken.gif"], "it is a folder, not a file"),
+    (["studio", "fourbar", "--html", "{tmp}/taken.gif"], "it is a folder, not a file"),
+    (["studio", "fourbar", "--html", "{tmp}/pipe"], "No such device or address"),  # written through, not replaced
+], ids=["an animation where a folder is", "a page where a folder is", "a page into a FIFO no one reads"])
+def test_an_output_that_cannot_be_written_names_it_and_why(argv, words, tmp_path, capsys):
+    import os
+    import stat
+    os.mkfifo(tmp_path / "pipe")  # a device such as /dev/full is written the same way (ENOSPC)
+    before = _unwritable_folder(tmp_path)
+    argv = [word.replace("{tmp}", str(tmp_path)) for word in argv]
+    assert main(argv) == 1
+    _one_error_line(capsys.readouterr().err, argv[-1], words)
+    assert {p.name for p in tmp_path.iterdir()} == before and list((tmp_path / "taken.gif").iterdir()) == []
+    assert stat.S_ISFIFO(os.stat(tmp_path / "pipe").st_mode)  # never replaced by a file
+
+
+def test_a_full_disk_under_an_animation_names_the_users_file(tmp_path, capsys, monkeypatch):
+    """The frames go to a hidden folder beside the file; a full disk at the rename names the file asked for."""
+    import errno
+
+    import symlink.plot.animation as animation
+
+    def full(source, target):
+        raise OSError(errno.ENOSPC, "No space left on device", str(source))
+    monkeypatch.setattr(animation.os, "replace", full)
+    assert main(["animate", "fourbar", "--frames", "2", "--out", str(tmp_path / "a.gif")]) == 1
+    err = capsys.readouterr().err
+    errors = [line for line in err.splitlines() if line.startswith("symlink: error:")]  # after the progress lines
+    assert errors == [err.splitlines()[-1]] and "Traceback" not in err, err
+    assert f"{tmp_path / 'a.gif'}: No space left on device" in errors[0]
+    assert ".symlink-animation-" not in err and list(tmp_path.iterdir()) == []
+
+
+def test_a_full_disk_under_two_figures_writes_neither(tmp_path, capsys, monkeypatch):
+    import errno
+
+    import symlink.common.files as files
+    written = []
+
+    def write(handle, data):
+        if written:
+            raise OSError(errno.ENOSPC, "No space left on device")
+        written.append(len(data))
+        return len(data)
+    monkeypatch.setattr(files.os, "write", write)
+    assert main([*FOURBAR, "--angles", "0", "--plot", str(tmp_path / "a.png"), "--plot-transmission",
+                 str(tmp_path / "t.png")]) == 1
+    err = capsys.readouterr().err
+    _one_error_line(err, "No space left on device")
+    assert f"{tmp_path / 'a.png'}:" in err or f"{tmp_path / 't.png'}:" in err
+    assert list(tmp_path.iterdir()) == []  # the figure written in full is taken back
+
+
+# --- conflicting options and outputs named twice: one line naming both, exit 2, nothing written --------------------
+
+CONFLICTS = [
+    ("two figures to one file", [*FOURBAR, "--plot", "{tmp}/a.png", "--plot-transmission", "{tmp}/./a.png"],
+     "--plot and --plot-transmission both write"),
+    ("parts to one file by two paths", ["parts", "fourbar", "--pin-diameter", "1", "--svg", "{tmp}/a.svg",
+                                        "--assembly", "{tmp}/sub/../a.svg"], "--svg and --assembly both write"),
+    ("--workers with a synchronous sweep", ["sweep", "fourbar", "{tmp}/s", "--vary", "a=1:2", "--workers", "2",
+                                            *SWEEP], "--workers conflicts with --scheduler synchronous"),
+    ("--workers with a cluster", ["sweep", "fourbar", "{tmp}/s", "--vary", "a=1:2", "--workers", "2", "--scheduler",
+                                  "tcp://127.0.0.1:1"], "--workers conflicts with --scheduler tcp://127.0.0.1:1"),
+    ("--seed with a grid", ["sweep", "fourbar", "{tmp}/s", "--vary", "a=1:2", "--grid", "3", "--seed", "4", *SWEEP],
+     "--seed does nothing with --grid"),
+    ("--html with --no-browser", ["studio", "fourbar", "--html", "{tmp}/s.html", "--no-browser"],
+     "--html and --no-browser conflict"),
+    ("--html with --port", ["studio", "fourbar", "--html", "{tmp}/s.html", "--port", "9000"],
+     "--html and --port conflict"),
+    ("tolerance --seed without samples", ["tolerance", "fourbar", "--tolerance", "0.1", "--seed", "3"],
+     "--seed does nothing without --samples N"),
+    ("view --crank-angle with a linkage", ["view", "fourbar", "--crank-angle", "5", "--save", "{tmp}/v.png"],
+     "view: --crank-angle does nothing with a linkage NAME|FILE"),
+    ("view --angle in the four-bar form", ["view", *FOURBAR[1:], "--angle", "5", "--save", "{tmp}/v.png"],
+     "view: --angle does nothing in the four-bar form"),
+]
+
+
+@pytest.mark.parametrize("argv, words", [pytest.param(a, w, id=what) for what, a, w in CONFLICTS])
+def test_conflicting_options_are_refused_naming_both(argv, words, tmp_path, capsys):
+    argv = [word.replace("{tmp}", str(tmp_path)) for word in argv]
+    assert main(argv) == 2
+    out, err = capsys.readouterr()
+    _one_error_line(err, words)
+    assert out == "" and list(tmp_path.iterdir()) == []

@@ -89,6 +89,27 @@ def _sweep_folder(text: str) -> OutputFolder:
     return folder
 
 
+def _require_an_assembly(folder: str, designs: int, fresh: bool) -> None:
+    """``ValueError`` when no design of a finished sweep assembles at any input value: a table of nothing but
+    non-assemblies (every column NaN but the design's own) answers no question, so the command refuses it as
+    every command refuses a linkage that never assembles; a folder this run created is removed."""
+    import shutil
+
+    import pyarrow.parquet
+
+    from ..io.sweep_folder import verified_chunks
+    for _, data in verified_chunks(folder):
+        import io
+        if max((reach or 0.0) for reach in pyarrow.parquet.read_table(io.BytesIO(data), columns=["reach"])
+               .column("reach").to_pylist()) > 0:
+            return
+    if fresh:
+        shutil.rmtree(folder, ignore_errors=True)
+    raise ValueError(f"no design of this sweep assembles at any input value (all {designs:,} designs cannot close "
+                     "their loops): check --set and the --vary ranges"
+                     + ("" if fresh else f"; {folder} keeps their rows"))
+
+
 def register(commands) -> None:
     """Register ``symlink sweep`` (its options are added when it is used: they need the sweep module)."""
     commands.add_parser("sweep", populate=_add_options, **command_help(
@@ -174,8 +195,10 @@ def run(args: argparse.Namespace) -> int:
     settings = SweepSettings(args.linkage, swept, values=values, mode=mode, count=count, seed=args.seed,
                              samples=args.samples, output=args.output, point=args.point, harmonics=args.harmonics,
                              branch=int(args.branch), chunk=args.chunk)
+    fresh = not os.path.lexists(args.folder) or (os.path.isdir(args.folder) and not os.listdir(args.folder))
     done = run_sweep(settings, args.folder, scheduler=args.scheduler, workers=args.workers,
                      progress=not args.no_progress)
+    _require_an_assembly(args.folder, done["designs"], fresh)
     rate = done["designs_per_second"]
     chunks = f"{done['chunks']} chunk{'s' if done['chunks'] != 1 else ''}"
     note(f"{done['designs']} designs in {chunks}: wrote {done['written']}, found {done['skipped']} already there"

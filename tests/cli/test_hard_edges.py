@@ -93,6 +93,9 @@ REFUSED = [
     ("the four-bar table repeating an angle", [*FOURBAR, "--angles", "0,0"], "0 appears more than once"),
     ("a tolerance of a linkage that never assembles", ["tolerance", "fourbar", "--set", "a=100,b=1,c=1,d=1",
                                                       "--tolerance", "0.1"], "cannot be assembled at any of the input"),
+    ("a sweep whose designs never assemble", ["sweep", "fourbar", "{tmp}/s", "--set", "a=100,b=1,c=1", "--vary",
+                                              "d=1:1.1", "--grid", "2", *SWEEP],
+     "no design of this sweep assembles at any input value (all 2 designs cannot close their loops)"),
     ("a tolerance that repeats an angle", ["tolerance", "fourbar", "--tolerance", "0.1", "--angles", "5,5"],
      "5 appears more than once"),
 ]

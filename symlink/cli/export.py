@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import argparse
 
-from .options import command_help, output_folder
+from .options import command_help, name_list, output_folder
 
 
 def _add_options(command: argparse.ArgumentParser) -> None:
@@ -14,7 +14,7 @@ def _add_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("--form", default="atan2", choices=list(FORMS),
                          help="with --to latex: also write the positions in a seed paper's form (complex: seed 000, "
                               "freudenstein: seed 002, half-angle: seed 003); generated code always computes atan2")
-    command.add_argument("--outputs", metavar="LIST",
+    command.add_argument("--outputs", type=name_list, metavar="LIST",
                          help="comma-separated output names, as one function (default: positions, velocities, "
                               "accelerations and joints; and dynamics for a linkage file with [dynamics])")
     command.set_defaults(run=run)
@@ -39,7 +39,7 @@ def run(args: argparse.Namespace) -> int:
     """Write the files (all or none) and name them."""
     from ..io.export import export
     from ..io.linkage_file import load_linkage
-    outputs = None if args.outputs is None else [o.strip() for o in args.outputs.split(",") if o.strip()]
+    outputs = args.outputs
     for path in export(load_linkage(args.name).with_dynamics().linkage, args.to, args.out, outputs, args.form):
         print(f"wrote {path}")
     return 0

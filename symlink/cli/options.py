@@ -24,7 +24,7 @@ if TYPE_CHECKING:
     from ..io.linkage_file import LinkageFile
 
 __all__ = ["UsageError", "Parser", "finite", "angle", "MAX_MAGNITUDE",
-           "whole", "seed", "MAX_WHOLE", "number_list", "distinct_number_list", "pair", "OutputPath", "OutputFolder", "output_file", "output_folder", "check_outputs", "refuse_together", "assignments", "figure_path", "add_sweep_options",
+           "whole", "seed", "MAX_WHOLE", "number_list", "distinct_number_list", "name_list", "pair", "OutputPath", "OutputFolder", "output_file", "output_folder", "check_outputs", "refuse_together", "assignments", "figure_path", "add_sweep_options",
            "add_fourbar_lengths", "fourbar_lengths", "add_branch_option", "add_units_option", "add_format_option",
            "input_sweep", "branches", "command_help", "linkage_values", "fourbar_or_linkage",
            "require_held_inputs", "given_options"]
@@ -182,6 +182,25 @@ def distinct_number_list(text: str) -> list[float]:
             raise argparse.ArgumentTypeError(f"{value:g} appears more than once; list each value once")
         seen.add(value)
     return values
+
+
+def name_list(text: str) -> list[str]:
+    """Comma-separated names (``--free a,b``, ``--outputs rocker,coupler``, ``--trace C,P``), each once: a list
+    that repeats a name asks for the same thing twice.
+
+    >>> name_list("a, b")
+    ['a', 'b']
+    >>> name_list("rocker,rocker")
+    Traceback (most recent call last):
+    argparse.ArgumentTypeError: 'rocker' appears more than once; list each name once
+    """
+    names = [item.strip() for item in text.split(",") if item.strip()]
+    if not names:
+        raise argparse.ArgumentTypeError(f"expected NAME[,NAME...], got {excerpt(text)}")
+    for k, name in enumerate(names):
+        if name in names[:k]:
+            raise argparse.ArgumentTypeError(f"{excerpt(name)} appears more than once; list each name once")
+    return names
 
 
 def pair(what: str) -> Callable[[str], tuple[float, float]]:

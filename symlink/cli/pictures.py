@@ -11,7 +11,7 @@ import sys
 from typing import Sequence
 
 from ..common.angles import to_radians, wrap
-from .options import (output_file, add_branch_option, add_fourbar_lengths, add_units_option, angle, assignments, branches,
+from .options import (name_list, output_file, add_branch_option, add_fourbar_lengths, add_units_option, angle, assignments, branches,
                       command_help, figure_path, finite, fourbar_lengths, fourbar_or_linkage, linkage_values, pair, whole)
 from .output import note
 
@@ -37,7 +37,7 @@ def _add_catalog_options(parser: argparse.ArgumentParser, what: str) -> None:
     parser.add_argument("--set", type=assignments("NAME=VALUE"), metavar="NAME=VALUE,...",
                         help="change example values (fixed angles in --units), e.g. --set a=20,b=66")
     parser.add_argument("--angle", type=angle, metavar="A", help=f"{what} (in --units, default 0)")
-    parser.add_argument("--trace", type=lambda text: [n.strip() for n in text.split(",") if n.strip()],
+    parser.add_argument("--trace", type=name_list,
                         default=None, metavar="POINTS", help="draw the paths of these points, e.g. --trace H")
     parser.add_argument("--unit", default=None, metavar="UNIT", help="length unit for the axis labels, e.g. mm")
 

@@ -34,7 +34,7 @@ from ..numeric.input_sweep import MAX_ANGLE
 from ..common.limits import format_bytes
 from .budget import MEMORY_BUDGET, TIME_BUDGET, format_duration, require_budget
 from .options import (Parser, add_format_option, add_units_option, angle, assignments, command_help, figure_path,
-                      finite, given_options, linkage_values, output_file, pair, seed, whole)
+                      finite, given_options, linkage_values, name_list, output_file, pair, seed, whole)
 from .output import json_number, note, print_rows
 
 #: Columns a csv of targets may have, by kind.
@@ -478,11 +478,8 @@ def _bound(text: str) -> tuple[str, tuple[float, float]]:
 
 
 def _names(text: str) -> list[str]:
-    """Comma-separated names (``--free a,b``)."""
-    names = [item.strip() for item in text.split(",") if item.strip()]
-    if not names:
-        raise argparse.ArgumentTypeError(f"expected NAME[,NAME...], got {excerpt(text)}")
-    return names
+    """Comma-separated names (``--free a,b``), each once."""
+    return name_list(text)
 
 
 def _frame(text: str) -> tuple[str, ...]:

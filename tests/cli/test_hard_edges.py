@@ -96,6 +96,12 @@ REFUSED = [
     ("a sweep whose designs never assemble", ["sweep", "fourbar", "{tmp}/s", "--set", "a=100,b=1,c=1", "--vary",
                                               "d=1:1.1", "--grid", "2", *SWEEP],
      "no design of this sweep assembles at any input value (all 2 designs cannot close their loops)"),
+    ("export of an output twice", ["export", "fourbar", "--to", "numpy", "--out", "{tmp}/o", "--outputs",
+                                   "rocker,coupler,rocker"], "argument --outputs: 'rocker' appears more than once"),
+    ("a path traced twice", ["draw", "jansen", "--trace", "H,H", "--out", "{tmp}/d.png"],
+     "argument --trace: 'H' appears more than once"),
+    ("a parameter freed twice", ["synthesize", "function", "fourbar", "{tmp}/none.csv", "--free", "a,b,a"],
+     "argument --free: 'a' appears more than once"),
     ("a tolerance that repeats an angle", ["tolerance", "fourbar", "--tolerance", "0.1", "--angles", "5,5"],
      "5 appears more than once"),
 ]

@@ -153,11 +153,11 @@ def seed(text: str) -> int:
     7
     >>> seed("-1")
     Traceback (most recent call last):
-    argparse.ArgumentTypeError: a seed is a whole number from 0 up, got -1
+    argparse.ArgumentTypeError: a --seed must be 0 or more (a whole number), got -1
     """
     value = whole(text)
     if value < 0:
-        raise argparse.ArgumentTypeError(f"a seed is a whole number from 0 up, got {value}")
+        raise argparse.ArgumentTypeError(f"a --seed must be 0 or more (a whole number), got {value}")
     return value
 
 

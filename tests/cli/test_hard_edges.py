@@ -268,7 +268,7 @@ NUMBERS = [
     ("builds of 35 digits", ["tolerance", "fourbar", "--tolerance", "0.1", "--builds", "1" + "0" * 34],
      "is out of range"),
     ("a seed below 0", ["synthesize", "path", "{file:path 1e-400}", "--seed", "-1"],
-     "argument --seed: a seed is a whole number from 0 up, got -1"),
+     "argument --seed: a --seed must be 0 or more (a whole number), got -1"),
     ("a linkage default of 400 digits", ["table", "{file:linkage 400 digits}", "--angles", "0"],
      "l.toml:28: defaults.a:", "is too large for a float"),
     ("a linkage default of 1e-400", ["table", "{file:linkage 1e-400}", "--angles", "0"],

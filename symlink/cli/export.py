@@ -14,10 +14,15 @@ def _add_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("--form", default="atan2", choices=list(FORMS),
                          help="with --to latex: also write the positions in a seed paper's form (complex: seed 000, "
                               "freudenstein: seed 002, half-angle: seed 003); generated code always computes atan2")
-    command.add_argument("--outputs", type=name_list, metavar="LIST",
+    command.add_argument("--outputs", type=_outputs, metavar="LIST",
                          help="comma-separated output names, as one function (default: positions, velocities, "
                               "accelerations and joints; and dynamics for a linkage file with [dynamics])")
     command.set_defaults(run=run)
+
+
+def _outputs(text: str) -> list[str]:
+    """``--outputs``: names, each once; none at all is left for the export to refuse in its own words."""
+    return name_list(text) if text.replace(",", "").strip() else []
 
 
 def register(commands) -> None:

@@ -41,7 +41,7 @@ import numpy
 from ..common.files import EXCERPT_LENGTH
 from ..version import __version__
 from .budget import use_time_budget
-from .options import Parser
+from .options import Parser, check_outputs
 
 __all__ = ["main", "build_parser", "COMMANDS"]
 
@@ -141,6 +141,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             elif rest:
                 parser.error(f"unrecognized arguments: {' '.join(rest)}")
             use_time_budget(getattr(args, "time_budget", None))  # this command's, or the default (.budget)
+            check_outputs(args)
             return args.run(args)
         except SystemExit as done:  # --help and --version
             return done.code if isinstance(done.code, int) else EXIT_OK

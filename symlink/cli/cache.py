@@ -60,6 +60,8 @@ def run_info(args: argparse.Namespace) -> int:
     lines = [f"folder   {contents.folder}{'' if contents.exists else ' (not created yet)'}",
              f"entries  {contents.entries}", f"bytes    {contents.size}", f"trusted  {trusted}"]
     if contents.trusted:
+        lines.append(f"leftovers {contents.leftovers} (of builds or writes interrupted or failed"
+                     + ("; 'symlink cache clear' removes them)" if contents.leftovers else ")"))
         lines.append(_others(contents))
     print("\n".join(lines))
     return 0

@@ -3,21 +3,26 @@ from __future__ import annotations
 
 import argparse
 
-from .options import command_help
+from .options import command_help, name_list, output_folder
 
 
 def _add_options(command: argparse.ArgumentParser) -> None:
     from ..io.export import FORMATS
     from ..symbolic.seed_forms import FORMS
     command.add_argument("--to", required=True, choices=list(FORMATS), help="the format")
-    command.add_argument("--out", required=True, metavar="DIR", help="the folder to write into")
+    command.add_argument("--out", type=output_folder, required=True, metavar="DIR", help="the folder to write into")
     command.add_argument("--form", default="atan2", choices=list(FORMS),
                          help="with --to latex: also write the positions in a seed paper's form (complex: seed 000, "
                               "freudenstein: seed 002, half-angle: seed 003); generated code always computes atan2")
-    command.add_argument("--outputs", metavar="LIST",
+    command.add_argument("--outputs", type=_outputs, metavar="LIST",
                          help="comma-separated output names, as one function (default: positions, velocities, "
                               "accelerations and joints; and dynamics for a linkage file with [dynamics])")
     command.set_defaults(run=run)
+
+
+def _outputs(text: str) -> list[str]:
+    """``--outputs``: names, each once; none at all is left for the export to refuse in its own words."""
+    return name_list(text) if text.replace(",", "").strip() else []
 
 
 def register(commands) -> None:
@@ -39,7 +44,7 @@ def run(args: argparse.Namespace) -> int:
     """Write the files (all or none) and name them."""
     from ..io.export import export
     from ..io.linkage_file import load_linkage
-    outputs = None if args.outputs is None else [o.strip() for o in args.outputs.split(",") if o.strip()]
+    outputs = args.outputs
     for path in export(load_linkage(args.name).with_dynamics().linkage, args.to, args.out, outputs, args.form):
         print(f"wrote {path}")
     return 0

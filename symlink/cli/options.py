@@ -17,13 +17,14 @@ from typing import TYPE_CHECKING, Callable, Collection, Mapping, NoReturn
 
 from ..common.angles import to_radians
 from ..common.files import excerpt
+from ..common.numbers import number_from_text
 from ..numeric.input_sweep import MAX_ANGLE, InputSweep
 
 if TYPE_CHECKING:
     from ..io.linkage_file import LinkageFile
 
 __all__ = ["UsageError", "Parser", "finite", "angle", "MAX_MAGNITUDE",
-           "number_list", "distinct_number_list", "pair", "assignments", "figure_path", "add_sweep_options",
+           "whole", "seed", "MAX_WHOLE", "number_list", "distinct_number_list", "name_list", "pair", "OutputPath", "OutputFolder", "output_file", "output_folder", "check_outputs", "refuse_together", "assignments", "figure_path", "add_sweep_options",
            "add_fourbar_lengths", "fourbar_lengths", "add_branch_option", "add_units_option", "add_format_option",
            "input_sweep", "branches", "command_help", "linkage_values", "fourbar_or_linkage",
            "require_held_inputs", "given_options"]
@@ -99,12 +100,18 @@ def command_help(summary: str, units: str, example: str, more: str = "") -> dict
 MAX_MAGNITUDE = 1e50
 
 
+def _number(text: str) -> float:
+    """:func:`~symlink.common.numbers.number_from_text` as an argparse type error (any digits, never rounded to
+    0 or to infinity without a word)."""
+    try:
+        return number_from_text(text)
+    except ValueError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
+
+
 def finite(text: str) -> float:
     """A finite number from the command line (no expressions): 0 or between 1e-50 and 1e50 in size."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {excerpt(text)}") from None
+    value = _number(text)
     if not math.isfinite(value):
         raise argparse.ArgumentTypeError(f"not a finite number: {excerpt(text)}")
     if value != 0 and not 1 / MAX_MAGNITUDE <= abs(value) <= MAX_MAGNITUDE:
@@ -115,10 +122,7 @@ def finite(text: str) -> float:
 
 def angle(text: str) -> float:
     """A finite angle from the command line, at most :data:`~symlink.numeric.input_sweep.MAX_ANGLE` in size (either unit)."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {excerpt(text)}") from None
+    value = _number(text)
     if not math.isfinite(value):
         raise argparse.ArgumentTypeError(f"not a finite number: {excerpt(text)}")
     if abs(value) > MAX_ANGLE:
@@ -127,12 +131,34 @@ def angle(text: str) -> float:
     return value
 
 
+#: The largest whole number the command line takes (a count, a seed): the largest int64, what NumPy can count to.
+MAX_WHOLE = 2 ** 63 - 1
+
+
 def whole(text: str) -> int:
-    """A whole number from the command line."""
-    try:
-        return int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
+    """A whole number from the command line, at most :data:`MAX_WHOLE` in size (any digits: range-checked)."""
+    stripped = text.strip()
+    if not re.fullmatch(r"[-+]?\d+", stripped):
+        raise argparse.ArgumentTypeError(f"not a whole number: {excerpt(text)}")
+    if len(stripped.lstrip("+-").lstrip("0")) > 19 or abs(int(stripped)) > MAX_WHOLE:
+        raise argparse.ArgumentTypeError(f"{excerpt(stripped)} is out of range: whole numbers are at most "
+                                         f"{MAX_WHOLE:,} in size")
+    return int(stripped)
+
+
+def seed(text: str) -> int:
+    """A random seed from the command line: a whole number from 0 to :data:`MAX_WHOLE`.
+
+    >>> seed("7")
+    7
+    >>> seed("-1")
+    Traceback (most recent call last):
+    argparse.ArgumentTypeError: a --seed must be 0 or more (a whole number), got -1
+    """
+    value = whole(text)
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"a --seed must be 0 or more (a whole number), got {value}")
+    return value
 
 
 def number_list(text: str) -> list[float]:
@@ -156,6 +182,25 @@ def distinct_number_list(text: str) -> list[float]:
             raise argparse.ArgumentTypeError(f"{value:g} appears more than once; list each value once")
         seen.add(value)
     return values
+
+
+def name_list(text: str) -> list[str]:
+    """Comma-separated names (``--free a,b``, ``--outputs rocker,coupler``, ``--trace C,P``), each once: a list
+    that repeats a name asks for the same thing twice.
+
+    >>> name_list("a, b")
+    ['a', 'b']
+    >>> name_list("rocker,rocker")
+    Traceback (most recent call last):
+    argparse.ArgumentTypeError: 'rocker' appears more than once; list each name once
+    """
+    names = [item.strip() for item in text.split(",") if item.strip()]
+    if not names:
+        raise argparse.ArgumentTypeError(f"expected NAME[,NAME...], got {excerpt(text)}")
+    for k, name in enumerate(names):
+        if name in names[:k]:
+            raise argparse.ArgumentTypeError(f"{excerpt(name)} appears more than once; list each name once")
+    return names
 
 
 def pair(what: str) -> Callable[[str], tuple[float, float]]:
@@ -220,12 +265,65 @@ def require_held_inputs(linkage, settings: Mapping[str, float], command: str) ->
                          f"{',...' if len(unset) > 1 else ''}")
 
 
-def figure_path(text: str) -> str:
+class OutputPath(str):
+    """A file (``folder`` False) or folder a command writes, as given: every one on a command line is checked
+    before the command starts (:func:`check_outputs`), so a bad output fails before any work or output."""
+
+    folder = False
+    #: How a message names the option (None: ``--`` and the destination).
+    label: str | None = None
+
+
+class OutputFolder(OutputPath):
+    """A folder a command writes into (created if missing)."""
+
+    folder = True
+
+
+def output_file(text: str) -> OutputPath:
+    """The name of a file a command writes (checked by :func:`check_outputs`)."""
+    return OutputPath(text)
+
+
+def output_folder(text: str) -> OutputFolder:
+    """The name of a folder a command writes into (checked by :func:`check_outputs`)."""
+    return OutputFolder(text)
+
+
+def _option_name(dest: str, value: OutputPath) -> str:
+    return value.label or "--" + dest.replace("_", "-")
+
+
+def check_outputs(args: argparse.Namespace) -> None:
+    """Before a command starts: refuse two options that write one file (``UsageError`` naming both), and an
+    output that cannot be written (``OSError`` naming it with the real reason: a folder or a file in the way,
+    a read-only folder), so that a command fails before any work, output or file, never half way.
+
+    >>> check_outputs(argparse.Namespace(plot=OutputPath("a.png"), plot_transmission=OutputPath("./a.png")))
+    Traceback (most recent call last):
+    symlink.cli.options.UsageError: --plot and --plot-transmission both write ./a.png: give each output its own file
+    """
+    import os
+
+    from ..common.files import check_writable
+    outputs = {dest: value for dest, value in vars(args).items() if isinstance(value, OutputPath) and value != "-"}
+    seen: dict[str, str] = {}
+    for dest, value in outputs.items():
+        key = os.path.realpath(value)
+        if key in seen:
+            raise UsageError(f"{_option_name(seen[key], outputs[seen[key]])} and {_option_name(dest, value)} both write {excerpt(str(value))[1:-1]}:"
+                             " give each output its own file")
+        seen[key] = dest
+    for value in outputs.values():
+        check_writable(value, folder=value.folder)
+
+
+def figure_path(text: str) -> OutputPath:
     """A .png or .svg file name."""
     if Path(text).suffix.lower() not in FIGURE_SUFFIXES:
         raise argparse.ArgumentTypeError(f"cannot draw into {text!r}: the file must end in "
                                          f"{' or '.join(FIGURE_SUFFIXES)}")
-    return text
+    return OutputPath(text)
 
 
 def add_fourbar_lengths(parser: argparse.ArgumentParser, defaults: dict[str, float] | None = None,
@@ -270,6 +368,22 @@ def fourbar_or_linkage(args: argparse.Namespace, command: str, lengths_required:
                             "in the four-bar form (--crank --coupler --rocker --ground); it belongs to a linkage "
                             "NAME|FILE"))
     return named
+
+
+def refuse_together(args: argparse.Namespace, *conflicts: tuple[str, str, bool, str]) -> None:
+    """``UsageError`` naming both options of the first conflict that holds: each is ``(destination, how it
+    conflicts, naming the other option, whether that is in force, why)``, the first option counting when it
+    was given on the command line (not left at its default).
+
+    >>> args = argparse.Namespace(**{"workers": 2, _GIVEN: {"workers"}})
+    >>> refuse_together(args, ("workers", "conflicts with --scheduler synchronous", True, "it runs in this process"))
+    Traceback (most recent call last):
+    symlink.cli.options.UsageError: --workers conflicts with --scheduler synchronous: it runs in this process
+    """
+    given = given_options(args)
+    for dest, conflict, in_force, why in conflicts:
+        if dest in given and in_force:
+            raise UsageError(f"--{dest.replace('_', '-')} {conflict}: {why}")
 
 
 def fourbar_lengths(args: argparse.Namespace) -> tuple[float, float, float, float]:

@@ -20,7 +20,8 @@ from typing import Any
 import numpy
 
 from ..common.angles import from_radians, to_radians
-from .options import add_branch_option, add_format_option, add_units_option, angle, assignments, command_help, finite
+from .options import (add_branch_option, add_format_option, add_units_option, angle, assignments, command_help, finite,
+                      output_file)
 from ..common.files import write_files_together
 from .output import RowWriter, note
 
@@ -63,7 +64,7 @@ def _add_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("--unit", choices=list(UNITS_IN_MM),
                          help="the length unit of the linkage's dimensions (default mm, or a design file's)")
     for option, (suffix, what) in FILE_OPTIONS.items():
-        command.add_argument(f"--{option}", metavar="FILE", help=f"write {what} ({suffix})")
+        command.add_argument(f"--{option}", type=output_file, metavar="FILE", help=f"write {what} ({suffix})")
     command.add_argument("--angle", type=angle, metavar="A",
                          help="the first input's value for the assembly drawing (in --units; a length for a slider "
                               "input; default 0, or the nearest value where the linkage assembles)")

@@ -11,7 +11,7 @@ import sys
 from typing import Sequence
 
 from ..common.angles import to_radians, wrap
-from .options import (add_branch_option, add_fourbar_lengths, add_units_option, angle, assignments, branches,
+from .options import (name_list, output_file, add_branch_option, add_fourbar_lengths, add_units_option, angle, assignments, branches,
                       command_help, figure_path, finite, fourbar_lengths, fourbar_or_linkage, linkage_values, pair, whole)
 from .output import note
 
@@ -37,7 +37,7 @@ def _add_catalog_options(parser: argparse.ArgumentParser, what: str) -> None:
     parser.add_argument("--set", type=assignments("NAME=VALUE"), metavar="NAME=VALUE,...",
                         help="change example values (fixed angles in --units), e.g. --set a=20,b=66")
     parser.add_argument("--angle", type=angle, metavar="A", help=f"{what} (in --units, default 0)")
-    parser.add_argument("--trace", type=lambda text: [n.strip() for n in text.split(",") if n.strip()],
+    parser.add_argument("--trace", type=name_list,
                         default=None, metavar="POINTS", help="draw the paths of these points, e.g. --trace H")
     parser.add_argument("--unit", default=None, metavar="UNIT", help="length unit for the axis labels, e.g. mm")
 
@@ -64,11 +64,18 @@ def add_fourbar_plot_options(parser: argparse.ArgumentParser) -> None:
 def write_fourbar_plots(a: float, b: float, c: float, d: float, signs: Sequence[int], units: str,
                         angles_file: str | None, transmission_file: str | None) -> None:
     """The drawings ``symlink fourbar --plot/--plot-transmission`` asked for."""
-    from ..plot import angle_figure, save_figure, transmission_figure
+    from pathlib import Path
+
+    from ..common.files import write_files_together
+    from ..plot import angle_figure, transmission_figure
+    from ..plot.figures import figure_bytes
+    figures = {}
     if angles_file:
-        save_figure(angle_figure(a, b, c, d, branches=signs, units=units), angles_file)
+        figures[Path(angles_file)] = figure_bytes(angle_figure(a, b, c, d, branches=signs, units=units), angles_file)
     if transmission_file:
-        save_figure(transmission_figure(a, b, c, d, units=units), transmission_file)
+        figures[Path(transmission_file)] = figure_bytes(transmission_figure(a, b, c, d, units=units),
+                                                        transmission_file)
+    write_files_together(figures)  # both or neither
 
 
 def _coupler_point(args: argparse.Namespace) -> tuple[float, float] | None:
@@ -167,7 +174,8 @@ def run_draw(args: argparse.Namespace) -> int:
 
 def run_view(args: argparse.Namespace) -> int:
     from ..plot.view import SEED001, FourbarView, LinkageView, check_slider_range, interactive_backend
-    if fourbar_or_linkage(args, "view", lengths_required=False):
+    if fourbar_or_linkage(args, "view", lengths_required=False, linkage_only=("set", "angle", "trace", "unit"),
+                          fourbar_only=("crank_angle", "crank_speed")):
         linkage, values = drawn_linkage(args)
         trace = _default_trace(linkage) if args.trace is None else args.trace
         if args.save:
@@ -270,7 +278,7 @@ def _add_animate_options(animation: argparse.ArgumentParser) -> None:
     animation.add_argument("--coupler-point", type=pair("DIST,ANGLE"), metavar="DIST,ANGLE",
                            help="also draw a coupler point: distance from B, angle from the coupler's direction B->C")
     add_units_option(animation, "coupler point's angle")
-    animation.add_argument("--out", required=True, metavar="FILE", help=".gif or .mp4")
+    animation.add_argument("--out", type=output_file, required=True, metavar="FILE", help=".gif or .mp4")
     animation.set_defaults(run=run_animate)
 
 

@@ -10,7 +10,7 @@ import argparse
 import socket
 import sys
 
-from .options import command_help
+from .options import UsageError, command_help, output_file, whole
 
 #: The one line said when the server's packages are missing.
 MISSING = "symlink studio needs the studio extra: pip install 'symlink-kinematics[studio]'"
@@ -27,10 +27,10 @@ def _add_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("name", metavar="NAME|FILE", nargs="?",
                          help="open a catalog linkage, an atlas entry (atlas:NAME), a linkage file (.toml), "
                               "pylinkage JSON (.json) or a Pyslvs expression (.txt, .pmks)")
-    command.add_argument("--port", type=int, metavar="P", help="the port on 127.0.0.1 (default: the first free one from 8765, where the browser keeps the "
+    command.add_argument("--port", type=whole, metavar="P", help="the port on 127.0.0.1 (default: the first free one from 8765, where the browser keeps the "
                               "last drawing, else any free one)")
     command.add_argument("--no-browser", action="store_true", help="print the URL, do not open a browser")
-    command.add_argument("--html", metavar="OUT.html",
+    command.add_argument("--html", type=output_file, metavar="OUT.html",
                          help="write NAME|FILE as one self-contained HTML page that animates offline, and stop")
     command.set_defaults(run=run)
 
@@ -63,6 +63,10 @@ def run(args: argparse.Namespace) -> int:
     if args.html is not None:
         if args.name is None:
             raise ValueError("--html OUT.html needs NAME|FILE: the linkage to write")
+        for option, given in (("--no-browser", args.no_browser), ("--port", args.port is not None)):
+            if given:
+                raise UsageError(f"--html and {option} conflict: --html writes a page and starts no server; give "
+                                 "one or the other")
         from ..common.files import write_atomic
         from ..studio.page import standalone_page
         write_atomic(args.html, standalone_page(_initial(args.name)))

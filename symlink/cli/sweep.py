@@ -20,8 +20,8 @@ from ..common.angles import to_radians
 from ..common.files import excerpt
 from ..common.limits import format_bytes
 from .budget import MEMORY_BUDGET, add_time_budget_option, budget_text, format_duration, time_budget
-from .options import (add_units_option, assignments, command_help, finite, linkage_values, require_held_inputs,
-                      whole)
+from .options import (OutputFolder, add_units_option, assignments, command_help, finite, linkage_values,
+                      refuse_together, require_held_inputs, seed, whole)
 from .output import note
 
 
@@ -105,6 +105,33 @@ def estimate_sweep(designs: int, samples: int, chunk: int, scheduler: str, worke
     return seconds
 
 
+def _sweep_folder(text: str) -> OutputFolder:
+    folder = OutputFolder(text)
+    folder.label = "FOLDER"
+    return folder
+
+
+def _require_an_assembly(folder: str, designs: int, fresh: bool) -> None:
+    """``ValueError`` when no design of a finished sweep assembles at any input value: a table of nothing but
+    non-assemblies (every column NaN but the design's own) answers no question, so the command refuses it as
+    every command refuses a linkage that never assembles; a folder this run created is removed."""
+    import shutil
+
+    import pyarrow.parquet
+
+    from ..io.sweep_folder import verified_chunks
+    for _, data in verified_chunks(folder):
+        import io
+        if max((reach or 0.0) for reach in pyarrow.parquet.read_table(io.BytesIO(data), columns=["reach"])
+               .column("reach").to_pylist()) > 0:
+            return
+    if fresh:
+        shutil.rmtree(folder, ignore_errors=True)
+    raise ValueError(f"no design of this sweep assembles at any input value (all {designs:,} designs cannot close "
+                     "their loops): check --set and the --vary ranges"
+                     + ("" if fresh else f"; {folder} keeps their rows"))
+
+
 def register(commands) -> None:
     """Register ``symlink sweep`` (its options are added when it is used: they need the sweep module)."""
     commands.add_parser("sweep", populate=_add_options, **command_help(
@@ -123,7 +150,7 @@ def register(commands) -> None:
 def _add_options(command: argparse.ArgumentParser) -> None:
     from ..workshop.sweep import SCHEDULERS
     command.add_argument("linkage", metavar="NAME|FILE", help="a catalog linkage or a linkage file")
-    command.add_argument("folder", metavar="FOLDER", help="where the chunks (chunk-NNNNNN.parquet) and manifest go")
+    command.add_argument("folder", type=_sweep_folder, metavar="FOLDER", help="where the chunks (chunk-NNNNNN.parquet) and manifest go")
     command.add_argument("--vary", type=ranges, required=True, metavar="NAME=LOW:HIGH,...",
                          help="the parameters swept and their ranges")
     command.add_argument("--set", type=assignments("NAME=VALUE"), default={}, metavar="NAME=VALUE,...",
@@ -131,7 +158,7 @@ def _add_options(command: argparse.ArgumentParser) -> None:
     how = command.add_mutually_exclusive_group()
     how.add_argument("--grid", type=whole, metavar="N", help="N values of each swept parameter (default 10)")
     how.add_argument("--random", type=whole, metavar="N", help="N designs uniform in the ranges (seeded)")
-    command.add_argument("--seed", type=whole, default=0, help="of --random (default 0)")
+    command.add_argument("--seed", type=seed, default=0, help="of --random (default 0)")
     command.add_argument("--samples", type=whole, default=360, metavar="N", help="input values a turn (default 360)")
     command.add_argument("--output", metavar="NAME", help="the output whose stroke and time ratio are found "
                                                           "(default: the last role)")
@@ -161,6 +188,12 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"symlink sweep needs {', '.join(missing)}: {SWEEP_EXTRA}")
     if args.workers is not None and args.workers < 1:
         raise ValueError(f"--workers must be at least 1, got {args.workers}")
+    refuse_together(args, ("workers", "conflicts with --scheduler synchronous", args.scheduler == "synchronous",
+                           "it evaluates every chunk in this process, one at a time"),
+                    ("workers", f"conflicts with --scheduler {args.scheduler}",
+                     args.scheduler.startswith(("tcp://", "tls://")), "a cluster's workers are its own"),
+                    ("seed", "does nothing with --grid", args.random is None,
+                     "a grid is not sampled; --seed belongs to --random N"))
     if args.scheduler not in (*SCHEDULERS, "auto") and not args.scheduler.startswith(("tcp://", "tls://")):
         raise ValueError(f"--scheduler must be auto, {', '.join(SCHEDULERS)} or a cluster's address tcp://HOST:PORT, "
                          f"got {args.scheduler!r}")
@@ -186,8 +219,10 @@ def run(args: argparse.Namespace) -> int:
     settings = SweepSettings(args.linkage, swept, values=values, mode=mode, count=count, seed=args.seed,
                              samples=args.samples, output=args.output, point=args.point, harmonics=args.harmonics,
                              branch=int(args.branch), chunk=args.chunk)
+    fresh = not os.path.lexists(args.folder) or (os.path.isdir(args.folder) and not os.listdir(args.folder))
     done = run_sweep(settings, args.folder, scheduler=args.scheduler, workers=args.workers,
                      progress=not args.no_progress)
+    _require_an_assembly(args.folder, done["designs"], fresh)
     rate = done["designs_per_second"]
     chunks = f"{done['chunks']} chunk{'s' if done['chunks'] != 1 else ''}"
     note(f"{done['designs']} designs in {chunks}: wrote {done['written']}, found {done['skipped']} already there"

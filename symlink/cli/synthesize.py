@@ -29,11 +29,12 @@ import numpy
 
 from ..common.angles import from_radians, to_radians, wrap
 from ..common.files import excerpt, read_input_text, read_stdin_text
+from ..common.numbers import number_from_text
 from ..numeric.input_sweep import MAX_ANGLE
 from ..common.limits import format_bytes
 from .budget import MEMORY_BUDGET, add_time_budget_option, budget_text, format_duration, require_budget, time_budget
 from .options import (Parser, add_format_option, add_units_option, angle, assignments, command_help, figure_path,
-                      finite, given_options, linkage_values, pair, whole)
+                      finite, given_options, linkage_values, name_list, output_file, pair, seed, whole)
 from .output import json_number, note, print_rows
 
 #: Columns a csv of targets may have, by kind.
@@ -98,10 +99,12 @@ def read_targets(path: str, allowed: tuple[tuple[str, ...], ...],
     for number, row in rows[1:]:
         if len(row) != len(header):
             raise ValueError(f"{path}:{number}: {len(row)} values, expected {len(header)} ({','.join(header)})")
-        try:
-            parsed = [float(cell) for cell in row]
-        except ValueError:
-            raise ValueError(f"{path}:{number}: not a number among {excerpt(','.join(row))}") from None
+        parsed = []
+        for name, cell in zip(header, row):
+            try:
+                parsed.append(number_from_text(cell))
+            except ValueError as error:
+                raise ValueError(f"{path}:{number}: {name}: {error}") from None
         for name, value in zip(header, parsed):
             _check_target(value, name, f"{path}:{number}", angles)
         values.append(parsed)
@@ -222,7 +225,7 @@ def _register_path(kinds) -> None:
                          help="worst transmission angle at least this over the motion each design runs: the "
                               "full turn for a crank that turns fully, else between its first and last target "
                               "(default 0; with LINKAGE: at every loop with two unknown angles)")
-    command.add_argument("--seed", type=whole, default=0, help="seed of the atlas of starts (default 0)")
+    command.add_argument("--seed", type=seed, default=0, help="seed of the atlas of starts (default 0)")
     add_units_option(command)
     add_format_option(command)
     command.add_argument("--plot", type=figure_path, metavar="FILE",
@@ -482,11 +485,8 @@ def _bound(text: str) -> tuple[str, tuple[float, float]]:
 
 
 def _names(text: str) -> list[str]:
-    """Comma-separated names (``--free a,b``)."""
-    names = [item.strip() for item in text.split(",") if item.strip()]
-    if not names:
-        raise argparse.ArgumentTypeError(f"expected NAME[,NAME...], got {excerpt(text)}")
-    return names
+    """Comma-separated names (``--free a,b``), each once."""
+    return name_list(text)
 
 
 def _frame(text: str) -> tuple[str, ...]:
@@ -516,13 +516,13 @@ def _linkage_path(text: str) -> str:
     if not text.endswith(".toml"):
         raise argparse.ArgumentTypeError(f"the design is written as a linkage file: the name must end in .toml, got "
                                          f"{excerpt(text)}")
-    return text
+    return output_file(text)
 
 
 def _record_path(text: str) -> str:
     if not text.lower().endswith(RECORD_SUFFIXES):
         raise argparse.ArgumentTypeError(f"the record is .json or .csv, got {excerpt(text)}")
-    return text
+    return output_file(text)
 
 
 def add_general_options(command: argparse.ArgumentParser, kind: str) -> None:
@@ -568,7 +568,7 @@ def add_general_options(command: argparse.ArgumentParser, kind: str) -> None:
         group.add_argument("--angle", metavar="NAME", help="the output that is the guided link's angle")
     if kind != "path":  # path has its own
         group.add_argument("--starts", type=whole, default=8, metavar="N", help="refine N starts (default 8)")
-        group.add_argument("--seed", type=whole, default=0, help="seed of the sampled starts (default 0)")
+        group.add_argument("--seed", type=seed, default=0, help="seed of the sampled starts (default 0)")
     command.add_argument("--out", type=_linkage_path, metavar="FILE.toml",
                          help="write the design (the first listed) as a linkage file with its [defaults], the "
                               "placement in its points" + ("" if kind == "function" else

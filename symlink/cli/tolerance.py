@@ -21,9 +21,9 @@ from typing import Any
 import numpy
 
 from ..common.angles import from_radians, to_radians, wrap
-from .options import (FOURBAR_LENGTHS, add_branch_option, add_format_option, add_units_option, assignments,
+from .options import (FOURBAR_LENGTHS, output_folder, refuse_together, add_branch_option, add_format_option, add_units_option, assignments,
                       command_help, figure_path, finite, fourbar_lengths, input_sweep, linkage_values, distinct_number_list,
-                      whole)
+                      seed, whole)
 from .dynamics import add_mass_options, fourbar_dynamics
 from .output import RowWriter, note
 
@@ -67,8 +67,8 @@ def _add_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("--samples", "--builds", dest="builds", type=whole, metavar="N",
                          help="also sample N builds (Monte Carlo, seeded by --seed): adds the columns 'sampled_low' "
                               "and 'sampled_high', the deviation's 0.135 and 99.865 percentiles (3 sigma)")
-    command.add_argument("--seed", type=whole, default=0, help="of the sampled builds (default 0)")
-    command.add_argument("--folder", metavar="DIR",
+    command.add_argument("--seed", type=seed, default=0, help="of the sampled builds (default 0)")
+    command.add_argument("--folder", type=output_folder, metavar="DIR",
                          help="make the sampled builds on Dask in chunks written to DIR (a sweep's folder): stopped, "
                               "the same command again continues where it stopped (needs the extra 'sweep')")
     command.add_argument("--plot", type=figure_path, metavar="FILE",
@@ -149,6 +149,8 @@ def run(args: argparse.Namespace) -> int:
                          "dimensions: there is no stack-up to print")
     play = pin_play(linkage, output, values, args.play, inputs=inputs).worst_case[0] if args.play else None
     sampled, builds = None, None
+    refuse_together(args, ("seed", "does nothing without --samples N", args.builds is None,
+                           "only sampled builds are seeded; the worst case and RSS are not sampled"))
     if args.folder is not None and args.builds is None:
         raise ValueError("--folder holds sampled builds: give their number with --samples N")
     if args.builds is not None:

@@ -17,6 +17,7 @@ writable by no one else.
 """
 from __future__ import annotations
 
+import errno
 import os
 import secrets
 import shutil
@@ -25,7 +26,7 @@ import time
 from pathlib import Path
 from typing import Mapping
 
-__all__ = ["write_atomic", "write_files_atomic", "write_files_together", "private_folder", "read_private", "NotPrivate", "TEMPORARY_SUFFIX",
+__all__ = ["write_atomic", "naming", "check_writable", "write_files_atomic", "write_files_together", "private_folder", "read_private", "NotPrivate", "TEMPORARY_SUFFIX",
            "remove_leftovers", "read_input", "read_input_text", "read_stdin_text", "excerpt", "EXCERPT_LENGTH"]
 
 #: The name of every temporary file of :func:`write_atomic` ends so: ``.<name>.<random>.tmp``.
@@ -82,11 +83,118 @@ def write_atomic(path: str | os.PathLike, data: str | bytes, mode: int | None = 
     """
     path = Path(path)
     try:
-        _write_through_temporary(path, data, mode)
+        _refuse_unwritable_place(path)
+        if _is_special(path):  # /dev/full, /dev/null, a FIFO: written through, never replaced by a file
+            _write_through(path, data.encode("utf-8") if isinstance(data, str) else bytes(data))
+        else:
+            _write_through_temporary(path, data, mode)
     except OSError as error:
-        if error.filename is not None and str(error.filename) == str(path):
-            raise
-        raise type(error)(error.errno, error.strerror or str(error), str(path)) from None
+        raise naming(error, path) from None
+
+
+def naming(error: OSError, path: str | os.PathLike) -> OSError:
+    """``error`` naming the user's ``path`` (never a hidden temporary beside it) with the system's reason.
+
+    >>> import errno
+    >>> error = naming(OSError(errno.ENOSPC, "No space left on device", ".out.png.1a2b.tmp"), "out.png")
+    >>> error.filename, error.strerror
+    ('out.png', 'No space left on device')
+    """
+    if error.filename is not None and str(error.filename) == str(path):
+        return error
+    made = type(error)(error.errno, error.strerror or str(error), str(path))
+    return made if isinstance(made, OSError) else OSError(error.errno, error.strerror or str(error), str(path))
+
+
+def _is_special(path: Path) -> bool:
+    """Whether ``path`` is a device, FIFO or socket (written through in place, not renamed over)."""
+    try:
+        mode = os.stat(path).st_mode
+    except OSError:
+        return False
+    return not (stat.S_ISREG(mode) or stat.S_ISDIR(mode))
+
+
+def _write_through(path: Path, payload: bytes) -> None:
+    """Write into a device or FIFO that is there (``/dev/full`` says "No space left on device")."""
+    flags = os.O_WRONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0)
+    handle = os.open(path, flags)  # a FIFO with no reader: ENXIO at once, never a wait
+    try:
+        os.set_blocking(handle, True)
+        _write_all(handle, payload)
+    finally:
+        os.close(handle)
+
+
+def _refuse_unwritable_place(path: Path, folder: bool = False) -> None:
+    """``OSError`` naming ``path`` when nothing can be written there: a folder where a file is to go
+    (``folder`` False), or a file on the way to it (``out.png/x.png``: "out.png is a file, not a folder")."""
+    if not folder and os.path.isdir(path):
+        raise IsADirectoryError(errno.EISDIR, "it is a folder, not a file", str(path))
+    for parent in path.parents if not folder else (path, *path.parents):
+        try:
+            status = os.stat(parent)
+        except FileNotFoundError:
+            continue
+        except NotADirectoryError:  # a file further up: reported when the walk reaches it
+            continue
+        if not stat.S_ISDIR(status.st_mode):
+            if parent == path:
+                return  # the folder itself is a file: the command says so in its own words
+            raise NotADirectoryError(errno.ENOTDIR, f"{parent} is a file, not a folder", str(path))
+        return
+
+
+def check_writable(path: str | os.PathLike, folder: bool = False) -> None:
+    """``OSError`` naming ``path`` (with the real reason) when a file (or, ``folder``, a folder) cannot be
+    written there: checked before a command starts its work, so that a bad output fails before any output.
+
+    A folder where the file is to go, a file on the way to it, a folder that cannot be written (read-only,
+    ``/proc``) are each refused; a device or FIFO there is written through (:func:`write_atomic`).  The check
+    creates a hidden empty file in the nearest folder that exists and removes it at once.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file (or folder) a command will write.
+    folder : bool, optional
+        ``path`` is a folder to be written into (created if missing).
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> here = pathlib.Path(tempfile.mkdtemp())
+    >>> check_writable(here / "new" / "out.png")  # creates nothing
+    >>> sorted(here.iterdir())
+    []
+    >>> (here / "notes.txt").write_text("x")
+    1
+    >>> try:
+    ...     check_writable(here / "notes.txt" / "out.png")
+    ... except NotADirectoryError as error:
+    ...     print(error.strerror.endswith("notes.txt is a file, not a folder"), error.filename.endswith("out.png"))
+    True True
+    """
+    path = Path(path)
+    try:
+        _refuse_unwritable_place(path, folder)
+        if _is_special(path) or (folder and os.path.isdir(path) and not os.access(path, os.W_OK | os.X_OK)):
+            if _is_special(path):
+                return
+            raise PermissionError(errno.EACCES, "Permission denied", str(path))
+        existing = next((p for p in ((path,) if folder else ()) + tuple(path.parents) if os.path.isdir(p)), None)
+        if existing is None:
+            return
+        probe = existing / f".symlink-probe-{secrets.token_hex(6)}{TEMPORARY_SUFFIX}"
+        flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_CLOEXEC", 0)
+        os.close(os.open(probe, flags, 0o600))
+        os.unlink(probe)
+    except OSError as error:
+        raise naming(error, path) from None
 
 
 def _write_through_temporary(path: Path, data: str | bytes, mode: int | None) -> None:

@@ -141,12 +141,13 @@ import sys
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
-from typing import TYPE_CHECKING, Mapping, Union
+from typing import TYPE_CHECKING, Any, Mapping, Union
 
 import sympy as sp
 
 from ..common.display import record_html
 from ..common.files import excerpt, read_input_text, write_atomic
+from ..common.numbers import float_of, number_from_text, toml_data
 from ..numeric.input_sweep import MAX_ANGLE as INPUT_MAX_ANGLE
 from ..symbolic.linkage import Linkage
 from ..symbolic.loops import Loop
@@ -161,8 +162,8 @@ if sys.version_info >= (3, 11):
 else:  # Python 3.10: tomli is tomllib before it joined the standard library
     from tomli import loads as toml_loads
 
-__all__ = ["LinkageFile", "load_linkage", "read_linkage", "linkage_from_text", "linkage_from_mapping", "linkage_text",
-           "write_linkage", "write_catalog_files", "catalog_file", "CATALOG_FOLDER", "dynamic_model",
+__all__ = ["LinkageFile", "toml_data", "load_linkage", "read_linkage", "linkage_from_text", "linkage_from_mapping",
+           "linkage_text", "write_linkage", "write_catalog_files", "catalog_file", "CATALOG_FOLDER", "dynamic_model",
            "catalog_name", "SIX_BAR_ENTRIES"]
 
 #: Where the catalog's linkage files ship: package data of symlink (``symlink/linkages/<name>.toml``),
@@ -331,12 +332,7 @@ def _number_value(text: str) -> _Number:
     """A number token as an exact ratio (whole numbers) or a float; ``ValueError`` when out of float range."""
     if not any(c in text for c in ".eE"):
         return int(text), 1
-    value = float(text)
-    if math.isinf(value):
-        raise ValueError(f"{excerpt(text, 20)} is too large for a float")
-    if value == 0 and any(c in "123456789" for c in text.split("e")[0].split("E")[0]):
-        raise ValueError(f"{excerpt(text, 20)} is too small for a float (it would be 0)")
-    return value
+    return number_from_text(text)
 
 
 def _divided(value: _Number, divisor: _Number) -> _Number:
@@ -504,8 +500,9 @@ def _expression(value, names: Mapping[str, sp.Symbol], units: bool, kind: str | 
     if isinstance(value, bool) or not isinstance(value, (int, float, str)):
         raise ValueError(f"must be a number or a string such as 'beta + 35 deg', got {excerpt(value)}")
     if isinstance(value, (int, float)):
-        if not math.isfinite(value):
-            raise ValueError(f"must be finite, got {value!r}")
+        if not math.isfinite(float_of(value)):
+            raise ValueError(f"must be finite, got {value!r}" if isinstance(value, float) else
+                             f"{excerpt(str(value), 20)} is too large for a float")
         try:
             _check_range(float(value), kind)
         except ValueError as error:
@@ -787,7 +784,7 @@ def _dynamic_value(value, table: str, key: str, known: Mapping[str, sp.Symbol], 
         raise _Problem(table, key, f"{where} must be a number or a name, got {excerpt(value)}")
     if isinstance(value, (int, float)):
         try:
-            _check_range(float(value), kind)
+            _check_range(float_of(value), kind)
         except ValueError as error:
             raise _Problem(table, key, f"{where} {error}") from None
         return value
@@ -906,12 +903,9 @@ def linkage_from_text(text: str, source: str = "<text>") -> LinkageFile:
     ((beta, s), ['2b'])
     """
     try:
-        data = toml_loads(text)
-    except ValueError as error:  # tomllib.TOMLDecodeError: its message ends "(at line L, column C)"
-        found = re.search(r"line (\d+)", str(error))
-        line = found.group(1) if found else "1"
-        message = re.sub(r"\s*\(at line \d+, column \d+\)|^line \d+: ", "", str(error))
-        raise ValueError(f"{source}:{line}: not valid TOML: {message}") from None
+        data = toml_data(text)
+    except ValueError as error:  # "line L: problem"
+        raise ValueError(f"{source}:{str(error)[len('line '):]}") from None
     return linkage_from_mapping(data, source, text)
 
 

@@ -43,6 +43,7 @@ import re
 from typing import Any, Mapping
 
 from ..common.files import excerpt
+from ..common.numbers import number_from_text
 from ..mechanism.joints import JointDescription, JointLinkage, Slider
 from ..mechanism.topology import GROUND
 from .linkage_file import MAX_LINKAGE_BYTES
@@ -87,7 +88,10 @@ def _link_name(identifier: Any, what: str) -> str:
 
 def _json_number(text: str) -> float:
     """A JSON number, of any digits, as a finite float in the range every symlink reader takes (else one line)."""
-    value = float(text)  # never int(text): a 5000-digit integer is refused here, not by Python's digit limit
+    try:  # never int(text): a 5000-digit integer is refused here, not by Python's digit limit
+        value = number_from_text(text)
+    except ValueError as error:
+        raise ValueError(f"pylinkage JSON: the number is out of range: {error}") from None
     if not math.isfinite(value) or abs(value) > MAX_COORDINATE:
         raise ValueError(f"pylinkage JSON: the number {excerpt(text)} is out of range (at most {MAX_COORDINATE:g})")
     return value

@@ -42,6 +42,7 @@ import re
 from typing import Any, Iterable, Mapping, Sequence
 
 from ..common.files import excerpt
+from ..common.numbers import number_from_text
 from ..mechanism.joints import JointDescription, JointLinkage, Slider
 from ..mechanism.topology import GROUND
 from .linkage_file import MAX_LINKAGE_BYTES
@@ -116,7 +117,10 @@ class _Parser:
     def number(self) -> float:
         if self.index >= len(self.tokens) or self.tokens[self.index][0] != "number":
             raise ValueError(f"{self._where()}: expected a number, found {self._found()}")
-        value = float(self.tokens[self.index][1])  # any digits: a float, range-checked, never int()
+        try:  # any digits: a float, range-checked, never int()
+            value = number_from_text(self.tokens[self.index][1])
+        except ValueError as error:
+            raise ValueError(f"{self._where()}: the number is out of range: {error}") from None
         if not math.isfinite(value) or abs(value) > MAX_COORDINATE:
             raise ValueError(f"{self._where()}: {self._found()} is out of range (at most {MAX_COORDINATE:g})")
         self.index += 1

@@ -51,6 +51,7 @@ is checked; anything unknown or out of range is one line of error.
 """
 from __future__ import annotations
 
+import math
 from functools import cached_property, lru_cache
 from pathlib import Path
 from typing import Any, Mapping, Sequence
@@ -66,7 +67,8 @@ from ..common.display import record_html
 from ..numeric.input_sweep import InputSweep
 from .linkage_file import LinkageFile, catalog_name, dynamic_model, load_linkage
 from .scene_text import (BRANCH_CHOICES, FORMATS, INPUT_KEYS, MAX_SCENE_BYTES, TOP_KEYS, UNITS,  # noqa: F401
-                         choice as _choice, number as _number, table as _table, toml_loads)
+                         choice as _choice, number as _number, table as _table)
+from ..common.numbers import toml_data
 from ..common.angles import to_radians
 from ..symbolic.linkage import Linkage, Program
 from ..symbolic.closure import is_angle
@@ -492,12 +494,7 @@ def scene_from_text(text: str, source: str, folder: str | Path = ".") -> SceneFi
     try:
         if len(text) > MAX_SCENE_BYTES:
             raise ValueError(f"larger than {MAX_SCENE_BYTES} bytes: not a scene file")
-        try:
-            data = toml_loads(text)
-        except ValueError as error:  # tomllib.TOMLDecodeError is a ValueError
-            raise ValueError(f"not valid TOML: {error}") from None
-        except RecursionError:
-            raise ValueError("not valid TOML: nested too deeply") from None
+        data = toml_data(text)
         return scene_from_mapping(data, folder)
     except ValueError as error:
         raise ValueError(f"{source}: {error}") from None

@@ -23,7 +23,6 @@ from __future__ import annotations
 import hashlib
 import json
 import math
-import sys
 from pathlib import Path
 from typing import Any, Mapping, Sequence
 
@@ -31,15 +30,12 @@ import numpy
 
 from ..common.angles import to_radians
 from ..common.files import excerpt
+from ..common.numbers import toml_data
 from ..numeric.input_sweep import MAX_ANGLE, InputSweep, crank_speeds
 
-if sys.version_info >= (3, 11):
-    from tomllib import loads as toml_loads
-else:  # Python 3.10: tomli is tomllib before it joined the standard library
-    from tomli import loads as toml_loads
 
 __all__ = ["BRANCH_CHOICES", "UNITS", "FORMATS", "TOP_KEYS", "INPUT_KEYS", "MAX_SCENE_BYTES", "MAX_ANGLE",
-           "MAX_MAGNITUDE", "toml_loads", "number", "choice", "table", "linkage_request", "WarmScene",
+           "MAX_MAGNITUDE", "number", "choice", "table", "linkage_request", "WarmScene",
            "warm_scene", "cache_scene", "SCENE_ENTRY_KIND"]
 
 BRANCH_CHOICES = (1, -1, "both")
@@ -231,7 +227,7 @@ def warm_scene(text: str, folder: str | Path = ".") -> WarmScene | None:
     if len(text) > MAX_SCENE_BYTES:
         return None
     try:
-        data = toml_loads(text)
+        data = toml_data(text)
         key = _key(data, folder)
         if key is None:
             return None
@@ -246,7 +242,7 @@ def cache_scene(text: str, folder: str | Path, found: Any) -> WarmScene | None:
     in the disk cache and return it as a :class:`WarmScene`, so that the next run of a scene like it is warm;
     None where it cannot be keyed (its linkage named by a path that is not a file, say)."""
     from ..numeric.cache import cached_text, catalog_key
-    data = toml_loads(text)
+    data = toml_data(text)
     key = _key(data, folder)
     if key is None:
         return None

@@ -15,7 +15,12 @@ are removed, and every file named ``chunk-*.parquet`` is checked against its
 record: one that is truncated, empty, swapped with another, copied from
 another sweep, a folder, a link or unrecorded is removed, rebuilt and never
 counted, with one warning line (:class:`SweepWarning`) that names it.
-Reading a folder (:func:`verified_chunks`) checks the same and also the
+A manifest that is damaged (truncated, not JSON, keys missing or of the wrong
+type, or no manifest beside the chunks) can verify nothing: continuing the
+sweep starts it again there, with one warning, when the folder holds only the
+sweep's own files (anything else is left alone and the run refused); a
+manifest of another symlink (version or layout) is refused in one line that
+says how to go on.  Reading a folder (:func:`verified_chunks`) checks the same and also the
 rows and design numbers inside each file, and refuses a bad chunk by name:
 a table never holds a design twice or a design from another sweep.
 
@@ -44,9 +49,9 @@ from pathlib import Path
 from typing import Any, Iterator, Mapping
 
 from ..common.display import record_html
-from ..common.files import LEFTOVER_AGE, TEMPORARY_SUFFIX, write_atomic
+from ..common.files import LEFTOVER_AGE, TEMPORARY_SUFFIX, excerpt, write_atomic
 
-__all__ = ["MANIFEST", "FORMAT", "SweepWarning", "ChunkRecord", "SweepFolder", "open_folder", "read_manifest",
+__all__ = ["MANIFEST", "FORMAT", "DamagedManifest", "SweepWarning", "ChunkRecord", "SweepFolder", "open_folder", "read_manifest",
            "verified_chunks", "chunk_name", "chunk_range", "parquet_bytes"]
 
 #: The manifest's file name in a sweep's folder.
@@ -72,6 +77,19 @@ READ_BLOCK = 1 << 20
 NAMED = 3
 #: A commit rewrites the manifest: at most this share of a run's time goes to that (the manifest grows).
 COMMIT_SHARE = 0.1
+
+
+class DamagedManifest(ValueError):
+    """A manifest that cannot be read as one (truncated, not JSON, wrong types, keys missing): ``reason`` says
+    why.  Continuing the sweep rebuilds the folder (:func:`open_folder`); reading it is refused."""
+
+    def __init__(self, message: str, reason: str) -> None:
+        super().__init__(message)
+        self.reason = reason
+
+
+class _OtherLayout(ValueError):
+    """A manifest of another layout (an older symlink's): refused, never rebuilt without a word."""
 
 
 class SweepWarning(UserWarning):
@@ -211,14 +229,22 @@ def read_manifest(folder: str | os.PathLike) -> tuple[dict[str, Any], dict[str, 
         if not isinstance(manifest, dict) or not isinstance(manifest.get("settings"), dict):
             raise ValueError("no settings in it")
         designs, chunks, chunk = (manifest.get(key) for key in ("designs", "chunks", "chunk"))
-        if manifest.get("format") != FORMAT:
-            raise ValueError(f"of another layout, {manifest.get('format', 1)!r}, not {FORMAT}: an older symlink's "
-                             "sweep, whose chunks cannot be verified")
+        layout = manifest.get("format", 1)
+        if layout != FORMAT and type(layout) is int:
+            raise _OtherLayout(f"{path} is not a sweep's manifest of this symlink (of another layout, {layout!r}, not "
+                             f"{FORMAT}: an older symlink's sweep, whose chunks cannot be verified); continue it with "
+                             f"that symlink, or remove {path} to do the sweep again there, or choose another folder")
+        if layout != FORMAT:
+            raise ValueError(f"its layout is {excerpt(layout)}")
         if not (type(designs) is int and type(chunks) is int and type(chunk) is int and chunk >= 1 and designs >= 0
                 and chunks == -(-designs // chunk) and isinstance(manifest.get("columns"), list)):
             raise ValueError("no designs, chunks, chunk or columns in it")
     except (OSError, ValueError, RecursionError) as error:
-        raise ValueError(f"{path} is not a sweep's manifest ({error}); choose another folder") from None
+        if isinstance(error, _OtherLayout):
+            raise
+        reason = getattr(error, "strerror", None) or str(error)
+        raise DamagedManifest(f"{path} is damaged, not a sweep's manifest ({reason}): run the sweep again with the "
+                              "same settings to rebuild the folder, or choose another folder", reason) from None
     done = manifest.get("done")
     records = {}
     for name, data in (done.items() if isinstance(done, dict) else ()):
@@ -443,16 +469,31 @@ def open_folder(folder: str | os.PathLike, manifest: dict[str, Any], designs: in
             if TEMPORARY_NAME.match(name) and (lock is not None or _older(path / name)):
                 _remove(path / name)
         header = {**manifest, "designs": designs, "chunks": chunks, "chunk": chunk}
+        new_settings = json.loads(json.dumps(header["settings"]))
+        damage = None
         if not os.path.lexists(path / MANIFEST):
-            with os.scandir(path) as entries:
-                empty = not any(True for _ in entries)
-            if not empty:
+            names = os.listdir(path)
+            if names and not all(CHUNK_NAME.match(name) for name in names):
                 raise ValueError(f"{path} is not empty and holds no sweep: choose a new or empty folder")
+            damage = f"no {MANIFEST}" if names else None
+        else:
+            try:
+                old, records = read_manifest(path)
+            except DamagedManifest as error:
+                damage = error.reason
+            else:
+                damage = _damaged_settings(old.get("settings"), new_settings)
+                if damage is None and old.get("symlink", header.get("symlink")) != header.get("symlink"):
+                    raise ValueError(f"{path} holds a sweep of symlink {excerpt(old.get('symlink'))}, not "
+                                     f"{header.get('symlink')}: its rows may differ from this version's; continue it "
+                                     f"with that symlink, or remove {path / MANIFEST} to do the sweep again there, or "
+                                     "choose another folder")
+        if damage is not None or not os.path.lexists(path / MANIFEST):
+            if damage is not None:
+                _start_again(path, damage)
             opened = SweepFolder(path, header, {}, designs, chunk, list(range(chunks)), lock)
             opened._write_manifest()
             return opened
-        old, records = read_manifest(path)
-        new_settings = json.loads(json.dumps(header["settings"]))
         old_settings = old.get("settings")
         if old_settings != new_settings or (old["designs"], old["chunk"]) != (designs, chunk):
             old_settings = old_settings if isinstance(old_settings, dict) else {}
@@ -484,6 +525,39 @@ def open_folder(folder: str | os.PathLike, manifest: dict[str, Any], designs: in
         if lock is not None:
             os.close(lock)
         raise
+
+
+def _damaged_settings(old: object, new: Mapping[str, Any]) -> str | None:
+    """Why the recorded settings ``old`` are damaged rather than another sweep's (a value of another JSON type
+    than this sweep's, NaN among them), or ``None``."""
+    if not isinstance(old, dict):
+        return "its settings are not a table"
+    for key, value in new.items():
+        if key not in old:
+            continue
+        recorded = old[key]
+        if (type(recorded) is not type(value) and recorded is not None and value is not None) or (
+                recorded is None and isinstance(value, (dict, list))):
+            return f"settings.{key} is {excerpt(recorded)}, not a {type(value).__name__}"
+    return None
+
+
+def _start_again(path: Path, damage: str) -> None:
+    """Rebuild a sweep's folder whose manifest is damaged: its chunks (which nothing can verify now) and the
+    manifest are removed, with one warning; ``ValueError`` if the folder holds anything else (left alone)."""
+    names = [name for name in os.listdir(path) if name != MANIFEST]
+    others = [name for name in names if not CHUNK_NAME.match(name)]
+    if os.path.lexists(path / MANIFEST) and not stat.S_ISREG(os.lstat(path / MANIFEST).st_mode):
+        others.insert(0, MANIFEST)  # a folder or a link by that name is not the sweep's to remove
+    if others:
+        raise ValueError(f"{path / MANIFEST} is damaged ({damage}) and {path} holds other files ({excerpt(others[0])}"
+                         f"{' and more' if len(others) > 1 else ''}): move them, or choose another folder")
+    for name in names:
+        _remove(path / name)
+    _remove(path / MANIFEST)
+    warnings.warn(f"{path}: {MANIFEST} was damaged ({damage}); the sweep starts again there"
+                  + (f" ({len(names)} chunk{'s' if len(names) != 1 else ''} found, which nothing can verify now, "
+                     "done again)" if names else ""), SweepWarning, stacklevel=4)
 
 
 def _chunk_like(folder: Path) -> list[str]:

@@ -365,6 +365,8 @@ class CacheContents:
     entries: int
     size: int
     others: int
+    #: Of the ``entries``, those left by interrupted or failed builds and writes (build folders, temporaries).
+    leftovers: int = 0
 
 
 def _is_own(path: Path, names: re.Pattern[str]) -> bool:
@@ -440,7 +442,8 @@ def cache_contents(folder: str | os.PathLike) -> CacheContents:
             size += _size(path)
         except OSError:  # removed meanwhile by another process
             pass
-    return CacheContents(folder, True, True, "", len(own), size, others)
+    leftovers = sum(path.name.startswith(".") for path in own)  # .build-*, .load-*, .*.tmp: never a finished entry
+    return CacheContents(folder, True, True, "", len(own), size, others, leftovers)
 
 
 def clear_cache(folder: str | os.PathLike) -> CacheContents:

@@ -47,7 +47,7 @@ import numpy
 
 from ..mechanism.catalog import fourbar
 from ..symbolic.closure import is_angle
-from ..common.files import LEFTOVER_AGE, TEMPORARY_SUFFIX, remove_leftovers
+from ..common.files import LEFTOVER_AGE, TEMPORARY_SUFFIX, naming, remove_leftovers
 from ..symbolic.linkage import Linkage
 from ..numeric.reachability import TURN_SAMPLES, assembled_crank_range, crank_range, turn_angles
 from ..numeric.poses import Geometry, input_range, sweep_inputs, traced_paths
@@ -265,8 +265,17 @@ def _write_frames(path: Path, writer, figure, count: int, draw: Callable[[int], 
     output folder (never the system's temporary folder, which may be small or
     shared); what killed runs left there is removed first.
     """
+    try:
+        _write_frames_beside(path, writer, figure, count, draw, progress)
+    except OSError as error:  # a full disk names the user's file, never the hidden one the frames went to
+        raise naming(error, path) from None
+
+
+def _write_frames_beside(path: Path, writer, figure, count: int, draw: Callable[[int], None],
+                         progress: Callable[[int, int], None] | None) -> None:
     folder = path.parent
     remove_leftovers(folder if str(folder) else ".", (LEFTOVER_PREFIX,), LEFTOVER_AGE)
+    folder.mkdir(parents=True, exist_ok=True)
     scratch_folder = folder / f"{LEFTOVER_PREFIX}{secrets.token_hex(6)}{TEMPORARY_SUFFIX}"
     scratch_folder.mkdir(mode=0o700)
     scratch = scratch_folder / f"frames{path.suffix.lower()}"

@@ -53,7 +53,7 @@ if TYPE_CHECKING:  # Matplotlib is imported when a drawing is made
 
 __all__ = ["coupler_point_linkage", "fourbar_positions", "reachable_turn", "turn_angles",
            "check_coupler_point", "angle_figure", "transmission_figure", "coupler_curve_figure", "draw_loop",
-           "MechanismDrawing", "extent", "frame_plane", "save_figure", "figure_suffix", "FIGURE_SUFFIXES"]
+           "MechanismDrawing", "extent", "frame_plane", "save_figure", "figure_bytes", "figure_suffix", "FIGURE_SUFFIXES"]
 
 #: File suffixes :func:`save_figure` writes, and the Matplotlib format of each.
 FIGURE_SUFFIXES = {".png": "png", ".svg": "svg"}
@@ -594,10 +594,16 @@ def save_figure(figure: "Figure", path, dpi: float = 100) -> None:
     >>> (folder / "one.png").read_bytes() == (folder / "two.png").read_bytes()  # no timestamps
     True
     """
+    write_atomic(path, figure_bytes(figure, path, dpi))
+
+
+def figure_bytes(figure: "Figure", path, dpi: float = 100) -> bytes:
+    """The bytes :func:`save_figure` writes to ``path`` (PNG or SVG by its suffix), for writing several files
+    together (:func:`symlink.common.files.write_files_together`: all of them or none)."""
     import matplotlib
     fmt = figure_suffix(path)
     buffer = io.BytesIO()
     metadata = {"Software": None} if fmt == "png" else {"Date": None}
     with matplotlib.rc_context({"svg.hashsalt": "symlink"}):
         figure.savefig(buffer, format=fmt, dpi=dpi, metadata=metadata)
-    write_atomic(path, buffer.getvalue())
+    return buffer.getvalue()

@@ -541,9 +541,9 @@ def open_source(source: Any, kind: str = "auto") -> dict[str, Any]:
 def _file_drawing(text: str) -> dict[str, Any]:
     """A linkage file's text as a drawing: by its ``[links]`` and ``[joints]`` tables, else by its vectors."""
     from ..io.linkage_file import linkage_from_text
-    from ..io.linkage_file import toml_loads
+    from ..common.numbers import toml_data
     try:
-        data = toml_loads(text)
+        data = toml_data(text)
     except ValueError as error:
         raise ValueError(f"not a name, pylinkage JSON, a Pyslvs expression or a linkage file's TOML: {error}") from None
     found = linkage_from_text(text)  # the file's own checks, with line numbers

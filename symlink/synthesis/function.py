@@ -42,7 +42,7 @@ from ..mechanism.catalog import fourbar
 from ..common.display import record_html
 from ..numeric.solver import check_lengths, settled, shared_solver
 
-__all__ = ["FunctionDesign", "freudenstein_coefficients", "lengths_from_coefficients", "chebyshev_points",
+__all__ = ["FunctionDesign", "freudenstein_coefficients", "lengths_from_coefficients", "chebyshev_points", "check_function_targets",
            "three_point_design", "least_squares_design", "function_generator", "structural_error",
            "ERROR_SAMPLES"]
 
@@ -144,7 +144,34 @@ def _angles(theta: ArrayLike, phi: ArrayLike, least: int) -> tuple[numpy.ndarray
         raise ValueError(f"function generation needs at least {least} (theta, phi) pairs, got {len(theta_array)}")
     if not (numpy.all(numpy.isfinite(theta_array)) and numpy.all(numpy.isfinite(phi_array))):
         raise ValueError("the crank and rocker angles must be finite numbers")
+    check_function_targets(theta_array, phi_array)
     return theta_array, phi_array
+
+
+def check_function_targets(inputs: ArrayLike, outputs: ArrayLike) -> None:
+    """``ValueError`` naming the first two targets of a function at the same input.
+
+    A function has one value at an input: two targets at one input are one target asked twice (the same
+    value: the rows define nothing new) or a contradiction (two values).  Both are refused in one line.
+
+    >>> check_function_targets([0.1, 0.2, 0.1], [0.5, 0.6, 0.5])
+    Traceback (most recent call last):
+    ValueError: targets 1 and 3 are the same target (input 0.1, output 0.5): give each target once
+    >>> check_function_targets([0.1, 0.1], [0.5, 0.7])
+    Traceback (most recent call last):
+    ValueError: targets 1 and 2 are at the same input 0.1 with two outputs (0.5 and 0.7): a function has one value at an input
+    """
+    seen: dict[float, tuple[int, float]] = {}
+    for number, (x, y) in enumerate(zip(numpy.asarray(inputs, dtype=float).tolist(),
+                                        numpy.asarray(outputs, dtype=float).tolist()), start=1):
+        if x in seen:
+            first, value = seen[x]
+            if value == y:
+                raise ValueError(f"targets {first} and {number} are the same target (input {x:g}, output {y:g}): "
+                                 "give each target once")
+            raise ValueError(f"targets {first} and {number} are at the same input {x:g} with two outputs ({value:g} "
+                             f"and {y:g}): a function has one value at an input")
+        seen[x] = (number, y)
 
 
 def _rows(theta: numpy.ndarray, phi: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:

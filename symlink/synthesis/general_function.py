@@ -43,7 +43,7 @@ from ..common.display import record_html
 from ..symbolic.linkage import Linkage
 from .design_fit import (DesignOutputs, branch_break, check_branches, check_linkage, free_bounds, inside,
                          is_angle_output, refine, sample_count, sampled_designs, solved_outputs)
-from .function import chebyshev_points
+from .function import chebyshev_points, check_function_targets
 from .path import check_starts
 
 __all__ = ["FunctionSynthesis", "synthesize_function", "function_values", "chebyshev_inputs"]
@@ -269,6 +269,7 @@ def synthesize_function(linkage: Linkage, output: str, inputs: ArrayLike, wanted
                          f"{q.shape} and {y.shape}")
     if not (numpy.all(numpy.isfinite(q)) and numpy.all(numpy.isfinite(y))):
         raise ValueError("the inputs and the wanted values must be finite numbers")
+    check_function_targets(q, y)
     bounds, fixed = free_bounds(linkage, free, {k: v for k, v in (values or {}).items() if k not in free})
     chosen = check_branches(linkage, branches)
     check_starts(starts, evaluations, sample_count(linkage) + 2)  # the user's design and a closed form's besides

@@ -29,6 +29,7 @@ def test_info_then_clear_after_a_table(empty_cache, capsys, monkeypatch):
     assert status == 0 and err == ""
     assert fields(out) == {"folder": str(empty_cache), "entries": str(len(entries)), "bytes": str(size),
                            "trusted": "yes (only you can write it)",
+                           "leftovers": "0 (of builds or writes interrupted or failed)",
                            "others": "1 (not written by symlink, left alone)"}
     status, out, _ = run(capsys, "cache", "clear")
     assert status == 0 and fields(out)["removed"] == f"{len(entries)} entries, {size} bytes"
@@ -58,3 +59,26 @@ def test_no_disk_cache(monkeypatch, capsys):
 def test_help_has_a_summary_units_and_an_example(argv, capsys):
     status, out, _ = run(capsys, *argv)
     assert status == 0 and "units: sizes in bytes" in out and "example: symlink cache " in out
+
+
+@pytest.mark.parametrize("planted", [
+    ("compiled", ".build-abcd1234", "folder"),  # a compiler's build folder of a killed run
+    ("", "." + "a" * 64 + ".json.0123456789ab.tmp", "file"),  # a write killed between its temporary and its rename
+    ("compiled", ".load-0123456789abcdef.so", "file"),  # a private copy of a library, left by a killed load
+], ids=["a build folder", "a derived module's temporary", "a library's private copy"])
+def test_leftovers_of_interrupted_builds_are_reported_and_cleared(planted, tmp_path, monkeypatch, capsys):
+    from symlink.cli import main
+    folder = tmp_path / "cache"
+    where, name, kind = planted
+    place = folder / where if where else folder
+    place.mkdir(parents=True, mode=0o700)
+    folder.chmod(0o700)
+    (place / name).mkdir() if kind == "folder" else (place / name).write_bytes(b"half")
+    assert main(["cache", "info", "--folder", str(folder)]) == 0
+    assert "leftovers 1 (of builds or writes interrupted or failed; 'symlink cache clear' removes them)" \
+        in capsys.readouterr().out
+    assert main(["cache", "clear", "--folder", str(folder)]) == 0
+    assert "removed  1 entries" in capsys.readouterr().out
+    assert [p for p in folder.rglob("*")] == []
+    assert main(["cache", "info", "--folder", str(folder)]) == 0
+    assert "leftovers 0 (of builds or writes interrupted or failed)" in capsys.readouterr().out

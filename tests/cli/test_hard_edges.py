@@ -94,6 +94,15 @@ REFUSED = [
     ("the four-bar table repeating an angle", [*FOURBAR, "--angles", "0,0"], "0 appears more than once"),
     ("a tolerance of a linkage that never assembles", ["tolerance", "fourbar", "--set", "a=100,b=1,c=1,d=1",
                                                       "--tolerance", "0.1"], "cannot be assembled at any of the input"),
+    ("a sweep whose designs never assemble", ["sweep", "fourbar", "{tmp}/s", "--set", "a=100,b=1,c=1", "--vary",
+                                              "d=1:1.1", "--grid", "2", *SWEEP],
+     "no design of this sweep assembles at any input value (all 2 designs cannot close their loops)"),
+    ("export of an output twice", ["export", "fourbar", "--to", "numpy", "--out", "{tmp}/o", "--outputs",
+                                   "rocker,coupler,rocker"], "argument --outputs: 'rocker' appears more than once"),
+    ("a path traced twice", ["draw", "jansen", "--trace", "H,H", "--out", "{tmp}/d.png"],
+     "argument --trace: 'H' appears more than once"),
+    ("a parameter freed twice", ["synthesize", "function", "fourbar", "{tmp}/none.csv", "--free", "a,b,a"],
+     "argument --free: 'a' appears more than once"),
     ("a tolerance that repeats an angle", ["tolerance", "fourbar", "--tolerance", "0.1", "--angles", "5,5"],
      "5 appears more than once"),
 ]
@@ -214,3 +223,247 @@ def test_path_targets_given_twice_are_refused_by_both_python_routes():
                                 values={"b": 66.0, "c": 56.0, "d": 80.0, "u": 30.0, "v": 20.0})
     # timed: the same point at two inputs (a closed path's start and end) is two targets, not a repeat
     symlink.synthesis.path.check_distinct_targets(np.array(points), np.array([0.0, 1.0, 2.0, 3.0]))
+
+
+# --- numbers of any digits, in every file format and numeric option: range-checked in one line, exit 2 -----------
+# float() rounds without a word: 1e-400 to 0 (a speed or a target given becomes none), 400 digits to inf or, as an
+# int, to an OverflowError.  Every reader goes through symlink.common.numbers.
+
+_ROOT = __import__("pathlib").Path(__file__).resolve().parents[2]
+_FOURBAR_FILE = (_ROOT / "linkages" / "fourbar.toml").read_text()
+_HUGE = "1" + "0" * 400
+_MECHANISM = ('{"joints": [{"id": "O1", "type": "ground", "position": [0, 0]}, {"id": "O2", "type": "ground", '
+              '"position": [100, 0]}, {"id": "B", "type": "revolute", "position": [0, 25]}, {"id": "C", "type": '
+              '"revolute", "position": [60, 50]}], "links": [{"id": "ground", "type": "ground", "joints": ["O1", '
+              '"O2"]}, {"id": "crank", "type": "driver", "joints": ["O1", "B"], "motor_joint": "O1"}, {"id": '
+              '"coupler", "type": "link", "joints": ["B", "C"]}, {"id": "rocker", "type": "link", "joints": ["C", '
+              '"O2"]}], "ground": "ground"}')
+_PYSLVS = ("M[J[R, color[Green], P[0, 0], L[ground, L1]], J[R, color[Green], P[0, 25], L[L1, L2]], "
+           "J[R, color[Green], P[60, 50], L[L2, L3]], J[R, color[Green], P[100, 0], L[ground, L3]]]")
+_SCENE = 'linkage = "fourbar"\noutputs = ["rocker"]\n[parameters]\na = 20\nb = 66\nc = 56\nd = 80\n[input]\nstep = 40\n'
+
+#: name -> (file name, text) of the files the NUMBERS table writes; {file:NAME} in a command line is its path.
+_NUMBER_FILES = {
+    "linkage 400 digits": ("l.toml", _FOURBAR_FILE.replace("a = 20.0", f"a = {_HUGE}")),
+    "linkage 1e-400": ("l.toml", _FOURBAR_FILE.replace("a = 20.0", "a = 1e-400")),
+    "linkage angle 1e-400": ("l.toml", _FOURBAR_FILE.replace('AD = ["d", 0]', 'AD = ["d", 1e-400]')),
+    "scene 1e-400": ("s.toml", _SCENE.replace("step = 40", "step = 1e-400")),
+    "scene 1e999": ("s.toml", _SCENE.replace("a = 20", "a = 1e999")),
+    "path 1e-400": ("p.csv", "x,y\n1,2\n3,4\n5,7\n1e-400,1\n"),
+    "path 400 digits": ("p.csv", f"x,y\n1,2\n3,4\n5,7\n{_HUGE},1\n"),
+    "function 1e-400": ("f.csv", "theta,phi\n0,10\n30,40\n60,1e-400\n"),
+    "pylinkage 1e-400": ("m.json", _MECHANISM.replace('"position": [0, 25]', '"position": [1e-400, 25]')),
+    "pyslvs 1e-400": ("m.pmks", _PYSLVS.replace("P[0, 25]", "P[1e-400, 25]")),
+}
+
+NUMBERS = [
+    # (what, command line, words of the one error line)
+    ("an option of 1e-400", [*FOURBAR, "--crank-speed", "1e-400", "--angles", "0"],
+     "argument --crank-speed: 1e-400 is too small for a float"),
+    ("an angle of 1e-400", [*FOURBAR, "--angles", "10,1e-400"], "argument --angles: 1e-400 is too small"),
+    ("a --set of -1e-400", ["table", "fourbar", "--set", "a=20,psi=-1e-400"], "-1e-400 is too small"),
+    ("a count of 400 digits", [*FLYWHEEL, "--masses", "1,2,1.5", "--samples", _HUGE],
+     "argument --samples: '100000000000000000000000000000000000000000000000000000000000'... is out of range"),
+    ("a grid of 30 digits", ["sweep", "fourbar", "{tmp}/s", "--vary", "a=1:2", "--grid", "9" * 30, *SWEEP],
+     "argument --grid:", "is out of range"),
+    ("builds of 35 digits", ["tolerance", "fourbar", "--tolerance", "0.1", "--builds", "1" + "0" * 34],
+     "is out of range"),
+    ("a seed below 0", ["synthesize", "path", "{file:path 1e-400}", "--seed", "-1"],
+     "argument --seed: a --seed must be 0 or more (a whole number), got -1"),
+    ("a linkage default of 400 digits", ["table", "{file:linkage 400 digits}", "--angles", "0"],
+     "l.toml:28: defaults.a:", "is too large for a float"),
+    ("a linkage default of 1e-400", ["table", "{file:linkage 1e-400}", "--angles", "0"],
+     "l.toml:28: 1e-400 is too small for a float"),
+    ("a linkage angle of 1e-400", ["plan", "{file:linkage angle 1e-400}"], "l.toml:10: 1e-400 is too small"),
+    ("a scene step of 1e-400", ["run", "{file:scene 1e-400}"], "s.toml: line 9: 1e-400 is too small"),
+    ("a scene length of 1e999", ["run", "{file:scene 1e999}"], "s.toml: line 4: 1e999 is too large for a float"),
+    ("a path target of 1e-400", ["synthesize", "path", "{file:path 1e-400}"], "p.csv:5: x: 1e-400 is too small"),
+    ("a path target of 400 digits", ["synthesize", "path", "{file:path 400 digits}"], "p.csv:5: x:",
+     "is too large for a float"),
+    ("a function target of 1e-400", ["synthesize", "function", "fourbar", "{file:function 1e-400}", "--free", "a,b,c"],
+     "f.csv:4: phi: 1e-400 is too small"),
+    ("a pylinkage position of 1e-400", ["studio", "{file:pylinkage 1e-400}", "--html", "{tmp}/o.html"],
+     "pylinkage JSON: the number is out of range: 1e-400 is too small"),
+    ("a Pyslvs position of 1e-400", ["studio", "{file:pyslvs 1e-400}", "--html", "{tmp}/o.html"],
+     "the number is out of range: 1e-400 is too small"),
+]
+
+
+@pytest.mark.parametrize("argv, words", [pytest.param(a, w, id=what) for what, a, *w in NUMBERS])
+def test_numbers_of_any_digits_are_range_checked_in_one_line(argv, words, tmp_path, capsys):
+    inputs = tmp_path / "inputs"
+    inputs.mkdir()
+    expanded = []
+    for word in argv:
+        if word.startswith("{file:"):
+            name, text = _NUMBER_FILES[word[len("{file:"):-1]]
+            (inputs / name).write_text(text)
+            word = str(inputs / name)
+        expanded.append(word.replace("{tmp}", str(tmp_path)))
+    assert main(expanded) == 2
+    out, err = capsys.readouterr()
+    _one_error_line(err, *words)
+    assert out == "" and [p.name for p in tmp_path.iterdir()] == ["inputs"]
+
+
+@pytest.mark.parametrize("text", ["0", "-0", "0.000e-999", "+0.0"])
+def test_zeros_of_any_digits_are_zero(text):
+    from symlink.common.numbers import number_from_text
+    assert number_from_text(text) == 0.0
+
+
+# --- input that defines nothing new: a function's targets at one input, by both routes ---------------------------
+
+@pytest.mark.parametrize("rows, route, words", [
+    ("theta,phi\n10,20\n10,20\n10,20\n", [], "targets 1 and 2 are the same target"),
+    ("theta,phi\n10,20\n10,20\n10,20\n", ["fourbar"], "targets 1 and 2 are the same target"),
+    ("theta,phi\n10,20\n30,40\n10,30\n60,50\n", ["fourbar"], "targets 1 and 3 are at the same input"),
+    ("theta,phi\n10,20\n30,40\n10,30\n60,50\n", [], "targets 1 and 3 are at the same input"),
+], ids=["one row thrice, four-bar route", "one row thrice, any linkage", "one input two values, any linkage",
+        "one input two values, four-bar route"])
+def test_function_targets_at_one_input_are_refused_in_one_line(rows, route, words, tmp_path, capsys):
+    targets = tmp_path / "pairs.csv"
+    targets.write_text(rows)
+    free = ["--free", "a,b,c"] if route else []
+    assert main(["synthesize", "function", *route, str(targets), *free]) == 2
+    _one_error_line(capsys.readouterr().err, words)
+
+
+def test_function_targets_at_one_input_are_refused_by_both_python_routes():
+    import symlink
+    with pytest.raises(ValueError, match="targets 1 and 2 are the same target"):
+        symlink.synthesis.function.least_squares_design([0.1, 0.1, 0.5, 0.9], [0.2, 0.2, 0.6, 1.0])
+    with pytest.raises(ValueError, match="targets 2 and 3 are at the same input"):
+        symlink.synthesis.general_function.synthesize_function(
+            symlink.fourbar(), "rocker", [0.1, 0.5, 0.5], [0.2, 0.6, 0.7], {"a": (1.0, 30.0)},
+            values={"b": 66.0, "c": 56.0, "d": 80.0})
+
+
+# --- outputs that cannot be written: one line naming the user's file and the real reason, exit 1, checked before
+# any work (no table printed first, no other file of the command written, nothing left behind) -------------------
+
+UNWRITABLE = [
+    # (what, command line: {tmp} a fresh folder holding a regular file "afile" and a folder "taken.gif")
+    ("a figure under a file", [*FOURBAR, "--angles", "0", "--plot", "{tmp}/afile/x.png"]),
+    ("the second figure under a file", [*FOURBAR, "--angles", "0", "--plot", "{tmp}/a.png", "--plot-transmission",
+                                        "{tmp}/afile/x.png"]),
+    ("a drawing under a file", ["draw", "fourbar", "--out", "{tmp}/afile/d.svg"]),
+    ("an animation under a file", ["animate", "fourbar", "--frames", "2", "--out", "{tmp}/afile/a.gif"]),
+    ("an atlas drawing under a file", ["atlas", "fourbar", "--draw", "{tmp}/afile/a.png"]),
+    ("parts, the dxf under a file", ["parts", "fourbar", "--pin-diameter", "1", "--svg", "{tmp}/p.svg", "--dxf",
+                                     "{tmp}/afile/p.dxf"]),
+    ("generated code under a file", ["export", "fourbar", "--to", "c", "--out", "{tmp}/afile/code"]),
+    ("a studio page under a file", ["studio", "fourbar", "--html", "{tmp}/afile/s.html"]),
+    ("a synthesis plot under a file", ["synthesize", "path", "{tmp}/pts.csv", "--starts", "2", "--plot",
+                                       "{tmp}/afile/x.png"]),
+    ("a sweep under a file", ["sweep", "fourbar", "{tmp}/afile/s", "--vary", "a=1:2", "--grid", "2", *SWEEP]),
+    ("sampled builds under a file", ["tolerance", "fourbar", "--tolerance", "0.1", "--samples", "10", "--folder",
+                                     "{tmp}/afile/t"]),
+]
+
+
+def _unwritable_folder(tmp_path):
+    (tmp_path / "afile").write_text("")
+    (tmp_path / "taken.gif").mkdir()
+    (tmp_path / "pts.csv").write_text("x,y\n1,2\n3,4\n5,7\n9,1\n")
+    return {p.name for p in tmp_path.iterdir()}
+
+
+@pytest.mark.parametrize("argv", [pytest.param(a, id=what) for what, a in UNWRITABLE])
+def test_an_output_under_a_file_is_refused_before_any_work(argv, tmp_path, capsys):
+    before = _unwritable_folder(tmp_path)
+    argv = [word.replace("{tmp}", str(tmp_path)) for word in argv]
+    assert main(argv) == 1
+    out, err = capsys.readouterr()
+    target = next(word for word in argv if "/afile/" in word)
+    _one_error_line(err, target, f"{tmp_path / 'afile'} is a file, not a folder")
+    assert out == "" and {p.name for p in tmp_path.iterdir()} == before  # no table, no other file, no temporary
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["animate", "fourbar", "--frames", "2", "--out", "{tmp}/taken.gif"], "it is a folder, not a file"),
+    (["studio", "fourbar", "--html", "{tmp}/taken.gif"], "it is a folder, not a file"),
+    (["studio", "fourbar", "--html", "{tmp}/pipe"], "No such device or address"),  # written through, not replaced
+], ids=["an animation where a folder is", "a page where a folder is", "a page into a FIFO no one reads"])
+def test_an_output_that_cannot_be_written_names_it_and_why(argv, words, tmp_path, capsys):
+    import os
+    import stat
+    os.mkfifo(tmp_path / "pipe")  # a device such as /dev/full is written the same way (ENOSPC)
+    before = _unwritable_folder(tmp_path)
+    argv = [word.replace("{tmp}", str(tmp_path)) for word in argv]
+    assert main(argv) == 1
+    _one_error_line(capsys.readouterr().err, argv[-1], words)
+    assert {p.name for p in tmp_path.iterdir()} == before and list((tmp_path / "taken.gif").iterdir()) == []
+    assert stat.S_ISFIFO(os.stat(tmp_path / "pipe").st_mode)  # never replaced by a file
+
+
+def test_a_full_disk_under_an_animation_names_the_users_file(tmp_path, capsys, monkeypatch):
+    """The frames go to a hidden folder beside the file; a full disk at the rename names the file asked for."""
+    import errno
+
+    import symlink.plot.animation as animation
+
+    def full(source, target):
+        raise OSError(errno.ENOSPC, "No space left on device", str(source))
+    monkeypatch.setattr(animation.os, "replace", full)
+    assert main(["animate", "fourbar", "--frames", "2", "--out", str(tmp_path / "a.gif")]) == 1
+    err = capsys.readouterr().err
+    errors = [line for line in err.splitlines() if line.startswith("symlink: error:")]  # after the progress lines
+    assert errors == [err.splitlines()[-1]] and "Traceback" not in err, err
+    assert f"{tmp_path / 'a.gif'}: No space left on device" in errors[0]
+    assert ".symlink-animation-" not in err and list(tmp_path.iterdir()) == []
+
+
+def test_a_full_disk_under_two_figures_writes_neither(tmp_path, capsys, monkeypatch):
+    import errno
+
+    import symlink.common.files as files
+    written = []
+
+    def write(handle, data):
+        if written:
+            raise OSError(errno.ENOSPC, "No space left on device")
+        written.append(len(data))
+        return len(data)
+    monkeypatch.setattr(files.os, "write", write)
+    assert main([*FOURBAR, "--angles", "0", "--plot", str(tmp_path / "a.png"), "--plot-transmission",
+                 str(tmp_path / "t.png")]) == 1
+    err = capsys.readouterr().err
+    _one_error_line(err, "No space left on device")
+    assert f"{tmp_path / 'a.png'}:" in err or f"{tmp_path / 't.png'}:" in err
+    assert list(tmp_path.iterdir()) == []  # the figure written in full is taken back
+
+
+# --- conflicting options and outputs named twice: one line naming both, exit 2, nothing written --------------------
+
+CONFLICTS = [
+    ("two figures to one file", [*FOURBAR, "--plot", "{tmp}/a.png", "--plot-transmission", "{tmp}/./a.png"],
+     "--plot and --plot-transmission both write"),
+    ("parts to one file by two paths", ["parts", "fourbar", "--pin-diameter", "1", "--svg", "{tmp}/a.svg",
+                                        "--assembly", "{tmp}/sub/../a.svg"], "--svg and --assembly both write"),
+    ("--workers with a synchronous sweep", ["sweep", "fourbar", "{tmp}/s", "--vary", "a=1:2", "--workers", "2",
+                                            *SWEEP], "--workers conflicts with --scheduler synchronous"),
+    ("--workers with a cluster", ["sweep", "fourbar", "{tmp}/s", "--vary", "a=1:2", "--workers", "2", "--scheduler",
+                                  "tcp://127.0.0.1:1"], "--workers conflicts with --scheduler tcp://127.0.0.1:1"),
+    ("--seed with a grid", ["sweep", "fourbar", "{tmp}/s", "--vary", "a=1:2", "--grid", "3", "--seed", "4", *SWEEP],
+     "--seed does nothing with --grid"),
+    ("--html with --no-browser", ["studio", "fourbar", "--html", "{tmp}/s.html", "--no-browser"],
+     "--html and --no-browser conflict"),
+    ("--html with --port", ["studio", "fourbar", "--html", "{tmp}/s.html", "--port", "9000"],
+     "--html and --port conflict"),
+    ("tolerance --seed without samples", ["tolerance", "fourbar", "--tolerance", "0.1", "--seed", "3"],
+     "--seed does nothing without --samples N"),
+    ("view --crank-angle with a linkage", ["view", "fourbar", "--crank-angle", "5", "--save", "{tmp}/v.png"],
+     "view: --crank-angle does nothing with a linkage NAME|FILE"),
+    ("view --angle in the four-bar form", ["view", *FOURBAR[1:], "--angle", "5", "--save", "{tmp}/v.png"],
+     "view: --angle does nothing in the four-bar form"),
+]
+
+
+@pytest.mark.parametrize("argv, words", [pytest.param(a, w, id=what) for what, a, w in CONFLICTS])
+def test_conflicting_options_are_refused_naming_both(argv, words, tmp_path, capsys):
+    argv = [word.replace("{tmp}", str(tmp_path)) for word in argv]
+    assert main(argv) == 2
+    out, err = capsys.readouterr()
+    _one_error_line(err, words)
+    assert out == "" and list(tmp_path.iterdir()) == []

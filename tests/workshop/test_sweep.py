@@ -641,3 +641,85 @@ def test_a_killed_process_pool_sweep_takes_its_workers_with_it(tmp_path):
     assert again.returncode == 0, again.stderr
     assert "warning" not in again.stderr, again.stderr
     assert read_sweep(folder).column("design").to_pylist() == list(range(120 * 120))
+
+
+# --- a damaged manifest: rebuilt with one warning, or refused in one line naming the folder and what to do --------
+
+def _edited(change):
+    def damage(folder: Path) -> None:
+        manifest = _manifest(folder)
+        change(manifest)
+        (folder / MANIFEST).write_text(json.dumps(manifest))
+    return damage
+
+
+def _text(text: bytes):
+    def damage(folder: Path) -> None:
+        (folder / MANIFEST).write_bytes(text)
+    return damage
+
+
+MANIFEST_DAMAGES = [
+    # (what, damage): the folder cannot be continued as recorded; its chunks cannot be verified any more
+    ("truncated", lambda folder: (folder / MANIFEST).write_text((folder / MANIFEST).read_text()[:150])),
+    ("empty", _text(b"")),
+    ("not UTF-8", _text(b"\xff\xfe{}")),
+    ("a JSON list", _text(b"[]")),
+    ("nested too deeply", _text(b"[" * 100_000 + b"]" * 100_000)),
+    ("no settings", _edited(lambda m: m.pop("settings"))),
+    ("no columns", _edited(lambda m: m.pop("columns"))),
+    ("designs as text", _edited(lambda m: m.__setitem__("designs", "9"))),
+    ("a layout as text", _edited(lambda m: m.__setitem__("format", "2"))),
+    ("a setting of another type", _edited(lambda m: m["settings"].__setitem__("count", "three"))),
+    ("a table setting missing", _edited(lambda m: m["settings"].__setitem__("ranges", None))),
+    ("NaN samples", lambda folder: (folder / MANIFEST).write_text(
+        (folder / MANIFEST).read_text().replace('"samples": 16', '"samples": NaN'))),
+    ("no manifest", lambda folder: (folder / MANIFEST).unlink()),
+]
+
+
+#: Damages of the settings alone: the chunks still read (their records are whole), only a resume cannot trust them.
+SETTINGS_ONLY = ("a setting of another type", "a table setting missing", "NaN samples")
+
+
+@pytest.mark.parametrize("what, damage", MANIFEST_DAMAGES, ids=[what for what, _ in MANIFEST_DAMAGES])
+def test_a_damaged_manifest_is_refused_when_read_and_rebuilt_on_resume(tiny_folders, tmp_path, what, damage):
+    folder = _copy(tiny_folders, tmp_path)
+    damage(folder)
+    if what not in SETTINGS_ONLY:
+        with pytest.raises(ValueError, match="run the sweep again|holds no sweep"):
+            read_sweep(folder)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        done = run_sweep(TINY, folder, scheduler="synchronous")
+    found = [str(w.message) for w in caught if issubclass(w.category, SweepWarning)]
+    assert len(found) == 1 and f"{folder}: {MANIFEST} was damaged" in found[0] and "3 chunks found" in found[0], found
+    assert (done["written"], done["skipped"]) == (3, 0)
+    assert read_sweep(folder).to_pandas().equals(read_sweep(tiny_folders[0]).to_pandas())
+
+
+@pytest.mark.parametrize("damage, words", [
+    (_edited(lambda m: m.__setitem__("symlink", "0.0.1")), "holds a sweep of symlink '0.0.1'"),
+    (_edited(lambda m: m.__setitem__("format", 7)), "of another layout, 7"),
+], ids=["another version's", "another layout's"])
+def test_a_manifest_of_another_symlink_is_refused_saying_what_to_do(tiny_folders, tmp_path, damage, words):
+    folder = _copy(tiny_folders, tmp_path)
+    damage(folder)
+    with pytest.raises(ValueError, match=words) as refused:
+        run_sweep(TINY, folder, scheduler="synchronous")
+    message = str(refused.value)
+    assert "\n" not in message and f"remove {folder / MANIFEST}" in message and "choose another folder" in message
+    (folder / MANIFEST).unlink()  # as the message says: then the sweep is done again there, with one warning
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        assert run_sweep(TINY, folder, scheduler="synchronous")["written"] == 3
+    assert sum(issubclass(w.category, SweepWarning) for w in caught) == 1
+
+
+def test_a_damaged_manifest_beside_other_files_is_refused_and_they_are_left_alone(tiny_folders, tmp_path):
+    folder = _copy(tiny_folders, tmp_path)
+    (folder / MANIFEST).write_text("{")
+    (folder / "notes.txt").write_text("mine")
+    with pytest.raises(ValueError, match=r"is damaged .* holds other files \('notes.txt'\): move them"):
+        run_sweep(TINY, folder, scheduler="synchronous")
+    assert (folder / "notes.txt").read_text() == "mine" and (folder / CHUNK).exists()

@@ -117,13 +117,17 @@ def _require_an_assembly(folder: str, designs: int, fresh: bool) -> None:
     every command refuses a linkage that never assembles; a folder this run created is removed."""
     import shutil
 
+    import pyarrow
+    import pyarrow.compute
     import pyarrow.parquet
 
     from ..io.sweep_folder import verified_chunks
     for _, data in verified_chunks(folder):
-        import io
-        if max((reach or 0.0) for reach in pyarrow.parquet.read_table(io.BytesIO(data), columns=["reach"])
-               .column("reach").to_pylist()) > 0:
+        # ParquetFile.read of pyarrow's own buffer on this thread: read_table imported pandas (a sweep's start
+        # imports only what its scheduler needs), and a Python file object read by pyarrow's threads aborted the
+        # process at exit ("terminate called without an active exception")
+        reach = pyarrow.parquet.ParquetFile(pyarrow.BufferReader(data)).read(columns=["reach"], use_threads=False)
+        if (pyarrow.compute.max(reach.column("reach")).as_py() or 0.0) > 0:
             return
     if fresh:
         shutil.rmtree(folder, ignore_errors=True)

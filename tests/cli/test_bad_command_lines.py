@@ -23,7 +23,8 @@ STEPHENSON2 = ["stephenson2", "--crank", "1", "--coupler", "3.1", "--link-cf", "
                "--coupler-arm", "3.9", "--rocker", "3.1", "--link-eh", "4.1", "--rocker-arm", "3.1",
                "--coupler-arm-angle", "51.57", "--rocker-arm-angle", "17.19"]
 TABLES = {"fourbar": FOURBAR, "slider-crank": SLIDER, "inverted-slider-crank": INVERTED, "watt2": WATT2,
-          "fivebar": FIVEBAR, "stephenson2": STEPHENSON2}
+          "fivebar": FIVEBAR, "stephenson2": STEPHENSON2,
+          "stephenson3": ["stephenson3", *STEPHENSON2[1:]]}  # stephenson2's table by its former name
 
 #: (what, extra arguments) that every table command must refuse with exit status 2.
 TABLE_MISTAKES = [

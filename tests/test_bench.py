@@ -444,7 +444,7 @@ def test_the_small_call_numba_baseline_is_the_counted_kernel():
     from benchmarks import small_calls
     assert "numba_kernels" in inspect.getsource(small_calls.numba_baseline)
     assert "numba_function(" not in inspect.getsource(small_calls)  # (its docstring names the one before)
-    pytest.importorskip("numba")
+    pytest.importorskip("numba", reason="numba comes with the bench extra: pip install -e '.[bench]'")
     theta = numpy.linspace(0.0, 6.0, 7)
     found = small_calls.numba_baseline()(theta)
     for row, key in enumerate(("beta", "phi", "beta_speed", "phi_speed", "beta_accel", "phi_accel")):

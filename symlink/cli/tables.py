@@ -39,7 +39,7 @@ from typing import TYPE_CHECKING, Any, Callable, Collection, Iterable, Mapping
 import numpy
 
 from ..common.angles import from_radians, half_turn, to_radians, wrap
-from ..io.scene_text import FORMER_CATALOG_NAMES
+from ..common.names import FORMER_CATALOG_NAMES
 from ..numeric.input_sweep import InputSweep, crank_speeds
 from .options import (add_fourbar_lengths, add_sweep_options, angle, assignments, branches, command_help, finite,
                       fourbar_lengths, input_sweep)
@@ -775,6 +775,9 @@ FORMER_TABLE_COMMANDS = FORMER_CATALOG_NAMES
 
 def _add_former(command: argparse.ArgumentParser, table: Table, former: str) -> None:
     _add_options(command, table)
+    command.description = (f"{former} is the former name of {table.linkage}: this is its table.\n\n"
+                           + (command.description or "").replace(f"example: symlink {table.linkage} ",
+                                                                 f"example: symlink {former} "))
     command.set_defaults(run=lambda args: _run_former(table, former, args))
 
 

@@ -626,8 +626,10 @@ def c_packed(function: CFunction, lengths: Sequence[str] = (), signs: Sequence[s
     checks nothing itself.
 
     >>> from symlink.mechanism.catalog import fourbar
-    >>> print(next(line for line in c_packed(c_function(fourbar().program(["rocker"]), "rocker")).splitlines()
-    ...            if line.startswith("int ")))
+    >>> for line in c_packed(c_function(fourbar().program(["rocker"]), "rocker")).splitlines():
+    ...     if line.startswith("int "):
+    ...         print(line)
+    int rocker_check(const struct symlink_packed_call *call)
     int rocker_packed(const struct symlink_packed_call *call)
     """
     checker = f"symlink_{function.name}_valid"

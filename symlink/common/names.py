@@ -37,7 +37,7 @@ import keyword
 import re
 
 __all__ = ["identifier", "label", "reason_reserved", "INTERMEDIATE_FAMILIES", "MAX_LENGTH", "RESERVED", "PLAIN_NAME",
-           "C_KEYWORDS", "OCTAVE_KEYWORDS", "JAVASCRIPT_KEYWORDS"]
+           "C_KEYWORDS", "OCTAVE_KEYWORDS", "JAVASCRIPT_KEYWORDS", "FORMER_CATALOG_NAMES"]
 
 #: Longest user name: derived names (``<name>ddot``, ``<role>_accel``, ``branch_<loop>``) must fit
 #: MATLAB's 63 characters.
@@ -153,3 +153,9 @@ def label(name: object, what: str = "linkage name") -> str:
     if name in keyword.kwlist or name in C_KEYWORDS or name in OCTAVE_KEYWORDS:
         raise ValueError(f"{what} {name!r} is a keyword of Python, C or MATLAB/Octave; rename it")
     return name
+
+
+#: Catalog linkages by a former name (the catalog's Stephenson six-bar was ``stephenson3`` before the six-bars were
+#: numbered as :mod:`symlink.mechanism.atlas` cites): the one table of them, SymPy-free, so that a warm command by
+#: the former name is as warm as by the current one.
+FORMER_CATALOG_NAMES = {"stephenson3": "stephenson2"}

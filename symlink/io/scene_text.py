@@ -29,6 +29,8 @@ from typing import Any, Mapping, Sequence
 import numpy
 
 from ..common.angles import to_radians
+from ..common.display import record_html
+from ..common.names import FORMER_CATALOG_NAMES
 from ..common.files import excerpt
 from ..common.numbers import toml_data
 from ..numeric.input_sweep import MAX_ANGLE, InputSweep, crank_speeds
@@ -95,12 +97,6 @@ def table(data: Any, where: str, allowed: set[str] | None) -> dict:
     return data
 
 
-#: Catalog linkages by a former name (the catalog's Stephenson six-bar was ``stephenson3`` before the six-bars were
-#: numbered as :mod:`symlink.mechanism.atlas` cites): the one table of them, SymPy-free, so that a warm command by
-#: the former name is as warm as by the current one.
-FORMER_CATALOG_NAMES = {"stephenson3": "stephenson2"}
-
-
 def linkage_request(source: str, folder: str | Path | None = None) -> dict[str, str] | None:
     """What names a linkage in a cache key, found without building it (no SymPy): a catalog or atlas name, or
     the digest of a linkage file's bytes (a relative path looked for in ``folder``, as
@@ -146,6 +142,8 @@ class WarmScene:
 
     Evaluated as :class:`symlink.io.scene.SceneFile` is: a block of input angles at a time, each branch sign.
     """
+
+    _repr_html_ = record_html
 
     def __init__(self, facts: Mapping[str, Any], solver: Any, parameters: Mapping[str, float], sweep: InputSweep,
                  units: str, fmt: str, branch: int | str, speed: float, accel: float) -> None:

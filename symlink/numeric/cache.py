@@ -333,6 +333,8 @@ def cached_text(key: str, build: Callable[[], str]) -> str:
         if path is not None:
             entry = {"format": FORMAT, "key": key, "sha256": _checksum(key, text), "text": text}
             try:
+                if path.is_symlink() or (path.exists() and not path.is_file() and not path.is_dir()):
+                    path.unlink()  # a FIFO or device in the cache is replaced by the entry, never written into
                 write_atomic(path, json.dumps(entry, indent=0) + "\n", mode=0o600)
             except OSError:
                 pass  # a full disk, a read-only folder, a folder in the way: keep the text in memory only

@@ -92,7 +92,7 @@ def test_function_three_points_and_table(tmp_path, capsys):
 BAD_FILES = [
     ("no header", "", "no header"),
     ("wrong header", "a,b\n1,2\n", "header"),
-    ("text value", "x,y\n1,2\n3,four\n", ":3: not a number"),
+    ("text value", "x,y\n1,2\n3,four\n", ":3: y: not a number"),
     ("short row", "x,y\n1,2\n3\n", ":3: 1 values"),
     ("nan", "x,y\n1,2\nnan,3\n", "finite"),
     ("too few points", "x,y\n1,2\n3,4\n5,6\n", "at least 4"),
@@ -111,7 +111,7 @@ def test_bad_path_files(name, text, message, tmp_path, capsys):
 BAD_FUNCTION = [
     ("two pairs", "theta,phi\n1,2\n3,4\n", "at least 3"),
     ("path header", "x,y\n1,2\n3,4\n5,6\n", "header"),
-    ("repeated", "theta,phi\n10,20\n10,20\n10,20\n", "singular"),
+    ("repeated", "theta,phi\n10,20\n10,20\n10,20\n", "same target"),
 ]
 
 

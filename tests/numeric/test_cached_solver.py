@@ -41,7 +41,9 @@ WARM_TABLE_MODULES = {
     "symlink", "symlink.version", "symlink.common", "symlink.numeric", "symlink.common.angles", "symlink.numeric.input_sweep", "symlink.common.files", "symlink.common.limits",
     "symlink.numeric.results", "symlink.numeric.call_arguments", "symlink.numeric.cache", "symlink.numeric.cached_solver", "symlink.codegen", "symlink.codegen.loading",
     "symlink.cli", "symlink.cli.options", "symlink.cli.output", "symlink.cli.tables", "symlink.cli.dynamics",
-    "symlink.cli.pictures", "symlink.cli.budget"}
+    "symlink.cli.pictures", "symlink.cli.budget",
+    "symlink.common.numbers",  # the one reader of the numbers an option takes
+    "symlink.common.names"}  # the catalog's former names (a table command by its former name)
 
 
 def _run(arguments: list[str], cache_folder: Path) -> tuple[subprocess.CompletedProcess, dict]:

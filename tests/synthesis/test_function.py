@@ -132,7 +132,7 @@ BAD = [
     ("too few pairs", dict(theta=[0.1, 0.2], phi=[1.0, 1.1]), "at least 3"),
     ("different lengths", dict(theta=[0.1, 0.2, 0.3], phi=[1.0, 1.1]), "same length"),
     ("NaN", dict(theta=[0.1, float("nan"), 0.3], phi=[1.0, 1.1, 1.2]), "finite"),
-    ("repeated points", dict(theta=[0.1, 0.1, 0.1], phi=[1.0, 1.0, 1.0]), "singular"),
+    ("repeated points", dict(theta=[0.1, 0.1, 0.1], phi=[1.0, 1.0, 1.0]), "same target"),
     ("bad ground", dict(theta=[0.1, 0.2, 0.3], phi=[1.0, 1.1, 1.3], ground=-1.0), "positive"),
 ]
 

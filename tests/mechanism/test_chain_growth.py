@@ -21,16 +21,7 @@ import sys
 import numpy as np
 import pytest
 
-
-def ground_chain(n: int) -> tuple[dict, dict]:
-    links = {"ground": ["A"] + [f"G{j}" for j in range(1, n + 1)], "crank": ["A", "P0"]}
-    coordinates = {"A": (0.0, 0.0), "P0": (0.3, 1.0)}
-    for j in range(1, n + 1):
-        links[f"r{j}"] = [f"G{j}", f"P{j}"]
-        links[f"c{j}"] = [f"P{j - 1}", f"P{j}"]
-        coordinates[f"G{j}"] = (2.0 * j + 0.5, -0.5)
-        coordinates[f"P{j}"] = (2.0 * j + 0.7, 1.3 + 0.3 * (j % 2))
-    return links, coordinates
+from benchmarks.growth import chain_by_joints as ground_chain  # the benchmark's chain: one definition
 
 
 def truss_chain(n: int) -> tuple[dict, dict]:

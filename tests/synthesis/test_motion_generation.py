@@ -282,6 +282,17 @@ def test_three_positions_of_the_circle_point_lie_on_a_circle_about_the_centre_po
     assert max(radii) - min(radii) <= 1e-9 * size
     if min(radii) < 1e3:  # well-conditioned: compare with the bisectors solved directly
         assert np.allclose(dyad.fixed, bisector_centre(places), rtol=1e-7, atol=1e-7)
+        # the inverse problem is well-conditioned only where the fixed pivot, seen from the moving body, is on a
+        # circle of moderate size too (its three relative places nearly in line put that circle's centre, the
+        # circle point, out of reach of rounding)
+        seen = [(math.cos(t) * (dyad.fixed[0] - x) + math.sin(t) * (dyad.fixed[1] - y),
+                 -math.sin(t) * (dyad.fixed[0] - x) + math.cos(t) * (dyad.fixed[1] - y)) for x, y, t in poses]
+        try:
+            seen_radius = math.dist(bisector_centre(seen), seen[0])
+        except np.linalg.LinAlgError:
+            return
+        if not seen_radius < 1e3:
+            return
         inverse = circle_point(poses, dyad.fixed)
         assert np.allclose(inverse.circle_point(poses), start, rtol=1e-6, atol=1e-6)
 

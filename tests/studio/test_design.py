@@ -243,4 +243,5 @@ def test_a_job_that_runs_past_its_time_limit_is_stopped_with_a_message():
         job["process"].join(0.2)
         found = jobs.status(key)
     assert found["status"] == "failed" and "stopped after 0.5 s" in found["error"]
+    job["process"].join(30)  # the watcher marks the job failed, then terminates (and if need be kills) its process
     assert not job["process"].is_alive()

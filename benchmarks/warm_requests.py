@@ -6,13 +6,16 @@ cache (cold: derivation), then three times more, each in a new process with the 
 (warm); printed: the seconds of each (best warm), and warm dynamics over warm kinematics (target:
 within 2x).  Timed inside the process, from before ``import symlink`` to the evaluated scene.
 
-Then the command line (wall time of ``python -m symlink ...`` in a new process, best of five warm runs
-after one cold run with the same ``SYMLINK_CACHE``): warm tables of a closed-form linkage, a Newton linkage
-(no closed form) and a linkage file, the four-bar with mass columns, a scene file of the Watt II's driving
-torque (``symlink run``), and the start of a sweep (five designs
-on the synchronous scheduler: its start-up, Dask and Parquet, is most of it), each over the wall time of
-``python -c "import numpy"`` measured in the same run (target for a warm table: within 1.2x).  The time of
-``python -c "import sympy"`` is printed beside them: what a warm command that imported SymPy would pay.
+Then the command line (``python -m symlink ...`` in a new process, after one cold run with the same
+``SYMLINK_CACHE``; the median of 15 rounds, ``WARM_REPEATS`` to change, each round running every command and
+baseline once in turn, so that a change of load falls on all): warm tables of the catalog's commands
+(``symlink fourbar``, with ``--masses``, ``symlink slider-crank``, ``symlink watt2``), of ``symlink table`` for
+a closed-form linkage, a Newton linkage (no closed form) and a linkage file, a scene file of the Watt II's
+driving torque (``symlink run``), and the start of a sweep (five designs on the synchronous scheduler: its
+start-up, Dask and Parquet, is most of it), each in wall time and in CPU time (user + system: less sensitive
+to the load of a shared machine) over those of ``python -c "import numpy"`` measured in the same rounds
+(target for a warm table: within 1.2x).  ``python -c "import sympy"`` is measured beside them: what a warm
+command that imported SymPy would pay.  The load average is printed before and after.
 Bytecode is cached (in the run's folder, ``PYTHONPYCACHEPREFIX``) as for an installed package, even where
 ``PYTHONDONTWRITEBYTECODE`` is set: else every run compiles symlink's modules again (about 0.1 s).
 CPU of the measured machine: AMD EPYC, 2 cores, AVX2 (shared; ratios only).
@@ -23,6 +26,9 @@ from __future__ import annotations
 
 import json
 import os
+import platform
+import resource
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -74,44 +80,68 @@ def measure(repeats: int = 3) -> dict[str, dict[str, float]]:
     return found
 
 
+#: The four-bar of the warm table measurements: a Grashof crank-rocker (lengths 2, 7, 9, 6).
+FOURBAR_2796 = ["fourbar", "--crank", "2", "--coupler", "7", "--rocker", "9", "--ground", "6", "--step", "30"]
 #: Warm command lines (arguments of ``python -m symlink``); ``{folder}`` is a fresh folder of the run.
 COMMANDS = {
+    "table fourbar": ["table", "fourbar", "--step", "30"],
+    "fourbar 2 7 9 6": FOURBAR_2796,
+    "fourbar 2 7 9 6 --masses": FOURBAR_2796 + ["--masses", "1,2,3", "--gravity", "9.81"],
+    "slider-crank": ["slider-crank", "--crank", "20", "--conrod", "66", "--offset", "5", "--step", "30"],
+    "watt2 (two loops)": ["watt2", "--crank", "1", "--coupler", "3.5", "--rocker", "3", "--ground", "3.2",
+                          "--rocker-arm", "2", "--rocker-arm-angle", "35", "--coupler2", "4", "--output", "3",
+                          "--output-x", "4.5", "--output-y", "3.5", "--step", "30"],
     "table watt2 (closed form)": ["table", "watt2", "--angles", "0,50", "--format", "csv", "--branch", "+1"],
     "table stephenson2 (Newton)": ["table", "stephenson2", "--angles", "0,50", "--format", "csv", "--guess",
                                    "coupler=-33,mu=-35,rocker=-73,eta=-68"],
     "table FILE (jansen.toml)": ["table", "{folder}/jansen.toml", "--angles", "0,50", "--format", "csv",
                                  "--branch", "+1"],
-    "fourbar --masses": ["fourbar", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80",
-                         "--masses", "1,2,3", "--angles", "0,50", "--format", "csv", "--branch", "1"],
     "run torque scene (watt2)": ["run", "{folder}/torque.toml"],
     "sweep start (5 designs)": ["sweep", "fourbar", "{folder}/sweep-{run}", "--vary", "a=10:20", "--set",
                                 "b=66,c=56,d=80", "--grid", "5", "--scheduler", "synchronous", "--no-progress"],
 }
+#: The baselines, measured in the same rounds: what every command pays (NumPy), and what a warm command that
+#: imported SymPy would pay.
+BASELINES = {"import numpy": ["-c", "import numpy"], "import sympy": ["-c", "import sympy"]}
 
 
-def wall(arguments: list[str], env: dict[str, str]) -> float:
-    """Seconds of wall time of ``python ARGUMENTS`` in a new process (it must succeed)."""
+def wall(arguments: list[str], env: dict[str, str]) -> tuple[float, float]:
+    """Seconds of wall time and of CPU time (user + system) of ``python ARGUMENTS`` in a new process (it must
+    succeed)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
     subprocess.run([sys.executable, *arguments], capture_output=True, text=True, env=env, check=True)
-    return time.perf_counter() - start
+    seconds = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return seconds, (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
 
 
-def measure_commands(repeats: int = 5) -> dict[str, float]:
-    """Best warm wall time of each of :data:`COMMANDS`, and of ``import numpy`` and ``import sympy``."""
-    found: dict[str, float] = {}
+def measure_commands(repeats: int = 15) -> dict[str, tuple[float, float]]:
+    """Median warm wall and CPU seconds of each of :data:`COMMANDS` and :data:`BASELINES`.
+
+    After one cold run of each command (it derives, compiles and fills the cache), ``repeats`` rounds, each
+    running every command and baseline once in turn (interleaved: a change of the machine's load falls on all).
+    """
+    times: dict[str, list[tuple[float, float]]] = {label: [] for label in [*BASELINES, *COMMANDS]}
     with tempfile.TemporaryDirectory() as folder:
         env = dict(os.environ, SYMLINK_CACHE=str(Path(folder) / "cache"), PYTHONPATH=str(ROOT), MPLBACKEND="Agg",
                    PYTHONPYCACHEPREFIX=str(Path(folder) / "pycache"))  # compiled once, as an installed package is
         env.pop("PYTHONDONTWRITEBYTECODE", None)
         (Path(folder) / "jansen.toml").write_text((ROOT / "symlink" / "linkages" / "jansen.toml").read_text())
         (Path(folder) / "torque.toml").write_text(scene_text(["input_torque"], True))
-        for library in ("numpy", "sympy"):
-            found[f"import {library}"] = min(wall(["-c", f"import {library}"], env) for _ in range(repeats))
-        for label, arguments in COMMANDS.items():
-            runs = [[a.format(folder=folder, run=run) for a in arguments] for run in range(repeats + 1)]
-            wall(["-m", "symlink", *runs[0]], env)  # cold: derives, compiles and fills the cache
-            found[label] = min(wall(["-m", "symlink", *run], env) for run in runs[1:])
-    return found
+
+        def command(label: str, run: int) -> list[str]:
+            if label in BASELINES:
+                return BASELINES[label]
+            return ["-m", "symlink", *(a.format(folder=folder, run=run) for a in COMMANDS[label])]
+
+        for label in times:
+            wall(command(label, -1), env)  # cold: derives, compiles and fills the cache (and the bytecode)
+        for run in range(repeats):
+            for label in times:
+                times[label].append(wall(command(label, run), env))
+    return {label: (statistics.median(w for w, _ in found), statistics.median(c for _, c in found))
+            for label, found in times.items()}
 
 
 def main() -> None:
@@ -120,12 +150,17 @@ def main() -> None:
         print(f"{label:>10}: cold {times['cold']:.3f} s, warm {times['warm']:.3f} s (new process, disk cache)")
     ratio = found["torque"]["warm"] / found["kinematics"]["warm"]
     print(f"warm torque / warm kinematics: {ratio:.2f}x (target <= 2x); load {os.getloadavg()[0]:.2f}")
-    commands = measure_commands()
-    numpy_seconds = commands["import numpy"]
-    print("\nwarm command lines, wall time in a new process (best of 5), over python -c 'import numpy':")
-    for label, seconds in commands.items():
-        print(f"{label:>28}: {seconds:.3f} s  {seconds / numpy_seconds:5.2f}x")
-    print(f"(target: a warm table within 1.2x of import numpy; load {os.getloadavg()[0]:.2f})")
+    load_before = os.getloadavg()
+    repeats = int(os.environ.get("WARM_REPEATS", "15"))
+    commands = measure_commands(repeats)
+    numpy_wall, numpy_cpu = commands["import numpy"]
+    print(f"\nwarm command lines in a new process, median of {repeats} interleaved rounds, over "
+          "python -c 'import numpy' (wall time and CPU time, user + system):")
+    print(f"{'':>28}  {'wall':>8} {'ratio':>6}  {'CPU':>8} {'ratio':>6}")
+    for label, (seconds, cpu) in commands.items():
+        print(f"{label:>28}: {seconds:.3f} s {seconds / numpy_wall:5.2f}x  {cpu:.3f} s {cpu / numpy_cpu:5.2f}x")
+    print(f"(target: a warm table within 1.2x of import numpy; CPU: {platform.processor() or platform.machine()}, "
+          f"{os.cpu_count()} cores; load average {load_before[0]:.2f} before, {os.getloadavg()[0]:.2f} after)")
 
 
 if __name__ == "__main__":

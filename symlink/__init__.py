@@ -64,7 +64,8 @@ _public("symlink.codegen", "printer PRINTERS")
 _public("symlink.numeric.solver", "Solver NumericSolver shared_solver")
 _public("symlink.numeric.compiled", "compiled_solver CompiledSolver")
 _public("symlink.numeric.results", "Results")
-_public("symlink.numeric.reachability", "reachable_range crank_range InputRange Toggle")
+_public("symlink.numeric.reachability", "reachable_range InputRange Toggle")
+_public("symlink.numeric.crank_ranges", "crank_range")
 _public("symlink.numeric.design_jacobian", "design_jacobian")
 # dynamics
 _public("symlink.dynamics", "DynamicModel DynamicLinkage MassProperties Gravity PointForce BodyTorque Spring Damper "

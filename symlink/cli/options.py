@@ -10,6 +10,8 @@ line of error and exit status 2.
 from __future__ import annotations
 
 import argparse
+import functools
+import gettext
 import math
 import re
 from pathlib import Path
@@ -56,12 +58,20 @@ class _StoreOnce(argparse._StoreAction):
         super().__call__(parser, namespace, values, option_string)
 
 
+# argparse passes each of its messages through gettext, which looks on disk for a message catalogue at every call
+# (some thirty looks to parse one command line, a few milliseconds of a warm table's start): one look a message.
+argparse._ = functools.lru_cache(maxsize=None)(gettext.gettext)  # type: ignore[attr-defined]
+
+
 class Parser(argparse.ArgumentParser):
     """argparse with one-line errors, and negative numbers (-1e-3, -70,0) taken as values, not options.
 
     ``populate`` adds a command's arguments when that command is used, so the
     command line starts without building every command's linkage.
     """
+
+    #: Whether help is being formatted: only then is the terminal's width looked up (:meth:`_get_formatter`).
+    _for_help = False
 
     def __init__(self, *args, populate: Callable[[argparse.ArgumentParser], None] | None = None, **kwargs):
         kwargs.setdefault("formatter_class", argparse.RawDescriptionHelpFormatter)
@@ -82,7 +92,18 @@ class Parser(argparse.ArgumentParser):
         if self._populate is not None:
             populate, self._populate = self._populate, None
             populate(self)
-        return super().format_help()
+        self._for_help = True
+        try:
+            return super().format_help()
+        finally:
+            self._for_help = False
+
+    def _get_formatter(self) -> argparse.HelpFormatter:
+        # add_argument makes a formatter only to check a metavar, where the width does not matter; finding the
+        # terminal's width imports shutil (and bz2, lzma with it): looked up for help only.
+        if self._for_help:
+            return super()._get_formatter()
+        return self.formatter_class(prog=self.prog, width=80)
 
     def error(self, message: str) -> NoReturn:  # one line, exit status 2, no usage dump
         raise UsageError(message)

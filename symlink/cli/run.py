@@ -55,7 +55,7 @@ def _run_warm(warm, args: argparse.Namespace) -> int:
 
     def spans() -> str:
         if warm.name == "fourbar":
-            from ..numeric.reachability import crank_range, describe_spans
+            from ..numeric.crank_ranges import crank_range, describe_spans
             return describe_spans(crank_range(*(warm.parameters[n] for n in "abcd")), warm.units)
         return f"not computed for {warm.name}"
 
@@ -75,7 +75,7 @@ def _run_scene(found, args: argparse.Namespace) -> int:
 
     def spans() -> str:
         if scene.linkage.name == "fourbar":
-            from ..numeric.reachability import crank_range, describe_spans
+            from ..numeric.crank_ranges import crank_range, describe_spans
             return describe_spans(crank_range(*(cast(float, scene.values[n]) for n in "abcd")), found.units)
         return f"not computed for {scene.linkage.name}"
 

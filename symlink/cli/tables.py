@@ -33,13 +33,15 @@ from __future__ import annotations
 
 import argparse
 import itertools
+import warnings
 from dataclasses import dataclass
+from functools import cached_property
 from typing import TYPE_CHECKING, Any, Callable, Collection, Iterable, Mapping
 
 import numpy
 
 from ..common.angles import from_radians, half_turn, to_radians, wrap
-from ..common.names import FORMER_CATALOG_NAMES
+from ..common.names import FORMER_CATALOG_NAMES, SixBarNameNote, former_name_note
 from ..numeric.input_sweep import InputSweep, crank_speeds
 from .options import (add_fourbar_lengths, add_sweep_options, angle, assignments, branches, command_help, finite,
                       fourbar_lengths, input_sweep)
@@ -129,70 +131,70 @@ _guess = assignments("NAME=ANGLE")
 
 def _spans_text(spans: list[tuple[float, float]] | str, units: str) -> str:
     """A reachable crank range for messages: intervals in ``units``, or a sentence as it is."""
-    from ..numeric.reachability import describe_spans
+    from ..numeric.crank_ranges import describe_spans
     return spans if isinstance(spans, str) else describe_spans(spans, units)
 
 
 # --- the command ------------------------------------------------------------------
 
-def _description(table: Table, linkage: Linkage) -> str:
+def _description(table: Table, facts: Mapping[str, Any]) -> str:
     lines = [table.summary[0].upper() + table.summary[1:] + ".", "",
              "units: lengths in any one unit; angles in --units (deg by default), speeds rad/s, "
              "accelerations rad/s^2",
              f"example: symlink {table.linkage} {table.example}", "",
-             "csv header: " + ",".join(table_columns(linkage))]
+             "csv header: " + ",".join(facts["columns"])]
     return "\n".join(lines + (["", table.notes] if table.notes else []))
 
 
 def add_table_command(commands: argparse._SubParsersAction, table: Table) -> argparse.ArgumentParser:
     """Register the command of ``table``; returns its parser.
 
-    The linkage is built, and the command's options added, only when the
-    command is used: every other command starts without that symbolic work.
+    The command's options are added only when the command is used, from its linkage's table facts (the disk
+    cache: :class:`TableSource`): every other command starts without that work, and a warm one without SymPy.
     """
     return commands.add_parser(table.linkage, help=table.summary,
                                populate=lambda command: _add_options(command, table))
 
 
-def _add_options(command: argparse.ArgumentParser, table: Table) -> None:
-    """The options of ``table``'s command, from its catalog linkage."""
-    from ..symbolic.outputs import label
-    from ..io.scene import catalog_linkage
-    linkage = catalog_linkage(table.linkage)
-    command.description = _description(table, linkage)
+def _add_options(command: argparse.ArgumentParser, table: Table) -> TableSource:
+    """The options of ``table``'s command, from its catalog linkage's table facts; returns where they came from."""
+    source = TableSource(table.linkage)
+    facts = source.facts
+    command.description = _description(table, facts)
     for option in table.options:
         default = "" if option.default is None else f"; default {option.default:g}"
         command.add_argument(f"--{option.name}", type=finite, required=option.default is None,
                              default=option.default, metavar=option.metavar,
                              help=f"{option.symbol} = {option.meaning}{default}")
-    for x in linkage.inputs[1:]:
-        role = label(linkage, x)
+    for name in facts["inputs"][1:]:
+        role = facts["labels"][name]
         command.add_argument(f"--{role}-angle", type=angle, required=True, metavar="DEG",
-                             help=f"{x.name} = {role} angle when the crank is at 0 (in --units)")
+                             help=f"{name} = {role} angle when the crank is at 0 (in --units)")
         command.add_argument(f"--{role}-ratio", type=finite, default=0.0, metavar="R",
-                             help=f"{x.name} = {role}-angle + R * crank: {role} turns R times as fast as the "
+                             help=f"{name} = {role}-angle + R * crank: {role} turns R times as fast as the "
                                   "crank (default 0: held still)")
-    add_sweep_options(command, branch=len(linkage.branches) == 1)
-    if len(linkage.branches) > 1:
-        command.add_argument("--branch", type=loop_branches(len(linkage.branches)), default="both",
+    loops = len(facts["branches"])
+    add_sweep_options(command, branch=loops == 1)
+    if loops > 1:
+        command.add_argument("--branch", type=loop_branches(loops), default="both",
                              metavar="+1|-1|both[,...]",
                              help="both (default: every combination), one sign for every loop, or one of "
                                   "+1, -1, both a loop, in solve-plan order, separated by commas")
-    if not linkage.has_closed_form:
-        names = ", ".join(label(linkage, u) for u in linkage.unknowns)
+    if not facts["closed_form"]:
+        names = ", ".join(facts["newton"]["unknowns"])
         command.add_argument("--guess", type=_guess, metavar="NAME=ANGLE,...",
                              help=f"start from the assembly nearest these angles at the first crank angle "
                                   f"(names: {names}; any of them; in --units)")
         if table.assemblies is not None:
             command.add_argument("--list-assemblies", action="store_true",
                                  help="print the assemblies found at the first crank angle and exit")
-    command.set_defaults(run=lambda args: run_table(table, args))
+    command.set_defaults(run=lambda args: run_table(table, args, source))
+    return source
 
 
-def _values(table: Table, linkage: Linkage, args: argparse.Namespace) -> dict[str, float]:
-    """The parameter values by symbol name (angles in radians), lengths checked, by option name."""
-    from ..symbolic.outputs import label
-    from ..numeric.solver import check_lengths
+def _values(table: Table, facts: Mapping[str, Any], args: argparse.Namespace,
+            check_lengths: Callable[..., None]) -> dict[str, float]:
+    """The parameter values by symbol name (angles in radians), lengths checked (``check_lengths``), by option name."""
     lengths = {option.name: getattr(args, option.name.replace("-", "_"))
                for option in table.options if option.kind == LENGTH}
     check_lengths(**lengths)
@@ -200,10 +202,10 @@ def _values(table: Table, linkage: Linkage, args: argparse.Namespace) -> dict[st
     for option in table.options:
         value = getattr(args, option.name.replace("-", "_"))
         values[option.symbol] = float(to_radians(value, args.units)) if option.kind == ANGLE else value
-    for x in linkage.inputs[1:]:
-        role = label(linkage, x).replace("-", "_")
-        values[x.name] = float(to_radians(getattr(args, f"{role}_angle"), args.units))
-        values[f"{x.name}_ratio"] = getattr(args, f"{role}_ratio")
+    for name in facts["inputs"][1:]:
+        role = facts["labels"][name].replace("-", "_")
+        values[name] = float(to_radians(getattr(args, f"{role}_angle"), args.units))
+        values[f"{name}_ratio"] = getattr(args, f"{role}_ratio")
     return values
 
 
@@ -282,7 +284,7 @@ def _closed_form(table: Table, facts: Mapping[str, Any], solver: Any, values: di
         known = table.reachable(values) if table.reachable is not None else None
         if known is not None:
             return _spans_text(known, args.units)
-        from ..numeric.reachability import scanned_range
+        from ..numeric.crank_ranges import scanned_range
 
         def assembled(branch, theta):
             return solve(branch, _input_values(facts, values, theta, 0.0, 0.0))["assembled"]
@@ -368,19 +370,19 @@ def _numeric(table: Table, facts: Mapping[str, Any], solver: Callable[[], Any], 
     raise failure
 
 
-def _print_assemblies(table: Table, linkage: Linkage, values: dict, first: float, args: argparse.Namespace) -> None:
+def _print_assemblies(table: Table, facts: Mapping[str, Any], values: dict, first: float,
+                      args: argparse.Namespace) -> None:
     """``--list-assemblies``: the assemblies at the first crank angle, angles wrapped, in the table's format."""
-    from ..symbolic.outputs import label
     theta = float(to_radians(first, args.units))
-    shown = (linkage.inputs[0],) + linkage.unknowns
-    columns = [label(linkage, q) for q in shown]
+    crank = facts["inputs"][0]
+    shown = {facts["labels"][crank]: crank, **facts["newton"]["unknowns"]}  # column label: name
     rows = []
     assert table.assemblies is not None  # the option exists only for tables that list assemblies
     for found in table.assemblies(theta, values):
-        radians = {linkage.inputs[0].name: theta, **found}
-        rows.append({label(linkage, q): float(wrap(from_radians(radians[q.name], args.units), half_turn(args.units)))
-                     for q in shown})
-    print_rows(rows, columns, args.format)
+        radians = {crank: theta, **found}
+        rows.append({column: float(wrap(from_radians(radians[name], args.units), half_turn(args.units)))
+                     for column, name in shown.items()})
+    print_rows(rows, list(shown), args.format)
 
 
 def units_of_columns(linkage: Linkage, columns: Collection[str]) -> dict[str, str]:
@@ -442,11 +444,13 @@ def _speeds_at(sweep: InputSweep, args: argparse.Namespace) -> Callable[[numpy.n
     return at
 
 
-def run_table(table: Table, args: argparse.Namespace) -> int:
-    """Print the table of ``table``'s linkage for the parsed ``args``."""
-    from ..io.scene import catalog_linkage
-    linkage = catalog_linkage(table.linkage)
-    return _print_table(table, linkage, _values(table, linkage, args), args)
+def run_table(table: Table, args: argparse.Namespace, source: TableSource | None = None) -> int:
+    """Print the table of ``table``'s linkage for the parsed ``args`` (``source``: where its facts and solver
+    come from; by default the catalog's entry)."""
+    source = source or TableSource(table.linkage)
+    solver = source.solver()
+    return _print_table(table, None, _values(table, source.facts, args, solver.check_lengths), args, source.facts,
+                        solver)
 
 
 def _print_table(table: Table, linkage: Linkage | None, values: dict[str, float], args: argparse.Namespace,
@@ -462,8 +466,7 @@ def _print_table(table: Table, linkage: Linkage | None, values: dict[str, float]
 
     sweep = input_sweep(args)
     if getattr(args, "list_assemblies", False):
-        assert linkage is not None
-        _print_assemblies(table, linkage, values, sweep.first, args)
+        _print_assemblies(table, facts, values, sweep.first, args)
         return 0
     _check_crank_speeds(sweep, args.units, args.crank_speed, args.crank_accel)
     speeds_at = _speeds_at(sweep, args)
@@ -493,9 +496,9 @@ def _print_table(table: Table, linkage: Linkage | None, values: dict[str, float]
 # --- the catalog's entries ----------------------------------------------------------
 
 def _reachability():
-    """:mod:`symlink.numeric.reachability`, imported when a table needs a reachable range (it imports SymPy)."""
-    from ..numeric import reachability
-    return reachability
+    """:mod:`symlink.numeric.crank_ranges`, imported when a table needs a reachable range (SymPy-free)."""
+    from ..numeric import crank_ranges
+    return crank_ranges
 
 
 def _stephenson2_assemblies(theta: float, values: Mapping[str, float]) -> Any:
@@ -625,7 +628,7 @@ def run_fourbar(args: argparse.Namespace) -> int:
                                         thetaddot=args.crank_accel) for sign in signs}
 
     def spans() -> str:
-        from ..numeric.reachability import crank_range, describe_spans
+        from ..numeric.crank_ranges import crank_range, describe_spans
         return describe_spans(crank_range(a, b, c, d), args.units)
 
     write_table(blocks(), columns, args.units, args.format, ANGLE_COLUMNS, spans,
@@ -677,32 +680,80 @@ def _facts_values(facts: Mapping[str, Any], settings: Mapping[str, float], units
     return values
 
 
+class TableSource:
+    """A linkage named on the command line (a catalog name, an atlas name or a linkage file): its table's facts
+    (:func:`table_facts`) and its solver, from the disk cache.
+
+    The one home of a table's cache entries: ``symlink table NAME|FILE`` and the catalog's table commands
+    (``symlink watt2``) key them by what names the linkage (:func:`symlink.io.scene_text.linkage_request`: the catalog
+    name or the file's bytes), so that a warm table builds no linkage and imports no SymPy.  A former name
+    (``stephenson3``) is noted on stderr in the same words warm or cold (:func:`symlink.common.names.former_name_note`).
+    """
+
+    def __init__(self, source: str) -> None:
+        from ..io.scene_text import linkage_request
+        self.source = source
+        self.request = linkage_request(source)
+        self._found: Any = None
+        note = former_name_note(source) if self.request is not None else None
+        if note is not None:
+            warnings.warn(note, SixBarNameNote, stacklevel=2)
+        self._noted = note is not None
+
+    def found(self) -> Any:
+        """The linkage file or catalog entry, read (SymPy): only where the cache has no entry yet."""
+        if self._found is None:
+            from ..io.linkage_file import load_linkage
+            with warnings.catch_warnings():
+                if self._noted:  # said once already, in the same words
+                    warnings.simplefilter("ignore", SixBarNameNote)
+                self._found = load_linkage(self.source).with_dynamics()  # [dynamics] adds torques and forces
+        return self._found
+
+    def key(self, outputs: list[str]) -> str:
+        """The cache key of the entry of ``outputs`` (``[]``: the facts; ``["newton"]``: Newton's solver)."""
+        from ..numeric.cache import catalog_key
+        return catalog_key("table", outputs, GENERIC_ENTRY_KIND, self.request, GENERIC_SHAPING)
+
+    @cached_property
+    def facts(self) -> dict[str, Any]:
+        """:func:`table_facts` of the linkage with its defaults (from the cache where the linkage is keyed)."""
+        import json
+        from ..numeric.cache import cached_text
+
+        def now() -> dict[str, Any]:
+            return table_facts(self.found().linkage, self.found().defaults)
+        return now() if self.request is None else json.loads(cached_text(self.key([]), lambda: json.dumps(now())))
+
+    def solver(self) -> Any:
+        """The solver of the table's outputs from the cache (:class:`~symlink.numeric.cached_solver.CachedSolver`,
+        or :class:`~symlink.numeric.cached_solver.CachedNewtonSolver` without a closed form); None where the
+        linkage is not keyed (a file too large to key: solved from the linkage itself)."""
+        if self.request is None:
+            return None
+        facts = self.facts
+        if facts["closed_form"]:  # derived once, with SymPy
+            from ..numeric.cached_solver import CachedSolver, entry_text
+            outputs = list(facts["outputs"].values())
+
+            def full():
+                from ..numeric.solver import Solver
+                return Solver(self.found().linkage, outputs)
+
+            return CachedSolver(facts["name"], outputs, key=self.key(outputs),
+                                derive=lambda: entry_text(self.found().linkage, outputs), full=full)
+        from ..numeric.cached_solver import CachedNewtonSolver, newton_entry_text  # its NumPy module: no SymPy when warm
+        return CachedNewtonSolver(facts["name"], self.key(["newton"]), lambda: newton_entry_text(self.found().linkage))
+
+
 def run_generic_table(args: argparse.Namespace) -> int:
     """``symlink table``: the table of any linkage, from the catalog or a file.
 
     A linkage with a closed form is tabulated from the disk cache: its facts (:func:`table_facts`) and its solver
     are keyed by the catalog name or the file's bytes, so that a warm table builds no linkage and imports no SymPy.
     """
-    import json
-    from ..numeric.cache import catalog_key, cached_text
-    loaded: dict[str, Any] = {}
-
-    def found():
-        if not loaded:
-            from ..io.linkage_file import load_linkage
-            loaded["found"] = load_linkage(args.linkage).with_dynamics()  # [dynamics] adds torques and forces
-        return loaded["found"]
-
-    def facts_now() -> dict[str, Any]:
-        return table_facts(found().linkage, found().defaults)
-
-    from ..io.scene_text import linkage_request
-    request = linkage_request(args.linkage)
-
-    def key(outputs: list[str]) -> str:
-        return catalog_key("table", outputs, GENERIC_ENTRY_KIND, request, GENERIC_SHAPING)
-
-    facts = facts_now() if request is None else json.loads(cached_text(key([]), lambda: json.dumps(facts_now())))
+    source = TableSource(args.linkage)
+    facts = source.facts
     name, inputs = facts["name"], facts["inputs"]
     ratios = {f"{x}_ratio" for x in inputs[1:]}
     values = _facts_values(facts, args.set, args.units, extra=sorted(ratios))
@@ -718,21 +769,8 @@ def run_generic_table(args: argparse.Namespace) -> int:
         raise ValueError(f"{name} needs values for {', '.join(missing)} (--set NAME=VALUE,...)")
     values.update({ratio: values.get(ratio, 0.0) for ratio in ratios})
     lengths = {n: values[n] for n in facts["positive"]}
-    solver: Any = None
-    if facts["closed_form"] and request is not None:  # from the disk cache (derived once, with SymPy)
-        from ..numeric.cached_solver import CachedSolver, entry_text
-        outputs = list(facts["outputs"].values())
-
-        def full():
-            from ..numeric.solver import Solver
-            return Solver(found().linkage, outputs)
-
-        solver = CachedSolver(name, outputs, key=key(outputs), derive=lambda: entry_text(found().linkage, outputs),
-                              full=full)
-        solver.check_lengths(**lengths)
-    elif request is not None:  # Newton's method, from the disk cache too (its NumPy module: no SymPy when warm)
-        from ..numeric.cached_solver import CachedNewtonSolver, newton_entry_text
-        solver = CachedNewtonSolver(name, key(["newton"]), lambda: newton_entry_text(found().linkage))
+    solver = source.solver()
+    if solver is not None:
         solver.check_lengths(**lengths)
     else:
         from ..numeric.solver import check_lengths
@@ -745,7 +783,7 @@ def run_generic_table(args: argparse.Namespace) -> int:
     elif args.branch not in ("+1", "1", "-1", "both"):
         raise ValueError(f"--branch must be +1, -1 or both for {name}, got {args.branch!r}")
     table = Table(name, f"the table of {name}", (), "")
-    linkage = None if solver is not None else found().linkage
+    linkage = None if solver is not None else source.found().linkage
     return _print_table(table, linkage, values, args, facts, solver)
 
 
@@ -769,20 +807,21 @@ def register(commands: argparse._SubParsersAction) -> None:
 
 
 #: Table commands by a former name of their catalog linkage (symlink.mechanism.atlas.FORMER_SIX_BAR_NAMES), kept
-#: working: the name is read by symlink.io.linkage_file.catalog_name, which says what it names now.
+#: working: a one-line note says what the name names now (symlink.common.names.former_name_note).
 FORMER_TABLE_COMMANDS = FORMER_CATALOG_NAMES
 
 
 def _add_former(command: argparse.ArgumentParser, table: Table, former: str) -> None:
-    _add_options(command, table)
+    source = _add_options(command, table)
     command.description = (f"{former} is the former name of {table.linkage}: this is its table.\n\n"
                            + (command.description or "").replace(f"example: symlink {table.linkage} ",
                                                                  f"example: symlink {former} "))
-    command.set_defaults(run=lambda args: _run_former(table, former, args))
+    command.set_defaults(run=lambda args: _run_former(table, former, args, source))
 
 
-def _run_former(table: Table, former: str, args: argparse.Namespace) -> int:
-    from ..io.linkage_file import catalog_name
-    if catalog_name(former) != table.linkage:  # the note: what the former name names now
+def _run_former(table: Table, former: str, args: argparse.Namespace, source: TableSource) -> int:
+    note = former_name_note(former)  # what the former name names now, in the words of every reader of it
+    if FORMER_TABLE_COMMANDS.get(former) != table.linkage or note is None:
         raise ValueError(f"{former} no longer names {table.linkage}")
-    return run_table(table, args)
+    warnings.warn(note, SixBarNameNote)
+    return run_table(table, args, source)

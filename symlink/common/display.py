@@ -23,7 +23,6 @@ and the docs' executed notebooks then show the table instead of a one-line
 from __future__ import annotations
 
 import dataclasses
-import html
 import math
 from typing import Any
 
@@ -64,6 +63,7 @@ def _is_record(value: Any) -> bool:
 
 def record_html(record: Any, depth: int = 0) -> str:
     """``record`` as an HTML table: its class name as the caption, a row a public field."""
+    import html  # when a record is shown (a command that shows none starts without it)
     name = html.escape(type(record).__name__)
     if depth > MAX_DEPTH:
         return f"<i>{name}</i>"
@@ -89,6 +89,7 @@ def value_html(value: Any, depth: int = 0) -> str:
     >>> value_html({"a": 20.0, "<b>": 1})
     'a = 20, &lt;b&gt; = 1'
     """
+    import html
     if value is None or isinstance(value, (bool, numpy.bool_, int, float, numpy.number)):
         return "None" if value is None else _number(value)
     if isinstance(value, str):

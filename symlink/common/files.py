@@ -19,8 +19,6 @@ from __future__ import annotations
 
 import errno
 import os
-import secrets
-import shutil
 import stat
 import time
 from pathlib import Path
@@ -36,6 +34,12 @@ _CAN_CHECK_OWNER = hasattr(os, "geteuid")
 
 class NotPrivate(OSError):
     """A file or folder that someone other than this user could have written."""
+
+
+def _token() -> str:
+    """Twelve random hex digits for a temporary name (``secrets``, imported when a file is first written)."""
+    import secrets
+    return secrets.token_hex(6)
 
 
 def _write_all(handle: int, data: bytes) -> None:
@@ -189,7 +193,7 @@ def check_writable(path: str | os.PathLike, folder: bool = False) -> None:
         existing = next((p for p in ((path,) if folder else ()) + tuple(path.parents) if os.path.isdir(p)), None)
         if existing is None:
             return
-        probe = existing / f".symlink-probe-{secrets.token_hex(6)}{TEMPORARY_SUFFIX}"
+        probe = existing / f".symlink-probe-{_token()}{TEMPORARY_SUFFIX}"
         flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_CLOEXEC", 0)
         os.close(os.open(probe, flags, 0o600))
         os.unlink(probe)
@@ -200,7 +204,7 @@ def check_writable(path: str | os.PathLike, folder: bool = False) -> None:
 def _write_through_temporary(path: Path, data: str | bytes, mode: int | None) -> None:
     path.parent.mkdir(parents=True, exist_ok=True)
     payload = data.encode("utf-8") if isinstance(data, str) else bytes(data)
-    temporary = path.parent / f".{path.name}.{secrets.token_hex(6)}{TEMPORARY_SUFFIX}"
+    temporary = path.parent / f".{path.name}.{_token()}{TEMPORARY_SUFFIX}"
     flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_CLOEXEC", 0)
     handle = os.open(temporary, flags, 0o666 if mode is None else mode & 0o777)  # the kernel applies the umask
     try:
@@ -444,6 +448,7 @@ def remove_leftovers(folder: str | os.PathLike, prefixes: tuple[str, ...], older
             if now - status.st_mtime < older_than:
                 continue
             if stat.S_ISDIR(status.st_mode):
+                import shutil
                 shutil.rmtree(path)
             else:
                 os.unlink(path)
@@ -471,7 +476,7 @@ def write_files_together(texts: Mapping[Path, str | bytes]) -> list[Path]:
     ['a.svg', 'a.dxf']
     """
     def hidden(path: Path) -> Path:
-        return path.parent / f".{path.name}.{secrets.token_hex(6)}{TEMPORARY_SUFFIX}"
+        return path.parent / f".{path.name}.{_token()}{TEMPORARY_SUFFIX}"
 
     paths = {Path(path): data for path, data in texts.items()}
     for path in paths:
@@ -494,6 +499,7 @@ def write_files_together(texts: Mapping[Path, str | bytes]) -> list[Path]:
                 try:
                     os.link(path, backup)
                 except OSError:  # a file system without hard links: a copy
+                    import shutil
                     shutil.copy2(path, backup)
             kept[path] = backup
             os.replace(temporary, path)

@@ -37,7 +37,8 @@ import keyword
 import re
 
 __all__ = ["identifier", "label", "reason_reserved", "INTERMEDIATE_FAMILIES", "MAX_LENGTH", "RESERVED", "PLAIN_NAME",
-           "C_KEYWORDS", "OCTAVE_KEYWORDS", "JAVASCRIPT_KEYWORDS", "FORMER_CATALOG_NAMES"]
+           "C_KEYWORDS", "OCTAVE_KEYWORDS", "JAVASCRIPT_KEYWORDS", "FORMER_CATALOG_NAMES", "SIX_BAR_DEFINITIONS",
+           "FORMER_SIX_BAR_NAMES", "SixBarNameNote", "former_name_note"]
 
 #: Longest user name: derived names (``<name>ddot``, ``<role>_accel``, ``branch_<loop>``) must fit
 #: MATLAB's 63 characters.
@@ -159,3 +160,55 @@ def label(name: object, what: str = "linkage name") -> str:
 #: numbered as :mod:`symlink.mechanism.atlas` cites): the one table of them, SymPy-free, so that a warm command by
 #: the former name is as warm as by the current one.
 FORMER_CATALOG_NAMES = {"stephenson3": "stephenson2"}
+
+
+#: The six-bars by their atlas names, and what each is (the one table of them: :mod:`symlink.mechanism.atlas` cites
+#: the numbering).  Plain text, SymPy-free, so that a warm command by a former name says what it names.
+SIX_BAR_DEFINITIONS = {
+    "watt-i": "Watt chain (the ternary links share a pin), the ground a binary link",
+    "watt-ii": "Watt chain (the ternary links share a pin), the ground a ternary link",
+    "stephenson-i": "Stephenson chain (binary links keep the ternary links apart), the ground a binary link pinned "
+                    "to both ternary links",
+    "stephenson-ii": "Stephenson chain (binary links keep the ternary links apart), the ground a binary link pinned "
+                     "to one ternary link",
+    "stephenson-iii": "Stephenson chain (binary links keep the ternary links apart), the ground a ternary link",
+}
+
+#: Names symlink gave before its numbering was fixed, and what they name now: the catalog's Stephenson six-bar
+#: (its ground a binary link pinned to one ternary link) was ``stephenson3``.
+FORMER_SIX_BAR_NAMES = {"stephenson3": "stephenson-ii"}
+
+
+class SixBarNameNote(UserWarning):
+    """A six-bar name read as an alias (the other numbering, or a former name): the one-line note says what it names."""
+
+
+def former_name_note(text: str) -> str | None:
+    """The one-line note that ``text`` is a former six-bar name and what it names now; None for any other text.
+
+    Every reader of a former name (the atlas's :func:`~symlink.mechanism.atlas.six_bar_name`, a warm table command)
+    says it in these words.
+
+    Parameters
+    ----------
+    text : str
+        A name as the user gave it.
+
+    Returns
+    -------
+    str or None
+        The note, or None where ``text`` is no former name.
+
+    Examples
+    --------
+    >>> former_name_note("stephenson3")[:51]
+    "'stephenson3' is symlink's former name of stephenson"
+    >>> former_name_note("stephenson2") is None
+    True
+    """
+    plain = text.strip()
+    name = FORMER_SIX_BAR_NAMES.get(plain.lower())
+    if name is None:
+        return None
+    return (f"{plain!r} is symlink's former name of {name}: {SIX_BAR_DEFINITIONS[name]} (symlink numbered "
+            "Stephenson II and III the other way before)")

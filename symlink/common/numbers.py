@@ -23,12 +23,16 @@ from typing import Any
 
 from .files import excerpt
 
-if sys.version_info >= (3, 11):
-    from tomllib import loads as toml_loads
-else:  # Python 3.10: tomli is tomllib before it joined the standard library
-    from tomli import loads as toml_loads
-
 __all__ = ["number_from_text", "float_of", "is_zero_digits", "toml_data"]
+
+
+def _toml_loads() -> Any:
+    """The TOML reader, imported when a text is read (a command that reads none starts without it)."""
+    if sys.version_info >= (3, 11):
+        from tomllib import loads
+    else:  # Python 3.10: tomli is tomllib before it joined the standard library
+        from tomli import loads
+    return loads
 
 
 def is_zero_digits(text: str) -> bool:
@@ -118,7 +122,7 @@ def toml_data(text: str) -> dict[str, Any]:
     ValueError: line 1: 1e-400 is too small for a float: its digits are not all zeros, but it would be read as 0
     """
     try:
-        return toml_loads(text, parse_float=_toml_float)
+        return _toml_loads()(text, parse_float=_toml_float)
     except _NumberOutOfRange as error:
         at = text.find(error.token)
         raise ValueError(f"line {text.count(chr(10), 0, max(at, 0)) + 1}: {error}") from None

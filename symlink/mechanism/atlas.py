@@ -78,6 +78,7 @@ from typing import TYPE_CHECKING, Iterator, Mapping, Sequence
 
 from ..common.display import record_html
 from ..common.limits import require_time
+from ..common.names import FORMER_SIX_BAR_NAMES, SIX_BAR_DEFINITIONS, SixBarNameNote, former_name_note
 from .topology import GROUND
 
 if TYPE_CHECKING:
@@ -413,16 +414,8 @@ def _pin_name(k: int) -> str:
     return chr(ord("A") + k) if k < 26 else f"J{k}"
 
 
-#: The five six-bars, each by its definition (the rule :func:`_six_bar_name` applies; the numbering of PMKS+).
-SIX_BAR_DEFINITIONS = {
-    "watt-i": "Watt chain (the ternary links share a pin), the ground a binary link",
-    "watt-ii": "Watt chain (the ternary links share a pin), the ground a ternary link",
-    "stephenson-i": "Stephenson chain (binary links keep the ternary links apart), the ground a binary link pinned "
-                    "to both ternary links",
-    "stephenson-ii": "Stephenson chain (binary links keep the ternary links apart), the ground a binary link pinned "
-                     "to one ternary link",
-    "stephenson-iii": "Stephenson chain (binary links keep the ternary links apart), the ground a ternary link",
-}
+#: The five six-bars, each by its definition (the rule :func:`_six_bar_name` applies; the numbering of PMKS+), the
+#: former names and their note: :data:`symlink.common.names.SIX_BAR_DEFINITIONS` (plain text, read without SymPy).
 
 #: The numberings :func:`six_bar_name` reads: ``"ternary-iii"`` (symlink's, PMKS+'s: the Stephenson with a ternary
 #: ground is Stephenson III) and ``"ternary-ii"`` (the other: it is Stephenson II, and Stephenson III grounds the
@@ -430,16 +423,9 @@ SIX_BAR_DEFINITIONS = {
 SIX_BAR_CONVENTIONS = {"ternary-iii": {}, "ternary-ii": {"stephenson-ii": "stephenson-iii",
                                                          "stephenson-iii": "stephenson-ii"}}
 
-#: Names symlink gave before its numbering was fixed, and what they name now: the catalog's Stephenson six-bar
-#: (its ground a binary link pinned to one ternary link) was ``stephenson3``.
-FORMER_SIX_BAR_NAMES = {"stephenson3": "stephenson-ii"}
 
 _SIX_BAR_SPELLING = re.compile(r"(watt|stephenson)(?:'s)?[\s_-]*(iii|ii|i|[123])", re.IGNORECASE)
 _NUMERALS = {"1": "i", "2": "ii", "3": "iii", "i": "i", "ii": "ii", "iii": "iii"}
-
-
-class SixBarNameNote(UserWarning):
-    """A six-bar name read as an alias (the other numbering, or a former name): the one-line note says what it names."""
 
 
 def six_bar_name(text: str, convention: str = "ternary-iii") -> str | None:
@@ -489,11 +475,10 @@ def six_bar_name(text: str, convention: str = "ternary-iii") -> str | None:
     if not isinstance(text, str):
         return None
     plain = text.strip()
-    if plain.lower() in FORMER_SIX_BAR_NAMES:
-        name = FORMER_SIX_BAR_NAMES[plain.lower()]
-        _note(f"{plain!r} is symlink's former name of {name}: {SIX_BAR_DEFINITIONS[name]} (symlink numbered "
-              "Stephenson II and III the other way before)")
-        return name
+    former = former_name_note(plain)
+    if former is not None:
+        _note(former)
+        return FORMER_SIX_BAR_NAMES[plain.lower()]
     match = _SIX_BAR_SPELLING.fullmatch(plain)
     if match is None:
         return None

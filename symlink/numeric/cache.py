@@ -47,7 +47,6 @@ import inspect
 import json
 import os
 import re
-import shutil
 import stat
 import warnings
 from dataclasses import dataclass
@@ -91,11 +90,12 @@ COMPILED_FOLDER = "compiled"
 _HEX64 = "[0-9a-f]{64}"
 #: The names symlink writes, and nothing else: what :func:`clear_cache` removes and :func:`cache_contents` counts.
 #: In the cache folder: entries and the temporary files of their atomic writes (``.<name>.<12 hex>.tmp``).
-_OWN_NAMES = re.compile(rf"(?:{_HEX64}\.json|\.{_HEX64}\.json\.[0-9a-f]{{12}}\.tmp)\Z")
+#: (Patterns as text, compiled by :mod:`re` when the cache is listed or cleared: a warm command compiles none.)
+_OWN_NAMES = rf"(?:{_HEX64}\.json|\.{_HEX64}\.json\.[0-9a-f]{{12}}\.tmp)\Z"
 #: In ``compiled/``: libraries, their digests, the temporary files of the digests' writes, the private copies
 #: made to load a library and the folders libraries are built in (:func:`tempfile.mkdtemp` names).
-_OWN_COMPILED_NAMES = re.compile(rf"(?:{_HEX64}\.(?:so|sha256)|\.{_HEX64}\.sha256\.[0-9a-f]{{12}}\.tmp"
-                                 rf"|\.load-[0-9a-f]{{16}}\.so|\.build-[a-z0-9_]{{8}})\Z")
+_OWN_COMPILED_NAMES = (rf"(?:{_HEX64}\.(?:so|sha256)|\.{_HEX64}\.sha256\.[0-9a-f]{{12}}\.tmp"
+                       rf"|\.load-[0-9a-f]{{16}}\.so|\.build-[a-z0-9_]{{8}})\Z")
 
 _TEXTS: dict[str, str] = {}
 _LOADED: dict[str, "GeneratedCode"] = {}
@@ -371,10 +371,10 @@ class CacheContents:
     leftovers: int = 0
 
 
-def _is_own(path: Path, names: re.Pattern[str]) -> bool:
+def _is_own(path: Path, names: str) -> bool:
     """True when ``path`` has one of ``names`` and the kind symlink writes there: a regular file, or a folder
     for a build folder (``.build-*``); never a symbolic link."""
-    if not names.match(path.name):
+    if not re.match(names, path.name):
         return False
     kind = stat.S_IFMT(os.lstat(path).st_mode)
     return kind == (stat.S_IFDIR if path.name.startswith(".build-") else stat.S_IFREG)
@@ -475,6 +475,7 @@ def clear_cache(folder: str | os.PathLike) -> CacheContents:
         try:
             bytes_ = _size(path)
             if stat.S_ISDIR(os.lstat(path).st_mode):
+                import shutil
                 shutil.rmtree(path)
             else:
                 os.unlink(path)

@@ -22,7 +22,6 @@ outputs by their plain names (``df["phi"]``), units in
 """
 from __future__ import annotations
 
-import html
 from typing import TYPE_CHECKING, Any, Mapping, Sequence
 
 import numpy
@@ -188,6 +187,7 @@ class Results(dict):
         table = self._table(names)
         shape = self._shape()
         rows = int(numpy.prod(shape)) if names else 0
+        import html
         head = "".join(f"<th>{html.escape(self.column(name))}</th>" for name in names)
         body = []
         for k in range(min(rows, HTML_ROWS)):

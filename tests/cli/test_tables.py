@@ -432,12 +432,12 @@ def test_bad_input_one_line_exit_2(capsys, argv):
 
 
 def test_commands_build_their_linkage_only_when_used(monkeypatch, capsys):
-    import symlink.io.scene as scene  # the table commands import catalog_linkage from it when they run
+    import symlink.cli.tables as tables  # a table command reads its linkage's facts (TableSource) when it is used
     from symlink.cli import build_parser
 
     def refuse(name):
         raise AssertionError(f"{name} built at start-up")
-    monkeypatch.setattr(scene, "catalog_linkage", refuse)
+    monkeypatch.setattr(tables, "TableSource", refuse)
     parser = build_parser()  # every command registered, no linkage built
     assert parser.parse_args(["plan", "fourbar"]).command == "plan"
     with pytest.raises(AssertionError, match="watt2 built"):

@@ -9,6 +9,7 @@ import sympy
 
 from symlink.numeric import cache
 from symlink.io.scene import scene_from_text
+from warm_runs import imported_packages, run_twice
 
 SCENE = textwrap.dedent("""\
     linkage = "fourbar"
@@ -204,27 +205,11 @@ def test_the_dynamic_outputs_are_named_as_derived():
 
 # --- warm from the command line: a second run in a new process imports no SymPy ------------------------------
 
-def _imported(stderr: str) -> set[str]:
-    """The top-level packages that ``python -X importtime`` reports imported."""
-    return {line.rsplit("|", 1)[1].strip().split(".")[0] for line in stderr.splitlines()
-            if line.startswith("import time:") and "|" in line}
-
-
 def _run_twice(tmp_path, arguments: list[str]) -> tuple[str, str, set[str]]:
     """``symlink ARGUMENTS`` in a fresh cache folder twice, each in a new process, the second with ``-X importtime``:
-    the two outputs and what the second imported."""
-    import os
-    import subprocess
-    import sys
-    project = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    env = {**os.environ, "PYTHONPATH": project, "MPLBACKEND": "Agg", "SYMLINK_CACHE": str(tmp_path / "cache")}
-    runs = []
-    for flags in ([], ["-X", "importtime"]):
-        run = subprocess.run([sys.executable, *flags, "-m", "symlink", *arguments], capture_output=True, text=True,
-                             env=env, cwd=str(tmp_path), timeout=600)
-        assert run.returncode == 0, run.stderr[-2000:]
-        runs.append(run)
-    return runs[0].stdout, runs[1].stdout, _imported(runs[1].stderr)
+    the two outputs and what the second imported (:func:`warm_runs.run_twice`)."""
+    runs = run_twice(tmp_path, arguments)
+    return runs.cold, runs.warm, runs.imported
 
 
 #: The Stephenson six-bar's (stephenson2, formerly stephenson3) assembly near which its table starts (coupler, mu, rocker, eta at crank angle 0, degrees).
@@ -384,7 +369,7 @@ def test_a_sweep_starts_without_distributed_or_pandas(tmp_path):
                               *(a.format(folder=tmp_path / f"sweep{number}") for a in arguments)],
                              capture_output=True, text=True, env=env, cwd=str(tmp_path), timeout=600)
         assert run.returncode == 0, run.stderr[-2000:]
-    imported = _imported(run.stderr)
+    imported = imported_packages(run.stderr)
     assert {"dask", "pyarrow"} <= imported  # the sweep ran on Dask and wrote Parquet
     assert not imported & {"distributed", "pandas"}
     chunks = [(tmp_path / f"sweep{n}" / "chunk-000000.parquet").read_bytes() for n in (0, 1)]

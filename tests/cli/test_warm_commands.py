@@ -1,0 +1,101 @@
+"""Warm is warm from the command line: a table command whose code is in the disk cache imports neither SymPy nor
+Matplotlib, and prints what its cold run printed, byte for byte, on stdout and on stderr (notes included).
+
+Each command runs twice in new processes (:func:`warm_runs.run_twice`): first cold, which derives and caches, then
+warm with ``python -X importtime``.  One cache folder serves the module, so a linkage derived for one test is
+warm for the next (the first command of each linkage below is its cold run).
+"""
+from __future__ import annotations
+
+import pytest
+
+from warm_runs import run_twice
+
+#: The four-bar of seed 003 (mm), whose closed forms are derived once for the module.
+FOURBAR = ["fourbar", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80", "--angles", "0,50",
+           "--format", "csv"]
+STEPHENSON2 = ["--crank", "1", "--coupler", "3.1", "--link-cf", "2.2", "--ground", "4.5", "--coupler-arm", "3.9",
+               "--rocker", "3.1", "--link-eh", "4.1", "--rocker-arm", "3.1", "--coupler-arm-angle", "51.5",
+               "--rocker-arm-angle", "17.2", "--angles", "0,50", "--format", "csv"]
+#: Command lines by what they show; the number of output lines each prints (a header and its rows).
+COMMANDS = {
+    "four-bar": (FOURBAR, 5),
+    "four-bar with a uniformly accelerated crank": (FOURBAR + ["--crank-speed", "3", "--crank-accel", "2"], 5),
+    "four-bar with masses, gravity and a load": (FOURBAR + ["--masses", "1,2,3", "--gravity", "9.81",
+                                                            "--load-torque", "-2", "--branch", "1"], 3),
+    "four-bar that reaches part of a turn (a note names the rows left out)": (
+        ["fourbar", "--crank", "60", "--coupler", "30", "--rocker", "50", "--ground", "40", "--angles", "0,150",
+         "--format", "csv", "--branch", "1"], 2),
+    "catalog table of the four-bar": (["table", "fourbar", "--angles", "0,50", "--format", "csv"], 5),
+    "slider-crank": (["slider-crank", "--crank", "20", "--conrod", "66", "--offset", "5", "--angles", "0,90",
+                      "--format", "csv"], 5),
+    "slider-crank past its reach": (["slider-crank", "--crank", "20", "--conrod", "15", "--angles", "0,90",
+                                     "--format", "csv", "--branch", "1"], 2),
+}
+SLOW_COMMANDS = {
+    "inverted slider-crank": (["inverted-slider-crank", "--crank", "2", "--ground", "1.2", "--crank-speed", "3",
+                               "--angles", "0,40", "--format", "csv"], 3),
+    "Watt II (two loops)": (["watt2", "--crank", "1", "--coupler", "3.5", "--rocker", "3", "--ground", "3.2",
+                             "--rocker-arm", "2", "--rocker-arm-angle", "35", "--coupler2", "4", "--output", "3",
+                             "--output-x", "4.5", "--output-y", "3.5", "--angles", "0,90", "--branch", "+1,both",
+                             "--format", "csv"], 5),
+    "five-bar (two inputs)": (["fivebar", "--crank", "2", "--coupler", "3", "--coupler2", "3", "--crank2", "2",
+                               "--ground", "5", "--crank2-angle", "90", "--angles", "0,30", "--format", "csv"], 5),
+    "Stephenson II (Newton's method)": (["stephenson2", *STEPHENSON2], 3),
+    "Stephenson II by its former name": (["stephenson3", *STEPHENSON2], 3),
+    "Stephenson II's assemblies": (["stephenson2", *STEPHENSON2, "--list-assemblies"], None),
+    "catalog table by the former name": (["table", "stephenson3", "--angles", "0,50", "--format", "csv", "--guess",
+                                          "coupler=-33,mu=-35,rocker=-73,eta=-68"], 3),
+}
+
+
+@pytest.fixture(scope="module")
+def shared_cache(tmp_path_factory):
+    """One disk cache for the module's commands."""
+    return tmp_path_factory.mktemp("warm-commands") / "cache"
+
+
+def _check(name: str, commands: dict, folder, cache) -> None:
+    arguments, lines = commands[name]
+    runs = run_twice(folder, arguments, cache)
+    assert "symlink" in runs.imported and "numpy" in runs.imported  # the import list was read
+    heavy = runs.imported & {"sympy", "matplotlib", "scipy", "pandas"}
+    assert not heavy, f"the warm run imported {', '.join(sorted(heavy))}"
+    assert runs.warm == runs.cold
+    assert runs.warm_notes == runs.cold_notes
+    if lines is not None:
+        assert len(runs.warm.splitlines()) == lines, runs.warm
+
+
+@pytest.mark.parametrize("name", COMMANDS)
+def test_a_warm_table_command_imports_no_sympy_and_prints_the_same(name, shared_cache, tmp_path):
+    _check(name, COMMANDS, tmp_path, shared_cache)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", SLOW_COMMANDS)
+def test_a_warm_six_bar_or_five_bar_command_imports_no_sympy_and_prints_the_same(name, shared_cache, tmp_path):
+    _check(name, SLOW_COMMANDS, tmp_path, shared_cache)
+
+
+def test_the_notes_are_those_of_the_cold_run(shared_cache, tmp_path):
+    """Rows left out are named on stderr with the reachable range, warm as cold: the four-bar 60, 30, 50, 40
+    reaches crank angles within acos(-1/4) = 104.4775 deg of 0 (the triangle over its diagonal, by hand), so 150
+    is left out."""
+    import math
+    runs = run_twice(tmp_path, COMMANDS["four-bar that reaches part of a turn (a note names the rows left out)"][0],
+                     shared_cache)
+    limit = math.degrees(math.acos((60 ** 2 + 40 ** 2 - (30 + 50) ** 2) / (2 * 60 * 40)))
+    assert f"{limit:.6g}" == "104.478"
+    assert "150" in runs.warm_notes and "[-104.478, 104.478] deg" in runs.warm_notes
+    assert runs.warm_notes == runs.cold_notes
+
+
+@pytest.mark.slow
+def test_the_former_name_is_noted_warm_as_cold(shared_cache, tmp_path):
+    """``symlink stephenson3`` and ``symlink table stephenson3`` say once, warm as cold, what the name names now."""
+    for arguments in (["stephenson3", *STEPHENSON2], SLOW_COMMANDS["catalog table by the former name"][0]):
+        runs = run_twice(tmp_path, arguments, shared_cache)
+        assert runs.warm_notes == runs.cold_notes
+        assert runs.warm_notes.count("\n") == 1
+        assert runs.warm_notes.startswith("symlink: warning: 'stephenson3' is symlink's former name of stephenson-ii")

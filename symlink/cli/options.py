@@ -103,7 +103,7 @@ class Parser(argparse.ArgumentParser):
         # terminal's width imports shutil (and bz2, lzma with it): looked up for help only.
         if self._for_help:
             return super()._get_formatter()
-        return self.formatter_class(prog=self.prog, width=80)
+        return self.formatter_class(prog=self.prog, width=80)  # type: ignore[call-arg]
 
     def error(self, message: str) -> NoReturn:  # one line, exit status 2, no usage dump
         raise UsageError(message)

@@ -22,10 +22,11 @@ import os
 import stat
 import time
 from pathlib import Path
-from typing import Mapping
+from functools import lru_cache
+from typing import Any, Mapping
 
 __all__ = ["write_atomic", "naming", "check_writable", "write_files_atomic", "write_files_together", "private_folder", "read_private", "NotPrivate", "TEMPORARY_SUFFIX",
-           "remove_leftovers", "read_input", "read_input_text", "read_stdin_text", "excerpt", "EXCERPT_LENGTH"]
+           "remove_leftovers", "read_input", "read_input_text", "read_stdin_text", "excerpt", "EXCERPT_LENGTH", "sha256"]
 
 #: The name of every temporary file of :func:`write_atomic` ends so: ``.<name>.<random>.tmp``.
 TEMPORARY_SUFFIX = ".tmp"
@@ -34,6 +35,42 @@ _CAN_CHECK_OWNER = hasattr(os, "geteuid")
 
 class NotPrivate(OSError):
     """A file or folder that someone other than this user could have written."""
+
+
+def sha256(data: bytes = b"") -> Any:
+    """A SHA-256 hash object of ``data`` (``update``, ``hexdigest``), the same digest as :func:`hashlib.sha256`.
+
+    CPython's own SHA-256 where it has one: ``hashlib`` loads OpenSSL, a few milliseconds of a warm command's
+    start, for the digests of cache keys and entries that are all a warm command computes.
+
+    Parameters
+    ----------
+    data : bytes
+        The first bytes to digest.
+
+    Returns
+    -------
+    hash object
+        With ``update(bytes)`` and ``hexdigest()``.
+
+    Examples
+    --------
+    >>> sha256(b"abc").hexdigest()[:16]
+    'ba7816bf8f01cfea'
+    """
+    return _sha256_of()(data)
+
+
+@lru_cache(maxsize=1)
+def _sha256_of() -> Any:
+    import importlib
+    for module in ("_sha256", "_sha2"):  # CPython up to 3.11, and from 3.12
+        try:
+            return importlib.import_module(module).sha256
+        except (ImportError, AttributeError):
+            continue
+    import hashlib
+    return hashlib.sha256
 
 
 def _token() -> str:

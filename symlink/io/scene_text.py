@@ -20,7 +20,6 @@ ValueError: parameters.a must be a number, got True
 """
 from __future__ import annotations
 
-import hashlib
 import json
 import math
 from pathlib import Path
@@ -31,7 +30,7 @@ import numpy
 from ..common.angles import to_radians
 from ..common.display import record_html
 from ..common.names import FORMER_CATALOG_NAMES
-from ..common.files import excerpt
+from ..common.files import excerpt, sha256
 from ..common.numbers import toml_data
 from ..numeric.input_sweep import MAX_ANGLE, InputSweep, crank_speeds
 
@@ -116,7 +115,7 @@ def linkage_request(source: str, folder: str | Path | None = None) -> dict[str, 
         path = Path(folder) / source if folder is not None else Path(source)
         if not path.is_file() or path.stat().st_size > _KEYED_FILE_BYTES:
             return None
-        return {"file_sha256": hashlib.sha256(path.read_bytes()).hexdigest()}
+        return {"file_sha256": sha256(path.read_bytes()).hexdigest()}
     except (OSError, ValueError):
         return None
 

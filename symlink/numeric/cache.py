@@ -41,7 +41,6 @@ True
 """
 from __future__ import annotations
 
-import hashlib
 import importlib.util
 import inspect
 import json
@@ -55,7 +54,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, Mapping, Sequence
 
 from ..version import __version__
-from ..common.files import LEFTOVER_AGE, NotPrivate, private_folder, read_private, remove_leftovers, write_atomic
+from ..common.files import sha256, LEFTOVER_AGE, NotPrivate, private_folder, read_private, remove_leftovers, write_atomic
 
 if TYPE_CHECKING:
     from ..symbolic.linkage import Linkage
@@ -221,7 +220,7 @@ def _module_bytes(path: Path) -> bytes:
 @lru_cache(maxsize=2)
 def _source_digest(modules: Sequence[str] = CODE_SHAPING) -> str:
     """SHA-256 of the modules that shape generated code: a change to any of them is a new key."""
-    digest = hashlib.sha256()
+    digest = sha256()
     package = Path(__file__).parent.parent
     for path in code_shaping_files(modules):
         digest.update(path.relative_to(package).as_posix().encode() + b"\0" + _module_bytes(path) + b"\0")
@@ -235,7 +234,7 @@ def cache_key(linkage: Linkage, outputs: Sequence[str], kind: str = "numpy") -> 
         "format": FORMAT, "kind": kind, "outputs": list(outputs), "linkage": definition(linkage),
         "symlink": __version__, "sympy": sp.__version__, "source": _source_digest(),
     }, separators=(",", ":"))
-    return hashlib.sha256(described.encode()).hexdigest()
+    return sha256(described.encode()).hexdigest()
 
 
 @lru_cache(maxsize=1)
@@ -283,11 +282,11 @@ def catalog_key(name: str, outputs: Sequence[str], kind: str, extras: Mapping[st
     if extras is not None:  # plain values that shape the entry beyond the catalog (masses, loads): so do dynamics
         facts.update(extras=extras, source=_source_digest(CODE_SHAPING + tuple(shaping)))
     described = json.dumps(facts, separators=(",", ":"), sort_keys=extras is not None)
-    return hashlib.sha256(described.encode()).hexdigest()
+    return sha256(described.encode()).hexdigest()
 
 
 def _checksum(key: str, text: str) -> str:
-    return hashlib.sha256(key.encode() + b"\0" + text.encode()).hexdigest()
+    return sha256(key.encode() + b"\0" + text.encode()).hexdigest()
 
 
 def _read(path: Path, key: str) -> str | None:

@@ -251,3 +251,15 @@ def test_a_folder_that_cannot_be_written_is_named_with_the_file(tmp_path):
     with pytest.raises(PermissionError) as caught:
         write_atomic(tmp_path / "locked" / "out.txt", "x")
     assert caught.value.filename == str(tmp_path / "locked" / "out.txt")
+
+
+@pytest.mark.parametrize("data", [b"", b"abc", bytes(range(256)) * 1000])
+def test_the_sha256_of_a_warm_command_is_hashlibs(data):
+    """common.files.sha256 (CPython's own, without OpenSSL) digests as hashlib does, whole or in pieces."""
+    import hashlib
+    from symlink.common.files import sha256
+    assert sha256(data).hexdigest() == hashlib.sha256(data).hexdigest()
+    pieces = sha256()
+    for start in range(0, len(data), 1000):
+        pieces.update(data[start:start + 1000])
+    assert pieces.hexdigest() == hashlib.sha256(data).hexdigest()

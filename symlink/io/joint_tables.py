@@ -40,6 +40,8 @@ from __future__ import annotations
 
 from typing import Any, Callable, Mapping
 
+from ..common.files import excerpt
+from ..common.numbers import finite_float
 from ..mechanism.joints import JointLinkage, Slider, from_joints
 
 __all__ = ["TableProblem", "linkage_from_tables", "joint_file_text", "TOP_KEYS", "TABLES"]
@@ -57,9 +59,11 @@ class TableProblem(ValueError):
 
 
 def _number(value: Any, table: str, key: str, what: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise TableProblem(table, key, f"{table}.{key}: {what} must be a number, got {value!r}")
-    return float(value)
+    found = finite_float(value)
+    if found is None:
+        shown = excerpt(value) if isinstance(value, (str, bool)) or not isinstance(value, int) else "a huge integer"
+        raise TableProblem(table, key, f"{table}.{key}: {what} must be a finite number, got {shown}")
+    return found
 
 
 def _point(value: Any, key: str) -> tuple[float, float]:

@@ -142,3 +142,15 @@ def test_a_full_turn_from_0_to_360_is_two_rows(argv, tmp_path, capsys):
     first, last = rows[0], rows[-1] if len(rows) == 2 else rows[len(rows) // 2]
     assert len(rows) in (2, 4)  # one branch or both
     assert [float(v) for v in first[2:]] == pytest.approx([float(v) for v in last[2:]], abs=1e-9)
+
+
+@pytest.mark.parametrize("outputs, repeated", [('["rocker", "rocker"]', "'rocker'"),
+                                               ('["coupler", "rocker", "coupler"]', "'coupler'")])
+def test_a_scene_that_asks_for_an_output_twice_is_refused_naming_it(outputs, repeated, tmp_path, capsys):
+    """As `export --outputs rocker,rocker` is: the same column twice is a request that repeats itself."""
+    (tmp_path / "scene.toml").write_text(_SCENE.format(angles="0, 90").replace('["rocker"]', outputs))
+    for _ in range(2):  # cold, then with whatever the first run cached
+        assert main(["run", str(tmp_path / "scene.toml")]) == 2
+        out, err = capsys.readouterr()
+        _one_error_line(err, repeated, "more than once")
+        assert out == ""

@@ -483,6 +483,8 @@ def write_files_together(texts: Mapping[Path, str | bytes]) -> list[Path]:
         except OSError as error:
             raise naming(error, path) from None
     special = [path for path in paths if _is_special(path)]  # written through, never renamed over
+    made = sorted({parent for path in paths for parent in path.parents if not os.path.lexists(parent)},
+                  key=lambda folder: len(folder.parts), reverse=True)  # folders this call makes, deepest first
     staged: dict[Path, Path] = {}
     kept: dict[Path, Path | None] = {}  # each target renamed over: its old file's second name (None: it had none)
     try:
@@ -519,6 +521,14 @@ def write_files_together(texts: Mapping[Path, str | bytes]) -> list[Path]:
             elif path not in staged:
                 path.unlink(missing_ok=True)
         kept.clear()
+        for temporary in staged.values():
+            temporary.unlink(missing_ok=True)
+        staged.clear()
+        for folder in made:  # nothing written: not even the folders made for it
+            try:
+                os.rmdir(folder)
+            except OSError:
+                pass
         raise
     finally:
         for temporary in [*staged.values(), *(backup for backup in kept.values() if backup is not None)]:
@@ -527,7 +537,8 @@ def write_files_together(texts: Mapping[Path, str | bytes]) -> list[Path]:
 
 
 def write_files_atomic(folder: str | os.PathLike, texts: Mapping[str, str | bytes]) -> list[Path]:
-    """Write a set of files into ``folder``: all of them, or (on any failure) none (:func:`write_files_together`).
+    """Write a set of files into ``folder``: all of them, or (on any failure) none (:func:`write_files_together`);
+    a folder made for them is removed again when none could be written (nothing is left, not even it).
 
     Returns the paths written.
 
@@ -537,6 +548,18 @@ def write_files_atomic(folder: str | os.PathLike, texts: Mapping[str, str | byte
     ['a.h', 'a.c']
     """
     folder = Path(folder)
-    folder.mkdir(parents=True, exist_ok=True)
+    made = [parent for parent in (folder, *folder.parents) if not os.path.lexists(parent)]
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as error:
+        raise naming(error, folder) from None
     remove_leftovers(folder, (), older_than=LEFTOVER_AGE)  # temporaries of killed runs
-    return write_files_together({folder / name: data for name, data in texts.items()})
+    try:
+        return write_files_together({folder / name: data for name, data in texts.items()})
+    except BaseException:
+        for parent in made:  # the folders made here, innermost first, where still empty
+            try:
+                os.rmdir(parent)
+            except OSError:
+                break
+        raise

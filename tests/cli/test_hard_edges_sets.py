@@ -154,3 +154,19 @@ def test_a_scene_that_asks_for_an_output_twice_is_refused_naming_it(outputs, rep
         out, err = capsys.readouterr()
         _one_error_line(err, repeated, "more than once")
         assert out == ""
+
+
+@pytest.mark.skipif(not os.path.isdir("/proc/self/fd"), reason="needs /proc/self/fd to tell the files apart")
+@pytest.mark.parametrize("argv", [
+    ["parts", "fourbar", "--pin-diameter", "4", "--svg", "{out}/deeper/p.svg", "--assembly", "{out}/a.svg",
+     "--json", "{out}/d.json"],
+    ["export", "fourbar", "--to", "c", "--out", "{out}/deeper"],
+], ids=["parts", "export"])
+def test_a_full_disk_leaves_nothing_not_even_the_folders_made_for_the_files(argv, tmp_path, capsys, monkeypatch):
+    out = tmp_path / "new"
+    argv = [word.replace("{out}", str(out)) for word in argv]
+    _full_after_first_write(monkeypatch, out)
+    assert main(argv) == 1
+    err = capsys.readouterr().err
+    assert "No space left on device" in err and "Traceback" not in err and ".tmp" not in err, err
+    assert list(tmp_path.iterdir()) == []

@@ -59,9 +59,11 @@ class TableProblem(ValueError):
 
 
 def _number(value: Any, table: str, key: str, what: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise TableProblem(table, key, f"{table}.{key}: {what} must be a number, got {excerpt(value)}")
     found = finite_float(value)
-    if found is None:
-        shown = excerpt(value) if isinstance(value, (str, bool)) or not isinstance(value, int) else "a huge integer"
+    if found is None:  # nan, inf, or an integer too large for a float: never an OverflowError
+        shown = "an integer too large for a float" if isinstance(value, int) else excerpt(value)
         raise TableProblem(table, key, f"{table}.{key}: {what} must be a finite number, got {shown}")
     return found
 
@@ -87,7 +89,10 @@ def linkage_from_tables(data: Mapping[str, Any], angle: Callable[[Any], float]) 
         raise TableProblem("", "name", f"name must be a non-empty string, got {name!r}")
     if not (isinstance(driver, str) or (isinstance(driver, list) and driver
                                         and all(isinstance(d, str) for d in driver))):
-        raise TableProblem("", "driver", f"driver must be a joint name or a list of them, got {driver!r}")
+        raise TableProblem("", "driver", f"driver must be a joint name or a list of them, got {excerpt(driver)}")
+    twice = next((d for k, d in enumerate(driver) if d in driver[:k]), None) if isinstance(driver, list) else None
+    if twice is not None:  # one joint driven twice: a request that repeats itself, not a second input
+        raise TableProblem("", "driver", f"driver lists {excerpt(twice)} more than once; list each driven joint once")
     links = data["links"]
     if not isinstance(links, dict) or not links:
         raise TableProblem("", "links", f"links must be a table of link = [joints], got {links!r}")

@@ -144,8 +144,9 @@ def test_a_comment_that_never_ends_is_refused(text, words):
     (_JOINT_FILE + "#" * (MAX_LINKAGE_BYTES + 1), "more than a linkage file may hold|at most"),
     (_JOINT_FILE.replace("D = [80, 0]", "D = [1" + "0" * 400 + ", 0]"), "finite number"),
     (_JOINT_FILE.replace("D = [80, 0]", "D = [1" + "0" * 5000 + ", 0]"), "too large for a float"),
-    (_JOINT_FILE.replace("D = [80, 0]", "D = [true, 0]"), "finite number"),
-], ids=["over the size cap", "a 400-digit integer", "a 5000-digit integer", "a boolean"])
+    (_JOINT_FILE.replace("D = [80, 0]", "D = [true, 0]"), "must be a number, got True"),
+    (_JOINT_FILE.replace('driver = "A"', 'driver = ["A", "A"]'), "driver lists 'A' more than once"),
+], ids=["over the size cap", "a 400-digit integer", "a 5000-digit integer", "a boolean", "a driver twice"])
 def test_bad_linkage_text_is_one_short_value_error(text, words):
     for read in (linkage_from_text, open_source):
         with pytest.raises(ValueError, match=words) as refused:

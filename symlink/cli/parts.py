@@ -35,8 +35,6 @@ FILE_OPTIONS = {"svg": (".svg", "the parts, in a row"), "dxf": (".dxf", "the par
                 "json": (".json", "the design: links, joints, dimensions and unit, which symlink reads back")}
 #: Input values scanned for a pose that assembles when no --angle is given and the first input's 0 does not.
 SCAN = 720
-#: The most bytes a design file (.json) may have: that of a linkage file.
-MAX_DESIGN_BYTES = 4 << 20
 
 
 def register(commands) -> None:
@@ -124,7 +122,7 @@ def _linkage(args: argparse.Namespace) -> tuple[Any, dict[str, float], str]:
     from ..io.linkage_file import LinkageFile, load_linkage
     from .options import linkage_values
     if str(args.linkage).lower().endswith(".json"):
-        from ..workshop.fabrication import read_design
+        from ..workshop.fabrication import MAX_DESIGN_BYTES, read_design
         from ..common.files import read_input_text
         design = read_design(read_input_text(args.linkage, MAX_DESIGN_BYTES, "design file"), str(args.linkage))
         if args.unit is not None and args.unit != design.unit:

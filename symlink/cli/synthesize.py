@@ -23,7 +23,7 @@ import io
 import json
 import math
 import sys
-from typing import Any, Callable
+from typing import Any, Callable, Mapping
 
 import numpy
 
@@ -160,24 +160,22 @@ def _run_function(args: argparse.Namespace) -> int:
             ("crank_offset", "rocker_offset", "structural_error", "worst_transmission"), args.units))
         note(f"{design.method} design, {design.grashof}; structural error in {args.units} over the given crank angles")
     report_transmission(run, args.units)
-    if args.out:
-        write_design(args.out, placed, defaults, (
+    write_outputs({
+        args.out: lambda: design_text(placed, defaults, (
             f"# Designed by 'symlink synthesize function' ({design.method}): structural error "
             f"{angle(design.structural_error):.6g} {args.units}; "
             f"{_branch_words(linkage, {'branch': design.branch}, left)}.\n"
             f"# The crank angle theta here is the targets' theta + crank_offset ({angle(design.crank_offset):.6g} "
             f"{args.units}), the rocker angle phi the targets' phi + rocker_offset "
-            f"({angle(design.rocker_offset):.6g} {args.units}); theta is at the first target.\n"))
-    if args.plot:
-        _plot_function(design, args.plot, args.units)
-        note(f"wrote {args.plot}")
+            f"({angle(design.rocker_offset):.6g} {args.units}); theta is at the first target.\n")),
+        args.plot: lambda: _function_figure(design, args.units)})
     return 0
 
 
-def _plot_function(design, path: str, units: str) -> None:
+def _function_figure(design, units: str):
+    """Wanted against generated rocker angle of a four-bar function generator (a Matplotlib figure)."""
     from matplotlib.figure import Figure
 
-    from ..plot.figures import save_figure
     from ..synthesis.function import ERROR_SAMPLES, _solve_rocker
     figure = Figure(figsize=(7.0, 4.5), layout="constrained")
     axis = figure.subplots()
@@ -195,7 +193,7 @@ def _plot_function(design, path: str, units: str) -> None:
     axis.set_title(f"Function generation ({design.method}): structural error "
                    f"{float(from_radians(design.structural_error, units)):.3g} {units}", fontsize="medium")
     axis.legend(loc="best", fontsize="small")
-    save_figure(figure, path)
+    return figure
 
 
 # --- path generation ----------------------------------------------------------------------------
@@ -305,24 +303,23 @@ def _run_path(args: argparse.Namespace) -> int:
         note(f"--min-transmission {args.min_transmission:g} {args.units} held over the motion each design runs "
              "(the full turn for a crank that turns fully, else between its first and last target), in every "
              "trial of the search")
-    if args.out:
+    if files:  # the first design is the one written
         linkage, (placed, defaults, left, _) = files[0]
-        write_design(args.out, placed, defaults, (
-            f"# Designed by 'symlink synthesize path' (design 1 of {len(designs)}): error {designs[0].error:.3g}; "
-            f"{_branch_words(linkage, {'branch': designs[0].branch}, left)}.\n"
-            "# P is the traced coupler point; theta (from the ground line A->D) is at the first target.\n"))
-    if args.plot:
-        plot_path(designs[0], targets, args.plot)
-        note(f"wrote {args.plot}")
+        write_outputs({
+            args.out: lambda: design_text(placed, defaults, (
+                f"# Designed by 'symlink synthesize path' (design 1 of {len(designs)}): error {designs[0].error:.3g}; "
+                f"{_branch_words(linkage, {'branch': designs[0].branch}, left)}.\n"
+                "# P is the traced coupler point; theta (from the ground line A->D) is at the first target.\n")),
+            args.plot: lambda: path_figure(designs[0], targets)})
     return 0
 
 
-def plot_path(design, targets: numpy.ndarray, path: str) -> None:
+def path_figure(design, targets: numpy.ndarray):
     """Targets, the achieved coupler curve, and the linkage at each precision point (up to :data:`MAX_POSES`)."""
     from matplotlib.figure import Figure
     from matplotlib.transforms import Affine2D
 
-    from ..plot.figures import MechanismDrawing, frame_plane, save_figure
+    from ..plot.figures import MechanismDrawing, frame_plane
     figure = Figure(figsize=(6.4, 5.6), layout="constrained")
     axis = figure.subplots()
     theta = numpy.asarray(design.theta)
@@ -354,7 +351,7 @@ def plot_path(design, targets: numpy.ndarray, path: str) -> None:
     frame_plane(axis, points.real, points.imag)
     axis.set_title(f"Path generation: error {design.error:.2g} of the targets' size", fontsize="medium")
     axis.legend(loc="best", fontsize="small")
-    save_figure(figure, path)
+    return figure
 
 
 # --- motion generation --------------------------------------------------------------------------
@@ -438,17 +435,17 @@ def _run_motion(args: argparse.Namespace) -> int:
              f"angles in {args.units}; transmission_worst at the poses, worst_transmission over the motion run")
     for rank, run in enumerate(runs, start=1):
         report_transmission(run, args.units, f"design {rank}")
-    if args.out:
-        linkage, (placed, defaults, left, _) = files[0]
-        write_design(args.out, placed, defaults, (
-            f"# Designed by 'symlink synthesize motion' (design 1 of {len(designs)}); "
-            f"{_branch_words(linkage, {'branch': shown[0].branches[0]}, left)} at the first pose.\n"
-            "# P is the guided point (the poses' origin); theta (from the ground line A->D) is at the first pose.\n"))
-    if args.plot:
-        from ..plot.figures import save_figure
+    def figure():
         from ..plot.synthesis import motion_figure
-        save_figure(motion_figure(poses, shown[0]), args.plot)
-        note(f"wrote {args.plot}")
+        return motion_figure(poses, shown[0])
+    if files:  # the first design is the one written
+        linkage, (placed, defaults, left, _) = files[0]
+        write_outputs({
+            args.out: lambda: design_text(placed, defaults, (
+                f"# Designed by 'symlink synthesize motion' (design 1 of {len(designs)}); "
+                f"{_branch_words(linkage, {'branch': shown[0].branches[0]}, left)} at the first pose.\n"
+                "# P is the guided point (the poses' origin); theta (from the ground line A->D) is at the first pose.\n")),
+            args.plot: figure})
     return 0
 
 
@@ -734,23 +731,19 @@ def _run_general(args: argparse.Namespace, kind: str) -> int:
         raise ValueError(f"no verified design: {design.why}; the closest is printed above, nothing is written "
                          "(widen the bounds, free more parameters or give more --starts)")
     report_transmission(run, args.units)
-    if args.out:
-        source = found.source if found.source != "catalog" else linkage.name
-        measured = (f"position error {record['position_error']:.3g}, angle error {record['angle_error']:.3g} "
-                    f"{args.units}" if kind == "motion" else f"error {record['error']:.3g}")
-        head = (f"# Designed by 'symlink synthesize {kind} {source}': {measured}; "
-                f"{_branch_words(linkage, design.branches, left)}.\n")
-        if assembly:  # no closed form: the assembly is the guess that finds it
-            head += (f"# Assembly at the first target (the initial guess of Newton's method, angles in {args.units}): "
-                     + ", ".join(f"{k}={float(from_radians(v, args.units)) if is_angle(linkage, symbols[k]) else v!r}"
-                                 for k, v in (guess or {}).items()) + ".\n")
-        write_design(args.out, placed, defaults, head)
-    if args.record:
-        _write_record(args.record, record)
-        note(f"wrote {args.record}")
-    if args.plot:
-        _plot_general(kind, linkage, design, placement, columns, args.plot, args.units, point)
-        note(f"wrote {args.plot}")
+    source = found.source if found.source != "catalog" else linkage.name
+    measured = (f"position error {record['position_error']:.3g}, angle error {record['angle_error']:.3g} "
+                f"{args.units}" if kind == "motion" else f"error {record['error']:.3g}")
+    head = (f"# Designed by 'symlink synthesize {kind} {source}': {measured}; "
+            f"{_branch_words(linkage, design.branches, left)}.\n")
+    if assembly:  # no closed form: the assembly is the guess that finds it
+        head += (f"# Assembly at the first target (the initial guess of Newton's method, angles in {args.units}): "
+                 + ", ".join(f"{k}={float(from_radians(v, args.units)) if is_angle(linkage, symbols[k]) else v!r}"
+                             for k, v in (guess or {}).items()) + ".\n")
+    write_outputs({
+        args.out: lambda: design_text(placed, defaults, head),
+        args.record: lambda: _record_text(args.record, record),
+        args.plot: lambda: _general_figure(kind, linkage, design, placement, columns, args.units, point)})
     return 0
 
 
@@ -854,8 +847,8 @@ def _print_general(args: argparse.Namespace, record: dict) -> None:
                                  }[record["kind"]])
 
 
-def _write_record(path: str, record: dict) -> None:
-    from ..common.files import write_atomic
+def _record_text(path: str, record: dict) -> str:
+    """The record of a design as ``path`` holds it: JSON for a .json file, else csv (one row a target)."""
     if path.lower().endswith(".json"):
         text = json.dumps(_json_ready(record), indent=1) + "\n"
     else:
@@ -867,7 +860,7 @@ def _write_record(path: str, record: dict) -> None:
         for k, (q, target) in enumerate(zip(record["inputs"], record["targets"])):
             writer.writerow([k + 1, repr(q), *map(repr, target), *(repr(record[name][k]) for name in fields)])
         text = out.getvalue()
-    write_atomic(path, text)
+    return text
 
 
 def _json_ready(value):
@@ -880,12 +873,11 @@ def _json_ready(value):
     return value
 
 
-def _plot_general(kind: str, linkage, design, placement, columns, path: str, units: str, point: str) -> None:
+def _general_figure(kind: str, linkage, design, placement, columns, units: str, point: str):
     """The design over its targets: the linkage at the first target with the traced path (motion: each pose's
     angle a short line from its point), or wanted against generated output (function)."""
     from matplotlib.figure import Figure
 
-    from ..plot.figures import save_figure
     figure = Figure(figsize=(6.4, 5.2), layout="constrained")
     axis = figure.subplots()
     inputs = numpy.asarray(design.inputs)
@@ -911,8 +903,7 @@ def _plot_general(kind: str, linkage, design, placement, columns, path: str, uni
         axis.set_title(f"Function generation, {linkage.name}: structural error {design.structural_error:.3g}",
                        fontsize="medium")
         axis.legend(loc="best", fontsize="small")
-        save_figure(figure, path)
-        return
+        return figure
     from ..plot.drawing import draw_linkage
     from ..synthesis.placement import placed_design
     from ..synthesis.placement import placed_assembly
@@ -932,7 +923,7 @@ def _plot_general(kind: str, linkage, design, placement, columns, path: str, uni
     axis.legend(loc="best", fontsize="small")
     axis.relim()
     axis.autoscale_view()
-    save_figure(figure, path)
+    return figure
 
 
 def _input_angle(linkage) -> bool:
@@ -959,12 +950,30 @@ def design_linkage(linkage, values: dict, branches: dict, placement: dict, input
     return placed, defaults, left, signs
 
 
-def write_design(path: str, placed, defaults: dict, head: str) -> None:
-    """Write a designed linkage as a linkage file (``head``: comment lines saying where it came from)."""
-    from ..common.files import write_atomic
+def design_text(placed, defaults: dict, head: str) -> str:
+    """A designed linkage as a linkage file's text (``head``: comment lines saying where it came from)."""
     from ..io.linkage_file import linkage_text
-    write_atomic(path, head + linkage_text(placed, defaults))
-    note(f"wrote {path}")
+    return head + linkage_text(placed, defaults)
+
+
+def write_outputs(makers: Mapping[str | None, Callable[[], Any]]) -> None:
+    """Write the files a synthesis was asked for (``--out``, ``--record``, ``--plot``: path -> what makes its text,
+    bytes or figure; a path of ``None`` was not asked for): all of them or, on any failure (a full disk after the
+    up-front check), none (:func:`~symlink.common.files.write_files_together`), then say which were written."""
+    from pathlib import Path
+
+    from ..common.files import write_files_together
+    from ..plot.figures import figure_bytes
+    wanted = {path: make for path, make in makers.items() if path}
+    if not wanted:
+        return
+    made: dict[Path, str | bytes] = {}
+    for path, make in wanted.items():
+        content = make()
+        made[Path(path)] = content if isinstance(content, (str, bytes)) else figure_bytes(content, path)
+    write_files_together(made)
+    for path in wanted:
+        note(f"wrote {path}")
 
 
 def _branch_words(linkage, branches: dict, left: dict) -> str:

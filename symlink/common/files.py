@@ -505,7 +505,10 @@ def write_files_together(texts: Mapping[Path, str | bytes]) -> list[Path]:
     Each file is first written in full beside its target under a hidden temporary name
     (:func:`write_atomic`); then each file already there is kept under a second name (a hard
     link) and the new one renamed over it.  A failure takes back every rename done: the old files are
-    renamed back, new ones removed.  Returns the paths written.
+    renamed back, new ones removed.  A device or FIFO named as a target (``/dev/full``) is written through,
+    never replaced by a file: after every other file is staged and before any is renamed, so that its failure
+    ("No space left on device") leaves the other targets as they were.  Every ``OSError`` names the user's
+    path (never a hidden temporary) with the system's reason.  Returns the paths written.
 
     >>> import tempfile, pathlib
     >>> folder = pathlib.Path(tempfile.mkdtemp())
@@ -517,12 +520,19 @@ def write_files_together(texts: Mapping[Path, str | bytes]) -> list[Path]:
 
     paths = {Path(path): data for path, data in texts.items()}
     for path in paths:
-        if path.is_dir():
-            raise IsADirectoryError(21, "it is a folder", str(path))
+        try:
+            _refuse_unwritable_place(path)  # a folder where the file goes, a file on the way to it
+        except OSError as error:
+            raise naming(error, path) from None
+    special = [path for path in paths if _is_special(path)]  # written through, never renamed over
+    made = sorted({parent for path in paths for parent in path.parents if not os.path.lexists(parent)},
+                  key=lambda folder: len(folder.parts), reverse=True)  # folders this call makes, deepest first
     staged: dict[Path, Path] = {}
     kept: dict[Path, Path | None] = {}  # each target renamed over: its old file's second name (None: it had none)
     try:
         for path, data in paths.items():
+            if path in special:
+                continue
             temporary = hidden(path)
             try:
                 path.parent.mkdir(parents=True, exist_ok=True)
@@ -530,6 +540,12 @@ def write_files_together(texts: Mapping[Path, str | bytes]) -> list[Path]:
             except OSError as error:
                 raise type(error)(error.errno, error.strerror or str(error), str(path)) from None
             staged[path] = temporary
+        for path in special:
+            data = paths[path]
+            try:
+                _write_through(path, data.encode("utf-8") if isinstance(data, str) else bytes(data))
+            except OSError as error:
+                raise naming(error, path) from None
         for path, temporary in list(staged.items()):
             backup = hidden(path) if path.exists() else None
             if backup is not None:
@@ -548,6 +564,14 @@ def write_files_together(texts: Mapping[Path, str | bytes]) -> list[Path]:
             elif path not in staged:
                 path.unlink(missing_ok=True)
         kept.clear()
+        for temporary in staged.values():
+            temporary.unlink(missing_ok=True)
+        staged.clear()
+        for folder in made:  # nothing written: not even the folders made for it
+            try:
+                os.rmdir(folder)
+            except OSError:
+                pass
         raise
     finally:
         for temporary in [*staged.values(), *(backup for backup in kept.values() if backup is not None)]:
@@ -556,7 +580,8 @@ def write_files_together(texts: Mapping[Path, str | bytes]) -> list[Path]:
 
 
 def write_files_atomic(folder: str | os.PathLike, texts: Mapping[str, str | bytes]) -> list[Path]:
-    """Write a set of files into ``folder``: all of them, or (on any failure) none (:func:`write_files_together`).
+    """Write a set of files into ``folder``: all of them, or (on any failure) none (:func:`write_files_together`);
+    a folder made for them is removed again when none could be written (nothing is left, not even it).
 
     Returns the paths written.
 
@@ -566,6 +591,18 @@ def write_files_atomic(folder: str | os.PathLike, texts: Mapping[str, str | byte
     ['a.h', 'a.c']
     """
     folder = Path(folder)
-    folder.mkdir(parents=True, exist_ok=True)
+    made = [parent for parent in (folder, *folder.parents) if not os.path.lexists(parent)]
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as error:
+        raise naming(error, folder) from None
     remove_leftovers(folder, (), older_than=LEFTOVER_AGE)  # temporaries of killed runs
-    return write_files_together({folder / name: data for name, data in texts.items()})
+    try:
+        return write_files_together({folder / name: data for name, data in texts.items()})
+    except BaseException:
+        for parent in made:  # the folders made here, innermost first, where still empty
+            try:
+                os.rmdir(parent)
+            except OSError:
+                break
+        raise

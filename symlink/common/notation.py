@@ -71,8 +71,9 @@ def latex_names(expressions: Iterable[sp.Basic]) -> dict[sp.Symbol, str]:
 
     Branch signs print as sigma, a loop's closing vector as ``W_{x,1}``, its
     scaled lengths as ``\\rho_{2,1}`` (length 2 of loop 1), a design sensitivity
-    ``phi__d_a`` as the partial derivative it is; every other symbol keeps
-    SymPy's own name.
+    ``phi__d_a`` as the partial derivative it is; a user's name with a double
+    underscore as written (SymPy would print ``x__y`` as the power ``x^{y}``);
+    every other symbol keeps SymPy's own name.
 
     >>> print(latex_names([sp.Symbol("phi__d_a")])[sp.Symbol("phi__d_a")])
     \\frac{\\partial \\phi}{\\partial a}
@@ -91,4 +92,6 @@ def latex_names(expressions: Iterable[sp.Basic]) -> dict[sp.Symbol, str]:
             output, _, parameter = symbol.name.rpartition(SENSITIVITY_SEPARATOR)
             names[symbol] = r"\frac{\partial %s}{\partial %s}" % (sp.latex(sp.Symbol(output)),
                                                                    sp.latex(sp.Symbol(parameter)))
+        elif "__" in symbol.name:  # x__y: a name, not x to the power y
+            names[symbol] = r"\mathit{%s}" % symbol.name.replace("_", r"\_")
     return names

@@ -40,6 +40,8 @@ from __future__ import annotations
 
 from typing import Any, Callable, Mapping
 
+from ..common.files import excerpt
+from ..common.numbers import finite_float
 from ..mechanism.joints import JointLinkage, Slider, from_joints
 
 __all__ = ["TableProblem", "linkage_from_tables", "joint_file_text", "TOP_KEYS", "TABLES"]
@@ -58,8 +60,12 @@ class TableProblem(ValueError):
 
 def _number(value: Any, table: str, key: str, what: str) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise TableProblem(table, key, f"{table}.{key}: {what} must be a number, got {value!r}")
-    return float(value)
+        raise TableProblem(table, key, f"{table}.{key}: {what} must be a number, got {excerpt(value)}")
+    found = finite_float(value)
+    if found is None:  # nan, inf, or an integer too large for a float: never an OverflowError
+        shown = "an integer too large for a float" if isinstance(value, int) else excerpt(value)
+        raise TableProblem(table, key, f"{table}.{key}: {what} must be a finite number, got {shown}")
+    return found
 
 
 def _point(value: Any, key: str) -> tuple[float, float]:
@@ -83,7 +89,10 @@ def linkage_from_tables(data: Mapping[str, Any], angle: Callable[[Any], float]) 
         raise TableProblem("", "name", f"name must be a non-empty string, got {name!r}")
     if not (isinstance(driver, str) or (isinstance(driver, list) and driver
                                         and all(isinstance(d, str) for d in driver))):
-        raise TableProblem("", "driver", f"driver must be a joint name or a list of them, got {driver!r}")
+        raise TableProblem("", "driver", f"driver must be a joint name or a list of them, got {excerpt(driver)}")
+    twice = next((d for k, d in enumerate(driver) if d in driver[:k]), None) if isinstance(driver, list) else None
+    if twice is not None:  # one joint driven twice: a request that repeats itself, not a second input
+        raise TableProblem("", "driver", f"driver lists {excerpt(twice)} more than once; list each driven joint once")
     links = data["links"]
     if not isinstance(links, dict) or not links:
         raise TableProblem("", "links", f"links must be a table of link = [joints], got {links!r}")

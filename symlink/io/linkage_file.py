@@ -902,6 +902,12 @@ def linkage_from_text(text: str, source: str = "<text>") -> LinkageFile:
     >>> found.linkage.unknowns, [step.case.name for step in found.linkage.plan]
     ((beta, s), ['2b'])
     """
+    if not isinstance(text, str):
+        raise ValueError(f"{source}: a linkage file's text is a str, not {type(text).__name__}")
+    if len(text) > MAX_LINKAGE_BYTES:  # the file reader's bound, for text handed over directly too
+        raise ValueError(f"{source}:1: {len(text):,} characters, more than a linkage file may hold "
+                         f"(at most {MAX_LINKAGE_BYTES:,}); is it the right text?")
+    text = text.removeprefix("\ufeff")  # a byte-order mark, as a file's reader drops it
     try:
         data = toml_data(text)
     except ValueError as error:  # "line L: problem"

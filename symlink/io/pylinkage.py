@@ -37,13 +37,12 @@ type, a slider off its line) is one ``ValueError`` naming the entry.
 """
 from __future__ import annotations
 
-import json
 import math
 import re
 from typing import Any, Mapping
 
 from ..common.files import excerpt
-from ..common.numbers import number_from_text
+from ..common.numbers import finite_float, json_data
 from ..mechanism.joints import JointDescription, JointLinkage, Slider
 from ..mechanism.topology import GROUND
 from .linkage_file import MAX_LINKAGE_BYTES
@@ -72,10 +71,10 @@ def _entry(data: Any, what: str, keys: tuple[str, ...]) -> Mapping[str, Any]:
 def _pair(value: Any, what: str) -> tuple[float, float]:
     if (not isinstance(value, (list, tuple)) or len(value) != 2
             or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value)):
-        raise ValueError(f"pylinkage {what}: expected two numbers, found {value!r}")
-    x, y = float(value[0]), float(value[1])
-    if not (math.isfinite(x) and math.isfinite(y)):
-        raise ValueError(f"pylinkage {what}: {value!r} is not finite")
+        raise ValueError(f"pylinkage {what}: expected two numbers, found {excerpt(value)}")
+    x, y = finite_float(value[0]), finite_float(value[1])
+    if x is None or y is None:
+        raise ValueError(f"pylinkage {what}: {excerpt(value)} is not finite")
     return x, y
 
 
@@ -86,33 +85,20 @@ def _link_name(identifier: Any, what: str) -> str:
     return name if name[0].isalpha() else f"L_{name}"
 
 
-def _json_number(text: str) -> float:
-    """A JSON number, of any digits, as a finite float in the range every symlink reader takes (else one line)."""
-    try:  # never int(text): a 5000-digit integer is refused here, not by Python's digit limit
-        value = number_from_text(text)
-    except ValueError as error:
-        raise ValueError(f"pylinkage JSON: the number is out of range: {error}") from None
-    if not math.isfinite(value) or abs(value) > MAX_COORDINATE:
-        raise ValueError(f"pylinkage JSON: the number {excerpt(text)} is out of range (at most {MAX_COORDINATE:g})")
-    return value
-
-
-def _json_constant(text: str) -> float:
-    raise ValueError(f"pylinkage JSON: {text} is not a number a mechanism can hold")
+def _coordinate_range(value: float, token: str) -> None:
+    """A pylinkage number is one a mechanism can hold: at most :data:`MAX_COORDINATE` in size."""
+    if abs(value) > MAX_COORDINATE:
+        raise ValueError(f"the number {excerpt(token)} is out of range (at most {MAX_COORDINATE:g})")
 
 
 def _json_data(text: str) -> Any:
-    """The JSON text of a pylinkage mechanism, parsed strictly: size capped, every number range-checked,
-    ``NaN``/``Infinity`` refused, deep nesting refused; every problem one ``ValueError``."""
+    """The JSON text of a pylinkage mechanism, read strictly (:func:`~symlink.common.numbers.json_data`): size
+    capped, every number range-checked, ``NaN``/``Infinity`` and keys given twice refused, deep nesting refused;
+    every problem one ``ValueError``."""
     if len(text) > MAX_LINKAGE_BYTES:
         raise ValueError(f"pylinkage JSON: {len(text):,} characters, more than a mechanism needs "
                          f"(at most {MAX_LINKAGE_BYTES:,})")
-    try:
-        return json.loads(text, parse_int=_json_number, parse_float=_json_number, parse_constant=_json_constant)
-    except json.JSONDecodeError as error:
-        raise ValueError(f"pylinkage JSON: {error.msg} at line {error.lineno}, column {error.colno}") from None
-    except RecursionError:
-        raise ValueError("pylinkage JSON: nested too deeply for a mechanism") from None
+    return json_data(text, "pylinkage JSON", number=_coordinate_range)
 
 
 def read_pylinkage(data: Mapping[str, Any] | str) -> JointDescription:
@@ -247,9 +233,10 @@ def read_pylinkage(data: Mapping[str, Any] | str) -> JointDescription:
 
 def _speed(value: Any, what: str) -> float:
     """A driver's speed: a finite number."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise ValueError(f"pylinkage {what}: a driver's speed must be a finite number, got {value!r}")
-    return float(value)
+    found = finite_float(value)
+    if found is None:
+        raise ValueError(f"pylinkage {what}: a driver's speed must be a finite number, got {excerpt(value)}")
+    return found
 
 
 def _joint_type(joints: list, ids: list[str], identifier: str) -> str:
@@ -417,9 +404,11 @@ def _read_legacy(data: Mapping[str, Any]) -> JointDescription:
 
     def number(entry: Mapping[str, Any], key: str) -> float:
         value = entry.get(key)
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-            raise ValueError(f"pylinkage joint {entry['name']!r}: {key} must be a finite number, got {value!r}")
-        return float(value)
+        found = finite_float(value)
+        if found is None:
+            raise ValueError(f"pylinkage joint {excerpt(entry['name'])}: {key} must be a finite number, got "
+                             f"{excerpt(value)}")
+        return found
 
     # Place every joint from its parents, in dependency order.
     placed: dict[str, tuple[float, float]] = {}

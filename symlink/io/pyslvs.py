@@ -9,7 +9,7 @@ Pyslvs (and its interface Pyslvs-UI) describes a mechanism by its joints, one
     type      := "R" | "P" | "RP"
     color     := "color[" (colour name | "(" int "," int "," int ")") "]"
 
-``#`` starts a comment to the end of the line, ``#[`` one that ends with ``#]``
+``#`` starts a comment to the end of the line, ``#[`` one that ends with the first ``#]`` after it
 (Pyslvs's grammar).  The links named in ``L[...]``
 hold the joint; ``ground`` is the frame.  An ``RP`` joint (a pin in a slot)
 slides on the first of its links along a line at angle ``A`` (degrees,
@@ -51,7 +51,7 @@ from .pylinkage import MAX_COORDINATE
 __all__ = ["read_pyslvs", "read_pyslvs_project", "write_pyslvs", "pyslvs_inputs", "pyslvs_joint_name"]
 
 _TOKEN = re.compile(r"""
-    (?P<space>\s+|\#\[[\s\S]*\#\][^\n]*|\#[^\n]*)
+    (?P<space>\s+|\#(?!\[)[^\n]*)
   | (?P<number>[+-]?(?:\d+\.\d*|\.\d+|\d+)(?:[eE][+-]?\d+)?)
   | (?P<name>[A-Za-z_][A-Za-z0-9_-]*)
   | (?P<punct>[\[\],()])
@@ -79,8 +79,15 @@ class _Parser:
             raise ValueError(f"a Pyslvs expression of {len(text):,} characters is more than a mechanism needs "
                              f"(at most {MAX_LINKAGE_BYTES:,})")
         self.tokens: list[tuple[str, str, int]] = []
-        position = 0
+        position = 1 if text.startswith("\ufeff") else 0  # a byte-order mark, as a file's reader drops it
         while position < len(text):
+            if text.startswith("#[", position):  # a block comment ends at its first #], never later
+                end = text.find("#]", position + 2)
+                if end < 0:
+                    raise ValueError(f"Pyslvs expression, column {position + 1}: the comment '#[' opened here never "
+                                     "ends (no '#]' after it)")
+                position = end + 2
+                continue
             match = _TOKEN.match(text, position)
             if match is None:
                 raise ValueError(f"Pyslvs expression, column {position + 1}: unexpected {excerpt(text[position])}")

@@ -424,7 +424,10 @@ def scene_from_mapping(data: Mapping, folder: str | Path = ".") -> SceneFile:
     outputs = data.get("outputs")
     if not isinstance(outputs, list) or not outputs or not all(isinstance(o, str) for o in outputs):
         raise ValueError(f"outputs must be a non-empty list of output names of {found.linkage.name} "
-                         f"({', '.join(found.linkage.output_names())}), got {outputs!r}")
+                         f"({', '.join(found.linkage.output_names())}), got {excerpt(outputs)}")
+    twice = next((name for k, name in enumerate(outputs) if name in outputs[:k]), None)
+    if twice is not None:  # a request that repeats itself: the same column twice
+        raise ValueError(f"outputs lists {excerpt(twice)} more than once; list each output once")
     warm: DynamicScene | None = None
     if "dynamics" in data:  # mass properties and loads given in the scene, on a catalog linkage or a file's
         if found.model is not None:

@@ -124,7 +124,8 @@ def _key(data: Mapping[str, Any], folder: str | Path) -> str | None:
     """The cache key of a parsed scene's facts; None where its linkage or its outputs cannot be keyed."""
     from ..numeric.cache import catalog_key
     source, outputs = data.get("linkage"), data.get("outputs")
-    if not isinstance(source, str) or not isinstance(outputs, list) or not all(isinstance(o, str) for o in outputs):
+    if (not isinstance(source, str) or not isinstance(outputs, list) or not all(isinstance(o, str) for o in outputs)
+            or len(set(outputs)) != len(outputs)):  # a repeated output: the cold path says why
         return None
     request = linkage_request(source, folder)
     if request is None:

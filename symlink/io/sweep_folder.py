@@ -50,6 +50,7 @@ from typing import Any, Iterator, Mapping
 
 from ..common.display import record_html
 from ..common.files import LEFTOVER_AGE, TEMPORARY_SUFFIX, excerpt, write_atomic
+from ..common.numbers import json_data
 
 __all__ = ["MANIFEST", "FORMAT", "DamagedManifest", "SweepWarning", "ChunkRecord", "SweepFolder", "open_folder", "read_manifest",
            "verified_chunks", "chunk_name", "chunk_range", "parquet_bytes"]
@@ -225,7 +226,7 @@ def read_manifest(folder: str | os.PathLike) -> tuple[dict[str, Any], dict[str, 
     if not os.path.lexists(path):
         raise ValueError(f"{folder} holds no sweep (no {MANIFEST})")
     try:
-        manifest = json.loads(_read_regular(path, MANIFEST_LIMIT).decode("utf-8"))
+        manifest = json_data(_read_regular(path, MANIFEST_LIMIT), "its JSON")
         if not isinstance(manifest, dict) or not isinstance(manifest.get("settings"), dict):
             raise ValueError("no settings in it")
         designs, chunks, chunk = (manifest.get(key) for key in ("designs", "chunks", "chunk"))

@@ -94,10 +94,16 @@ class InputSweep:
 
     @classmethod
     def from_values(cls, values: Sequence[float], prefix: str = "") -> "InputSweep":
-        """The listed values, in order."""
+        """The listed values, in order, each once: a list that repeats a value asks for the same row twice (a full
+        turn's 0 and 360 are two values, as ``start``/``stop`` may give them)."""
         values = tuple(_check_angle(v, f"every one of {prefix}angles") for v in values)
         if not values:
             raise ValueError(f"{prefix}angles needs at least one angle")
+        seen: set[float] = set()
+        for value in values:
+            if value in seen:
+                raise ValueError(f"{prefix}angles lists {value:g} more than once; list each value once")
+            seen.add(value)
         if len(values) > MAX_VALUES:
             raise ValueError(f"{len(values):,} input values is too many (at most {MAX_VALUES:,} a sweep)")
         return cls(values[0], 0.0, len(values), values)

@@ -19,6 +19,7 @@ from __future__ import annotations
 import math
 from typing import Any, Mapping
 
+from ..common.numbers import finite_float
 from ..mechanism.joints import JointLinkage
 from ..mechanism.topology import GROUND
 from .drawing import CACHE, Description, description, drawn_linkage
@@ -179,16 +180,18 @@ def synthesis_request(data: Any) -> dict[str, Any]:
         count = len(targets) if isinstance(targets, list) else "no"
         raise ValueError(f"give {MIN_TARGETS} to {MAX_TARGETS} target points (click them with the Targets tool); "
                          f"there are {count}")
-    rows = []
+    rows: list[list[float]] = []
     for k, row in enumerate(targets):
-        if not isinstance(row, list) or len(row) != 2 or any(
-                isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or abs(v) > 1e9
-                for v in row):
+        x, y = (finite_float(v) for v in row) if isinstance(row, list) and len(row) == 2 else (None, None)
+        if x is None or y is None or abs(x) > 1e9 or abs(y) > 1e9:
             raise ValueError(f"targets[{k}] must be [x, y], two finite numbers")
-        rows.append([float(row[0]), float(row[1])])
+        rows.append([x, y])
     span = max(max(r[0] for r in rows) - min(r[0] for r in rows), max(r[1] for r in rows) - min(r[1] for r in rows))
     if span <= 0:
         raise ValueError("the targets are all one point: click points apart")
+    from ..synthesis.path import check_distinct_targets
+    import numpy
+    check_distinct_targets(numpy.array(rows))  # any two alike, as every synthesis refuses them
     if any(math.dist(p, q) <= 1e-9 * span for p, q in zip(rows, rows[1:])):
         raise ValueError("two consecutive targets are the same point")
     return {"drawing": data["drawing"], "point": point, "targets": rows,

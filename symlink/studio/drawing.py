@@ -23,7 +23,6 @@ pylinkage JSON or a Pyslvs expression, as a drawing).
 from __future__ import annotations
 
 import json
-import math
 import re
 import threading
 from collections import OrderedDict
@@ -31,6 +30,7 @@ from dataclasses import dataclass
 from typing import Any, Callable, Mapping
 
 from ..common.display import record_html
+from ..common.numbers import finite_float
 from ..common.names import PLAIN_NAME, label
 from ..mechanism.joints import JointLinkage, Slider, from_joints
 from ..mechanism.topology import GROUND, Chain
@@ -86,11 +86,12 @@ def _name(value: Any, what: str) -> str:
 
 
 def _number(value: Any, what: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+    found = finite_float(value) if isinstance(value, (int, float)) else None
+    if found is None:
         raise ValueError(f"{what} must be a finite number, not {str(value)[:40]!r}")
-    if abs(value) > MAX_COORDINATE:
-        raise ValueError(f"{what} is {value:g}; keep coordinates within {MAX_COORDINATE:g}")
-    return float(value)
+    if abs(found) > MAX_COORDINATE:
+        raise ValueError(f"{what} is {found:g}; keep coordinates within {MAX_COORDINATE:g}")
+    return found
 
 
 def _list(value: Any, what: str) -> list:
@@ -513,7 +514,7 @@ def open_source(source: Any, kind: str = "auto") -> dict[str, Any]:
         raise ValueError("give a catalog or atlas name, a linkage file's text, pylinkage JSON or a Pyslvs expression")
     if len(source) > MAX_SOURCE:
         raise ValueError(f"the text is {len(source)} characters; at most {MAX_SOURCE}")
-    text = source.strip()
+    text = source.removeprefix("\ufeff").strip()  # a byte-order mark, as a file's reader drops it
     kinds = ("auto", "name", "linkage", "pylinkage", "pyslvs")
     if kind not in kinds:
         raise ValueError(f"kind is one of {', '.join(kinds)}")

@@ -21,7 +21,6 @@ The work is :mod:`symlink.studio.drawing`'s; this module only routes and guards.
 from __future__ import annotations
 
 import io
-import json
 import secrets
 import socket
 import zipfile
@@ -36,6 +35,7 @@ from starlette.responses import FileResponse, JSONResponse, Response
 from starlette.routing import Route
 from starlette.concurrency import run_in_threadpool
 
+from ..common.numbers import json_data
 from . import design, drawing
 from .jobs import Jobs
 
@@ -131,10 +131,7 @@ async def _body(request: Request) -> Any:
         data += chunk
         if len(data) > MAX_BODY:
             raise ValueError(f"the request is larger than {MAX_BODY // (1 << 20)} MB")
-    try:
-        return json.loads(data.decode("utf-8"))
-    except (UnicodeDecodeError, json.JSONDecodeError) as error:
-        raise ValueError(f"the request is not JSON: {error}") from None
+    return json_data(data, "the request")  # strict: numbers range-checked, keys given once, nesting bounded
 
 
 def _api(work: Callable[[Any, Request], Any]) -> Callable[[Request], Awaitable[Response]]:

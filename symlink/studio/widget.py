@@ -33,6 +33,7 @@ except ImportError as error:  # pragma: no cover - the message is the point
     raise ImportError("symlink.studio.widget needs anywidget: pip install 'symlink-kinematics[notebook]' "
                       "(or pip install anywidget)") from error
 
+from ..common.numbers import finite_float
 from ..mechanism.joints import JointLinkage
 
 __all__ = ["LinkageWidget", "RefusedValue", "widget_esm", "widget_css"]
@@ -89,9 +90,11 @@ def widget_css() -> str:
 def _number(name: str, value: Any, positive: bool) -> float:
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise ValueError(f"{name} must be a number, not {type(value).__name__}")
-    number = float(value)
-    if not math.isfinite(number):
-        raise ValueError(f"{name} must be finite, not {number!r}")
+    found = finite_float(value)
+    if found is None:
+        raise ValueError(f"{name} must be finite, not {value!r}" if isinstance(value, float) else
+                         f"{name} must be finite, not a number this large")
+    number = found
     if positive and not number > 0:
         raise ValueError(f"{name} is a length and must be positive, not {number!r}")
     return number

@@ -54,7 +54,8 @@ import numpy
 
 from ..common.display import record_html
 from ..mechanism.bodies import PRISMATIC, REVOLUTE, mechanism
-from ..common.files import write_atomic
+from ..common.files import excerpt, write_atomic
+from ..common.numbers import finite_float, json_data
 from ..symbolic.linkage import Linkage
 
 __all__ = ["Part", "link_parts", "svg_text", "write_svg", "dxf_text", "write_dxf", "UNITS_IN_MM", "TRAVEL_SAMPLES",
@@ -163,9 +164,10 @@ def _hull(points: list[Point], radius: float) -> list[Point]:
 
 
 def _check_size(name: str, value: float) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
-        raise ValueError(f"{name} must be a positive finite length, got {value!r}")
-    return float(value)
+    found = finite_float(value) if isinstance(value, (int, float)) else None
+    if found is None or found <= 0:
+        raise ValueError(f"{name} must be a positive finite length, got {excerpt(value)}")
+    return found
 
 
 def link_parts(linkage: Linkage, values: Mapping[str, float], pin_diameter: float,
@@ -701,10 +703,15 @@ def design_json(linkage: Linkage, values: Mapping[str, float], unit: str = "mm")
     return json.dumps(record, indent=1) + "\n"
 
 
+#: The most bytes (and characters) of a design's JSON text: that of a linkage file.
+MAX_DESIGN_BYTES = 4 << 20
+
+
 def _finite(name: str, value: object) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise ValueError(f"{name} must be a finite number, got {value!r}")
-    return float(value)
+    found = finite_float(value) if isinstance(value, (int, float)) else None
+    if found is None:
+        raise ValueError(f"{name} must be a finite number, got {excerpt(value)}")
+    return found
 
 
 def read_design(text: str, source: str = "<design>") -> LinkageDesign:
@@ -738,10 +745,7 @@ def read_design(text: str, source: str = "<design>") -> LinkageDesign:
     ('fourbar', 66.0, 'mm')
     """
     from ..io.linkage_file import linkage_from_mapping
-    try:
-        record = json.loads(text)
-    except (json.JSONDecodeError, RecursionError) as error:
-        raise ValueError(f"{source}: not JSON ({error})") from None
+    record = json_data(text, source, limit=MAX_DESIGN_BYTES)
     if not isinstance(record, dict) or record.get("format") != DESIGN_FORMAT:
         raise ValueError(f"{source}: not a symlink design (its format must be {DESIGN_FORMAT!r})")
     if record.get("version") != DESIGN_VERSION:

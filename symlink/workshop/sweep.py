@@ -214,7 +214,10 @@ class SweepSettings:
             if name not in parameters:
                 raise ValueError(f"{linkage.name} has no parameter {name!r}; it has {', '.join(parameters)}")
             if not (math.isfinite(low) and math.isfinite(high)) or high < low:
-                raise ValueError(f"the range of {name} must be two finite numbers, low <= high; got {low:g}:{high:g}")
+                raise ValueError(f"the range of {name} must be two finite numbers, low < high; got {low:g}:{high:g}")
+            if high == low and not (self.mode == "grid" and self.count == 1):  # one design is one value a parameter
+                raise ValueError(f"the range {name}={low:g}:{high:g} has zero length (every design would be the same):"
+                                 f" give {name} as a value instead (--set {name}={low:g})")
             if parameters[name].is_positive and low <= 0:
                 raise ValueError(f"{name} is a length: its range must be positive, got {low:g}:{high:g}")
         held = {q.name for q in linkage.inputs[1:]}

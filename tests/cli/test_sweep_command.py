@@ -56,7 +56,7 @@ def test_without_the_extra_it_says_how_to_install_it(tmp_path, capsys, monkeypat
     ("range without colon", lambda a: a[:2] + ["a=0.2"] + a[3:], "NAME=LOW:HIGH"),
     ("range not numbers", lambda a: a[:2] + ["a=x:1"] + a[3:], "not a number"),
     ("unknown parameter", lambda a: a[:2] + ["e=1:2"] + a[3:], "no parameter 'e'"),
-    ("reversed range", lambda a: a[:2] + ["a=2:1"] + a[3:], "low <= high"),
+    ("reversed range", lambda a: a[:2] + ["a=2:1"] + a[3:], "low < high"),
     ("negative length", lambda a: a[:2] + ["a=-1:1"] + a[3:], "is a length"),
     ("unknown --set", lambda a: a[:4] + ["q=1"] + a[5:], "no value 'q'"),
     ("grid and random", lambda a: a + ["--random", "5"], "not allowed with"),

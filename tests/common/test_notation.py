@@ -1,4 +1,6 @@
 """A branch sign is written the same way in every display: sigma, with its loop's name as a subscript."""
+from pathlib import Path
+
 import pytest
 
 from symlink.mechanism.catalog import fourbar, watt2
@@ -38,3 +40,16 @@ def test_generated_intermediates_get_textbook_names():
 
 def test_math_text_keeps_underscores_and_spaces():
     assert math_text("scene of a_b") == r"\text{scene of a}\_\text{b}"
+
+
+def test_a_users_name_with_a_double_underscore_is_typeset_as_written_not_as_a_power(tmp_path):
+    """LaTeX is a target language too: SymPy prints ``x__y`` as ``x^{y}`` (x to the power y)."""
+    from symlink.cli import main
+    text = (Path(__file__).parents[2] / "symlink" / "linkages" / "fourbar.toml").read_text()
+    renamed = text.replace('"a"', '"x__y"').replace('["a", "theta"]', '["x__y", "theta"]').replace("a = 20.0",
+                                                                                                 "x__y = 20.0")
+    assert renamed.count("x__y") == 3
+    (tmp_path / "four.toml").write_text(renamed)
+    assert main(["export", str(tmp_path / "four.toml"), "--to", "latex", "--out", str(tmp_path / "tex")]) == 0
+    latex = "".join(path.read_text() for path in (tmp_path / "tex").iterdir())
+    assert r"\mathit{x\_\_y}" in latex and "x^{y}" not in latex

@@ -347,7 +347,7 @@ def test_symlink_s_linkages_written_for_pylinkage_move_there_as_here():
     ({"joints": [{"id": "A", "type": "ground", "position": [0, 0]},
                  {"id": "S", "type": "prismatic", "position": [3, 1], "axis": [1, 0], "line_point": [0, 0]}],
       "links": [{"id": "c", "type": "driver", "joints": ["A", "S"], "motor_joint": "A"}]}, "1 off its line"),
-    ("{not json", "pylinkage JSON: Expecting property name"),
+    ("{not json", "pylinkage JSON: not JSON: Expecting property name"),
 ])
 def test_bad_pylinkage_mechanisms_are_refused_naming_the_entry(data, message):
     with pytest.raises(ValueError, match=message):

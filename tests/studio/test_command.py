@@ -10,6 +10,7 @@ from pathlib import Path
 
 import pytest
 
+from interrupts import interruptible
 from symlink.cli import main
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -24,7 +25,8 @@ def test_the_server_prints_its_url_answers_it_and_stops_on_ctrl_c():
     from symlink.studio.server import free_port
     port = free_port()
     process = subprocess.Popen([sys.executable, "-m", "symlink", "studio", "--no-browser", "--port", str(port)],
-                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=_environment())
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=_environment(),
+                               preexec_fn=interruptible)  # Ctrl-C as a terminal's, whatever runs the tests
     try:
         line = process.stdout.readline().strip()
         assert line.startswith(f"symlink studio: http://127.0.0.1:{port}/?token="), line

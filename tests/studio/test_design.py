@@ -193,6 +193,7 @@ def test_a_synthesis_can_be_cancelled(client):
     ({"targets": [[0, 0]] * 41}, "3 to 40 target points"),
     ({"targets": [[0, 0], [1, "x"], [2, 2]]}, "targets[1] must be [x, y]"),
     ({"targets": [[1, 1], [1, 1], [1, 1]]}, "all one point"),
+    ({"targets": [[0, 0], [1, 0.5], [0, 0]]}, "target points 1 and 3 are the same point"),  # not one after the other
     ({"starts": 100000}, "starts is a whole number from 1 to 64"),
     ({"evaluations": 10 ** 9}, "evaluations is a whole number from 10 to 5000"),
     ({"point": "A"}, "on the ground"),
@@ -205,6 +206,13 @@ def test_a_synthesis_request_out_of_bounds_is_refused_with_a_message(client, cha
     assert answer.status_code == 422
     assert message in answer.json()["error"]
     assert client.app.state.jobs.jobs == {}  # no process was started
+
+
+def test_a_synthesis_request_with_a_huge_integer_is_refused_in_one_line():
+    """From Python (a notebook), not JSON: an integer too large for a float is a ValueError, never OverflowError."""
+    from symlink.studio.design import synthesis_request
+    with pytest.raises(ValueError, match=r"targets\[1\] must be \[x, y\]"):
+        synthesis_request({"drawing": START, "point": "E", "targets": [[0, 0], [1, 10 ** 400], [2, 2]]})
 
 
 # --- a tolerance band ---------------------------------------------------------------------------------

@@ -39,6 +39,7 @@ from symlink.numeric.solver import Solver
 from symlink.workshop.sweep import (MANIFEST, SweepSettings, columns, design_values, evaluate_designs, missing_modules,
                            read_sweep, run_sweep)
 from symlink.io.sweep_folder import SweepWarning, open_folder
+from interrupts import interruptible
 
 pytestmark = pytest.mark.skipif(bool(missing_modules()), reason="the sweep extra is not installed")
 
@@ -229,7 +230,8 @@ def test_designs_are_made_from_their_numbers_alone():
 @pytest.mark.parametrize("arguments, message", [
     (dict(ranges={}), "at least one parameter"),
     (dict(ranges={"e": (1, 2)}), "no parameter 'e'"),
-    (dict(ranges={"a": (2, 1)}), "low <= high"),
+    (dict(ranges={"a": (2, 1)}), "low < high"),
+    (dict(ranges={"a": (2, 2)}), "zero length"),
     (dict(ranges={"a": (0, 1)}), "is a length"),
     (dict(ranges={"a": (1, math.nan)}), "finite"),
     (dict(mode="sobol"), "mode must be"),
@@ -608,7 +610,7 @@ def start_pool_sweep(folder: Path, wait_for_chunks: int) -> tuple[subprocess.Pop
     (0: once its two workers and the resource tracker run)."""
     command = [sys.executable, "-m", "symlink", "sweep", POOL_SWEEP[0], str(folder), *POOL_SWEEP[1:]]
     process = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                               start_new_session=True)
+                               start_new_session=True, preexec_fn=interruptible)  # Ctrl-C as a terminal's
     deadline = time.monotonic() + 180
     while len(children(process.pid)) < 3 or len(list(folder.glob("chunk-*.parquet"))) < wait_for_chunks:
         assert process.poll() is None, process.stderr.read().decode()
@@ -675,6 +677,10 @@ MANIFEST_DAMAGES = [
     ("NaN samples", lambda folder: (folder / MANIFEST).write_text(
         (folder / MANIFEST).read_text().replace('"samples": 16', '"samples": NaN'))),
     ("no manifest", lambda folder: (folder / MANIFEST).unlink()),
+    ("a key given twice", lambda folder: (folder / MANIFEST).write_text(  # JSON keeps the last without a word
+        (folder / MANIFEST).read_text().replace('"samples": 16', '"samples": 16, "samples": 17'))),
+    ("a number of 400 digits", lambda folder: (folder / MANIFEST).write_text(
+        (folder / MANIFEST).read_text().replace('"samples": 16', '"samples": 1' + "0" * 400))),
 ]
 
 

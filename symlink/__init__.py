@@ -27,7 +27,10 @@ leaves :mod:`symlink.studio` and :mod:`symlink.cli`.
 from __future__ import annotations
 
 import importlib
-from typing import TYPE_CHECKING, Any
+
+#: ``typing.TYPE_CHECKING`` without importing :mod:`typing` (some milliseconds): the console script imports this
+#: package before :mod:`symlink.__main__` can hold back an interrupt, so the package imports next to nothing.
+TYPE_CHECKING = False
 
 from .version import __version__
 
@@ -111,6 +114,8 @@ _public("symlink.studio.widget", "LinkageWidget")
 __all__ = sorted(PUBLIC) + ["__version__"]
 
 if TYPE_CHECKING:
+    from typing import Any
+
     from .symbolic.linkage import Linkage
     from .symbolic.loops import Loop
     from .symbolic.vectors import Vector, VectorSum, acceleration, coordinates, lengths, rate, time_derivative

@@ -111,16 +111,15 @@ def test_a_held_block_is_never_written_again_and_a_dropped_one_is_reused(solvers
     assert all(result["coupler"].__array_interface__["data"][0] != address for result in later)
     held = later[0]
     copy = {name: value.copy() for name, value in held.items()}
+    made = {result["coupler"].__array_interface__["data"][0] for result in later}
     for _ in range(3):
-        call(solver, arguments(n, shift=2.0))
+        made.add(call(solver, arguments(n, shift=2.0))["coupler"].__array_interface__["data"][0])
     for name, value in copy.items():
         assert numpy.array_equal(bits(held[name]), bits(value)), name
-    # dropped: the next calls write a block of before (no new pages), never one still held
+    # dropped: the next calls write the blocks of before (no new pages), never one still held
     del piece, later, held
-    result = call(solver, arguments(n))
-    reused = result["coupler"].__array_interface__["data"][0]
-    del result
-    assert call(solver, arguments(n))["coupler"].__array_interface__["data"][0] == reused
+    again = [call(solver, arguments(n))["coupler"].__array_interface__["data"][0] for _ in range(6)]
+    assert set(again) <= made
 
 
 def _bad_outs(solver: Solver, values: dict) -> list[tuple[str, dict, str]]:

@@ -451,11 +451,11 @@ def call_extension(build: bool = True) -> Any:
 def _load_call_extension(build: bool) -> Any:
     """The extension module, built (``build``) or loaded from the cache; ``None`` where it cannot be."""
     import sysconfig
-    from ..codegen.call_extension import MODULE, extension_source, python_include
+    from ..codegen.call_extension import MODULE, extension_source, numpy_include, python_include
     include = python_include()
     if include is None or sysconfig.get_config_var("Py_GIL_DISABLED") or not hasattr(sys, "getrefcount"):
         return None
-    source, options = extension_source(), ["-I", include]
+    source, options = extension_source(), ["-I", include, "-I", numpy_include()]
     library = compile_shared(source, options=options) if build else built_library(source, options)
     if library is None:
         return None
@@ -572,7 +572,7 @@ class CompiledFunction:
                           tuple(sys.intern(a) for a in self._result_names),
                           bytes(int(flag) for flag, _ in self._result_rows),
                           0 if self.into is None else ctypes.cast(self.into, ctypes.c_void_p).value,
-                          self._large_entries, self._new_large_entry)
+                          self._large_entries, self._new_large_entry, KEPT_OUTPUTS)
 
     def __call__(self, *, out: Any = None, **values) -> dict[str, numpy.ndarray]:
         """The outputs (and ``assembled``) at ``values``, by keyword: new arrays, or the caller's ``out``.

@@ -186,3 +186,67 @@ def test_small_results_kept_a_few_calls_are_never_overwritten_and_cost_no_new_bl
         made.update((id(block), block) for block in kept_blocks)
     # four results held at a time: answered from the blocks kept before, not one new block a call
     assert len(made) <= compiled_library.KEPT_OUTPUTS
+
+
+@pytest.mark.parametrize("n", SIZES)
+@pytest.mark.parametrize("kept_for", range(1, 21))
+def test_a_kept_result_is_never_overwritten_and_equals_a_fresh_call_bit_for_bit(backend, n, kept_for):
+    """Each result kept for ``kept_for`` calls (more than the blocks kept for reuse, from 9 on) stays as it was,
+    and equals, bit for bit, the same call on a solver of its own; the NumPy module agrees to rounding."""
+    solver, fresh = (Solver(fourbar(), FULL, backend=backend) for _ in range(2))
+    reference = Solver(fourbar(), FULL, backend="numpy")
+    held: list = []
+    for step in range(kept_for + 12):
+        values = arguments(n, shift=0.37 * step)
+        result = call(solver, values)
+        expected = {name: value.copy() for name, value in call(fresh, values).items()}
+        for name, value in expected.items():
+            assert numpy.array_equal(bits(result[name]), bits(value)), (step, name)
+        if step % 5 == 0:  # the NumPy module's answer: an independent evaluation of the same formulas
+            independent = call(reference, values)
+            assert numpy.array_equal(independent["assembled"], result["assembled"])
+            for name in FULL:
+                numpy.testing.assert_allclose(result[name], independent[name], rtol=1e-8, atol=1e-10)  # (near a toggle)
+        held = (held + [(result, expected)])[-kept_for:]
+        for kept, copy in held:
+            for name, value in copy.items():
+                assert numpy.array_equal(bits(kept[name]), bits(value)), (step, name)
+
+
+def test_a_call_of_several_chunks_equals_its_values_called_one_by_one_and_refuses_a_value_in_the_last(backend):
+    """A call of more values than one fused chunk (codegen.c.FUSED_CHUNK: checked and evaluated a chunk at a
+    time) gives each value what a call of that value alone gives, bit for bit; a bad length in its last chunk
+    is refused by name, fresh outputs and out= alike."""
+    if backend != "compiled":
+        pytest.skip("the compiled call's chunks (NumPy's own loops round a lone value and an array apart)")
+    from symlink.codegen.c import FUSED_CHUNK
+    solver = Solver(fourbar(), FULL, backend=backend)
+    n = 2 * FUSED_CHUNK + 37
+    values = arguments(n)
+    values["b"] = numpy.linspace(64.0, 68.0, n)  # a per-value length too
+    result = {name: value.copy() for name, value in call(solver, values).items()}
+    for k in (0, FUSED_CHUNK - 1, FUSED_CHUNK, 2 * FUSED_CHUNK + 5, n - 1):
+        alone = call(solver, {**values, "theta": values["theta"][k:k + 1], "b": values["b"][k:k + 1]})
+        for name, value in alone.items():
+            assert numpy.array_equal(bits(value), bits(result[name][k:k + 1])), (k, name)
+    out = empty_like(result)
+    bad = values["b"].copy()
+    bad[n - 3] = -1.0
+    for given in ({}, {"out": out}):
+        with pytest.raises(ValueError, match="b must be a positive finite length, got -1.0"):
+            call(solver, {**values, "b": bad}, **given)
+
+
+def test_strided_and_single_value_arrays_give_what_contiguous_arrays_and_numbers_give(backend):
+    solver = Solver(fourbar(), FULL, backend=backend)
+    n = 5000
+    values = arguments(n)
+    expected = {name: value.copy() for name, value in call(solver, values).items()}
+    every_other = numpy.empty(2 * n)
+    every_other[::2] = values["theta"]
+    reversed_theta = values["theta"][::-1].copy()[::-1]  # a negative step over the same values
+    for theta in (every_other[::2], reversed_theta):
+        for given in ({}, {"out": empty_like(expected)}):
+            got = call(solver, {**values, "theta": theta, "a": numpy.array([60.0])}, **given)
+            for name, value in expected.items():
+                assert numpy.array_equal(bits(got[name]), bits(value)), name

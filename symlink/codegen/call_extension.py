@@ -16,22 +16,30 @@ for every compiled function alike: each function describes itself once in a
   of 1 to ``largest`` values (all of one length) as an array, read through
   the buffer protocol (no NumPy headers are needed); anything else refuses;
 * finds a block of outputs no caller holds any more among the kept ones (the
-  sum of their reference counts back at its value when made), else asks the
-  plan's ``make(length)`` for a new one, and calls the loop's
-  ``<name>_packed`` wrapper once, which checks the values as the NumPy module
-  does;
+  sum of their reference counts back at its value when made), else makes a
+  new one in C (one NumPy block and a view of it a row, through NumPy's C
+  API: no Python step), and calls the loop's ``<name>_packed`` wrapper once,
+  which checks the values as the NumPy module does;
 * returns a new dict of the output rows (``call``), or a
   :class:`symlink.numeric.results.Results` made without ``__init__`` (``results``),
   or ``None`` where the call is refused: the caller's general path then
   answers, with its errors and broadcasting.
 
-The plan's ``busy`` byte makes one call at a time use the shared slots: a
-call while another thread's small call is inside (only possible while
-``make`` runs Python code) is refused, and answered by the general path.
+``large`` takes a call of any length (arrays may be strided, or of one value):
+its own slots, the caller's ``out`` arrays checked through the buffer protocol
+(type, dtype, shape, contiguity, writability, overlaps: O(outputs)) or a kept
+block of larger calls (a new one from the plan's ``make_large``, which checks
+the memory first), and ``<name>_into`` (checks and evaluates chunk by chunk)
+called with the GIL released; a ``Results``, or ``None`` as above.
+
+The plan's ``busy`` byte makes one small call at a time use the shared slots: a
+call while another thread's small call is inside (only possible while a new
+block's allocation runs the garbage collector) is refused, and answered by ``large``
+or the general path.
 
 It is compiled like the solver libraries (:func:`symlink.numeric.compiled_library.compile_shared`) with the
-headers of the running Python; the source names the Python it is for, so that the cached library of
-one Python is never loaded by another.
+headers of the running Python and NumPy; the source names the Python and the NumPy it is for, so that
+the cached library of one is never loaded by another.
 
 >>> "PyInit_symlink_call" in extension_source()
 True

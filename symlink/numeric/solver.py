@@ -244,6 +244,9 @@ class Solver:
             overlapping another or an argument.  A result of an earlier call
             of the same shape is one (``out=result``).  The compiled backend
             writes into them directly; the NumPy backend computes, then copies.
+            A bad ``out`` is refused before anything is written; the compiled
+            backend checks the values chunk by chunk as it evaluates them, so a
+            value it refuses may leave the chunks before it written.
             Without ``out`` the outputs are new arrays, views of one block a
             call; a block that no caller holds any more (no result, row or
             view of it referenced anywhere) is written again instead of a new

@@ -250,3 +250,33 @@ def test_strided_and_single_value_arrays_give_what_contiguous_arrays_and_numbers
             got = call(solver, {**values, "theta": theta, "a": numpy.array([60.0])}, **given)
             for name, value in expected.items():
                 assert numpy.array_equal(bits(got[name]), bits(value)), name
+
+
+def test_two_threads_making_large_calls_at_once_get_their_own_results(backend):
+    """Large compiled calls run with the GIL released: two threads calling one solver at once (new outputs,
+    some kept a few calls, and out=) each get their own call's values, and no kept result is written again."""
+    import threading
+    solver = Solver(fourbar(), FULL, backend=backend)
+    n = 3 * 4096  # more values than a call holding the GIL takes
+    inputs = [arguments(n, shift=0.2 * k) for k in range(4)]
+    expected = [{name: value.copy() for name, value in call(solver, values).items()} for values in inputs]
+    failures: list[str] = []
+
+    def work(offset: int) -> None:
+        held: list = []
+        out = empty_like(expected[0])
+        for step in range(40):
+            k = (step + offset) % len(inputs)
+            result = call(solver, inputs[k], **({"out": out} if step % 3 == 0 else {}))
+            held = (held + [(k, result)])[-3:] if step % 3 else held
+            for j, kept in held + [(k, result)]:
+                if not all(numpy.array_equal(bits(kept[name]), bits(expected[j][name])) for name in expected[j]):
+                    failures.append(f"thread {offset}, step {step}: result of input {j} changed")
+                    return
+
+    threads = [threading.Thread(target=work, args=(offset,)) for offset in (0, 1)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert not failures, failures[:3]

@@ -4,7 +4,8 @@ The four-bar's positions (coupler and rocker angles) and full kinematics (with t
 speeds and accelerations), N = 10^3 ... 10^6 values a call, every argument a per-value
 array (crank angle, the four lengths of seed 003, the branch; the crank's speed and
 acceleration numbers), as :mod:`benchmarks.bench` calls every method.  Nanoseconds a
-value (CPU time of this thread, best of calls taking turns round after round):
+value (CPU time of this thread; the calls take turns round after round, and each method's
+median over the rounds is printed: the machine is shared, so interleaved medians):
 
 * ``limit``: the physical limit, a C loop of only the transcendental calls every solver of the
   positions makes (cos, sin, a square root, two atan2) and two stores a value
@@ -24,6 +25,13 @@ and the ratios of the calls to the loop and to the limit.  Targets (issue 33): `
 within 1.2x the loop and ``call`` within 1.5x at 10^5-10^6 values.  numba is optional (the
 ``bench`` extra); without it its rows are left out.
 
+Then small calls kept or dropped (:func:`kept_calls`): the default ``Solver``'s full
+kinematics at 10, 100 and 1000 values, each result dropped before the next call
+(``dropped``) or kept for 1, 8 or 100 calls (a ``collections.deque`` of that length):
+microseconds a call, median of interleaved rounds, and the ratio to the dropped call
+(target, issue 33: a kept result costs what a dropped one does).  The CPU and the load
+average (before and after) are printed first.
+
     python -m benchmarks.call_cost                # N = 10^3 ... 10^6
     python -m benchmarks.call_cost --largest 1e5
 """
@@ -33,7 +41,9 @@ import argparse
 import collections
 import gc
 import math
+import os
 import resource
+import statistics
 import time
 
 import numpy
@@ -53,10 +63,10 @@ def _faults() -> int:
 
 
 def best_of_turns(calls: dict, budget: float) -> dict[str, tuple[float, float]]:
-    """Best CPU seconds a call of each of ``calls`` and its minor page faults a call, the calls taking turns.
+    """Median CPU seconds a call of each of ``calls`` and its median minor page faults a call, taking turns.
 
     Each takes one call before any clock starts (its outputs faulted in, its library loaded), then
-    rounds of calls, at least three, until about ``budget`` seconds have passed; a call faster than
+    rounds of calls, at least five, until about ``budget`` seconds have passed; a call faster than
     a millisecond is repeated back to back within a round and timed by the mean.  The garbage
     collector is off while timing.
     """
@@ -66,24 +76,23 @@ def best_of_turns(calls: dict, budget: float) -> dict[str, tuple[float, float]]:
         start = time.thread_time()
         call()
         repeats[name] = max(1, min(1000, math.ceil(1e-3 / max(time.thread_time() - start, 1e-7))))
-    best = {name: math.inf for name in calls}
-    faults = {name: math.inf for name in calls}
+    times: dict[str, list[float]] = {name: [] for name in calls}
+    faults: dict[str, list[float]] = {name: [] for name in calls}
     gc.collect()
     gc.disable()
     try:
         end, rounds = time.perf_counter() + budget, 0
-        while rounds < 3 or time.perf_counter() < end:
+        while rounds < 5 or time.perf_counter() < end:
             for name, call in calls.items():
                 before, start = _faults(), time.thread_time()
                 for _ in range(repeats[name]):
                     call()
-                seconds = (time.thread_time() - start) / repeats[name]
-                best[name] = min(best[name], seconds)
-                faults[name] = min(faults[name], (_faults() - before) / repeats[name])
+                times[name].append((time.thread_time() - start) / repeats[name])
+                faults[name].append((_faults() - before) / repeats[name])
             rounds += 1
     finally:
         gc.enable()
-    return {name: (best[name], faults[name]) for name in calls}
+    return {name: (statistics.median(times[name]), statistics.median(faults[name])) for name in calls}
 
 
 def calls_of(kind: str, n: int) -> dict:
@@ -153,19 +162,91 @@ def measure(sizes=SIZES, budget: float = 2.0) -> list[dict]:
     return rows
 
 
+KEPT_SIZES = (10, 100, 1000)
+#: How long each result is kept: 0 dropped before the next call, else a deque of that many results.
+KEPT_FOR = (0, 1, 8, 100)
+
+
+def kept_calls(sizes=KEPT_SIZES, kept_for=KEPT_FOR, rounds: int = 30, calls: int = 200) -> list[dict]:
+    """Microseconds a call of the default ``Solver`` (full kinematics) at each size, each result dropped or kept
+    for ``kept_for`` calls: the median over ``rounds`` rounds taking turns, ``calls`` calls a round (timed by
+    their mean).  A solver for each way (each keeps its own blocks)."""
+    from symlink.mechanism.catalog import fourbar
+    from symlink.numeric.solver import Solver
+    found = []
+    for n in sizes:
+        values = dict(theta=numpy.linspace(0.0, 2 * math.pi, n), **dict(zip("abcd", LENGTHS)), branch=1.0,
+                      thetadot=SPEED, thetaddot=ACCEL)
+        solvers = {k: Solver(fourbar(), OUTPUTS) for k in kept_for}
+        held = {k: collections.deque(maxlen=max(k, 1)) for k in kept_for}
+        times: dict[int, list[float]] = {k: [] for k in kept_for}
+        for k, solver in solvers.items():
+            solver.wait_for_backend()
+            for _ in range(2 * calls):  # the blocks made, the deques full
+                held[k].append(solver(**values)) if k else solver(**values)
+        gc.collect()
+        gc.disable()
+        try:
+            for _ in range(rounds):
+                for k, solver in solvers.items():
+                    keep = held[k].append
+                    start = time.thread_time()
+                    if k:
+                        for _ in range(calls):
+                            keep(solver(**values))
+                    else:
+                        for _ in range(calls):
+                            solver(**values)
+                    times[k].append((time.thread_time() - start) / calls)
+        finally:
+            gc.enable()
+        found.append({"n": n, **{k: 1e6 * statistics.median(v) for k, v in times.items()}})
+    return found
+
+
+def kept_report(rows: list[dict]) -> str:
+    kept_for = [k for k in rows[0] if k != "n"]
+    lines = ["small calls, full kinematics: us a call (median of interleaved rounds), kept / dropped",
+             f"{'N':>6} " + " ".join(f"{'dropped' if k == 0 else f'kept {k}':>9}" for k in kept_for)
+             + " " + " ".join(f"{f'kept {k}/dropped':>15}" for k in kept_for if k)]
+    for row in rows:
+        lines.append(f"{row['n']:>6} " + " ".join(f"{row[k]:>9.2f}" for k in kept_for) + " "
+                     + " ".join(f"{row[k] / row[0]:>15.2f}" for k in kept_for if k))
+    return "\n".join(lines)
+
+
+def machine() -> str:
+    """The CPU (its model name and whether it has AVX2 and AVX-512) and the load average now."""
+    model, flags = "unknown CPU", set()
+    try:
+        with open("/proc/cpuinfo") as info:
+            for line in info:
+                key, _, value = line.partition(":")
+                if key.strip() == "model name" and model == "unknown CPU":
+                    model = value.strip()
+                elif key.strip() == "flags" and not flags:
+                    flags = set(value.split())
+    except OSError:
+        pass
+    vectors = "AVX-512" if "avx512f" in flags else "AVX2" if "avx2" in flags else "no AVX2"
+    return f"{model}, {os.cpu_count()} logical cores, {vectors}; load average {' '.join(f'{v:.2f}' for v in os.getloadavg())}"
+
+
 def report(rows: list[dict]) -> str:
     present = [m for m in METHODS if any(m in row for row in rows)]
     lines = []
     for kind in KINDS:
         lines.append(f"{kind}: ns a value (minor page faults a call)")
         lines.append(f"{'N':>8} " + " ".join(f"{m:>17}" for m in present)
-                     + f" {'call out=/loop':>14} {'call/loop':>9} {'kept/loop':>9} {'call/limit':>10} {'loop/limit':>10}")
+                     + f" {'call out=/loop':>14} {'call/loop':>9} {'kept/loop':>9} {'out=/limit':>10} "
+                       f"{'call/limit':>10} {'loop/limit':>10}")
         for row in (r for r in rows if r["kind"] == kind):
             cells = " ".join(f"{row[m]['ns']:>8.2f} ({row[m]['faults']:>6.0f})" if m in row else f"{'':>17}"
                              for m in present)
             loop, limit = row["loop"]["ns"], row["limit"]["ns"]
             lines.append(f"{row['n']:>8.0e} {cells} {row['call out=']['ns'] / loop:>14.2f} "
                          f"{row['call']['ns'] / loop:>9.2f} {row['call kept']['ns'] / loop:>9.2f} "
+                         f"{row['call out=']['ns'] / limit:>10.2f} "
                          f"{row['call']['ns'] / limit:>10.2f} {loop / limit:>10.2f}")
     large = [r for r in rows if r["n"] >= 10**5]
     if large:
@@ -182,7 +263,10 @@ def main() -> None:
     parser.add_argument("--budget", type=float, default=2.0, help="seconds of timing for each kind and N")
     options = parser.parse_args()
     sizes = [10**k for k in range(3, int(round(math.log10(options.largest))) + 1)]
+    print(machine())
     print(report(measure(sizes, options.budget)))
+    print(kept_report(kept_calls()))
+    print(f"after: load average {' '.join(f'{v:.2f}' for v in os.getloadavg())}")
 
 
 if __name__ == "__main__":

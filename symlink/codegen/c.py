@@ -620,7 +620,11 @@ def c_packed(function: CFunction, lengths: Sequence[str] = (), signs: Sequence[s
     that, without evaluating; else it runs the loop and returns 0.  That
     check alone is ``<name>_check(call)`` (the same return, nothing
     evaluated, the outputs not read): a caller writing into outputs of its
-    own checks through it, then calls the loop function.  A caller
+    own checks through it, then calls the loop function.  ``<name>_into(call, outputs)`` checks
+    and evaluates chunk by chunk (:data:`FUSED_CHUNK` values), into ``outputs`` (a pointer for each
+    output, then ``assembled``; ``call``'s blocks are not read): each chunk of a large call's arguments
+    is read from memory once, checked and evaluated while it is in the cache (where it refuses an
+    argument, the chunks before are written).  A caller
     from another language (symlink's compiled backend through ctypes) then
     passes one pointer a call, to a struct it fills once for many calls, and
     checks nothing itself.
@@ -631,6 +635,7 @@ def c_packed(function: CFunction, lengths: Sequence[str] = (), signs: Sequence[s
     ...         print(line)
     int rocker_check(const struct symlink_packed_call *call)
     int rocker_packed(const struct symlink_packed_call *call)
+    int rocker_into(const struct symlink_packed_call *call, void *const *outputs)
     """
     checker = f"symlink_{function.name}_valid"
     tests = []
@@ -685,7 +690,41 @@ def c_packed(function: CFunction, lengths: Sequence[str] = (), signs: Sequence[s
             f"    const size_t n = call->n;\n"
             + (f"    void *const *pointers = call->pointers;\n    const ptrdiff_t *steps = call->steps;\n"
                if function.arguments else "")
-            + f"    {function.name}({call});\n    return 0;\n}}\n")
+            + f"    {function.name}({call});\n    return 0;\n}}\n\n"
+            + _fused(function, kinds, checker))
+
+
+#: Values a fused call (``<name>_into``, :func:`c_packed`) checks, then evaluates, at a time: their
+#: arguments (six per-value arrays of the four-bar: 192 KB) stay in the cache between the two.
+FUSED_CHUNK = 2048
+
+
+def _fused(function: CFunction, kinds: Sequence[int], checker: str) -> str:
+    """``<name>_into(call, outputs)``: the check and the loop of :func:`c_packed`, chunk by chunk, into
+    ``outputs`` (one pointer an output, then assembled), so that each chunk of the arguments is read from
+    memory once; the first argument refused stops it (``k + 1``; the chunks before are written)."""
+    count = len(function.arguments)
+    tests = "".join(
+        f"        if (!{checker}((const double *)pointers[{k}] + (ptrdiff_t)start * steps[{k}], steps[{k}], m, "
+        f"{kind})) {{\n            return {k + 1};\n        }}\n" for k, kind in enumerate(kinds))
+    if function.pieces and kinds:  # many arguments: one loop over them (short to compile)
+        tests = (f"        static const int kinds[{len(kinds)}] = {{{', '.join(map(str, kinds))}}};\n"
+                 f"        for (size_t k = 0; k < {len(kinds)}; ++k) {{\n"
+                 f"            if (!{checker}((const double *)pointers[k] + (ptrdiff_t)start * steps[k], steps[k], m, "
+                 f"kinds[k])) {{\n                return (int)k + 1;\n            }}\n        }}\n")
+    arguments = [f"(const double *)pointers[{k}] + (ptrdiff_t)start * steps[{k}], steps[{k}]" for k in range(count)]
+    outputs = [f"({'unsigned char' if flag else 'double'} *)outputs[{k}] + start"
+               for k, flag in enumerate(list(function.flags) + [True])]
+    call = ",\n            ".join(["m"] + arguments + outputs)
+    return (f"int {function.name}_into(const struct symlink_packed_call *call, void *const *outputs)\n{{\n"
+            f"    const size_t n = call->n;\n"
+            + (f"    void *const *pointers = call->pointers;\n    const ptrdiff_t *steps = call->steps;\n"
+               if count else "")
+            + f"    for (size_t start = 0; start < n; start += {FUSED_CHUNK}) {{\n"
+            f"        const size_t m = n - start < {FUSED_CHUNK} ? n - start : {FUSED_CHUNK};\n"
+            + f"        {function.name}({call});\n"
+            + tests
+            + "    }\n    return 0;\n}\n")
 
 
 _HEADER = """{title}

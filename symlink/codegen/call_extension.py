@@ -16,22 +16,30 @@ for every compiled function alike: each function describes itself once in a
   of 1 to ``largest`` values (all of one length) as an array, read through
   the buffer protocol (no NumPy headers are needed); anything else refuses;
 * finds a block of outputs no caller holds any more among the kept ones (the
-  sum of their reference counts back at its value when made), else asks the
-  plan's ``make(length)`` for a new one, and calls the loop's
-  ``<name>_packed`` wrapper once, which checks the values as the NumPy module
-  does;
+  sum of their reference counts back at its value when made), else makes a
+  new one in C (one NumPy block and a view of it a row, through NumPy's C
+  API: no Python step), and calls the loop's ``<name>_packed`` wrapper once,
+  which checks the values as the NumPy module does;
 * returns a new dict of the output rows (``call``), or a
   :class:`symlink.numeric.results.Results` made without ``__init__`` (``results``),
   or ``None`` where the call is refused: the caller's general path then
   answers, with its errors and broadcasting.
 
-The plan's ``busy`` byte makes one call at a time use the shared slots: a
-call while another thread's small call is inside (only possible while
-``make`` runs Python code) is refused, and answered by the general path.
+``large`` takes a call of any length (arrays may be strided, or of one value):
+its own slots, the caller's ``out`` arrays checked through the buffer protocol
+(type, dtype, shape, contiguity, writability, overlaps: O(outputs)) or a kept
+block of larger calls (a new one from the plan's ``make_large``, which checks
+the memory first), and ``<name>_into`` (checks and evaluates chunk by chunk)
+called with the GIL released; a ``Results``, or ``None`` as above.
+
+The plan's ``busy`` byte makes one small call at a time use the shared slots: a
+call while another thread's small call is inside (only possible while a new
+block's allocation runs the garbage collector) is refused, and answered by ``large``
+or the general path.
 
 It is compiled like the solver libraries (:func:`symlink.numeric.compiled_library.compile_shared`) with the
-headers of the running Python; the source names the Python it is for, so that the cached library of
-one Python is never loaded by another.
+headers of the running Python and NumPy; the source names the Python and the NumPy it is for, so that
+the cached library of one is never loaded by another.
 
 >>> "PyInit_symlink_call" in extension_source()
 True
@@ -41,7 +49,7 @@ from __future__ import annotations
 import sys
 import sysconfig
 
-__all__ = ["MODULE", "PLAN_FIELDS", "ENTRY_FIELDS", "extension_source", "python_include"]
+__all__ = ["MODULE", "PLAN_FIELDS", "ENTRY_FIELDS", "extension_source", "python_include", "numpy_include"]
 
 #: The extension module's name (its init function is ``PyInit_<MODULE>``).
 MODULE = "symlink_call"
@@ -49,14 +57,20 @@ MODULE = "symlink_call"
 #: The fields of a plan tuple, in order: the argument names (interned str), their defaults (a float or
 #: ``None``), the addresses of the numbers buffer, the pointer slots, the step slots and the
 #: ``<name>_packed`` function, the kept output blocks (a list of entries), ``make(length)`` (a new entry,
-#: kept), the most values a small call takes, ``numpy.ndarray``, ``numpy.float64``, the busy byte (a bytearray).
+#: kept), the most values a small call takes, ``numpy.ndarray``, ``numpy.float64``, the busy byte (a bytearray);
+#: then, for :func:`large` calls: the result names in order (interned str, ``assembled`` last), their layout
+#: (bytes, 1 for a true/false result, 0 for a number), the address of ``<name>_into`` (0: none), the kept
+#: output blocks of large calls and ``make_large(length)`` (a new entry there, kept); and how many blocks of
+#: small calls are kept (a new one is made in C, with NumPy's C API: a block and its rows, no Python step).
 PLAN_FIELDS = ("names", "defaults", "numbers", "pointers", "steps", "packed", "kept", "make", "largest",
-               "array_type", "float64_type", "busy")
+               "array_type", "float64_type", "busy", "results", "layout", "into", "kept_large", "make_large",
+               "keep")
 
 #: The fields of a kept output block's entry: its length, the objects whose references say whether a
-#: caller holds it, the sum of their reference counts when free, the address of its packed-call struct,
-#: the dict of its rows by name, and the object owning its memory.
-ENTRY_FIELDS = ("length", "objects", "references", "call", "results", "owner")
+#: caller holds it (the block and its rows), the sum of their reference counts when free, the block (a
+#: writable buffer: the number rows, ``length`` doubles each, then the true/false rows, ``length`` bytes
+#: each, in the order of the plan's layout) and the dict of its rows by name.
+ENTRY_FIELDS = ("length", "objects", "references", "block", "results")
 
 
 def python_include() -> str | None:
@@ -73,10 +87,18 @@ def _enum(prefix: str, fields: tuple[str, ...]) -> str:
         + f", {prefix}_SIZE = {len(fields)} }};"
 
 
+def numpy_include() -> str:
+    """The folder holding NumPy's C headers (``numpy/arrayobject.h``), of the NumPy imported."""
+    import numpy
+    return numpy.get_include()
+
+
 def extension_source() -> str:
-    """The C source of the ``symlink_call`` extension for the running Python."""
+    """The C source of the ``symlink_call`` extension for the running Python and NumPy."""
+    import numpy
     abi = sysconfig.get_config_var("SOABI") or ""
-    return _SOURCE.replace("@VERSION@", sys.version.replace("*/", "").replace("\n", " ")) \
+    return _SOURCE.replace("@VERSION@", sys.version.replace("*/", "").replace("\n", " ")
+                           + f", NumPy {numpy.__version__}") \
         .replace("@ABI@", abi).replace("@PLAN@", _enum("PLAN", PLAN_FIELDS)) \
         .replace("@ENTRY@", _enum("ENTRY", ENTRY_FIELDS)).replace("@MODULE@", MODULE)
 
@@ -84,12 +106,27 @@ def extension_source() -> str:
 _SOURCE = r"""/* symlink's small-call extension, for Python @VERSION@ (@ABI@). Generated by symlink.codegen.call_extension. */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
+#define NPY_NO_DEPRECATED_API NPY_1_7_API_VERSION
+#include <numpy/arrayobject.h>
+#include <stddef.h>
 #include <string.h>
 
 @PLAN@
 @ENTRY@
 
-typedef int (*symlink_packed_function)(const void *call);
+/* struct symlink_packed_call (symlink.codegen.c.PACKED_CALL): the one argument of <name>_packed and <name>_into. */
+struct symlink_call_struct {
+    size_t n;
+    void *const *pointers;
+    const ptrdiff_t *steps;
+    double *numbers;
+    unsigned char *flags;
+};
+typedef int (*symlink_packed_function)(const struct symlink_call_struct *call);
+typedef int (*symlink_into_function)(const struct symlink_call_struct *call, void *const *outputs);
+
+/* Calls of more values than this run with the GIL released (other threads work meanwhile). */
+#define SYMLINK_RELEASE_GIL 4096
 
 static PyObject *empty_tuple, *name_units, *name_inputs, *name_input_units;
 
@@ -101,7 +138,11 @@ static int plan_is_one(PyObject *plan, PyObject *values)
             || PyTuple_GET_SIZE(PyTuple_GET_ITEM(plan, PLAN_NAMES)) != PyTuple_GET_SIZE(PyTuple_GET_ITEM(plan, PLAN_DEFAULTS))
             || !PyList_CheckExact(PyTuple_GET_ITEM(plan, PLAN_KEPT))
             || !PyByteArray_CheckExact(PyTuple_GET_ITEM(plan, PLAN_BUSY))
-            || PyByteArray_GET_SIZE(PyTuple_GET_ITEM(plan, PLAN_BUSY)) < 1) {
+            || PyByteArray_GET_SIZE(PyTuple_GET_ITEM(plan, PLAN_BUSY)) < 1
+            || !PyTuple_CheckExact(PyTuple_GET_ITEM(plan, PLAN_RESULTS))
+            || !PyBytes_CheckExact(PyTuple_GET_ITEM(plan, PLAN_LAYOUT))
+            || PyBytes_GET_SIZE(PyTuple_GET_ITEM(plan, PLAN_LAYOUT)) != PyTuple_GET_SIZE(PyTuple_GET_ITEM(plan, PLAN_RESULTS))
+            || !PyList_CheckExact(PyTuple_GET_ITEM(plan, PLAN_KEPT_LARGE))) {
         PyErr_SetString(PyExc_TypeError, "symlink_call: a plan tuple and a dict of values are expected");
         return 0;
     }
@@ -112,11 +153,118 @@ static int entry_is_one(PyObject *entry)
 {
     if (!PyTuple_CheckExact(entry) || PyTuple_GET_SIZE(entry) != ENTRY_SIZE
             || !PyTuple_CheckExact(PyTuple_GET_ITEM(entry, ENTRY_OBJECTS))
+            || PyTuple_GET_SIZE(PyTuple_GET_ITEM(entry, ENTRY_OBJECTS)) < 1
+            || !PyLong_CheckExact(PyTuple_GET_ITEM(entry, ENTRY_LENGTH))
             || !PyDict_CheckExact(PyTuple_GET_ITEM(entry, ENTRY_RESULTS))) {
         PyErr_SetString(PyExc_TypeError, "symlink_call: an output entry is not one");
         return 0;
     }
     return 1;
+}
+
+/* The rows of an entry's block of `length` values (the number rows, then the true/false rows, as `layout`
+ * orders them): 0, or -1 with an exception where the block is not a writable buffer of their size. */
+static int entry_rows(PyObject *entry, PyObject *layout, Py_ssize_t length, double **numbers, unsigned char **flags)
+{
+    const char *kinds = PyBytes_AS_STRING(layout);
+    Py_ssize_t all = PyBytes_GET_SIZE(layout), rows = 0;
+    for (Py_ssize_t k = 0; k < all; ++k) {
+        rows += kinds[k] == 0;
+    }
+    Py_buffer view;
+    if (PyObject_GetBuffer(PyTuple_GET_ITEM(entry, ENTRY_BLOCK), &view, PyBUF_WRITABLE | PyBUF_C_CONTIGUOUS) != 0) {
+        return -1;
+    }
+    int good = view.len >= 8 * rows * length + (all - rows) * length;
+    *numbers = (double *)view.buf;
+    *flags = (unsigned char *)view.buf + 8 * rows * length;
+    PyBuffer_Release(&view);  /* the block stays alive: the entry holds it */
+    if (!good) {
+        PyErr_SetString(PyExc_TypeError, "symlink_call: an output block is smaller than its rows");
+        return -1;
+    }
+    return 0;
+}
+
+/* A new entry (ENTRY_FIELDS) of `length` values, appended to `kept` (its last `keep` kept): one block (NumPy's
+ * uint8 array, the number rows then the true/false rows as the plan's layout orders them) and its rows, views
+ * whose base is the block (so is the base of any view of them), in a dict by result name. No Python code. */
+static PyObject *new_entry(PyObject *plan, PyObject *kept, Py_ssize_t keep, Py_ssize_t length)
+{
+    PyObject *results = PyTuple_GET_ITEM(plan, PLAN_RESULTS), *layout = PyTuple_GET_ITEM(plan, PLAN_LAYOUT);
+    const char *kinds = PyBytes_AS_STRING(layout);
+    Py_ssize_t all = PyBytes_GET_SIZE(layout), floats = 0, number_row = 0, flag_row = 0;
+    for (Py_ssize_t k = 0; k < all; ++k) {
+        floats += kinds[k] == 0;
+    }
+    npy_intp size = (npy_intp)((8 * floats + (all - floats)) * length), n = (npy_intp)length;
+    PyObject *block = PyArray_SimpleNew(1, &size, NPY_UINT8), *objects = NULL, *rows = NULL, *entry = NULL;
+    PyObject *count = NULL, *references = NULL;
+    if (block == NULL) {
+        return NULL;
+    }
+    char *data = PyArray_BYTES((PyArrayObject *)block);
+    objects = PyTuple_New(all + 1);
+    rows = PyDict_New();
+    if (objects == NULL || rows == NULL) {
+        goto fail;
+    }
+    Py_INCREF(block);
+    PyTuple_SET_ITEM(objects, 0, block);
+    for (Py_ssize_t k = 0; k < all; ++k) {
+        char *at = kinds[k] ? data + 8 * floats * length + length * flag_row++ : data + 8 * length * number_row++;
+        PyObject *row = PyArray_NewFromDescr(&PyArray_Type, PyArray_DescrFromType(kinds[k] ? NPY_BOOL : NPY_DOUBLE),
+                                             1, &n, NULL, at, NPY_ARRAY_CARRAY, NULL);
+        if (row == NULL) {
+            goto fail;
+        }
+        Py_INCREF(block);
+        if (PyArray_SetBaseObject((PyArrayObject *)row, block) < 0) {  /* takes the reference, even failing */
+            Py_DECREF(row);
+            goto fail;
+        }
+        PyTuple_SET_ITEM(objects, k + 1, row);
+        if (PyDict_SetItem(rows, PyTuple_GET_ITEM(results, k), row) < 0) {
+            goto fail;
+        }
+    }
+    /* The references a free block keeps: the tuple's, the dict's, the rows' bases, and the entry's (one more,
+     * to the block; `block` here is that one). */
+    Py_ssize_t sum = 0;
+    for (Py_ssize_t k = 0; k <= all; ++k) {
+        sum += Py_REFCNT(PyTuple_GET_ITEM(objects, k));
+    }
+    count = PyLong_FromSsize_t(length);
+    references = PyLong_FromSsize_t(sum);
+    if (count == NULL || references == NULL) {
+        goto fail;
+    }
+    entry = PyTuple_New(ENTRY_SIZE);
+    if (entry == NULL) {
+        goto fail;
+    }
+    PyTuple_SET_ITEM(entry, ENTRY_LENGTH, count);
+    PyTuple_SET_ITEM(entry, ENTRY_OBJECTS, objects);
+    PyTuple_SET_ITEM(entry, ENTRY_REFERENCES, references);
+    PyTuple_SET_ITEM(entry, ENTRY_BLOCK, block);
+    PyTuple_SET_ITEM(entry, ENTRY_RESULTS, rows);
+    if (PyList_Append(kept, entry) < 0) {
+        Py_DECREF(entry);
+        return NULL;
+    }
+    Py_ssize_t held = PyList_GET_SIZE(kept);
+    if (held > keep && PyList_SetSlice(kept, 0, held - keep, NULL) < 0) {
+        Py_DECREF(entry);
+        return NULL;
+    }
+    return entry;
+fail:
+    Py_XDECREF(count);
+    Py_XDECREF(references);
+    Py_XDECREF(objects);
+    Py_XDECREF(rows);
+    Py_DECREF(block);
+    return NULL;
 }
 
 /* A free kept entry of `length` values (moved last in the list), borrowed; NULL if none. */
@@ -265,30 +413,29 @@ walk:
     } else {
         entry = free_entry(PyTuple_GET_ITEM(plan, PLAN_KEPT), length);
         if (entry == NULL) {
-            PyObject *size = PyLong_FromSsize_t(length);
-            if (size == NULL) {
+            Py_ssize_t keep = PyLong_AsSsize_t(PyTuple_GET_ITEM(plan, PLAN_KEEP));
+            if (keep < 1) {
+                if (!PyErr_Occurred()) {
+                    PyErr_SetString(PyExc_TypeError, "symlink_call: a plan keeps no block");
+                }
                 goto fail;
             }
-            made = PyObject_CallOneArg(PyTuple_GET_ITEM(plan, PLAN_MAKE), size);
-            Py_DECREF(size);
+            made = new_entry(plan, PyTuple_GET_ITEM(plan, PLAN_KEPT), keep, length);
             if (made == NULL) {
                 goto fail;
             }
             if (!entry_is_one(made)) {
                 goto fail;
             }
-            /* make() ran Python code: whatever it did, the pointers are taken again, from live arrays. */
+            /* (The allocation may have run the garbage collector, so Python code: the pointers are taken again.) */
             goto walk;
         }
     }
-    void *call = PyLong_AsVoidPtr(PyTuple_GET_ITEM(entry, ENTRY_CALL));
-    if (call == NULL) {
-        if (!PyErr_Occurred()) {
-            PyErr_SetString(PyExc_TypeError, "symlink_call: an output entry has no call");
-        }
+    struct symlink_call_struct call = {(size_t)length, (void *const *)pointers, (const ptrdiff_t *)steps, NULL, NULL};
+    if (entry_rows(entry, PyTuple_GET_ITEM(plan, PLAN_LAYOUT), length, &call.numbers, &call.flags) < 0) {
         goto fail;
     }
-    int status = packed(call);
+    int status = packed(&call);
     PyObject *rows = PyTuple_GET_ITEM(entry, ENTRY_RESULTS);
     Py_INCREF(rows);
     Py_XDECREF(made);
@@ -323,6 +470,264 @@ static PyObject *symlink_call_call(PyObject *module, PyObject *const *args, Py_s
     return copy;
 }
 
+/* A new `type` (a dict subtype, made without __init__) holding `rows`, with the record's attributes: units,
+ * inputs (a copy of `values`) and input units; NULL with an exception where memory fails. */
+static PyObject *record(PyTypeObject *type, PyObject *rows, PyObject *values, PyObject *units, PyObject *input_units)
+{
+    PyObject *made = type->tp_new(type, empty_tuple, NULL);  /* dict's own __new__: no __init__, no checks */
+    PyObject *units_copy = NULL, *inputs = NULL, *input_units_copy = NULL;
+    if (made == NULL || PyDict_Update(made, rows) < 0) {
+        goto fail;
+    }
+    units_copy = PyDict_Copy(units);
+    inputs = PyDict_Copy(values);
+    input_units_copy = PyDict_Copy(input_units);
+    if (units_copy == NULL || inputs == NULL || input_units_copy == NULL
+            || PyObject_SetAttr(made, name_units, units_copy) < 0 || PyObject_SetAttr(made, name_inputs, inputs) < 0
+            || PyObject_SetAttr(made, name_input_units, input_units_copy) < 0) {
+        goto fail;
+    }
+    Py_DECREF(units_copy);
+    Py_DECREF(inputs);
+    Py_DECREF(input_units_copy);
+    return made;
+fail:
+    Py_XDECREF(made);
+    Py_XDECREF(units_copy);
+    Py_XDECREF(inputs);
+    Py_XDECREF(input_units_copy);
+    return NULL;
+}
+
+/* Whether [low, high) meets [other_low, other_high). */
+static int overlap(char *low, char *high, char *other_low, char *other_high)
+{
+    return low < other_high && other_low < high;
+}
+
+/* large(plan, values, out, Results, units, input_units): a call of any length through <name>_into, into the
+ * caller's arrays `out` (a dict by result name) or into a kept block nobody holds (else a new one from
+ * make_large); a Results, or None where anything does not qualify or an argument is refused (the general
+ * path then answers, with its errors). The slots are this call's own; the GIL is released during a large
+ * loop, the arrays' buffers and the block held meanwhile. */
+static PyObject *symlink_call_large(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
+{
+    if (nargs != 6 || !PyType_Check(args[3]) || !PyType_IsSubtype((PyTypeObject *)args[3], &PyDict_Type)
+            || !PyDict_Check(args[4]) || !PyDict_Check(args[5])) {
+        PyErr_SetString(PyExc_TypeError, "large(plan, values, out, dict subtype, units, input units) expected");
+        return NULL;
+    }
+    PyObject *plan = args[0], *values = args[1], *out = args[2];
+    if (!plan_is_one(plan, values)) {
+        return NULL;
+    }
+    if (out != Py_None && !PyDict_CheckExact(out)) {
+        Py_RETURN_NONE;
+    }
+    PyObject *names = PyTuple_GET_ITEM(plan, PLAN_NAMES), *defaults = PyTuple_GET_ITEM(plan, PLAN_DEFAULTS);
+    PyObject *results = PyTuple_GET_ITEM(plan, PLAN_RESULTS), *layout = PyTuple_GET_ITEM(plan, PLAN_LAYOUT);
+    PyTypeObject *array_type = (PyTypeObject *)PyTuple_GET_ITEM(plan, PLAN_ARRAY_TYPE);
+    PyTypeObject *float64_type = (PyTypeObject *)PyTuple_GET_ITEM(plan, PLAN_FLOAT64_TYPE);
+    symlink_into_function into = (symlink_into_function)PyLong_AsVoidPtr(PyTuple_GET_ITEM(plan, PLAN_INTO));
+    if (PyErr_Occurred()) {
+        return NULL;
+    }
+    if (into == NULL) {
+        Py_RETURN_NONE;  /* a library without <name>_into */
+    }
+    const char *kinds = PyBytes_AS_STRING(layout);
+    Py_ssize_t count = PyTuple_GET_SIZE(names), outputs_count = PyTuple_GET_SIZE(results);
+    Py_ssize_t slots = count + outputs_count, held = 0, found = 0, length = 0;
+    /* One allocation: the numbers, pointers, steps, argument extents, output pointers, the buffers held. */
+    char *memory = PyMem_Calloc(1, (size_t)(count * (8 + sizeof(void *) + sizeof(ptrdiff_t) + 2 * sizeof(char *))
+                                              + outputs_count * sizeof(void *) + slots * sizeof(Py_buffer)) + 1);
+    if (memory == NULL) {
+        return PyErr_NoMemory();
+    }
+    double *numbers = (double *)memory;
+    void **pointers = (void **)(numbers + count);
+    ptrdiff_t *steps = (ptrdiff_t *)(pointers + count);
+    char **extents = (char **)(steps + count);  /* each argument array's first byte and the one past its last */
+    void **outputs = (void **)(extents + 2 * count);
+    Py_buffer *views = (Py_buffer *)(outputs + outputs_count);
+    PyObject *result = NULL, *entry = NULL, *block = NULL, *key, *item;
+    for (Py_ssize_t position = 0; PyDict_Next(values, &position, &key, &item);) {
+        if (!PyUnicode_CheckExact(key)) {
+            goto refuse;
+        }
+    }
+    for (Py_ssize_t i = 0; i < count; ++i) {
+        PyObject *value = PyDict_GetItemWithError(values, PyTuple_GET_ITEM(names, i));  /* borrowed */
+        if (value == NULL) {
+            if (PyErr_Occurred()) {
+                PyErr_Clear();
+                goto refuse;
+            }
+            value = PyTuple_GET_ITEM(defaults, i);
+            if (value == Py_None) {
+                goto refuse;
+            }
+        } else {
+            ++found;
+        }
+        PyTypeObject *kind = Py_TYPE(value);
+        if (kind == &PyFloat_Type || kind == float64_type) {
+            numbers[i] = PyFloat_AS_DOUBLE(value);
+        } else if (kind == &PyLong_Type) {
+            numbers[i] = PyLong_AsDouble(value);
+            if (numbers[i] == -1.0 && PyErr_Occurred()) {
+                PyErr_Clear();
+                goto refuse;
+            }
+        } else if (kind == array_type) {
+            Py_buffer *view = &views[held];
+            if (PyObject_GetBuffer(value, view, PyBUF_STRIDES | PyBUF_FORMAT) != 0) {
+                PyErr_Clear();
+                goto refuse;
+            }
+            ++held;  /* released at the end: the array cannot be resized or freed while the loop reads it */
+            Py_ssize_t size = view->ndim == 1 ? view->shape[0] : 0;
+            if (view->ndim != 1 || view->itemsize != 8 || view->format == NULL || strcmp(view->format, "d") != 0
+                    || size < 1 || view->strides[0] % 8 != 0 || (size != 1 && length != 0 && size != length)) {
+                goto refuse;
+            }
+            if (size != 1) {
+                length = size;
+            }
+            char *first = (char *)view->buf, *last = first + view->strides[0] * (size - 1);
+            pointers[i] = view->buf;
+            steps[i] = size == 1 ? 0 : view->strides[0] / 8;
+            extents[2 * i] = first < last ? first : last;
+            extents[2 * i + 1] = (first < last ? last : first) + 8;
+            continue;
+        } else {
+            goto refuse;
+        }
+        pointers[i] = &numbers[i];
+        steps[i] = 0;
+    }
+    if (found != PyDict_GET_SIZE(values) || length == 0) {
+        goto refuse;  /* an unknown argument, or no array longer than one value: the general path */
+    }
+    if (out != Py_None) {
+        if (PyDict_GET_SIZE(out) != outputs_count) {
+            goto refuse;
+        }
+        for (Py_ssize_t k = 0; k < outputs_count; ++k) {
+            PyObject *array = PyDict_GetItemWithError(out, PyTuple_GET_ITEM(results, k));
+            if (array == NULL || Py_TYPE(array) != array_type) {
+                PyErr_Clear();
+                goto refuse;
+            }
+            Py_buffer *view = &views[held];
+            if (PyObject_GetBuffer(array, view, PyBUF_WRITABLE | PyBUF_C_CONTIGUOUS | PyBUF_FORMAT) != 0) {
+                PyErr_Clear();
+                goto refuse;
+            }
+            ++held;
+            const char *format = kinds[k] ? "?" : "d";
+            if (view->ndim != 1 || view->shape[0] != length || view->itemsize != (kinds[k] ? 1 : 8)
+                    || view->format == NULL || strcmp(view->format, format) != 0) {
+                goto refuse;
+            }
+            char *low = (char *)view->buf, *high = low + view->len;
+            for (Py_ssize_t j = 0; j < k; ++j) {
+                if (overlap(low, high, (char *)outputs[j], (char *)outputs[j] + (kinds[j] ? 1 : 8) * length)) {
+                    goto refuse;
+                }
+            }
+            for (Py_ssize_t i = 0; i < count; ++i) {
+                if (pointers[i] != &numbers[i] && overlap(low, high, extents[2 * i], extents[2 * i + 1])) {
+                    goto refuse;
+                }
+            }
+            outputs[k] = view->buf;
+        }
+    } else {
+        entry = free_entry(PyTuple_GET_ITEM(plan, PLAN_KEPT_LARGE), length);
+        if (entry != NULL) {
+            Py_INCREF(entry);
+        } else {
+            if (PyErr_Occurred()) {
+                goto fail;
+            }
+            PyObject *size = PyLong_FromSsize_t(length);
+            if (size == NULL) {
+                goto fail;
+            }
+            entry = PyObject_CallOneArg(PyTuple_GET_ITEM(plan, PLAN_MAKE_LARGE), size);  /* a memory check first */
+            Py_DECREF(size);
+            if (entry == NULL || !entry_is_one(entry)) {
+                goto fail;
+            }
+            if (PyLong_AsSsize_t(PyTuple_GET_ITEM(entry, ENTRY_LENGTH)) != length) {
+                PyErr_Clear();
+                goto refuse;
+            }
+        }
+        /* Held (one more reference to the block) until the Results holds its rows: never free meanwhile. */
+        block = PyTuple_GET_ITEM(PyTuple_GET_ITEM(entry, ENTRY_OBJECTS), 0);
+        Py_INCREF(block);
+        double *number_rows;
+        unsigned char *flag_rows;
+        if (entry_rows(entry, layout, length, &number_rows, &flag_rows) < 0) {
+            goto fail;
+        }
+        Py_ssize_t number_row = 0, flag_row = 0;
+        for (Py_ssize_t k = 0; k < outputs_count; ++k) {
+            outputs[k] = kinds[k] ? (void *)(flag_rows + length * flag_row++) : (void *)(number_rows + length * number_row++);
+        }
+    }
+    struct symlink_call_struct call = {(size_t)length, (void *const *)pointers, steps, NULL, NULL};
+    int status;
+    if (length > SYMLINK_RELEASE_GIL) {
+        Py_BEGIN_ALLOW_THREADS
+        status = into(&call, (void *const *)outputs);
+        Py_END_ALLOW_THREADS
+    } else {
+        status = into(&call, (void *const *)outputs);
+    }
+    if (status != 0) {
+        goto refuse;  /* a value the NumPy module would refuse: the general path raises its error */
+    }
+    if (out != Py_None) {
+        PyObject *rows = PyDict_New();
+        if (rows == NULL) {
+            goto fail;
+        }
+        for (Py_ssize_t k = 0; k < outputs_count; ++k) {  /* in the order of the results, as the general path */
+            PyObject *name = PyTuple_GET_ITEM(results, k);
+            PyObject *array = PyDict_GetItemWithError(out, name);
+            if (array == NULL || PyDict_SetItem(rows, name, array) < 0) {
+                if (!PyErr_Occurred()) {
+                    PyErr_SetString(PyExc_RuntimeError, "symlink_call: out changed during the call");
+                }
+                Py_DECREF(rows);
+                goto fail;
+            }
+        }
+        result = record((PyTypeObject *)args[3], rows, values, args[4], args[5]);
+        Py_DECREF(rows);
+    } else {
+        result = record((PyTypeObject *)args[3], PyTuple_GET_ITEM(entry, ENTRY_RESULTS), values, args[4], args[5]);
+    }
+    goto done;
+refuse:
+    result = Py_None;
+    Py_INCREF(result);
+    goto done;
+fail:
+    result = NULL;
+done:
+    for (Py_ssize_t k = 0; k < held; ++k) {
+        PyBuffer_Release(&views[k]);
+    }
+    Py_XDECREF(block);
+    Py_XDECREF(entry);
+    PyMem_Free(memory);
+    return result;
+}
+
 static PyObject *symlink_call_results(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
 {
     if (nargs != 5 || !PyType_Check(args[2]) || !PyType_IsSubtype((PyTypeObject *)args[2], &PyDict_Type)
@@ -334,32 +739,9 @@ static PyObject *symlink_call_results(PyObject *module, PyObject *const *args, P
     if (rows == NULL || rows == Py_None) {
         return rows;
     }
-    PyTypeObject *type = (PyTypeObject *)args[2];
-    PyObject *made = type->tp_new(type, empty_tuple, NULL);  /* dict's own __new__: no __init__, no checks */
-    PyObject *units = NULL, *inputs = NULL, *input_units = NULL;
-    if (made == NULL || PyDict_Update(made, rows) < 0) {
-        goto fail;
-    }
-    units = PyDict_Copy(args[3]);
-    inputs = PyDict_Copy(args[1]);
-    input_units = PyDict_Copy(args[4]);
-    if (units == NULL || inputs == NULL || input_units == NULL
-            || PyObject_SetAttr(made, name_units, units) < 0 || PyObject_SetAttr(made, name_inputs, inputs) < 0
-            || PyObject_SetAttr(made, name_input_units, input_units) < 0) {
-        goto fail;
-    }
+    PyObject *made = record((PyTypeObject *)args[2], rows, args[1], args[3], args[4]);
     Py_DECREF(rows);
-    Py_DECREF(units);
-    Py_DECREF(inputs);
-    Py_DECREF(input_units);
     return made;
-fail:
-    Py_DECREF(rows);
-    Py_XDECREF(made);
-    Py_XDECREF(units);
-    Py_XDECREF(inputs);
-    Py_XDECREF(input_units);
-    return NULL;
 }
 
 static PyObject *symlink_call_references(PyObject *module, PyObject *objects)
@@ -380,6 +762,9 @@ static PyMethodDef methods[] = {
      "call(plan, values): a new dict of the output rows, or None where the call is refused."},
     {"results", (PyCFunction)(void (*)(void))symlink_call_results, METH_FASTCALL,
      "results(plan, values, Results, units, input_units): a Results, or None where the call is refused."},
+    {"large", (PyCFunction)(void (*)(void))symlink_call_large, METH_FASTCALL,
+     "large(plan, values, out, Results, units, input_units): a call of any length through <name>_into, "
+     "into out or a kept block; a Results, or None where the call is refused."},
     {"references", symlink_call_references, METH_O,
      "references(objects): the sum of the reference counts of a tuple's items."},
     {NULL, NULL, 0, NULL}
@@ -390,6 +775,7 @@ static struct PyModuleDef definition = {PyModuleDef_HEAD_INIT, "@MODULE@", "syml
 
 PyMODINIT_FUNC PyInit_@MODULE@(void)
 {
+    import_array();  /* NumPy's C API (returns NULL with an ImportError where it fails) */
     if (empty_tuple == NULL) {
         empty_tuple = PyTuple_New(0);
         name_units = PyUnicode_InternFromString("units");

@@ -451,11 +451,11 @@ def call_extension(build: bool = True) -> Any:
 def _load_call_extension(build: bool) -> Any:
     """The extension module, built (``build``) or loaded from the cache; ``None`` where it cannot be."""
     import sysconfig
-    from ..codegen.call_extension import MODULE, extension_source, python_include
+    from ..codegen.call_extension import MODULE, extension_source, numpy_include, python_include
     include = python_include()
     if include is None or sysconfig.get_config_var("Py_GIL_DISABLED") or not hasattr(sys, "getrefcount"):
         return None
-    source, options = extension_source(), ["-I", include]
+    source, options = extension_source(), ["-I", include, "-I", numpy_include()]
     library = compile_shared(source, options=options) if build else built_library(source, options)
     if library is None:
         return None
@@ -524,6 +524,10 @@ class CompiledFunction:
         if self.check is not None:
             self.check.restype = ctypes.c_int
             self.check.argtypes = [ctypes.c_void_p]
+        self.into = getattr(library, f"{name}_into", None)  # the check and the loop, chunk by chunk, into outputs
+        if self.into is not None:
+            self.into.restype = ctypes.c_int
+            self.into.argtypes = [ctypes.c_void_p, ctypes.c_void_p]
         count = len(self.arguments)
         self._index = {name: index for index, name in enumerate(self.arguments)}
         self._numbers: Any = (ctypes.c_double * max(count, 1))()  # the numbers of a call, each read at a step of 0
@@ -552,14 +556,23 @@ class CompiledFunction:
         # The small-call extension's plan of this function (symlink.codegen.call_extension.PLAN_FIELDS), or None
         # where the extension is not there (the Python fast path then answers).
         self._extension: Any = call_extension() if self.packed is not None else None
-        self._entries: list[tuple] = []  # the extension's kept output blocks (ENTRY_FIELDS)
+        self._entries: list[tuple] = []  # the extension's kept output blocks of small calls (ENTRY_FIELDS)
+        self._large_entries: list[tuple] = []  # and of larger calls
+        # Called with the count before a larger call's new output block is made (a memory check), if set.
+        self.before_allocating: Any = None
+        # The results by block row: the number rows, then the true/false rows (assembled last).
+        self._block_names = self._float_names + self._flag_names
         self._plan: tuple | None = None
         if self._extension is not None and self.packed is not None:
             self._plan = (tuple(sys.intern(a) for a in self.arguments),
                           tuple(float(self.defaults[a]) if a in self.defaults else None for a in self.arguments),
                           self._numbers_at, self._pointers_at, self._steps_at,
                           ctypes.cast(self.packed, ctypes.c_void_p).value, self._entries, self._new_entry,
-                          SMALL_CALL, numpy.ndarray, numpy.float64, bytearray(1))
+                          SMALL_CALL, numpy.ndarray, numpy.float64, bytearray(1),
+                          tuple(sys.intern(a) for a in self._result_names),
+                          bytes(int(flag) for flag, _ in self._result_rows),
+                          0 if self.into is None else ctypes.cast(self.into, ctypes.c_void_p).value,
+                          self._large_entries, self._new_large_entry, KEPT_OUTPUTS)
 
     def __call__(self, *, out: Any = None, **values) -> dict[str, numpy.ndarray]:
         """The outputs (and ``assembled``) at ``values``, by keyword: new arrays, or the caller's ``out``.
@@ -591,15 +604,17 @@ class CompiledFunction:
 
     def checked_call(self, values: Mapping[str, Any], out: Any = None,
                      before_allocating: Any = None) -> dict[str, numpy.ndarray] | None:
-        """The outputs at ``values`` checked in C (``<name>_check``, one pass, no temporaries), else ``None``.
+        """The outputs at ``values`` checked and evaluated in C (``<name>_into``: each chunk of the arguments
+        checked, then evaluated while it is in the cache; no temporaries), else ``None``.
 
         Takes a call whose arguments are numbers and float64 arrays of one dimension and one length
         (each read at its own step, none copied), as :meth:`__call__` does with ``out``; anything else,
         or arguments the check refuses, gives ``None``: the caller then checks them in NumPy (which
         says what is wrong) and calls :meth:`__call__`.  ``before_allocating()`` is called before a new
-        output block is allocated (a memory check).
+        output block is allocated (a memory check).  The caller's ``out`` is checked before anything is
+        written; where an argument is refused, the chunks before it may have been written into it.
         """
-        if self.check is None:
+        if self.into is None:
             return None
         index_of, count = self._index, len(self.arguments)
         if not values.keys() <= index_of.keys():
@@ -628,9 +643,6 @@ class CompiledFunction:
                 return None  # a missing argument, another type or shape: checked in NumPy
         if length == 0 or any(v.shape[0] not in (1, length) for v in kept):
             return None
-        call = _PackedCall(length, ctypes.addressof(pointers), ctypes.addressof(steps), 0, 0)
-        if self.check(ctypes.addressof(call)):
-            return None  # the NumPy check says which argument, and why
         shape = (length,)
         if out is not None:
             outputs = checked_out(out, self._result_dtypes, shape, overlaps=False)
@@ -639,7 +651,6 @@ class CompiledFunction:
                 before_allocating()
             outputs = self._output_block(shape, length)
         addresses = [_address(outputs[name]) for name in self._result_names]
-        arguments = [value for k in range(count) for value in (pointers[k], steps[k])]
         if out is not None:  # the extents in memory from the addresses at hand (asking NumPy costs more)
             spans = []
             for k in range(count):
@@ -648,7 +659,10 @@ class CompiledFunction:
                     spans.append((self.arguments[k], (pointers[k] + min(reach, 0), pointers[k] + max(reach, 0) + 8)))
             refuse_overlaps([(name, (address, address + outputs[name].nbytes))
                              for name, address in zip(self._result_names, addresses)], spans)
-        self.entry(length, *arguments, *addresses)
+        call = _PackedCall(length, ctypes.addressof(pointers), ctypes.addressof(steps), 0, 0)
+        written: Any = (ctypes.c_void_p * len(addresses))(*addresses)  # alive (a name) while the call runs
+        if self.into(ctypes.addressof(call), ctypes.addressof(written)):
+            return None  # the NumPy check says which argument, and why
         return outputs
 
     def allocates_nothing(self, arrays: Sequence[numpy.ndarray], shape: tuple[int, ...], out: Any) -> bool:
@@ -698,16 +712,37 @@ class CompiledFunction:
             self._free_references = count(block)  # as counted in the loop above: the list, a name, the argument
         return block
 
-    def _new_entry(self, length: int) -> tuple:
-        """A new output block of ``length`` values as the extension keeps it (``ENTRY_FIELDS``), kept."""
-        outputs = _Outputs(len(self._float_names), len(self._flag_names), length, self._result_rows,
-                           self._result_names, (self._pointers_at, self._steps_at))
-        references = self._extension.references(outputs._objects)
-        entry = (length, outputs._objects, references, ctypes.addressof(outputs._call), outputs.results, outputs)
-        entries = self._entries
+    def _new_entry(self, length: int, entries: list | None = None, keep: int | None = None) -> tuple:
+        """A new output block of ``length`` values as the extension keeps it (``ENTRY_FIELDS``), kept in
+        ``entries`` (the small calls' by default, the last ``keep``: :data:`KEPT_OUTPUTS` by default).
+
+        One ``numpy.empty`` (the number rows, then the true/false rows) and its rows, made by iterating
+        two views of it (no Python step an output): each row, and any view of one, has the block as its base.
+        """
+        floats, flags = len(self._float_names), len(self._flag_names)
+        numbers = 8 * floats * length
+        block = numpy.empty(numbers + flags * length, numpy.uint8)
+        rows = [*block[:numbers].view(_FLOAT).reshape(floats, length),
+                *block[numbers:].view(numpy.bool_).reshape(flags, length)]
+        results = dict(zip(self._block_names, rows))
+        if self._block_names != self._result_names:  # a flag among the outputs: the results in their order
+            results = {name: results[name] for name in self._result_names}
+        objects = (block, *rows)
+        del block, rows  # the references left are those a free block keeps: the tuple's, the dict's, the rows' bases
+        # (and the entry's own reference to the block, one more)
+        entry = (length, objects, self._extension.references(objects) + 1, objects[0], results)
+        entries = self._entries if entries is None else entries
         entries.append(entry)
-        del entries[:-KEPT_OUTPUTS]
+        del entries[:-(KEPT_OUTPUTS if keep is None else keep)]
         return entry
+
+    def _new_large_entry(self, length: int) -> tuple:
+        """A new output block of a larger call (kept among the last :data:`KEPT_BLOCKS` of at most
+        :data:`KEPT_BLOCK_BYTES`), after :attr:`before_allocating` (a memory check) where it is set."""
+        if self.before_allocating is not None:
+            self.before_allocating(length)
+        size = (8 * len(self._float_names) + len(self._flag_names)) * length
+        return self._new_entry(length, self._large_entries if size <= KEPT_BLOCK_BYTES else [], KEPT_BLOCKS)
 
     def _small(self, values: dict) -> dict[str, numpy.ndarray] | None:
         """The fast path's result, or ``None`` where the call does not qualify (the general path then runs)."""
@@ -801,8 +836,9 @@ class CompiledFunction:
 
 
 #: Output blocks of small calls kept for reuse by each compiled function (see :meth:`CompiledFunction._free_outputs`):
-#: eight, so that results held for up to seven calls are answered from blocks already made (a new block, its rows
-#: and its record cost about three dropped calls); at most eight blocks of SMALL_CALL values a function.
+#: eight, so that results held for up to seven calls are answered from blocks already made (with the call
+#: extension a new block and its rows cost about half a dropped call at 10 values, without it about three);
+#: at most eight blocks of SMALL_CALL values a function.
 KEPT_OUTPUTS = 8
 
 #: Output blocks of larger calls kept for reuse by each compiled function (:meth:`CompiledFunction._free_block`):

@@ -244,6 +244,9 @@ class Solver:
             overlapping another or an argument.  A result of an earlier call
             of the same shape is one (``out=result``).  The compiled backend
             writes into them directly; the NumPy backend computes, then copies.
+            A bad ``out`` is refused before anything is written; the compiled
+            backend checks the values chunk by chunk as it evaluates them, so a
+            value it refuses may leave the chunks before it written.
             Without ``out`` the outputs are new arrays, views of one block a
             call; a block that no caller holds any more (no result, row or
             view of it referenced anywhere) is written again instead of a new
@@ -297,20 +300,27 @@ class Solver:
         ValueError: out['rocker'] must have the call's shape (10,), got (1000,)
         """
         compiled = self._compiled if self._build is None else self._answering()
-        if compiled is not None and out is None:
-            # A small call of plain numbers and float arrays: the compiled function's fast path, whose C wrapper
-            # checks the values as the NumPy module does (anything else, or a value it refuses, goes on below).
-            # With the small-call extension, the Results too are made in C (no __init__: a template's copies).
-            # (Never both: the two write the same argument slots, each guarded against its own kind only.)
-            plan = compiled._plan
-            if plan is not None:
-                made = compiled._extension.results(plan, values, Results, self._result_units, self.input_units)
+        if compiled is not None and compiled._plan is not None:
+            # With the call extension, a call of plain numbers and one-dimensional float arrays is answered in C:
+            # the keywords walked, the values checked as the NumPy module does and evaluated chunk by chunk,
+            # into the caller's arrays (out, checked) or a kept block nobody holds, the Results made without
+            # __init__. Anything else, or a value it refuses, goes on below (which says what is wrong).
+            plan, extension = compiled._plan, compiled._extension
+            if out is None:  # a small call: its own slots and blocks (at most SMALL_CALL values)
+                made = extension.results(plan, values, Results, self._result_units, self.input_units)
                 if made is not None:
                     return made
-            else:
-                small = compiled._small_outputs(values)
-                if small is not None:
-                    return Results(small.results, self._result_units, values, self.input_units)
+            if compiled.before_allocating is None:
+                compiled.before_allocating = self._before_block
+            made = extension.large(plan, values, out, Results, self._result_units, self.input_units)
+            if made is not None:
+                return made
+        elif compiled is not None and out is None:
+            # Without the extension: a small call of plain numbers and float arrays takes the compiled function's
+            # Python fast path, whose C wrapper checks the values as the NumPy module does.
+            small = compiled._small_outputs(values)
+            if small is not None:
+                return Results(small.results, self._result_units, values, self.input_units)
         accepted, required, lengths, branches = self._layout
         if not (accepted.issuperset(values) and required.issubset(values)):
             check_argument_names(self.linkage.name, self.arguments, self.required, values)
@@ -342,6 +352,13 @@ class Solver:
                 if out is not None:
                     found = _copied(found, out, shape, list(zip(names, arrays)))
         return _results(found, self.units, length_unit, values, self.input_units)
+
+    def _before_block(self, count: int) -> None:
+        """Refuse (one line) a new output block of ``count`` values where the call needs more memory than
+        there is (checked only above :data:`_SMALL_CALL_BYTES`: the check reads files)."""
+        if count * self.bytes_per_value > _SMALL_CALL_BYTES:
+            require_memory(count, self.bytes_per_value,
+                           f"solving {count:.3g} input values with the {self.linkage.name} solver")
 
     @cached_property
     def _result_units(self) -> dict[str, str]:

@@ -263,3 +263,38 @@ def test_a_background_build_brings_the_extension_with_the_library(fourbar, monke
     assert build.error is None and compiled_library._call_extension[0] is not None
     entry = build.entry()
     assert entry is not None and entry._plan is not None
+
+
+def test_a_new_small_block_is_made_in_c_without_python(solvers):
+    """Results kept longer than the blocks kept for reuse: each call makes a new block, and the plan's Python
+    ``make`` is never called for it (the extension makes the block and its rows itself)."""
+    compiled, plain = solvers
+    function = compiled.function
+
+    def refuse(length: int) -> tuple:
+        raise AssertionError("a small call's block was made in Python")
+
+    plan = tuple(refuse if field == "make" else value for field, value in zip(PLAN_FIELDS, function._plan))
+    theta = numpy.linspace(0.0, 1.0, 10)
+    kept = [function._extension.results(plan, dict(theta=theta + 0.01 * k, **LENGTHS), Results, {}, {})
+            for k in range(3 * compiled_library.KEPT_OUTPUTS)]
+    assert len({id(result["rocker"].base) for result in kept}) == len(kept)  # a block each
+    for k, result in enumerate(kept):
+        assert_agree(result, plain(theta=theta + 0.01 * k, **LENGTHS), angles_of("fourbar", OUTPUTS), 1e-12)
+
+
+def test_a_large_call_into_out_is_answered_in_c_into_the_callers_arrays(solvers):
+    compiled, plain = solvers
+    function = compiled.function
+    theta = numpy.linspace(0.0, 2 * numpy.pi, 3 * compiled_library.SMALL_CALL)
+    first = compiled(theta=theta, **LENGTHS)
+    out = {name: numpy.empty_like(value) for name, value in first.items()}
+    made = function._extension.large(function._plan, dict(theta=theta, **LENGTHS), out, Results, {"rocker": "rad"}, {})
+    assert type(made) is Results and made.units == {"rocker": "rad"} and list(made) == list(first)
+    assert all(made[name] is out[name] for name in out)
+    assert_agree(made, plain(theta=theta, **LENGTHS), angles_of("fourbar", OUTPUTS), 1e-12)
+    # what it cannot take is left to the general path: an out of another shape, a float32 row, a 2-d argument
+    for bad_out, values in (({**out, "rocker": numpy.empty(5)}, dict(theta=theta)),
+                            ({**out, "rocker": out["rocker"].astype(numpy.float32)}, dict(theta=theta)),
+                            (out, dict(theta=theta[None, :]))):
+        assert function._extension.large(function._plan, {**LENGTHS, **values}, bad_out, Results, {}, {}) is None

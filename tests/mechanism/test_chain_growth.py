@@ -176,3 +176,39 @@ def test_the_links_on_a_loop_are_the_links_that_some_simple_loop_walks(links):
     from symlink.mechanism.topology import Chain
     chain = Chain(links)
     assert chain.looped_links() == {t.link for cycle in chain.cycles() for t in cycle.traversals}
+
+
+def calls_in_generation(n: int) -> dict:
+    """How often each function of symlink's own code runs while the NumPy module and the C source of a chain
+    of n dyads by joints are generated (counted by a profile hook: calls, never times)."""
+    from symlink.codegen.numpy import numpy_module
+    from symlink.mechanism.joints import from_joints
+    from symlink.numeric.compiled_library import program_facts
+    package = os.path.dirname(os.path.abspath(sys.modules["symlink"].__file__))
+    links, coordinates = ground_chain(n)
+    linkage = from_joints(links, coordinates, driver="A").linkage
+    program = linkage.program([q.name for q in linkage.unknowns])
+    counts: dict = {}
+
+    def count(frame, event, _):
+        if event == "call" and frame.f_code.co_filename.startswith(package):
+            counts[frame.f_code] = counts.get(frame.f_code, 0) + 1
+
+    sys.setprofile(count)
+    try:
+        numpy_module([("solve", program, "")])
+        program_facts(program, "solve", "", [])
+    finally:
+        sys.setprofile(None)
+    return {f"{code.co_filename[len(package):]}:{code.co_firstlineno} {code.co_name}": k for code, k in counts.items()}
+
+
+@pytest.mark.parametrize("n", [8, pytest.param(16, marks=pytest.mark.slow)])
+def test_generating_twice_the_dyads_calls_no_function_of_symlink_more_than_about_twice_as_often(n):
+    """A function called in proportion to the program's size squared (a pass over every known angle pair for
+    each sine, over every output for each output chosen) runs four times as often for 2 n dyads as for n;
+    every function of symlink's code generation runs at most 2.6 times as often (the number of C pieces, a
+    few, is rounded up; sympy's own functions are not counted)."""
+    small, large = calls_in_generation(n), calls_in_generation(2 * n)
+    grown = {name: (k, small.get(name, 0)) for name, k in large.items() if k > 200 and k > 2.6 * small.get(name, 0)}
+    assert not grown, grown

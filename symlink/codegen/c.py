@@ -244,21 +244,30 @@ def _clustered(code: StraightLine, uses: dict[sp.Symbol, frozenset]) -> tuple[tu
     """
     expression = dict(code.assignments)
     needs = {symbol: sorted((s for s in uses[symbol] if s in expression), key=str) for symbol, _ in code.assignments}
-    closure: dict[sp.Symbol, frozenset] = {}
+    # Sets of values as bits of a whole number (bit i: the i-th assignment): a chain of n loops has values
+    # that need O(n) others, and OR-ing machine words keeps building and asking these sets nearly linear.
+    bit = {symbol: 1 << index for index, (symbol, _) in enumerate(code.assignments)}
+    closure: dict[sp.Symbol, int] = {}
     for symbol, _ in code.assignments:  # in order: every value's needs come before it
-        closure[symbol] = frozenset([symbol]).union(*(closure[s] for s in needs[symbol]))
+        below = bit[symbol]
+        for s in needs[symbol]:
+            below |= closure[s]
+        closure[symbol] = below
     wanted = [sorted((s for s in e.free_symbols if s in expression), key=str) for e in code.outputs.values()]
     wanted.append(list(code.roots))
-    missing = [set().union(*(closure[s] for s in group)) for group in wanted]
-    waiting: dict[sp.Symbol, list[int]] = {}  # each value: the outputs that still miss it
-    for k, group in enumerate(missing):
+    missing = []
+    for group in wanted:
+        union = 0
         for symbol in group:
-            waiting.setdefault(symbol, []).append(k)
+            union |= closure[symbol]
+        missing.append(union)
     done: set = set()
+    done_bits = 0
     order: list[sp.Symbol] = []
     left = set(range(len(wanted)))
     while left:
-        k = min(left, key=lambda j: (len(missing[j]), j))
+        # One AND and bit count of machine words an output left (no call a comparison).
+        _, k = min([((missing[j] & ~done_bits).bit_count(), j) for j in left])
         left.discard(k)
         for first in wanted[k]:
             stack = [(first, iter(needs[first]))]
@@ -271,9 +280,8 @@ def _clustered(code: StraightLine, uses: dict[sp.Symbol, frozenset]) -> tuple[tu
                 stack.pop()
                 if symbol not in done:
                     done.add(symbol)
+                    done_bits |= bit[symbol]
                     order.append(symbol)
-                    for j in waiting.get(symbol, ()):
-                        missing[j].discard(symbol)
     order += [symbol for symbol, _ in code.assignments if symbol not in done]
     return tuple((symbol, expression[symbol]) for symbol in order)
 

@@ -15,6 +15,7 @@ thing in the same order.
 from __future__ import annotations
 
 import heapq
+import weakref
 
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Callable
@@ -112,8 +113,32 @@ def require_loop_units(root: ClampedSqrt) -> None:
                          "copy programs with dataclasses.replace, which keeps their plan")
 
 
+#: The straight line of each program still alive (by identity): the NumPy module and the C source of one
+#: program eliminate its common subexpressions once between them (SymPy's own cache, of a fixed number of
+#: entries, no longer holds a large program's work by the time the second printer asks).
+_STRAIGHT_LINES: dict[int, StraightLine] = {}
+
+
 def straight_line(program: Program) -> StraightLine:
-    """Eliminate common subexpressions across the program's assignments and outputs (in loop units)."""
+    """Eliminate common subexpressions across the program's assignments and outputs (in loop units).
+
+    The result is kept while ``program`` lives, so that every printer of one program shares one elimination
+    (its time grows a little faster than the program).
+    """
+    key = id(program)
+    if key in _STRAIGHT_LINES:
+        return _STRAIGHT_LINES[key]
+    code = _eliminated(program)
+    try:
+        weakref.finalize(program, _STRAIGHT_LINES.pop, key, None)
+    except TypeError:  # an object without weak references: not kept
+        return code
+    _STRAIGHT_LINES[key] = code
+    return code
+
+
+def _eliminated(program: Program) -> StraightLine:
+    """:func:`straight_line`, computed."""
     radii = {angle: radius for step in program.plan for angle, radius in step.in_loop_units.radii.items()}
     program = in_loop_units(program)
     names = [s for s, _ in program.assignments]

@@ -83,12 +83,22 @@ def angle_sums(code: StraightLine, taken: set[str]) -> StraightLine:
     linear = {call.args[0]: _linear_form(call.args[0], definitions) for call in calls}
     forms: dict[sp.Expr, dict] = {argument: form for argument, form in linear.items() if form}
     called = {(call.func, call.args[0]) for call in calls}
-    pairs: list = []  # the known pairs, largest sums first
+    # The known pairs, each with its rank: the largest sums first (of equal sums, the later known first); and
+    # each atom, the known pairs whose sums hold it, so that a sum is matched against the pairs that share its
+    # atoms, not against all of them (a chain of n loops knows pairs in proportion to n).
+    rank: dict = {}
+    holding: dict = {}
+
+    def know(pair) -> None:
+        rank[pair] = -len(rank)
+        for atom in forms[pair]:
+            holding.setdefault(atom, []).append(pair)
 
     def parts(form: dict) -> list | None:
         """``form`` as known pairs and unknown angles, each +1 or -1 times; ``None`` where it is not."""
         remaining, found = dict(form), []
-        for pair in pairs:
+        candidates = {pair for atom in form for pair in holding.get(atom, ())}
+        for pair in sorted(candidates, key=rank.__getitem__):  # largest first
             for sign in (1, -1):
                 if all(remaining.get(atom) == sign * k for atom, k in forms[pair].items()):
                     for atom in forms[pair]:
@@ -104,7 +114,7 @@ def angle_sums(code: StraightLine, taken: set[str]) -> StraightLine:
                             if (sp.sin, argument) in called and (sp.cos, argument) in called),
                            key=lambda argument: (len(forms[argument]), sp.default_sort_key(argument))):
         if parts(forms[argument]) is None:
-            pairs.insert(0, argument)
+            know(argument)
 
     names = FreshNames(taken | {s.name for s in code.arguments} | {s.name for s, _ in code.assignments})
     added: list = []
@@ -157,7 +167,7 @@ def angle_sums(code: StraightLine, taken: set[str]) -> StraightLine:
     for call in sorted(calls, key=sp.default_sort_key):
         argument = call.args[0]
         form = forms.get(argument)
-        if not form or argument in pairs:
+        if not form or argument in rank:
             continue
         found = parts(form)
         if found is None:

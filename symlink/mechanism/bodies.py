@@ -224,6 +224,30 @@ def _vector_name(vector: Vector) -> str:
     return vector.name or str(vector)
 
 
+def _first_shared_pair(order: Sequence, at_node: Mapping, refused: set[frozenset]) -> tuple | None:
+    """The first two nodes (in ``order``, by the first, then the second) that join two bodies or more between
+    them and are not ``refused``; ``None`` where no two do.  Nodes are grouped by each pair of bodies that meet
+    there, so that only nodes sharing a pair are compared (not every node with every other).
+    """
+    place = {node: k for k, node in enumerate(order)}
+    sharing: dict[frozenset, list] = {}
+    for node in order:
+        bodies = list(dict.fromkeys(at_node[node]))
+        for k, first in enumerate(bodies):
+            for second in bodies[k + 1:]:
+                sharing.setdefault(frozenset((first, second)), []).append(node)
+    best = None
+    for group in sharing.values():
+        for k, first in enumerate(group):
+            for second in group[k + 1:]:
+                if frozenset((first, second)) not in refused:
+                    key = (place[first], place[second])
+                    if best is None or key < best[0]:
+                        best = (key, (first, second))
+                    break  # later seconds of this first come after it
+    return None if best is None else best[1]
+
+
 def mechanism(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | None = None,
               higher_pairs: Sequence[tuple[str, str]] = ()) -> Mechanism:
     """The bodies and joints of ``linkage``, derived from its loops and points (see the module docstring).
@@ -269,12 +293,10 @@ def mechanism(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | None = Non
     refused: set[frozenset] = set()
     while True:
         at_node, order = _bodies_at_nodes(vectors, nodes, body_of, block_of, origin_on_ground)
-        pairs = [(first, second) for k, first in enumerate(order) for second in order[k + 1:]
-                 if len(set(at_node[first]) & set(at_node[second])) >= 2
-                 and frozenset((first, second)) not in refused]
-        if not pairs:
+        first_pair = _first_shared_pair(order, at_node, refused)
+        if first_pair is None:
             break
-        first, second = pairs[0]
+        first, second = first_pair
         # Points the vectors place apart stay apart (then the bodies were misread: say them explicitly).
         placed = _positions(linkage, vectors, nodes)
         if first in placed and second in placed and not _coincide(linkage, vectors, placed[first], placed[second]):
@@ -310,16 +332,32 @@ def mechanism(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | None = Non
                             positions.get(tail), travel.angle))
 
     body_names = _ground_first([GROUND] + list(dict.fromkeys(body_of.values())) + list(block_of.values()))
+    # Each body's vectors, joints and slider joints, gathered in one pass over each (not a pass a body).
+    vectors_of: dict[str, list[Vector]] = {}
+    for v in vectors:
+        if v not in block_of:
+            vectors_of.setdefault(body_of[v], []).append(v)
+    joints_of: dict[str, list[str]] = {}
+    for n in order:
+        if n in joint_names:
+            for body in dict.fromkeys(at_node[n]):
+                joints_of.setdefault(body, []).append(joint_names[n])
+    for t in travels:
+        for body in dict.fromkeys((body_of[t], block_of[t])):
+            joints_of.setdefault(body, []).append(slider_joints[t])
+    place = {n: k for k, n in enumerate(order)}
+    named = {n: k for k, n in enumerate(point_names)}
     result = []
     for body in dict.fromkeys(body_names):
-        on_body = [v for v in vectors if body_of[v] == body and v not in block_of]
-        members = [joint_names[n] for n in order if n in joint_names and body in at_node[n]]
-        members += [slider_joints[t] for t in travels if body in (body_of[t], block_of[t])]
+        on_body = vectors_of.get(body, [])
+        members = joints_of.get(body, [])
         corners = {nodes.find(end) for v in on_body for end in (_start(1, v), _end(1, v))}
         if body == GROUND and any(p is None for p in linkage.points.values()):
             corners.add(nodes.find(_ORIGIN))
-        points = [point_names[n] for n in order if n in corners and n in point_names]
-        points += [point_names[n] for n in point_names if n in corners and point_names[n] not in points]
+        # The points at its corners: first in the order of the nodes, then the others in the points' order.
+        points = [point_names[n] for n in sorted((n for n in corners if n in named and n in place), key=place.__getitem__)]
+        points += [point_names[n] for n in sorted((n for n in corners if n in named and n not in place),
+                                                  key=named.__getitem__)]
         if body == GROUND or on_body or members:
             result.append(Body(body, tuple(_vector_name(v) for v in on_body), tuple(members), tuple(points)))
     known = [body.name for body in result]

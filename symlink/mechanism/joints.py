@@ -60,7 +60,8 @@ from __future__ import annotations
 import math
 import numbers
 from dataclasses import dataclass, field, replace
-from typing import Collection, Mapping, Sequence
+from collections import ChainMap
+from typing import Collection, Mapping, MutableMapping, Sequence
 
 import sympy as sp
 
@@ -687,8 +688,8 @@ def _branches(linkage: Linkage, values: dict[sp.Symbol, float], scale: float) ->
             continue
         misses = {}
         for sign in (1, -1):
-            local = dict(values)
-            local[step.branch] = sign
+            # The loop's own values over the drawing's (no copy of every value of the linkage a loop).
+            local: MutableMapping[sp.Symbol, float] = ChainMap({step.branch: sign}, values)
             for symbol, expr in step.intermediates.items():
                 local[symbol] = _value(expr, local)
             miss = 0.0

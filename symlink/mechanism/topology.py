@@ -29,9 +29,10 @@ joint coordinates into a :class:`~symlink.symbolic.linkage.Linkage`, and
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from itertools import combinations
-from typing import Iterable, Iterator, Mapping, Sequence
+from typing import Callable, Iterable, Iterator, Mapping, Sequence
 
 from .mobility import Mobility
 from ..common.display import record_html
@@ -305,9 +306,14 @@ class Chain:
                 neighbours[("L", name)].append(("J", joint))
                 neighbours[("J", joint)].append(("L", name))
         deepest = len(nodes) if longest is None else 2 * longest  # a loop of k joints walks 2 k nodes
+        # With a longest loop, a walk goes on only to nodes from which it can still come back in time: without
+        # that, every walk that crosses a link of n joints (the ground of n dyads) tries all n, and the search
+        # takes a time n^2.  Distances back are computed around each start only (:class:`_Distances`).
+        distances = _Distances(neighbours, deepest) if longest is not None else None
         found: dict[tuple, Cycle] = {}
         for start in nodes[:len(self.joints)]:
             lowest = index[start]
+            back = distances.to(start) if distances is not None else None
             # A depth-first walk with a stack of its own (a chain of thousands of links is no recursion limit).
             path = [start]
             on_path = {start}
@@ -319,10 +325,15 @@ class Chain:
                     on_path.discard(path.pop())
                 elif nxt == start and len(path) >= 4:
                     self._record(path, found, joint_order)
+                elif back is not None and len(path) + back.distance(nxt) > deepest:
+                    continue  # the loop would have more than ``longest`` joints
                 elif nxt not in on_path and index[nxt] > lowest and len(path) < deepest:
                     path.append(nxt)
                     on_path.add(nxt)
-                    pending.append(iter(neighbours[nxt]))
+                    # From a hub, only the neighbours that can still come back without it (not all n of them).
+                    hub = back is not None and distances is not None and nxt in distances.hub_set
+                    pending.append(iter(back.around(nxt, deepest - len(path)) if hub and back is not None
+                                        else neighbours[nxt]))
         ordered = sorted(found.values(), key=lambda c: (len(c.traversals), [joint_order[j] for j in c.joints],
                                                         [link_order[name] for name in c.links]))
         return tuple(ordered)
@@ -398,6 +409,88 @@ class Chain:
         """How many independent loops the chain has: edges - nodes + 1 of the link-joint graph."""
         edges = sum(len(joints) for joints in self.links.values())
         return edges - len(self.links) - len(self.joints) + 1
+
+
+class _Distances:
+    """Shortest distances in a graph of bounded degree but for a few hubs (nodes of many neighbours), up to a
+    bound, each start's found in a time that does not grow with the graph.
+
+    Around a start, a breadth-first search that does not go on through hubs gives the distance of every node
+    whose shortest path crosses none; a path that crosses hubs is, after its last hub H, a path from H that
+    crosses none, whose length each hub's own search (made once) knows.  The distance of each hub from the
+    start is the shortest over the hubs before it (Dijkstra over the hubs alone), so every distance is exact.
+    """
+
+    HUB = 8  # neighbours above which a node is a hub
+
+    def __init__(self, neighbours: Mapping, bound: int) -> None:
+        self.neighbours, self.bound = neighbours, bound
+        self.hubs = [node for node, near in neighbours.items() if len(near) > self.HUB]
+        self.hub_set = set(self.hubs)
+        self.from_hub = {hub: self._search(hub) for hub in self.hubs}
+        # Each hub's neighbours by position, and those that each other hub's search reaches.
+        self.position = {hub: {node: k for k, node in enumerate(neighbours[hub])} for hub in self.hubs}
+        self.between = {(other, hub): [node for node in self.from_hub[other] if node in self.position[hub]]
+                        for other in self.hubs for hub in self.hubs if other != hub}
+
+    def _search(self, source) -> dict:
+        """Distances from ``source`` up to the bound, going on through no hub (a hub reached is kept)."""
+        found = {source: 0}
+        frontier = [source]
+        for distance in range(1, self.bound + 1):
+            following = []
+            for node in frontier:
+                if node != source and node in self.hub_set:
+                    continue
+                for nxt in self.neighbours[node]:
+                    if nxt not in found:
+                        found[nxt] = distance
+                        following.append(nxt)
+            frontier = following
+        return found
+
+    def to(self, start) -> "_Around":
+        """The distances from ``start`` (infinite beyond the bound)."""
+        near = self._search(start)
+        hub_distance = {hub: near[hub] for hub in self.hubs if hub in near}
+        settled: set = set()
+        while len(settled) < len(hub_distance):  # Dijkstra over the few hubs
+            hub = min((h for h in hub_distance if h not in settled), key=hub_distance.__getitem__)
+            settled.add(hub)
+            for other in self.hubs:
+                step = self.from_hub[hub].get(other)
+                if step is not None and hub_distance[hub] + step < hub_distance.get(other, math.inf):
+                    hub_distance[other] = hub_distance[hub] + step
+        return _Around(self, near, {hub: d for hub, d in hub_distance.items() if d <= self.bound})
+
+
+class _Around:
+    """The distances from one start (:meth:`_Distances.to`): of any node, and the neighbours of a hub worth a try."""
+
+    def __init__(self, distances: _Distances, near: dict, via: dict) -> None:
+        self.distances, self.near, self.via = distances, near, via
+
+    def distance(self, node, avoiding=None) -> float:
+        """The distance of ``node`` from the start (a lower bound of it by a path that avoids the hub
+        ``avoiding``: the shortest crosses no hub, or last crosses another)."""
+        best = self.near.get(node, math.inf)
+        for hub, d in self.via.items():
+            if hub != avoiding:
+                reach = self.distances.from_hub[hub]
+                if node in reach and d + reach[node] < best:
+                    best = d + reach[node]
+        return best
+
+    def around(self, hub, left: int) -> list:
+        """The neighbours of ``hub`` from which a path that avoids it comes back in at most ``left`` steps, in
+        the order of its neighbours: those near the start, or reached from another hub (never all of them)."""
+        position = self.distances.position[hub]
+        candidates = {node for node in self.near if node in position}
+        for other in self.via:
+            if other != hub:
+                candidates.update(self.distances.between[other, hub])
+        return sorted((node for node in candidates if self.distance(node, avoiding=hub) <= left),
+                      key=position.__getitem__)
 
 
 def independent(cycles: Sequence[Cycle]) -> bool:

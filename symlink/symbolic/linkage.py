@@ -214,7 +214,12 @@ class Linkage:
                 if not isinstance(symbol, sp.Symbol):
                     raise ValueError(f"{name}: {kind} {symbol!r} must be a SymPy symbol (see vectors.coordinates)")
         listed = self.inputs + self.unknowns
-        twice = [q.name for k, q in enumerate(listed) if q in listed[:k]]
+        seen: set[sp.Symbol] = set()
+        twice = []
+        for q in listed:
+            if q in seen:
+                twice.append(q.name)
+            seen.add(q)
         if twice:
             raise ValueError(f"{name}: coordinate {twice[0]!r} is listed twice among inputs and unknowns")
         coordinates = set(listed)
@@ -339,22 +344,25 @@ class Linkage:
 
         ``ValueError`` where no closed-form order exists, or a loop's two unknowns form no case.
         """
-        solved: list[sp.Symbol] = []
+        solved: set[sp.Symbol] = set()
         order: list[tuple[Loop, list[sp.Symbol]]] = []
         waiting = list(self.loops)
+        # Each loop's unknowns, in the unknowns' order, found once (not a pass over every unknown a loop a step).
+        position = {u: k for k, u in enumerate(self.unknowns)}
+        own = {id(loop): sorted((s for s in loop.symbols() if s in position), key=position.__getitem__)
+               for loop in waiting}
         while waiting:
-            for loop in waiting:
-                left = [u for u in loop.unknowns_among(self.unknowns) if u not in solved]
+            for at, loop in enumerate(waiting):
+                left = [u for u in own[id(loop)] if u not in solved]
                 if len(left) == 2:
                     loop.case(left)  # ValueError for two unknowns no closed form takes
                     order.append((loop, left))
-                    solved += left
-                    waiting.remove(loop)
+                    solved.update(left)
+                    del waiting[at]
                     break
             else:
-                counts = ", ".join(
-                    f"{loop.name}: {len([u for u in loop.unknowns_among(self.unknowns) if u not in solved])}"
-                    for loop in waiting)
+                counts = ", ".join(f"{loop.name}: {len([u for u in own[id(loop)] if u not in solved])}"
+                                   for loop in waiting)
                 raise ValueError(
                     f"no loop of {self.name!r} has exactly two unknowns left ({counts}); "
                     "no closed-form solve plan exists")

@@ -9,7 +9,8 @@ does before this module runs (its own start and ``site``) is outside any package
 """
 import sys
 
-import _signal as signal  # the C module: ``signal`` itself imports ``enum``, milliseconds before the hold can start
+# The C module: ``signal`` itself imports ``enum``, milliseconds before the hold can start.
+import _signal as signal  # type: ignore[import-not-found]
 
 
 def entry() -> int:

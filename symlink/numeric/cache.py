@@ -218,7 +218,7 @@ def _code_shaping_names(modules: tuple[str, ...]) -> tuple[str, ...]:
     for name in modules:
         if os.path.isfile(os.path.join(package, f"{name}.py")):
             names.append(f"{name}.py")
-        found = []
+        found: list[str] = []
         for folder, subfolders, files in os.walk(os.path.join(package, name)):
             subfolders[:] = [sub for sub in subfolders if sub != "__pycache__"]
             relative = os.path.relpath(folder, package).replace(os.sep, "/")

@@ -67,7 +67,7 @@ from ..common.display import record_html
 from ..numeric.input_sweep import InputSweep
 from .linkage_file import LinkageFile, catalog_name, dynamic_model, load_linkage
 from .scene_text import (BRANCH_CHOICES, FORMATS, INPUT_KEYS, MAX_SCENE_BYTES, TOP_KEYS, UNITS,  # noqa: F401
-                         choice as _choice, number as _number, table as _table)
+                         choice as _choice, input_table, number as _number, table as _table)
 from ..common.numbers import toml_data
 from ..common.angles import to_radians
 from ..symbolic.linkage import Linkage, Program
@@ -466,21 +466,7 @@ def scene_from_mapping(data: Mapping, folder: str | Path = ".") -> SceneFile:
         raise ValueError(f"scene files drive linkages with one input angle; {linkage.name} has "
                          f"{', '.join(map(str, linkage.inputs))}")
     driven = linkage.inputs[0]
-    sweep_table = _table(data.get("input", {}), "input", INPUT_KEYS)
-    options: dict[str, Any] = {key: (None if key not in sweep_table else
-                                     _number(sweep_table[key], f"input.{key}", angle=key != "step"))
-                               for key in ("start", "stop", "step")}
-    angles = sweep_table.get("angles")
-    if angles is not None:
-        if not isinstance(angles, list):
-            raise ValueError(f"input.angles must be a list of numbers, got {angles!r}")
-        angles = [_number(v, f"input.angles[{i}]", angle=True) for i, v in enumerate(angles)]
-    try:
-        sweep = InputSweep.from_options(angles=angles, units=units, **options)
-    except ValueError as error:
-        raise ValueError(f"input: {error}") from None
-    speed = _number(sweep_table.get("speed", 0.0), "input.speed")
-    accel = _number(sweep_table.get("accel", 0.0), "input.accel")
+    sweep, speed, accel = input_table(data, units)
     scene = Scene(linkage, outputs, dict(parameters), branch) if warm is None else warm.scene(dict(parameters), branch)
     roles = [role for role, q in linkage.roles.items() if q == driven]
     scene_file = SceneFile(scene, roles[0] if roles else driven.name, sweep, units, fmt, speed, accel)

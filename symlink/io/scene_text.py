@@ -35,7 +35,7 @@ from ..common.numbers import toml_data
 from ..numeric.input_sweep import MAX_ANGLE, InputSweep, crank_speeds
 
 
-__all__ = ["BRANCH_CHOICES", "UNITS", "FORMATS", "TOP_KEYS", "INPUT_KEYS", "MAX_SCENE_BYTES", "MAX_ANGLE",
+__all__ = ["input_table", "BRANCH_CHOICES", "UNITS", "FORMATS", "TOP_KEYS", "INPUT_KEYS", "MAX_SCENE_BYTES", "MAX_ANGLE",
            "MAX_MAGNITUDE", "number", "choice", "table", "linkage_request", "WarmScene",
            "warm_scene", "cache_scene", "SCENE_ENTRY_KIND"]
 
@@ -195,6 +195,22 @@ def _plain_scene(data: Mapping[str, Any], facts: Mapping[str, Any], solver: Any)
         parameters[name] = number(value, f"parameters.{name}", angle=name in facts["angles"])
         if name in facts["positive"] and parameters[name] <= 0:
             raise ValueError("a length that is not positive")
+    units = choice(data.get("units", "deg"), "units", UNITS)
+    sweep, speed, accel = input_table(data, units)
+    return WarmScene(facts, solver, parameters, sweep, units, choice(data.get("format", "table"), "format", FORMATS),
+                     choice(data.get("branch", 1), "branch", BRANCH_CHOICES), speed, accel)
+
+
+def input_table(data: Mapping[str, Any], units: str) -> tuple[InputSweep, float, float]:
+    """A scene's ``[input]`` table: the sweep of its input angle (in ``units``), its speed and its acceleration.
+
+    The one reading of it, for the full reader (:func:`symlink.io.scene.scene_from_mapping`) and a warm scene;
+    ``ValueError`` naming the key for anything wrong.
+
+    >>> sweep, speed, accel = input_table({"input": {"angles": [0, 90], "speed": 10.5}}, "deg")
+    >>> sweep.array().tolist(), speed, accel
+    ([0.0, 90.0], 10.5, 0.0)
+    """
     sweep_table = table(data.get("input", {}), "input", INPUT_KEYS)
     options: dict[str, Any] = {key: (None if key not in sweep_table else
                                      number(sweep_table[key], f"input.{key}", angle=key != "step"))
@@ -202,14 +218,14 @@ def _plain_scene(data: Mapping[str, Any], facts: Mapping[str, Any], solver: Any)
     angles = sweep_table.get("angles")
     if angles is not None:
         if not isinstance(angles, list):
-            raise ValueError("input.angles is not a list")
+            raise ValueError("input.angles must be a list of numbers")
         angles = [number(v, f"input.angles[{i}]", angle=True) for i, v in enumerate(angles)]
-    units = choice(data.get("units", "deg"), "units", UNITS)
-    sweep = InputSweep.from_options(angles=angles, units=units, **options)
-    return WarmScene(facts, solver, parameters, sweep, units, choice(data.get("format", "table"), "format", FORMATS),
-                     choice(data.get("branch", 1), "branch", BRANCH_CHOICES),
-                     number(sweep_table.get("speed", 0.0), "input.speed"),
-                     number(sweep_table.get("accel", 0.0), "input.accel"))
+    try:
+        sweep = InputSweep.from_options(angles=angles, units=units, **options)
+    except ValueError as error:
+        raise ValueError(f"input: {error}") from None
+    return sweep, number(sweep_table.get("speed", 0.0), "input.speed"), number(sweep_table.get("accel", 0.0),
+                                                                             "input.accel")
 
 
 def _solver(facts: Mapping[str, Any], derive: Any) -> Any:

@@ -35,7 +35,7 @@ from ..common.numbers import toml_data
 from ..numeric.input_sweep import MAX_ANGLE, InputSweep, crank_speeds
 
 
-__all__ = ["input_table", "BRANCH_CHOICES", "UNITS", "FORMATS", "TOP_KEYS", "INPUT_KEYS", "MAX_SCENE_BYTES", "MAX_ANGLE",
+__all__ = ["BRANCH_CHOICES", "UNITS", "FORMATS", "TOP_KEYS", "INPUT_KEYS", "MAX_SCENE_BYTES", "MAX_ANGLE",
            "MAX_MAGNITUDE", "number", "choice", "table", "linkage_request", "WarmScene",
            "warm_scene", "cache_scene", "SCENE_ENTRY_KIND"]
 

@@ -314,6 +314,60 @@ static PyObject *free_entry(PyObject *kept, Py_ssize_t length)
     return NULL;
 }
 
+/* Whether every key of `values` is an exact str: other keys could run Python code when compared (and change
+ * `values` meanwhile), so a call with one is refused. */
+static int keys_are_str(PyObject *values)
+{
+    PyObject *key, *item;
+    for (Py_ssize_t position = 0; PyDict_Next(values, &position, &key, &item);) {
+        if (!PyUnicode_CheckExact(key)) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* The value of argument `i` (borrowed): looked up in `values` by its interned name (then counted in `found`),
+ * else its default; NULL, no exception set, where it is missing (no default) or the look-up fails: the call is
+ * refused, and the general path names the argument. The one walk of the keywords of `run` and `large`. */
+static PyObject *argument_value(PyObject *values, PyObject *names, PyObject *defaults, Py_ssize_t i,
+                                Py_ssize_t *found)
+{
+    PyObject *value = PyDict_GetItemWithError(values, PyTuple_GET_ITEM(names, i));  /* borrowed */
+    if (value != NULL) {
+        ++*found;
+        return value;
+    }
+    if (PyErr_Occurred()) {
+        PyErr_Clear();
+        return NULL;
+    }
+    value = PyTuple_GET_ITEM(defaults, i);
+    return value == Py_None ? NULL : value;
+}
+
+/* A number argument read as a double: 1 (`*number` set) for a float, a numpy.float64 or an int that fits, 0
+ * where `value` is not of those types, -1 (no exception set) for an int too large for a double (refused: the
+ * general path says so). */
+static int number_value(PyObject *value, PyTypeObject *float64_type, double *number)
+{
+    PyTypeObject *kind = Py_TYPE(value);
+    if (kind == &PyFloat_Type || kind == float64_type) {
+        *number = PyFloat_AS_DOUBLE(value);
+        return 1;
+    }
+    if (kind != &PyLong_Type) {
+        return 0;
+    }
+    double read = PyLong_AsDouble(value);
+    if (read == -1.0 && PyErr_Occurred()) {
+        PyErr_Clear();
+        return -1;
+    }
+    *number = read;
+    return 1;
+}
+
 /* Fill the slots from `values` and run the loop: a new reference to the entry's dict of rows, Py_None
  * (new) where the call is refused, NULL with an exception where the plan is not one or memory fails. */
 static PyObject *run(PyObject *plan, PyObject *values)
@@ -341,46 +395,27 @@ static PyObject *run(PyObject *plan, PyObject *values)
         return NULL;
     }
     Py_ssize_t count = PyTuple_GET_SIZE(names), found, length;
-    PyObject *made = NULL, *entry = NULL, *key, *item;
+    PyObject *made = NULL, *entry = NULL;
     busy[0] = 1;
-    /* Keys other than exact str could run Python code when compared (and change `values` meanwhile). */
-    for (Py_ssize_t position = 0; PyDict_Next(values, &position, &key, &item);) {
-        if (!PyUnicode_CheckExact(key)) {
-            goto refuse;
-        }
+    if (!keys_are_str(values)) {
+        goto refuse;
     }
 walk:
     found = 0;
     length = 0;
     for (Py_ssize_t i = 0; i < count; ++i) {
-        PyObject *value = PyDict_GetItemWithError(values, PyTuple_GET_ITEM(names, i));  /* borrowed */
+        PyObject *value = argument_value(values, names, defaults, i, &found);
         if (value == NULL) {
-            if (PyErr_Occurred()) {
-                PyErr_Clear();
-                goto refuse;
-            }
-            value = PyTuple_GET_ITEM(defaults, i);
-            if (value == Py_None) {
-                goto refuse;  /* a missing argument: the general path names it */
-            }
-        } else {
-            ++found;
+            goto refuse;  /* a missing argument: the general path names it */
         }
-        PyTypeObject *kind = Py_TYPE(value);
-        if (kind == &PyFloat_Type || kind == float64_type) {
-            numbers[i] = PyFloat_AS_DOUBLE(value);
+        int number = number_value(value, float64_type, &numbers[i]);
+        if (number < 0) {
+            goto refuse;  /* too large for a double: the general path says so */
+        }
+        if (number) {
             pointers[i] = &numbers[i];
             steps[i] = 0;
-        } else if (kind == &PyLong_Type) {
-            double number = PyLong_AsDouble(value);
-            if (number == -1.0 && PyErr_Occurred()) {
-                PyErr_Clear();  /* too large for a double: the general path says so */
-                goto refuse;
-            }
-            numbers[i] = number;
-            pointers[i] = &numbers[i];
-            steps[i] = 0;
-        } else if (kind == array_type) {
+        } else if (Py_TYPE(value) == array_type) {
             Py_buffer view;
             if (PyObject_GetBuffer(value, &view, PyBUF_C_CONTIGUOUS | PyBUF_FORMAT) != 0) {
                 PyErr_Clear();
@@ -550,36 +585,23 @@ static PyObject *symlink_call_large(PyObject *module, PyObject *const *args, Py_
     char **extents = (char **)(steps + count);  /* each argument array's first byte and the one past its last */
     void **outputs = (void **)(extents + 2 * count);
     Py_buffer *views = (Py_buffer *)(outputs + outputs_count);
-    PyObject *result = NULL, *entry = NULL, *block = NULL, *key, *item;
-    for (Py_ssize_t position = 0; PyDict_Next(values, &position, &key, &item);) {
-        if (!PyUnicode_CheckExact(key)) {
-            goto refuse;
-        }
+    PyObject *result = NULL, *entry = NULL, *block = NULL;
+    if (!keys_are_str(values)) {
+        goto refuse;
     }
     for (Py_ssize_t i = 0; i < count; ++i) {
-        PyObject *value = PyDict_GetItemWithError(values, PyTuple_GET_ITEM(names, i));  /* borrowed */
+        PyObject *value = argument_value(values, names, defaults, i, &found);
         if (value == NULL) {
-            if (PyErr_Occurred()) {
-                PyErr_Clear();
-                goto refuse;
-            }
-            value = PyTuple_GET_ITEM(defaults, i);
-            if (value == Py_None) {
-                goto refuse;
-            }
-        } else {
-            ++found;
+            goto refuse;
         }
-        PyTypeObject *kind = Py_TYPE(value);
-        if (kind == &PyFloat_Type || kind == float64_type) {
-            numbers[i] = PyFloat_AS_DOUBLE(value);
-        } else if (kind == &PyLong_Type) {
-            numbers[i] = PyLong_AsDouble(value);
-            if (numbers[i] == -1.0 && PyErr_Occurred()) {
-                PyErr_Clear();
-                goto refuse;
-            }
-        } else if (kind == array_type) {
+        int number = number_value(value, float64_type, &numbers[i]);
+        if (number < 0) {
+            goto refuse;
+        }
+        if (number) {
+            pointers[i] = &numbers[i];
+            steps[i] = 0;
+        } else if (Py_TYPE(value) == array_type) {
             Py_buffer *view = &views[held];
             if (PyObject_GetBuffer(value, view, PyBUF_STRIDES | PyBUF_FORMAT) != 0) {
                 PyErr_Clear();
@@ -599,12 +621,9 @@ static PyObject *symlink_call_large(PyObject *module, PyObject *const *args, Py_
             steps[i] = size == 1 ? 0 : view->strides[0] / 8;
             extents[2 * i] = first < last ? first : last;
             extents[2 * i + 1] = (first < last ? last : first) + 8;
-            continue;
         } else {
             goto refuse;
         }
-        pointers[i] = &numbers[i];
-        steps[i] = 0;
     }
     if (found != PyDict_GET_SIZE(values) || length == 0) {
         goto refuse;  /* an unknown argument, or no array longer than one value: the general path */

@@ -16,10 +16,15 @@ for every compiled function alike: each function describes itself once in a
   of 1 to ``largest`` values (all of one length) as an array, read through
   the buffer protocol (no NumPy headers are needed); anything else refuses;
 * finds a block of outputs no caller holds any more among the kept ones (the
-  sum of their reference counts back at its value when made), else makes a
+  sum of their reference counts back at its value when made; the least
+  recently used looked at first, at most ``keep`` of them), else makes a
   new one in C (one NumPy block and a view of it a row, through NumPy's C
   API: no Python step), and calls the loop's ``<name>_packed`` wrapper once,
-  which checks the values as the NumPy module does;
+  which checks the values as the NumPy module does.  The kept blocks grow
+  past ``keep`` while a caller holds more results than that (up to
+  ``keep_most`` blocks and ``keep_bytes`` bytes), so that a caller keeping
+  each result for a number of calls is answered from a block made before,
+  as one dropping each is; they shrink back by one a call once fewer are held;
 * returns a new dict of the output rows (``call``), or a
   :class:`symlink.numeric.results.Results` made without ``__init__`` (``results``),
   or ``None`` where the call is refused: the caller's general path then
@@ -60,11 +65,13 @@ MODULE = "symlink_call"
 #: kept), the most values a small call takes, ``numpy.ndarray``, ``numpy.float64``, the busy byte (a bytearray);
 #: then, for :func:`large` calls: the result names in order (interned str, ``assembled`` last), their layout
 #: (bytes, 1 for a true/false result, 0 for a number), the address of ``<name>_into`` (0: none), the kept
-#: output blocks of large calls and ``make_large(length)`` (a new entry there, kept); and how many blocks of
-#: small calls are kept (a new one is made in C, with NumPy's C API: a block and its rows, no Python step).
+#: output blocks of large calls and ``make_large(length)`` (a new entry there, kept); how many blocks of
+#: small calls are always kept (a new one is made in C, with NumPy's C API: a block and its rows, no Python
+#: step), and the most blocks and bytes they may grow to while callers hold results (each call then finds one
+#: free: a kept result costs what a dropped one does).
 PLAN_FIELDS = ("names", "defaults", "numbers", "pointers", "steps", "packed", "kept", "make", "largest",
                "array_type", "float64_type", "busy", "results", "layout", "into", "kept_large", "make_large",
-               "keep")
+               "keep", "keep_most", "keep_bytes")
 
 #: The fields of a kept output block's entry: its length, the objects whose references say whether a
 #: caller holds it (the block and its rows), the sum of their reference counts when free, the block (a
@@ -267,38 +274,50 @@ fail:
     return NULL;
 }
 
-/* A free kept entry of `length` values (moved last in the list), borrowed; NULL if none. */
-static PyObject *free_entry(PyObject *kept, Py_ssize_t length)
+/* Whether `entry` is one of ours (ENTRY_FIELDS) of `length` values (of any length where `length` < 0) that no
+ * caller holds: the sum of the reference counts of its block and rows back at its value when made (a caller
+ * holding a row, or a view of one, adds to it). Such an entry may be written again. */
+static int entry_is_free(PyObject *entry, Py_ssize_t length)
 {
-    Py_ssize_t count = PyList_GET_SIZE(kept);
-    for (Py_ssize_t p = 0; p < count; ++p) {
-        PyObject *entry = PyList_GET_ITEM(kept, p);
-        if (!PyTuple_CheckExact(entry) || PyTuple_GET_SIZE(entry) != ENTRY_SIZE
-                || !PyLong_CheckExact(PyTuple_GET_ITEM(entry, ENTRY_LENGTH))
-                || !PyLong_CheckExact(PyTuple_GET_ITEM(entry, ENTRY_REFERENCES))
-                || !PyTuple_CheckExact(PyTuple_GET_ITEM(entry, ENTRY_OBJECTS))) {
-            continue;  /* not an entry of ours: never used */
-        }
+    if (!PyTuple_CheckExact(entry) || PyTuple_GET_SIZE(entry) != ENTRY_SIZE
+            || !PyLong_CheckExact(PyTuple_GET_ITEM(entry, ENTRY_LENGTH))
+            || !PyLong_CheckExact(PyTuple_GET_ITEM(entry, ENTRY_REFERENCES))
+            || !PyTuple_CheckExact(PyTuple_GET_ITEM(entry, ENTRY_OBJECTS))) {
+        return 0;  /* not an entry of ours: never used */
+    }
+    if (length >= 0) {
         Py_ssize_t size = PyLong_AsSsize_t(PyTuple_GET_ITEM(entry, ENTRY_LENGTH));
         if (size == -1 && PyErr_Occurred()) {
             PyErr_Clear();
-            continue;
+            return 0;
         }
         if (size != length) {
+            return 0;
+        }
+    }
+    PyObject *objects = PyTuple_GET_ITEM(entry, ENTRY_OBJECTS);
+    Py_ssize_t sum = 0;
+    for (Py_ssize_t k = 0; k < PyTuple_GET_SIZE(objects); ++k) {
+        sum += Py_REFCNT(PyTuple_GET_ITEM(objects, k));
+    }
+    Py_ssize_t free_sum = PyLong_AsSsize_t(PyTuple_GET_ITEM(entry, ENTRY_REFERENCES));
+    if (free_sum == -1 && PyErr_Occurred()) {
+        PyErr_Clear();
+        return 0;
+    }
+    return sum == free_sum;  /* else a caller holds a row, or a view of one: never written again while it does */
+}
+
+/* A free kept entry of `length` values among the first `window` of `kept` (moved last in the list), borrowed;
+ * NULL if none. The list is in the order of use, the least recently used first: a caller keeping each result
+ * for a few calls frees the first one, found with one look. */
+static PyObject *free_entry(PyObject *kept, Py_ssize_t length, Py_ssize_t window)
+{
+    Py_ssize_t count = PyList_GET_SIZE(kept);
+    for (Py_ssize_t p = 0; p < count && p < window; ++p) {
+        PyObject *entry = PyList_GET_ITEM(kept, p);
+        if (!entry_is_free(entry, length)) {
             continue;
-        }
-        PyObject *objects = PyTuple_GET_ITEM(entry, ENTRY_OBJECTS);
-        Py_ssize_t sum = 0;
-        for (Py_ssize_t k = 0; k < PyTuple_GET_SIZE(objects); ++k) {
-            sum += Py_REFCNT(PyTuple_GET_ITEM(objects, k));
-        }
-        Py_ssize_t free_sum = PyLong_AsSsize_t(PyTuple_GET_ITEM(entry, ENTRY_REFERENCES));
-        if (free_sum == -1 && PyErr_Occurred()) {
-            PyErr_Clear();
-            continue;
-        }
-        if (sum != free_sum) {
-            continue;  /* a caller holds a row, or a view of one: never written again while it does */
         }
         if (p != count - 1) {  /* the caller of a loop holds the last one during the next call */
             Py_INCREF(entry);
@@ -312,6 +331,39 @@ static PyObject *free_entry(PyObject *kept, Py_ssize_t length)
         return entry;
     }
     return NULL;
+}
+
+/* The most blocks of `length` values the small calls keep (PLAN_KEEP_MOST, PLAN_KEEP_BYTES): as many as a
+ * caller holds at once, plus one, so that each call finds a free one, up to `most` blocks and `bytes` bytes;
+ * at least `keep`. */
+static Py_ssize_t most_kept(PyObject *layout, Py_ssize_t length, Py_ssize_t keep, Py_ssize_t most, Py_ssize_t bytes)
+{
+    const char *kinds = PyBytes_AS_STRING(layout);
+    Py_ssize_t all = PyBytes_GET_SIZE(layout), size = 0;
+    for (Py_ssize_t k = 0; k < all; ++k) {
+        size += kinds[k] ? length : 8 * length;
+    }
+    Py_ssize_t fit = size > 0 ? bytes / size : most;
+    fit = fit < most ? fit : most;
+    return fit > keep ? fit : keep;
+}
+
+/* Drop the first entries of `kept` that no caller holds while it has more than `keep`: of another length than
+ * `length` (a caller now calling with another length), or, after a call found its block (`one` set), one more
+ * (a caller keeping fewer results than before: the list shrinks by one a call back to `keep`). */
+static void drop_unused(PyObject *kept, Py_ssize_t keep, Py_ssize_t length, int one)
+{
+    while (PyList_GET_SIZE(kept) > keep) {
+        PyObject *first = PyList_GET_ITEM(kept, 0);
+        if (!entry_is_free(first, -1) || (!one && entry_is_free(first, length))) {
+            return;
+        }
+        if (PyList_SetSlice(kept, 0, 1, NULL) < 0) {
+            PyErr_Clear();
+            return;
+        }
+        one = 0;
+    }
 }
 
 /* Whether every key of `values` is an exact str: other keys could run Python code when compared (and change
@@ -446,16 +498,23 @@ walk:
         }
         entry = made;
     } else {
-        entry = free_entry(PyTuple_GET_ITEM(plan, PLAN_KEPT), length);
-        if (entry == NULL) {
-            Py_ssize_t keep = PyLong_AsSsize_t(PyTuple_GET_ITEM(plan, PLAN_KEEP));
-            if (keep < 1) {
-                if (!PyErr_Occurred()) {
-                    PyErr_SetString(PyExc_TypeError, "symlink_call: a plan keeps no block");
-                }
-                goto fail;
+        PyObject *kept = PyTuple_GET_ITEM(plan, PLAN_KEPT);
+        Py_ssize_t keep = PyLong_AsSsize_t(PyTuple_GET_ITEM(plan, PLAN_KEEP));
+        Py_ssize_t most = PyLong_AsSsize_t(PyTuple_GET_ITEM(plan, PLAN_KEEP_MOST));
+        Py_ssize_t bytes = PyLong_AsSsize_t(PyTuple_GET_ITEM(plan, PLAN_KEEP_BYTES));
+        if (keep < 1 || most < 1 || bytes < 0) {
+            if (!PyErr_Occurred()) {
+                PyErr_SetString(PyExc_TypeError, "symlink_call: a plan keeps no block");
             }
-            made = new_entry(plan, PyTuple_GET_ITEM(plan, PLAN_KEPT), keep, length);
+            goto fail;
+        }
+        drop_unused(kept, keep, length, 0);
+        entry = free_entry(kept, length, keep);  /* the first `keep`: a bounded look, however many are held */
+        if (entry != NULL) {
+            drop_unused(kept, keep, length, 1);  /* (entry is last now, and held by the list) */
+        } else {
+            made = new_entry(plan, kept, most_kept(PyTuple_GET_ITEM(plan, PLAN_LAYOUT), length, keep, most, bytes),
+                             length);
             if (made == NULL) {
                 goto fail;
             }
@@ -663,7 +722,7 @@ static PyObject *symlink_call_large(PyObject *module, PyObject *const *args, Py_
             outputs[k] = view->buf;
         }
     } else {
-        entry = free_entry(PyTuple_GET_ITEM(plan, PLAN_KEPT_LARGE), length);
+        entry = free_entry(PyTuple_GET_ITEM(plan, PLAN_KEPT_LARGE), length, PY_SSIZE_T_MAX);
         if (entry != NULL) {
             Py_INCREF(entry);
         } else {

@@ -274,26 +274,16 @@ fail:
     return NULL;
 }
 
-/* Whether `entry` is one of ours (ENTRY_FIELDS) of `length` values (of any length where `length` < 0) that no
- * caller holds: the sum of the reference counts of its block and rows back at its value when made (a caller
- * holding a row, or a view of one, adds to it). Such an entry may be written again. */
-static int entry_is_free(PyObject *entry, Py_ssize_t length)
+/* The length of `entry` where it is one of ours (ENTRY_FIELDS) that no caller holds, else -1: the sum of the
+ * reference counts of its block and rows back at its value when made (a caller holding a row, or a view of one,
+ * adds to it). Such an entry may be written again. */
+static Py_ssize_t free_length(PyObject *entry)
 {
     if (!PyTuple_CheckExact(entry) || PyTuple_GET_SIZE(entry) != ENTRY_SIZE
             || !PyLong_CheckExact(PyTuple_GET_ITEM(entry, ENTRY_LENGTH))
             || !PyLong_CheckExact(PyTuple_GET_ITEM(entry, ENTRY_REFERENCES))
             || !PyTuple_CheckExact(PyTuple_GET_ITEM(entry, ENTRY_OBJECTS))) {
-        return 0;  /* not an entry of ours: never used */
-    }
-    if (length >= 0) {
-        Py_ssize_t size = PyLong_AsSsize_t(PyTuple_GET_ITEM(entry, ENTRY_LENGTH));
-        if (size == -1 && PyErr_Occurred()) {
-            PyErr_Clear();
-            return 0;
-        }
-        if (size != length) {
-            return 0;
-        }
+        return -1;  /* not an entry of ours: never used */
     }
     PyObject *objects = PyTuple_GET_ITEM(entry, ENTRY_OBJECTS);
     Py_ssize_t sum = 0;
@@ -301,25 +291,35 @@ static int entry_is_free(PyObject *entry, Py_ssize_t length)
         sum += Py_REFCNT(PyTuple_GET_ITEM(objects, k));
     }
     Py_ssize_t free_sum = PyLong_AsSsize_t(PyTuple_GET_ITEM(entry, ENTRY_REFERENCES));
-    if (free_sum == -1 && PyErr_Occurred()) {
+    Py_ssize_t length = PyLong_AsSsize_t(PyTuple_GET_ITEM(entry, ENTRY_LENGTH));
+    if ((free_sum == -1 || length == -1) && PyErr_Occurred()) {
         PyErr_Clear();
-        return 0;
+        return -1;
     }
-    return sum == free_sum;  /* else a caller holds a row, or a view of one: never written again while it does */
+    return sum == free_sum ? length : -1;  /* else a caller holds a row, or a view of one: never written again */
 }
 
 /* A free kept entry of `length` values among the first `window` of `kept` (moved last in the list), borrowed;
  * NULL if none. The list is in the order of use, the least recently used first: a caller keeping each result
- * for a few calls frees the first one, found with one look. */
-static PyObject *free_entry(PyObject *kept, Py_ssize_t length, Py_ssize_t window)
+ * for a few calls frees the first one, found with one look. While the list has more than `keep`, a free first
+ * entry of another length is dropped on the way (a caller now calling with another length). */
+static PyObject *free_entry(PyObject *kept, Py_ssize_t length, Py_ssize_t window, Py_ssize_t keep)
 {
-    Py_ssize_t count = PyList_GET_SIZE(kept);
-    for (Py_ssize_t p = 0; p < count && p < window; ++p) {
+    for (Py_ssize_t p = 0; p < PyList_GET_SIZE(kept) && p < window;) {
         PyObject *entry = PyList_GET_ITEM(kept, p);
-        if (!entry_is_free(entry, length)) {
+        Py_ssize_t free = free_length(entry);
+        if (free != length) {
+            if (free >= 0 && p == 0 && PyList_GET_SIZE(kept) > keep) {
+                if (PyList_SetSlice(kept, 0, 1, NULL) < 0) {
+                    PyErr_Clear();
+                    return NULL;
+                }
+            } else {
+                ++p;
+            }
             continue;
         }
-        if (p != count - 1) {  /* the caller of a loop holds the last one during the next call */
+        if (p != PyList_GET_SIZE(kept) - 1) {  /* the caller of a loop holds the last one during the next call */
             Py_INCREF(entry);
             if (PyList_SetSlice(kept, p, p + 1, NULL) < 0 || PyList_Append(kept, entry) < 0) {
                 Py_DECREF(entry);
@@ -348,21 +348,13 @@ static Py_ssize_t most_kept(PyObject *layout, Py_ssize_t length, Py_ssize_t keep
     return fit > keep ? fit : keep;
 }
 
-/* Drop the first entries of `kept` that no caller holds while it has more than `keep`: of another length than
- * `length` (a caller now calling with another length), or, after a call found its block (`one` set), one more
- * (a caller keeping fewer results than before: the list shrinks by one a call back to `keep`). */
-static void drop_unused(PyObject *kept, Py_ssize_t keep, Py_ssize_t length, int one)
+/* Drop the first entry of `kept` where no caller holds it and the list has more than `keep`: called after a call
+ * found a free block, so that the list shrinks by one a call back to `keep` once callers hold fewer results. */
+static void drop_one_unused(PyObject *kept, Py_ssize_t keep)
 {
-    while (PyList_GET_SIZE(kept) > keep) {
-        PyObject *first = PyList_GET_ITEM(kept, 0);
-        if (!entry_is_free(first, -1) || (!one && entry_is_free(first, length))) {
-            return;
-        }
-        if (PyList_SetSlice(kept, 0, 1, NULL) < 0) {
-            PyErr_Clear();
-            return;
-        }
-        one = 0;
+    if (PyList_GET_SIZE(kept) > keep && free_length(PyList_GET_ITEM(kept, 0)) >= 0
+            && PyList_SetSlice(kept, 0, 1, NULL) < 0) {
+        PyErr_Clear();
     }
 }
 
@@ -508,10 +500,9 @@ walk:
             }
             goto fail;
         }
-        drop_unused(kept, keep, length, 0);
-        entry = free_entry(kept, length, keep);  /* the first `keep`: a bounded look, however many are held */
+        entry = free_entry(kept, length, keep, keep);  /* the first `keep`: a bounded look, however many are held */
         if (entry != NULL) {
-            drop_unused(kept, keep, length, 1);  /* (entry is last now, and held by the list) */
+            drop_one_unused(kept, keep);  /* (entry is last now, and held by the list) */
         } else {
             made = new_entry(plan, kept, most_kept(PyTuple_GET_ITEM(plan, PLAN_LAYOUT), length, keep, most, bytes),
                              length);
@@ -722,7 +713,7 @@ static PyObject *symlink_call_large(PyObject *module, PyObject *const *args, Py_
             outputs[k] = view->buf;
         }
     } else {
-        entry = free_entry(PyTuple_GET_ITEM(plan, PLAN_KEPT_LARGE), length, PY_SSIZE_T_MAX);
+        entry = free_entry(PyTuple_GET_ITEM(plan, PLAN_KEPT_LARGE), length, PY_SSIZE_T_MAX, PY_SSIZE_T_MAX);
         if (entry != NULL) {
             Py_INCREF(entry);
         } else {

@@ -839,7 +839,9 @@ class CompiledFunction:
 #: Output blocks of small calls kept for reuse by each compiled function (see :meth:`CompiledFunction._free_outputs`):
 #: eight, so that results held for up to seven calls are answered from blocks already made (with the call
 #: extension a new block and its rows cost about half a dropped call at 10 values, without it about three);
-#: at most eight blocks of SMALL_CALL values a function.
+#: at most eight blocks of SMALL_CALL values a function without the call extension.  With it, these are the
+#: blocks always kept, and the first looked at for a free one: more are kept while callers hold more results
+#: (:data:`KEPT_OUTPUTS_MOST`).
 KEPT_OUTPUTS = 8
 
 #: With the call extension, the blocks of small calls kept grow past :data:`KEPT_OUTPUTS` while a caller holds

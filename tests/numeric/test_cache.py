@@ -682,3 +682,14 @@ def test_the_same_code_in_one_process_is_compiled_once(folder, monkeypatch):
     expected = numpy.pi - numpy.arccos((c * c + diagonal * diagonal - b * b) / (2 * c * diagonal))
     result = second(theta=0.0, a=a, b=b, c=c, d=d, branch=1)["rocker"]
     assert float(result) == pytest.approx(expected, abs=1e-12)
+
+
+def test_under_python_O_the_bytecode_has_its_own_name_which_symlink_counts_as_its_own(folder, monkeypatch):
+    import re
+    import types
+    plain, plain_header = cache.entry_path(folder, HEX, bytecode=True).name, cache._bytecode_header(HEX, "x = 1\n")
+    monkeypatch.setattr(cache, "sys", types.SimpleNamespace(flags=types.SimpleNamespace(optimize=2)))
+    optimized = cache.entry_path(folder, HEX, bytecode=True).name
+    assert optimized == f"{HEX}.{importlib.util.MAGIC_NUMBER.hex()}.opt-2.code" and optimized != plain
+    assert re.match(cache._OWN_NAMES, optimized) and re.match(cache._OWN_NAMES, f".{optimized}.{HEX[:12]}.tmp")
+    assert cache._bytecode_header(HEX, "x = 1\n") != plain_header  # a file renamed across levels is not used

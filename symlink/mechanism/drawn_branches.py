@@ -75,9 +75,10 @@ def _bounded(expr: sp.Expr, values: Mapping[sp.Symbol, tuple[float, float]]) -> 
     bound cannot be kept (a square root of what may be negative, atan2 of what may be the origin or may
     straddle its cut, a function not known here) or a value is not finite."""
     if expr.is_Symbol:
-        if expr not in values:
-            raise _Unsure
-        return values[expr]
+        try:
+            return values[expr]
+        except KeyError:
+            raise _Unsure from None
     if expr.is_Number:
         value = float(expr)
         exact = expr.is_Integer and abs(value) < 2.0 ** 53
@@ -149,10 +150,10 @@ def _misses_bounded(step, values: Mapping[sp.Symbol, float], scale: float) -> di
     """Each sign's worst miss against the drawing and its bound, in double precision (``_Unsure``: undecided)."""
     found = {}
     for sign in (1, -1):
-        local: dict[sp.Symbol, tuple[float, float]] = {}
-        known: Mapping = ChainMap(local, {step.branch: (float(sign), 0.0)}, _Exact(values))
+        known = _Exact(values)
+        known[step.branch] = (float(sign), 0.0)
         for symbol, expr in step.intermediates.items():
-            local[symbol] = _bounded(expr, known)
+            known[symbol] = _bounded(expr, known)
         miss, width = 0.0, 0.0
         for symbol, expr in step.positions.items():
             got, bound = _bounded(expr, known)
@@ -167,20 +168,17 @@ def _misses_bounded(step, values: Mapping[sp.Symbol, float], scale: float) -> di
     return found
 
 
-class _Exact(Mapping):
-    """The drawing's values as ``(value, 0.0)``: inputs both evaluations share, exact as given."""
+class _Exact(dict):
+    """A loop's values with their bounds: its own (intermediates, branch sign) as set, and over them the drawing's
+    values as ``(value, 0.0)``, inputs that both evaluations share, exact as given (looked up as they are asked)."""
 
     def __init__(self, values: Mapping[sp.Symbol, float]) -> None:
+        super().__init__()
         self.values = values
 
-    def __getitem__(self, symbol):
-        return self.values[symbol], 0.0
-
-    def __iter__(self):
-        return iter(self.values)
-
-    def __len__(self) -> int:
-        return len(self.values)
+    def __missing__(self, symbol):
+        found = self[symbol] = (self.values[symbol], 0.0)  # KeyError: not a value of the drawing
+        return found
 
 
 def _sure_sign(misses: Mapping[int, tuple[float, float]]) -> int | None:

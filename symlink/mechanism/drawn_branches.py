@@ -18,14 +18,6 @@ far less than 1e-7 and by less than the other sign, bounds included), that is
 the decision; anywhere else (near a toggle, where a square root's argument
 might be negative or an atan2's point might be the origin, or for a function
 the bound does not know) the loop is evaluated at 20 digits as before.
-
->>> from symlink.mechanism.joints import from_joints
->>> drawn = from_joints({"ground": ["A", "D"], "crank": ["A", "B"], "coupler": ["B", "C"], "rocker": ["D", "C"]},
-...                     {"A": (0, 0), "B": (0, 20), "C": (60, 50), "D": (80, 0)}, driver="A")
->>> known = {**drawn.parameters, **drawn.pose}
->>> values = {s: known[s.name] for s in drawn.linkage.parameters + drawn.linkage.coordinates}
->>> drawn_branch_signs(drawn.linkage, values, 80.0)
-{'branch': 1}
 """
 from __future__ import annotations
 
@@ -174,10 +166,10 @@ class _Exact(dict):
 
     def __init__(self, values: Mapping[sp.Symbol, float]) -> None:
         super().__init__()
-        self.values = values
+        self.drawing = values
 
     def __missing__(self, symbol):
-        found = self[symbol] = (self.values[symbol], 0.0)  # KeyError: not a value of the drawing
+        found = self[symbol] = (self.drawing[symbol], 0.0)  # KeyError: not a value of the drawing
         return found
 
 
@@ -190,7 +182,7 @@ def _sure_sign(misses: Mapping[int, tuple[float, float]]) -> int | None:
     return best if best_high < DRAWN_MISS / 10 and best_high < other_low else None
 
 
-def _misses_exact(step, values: Mapping[sp.Symbol, float], scale: float) -> dict[int, float]:
+def _misses_exact(step, values: dict[sp.Symbol, float], scale: float) -> dict[int, float]:
     """Each sign's worst miss against the drawing, every expression evaluated at 20 digits."""
     misses = {}
     for sign in (1, -1):
@@ -207,14 +199,37 @@ def _misses_exact(step, values: Mapping[sp.Symbol, float], scale: float) -> dict
     return misses
 
 
-def drawn_branch_signs(linkage: Linkage, values: Mapping[sp.Symbol, float], scale: float) -> dict[str, int]:
-    """Each loop's branch sign at the drawn pose ``values`` (every parameter, input and unknown): the sign whose
-    closed form gives the drawn unknowns; ``scale`` is the drawing's size (a length's miss is relative to it).
+def drawn_branch_signs(linkage: Linkage, values: dict[sp.Symbol, float], scale: float) -> dict[str, int]:
+    """Each loop's branch sign at the drawn pose ``values``: the sign whose closed form gives the drawn unknowns.
+
+    Parameters
+    ----------
+    linkage : Linkage
+        A linkage with a closed form (its :attr:`~symlink.symbolic.linkage.Linkage.plan`).
+    values : dict of sympy.Symbol to float
+        Every parameter, input and unknown at the drawing.
+    scale : float
+        The drawing's size: a length's miss is relative to it.
+
+    Returns
+    -------
+    dict of str to int
+        Each branch symbol's name and its sign, +1 or -1, in plan order.
 
     Raises
     ------
     DrawnPoseError
         Neither sign of a loop reproduces the drawing within :data:`DRAWN_MISS`.
+
+    Examples
+    --------
+    >>> from symlink.mechanism.joints import from_joints
+    >>> drawn = from_joints({"ground": ["A", "D"], "crank": ["A", "B"], "coupler": ["B", "C"], "rocker": ["D", "C"]},
+    ...                     {"A": (0, 0), "B": (0, 20), "C": (60, 50), "D": (80, 0)}, driver="A")
+    >>> known = {**drawn.parameters, **drawn.pose}
+    >>> values = {s: known[s.name] for s in drawn.linkage.parameters + drawn.linkage.coordinates}
+    >>> drawn_branch_signs(drawn.linkage, values, 80.0)
+    {'branch': 1}
     """
     signs: dict[str, int] = {}
     for step in linkage.plan:

@@ -119,14 +119,15 @@ def _bounded(expr: sp.Expr, values: Mapping[sp.Symbol, tuple[float, float]]) -> 
     if kind is sp.atan2:
         (y, ey), (x, ex) = _bounded(args[0], values), _bounded(args[1], values)
         radius, moved = math.hypot(x, y), ex + ey
-        if not radius > 4 * moved or (x <= ex and abs(y) <= ey):  # near the origin, or maybe across the cut
+        if not radius > 4 * _MARGIN * moved or (x <= _MARGIN * ex and abs(y) <= _MARGIN * ey):
+            # near the origin, or maybe across the cut (the 20-digit evaluation's own rounding allowed for)
             raise _Unsure
         return _finite(math.atan2(y, x), 2 * moved / radius + 8 * _ROUNDING)
     raise _Unsure
 
 
 def _square_root(value: float, bound: float) -> tuple[float, float]:
-    if not value - bound > 0:  # maybe negative (no assembly, or a toggle): only exact arithmetic can tell
+    if not value - _MARGIN * bound > 0:  # maybe negative (no assembly, or a toggle): only 20 digits can tell
         raise _Unsure
     root = math.sqrt(value)
     return _finite(root, bound / math.sqrt(value - bound) + 2 * _ROUNDING * root)

@@ -59,6 +59,7 @@ slider, so j2 counts only the gear pairs and cams given as ``higher_pairs``.
 from __future__ import annotations
 
 import itertools
+from collections import Counter
 from fractions import Fraction
 from dataclasses import dataclass
 from typing import Mapping, Sequence
@@ -267,7 +268,7 @@ def mechanism(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | None = Non
     coordinates = set(linkage.coordinates)
     nodes, vectors, ends = _segments(linkage)
     names = [_vector_name(v) for v in vectors]
-    repeated = sorted({n for n in names if names.count(n) > 1})
+    repeated = sorted(n for n, k in Counter(names).items() if k > 1)
     if repeated:
         raise ValueError(f"{linkage.name}: two different vectors are both named {repeated[0]!r}; "
                          "give each vector its own name (or use one Vector object for one segment)")
@@ -384,9 +385,11 @@ def _segments(linkage: Linkage) -> tuple[_Nodes, list[Vector], dict[str, tuple]]
     chains: list[tuple[str, tuple[tuple[int, Vector], ...], bool]] = [
         (name, point.as_sum().terms, False) for name, point in linkage.points.items() if point is not None]
     chains += [("", loop.terms, True) for loop in linkage.loops]
+    seen: set[Vector] = set()
     for name, terms, closed in chains:
         for _, vector in terms:
-            if vector not in vectors:
+            if vector not in seen:
+                seen.add(vector)
                 vectors.append(vector)
         terms = _fixed_runs_in_walking_order(terms, nodes, coordinates, closed)
         for before, after in zip(terms, terms[1:] + (terms[:1] if closed else ())):
@@ -445,8 +448,9 @@ def _bodies_of_vectors(linkage: Linkage, vectors: Sequence[Vector], travels: Seq
                        nodes: _Nodes) -> tuple[dict[Vector, str], dict[Vector, str]]:
     """The body of each vector (a travel's: its guide), and the block at the head of each travel."""
     coordinates = set(linkage.coordinates)
-    body_of = {vector: _body_name(linkage, _moving_part(vector.angle, coordinates)) for vector in vectors}
-    block_of = {travel: _block_name(linkage, travel, coordinates) for travel in travels}
+    role_of = _roles_by_coordinate(linkage)
+    body_of = {vector: _body_name(role_of, _moving_part(vector.angle, coordinates)) for vector in vectors}
+    block_of = {travel: _block_name(role_of, travel, coordinates) for travel in travels}
     block_nodes: dict[Vector, set] = {}
     for travel in travels:  # fixed vectors along the guide that carry on from the head ride on the block
         guide = _moving_part(travel.angle, coordinates)
@@ -505,23 +509,25 @@ def _fresh(prefix: str, used: set[str]) -> str:
     return f"{prefix}{number}"
 
 
-def _body_name(linkage: Linkage, moving: sp.Expr) -> str:
+def _roles_by_coordinate(linkage: Linkage) -> dict[sp.Expr, str]:
+    """The first role of each coordinate (a look-up a vector, not a pass over every role)."""
+    found: dict[sp.Expr, str] = {}
+    for role, coordinate in linkage.roles.items():
+        found.setdefault(coordinate, role)
+    return found
+
+
+def _body_name(role_of: Mapping[sp.Expr, str], moving: sp.Expr) -> str:
     """A body's name: ``ground``, else the role of the coordinate it turns with, else that coordinate."""
     if moving == 0:
         return GROUND
-    for role, coordinate in linkage.roles.items():
-        if moving == coordinate:
-            return role
-    return str(moving)
+    return role_of.get(moving, str(moving))
 
 
-def _block_name(linkage: Linkage, travel: Vector, coordinates: set[sp.Symbol]) -> str:
+def _block_name(role_of: Mapping[sp.Expr, str], travel: Vector, coordinates: set[sp.Symbol]) -> str:
     """A slider block's name: the role of its travel coordinate, else ``block_<travel coordinate>``."""
     moving = _moving_part(travel.length, coordinates)
-    for role, coordinate in linkage.roles.items():
-        if moving == coordinate:
-            return role
-    return f"block_{moving}"
+    return role_of.get(moving, f"block_{moving}")
 
 
 def _positions(linkage: Linkage, vectors: Sequence[Vector], nodes: _Nodes) -> dict[object, VectorSum]:

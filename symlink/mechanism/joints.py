@@ -60,11 +60,11 @@ from __future__ import annotations
 import math
 import numbers
 from dataclasses import dataclass, field, replace
-from collections import ChainMap
-from typing import Collection, Mapping, MutableMapping, Sequence
+from typing import Collection, Mapping, Sequence
 
 import sympy as sp
 
+from .drawn_branches import DrawnPoseError, drawn_branch_signs
 from .mobility import Mobility
 from ..common.display import record_html
 from ..symbolic.linkage import Linkage
@@ -81,10 +81,6 @@ _COINCIDENT = 1e-12
 #: Coordinates beyond this size, or non-zero below its inverse, are out of range: lengths are squared and
 #: multiplied in the closed forms (the bound of synthesis targets).
 MAX_COORDINATE = 1e100
-
-
-class DrawnPoseError(ValueError):
-    """The drawing cannot be reproduced (a bug, if the drawing was accepted): never expected."""
 
 
 @dataclass(frozen=True)
@@ -503,8 +499,7 @@ class _Builder:
                                      f"O{start}y")
         found: dict[str, VectorSum] = {start: origin}
         queue = [start]
-        while queue:
-            joint = queue.pop(0)
+        for joint in queue:  # breadth first: the queue grows as it is walked
             for link in self.chain.links_of(joint):
                 for other in self.chain.links[link]:
                     if other not in found:
@@ -570,7 +565,8 @@ def _drawn(coordinates: Mapping[str, Sequence[float]], joints: Sequence[str]) ->
     missing = [j for j in joints if j not in coordinates]
     if missing:
         raise ValueError(f"coordinates: no position for joint{'s' if len(missing) > 1 else ''} {', '.join(missing)}")
-    extra = [j for j in coordinates if j not in joints]
+    known = set(joints)
+    extra = [j for j in coordinates if j not in known]
     if extra:
         raise ValueError(f"coordinates: {', '.join(map(repr, extra))} is on no link")
     points = {}
@@ -676,36 +672,6 @@ def _planned(builder: _Builder, chain: Chain, unknowns: Sequence[sp.Symbol],
         return steps, more
 
 
-def _value(expr: sp.Expr, values: Mapping[sp.Symbol, float]) -> float:
-    return float(sp.N(expr.xreplace(values), 20))
-
-
-def _branches(linkage: Linkage, values: dict[sp.Symbol, float], scale: float) -> dict[str, int]:
-    """Each loop's branch sign at the drawn pose: the sign whose closed form gives the drawn unknowns."""
-    signs: dict[str, int] = {}
-    for step in linkage.plan:
-        if step.branch is None:
-            continue
-        misses = {}
-        for sign in (1, -1):
-            # The loop's own values over the drawing's (no copy of every value of the linkage a loop).
-            local: MutableMapping[sp.Symbol, float] = ChainMap({step.branch: sign}, values)
-            for symbol, expr in step.intermediates.items():
-                local[symbol] = _value(expr, local)
-            miss = 0.0
-            for symbol, expr in step.positions.items():
-                got, drawn = _value(expr, local), values[symbol]
-                is_angle = symbol.name.startswith("theta_")
-                miss = max(miss, abs(_wrap(got - drawn)) if is_angle else abs(got - drawn) / scale)
-            misses[sign] = miss
-        best = min(misses, key=lambda s: (misses[s], -s))
-        if not misses[best] < 1e-7:
-            raise DrawnPoseError(f"loop {step.loop.name}: neither assembly reproduces the drawing "
-                                 f"(misses {misses[1]:.3g} and {misses[-1]:.3g})")
-        signs[step.branch.name] = best
-    return signs
-
-
 def _derive(chain: Chain, points: Mapping[str, tuple[float, float]], sliders: Mapping[str, Slider],
             drivers: Sequence[tuple[str, str | None]], name: str, swapped: set[str]) -> tuple:
     """The linkage, its builder, its structure and its branch signs at the drawing (``swapped``: loops whose two
@@ -722,7 +688,8 @@ def _derive(chain: Chain, points: Mapping[str, tuple[float, float]], sliders: Ma
     link_of = {q: link for link, q in builder.angle_of.items() if isinstance(q, sp.Symbol)}
     structure: list[tuple[str, tuple[str, ...]]] = [
         (loop.name, tuple(link_of[q] for q in found if q in link_of)) for _, loop, found in steps]
-    rest = [q for q in unknowns if q not in order]
+    planned = set(order)
+    rest = [q for q in unknowns if q not in planned]
     if rest:
         loops += [builder.loop(cycle) for cycle in more]
         structure.append(("+".join(c.name for c in more), tuple(link_of[q] for q in rest if q in link_of)))
@@ -739,7 +706,7 @@ def _derive(chain: Chain, points: Mapping[str, tuple[float, float]], sliders: Ma
                       parameters=parameters, points=points_from_origin, roles=roles)
     values = dict(builder.values)
     values.update(builder.pose)
-    branches = _branches(linkage, values, builder.scale) if linkage.has_closed_form else {}
+    branches = drawn_branch_signs(linkage, values, builder.scale) if linkage.has_closed_form else {}
     return linkage, builder, tuple(structure), branches
 
 

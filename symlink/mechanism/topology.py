@@ -175,8 +175,13 @@ class Chain:
                     None)
 
     def rigid_joints(self, link: str) -> tuple[str, ...]:
-        """The joints fixed on ``link`` (all but the sliders it guides), in its order."""
-        return tuple(j for j in self.links[link] if self.sliders.get(j) != link)
+        """The joints fixed on ``link`` (all but the sliders it guides), in its order; made once a link (the
+        ground of n pivots is asked for its first joint once a side walked)."""
+        made = self.__dict__.setdefault("_rigid_made", {})
+        found = made.get(link)
+        if found is None:
+            found = made[link] = tuple(j for j in self.links[link] if self.sliders.get(j) != link)
+        return found
 
     def _check_connected(self) -> None:
         reached, stack = {self.ground}, [self.ground]

@@ -25,6 +25,7 @@ a*thetadot*sin(beta - theta)/(c*sin(beta - phi))
 """
 from __future__ import annotations
 
+from collections import Counter
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Iterable, Mapping, Sequence
@@ -279,9 +280,9 @@ class Linkage:
                                                or by_name[symbol.name] != symbol):
                     other = by_name[symbol.name]
                     raise ValueError(f"{kinds[other]} {other.name!r} clashes with {source}; rename it")
-        loop_names = [loop.name for loop in self.loops]
-        for loop_name in loop_names:
-            if loop_names.count(loop_name) > 1:
+        loop_names = Counter(loop.name for loop in self.loops)
+        for loop_name, count in loop_names.items():
+            if count > 1:
                 raise ValueError(f"{self.name}: two loops are named {loop_name!r}; each loop needs its own name "
                                  "(it names the loop's branch sign)")
         # Output names: distinct from each other and from the symbols.

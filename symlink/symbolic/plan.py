@@ -151,10 +151,11 @@ def solve_plan(linkage: Linkage) -> SolvePlan:
         note = f"no closed form, every loop has more than two unknowns ({counts}); solved numerically"
         return SolvePlan(linkage.name, inputs, False, (step,), note)
     solved_in: dict = {x: 0 for x in linkage.inputs}
+    place = {q: k for k, q in enumerate(linkage.coordinates)}  # a loop's earlier results in the coordinates' order
     steps = []
     for number, solution in enumerate(linkage.plan, start=1):
-        present = solution.loop.symbols()
-        uses = {q.name: solved_in[q] for q in linkage.coordinates if q in present and q in solved_in}
+        present = sorted((q for q in solution.loop.symbols() if q in place and q in solved_in), key=place.__getitem__)
+        uses = {q.name: solved_in[q] for q in present}
         steps.append(PlanStep(number, (solution.loop.name,), solution.case.name, CASE_NAMES[solution.case.name],
                               tuple(u.name for u in solution.positions), uses,
                               solution.branch.name if solution.branch is not None else None))

@@ -256,3 +256,65 @@ def test_finding_the_dyads_loops_on_a_ground_of_many_pivots_grows_linearly():
     """Every walk that crossed the ground (a link of n + 1 joints) tried all n pivots: a search of n^2 steps
     (5 s for 500 dyads, 80 s for 2000).  Now twice the dyads take at most 2.2 times the steps."""
     assert walk_steps(200) <= 2.2 * walk_steps(100)
+
+
+def calls_of(run, only_symlink: bool) -> dict:
+    """How often each Python function runs during ``run()`` (symlink's own, or every one: SymPy's, the dataclasses'
+    comparisons), counted by a profile hook: calls, never times."""
+    package = os.path.dirname(os.path.abspath(sys.modules["symlink"].__file__))
+    counts: dict = {}
+
+    def count(frame, event, _):
+        if event == "call" and (not only_symlink or frame.f_code.co_filename.startswith(package)):
+            counts[frame.f_code] = counts.get(frame.f_code, 0) + 1
+
+    sys.setprofile(count)
+    try:
+        run()
+    finally:
+        sys.setprofile(None)
+    return {f"{code.co_filename}:{code.co_firstlineno} {code.co_name}": k for code, k in counts.items()}
+
+
+def test_drawing_twice_the_dyads_calls_no_function_of_symlink_more_than_about_twice_as_often():
+    """Deriving a chain from its joints (loops, closed forms, branch signs at the drawing): a link's fixed joints
+    were listed again for every side walked (the ground holds n pivots: n^2 steps, 3.6 times as many calls for
+    2 n dyads); now every function of symlink runs at most 2.2 times as often for twice the dyads (SymPy's own
+    functions are not counted: its cache of a fixed size holds less of a longer chain)."""
+    from symlink.mechanism.joints import from_joints
+    small, large = (calls_of(lambda: from_joints(*ground_chain(n), driver="A"), True) for n in (50, 100))
+    grown = {name: (k, small.get(name, 0)) for name, k in large.items() if k > 200 and k > 2.2 * small.get(name, 0)}
+    assert not grown, grown
+    assert sum(large.values()) <= 2.2 * sum(small.values())
+
+
+def test_reading_the_bodies_of_twice_the_dyads_makes_about_twice_the_calls():
+    """The mechanism (bodies and joints) that ``symlink plan`` reads for its mobility: every vector was looked for
+    in the list of those seen (a comparison of vectors each, n^2), every vector's body in every role; now twice
+    the dyads make at most 2.2 times the calls of every Python function, SymPy's and the comparisons included."""
+    from symlink.mechanism.bodies import mechanism
+    from symlink.mechanism.joints import from_joints
+    totals = []
+    for n in (50, 100):
+        linkage = from_joints(*ground_chain(n), driver="A").linkage
+        totals.append(sum(calls_of(lambda: mechanism(linkage), False).values()))
+    assert totals[1] <= 2.2 * totals[0], totals
+
+
+def test_the_branch_signs_of_twice_the_dyads_make_about_twice_the_calls():
+    """The branch signs at the drawing, the closed forms derived before the count: every Python call (SymPy's
+    included) at most 2.2 times as many for twice the dyads."""
+    from symlink.mechanism.drawn_branches import drawn_branch_signs
+    from symlink.mechanism.joints import from_joints
+    totals = []
+    for n in (50, 100):
+        drawn = from_joints(*ground_chain(n), driver="A")
+        known = {**drawn.parameters, **drawn.pose}
+        values = {s: known[s.name] for s in drawn.linkage.parameters + drawn.linkage.coordinates}
+        drawn.linkage.plan  # noqa: B018 - derived before the count
+        scale = max(abs(c) for xy in drawn.coordinates.values() for c in xy)
+        signs: dict = {}
+        totals.append(sum(calls_of(lambda: signs.update(drawn_branch_signs(drawn.linkage, values, scale)),
+                                   False).values()))
+        assert signs == {b.name: 1 for b in drawn.linkage.branches}  # the drawing is every loop's +1
+    assert totals[1] <= 2.2 * totals[0], totals

@@ -63,7 +63,7 @@ if TYPE_CHECKING:  # the symbolic side is imported where a linkage is worked on:
     from ..symbolic.linkage import Linkage
     from ..symbolic.vectors import Vector, VectorSum
 
-__all__ = ["Tolerance", "StackUp", "StackUpModel", "stack_up", "SIGMAS_PER_BAND", "PinPlay", "pin_play", "with_pin_play",
+__all__ = ["Tolerance", "StackUp", "StackUpModel", "stack_up", "tolerance_arrays", "SIGMAS_PER_BAND", "PinPlay", "pin_play", "with_pin_play",
            "PlayEnvelope", "pin_play_envelope",
            "SampledBuilds", "sample_builds", "MAX_SAMPLED_VALUES", "BUILDS_PER_CHUNK"]
 
@@ -184,7 +184,13 @@ class StackUp:
         return self.outputs.index(output)
 
 
-def _tolerances(tolerances: TolerancesLike) -> tuple[list[str], numpy.ndarray, numpy.ndarray]:
+def tolerance_arrays(tolerances: TolerancesLike) -> tuple[list[str], numpy.ndarray, numpy.ndarray]:
+    """The toleranced dimensions' names, bands and sigmas (in that order) of ``tolerances`` (see :func:`stack_up`),
+    checked: what :meth:`StackUpModel.stack_up` takes.
+
+    >>> tolerance_arrays({"a": 0.3, "b": Tolerance(sigma=0.05)})
+    (['a', 'b'], array([0.3 , 0.15]), array([0.1 , 0.05]))
+    """
     if not tolerances:
         raise ValueError("give a tolerance for at least one dimension")
     names, bands, sigmas = [], [], []
@@ -328,7 +334,7 @@ def stack_up(linkage: Linkage, outputs: str | Sequence[str], nominal: Mapping[st
     (0.0063013, 0.0063013)
     """
     chosen = [outputs] if isinstance(outputs, str) else list(outputs)
-    dimensions, bands, sigmas = _tolerances(tolerances)
+    dimensions, bands, sigmas = tolerance_arrays(tolerances)
     return StackUpModel.derive(linkage, chosen, dimensions).stack_up(nominal, bands, sigmas, inputs, guess)
 
 
@@ -896,7 +902,7 @@ def sample_builds(linkage: Linkage, outputs: str | Sequence[str], nominal: Mappi
     from ..numeric.solver import Solver
     from ..numeric.units import output_units
     chosen = [outputs] if isinstance(outputs, str) else list(outputs)
-    dimensions, _, sigmas = _tolerances(tolerances)
+    dimensions, _, sigmas = tolerance_arrays(tolerances)
     for what, value in (("builds", builds), ("chunk", chunk)):
         if isinstance(value, bool) or not isinstance(value, int) or value < 1:
             raise ValueError(f"{what} must be a whole number >= 1, got {value!r}")

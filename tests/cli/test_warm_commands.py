@@ -7,9 +7,11 @@ warm for the next (the first command of each linkage below is its cold run).
 """
 from __future__ import annotations
 
+import math
+
 import pytest
 
-from warm_runs import run_twice
+from warm_runs import PROJECT, run_twice
 
 #: The four-bar of seed 003 (mm), whose closed forms are derived once for the module.
 FOURBAR = ["fourbar", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80", "--angles", "0,50",
@@ -31,6 +33,14 @@ COMMANDS = {
                       "--format", "csv"], 5),
     "slider-crank past its reach": (["slider-crank", "--crank", "20", "--conrod", "15", "--angles", "0,90",
                                      "--format", "csv", "--branch", "1"], 2),
+    "tolerance stack-up of the four-bar": (["tolerance", "fourbar", "--crank", "20", "--coupler", "66", "--rocker",
+                                            "56", "--ground", "80", "--tolerance", "0.05", "--output", "rocker",
+                                            "--angles", "0,50", "--format", "csv"], 3),
+    "tolerance stack-up of a rate": (
+        ["tolerance", "fourbar", "--tolerance", "0.1", "--tolerances", "b=0.2", "--output", "rocker_speed",
+         "--crank-speed", "3", "--angles", "0,90", "--format", "csv"], 3),
+    "tolerance stack-up of a linkage file": (["tolerance", str(PROJECT / "linkages" / "slider-crank.toml"),
+                                              "--tolerance", "0.05", "--angles", "0,40", "--format", "csv"], 3),
 }
 SLOW_COMMANDS = {
     "inverted slider-crank": (["inverted-slider-crank", "--crank", "2", "--ground", "1.2", "--crank-speed", "3",
@@ -99,3 +109,39 @@ def test_the_former_name_is_noted_warm_as_cold(shared_cache, tmp_path):
         assert runs.warm_notes == runs.cold_notes
         assert runs.warm_notes.count("\n") == 1
         assert runs.warm_notes.startswith("symlink: warning: 'stephenson3' is symlink's former name of stephenson-ii")
+
+
+def _rocker(theta: float, a: float, b: float, c: float, d: float) -> float:
+    """The four-bar's rocker angle on branch +1, by hand: C where the circles about B (radius b) and D (radius c)
+    meet, to the left of the directed line from B to D."""
+    bx, by = a * math.cos(theta), a * math.sin(theta)
+    dx, dy = d - bx, -by
+    span = math.hypot(dx, dy)
+    along = (b * b - c * c + span * span) / (2 * span)
+    across = math.sqrt(b * b - along * along)
+    cx = bx + (along * dx - across * dy) / span
+    cy = by + (along * dy + across * dx) / span
+    return math.atan2(cy, cx - d)
+
+
+def test_a_warm_stack_up_takes_other_numbers(shared_cache, tmp_path):
+    """The stack-up's cache entries are keyed by the linkage, the output and the toleranced dimensions, not by the
+    numbers: another four-bar and band run warm (no SymPy), print what a cold run prints, and the worst case of
+    the rocker for the coupler alone is |d(rocker)/db| * band, the slope by central differences of the rocker
+    found by hand (:func:`_rocker`)."""
+    first = ["tolerance", "fourbar", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80",
+             "--tolerances", "b=0.3", "--output", "rocker", "--angles", "0", "--format", "csv"]
+    run_twice(tmp_path, first, shared_cache)
+    other = ["tolerance", "fourbar", "--crank", "25", "--coupler", "70", "--rocker", "60", "--ground", "85",
+             "--tolerances", "b=0.6", "--output", "rocker", "--angles", "0.5", "--format", "csv", "--units", "rad"]
+    warm = run_twice(tmp_path, other, shared_cache)  # both runs warm: the entries of the first command serve it
+    assert not warm.imported & {"sympy", "matplotlib", "scipy", "pandas"}
+    (tmp_path / "fresh").mkdir()
+    cold = run_twice(tmp_path / "fresh", other)  # a cache of its own: its first run derives
+    assert warm.cold == cold.cold and warm.cold_notes == cold.cold_notes
+    header, row = warm.warm.splitlines()
+    cells = dict(zip(header.split(","), row.split(",")))
+    step = 1e-6
+    slope = (_rocker(0.5, 25, 70 + step, 60, 85) - _rocker(0.5, 25, 70 - step, 60, 85)) / (2 * step)
+    assert float(cells["worst_case"]) == pytest.approx(abs(slope) * 0.6, rel=1e-6)
+    assert float(cells["rocker"]) == pytest.approx(_rocker(0.5, 25, 70, 60, 85), rel=1e-9)

@@ -69,7 +69,7 @@ def _check(name: str, commands: dict, folder, cache) -> None:
     arguments, lines = commands[name]
     runs = run_twice(folder, arguments, cache)
     assert "symlink" in runs.imported and "numpy" in runs.imported  # the import list was read
-    heavy = runs.imported & {"sympy", "matplotlib", "scipy", "pandas"}
+    heavy = runs.imported & {"sympy", "matplotlib", "scipy", "pandas", "distributed"}
     assert not heavy, f"the warm run imported {', '.join(sorted(heavy))}"
     assert runs.warm == runs.cold
     assert runs.warm_notes == runs.cold_notes
@@ -145,3 +145,25 @@ def test_a_warm_stack_up_takes_other_numbers(shared_cache, tmp_path):
     slope = (_rocker(0.5, 25, 70 + step, 60, 85) - _rocker(0.5, 25, 70 - step, 60, 85)) / (2 * step)
     assert float(cells["worst_case"]) == pytest.approx(abs(slope) * 0.6, rel=1e-6)
     assert float(cells["rocker"]) == pytest.approx(_rocker(0.5, 25, 70, 60, 85), rel=1e-9)
+
+
+#: Pictures: Matplotlib draws them, SymPy stays out; the file written warm is the one written cold, byte for byte.
+PICTURES = {
+    "coupler curve of the four-bar (SVG)": ["curve", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground",
+                                            "80", "--coupler-point", "40,30", "--out", "curve.svg"],
+    "coupler curve on both branches at a crank angle (PNG)": [
+        "curve", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80", "--coupler-point",
+        "30,-20", "--branch", "both", "--crank-angle", "40", "--out", "curve.png"],
+}
+
+
+@pytest.mark.parametrize("name", PICTURES)
+def test_a_warm_picture_imports_no_sympy_and_draws_the_same(name, shared_cache, tmp_path):
+    arguments = PICTURES[name]
+    out = arguments[arguments.index("--out") + 1]
+    runs = run_twice(tmp_path, arguments, shared_cache, files=[out])
+    assert "matplotlib" in runs.imported  # the import list was read, and it drew
+    heavy = runs.imported & {"sympy", "scipy", "pandas", "distributed"}
+    assert not heavy, f"the warm run imported {', '.join(sorted(heavy))}"
+    assert runs.warm == runs.cold == "" and runs.warm_notes == runs.cold_notes
+    assert runs.warm_files[out] == runs.cold_files[out] and len(runs.cold_files[out]) > 1000

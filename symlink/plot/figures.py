@@ -117,6 +117,13 @@ def coupler_point_solver(outputs: tuple[str, ...]) -> CachedSolver:
                         derive=lambda: entry_text(coupler_point_linkage(), chosen), full=full)
 
 
+@lru_cache(maxsize=16)
+def _catalog_solver(outputs: tuple[str, ...]) -> CachedSolver:
+    """The catalog four-bar's solver of ``outputs`` from the disk cache (its catalog entry), made once a process."""
+    from ..numeric.cached_solver import CachedSolver
+    return CachedSolver("fourbar", list(outputs))
+
+
 def check_coupler_point(coupler_point: tuple[float, float] | None,
                         check_lengths: Callable[..., None] | None = None) -> None:
     """``ValueError`` unless the coupler point is (positive finite distance, finite angle).
@@ -153,20 +160,15 @@ def fourbar_positions(a: float, b: float, c: float, d: float, theta, branch: "in
     values = dict(theta=theta, a=a, b=b, c=c, d=d, branch=branch)
     if coupler_point is not None:
         values.update(p=coupler_point[0], gamma=coupler_point[1])
-    if linkage is None and coupler_point is not None:  # from the disk cache: no SymPy once derived
-        cached = coupler_point_solver(tuple(outputs))
+    if linkage is None:  # from the disk cache: no SymPy once derived
+        cached = coupler_point_solver(tuple(outputs)) if coupler_point is not None else _catalog_solver(tuple(outputs))
         check_coupler_point(coupler_point, cached.check_lengths)
         return cached(**values)
-    from ..numeric.solver import Solver, shared_solver
+    from ..numeric.solver import Solver
     check_coupler_point(coupler_point)
-    if linkage is None:
-        from ..mechanism.catalog import fourbar
-        solver = shared_solver(fourbar, tuple(outputs))
-    else:
-        if coupler_point is not None and "P" not in linkage.points:
-            raise ValueError(f"{linkage.name} has no coupler point P; use coupler_point_linkage()")
-        solver = Solver(linkage, outputs)
-    return solver(**values)
+    if coupler_point is not None and "P" not in linkage.points:
+        raise ValueError(f"{linkage.name} has no coupler point P; use coupler_point_linkage()")
+    return Solver(linkage, outputs)(**values)
 
 
 def _wrapped_with_breaks(x: numpy.ndarray, angles: numpy.ndarray, half: float) -> tuple[numpy.ndarray, numpy.ndarray]:
@@ -218,6 +220,10 @@ def _crank_axis(axes: "Axes", units: str) -> None:
     axes.set_xlabel(f"crank angle θ ({units})")
 
 
+#: What the angle figure solves.
+_ANGLE_OUTPUTS = ("coupler", "rocker")
+
+
 def angle_figure(a: float, b: float, c: float, d: float, branches: Sequence[int] = (1, -1),
                  units: str = "deg", title: str | None = None, samples: int = TURN_SAMPLES,
                  axes: "Sequence[Axes] | None" = None) -> "Figure":
@@ -256,14 +262,14 @@ def angle_figure(a: float, b: float, c: float, d: float, branches: Sequence[int]
     >>> figure.axes[1].get_ylabel(), float(rocker.get_xdata()[0]), round(float(rocker.get_ydata()[0]), 2)  # seed 003
     ('rocker angle φ (deg)', 0.0, 110.74)
     """
-    from ..numeric.reachability import assembled_crank_range
-    assembled_crank_range(a, b, c, d)
+    _catalog_solver(_ANGLE_OUTPUTS).check_lengths(crank=a, coupler=b, rocker=c, ground=d)  # as Solver's check
+    closing_crank_range(a, b, c, d)
     half = half_turn(units)
     scale = half / math.pi
     theta = turn_angles(a, b, c, d, samples)
     figure, (top, bottom) = _new_figure(7.0, 6.0, rows=2, given=axes)
     for sign in _checked_branches(branches):
-        result = fourbar_positions(a, b, c, d, theta, sign, ["coupler", "rocker"])
+        result = fourbar_positions(a, b, c, d, theta, sign, list(_ANGLE_OUTPUTS))
         for panel, name in ((top, "coupler"), (bottom, "rocker")):
             x, y = _wrapped_with_breaks(theta * scale, result[name] * scale, half)
             panel.plot(x, y, BRANCH_STYLES[sign], color=LINK_COLORS[name], label=f"branch {sign:+d}")

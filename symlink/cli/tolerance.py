@@ -157,6 +157,7 @@ def run(args: argparse.Namespace) -> int:
                          "--coupler --rocker --ground")
     request = _keyed_request(args, name)
     found: Any = None
+    linkage: Any = None  # the linkage, read where the request is not answered from the disk cache
 
     def read() -> Any:
         from ..io.linkage_file import load_linkage
@@ -167,7 +168,6 @@ def run(args: argparse.Namespace) -> int:
             read_now = read()
             return json.dumps(stack_up_facts(read_now.linkage, read_now.source, read_now.defaults))
         facts = json.loads(cached_text(_key(request, FACTS_ENTRY_KIND, []), now))
-        linkage = None
     else:
         found = read()
         linkage = found.linkage

@@ -169,3 +169,17 @@ def test_a_warm_picture_imports_no_sympy_and_draws_the_same(name, shared_cache, 
     assert not heavy, f"the warm run imported {', '.join(sorted(heavy))}"
     assert runs.warm == runs.cold and runs.warm_notes == runs.cold_notes
     assert runs.warm_files[out] == runs.cold_files[out] and len(runs.cold_files[out]) > 1000
+
+
+def test_a_synchronous_sweep_imports_no_distributed(shared_cache, tmp_path):
+    """``--scheduler synchronous`` evaluates every chunk in this process: its start imports neither Dask's
+    distributed scheduler nor pandas (SymPy still, for the linkage's ranges and its solver: not warm yet)."""
+    from symlink.workshop.sweep import missing_modules
+    if missing_modules():
+        pytest.skip("the sweep extra is not installed")
+    runs = run_twice(tmp_path, ["sweep", "fourbar", "out", "--vary", "a=10:20", "--set", "b=66,c=56,d=80", "--grid",
+                                "3", "--samples", "36", "--scheduler", "synchronous", "--no-progress"], shared_cache)
+    assert "dask" in runs.imported and "pyarrow" in runs.imported  # the import list was read, and it swept
+    assert not runs.imported & {"distributed", "pandas"}
+    assert runs.cold == runs.warm == "out\n"
+    assert "wrote 1, found 0 already there" in runs.cold_notes and "wrote 0, found 1 already there" in runs.warm_notes

@@ -183,3 +183,29 @@ def test_a_synchronous_sweep_imports_no_distributed(shared_cache, tmp_path):
     assert not runs.imported & {"distributed", "pandas"}
     assert runs.cold == runs.warm == "out\n"
     assert "wrote 1, found 0 already there" in runs.cold_notes and "wrote 0, found 1 already there" in runs.warm_notes
+
+
+def test_bad_input_to_a_warm_stack_up_is_one_line_and_exit_2(shared_cache, tmp_path):
+    """A warm stack-up checks its options against the cached facts: an unknown dimension, a --set of no value and
+    the four-bar's lengths given to another linkage are refused in one line with exit status 2, in the words of a
+    cold run, without importing SymPy."""
+    import os
+    import subprocess
+    import sys
+
+    from warm_runs import imported_packages, without_import_times
+    run_twice(tmp_path, ["tolerance", "slider-crank", "--tolerance", "0.05", "--angles", "0", "--format", "csv"],
+              shared_cache)
+    bad = {("--tolerances", "e=0.1"): "symlink: error: --tolerances: slider-crank has no dimension 'e'; it has a, b, "
+                                       "offset\n",
+           ("--set", "q=1"): "symlink: error: --set: slider-crank has no value 'q'; it takes a, b, offset, theta\n",
+           ("--crank", "2"): "symlink: error: tolerance: --crank --coupler --rocker --ground belong to the four-bar; "
+                             "give the values of slider-crank with --set NAME=VALUE,...\n"}
+    env = {**os.environ, "PYTHONPATH": str(PROJECT), "SYMLINK_CACHE": str(shared_cache)}
+    for (option, value), message in bad.items():
+        done = subprocess.run([sys.executable, "-X", "importtime", "-m", "symlink", "tolerance", "slider-crank",
+                               "--tolerance", "0.05", option, value], capture_output=True, text=True, env=env,
+                              cwd=str(tmp_path), timeout=600)
+        assert done.returncode == 2 and done.stdout == ""
+        assert without_import_times(done.stderr) == message
+        assert "symlink" in imported_packages(done.stderr) and "sympy" not in imported_packages(done.stderr)

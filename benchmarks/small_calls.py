@@ -18,8 +18,9 @@ accelerations) and its positions alone, one set of lengths, N crank angles:
   call with the ones before): its output block is not reused while it is held, but one of the
   blocks kept before is (:data:`symlink.numeric.compiled_library.KEPT_OUTPUTS`);
 * ``Solver-kept``: the default ``Solver``, each result kept until four calls later;
-* ``Solver-kept-all``: the default ``Solver``, every result kept for 64 calls (more than the
-  blocks kept for reuse: a new block each call, the cost of new memory);
+* ``Solver-kept-all``: the default ``Solver``, every result kept for twice as many calls as the
+  most blocks kept for reuse (:data:`symlink.numeric.compiled_library.KEPT_OUTPUTS_MOST`): a new
+  block each call, the cost of new memory;
 * ``numba``: the hand-written numba loop of :mod:`benchmarks.numba_loops` (the same formulas
   and exactly the generated code's transcendental calls a value: cos and sin of the crank, two
   atan2, one square root; :mod:`tests.test_bench` counts them), called as a user's numba
@@ -114,6 +115,7 @@ def numba_baseline():
 
 def methods(outputs: list[str]) -> dict:
     from symlink.mechanism.catalog import fourbar
+    from symlink.numeric import compiled_library
     from symlink.numeric.compiled import CompiledSolver
     from symlink.numeric.solver import Solver
     linkage = fourbar()
@@ -127,7 +129,8 @@ def methods(outputs: list[str]) -> dict:
     lengths = dict(zip("abcd", LENGTHS))
     kept: collections.deque = collections.deque(maxlen=4)
     solver_kept: collections.deque = collections.deque(maxlen=4)
-    kept_all: collections.deque = collections.deque(maxlen=64)  # more than are kept for reuse: a new block a call
+    # more than are ever kept for reuse: a new block a call
+    kept_all: collections.deque = collections.deque(maxlen=2 * compiled_library.KEPT_OUTPUTS_MOST)
     steps = itertools.cycle([{k: v * (1.0 + 1e-9 * step) for k, v in lengths.items()} for step in range(1000)])
     found = {
         "module": lambda theta: solver.function(theta, **lengths, branch=1, **rates),

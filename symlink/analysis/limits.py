@@ -22,8 +22,8 @@ import sympy as sp
 
 from ..common.angles import wrap_angle
 from ..mechanism.catalog import fourbar
-from ..numeric.cache import cache_key, cached_text
-from ..codegen.numpy import load_numpy_module, numpy_module
+from ..numeric.cache import cache_key, cached_module
+from ..codegen.numpy import numpy_module
 from ..common.display import record_html
 from ..symbolic.linkage import Linkage, Program
 from ..numeric.reachability import BISECTIONS, InputMotion, InputRange, reachable_range
@@ -172,7 +172,7 @@ def _output_function(linkage: Linkage, output: str) -> Callable[..., dict]:
             arguments = tuple(coordinates) + tuple(rate(q) for q in coordinates) + tuple(linkage.parameters)
             program = Program(arguments, (), {"value": expr, "rate": time_derivative(expr, coordinates)})
             return numpy_module([("output", program, f"{linkage.name}: {output} and its rate.")])
-        _OUTPUT_FUNCTIONS[key] = load_numpy_module(cached_text(key, build))["output"]
+        _OUTPUT_FUNCTIONS[key] = cached_module(key, build)[1]["output"]
     return _OUTPUT_FUNCTIONS[key]
 
 

@@ -16,10 +16,15 @@ for every compiled function alike: each function describes itself once in a
   of 1 to ``largest`` values (all of one length) as an array, read through
   the buffer protocol (no NumPy headers are needed); anything else refuses;
 * finds a block of outputs no caller holds any more among the kept ones (the
-  sum of their reference counts back at its value when made), else makes a
+  sum of their reference counts back at its value when made; the least
+  recently used looked at first, at most ``keep`` of them), else makes a
   new one in C (one NumPy block and a view of it a row, through NumPy's C
   API: no Python step), and calls the loop's ``<name>_packed`` wrapper once,
-  which checks the values as the NumPy module does;
+  which checks the values as the NumPy module does.  The kept blocks grow
+  past ``keep`` while a caller holds more results than that (up to
+  ``keep_most`` blocks and ``keep_bytes`` bytes), so that a caller keeping
+  each result for a number of calls is answered from a block made before,
+  as one dropping each is; they shrink back by one a call once fewer are held;
 * returns a new dict of the output rows (``call``), or a
   :class:`symlink.numeric.results.Results` made without ``__init__`` (``results``),
   or ``None`` where the call is refused: the caller's general path then
@@ -60,11 +65,13 @@ MODULE = "symlink_call"
 #: kept), the most values a small call takes, ``numpy.ndarray``, ``numpy.float64``, the busy byte (a bytearray);
 #: then, for :func:`large` calls: the result names in order (interned str, ``assembled`` last), their layout
 #: (bytes, 1 for a true/false result, 0 for a number), the address of ``<name>_into`` (0: none), the kept
-#: output blocks of large calls and ``make_large(length)`` (a new entry there, kept); and how many blocks of
-#: small calls are kept (a new one is made in C, with NumPy's C API: a block and its rows, no Python step).
+#: output blocks of large calls and ``make_large(length)`` (a new entry there, kept); how many blocks of
+#: small calls are always kept (a new one is made in C, with NumPy's C API: a block and its rows, no Python
+#: step), and the most blocks and bytes they may grow to while callers hold results (each call then finds one
+#: free: a kept result costs what a dropped one does).
 PLAN_FIELDS = ("names", "defaults", "numbers", "pointers", "steps", "packed", "kept", "make", "largest",
                "array_type", "float64_type", "busy", "results", "layout", "into", "kept_large", "make_large",
-               "keep")
+               "keep", "keep_most", "keep_bytes")
 
 #: The fields of a kept output block's entry: its length, the objects whose references say whether a
 #: caller holds it (the block and its rows), the sum of their reference counts when free, the block (a
@@ -267,40 +274,52 @@ fail:
     return NULL;
 }
 
-/* A free kept entry of `length` values (moved last in the list), borrowed; NULL if none. */
-static PyObject *free_entry(PyObject *kept, Py_ssize_t length)
+/* The length of `entry` where it is one of ours (ENTRY_FIELDS) that no caller holds, else -1: the sum of the
+ * reference counts of its block and rows back at its value when made (a caller holding a row, or a view of one,
+ * adds to it). Such an entry may be written again. */
+static Py_ssize_t free_length(PyObject *entry)
 {
-    Py_ssize_t count = PyList_GET_SIZE(kept);
-    for (Py_ssize_t p = 0; p < count; ++p) {
+    if (!PyTuple_CheckExact(entry) || PyTuple_GET_SIZE(entry) != ENTRY_SIZE
+            || !PyLong_CheckExact(PyTuple_GET_ITEM(entry, ENTRY_LENGTH))
+            || !PyLong_CheckExact(PyTuple_GET_ITEM(entry, ENTRY_REFERENCES))
+            || !PyTuple_CheckExact(PyTuple_GET_ITEM(entry, ENTRY_OBJECTS))) {
+        return -1;  /* not an entry of ours: never used */
+    }
+    PyObject *objects = PyTuple_GET_ITEM(entry, ENTRY_OBJECTS);
+    Py_ssize_t sum = 0;
+    for (Py_ssize_t k = 0; k < PyTuple_GET_SIZE(objects); ++k) {
+        sum += Py_REFCNT(PyTuple_GET_ITEM(objects, k));
+    }
+    Py_ssize_t free_sum = PyLong_AsSsize_t(PyTuple_GET_ITEM(entry, ENTRY_REFERENCES));
+    Py_ssize_t length = PyLong_AsSsize_t(PyTuple_GET_ITEM(entry, ENTRY_LENGTH));
+    if ((free_sum == -1 || length == -1) && PyErr_Occurred()) {
+        PyErr_Clear();
+        return -1;
+    }
+    return sum == free_sum ? length : -1;  /* else a caller holds a row, or a view of one: never written again */
+}
+
+/* A free kept entry of `length` values among the first `window` of `kept` (moved last in the list), borrowed;
+ * NULL if none. The list is in the order of use, the least recently used first: a caller keeping each result
+ * for a few calls frees the first one, found with one look. While the list has more than `keep`, a free first
+ * entry of another length is dropped on the way (a caller now calling with another length). */
+static PyObject *free_entry(PyObject *kept, Py_ssize_t length, Py_ssize_t window, Py_ssize_t keep)
+{
+    for (Py_ssize_t p = 0; p < PyList_GET_SIZE(kept) && p < window;) {
         PyObject *entry = PyList_GET_ITEM(kept, p);
-        if (!PyTuple_CheckExact(entry) || PyTuple_GET_SIZE(entry) != ENTRY_SIZE
-                || !PyLong_CheckExact(PyTuple_GET_ITEM(entry, ENTRY_LENGTH))
-                || !PyLong_CheckExact(PyTuple_GET_ITEM(entry, ENTRY_REFERENCES))
-                || !PyTuple_CheckExact(PyTuple_GET_ITEM(entry, ENTRY_OBJECTS))) {
-            continue;  /* not an entry of ours: never used */
-        }
-        Py_ssize_t size = PyLong_AsSsize_t(PyTuple_GET_ITEM(entry, ENTRY_LENGTH));
-        if (size == -1 && PyErr_Occurred()) {
-            PyErr_Clear();
+        Py_ssize_t free = free_length(entry);
+        if (free != length) {
+            if (free >= 0 && p == 0 && PyList_GET_SIZE(kept) > keep) {
+                if (PyList_SetSlice(kept, 0, 1, NULL) < 0) {
+                    PyErr_Clear();
+                    return NULL;
+                }
+            } else {
+                ++p;
+            }
             continue;
         }
-        if (size != length) {
-            continue;
-        }
-        PyObject *objects = PyTuple_GET_ITEM(entry, ENTRY_OBJECTS);
-        Py_ssize_t sum = 0;
-        for (Py_ssize_t k = 0; k < PyTuple_GET_SIZE(objects); ++k) {
-            sum += Py_REFCNT(PyTuple_GET_ITEM(objects, k));
-        }
-        Py_ssize_t free_sum = PyLong_AsSsize_t(PyTuple_GET_ITEM(entry, ENTRY_REFERENCES));
-        if (free_sum == -1 && PyErr_Occurred()) {
-            PyErr_Clear();
-            continue;
-        }
-        if (sum != free_sum) {
-            continue;  /* a caller holds a row, or a view of one: never written again while it does */
-        }
-        if (p != count - 1) {  /* the caller of a loop holds the last one during the next call */
+        if (p != PyList_GET_SIZE(kept) - 1) {  /* the caller of a loop holds the last one during the next call */
             Py_INCREF(entry);
             if (PyList_SetSlice(kept, p, p + 1, NULL) < 0 || PyList_Append(kept, entry) < 0) {
                 Py_DECREF(entry);
@@ -312,6 +331,85 @@ static PyObject *free_entry(PyObject *kept, Py_ssize_t length)
         return entry;
     }
     return NULL;
+}
+
+/* The most blocks of `length` values the small calls keep (PLAN_KEEP_MOST, PLAN_KEEP_BYTES): as many as a
+ * caller holds at once, plus one, so that each call finds a free one, up to `most` blocks and `bytes` bytes;
+ * at least `keep`. */
+static Py_ssize_t most_kept(PyObject *layout, Py_ssize_t length, Py_ssize_t keep, Py_ssize_t most, Py_ssize_t bytes)
+{
+    const char *kinds = PyBytes_AS_STRING(layout);
+    Py_ssize_t all = PyBytes_GET_SIZE(layout), size = 0;
+    for (Py_ssize_t k = 0; k < all; ++k) {
+        size += kinds[k] ? length : 8 * length;
+    }
+    Py_ssize_t fit = size > 0 ? bytes / size : most;
+    fit = fit < most ? fit : most;
+    return fit > keep ? fit : keep;
+}
+
+/* Drop the first entry of `kept` where no caller holds it and the list has more than `keep`: called after a call
+ * found a free block, so that the list shrinks by one a call back to `keep` once callers hold fewer results. */
+static void drop_one_unused(PyObject *kept, Py_ssize_t keep)
+{
+    if (PyList_GET_SIZE(kept) > keep && free_length(PyList_GET_ITEM(kept, 0)) >= 0
+            && PyList_SetSlice(kept, 0, 1, NULL) < 0) {
+        PyErr_Clear();
+    }
+}
+
+/* Whether every key of `values` is an exact str: other keys could run Python code when compared (and change
+ * `values` meanwhile), so a call with one is refused. */
+static int keys_are_str(PyObject *values)
+{
+    PyObject *key, *item;
+    for (Py_ssize_t position = 0; PyDict_Next(values, &position, &key, &item);) {
+        if (!PyUnicode_CheckExact(key)) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* The value of argument `i` (borrowed): looked up in `values` by its interned name (then counted in `found`),
+ * else its default; NULL, no exception set, where it is missing (no default) or the look-up fails: the call is
+ * refused, and the general path names the argument. The one walk of the keywords of `run` and `large`. */
+static PyObject *argument_value(PyObject *values, PyObject *names, PyObject *defaults, Py_ssize_t i,
+                                Py_ssize_t *found)
+{
+    PyObject *value = PyDict_GetItemWithError(values, PyTuple_GET_ITEM(names, i));  /* borrowed */
+    if (value != NULL) {
+        ++*found;
+        return value;
+    }
+    if (PyErr_Occurred()) {
+        PyErr_Clear();
+        return NULL;
+    }
+    value = PyTuple_GET_ITEM(defaults, i);
+    return value == Py_None ? NULL : value;
+}
+
+/* A number argument read as a double: 1 (`*number` set) for a float, a numpy.float64 or an int that fits, 0
+ * where `value` is not of those types, -1 (no exception set) for an int too large for a double (refused: the
+ * general path says so). */
+static int number_value(PyObject *value, PyTypeObject *float64_type, double *number)
+{
+    PyTypeObject *kind = Py_TYPE(value);
+    if (kind == &PyFloat_Type || kind == float64_type) {
+        *number = PyFloat_AS_DOUBLE(value);
+        return 1;
+    }
+    if (kind != &PyLong_Type) {
+        return 0;
+    }
+    double read = PyLong_AsDouble(value);
+    if (read == -1.0 && PyErr_Occurred()) {
+        PyErr_Clear();
+        return -1;
+    }
+    *number = read;
+    return 1;
 }
 
 /* Fill the slots from `values` and run the loop: a new reference to the entry's dict of rows, Py_None
@@ -341,46 +439,27 @@ static PyObject *run(PyObject *plan, PyObject *values)
         return NULL;
     }
     Py_ssize_t count = PyTuple_GET_SIZE(names), found, length;
-    PyObject *made = NULL, *entry = NULL, *key, *item;
+    PyObject *made = NULL, *entry = NULL;
     busy[0] = 1;
-    /* Keys other than exact str could run Python code when compared (and change `values` meanwhile). */
-    for (Py_ssize_t position = 0; PyDict_Next(values, &position, &key, &item);) {
-        if (!PyUnicode_CheckExact(key)) {
-            goto refuse;
-        }
+    if (!keys_are_str(values)) {
+        goto refuse;
     }
 walk:
     found = 0;
     length = 0;
     for (Py_ssize_t i = 0; i < count; ++i) {
-        PyObject *value = PyDict_GetItemWithError(values, PyTuple_GET_ITEM(names, i));  /* borrowed */
+        PyObject *value = argument_value(values, names, defaults, i, &found);
         if (value == NULL) {
-            if (PyErr_Occurred()) {
-                PyErr_Clear();
-                goto refuse;
-            }
-            value = PyTuple_GET_ITEM(defaults, i);
-            if (value == Py_None) {
-                goto refuse;  /* a missing argument: the general path names it */
-            }
-        } else {
-            ++found;
+            goto refuse;  /* a missing argument: the general path names it */
         }
-        PyTypeObject *kind = Py_TYPE(value);
-        if (kind == &PyFloat_Type || kind == float64_type) {
-            numbers[i] = PyFloat_AS_DOUBLE(value);
+        int number = number_value(value, float64_type, &numbers[i]);
+        if (number < 0) {
+            goto refuse;  /* too large for a double: the general path says so */
+        }
+        if (number) {
             pointers[i] = &numbers[i];
             steps[i] = 0;
-        } else if (kind == &PyLong_Type) {
-            double number = PyLong_AsDouble(value);
-            if (number == -1.0 && PyErr_Occurred()) {
-                PyErr_Clear();  /* too large for a double: the general path says so */
-                goto refuse;
-            }
-            numbers[i] = number;
-            pointers[i] = &numbers[i];
-            steps[i] = 0;
-        } else if (kind == array_type) {
+        } else if (Py_TYPE(value) == array_type) {
             Py_buffer view;
             if (PyObject_GetBuffer(value, &view, PyBUF_C_CONTIGUOUS | PyBUF_FORMAT) != 0) {
                 PyErr_Clear();
@@ -411,16 +490,22 @@ walk:
         }
         entry = made;
     } else {
-        entry = free_entry(PyTuple_GET_ITEM(plan, PLAN_KEPT), length);
-        if (entry == NULL) {
-            Py_ssize_t keep = PyLong_AsSsize_t(PyTuple_GET_ITEM(plan, PLAN_KEEP));
-            if (keep < 1) {
-                if (!PyErr_Occurred()) {
-                    PyErr_SetString(PyExc_TypeError, "symlink_call: a plan keeps no block");
-                }
-                goto fail;
+        PyObject *kept = PyTuple_GET_ITEM(plan, PLAN_KEPT);
+        Py_ssize_t keep = PyLong_AsSsize_t(PyTuple_GET_ITEM(plan, PLAN_KEEP));
+        Py_ssize_t most = PyLong_AsSsize_t(PyTuple_GET_ITEM(plan, PLAN_KEEP_MOST));
+        Py_ssize_t bytes = PyLong_AsSsize_t(PyTuple_GET_ITEM(plan, PLAN_KEEP_BYTES));
+        if (keep < 1 || most < 1 || bytes < 0) {
+            if (!PyErr_Occurred()) {
+                PyErr_SetString(PyExc_TypeError, "symlink_call: a plan keeps no block");
             }
-            made = new_entry(plan, PyTuple_GET_ITEM(plan, PLAN_KEPT), keep, length);
+            goto fail;
+        }
+        entry = free_entry(kept, length, keep, keep);  /* the first `keep`: a bounded look, however many are held */
+        if (entry != NULL) {
+            drop_one_unused(kept, keep);  /* (entry is last now, and held by the list) */
+        } else {
+            made = new_entry(plan, kept, most_kept(PyTuple_GET_ITEM(plan, PLAN_LAYOUT), length, keep, most, bytes),
+                             length);
             if (made == NULL) {
                 goto fail;
             }
@@ -550,36 +635,23 @@ static PyObject *symlink_call_large(PyObject *module, PyObject *const *args, Py_
     char **extents = (char **)(steps + count);  /* each argument array's first byte and the one past its last */
     void **outputs = (void **)(extents + 2 * count);
     Py_buffer *views = (Py_buffer *)(outputs + outputs_count);
-    PyObject *result = NULL, *entry = NULL, *block = NULL, *key, *item;
-    for (Py_ssize_t position = 0; PyDict_Next(values, &position, &key, &item);) {
-        if (!PyUnicode_CheckExact(key)) {
-            goto refuse;
-        }
+    PyObject *result = NULL, *entry = NULL, *block = NULL;
+    if (!keys_are_str(values)) {
+        goto refuse;
     }
     for (Py_ssize_t i = 0; i < count; ++i) {
-        PyObject *value = PyDict_GetItemWithError(values, PyTuple_GET_ITEM(names, i));  /* borrowed */
+        PyObject *value = argument_value(values, names, defaults, i, &found);
         if (value == NULL) {
-            if (PyErr_Occurred()) {
-                PyErr_Clear();
-                goto refuse;
-            }
-            value = PyTuple_GET_ITEM(defaults, i);
-            if (value == Py_None) {
-                goto refuse;
-            }
-        } else {
-            ++found;
+            goto refuse;
         }
-        PyTypeObject *kind = Py_TYPE(value);
-        if (kind == &PyFloat_Type || kind == float64_type) {
-            numbers[i] = PyFloat_AS_DOUBLE(value);
-        } else if (kind == &PyLong_Type) {
-            numbers[i] = PyLong_AsDouble(value);
-            if (numbers[i] == -1.0 && PyErr_Occurred()) {
-                PyErr_Clear();
-                goto refuse;
-            }
-        } else if (kind == array_type) {
+        int number = number_value(value, float64_type, &numbers[i]);
+        if (number < 0) {
+            goto refuse;
+        }
+        if (number) {
+            pointers[i] = &numbers[i];
+            steps[i] = 0;
+        } else if (Py_TYPE(value) == array_type) {
             Py_buffer *view = &views[held];
             if (PyObject_GetBuffer(value, view, PyBUF_STRIDES | PyBUF_FORMAT) != 0) {
                 PyErr_Clear();
@@ -599,12 +671,9 @@ static PyObject *symlink_call_large(PyObject *module, PyObject *const *args, Py_
             steps[i] = size == 1 ? 0 : view->strides[0] / 8;
             extents[2 * i] = first < last ? first : last;
             extents[2 * i + 1] = (first < last ? last : first) + 8;
-            continue;
         } else {
             goto refuse;
         }
-        pointers[i] = &numbers[i];
-        steps[i] = 0;
     }
     if (found != PyDict_GET_SIZE(values) || length == 0) {
         goto refuse;  /* an unknown argument, or no array longer than one value: the general path */
@@ -644,7 +713,7 @@ static PyObject *symlink_call_large(PyObject *module, PyObject *const *args, Py_
             outputs[k] = view->buf;
         }
     } else {
-        entry = free_entry(PyTuple_GET_ITEM(plan, PLAN_KEPT_LARGE), length);
+        entry = free_entry(PyTuple_GET_ITEM(plan, PLAN_KEPT_LARGE), length, PY_SSIZE_T_MAX, PY_SSIZE_T_MAX);
         if (entry != NULL) {
             Py_INCREF(entry);
         } else {

@@ -26,7 +26,8 @@ from functools import lru_cache
 from typing import Any, Mapping
 
 __all__ = ["write_atomic", "naming", "check_writable", "write_files_atomic", "write_files_together", "private_folder", "read_private", "NotPrivate", "TEMPORARY_SUFFIX",
-           "remove_leftovers", "read_input", "read_input_text", "read_stdin_text", "excerpt", "EXCERPT_LENGTH", "sha256"]
+           "remove_leftovers", "read_input", "read_input_text", "read_stdin_text", "excerpt", "EXCERPT_LENGTH", "sha256",
+           "blake2b"]
 
 #: The name of every temporary file of :func:`write_atomic` ends so: ``.<name>.<random>.tmp``.
 TEMPORARY_SUFFIX = ".tmp"
@@ -71,6 +72,40 @@ def _sha256_of() -> Any:
             continue
     import hashlib
     return hashlib.sha256
+
+
+def blake2b(data: bytes = b"") -> Any:
+    """A BLAKE2b hash object of ``data`` (``update``, ``hexdigest``: 128 hex digits), as :func:`hashlib.blake2b`.
+
+    CPython's own BLAKE2b (no OpenSSL, as :func:`sha256`), about three times as fast as its SHA-256: for the
+    digest of the modules that shape generated code (half a megabyte), hashed at every warm start.
+
+    Parameters
+    ----------
+    data : bytes
+        The first bytes to digest.
+
+    Returns
+    -------
+    hash object
+        With ``update(bytes)`` and ``hexdigest()``.
+
+    Examples
+    --------
+    >>> blake2b(b"abc").hexdigest()[:16]
+    'ba80a53f981c4d0d'
+    """
+    return _blake2b_of()(data)
+
+
+@lru_cache(maxsize=1)
+def _blake2b_of() -> Any:
+    import importlib
+    try:
+        return importlib.import_module("_blake2").blake2b
+    except (ImportError, AttributeError):
+        import hashlib
+        return hashlib.blake2b
 
 
 def _token() -> str:

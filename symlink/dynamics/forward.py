@@ -41,8 +41,8 @@ from typing import Any, Callable, Mapping
 
 import numpy
 
-from ..numeric.cache import cache_key, cached_text, generated_code
-from ..codegen.numpy import checked_arguments, load_numpy_module
+from ..numeric.cache import cache_key, cached_module, generated_code
+from ..codegen.numpy import checked_arguments
 from ..codegen.program import in_loop_units
 from ..codegen.scalar import scalar_module
 from ..common.display import record_html
@@ -256,9 +256,9 @@ class ForwardDynamics:
         self._function = functools.partial(code.function, check=False)
         self.arguments = code.arguments
         self.takes_speed = rate(self.input).name in code.arguments
-        source = cached_text(cache_key(linkage, list(EQUATION_OUTPUTS), SCALAR_KIND),
-                             lambda: scalar_source(linkage))
-        self._scalar = load_numpy_module(source)["solve"]  # our own generated code, never user text
+        _, scalar = cached_module(cache_key(linkage, list(EQUATION_OUTPUTS), SCALAR_KIND),
+                                  lambda: scalar_source(linkage))
+        self._scalar = scalar["solve"]  # our own generated code, never user text
         parameters = [s.name for s in linkage.parameters]
         unknown = sorted(set(values) - set(parameters))
         if unknown:

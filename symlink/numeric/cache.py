@@ -22,6 +22,17 @@ they are regular files; anything unreadable is rebuilt.  A cache folder that
 cannot be created or written is skipped silently (the memory cache still
 works).
 
+A generated module's entry has a second file beside it: the module's compiled
+bytecode (:func:`cached_module`), named for the Python that compiled it (its
+bytecode magic number, :data:`importlib.util.MAGIC_NUMBER`, and optimization
+level), so that a warm process runs the module without compiling it.  It is
+bound by a checksum to the entry's key and text: a bytecode file that is
+truncated, corrupted, of another Python or of another entry's text is ignored
+(the verified text is compiled again and the file rewritten), never an error
+and never run.  It is written whether or not ``PYTHONDONTWRITEBYTECODE`` is set:
+like the text entry, it is symlink's own cache, not Python's (an empty
+``SYMLINK_CACHE`` turns both off).
+
 >>> import os, tempfile
 >>> previous = os.environ.get("SYMLINK_CACHE")
 >>> os.environ["SYMLINK_CACHE"] = tempfile.mkdtemp()
@@ -30,13 +41,13 @@ works).
 >>> code = generated_code(fourbar(), ["rocker"])
 >>> sorted(code.function(theta=0.0, a=20, b=66, c=56, d=80))
 ['assembled', 'rocker']
->>> (cache_directory() / f"{code.key}.json").is_file()
-True
+>>> entry_path(cache_directory(), code.key).is_file(), entry_path(cache_directory(), code.key, bytecode=True).is_file()
+(True, True)
 >>> contents = cache_contents(cache_directory())
 >>> contents.trusted, contents.entries
-(True, 1)
+(True, 2)
 >>> clear_cache(cache_directory()).entries, cache_contents(cache_directory()).entries
-(1, 0)
+(2, 0)
 >>> _ = os.environ.pop("SYMLINK_CACHE") if previous is None else os.environ.update(SYMLINK_CACHE=previous)
 """
 from __future__ import annotations
@@ -44,17 +55,20 @@ from __future__ import annotations
 import importlib.util
 import inspect
 import json
+import marshal
 import os
 import re
 import stat
+import sys
 import warnings
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
+from types import CodeType
 from typing import TYPE_CHECKING, Any, Callable, Mapping, Sequence
 
 from ..version import __version__
-from ..common.files import sha256, LEFTOVER_AGE, NotPrivate, private_folder, read_private, remove_leftovers, write_atomic
+from ..common.files import blake2b, sha256, LEFTOVER_AGE, NotPrivate, private_folder, read_private, remove_leftovers, write_atomic
 
 if TYPE_CHECKING:
     from ..symbolic.linkage import Linkage
@@ -62,7 +76,7 @@ if TYPE_CHECKING:
 __all__ = ["GeneratedCode", "generated_code", "cache_directory", "trusted_directory", "definition", "cache_key",
            "cached_text", "clear_memory", "warn_once", "CacheWarning", "CODE_SHAPING", "code_shaping_files",
            "ENVIRONMENT_VARIABLE", "CacheContents", "cache_contents", "clear_cache", "COMPILED_FOLDER",
-           "CATALOG_SHAPING", "catalog_key", "sympy_version"]
+           "CATALOG_SHAPING", "catalog_key", "sympy_version", "cached_module", "entry_path"]
 
 ENVIRONMENT_VARIABLE = "SYMLINK_CACHE"
 #: Bumped whenever the layout of an entry changes.
@@ -87,16 +101,24 @@ ENTRY_LIMIT = 64 << 20
 #: The sub-folder of the cache folder where :mod:`symlink.numeric.compiled` keeps its libraries.
 COMPILED_FOLDER = "compiled"
 _HEX64 = "[0-9a-f]{64}"
+#: The endings of an entry's two files (:func:`entry_path`): its text, and its text's bytecode for one Python.
+TEXT_SUFFIX, BYTECODE_SUFFIX = ".json", ".code"
+#: The names of entries' files (:func:`entry_path`): ``<key>.json``, ``<key>.<magic number, hex>[.opt-N].code``.
+_ENTRY_NAMES = rf"{_HEX64}(?:\{TEXT_SUFFIX}|\.[0-9a-f]{{8}}(?:\.opt-[0-9])?\{BYTECODE_SUFFIX})"
 #: The names symlink writes, and nothing else: what :func:`clear_cache` removes and :func:`cache_contents` counts.
-#: In the cache folder: entries and the temporary files of their atomic writes (``.<name>.<12 hex>.tmp``).
+#: In the cache folder: entries' files and the temporary files of their atomic writes (``.<name>.<12 hex>.tmp``).
 #: (Patterns as text, compiled by :mod:`re` when the cache is listed or cleared: a warm command compiles none.)
-_OWN_NAMES = rf"(?:{_HEX64}\.json|\.{_HEX64}\.json\.[0-9a-f]{{12}}\.tmp)\Z"
+_OWN_NAMES = rf"(?:{_ENTRY_NAMES}|\.{_ENTRY_NAMES}\.[0-9a-f]{{12}}\.tmp)\Z"
+#: The first bytes of a bytecode file (the layout's version); then the Python it is for, the checksum of the
+#: entry it was compiled from, a SHA-256 of all of that and the code, and the code (:mod:`marshal`).
+_BYTECODE_FORMAT = b"symlink bytecode 1\n"
 #: In ``compiled/``: libraries, their digests, the temporary files of the digests' writes, the private copies
 #: made to load a library and the folders libraries are built in (:func:`tempfile.mkdtemp` names).
 _OWN_COMPILED_NAMES = (rf"(?:{_HEX64}\.(?:so|sha256)|\.{_HEX64}\.sha256\.[0-9a-f]{{12}}\.tmp"
                        rf"|\.load-[0-9a-f]{{16}}\.so|\.build-[a-z0-9_]{{8}})\Z")
 
 _TEXTS: dict[str, str] = {}
+_CODES: dict[str, CodeType] = {}  # key -> the compiled code of its text
 _LOADED: dict[str, "GeneratedCode"] = {}
 _FOLDERS: dict[str, Path | None] = {}  # folder -> itself when trusted and usable, else None (decided once)
 _WARNED: set[str] = set()
@@ -233,11 +255,17 @@ def _module_bytes(path: Path) -> bytes:
 
 @lru_cache(maxsize=2)
 def _source_digest(modules: Sequence[str] = CODE_SHAPING) -> str:
-    """SHA-256 of the modules that shape generated code: a change to any of them is a new key."""
-    digest = sha256()
+    """BLAKE2b of the modules that shape generated code: a change to any of them is a new key.
+
+    (BLAKE2b, not SHA-256 as for the keys and entries: without OpenSSL it is the faster of the two, and this
+    half a megabyte is hashed at every warm start.)
+    """
+    digest = blake2b()
     package = Path(__file__).parent.parent
     for name in _code_shaping_names(tuple(modules)):
-        digest.update(name.encode() + b"\0" + _module_bytes(package / name) + b"\0")
+        digest.update(name.encode() + b"\0")
+        digest.update(_module_bytes(package / name))
+        digest.update(b"\0")
     return digest.hexdigest()
 
 
@@ -299,6 +327,22 @@ def catalog_key(name: str, outputs: Sequence[str], kind: str, extras: Mapping[st
     return sha256(described.encode()).hexdigest()
 
 
+def entry_path(folder: Path, key: str, bytecode: bool = False) -> Path:
+    """The file of the entry ``key`` in the cache ``folder``: its text, or (``bytecode``) the bytecode of its text
+    compiled by this Python (:func:`cached_module`), named for this Python's bytecode magic number and
+    optimization level, so that Pythons sharing a cache keep a file each.
+
+    >>> entry_path(Path("cache"), "0" * 64).name == "0" * 64 + ".json"
+    True
+    >>> entry_path(Path("cache"), "0" * 64, bytecode=True).suffix
+    '.code'
+    """
+    if not bytecode:
+        return folder / f"{key}{TEXT_SUFFIX}"
+    python = importlib.util.MAGIC_NUMBER.hex() + (f".opt-{sys.flags.optimize}" if sys.flags.optimize else "")
+    return folder / f"{key}.{python}{BYTECODE_SUFFIX}"
+
+
 def _checksum(key: str, text: str) -> str:
     return sha256(key.encode() + b"\0" + text.encode()).hexdigest()
 
@@ -330,6 +374,17 @@ def _read(path: Path, key: str) -> str | None:
     return None
 
 
+def _write(path: Path, data: str | bytes) -> None:
+    """Write an entry's file atomically, 0600; a full disk, a read-only folder or a folder in the way: nothing
+    written (the caller keeps what it made in memory)."""
+    try:
+        if path.is_symlink() or (path.exists() and not path.is_file() and not path.is_dir()):
+            path.unlink()  # a FIFO or device in the cache is replaced by the entry, never written into
+        write_atomic(path, data, mode=0o600)
+    except OSError:
+        pass
+
+
 def cached_text(key: str, build: Callable[[], str]) -> str:
     """The text stored under ``key``: from memory, else from a verified disk entry, else ``build()``.
 
@@ -339,25 +394,89 @@ def cached_text(key: str, build: Callable[[], str]) -> str:
     if key in _TEXTS:
         return _TEXTS[key]
     folder = trusted_directory()
-    path = None if folder is None else folder / f"{key}.json"
+    path = None if folder is None else entry_path(folder, key)
     text = None if path is None else _read(path, key)
     if text is None:
         text = build()
         if path is not None:
             entry = {"format": FORMAT, "key": key, "sha256": _checksum(key, text), "text": text}
-            try:
-                if path.is_symlink() or (path.exists() and not path.is_file() and not path.is_dir()):
-                    path.unlink()  # a FIFO or device in the cache is replaced by the entry, never written into
-                write_atomic(path, json.dumps(entry, indent=0) + "\n", mode=0o600)
-            except OSError:
-                pass  # a full disk, a read-only folder, a folder in the way: keep the text in memory only
+            _write(path, json.dumps(entry, indent=0) + "\n")
     _TEXTS[key] = text
     return text
+
+
+def _bytecode_header(key: str, text: str) -> bytes:
+    """What a bytecode file of the entry ``key`` with ``text`` starts with: the layout, this Python (magic number,
+    optimization level) and the entry's checksum (of key and text), so that it pairs with that entry only."""
+    python = importlib.util.MAGIC_NUMBER + f" {sys.flags.optimize} ".encode()
+    return _BYTECODE_FORMAT + python + _checksum(key, text).encode() + b"\n"
+
+
+def _read_bytecode(path: Path, header: bytes) -> CodeType | None:
+    """The code in the bytecode file ``path`` if it is private to this user, starts with ``header`` and its
+    checksum matches; ``None`` otherwise (silently: the text is compiled again; one warning if not private)."""
+    try:
+        data = read_private(path, ENTRY_LIMIT)
+    except NotPrivate as why:
+        warn_once(f"symlink: not loading a cache entry's bytecode: {why}; compiled again")
+        return None
+    except OSError:  # missing, not a regular file, too large
+        return None
+    digest_end = len(header) + 64
+    if not data.startswith(header) or data[len(header):digest_end] != _bytecode_digest(header, data[digest_end:]):
+        return None
+    try:
+        code = marshal.loads(data[digest_end:])
+    except (EOFError, ValueError, TypeError):  # checked above: only if the checksum itself were forged
+        return None
+    return code if isinstance(code, CodeType) else None
+
+
+def _bytecode_digest(header: bytes, code: bytes) -> bytes:
+    return sha256(header + code).hexdigest().encode()
+
+
+def cached_module(key: str, build: Callable[[], str]) -> tuple[str, dict]:
+    """The generated NumPy module stored under ``key`` (:func:`cached_text`): its text and the namespace of running it.
+
+    Its code comes from memory, else from its verified bytecode file beside the entry (:func:`entry_path`), else
+    is compiled from the verified text (:func:`~symlink.codegen.loading.compile_numpy_module`) and written
+    there.  A bytecode file that cannot be used is ignored and rewritten; a folder that is not trusted is
+    neither read nor written, and one that cannot be written costs a compilation per process, nothing more.
+
+    >>> import os, tempfile
+    >>> previous = os.environ.get("SYMLINK_CACHE")
+    >>> os.environ["SYMLINK_CACHE"] = tempfile.mkdtemp()
+    >>> clear_memory()
+    >>> text, namespace = cached_module("f" * 64, lambda: "ANSWER = 6 * 7\\n")
+    >>> namespace["ANSWER"], entry_path(cache_directory(), "f" * 64, bytecode=True).is_file()
+    (42, True)
+    >>> clear_memory()  # a new process: the code is read, not compiled
+    >>> cached_module("f" * 64, lambda: "never built")[1]["ANSWER"]
+    42
+    >>> _ = os.environ.pop("SYMLINK_CACHE") if previous is None else os.environ.update(SYMLINK_CACHE=previous)
+    """
+    from ..codegen.loading import compile_numpy_module, run_numpy_module
+    text = cached_text(key, build)
+    code = _CODES.get(key)
+    if code is None:
+        folder = trusted_directory()
+        path = None if folder is None else entry_path(folder, key, bytecode=True)
+        header = b"" if path is None else _bytecode_header(key, text)
+        code = None if path is None else _read_bytecode(path, header)
+        if code is None:
+            code = compile_numpy_module(text)  # from the verified text: what the bytecode file holds
+            if path is not None:
+                payload = marshal.dumps(code)
+                _write(path, header + _bytecode_digest(header, payload) + payload)
+        _CODES[key] = code
+    return text, run_numpy_module(code)
 
 
 def clear_memory() -> None:
     """Forget what is cached in memory (the disk cache stays): the state of a new process."""
     _TEXTS.clear()
+    _CODES.clear()
     _LOADED.clear()
     _FOLDERS.clear()
     _WARNED.clear()
@@ -528,7 +647,7 @@ def generated_code(linkage: Linkage, outputs: Sequence[str]) -> GeneratedCode:
     sensitivity derives it (an entry exists only for names that were checked when it was derived).
     Unknown output names raise ``ValueError`` before anything is derived or cached.
     """
-    from ..codegen.numpy import load_numpy_module, numpy_module
+    from ..codegen.numpy import numpy_module
     outputs = list(outputs)
     if not outputs:
         raise ValueError(f"ask {linkage.name} for at least one output; it has {', '.join(linkage.output_names())}")
@@ -539,6 +658,6 @@ def generated_code(linkage: Linkage, outputs: Sequence[str]) -> GeneratedCode:
                 linkage.output(name)  # ValueError naming the outputs there are, before any work
             doc = f"{linkage.name}: {', '.join(outputs)}."
             return numpy_module([(FUNCTION, linkage.program(outputs), doc)])
-        source = cached_text(key, derive)
-        _LOADED[key] = GeneratedCode(key, source, load_numpy_module(source)[FUNCTION])
+        source, namespace = cached_module(key, derive)
+        _LOADED[key] = GeneratedCode(key, source, namespace[FUNCTION])
     return _LOADED[key]

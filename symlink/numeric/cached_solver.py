@@ -31,9 +31,8 @@ from typing import Any, Callable, Sequence
 
 import numpy
 
-from .cache import cached_text, catalog_key
+from .cache import cached_module, catalog_key
 from .call_arguments import check_argument_names
-from ..codegen.loading import load_numpy_module
 from ..common.limits import require_memory
 from .results import Results
 
@@ -114,8 +113,7 @@ class CachedSolver:
         self._full = full
         if key is None or derive is None:
             key, derive = catalog_key(name, self.outputs, ENTRY_KIND), lambda: _derived_entry(name, self.outputs)
-        self.source = cached_text(key, derive)
-        namespace = load_numpy_module(self.source)  # from a verified entry of a private cache (never user text)
+        self.source, namespace = cached_module(key, derive)  # a verified entry of a private cache (never user text)
         entry = namespace[DESCRIPTION]
         self.description: dict[str, Any] = entry
         self.arguments: list[str] = entry["arguments"]
@@ -195,8 +193,7 @@ class CachedNewtonSolver:
 
     def __init__(self, name: str, key: str, derive: Callable[[], str]) -> None:
         self.name = name
-        self.source = cached_text(key, derive)
-        namespace = load_numpy_module(self.source)  # from a verified entry of a private cache (never user text)
+        self.source, namespace = cached_module(key, derive)  # a verified entry of a private cache (never user text)
         entry = namespace[DESCRIPTION]
         self.description: dict[str, Any] = entry
         self.arguments: list[str] = entry["arguments"]

@@ -572,7 +572,8 @@ class CompiledFunction:
                           tuple(sys.intern(a) for a in self._result_names),
                           bytes(int(flag) for flag, _ in self._result_rows),
                           0 if self.into is None else ctypes.cast(self.into, ctypes.c_void_p).value,
-                          self._large_entries, self._new_large_entry, KEPT_OUTPUTS)
+                          self._large_entries, self._new_large_entry, KEPT_OUTPUTS, KEPT_OUTPUTS_MOST,
+                          KEPT_OUTPUTS_BYTES)
 
     def __call__(self, *, out: Any = None, **values) -> dict[str, numpy.ndarray]:
         """The outputs (and ``assembled``) at ``values``, by keyword: new arrays, or the caller's ``out``.
@@ -838,8 +839,21 @@ class CompiledFunction:
 #: Output blocks of small calls kept for reuse by each compiled function (see :meth:`CompiledFunction._free_outputs`):
 #: eight, so that results held for up to seven calls are answered from blocks already made (with the call
 #: extension a new block and its rows cost about half a dropped call at 10 values, without it about three);
-#: at most eight blocks of SMALL_CALL values a function.
+#: at most eight blocks of SMALL_CALL values a function without the call extension.  With it, these are the
+#: blocks always kept, and the first looked at for a free one: more are kept while callers hold more results
+#: (:data:`KEPT_OUTPUTS_MOST`).
 KEPT_OUTPUTS = 8
+
+#: With the call extension, the blocks of small calls kept grow past :data:`KEPT_OUTPUTS` while a caller holds
+#: more results than that (a result kept for a number of calls: a deque of the last ones), one a call, up to
+#: this many blocks and :data:`KEPT_OUTPUTS_BYTES` bytes: each call then finds a free block, and a kept result
+#: costs what a dropped one does.  Once the caller holds fewer, they shrink back by one a call.  Only the
+#: first :data:`KEPT_OUTPUTS` (the least recently used) are looked at for a free one.
+KEPT_OUTPUTS_MOST = 128
+
+#: The most bytes the blocks of small calls kept grow to (see :data:`KEPT_OUTPUTS_MOST`; never fewer than
+#: :data:`KEPT_OUTPUTS` blocks).
+KEPT_OUTPUTS_BYTES = 8 << 20
 
 #: Output blocks of larger calls kept for reuse by each compiled function (:meth:`CompiledFunction._free_block`):
 #: two, so that ``result = solver(...)`` in a loop (the result before held until the call returns) reuses them.

@@ -26,11 +26,11 @@ from typing import Any, Callable, Mapping
 import numpy
 
 from ..common.angles import wrap_angle
-from .cache import cache_key, cached_text
+from .cache import cache_key, cached_module, cached_text
 from .crank_ranges import (SCAN_POINTS, TURN_SAMPLES, closing_crank_range, crank_range, describe_spans, fivebar_range,  # noqa: F401
                            inverted_slider_crank_range, reachable_turn, scanned_range, slider_crank_range, turn_angles)
 from ..symbolic.closure import is_angle
-from ..codegen.numpy import checked_arguments, load_numpy_module, numpy_module
+from ..codegen.numpy import checked_arguments, numpy_module
 from ..codegen.program import in_loop_units
 from ..common.display import record_html
 from ..symbolic.linkage import Linkage
@@ -278,7 +278,7 @@ def _margin_function(linkage: Linkage) -> tuple[Callable[..., dict], list[tuple[
                               else expr.args[0] + TOLERANCE * expr.args[1]) for name, (_, _, expr) in zip(names, roots)}
             program = replace(in_loop_units(base), outputs=margins)
             return numpy_module([("margins", program, f"{linkage.name}: the margins of its clamped roots.")])
-        _MARGINS[key] = load_numpy_module(cached_text(key, build))["margins"]
+        _MARGINS[key] = cached_module(key, build)[1]["margins"]
     return _MARGINS[key], [(name, loop) for name, (loop, _, _) in zip(names, roots)]
 
 

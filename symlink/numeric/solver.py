@@ -38,10 +38,10 @@ from typing import Any, Callable, Mapping, Sequence, TypeVar
 
 import numpy
 
-from .cache import cache_key, cached_text, generated_code
+from .cache import cache_key, cached_module, cached_text, generated_code
 from .call_arguments import check_argument_names, required_arguments
 from ..codegen import newton
-from ..codegen.numpy import checked_arguments, load_numpy_module
+from ..codegen.numpy import checked_arguments
 from .input_sweep import crank_speeds  # noqa: F401 - its home is input_sweep (no SymPy); kept here for callers
 from ..common.limits import require_memory
 from ..symbolic.linkage import Linkage, Program, is_branch_name
@@ -469,8 +469,8 @@ class NumericSolver:
         from . import compiled_library as compiled  # the C libraries (it imports no solver)
         self.linkage = linkage
         # Derived once, then from the scene cache, as every other generated solver.
-        self.source = cached_text(cache_key(linkage, [], "numeric"), lambda: newton.numeric_module(linkage))
-        self.functions = load_numpy_module(self.source)
+        self.source, self.functions = cached_module(cache_key(linkage, [], "numeric"),
+                                                    lambda: newton.numeric_module(linkage))
         self.backend_choice = compiled.chosen_backend(backend)
         self._compiled: _CompiledNewton | None = None  # the compiled driver once it answers
         self._build: Any = None  # its background build, until it is over

@@ -23,7 +23,10 @@ def test_info_then_clear_after_a_table(empty_cache, capsys, monkeypatch):
     assert status == 0 and fields(out)["folder"] == f"{empty_cache} (not created yet)"
     assert run(capsys, *FOURBAR)[0] == 0
     (empty_cache / "notes.txt").write_text("mine")
-    entries = [path for path in empty_cache.iterdir() if path.suffix == ".json"]
+    entries = [path for path in empty_cache.iterdir() if path.suffix in (".json", ".code")]  # texts, bytecode
+    texts = {path.name.split(".")[0] for path in entries if path.suffix == ".json"}
+    codes = [path.name.split(".")[0] for path in entries if path.suffix == ".code"]
+    assert codes and set(codes) <= texts and len(set(codes)) == len(codes)  # each beside its text entry
     size = sum(path.stat().st_size for path in entries)
     status, out, err = run(capsys, "cache", "info")
     assert status == 0 and err == ""

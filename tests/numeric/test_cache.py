@@ -1,5 +1,6 @@
 """The scene cache: keys, verified disk entries, and no symbolic work on a second run."""
 import hashlib
+import importlib.util
 import json
 import os
 import subprocess
@@ -86,11 +87,12 @@ def test_second_run_does_no_symbolic_work(folder, monkeypatch):
     check_against_reference(second)
 
 
-def test_entry_is_one_verified_json_file_written_atomically(folder):
+def test_entry_is_one_verified_json_file_and_its_bytecode_written_atomically(folder):
     code = generated_code(fourbar(), ["rocker"])
     files = sorted(p.name for p in folder.iterdir())
-    assert files == [f"{code.key}.json"]  # no temporary file left behind
-    entry = json.loads((folder / files[0]).read_text())
+    magic = importlib.util.MAGIC_NUMBER.hex()
+    assert files == [f"{code.key}.{magic}.code", f"{code.key}.json"]  # no temporary file left behind
+    entry = json.loads((folder / files[1]).read_text())
     assert entry["key"] == code.key and entry["text"] == code.source
     assert len(entry["sha256"]) == 64
 
@@ -449,6 +451,7 @@ def plant_others(folder):
     outside.write_text("not in the cache")
     planted = {
         "notes.txt": "mine", "ABC.json": "{}", f"{HEX}.json.bak": "{}", f"{HEX.upper()}.json": "{}",
+        f"{HEX}.code": "", f"{HEX}.0d0d0a.code": "", f"{HEX}.0d0d0a0d.pyc": "", f"{HEX}.0d0d0a0d.code.bak": "",
         f".other.{HEX[:12]}.tmp": "", "compiled/mine.so": "x", f"compiled/{HEX}.json": "{}",
     }
     for name, text in planted.items():
@@ -468,14 +471,17 @@ def test_info_counts_and_clear_removes_only_what_symlink_wrote(folder):
     from symlink.numeric.cache import cache_contents, clear_cache
     code = generated_code(fourbar(), ["rocker"])
     entry = folder / f"{code.key}.json"
-    ours = {entry.name: entry.stat().st_size}
+    bytecode = cache.entry_path(folder, code.key, bytecode=True)
+    ours = {entry.name: entry.stat().st_size, bytecode.name: bytecode.stat().st_size}
     (folder / "compiled").mkdir(mode=0o700)
     build = folder / "compiled" / ".build-x1y2z3_4"  # a killed build: a folder with a half-written source
     build.mkdir()
     (build / "symlink.c").write_text("double f(double x) { return x; }\n")
     ours["compiled/.build-x1y2z3_4"] = len("double f(double x) { return x; }\n")
     for name, text in {f"compiled/{HEX}.so": "\x7fELF...", f"compiled/{HEX}.sha256": "ab\n",
-                       f"compiled/.load-{HEX[:16]}.so": "\x7fELF", f".{HEX}.json.{HEX[:12]}.tmp": "{"}.items():
+                       f"compiled/.load-{HEX[:16]}.so": "\x7fELF", f".{HEX}.json.{HEX[:12]}.tmp": "{",
+                       f"{HEX}.0d0d0a0d.code": "another Python's", f"{HEX}.0d0d0a0d.opt-2.code": "at -OO",
+                       f".{HEX}.0d0d0a0d.code.{HEX[:12]}.tmp": "half"}.items():
         (folder / name).write_text(text)
         ours[name] = len(text.encode())
     others, outside = plant_others(folder)
@@ -492,7 +498,7 @@ def test_info_counts_and_clear_removes_only_what_symlink_wrote(folder):
     assert outside.read_text() == "not in the cache"
     assert cache_contents(folder).entries == 0
     again = generated_code(fourbar(), ["rocker"])  # the next run derives it again
-    assert again.key == code.key and entry.is_file()
+    assert again.key == code.key and entry.is_file() and bytecode.is_file()
 
 
 def test_a_real_compiled_library_is_counted_and_cleared(folder):
@@ -549,3 +555,141 @@ def test_a_file_where_the_folder_should_be_is_not_trusted(tmp_path):
     with pytest.raises(ValueError, match="not a folder"):
         clear_cache(tmp_path / "file")
     assert (tmp_path / "file").is_file()
+
+
+# --- bytecode beside a generated module's entry: a warm load compiles nothing ---------------
+
+def count_compilations(monkeypatch):
+    """Count the compilations of generated module source (still compiling)."""
+    import symlink.codegen.loading
+    return count_calls(monkeypatch, symlink.codegen.loading, "compile_numpy_module")
+
+
+def bytecode_file(folder, key):
+    return cache.entry_path(folder, key, bytecode=True)
+
+
+def test_a_warm_load_runs_the_cached_bytecode_without_compiling(folder, monkeypatch):
+    compilations = count_compilations(monkeypatch)
+    first = generated_code(fourbar(), OUTPUTS)
+    assert len(compilations) == 1 and bytecode_file(folder, first.key).is_file()
+    clear_memory()  # a new process
+    forbid_symbolic_work(monkeypatch)
+    warm = generated_code(fourbar(), OUTPUTS)
+    assert len(compilations) == 1  # the code came from the bytecode file
+    check_against_reference(warm)
+    assert oct(os.stat(bytecode_file(folder, first.key)).st_mode & 0o777) == "0o600"
+
+
+def test_the_bytecode_file_is_named_and_marked_for_this_python(folder):
+    code = generated_code(fourbar(), ["rocker"])
+    path = bytecode_file(folder, code.key)
+    magic = importlib.util.MAGIC_NUMBER
+    assert path.name == f"{code.key}.{magic.hex()}.code"  # tests run without -O
+    data = path.read_bytes()
+    entry = json.loads((folder / f"{code.key}.json").read_text())
+    assert magic in data[:64] and entry["sha256"].encode() in data[:128]  # bound to this Python and this entry
+
+
+def bytecode_corruptions(data: bytes, other: bytes, magic: bytes) -> dict[str, bytes]:
+    """Ways a bytecode file can go wrong, each as the bytes left in it (``other``: another entry's good file)."""
+    flipped = bytearray(data)
+    flipped[-10] ^= 0xFF
+    return {
+        "empty": b"",
+        "truncated": data[: len(data) // 2],
+        "cut at the end": data[:-1],
+        "a byte of code changed": bytes(flipped),
+        "garbage": b"\x00\xff garbage",
+        "another Python's magic number": data.replace(magic, bytes([magic[0] ^ 1]) + magic[1:], 1),
+        "another entry's bytecode": other,
+    }
+
+
+@pytest.mark.parametrize("kind", list(bytecode_corruptions(b"0123456789ab", b"", b"0123")))
+def test_a_bad_bytecode_file_is_ignored_and_rewritten(folder, monkeypatch, kind):
+    good = generated_code(fourbar(), OUTPUTS)
+    other = generated_code(fourbar(), ["rocker"])
+    path = bytecode_file(folder, good.key)
+    path.write_bytes(bytecode_corruptions(path.read_bytes(), bytecode_file(folder, other.key).read_bytes(),
+                                          importlib.util.MAGIC_NUMBER)[kind])
+    clear_memory()
+    compilations = count_compilations(monkeypatch)
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # ignored silently: a cache of the text's compilation, nothing to report
+        rebuilt = generated_code(fourbar(), OUTPUTS)
+    assert len(compilations) == 1  # compiled again from the verified text
+    assert rebuilt.source == good.source
+    check_against_reference(rebuilt)
+    clear_memory()  # the file was rewritten: the next process uses it
+    again = generated_code(fourbar(), OUTPUTS)
+    assert len(compilations) == 1
+    check_against_reference(again)
+
+
+def test_a_bytecode_file_others_can_write_is_not_run(folder, monkeypatch, tmp_path):
+    good = generated_code(fourbar(), OUTPUTS)
+    path = bytecode_file(folder, good.key)
+    path.chmod(0o666)
+    clear_memory()
+    compilations = count_compilations(monkeypatch)
+    with pytest.warns(cache.CacheWarning) as caught:
+        code = generated_code(fourbar(), OUTPUTS)
+    assert len(compilations) == 1 and len(cache_warnings(caught)) == 1 and "bytecode" in cache_warnings(caught)[0]
+    check_against_reference(code)
+    assert oct(os.stat(path).st_mode & 0o777) == "0o600"  # replaced by a private file
+
+
+def test_an_untrusted_folder_s_bytecode_is_not_read(folder, monkeypatch):
+    good = generated_code(fourbar(), OUTPUTS)
+    path = bytecode_file(folder, good.key)
+    before = path.read_bytes()
+    folder.chmod(0o770)
+    clear_memory()
+    compilations = count_compilations(monkeypatch)
+    reads = count_calls(monkeypatch, cache, "_read_bytecode")
+    with pytest.warns(cache.CacheWarning):
+        code = generated_code(fourbar(), OUTPUTS)
+    assert len(compilations) == 1 and reads == []  # a good bytecode file there, and still not read
+    check_against_reference(code)
+    assert path.read_bytes() == before  # nor written
+
+
+def test_a_bytecode_file_that_cannot_be_written_costs_a_compilation_only(folder, monkeypatch):
+    good = generated_code(fourbar(), OUTPUTS)
+    path = bytecode_file(folder, good.key)
+    path.unlink()
+    path.mkdir()  # a folder in the way: the write fails, as in a read-only cache
+    for _ in range(2):  # two processes
+        clear_memory()
+        compilations = count_compilations(monkeypatch)
+        code = generated_code(fourbar(), OUTPUTS)
+        assert len(compilations) == 1
+        check_against_reference(code)
+    assert path.is_dir() and not [p for p in folder.iterdir() if p.name.endswith(".tmp")]
+
+
+def test_the_same_code_in_one_process_is_compiled_once(folder, monkeypatch):
+    from symlink.numeric.cached_solver import CachedSolver
+    first = CachedSolver("fourbar", ["rocker"])
+    compilations = count_compilations(monkeypatch)
+    second = CachedSolver("fourbar", ["rocker"])
+    assert compilations == [] and first.function is not second.function  # the same code, each its own namespace
+    # The rocker angle by the law of cosines (seed 003 at theta = 0: the diagonal BD = d - a).
+    a, b, c, d = 20.0, 66.0, 56.0, 80.0
+    diagonal = d - a
+    expected = numpy.pi - numpy.arccos((c * c + diagonal * diagonal - b * b) / (2 * c * diagonal))
+    result = second(theta=0.0, a=a, b=b, c=c, d=d, branch=1)["rocker"]
+    assert float(result) == pytest.approx(expected, abs=1e-12)
+
+
+def test_under_python_O_the_bytecode_has_its_own_name_which_symlink_counts_as_its_own(folder, monkeypatch):
+    import re
+    import types
+    plain, plain_header = cache.entry_path(folder, HEX, bytecode=True).name, cache._bytecode_header(HEX, "x = 1\n")
+    monkeypatch.setattr(cache, "sys", types.SimpleNamespace(flags=types.SimpleNamespace(optimize=2)))
+    optimized = cache.entry_path(folder, HEX, bytecode=True).name
+    assert optimized == f"{HEX}.{importlib.util.MAGIC_NUMBER.hex()}.opt-2.code" and optimized != plain
+    assert re.match(cache._OWN_NAMES, optimized) and re.match(cache._OWN_NAMES, f".{optimized}.{HEX[:12]}.tmp")
+    assert cache._bytecode_header(HEX, "x = 1\n") != plain_header  # a file renamed across levels is not used

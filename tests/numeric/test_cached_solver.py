@@ -239,3 +239,35 @@ def test_float64_arguments_are_not_copied():
     angles = numpy.linspace(0.0, 1.0, 5)
     (converted, lengths), _ = checked_arguments(["theta", "a"], [angles, numpy.float32(2.0)], lengths=["a"])
     assert converted is angles and lengths.dtype == numpy.float64
+
+
+def test_a_warm_newton_solver_runs_its_cached_bytecode(empty_cache, monkeypatch):
+    """The Newton module (the largest generated module a warm table loads) is not compiled again in a new process,
+    and a truncated bytecode file of it is compiled again from its entry, with the same answers."""
+    import symlink.codegen.loading as loading
+    from symlink.mechanism.catalog import fourbar
+    from symlink.numeric.cached_solver import CachedNewtonSolver, newton_entry_text
+    key = cache.catalog_key("fourbar", ["newton"], "newton-bytecode-test/1")
+    compilations = []
+    original = loading.compile_numpy_module
+    monkeypatch.setattr(loading, "compile_numpy_module", lambda source: compilations.append(1) or original(source))
+    theta = numpy.array([0.0, 0.7, 2.0])
+    expected = [float(mp_fourbar(a=20, b=66, c=56, d=80, theta=t, branch=1)["phi"]) for t in theta]
+
+    def rocker() -> list[float]:
+        solver = CachedNewtonSolver("fourbar", key, lambda: newton_entry_text(fourbar()))
+        return [float(v) for v in solver(theta=theta, a=20, b=66, c=56, d=80, guess={"beta": 0.3, "phi": 1.9})["rocker"]]
+
+    assert rocker() == pytest.approx(expected, abs=1e-9)
+    cold = len(compilations)
+    assert cold >= 1
+    cache.clear_memory()  # a new process
+    assert rocker() == pytest.approx(expected, abs=1e-9)
+    assert len(compilations) == cold  # from the bytecode file
+    path = cache.entry_path(empty_cache, key, bytecode=True)
+    path.write_bytes(path.read_bytes()[:100])  # truncated
+    cache.clear_memory()
+    assert rocker() == pytest.approx(expected, abs=1e-9)
+    assert len(compilations) == cold + 1  # compiled again from the verified text, and rewritten
+    cache.clear_memory()
+    assert rocker() == pytest.approx(expected, abs=1e-9) and len(compilations) == cold + 1

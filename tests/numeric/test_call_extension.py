@@ -3,20 +3,23 @@
 Checked: results equal to the NumPy module's on random inputs and bit for bit equal to the Python fast
 path (the extension turned off); every call it refuses answered by the general path as before (errors,
 broadcasting, shape-() results, coercion); no reference leaked or lost over many calls, with arrays
-freed between them; correct results from two threads at once; and, without the extension, everything
-as before.
+freed between them; correct results from two threads at once; results kept for many calls answered from
+blocks made before (no new block a call), never written again, and right against the law of cosines and
+finite differences; the kept blocks' caps; and, without the extension, everything as before.
 """
 from __future__ import annotations
 
+import collections
 import sys
 import threading
+import weakref
 
 import numpy
 import pytest
 
 from export_checks import angles_of, assert_agree, random_arguments
 from symlink.numeric import compiled_library
-from symlink.codegen.call_extension import PLAN_FIELDS
+from symlink.codegen.call_extension import ENTRY_FIELDS, PLAN_FIELDS
 from symlink.numeric.compiled import CompiledSolver, CompilerUnavailable, find_compiler
 from symlink.numeric.results import Results
 from symlink.io.scene import catalog_linkage
@@ -298,3 +301,106 @@ def test_a_large_call_into_out_is_answered_in_c_into_the_callers_arrays(solvers)
                             ({**out, "rocker": out["rocker"].astype(numpy.float32)}, dict(theta=theta)),
                             (out, dict(theta=theta[None, :]))):
         assert function._extension.large(function._plan, {**LENGTHS, **values}, bad_out, Results, {}, {}) is None
+
+
+def law_of_cosines(theta: numpy.ndarray, a: float, b: float, c: float, d: float, branch: float) -> tuple:
+    """(coupler, rocker) angles of the four-bar, by hand: joint C where the circles about B (radius b) and D
+    (radius c) meet, the rocker's angle at D off the line DB by the law of cosines, the side by the branch
+    (+1: C to the left of the directed line B -> D)."""
+    bx, by = a * numpy.cos(theta), a * numpy.sin(theta)
+    reach = numpy.hypot(d - bx, by)  # |BD|
+    towards_b = numpy.arctan2(by, bx - d)  # the direction of DB at D
+    off = numpy.arccos((c * c + reach * reach - b * b) / (2 * c * reach))
+    rocker = numpy.where(numpy.sign((d - bx) * (c * numpy.sin(towards_b + off) - by)
+                                    + by * (d + c * numpy.cos(towards_b + off) - bx)) == branch,
+                         towards_b + off, towards_b - off)
+    coupler = numpy.arctan2(c * numpy.sin(rocker) - by, d + c * numpy.cos(rocker) - bx)
+    return coupler, rocker
+
+
+def wrapped(angle: numpy.ndarray) -> numpy.ndarray:
+    return numpy.angle(numpy.exp(1j * angle))
+
+
+def check_against_hand(result, theta: numpy.ndarray) -> None:
+    """Positions against the law of cosines, speeds against central differences of it (seed 003's crank-rocker:
+    assembled everywhere, away from its toggles)."""
+    lengths = [LENGTHS[name] for name in "abcd"]
+    coupler, rocker = law_of_cosines(theta, *lengths, LENGTHS["branch"])
+    assert numpy.allclose(wrapped(result["coupler"] - coupler), 0.0, atol=1e-12)
+    assert numpy.allclose(wrapped(result["rocker"] - rocker), 0.0, atol=1e-12)
+    step = 1e-6
+    ahead, behind = law_of_cosines(theta + step, *lengths, 1.0), law_of_cosines(theta - step, *lengths, 1.0)
+    for name, k in (("coupler_speed", 0), ("rocker_speed", 1)):
+        difference = LENGTHS["thetadot"] * wrapped(ahead[k] - behind[k]) / (2 * step)
+        assert numpy.allclose(result[name], difference, rtol=1e-6, atol=1e-6), name
+
+
+def crank_angles(step: int, n: int = 10) -> numpy.ndarray:
+    return numpy.linspace(0.0, 2 * numpy.pi, n, endpoint=False) + 0.01 * step  # each call its own
+
+
+@pytest.mark.parametrize("kept_for", [1, 8, 9, 40, 100])
+def test_results_kept_for_many_calls_come_from_blocks_made_before_and_are_never_written_again(fourbar, kept_for):
+    """A caller keeping each result for ``kept_for`` calls (a deque): once the blocks have grown to what it holds,
+    no call makes a new block (every result's block is one seen before: counted by weak references, which
+    hold nothing), each result is its own (no memory shared with one held) and keeps its values through
+    every later call (calls into out= among them), right against the law of cosines and finite differences."""
+    solver = CompiledSolver(fourbar, OUTPUTS)
+    function = solver.function
+    if function._plan is None:
+        pytest.skip("the small-call extension cannot be built here (no Python headers?)")
+    held: collections.deque = collections.deque(maxlen=kept_for)
+    for step in range(kept_for + 2):  # the blocks grow to what the caller holds, plus the one being written
+        held.append((step, solver(theta=crank_angles(step), **LENGTHS)))
+    assert len(function._entries) == kept_for + 1
+    made_before = [weakref.ref(entry[ENTRY_FIELDS.index("block")]) for entry in function._entries]
+    copies = {step: {name: value.copy() for name, value in result.items()} for step, result in held}
+    out = {name: numpy.empty_like(value) for name, value in held[-1][1].items()}
+    for step in range(kept_for + 2, 3 * kept_for + 20):
+        result = solver(theta=crank_angles(step), **LENGTHS)
+        block = result["rocker"].base
+        assert any(known() is block for known in made_before), f"a new block at step {step}"
+        assert not any(numpy.may_share_memory(result["rocker"], old["rocker"]) for _, old in held)
+        check_against_hand(result, crank_angles(step))
+        copies[step] = {name: value.copy() for name, value in result.items()}
+        held.append((step, result))
+        copies = {k: copies[k] for k, _ in held}
+        if step % 7 == 0:  # a call into the caller's arrays writes there, and nowhere else
+            assert solver(theta=crank_angles(-step), **LENGTHS, out=out)["rocker"] is out["rocker"]
+            check_against_hand(out, crank_angles(-step))
+        for k, kept in held:  # every result held is as it was made
+            for name, value in copies[k].items():
+                assert numpy.array_equal(kept[name], value, equal_nan=True), (step, k, name)
+    for k, kept in held:
+        check_against_hand(kept, crank_angles(k))
+
+
+def test_the_kept_blocks_grow_no_further_than_their_caps_and_shrink_back_once_results_are_dropped(fourbar):
+    solver = CompiledSolver(fourbar, OUTPUTS)
+    function = solver.function
+    if function._plan is None:
+        pytest.skip("the small-call extension cannot be built here (no Python headers?)")
+    entries, most = function._entries, compiled_library.KEPT_OUTPUTS_MOST
+    held = [solver(theta=crank_angles(step), **LENGTHS) for step in range(most + 40)]  # all kept: more than the cap
+    assert len(entries) == most
+    for step, result in enumerate(held):
+        check_against_hand(result, crank_angles(step))
+    held.clear()
+    for step in range(2 * most):  # results dropped: one block fewer a call, back to KEPT_OUTPUTS
+        result = solver(theta=crank_angles(step), **LENGTHS)
+    assert len(entries) == compiled_library.KEPT_OUTPUTS
+    # The bytes: blocks of SMALL_CALL values, each the size of a result's arrays (counted here by hand).
+    n = compiled_library.SMALL_CALL
+    held = [solver(theta=crank_angles(step, n), **LENGTHS) for step in range(most)]
+    size = sum(value.nbytes for value in held[0].values())
+    assert size == n * (8 * (len(OUTPUTS) - 1) + 2)  # the number rows, then singular and assembled
+    assert len(entries) == max(compiled_library.KEPT_OUTPUTS, compiled_library.KEPT_OUTPUTS_BYTES // size) < most
+    check_against_hand(held[-1], crank_angles(most - 1, n))
+    # Calls of another length: the free blocks of the length before, past KEPT_OUTPUTS, are dropped at once
+    # (the first call's new block comes on top), and the next calls find the new one.
+    held.clear()
+    for step in range(3):
+        check_against_hand(solver(theta=crank_angles(step, 20), **LENGTHS), crank_angles(step, 20))
+        assert len(entries) == compiled_library.KEPT_OUTPUTS + (step == 0)
+        assert sum(entry[ENTRY_FIELDS.index("length")] == 20 for entry in entries) == 1

@@ -146,7 +146,7 @@ def run(args: argparse.Namespace) -> int:
     masses, pin play or sampled builds) builds no linkage and imports no SymPy; the cold run takes the same path.
     """
     import json
-    from ..numeric.cache import cached_text
+    from ..numeric.cache import cached_module, cached_text
     from ..workshop.tolerance import StackUpModel, tolerance_arrays
     from .tables import facts_values
     lengths = fourbar_lengths(args)
@@ -219,8 +219,9 @@ def run(args: argparse.Namespace) -> int:
             derived = read().linkage
             model = StackUpModel.derive(derived, [output], dimensions)  # ValueError naming an unknown output
             return model.entry_text(output_unit=output_units(derived, [output]).get(output))
-        model = StackUpModel.from_entry(cached_text(_key(request, MODEL_ENTRY_KIND, [output], dimensions=dimensions),
-                                                    derive))
+        # a verified entry of a private cache (never user text), run from its cached bytecode
+        model = StackUpModel.from_entry(*cached_module(_key(request, MODEL_ENTRY_KIND, [output], dimensions=dimensions),
+                                                       derive))
         output_unit = model.facts["output_unit"]
     else:
         from ..numeric.units import output_units

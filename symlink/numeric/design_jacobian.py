@@ -193,11 +193,13 @@ class DesignJacobian:
                 f"{ENTRY_DESCRIPTION} = {described!r}\n")
 
     @classmethod
-    def from_entry(cls, text: str) -> DesignJacobian:
+    def from_entry(cls, text: str, namespace: Mapping[str, Any] | None = None) -> DesignJacobian:
         """The Jacobian of an entry's text (:meth:`entry_text`: symlink's own, from a verified cache entry, never
         user text), loaded without its linkage: :attr:`linkage` is None, and :attr:`facts` holds what the entry
-        added."""
-        namespace = load_numpy_module(text)
+        added.  ``namespace``: the text already run (:func:`symlink.numeric.cache.cached_module`: from its cached
+        bytecode), else it is run here."""
+        if namespace is None:
+            namespace = load_numpy_module(text)
         described = namespace[ENTRY_DESCRIPTION]
         jacobian = cls.__new__(cls)
         jacobian.linkage = None

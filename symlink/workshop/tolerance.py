@@ -390,9 +390,10 @@ class StackUpModel:
             "inputs": list(self.inputs), "internal": dict(self.internal), "held": dict(self.held)}, **more)
 
     @classmethod
-    def from_entry(cls, text: str) -> StackUpModel:
-        """The model of an entry's text (:meth:`entry_text`), without its linkage: no SymPy."""
-        jacobian = DesignJacobian.from_entry(text)
+    def from_entry(cls, text: str, namespace: Mapping[str, Any] | None = None) -> StackUpModel:
+        """The model of an entry's text (:meth:`entry_text`), without its linkage: no SymPy.  ``namespace``: the text
+        already run (see :meth:`DesignJacobian.from_entry`)."""
+        jacobian = DesignJacobian.from_entry(text, namespace)
         kept = jacobian.facts["stack_up"]
         return cls(tuple(kept["outputs"]), tuple(kept["dimensions"]), kept["name"], tuple(kept["inputs"]), jacobian,
                    dict(kept["internal"]), dict(kept["held"]))

@@ -667,7 +667,7 @@ GENERIC_ENTRY_KIND = "generic-table/2"
 GENERIC_SHAPING = ("io/linkage_file", "cli/tables", "mechanism/atlas", "mechanism/joints")
 
 
-def _facts_values(facts: Mapping[str, Any], settings: Mapping[str, float], units: str,
+def facts_values(facts: Mapping[str, Any], settings: Mapping[str, float], units: str,
                   extra: Collection[str] = ()) -> dict[str, float]:
     """:func:`~symlink.cli.options.linkage_values` from a table's facts: the defaults updated by ``--set``."""
     known = facts["parameters"] + facts["inputs"]
@@ -756,7 +756,7 @@ def run_generic_table(args: argparse.Namespace) -> int:
     facts = source.facts
     name, inputs = facts["name"], facts["inputs"]
     ratios = {f"{x}_ratio" for x in inputs[1:]}
-    values = _facts_values(facts, args.set, args.units, extra=sorted(ratios))
+    values = facts_values(facts, args.set, args.units, extra=sorted(ratios))
     if not inputs:
         raise ValueError(f"{name} has no input to sweep")
     if inputs[0] in args.set:

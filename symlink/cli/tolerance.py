@@ -16,13 +16,13 @@ fixed distances along the links, so the lengths' tolerances do not move them).
 from __future__ import annotations
 
 import argparse
-from typing import Any
+from typing import Any, Mapping
 
 import numpy
 
 from ..common.angles import from_radians, to_radians, wrap
 from .options import (FOURBAR_LENGTHS, output_folder, refuse_together, add_branch_option, add_format_option, add_units_option, assignments,
-                      command_help, figure_path, finite, fourbar_lengths, input_sweep, linkage_values, distinct_number_list,
+                      command_help, figure_path, finite, fourbar_lengths, input_sweep, distinct_number_list,
                       seed, whole)
 from .dynamics import add_mass_options, fourbar_dynamics
 from .output import RowWriter, note
@@ -91,63 +91,150 @@ def _add_options(command: argparse.ArgumentParser) -> None:
     command.set_defaults(run=run)
 
 
-def run(args: argparse.Namespace) -> int:
+#: The kinds of cache entry of ``symlink tolerance``: the facts of the linkage it needs (:func:`stack_up_facts`) and
+#: the stack-up model of one output by some dimensions (:class:`~symlink.workshop.tolerance.StackUpModel`).
+FACTS_ENTRY_KIND, MODEL_ENTRY_KIND = "tolerance-facts/1", "tolerance-model/1"
+#: Besides the code that shapes generated code: what reads a linkage file or an atlas name, what derives a stack-up's
+#: model and what takes the command's facts from the linkage.
+TOLERANCE_SHAPING = ("io/linkage_file", "mechanism/atlas", "mechanism/joints", "workshop/tolerance",
+                     "numeric/design_jacobian", "numeric/units", "cli/tolerance")
+
+
+def stack_up_facts(linkage: Any, source: str, defaults: Mapping[str, float]) -> dict[str, Any]:
+    """What ``symlink tolerance`` needs of ``linkage`` besides its stack-up model, as plain data (JSON): names, kinds
+    of the parameters (:func:`symlink.numeric.units.parameter_kinds`), which are angles, the defaults.  ``source``
+    says where the linkage was read (``catalog``, ...; :class:`symlink.io.linkage_file.LinkageFile`).
+
+    Kept in the disk cache for a linkage named by a catalog name, an atlas name or a file, so that a warm stack-up
+    builds no linkage and imports no SymPy.
+    """
+    from ..numeric.units import parameter_kinds
     from ..symbolic.closure import is_angle
-    from ..io.linkage_file import load_linkage
-    from ..workshop.tolerance import pin_play, sample_builds, stack_up
-    from ..numeric.units import output_units
+    named = linkage.parameters + linkage.inputs
+    return {"name": linkage.name, "source": source, "closed_form": bool(linkage.has_closed_form),
+            "inputs": [q.name for q in linkage.inputs], "parameters": [s.name for s in linkage.parameters],
+            "kinds": parameter_kinds(linkage), "angles": [s.name for s in named if is_angle(linkage, s)],
+            "branches": [b.name for b in linkage.branches],
+            "last_unknown": linkage.unknowns[-1].name if linkage.unknowns else None,
+            "defaults": {name: float(value) for name, value in defaults.items()}}
+
+
+def _keyed_request(args: argparse.Namespace, name: str) -> dict[str, str] | None:
+    """What names the linkage in the keys of the command's cache entries, where the request can be answered from
+    them (a linkage named by a catalog or atlas name or a file's bytes; no masses, pin play or sampled builds: those
+    are derived each time); else None."""
+    from ..common.names import FORMER_CATALOG_NAMES
+    from ..io.scene_text import linkage_request
+    dynamics = ("masses", "inertias", "centres", "gravity", "load_torque")
+    if (name in FORMER_CATALOG_NAMES or any(getattr(args, option) is not None for option in dynamics) or args.play
+            or args.builds is not None or args.folder is not None):
+        return None
+    return linkage_request(name)
+
+
+def _key(request: Mapping[str, str], kind: str, outputs: list[str], **more: Any) -> str:
+    from ..numeric.cache import catalog_key
+    return catalog_key("tolerance", outputs, kind, {"linkage": dict(request), **more}, TOLERANCE_SHAPING)
+
+
+def run(args: argparse.Namespace) -> int:
+    """``symlink tolerance``: the stack-up table.
+
+    A linkage named by a catalog or atlas name or a file is answered from the disk cache: its facts
+    (:func:`stack_up_facts`) and the stack-up model of the output by the toleranced dimensions
+    (:class:`~symlink.workshop.tolerance.StackUpModel`) are keyed by what names it, so that a warm stack-up (without
+    masses, pin play or sampled builds) builds no linkage and imports no SymPy; the cold run takes the same path.
+    """
+    import json
+    from ..numeric.cache import cached_module, cached_text
+    from ..workshop.tolerance import StackUpModel, tolerance_arrays
+    from .tables import facts_values
     lengths = fourbar_lengths(args)
     given = [value is not None for value in lengths]
     name = args.linkage if args.linkage is not None else "fourbar"
     if args.linkage is None and not all(given):
         raise ValueError("tolerance: give a catalog NAME (e.g. fourbar) or a linkage FILE, or all of --crank "
                          "--coupler --rocker --ground")
-    found = load_linkage(name)
-    linkage = found.linkage
-    values = linkage_values(found, args.set, args.units)
+    request = _keyed_request(args, name)
+    found: Any = None
+    linkage: Any = None  # the linkage, read where the request is not answered from the disk cache
+
+    def read() -> Any:
+        from ..io.linkage_file import load_linkage
+        return load_linkage(name)
+
+    if request is not None:
+        def now() -> str:
+            read_now = read()
+            return json.dumps(stack_up_facts(read_now.linkage, read_now.source, read_now.defaults))
+        facts = json.loads(cached_text(_key(request, FACTS_ENTRY_KIND, []), now))
+    else:
+        found = read()
+        linkage = found.linkage
+        facts = stack_up_facts(linkage, found.source, found.defaults)
+    values = facts_values(facts, args.set, args.units)
+    fourbar = facts["source"] == "catalog" and facts["name"] == "fourbar"
     if any(given):
-        if found.source != "catalog" or linkage.name != "fourbar":
+        if not fourbar:
             raise ValueError("tolerance: --crank --coupler --rocker --ground belong to the four-bar; give the values "
-                             f"of {linkage.name} with --set NAME=VALUE,...")
+                             f"of {facts['name']} with --set NAME=VALUE,...")
         values.update({k: v for k, v in zip("abcd", lengths) if v is not None})
-    if args.masses is not None and (found.source != "catalog" or linkage.name != "fourbar"):
+    if args.masses is not None and not fourbar:
         raise ValueError("tolerance: --masses and the other dynamics options belong to the four-bar")
-    if linkage.name == "fourbar" and found.source == "catalog":
+    if fourbar and found is not None:
         dynamic = fourbar_dynamics(args, (values["a"], values["b"], values["c"], values["d"]))
         if dynamic is not None:  # masses at fixed places on the links: the lengths' tolerances do not move them
             linkage = dynamic[0]
-    if not linkage.has_closed_form:
-        raise ValueError(f"{linkage.name} has no closed form; take its stack-up from Python with stack_up(..., "
+            facts = stack_up_facts(linkage, found.source, found.defaults)
+    if not facts["closed_form"]:
+        raise ValueError(f"{facts['name']} has no closed form; take its stack-up from Python with stack_up(..., "
                          "guess=...) (its assembly must be chosen)")
-    if not linkage.inputs:
-        raise ValueError(f"{linkage.name} has no input to sweep")
-    symbols = {s.name: s for s in linkage.parameters}
-    tolerances = _tolerances(args, symbols, linkage)
-    output = args.output or linkage.unknowns[-1].name
+    if not facts["inputs"]:
+        raise ValueError(f"{facts['name']} has no input to sweep")
+    tolerances = _tolerances(args, facts)
+    output = args.output or facts["last_unknown"]
     sweep = input_sweep(args)
     if len(sweep) > MAX_POINTS:
         raise ValueError(f"{len(sweep)} input values are too many for a stack-up (at most {MAX_POINTS}); give a "
                          "larger --step")
-    first = linkage.inputs[0]
-    swept_angle = is_angle(linkage, first)
+    first, *others = facts["inputs"]
+    swept_angle = first in facts["angles"]
     shown = sweep.array()
-    inputs: dict[str, Any] = {first.name: to_radians(shown, args.units) if swept_angle else shown}
-    for other in linkage.inputs[1:]:
-        if other.name not in values:
-            raise ValueError(f"{linkage.name} needs a value for its input {other.name} (--set {other.name}=VALUE)")
-        inputs[other.name] = numpy.full(len(shown), values[other.name])
-    values.update({branch.name: int(args.branch) for branch in linkage.branches})
-    values.update({f"{first.name}dot": args.crank_speed, f"{first.name}ddot": args.crank_accel})
+    inputs: dict[str, Any] = {first: to_radians(shown, args.units) if swept_angle else shown}
+    for other in others:
+        if other not in values:
+            raise ValueError(f"{facts['name']} needs a value for its input {other} (--set {other}=VALUE)")
+        inputs[other] = numpy.full(len(shown), values[other])
+    values.update({branch: int(args.branch) for branch in facts["branches"]})
+    values.update({f"{first}dot": args.crank_speed, f"{first}ddot": args.crank_accel})
     if args.play:
         from ..symbolic.vectors import acceleration, rate
         moving = {rate(q) for q in linkage.coordinates} | {acceleration(q) for q in linkage.coordinates}
         if linkage.output(output).free_symbols & moving:  # ValueError naming the outputs for an unknown one
             raise ValueError(f"--play is modelled for positions; {output} moves with the rates")
-    result = stack_up(linkage, output, values, tolerances, inputs=inputs)
+    dimensions, bands, sigmas = tolerance_arrays(tolerances)
+    if request is not None:
+        def derive() -> str:
+            from ..numeric.units import output_units
+            derived = read().linkage
+            model = StackUpModel.derive(derived, [output], dimensions)  # ValueError naming an unknown output
+            return model.entry_text(output_unit=output_units(derived, [output]).get(output))
+        # a verified entry of a private cache (never user text), run from its cached bytecode
+        model = StackUpModel.from_entry(*cached_module(_key(request, MODEL_ENTRY_KIND, [output], dimensions=dimensions),
+                                                       derive))
+        output_unit = model.facts["output_unit"]
+    else:
+        from ..numeric.units import output_units
+        model = StackUpModel.derive(linkage, [output], dimensions)
+        output_unit = output_units(linkage, [output]).get(output)
+    result = model.stack_up(values, bands, sigmas, inputs)
     if not result.assembled.any():  # every row would be NaN: refused, as every table command refuses it
-        raise ValueError(f"{linkage.name} cannot be assembled at any of the input values asked for with these "
+        raise ValueError(f"{facts['name']} cannot be assembled at any of the input values asked for with these "
                          "dimensions: there is no stack-up to print")
-    play = pin_play(linkage, output, values, args.play, inputs=inputs).worst_case[0] if args.play else None
+    play = None
+    if args.play:
+        from ..workshop.tolerance import pin_play
+        play = pin_play(linkage, output, values, args.play, inputs=inputs).worst_case[0]
     sampled, builds = None, None
     refuse_together(args, ("seed", "does nothing without --samples N", args.builds is None,
                            "only sampled builds are seeded; the worst case and RSS are not sampled"))
@@ -164,32 +251,33 @@ def run(args: argparse.Namespace) -> int:
             if missing:
                 raise ValueError(f"--folder needs {', '.join(missing)}: {SWEEP_EXTRA} (or leave --folder out: the "
                                  "builds are then made in memory)")
+        from ..workshop.tolerance import sample_builds
         builds = sample_builds(linkage, output, values, tolerances, inputs=inputs, builds=args.builds,
                                seed=args.seed, folder=args.folder)
         sampled = builds.percentile([0.135, 99.865])[:, 0]
         if args.folder is not None:
             note(f"{args.builds} builds in {args.folder}: {builds.reused} chunk{'s' if builds.reused != 1 else ''} "
                  "found done there")
-    angular = output_units(linkage, [output]).get(output) == "rad"
+    angular = output_unit == "rad"
     convert = (lambda x: from_radians(x, args.units)) if angular else (lambda x: numpy.asarray(x))  # noqa: E731
     nominal = convert(wrap(result.nominal[0]) if angular else result.nominal[0])
     worst, rss, shift = convert(result.worst_case[0]), convert(result.rss[0]), convert(result.mean_shift[0])
     largest = result.largest_contributor(output)
-    columns = ([first.name, output, "worst_case", "rss", "mean_shift", "largest"] + (["play"] if args.play else [])
+    columns = ([first, output, "worst_case", "rss", "mean_shift", "largest"] + (["play"] if args.play else [])
                + (["sampled_low", "sampled_high"] if sampled is not None else []))
     plays = convert(play) if play is not None else numpy.zeros(len(shown))
     lows, highs = (convert(sampled[0]), convert(sampled[1])) if sampled is not None else (plays, plays)
-    output_unit = args.units if angular else ""
+    shown_unit = args.units if angular else ""
     writer = RowWriter(columns, args.format, units={
-        first.name: args.units if swept_angle else "", **{c: output_unit for c in (
+        first: args.units if swept_angle else "", **{c: shown_unit for c in (
             output, "worst_case", "rss", "mean_shift", "play", "sampled_low", "sampled_high")}})
-    writer.write({first.name: float(x), output: float(y), "worst_case": float(w), "rss": float(r),
+    writer.write({first: float(x), output: float(y), "worst_case": float(w), "rss": float(r),
                   "mean_shift": float(m), "largest": big or "-", "play": float(p), "sampled_low": float(lo),
                   "sampled_high": float(hi)}
                  for x, y, w, r, m, big, p, lo, hi in zip(shown, nominal, worst, rss, shift, largest, plays, lows,
                                                           highs))
     writer.close()
-    kind = output_units(linkage, [output]).get(output) or "the output's units"
+    kind = output_unit or "the output's units"
     unit = args.units if angular else {"length": "length units"}.get(kind, kind)
     ranking = ", ".join(f"{dim} {float(convert(dev)):.4g}" for dim, dev in result.ranking(output))
     note(f"largest 1-sigma deviation of {output} each dimension causes on the range ({unit}): {ranking}")
@@ -197,31 +285,29 @@ def run(args: argparse.Namespace) -> int:
         from ..plot import save_figure
         from ..plot.tolerance import tolerance_figure
         save_figure(tolerance_figure(result, output, builds, units=args.units, angular_input=swept_angle,
-                                     angular_output=angular, title=f"tolerance stack-up of {linkage.name}: {output}"),
+                                     angular_output=angular, title=f"tolerance stack-up of {facts['name']}: {output}"),
                     args.plot)
     return 0
 
 
-def _tolerances(args: argparse.Namespace, symbols: dict, linkage: Any) -> dict[str, Any]:
+def _tolerances(args: argparse.Namespace, facts: Mapping[str, Any]) -> dict[str, Any]:
     """The dimensions' tolerances from ``--tolerance``, ``--tolerances`` and ``--sigma`` (angles to radians).
 
-    One rule for every linkage, by the kind of each parameter (:func:`symlink.numeric.units.parameter_kinds`):
-    ``--tolerance`` bands the lengths only (never a fixed angle, a placement or a mass); a band or a sigma of an
-    angle is read in ``--units``; a placement (where the linkage stands: a drawing's ``x_A``) is toleranced only
-    when named.
+    One rule for every linkage, by the kind of each parameter (:func:`symlink.numeric.units.parameter_kinds`, in
+    the linkage's ``facts``: :func:`stack_up_facts`): ``--tolerance`` bands the lengths only (never a fixed angle,
+    a placement or a mass); a band or a sigma of an angle is read in ``--units``; a placement (where the linkage
+    stands: a drawing's ``x_A``) is toleranced only when named.
     """
-    from ..numeric.units import parameter_kinds
-    from ..symbolic.closure import is_angle
     from ..workshop.tolerance import Tolerance
+    symbols, kinds, angles = facts["parameters"], facts["kinds"], set(facts["angles"])
     for option, given in (("--tolerances", args.tolerances), ("--sigma", args.sigma)):
         for name in given:
             if name not in symbols:
-                raise ValueError(f"{option}: {linkage.name} has no dimension {name!r}; it has {', '.join(symbols)}")
-    kinds = parameter_kinds(linkage)
+                raise ValueError(f"{option}: {facts['name']} has no dimension {name!r}; it has {', '.join(symbols)}")
 
     def plain(name: str, value: float) -> float:
         return float(to_radians(value, args.units)) if kinds.get(name) == "angle" or (
-            kinds.get(name) == "placement" and is_angle(linkage, symbols[name])) else value
+            kinds.get(name) == "placement" and name in angles) else value
 
     bands: dict[str, float] = {}
     if args.tolerance is not None:

@@ -24,7 +24,7 @@ from typing import Callable, Mapping
 
 import numpy
 
-__all__ = ["crank_range", "slider_crank_range", "inverted_slider_crank_range", "fivebar_range", "scanned_range",
+__all__ = ["crank_range", "closing_crank_range", "slider_crank_range", "inverted_slider_crank_range", "fivebar_range", "scanned_range",
            "reachable_turn", "turn_angles", "describe_spans", "SCAN_POINTS", "TURN_SAMPLES"]
 
 #: Points a turn of the scan that finds a reachable crank range without a closed form.
@@ -72,6 +72,20 @@ def crank_range(a: float, b: float, c: float, d: float) -> list[tuple[float, flo
     if lowest <= -1:
         return [(near, 2 * math.pi - near)]
     return [(-far, -near), (near, far)]
+
+
+def closing_crank_range(a: float, b: float, c: float, d: float) -> list[tuple[float, float]]:
+    """:func:`crank_range` of a four-bar that closes somewhere; ``ValueError`` where it closes at no crank angle.
+
+    >>> closing_crank_range(60, 10, 10, 10)
+    Traceback (most recent call last):
+    ValueError: a four-bar with crank 60, coupler 10, rocker 10 and ground 10 cannot be assembled at any crank angle
+    """
+    spans = crank_range(a, b, c, d)
+    if not spans:
+        raise ValueError(f"a four-bar with crank {a:g}, coupler {b:g}, rocker {c:g} and ground {d:g} "
+                         "cannot be assembled at any crank angle")
+    return spans
 
 
 def slider_crank_range(a: float, b: float, offset: float) -> list[tuple[float, float]]:

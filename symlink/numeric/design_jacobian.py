@@ -36,14 +36,15 @@ True
 from __future__ import annotations
 
 from functools import lru_cache
-from typing import Callable, Mapping, Sequence
+from typing import TYPE_CHECKING, Any, Callable, Mapping, Sequence
 
 import numpy
 
 from .cache import FUNCTION, generated_code
-from ..symbolic.linkage import Linkage
-from ..symbolic.sensitivity import sensitivity_name
-from .solver import NumericSolver
+from ..codegen.loading import load_numpy_module
+
+if TYPE_CHECKING:  # the symbolic side is imported where a Jacobian is derived: one read from an entry needs no SymPy
+    from ..symbolic.linkage import Linkage
 
 __all__ = ["DesignJacobian", "design_jacobian", "sensitivity_outputs"]
 
@@ -58,6 +59,7 @@ def sensitivity_outputs(linkage: Linkage, outputs: Sequence[str], parameters: Se
     >>> sensitivity_outputs(fourbar(), ["rocker"], ["a", "d"])
     ['rocker__d_a', 'rocker__d_d']
     """
+    from ..symbolic.sensitivity import sensitivity_name
     known = [p.name for p in linkage.parameters]
     chosen = known if parameters is None else list(parameters)
     for name in chosen:
@@ -69,6 +71,10 @@ def sensitivity_outputs(linkage: Linkage, outputs: Sequence[str], parameters: Se
     for name in names:
         linkage.output(name)  # ValueError naming what cannot be differentiated
     return names
+
+
+#: The name of the dictionary that :meth:`DesignJacobian.entry_text` adds to the generated module.
+ENTRY_DESCRIPTION = "JACOBIAN_DESCRIPTION"
 
 
 class DesignJacobian:
@@ -85,7 +91,11 @@ class DesignJacobian:
     """
 
     def __init__(self, linkage: Linkage, outputs: Sequence[str], parameters: Sequence[str] | None = None) -> None:
-        self.linkage = linkage
+        self.linkage: Linkage | None = linkage
+        #: The linkage's name, for messages.
+        self.name = linkage.name
+        #: Facts a cache entry carried beside the code (:meth:`entry_text`); empty for a derived Jacobian.
+        self.facts: dict[str, Any] = {}
         self.outputs = list(outputs)
         if not self.outputs:
             raise ValueError(f"ask {linkage.name} for at least one output")
@@ -98,14 +108,18 @@ class DesignJacobian:
         self.arguments: list[str]
         #: Whether the generated code also returns ``singular`` (the sensitivities divide by a loop's determinant).
         self._flagged = False
+        #: The generated module's text (closed forms only): what :meth:`entry_text` keeps.
+        self._source: str | None = None
         if linkage.has_closed_form:
             requested = linkage.with_singular(self.outputs + self.names)
             self._flagged = len(requested) > len(self.outputs) + len(self.names)
             code = generated_code(linkage, requested)
+            self._source = code.source
             self._function = code.function
             self.arguments = code.arguments
             self._kernel = code.function.__globals__[f"_{FUNCTION}_block"]
         else:
+            from .solver import NumericSolver
             numeric = NumericSolver(linkage)
             self._function = numeric.functions["sensitivities"]
             self.arguments = numeric.arguments
@@ -144,7 +158,7 @@ class DesignJacobian:
         ((1, 1, 2), True)
         """
         if self._kernel is None:
-            raise ValueError(f"{self.linkage.name} has no closed form: call the DesignJacobian with keywords and "
+            raise ValueError(f"{self.name} has no closed form: call the DesignJacobian with keywords and "
                              "a guess instead of arrays()")
         results = self._kernel(*arguments)
         shape = (numpy.broadcast(*arguments).shape if len(arguments) <= 32  # numpy.broadcast takes at most 32
@@ -159,8 +173,48 @@ class DesignJacobian:
         count = len(self.outputs)
         return block[:count], block[count:].reshape((count, len(self.parameters)) + shape), assembled
 
+    def entry_text(self, **more: Any) -> str:
+        """This Jacobian as the text of a disk-cache entry: its generated module and what a call needs, plain data
+        (``more`` adds further facts, for the entry's user: :attr:`facts`).  Closed forms only (``ValueError``
+        otherwise).  :meth:`from_entry` loads it back without the linkage, and without SymPy.
+
+        >>> from symlink.mechanism.catalog import fourbar
+        >>> text = DesignJacobian(fourbar(), ["B_x"], ["a"]).entry_text(note="seed 003")
+        >>> again = DesignJacobian.from_entry(text)
+        >>> values, slopes = again(theta=[0.5], a=20.0, b=66.0, c=56.0, d=80.0)
+        >>> bool(abs(slopes[0, 0, 0] - numpy.cos(0.5)) < 1e-15), again.facts["note"]  # d(B_x)/da = cos(theta)
+        (True, 'seed 003')
+        """
+        if self._source is None:
+            raise ValueError(f"{self.name} has no closed form: its Jacobian is Newton's, kept with its linkage")
+        described = {"name": self.name, "outputs": self.outputs, "parameters": self.parameters, "names": self.names,
+                     "arguments": self.arguments, "flagged": self._flagged, "facts": more}
+        return (f"{self._source.rstrip()}\n\n\n#: What a call needs, for DesignJacobian.from_entry (names).\n"
+                f"{ENTRY_DESCRIPTION} = {described!r}\n")
+
+    @classmethod
+    def from_entry(cls, text: str, namespace: Mapping[str, Any] | None = None) -> DesignJacobian:
+        """The Jacobian of an entry's text (:meth:`entry_text`: symlink's own, from a verified cache entry, never
+        user text), loaded without its linkage: :attr:`linkage` is None, and :attr:`facts` holds what the entry
+        added.  ``namespace``: the text already run (:func:`symlink.numeric.cache.cached_module`: from its cached
+        bytecode), else it is run here."""
+        if namespace is None:
+            namespace = load_numpy_module(text)
+        described = namespace[ENTRY_DESCRIPTION]
+        jacobian = cls.__new__(cls)
+        jacobian.linkage = None
+        jacobian.name = described["name"]
+        jacobian.outputs, jacobian.parameters = list(described["outputs"]), list(described["parameters"])
+        jacobian.names, jacobian.arguments = list(described["names"]), list(described["arguments"])
+        jacobian._flagged = bool(described["flagged"])
+        jacobian._source = text
+        jacobian._function = namespace[FUNCTION]
+        jacobian._kernel = namespace[f"_{FUNCTION}_block"]
+        jacobian.facts = dict(described["facts"])
+        return jacobian
+
     def __repr__(self) -> str:
-        return f"DesignJacobian({self.linkage.name!r}, {self.outputs}, {self.parameters})"
+        return f"DesignJacobian({self.name!r}, {self.outputs}, {self.parameters})"
 
 
 @lru_cache(maxsize=64)

@@ -27,7 +27,7 @@ import numpy
 
 from ..common.angles import wrap_angle
 from .cache import cache_key, cached_module, cached_text
-from .crank_ranges import (SCAN_POINTS, TURN_SAMPLES, crank_range, describe_spans, fivebar_range,  # noqa: F401
+from .crank_ranges import (SCAN_POINTS, TURN_SAMPLES, closing_crank_range, crank_range, describe_spans, fivebar_range,  # noqa: F401
                            inverted_slider_crank_range, reachable_turn, scanned_range, slider_crank_range, turn_angles)
 from ..symbolic.closure import is_angle
 from ..codegen.numpy import checked_arguments, numpy_module
@@ -44,13 +44,10 @@ __all__ = ["crank_range", "assembled_crank_range", "slider_crank_range", "invert
 
 
 def assembled_crank_range(a: float, b: float, c: float, d: float) -> list[tuple[float, float]]:
-    """:func:`crank_range` of checked lengths; ``ValueError`` where the four-bar closes at no crank angle."""
+    """:func:`crank_range` of checked lengths; ``ValueError`` where the four-bar closes at no crank angle
+    (:func:`~symlink.numeric.crank_ranges.closing_crank_range`)."""
     check_lengths(crank=a, coupler=b, rocker=c, ground=d)
-    spans = crank_range(a, b, c, d)
-    if not spans:
-        raise ValueError(f"a four-bar with crank {a:g}, coupler {b:g}, rocker {c:g} and ground {d:g} "
-                         "cannot be assembled at any crank angle")
-    return spans
+    return closing_crank_range(a, b, c, d)
 
 
 # --- any linkage with one input -----------------------------------------------------------

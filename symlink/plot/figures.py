@@ -33,23 +33,22 @@ from __future__ import annotations
 import io
 import math
 from pathlib import Path
-from typing import TYPE_CHECKING, Sequence
+from functools import lru_cache
+from typing import TYPE_CHECKING, Any, Callable, Sequence
 
 import numpy
 
-from ..analysis import transmission_curve, transmission_range
-from ..mechanism.catalog import fourbar
 from ..common.angles import half_turn, wrap
-from ..numeric.reachability import TURN_SAMPLES, assembled_crank_range, reachable_turn, turn_angles
+from ..numeric.crank_ranges import TURN_SAMPLES, closing_crank_range, reachable_turn, turn_angles
 from ..common.files import write_atomic
-from ..symbolic.linkage import Linkage
-from ..numeric.solver import Solver, check_lengths, shared_solver
-from ..symbolic.vectors import Vector, coordinates, lengths
 
-if TYPE_CHECKING:  # Matplotlib is imported when a drawing is made
+if TYPE_CHECKING:  # Matplotlib is imported when a drawing is made; the symbolic side (SymPy) where a figure
+    # derives: a coupler curve whose solver is in the disk cache imports none of it (coupler_point_solver)
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
     from numpy.typing import ArrayLike
+    from ..numeric.cached_solver import CachedSolver
+    from ..symbolic.linkage import Linkage
 
 __all__ = ["coupler_point_linkage", "fourbar_positions", "reachable_turn", "turn_angles",
            "check_coupler_point", "angle_figure", "transmission_figure", "coupler_curve_figure", "draw_loop",
@@ -76,6 +75,9 @@ def coupler_point_linkage() -> Linkage:
     >>> linkage.expression("P_x")
     a*cos(theta) + p*cos(beta + gamma)
     """
+    from ..mechanism.catalog import fourbar
+    from ..symbolic.linkage import Linkage
+    from ..symbolic.vectors import Vector, coordinates, lengths
     base = fourbar()
     (p,), (gamma,) = lengths("p"), coordinates("gamma")
     beta = base.roles["coupler"]
@@ -88,12 +90,55 @@ def coupler_point_linkage() -> Linkage:
                    roles=base.roles, extras=base.extras)
 
 
-def check_coupler_point(coupler_point: tuple[float, float] | None) -> None:
-    """``ValueError`` unless the coupler point is (positive finite distance, finite angle)."""
+#: The kind of cache entry of the four-bar's solver with a coupler point (:func:`coupler_point_solver`).
+COUPLER_POINT_ENTRY_KIND = "coupler-point-solver/1"
+
+
+@lru_cache(maxsize=16)
+def coupler_point_solver(outputs: tuple[str, ...]) -> CachedSolver:
+    """The solver of ``outputs`` of :func:`coupler_point_linkage`, from the disk cache: derived once (SymPy) and keyed
+    without building the linkage (:func:`symlink.numeric.cache.catalog_key`, with this module among the code that
+    shapes it), so that a warm coupler curve imports no SymPy.  Made once a process for each request.
+
+    >>> solver = coupler_point_solver(("P_x",))
+    >>> round(float(solver(theta=0.0, a=20, b=66, c=56, d=80, p=30, gamma=0.0, branch=1)["P_x"]), 2)
+    38.26
+    """
+    from ..numeric.cache import catalog_key
+    from ..numeric.cached_solver import CachedSolver, entry_text
+    chosen = list(outputs)
+
+    def full() -> Any:
+        from ..numeric.solver import Solver
+        return Solver(coupler_point_linkage(), chosen)
+
+    key = catalog_key("fourbar", chosen, COUPLER_POINT_ENTRY_KIND, {}, ("plot/figures",))
+    return CachedSolver("fourbar_coupler_point", chosen, key=key,
+                        derive=lambda: entry_text(coupler_point_linkage(), chosen), full=full)
+
+
+@lru_cache(maxsize=16)
+def _catalog_solver(outputs: tuple[str, ...]) -> CachedSolver:
+    """The catalog four-bar's solver of ``outputs`` from the disk cache (its catalog entry), made once a process."""
+    from ..numeric.cached_solver import CachedSolver
+    return CachedSolver("fourbar", list(outputs))
+
+
+def check_coupler_point(coupler_point: tuple[float, float] | None,
+                        check_lengths: Callable[..., None] | None = None) -> None:
+    """``ValueError`` unless the coupler point is (positive finite distance, finite angle).
+
+    ``check_lengths``: the check of lengths to use (default :func:`symlink.numeric.solver.check_lengths`; a cached
+    solver's, which checks alike, keeps SymPy out).
+    """
     if coupler_point is None:
         return
+    if check_lengths is None:
+        from ..numeric.solver import check_lengths as checked
+    else:
+        checked = check_lengths
     distance, angle = coupler_point
-    check_lengths(**{"the coupler point's distance from B": distance})
+    checked(**{"the coupler point's distance from B": distance})
     if not math.isfinite(angle):
         raise ValueError(f"the coupler point's angle must be finite, got {angle}")
 
@@ -112,17 +157,18 @@ def fourbar_positions(a: float, b: float, c: float, d: float, theta, branch: "in
     >>> round(math.degrees(float(result["rocker"])), 2)
     110.74
     """
-    check_coupler_point(coupler_point)
     values = dict(theta=theta, a=a, b=b, c=c, d=d, branch=branch)
     if coupler_point is not None:
         values.update(p=coupler_point[0], gamma=coupler_point[1])
-    if linkage is None:
-        solver = shared_solver(fourbar if coupler_point is None else coupler_point_linkage, tuple(outputs))
-    else:
-        if coupler_point is not None and "P" not in linkage.points:
-            raise ValueError(f"{linkage.name} has no coupler point P; use coupler_point_linkage()")
-        solver = Solver(linkage, outputs)
-    return solver(**values)
+    if linkage is None:  # from the disk cache: no SymPy once derived
+        cached = coupler_point_solver(tuple(outputs)) if coupler_point is not None else _catalog_solver(tuple(outputs))
+        check_coupler_point(coupler_point, cached.check_lengths)
+        return cached(**values)
+    from ..numeric.solver import Solver
+    check_coupler_point(coupler_point)
+    if coupler_point is not None and "P" not in linkage.points:
+        raise ValueError(f"{linkage.name} has no coupler point P; use coupler_point_linkage()")
+    return Solver(linkage, outputs)(**values)
 
 
 def _wrapped_with_breaks(x: numpy.ndarray, angles: numpy.ndarray, half: float) -> tuple[numpy.ndarray, numpy.ndarray]:
@@ -174,6 +220,10 @@ def _crank_axis(axes: "Axes", units: str) -> None:
     axes.set_xlabel(f"crank angle θ ({units})")
 
 
+#: What the angle figure solves.
+_ANGLE_OUTPUTS = ("coupler", "rocker")
+
+
 def angle_figure(a: float, b: float, c: float, d: float, branches: Sequence[int] = (1, -1),
                  units: str = "deg", title: str | None = None, samples: int = TURN_SAMPLES,
                  axes: "Sequence[Axes] | None" = None) -> "Figure":
@@ -212,13 +262,14 @@ def angle_figure(a: float, b: float, c: float, d: float, branches: Sequence[int]
     >>> figure.axes[1].get_ylabel(), float(rocker.get_xdata()[0]), round(float(rocker.get_ydata()[0]), 2)  # seed 003
     ('rocker angle φ (deg)', 0.0, 110.74)
     """
-    assembled_crank_range(a, b, c, d)
+    _catalog_solver(_ANGLE_OUTPUTS).check_lengths(crank=a, coupler=b, rocker=c, ground=d)  # as Solver's check
+    closing_crank_range(a, b, c, d)
     half = half_turn(units)
     scale = half / math.pi
     theta = turn_angles(a, b, c, d, samples)
     figure, (top, bottom) = _new_figure(7.0, 6.0, rows=2, given=axes)
     for sign in _checked_branches(branches):
-        result = fourbar_positions(a, b, c, d, theta, sign, ["coupler", "rocker"])
+        result = fourbar_positions(a, b, c, d, theta, sign, list(_ANGLE_OUTPUTS))
         for panel, name in ((top, "coupler"), (bottom, "rocker")):
             x, y = _wrapped_with_breaks(theta * scale, result[name] * scale, half)
             panel.plot(x, y, BRANCH_STYLES[sign], color=LINK_COLORS[name], label=f"branch {sign:+d}")
@@ -281,6 +332,8 @@ def transmission_figure(a: float, b: float, c: float, d: float, units: str = "de
     >>> round(float(curve.get_ydata()[0]), 2)  # at theta = 0, |BD| = 60: acos(3892 / 7392)
     58.23
     """
+    from ..analysis import transmission_curve, transmission_range
+    from ..numeric.reachability import assembled_crank_range
     assembled_crank_range(a, b, c, d)
     half = half_turn(units)
     scale = half / math.pi
@@ -392,6 +445,10 @@ def frame_plane(axes: "Axes", xs: "ArrayLike", ys: "ArrayLike", unit: str | None
         axes.set_ylabel(f"y{suffix}")
 
 
+#: What a coupler curve solves: the coupler point and the joints drawn.
+_CURVE_OUTPUTS = ("P_x", "P_y", "B_x", "B_y", "C_x", "C_y")
+
+
 def coupler_curve_figure(a: float, b: float, c: float, d: float, distance: float, angle: float,
                          branches: Sequence[int] = (1,), crank_angle: float | None = None,
                          title: str | None = None, unit: str = "", samples: int = TURN_SAMPLES,
@@ -437,26 +494,28 @@ def coupler_curve_figure(a: float, b: float, c: float, d: float, distance: float
     >>> round(float(x), 2), round(float(y), 2)
     (38.26, 23.8)
     """
-    assembled_crank_range(a, b, c, d)
+    solver = coupler_point_solver(_CURVE_OUTPUTS)  # its generated check of lengths, as Solver's
+    solver.check_lengths(crank=a, coupler=b, rocker=c, ground=d)
+    closing_crank_range(a, b, c, d)
     point = (distance, angle)
-    check_coupler_point(point)
+    check_coupler_point(point, solver.check_lengths)
     branches = _checked_branches(branches)
     theta = turn_angles(a, b, c, d, samples)
     figure, (axes,) = _new_figure(6.4, 5.2, given=_given(ax))
     xs: list["ArrayLike"] = [0.0, d]
     ys: list["ArrayLike"] = [0.0, 0.0]
     for sign in branches:
-        result = fourbar_positions(a, b, c, d, theta, sign, ["P_x", "P_y", "B_x", "B_y", "C_x", "C_y"], point)
+        result = fourbar_positions(a, b, c, d, theta, sign, list(_CURVE_OUTPUTS), point)
         axes.plot(result["P_x"], result["P_y"], BRANCH_STYLES[sign], color="tab:purple",
                   label=f"coupler curve, branch {sign:+d}", zorder=2)
         for name in ("P", "B", "C"):
             xs.append(result[f"{name}_x"])
             ys.append(result[f"{name}_y"])
     shown = theta[0] if crank_angle is None else crank_angle
-    at = fourbar_positions(a, b, c, d, shown, branches[0], ["P_x", "P_y", "B_x", "B_y", "C_x", "C_y"], point)
+    at = fourbar_positions(a, b, c, d, shown, branches[0], list(_CURVE_OUTPUTS), point)
     if crank_angle is None and not at["assembled"]:
         shown = reachable_turn(a, b, c, d)[0][0]
-        at = fourbar_positions(a, b, c, d, shown, branches[0], ["P_x", "P_y", "B_x", "B_y", "C_x", "C_y"], point)
+        at = fourbar_positions(a, b, c, d, shown, branches[0], list(_CURVE_OUTPUTS), point)
     drawing = MechanismDrawing(axes, coupler_point=True)
     joint = {name: (float(at[f"{name}_x"]), float(at[f"{name}_y"])) for name in ("B", "C", "P")}
     drawing.update(d, joint["B"], joint["C"] if at["assembled"] else None, joint["P"])

@@ -50,19 +50,20 @@ import math
 import os
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Mapping, Sequence, Union
+from typing import TYPE_CHECKING, Any, Mapping, Sequence, Union
 
 import numpy
-import sympy as sp
 
 from ..common.display import record_html
 from ..common.limits import format_bytes, require_memory
 from ..numeric.design_jacobian import DesignJacobian
-from ..symbolic.linkage import Linkage
-from ..symbolic.loops import Loop
-from ..symbolic.vectors import Vector, VectorSum
 
-__all__ = ["Tolerance", "StackUp", "stack_up", "SIGMAS_PER_BAND", "PinPlay", "pin_play", "with_pin_play",
+if TYPE_CHECKING:  # the symbolic side is imported where a linkage is worked on: a stack-up model read from the
+    # disk cache (StackUpModel.from_entry) runs without SymPy
+    from ..symbolic.linkage import Linkage
+    from ..symbolic.vectors import Vector, VectorSum
+
+__all__ = ["Tolerance", "StackUp", "StackUpModel", "stack_up", "tolerance_arrays", "SIGMAS_PER_BAND", "PinPlay", "pin_play", "with_pin_play",
            "PlayEnvelope", "pin_play_envelope",
            "SampledBuilds", "sample_builds", "MAX_SAMPLED_VALUES", "BUILDS_PER_CHUNK"]
 
@@ -183,7 +184,13 @@ class StackUp:
         return self.outputs.index(output)
 
 
-def _tolerances(tolerances: TolerancesLike) -> tuple[list[str], numpy.ndarray, numpy.ndarray]:
+def tolerance_arrays(tolerances: TolerancesLike) -> tuple[list[str], numpy.ndarray, numpy.ndarray]:
+    """The toleranced dimensions' names, bands and sigmas (in that order) of ``tolerances`` (see :func:`stack_up`),
+    checked: what :meth:`StackUpModel.stack_up` takes.
+
+    >>> tolerance_arrays({"a": 0.3, "b": Tolerance(sigma=0.05)})
+    (['a', 'b'], array([0.3 , 0.15]), array([0.1 , 0.05]))
+    """
     if not tolerances:
         raise ValueError("give a tolerance for at least one dimension")
     names, bands, sigmas = [], [], []
@@ -201,15 +208,15 @@ def _tolerances(tolerances: TolerancesLike) -> tuple[list[str], numpy.ndarray, n
     return names, numpy.array(bands, dtype=float), numpy.array(sigmas, dtype=float)
 
 
-def _input_values(linkage: Linkage, inputs: Mapping[str, object] | None) -> dict[str, numpy.ndarray]:
+def _input_values(linkage: str, known: Sequence[str], inputs: Mapping[str, object] | None) -> dict[str, numpy.ndarray]:
+    """The values of the inputs ``known`` of the linkage named ``linkage`` along a stack-up, checked."""
     if inputs is None:
-        if len(linkage.inputs) != 1:
-            raise ValueError(f"{linkage.name} has {len(linkage.inputs)} inputs: give the values of each in inputs=")
-        return {linkage.inputs[0].name: numpy.radians(numpy.arange(0.0, 360.0, 10.0))}
-    known = [q.name for q in linkage.inputs]
+        if len(known) != 1:
+            raise ValueError(f"{linkage} has {len(known)} inputs: give the values of each in inputs=")
+        return {known[0]: numpy.radians(numpy.arange(0.0, 360.0, 10.0))}
     for name in inputs:
         if name not in known:
-            raise ValueError(f"{linkage.name} has no input {name!r}; its inputs are {', '.join(known)}")
+            raise ValueError(f"{linkage} has no input {name!r}; its inputs are {', '.join(known)}")
     missing = [name for name in known if name not in inputs]
     if missing:
         raise ValueError(f"give the values of the input {', '.join(missing)} in inputs=")
@@ -240,6 +247,8 @@ def _positions_only(linkage: Linkage, outputs: Sequence[str]) -> tuple[Linkage, 
     and the output an extra whose exact sensitivities :mod:`symlink.symbolic.sensitivity` derives by the chain rule.
     A linkage whose outputs are all positions comes back as it is.
     """
+    import sympy as sp
+    from ..symbolic.linkage import Linkage
     from ..symbolic.vectors import acceleration, rate
     moving = {rate(q) for q in linkage.coordinates} | {acceleration(q) for q in linkage.coordinates}
     expressions = {name: linkage.output(name) for name in outputs}  # ValueError naming an unknown output
@@ -325,37 +334,104 @@ def stack_up(linkage: Linkage, outputs: str | Sequence[str], nominal: Mapping[st
     (0.0063013, 0.0063013)
     """
     chosen = [outputs] if isinstance(outputs, str) else list(outputs)
-    dimensions, bands, sigmas = _tolerances(tolerances)
-    source, internal = _positions_only(linkage, chosen)
-    # The inputs' rates of a rate output are parameters of ``source`` (held_thetadot): internal name -> user's.
-    held = {HELD_RATE_PREFIX + name: name for q in linkage.inputs for name in (q.name + "dot", q.name + "ddot")}
-    if internal:
-        dimensions = [HELD_RATE_PREFIX + name if HELD_RATE_PREFIX + name in held else name for name in dimensions]
-    jacobian = DesignJacobian(source, [internal.get(name, name) for name in chosen], dimensions)
-    sweep = _input_values(linkage, inputs)
-    wanted = [name for name in jacobian.arguments if name not in sweep]
-    given = {**nominal, **{name: nominal[user] for name, user in held.items() if user in nominal}}
-    missing = [held.get(name, name) for name in wanted if name not in given]
-    if missing:
-        raise ValueError(f"nominal: give the value of {', '.join(missing)}")
-    design = {name: float(given[name]) for name in wanted}
-    dimensions = [held.get(name, name) for name in dimensions]
-    extra = {} if guess is None else {"guess": guess}
+    dimensions, bands, sigmas = tolerance_arrays(tolerances)
+    return StackUpModel.derive(linkage, chosen, dimensions).stack_up(nominal, bands, sigmas, inputs, guess)
 
-    def evaluate(values: Mapping[str, float]) -> tuple[dict[str, numpy.ndarray], numpy.ndarray]:
-        return jacobian(**sweep, **values, **extra)
 
-    found, slopes = evaluate(design)  # slopes: (inputs, outputs, dimensions)
-    curvature = numpy.empty_like(slopes)
-    for j, name in enumerate(jacobian.parameters):
-        step = _STEP * max(abs(design[name]), bands[j])
-        ahead = evaluate({**design, name: design[name] + step})[1][..., j]
-        behind = evaluate({**design, name: design[name] - step})[1][..., j]
-        curvature[..., j] = (ahead - behind) / (2 * step)
-    nominal_values = numpy.stack([numpy.asarray(found[internal.get(name, name)], dtype=float) for name in chosen])
-    return StackUp(tuple(chosen), tuple(dimensions), sweep, nominal_values,
-                   numpy.moveaxis(slopes, 0, -1), numpy.moveaxis(curvature, 0, -1), bands, sigmas,
-                   numpy.asarray(found["assembled"], dtype=bool))
+@dataclass(frozen=True)
+class StackUpModel:
+    """What the stack-ups of some outputs by some dimensions need of a linkage, derived once: the exact Jacobian of
+    the outputs by the dimensions (:class:`~symlink.numeric.design_jacobian.DesignJacobian`) and the names.
+
+    :meth:`derive` works on the linkage (SymPy); :meth:`entry_text` keeps the model as a disk-cache entry and
+    :meth:`from_entry` reads it back without the linkage, so that a stack-up of a cached model imports no SymPy
+    (``symlink tolerance`` run warm).  Closed forms only in an entry.
+
+    >>> from symlink.mechanism.catalog import fourbar
+    >>> model = StackUpModel.derive(fourbar(), ["rocker"], ["b"])
+    >>> again = StackUpModel.from_entry(model.entry_text())
+    >>> design = {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1}
+    >>> result = again.stack_up(design, numpy.array([0.3]), numpy.array([0.1]), {"theta": [0.0]})
+    >>> round(float(result.worst_case[0, 0]), 7)  # as stack_up's example: |d(rocker)/db| * 0.3
+    0.0063013
+    """
+
+    #: The outputs and the toleranced dimensions, by the user's names.
+    outputs: tuple[str, ...]
+    dimensions: tuple[str, ...]
+    #: The linkage's name (for messages) and its inputs' names.
+    name: str
+    inputs: tuple[str, ...]
+    #: d(outputs)/d(dimensions), by the linkage's internal names.
+    jacobian: DesignJacobian
+    #: An output's internal name (a rate output stands as a position extra), by the user's name.
+    internal: Mapping[str, str]
+    #: The user's name of each parameter that holds an input's rate or acceleration (``held_thetadot``).
+    held: Mapping[str, str]
+
+    @classmethod
+    def derive(cls, linkage: Linkage, outputs: Sequence[str], dimensions: Sequence[str]) -> StackUpModel:
+        """The model of ``outputs`` of ``linkage`` by ``dimensions`` (symbolic work; ``ValueError`` naming an unknown
+        output or dimension)."""
+        source, internal = _positions_only(linkage, outputs)
+        # The inputs' rates of a rate output are parameters of ``source`` (held_thetadot): internal name -> user's.
+        held = {HELD_RATE_PREFIX + name: name for q in linkage.inputs for name in (q.name + "dot", q.name + "ddot")}
+        named = list(dimensions)
+        if internal:
+            named = [HELD_RATE_PREFIX + name if HELD_RATE_PREFIX + name in held else name for name in named]
+        jacobian = DesignJacobian(source, [internal.get(name, name) for name in outputs], named)
+        return cls(tuple(outputs), tuple(dimensions), linkage.name, tuple(q.name for q in linkage.inputs), jacobian,
+                   internal, held)
+
+    def entry_text(self, **more: Any) -> str:
+        """The model as the text of a disk-cache entry (``more``: further plain facts, back in :attr:`facts`)."""
+        return self.jacobian.entry_text(stack_up={
+            "outputs": list(self.outputs), "dimensions": list(self.dimensions), "name": self.name,
+            "inputs": list(self.inputs), "internal": dict(self.internal), "held": dict(self.held)}, **more)
+
+    @classmethod
+    def from_entry(cls, text: str, namespace: Mapping[str, Any] | None = None) -> StackUpModel:
+        """The model of an entry's text (:meth:`entry_text`), without its linkage: no SymPy.  ``namespace``: the text
+        already run (see :meth:`DesignJacobian.from_entry`)."""
+        jacobian = DesignJacobian.from_entry(text, namespace)
+        kept = jacobian.facts["stack_up"]
+        return cls(tuple(kept["outputs"]), tuple(kept["dimensions"]), kept["name"], tuple(kept["inputs"]), jacobian,
+                   dict(kept["internal"]), dict(kept["held"]))
+
+    @property
+    def facts(self) -> dict[str, Any]:
+        """The further facts its entry was written with (:meth:`entry_text`); empty for a derived model."""
+        return {name: value for name, value in self.jacobian.facts.items() if name != "stack_up"}
+
+    def stack_up(self, nominal: Mapping[str, float], bands: numpy.ndarray, sigmas: numpy.ndarray,
+                 inputs: Mapping[str, object] | None = None, guess: object = None) -> StackUp:
+        """The stack-up at the design ``nominal`` with the dimensions' ``bands`` and ``sigmas`` (in the order of
+        :attr:`dimensions`), along ``inputs`` (see :func:`stack_up`)."""
+        jacobian, held, internal = self.jacobian, self.held, self.internal
+        sweep = _input_values(self.name, self.inputs, inputs)
+        wanted = [name for name in jacobian.arguments if name not in sweep]
+        given = {**nominal, **{name: nominal[user] for name, user in held.items() if user in nominal}}
+        missing = [held.get(name, name) for name in wanted if name not in given]
+        if missing:
+            raise ValueError(f"nominal: give the value of {', '.join(missing)}")
+        design = {name: float(given[name]) for name in wanted}
+        extra = {} if guess is None else {"guess": guess}
+
+        def evaluate(values: Mapping[str, float]) -> tuple[dict[str, numpy.ndarray], numpy.ndarray]:
+            return jacobian(**sweep, **values, **extra)
+
+        found, slopes = evaluate(design)  # slopes: (inputs, outputs, dimensions)
+        curvature = numpy.empty_like(slopes)
+        for j, name in enumerate(jacobian.parameters):
+            step = _STEP * max(abs(design[name]), bands[j])
+            ahead = evaluate({**design, name: design[name] + step})[1][..., j]
+            behind = evaluate({**design, name: design[name] - step})[1][..., j]
+            curvature[..., j] = (ahead - behind) / (2 * step)
+        nominal_values = numpy.stack([numpy.asarray(found[internal.get(name, name)], dtype=float)
+                                      for name in self.outputs])
+        return StackUp(self.outputs, self.dimensions, sweep, nominal_values,
+                       numpy.moveaxis(slopes, 0, -1), numpy.moveaxis(curvature, 0, -1), bands, sigmas,
+                       numpy.asarray(found["assembled"], dtype=bool))
 
 
 # --- pin play (joint clearance) ------------------------------------------------------------
@@ -373,7 +449,11 @@ def with_pin_play(linkage: Linkage, joints: Sequence[str]) -> Linkage:
     of the joint to the second, ``-`` the other way, so that every loop sees the same play.  Zero play
     gives back the linkage's equations.  Pins only, each joining two links; ``ValueError`` otherwise.
     """
+    import sympy as sp
     from ..mechanism.bodies import GROUND, PRISMATIC, REVOLUTE, mechanism
+    from ..symbolic.linkage import Linkage
+    from ..symbolic.loops import Loop
+    from ..symbolic.vectors import Vector, VectorSum
     found = mechanism(linkage)
     body_of = {vector: body.name for body in found.bodies for vector in body.vectors}
     pins = {}
@@ -501,7 +581,7 @@ def pin_play(linkage: Linkage, outputs: str | Sequence[str], nominal: Mapping[st
     playing = with_pin_play(linkage, joints)
     names = [n for joint in joints for n in _play_names(joint)]
     jacobian = DesignJacobian(playing, chosen, names)
-    sweep = _input_values(linkage, inputs)
+    sweep = _input_values(linkage.name, [q.name for q in linkage.inputs], inputs)
     wanted = [name for name in jacobian.arguments if name not in sweep and name not in names]
     missing = [name for name in wanted if name not in nominal]
     if missing:
@@ -823,7 +903,7 @@ def sample_builds(linkage: Linkage, outputs: str | Sequence[str], nominal: Mappi
     from ..numeric.solver import Solver
     from ..numeric.units import output_units
     chosen = [outputs] if isinstance(outputs, str) else list(outputs)
-    dimensions, _, sigmas = _tolerances(tolerances)
+    dimensions, _, sigmas = tolerance_arrays(tolerances)
     for what, value in (("builds", builds), ("chunk", chunk)):
         if isinstance(value, bool) or not isinstance(value, int) or value < 1:
             raise ValueError(f"{what} must be a whole number >= 1, got {value!r}")
@@ -833,7 +913,7 @@ def sample_builds(linkage: Linkage, outputs: str | Sequence[str], nominal: Mappi
         raise ValueError(f"scheduler must be one of {', '.join(BUILD_SCHEDULERS)}, got {scheduler!r}")
     if not linkage.has_closed_form:
         raise ValueError(f"{linkage.name} has no closed form: sample_builds solves closed forms only")
-    sweep = _input_values(linkage, inputs)
+    sweep = _input_values(linkage.name, [q.name for q in linkage.inputs], inputs)
     count = len(next(iter(sweep.values())))
     _require_builds(builds, count * len(chosen), f"{builds:,} builds x {count:,} input value{'s' if count != 1 else ''} x {len(chosen)} "
                     f"output{'s' if len(chosen) != 1 else ''}")

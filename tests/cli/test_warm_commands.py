@@ -7,9 +7,11 @@ warm for the next (the first command of each linkage below is its cold run).
 """
 from __future__ import annotations
 
+import math
+
 import pytest
 
-from warm_runs import run_twice
+from warm_runs import PROJECT, run_twice
 
 #: The four-bar of seed 003 (mm), whose closed forms are derived once for the module.
 FOURBAR = ["fourbar", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80", "--angles", "0,50",
@@ -31,6 +33,14 @@ COMMANDS = {
                       "--format", "csv"], 5),
     "slider-crank past its reach": (["slider-crank", "--crank", "20", "--conrod", "15", "--angles", "0,90",
                                      "--format", "csv", "--branch", "1"], 2),
+    "tolerance stack-up of the four-bar": (["tolerance", "fourbar", "--crank", "20", "--coupler", "66", "--rocker",
+                                            "56", "--ground", "80", "--tolerance", "0.05", "--output", "rocker",
+                                            "--angles", "0,50", "--format", "csv"], 3),
+    "tolerance stack-up of a rate": (
+        ["tolerance", "fourbar", "--tolerance", "0.1", "--tolerances", "b=0.2", "--output", "rocker_speed",
+         "--crank-speed", "3", "--angles", "0,90", "--format", "csv"], 3),
+    "tolerance stack-up of a linkage file": (["tolerance", str(PROJECT / "linkages" / "slider-crank.toml"),
+                                              "--tolerance", "0.05", "--angles", "0,40", "--format", "csv"], 3),
 }
 SLOW_COMMANDS = {
     "inverted slider-crank": (["inverted-slider-crank", "--crank", "2", "--ground", "1.2", "--crank-speed", "3",
@@ -59,7 +69,7 @@ def _check(name: str, commands: dict, folder, cache) -> None:
     arguments, lines = commands[name]
     runs = run_twice(folder, arguments, cache)
     assert "symlink" in runs.imported and "numpy" in runs.imported  # the import list was read
-    heavy = runs.imported & {"sympy", "matplotlib", "scipy", "pandas"}
+    heavy = runs.imported & {"sympy", "matplotlib", "scipy", "pandas", "distributed"}
     assert not heavy, f"the warm run imported {', '.join(sorted(heavy))}"
     assert runs.warm == runs.cold
     assert runs.warm_notes == runs.cold_notes
@@ -99,3 +109,103 @@ def test_the_former_name_is_noted_warm_as_cold(shared_cache, tmp_path):
         assert runs.warm_notes == runs.cold_notes
         assert runs.warm_notes.count("\n") == 1
         assert runs.warm_notes.startswith("symlink: warning: 'stephenson3' is symlink's former name of stephenson-ii")
+
+
+def _rocker(theta: float, a: float, b: float, c: float, d: float) -> float:
+    """The four-bar's rocker angle on branch +1, by hand: C where the circles about B (radius b) and D (radius c)
+    meet, to the left of the directed line from B to D."""
+    bx, by = a * math.cos(theta), a * math.sin(theta)
+    dx, dy = d - bx, -by
+    span = math.hypot(dx, dy)
+    along = (b * b - c * c + span * span) / (2 * span)
+    across = math.sqrt(b * b - along * along)
+    cx = bx + (along * dx - across * dy) / span
+    cy = by + (along * dy + across * dx) / span
+    return math.atan2(cy, cx - d)
+
+
+def test_a_warm_stack_up_takes_other_numbers(shared_cache, tmp_path):
+    """The stack-up's cache entries are keyed by the linkage, the output and the toleranced dimensions, not by the
+    numbers: another four-bar and band run warm (no SymPy), print what a cold run prints, and the worst case of
+    the rocker for the coupler alone is |d(rocker)/db| * band, the slope by central differences of the rocker
+    found by hand (:func:`_rocker`)."""
+    first = ["tolerance", "fourbar", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80",
+             "--tolerances", "b=0.3", "--output", "rocker", "--angles", "0", "--format", "csv"]
+    run_twice(tmp_path, first, shared_cache)
+    other = ["tolerance", "fourbar", "--crank", "25", "--coupler", "70", "--rocker", "60", "--ground", "85",
+             "--tolerances", "b=0.6", "--output", "rocker", "--angles", "0.5", "--format", "csv", "--units", "rad"]
+    warm = run_twice(tmp_path, other, shared_cache)  # both runs warm: the entries of the first command serve it
+    assert not warm.imported & {"sympy", "matplotlib", "scipy", "pandas"}
+    (tmp_path / "fresh").mkdir()
+    cold = run_twice(tmp_path / "fresh", other)  # a cache of its own: its first run derives
+    assert warm.cold == cold.cold and warm.cold_notes == cold.cold_notes
+    header, row = warm.warm.splitlines()
+    cells = dict(zip(header.split(","), row.split(",")))
+    step = 1e-6
+    slope = (_rocker(0.5, 25, 70 + step, 60, 85) - _rocker(0.5, 25, 70 - step, 60, 85)) / (2 * step)
+    assert float(cells["worst_case"]) == pytest.approx(abs(slope) * 0.6, rel=1e-6)
+    assert float(cells["rocker"]) == pytest.approx(_rocker(0.5, 25, 70, 60, 85), rel=1e-9)
+
+
+#: Pictures (the file is the last argument): Matplotlib draws them, SymPy stays out; the file written warm is the one
+#: written cold, byte for byte.
+PICTURES = {
+    "coupler curve of the four-bar (SVG)": ["curve", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground",
+                                            "80", "--coupler-point", "40,30", "--out", "curve.svg"],
+    "coupler curve on both branches at a crank angle (PNG)": [
+        "curve", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80", "--coupler-point",
+        "30,-20", "--branch", "both", "--crank-angle", "40", "--out", "curve.png"],
+    "four-bar table with its angle plot": [*FOURBAR, "--plot", "angles.svg"],
+}
+
+
+@pytest.mark.parametrize("name", PICTURES)
+def test_a_warm_picture_imports_no_sympy_and_draws_the_same(name, shared_cache, tmp_path):
+    arguments = PICTURES[name]
+    out = arguments[-1]
+    runs = run_twice(tmp_path, arguments, shared_cache, files=[out])
+    assert "matplotlib" in runs.imported  # the import list was read, and it drew
+    heavy = runs.imported & {"sympy", "scipy", "pandas", "distributed"}
+    assert not heavy, f"the warm run imported {', '.join(sorted(heavy))}"
+    assert runs.warm == runs.cold and runs.warm_notes == runs.cold_notes
+    assert runs.warm_files[out] == runs.cold_files[out] and len(runs.cold_files[out]) > 1000
+
+
+def test_a_synchronous_sweep_imports_no_distributed(shared_cache, tmp_path):
+    """``--scheduler synchronous`` evaluates every chunk in this process: its start imports neither Dask's
+    distributed scheduler nor pandas (SymPy still, for the linkage's ranges and its solver: not warm yet)."""
+    from symlink.workshop.sweep import missing_modules
+    if missing_modules():
+        pytest.skip("the sweep extra is not installed")
+    runs = run_twice(tmp_path, ["sweep", "fourbar", "out", "--vary", "a=10:20", "--set", "b=66,c=56,d=80", "--grid",
+                                "3", "--samples", "36", "--scheduler", "synchronous", "--no-progress"], shared_cache)
+    assert "dask" in runs.imported and "pyarrow" in runs.imported  # the import list was read, and it swept
+    assert not runs.imported & {"distributed", "pandas"}
+    assert runs.cold == runs.warm == "out\n"
+    assert "wrote 1, found 0 already there" in runs.cold_notes and "wrote 0, found 1 already there" in runs.warm_notes
+
+
+def test_bad_input_to_a_warm_stack_up_is_one_line_and_exit_2(shared_cache, tmp_path):
+    """A warm stack-up checks its options against the cached facts: an unknown dimension, a --set of no value and
+    the four-bar's lengths given to another linkage are refused in one line with exit status 2, in the words of a
+    cold run, without importing SymPy."""
+    import os
+    import subprocess
+    import sys
+
+    from warm_runs import imported_packages, without_import_times
+    run_twice(tmp_path, ["tolerance", "slider-crank", "--tolerance", "0.05", "--angles", "0", "--format", "csv"],
+              shared_cache)
+    bad = {("--tolerances", "e=0.1"): "symlink: error: --tolerances: slider-crank has no dimension 'e'; it has a, b, "
+                                       "offset\n",
+           ("--set", "q=1"): "symlink: error: --set: slider-crank has no value 'q'; it takes a, b, offset, theta\n",
+           ("--crank", "2"): "symlink: error: tolerance: --crank --coupler --rocker --ground belong to the four-bar; "
+                             "give the values of slider-crank with --set NAME=VALUE,...\n"}
+    env = {**os.environ, "PYTHONPATH": str(PROJECT), "SYMLINK_CACHE": str(shared_cache)}
+    for (option, value), message in bad.items():
+        done = subprocess.run([sys.executable, "-X", "importtime", "-m", "symlink", "tolerance", "slider-crank",
+                               "--tolerance", "0.05", option, value], capture_output=True, text=True, env=env,
+                              cwd=str(tmp_path), timeout=600)
+        assert done.returncode == 2 and done.stdout == ""
+        assert without_import_times(done.stderr) == message
+        assert "symlink" in imported_packages(done.stderr) and "sympy" not in imported_packages(done.stderr)

@@ -244,12 +244,21 @@ def two_pose_centre(poses, moving_pivot: tuple[float, float], offset: float) -> 
     return Dyad(_pair(centre), _pair(local))
 
 
-def _circumcentre(points: numpy.ndarray, what: str) -> complex:
+def _circumcentre(points: numpy.ndarray, what: str, scale: float) -> complex:
+    """The centre of the circle through three points; ``ValueError`` where two coincide or all are in line.
+
+    ``scale`` is a length typical of the problem: points closer than a 10^-12 of it (or of their distance
+    from the origin) coincide, whatever their own spread (three places of a pole differ by rounding only).
+    """
     a, b, c = points
     ab, ac = b - a, c - a
     cross = (ab.conjugate() * ac).imag
-    size = max(abs(ab), abs(ac), abs(c - b))
-    if size == 0 or abs(cross) <= 1e-12 * size * size:
+    sides = (abs(ab), abs(ac), abs(c - b))
+    size = max(sides)
+    if min(sides) <= 1e-12 * max(scale, float(numpy.abs(points).max())):
+        raise ValueError(f"two of the three positions of the {what} coincide (it is the pole of two of the poses): "
+                         "no one circle is fixed by them; choose another point")
+    if abs(cross) <= 1e-12 * size * size:
         raise ValueError(f"the three positions of the {what} are in line: the circle through them has no centre "
                          "(the crank would be infinitely long: a slider)")
     return a - 1j * (abs(ab) ** 2 * ac - abs(ac) ** 2 * ab) / (2 * cross)
@@ -264,7 +273,7 @@ def centre_point(poses, moving_pivot: tuple[float, float]) -> Dyad:
     """
     poses = check_poses(poses, 3, 3)
     local = _local(poses, _point(moving_pivot, "moving pivot"))
-    return Dyad(_pair(_circumcentre(_place(poses, local), "moving pivot")), _pair(local))
+    return Dyad(_pair(_circumcentre(_place(poses, local), "moving pivot", _scale(poses))), _pair(local))
 
 
 def circle_point(poses, fixed_pivot: tuple[float, float]) -> Dyad:
@@ -281,7 +290,7 @@ def circle_point(poses, fixed_pivot: tuple[float, float]) -> Dyad:
     poses = check_poses(poses, 3, 3)
     fixed = _point(fixed_pivot, "fixed pivot")
     seen = (fixed - _origins(poses)) * numpy.exp(-1j * poses[:, 2])
-    return Dyad(_pair(fixed), _pair(_circumcentre(seen, "fixed pivot (seen from the coupler)")))
+    return Dyad(_pair(fixed), _pair(_circumcentre(seen, "fixed pivot (seen from the coupler)", _scale(poses))))
 
 
 # --- four poses: the standard dyad equations ---------------------------------------------

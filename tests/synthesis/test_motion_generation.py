@@ -268,30 +268,36 @@ def positions(poses, local):
 poses3 = st.lists(st.tuples(st.floats(-10, 10), st.floats(-10, 10), st.floats(-3, 3)), min_size=3, max_size=3)
 
 
+def well_conditioned(points, size):
+    """Three places far enough apart and far enough from a line (10^-6 of ``size``) that the circle through them
+    is fixed to about 10^-10: nearly coincident places (poses 10^-9 rad apart, a pole) let rounding move it."""
+    a, b, c = (complex(*point) for point in points)
+    sides = (abs(b - a), abs(c - a), abs(c - b))
+    return min(sides) > 1e-6 * size and abs(((b - a).conjugate() * (c - a)).imag) > 1e-6 * max(sides) ** 2
+
+
 @settings(max_examples=60, deadline=None)
 @given(poses3, st.tuples(st.floats(-10, 10), st.floats(-10, 10)))
 def test_three_positions_of_the_circle_point_lie_on_a_circle_about_the_centre_point(poses, start):
     try:
         dyad = centre_point(poses, start)
     except ValueError:
-        return  # the positions are in line or the poses coincide: reported, not returned
+        return  # the positions are in line, two coincide or the poses coincide: reported, not returned
     places = positions(poses, dyad.moving)
     assert np.allclose(places[0], start, atol=1e-9)
     radii = [math.dist(place, dyad.fixed) for place in places]
     size = max(10.0, max(radii))
+    if not well_conditioned(places, size):
+        return
     assert max(radii) - min(radii) <= 1e-9 * size
     if min(radii) < 1e3:  # well-conditioned: compare with the bisectors solved directly
         assert np.allclose(dyad.fixed, bisector_centre(places), rtol=1e-7, atol=1e-7)
         # the inverse problem is well-conditioned only where the fixed pivot, seen from the moving body, is on a
-        # circle of moderate size too (its three relative places nearly in line put that circle's centre, the
-        # circle point, out of reach of rounding)
+        # circle of moderate size too, through places well apart (its three relative places nearly in line or
+        # nearly coincident put that circle's centre, the circle point, out of reach of rounding)
         seen = [(math.cos(t) * (dyad.fixed[0] - x) + math.sin(t) * (dyad.fixed[1] - y),
                  -math.sin(t) * (dyad.fixed[0] - x) + math.cos(t) * (dyad.fixed[1] - y)) for x, y, t in poses]
-        try:
-            seen_radius = math.dist(bisector_centre(seen), seen[0])
-        except np.linalg.LinAlgError:
-            return
-        if not seen_radius < 1e3:
+        if not well_conditioned(seen, size) or not math.dist(bisector_centre(seen), seen[0]) < 1e3:
             return
         inverse = circle_point(poses, dyad.fixed)
         assert np.allclose(inverse.circle_point(poses), start, rtol=1e-6, atol=1e-6)
@@ -418,6 +424,10 @@ SQUARE = [(0, 0, 0), (1, 0, 0.2), (1, 1, 0.5), (0, 1, 0.9), (-0.5, 0.5, 1.4)]
     (lambda: pole([(0, 0, 0), (1, 1, 1)], 1, 3), "pose numbers run from 1 to 2"),
     (lambda: centre_point([(0, 0, 0), (1, 0, 0), (2, 0, 0)], (0, 0)), "in line"),
     (lambda: centre_point(SQUARE[:3], (0, float("inf"))), "moving pivot must be two finite"),
+    # the moving pivot at the pole of poses 1 and 2 (rotation about the origin): two of its places coincide
+    (lambda: centre_point([(0, 0, 0), (0, 0, 1), (1, 0, 0)], (0, 0)), "two of the three positions of the moving pivot coincide"),
+    # a fixed pivot at the one pole of three rotations about (0, 1): seen from the coupler it never moves
+    (lambda: circle_point([(0, 1, 0), (0, 1, 1), (0, 1, 2)], (0, 1 + 1e-17)), "coincide"),
     (lambda: two_pose_centre([(0, 0, 0), (1, 1, math.pi / 2)], (0, 1), 1.0), "pole"),
     (lambda: four_pose_dyads(SQUARE[:4], float("nan")), "rotation must be finite"),
     (lambda: burmester_curves(SQUARE[:4], samples=2), "at least 3 samples"),

@@ -15,7 +15,9 @@ median over the rounds is printed: the machine is shared, so interleaved medians
   writing into the caller's arrays (``out=``);
 * ``call``: the same, new outputs a call, each result dropped before the next call returns
   (``result = solver(...)`` in a loop: its block is written again, no page faulted in);
-* ``call kept``: the same, each result kept for three calls (a new block a call: fresh pages);
+* ``call kept``: the same, each result kept for three calls (the block freed by the result three calls
+  before written again, where the kept blocks' cap allows: :data:`symlink.numeric.compiled_library.KEPT_LARGE_BYTES`;
+  else a new block a call: fresh pages);
 * ``numba loop``: the hand-written numba loop of the same formulas (:mod:`benchmarks.numba_loops`:
   exactly the generated code's transcendental calls), into outputs allocated once;
 * ``numba call``: that loop called as a user's numba function is, new output arrays a call (dropped).
@@ -29,7 +31,9 @@ Then small calls kept or dropped (:func:`kept_calls`): the default ``Solver``'s 
 kinematics at 10, 100 and 1000 values, each result dropped before the next call
 (``dropped``) or kept for 1, 8 or 100 calls (a ``collections.deque`` of that length):
 microseconds a call, median of interleaved rounds, and the ratio to the dropped call
-(target, issue 33: a kept result costs what a dropped one does).  The CPU and the load
+(target, issue 33: a kept result costs what a dropped one does).  Then large calls kept or dropped
+(:func:`kept_large_calls`): the same at 10^4 to the largest N, each result dropped or kept for 1, 3 or 8
+calls, beside the loop: ns a value and minor page faults a call.  The CPU and the load
 average (before and after) are printed first.
 
     python -m benchmarks.call_cost                # N = 10^3 ... 10^6
@@ -317,6 +321,7 @@ def main() -> None:
     print(machine())
     print(report(measure(sizes, options.budget)))
     print(kept_report(kept_calls()))
+    print(kept_large_report(kept_large_calls(tuple(n for n in sizes if n >= 10**4), budget=options.budget)))
     print(f"after: load average {' '.join(f'{v:.2f}' for v in os.getloadavg())}")
 
 

@@ -724,9 +724,9 @@ static PyObject *symlink_call_large(PyObject *module, PyObject *const *args, Py_
             goto fail;
         }
         entry = free_entry(kept_large, length, PY_SSIZE_T_MAX, keep_large);
-        if (entry != NULL) {
-            Py_INCREF(entry);  /* (held here: never the one dropped) */
-            drop_one_unused(kept_large, keep_large);  /* back by one a call once callers hold fewer results */
+        int reused = entry != NULL;
+        if (reused) {
+            Py_INCREF(entry);
         } else {
             if (PyErr_Occurred()) {
                 goto fail;
@@ -748,6 +748,9 @@ static PyObject *symlink_call_large(PyObject *module, PyObject *const *args, Py_
         /* Held (one more reference to the block) until the Results holds its rows: never free meanwhile. */
         block = PyTuple_GET_ITEM(PyTuple_GET_ITEM(entry, ENTRY_OBJECTS), 0);
         Py_INCREF(block);
+        if (reused) {  /* (after the block is held: this entry is not free, whatever the dropping runs) */
+            drop_one_unused(kept_large, keep_large);  /* back by one a call once callers hold fewer results */
+        }
         double *number_rows;
         unsigned char *flag_rows;
         if (entry_rows(entry, layout, length, &number_rows, &flag_rows) < 0) {

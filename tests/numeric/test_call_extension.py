@@ -475,3 +475,30 @@ def test_the_kept_large_blocks_grow_no_further_than_their_caps_and_shrink_back_o
     assert sum(entry[ENTRY_FIELDS.index("block")].nbytes for entry in entries) == 3 * size
     for step, result in enumerate(held):
         check_against_hand(result, crank_angles(step, LARGE))
+
+
+def test_two_threads_keeping_large_results_get_their_own_and_never_see_them_written(fourbar):
+    """Two threads share one Solver's kept large blocks (the loop runs without the GIL), each holding its last 0 to
+    4 results: every result held stays right against the law of cosines through the other thread's calls."""
+    solver = default_solver(fourbar)
+    inputs = [crank_angles(k, LARGE) for k in range(6)]
+    expected = [law_of_cosines(theta, *(LENGTHS[name] for name in "abcd"), LENGTHS["branch"])[1] for theta in inputs]
+    failures: list[str] = []
+
+    def work(offset: int) -> None:
+        held: list = []
+        for step in range(150):
+            k = (step + offset) % len(inputs)
+            held = (held + [(k, solver(theta=inputs[k], **LENGTHS))])[-(step % 5):] if step % 5 else []
+            for j, old in held:
+                if not numpy.allclose(wrapped(old["rocker"] - expected[j]), 0.0, atol=1e-12):
+                    failures.append(f"thread {offset} step {step}")
+                    return
+
+    threads = [threading.Thread(target=work, args=(offset,)) for offset in (0, 3)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert not failures
+    assert len(solver._compiled._large_entries) <= compiled_library.KEPT_LARGE_MOST

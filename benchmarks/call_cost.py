@@ -15,7 +15,9 @@ median over the rounds is printed: the machine is shared, so interleaved medians
   writing into the caller's arrays (``out=``);
 * ``call``: the same, new outputs a call, each result dropped before the next call returns
   (``result = solver(...)`` in a loop: its block is written again, no page faulted in);
-* ``call kept``: the same, each result kept for three calls (a new block a call: fresh pages);
+* ``call kept``: the same, each result kept for three calls (the block freed by the result three calls
+  before written again, where the kept blocks' cap allows: :data:`symlink.numeric.compiled_library.KEPT_LARGE_BYTES`;
+  else a new block a call: fresh pages);
 * ``numba loop``: the hand-written numba loop of the same formulas (:mod:`benchmarks.numba_loops`:
   exactly the generated code's transcendental calls), into outputs allocated once;
 * ``numba call``: that loop called as a user's numba function is, new output arrays a call (dropped).
@@ -29,7 +31,9 @@ Then small calls kept or dropped (:func:`kept_calls`): the default ``Solver``'s 
 kinematics at 10, 100 and 1000 values, each result dropped before the next call
 (``dropped``) or kept for 1, 8 or 100 calls (a ``collections.deque`` of that length):
 microseconds a call, median of interleaved rounds, and the ratio to the dropped call
-(target, issue 33: a kept result costs what a dropped one does).  The CPU and the load
+(target, issue 33: a kept result costs what a dropped one does).  Then large calls kept or dropped
+(:func:`kept_large_calls`): the same at 10^4 to the largest N, each result dropped or kept for 1, 3 or 8
+calls, beside the loop: ns a value and minor page faults a call.  The CPU and the load
 average (before and after) are printed first.
 
     python -m benchmarks.call_cost                # N = 10^3 ... 10^6
@@ -215,6 +219,57 @@ def kept_report(rows: list[dict]) -> str:
     return "\n".join(lines)
 
 
+LARGE_KEPT_SIZES = (10**4, 10**5, 10**6)
+#: How long each result of a large call is kept: 0 dropped before the next call returns, else a deque of that many.
+LARGE_KEPT_FOR = (0, 1, 3, 8)
+
+
+def kept_large_calls(sizes=LARGE_KEPT_SIZES, kept_for=LARGE_KEPT_FOR, budget: float = 2.0) -> list[dict]:
+    """The default ``Solver``'s full kinematics at each size, each result dropped or kept for ``kept_for`` calls
+    (a ``collections.deque`` of that length), beside the loop alone: nanoseconds a value and minor page faults
+    a call, medians of interleaved rounds (:func:`best_of_turns`).  A solver for each way (each keeps its own
+    blocks); each deque filled before the clock starts."""
+    from benchmarks.compiled_loops import loop_alone
+    from symlink.mechanism.catalog import fourbar
+    from symlink.numeric.solver import Solver
+    found = []
+    for n in sizes:
+        values = dict(theta=numpy.linspace(0.0, 2 * math.pi, n), **dict(zip("abcd", (numpy.full(n, v) for v in LENGTHS))),
+                      branch=numpy.ones(n), thetadot=SPEED, thetaddot=ACCEL)
+        solvers = {k: Solver(fourbar(), OUTPUTS) for k in kept_for}
+        for solver in solvers.values():
+            solver.wait_for_backend()
+        calls = {"loop": loop_alone(solvers[kept_for[0]]._compiled, values, n)}
+        for k, solver in solvers.items():
+            if k:
+                held: collections.deque = collections.deque(maxlen=k)
+                calls[f"kept {k}"] = (lambda keep, solver: lambda: keep(solver(**values)))(held.append, solver)
+                for _ in range(k + 2):
+                    calls[f"kept {k}"]()
+            else:
+                calls["dropped"] = (lambda solver: lambda: solver(**values))(solver)
+        timed = best_of_turns(calls, budget)
+        found.append({"n": n, **{name: {"ns": 1e9 * seconds / n, "faults": faults}
+                                 for name, (seconds, faults) in timed.items()}})
+        del calls, solvers
+        gc.collect()
+    return found
+
+
+def kept_large_report(rows: list[dict]) -> str:
+    names = [k for k in rows[0] if k != "n"]
+    lines = ["large calls, full kinematics: ns a value (minor page faults a call), medians of interleaved rounds",
+             f"{'N':>8} " + " ".join(f"{m:>17}" for m in names) + " "
+             + " ".join(f"{f'{m}/loop':>14}" for m in names if m != "loop") + " "
+             + " ".join(f"{f'{m}/dropped':>15}" for m in names if m.startswith("kept"))]
+    for row in rows:
+        lines.append(f"{row['n']:>8.0e} " + " ".join(f"{row[m]['ns']:>8.2f} ({row[m]['faults']:>6.0f})" for m in names)
+                     + " " + " ".join(f"{row[m]['ns'] / row['loop']['ns']:>14.2f}" for m in names if m != "loop")
+                     + " " + " ".join(f"{row[m]['ns'] / row['dropped']['ns']:>15.2f}"
+                                      for m in names if m.startswith("kept")))
+    return "\n".join(lines)
+
+
 def machine() -> str:
     """The CPU (its model name and whether it has AVX2 and AVX-512) and the load average now."""
     model, flags = "unknown CPU", set()
@@ -266,6 +321,7 @@ def main() -> None:
     print(machine())
     print(report(measure(sizes, options.budget)))
     print(kept_report(kept_calls()))
+    print(kept_large_report(kept_large_calls(tuple(n for n in sizes if n >= 10**4), budget=options.budget)))
     print(f"after: load average {' '.join(f'{v:.2f}' for v in os.getloadavg())}")
 
 

@@ -33,8 +33,9 @@ for every compiled function alike: each function describes itself once in a
 ``large`` takes a call of any length (arrays may be strided, or of one value):
 its own slots, the caller's ``out`` arrays checked through the buffer protocol
 (type, dtype, shape, contiguity, writability, overlaps: O(outputs)) or a kept
-block of larger calls (a new one from the plan's ``make_large``, which checks
-the memory first), and ``<name>_into`` (checks and evaluates chunk by chunk)
+block of larger calls nobody holds (a new one from the plan's ``make_large``, which checks
+the memory first and bounds how many are kept: they grow while a caller holds results, and shrink back by one
+a call to ``keep_large``), and ``<name>_into`` (checks and evaluates chunk by chunk)
 called with the GIL released; a ``Results``, or ``None`` as above.
 
 The plan's ``busy`` byte makes one small call at a time use the shared slots: a
@@ -68,10 +69,11 @@ MODULE = "symlink_call"
 #: output blocks of large calls and ``make_large(length)`` (a new entry there, kept); how many blocks of
 #: small calls are always kept (a new one is made in C, with NumPy's C API: a block and its rows, no Python
 #: step), and the most blocks and bytes they may grow to while callers hold results (each call then finds one
-#: free: a kept result costs what a dropped one does).
+#: free: a kept result costs what a dropped one does); how many blocks of large calls are always kept (more are
+#: kept while callers hold results, as ``make_large`` bounds them: the list shrinks back by one a call).
 PLAN_FIELDS = ("names", "defaults", "numbers", "pointers", "steps", "packed", "kept", "make", "largest",
                "array_type", "float64_type", "busy", "results", "layout", "into", "kept_large", "make_large",
-               "keep", "keep_most", "keep_bytes")
+               "keep", "keep_most", "keep_bytes", "keep_large")
 
 #: The fields of a kept output block's entry: its length, the objects whose references say whether a
 #: caller holds it (the block and its rows), the sum of their reference counts when free, the block (a
@@ -713,8 +715,17 @@ static PyObject *symlink_call_large(PyObject *module, PyObject *const *args, Py_
             outputs[k] = view->buf;
         }
     } else {
-        entry = free_entry(PyTuple_GET_ITEM(plan, PLAN_KEPT_LARGE), length, PY_SSIZE_T_MAX, PY_SSIZE_T_MAX);
-        if (entry != NULL) {
+        PyObject *kept_large = PyTuple_GET_ITEM(plan, PLAN_KEPT_LARGE);
+        Py_ssize_t keep_large = PyLong_AsSsize_t(PyTuple_GET_ITEM(plan, PLAN_KEEP_LARGE));
+        if (keep_large < 1) {
+            if (!PyErr_Occurred()) {
+                PyErr_SetString(PyExc_TypeError, "symlink_call: a plan keeps no large block");
+            }
+            goto fail;
+        }
+        entry = free_entry(kept_large, length, PY_SSIZE_T_MAX, keep_large);
+        int reused = entry != NULL;
+        if (reused) {
             Py_INCREF(entry);
         } else {
             if (PyErr_Occurred()) {
@@ -737,6 +748,9 @@ static PyObject *symlink_call_large(PyObject *module, PyObject *const *args, Py_
         /* Held (one more reference to the block) until the Results holds its rows: never free meanwhile. */
         block = PyTuple_GET_ITEM(PyTuple_GET_ITEM(entry, ENTRY_OBJECTS), 0);
         Py_INCREF(block);
+        if (reused) {  /* (after the block is held: this entry is not free, whatever the dropping runs) */
+            drop_one_unused(kept_large, keep_large);  /* back by one a call once callers hold fewer results */
+        }
         double *number_rows;
         unsigned char *flag_rows;
         if (entry_rows(entry, layout, length, &number_rows, &flag_rows) < 0) {

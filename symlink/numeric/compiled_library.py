@@ -62,6 +62,7 @@ import numpy
 from . import cache
 from ..common.display import record_html
 from .call_arguments import check_argument_names
+from ..codegen.call_extension import ENTRY_FIELDS
 from ..codegen.c import PIECE_SIZE, c_function, c_library, c_packed, translation_units
 from ..common.files import NotPrivate, read_private, write_atomic
 from .results import checked_out, refuse_overlaps
@@ -573,7 +574,7 @@ class CompiledFunction:
                           bytes(int(flag) for flag, _ in self._result_rows),
                           0 if self.into is None else ctypes.cast(self.into, ctypes.c_void_p).value,
                           self._large_entries, self._new_large_entry, KEPT_OUTPUTS, KEPT_OUTPUTS_MOST,
-                          KEPT_OUTPUTS_BYTES)
+                          KEPT_OUTPUTS_BYTES, KEPT_BLOCKS)
 
     def __call__(self, *, out: Any = None, **values) -> dict[str, numpy.ndarray]:
         """The outputs (and ``assembled``) at ``values``, by keyword: new arrays, or the caller's ``out``.
@@ -738,12 +739,24 @@ class CompiledFunction:
         return entry
 
     def _new_large_entry(self, length: int) -> tuple:
-        """A new output block of a larger call (kept among the last :data:`KEPT_BLOCKS` of at most
-        :data:`KEPT_BLOCK_BYTES`), after :attr:`before_allocating` (a memory check) where it is set."""
+        """A new output block of a larger call, after :attr:`before_allocating` (a memory check) where it is set.
+
+        A block of at most :data:`KEPT_BLOCK_BYTES` is kept for reuse (the extension makes one only where every
+        kept block of its length is held): the last :data:`KEPT_BLOCKS` always, and more while they come to at
+        most :data:`KEPT_LARGE_MOST` blocks and :data:`KEPT_LARGE_BYTES` bytes, so that a caller keeping each
+        result for a few calls is answered from a block it freed, not fresh memory (the extension drops one
+        free block a call, back to :data:`KEPT_BLOCKS`, once callers hold fewer).
+        """
         if self.before_allocating is not None:
             self.before_allocating(length)
         size = (8 * len(self._float_names) + len(self._flag_names)) * length
-        return self._new_entry(length, self._large_entries if size <= KEPT_BLOCK_BYTES else [], KEPT_BLOCKS)
+        if size > KEPT_BLOCK_BYTES:
+            return self._new_entry(length, [], KEPT_BLOCKS)
+        entries = self._large_entries
+        entry = self._new_entry(length, entries, KEPT_LARGE_MOST)
+        while len(entries) > KEPT_BLOCKS and sum(kept[_BLOCK].nbytes for kept in entries) > KEPT_LARGE_BYTES:
+            del entries[0]  # the least recently used (the new entry is last)
+        return entry
 
     def _small(self, values: dict) -> dict[str, numpy.ndarray] | None:
         """The fast path's result, or ``None`` where the call does not qualify (the general path then runs)."""
@@ -861,6 +874,22 @@ KEPT_BLOCKS = 2
 
 #: The largest output block kept for reuse (a larger one is the caller's alone, returned to the system when dropped).
 KEPT_BLOCK_BYTES = 1 << 28
+
+#: With the call extension, the blocks of larger calls kept grow past :data:`KEPT_BLOCKS` while a caller holds
+#: more results than that, up to this many blocks and :data:`KEPT_LARGE_BYTES` bytes (never fewer than
+#: :data:`KEPT_BLOCKS`); once the caller holds fewer, they shrink back by one a call.  A block is kept only once
+#: made; what is kept beyond the caller's results is the one block its next call writes.
+KEPT_LARGE_MOST = 16
+
+#: The most bytes the blocks of larger calls kept grow to (see :data:`KEPT_LARGE_MOST`): 256 MiB, so that a caller
+#: keeping the last three results of 10^6 values of the four-bar's full kinematics (50 MB a block) is answered from
+#: a block it freed.  The fresh memory of a block above glibc's largest mmap threshold (32 MiB) is returned to the
+#: system when freed, and faulted in again a page at a time when it is made anew (measured in
+#: ``benchmarks/call_cost.py``, :func:`kept_large_calls`: 1.4-1.5x the loop, kept 3 or 8 at 10^6 values); a block
+#: freed and written again is not.
+KEPT_LARGE_BYTES = 1 << 28
+
+_BLOCK = ENTRY_FIELDS.index("block")  # where an extension entry holds its block
 
 
 class _Outputs:

@@ -404,3 +404,101 @@ def test_the_kept_blocks_grow_no_further_than_their_caps_and_shrink_back_once_re
         check_against_hand(solver(theta=crank_angles(step, 20), **LENGTHS), crank_angles(step, 20))
         assert len(entries) == compiled_library.KEPT_OUTPUTS + (step == 0)
         assert sum(entry[ENTRY_FIELDS.index("length")] == 20 for entry in entries) == 1
+
+
+def default_solver(fourbar) -> Solver:
+    """The default Solver of OUTPUTS, whose large calls the extension answers (else the test is skipped)."""
+    solver = Solver(fourbar, OUTPUTS)
+    if solver.wait_for_backend() != "compiled" or solver._compiled._plan is None:
+        pytest.skip("no compiled backend with the call extension here")
+    return solver
+
+
+LARGE = 3 * compiled_library.SMALL_CALL  # a large call (above the small calls' limit), blocks well under the caps
+
+
+@pytest.mark.parametrize("kept_for", [1, 3, 8])
+def test_large_results_kept_for_a_few_calls_come_from_blocks_they_freed_and_are_never_written_again(fourbar,
+                                                                                                   kept_for):
+    """As the small calls' test above, for large calls: once the blocks have grown to what the caller holds plus
+    one, no call makes a new block, each result is its own and keeps its values through every later call
+    (calls into out= among them), right against the law of cosines and finite differences."""
+    solver = default_solver(fourbar)
+    entries = solver._compiled._large_entries
+    held: collections.deque = collections.deque(maxlen=kept_for)
+    for step in range(kept_for + 2):
+        held.append((step, solver(theta=crank_angles(step, LARGE), **LENGTHS)))
+    assert len(entries) == max(kept_for + 1, compiled_library.KEPT_BLOCKS)
+    made_before = [weakref.ref(entry[ENTRY_FIELDS.index("block")]) for entry in entries]
+    copies = {step: {name: value.copy() for name, value in result.items()} for step, result in held}
+    out = {name: numpy.empty_like(value) for name, value in held[-1][1].items()}
+    for step in range(kept_for + 2, 3 * kept_for + 8):
+        result = solver(theta=crank_angles(step, LARGE), **LENGTHS)
+        assert len(result["rocker"]) == LARGE
+        assert any(known() is result["rocker"].base for known in made_before), f"a new block at step {step}"
+        assert not any(numpy.may_share_memory(result[name], old[name]) for _, old in held for name in result)
+        check_against_hand(result, crank_angles(step, LARGE))
+        copies[step] = {name: value.copy() for name, value in result.items()}
+        held.append((step, result))
+        copies = {k: copies[k] for k, _ in held}
+        if step % 3 == 0:  # a call into the caller's arrays writes there, and nowhere else
+            assert solver(theta=crank_angles(-step, LARGE), **LENGTHS, out=out)["rocker"] is out["rocker"]
+            check_against_hand(out, crank_angles(-step, LARGE))
+        for k, kept in held:
+            for name, value in copies[k].items():
+                assert numpy.array_equal(kept[name], value, equal_nan=True), (step, k, name)
+    for k, kept in held:
+        check_against_hand(kept, crank_angles(k, LARGE))
+
+
+def test_the_kept_large_blocks_grow_no_further_than_their_caps_and_shrink_back_once_results_are_dropped(
+        fourbar, monkeypatch):
+    solver = default_solver(fourbar)
+    entries, most = solver._compiled._large_entries, compiled_library.KEPT_LARGE_MOST
+    held = [solver(theta=crank_angles(step, LARGE), **LENGTHS) for step in range(most + 5)]  # more than the cap
+    assert len(entries) == most
+    for step, result in enumerate(held):
+        check_against_hand(result, crank_angles(step, LARGE))
+    held.clear()
+    for step in range(2 * most):  # results dropped: one block fewer a call, back to KEPT_BLOCKS
+        result = solver(theta=crank_angles(step, LARGE), **LENGTHS)
+        assert len(entries) == max(compiled_library.KEPT_BLOCKS, most - 1 - step)
+    check_against_hand(result, crank_angles(step, LARGE))
+    del result
+    # The bytes: a block is the size of a result's arrays (counted here by hand); a cap of three blocks and a half
+    # keeps three, however many the caller holds.
+    size = LARGE * (8 * (len(OUTPUTS) - 1) + 2)  # the number rows, then singular and assembled
+    monkeypatch.setattr(compiled_library, "KEPT_LARGE_BYTES", 7 * size // 2)
+    held = [solver(theta=crank_angles(step, LARGE), **LENGTHS) for step in range(8)]
+    assert sum(value.nbytes for value in held[0].values()) == size
+    assert len(entries) == 3
+    assert sum(entry[ENTRY_FIELDS.index("block")].nbytes for entry in entries) == 3 * size
+    for step, result in enumerate(held):
+        check_against_hand(result, crank_angles(step, LARGE))
+
+
+def test_two_threads_keeping_large_results_get_their_own_and_never_see_them_written(fourbar):
+    """Two threads share one Solver's kept large blocks (the loop runs without the GIL), each holding its last 0 to
+    4 results: every result held stays right against the law of cosines through the other thread's calls."""
+    solver = default_solver(fourbar)
+    inputs = [crank_angles(k, LARGE) for k in range(6)]
+    expected = [law_of_cosines(theta, *(LENGTHS[name] for name in "abcd"), LENGTHS["branch"])[1] for theta in inputs]
+    failures: list[str] = []
+
+    def work(offset: int) -> None:
+        held: list = []
+        for step in range(150):
+            k = (step + offset) % len(inputs)
+            held = (held + [(k, solver(theta=inputs[k], **LENGTHS))])[-(step % 5):] if step % 5 else []
+            for j, old in held:
+                if not numpy.allclose(wrapped(old["rocker"] - expected[j]), 0.0, atol=1e-12):
+                    failures.append(f"thread {offset} step {step}")
+                    return
+
+    threads = [threading.Thread(target=work, args=(offset,)) for offset in (0, 3)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert not failures
+    assert len(solver._compiled._large_entries) <= compiled_library.KEPT_LARGE_MOST

@@ -14,7 +14,9 @@ def register(commands) -> None:
         "evaluate a scene file (TOML: numbers and names only)",
         "as the file says: units = \"deg\" (default) or \"rad\" for input and printed angles",
         "symlink run scene.toml --format csv",
-        "The file names a catalog linkage, its outputs, parameters and the input sweep; - reads it from stdin."))
+        "The file names a catalog linkage, its outputs, parameters and the input sweep; - reads it from stdin. A "
+        "linkage without a closed form (stephenson2) takes a [guess] table of its unknowns and is solved by "
+        "Newton's method."))
 
 
 def _add_options(command: argparse.ArgumentParser) -> None:
@@ -29,7 +31,8 @@ def run(args: argparse.Namespace) -> int:
 
     A scene whose facts are in the disk cache (the same linkage, outputs and dynamics as a scene run before,
     whatever its numbers) is evaluated from there, without SymPy (:mod:`symlink.io.scene_text`); the first run
-    reads it in full and keeps them.
+    reads it in full and keeps them.  A scene with a ``[guess]`` table (a linkage without a closed form) is solved
+    by Newton's method as ``symlink table NAME --guess ...`` solves it (:func:`_run_newton`), warm alike.
     """
     from pathlib import Path
     from ..common.files import read_input_text, read_stdin_text

@@ -313,7 +313,7 @@ def newton_scene(data: Mapping[str, Any], facts: Mapping[str, Any], defaults: bo
     scene leaves out (a catalog scene names every one).  ``ValueError`` naming the first bad key or value, and for
     a linkage with a closed form (where ``branch`` chooses the assembly).
 
-    >>> facts = {"name": "two", "closed_form": False, "parameters": ["a"], "positive": ["a"], "angles": [],
+    >>> facts = {"name": "two", "closed_form": False, "parameters": ["a"], "positive": ["a"], "angles": ["theta"],
     ...          "inputs": ["theta"], "labels": {"theta": "crank"}, "defaults": {}, "column_units": {},
     ...          "angle_columns": ["crank", "rocker"], "newton": {"unknowns": {"rocker": "phi"},
     ...                                                         "outputs": {"rocker": "phi"}}}

@@ -310,7 +310,8 @@ class NewtonScene:
 def newton_scene(data: Mapping[str, Any], facts: Mapping[str, Any], defaults: bool) -> NewtonScene:
     """The scene of parsed ``data`` with a ``[guess]`` table, from its linkage's table facts
     (:func:`symlink.cli.tables.table_facts`); ``defaults``: a linkage file's defaults stand in for parameters the
-    scene leaves out (a catalog scene names every one).  ``ValueError`` naming the first bad key or value, and for
+    scene leaves out (a catalog scene names every one); fixed angles in radians, as in every scene's
+    ``[parameters]``.  ``ValueError`` naming the first bad key or value, and for
     a linkage with a closed form (where ``branch`` chooses the assembly).
 
     >>> facts = {"name": "two", "closed_form": False, "parameters": ["a"], "positive": ["a"], "angles": ["theta"],
@@ -363,8 +364,6 @@ def newton_scene(data: Mapping[str, Any], facts: Mapping[str, Any], defaults: bo
         values[key] = number(value, f"parameters.{key}", angle=key in facts["angles"])
         if key in facts["positive"] and values[key] <= 0:
             raise ValueError(f"parameters.{key} must be a positive length, got {value!r}")
-        if key in facts["angles"]:
-            values[key] = float(to_radians(values[key], units))
     sweep, speed, accel = input_table(data, units)
     labels = newton["unknowns"]  # label: name
     label_of = {**{label: label for label in labels}, **{n: label for label, n in labels.items()}}

@@ -170,8 +170,9 @@ def test_a_table_defined_twice_is_one_line_of_bad_toml(tmp_path, capsys):
 
 # --- a linkage without a closed form: [guess] and Newton's method ---------------------
 
-#: The catalog's Stephenson II (lengths and the two fixed angles, degrees) and a guess near one of its assemblies.
-STEPHENSON2_VALUES = dict(a=1, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=51.5, delta=17.2)
+#: The catalog's Stephenson II (lengths; the two fixed angles in radians, 51.5 and 17.2 degrees, as a scene's
+#: [parameters] take them whatever its units) and a guess near one of its assemblies (degrees).
+STEPHENSON2_VALUES = dict(a=1, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.8988445647770797, delta=0.30019663134302466)
 STEPHENSON2_GUESS = "[guess]\ncoupler = -33\nmu = -35\nrocker = -73\neta = -68\n"
 
 
@@ -191,7 +192,7 @@ def test_a_newton_scene_closes_both_loops(tmp_path, capsys):
     rows = list(csv.DictReader(io.StringIO(out)))
     assert [float(r["crank"]) for r in rows] == [0, 50, 100, 150] and {r["branch"] for r in rows} == {"1"}
     v = STEPHENSON2_VALUES
-    alpha, delta = math.radians(v["alpha"]), math.radians(v["delta"])
+    alpha, delta = v["alpha"], v["delta"]
     for row in rows:
         theta, beta, mu, phi, eta = (math.radians(float(row[k])) for k in ("crank", "coupler", "mu", "rocker", "eta"))
         z = [cmath_rect(v["a"], theta) + cmath_rect(v["b"], beta) + cmath_rect(v["c"], mu)
@@ -210,12 +211,11 @@ def cmath_rect(length, angle):
 def test_a_newton_scene_prints_what_the_table_command_prints(tmp_path, capsys):
     """The same solver through ``symlink table NAME --guess``: the same numbers, the scene's columns only, in
     radians too (the guess in the scene's units)."""
-    rad = {k: math.radians(x) if k in ("alpha", "delta") else x for k, x in STEPHENSON2_VALUES.items()}
+    rad = STEPHENSON2_VALUES
     guess = "[guess]\n" + "".join(f"{k} = {math.radians(x)!r}\n"
                                   for k, x in dict(beta=-33, mu=-35, phi=-73, eta=-68).items())
     path = stephenson2_scene(tmp_path, guess=guess, outputs='["rocker", "eta_speed"]', extra='units = "rad"')
     text = path.read_text().replace("angles = [0, 50, 100, 150]", "angles = [0, 1, 2]\nspeed = 3")
-    text = text.replace("alpha = 51.5", f"alpha = {rad['alpha']!r}").replace("delta = 17.2", f"delta = {rad['delta']!r}")
     path.write_text(text)
     status, out, err = run(capsys, "run", path)
     assert status == 0, err

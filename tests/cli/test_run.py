@@ -258,3 +258,17 @@ def test_a_guess_for_a_closed_form_is_refused(tmp_path, capsys):
     status, out, err = run(capsys, "run", path)
     assert status == 2 and out == "" and err.count("\n") == 1
     assert "guess: fourbar is solved in closed form, where branch chooses the assembly" in err, err
+
+
+def test_a_newton_scenes_speed_is_the_finite_difference_of_its_angle(tmp_path, capsys):
+    """rocker_speed = dphi/dtheta * crank speed: a central difference of the printed rocker angle (h = 1e-4 deg)."""
+    path = stephenson2_scene(tmp_path, outputs='["rocker", "rocker_speed"]')
+    path.write_text(path.read_text().replace("angles = [0, 50, 100, 150]", "angles = [0, 49.9999, 50, 50.0001]\n"
+                                             "speed = 2.5"))
+    status, out, err = run(capsys, "run", path)
+    assert status == 0, err
+    rows = list(csv.DictReader(io.StringIO(out)))
+    low, mid, high = (float(r["rocker"]) for r in rows[1:])
+    difference = math.radians(high - low) / math.radians(2e-4) * 2.5
+    assert abs(float(rows[2]["rocker_speed"]) - difference) < 1e-6 * max(1.0, abs(difference))
+    assert abs(difference) > 0.1  # a rocker that moves there

@@ -370,6 +370,19 @@ def _numeric(table: Table, facts: Mapping[str, Any], solver: Callable[[], Any], 
     raise failure
 
 
+def newton_table(facts: Mapping[str, Any], solver: Callable[[], Any], values: Mapping[str, float],
+                 angles: numpy.ndarray, speed: float, accel: float, guess: Mapping[str, float], units: str):
+    """The one block of a table solved by Newton's method from ``guess`` (column label: angle in ``units`` at the
+    first of ``angles``), as ``symlink table NAME --guess ...`` solves it: for ``symlink run`` of a scene without a
+    closed form.  ``values``: the parameters by name (angles in radians); ``solver`` makes the solver."""
+    theta = to_radians(numpy.asarray(angles, dtype=float), units)
+    speeds = crank_speeds(theta, speed, accel, float(theta[0]))
+    table = Table(facts["name"], f"the table of {facts['name']}", (), "")
+    args = argparse.Namespace(guess=dict(guess), units=units)
+    return [(angles, _numeric(table, facts, solver, dict(values), _input_values(facts, values, theta, speeds, accel),
+                              angles, args))]
+
+
 def _print_assemblies(table: Table, facts: Mapping[str, Any], values: dict, first: float,
                       args: argparse.Namespace) -> None:
     """``--list-assemblies``: the assemblies at the first crank angle, angles wrapped, in the table's format."""

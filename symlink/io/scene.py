@@ -440,6 +440,7 @@ def scene_from_mapping(data: Mapping, folder: str | Path = ".") -> SceneFile:
     if warm is None and found.model is not None and not set(outputs) <= set(found.linkage.output_names()):
         found = found.with_dynamics()  # torques or joint forces of a linkage file with a [dynamics] table
     linkage = found.linkage
+    _check_guess(data, linkage)
     for name in outputs if warm is None else ():
         try:
             linkage.output(name)
@@ -473,6 +474,24 @@ def scene_from_mapping(data: Mapping, folder: str | Path = ".") -> SceneFile:
     scene_file.source, scene_file.defaults = found.source, defaults  # what a warm scene keeps (io.scene_text)
     scene.values.update(scene_file.values_at(sweep.array() if len(sweep) <= 4096 else sweep.block(0, 1)))
     return scene_file
+
+
+def _check_guess(data: Mapping, linkage: Linkage) -> None:
+    """``ValueError`` for a ``[guess]`` of a linkage with a closed form (where ``branch`` chooses the assembly), and
+    for a linkage without one: ``symlink run`` solves it by Newton's method from its ``[guess]``
+    (:func:`symlink.io.scene_text.newton_scene`), which this reader (SymPy, closed forms) does not."""
+    if linkage.has_closed_form:
+        if "guess" in data:
+            raise ValueError(f"guess: {linkage.name} is solved in closed form, where branch chooses the assembly; "
+                             "[guess] is for linkages without a closed form")
+        return
+    from ..symbolic.outputs import label
+    unknowns = ", ".join(label(linkage, u) for u in linkage.unknowns)
+    if "guess" not in data:
+        raise ValueError(f"guess: {linkage.name} has no closed form: give a [guess] table of every unknown "
+                         f"({unknowns}) at the first input angle, and symlink run solves it by Newton's method")
+    raise ValueError(f"guess: {linkage.name} has no closed form: symlink run solves its scene by Newton's method "
+                     "(this reader takes linkages with a closed form)")
 
 
 def scene_from_text(text: str, source: str, folder: str | Path = ".") -> SceneFile:

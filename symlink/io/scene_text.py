@@ -37,12 +37,12 @@ from ..numeric.input_sweep import MAX_ANGLE, InputSweep, crank_speeds
 
 __all__ = ["BRANCH_CHOICES", "UNITS", "FORMATS", "TOP_KEYS", "INPUT_KEYS", "MAX_SCENE_BYTES", "MAX_ANGLE",
            "MAX_MAGNITUDE", "number", "choice", "table", "linkage_request", "WarmScene",
-           "warm_scene", "cache_scene", "SCENE_ENTRY_KIND"]
+           "warm_scene", "cache_scene", "SCENE_ENTRY_KIND", "NewtonScene", "newton_scene"]
 
 BRANCH_CHOICES = (1, -1, "both")
 UNITS = ("deg", "rad")
 FORMATS = ("table", "csv", "json")
-TOP_KEYS = {"linkage", "outputs", "branch", "units", "format", "parameters", "input", "dynamics"}
+TOP_KEYS = {"linkage", "outputs", "branch", "units", "format", "parameters", "input", "dynamics", "guess"}
 INPUT_KEYS = {"start", "stop", "step", "angles", "speed", "accel"}
 #: Scene files larger than this are refused unread (a scene is a few lines).
 MAX_SCENE_BYTES = 1 << 20
@@ -184,7 +184,8 @@ def _cold() -> str:
 def _plain_scene(data: Mapping[str, Any], facts: Mapping[str, Any], solver: Any) -> WarmScene:
     """A :class:`WarmScene` of the parsed scene ``data`` with its ``facts``; ``ValueError`` for anything the full
     reader (:func:`symlink.io.scene.scene_from_mapping`) might see otherwise."""
-    table(dict(data), "", TOP_KEYS)
+    if "guess" in table(dict(data), "", TOP_KEYS):  # a closed form or not: the full reader says which
+        raise ValueError("guess")
     names = facts["parameters"]
     given = {**{n: v for n, v in facts["defaults"].items() if n in names},
              **table(data.get("parameters", {}), "parameters", set(names))}
@@ -289,3 +290,96 @@ def cache_scene(text: str, folder: str | Path, found: Any) -> WarmScene | None:
     }
     stored = json.loads(cached_text(key, lambda: json.dumps(facts)))
     return _plain_scene(data, stored, _solver(stored, derive))
+
+
+class NewtonScene:
+    """A scene file of a linkage without a closed form, checked against its table's facts (plain data, no SymPy):
+    what ``symlink run`` gives the Newton solver of ``symlink table NAME --guess ...``
+    (:func:`symlink.cli.tables.newton_table`), and how to print it."""
+
+    _repr_html_ = record_html
+
+    def __init__(self, outputs: list[str], values: dict[str, float], sweep: InputSweep, speed: float, accel: float,
+                 guess: dict[str, float], units: str, fmt: str, input_column: str, angle_columns: set[str],
+                 column_units: dict[str, str]) -> None:
+        self.outputs, self.values, self.sweep, self.speed, self.accel = outputs, values, sweep, speed, accel
+        self.guess, self.units, self.format, self.input_column = guess, units, fmt, input_column
+        self.angle_columns, self.column_units = angle_columns, column_units
+
+
+def newton_scene(data: Mapping[str, Any], facts: Mapping[str, Any], defaults: bool) -> NewtonScene:
+    """The scene of parsed ``data`` with a ``[guess]`` table, from its linkage's table facts
+    (:func:`symlink.cli.tables.table_facts`); ``defaults``: a linkage file's defaults stand in for parameters the
+    scene leaves out (a catalog scene names every one); fixed angles in radians, as in every scene's
+    ``[parameters]``.  ``ValueError`` naming the first bad key or value, and for
+    a linkage with a closed form (where ``branch`` chooses the assembly).
+
+    >>> facts = {"name": "two", "closed_form": False, "parameters": ["a"], "positive": ["a"], "angles": ["theta"],
+    ...          "inputs": ["theta"], "labels": {"theta": "crank"}, "defaults": {}, "column_units": {},
+    ...          "angle_columns": ["crank", "rocker"], "newton": {"unknowns": {"rocker": "phi"},
+    ...                                                         "outputs": {"rocker": "phi"}}}
+    >>> scene = newton_scene({"linkage": "two", "outputs": ["rocker"], "parameters": {"a": 2},
+    ...                       "input": {"angles": [0, 90]}, "guess": {"phi": 30}}, facts, False)
+    >>> scene.guess, scene.values, sorted(scene.angle_columns)
+    ({'rocker': 30.0}, {'a': 2.0}, ['crank', 'rocker'])
+    >>> newton_scene({"outputs": ["rocker"], "parameters": {"a": 2}, "guess": {}}, facts, False)
+    Traceback (most recent call last):
+    ValueError: guess: two needs a guess of every unknown (rocker) at the first input angle
+    """
+    table(dict(data), "", TOP_KEYS)
+    name, newton = facts["name"], facts["newton"]
+    if facts["closed_form"]:
+        raise ValueError(f"guess: {name} is solved in closed form, where branch chooses the assembly; "
+                         "[guess] is for linkages without a closed form")
+    if "dynamics" in data:
+        raise ValueError(f"dynamics: {name} has no closed form; scene files give dynamics only for linkages "
+                         "solved in closed form")
+    inputs = facts["inputs"]
+    if len(inputs) != 1 or inputs[0] not in facts["angles"]:
+        raise ValueError(f"scene files drive linkages with one input angle; {name} has {', '.join(inputs)}")
+    known = list(newton["outputs"])
+    outputs = data.get("outputs")
+    if not isinstance(outputs, list) or not outputs or not all(isinstance(o, str) for o in outputs):
+        raise ValueError(f"outputs must be a non-empty list of output names of {name} ({', '.join(known)}), "
+                         f"got {excerpt(outputs)}")
+    for k, output in enumerate(outputs):
+        if output not in known:
+            raise ValueError(f"outputs: {name} (solved by Newton's method) has no output {excerpt(output)}; "
+                             f"it has {', '.join(known)}")
+        if output in outputs[:k]:
+            raise ValueError(f"outputs lists {excerpt(output)} more than once; list each output once")
+    if choice(data.get("branch", 1), "branch", BRANCH_CHOICES) != 1:
+        raise ValueError(f"branch: {name} has no closed form: its one assembly is the one [guess] starts from; "
+                         "give branch = 1 or leave it out")
+    units = choice(data.get("units", "deg"), "units", UNITS)
+    fmt = choice(data.get("format", "table"), "format", FORMATS)
+    names = facts["parameters"]
+    given = {**({n: v for n, v in facts["defaults"].items() if n in names} if defaults else {}),
+             **table(data.get("parameters", {}), "parameters", set(names))}
+    missing = [n for n in names if n not in given]
+    if missing:
+        raise ValueError(f"missing parameters.{missing[0]} ({name} needs {', '.join(names)})")
+    values = {}
+    for key, value in given.items():
+        values[key] = number(value, f"parameters.{key}", angle=key in facts["angles"])
+        if key in facts["positive"] and values[key] <= 0:
+            raise ValueError(f"parameters.{key} must be a positive length, got {value!r}")
+    sweep, speed, accel = input_table(data, units)
+    labels = newton["unknowns"]  # label: name
+    label_of = {**{label: label for label in labels}, **{n: label for label, n in labels.items()}}
+    guess_table = table(data["guess"], "guess", None)
+    guess = {}
+    for key, value in guess_table.items():
+        if key not in label_of:
+            raise ValueError(f"guess: {name} has no unknown {excerpt(key)}; its unknowns are "
+                             f"{', '.join(f'{label} ({n})' if label != n else label for label, n in labels.items())}")
+        guess[label_of[key]] = number(value, f"guess.{key}", angle=True)
+    if len(guess) != len(labels):
+        raise ValueError(f"guess: {name} needs a guess of every unknown ({', '.join(labels)}) at the first input "
+                         "angle")
+    input_column = facts["labels"][inputs[0]]
+    angle_columns = {input_column} | (set(facts["angle_columns"]) & set(outputs))
+    column_units = {c: (units if u == "rad" else u) for c, u in facts["column_units"].items()
+                    if c in outputs or c == input_column}
+    return NewtonScene(list(outputs), values, sweep, speed, accel, guess, units, fmt, input_column, angle_columns,
+                       column_units)

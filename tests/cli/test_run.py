@@ -166,3 +166,109 @@ def test_a_table_defined_twice_is_one_line_of_bad_toml(tmp_path, capsys):
     status, _, err = run(capsys, "run", path)
     assert status == 2 and err.count("\n") == 1
     assert "not valid TOML" in err and "('input',) twice" in err, err
+
+
+# --- a linkage without a closed form: [guess] and Newton's method ---------------------
+
+#: The catalog's Stephenson II (lengths; the two fixed angles in radians, 51.5 and 17.2 degrees, as a scene's
+#: [parameters] take them whatever its units) and a guess near one of its assemblies (degrees).
+STEPHENSON2_VALUES = dict(a=1, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.8988445647770797, delta=0.30019663134302466)
+STEPHENSON2_GUESS = "[guess]\ncoupler = -33\nmu = -35\nrocker = -73\neta = -68\n"
+
+
+def stephenson2_scene(tmp_path, guess=STEPHENSON2_GUESS, outputs='["coupler", "mu", "rocker", "eta"]', extra=""):
+    path = tmp_path / "six.toml"
+    values = "".join(f"{name} = {value}\n" for name, value in STEPHENSON2_VALUES.items())
+    path.write_text(f'linkage = "stephenson2"\noutputs = {outputs}\nformat = "csv"\n{extra}\n[parameters]\n{values}'
+                    f"[input]\nangles = [0, 50, 100, 150]\n{guess}")
+    return path
+
+
+def test_a_newton_scene_closes_both_loops(tmp_path, capsys):
+    """The printed angles close both loops of the linkage file (AB + BC + CF - DF - AD and AB + BE + EH - DH - AD),
+    written out here by hand, to 1e-9 of the link lengths."""
+    status, out, err = run(capsys, "run", stephenson2_scene(tmp_path))
+    assert status == 0, err
+    rows = list(csv.DictReader(io.StringIO(out)))
+    assert [float(r["crank"]) for r in rows] == [0, 50, 100, 150] and {r["branch"] for r in rows} == {"1"}
+    v = STEPHENSON2_VALUES
+    alpha, delta = v["alpha"], v["delta"]
+    for row in rows:
+        theta, beta, mu, phi, eta = (math.radians(float(row[k])) for k in ("crank", "coupler", "mu", "rocker", "eta"))
+        z = [cmath_rect(v["a"], theta) + cmath_rect(v["b"], beta) + cmath_rect(v["c"], mu)
+             - cmath_rect(v["f"], phi) - v["d"],
+             cmath_rect(v["a"], theta) + cmath_rect(v["e"], alpha + beta) + cmath_rect(v["g"], eta)
+             - cmath_rect(v["h"], delta + phi) - v["d"]]
+        assert max(abs(loop) for loop in z) < 1e-9, (row, z)
+    first = rows[0]  # the assembly nearest the guess, not another one
+    assert abs(float(first["coupler"]) + 33) < 1 and abs(float(first["rocker"]) + 73) < 1
+
+
+def cmath_rect(length, angle):
+    return complex(length * math.cos(angle), length * math.sin(angle))
+
+
+def test_a_newton_scene_prints_what_the_table_command_prints(tmp_path, capsys):
+    """The same solver through ``symlink table NAME --guess``: the same numbers, the scene's columns only, in
+    radians too (the guess in the scene's units)."""
+    rad = STEPHENSON2_VALUES
+    guess = "[guess]\n" + "".join(f"{k} = {math.radians(x)!r}\n"
+                                  for k, x in dict(beta=-33, mu=-35, phi=-73, eta=-68).items())
+    path = stephenson2_scene(tmp_path, guess=guess, outputs='["rocker", "eta_speed"]', extra='units = "rad"')
+    text = path.read_text().replace("angles = [0, 50, 100, 150]", "angles = [0, 1, 2]\nspeed = 3")
+    path.write_text(text)
+    status, out, err = run(capsys, "run", path)
+    assert status == 0, err
+    settings = ",".join(f"{k}={x!r}" for k, x in rad.items())
+    status, table, err = run(capsys, "table", "stephenson2", "--set", settings, "--angles", "0,1,2", "--units", "rad",
+                             "--crank-speed", "3", "--format", "csv", "--guess", "coupler=-0.5759586531581288,"
+                             f"mu={math.radians(-35)!r},rocker={math.radians(-73)!r},eta={math.radians(-68)!r}")
+    assert status == 0, err
+    expected = [(r["crank"], r["branch"], r["rocker"], r["eta_speed"]) for r in csv.DictReader(io.StringIO(table))]
+    assert [tuple(r.values()) for r in csv.DictReader(io.StringIO(out))] == expected
+    assert len(expected) == 3 and all(float(r[3]) != 0 for r in expected)
+
+
+NEWTON_BAD = [  # (what is changed in the scene: guess, outputs, extra keys), the message
+    (dict(guess="[guess]\ncoupler = -33\nmu = -35\nrocker = -73\nzeta = 1\n"), "stephenson2 has no unknown 'zeta'"),
+    (dict(guess="[guess]\ncoupler = -33\nmu = -35\nrocker = -73\neta = \"x\"\n"), "guess.eta must be a number"),
+    (dict(guess="[guess]\ncoupler = -33\nmu = -35\nrocker = -73\neta = inf\n"), "guess.eta must be finite"),
+    (dict(guess="[guess]\ncoupler = -33\nmu = -35\nrocker = -73\n"),
+     r"needs a guess of every unknown \(coupler, mu, rocker, eta\)"),
+    (dict(guess=""), r"no closed form: give a \[guess\] table of every unknown \(coupler, mu, rocker, eta\)"),
+    (dict(guess="", extra="guess = 3"), "guess must be a table"),
+    (dict(outputs='["C_x"]'), r"stephenson2 \(solved by Newton's method\) has no output 'C_x'"),
+    (dict(outputs='["mu", "mu"]'), "outputs lists 'mu' more than once"),
+    (dict(extra='branch = "both"'), "branch: stephenson2 has no closed form"),
+    (dict(extra='[dynamics]\ngravity = 9.81'), "dynamics: stephenson2 has no closed form"),
+]
+
+
+@pytest.mark.parametrize("change, message", NEWTON_BAD)
+def test_bad_newton_scenes_one_line_exit_2(tmp_path, capsys, change, message):
+    path = stephenson2_scene(tmp_path, **change)
+    status, out, err = run(capsys, "run", path)
+    assert status == 2 and out == ""
+    assert err.startswith(f"symlink: error: {path}: ") and err.count("\n") == 1, err
+    assert re.search(message, err), err
+
+
+def test_a_guess_for_a_closed_form_is_refused(tmp_path, capsys):
+    path = scene_file(tmp_path, extra="", sweep="angles = [0]\n[guess]\nphi = 110")
+    status, out, err = run(capsys, "run", path)
+    assert status == 2 and out == "" and err.count("\n") == 1
+    assert "guess: fourbar is solved in closed form, where branch chooses the assembly" in err, err
+
+
+def test_a_newton_scenes_speed_is_the_finite_difference_of_its_angle(tmp_path, capsys):
+    """rocker_speed = dphi/dtheta * crank speed: a central difference of the printed rocker angle (h = 1e-4 deg)."""
+    path = stephenson2_scene(tmp_path, outputs='["rocker", "rocker_speed"]')
+    path.write_text(path.read_text().replace("angles = [0, 50, 100, 150]", "angles = [0, 49.9999, 50, 50.0001]\n"
+                                             "speed = 2.5"))
+    status, out, err = run(capsys, "run", path)
+    assert status == 0, err
+    rows = list(csv.DictReader(io.StringIO(out)))
+    low, mid, high = (float(r["rocker"]) for r in rows[1:])
+    difference = math.radians(high - low) / math.radians(2e-4) * 2.5
+    assert abs(float(rows[2]["rocker_speed"]) - difference) < 1e-6 * max(1.0, abs(difference))
+    assert abs(difference) > 0.1  # a rocker that moves there

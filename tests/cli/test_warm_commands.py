@@ -209,3 +209,50 @@ def test_bad_input_to_a_warm_stack_up_is_one_line_and_exit_2(shared_cache, tmp_p
         assert done.returncode == 2 and done.stdout == ""
         assert without_import_times(done.stderr) == message
         assert "symlink" in imported_packages(done.stderr) and "sympy" not in imported_packages(done.stderr)
+
+
+NEWTON_SCENE = """\
+linkage = "stephenson2"
+outputs = ["coupler", "mu", "rocker", "eta", "rocker_speed", "eta_accel"]
+format = "csv"
+
+[parameters]
+a = 1
+b = 3.1
+c = 2.2
+d = 4.5
+e = 3.9
+f = 3.1
+g = 4.1
+h = 3.1
+alpha = 0.8988445647770797
+delta = 0.30019663134302466
+
+[input]
+angles = [0, 50, 100]
+speed = 2
+accel = 1
+
+[guess]
+coupler = -33
+mu = -35
+rocker = -73
+eta = -68
+"""
+
+
+def test_a_warm_newton_scene_imports_no_sympy_and_prints_the_same(shared_cache, tmp_path):
+    """``symlink run`` of a scene without a closed form (Newton's method from its [guess]): the second run is warm,
+    and another scene of the same linkage with other numbers is warm from its first run."""
+    (tmp_path / "six.toml").write_text(NEWTON_SCENE)
+    runs = run_twice(tmp_path, ["run", "six.toml"], shared_cache)
+    assert "symlink" in runs.imported and "numpy" in runs.imported
+    assert not runs.imported & {"sympy", "matplotlib"}, sorted(runs.imported)
+    assert runs.warm == runs.cold and runs.warm_notes == runs.cold_notes
+    assert runs.warm.splitlines()[0] == "crank,branch,coupler,mu,rocker,eta,rocker_speed,eta_accel"
+    assert len(runs.warm.splitlines()) == 4
+    other = NEWTON_SCENE.replace("angles = [0, 50, 100]", "angles = [0, 20]").replace("b = 3.1", "b = 3.2")
+    (tmp_path / "other.toml").write_text(other)
+    again = run_twice(tmp_path, ["run", "other.toml"], shared_cache)
+    assert not again.imported & {"sympy", "matplotlib"} and again.warm == again.cold
+    assert again.warm.splitlines()[1] != runs.warm.splitlines()[1]

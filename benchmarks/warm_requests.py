@@ -19,7 +19,7 @@ to the load of a shared machine) over those of ``python -c "import numpy"`` meas
 command that imported SymPy would pay.  The load average is printed before and after.
 Bytecode is cached (in the run's folder, ``PYTHONPYCACHEPREFIX``) as for an installed package, even where
 ``PYTHONDONTWRITEBYTECODE`` is set: else every run compiles symlink's modules again (about 0.1 s).
-CPU of the measured machine: AMD EPYC, 2 cores, AVX2 (shared; ratios only).
+CPU of the measured machine (the performance page's table): AMD EPYC, 2 cores, AVX-512 (idle; ratios only).
 
     python -m benchmarks.warm_requests
 """

@@ -74,7 +74,8 @@ class Jobs:
                 del self.jobs[old]
         process.start()
         sending.close()
-        threading.Thread(target=self._watch, args=(job, receiving), daemon=True).start()
+        job["watcher"] = threading.Thread(target=self._watch, args=(job, receiving), daemon=True)
+        job["watcher"].start()
         return key
 
     def _finish(self, job: dict[str, Any], status: str, result: Any = None, error: str | None = None) -> None:
@@ -138,6 +139,19 @@ class Jobs:
             self._finish(job, "cancelled", error="cancelled")
             job["process"].terminate()
         return self.status(key)
+
+    def wait(self, key: str, timeout: float | None = None) -> bool:
+        """Wait until the job's worker process is gone and reaped; False when it is still there after ``timeout``.
+
+        Only the job's watcher thread joins (reaps) the process: a second thread joining the same process races it
+        for the exit status and can see a reaped process as alive, so callers wait on the watcher instead.
+        """
+        with self.lock:
+            job = self.jobs.get(key)
+        if job is None:
+            raise ValueError(f"no job {key!r}")
+        job["watcher"].join(timeout)
+        return not job["watcher"].is_alive() and job["process"].exitcode is not None
 
     def close(self) -> None:
         """Stop every job still running (the server is stopping)."""

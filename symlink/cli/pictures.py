@@ -175,13 +175,13 @@ def run_animate(args: argparse.Namespace) -> int:
 
     if fourbar_or_linkage(args, "animate", linkage_only=("set", "angle", "trace", "unit"),
                           fourbar_only=("coupler_point",)):
-        from ..plot.animation import animate_linkage
-        linkage, values = drawn_linkage(args)
-        trace = _default_trace(list(linkage.points)) if args.trace is None else args.trace
-        rendered = animate_linkage(linkage, values, args.out, frames=args.frames, trace=trace, fps=args.fps,
-                                   unit=args.unit, progress=report)
-        first = linkage.inputs[0]
-        role = next((role for role, symbol in linkage.roles.items() if symbol == first), first.name)
+        from ..plot.animation import animate_placement
+        placement, values = drawn_placement(args)
+        trace = _default_trace(placement.facts["points"]) if args.trace is None else args.trace
+        rendered = animate_placement(placement, values, args.out, frames=args.frames, trace=trace, fps=args.fps,
+                                     unit=args.unit, progress=report)
+        first = placement.input_names[0]
+        role = next((role for role, name in placement.facts["roles"].items() if name == first), first)
         _spans_note(rendered, role, args.units)
         print(f"wrote {rendered.path} ({rendered.frames} frames)")
         return 0

@@ -125,6 +125,7 @@ def _placement_parts(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | Non
         "pivots": [j.name for j in found.joints if j.kind == REVOLUTE and j.grounded and j.name in sums],
         "pins": [j.name for j in found.joints if j.kind == REVOLUTE and j.name in sums],
         "points": list(linkage.points),
+        "roles": {role: symbol.name for role, symbol in linkage.roles.items()},
     }
     text = numpy_module([(ENDS, program, "")], "Vectors of a drawing.")
     return found, sums, vectors, text.rstrip() + f"\n\n\n#: What placing needs (symlink.numeric.poses).\n{PLACEMENT} = {facts!r}\n"
@@ -133,7 +134,8 @@ def _placement_parts(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | Non
 def placement_entry_text(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | None = None) -> str:
     """The placement of ``linkage`` as a NumPy module: the function ``ends`` of its vectors' ends and slider
     directions (from its coordinates and parameters), and the dictionary ``PLACEMENT`` of plain facts (names,
-    which are angles, each place as ``[sign, vector]`` terms, sliders, bodies' outlines, pivots, pins, points).
+    which are angles, each place as ``[sign, vector]`` terms, sliders, bodies' outlines, pivots, pins, points,
+    the symbols' roles).
 
     What a :class:`Placement` is made from; a cache entry (:func:`cached_placement`).
 

@@ -203,6 +203,46 @@ def test_a_former_name_is_noted_once_warm_as_cold_by_a_drawing(shared_cache, tmp
     assert runs.warm_notes.startswith("symlink: warning: 'stephenson3' is symlink's former name of stephenson-ii")
 
 
+PLAIN_DEFAULTS = """
+[defaults]
+a = 0.2
+b = 0.66
+c = 0.56
+d = 0.8
+"""
+DYNAMICS = """m2 = 1.5
+g = 9.81
+T_load = 0.7
+
+[dynamics]
+gravity = [0, "-g"]
+
+[dynamics.masses.crank]
+mass = "m2"
+distance = 0.08
+inertia = 0.02
+
+[[dynamics.torques]]
+body = "crank"
+torque = "T_load"
+"""
+
+
+def test_a_linkage_file_with_dynamics_is_drawn_as_without(shared_cache, tmp_path):
+    """A linkage file whose [dynamics] table gives masses and loads, with their defaults, is drawn (warm without
+    SymPy) as the same file without them is: masses and loads do not move a joint."""
+    from symlink.io.linkage_file import linkage_text
+    from symlink.mechanism.catalog import fourbar
+    (tmp_path / "plain.toml").write_text(linkage_text(fourbar()) + PLAIN_DEFAULTS)
+    (tmp_path / "massive.toml").write_text(linkage_text(fourbar()) + PLAIN_DEFAULTS + DYNAMICS)
+    plain = run_twice(tmp_path, ["draw", "plain.toml", "--trace", "C", "--out", "d.svg"], shared_cache, files=["d.svg"])
+    massive = run_twice(tmp_path, ["draw", "massive.toml", "--trace", "C", "--out", "d.svg"], shared_cache,
+                        files=["d.svg"])
+    assert not massive.imported & {"sympy", "scipy", "pandas"}
+    assert massive.cold_files == massive.warm_files == plain.cold_files
+    assert massive.warm == massive.cold == "wrote d.svg\n" and massive.warm_notes == massive.cold_notes == ""
+
+
 def test_bad_input_to_a_warm_drawing_is_one_line_and_exit_2(shared_cache, tmp_path):
     """A warm drawing checks its values against the cached facts: a --set of no value, a point it does not have and
     a length that is not positive are refused in one line with exit status 2, in the words of a cold run, without

@@ -18,7 +18,7 @@ from .output import note
 if TYPE_CHECKING:
     from ..numeric.poses import Placement
 
-__all__ = ["register", "add_fourbar_plot_options", "write_fourbar_plots", "drawn_linkage"]
+__all__ = ["register", "add_fourbar_plot_options", "write_fourbar_plots", "drawn_linkage", "drawn_placement"]
 
 
 def drawn_linkage(args: argparse.Namespace):
@@ -41,11 +41,13 @@ PLACEMENT_SHAPING = ("numeric/poses",)
 
 
 def drawn_placement(args: argparse.Namespace) -> tuple[Placement, dict[str, float]]:
-    """The linkage NAME|FILE as :func:`drawn_linkage` gives it, as a :class:`~symlink.numeric.poses.Placement` from
-    the disk cache (:func:`~symlink.numeric.poses.cached_placement`), so that a warm drawing imports no SymPy.
+    """The linkage NAME|FILE and its values as :func:`drawn_linkage` gives them, the linkage as a
+    :class:`~symlink.numeric.poses.Placement` from the disk cache (:func:`~symlink.numeric.poses.cached_placement`),
+    so that a warm drawing imports no SymPy.
 
-    Keyed as ``symlink table NAME|FILE`` keys its entries (:class:`~symlink.cli.tables.TableSource`: the catalog or
-    atlas name, or the file's bytes), whose facts give the values, and whose solver entries it shares; a linkage
+    The linkage is taken as ``symlink table NAME|FILE`` takes it (:class:`~symlink.cli.tables.TableSource`: a file's
+    ``[dynamics]`` included, whose defaults name masses and loads), and keyed as it keys its entries (the catalog or
+    atlas name, or the file's bytes): its facts give the values, and its solver entries are shared.  A linkage
     that cannot be keyed is drawn from the linkage itself (:class:`~symlink.numeric.poses.Geometry`).
     """
     from ..numeric.cache import catalog_key

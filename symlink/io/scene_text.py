@@ -96,7 +96,8 @@ def table(data: Any, where: str, allowed: set[str] | None) -> dict:
     return data
 
 
-#: The catalog's files, one a catalog linkage (:func:`symlink.io.linkage_file.write_catalog_files` writes them).
+#: The catalog's files, one a catalog linkage: :data:`symlink.io.linkage_file.CATALOG_FOLDER`, named here without
+#: importing that reader (SymPy).
 _CATALOG_FILES = Path(__file__).resolve().parent.parent / "linkages"
 
 

@@ -49,7 +49,7 @@ GUESSES = 400
 #: The name of the dictionary of plain facts in a placement's module (:func:`placement_entry_text`), and of its
 #: function that evaluates the vectors' ends.
 PLACEMENT, ENDS = "PLACEMENT", "ends"
-#: The kind of cache entry of a placement (:func:`cached_placement`), and of the solvers keyed beside it.
+#: The kind of cache entry of a placement (:func:`cached_placement`).
 PLACEMENT_ENTRY_KIND = "placement/1"
 
 

@@ -1,5 +1,6 @@
-"""Warm is warm from the command line: a table command whose code is in the disk cache imports neither SymPy nor
-Matplotlib, and prints what its cold run printed, byte for byte, on stdout and on stderr (notes included).
+"""Warm is warm from the command line: a table command (or ``symlink plan``) whose code is in the disk cache imports
+neither SymPy nor Matplotlib, and prints what its cold run printed, byte for byte, on stdout and on stderr (notes
+included); a picture imports no SymPy and writes the bytes its cold run wrote.
 
 Each command runs twice in new processes (:func:`warm_runs.run_twice`): first cold, which derives and caches, then
 warm with ``python -X importtime``.  One cache folder serves the module, so a linkage derived for one test is
@@ -41,6 +42,8 @@ COMMANDS = {
          "--crank-speed", "3", "--angles", "0,90", "--format", "csv"], 3),
     "tolerance stack-up of a linkage file": (["tolerance", str(PROJECT / "linkages" / "slider-crank.toml"),
                                               "--tolerance", "0.05", "--angles", "0,40", "--format", "csv"], 3),
+    "solve plan of a catalog linkage": (["plan", "fourbar"], 3),
+    "solve plan of a linkage file (two loops)": (["plan", str(PROJECT / "linkages" / "watt2.toml")], 4),
 }
 SLOW_COMMANDS = {
     "inverted slider-crank": (["inverted-slider-crank", "--crank", "2", "--ground", "1.2", "--crank-speed", "3",
@@ -156,6 +159,12 @@ PICTURES = {
         "curve", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80", "--coupler-point",
         "30,-20", "--branch", "both", "--crank-angle", "40", "--out", "curve.png"],
     "four-bar table with its angle plot": [*FOURBAR, "--plot", "angles.svg"],
+    "catalog linkage with a traced point (curve NAME, SVG)": ["curve", "fourbar", "--trace", "C", "--out", "c.svg"],
+    "linkage file, its last point traced (curve FILE, SVG)": ["curve", str(PROJECT / "linkages" / "jansen.toml"),
+                                                              "--out", "j.svg"],
+    "slider-crank drawn at an angle (draw NAME, PNG)": ["draw", "slider-crank", "--angle", "30", "--out", "d.png"],
+    "Stephenson II by its former name, by Newton's method (draw NAME, SVG)": ["draw", "stephenson3", "--out", "s.svg"],
+    "animation of a catalog linkage (animate NAME, GIF)": ["animate", "fourbar", "--frames", "3", "--out", "a.gif"],
 }
 
 
@@ -169,6 +178,93 @@ def test_a_warm_picture_imports_no_sympy_and_draws_the_same(name, shared_cache, 
     assert not heavy, f"the warm run imported {', '.join(sorted(heavy))}"
     assert runs.warm == runs.cold and runs.warm_notes == runs.cold_notes
     assert runs.warm_files[out] == runs.cold_files[out] and len(runs.cold_files[out]) > 1000
+
+
+def test_a_warm_drawing_takes_other_numbers(shared_cache, tmp_path):
+    """A drawing's cache entries (its placement and its solver) are keyed by what names the linkage, not by the
+    numbers: the four-bar with other lengths, at another angle, draws warm from the first drawing's entries (no
+    SymPy), and writes what a cold run in a cache of its own writes, byte for byte."""
+    run_twice(tmp_path, ["draw", "fourbar", "--trace", "C", "--out", "d.svg"], shared_cache)
+    other = ["draw", "fourbar", "--set", "a=25,b=70,c=60,d=85", "--angle", "0.5", "--units", "rad", "--trace", "C",
+             "--out", "d.svg"]
+    warm = run_twice(tmp_path, other, shared_cache, files=["d.svg"])  # both runs warm
+    assert "matplotlib" in warm.imported and not warm.imported & {"sympy", "scipy", "pandas"}
+    (tmp_path / "fresh").mkdir()
+    cold = run_twice(tmp_path / "fresh", other, files=["d.svg"])  # a cache of its own: its first run derives
+    assert warm.cold_files["d.svg"] == cold.cold_files["d.svg"] == warm.warm_files["d.svg"]
+    assert warm.cold == cold.cold == "wrote d.svg\n" and warm.cold_notes == cold.cold_notes == ""
+
+
+def test_a_former_name_is_noted_once_warm_as_cold_by_a_drawing(shared_cache, tmp_path):
+    """``symlink draw stephenson3`` says once, warm as cold, what the name names now."""
+    runs = run_twice(tmp_path, PICTURES["Stephenson II by its former name, by Newton's method (draw NAME, SVG)"],
+                     shared_cache, files=["s.svg"])
+    assert runs.warm_notes == runs.cold_notes and runs.warm_notes.count("\n") == 1
+    assert runs.warm_notes.startswith("symlink: warning: 'stephenson3' is symlink's former name of stephenson-ii")
+
+
+PLAIN_DEFAULTS = """
+[defaults]
+a = 0.2
+b = 0.66
+c = 0.56
+d = 0.8
+"""
+DYNAMICS = """m2 = 1.5
+g = 9.81
+T_load = 0.7
+
+[dynamics]
+gravity = [0, "-g"]
+
+[dynamics.masses.crank]
+mass = "m2"
+distance = 0.08
+inertia = 0.02
+
+[[dynamics.torques]]
+body = "crank"
+torque = "T_load"
+"""
+
+
+def test_a_linkage_file_with_dynamics_is_drawn_as_without(shared_cache, tmp_path):
+    """A linkage file whose [dynamics] table gives masses and loads, with their defaults, is drawn (warm without
+    SymPy) as the same file without them is: masses and loads do not move a joint."""
+    from symlink.io.linkage_file import linkage_text
+    from symlink.mechanism.catalog import fourbar
+    (tmp_path / "plain.toml").write_text(linkage_text(fourbar()) + PLAIN_DEFAULTS)
+    (tmp_path / "massive.toml").write_text(linkage_text(fourbar()) + PLAIN_DEFAULTS + DYNAMICS)
+    plain = run_twice(tmp_path, ["draw", "plain.toml", "--trace", "C", "--out", "d.svg"], shared_cache, files=["d.svg"])
+    massive = run_twice(tmp_path, ["draw", "massive.toml", "--trace", "C", "--out", "d.svg"], shared_cache,
+                        files=["d.svg"])
+    assert not massive.imported & {"sympy", "scipy", "pandas"}
+    assert massive.cold_files == massive.warm_files == plain.cold_files
+    assert massive.warm == massive.cold == "wrote d.svg\n" and massive.warm_notes == massive.cold_notes == ""
+
+
+def test_bad_input_to_a_warm_drawing_is_one_line_and_exit_2(shared_cache, tmp_path):
+    """A warm drawing checks its values against the cached facts: a --set of no value, a point it does not have and
+    a length that is not positive are refused in one line with exit status 2, in the words of a cold run, without
+    importing SymPy."""
+    import os
+    import subprocess
+    import sys
+
+    from warm_runs import imported_packages, without_import_times
+    run_twice(tmp_path, ["draw", "fourbar", "--out", "d.svg"], shared_cache)
+    bad = {("--set", "q=1"): "symlink: error: --set: fourbar has no value 'q'; it takes a, b, c, d, theta\n",
+           ("--trace", "Z"): "symlink: error: fourbar has no point or joint 'Z' to trace; it has A, B, C, D\n",
+           ("--set", "a=-1"): "symlink: error: a must be a positive finite length, got -1.0\n"}
+    env = {**os.environ, "PYTHONPATH": str(PROJECT), "SYMLINK_CACHE": str(shared_cache), "MPLBACKEND": "Agg"}
+    for (option, value), message in bad.items():
+        done = subprocess.run([sys.executable, "-X", "importtime", "-m", "symlink", "draw", "fourbar", option, value,
+                               "--out", "bad.svg"], capture_output=True, text=True, env=env, cwd=str(tmp_path),
+                              timeout=600)
+        assert done.returncode == 2 and done.stdout == ""
+        assert without_import_times(done.stderr) == message
+        assert "symlink" in imported_packages(done.stderr) and "sympy" not in imported_packages(done.stderr)
+        assert not (tmp_path / "bad.svg").exists()
 
 
 def test_a_synchronous_sweep_imports_no_distributed(shared_cache, tmp_path):

@@ -156,6 +156,7 @@ PICTURES = {
         "curve", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80", "--coupler-point",
         "30,-20", "--branch", "both", "--crank-angle", "40", "--out", "curve.png"],
     "four-bar table with its angle plot": [*FOURBAR, "--plot", "angles.svg"],
+    "four-bar table with its transmission-angle plot": [*FOURBAR, "--plot-transmission", "transmission.svg"],
 }
 
 

@@ -94,6 +94,8 @@ def _add_options(command: argparse.ArgumentParser) -> None:
 #: The kinds of cache entry of ``symlink tolerance``: the facts of the linkage it needs (:func:`stack_up_facts`) and
 #: the stack-up model of one output by some dimensions (:class:`~symlink.workshop.tolerance.StackUpModel`).
 FACTS_ENTRY_KIND, MODEL_ENTRY_KIND = "tolerance-facts/1", "tolerance-model/1"
+#: The kind of cache entry of the solver of the output that sampled builds (``--samples``) solve.
+SOLVER_ENTRY_KIND = "tolerance-solver/1"
 #: Besides the code that shapes generated code: what reads a linkage file or an atlas name, what derives a stack-up's
 #: model and what takes the command's facts from the linkage.
 TOLERANCE_SHAPING = ("io/linkage_file", "mechanism/atlas", "mechanism/joints", "workshop/tolerance",
@@ -113,6 +115,7 @@ def stack_up_facts(linkage: Any, source: str, defaults: Mapping[str, float]) -> 
     named = linkage.parameters + linkage.inputs
     return {"name": linkage.name, "source": source, "closed_form": bool(linkage.has_closed_form),
             "inputs": [q.name for q in linkage.inputs], "parameters": [s.name for s in linkage.parameters],
+            "positive": [s.name for s in linkage.parameters if s.is_positive],
             "kinds": parameter_kinds(linkage), "angles": [s.name for s in named if is_angle(linkage, s)],
             "branches": [b.name for b in linkage.branches],
             "last_unknown": linkage.unknowns[-1].name if linkage.unknowns else None,
@@ -121,13 +124,13 @@ def stack_up_facts(linkage: Any, source: str, defaults: Mapping[str, float]) -> 
 
 def _keyed_request(args: argparse.Namespace, name: str) -> dict[str, str] | None:
     """What names the linkage in the keys of the command's cache entries, where the request can be answered from
-    them (a linkage named by a catalog or atlas name or a file's bytes; no masses, pin play or sampled builds: those
-    are derived each time); else None."""
+    them (a linkage named by a catalog or atlas name or a file's bytes; no masses, pin play or builds kept in a
+    folder: those are derived each time); else None."""
     from ..common.names import FORMER_CATALOG_NAMES
     from ..io.scene_text import linkage_request
     dynamics = ("masses", "inertias", "centres", "gravity", "load_torque")
     if (name in FORMER_CATALOG_NAMES or any(getattr(args, option) is not None for option in dynamics) or args.play
-            or args.builds is not None or args.folder is not None):
+            or args.folder is not None):
         return None
     return linkage_request(name)
 
@@ -142,8 +145,9 @@ def run(args: argparse.Namespace) -> int:
 
     A linkage named by a catalog or atlas name or a file is answered from the disk cache: its facts
     (:func:`stack_up_facts`) and the stack-up model of the output by the toleranced dimensions
-    (:class:`~symlink.workshop.tolerance.StackUpModel`) are keyed by what names it, so that a warm stack-up (without
-    masses, pin play or sampled builds) builds no linkage and imports no SymPy; the cold run takes the same path.
+    (:class:`~symlink.workshop.tolerance.StackUpModel`), and with ``--samples`` the output's solver, are keyed by what
+    names it, so that a warm stack-up (without masses, pin play or builds kept in a ``--folder``) builds no linkage
+    and imports no SymPy; the cold run takes the same path.
     """
     import json
     from ..numeric.cache import cached_module, cached_text
@@ -227,6 +231,7 @@ def run(args: argparse.Namespace) -> int:
         from ..numeric.units import output_units
         model = StackUpModel.derive(linkage, [output], dimensions)
         output_unit = output_units(linkage, [output]).get(output)
+    angular = output_unit == "rad"
     result = model.stack_up(values, bands, sigmas, inputs)
     if not result.assembled.any():  # every row would be NaN: refused, as every table command refuses it
         raise ValueError(f"{facts['name']} cannot be assembled at any of the input values asked for with these "
@@ -251,14 +256,27 @@ def run(args: argparse.Namespace) -> int:
             if missing:
                 raise ValueError(f"--folder needs {', '.join(missing)}: {SWEEP_EXTRA} (or leave --folder out: the "
                                  "builds are then made in memory)")
-        from ..workshop.tolerance import sample_builds
-        builds = sample_builds(linkage, output, values, tolerances, inputs=inputs, builds=args.builds,
-                               seed=args.seed, folder=args.folder)
+        if linkage is None:  # the output's solver from the disk cache (derived once): a warm sample imports no SymPy
+            from ..numeric.cached_solver import CachedSolver, entry_text
+            from ..workshop.tolerance import solved_builds
+            assert request is not None  # the linkage is read where the request is not keyed
+            keyed = request
+
+            def solver() -> CachedSolver:
+                return CachedSolver(facts["name"], [output], key=_key(keyed, SOLVER_ENTRY_KIND, [output]),
+                                    derive=lambda: entry_text(read().linkage, [output]))
+            positive = set(facts["positive"])
+            builds = solved_builds(solver, facts["name"], facts["inputs"],
+                                   {name: name in positive for name in facts["parameters"]}, lambda: [angular],
+                                   [output], values, tolerances, inputs=inputs, builds=args.builds, seed=args.seed)
+        else:
+            from ..workshop.tolerance import sample_builds
+            builds = sample_builds(linkage, output, values, tolerances, inputs=inputs, builds=args.builds,
+                                   seed=args.seed, folder=args.folder)
         sampled = builds.percentile([0.135, 99.865])[:, 0]
         if args.folder is not None:
             note(f"{args.builds} builds in {args.folder}: {builds.reused} chunk{'s' if builds.reused != 1 else ''} "
                  "found done there")
-    angular = output_unit == "rad"
     convert = (lambda x: from_radians(x, args.units)) if angular else (lambda x: numpy.asarray(x))  # noqa: E731
     nominal = convert(wrap(result.nominal[0]) if angular else result.nominal[0])
     worst, rss, shift = convert(result.worst_case[0]), convert(result.rss[0]), convert(result.mean_shift[0])

@@ -39,6 +39,9 @@ COMMANDS = {
     "tolerance stack-up of a rate": (
         ["tolerance", "fourbar", "--tolerance", "0.1", "--tolerances", "b=0.2", "--output", "rocker_speed",
          "--crank-speed", "3", "--angles", "0,90", "--format", "csv"], 3),
+    "tolerance stack-up with sampled builds": (["tolerance", "fourbar", "--crank", "20", "--coupler", "66", "--rocker",
+                                                "56", "--ground", "80", "--tolerance", "0.05", "--samples", "1000",
+                                                "--angles", "0,50", "--format", "csv"], 3),
     "tolerance stack-up of a linkage file": (["tolerance", str(PROJECT / "linkages" / "slider-crank.toml"),
                                               "--tolerance", "0.05", "--angles", "0,40", "--format", "csv"], 3),
 }

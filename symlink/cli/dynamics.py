@@ -38,6 +38,7 @@ if TYPE_CHECKING:  # the symbolic side is imported when the options ask for dyna
     from ..symbolic.linkage import Linkage
 
 __all__ = ["MASS_COLUMNS", "FLYWHEEL_COLUMNS", "add_mass_options", "fourbar_dynamics", "fourbar_dynamics_solver",
+           "fourbar_mass_options",
            "register"]
 
 LINKS = ("crank", "coupler", "rocker")
@@ -119,6 +120,13 @@ def _dynamics_asked(args: argparse.Namespace) -> bool:
             raise ValueError(f"--{given[0].replace('_', '-')} needs --masses (the masses of crank, coupler, rocker)")
         return False
     return True
+
+
+def fourbar_mass_options(args: argparse.Namespace, lengths: tuple[float, float, float, float]) -> dict | None:
+    """The dynamics options of ``args`` as plain numbers (what the dynamic model of the four-bar of ``lengths`` is
+    made of, and what keys its cache entries: no SymPy); None without ``--masses``, ``ValueError`` for dynamics
+    options without it or values that cannot be."""
+    return _mass_options(args, lengths) if _dynamics_asked(args) else None
 
 
 def _mass_options(args: argparse.Namespace, lengths: tuple[float, float, float, float]) -> dict:

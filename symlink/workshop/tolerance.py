@@ -63,7 +63,7 @@ if TYPE_CHECKING:  # the symbolic side is imported where a linkage is worked on:
     from ..symbolic.linkage import Linkage
     from ..symbolic.vectors import Vector, VectorSum
 
-__all__ = ["Tolerance", "StackUp", "StackUpModel", "stack_up", "tolerance_arrays", "SIGMAS_PER_BAND", "PinPlay", "pin_play", "with_pin_play",
+__all__ = ["Tolerance", "StackUp", "StackUpModel", "stack_up", "tolerance_arrays", "SIGMAS_PER_BAND", "PinPlay", "pin_play", "with_pin_play", "play_jacobian", "played_pins",
            "PlayEnvelope", "pin_play_envelope",
            "SampledBuilds", "sample_builds", "solved_builds", "MAX_SAMPLED_VALUES", "BUILDS_PER_CHUNK"]
 
@@ -572,16 +572,49 @@ def pin_play(linkage: Linkage, outputs: str | Sequence[str], nominal: Mapping[st
     ((1, 1), True)
     """
     chosen = [outputs] if isinstance(outputs, str) else list(outputs)
+    _check_play(play)
+    return played_pins(play_jacobian(linkage, chosen, list(play)), linkage.name, [q.name for q in linkage.inputs],
+                       nominal, play, inputs)
+
+
+def _check_play(play: Mapping[str, float]) -> None:
+    """``ValueError`` unless ``play`` gives at least one pin a finite play >= 0."""
     if not play:
         raise ValueError("give the radial play of at least one pin")
     for name, value in play.items():
         if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value < 0:
             raise ValueError(f"the play of pin {name} must be a finite number >= 0, got {value!r}")
+
+
+def play_jacobian(linkage: Linkage, outputs: Sequence[str], joints: Sequence[str]) -> DesignJacobian:
+    """The exact derivatives of ``outputs`` by the play vectors (x, y) of the pins ``joints``, at zero play: what
+    :func:`pin_play` evaluates (symbolic work; :meth:`DesignJacobian.entry_text` keeps it in the disk cache, so that
+    a warm ``symlink tolerance --play`` runs it without SymPy through :func:`played_pins`)."""
+    return DesignJacobian(with_pin_play(linkage, list(joints)), list(outputs),
+                          [n for joint in joints for n in _play_names(joint)])
+
+
+def played_pins(jacobian: DesignJacobian, name: str, input_names: Sequence[str], nominal: Mapping[str, float],
+                play: Mapping[str, float], inputs: Mapping[str, object] | None = None) -> PinPlay:
+    """:func:`pin_play` from its :func:`play_jacobian` (derived, or read from a cache entry: no linkage), for the
+    linkage ``name`` with the inputs ``input_names``; the pins are those of ``play``, in the Jacobian's order.
+
+    >>> from symlink.mechanism.catalog import fourbar
+    >>> jacobian = DesignJacobian.from_entry(play_jacobian(fourbar(), ["rocker"], ["B"]).entry_text())
+    >>> found = played_pins(jacobian, "fourbar", ["theta"], {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1},
+    ...                     {"B": 0.01}, inputs={"theta": [0.0]})
+    >>> expected = pin_play(fourbar(), "rocker", {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1}, {"B": 0.01},
+    ...                     inputs={"theta": [0.0]})
+    >>> bool(found.worst_case[0, 0] == expected.worst_case[0, 0] > 0)
+    True
+    """
+    _check_play(play)
+    chosen = list(jacobian.outputs)
     joints = list(play)
-    playing = with_pin_play(linkage, joints)
     names = [n for joint in joints for n in _play_names(joint)]
-    jacobian = DesignJacobian(playing, chosen, names)
-    sweep = _input_values(linkage.name, [q.name for q in linkage.inputs], inputs)
+    if list(jacobian.parameters) != names:
+        raise ValueError(f"the Jacobian is by {', '.join(jacobian.parameters)}, not by the play of {', '.join(joints)}")
+    sweep = _input_values(name, list(input_names), inputs)
     wanted = [name for name in jacobian.arguments if name not in sweep and name not in names]
     missing = [name for name in wanted if name not in nominal]
     if missing:

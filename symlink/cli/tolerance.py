@@ -299,8 +299,9 @@ def run(args: argparse.Namespace) -> int:
                                     derive=lambda: entry_text(read_linkage(), [output]))
             positive = set(facts["positive"])
             builds = solved_builds(solver, facts["name"], facts["inputs"],
-                                   {name: name in positive for name in facts["parameters"]}, lambda: [angular],
-                                   [output], values, tolerances, inputs=inputs, builds=args.builds, seed=args.seed)
+                                   {dimension: dimension in positive for dimension in facts["parameters"]},
+                                   lambda: [angular], [output], values, tolerances, inputs=inputs, builds=args.builds,
+                                   seed=args.seed)
         else:
             from ..workshop.tolerance import sample_builds
             builds = sample_builds(linkage, output, values, tolerances, inputs=inputs, builds=args.builds,

@@ -40,6 +40,20 @@ COMMANDS = {
     "tolerance stack-up of a rate": (
         ["tolerance", "fourbar", "--tolerance", "0.1", "--tolerances", "b=0.2", "--output", "rocker_speed",
          "--crank-speed", "3", "--angles", "0,90", "--format", "csv"], 3),
+    "tolerance stack-up with sampled builds": (["tolerance", "fourbar", "--crank", "20", "--coupler", "66", "--rocker",
+                                                "56", "--ground", "80", "--tolerance", "0.05", "--samples", "1000",
+                                                "--angles", "0,50", "--format", "csv"], 3),
+    "tolerance stack-up of the four-bar with masses": (["tolerance", "fourbar", "--crank", "20", "--coupler", "66",
+                                                        "--rocker", "56", "--ground", "80", "--tolerance", "0.05",
+                                                        "--masses", "1,2,3", "--angles", "0,50", "--format", "csv"], 3),
+    "tolerance stack-up of the driving torque": (["tolerance", "fourbar", "--crank", "0.2", "--coupler", "0.66",
+                                                  "--rocker", "0.56", "--ground", "0.8", "--tolerance", "0.001",
+                                                  "--masses", "1,2,1.5", "--inertias", "0.03,0.07,0.04", "--gravity",
+                                                  "9.81", "--output", "input_torque", "--crank-speed", "31.4",
+                                                  "--angles", "0,50", "--format", "csv"], 3),
+    "tolerance stack-up with the pins' play": (["tolerance", "fourbar", "--crank", "20", "--coupler", "66", "--rocker",
+                                                "56", "--ground", "80", "--tolerance", "0.05", "--play",
+                                                "B=0.02,C=0.02", "--angles", "0,50", "--format", "csv"], 3),
     "tolerance stack-up of a linkage file": (["tolerance", str(PROJECT / "linkages" / "slider-crank.toml"),
                                               "--tolerance", "0.05", "--angles", "0,40", "--format", "csv"], 3),
     "solve plan of a catalog linkage": (["plan", "fourbar"], 3),
@@ -165,6 +179,7 @@ PICTURES = {
     "slider-crank drawn at an angle (draw NAME, PNG)": ["draw", "slider-crank", "--angle", "30", "--out", "d.png"],
     "Stephenson II by its former name, by Newton's method (draw NAME, SVG)": ["draw", "stephenson3", "--out", "s.svg"],
     "animation of a catalog linkage (animate NAME, GIF)": ["animate", "fourbar", "--frames", "3", "--out", "a.gif"],
+    "four-bar table with its transmission-angle plot": [*FOURBAR, "--plot-transmission", "transmission.svg"],
 }
 
 
@@ -352,3 +367,44 @@ def test_a_warm_newton_scene_imports_no_sympy_and_prints_the_same(shared_cache, 
     again = run_twice(tmp_path, ["run", "other.toml"], shared_cache)
     assert not again.imported & {"sympy", "matplotlib"} and again.warm == again.cold
     assert again.warm.splitlines()[1] != runs.warm.splitlines()[1]
+
+
+#: ``symlink flywheel`` of the example of its help (metres, kilograms: N m, J, kg m^2).
+FLYWHEEL = ["flywheel", "--crank", "0.2", "--coupler", "0.66", "--rocker", "0.56", "--ground", "0.8", "--masses",
+            "1,2,1.5", "--inertias", "0.03,0.07,0.04", "--gravity", "9.81", "--load-torque", "-15", "--rpm", "300",
+            "--coefficient", "0.05", "--format", "csv"]
+
+
+def test_a_warm_flywheel_imports_no_sympy_and_prints_the_same(shared_cache, tmp_path):
+    """``symlink flywheel`` runs its equation of motion and driving torque from the disk cache, keyed by the options'
+    numbers: the warm run builds no model and imports no SymPy.  SciPy stays: the speed band integrates the forward
+    dynamics (solve_ivp) and the exact inertia is a root (brentq).  Another ground length is warm too (not in the
+    key: a parameter of the code), and a bad one is refused warm in the cold run's words, exit status 2."""
+    import os
+    import subprocess
+    import sys
+
+    from warm_runs import imported_packages, without_import_times
+    pytest.importorskip("scipy", reason="pip install -e '.[dynamics]'")
+    runs = run_twice(tmp_path, FLYWHEEL, shared_cache)
+    assert "symlink" in runs.imported and "scipy" in runs.imported  # the import list was read, and it integrated
+    assert not runs.imported & {"sympy", "matplotlib", "pandas"}, sorted(runs.imported)
+    assert runs.warm == runs.cold and runs.warm_notes == runs.cold_notes
+    header, row = runs.warm.splitlines()
+    cells = dict(zip(header.split(","), map(float, row.split(","))))
+    assert cells["mean_speed"] == pytest.approx(300 * 2 * math.pi / 60, rel=1e-15)
+    # the textbook flywheel is dE / (Cs w^2), from the printed energy fluctuation (seed-independent arithmetic)
+    assert cells["flywheel_inertia"] == pytest.approx(cells["energy_fluctuation"] / (0.05 * cells["mean_speed"] ** 2),
+                                                      rel=1e-12)
+    other = [*FLYWHEEL]
+    other[other.index("--ground") + 1] = "0.85"
+    again = run_twice(tmp_path, other, shared_cache)  # both runs warm: the first command's entries serve it
+    assert not again.imported & {"sympy", "matplotlib"} and again.warm == again.cold and again.warm != runs.warm
+    bad = [*FLYWHEEL]
+    bad[bad.index("--ground") + 1] = "-0.8"
+    env = {**os.environ, "PYTHONPATH": str(PROJECT), "SYMLINK_CACHE": str(shared_cache)}
+    done = subprocess.run([sys.executable, "-X", "importtime", "-m", "symlink", *bad], capture_output=True, text=True,
+                          env=env, cwd=str(tmp_path), timeout=600)
+    assert done.returncode == 2 and done.stdout == ""
+    assert without_import_times(done.stderr) == "symlink: error: ground must be a positive finite length, got -0.8\n"
+    assert "sympy" not in imported_packages(done.stderr)

@@ -192,7 +192,8 @@ def fourbar_dynamics_solver(args: argparse.Namespace, lengths: tuple[float, floa
         from ..numeric.solver import Solver
         return Solver(dynamic_linkage(fourbar_model(args, lengths)), columns)
 
-    key = catalog_key("fourbar", columns, DYNAMICS_ENTRY_KIND, {"lengths": [float(v) for v in lengths[:3]], **options})
+    key = catalog_key("fourbar", columns, DYNAMICS_ENTRY_KIND, {"lengths": [float(v) for v in lengths[:3]], **options},
+                      ("cli/dynamics",))  # fourbar_model, here, builds the model from the options
     solver = CachedSolver("fourbar", columns, key=key, derive=derive, full=full)
     solver.check_lengths(**named)
     return solver

@@ -83,8 +83,10 @@ _public("symlink.io.pylinkage", "read_pylinkage write_pylinkage")
 _public("symlink.io.pyslvs", "read_pyslvs read_pyslvs_project write_pyslvs")
 _public("symlink.common.files", "write_atomic")
 # analysis
-_public("symlink.analysis", "analyze_linkage fourbar_report grashof GRASHOF_CLASSES limit_positions output_limits "
-        "transmission_range transmission_angles loop_transmissions")
+_public("symlink.analysis", "analyze_linkage grashof GRASHOF_CLASSES output_limits transmission_angles "
+        "loop_transmissions")
+_public("symlink.analysis.fourbar_closed_form", "fourbar_report limit_positions")
+_public("symlink.numeric.fourbar_transmission", "transmission_range")
 _public("symlink.analysis.loopcase", "solve_case")
 # synthesis: the four-bar's own routes and the routes for any linkage
 _public("symlink.synthesis.general", "synthesize_path traced_points")

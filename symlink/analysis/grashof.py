@@ -10,9 +10,8 @@ from typing import Any
 
 import numpy
 
-from ..codegen.numpy import checked_arguments
+from ..common.arguments import check_lengths, checked_arguments
 from ..common.display import record_html
-from ..numeric.solver import check_lengths
 
 __all__ = ["Grashof", "GRASHOF_CLASSES", "grashof", "grashof_names"]
 

@@ -1,7 +1,8 @@
 """Limit positions: where an output stops and turns back as the input moves on (its rate vanishes).
 
 * :func:`limit_positions`: a four-bar's rocker extremes in closed form (crank and
-  coupler in line), with the rocker's stroke and the crank-rocker's time ratio;
+  coupler in line), with the rocker's stroke and the crank-rocker's time ratio (its home is
+  :mod:`~symlink.analysis.fourbar_closed_form`);
 * :func:`output_limits`: the same for any output of any one-input linkage, found
   where the output's rate with respect to the input changes sign (a scan of the
   reachable range, each change bisected to rounding).  They are the dead
@@ -21,107 +22,16 @@ import numpy
 import sympy as sp
 
 from ..common.angles import wrap_angle
-from ..mechanism.catalog import fourbar
 from ..numeric.cache import cache_key, cached_module
 from ..codegen.numpy import numpy_module
 from ..common.display import record_html
 from ..symbolic.linkage import Linkage, Program
 from ..numeric.reachability import BISECTIONS, InputMotion, InputRange, reachable_range
 from ..io.scene import angle_outputs
-from ..numeric.solver import check_lengths, shared_solver
 from ..symbolic.vectors import rate, time_derivative
-from .transmission import triangle_angle
+from .fourbar_closed_form import LimitPositions, limit_positions  # noqa: F401 - their home
 
 __all__ = ["LimitPositions", "limit_positions", "LimitPosition", "OutputLimits", "output_limits"]
-
-
-@dataclass(frozen=True)
-class LimitPositions:
-    """The rocker's extreme positions, where crank and coupler are in line (radians).
-
-    ``extended``: the crank points along the coupler (|AC| = a + b); ``folded``: the
-    crank points back along it.  Angles of crank and rocker in each, on ``branch``.
-    """
-
-    _repr_html_ = record_html  # a notebook shows the fields as a table
-
-    branch: int
-    extended_crank: float
-    extended_rocker: float
-    folded_crank: float
-    folded_rocker: float
-
-    @property
-    def stroke(self) -> float:
-        """The rocker's swing between its extremes."""
-        return abs(wrap_angle(self.folded_rocker - self.extended_rocker))
-
-    @property
-    def crank_turns(self) -> tuple[float, float]:
-        """Crank rotation (counter-clockwise) from extended to folded, and back to extended."""
-        forward = (self.folded_crank - self.extended_crank) % (2 * math.pi)
-        return forward, 2 * math.pi - forward
-
-    @property
-    def time_ratio(self) -> float:
-        """Slow stroke over quick stroke at constant crank speed (1 or more)."""
-        forward, back = self.crank_turns
-        return max(forward, back) / min(forward, back)
-
-
-def limit_positions(a: float, b: float, c: float, d: float, branch: int = 1) -> LimitPositions:
-    """The limit positions of a four-bar on ``branch``, with its stroke and time ratio.
-
-    Crank and coupler are in line when ``|AC|`` is ``a + b`` (extended) or ``|b - a|``
-    (folded); the triangle A, D, C then gives the crank angle in closed form (on branch
-    +1, C lies above the ground line when b > a) and the generated solver gives the rocker
-    angle there.  ``ValueError`` if either limit position cannot be assembled (the rocker
-    of such a linkage stops at toggles instead: see :func:`crank_range`).
-
-    Parameters
-    ----------
-    a, b, c, d : float
-        Crank, coupler, rocker and ground lengths.
-    branch : int, optional
-        The assembly, +1 (default) or -1.
-
-    Returns
-    -------
-    LimitPositions
-        The crank and rocker angles (radians) with crank and coupler extended and folded.
-
-    Raises
-    ------
-    ValueError
-        If either limit position cannot be assembled.
-
-    Examples
-    --------
-    >>> import math, symlink
-    >>> found = symlink.limit_positions(20, 66, 56, 80)  # |AC| = 86 and 46 in the triangle A, D, C
-    >>> [round(math.degrees(x), 2) for x in (found.extended_crank, found.extended_rocker, found.folded_rocker)]
-    [39.22, 103.82, 145.91]
-    """
-    check_lengths(crank=a, coupler=b, rocker=c, ground=d)
-    if branch not in (1, -1):
-        raise ValueError(f"branch must be +1 or -1, got {branch}")
-    if a == b:
-        raise ValueError("crank and coupler are equally long: the folded limit puts C on A")
-    crank = []
-    for reach, folded in ((a + b, False), (abs(b - a), True)):
-        angle = float(triangle_angle(c, reach, d))  # at A, between A->D and A->C
-        if math.isnan(angle):
-            kind = "folded" if folded else "extended"
-            raise ValueError(f"the {kind} limit position (|AC| = {reach:g}) cannot be assembled with "
-                             f"rocker {c:g} and ground {d:g}")
-        # C above the ground line is branch +1, except when folded with a > b, where C is on the crank.
-        side = -branch if folded and a > b else branch
-        crank.append(wrap_angle(side * angle + (math.pi if folded and b > a else 0.0)))
-    solved = shared_solver(fourbar, ("rocker",))(theta=numpy.array(crank), a=a, b=b, c=c, d=d, branch=branch)
-    rocker = [float(value) for value in solved["rocker"]]
-    return LimitPositions(branch, crank[0], rocker[0], crank[1], rocker[1])
-
-
 
 
 # --- any output of any one-input linkage --------------------------------------------------

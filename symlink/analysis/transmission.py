@@ -24,12 +24,12 @@ from typing import Any, Callable, Mapping
 import numpy
 import sympy as sp
 
-from ..common.angles import wrap, wrap_angle
+from ..common.angles import wrap
 from ..mechanism.catalog import fourbar
 from ..common.display import record_html
 from ..symbolic.linkage import Linkage
-from ..symbolic.position import TOLERANCE
-from ..numeric.fourbar_transmission import TransmissionRange, transmission_curve, transmission_range  # noqa: F401
+from ..numeric.fourbar_transmission import (TransmissionRange, transmission_curve, transmission_range,  # noqa: F401
+                                             triangle_angle)
 from ..numeric.reachability import BISECTIONS, InputMotion, InputRange, reachable_range
 from ..numeric.solver import Solver, shared_solver
 from ..symbolic.vectors import Vector
@@ -43,25 +43,6 @@ __all__ = ["triangle_angle", "TransmissionRange", "transmission_range", "transmi
 #: A transmission angle (its worst, ``min(mu, pi - mu)``) below this is flagged: the linkage drives badly near it
 #: (30 degrees, the usual rule of thumb of the textbooks).
 SANE_TRANSMISSION = math.radians(30.0)
-
-
-def triangle_angle(opposite, side1, side2):
-    """The angle between ``side1`` and ``side2`` of a triangle, accurate when it is flat.
-
-    ``atan2`` of Heron's product and the law of cosines, so that angles near 0 and pi
-    keep their digits; NaN where the three lengths make no triangle (beyond rounding).
-    Broadcasts over arrays.
-
-    >>> float(numpy.degrees(triangle_angle(5.0, 3.0, 4.0)))
-    90.0
-    """
-    opposite, side1, side2 = (numpy.asarray(x, dtype=float) for x in (opposite, side1, side2))
-    product = ((side1 + side2 + opposite) * (side1 + side2 - opposite)
-               * (opposite + side1 - side2) * (opposite - side1 + side2))
-    product = numpy.where(product >= -TOLERANCE * (side1 + side2 + opposite) ** 4, numpy.maximum(product, 0.0),
-                          numpy.nan)
-    return numpy.arctan2(numpy.sqrt(product), side1 * side1 + side2 * side2 - opposite * opposite)
-
 
 
 def fourbar_transmission_solver() -> Solver:

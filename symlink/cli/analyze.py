@@ -9,7 +9,7 @@ from ..common.angles import from_radians
 from .options import (add_fourbar_lengths, add_units_option, assignments, command_help, fourbar_lengths,
                       fourbar_or_linkage, linkage_values, require_held_inputs)
 
-#: Fields of :func:`~symlink.analysis.fourbar_report` that are angles (converted to the command's units).
+#: Fields of :func:`~symlink.analysis.fourbar_closed_form.fourbar_report` that are angles (converted to the command's units).
 ANGLE_FIELDS = {"stroke", "transmission_min", "transmission_min_at", "transmission_max", "transmission_max_at",
                 "worst_transmission", "extended_crank", "extended_rocker", "folded_crank", "folded_rocker"}
 
@@ -61,7 +61,7 @@ def _add_options(command: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     if fourbar_or_linkage(args, "analyze", linkage_only=("set", "output")):
         return run_linkage(args)
-    from ..analysis import fourbar_report
+    from ..analysis.fourbar_closed_form import fourbar_report  # closed form: no SymPy, cold or warm
     a, b, c, d = fourbar_lengths(args)
     report = in_units(fourbar_report(a, b, c, d, int(args.branch)), args.units)
     if args.format == "json":

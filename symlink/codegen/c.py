@@ -47,7 +47,8 @@ from sympy.printing.c import C99CodePrinter
 
 from ..version import __version__
 from ..common.names import C_KEYWORDS as RESERVED_IN_C, PLAIN_NAME
-from ..symbolic.position import TOLERANCE, PowerOfTwoBelow
+from ..common.rounding import TOLERANCE
+from ..symbolic.position import PowerOfTwoBelow
 from .numpy import ARGUMENT_CONTRACT
 from .program import require_loop_units, FreshNames, StraightLine, is_flag, named_straight_line
 from .trigonometry import angle_sums

@@ -76,7 +76,7 @@ from ..version import __version__
 from ..common.names import JAVASCRIPT_KEYWORDS, PLAIN_NAME
 from ..mechanism.bodies import PRISMATIC, drawn_points, mechanism
 from ..symbolic.linkage import is_branch_name
-from ..symbolic.position import TOLERANCE
+from ..common.rounding import TOLERANCE
 from .numpy import sum_text
 from .program import FreshNames, is_flag, require_loop_units, straight_line
 from .trigonometry import angle_sums

@@ -32,7 +32,7 @@ from sympy.printing.octave import OctaveCodePrinter
 from ..version import __version__
 from ..symbolic.linkage import is_branch_name
 from ..common.names import OCTAVE_KEYWORDS, PLAIN_NAME
-from ..symbolic.position import TOLERANCE
+from ..common.rounding import TOLERANCE
 from .numpy import ARGUMENT_CONTRACT
 from .program import require_loop_units, format_default, is_flag, named_straight_line
 

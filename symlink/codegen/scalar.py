@@ -23,7 +23,7 @@ from typing import Sequence
 from sympy.printing.pycode import PythonCodePrinter
 
 from ..symbolic.linkage import Program
-from ..symbolic.position import TOLERANCE
+from ..common.rounding import TOLERANCE
 from .program import require_loop_units, straight_line
 
 __all__ = ["ScalarPrinter", "scalar_module"]

@@ -1,12 +1,12 @@
-"""The four-bar's transmission angle over its crank turn, in closed form: SymPy-free once its solver is cached.
+"""The four-bar's transmission angle over its crank turn, in closed form: SymPy-free (its curve once cached).
 
 The transmission angle mu is the interior angle at C between coupler and rocker, the same on both branches,
-from the triangle over the diagonal BD.  :func:`transmission_curve` evaluates it along crank angles and
-:func:`transmission_range` finds its extremes over the reachable turn, both with the catalog four-bar's
-generated solver of ``transmission`` from the disk cache
+from the triangle over the diagonal BD.  :func:`transmission_curve` evaluates it along crank angles with the
+catalog four-bar's generated solver of ``transmission`` from the disk cache
 (:class:`~symlink.numeric.cached_solver.CachedSolver`, NumPy only), so that a warm drawing of it
-(``symlink fourbar --plot-transmission``) imports no SymPy.  :mod:`symlink.analysis.transmission` (the
-transmission angle of any linkage) shows these under its name too.
+(``symlink fourbar --plot-transmission``) imports no SymPy; :func:`transmission_range` finds its extremes
+over the reachable turn in closed form (:func:`triangle_angle` of the triangle over BD: no solver, no cache).
+:mod:`symlink.analysis.transmission` (the transmission angle of any linkage) shows these under its name too.
 
 >>> [round(math.degrees(x), 2) for x in transmission_curve(20, 66, 56, 80, [0.0, math.pi])]
 [58.23, 109.83]
@@ -20,11 +20,34 @@ from functools import lru_cache
 import numpy
 
 from ..common.angles import wrap_angle
+from ..common.arguments import check_lengths
 from ..common.display import record_html
+from ..common.rounding import TOLERANCE
 from .cached_solver import CachedSolver
 from .crank_ranges import closing_crank_range
 
-__all__ = ["TransmissionRange", "transmission_range", "transmission_curve", "transmission_solver"]
+__all__ = ["triangle_angle", "TransmissionRange", "transmission_range", "transmission_curve", "transmission_solver"]
+
+
+def triangle_angle(opposite, side1, side2, clamp: bool = False):
+    """The angle between ``side1`` and ``side2`` of a triangle, accurate when it is flat.
+
+    ``atan2`` of Heron's product and the law of cosines, so that angles near 0 and pi
+    keep their digits; NaN where the three lengths make no triangle (beyond rounding),
+    or with ``clamp`` the flat angle they come nearest to (0 or pi): for a triangle
+    known to close, whose lengths only round past flat.  Broadcasts over arrays.
+
+    >>> float(numpy.degrees(triangle_angle(5.0, 3.0, 4.0)))
+    90.0
+    >>> float(triangle_angle(2.0, 0.5, 1.0)), float(triangle_angle(2.0, 0.5, 1.0, clamp=True))  # 2 > 0.5 + 1
+    (nan, 3.141592653589793)
+    """
+    opposite, side1, side2 = (numpy.asarray(x, dtype=float) for x in (opposite, side1, side2))
+    product = ((side1 + side2 + opposite) * (side1 + side2 - opposite)
+               * (opposite + side1 - side2) * (opposite - side1 + side2))
+    if not clamp:
+        product = numpy.where(product >= -TOLERANCE * (side1 + side2 + opposite) ** 4, product, numpy.nan)
+    return numpy.arctan2(numpy.sqrt(numpy.maximum(product, 0.0)), side1 * side1 + side2 * side2 - opposite * opposite)
 
 
 @lru_cache(maxsize=1)
@@ -59,11 +82,13 @@ class TransmissionRange:
 def transmission_range(a: float, b: float, c: float, d: float) -> TransmissionRange:
     """Extremes of the transmission angle mu over every crank angle the four-bar reaches.
 
-    ``|BD|^2 = b^2 + c^2 - 2 b c cos(mu) = a^2 + d^2 - 2 a d cos(theta)``: mu grows with
-    |BD|, which falls with cos(theta).  So mu is smallest at theta = 0 and largest at
-    theta = pi when the crank gets there, and otherwise at the ends of the crank's range
-    (the toggles, where mu is 0 or pi).  It is the same on both branches; the generated
-    solver evaluates it at those crank angles.
+    By the law of cosines in the triangles B, C, D and A, B, D, the square of the length of BD is
+    ``b^2 + c^2 - 2 b c cos(mu) = a^2 + d^2 - 2 a d cos(theta)``: mu grows with that length, which
+    falls with cos(theta).  So mu is smallest at theta = 0 and largest at theta = pi
+    when the crank gets there (there BD is ``|d - a|`` and ``d + a`` long, and mu
+    is the triangle's angle at C, clamped to 0 or pi where it rounds flat), and
+    otherwise at the ends of the crank's range (the toggles, where mu is 0 or pi).
+    It is the same on both branches.
 
     Parameters
     ----------
@@ -78,18 +103,19 @@ def transmission_range(a: float, b: float, c: float, d: float) -> TransmissionRa
     Examples
     --------
     >>> import math, symlink
-    >>> found = symlink.transmission_range(20, 66, 56, 80)  # |BD| = 60 at theta = 0, 100 at pi
+    >>> found = symlink.transmission_range(20, 66, 56, 80)  # BD is 60 long at theta = 0, 100 at pi
     >>> round(math.degrees(found.minimum), 2), round(math.degrees(found.maximum), 2), found.maximum_at
     (58.23, 109.83, 3.141592653589793)
+    >>> found = symlink.transmission_range(2, 1, 1, 2)  # B on D at theta = 0; BD = b + c at the toggles
+    >>> found.minimum, found.minimum_at, round(math.degrees(found.maximum), 4), round(math.degrees(found.maximum_at), 4)
+    (0.0, 0.0, 180.0, -60.0)
     """
-    transmission_solver().check_lengths(crank=a, coupler=b, rocker=c, ground=d)
+    check_lengths(crank=a, coupler=b, rocker=c, ground=d)
     spans = closing_crank_range(a, b, c, d)
     candidates: dict[float, float] = {}
-    reachable = [x for x in (0.0, math.pi) if any(lo <= x <= hi or lo <= x - 2 * math.pi <= hi
-                                                  for lo, hi in spans)]
-    if reachable:
-        solved = transmission_solver()(theta=numpy.array(reachable), a=a, b=b, c=c, d=d, branch=1)
-        candidates.update(zip(reachable, (float(mu) for mu in solved["transmission"])))
+    for theta, diagonal in ((0.0, abs(d - a)), (math.pi, d + a)):
+        if any(lo <= theta <= hi or lo <= theta - 2 * math.pi <= hi for lo, hi in spans):
+            candidates[theta] = float(triangle_angle(diagonal, b, c, clamp=True))
     if spans != [(-math.pi, math.pi)]:
         far = math.acos(max((a * a + d * d - (b + c) ** 2) / (2 * a * d), -1.0))
         for lo, hi in spans:  # toggles: coupler and rocker in line

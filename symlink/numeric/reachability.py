@@ -34,7 +34,8 @@ from ..codegen.numpy import checked_arguments, numpy_module
 from ..codegen.program import in_loop_units
 from ..common.display import record_html
 from ..symbolic.linkage import Linkage
-from ..symbolic.position import TOLERANCE, ClampedSqrt
+from ..common.rounding import TOLERANCE
+from ..symbolic.position import ClampedSqrt
 from .solver import NumericSolver, Solver, check_lengths
 from ..symbolic.vectors import rate
 

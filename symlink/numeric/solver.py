@@ -41,7 +41,7 @@ import numpy
 from .cache import cache_key, cached_module, cached_text, generated_code
 from .call_arguments import check_argument_names, required_arguments
 from ..codegen import newton
-from ..codegen.numpy import checked_arguments
+from ..common.arguments import check_lengths, checked_arguments  # noqa: F401 - check_lengths' home is common
 from .input_sweep import crank_speeds  # noqa: F401 - its home is input_sweep (no SymPy); kept here for callers
 from ..common.limits import require_memory
 from ..symbolic.linkage import Linkage, Program, is_branch_name
@@ -52,16 +52,6 @@ from ..symbolic.vectors import acceleration, rate
 SolverOrNumeric = TypeVar("SolverOrNumeric", "Solver", "NumericSolver")
 
 __all__ = ["Solver", "NumericSolver", "shared_solver", "settled", "check_lengths", "crank_speeds"]
-
-
-def check_lengths(**lengths: float) -> None:
-    """``ValueError`` naming the first length that is not a positive finite (real) number.
-
-    >>> check_lengths(crank=20.0, rocker=[56.0, -1.0])
-    Traceback (most recent call last):
-    ValueError: rocker must be a positive finite length, got -1.0
-    """
-    checked_arguments(list(lengths), list(lengths.values()), lengths=list(lengths))
 
 
 class Solver:

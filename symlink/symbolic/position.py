@@ -39,15 +39,10 @@ from typing import Sequence
 
 import sympy as sp
 
+from ..common.rounding import TOLERANCE  # its home (SymPy-free); kept here for the symbolic layer
 from .loops import Loop, LoopCase, Unknown
 
 __all__ = ["ClampedSqrt", "NonzeroSquare", "PowerOfTwoBelow", "LoopSolution", "solve_loop", "TOLERANCE"]
-
-#: Relative size below which a negative square-root argument is rounding, not
-#: a configuration that cannot be assembled: with the scales the cases give
-#: (see ``_rounding_size``), inputs within ``TOLERANCE`` times the loop's size of
-#: a toggle are taken as at the toggle (about 45 units in the last place).
-TOLERANCE = 1e-14
 
 
 class ClampedSqrt(sp.Function):

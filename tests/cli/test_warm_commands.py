@@ -20,6 +20,8 @@ FOURBAR = ["fourbar", "--crank", "20", "--coupler", "66", "--rocker", "56", "--g
 STEPHENSON2 = ["--crank", "1", "--coupler", "3.1", "--link-cf", "2.2", "--ground", "4.5", "--coupler-arm", "3.9",
                "--rocker", "3.1", "--link-eh", "4.1", "--rocker-arm", "3.1", "--coupler-arm-angle", "51.5",
                "--rocker-arm-angle", "17.2", "--angles", "0,50", "--format", "csv"]
+#: The four-bar of seed 003 analysed by its lengths (closed form: nothing derived, nothing cached).
+ANALYZE = ["analyze", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80"]
 #: Command lines by what they show; the number of output lines each prints (a header and its rows).
 COMMANDS = {
     "four-bar": (FOURBAR, 5),
@@ -58,6 +60,10 @@ COMMANDS = {
                                               "--tolerance", "0.05", "--angles", "0,40", "--format", "csv"], 3),
     "solve plan of a catalog linkage": (["plan", "fourbar"], 3),
     "solve plan of a linkage file (two loops)": (["plan", str(PROJECT / "linkages" / "watt2.toml")], 4),
+    "analyze a four-bar by its lengths": (ANALYZE, 8),
+    "analyze a four-bar by its lengths, in JSON": (ANALYZE + ["--format", "json", "--units", "rad"], None),
+    "analyze a four-bar on branch -1 that does not turn fully": (
+        ["analyze", "--crank", "60", "--coupler", "30", "--rocker", "50", "--ground", "40", "--branch", "-1"], 6),
 }
 SLOW_COMMANDS = {
     "inverted slider-crank": (["inverted-slider-crank", "--crank", "2", "--ground", "1.2", "--crank-speed", "3",
@@ -408,3 +414,17 @@ def test_a_warm_flywheel_imports_no_sympy_and_prints_the_same(shared_cache, tmp_
     assert done.returncode == 2 and done.stdout == ""
     assert without_import_times(done.stderr) == "symlink: error: ground must be a positive finite length, got -0.8\n"
     assert "sympy" not in imported_packages(done.stderr)
+
+
+def test_analyze_by_lengths_derives_nothing_and_imports_no_sympy_even_cold(tmp_path):
+    """``symlink analyze --crank ...`` is closed-form geometry: in a fresh cache both runs print the same, neither
+    writes a cache entry, and the second imports no SymPy.  The change-point four-bar 2, 1, 1, 2 (B passes over D
+    at crank 0) used to print nan for its transmission angle: by hand the triangle over BD is flat there (BD = 0,
+    mu = 0), and its crank stops where cos(theta) = (4 + 4 - 4) / 8, at 60 degrees, where BD = b + c (mu = 180)."""
+    runs = run_twice(tmp_path, ["analyze", "--crank", "2", "--coupler", "1", "--rocker", "1", "--ground", "2"])
+    assert not runs.imported & {"sympy", "matplotlib", "scipy"}
+    assert runs.warm == runs.cold and runs.warm_notes == runs.cold_notes == ""
+    assert not list((tmp_path / "cache").glob("*.json"))  # nothing derived
+    assert "nan" not in runs.warm
+    assert runs.warm.splitlines()[-1] == "transmission angle   0.0000 at crank 0.0000 to 180.0000 at crank -60.0000 deg"
+    assert "crank range          [-60.0000, 0.0000] deg, [0.0000, 60.0000] deg" in runs.warm

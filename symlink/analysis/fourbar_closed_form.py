@@ -81,6 +81,12 @@ def crank_spans(a: float, b: float, c: float, d: float) -> list[tuple[float, flo
     >>> [tuple(round(math.degrees(x), 4) + 0.0 for x in span) for span in crank_spans(2, 1, 1, 2)]  # B on D at 0
     [(-60.0, 0.0), (0.0, 60.0)]
     """
+    return _spans_and_toggles(a, b, c, d)[0]
+
+
+def _spans_and_toggles(a: float, b: float, c: float, d: float) -> tuple[list[tuple[float, float]], list[float]]:
+    """:func:`crank_spans`, and the toggles at their ends in (-pi, pi] ascending (none for a full turn); the end
+    of a span past pi is named a turn earlier, as the general analysis names it (from -pi, the scan's start)."""
     check_lengths(crank=a, coupler=b, rocker=c, ground=d)
     closing_crank_range(a, b, c, d)  # ValueError where it closes at no crank angle
     lowest = (a * a + d * d - (b + c) ** 2) / (2 * a * d)   # cos(theta) at the extended toggle
@@ -88,12 +94,12 @@ def crank_spans(a: float, b: float, c: float, d: float) -> list[tuple[float, flo
     far, near = math.acos(min(max(lowest, -1.0), 1.0)), math.acos(min(max(highest, -1.0), 1.0))
     at_zero, at_half_turn = _closes_at(a, b, c, d, 0.0), _closes_at(a, b, c, d, -math.pi)
     if at_zero and at_half_turn:
-        return [(-math.pi, math.pi)]
+        return [(-math.pi, math.pi)], []
     if at_zero:
-        return [(-far, far)]
+        return [(-far, far)], [-far, far]
     if at_half_turn:
-        return [(near, 2 * math.pi - near)]
-    return [(-far, -near), (near, far)]
+        return [(near, 2 * math.pi - near)], [-near, near]
+    return [(-far, -near), (near, far)], [-far, -near, near, far]
 
 
 # --- limit positions ----------------------------------------------------------------------
@@ -216,11 +222,10 @@ def fourbar_report(a: float, b: float, c: float, d: float, branch: int = 1) -> d
     >>> report["grashof"], report["dof"], round(math.degrees(report["transmission_min"]), 2)
     ('crank-rocker', 1, 58.23)
     """
-    spans = crank_spans(a, b, c, d)  # ValueError for bad lengths or a four-bar that closes nowhere
+    spans, toggles = _spans_and_toggles(a, b, c, d)  # ValueError for bad lengths or a four-bar that closes nowhere
     if branch not in (1, -1):
         raise ValueError(f"branch must be +1 or -1, got {branch}")
     kind = grashof(a, b, c, d)
-    full_turn = spans == [(-math.pi, math.pi)]
     transmission = transmission_range(a, b, c, d)
     swing = limit_positions(a, b, c, d, branch) if kind.name == "crank-rocker" else None
     return {
@@ -229,7 +234,7 @@ def fourbar_report(a: float, b: float, c: float, d: float, branch: int = 1) -> d
         "grashof": kind.name, "shortest": kind.shortest, "longest": kind.longest,
         "shortest_plus_longest": kind.shortest_plus_longest, "other_two": kind.other_two,
         "crank_range": spans,
-        "toggles": [] if full_turn else sorted(wrap_angle(end) for span in spans for end in span),
+        "toggles": toggles,
         "limit_positions": None if swing is None else {
             "extended_crank": swing.extended_crank, "extended_rocker": swing.extended_rocker,
             "folded_crank": swing.folded_crank, "folded_rocker": swing.folded_rocker},

@@ -120,6 +120,15 @@ def test_crank_spans_cut_where_b_passes_over_d():
     assert len(beside) == 1 and beside[0] == pytest.approx((-math.pi / 3, math.pi / 3), abs=1e-8)
 
 
+def test_a_four_bar_that_closes_only_at_half_a_turn():
+    """Crank 2, coupler 6, rocker 2, ground 2: at theta = pi BD is a + d = 4 = b - c long, the triangle over it
+    flat; anywhere else BD is shorter and the coupler cannot reach.  Its range is that one angle, whose two ends
+    are named -pi and pi (the general analysis scans from -pi)."""
+    report = fourbar_report(2.0, 6.0, 2.0, 2.0)
+    assert report["crank_range"] == [(math.pi, math.pi)] and report["toggles"] == [-math.pi, math.pi]
+    assert (report["transmission_min"], report["transmission_max"]) == (0.0, 0.0)
+
+
 # --- bad input -------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("call, message", [

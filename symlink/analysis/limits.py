@@ -18,18 +18,19 @@ import math
 from dataclasses import dataclass
 from typing import Any, Callable, Mapping
 
+from typing import TYPE_CHECKING
+
 import numpy
-import sympy as sp
 
 from ..common.angles import wrap_angle
 from ..numeric.cache import cache_key, cached_module
-from ..codegen.numpy import numpy_module
 from ..common.display import record_html
-from ..symbolic.linkage import Linkage, Program
+from ..numeric.cached_linkage import CachedLinkage
 from ..numeric.reachability import BISECTIONS, InputMotion, InputRange, reachable_range
-from ..io.scene import angle_outputs
-from ..symbolic.vectors import rate, time_derivative
 from .fourbar_closed_form import LimitPositions, limit_positions  # noqa: F401 - their home
+
+if TYPE_CHECKING:  # the symbolic layer is imported where an output is derived: a cached linkage needs none of it
+    from ..symbolic.linkage import Linkage
 
 __all__ = ["LimitPositions", "limit_positions", "LimitPosition", "OutputLimits", "output_limits"]
 
@@ -70,23 +71,45 @@ _OUTPUT_FUNCTIONS: dict[str, Callable[..., dict]] = {}
 
 def _output_function(linkage: Linkage, output: str) -> Callable[..., dict]:
     """Generated code of an output and its time derivative from the coordinates and their rates (kept by key)."""
+    check_position_output(linkage, output)
+    key = cache_key(linkage, [output], "output-and-rate")
+    if key not in _OUTPUT_FUNCTIONS:
+        _OUTPUT_FUNCTIONS[key] = cached_module(key, lambda: output_text(linkage, output))[1]["output"]
+    return _OUTPUT_FUNCTIONS[key]
+
+
+def check_position_output(linkage: Linkage, output: str) -> None:
+    """``ValueError`` unless ``output`` is a position output of ``linkage`` (a coordinate, role, point coordinate
+    or extra; not a rate, nor the singularity flag)."""
+    import sympy as sp
     expr = linkage.output(output)
     if any(isinstance(s, sp.Symbol) and s.name.endswith("dot") and s not in linkage.coordinates
            for s in getattr(expr, "free_symbols", ())) or output == "singular":
         raise ValueError(f"{output!r} is not a position output of {linkage.name}; give a coordinate, role, "
                          "point coordinate or extra")
-    key = cache_key(linkage, [output], "output-and-rate")
-    if key not in _OUTPUT_FUNCTIONS:
-        def build() -> str:
-            coordinates = linkage.coordinates
-            arguments = tuple(coordinates) + tuple(rate(q) for q in coordinates) + tuple(linkage.parameters)
-            program = Program(arguments, (), {"value": expr, "rate": time_derivative(expr, coordinates)})
-            return numpy_module([("output", program, f"{linkage.name}: {output} and its rate.")])
-        _OUTPUT_FUNCTIONS[key] = cached_module(key, build)[1]["output"]
-    return _OUTPUT_FUNCTIONS[key]
 
 
-def output_limits(linkage: Linkage, values: Mapping[str, float], output: str, *, input: str | None = None,
+def output_text(linkage: Linkage, output: str) -> str:
+    """The NumPy module of :func:`_output_function` (function ``output``: ``value`` and ``rate``), derived with
+    SymPy: a cached analysis keeps it."""
+    from ..codegen.numpy import numpy_module
+    from ..symbolic.linkage import Program
+    from ..symbolic.vectors import rate, time_derivative
+    expr = linkage.output(output)
+    coordinates = linkage.coordinates
+    arguments = tuple(coordinates) + tuple(rate(q) for q in coordinates) + tuple(linkage.parameters)
+    program = Program(arguments, (), {"value": expr, "rate": time_derivative(expr, coordinates)})
+    return numpy_module([("output", program, f"{linkage.name}: {output} and its rate.")])
+
+
+def is_angle_output(linkage: Linkage, output: str) -> bool:
+    """Whether ``output`` of ``linkage`` is an angle (:func:`~symlink.io.scene.angle_outputs`)."""
+    from ..io.scene import angle_outputs
+    return output in angle_outputs(linkage, [output])
+
+
+def output_limits(linkage: Linkage | CachedLinkage, values: Mapping[str, float], output: str, *,
+                  input: str | None = None,
                   reach: InputRange | None = None, motion: InputMotion | None = None,
                   points: int = 3600) -> OutputLimits:
     """Where ``output`` reaches its extremes as the input moves over its reachable range (radians).
@@ -127,7 +150,10 @@ def output_limits(linkage: Linkage, values: Mapping[str, float], output: str, *,
     """
     motion = InputMotion(linkage, values, input=input) if motion is None else motion
     reach = reachable_range(linkage, values, motion=motion) if reach is None else reach
-    function = _output_function(linkage, output)
+    if isinstance(linkage, CachedLinkage):  # generated code and facts from the disk cache: no SymPy
+        function, angle = linkage.output(output)
+    else:
+        function, angle = _output_function(linkage, output), is_angle_output(linkage, output)
     held = {q.name: motion.values[q.name] for q in linkage.inputs if q.name != motion.input}
     parameters = {s.name: motion.values[s.name] for s in linkage.parameters}
 
@@ -135,7 +161,7 @@ def output_limits(linkage: Linkage, values: Mapping[str, float], output: str, *,
         solved = motion.at(inputs)
         arguments: dict[str, Any] = {name: solved[name] for name in motion.names + motion.rates}
         arguments.update({motion.input: inputs, **held, **parameters})
-        arguments.update({rate(q).name: (1.0 if q.name == motion.input else 0.0) for q in linkage.inputs})
+        arguments.update(motion.speeds)  # the moving input's rate 1, the others' 0
         with numpy.errstate(all="ignore"):
             found = function(**arguments)
         return numpy.asarray(found["value"], dtype=float), numpy.asarray(found["rate"], dtype=float)
@@ -168,7 +194,6 @@ def output_limits(linkage: Linkage, values: Mapping[str, float], output: str, *,
             value = float(value_and_rate(numpy.array([at]))[0][0])
             positions.append(LimitPosition(at, value, "maximum" if rising else "minimum"))
     positions.sort(key=lambda p: p.at)
-    angle = output in angle_outputs(linkage, [output])
     stroke = time_ratio = None
     if reach.full_turn and len(positions) == 2:
         first, second = positions

@@ -6,6 +6,7 @@ limit positions of the rocker as :func:`analyze_linkage` of the catalog's four-b
 by its scan, plus what only a four-bar has: its Grashof class, and its transmission
 extremes over the diagonal (exactly at crank angles 0 and pi where it gets there).
 
+>>> from symlink.mechanism.catalog import fourbar
 >>> report = analyze_linkage(fourbar(), dict(a=20, b=66, c=56, d=80), output="rocker")
 >>> report.reach.full_turn, report.mobility.dof, round(math.degrees(report.limits.stroke), 4)
 (True, 1, 42.0886)
@@ -14,18 +15,20 @@ from __future__ import annotations
 
 import math  # noqa: F401 - the doctests' namespace
 from dataclasses import dataclass
-from typing import Mapping
+from typing import TYPE_CHECKING, Any, Mapping
 
-from ..mechanism.catalog import fourbar  # noqa: F401 - the doctests' namespace
 from ..common.display import record_html
-from ..symbolic.linkage import Linkage
+from ..numeric.cached_linkage import CachedLinkage
 from ..numeric.reachability import SCAN_POINTS, InputMotion, InputRange, reachable_range
 from .limits import OutputLimits, output_limits
-from ..mechanism.mobility import Mobility, degrees_of_freedom
+from ..mechanism.mobility import Mobility
 from .transmission import LoopTransmission, loop_transmissions
 from .fourbar_closed_form import fourbar_report  # noqa: F401 - its home (closed form, SymPy-free)
 
-__all__ = ["LinkageReport", "analyze_linkage", "fourbar_report"]
+if TYPE_CHECKING:  # the symbolic layer is imported where a linkage is derived: a cached linkage needs none of it
+    from ..symbolic.linkage import Linkage
+
+__all__ = ["LinkageReport", "analyze_linkage", "fourbar_report", "analysis_facts"]
 
 
 @dataclass(frozen=True)
@@ -48,7 +51,7 @@ class LinkageReport:
     limits: OutputLimits | None
 
 
-def analyze_linkage(linkage: Linkage, values: Mapping[str, float], output: str | None = None, *,
+def analyze_linkage(linkage: Linkage | CachedLinkage, values: Mapping[str, float], output: str | None = None, *,
                     input: str | None = None, guess: Mapping[str, float] | None = None, start: float = 0.0,
                     interval: tuple[float, float] | None = None, points: int = SCAN_POINTS,
                     numeric: bool = False) -> LinkageReport:
@@ -64,8 +67,9 @@ def analyze_linkage(linkage: Linkage, values: Mapping[str, float], output: str |
 
     Parameters
     ----------
-    linkage : Linkage
-        A linkage with one moving input.
+    linkage : Linkage or CachedLinkage
+        A linkage with one moving input, or its facts and code from the disk cache
+        (:class:`~symlink.numeric.cached_linkage.CachedLinkage`: no SymPy; closed form, the first input).
     values : mapping of str to float
         Every parameter, branch signs (default +1) and the inputs other than the moving one.
     output : str, optional
@@ -109,5 +113,45 @@ def analyze_linkage(linkage: Linkage, values: Mapping[str, float], output: str |
     transmission = loop_transmissions(linkage, values, reach=reach, motion=motion, points=points)
     limits = None if output is None else output_limits(linkage, values, output, reach=reach, motion=motion,
                                                        points=points)
-    return LinkageReport(linkage.name, motion.input, dict(motion.values), degrees_of_freedom(linkage), reach,
-                         transmission, limits)
+    if isinstance(linkage, CachedLinkage):
+        mobility = Mobility(**linkage.mobility)
+    else:
+        from ..mechanism.mobility import degrees_of_freedom
+        mobility = degrees_of_freedom(linkage)
+    return LinkageReport(linkage.name, motion.input, dict(motion.values), mobility, reach, transmission, limits)
+
+
+def analysis_facts(linkage: Linkage) -> dict[str, Any]:
+    """What :func:`analyze_linkage` needs of ``linkage`` beyond its solver and generated code, as plain data (JSON):
+    the facts of a :class:`~symlink.numeric.cached_linkage.CachedLinkage` (with the first input moving).
+
+    Derived once with SymPy and kept in the disk cache by ``symlink analyze NAME|FILE``: names (inputs, parameters
+    and the lengths among them, branch signs, unknowns, rates, the angles), whether it has a closed form, its
+    mobility, the margins of its clamped roots (:func:`~symlink.numeric.reachability.margin_roots`) and the joints
+    of its two-angle loops (:func:`~symlink.analysis.transmission.joint_recipe`).
+
+    >>> from symlink.mechanism.catalog import fourbar
+    >>> facts = analysis_facts(fourbar())
+    >>> facts["unknowns"], facts["roots"], facts["joints"][0]["name"], facts["mobility"]["links"]
+    (['beta', 'phi'], [['margin_0', 'ABCD']], 'DC/BC', 4)
+    """
+    from ..mechanism.mobility import degrees_of_freedom
+    from ..numeric.reachability import margin_roots
+    from ..symbolic.closure import is_angle
+    from ..symbolic.vectors import rate
+    from .transmission import joint_recipe, transmission_joints
+    named = linkage.parameters + linkage.inputs
+    closed = bool(linkage.has_closed_form)
+    known = [s.name for s in linkage.parameters + linkage.inputs[1:] + linkage.branches]
+    mobility = degrees_of_freedom(linkage)
+    return {
+        "name": linkage.name, "closed_form": closed,
+        "inputs": [q.name for q in linkage.inputs], "parameters": [s.name for s in linkage.parameters],
+        "positive": [s.name for s in linkage.parameters if s.is_positive],
+        "branches": [s.name for s in linkage.branches], "unknowns": [q.name for q in linkage.unknowns],
+        "angles": [s.name for s in named if is_angle(linkage, s)],
+        "rates": {q.name: rate(q).name for q in linkage.unknowns + linkage.inputs},
+        "mobility": {"links": mobility.links, "revolute": mobility.revolute, "prismatic": mobility.prismatic},
+        "roots": [list(root) for root in margin_roots(linkage)] if closed else [],
+        "joints": [joint_recipe(joint, known) for joint in transmission_joints(linkage)] if closed else [],
+    }

@@ -19,20 +19,23 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import Any, Callable, Mapping
+from typing import TYPE_CHECKING, Any, Callable, Collection, Mapping
 
 import numpy
-import sympy as sp
 
 from ..common.angles import wrap
-from ..mechanism.catalog import fourbar
 from ..common.display import record_html
-from ..symbolic.linkage import Linkage
+from ..numeric.cached_linkage import CachedLinkage
 from ..numeric.fourbar_transmission import (TransmissionRange, transmission_curve, transmission_range,  # noqa: F401
                                              triangle_angle)
 from ..numeric.reachability import BISECTIONS, InputMotion, InputRange, reachable_range
-from ..numeric.solver import Solver, shared_solver
-from ..symbolic.vectors import Vector
+
+if TYPE_CHECKING:  # the symbolic layer and the solvers are imported where used: a cached linkage needs neither
+    import sympy as sp
+
+    from ..numeric.solver import Solver
+    from ..symbolic.linkage import Linkage
+    from ..symbolic.vectors import Vector
 
 __all__ = ["triangle_angle", "TransmissionRange", "transmission_range", "transmission_curve",
            "TransmissionJoint", "transmission_joints", "transmission_angles", "LoopTransmission",
@@ -49,6 +52,8 @@ def fourbar_transmission_solver() -> Solver:
     """The four-bar's transmission-angle solver, shared in a process: the one home of that request, so that a
     caller who needs its answers bit for bit the same over a search can settle its backend first
     (:func:`symlink.numeric.solver.settled`)."""
+    from ..mechanism.catalog import fourbar
+    from ..numeric.solver import shared_solver
     return shared_solver(fourbar, ("transmission",))
 
 
@@ -90,6 +95,7 @@ def transmission_joints(linkage: Linkage) -> tuple[TransmissionJoint, ...]:
     when the loop is written in walking order, as every catalog loop is; if they
     do not, they are taken to meet head to head, as coupler and rocker do at C.
 
+    >>> from symlink.mechanism.catalog import fourbar
     >>> [(j.loop, j.name) for j in transmission_joints(fourbar())]
     [('ABCD', 'DC/BC')]
     """
@@ -125,34 +131,85 @@ def transmission_joints(linkage: Linkage) -> tuple[TransmissionJoint, ...]:
     return tuple(joints)
 
 
-def _direction(sign: int, vector: Vector, values: Mapping[str, float], solved: Mapping[str, numpy.ndarray]):
-    """The walked direction of a vector (radians) and its rate, from solved coordinates and values."""
+def _linear_terms(expr: sp.Expr, what: str) -> list[list]:
+    """``expr`` as ``[[coefficient, name or None], ...]``: a sum of multiples of named values and a constant, in a
+    fixed order (the constant first, then by name), so that every process adds them alike."""
+    import sympy as sp
+    terms: list[list] = []
+    for term, coefficient in sp.expand(expr).as_coefficients_dict().items():
+        if term.is_number:
+            terms.append([float(coefficient * term), None])
+        elif isinstance(term, sp.Symbol):
+            terms.append([float(coefficient), term.name])
+        else:
+            raise ValueError(f"the {what} is not a sum of multiples of the linkage's values: {expr}")
+    return sorted(terms, key=lambda t: (t[1] is not None, t[1] or ""))
+
+
+def _sum_of_terms(terms: list, values: Mapping[str, float]) -> float:
+    total = 0.0
+    for coefficient, name in terms:
+        total += coefficient if name is None else coefficient * values[name]
+    return total
+
+
+def direction_recipe(sign: int, vector: Vector, known: Collection[str]) -> dict[str, Any]:
+    """How a walked vector's direction follows from solved coordinates and ``known`` values, as plain data (JSON).
+
+    ``coordinate``: the one coordinate its angle turns with (None for a guide at a fixed angle); ``offset``: the
+    rest of its angle, and ``length``: its length where the values fix it (its sign turns it half a turn), each a
+    sum of multiples of named values (:func:`_linear_terms`); ``sign``: walked forwards (+1) or back (-1, half a
+    turn more).  A cached analysis keeps it, so that a warm one needs no SymPy.
+    """
+    import sympy as sp
     angle = vector.angle
-    numbers = {s: values[s.name] for s in angle.free_symbols if s.name in values}
-    moving = [s for s in angle.free_symbols if s.name not in values]
+    moving = [s for s in angle.free_symbols if s.name not in known]
     if len(moving) > 1 or (moving and sp.diff(angle, moving[0]) != 1):
         raise ValueError(f"the angle of {vector.name or vector} is not a coordinate plus a constant")
-    flip = 0.0 if sign > 0 else math.pi
-    if vector.length.free_symbols <= {s for s in vector.length.free_symbols if s.name in values}:
-        length = vector.length.subs({s: values[s.name] for s in vector.length.free_symbols})
-        flip += math.pi if float(length) < 0 else 0.0
-    if not moving:  # a guide at a fixed angle
-        return numpy.full(numpy.shape(solved["assembled"]), float(angle.subs(numbers)) + flip), 0.0
-    q = moving[0]
-    offset = float((angle - q).subs(numbers))
-    return solved[q.name] + offset + flip, solved[q.name + "dot"]
+    fixed = vector.length.free_symbols <= {s for s in vector.length.free_symbols if s.name in known}
+    return {"sign": int(sign), "coordinate": moving[0].name if moving else None,
+            "offset": _linear_terms(angle - moving[0] if moving else angle, f"angle of {vector.name or vector}"),
+            "length": _linear_terms(vector.length, f"length of {vector.name or vector}") if fixed else None}
 
 
-def _interior(joint: TransmissionJoint, values, solved) -> tuple[numpy.ndarray, numpy.ndarray]:
-    """The interior angle at the joint, in [0, pi], and its derivative with respect to the input."""
-    into, into_rate = _direction(*joint.into[:2], values, solved)
-    out, out_rate = _direction(*joint.out[:2], values, solved)
-    turn = wrap(out - (into + (math.pi / 2 if joint.guide else math.pi)))  # from -into (or the normal) to out
+def _direction(recipe: Mapping[str, Any], values: Mapping[str, float], solved: Mapping[str, numpy.ndarray]):
+    """The walked direction of a vector (radians) and its rate, from solved coordinates and values."""
+    flip = 0.0 if recipe["sign"] > 0 else math.pi
+    if recipe["length"] is not None:
+        flip += math.pi if _sum_of_terms(recipe["length"], values) < 0 else 0.0
+    offset = _sum_of_terms(recipe["offset"], values)
+    q = recipe["coordinate"]
+    if q is None:  # a guide at a fixed angle
+        return numpy.full(numpy.shape(solved["assembled"]), offset + flip), 0.0
+    return solved[q] + offset + flip, solved[q + "dot"]
+
+
+def joint_recipe(joint: TransmissionJoint, known: Collection[str]) -> dict[str, Any]:
+    """A two-angle loop's joint as plain data (JSON): its loop, name, whether a guide, and the
+    :func:`direction_recipe` of the vectors into and out of it (``known``: the names given values)."""
+    return {"loop": joint.loop, "name": joint.name, "guide": joint.guide,
+            "into": direction_recipe(*joint.into[:2], known), "out": direction_recipe(*joint.out[:2], known)}
+
+
+def _interior(joint: Mapping[str, Any], values, solved) -> tuple[numpy.ndarray, numpy.ndarray]:
+    """The interior angle at the joint (a :func:`joint_recipe`), in [0, pi], and its derivative with respect to
+    the input."""
+    into, into_rate = _direction(joint["into"], values, solved)
+    out, out_rate = _direction(joint["out"], values, solved)
+    turn = wrap(out - (into + (math.pi / 2 if joint["guide"] else math.pi)))  # from -into (or the normal) to out
     with numpy.errstate(invalid="ignore"):  # rates are not finite at a toggle
         return numpy.abs(turn), numpy.sign(turn) * (out_rate - into_rate)
 
 
-def transmission_angles(linkage: Linkage, values: Mapping[str, float], inputs, *, input: str | None = None,
+def _joints(linkage: Any, known: Collection[str]) -> list[dict[str, Any]]:
+    """The :func:`joint_recipe` of every two-angle loop of ``linkage``, or a cached linkage's own (no SymPy)."""
+    if isinstance(linkage, CachedLinkage):
+        return list(linkage.joints)
+    return [joint_recipe(joint, known) for joint in transmission_joints(linkage)]
+
+
+def transmission_angles(linkage: Linkage | CachedLinkage, values: Mapping[str, float], inputs, *,
+                        input: str | None = None,
                         motion: InputMotion | None = None) -> dict[str, numpy.ndarray]:
     """The transmission angle (radians, [0, pi]) of every two-angle loop at ``inputs``, by loop name.
 
@@ -186,13 +243,14 @@ def transmission_angles(linkage: Linkage, values: Mapping[str, float], inputs, *
     """
     motion = InputMotion(linkage, values, input=input) if motion is None else motion
     solved = motion.at(inputs)
-    return {joint.loop: _interior(joint, motion.values, solved)[0] for joint in transmission_joints(linkage)}
+    return {joint["loop"]: _interior(joint, motion.values, solved)[0] for joint in _joints(linkage, motion.values)}
 
 
 def _direction_of(sign: int, vector: Vector, linkage: Linkage) -> tuple[str | None, Callable[..., Any]]:
     """A walked direction as generated code: the coordinate it turns with (None for a fixed guide) and a
     function of the parameters (by name, numbers or arrays) giving the rest (offset, and pi where it is walked
     backwards or its length is negative)."""
+    import sympy as sp
     angle = vector.angle
     known = set(linkage.parameters) | set(linkage.inputs)
     moving = [s for s in angle.free_symbols if s not in known]
@@ -225,6 +283,7 @@ def transmission_arrays(linkage: Linkage, values: Mapping[str, Any], solved: Map
     generated once a linkage: no SymPy per design.
 
     >>> from symlink.numeric.solver import Solver
+    >>> from symlink.mechanism.catalog import fourbar
     >>> solved = Solver(fourbar(), ["beta", "phi"])(theta=numpy.array([0.0]), a=20.0, b=66.0, c=56.0, d=80.0,
     ...                                               branch=1)
     >>> round(math.degrees(float(transmission_arrays(fourbar(), {}, solved)["ABCD"][0])), 2)
@@ -278,7 +337,7 @@ class LoopTransmission(TransmissionRange):
     joint: str = ""
 
 
-def loop_transmissions(linkage: Linkage, values: Mapping[str, float], *, input: str | None = None,
+def loop_transmissions(linkage: Linkage | CachedLinkage, values: Mapping[str, float], *, input: str | None = None,
                        reach: InputRange | None = None, motion: InputMotion | None = None,
                        points: int = 3600) -> tuple[LoopTransmission, ...]:
     """Extremes of the transmission angle of every two-angle loop over the reachable input range.
@@ -316,7 +375,7 @@ def loop_transmissions(linkage: Linkage, values: Mapping[str, float], *, input: 
     """
     motion = InputMotion(linkage, values, input=input) if motion is None else motion
     reach = reachable_range(linkage, values, motion=motion) if reach is None else reach
-    joints = transmission_joints(linkage)
+    joints = _joints(linkage, motion.values)
     if not reach.spans or not joints:
         return ()
     found = []
@@ -345,14 +404,14 @@ def loop_transmissions(linkage: Linkage, values: Mapping[str, float], *, input: 
                     if math.isfinite(value):
                         candidates[at] = value
         for toggle in reach.toggles:  # the loop's own toggles: flat, so exactly 0 or pi there
-            if toggle.loop == joint.loop and not toggle.degenerate:
+            if toggle.loop == joint["loop"] and not toggle.degenerate:
                 value = float(angle_and_rate(numpy.array([toggle.at]))[0][0])
                 if math.isfinite(value):
                     candidates[toggle.at] = 0.0 if value < math.pi / 2 else math.pi
         low_at = min(candidates, key=candidates.__getitem__)
         high_at = max(candidates, key=candidates.__getitem__)
         found.append(LoopTransmission(candidates[low_at], low_at, candidates[high_at], high_at,
-                                      loop=joint.loop, joint=joint.name))
+                                      loop=joint["loop"], joint=joint["name"]))
     return tuple(found)
 
 
@@ -393,6 +452,7 @@ def run_transmission(linkage: Linkage, values: Mapping[str, float], inputs, *,
     largest of ``inputs`` (its input at the targets of a synthesis), within the span that holds the first.
     None where no loop has a transmission angle, or where the linkage cannot be assembled at ``inputs[0]``.
 
+    >>> from symlink.mechanism.catalog import fourbar
     >>> run = run_transmission(fourbar(), dict(a=20, b=66, c=56, d=80), [0.0])
     >>> run.over, round(math.degrees(run.worst), 2)
     ('full turn', 58.23)

@@ -3,13 +3,16 @@ from __future__ import annotations
 
 import argparse
 import json
+import warnings
+from functools import cached_property
 from typing import Any
 
 from ..common.angles import from_radians
 from .options import (add_fourbar_lengths, add_units_option, assignments, command_help, fourbar_lengths,
                       fourbar_or_linkage, linkage_values, require_held_inputs)
 
-#: Fields of :func:`~symlink.analysis.fourbar_closed_form.fourbar_report` that are angles (converted to the command's units).
+#: Fields of :func:`~symlink.analysis.fourbar_closed_form.fourbar_report` that are angles (converted to the
+#: command's units).
 ANGLE_FIELDS = {"stroke", "transmission_min", "transmission_min_at", "transmission_max", "transmission_max_at",
                 "worst_transmission", "extended_crank", "extended_rocker", "folded_crank", "folded_rocker"}
 
@@ -95,27 +98,122 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+#: Besides what shapes a table's entries: the code whose text shapes the analysis's facts and generated modules.
+ANALYSIS_SHAPING = ("analysis", "numeric/reachability", "numeric/cached_linkage", "mechanism/mobility", "cli/analyze")
+
+
+class AnalysisSource:
+    """A linkage named on the command line (a catalog or atlas name, or a linkage file), as the general analysis
+    needs it: a :class:`~symlink.numeric.cached_linkage.CachedLinkage` of its facts and generated code from the disk
+    cache, keyed as ``symlink table NAME|FILE`` keys its entries (:class:`~symlink.cli.tables.TableSource`: by
+    what names the linkage), so that a warm ``symlink analyze NAME|FILE`` builds no linkage and imports no SymPy.
+    A file too large to key is analysed from the linkage itself.
+    """
+
+    def __init__(self, source: str) -> None:
+        from ..common.names import SixBarNameNote, former_name_note
+        from ..io.scene_text import linkage_request
+        self.source = source
+        self.request = linkage_request(source)
+        self._found: Any = None
+        note = former_name_note(source) if self.request is not None else None
+        if note is not None:  # said here, warm or cold, in the words the linkage reader uses
+            warnings.warn(note, SixBarNameNote, stacklevel=2)
+        self._noted = note is not None
+
+    def found(self) -> Any:
+        """The linkage file or catalog entry, read (SymPy): only where the cache has no entry yet."""
+        if self._found is None:
+            from ..common.names import SixBarNameNote
+            from ..io.linkage_file import load_linkage
+            with warnings.catch_warnings():
+                if self._noted:  # said once already, in the same words
+                    warnings.simplefilter("ignore", SixBarNameNote)
+                self._found = load_linkage(self.source)
+        return self._found
+
+    def key(self, outputs: list[str], analysis: bool = True) -> str:
+        """The cache key of an entry: the table's scheme (:meth:`symlink.cli.tables.TableSource.key`), with the
+        analysis's code besides (``analysis``) for its own entries; the solver's is the table's own."""
+        from ..numeric.cache import catalog_key
+        from .tables import GENERIC_ENTRY_KIND, GENERIC_SHAPING
+        shaping = GENERIC_SHAPING + (ANALYSIS_SHAPING if analysis else ())
+        return catalog_key("table", outputs, GENERIC_ENTRY_KIND, self.request, shaping)
+
+    @cached_property
+    def facts(self) -> dict[str, Any]:
+        """:func:`~symlink.analysis.report.analysis_facts` of the linkage, with its defaults (``defaults``)."""
+        def now() -> dict[str, Any]:
+            from ..analysis.report import analysis_facts
+            found = self.found()
+            return {**analysis_facts(found.linkage),
+                    "defaults": {name: float(value) for name, value in found.defaults.items()}}
+        if self.request is None:
+            return now()
+        from ..numeric.cache import cached_text
+        return json.loads(cached_text(self.key(["(analysis)"]), lambda: json.dumps(now())))
+
+    def linkage(self) -> Any:
+        """What :func:`~symlink.analysis.analyze_linkage` takes: the cached linkage, or the linkage itself."""
+        if self.request is None:
+            return self.found().linkage
+        from ..numeric.cached_linkage import CachedLinkage
+        return CachedLinkage(self.facts, self._solver, self._margins, self._output)
+
+    def _solver(self, outputs: Any) -> Any:
+        from ..numeric.cached_solver import CachedSolver, entry_text
+        outputs = list(outputs)
+
+        def full() -> Any:
+            from ..numeric.solver import Solver
+            return Solver(self.found().linkage, outputs)
+
+        return CachedSolver(self.facts["name"], outputs, key=self.key(outputs, analysis=False),
+                            derive=lambda: entry_text(self.found().linkage, outputs), full=full)
+
+    def _margins(self) -> Any:
+        from ..numeric.cache import cached_module
+        from ..numeric.reachability import margins_text
+        return cached_module(self.key(["(margins)"]), lambda: margins_text(self.found().linkage))[1]["margins"]
+
+    def _output(self, name: str) -> tuple[Any, bool]:
+        from ..numeric.cache import cached_module, cached_text
+
+        def angle() -> str:  # a name that is no position output is refused here, and nothing is kept
+            from ..analysis.limits import check_position_output, is_angle_output
+            check_position_output(self.found().linkage, name)
+            return json.dumps(is_angle_output(self.found().linkage, name))
+
+        is_angle = json.loads(cached_text(self.key(["(output)", name]), angle))
+
+        def text() -> str:
+            from ..analysis.limits import output_text
+            return output_text(self.found().linkage, name)
+
+        return cached_module(self.key(["(output-and-rate)", name]), text)[1]["output"], is_angle
+
+
 def run_linkage(args: argparse.Namespace) -> int:
-    """``symlink analyze NAME|FILE``: the general analysis of any one-input linkage."""
-    from ..analysis import analyze_linkage
-    from ..symbolic.closure import is_angle
-    from ..io.linkage_file import load_linkage
-    found = load_linkage(args.linkage)
-    require_held_inputs(found.linkage, args.set, "analyze")
-    linkage, values = found.linkage, linkage_values(found, args.set, args.units)
-    known = {s.name: s for s in linkage.parameters + linkage.inputs}
-    values = {name: value for name, value in values.items() if name not in {q.name for q in linkage.inputs[:1]}}
-    values.update({branch.name: int(args.branch) for branch in linkage.branches})
-    if not linkage.has_closed_form:
-        raise ValueError(f"{linkage.name} has no closed form; analyze it from Python with analyze_linkage(..., "
+    """``symlink analyze NAME|FILE``: the general analysis of any one-input linkage (warm: no SymPy)."""
+    from ..analysis.report import analyze_linkage
+    from .tables import facts_values
+    source = AnalysisSource(args.linkage)
+    facts = source.facts
+    linkage = source.linkage()
+    require_held_inputs(linkage, args.set, "analyze")
+    values = facts_values(facts, args.set, args.units)
+    values = {name: value for name, value in values.items() if name not in facts["inputs"][:1]}
+    values.update({branch: int(args.branch) for branch in facts["branches"]})
+    if not facts["closed_form"]:
+        raise ValueError(f"{facts['name']} has no closed form; analyze it from Python with analyze_linkage(..., "
                          "guess=...) (its assemblies must be chosen)")
     report = analyze_linkage(linkage, values, args.output)
     unit = args.units
     angle = lambda x: float(from_radians(x, unit))  # noqa: E731
     reach = report.reach
-    shown_input = angle if is_angle(linkage, known[report.input]) else float
+    shown_input = angle if report.input in facts["angles"] else float
     record: dict[str, Any] = {
-        "linkage": linkage.name, "input": report.input, "dof": report.mobility.dof,
+        "linkage": facts["name"], "input": report.input, "dof": report.mobility.dof,
         "reachable": [[shown_input(lo), shown_input(hi)] for lo, hi in reach.spans], "full_turn": reach.full_turn,
         "exact": reach.exact,
         "toggles": [{"at": shown_input(t.at), "loop": t.loop, "ends_range": t.ends_range, "degenerate": t.degenerate}
@@ -136,7 +234,7 @@ def run_linkage(args: argparse.Namespace) -> int:
         return 0
     spans = "full turn" if reach.full_turn else ", ".join(f"[{_cell(lo)}, {_cell(hi)}]"
                                                           for lo, hi in record["reachable"])
-    lines = [f"{linkage.name}: input {report.input}",
+    lines = [f"{facts['name']}: input {report.input}",
              f"degrees of freedom   {report.mobility.dof}",
              f"reachable range      {spans}{'' if reach.full_turn else ' ' + unit} "
              f"({'exact' if reach.exact else 'scanned'})"]

@@ -35,7 +35,8 @@ from sympy.printing.precedence import precedence
 from ..version import __version__
 from ..symbolic.linkage import is_branch_name
 from ..common.rounding import TOLERANCE
-from ..common.arguments import _arguments, checked_arguments  # noqa: F401 - their home; _arguments' source heads every module
+# their home; _arguments' source heads every generated module
+from ..common.arguments import _arguments, checked_arguments  # noqa: F401
 from .loading import load_numpy_module
 from .program import require_loop_units, format_default, is_flag, straight_line
 from .trigonometry import angle_sums

@@ -1,5 +1,8 @@
 """Gruebler/Kutzbach mobility of any linkage, from the bodies and joints its loops and points make.
 
+:class:`Mobility` is plain data (a cached analysis rebuilds it without SymPy); counting a linkage's
+bodies and joints (:func:`degrees_of_freedom`) imports the symbolic layer.
+
 >>> from symlink.mechanism.catalog import jansen
 >>> degrees_of_freedom(jansen()).dof
 1
@@ -7,11 +10,12 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
-from .bodies import PRISMATIC, mechanism
-from .catalog import fourbar  # noqa: F401 - the doctests' namespace
 from ..common.display import record_html
-from ..symbolic.linkage import Linkage
+
+if TYPE_CHECKING:
+    from ..symbolic.linkage import Linkage
 
 __all__ = ["Mobility", "degrees_of_freedom"]
 
@@ -79,6 +83,7 @@ def degrees_of_freedom(linkage: Linkage) -> Mobility:
     >>> symlink.degrees_of_freedom(symlink.watt2())  # 3 (6 - 1) - 2 * 7 = 1
     Mobility(links=6, revolute=7, prismatic=0)
     """
+    from .bodies import PRISMATIC, mechanism  # the symbolic layer: imported with the first linkage counted
     found = mechanism(linkage)
     prismatic = sum(joint.kind == PRISMATIC for joint in found.joints)
     return Mobility(len(found.bodies), found.one_freedom_joints - prismatic, prismatic)

@@ -21,7 +21,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 from functools import lru_cache
-from typing import Any, Callable, Mapping
+from typing import TYPE_CHECKING, Any, Callable, Mapping
 
 import numpy
 
@@ -29,15 +29,14 @@ from ..common.angles import wrap_angle
 from .cache import cache_key, cached_module, cached_text
 from .crank_ranges import (SCAN_POINTS, TURN_SAMPLES, closing_crank_range, crank_range, describe_spans, fivebar_range,  # noqa: F401
                            inverted_slider_crank_range, reachable_turn, scanned_range, slider_crank_range, turn_angles)
-from ..symbolic.closure import is_angle
-from ..codegen.numpy import checked_arguments, numpy_module
-from ..codegen.program import in_loop_units
+from ..common.arguments import check_lengths, checked_arguments
 from ..common.display import record_html
-from ..symbolic.linkage import Linkage
 from ..common.rounding import TOLERANCE
-from ..symbolic.position import ClampedSqrt
-from .solver import NumericSolver, Solver, check_lengths
-from ..symbolic.vectors import rate
+from .cached_linkage import CachedLinkage
+
+if TYPE_CHECKING:  # the symbolic layer and the solvers are imported where used: a cached linkage needs neither
+    from ..symbolic.linkage import Linkage
+    from .solver import Solver
 
 __all__ = ["crank_range", "assembled_crank_range", "slider_crank_range", "inverted_slider_crank_range",
            "fivebar_range", "scanned_range", "describe_spans", "reachable_turn", "turn_angles", "SCAN_POINTS", "TURN_SAMPLES",
@@ -146,6 +145,7 @@ class InputRange:
 def _motion_solver(linkage: Linkage, outputs: tuple[str, ...]) -> Solver:
     """The solver of an :class:`InputMotion`, made once a linkage (a sweep makes a motion a design: a solver's
     cache key and backend are worth making once, not each time)."""
+    from .solver import Solver
     return Solver(linkage, list(outputs))
 
 
@@ -166,7 +166,7 @@ class InputMotion:
     110.74
     """
 
-    def __init__(self, linkage: Linkage, values: Mapping[str, float], *, input: str | None = None,
+    def __init__(self, linkage: Linkage | CachedLinkage, values: Mapping[str, float], *, input: str | None = None,
                  guess: Mapping[str, float] | None = None, start: float = 0.0, numeric: bool = False) -> None:
         driven = [q.name for q in linkage.inputs]
         self.input = driven[0] if input is None else input
@@ -191,20 +191,31 @@ class InputMotion:
                 raise ValueError(f"{name} must be finite, got {value}")
             if name in {s.name for s in linkage.branches} and value not in (1.0, -1.0):
                 raise ValueError(f"{name} must be +1 or -1, got {value:g}")
-        symbol = next(q for q in linkage.inputs if q.name == self.input)
-        self.periodic = is_angle(linkage, symbol)
         self.exact = linkage.has_closed_form and not numeric
         self.names = [q.name for q in linkage.unknowns]
-        self.rates = [rate(q).name for q in linkage.unknowns]
-        self.speeds = {rate(q).name: (1.0 if q.name == self.input else 0.0) for q in linkage.inputs}
+        if isinstance(linkage, CachedLinkage):  # names and solver from the disk cache: no SymPy
+            if not self.exact:
+                raise ValueError(f"{linkage.name}: a cached linkage is analysed in closed form only")
+            self.periodic = linkage.is_angle(self.input)
+            rate_of = linkage.rates
+        else:
+            from ..symbolic.closure import is_angle
+            from ..symbolic.vectors import rate
+            self.periodic = is_angle(linkage, next(q for q in linkage.inputs if q.name == self.input))
+            rate_of = {q.name: rate(q).name for q in linkage.unknowns + linkage.inputs}
+        self.rates = [rate_of[q.name] for q in linkage.unknowns]
+        self.speeds = {rate_of[q.name]: (1.0 if q.name == self.input else 0.0) for q in linkage.inputs}
         if self.exact:
             if guess is not None:
                 raise ValueError(f"{linkage.name} is solved in closed form: give branch signs, not a guess")
-            self._solver = _motion_solver(linkage, tuple(self.names + self.rates))
+            self._solver = (linkage.solver(self.names + self.rates) if isinstance(linkage, CachedLinkage)
+                            else _motion_solver(linkage, tuple(self.names + self.rates)))
         else:
+            from .solver import NumericSolver
             if guess is None:
                 raise ValueError(f"{linkage.name} has no closed form: give a guess of "
                                  f"{', '.join(self.names)} at {self.input} = {start:g}")
+            assert not isinstance(linkage, CachedLinkage)  # refused above: closed forms only
             self._numeric = NumericSolver(linkage)
             self.guess = dict(guess)
             self.start = float(start)
@@ -268,19 +279,32 @@ def _margin_function(linkage: Linkage) -> tuple[Callable[..., dict], list[tuple[
     vanish) is its argument less the square of TOLERANCE.  Later loops'
     margins are NaN where an earlier loop does not close.
     """
-    roots = _roots(linkage)
-    names = [f"margin_{k}" if not expr.args[1].is_negative else f"guard_{k}" for k, (_, _, expr) in enumerate(roots)]
-    key = cache_key(linkage, names, "root-margins")
+    roots = margin_roots(linkage)
+    key = cache_key(linkage, [name for name, _ in roots], "root-margins")
     if key not in _MARGINS:
-        def build() -> str:
-            base = linkage.program([q.name for q in linkage.unknowns])
-            # A guard (negative scale) is NaN below TOLERANCE^2: its margin is the argument past that.
-            margins = {name: (expr.args[0] / expr.args[1] + TOLERANCE if name.startswith("margin")
-                              else expr.args[0] + TOLERANCE * expr.args[1]) for name, (_, _, expr) in zip(names, roots)}
-            program = replace(in_loop_units(base), outputs=margins)
-            return numpy_module([("margins", program, f"{linkage.name}: the margins of its clamped roots.")])
-        _MARGINS[key] = cached_module(key, build)[1]["margins"]
-    return _MARGINS[key], [(name, loop) for name, (loop, _, _) in zip(names, roots)]
+        _MARGINS[key] = cached_module(key, lambda: margins_text(linkage))[1]["margins"]
+    return _MARGINS[key], roots
+
+
+def margin_roots(linkage: Linkage) -> list[tuple[str, str]]:
+    """Each clamped root's margin name (``margin_k``, or ``guard_k`` for a length that must not vanish) and loop,
+    in plan order: plain data, which a cached analysis keeps
+    (:class:`~symlink.numeric.cached_linkage.CachedLinkage`)."""
+    return [(f"margin_{k}" if not expr.args[1].is_negative else f"guard_{k}", loop)
+            for k, (loop, _, expr) in enumerate(_roots(linkage))]
+
+
+def margins_text(linkage: Linkage) -> str:
+    """The NumPy module of :func:`_margin_function` (function ``margins``): derived once, with SymPy."""
+    from ..codegen.numpy import numpy_module
+    from ..codegen.program import in_loop_units
+    base = linkage.program([q.name for q in linkage.unknowns])
+    # A guard (negative scale) is NaN below TOLERANCE^2: its margin is the argument past that.
+    margins = {name: (expr.args[0] / expr.args[1] + TOLERANCE if name.startswith("margin")
+                      else expr.args[0] + TOLERANCE * expr.args[1])
+               for (name, _), (_, _, expr) in zip(margin_roots(linkage), _roots(linkage))}
+    program = replace(in_loop_units(base), outputs=margins)
+    return numpy_module([("margins", program, f"{linkage.name}: the margins of its clamped roots.")])
 
 
 _MARGINS: dict[str, Callable[..., dict]] = {}
@@ -307,6 +331,7 @@ def _fast_margins(linkage: Linkage) -> Callable[..., dict]:
             return numpy_margins
 
         def build() -> str:
+            from ..codegen.program import in_loop_units
             base = linkage.program([q.name for q in linkage.unknowns])
             margins = {name: (expr.args[0] / expr.args[1] + TOLERANCE if name.startswith("margin")
                               else expr.args[0] + TOLERANCE * expr.args[1])
@@ -348,6 +373,7 @@ def _compiled_margins_key(linkage: Linkage, names: tuple[str, ...]) -> str:
 def _roots(linkage: Linkage) -> list:
     """Every clamped root of the plan as generated code computes it (loop units, with its scale):
     (loop name, symbol, expression), in plan order."""
+    from ..symbolic.position import ClampedSqrt
     return [(step.loop.name, symbol, expr) for step in linkage.plan
             for symbol, expr in step.in_loop_units.intermediates.items() if isinstance(expr, ClampedSqrt)]
 
@@ -386,7 +412,7 @@ def _spans_from_marks(marks: list[tuple[float, bool]], periodic: bool, first: fl
     return [(start, end) for (start, _), (end, _) in zip(marks[::2], marks[1::2])]
 
 
-def reachable_range(linkage: Linkage, values: Mapping[str, float], *, input: str | None = None,
+def reachable_range(linkage: Linkage | CachedLinkage, values: Mapping[str, float], *, input: str | None = None,
                     guess: Mapping[str, float] | None = None, start: float = 0.0,
                     interval: tuple[float, float] | None = None, points: int = SCAN_POINTS,
                     motion: InputMotion | None = None, numeric: bool = False) -> InputRange:
@@ -631,7 +657,8 @@ def _scanned_edges(coarse_values: Callable[[numpy.ndarray], dict[str, numpy.ndar
 
 def _closed_form_range(motion: InputMotion, low: float, high: float, points: int) -> InputRange:
     periodic = motion.periodic and (low, high) == (-math.pi, math.pi)
-    margins, roots = _margin_function(motion.linkage)
+    linkage = motion.linkage
+    margins, roots = linkage.margins() if isinstance(linkage, CachedLinkage) else _margin_function(linkage)
     arguments = {k: v for k, v in motion.values.items()}
 
     def margin_values(inputs: numpy.ndarray) -> dict[str, numpy.ndarray]:

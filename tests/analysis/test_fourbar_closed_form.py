@@ -1,4 +1,4 @@
-"""The four-bar by its lengths in closed form: hand values, 50-digit mpmath triangles, an independent scan, and no SymPy.
+"""The four-bar by its lengths in closed form: hand values, 50-digit mpmath triangles, an independent scan, no SymPy.
 
 Expected values come from the law of cosines worked by hand, from C found by intersecting two circles (written
 here), or from the general analysis of the catalog's four-bar (:func:`symlink.analysis.analyze_linkage`,

@@ -64,6 +64,13 @@ COMMANDS = {
     "analyze a four-bar by its lengths, in JSON": (ANALYZE + ["--format", "json", "--units", "rad"], None),
     "analyze a four-bar on branch -1 that does not turn fully": (
         ["analyze", "--crank", "60", "--coupler", "30", "--rocker", "50", "--ground", "40", "--branch", "-1"], 6),
+    "analyze a catalog linkage by name": (["analyze", "fourbar"], 4),
+    "analyze a linkage file, with --set": (["analyze", str(PROJECT / "symlink" / "linkages" / "watt2.toml"), "--set",
+                                           "a=1.2", "--format", "json"], None),
+    "analyze an output's limit positions (jansen)": (["analyze", "jansen", "--output", "H_y"], None),
+    "analyze a slider-crank's stroke, in radians": (["analyze", "slider-crank", "--output", "slider", "--units",
+                                                     "rad"], None),
+    "analyze a five-bar with its second crank held": (["analyze", "fivebar", "--set", "psi=10"], 4),
 }
 SLOW_COMMANDS = {
     "inverted slider-crank": (["inverted-slider-crank", "--crank", "2", "--ground", "1.2", "--crank-speed", "3",
@@ -428,3 +435,24 @@ def test_analyze_by_lengths_derives_nothing_and_imports_no_sympy_even_cold(tmp_p
     assert "nan" not in runs.warm
     assert runs.warm.splitlines()[-1] == "transmission angle   0.0000 at crank 0.0000 to 180.0000 at crank -60.0000 deg"
     assert "crank range          [-60.0000, 0.0000] deg, [0.0000, 60.0000] deg" in runs.warm
+
+
+def test_a_warm_analysis_takes_other_values_and_outputs(shared_cache, tmp_path):
+    """The cached analysis of a linkage is keyed by what names it, not by its values: after one cold run, other
+    --set values and --branch run warm (no SymPy) and print what a fresh cold run prints; the four-bar's limit
+    positions by name agree with its closed form (the rocker's stroke by hand: the triangle A, D, C with AC of
+    length b + a and b - a)."""
+    import json
+    run_twice(tmp_path, ["analyze", "fourbar", "--output", "phi"], shared_cache)
+    other = ["analyze", "fourbar", "--set", "a=20,b=66,c=56,d=80", "--branch", "-1", "--output", "phi", "--format",
+             "json"]
+    warm = run_twice(tmp_path, other, shared_cache)
+    assert not warm.imported & {"sympy", "matplotlib", "scipy"}
+    (tmp_path / "fresh").mkdir()
+    cold = run_twice(tmp_path / "fresh", other)
+    assert warm.warm == cold.cold
+    report = json.loads(warm.warm)
+    a, b, c, d = 20, 66, 56, 80
+    extended = math.pi - math.acos((c * c + d * d - (a + b) ** 2) / (2 * c * d))
+    folded = math.pi - math.acos((c * c + d * d - (b - a) ** 2) / (2 * c * d))
+    assert report["limits"]["stroke"] == pytest.approx(math.degrees(folded - extended), abs=1e-9)

@@ -12,8 +12,9 @@ baseline once in turn, so that a change of load falls on all): warm tables of th
 (``symlink fourbar``, with ``--masses``, ``symlink slider-crank``, ``symlink watt2``), of ``symlink table`` for
 a closed-form linkage, a Newton linkage (no closed form) and a linkage file, a scene file of the Watt II's
 driving torque (``symlink run``), a tolerance stack-up of the four-bar's rocker (``symlink tolerance``), the
-four-bar's analysis by its lengths (``symlink analyze --crank ...``: closed form, nothing cached), a coupler
-curve drawn to SVG (``symlink curve``: Matplotlib's import is most of it), pictures of catalog and file linkages
+four-bar's analysis by its lengths (``symlink analyze --crank ...``: closed form, nothing cached) and of a catalog
+linkage and a linkage file (``symlink analyze NAME|FILE``: its facts and code from the cache), a coupler curve
+drawn to SVG (``symlink curve``: Matplotlib's import is most of it), pictures of catalog and file linkages
 (``symlink curve NAME``, ``draw FILE``, ``animate NAME``) and a solve plan (``symlink plan``), and the start of a
 sweep (five designs on the synchronous scheduler: its
 start-up, Dask and Parquet, is most of it), each in wall time and in CPU time (user + system: less sensitive
@@ -103,6 +104,8 @@ COMMANDS = {
     "run torque scene (watt2)": ["run", "{folder}/torque.toml"],
     "tolerance fourbar 2 7 9 6": ["tolerance", *FOURBAR_2796, "--tolerance", "0.05", "--output", "rocker"],
     "analyze 2 7 9 6 (lengths)": ["analyze", *FOURBAR_2796[1:-2]],
+    "analyze jansen --output H_y": ["analyze", "jansen", "--output", "H_y"],
+    "analyze FILE (jansen.toml)": ["analyze", "{folder}/jansen.toml", "--set", "a=16"],
     "curve fourbar 2 7 9 6 (SVG)": ["curve", *FOURBAR_2796[1:-2], "--coupler-point", "3,20", "--out",
                                     "{folder}/curve-{run}.svg"],
     "curve fourbar --trace C (SVG)": ["curve", "fourbar", "--trace", "C", "--out", "{folder}/traced-{run}.svg"],

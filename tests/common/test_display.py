@@ -18,9 +18,26 @@ PLAIN = {
                                    "on the warm start's path",
 }
 
+#: Classes the scan sees only since it resolves annotations of type-checking-only imports (before, their functions'
+#: hints failed to evaluate and were passed over): they have no rich display yet.  Strict: each fails this list
+#: once it has one.
+NOT_YET_RICH = {
+    "symlink.dynamics.forward.EquationCode", "symlink.dynamics.inverse.NewtonEuler",
+    "symlink.dynamics.model.DynamicModel",
+    "symlink.numeric.cache.GeneratedCode", "symlink.numeric.design_jacobian.DesignJacobian",
+    "symlink.numeric.poses.Placement", "symlink.symbolic.closure.ClosureSystem",
+}
+
 
 def returned_classes() -> dict[type, str]:
-    """Each symlink class that a public function or method returns (by its annotation), with where."""
+    """Each symlink class that a public function or method returns (by its annotation), with where.
+
+    Annotations may name classes a module imports for type checking only (the symbolic layer, kept out of a warm
+    start): they resolve against the front door's classes and SymPy.
+    """
+    import sympy
+    names = {"sp": sympy, **{name: getattr(symlink, name) for name in symlink.__all__
+                             if inspect.isclass(getattr(symlink, name))}}
     found: dict[type, str] = {}
     for info in pkgutil.walk_packages(symlink.__path__, "symlink."):
         if info.name.startswith(("symlink.cli", "symlink.codegen", "symlink.__main__")):
@@ -36,7 +53,7 @@ def returned_classes() -> dict[type, str]:
                 continue
             for function in functions:
                 try:
-                    hint = typing.get_type_hints(function).get("return")
+                    hint = typing.get_type_hints(function, localns=names).get("return")
                 except Exception:  # noqa: BLE001 - an annotation that names an optional package: not ours
                     continue
                 for outer in [hint, *typing.get_args(hint)]:
@@ -61,5 +78,8 @@ def test_every_returned_class_has_a_rich_display(cls):
     name = f"{cls.__module__}.{cls.__qualname__}"
     if name in PLAIN:
         pytest.skip(PLAIN[name])
+    if name in NOT_YET_RICH:
+        assert not any(hasattr(cls, method) for method in RICH), f"{name} has a rich display now: off NOT_YET_RICH"
+        pytest.xfail(f"{name} (returned by {RETURNED[cls]}) has no rich display yet")
     assert any(hasattr(cls, method) for method in RICH), \
         f"{name} (returned by {RETURNED[cls]}) has no rich display: give it _repr_html_ = record_html"

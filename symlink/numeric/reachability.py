@@ -27,6 +27,7 @@ import numpy
 
 from ..common.angles import wrap_angle
 from .cache import cache_key, cached_module, cached_text
+from .compiled_library import BUILD_WAIT
 from .crank_ranges import (SCAN_POINTS, TURN_SAMPLES, closing_crank_range, crank_range, describe_spans, fivebar_range,  # noqa: F401
                            inverted_slider_crank_range, reachable_turn, scanned_range, slider_crank_range, turn_angles)
 from ..symbolic.closure import is_angle
@@ -283,8 +284,6 @@ def _margin_function(linkage: Linkage) -> tuple[Callable[..., dict], list[tuple[
 
 
 _MARGINS: dict[str, Callable[..., dict]] = {}
-#: Seconds a sweep waits for a compiled library being built before it takes the NumPy module instead.
-BUILD_WAIT = 600.0
 _COMPILED_MARGINS: dict[str, Any] = {}
 
 

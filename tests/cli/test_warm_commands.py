@@ -171,6 +171,105 @@ def test_a_warm_picture_imports_no_sympy_and_draws_the_same(name, shared_cache, 
     assert runs.warm_files[out] == runs.cold_files[out] and len(runs.cold_files[out]) > 1000
 
 
+#: Sweeps of a catalog linkage and of a linkage file (the chunk is written into ``out``): the scheduler, and whether
+#: its start may import Dask's distributed scheduler (a local scheduler's never does).
+SWEEP = ["--grid", "3", "--samples", "36", "--no-progress"]
+SWEEPS = {
+    "four-bar, synchronous": (["sweep", "fourbar", "out", "--vary", "a=10:20", "--set", "b=66,c=56,d=80", *SWEEP,
+                               "--scheduler", "synchronous"], 1),
+    "four-bar, threads": (["sweep", "fourbar", "out", "--vary", "a=10:20,c=50:60", "--set", "b=66,d=80", *SWEEP,
+                           "--scheduler", "threads", "--workers", "2", "--chunk", "5"], 2),
+    "slider-crank file (transmission at its guide), default scheduler": (
+        ["sweep", str(PROJECT / "linkages" / "slider-crank.toml"), "out", "--vary", "a=0.5:2.5", *SWEEP], 1),
+}
+
+
+@pytest.mark.parametrize("name", SWEEPS)
+def test_a_warm_sweep_imports_no_sympy_and_writes_the_same_chunks(name, shared_cache, tmp_path):
+    """A sweep whose linkage's facts and solver are in the disk cache imports no SymPy (a catalog linkage and a
+    linkage file), and its start only what its scheduler needs (never distributed or pandas on a local one); its
+    chunks and manifest are the cold run's, byte for byte (each run writes them afresh: the first run's are read
+    and removed), and it prints the same but for the rate."""
+    import re
+    from symlink.workshop.sweep import missing_modules
+    if missing_modules():
+        pytest.skip("the sweep extra is not installed")
+    arguments, chunks = SWEEPS[name]
+    files = [f"out/chunk-{k:06d}.parquet" for k in range(chunks)] + ["out/manifest.json"]
+    runs = run_twice(tmp_path, arguments, shared_cache, files=files)
+    assert "dask" in runs.imported and "pyarrow" in runs.imported  # the import list was read, and it swept
+    heavy = runs.imported & {"sympy", "scipy", "matplotlib", "distributed", "pandas"}
+    assert not heavy, f"the warm run imported {', '.join(sorted(heavy))}"
+    assert runs.warm == runs.cold == "out\n"
+    assert all(runs.warm_files[f] == runs.cold_files[f] for f in files)
+    assert b'"reach"' in runs.cold_files["out/manifest.json"] and len(runs.cold_files[files[0]]) > 1000
+
+    def unrated(notes: str) -> str:
+        return re.sub(r"; [0-9.e+-]+ designs/s", "", notes)
+    assert unrated(runs.warm_notes) == unrated(runs.cold_notes)
+    assert f"wrote {chunks}, found 0 already there" in runs.warm_notes  # it evaluated every chunk again
+
+
+def _rocker(theta: float, a: float, b: float, c: float, d: float) -> float:
+    """The four-bar's rocker angle on branch +1, by hand: C where the circles about B (radius b) and D (radius c)
+    meet, to the left of the directed line from B to D."""
+    bx, by = a * math.cos(theta), a * math.sin(theta)
+    dx, dy = d - bx, -by
+    span = math.hypot(dx, dy)
+    along = (b * b - c * c + span * span) / (2 * span)
+    across = math.sqrt(b * b - along * along)
+    cx = bx + (along * dx - across * dy) / span
+    cy = by + (along * dy + across * dx) / span
+    return math.atan2(cy, cx - d)
+
+
+def test_a_warm_stack_up_takes_other_numbers(shared_cache, tmp_path):
+    """The stack-up's cache entries are keyed by the linkage, the output and the toleranced dimensions, not by the
+    numbers: another four-bar and band run warm (no SymPy), print what a cold run prints, and the worst case of
+    the rocker for the coupler alone is |d(rocker)/db| * band, the slope by central differences of the rocker
+    found by hand (:func:`_rocker`)."""
+    first = ["tolerance", "fourbar", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80",
+             "--tolerances", "b=0.3", "--output", "rocker", "--angles", "0", "--format", "csv"]
+    run_twice(tmp_path, first, shared_cache)
+    other = ["tolerance", "fourbar", "--crank", "25", "--coupler", "70", "--rocker", "60", "--ground", "85",
+             "--tolerances", "b=0.6", "--output", "rocker", "--angles", "0.5", "--format", "csv", "--units", "rad"]
+    warm = run_twice(tmp_path, other, shared_cache)  # both runs warm: the entries of the first command serve it
+    assert not warm.imported & {"sympy", "matplotlib", "scipy", "pandas"}
+    (tmp_path / "fresh").mkdir()
+    cold = run_twice(tmp_path / "fresh", other)  # a cache of its own: its first run derives
+    assert warm.cold == cold.cold and warm.cold_notes == cold.cold_notes
+    header, row = warm.warm.splitlines()
+    cells = dict(zip(header.split(","), row.split(",")))
+    step = 1e-6
+    slope = (_rocker(0.5, 25, 70 + step, 60, 85) - _rocker(0.5, 25, 70 - step, 60, 85)) / (2 * step)
+    assert float(cells["worst_case"]) == pytest.approx(abs(slope) * 0.6, rel=1e-6)
+    assert float(cells["rocker"]) == pytest.approx(_rocker(0.5, 25, 70, 60, 85), rel=1e-9)
+
+
+#: Pictures (the file is the last argument): Matplotlib draws them, SymPy stays out; the file written warm is the one
+#: written cold, byte for byte.
+PICTURES = {
+    "coupler curve of the four-bar (SVG)": ["curve", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground",
+                                            "80", "--coupler-point", "40,30", "--out", "curve.svg"],
+    "coupler curve on both branches at a crank angle (PNG)": [
+        "curve", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80", "--coupler-point",
+        "30,-20", "--branch", "both", "--crank-angle", "40", "--out", "curve.png"],
+    "four-bar table with its angle plot": [*FOURBAR, "--plot", "angles.svg"],
+}
+
+
+@pytest.mark.parametrize("name", PICTURES)
+def test_a_warm_picture_imports_no_sympy_and_draws_the_same(name, shared_cache, tmp_path):
+    arguments = PICTURES[name]
+    out = arguments[-1]
+    runs = run_twice(tmp_path, arguments, shared_cache, files=[out])
+    assert "matplotlib" in runs.imported  # the import list was read, and it drew
+    heavy = runs.imported & {"sympy", "scipy", "pandas", "distributed"}
+    assert not heavy, f"the warm run imported {', '.join(sorted(heavy))}"
+    assert runs.warm == runs.cold and runs.warm_notes == runs.cold_notes
+    assert runs.warm_files[out] == runs.cold_files[out] and len(runs.cold_files[out]) > 1000
+
+
 def test_a_synchronous_sweep_imports_no_distributed(shared_cache, tmp_path):
     """``--scheduler synchronous`` evaluates every chunk in this process: its start imports neither Dask's
     distributed scheduler nor pandas (SymPy still, for the linkage's ranges and its solver: not warm yet)."""

@@ -626,12 +626,10 @@ def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[st
     sampled_full = numpy.asarray(mask.all(axis=1))
     scanned: dict[int, list[tuple[float, float]]] = {}
     partial = numpy.flatnonzero(~sampled_full)
-    if not fourbar and partial.size and facts["closed_form"]:  # every partial design's scan at once (the linkage's)
-        from ..numeric.reachability import design_spans
+    if not fourbar and partial.size and facts["closed_form"]:  # every partial design's scan at once
         values_of = {name: table[name][partial] for name in parameters}
         values_of.update({**held, **{name: float(settings.branch) for name in facts["branches"]}})
-        scanned = dict(zip(partial.tolist(), design_spans(settings.found().linkage, values_of, partial.size,
-                                                          input=input_name)))
+        scanned = dict(zip(partial.tolist(), _design_spans(settings, values_of, partial.size, input_name)))
     if fourbar:  # every design's class at once
         from ..analysis.grashof import grashof_names
         classes = grashof_names(table["a"], table["b"], table["c"], table["d"])
@@ -729,6 +727,44 @@ def _polish(evaluate, at: numpy.ndarray, value: numpy.ndarray, step: float, sign
         at = numpy.where(good, at + shift, at)
         value = numpy.where(good, sign * new_value, value)
     return at, value
+
+
+def _design_spans(settings: SweepSettings, values: Mapping[str, Any], count: int, driven: str
+                  ) -> list[list[tuple[float, float]]]:
+    """The reachable spans of ``count`` designs (``values``) over a turn of the input ``driven``, as
+    :func:`~symlink.numeric.reachability.design_spans` scans them, with the margins of the linkage's roots from
+    the disk cache (:func:`_margins`): no linkage where the cache keys it."""
+    from ..numeric.design_scan import margin_spans
+    margins = _margins(settings.linkage, settings.linkage_text)
+    if margins is None:
+        from ..numeric.reachability import design_spans
+        return design_spans(settings.found().linkage, values, count, input=driven)
+    function, roots, lengths, branches, tolerance = margins
+    return margin_spans(function, roots, lengths, branches, driven, values, count, tolerance)
+
+
+@lru_cache(maxsize=16)
+def _margins(source: str, text: str | None) -> tuple | None:
+    """The margins of the linkage's clamped roots from the disk cache (derived once:
+    :func:`symlink.numeric.reachability.margins_entry_text`), compiled where a compiler works
+    (:func:`~symlink.numeric.design_scan.fastest_margins`), their roots (name, loop), lengths, branch signs and
+    rounding; None where the cache cannot key the linkage."""
+    request = _request(source, text)
+    if request is None:
+        return None
+    from ..numeric.cache import cached_module
+    from ..numeric.design_scan import fastest_margins
+
+    def derive() -> str:
+        from ..numeric.reachability import margins_entry_text
+        return margins_entry_text(_linkage(source, text).linkage)
+
+    _, namespace = cached_module(_key(request, ["margins"]), derive)  # a verified entry of a private cache
+    described = namespace["MARGINS_DESCRIPTION"]
+    function = fastest_margins(namespace["margins"], lambda: described["c_margins"], described["lengths"],
+                               described["branches"])
+    return (function, [tuple(root) for root in described["roots"]], described["lengths"], described["branches"],
+            described["tolerance"])
 
 
 def _plain_joints(joints: list[list[Any]]) -> tuple:

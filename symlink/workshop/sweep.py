@@ -402,8 +402,10 @@ def linkage_facts(found: LinkageFile) -> dict[str, Any]:
 
 
 @lru_cache(maxsize=16)
-def _cached_facts(source: str, text: str | None) -> str:
-    request = _request(source, text)
+def _cached_facts(source: str, text: str | None, keyed: str | None) -> str:
+    """The facts' JSON text, once a process for each linkage (``keyed``: its request as JSON, so that a file
+    changed since is read again)."""
+    request = None if keyed is None else json.loads(keyed)
 
     def now() -> str:
         return json.dumps(linkage_facts(_linkage(source, text)))
@@ -421,7 +423,8 @@ def sweep_facts(source: str, text: str | None = None) -> dict[str, Any]:
     >>> sweep_facts("fourbar")["positive"]
     ['a', 'b', 'c', 'd']
     """
-    return json.loads(_cached_facts(source, text))
+    request = _request(source, text)
+    return json.loads(_cached_facts(source, text, None if request is None else json.dumps(request, sort_keys=True)))
 
 
 def _position_output(facts: Mapping[str, Any], output: str) -> None:

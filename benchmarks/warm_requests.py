@@ -12,12 +12,14 @@ baseline once in turn, so that a change of load falls on all): warm tables of th
 (``symlink fourbar``, with ``--masses``, ``symlink slider-crank``, ``symlink watt2``), of ``symlink table`` for
 a closed-form linkage, a Newton linkage (no closed form) and a linkage file, a scene file of the Watt II's
 driving torque (``symlink run``), a tolerance stack-up of the four-bar's rocker (``symlink tolerance``), a coupler curve drawn to SVG (``symlink curve``:
-Matplotlib's import is most of it), and the start of a sweep of a catalog linkage and of a linkage file (five
-designs each, the synchronous scheduler and the default one: its start-up, Dask and Parquet, is most of it), each in
-wall time and in CPU time (user + system: less sensitive to the load of a shared machine) over those of
-``python -c "import numpy"`` measured in the same rounds (target for a warm table: within 1.2x).
-``python -c "import sympy"`` is measured beside them: what a warm command that imported SymPy would pay; and
-``python -c "import numpy, dask, pyarrow"``: the floor of a sweep's start.  The load average is printed before and after.
+Matplotlib's import is most of it), pictures of catalog and file linkages (``symlink curve NAME``, ``draw FILE``,
+``animate NAME``) and a solve plan (``symlink plan``), and the start of a sweep of a catalog linkage and of a
+linkage file (five designs each, the synchronous scheduler and the default one: its start-up, Dask and Parquet, is
+most of it), each in wall time and in CPU time (user + system: less sensitive to the load of a shared machine) over
+those of ``python -c "import numpy"`` measured in the same rounds (target for a warm table: within 1.2x).
+``python -c "import sympy"`` is measured beside them: what a warm command that imported SymPy would pay;
+``python -c "import numpy, matplotlib.pyplot"``: what a picture pays; and ``python -c "import numpy, dask,
+pyarrow"``: the floor of a sweep's start.  The load average is printed before and after.
 Bytecode is cached (in the run's folder, ``PYTHONPYCACHEPREFIX``) as for an installed package, even where
 ``PYTHONDONTWRITEBYTECODE`` is set: else every run compiles symlink's modules again (about 0.1 s).
 CPU of the measured machine (the performance page's table): AMD EPYC, 2 cores, AVX-512 (idle; ratios only).
@@ -102,6 +104,10 @@ COMMANDS = {
     "tolerance fourbar 2 7 9 6": ["tolerance", *FOURBAR_2796, "--tolerance", "0.05", "--output", "rocker"],
     "curve fourbar 2 7 9 6 (SVG)": ["curve", *FOURBAR_2796[1:-2], "--coupler-point", "3,20", "--out",
                                     "{folder}/curve-{run}.svg"],
+    "curve fourbar --trace C (SVG)": ["curve", "fourbar", "--trace", "C", "--out", "{folder}/traced-{run}.svg"],
+    "draw FILE (jansen.toml, SVG)": ["draw", "{folder}/jansen.toml", "--out", "{folder}/jansen-{run}.svg"],
+    "animate fourbar (4 frames, GIF)": ["animate", "fourbar", "--frames", "4", "--out", "{folder}/turn-{run}.gif"],
+    "plan watt2": ["plan", "watt2"],
     "sweep start (5 designs)": ["sweep", "fourbar", "{folder}/sweep-{run}", "--vary", "a=10:20", "--set",
                                 "b=66,c=56,d=80", "--grid", "5", "--scheduler", "synchronous", "--no-progress"],
     "sweep FILE start (slider-crank.toml)": ["sweep", "{folder}/slider-crank.toml", "{folder}/sweep-file-{run}",
@@ -109,8 +115,10 @@ COMMANDS = {
                                              "--no-progress"],
 }
 #: The baselines, measured in the same rounds: what every command pays (NumPy), what a warm command that
-#: imported SymPy would pay, and what a sweep's start pays at least (its scheduler and its Parquet files).
+#: imported SymPy would pay, what every picture pays (Matplotlib's pyplot, as much as a drawing imports), and what
+#: a sweep's start pays at least (its scheduler and its Parquet files).
 BASELINES = {"import numpy": ["-c", "import numpy"], "import sympy": ["-c", "import sympy"],
+             "import numpy, matplotlib.pyplot": ["-c", "import numpy, matplotlib.pyplot"],
              "import numpy, dask, pyarrow": ["-c", "import numpy, dask, pyarrow"]}
 
 
@@ -166,9 +174,10 @@ def main() -> None:
     numpy_wall, numpy_cpu = commands["import numpy"]
     print(f"\nwarm command lines in a new process, median of {repeats} interleaved rounds, over "
           "python -c 'import numpy' (wall time and CPU time, user + system):")
-    print(f"{'':>28}  {'wall':>8} {'ratio':>6}  {'CPU':>8} {'ratio':>6}")
+    width = max(map(len, commands))
+    print(f"{'':>{width}}  {'wall':>8} {'ratio':>6}  {'CPU':>8} {'ratio':>6}")
     for label, (seconds, cpu) in commands.items():
-        print(f"{label:>28}: {seconds:.3f} s {seconds / numpy_wall:5.2f}x  {cpu:.3f} s {cpu / numpy_cpu:5.2f}x")
+        print(f"{label:>{width}}: {seconds:.3f} s {seconds / numpy_wall:5.2f}x  {cpu:.3f} s {cpu / numpy_cpu:5.2f}x")
     print(f"(target: a warm table within 1.2x of import numpy; CPU: {platform.processor() or platform.machine()}, "
           f"{os.cpu_count()} cores; load average {load_before[0]:.2f} before, {os.getloadavg()[0]:.2f} after)")
 

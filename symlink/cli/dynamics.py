@@ -33,11 +33,13 @@ from .options import (add_branch_option, add_fourbar_lengths, add_format_option,
 from .output import print_rows
 
 if TYPE_CHECKING:  # the symbolic side is imported when the options ask for dynamics (a plain table needs no SymPy)
+    from ..dynamics.forward import EquationCode
     from ..dynamics.model import DynamicModel
     from ..numeric.cached_solver import CachedSolver
     from ..symbolic.linkage import Linkage
 
 __all__ = ["MASS_COLUMNS", "FLYWHEEL_COLUMNS", "add_mass_options", "fourbar_dynamics", "fourbar_dynamics_solver",
+           "fourbar_mass_options", "flywheel_code",
            "register"]
 
 LINKS = ("crank", "coupler", "rocker")
@@ -121,6 +123,13 @@ def _dynamics_asked(args: argparse.Namespace) -> bool:
     return True
 
 
+def fourbar_mass_options(args: argparse.Namespace, lengths: tuple[float, float, float, float]) -> dict | None:
+    """The dynamics options of ``args`` as plain numbers (what the dynamic model of the four-bar of ``lengths`` is
+    made of, and what keys its cache entries: no SymPy); None without ``--masses``, ``ValueError`` for dynamics
+    options without it or values that cannot be."""
+    return _mass_options(args, lengths) if _dynamics_asked(args) else None
+
+
 def _mass_options(args: argparse.Namespace, lengths: tuple[float, float, float, float]) -> dict:
     """The dynamics options of ``args`` as plain numbers (angles in radians, defaults filled in), checked: what
     the dynamic model is made of, and the key of its cached table (no SymPy)."""
@@ -183,7 +192,8 @@ def fourbar_dynamics_solver(args: argparse.Namespace, lengths: tuple[float, floa
         from ..numeric.solver import Solver
         return Solver(dynamic_linkage(fourbar_model(args, lengths)), columns)
 
-    key = catalog_key("fourbar", columns, DYNAMICS_ENTRY_KIND, {"lengths": [float(v) for v in lengths[:3]], **options})
+    key = catalog_key("fourbar", columns, DYNAMICS_ENTRY_KIND, {"lengths": [float(v) for v in lengths[:3]], **options},
+                      ("cli/dynamics",))  # fourbar_model, here, builds the model from the options
     solver = CachedSolver("fourbar", columns, key=key, derive=derive, full=full)
     solver.check_lengths(**named)
     return solver
@@ -208,12 +218,37 @@ def _add_flywheel_options(command: argparse.ArgumentParser) -> None:
     command.set_defaults(run=run_flywheel)
 
 
+#: The kinds of cache entry of ``symlink flywheel``'s code (:func:`flywheel_code`): the NumPy equation of motion and
+#: driving torque, and the equation for one state that the integrator calls.
+FLYWHEEL_ENTRY_KIND, FLYWHEEL_SCALAR_KIND = "flywheel-equations/1", "flywheel-scalar/1"
+
+
+def flywheel_code(args: argparse.Namespace, lengths: tuple[float, float, float, float]) -> EquationCode:
+    """The code that sizes the flywheel of the four-bar of ``lengths`` with the mass properties of ``args``, from the
+    disk cache: keyed by the options' numbers (as :func:`fourbar_dynamics_solver`'s table), so that a warm run builds
+    no model and imports no SymPy (derived on a miss).  ``ValueError`` without ``--masses`` or for bad values."""
+    from ..dynamics.forward import equation_code
+    from ..numeric.cache import catalog_key
+    options = _mass_options(args, lengths)
+    named = {"lengths": [float(v) for v in lengths[:3]], **options}
+    outputs = ["input_torque"]
+    links = dict(zip(("crank", "coupler", "rocker", "ground"), lengths))
+
+    def model() -> DynamicModel:
+        from ..numeric.solver import check_lengths
+        check_lengths(**links)  # before any model is made of them
+        return fourbar_model(args, lengths)
+
+    code = equation_code(catalog_key("fourbar", outputs, FLYWHEEL_ENTRY_KIND, named, ("cli/dynamics",)),
+                         catalog_key("fourbar", outputs, FLYWHEEL_SCALAR_KIND, named, ("cli/dynamics",)), model)
+    code.check(True, tuple(links), tuple(links.values()), tuple(links))  # the ground is not in the key
+    return code
+
+
 def run_flywheel(args: argparse.Namespace) -> int:
     """``symlink flywheel``: the flywheel of a four-bar with mass properties, as one record."""
     from ..dynamics.flywheel import FlywheelSizing, rpm_to_rad_per_s
-    from ..numeric.solver import check_lengths
     lengths = fourbar_lengths(args)
-    check_lengths(crank=lengths[0], coupler=lengths[1], rocker=lengths[2], ground=lengths[3])
     speed = rpm_to_rad_per_s(args.rpm) if args.rpm is not None else args.rad_per_s
     if not speed > 0:
         raise ValueError(f"the mean speed must be positive, got {args.rpm if args.rpm is not None else speed:g}")
@@ -222,10 +257,10 @@ def run_flywheel(args: argparse.Namespace) -> int:
                          "no mass to size a flywheel for (give the crank, coupler or rocker a mass)")
     require_budget(args.samples, FLYWHEEL_BYTES_PER_SAMPLE, FLYWHEEL_SECONDS_PER_SAMPLE,
                    f"a flywheel of --samples {args.samples}", "--samples", fixed_seconds=FLYWHEEL_SECONDS)
-    model = fourbar_model(args, lengths)
+    code = flywheel_code(args, lengths)  # the lengths checked there, from the disk cache without SymPy
     values = dict(zip("abcd", lengths))
     try:
-        sizing = FlywheelSizing(model, values, speed, args.coefficient, int(args.branch), args.samples)
+        sizing = FlywheelSizing(code, values, speed, args.coefficient, int(args.branch), args.samples)
         band = sizing.speed_band()
         exact = sizing.exact_inertia()
     except ImportError as error:  # SciPy, the extra 'dynamics'

@@ -8,14 +8,17 @@ from __future__ import annotations
 import argparse
 import math
 import sys
-from typing import Sequence
+from typing import TYPE_CHECKING, Sequence
 
 from ..common.angles import to_radians, wrap
 from .options import (name_list, output_file, add_branch_option, add_fourbar_lengths, add_units_option, angle, assignments, branches,
                       command_help, figure_path, finite, fourbar_lengths, fourbar_or_linkage, linkage_values, pair, whole)
 from .output import note
 
-__all__ = ["register", "add_fourbar_plot_options", "write_fourbar_plots", "drawn_linkage"]
+if TYPE_CHECKING:
+    from ..numeric.poses import Placement
+
+__all__ = ["register", "add_fourbar_plot_options", "write_fourbar_plots", "drawn_linkage", "drawn_placement"]
 
 
 def drawn_linkage(args: argparse.Namespace):
@@ -33,6 +36,39 @@ def drawn_linkage(args: argparse.Namespace):
     return linkage, values
 
 
+#: Besides the code that shapes generated code and reads linkage files: what makes a placement's entry.
+PLACEMENT_SHAPING = ("numeric/poses",)
+
+
+def drawn_placement(args: argparse.Namespace) -> tuple[Placement, dict[str, float]]:
+    """The linkage NAME|FILE and its values as :func:`drawn_linkage` gives them, the linkage as a
+    :class:`~symlink.numeric.poses.Placement` from the disk cache (:func:`~symlink.numeric.poses.cached_placement`),
+    so that a warm drawing imports no SymPy.
+
+    The linkage is taken as ``symlink table NAME|FILE`` takes it (:class:`~symlink.io.table_source.TableSource`: a file's
+    ``[dynamics]`` included, whose defaults name masses and loads), and keyed as it keys its entries (the catalog or
+    atlas name, or the file's bytes): its facts give the values, and its solver entries are shared.  A linkage
+    that cannot be keyed is drawn from the linkage itself (:class:`~symlink.numeric.poses.Geometry`).
+    """
+    from ..numeric.cache import catalog_key
+    from ..numeric.poses import PLACEMENT_ENTRY_KIND, Geometry, cached_placement
+    from ..io.table_source import GENERIC_SHAPING, TableSource, facts_values
+    source = TableSource(args.linkage)
+    if source.request is None:  # not keyed: the reader says what is wrong, or the linkage is drawn as it is
+        linkage, values = drawn_linkage(args)
+        return Geometry(linkage), values
+    facts = source.facts
+    values = facts_values(facts, args.set or {}, args.units)
+    if args.angle is not None:
+        first = facts["inputs"][0]
+        values[first] = float(to_radians(args.angle, args.units)) if first in facts["angles"] else args.angle
+    for branch in facts["branches"]:
+        values[branch] = int(args.branch)
+    key = catalog_key("table", ["placement"], PLACEMENT_ENTRY_KIND, source.request,
+                      GENERIC_SHAPING + PLACEMENT_SHAPING)
+    return cached_placement(key, source.key, lambda: source.found().linkage), values
+
+
 def _add_catalog_options(parser: argparse.ArgumentParser, what: str) -> None:
     parser.add_argument("--set", type=assignments("NAME=VALUE"), metavar="NAME=VALUE,...",
                         help="change example values (fixed angles in --units), e.g. --set a=20,b=66")
@@ -42,9 +78,9 @@ def _add_catalog_options(parser: argparse.ArgumentParser, what: str) -> None:
     parser.add_argument("--unit", default=None, metavar="UNIT", help="length unit for the axis labels, e.g. mm")
 
 
-def _default_trace(linkage) -> list[str]:
+def _default_trace(points: Sequence[str]) -> list[str]:
     """The last named point: the Jansen leg's foot, a coupler's tip."""
-    return [list(linkage.points)[-1]] if linkage.points else []
+    return [points[-1]] if points else []
 
 
 def _spans_note(rendered, name: str, units: str) -> None:
@@ -141,13 +177,13 @@ def run_animate(args: argparse.Namespace) -> int:
 
     if fourbar_or_linkage(args, "animate", linkage_only=("set", "angle", "trace", "unit"),
                           fourbar_only=("coupler_point",)):
-        from ..plot.animation import animate_linkage
-        linkage, values = drawn_linkage(args)
-        trace = _default_trace(linkage) if args.trace is None else args.trace
-        rendered = animate_linkage(linkage, values, args.out, frames=args.frames, trace=trace, fps=args.fps,
-                                   unit=args.unit, progress=report)
-        first = linkage.inputs[0]
-        role = next((role for role, symbol in linkage.roles.items() if symbol == first), first.name)
+        from ..plot.animation import animate_placement
+        placement, values = drawn_placement(args)
+        trace = _default_trace(placement.facts["points"]) if args.trace is None else args.trace
+        rendered = animate_placement(placement, values, args.out, frames=args.frames, trace=trace, fps=args.fps,
+                                     unit=args.unit, progress=report)
+        first = placement.input_names[0]
+        role = next((role for role, name in placement.facts["roles"].items() if name == first), first)
         _spans_note(rendered, role, args.units)
         print(f"wrote {rendered.path} ({rendered.frames} frames)")
         return 0
@@ -163,10 +199,10 @@ def run_animate(args: argparse.Namespace) -> int:
 
 def run_draw(args: argparse.Namespace) -> int:
     from ..plot import save_figure
-    from ..plot.drawing import draw_linkage
-    linkage, values = drawn_linkage(args)
-    trace = _default_trace(linkage) if args.trace is None else args.trace
-    drawing = draw_linkage(linkage, values, trace=trace, unit=args.unit)
+    from ..plot.drawing import draw_placement
+    placement, values = drawn_placement(args)
+    trace = _default_trace(placement.facts["points"]) if args.trace is None else args.trace
+    drawing = draw_placement(placement, values, trace=trace, unit=args.unit)
     save_figure(drawing.figure, args.out)
     print(f"wrote {args.out}")
     return 0
@@ -177,7 +213,7 @@ def run_view(args: argparse.Namespace) -> int:
     if fourbar_or_linkage(args, "view", lengths_required=False, linkage_only=("set", "angle", "trace", "unit"),
                           fourbar_only=("crank_angle", "crank_speed")):
         linkage, values = drawn_linkage(args)
-        trace = _default_trace(linkage) if args.trace is None else args.trace
+        trace = _default_trace(list(linkage.points)) if args.trace is None else args.trace
         if args.save:
             from matplotlib.figure import Figure
             from ..plot import save_figure
@@ -212,8 +248,8 @@ def run_view(args: argparse.Namespace) -> int:
 
 
 def _catalog_names() -> str:
-    from ..mechanism.catalog import CATALOG
-    return ", ".join(sorted(CATALOG))
+    from ..io.scene_text import catalog_file_names  # the catalog's files: no linkage built, no SymPy
+    return ", ".join(catalog_file_names())
 
 
 def register(commands) -> None:

@@ -24,7 +24,7 @@ from ..common.angles import from_radians, to_radians, wrap
 from .options import (FOURBAR_LENGTHS, output_folder, refuse_together, add_branch_option, add_format_option, add_units_option, assignments,
                       command_help, figure_path, finite, fourbar_lengths, input_sweep, distinct_number_list,
                       seed, whole)
-from .dynamics import add_mass_options, fourbar_dynamics
+from .dynamics import add_mass_options, fourbar_dynamics, fourbar_mass_options
 from .output import RowWriter, note
 
 #: More input values than this make a stack-up a benchmark, not a table (each costs 1 + 2 x dimensions solves).
@@ -94,10 +94,13 @@ def _add_options(command: argparse.ArgumentParser) -> None:
 #: The kinds of cache entry of ``symlink tolerance``: the facts of the linkage it needs (:func:`stack_up_facts`) and
 #: the stack-up model of one output by some dimensions (:class:`~symlink.workshop.tolerance.StackUpModel`).
 FACTS_ENTRY_KIND, MODEL_ENTRY_KIND = "tolerance-facts/1", "tolerance-model/1"
+#: The kinds of cache entry of the solver of the output that sampled builds (``--samples``) solve, and of the exact
+#: gradients of the output by the pins' play (``--play``: :func:`symlink.workshop.tolerance.play_jacobian`).
+SOLVER_ENTRY_KIND, PLAY_ENTRY_KIND = "tolerance-solver/1", "tolerance-play/1"
 #: Besides the code that shapes generated code: what reads a linkage file or an atlas name, what derives a stack-up's
 #: model and what takes the command's facts from the linkage.
 TOLERANCE_SHAPING = ("io/linkage_file", "mechanism/atlas", "mechanism/joints", "workshop/tolerance",
-                     "numeric/design_jacobian", "numeric/units", "cli/tolerance")
+                     "numeric/design_jacobian", "numeric/units", "cli/tolerance", "cli/dynamics")
 
 
 def stack_up_facts(linkage: Any, source: str, defaults: Mapping[str, float]) -> dict[str, Any]:
@@ -113,6 +116,7 @@ def stack_up_facts(linkage: Any, source: str, defaults: Mapping[str, float]) -> 
     named = linkage.parameters + linkage.inputs
     return {"name": linkage.name, "source": source, "closed_form": bool(linkage.has_closed_form),
             "inputs": [q.name for q in linkage.inputs], "parameters": [s.name for s in linkage.parameters],
+            "positive": [s.name for s in linkage.parameters if s.is_positive],
             "kinds": parameter_kinds(linkage), "angles": [s.name for s in named if is_angle(linkage, s)],
             "branches": [b.name for b in linkage.branches],
             "last_unknown": linkage.unknowns[-1].name if linkage.unknowns else None,
@@ -121,13 +125,12 @@ def stack_up_facts(linkage: Any, source: str, defaults: Mapping[str, float]) -> 
 
 def _keyed_request(args: argparse.Namespace, name: str) -> dict[str, str] | None:
     """What names the linkage in the keys of the command's cache entries, where the request can be answered from
-    them (a linkage named by a catalog or atlas name or a file's bytes; no masses, pin play or sampled builds: those
-    are derived each time); else None."""
+    them (a linkage named by a catalog or atlas name or a file's bytes; the four-bar's masses and the pins' play key
+    the entries further; builds kept in a folder are derived each time, their manifest names the linkage's
+    definition); else None."""
     from ..common.names import FORMER_CATALOG_NAMES
     from ..io.scene_text import linkage_request
-    dynamics = ("masses", "inertias", "centres", "gravity", "load_torque")
-    if (name in FORMER_CATALOG_NAMES or any(getattr(args, option) is not None for option in dynamics) or args.play
-            or args.builds is not None or args.folder is not None):
+    if name in FORMER_CATALOG_NAMES or args.folder is not None:
         return None
     return linkage_request(name)
 
@@ -142,8 +145,10 @@ def run(args: argparse.Namespace) -> int:
 
     A linkage named by a catalog or atlas name or a file is answered from the disk cache: its facts
     (:func:`stack_up_facts`) and the stack-up model of the output by the toleranced dimensions
-    (:class:`~symlink.workshop.tolerance.StackUpModel`) are keyed by what names it, so that a warm stack-up (without
-    masses, pin play or sampled builds) builds no linkage and imports no SymPy; the cold run takes the same path.
+    (:class:`~symlink.workshop.tolerance.StackUpModel`), and with ``--samples`` the output's solver, are keyed by what
+    names it (and by the four-bar's ``--masses`` and the pins of ``--play``: the entry of the gradients by the pins'
+    play), so that a warm stack-up (without builds kept in a ``--folder``) builds no linkage and imports no SymPy;
+    the cold run takes the same path.
     """
     import json
     from ..numeric.cache import cached_module, cached_text
@@ -158,10 +163,20 @@ def run(args: argparse.Namespace) -> int:
     request = _keyed_request(args, name)
     found: Any = None
     linkage: Any = None  # the linkage, read where the request is not answered from the disk cache
+    keyed: dict[str, Any] = {}  # what keys the entries besides the linkage and the output: the four-bar's masses
+    dynamic_lengths: tuple[float, float, float, float] | None = None  # the four-bar's, where it has masses
 
     def read() -> Any:
         from ..io.linkage_file import load_linkage
         return load_linkage(name)
+
+    def read_linkage() -> Any:
+        """The linkage of the stack-up: as read, or the four-bar with the masses of the options (SymPy)."""
+        if dynamic_lengths is None:
+            return read().linkage
+        dynamic = fourbar_dynamics(args, dynamic_lengths)
+        assert dynamic is not None  # dynamic_lengths is set where the options ask for masses
+        return dynamic[0]
 
     if request is not None:
         def now() -> str:
@@ -181,11 +196,19 @@ def run(args: argparse.Namespace) -> int:
         values.update({k: v for k, v in zip("abcd", lengths) if v is not None})
     if args.masses is not None and not fourbar:
         raise ValueError("tolerance: --masses and the other dynamics options belong to the four-bar")
-    if fourbar and found is not None:
-        dynamic = fourbar_dynamics(args, (values["a"], values["b"], values["c"], values["d"]))
-        if dynamic is not None:  # masses at fixed places on the links: the lengths' tolerances do not move them
-            linkage = dynamic[0]
-            facts = stack_up_facts(linkage, found.source, found.defaults)
+    if fourbar:
+        four = (values["a"], values["b"], values["c"], values["d"])
+        options = fourbar_mass_options(args, four)  # ValueError for dynamics options without --masses
+        if options is not None:  # masses at fixed places on the links: the lengths' tolerances do not move them
+            dynamic_lengths = four
+            if request is not None:  # keyed by the options' numbers: a warm stack-up builds no model
+                keyed["dynamics"] = options
+                kinematic = facts
+                facts = json.loads(cached_text(_key(request, FACTS_ENTRY_KIND, [], **keyed), lambda: json.dumps(
+                    stack_up_facts(read_linkage(), kinematic["source"], kinematic["defaults"]))))
+            else:
+                linkage = read_linkage()
+                facts = stack_up_facts(linkage, found.source, found.defaults)
     if not facts["closed_form"]:
         raise ValueError(f"{facts['name']} has no closed form; take its stack-up from Python with stack_up(..., "
                          "guess=...) (its assembly must be chosen)")
@@ -207,34 +230,48 @@ def run(args: argparse.Namespace) -> int:
         inputs[other] = numpy.full(len(shown), values[other])
     values.update({branch: int(args.branch) for branch in facts["branches"]})
     values.update({f"{first}dot": args.crank_speed, f"{first}ddot": args.crank_accel})
+    play_model: Any = None  # the exact gradients of the output by the pins' play (--play)
     if args.play:
-        from ..symbolic.vectors import acceleration, rate
-        moving = {rate(q) for q in linkage.coordinates} | {acceleration(q) for q in linkage.coordinates}
-        if linkage.output(output).free_symbols & moving:  # ValueError naming the outputs for an unknown one
-            raise ValueError(f"--play is modelled for positions; {output} moves with the rates")
+        joints = list(args.play)
+
+        def derive_play(playing: Any) -> Any:
+            from ..symbolic.vectors import acceleration, rate
+            from ..workshop.tolerance import play_jacobian
+            moving = {rate(q) for q in playing.coordinates} | {acceleration(q) for q in playing.coordinates}
+            if playing.output(output).free_symbols & moving:  # ValueError naming the outputs for an unknown one
+                raise ValueError(f"--play is modelled for positions; {output} moves with the rates")
+            return play_jacobian(playing, [output], joints)
+        if request is not None:  # keyed by the pins: a warm run reads the gradients' code (no SymPy)
+            from ..numeric.design_jacobian import DesignJacobian
+            play_model = DesignJacobian.from_entry(*cached_module(
+                _key(request, PLAY_ENTRY_KIND, [output], joints=joints, **keyed),
+                lambda: derive_play(read_linkage()).entry_text()))
+        else:
+            play_model = derive_play(linkage)
     dimensions, bands, sigmas = tolerance_arrays(tolerances)
     if request is not None:
         def derive() -> str:
             from ..numeric.units import output_units
-            derived = read().linkage
+            derived = read_linkage()
             model = StackUpModel.derive(derived, [output], dimensions)  # ValueError naming an unknown output
             return model.entry_text(output_unit=output_units(derived, [output]).get(output))
         # a verified entry of a private cache (never user text), run from its cached bytecode
-        model = StackUpModel.from_entry(*cached_module(_key(request, MODEL_ENTRY_KIND, [output], dimensions=dimensions),
-                                                       derive))
+        model = StackUpModel.from_entry(*cached_module(_key(request, MODEL_ENTRY_KIND, [output], dimensions=dimensions,
+                                                            **keyed), derive))
         output_unit = model.facts["output_unit"]
     else:
         from ..numeric.units import output_units
         model = StackUpModel.derive(linkage, [output], dimensions)
         output_unit = output_units(linkage, [output]).get(output)
+    angular = output_unit == "rad"
     result = model.stack_up(values, bands, sigmas, inputs)
     if not result.assembled.any():  # every row would be NaN: refused, as every table command refuses it
         raise ValueError(f"{facts['name']} cannot be assembled at any of the input values asked for with these "
                          "dimensions: there is no stack-up to print")
     play = None
     if args.play:
-        from ..workshop.tolerance import pin_play
-        play = pin_play(linkage, output, values, args.play, inputs=inputs).worst_case[0]
+        from ..workshop.tolerance import played_pins
+        play = played_pins(play_model, facts["name"], facts["inputs"], values, args.play, inputs=inputs).worst_case[0]
     sampled, builds = None, None
     refuse_together(args, ("seed", "does nothing without --samples N", args.builds is None,
                            "only sampled builds are seeded; the worst case and RSS are not sampled"))
@@ -251,14 +288,28 @@ def run(args: argparse.Namespace) -> int:
             if missing:
                 raise ValueError(f"--folder needs {', '.join(missing)}: {SWEEP_EXTRA} (or leave --folder out: the "
                                  "builds are then made in memory)")
-        from ..workshop.tolerance import sample_builds
-        builds = sample_builds(linkage, output, values, tolerances, inputs=inputs, builds=args.builds,
-                               seed=args.seed, folder=args.folder)
+        if linkage is None:  # the output's solver from the disk cache (derived once): a warm sample imports no SymPy
+            from ..numeric.cached_solver import CachedSolver, entry_text
+            from ..workshop.tolerance import solved_builds
+            assert request is not None  # the linkage is read where the request is not keyed
+            known = request
+
+            def solver() -> CachedSolver:
+                return CachedSolver(facts["name"], [output], key=_key(known, SOLVER_ENTRY_KIND, [output], **keyed),
+                                    derive=lambda: entry_text(read_linkage(), [output]))
+            positive = set(facts["positive"])
+            builds = solved_builds(solver, facts["name"], facts["inputs"],
+                                   {dimension: dimension in positive for dimension in facts["parameters"]},
+                                   lambda: [angular], [output], values, tolerances, inputs=inputs, builds=args.builds,
+                                   seed=args.seed)
+        else:
+            from ..workshop.tolerance import sample_builds
+            builds = sample_builds(linkage, output, values, tolerances, inputs=inputs, builds=args.builds,
+                                   seed=args.seed, folder=args.folder)
         sampled = builds.percentile([0.135, 99.865])[:, 0]
         if args.folder is not None:
             note(f"{args.builds} builds in {args.folder}: {builds.reused} chunk{'s' if builds.reused != 1 else ''} "
                  "found done there")
-    angular = output_unit == "rad"
     convert = (lambda x: from_radians(x, args.units)) if angular else (lambda x: numpy.asarray(x))  # noqa: E731
     nominal = convert(wrap(result.nominal[0]) if angular else result.nominal[0])
     worst, rss, shift = convert(result.worst_case[0]), convert(result.rss[0]), convert(result.mean_shift[0])

@@ -59,19 +59,7 @@ def sha256(data: bytes = b"") -> Any:
     >>> sha256(b"abc").hexdigest()[:16]
     'ba7816bf8f01cfea'
     """
-    return _sha256_of()(data)
-
-
-@lru_cache(maxsize=1)
-def _sha256_of() -> Any:
-    import importlib
-    for module in ("_sha256", "_sha2"):  # CPython up to 3.11, and from 3.12
-        try:
-            return importlib.import_module(module).sha256
-        except (ImportError, AttributeError):
-            continue
-    import hashlib
-    return hashlib.sha256
+    return _builtin_hash(("_sha256", "_sha2"), "sha256")(data)  # CPython's module up to 3.11, and from 3.12
 
 
 def blake2b(data: bytes = b"") -> Any:
@@ -95,17 +83,20 @@ def blake2b(data: bytes = b"") -> Any:
     >>> blake2b(b"abc").hexdigest()[:16]
     'ba80a53f981c4d0d'
     """
-    return _blake2b_of()(data)
+    return _builtin_hash(("_blake2",), "blake2b")(data)
 
 
-@lru_cache(maxsize=1)
-def _blake2b_of() -> Any:
+@lru_cache(maxsize=None)
+def _builtin_hash(modules: tuple[str, ...], name: str) -> Any:
+    """CPython's own constructor ``name`` from the first of ``modules`` that has it, else :mod:`hashlib`'s."""
     import importlib
-    try:
-        return importlib.import_module("_blake2").blake2b
-    except (ImportError, AttributeError):
-        import hashlib
-        return hashlib.blake2b
+    for module in modules:
+        try:
+            return getattr(importlib.import_module(module), name)
+        except (ImportError, AttributeError):
+            continue
+    import hashlib
+    return getattr(hashlib, name)
 
 
 def _token() -> str:

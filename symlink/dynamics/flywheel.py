@@ -46,15 +46,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any, Mapping
+from typing import TYPE_CHECKING, Any, Mapping
 
 import numpy
 
 from ..common.display import record_html
-from ..numeric.solver import Solver
-from ..symbolic.vectors import acceleration, rate
-from .forward import ConstantTorque, ForwardDynamics, Motion, equation_linkage, require_scipy
-from .model import DynamicModel
+from .forward import ConstantTorque, EquationCode, ForwardDynamics, Motion, require_scipy
+
+if TYPE_CHECKING:  # a model is worked on (SymPy) where one is given; its cached code (EquationCode) needs none
+    from .model import DynamicModel
 
 __all__ = ["TorqueCycle", "energy_fluctuation", "flywheel_inertia", "FlywheelSizing", "SpeedBand", "size_flywheel",
            "rpm_to_rad_per_s"]
@@ -291,8 +291,9 @@ class FlywheelSizing:
 
     Parameters
     ----------
-    model : DynamicModel
-        A one-input model.
+    model : DynamicModel or EquationCode
+        A one-input model, or its generated code (:func:`~symlink.dynamics.forward.equation_code`: from the disk
+        cache, no SymPy).
     values : mapping of str to float
         Every parameter of its dynamic linkage by name.
     mean_speed : float
@@ -317,33 +318,32 @@ class FlywheelSizing:
 
     _repr_html_ = record_html  # a notebook shows the fields as a table
 
-    def __init__(self, model: DynamicModel, values: Mapping[str, float], mean_speed: float, coefficient: float,
-                 branch: int | Mapping[str, int] = 1, samples: int = 720) -> None:
+    def __init__(self, model: DynamicModel | EquationCode, values: Mapping[str, float], mean_speed: float,
+                 coefficient: float, branch: int | Mapping[str, int] = 1, samples: int = 720) -> None:
         self.mean_speed = _finite(mean_speed, "mean speed", positive=True)
         self.coefficient = _finite(coefficient, "coefficient of speed fluctuation", positive=True)
         if isinstance(samples, bool) or not isinstance(samples, int) or samples < 16:
             raise ValueError(f"samples must be a whole number of at least 16, got {samples!r}")
         self.dynamics = ForwardDynamics(model, values, branch)
-        linkage = equation_linkage(model)
-        effort = model.input_effort_name(0)
-        if effort != "input_torque":
-            raise ValueError(f"a flywheel turns with a crank; the input of {linkage.name} is a slider")
+        code = self.dynamics.code
+        if code.effort_name != "input_torque":
+            raise ValueError(f"a flywheel turns with a crank; the input of {code.name} is a slider")
         if self.dynamics.takes_speed:
             raise ValueError("the loads depend on speed (a damper): the flywheel sizing needs loads that depend on "
                              "the position only")
         self.samples = samples
         angles = numpy.arange(samples) * 2 * math.pi / samples
-        solver = Solver(linkage, ["input_torque"])
-        arguments = {name: value for name, value in self.dynamics.values.items() if name in solver.arguments}
-        driven = linkage.inputs[0]
-        motion = {driven.name: angles, rate(driven).name: self.mean_speed, acceleration(driven).name: 0.0}
-        if rate(driven).name not in solver.arguments:  # a torque that no speed changes: nothing moving has mass
-            raise ValueError(f"{linkage.name} has no mass or moment of inertia that moves: a flywheel holds the speed "
+        takes = code.arguments_of(code.effort)
+        arguments = {name: value for name, value in self.dynamics.values.items() if name in takes}
+        motion = {code.input: angles, code.rate: self.mean_speed, code.acceleration: 0.0}
+        if code.rate not in takes:  # a torque that no speed changes: nothing moving has mass
+            raise ValueError(f"{code.name} has no mass or moment of inertia that moves: a flywheel holds the speed "
                              "of a linkage with inertia (give its bodies masses)")
-        found = solver(**{name: value for name, value in motion.items() if name in solver.arguments}, **arguments)
+        with numpy.errstate(invalid="ignore", divide="ignore"):
+            found = code.effort(**{name: value for name, value in motion.items() if name in takes}, **arguments)
         if not numpy.all(found["assembled"]):
             first = float(angles[~numpy.asarray(found["assembled"])][0])
-            raise ValueError(f"{linkage.name} cannot be assembled at crank angle {math.degrees(first):.6g} deg: "
+            raise ValueError(f"{code.name} cannot be assembled at crank angle {math.degrees(first):.6g} deg: "
                              "the crank does not turn a whole cycle, so there is no flywheel cycle")
         self.cycle = energy_fluctuation(found["input_torque"])
         self._terms: tuple[_Periodic, _Periodic] | None = None
@@ -443,9 +443,8 @@ class FlywheelSizing:
         speeds = numpy.sqrt((constant + 2 * work_series.integral_on_grid(points))
                             / (flywheel + inertia_series.value_on_grid(points)))
         period = float(numpy.mean(1.0 / speeds)) * 2 * math.pi
-        parameters = {s.name: self.dynamics.values[s.name] for s in self.dynamics.linkage.parameters}
-        dynamics = ForwardDynamics(self.dynamics.model, parameters, _branches(self.dynamics),
-                                   input_inertia=flywheel)
+        parameters = {name: self.dynamics.values[name] for name in self.dynamics.code.parameters}
+        dynamics = ForwardDynamics(self.dynamics.code, parameters, _branches(self.dynamics), input_inertia=flywheel)
         motion = dynamics.simulate(0.0, float(speeds[0]), period, ConstantTorque(self.mean_torque), rtol=rtol,
                                    atol=rtol * self.mean_speed)
         if not motion.finished:
@@ -458,7 +457,7 @@ class FlywheelSizing:
 
 
 def _branches(dynamics: ForwardDynamics) -> dict[str, int]:
-    return {s.name: int(dynamics.values[s.name]) for s in dynamics.linkage.branches}
+    return {name: int(dynamics.values[name]) for name in dynamics.code.branches}
 
 
 def _refined_max(values: numpy.ndarray) -> float:

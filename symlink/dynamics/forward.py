@@ -34,26 +34,24 @@ For a slider input ``angle`` reads "travel" and torque "force" throughout.
 from __future__ import annotations
 
 import functools
+import inspect
 import math
 import weakref
-from dataclasses import dataclass, replace
-from typing import Any, Callable, Mapping
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Callable, Mapping
 
 import numpy
 
-from ..numeric.cache import cache_key, cached_module, generated_code
-from ..codegen.numpy import checked_arguments
-from ..codegen.program import in_loop_units
-from ..codegen.scalar import scalar_module
+from ..numeric.cache import cache_key, cached_module
 from ..common.display import record_html
-from ..symbolic.linkage import Linkage
-from ..symbolic.position import ClampedSqrt
-from ..symbolic.vectors import rate
-from .inverse import EQUATION_OUTPUTS, driving_efforts, equation_of_motion, linkage_with_outputs
-from .model import DynamicModel
+
+if TYPE_CHECKING:  # the symbolic side is imported where a model is worked on: code read from the disk cache
+    # (EquationCode) runs without SymPy
+    from ..symbolic.linkage import Linkage
+    from .model import DynamicModel
 
 __all__ = ["ForwardDynamics", "Motion", "Stop", "ConstantTorque", "LinearMotor", "Motor", "require_scipy",
-           "EQUATION_OUTPUTS"]
+           "EquationCode", "equation_code", "model_equation_code", "equation_entry_text"]
 
 
 #: How close (in the loops' normalised square-root argument, about radians of the input) the motion may
@@ -82,13 +80,15 @@ _EQUATION_LINKAGES: "weakref.WeakKeyDictionary[DynamicModel, Linkage]" = weakref
 
 
 def equation_linkage(model: DynamicModel) -> Linkage:
-    """The model's kinematic linkage with the outputs of :data:`EQUATION_OUTPUTS` and ``input_torque`` only.
+    """The model's kinematic linkage with the outputs of :data:`~symlink.dynamics.inverse.EQUATION_OUTPUTS` and
+    ``input_torque`` only.
 
     The same expressions as those outputs of :func:`~symlink.dynamics.inverse.dynamic_linkage`, without the
     joint reactions: what
     forward dynamics and the flywheel need derives (and keys the code cache) in a
     fraction of the time.  Made once a model.
     """
+    from .inverse import driving_efforts, equation_of_motion, linkage_with_outputs
     if model not in _EQUATION_LINKAGES:
         if len(model.kinematics.inputs) != 1:
             raise ValueError(f"forward dynamics is for one-input linkages; {model.kinematics.name} has "
@@ -98,7 +98,7 @@ def equation_linkage(model: DynamicModel) -> Linkage:
     return _EQUATION_LINKAGES[model]
 
 
-def scalar_source(linkage: Linkage, outputs: tuple[str, ...] = EQUATION_OUTPUTS) -> str:
+def scalar_source(linkage: Linkage, outputs: tuple[str, ...] | None = None) -> str:
     """A module with ``solve(<arguments>)`` for one state, as floats: ``outputs``, ``assembled``, ``margin``.
 
     The same straight-line program (common subexpressions eliminated) as the NumPy
@@ -109,11 +109,109 @@ def scalar_source(linkage: Linkage, outputs: tuple[str, ...] = EQUATION_OUTPUTS)
     integrator can stop on reaching one.  It may raise ``ZeroDivisionError`` exactly
     at a toggle.
     """
+    from dataclasses import replace
+
+    from ..codegen.program import in_loop_units
+    from ..codegen.scalar import scalar_module
+    from ..symbolic.position import ClampedSqrt
+    from .inverse import EQUATION_OUTPUTS
+    outputs = EQUATION_OUTPUTS if outputs is None else outputs
     program = in_loop_units(linkage.program(list(outputs)))
     roots = [expr for _, expr in program.assignments if isinstance(expr, ClampedSqrt)]
     margins = {f"margin_{k}": expr.args[0] / abs(expr.args[1]) for k, expr in enumerate(roots)}
     program = replace(program, outputs={**program.outputs, **margins})
     return scalar_module(program, outputs, smallest=list(margins))
+
+
+#: The cache kind of a model's NumPy code of the equation of motion and the driving effort (:func:`equation_entry_text`).
+EQUATION_KIND = "forward-dynamics-equations/1"
+#: The names of the two functions of that module, and of the dictionary of what a call needs.
+EQUATIONS, EFFORT, DESCRIPTION = "equation_of_motion", "driving_effort", "EQUATION_DESCRIPTION"
+
+
+def equation_entry_text(model: DynamicModel) -> str:
+    """The cache entry of a one-input ``model``'s NumPy code: the equation of motion (``M``, ``dM/dq``,
+    ``Q_applied``; :func:`equation_linkage`) and the driving effort, one function each, and what a call needs
+    (names, plain data), so that :func:`equation_code` runs them without the model (symbolic work, done once)."""
+    from ..codegen.numpy import numpy_module
+    from ..symbolic.vectors import acceleration, rate
+    from .inverse import EQUATION_OUTPUTS
+    linkage = equation_linkage(model)
+    effort = model.input_effort_name(0)
+    driven = linkage.inputs[0]
+    described = {
+        "name": linkage.name, "input": driven.name, "rate": rate(driven).name,
+        "acceleration": acceleration(driven).name, "effort": effort,
+        "parameters": [s.name for s in linkage.parameters], "branches": [s.name for s in linkage.branches],
+        "lengths": [s.name for s in linkage.parameters if s.is_positive],
+    }
+    source = numpy_module([(EQUATIONS, linkage.program(list(EQUATION_OUTPUTS)), f"{linkage.name}: M, dM/dq, Q_applied."),
+                           (EFFORT, linkage.program([effort]), f"{linkage.name}: {effort}.")])
+    return f"{source.rstrip()}\n\n\n#: What a call needs, for symlink.dynamics.forward.EquationCode.\n{DESCRIPTION} = {described!r}\n"
+
+
+@dataclass(frozen=True)
+class EquationCode:
+    """The generated code that forward dynamics and a flywheel run for one model, and the names a call needs.
+
+    Plain names and functions, read from the disk cache (:func:`equation_code`): a process whose code is cached
+    builds no model and imports no SymPy.  ``equation`` gives ``M``, ``dM/dq``, ``Q_applied`` and ``assembled``
+    on arrays, ``effort`` the driving effort (``input_torque``, or ``input_force`` for a slider), ``scalar`` the
+    equation for one state as floats (:func:`scalar_source`), ``check`` the generated argument check.
+    """
+
+    name: str
+    input: str
+    rate: str
+    acceleration: str
+    effort_name: str
+    parameters: tuple[str, ...]
+    branches: tuple[str, ...]
+    lengths: tuple[str, ...]
+    equation: Callable[..., dict]
+    effort: Callable[..., dict]
+    scalar: Callable[..., tuple]
+    check: Callable[..., Any]
+
+    @staticmethod
+    def arguments_of(function: Callable[..., Any]) -> list[str]:
+        """The argument names of a generated function, in calling order (not the keyword-only ``check``)."""
+        return [name for name, parameter in inspect.signature(function).parameters.items()
+                if parameter.kind is not parameter.KEYWORD_ONLY]
+
+
+def equation_code(key: str, scalar_key: str, model: Callable[[], DynamicModel]) -> EquationCode:
+    """The :class:`EquationCode` stored under the cache keys ``key`` (:func:`equation_entry_text`) and
+    ``scalar_key`` (:func:`scalar_source`); ``model()`` makes the model where an entry is derived (once).
+
+    Keys made without the model (:func:`symlink.numeric.cache.catalog_key` of what names it, as ``symlink flywheel``
+    makes them from its options' numbers) find cached code without SymPy; :func:`model_equation_code` keys it by
+    the model's definition.
+    """
+    made: list[DynamicModel] = []
+
+    def built() -> DynamicModel:
+        if not made:
+            made.append(model())
+        return made[0]
+
+    # verified entries of a private cache (never user text), run from their cached bytecode
+    _, namespace = cached_module(key, lambda: equation_entry_text(built()))
+    _, scalar = cached_module(scalar_key, lambda: scalar_source(equation_linkage(built())))
+    described = namespace[DESCRIPTION]
+    return EquationCode(described["name"], described["input"], described["rate"], described["acceleration"],
+                        described["effort"], tuple(described["parameters"]), tuple(described["branches"]),
+                        tuple(described["lengths"]), namespace[EQUATIONS], namespace[EFFORT], scalar["solve"],
+                        namespace["_arguments"])
+
+
+def model_equation_code(model: DynamicModel) -> EquationCode:
+    """The :class:`EquationCode` of ``model``, keyed by its equation linkage's definition (derived once)."""
+    from .inverse import EQUATION_OUTPUTS
+    linkage = equation_linkage(model)
+    outputs = list(EQUATION_OUTPUTS)
+    return equation_code(cache_key(linkage, [*outputs, model.input_effort_name(0)], EQUATION_KIND),
+                         cache_key(linkage, outputs, SCALAR_KIND), lambda: model)
 
 
 @dataclass(frozen=True)
@@ -227,8 +325,8 @@ class ForwardDynamics:
 
     Parameters
     ----------
-    model : DynamicModel
-        A one-input model.
+    model : DynamicModel or EquationCode
+        A one-input model, or its generated code (:func:`equation_code`: read from the disk cache, no SymPy).
     values : mapping of str to float
         Every parameter of its dynamic linkage by name (lengths, masses, inertias, loads).
     branch : int or mapping of str to int, optional
@@ -245,52 +343,59 @@ class ForwardDynamics:
     4.0
     """
 
-    def __init__(self, model: DynamicModel, values: Mapping[str, float], branch: int | Mapping[str, int] = 1,
-                 input_inertia: float = 0.0) -> None:
-        if not isinstance(model, DynamicModel):
-            raise ValueError(f"forward dynamics needs a DynamicModel, not {model!r}")
-        linkage = equation_linkage(model)
-        self.model, self.linkage = model, linkage
-        self.input = linkage.inputs[0]
-        code = generated_code(linkage, list(EQUATION_OUTPUTS))
-        self._function = functools.partial(code.function, check=False)
-        self.arguments = code.arguments
-        self.takes_speed = rate(self.input).name in code.arguments
-        _, scalar = cached_module(cache_key(linkage, list(EQUATION_OUTPUTS), SCALAR_KIND),
-                                  lambda: scalar_source(linkage))
-        self._scalar = scalar["solve"]  # our own generated code, never user text
-        parameters = [s.name for s in linkage.parameters]
+    def __init__(self, model: DynamicModel | EquationCode, values: Mapping[str, float],
+                 branch: int | Mapping[str, int] = 1, input_inertia: float = 0.0) -> None:
+        if isinstance(model, EquationCode):
+            code, self.model = model, None
+        else:
+            from .model import DynamicModel
+            if not isinstance(model, DynamicModel):
+                raise ValueError(f"forward dynamics needs a DynamicModel, not {model!r}")
+            code, self.model = model_equation_code(model), model
+        self.code = code
+        self._function = functools.partial(code.equation, check=False)
+        self.arguments = code.arguments_of(code.equation)
+        self.takes_speed = code.rate in self.arguments
+        self._scalar = code.scalar  # our own generated code, never user text
+        parameters = list(code.parameters)
         unknown = sorted(set(values) - set(parameters))
         if unknown:
-            raise ValueError(f"{linkage.name} has no parameter {unknown[0]!r}; its parameters are "
+            raise ValueError(f"{code.name} has no parameter {unknown[0]!r}; its parameters are "
                              f"{', '.join(parameters)}")
         missing = [name for name in parameters if name not in values]
         if missing:
-            raise ValueError(f"{linkage.name} needs values for {', '.join(missing)}")
-        branches = [s.name for s in linkage.branches]
+            raise ValueError(f"{code.name} needs values for {', '.join(missing)}")
+        branches = list(code.branches)
         signs = dict(branch) if isinstance(branch, Mapping) else {name: branch for name in branches}
         if set(signs) != set(branches):
             raise ValueError(f"branch: give a sign for each of {', '.join(branches) or 'no loop'}, got "
                              f"{', '.join(signs) or 'none'}")
-        lengths = [s.name for s in linkage.parameters if s.is_positive]
         names = parameters + branches + ["input_inertia"]
-        arrays, shape = checked_arguments(names, [values[n] for n in parameters] + [signs[n] for n in branches]
-                                          + [input_inertia], lengths, branches)
+        arrays, shape = code.check(True, tuple(names), tuple([values[n] for n in parameters]
+                                                             + [signs[n] for n in branches] + [input_inertia]),
+                                   code.lengths, tuple(branches))
         if shape != ():
             raise ValueError("forward dynamics takes one number for each parameter, not arrays")
         self.values = {name: float(array) for name, array in zip(names, arrays)}
         self.input_inertia = self.values.pop("input_inertia")
         if self.input_inertia < 0:
             raise ValueError(f"input_inertia must not be negative, got {self.input_inertia!r}")
-        self._fixed = {name: value for name, value in self.values.items() if name in code.arguments}
+        self._fixed = {name: value for name, value in self.values.items() if name in self.arguments}
+
+    @property
+    def linkage(self) -> Linkage:
+        """The model's equation linkage (:func:`equation_linkage`; builds it: SymPy), where a model was given."""
+        if self.model is None:
+            raise ValueError(f"forward dynamics of {self.code.name} runs code from the disk cache: it has no linkage")
+        return equation_linkage(self.model)
 
     # --- the equation of motion ---------------------------------------------------------
     def terms(self, angle, speed=0.0) -> dict[str, numpy.ndarray]:
         """``M`` (with the input inertia), ``dM/dq``, ``Q_applied`` and ``assembled`` at angles and speeds (arrays)."""
         values = dict(self._fixed)
-        values[self.input.name] = angle
+        values[self.code.input] = angle
         if self.takes_speed:
-            values[rate(self.input).name] = speed
+            values[self.code.rate] = speed
         with numpy.errstate(invalid="ignore", divide="ignore"):
             found = self._function(**values)
         return {"generalised_inertia": found["generalised_inertia"] + self.input_inertia,
@@ -331,7 +436,7 @@ class ForwardDynamics:
             raise ValueError(f"motor must be a callable of (angle, speed), got {motor!r}")
         start = self.terms(float(angle), float(speed))
         if not bool(start["assembled"]):
-            raise ValueError(f"{self.model.kinematics.name} cannot be assembled at the starting angle {angle!r}")
+            raise ValueError(f"{self.code.name} cannot be assembled at the starting angle {angle!r}")
         inertia = float(start["generalised_inertia"])
         if not inertia > 0:
             raise ValueError(f"the generalised inertia at the start is {inertia:g}: give the bodies mass "
@@ -339,7 +444,7 @@ class ForwardDynamics:
         unassembled: list[float] = []
 
         scalar, fixed, extra = self._scalar, self._fixed, self.input_inertia
-        name, speed_name = self.input.name, (rate(self.input).name if self.takes_speed else None)
+        name, speed_name = self.code.input, (self.code.rate if self.takes_speed else None)
 
         def right_hand_side(t: float, state: numpy.ndarray) -> list[float]:
             q, w = float(state[0]), float(state[1])

@@ -36,7 +36,7 @@ from ..numeric.input_sweep import MAX_ANGLE, InputSweep, crank_speeds
 
 
 __all__ = ["BRANCH_CHOICES", "UNITS", "FORMATS", "TOP_KEYS", "INPUT_KEYS", "MAX_SCENE_BYTES", "MAX_ANGLE",
-           "MAX_MAGNITUDE", "number", "choice", "table", "linkage_request", "WarmScene",
+           "MAX_MAGNITUDE", "number", "choice", "table", "linkage_request", "catalog_file_names", "WarmScene",
            "warm_scene", "cache_scene", "SCENE_ENTRY_KIND", "NewtonScene", "newton_scene"]
 
 BRANCH_CHOICES = (1, -1, "both")
@@ -96,6 +96,21 @@ def table(data: Any, where: str, allowed: set[str] | None) -> dict:
     return data
 
 
+#: The catalog's files, one a catalog linkage: :data:`symlink.io.linkage_file.CATALOG_FOLDER`, named here without
+#: importing that reader (SymPy).
+_CATALOG_FILES = Path(__file__).resolve().parent.parent / "linkages"
+
+
+def catalog_file_names() -> list[str]:
+    """The names of the catalog's linkages, read off its files (no linkage built, no SymPy), sorted.
+
+    >>> from symlink.mechanism.catalog import CATALOG
+    >>> catalog_file_names() == sorted(CATALOG)
+    True
+    """
+    return sorted(path.stem for path in _CATALOG_FILES.glob("*.toml"))
+
+
 def linkage_request(source: str, folder: str | Path | None = None) -> dict[str, str] | None:
     """What names a linkage in a cache key, found without building it (no SymPy): a catalog or atlas name, or
     the digest of a linkage file's bytes (a relative path looked for in ``folder``, as
@@ -105,9 +120,8 @@ def linkage_request(source: str, folder: str | Path | None = None) -> dict[str, 
     >>> linkage_request("fourbar"), linkage_request("atlas:watt-ii"), linkage_request("no/such/file.toml")
     ({'catalog': 'fourbar'}, {'atlas': 'atlas:watt-ii'}, None)
     """
-    shipped = Path(__file__).resolve().parent.parent / "linkages"  # the catalog's files, one a catalog linkage
     source = FORMER_CATALOG_NAMES.get(source, source)
-    if source and all(c.isalnum() or c in "-_" for c in source) and (shipped / f"{source}.toml").is_file():
+    if source and all(c.isalnum() or c in "-_" for c in source) and (_CATALOG_FILES / f"{source}.toml").is_file():
         return {"catalog": source}
     if source.startswith("atlas:"):
         return {"atlas": source}

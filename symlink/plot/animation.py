@@ -45,22 +45,23 @@ from typing import TYPE_CHECKING, Callable, Mapping, Sequence
 
 import numpy
 
-from ..mechanism.catalog import fourbar
-from ..symbolic.closure import is_angle
 from ..common.files import LEFTOVER_AGE, TEMPORARY_SUFFIX, naming, remove_leftovers
-from ..symbolic.linkage import Linkage
-from ..numeric.reachability import TURN_SAMPLES, assembled_crank_range, crank_range, turn_angles
-from ..numeric.poses import Geometry, input_range, sweep_inputs, traced_paths
+from ..numeric.crank_ranges import TURN_SAMPLES, crank_range, turn_angles
+from ..numeric.poses import Placement, input_range, sweep_inputs, traced_paths
 from .drawing import LinkageDrawing
 from .figures import (MechanismDrawing, check_coupler_point, coupler_point_linkage, fourbar_positions,
                       frame_plane)
 
-if TYPE_CHECKING:
+if TYPE_CHECKING:  # the symbolic side (SymPy) only where a linkage is derived: a placement from the disk cache
+    # animates without it (symlink.numeric.poses.cached_placement)
     from matplotlib.figure import Figure
     from numpy.typing import ArrayLike
 
+    from ..numeric.poses import Geometry
+    from ..symbolic.linkage import Linkage
+
 __all__ = ["FRAMES", "MAX_FRAMES", "MAX_FRAME_PIXELS", "ANIMATION_SUFFIXES", "LEFTOVER_PREFIX", "frame_positions",
-           "animate", "animate_linkage", "check_animation_size", "Rendered", "InlineAnimation", "inline_animation",
+           "animate", "animate_linkage", "animate_placement", "check_animation_size", "Rendered", "InlineAnimation", "inline_animation",
            "inline_fourbar_animation", "self_contained_player", "PLAYER_SYMBOLS"]
 
 #: Frames in a turn, as in the Maple worksheet (t from 0 to 29/30).
@@ -142,11 +143,13 @@ def frame_positions(a: float, b: float, c: float, d: float, *, branch: int = 1, 
     fresh linkage is derived unless ``linkage`` is given (the four-bar, or
     :func:`~symlink.plot.coupler_point_linkage` for a coupler point).
     """
+    from ..numeric.reachability import assembled_crank_range
     assembled_crank_range(a, b, c, d)
     check_coupler_point(coupler_point)
     if isinstance(frames, bool) or not isinstance(frames, (int, numpy.integer)) or not 1 <= frames <= MAX_FRAMES:
         raise ValueError(f"frames must be a whole number from 1 to {MAX_FRAMES}, got {frames!r}")
     if linkage is None:
+        from ..mechanism.catalog import fourbar
         linkage = fourbar() if coupler_point is None else coupler_point_linkage()
     theta = sweep_inputs(crank_range(a, b, c, d), 0.0, frames)
     outputs = JOINTS + (["P_x", "P_y"] if coupler_point is not None else [])
@@ -457,8 +460,32 @@ def animate_linkage(linkage: Linkage, values: Mapping[str, float], path, *, fram
     >>> rendered.frames, rendered.unassembled, rendered.full_turn  # a + d > b + c: the crank rocks
     (4, (), False)
     """
+    if geometry is None:
+        from ..numeric.poses import Geometry
+        geometry = Geometry(linkage)
+    return animate_placement(geometry, values, path, frames=frames, trace=trace, fps=fps, size_px=size_px, unit=unit,
+                             guess=guess, progress=progress)
+
+
+def animate_placement(geometry: Placement, values: Mapping[str, float], path, *, frames: int = FRAMES,
+                      trace: Sequence[str] = (), fps: float = 10, size_px: tuple[int, int] = (480, 360),
+                      unit: str | None = None, guess: Mapping[str, float] | None = None,
+                      progress: Callable[[int, int], None] | None = None) -> Rendered:
+    """:func:`animate_linkage` from a linkage's :class:`~symlink.numeric.poses.Placement`: what a drawing needs of
+    it, as plain data and NumPy code, such as :func:`~symlink.numeric.poses.cached_placement` takes from the disk
+    cache (the animation then imports no SymPy).  Arguments, result and ``ValueError`` as for
+    :func:`animate_linkage`.
+
+    >>> import tempfile, pathlib
+    >>> from symlink.mechanism.catalog import fourbar
+    >>> from symlink.numeric.poses import Geometry
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "fourbar.gif"
+    >>> animate_placement(Geometry(fourbar()), dict(a=0.1, b=0.4, c=0.25, d=0.3), path, frames=2,
+    ...                   size_px=(160, 120)).frames
+    2
+    """
     path, writer, width, height = _checked_request(path, fps, frames, size_px)
-    drawn = _linkage_frames(linkage, values, frames, trace, unit, guess, geometry, width, height)
+    drawn = _linkage_frames(geometry, values, frames, trace, unit, guess, width, height)
     _write_frames(path, writer, drawn.figure, drawn.count, drawn.draw, progress)
     return Rendered(path, drawn.count, tuple(drawn.unassembled), drawn.spans)
 
@@ -511,23 +538,24 @@ def inline_animation(linkage: Linkage, values: Mapping[str, float], *, frames: i
     """
     _check_fps(fps)
     width, height = check_animation_size(frames, size_px)
-    drawn = _linkage_frames(linkage, values, frames, trace, unit, guess, geometry, width, height)
+    if geometry is None:
+        from ..numeric.poses import Geometry
+        geometry = Geometry(linkage)
+    drawn = _linkage_frames(geometry, values, frames, trace, unit, guess, width, height)
     html = _html_frames(drawn, fps, progress)
     return InlineAnimation(html, drawn.count, tuple(drawn.unassembled), drawn.spans)
 
 
-def _linkage_frames(linkage: Linkage, values: Mapping[str, float], frames: int, trace: Sequence[str],
-                    unit: str | None, guess: Mapping[str, float] | None, geometry: Geometry | None,
-                    width: int, height: int) -> _Frames:
+def _linkage_frames(geometry: Placement, values: Mapping[str, float], frames: int, trace: Sequence[str],
+                    unit: str | None, guess: Mapping[str, float] | None, width: int, height: int) -> _Frames:
     """Any linkage's figure and frame drawer, as :func:`animate_linkage` describes."""
-    geometry = geometry or Geometry(linkage)
     completed = geometry.check_values(values)
     first = geometry.input_names[0]
     spans = input_range(geometry, completed, guess)
     if not spans:
-        raise ValueError(f"{linkage.name} cannot be assembled at any value of {first} with the values given")
+        raise ValueError(f"{geometry.name} cannot be assembled at any value of {first} with the values given")
     angles = sweep_inputs(spans, float(completed[first]), frames)
-    if guess is None and not geometry.linkage.has_closed_form:
+    if guess is None and not geometry.closed_form:
         guess = geometry.find_guess(completed)
     completed[first] = float(angles[0])
     poses = geometry.poses(completed, {first: angles}, guess)
@@ -537,7 +565,7 @@ def _linkage_frames(linkage: Linkage, values: Mapping[str, float], frames: int, 
     axes.tick_params(labelsize="small")
     title = axes.set_title("", fontsize="medium")
     unassembled = []
-    angle_input = is_angle(linkage, linkage.inputs[0])
+    angle_input = first in geometry.angles
 
     def draw(k: int) -> None:
         drawing.update(k)

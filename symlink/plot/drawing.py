@@ -30,26 +30,26 @@ the branch signs (+1 by default).
 """
 from __future__ import annotations
 
+import itertools
 import math
 from typing import TYPE_CHECKING, Mapping, Sequence, cast
 
 import numpy
-import sympy as sp
 
-from ..mechanism.bodies import GROUND, REVOLUTE
-from ..symbolic.closure import is_angle
-from ..symbolic.linkage import Linkage
-from ..numeric.poses import Geometry, Poses, traced_paths
-from ..numeric.solver import Solver
+from ..numeric.poses import Placement, Poses, traced_paths
 from .figures import _ground_marker, extent
 
-if TYPE_CHECKING:
+if TYPE_CHECKING:  # the symbolic side (SymPy) only where a linkage is given: a placement from the disk cache
+    # draws without it (symlink.numeric.poses.cached_placement)
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
     from matplotlib.lines import Line2D
     from matplotlib.patches import Polygon
 
-__all__ = ["LinkageDrawing", "draw_linkage"]
+    from ..numeric.poses import Geometry
+    from ..symbolic.linkage import Linkage
+
+__all__ = ["LinkageDrawing", "draw_linkage", "draw_placement"]
 
 BODY_COLORS = ("tab:red", "tab:blue", "tab:green", "tab:orange", "tab:purple", "tab:brown", "tab:pink",
                "tab:olive", "tab:cyan")
@@ -68,53 +68,49 @@ class LinkageDrawing:
     ``pins`` the joints, ``labels`` the letters, ``traces`` the traced paths.
     """
 
-    def __init__(self, axes: "Axes", geometry: Geometry, poses: Poses,
+    def __init__(self, axes: "Axes", geometry: Placement, poses: Poses,
                  traces: Mapping[str, numpy.ndarray] | None = None, unit: str | None = None,
                  letters: bool = True) -> None:
         from matplotlib.patches import Polygon
         self.axes, self.geometry, self.poses = axes, geometry, poses
         self.figure: "Figure" = axes.figure.figure  # the top-level figure, also for a subfigure's axes
-        found = geometry.mechanism
+        facts = geometry.facts
         self.scale = self._scale(poses, traces)
         self.traces = {name: axes.plot(path.real, path.imag, color="tab:purple", linewidth=1.2, alpha=0.8,
                                        zorder=1, label=f"path of {name}")[0]
                        for name, path in (traces or {}).items()}
         self.bars, self.polygons, self._bodies = [], [], []
-        colors = iter(BODY_COLORS * (1 + len(found.bodies) // len(BODY_COLORS)))
-        for body in found.bodies:
-            if body.is_ground:
-                continue
-            corners = self._corners(body)
+        colors = itertools.cycle(BODY_COLORS)
+        for body, corners in facts["bodies"]:  # the moving bodies, each with the corners of its outline
             color = next(colors)
             artist: "Polygon | Line2D"
             if len(corners) >= 3:
                 artist = Polygon(numpy.zeros((len(corners), 2)), closed=True, facecolor=color, alpha=0.45,
-                                 edgecolor=color, linewidth=2.5, zorder=3, label=body.name)
+                                 edgecolor=color, linewidth=2.5, zorder=3, label=body)
                 axes.add_patch(artist)
                 self.polygons.append(artist)
             elif len(corners) == 2:
                 artist = axes.plot([], [], color=color, linewidth=6, solid_capstyle="round", zorder=3,
-                                   label=body.name)[0]
+                                   label=body)[0]
                 self.bars.append(artist)
             else:
                 continue
             self._bodies.append((corners, artist))
         self.guides, self.blocks = [], []
-        for joint in geometry.sliders:
+        for _ in facts["sliders"]:
             self.guides.append(axes.plot([], [], color="0.3", linewidth=1.5, zorder=2)[0])
             block = Polygon(numpy.zeros((4, 2)), closed=True, facecolor="0.85", edgecolor="black", linewidth=1.2,
                             zorder=4)
             axes.add_patch(block)
             self.blocks.append(block)
-        pivots = [j.name for j in found.joints if j.kind == REVOLUTE and j.grounded and j.name in poses.positions]
-        self._pivots = pivots
+        self._pivots = [name for name in facts["pivots"] if name in poses.positions]
         self.frame = axes.plot([], [], color="0.5", linestyle="--", linewidth=1, zorder=1)[0]
         self.ground = axes.plot([], [], linestyle="none", marker=_ground_marker(), markersize=22,
                                 markeredgecolor="0.25", markerfacecolor="none", markeredgewidth=1.2, zorder=2)[0]
-        self._pins = [j.name for j in found.joints if j.kind == REVOLUTE and j.name in poses.positions]
+        self._pins = [name for name in facts["pins"] if name in poses.positions]
         self.pins = axes.plot([], [], linestyle="none", marker="o", markersize=7, markerfacecolor="white",
                               markeredgecolor="black", zorder=5)[0]
-        named = list(dict.fromkeys(self._pins + [p for p in geometry.linkage.points if p in poses.positions]))
+        named = list(dict.fromkeys(self._pins + [p for p in facts["points"] if p in poses.positions]))
         self.points = axes.plot([], [], linestyle="none", marker="o", markersize=4, color="black", zorder=6)[0]
         self._named = named
         self.labels = {name: axes.annotate(name, (0, 0), textcoords="offset points", xytext=(5, 5),
@@ -129,23 +125,6 @@ class LinkageDrawing:
         axes.set_ylabel(f"y ({label})")
         axes.grid(True, alpha=0.3)
 
-    def _corners(self, body) -> list[str]:
-        """What a body's outline passes through: its pins, slider blocks it carries, and its named points."""
-        corners = []
-        for name in body.joints:
-            joint = self.geometry.mechanism.joint(name)
-            if joint.kind == REVOLUTE or joint.bodies[-1] == body.name:  # a pin, or the block this body is
-                corners.append(name)
-        corners += [p for p in body.points if p not in corners]
-        seen, unique = [], []
-        for name in corners:  # a block pinned where its slider joint is (B on the inverted slider-crank)
-            sums = self.geometry.sums.get(name)
-            key = None if sums is None else tuple(sorted((s, str(v)) for s, v in sums.terms))
-            if sums is not None and key not in seen:
-                seen.append(key)
-                unique.append(name)
-        return unique
-
     @staticmethod
     def _scale(poses: Poses, traces) -> float:
         values = numpy.concatenate([p.ravel() for p in poses.positions.values()]
@@ -156,12 +135,12 @@ class LinkageDrawing:
         return float(max(numpy.ptp(values.real), numpy.ptp(values.imag), 1e-300))
 
     def _guide_span(self, k: int, index: int) -> tuple[complex, complex]:
-        joint = self.geometry.sliders[index]
-        start = self.poses.positions.get(f"{joint.name} guide", numpy.zeros(len(self.poses)))
-        along = numpy.exp(1j * self.poses.directions[joint.name])
-        travel = ((self.poses.positions[joint.name] - start) * numpy.conj(along)).real
+        name, fixed = self.geometry.facts["sliders"][index]
+        start = self.poses.positions.get(f"{name} guide", numpy.zeros(len(self.poses)))
+        along = numpy.exp(1j * self.poses.directions[name])
+        travel = ((self.poses.positions[name] - start) * numpy.conj(along)).real
         block = 0.08 * self.scale
-        if GROUND in joint.bodies[:1]:  # a fixed guide: long enough for the whole travel
+        if fixed:  # a fixed guide: long enough for the whole travel
             finite = travel[numpy.isfinite(travel)]
             low, high = (min(0.0, finite.min()), max(0.0, finite.max())) if finite.size else (0.0, 0.0)
         else:
@@ -171,7 +150,7 @@ class LinkageDrawing:
     def limits(self, traces=None) -> tuple[tuple[float, float], tuple[float, float]]:
         """Axis limits holding every joint and point of every pose, the traced paths and the guides."""
         points = [p.ravel() for p in self.poses.positions.values()] + [t.ravel() for t in (traces or {}).values()]
-        for index in range(len(self.geometry.sliders)):
+        for index in range(len(self.geometry.slider_names)):
             for k in range(len(self.poses)):
                 points.append(numpy.array(self._guide_span(k, index)))
         values = numpy.concatenate(points)
@@ -191,10 +170,10 @@ class LinkageDrawing:
                     plate.set_xy([(p.real, p.imag) for p in ordered])
             else:
                 cast("Line2D", artist).set_data(*(([p.real for p in xy], [p.imag for p in xy]) if shown else ([], [])))
-        for index, joint in enumerate(self.geometry.sliders):
+        for index, name in enumerate(self.geometry.slider_names):
             start, end = self._guide_span(k, index)
             self.guides[index].set_data(*(([start.real, end.real], [start.imag, end.imag]) if shown else ([], [])))
-            centre, along = at[joint.name], numpy.exp(1j * self.poses.directions[joint.name][k])
+            centre, along = at[name], numpy.exp(1j * self.poses.directions[name][k])
             half_length, half_width = 0.06 * self.scale, 0.035 * self.scale
             outline = [centre + along * (sx * half_length + 1j * sy * half_width)
                        for sx, sy in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
@@ -229,10 +208,10 @@ def _axes(ax: "Axes | None", size: tuple[float, float] = (6.4, 5.2)) -> "Axes":
     return NotebookFigure(figsize=size, layout="constrained").add_subplot()
 
 
-def _input_text(linkage: Linkage, symbol: sp.Symbol, value: float) -> str:
-    if is_angle(linkage, symbol):
-        return f"{symbol.name} = {math.degrees(float(value)):.4g}°"
-    return f"{symbol.name} = {float(value):.4g}"
+def _input_text(geometry: Placement, name: str, value: float) -> str:
+    if name in geometry.angles:
+        return f"{name} = {math.degrees(float(value)):.4g}°"
+    return f"{name} = {float(value):.4g}"
 
 
 def draw_linkage(linkage: Linkage, values: Mapping[str, float], ax: "Axes | None" = None, *,
@@ -285,20 +264,38 @@ def draw_linkage(linkage: Linkage, values: Mapping[str, float], ax: "Axes | None
     >>> len(drawing.bars), sorted(drawing.traces)  # crank, coupler, rocker
     (3, ['C'])
     """
-    geometry = geometry or Geometry(linkage, bodies)
+    if geometry is None:
+        from ..numeric.poses import Geometry
+        geometry = Geometry(linkage, bodies)
+    return draw_placement(geometry, values, ax, trace=trace, unit=unit, guess=guess, title=title)
+
+
+def draw_placement(geometry: Placement, values: Mapping[str, float], ax: "Axes | None" = None, *,
+                   trace: Sequence[str] = (), unit: str | None = None, guess: Mapping[str, float] | None = None,
+                   title: str | None = None) -> LinkageDrawing:
+    """:func:`draw_linkage` from a linkage's :class:`~symlink.numeric.poses.Placement`: what a drawing needs of it,
+    as plain data and NumPy code, such as :func:`~symlink.numeric.poses.cached_placement` takes from the disk
+    cache (the drawing then imports no SymPy).  Arguments and ``ValueError`` as for :func:`draw_linkage`.
+
+    >>> from symlink.mechanism.catalog import fourbar
+    >>> from symlink.numeric.poses import Geometry
+    >>> drawing = draw_placement(Geometry(fourbar()), dict(theta=0.0, a=20, b=66, c=56, d=80))
+    >>> drawing.axes.get_title()
+    'fourbar at theta = 0°'
+    """
     completed = geometry.check_values(values)
     poses = geometry.poses(completed, guess=guess)
     if not poses.assembled[0]:
         inputs = ", ".join(f"{name} = {float(completed[name]):g}" for name in geometry.input_names)
-        raise ValueError(f"{linkage.name} cannot be assembled at {inputs}")
-    if guess is None and not isinstance(geometry.solver, Solver):
+        raise ValueError(f"{geometry.name} cannot be assembled at {inputs}")
+    if guess is None and not geometry.closed_form:
         guess = geometry.find_guess(completed)
     paths = traced_paths(geometry, completed, trace, guess)
     axes = _axes(ax)
     drawing = LinkageDrawing(axes, geometry, poses, paths, unit)
     drawing.update(0)
-    inputs = ", ".join(_input_text(linkage, q, completed[q.name]) for q in linkage.inputs)
-    axes.set_title(title if title is not None else f"{linkage.name} at {inputs}", fontsize="medium")
+    inputs = ", ".join(_input_text(geometry, name, completed[name]) for name in geometry.input_names)
+    axes.set_title(title if title is not None else f"{geometry.name} at {inputs}", fontsize="medium")
     if paths:
         axes.legend(handles=list(drawing.traces.values()), loc="best", fontsize="small")
     return drawing

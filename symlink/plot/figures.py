@@ -300,9 +300,9 @@ def transmission_figure(a: float, b: float, c: float, d: float, units: str = "de
     """The transmission angle against the crank angle over a turn (the quick-return synthesis paper, Fig. 5, 7, 9).
 
     The angle is the interior angle at C between coupler and rocker, the same
-    on both branches (:func:`~symlink.analysis.transmission_curve`).  Its
+    on both branches (:func:`~symlink.numeric.fourbar_transmission.transmission_curve`).  Its
     smallest and largest values over the turn are marked where they occur
-    (:func:`~symlink.analysis.transmission_range`), and the usual design
+    (:func:`~symlink.numeric.fourbar_transmission.transmission_range`), and the usual design
     range 45 to 135 deg shaded.  ``ax``: the Matplotlib Axes to draw on
     (default: a new figure's).
 
@@ -332,9 +332,8 @@ def transmission_figure(a: float, b: float, c: float, d: float, units: str = "de
     >>> round(float(curve.get_ydata()[0]), 2)  # at theta = 0, |BD| = 60: acos(3892 / 7392)
     58.23
     """
-    from ..analysis import transmission_curve, transmission_range
-    from ..numeric.reachability import assembled_crank_range
-    assembled_crank_range(a, b, c, d)
+    from ..numeric.fourbar_transmission import transmission_curve, transmission_range
+    extremes = transmission_range(a, b, c, d)  # ValueError for bad lengths or a four-bar closing nowhere, first
     half = half_turn(units)
     scale = half / math.pi
     theta = turn_angles(a, b, c, d, samples)
@@ -343,7 +342,6 @@ def transmission_figure(a: float, b: float, c: float, d: float, units: str = "de
     axes.plot(theta * scale, mu * scale, color="tab:purple", label="transmission angle μ")
     low, high = (math.radians(limit) * scale for limit in TRANSMISSION_LIMITS)
     axes.axhspan(low, high, color="tab:green", alpha=0.08, label="usual range 45°–135°")
-    extremes = transmission_range(a, b, c, d)
     for word, value, where, marker in (("min", extremes.minimum, extremes.minimum_at, "v"),
                                        ("max", extremes.maximum, extremes.maximum_at, "^")):
         at = where % (2 * math.pi)

@@ -50,7 +50,7 @@ import math
 import os
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Mapping, Sequence, Union
+from typing import TYPE_CHECKING, Any, Callable, Mapping, Sequence, Union
 
 import numpy
 
@@ -63,9 +63,9 @@ if TYPE_CHECKING:  # the symbolic side is imported where a linkage is worked on:
     from ..symbolic.linkage import Linkage
     from ..symbolic.vectors import Vector, VectorSum
 
-__all__ = ["Tolerance", "StackUp", "StackUpModel", "stack_up", "tolerance_arrays", "SIGMAS_PER_BAND", "PinPlay", "pin_play", "with_pin_play",
+__all__ = ["Tolerance", "StackUp", "StackUpModel", "stack_up", "tolerance_arrays", "SIGMAS_PER_BAND", "PinPlay", "pin_play", "with_pin_play", "play_jacobian", "played_pins",
            "PlayEnvelope", "pin_play_envelope",
-           "SampledBuilds", "sample_builds", "MAX_SAMPLED_VALUES", "BUILDS_PER_CHUNK"]
+           "SampledBuilds", "sample_builds", "solved_builds", "MAX_SAMPLED_VALUES", "BUILDS_PER_CHUNK"]
 
 #: A ± band without a given sigma is read as this many standard deviations.
 SIGMAS_PER_BAND = 3.0
@@ -572,16 +572,49 @@ def pin_play(linkage: Linkage, outputs: str | Sequence[str], nominal: Mapping[st
     ((1, 1), True)
     """
     chosen = [outputs] if isinstance(outputs, str) else list(outputs)
+    _check_play(play)
+    return played_pins(play_jacobian(linkage, chosen, list(play)), linkage.name, [q.name for q in linkage.inputs],
+                       nominal, play, inputs)
+
+
+def _check_play(play: Mapping[str, float]) -> None:
+    """``ValueError`` unless ``play`` gives at least one pin a finite play >= 0."""
     if not play:
         raise ValueError("give the radial play of at least one pin")
     for name, value in play.items():
         if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value < 0:
             raise ValueError(f"the play of pin {name} must be a finite number >= 0, got {value!r}")
+
+
+def play_jacobian(linkage: Linkage, outputs: Sequence[str], joints: Sequence[str]) -> DesignJacobian:
+    """The exact derivatives of ``outputs`` by the play vectors (x, y) of the pins ``joints``, at zero play: what
+    :func:`pin_play` evaluates (symbolic work; :meth:`DesignJacobian.entry_text` keeps it in the disk cache, so that
+    a warm ``symlink tolerance --play`` runs it without SymPy through :func:`played_pins`)."""
+    return DesignJacobian(with_pin_play(linkage, list(joints)), list(outputs),
+                          [n for joint in joints for n in _play_names(joint)])
+
+
+def played_pins(jacobian: DesignJacobian, name: str, input_names: Sequence[str], nominal: Mapping[str, float],
+                play: Mapping[str, float], inputs: Mapping[str, object] | None = None) -> PinPlay:
+    """:func:`pin_play` from its :func:`play_jacobian` (derived, or read from a cache entry: no linkage), for the
+    linkage ``name`` with the inputs ``input_names``; the pins are those of ``play``, in the Jacobian's order.
+
+    >>> from symlink.mechanism.catalog import fourbar
+    >>> jacobian = DesignJacobian.from_entry(play_jacobian(fourbar(), ["rocker"], ["B"]).entry_text())
+    >>> found = played_pins(jacobian, "fourbar", ["theta"], {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1},
+    ...                     {"B": 0.01}, inputs={"theta": [0.0]})
+    >>> expected = pin_play(fourbar(), "rocker", {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1}, {"B": 0.01},
+    ...                     inputs={"theta": [0.0]})
+    >>> bool(found.worst_case[0, 0] == expected.worst_case[0, 0] > 0)
+    True
+    """
+    _check_play(play)
+    chosen = list(jacobian.outputs)
     joints = list(play)
-    playing = with_pin_play(linkage, joints)
     names = [n for joint in joints for n in _play_names(joint)]
-    jacobian = DesignJacobian(playing, chosen, names)
-    sweep = _input_values(linkage.name, [q.name for q in linkage.inputs], inputs)
+    if list(jacobian.parameters) != names:
+        raise ValueError(f"the Jacobian is by {', '.join(jacobian.parameters)}, not by the play of {', '.join(joints)}")
+    sweep = _input_values(name, list(input_names), inputs)
     wanted = [name for name in jacobian.arguments if name not in sweep and name not in names]
     missing = [name for name in wanted if name not in nominal]
     if missing:
@@ -903,7 +936,21 @@ def sample_builds(linkage: Linkage, outputs: str | Sequence[str], nominal: Mappi
     from ..numeric.solver import Solver
     from ..numeric.units import output_units
     chosen = [outputs] if isinstance(outputs, str) else list(outputs)
-    dimensions, _, sigmas = tolerance_arrays(tolerances)
+    if not linkage.has_closed_form:
+        _check_sampling(builds, chunk, seed, scheduler)
+        raise ValueError(f"{linkage.name} has no closed form: sample_builds solves closed forms only")
+    # NumPy, not the compiled backend (which agrees to a few ulps): every chunk's last digits are the same in every
+    # run, on every machine, with or without a C compiler; on blocks of builds the two are as fast (measured).
+    return solved_builds(
+        lambda: Solver(linkage, chosen, backend="numpy"), linkage.name, [q.name for q in linkage.inputs],
+        {s.name: bool(s.is_positive) for s in linkage.parameters},
+        lambda: [output_units(linkage, [o]).get(o) == "rad" for o in chosen], chosen, nominal, tolerances,
+        inputs, builds, seed, folder=folder, scheduler=scheduler, workers=workers, chunk=chunk,
+        settings=lambda model: model.settings(linkage))
+
+
+def _check_sampling(builds: int, chunk: int, seed: int, scheduler: str) -> None:
+    """``ValueError`` for a number of builds, a chunk, a seed or a scheduler that :func:`sample_builds` cannot take."""
     for what, value in (("builds", builds), ("chunk", chunk)):
         if isinstance(value, bool) or not isinstance(value, int) or value < 1:
             raise ValueError(f"{what} must be a whole number >= 1, got {value!r}")
@@ -911,52 +958,77 @@ def sample_builds(linkage: Linkage, outputs: str | Sequence[str], nominal: Mappi
         raise ValueError(f"seed must be a whole number >= 0, got {seed!r}")
     if scheduler not in BUILD_SCHEDULERS:
         raise ValueError(f"scheduler must be one of {', '.join(BUILD_SCHEDULERS)}, got {scheduler!r}")
-    if not linkage.has_closed_form:
-        raise ValueError(f"{linkage.name} has no closed form: sample_builds solves closed forms only")
-    sweep = _input_values(linkage.name, [q.name for q in linkage.inputs], inputs)
+
+
+def solved_builds(solver: Callable[[], Any], name: str, input_names: Sequence[str], parameters: Mapping[str, bool],
+                  angular: Callable[[], Sequence[bool]], outputs: Sequence[str], nominal: Mapping[str, float],
+                  tolerances: TolerancesLike, inputs: Mapping[str, object] | None = None, builds: int = 100_000,
+                  seed: int = 0, *, folder: str | os.PathLike | None = None, scheduler: str = "auto",
+                  workers: int | None = None, chunk: int = BUILDS_PER_CHUNK,
+                  settings: Callable[[Any], dict[str, object]] | None = None) -> SampledBuilds:
+    """:func:`sample_builds` of a closed-form solver of ``outputs`` without its linkage: what a warm ``symlink
+    tolerance --samples`` runs (its solver from the disk cache, no SymPy).
+
+    ``solver()`` makes the solver (NumPy: a :class:`~symlink.numeric.solver.Solver` or a cached one, with
+    ``required`` and a call as theirs), once the arguments are checked; ``name`` and ``input_names`` are the
+    linkage's; ``parameters`` maps each parameter's name to whether it must be positive (a length);
+    ``angular()`` says which outputs are angles (wrapped); ``settings(model)``: what a folder's manifest keeps of
+    the sample (needed with ``folder``).  The rest as for :func:`sample_builds`.
+
+    >>> from symlink.numeric.cached_solver import CachedSolver
+    >>> sampled = solved_builds(lambda: CachedSolver("fourbar", ["rocker"]), "fourbar", ["theta"],
+    ...                         {"a": True, "b": True, "c": True, "d": True}, lambda: [True], ["rocker"],
+    ...                         {"a": 20, "b": 66, "c": 56, "d": 80, "branch": 1}, {"b": 0.3}, {"theta": [0.0]}, 1000)
+    >>> sampled.deviation.shape, bool(sampled.built.all())
+    ((1, 1000, 1), True)
+    """
+    chosen = list(outputs)
+    dimensions, _, sigmas = tolerance_arrays(tolerances)
+    _check_sampling(builds, chunk, seed, scheduler)
+    sweep = _input_values(name, list(input_names), inputs)
     count = len(next(iter(sweep.values())))
     _require_builds(builds, count * len(chosen), f"{builds:,} builds x {count:,} input value{'s' if count != 1 else ''} x {len(chosen)} "
                     f"output{'s' if len(chosen) != 1 else ''}")
-    known = {s.name: s for s in linkage.parameters}
-    for name in dimensions:
-        if name not in known:
-            raise ValueError(f"{linkage.name} has no parameter {name!r}; it has {', '.join(known)}")
+    for dimension in dimensions:
+        if dimension not in parameters:
+            raise ValueError(f"{name} has no parameter {dimension!r}; it has {', '.join(parameters)}")
     if folder is not None:
+        if settings is None:
+            raise ValueError("builds in a folder need what its manifest keeps of them (settings)")
         from .sweep import SWEEP_EXTRA, missing_modules
         absent = missing_modules(("dask", "pyarrow"))
         if absent:
             raise ImportError(f"builds in a folder need {', '.join(absent)}: {SWEEP_EXTRA} (or give no folder: "
                               "the builds are then made in memory with NumPy)")
-    # NumPy, not the compiled backend (which agrees to a few ulps): every chunk's last digits are the same in every
-    # run, on every machine, with or without a C compiler; on blocks of builds the two are as fast (measured).
-    solver = Solver(linkage, chosen, backend="numpy")
-    wanted = [name for name in solver.required if name not in sweep]
-    missing = [name for name in wanted if name not in nominal]
+    solving = solver()
+    wanted = [argument for argument in solving.required if argument not in sweep]
+    missing = [argument for argument in wanted if argument not in nominal]
     if missing:
         raise ValueError(f"nominal: give the value of {', '.join(missing)}")
-    design = {name: float(nominal[name]) for name in wanted}
-    centre = solver(**sweep, **design)
+    design = {argument: float(nominal[argument]) for argument in wanted}
+    centre = solving(**sweep, **design)
     nominal_values = numpy.stack([numpy.asarray(numpy.broadcast_to(centre[o], (count,)), dtype=float)
                                   for o in chosen])
-    model = _BuildModel(solver, tuple(chosen), tuple(dimensions), sigmas,
-                        tuple(bool(known[name].is_positive) for name in dimensions), design, sweep, nominal_values,
-                        tuple(output_units(linkage, [o]).get(o) == "rad" for o in chosen), builds, chunk, seed)
+    model = _BuildModel(solving, tuple(chosen), tuple(dimensions), sigmas,
+                        tuple(parameters[dimension] for dimension in dimensions), design, sweep, nominal_values,
+                        tuple(angular()), builds, chunk, seed)
     chunks = -(-builds // chunk)
     if folder is None:
         deviation = numpy.concatenate([model.draw(index)[1] for index in range(chunks)], axis=1)
         return SampledBuilds(tuple(chosen), sweep, nominal_values, deviation)
-    reused = _builds_in_folder(model, linkage, Path(folder), scheduler, workers)
+    assert settings is not None  # checked above
+    reused = _builds_in_folder(model, settings(model), Path(folder), scheduler, workers)
     return SampledBuilds(tuple(chosen), sweep, nominal_values, _read_builds(model, Path(folder)), reused)
 
 
-def _builds_in_folder(model: _BuildModel, linkage: Linkage, folder: Path, scheduler: str,
+def _builds_in_folder(model: _BuildModel, settings: dict[str, object], folder: Path, scheduler: str,
                       workers: int | None) -> int:
     """Make the chunks of ``model`` that ``folder`` does not hold yet on Dask, writing each as it is done;
     the number of chunks found done."""
     from .sweep import local_chunks, local_scheduler
     from ..io.sweep_folder import open_folder
     from ..version import __version__
-    header = {"symlink": __version__, "settings": model.settings(linkage), "columns": model.columns()}
+    header = {"symlink": __version__, "settings": settings, "columns": model.columns()}
     with open_folder(folder, header, model.builds, model.chunk) as opened:
         todo = list(opened.todo)
         reused = -(-model.builds // model.chunk) - len(todo)

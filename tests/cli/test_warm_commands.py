@@ -1,5 +1,6 @@
-"""Warm is warm from the command line: a table command whose code is in the disk cache imports neither SymPy nor
-Matplotlib, and prints what its cold run printed, byte for byte, on stdout and on stderr (notes included).
+"""Warm is warm from the command line: a table command (or ``symlink plan``) whose code is in the disk cache imports
+neither SymPy nor Matplotlib, and prints what its cold run printed, byte for byte, on stdout and on stderr (notes
+included); a picture imports no SymPy and writes the bytes its cold run wrote.
 
 Each command runs twice in new processes (:func:`warm_runs.run_twice`): first cold, which derives and caches, then
 warm with ``python -X importtime``.  One cache folder serves the module, so a linkage derived for one test is
@@ -39,8 +40,24 @@ COMMANDS = {
     "tolerance stack-up of a rate": (
         ["tolerance", "fourbar", "--tolerance", "0.1", "--tolerances", "b=0.2", "--output", "rocker_speed",
          "--crank-speed", "3", "--angles", "0,90", "--format", "csv"], 3),
+    "tolerance stack-up with sampled builds": (["tolerance", "fourbar", "--crank", "20", "--coupler", "66", "--rocker",
+                                                "56", "--ground", "80", "--tolerance", "0.05", "--samples", "1000",
+                                                "--angles", "0,50", "--format", "csv"], 3),
+    "tolerance stack-up of the four-bar with masses": (["tolerance", "fourbar", "--crank", "20", "--coupler", "66",
+                                                        "--rocker", "56", "--ground", "80", "--tolerance", "0.05",
+                                                        "--masses", "1,2,3", "--angles", "0,50", "--format", "csv"], 3),
+    "tolerance stack-up of the driving torque": (["tolerance", "fourbar", "--crank", "0.2", "--coupler", "0.66",
+                                                  "--rocker", "0.56", "--ground", "0.8", "--tolerance", "0.001",
+                                                  "--masses", "1,2,1.5", "--inertias", "0.03,0.07,0.04", "--gravity",
+                                                  "9.81", "--output", "input_torque", "--crank-speed", "31.4",
+                                                  "--angles", "0,50", "--format", "csv"], 3),
+    "tolerance stack-up with the pins' play": (["tolerance", "fourbar", "--crank", "20", "--coupler", "66", "--rocker",
+                                                "56", "--ground", "80", "--tolerance", "0.05", "--play",
+                                                "B=0.02,C=0.02", "--angles", "0,50", "--format", "csv"], 3),
     "tolerance stack-up of a linkage file": (["tolerance", str(PROJECT / "linkages" / "slider-crank.toml"),
                                               "--tolerance", "0.05", "--angles", "0,40", "--format", "csv"], 3),
+    "solve plan of a catalog linkage": (["plan", "fourbar"], 3),
+    "solve plan of a linkage file (two loops)": (["plan", str(PROJECT / "linkages" / "watt2.toml")], 4),
 }
 SLOW_COMMANDS = {
     "inverted slider-crank": (["inverted-slider-crank", "--crank", "2", "--ground", "1.2", "--crank-speed", "3",
@@ -156,6 +173,13 @@ PICTURES = {
         "curve", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80", "--coupler-point",
         "30,-20", "--branch", "both", "--crank-angle", "40", "--out", "curve.png"],
     "four-bar table with its angle plot": [*FOURBAR, "--plot", "angles.svg"],
+    "catalog linkage with a traced point (curve NAME, SVG)": ["curve", "fourbar", "--trace", "C", "--out", "c.svg"],
+    "linkage file, its last point traced (curve FILE, SVG)": ["curve", str(PROJECT / "linkages" / "jansen.toml"),
+                                                              "--out", "j.svg"],
+    "slider-crank drawn at an angle (draw NAME, PNG)": ["draw", "slider-crank", "--angle", "30", "--out", "d.png"],
+    "Stephenson II by its former name, by Newton's method (draw NAME, SVG)": ["draw", "stephenson3", "--out", "s.svg"],
+    "animation of a catalog linkage (animate NAME, GIF)": ["animate", "fourbar", "--frames", "3", "--out", "a.gif"],
+    "four-bar table with its transmission-angle plot": [*FOURBAR, "--plot-transmission", "transmission.svg"],
 }
 
 
@@ -169,6 +193,93 @@ def test_a_warm_picture_imports_no_sympy_and_draws_the_same(name, shared_cache, 
     assert not heavy, f"the warm run imported {', '.join(sorted(heavy))}"
     assert runs.warm == runs.cold and runs.warm_notes == runs.cold_notes
     assert runs.warm_files[out] == runs.cold_files[out] and len(runs.cold_files[out]) > 1000
+
+
+def test_a_warm_drawing_takes_other_numbers(shared_cache, tmp_path):
+    """A drawing's cache entries (its placement and its solver) are keyed by what names the linkage, not by the
+    numbers: the four-bar with other lengths, at another angle, draws warm from the first drawing's entries (no
+    SymPy), and writes what a cold run in a cache of its own writes, byte for byte."""
+    run_twice(tmp_path, ["draw", "fourbar", "--trace", "C", "--out", "d.svg"], shared_cache)
+    other = ["draw", "fourbar", "--set", "a=25,b=70,c=60,d=85", "--angle", "0.5", "--units", "rad", "--trace", "C",
+             "--out", "d.svg"]
+    warm = run_twice(tmp_path, other, shared_cache, files=["d.svg"])  # both runs warm
+    assert "matplotlib" in warm.imported and not warm.imported & {"sympy", "scipy", "pandas"}
+    (tmp_path / "fresh").mkdir()
+    cold = run_twice(tmp_path / "fresh", other, files=["d.svg"])  # a cache of its own: its first run derives
+    assert warm.cold_files["d.svg"] == cold.cold_files["d.svg"] == warm.warm_files["d.svg"]
+    assert warm.cold == cold.cold == "wrote d.svg\n" and warm.cold_notes == cold.cold_notes == ""
+
+
+def test_a_former_name_is_noted_once_warm_as_cold_by_a_drawing(shared_cache, tmp_path):
+    """``symlink draw stephenson3`` says once, warm as cold, what the name names now."""
+    runs = run_twice(tmp_path, PICTURES["Stephenson II by its former name, by Newton's method (draw NAME, SVG)"],
+                     shared_cache, files=["s.svg"])
+    assert runs.warm_notes == runs.cold_notes and runs.warm_notes.count("\n") == 1
+    assert runs.warm_notes.startswith("symlink: warning: 'stephenson3' is symlink's former name of stephenson-ii")
+
+
+PLAIN_DEFAULTS = """
+[defaults]
+a = 0.2
+b = 0.66
+c = 0.56
+d = 0.8
+"""
+DYNAMICS = """m2 = 1.5
+g = 9.81
+T_load = 0.7
+
+[dynamics]
+gravity = [0, "-g"]
+
+[dynamics.masses.crank]
+mass = "m2"
+distance = 0.08
+inertia = 0.02
+
+[[dynamics.torques]]
+body = "crank"
+torque = "T_load"
+"""
+
+
+def test_a_linkage_file_with_dynamics_is_drawn_as_without(shared_cache, tmp_path):
+    """A linkage file whose [dynamics] table gives masses and loads, with their defaults, is drawn (warm without
+    SymPy) as the same file without them is: masses and loads do not move a joint."""
+    from symlink.io.linkage_file import linkage_text
+    from symlink.mechanism.catalog import fourbar
+    (tmp_path / "plain.toml").write_text(linkage_text(fourbar()) + PLAIN_DEFAULTS)
+    (tmp_path / "massive.toml").write_text(linkage_text(fourbar()) + PLAIN_DEFAULTS + DYNAMICS)
+    plain = run_twice(tmp_path, ["draw", "plain.toml", "--trace", "C", "--out", "d.svg"], shared_cache, files=["d.svg"])
+    massive = run_twice(tmp_path, ["draw", "massive.toml", "--trace", "C", "--out", "d.svg"], shared_cache,
+                        files=["d.svg"])
+    assert not massive.imported & {"sympy", "scipy", "pandas"}
+    assert massive.cold_files == massive.warm_files == plain.cold_files
+    assert massive.warm == massive.cold == "wrote d.svg\n" and massive.warm_notes == massive.cold_notes == ""
+
+
+def test_bad_input_to_a_warm_drawing_is_one_line_and_exit_2(shared_cache, tmp_path):
+    """A warm drawing checks its values against the cached facts: a --set of no value, a point it does not have and
+    a length that is not positive are refused in one line with exit status 2, in the words of a cold run, without
+    importing SymPy."""
+    import os
+    import subprocess
+    import sys
+
+    from warm_runs import imported_packages, without_import_times
+    run_twice(tmp_path, ["draw", "fourbar", "--out", "d.svg"], shared_cache)
+    bad = {("--set", "q=1"): "symlink: error: --set: fourbar has no value 'q'; it takes a, b, c, d, theta\n",
+           ("--trace", "Z"): "symlink: error: fourbar has no point or joint 'Z' to trace; it has A, B, C, D\n",
+           ("--set", "a=-1"): "symlink: error: a must be a positive finite length, got -1.0\n"}
+    env = {**os.environ, "PYTHONPATH": str(PROJECT), "SYMLINK_CACHE": str(shared_cache), "MPLBACKEND": "Agg"}
+    for (option, value), message in bad.items():
+        done = subprocess.run([sys.executable, "-X", "importtime", "-m", "symlink", "draw", "fourbar", option, value,
+                               "--out", "bad.svg"], capture_output=True, text=True, env=env, cwd=str(tmp_path),
+                              timeout=600)
+        assert done.returncode == 2 and done.stdout == ""
+        assert without_import_times(done.stderr) == message
+        assert "symlink" in imported_packages(done.stderr) and "sympy" not in imported_packages(done.stderr)
+        assert not (tmp_path / "bad.svg").exists()
 
 
 #: Sweeps of a catalog linkage and of a linkage file (the chunk is written into ``out``): the scheduler, and whether
@@ -208,80 +319,6 @@ def test_a_warm_sweep_imports_no_sympy_and_writes_the_same_chunks(name, shared_c
         return re.sub(r"; [0-9.e+-]+ designs/s", "", notes)
     assert unrated(runs.warm_notes) == unrated(runs.cold_notes)
     assert f"wrote {chunks}, found 0 already there" in runs.warm_notes  # it evaluated every chunk again
-
-
-def _rocker(theta: float, a: float, b: float, c: float, d: float) -> float:
-    """The four-bar's rocker angle on branch +1, by hand: C where the circles about B (radius b) and D (radius c)
-    meet, to the left of the directed line from B to D."""
-    bx, by = a * math.cos(theta), a * math.sin(theta)
-    dx, dy = d - bx, -by
-    span = math.hypot(dx, dy)
-    along = (b * b - c * c + span * span) / (2 * span)
-    across = math.sqrt(b * b - along * along)
-    cx = bx + (along * dx - across * dy) / span
-    cy = by + (along * dy + across * dx) / span
-    return math.atan2(cy, cx - d)
-
-
-def test_a_warm_stack_up_takes_other_numbers(shared_cache, tmp_path):
-    """The stack-up's cache entries are keyed by the linkage, the output and the toleranced dimensions, not by the
-    numbers: another four-bar and band run warm (no SymPy), print what a cold run prints, and the worst case of
-    the rocker for the coupler alone is |d(rocker)/db| * band, the slope by central differences of the rocker
-    found by hand (:func:`_rocker`)."""
-    first = ["tolerance", "fourbar", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80",
-             "--tolerances", "b=0.3", "--output", "rocker", "--angles", "0", "--format", "csv"]
-    run_twice(tmp_path, first, shared_cache)
-    other = ["tolerance", "fourbar", "--crank", "25", "--coupler", "70", "--rocker", "60", "--ground", "85",
-             "--tolerances", "b=0.6", "--output", "rocker", "--angles", "0.5", "--format", "csv", "--units", "rad"]
-    warm = run_twice(tmp_path, other, shared_cache)  # both runs warm: the entries of the first command serve it
-    assert not warm.imported & {"sympy", "matplotlib", "scipy", "pandas"}
-    (tmp_path / "fresh").mkdir()
-    cold = run_twice(tmp_path / "fresh", other)  # a cache of its own: its first run derives
-    assert warm.cold == cold.cold and warm.cold_notes == cold.cold_notes
-    header, row = warm.warm.splitlines()
-    cells = dict(zip(header.split(","), row.split(",")))
-    step = 1e-6
-    slope = (_rocker(0.5, 25, 70 + step, 60, 85) - _rocker(0.5, 25, 70 - step, 60, 85)) / (2 * step)
-    assert float(cells["worst_case"]) == pytest.approx(abs(slope) * 0.6, rel=1e-6)
-    assert float(cells["rocker"]) == pytest.approx(_rocker(0.5, 25, 70, 60, 85), rel=1e-9)
-
-
-#: Pictures (the file is the last argument): Matplotlib draws them, SymPy stays out; the file written warm is the one
-#: written cold, byte for byte.
-PICTURES = {
-    "coupler curve of the four-bar (SVG)": ["curve", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground",
-                                            "80", "--coupler-point", "40,30", "--out", "curve.svg"],
-    "coupler curve on both branches at a crank angle (PNG)": [
-        "curve", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80", "--coupler-point",
-        "30,-20", "--branch", "both", "--crank-angle", "40", "--out", "curve.png"],
-    "four-bar table with its angle plot": [*FOURBAR, "--plot", "angles.svg"],
-}
-
-
-@pytest.mark.parametrize("name", PICTURES)
-def test_a_warm_picture_imports_no_sympy_and_draws_the_same(name, shared_cache, tmp_path):
-    arguments = PICTURES[name]
-    out = arguments[-1]
-    runs = run_twice(tmp_path, arguments, shared_cache, files=[out])
-    assert "matplotlib" in runs.imported  # the import list was read, and it drew
-    heavy = runs.imported & {"sympy", "scipy", "pandas", "distributed"}
-    assert not heavy, f"the warm run imported {', '.join(sorted(heavy))}"
-    assert runs.warm == runs.cold and runs.warm_notes == runs.cold_notes
-    assert runs.warm_files[out] == runs.cold_files[out] and len(runs.cold_files[out]) > 1000
-
-
-def test_a_synchronous_sweep_imports_no_distributed(shared_cache, tmp_path):
-    """``--scheduler synchronous`` evaluates every chunk in this process: its start imports neither Dask's
-    distributed scheduler nor pandas (SymPy still, for the linkage's ranges and its solver: not warm yet)."""
-    from symlink.workshop.sweep import missing_modules
-    if missing_modules():
-        pytest.skip("the sweep extra is not installed")
-    runs = run_twice(tmp_path, ["sweep", "fourbar", "out", "--vary", "a=10:20", "--set", "b=66,c=56,d=80", "--grid",
-                                "3", "--samples", "36", "--scheduler", "synchronous", "--no-progress"], shared_cache)
-    assert "dask" in runs.imported and "pyarrow" in runs.imported  # the import list was read, and it swept
-    assert not runs.imported & {"distributed", "pandas"}
-    assert runs.cold == runs.warm == "out\n"
-    assert "wrote 1, found 0 already there" in runs.cold_notes and "wrote 0, found 1 already there" in runs.warm_notes
 
 
 def test_bad_input_to_a_warm_stack_up_is_one_line_and_exit_2(shared_cache, tmp_path):
@@ -355,3 +392,44 @@ def test_a_warm_newton_scene_imports_no_sympy_and_prints_the_same(shared_cache, 
     again = run_twice(tmp_path, ["run", "other.toml"], shared_cache)
     assert not again.imported & {"sympy", "matplotlib"} and again.warm == again.cold
     assert again.warm.splitlines()[1] != runs.warm.splitlines()[1]
+
+
+#: ``symlink flywheel`` of the example of its help (metres, kilograms: N m, J, kg m^2).
+FLYWHEEL = ["flywheel", "--crank", "0.2", "--coupler", "0.66", "--rocker", "0.56", "--ground", "0.8", "--masses",
+            "1,2,1.5", "--inertias", "0.03,0.07,0.04", "--gravity", "9.81", "--load-torque", "-15", "--rpm", "300",
+            "--coefficient", "0.05", "--format", "csv"]
+
+
+def test_a_warm_flywheel_imports_no_sympy_and_prints_the_same(shared_cache, tmp_path):
+    """``symlink flywheel`` runs its equation of motion and driving torque from the disk cache, keyed by the options'
+    numbers: the warm run builds no model and imports no SymPy.  SciPy stays: the speed band integrates the forward
+    dynamics (solve_ivp) and the exact inertia is a root (brentq).  Another ground length is warm too (not in the
+    key: a parameter of the code), and a bad one is refused warm in the cold run's words, exit status 2."""
+    import os
+    import subprocess
+    import sys
+
+    from warm_runs import imported_packages, without_import_times
+    pytest.importorskip("scipy", reason="pip install -e '.[dynamics]'")
+    runs = run_twice(tmp_path, FLYWHEEL, shared_cache)
+    assert "symlink" in runs.imported and "scipy" in runs.imported  # the import list was read, and it integrated
+    assert not runs.imported & {"sympy", "matplotlib", "pandas"}, sorted(runs.imported)
+    assert runs.warm == runs.cold and runs.warm_notes == runs.cold_notes
+    header, row = runs.warm.splitlines()
+    cells = dict(zip(header.split(","), map(float, row.split(","))))
+    assert cells["mean_speed"] == pytest.approx(300 * 2 * math.pi / 60, rel=1e-15)
+    # the textbook flywheel is dE / (Cs w^2), from the printed energy fluctuation (seed-independent arithmetic)
+    assert cells["flywheel_inertia"] == pytest.approx(cells["energy_fluctuation"] / (0.05 * cells["mean_speed"] ** 2),
+                                                      rel=1e-12)
+    other = [*FLYWHEEL]
+    other[other.index("--ground") + 1] = "0.85"
+    again = run_twice(tmp_path, other, shared_cache)  # both runs warm: the first command's entries serve it
+    assert not again.imported & {"sympy", "matplotlib"} and again.warm == again.cold and again.warm != runs.warm
+    bad = [*FLYWHEEL]
+    bad[bad.index("--ground") + 1] = "-0.8"
+    env = {**os.environ, "PYTHONPATH": str(PROJECT), "SYMLINK_CACHE": str(shared_cache)}
+    done = subprocess.run([sys.executable, "-X", "importtime", "-m", "symlink", *bad], capture_output=True, text=True,
+                          env=env, cwd=str(tmp_path), timeout=600)
+    assert done.returncode == 2 and done.stdout == ""
+    assert without_import_times(done.stderr) == "symlink: error: ground must be a positive finite length, got -0.8\n"
+    assert "sympy" not in imported_packages(done.stderr)

@@ -331,6 +331,25 @@ def test_a_length_drawn_non_positive_is_a_build_that_cannot_be_made():
         sample_builds(fourbar(), "rocker", DESIGN, {"a": 0.1}, builds=10**7)
 
 
+def test_builds_of_a_cached_solver_are_those_of_the_linkage():
+    """solved_builds (what a warm ``symlink tolerance --samples`` runs, no linkage) draws and solves the builds of
+    sample_builds: the same deviations, bit for bit, the crank's non-positive draws thrown away alike."""
+    from symlink.numeric.cached_solver import CachedSolver
+    from symlink.workshop.tolerance import sample_builds, solved_builds
+    tolerances = {"a": Tolerance(sigma=10.0), "b": 0.3}
+    theta = numpy.radians([0.0, 130.0])
+    expected = sample_builds(fourbar(), "rocker", DESIGN, tolerances, inputs={"theta": theta}, builds=3000, seed=5,
+                             chunk=1000)
+    found = solved_builds(lambda: CachedSolver("fourbar", ["rocker"]), "fourbar", ["theta"], dict.fromkeys(LENGTHS, True),
+                          lambda: [True], ["rocker"], DESIGN, tolerances, inputs={"theta": theta}, builds=3000, seed=5,
+                          chunk=1000)
+    assert 0 < numpy.isnan(expected.deviation).sum() < expected.deviation.size  # a <= 0 drawn now and then
+    assert numpy.array_equal(found.deviation, expected.deviation, equal_nan=True)
+    with pytest.raises(ValueError, match="fourbar has no parameter 'e'"):
+        solved_builds(lambda: CachedSolver("fourbar", ["rocker"]), "fourbar", ["theta"], dict.fromkeys(LENGTHS, True),
+                      lambda: [True], ["rocker"], DESIGN, {"e": 0.1}, builds=10)
+
+
 def test_command_samples_builds_beside_the_linear_bands(capsys):
     from symlink.cli import main
     assert main(COMMAND + ["--tolerance", "0.05", "--builds", "100000", "--angles", "40", "--format", "csv"]) == 0

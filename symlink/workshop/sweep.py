@@ -5,8 +5,9 @@ file) over a box: a ``grid`` (every combination of ``count`` evenly spaced
 values of each, both ends included) or a ``random`` sample (``count`` designs,
 uniform in the box, seeded).  Designs are numbered 0, 1, ... and made lazily
 from that number, chunk by chunk, so memory stays bounded whatever their
-number.  Inside a chunk the designs are evaluated together: one generated
-NumPy solver call (:class:`~symlink.numeric.solver.Solver`) a block of designs times
+number.  Inside a chunk the designs are evaluated together: one call of the
+generated solver (compiled where a C compiler works, as a
+:class:`~symlink.numeric.solver.Solver` would run it) a block of designs times
 ``samples`` input values over a turn, not a Python loop a design.
 
 Chunks run on Dask: the local scheduler by default (``"threads"`` or
@@ -52,19 +53,26 @@ one per parameter       every parameter of the linkage (float64), the swept ones
 The reachable range comes from :mod:`symlink.numeric.reachability` (the four-bar's
 closed form; for another linkage the sampled mask where every sample
 assembles, else its bisected scan, every design of a chunk at once:
-:func:`~symlink.numeric.reachability.design_spans`, which scans every 20th point first
-and the points between only where a root's margin may change sign); the
+:func:`~symlink.numeric.reachability.design_spans`'s scan, :func:`~symlink.numeric.design_scan.margin_spans`,
+which scans every 20th point first and the points between only where a root's margin may change sign); the
 Grashof class from :func:`~symlink.analysis.grashof.grashof_names` (all designs
 at once); the transmission angle from the four-bar's ``transmission`` output,
 or for another linkage from its solved coordinates
-(:func:`~symlink.analysis.transmission.transmission_arrays`, code generated
-once).  Extremes are the samples' refined by the parabola through each extreme
+(:func:`~symlink.analysis.joint_angles.joint_angle_arrays` of the joints kept as
+plain numbers; :func:`~symlink.analysis.transmission.transmission_arrays` where a
+joint turns with a fixed angle).  Extremes are the samples' refined by the parabola through each extreme
 and its neighbours (errors of order ``step**3``).
 
 Every chunk is computed by the same code: where the compiled backend is being
 built (the first sweep of a linkage on a machine with a C compiler), the sweep
 waits for it (once a process) rather than answering with NumPy meanwhile, so a
 resumed sweep ends with the very table of one whole run.
+
+Warm is warm: what a sweep needs of its linkage (:func:`sweep_facts`), its
+solver and the margins of its roots are cache entries keyed by what names the
+linkage (the catalog or atlas name, or the SHA-256 of the file's text), derived
+once with SymPy; a later sweep, and every worker of this one, reads them and
+builds no linkage (no SymPy), and computes the very chunks a cold run does.
 
 >>> settings = SweepSettings("fourbar", {"a": (0.2, 0.4)}, values={"b": 1.0, "c": 1.0, "d": 1.0}, count=3)
 >>> table = evaluate_designs(settings, range(3))

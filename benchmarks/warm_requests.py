@@ -16,11 +16,12 @@ four-bar's analysis by its lengths (``symlink analyze --crank ...``: closed form
 linkage and a linkage file (``symlink analyze NAME|FILE``: its facts and code from the cache), a coupler curve
 drawn to SVG (``symlink curve``: Matplotlib's import is most of it), pictures of catalog and file linkages
 (``symlink curve NAME``, ``draw FILE``, ``animate NAME``) and a solve plan (``symlink plan``), and the start of a
-sweep (five designs on the synchronous scheduler: its
-start-up, Dask and Parquet, is most of it), each in wall time and in CPU time (user + system: less sensitive
-to the load of a shared machine) over those of ``python -c "import numpy"`` measured in the same rounds
-(target for a warm table: within 1.2x).  ``python -c "import sympy"`` is measured beside them: what a warm
-command that imported SymPy would pay; and ``python -c "import numpy, matplotlib.pyplot"``: what a picture pays.  The load average is printed before and after.
+sweep of a catalog linkage and of a linkage file (five designs each, the synchronous scheduler and the default one:
+its start-up, Dask and Parquet, is most of it), each in wall time and in CPU time (user + system: less sensitive to
+the load of a shared machine) over those of ``python -c "import numpy"`` measured in the same rounds (target for a
+warm table: within 1.2x).  ``python -c "import sympy"`` is measured beside them: what a warm command that imported
+SymPy would pay; ``python -c "import numpy, matplotlib.pyplot"``: what a picture pays; and ``python -c "import
+numpy, dask, pyarrow"``: the floor of a sweep's start.  The load average is printed before and after.
 Bytecode is cached (in the run's folder, ``PYTHONPYCACHEPREFIX``) as for an installed package, even where
 ``PYTHONDONTWRITEBYTECODE`` is set: else every run compiles symlink's modules again (about 0.1 s).
 CPU of the measured machine (the performance page's table): AMD EPYC, 2 cores, AVX-512 (idle; ratios only).
@@ -114,11 +115,16 @@ COMMANDS = {
     "plan watt2": ["plan", "watt2"],
     "sweep start (5 designs)": ["sweep", "fourbar", "{folder}/sweep-{run}", "--vary", "a=10:20", "--set",
                                 "b=66,c=56,d=80", "--grid", "5", "--scheduler", "synchronous", "--no-progress"],
+    "sweep FILE start (slider-crank.toml)": ["sweep", "{folder}/slider-crank.toml", "{folder}/sweep-file-{run}",
+                                             "--vary", "a=0.5:2.5", "--grid", "5", "--samples", "36",
+                                             "--no-progress"],
 }
 #: The baselines, measured in the same rounds: what every command pays (NumPy), what a warm command that
-#: imported SymPy would pay, and what every picture pays (Matplotlib's pyplot, as much as a drawing imports).
+#: imported SymPy would pay, what every picture pays (Matplotlib's pyplot, as much as a drawing imports), and what
+#: a sweep's start pays at least (its scheduler and its Parquet files).
 BASELINES = {"import numpy": ["-c", "import numpy"], "import sympy": ["-c", "import sympy"],
-             "import numpy, matplotlib.pyplot": ["-c", "import numpy, matplotlib.pyplot"]}
+             "import numpy, matplotlib.pyplot": ["-c", "import numpy, matplotlib.pyplot"],
+             "import numpy, dask, pyarrow": ["-c", "import numpy, dask, pyarrow"]}
 
 
 def wall(arguments: list[str], env: dict[str, str]) -> tuple[float, float]:
@@ -143,7 +149,8 @@ def measure_commands(repeats: int = 15) -> dict[str, tuple[float, float]]:
         env = dict(os.environ, SYMLINK_CACHE=str(Path(folder) / "cache"), PYTHONPATH=str(ROOT), MPLBACKEND="Agg",
                    PYTHONPYCACHEPREFIX=str(Path(folder) / "pycache"))  # compiled once, as an installed package is
         env.pop("PYTHONDONTWRITEBYTECODE", None)
-        (Path(folder) / "jansen.toml").write_text((ROOT / "symlink" / "linkages" / "jansen.toml").read_text())
+        for name in ("jansen.toml", "slider-crank.toml"):
+            (Path(folder) / name).write_text((ROOT / "symlink" / "linkages" / name).read_text())
         (Path(folder) / "torque.toml").write_text(scene_text(["input_torque"], True))
 
         def command(label: str, run: int) -> list[str]:

@@ -9,6 +9,7 @@ One concept a module:
 * :mod:`~symlink.analysis.transmission`: the transmission angle of every two-angle loop of any linkage
   (a four-bar's curve and extremes, and :func:`triangle_angle`, are at home in
   :mod:`symlink.numeric.fourbar_transmission`);
+* :mod:`~symlink.analysis.joint_angles`: the interior angles at the joints of many designs at once (SymPy-free);
 * :mod:`~symlink.analysis.limits`: limit positions of any output;
 * :mod:`~symlink.analysis.report`: :func:`analyze_linkage` (any one-input linkage).
 

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 import numpy
 
 from ..common.angles import wrap_angle
-from ..common.arguments import check_lengths
+from ..codegen.arguments import check_lengths
 from ..common.display import record_html
 from ..common.rounding import TOLERANCE
 from ..numeric.crank_ranges import closing_crank_range

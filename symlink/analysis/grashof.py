@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy
 
-from ..common.arguments import check_lengths, checked_arguments
+from ..codegen.arguments import checked_arguments
 from ..common.display import record_html
 
 __all__ = ["Grashof", "GRASHOF_CLASSES", "grashof", "grashof_names"]
@@ -81,7 +81,7 @@ def grashof(a: float, b: float, c: float, d: float, tolerance: float = 1e-12) ->
     >>> symlink.grashof(4, 5, 6, 2).name, symlink.grashof(5, 6, 7, 10).name
     ('double-crank', 'triple-rocker')
     """
-    check_lengths(crank=a, coupler=b, rocker=c, ground=d)
+    checked_arguments(_LINK_NAMES, (a, b, c, d), lengths=_LINK_NAMES)  # ValueError naming the first bad length
     links = [float(a), float(b), float(c), float(d)]
     shortest = min(range(4), key=links.__getitem__)
     longest = max(range(4), key=links.__getitem__)

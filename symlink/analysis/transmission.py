@@ -29,6 +29,7 @@ from ..numeric.cached_linkage import CachedLinkage
 from ..numeric.fourbar_transmission import (TransmissionRange, transmission_curve, transmission_range,  # noqa: F401
                                              triangle_angle)
 from ..numeric.reachability import BISECTIONS, InputMotion, InputRange, reachable_range
+from .joint_angles import joint_angle_arrays, joint_coordinates
 
 if TYPE_CHECKING:  # the symbolic layer and the solvers are imported where used: a cached linkage needs neither
     import sympy as sp
@@ -267,7 +268,7 @@ def _direction_of(sign: int, vector: Vector, linkage: Linkage) -> tuple[str | No
 
 
 @lru_cache(maxsize=32)
-def _joint_functions(linkage: Linkage) -> tuple:
+def joint_functions(linkage: Linkage) -> tuple:
     """Each two-angle loop's joint as generated code: (loop, guide, into, out), each side a :func:`_direction_of`."""
     return tuple((joint.loop, joint.guide, _direction_of(*joint.into[:2], linkage), _direction_of(*joint.out[:2], linkage))
                  for joint in transmission_joints(linkage))
@@ -280,7 +281,8 @@ def transmission_arrays(linkage: Linkage, values: Mapping[str, Any], solved: Map
     ``values``: the parameters (and held inputs) by name, numbers or arrays that broadcast against the
     solved coordinates (one row a design, say); ``solved``: the unknowns by name, as a solver of them
     returns them (NaN where not assembled).  The same angles as :func:`transmission_angles`, from code
-    generated once a linkage: no SymPy per design.
+    generated once a linkage (:func:`joint_functions`, evaluated by
+    :func:`~symlink.analysis.joint_angles.joint_angle_arrays`): no SymPy per design.
 
     >>> from symlink.numeric.solver import Solver
     >>> from symlink.mechanism.catalog import fourbar
@@ -289,41 +291,12 @@ def transmission_arrays(linkage: Linkage, values: Mapping[str, Any], solved: Map
     >>> round(math.degrees(float(transmission_arrays(fourbar(), {}, solved)["ABCD"][0])), 2)
     58.23
     """
-    found = {}
-    for loop, guide, (into_q, into_rest), (out_q, out_rest) in _joint_functions(linkage):
-        # the constant parts first (a number or a value a design), then one pass over the solved arrays
-        offset = numpy.asarray(out_rest(values) - into_rest(values) - (math.pi / 2 if guide else math.pi), dtype=float)
-        if out_q is None and into_q is None:
-            angle = offset + 0.0
-        elif into_q is None:
-            angle = solved[out_q] + offset
-        else:
-            angle = (offset - solved[into_q] if out_q is None else (solved[out_q] - solved[into_q]) + offset)
-        found[loop] = _folded(numpy.asarray(angle, dtype=float))
-    return found
-
-
-def _folded(angle: numpy.ndarray) -> numpy.ndarray:
-    """``|wrap(angle)|`` in [0, pi], in place on ``angle`` (a fresh array): the angle less its nearest whole turns.
-
-    Five passes, where :func:`~symlink.common.angles.wrap` takes a dozen (the sweeps' transmission angles of every
-    design and sample); equal to it to rounding (a whole turn or two subtracted).
-
-    >>> _folded(numpy.array([3 * math.pi / 2, -0.25, 7.0])).round(12).tolist() == [round(math.pi / 2, 12), 0.25,
-    ...                                                                              round(7.0 - 2 * math.pi, 12)]
-    True
-    """
-    turns = angle * (1 / (2 * math.pi))
-    numpy.rint(turns, out=turns)
-    turns *= 2 * math.pi
-    angle -= turns
-    return numpy.abs(angle, out=angle)
+    return joint_angle_arrays(joint_functions(linkage), values, solved)
 
 
 def transmission_coordinates(linkage: Linkage) -> list[str]:
     """The coordinates :func:`transmission_arrays` needs solved, by name."""
-    return list(dict.fromkeys(q for _, _, (into_q, _), (out_q, _) in _joint_functions(linkage)
-                              for q in (into_q, out_q) if q is not None))
+    return joint_coordinates(joint_functions(linkage))
 
 
 @dataclass(frozen=True)

@@ -3,11 +3,11 @@ from __future__ import annotations
 
 import argparse
 import json
-import warnings
 from functools import cached_property
 from typing import Any
 
 from ..common.angles import from_radians
+from ..io.table_source import TableSource
 from .options import (add_fourbar_lengths, add_units_option, assignments, command_help, fourbar_lengths,
                       fourbar_or_linkage, linkage_values, require_held_inputs)
 
@@ -102,46 +102,27 @@ def run(args: argparse.Namespace) -> int:
 ANALYSIS_SHAPING = ("analysis", "numeric/reachability", "numeric/cached_linkage", "mechanism/mobility", "cli/analyze")
 
 
-class AnalysisSource:
+class AnalysisSource(TableSource):
     """A linkage named on the command line (a catalog or atlas name, or a linkage file), as the general analysis
     needs it: a :class:`~symlink.numeric.cached_linkage.CachedLinkage` of its facts and generated code from the disk
-    cache, keyed as ``symlink table NAME|FILE`` keys its entries (:class:`~symlink.cli.tables.TableSource`: by
-    what names the linkage), so that a warm ``symlink analyze NAME|FILE`` builds no linkage and imports no SymPy.
-    A file too large to key is analysed from the linkage itself.
+    cache, keyed as ``symlink table NAME|FILE`` keys its entries (a :class:`~symlink.io.table_source.TableSource`:
+    by what names the linkage, a former name noted alike warm or cold), so that a warm ``symlink analyze NAME|FILE``
+    builds no linkage and imports no SymPy.  A file too large to key is analysed from the linkage itself.
     """
 
-    def __init__(self, source: str) -> None:
-        from ..common.names import SixBarNameNote, former_name_note
-        from ..io.scene_text import linkage_request
-        self.source = source
-        self.request = linkage_request(source)
-        self._found: Any = None
-        note = former_name_note(source) if self.request is not None else None
-        if note is not None:  # said here, warm or cold, in the words the linkage reader uses
-            warnings.warn(note, SixBarNameNote, stacklevel=2)
-        self._noted = note is not None
-
-    def found(self) -> Any:
-        """The linkage file or catalog entry, read (SymPy): only where the cache has no entry yet."""
-        if self._found is None:
-            from ..common.names import SixBarNameNote
-            from ..io.linkage_file import load_linkage
-            with warnings.catch_warnings():
-                if self._noted:  # said once already, in the same words
-                    warnings.simplefilter("ignore", SixBarNameNote)
-                self._found = load_linkage(self.source)
-        return self._found
+    dynamics = False  # the analysis reads no [dynamics]
 
     def key(self, outputs: list[str], analysis: bool = True) -> str:
-        """The cache key of an entry: the table's scheme (:meth:`symlink.cli.tables.TableSource.key`), with the
+        """The cache key of an entry: the table's (:meth:`symlink.io.table_source.TableSource.key`), with the
         analysis's code besides (``analysis``) for its own entries; the solver's is the table's own."""
+        if not analysis:
+            return super().key(outputs)
+        from ..io.table_source import GENERIC_ENTRY_KIND, GENERIC_SHAPING
         from ..numeric.cache import catalog_key
-        from .tables import GENERIC_ENTRY_KIND, GENERIC_SHAPING
-        shaping = GENERIC_SHAPING + (ANALYSIS_SHAPING if analysis else ())
-        return catalog_key("table", outputs, GENERIC_ENTRY_KIND, self.request, shaping)
+        return catalog_key("table", outputs, GENERIC_ENTRY_KIND, self.request, GENERIC_SHAPING + ANALYSIS_SHAPING)
 
     @cached_property
-    def facts(self) -> dict[str, Any]:
+    def facts(self) -> dict[str, Any]:  # the analysis's facts, not the table's
         """:func:`~symlink.analysis.report.analysis_facts` of the linkage, with its defaults (``defaults``)."""
         def now() -> dict[str, Any]:
             from ..analysis.report import analysis_facts
@@ -196,7 +177,7 @@ class AnalysisSource:
 def run_linkage(args: argparse.Namespace) -> int:
     """``symlink analyze NAME|FILE``: the general analysis of any one-input linkage (warm: no SymPy)."""
     from ..analysis.report import analyze_linkage
-    from .tables import facts_values
+    from ..io.table_source import facts_values
     source = AnalysisSource(args.linkage)
     facts = source.facts
     linkage = source.linkage()

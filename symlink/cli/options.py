@@ -15,7 +15,7 @@ import gettext
 import math
 import re
 from pathlib import Path
-from typing import TYPE_CHECKING, Callable, Collection, Mapping, NoReturn
+from typing import TYPE_CHECKING, Callable, Collection, Mapping, NoReturn, Sequence
 
 from ..common.angles import to_radians
 from ..common.files import excerpt
@@ -276,12 +276,16 @@ def require_held_inputs(linkage, settings: Mapping[str, float], command: str) ->
     ``command`` turns the first input only; holding the others at the file's defaults without a word would
     answer a question the user did not ask (a five-bar with one crank held still).
     """
-    if len(linkage.inputs) < 2:
+    require_held_input_names(linkage.name, [q.name for q in linkage.inputs], settings, command)
+
+
+def require_held_input_names(name: str, inputs: Sequence[str], settings: Mapping[str, float], command: str) -> None:
+    """:func:`require_held_inputs` of the linkage ``name`` by its inputs' names (from its facts, without SymPy)."""
+    if len(inputs) < 2:
         return
-    unset = [q.name for q in linkage.inputs[1:] if q.name not in settings]
+    unset = [q for q in inputs[1:] if q not in settings]
     if unset:
-        names = ", ".join(q.name for q in linkage.inputs)
-        raise ValueError(f"{linkage.name} has {len(linkage.inputs)} inputs ({names}) and {command} turns the first "
+        raise ValueError(f"{name} has {len(inputs)} inputs ({', '.join(inputs)}) and {command} turns the first "
                          f"only: to hold the others still, give their values with --set {unset[0]}=VALUE"
                          f"{',...' if len(unset) > 1 else ''}")
 

@@ -45,14 +45,14 @@ def drawn_placement(args: argparse.Namespace) -> tuple[Placement, dict[str, floa
     :class:`~symlink.numeric.poses.Placement` from the disk cache (:func:`~symlink.numeric.poses.cached_placement`),
     so that a warm drawing imports no SymPy.
 
-    The linkage is taken as ``symlink table NAME|FILE`` takes it (:class:`~symlink.cli.tables.TableSource`: a file's
+    The linkage is taken as ``symlink table NAME|FILE`` takes it (:class:`~symlink.io.table_source.TableSource`: a file's
     ``[dynamics]`` included, whose defaults name masses and loads), and keyed as it keys its entries (the catalog or
     atlas name, or the file's bytes): its facts give the values, and its solver entries are shared.  A linkage
     that cannot be keyed is drawn from the linkage itself (:class:`~symlink.numeric.poses.Geometry`).
     """
     from ..numeric.cache import catalog_key
     from ..numeric.poses import PLACEMENT_ENTRY_KIND, Geometry, cached_placement
-    from .tables import GENERIC_SHAPING, TableSource, facts_values
+    from ..io.table_source import GENERIC_SHAPING, TableSource, facts_values
     source = TableSource(args.linkage)
     if source.request is None:  # not keyed: the reader says what is wrong, or the linkage is drawn as it is
         linkage, values = drawn_linkage(args)

@@ -1,7 +1,7 @@
 """``symlink plan NAME``: how a catalog linkage is solved, loop by loop, and its mobility.
 
 The plan is derived (SymPy) once: its printed text is kept in the disk cache, keyed as ``symlink table NAME|FILE``
-keys its entries (:class:`~symlink.cli.tables.TableSource`: the catalog or atlas name, or the file's bytes), so that
+keys its entries (:class:`~symlink.io.table_source.TableSource`: the catalog or atlas name, or the file's bytes), so that
 a warm ``symlink plan`` builds no linkage and imports no SymPy.
 """
 from __future__ import annotations
@@ -53,7 +53,7 @@ def plan_text(linkage: Linkage) -> str:
 
 
 def run(args: argparse.Namespace) -> int:
-    from .tables import GENERIC_SHAPING, TableSource
+    from ..io.table_source import GENERIC_SHAPING, TableSource
     source = TableSource(args.name)
     if source.request is None:  # not keyed: the reader says what is wrong
         from ..io.linkage_file import load_linkage

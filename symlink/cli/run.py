@@ -95,8 +95,9 @@ def _run_scene(found, args: argparse.Namespace) -> int:
 
 
 def _newton_source(text: str, folder) -> object | None:
-    """The table source (:class:`symlink.cli.tables.TableSource`) of a scene that gives a ``[guess]`` table, whose
-    linkage (a catalog name or a linkage file) is keyed; None for any other (the scene readers say what is wrong)."""
+    """The table source (:class:`symlink.io.table_source.TableSource`) of a scene that gives a ``[guess]``
+    table, whose linkage (a catalog name or a linkage file) is keyed; None for any other (the scene readers say what
+    is wrong)."""
     from pathlib import Path
     from ..common.numbers import toml_data
     from ..io.scene_text import MAX_SCENE_BYTES, linkage_request
@@ -112,7 +113,7 @@ def _newton_source(text: str, folder) -> object | None:
     request = linkage_request(source, folder)
     if request is None:
         return None
-    from .tables import TableSource
+    from ..io.table_source import TableSource
     return TableSource(source if "file_sha256" not in request else str(Path(folder) / source))
 
 

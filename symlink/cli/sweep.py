@@ -20,8 +20,8 @@ from ..common.angles import to_radians
 from ..common.files import excerpt
 from ..common.limits import format_bytes
 from .budget import MEMORY_BUDGET, add_time_budget_option, budget_text, format_duration, time_budget
-from .options import (OutputFolder, add_units_option, assignments, command_help, finite, linkage_values,
-                      refuse_together, require_held_inputs, seed, whole)
+from .options import (OutputFolder, add_units_option, assignments, command_help, finite, refuse_together,
+                      require_held_input_names, seed, whole)
 from .output import note
 
 
@@ -118,7 +118,6 @@ def _require_an_assembly(folder: str, designs: int, fresh: bool) -> None:
     import shutil
 
     import pyarrow
-    import pyarrow.compute
     import pyarrow.parquet
 
     from ..io.sweep_folder import verified_chunks
@@ -127,7 +126,8 @@ def _require_an_assembly(folder: str, designs: int, fresh: bool) -> None:
         # imports only what its scheduler needs), and a Python file object read by pyarrow's threads aborted the
         # process at exit ("terminate called without an active exception")
         reach = pyarrow.parquet.ParquetFile(pyarrow.BufferReader(data)).read(columns=["reach"], use_threads=False)
-        if (pyarrow.compute.max(reach.column("reach")).as_py() or 0.0) > 0:
+        # (the column as Python numbers: pyarrow.compute takes 50 ms to import, and to_numpy imports pandas)
+        if any(value is not None and value > 0 for value in reach.column("reach").to_pylist()):
             return
     if fresh:
         shutil.rmtree(folder, ignore_errors=True)
@@ -184,9 +184,10 @@ def _add_options(command: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..symbolic.closure import is_angle
-    from ..io.linkage_file import load_linkage
-    from ..workshop.sweep import SCHEDULERS, SWEEP_EXTRA, SweepSettings, missing_modules, run_sweep
+    """``symlink sweep``: the linkage's facts and solvers come from the disk cache (derived once: a warm sweep
+    imports no SymPy), and its start imports only what its scheduler needs."""
+    from ..io.table_source import facts_values
+    from ..workshop.sweep import SCHEDULERS, SWEEP_EXTRA, SweepSettings, missing_modules, run_sweep, sweep_facts
     missing = missing_modules()
     if missing:
         raise ValueError(f"symlink sweep needs {', '.join(missing)}: {SWEEP_EXTRA}")
@@ -201,21 +202,19 @@ def run(args: argparse.Namespace) -> int:
     if args.scheduler not in (*SCHEDULERS, "auto") and not args.scheduler.startswith(("tcp://", "tls://")):
         raise ValueError(f"--scheduler must be auto, {', '.join(SCHEDULERS)} or a cluster's address tcp://HOST:PORT, "
                          f"got {args.scheduler!r}")
-    found = load_linkage(args.linkage)
-    linkage = found.linkage
+    facts = sweep_facts(args.linkage)
     both = sorted(set(args.vary) & set(args.set))
     if both:
         raise ValueError(f"--vary and --set both give {', '.join(both)}: a parameter is swept or set, not both")
-    require_held_inputs(linkage, args.set, "a sweep")
-    values = linkage_values(found, args.set, args.units)
-    known = {s.name: s for s in linkage.parameters + linkage.inputs}
+    require_held_input_names(facts["name"], facts["inputs"], args.set, "a sweep")
+    values = facts_values(facts, args.set, args.units)
     swept: dict[str, tuple[float, float]] = {}
     for name, (low, high) in args.vary.items():
-        turned = name in known and is_angle(linkage, known[name])
+        turned = name in facts["angles"]
         swept[name] = ((float(to_radians(low, args.units)), float(to_radians(high, args.units))) if turned
                        else (low, high))
     values = {name: value for name, value in values.items()
-              if name not in swept and name != linkage.inputs[0].name}
+              if name not in swept and name != facts["inputs"][0]}
     mode, count = ("random", args.random) if args.random is not None else ("grid", 10 if args.grid is None else args.grid)
     if min(count, args.samples, args.chunk) >= 1:  # else SweepSettings says what is wrong
         designs = count ** len(swept) if mode == "grid" else count

@@ -35,7 +35,6 @@ import argparse
 import itertools
 import warnings
 from dataclasses import dataclass
-from functools import cached_property
 from typing import TYPE_CHECKING, Any, Callable, Collection, Iterable, Mapping
 
 import numpy
@@ -43,6 +42,8 @@ import numpy
 from ..common.angles import from_radians, half_turn, to_radians, wrap
 from ..common.names import FORMER_CATALOG_NAMES, SixBarNameNote, former_name_note
 from ..numeric.input_sweep import InputSweep, crank_speeds
+from ..io.table_source import (GENERIC_ENTRY_KIND, GENERIC_SHAPING, TableSource, facts_values,  # noqa: F401
+                                    newton_facts, table_columns, table_facts, units_of_columns)
 from .options import (add_fourbar_lengths, add_sweep_options, angle, assignments, branches, command_help, finite,
                       fourbar_lengths, input_sweep)
 from .output import RowWriter, TableAssembler, print_rows
@@ -100,13 +101,6 @@ class Table:
     reachable: Callable[[Mapping[str, float]], list[tuple[float, float]] | str | None] | None = None
     undetermined: Callable[[Mapping[str, float], Mapping[str, numpy.ndarray]], numpy.ndarray] | None = None
     assemblies: Callable[[float, Mapping[str, float]], list[dict[str, float]]] | None = None
-
-
-def table_columns(linkage: Linkage) -> list[str]:
-    """The csv header of a linkage's table command."""
-    from ..symbolic.outputs import label, table_outputs
-    first, *further = linkage.inputs
-    return [label(linkage, first), "branch"] + [label(linkage, x) for x in further] + list(table_outputs(linkage))
 
 
 def loop_branches(loops: int) -> Callable[[str], list[tuple[int, ...]]]:
@@ -230,34 +224,6 @@ def _branch_signs(facts: Mapping[str, Any], args: argparse.Namespace) -> dict[ob
     return {"/".join(f"{s:+d}" for s in signs): dict(zip(names, signs)) for signs in itertools.product(*args.branch)}
 
 
-def table_facts(linkage: Linkage, defaults: Mapping[str, float] | None = None) -> dict[str, Any]:
-    """What a table needs of ``linkage``, as plain data (JSON): names, labels, units, columns, the solved outputs.
-
-    Kept in the disk cache beside the solver of ``symlink table NAME|FILE``, so that a warm table builds no
-    linkage and imports no SymPy.
-    """
-    from ..symbolic.closure import is_angle
-    from ..symbolic.outputs import label, table_outputs
-    from ..symbolic.vectors import acceleration, rate
-    named = linkage.parameters + linkage.inputs
-    return {
-        "name": linkage.name, "closed_form": bool(linkage.has_closed_form),
-        "inputs": [x.name for x in linkage.inputs], "rates": [rate(x).name for x in linkage.inputs],
-        "accelerations": [acceleration(x).name for x in linkage.inputs],
-        "labels": {x.name: label(linkage, x) for x in linkage.inputs},
-        "parameters": [s.name for s in linkage.parameters],
-        "positive": [s.name for s in linkage.parameters + linkage.inputs[1:] if s.is_positive],
-        "angles": [s.name for s in named if is_angle(linkage, s)],
-        "branches": [b.name for b in linkage.branches],
-        "outputs": dict(table_outputs(linkage)) if linkage.has_closed_form else {},
-        "newton": None if linkage.has_closed_form else newton_facts(linkage),
-        "columns": table_columns(linkage),
-        "column_units": units_of_columns(linkage, table_columns(linkage)),
-        "angle_columns": sorted({label(linkage, q) for q in linkage.coordinates if is_angle(linkage, q)}),
-        "defaults": {name: float(value) for name, value in (defaults or {}).items()},
-    }
-
-
 def _closed_form(table: Table, facts: Mapping[str, Any], solver: Any, values: dict, args: argparse.Namespace):
     """A solver of one block of inputs for each branch asked for, and the reachable crank range of each.
 
@@ -310,14 +276,6 @@ def _start(table: Table, name: str, labels: Mapping[str, str], values: dict, the
     if found:  # the nearest: the largest wrapped difference of the angles named
         return [min(found, key=lambda q: max(abs(float(wrap(q[n] - v))) for n, v in guess.items()))]
     return [guess] if len(guess) == len(labels) else []
-
-
-def newton_facts(linkage: Linkage) -> dict[str, Any]:
-    """What a table solved by Newton's method needs of ``linkage``, as plain data (kept in a table's facts):
-    the label of each unknown and its name, and the symbol each column shows."""
-    from ..symbolic.outputs import label, table_outputs
-    return {"unknowns": {label(linkage, u): u.name for u in linkage.unknowns},
-            "outputs": dict(table_outputs(linkage))}
 
 
 def _newton_solver(linkage: Linkage | None, solver: Any) -> Callable[[], Any]:
@@ -396,19 +354,6 @@ def _print_assemblies(table: Table, facts: Mapping[str, Any], values: dict, firs
         rows.append({column: float(wrap(from_radians(radians[name], args.units), half_turn(args.units)))
                      for column, name in shown.items()})
     print_rows(rows, list(shown), args.format)
-
-
-def units_of_columns(linkage: Linkage, columns: Collection[str]) -> dict[str, str]:
-    """The unit of each column of ``linkage``'s table in radians (``rad``, ``rad/s``); none for a length (its
-    unit is the user's, unknown here) or a column without one.  Plain data, kept in a table's facts.
-
-    >>> from symlink.mechanism.catalog import slider_crank
-    >>> units_of_columns(slider_crank(), ["crank", "branch", "conrod", "slider", "conrod_speed", "slider_speed"])
-    {'crank': 'rad', 'conrod': 'rad', 'conrod_speed': 'rad/s'}
-    """
-    from ..numeric.units import output_units
-    found = output_units(linkage, list(columns))
-    return {name: unit for name, unit in found.items() if unit and "length" not in unit}
 
 
 def shown_units(units_in_radians: Mapping[str, str], units: str) -> dict[str, str]:
@@ -671,92 +616,6 @@ def _add_generic_options(command: argparse.ArgumentParser) -> None:
     command.add_argument("--guess", type=_guess, metavar="NAME=ANGLE,...",
                          help="without a closed form: the assembly to start from at the first crank angle")
     command.set_defaults(run=run_generic_table)
-
-
-#: The kind of cache entry of ``symlink table NAME|FILE`` (its facts, and its solver: :func:`run_generic_table`).
-GENERIC_ENTRY_KIND = "generic-table/2"
-#: Besides the code that shapes generated code: what reads a linkage file and what takes a table's facts from it,
-#: and what an atlas name (atlas:NAME) stands for: the atlas's names and example drawings, and the joints reader.
-GENERIC_SHAPING = ("io/linkage_file", "cli/tables", "mechanism/atlas", "mechanism/joints")
-
-
-def facts_values(facts: Mapping[str, Any], settings: Mapping[str, float], units: str,
-                  extra: Collection[str] = ()) -> dict[str, float]:
-    """:func:`~symlink.cli.options.linkage_values` from a table's facts: the defaults updated by ``--set``."""
-    known = facts["parameters"] + facts["inputs"]
-    for name in settings:
-        if name not in known and name not in extra:
-            raise ValueError(f"--set: {facts['name']} has no value {name!r}; it takes {', '.join([*known, *extra])}")
-    values = dict(facts["defaults"])
-    values.update({name: float(to_radians(value, units)) if name in facts["angles"] else value
-                   for name, value in settings.items()})
-    return values
-
-
-class TableSource:
-    """A linkage named on the command line (a catalog name, an atlas name or a linkage file): its table's facts
-    (:func:`table_facts`) and its solver, from the disk cache.
-
-    The one home of a table's cache entries: ``symlink table NAME|FILE`` and the catalog's table commands
-    (``symlink watt2``) key them by what names the linkage (:func:`symlink.io.scene_text.linkage_request`: the catalog
-    name or the file's bytes), so that a warm table builds no linkage and imports no SymPy.  A former name
-    (``stephenson3``) is noted on stderr in the same words warm or cold (:func:`symlink.common.names.former_name_note`).
-    """
-
-    def __init__(self, source: str) -> None:
-        from ..io.scene_text import linkage_request
-        self.source = source
-        self.request = linkage_request(source)
-        self._found: Any = None
-        note = former_name_note(source) if self.request is not None else None
-        if note is not None:
-            warnings.warn(note, SixBarNameNote, stacklevel=2)
-        self._noted = note is not None
-
-    def found(self) -> Any:
-        """The linkage file or catalog entry, read (SymPy): only where the cache has no entry yet."""
-        if self._found is None:
-            from ..io.linkage_file import load_linkage
-            with warnings.catch_warnings():
-                if self._noted:  # said once already, in the same words
-                    warnings.simplefilter("ignore", SixBarNameNote)
-                self._found = load_linkage(self.source).with_dynamics()  # [dynamics] adds torques and forces
-        return self._found
-
-    def key(self, outputs: list[str]) -> str:
-        """The cache key of the entry of ``outputs`` (``[]``: the facts; ``["newton"]``: Newton's solver)."""
-        from ..numeric.cache import catalog_key
-        return catalog_key("table", outputs, GENERIC_ENTRY_KIND, self.request, GENERIC_SHAPING)
-
-    @cached_property
-    def facts(self) -> dict[str, Any]:
-        """:func:`table_facts` of the linkage with its defaults (from the cache where the linkage is keyed)."""
-        import json
-        from ..numeric.cache import cached_text
-
-        def now() -> dict[str, Any]:
-            return table_facts(self.found().linkage, self.found().defaults)
-        return now() if self.request is None else json.loads(cached_text(self.key([]), lambda: json.dumps(now())))
-
-    def solver(self) -> Any:
-        """The solver of the table's outputs from the cache (:class:`~symlink.numeric.cached_solver.CachedSolver`,
-        or :class:`~symlink.numeric.cached_solver.CachedNewtonSolver` without a closed form); None where the
-        linkage is not keyed (a file too large to key: solved from the linkage itself)."""
-        if self.request is None:
-            return None
-        facts = self.facts
-        if facts["closed_form"]:  # derived once, with SymPy
-            from ..numeric.cached_solver import CachedSolver, entry_text
-            outputs = list(facts["outputs"].values())
-
-            def full():
-                from ..numeric.solver import Solver
-                return Solver(self.found().linkage, outputs)
-
-            return CachedSolver(facts["name"], outputs, key=self.key(outputs),
-                                derive=lambda: entry_text(self.found().linkage, outputs), full=full)
-        from ..numeric.cached_solver import CachedNewtonSolver, newton_entry_text  # its NumPy module: no SymPy when warm
-        return CachedNewtonSolver(facts["name"], self.key(["newton"]), lambda: newton_entry_text(self.found().linkage))
 
 
 def run_generic_table(args: argparse.Namespace) -> int:

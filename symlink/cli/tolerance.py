@@ -153,7 +153,7 @@ def run(args: argparse.Namespace) -> int:
     import json
     from ..numeric.cache import cached_module, cached_text
     from ..workshop.tolerance import StackUpModel, tolerance_arrays
-    from .tables import facts_values
+    from ..io.table_source import facts_values
     lengths = fourbar_lengths(args)
     given = [value is not None for value in lengths]
     name = args.linkage if args.linkage is not None else "fourbar"

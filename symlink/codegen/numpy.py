@@ -35,8 +35,7 @@ from sympy.printing.precedence import precedence
 from ..version import __version__
 from ..symbolic.linkage import is_branch_name
 from ..common.rounding import TOLERANCE
-# their home; _arguments' source heads every generated module
-from ..common.arguments import _arguments, checked_arguments  # noqa: F401
+from .arguments import _arguments, checked_arguments  # noqa: F401 - copied into every module; re-exported
 from .loading import load_numpy_module
 from .program import require_loop_units, format_default, is_flag, straight_line
 from .trigonometry import angle_sums

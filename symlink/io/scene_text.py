@@ -323,8 +323,8 @@ class NewtonScene:
 
 def newton_scene(data: Mapping[str, Any], facts: Mapping[str, Any], defaults: bool) -> NewtonScene:
     """The scene of parsed ``data`` with a ``[guess]`` table, from its linkage's table facts
-    (:func:`symlink.cli.tables.table_facts`); ``defaults``: a linkage file's defaults stand in for parameters the
-    scene leaves out (a catalog scene names every one); fixed angles in radians, as in every scene's
+    (:func:`symlink.io.table_source.table_facts`); ``defaults``: a linkage file's defaults stand in for
+    parameters the scene leaves out (a catalog scene names every one); fixed angles in radians, as in every scene's
     ``[parameters]``.  ``ValueError`` naming the first bad key or value, and for
     a linkage with a closed form (where ``branch`` chooses the assembly).
 

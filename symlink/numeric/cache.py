@@ -89,8 +89,8 @@ FUNCTION = "solve"
 #: package folder (then every module in it counts).  Its digest stands in for the linkage's definition in
 #: :func:`catalog_key`, so that a cached catalog scene is found without building the linkage (or importing
 #: SymPy); it is hashed at every warm start, so it holds nothing a catalog linkage does not use.
-CATALOG_SHAPING = ("common/names", "common/notation", "common/rounding", "common/arguments", "symbolic",
-                   "mechanism/catalog", "codegen", "io/export", "numeric/compiled")
+CATALOG_SHAPING = ("common/names", "common/notation", "common/rounding", "symbolic", "mechanism/catalog", "codegen",
+                   "io/export", "numeric/compiled")
 #: The modules whose text shapes generated code: their digest is part of every key.  Add a module here
 #: when it starts to shape generated text; benchmarks, plots and the command line stay out, so that editing
 #: them keeps the cache.  Beyond the catalog's: what builds a linkage with masses and its derivation text.

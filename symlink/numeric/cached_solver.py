@@ -104,10 +104,14 @@ class CachedSolver:
     """
 
     def __init__(self, name: str, outputs: Sequence[str], *, key: str | None = None,
-                 derive: Callable[[], str] | None = None, full: Callable[[], Any] | None = None) -> None:
+                 derive: Callable[[], str] | None = None, full: Callable[[], Any] | None = None,
+                 compiled: bool = False) -> None:
         """``key``, ``derive`` and ``full``: an entry of another request than a catalog linkage's (a scene's
         dynamics, keyed by what it names): its cache key, how to derive it (:func:`entry_text`) and the
-        :class:`~symlink.numeric.solver.Solver` that takes quantities."""
+        :class:`~symlink.numeric.solver.Solver` that takes quantities.  ``compiled``: the entry's description
+        holds the C source of its outputs (``c_solver``: :func:`symlink.numeric.compiled_library.c_solver_source`
+        as JSON), and the compiled backend answers as it answers a :class:`~symlink.numeric.solver.Solver`
+        (chosen alike: ``SYMLINK_BACKEND``, else where a C compiler works), loaded without SymPy."""
         self.name = name
         self.outputs = list(outputs)
         self._full = full
@@ -125,6 +129,34 @@ class CachedSolver:
         self.bytes_per_value: int = entry["bytes_per_value"]
         self.function: Callable[..., dict] = namespace[FUNCTION]
         self._check: Callable[..., Any] = namespace[CHECK]
+        self._compiled: Any = None  # the compiled function where it answers (symlink.numeric.compiled_library)
+        self._build: Any = None  # its background build, until it is over
+        if compiled:
+            import json
+            from . import compiled_library
+            facts = json.loads(entry["c_solver"])
+            choice = compiled_library.chosen_backend()
+            if choice == "compiled":
+                self._compiled = compiled_library.compiled_or_warning_of(facts)
+            elif choice == "auto":
+                self._compiled, self._build = compiled_library.entry_or_build_of(facts)
+
+    @property
+    def backend(self) -> str:
+        """``"compiled"`` or ``"numpy"``: the backend that answers the next call."""
+        return "numpy" if self._answering() is None else "compiled"
+
+    def wait_for_backend(self, timeout: float | None = None) -> str:
+        """Wait (at most ``timeout`` seconds) for a background build of the compiled backend; the backend then."""
+        if self._build is not None:
+            self._build.wait(timeout)
+        return self.backend
+
+    def _answering(self) -> Any:
+        """The compiled function where it answers (a background build just finished is adopted here), else None."""
+        if self._build is not None and self._build.done():
+            self._compiled, self._build = self._build.entry(), None
+        return self._compiled
 
     def check_lengths(self, **lengths: float) -> None:
         """``ValueError`` naming the first length that is not a positive finite number (the generated check)."""
@@ -155,8 +187,15 @@ class CachedSolver:
             count = 0  # the argument check says which shapes do not broadcast
         if count:
             require_memory(count, self.bytes_per_value, f"solving {count:.3g} input values with the {self.name} solver")
+        compiled = self._answering()
         with numpy.errstate(invalid="ignore", divide="ignore"):
-            result = self.function(**values)
+            if compiled is None:
+                result = self.function(**values)
+            else:  # checked as the NumPy module checks (its own check), then the C function: as Solver calls it
+                names = tuple(values)
+                arrays, _ = self._check(True, names, tuple(values.values()), tuple(self.lengths),
+                                        tuple(self.branches))
+                result = compiled(**dict(zip(names, arrays)))
         return Results(result, {name: self.units.get(name, "") for name in result}, values, self.input_units)
 
     def __repr__(self) -> str:

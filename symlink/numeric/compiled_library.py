@@ -55,7 +55,7 @@ import threading
 import time
 import warnings
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import TYPE_CHECKING, Any, Mapping, Sequence
 
 import numpy
 
@@ -63,10 +63,14 @@ from . import cache
 from ..common.display import record_html
 from .call_arguments import check_argument_names
 from ..codegen.call_extension import ENTRY_FIELDS
-from ..codegen.c import PIECE_SIZE, c_function, c_library, c_packed, translation_units
 from ..common.files import NotPrivate, read_private, write_atomic
 from .results import checked_out, refuse_overlaps
-from ..symbolic.linkage import Linkage, Program, is_branch_name
+
+if TYPE_CHECKING:
+    from ..symbolic.linkage import Linkage, Program
+
+# The C printer (symlink.codegen.c) and the linkage (SymPy) are imported where a library's source is made or
+# built: loading a library that is built already, from a cache entry's facts, needs neither (a warm sweep).
 
 __all__ = ["FLAGS", "FallbackWarning", "CompilerUnavailable", "CompileError", "cache_directory", "find_compiler",
            "compile_shared", "c_solver_source", "BACKENDS", "chosen_backend", "compiler_works", "built_library",
@@ -275,6 +279,7 @@ def _build(source: str, headers: Mapping[str, str], command: list[str], target: 
     """
     target.parent.mkdir(parents=True, exist_ok=True)
     folder = Path(tempfile.mkdtemp(prefix=".build-", dir=target.parent))
+    from ..codegen.c import translation_units
     units = translation_units(source)  # a large program's pieces, compiled apart (symlink.codegen.c)
     try:
         files = {**headers, _VECTOR_MATH_FILE: VECTOR_MATH, "symlink.c": source}
@@ -960,13 +965,16 @@ def _strided(array: numpy.ndarray, shape: tuple[int, ...]) -> tuple[int, int, nu
 
 
 def program_facts(program: Program, name: str, doc: str, lengths: Sequence[str] = (),
-                  piece_size: int = PIECE_SIZE) -> str:
+                  piece_size: int | None = None) -> str:
     """The C of one straight-line ``program`` as function ``solve`` (plus its checked ``solve_packed``) and its
     calling facts, as JSON text: ``{"source", "arguments", "outputs", "flags", "defaults"}``.
 
     A large program comes in pieces (``piece_size``, :data:`symlink.codegen.c.PIECE_SIZE`), which
     :func:`compile_shared` compiles apart, in parallel.
     """
+    from ..codegen.c import PIECE_SIZE, c_function, c_library, c_packed
+    from ..symbolic.linkage import is_branch_name
+    piece_size = PIECE_SIZE if piece_size is None else piece_size
     function = c_function(program, "solve", doc, piece_size)
     _, source = c_library([function], "solver", standalone=True)
     source += "\n" + c_packed(function, list(lengths), [a for a in function.arguments if is_branch_name(a)])
@@ -1003,6 +1011,10 @@ def c_solver_source(linkage: Linkage, outputs: Sequence[str]) -> dict:
                              [s.name for s in program.arguments if s.is_positive])
 
     return json.loads(cache.cached_text(cache.cache_key(linkage, outputs, "c-solver"), build))
+
+
+#: Seconds a sweep waits for a compiled library being built before it takes the NumPy module instead.
+BUILD_WAIT = 600.0
 
 
 # --- the backend a Solver uses ---------------------------------------------------------------------------------
@@ -1169,9 +1181,20 @@ def compiled_or_warning(linkage: Linkage, outputs: Sequence[str]) -> CompiledFun
     where it cannot be built or loaded, one ``FallbackWarning`` and ``None`` (NumPy answers)."""
     try:
         facts = c_solver_source(linkage, outputs)
+    except OSError as error:
+        warnings.warn(f"symlink: no compiled backend, using NumPy instead: {error}", FallbackWarning, stacklevel=3)
+        return None
+    return compiled_or_warning_of(facts, stacklevel=4)
+
+
+def compiled_or_warning_of(facts: Mapping[str, Any], stacklevel: int = 3) -> CompiledFunction | None:
+    """:func:`compiled_or_warning` of a solver's C source and calling facts (:func:`program_facts`), as a cache
+    entry holds them: no linkage needed."""
+    try:
         return _entry(compile_shared(facts["source"]), facts)
     except (CompilerUnavailable, CompileError, OSError, subprocess.SubprocessError) as error:
-        warnings.warn(f"symlink: no compiled backend, using NumPy instead: {error}", FallbackWarning, stacklevel=3)
+        warnings.warn(f"symlink: no compiled backend, using NumPy instead: {error}", FallbackWarning,
+                      stacklevel=stacklevel)
         return None
 
 
@@ -1188,6 +1211,14 @@ def entry_or_build(linkage: Linkage, outputs: Sequence[str]) -> tuple[CompiledFu
         facts = c_solver_source(linkage, outputs)
     except (OSError, ValueError, NotImplementedError, TypeError):
         return None, None  # a linkage the C printer cannot print: NumPy
+    return entry_or_build_of(facts)
+
+
+def entry_or_build_of(facts: Mapping[str, Any]) -> tuple[CompiledFunction | None, Build | None]:
+    """:func:`entry_or_build` of a solver's C source and calling facts (:func:`program_facts`), as a cache entry
+    holds them: no linkage needed, no SymPy."""
+    if not compiler_works():
+        return None, None
     library = built_library(facts["source"])
     if library is not None:
         return _entry(library, facts), None

@@ -20,7 +20,7 @@ from functools import lru_cache
 import numpy
 
 from ..common.angles import wrap_angle
-from ..common.arguments import check_lengths
+from ..codegen.arguments import check_lengths
 from ..common.display import record_html
 from ..common.rounding import TOLERANCE
 from .cached_solver import CachedSolver

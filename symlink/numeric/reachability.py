@@ -27,15 +27,18 @@ import numpy
 
 from ..common.angles import wrap_angle
 from .cache import cache_key, cached_module, cached_text
+from .compiled_library import BUILD_WAIT  # noqa: F401 - its home is compiled_library (no SymPy); kept for callers
+from .design_scan import (BISECTIONS, COARSE_STRIDE, NEAR_CHANGES, NEAR_ZERO, _bisect, _edges,  # noqa: F401
+                          _scanned_edges, _spans_from_marks, fastest_margins, margin_spans)
 from .crank_ranges import (SCAN_POINTS, TURN_SAMPLES, closing_crank_range, crank_range, describe_spans, fivebar_range,  # noqa: F401
                            inverted_slider_crank_range, reachable_turn, scanned_range, slider_crank_range, turn_angles)
-from ..common.arguments import check_lengths, checked_arguments
+from ..codegen.arguments import check_lengths, checked_arguments
 from ..common.display import record_html
 from ..common.rounding import TOLERANCE
 from .cached_linkage import CachedLinkage
 
 if TYPE_CHECKING:  # the symbolic layer and the solvers are imported where used: a cached linkage needs neither
-    from ..symbolic.linkage import Linkage
+    from ..symbolic.linkage import Linkage, Program
     from .solver import Solver
 
 __all__ = ["crank_range", "assembled_crank_range", "slider_crank_range", "inverted_slider_crank_range",
@@ -52,8 +55,6 @@ def assembled_crank_range(a: float, b: float, c: float, d: float) -> list[tuple[
 
 # --- any linkage with one input -----------------------------------------------------------
 
-#: Bisection steps that take a scan step (a tenth of a degree) down to rounding: 2^-60 of it.
-BISECTIONS = 60
 #: A root's argument, relative to its scale, at most this small at a local minimum inside the
 #: range: the loop passes through a toggle there (its branches meet) without leaving the range.
 TOUCH = 100 * TOLERANCE
@@ -279,89 +280,106 @@ def _margin_function(linkage: Linkage) -> tuple[Callable[..., dict], list[tuple[
     vanish) is its argument less the square of TOLERANCE.  Later loops'
     margins are NaN where an earlier loop does not close.
     """
-    roots = margin_roots(linkage)
-    key = cache_key(linkage, [name for name, _ in roots], "root-margins")
+    names = _margin_names(linkage)
+    key = cache_key(linkage, names, "root-margins")
     if key not in _MARGINS:
         _MARGINS[key] = cached_module(key, lambda: margins_text(linkage))[1]["margins"]
-    return _MARGINS[key], roots
+    return _MARGINS[key], [(name, loop) for name, (loop, _, _) in zip(names, _roots(linkage))]
 
 
 def margin_roots(linkage: Linkage) -> list[tuple[str, str]]:
     """Each clamped root's margin name (``margin_k``, or ``guard_k`` for a length that must not vanish) and loop,
     in plan order: plain data, which a cached analysis keeps
     (:class:`~symlink.numeric.cached_linkage.CachedLinkage`)."""
-    return [(f"margin_{k}" if not expr.args[1].is_negative else f"guard_{k}", loop)
-            for k, (loop, _, expr) in enumerate(_roots(linkage))]
+    return [(name, loop) for name, (loop, _, _) in zip(_margin_names(linkage), _roots(linkage))]
 
 
 def margins_text(linkage: Linkage) -> str:
     """The NumPy module of :func:`_margin_function` (function ``margins``): derived once, with SymPy."""
     from ..codegen.numpy import numpy_module
+    return numpy_module([("margins", _margins_program(linkage, _margin_names(linkage)), _margins_doc(linkage))])
+
+
+def _margin_names(linkage: Linkage) -> list[str]:
+    """The names of the margins of :func:`_roots`: ``margin_k``, or ``guard_k`` for a length that must not vanish."""
+    return [f"margin_{k}" if not expr.args[1].is_negative else f"guard_{k}"
+            for k, (_, _, expr) in enumerate(_roots(linkage))]
+
+
+def _margins_program(linkage: Linkage, names: list[str]) -> Program:
+    """The straight-line program of the margins ``names`` (:func:`_margin_function`), in loop units."""
     from ..codegen.program import in_loop_units
     base = linkage.program([q.name for q in linkage.unknowns])
     # A guard (negative scale) is NaN below TOLERANCE^2: its margin is the argument past that.
     margins = {name: (expr.args[0] / expr.args[1] + TOLERANCE if name.startswith("margin")
-                      else expr.args[0] + TOLERANCE * expr.args[1])
-               for (name, _), (_, _, expr) in zip(margin_roots(linkage), _roots(linkage))}
-    program = replace(in_loop_units(base), outputs=margins)
-    return numpy_module([("margins", program, f"{linkage.name}: the margins of its clamped roots.")])
+                      else expr.args[0] + TOLERANCE * expr.args[1]) for name, (_, _, expr) in zip(names, _roots(linkage))}
+    return replace(in_loop_units(base), outputs=margins)
+
+
+def _margins_doc(linkage: Linkage) -> str:
+    return f"{linkage.name}: the margins of its clamped roots."
+
+
+def _margins_c_facts(linkage: Linkage, names: list[str]) -> str:
+    """The C of the margins ``names`` and its calling facts (:func:`~symlink.numeric.compiled_library.program_facts`)."""
+    from . import compiled_library as compiled
+    program = _margins_program(linkage, names)
+    return compiled.program_facts(program, "solve", _margins_doc(linkage),
+                                  [s.name for s in program.arguments if s.is_positive])
+
+
+#: The name of the dictionary that :func:`margins_entry_text` adds to the margins' module.
+MARGINS_DESCRIPTION = "MARGINS_DESCRIPTION"
+
+
+def margins_entry_text(linkage: Linkage) -> str:
+    """A cache entry of the margins of ``linkage``'s clamped roots (:func:`design_spans`), for a process without
+    the linkage (a warm sweep): their NumPy module, as :func:`_margin_function` generates it, and a dictionary
+    of their roots, lengths and branch signs, the rounding they allow and their C
+    (:func:`symlink.numeric.design_scan.fastest_margins` and :func:`~symlink.numeric.design_scan.margin_spans`
+    take them).
+
+    >>> text = margins_entry_text(__import__("symlink").slider_crank())
+    >>> namespace = {}
+    >>> exec(compile(text, "<entry>", "exec"), namespace)
+    >>> namespace[MARGINS_DESCRIPTION]["roots"], namespace[MARGINS_DESCRIPTION]["lengths"]
+    ([['margin_0', 'ABC']], ['a', 'b'])
+    """
+    names = _margin_names(linkage)
+    try:
+        c_facts: str | None = _margins_c_facts(linkage, names)
+    except (OSError, ValueError, RuntimeError, NotImplementedError, TypeError):
+        c_facts = None  # a program the C printer cannot print: NumPy
+    described = {"roots": [[name, loop] for name, (loop, _, _) in zip(names, _roots(linkage))],
+                 "lengths": [s.name for s in linkage.parameters if s.is_positive],
+                 "branches": [s.name for s in linkage.branches], "tolerance": TOLERANCE, "c_margins": c_facts}
+    module = margins_text(linkage)
+    return f"{module.rstrip()}\n\n\n{MARGINS_DESCRIPTION} = {described!r}\n"
 
 
 _MARGINS: dict[str, Callable[..., dict]] = {}
-#: Seconds a sweep waits for a compiled library being built before it takes the NumPy module instead.
-BUILD_WAIT = 600.0
 _COMPILED_MARGINS: dict[str, Any] = {}
 
 
 def _fast_margins(linkage: Linkage) -> Callable[..., dict]:
     """The margins as :func:`_margin_function` generates them, in the compiled C loop where a compiler works
-    (built once into the cache; the first call waits for it, at most :data:`BUILD_WAIT` seconds, so that the
-    spans of a sweep's chunks never depend on when a build finished), else the NumPy module: for scans of many
-    designs at once (:func:`design_spans`).
+    (:func:`~symlink.numeric.design_scan.fastest_margins`: built once into the cache and waited for), else the
+    NumPy module: for scans of many designs at once (:func:`design_spans`).
 
     Called with keywords (``check=False`` skips the argument check, as the NumPy module's does).
     """
     numpy_margins, roots = _margin_function(linkage)
     names = [name for name, _ in roots]
     key = _compiled_margins_key(linkage, tuple(names))
-    entry = _COMPILED_MARGINS.get(key)
-    if entry is None:
-        from . import compiled_library as compiled
-        if compiled.chosen_backend() == "numpy":
-            return numpy_margins
-
-        def build() -> str:
-            from ..codegen.program import in_loop_units
-            base = linkage.program([q.name for q in linkage.unknowns])
-            margins = {name: (expr.args[0] / expr.args[1] + TOLERANCE if name.startswith("margin")
-                              else expr.args[0] + TOLERANCE * expr.args[1])
-                       for name, (_, _, expr) in zip(names, _roots(linkage))}
-            program = replace(in_loop_units(base), outputs=margins)
-            return compiled.program_facts(program, "solve", f"{linkage.name}: the margins of its clamped roots.",
-                                          [s.name for s in program.arguments if s.is_positive])
-        try:
-            import json
-            facts = json.loads(cached_text(key, build))
-            entry = compiled.compiled_or_building(facts)
-            if entry is None and compiled.compiler_works():  # being built: wait for it, so that every scan is one code's
-                building = compiled.build_in_background(facts)
-                building.wait(BUILD_WAIT)
-                entry = building.entry()
-        except (OSError, ValueError, RuntimeError):
-            entry = None
-        if entry is None:
-            return numpy_margins
-        _COMPILED_MARGINS[key] = entry
-
-    lengths = [s.name for s in linkage.parameters if s.is_positive]
-    branches = [s.name for s in linkage.branches]
-
-    def margins(check: bool = True, **values) -> dict:
-        if check:  # the NumPy module's check of every value (ValueError naming the first bad one)
-            checked_arguments(list(values), list(values.values()), lengths, branches)
-        return entry(**values)
-    margins.compiled = True  # type: ignore[attr-defined]
-    return margins
+    found = _COMPILED_MARGINS.get(key)
+    if found is None:
+        found = fastest_margins(numpy_margins, lambda: cached_text(key, lambda: _margins_c_facts(linkage, names)),
+                                [s.name for s in linkage.parameters if s.is_positive],
+                                [s.name for s in linkage.branches])
+        if not getattr(found, "compiled", False):
+            return found
+        _COMPILED_MARGINS[key] = found
+    return found
 
 
 @lru_cache(maxsize=64)
@@ -376,40 +394,6 @@ def _roots(linkage: Linkage) -> list:
     from ..symbolic.position import ClampedSqrt
     return [(step.loop.name, symbol, expr) for step in linkage.plan
             for symbol, expr in step.in_loop_units.intermediates.items() if isinstance(expr, ClampedSqrt)]
-
-
-def _edges(inside: numpy.ndarray, periodic: bool) -> numpy.ndarray:
-    """Indices i where the mask changes between grid points i and i + 1 (and around, if periodic)."""
-    if periodic:
-        return numpy.flatnonzero(inside != numpy.roll(inside, -1))
-    return numpy.flatnonzero(inside[:-1] != inside[1:])
-
-
-def _bisect(test: Callable[[numpy.ndarray], numpy.ndarray], low: numpy.ndarray, high: numpy.ndarray,
-            low_value: numpy.ndarray) -> tuple[numpy.ndarray, numpy.ndarray]:
-    """Bisect brackets [low, high] where ``test`` changes from ``low_value``, to rounding.
-
-    Stops once no bracket can shrink (its midpoint rounds to an end): later steps would change nothing.
-    """
-    for _ in range(BISECTIONS):
-        middle = 0.5 * (low + high)
-        if numpy.all((middle == low) | (middle == high)):
-            break
-        same = numpy.asarray(test(middle), dtype=bool) == low_value
-        low, high = numpy.where(same, middle, low), numpy.where(same, high, middle)
-    return low, high
-
-
-def _spans_from_marks(marks: list[tuple[float, bool]], periodic: bool, first: float, last: float):
-    """Closed intervals from sorted (boundary, rising) marks."""
-    if periodic and not marks[0][1]:  # the first interval began before the scan: start it a turn earlier
-        marks = marks[1:] + [(marks[0][0] + 2 * math.pi, False)]
-    if not periodic:
-        if not marks[0][1]:
-            marks = [(first, True)] + marks
-        if marks[-1][1]:
-            marks = marks + [(last, False)]
-    return [(start, end) for (start, _), (end, _) in zip(marks[::2], marks[1::2])]
 
 
 def reachable_range(linkage: Linkage | CachedLinkage, values: Mapping[str, float], *, input: str | None = None,
@@ -482,21 +466,6 @@ def reachable_range(linkage: Linkage | CachedLinkage, values: Mapping[str, float
     return _continued_range(motion, low, high, points)
 
 
-#: The coarse scan of :func:`design_spans` takes every this many points of the full scan (every 2 degrees of a
-#: turn scanned at a tenth of a degree); the points between are evaluated only where the coarse scan cannot
-#: rule out a change.  Measured on 5,000 random Watt II, Jansen, slider-crank and five-bar designs: the same
-#: spans, to the bit, as scanning every point, at strides 10 to 60; about 11 times fewer margin evaluations.
-COARSE_STRIDE = 20
-#: A coarse cell is refined where a margin at either end is nearer zero than this many times the largest change
-#: of that margin over the cell or its two neighbours: a margin that dips below zero inside a cell and is back
-#: above it at both ends (a parabola) changes over a neighbour cell by more than 8 times its larger end value,
-#: so 1 leaves a factor of 8 to spare.
-NEAR_CHANGES = 1.0
-#: ...or nearer zero than this at all (a root that touches zero, a toggle passed through, which the full scan's
-#: rounding may see on either side).
-NEAR_ZERO = 1e-6
-
-
 def design_spans(linkage: Linkage, values: Mapping[str, Any], count: int, *, input: str | None = None,
                  points: int = SCAN_POINTS, block: int = 1 << 18,
                  stride: int = COARSE_STRIDE) -> list[list[tuple[float, float]]]:
@@ -505,8 +474,8 @@ def design_spans(linkage: Linkage, values: Mapping[str, Any], count: int, *, inp
 
     ``values``: every parameter, branch sign and held input by name, a number or an array of ``count``
     (one a design).  The scan's mask of ``points`` input values is made at a cost that scales with what
-    it needs (:func:`_scanned_edges`): every ``stride``-th point of every design first, then the points
-    in between only in the cells where a margin changes sign or comes near enough to zero to change it
+    it needs (:func:`~symlink.numeric.design_scan.margin_spans`): every ``stride``-th point of every design
+    first, then the points in between only in the cells where a margin changes sign or comes near enough to zero to change it
     there.  Every step (the scans, each bisection) is one call of the generated margins for all designs
     and edges together, not one a design.
 
@@ -518,141 +487,10 @@ def design_spans(linkage: Linkage, values: Mapping[str, Any], count: int, *, inp
     driven = linkage.inputs[0].name if input is None else input
     if not linkage.has_closed_form:
         raise ValueError(f"{linkage.name} has no closed form: find its spans one design at a time (reachable_range)")
-    if points < 4:
-        raise ValueError(f"scan at least 4 points, got {points}")
-    if isinstance(stride, bool) or not isinstance(stride, int) or stride < 1:
-        raise ValueError(f"the coarse scan's stride must be a whole number, at least 1; got {stride!r}")
     _, roots = _margin_function(linkage)
-    margins = _fast_margins(linkage)
-    arrays = {name: numpy.ascontiguousarray(numpy.broadcast_to(numpy.asarray(value, dtype=float), (count,)))
-              for name, value in values.items()}
-    # checked once, here (a ValueError naming the first bad value); the calls below check nothing again
-    checked_arguments(list(arrays), list(arrays.values()), [s.name for s in linkage.parameters if s.is_positive],
-                      [s.name for s in linkage.branches])
-    step = 2 * math.pi / points
-    grid = -math.pi + step * numpy.arange(points)
-    following = numpy.append(grid, grid[0] + 2 * math.pi)
-
-    def of(rows: numpy.ndarray) -> dict[str, numpy.ndarray]:
-        """The values of designs ``rows``, gathered once for the calls on them (each bisection's steps)."""
-        return {name: array[rows] for name, array in arrays.items()}
-
-    def margin_values(at: numpy.ndarray, chosen: dict[str, numpy.ndarray]) -> dict[str, numpy.ndarray]:
-        """The margins at input values ``at`` of the designs whose values are ``chosen`` (1-d arrays alike), a block
-        at a time."""
-        found: dict[str, numpy.ndarray] = {}
-        for first in range(0, at.size, block):
-            part = slice(first, first + block)
-            whole = first == 0 and at.size <= block
-            with numpy.errstate(all="ignore"):  # the values were checked above
-                some = margins(**{driven: at if whole else at[part]},
-                               **{name: value if whole else value[part] for name, value in chosen.items()},
-                               check=False)
-            if whole:
-                return some
-            for name, value in some.items():
-                found.setdefault(name, numpy.empty(at.size, dtype=numpy.asarray(value).dtype))[part] = value
-        return found
-
-    def coarse_values(at: numpy.ndarray) -> dict[str, numpy.ndarray]:
-        """The margins of every design at the input values ``at``: arrays of (designs, len(at)), one call."""
-        found = margin_values(numpy.tile(at, count), {name: numpy.repeat(array, at.size) for name, array in arrays.items()})
-        return {name: numpy.asarray(value).reshape(count, at.size) for name, value in found.items()}
-
-    design, edge, before, inside_everywhere = _scanned_edges(
-        coarse_values, lambda at, rows: margin_values(at, of(rows))["assembled"], [name for name, _ in roots],
-        grid, count, stride if points % stride == 0 else 1)
-    spans: list[list[tuple[float, float]]] = [[(-math.pi, math.pi)] if whole else [] for whole in inside_everywhere]
-    if not design.size:
-        return spans
-    start, end = grid[edge], following[edge + 1]
-    # Each edge is bisected on the mask and, at once, on the sign of every root's argument (the clamp takes
-    # rounding below zero as the toggle itself: an edge where a root fails ends where its argument changes
-    # sign), one margins call a step for them all; the root that fails beyond the mask's edge says which of
-    # those bisections is the edge's.  Each bracket's steps are its own: the same bounds as bisecting them apart.
-    tests = ["assembled"] + [name for name, _ in roots if name.startswith("margin")]
-    edges = design.size
-    tiled_of = of(numpy.tile(design, len(tests)))
-
-    def closes(at: numpy.ndarray) -> numpy.ndarray:
-        found = margin_values(at, tiled_of)
-        result = numpy.asarray(found["assembled"], dtype=bool).copy()
-        for k, name in enumerate(tests[1:], start=1):
-            part = slice(k * edges, (k + 1) * edges)
-            result[part] = numpy.asarray(found[name][part]) - TOLERANCE >= 0
-        return result
-
-    lows, highs = _bisect(closes, numpy.tile(start, len(tests)), numpy.tile(end, len(tests)),
-                          numpy.tile(before, len(tests)))
-    in_low, out_high = lows[:edges], highs[:edges]
-    rising = ~before
-    beyond = margin_values(numpy.where(rising, in_low, out_high), of(design))
-    failing = numpy.full(edges, -1)
-    for k, (name, _) in reversed(list(enumerate(roots))):  # the first root whose margin is negative
-        failing = numpy.where(numpy.asarray(beyond[name]) < 0, k, failing)
-    at_low, at_high = in_low.copy(), out_high.copy()
-    for k, (name, _) in enumerate(roots):
-        chosen = numpy.flatnonzero(failing == k)
-        if chosen.size and name.startswith("margin"):
-            part = tests.index(name) * edges + chosen
-            at_low[chosen], at_high[chosen] = lows[part], highs[part]
-    bounds = numpy.where(rising, at_high, at_low)  # the reachable side of each edge
-    for row in numpy.unique(design).tolist():
-        mine = design == row
-        marks = sorted(zip(bounds[mine].tolist(), rising[mine].tolist()))
-        spans[row] = _spans_from_marks(marks, True, float(grid[0]), float(grid[-1]))
-    return spans
-
-
-def _scanned_edges(coarse_values: Callable[[numpy.ndarray], dict[str, numpy.ndarray]],
-                   assembled: Callable[[numpy.ndarray, numpy.ndarray], numpy.ndarray], names: list[str],
-                   grid: numpy.ndarray, count: int, stride: int
-                   ) -> tuple[numpy.ndarray, numpy.ndarray, numpy.ndarray, numpy.ndarray]:
-    """Where a scan of every point of the periodic ``grid`` sees each of ``count`` designs open or close.
-
-    Returns ``(design, index, before, everywhere)``: each edge's design and grid index ``i`` (the mask
-    changes between points ``i`` and ``i + 1``, around the turn), the mask at ``i``, and for each design
-    whether it closes everywhere.  At a cost that scales with what is needed: every ``stride``-th point
-    first (``coarse_values``: every root's margin of every design, by name in ``names``, and
-    ``assembled``); then (``assembled(at, designs)``, one call) the points inside each coarse cell whose
-    ends differ or where any root's margin changes sign, is undefined at an end (an earlier loop opens
-    there), or is near zero for its rate of change (:data:`NEAR_CHANGES`, :data:`NEAR_ZERO`).  Elsewhere
-    every margin keeps its sign across the cell, so its points take the value of its ends: no edge.
-    """
-    coarse = numpy.arange(0, grid.size, stride)
-    found = coarse_values(grid[coarse])
-    mask = numpy.asarray(found["assembled"], dtype=bool)
-    cyclic = numpy.concatenate([mask, mask[:, :1]], axis=1)
-    refine = cyclic[:, :-1] != cyclic[:, 1:]  # cell j: from coarse point j to the next (around the turn)
-    if stride > 1:
-        for name in names:
-            margin = numpy.asarray(found[name], dtype=float)
-            padded = numpy.concatenate([margin[:, -1:], margin, margin[:, :2]], axis=1)  # j-1 .. j+2 around
-            with numpy.errstate(invalid="ignore"):
-                change = numpy.abs(numpy.diff(padded, axis=1))  # change[:, j + 1]: over cell j
-                numpy.nan_to_num(change, copy=False, nan=numpy.inf)  # undefined beside a cell: refine it
-                widest = numpy.maximum(numpy.maximum(change[:, :-2], change[:, 1:-1]), change[:, 2:])
-                size = numpy.abs(padded[:, 1:-1])
-                near = numpy.minimum(size[:, :-1], size[:, 1:])
-                numpy.multiply(widest, NEAR_CHANGES, out=widest)
-                numpy.maximum(widest, NEAR_ZERO, out=widest)
-                refine |= near < widest
-                signs = padded[:, 1:-1] >= 0  # NaN: False at both ends, or an end defined and one not
-                defined = numpy.isnan(padded[:, 1:-1])
-                refine |= (signs[:, :-1] != signs[:, 1:]) | (defined[:, :-1] != defined[:, 1:])
-    design, cell = numpy.nonzero(refine)
-    everywhere = numpy.asarray(mask.all(axis=1), dtype=bool)
-    if not design.size:
-        return design, cell, numpy.zeros(0, dtype=bool), everywhere
-    local = numpy.empty((design.size, stride + 1), dtype=bool)  # each refined cell's points, both ends included
-    local[:, 0], local[:, -1] = cyclic[design, cell], cyclic[design, cell + 1]
-    if stride > 1:
-        index = (coarse[cell][:, None] + numpy.arange(1, stride)[None, :]).ravel()
-        local[:, 1:-1] = numpy.asarray(assembled(grid[index], numpy.repeat(design, stride - 1)),
-                                       dtype=bool).reshape(design.size, stride - 1)
-    which, offset = numpy.nonzero(local[:, :-1] != local[:, 1:])
-    edge = (coarse[cell[which]] + offset) % grid.size
-    return design[which], edge, local[which, offset], everywhere
+    return margin_spans(_fast_margins(linkage), roots, [s.name for s in linkage.parameters if s.is_positive],
+                        [s.name for s in linkage.branches], driven, values, count, TOLERANCE, points=points,
+                        block=block, stride=stride)
 
 
 def _closed_form_range(motion: InputMotion, low: float, high: float, points: int) -> InputRange:

@@ -41,7 +41,7 @@ import numpy
 from .cache import cache_key, cached_module, cached_text, generated_code
 from .call_arguments import check_argument_names, required_arguments
 from ..codegen import newton
-from ..common.arguments import check_lengths, checked_arguments  # noqa: F401 - check_lengths' home is common
+from ..codegen.arguments import check_lengths, checked_arguments  # noqa: F401 - check_lengths' home is there
 from .input_sweep import crank_speeds  # noqa: F401 - its home is input_sweep (no SymPy); kept here for callers
 from ..common.limits import require_memory
 from ..symbolic.linkage import Linkage, Program, is_branch_name

@@ -5,8 +5,9 @@ file) over a box: a ``grid`` (every combination of ``count`` evenly spaced
 values of each, both ends included) or a ``random`` sample (``count`` designs,
 uniform in the box, seeded).  Designs are numbered 0, 1, ... and made lazily
 from that number, chunk by chunk, so memory stays bounded whatever their
-number.  Inside a chunk the designs are evaluated together: one generated
-NumPy solver call (:class:`~symlink.numeric.solver.Solver`) a block of designs times
+number.  Inside a chunk the designs are evaluated together: one call of the
+generated solver (compiled where a C compiler works, as a
+:class:`~symlink.numeric.solver.Solver` would run it) a block of designs times
 ``samples`` input values over a turn, not a Python loop a design.
 
 Chunks run on Dask: the local scheduler by default (``"threads"`` or
@@ -52,19 +53,26 @@ one per parameter       every parameter of the linkage (float64), the swept ones
 The reachable range comes from :mod:`symlink.numeric.reachability` (the four-bar's
 closed form; for another linkage the sampled mask where every sample
 assembles, else its bisected scan, every design of a chunk at once:
-:func:`~symlink.numeric.reachability.design_spans`, which scans every 20th point first
-and the points between only where a root's margin may change sign); the
+:func:`~symlink.numeric.reachability.design_spans`'s scan, :func:`~symlink.numeric.design_scan.margin_spans`,
+which scans every 20th point first and the points between only where a root's margin may change sign); the
 Grashof class from :func:`~symlink.analysis.grashof.grashof_names` (all designs
 at once); the transmission angle from the four-bar's ``transmission`` output,
 or for another linkage from its solved coordinates
-(:func:`~symlink.analysis.transmission.transmission_arrays`, code generated
-once).  Extremes are the samples' refined by the parabola through each extreme
+(:func:`~symlink.analysis.joint_angles.joint_angle_arrays` of the joints kept as
+plain numbers; :func:`~symlink.analysis.transmission.transmission_arrays` where a
+joint turns with a fixed angle).  Extremes are the samples' refined by the parabola through each extreme
 and its neighbours (errors of order ``step**3``).
 
 Every chunk is computed by the same code: where the compiled backend is being
 built (the first sweep of a linkage on a machine with a C compiler), the sweep
 waits for it (once a process) rather than answering with NumPy meanwhile, so a
 resumed sweep ends with the very table of one whole run.
+
+Warm is warm: what a sweep needs of its linkage (:func:`sweep_facts`), its
+solver and the margins of its roots are cache entries keyed by what names the
+linkage (the catalog or atlas name, or the SHA-256 of the file's text), derived
+once with SymPy; a later sweep, and every worker of this one, reads them and
+builds no linkage (no SymPy), and computes the very chunks a cold run does.
 
 >>> settings = SweepSettings("fourbar", {"a": (0.2, 0.4)}, values={"b": 1.0, "c": 1.0, "d": 1.0}, count=3)
 >>> table = evaluate_designs(settings, range(3))
@@ -74,26 +82,32 @@ resumed sweep ends with the very table of one whole run.
 from __future__ import annotations
 
 import hashlib
+import json
 import math
 import sys
 from dataclasses import asdict, dataclass, field
 from functools import lru_cache, partial
 from pathlib import Path
-from typing import Any, Callable, Iterable, Mapping, Sequence
+from typing import TYPE_CHECKING, Any, Callable, Iterable, Mapping, Sequence
 
 import numpy
 
-from ..analysis.grashof import grashof_names
-from ..analysis.transmission import transmission_arrays, transmission_coordinates
-from ..symbolic.closure import is_angle
-from ..symbolic.linkage import Linkage
+from ..analysis.joint_angles import joint_angle_arrays, joint_coordinates
 from ..common.limits import require_memory
-from ..io.linkage_file import LinkageFile, linkage_from_text, load_linkage
-from ..numeric.reachability import BUILD_WAIT, InputMotion, crank_range, design_spans, reachable_range
-from ..numeric.solver import Solver
 from ..io.sweep_folder import (MANIFEST, SweepWarning, chunk_name, chunk_range, open_folder, parquet_bytes, read_manifest,
                                verified_chunks)
+from ..io.table_source import GENERIC_SHAPING
+from ..numeric.compiled_library import BUILD_WAIT
+from ..numeric.crank_ranges import crank_range
 from ..version import __version__
+
+if TYPE_CHECKING:
+    from ..io.linkage_file import LinkageFile
+    from ..symbolic.linkage import Linkage
+
+# The symbolic side (the linkage, its solver's derivation, SymPy) is imported inside the functions that need it: a
+# sweep whose linkage's facts and solver are in the disk cache (a warm sweep, and every worker process of a sweep
+# once its first chunk is done) builds no linkage and imports no SymPy (:func:`linkage_facts`, :func:`_solver`).
 
 __all__ = ["SweepSettings", "evaluate_designs", "design_values", "columns", "run_sweep", "read_sweep",
            "SWEEP_EXTRA", "MANIFEST", "SCHEDULERS", "missing_modules", "chunk_name", "chunk_table", "sweep_cost",
@@ -119,6 +133,12 @@ FASTEST_DESIGNS_PER_SECOND = 20_000
 LEAST_BYTES_PER_DESIGN = 16
 #: A sweep that even at :data:`FASTEST_DESIGNS_PER_SECOND` would take longer than this is refused (a year).
 LONGEST_SWEEP_SECONDS = 365 * 86400
+#: The kind of cache entry of a sweep's facts of its linkage (:func:`linkage_facts`) and of its solvers, keyed by
+#: what names the linkage (the catalog or atlas name, or the digest of the linkage file's text).
+SWEEP_ENTRY_KIND = "sweep/1"
+#: What shapes those entries besides the code that shapes generated code: what reads a linkage and names it
+#: (:data:`symlink.io.table_source.GENERIC_SHAPING`) and what takes a sweep's facts from it (this module).
+SWEEP_SHAPING = (*GENERIC_SHAPING, "workshop/sweep")
 
 
 def missing_modules(names: Sequence[str] = ("dask", "distributed", "pyarrow")) -> list[str]:
@@ -199,46 +219,47 @@ class SweepSettings:
     linkage_text: str | None = None  # a linkage file's text, so that workers anywhere read the same linkage
 
     def __post_init__(self) -> None:
-        found = self.found()
-        linkage = found.linkage
+        facts = sweep_facts(self.linkage, self.linkage_text)  # from the disk cache where it has them: no SymPy
+        name = facts["name"]
         object.__setattr__(self, "ranges", {name: (float(low), float(high))
                                             for name, (low, high) in dict(self.ranges).items()})
         object.__setattr__(self, "values", {name: float(value) for name, value in dict(self.values).items()})
-        if self.linkage_text is None and found.source not in ("catalog", "atlas"):
+        if self.linkage_text is None and facts["kind"] == "file":
             object.__setattr__(self, "linkage_text", Path(self.linkage).read_text(encoding="utf-8"))
-        parameters = {s.name: s for s in linkage.parameters}
+        parameters = facts["parameters"]
+        positive = set(facts["positive"])
         if not self.ranges:
-            raise ValueError(f"a sweep varies at least one parameter of {linkage.name}: "
+            raise ValueError(f"a sweep varies at least one parameter of {name}: "
                              f"{', '.join(parameters)}")
-        for name, (low, high) in self.ranges.items():
-            if name not in parameters:
-                raise ValueError(f"{linkage.name} has no parameter {name!r}; it has {', '.join(parameters)}")
+        for swept, (low, high) in self.ranges.items():
+            if swept not in parameters:
+                raise ValueError(f"{name} has no parameter {swept!r}; it has {', '.join(parameters)}")
             if not (math.isfinite(low) and math.isfinite(high)) or high < low:
-                raise ValueError(f"the range of {name} must be two finite numbers, low < high; got {low:g}:{high:g}")
+                raise ValueError(f"the range of {swept} must be two finite numbers, low < high; got {low:g}:{high:g}")
             if high == low and not (self.mode == "grid" and self.count == 1):  # one design is one value a parameter
-                raise ValueError(f"the range {name}={low:g}:{high:g} has zero length (every design would be the same):"
-                                 f" give {name} as a value instead (--set {name}={low:g})")
-            if parameters[name].is_positive and low <= 0:
-                raise ValueError(f"{name} is a length: its range must be positive, got {low:g}:{high:g}")
-        held = {q.name for q in linkage.inputs[1:]}
-        for name, value in self.values.items():
-            if name not in parameters and name not in held:
-                raise ValueError(f"{linkage.name} takes values for {', '.join([*parameters, *held])}; not {name!r}")
+                raise ValueError(f"the range {swept}={low:g}:{high:g} has zero length (every design would be the same):"
+                                 f" give {swept} as a value instead (--set {swept}={low:g})")
+            if swept in positive and low <= 0:
+                raise ValueError(f"{swept} is a length: its range must be positive, got {low:g}:{high:g}")
+        held = facts["inputs"][1:]
+        for given, value in self.values.items():
+            if given not in parameters and given not in held:
+                raise ValueError(f"{name} takes values for {', '.join([*parameters, *held])}; not {given!r}")
             if not math.isfinite(value):
-                raise ValueError(f"{name} must be a finite number, got {value}")
-        missing = [name for name in [*parameters, *held] if name not in self.ranges and name not in self.fixed]
+                raise ValueError(f"{given} must be a finite number, got {value}")
+        missing = [n for n in [*parameters, *held] if n not in self.ranges and n not in self.fixed]
         if missing:
-            raise ValueError(f"give {linkage.name} a value or a range for {', '.join(missing)}")
-        if not linkage.has_closed_form:
-            raise ValueError(f"{linkage.name} has no closed form: a sweep needs one (its assemblies are chosen by sign)")
-        if not linkage.inputs or not is_angle(linkage, linkage.inputs[0]):
-            raise ValueError(f"{linkage.name}'s input is not an angle: a sweep evaluates designs over a turn")
+            raise ValueError(f"give {name} a value or a range for {', '.join(missing)}")
+        if not facts["closed_form"]:
+            raise ValueError(f"{name} has no closed form: a sweep needs one (its assemblies are chosen by sign)")
+        if not facts["input_is_angle"]:
+            raise ValueError(f"{name}'s input is not an angle: a sweep evaluates designs over a turn")
         if self.mode not in MODES:
             raise ValueError(f"mode must be 'grid' or 'random', got {self.mode!r}")
-        for name, value, least in (("count", self.count, 1), ("samples", self.samples, 8), ("chunk", self.chunk, 1),
-                                   ("harmonics", self.harmonics, 0)):
+        for setting, value, least in (("count", self.count, 1), ("samples", self.samples, 8), ("chunk", self.chunk, 1),
+                                      ("harmonics", self.harmonics, 0)):
             if isinstance(value, bool) or not isinstance(value, int) or value < least:
-                raise ValueError(f"{name} must be a whole number, at least {least}; got {value!r}")
+                raise ValueError(f"{setting} must be a whole number, at least {least}; got {value!r}")
         if self.samples > 100_000:
             raise ValueError(f"samples must be at most 100000 a turn, got {self.samples}")
         if 2 * self.harmonics + 1 > self.samples:
@@ -255,25 +276,27 @@ class SweepSettings:
         if not isinstance(self.seed, int) or isinstance(self.seed, bool) or self.seed < 0:
             raise ValueError(f"seed must be a whole number, at least 0; got {self.seed!r}")
         if self.output is None:
-            roles = list(linkage.roles)
-            object.__setattr__(self, "output", roles[-1] if roles else linkage.unknowns[-1].name)
-        _position_output(linkage, str(self.output))
+            object.__setattr__(self, "output", facts["default_output"])
+        _position_output(facts, str(self.output))
         if self.point is None:
-            moving = set(linkage.unknowns) | set(linkage.inputs)
-            points = [name for name in linkage.points
-                      if moving & (linkage.output(f"{name}_x").free_symbols | linkage.output(f"{name}_y").free_symbols)]
-            object.__setattr__(self, "point", points[-1] if points else None)
-        if self.point is None or self.point not in linkage.points:
-            raise ValueError(f"{linkage.name} has no point {self.point!r}; it has {', '.join(linkage.points)}")
+            moving = facts["moving_points"]
+            object.__setattr__(self, "point", moving[-1] if moving else None)
+        if self.point is None or self.point not in facts["points"]:
+            raise ValueError(f"{name} has no point {self.point!r}; it has {', '.join(facts['points'])}")
+
+    def facts(self) -> dict[str, Any]:
+        """What the sweep needs of its linkage, as plain data (:func:`sweep_facts`; from the disk cache)."""
+        return sweep_facts(self.linkage, self.linkage_text)
 
     def found(self) -> LinkageFile:
-        """The linkage and its default values."""
+        """The linkage and its default values (read, SymPy: a sweep needs it only where its facts and solvers are
+        not in the disk cache, and for the rare design whose reach is scanned one by one)."""
         return _linkage(self.linkage, self.linkage_text)
 
     @property
     def fixed(self) -> dict[str, float]:
         """The values of everything not swept: the defaults updated by ``values``."""
-        defaults = {name: value for name, value in self.found().defaults.items() if name not in self.ranges}
+        defaults = {name: value for name, value in self.facts()["defaults"].items() if name not in self.ranges}
         return {**defaults, **{k: v for k, v in self.values.items() if k not in self.ranges}}
 
     @property
@@ -304,14 +327,118 @@ def _require_chunk_memory(designs: int, samples: int) -> None:
 
 @lru_cache(maxsize=16)
 def _linkage(source: str, text: str | None) -> LinkageFile:
+    from ..io.linkage_file import linkage_from_text, load_linkage
     return load_linkage(source) if text is None else linkage_from_text(text, source)
 
 
-def _position_output(linkage: Linkage, output: str) -> None:
+def _request(source: str, text: str | None) -> dict[str, str] | None:
+    """What names a sweep's linkage in a cache key, found without reading it (no SymPy): its catalog or atlas name,
+    or the SHA-256 of a linkage file's text (``text``, as the workers have it; else read from ``source``); None
+    where it is none of these (the reader then says what is wrong)."""
+    if text is None:
+        from ..io.scene_text import linkage_request
+        request = linkage_request(source)
+        if request is None or "file_sha256" not in request:
+            return request
+        try:
+            text = Path(source).read_text(encoding="utf-8")
+        except (OSError, UnicodeError):
+            return None
+    return {"file_sha256": hashlib.sha256(text.encode("utf-8")).hexdigest()}
+
+
+def _key(request: Mapping[str, str], outputs: Sequence[str]) -> str:
+    """The cache key of a sweep's entry of ``outputs`` of the linkage ``request`` names (``[]``: its facts)."""
+    from ..numeric.cache import catalog_key
+    return catalog_key("sweep", list(outputs), SWEEP_ENTRY_KIND, dict(request), SWEEP_SHAPING)
+
+
+def linkage_facts(found: LinkageFile) -> dict[str, Any]:
+    """What a sweep needs of a linkage, as plain data (JSON): its names, which parameters are lengths and angles,
+    its outputs and points, and how its transmission angles are found.
+
+    Kept in the disk cache (:func:`sweep_facts`), so that a warm sweep, and each worker of a sweep, builds no
+    linkage.  ``joints``: the transmission joints of its two-angle loops as plain data
+    (:func:`symlink.analysis.joint_angles.joint_angle_arrays`) where their directions' constant parts are numbers,
+    else None (then found from the linkage).
+
+    >>> from symlink.io.linkage_file import load_linkage
+    >>> facts = linkage_facts(load_linkage("slider-crank"))
+    >>> facts["parameters"], facts["default_output"], facts["moving_points"], facts["joints"]
+    (['a', 'b', 'offset'], 'slider', ['B', 'C'], [['ABC', True, None, 0.0, 'beta', 0.0]])
+    """
+    from ..analysis.transmission import joint_functions
+    from ..io.scene import angle_outputs
+    from ..symbolic.closure import is_angle
+    linkage = found.linkage
     names = linkage.output_names()
+    positions = [n for n in names if n != "singular" and not n.endswith(("_speed", "_accel", "dot"))]
+    moving = set(linkage.unknowns) | set(linkage.inputs)
+    roles = list(linkage.roles)
+    transmission = "transmission" in names
+    plain: list[list[Any]] = []
+    joints: list[list[Any]] | None = plain
+    if linkage.has_closed_form and not transmission:
+        for loop, guide, (into, into_rest), (out, out_rest) in joint_functions(linkage):
+            try:  # a constant part with no symbol in it is a number (a fixed angle's is not)
+                constants = float(into_rest({})), float(out_rest({}))
+            except KeyError:
+                joints = None
+                break
+            plain.append([loop, guide, into, constants[0], out, constants[1]])
+    return {
+        "name": linkage.name, "kind": found.source if found.source in ("catalog", "atlas") else "file",
+        "defaults": {name: float(value) for name, value in found.defaults.items()},
+        "parameters": [s.name for s in linkage.parameters],
+        "positive": [s.name for s in linkage.parameters if s.is_positive],
+        "inputs": [q.name for q in linkage.inputs],
+        "input_is_angle": bool(linkage.inputs) and bool(is_angle(linkage, linkage.inputs[0])),
+        "angles": [s.name for s in linkage.parameters + linkage.inputs if is_angle(linkage, s)],
+        "closed_form": bool(linkage.has_closed_form),
+        "branches": [b.name for b in linkage.branches],
+        "default_output": roles[-1] if roles else (linkage.unknowns[-1].name if linkage.unknowns else None),
+        "outputs": names, "positions": positions,
+        "angle_outputs": sorted(angle_outputs(linkage, positions)),
+        "points": list(linkage.points),
+        "moving_points": [name for name in linkage.points
+                          if moving & (linkage.output(f"{name}_x").free_symbols
+                                       | linkage.output(f"{name}_y").free_symbols)],
+        "fourbar": _is_fourbar(linkage),
+        "transmission": transmission,
+        "joints": joints,
+    }
+
+
+@lru_cache(maxsize=16)
+def _cached_facts(source: str, text: str | None, keyed: str | None) -> str:
+    """The facts' JSON text, once a process for each linkage (``keyed``: its request as JSON, so that a file
+    changed since is read again)."""
+    request = None if keyed is None else json.loads(keyed)
+
+    def now() -> str:
+        return json.dumps(linkage_facts(_linkage(source, text)))
+
+    if request is None:  # not keyed (a file too large to key, or one that cannot be read: its reader says why)
+        return now()
+    from ..numeric.cache import cached_text
+    return cached_text(_key(request, []), now)
+
+
+def sweep_facts(source: str, text: str | None = None) -> dict[str, Any]:
+    """:func:`linkage_facts` of a catalog name, an atlas name or a linkage file (``text``: the file's text, as a
+    sweep's workers have it), from the disk cache: derived once (SymPy), then read without building the linkage.
+
+    >>> sweep_facts("fourbar")["positive"]
+    ['a', 'b', 'c', 'd']
+    """
+    request = _request(source, text)
+    return json.loads(_cached_facts(source, text, None if request is None else json.dumps(request, sort_keys=True)))
+
+
+def _position_output(facts: Mapping[str, Any], output: str) -> None:
+    names = facts["outputs"]
     if output not in names or output == "singular" or output.endswith(("_speed", "_accel", "dot")):
-        positions = [n for n in names if n != "singular" and not n.endswith(("_speed", "_accel", "dot"))]
-        raise ValueError(f"{linkage.name} has no position output {output!r}; it has {', '.join(positions)}")
+        raise ValueError(f"{facts['name']} has no position output {output!r}; it has {', '.join(facts['positions'])}")
 
 
 def design_values(settings: SweepSettings, designs: Iterable[int]) -> dict[str, numpy.ndarray]:
@@ -352,8 +479,7 @@ def design_values(settings: SweepSettings, designs: Iterable[int]) -> dict[str, 
 
 def columns(settings: SweepSettings) -> list[str]:
     """The table's column names, in order (see the module docstring)."""
-    linkage = settings.found().linkage
-    return (["design", *(s.name for s in linkage.parameters), "assembles", "reach", "spans", "grashof",
+    return (["design", *settings.facts()["parameters"], "assembles", "reach", "spans", "grashof",
              "transmission_min", "transmission_max", "worst_transmission", "stroke", "time_ratio"]
             + [f"path_{_harmonic(k)}_{part}" for k in _harmonics(settings.harmonics) for part in ("re", "im")])
 
@@ -372,11 +498,35 @@ def _is_fourbar(linkage: Linkage) -> bool:
 
 
 @lru_cache(maxsize=16)
-def _solver(linkage: Linkage, outputs: tuple[str, ...]) -> Solver:
-    """The sweep's solver, made once a process; where its compiled code is being built (the first request for it
-    on this machine), waited for, so that a table never depends on when a background build finished (a sweep
-    resumed computes its chunks with the code that computed the others)."""
-    solver = Solver(linkage, list(outputs))
+def _solver(source: str, text: str | None, outputs: tuple[str, ...]) -> Any:
+    """The sweep's solver of ``outputs`` of its linkage (``source`` and ``text`` as :func:`sweep_facts` takes
+    them), made once a process from the disk cache: its NumPy module and the C source of its compiled backend,
+    derived once (SymPy) and then loaded without building the linkage
+    (:class:`~symlink.numeric.cached_solver.CachedSolver`); it answers as a
+    :class:`~symlink.numeric.solver.Solver` of the linkage does, with the same code.  Where its compiled code is
+    being built (the first request for it on this machine), it is waited for, so that a table never depends on
+    when a background build finished (a sweep resumed computes its chunks with the code that computed the
+    others).  A linkage the cache cannot key is solved by a ``Solver`` of the linkage itself."""
+    request = _request(source, text)
+    if request is None:
+        from ..numeric.solver import Solver
+        solver: Any = Solver(_linkage(source, text).linkage, list(outputs))
+    else:
+        from ..numeric.cached_solver import CachedSolver
+
+        def derive() -> str:
+            from ..numeric.cached_solver import entry_text
+            from ..numeric.compiled_library import c_solver_source
+            linkage = _linkage(source, text).linkage
+            flagged = linkage.with_singular(list(outputs))
+            try:
+                c_solver: str | None = json.dumps(c_solver_source(linkage, flagged))
+            except (OSError, ValueError, NotImplementedError, TypeError):
+                c_solver = None  # a linkage the C printer cannot print: NumPy, as a Solver would
+            return entry_text(linkage, list(outputs), c_solver=c_solver)
+
+        solver = CachedSolver(sweep_facts(source, text)["name"], list(outputs), key=_key(request, outputs),
+                              derive=derive, full=lambda: _linkage(source, text).linkage, compiled=True)
     solver.wait_for_backend(BUILD_WAIT)
     return solver
 
@@ -421,8 +571,8 @@ def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[st
     >>> table["a"].round(12).tolist(), table["grashof"]  # a + 1 < 1 + 1: crank-rockers
     ([0.2, 0.3, 0.4], ['crank-rocker', 'crank-rocker', 'crank-rocker'])
     """
-    found = settings.found()
-    linkage = found.linkage
+    facts = settings.facts()
+    parameters = facts["parameters"]
     if hasattr(designs, "__len__"):  # refused before anything is allocated
         _require_chunk_memory(len(designs), settings.samples)  # type: ignore[arg-type]
     numbers = numpy.asarray(list(designs), dtype=numpy.int64)
@@ -430,23 +580,28 @@ def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[st
     swept = design_values(settings, numbers)
     fixed = settings.fixed
     table: dict[str, Any] = {"design": numbers}
-    for s in linkage.parameters:
-        table[s.name] = swept[s.name] if s.name in swept else numpy.full(numbers.size, float(fixed[s.name]))
+    for name in parameters:
+        table[name] = swept[name] if name in swept else numpy.full(numbers.size, float(fixed[name]))
     count = numbers.size
     samples = settings.samples
     step = 2 * math.pi / samples
     inputs = step * numpy.arange(samples)
-    fourbar = _is_fourbar(linkage)
-    transmission_output = "transmission" in linkage.output_names()
+    fourbar = facts["fourbar"]
+    transmission_output = facts["transmission"]
     outputs = [settings.output, f"{settings.point}_x", f"{settings.point}_y"]
-    joints = not transmission_output and _has_two_angle_loop(linkage)  # transmission angles from the coordinates
+    # transmission angles from the coordinates: the joints as plain data, else (a fixed angle in a direction)
+    # from the linkage
+    joints = None if facts["joints"] is None else _plain_joints(facts["joints"])
     if transmission_output:
         outputs.append("transmission")
-    elif joints:
-        outputs += transmission_coordinates(linkage)
-    solver = _solver(linkage, tuple(dict.fromkeys(outputs)))
-    input_name = linkage.inputs[0].name
-    held = {q.name: fixed[q.name] for q in linkage.inputs[1:]}
+    elif joints is None:
+        from ..analysis.transmission import transmission_coordinates
+        outputs += transmission_coordinates(settings.found().linkage)
+    else:
+        outputs += joint_coordinates(joints)
+    solver = _solver(settings.linkage, settings.linkage_text, tuple(dict.fromkeys(outputs)))
+    input_name = facts["inputs"][0]
+    held = {name: fixed[name] for name in facts["inputs"][1:]}
     mask = numpy.zeros((count, samples), dtype=bool)
     output = numpy.full((count, samples), numpy.nan)
     path = numpy.full((count, samples), numpy.nan, dtype=complex)
@@ -454,8 +609,8 @@ def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[st
     block = max(1, BLOCK_VALUES // samples)
     for first in range(0, count, block):
         rows = slice(first, min(first + block, count))
-        arguments = {s.name: (table[s.name][rows, None] if s.name in swept else float(fixed[s.name]))
-                     for s in linkage.parameters}
+        arguments = {name: (table[name][rows, None] if name in swept else float(fixed[name]))
+                     for name in parameters}
         arguments.update({input_name: inputs[None, :], **held})
         arguments.update({name: settings.branch for name in solver.branches})
         solved = solver(**arguments)
@@ -464,9 +619,14 @@ def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[st
         path[rows] = solved[f"{settings.point}_x"] + 1j * solved[f"{settings.point}_y"]
         if transmission_output:
             mu[rows] = solved["transmission"]
-        elif joints:  # every design of the block at once, by code generated once (no SymPy a design)
+        elif joints is None:  # every design of the block at once, by code generated once (no SymPy a design)
+            from ..analysis.transmission import transmission_arrays
             with numpy.errstate(all="ignore"):
-                mu[rows] = numpy.fmin.reduce(list(transmission_arrays(linkage, arguments, solved).values()))
+                mu[rows] = numpy.fmin.reduce(list(transmission_arrays(settings.found().linkage, arguments,
+                                                                      solved).values()))
+        elif joints:
+            with numpy.errstate(all="ignore"):
+                mu[rows] = numpy.fmin.reduce(list(joint_angle_arrays(joints, arguments, solved).values()))
     output[~mask] = numpy.nan
     path[~mask] = numpy.nan
     mu[~mask] = numpy.nan
@@ -477,12 +637,12 @@ def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[st
     sampled_full = numpy.asarray(mask.all(axis=1))
     scanned: dict[int, list[tuple[float, float]]] = {}
     partial = numpy.flatnonzero(~sampled_full)
-    if not fourbar and partial.size and linkage.has_closed_form:  # every partial design's scan at once
-        values_of = {s.name: table[s.name][partial] for s in linkage.parameters}
-        values_of.update({**held, **{s.name: float(settings.branch) for s in linkage.branches}})
-        scanned = dict(zip(partial.tolist(), design_spans(linkage, values_of, partial.size,
-                                                          input=linkage.inputs[0].name)))
+    if not fourbar and partial.size and facts["closed_form"]:  # every partial design's scan at once
+        values_of = {name: table[name][partial] for name in parameters}
+        values_of.update({**held, **{name: float(settings.branch) for name in facts["branches"]}})
+        scanned = dict(zip(partial.tolist(), _design_spans(settings, values_of, partial.size, input_name)))
     if fourbar:  # every design's class at once
+        from ..analysis.grashof import grashof_names
         classes = grashof_names(table["a"], table["b"], table["c"], table["d"])
         lengths = list(zip(*(table[name].tolist() for name in "abcd")))
     for k in range(count):
@@ -493,8 +653,10 @@ def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[st
         elif k in scanned:
             found_spans = scanned[k]
         else:
-            values = {s.name: float(table[s.name][k]) for s in linkage.parameters}
-            motion = InputMotion(linkage, {**values, **held, **{s.name: settings.branch for s in linkage.branches}})
+            from ..numeric.reachability import InputMotion, reachable_range
+            linkage = settings.found().linkage
+            values = {name: float(table[name][k]) for name in parameters}
+            motion = InputMotion(linkage, {**values, **held, **{name: settings.branch for name in facts["branches"]}})
             found_spans = list(reachable_range(linkage, motion.values, motion=motion).spans)
         spans[k] = len(found_spans)
         assembles[k] = found_spans == [(-math.pi, math.pi)]
@@ -517,7 +679,7 @@ def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[st
     table.update(transmission_min=low, transmission_max=high, worst_transmission=numpy.minimum(low, math.pi - high))
 
     # stroke and time ratio: exactly two limits of the output over a whole turn, each polished on the solver
-    angle = settings.output in _angle_outputs(linkage, settings.output)
+    angle = settings.output in facts["angle_outputs"]
     with numpy.errstate(all="ignore"):
         steps = numpy.roll(output, -1, axis=1) - output
         if angle:
@@ -532,11 +694,10 @@ def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[st
     if two.any():
         chosen = numpy.flatnonzero(two)
         curve = unwrapped[chosen]
-        parameters = {s.name: (table[s.name][chosen, None] if s.name in swept else float(fixed[s.name]))
-                      for s in linkage.parameters}
+        given = {name: (table[name][chosen, None] if name in swept else float(fixed[name])) for name in parameters}
 
         def evaluate(at: numpy.ndarray) -> numpy.ndarray:
-            arguments = {**parameters, input_name: at, **held, **{name: settings.branch for name in solver.branches}}
+            arguments = {**given, input_name: at, **held, **{name: settings.branch for name in solver.branches}}
             found = solver(**arguments)
             return numpy.where(found["assembled"], found[settings.output], numpy.nan)
 
@@ -579,16 +740,48 @@ def _polish(evaluate, at: numpy.ndarray, value: numpy.ndarray, step: float, sign
     return at, value
 
 
+def _design_spans(settings: SweepSettings, values: Mapping[str, Any], count: int, driven: str
+                  ) -> list[list[tuple[float, float]]]:
+    """The reachable spans of ``count`` designs (``values``) over a turn of the input ``driven``, as
+    :func:`~symlink.numeric.reachability.design_spans` scans them, with the margins of the linkage's roots from
+    the disk cache (:func:`_margins`): no linkage where the cache keys it."""
+    from ..numeric.design_scan import margin_spans
+    margins = _margins(settings.linkage, settings.linkage_text)
+    if margins is None:
+        from ..numeric.reachability import design_spans
+        return design_spans(settings.found().linkage, values, count, input=driven)
+    function, roots, lengths, branches, tolerance = margins
+    return margin_spans(function, roots, lengths, branches, driven, values, count, tolerance)
+
+
 @lru_cache(maxsize=16)
-def _has_two_angle_loop(linkage: Linkage) -> bool:
-    from ..analysis.transmission import transmission_joints
-    return bool(transmission_joints(linkage))
+def _margins(source: str, text: str | None) -> tuple | None:
+    """The margins of the linkage's clamped roots from the disk cache (derived once:
+    :func:`symlink.numeric.reachability.margins_entry_text`), compiled where a compiler works
+    (:func:`~symlink.numeric.design_scan.fastest_margins`), their roots (name, loop), lengths, branch signs and
+    rounding; None where the cache cannot key the linkage."""
+    request = _request(source, text)
+    if request is None:
+        return None
+    from ..numeric.cache import cached_module
+    from ..numeric.design_scan import fastest_margins
+
+    def derive() -> str:
+        from ..numeric.reachability import margins_entry_text
+        return margins_entry_text(_linkage(source, text).linkage)
+
+    _, namespace = cached_module(_key(request, ["margins"]), derive)  # a verified entry of a private cache
+    described = namespace["MARGINS_DESCRIPTION"]
+    function = fastest_margins(namespace["margins"], lambda: described["c_margins"], described["lengths"],
+                               described["branches"])
+    return (function, [tuple(root) for root in described["roots"]], described["lengths"], described["branches"],
+            described["tolerance"])
 
 
-@lru_cache(maxsize=64)
-def _angle_outputs(linkage: Linkage, output: str) -> frozenset[str]:
-    from ..io.scene import angle_outputs
-    return frozenset(angle_outputs(linkage, [output]))
+def _plain_joints(joints: list[list[Any]]) -> tuple:
+    """The joints of :func:`linkage_facts` as :func:`~symlink.analysis.joint_angles.joint_angle_arrays` takes them."""
+    return tuple((loop, guide, (into, into_rest), (out, out_rest))
+                 for loop, guide, into, into_rest, out, out_rest in joints)
 
 
 # --- chunks, Parquet and Dask ------------------------------------------------------------------

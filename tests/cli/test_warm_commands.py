@@ -295,18 +295,43 @@ def test_bad_input_to_a_warm_drawing_is_one_line_and_exit_2(shared_cache, tmp_pa
         assert not (tmp_path / "bad.svg").exists()
 
 
-def test_a_synchronous_sweep_imports_no_distributed(shared_cache, tmp_path):
-    """``--scheduler synchronous`` evaluates every chunk in this process: its start imports neither Dask's
-    distributed scheduler nor pandas (SymPy still, for the linkage's ranges and its solver: not warm yet)."""
+#: Sweeps of a catalog linkage and of a linkage file (the chunk is written into ``out``): the scheduler, and whether
+#: its start may import Dask's distributed scheduler (a local scheduler's never does).
+SWEEP = ["--grid", "3", "--samples", "36", "--no-progress"]
+SWEEPS = {
+    "four-bar, synchronous": (["sweep", "fourbar", "out", "--vary", "a=10:20", "--set", "b=66,c=56,d=80", *SWEEP,
+                               "--scheduler", "synchronous"], 1),
+    "four-bar, threads": (["sweep", "fourbar", "out", "--vary", "a=10:20,c=50:60", "--set", "b=66,d=80", *SWEEP,
+                           "--scheduler", "threads", "--workers", "2", "--chunk", "5"], 2),
+    "slider-crank file (transmission at its guide), default scheduler": (
+        ["sweep", str(PROJECT / "linkages" / "slider-crank.toml"), "out", "--vary", "a=0.5:2.5", *SWEEP], 1),
+}
+
+
+@pytest.mark.parametrize("name", SWEEPS)
+def test_a_warm_sweep_imports_no_sympy_and_writes_the_same_chunks(name, shared_cache, tmp_path):
+    """A sweep whose linkage's facts and solver are in the disk cache imports no SymPy (a catalog linkage and a
+    linkage file), and its start only what its scheduler needs (never distributed or pandas on a local one); its
+    chunks and manifest are the cold run's, byte for byte (each run writes them afresh: the first run's are read
+    and removed), and it prints the same but for the rate."""
+    import re
     from symlink.workshop.sweep import missing_modules
     if missing_modules():
         pytest.skip("the sweep extra is not installed")
-    runs = run_twice(tmp_path, ["sweep", "fourbar", "out", "--vary", "a=10:20", "--set", "b=66,c=56,d=80", "--grid",
-                                "3", "--samples", "36", "--scheduler", "synchronous", "--no-progress"], shared_cache)
+    arguments, chunks = SWEEPS[name]
+    files = [f"out/chunk-{k:06d}.parquet" for k in range(chunks)] + ["out/manifest.json"]
+    runs = run_twice(tmp_path, arguments, shared_cache, files=files)
     assert "dask" in runs.imported and "pyarrow" in runs.imported  # the import list was read, and it swept
-    assert not runs.imported & {"distributed", "pandas"}
-    assert runs.cold == runs.warm == "out\n"
-    assert "wrote 1, found 0 already there" in runs.cold_notes and "wrote 0, found 1 already there" in runs.warm_notes
+    heavy = runs.imported & {"sympy", "scipy", "matplotlib", "distributed", "pandas"}
+    assert not heavy, f"the warm run imported {', '.join(sorted(heavy))}"
+    assert runs.warm == runs.cold == "out\n"
+    assert all(runs.warm_files[f] == runs.cold_files[f] for f in files)
+    assert b'"reach"' in runs.cold_files["out/manifest.json"] and len(runs.cold_files[files[0]]) > 1000
+
+    def unrated(notes: str) -> str:
+        return re.sub(r"; [0-9.e+-]+ designs/s", "", notes)
+    assert unrated(runs.warm_notes) == unrated(runs.cold_notes)
+    assert f"wrote {chunks}, found 0 already there" in runs.warm_notes  # it evaluated every chunk again
 
 
 def test_bad_input_to_a_warm_stack_up_is_one_line_and_exit_2(shared_cache, tmp_path):

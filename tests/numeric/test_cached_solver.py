@@ -39,7 +39,8 @@ print(json.dumps({"status": status, "sympy": loaded[:3], "symlink": symlink, "ma
 #: the option groups it shares (mass and plot options), the cached solver and the cache, and nothing else.
 WARM_TABLE_MODULES = {
     "symlink", "symlink.version", "symlink.common", "symlink.numeric", "symlink.common.angles", "symlink.numeric.input_sweep", "symlink.common.files", "symlink.common.limits",
-    "symlink.numeric.results", "symlink.numeric.call_arguments", "symlink.numeric.cache", "symlink.numeric.cached_solver", "symlink.codegen", "symlink.codegen.loading",
+    "symlink.numeric.results", "symlink.numeric.call_arguments", "symlink.numeric.cache", "symlink.numeric.cached_solver",
+    "symlink.io", "symlink.io.table_source", "symlink.codegen", "symlink.codegen.loading",
     "symlink.cli", "symlink.cli.options", "symlink.cli.output", "symlink.cli.tables", "symlink.cli.dynamics",
     "symlink.cli.pictures", "symlink.cli.budget",
     "symlink.common.numbers",  # the one reader of the numbers an option takes

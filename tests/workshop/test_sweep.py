@@ -729,3 +729,48 @@ def test_a_damaged_manifest_beside_other_files_is_refused_and_they_are_left_alon
     with pytest.raises(ValueError, match=r"is damaged .* holds other files \('notes.txt'\): move them"):
         run_sweep(TINY, folder, scheduler="synchronous")
     assert (folder / "notes.txt").read_text() == "mine" and (folder / CHUNK).exists()
+
+
+#: A chunk evaluated in a new process: its Parquet bytes' SHA-256, and whether SymPy was imported.
+_CHUNK_IN_A_PROCESS = r"""
+import hashlib, json, sys
+from symlink.workshop.sweep import SweepSettings, chunk_table
+source, ranges, values = sys.argv[1], json.loads(sys.argv[2]), json.loads(sys.argv[3])
+settings = SweepSettings(source, {k: tuple(v) for k, v in ranges.items()}, values=values, count=4, samples=60, chunk=4)
+data = chunk_table(settings, 0)
+print(json.dumps({"sha256": hashlib.sha256(data).hexdigest(), "sympy": "sympy" in sys.modules}))
+"""
+
+
+@pytest.mark.parametrize("source, ranges, values", [
+    ("watt2", {"a": [0.5, 3.0]}, {}),  # a design that reaches part of the turn: its span from the roots' margins
+    (str(ROOT / "linkages" / "slider-crank.toml"), {"a": [0.5, 2.5]}, {}),  # a file; transmission at its guide
+    ("fourbar", {"a": [10.0, 60.0]}, {"b": 66.0, "c": 56.0, "d": 80.0}),  # Grashof classes, the closed-form reach
+])
+def test_a_warm_chunk_is_evaluated_without_sympy_and_is_the_cold_ones(tmp_path, source, ranges, values):
+    """A worker whose linkage's facts, solver and margins are in the disk cache (a warm sweep, or any chunk after
+    the first) builds no linkage: its chunk is the cold one's, byte for byte, and SymPy is never imported."""
+    env = dict(os.environ, SYMLINK_CACHE=str(tmp_path / "cache"), PYTHONPATH=str(ROOT))
+    runs = [json.loads(subprocess.run([sys.executable, "-c", _CHUNK_IN_A_PROCESS, source, json.dumps(ranges),
+                                       json.dumps(values)], capture_output=True, text=True, env=env, check=True,
+                                      timeout=600).stdout) for _ in range(2)]
+    assert runs[0]["sympy"], "the check cannot fail: the cold chunk derives, with SymPy"
+    assert not runs[1]["sympy"]
+    assert runs[1]["sha256"] == runs[0]["sha256"]
+
+
+def test_a_partial_design_of_a_warm_sweep_reaches_what_the_hand_formula_says(tmp_path, monkeypatch):
+    """The reach of a slider-crank that cannot turn, evaluated twice (cold, then from the cache's margins): the
+    rod spans the guide where |offset - a sin(theta)| <= b, so with a = 2, b = 1, offset 0.5 the crank turns
+    between asin((0.5 - 1) / 2) and asin((0.5 + 1) / 2) and the mirror span: reach 2 (asin(0.75) + asin(0.25)) / 2 pi."""
+    from symlink.numeric import cache
+    monkeypatch.setenv("SYMLINK_CACHE", str(tmp_path / "cache"))
+    cache.clear_memory()
+    expected = 2 * (math.asin(0.75) + math.asin(0.25)) / (2 * math.pi)
+    for _ in range(2):
+        sweep_module._margins.cache_clear()
+        settings = SweepSettings("slider-crank", {"a": (2.0, 2.0)}, values={"b": 1.0, "offset": 0.5}, count=1,
+                                 samples=72, harmonics=1)
+        table = evaluate_designs(settings, [0])
+        assert table["spans"][0] == 2 and table["reach"][0] == pytest.approx(expected, abs=1e-12)
+    cache.clear_memory()

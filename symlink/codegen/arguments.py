@@ -1,15 +1,11 @@
-"""The check of every value a solver takes: real, shapes that broadcast, signs +1 or -1, lengths positive and finite.
+"""The check every generated function makes of its arguments, and its one home: NumPy only, no SymPy.
 
-Its one home, NumPy only: every generated NumPy module carries a copy of
-:func:`_arguments` (:mod:`symlink.codegen.numpy` writes its source into the
-module's header), the solvers call :func:`checked_arguments`, and the closed
-forms of the analysis (:mod:`symlink.analysis.fourbar_closed_form`) check their
-lengths with :func:`check_lengths` without importing SymPy.
+The NumPy printer (:mod:`symlink.codegen.numpy`) copies the source of :func:`_arguments` into every module it
+writes, so that a generated module checks its arguments alike without importing symlink; a process that needs
+the check without printing anything (a Grashof class of many designs, a warm sweep) imports it from here.
 
->>> check_lengths(crank=20.0, coupler=66.0)  # good lengths: nothing
->>> check_lengths(crank=20.0, rocker=0.0)
-Traceback (most recent call last):
-ValueError: rocker must be a positive finite length, got 0.0
+>>> checked_arguments(["theta", "branch"], [[0.0, 1.0], 1])[1]
+(2,)
 """
 from __future__ import annotations
 

@@ -74,8 +74,9 @@ class Jobs:
                 del self.jobs[old]
         process.start()
         sending.close()
-        job["watcher"] = threading.Thread(target=self._watch, args=(job, receiving), daemon=True)
-        job["watcher"].start()
+        watcher = threading.Thread(target=self._watch, args=(job, receiving), daemon=True)
+        job["watcher"] = watcher
+        watcher.start()
         return key
 
     def _finish(self, job: dict[str, Any], status: str, result: Any = None, error: str | None = None) -> None:

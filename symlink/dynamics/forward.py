@@ -160,6 +160,8 @@ class EquationCode:
     equation for one state as floats (:func:`scalar_source`), ``check`` the generated argument check.
     """
 
+    _repr_html_ = record_html  # a notebook shows the fields as a table
+
     name: str
     input: str
     rate: str

@@ -51,6 +51,7 @@ from ..symbolic.closure import is_angle
 from ..symbolic.linkage import Linkage
 from ..symbolic.typeset import EquationSet
 from ..symbolic.vectors import expression
+from ..common.display import record_html
 
 if TYPE_CHECKING:
     from .model import DynamicModel
@@ -134,6 +135,8 @@ class NewtonEuler:
     expression for zero; ``symbols`` are readable names of the unknowns (``F_{B,x}``, ``N_{J}``,
     ``T_{theta}``) for the derivation document.
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     bodies: list[str]
     unknowns: list[sp.Symbol]

@@ -59,6 +59,7 @@ from ..symbolic.closure import is_angle
 from ..symbolic.linkage import Linkage
 from ..common.names import identifier
 from ..symbolic.vectors import Vector, expression, rate, time_derivative
+from ..common.display import record_html
 
 __all__ = ["Value", "MassProperties", "Gravity", "PointForce", "BodyTorque", "Spring", "Damper", "Load",
            "DynamicModel"]
@@ -277,6 +278,8 @@ class DynamicModel:
     >>> torque.subs(at_rest)  # holding the crank's weight: m g r cos(theta)
     9.81*m*r*cos(theta)
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     def __init__(self, linkage: Linkage, masses: Sequence[MassProperties] = (), loads: Sequence[Load] = (),
                  gravity: Gravity | None = None, bodies: Mapping[str, Sequence[str]] | None = None) -> None:

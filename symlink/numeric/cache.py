@@ -628,6 +628,11 @@ def clear_cache(folder: str | os.PathLike) -> CacheContents:
 class GeneratedCode:
     """A loaded solver module for some outputs: its ``key``, ``source`` and function."""
 
+    def _repr_html_(self) -> str:
+        """A notebook shows the fields as a table (the display module imported only then)."""
+        from ..common.display import record_html
+        return record_html(self)
+
     key: str
     source: str
     function: Callable[..., dict]

@@ -42,6 +42,7 @@ import numpy
 
 from .cache import FUNCTION, generated_code
 from ..codegen.loading import load_numpy_module
+from ..common.display import record_html
 
 if TYPE_CHECKING:  # the symbolic side is imported where a Jacobian is derived: one read from an entry needs no SymPy
     from ..symbolic.linkage import Linkage
@@ -89,6 +90,8 @@ class DesignJacobian:
     is d(outputs[i])/d(parameters[j]).  The generated code checks its arguments; in a hot loop whose
     arguments are known good, ``check=False`` skips that.
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     def __init__(self, linkage: Linkage, outputs: Sequence[str], parameters: Sequence[str] | None = None) -> None:
         self.linkage: Linkage | None = linkage

@@ -30,6 +30,7 @@ from typing import TYPE_CHECKING, Any, Callable, Mapping, Sequence
 import numpy
 
 from .crank_ranges import scanned_range
+from ..common.display import record_html
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -157,6 +158,8 @@ class Placement:
     :meth:`poses` solves and places every joint; ``guess`` (unknowns by name) picks the assembly where the
     linkage has no closed form; by default one is searched for.
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     def __init__(self, facts: Mapping[str, Any], ends: Callable[..., dict], solver: Any) -> None:
         self.facts = dict(facts)

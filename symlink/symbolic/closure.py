@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING
 import sympy as sp
 
 from .vectors import acceleration, rate, time_derivative
+from ..common.display import record_html
 
 if TYPE_CHECKING:
     from .linkage import Linkage
@@ -33,6 +34,8 @@ class ClosureSystem:
     lengths) and ``units`` each unknown's (1 for an angle, a mean link length
     for a length), so that tolerances are relative.
     """
+
+    _repr_html_ = record_html  # a notebook shows the fields as a table
 
     linkage: Linkage
     residuals: tuple[sp.Expr, ...]

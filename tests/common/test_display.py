@@ -18,16 +18,6 @@ PLAIN = {
                                    "on the warm start's path",
 }
 
-#: Classes the scan sees only since it resolves annotations of type-checking-only imports (before, their functions'
-#: hints failed to evaluate and were passed over): they have no rich display yet.  Strict: each fails this list
-#: once it has one.
-NOT_YET_RICH = {
-    "symlink.dynamics.forward.EquationCode", "symlink.dynamics.inverse.NewtonEuler",
-    "symlink.dynamics.model.DynamicModel",
-    "symlink.numeric.cache.GeneratedCode", "symlink.numeric.design_jacobian.DesignJacobian",
-    "symlink.numeric.poses.Placement", "symlink.symbolic.closure.ClosureSystem",
-}
-
 
 def returned_classes() -> dict[type, str]:
     """Each symlink class that a public function or method returns (by its annotation), with where.
@@ -78,8 +68,5 @@ def test_every_returned_class_has_a_rich_display(cls):
     name = f"{cls.__module__}.{cls.__qualname__}"
     if name in PLAIN:
         pytest.skip(PLAIN[name])
-    if name in NOT_YET_RICH:
-        assert not any(hasattr(cls, method) for method in RICH), f"{name} has a rich display now: off NOT_YET_RICH"
-        pytest.xfail(f"{name} (returned by {RETURNED[cls]}) has no rich display yet")
     assert any(hasattr(cls, method) for method in RICH), \
         f"{name} (returned by {RETURNED[cls]}) has no rich display: give it _repr_html_ = record_html"

@@ -48,6 +48,7 @@ from sympy.printing.c import C99CodePrinter
 from ..version import __version__
 from ..common.names import C_KEYWORDS as RESERVED_IN_C, PLAIN_NAME
 from ..common.rounding import TOLERANCE
+from .translation_units import UNIT_MARK, translation_units
 from ..symbolic.position import PowerOfTwoBelow
 from .numpy import ARGUMENT_CONTRACT
 from .program import require_loop_units, FreshNames, StraightLine, is_flag, named_straight_line
@@ -213,10 +214,6 @@ def c_comment(text: str, indent: str = "") -> str:
 #: k = 16, pieces of 3,000 to 12,000 characters cost 3.3-4.3 s in all, 24,000 a bit more.  The catalog's
 #: linkages (Jansen's leg's full kinematics, the largest, print 7,342) stay one loop, as fast as before.
 PIECE_SIZE = 8000
-
-#: The line between translation units in a source of pieces: what precedes the first is common to all.
-UNIT_MARK = "/* symlink: translation unit */"
-
 
 def _piece_bounds(costs: Sequence[int], size: int) -> list[tuple[int, int]]:
     """Consecutive ranges of assignments, of about equal total cost, each at most about ``size`` (one if all fit).
@@ -914,19 +911,6 @@ def c_library(functions: Sequence[CFunction], name: str, title: str = "A symlink
     common += [_PIECES_PRELUDE] + [prototype for f in functions for prototype in f.piece_prototypes] + [""]
     units = [text for f in functions for text in (*f.pieces, f.definition)]
     return header, "\n".join(common + [f"{UNIT_MARK}\n{text}" for text in units])
-
-
-def translation_units(source: str) -> list[str]:
-    r"""The C source cut where :func:`c_library` marks it (:data:`UNIT_MARK`): each unit the common part and one
-    piece or function, to be compiled apart (in parallel) and linked into one library; ``[source]`` if unmarked.
-
-    >>> translation_units("common\n" + UNIT_MARK + "\nf\n" + UNIT_MARK + "\ng\n")
-    ['common\n\nf\n', 'common\n\ng\n']
-    >>> translation_units("int f(void);\n")
-    ['int f(void);\n']
-    """
-    common, *units = source.split(UNIT_MARK + "\n")
-    return [common + "\n" + unit for unit in units] if units else [source]
 
 
 def c_code(functions: Sequence[tuple[str, Program, str]], name: str, title: str = "A symlink solver.",

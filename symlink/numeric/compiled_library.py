@@ -200,7 +200,7 @@ def _run_compiler(command: list[str], folder: Path, vector_math: bool = True,
     """Compile ``folder/symlink.c`` into ``folder/symlink.so`` (run in the folder, so the bytes do not depend on it).
 
     A source of several translation units (``units`` > 1: ``symlink_0.c``, ``symlink_1.c``, ...,
-    :func:`symlink.codegen.c.translation_units`) is compiled unit by unit into object files, as many
+    :func:`symlink.codegen.translation_units.translation_units`) is compiled unit by unit into object files, as many
     compilers at once as there are processors (:func:`_compiler_jobs`), then linked into the library.
     Each compiler is registered while it runs, so that a process that exits during a background build
     stops it and removes its folder (:func:`_stop_builds`) instead of leaving half a build behind.
@@ -279,8 +279,8 @@ def _build(source: str, headers: Mapping[str, str], command: list[str], target: 
     """
     target.parent.mkdir(parents=True, exist_ok=True)
     folder = Path(tempfile.mkdtemp(prefix=".build-", dir=target.parent))
-    from ..codegen.c import translation_units
-    units = translation_units(source)  # a large program's pieces, compiled apart (symlink.codegen.c)
+    from ..codegen.translation_units import translation_units  # text only: no printer, no SymPy
+    units = translation_units(source)  # a large program's pieces, compiled apart
     try:
         files = {**headers, _VECTOR_MATH_FILE: VECTOR_MATH, "symlink.c": source}
         if len(units) > 1:

@@ -483,7 +483,7 @@ def test_a_program_in_pieces_is_built_unit_by_unit_and_agrees_bit_for_bit(compil
     apart, two compilers at once, and linked into one library whose loops stay vectorised and whose values are
     bit for bit those of the one-loop library (the same operations on the same operands)."""
     import json
-    from symlink.codegen.c import translation_units
+    from symlink.codegen.translation_units import translation_units
     linkage = catalog_linkage("jansen")
     unknowns = [q.name for q in linkage.unknowns]
     program = linkage.program(unknowns + [f"{q}dot" for q in unknowns] + [f"{q}ddot" for q in unknowns]

@@ -112,6 +112,18 @@ def test_format_bytes(count, text):
     assert format_bytes(count) == text
 
 
+def test_a_small_request_is_not_checked_against_the_machine(monkeypatch):
+    """At most UNCHECKED_BYTES: the limits are not read (a solver's small calls); one byte more: they are."""
+    import symlink.common.limits as limits
+    readings = []
+    monkeypatch.setattr(limits, "available_memory", lambda: readings.append(1) or 10)
+    require_memory(limits.UNCHECKED_BYTES // 8, 8, "a small call")
+    assert readings == []
+    with pytest.raises(ValueError, match="a larger call needs"):
+        require_memory(limits.UNCHECKED_BYTES + 1, 1, "a larger call")
+    assert readings == [1]
+
+
 def test_require_memory_passes_what_fits_and_refuses_what_does_not():
     require_memory(1000, 8, "x", available=8000)  # exactly fits
     with pytest.raises(ValueError) as refused:

@@ -35,6 +35,7 @@ from .cache import cached_module, catalog_key
 from .call_arguments import check_argument_names
 from ..common.limits import require_memory
 from .results import Results
+from .background_backend import BackgroundBackend
 
 __all__ = ["CachedSolver", "CachedNewtonSolver", "ENTRY_KIND", "DESCRIPTION", "entry_text", "newton_entry_text"]
 
@@ -96,7 +97,7 @@ def _plain(value: object) -> bool:
     return isinstance(value, (numbers.Number, numpy.ndarray, numpy.generic, list, tuple))
 
 
-class CachedSolver:
+class CachedSolver(BackgroundBackend):
     """The solver of ``outputs`` of the catalog linkage ``name``, run from its cache entry (see the module).
 
     The entry is derived the first time (SymPy); ``ValueError`` for a name that is not in the catalog, or an
@@ -140,23 +141,6 @@ class CachedSolver:
                 self._compiled = compiled_library.compiled_or_warning_of(facts)
             elif choice == "auto":
                 self._compiled, self._build = compiled_library.entry_or_build_of(facts)
-
-    @property
-    def backend(self) -> str:
-        """``"compiled"`` or ``"numpy"``: the backend that answers the next call."""
-        return "numpy" if self._answering() is None else "compiled"
-
-    def wait_for_backend(self, timeout: float | None = None) -> str:
-        """Wait (at most ``timeout`` seconds) for a background build of the compiled backend; the backend then."""
-        if self._build is not None:
-            self._build.wait(timeout)
-        return self.backend
-
-    def _answering(self) -> Any:
-        """The compiled function where it answers (a background build just finished is adopted here), else None."""
-        if self._build is not None and self._build.done():
-            self._compiled, self._build = self._build.entry(), None
-        return self._compiled
 
     def check_lengths(self, **lengths: float) -> None:
         """``ValueError`` naming the first length that is not a positive finite number (the generated check)."""

@@ -48,13 +48,14 @@ from ..symbolic.linkage import Linkage, Program, is_branch_name
 from .results import Results, checked_out
 from .units import ANY_LENGTH, argument_units, output_units, plain_values
 from ..symbolic.vectors import acceleration, rate
+from .background_backend import BackgroundBackend
 
 SolverOrNumeric = TypeVar("SolverOrNumeric", "Solver", "NumericSolver")
 
 __all__ = ["Solver", "NumericSolver", "shared_solver", "settled", "check_lengths", "crank_speeds"]
 
 
-class Solver:
+class Solver(BackgroundBackend):
     """A vectorised solver for some outputs of a linkage: the compiled C loop where a C compiler works, else NumPy.
 
     The code for ``outputs``, and only for what they depend on, is
@@ -141,23 +142,6 @@ class Solver:
             self._compiled = compiled.compiled_or_warning(linkage, self.outputs)
         elif self.backend_choice == "auto":
             self._compiled, self._build = compiled.entry_or_build(linkage, self.outputs)
-
-    @property
-    def backend(self) -> str:
-        """``"compiled"`` or ``"numpy"``: the backend that answers the next call."""
-        return "numpy" if self._answering() is None else "compiled"
-
-    def wait_for_backend(self, timeout: float | None = None) -> str:
-        """Wait (at most ``timeout`` seconds) for a background build of the compiled backend; the backend then."""
-        if self._build is not None:
-            self._build.wait(timeout)
-        return self.backend
-
-    def _answering(self) -> Any:
-        """The compiled function where it answers (a background build just finished is adopted here), else ``None``."""
-        if self._build is not None and self._build.done():
-            self._compiled, self._build = self._build.entry(), None
-        return self._compiled
 
     @property
     def branches(self) -> list[str]:

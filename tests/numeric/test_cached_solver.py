@@ -40,6 +40,7 @@ print(json.dumps({"status": status, "sympy": loaded[:3], "symlink": symlink, "ma
 WARM_TABLE_MODULES = {
     "symlink", "symlink.version", "symlink.common", "symlink.numeric", "symlink.common.angles", "symlink.numeric.input_sweep", "symlink.common.files", "symlink.common.limits",
     "symlink.numeric.results", "symlink.numeric.call_arguments", "symlink.numeric.cache", "symlink.numeric.cached_solver",
+    "symlink.numeric.background_backend",  # what a solver says of its compiled backend (no build imported)
     "symlink.io", "symlink.io.table_source", "symlink.codegen", "symlink.codegen.loading",
     "symlink.cli", "symlink.cli.options", "symlink.cli.output", "symlink.cli.tables", "symlink.cli.dynamics",
     "symlink.cli.pictures", "symlink.cli.budget",

@@ -24,7 +24,7 @@ SymPy would pay; ``python -c "import numpy, matplotlib.pyplot"``: what a picture
 numpy, dask, pyarrow"``: the floor of a sweep's start.  The load average is printed before and after.
 Bytecode is cached (in the run's folder, ``PYTHONPYCACHEPREFIX``) as for an installed package, even where
 ``PYTHONDONTWRITEBYTECODE`` is set: else every run compiles symlink's modules again (about 0.1 s).
-CPU of the measured machine (the performance page's table): AMD EPYC, 2 cores, AVX-512 (idle; ratios only).
+CPU of the measured machine (the performance page's table): Intel Xeon, 2 cores, AVX-512 (load 1.5-1.8; ratios only).
 
     python -m benchmarks.warm_requests
 """

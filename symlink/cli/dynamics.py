@@ -112,11 +112,20 @@ def fourbar_dynamics(args: argparse.Namespace,
     return dynamic_linkage(fourbar_model(args, lengths)), list(MASS_COLUMNS)
 
 
+#: The options of a four-bar's dynamics beside ``--masses`` (their ``argparse`` names), which need it.
+MASS_OPTIONS = ("inertias", "centres", "gravity", "load_torque")
+
+
+def dynamics_options_given(args: argparse.Namespace) -> list[str]:
+    """The four-bar's dynamics options ``args`` give, as written on the command line (``--masses`` first)."""
+    return [f"--{name.replace('_', '-')}" for name in ("masses", *MASS_OPTIONS) if getattr(args, name, None) is not None]
+
+
 def _dynamics_asked(args: argparse.Namespace) -> bool:
     """Whether ``args`` ask for the four-bar's dynamics (``--masses``); ``ValueError`` for dynamics options
     without it."""
     if args.masses is None:
-        given = [name for name in ("inertias", "centres", "gravity", "load_torque") if getattr(args, name) is not None]
+        given = [name for name in MASS_OPTIONS if getattr(args, name) is not None]
         if given:
             raise ValueError(f"--{given[0].replace('_', '-')} needs --masses (the masses of crank, coupler, rocker)")
         return False

@@ -24,7 +24,7 @@ from ..common.angles import from_radians, to_radians, wrap
 from .options import (FOURBAR_LENGTHS, output_folder, refuse_together, add_branch_option, add_format_option, add_units_option, assignments,
                       command_help, figure_path, finite, fourbar_lengths, input_sweep, distinct_number_list,
                       seed, whole)
-from .dynamics import add_mass_options, fourbar_dynamics, fourbar_mass_options
+from .dynamics import add_mass_options, dynamics_options_given, fourbar_dynamics, fourbar_mass_options
 from .output import RowWriter, note
 
 #: More input values than this make a stack-up a benchmark, not a table (each costs 1 + 2 x dimensions solves).
@@ -194,8 +194,9 @@ def run(args: argparse.Namespace) -> int:
             raise ValueError("tolerance: --crank --coupler --rocker --ground belong to the four-bar; give the values "
                              f"of {facts['name']} with --set NAME=VALUE,...")
         values.update({k: v for k, v in zip("abcd", lengths) if v is not None})
-    if args.masses is not None and not fourbar:
-        raise ValueError("tolerance: --masses and the other dynamics options belong to the four-bar")
+    given_dynamics = dynamics_options_given(args)
+    if given_dynamics and not fourbar:  # never silently left out: a stack-up of another linkage has no masses
+        raise ValueError(f"tolerance: {given_dynamics[0]} and the other dynamics options belong to the four-bar")
     if fourbar:
         four = (values["a"], values["b"], values["c"], values["d"])
         options = fourbar_mass_options(args, four)  # ValueError for dynamics options without --masses

@@ -349,7 +349,16 @@ def test_bad_input_to_a_warm_stack_up_is_one_line_and_exit_2(shared_cache, tmp_p
                                        "offset\n",
            ("--set", "q=1"): "symlink: error: --set: slider-crank has no value 'q'; it takes a, b, offset, theta\n",
            ("--crank", "2"): "symlink: error: tolerance: --crank --coupler --rocker --ground belong to the four-bar; "
-                             "give the values of slider-crank with --set NAME=VALUE,...\n"}
+                             "give the values of slider-crank with --set NAME=VALUE,...\n",
+           # each of the four-bar's dynamics options is refused on another linkage, never silently left out
+           ("--masses", "1,2,3"): "symlink: error: tolerance: --masses and the other dynamics options belong to the "
+                                  "four-bar\n",
+           ("--inertias", "1,2,3"): "symlink: error: tolerance: --inertias and the other dynamics options belong to "
+                                    "the four-bar\n",
+           ("--gravity", "9.81"): "symlink: error: tolerance: --gravity and the other dynamics options belong to the "
+                                  "four-bar\n",
+           ("--load-torque", "-2"): "symlink: error: tolerance: --load-torque and the other dynamics options belong "
+                                    "to the four-bar\n"}
     env = {**os.environ, "PYTHONPATH": str(PROJECT), "SYMLINK_CACHE": str(shared_cache)}
     for (option, value), message in bad.items():
         done = subprocess.run([sys.executable, "-X", "importtime", "-m", "symlink", "tolerance", "slider-crank",

@@ -21,6 +21,7 @@ Contents
   of its section 2.1, and ``transmission_angle``.
 * Seed 000 (MATLAB position paper): the case formulas ``seed000_case1``,
   ``seed000_case2a``, ``seed000_case2b`` and ``seed000_case3`` for z1 + z2 + z3 + z4 = 0.
+* ``fourbar_joint_c``: the four-bar's joint C where two circles meet, in double precision.
 * ``mp_fourbar`` and ``mp_slider_crank``: 50-digit mpmath references computed a different
   way (circle intersections for the positions, and the 2x2 linear systems obtained by
   differentiating the loop's x and y equations by hand for the rates and accelerations).
@@ -29,6 +30,8 @@ The numerical seed formulas are vectorised with NumPy and give NaN where the loo
 close. Each misprint corrected below is marked ``MISPRINT`` with what the paper printed and
 what is right.
 """
+
+import math
 
 import mpmath as mp
 import numpy as np
@@ -299,6 +302,19 @@ def seed000_case3(R1, t1, R2, t2, R3, R4):
         g4 = np.arccos((R3**2 - RT**2 - R4**2) / (2 * RT * R4))
     return [(_wrap(tT + g3), _wrap(tT + 2 * np.pi - g4)),
             (_wrap(tT + 2 * np.pi - g3), _wrap(tT + g4))]
+
+
+def fourbar_joint_c(theta, a, b, c, d, branch=1):
+    """The four-bar's joint C by hand, in double precision: where the circles about B (radius b) and D (radius c)
+    meet, left of the directed line B -> D on branch +1 (right on -1); None where they do not meet."""
+    bx, by = math.cos(theta) * a, math.sin(theta) * a
+    dx, dy = d - bx, -by
+    span = math.hypot(dx, dy)
+    along = (b * b - c * c + span * span) / (2 * span)
+    if b * b - along * along < 0:
+        return None
+    across = branch * math.sqrt(b * b - along * along)
+    return bx + (along * dx - across * dy) / span, by + (along * dy + across * dx) / span
 
 
 # --------------------------------------------------------------------------------------

@@ -13,6 +13,7 @@ import pytest
 
 from symlink.analysis.fourbar_closed_form import crank_spans, fourbar_report, limit_positions
 from symlink.numeric.fourbar_transmission import transmission_range
+from references import fourbar_joint_c
 
 SEED003 = (20.0, 66.0, 56.0, 80.0)
 
@@ -20,19 +21,6 @@ SEED003 = (20.0, 66.0, 56.0, 80.0)
 def law_of_cosines(opposite, side1, side2):
     """The angle between side1 and side2, by the plain law of cosines (well-shaped triangles only)."""
     return math.acos((side1**2 + side2**2 - opposite**2) / (2 * side1 * side2))
-
-
-def joint_c(theta, a, b, c, d, branch):
-    """C by hand: where the circles about B (radius b) and D (radius c) meet, left of the line B -> D on branch
-    +1 (right on -1); None where they do not meet."""
-    bx, by = a * math.cos(theta), a * math.sin(theta)
-    dx, dy = d - bx, -by
-    span = math.hypot(dx, dy)
-    along = (b * b - c * c + span * span) / (2 * span)
-    if b * b - along * along < 0:
-        return None
-    across = branch * math.sqrt(b * b - along * along)
-    return bx + (along * dx - across * dy) / span, by + (along * dy + across * dx) / span
 
 
 # --- SymPy-free ------------------------------------------------------------------------------
@@ -63,12 +51,12 @@ def test_limit_positions_against_the_circles_by_hand(lengths, branch):
     found = limit_positions(a, b, c, d, branch)
     for crank, rocker, reach in ((found.extended_crank, found.extended_rocker, a + b),
                                  (found.folded_crank, found.folded_rocker, b - a)):
-        cx, cy = joint_c(crank, a, b, c, d, branch)
+        cx, cy = fourbar_joint_c(crank, a, b, c, d, branch)
         assert math.hypot(cx, cy) == pytest.approx(reach, rel=1e-9)
         assert cx * math.sin(crank) - cy * math.cos(crank) == pytest.approx(0.0, abs=1e-9 * (a + b))  # on line A, B
         assert rocker == pytest.approx(math.atan2(cy, cx - d), abs=1e-9)
     rockers = np.unwrap([math.atan2(p[1], p[0] - d) for p in
-                         (joint_c(t, a, b, c, d, branch) for t in np.linspace(-math.pi, math.pi, 200001))])
+                         (fourbar_joint_c(t, a, b, c, d, branch) for t in np.linspace(-math.pi, math.pi, 200001))])
     assert found.stroke == pytest.approx(rockers.max() - rockers.min(), abs=1e-8)
     forward = (found.folded_crank - found.extended_crank) % (2 * math.pi)
     assert found.time_ratio == pytest.approx(max(forward, 2 * math.pi - forward) / min(forward, 2 * math.pi - forward))

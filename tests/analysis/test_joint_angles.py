@@ -12,20 +12,15 @@ import numpy
 import pytest
 
 from symlink.analysis.joint_angles import joint_angle_arrays, joint_coordinates
+from references import fourbar_joint_c
 
 ROOT = Path(__file__).resolve().parent.parent.parent
 
 
 def fourbar_angles(theta: float, a: float, b: float, c: float, d: float) -> tuple[float, float]:
-    """Coupler and rocker angles on branch +1, by hand: C where the circles about B (radius b) and D (radius c)
-    meet, to the left of the directed line from B to D."""
-    bx, by = a * math.cos(theta), a * math.sin(theta)
-    dx, dy = d - bx, -by
-    span = math.hypot(dx, dy)
-    along = (b * b - c * c + span * span) / (2 * span)
-    across = math.sqrt(b * b - along * along)
-    cx, cy = bx + (along * dx - across * dy) / span, by + (along * dy + across * dx) / span
-    return math.atan2(cy - by, cx - bx), math.atan2(cy, cx - d)
+    """Coupler and rocker angles on branch +1, by hand (C from the circles about B and D)."""
+    cx, cy = fourbar_joint_c(theta, a, b, c, d)
+    return math.atan2(cy - a * math.sin(theta), cx - a * math.cos(theta)), math.atan2(cy, cx - d)
 
 
 @pytest.mark.parametrize("theta", [0.0, 0.7, 2.0, -2.5])

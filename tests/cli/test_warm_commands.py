@@ -13,6 +13,7 @@ import math
 import pytest
 
 from warm_runs import PROJECT, run_twice
+from references import fourbar_joint_c
 
 #: The four-bar of seed 003 (mm), whose closed forms are derived once for the module.
 FOURBAR = ["fourbar", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80", "--angles", "0,50",
@@ -142,15 +143,8 @@ def test_the_former_name_is_noted_warm_as_cold(shared_cache, tmp_path):
 
 
 def _rocker(theta: float, a: float, b: float, c: float, d: float) -> float:
-    """The four-bar's rocker angle on branch +1, by hand: C where the circles about B (radius b) and D (radius c)
-    meet, to the left of the directed line from B to D."""
-    bx, by = a * math.cos(theta), a * math.sin(theta)
-    dx, dy = d - bx, -by
-    span = math.hypot(dx, dy)
-    along = (b * b - c * c + span * span) / (2 * span)
-    across = math.sqrt(b * b - along * along)
-    cx = bx + (along * dx - across * dy) / span
-    cy = by + (along * dy + across * dx) / span
+    """The four-bar's rocker angle on branch +1, by hand: C from the circles about B and D."""
+    cx, cy = fourbar_joint_c(theta, a, b, c, d)
     return math.atan2(cy, cx - d)
 
 

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from symlink.numeric.fourbar_transmission import transmission_range, triangle_angle
+from references import fourbar_joint_c
 
 SEED003 = (20.0, 66.0, 56.0, 80.0)
 
@@ -14,16 +15,6 @@ SEED003 = (20.0, 66.0, 56.0, 80.0)
 def law_of_cosines(opposite, side1, side2):
     """The angle between side1 and side2, by the plain law of cosines (well-shaped triangles only)."""
     return math.acos((side1**2 + side2**2 - opposite**2) / (2 * side1 * side2))
-
-
-def joint_c(theta, a, b, c, d):
-    """C by hand on branch +1: where the circles about B (radius b) and D (radius c) meet, left of B -> D."""
-    bx, by = a * math.cos(theta), a * math.sin(theta)
-    dx, dy = d - bx, -by
-    span = math.hypot(dx, dy)
-    along = (b * b - c * c + span * span) / (2 * span)
-    across = math.sqrt(b * b - along * along)
-    return bx + (along * dx - across * dy) / span, by + (along * dy + across * dx) / span
 
 
 # --- triangle_angle ----------------------------------------------------------------------------
@@ -86,7 +77,7 @@ def test_transmission_range_is_the_extreme_of_a_dense_hand_scan():
     a, b, c, d = 4.0, 5.0, 6.0, 2.0
     angles = []
     for theta in np.linspace(-math.pi, math.pi, 20001):
-        cx, cy = joint_c(theta, a, b, c, d)
+        cx, cy = fourbar_joint_c(theta, a, b, c, d)
         to_b = (a * math.cos(theta) - cx, a * math.sin(theta) - cy)
         to_d = (d - cx, -cy)
         angles.append(math.atan2(abs(to_b[0] * to_d[1] - to_b[1] * to_d[0]), to_b[0] * to_d[0] + to_b[1] * to_d[1]))

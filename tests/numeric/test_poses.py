@@ -11,6 +11,7 @@ import pytest
 from symlink.mechanism.catalog import EXAMPLE_VALUES, fourbar, stephenson2
 from symlink.numeric import cache
 from symlink.numeric.poses import Geometry, cached_placement
+from references import fourbar_joint_c
 
 
 @pytest.fixture
@@ -26,19 +27,6 @@ def _keys(name: str):
     return lambda outputs: cache.catalog_key(name, outputs, "placement-test/1")
 
 
-def _coupler_joint(theta: float, a: float, b: float, c: float, d: float) -> complex | None:
-    """C by hand: where the circles about B (radius b) and D (radius c) meet, left of the directed line B->D
-    (branch +1); None where they do not meet."""
-    bx, by = a * math.cos(theta), a * math.sin(theta)
-    dx, dy = d - bx, -by
-    span = math.hypot(dx, dy)
-    along = (b * b - c * c + span * span) / (2 * span)
-    if b * b < along * along:
-        return None
-    across = math.sqrt(b * b - along * along)
-    return complex(bx + (along * dx - across * dy) / span, by + (along * dy + across * dx) / span)
-
-
 def test_a_cached_placement_puts_the_four_bars_joints_where_the_circles_meet(private_cache):
     """The four-bar 60, 30, 50, 40 reaches crank angles within acos(-1/4) = 104.48 deg of 0: C where the circles
     meet there, NaN (and not assembled) at 150 deg."""
@@ -47,12 +35,12 @@ def test_a_cached_placement_puts_the_four_bars_joints_where_the_circles_meet(pri
     angles = numpy.radians([0.0, 45.0, 100.0, 150.0, -60.0])
     poses = placement.poses(dict(a=a, b=b, c=c, d=d), {"theta": angles})
     for k, theta in enumerate(angles):
-        expected = _coupler_joint(float(theta), a, b, c, d)
-        if expected is None:
+        joint = fourbar_joint_c(float(theta), a, b, c, d)
+        if joint is None:
             assert not poses.assembled[k] and numpy.isnan(poses.positions["C"][k])
             continue
         assert poses.assembled[k]
-        assert poses.positions["C"][k] == pytest.approx(expected, abs=1e-12 * d)
+        assert poses.positions["C"][k] == pytest.approx(complex(*joint), abs=1e-12 * d)
         assert poses.positions["B"][k] == pytest.approx(a * complex(math.cos(theta), math.sin(theta)), abs=1e-12 * d)
         assert poses.positions["D"][k] == pytest.approx(d)
     assert list(poses.assembled) == [True, True, True, False, True]

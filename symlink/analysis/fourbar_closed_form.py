@@ -27,14 +27,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy
-
 from ..common.angles import wrap_angle
 from ..codegen.arguments import check_lengths
 from ..common.display import record_html
 from ..common.rounding import TOLERANCE
 from ..numeric.crank_ranges import closing_crank_range
-from ..numeric.fourbar_transmission import TransmissionRange, transmission_range, triangle_angle  # noqa: F401
+from ..numeric.fourbar_transmission import transmission_range, triangle_angle
 from .grashof import grashof
 
 __all__ = ["LimitPositions", "limit_positions", "crank_spans", "fourbar_report", "FOURBAR_DOF"]

@@ -9,7 +9,7 @@ from typing import Any
 from ..common.angles import from_radians
 from ..io.table_source import TableSource
 from .options import (add_fourbar_lengths, add_units_option, assignments, command_help, fourbar_lengths,
-                      fourbar_or_linkage, linkage_values, require_held_inputs)
+                      fourbar_or_linkage, require_held_inputs)
 
 #: Fields of :func:`~symlink.analysis.fourbar_closed_form.fourbar_report` that are angles (converted to the
 #: command's units).

@@ -42,8 +42,7 @@ import numpy
 from ..common.angles import from_radians, half_turn, to_radians, wrap
 from ..common.names import FORMER_CATALOG_NAMES, SixBarNameNote, former_name_note
 from ..numeric.input_sweep import InputSweep, crank_speeds
-from ..io.table_source import (GENERIC_ENTRY_KIND, GENERIC_SHAPING, TableSource, facts_values,  # noqa: F401
-                                    newton_facts, table_columns, table_facts, units_of_columns)
+from ..io.table_source import TableSource, facts_values, table_columns, table_facts
 from .options import (add_fourbar_lengths, add_sweep_options, angle, assignments, branches, command_help, finite,
                       fourbar_lengths, input_sweep)
 from .output import RowWriter, TableAssembler, print_rows

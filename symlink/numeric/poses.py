@@ -38,7 +38,6 @@ if TYPE_CHECKING:
     from ..mechanism.bodies import Body, Mechanism
     from ..symbolic.linkage import Linkage
     from ..symbolic.vectors import Vector, VectorSum
-    from .solver import NumericSolver, Solver
 
 __all__ = ["Placement", "Geometry", "Poses", "input_range", "sweep_inputs", "traced_paths", "TRACE_SAMPLES",
            "placement_entry_text", "cached_placement", "PLACEMENT", "PLACEMENT_ENTRY_KIND"]

@@ -27,12 +27,11 @@ import numpy
 
 from ..common.angles import wrap_angle
 from .cache import cache_key, cached_module, cached_text
-from .compiled_library import BUILD_WAIT  # noqa: F401 - its home is compiled_library (no SymPy); kept for callers
-from .design_scan import (BISECTIONS, COARSE_STRIDE, NEAR_CHANGES, NEAR_ZERO, _bisect, _edges,  # noqa: F401
-                          _scanned_edges, _spans_from_marks, fastest_margins, margin_spans)
+from .design_scan import (BISECTIONS, COARSE_STRIDE, _bisect, _edges, _spans_from_marks,  # noqa: F401 - public names
+                          fastest_margins, margin_spans)
 from .crank_ranges import (SCAN_POINTS, TURN_SAMPLES, closing_crank_range, crank_range, describe_spans, fivebar_range,  # noqa: F401
                            inverted_slider_crank_range, reachable_turn, scanned_range, slider_crank_range, turn_angles)
-from ..codegen.arguments import check_lengths, checked_arguments
+from ..codegen.arguments import check_lengths
 from ..common.display import record_html
 from ..common.rounding import TOLERANCE
 from .cached_linkage import CachedLinkage

@@ -11,7 +11,8 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ..numeric.cache import ENVIRONMENT_VARIABLE, CacheContents, cache_contents, cache_directory, clear_cache
+from ..numeric.cache import ENVIRONMENT_VARIABLE, cache_directory
+from ..numeric.cache_folder import CacheContents, cache_contents, clear_cache
 from .options import Parser, command_help
 
 UNITS = "sizes in bytes"

@@ -34,8 +34,7 @@ from __future__ import annotations
 import argparse
 import itertools
 import warnings
-from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Callable, Collection, Iterable, Mapping
+from typing import TYPE_CHECKING, Any, Callable, Collection, Iterable, Mapping, NamedTuple
 
 import numpy
 
@@ -61,8 +60,7 @@ FOURBAR_COLUMNS = ["crank", "branch", "coupler", "rocker", "coupler_speed", "roc
 ANGLE_COLUMNS = {"crank", "coupler", "rocker"}
 
 
-@dataclass(frozen=True)
-class Option:
+class Option(NamedTuple):
     """``--name METAVAR``: sets the linkage parameter ``symbol``.
 
     ``kind``: a positive ``LENGTH``, any finite ``NUMBER``, or an ``ANGLE``
@@ -77,8 +75,7 @@ class Option:
     default: float | None = None
 
 
-@dataclass(frozen=True)
-class Table:
+class Table(NamedTuple):
     """A table command for the catalog linkage ``linkage`` (the command has its name).
 
     ``reachable(values)`` gives the reachable crank range (radians, closed

@@ -14,7 +14,7 @@ PLAIN = {
     "symlink.symbolic.linkage.Program": "the straight-line program a code printer takes; its code is what a user reads",
     "symlink.symbolic.loops.Unknown": "where an unknown sits in a loop, read by the solvers; its repr names it",
     "symlink.symbolic.loops.LoopCase": "the case of a loop, read by the solvers; Loop and LoopSolution show the maths",
-    "symlink.numeric.cache.CacheContents": "the `symlink cache` command's record; the cache module stays display-free "
+    "symlink.numeric.cache_folder.CacheContents": "the `symlink cache` command's record; the cache module stays display-free "
                                    "on the warm start's path",
 }
 

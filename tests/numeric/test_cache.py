@@ -12,6 +12,7 @@ import pytest
 import sympy as sp
 
 import symlink.numeric.cache as cache
+import symlink.numeric.cache_folder as cache_folder
 from cache_fixture import empty_cache  # noqa: F401 - a fixture
 from references import mp_fourbar
 from symlink.numeric.cache import cache_directory, cache_key, clear_memory, definition, generated_code
@@ -230,11 +231,11 @@ def edited(relative: str):
 
 def key_with(monkeypatch, reader) -> str:
     monkeypatch.setattr(cache, "_module_bytes", reader)
-    cache._source_digest.cache_clear()
+    cache._source_digest.cache_clear(); cache._module_digest.cache_clear()
     try:
         return cache_key(fourbar(), OUTPUTS)
     finally:
-        cache._source_digest.cache_clear()
+        cache._source_digest.cache_clear(); cache._module_digest.cache_clear()
 
 
 @pytest.mark.parametrize("relative", ["plot/__init__.py", "plot/animation.py", "plot/view.py", "cli/__init__.py",
@@ -468,7 +469,7 @@ def listing(folder):
 
 
 def test_info_counts_and_clear_removes_only_what_symlink_wrote(folder):
-    from symlink.numeric.cache import cache_contents, clear_cache
+    from symlink.numeric.cache_folder import cache_contents, clear_cache
     code = generated_code(fourbar(), ["rocker"])
     entry = folder / f"{code.key}.json"
     bytecode = cache.entry_path(folder, code.key, bytecode=True)
@@ -502,7 +503,7 @@ def test_info_counts_and_clear_removes_only_what_symlink_wrote(folder):
 
 
 def test_a_real_compiled_library_is_counted_and_cleared(folder):
-    from symlink.numeric.cache import cache_contents, clear_cache
+    from symlink.numeric.cache_folder import cache_contents, clear_cache
     from symlink.numeric.compiled import CompilerUnavailable, compile_shared
     try:
         compile_shared("double twice(double x) { return 2 * x; }")
@@ -518,7 +519,7 @@ def test_a_real_compiled_library_is_counted_and_cleared(folder):
 
 @pytest.mark.parametrize("mode, why", [(0o770, "writable by group"), (0o707, "writable by others")])
 def test_clear_refuses_a_folder_others_can_write(tmp_path, mode, why):
-    from symlink.numeric.cache import cache_contents, clear_cache
+    from symlink.numeric.cache_folder import cache_contents, clear_cache
     folder = tmp_path / "shared"
     folder.mkdir()
     (folder / f"{HEX}.json").write_text("{}")
@@ -531,7 +532,7 @@ def test_clear_refuses_a_folder_others_can_write(tmp_path, mode, why):
 
 
 def test_a_compiled_folder_others_can_write_is_left_alone(folder):
-    from symlink.numeric.cache import cache_contents, clear_cache
+    from symlink.numeric.cache_folder import cache_contents, clear_cache
     folder.mkdir(mode=0o700)
     (folder / "compiled").mkdir()
     (folder / "compiled" / f"{HEX}.so").write_text("planted")
@@ -542,14 +543,14 @@ def test_a_compiled_folder_others_can_write_is_left_alone(folder):
 
 
 def test_a_folder_that_does_not_exist_is_empty_and_not_created(tmp_path):
-    from symlink.numeric.cache import cache_contents, clear_cache
+    from symlink.numeric.cache_folder import cache_contents, clear_cache
     folder = tmp_path / "never"
     assert (cache_contents(folder).exists, clear_cache(folder).entries) == (False, 0)
     assert not folder.exists()
 
 
 def test_a_file_where_the_folder_should_be_is_not_trusted(tmp_path):
-    from symlink.numeric.cache import cache_contents, clear_cache
+    from symlink.numeric.cache_folder import cache_contents, clear_cache
     (tmp_path / "file").write_text("")
     assert "not a folder" in cache_contents(tmp_path / "file").problem
     with pytest.raises(ValueError, match="not a folder"):
@@ -691,5 +692,5 @@ def test_under_python_O_the_bytecode_has_its_own_name_which_symlink_counts_as_it
     monkeypatch.setattr(cache, "sys", types.SimpleNamespace(flags=types.SimpleNamespace(optimize=2)))
     optimized = cache.entry_path(folder, HEX, bytecode=True).name
     assert optimized == f"{HEX}.{importlib.util.MAGIC_NUMBER.hex()}.opt-2.code" and optimized != plain
-    assert re.match(cache._OWN_NAMES, optimized) and re.match(cache._OWN_NAMES, f".{optimized}.{HEX[:12]}.tmp")
+    assert re.match(cache_folder._OWN_NAMES, optimized) and re.match(cache_folder._OWN_NAMES, f".{optimized}.{HEX[:12]}.tmp")
     assert cache._bytecode_header(HEX, "x = 1\n") != plain_header  # a file renamed across levels is not used

@@ -161,12 +161,12 @@ def test_the_catalog_key_changes_with_what_it_stands_for(monkeypatch):
     monkeypatch.undo()
     original = cache._module_bytes
     monkeypatch.setattr(cache, "_module_bytes", lambda path: original(path) + (b" " if path.stem == "notation" else b""))
-    cache._source_digest.cache_clear()
+    cache._source_digest.cache_clear(); cache._module_digest.cache_clear()
     try:
         assert key != cache.catalog_key("fourbar", ["rocker"], ENTRY_KIND)
     finally:
         monkeypatch.undo()
-        cache._source_digest.cache_clear()
+        cache._source_digest.cache_clear(); cache._module_digest.cache_clear()
 
 
 # --- every input dtype is computed in float64 (issue 22, item 5) ----------------------------------------------

@@ -45,10 +45,14 @@ from .options import Parser, check_outputs
 
 __all__ = ["main", "build_parser", "COMMANDS"]
 
-#: The command modules (in this package), in the order ``symlink --help`` lists their commands; each has
-#: ``register(commands)``, which adds its commands to the subparsers ``commands``.
-COMMANDS = ("tables", "dynamics", "plan", "pictures", "run", "bench", "analyze", "loop", "quick_return", "synthesize",
-            "export", "cache", "sweep", "atlas", "tolerance", "parts", "studio")
+#: The command modules (in this package), in the order ``symlink --help`` lists their commands, each with the
+#: commands its ``register(commands)`` adds to the subparsers ``commands``; :mod:`.tables` adds a table command
+#: for each catalog linkage besides (named for it), so a word that no module lists here is looked for in order.
+COMMANDS = {"tables": ("fourbar", "table"), "dynamics": ("flywheel",), "plan": ("plan",),
+            "pictures": ("draw", "curve", "animate", "view"), "run": ("run",), "bench": ("bench",),
+            "analyze": ("analyze",), "loop": ("loop",), "quick_return": ("quick-return",),
+            "synthesize": ("synthesize",), "export": ("export", "derive"), "cache": ("cache",), "sweep": ("sweep",),
+            "atlas": ("atlas",), "tolerance": ("tolerance",), "parts": ("parts",), "studio": ("studio",)}
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
 
@@ -56,9 +60,10 @@ EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
 def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     """The ``symlink`` parser with every subcommand (each builds its options when used).
 
-    With ``command`` (the first word of a command line), the command modules are imported and registered
-    in order only until one has registered that command: the others are not imported.  A word that no
-    module registers ends with every command registered, so that the error lists them all.
+    With ``command`` (the first word of a command line), only the module that :data:`COMMANDS` lists it under
+    is imported and registered (a catalog linkage's table command: the modules in order until one has
+    registered it); the others are not imported.  A word that no module registers ends with every command
+    registered, so that the error lists them all.
 
     >>> sorted(build_parser("fourbar")._subparsers._group_actions[0].choices)[:2]
     ['fivebar', 'fourbar']
@@ -68,7 +73,8 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
                            "130 interrupted.  'symlink COMMAND --help' describes a command.")
     parser.add_argument("--version", action="version", version=f"symlink {__version__}")
     commands = parser.add_subparsers(dest="command", required=True, parser_class=Parser, metavar="COMMAND")
-    for name in COMMANDS:
+    owner = [name for name, words in COMMANDS.items() if command in words]
+    for name in owner or COMMANDS:
         importlib.import_module(f"{__name__}.{name}").register(commands)
         if command is not None and command in commands.choices:
             break

@@ -103,3 +103,28 @@ def test_a_long_table_streams_its_first_rows_before_the_rest_is_computed(tmp_pat
     finally:
         child.kill()
         child.communicate()
+
+
+@pytest.mark.parametrize("module", sorted(__import__("symlink.cli", fromlist=["COMMANDS"]).COMMANDS))
+def test_each_command_module_registers_what_the_command_list_says(module):
+    """``symlink.cli.COMMANDS`` names each module's commands, so that a command line imports that module alone;
+    the table module registers the catalog's table commands besides."""
+    import importlib
+
+    from symlink.cli import COMMANDS
+    from symlink.cli.options import Parser
+    commands = Parser(prog="symlink").add_subparsers(dest="command", parser_class=Parser)
+    importlib.import_module(f"symlink.cli.{module}").register(commands)
+    registered = set(commands.choices)
+    assert set(COMMANDS[module]) <= registered
+    if module != "tables":
+        assert registered == set(COMMANDS[module])
+
+
+def test_a_command_line_imports_the_module_of_its_command_only():
+    program = ("import sys, symlink.cli as cli; cli.build_parser('tolerance'); "
+               "print(*sorted(name for name in sys.modules if name.startswith('symlink.cli.')))")
+    done = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True, check=True, timeout=120)
+    imported = set(done.stdout.split())
+    assert "symlink.cli.tolerance" in imported
+    assert not {"symlink.cli.sweep", "symlink.cli.analyze", "symlink.cli.tables"} & imported

@@ -15,10 +15,10 @@ folder is counted as ``others`` and left alone, and nothing is followed through 
 >>> from symlink.mechanism.catalog import fourbar
 >>> code = generated_code(fourbar(), ["rocker"])
 >>> contents = cache_contents(cache_directory())
->>> contents.trusted, contents.entries
-(True, 2)
->>> clear_cache(cache_directory()).entries, cache_contents(cache_directory()).entries
-(2, 0)
+>>> contents.trusted, contents.entries >= 2  # the solver's text and bytecode, and the source digest if new
+(True, True)
+>>> clear_cache(cache_directory()).entries == contents.entries, cache_contents(cache_directory()).entries
+(True, 0)
 >>> _ = os.environ.pop("SYMLINK_CACHE") if previous is None else os.environ.update(SYMLINK_CACHE=previous)
 """
 from __future__ import annotations

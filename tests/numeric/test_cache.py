@@ -13,7 +13,7 @@ import sympy as sp
 
 import symlink.numeric.cache as cache
 import symlink.numeric.cache_folder as cache_folder
-from cache_fixture import empty_cache  # noqa: F401 - a fixture
+from cache_fixture import edit_module, empty_cache, forget_source_digests  # noqa: F401 - a fixture
 from references import mp_fourbar
 from symlink.numeric.cache import cache_directory, cache_key, clear_memory, definition, generated_code
 from symlink.mechanism.catalog import fourbar
@@ -218,40 +218,54 @@ def test_solver_goes_through_the_cache(folder, monkeypatch):
 
 # --- what the key digests ------------------------------------------------------
 
-def edited(relative: str):
-    """A stand-in for reading a module's bytes in which the package file ``relative`` (``"codegen/c.py"``) is edited."""
-    original = cache._module_bytes
-    target = (Path(cache.__file__).parent.parent / relative).resolve()
-    assert target.is_file(), f"symlink/{relative} is gone: name the module that took its place"
-
-    def read(path: Path) -> bytes:
-        return original(path) + (b"\n# edited\n" if path.resolve() == target else b"")
-    return read
-
-
-def key_with(monkeypatch, reader) -> str:
-    monkeypatch.setattr(cache, "_module_bytes", reader)
-    cache._source_digest.cache_clear(); cache._module_digest.cache_clear()
+def key_with(monkeypatch, edit: str | None = None) -> str:
+    """The four-bar's key, as a new process works it out, with the package file ``edit`` edited."""
+    if edit is not None:
+        edit_module(monkeypatch, edit)
+    forget_source_digests()
     try:
         return cache_key(fourbar(), OUTPUTS)
     finally:
-        cache._source_digest.cache_clear(); cache._module_digest.cache_clear()
+        monkeypatch.undo()
+        forget_source_digests()
 
 
 @pytest.mark.parametrize("relative", ["plot/__init__.py", "plot/animation.py", "plot/view.py", "cli/__init__.py",
                                       "cli/bench.py", "analysis/__init__.py", "common/files.py",
                                       "numeric/results.py"])
 def test_editing_a_module_that_shapes_no_code_keeps_the_key(monkeypatch, relative):
-    base = key_with(monkeypatch, cache._module_bytes)
-    assert key_with(monkeypatch, edited(relative)) == base
+    base = key_with(monkeypatch)
+    assert key_with(monkeypatch, relative) == base
 
 
 @pytest.mark.parametrize("relative", ["symbolic/vectors.py", "symbolic/loops.py", "symbolic/position.py",
                                       "symbolic/motion.py", "symbolic/linkage.py", "codegen/c.py", "codegen/octave.py",
                                       "codegen/newton.py", "codegen/latex.py", "io/export.py", "numeric/compiled.py"])
 def test_editing_a_module_that_shapes_code_changes_the_key(monkeypatch, relative):
-    base = key_with(monkeypatch, cache._module_bytes)
-    assert key_with(monkeypatch, edited(relative)) != base
+    base = key_with(monkeypatch)
+    assert key_with(monkeypatch, relative) != base
+
+
+def test_a_warm_process_reads_the_source_digest_from_the_cache_and_an_edit_hashes_again(folder, monkeypatch):
+    """The digest of symlink's source is an entry keyed by each file's time, size and inode: a second process
+    reads no source file; an edited file (a new size and time) is read and hashed again."""
+    import hashlib
+    names = cache._code_shaping_names(cache.CODE_SHAPING)
+    package = Path(cache.__file__).parent.parent
+    expected = hashlib.blake2b()  # the digest written out: each file's name and its BLAKE2b
+    for name in names:
+        expected.update(name.encode() + b"\0" + hashlib.blake2b((package / name).read_bytes()).digest())
+    forget_source_digests()
+    assert cache._source_digest() == expected.hexdigest()
+    read = count_calls(monkeypatch, cache, "_module_bytes")
+    forget_source_digests()
+    clear_memory()  # a new process: the digest comes from the disk entry
+    assert cache._source_digest() == expected.hexdigest() and len(read) == 0
+    edit_module(monkeypatch, "codegen/c.py")
+    clear_memory()
+    assert cache._source_digest() != expected.hexdigest() and len(read) >= 1
+    monkeypatch.undo()
+    forget_source_digests()
 
 
 def test_every_code_shaping_name_is_a_module_or_package():
@@ -282,6 +296,8 @@ def planted(folder: Path, marker: Path) -> None:
     """Rewrite every entry in ``folder`` as an attacker would: code that leaves ``marker``, checksum fixed up."""
     for path in folder.glob("*.json"):
         entry = json.loads(path.read_text())
+        if len(entry["text"]) == 128 and entry["text"].isalnum():
+            continue  # the digest of symlink's source (cache._source_digest): a key's part, not code
         entry["text"] = f"import pathlib; pathlib.Path({str(marker)!r}).write_text('ran')\n" + entry["text"]
         entry["sha256"] = cache._checksum(entry["key"], entry["text"])
         path.write_text(json.dumps(entry))
@@ -473,7 +489,8 @@ def test_info_counts_and_clear_removes_only_what_symlink_wrote(folder):
     code = generated_code(fourbar(), ["rocker"])
     entry = folder / f"{code.key}.json"
     bytecode = cache.entry_path(folder, code.key, bytecode=True)
-    ours = {entry.name: entry.stat().st_size, bytecode.name: bytecode.stat().st_size}
+    assert entry.is_file() and bytecode.is_file()
+    ours = {path.name: path.stat().st_size for path in folder.iterdir()}  # and the source digest's entry, if new
     (folder / "compiled").mkdir(mode=0o700)
     build = folder / "compiled" / ".build-x1y2z3_4"  # a killed build: a folder with a half-written source
     build.mkdir()

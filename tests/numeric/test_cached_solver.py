@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy
 import pytest
 
-from cache_fixture import empty_cache  # noqa: F401 - a fixture
+from cache_fixture import edit_module, empty_cache, forget_source_digests  # noqa: F401 - a fixture
 from references import mp_fourbar
 from symlink.numeric import cache
 from symlink.numeric.cached_solver import ENTRY_KIND, CachedSolver
@@ -159,14 +159,12 @@ def test_the_catalog_key_changes_with_what_it_stands_for(monkeypatch):
     monkeypatch.setattr(cache, "sympy_version", lambda: "0.0")
     assert key != cache.catalog_key("fourbar", ["rocker"], ENTRY_KIND)
     monkeypatch.undo()
-    original = cache._module_bytes
-    monkeypatch.setattr(cache, "_module_bytes", lambda path: original(path) + (b" " if path.stem == "notation" else b""))
-    cache._source_digest.cache_clear(); cache._module_digest.cache_clear()
+    edit_module(monkeypatch, "common/notation.py", b" ")
     try:
         assert key != cache.catalog_key("fourbar", ["rocker"], ENTRY_KIND)
     finally:
         monkeypatch.undo()
-        cache._source_digest.cache_clear(); cache._module_digest.cache_clear()
+        forget_source_digests()
 
 
 # --- every input dtype is computed in float64 (issue 22, item 5) ----------------------------------------------

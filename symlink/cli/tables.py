@@ -42,7 +42,6 @@ import numpy
 from ..common.angles import from_radians, half_turn, to_radians, wrap
 from ..common.names import FORMER_CATALOG_NAMES, SixBarNameNote, former_name_note
 from ..numeric.input_sweep import InputSweep, crank_speeds, table_inputs
-from ..numeric.newton_table import newton_results
 from ..io.table_source import TableSource, facts_values, table_columns, table_facts
 from .options import (add_fourbar_lengths, add_sweep_options, angle, assignments, branches, command_help, finite,
                       fourbar_lengths, input_sweep)
@@ -298,6 +297,7 @@ def _numeric(table: Table, facts: Mapping[str, Any], solver: Callable[[], Any], 
                              f"angle {first}")
         raise ValueError(f"{name} cannot be assembled at the first crank angle, {first} "
                          "(its scan for assemblies finds none)")
+    from ..numeric.newton_table import newton_results
     return newton_results(facts, solver, values, inputs, candidates,
                           advice=lambda fits: f"use at most {fits:,} crank angles (a larger --step or fewer --angles)")
 

@@ -32,7 +32,8 @@ def run(args: argparse.Namespace) -> int:
     A scene whose facts are in the disk cache (the same linkage, outputs and dynamics as a scene run before,
     whatever its numbers) is evaluated from there, without SymPy (:mod:`symlink.io.scene_text`); the first run
     reads it in full and keeps them.  A scene with a ``[guess]`` table (a linkage without a closed form) is solved
-    by Newton's method as ``symlink table NAME --guess ...`` solves it (:func:`_run_newton`), warm alike.
+    by Newton's method as ``symlink table NAME --guess ...`` solves it (:func:`_run_newton`), warm alike: its reader
+    (:func:`symlink.io.scene.scene_from_text`) takes the table's facts and solver from the cache.
     """
     from pathlib import Path
     from ..common.files import read_input_text, read_stdin_text
@@ -42,13 +43,12 @@ def run(args: argparse.Namespace) -> int:
     else:
         path = Path(args.scene)
         text, source, folder = read_input_text(path, MAX_SCENE_BYTES, "scene file"), str(path), path.parent
-    newton = _newton_source(text, folder)
-    if newton is not None:
-        return _run_newton(text, source, newton, args)
-    warm = warm_scene(text, folder)
+    warm = warm_scene(text, folder)  # never a scene with a [guess]
     if warm is None:
-        from ..io.scene import scene_from_text
+        from ..io.scene import NewtonSceneFile, scene_from_text
         found = scene_from_text(text, source, folder)  # the full reader: SymPy, and the messages of bad input
+        if isinstance(found, NewtonSceneFile):  # no closed form: Newton's method from the cache, no SymPy when warm
+            return _run_newton(found, args)
         warm = cache_scene(text, folder, found)
         if warm is None:
             return _run_scene(found, args)
@@ -94,43 +94,10 @@ def _run_scene(found, args: argparse.Namespace) -> int:
     return 0
 
 
-def _newton_source(text: str, folder) -> object | None:
-    """The table source (:class:`symlink.io.table_source.TableSource`) of a scene that gives a ``[guess]``
-    table, whose linkage (a catalog name or a linkage file) is keyed; None for any other (the scene readers say what
-    is wrong)."""
-    from pathlib import Path
-    from ..common.numbers import toml_data
-    from ..io.scene_text import MAX_SCENE_BYTES, linkage_request
-    if len(text) > MAX_SCENE_BYTES:
-        return None
-    try:
-        data = toml_data(text)
-    except ValueError:
-        return None
-    source = data.get("linkage")
-    if "guess" not in data or not isinstance(source, str):
-        return None
-    request = linkage_request(source, folder)
-    if request is None:
-        return None
-    from ..io.table_source import TableSource
-    return TableSource(source if "file_sha256" not in request else str(Path(folder) / source))
-
-
-def _run_newton(text: str, where: str, source, args: argparse.Namespace) -> int:
-    """Print a scene of a linkage without a closed form, solved as ``symlink table NAME --guess ...`` solves it
-    (:func:`symlink.cli.tables.newton_table`), from its ``[guess]`` (the facts and the solver from the disk cache:
-    a warm run imports no SymPy); ``where``: the scene's name in messages."""
-    from ..common.numbers import toml_data
-    from ..io.scene_text import newton_scene  # plain data: no SymPy
-    from .tables import newton_table
-    facts = source.facts
-    try:
-        scene = newton_scene(toml_data(text), facts, defaults="file_sha256" in (source.request or {}))
-    except ValueError as error:
-        raise ValueError(f"{where}: {error}") from None
-    blocks = newton_table(facts, source.solver, scene.values, scene.sweep.array(), scene.speed, scene.accel,
-                          scene.guess, scene.units)
-    write_table(blocks, [scene.input_column, "branch", *scene.outputs], scene.units, args.format or scene.format,
-                scene.angle_columns, lambda: "", scene.column_units)
+def _run_newton(found, args: argparse.Namespace) -> int:
+    """Print a scene of a linkage without a closed form (:class:`symlink.io.scene.NewtonSceneFile`), solved from its
+    ``[guess]`` as ``symlink table NAME --guess ...`` solves it, over the whole sweep at once."""
+    columns = [found.input_column, "branch", *found.scene.outputs]
+    write_table([(found.angles, found.scene.evaluate())], columns, found.units, args.format or found.format,
+                {found.input_column} | found.angle_columns, lambda: "", found.column_units)
     return 0

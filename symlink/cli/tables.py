@@ -40,7 +40,7 @@ import numpy
 
 from ..common.angles import from_radians, half_turn, to_radians, wrap
 from ..common.names import FORMER_CATALOG_NAMES, SixBarNameNote, former_name_note
-from ..numeric.input_sweep import InputSweep, crank_speeds
+from ..numeric.input_sweep import InputSweep, crank_speeds, table_inputs
 from ..io.table_source import TableSource, facts_values, table_columns, table_facts
 from .options import (add_fourbar_lengths, add_sweep_options, angle, assignments, branches, command_help, finite,
                       fourbar_lengths, input_sweep)
@@ -199,17 +199,6 @@ def _values(table: Table, facts: Mapping[str, Any], args: argparse.Namespace,
     return values
 
 
-def _input_values(facts: Mapping[str, Any], values: Mapping[str, float], theta, speeds, accel) -> dict:
-    """The inputs, their rates and accelerations along the sweep (further inputs geared to the crank)."""
-    names, rates, accelerations = facts["inputs"], facts["rates"], facts["accelerations"]
-    inputs = {names[0]: theta, rates[0]: speeds, accelerations[0]: accel}
-    for name, speed, acceleration in zip(names[1:], rates[1:], accelerations[1:]):
-        ratio = values[f"{name}_ratio"]
-        inputs.update({name: values[name] + ratio * numpy.asarray(theta), speed: ratio * speeds,
-                       acceleration: ratio * accel})
-    return inputs
-
-
 def _branch_signs(facts: Mapping[str, Any], args: argparse.Namespace) -> dict[object, dict[str, int]]:
     """The branch column's value and the branch arguments, for each branch asked for."""
     names = facts["branches"]
@@ -249,7 +238,7 @@ def _closed_form(table: Table, facts: Mapping[str, Any], solver: Any, values: di
         from ..numeric.crank_ranges import scanned_range
 
         def assembled(branch, theta):
-            return solve(branch, _input_values(facts, values, theta, 0.0, 0.0))["assembled"]
+            return solve(branch, table_inputs(facts, values, theta, 0.0, 0.0))["assembled"]
 
         texts = {key: _spans_text(scanned_range(lambda t, b=branch: assembled(b, t)), args.units)
                  for key, branch in choices.items()}
@@ -289,7 +278,8 @@ def _newton_solver(linkage: Linkage | None, solver: Any) -> Callable[[], Any]:
 
 def _numeric(table: Table, facts: Mapping[str, Any], solver: Callable[[], Any], values: dict, inputs: dict, angles,
              args: argparse.Namespace):
-    """Results of the Newton solver, continued from the first assembly (of those chosen) that gets through.
+    """Results of the Newton solver (:func:`symlink.numeric.newton_table.newton_results`), continued from the first
+    assembly (of those chosen: :func:`_start`) that gets through.
 
     ``facts``: :func:`table_facts` (its ``newton`` entry, :func:`newton_facts`); ``solver`` makes the solver (a
     :class:`~symlink.numeric.solver.NumericSolver` or a cached one), once a start is known.
@@ -304,37 +294,9 @@ def _numeric(table: Table, facts: Mapping[str, Any], solver: Callable[[], Any], 
                              f"angle {first}")
         raise ValueError(f"{name} cannot be assembled at the first crank angle, {first} "
                          "(its scan for assemblies finds none)")
-    newton_solver = solver()
-    from ..common.limits import require_memory
-    count = len(theta)  # Newton continues along the whole sweep at once: refused here, in the command's terms
-    require_memory(count, newton_solver.bytes_per_value, f"a table of {count:,} crank angles of {name} (solved by "
-                   "Newton's method all at once)",
-                   advice=lambda fits: f"use at most {fits:,} crank angles (a larger --step or fewer --angles)")
-    parameters = {p: values[p] for p in facts["parameters"]}
-    failure: ValueError | None = None
-    for start in candidates:
-        try:
-            result = newton_solver(guess=start, **inputs, **parameters)
-        except ValueError as error:
-            failure = failure or error
-            continue
-        columns = {column: result[output] for column, output in newton["outputs"].items()}
-        return {1: {**columns, "assembled": result["assembled"]}}
-    assert failure is not None  # there was a candidate, and each one failed
-    raise failure
-
-
-def newton_table(facts: Mapping[str, Any], solver: Callable[[], Any], values: Mapping[str, float],
-                 angles: numpy.ndarray, speed: float, accel: float, guess: Mapping[str, float], units: str):
-    """The one block of a table solved by Newton's method from ``guess`` (column label: angle in ``units`` at the
-    first of ``angles``), as ``symlink table NAME --guess ...`` solves it: for ``symlink run`` of a scene without a
-    closed form.  ``values``: the parameters by name (angles in radians); ``solver`` makes the solver."""
-    theta = to_radians(numpy.asarray(angles, dtype=float), units)
-    speeds = crank_speeds(theta, speed, accel, float(theta[0]))
-    table = Table(facts["name"], f"the table of {facts['name']}", (), "")
-    args = argparse.Namespace(guess=dict(guess), units=units)
-    return [(angles, _numeric(table, facts, solver, dict(values), _input_values(facts, values, theta, speeds, accel),
-                              angles, args))]
+    from ..numeric.newton_table import newton_results
+    return newton_results(facts, solver, values, inputs, candidates,
+                          advice=lambda fits: f"use at most {fits:,} crank angles (a larger --step or fewer --angles)")
 
 
 def _print_assemblies(table: Table, facts: Mapping[str, Any], values: dict, first: float,
@@ -427,7 +389,7 @@ def _print_table(table: Table, linkage: Linkage | None, values: dict[str, float]
 
     def inputs_at(angles):
         theta, speeds = speeds_at(angles)
-        return _input_values(facts, values, theta, speeds, args.crank_accel)
+        return table_inputs(facts, values, theta, speeds, args.crank_accel)
 
     if facts["closed_form"]:
         if solver is None:

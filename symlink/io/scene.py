@@ -51,36 +51,38 @@ is checked; anything unknown or out of range is one line of error.
 """
 from __future__ import annotations
 
-import math
 from functools import cached_property, lru_cache
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import TYPE_CHECKING, Any, Mapping, Sequence
 
 import numpy
-import sympy as sp
 
 from ..numeric.cache import GeneratedCode, generated_code
 from ..numeric.call_arguments import check_argument_names
 from ..common.files import excerpt, read_input_text
-from ..mechanism.catalog import CATALOG
 from ..common.display import record_html
-from ..numeric.input_sweep import InputSweep
-from .linkage_file import LinkageFile, catalog_name, dynamic_model, load_linkage
+from ..numeric.input_sweep import InputSweep, crank_speeds, table_inputs
+from ..numeric.newton_table import newton_results
 from .scene_text import (BRANCH_CHOICES, FORMATS, INPUT_KEYS, MAX_SCENE_BYTES, TOP_KEYS, UNITS,  # noqa: F401
-                         choice as _choice, input_table, number as _number, table as _table)
+                         NewtonScene, catalog_file_names, choice as _choice, input_table, linkage_request,
+                         newton_scene, number as _number, table as _table)
+from .table_source import TableSource
 from ..common.numbers import toml_data
 from ..common.angles import to_radians
-from ..symbolic.linkage import Linkage, Program
-from ..symbolic.closure import is_angle
-from ..common.notation import math_text
 from ..numeric.results import Results
-from ..symbolic.sensitivity import split_sensitivity_name
-from ..numeric.solver import Solver, crank_speeds
-from ..symbolic.vectors import acceleration, rate
+
+if TYPE_CHECKING:
+    import sympy as sp
+
+    from ..numeric.solver import Solver
+    from ..symbolic.linkage import Linkage, Program
+
+# The symbolic side (linkages, their derivation, Solver: SymPy) is imported inside the functions that need it, so
+# that a scene of a linkage without a closed form, its solver in the disk cache, is read and evaluated without SymPy.
 
 
-__all__ = ["Scene", "SceneFile", "catalog_linkage", "angle_outputs", "read_scene", "scene_from_mapping",
-           "scene_from_text"]
+__all__ = ["Scene", "SceneFile", "NewtonSceneFile", "catalog_linkage", "angle_outputs", "read_scene",
+           "scene_from_mapping", "scene_from_text"]
 
 
 
@@ -110,11 +112,13 @@ def catalog_linkage(name: str) -> Linkage:
     >>> linkage.name, linkage.unknowns, linkage is symlink.catalog_linkage("slider-crank")
     ('slider-crank', (beta, s), True)
     """
+    from .linkage_file import catalog_name
     return _catalog_linkage(catalog_name(name))
 
 
 @lru_cache(maxsize=None)
 def _catalog_linkage(name: str) -> Linkage:
+    from ..mechanism.catalog import CATALOG
     return CATALOG[name]()
 
 
@@ -126,6 +130,9 @@ def angle_outputs(linkage: Linkage, outputs: Sequence[str]) -> set[str]:
     >>> sorted(angle_outputs(catalog_linkage("fourbar"), ["rocker", "rocker_speed", "C_x", "transmission"]))
     ['rocker', 'transmission']
     """
+    import sympy as sp
+
+    from ..symbolic.closure import is_angle
     found = set()
     known = set(linkage.output_names())
     for name in outputs:
@@ -173,6 +180,7 @@ class Scene:
 
     def __init__(self, linkage: Linkage | str, outputs: Sequence[str],
                  values: Mapping[str, object] | None = None, branch: int | str = 1) -> None:
+        from ..symbolic.sensitivity import split_sensitivity_name
         self.linkage = catalog_linkage(linkage) if isinstance(linkage, str) else linkage
         self.outputs = tuple(outputs)
         if not self.outputs:
@@ -206,6 +214,7 @@ class Scene:
     @cached_property
     def solver(self) -> Solver:
         """A checked solver of these outputs, with the ``singular`` flag where they divide by a loop's determinant."""
+        from ..numeric.solver import Solver
         return Solver(self.linkage, self.outputs)
 
     def program(self) -> Program:
@@ -235,6 +244,7 @@ class Scene:
         Symbolic work (the positions, and the rates only if an output needs them),
         done once per linkage; ``ValueError`` for a linkage without a closed form.
         """
+        from ..symbolic.vectors import acceleration, rate
         kept = {symbol for symbol, _ in self.program().assignments}
         unknowns = self.linkage.unknowns
         every = unknowns + tuple(rate(q) for q in unknowns) + tuple(acceleration(q) for q in unknowns)
@@ -266,6 +276,9 @@ class Scene:
         >>> print(Scene(fourbar(), ["rocker"], branch="both")._repr_latex_())
         $\begin{array}{ll}\text{scene of fourbar} & \text{rocker},\ \sigma = \pm 1\\ \text{computes} & \phi\\ \text{skips} & \beta, \dot{\beta}, \dot{\phi}, \ddot{\beta}, \ddot{\phi}\end{array}$
         """
+        import sympy as sp
+
+        from ..common.notation import math_text
         sign = r"\pm 1" if self.branch == "both" else f"{self.branch:+d}"
         rows = [f"{math_text('scene of ' + self.linkage.name)} & "
                 f"{', '.join(math_text(o) for o in self.outputs)},\\ \\sigma = {sign}"]
@@ -313,6 +326,7 @@ class DynamicScene:
 
     def dynamic_linkage(self) -> Linkage:
         """The linkage with its dynamic outputs (symbolic work: only where the entry is derived or quantities are given)."""
+        from .linkage_file import LinkageFile, dynamic_model
         model = dynamic_model(self.table, self.kinematics)
         found = LinkageFile(self.kinematics, {}, "", model).with_dynamics().linkage
         for name in self.outputs:
@@ -330,6 +344,7 @@ class DynamicScene:
                           angles=sorted(angle_outputs(linkage, self.outputs)))
 
     def _full(self) -> Solver:
+        from ..numeric.solver import Solver
         return Solver(self.dynamic_linkage(), self.outputs)
 
     def scene(self, values: Mapping[str, object], branch: int | str) -> Scene:
@@ -390,6 +405,7 @@ class SceneFile:
 
     def values_at(self, angles: numpy.ndarray) -> dict[str, object]:
         """The driven input's values at ``angles`` (in ``units``): its angle in radians, rate and acceleration."""
+        from ..symbolic.vectors import acceleration, rate
         driven = self.scene.linkage.inputs[0]
         theta = to_radians(angles, self.units)
         values: dict[str, object] = {driven.name: theta}
@@ -400,6 +416,94 @@ class SceneFile:
         if acceleration(driven).name in takes:
             values[acceleration(driven).name] = self.accel
         return values
+
+
+class _NewtonScene(Scene):
+    """A scene of a linkage without a closed form: Newton's method from ``guess`` (each unknown by name, in
+    radians) at the first input value, continued along the input values in their order, as ``symlink table NAME
+    --guess ...`` solves it (:func:`symlink.numeric.newton_table.newton_results`); branch 1, its one assembly.
+
+    Its table's facts and Newton solver come from the disk cache (:class:`~symlink.io.table_source.TableSource`),
+    so a warm scene imports no SymPy; the linkage itself is built only when asked for.
+    """
+
+    def __init__(self, source: TableSource, outputs: Sequence[str], values: Mapping[str, object],
+                 guess: Mapping[str, float]) -> None:
+        self.table_source, self.facts = source, source.facts
+        self.outputs, self.branch, self.values, self.guess = tuple(outputs), 1, dict(values), dict(guess)
+
+    @cached_property
+    def linkage(self) -> Linkage:  # type: ignore[override]  # built when asked for (SymPy), not to evaluate
+        return self.table_source.found().linkage
+
+    @cached_property
+    def solver(self) -> Any:  # the cached Newton solver (symlink.numeric.cached_solver.CachedNewtonSolver)
+        return self.table_source.solver()
+
+    @cached_property
+    def code(self) -> GeneratedCode:
+        return GeneratedCode("", self.solver.source, self.solver.function)
+
+    def evaluate(self, **values) -> dict[int, Results]:
+        """The outputs on branch 1 at the scene's values updated by ``values`` (the input in radians, its rate and
+        acceleration, the parameters), solved from the scene's guess at the first input value."""
+        merged = {**self.values, **values}
+        parameters = set(self.facts["parameters"])
+        inputs = {name: value for name, value in merged.items() if name not in parameters}
+        block = newton_results(self.facts, lambda: self.solver, merged, inputs, [self.guess])[1]
+        shown = {**{name: block[name] for name in self.outputs}, "assembled": block["assembled"]}
+        units = self.facts["column_units"]
+        return {1: Results(shown, {name: units.get(name, "") for name in shown}, merged, self.solver.input_units)}
+
+    def __repr__(self) -> str:
+        return f"Scene({self.facts['name']!r}, {list(self.outputs)}, branch=1)"
+
+
+class NewtonSceneFile(SceneFile):
+    """A scene file of a linkage without a closed form, with its ``[guess]`` (checked by
+    :func:`symlink.io.scene_text.newton_scene`): a :class:`SceneFile` whose scene is solved by Newton's method from
+    the guess, as ``symlink run`` solves it, over the whole sweep at once (:attr:`SceneFile.angles`).
+
+    ``column_units``: each printed column's unit (a table's header).
+    """
+
+    def __init__(self, source: TableSource, plain: NewtonScene, defaults: Mapping[str, float]) -> None:
+        labels = source.facts["newton"]["unknowns"]  # label: name
+        guess = {labels[label]: float(to_radians(value, plain.units)) for label, value in plain.guess.items()}
+        super().__init__(_NewtonScene(source, plain.outputs, plain.values, guess), plain.input_column, plain.sweep,
+                         plain.units, plain.format, plain.speed, plain.accel)
+        self.column_units = dict(plain.column_units)
+        self._facts, self._parameters = source.facts, plain.values
+        self._angle_outputs = set(plain.angle_columns) - {plain.input_column}
+        self.source, self.defaults = ("catalog", {}) if not defaults else (source.source, dict(defaults))
+        self.scene.values.update(self.values_at(self.angles))
+
+    @property
+    def angle_columns(self) -> set[str]:
+        """The outputs printed as angles: wrapped, and in ``units``."""
+        return set(self._angle_outputs)
+
+    def values_at(self, angles: numpy.ndarray) -> dict[str, object]:
+        """The driven input at ``angles`` (in ``units``): its angle in radians, its rate and acceleration."""
+        theta = to_radians(angles, self.units)
+        speeds = crank_speeds(theta, self.speed, self.accel, float(to_radians(self.sweep.first, self.units)))
+        return table_inputs(self._facts, self._parameters, theta, speeds, self.accel)
+
+
+def _newton_scene_file(data: Mapping, folder: str | Path) -> NewtonSceneFile | None:
+    """The scene of parsed ``data`` with a ``[guess]`` table whose linkage (a catalog name or a linkage file) is
+    keyed, solved by Newton's method (its facts and solver from the disk cache: no SymPy when warm); ``ValueError``
+    naming the first bad key or value, and for a linkage with a closed form.  None for any other scene."""
+    linkage = data.get("linkage")
+    if "guess" not in data or not isinstance(linkage, str):
+        return None
+    request = linkage_request(linkage, folder)
+    if request is None:
+        return None
+    from_file = "file_sha256" in request
+    source = TableSource(str(Path(folder) / linkage) if from_file else linkage)
+    facts = source.facts
+    return NewtonSceneFile(source, newton_scene(data, facts, defaults=from_file), facts["defaults"] if from_file else {})
 
 
 def scene_from_mapping(data: Mapping, folder: str | Path = ".") -> SceneFile:
@@ -413,13 +517,25 @@ def scene_from_mapping(data: Mapping, folder: str | Path = ".") -> SceneFile:
     ...                             "parameters": dict(a=20, b=66, c=56, d=80), "input": {"angles": [0]}})
     >>> round(float(numpy.degrees(found.scene.evaluate()[1]["rocker"][0])), 2)
     110.74
+
+    A scene with a ``[guess]`` of a linkage without a closed form (the catalog's ``stephenson2``) is a
+    :class:`NewtonSceneFile`, solved by Newton's method as ``symlink run`` solves it.
     """
+    newton = _newton_scene_file(data, folder)
+    if newton is not None:
+        return newton
     data = _table(dict(data), "", TOP_KEYS)
     if "linkage" not in data:
-        raise ValueError(f"missing key linkage (one of {', '.join(sorted(CATALOG))})")
+        raise ValueError(f"missing key linkage (one of {', '.join(catalog_file_names())})")
     if not isinstance(data["linkage"], str):
         raise ValueError(f"linkage must be a catalog name or a linkage file, got {data['linkage']!r}")
+    from ..symbolic.closure import is_angle
+    from .linkage_file import LinkageFile, dynamic_model, load_linkage
     found = load_linkage(data["linkage"], folder)
+    if "guess" in data and found.source == "catalog" and not found.linkage.has_closed_form:
+        newton = _newton_scene_file({**data, "linkage": found.linkage.name}, folder)  # spelled otherwise: Stephenson II
+        if newton is not None:
+            return newton
     defaults = {} if found.source == "catalog" else found.defaults  # a catalog scene names every parameter
     outputs = data.get("outputs")
     if not isinstance(outputs, list) or not outputs or not all(isinstance(o, str) for o in outputs):
@@ -478,8 +594,8 @@ def scene_from_mapping(data: Mapping, folder: str | Path = ".") -> SceneFile:
 
 def _check_guess(data: Mapping, linkage: Linkage) -> None:
     """``ValueError`` for a ``[guess]`` of a linkage with a closed form (where ``branch`` chooses the assembly), and
-    for a linkage without one: ``symlink run`` solves it by Newton's method from its ``[guess]``
-    (:func:`symlink.io.scene_text.newton_scene`), which this reader (SymPy, closed forms) does not."""
+    for a linkage without one whose scene did not go to Newton's method (:class:`NewtonSceneFile`): it has no
+    ``[guess]``, or its linkage could not be keyed."""
     if linkage.has_closed_form:
         if "guess" in data:
             raise ValueError(f"guess: {linkage.name} is solved in closed form, where branch chooses the assembly; "
@@ -490,8 +606,8 @@ def _check_guess(data: Mapping, linkage: Linkage) -> None:
     if "guess" not in data:
         raise ValueError(f"guess: {linkage.name} has no closed form: give a [guess] table of every unknown "
                          f"({unknowns}) at the first input angle, and symlink run solves it by Newton's method")
-    raise ValueError(f"guess: {linkage.name} has no closed form: symlink run solves its scene by Newton's method "
-                     "(this reader takes linkages with a closed form)")
+    raise ValueError(f"guess: {linkage.name} has no closed form, and its linkage could not be read again to solve "
+                     "its scene by Newton's method; name it by its catalog name or a linkage file")
 
 
 def scene_from_text(text: str, source: str, folder: str | Path = ".") -> SceneFile:
@@ -519,7 +635,9 @@ def read_scene(path: str | Path) -> SceneFile:
     Returns
     -------
     SceneFile
-        The scene, its input sweep, units and output format.
+        The scene, its input sweep, units and output format; for a scene with a ``[guess]`` of a linkage without
+        a closed form, a :class:`NewtonSceneFile`, solved by Newton's method as ``symlink run`` solves it (from the
+        disk cache: a warm one imports no SymPy).
 
     Raises
     ------

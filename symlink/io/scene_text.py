@@ -308,8 +308,8 @@ def cache_scene(text: str, folder: str | Path, found: Any) -> WarmScene | None:
 
 class NewtonScene:
     """A scene file of a linkage without a closed form, checked against its table's facts (plain data, no SymPy):
-    what ``symlink run`` gives the Newton solver of ``symlink table NAME --guess ...``
-    (:func:`symlink.cli.tables.newton_table`), and how to print it."""
+    what :class:`symlink.io.scene.NewtonSceneFile` gives the Newton solver of ``symlink table NAME --guess ...``
+    (:func:`symlink.numeric.newton_table.newton_results`), and how to print it."""
 
     _repr_html_ = record_html
 

@@ -15,13 +15,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Iterator, Sequence
+from typing import Any, Iterator, Mapping, Sequence
 
 import numpy
 
 from ..common.angles import UNITS
 
-__all__ = ["InputSweep", "MAX_VALUES", "MAX_ANGLE", "crank_speeds"]
+__all__ = ["InputSweep", "MAX_VALUES", "MAX_ANGLE", "crank_speeds", "table_inputs"]
 
 #: More input values than this in one sweep is a mistake, not a table.
 MAX_VALUES = 10_000_000
@@ -167,3 +167,24 @@ def crank_speeds(angles: numpy.ndarray, speed: float, accel: float, first: float
         raise ValueError(f"the crank stops before reaching {math.degrees(first):.6g} deg "
                          f"(speed {speed} rad/s, acceleration {accel} rad/s^2)")
     return direction * numpy.sqrt(squared)
+
+
+def table_inputs(facts: Mapping[str, Any], values: Mapping[str, float], theta: Any, speeds: Any,
+                 accel: float) -> dict[str, Any]:
+    """A table's inputs, their rates and accelerations by name, along the sweep: the first input at ``theta``
+    (radians) turning at ``speeds`` with the uniform acceleration ``accel``, each further input geared to it,
+    ``values[name] + values[name + "_ratio"] * theta``.  ``facts``: the table's names (``inputs``, ``rates``,
+    ``accelerations``: :func:`symlink.io.table_source.table_facts`).
+
+    >>> facts = {"inputs": ["theta", "psi"], "rates": ["thetadot", "psidot"], "accelerations": ["thetaddot", "psiddot"]}
+    >>> inputs = table_inputs(facts, {"psi": 1.0, "psi_ratio": -2.0}, numpy.array([0.0, 0.5]), 3.0, 0.0)
+    >>> inputs["psi"].tolist(), inputs["psidot"]
+    ([1.0, 0.0], -6.0)
+    """
+    names, rates, accelerations = facts["inputs"], facts["rates"], facts["accelerations"]
+    inputs = {names[0]: theta, rates[0]: speeds, accelerations[0]: accel}
+    for name, speed, acceleration in zip(names[1:], rates[1:], accelerations[1:]):
+        ratio = values[f"{name}_ratio"]
+        inputs.update({name: values[name] + ratio * numpy.asarray(theta), speed: ratio * speeds,
+                       acceleration: ratio * accel})
+    return inputs

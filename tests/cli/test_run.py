@@ -229,6 +229,39 @@ def test_a_newton_scene_prints_what_the_table_command_prints(tmp_path, capsys):
     assert len(expected) == 3 and all(float(r[3]) != 0 for r in expected)
 
 
+@pytest.mark.parametrize("units", ["deg", "rad"])
+def test_a_newton_scene_prints_what_read_scene_returns(tmp_path, capsys, units):
+    """``symlink run`` prints the numbers of the Python API's evaluation of the same scene
+    (:func:`symlink.io.scene.read_scene`), in degrees and in radians: angles wrapped here by hand to half a turn
+    either side of 0, rates and accelerations as they are; the crank column is the sweep, wrapped."""
+    from symlink.io.scene import read_scene
+    half = 180.0 if units == "deg" else math.pi
+    guess = "[guess]\n" + "".join(f"{k} = {x if units == 'deg' else math.radians(x)!r}\n"
+                                  for k, x in dict(coupler=-33, mu=-35, rocker=-73, eta=-68).items())
+    path = stephenson2_scene(tmp_path, guess=guess, extra=f'units = "{units}"',
+                             outputs='["coupler", "mu", "rocker", "eta", "rocker_speed", "eta_accel"]')
+    sweep = "angles = [0, 50, 100, 150, 200, 250]" if units == "deg" else "angles = [0, 1, 2, 3, 4]"
+    path.write_text(path.read_text().replace("angles = [0, 50, 100, 150]", f"{sweep}\nspeed = 2\naccel = 1"))
+    status, out, err = run(capsys, "run", path)
+    assert status == 0, err
+    rows = list(csv.DictReader(io.StringIO(out)))
+    found = read_scene(path)
+    result = found.scene.evaluate()[1]
+
+    def wrapped(value):
+        shown = math.degrees(value) if units == "deg" else value
+        return shown - 2 * half * math.floor((shown + half) / (2 * half))
+
+    assert len(rows) == len(found.angles) == len(result["rocker"])
+    for k, row in enumerate(rows):
+        assert float(row["crank"]) == pytest.approx(wrapped(math.radians(found.angles[k]) if units == "deg"
+                                                            else found.angles[k]), abs=1e-12)
+        for column in ("coupler", "mu", "rocker", "eta"):
+            assert float(row[column]) == pytest.approx(wrapped(float(result[column][k])), rel=1e-13, abs=1e-12)
+        for column in ("rocker_speed", "eta_accel"):
+            assert float(row[column]) == float(result[column][k])
+
+
 NEWTON_BAD = [  # (what is changed in the scene: guess, outputs, extra keys), the message
     (dict(guess="[guess]\ncoupler = -33\nmu = -35\nrocker = -73\nzeta = 1\n"), "stephenson2 has no unknown 'zeta'"),
     (dict(guess="[guess]\ncoupler = -33\nmu = -35\nrocker = -73\neta = \"x\"\n"), "guess.eta must be a number"),

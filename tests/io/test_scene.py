@@ -164,3 +164,128 @@ def test_scene_values_are_in_range(change, words, tmp_path):
     with pytest.raises(ValueError) as caught:
         read_scene(path)
     assert str(caught.value).startswith(f"{path}: ") and words in str(caught.value), caught.value
+
+
+# --- a linkage without a closed form: a scene with a [guess], solved by Newton's method -------------------------
+
+#: The catalog's Stephenson II (lengths; its two fixed angles in radians, 51.5 and 17.2 degrees, as a scene's
+#: [parameters] take them whatever its units) and a guess near one of its assemblies at crank angle 0 (degrees).
+STEPHENSON2 = dict(a=1.0, b=3.1, c=2.2, d=4.5, e=3.9, f=3.1, g=4.1, h=3.1, alpha=0.8988445647770797,
+                   delta=0.30019663134302466)
+STEPHENSON2_GUESS = "[guess]\ncoupler = -33\nmu = -35\nrocker = -73\neta = -68\n"
+
+
+def stephenson2_scene(folder, guess=STEPHENSON2_GUESS, linkage='"stephenson2"', extra="",
+                      outputs='["coupler", "mu", "rocker", "eta", "rocker_speed"]'):
+    path = folder / "six.toml"
+    values = "".join(f"{name} = {value!r}\n" for name, value in STEPHENSON2.items())
+    path.write_text(f"linkage = {linkage}\noutputs = {outputs}\n{extra}\n[parameters]\n{values}"
+                    f"[input]\nangles = [0, 50, 100, 150, 200]\nspeed = 2\n{guess}")
+    return path
+
+
+def stephenson2_loops(theta, beta, mu, phi, eta):
+    """The two closure loops of the Stephenson II, by hand from its links (complex numbers): ABCFD,
+    AB + BC + CF - DF - AD, and ABEHD, AB + BE + EH - DH - AD (BE at alpha from BC, DH at delta from DF)."""
+    v = STEPHENSON2
+    rect = numpy.exp
+    ab = v["a"] * rect(1j * theta)
+    return (ab + v["b"] * rect(1j * beta) + v["c"] * rect(1j * mu) - v["f"] * rect(1j * phi) - v["d"],
+            ab + v["e"] * rect(1j * (beta + v["alpha"])) + v["g"] * rect(1j * eta)
+            - v["h"] * rect(1j * (phi + v["delta"])) - v["d"])
+
+
+def test_read_scene_solves_a_newton_scene_that_closes_both_loops(tmp_path):
+    """read_scene takes a scene with a [guess] of a linkage without a closed form; its evaluation closes both loops,
+    written out here by hand, to 1e-9 of the link lengths, on the assembly nearest the guess; the rocker's speed is
+    the finite difference of its angle along the sweep (h = 1e-6 rad) times the crank speed."""
+    from symlink.io.scene import NewtonSceneFile, read_scene
+    found = read_scene(stephenson2_scene(tmp_path))
+    assert isinstance(found, NewtonSceneFile)
+    assert found.angles.tolist() == [0, 50, 100, 150, 200] and found.units == "deg" and found.input_column == "crank"
+    assert found.angle_columns == {"coupler", "mu", "rocker", "eta"}
+    results = found.scene.evaluate()
+    assert list(results) == [1]
+    result = results[1]
+    assert list(result) == ["coupler", "mu", "rocker", "eta", "rocker_speed", "assembled"]
+    assert result.units["rocker"] == "rad" and result.units["rocker_speed"] == "rad/s"
+    theta = numpy.radians(found.angles)
+    loops = stephenson2_loops(theta, result["coupler"], result["mu"], result["rocker"], result["eta"])
+    assert numpy.all(result["assembled"]) and max(numpy.max(numpy.abs(loop)) for loop in loops) < 1e-9
+    first = numpy.degrees([result[name][0] for name in ("coupler", "mu", "rocker", "eta")])
+    assert numpy.max(numpy.abs(first - [-33, -35, -73, -68])) < 1  # the assembly nearest the guess, not another
+    # the speed: the angles at the sweep's 50 deg, a step either side (a new sweep from the same guess)
+    step = 1e-6
+    near = [found.scene.evaluate(theta=numpy.radians([0.0, 50.0]) + [0.0, h], thetadot=2.0)[1]["rocker"][1]
+            for h in (-step, step)]
+    assert result["rocker_speed"][1] == pytest.approx((near[1] - near[0]) / (2 * step) * 2.0, rel=1e-6)
+
+
+def test_a_newton_scene_of_a_linkage_file_takes_its_defaults(tmp_path):
+    """A linkage file without a closed form (the catalog's own file, copied): its defaults stand in for the
+    parameters the scene leaves out, and the poses are those of the catalog name's scene."""
+    from symlink.io.linkage_file import catalog_file
+    from symlink.io.scene import read_scene
+    (tmp_path / "mine.toml").write_text(catalog_file("stephenson2").read_text())
+    by_name = read_scene(stephenson2_scene(tmp_path)).scene.evaluate()[1]
+    path = stephenson2_scene(tmp_path, linkage='"mine.toml"')
+    path.write_text(path.read_text().replace("a = 1.0\n", ""))  # the file's default: a = 1
+    found = read_scene(path)
+    assert found.source == str(tmp_path / "mine.toml") and found.defaults["a"] == 1
+    assert {k: v.tolist() for k, v in found.scene.evaluate()[1].items()} == {k: v.tolist() for k, v in by_name.items()}
+
+
+#: A scene of a linkage with a closed form, given a [guess].
+FOURBAR_GUESS = ('linkage = "fourbar"\noutputs = ["rocker"]\n[parameters]\na = 20\nb = 66\nc = 56\nd = 80\n'
+                 '[input]\nangles = [0]\n[guess]\nphi = 110\n')
+NEWTON_REFUSALS = [  # (how the Stephenson II's scene is changed, or a scene's text; the message)
+    (FOURBAR_GUESS, "guess: fourbar is solved in closed form, where branch chooses the assembly"),
+    (dict(guess=""), r"guess: stephenson2 has no closed form: give a \[guess\] table of every unknown "
+                     r"\(coupler, mu, rocker, eta\)"),
+    (dict(guess="[guess]\ncoupler = -33\nmu = -35\nrocker = -73\n"),
+     r"needs a guess of every unknown \(coupler, mu, rocker, eta\)"),
+    (dict(guess=STEPHENSON2_GUESS + "zeta = 1\n"), "stephenson2 has no unknown 'zeta'"),
+    (dict(outputs='["C_x"]'), r"stephenson2 \(solved by Newton's method\) has no output 'C_x'"),
+    (dict(extra='branch = "both"'), "branch: stephenson2 has no closed form"),
+    (dict(extra='[dynamics]\ngravity = 9.81'), "dynamics: stephenson2 has no closed form"),
+]
+
+
+@pytest.mark.parametrize("change, message", NEWTON_REFUSALS)
+def test_read_scene_refuses_what_newton_cannot_solve(tmp_path, change, message):
+    """A closed form given a [guess], a linkage without one given none, and a [guess] scene's bad keys: one
+    ValueError starting with the file's name, in the words of symlink run."""
+    import re
+
+    from symlink.io.scene import read_scene
+    if isinstance(change, dict):
+        path = stephenson2_scene(tmp_path, **change)
+    else:
+        path = tmp_path / "scene.toml"
+        path.write_text(change)
+    with pytest.raises(ValueError) as caught:
+        read_scene(path)
+    assert str(caught.value).startswith(f"{path}: ") and "\n" not in str(caught.value), caught.value
+    assert re.search(message, str(caught.value)), caught.value
+
+
+def test_a_warm_newton_scene_imports_no_sympy(tmp_path):
+    """read_scene of a [guess] scene and its evaluation, in a second process with the same disk cache: no SymPy
+    (``python -X importtime``), and the same numbers as the first (cold) process."""
+    import os
+    import subprocess
+    import sys
+
+    from warm_runs import PROJECT, imported_packages
+    stephenson2_scene(tmp_path)
+    code = ("from symlink.io.scene import read_scene\n"
+            "result = read_scene('six.toml').scene.evaluate()[1]\n"
+            "print({name: values.tolist() for name, values in result.items()})\n")
+    env = {**os.environ, "PYTHONPATH": str(PROJECT), "SYMLINK_CACHE": str(tmp_path / "cache")}
+    runs = [subprocess.run([sys.executable, *flags, "-c", code], capture_output=True, text=True, env=env,
+                           cwd=str(tmp_path), timeout=600) for flags in ([], ["-X", "importtime"])]
+    assert [run.returncode for run in runs] == [0, 0], runs[1].stderr[-2000:]
+    imported = imported_packages(runs[1].stderr)
+    assert "symlink" in imported and "numpy" in imported  # the import list was read
+    assert "sympy" not in imported, sorted(imported)
+    assert runs[1].stdout == runs[0].stdout and "'rocker'" in runs[0].stdout

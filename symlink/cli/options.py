@@ -10,8 +10,6 @@ line of error and exit status 2.
 from __future__ import annotations
 
 import argparse
-import functools
-import gettext
 import math
 import re
 from pathlib import Path
@@ -58,9 +56,11 @@ class _StoreOnce(argparse._StoreAction):
         super().__call__(parser, namespace, values, option_string)
 
 
-# argparse passes each of its messages through gettext, which looks on disk for a message catalogue at every call
-# (some thirty looks to parse one command line, a few milliseconds of a warm table's start): one look a message.
-argparse._ = functools.lru_cache(maxsize=None)(gettext.gettext)  # type: ignore[attr-defined]
+# argparse passes each of its messages through gettext, which imports locale and looks on disk for a catalogue of
+# the domain "messages" (some thirty looks to parse one command line, a few milliseconds of a warm table's start).
+# CPython ships no such catalogue, and symlink's own messages are English: argparse's stay English too, unlooked-up.
+argparse._ = str  # type: ignore[attr-defined]
+argparse.ngettext = lambda singular, plural, count: singular if count == 1 else plural  # type: ignore[attr-defined]
 
 
 class Parser(argparse.ArgumentParser):

@@ -202,6 +202,42 @@ def test_a_warm_picture_imports_no_sympy_and_draws_the_same(name, shared_cache, 
     assert runs.warm_files[out] == runs.cold_files[out] and len(runs.cold_files[out]) > 1000
 
 
+#: Command lines that write a folder (the files named, in ``tmp_path``) besides what they print: each run writes
+#: them afresh (:func:`warm_runs.run_twice` reads and removes them), so the warm run resumes nothing.
+FOLDERS = {
+    "tolerance stack-up with sampled builds kept in a folder (three chunks, a manifest naming the definition)": (
+        ["tolerance", "fourbar", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80",
+         "--tolerance", "0.05", "--samples", "25000", "--folder", "mc", "--angles", "0,50", "--format", "csv"],
+        ["mc/manifest.json", *(f"mc/chunk-{k:06d}.parquet" for k in range(3))]),
+    "tolerance stack-up of a linkage file, its builds in a folder": (
+        ["tolerance", str(PROJECT / "linkages" / "slider-crank.toml"), "--tolerance", "0.05", "--samples", "500",
+         "--folder", "mc", "--angles", "0,40", "--format", "csv"], ["mc/manifest.json", "mc/chunk-000000.parquet"]),
+}
+
+
+@pytest.mark.parametrize("name", FOLDERS)
+def test_a_warm_command_writing_a_folder_imports_no_sympy_and_writes_the_same(name, shared_cache, tmp_path):
+    """Sampled builds kept in a ``--folder``: the warm run takes the definition's digest for the manifest from the
+    cached facts (no SymPy), and writes the cold run's chunks and manifest, byte for byte; the manifest's digest is
+    the SHA-256 of the linkage's definition, computed here from the linkage itself."""
+    import hashlib
+    import json
+
+    from symlink.io.linkage_file import load_linkage
+    from symlink.numeric.cache import definition
+    pytest.importorskip("dask", reason="pip install -e '.[sweep]'")
+    arguments, files = FOLDERS[name]
+    runs = run_twice(tmp_path, arguments, shared_cache, files=files)
+    assert "dask" in runs.imported and "pyarrow" in runs.imported  # the import list was read, and it sampled
+    # (pandas stays: pyarrow's to_numpy imports it where the chunks are read back)
+    heavy = runs.imported & {"sympy", "matplotlib", "scipy", "distributed"}
+    assert not heavy, f"the warm run imported {', '.join(sorted(heavy))}"
+    assert runs.warm == runs.cold and runs.warm_notes == runs.cold_notes and "0 chunks found done" in runs.warm_notes
+    assert all(runs.warm_files[f] == runs.cold_files[f] for f in files)
+    settings = json.loads(runs.warm_files["mc/manifest.json"])["settings"]
+    assert settings["definition"] == hashlib.sha256(definition(load_linkage(arguments[1]).linkage).encode()).hexdigest()
+
+
 def test_a_warm_drawing_takes_other_numbers(shared_cache, tmp_path):
     """A drawing's cache entries (its placement and its solver) are keyed by what names the linkage, not by the
     numbers: the four-bar with other lengths, at another angle, draws warm from the first drawing's entries (no

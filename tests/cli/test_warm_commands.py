@@ -520,3 +520,47 @@ def test_a_warm_analysis_takes_other_values_and_outputs(shared_cache, tmp_path):
     extended = math.pi - math.acos((c * c + d * d - (a + b) ** 2) / (2 * c * d))
     folded = math.pi - math.acos((c * c + d * d - (b - a) ** 2) / (2 * c * d))
     assert report["limits"]["stroke"] == pytest.approx(math.degrees(folded - extended), abs=1e-9)
+
+
+#: ``symlink analyze NAME|FILE --output X`` where X has no limit positions: (linkage, output) -> the error line.  The
+#: words are those of the derivation (``Linkage.output``, ``check_position_output``); a sensitivity's name was an
+#: internal error (the output's code took it as an argument it was not given).
+REFUSED_OUTPUTS = {
+    ("fourbar", "phidot"): "'phidot' is not a position output of fourbar; give a coordinate, role, point coordinate "
+                           "or extra",
+    ("fourbar", "thetadot"): "'thetadot' is not a position output of fourbar; give a coordinate, role, point "
+                             "coordinate or extra",
+    ("fourbar", "rocker_accel"): "'rocker_accel' is not a position output of fourbar; give a coordinate, role, point "
+                                 "coordinate or extra",
+    ("fourbar", "singular"): "'singular' is not a position output of fourbar; give a coordinate, role, point "
+                             "coordinate or extra",
+    ("fourbar", "phi__d_a"): "'phi__d_a' is not a position output of fourbar; give a coordinate, role, point "
+                             "coordinate or extra",
+    ("fourbar", "nosuch"): "fourbar has no output 'nosuch'; it has beta, phi, betadot, phidot, betaddot, phiddot, "
+                           "crank, crank_speed, crank_accel, coupler, coupler_speed, coupler_accel, rocker, "
+                           "rocker_speed, rocker_accel, A_x, A_y, B_x, B_y, C_x, C_y, D_x, D_y, transmission, singular",
+    ("slider-crank.toml", "slider_speed"): "'slider_speed' is not a position output of slider-crank; give a "
+                                           "coordinate, role, point coordinate or extra",
+}
+
+
+@pytest.mark.parametrize("linkage, output", REFUSED_OUTPUTS)
+def test_a_warm_analysis_refuses_an_output_without_limit_positions_in_one_line(linkage, output, shared_cache,
+                                                                                 tmp_path):
+    """An output that is no position output (a rate, an acceleration, the singularity flag, a sensitivity) or not
+    an output at all is refused warm from the cached facts (its names and kinds), without SymPy, in the cold run's
+    one line, exit status 2."""
+    import os
+    import subprocess
+    import sys
+
+    from warm_runs import imported_packages, without_import_times
+    named = str(PROJECT / "linkages" / linkage) if linkage.endswith(".toml") else linkage
+    env = {**os.environ, "PYTHONPATH": str(PROJECT), "SYMLINK_CACHE": str(shared_cache)}
+    runs = [subprocess.run([sys.executable, *flags, "-m", "symlink", "analyze", named, "--output", output],
+                           capture_output=True, text=True, env=env, cwd=str(tmp_path), timeout=600)
+            for flags in ([], ["-X", "importtime"])]
+    for done in runs:
+        assert done.returncode == 2 and done.stdout == ""
+        assert without_import_times(done.stderr) == f"symlink: error: {REFUSED_OUTPUTS[linkage, output]}\n"
+    assert "symlink" in imported_packages(runs[1].stderr) and "sympy" not in imported_packages(runs[1].stderr)

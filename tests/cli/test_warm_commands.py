@@ -187,6 +187,13 @@ PICTURES = {
     "Stephenson II by its former name, by Newton's method (draw NAME, SVG)": ["draw", "stephenson3", "--out", "s.svg"],
     "animation of a catalog linkage (animate NAME, GIF)": ["animate", "fourbar", "--frames", "3", "--out", "a.gif"],
     "four-bar table with its transmission-angle plot": [*FOURBAR, "--plot-transmission", "transmission.svg"],
+    "view of a catalog linkage, saved (view NAME, PNG)": ["view", "fourbar", "--set", "a=25", "--angle", "40",
+                                                         "--branch", "-1", "--trace", "B,C", "--save", "v.png"],
+    "view of a linkage file, saved (view FILE, PNG)": ["view", str(PROJECT / "linkages" / "jansen.toml"), "--save",
+                                                       "j.png"],
+    "view of the four-bar by its lengths, saved (PNG)": ["view", "--crank", "20", "--coupler", "66", "--rocker", "56",
+                                                         "--ground", "80", "--crank-angle", "30", "--branch", "-1",
+                                                         "--save", "f.png"],
 }
 
 
@@ -323,6 +330,37 @@ def test_bad_input_to_a_warm_drawing_is_one_line_and_exit_2(shared_cache, tmp_pa
         assert without_import_times(done.stderr) == message
         assert "symlink" in imported_packages(done.stderr) and "sympy" not in imported_packages(done.stderr)
         assert not (tmp_path / "bad.svg").exists()
+
+
+#: Bad input to a warm ``symlink view NAME --save``: (the options) -> the error line of the cold run.
+BAD_VIEWS = {
+    ("--set", "q=1"): "symlink: error: --set: fourbar has no value 'q'; it takes a, b, c, d, theta\n",
+    ("--trace", "Z"): "symlink: error: fourbar has no point or joint 'Z' to trace; it has A, B, C, D\n",
+    # the length as given (the view named its slider's clamped value, -0.2, before)
+    ("--set", "a=-1"): "symlink: error: a must be a positive finite length, got -1.0\n",
+    ("--set", "a=1000"): "symlink: error: fourbar cannot be assembled at theta = 0\n",
+}
+
+
+@pytest.mark.parametrize("options", BAD_VIEWS)
+def test_bad_input_to_a_warm_view_is_one_line_and_exit_2(options, shared_cache, tmp_path):
+    """A warm view checks its values against the cached facts and placement: a --set of no value, a point it does
+    not have, a length that is not positive and a linkage that cannot be assembled are refused in one line with exit
+    status 2, in the words of a cold run (the first run below), without importing SymPy, and nothing is written."""
+    import os
+    import subprocess
+    import sys
+
+    from warm_runs import imported_packages, without_import_times
+    env = {**os.environ, "PYTHONPATH": str(PROJECT), "SYMLINK_CACHE": str(shared_cache), "MPLBACKEND": "Agg"}
+    runs = [subprocess.run([sys.executable, *flags, "-m", "symlink", "view", "fourbar", *options, "--save",
+                            "bad.png"], capture_output=True, text=True, env=env, cwd=str(tmp_path), timeout=600)
+            for flags in ([], ["-X", "importtime"])]
+    for done in runs:
+        assert done.returncode == 2 and done.stdout == ""
+        assert without_import_times(done.stderr) == BAD_VIEWS[options]
+        assert not (tmp_path / "bad.png").exists()
+    assert "symlink" in imported_packages(runs[1].stderr) and "sympy" not in imported_packages(runs[1].stderr)
 
 
 #: Sweeps of a catalog linkage and of a linkage file (the chunk is written into ``out``): the scheduler, and whether

@@ -1047,7 +1047,7 @@ def _read_builds(model: _BuildModel, folder: Path) -> numpy.ndarray:
     import pyarrow
     import pyarrow.parquet
 
-    from ..io.sweep_folder import verified_chunks
+    from ..io.sweep_folder import numpy_column, verified_chunks
     count = model.nominal.shape[1]
     deviation = numpy.full((len(model.outputs), model.builds, count), numpy.nan)
     names = model.columns()
@@ -1055,7 +1055,7 @@ def _read_builds(model: _BuildModel, folder: Path) -> numpy.ndarray:
     for record, data in verified_chunks(folder):
         # one file, read as one: read_table goes through pyarrow.dataset (imported for it alone)
         table = pyarrow.parquet.ParquetFile(pyarrow.BufferReader(data)).read()
-        numbers = table.column("build").to_numpy() if "build" in table.column_names else None
+        numbers = numpy_column(table, "build") if "build" in table.column_names else None
         if (table.column_names != names or numbers is None
                 or not numpy.array_equal(numbers, numpy.arange(record.first, record.last + 1))):
             raise ValueError(f"{folder / record.name} does not hold builds {record.first} to {record.last} in the "
@@ -1063,7 +1063,7 @@ def _read_builds(model: _BuildModel, folder: Path) -> numpy.ndarray:
         column = 1 + len(model.dimensions)
         for i in range(len(model.outputs)):
             for k in range(count):
-                deviation[i, record.first:record.last + 1, k] = table.column(names[column]).to_numpy()
+                deviation[i, record.first:record.last + 1, k] = numpy_column(table, names[column])
                 column += 1
         done[record.first:record.last + 1] = True
     if not done.all():

@@ -236,8 +236,7 @@ def test_a_warm_command_writing_a_folder_imports_no_sympy_and_writes_the_same(na
     arguments, files = FOLDERS[name]
     runs = run_twice(tmp_path, arguments, shared_cache, files=files)
     assert "dask" in runs.imported and "pyarrow" in runs.imported  # the import list was read, and it sampled
-    # (pandas stays: pyarrow's to_numpy imports it where the chunks are read back)
-    heavy = runs.imported & {"sympy", "matplotlib", "scipy", "distributed"}
+    heavy = runs.imported & {"sympy", "matplotlib", "scipy", "pandas", "distributed"}
     assert not heavy, f"the warm run imported {', '.join(sorted(heavy))}"
     assert runs.warm == runs.cold and runs.warm_notes == runs.cold_notes and "0 chunks found done" in runs.warm_notes
     assert all(runs.warm_files[f] == runs.cold_files[f] for f in files)

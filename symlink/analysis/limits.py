@@ -78,15 +78,78 @@ def _output_function(linkage: Linkage, output: str) -> Callable[..., dict]:
     return _OUTPUT_FUNCTIONS[key]
 
 
+def _not_a_position_output(name: str, output: str) -> ValueError:
+    """The refusal of ``output``, an output of the linkage ``name`` that is no position output."""
+    return ValueError(f"{output!r} is not a position output of {name}; give a coordinate, role, point coordinate or "
+                      "extra")
+
+
 def check_position_output(linkage: Linkage, output: str) -> None:
     """``ValueError`` unless ``output`` is a position output of ``linkage`` (a coordinate, role, point coordinate
-    or extra; not a rate, nor the singularity flag)."""
+    or extra; not a rate, the singularity flag, nor a sensitivity by a parameter, which the output's code would
+    take as an argument it is not given)."""
     import sympy as sp
+
+    from ..symbolic.sensitivity import split_sensitivity_name
     expr = linkage.output(output)
     if any(isinstance(s, sp.Symbol) and s.name.endswith("dot") and s not in linkage.coordinates
-           for s in getattr(expr, "free_symbols", ())) or output == "singular":
-        raise ValueError(f"{output!r} is not a position output of {linkage.name}; give a coordinate, role, "
-                         "point coordinate or extra")
+           for s in getattr(expr, "free_symbols", ())) or output == "singular" \
+            or split_sensitivity_name(output, linkage.parameters) is not None:
+        raise _not_a_position_output(linkage.name, output)
+
+
+def output_kinds(linkage: Linkage) -> dict[str, bool]:
+    """Each output of ``linkage`` by name (its inputs and unknowns with their rates and accelerations, roles, points'
+    coordinates, extras, the singularity flag) and whether it is a position output (:func:`check_position_output`):
+    plain data that a cached analysis keeps (:func:`~symlink.analysis.report.analysis_facts`), so that an output
+    asked for is refused without SymPy (:func:`check_named_output`).
+
+    >>> from symlink.mechanism.catalog import fourbar
+    >>> kinds = output_kinds(fourbar())
+    >>> kinds["phi"], kinds["rocker"], kinds["C_x"], kinds["phidot"], kinds["thetaddot"], kinds["singular"]
+    (True, True, True, False, False, False)
+    """
+    from ..symbolic.vectors import acceleration, rate
+    names = [name for q in linkage.coordinates for name in (q.name, rate(q).name, acceleration(q).name)]
+    names += [name for name in linkage.output_names() if name not in names]
+    kinds = {}
+    for name in names:
+        try:
+            check_position_output(linkage, name)
+        except ValueError:
+            kinds[name] = False
+        else:
+            kinds[name] = True
+    return kinds
+
+
+def check_named_output(facts: Mapping[str, Any], output: str) -> bool:
+    """Whether the cached ``facts`` of a linkage (:func:`~symlink.analysis.report.analysis_facts`) decide that
+    ``output`` is one of its position outputs; ``ValueError`` in the words of :func:`check_position_output` (and of
+    :meth:`~symlink.symbolic.linkage.Linkage.output` for a name it does not have) where they decide it is not (a
+    sensitivity's name, ``<output>__d_<parameter>``, too: ``sensitivity_suffixes``); False where they cannot tell (a name that is the
+    sensitivity by two parameters: the linkage's own words, derived).  SymPy-free.
+
+    >>> facts = {"name": "pendulum", "outputs": {"theta": True, "thetadot": False}, "output_names": ["thetadot"],
+    ...          "sensitivity_suffixes": ["__d_a"]}
+    >>> check_named_output(facts, "theta")
+    True
+    >>> check_named_output(facts, "theta__d_a")
+    Traceback (most recent call last):
+    ValueError: 'theta__d_a' is not a position output of pendulum; give a coordinate, role, point coordinate or extra
+    """
+    kinds = facts["outputs"]
+    if output in kinds:
+        if not kinds[output]:
+            raise _not_a_position_output(facts["name"], output)
+        return True
+    by = [suffix for suffix in facts["sensitivity_suffixes"] if output.endswith(suffix) and len(output) > len(suffix)]
+    if len(by) > 1:
+        return False
+    if by:
+        raise _not_a_position_output(facts["name"], output)
+    # the words of Linkage.output for a name that it does not answer to
+    raise ValueError(f"{facts['name']} has no output {output!r}; it has {', '.join(facts['output_names'])}")
 
 
 def output_text(linkage: Linkage, output: str) -> str:

@@ -127,8 +127,10 @@ def analysis_facts(linkage: Linkage) -> dict[str, Any]:
 
     Derived once with SymPy and kept in the disk cache by ``symlink analyze NAME|FILE``: names (inputs, parameters
     and the lengths among them, branch signs, unknowns, rates, the angles), whether it has a closed form, its
-    mobility, the margins of its clamped roots (:func:`~symlink.numeric.reachability.margin_roots`) and the joints
-    of its two-angle loops (:func:`~symlink.analysis.transmission.joint_recipe`).
+    mobility, the margins of its clamped roots (:func:`~symlink.numeric.reachability.margin_roots`), the joints
+    of its two-angle loops (:func:`~symlink.analysis.transmission.joint_recipe`), and its outputs, each with whether
+    it is a position output (:func:`~symlink.analysis.limits.output_kinds`, ``outputs``; ``output_names``: those
+    a refusal names; ``sensitivity_suffixes``: how a sensitivity's name ends), so that an output that has no limit positions is refused without SymPy.
 
     >>> from symlink.mechanism.catalog import fourbar
     >>> facts = analysis_facts(fourbar())
@@ -139,6 +141,8 @@ def analysis_facts(linkage: Linkage) -> dict[str, Any]:
     from ..numeric.reachability import margin_roots
     from ..symbolic.closure import is_angle
     from ..symbolic.vectors import rate
+    from ..common.notation import SENSITIVITY_SEPARATOR
+    from .limits import output_kinds
     from .transmission import joint_recipe, transmission_joints
     named = linkage.parameters + linkage.inputs
     closed = bool(linkage.has_closed_form)
@@ -154,4 +158,6 @@ def analysis_facts(linkage: Linkage) -> dict[str, Any]:
         "mobility": {"links": mobility.links, "revolute": mobility.revolute, "prismatic": mobility.prismatic},
         "roots": [list(root) for root in margin_roots(linkage)] if closed else [],
         "joints": [joint_recipe(joint, known) for joint in transmission_joints(linkage)] if closed else [],
+        "outputs": output_kinds(linkage), "output_names": linkage.output_names(),
+        "sensitivity_suffixes": [SENSITIVITY_SEPARATOR + s.name for s in linkage.parameters],
     }

@@ -158,7 +158,9 @@ class AnalysisSource(TableSource):
         return cached_module(self.key(["(margins)"]), lambda: margins_text(self.found().linkage))[1]["margins"]
 
     def _output(self, name: str) -> tuple[Any, bool]:
+        from ..analysis.limits import check_named_output
         from ..numeric.cache import cached_module, cached_text
+        check_named_output(self.facts, name)  # no position output: refused from the facts (no SymPy), as derived
 
         def angle() -> str:  # a name that is no position output is refused here, and nothing is kept
             from ..analysis.limits import check_position_output, is_angle_output

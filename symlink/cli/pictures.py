@@ -212,17 +212,17 @@ def run_view(args: argparse.Namespace) -> int:
     from ..plot.view import SEED001, FourbarView, LinkageView, check_slider_range, interactive_backend
     if fourbar_or_linkage(args, "view", lengths_required=False, linkage_only=("set", "angle", "trace", "unit"),
                           fourbar_only=("crank_angle", "crank_speed")):
-        linkage, values = drawn_linkage(args)
-        trace = _default_trace(list(linkage.points)) if args.trace is None else args.trace
+        placement, values = drawn_placement(args)  # from the disk cache: a warm view imports no SymPy
+        trace = _default_trace(placement.facts["points"]) if args.trace is None else args.trace
         if args.save:
             from matplotlib.figure import Figure
             from ..plot import save_figure
             figure = Figure(figsize=(10, 7))
-            LinkageView(linkage, values, trace=trace, figure=figure)
+            LinkageView(placement, values, trace=trace, figure=figure)
             save_figure(figure, args.save)
             return 0
         pyplot = interactive_backend()
-        view = LinkageView(linkage, values, trace=trace)
+        view = LinkageView(placement, values, trace=trace)
         pyplot.show()
         del view
         return 0

@@ -98,19 +98,23 @@ FACTS_ENTRY_KIND, MODEL_ENTRY_KIND = "tolerance-facts/1", "tolerance-model/1"
 #: gradients of the output by the pins' play (``--play``: :func:`symlink.workshop.tolerance.play_jacobian`).
 SOLVER_ENTRY_KIND, PLAY_ENTRY_KIND = "tolerance-solver/1", "tolerance-play/1"
 #: Besides the code that shapes generated code: what reads a linkage file or an atlas name, what derives a stack-up's
-#: model and what takes the command's facts from the linkage.
+#: model, what takes the command's facts from the linkage, and what writes the digest of its definition that the
+#: facts keep (:func:`symlink.numeric.cache.definition_digest`, for the manifest of sampled builds in a folder).
 TOLERANCE_SHAPING = ("io/linkage_file", "mechanism/atlas", "mechanism/joints", "workshop/tolerance",
-                     "numeric/design_jacobian", "numeric/units", "cli/tolerance", "cli/dynamics")
+                     "numeric/design_jacobian", "numeric/units", "numeric/cache", "cli/tolerance", "cli/dynamics")
 
 
 def stack_up_facts(linkage: Any, source: str, defaults: Mapping[str, float]) -> dict[str, Any]:
     """What ``symlink tolerance`` needs of ``linkage`` besides its stack-up model, as plain data (JSON): names, kinds
-    of the parameters (:func:`symlink.numeric.units.parameter_kinds`), which are angles, the defaults.  ``source``
-    says where the linkage was read (``catalog``, ...; :class:`symlink.io.linkage_file.LinkageFile`).
+    of the parameters (:func:`symlink.numeric.units.parameter_kinds`), which are angles, the defaults, and the digest
+    of its definition (:func:`symlink.numeric.cache.definition_digest`: what the manifest of sampled builds kept in
+    a ``--folder`` names it by).  ``source`` says where the linkage was read (``catalog``, ...;
+    :class:`symlink.io.linkage_file.LinkageFile`).
 
     Kept in the disk cache for a linkage named by a catalog name, an atlas name or a file, so that a warm stack-up
     builds no linkage and imports no SymPy.
     """
+    from ..numeric.cache import definition_digest
     from ..numeric.units import parameter_kinds
     from ..symbolic.closure import is_angle
     named = linkage.parameters + linkage.inputs
@@ -120,17 +124,18 @@ def stack_up_facts(linkage: Any, source: str, defaults: Mapping[str, float]) -> 
             "kinds": parameter_kinds(linkage), "angles": [s.name for s in named if is_angle(linkage, s)],
             "branches": [b.name for b in linkage.branches],
             "last_unknown": linkage.unknowns[-1].name if linkage.unknowns else None,
-            "defaults": {name: float(value) for name, value in defaults.items()}}
+            "defaults": {name: float(value) for name, value in defaults.items()},
+            "definition": definition_digest(linkage)}
 
 
 def _keyed_request(args: argparse.Namespace, name: str) -> dict[str, str] | None:
     """What names the linkage in the keys of the command's cache entries, where the request can be answered from
     them (a linkage named by a catalog or atlas name or a file's bytes; the four-bar's masses and the pins' play key
-    the entries further; builds kept in a folder are derived each time, their manifest names the linkage's
-    definition); else None."""
+    the entries further; the manifest of builds kept in a folder names the linkage's definition by the digest that
+    its facts keep); else None."""
     from ..common.names import FORMER_CATALOG_NAMES
     from ..io.scene_text import linkage_request
-    if name in FORMER_CATALOG_NAMES or args.folder is not None:
+    if name in FORMER_CATALOG_NAMES:
         return None
     return linkage_request(name)
 
@@ -147,8 +152,8 @@ def run(args: argparse.Namespace) -> int:
     (:func:`stack_up_facts`) and the stack-up model of the output by the toleranced dimensions
     (:class:`~symlink.workshop.tolerance.StackUpModel`), and with ``--samples`` the output's solver, are keyed by what
     names it (and by the four-bar's ``--masses`` and the pins of ``--play``: the entry of the gradients by the pins'
-    play), so that a warm stack-up (without builds kept in a ``--folder``) builds no linkage and imports no SymPy;
-    the cold run takes the same path.
+    play), so that a warm stack-up (builds kept in a ``--folder`` too: their manifest takes the definition's digest
+    from the facts) builds no linkage and imports no SymPy; the cold run takes the same path.
     """
     import json
     from ..numeric.cache import cached_module, cached_text
@@ -302,7 +307,8 @@ def run(args: argparse.Namespace) -> int:
             builds = solved_builds(solver, facts["name"], facts["inputs"],
                                    {dimension: dimension in positive for dimension in facts["parameters"]},
                                    lambda: [angular], [output], values, tolerances, inputs=inputs, builds=args.builds,
-                                   seed=args.seed)
+                                   seed=args.seed, folder=args.folder,
+                                   settings=lambda model: model.settings(facts["name"], facts["definition"]))
         else:
             from ..workshop.tolerance import sample_builds
             builds = sample_builds(linkage, output, values, tolerances, inputs=inputs, builds=args.builds,

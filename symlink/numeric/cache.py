@@ -191,6 +191,17 @@ def definition(linkage: Linkage) -> str:
     return json.dumps(described, separators=(",", ":"))
 
 
+def definition_digest(linkage: Linkage) -> str:
+    """The SHA-256 (hex) of :func:`definition` of ``linkage``: what names its definition in a folder's manifest (a
+    stack-up's sampled builds), and what a command keeps among a linkage's cached facts so that a warm run can
+    write it without building the linkage (SymPy).
+
+    >>> from symlink.mechanism.catalog import fourbar, slider_crank
+    >>> len(definition_digest(fourbar())), definition_digest(fourbar()) == definition_digest(slider_crank())
+    (64, False)
+    """
+    return sha256(definition(linkage).encode()).hexdigest()
+
 def _described_extras(linkage: Linkage) -> list:
     """The extras of ``linkage`` for its definition: each one's expression, or what the linkage says they are
     made from where it can say so without deriving them (a dynamic linkage: its model as given)."""

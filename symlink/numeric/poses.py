@@ -114,6 +114,9 @@ def _placement_parts(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | Non
         outputs[f"direction{k}"] = joint.direction
     program = Program(tuple(linkage.coordinates) + tuple(linkage.parameters), (), outputs)
     named = linkage.parameters + linkage.inputs + linkage.unknowns
+    # what turns a named point's vectors (a view shows those parameters and inputs as angles)
+    turning = set().union(*(v.angle.free_symbols for point in linkage.points.values() if point is not None
+                            for _, v in point.as_sum().terms))
     facts = {
         "name": linkage.name, "closed_form": bool(linkage.has_closed_form),
         "inputs": [q.name for q in linkage.inputs], "unknowns": [q.name for q in linkage.unknowns],
@@ -126,6 +129,8 @@ def _placement_parts(linkage: Linkage, bodies: Mapping[str, Sequence[str]] | Non
         "pins": [j.name for j in found.joints if j.kind == REVOLUTE and j.name in sums],
         "points": list(linkage.points),
         "roles": {role: symbol.name for role, symbol in linkage.roles.items()},
+        "positive": [s.name for s in linkage.parameters if s.is_positive],
+        "turning": [s.name for s in linkage.parameters + linkage.inputs if s in turning],
     }
     text = numpy_module([(ENDS, program, "")], "Vectors of a drawing.")
     return found, sums, vectors, text.rstrip() + f"\n\n\n#: What placing needs (symlink.numeric.poses).\n{PLACEMENT} = {facts!r}\n"
@@ -135,7 +140,8 @@ def placement_entry_text(linkage: Linkage, bodies: Mapping[str, Sequence[str]] |
     """The placement of ``linkage`` as a NumPy module: the function ``ends`` of its vectors' ends and slider
     directions (from its coordinates and parameters), and the dictionary ``PLACEMENT`` of plain facts (names,
     which are angles, each place as ``[sign, vector]`` terms, sliders, bodies' outlines, pivots, pins, points,
-    the symbols' roles).
+    the symbols' roles, the positive parameters (lengths) and the parameters and inputs that turn a named point's
+    vectors).
 
     What a :class:`Placement` is made from; a cache entry (:func:`cached_placement`).
 

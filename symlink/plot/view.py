@@ -31,14 +31,19 @@ from typing import TYPE_CHECKING
 import numpy
 
 from ..analysis import grashof
-from ..mechanism.catalog import fourbar
+from ..codegen.arguments import check_lengths
 from ..common.angles import wrap
-from .figures import MechanismDrawing, TRANSMISSION_LIMITS, extent
+from .figures import MechanismDrawing, TRANSMISSION_LIMITS, _catalog_solver, extent
 from ..numeric.reachability import crank_range, describe_spans
-from ..numeric.solver import Solver, check_lengths
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
+
+    from ..numeric.poses import Placement
+    from ..symbolic.linkage import Linkage
+
+# The views take their solvers and placements from the disk cache (the catalog four-bar's solver entry; a linkage's
+# Placement), so that a view whose code is cached imports no SymPy: ``symlink view --save`` run warm.
 
 __all__ = ["FourbarView", "LinkageView", "SEED001", "OUTPUTS"]
 
@@ -124,7 +129,7 @@ class FourbarView:
         from matplotlib.widgets import RadioButtons, Slider
         initial = {"crank": crank, "coupler": coupler, "rocker": rocker, "ground": ground}
         check_slider_range(crank, coupler, rocker, ground, crank_speed)
-        self.solver = Solver(fourbar(), OUTPUTS)
+        self.solver = _catalog_solver(tuple(OUTPUTS))  # the catalog four-bar's cached solver (NumPy)
         self.solver(theta=crank_angle, a=crank, b=coupler, c=rocker, d=ground, branch=branch,
                     thetadot=crank_speed)  # validates everything with the solver's own messages
         if figure is None:
@@ -227,6 +232,8 @@ class FourbarView:
 class LinkageView:
     """Any linkage as an interactive figure: its drawing, a slider for each parameter and input, branch buttons.
 
+    ``linkage``: a :class:`~symlink.symbolic.linkage.Linkage`, or its :class:`~symlink.numeric.poses.Placement`
+    (such as :func:`~symlink.numeric.poses.cached_placement` reads from the disk cache: then no SymPy);
     ``values`` by symbol name (lengths, fixed angles and inputs in radians);
     each length's slider spans a fifth of its value to three times it, each
     angle's a full turn (in degrees).  Moving a slider redraws the linkage
@@ -236,8 +243,8 @@ class LinkageView:
 
     Parameters
     ----------
-    linkage : Linkage
-        Any linkage.
+    linkage : Linkage or Placement
+        Any linkage, or its placement.
     values : mapping of str to float
         Every parameter and input by name (angles in radians).
     trace : sequence of str, optional
@@ -253,39 +260,43 @@ class LinkageView:
     {'theta': 0.0, 'branch': 1, 'a': 20.0, 'b': 66.0, 'c': 56.0, 'd': 80.0}
     """
 
-    def __init__(self, linkage, values, *, trace=(), figure: "Figure | None" = None) -> None:
+    def __init__(self, linkage: "Linkage | Placement", values, *, trace=(), figure: "Figure | None" = None) -> None:
         from matplotlib.widgets import RadioButtons, Slider
 
-        from ..symbolic.closure import is_angle
-        from ..numeric.poses import Geometry
-        self.linkage, self.trace = linkage, tuple(trace)
-        self.geometry = Geometry(linkage)
+        from ..numeric.poses import Geometry, Placement
+        self.geometry = linkage if isinstance(linkage, Placement) else Geometry(linkage)
+        self.trace = tuple(trace)
+        facts = self.geometry.facts
+        self.branches: list[str] = list(facts["branches"])
         self.fixed = self.geometry.check_values(values)  # every value, checked (lengths positive and finite)
         if figure is None:
             import matplotlib.pyplot as pyplot
             figure = pyplot.figure(figsize=(10, 7))
         self.figure = figure
-        adjustable = list(linkage.parameters) + list(linkage.inputs)
+        adjustable = list(facts["parameters"]) + list(facts["inputs"])
+        positive = set(facts["positive"])
+        # a length that is not positive is refused as given (its slider would span it inverted, and the solver
+        # would name the slider's clamped value instead)
+        check_lengths(**{name: self.fixed[name] for name in adjustable if name in positive})
         rows = len(adjustable)
         top = 0.06 + 0.035 * rows
         self.axes = figure.add_axes((0.06, top + 0.06, 0.62, 0.90 - top - 0.06))
         self.sliders: dict[str, Slider] = {}
-        turning = set().union(*(v.angle.free_symbols for point in linkage.points.values() if point is not None
-                                for _, v in point.as_sum().terms))
-        self.angles = {s.name for s in adjustable if is_angle(linkage, s) or s in turning}
-        for row, symbol in enumerate(adjustable):
-            value = float(self.fixed[symbol.name])
-            if symbol.name in self.angles:
+        turning = set(facts["turning"])  # what turns a named point's vectors
+        self.angles = {name for name in adjustable if name in self.geometry.angles or name in turning}
+        for row, name in enumerate(adjustable):
+            value = float(self.fixed[name])
+            if name in self.angles:
                 low, high, shown, fmt = -180.0, 180.0, float(wrap(math.degrees(value), 180.0)), "%.1f°"
             else:
                 size = abs(value) or 1.0
-                low, high, shown, fmt = (value / 5, value * 3, value, "%.4g") if symbol.is_positive else \
+                low, high, shown, fmt = (value / 5, value * 3, value, "%.4g") if name in positive else \
                     (value - 2 * size, value + 2 * size, value, "%.4g")
             slider_axes = figure.add_axes((0.16, 0.02 + 0.035 * (rows - 1 - row), 0.50, 0.025))
-            self.sliders[symbol.name] = Slider(slider_axes, symbol.name, low, high, valinit=shown, valfmt=fmt)
-            self.sliders[symbol.name].on_changed(self.update)
+            self.sliders[name] = Slider(slider_axes, name, low, high, valinit=shown, valfmt=fmt)
+            self.sliders[name].on_changed(self.update)
         self.branch_buttons = None
-        if linkage.branches:
+        if self.branches:
             button_axes = figure.add_axes((0.74, 0.70, 0.12, 0.14))
             button_axes.set_title("branch", fontsize="small")
             self.branch_buttons = RadioButtons(button_axes, ("+1", "-1"), active=0)
@@ -300,20 +311,20 @@ class LinkageView:
         for name, slider in self.sliders.items():
             values[name] = math.radians(float(slider.val)) if name in self.angles else float(slider.val)
         sign = 1 if self.branch_buttons is None else int(self.branch_buttons.value_selected)
-        values.update({branch.name: sign for branch in self.linkage.branches})
+        values.update({branch: sign for branch in self.branches})
         return values
 
     def update(self, _changed=None) -> None:
         """Redraw the linkage at the values set (every widget calls this)."""
-        from .drawing import draw_linkage
+        from .drawing import draw_placement
         values = self.values()
         poses = self.geometry.poses(self.geometry.check_values(values))
         self.message = "" if poses.assembled[0] else (
-            f"{self.linkage.name} cannot be assembled here; the drawing shows the last pose that can")
+            f"{self.geometry.name} cannot be assembled here; the drawing shows the last pose that can")
         if not self.message:
             self.shown = values
         self.axes.clear()
-        draw_linkage(self.linkage, self.shown, ax=self.axes, trace=self.trace, geometry=self.geometry)
+        draw_placement(self.geometry, self.shown, ax=self.axes, trace=self.trace)
         if self.message:
             self.axes.set_title(self.message, color="red", fontsize="small")
         self.figure.canvas.draw_idle()

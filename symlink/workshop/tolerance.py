@@ -846,13 +846,11 @@ class _BuildModel:
                 data[next(names)] = deviation[i, :, k]
         return parquet_bytes(data)
 
-    def settings(self, linkage: Linkage) -> dict[str, object]:
-        """What decides the sample, as the folder's manifest keeps it (a resumed run must match it)."""
-        import hashlib
-
-        from ..numeric.cache import definition
-        return {"kind": BUILDS_KIND, "linkage": linkage.name,
-                "definition": hashlib.sha256(definition(linkage).encode()).hexdigest(),
+    def settings(self, name: str, definition: str) -> dict[str, object]:
+        """What decides the sample, as the folder's manifest keeps it (a resumed run must match it): ``name`` and
+        ``definition`` are the linkage's name and the digest of its definition
+        (:func:`~symlink.numeric.cache.definition_digest`, which a warm run reads from the cached facts)."""
+        return {"kind": BUILDS_KIND, "linkage": name, "definition": definition,
                 "outputs": list(self.outputs), "design": self.design,
                 "sigmas": {name: float(s) for name, s in zip(self.dimensions, self.sigmas)},
                 "inputs": {name: [float(v) for v in values] for name, values in self.sweep.items()},
@@ -933,6 +931,7 @@ def sample_builds(linkage: Linkage, outputs: str | Sequence[str], nominal: Mappi
     >>> sampled.deviation.shape, bool(sampled.built.all())
     ((1, 1000, 1), True)
     """
+    from ..numeric.cache import definition_digest
     from ..numeric.solver import Solver
     from ..numeric.units import output_units
     chosen = [outputs] if isinstance(outputs, str) else list(outputs)
@@ -946,7 +945,7 @@ def sample_builds(linkage: Linkage, outputs: str | Sequence[str], nominal: Mappi
         {s.name: bool(s.is_positive) for s in linkage.parameters},
         lambda: [output_units(linkage, [o]).get(o) == "rad" for o in chosen], chosen, nominal, tolerances,
         inputs, builds, seed, folder=folder, scheduler=scheduler, workers=workers, chunk=chunk,
-        settings=lambda model: model.settings(linkage))
+        settings=lambda model: model.settings(linkage.name, definition_digest(linkage)))
 
 
 def _check_sampling(builds: int, chunk: int, seed: int, scheduler: str) -> None:
@@ -1048,14 +1047,15 @@ def _read_builds(model: _BuildModel, folder: Path) -> numpy.ndarray:
     import pyarrow
     import pyarrow.parquet
 
-    from ..io.sweep_folder import verified_chunks
+    from ..io.sweep_folder import numpy_column, verified_chunks
     count = model.nominal.shape[1]
     deviation = numpy.full((len(model.outputs), model.builds, count), numpy.nan)
     names = model.columns()
     done = numpy.zeros(model.builds, dtype=bool)
     for record, data in verified_chunks(folder):
-        table = pyarrow.parquet.read_table(pyarrow.BufferReader(data))
-        numbers = table.column("build").to_numpy() if "build" in table.column_names else None
+        # one file, read as one: read_table goes through pyarrow.dataset (imported for it alone)
+        table = pyarrow.parquet.ParquetFile(pyarrow.BufferReader(data)).read()
+        numbers = numpy_column(table, "build") if "build" in table.column_names else None
         if (table.column_names != names or numbers is None
                 or not numpy.array_equal(numbers, numpy.arange(record.first, record.last + 1))):
             raise ValueError(f"{folder / record.name} does not hold builds {record.first} to {record.last} in the "
@@ -1063,7 +1063,7 @@ def _read_builds(model: _BuildModel, folder: Path) -> numpy.ndarray:
         column = 1 + len(model.dimensions)
         for i in range(len(model.outputs)):
             for k in range(count):
-                deviation[i, record.first:record.last + 1, k] = table.column(names[column]).to_numpy()
+                deviation[i, record.first:record.last + 1, k] = numpy_column(table, names[column])
                 column += 1
         done[record.first:record.last + 1] = True
     if not done.all():

@@ -187,6 +187,13 @@ PICTURES = {
     "Stephenson II by its former name, by Newton's method (draw NAME, SVG)": ["draw", "stephenson3", "--out", "s.svg"],
     "animation of a catalog linkage (animate NAME, GIF)": ["animate", "fourbar", "--frames", "3", "--out", "a.gif"],
     "four-bar table with its transmission-angle plot": [*FOURBAR, "--plot-transmission", "transmission.svg"],
+    "view of a catalog linkage, saved (view NAME, PNG)": ["view", "fourbar", "--set", "a=25", "--angle", "40",
+                                                         "--branch", "-1", "--trace", "B,C", "--save", "v.png"],
+    "view of a linkage file, saved (view FILE, PNG)": ["view", str(PROJECT / "linkages" / "jansen.toml"), "--save",
+                                                       "j.png"],
+    "view of the four-bar by its lengths, saved (PNG)": ["view", "--crank", "20", "--coupler", "66", "--rocker", "56",
+                                                         "--ground", "80", "--crank-angle", "30", "--branch", "-1",
+                                                         "--save", "f.png"],
 }
 
 
@@ -200,6 +207,41 @@ def test_a_warm_picture_imports_no_sympy_and_draws_the_same(name, shared_cache, 
     assert not heavy, f"the warm run imported {', '.join(sorted(heavy))}"
     assert runs.warm == runs.cold and runs.warm_notes == runs.cold_notes
     assert runs.warm_files[out] == runs.cold_files[out] and len(runs.cold_files[out]) > 1000
+
+
+#: Command lines that write a folder (the files named, in ``tmp_path``) besides what they print: each run writes
+#: them afresh (:func:`warm_runs.run_twice` reads and removes them), so the warm run resumes nothing.
+FOLDERS = {
+    "tolerance stack-up with sampled builds kept in a folder (three chunks, a manifest naming the definition)": (
+        ["tolerance", "fourbar", "--crank", "20", "--coupler", "66", "--rocker", "56", "--ground", "80",
+         "--tolerance", "0.05", "--samples", "25000", "--folder", "mc", "--angles", "0,50", "--format", "csv"],
+        ["mc/manifest.json", *(f"mc/chunk-{k:06d}.parquet" for k in range(3))]),
+    "tolerance stack-up of a linkage file, its builds in a folder": (
+        ["tolerance", str(PROJECT / "linkages" / "slider-crank.toml"), "--tolerance", "0.05", "--samples", "500",
+         "--folder", "mc", "--angles", "0,40", "--format", "csv"], ["mc/manifest.json", "mc/chunk-000000.parquet"]),
+}
+
+
+@pytest.mark.parametrize("name", FOLDERS)
+def test_a_warm_command_writing_a_folder_imports_no_sympy_and_writes_the_same(name, shared_cache, tmp_path):
+    """Sampled builds kept in a ``--folder``: the warm run takes the definition's digest for the manifest from the
+    cached facts (no SymPy), and writes the cold run's chunks and manifest, byte for byte; the manifest's digest is
+    the SHA-256 of the linkage's definition, computed here from the linkage itself."""
+    import hashlib
+    import json
+
+    from symlink.io.linkage_file import load_linkage
+    from symlink.numeric.cache import definition
+    pytest.importorskip("dask", reason="pip install -e '.[sweep]'")
+    arguments, files = FOLDERS[name]
+    runs = run_twice(tmp_path, arguments, shared_cache, files=files)
+    assert "dask" in runs.imported and "pyarrow" in runs.imported  # the import list was read, and it sampled
+    heavy = runs.imported & {"sympy", "matplotlib", "scipy", "pandas", "distributed"}
+    assert not heavy, f"the warm run imported {', '.join(sorted(heavy))}"
+    assert runs.warm == runs.cold and runs.warm_notes == runs.cold_notes and "0 chunks found done" in runs.warm_notes
+    assert all(runs.warm_files[f] == runs.cold_files[f] for f in files)
+    settings = json.loads(runs.warm_files["mc/manifest.json"])["settings"]
+    assert settings["definition"] == hashlib.sha256(definition(load_linkage(arguments[1]).linkage).encode()).hexdigest()
 
 
 def test_a_warm_drawing_takes_other_numbers(shared_cache, tmp_path):
@@ -287,6 +329,37 @@ def test_bad_input_to_a_warm_drawing_is_one_line_and_exit_2(shared_cache, tmp_pa
         assert without_import_times(done.stderr) == message
         assert "symlink" in imported_packages(done.stderr) and "sympy" not in imported_packages(done.stderr)
         assert not (tmp_path / "bad.svg").exists()
+
+
+#: Bad input to a warm ``symlink view NAME --save``: (the options) -> the error line of the cold run.
+BAD_VIEWS = {
+    ("--set", "q=1"): "symlink: error: --set: fourbar has no value 'q'; it takes a, b, c, d, theta\n",
+    ("--trace", "Z"): "symlink: error: fourbar has no point or joint 'Z' to trace; it has A, B, C, D\n",
+    # the length as given (the view named its slider's clamped value, -0.2, before)
+    ("--set", "a=-1"): "symlink: error: a must be a positive finite length, got -1.0\n",
+    ("--set", "a=1000"): "symlink: error: fourbar cannot be assembled at theta = 0\n",
+}
+
+
+@pytest.mark.parametrize("options", BAD_VIEWS)
+def test_bad_input_to_a_warm_view_is_one_line_and_exit_2(options, shared_cache, tmp_path):
+    """A warm view checks its values against the cached facts and placement: a --set of no value, a point it does
+    not have, a length that is not positive and a linkage that cannot be assembled are refused in one line with exit
+    status 2, in the words of a cold run (the first run below), without importing SymPy, and nothing is written."""
+    import os
+    import subprocess
+    import sys
+
+    from warm_runs import imported_packages, without_import_times
+    env = {**os.environ, "PYTHONPATH": str(PROJECT), "SYMLINK_CACHE": str(shared_cache), "MPLBACKEND": "Agg"}
+    runs = [subprocess.run([sys.executable, *flags, "-m", "symlink", "view", "fourbar", *options, "--save",
+                            "bad.png"], capture_output=True, text=True, env=env, cwd=str(tmp_path), timeout=600)
+            for flags in ([], ["-X", "importtime"])]
+    for done in runs:
+        assert done.returncode == 2 and done.stdout == ""
+        assert without_import_times(done.stderr) == BAD_VIEWS[options]
+        assert not (tmp_path / "bad.png").exists()
+    assert "symlink" in imported_packages(runs[1].stderr) and "sympy" not in imported_packages(runs[1].stderr)
 
 
 #: Sweeps of a catalog linkage and of a linkage file (the chunk is written into ``out``): the scheduler, and whether
@@ -484,3 +557,47 @@ def test_a_warm_analysis_takes_other_values_and_outputs(shared_cache, tmp_path):
     extended = math.pi - math.acos((c * c + d * d - (a + b) ** 2) / (2 * c * d))
     folded = math.pi - math.acos((c * c + d * d - (b - a) ** 2) / (2 * c * d))
     assert report["limits"]["stroke"] == pytest.approx(math.degrees(folded - extended), abs=1e-9)
+
+
+#: ``symlink analyze NAME|FILE --output X`` where X has no limit positions: (linkage, output) -> the error line.  The
+#: words are those of the derivation (``Linkage.output``, ``check_position_output``); a sensitivity's name was an
+#: internal error (the output's code took it as an argument it was not given).
+REFUSED_OUTPUTS = {
+    ("fourbar", "phidot"): "'phidot' is not a position output of fourbar; give a coordinate, role, point coordinate "
+                           "or extra",
+    ("fourbar", "thetadot"): "'thetadot' is not a position output of fourbar; give a coordinate, role, point "
+                             "coordinate or extra",
+    ("fourbar", "rocker_accel"): "'rocker_accel' is not a position output of fourbar; give a coordinate, role, point "
+                                 "coordinate or extra",
+    ("fourbar", "singular"): "'singular' is not a position output of fourbar; give a coordinate, role, point "
+                             "coordinate or extra",
+    ("fourbar", "phi__d_a"): "'phi__d_a' is not a position output of fourbar; give a coordinate, role, point "
+                             "coordinate or extra",
+    ("fourbar", "nosuch"): "fourbar has no output 'nosuch'; it has beta, phi, betadot, phidot, betaddot, phiddot, "
+                           "crank, crank_speed, crank_accel, coupler, coupler_speed, coupler_accel, rocker, "
+                           "rocker_speed, rocker_accel, A_x, A_y, B_x, B_y, C_x, C_y, D_x, D_y, transmission, singular",
+    ("slider-crank.toml", "slider_speed"): "'slider_speed' is not a position output of slider-crank; give a "
+                                           "coordinate, role, point coordinate or extra",
+}
+
+
+@pytest.mark.parametrize("linkage, output", REFUSED_OUTPUTS)
+def test_a_warm_analysis_refuses_an_output_without_limit_positions_in_one_line(linkage, output, shared_cache,
+                                                                                 tmp_path):
+    """An output that is no position output (a rate, an acceleration, the singularity flag, a sensitivity) or not
+    an output at all is refused warm from the cached facts (its names and kinds), without SymPy, in the cold run's
+    one line, exit status 2."""
+    import os
+    import subprocess
+    import sys
+
+    from warm_runs import imported_packages, without_import_times
+    named = str(PROJECT / "linkages" / linkage) if linkage.endswith(".toml") else linkage
+    env = {**os.environ, "PYTHONPATH": str(PROJECT), "SYMLINK_CACHE": str(shared_cache)}
+    runs = [subprocess.run([sys.executable, *flags, "-m", "symlink", "analyze", named, "--output", output],
+                           capture_output=True, text=True, env=env, cwd=str(tmp_path), timeout=600)
+            for flags in ([], ["-X", "importtime"])]
+    for done in runs:
+        assert done.returncode == 2 and done.stdout == ""
+        assert without_import_times(done.stderr) == f"symlink: error: {REFUSED_OUTPUTS[linkage, output]}\n"
+    assert "symlink" in imported_packages(runs[1].stderr) and "sympy" not in imported_packages(runs[1].stderr)

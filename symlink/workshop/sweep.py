@@ -314,7 +314,7 @@ class SweepSettings:
         data = asdict(self)
         data["ranges"] = {name: list(bounds) for name, bounds in self.ranges.items()}
         text = data.pop("linkage_text")
-        data["linkage_sha256"] = None if text is None else hashlib.sha256(text.encode()).hexdigest()
+        data["linkage_sha256"] = None if text is None else _text_digest(text)
         data["fixed"] = self.fixed
         return data
 
@@ -333,18 +333,21 @@ def _linkage(source: str, text: str | None) -> LinkageFile:
 
 def _request(source: str, text: str | None) -> dict[str, str] | None:
     """What names a sweep's linkage in a cache key, found without reading it (no SymPy): its catalog or atlas name,
-    or the SHA-256 of a linkage file's text (``text``, as the workers have it; else read from ``source``); None
-    where it is none of these (the reader then says what is wrong)."""
+    or the SHA-256 of a linkage file's text (``text``, as the workers have it; else read from ``source``, hashed
+    once); None where it is none of these (the reader then says what is wrong).
+
+    The text, not the file's bytes (as :func:`symlink.io.scene_text.linkage_request` hashes them by default): a
+    worker has only the text, read with its line ends made ``\\n``, and must find the entries its sweep keyed.
+    """
     if text is None:
         from ..io.scene_text import linkage_request
-        request = linkage_request(source)
-        if request is None or "file_sha256" not in request:
-            return request
-        try:
-            text = Path(source).read_text(encoding="utf-8")
-        except (OSError, UnicodeError):
-            return None
-    return {"file_sha256": hashlib.sha256(text.encode("utf-8")).hexdigest()}
+        return linkage_request(source, digest=lambda path: _text_digest(path.read_text(encoding="utf-8")))
+    return {"file_sha256": _text_digest(text)}
+
+
+def _text_digest(text: str) -> str:
+    """The SHA-256 of a linkage file's text (UTF-8), hex: what names it in a sweep's keys and in its manifest."""
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 
 def _key(request: Mapping[str, str], outputs: Sequence[str]) -> str:

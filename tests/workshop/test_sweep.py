@@ -774,3 +774,21 @@ def test_a_partial_design_of_a_warm_sweep_reaches_what_the_hand_formula_says(tmp
         table = evaluate_designs(settings, [0])
         assert table["spans"][0] == 2 and table["reach"][0] == pytest.approx(expected, abs=1e-12)
     cache.clear_memory()
+
+
+# --- one home: a linkage file hashed once, one entry of the margins for the sweep and the analysis ----------------
+
+def test_a_linkage_file_is_read_and_hashed_once_by_its_text(tmp_path, monkeypatch):
+    """A sweep keys a file by its text (what its workers have: line ends read as \\n), read once: the SHA-256 of the
+    bytes with CRLF made LF, by hashlib, for a file written with CRLF line ends."""
+    path = tmp_path / "crlf.toml"
+    data = (ROOT / "symlink" / "linkages" / "slider-crank.toml").read_bytes().replace(b"\n", b"\r\n")
+    path.write_bytes(data)
+    reads = []
+    read_bytes, read_text = Path.read_bytes, Path.read_text
+    monkeypatch.setattr(Path, "read_bytes", lambda self: reads.append("bytes") or read_bytes(self))
+    monkeypatch.setattr(Path, "read_text", lambda self, *a, **k: reads.append("text") or read_text(self, *a, **k))
+    expected = hashlib.sha256(data.replace(b"\r\n", b"\n")).hexdigest()
+    assert sweep_module._request(str(path), None) == {"file_sha256": expected}
+    assert reads == ["text"]
+    assert sweep_module._request(str(path), data.decode().replace("\r\n", "\n")) == {"file_sha256": expected}

@@ -759,21 +759,17 @@ def _design_spans(settings: SweepSettings, values: Mapping[str, Any], count: int
 
 @lru_cache(maxsize=16)
 def _margins(source: str, text: str | None) -> tuple | None:
-    """The margins of the linkage's clamped roots from the disk cache (derived once:
-    :func:`symlink.numeric.reachability.margins_entry_text`), compiled where a compiler works
+    """The margins of the linkage's clamped roots from the disk cache (the entry ``symlink analyze NAME|FILE``
+    reads too: :func:`symlink.io.table_source.margins_entry`, derived once), compiled where a compiler works
     (:func:`~symlink.numeric.design_scan.fastest_margins`), their roots (name, loop), lengths, branch signs and
     rounding; None where the cache cannot key the linkage."""
     request = _request(source, text)
     if request is None:
         return None
-    from ..numeric.cache import cached_module
+    from ..io.table_source import margins_entry
     from ..numeric.design_scan import fastest_margins
 
-    def derive() -> str:
-        from ..numeric.reachability import margins_entry_text
-        return margins_entry_text(_linkage(source, text).linkage)
-
-    _, namespace = cached_module(_key(request, ["margins"]), derive)  # a verified entry of a private cache
+    namespace = margins_entry(request, lambda: _linkage(source, text).linkage)  # a verified entry of a private cache
     described = namespace["MARGINS_DESCRIPTION"]
     function = fastest_margins(namespace["margins"], lambda: described["c_margins"], described["lengths"],
                                described["branches"])

@@ -792,3 +792,30 @@ def test_a_linkage_file_is_read_and_hashed_once_by_its_text(tmp_path, monkeypatc
     assert sweep_module._request(str(path), None) == {"file_sha256": expected}
     assert reads == ["text"]
     assert sweep_module._request(str(path), data.decode().replace("\r\n", "\n")) == {"file_sha256": expected}
+
+
+def test_the_sweep_and_the_analysis_share_one_entry_of_the_margins(tmp_path, monkeypatch):
+    """The margins of a linkage's roots are derived once for a sweep and ``symlink analyze`` alike (one key, one
+    builder), and they are the slider-crank's root argument by hand, b^2 - (a sin(theta) - offset)^2 (the rod spans
+    the guide's distance from B), over a scale that does not change with the input, plus the rounding allowed."""
+    from symlink.cli.analyze import AnalysisSource
+    from symlink.numeric import cache, reachability
+    monkeypatch.setenv("SYMLINK_CACHE", str(tmp_path / "cache"))
+    cache.clear_memory()
+    sweep_module._margins.cache_clear()
+    built = []
+    margins_text = reachability.margins_text
+    monkeypatch.setattr(reachability, "margins_text", lambda linkage: built.append(linkage.name) or
+                        margins_text(linkage))
+    try:
+        assert sweep_module._margins("slider-crank", None) is not None
+        margins = AnalysisSource("slider-crank")._margins()
+        assert built == ["slider-crank"]
+        a, b, offset, theta = 2.0, 1.0, 0.5, numpy.linspace(-0.3, 0.9, 7)  # closes from -14.5 to 48.6 deg
+        found = margins(a=a, b=b, offset=offset, theta=theta, branch=1)["margin_0"] - reachability.TOLERANCE
+        argument = b * b - (a * numpy.sin(theta) - offset) ** 2
+        assert numpy.array_equal(numpy.sign(found), [-1, 1, 1, 1, 1, 1, -1])
+        numpy.testing.assert_allclose(found / argument, found[3] / argument[3], rtol=1e-12)
+    finally:
+        sweep_module._margins.cache_clear()
+        cache.clear_memory()

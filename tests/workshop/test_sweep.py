@@ -759,6 +759,28 @@ def test_a_warm_chunk_is_evaluated_without_sympy_and_is_the_cold_ones(tmp_path, 
     assert runs[1]["sha256"] == runs[0]["sha256"]
 
 
+def test_a_warm_chunk_of_a_file_whose_guide_is_turned_by_a_fixed_angle_imports_no_sympy(tmp_path):
+    """A joint whose direction is turned by a fixed angle (a value a design) is plain data too (its recipe's terms):
+    the warm chunk builds no linkage and is the cold one's, byte for byte."""
+    text = (ROOT / "symlink" / "linkages" / "slider-crank.toml").read_text()
+    for old, new in (('name = "slider-crank"', 'name = "tilted"'),
+                     ('constants = ["offset"]', 'constants = ["offset", "delta"]'),
+                     ('AS = ["s", 0]', 'AS = ["s", "delta"]'),
+                     ('SC = ["offset", "pi/2"]', 'SC = ["offset", "delta + pi/2"]'),
+                     ("offset = 0.7", 'offset = 0.7\ndelta = "20 deg"')):
+        assert old in text
+        text = text.replace(old, new)
+    path = tmp_path / "tilted.toml"
+    path.write_text(text)
+    env = dict(os.environ, SYMLINK_CACHE=str(tmp_path / "cache"), PYTHONPATH=str(ROOT))
+    ranges = json.dumps({"delta": [0.0, 0.5]})
+    runs = [json.loads(subprocess.run([sys.executable, "-c", _CHUNK_IN_A_PROCESS, str(path), ranges, "{}"],
+                                      capture_output=True, text=True, env=env, check=True, cwd=tmp_path,
+                                      timeout=600).stdout) for _ in range(2)]
+    assert runs[0]["sympy"] and not runs[1]["sympy"]
+    assert runs[1]["sha256"] == runs[0]["sha256"]
+
+
 def test_a_partial_design_of_a_warm_sweep_reaches_what_the_hand_formula_says(tmp_path, monkeypatch):
     """The reach of a slider-crank that cannot turn, evaluated twice (cold, then from the cache's margins): the
     rod spans the guide where |offset - a sin(theta)| <= b, so with a = 2, b = 1, offset 0.5 the crank turns

@@ -29,7 +29,7 @@ from ..numeric.cached_linkage import CachedLinkage
 from ..numeric.fourbar_transmission import (TransmissionRange, transmission_curve, transmission_range,  # noqa: F401
                                              triangle_angle)
 from ..numeric.reachability import BISECTIONS, InputMotion, InputRange, reachable_range
-from .joint_angles import joint_angle_arrays, joint_coordinates
+from .joint_angles import direction_parts, joint_angle_arrays, joint_coordinates
 
 if TYPE_CHECKING:  # the symbolic layer and the solvers are imported where used: a cached linkage needs neither
     import sympy as sp
@@ -147,27 +147,22 @@ def _linear_terms(expr: sp.Expr, what: str) -> list[list]:
     return sorted(terms, key=lambda t: (t[1] is not None, t[1] or ""))
 
 
-def _sum_of_terms(terms: list, values: Mapping[str, float]) -> float:
-    total = 0.0
-    for coefficient, name in terms:
-        total += coefficient if name is None else coefficient * values[name]
-    return total
-
-
 def direction_recipe(sign: int, vector: Vector, known: Collection[str]) -> dict[str, Any]:
     """How a walked vector's direction follows from solved coordinates and ``known`` values, as plain data (JSON).
 
     ``coordinate``: the one coordinate its angle turns with (None for a guide at a fixed angle); ``offset``: the
-    rest of its angle, and ``length``: its length where the values fix it (its sign turns it half a turn), each a
-    sum of multiples of named values (:func:`_linear_terms`); ``sign``: walked forwards (+1) or back (-1, half a
-    turn more).  A cached analysis keeps it, so that a warm one needs no SymPy.
+    rest of its angle, and ``length``: its length where the values fix it and it may be negative (its sign turns
+    it half a turn; None for a length, which is positive, or an unknown), each a sum of multiples of named values
+    (:func:`_linear_terms`); ``sign``: walked forwards (+1) or back (-1, half a turn more).  A cached analysis and a sweep's facts keep it, so that a warm one needs no SymPy
+    (:func:`~symlink.analysis.joint_angles.direction_parts` evaluates it).
     """
     import sympy as sp
     angle = vector.angle
     moving = [s for s in angle.free_symbols if s.name not in known]
     if len(moving) > 1 or (moving and sp.diff(angle, moving[0]) != 1):
         raise ValueError(f"the angle of {vector.name or vector} is not a coordinate plus a constant")
-    fixed = vector.length.free_symbols <= {s for s in vector.length.free_symbols if s.name in known}
+    fixed = (vector.length.free_symbols <= {s for s in vector.length.free_symbols if s.name in known}
+             and not vector.length.is_positive)
     return {"sign": int(sign), "coordinate": moving[0].name if moving else None,
             "offset": _linear_terms(angle - moving[0] if moving else angle, f"angle of {vector.name or vector}"),
             "length": _linear_terms(vector.length, f"length of {vector.name or vector}") if fixed else None}
@@ -175,10 +170,7 @@ def direction_recipe(sign: int, vector: Vector, known: Collection[str]) -> dict[
 
 def _direction(recipe: Mapping[str, Any], values: Mapping[str, float], solved: Mapping[str, numpy.ndarray]):
     """The walked direction of a vector (radians) and its rate, from solved coordinates and values."""
-    flip = 0.0 if recipe["sign"] > 0 else math.pi
-    if recipe["length"] is not None:
-        flip += math.pi if _sum_of_terms(recipe["length"], values) < 0 else 0.0
-    offset = _sum_of_terms(recipe["offset"], values)
+    offset, flip = direction_parts(recipe, values)
     q = recipe["coordinate"]
     if q is None:  # a guide at a fixed angle
         return numpy.full(numpy.shape(solved["assembled"]), offset + flip), 0.0
@@ -247,31 +239,19 @@ def transmission_angles(linkage: Linkage | CachedLinkage, values: Mapping[str, f
     return {joint["loop"]: _interior(joint, motion.values, solved)[0] for joint in _joints(linkage, motion.values)}
 
 
-def _direction_of(sign: int, vector: Vector, linkage: Linkage) -> tuple[str | None, Callable[..., Any]]:
-    """A walked direction as generated code: the coordinate it turns with (None for a fixed guide) and a
-    function of the parameters (by name, numbers or arrays) giving the rest (offset, and pi where it is walked
-    backwards or its length is negative)."""
-    import sympy as sp
-    angle = vector.angle
-    known = set(linkage.parameters) | set(linkage.inputs)
-    moving = [s for s in angle.free_symbols if s not in known]
-    if len(moving) > 1 or (moving and sp.diff(angle, moving[0]) != 1):
-        raise ValueError(f"the angle of {vector.name or vector} is not a coordinate plus a constant")
-    rest = angle - moving[0] if moving else angle
-    rest += 0 if sign > 0 else sp.pi
-    if vector.length.free_symbols <= known:  # pi more where the length is negative
-        rest += sp.pi * sp.Piecewise((1, vector.length < 0), (0, True))
-    arguments = sorted(rest.free_symbols, key=lambda s: s.name)
-    function = sp.lambdify(arguments, rest, modules="numpy")
-    names = [s.name for s in arguments]
-    return (moving[0].name if moving else None), (lambda values: function(*(values[n] for n in names)))
-
-
 @lru_cache(maxsize=32)
-def joint_functions(linkage: Linkage) -> tuple:
-    """Each two-angle loop's joint as generated code: (loop, guide, into, out), each side a :func:`_direction_of`."""
-    return tuple((joint.loop, joint.guide, _direction_of(*joint.into[:2], linkage), _direction_of(*joint.out[:2], linkage))
-                 for joint in transmission_joints(linkage))
+def joint_recipes(linkage: Linkage) -> tuple[dict[str, Any], ...]:
+    """The :func:`joint_recipe` of every two-angle loop, with the parameters and every input known (values, as a
+    sweep or a synthesis passes them to :func:`~symlink.analysis.joint_angles.joint_angle_arrays`): made once a
+    linkage.
+
+    >>> from symlink.mechanism.catalog import slider_crank
+    >>> [(j["loop"], j["guide"], j["into"]["coordinate"], j["out"]["coordinate"])
+    ...  for j in joint_recipes(slider_crank())]
+    [('ABC', True, None, 'beta')]
+    """
+    known = {s.name for s in linkage.parameters + linkage.inputs}
+    return tuple(joint_recipe(joint, known) for joint in transmission_joints(linkage))
 
 
 def transmission_arrays(linkage: Linkage, values: Mapping[str, Any], solved: Mapping[str, numpy.ndarray]
@@ -280,8 +260,8 @@ def transmission_arrays(linkage: Linkage, values: Mapping[str, Any], solved: Map
 
     ``values``: the parameters (and held inputs) by name, numbers or arrays that broadcast against the
     solved coordinates (one row a design, say); ``solved``: the unknowns by name, as a solver of them
-    returns them (NaN where not assembled).  The same angles as :func:`transmission_angles`, from code
-    generated once a linkage (:func:`joint_functions`, evaluated by
+    returns them (NaN where not assembled).  The same angles as :func:`transmission_angles`, from the joints'
+    recipes made once a linkage (:func:`joint_recipes`, evaluated by
     :func:`~symlink.analysis.joint_angles.joint_angle_arrays`): no SymPy per design.
 
     >>> from symlink.numeric.solver import Solver
@@ -291,12 +271,12 @@ def transmission_arrays(linkage: Linkage, values: Mapping[str, Any], solved: Map
     >>> round(math.degrees(float(transmission_arrays(fourbar(), {}, solved)["ABCD"][0])), 2)
     58.23
     """
-    return joint_angle_arrays(joint_functions(linkage), values, solved)
+    return joint_angle_arrays(joint_recipes(linkage), values, solved)
 
 
 def transmission_coordinates(linkage: Linkage) -> list[str]:
     """The coordinates :func:`transmission_arrays` needs solved, by name."""
-    return joint_coordinates(joint_functions(linkage))
+    return joint_coordinates(joint_recipes(linkage))
 
 
 @dataclass(frozen=True)

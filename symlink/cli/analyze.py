@@ -7,7 +7,7 @@ from functools import cached_property
 from typing import Any
 
 from ..common.angles import from_radians
-from ..io.table_source import TableSource
+from ..io.table_source import ANALYSIS_SHAPING, TableSource
 from .options import (add_fourbar_lengths, add_units_option, assignments, command_help, fourbar_lengths,
                       fourbar_or_linkage, require_held_inputs)
 
@@ -98,10 +98,6 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-#: Besides what shapes a table's entries: the code whose text shapes the analysis's facts and generated modules.
-ANALYSIS_SHAPING = ("analysis", "numeric/reachability", "numeric/cached_linkage", "mechanism/mobility", "cli/analyze")
-
-
 class AnalysisSource(TableSource):
     """A linkage named on the command line (a catalog or atlas name, or a linkage file), as the general analysis
     needs it: a :class:`~symlink.numeric.cached_linkage.CachedLinkage` of its facts and generated code from the disk
@@ -152,10 +148,10 @@ class AnalysisSource(TableSource):
         return CachedSolver(self.facts["name"], outputs, key=self.key(outputs, analysis=False),
                             derive=lambda: entry_text(self.found().linkage, outputs), full=full)
 
-    def _margins(self) -> Any:
-        from ..numeric.cache import cached_module
-        from ..numeric.reachability import margins_text
-        return cached_module(self.key(["(margins)"]), lambda: margins_text(self.found().linkage))[1]["margins"]
+    def _margins(self) -> Any:  # the one entry of the margins, a sweep's too (a keyed linkage's: see linkage())
+        from ..io.table_source import margins_entry
+        assert self.request is not None
+        return margins_entry(self.request, lambda: self.found().linkage)["margins"]
 
     def _output(self, name: str) -> tuple[Any, bool]:
         from ..analysis.limits import check_named_output

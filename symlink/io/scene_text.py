@@ -23,7 +23,7 @@ from __future__ import annotations
 import json
 import math
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Any, Callable, Mapping, Sequence
 
 import numpy
 
@@ -111,11 +111,18 @@ def catalog_file_names() -> list[str]:
     return sorted(path.stem for path in _CATALOG_FILES.glob("*.toml"))
 
 
-def linkage_request(source: str, folder: str | Path | None = None) -> dict[str, str] | None:
+def _bytes_digest(path: Path) -> str:
+    """The SHA-256 of a file's bytes, hex: what names a linkage file in a cache key (:func:`linkage_request`)."""
+    return sha256(path.read_bytes()).hexdigest()
+
+
+def linkage_request(source: str, folder: str | Path | None = None, digest: Callable[[Path], str] = _bytes_digest
+                    ) -> dict[str, str] | None:
     """What names a linkage in a cache key, found without building it (no SymPy): a catalog or atlas name, or
-    the digest of a linkage file's bytes (a relative path looked for in ``folder``, as
-    :func:`symlink.io.linkage_file.load_linkage` does); None where it is none of these (the reader then says
-    what is wrong).
+    the ``digest`` of a linkage file (SHA-256 of its bytes by default; a relative path looked for in ``folder``, as
+    :func:`symlink.io.linkage_file.load_linkage` does); None where it is none of these, or the file cannot be read
+    (the reader then says what is wrong).  A caller that keys a file by something else of it (a sweep, by its text)
+    passes that as ``digest``, so that the file is read and hashed once.
 
     >>> linkage_request("fourbar"), linkage_request("atlas:watt-ii"), linkage_request("no/such/file.toml")
     ({'catalog': 'fourbar'}, {'atlas': 'atlas:watt-ii'}, None)
@@ -129,8 +136,8 @@ def linkage_request(source: str, folder: str | Path | None = None) -> dict[str, 
         path = Path(folder) / source if folder is not None else Path(source)
         if not path.is_file() or path.stat().st_size > _KEYED_FILE_BYTES:
             return None
-        return {"file_sha256": sha256(path.read_bytes()).hexdigest()}
-    except (OSError, ValueError):
+        return {"file_sha256": digest(path)}
+    except (OSError, ValueError):  # a UnicodeError (a digest of the text) is a ValueError
         return None
 
 

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import warnings
 from functools import cached_property
-from typing import TYPE_CHECKING, Any, Collection, Mapping
+from typing import TYPE_CHECKING, Any, Callable, Collection, Mapping
 
 from ..common.angles import to_radians
 from ..common.names import SixBarNameNote, former_name_note
@@ -31,7 +31,7 @@ if TYPE_CHECKING:
 # a request whose facts and solver are in the disk cache never imports SymPy (symlink.numeric.cached_solver).
 
 __all__ = ["TableSource", "table_facts", "table_columns", "newton_facts", "units_of_columns", "facts_values",
-           "GENERIC_ENTRY_KIND", "GENERIC_SHAPING"]
+           "GENERIC_ENTRY_KIND", "GENERIC_SHAPING", "ANALYSIS_SHAPING", "MARGINS_ENTRY_KIND", "margins_entry"]
 
 
 def table_columns(linkage: Linkage) -> list[str]:
@@ -95,6 +95,38 @@ GENERIC_ENTRY_KIND = "generic-table/2"
 #: Besides the code that shapes generated code: what reads a linkage file and what takes a table's facts from it,
 #: and what an atlas name (atlas:NAME) stands for: the atlas's names and example drawings, and the joints reader.
 GENERIC_SHAPING = ("io/linkage_file", "io/table_source", "mechanism/atlas", "mechanism/joints")
+#: Besides what shapes a table's entries: the code whose text shapes the general analysis's facts and generated
+#: modules (``symlink analyze NAME|FILE``), and the margins of a linkage's roots (:func:`margins_entry`).
+ANALYSIS_SHAPING = ("analysis", "numeric/reachability", "numeric/cached_linkage", "mechanism/mobility", "cli/analyze")
+#: The kind of the cache entry of the margins of a linkage's clamped roots (:func:`margins_entry`).
+MARGINS_ENTRY_KIND = "root-margins/1"
+
+
+def margins_entry(request: Mapping[str, str], linkage: Callable[[], Linkage]) -> dict[str, Any]:
+    """The margins of the clamped roots of the linkage ``request`` names (:func:`symlink.io.scene_text.
+    linkage_request`), from the disk cache: the namespace of their module
+    (:func:`symlink.numeric.reachability.margins_entry_text`: the function ``margins`` and the dictionary
+    ``MARGINS_DESCRIPTION`` of their roots, lengths, branch signs, rounding and C), derived once from ``linkage()``
+    (SymPy).
+
+    The one entry of the margins of a linkage named by what names it: ``symlink analyze NAME|FILE`` evaluates its
+    ``margins`` and a sweep scans with it (:func:`symlink.numeric.design_scan.margin_spans`).  Keyed with the
+    analysis's code (:data:`ANALYSIS_SHAPING`, which holds the margins' :mod:`symlink.numeric.reachability`), so
+    that a warm analysis hashes no other code.
+
+    >>> namespace = margins_entry({"catalog": "slider-crank"}, lambda: TableSource("slider-crank").found().linkage)
+    >>> namespace["MARGINS_DESCRIPTION"]["roots"], sorted(namespace["margins"](a=1.0, b=4.0, offset=0.5,
+    ...                                                                           theta=0.0, branch=1))
+    ([['margin_0', 'ABC']], ['assembled', 'margin_0'])
+    """
+    from ..numeric.cache import cached_module, catalog_key
+
+    def derive() -> str:
+        from ..numeric.reachability import margins_entry_text
+        return margins_entry_text(linkage())
+
+    key = catalog_key("margins", [], MARGINS_ENTRY_KIND, dict(request), GENERIC_SHAPING + ANALYSIS_SHAPING)
+    return cached_module(key, derive)[1]
 
 
 def facts_values(facts: Mapping[str, Any], settings: Mapping[str, float], units: str,

@@ -333,8 +333,9 @@ MARGINS_DESCRIPTION = "MARGINS_DESCRIPTION"
 
 def margins_entry_text(linkage: Linkage) -> str:
     """A cache entry of the margins of ``linkage``'s clamped roots (:func:`design_spans`), for a process without
-    the linkage (a warm sweep): their NumPy module, as :func:`_margin_function` generates it, and a dictionary
-    of their roots, lengths and branch signs, the rounding they allow and their C
+    the linkage (a warm sweep or analysis: :func:`symlink.io.table_source.margins_entry` keeps it): their NumPy
+    module, as :func:`_margin_function` generates it, and a dictionary of their roots, lengths and branch signs,
+    the rounding they allow and their C
     (:func:`symlink.numeric.design_scan.fastest_margins` and :func:`~symlink.numeric.design_scan.margin_spans`
     take them).
 

@@ -58,9 +58,8 @@ which scans every 20th point first and the points between only where a root's ma
 Grashof class from :func:`~symlink.analysis.grashof.grashof_names` (all designs
 at once); the transmission angle from the four-bar's ``transmission`` output,
 or for another linkage from its solved coordinates
-(:func:`~symlink.analysis.joint_angles.joint_angle_arrays` of the joints kept as
-plain numbers; :func:`~symlink.analysis.transmission.transmission_arrays` where a
-joint turns with a fixed angle).  Extremes are the samples' refined by the parabola through each extreme
+(:func:`~symlink.analysis.joint_angles.joint_angle_arrays` of its joints' recipes,
+plain data kept with its facts).  Extremes are the samples' refined by the parabola through each extreme
 and its neighbours (errors of order ``step**3``).
 
 Every chunk is computed by the same code: where the compiled backend is being
@@ -137,8 +136,9 @@ LONGEST_SWEEP_SECONDS = 365 * 86400
 #: what names the linkage (the catalog or atlas name, or the digest of the linkage file's text).
 SWEEP_ENTRY_KIND = "sweep/1"
 #: What shapes those entries besides the code that shapes generated code: what reads a linkage and names it
-#: (:data:`symlink.io.table_source.GENERIC_SHAPING`) and what takes a sweep's facts from it (this module).
-SWEEP_SHAPING = (*GENERIC_SHAPING, "workshop/sweep")
+#: (:data:`symlink.io.table_source.GENERIC_SHAPING`) and what takes a sweep's facts from it (this module, and the
+#: joints' recipes of :mod:`symlink.analysis.transmission`).
+SWEEP_SHAPING = (*GENERIC_SHAPING, "workshop/sweep", "analysis/transmission")
 
 
 def missing_modules(names: Sequence[str] = ("dask", "distributed", "pyarrow")) -> list[str]:
@@ -314,7 +314,7 @@ class SweepSettings:
         data = asdict(self)
         data["ranges"] = {name: list(bounds) for name, bounds in self.ranges.items()}
         text = data.pop("linkage_text")
-        data["linkage_sha256"] = None if text is None else hashlib.sha256(text.encode()).hexdigest()
+        data["linkage_sha256"] = None if text is None else _text_digest(text)
         data["fixed"] = self.fixed
         return data
 
@@ -333,18 +333,21 @@ def _linkage(source: str, text: str | None) -> LinkageFile:
 
 def _request(source: str, text: str | None) -> dict[str, str] | None:
     """What names a sweep's linkage in a cache key, found without reading it (no SymPy): its catalog or atlas name,
-    or the SHA-256 of a linkage file's text (``text``, as the workers have it; else read from ``source``); None
-    where it is none of these (the reader then says what is wrong)."""
+    or the SHA-256 of a linkage file's text (``text``, as the workers have it; else read from ``source``, hashed
+    once); None where it is none of these (the reader then says what is wrong).
+
+    The text, not the file's bytes (as :func:`symlink.io.scene_text.linkage_request` hashes them by default): a
+    worker has only the text, read with its line ends made ``\\n``, and must find the entries its sweep keyed.
+    """
     if text is None:
         from ..io.scene_text import linkage_request
-        request = linkage_request(source)
-        if request is None or "file_sha256" not in request:
-            return request
-        try:
-            text = Path(source).read_text(encoding="utf-8")
-        except (OSError, UnicodeError):
-            return None
-    return {"file_sha256": hashlib.sha256(text.encode("utf-8")).hexdigest()}
+        return linkage_request(source, digest=lambda path: _text_digest(path.read_text(encoding="utf-8")))
+    return {"file_sha256": _text_digest(text)}
+
+
+def _text_digest(text: str) -> str:
+    """The SHA-256 of a linkage file's text (UTF-8), hex: what names it in a sweep's keys and in its manifest."""
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 
 def _key(request: Mapping[str, str], outputs: Sequence[str]) -> str:
@@ -358,16 +361,18 @@ def linkage_facts(found: LinkageFile) -> dict[str, Any]:
     its outputs and points, and how its transmission angles are found.
 
     Kept in the disk cache (:func:`sweep_facts`), so that a warm sweep, and each worker of a sweep, builds no
-    linkage.  ``joints``: the transmission joints of its two-angle loops as plain data
-    (:func:`symlink.analysis.joint_angles.joint_angle_arrays`) where their directions' constant parts are numbers,
-    else None (then found from the linkage).
+    linkage.  ``joints``: the recipes of the joints of its two-angle loops
+    (:func:`symlink.analysis.transmission.joint_recipes`, which
+    :func:`symlink.analysis.joint_angles.joint_angle_arrays` evaluates), where it has no ``transmission`` output.
 
     >>> from symlink.io.linkage_file import load_linkage
     >>> facts = linkage_facts(load_linkage("slider-crank"))
-    >>> facts["parameters"], facts["default_output"], facts["moving_points"], facts["joints"]
-    (['a', 'b', 'offset'], 'slider', ['B', 'C'], [['ABC', True, None, 0.0, 'beta', 0.0]])
+    >>> facts["parameters"], facts["default_output"], facts["moving_points"]
+    (['a', 'b', 'offset'], 'slider', ['B', 'C'])
+    >>> [(j["loop"], j["guide"], j["into"]["coordinate"], j["out"]["coordinate"]) for j in facts["joints"]]
+    [('ABC', True, None, 'beta')]
     """
-    from ..analysis.transmission import joint_functions
+    from ..analysis.transmission import joint_recipes
     from ..io.scene import angle_outputs
     from ..symbolic.closure import is_angle
     linkage = found.linkage
@@ -376,16 +381,7 @@ def linkage_facts(found: LinkageFile) -> dict[str, Any]:
     moving = set(linkage.unknowns) | set(linkage.inputs)
     roles = list(linkage.roles)
     transmission = "transmission" in names
-    plain: list[list[Any]] = []
-    joints: list[list[Any]] | None = plain
-    if linkage.has_closed_form and not transmission:
-        for loop, guide, (into, into_rest), (out, out_rest) in joint_functions(linkage):
-            try:  # a constant part with no symbol in it is a number (a fixed angle's is not)
-                constants = float(into_rest({})), float(out_rest({}))
-            except KeyError:
-                joints = None
-                break
-            plain.append([loop, guide, into, constants[0], out, constants[1]])
+    joints = list(joint_recipes(linkage)) if linkage.has_closed_form and not transmission else []
     return {
         "name": linkage.name, "kind": found.source if found.source in ("catalog", "atlas") else "file",
         "defaults": {name: float(value) for name, value in found.defaults.items()},
@@ -589,14 +585,10 @@ def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[st
     fourbar = facts["fourbar"]
     transmission_output = facts["transmission"]
     outputs = [settings.output, f"{settings.point}_x", f"{settings.point}_y"]
-    # transmission angles from the coordinates: the joints as plain data, else (a fixed angle in a direction)
-    # from the linkage
-    joints = None if facts["joints"] is None else _plain_joints(facts["joints"])
+    # transmission angles from the coordinates and the joints' recipes (plain data: no linkage)
+    joints = facts["joints"]
     if transmission_output:
         outputs.append("transmission")
-    elif joints is None:
-        from ..analysis.transmission import transmission_coordinates
-        outputs += transmission_coordinates(settings.found().linkage)
     else:
         outputs += joint_coordinates(joints)
     solver = _solver(settings.linkage, settings.linkage_text, tuple(dict.fromkeys(outputs)))
@@ -619,12 +611,7 @@ def evaluate_designs(settings: SweepSettings, designs: Iterable[int]) -> dict[st
         path[rows] = solved[f"{settings.point}_x"] + 1j * solved[f"{settings.point}_y"]
         if transmission_output:
             mu[rows] = solved["transmission"]
-        elif joints is None:  # every design of the block at once, by code generated once (no SymPy a design)
-            from ..analysis.transmission import transmission_arrays
-            with numpy.errstate(all="ignore"):
-                mu[rows] = numpy.fmin.reduce(list(transmission_arrays(settings.found().linkage, arguments,
-                                                                      solved).values()))
-        elif joints:
+        elif joints:  # every design of the block at once
             with numpy.errstate(all="ignore"):
                 mu[rows] = numpy.fmin.reduce(list(joint_angle_arrays(joints, arguments, solved).values()))
     output[~mask] = numpy.nan
@@ -756,32 +743,22 @@ def _design_spans(settings: SweepSettings, values: Mapping[str, Any], count: int
 
 @lru_cache(maxsize=16)
 def _margins(source: str, text: str | None) -> tuple | None:
-    """The margins of the linkage's clamped roots from the disk cache (derived once:
-    :func:`symlink.numeric.reachability.margins_entry_text`), compiled where a compiler works
+    """The margins of the linkage's clamped roots from the disk cache (the entry ``symlink analyze NAME|FILE``
+    reads too: :func:`symlink.io.table_source.margins_entry`, derived once), compiled where a compiler works
     (:func:`~symlink.numeric.design_scan.fastest_margins`), their roots (name, loop), lengths, branch signs and
     rounding; None where the cache cannot key the linkage."""
     request = _request(source, text)
     if request is None:
         return None
-    from ..numeric.cache import cached_module
+    from ..io.table_source import margins_entry
     from ..numeric.design_scan import fastest_margins
 
-    def derive() -> str:
-        from ..numeric.reachability import margins_entry_text
-        return margins_entry_text(_linkage(source, text).linkage)
-
-    _, namespace = cached_module(_key(request, ["margins"]), derive)  # a verified entry of a private cache
+    namespace = margins_entry(request, lambda: _linkage(source, text).linkage)  # a verified entry of a private cache
     described = namespace["MARGINS_DESCRIPTION"]
     function = fastest_margins(namespace["margins"], lambda: described["c_margins"], described["lengths"],
                                described["branches"])
     return (function, [tuple(root) for root in described["roots"]], described["lengths"], described["branches"],
             described["tolerance"])
-
-
-def _plain_joints(joints: list[list[Any]]) -> tuple:
-    """The joints of :func:`linkage_facts` as :func:`~symlink.analysis.joint_angles.joint_angle_arrays` takes them."""
-    return tuple((loop, guide, (into, into_rest), (out, out_rest))
-                 for loop, guide, into, into_rest, out, out_rest in joints)
 
 
 # --- chunks, Parquet and Dask ------------------------------------------------------------------

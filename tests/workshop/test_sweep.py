@@ -759,6 +759,28 @@ def test_a_warm_chunk_is_evaluated_without_sympy_and_is_the_cold_ones(tmp_path, 
     assert runs[1]["sha256"] == runs[0]["sha256"]
 
 
+def test_a_warm_chunk_of_a_file_whose_guide_is_turned_by_a_fixed_angle_imports_no_sympy(tmp_path):
+    """A joint whose direction is turned by a fixed angle (a value a design) is plain data too (its recipe's terms):
+    the warm chunk builds no linkage and is the cold one's, byte for byte."""
+    text = (ROOT / "symlink" / "linkages" / "slider-crank.toml").read_text()
+    for old, new in (('name = "slider-crank"', 'name = "tilted"'),
+                     ('constants = ["offset"]', 'constants = ["offset", "delta"]'),
+                     ('AS = ["s", 0]', 'AS = ["s", "delta"]'),
+                     ('SC = ["offset", "pi/2"]', 'SC = ["offset", "delta + pi/2"]'),
+                     ("offset = 0.7", 'offset = 0.7\ndelta = "20 deg"')):
+        assert old in text
+        text = text.replace(old, new)
+    path = tmp_path / "tilted.toml"
+    path.write_text(text)
+    env = dict(os.environ, SYMLINK_CACHE=str(tmp_path / "cache"), PYTHONPATH=str(ROOT))
+    ranges = json.dumps({"delta": [0.0, 0.5]})
+    runs = [json.loads(subprocess.run([sys.executable, "-c", _CHUNK_IN_A_PROCESS, str(path), ranges, "{}"],
+                                      capture_output=True, text=True, env=env, check=True, cwd=tmp_path,
+                                      timeout=600).stdout) for _ in range(2)]
+    assert runs[0]["sympy"] and not runs[1]["sympy"]
+    assert runs[1]["sha256"] == runs[0]["sha256"]
+
+
 def test_a_partial_design_of_a_warm_sweep_reaches_what_the_hand_formula_says(tmp_path, monkeypatch):
     """The reach of a slider-crank that cannot turn, evaluated twice (cold, then from the cache's margins): the
     rod spans the guide where |offset - a sin(theta)| <= b, so with a = 2, b = 1, offset 0.5 the crank turns
@@ -774,3 +796,48 @@ def test_a_partial_design_of_a_warm_sweep_reaches_what_the_hand_formula_says(tmp
         table = evaluate_designs(settings, [0])
         assert table["spans"][0] == 2 and table["reach"][0] == pytest.approx(expected, abs=1e-12)
     cache.clear_memory()
+
+
+# --- one home: a linkage file hashed once, one entry of the margins for the sweep and the analysis ----------------
+
+def test_a_linkage_file_is_read_and_hashed_once_by_its_text(tmp_path, monkeypatch):
+    """A sweep keys a file by its text (what its workers have: line ends read as \\n), read once: the SHA-256 of the
+    bytes with CRLF made LF, by hashlib, for a file written with CRLF line ends."""
+    path = tmp_path / "crlf.toml"
+    data = (ROOT / "symlink" / "linkages" / "slider-crank.toml").read_bytes().replace(b"\n", b"\r\n")
+    path.write_bytes(data)
+    reads = []
+    read_bytes, read_text = Path.read_bytes, Path.read_text
+    monkeypatch.setattr(Path, "read_bytes", lambda self: reads.append("bytes") or read_bytes(self))
+    monkeypatch.setattr(Path, "read_text", lambda self, *a, **k: reads.append("text") or read_text(self, *a, **k))
+    expected = hashlib.sha256(data.replace(b"\r\n", b"\n")).hexdigest()
+    assert sweep_module._request(str(path), None) == {"file_sha256": expected}
+    assert reads == ["text"]
+    assert sweep_module._request(str(path), data.decode().replace("\r\n", "\n")) == {"file_sha256": expected}
+
+
+def test_the_sweep_and_the_analysis_share_one_entry_of_the_margins(tmp_path, monkeypatch):
+    """The margins of a linkage's roots are derived once for a sweep and ``symlink analyze`` alike (one key, one
+    builder), and they are the slider-crank's root argument by hand, b^2 - (a sin(theta) - offset)^2 (the rod spans
+    the guide's distance from B), over a scale that does not change with the input, plus the rounding allowed."""
+    from symlink.cli.analyze import AnalysisSource
+    from symlink.numeric import cache, reachability
+    monkeypatch.setenv("SYMLINK_CACHE", str(tmp_path / "cache"))
+    cache.clear_memory()
+    sweep_module._margins.cache_clear()
+    built = []
+    margins_text = reachability.margins_text
+    monkeypatch.setattr(reachability, "margins_text", lambda linkage: built.append(linkage.name) or
+                        margins_text(linkage))
+    try:
+        assert sweep_module._margins("slider-crank", None) is not None
+        margins = AnalysisSource("slider-crank")._margins()
+        assert built == ["slider-crank"]
+        a, b, offset, theta = 2.0, 1.0, 0.5, numpy.linspace(-0.3, 0.9, 7)  # closes from -14.5 to 48.6 deg
+        found = margins(a=a, b=b, offset=offset, theta=theta, branch=1)["margin_0"] - reachability.TOLERANCE
+        argument = b * b - (a * numpy.sin(theta) - offset) ** 2
+        assert numpy.array_equal(numpy.sign(found), [-1, 1, 1, 1, 1, 1, -1])
+        numpy.testing.assert_allclose(found / argument, found[3] / argument[3], rtol=1e-12)
+    finally:
+        sweep_module._margins.cache_clear()
+        cache.clear_memory()

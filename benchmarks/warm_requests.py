@@ -26,13 +26,20 @@ Bytecode is cached (in the run's folder, ``PYTHONPYCACHEPREFIX``) as for an inst
 ``PYTHONDONTWRITEBYTECODE`` is set: else every run compiles symlink's modules again (about 0.1 s).
 CPU of the measured machine (the performance page's table): Intel Xeon, 2 cores, AVX-512 (load 1.5-1.8; ratios only).
 
+Wall and CPU times of a shared virtual machine wander by a tenth of NumPy's import between rounds, more than what
+is measured; ``--instructions`` counts instead the instructions each warm command line of :data:`INSTRUCTION_COMMANDS`
+executes (Valgrind's callgrind, ``OPENBLAS_NUM_THREADS=1``: the main thread's work, the same in every run to a few
+parts in 10^4), over those of ``python -c "import numpy"``.
+
     python -m benchmarks.warm_requests
+    python -m benchmarks.warm_requests --instructions
 """
 from __future__ import annotations
 
 import json
 import os
 import platform
+import re
 import resource
 import statistics
 import subprocess
@@ -172,7 +179,46 @@ def measure_commands(repeats: int = 15) -> dict[str, tuple[float, float]]:
             for label, found in times.items()}
 
 
+#: The warm tables, the stack-up, the analysis by lengths and the plan: what ``--instructions`` counts.
+INSTRUCTION_COMMANDS = ("table fourbar", "fourbar 2 7 9 6", "fourbar 2 7 9 6 --masses", "slider-crank",
+                        "watt2 (two loops)", "table watt2 (closed form)", "table stephenson2 (Newton)",
+                        "table FILE (jansen.toml)", "run torque scene (watt2)", "tolerance fourbar 2 7 9 6",
+                        "analyze 2 7 9 6 (lengths)", "plan watt2")
+
+
+def instructions(arguments: list[str], env: dict[str, str]) -> int:
+    """The instructions ``python ARGUMENTS`` executes in a new process (Valgrind's callgrind; it must succeed)."""
+    done = subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null", sys.executable,
+                           *arguments], capture_output=True, text=True, env=env, check=True)
+    return int(re.search(r"Collected : (\d+)", done.stderr).group(1))  # type: ignore[union-attr]
+
+
+def measure_instructions() -> dict[str, int]:
+    """Instructions of ``import numpy`` and of each warm command of :data:`INSTRUCTION_COMMANDS` (after a cold run
+    and a warm one with the same cache), with ``OPENBLAS_NUM_THREADS=1``."""
+    with tempfile.TemporaryDirectory() as folder:
+        env = dict(os.environ, SYMLINK_CACHE=str(Path(folder) / "cache"), PYTHONPATH=str(ROOT), MPLBACKEND="Agg",
+                   PYTHONPYCACHEPREFIX=str(Path(folder) / "pycache"), OPENBLAS_NUM_THREADS="1")
+        env.pop("PYTHONDONTWRITEBYTECODE", None)
+        (Path(folder) / "jansen.toml").write_text((ROOT / "symlink" / "linkages" / "jansen.toml").read_text())
+        (Path(folder) / "torque.toml").write_text(scene_text(["input_torque"], True))
+        wall(["-c", "import numpy"], env)  # NumPy's bytecode written under the run's prefix
+        found = {"import numpy": instructions(["-c", "import numpy"], env)}
+        for label in INSTRUCTION_COMMANDS:
+            arguments = ["-m", "symlink", *(a.format(folder=folder, run=0) for a in COMMANDS[label])]
+            wall(arguments, env)  # cold
+            wall(arguments, env)  # warm: the bytecode of symlink's modules and of the cached code written
+            found[label] = instructions(arguments, env)
+    return found
+
+
 def main() -> None:
+    if sys.argv[1:] == ["--instructions"]:
+        counted = measure_instructions()
+        print("instructions of each warm command line over those of python -c 'import numpy' (callgrind):")
+        for label, count in counted.items():
+            print(f"{label:>30}: {count:>12,} {count / counted['import numpy']:6.3f}x")
+        return
     found = measure()
     for label, times in found.items():
         print(f"{label:>10}: cold {times['cold']:.3f} s, warm {times['warm']:.3f} s (new process, disk cache)")

@@ -99,7 +99,9 @@ _public("symlink.synthesis.function", "function_generator")
 _public("symlink.synthesis.motion", "motion_generation burmester_points burmester_curves")
 _public("symlink.synthesis.quick_return", "quick_return")
 # the workshop
-_public("symlink.workshop.tolerance", "stack_up sample_builds pin_play pin_play_envelope Tolerance")
+_public("symlink.workshop.tolerance", "stack_up Tolerance")
+_public("symlink.workshop.pin_play", "pin_play pin_play_envelope")
+_public("symlink.workshop.sampled_builds", "sample_builds")
 _public("symlink.workshop.fabrication", "link_parts write_svg write_dxf svg_text dxf_text assembly_svg_text "
         "read_design write_design")
 _public("symlink.workshop.sweep", "run_sweep read_sweep evaluate_designs SweepSettings")

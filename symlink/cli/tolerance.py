@@ -95,7 +95,7 @@ def _add_options(command: argparse.ArgumentParser) -> None:
 #: the stack-up model of one output by some dimensions (:class:`~symlink.workshop.tolerance.StackUpModel`).
 FACTS_ENTRY_KIND, MODEL_ENTRY_KIND = "tolerance-facts/1", "tolerance-model/1"
 #: The kinds of cache entry of the solver of the output that sampled builds (``--samples``) solve, and of the exact
-#: gradients of the output by the pins' play (``--play``: :func:`symlink.workshop.tolerance.play_jacobian`).
+#: gradients of the output by the pins' play (``--play``: :func:`symlink.workshop.pin_play.play_jacobian`).
 SOLVER_ENTRY_KIND, PLAY_ENTRY_KIND = "tolerance-solver/1", "tolerance-play/1"
 #: Besides the code that shapes generated code: what reads a linkage file or an atlas name, what derives a stack-up's
 #: model, what takes the command's facts from the linkage, and what writes the digest of its definition that the
@@ -242,7 +242,7 @@ def run(args: argparse.Namespace) -> int:
 
         def derive_play(playing: Any) -> Any:
             from ..symbolic.vectors import acceleration, rate
-            from ..workshop.tolerance import play_jacobian
+            from ..workshop.pin_play import play_jacobian
             moving = {rate(q) for q in playing.coordinates} | {acceleration(q) for q in playing.coordinates}
             if playing.output(output).free_symbols & moving:  # ValueError naming the outputs for an unknown one
                 raise ValueError(f"--play is modelled for positions; {output} moves with the rates")
@@ -276,7 +276,7 @@ def run(args: argparse.Namespace) -> int:
                          "dimensions: there is no stack-up to print")
     play = None
     if args.play:
-        from ..workshop.tolerance import played_pins
+        from ..workshop.pin_play import played_pins
         play = played_pins(play_model, facts["name"], facts["inputs"], values, args.play, inputs=inputs).worst_case[0]
     sampled, builds = None, None
     refuse_together(args, ("seed", "does nothing without --samples N", args.builds is None,
@@ -296,7 +296,7 @@ def run(args: argparse.Namespace) -> int:
                                  "builds are then made in memory)")
         if linkage is None:  # the output's solver from the disk cache (derived once): a warm sample imports no SymPy
             from ..numeric.cached_solver import CachedSolver, entry_text
-            from ..workshop.tolerance import solved_builds
+            from ..workshop.sampled_builds import solved_builds
             assert request is not None  # the linkage is read where the request is not keyed
             known = request
 
@@ -310,7 +310,7 @@ def run(args: argparse.Namespace) -> int:
                                    seed=args.seed, folder=args.folder,
                                    settings=lambda model: model.settings(facts["name"], facts["definition"]))
         else:
-            from ..workshop.tolerance import sample_builds
+            from ..workshop.sampled_builds import sample_builds
             builds = sample_builds(linkage, output, values, tolerances, inputs=inputs, builds=args.builds,
                                    seed=args.seed, folder=args.folder)
         sampled = builds.percentile([0.135, 99.865])[:, 0]

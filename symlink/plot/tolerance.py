@@ -3,7 +3,7 @@
 :func:`band_figure` draws, against the input, the output's nominal value (top) and its
 deviations (bottom): the worst-case band (``± sum |dy/dp| band``, light), the statistical band
 (mean shift ± 3 sigma, darker) and, given a Monte Carlo sample
-(:func:`~symlink.workshop.tolerance.sample_builds`), the sampled 0.135 and 99.865 percentiles (the
+(:func:`~symlink.workshop.sampled_builds.sample_builds`), the sampled 0.135 and 99.865 percentiles (the
 3-sigma points of a normal) and the sampled mean as dots, so the linear prediction and the
 sample are read side by side.  :func:`contribution_figure` is a bar chart of each dimension's
 share of the output's variance where the statistical band is widest: the dimension to
@@ -38,7 +38,9 @@ if TYPE_CHECKING:  # Matplotlib is imported when a drawing is made
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-    from ..workshop.tolerance import SampledBuilds, StackUp
+    from ..workshop.tolerance import StackUp
+
+    from ..workshop.sampled_builds import SampledBuilds
 
 __all__ = ["band_figure", "contribution_figure", "distribution_figure", "tolerance_figure", "SAMPLED_PERCENTILES"]
 

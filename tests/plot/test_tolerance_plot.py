@@ -11,7 +11,8 @@ import pytest  # noqa: E402
 from symlink.mechanism.catalog import fourbar, slider_crank  # noqa: E402
 from symlink.plot import save_figure  # noqa: E402
 from symlink.plot.tolerance import band_figure, contribution_figure, tolerance_figure  # noqa: E402
-from symlink.workshop.tolerance import sample_builds, stack_up  # noqa: E402
+from symlink.workshop.tolerance import stack_up
+from symlink.workshop.sampled_builds import sample_builds  # noqa: E402
 
 DESIGN = {"a": 20.0, "b": 66.0, "c": 56.0, "d": 80.0, "branch": 1}
 THETA = np.radians(np.arange(0.0, 360.0, 30.0))

@@ -76,7 +76,7 @@ def fourbar_path(size):
 
 
 def monte_carlo(size):
-    from symlink.workshop.tolerance import sample_builds
+    from symlink.workshop.sampled_builds import sample_builds
     return sample_builds(fourbar(), "rocker", {"a": 20, "b": 66, "c": 56, "d": 80}, {"b": 0.3},
                          inputs={"theta": [0.0, 0.5]}, builds=size)
 

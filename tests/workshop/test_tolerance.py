@@ -209,7 +209,7 @@ def test_pin_play_worst_case_equals_an_optimisation_over_the_play_directions():
     directions, found by a grid and Nelder-Mead, equals the linear worst case to first order in r."""
     from scipy.optimize import minimize
 
-    from symlink.workshop.tolerance import pin_play
+    from symlink.workshop.pin_play import pin_play
     r = 1e-3
     thetas = numpy.radians([40.0, 250.0])
     result = pin_play(fourbar(), "rocker", DESIGN, dict.fromkeys("ABCD", r), inputs={"theta": thetas})
@@ -234,7 +234,7 @@ def test_pin_play_worst_case_equals_an_optimisation_over_the_play_directions():
 def test_pin_play_of_one_pin_is_its_play_times_the_gradient_of_a_moved_pivot():
     """Play only at D: the rocker's pivot moves by delta; by finite differences of the circle intersection
     (written above) in x and y, the gradient's length times the play is the worst case."""
-    from symlink.workshop.tolerance import pin_play
+    from symlink.workshop.pin_play import pin_play
     theta, h = numpy.radians(130.0), 1e-6
     gx = (_rocker_with_pins_moved(theta, 0, h) - _rocker_with_pins_moved(theta, 0, -h)) / (2 * h)
     gy = (_rocker_with_pins_moved(theta, 0, 1j * h) - _rocker_with_pins_moved(theta, 0, -1j * h)) / (2 * h)
@@ -243,7 +243,7 @@ def test_pin_play_of_one_pin_is_its_play_times_the_gradient_of_a_moved_pivot():
 
 
 def test_pin_play_bad_input():
-    from symlink.workshop.tolerance import pin_play
+    from symlink.workshop.pin_play import pin_play
     with pytest.raises(ValueError, match="no joint 'E'"):
         pin_play(fourbar(), "rocker", DESIGN, {"E": 0.01})
     with pytest.raises(ValueError, match=">= 0"):
@@ -254,7 +254,7 @@ def test_pin_play_bad_input():
 
 def test_command_adds_the_pins_play_as_a_column(capsys):
     from symlink.cli import main
-    from symlink.workshop.tolerance import pin_play
+    from symlink.workshop.pin_play import pin_play
     assert main(COMMAND + ["--tolerance", "0.05", "--play", "B=0.02,C=0.03", "--angles", "130", "--format",
                            "csv"]) == 0
     lines = capsys.readouterr().out.splitlines()
@@ -273,7 +273,7 @@ def test_the_exact_play_envelope_equals_an_optimisation_over_the_play_directions
     four directions of the circle-intersection model written above."""
     from scipy.optimize import minimize
 
-    from symlink.workshop.tolerance import pin_play_envelope
+    from symlink.workshop.pin_play import pin_play_envelope
     r, theta = 0.5, numpy.radians(theta_degrees)
     envelope = pin_play_envelope(fourbar(), "rocker", DESIGN, dict.fromkeys("ABCD", r), at={"theta": theta})
     nominal = _rocker_with_pins_moved(theta, 0, 0)
@@ -300,7 +300,7 @@ def test_the_exact_play_envelope_equals_an_optimisation_over_the_play_directions
 # --- the Monte Carlo check --------------------------------------------------------------------
 
 def test_sampled_builds_agree_with_the_linear_bands_where_tolerances_are_small():
-    from symlink.workshop.tolerance import sample_builds
+    from symlink.workshop.sampled_builds import sample_builds
     count, theta = 100_000, numpy.radians([40.0, 250.0])
     tolerances = dict.fromkeys(LENGTHS, 0.05)
     sampled = sample_builds(fourbar(), "rocker", DESIGN, tolerances, inputs={"theta": theta}, builds=count, seed=7)
@@ -319,7 +319,7 @@ def test_sampled_builds_agree_with_the_linear_bands_where_tolerances_are_small()
 
 def test_a_length_drawn_non_positive_is_a_build_that_cannot_be_made():
     """The crank a = 20 with sigma 20: a share Phi(-1) = 0.1587 of the builds has a <= 0 (a normal CDF)."""
-    from symlink.workshop.tolerance import sample_builds
+    from symlink.workshop.sampled_builds import sample_builds
     count = 20_000
     sampled = sample_builds(fourbar(), "rocker", DESIGN, {"a": Tolerance(sigma=20.0)}, inputs={"theta": [1.0]},
                             builds=count, seed=3)
@@ -335,7 +335,7 @@ def test_builds_of_a_cached_solver_are_those_of_the_linkage():
     """solved_builds (what a warm ``symlink tolerance --samples`` runs, no linkage) draws and solves the builds of
     sample_builds: the same deviations, bit for bit, the crank's non-positive draws thrown away alike."""
     from symlink.numeric.cached_solver import CachedSolver
-    from symlink.workshop.tolerance import sample_builds, solved_builds
+    from symlink.workshop.sampled_builds import sample_builds, solved_builds
     tolerances = {"a": Tolerance(sigma=10.0), "b": 0.3}
     theta = numpy.radians([0.0, 130.0])
     expected = sample_builds(fourbar(), "rocker", DESIGN, tolerances, inputs={"theta": theta}, builds=3000, seed=5,
@@ -363,7 +363,7 @@ def test_command_samples_builds_beside_the_linear_bands(capsys):
 def test_pin_play_of_a_slider_crank_by_hand():
     """At theta = 0 the slider sits at s = B_x + sqrt(b^2 - (e - B_y)^2) (offset e): play moving the crank pin
     B (at A or at B) or the block's pin C moves s by (1, (e - B_y) / sqrt(b^2 - (e - B_y)^2)) . delta."""
-    from symlink.workshop.tolerance import pin_play
+    from symlink.workshop.pin_play import pin_play
     a, b, e = 1.3, 4.1, 0.7
     result = pin_play(slider_crank(), "slider", {"a": a, "b": b, "offset": e, "branch": 1},
                       {"A": 0.01, "B": 0.02, "C": 0.03}, inputs={"theta": [0.0]})

@@ -1,4 +1,4 @@
-"""The Monte Carlo check in a folder (symlink.workshop.tolerance.sample_builds(..., folder=)): resumable, verified, seeded.
+"""The Monte Carlo check in a folder (symlink.workshop.sampled_builds.sample_builds(..., folder=)): resumable, verified, seeded.
 
 The expected values come from outside the code under test: the same builds made in memory
 (the NumPy route, which shares only the per-chunk seeding rule with the folder route), an
@@ -15,7 +15,8 @@ import numpy
 import pytest
 
 from symlink.mechanism.catalog import fourbar
-from symlink.workshop.tolerance import Tolerance, sample_builds, stack_up
+from symlink.workshop.tolerance import Tolerance, stack_up
+from symlink.workshop.sampled_builds import sample_builds
 
 
 
@@ -39,14 +40,14 @@ def _sample(folder=None, **options):
 def test_a_resumed_run_gives_the_sample_of_an_uninterrupted_one(tmp_path, monkeypatch, sweep_extra):
     """The fourth chunk of five is interrupted (Ctrl-C): the three chunks done are kept; the run again makes
     only the two missing and gives the sample of an uninterrupted run, which is the in-memory sample."""
-    from symlink.workshop import tolerance
+    from symlink.workshop import sampled_builds
     from symlink.io.sweep_folder import read_manifest
     whole = _sample(tmp_path / "whole", scheduler="threads", workers=2)
     in_memory = _sample()
     assert numpy.array_equal(whole.deviation, in_memory.deviation)
     assert whole.reused == 0 and numpy.isfinite(whole.deviation).all()
 
-    table = tolerance._BuildModel.table
+    table = sampled_builds._BuildModel.table
     made: list[int] = []
 
     def interrupted(self, index):
@@ -55,14 +56,14 @@ def test_a_resumed_run_gives_the_sample_of_an_uninterrupted_one(tmp_path, monkey
         made.append(index)
         return table(self, index)
 
-    monkeypatch.setattr(tolerance._BuildModel, "table", interrupted)
+    monkeypatch.setattr(sampled_builds._BuildModel, "table", interrupted)
     with pytest.raises(KeyboardInterrupt):
         _sample(tmp_path / "stopped", scheduler="synchronous")
     assert len(made) == 3
     assert sorted(read_manifest(tmp_path / "stopped")[1]) == sorted(f"chunk-00000{k}.parquet" for k in made)
     first = set(made)
     made.clear()
-    monkeypatch.setattr(tolerance._BuildModel, "table", lambda self, index: made.append(index) or table(self, index))
+    monkeypatch.setattr(sampled_builds._BuildModel, "table", lambda self, index: made.append(index) or table(self, index))
     resumed = _sample(tmp_path / "stopped", scheduler="synchronous")
     assert sorted(made) == sorted(set(range(5)) - first) and resumed.reused == 3
     assert numpy.array_equal(resumed.deviation, whole.deviation)

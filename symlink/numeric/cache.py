@@ -100,6 +100,9 @@ TEXT_SUFFIX, BYTECODE_SUFFIX = ".json", ".code"
 #: entry it was compiled from, a SHA-256 of all of that and the code, and the code (:mod:`marshal`).
 _BYTECODE_FORMAT = b"symlink bytecode 1\n"
 
+#: The package's folder: where the modules that shape generated code are found, and part of the source digest's key.
+_PACKAGE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
 _TEXTS: dict[str, str] = {}
 _CODES: dict[str, CodeType] = {}  # key -> the compiled code of its text
 _LOADED: dict[str, "GeneratedCode"] = {}
@@ -202,6 +205,7 @@ def definition_digest(linkage: Linkage) -> str:
     """
     return sha256(definition(linkage).encode()).hexdigest()
 
+
 def _described_extras(linkage: Linkage) -> list:
     """The extras of ``linkage`` for its definition: each one's expression, or what the linkage says they are
     made from where it can say so without deriving them (a dynamic linkage: its model as given)."""
@@ -218,8 +222,7 @@ def code_shaping_files(modules: Sequence[str] = CODE_SHAPING) -> list[Path]:
     >>> "position" in names, "plot" in names
     (True, False)
     """
-    package = Path(__file__).parent.parent
-    return [package / name for name in _code_shaping_names(tuple(modules))]
+    return [Path(_PACKAGE) / name for name in _code_shaping_names(tuple(modules))]
 
 
 @lru_cache(maxsize=4)
@@ -229,15 +232,14 @@ def _code_shaping_names(modules: tuple[str, ...]) -> tuple[str, ...]:
     Listed with :func:`os.walk` on plain strings (not :meth:`pathlib.Path.rglob`, whose pattern machinery costs a
     warm command some milliseconds); the order is ``sorted(folder.rglob("*.py"))``'s, so the digest is unchanged.
     """
-    package = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     names: list[str] = []
     for name in modules:
-        if os.path.isfile(os.path.join(package, f"{name}.py")):
+        if os.path.isfile(os.path.join(_PACKAGE, f"{name}.py")):
             names.append(f"{name}.py")
         found: list[str] = []
-        for folder, subfolders, files in os.walk(os.path.join(package, name)):
+        for folder, subfolders, files in os.walk(os.path.join(_PACKAGE, name)):
             subfolders[:] = [sub for sub in subfolders if sub != "__pycache__"]
-            relative = os.path.relpath(folder, package).replace(os.sep, "/")
+            relative = os.path.relpath(folder, _PACKAGE).replace(os.sep, "/")
             found.extend(f"{relative}/{file}" for file in files if file.endswith(".py"))
         names.extend(sorted(found, key=lambda path: path.split("/")))
     return tuple(names)
@@ -257,7 +259,7 @@ def _module_stat(path: str) -> list[int]:
 @lru_cache(maxsize=None)
 def _module_digest(name: str) -> bytes:
     """BLAKE2b of the package file ``name`` (relative, POSIX): read once a process, though both digests cover it."""
-    return blake2b(_module_bytes(Path(__file__).parent.parent / name)).digest()
+    return blake2b(_module_bytes(Path(_PACKAGE) / name)).digest()
 
 
 @lru_cache(maxsize=4)
@@ -271,9 +273,8 @@ def _source_digest(modules: Sequence[str] = CODE_SHAPING) -> str:
     SHA-256 as for the keys and entries: without OpenSSL it is the faster of the two.)
     """
     names = _code_shaping_names(tuple(modules))
-    package = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    signature = [[name, *_module_stat(os.path.join(package, name))] for name in names]
-    key = sha256(json.dumps(["source digest", FORMAT, package, signature], separators=(",", ":")).encode())
+    signature = [[name, *_module_stat(os.path.join(_PACKAGE, name))] for name in names]
+    key = sha256(json.dumps(["source digest", FORMAT, _PACKAGE, signature], separators=(",", ":")).encode())
     return cached_text(key.hexdigest(), lambda: _hashed_sources(names))
 
 
